@@ -1,0 +1,186 @@
+/* flexbond: multibond graphs.
+ *
+ * A graph holds elements joined by bonds. Every bond carries a vector effort
+ * e and a vector flow f of the bond's dimension n (a multibond when n > 1)
+ * and has a power direction: power e.f is positive from the bond's `from`
+ * end to its `to` end (the half arrow points at `to`).
+ *
+ * Element kinds and their constitutive laws (Karnopp, Margolis & Rosenberg,
+ * "System Dynamics", 5th ed., Wiley 2012, ch. 3-4, 7; Breedveld, "Multibond
+ * graph elements in physical systems theory", J. Franklin Inst. 319, 1985):
+ *   Se, Sf      effort or flow source, each component a function of time
+ *   I field     p' = e (per port), f = M^-1 p    (M symmetric positive definite)
+ *   C field     q' = f, e = K q                  (K symmetric positive semi-definite)
+ *   R field     e = R f                          (R symmetric positive semi-definite)
+ *   TF  (r)     e1 = r e2, f2 = r f1             (port 1 in, port 2 out)
+ *   GY  (r)     e1 = r f2, e2 = r f1
+ *   MTF (T)     f2 = T f1, e1 = T^T e2           (T is n2 x n1)
+ *   0-junction  equal efforts, signed flows sum to zero
+ *   1-junction  equal flows, signed efforts sum to zero
+ *   composite   the paper's "horizontal line": k part bonds stacked into one
+ *               whole multibond, e = [e_1; ...; e_k], f = [f_1; ...; f_k]
+ * A field has one or more ports; its law acts on the stacked port vectors.
+ * A one-port I, C or R is a field with one port. Laws are matrices now; a
+ * nonlinear law is an fb_law (explicit causality only).
+ *
+ * Port references are strings:
+ *   "J"          a junction (each bond to it adds a port) or a one-port element
+ *   "E.k"        port k (1-based) of a multiport element; composite: "E.whole"
+ *   "sub.p"      port p exported by the adopted subsystem sub (nests: "a.b.p")
+ * Element names inside an adopted subsystem are prefixed "sub.". */
+#ifndef FLEXBOND_BG_H
+#define FLEXBOND_BG_H
+
+#include <stddef.h>
+
+#include "flexbond/error.h"
+#include "flexbond/expr.h"
+#include "flexbond/mat.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum fb_bg_kind {
+  FB_BG_SE,
+  FB_BG_SF,
+  FB_BG_I,
+  FB_BG_C,
+  FB_BG_R,
+  FB_BG_TF,
+  FB_BG_GY,
+  FB_BG_MTF,
+  FB_BG_J0,
+  FB_BG_J1,
+  FB_BG_COMPOSITE
+} fb_bg_kind;
+
+/* Physical domain of a bond: sets the units of its effort, flow, and of
+ * their time integrals in probes and reports. */
+typedef enum fb_bg_domain {
+  FB_DOMAIN_TRANSLATION, /* N, m/s, momentum N s, displacement m */
+  FB_DOMAIN_ROTATION,    /* N m, rad/s, N m s, rad */
+  FB_DOMAIN_ELECTRICAL,  /* V, A, V s, C */
+  FB_DOMAIN_HYDRAULIC,   /* Pa, m^3/s, Pa s, m^3 */
+  FB_DOMAIN_GENERIC      /* effort, flow: unit "1" */
+} fb_bg_domain;
+
+/* Direction of power at a subsystem's exported port. */
+typedef enum fb_bg_dir {
+  FB_PORT_IN, /* power flows into the subsystem through the port */
+  FB_PORT_OUT /* power flows out of the subsystem */
+} fb_bg_dir;
+
+/* A nonlinear constitutive law y = phi(x) for a field (explicit causality:
+ * I: x = p, y = f; C: x = q, y = e; R: x = f, y = e). n is the stacked
+ * port dimension. eval and jacobian return 0 on success, >0 for a
+ * recoverable failure (the solver retries with a smaller step), <0 fatal. */
+typedef struct fb_law_ops {
+  const char *name;
+  int (*eval)(void *ctx, size_t n, const double *x, double *y);
+  /* dy/dx into jac, column-major n x n. */
+  int (*jacobian)(void *ctx, size_t n, const double *x, double *jac);
+  /* Stored energy (I, C) or co-content, for energy probes; may be NULL. */
+  double (*energy)(void *ctx, size_t n, const double *x);
+  void (*free)(void *ctx);
+} fb_law_ops;
+
+typedef struct fb_bg fb_bg;
+
+/* Creates an empty graph named name (copied). */
+int fb_bg_new(const char *name, fb_bg **out, fb_err *err);
+/* Frees *bg and everything it owns, sets *bg to NULL; accepts NULL. */
+void fb_bg_free(fb_bg **bg);
+const char *fb_bg_name(const fb_bg *bg);
+
+/* Default domain of bonds added afterwards (initially TRANSLATION). */
+void fb_bg_set_domain(fb_bg *bg, fb_bg_domain domain);
+
+/* ---- Elements. Names are unique in a graph; they may not contain '.'.
+ * Functions that take `T **x` take ownership of *x and set it to NULL,
+ * also on failure. */
+
+/* Source of dimension dim; values[i] is component i. */
+int fb_bg_add_source(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim,
+                     fb_tfun **values, fb_err *err);
+/* I, C or R field with nports ports of dimensions port_dims; law is the
+ * stacked matrix (M, K or R) of size sum(port_dims). */
+int fb_bg_add_field(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
+                    const size_t *port_dims, fb_mat **law, fb_err *err);
+/* As fb_bg_add_field with a nonlinear law; ctx is owned by the graph and
+ * released with ops->free. */
+int fb_bg_add_field_law(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
+                        const size_t *port_dims, const fb_law_ops *ops, void *ctx,
+                        fb_err *err);
+/* Initial state (p for I, q for C) of a field, stacked; default zero. */
+int fb_bg_set_initial(fb_bg *bg, const char *name, size_t n, const double *x0, fb_err *err);
+/* TF or GY of dimension dim with scalar modulus. */
+int fb_bg_add_tf(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, double modulus,
+                 fb_err *err);
+/* Matrix transformer f2 = T f1, e1 = T^T e2. */
+int fb_bg_add_mtf(fb_bg *bg, const char *name, fb_mat **T, fb_err *err);
+/* 0- or 1-junction of dimension dim. */
+int fb_bg_add_junction(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, fb_err *err);
+/* Composite with nparts part ports (dims part_dims) and one whole port of
+ * dimension sum(part_dims). */
+int fb_bg_add_composite(fb_bg *bg, const char *name, size_t nparts, const size_t *part_dims,
+                        fb_err *err);
+
+/* ---- Bonds. Connects port reference `from` to `to` (power from -> to).
+ * The bond's dimension is the ports' common dimension; a mismatch, or an
+ * exported port whose power direction disagrees (a bond leaving a
+ * subsystem through an IN port, say), is FB_EMODEL naming both ports.
+ * name may be NULL (a name "from->to" is made). */
+int fb_bg_connect(fb_bg *bg, const char *name, const char *from, const char *to, fb_err *err);
+/* Domain of an existing bond (overrides the graph default). */
+int fb_bg_set_bond_domain(fb_bg *bg, const char *bond, fb_bg_domain domain, fb_err *err);
+
+/* ---- Subsystems. */
+/* Declares an external port of bg named port_name at the port reference
+ * target inside bg, with power direction dir as seen from bg. Re-exporting
+ * an adopted subsystem's port must keep its direction. */
+int fb_bg_add_port(fb_bg *bg, const char *port_name, const char *target, fb_bg_dir dir,
+                   fb_err *err);
+/* Moves every element, bond and port of *child into parent under the
+ * prefix instance_name, frees the child shell and sets *child to NULL
+ * (also on failure). The child's ports are then referenced from parent
+ * as "instance_name.port". */
+int fb_bg_adopt(fb_bg *parent, fb_bg **child, const char *instance_name, fb_err *err);
+
+/* ---- Causality: sequential causality assignment procedure (Karnopp et
+ * al., section 5.2; Rosenberg & Karnopp 1983): sources, then storage in
+ * integral causality, then resistors, then remaining junction bonds, each
+ * followed by propagation through junctions, transformers and gyrators,
+ * vector-wise on multibonds. FB_ECAUSAL on a conflict or on storage in
+ * derivative causality, naming the elements and bonds involved; FB_EMODEL
+ * on an unconnected element port. Idempotent. */
+int fb_bg_assign_causality(fb_bg *bg, fb_err *err);
+
+/* ---- Inspection (valid indices 0 .. count-1). */
+size_t fb_bg_nelements(const fb_bg *bg);
+size_t fb_bg_nbonds(const fb_bg *bg);
+/* Index of a named element or bond, or -1. */
+long fb_bg_find_element(const fb_bg *bg, const char *name);
+long fb_bg_find_bond(const fb_bg *bg, const char *name);
+const char *fb_bg_element_name(const fb_bg *bg, size_t i);
+fb_bg_kind fb_bg_element_kind(const fb_bg *bg, size_t i);
+/* Stacked dimension of the element's ports (state size for I and C). */
+size_t fb_bg_element_dim(const fb_bg *bg, size_t i);
+const char *fb_bg_bond_name(const fb_bg *bg, size_t i);
+size_t fb_bg_bond_dim(const fb_bg *bg, size_t i);
+fb_bg_domain fb_bg_bond_domain(const fb_bg *bg, size_t i);
+/* Element indices at the bond's ends (power from -> to). */
+size_t fb_bg_bond_from(const fb_bg *bg, size_t i);
+size_t fb_bg_bond_to(const fb_bg *bg, size_t i);
+/* After causality: 1 if the `to` element receives the effort (causal stroke
+ * at the `to` end), 0 if the `from` element does, -1 if unassigned. */
+int fb_bg_bond_effort_to_head(const fb_bg *bg, size_t i);
+const char *fb_bg_kind_name(fb_bg_kind kind);
+/* Units of effort, flow, effort integral and flow integral. */
+const char *fb_bg_domain_unit(fb_bg_domain d, int which);
+enum { FB_UNIT_EFFORT, FB_UNIT_FLOW, FB_UNIT_MOMENTUM, FB_UNIT_DISPLACEMENT };
+
+#ifdef __cplusplus
+}
+#endif
+#endif

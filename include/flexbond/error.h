@@ -1,0 +1,61 @@
+/* flexbond: status codes and error context.
+ *
+ * Every fallible function returns an int status (FB_OK on success) and, when
+ * given a non-NULL fb_err, records a human-readable message there. Callers
+ * add context (file:line, element or bond names) with fb_err_prefix() as the
+ * error travels up. No function prints or exits; only the CLI does. */
+#ifndef FLEXBOND_ERROR_H
+#define FLEXBOND_ERROR_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum fb_status {
+  FB_OK = 0,
+  FB_ENOMEM = 1,  /* allocation failed */
+  FB_EINVAL = 2,  /* invalid argument or parameter value */
+  FB_EPARSE = 3,  /* malformed input text (YAML, CSV, expression, mtx) */
+  FB_EMODEL = 4,  /* structurally invalid model (names, ports, dimensions) */
+  FB_ECAUSAL = 5, /* causality: derivative causality, conflict, algebraic loop */
+  FB_ESOLVER = 6, /* numerical failure (singular matrix, CVODE error) */
+  FB_EIO = 7      /* file could not be read or written */
+};
+
+#define FB_ERR_MSG_MAX 4096
+
+typedef struct fb_err {
+  int code;                  /* last status recorded, FB_OK when clear */
+  char msg[FB_ERR_MSG_MAX];  /* NUL-terminated message, "" when clear */
+} fb_err;
+
+/* Resets err to FB_OK with an empty message. err may be NULL. */
+void fb_err_clear(fb_err *err);
+
+/* Records code and a printf-formatted message, replacing any previous one.
+ * Returns code, so callers write `return fb_err_set(err, FB_EINVAL, ...);`.
+ * err may be NULL (the message is then dropped). */
+int fb_err_set(fb_err *err, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Prepends printf-formatted context to the recorded message (the context is
+ * inserted verbatim, include the separator, e.g. "model.yaml:12: ").
+ * Returns err->code (FB_OK if err is NULL). */
+int fb_err_prefix(fb_err *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Short constant name of a status code, e.g. "FB_EPARSE". */
+const char *fb_status_name(int code);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

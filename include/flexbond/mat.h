@@ -1,0 +1,99 @@
+/* flexbond: real matrices (dense column-major or compressed sparse column)
+ * and sparse LU factorisation (SuiteSparse KLU).
+ *
+ * Used for the constitutive laws of multiport fields (mass, stiffness,
+ * damping), for matrix transformers and for block gains. An fb_mat is
+ * immutable once created. Indices are 0-based size_t in the API. */
+#ifndef FLEXBOND_MAT_H
+#define FLEXBOND_MAT_H
+
+#include <stddef.h>
+
+#include "flexbond/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fb_mat fb_mat;
+
+/* Constructors copy their input arrays (the caller keeps ownership of them)
+ * and return a new matrix in *out, owned by the caller (free with
+ * fb_mat_free). On failure *out is NULL. */
+
+/* Dense matrix from column-major values (nrows*ncols of them). */
+int fb_mat_new_dense(size_t nrows, size_t ncols, const double *colmajor, fb_mat **out,
+                     fb_err *err);
+/* Dense matrix from row-major values (as written in a YAML list of rows). */
+int fb_mat_new_dense_rowmajor(size_t nrows, size_t ncols, const double *rowmajor,
+                              fb_mat **out, fb_err *err);
+/* Sparse matrix from (row, col, value) triplets; duplicates are summed,
+ * explicit zeros are kept out. Indices out of range are FB_EINVAL. */
+int fb_mat_new_triplets(size_t nrows, size_t ncols, size_t nnz, const size_t *rows,
+                        const size_t *cols, const double *vals, fb_mat **out, fb_err *err);
+/* Square diagonal matrix (stored sparse). */
+int fb_mat_new_diag(size_t n, const double *diag, fb_mat **out, fb_err *err);
+/* s * identity(n) (stored sparse). */
+int fb_mat_new_scaled_identity(size_t n, double s, fb_mat **out, fb_err *err);
+/* Deep copy. */
+int fb_mat_clone(const fb_mat *a, fb_mat **out, fb_err *err);
+/* Transpose (same storage kind). */
+int fb_mat_transpose(const fb_mat *a, fb_mat **out, fb_err *err);
+/* Product c = a * b (sparse result if either is sparse). */
+int fb_mat_multiply(const fb_mat *a, const fb_mat *b, fb_mat **out, fb_err *err);
+/* Inverse of a square non-singular matrix, returned dense. Meant for small
+ * matrices (transformer inverses); FB_ESOLVER if singular. */
+int fb_mat_inverse(const fb_mat *a, fb_mat **out, fb_err *err);
+
+/* Frees *m and sets it to NULL; accepts NULL and *m == NULL. */
+void fb_mat_free(fb_mat **m);
+
+size_t fb_mat_nrows(const fb_mat *a);
+size_t fb_mat_ncols(const fb_mat *a);
+int fb_mat_is_sparse(const fb_mat *a);
+/* Number of stored entries (nrows*ncols for dense). */
+size_t fb_mat_nnz(const fb_mat *a);
+/* Entry (i, j), 0 if not stored. */
+double fb_mat_get(const fb_mat *a, size_t i, size_t j);
+
+/* Visits every stored entry (structurally nonzero for sparse; nonzero
+ * values only for dense) in column order. */
+typedef void (*fb_mat_visit_fn)(void *ctx, size_t row, size_t col, double val);
+void fb_mat_foreach(const fb_mat *a, fb_mat_visit_fn fn, void *ctx);
+
+/* y = alpha * A x + beta * y (y must not alias x). With beta == 0, y is
+ * overwritten and its previous content (even NaN) is ignored. */
+void fb_mat_gemv(const fb_mat *a, double alpha, const double *x, double beta, double *y);
+/* y = alpha * A^T x + beta * y. */
+void fb_mat_gemv_t(const fb_mat *a, double alpha, const double *x, double beta, double *y);
+
+/* 1 if every entry is finite. */
+int fb_mat_all_finite(const fb_mat *a);
+/* 1 if square and |a_ij - a_ji| <= tol * max|a| for all i, j. */
+int fb_mat_is_symmetric(const fb_mat *a, double tol);
+/* 1 if square, symmetric (tol as above) and positive definite (Cholesky,
+ * or positive semi-definite when allow_singular: eigenvalues >= -tol*max|a|). */
+int fb_mat_is_spd(const fb_mat *a, int allow_singular);
+
+/* Matrix Market (https://math.nist.gov/MatrixMarket/formats.html):
+ * reads "matrix coordinate real|integer general|symmetric" and
+ * "matrix array real general|symmetric". Errors say path:line. */
+int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err);
+/* Writes coordinate real general with %.17g values. */
+int fb_mat_write_mtx(const fb_mat *a, const char *path, fb_err *err);
+
+/* Sparse LU factorisation of a square matrix with KLU
+ * (Davis & Palamadai Natarajan, ACM TOMS 37(3), 2010). */
+typedef struct fb_lu fb_lu;
+/* Factorises a; FB_ESOLVER naming the pivot when a is singular. */
+int fb_lu_new(const fb_mat *a, fb_lu **out, fb_err *err);
+/* Solves A x = b in place (b on entry, x on return), nrhs right-hand sides
+ * stored one after the other. */
+int fb_lu_solve(fb_lu *lu, double *b, size_t nrhs, fb_err *err);
+size_t fb_lu_size(const fb_lu *lu);
+void fb_lu_free(fb_lu **lu);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

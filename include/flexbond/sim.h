@@ -1,0 +1,75 @@
+/* flexbond: time integration of a block diagram with SUNDIALS CVODE
+ * (variable-order BDF, orders 1-5, Newton iteration; Hindmarsh et al.,
+ * ACM TOMS 31(3), 2005), the counterpart of MATLAB's ode15s.
+ *
+ * The Newton systems are solved sparsely through the diagram's augmented
+ * linearisation (fb_bd_aug_*), factorised with KLU. Outputs are sampled at a
+ * fixed rate by CVODE's interpolating polynomial (CVodeGetDky), so sampling
+ * never shortens the steps. The integrator stops exactly at breakpoints
+ * (input kinks) and restarts there. */
+#ifndef FLEXBOND_SIM_H
+#define FLEXBOND_SIM_H
+
+#include <stddef.h>
+
+#include "flexbond/bd.h"
+#include "flexbond/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fb_sim_opts {
+  double t_start;       /* s */
+  double t_end;         /* s, > t_start */
+  double rtol;          /* relative tolerance (default 1e-6) */
+  double atol;          /* absolute tolerance, all states (default 1e-9) */
+  double max_step;      /* s, 0 for no limit */
+  double sample_rate;   /* Hz, outputs at t_start + k / sample_rate (default 1000) */
+  int max_order;        /* BDF order limit 1..5 (default 5) */
+  long max_steps;       /* internal steps allowed in all (default 10^7) */
+  const double *breakpoints; /* extra breakpoints (borrowed), besides sources' */
+  size_t nbreakpoints;
+  const double *x0;     /* initial state (borrowed), NULL for the graph's */
+} fb_sim_opts;
+
+/* Fills the defaults stated above (t_end = 1). */
+void fb_sim_opts_default(fb_sim_opts *opts);
+/* FB_EINVAL naming the option when opts is inconsistent. */
+int fb_sim_opts_check(const fb_sim_opts *opts, fb_err *err);
+
+typedef struct fb_sim_stats {
+  long steps;            /* internal integrator steps */
+  long rhs_evals;        /* right-hand-side evaluations */
+  long newton_setups;    /* Newton matrix (P(gamma)) evaluations */
+  long factorizations;   /* numeric sparse LU factorisations */
+  long newton_iters;     /* nonlinear iterations */
+  long newton_conv_fails;
+  long err_test_fails;
+  int last_order;
+  double wall_seconds;   /* wall time of fb_sim_run */
+} fb_sim_stats;
+
+/* Sampled outputs: row k holds t_k then every output of the diagram. */
+typedef struct fb_result fb_result;
+
+/* Integrates bd from opts->t_start to opts->t_end. On failure *out is NULL
+ * and err says the time, the solver's flag name and a hint. */
+int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err);
+
+size_t fb_result_nsamples(const fb_result *r);
+/* 1 + number of outputs (column 0 is time). */
+size_t fb_result_ncols(const fb_result *r);
+const char *fb_result_col_name(const fb_result *r, size_t j);
+const char *fb_result_col_unit(const fb_result *r, size_t j);
+/* Row k (ncols values). */
+const double *fb_result_row(const fb_result *r, size_t k);
+/* Column index of a named output, or -1. */
+long fb_result_find(const fb_result *r, const char *name);
+const fb_sim_stats *fb_result_stats(const fb_result *r);
+void fb_result_free(fb_result **r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,61 @@
+/* Status codes and error messages (see flexbond/error.h). */
+#include "flexbond/error.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+void fb_err_clear(fb_err *err)
+{
+  if (!err)
+    return;
+  err->code = FB_OK;
+  err->msg[0] = '\0';
+}
+
+int fb_err_set(fb_err *err, int code, const char *fmt, ...)
+{
+  if (!err)
+    return code;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+  va_end(ap);
+  err->code = code;
+  return code;
+}
+
+int fb_err_prefix(fb_err *err, const char *fmt, ...)
+{
+  if (!err)
+    return FB_OK;
+  char head[FB_ERR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(head, sizeof head, fmt, ap);
+  va_end(ap);
+  /* Truncation keeps the head (the context) and cuts the tail. */
+  size_t hlen = strlen(head);
+  size_t mlen = strlen(err->msg);
+  if (hlen + mlen >= sizeof err->msg)
+    mlen = sizeof err->msg - 1 - hlen;
+  memmove(err->msg + hlen, err->msg, mlen);
+  memcpy(err->msg, head, hlen);
+  err->msg[hlen + mlen] = '\0';
+  return err->code;
+}
+
+const char *fb_status_name(int code)
+{
+  switch (code) {
+  case FB_OK: return "FB_OK";
+  case FB_ENOMEM: return "FB_ENOMEM";
+  case FB_EINVAL: return "FB_EINVAL";
+  case FB_EPARSE: return "FB_EPARSE";
+  case FB_EMODEL: return "FB_EMODEL";
+  case FB_ECAUSAL: return "FB_ECAUSAL";
+  case FB_ESOLVER: return "FB_ESOLVER";
+  case FB_EIO: return "FB_EIO";
+  default: return "FB_E?";
+  }
+}
