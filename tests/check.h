@@ -9,25 +9,25 @@
 static int check_failures;
 static int check_count;
 
-#define CHECK(cond)                                                                 \
-  do {                                                                              \
-    ++check_count;                                                                  \
-    if (!(cond)) {                                                                  \
-      ++check_failures;                                                             \
-      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);      \
-    }                                                                               \
+#define CHECK(cond)                                                                            \
+  do {                                                                                         \
+    ++check_count;                                                                             \
+    if (!(cond)) {                                                                             \
+      ++check_failures;                                                                        \
+      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);                 \
+    }                                                                                          \
   } while (0)
 
 /* |a - b| <= tol, with both values printed on failure. */
-#define CHECK_NEAR(a, b, tol)                                                       \
-  do {                                                                              \
-    ++check_count;                                                                  \
-    double check_a_ = (a), check_b_ = (b), check_t_ = (tol);                        \
-    if (!(fabs(check_a_ - check_b_) <= check_t_)) {                                 \
-      ++check_failures;                                                             \
-      fprintf(stderr, "%s:%d: CHECK_NEAR failed: %s = %.12g, %s = %.12g, tol %.3g\n", \
-              __FILE__, __LINE__, #a, check_a_, #b, check_b_, check_t_);            \
-    }                                                                               \
+#define CHECK_NEAR(a, b, tol)                                                                  \
+  do {                                                                                         \
+    ++check_count;                                                                             \
+    double check_a_ = (a), check_b_ = (b), check_t_ = (tol);                                   \
+    if (!(fabs(check_a_ - check_b_) <= check_t_)) {                                            \
+      ++check_failures;                                                                        \
+      fprintf(stderr, "%s:%d: CHECK_NEAR failed: %s = %.12g, %s = %.12g, tol %.3g\n",          \
+              __FILE__, __LINE__, #a, check_a_, #b, check_b_, check_t_);                       \
+    }                                                                                          \
   } while (0)
 
 static inline int check_report(const char *name)

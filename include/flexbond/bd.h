@@ -42,7 +42,7 @@ typedef enum fb_probe_kind {
 /* A named measurement (the paper's "meter"). Strings are borrowed for the
  * duration of fb_bd_build only. */
 typedef struct fb_probe_spec {
-  const char *name;   /* output name (CSV column) */
+  const char *name; /* output name (CSV column) */
   fb_probe_kind kind;
   const char *target; /* bond name, or element name for STATE/ENERGY */
   long component;     /* 0-based component, or -1 for all (columns name[1..n]) */

@@ -101,8 +101,8 @@ void fb_bg_set_domain(fb_bg *bg, fb_bg_domain domain);
  * also on failure. */
 
 /* Source of dimension dim; values[i] is component i. */
-int fb_bg_add_source(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim,
-                     fb_tfun **values, fb_err *err);
+int fb_bg_add_source(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, fb_tfun **values,
+                     fb_err *err);
 /* I, C or R field with nports ports of dimensions port_dims; law is the
  * stacked matrix (M, K or R) of size sum(port_dims). */
 int fb_bg_add_field(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
@@ -110,8 +110,7 @@ int fb_bg_add_field(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
 /* As fb_bg_add_field with a nonlinear law; ctx is owned by the graph and
  * released with ops->free. */
 int fb_bg_add_field_law(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
-                        const size_t *port_dims, const fb_law_ops *ops, void *ctx,
-                        fb_err *err);
+                        const size_t *port_dims, const fb_law_ops *ops, void *ctx, fb_err *err);
 /* Initial state (p for I, q for C) of a field, stacked; default zero. */
 int fb_bg_set_initial(fb_bg *bg, const char *name, size_t n, const double *x0, fb_err *err);
 /* TF or GY of dimension dim with scalar modulus. */

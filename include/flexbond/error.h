@@ -27,8 +27,8 @@ enum fb_status {
 #define FB_ERR_MSG_MAX 4096
 
 typedef struct fb_err {
-  int code;                  /* last status recorded, FB_OK when clear */
-  char msg[FB_ERR_MSG_MAX];  /* NUL-terminated message, "" when clear */
+  int code;                 /* last status recorded, FB_OK when clear */
+  char msg[FB_ERR_MSG_MAX]; /* NUL-terminated message, "" when clear */
 } fb_err;
 
 /* Resets err to FB_OK with an empty message. err may be NULL. */

@@ -25,8 +25,8 @@ typedef struct fb_mat fb_mat;
 int fb_mat_new_dense(size_t nrows, size_t ncols, const double *colmajor, fb_mat **out,
                      fb_err *err);
 /* Dense matrix from row-major values (as written in a YAML list of rows). */
-int fb_mat_new_dense_rowmajor(size_t nrows, size_t ncols, const double *rowmajor,
-                              fb_mat **out, fb_err *err);
+int fb_mat_new_dense_rowmajor(size_t nrows, size_t ncols, const double *rowmajor, fb_mat **out,
+                              fb_err *err);
 /* Sparse matrix from (row, col, value) triplets; duplicates are summed,
  * explicit zeros are kept out. Indices out of range are FB_EINVAL. */
 int fb_mat_new_triplets(size_t nrows, size_t ncols, size_t nnz, const size_t *rows,

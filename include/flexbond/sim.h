@@ -20,17 +20,17 @@ extern "C" {
 #endif
 
 typedef struct fb_sim_opts {
-  double t_start;       /* s */
-  double t_end;         /* s, > t_start */
-  double rtol;          /* relative tolerance (default 1e-6) */
-  double atol;          /* absolute tolerance, all states (default 1e-9) */
-  double max_step;      /* s, 0 for no limit */
-  double sample_rate;   /* Hz, outputs at t_start + k / sample_rate (default 1000) */
-  int max_order;        /* BDF order limit 1..5 (default 5) */
-  long max_steps;       /* internal steps allowed in all (default 10^7) */
+  double t_start;            /* s */
+  double t_end;              /* s, > t_start */
+  double rtol;               /* relative tolerance (default 1e-6) */
+  double atol;               /* absolute tolerance, all states (default 1e-9) */
+  double max_step;           /* s, 0 for no limit */
+  double sample_rate;        /* Hz, outputs at t_start + k / sample_rate (default 1000) */
+  int max_order;             /* BDF order limit 1..5 (default 5) */
+  long max_steps;            /* internal steps allowed in all (default 10^7) */
   const double *breakpoints; /* extra breakpoints (borrowed), besides sources' */
   size_t nbreakpoints;
-  const double *x0;     /* initial state (borrowed), NULL for the graph's */
+  const double *x0; /* initial state (borrowed), NULL for the graph's */
 } fb_sim_opts;
 
 /* Fills the defaults stated above (t_end = 1). */
@@ -39,15 +39,15 @@ void fb_sim_opts_default(fb_sim_opts *opts);
 int fb_sim_opts_check(const fb_sim_opts *opts, fb_err *err);
 
 typedef struct fb_sim_stats {
-  long steps;            /* internal integrator steps */
-  long rhs_evals;        /* right-hand-side evaluations */
-  long newton_setups;    /* Newton matrix (P(gamma)) evaluations */
-  long factorizations;   /* numeric sparse LU factorisations */
-  long newton_iters;     /* nonlinear iterations */
+  long steps;          /* internal integrator steps */
+  long rhs_evals;      /* right-hand-side evaluations */
+  long newton_setups;  /* Newton matrix (P(gamma)) evaluations */
+  long factorizations; /* numeric sparse LU factorisations */
+  long newton_iters;   /* nonlinear iterations */
   long newton_conv_fails;
   long err_test_fails;
   int last_order;
-  double wall_seconds;   /* wall time of fb_sim_run */
+  double wall_seconds; /* wall time of fb_sim_run */
 } fb_sim_stats;
 
 /* Sampled outputs: row k holds t_k then every output of the diagram. */

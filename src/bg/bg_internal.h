@@ -1,0 +1,78 @@
+/* Internal layout of a bond graph, shared by src/bg and src/bd. */
+#ifndef FLEXBOND_BG_INTERNAL_H
+#define FLEXBOND_BG_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "flexbond/bg.h"
+
+#define FB_NONE SIZE_MAX
+
+/* Causal stroke of a bond: which end receives the effort. */
+enum { FB_STROKE_UNSET = -1, FB_STROKE_AT_FROM = 0, FB_STROKE_AT_TO = 1 };
+
+typedef struct fb_bg_elem {
+  char *name;
+  fb_bg_kind kind;
+  size_t dim;        /* junction/TF/GY/source dimension; stacked dim of fields/MTF */
+  int fixed_ports;   /* 1: ports are numbered slots; 0: junction (grows) */
+  size_t nports;     /* slots (fixed) or bonds attached (junction) */
+  size_t cap;        /* capacity of bonds[] for junctions */
+  size_t *port_dims; /* fixed: dimension of each slot */
+  size_t *bonds;     /* bond at each slot (FB_NONE if unconnected) */
+  fb_mat *law;       /* field M, K or R; MTF T */
+  const fb_law_ops *law_ops;
+  void *law_ctx;
+  double modulus;   /* TF ratio, GY modulus */
+  fb_tfun **values; /* sources: dim functions */
+  double *x0;       /* storage fields: initial state, dim values */
+} fb_bg_elem;
+
+typedef struct fb_bg_bond {
+  char *name;
+  size_t dim;
+  fb_bg_domain domain;
+  size_t from, to;           /* element indices, power from -> to */
+  size_t from_slot, to_slot; /* slot at each element */
+  int stroke;                /* FB_STROKE_* */
+  size_t cause;              /* element whose choice fixed the stroke */
+} fb_bg_bond;
+
+/* A port name visible in the graph: exported ports of the graph itself
+ * (exported = 1, for its parent) and ports of adopted subsystems
+ * ("inst.p", exported = 0, connectable here). */
+typedef struct fb_bg_portdef {
+  char *name;
+  fb_bg_dir dir;
+  int exported;
+  int used;    /* connected or re-exported */
+  size_t elem; /* target element */
+  size_t slot; /* target slot, FB_NONE for a junction (adds a slot) */
+  size_t dim;
+} fb_bg_portdef;
+
+struct fb_bg {
+  char *name;
+  fb_bg_domain domain;
+  fb_bg_elem *elems;
+  size_t nelems, cap_elems;
+  fb_bg_bond *bonds;
+  size_t nbonds, cap_bonds;
+  fb_bg_portdef *ports;
+  size_t nports, cap_ports;
+  char **instances; /* names of adopted subsystems */
+  size_t ninstances, cap_instances;
+  int causal; /* 1 once causality has been assigned */
+};
+
+/* 1 if element e receives the effort of bond b (causal stroke at e). */
+int fb_bg_receives_effort(const fb_bg *bg, size_t b, size_t e);
+/* +1 if bond b points into element e, -1 if it points out of it. */
+int fb_bg_orientation(const fb_bg *bg, size_t b, size_t e);
+/* "I 'Ms'" style description of an element for messages. */
+void fb_bg_describe(const fb_bg *bg, size_t e, char *buf, size_t size);
+/* Duplicate of a string (NULL on allocation failure). */
+char *fb_strdup(const char *s);
+
+#endif
