@@ -83,7 +83,7 @@ int fb_bd_outputs(fb_bd *bd, double t, const double *x, double *y);
  * build: nnz triplets (rows[k], cols[k]) into the nz x nz matrix P. */
 size_t fb_bd_aug_size(const fb_bd *bd);
 size_t fb_bd_aug_nnz(const fb_bd *bd);
-void fb_bd_aug_pattern(const fb_bd *bd, size_t *rows, size_t *cols);
+void fb_bd_aug_pattern(fb_bd *bd, size_t *rows, size_t *cols);
 /* Values at (t, x): P(gamma)[rows[k], cols[k]] += v0[k] + gamma * v1[k]
  * (duplicates are summed). Returns as fb_bd_rhs. */
 int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v1);
@@ -97,7 +97,8 @@ int fb_bd_is_linear(const fb_bd *bd);
  * linearisations (no finite differences). For linear analysis. */
 int fb_bd_jacobian_dense(fb_bd *bd, double t, const double *x, double *jac, fb_err *err);
 
-/* Breakpoints of all sources, sorted and unique; as fb_tfun_breakpoints. */
+/* Breakpoints of all sources, sorted and unique, written to bp (at most
+ * max). With bp == NULL, returns an upper bound of their number. */
 size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max);
 
 /* Graphviz DOT of the diagram, one cluster per subsystem. */

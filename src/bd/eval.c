@@ -1,0 +1,197 @@
+/* Evaluation of a scheduled block diagram: right-hand side, outputs,
+ * augmented sparse linearisation and dense Jacobian (flexbond/bd.h). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bd/bd_internal.h"
+
+static int block_failed(fb_bd *bd, size_t blk, int rc)
+{
+  const bd_block *b = &bd->blocks[blk];
+  const char *who = b->elem == FB_NONE ? "probe" : bd->bg->elems[b->elem].name;
+  snprintf(bd->errbuf, sizeof bd->errbuf, "block %s of '%s' failed (%s)", b->ops->kind, who,
+           rc > 0 ? "recoverable" : "fatal");
+  return rc;
+}
+
+int fb_bd_eval(fb_bd *bd, double t, const double *x)
+{
+  memcpy(bd->w, x, bd->nstates * sizeof *x);
+  for (size_t k = 0; k < bd->norder; ++k) {
+    bd_block *b = &bd->blocks[bd->order[k]];
+    int rc = b->ops->eval(b, t, bd->w);
+    if (rc)
+      return block_failed(bd, bd->order[k], rc);
+  }
+  return 0;
+}
+
+int fb_bd_rhs(fb_bd *bd, double t, const double *x, double *xdot)
+{
+  int rc = fb_bd_eval(bd, t, x);
+  if (rc)
+    return rc;
+  for (size_t k = 0; k < bd->ninteg; ++k) {
+    const bd_block *b = &bd->blocks[bd->integ[k]];
+    memcpy(xdot + b->ooff, bd->w + b->ioff[0], b->odim * sizeof *xdot);
+  }
+  return 0;
+}
+
+const char *fb_bd_last_error(const fb_bd *bd)
+{
+  return bd->errbuf;
+}
+
+size_t fb_bd_nstates(const fb_bd *bd)
+{
+  return bd->nstates;
+}
+
+const char *fb_bd_state_name(const fb_bd *bd, size_t i)
+{
+  return bd->state_names[i];
+}
+
+void fb_bd_initial_state(const fb_bd *bd, double *x0)
+{
+  memcpy(x0, bd->x0, bd->nstates * sizeof *x0);
+}
+
+size_t fb_bd_nblocks(const fb_bd *bd)
+{
+  return bd->nblocks;
+}
+
+size_t fb_bd_noutputs(const fb_bd *bd)
+{
+  return bd->nouts;
+}
+
+const char *fb_bd_output_name(const fb_bd *bd, size_t i)
+{
+  return bd->outs[i].name;
+}
+
+const char *fb_bd_output_unit(const fb_bd *bd, size_t i)
+{
+  return bd->outs[i].unit;
+}
+
+int fb_bd_outputs(fb_bd *bd, double t, const double *x, double *y)
+{
+  int rc = fb_bd_eval(bd, t, x);
+  if (rc)
+    return rc;
+  for (size_t i = 0; i < bd->nouts; ++i) {
+    const bd_output *o = &bd->outs[i];
+    y[i] = o->gain * bd->w[bd->sigs[o->signal].off + o->comp];
+  }
+  return 0;
+}
+
+size_t fb_bd_aug_size(const fb_bd *bd)
+{
+  return bd->nw;
+}
+
+size_t fb_bd_aug_nnz(const fb_bd *bd)
+{
+  return bd->aug_nnz;
+}
+
+int fb_bd_is_linear(const fb_bd *bd)
+{
+  return bd->linear;
+}
+
+size_t fb_bd_state_row(const fb_bd *bd, size_t i)
+{
+  (void)bd;
+  return i; /* states occupy w[0 .. nstates) by construction (layout) */
+}
+
+/* Fills the triplets of every block, at the signals currently in w. */
+static int fill_triplets(fb_bd *bd, size_t *rows, size_t *cols, double *v0, double *v1)
+{
+  size_t k = 0;
+  for (size_t i = 0; i < bd->nblocks; ++i) {
+    bd_block *b = &bd->blocks[i];
+    int rc = b->ops->jac(b, bd->w, rows ? rows + k : NULL, cols ? cols + k : NULL,
+                         v0 ? v0 + k : NULL, v1 ? v1 + k : NULL);
+    if (rc)
+      return block_failed(bd, i, rc);
+    k += b->ops->nnz(b);
+  }
+  return 0;
+}
+
+void fb_bd_aug_pattern(fb_bd *bd, size_t *rows, size_t *cols)
+{
+  /* The pattern does not depend on the signal values; a nonlinear law's
+   * Jacobian evaluation failing here only affects values, not positions. */
+  (void)fill_triplets(bd, rows, cols, NULL, NULL);
+}
+
+int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v1)
+{
+  if (!bd->linear) {
+    int rc = fb_bd_eval(bd, t, x);
+    if (rc)
+      return rc;
+  }
+  return fill_triplets(bd, NULL, NULL, v0, v1);
+}
+
+int fb_bd_jacobian_dense(fb_bd *bd, double t, const double *x, double *jac, fb_err *err)
+{
+  size_t n = bd->nstates;
+  int rc = fb_bd_eval(bd, t, x);
+  for (size_t j = 0; !rc && j < n; ++j) {
+    memset(bd->dw, 0, bd->nw * sizeof *bd->dw);
+    bd->dw[j] = 1.0;
+    for (size_t k = 0; !rc && k < bd->norder; ++k) {
+      bd_block *b = &bd->blocks[bd->order[k]];
+      rc = b->ops->jvp(b, bd->w, bd->dw);
+      if (rc)
+        rc = block_failed(bd, bd->order[k], rc);
+    }
+    for (size_t k = 0; !rc && k < bd->ninteg; ++k) {
+      const bd_block *b = &bd->blocks[bd->integ[k]];
+      memcpy(jac + j * n + b->ooff, bd->dw + b->ioff[0], b->odim * sizeof *jac);
+    }
+  }
+  if (rc)
+    return fb_err_set(err, FB_ESOLVER, "linearisation failed: %s", bd->errbuf);
+  return FB_OK;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max)
+{
+  size_t total = 0;
+  for (size_t i = 0; i < bd->nblocks; ++i) {
+    const bd_block *b = &bd->blocks[i];
+    if (b->ops != &fb_bd_source_ops)
+      continue;
+    for (size_t c = 0; c < b->odim; ++c) {
+      size_t room = bp && total < max ? max - total : 0;
+      total += fb_tfun_breakpoints(b->fns[c], room ? bp + total : NULL, room);
+    }
+  }
+  if (!bp)
+    return total;
+  size_t n = total < max ? total : max;
+  qsort(bp, n, sizeof *bp, cmp_double);
+  size_t u = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (u == 0 || bp[i] != bp[u - 1])
+      bp[u++] = bp[i];
+  return u;
+}

@@ -1,0 +1,143 @@
+/* Topological scheduling of blocks (Kahn's algorithm). Integrator outputs
+ * are states, known at the start of an evaluation, so they cut every
+ * causal cycle that passes through storage; a cycle left over is an
+ * algebraic loop: a zero-order causal path (Karnopp et al., section 5.3). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bd/bd_internal.h"
+
+static int is_integrator(const fb_bd *bd, size_t blk)
+{
+  return bd->blocks[blk].ops == &fb_bd_integrator_ops;
+}
+
+/* Producer of input k of block i, or FB_NONE if it is a state. */
+static size_t dependency(const fb_bd *bd, size_t i, size_t k)
+{
+  size_t p = bd->sigs[bd->blocks[i].in[k].id].producer;
+  return is_integrator(bd, p) ? FB_NONE : p;
+}
+
+static void describe_block(const fb_bd *bd, size_t i, char *buf, size_t size)
+{
+  const bd_block *b = &bd->blocks[i];
+  if (b->elem == FB_NONE) {
+    snprintf(buf, size, "[probe %s]", b->label);
+    return;
+  }
+  char who[200];
+  fb_bg_describe(bd->bg, b->elem, who, sizeof who);
+  snprintf(buf, size, "[%s: %s]", who, b->label);
+}
+
+/* Writes the cycle through the unscheduled blocks into err. */
+static int report_loop(const fb_bd *bd, const unsigned char *done, fb_err *err)
+{
+  size_t n = bd->nblocks;
+  size_t *next = malloc(n * sizeof *next); /* next[i]: a remaining block feeding i */
+  unsigned char *seen = calloc(n, 1);
+  if (!next || !seen) {
+    free(next);
+    free(seen);
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  size_t start = FB_NONE;
+  for (size_t i = 0; i < n; ++i) {
+    next[i] = FB_NONE;
+    if (done[i] || is_integrator(bd, i))
+      continue;
+    for (size_t k = 0; k < bd->blocks[i].nin && next[i] == FB_NONE; ++k) {
+      size_t d = dependency(bd, i, k);
+      if (d != FB_NONE && !done[d])
+        next[i] = d;
+    }
+    if (start == FB_NONE)
+      start = i;
+  }
+  /* Walk backwards until a block repeats: that block is on a cycle. */
+  size_t cur = start;
+  while (!seen[cur]) {
+    seen[cur] = 1;
+    cur = next[cur];
+  }
+  char path[FB_ERR_MSG_MAX] = "";
+  size_t len = 0, first = cur;
+  do {
+    char blk[300];
+    describe_block(bd, cur, blk, sizeof blk);
+    size_t from = next[cur];
+    len += (size_t)snprintf(path + len, len < sizeof path ? sizeof path - len : 0, "%s <- %s ",
+                            blk, bd->sigs[bd->blocks[from].out].name);
+    cur = from;
+  } while (cur != first && len < sizeof path);
+  free(next);
+  free(seen);
+  return fb_err_set(err, FB_ECAUSAL,
+                    "algebraic loop (zero-order causal path, each block computed from the "
+                    "signal after it): %s<- ... Hint: put a storage element (a small I or C) "
+                    "on this path, or change a resistor's causality by reorienting the "
+                    "junction structure",
+                    path);
+}
+
+int fb_bd_schedule(fb_bd *bd, fb_err *err)
+{
+  size_t n = bd->nblocks;
+  size_t *indeg = calloc(n + 1, sizeof *indeg);
+  size_t *users_start = calloc(n + 2, sizeof *users_start);
+  bd->order = malloc((n + 1) * sizeof *bd->order);
+  unsigned char *done = calloc(n + 1, 1);
+  size_t nedges = 0;
+  for (size_t i = 0; i < n; ++i)
+    nedges += bd->blocks[i].nin;
+  size_t *users = malloc((nedges + 1) * sizeof *users);
+  size_t *fill = calloc(n + 1, sizeof *fill);
+  int rc = FB_OK;
+  if (!indeg || !users_start || !bd->order || !done || !users || !fill) {
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory scheduling the block diagram");
+    goto out;
+  }
+  /* Compressed adjacency: users of each block. */
+  for (size_t i = 0; i < n; ++i)
+    for (size_t k = 0; k < bd->blocks[i].nin; ++k) {
+      size_t d = is_integrator(bd, i) ? FB_NONE : dependency(bd, i, k);
+      if (d != FB_NONE) {
+        users_start[d + 1]++;
+        indeg[i]++;
+      }
+    }
+  for (size_t i = 0; i < n; ++i)
+    users_start[i + 1] += users_start[i];
+  for (size_t i = 0; i < n; ++i)
+    for (size_t k = 0; k < bd->blocks[i].nin; ++k) {
+      size_t d = is_integrator(bd, i) ? FB_NONE : dependency(bd, i, k);
+      if (d != FB_NONE)
+        users[users_start[d] + fill[d]++] = i;
+    }
+  size_t head = 0;
+  bd->norder = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (!is_integrator(bd, i) && indeg[i] == 0)
+      bd->order[bd->norder++] = i;
+  while (head < bd->norder) {
+    size_t i = bd->order[head++];
+    done[i] = 1;
+    for (size_t u = users_start[i]; u < users_start[i + 1]; ++u)
+      if (--indeg[users[u]] == 0)
+        bd->order[bd->norder++] = users[u];
+  }
+  size_t nonint = 0;
+  for (size_t i = 0; i < n; ++i)
+    nonint += !is_integrator(bd, i);
+  if (bd->norder != nonint)
+    rc = report_loop(bd, done, err);
+out:
+  free(indeg);
+  free(users_start);
+  free(done);
+  free(users);
+  free(fill);
+  return rc;
+}

@@ -1,0 +1,370 @@
+/* Block diagrams from bond graphs: right-hand side and linearisation
+ * against hand-written state equations, the augmented Newton matrix
+ * against the dense Jacobian, algebraic-loop diagnostics. */
+#include <lapacke.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/bd.h"
+
+#include "bgtest_util.h"
+#include "check.h"
+
+enum { QC_MS, QC_MU, QC_KS, QC_CS, QC_KT };
+static const double qc[] = {250.0, 35.0, 16000.0, 1000.0, 160000.0};
+static const double grav = 9.81;
+
+/* Quarter car (sprung ms, unsprung mu, suspension ks || cs, tire kt) on a
+ * road velocity source, with gravity. Springs between two velocities sit
+ * on a 1-junction fed by a 0-junction that forms the relative velocity. */
+static fb_bg *quarter_car(double road_velocity, fb_err *err)
+{
+  fb_bg *bg = NULL;
+  MUST(fb_bg_new("quarter_car", &bg, err), err);
+  MUST(add_const_source(bg, "road", FB_BG_SF, road_velocity, err), err);
+  MUST(add_const_source(bg, "gs", FB_BG_SE, -qc[QC_MS] * grav, err), err);
+  MUST(add_const_source(bg, "gu", FB_BG_SE, -qc[QC_MU] * grav, err), err);
+  MUST(add_scalar(bg, "ms", FB_BG_I, qc[QC_MS], err), err);
+  MUST(add_scalar(bg, "mu", FB_BG_I, qc[QC_MU], err), err);
+  MUST(add_scalar(bg, "ks", FB_BG_C, qc[QC_KS], err), err);
+  MUST(add_scalar(bg, "cs", FB_BG_R, qc[QC_CS], err), err);
+  MUST(add_scalar(bg, "kt", FB_BG_C, qc[QC_KT], err), err);
+  MUST(fb_bg_add_junction(bg, "Js", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "Ju", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "Jsus0", FB_BG_J0, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "Jsus", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "Jt0", FB_BG_J0, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "Jt", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_connect(bg, "b_road", "road", "Jt0", err), err);
+  MUST(fb_bg_connect(bg, "b_tire_u", "Jt0", "Ju", err), err);
+  MUST(fb_bg_connect(bg, "b_tire", "Jt0", "Jt", err), err);
+  MUST(fb_bg_connect(bg, "b_kt", "Jt", "kt", err), err);
+  MUST(fb_bg_connect(bg, "b_mu", "Ju", "mu", err), err);
+  MUST(fb_bg_connect(bg, "b_gu", "gu", "Ju", err), err);
+  MUST(fb_bg_connect(bg, "b_us", "Ju", "Jsus0", err), err);
+  MUST(fb_bg_connect(bg, "b_ss", "Jsus0", "Js", err), err);
+  MUST(fb_bg_connect(bg, "b_sus", "Jsus0", "Jsus", err), err);
+  MUST(fb_bg_connect(bg, "b_ks", "Jsus", "ks", err), err);
+  MUST(fb_bg_connect(bg, "b_cs", "Jsus", "cs", err), err);
+  MUST(fb_bg_connect(bg, "b_ms", "Js", "ms", err), err);
+  MUST(fb_bg_connect(bg, "b_gs", "gs", "Js", err), err);
+  return bg;
+}
+
+static long state_index(const fb_bd *bd, const char *name)
+{
+  for (size_t i = 0; i < fb_bd_nstates(bd); ++i)
+    if (strcmp(fb_bd_state_name(bd, i), name) == 0)
+      return (long)i;
+  return -1;
+}
+
+/* Hand-written quarter-car equations, x = [p_s, p_u, q_s, q_t] with
+ * q_s = z_u - z_s (suspension compression), q_t = z_r - z_u:
+ *   p_s' = ks q_s + cs (v_u - v_s) - ms g
+ *   p_u' = kt q_t - ks q_s - cs (v_u - v_s) - mu g
+ *   q_s' = v_u - v_s,   q_t' = v_r - v_u. */
+static void hand_rhs(const double *x, double vr, double *xd)
+{
+  double vs = x[0] / qc[QC_MS], vu = x[1] / qc[QC_MU];
+  double fs = qc[QC_KS] * x[2] + qc[QC_CS] * (vu - vs);
+  xd[0] = fs - qc[QC_MS] * grav;
+  xd[1] = qc[QC_KT] * x[3] - fs - qc[QC_MU] * grav;
+  xd[2] = vu - vs;
+  xd[3] = vr - vu;
+}
+
+/* Sorted eigenvalues of a dense n x n matrix (destroys a). */
+static int cmp_eig(const void *a, const void *b)
+{
+  const double *x = a, *y = b;
+  if (x[1] != y[1])
+    return (x[1] > y[1]) - (x[1] < y[1]);
+  return (x[0] > y[0]) - (x[0] < y[0]);
+}
+
+static void eigenvalues(size_t n, double *a, double *pairs)
+{
+  double *wr = malloc(n * sizeof *wr), *wi = malloc(n * sizeof *wi);
+  lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)n, a, (lapack_int)n,
+                                  wr, wi, NULL, 1, NULL, 1);
+  CHECK(info == 0);
+  for (size_t i = 0; i < n; ++i) {
+    pairs[2 * i] = wr[i];
+    pairs[2 * i + 1] = wi[i];
+  }
+  qsort(pairs, n, 2 * sizeof *pairs, cmp_eig);
+  free(wr);
+  free(wi);
+}
+
+static void test_quarter_car(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  const double vr = 0.3;
+  fb_bg *bg = quarter_car(vr, &err);
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, NULL, 0, &bd, &err), &err);
+  if (!bd) {
+    fb_bg_free(&bg);
+    return;
+  }
+  CHECK(fb_bd_nstates(bd) == 4);
+  CHECK(fb_bd_is_linear(bd));
+  const char *names[4] = {"ms.p", "mu.p", "ks.q", "kt.q"};
+  long idx[4];
+  for (int i = 0; i < 4; ++i) {
+    idx[i] = state_index(bd, names[i]);
+    CHECK(idx[i] >= 0);
+  }
+  /* Right-hand side at an arbitrary state equals the hand equations to
+   * rounding (a few ulps of the largest term, ~1e5 N). */
+  const double xh[4] = {120.0, -15.0, 0.012, -0.004};
+  double x[4], xd[4], xdh[4];
+  for (int i = 0; i < 4; ++i)
+    x[idx[i]] = xh[i];
+  CHECK(fb_bd_rhs(bd, 0.0, x, xd) == 0);
+  hand_rhs(xh, vr, xdh);
+  for (int i = 0; i < 4; ++i)
+    CHECK_NEAR(xd[idx[i]], xdh[i], 1e-9);
+  /* Jacobian from the blocks' linearisations equals the hand matrix,
+   * built column by column from the (linear) hand equations. */
+  double jac[16], hand[16], base[4];
+  MUST(fb_bd_jacobian_dense(bd, 0.0, x, jac, &err), &err);
+  hand_rhs((double[4]){0, 0, 0, 0}, 0.0, base);
+  for (int j = 0; j < 4; ++j) {
+    double e[4] = {0, 0, 0, 0}, col[4];
+    e[j] = 1.0;
+    hand_rhs(e, 0.0, col);
+    for (int i = 0; i < 4; ++i)
+      hand[j * 4 + i] = col[i] - base[i];
+  }
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i)
+      CHECK_NEAR(jac[idx[j] * 4 + idx[i]], hand[j * 4 + i],
+                 1e-9 * (1.0 + fabs(hand[j * 4 + i])));
+  /* Eigenvalues of both (independent LAPACK runs on the two matrices). */
+  double e1[8], e2[8];
+  eigenvalues(4, jac, e1);
+  eigenvalues(4, hand, e2);
+  for (int i = 0; i < 8; ++i)
+    CHECK_NEAR(e1[i], e2[i], 1e-9 * 100.0);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+/* The Schur complement of P(gamma) onto the states is I - gamma J:
+ * solving P z = [b; 0] must give (I - gamma J)^-1 b. */
+static void test_augmented(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = quarter_car(0.0, &err);
+  fb_probe_spec probes[2] = {
+      {"p_cs", FB_PROBE_POWER, "b_cs", -1, 0, 1.0, NULL},
+      {"z_s", FB_PROBE_FLOW, "b_ms", -1, 1, 1.0, NULL},
+  };
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, probes, 2, &bd, &err), &err);
+  if (!bd) {
+    fb_bg_free(&bg);
+    return;
+  }
+  size_t n = fb_bd_nstates(bd), nz = fb_bd_aug_size(bd), nnz = fb_bd_aug_nnz(bd);
+  CHECK(n == 5); /* 4 + the integrated probe */
+  size_t *rows = malloc(nnz * sizeof *rows), *cols = malloc(nnz * sizeof *cols);
+  double *v0 = malloc(nnz * sizeof *v0), *v1 = malloc(nnz * sizeof *v1);
+  double *p = calloc(nz * nz, sizeof *p), *x = calloc(n, sizeof *x);
+  double *jac = malloc(n * n * sizeof *jac), *rhs = calloc(nz, sizeof *rhs);
+  lapack_int *piv = malloc(nz * sizeof *piv);
+  for (size_t i = 0; i < n; ++i)
+    x[i] = 0.01 * (double)(i + 1);
+  fb_bd_aug_pattern(bd, rows, cols);
+  CHECK(fb_bd_aug_values(bd, 0.0, x, v0, v1) == 0);
+  const double gamma = 3.7e-3;
+  for (size_t k = 0; k < nnz; ++k)
+    p[cols[k] * nz + rows[k]] += v0[k] + gamma * v1[k];
+  MUST(fb_bd_jacobian_dense(bd, 0.0, x, jac, &err), &err);
+  lapack_int info =
+      LAPACKE_dgetrf(LAPACK_COL_MAJOR, (lapack_int)nz, (lapack_int)nz, p, (lapack_int)nz, piv);
+  CHECK(info == 0);
+  for (size_t j = 0; j < n; ++j) {
+    memset(rhs, 0, nz * sizeof *rhs);
+    rhs[fb_bd_state_row(bd, j)] = 1.0;
+    LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', (lapack_int)nz, 1, p, (lapack_int)nz, piv, rhs,
+                   (lapack_int)nz);
+    /* (I - gamma J) z_states must be e_j; entries of gamma J are ~1e3
+     * times z, so rounding leaves ~1e-12. */
+    for (size_t i = 0; i < n; ++i) {
+      double r = rhs[fb_bd_state_row(bd, i)];
+      for (size_t k = 0; k < n; ++k)
+        r -= gamma * jac[k * n + i] * rhs[fb_bd_state_row(bd, k)];
+      CHECK_NEAR(r, i == j ? 1.0 : 0.0, 1e-10);
+    }
+  }
+  free(rows);
+  free(cols);
+  free(v0);
+  free(v1);
+  free(p);
+  free(x);
+  free(jac);
+  free(rhs);
+  free(piv);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+/* Se -> 1 -> R1 and 1 -> 0 -> {R2, R3}: resistors only, a zero-order
+ * causal loop through R1 and the parallel pair. */
+static void test_algebraic_loop(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = NULL;
+  MUST(fb_bg_new("loop", &bg, &err), &err);
+  MUST(add_const_source(bg, "U", FB_BG_SE, 1.0, &err), &err);
+  MUST(fb_bg_add_junction(bg, "J1", FB_BG_J1, 1, &err), &err);
+  MUST(fb_bg_add_junction(bg, "J0", FB_BG_J0, 1, &err), &err);
+  MUST(add_scalar(bg, "R1", FB_BG_R, 1.0, &err), &err);
+  MUST(add_scalar(bg, "R2", FB_BG_R, 2.0, &err), &err);
+  MUST(add_scalar(bg, "R3", FB_BG_R, 3.0, &err), &err);
+  MUST(fb_bg_connect(bg, "b1", "U", "J1", &err), &err);
+  MUST(fb_bg_connect(bg, "b2", "J1", "R1", &err), &err);
+  MUST(fb_bg_connect(bg, "b3", "J1", "J0", &err), &err);
+  MUST(fb_bg_connect(bg, "b4", "J0", "R2", &err), &err);
+  MUST(fb_bg_connect(bg, "b5", "J0", "R3", &err), &err);
+  fb_bd *bd = NULL;
+  CHECK(fb_bd_build(bg, NULL, 0, &bd, &err) == FB_ECAUSAL);
+  CHECK(bd == NULL);
+  CHECK(strstr(err.msg, "algebraic loop") != NULL);
+  CHECK(strstr(err.msg, "R 'R1'") != NULL);
+  CHECK(strstr(err.msg, "1-junction 'J1'") != NULL);
+  CHECK(strstr(err.msg, "0-junction 'J0'") != NULL);
+  fb_bg_free(&bg);
+}
+
+/* Two masses, springs and dampers, built once from scalar elements and
+ * once from 2-port I, C and R fields: the two diagrams' Jacobians have the
+ * same eigenvalues (the states differ by a linear change of variables). */
+enum { TD_M1, TD_M2, TD_K1, TD_K2, TD_R1, TD_R2 };
+static const double td[] = {3.0, 1.5, 400.0, 250.0, 4.0, 2.5};
+
+static fb_bg *two_dof_scalar(fb_err *err)
+{
+  fb_bg *bg = NULL;
+  MUST(fb_bg_new("scalar", &bg, err), err);
+  MUST(add_const_source(bg, "F", FB_BG_SE, 10.0, err), err);
+  MUST(add_scalar(bg, "m1", FB_BG_I, td[TD_M1], err), err);
+  MUST(add_scalar(bg, "m2", FB_BG_I, td[TD_M2], err), err);
+  MUST(add_scalar(bg, "k1", FB_BG_C, td[TD_K1], err), err);
+  MUST(add_scalar(bg, "k2", FB_BG_C, td[TD_K2], err), err);
+  MUST(add_scalar(bg, "r1", FB_BG_R, td[TD_R1], err), err);
+  MUST(add_scalar(bg, "r2", FB_BG_R, td[TD_R2], err), err);
+  MUST(fb_bg_add_junction(bg, "J1", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "J2", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "J12", FB_BG_J0, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "Jr", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_connect(bg, "bF", "F", "J2", err), err);
+  MUST(fb_bg_connect(bg, "bm1", "J1", "m1", err), err);
+  MUST(fb_bg_connect(bg, "bm2", "J2", "m2", err), err);
+  MUST(fb_bg_connect(bg, "bk1", "J1", "k1", err), err);
+  MUST(fb_bg_connect(bg, "br1", "J1", "r1", err), err);
+  MUST(fb_bg_connect(bg, "b21", "J2", "J12", err), err);
+  MUST(fb_bg_connect(bg, "b12", "J12", "J1", err), err);
+  MUST(fb_bg_connect(bg, "brel", "J12", "Jr", err), err);
+  MUST(fb_bg_connect(bg, "bk2", "Jr", "k2", err), err);
+  MUST(fb_bg_connect(bg, "br2", "Jr", "r2", err), err);
+  return bg;
+}
+
+static int add_field2(fb_bg *bg, const char *name, fb_bg_kind kind, const double *rowmajor,
+                      fb_err *err)
+{
+  fb_mat *m = NULL;
+  const size_t dims[2] = {1, 1};
+  int rc = fb_mat_new_dense_rowmajor(2, 2, rowmajor, &m, err);
+  return rc ? rc : fb_bg_add_field(bg, name, kind, 2, dims, &m, err);
+}
+
+static fb_bg *two_dof_fields(fb_err *err)
+{
+  fb_bg *bg = NULL;
+  MUST(fb_bg_new("fields", &bg, err), err);
+  const double m[4] = {td[TD_M1], 0, 0, td[TD_M2]};
+  const double k[4] = {td[TD_K1] + td[TD_K2], -td[TD_K2], -td[TD_K2], td[TD_K2]};
+  const double r[4] = {td[TD_R1] + td[TD_R2], -td[TD_R2], -td[TD_R2], td[TD_R2]};
+  MUST(add_const_source(bg, "F", FB_BG_SE, 10.0, err), err);
+  MUST(add_field2(bg, "M", FB_BG_I, m, err), err);
+  MUST(add_field2(bg, "K", FB_BG_C, k, err), err);
+  MUST(add_field2(bg, "R", FB_BG_R, r, err), err);
+  MUST(fb_bg_add_junction(bg, "J1", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_add_junction(bg, "J2", FB_BG_J1, 1, err), err);
+  MUST(fb_bg_connect(bg, "bF", "F", "J2", err), err);
+  MUST(fb_bg_connect(bg, "bm1", "J1", "M.1", err), err);
+  MUST(fb_bg_connect(bg, "bm2", "J2", "M.2", err), err);
+  MUST(fb_bg_connect(bg, "bk1", "J1", "K.1", err), err);
+  MUST(fb_bg_connect(bg, "bk2", "J2", "K.2", err), err);
+  MUST(fb_bg_connect(bg, "br1", "J1", "R.1", err), err);
+  MUST(fb_bg_connect(bg, "br2", "J2", "R.2", err), err);
+  return bg;
+}
+
+static void test_fields_vs_scalars(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *g1 = two_dof_scalar(&err), *g2 = two_dof_fields(&err);
+  fb_bd *d1 = NULL, *d2 = NULL;
+  MUST(fb_bd_build(g1, NULL, 0, &d1, &err), &err);
+  MUST(fb_bd_build(g2, NULL, 0, &d2, &err), &err);
+  if (d1 && d2) {
+    CHECK(fb_bd_nstates(d1) == 4 && fb_bd_nstates(d2) == 4);
+    double x[4] = {0, 0, 0, 0}, j1[16], j2[16], e1[8], e2[8];
+    MUST(fb_bd_jacobian_dense(d1, 0.0, x, j1, &err), &err);
+    MUST(fb_bd_jacobian_dense(d2, 0.0, x, j2, &err), &err);
+    eigenvalues(4, j1, e1);
+    eigenvalues(4, j2, e2);
+    /* |lambda| ~ 20 1/s; dgeev's backward error is a few eps * ||A||. */
+    for (int i = 0; i < 8; ++i)
+      CHECK_NEAR(e1[i], e2[i], 1e-9);
+  }
+  fb_bd_free(&d1);
+  fb_bd_free(&d2);
+  fb_bg_free(&g1);
+  fb_bg_free(&g2);
+}
+
+static void test_dot(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = quarter_car(0.0, &err);
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, NULL, 0, &bd, &err), &err);
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *fp = open_memstream(&buf, &len);
+  MUST(fb_bd_write_dot(bd, fp, &err), &err);
+  fclose(fp);
+  CHECK(strncmp(buf, "digraph \"quarter_car\"", 21) == 0);
+  CHECK(strstr(buf, "I ms\\n1/s") != NULL);
+  CHECK(strstr(buf, "ks.e [1]") != NULL);
+  CHECK(strstr(buf, "f:b_sus [1]") != NULL);
+  if (getenv("FB_DUMP_DOT"))
+    fputs(buf, stdout);
+  free(buf);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+int main(void)
+{
+  test_quarter_car();
+  test_augmented();
+  test_algebraic_loop();
+  test_fields_vs_scalars();
+  test_dot();
+  return check_report("test_bd");
+}
