@@ -1,0 +1,428 @@
+/* Matrix Market reader and writer (see flexbond/mat.h). Format: Boisvert,
+ * Pozo & Remington, "The Matrix Market Exchange Formats: Initial Design",
+ * NISTIR 5935, 1996. Supported: matrix coordinate|array real|integer
+ * general|symmetric (the header promises real arrays; integer ones cost
+ * nothing more); symmetric
+ * files hold the lower triangle only (the spec's rule, enforced here so an
+ * entry and its mirror are never summed twice). Comment lines (starting
+ * with %) and blank lines may appear anywhere after the header. */
+#include <ctype.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "flexbond/mat.h"
+
+typedef struct mtx_header {
+  int coordinate; /* coordinate (sparse) or array (dense) format */
+  int integer;    /* integer field, else real */
+  int symmetric;  /* lower triangle stored, mirrored on reading */
+} mtx_header;
+
+typedef struct mtx_size {
+  size_t nrows;
+  size_t ncols;
+  size_t entries; /* data lines the size line announces */
+} mtx_size;
+
+typedef struct mtx_reader {
+  FILE *fp;
+  const char *path;
+  char *line;
+  size_t cap;
+  size_t lineno; /* 1-based number of the line in `line` */
+  fb_err *err;
+} mtx_reader;
+
+/* Entries read so far; rows/cols stay NULL for the array format. */
+typedef struct mtx_entries {
+  size_t *rows;
+  size_t *cols;
+  double *vals;
+  size_t count;
+  size_t cap;
+} mtx_entries;
+
+/* Records FB_EPARSE with "path:line: " before the formatted message. */
+static int parse_error(const mtx_reader *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static int parse_error(const mtx_reader *r, const char *fmt, ...)
+{
+  char msg[FB_ERR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  /* An empty file has no line 0: the missing header belongs on line 1. */
+  const size_t line = r->lineno ? r->lineno : 1;
+  return fb_err_set(r->err, FB_EPARSE, "%s:%zu: %s", r->path, line, msg);
+}
+
+/* Reads the next line without its end-of-line; *got is 0 at end of file. */
+static int read_line(mtx_reader *r, int *got)
+{
+  errno = 0;
+  const ssize_t len = getline(&r->line, &r->cap, r->fp);
+  if (len < 0) {
+    *got = 0;
+    if (ferror(r->fp))
+      return fb_err_set(r->err, FB_EIO, "%s:%zu: read error: %s", r->path, r->lineno + 1,
+                        strerror(errno ? errno : EIO));
+    return errno == ENOMEM ? fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path)
+                           : FB_OK;
+  }
+  ++r->lineno;
+  r->line[strcspn(r->line, "\r\n")] = '\0';
+  *got = 1;
+  return FB_OK;
+}
+
+/* Like read_line, skipping comment and blank lines. */
+static int next_data_line(mtx_reader *r, int *got)
+{
+  for (;;) {
+    const int rc = read_line(r, got);
+    if (rc || !*got)
+      return rc;
+    const char *p = r->line + strspn(r->line, " \t");
+    if (*p != '\0' && *p != '%')
+      return FB_OK;
+  }
+}
+
+/* Next whitespace-separated token of *cursor (NUL-terminated in place),
+ * or NULL when none is left. */
+static char *next_token(char **cursor)
+{
+  char *p = *cursor + strspn(*cursor, " \t");
+  if (*p == '\0')
+    return NULL;
+  char *end = p + strcspn(p, " \t");
+  if (*end != '\0')
+    *end++ = '\0';
+  *cursor = end;
+  return p;
+}
+
+/* Parses an unsigned decimal integer (no sign) filling the whole token. */
+static int parse_count(const char *tok, size_t *out)
+{
+  if (!tok || !isdigit((unsigned char)tok[0]))
+    return 0;
+  errno = 0;
+  char *end;
+  const unsigned long long v = strtoull(tok, &end, 10);
+  if (errno || *end != '\0' || v > SIZE_MAX)
+    return 0;
+  *out = (size_t)v;
+  return 1;
+}
+
+static int parse_value(const mtx_reader *r, const mtx_header *h, const char *tok, double *out)
+{
+  if (!tok)
+    return parse_error(r, "missing value");
+  char *end;
+  errno = 0;
+  if (h->integer) {
+    const long long v = strtoll(tok, &end, 10);
+    if (errno || end == tok || *end != '\0')
+      return parse_error(r, "invalid integer value '%s'", tok);
+    *out = (double)v;
+    return FB_OK;
+  }
+  *out = strtod(tok, &end);
+  if (end == tok || *end != '\0')
+    return parse_error(r, "invalid real value '%s'", tok);
+  return FB_OK;
+}
+
+static int no_more_tokens(const mtx_reader *r, char **cursor)
+{
+  const char *extra = next_token(cursor);
+  return extra ? parse_error(r, "unexpected text '%s' at end of line", extra) : FB_OK;
+}
+
+/* Matches tok case-insensitively against choices[0..n); index or -1. */
+static int choose(const char *tok, const char *const *choices, int n)
+{
+  for (int k = 0; tok && k < n; ++k)
+    if (strcasecmp(tok, choices[k]) == 0)
+      return k;
+  return -1;
+}
+
+static int read_header(mtx_reader *r, mtx_header *h)
+{
+  static const char *const formats[] = {"array", "coordinate"};
+  static const char *const fields[] = {"real", "integer"};
+  static const char *const symmetries[] = {"general", "symmetric"};
+  int got;
+  int rc = read_line(r, &got);
+  if (rc)
+    return rc;
+  if (!got)
+    return parse_error(r, "empty file, expected a '%%%%MatrixMarket matrix ...' header");
+  char *cursor = r->line;
+  const char *banner = next_token(&cursor);
+  const char *object = next_token(&cursor);
+  if (!banner || strcasecmp(banner, "%%MatrixMarket") != 0 || !object ||
+      strcasecmp(object, "matrix") != 0)
+    return parse_error(r, "expected a '%%%%MatrixMarket matrix ...' header");
+  const char *format = next_token(&cursor);
+  const char *field = next_token(&cursor);
+  const char *symmetry = next_token(&cursor);
+  h->coordinate = choose(format, formats, 2);
+  h->integer = choose(field, fields, 2);
+  h->symmetric = choose(symmetry, symmetries, 2);
+  if (h->coordinate < 0)
+    return parse_error(r, "unsupported format '%s' (array or coordinate)",
+                       format ? format : "");
+  if (h->integer < 0)
+    return parse_error(r, "unsupported field '%s' (real or integer)", field ? field : "");
+  if (h->symmetric < 0)
+    return parse_error(r, "unsupported symmetry '%s' (general or symmetric)",
+                       symmetry ? symmetry : "");
+  return no_more_tokens(r, &cursor);
+}
+
+/* Number of data lines of the array format: n(n+1)/2 for symmetric. */
+static int array_entries(const mtx_reader *r, const mtx_header *h, mtx_size *s)
+{
+  /* Bounding rows*cols*sizeof(double) also keeps n*(n+1) from overflowing. */
+  if (s->ncols != 0 && s->nrows > SIZE_MAX / sizeof(double) / s->ncols)
+    return parse_error(r, "matrix %zu x %zu is too large", s->nrows, s->ncols);
+  s->entries = h->symmetric ? s->ncols * (s->ncols + 1) / 2 : s->nrows * s->ncols;
+  return FB_OK;
+}
+
+static int read_size(mtx_reader *r, const mtx_header *h, mtx_size *s)
+{
+  int got;
+  int rc = next_data_line(r, &got);
+  if (rc)
+    return rc;
+  if (!got)
+    return parse_error(r, "missing size line");
+  char *cursor = r->line;
+  const char *rows = next_token(&cursor);
+  const char *cols = next_token(&cursor);
+  const char *entries = h->coordinate ? next_token(&cursor) : NULL;
+  if (!parse_count(rows, &s->nrows) || !parse_count(cols, &s->ncols) ||
+      (h->coordinate && !parse_count(entries, &s->entries)))
+    return parse_error(r, "expected size line '%s'",
+                       h->coordinate ? "rows columns entries" : "rows columns");
+  rc = no_more_tokens(r, &cursor);
+  if (rc)
+    return rc;
+  if (h->symmetric && s->nrows != s->ncols)
+    return parse_error(r, "symmetric matrix must be square, not %zu x %zu", s->nrows, s->ncols);
+  return h->coordinate ? FB_OK : array_entries(r, h, s);
+}
+
+static int push_entry(const mtx_reader *r, mtx_entries *e, size_t row, size_t col, double val)
+{
+  if (e->count == e->cap) {
+    const size_t cap = e->cap ? 2 * e->cap : 64;
+    if (cap > SIZE_MAX / sizeof(double) / 2)
+      return fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path);
+    double *vals = realloc(e->vals, cap * sizeof *vals);
+    if (vals)
+      e->vals = vals;
+    size_t *rows = e->rows ? realloc(e->rows, cap * sizeof *rows) : NULL;
+    if (rows)
+      e->rows = rows;
+    size_t *cols = e->cols ? realloc(e->cols, cap * sizeof *cols) : NULL;
+    if (cols)
+      e->cols = cols;
+    if (!vals || (e->rows && !rows) || (e->cols && !cols))
+      return fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path);
+    e->cap = cap;
+  }
+  if (e->rows) {
+    e->rows[e->count] = row;
+    e->cols[e->count] = col;
+  }
+  e->vals[e->count++] = val;
+  return FB_OK;
+}
+
+/* Parses a 1-based index token into 0-based *out, checking 1..n. */
+static int parse_index(const mtx_reader *r, const char *what, const char *tok, size_t n,
+                       size_t *out)
+{
+  size_t v;
+  if (!tok)
+    return parse_error(r, "missing %s index", what);
+  if (!parse_count(tok, &v))
+    return parse_error(r, "invalid %s index '%s'", what, tok);
+  if (v < 1 || v > n)
+    return parse_error(r, "%s index %zu out of range 1..%zu", what, v, n);
+  *out = v - 1;
+  return FB_OK;
+}
+
+/* One "i j value" line; a symmetric off-diagonal entry is also mirrored. */
+static int read_coordinate_entry(mtx_reader *r, const mtx_header *h, const mtx_size *s,
+                                 mtx_entries *e)
+{
+  char *cursor = r->line;
+  size_t i = 0, j = 0;
+  double v = 0.0;
+  int rc = parse_index(r, "row", next_token(&cursor), s->nrows, &i);
+  if (!rc)
+    rc = parse_index(r, "column", next_token(&cursor), s->ncols, &j);
+  if (!rc)
+    rc = parse_value(r, h, next_token(&cursor), &v);
+  if (!rc)
+    rc = no_more_tokens(r, &cursor);
+  if (!rc && h->symmetric && i < j)
+    rc = parse_error(r, "entry (%zu, %zu) is above the diagonal of a symmetric matrix", i + 1,
+                     j + 1);
+  if (!rc)
+    rc = push_entry(r, e, i, j, v);
+  if (!rc && h->symmetric && i != j)
+    rc = push_entry(r, e, j, i, v);
+  return rc;
+}
+
+static int read_array_entry(mtx_reader *r, const mtx_header *h, mtx_entries *e)
+{
+  char *cursor = r->line;
+  double v = 0.0;
+  int rc = parse_value(r, h, next_token(&cursor), &v);
+  if (!rc)
+    rc = no_more_tokens(r, &cursor);
+  return rc ? rc : push_entry(r, e, 0, 0, v);
+}
+
+static int read_entries(mtx_reader *r, const mtx_header *h, const mtx_size *s, mtx_entries *e)
+{
+  size_t nread = 0;
+  for (;;) {
+    int got;
+    int rc = next_data_line(r, &got);
+    if (rc)
+      return rc;
+    if (!got)
+      break;
+    if (nread == s->entries)
+      return parse_error(r, "more entries than the %zu declared", s->entries);
+    rc = h->coordinate ? read_coordinate_entry(r, h, s, e) : read_array_entry(r, h, e);
+    if (rc)
+      return rc;
+    ++nread;
+  }
+  if (nread < s->entries)
+    return parse_error(r, "file ends after %zu of the %zu declared entries", nread, s->entries);
+  return FB_OK;
+}
+
+/* Dense matrix from the lower triangle listed column by column. */
+static int symmetric_array(const mtx_reader *r, size_t n, const double *lower, fb_mat **out)
+{
+  double *full = malloc((n ? n * n : 1) * sizeof *full);
+  if (!full)
+    return fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path);
+  size_t k = 0;
+  for (size_t j = 0; j < n; ++j) {
+    for (size_t i = j; i < n; ++i) {
+      full[i + j * n] = lower[k];
+      full[j + i * n] = lower[k++];
+    }
+  }
+  const int rc = fb_mat_new_dense(n, n, full, out, r->err);
+  free(full);
+  return rc;
+}
+
+static int read_mtx(mtx_reader *r, mtx_entries *e, fb_mat **out)
+{
+  mtx_header h;
+  mtx_size s;
+  int rc = read_header(r, &h);
+  if (!rc)
+    rc = read_size(r, &h, &s);
+  if (rc)
+    return rc;
+  if (h.coordinate) {
+    /* Empty arrays that push_entry grows alongside vals. */
+    e->rows = malloc(sizeof *e->rows);
+    e->cols = malloc(sizeof *e->cols);
+    if (!e->rows || !e->cols)
+      return fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path);
+  }
+  rc = read_entries(r, &h, &s, e);
+  if (rc)
+    return rc;
+  if (h.coordinate)
+    return fb_mat_new_triplets(s.nrows, s.ncols, e->count, e->rows, e->cols, e->vals, out,
+                               r->err);
+  if (h.symmetric)
+    return symmetric_array(r, s.ncols, e->vals, out);
+  return fb_mat_new_dense(s.nrows, s.ncols, e->vals, out, r->err);
+}
+
+int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err)
+{
+  if (!out)
+    return fb_err_set(err, FB_EINVAL, "matrix output pointer is NULL");
+  *out = NULL;
+  if (!path)
+    return fb_err_set(err, FB_EINVAL, "Matrix Market path is NULL");
+  FILE *fp = fopen(path, "r");
+  if (!fp)
+    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+  mtx_reader r = {fp, path, NULL, 0, 0, err};
+  mtx_entries e = {NULL, NULL, NULL, 0, 0};
+  const int rc = read_mtx(&r, &e, out);
+  free(r.line);
+  free(e.rows);
+  free(e.cols);
+  free(e.vals);
+  fclose(fp);
+  return rc;
+}
+
+static void count_entry(void *ctx, size_t row, size_t col, double val)
+{
+  (void)row;
+  (void)col;
+  (void)val;
+  ++*(size_t *)ctx;
+}
+
+static void write_entry(void *ctx, size_t row, size_t col, double val)
+{
+  fprintf(ctx, "%zu %zu %.17g\n", row + 1, col + 1, val);
+}
+
+/* %.17g makes every double round-trip exactly through strtod (IEEE
+ * 754-2008, section 5.12.2: 17 significant digits suffice for binary64). */
+int fb_mat_write_mtx(const fb_mat *a, const char *path, fb_err *err)
+{
+  if (!a || !path)
+    return fb_err_set(err, FB_EINVAL, "matrix or path is NULL");
+  FILE *fp = fopen(path, "w");
+  if (!fp)
+    return fb_err_set(err, FB_EIO, "%s: cannot open for writing: %s", path, strerror(errno));
+  size_t entries = 0;
+  fb_mat_foreach(a, count_entry, &entries);
+  errno = 0;
+  fprintf(fp, "%%%%MatrixMarket matrix coordinate real general\n%zu %zu %zu\n", fb_mat_nrows(a),
+          fb_mat_ncols(a), entries);
+  fb_mat_foreach(a, write_entry, fp);
+  const int write_failed = ferror(fp);
+  const int close_failed = fclose(fp) != 0;
+  if (write_failed || close_failed)
+    return fb_err_set(err, FB_EIO, "%s: write failed: %s", path, strerror(errno ? errno : EIO));
+  return FB_OK;
+}
