@@ -1,0 +1,381 @@
+/* Tests of fb_tfun: values of each kind against hand calculations or the
+ * defining formula, breakpoint lists, CSV tables from temporary files
+ * (good and bad), clones against their originals.
+ *
+ * Tolerances: table values at and between knots chosen as binary fractions
+ * are exact (the interpolation weight and the products are representable),
+ * so they compare with 0. The sine is compared with the same formula
+ * written out with a different grouping, allowing 1e-14 for the rounding of
+ * the phase argument (|arg| < 10, ulp 2e-15, times |amplitude| = 2). */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "flexbond/expr.h"
+
+#include "check.h"
+
+static const double PI = 3.14159265358979323846;
+
+static void test_const_and_step(void)
+{
+  fb_tfun *f = NULL;
+  fb_err err;
+  double bp[4] = {-1, -1, -1, -1};
+  CHECK(fb_tfun_new_const(3.25, &f, &err) == FB_OK);
+  CHECK_NEAR(fb_tfun_eval(f, -10.0), 3.25, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 1e6), 3.25, 0);
+  CHECK(fb_tfun_breakpoints(f, bp, 4) == 0);
+  CHECK(bp[0] == -1); /* nothing written */
+  fb_tfun_free(&f);
+  CHECK(f == NULL);
+  CHECK(fb_tfun_new_const(NAN, &f, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "not finite") != NULL);
+
+  CHECK(fb_tfun_new_step(1.0, 2.0, 5.0, &f, &err) == FB_OK);
+  CHECK_NEAR(fb_tfun_eval(f, 0.0), 2.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 0.999999), 2.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 1.0), 5.0, 0); /* the after value from t0 on */
+  CHECK_NEAR(fb_tfun_eval(f, 7.0), 5.0, 0);
+  CHECK(fb_tfun_breakpoints(f, bp, 4) == 1);
+  CHECK(bp[0] == 1.0);
+  CHECK(fb_tfun_breakpoints(f, NULL, 0) == 1); /* count only */
+  fb_tfun_free(&f);
+  CHECK(fb_tfun_new_step(INFINITY, 0, 1, &f, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "step time") != NULL);
+}
+
+static void test_sine(void)
+{
+  fb_tfun *f = NULL;
+  fb_err err;
+  const double amplitude = 2.0, freq = 0.5, phase = 0.3, offset = 1.0;
+  CHECK(fb_tfun_new_sine(amplitude, freq, phase, offset, &f, &err) == FB_OK);
+  for (int i = 0; i <= 10; ++i) {
+    double t = 0.37 * i;
+    double omega = 2.0 * PI * freq; /* rad/s */
+    CHECK_NEAR(fb_tfun_eval(f, t), offset + amplitude * sin(omega * t + phase), 1e-14);
+  }
+  /* Hand values: at t = 0.5 s the phase is pi/2 + 0.3 -> 1 + 2 cos(0.3). */
+  CHECK_NEAR(fb_tfun_eval(f, 0.5), 1.0 + 2.0 * cos(0.3), 1e-14);
+  CHECK(fb_tfun_breakpoints(f, NULL, 0) == 0);
+  fb_tfun_free(&f);
+  CHECK(fb_tfun_new_sine(1, NAN, 0, 0, &f, &err) == FB_EINVAL);
+  CHECK(f == NULL);
+}
+
+static void test_table(void)
+{
+  double times[] = {0.0, 1.0, 3.0, 4.0};
+  double values[] = {0.0, 2.0, -2.0, -2.0};
+  fb_tfun *f = NULL;
+  fb_err err;
+  CHECK(fb_tfun_new_table(4, times, values, &f, &err) == FB_OK);
+  times[1] = 99.0; /* the table must have copied the arrays */
+  values[1] = 99.0;
+  /* At the knots: the knot values. */
+  CHECK_NEAR(fb_tfun_eval(f, 0.0), 0.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 1.0), 2.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 3.0), -2.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 4.0), -2.0, 0);
+  /* Between: by hand, v0 + (v1 - v0) (t - t0) / (t1 - t0). */
+  CHECK_NEAR(fb_tfun_eval(f, 0.5), 1.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 0.25), 0.5, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 2.0), 0.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 2.5), -1.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 3.5), -2.0, 0);
+  /* Outside: held at the end values. */
+  CHECK_NEAR(fb_tfun_eval(f, -5.0), 0.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 10.0), -2.0, 0);
+  double bp[4] = {-1, -1, -1, -1};
+  CHECK(fb_tfun_breakpoints(f, bp, 4) == 2); /* interior knots 1 and 3 */
+  CHECK(bp[0] == 1.0 && bp[1] == 3.0 && bp[2] == -1);
+  bp[0] = bp[1] = -1;
+  CHECK(fb_tfun_breakpoints(f, bp, 1) == 2); /* count, but only max written */
+  CHECK(bp[0] == 1.0 && bp[1] == -1);
+  fb_tfun_free(&f);
+
+  /* One point: constant, no breakpoints. Two: no interior knots. */
+  double t1[] = {2.0}, v1[] = {7.0};
+  CHECK(fb_tfun_new_table(1, t1, v1, &f, &err) == FB_OK);
+  CHECK_NEAR(fb_tfun_eval(f, 0.0), 7.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 2.0), 7.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 9.0), 7.0, 0);
+  CHECK(fb_tfun_breakpoints(f, NULL, 0) == 0);
+  fb_tfun_free(&f);
+  double t2[] = {0.0, 2.0}, v2[] = {1.0, 2.0};
+  CHECK(fb_tfun_new_table(2, t2, v2, &f, &err) == FB_OK);
+  CHECK_NEAR(fb_tfun_eval(f, 1.5), 1.75, 0);
+  CHECK(fb_tfun_breakpoints(f, NULL, 0) == 0);
+  fb_tfun_free(&f);
+}
+
+/* Reference interpolation by linear search, independent of the binary
+ * search in the library. */
+static double table_linear_search(size_t n, const double *t, const double *v, double x)
+{
+  if (x <= t[0])
+    return v[0];
+  for (size_t i = 1; i < n; ++i)
+    if (x <= t[i])
+      return v[i - 1] + (v[i] - v[i - 1]) * (x - t[i - 1]) / (t[i] - t[i - 1]);
+  return v[n - 1];
+}
+
+static void test_table_long(void)
+{
+  enum { N = 1000 };
+  double *t = malloc(N * sizeof *t), *v = malloc(N * sizeof *v);
+  for (size_t i = 0; i < N; ++i) {
+    t[i] = 1e-3 * (double)(i * i); /* non-uniform spacing */
+    v[i] = sin(0.37 * (double)i);
+  }
+  fb_tfun *f = NULL;
+  fb_err err;
+  CHECK(fb_tfun_new_table(N, t, v, &f, &err) == FB_OK);
+  for (int k = 0; k < 500; ++k) {
+    double x = -10.0 + 1030.0 * k / 499.0;
+    /* The two methods agree up to rounding of the weight (values <= 1). */
+    CHECK_NEAR(fb_tfun_eval(f, x), table_linear_search(N, t, v, x), 1e-14);
+  }
+  for (size_t i = 0; i < N; i += 37)
+    CHECK_NEAR(fb_tfun_eval(f, t[i]), v[i], 0); /* knots exactly */
+  CHECK(fb_tfun_breakpoints(f, NULL, 0) == N - 2);
+  fb_tfun_free(&f);
+  free(t);
+  free(v);
+}
+
+static void test_table_errors(void)
+{
+  fb_tfun *f = NULL;
+  fb_err err;
+  double t_equal[] = {0.0, 1.0, 1.0}, t_down[] = {0.0, 2.0, 1.0}, v[] = {1.0, 2.0, 3.0};
+  CHECK(fb_tfun_new_table(0, t_equal, v, &f, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "at least 1") != NULL);
+  CHECK(fb_tfun_new_table(3, t_equal, v, &f, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "strictly increasing: times[2] = 1 is not greater than times[1] = 1") !=
+        NULL);
+  CHECK(fb_tfun_new_table(3, t_down, v, &f, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "times[2]") != NULL);
+  double t_ok[] = {0.0, 1.0, 2.0}, v_nan[] = {0.0, NAN, 1.0};
+  CHECK(fb_tfun_new_table(3, t_ok, v_nan, &f, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "values[1] is not finite") != NULL);
+  CHECK(fb_tfun_new_table(3, t_ok, NULL, &f, &err) == FB_EINVAL);
+  CHECK(f == NULL);
+}
+
+/* Writes content to a fresh file in /tmp; path receives its name. */
+static void write_temp(char path[64], const char *content)
+{
+  strcpy(path, "/tmp/fb_test_tfun_XXXXXX");
+  int fd = mkstemp(path);
+  CHECK(fd >= 0);
+  FILE *fp = fdopen(fd, "w");
+  CHECK(fp != NULL);
+  fputs(content, fp);
+  fclose(fp);
+}
+
+static void test_csv(void)
+{
+  char path[64];
+  write_temp(path, "# recorded road profile\n"
+                   " time , force, other\n"
+                   "0, 1, 9\n"
+                   "# a comment between rows\n"
+                   "1,3,9\n"
+                   "\n"
+                   "  2 , 2 ,9  \n"
+                   "4,2,x\n"); /* non-numeric unused column is fine */
+  fb_tfun *f = NULL;
+  fb_err err;
+  CHECK(fb_tfun_new_table_csv(path, "time", "force", &f, &err) == FB_OK);
+  CHECK_NEAR(fb_tfun_eval(f, 0.0), 1.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 0.5), 2.0, 0); /* (1 + 3) / 2 */
+  CHECK_NEAR(fb_tfun_eval(f, 1.5), 2.5, 0); /* (3 + 2) / 2 */
+  CHECK_NEAR(fb_tfun_eval(f, 3.0), 2.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 9.0), 2.0, 0);
+  double bp[3];
+  CHECK(fb_tfun_breakpoints(f, bp, 3) == 2);
+  CHECK(bp[0] == 1.0 && bp[1] == 2.0);
+  fb_tfun_free(&f);
+  /* Columns may come in any order. */
+  CHECK(fb_tfun_new_table_csv(path, "time", "other", &f, &err) == FB_EPARSE);
+  CHECK(strstr(err.msg, ":8: column 'other': 'x' is not a number") != NULL);
+  unlink(path);
+
+  write_temp(path, "t,u\r\n0,1e-3\r\n2,-1.5e-3\r\n"); /* CRLF line ends */
+  CHECK(fb_tfun_new_table_csv(path, "t", "u", &f, &err) == FB_OK);
+  CHECK_NEAR(fb_tfun_eval(f, 1.0), -0.25e-3, 1e-18); /* midpoint; rounding of 1e-3 */
+  fb_tfun_free(&f);
+  unlink(path);
+}
+
+/* Loads content as a CSV table and expects failure code with a message
+ * containing "path:line: " (line > 0) and want. */
+static void expect_csv_error(const char *content, const char *time_col, const char *value_col,
+                             int code, int line, const char *want)
+{
+  char path[64], where[96];
+  write_temp(path, content);
+  fb_tfun *f = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_tfun_new_table_csv(path, time_col, value_col, &f, &err) == code);
+  CHECK(f == NULL);
+  snprintf(where, sizeof where, "%s:%d: ", path, line);
+  int ok = strstr(err.msg, where) == err.msg && strstr(err.msg, want) != NULL;
+  CHECK(ok);
+  if (!ok)
+    fprintf(stderr, "  got \"%s\", wanted \"%s...%s\"\n", err.msg, where, want);
+  unlink(path);
+}
+
+static void test_csv_errors(void)
+{
+  expect_csv_error("time, a\n0,1\n", "time", "x", FB_EPARSE, 1,
+                   "no column 'x' in header (columns: time, a)");
+  expect_csv_error("# c\n\nq,v\n0,1\n", "t", "v", FB_EPARSE, 3,
+                   "no column 't' in header (columns: q, v)");
+  expect_csv_error("t,v\n0,1\n1,abc\n", "t", "v", FB_EPARSE, 3,
+                   "column 'v': 'abc' is not a number");
+  expect_csv_error("t,v\n0,1\n1,2.5.1\n", "t", "v", FB_EPARSE, 3, "'2.5.1' is not a number");
+  expect_csv_error("t,v\n0,1\n,2\n", "t", "v", FB_EPARSE, 3, "column 't': '' is not a number");
+  expect_csv_error("t,v\n0,1\n1,inf\n", "t", "v", FB_EPARSE, 3, "'inf' is not finite");
+  expect_csv_error("t,v\n0,1\n1,1e999\n", "t", "v", FB_EPARSE, 3, "'1e999' is not finite");
+  expect_csv_error("t,v\n0,1\n1,2\n1,3\n", "t", "v", FB_EPARSE, 4,
+                   "time 1 is not greater than the previous time 1");
+  expect_csv_error("t,v\n0,1\n2,2\n1,3\n", "t", "v", FB_EPARSE, 4, "strictly increasing");
+  expect_csv_error("t,v\n# only a comment\n", "t", "v", FB_EPARSE, 2, "too few rows");
+  expect_csv_error("t,v\n0\n", "t", "v", FB_EPARSE, 2,
+                   "expected 2 fields as in the header, found 1");
+  expect_csv_error("t,v\n0,1,2\n", "t", "v", FB_EPARSE, 2, "found 3");
+  expect_csv_error("", "t", "v", FB_EPARSE, 1, "no header line");
+  expect_csv_error("# c\n\n# d\n", "t", "v", FB_EPARSE, 3, "no header line");
+
+  fb_tfun *f = NULL;
+  fb_err err;
+  const char *missing = "/tmp/fb_test_tfun_does_not_exist.csv";
+  CHECK(fb_tfun_new_table_csv(missing, "t", "v", &f, &err) == FB_EIO);
+  CHECK(strstr(err.msg, missing) == err.msg);
+  CHECK(strstr(err.msg, strerror(ENOENT)) != NULL);
+  CHECK(fb_tfun_new_table_csv("/tmp", "t", "v", &f, &err) == FB_EIO); /* a directory */
+  CHECK(strstr(err.msg, "/tmp:") == err.msg);
+  CHECK(f == NULL);
+}
+
+static void test_expr_tfun(void)
+{
+  fb_expr *e = NULL;
+  fb_tfun *f = NULL;
+  fb_err err;
+  CHECK(fb_expr_parse("2*t + step(t - 1)", NULL, &e, &err) == FB_OK);
+  CHECK(fb_tfun_new_expr(&e, &f, &err) == FB_OK);
+  CHECK(e == NULL); /* ownership taken */
+  CHECK_NEAR(fb_tfun_eval(f, 0.5), 1.0, 0);
+  CHECK_NEAR(fb_tfun_eval(f, 3.0), 7.0, 0);
+  CHECK(fb_tfun_breakpoints(f, NULL, 0) == 0);
+  fb_tfun_free(&f);
+  CHECK(fb_tfun_new_expr(&e, &f, &err) == FB_EINVAL); /* *e is NULL now */
+}
+
+typedef struct ramp_ctx {
+  double slope;
+  int calls;
+} ramp_ctx;
+
+static double ramp_fn(double t, void *ctx)
+{
+  ramp_ctx *c = ctx;
+  ++c->calls;
+  return c->slope * t;
+}
+
+static void test_callback(void)
+{
+  ramp_ctx ctx = {.slope = 1.5, .calls = 0};
+  const double given[] = {3.0, 1.0, 2.0, 1.0};
+  fb_tfun *f = NULL;
+  fb_err err;
+  CHECK(fb_tfun_new_callback(ramp_fn, &ctx, 4, given, &f, &err) == FB_OK);
+  CHECK_NEAR(fb_tfun_eval(f, 2.0), 3.0, 0);
+  CHECK(ctx.calls == 1);
+  double bp[4] = {-1, -1, -1, -1};
+  CHECK(fb_tfun_breakpoints(f, bp, 4) == 3); /* sorted, repeat of 1 dropped */
+  CHECK(bp[0] == 1.0 && bp[1] == 2.0 && bp[2] == 3.0 && bp[3] == -1);
+  fb_tfun_free(&f);
+  CHECK(fb_tfun_new_callback(ramp_fn, &ctx, 0, NULL, &f, &err) == FB_OK);
+  CHECK(fb_tfun_breakpoints(f, bp, 4) == 0);
+  fb_tfun_free(&f);
+  CHECK(fb_tfun_new_callback(NULL, &ctx, 0, NULL, &f, &err) == FB_EINVAL);
+  CHECK(fb_tfun_new_callback(ramp_fn, &ctx, 2, NULL, &f, &err) == FB_EINVAL);
+  const double bad[] = {1.0, NAN};
+  CHECK(fb_tfun_new_callback(ramp_fn, &ctx, 2, bad, &f, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "breakpoints[1]") != NULL);
+}
+
+/* Clones f, frees f (so shared storage would show under ASan), and checks
+ * values on a grid and breakpoints against those recorded beforehand. */
+static void check_clone(fb_tfun **f)
+{
+  enum { NT = 25 };
+  double want[NT], want_bp[8], got_bp[8];
+  for (int i = 0; i < NT; ++i)
+    want[i] = fb_tfun_eval(*f, -1.0 + 0.25 * i);
+  size_t nbp = fb_tfun_breakpoints(*f, want_bp, 8);
+  fb_tfun *copy = NULL;
+  fb_err err;
+  CHECK(fb_tfun_clone(*f, &copy, &err) == FB_OK);
+  fb_tfun_free(f);
+  for (int i = 0; i < NT; ++i)
+    CHECK_NEAR(fb_tfun_eval(copy, -1.0 + 0.25 * i), want[i], 0); /* same data, same code */
+  CHECK(fb_tfun_breakpoints(copy, got_bp, 8) == nbp);
+  for (size_t i = 0; i < nbp && i < 8; ++i)
+    CHECK(got_bp[i] == want_bp[i]);
+  fb_tfun_free(&copy);
+}
+
+static void test_clone(void)
+{
+  fb_tfun *f = NULL;
+  fb_err err;
+  fb_expr *e = NULL;
+  ramp_ctx ctx = {.slope = -2.0, .calls = 0};
+  const double times[] = {0.0, 0.5, 1.5, 4.0}, values[] = {1.0, -1.0, 0.0, 2.0};
+  const double breaks[] = {2.0, 0.5};
+
+  CHECK(fb_tfun_new_const(-0.75, &f, &err) == FB_OK);
+  check_clone(&f);
+  CHECK(fb_tfun_new_step(0.5, 1.0, 2.0, &f, &err) == FB_OK);
+  check_clone(&f);
+  CHECK(fb_tfun_new_sine(1.0, 2.0, 0.1, -1.0, &f, &err) == FB_OK);
+  check_clone(&f);
+  CHECK(fb_tfun_new_table(4, times, values, &f, &err) == FB_OK);
+  check_clone(&f);
+  CHECK(fb_expr_parse("t^2 - ramp(t)", NULL, &e, &err) == FB_OK);
+  CHECK(fb_tfun_new_expr(&e, &f, &err) == FB_OK);
+  check_clone(&f);
+  CHECK(fb_tfun_new_callback(ramp_fn, &ctx, 2, breaks, &f, &err) == FB_OK);
+  check_clone(&f);
+  CHECK(ctx.calls == 50); /* the clone called the same function with the same ctx */
+  CHECK(fb_tfun_clone(NULL, &f, &err) == FB_EINVAL);
+  fb_tfun_free(NULL);
+  fb_tfun_free(&f);
+}
+
+int main(void)
+{
+  test_const_and_step();
+  test_sine();
+  test_table();
+  test_table_long();
+  test_table_errors();
+  test_csv();
+  test_csv_errors();
+  test_expr_tfun();
+  test_callback();
+  test_clone();
+  return check_report("test_tfun");
+}
