@@ -1,0 +1,137 @@
+/* Option parsing, numeric option values and error reporting shared by the
+ * subcommands (see cli.h). A small hand-written parser instead of
+ * getopt_long, which is a GNU extension. */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+int cli_usage_error(const char *cmd, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "flexbond %s: ", cmd);
+  vfprintf(stderr, fmt, ap);
+  fprintf(stderr, "\nTry 'flexbond %s --help'.\n", cmd);
+  va_end(ap);
+  return CLI_EXIT_USAGE;
+}
+
+/* The option whose long form is the first name_len characters of arg, or
+ * whose short form is arg; NULL if none. */
+static cli_option *find_option(cli_option *opts, size_t nopts, const char *arg, size_t name_len)
+{
+  for (size_t i = 0; i < nopts; ++i) {
+    if (strlen(opts[i].name) == name_len && strncmp(opts[i].name, arg, name_len) == 0)
+      return &opts[i];
+    if (opts[i].alias && strcmp(opts[i].alias, arg) == 0)
+      return &opts[i];
+  }
+  return NULL;
+}
+
+/* Handles the option at argv[*i], advancing *i past a separate value. */
+static int parse_option(int argc, char **argv, int *i, cli_option *opts, size_t nopts)
+{
+  const char *arg = argv[*i];
+  const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+  size_t name_len = eq ? (size_t)(eq - arg) : strlen(arg);
+  cli_option *opt = find_option(opts, nopts, arg, name_len);
+  if (!opt)
+    return cli_usage_error(argv[0], "unknown option '%.*s'", (int)name_len, arg);
+  if (!opt->takes_value) {
+    if (eq)
+      return cli_usage_error(argv[0], "option '%s' takes no value", opt->name);
+    opt->value = "";
+    return CLI_EXIT_OK;
+  }
+  if (eq) {
+    opt->value = eq + 1;
+    return CLI_EXIT_OK;
+  }
+  if (*i + 1 >= argc)
+    return cli_usage_error(argv[0], "option '%s' needs a value", arg);
+  *i += 1;
+  opt->value = argv[*i];
+  return CLI_EXIT_OK;
+}
+
+int cli_parse(int argc, char **argv, cli_option *opts, size_t nopts, const char **positional,
+              size_t max_positional, size_t *npositional)
+{
+  *npositional = 0;
+  int options_done = 0;
+  for (int i = 1; i < argc; ++i) {
+    const char *arg = argv[i];
+    if (!options_done && strcmp(arg, "--") == 0) {
+      options_done = 1;
+      continue;
+    }
+    if (!options_done && arg[0] == '-' && arg[1] != '\0') {
+      int rc = parse_option(argc, argv, &i, opts, nopts);
+      if (rc != CLI_EXIT_OK)
+        return rc;
+      continue;
+    }
+    if (*npositional == max_positional)
+      return cli_usage_error(argv[0], "unexpected argument '%s'", arg);
+    positional[(*npositional)++] = arg;
+  }
+  return CLI_EXIT_OK;
+}
+
+int cli_positive_number(const char *cmd, const char *name, const char *text, double *out)
+{
+  char *end = NULL;
+  errno = 0;
+  double v = strtod(text, &end);
+  /* strtod accepts "inf" and "nan", and reports values beyond the range of
+   * double (overflow or underflow) with ERANGE: all are refused. */
+  if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v) || !(v > 0.0))
+    return cli_usage_error(cmd, "option '%s' needs a finite number > 0 (got '%s')", name, text);
+  *out = v;
+  return CLI_EXIT_OK;
+}
+
+int cli_exit_code(int status)
+{
+  switch (status) {
+  case FB_OK: return CLI_EXIT_OK;
+  case FB_ENOMEM: return CLI_EXIT_NOMEM;
+  case FB_ECAUSAL: return CLI_EXIT_CAUSAL;
+  case FB_ESOLVER: return CLI_EXIT_SOLVER;
+  case FB_EIO: return CLI_EXIT_IO;
+  /* FB_EPARSE, FB_EINVAL, FB_EMODEL: the input is at fault. */
+  default: return CLI_EXIT_INPUT;
+  }
+}
+
+int cli_report(int status, const fb_err *err)
+{
+  if (status == FB_OK)
+    return CLI_EXIT_OK;
+  const char *msg = err && err->msg[0] ? err->msg : fb_status_name(status);
+  fprintf(stderr, "flexbond: %s\n", msg);
+  return cli_exit_code(status);
+}
+
+int cli_flush_stdout(fb_err *err)
+{
+  errno = 0;
+  if (fflush(stdout) == 0 && !ferror(stdout))
+    return FB_OK;
+  return fb_err_set(err, FB_EIO, "standard output: write failed: %s",
+                    strerror(errno ? errno : EIO));
+}
+
+int cli_print_help(const char *text)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fputs(text, stdout);
+  return cli_report(cli_flush_stdout(&err), &err);
+}

@@ -1,0 +1,74 @@
+/* Internal interface of the flexbond command: exit codes, the option
+ * parser shared by the subcommands, and the subcommands themselves.
+ * Only this program uses it; the library never prints or exits. */
+#ifndef FLEXBOND_CLI_H
+#define FLEXBOND_CLI_H
+
+#include <stddef.h>
+
+#include "flexbond/error.h"
+
+#define CLI_VERSION "0.1.0"
+
+/* Exit codes of the program (the table is in main.c). */
+enum cli_exit {
+  CLI_EXIT_OK = 0,
+  CLI_EXIT_USAGE = 1,
+  CLI_EXIT_INPUT = 2,
+  CLI_EXIT_CAUSAL = 3,
+  CLI_EXIT_SOLVER = 4,
+  CLI_EXIT_IO = 5,
+  CLI_EXIT_NOMEM = 6
+};
+
+/* One option a command accepts. The parser sets value: NULL when the
+ * option is absent, its argument when it takes one, "" for a given flag.
+ * A repeated option keeps its last value. */
+typedef struct cli_option {
+  const char *name;  /* long form, "--t-end" */
+  const char *alias; /* short form, "-o", or NULL */
+  int takes_value;   /* 1: "--name VALUE" or "--name=VALUE" */
+  const char *value;
+} cli_option;
+
+/* Parses argv[1 .. argc-1] of command argv[0]: options into opts, the
+ * other arguments into positional (at most max_positional, count in
+ * *npositional). "--" ends the options; "-" alone is positional. Returns
+ * CLI_EXIT_OK, or CLI_EXIT_USAGE after printing the problem to stderr. */
+int cli_parse(int argc, char **argv, cli_option *opts, size_t nopts, const char **positional,
+              size_t max_positional, size_t *npositional);
+
+/* Prints "flexbond CMD: <message>" and a pointer to CMD --help to stderr;
+ * returns CLI_EXIT_USAGE. */
+int cli_usage_error(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Converts the value of option name to a finite number > 0 in *out, or
+ * reports a usage error naming the option. */
+int cli_positive_number(const char *cmd, const char *name, const char *text, double *out);
+
+/* Exit code for a library status. */
+int cli_exit_code(int status);
+
+/* Prints "flexbond: <err->msg>" to stderr and returns the exit code for
+ * status (status, not err->code, decides: it is what the call returned). */
+int cli_report(int status, const fb_err *err);
+
+/* Flushes stdout: FB_OK if everything printed so far got through, else
+ * FB_EIO with the reason (a closed pipe, a full disk). */
+int cli_flush_stdout(fb_err *err);
+
+/* Prints text (a usage text) to stdout; returns the exit code. */
+int cli_print_help(const char *text);
+
+/* Subcommands: argv[0] is the command name, as for main. Each returns the
+ * program's exit code. */
+int cli_cmd_sim(int argc, char **argv);
+int cli_cmd_diagram(int argc, char **argv);
+int cli_cmd_causality(int argc, char **argv);
+int cli_cmd_eig(int argc, char **argv);
+
+#endif

@@ -1,0 +1,189 @@
+/* flexbond eig: eigenvalues of the model linearised at its initial state,
+ * A = dF/dx (t0, x0), from LAPACK's dgeev (Hessenberg QR; Anderson et al.,
+ * LAPACK Users' Guide, 3rd ed., SIAM 1999, section 2.4.8).
+ *
+ * For a complex pair lambda = sigma +/- j omega_d of a second-order mode
+ * s^2 + 2 zeta omega_n s + omega_n^2, omega_n = |lambda| and
+ * zeta = -sigma / |lambda| (Ogata, "Modern Control Engineering", 5th ed.,
+ * section 5.3); the natural frequency in Hz is omega_n / (2 pi). */
+#include <lapacke.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "flexbond/bd.h"
+#include "flexbond/model.h"
+#include "flexbond/sim.h"
+
+#include "cli.h"
+
+static const char eig_usage[] =
+    "usage: flexbond eig MODEL.yaml\n"
+    "\n"
+    "Prints the eigenvalues of the Jacobian dF/dx of the model's state\n"
+    "equations x' = F(t, x) at the start time and initial state, sorted by\n"
+    "|imaginary part| then real part. A complex pair is printed once, with\n"
+    "its natural frequency f_n = |lambda| / (2 pi) and damping ratio\n"
+    "zeta = -Re(lambda) / |lambda|.\n"
+    "\n"
+    "options:\n"
+    "  -h, --help            this text\n";
+
+/* 2 pi; M_PI is not in C11. */
+#define TWO_PI 6.283185307179586476925
+
+typedef struct eigenvalue {
+  double re, im;
+} eigenvalue;
+
+/* By |imag|, then real, then the positive member of a pair first. */
+static int compare_eigenvalues(const void *pa, const void *pb)
+{
+  const eigenvalue *a = pa, *b = pb;
+  double ia = fabs(a->im), ib = fabs(b->im);
+  if (ia != ib)
+    return ia < ib ? -1 : 1;
+  if (a->re != b->re)
+    return a->re < b->re ? -1 : 1;
+  return (a->im < b->im) - (a->im > b->im);
+}
+
+/* Eigenvalues of the column-major n x n matrix a (overwritten) into ev. */
+static int eigenvalues(size_t n, double *a, eigenvalue *ev, fb_err *err)
+{
+  if (n > (size_t)INT_MAX)
+    return fb_err_set(err, FB_EINVAL, "eig: %zu states are too many for LAPACK", n);
+  double *wr = malloc(2 * n * sizeof *wr);
+  if (!wr)
+    return fb_err_set(err, FB_ENOMEM, "eig: out of memory (%zu states)", n);
+  double *wi = wr + n;
+  lapack_int ln = (lapack_int)n;
+  lapack_int info =
+      LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', ln, a, ln, wr, wi, NULL, 1, NULL, 1);
+  int rc = FB_OK;
+  if (info != 0)
+    rc = fb_err_set(err, FB_ESOLVER, "eig: LAPACK dgeev failed (info %d): %s", (int)info,
+                    info > 0 ? "the QR algorithm did not converge" : "invalid argument");
+  for (size_t i = 0; i < n && rc == FB_OK; ++i)
+    ev[i] = (eigenvalue){wr[i], wi[i]};
+  free(wr);
+  return rc;
+}
+
+static int all_finite(const double *v, size_t n)
+{
+  for (size_t i = 0; i < n; ++i) {
+    if (!isfinite(v[i]))
+      return 0;
+  }
+  return 1;
+}
+
+/* Jacobian at the model's start time and initial state into jac (n x n). */
+static int linearise(const fb_model *m, fb_bd *bd, size_t n, double *jac, fb_err *err)
+{
+  const fb_sim_opts *opts = fb_model_sim_opts(m);
+  double *x0 = malloc(n * sizeof *x0);
+  if (!x0)
+    return fb_err_set(err, FB_ENOMEM, "eig: out of memory (%zu states)", n);
+  if (opts->x0) {
+    for (size_t i = 0; i < n; ++i)
+      x0[i] = opts->x0[i];
+  } else {
+    fb_bd_initial_state(bd, x0);
+  }
+  int rc = fb_bd_jacobian_dense(bd, opts->t_start, x0, jac, err);
+  free(x0);
+  if (rc == FB_OK && !all_finite(jac, n * n))
+    rc = fb_err_set(err, FB_ESOLVER, "eig: the Jacobian at t = %g s has non-finite entries",
+                    opts->t_start);
+  return rc;
+}
+
+static void print_table(const fb_model *m, const fb_bd *bd, const eigenvalue *ev, size_t n)
+{
+  size_t npairs = 0;
+  for (size_t i = 0; i < n; ++i)
+    npairs += ev[i].im > 0;
+  printf("%s: %zu states, %zu real eigenvalues, %zu complex pairs (at t = %g s, initial "
+         "state)\n",
+         fb_model_name(m), fb_bd_nstates(bd), n - 2 * npairs, npairs,
+         fb_model_sim_opts(m)->t_start);
+  printf("%4s  %15s  %19s  %13s  %10s\n", "#", "real [1/s]", "imag [rad/s]", "f_n [Hz]",
+         "zeta");
+  size_t row = 0;
+  for (size_t i = 0; i < n; ++i) {
+    /* dgeev returns pairs as exact conjugates: print the upper member. */
+    if (ev[i].im < 0)
+      continue;
+    printf("%4zu  %15.8g", ++row, ev[i].re);
+    if (ev[i].im == 0) {
+      printf("  %19s\n", "0");
+      continue;
+    }
+    double modulus = hypot(ev[i].re, ev[i].im);
+    printf("  +/- %15.8g  %13.6g  %10.4g\n", ev[i].im, modulus / TWO_PI, -ev[i].re / modulus);
+  }
+}
+
+static int analyse(const fb_model *m, fb_bd *bd, fb_err *err)
+{
+  size_t n = fb_bd_nstates(bd);
+  if (n == 0) {
+    printf("%s: no states, no eigenvalues\n", fb_model_name(m));
+    return cli_flush_stdout(err);
+  }
+  if (n > ((size_t)-1 / sizeof(double)) / n)
+    return fb_err_set(err, FB_ENOMEM, "eig: %zu states: matrix too large", n);
+  double *jac = malloc(n * n * sizeof *jac);
+  eigenvalue *ev = malloc(n * sizeof *ev);
+  int rc = FB_OK;
+  if (!jac || !ev)
+    rc = fb_err_set(err, FB_ENOMEM, "eig: out of memory (%zu states)", n);
+  if (rc == FB_OK)
+    rc = linearise(m, bd, n, jac, err);
+  if (rc == FB_OK)
+    rc = eigenvalues(n, jac, ev, err);
+  if (rc == FB_OK) {
+    qsort(ev, n, sizeof *ev, compare_eigenvalues);
+    print_table(m, bd, ev, n);
+    rc = cli_flush_stdout(err);
+  }
+  free(ev);
+  free(jac);
+  return rc;
+}
+
+static int run(const char *model_path)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_model *m = NULL;
+  fb_bd *bd = NULL;
+  int rc = fb_model_load(model_path, &m, &err);
+  /* Probes do not change the state equations; none are built. */
+  if (rc == FB_OK)
+    rc = fb_bd_build(fb_model_graph(m), NULL, 0, &bd, &err);
+  if (rc == FB_OK)
+    rc = analyse(m, bd, &err);
+  fb_bd_free(&bd);
+  fb_model_free(&m);
+  return cli_report(rc, &err);
+}
+
+int cli_cmd_eig(int argc, char **argv)
+{
+  enum { OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {[OPT_HELP] = {"--help", "-h", 0, NULL}};
+  const char *model_path = NULL;
+  size_t npos = 0;
+  int rc = cli_parse(argc, argv, opts, NOPTS, &model_path, 1, &npos);
+  if (rc != CLI_EXIT_OK)
+    return rc;
+  if (opts[OPT_HELP].value)
+    return cli_print_help(eig_usage);
+  if (npos != 1)
+    return cli_usage_error(argv[0], "missing MODEL file");
+  return run(model_path);
+}

@@ -1,0 +1,93 @@
+/* flexbond: command-line front end of the library.
+ *
+ *   flexbond sim MODEL.yaml -o DIR [--t-end S] [--rtol X] [--sample-rate HZ] [--quiet]
+ *   flexbond diagram MODEL.yaml [-o FILE.dot]
+ *   flexbond causality MODEL.yaml
+ *   flexbond eig MODEL.yaml
+ *   flexbond --help | -h | --version,  flexbond COMMAND --help
+ *
+ * Exit codes:
+ *   0  success
+ *   1  usage error: unknown command or option, missing or extra argument,
+ *      option value that is not a finite number > 0
+ *   2  input error: the model could not be parsed or is invalid
+ *      (FB_EPARSE, FB_EINVAL, FB_EMODEL)
+ *   3  causality error: conflict, derivative causality, algebraic loop
+ *      (FB_ECAUSAL)
+ *   4  solver failure (FB_ESOLVER)
+ *   5  I/O error: a file could not be read or written (FB_EIO)
+ *   6  out of memory (FB_ENOMEM)
+ * Errors are printed to stderr as "flexbond: <message>"; the library's
+ * messages carry the file:line context themselves. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+typedef struct cli_command {
+  const char *name;
+  int (*run)(int argc, char **argv);
+  const char *summary;
+} cli_command;
+
+static const cli_command commands[] = {
+    {"sim", cli_cmd_sim, "simulate a model, write probes.csv and stats.json"},
+    {"diagram", cli_cmd_diagram, "write the block diagram as Graphviz DOT"},
+    {"causality", cli_cmd_causality, "list the bonds with their causal strokes"},
+    {"eig", cli_cmd_eig, "eigenvalues of the model linearised at its initial state"},
+};
+
+static void print_usage(FILE *fp)
+{
+  fputs("usage: flexbond COMMAND [OPTIONS] MODEL.yaml\n"
+        "       flexbond --help | --version\n"
+        "\ncommands:\n",
+        fp);
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
+    fprintf(fp, "  %-10s %s\n", commands[i].name, commands[i].summary);
+  fputs("\n'flexbond COMMAND --help' describes a command's options.\n"
+        "exit codes: 0 ok, 1 usage, 2 invalid input, 3 causality, 4 solver,\n"
+        "            5 I/O, 6 out of memory\n",
+        fp);
+}
+
+static const cli_command *find_command(const char *name)
+{
+  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i) {
+    if (strcmp(commands[i].name, name) == 0)
+      return &commands[i];
+  }
+  return NULL;
+}
+
+/* Exit code after printing to stdout: 5 if the output was lost. */
+static int finish_stdout(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  return cli_report(cli_flush_stdout(&err), &err);
+}
+
+int main(int argc, char **argv)
+{
+  if (argc < 2) {
+    print_usage(stderr);
+    return CLI_EXIT_USAGE;
+  }
+  const char *first = argv[1];
+  if (strcmp(first, "--help") == 0 || strcmp(first, "-h") == 0) {
+    print_usage(stdout);
+    return finish_stdout();
+  }
+  if (strcmp(first, "--version") == 0) {
+    puts("flexbond " CLI_VERSION);
+    return finish_stdout();
+  }
+  const cli_command *cmd = find_command(first);
+  if (!cmd) {
+    fprintf(stderr, "flexbond: unknown %s '%s'\nTry 'flexbond --help'.\n",
+            first[0] == '-' ? "option" : "command", first);
+    return CLI_EXIT_USAGE;
+  }
+  return cmd->run(argc - 1, argv + 1);
+}

@@ -1,0 +1,214 @@
+/* flexbond sim: load a model, build its block diagram, integrate it, and
+ * only then write DIR/probes.csv and DIR/stats.json, so a failed run
+ * leaves no output behind. */
+#include "flexbond/sim.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "flexbond/bd.h"
+#include "flexbond/io.h"
+#include "flexbond/model.h"
+
+#include "cli.h"
+
+static const char sim_usage[] =
+    "usage: flexbond sim MODEL.yaml -o DIR [options]\n"
+    "\n"
+    "Simulates the model and writes DIR/probes.csv (time and every probe,\n"
+    "one row per sample) and DIR/stats.json (solver statistics). DIR is\n"
+    "created if missing; nothing is written if the run fails.\n"
+    "\n"
+    "options (override the model's `simulation` section):\n"
+    "  -o, --output DIR      output directory (required)\n"
+    "  --t-end S             end time in seconds\n"
+    "  --rtol X              relative tolerance\n"
+    "  --sample-rate HZ      output samples per second\n"
+    "  -q, --quiet           no summary line on stderr\n"
+    "  -h, --help            this text\n";
+
+/* Command-line settings of one run. Overrides are 0 when not given (every
+ * given value is > 0). */
+typedef struct sim_args {
+  const char *model_path;
+  const char *out_dir;
+  double t_end;
+  double rtol;
+  double sample_rate;
+  int quiet;
+} sim_args;
+
+/* dir/name in fresh memory, NULL when out of memory. */
+static char *join_path(const char *dir, const char *name)
+{
+  size_t dlen = strlen(dir);
+  int has_slash = dlen > 0 && dir[dlen - 1] == '/';
+  size_t n = dlen + !has_slash + strlen(name) + 1;
+  char *path = malloc(n);
+  if (path)
+    snprintf(path, n, "%s%s%s", dir, has_slash ? "" : "/", name);
+  return path;
+}
+
+static void write_stats_json(FILE *fp, const fb_sim_stats *s, const fb_bd *bd)
+{
+  fprintf(fp,
+          "{\n"
+          "  \"steps\": %ld,\n"
+          "  \"rhs_evals\": %ld,\n"
+          "  \"newton_setups\": %ld,\n"
+          "  \"factorizations\": %ld,\n"
+          "  \"newton_iters\": %ld,\n"
+          "  \"newton_conv_fails\": %ld,\n"
+          "  \"err_test_fails\": %ld,\n"
+          "  \"last_order\": %d,\n"
+          "  \"wall_seconds\": %.6g,\n"
+          "  \"nstates\": %zu,\n"
+          "  \"nblocks\": %zu\n"
+          "}\n",
+          s->steps, s->rhs_evals, s->newton_setups, s->factorizations, s->newton_iters,
+          s->newton_conv_fails, s->err_test_fails, s->last_order, s->wall_seconds,
+          fb_bd_nstates(bd), fb_bd_nblocks(bd));
+}
+
+/* Writes both files into dir, which exists. stats.json waits in its
+ * temporary file until probes.csv is in place, and probes.csv is removed
+ * again if stats.json cannot be committed: both files or neither. */
+static int write_files(const char *dir, const fb_result *res, const fb_bd *bd, fb_err *err)
+{
+  char *csv_path = join_path(dir, "probes.csv");
+  char *json_path = join_path(dir, "stats.json");
+  int rc = FB_OK;
+  if (!csv_path || !json_path)
+    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", dir);
+  fb_out *json = NULL;
+  if (rc == FB_OK)
+    rc = fb_out_open(json_path, &json, err);
+  if (rc == FB_OK) {
+    write_stats_json(fb_out_stream(json), fb_result_stats(res), bd);
+    rc = fb_result_write_csv(res, csv_path, err);
+    if (rc != FB_OK)
+      fb_out_abort(&json);
+  }
+  if (rc == FB_OK) {
+    rc = fb_out_commit(&json, err);
+    if (rc != FB_OK)
+      remove(csv_path);
+  }
+  free(csv_path);
+  free(json_path);
+  return rc;
+}
+
+static int is_directory(const char *path)
+{
+  struct stat st;
+  return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/* Creates dir if needed and writes the files; a directory created here is
+ * removed again (if still empty) when writing fails. */
+static int write_outputs(const char *dir, const fb_result *res, const fb_bd *bd, fb_err *err)
+{
+  int existed = is_directory(dir);
+  int rc = fb_mkdir_p(dir, err);
+  if (rc != FB_OK)
+    return rc;
+  rc = write_files(dir, res, bd, err);
+  if (rc != FB_OK && !existed)
+    rmdir(dir);
+  return rc;
+}
+
+static void print_summary(const sim_args *a, const fb_model *m, const fb_sim_opts *opts,
+                          const fb_result *res)
+{
+  const fb_sim_stats *s = fb_result_stats(res);
+  fprintf(stderr,
+          "flexbond sim: %s: t = %g..%g s, %zu samples x %zu outputs, %ld steps, "
+          "%ld rhs evals, %.3g s -> %s\n",
+          fb_model_name(m), opts->t_start, opts->t_end, fb_result_nsamples(res),
+          fb_result_ncols(res) - 1, s->steps, s->rhs_evals, s->wall_seconds, a->out_dir);
+}
+
+/* The model's solver settings with the command line's overrides. */
+static fb_sim_opts effective_opts(const fb_model *m, const sim_args *a)
+{
+  fb_sim_opts opts = *fb_model_sim_opts(m);
+  if (a->t_end > 0)
+    opts.t_end = a->t_end;
+  if (a->rtol > 0)
+    opts.rtol = a->rtol;
+  if (a->sample_rate > 0)
+    opts.sample_rate = a->sample_rate;
+  return opts;
+}
+
+static int run(const sim_args *a)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_model *m = NULL;
+  fb_bd *bd = NULL;
+  fb_result *res = NULL;
+  fb_sim_opts opts;
+  int rc = fb_model_load(a->model_path, &m, &err);
+  if (rc == FB_OK) {
+    opts = effective_opts(m, a);
+    rc = fb_sim_opts_check(&opts, &err);
+  }
+  if (rc == FB_OK) {
+    size_t nprobes = 0;
+    const fb_probe_spec *probes = fb_model_probes(m, &nprobes);
+    rc = fb_bd_build(fb_model_graph(m), probes, nprobes, &bd, &err);
+  }
+  if (rc == FB_OK)
+    rc = fb_sim_run(bd, &opts, &res, &err);
+  if (rc == FB_OK)
+    rc = write_outputs(a->out_dir, res, bd, &err);
+  if (rc == FB_OK && !a->quiet)
+    print_summary(a, m, &opts, res);
+  fb_result_free(&res);
+  fb_bd_free(&bd);
+  fb_model_free(&m);
+  return cli_report(rc, &err);
+}
+
+int cli_cmd_sim(int argc, char **argv)
+{
+  enum { OPT_OUT, OPT_T_END, OPT_RTOL, OPT_SAMPLE_RATE, OPT_QUIET, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {
+      [OPT_OUT] = {"--output", "-o", 1, NULL},
+      [OPT_T_END] = {"--t-end", NULL, 1, NULL},
+      [OPT_RTOL] = {"--rtol", NULL, 1, NULL},
+      [OPT_SAMPLE_RATE] = {"--sample-rate", NULL, 1, NULL},
+      [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
+      [OPT_HELP] = {"--help", "-h", 0, NULL},
+  };
+  sim_args a = {0};
+  size_t npos = 0;
+  int rc = cli_parse(argc, argv, opts, NOPTS, &a.model_path, 1, &npos);
+  if (rc != CLI_EXIT_OK)
+    return rc;
+  if (opts[OPT_HELP].value)
+    return cli_print_help(sim_usage);
+  if (npos != 1)
+    return cli_usage_error(argv[0], "missing MODEL file");
+  a.out_dir = opts[OPT_OUT].value;
+  if (!a.out_dir || !*a.out_dir)
+    return cli_usage_error(argv[0], "missing output directory (-o DIR)");
+  a.quiet = opts[OPT_QUIET].value != NULL;
+  const struct {
+    size_t opt;
+    double *dest;
+  } numbers[] = {{OPT_T_END, &a.t_end}, {OPT_RTOL, &a.rtol}, {OPT_SAMPLE_RATE, &a.sample_rate}};
+  for (size_t i = 0; i < sizeof numbers / sizeof numbers[0] && rc == CLI_EXIT_OK; ++i) {
+    const cli_option *o = &opts[numbers[i].opt];
+    if (o->value)
+      rc = cli_positive_number(argv[0], o->name, o->value, numbers[i].dest);
+  }
+  return rc == CLI_EXIT_OK ? run(&a) : rc;
+}

@@ -1,0 +1,81 @@
+/* CSV output of simulation results (see flexbond/io.h).
+ *
+ * Fields follow RFC 4180: a header cell that contains a comma, a double
+ * quote or a line break is enclosed in double quotes with inner quotes
+ * doubled. Values are written with %.10g: ten significant digits are more
+ * than the solver's tolerances resolve (rtol >= 1e-10 in practice), and
+ * keep the files compact. */
+#include <stdio.h>
+#include <string.h>
+
+#include "flexbond/io.h"
+
+static int needs_quotes(const char *text)
+{
+  return text && strpbrk(text, ",\"\r\n") != NULL;
+}
+
+/* Writes text, doubling double quotes when inside a quoted field. */
+static void put_text(FILE *fp, const char *text, int quoted)
+{
+  for (const char *c = text; *c; ++c) {
+    if (quoted && *c == '"')
+      fputc('"', fp);
+    fputc(*c, fp);
+  }
+}
+
+/* Header cell "name [unit]", or "name" when the unit is missing, as one
+ * CSV field. */
+static void write_header_cell(FILE *fp, const char *name, const char *unit)
+{
+  int has_unit = unit && *unit;
+  int quoted = needs_quotes(name) || (has_unit && needs_quotes(unit));
+  if (quoted)
+    fputc('"', fp);
+  put_text(fp, name, quoted);
+  if (has_unit) {
+    fputs(" [", fp);
+    put_text(fp, unit, quoted);
+    fputc(']', fp);
+  }
+  if (quoted)
+    fputc('"', fp);
+}
+
+static void write_header(FILE *fp, const fb_result *r)
+{
+  size_t ncols = fb_result_ncols(r);
+  /* Column 0 is time whatever the result names it. */
+  write_header_cell(fp, "t", "s");
+  for (size_t j = 1; j < ncols; ++j) {
+    fputc(',', fp);
+    write_header_cell(fp, fb_result_col_name(r, j), fb_result_col_unit(r, j));
+  }
+  fputc('\n', fp);
+}
+
+static void write_rows(FILE *fp, const fb_result *r)
+{
+  size_t ncols = fb_result_ncols(r);
+  size_t nsamples = fb_result_nsamples(r);
+  for (size_t k = 0; k < nsamples; ++k) {
+    const double *row = fb_result_row(r, k);
+    for (size_t j = 0; j < ncols; ++j)
+      fprintf(fp, j ? ",%.10g" : "%.10g", row[j]);
+    fputc('\n', fp);
+  }
+}
+
+int fb_result_write_csv(const fb_result *r, const char *path, fb_err *err)
+{
+  fb_out *out = NULL;
+  int rc = fb_out_open(path, &out, err);
+  if (rc != FB_OK)
+    return rc;
+  FILE *fp = fb_out_stream(out);
+  write_header(fp, r);
+  write_rows(fp, r);
+  /* Write errors stick to the stream; commit reports them. */
+  return fb_out_commit(&out, err);
+}

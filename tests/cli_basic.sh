@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# Basic checks of the flexbond command that need no model: help, version,
+# usage errors (exit 1), and a missing model file (exit 5 or 2, path in the
+# message, no output created). Exit codes are documented in src/cli/main.c.
+#
+# usage: bash tests/cli_basic.sh PATH/TO/flexbond REPO_ROOT
+set -u
+
+if [ $# -ne 2 ]; then
+  echo "usage: $0 PATH/TO/flexbond REPO_ROOT" >&2
+  exit 2
+fi
+FLEXBOND=$1
+REPO_ROOT=$2
+if [ ! -x "$FLEXBOND" ]; then
+  echo "cli_basic: $FLEXBOND is not an executable" >&2
+  exit 2
+fi
+if [ ! -d "$REPO_ROOT" ]; then
+  echo "cli_basic: $REPO_ROOT is not a directory" >&2
+  exit 2
+fi
+
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/fb_cli_basic.XXXXXX") || exit 2
+trap 'rm -rf "$WORK"' EXIT
+OUT=$WORK/stdout
+ERR=$WORK/stderr
+
+failures=0
+checks=0
+
+fail() {
+  echo "cli_basic: FAIL: $*" >&2
+  echo "  stdout: $(head -c 400 "$OUT")" >&2
+  echo "  stderr: $(head -c 400 "$ERR")" >&2
+  failures=$((failures + 1))
+}
+
+# run ARGS...: runs flexbond with stdout and stderr captured; sets $status.
+run() {
+  "$FLEXBOND" "$@" >"$OUT" 2>"$ERR"
+  status=$?
+}
+
+# expect_status CODE DESCRIPTION
+expect_status() {
+  checks=$((checks + 1))
+  [ "$status" -eq "$1" ] || fail "$2: exit status $status, expected $1"
+}
+
+# expect_in FILE TEXT DESCRIPTION: FILE contains TEXT (fixed string).
+expect_in() {
+  checks=$((checks + 1))
+  grep -qF -- "$2" "$1" || fail "$3: '$2' not in $(basename "$1")"
+}
+
+# expect_absent PATH DESCRIPTION
+expect_absent() {
+  checks=$((checks + 1))
+  [ ! -e "$1" ] || fail "$2: $1 was created"
+}
+
+# ---- Help and version go to stdout with status 0.
+for flag in --help -h; do
+  run "$flag"
+  expect_status 0 "flexbond $flag"
+  expect_in "$OUT" "usage: flexbond" "flexbond $flag"
+  for cmd in sim diagram causality eig; do
+    expect_in "$OUT" "$cmd" "flexbond $flag lists $cmd"
+  done
+done
+
+run --version
+expect_status 0 "flexbond --version"
+checks=$((checks + 1))
+[ "$(cat "$OUT")" = "flexbond 0.1.0" ] || fail "--version prints 'flexbond 0.1.0'"
+
+for cmd in sim diagram causality eig; do
+  run "$cmd" --help
+  expect_status 0 "flexbond $cmd --help"
+  expect_in "$OUT" "usage: flexbond $cmd" "flexbond $cmd --help"
+done
+
+# ---- Usage errors: status 1 and a message naming the problem.
+run
+expect_status 1 "flexbond without arguments"
+expect_in "$ERR" "usage: flexbond" "flexbond without arguments"
+
+run frobnicate
+expect_status 1 "unknown command"
+expect_in "$ERR" "unknown command 'frobnicate'" "unknown command"
+
+run --frobnicate
+expect_status 1 "unknown top-level option"
+expect_in "$ERR" "--frobnicate" "unknown top-level option"
+
+run sim "$WORK/m.yaml" -o "$WORK/out" --bogus
+expect_status 1 "unknown sim option"
+expect_in "$ERR" "unknown option '--bogus'" "unknown sim option"
+
+run sim "$WORK/m.yaml" -o
+expect_status 1 "-o without a value"
+expect_in "$ERR" "'-o' needs a value" "-o without a value"
+
+run sim "$WORK/m.yaml"
+expect_status 1 "sim without -o"
+expect_in "$ERR" "-o DIR" "sim without -o"
+
+run sim -o "$WORK/out"
+expect_status 1 "sim without a model"
+expect_in "$ERR" "missing MODEL" "sim without a model"
+
+run sim "$WORK/a.yaml" "$WORK/b.yaml" -o "$WORK/out"
+expect_status 1 "sim with two models"
+expect_in "$ERR" "unexpected argument" "sim with two models"
+
+run causality
+expect_status 1 "causality without a model"
+
+run eig --quiet "$WORK/m.yaml"
+expect_status 1 "eig does not take --quiet"
+
+run diagram --help=yes
+expect_status 1 "flag given a value"
+
+# Numeric options must be finite numbers > 0, and the message names them.
+for bad in "--t-end 0" "--t-end -1" "--rtol abc" "--rtol 1e-3x" "--rtol inf" \
+  "--sample-rate nan" "--sample-rate 1e999" "--t-end="; do
+  set -- $bad
+  name=${1%%=*}
+  run sim "$WORK/m.yaml" -o "$WORK/out" "$@"
+  expect_status 1 "sim $bad"
+  expect_in "$ERR" "option '$name' needs a finite number > 0" "sim $bad"
+done
+expect_absent "$WORK/out" "usage errors"
+
+# ---- A model file that does not exist: an I/O (5) or input (2) error
+# naming the path, and nothing written.
+missing=$WORK/no_such_model.yaml
+run sim "$missing" -o "$WORK/out/run1" --t-end 1
+checks=$((checks + 1))
+[ "$status" -eq 5 ] || [ "$status" -eq 2 ] || fail "sim missing model: exit status $status"
+expect_in "$ERR" "flexbond: " "sim missing model"
+expect_in "$ERR" "$missing" "sim missing model"
+expect_absent "$WORK/out" "sim missing model"
+
+run diagram "$missing" -o "$WORK/d.dot"
+checks=$((checks + 1))
+[ "$status" -eq 5 ] || [ "$status" -eq 2 ] || fail "diagram missing model: exit status $status"
+expect_in "$ERR" "$missing" "diagram missing model"
+expect_absent "$WORK/d.dot" "diagram missing model"
+
+for cmd in causality eig; do
+  run "$cmd" "$missing"
+  checks=$((checks + 1))
+  [ "$status" -eq 5 ] || [ "$status" -eq 2 ] || fail "$cmd missing model: exit status $status"
+  expect_in "$ERR" "$missing" "$cmd missing model"
+done
+
+# Only the files above were ever made in the scratch directory.
+checks=$((checks + 1))
+leftover=$(cd "$WORK" && ls -A | grep -vx -e stdout -e stderr)
+[ -z "$leftover" ] || fail "stray files in scratch directory: $leftover"
+
+echo "cli_basic: $checks checks, $failures failed" >&2
+[ "$failures" -eq 0 ]
