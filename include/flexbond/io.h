@@ -30,6 +30,13 @@ int fb_mkdir_p(const char *dir, fb_err *err);
  * values in %.10g. */
 int fb_result_write_csv(const fb_result *r, const char *path, fb_err *err);
 
+/* Plots output columns cols[0..ncols) of r against time, one panel each
+ * (labelled "name [unit]"), into the PNG file path with gnuplot (run as
+ * a child process; FB_EIO if it is missing or fails). The file appears
+ * only when gnuplot succeeded. title may be NULL. */
+int fb_plot_png(const fb_result *r, const size_t *cols, size_t ncols, const char *title,
+                const char *path, fb_err *err);
+
 #ifdef __cplusplus
 }
 #endif

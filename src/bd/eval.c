@@ -17,6 +17,7 @@ static int block_failed(fb_bd *bd, size_t blk, int rc)
 
 int fb_bd_eval(fb_bd *bd, double t, const double *x)
 {
+  bd->errbuf[0] = '\0'; /* the message describes the latest evaluation only */
   memcpy(bd->w, x, bd->nstates * sizeof *x);
   for (size_t k = 0; k < bd->norder; ++k) {
     bd_block *b = &bd->blocks[bd->order[k]];

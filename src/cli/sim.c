@@ -27,6 +27,7 @@ static const char sim_usage[] =
     "  --t-end S             end time in seconds\n"
     "  --rtol X              relative tolerance\n"
     "  --sample-rate HZ      output samples per second\n"
+    "  --plot                also write DIR/probes.png (gnuplot), a panel per probe\n"
     "  -q, --quiet           no summary line on stderr\n"
     "  -h, --help            this text\n";
 
@@ -39,6 +40,7 @@ typedef struct sim_args {
   double rtol;
   double sample_rate;
   int quiet;
+  int plot;
 } sim_args;
 
 /* dir/name in fresh memory, NULL when out of memory. */
@@ -77,13 +79,27 @@ static void write_stats_json(FILE *fp, const fb_sim_stats *s, const fb_bd *bd)
 /* Writes both files into dir, which exists. stats.json waits in its
  * temporary file until probes.csv is in place, and probes.csv is removed
  * again if stats.json cannot be committed: both files or neither. */
-static int write_files(const char *dir, const fb_result *res, const fb_bd *bd, fb_err *err)
+static int write_files(const char *dir, const fb_result *res, const fb_bd *bd, int plot,
+                       fb_err *err)
 {
   char *csv_path = join_path(dir, "probes.csv");
   char *json_path = join_path(dir, "stats.json");
+  char *png_path = join_path(dir, "probes.png");
   int rc = FB_OK;
-  if (!csv_path || !json_path)
+  if (!csv_path || !json_path || !png_path)
     rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", dir);
+  size_t nout = fb_result_ncols(res) - 1;
+  if (rc == FB_OK && plot && nout > 0) {
+    size_t *cols = malloc(nout * sizeof *cols);
+    if (!cols)
+      rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", dir);
+    for (size_t j = 0; rc == FB_OK && j < nout; ++j)
+      cols[j] = j;
+    if (rc == FB_OK)
+      rc = fb_plot_png(res, cols, nout, NULL, png_path, err);
+    free(cols);
+    plot = rc == FB_OK; /* from here on, png_path is ours to remove on failure */
+  }
   fb_out *json = NULL;
   if (rc == FB_OK)
     rc = fb_out_open(json_path, &json, err);
@@ -98,8 +114,11 @@ static int write_files(const char *dir, const fb_result *res, const fb_bd *bd, f
     if (rc != FB_OK)
       remove(csv_path);
   }
+  if (rc != FB_OK && plot && png_path)
+    remove(png_path);
   free(csv_path);
   free(json_path);
+  free(png_path);
   return rc;
 }
 
@@ -111,13 +130,14 @@ static int is_directory(const char *path)
 
 /* Creates dir if needed and writes the files; a directory created here is
  * removed again (if still empty) when writing fails. */
-static int write_outputs(const char *dir, const fb_result *res, const fb_bd *bd, fb_err *err)
+static int write_outputs(const char *dir, const fb_result *res, const fb_bd *bd, int plot,
+                         fb_err *err)
 {
   int existed = is_directory(dir);
   int rc = fb_mkdir_p(dir, err);
   if (rc != FB_OK)
     return rc;
-  rc = write_files(dir, res, bd, err);
+  rc = write_files(dir, res, bd, plot, err);
   if (rc != FB_OK && !existed)
     rmdir(dir);
   return rc;
@@ -168,7 +188,7 @@ static int run(const sim_args *a)
   if (rc == FB_OK)
     rc = fb_sim_run(bd, &opts, &res, &err);
   if (rc == FB_OK)
-    rc = write_outputs(a->out_dir, res, bd, &err);
+    rc = write_outputs(a->out_dir, res, bd, a->plot, &err);
   if (rc == FB_OK && !a->quiet)
     print_summary(a, m, &opts, res);
   fb_result_free(&res);
@@ -179,12 +199,13 @@ static int run(const sim_args *a)
 
 int cli_cmd_sim(int argc, char **argv)
 {
-  enum { OPT_OUT, OPT_T_END, OPT_RTOL, OPT_SAMPLE_RATE, OPT_QUIET, OPT_HELP, NOPTS };
+  enum { OPT_OUT, OPT_T_END, OPT_RTOL, OPT_SAMPLE_RATE, OPT_PLOT, OPT_QUIET, OPT_HELP, NOPTS };
   cli_option opts[NOPTS] = {
       [OPT_OUT] = {"--output", "-o", 1, NULL},
       [OPT_T_END] = {"--t-end", NULL, 1, NULL},
       [OPT_RTOL] = {"--rtol", NULL, 1, NULL},
       [OPT_SAMPLE_RATE] = {"--sample-rate", NULL, 1, NULL},
+      [OPT_PLOT] = {"--plot", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
@@ -201,6 +222,7 @@ int cli_cmd_sim(int argc, char **argv)
   if (!a.out_dir || !*a.out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a.quiet = opts[OPT_QUIET].value != NULL;
+  a.plot = opts[OPT_PLOT].value != NULL;
   const struct {
     size_t opt;
     double *dest;

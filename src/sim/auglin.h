@@ -1,0 +1,43 @@
+/* Internal: sparse direct solver for Newton systems through a block
+ * diagram's augmented linearisation (see flexbond/bd.h).
+ *
+ * The integrator needs (I - gamma J) dx = b with J = dF/dx. That matrix is
+ * the Schur complement onto the state rows of the augmented matrix
+ * P(gamma) = P0 + gamma P1 over all signals z, so instead of forming it we
+ * solve P(gamma) z = r with r = b at the state rows and 0 elsewhere, and
+ * read dx = z at the state rows (block elimination of the signal unknowns;
+ * e.g. Golub & Van Loan, "Matrix Computations", 4th ed., sec. 3.2.10).
+ * P(gamma) is factorised with KLU (Davis & Palamadai Natarajan, ACM TOMS
+ * 37(3), 2010): the ordering once, the numeric LU at each setup. */
+#ifndef FLEXBOND_SIM_AUGLIN_H
+#define FLEXBOND_SIM_AUGLIN_H
+
+#include <stddef.h>
+
+#include "flexbond/error.h"
+
+typedef struct fb_auglin fb_auglin;
+
+/* Creates the solver for the nz x nz pattern of nnz triplets (rows[k],
+ * cols[k]) (duplicates allowed: their values are summed), with state i at
+ * row and column state_rows[i], i < nstates. Converts the pattern to CSC
+ * and runs KLU's symbolic analysis once. FB_EINVAL on an index out of
+ * range or a repeated state row. */
+int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
+                  const size_t *state_rows, size_t nstates, fb_auglin **out, fb_err *err);
+void fb_auglin_free(fb_auglin **al);
+
+/* Forms P(gamma) from the triplet values v0[k] + gamma * v1[k] and
+ * factorises it. FB_ESOLVER if it is singular (to working precision): the
+ * integrator may retry with another gamma. FB_ENOMEM is fatal. */
+int fb_auglin_setup(fb_auglin *al, double gamma, const double *v0, const double *v1,
+                    fb_err *err);
+
+/* x = (I - gamma J)^-1 b at the gamma of the last successful setup; b and
+ * x have nstates entries and may alias. FB_EINVAL without a valid setup. */
+int fb_auglin_solve(fb_auglin *al, const double *b, double *x, fb_err *err);
+
+/* Numeric LU factorisations done so far (full and refactorisations). */
+long fb_auglin_nfactorizations(const fb_auglin *al);
+
+#endif

@@ -1,0 +1,616 @@
+/* Time integration with SUNDIALS CVODE 6.4 (see flexbond/sim.h).
+ *
+ * Method: variable-order, variable-step BDF with modified Newton iteration
+ * (Hindmarsh et al., "SUNDIALS", ACM TOMS 31(3), 2005, sec. 2.1). The
+ * Newton systems (I - gamma J) dx = b are solved through the diagram's
+ * augmented linearisation P(gamma) (src/sim/auglin.h), factorised by KLU.
+ *
+ * How the solver is attached. A SUNLINEARSOLVER_MATRIX_EMBEDDED solver is
+ * never set up by CVODE 6.4: cvLsInitialize (src/cvode/cvode_ls.c) sets
+ * the setup hook to NULL and turns the gamma-ratio solution scaling off
+ * for that type; with libsundials_cvode 6.4.1 it got zero setup calls and
+ * CVodeSetLinearSolutionScaling returned CVLS_ILL_INPUT. It would have to
+ * refactorise inside every solve and guess when the matrix is stale.
+ * Instead the solver is a DIRECT one over a matrix object without storage
+ * of its own, "filled" by a linear-system function (CVodeSetLinSysFn).
+ * CVODE then decides when P(gamma) is rebuilt (convergence failures,
+ * gamma changed by more than 30 %, every 20 steps) and whether the
+ * Jacobian part may be reused (jok), as for its own matrix solvers, and
+ * cvLsSolve rescales each Newton correction by 2 / (1 + gamma /
+ * gamma_setup) when gamma changed since the factorisation (solution
+ * scaling: CVODE user guide, CVodeSetLinearSolutionScaling and the
+ * "IVP solution" section; it corrects a solve with factors of an older
+ * I - gamma_setup J), which is our case.
+ *
+ * Outputs are interpolated at the sample times with CVodeGetDky, so they
+ * never shorten the steps. Integration stops exactly at every breakpoint
+ * and restarts there with CVodeReInit (order 1, fresh history), because
+ * the inputs are not smooth across it. */
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <float.h>
+#include <math.h>
+#include <nvector/nvector_serial.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+#include <time.h>
+
+#include "flexbond/sim.h"
+
+#include "sim/auglin.h"
+#include "sim/sim_internal.h"
+
+/* Everything one run needs, reachable from CVODE's callbacks. */
+typedef struct sim_run {
+  fb_bd *bd;
+  const fb_sim_opts *opts;
+  size_t n; /* states */
+  SUNContext sunctx;
+  void *cvode;
+  N_Vector y;    /* state at the integrator's current time */
+  N_Vector ysam; /* state interpolated at a sample time */
+  SUNMatrix shell;
+  SUNLinearSolver ls;
+  fb_auglin *lin;
+  double *v0, *v1; /* augmented values P0, P1 per triplet */
+  int have_values; /* v0, v1 hold a valid evaluation */
+  int linear;      /* fb_bd_is_linear: v0, v1 never change */
+  int jac_failed;  /* the last linearisation of the model failed */
+  double gamma;    /* gamma of the matrix CVODE asked for last */
+  double t_limit;  /* end of the current segment (breakpoint or t_end) */
+  double t_left;   /* the double just below t_limit */
+  double t_now;    /* time the integrator has reached */
+  double *bps;     /* breakpoints strictly inside (t_start, t_end) */
+  size_t nbps;
+  fb_sample_grid grid;
+  size_t next_sample;
+  fb_result *res;
+  long steps_before; /* steps of the segments before the current one */
+  char cvode_msg[1024];
+  fb_err lin_err;
+} sim_run;
+
+/* ---- Model callbacks. */
+
+/* Inputs are evaluated on each segment as the continuation of their
+ * values inside it: at the segment's end (a breakpoint) the left limit
+ * is used, so a step at the breakpoint does not leak into the last step
+ * before it. CVODE does evaluate f exactly at the stop time when its last
+ * step lands there (seen with 6.4.1). */
+static double model_time(const sim_run *run, double t)
+{
+  return t < run->t_limit ? t : run->t_left;
+}
+
+/* CVRhsFn: 0 ok, >0 recoverable (CVODE retries with a smaller step), <0
+ * fatal, as fb_bd_rhs. */
+static int cv_rhs(double t, N_Vector y, N_Vector ydot, void *user_data)
+{
+  sim_run *run = user_data;
+  const int rc =
+      fb_bd_rhs(run->bd, model_time(run, t), N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+  return rc == 0 ? 0 : (rc > 0 ? 1 : -1);
+}
+
+/* CVLsLinSysFn: "forms" P(gamma) by refreshing the augmented values when
+ * CVODE says the Jacobian is stale (!jok) or none exist yet; a linear
+ * diagram's values never change, so they are evaluated once and are
+ * always current (jcur). The factorisation happens in ls_setup. */
+static int cv_linsys(double t, N_Vector y, N_Vector fy, SUNMatrix A, booleantype jok,
+                     booleantype *jcur, double gamma, void *user_data, N_Vector tmp1,
+                     N_Vector tmp2, N_Vector tmp3)
+{
+  (void)fy;
+  (void)A;
+  (void)tmp1;
+  (void)tmp2;
+  (void)tmp3;
+  sim_run *run = user_data;
+  const int evaluate = !run->have_values || (!jok && !run->linear);
+  if (evaluate) {
+    run->have_values = 0;
+    const int rc =
+        fb_bd_aug_values(run->bd, model_time(run, t), N_VGetArrayPointer(y), run->v0, run->v1);
+    run->jac_failed = rc != 0;
+    if (rc != 0)
+      return rc > 0 ? 1 : -1;
+    run->have_values = 1;
+  }
+  *jcur = evaluate || run->linear;
+  run->gamma = gamma;
+  return 0;
+}
+
+/* CVErrHandlerFn: keeps CVODE quiet and remembers its last error for the
+ * message fb_sim_run returns. Warnings (positive codes) are dropped. */
+static void cv_error(int error_code, const char *module, const char *function, char *msg,
+                     void *user_data)
+{
+  (void)module;
+  sim_run *run = user_data;
+  if (error_code < 0)
+    snprintf(run->cvode_msg, sizeof run->cvode_msg, "%s: %s", function, msg);
+}
+
+/* ---- The linear solver and its storage-less matrix. */
+
+static SUNMatrix_ID shell_id(SUNMatrix A)
+{
+  (void)A;
+  return SUNMATRIX_CUSTOM;
+}
+
+static SUNLinearSolver_Type ls_type(SUNLinearSolver S)
+{
+  (void)S;
+  return SUNLINEARSOLVER_DIRECT;
+}
+
+static SUNLinearSolver_ID ls_id(SUNLinearSolver S)
+{
+  (void)S;
+  return SUNLINEARSOLVER_CUSTOM;
+}
+
+/* Factorises P(gamma) with the values cv_linsys left. A singular matrix
+ * is a recoverable failure (positive flag): CVODE retries with a smaller
+ * step, i.e. another gamma. */
+static int ls_setup(SUNLinearSolver S, SUNMatrix A)
+{
+  (void)A;
+  sim_run *run = S->content;
+  const int rc = fb_auglin_setup(run->lin, run->gamma, run->v0, run->v1, &run->lin_err);
+  if (rc == FB_OK)
+    return SUNLS_SUCCESS;
+  return rc == FB_ESOLVER ? SUNLS_LUFACT_FAIL : SUNLS_PACKAGE_FAIL_UNREC;
+}
+
+static int ls_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, double tol)
+{
+  (void)A;
+  (void)tol; /* a direct solve is exact to rounding */
+  sim_run *run = S->content;
+  const int rc =
+      fb_auglin_solve(run->lin, N_VGetArrayPointer(b), N_VGetArrayPointer(x), &run->lin_err);
+  return rc == FB_OK ? SUNLS_SUCCESS : SUNLS_PACKAGE_FAIL_UNREC;
+}
+
+static int make_linear_solver(sim_run *run, fb_err *err)
+{
+  run->shell = SUNMatNewEmpty(run->sunctx);
+  run->ls = SUNLinSolNewEmpty(run->sunctx);
+  if (!run->shell || !run->ls)
+    return fb_err_set(err, FB_ENOMEM, "out of memory creating the CVODE linear solver");
+  run->shell->ops->getid = shell_id;
+  run->ls->content = run;
+  run->ls->ops->gettype = ls_type;
+  run->ls->ops->getid = ls_id;
+  run->ls->ops->setup = ls_setup;
+  run->ls->ops->solve = ls_solve;
+  return FB_OK;
+}
+
+/* Builds the augmented KLU solver from the diagram's pattern. */
+static int make_auglin(sim_run *run, fb_err *err)
+{
+  const size_t nz = fb_bd_aug_size(run->bd), nnz = fb_bd_aug_nnz(run->bd);
+  size_t *rows = malloc((nnz ? nnz : 1) * sizeof *rows);
+  size_t *cols = malloc((nnz ? nnz : 1) * sizeof *cols);
+  size_t *state_rows = malloc(run->n * sizeof *state_rows);
+  run->v0 = malloc((nnz ? nnz : 1) * sizeof *run->v0);
+  run->v1 = malloc((nnz ? nnz : 1) * sizeof *run->v1);
+  int rc = FB_OK;
+  if (!rows || !cols || !state_rows || !run->v0 || !run->v1) {
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for the augmented Newton matrix");
+  } else {
+    fb_bd_aug_pattern(run->bd, rows, cols);
+    for (size_t i = 0; i < run->n; ++i)
+      state_rows[i] = fb_bd_state_row(run->bd, i);
+    rc = fb_auglin_new(nz, nnz, rows, cols, state_rows, run->n, &run->lin, err);
+  }
+  free(rows);
+  free(cols);
+  free(state_rows);
+  return rc;
+}
+
+/* ---- Error messages. */
+
+static const char *flag_hint(int flag)
+{
+  switch (flag) {
+  case CV_TOO_MUCH_WORK:
+    return "too many steps; raise simulation.max_steps, or check for stiffness or a too "
+           "small simulation.max_step";
+  case CV_TOO_MUCH_ACC:
+    return "the tolerances are tighter than double precision allows; loosen "
+           "simulation.rtol or atol";
+  case CV_ERR_FAILURE:
+    return "the error test failed repeatedly; the tolerances may be too tight, or an input "
+           "has a discontinuity that is not a breakpoint";
+  case CV_CONV_FAILURE:
+  case CV_LSETUP_FAIL:
+  case CV_LSOLVE_FAIL:
+    return "the Newton iteration failed; the Newton matrix may be singular, or the model "
+           "has a discontinuity";
+  case CV_RHSFUNC_FAIL:
+  case CV_FIRST_RHSFUNC_ERR:
+  case CV_REPTD_RHSFUNC_ERR:
+  case CV_UNREC_RHSFUNC_ERR: return "evaluating the model failed";
+  default: return "the integration failed";
+  }
+}
+
+/* FB_ESOLVER "at t = ... s: CVODE <flag>: <hint>" with whatever CVODE,
+ * the Newton solver and the diagram said. */
+static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
+{
+  char *name = CVodeGetReturnFlagName(flag); /* malloc'ed in CVODE 6.4 */
+  const char *model = fb_bd_last_error(run->bd);
+  const char *lin = run->lin_err.msg;
+  /* A linearisation failure surfaces as a Newton set-up failure. */
+  const char *hint = flag_hint(run->jac_failed ? CV_RHSFUNC_FAIL : flag);
+  fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s%s%s%s%s%s%s", t,
+             name ? name : "(unknown flag)", hint, run->cvode_msg[0] ? "; " : "",
+             run->cvode_msg, lin[0] ? "; " : "", lin, model && model[0] ? "; model: " : "",
+             model ? model : "");
+  free(name);
+  return FB_ESOLVER;
+}
+
+/* A CVODE set-up call returned flag. */
+static int setup_failure(const sim_run *run, const char *call, int flag, fb_err *err)
+{
+  char *name = CVodeGetReturnFlagName(flag);
+  fb_err_set(err, FB_ESOLVER, "CVODE set-up: %s returned %s%s%s", call,
+             name ? name : "(unknown flag)", run->cvode_msg[0] ? ": " : "", run->cvode_msg);
+  free(name);
+  return FB_ESOLVER;
+}
+
+/* ---- Set-up and tear-down. */
+
+static int cv_call(const sim_run *run, const char *call, int flag, fb_err *err)
+{
+  return flag < 0 ? setup_failure(run, call, flag, err) : FB_OK;
+}
+
+/* Initial state: opts->x0 or the graph's, finite. */
+static int initial_state(sim_run *run, fb_err *err)
+{
+  double *y = N_VGetArrayPointer(run->y);
+  if (run->opts->x0)
+    memcpy(y, run->opts->x0, run->n * sizeof *y);
+  else
+    fb_bd_initial_state(run->bd, y);
+  for (size_t i = 0; i < run->n; ++i)
+    if (!isfinite(y[i]))
+      return fb_err_set(err, FB_EINVAL, "simulation.x0[%zu] (%s): must be finite, got %g", i,
+                        fb_bd_state_name(run->bd, i), y[i]);
+  return FB_OK;
+}
+
+static int make_cvode(sim_run *run, fb_err *err)
+{
+  const fb_sim_opts *o = run->opts;
+  run->cvode = CVodeCreate(CV_BDF, run->sunctx);
+  if (!run->cvode)
+    return fb_err_set(err, FB_ENOMEM, "out of memory creating CVODE");
+  int rc = cv_call(run, "CVodeSetErrHandlerFn", CVodeSetErrHandlerFn(run->cvode, cv_error, run),
+                   err);
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeInit", CVodeInit(run->cvode, cv_rhs, o->t_start, run->y), err);
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeSetUserData", CVodeSetUserData(run->cvode, run), err);
+  if (rc == FB_OK)
+    rc =
+        cv_call(run, "CVodeSStolerances", CVodeSStolerances(run->cvode, o->rtol, o->atol), err);
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeSetMaxOrd", CVodeSetMaxOrd(run->cvode, o->max_order), err);
+  /* CVODE's hmax = 0 means no limit too, as for max_step. */
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeSetMaxStep", CVodeSetMaxStep(run->cvode, o->max_step), err);
+  if (rc == FB_OK)
+    rc = make_linear_solver(run, err);
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeSetLinearSolver",
+                 CVodeSetLinearSolver(run->cvode, run->ls, run->shell), err);
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeSetLinSysFn", CVodeSetLinSysFn(run->cvode, cv_linsys), err);
+  /* The default for matrix-based solvers with BDF, made explicit. */
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeSetLinearSolutionScaling",
+                 CVodeSetLinearSolutionScaling(run->cvode, SUNTRUE), err);
+  return rc;
+}
+
+static void run_free(sim_run *run)
+{
+  if (run->cvode)
+    CVodeFree(&run->cvode);
+  if (run->ls)
+    SUNLinSolFreeEmpty(run->ls);
+  if (run->shell)
+    SUNMatFreeEmpty(run->shell);
+  if (run->y)
+    N_VDestroy(run->y);
+  if (run->ysam)
+    N_VDestroy(run->ysam);
+  if (run->sunctx)
+    SUNContext_Free(&run->sunctx);
+  fb_auglin_free(&run->lin);
+  free(run->v0);
+  free(run->v1);
+  free(run->bps);
+}
+
+/* ---- Breakpoints. */
+
+static int compare_doubles(const void *a, const void *b)
+{
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Two times closer than this are one: CVODE cannot start a segment
+ * shorter than a few roundoffs of its end points (CV_TOO_CLOSE). */
+static double same_time_tol(double a, double b)
+{
+  return 100 * DBL_EPSILON * fmax(fabs(a), fabs(b));
+}
+
+/* run->bps = the sources' and opts' breakpoints strictly inside
+ * (t_start, t_end), sorted, without near duplicates. */
+static int collect_breakpoints(sim_run *run, fb_err *err)
+{
+  const fb_sim_opts *o = run->opts;
+  const size_t bound = fb_bd_breakpoints(run->bd, NULL, 0);
+  run->bps = malloc((bound + o->nbreakpoints + 1) * sizeof *run->bps);
+  if (!run->bps)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for %zu breakpoints",
+                      bound + o->nbreakpoints);
+  const size_t nsrc = fb_bd_breakpoints(run->bd, run->bps, bound);
+  const size_t total = nsrc + o->nbreakpoints;
+  if (o->nbreakpoints)
+    memcpy(run->bps + nsrc, o->breakpoints, o->nbreakpoints * sizeof *run->bps);
+  qsort(run->bps, total, sizeof *run->bps, compare_doubles);
+  double last = o->t_start;
+  run->nbps = 0;
+  for (size_t i = 0; i < total; ++i) {
+    const double t = run->bps[i];
+    if (t - last > same_time_tol(t, last) && o->t_end - t > same_time_tol(t, o->t_end))
+      last = run->bps[run->nbps++] = t;
+  }
+  return FB_OK;
+}
+
+/* ---- Sampling. */
+
+/* Writes row k of the result: t, then the outputs at state x. */
+static int write_sample(sim_run *run, size_t k, double t, const double *x, fb_err *err)
+{
+  double *row = run->res->data + k * run->res->ncols;
+  row[0] = t;
+  if (fb_bd_outputs(run->bd, t, x, row + 1) != 0)
+    return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: evaluating the outputs failed: %s", t,
+                      fb_bd_last_error(run->bd));
+  return FB_OK;
+}
+
+/* Every pending sample at or before tcur, interpolated within the last
+ * step by CVODE's Nordsieck polynomial. */
+static int emit_samples(sim_run *run, double tcur, fb_err *err)
+{
+  while (run->next_sample < run->grid.n) {
+    const double t = fb_sample_grid_time(&run->grid, run->next_sample);
+    if (t > tcur)
+      break;
+    const int flag = CVodeGetDky(run->cvode, t, 0, run->ysam);
+    if (flag < 0)
+      return cvode_failure(run, flag, t, err);
+    const int rc = write_sample(run, run->next_sample, t, N_VGetArrayPointer(run->ysam), err);
+    if (rc != FB_OK)
+      return rc;
+    ++run->next_sample;
+  }
+  return FB_OK;
+}
+
+/* ---- Stepping. */
+
+static int check_finite_state(const sim_run *run, double t, fb_err *err)
+{
+  const double *y = N_VGetArrayPointer(run->y);
+  for (size_t i = 0; i < run->n; ++i)
+    if (!isfinite(y[i]))
+      return fb_err_set(err, FB_ESOLVER,
+                        "at t = %.6g s: state %s became %g; the model diverged or a law "
+                        "returned a non-finite value",
+                        t, fb_bd_state_name(run->bd, i), y[i]);
+  return FB_OK;
+}
+
+/* CVODE accepts steps so small that t + h rounds to t (it only warns),
+ * e.g. when the model turns non-finite just ahead and every step towards
+ * it is cut until it vanishes; without this check such a run would spin
+ * until max_steps. */
+static int check_progress(const sim_run *run, double t_before, fb_err *err)
+{
+  if (run->t_now > t_before)
+    return FB_OK;
+  double h = 0;
+  CVodeGetLastStep(run->cvode, &h);
+  return fb_err_set(err, FB_ESOLVER,
+                    "at t = %.6g s: CVODE step size %g no longer advances t; the model is "
+                    "probably singular, or not finite, just after this time%s%s",
+                    run->t_now, h, fb_bd_last_error(run->bd)[0] ? "; model: " : "",
+                    fb_bd_last_error(run->bd));
+}
+
+/* opts->max_steps bounds the whole run. CVODE's own limit
+ * (CVodeSetMaxNumSteps) counts steps per CVode call, and in CV_ONE_STEP
+ * mode every call takes one step, so the budget is kept here. */
+static int check_budget(const sim_run *run, double t, fb_err *err)
+{
+  long nst = 0;
+  CVodeGetNumSteps(run->cvode, &nst);
+  if (run->steps_before + nst < run->opts->max_steps)
+    return FB_OK;
+  char *name = CVodeGetReturnFlagName(CV_TOO_MUCH_WORK);
+  fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s (%ld steps taken)", t,
+             name ? name : "CV_TOO_MUCH_WORK", flag_hint(CV_TOO_MUCH_WORK),
+             run->opts->max_steps);
+  free(name);
+  return FB_ESOLVER;
+}
+
+/* Adds the counters of the segment just finished (CVodeReInit resets
+ * them). */
+static void add_segment_stats(sim_run *run, fb_sim_stats *s)
+{
+  long v = 0;
+  CVodeGetNumSteps(run->cvode, &v);
+  s->steps += v;
+  run->steps_before += v;
+  CVodeGetNumRhsEvals(run->cvode, &v);
+  s->rhs_evals += v;
+  CVodeGetNumLinSolvSetups(run->cvode, &v);
+  s->newton_setups += v;
+  CVodeGetNumNonlinSolvIters(run->cvode, &v);
+  s->newton_iters += v;
+  CVodeGetNumNonlinSolvConvFails(run->cvode, &v);
+  s->newton_conv_fails += v;
+  CVodeGetNumErrTestFails(run->cvode, &v);
+  s->err_test_fails += v;
+  CVodeGetLastOrder(run->cvode, &s->last_order);
+}
+
+/* Integrates from the current time to t_stop, one internal step at a
+ * time, sampling after each step. */
+static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
+{
+  run->t_limit = t_stop;
+  run->t_left = nextafter(t_stop, -INFINITY);
+  int flag = CVodeSetStopTime(run->cvode, t_stop);
+  if (flag < 0)
+    return setup_failure(run, "CVodeSetStopTime", flag, err);
+  do {
+    int rc = check_budget(run, run->t_now, err);
+    if (rc != FB_OK)
+      return rc;
+    const double t_before = run->t_now;
+    /* tout = t_stop only bounds the initial step-size estimate. */
+    flag = CVode(run->cvode, t_stop, run->y, &run->t_now, CV_ONE_STEP);
+    if (flag < 0)
+      return cvode_failure(run, flag, run->t_now, err);
+    /* Failures CVODE recovered from are no news. */
+    run->lin_err.msg[0] = '\0';
+    run->jac_failed = 0;
+    rc = check_progress(run, t_before, err);
+    if (rc == FB_OK)
+      rc = check_finite_state(run, run->t_now, err);
+    if (rc == FB_OK)
+      rc = emit_samples(run, run->t_now, err);
+    if (rc != FB_OK)
+      return rc;
+  } while (flag != CV_TSTOP_RETURN);
+  return FB_OK;
+}
+
+/* All segments between breakpoints; CVodeReInit at each breakpoint. */
+static int integrate(sim_run *run, fb_sim_stats *stats, fb_err *err)
+{
+  const fb_sim_opts *o = run->opts;
+  int rc =
+      write_sample(run, 0, fb_sample_grid_time(&run->grid, 0), N_VGetArrayPointer(run->y), err);
+  run->next_sample = 1;
+  run->t_now = o->t_start;
+  for (size_t seg = 0; rc == FB_OK && seg <= run->nbps; ++seg) {
+    if (seg > 0) {
+      add_segment_stats(run, stats);
+      rc = cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, run->bps[seg - 1], run->y), err);
+    }
+    if (rc == FB_OK)
+      rc = integrate_segment(run, seg < run->nbps ? run->bps[seg] : o->t_end, err);
+  }
+  if (rc == FB_OK)
+    add_segment_stats(run, stats);
+  if (rc == FB_OK && run->next_sample != run->grid.n)
+    rc = fb_err_set(err, FB_ESOLVER, "internal: %zu of %zu samples written", run->next_sample,
+                    run->grid.n);
+  return rc;
+}
+
+/* A diagram without states is algebraic: outputs at each sample time. */
+static int sample_static(sim_run *run, fb_err *err)
+{
+  const double none = 0;
+  for (size_t k = 0; k < run->grid.n; ++k) {
+    const int rc = write_sample(run, k, fb_sample_grid_time(&run->grid, k), &none, err);
+    if (rc != FB_OK)
+      return rc;
+  }
+  return FB_OK;
+}
+
+static int run_dynamic(sim_run *run, fb_err *err)
+{
+  if (SUNContext_Create(NULL, &run->sunctx) != 0)
+    return fb_err_set(err, FB_ENOMEM, "out of memory creating the SUNDIALS context");
+  run->y = N_VNew_Serial((sunindextype)run->n, run->sunctx);
+  run->ysam = N_VNew_Serial((sunindextype)run->n, run->sunctx);
+  if (!run->y || !run->ysam)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the state vectors");
+  run->linear = fb_bd_is_linear(run->bd);
+  int rc = initial_state(run, err);
+  if (rc == FB_OK)
+    rc = collect_breakpoints(run, err);
+  if (rc == FB_OK)
+    rc = make_auglin(run, err);
+  if (rc == FB_OK)
+    rc = make_cvode(run, err);
+  if (rc == FB_OK)
+    rc = integrate(run, &run->res->stats, err);
+  if (rc == FB_OK)
+    run->res->stats.factorizations = fb_auglin_nfactorizations(run->lin);
+  return rc;
+}
+
+static double seconds_since(const struct timespec *t0)
+{
+  struct timespec t1;
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
+}
+
+int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err)
+{
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  *out = NULL;
+  int rc = fb_sim_opts_check(opts, err);
+  if (rc != FB_OK)
+    return rc;
+  sim_run run;
+  memset(&run, 0, sizeof run);
+  run.bd = bd;
+  run.opts = opts;
+  run.n = fb_bd_nstates(bd);
+  fb_err_clear(&run.lin_err);
+  fb_sample_grid_init(&run.grid, opts);
+  rc = fb_result_alloc(bd, run.grid.n, &run.res, err);
+  if (rc == FB_OK)
+    rc = run.n ? run_dynamic(&run, err) : sample_static(&run, err);
+  run_free(&run);
+  if (rc != FB_OK) {
+    fb_result_free(&run.res);
+    return rc;
+  }
+  run.res->stats.wall_seconds = seconds_since(&t0);
+  *out = run.res;
+  return FB_OK;
+}

@@ -1,0 +1,102 @@
+/* Simulation options and the output sample grid (see flexbond/sim.h). */
+#include <math.h>
+
+#include "flexbond/sim.h"
+
+#include "sim/sim_internal.h"
+
+/* Most output samples a run may ask for (memory guard: 1e8 rows). */
+#define MAX_SAMPLES 1e8
+
+/* Relative slack for "(t_end - t_start) * rate is an integer". */
+#define GRID_INTEGER_TOL 1e-9
+
+void fb_sim_opts_default(fb_sim_opts *opts)
+{
+  opts->t_start = 0;
+  opts->t_end = 1;
+  opts->rtol = 1e-6;
+  opts->atol = 1e-9;
+  opts->max_step = 0;
+  opts->sample_rate = 1000;
+  opts->max_order = 5;
+  opts->max_steps = 10000000L;
+  opts->breakpoints = NULL;
+  opts->nbreakpoints = 0;
+  opts->x0 = NULL;
+}
+
+static int check_times(const fb_sim_opts *o, fb_err *err)
+{
+  if (!isfinite(o->t_start))
+    return fb_err_set(err, FB_EINVAL, "simulation.t_start: must be finite, got %g", o->t_start);
+  if (!isfinite(o->t_end) || !(o->t_end > o->t_start) || !isfinite(o->t_end - o->t_start))
+    return fb_err_set(err, FB_EINVAL,
+                      "simulation.t_end: must be finite and greater than t_start = %g, got %g",
+                      o->t_start, o->t_end);
+  if (!(o->sample_rate > 0) || !isfinite(o->sample_rate))
+    return fb_err_set(err, FB_EINVAL, "simulation.sample_rate: must be positive, got %g",
+                      o->sample_rate);
+  const double nsamples = (o->t_end - o->t_start) * o->sample_rate;
+  if (!(nsamples <= MAX_SAMPLES))
+    return fb_err_set(err, FB_EINVAL,
+                      "simulation.sample_rate: %g Hz over %g s gives %.3g samples, more than "
+                      "the limit of %.0e",
+                      o->sample_rate, o->t_end - o->t_start, nsamples, MAX_SAMPLES);
+  if (o->nbreakpoints && !o->breakpoints)
+    return fb_err_set(err, FB_EINVAL, "simulation.breakpoints: NULL with %zu entries",
+                      o->nbreakpoints);
+  for (size_t i = 0; i < o->nbreakpoints; ++i)
+    if (!isfinite(o->breakpoints[i]))
+      return fb_err_set(err, FB_EINVAL, "simulation.breakpoints[%zu]: must be finite, got %g",
+                        i, o->breakpoints[i]);
+  return FB_OK;
+}
+
+static int check_solver(const fb_sim_opts *o, fb_err *err)
+{
+  if (!(o->rtol > 0 && o->rtol < 1))
+    return fb_err_set(err, FB_EINVAL, "simulation.rtol: must be in (0, 1), got %g", o->rtol);
+  if (!(o->atol > 0) || !isfinite(o->atol))
+    return fb_err_set(err, FB_EINVAL, "simulation.atol: must be positive, got %g", o->atol);
+  if (o->max_order < 1 || o->max_order > 5)
+    return fb_err_set(err, FB_EINVAL, "simulation.max_order: must be 1..5, got %d",
+                      o->max_order);
+  if (!(o->max_step >= 0) || !isfinite(o->max_step))
+    return fb_err_set(err, FB_EINVAL,
+                      "simulation.max_step: must be finite and >= 0 (0: no limit), got %g",
+                      o->max_step);
+  if (o->max_steps < 1)
+    return fb_err_set(err, FB_EINVAL, "simulation.max_steps: must be positive, got %ld",
+                      o->max_steps);
+  return FB_OK;
+}
+
+int fb_sim_opts_check(const fb_sim_opts *opts, fb_err *err)
+{
+  const int rc = check_times(opts, err);
+  return rc != FB_OK ? rc : check_solver(opts, err);
+}
+
+void fb_sample_grid_init(fb_sample_grid *g, const fb_sim_opts *opts)
+{
+  g->t_start = opts->t_start;
+  g->t_end = opts->t_end;
+  g->rate = opts->sample_rate;
+  /* Bounded by MAX_SAMPLES, so the conversions below are exact. */
+  const double intervals = (opts->t_end - opts->t_start) * opts->sample_rate;
+  const double nearest = floor(intervals + 0.5);
+  g->last_is_end = fabs(intervals - nearest) <= GRID_INTEGER_TOL * intervals;
+  g->n = (size_t)(g->last_is_end ? nearest : floor(intervals)) + 1;
+}
+
+/* k / rate rather than an accumulated sum, so no rounding error builds
+ * up along the grid. The clamp only matters when t_start is so large
+ * that the addition rounds past t_end. */
+double fb_sample_grid_time(const fb_sample_grid *g, size_t k)
+{
+  if (g->last_is_end && k + 1 == g->n)
+    return g->t_end;
+  const double t = g->t_start + (double)k / g->rate;
+  return t < g->t_end ? t : g->t_end;
+}
