@@ -66,7 +66,7 @@ test: deps build
 
 run: deps build
 	mkdir -p $(OUT_DIR)
-	./$(BUILD_DIR)/flexbond sim examples/quarter_car.yaml -o $(OUT_DIR)/
+	./$(BUILD_DIR)/flexbond sim examples/quarter_car.yaml -o $(OUT_DIR)/ --plot
 	./$(BUILD_DIR)/flexbond diagram examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car.dot
 
 asan:

@@ -359,8 +359,134 @@ static void test_dot(void)
   fb_bg_free(&bg);
 }
 
+/* Rigid bar (bounce z, pitch theta) on two springs through a matrix
+ * transformer: point velocities v = T [z'; theta'], T = [1 -x1; 1 -x2].
+ * Natural frequencies equal sqrt(eig(M^-1 T' diag(k) T)), assembled by
+ * hand (2x2 closed form). */
+static void test_mtf_rigid_bar(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  const double mass = 1200.0, inertia = 1500.0, x1 = 1.3, x2 = -1.7, k1 = 3.0e4, k2 = 4.0e4;
+  fb_bg *bg = NULL;
+  MUST(fb_bg_new("bar", &bg, &err), &err);
+  const size_t two = 2;
+  const double md[2] = {mass, inertia}, kd[2] = {k1, k2};
+  const double t[4] = {1.0, -x1, 1.0, -x2};
+  fb_mat *m = NULL, *k = NULL, *tm = NULL;
+  MUST(fb_mat_new_diag(2, md, &m, &err), &err);
+  MUST(fb_mat_new_diag(2, kd, &k, &err), &err);
+  MUST(fb_mat_new_dense_rowmajor(2, 2, t, &tm, &err), &err);
+  MUST(fb_bg_add_field(bg, "hull", FB_BG_I, 1, &two, &m, &err), &err);
+  MUST(fb_bg_add_field(bg, "springs", FB_BG_C, 1, &two, &k, &err), &err);
+  MUST(fb_bg_add_mtf(bg, "T", &tm, &err), &err);
+  MUST(fb_bg_add_junction(bg, "Jh", FB_BG_J1, 2, &err), &err);
+  MUST(fb_bg_add_junction(bg, "Jp", FB_BG_J1, 2, &err), &err);
+  MUST(fb_bg_connect(bg, "bh", "Jh", "hull", &err), &err);
+  MUST(fb_bg_connect(bg, "bt1", "Jh", "T.1", &err), &err);
+  MUST(fb_bg_connect(bg, "bt2", "T.2", "Jp", &err), &err);
+  MUST(fb_bg_connect(bg, "bk", "Jp", "springs", &err), &err);
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, NULL, 0, &bd, &err), &err);
+  if (bd) {
+    double x[4] = {0, 0, 0, 0}, jac[16], ev[8];
+    MUST(fb_bd_jacobian_dense(bd, 0.0, x, jac, &err), &err);
+    eigenvalues(4, jac, ev);
+    /* K = T' diag(k) T; omega^2 are the roots of det(K - w2 M) = 0. */
+    double kzz = k1 + k2, kzt = -(k1 * x1 + k2 * x2), ktt = k1 * x1 * x1 + k2 * x2 * x2;
+    double a = mass * inertia, b = -(kzz * inertia + ktt * mass), c = kzz * ktt - kzt * kzt;
+    double w2lo = (-b - sqrt(b * b - 4 * a * c)) / (2 * a);
+    double w2hi = (-b + sqrt(b * b - 4 * a * c)) / (2 * a);
+    /* Sorted by imaginary part: -w_hi, -w_lo, +w_lo, +w_hi; real parts 0. */
+    CHECK_NEAR(ev[1], -sqrt(w2hi), 1e-9 * sqrt(w2hi));
+    CHECK_NEAR(ev[3], -sqrt(w2lo), 1e-9 * sqrt(w2hi));
+    CHECK_NEAR(ev[5], sqrt(w2lo), 1e-9 * sqrt(w2hi));
+    CHECK_NEAR(ev[7], sqrt(w2hi), 1e-9 * sqrt(w2hi));
+    for (int i = 0; i < 4; ++i)
+      CHECK_NEAR(ev[2 * i], 0.0, 1e-9 * sqrt(w2hi));
+  }
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+/* Hardening spring e = k q + k3 q^3 as a nonlinear C law. */
+static int cubic_eval(void *ctx, size_t n, const double *x, double *y)
+{
+  const double *k = ctx;
+  for (size_t i = 0; i < n; ++i)
+    y[i] = k[0] * x[i] + k[1] * x[i] * x[i] * x[i];
+  return 0;
+}
+static int cubic_jac(void *ctx, size_t n, const double *x, double *jac)
+{
+  const double *k = ctx;
+  for (size_t i = 0; i < n * n; ++i)
+    jac[i] = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    jac[i * n + i] = k[0] + 3.0 * k[1] * x[i] * x[i];
+  return 0;
+}
+static double cubic_energy(void *ctx, size_t n, const double *x)
+{
+  const double *k = ctx;
+  double e = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    e += 0.5 * k[0] * x[i] * x[i] + 0.25 * k[1] * x[i] * x[i] * x[i] * x[i];
+  return e;
+}
+static const fb_law_ops cubic_ops = {"cubic spring", cubic_eval, cubic_jac, cubic_energy, free};
+
+static void test_nonlinear_law(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = NULL;
+  MUST(fb_bg_new("duffing", &bg, &err), &err);
+  double *k = malloc(2 * sizeof *k);
+  k[0] = 100.0;
+  k[1] = 5.0e4;
+  const size_t one = 1;
+  MUST(add_scalar(bg, "m", FB_BG_I, 2.0, &err), &err);
+  MUST(fb_bg_add_field_law(bg, "k", FB_BG_C, 1, &one, &cubic_ops, k, &err), &err);
+  MUST(fb_bg_add_junction(bg, "J", FB_BG_J1, 1, &err), &err);
+  MUST(fb_bg_connect(bg, "bm", "J", "m", &err), &err);
+  MUST(fb_bg_connect(bg, "bk", "J", "k", &err), &err);
+  fb_probe_spec probe = {"E_k", FB_PROBE_ENERGY, "k", -1, 0, 1.0, NULL};
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, &probe, 1, &bd, &err), &err);
+  if (bd) {
+    CHECK(!fb_bd_is_linear(bd));
+    long iq = state_index(bd, "k.q"), ip = state_index(bd, "m.p");
+    double x[2], xd[2], jac[4], y;
+    x[iq] = 0.03;
+    x[ip] = 0.5;
+    CHECK(fb_bd_rhs(bd, 0.0, x, xd) == 0);
+    /* p' = -(k q + k3 q^3), q' = p / m. */
+    CHECK_NEAR(xd[ip], -(100.0 * 0.03 + 5.0e4 * 0.03 * 0.03 * 0.03), 1e-12);
+    CHECK_NEAR(xd[iq], 0.25, 1e-15);
+    CHECK(fb_bd_outputs(bd, 0.0, x, &y) == 0);
+    CHECK_NEAR(y, 0.5 * 100.0 * 9e-4 + 0.25 * 5.0e4 * 8.1e-7, 1e-15);
+    /* Exact Jacobian vs central differences (error ~ h^2 k3 q = 1e-8). */
+    MUST(fb_bd_jacobian_dense(bd, 0.0, x, jac, &err), &err);
+    const double h = 1e-6;
+    for (int j = 0; j < 2; ++j) {
+      double xp[2] = {x[0], x[1]}, xm[2] = {x[0], x[1]}, fp[2], fm[2];
+      xp[j] += h;
+      xm[j] -= h;
+      fb_bd_rhs(bd, 0.0, xp, fp);
+      fb_bd_rhs(bd, 0.0, xm, fm);
+      for (int i = 0; i < 2; ++i)
+        CHECK_NEAR(jac[j * 2 + i], (fp[i] - fm[i]) / (2 * h), 1e-6);
+    }
+  }
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
 int main(void)
 {
+  test_mtf_rigid_bar();
+  test_nonlinear_law();
   test_quarter_car();
   test_augmented();
   test_algebraic_loop();

@@ -1,0 +1,188 @@
+/* flexbond: internals of the YAML model loader (src/io/model*.c).
+ *
+ * The loader walks a libfyaml document tree. Every error is reported as
+ * "FILE:LINE:COL: KEY: message", where KEY is the path of the offending
+ * node (e.g. "subsystems.corner.elements[2].k"); see ml_fail(). Subsystem
+ * definitions are re-read from the tree for each instance, so the loader
+ * keeps no copies of the document beyond what it hands to the graph. */
+#ifndef FLEXBOND_IO_MODEL_INTERNAL_H
+#define FLEXBOND_IO_MODEL_INTERNAL_H
+
+#include <libfyaml.h>
+#include <stddef.h>
+
+#include "flexbond/bg.h"
+#include "flexbond/error.h"
+#include "flexbond/expr.h"
+#include "flexbond/mat.h"
+
+/* A subsystem instance under construction, innermost first; the chain is
+ * appended to messages so an error inside a definition says which
+ * instance (and so which parameter values) triggered it. */
+typedef struct ml_frame {
+  const char *instance;         /* instance name */
+  struct fy_node *at;           /* the instance's element mapping */
+  const struct ml_frame *outer; /* enclosing instance, NULL at top level */
+} ml_frame;
+
+/* Loader state shared by all sections. */
+typedef struct ml_ctx {
+  const char *file;         /* display name used in messages */
+  const char *base_dir;     /* directory for relative file references */
+  fb_err *err;              /* never NULL inside the loader */
+  struct fy_node *defs;     /* the `subsystems` mapping, or NULL */
+  size_t ndefs;             /* number of definitions in defs */
+  unsigned char *used;      /* used[i]: definition i has been instantiated */
+  const fb_symtab *globals; /* the model's `parameters` */
+  fb_bg_domain domain;      /* model default bond domain */
+  const ml_frame *frames;   /* innermost instance being built, or NULL */
+} ml_ctx;
+
+/* A name declared in a graph being built: an element or a subsystem
+ * instance. Used to check port references before handing them to fb_bg. */
+typedef struct ml_entry {
+  const char *name;     /* borrowed from the document */
+  fb_bg_kind kind;      /* element kind (meaningless for instances) */
+  size_t nports;        /* numbered ports ("E.1" .. "E.n"); 1 for one-ports */
+  long def;             /* definition index of an instance, -1 for elements */
+  struct fy_node *node; /* the element's mapping, for "first defined at" */
+} ml_entry;
+
+/* A graph being built (the model itself or one subsystem instance) with
+ * the parameter table its expressions see. */
+typedef struct ml_scope {
+  fb_bg *bg;
+  const fb_symtab *syms;
+  ml_entry *entries;
+  size_t nentries, capacity;
+} ml_scope;
+
+/* ---- model_yaml.c: document, locations, messages, typed getters. */
+
+/* A parsed document with the parser and diagnostics that own it. */
+typedef struct ml_yaml {
+  struct fy_diag *diag;
+  struct fy_parser *parser;
+  struct fy_document *doc;
+} ml_yaml;
+
+/* Parses exactly one YAML document from text. FB_EPARSE with
+ * "FILE:LINE:COL: YAML: message" (libfyaml's first diagnostic) on a
+ * syntax error; nothing is printed. */
+int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb_err *err);
+void ml_yaml_release(ml_yaml *y);
+
+/* Records "FILE:LINE:COL: KEY: message" (plus the instance chain) for the
+ * node at; returns code. */
+int ml_fail(const ml_ctx *c, struct fy_node *at, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+/* As ml_fail for the key node `key` of mapping map (the key node has no
+ * parent link in libfyaml, so the path is built from map). */
+int ml_fail_key(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int code,
+                const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+/* Prefixes the message already in c->err (from a library call) with the
+ * location of at, appends the instance chain; returns c->err->code. */
+int ml_blame(const ml_ctx *c, struct fy_node *at);
+/* As ml_blame without the key path, for messages that name their key. */
+int ml_blame_located(const ml_ctx *c, struct fy_node *at);
+/* 1-based line of node n, 0 if unknown. */
+int ml_line(struct fy_node *n);
+
+/* Candidate names for "did you mean" suggestions. */
+typedef const char *(*ml_name_fn)(const void *ctx, size_t i);
+/* Closest candidate to word by edit distance, or NULL if none is close. */
+const char *ml_suggest(const char *word, size_t n, ml_name_fn name_at, const void *ctx);
+/* Same over a NULL-terminated list of strings. */
+const char *ml_suggest_list(const char *word, const char *const *list);
+
+/* 1 if n is absent or a YAML null (empty, ~, null). */
+int ml_is_null(struct fy_node *n);
+/* Value of key in map; NULL if absent. *key_node gets the key (may be NULL). */
+struct fy_node *ml_get(struct fy_node *map, const char *key, struct fy_node **key_node);
+/* As ml_get, but an absent or null key is an error naming the key. */
+int ml_require(const ml_ctx *c, struct fy_node *map, const char *key, struct fy_node **out);
+/* FB_EPARSE unless n is a mapping / a sequence; what names the expectation. */
+int ml_expect_map(const ml_ctx *c, struct fy_node *n, const char *what);
+int ml_expect_seq(const ml_ctx *c, struct fy_node *n, const char *what);
+/* Every key of map must be in the NULL-terminated list allowed. */
+int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allowed);
+/* Scalar text (owned by the document). */
+int ml_string(const ml_ctx *c, struct fy_node *n, const char **out);
+/* 1 if s starts with a letter or '_' and has only letters, digits, '_'. */
+int ml_is_identifier(const char *s);
+/* A name made of letters, digits and '_' (what: "element name", ...). */
+int ml_name(const ml_ctx *c, struct fy_node *n, const char *what, const char **out);
+/* YAML boolean true/false (also yes/no, on/off). */
+int ml_bool(const ml_ctx *c, struct fy_node *n, int *out);
+/* A number or a constant expression over syms; finite. */
+int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double *out);
+/* Optional number: *out keeps its value (the default) when key is absent. */
+int ml_opt_number(const ml_ctx *c, struct fy_node *map, const char *key, const fb_symtab *syms,
+                  double *out);
+/* An integer in [lo, hi], given as a number or expression. */
+int ml_count(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t lo, size_t hi,
+             size_t *out);
+/* Joins base_dir and a relative path (absolute paths are kept) into a new
+ * string the caller frees. */
+int ml_resolve_path(const ml_ctx *c, struct fy_node *at, const char *path, char **out);
+
+/* ---- model_values.c: vectors, matrices, time functions. */
+
+/* A list of numbers (or a single one when allow_scalar) of exactly n
+ * entries, or any length >= 1 when n is 0; *out is malloc'd, *len set. */
+int ml_vector(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t want,
+              int allow_scalar, double **out, size_t *len);
+/* A matrix: a list of rows, {diagonal: [..]} or {mtx: file}. */
+int ml_matrix(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_mat **out);
+/* A source value: number or expression of t, {step:..}, {sine:..},
+ * {table:..}. */
+int ml_tfun(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun **out);
+
+/* ---- model_elements.c. */
+
+/* Adds the element described by mapping el to scope s and records it in
+ * the scope's entries. */
+int ml_add_element(ml_ctx *c, ml_scope *s, struct fy_node *el);
+/* 1 if name is a built-in element type ("I", "0", "composite", ...). */
+int ml_is_builtin_type(const char *name);
+/* Entry named name in s, or NULL. */
+const ml_entry *ml_scope_find(const ml_scope *s, const char *name);
+/* Appends an entry (name borrowed). */
+int ml_scope_add(const ml_ctx *c, ml_scope *s, const ml_entry *e);
+void ml_scope_release(ml_scope *s);
+
+/* ---- model_subsys.c: definitions, instances, ports, bonds. */
+
+/* Checks the `subsystems` mapping (names, shapes) and rejects recursive
+ * definitions, naming the chain. */
+int ml_defs_check(ml_ctx *c);
+/* Index of the definition named name, -1 if none. */
+long ml_def_find(const ml_ctx *c, const char *name);
+/* Name of definition i. */
+const char *ml_def_name(const ml_ctx *c, size_t i);
+/* Builds definition def into a new graph and adopts it into s under the
+ * name of element el (whose `parameters` override the defaults). */
+int ml_instantiate(ml_ctx *c, ml_scope *s, struct fy_node *el, const char *instance,
+                   size_t def);
+/* Builds each definition never instantiated once with its defaults, so
+ * errors in unused definitions are still reported. */
+int ml_defs_validate_unused(ml_ctx *c);
+/* Adds the `elements` and `bonds` of body (the model root or a definition). */
+int ml_build_body(ml_ctx *c, ml_scope *s, struct fy_node *body);
+/* Evaluates the mapping defaults (name: number or expression, in order;
+ * may be NULL) into tab, each seeing the names before it. A name defined
+ * in given (may be NULL: an instance's overrides, already evaluated) takes
+ * that value instead. */
+int ml_parameters(const ml_ctx *c, struct fy_node *defaults, fb_symtab *tab,
+                  const fb_symtab *given);
+/* Domain name ("translation", ...) to enum. */
+int ml_domain(const ml_ctx *c, struct fy_node *n, fb_bg_domain *out);
+
+#endif

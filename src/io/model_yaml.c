@@ -1,0 +1,567 @@
+/* YAML access for the model loader: parsing with captured diagnostics,
+ * node locations and key paths for messages, and typed getters that
+ * report "FILE:LINE:COL: KEY: message". */
+#include <ctype.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/model_internal.h"
+
+/* ---- Parsing. */
+
+/* libfyaml prints some messages (not collected as errors) through the
+ * output function; the library must stay silent, so they are dropped. */
+static void ml_diag_discard(struct fy_diag *diag, void *user, const char *buf, size_t len)
+{
+  (void)diag;
+  (void)user;
+  (void)buf;
+  (void)len;
+}
+
+/* Records the first error libfyaml collected; returns 1 if there was one. */
+static int ml_yaml_first_error(struct fy_diag *diag, const char *file, fb_err *err)
+{
+  void *iter = NULL;
+  const struct fy_diag_error *e = fy_diag_errors_iterate(diag, &iter);
+  if (!e)
+    return 0;
+  fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: %s", file, e->line, e->column,
+             e->msg ? e->msg : "syntax error");
+  return 1;
+}
+
+void ml_yaml_release(ml_yaml *y)
+{
+  if (y->doc)
+    fy_parse_document_destroy(y->parser, y->doc);
+  if (y->parser)
+    fy_parser_destroy(y->parser);
+  if (y->diag)
+    fy_diag_destroy(y->diag);
+  y->doc = NULL;
+  y->parser = NULL;
+  y->diag = NULL;
+}
+
+static int ml_yaml_open(const char *text, size_t len, ml_yaml *y, fb_err *err)
+{
+  struct fy_diag_cfg dcfg;
+  fy_diag_cfg_default(&dcfg);
+  dcfg.fp = NULL;
+  dcfg.output_fn = ml_diag_discard;
+  dcfg.user = NULL;
+  dcfg.colorize = false;
+  y->diag = fy_diag_create(&dcfg);
+  if (!y->diag)
+    return fb_err_set(err, FB_ENOMEM, "out of memory creating the YAML diagnostics");
+  fy_diag_set_collect_errors(y->diag, true);
+
+  struct fy_parse_cfg pcfg;
+  memset(&pcfg, 0, sizeof pcfg);
+  /* Resolving expands aliases and "<<" merge keys, so the loader only ever
+   * sees plain mappings, sequences and scalars. */
+  pcfg.flags = FYPCF_QUIET | FYPCF_RESOLVE_DOCUMENT;
+  pcfg.diag = y->diag;
+  y->parser = fy_parser_create(&pcfg);
+  if (!y->parser || fy_parser_set_string(y->parser, text, len) != 0)
+    return fb_err_set(err, FB_ENOMEM, "out of memory creating the YAML parser");
+  return FB_OK;
+}
+
+int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb_err *err)
+{
+  memset(y, 0, sizeof *y);
+  int rc = ml_yaml_open(text, len, y, err);
+  if (rc)
+    return rc;
+  y->doc = fy_parse_load_document(y->parser);
+  if (ml_yaml_first_error(y->diag, file, err))
+    return FB_EPARSE;
+  if (!y->doc || !fy_document_root(y->doc))
+    return fb_err_set(err, FB_EPARSE, "%s:1:1: the model is empty (no YAML document)", file);
+  struct fy_document *second = fy_parse_load_document(y->parser);
+  if (second) {
+    /* The "---" that starts it (its root may be empty). */
+    const struct fy_mark *m =
+        fy_document_state_start_mark(fy_document_get_document_state(second));
+    int line = m ? m->line + 1 : 1, col = m ? m->column + 1 : 1;
+    fy_parse_document_destroy(y->parser, second);
+    return fb_err_set(err, FB_EPARSE,
+                      "%s:%d:%d: YAML: a second document ('---'); a model file holds one", file,
+                      line, col);
+  }
+  if (ml_yaml_first_error(y->diag, file, err))
+    return FB_EPARSE;
+  return FB_OK;
+}
+
+/* ---- Locations and key paths. */
+
+/* Start mark of n itself (no fallback), via its scalar token or, for a
+ * collection, the first event a document iterator makes for it (libfyaml
+ * 0.7 has no public accessor for a collection's start token). */
+static int ml_own_mark(struct fy_node *n, int *line, int *col)
+{
+  if (fy_node_is_scalar(n)) {
+    struct fy_token *tok = fy_node_get_scalar_token(n);
+    const struct fy_mark *m = tok ? fy_token_start_mark(tok) : NULL;
+    if (!m)
+      return 0;
+    *line = m->line + 1;
+    *col = m->column + 1;
+    return 1;
+  }
+  struct fy_document_iterator *it = fy_document_iterator_create();
+  if (!it)
+    return 0;
+  int found = 0;
+  fy_document_iterator_node_start(it, n);
+  struct fy_event *ev = fy_document_iterator_body_next(it);
+  const struct fy_mark *m = ev ? fy_event_start_mark(ev) : NULL;
+  if (m) {
+    *line = m->line + 1;
+    *col = m->column + 1;
+    found = 1;
+  }
+  if (ev)
+    fy_document_iterator_event_free(it, ev);
+  fy_document_iterator_destroy(it);
+  return found;
+}
+
+/* Nodes copied by alias resolution have no marks: use the nearest
+ * ancestor that has one. */
+static int ml_mark(struct fy_node *n, int *line, int *col)
+{
+  for (; n; n = fy_node_get_parent(n))
+    if (ml_own_mark(n, line, col))
+      return 1;
+  return 0;
+}
+
+int ml_line(struct fy_node *n)
+{
+  int line = 0, col = 0;
+  return ml_mark(n, &line, &col) ? line : 0;
+}
+
+/* Appends formatted text to buf (size bytes, *len used), truncating. */
+static void ml_append(char *buf, size_t size, size_t *len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static void ml_append(char *buf, size_t size, size_t *len, const char *fmt, ...)
+{
+  if (*len + 1 >= size)
+    return;
+  va_list ap;
+  va_start(ap, fmt);
+  int k = vsnprintf(buf + *len, size - *len, fmt, ap);
+  va_end(ap);
+  if (k > 0)
+    *len = (*len + (size_t)k < size) ? *len + (size_t)k : size - 1;
+}
+
+/* Segment of n inside its parent: "[i]" in a sequence, ".key" (no dot
+ * at the start) in a mapping. */
+static void ml_path_segment(struct fy_node *parent, struct fy_node *n, char *buf, size_t size,
+                            size_t *len)
+{
+  void *iter = NULL;
+  if (fy_node_is_sequence(parent)) {
+    int index = 0;
+    struct fy_node *item;
+    while ((item = fy_node_sequence_iterate(parent, &iter)) && item != n)
+      ++index;
+    ml_append(buf, size, len, "[%d]", index);
+    return;
+  }
+  struct fy_node_pair *pair;
+  while ((pair = fy_node_mapping_iterate(parent, &iter)))
+    if (fy_node_pair_value(pair) == n) {
+      const char *key = fy_node_get_scalar0(fy_node_pair_key(pair));
+      ml_append(buf, size, len, "%s%s", *len ? "." : "", key ? key : "?");
+      return;
+    }
+}
+
+static void ml_path(struct fy_node *n, char *buf, size_t size, size_t *len)
+{
+  struct fy_node *parent = n ? fy_node_get_parent(n) : NULL;
+  if (!parent)
+    return;
+  ml_path(parent, buf, size, len);
+  ml_path_segment(parent, n, buf, size, len);
+}
+
+/* The message proper, then the chain of instances being built. */
+static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_node,
+                     const char *key, int code, const char *msg)
+{
+  char where[1024];
+  size_t len = 0;
+  int line = 0, col = 0;
+  if (ml_mark(loc, &line, &col))
+    ml_append(where, sizeof where, &len, "%s:%d:%d: ", c->file, line, col);
+  else
+    ml_append(where, sizeof where, &len, "%s: ", c->file);
+  char path[512];
+  size_t plen = 0;
+  path[0] = '\0';
+  ml_path(path_node, path, sizeof path, &plen);
+  if (key)
+    ml_append(path, sizeof path, &plen, "%s%s", plen ? "." : "", key);
+  if (plen)
+    ml_append(where, sizeof where, &len, "%s: ", path);
+
+  char chain[1024];
+  size_t clen = 0;
+  for (const ml_frame *f = c->frames; f; f = f->outer) {
+    int fl = 0, fc = 0;
+    ml_mark(f->at, &fl, &fc);
+    ml_append(chain, sizeof chain, &clen, "%s'%s' at %s:%d:%d",
+              f == c->frames ? " (in instance " : ", in ", f->instance, c->file, fl, fc);
+  }
+  if (clen)
+    ml_append(chain, sizeof chain, &clen, ")");
+  chain[clen] = '\0';
+  return fb_err_set(c->err, code, "%s%s%s", where, msg, chain);
+}
+
+int ml_fail(const ml_ctx *c, struct fy_node *at, int code, const char *fmt, ...)
+{
+  char msg[FB_ERR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  return ml_report(c, at, at, NULL, code, msg);
+}
+
+int ml_fail_key(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int code,
+                const char *fmt, ...)
+{
+  char msg[FB_ERR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  const char *text = fy_node_is_scalar(key) ? fy_node_get_scalar0(key) : NULL;
+  return ml_report(c, key ? key : map, map, text ? text : "?", code, msg);
+}
+
+int ml_blame(const ml_ctx *c, struct fy_node *at)
+{
+  char msg[FB_ERR_MSG_MAX];
+  int code = c->err->code ? c->err->code : FB_EMODEL;
+  snprintf(msg, sizeof msg, "%s", c->err->msg);
+  return ml_report(c, at, at, NULL, code, msg);
+}
+
+int ml_blame_located(const ml_ctx *c, struct fy_node *at)
+{
+  char msg[FB_ERR_MSG_MAX];
+  int code = c->err->code ? c->err->code : FB_EMODEL;
+  snprintf(msg, sizeof msg, "%s", c->err->msg);
+  return ml_report(c, at, NULL, NULL, code, msg);
+}
+
+/* ---- Suggestions: optimal string alignment distance (Levenshtein with
+ * adjacent transpositions; Damerau, CACM 7(3), 1964), case-insensitive. */
+
+enum { ML_SUGGEST_MAX = 64 };
+
+static size_t ml_min3(size_t a, size_t b, size_t c)
+{
+  size_t m = a < b ? a : b;
+  return m < c ? m : c;
+}
+
+static size_t ml_edit_distance(const char *a, const char *b)
+{
+  size_t la = strlen(a), lb = strlen(b);
+  size_t rows[3][ML_SUGGEST_MAX + 1];
+  size_t *prev2 = rows[0], *prev = rows[1], *cur = rows[2];
+  for (size_t j = 0; j <= lb; ++j)
+    prev[j] = j;
+  for (size_t i = 1; i <= la; ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= lb; ++j) {
+      int ca = tolower((unsigned char)a[i - 1]), cb = tolower((unsigned char)b[j - 1]);
+      size_t cost = ca != cb;
+      cur[j] = ml_min3(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost);
+      if (i > 1 && j > 1 && ca == tolower((unsigned char)b[j - 2]) &&
+          tolower((unsigned char)a[i - 2]) == cb && prev2[j - 2] + 1 < cur[j])
+        cur[j] = prev2[j - 2] + 1;
+    }
+    size_t *t = prev2;
+    prev2 = prev;
+    prev = cur;
+    cur = t;
+  }
+  return prev[lb];
+}
+
+const char *ml_suggest(const char *word, size_t n, ml_name_fn name_at, const void *ctx)
+{
+  size_t lw = strlen(word);
+  if (lw == 0 || lw > ML_SUGGEST_MAX)
+    return NULL;
+  const char *best = NULL;
+  size_t best_d = (size_t)-1;
+  for (size_t i = 0; i < n; ++i) {
+    const char *cand = name_at(ctx, i);
+    size_t lc = cand ? strlen(cand) : 0;
+    if (lc == 0 || lc > ML_SUGGEST_MAX)
+      continue;
+    size_t d = ml_edit_distance(word, cand);
+    /* Close enough: about one edit per three characters, and never a
+     * complete rewrite of a short word. */
+    size_t longest = lw > lc ? lw : lc;
+    if (d <= (lw + 2) / 3 && d < longest && d < best_d) {
+      best = cand;
+      best_d = d;
+    }
+  }
+  return best;
+}
+
+static const char *ml_list_at(const void *ctx, size_t i)
+{
+  return ((const char *const *)ctx)[i];
+}
+
+const char *ml_suggest_list(const char *word, const char *const *list)
+{
+  size_t n = 0;
+  while (list[n])
+    ++n;
+  return ml_suggest(word, n, ml_list_at, list);
+}
+
+/* ---- Typed getters. */
+
+static const char *ml_kind_word(struct fy_node *n)
+{
+  if (fy_node_is_mapping(n))
+    return "a mapping";
+  if (fy_node_is_sequence(n))
+    return "a list";
+  return "a scalar";
+}
+
+int ml_is_null(struct fy_node *n)
+{
+  if (!n || fy_node_is_null(n))
+    return 1;
+  if (!fy_node_is_scalar(n) || fy_node_get_style(n) != FYNS_PLAIN)
+    return 0;
+  const char *t = fy_node_get_scalar0(n);
+  return !t || !strcmp(t, "") || !strcmp(t, "~") || !strcmp(t, "null") || !strcmp(t, "Null") ||
+         !strcmp(t, "NULL");
+}
+
+struct fy_node *ml_get(struct fy_node *map, const char *key, struct fy_node **key_node)
+{
+  struct fy_node_pair *pair = fy_node_mapping_lookup_pair_by_string(map, key, (size_t)-1);
+  if (key_node)
+    *key_node = pair ? fy_node_pair_key(pair) : NULL;
+  return pair ? fy_node_pair_value(pair) : NULL;
+}
+
+int ml_require(const ml_ctx *c, struct fy_node *map, const char *key, struct fy_node **out)
+{
+  struct fy_node *key_node = NULL;
+  *out = ml_get(map, key, &key_node);
+  if (!key_node)
+    return ml_fail(c, map, FB_EPARSE, "missing required key '%s'", key);
+  if (ml_is_null(*out))
+    return ml_fail_key(c, map, key_node, FB_EPARSE, "missing value");
+  return FB_OK;
+}
+
+int ml_expect_map(const ml_ctx *c, struct fy_node *n, const char *what)
+{
+  if (fy_node_is_mapping(n))
+    return FB_OK;
+  return ml_fail(c, n, FB_EPARSE, "expected %s (a mapping), got %s", what, ml_kind_word(n));
+}
+
+int ml_expect_seq(const ml_ctx *c, struct fy_node *n, const char *what)
+{
+  if (fy_node_is_sequence(n))
+    return FB_OK;
+  return ml_fail(c, n, FB_EPARSE, "expected %s (a list), got %s", what, ml_kind_word(n));
+}
+
+/* "a, b, c" of a NULL-terminated list, into buf. */
+static void ml_join(const char *const *list, char *buf, size_t size)
+{
+  size_t len = 0;
+  buf[0] = '\0';
+  for (size_t i = 0; list[i]; ++i)
+    ml_append(buf, size, &len, "%s%s", i ? ", " : "", list[i]);
+}
+
+int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allowed)
+{
+  void *iter = NULL;
+  struct fy_node_pair *pair;
+  while ((pair = fy_node_mapping_iterate(map, &iter))) {
+    struct fy_node *key = fy_node_pair_key(pair);
+    const char *text = fy_node_is_scalar(key) ? fy_node_get_scalar0(key) : NULL;
+    if (!text)
+      return ml_fail(c, map, FB_EPARSE, "keys must be plain names");
+    size_t i = 0;
+    while (allowed[i] && strcmp(allowed[i], text))
+      ++i;
+    if (allowed[i])
+      continue;
+    const char *near = ml_suggest_list(text, allowed);
+    if (near)
+      return ml_fail_key(c, map, key, FB_EPARSE, "unknown key '%s' (did you mean '%s'?)", text,
+                         near);
+    char list[512];
+    ml_join(allowed, list, sizeof list);
+    return ml_fail_key(c, map, key, FB_EPARSE, "unknown key '%s'; allowed keys: %s", text,
+                       list);
+  }
+  return FB_OK;
+}
+
+int ml_string(const ml_ctx *c, struct fy_node *n, const char **out)
+{
+  *out = NULL;
+  if (ml_is_null(n))
+    return ml_fail(c, n, FB_EPARSE, "expected a string, got nothing");
+  if (!fy_node_is_scalar(n))
+    return ml_fail(c, n, FB_EPARSE, "expected a string, got %s", ml_kind_word(n));
+  *out = fy_node_get_scalar0(n);
+  if (!*out)
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory reading a YAML scalar");
+  return FB_OK;
+}
+
+int ml_is_identifier(const char *s)
+{
+  int ok = isalpha((unsigned char)s[0]) || s[0] == '_';
+  for (size_t i = 0; ok && s[i]; ++i)
+    ok = isalnum((unsigned char)s[i]) || s[i] == '_';
+  return ok;
+}
+
+int ml_name(const ml_ctx *c, struct fy_node *n, const char *what, const char **out)
+{
+  int rc = ml_string(c, n, out);
+  if (rc)
+    return rc;
+  if (!ml_is_identifier(*out))
+    return ml_fail(c, n, FB_EPARSE,
+                   "%s '%s' must start with a letter or '_' and contain only letters, "
+                   "digits and '_'",
+                   what, *out);
+  return FB_OK;
+}
+
+int ml_bool(const ml_ctx *c, struct fy_node *n, int *out)
+{
+  static const char *const yes[] = {"true", "True", "TRUE", "yes", "Yes", "on", NULL};
+  static const char *const no[] = {"false", "False", "FALSE", "no", "No", "off", NULL};
+  const char *t = NULL;
+  int rc = ml_string(c, n, &t);
+  if (rc)
+    return rc;
+  for (size_t i = 0; yes[i]; ++i)
+    if (!strcmp(t, yes[i]) || !strcmp(t, no[i])) {
+      *out = !strcmp(t, yes[i]);
+      return FB_OK;
+    }
+  return ml_fail(c, n, FB_EPARSE, "expected true or false, got '%s'", t);
+}
+
+/* A whole-text decimal number, as strtod reads it. */
+static int ml_parse_plain_number(const char *text, double *out)
+{
+  char *end = NULL;
+  double v = strtod(text, &end);
+  if (end == text)
+    return 0;
+  while (isspace((unsigned char)*end))
+    ++end;
+  if (*end)
+    return 0;
+  *out = v;
+  return 1;
+}
+
+int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double *out)
+{
+  if (ml_is_null(n))
+    return ml_fail(c, n, FB_EPARSE, "expected a number or expression, got nothing");
+  if (!fy_node_is_scalar(n))
+    return ml_fail(c, n, FB_EPARSE, "expected a number or expression, got %s", ml_kind_word(n));
+  const char *text = fy_node_get_scalar0(n);
+  if (!text)
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory reading a YAML scalar");
+  double v = 0;
+  if (ml_parse_plain_number(text, &v)) {
+    if (!isfinite(v))
+      return ml_fail(c, n, FB_EINVAL, "must be finite (got %s)", text);
+    *out = v;
+    return FB_OK;
+  }
+  if (fb_expr_eval_const(text, syms, &v, c->err) != FB_OK) {
+    fb_err_prefix(c->err, "expression '%s': ", text);
+    return ml_blame(c, n);
+  }
+  *out = v;
+  return FB_OK;
+}
+
+int ml_opt_number(const ml_ctx *c, struct fy_node *map, const char *key, const fb_symtab *syms,
+                  double *out)
+{
+  struct fy_node *key_node = NULL;
+  struct fy_node *v = ml_get(map, key, &key_node);
+  if (!key_node)
+    return FB_OK;
+  if (ml_is_null(v))
+    return ml_fail_key(c, map, key_node, FB_EPARSE, "missing value");
+  return ml_number(c, v, syms, out);
+}
+
+int ml_count(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t lo, size_t hi,
+             size_t *out)
+{
+  double v = 0;
+  int rc = ml_number(c, n, syms, &v);
+  if (rc)
+    return rc;
+  if (v != floor(v) || v < (double)lo || v > (double)hi)
+    return ml_fail(c, n, FB_EINVAL, "must be an integer from %zu to %zu (got %g)", lo, hi, v);
+  *out = (size_t)v;
+  return FB_OK;
+}
+
+int ml_resolve_path(const ml_ctx *c, struct fy_node *at, const char *path, char **out)
+{
+  *out = NULL;
+  if (!path[0])
+    return ml_fail(c, at, FB_EPARSE, "empty file name");
+  const char *dir = (path[0] == '/' || !c->base_dir || !c->base_dir[0]) ? NULL : c->base_dir;
+  size_t need = strlen(path) + (dir ? strlen(dir) + 1 : 0) + 1;
+  char *s = malloc(need);
+  if (!s)
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory joining a file path");
+  if (dir)
+    snprintf(s, need, "%s/%s", dir, path);
+  else
+    snprintf(s, need, "%s", path);
+  *out = s;
+  return FB_OK;
+}
