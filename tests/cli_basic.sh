@@ -6,59 +6,9 @@
 # usage: bash tests/cli_basic.sh PATH/TO/flexbond REPO_ROOT
 set -u
 
-if [ $# -ne 2 ]; then
-  echo "usage: $0 PATH/TO/flexbond REPO_ROOT" >&2
-  exit 2
-fi
-FLEXBOND=$1
-REPO_ROOT=$2
-if [ ! -x "$FLEXBOND" ]; then
-  echo "cli_basic: $FLEXBOND is not an executable" >&2
-  exit 2
-fi
-if [ ! -d "$REPO_ROOT" ]; then
-  echo "cli_basic: $REPO_ROOT is not a directory" >&2
-  exit 2
-fi
-
-WORK=$(mktemp -d "${TMPDIR:-/tmp}/fb_cli_basic.XXXXXX") || exit 2
-trap 'rm -rf "$WORK"' EXIT
-OUT=$WORK/stdout
-ERR=$WORK/stderr
-
-failures=0
-checks=0
-
-fail() {
-  echo "cli_basic: FAIL: $*" >&2
-  echo "  stdout: $(head -c 400 "$OUT")" >&2
-  echo "  stderr: $(head -c 400 "$ERR")" >&2
-  failures=$((failures + 1))
-}
-
-# run ARGS...: runs flexbond with stdout and stderr captured; sets $status.
-run() {
-  "$FLEXBOND" "$@" >"$OUT" 2>"$ERR"
-  status=$?
-}
-
-# expect_status CODE DESCRIPTION
-expect_status() {
-  checks=$((checks + 1))
-  [ "$status" -eq "$1" ] || fail "$2: exit status $status, expected $1"
-}
-
-# expect_in FILE TEXT DESCRIPTION: FILE contains TEXT (fixed string).
-expect_in() {
-  checks=$((checks + 1))
-  grep -qF -- "$2" "$1" || fail "$3: '$2' not in $(basename "$1")"
-}
-
-# expect_absent PATH DESCRIPTION
-expect_absent() {
-  checks=$((checks + 1))
-  [ ! -e "$1" ] || fail "$2: $1 was created"
-}
+NAME=cli_basic
+# shellcheck source=clilib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
 
 # ---- Help and version go to stdout with status 0.
 for flag in --help -h; do

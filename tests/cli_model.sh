@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# The flexbond command on model files: the shipped examples run and write
+# what the README says; bad models exit non-zero with `file:line:` and the
+# key in the message, and write nothing.
+#
+# usage: bash tests/cli_model.sh PATH/TO/flexbond REPO_ROOT
+set -u
+NAME=cli_model
+# shellcheck source=clilib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
+
+# ---- The quarter car example: CSV header with units, 5 s at 1 kHz,
+# solver statistics, a PNG figure.
+run sim "$REPO_ROOT/examples/quarter_car.yaml" -o "$WORK/qc" --plot -q
+expect_status 0 "sim quarter_car"
+checks=$((checks + 1))
+head -n 1 "$WORK/qc/probes.csv" | grep -qx \
+  't \[s\],x_body \[m\],a_body \[m/s^2\],deflection \[m\],tire_force \[N\],damper_power \[W\]' ||
+  fail "probes.csv header: $(head -n 1 "$WORK/qc/probes.csv")"
+checks=$((checks + 1))
+[ "$(wc -l <"$WORK/qc/probes.csv")" -eq 5002 ] || fail "probes.csv has 5001 samples + header"
+checks=$((checks + 1))
+tail -n 1 "$WORK/qc/probes.csv" | grep -q '^5,' || fail "last sample at t = 5 s"
+expect_in "$WORK/qc/stats.json" '"steps":' "stats.json"
+checks=$((checks + 1))
+[ "$(head -c 4 "$WORK/qc/probes.png" | od -An -tx1 | tr -d ' ')" = "89504e47" ] ||
+  fail "probes.png is a PNG"
+checks=$((checks + 1))
+[ -z "$(ls -A "$WORK/qc" | grep -v -x -e probes.csv -e stats.json -e probes.png)" ] ||
+  fail "no temporary files left in the output directory"
+
+run diagram "$REPO_ROOT/examples/two_dof_fields.yaml" -o "$WORK/d.dot"
+expect_status 0 "diagram two_dof_fields"
+expect_in "$WORK/d.dot" "digraph" "diagram writes DOT"
+run eig "$REPO_ROOT/examples/two_dof_fields.yaml"
+expect_status 0 "eig two_dof_fields"
+run causality "$REPO_ROOT/examples/quarter_car.yaml"
+expect_status 0 "causality quarter_car"
+expect_in "$OUT" "stroke at Ms" "causality lists strokes"
+
+# ---- Bad models: status, `file:line:` and phrase; no output written.
+good='model: m
+elements:
+  - {name: F, type: Se, value: 1}
+  - {name: J, type: 1}
+  - {name: m, type: I, m: 2}
+bonds:
+  - [F, J]
+  - [J, m]
+simulation: {t_end: 1}'
+
+# bad_model NAME STATUS PHRASE LINE: writes $WORK/NAME.yaml from stdin,
+# runs sim and diagram on it, checks the status and the message.
+bad_model() {
+  local file=$WORK/$1.yaml
+  cat >"$file"
+  run sim "$file" -o "$WORK/out_$1"
+  expect_status "$2" "$1: sim"
+  expect_in "$ERR" "$file:$4:" "$1: sim message has file:line"
+  expect_in "$ERR" "$3" "$1: sim message"
+  expect_absent "$WORK/out_$1" "$1: sim output"
+  run diagram "$file" -o "$WORK/$1.dot"
+  expect_status "$2" "$1: diagram"
+  expect_absent "$WORK/$1.dot" "$1: diagram output"
+}
+
+# libfyaml notices the unclosed mapping at the next line.
+bad_model syntax 2 "missing comma in flow mapping" 4 <<'EOF2'
+model: m
+elements:
+  - {name: F, type: Se, value: 1
+bonds: []
+EOF2
+bad_model unknown_type 2 "unknown element type 'Q'" 3 <<'EOF2'
+model: m
+elements:
+  - {name: F, type: Q}
+EOF2
+bad_model missing_param 2 "ms" 3 <<'EOF2'
+model: m
+elements:
+  - {name: m, type: I, m: ms}
+EOF2
+bad_model negative_mass 2 "m" 3 <<'EOF2'
+model: m
+elements:
+  - {name: m, type: I, m: -250}
+EOF2
+bad_model dimension 2 "dimension" 6 <<'EOF2'
+model: m
+elements:
+  - {name: J, type: 1, dim: 2}
+  - {name: m, type: I, m: 1}
+bonds:
+  - [J, m]
+EOF2
+bad_model nan_value 2 "elements[0].m" 3 <<'EOF2'
+model: m
+elements:
+  - {name: m, type: I, m: .nan}
+EOF2
+
+# Derivative causality: exit 3, the element and bond named, nothing written.
+cat >"$WORK/deriv.yaml" <<'EOF2'
+model: m
+elements:
+  - {name: F, type: Se, value: 1}
+  - {name: J, type: 1}
+  - {name: m, type: I, m: 2}
+  - {name: m2, type: I, m: 1}
+bonds:
+  - [F, J]
+  - [J, m]
+  - {name: b_m2, from: J, to: m2}
+EOF2
+run sim "$WORK/deriv.yaml" -o "$WORK/out_deriv"
+expect_status 3 "derivative causality"
+expect_in "$ERR" "I 'm2' is in derivative causality on bond 'b_m2'" "derivative causality"
+expect_absent "$WORK/out_deriv" "derivative causality output"
+
+# The good model itself runs.
+printf '%s\n' "$good" >"$WORK/good.yaml"
+run sim "$WORK/good.yaml" -o "$WORK/out_good" -q
+expect_status 0 "good model"
+
+echo "$NAME: $checks checks, $failures failed" >&2
+[ "$failures" -eq 0 ]

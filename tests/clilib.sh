@@ -1,0 +1,57 @@
+# Shared setup and assertions of the tests/cli_*.sh scripts. Source it
+# with NAME set to the script's name and the script's arguments
+# (PATH/TO/flexbond REPO_ROOT) in $1 and $2.
+if [ $# -ne 2 ]; then
+  echo "usage: $0 PATH/TO/flexbond REPO_ROOT" >&2
+  exit 2
+fi
+FLEXBOND=$1
+REPO_ROOT=$2
+if [ ! -x "$FLEXBOND" ]; then
+  echo "$NAME: $FLEXBOND is not an executable" >&2
+  exit 2
+fi
+if [ ! -d "$REPO_ROOT" ]; then
+  echo "$NAME: $REPO_ROOT is not a directory" >&2
+  exit 2
+fi
+
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/fb_$NAME.XXXXXX") || exit 2
+trap 'rm -rf "$WORK"' EXIT
+OUT=$WORK/stdout
+ERR=$WORK/stderr
+
+failures=0
+checks=0
+
+fail() {
+  echo "$NAME: FAIL: $*" >&2
+  echo "  stdout: $(head -c 400 "$OUT")" >&2
+  echo "  stderr: $(head -c 400 "$ERR")" >&2
+  failures=$((failures + 1))
+}
+
+# run ARGS...: runs flexbond with stdout and stderr captured; sets $status.
+run() {
+  "$FLEXBOND" "$@" >"$OUT" 2>"$ERR"
+  status=$?
+}
+
+# expect_status CODE DESCRIPTION
+expect_status() {
+  checks=$((checks + 1))
+  [ "$status" -eq "$1" ] || fail "$2: exit status $status, expected $1"
+}
+
+# expect_in FILE TEXT DESCRIPTION: FILE contains TEXT (fixed string).
+expect_in() {
+  checks=$((checks + 1))
+  grep -qF -- "$2" "$1" || fail "$3: '$2' not in $(basename "$1")"
+}
+
+# expect_absent PATH DESCRIPTION
+expect_absent() {
+  checks=$((checks + 1))
+  [ ! -e "$1" ] || fail "$2: $1 was created"
+}
+
