@@ -12,25 +12,10 @@
 #define VAR_E(b) (2 * (b))
 #define VAR_F(b) (2 * (b) + 1)
 
-static int grow(void **arr, size_t *cap, size_t n, size_t elsize)
-{
-  if (n < *cap)
-    return FB_OK;
-  size_t ncap = *cap ? 2 * *cap : 16;
-  while (ncap <= n)
-    ncap *= 2;
-  void *p = realloc(*arr, ncap * elsize);
-  if (!p)
-    return FB_ENOMEM;
-  *arr = p;
-  *cap = ncap;
-  return FB_OK;
-}
-
 static int new_signal(fb_bd *bd, size_t dim, const char *name, size_t producer, size_t *id,
                       fb_err *err)
 {
-  if (grow((void **)&bd->sigs, &bd->cap_sigs, bd->nsigs, sizeof *bd->sigs))
+  if (fb_grow((void **)&bd->sigs, &bd->cap_sigs, bd->nsigs, sizeof *bd->sigs))
     return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
   bd_signal *s = &bd->sigs[bd->nsigs];
   memset(s, 0, sizeof *s);
@@ -48,7 +33,7 @@ static int new_signal(fb_bd *bd, size_t dim, const char *name, size_t producer, 
 static int new_block(fb_bd *bd, const bd_block_ops *ops, size_t nin, size_t odim, size_t elem,
                      const char *label, const char *signame, size_t *id, fb_err *err)
 {
-  if (grow((void **)&bd->blocks, &bd->cap_blocks, bd->nblocks, sizeof *bd->blocks))
+  if (fb_grow((void **)&bd->blocks, &bd->cap_blocks, bd->nblocks, sizeof *bd->blocks))
     return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
   bd_block *b = &bd->blocks[bd->nblocks];
   memset(b, 0, sizeof *b);
@@ -622,7 +607,7 @@ static int probe_signal(fb_bd *bd, const fb_probe_spec *p, size_t *sig, size_t *
 static int push_output(fb_bd *bd, const char *name, const char *unit, size_t sig, size_t comp,
                        double gain, fb_err *err)
 {
-  if (grow((void **)&bd->outs, &bd->cap_outs, bd->nouts, sizeof *bd->outs))
+  if (fb_grow((void **)&bd->outs, &bd->cap_outs, bd->nouts, sizeof *bd->outs))
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   bd_output *o = &bd->outs[bd->nouts];
   o->name = fb_strdup(name);

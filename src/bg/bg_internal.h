@@ -7,6 +7,8 @@
 
 #include "flexbond/bg.h"
 
+#include "core/util.h"
+
 #define FB_NONE SIZE_MAX
 
 /* Causal stroke of a bond: which end receives the effort. */
@@ -72,7 +74,5 @@ int fb_bg_receives_effort(const fb_bg *bg, size_t b, size_t e);
 int fb_bg_orientation(const fb_bg *bg, size_t b, size_t e);
 /* "I 'Ms'" style description of an element for messages. */
 void fb_bg_describe(const fb_bg *bg, size_t e, char *buf, size_t size);
-/* Duplicate of a string (NULL on allocation failure). */
-char *fb_strdup(const char *s);
 
 #endif

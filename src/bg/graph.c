@@ -5,31 +5,6 @@
 
 #include "bg/bg_internal.h"
 
-char *fb_strdup(const char *s)
-{
-  size_t n = strlen(s) + 1;
-  char *d = malloc(n);
-  if (d)
-    memcpy(d, s, n);
-  return d;
-}
-
-/* Grows *arr (elements of size elsize) so that index n is valid. */
-static int grow(void **arr, size_t *cap, size_t n, size_t elsize)
-{
-  if (n < *cap)
-    return FB_OK;
-  size_t ncap = *cap ? 2 * *cap : 8;
-  while (ncap <= n)
-    ncap *= 2;
-  void *p = realloc(*arr, ncap * elsize);
-  if (!p)
-    return FB_ENOMEM;
-  *arr = p;
-  *cap = ncap;
-  return FB_OK;
-}
-
 const char *fb_bg_kind_name(fb_bg_kind kind)
 {
   switch (kind) {
@@ -174,7 +149,7 @@ static int add_elem(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, si
     return rc;
   if (dim == 0)
     return fb_err_set(err, FB_EMODEL, "element '%s': dimension must be >= 1", name);
-  if (grow((void **)&bg->elems, &bg->cap_elems, bg->nelems, sizeof *bg->elems))
+  if (fb_grow((void **)&bg->elems, &bg->cap_elems, bg->nelems, sizeof *bg->elems))
     return fb_err_set(err, FB_ENOMEM, "out of memory adding '%s'", name);
   fb_bg_elem *el = &bg->elems[bg->nelems];
   memset(el, 0, sizeof *el);
@@ -450,7 +425,7 @@ static int attach(fb_bg *bg, const port_ref *pr, const char *ref, size_t b, size
 {
   fb_bg_elem *el = &bg->elems[pr->elem];
   if (pr->slot == FB_NONE) {
-    if (grow((void **)&el->bonds, &el->cap, el->nports, sizeof *el->bonds))
+    if (fb_grow((void **)&el->bonds, &el->cap, el->nports, sizeof *el->bonds))
       return fb_err_set(err, FB_ENOMEM, "out of memory");
     el->bonds[el->nports] = b;
     *slot = el->nports++;
@@ -519,7 +494,7 @@ int fb_bg_connect(fb_bg *bg, const char *name, const char *from, const char *to,
   }
   if (rc)
     return rc;
-  if (grow((void **)&bg->bonds, &bg->cap_bonds, bg->nbonds, sizeof *bg->bonds))
+  if (fb_grow((void **)&bg->bonds, &bg->cap_bonds, bg->nbonds, sizeof *bg->bonds))
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   size_t id = bg->nbonds;
   fb_bg_bond *bd = &bg->bonds[id];
@@ -566,7 +541,7 @@ int fb_bg_set_bond_domain(fb_bg *bg, const char *bond, fb_bg_domain domain, fb_e
 static int push_portdef(fb_bg *bg, char *name, fb_bg_dir dir, int exported, size_t elem,
                         size_t slot, size_t dim, fb_err *err)
 {
-  if (grow((void **)&bg->ports, &bg->cap_ports, bg->nports, sizeof *bg->ports)) {
+  if (fb_grow((void **)&bg->ports, &bg->cap_ports, bg->nports, sizeof *bg->ports)) {
     free(name);
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   }
@@ -644,10 +619,10 @@ static int prefix_names(fb_bg *child, const char *inst, fb_err *err)
 
 static int reserve_all(fb_bg *p, const fb_bg *c)
 {
-  if (grow((void **)&p->elems, &p->cap_elems, p->nelems + c->nelems, sizeof *p->elems) ||
-      grow((void **)&p->bonds, &p->cap_bonds, p->nbonds + c->nbonds, sizeof *p->bonds) ||
-      grow((void **)&p->ports, &p->cap_ports, p->nports + c->nports, sizeof *p->ports) ||
-      grow((void **)&p->instances, &p->cap_instances, p->ninstances, sizeof *p->instances))
+  if (fb_grow((void **)&p->elems, &p->cap_elems, p->nelems + c->nelems, sizeof *p->elems) ||
+      fb_grow((void **)&p->bonds, &p->cap_bonds, p->nbonds + c->nbonds, sizeof *p->bonds) ||
+      fb_grow((void **)&p->ports, &p->cap_ports, p->nports + c->nports, sizeof *p->ports) ||
+      fb_grow((void **)&p->instances, &p->cap_instances, p->ninstances, sizeof *p->instances))
     return FB_ENOMEM;
   return FB_OK;
 }

@@ -135,3 +135,23 @@ int cli_print_help(const char *text)
   fputs(text, stdout);
   return cli_report(cli_flush_stdout(&err), &err);
 }
+
+int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopts,
+                            const char *usage, const char **model_path, int *exit_code)
+{
+  size_t npos = 0;
+  *model_path = NULL;
+  *exit_code = cli_parse(argc, argv, opts, nopts, model_path, 1, &npos);
+  if (*exit_code != CLI_EXIT_OK)
+    return 0;
+  for (size_t i = 0; i < nopts; ++i)
+    if (strcmp(opts[i].name, "--help") == 0 && opts[i].value) {
+      *exit_code = cli_print_help(usage);
+      return 0;
+    }
+  if (npos != 1) {
+    *exit_code = cli_usage_error(argv[0], "missing MODEL file");
+    return 0;
+  }
+  return 1;
+}

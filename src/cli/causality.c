@@ -94,14 +94,9 @@ int cli_cmd_causality(int argc, char **argv)
 {
   enum { OPT_HELP, NOPTS };
   cli_option opts[NOPTS] = {[OPT_HELP] = {"--help", "-h", 0, NULL}};
-  const char *model_path = NULL;
-  size_t npos = 0;
-  int rc = cli_parse(argc, argv, opts, NOPTS, &model_path, 1, &npos);
-  if (rc != CLI_EXIT_OK)
-    return rc;
-  if (opts[OPT_HELP].value)
-    return cli_print_help(causality_usage);
-  if (npos != 1)
-    return cli_usage_error(argv[0], "missing MODEL file");
+  const char *model_path;
+  int code;
+  if (!cli_parse_model_command(argc, argv, opts, NOPTS, causality_usage, &model_path, &code))
+    return code;
   return run(model_path);
 }

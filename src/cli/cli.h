@@ -38,6 +38,13 @@ typedef struct cli_option {
 int cli_parse(int argc, char **argv, cli_option *opts, size_t nopts, const char **positional,
               size_t max_positional, size_t *npositional);
 
+/* The common front of a command that takes one MODEL argument: parses
+ * argv into opts (which must include "--help"), prints usage for --help.
+ * Returns 1 when the command should run with *model_path, 0 when it is
+ * done, with its exit code in *exit_code. */
+int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopts,
+                            const char *usage, const char **model_path, int *exit_code);
+
 /* Prints "flexbond CMD: <message>" and a pointer to CMD --help to stderr;
  * returns CLI_EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...)

@@ -63,15 +63,10 @@ int cli_cmd_diagram(int argc, char **argv)
       [OPT_OUT] = {"--output", "-o", 1, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
-  const char *model_path = NULL;
-  size_t npos = 0;
-  int rc = cli_parse(argc, argv, opts, NOPTS, &model_path, 1, &npos);
-  if (rc != CLI_EXIT_OK)
-    return rc;
-  if (opts[OPT_HELP].value)
-    return cli_print_help(diagram_usage);
-  if (npos != 1)
-    return cli_usage_error(argv[0], "missing MODEL file");
+  const char *model_path;
+  int code;
+  if (!cli_parse_model_command(argc, argv, opts, NOPTS, diagram_usage, &model_path, &code))
+    return code;
   const char *out_path = opts[OPT_OUT].value;
   if (out_path && !*out_path)
     return cli_usage_error(argv[0], "empty output file name");

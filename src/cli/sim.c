@@ -210,14 +210,9 @@ int cli_cmd_sim(int argc, char **argv)
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
   sim_args a = {0};
-  size_t npos = 0;
-  int rc = cli_parse(argc, argv, opts, NOPTS, &a.model_path, 1, &npos);
-  if (rc != CLI_EXIT_OK)
+  int rc;
+  if (!cli_parse_model_command(argc, argv, opts, NOPTS, sim_usage, &a.model_path, &rc))
     return rc;
-  if (opts[OPT_HELP].value)
-    return cli_print_help(sim_usage);
-  if (npos != 1)
-    return cli_usage_error(argv[0], "missing MODEL file");
   a.out_dir = opts[OPT_OUT].value;
   if (!a.out_dir || !*a.out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");

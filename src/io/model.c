@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "io/model_internal.h"
 
 struct fb_model {
@@ -157,15 +158,6 @@ static int ml_probe_name_ok(const char *s)
   return 1;
 }
 
-static char *ml_strdup(const char *s)
-{
-  size_t n = strlen(s) + 1;
-  char *d = malloc(n);
-  if (d)
-    memcpy(d, s, n);
-  return d;
-}
-
 /* The probe's name: given, or "target.kind". */
 static int ml_probe_name(const ml_ctx *c, const fb_model *m, struct fy_node *p,
                          const char *target, fb_probe_kind kind, char **out)
@@ -237,8 +229,8 @@ static int ml_probe(const ml_ctx *c, fb_model *m, struct fy_node *p)
     rc = ml_probe_name(c, m, p, target, spec.kind, &own[0]);
   if (rc)
     return rc;
-  own[1] = ml_strdup(target);
-  own[2] = unit ? ml_strdup(unit) : NULL;
+  own[1] = fb_strdup(target);
+  own[2] = unit ? fb_strdup(unit) : NULL;
   if (!own[1] || (unit && !own[2]))
     return fb_err_set(c->err, FB_ENOMEM, "out of memory");
   spec.name = own[0];
@@ -350,7 +342,7 @@ static int ml_model_name(const ml_ctx *c, fb_model *m, struct fy_node *root)
     rc = ml_name(c, v, "model name", &name);
   if (rc)
     return rc;
-  m->name = ml_strdup(name);
+  m->name = fb_strdup(name);
   if (!m->name)
     return fb_err_set(c->err, FB_ENOMEM, "out of memory");
   if (fb_bg_new(name, &m->bg, c->err))

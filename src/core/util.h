@@ -1,0 +1,14 @@
+/* Small internal helpers shared by the library's modules. */
+#ifndef FLEXBOND_CORE_UTIL_H
+#define FLEXBOND_CORE_UTIL_H
+
+#include <stddef.h>
+
+/* Duplicate of s in fresh memory (NULL when out of memory). */
+char *fb_strdup(const char *s);
+
+/* Grows the array *arr of elements of size elsize (capacity *cap) so that
+ * index n is valid, doubling; FB_ENOMEM (leaving *arr intact) on failure. */
+int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize);
+
+#endif
