@@ -174,6 +174,21 @@ static void test_twoports_and_composite(void)
   CHECK(strstr(err.msg, "TF 'T'") != NULL);
   fb_bg_free(&bg);
 
+  /* A TF between the two ports of one 2-port I field: both ports want
+   * integral causality, so the TF would get the effort from both sides. */
+  MUST(fb_bg_new("tf_conflict", &bg, &err), &err);
+  const size_t ones[2] = {1, 1};
+  const double md[2] = {2.0, 3.0};
+  fb_mat *mm = NULL;
+  MUST(fb_mat_new_diag(2, md, &mm, &err), &err);
+  MUST(fb_bg_add_field(bg, "I", FB_BG_I, 2, ones, &mm, &err), &err);
+  MUST(fb_bg_add_tf(bg, "T", FB_BG_TF, 1, 2.0, &err), &err);
+  MUST(fb_bg_connect(bg, "b1", "I.1", "T.1", &err), &err);
+  MUST(fb_bg_connect(bg, "b2", "T.2", "I.2", &err), &err);
+  CHECK(fb_bg_assign_causality(bg, &err) == FB_ECAUSAL);
+  CHECK(strstr(err.msg, "TF 'T'") && strstr(err.msg, "'b1'") && strstr(err.msg, "'b2'"));
+  fb_bg_free(&bg);
+
   /* Composite: two scalar bonds stacked into one 2-dimensional multibond. */
   MUST(fb_bg_new("comp", &bg, &err), &err);
   const size_t parts[2] = {1, 1};

@@ -98,7 +98,8 @@ int fb_bd_is_linear(const fb_bd *bd);
 int fb_bd_jacobian_dense(fb_bd *bd, double t, const double *x, double *jac, fb_err *err);
 
 /* Breakpoints of all sources, sorted and unique, written to bp (at most
- * max). With bp == NULL, returns an upper bound of their number. */
+ * max), earliest first; returns how many were written (0 when out of
+ * memory). With bp == NULL, returns an upper bound of their number. */
 size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max);
 
 /* Graphviz DOT of the diagram, one cluster per subsystem. */

@@ -5,14 +5,19 @@
 
 #include "bd/bd_internal.h"
 
-/* Writes s with DOT string escaping. */
+/* Writes the first n bytes of s (up to its end) with DOT string escaping. */
+static void put_escaped_n(FILE *fp, const char *s, size_t n)
+{
+  for (size_t i = 0; i < n && s[i]; ++i) {
+    if (s[i] == '"' || s[i] == '\\')
+      fputc('\\', fp);
+    fputc(s[i], fp);
+  }
+}
+
 static void put_escaped(FILE *fp, const char *s)
 {
-  for (; *s; ++s) {
-    if (*s == '"' || *s == '\\')
-      fputc('\\', fp);
-    fputc(*s, fp);
-  }
+  put_escaped_n(fp, s, (size_t)-1);
 }
 
 /* Length of the subsystem prefix of an element name ("a.b.x" -> 3), 0
@@ -72,8 +77,11 @@ int fb_bd_write_dot(const fb_bd *bd, FILE *fp, fb_err *err)
     if (!first)
       continue;
     if (len) {
-      fprintf(fp, "  subgraph \"cluster_%.*s\" {\n  label=\"%.*s\";\n", (int)len, g, (int)len,
-              g);
+      fputs("  subgraph \"cluster_", fp);
+      put_escaped_n(fp, g, len);
+      fputs("\" {\n  label=\"", fp);
+      put_escaped_n(fp, g, len);
+      fputs("\";\n", fp);
     }
     for (size_t j = i; j < bd->nblocks; ++j) {
       size_t lj;

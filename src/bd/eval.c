@@ -177,22 +177,26 @@ static int cmp_double(const void *a, const void *b)
 size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max)
 {
   size_t total = 0;
-  for (size_t i = 0; i < bd->nblocks; ++i) {
-    const bd_block *b = &bd->blocks[i];
-    if (b->ops != &fb_bd_source_ops)
-      continue;
-    for (size_t c = 0; c < b->odim; ++c) {
-      size_t room = bp && total < max ? max - total : 0;
-      total += fb_tfun_breakpoints(b->fns[c], room ? bp + total : NULL, room);
-    }
-  }
-  if (!bp)
+  for (size_t i = 0; i < bd->nblocks; ++i)
+    if (bd->blocks[i].ops == &fb_bd_source_ops)
+      for (size_t c = 0; c < bd->blocks[i].odim; ++c)
+        total += fb_tfun_breakpoints(bd->blocks[i].fns[c], NULL, 0);
+  if (!bp || total == 0)
     return total;
-  size_t n = total < max ? total : max;
-  qsort(bp, n, sizeof *bp, cmp_double);
+  /* Collect all, then sort, merge duplicates and keep the earliest max. */
+  double *all = malloc(total * sizeof *all);
+  if (!all)
+    return 0;
+  size_t n = 0;
+  for (size_t i = 0; i < bd->nblocks; ++i)
+    if (bd->blocks[i].ops == &fb_bd_source_ops)
+      for (size_t c = 0; c < bd->blocks[i].odim; ++c)
+        n += fb_tfun_breakpoints(bd->blocks[i].fns[c], all + n, total - n);
+  qsort(all, n, sizeof *all, cmp_double);
   size_t u = 0;
-  for (size_t i = 0; i < n; ++i)
-    if (u == 0 || bp[i] != bp[u - 1])
-      bp[u++] = bp[i];
+  for (size_t i = 0; i < n && u < max; ++i)
+    if (u == 0 || all[i] != bp[u - 1])
+      bp[u++] = all[i];
+  free(all);
   return u;
 }

@@ -121,7 +121,24 @@ static int twoport_rule(scap *s, size_t e, int same)
   size_t b0 = el->bonds[0], b1 = el->bonds[1];
   int set0 = s->bg->bonds[b0].stroke != FB_STROKE_UNSET;
   int set1 = s->bg->bonds[b1].stroke != FB_STROKE_UNSET;
-  if (set0 == set1)
+  if (set0 && set1) {
+    int r0 = fb_bg_receives_effort(s->bg, b0, e), r1 = fb_bg_receives_effort(s->bg, b1, e);
+    if ((same && r0 == r1) || (!same && r0 != r1))
+      return FB_OK;
+    char here[160], c0[160], c1[160];
+    fb_bg_describe(s->bg, e, here, sizeof here);
+    fb_bg_describe(s->bg, s->bg->bonds[b0].cause, c0, sizeof c0);
+    fb_bg_describe(s->bg, s->bg->bonds[b1].cause, c1, sizeof c1);
+    return fb_err_set(s->err, FB_ECAUSAL,
+                      "causal conflict at %s: bond '%s' (from %s) and bond '%s' (from %s) both "
+                      "%s, but %s",
+                      here, s->bg->bonds[b0].name, c0, s->bg->bonds[b1].name, c1,
+                      r0 ? "bring it an effort" : "take an effort from it",
+                      same ? "a gyrator needs both ports alike"
+                           : "a transformer passes the effort through, in at one port and out "
+                             "at the other");
+  }
+  if (!set0 && !set1)
     return FB_OK;
   size_t known = set0 ? b0 : b1, other = set0 ? b1 : b0;
   int r = fb_bg_receives_effort(s->bg, known, e);

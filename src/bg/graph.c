@@ -189,8 +189,11 @@ int fb_bg_add_source(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, f
       rc = fb_err_set(err, FB_EINVAL, "'%s': component %zu has no time function", name, i + 1);
   if (!rc)
     rc = add_elem(bg, name, kind, dim, 1, &dim, &el, err);
-  if (!rc && !(el->values = calloc(dim, sizeof *el->values)))
+  if (!rc && !(el->values = calloc(dim, sizeof *el->values))) {
     rc = fb_err_set(err, FB_ENOMEM, "out of memory adding '%s'", name);
+    bg->nelems--;
+    elem_release(el);
+  }
   for (size_t i = 0; i < dim; ++i) {
     if (!rc) {
       el->values[i] = values[i];
@@ -247,7 +250,12 @@ int fb_bg_add_field_law(fb_bg *bg, const char *name, fb_bg_kind kind, size_t npo
                         const size_t *port_dims, const fb_law_ops *ops, void *ctx, fb_err *err)
 {
   fb_bg_elem *el = NULL;
-  int rc = add_field_shell(bg, name, kind, nports, port_dims, &el, err);
+  int rc = FB_OK;
+  if (!ops || !ops->eval || !ops->jacobian)
+    rc = fb_err_set(err, FB_EINVAL, "'%s': a nonlinear law needs eval and jacobian functions",
+                    name);
+  if (!rc)
+    rc = add_field_shell(bg, name, kind, nports, port_dims, &el, err);
   if (rc) {
     if (ops && ops->free)
       ops->free(ctx);
@@ -577,7 +585,6 @@ int fb_bg_add_port(fb_bg *bg, const char *port_name, const char *target, fb_bg_d
       return fb_err_set(err, FB_EMODEL,
                         "port '%s' re-exports '%s' with the opposite power direction",
                         port_name, target);
-    inner->used = 1;
   } else if (pr.slot != FB_NONE && bg->elems[pr.elem].bonds[pr.slot] != FB_NONE) {
     return fb_err_set(err, FB_EMODEL, "port '%s': '%s' is already connected", port_name,
                       target);
@@ -585,7 +592,10 @@ int fb_bg_add_port(fb_bg *bg, const char *port_name, const char *target, fb_bg_d
   char *name = fb_strdup(port_name);
   if (!name)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  return push_portdef(bg, name, dir, 1, pr.elem, pr.slot, pr.dim, err);
+  rc = push_portdef(bg, name, dir, 1, pr.elem, pr.slot, pr.dim, err);
+  if (!rc && pr.portdef >= 0)
+    bg->ports[pr.portdef].used = 1; /* re-exported: no longer connectable here */
+  return rc;
 }
 
 static char *prefixed(const char *prefix, const char *name)
@@ -597,7 +607,8 @@ static char *prefixed(const char *prefix, const char *name)
   return s;
 }
 
-/* Renames every element and bond of child with the instance prefix. */
+/* Renames every element, bond and exported port of child with the
+ * instance prefix. */
 static int prefix_names(fb_bg *child, const char *inst, fb_err *err)
 {
   for (size_t i = 0; i < child->nelems; ++i) {
@@ -613,6 +624,15 @@ static int prefix_names(fb_bg *child, const char *inst, fb_err *err)
       return fb_err_set(err, FB_ENOMEM, "out of memory");
     free(child->bonds[i].name);
     child->bonds[i].name = s;
+  }
+  for (size_t i = 0; i < child->nports; ++i) {
+    if (!child->ports[i].exported)
+      continue;
+    char *s = prefixed(inst, child->ports[i].name);
+    if (!s)
+      return fb_err_set(err, FB_ENOMEM, "out of memory");
+    free(child->ports[i].name);
+    child->ports[i].name = s;
   }
   return FB_OK;
 }
@@ -659,22 +679,25 @@ int fb_bg_adopt(fb_bg *parent, fb_bg **childp, const char *instance_name, fb_err
     bd->stroke = FB_STROKE_UNSET;
     parent->bonds[parent->nbonds++] = *bd;
   }
-  for (size_t i = 0; i < child->nports && !rc; ++i) {
+  /* Exported ports become the parent's connectable "inst.port" entries;
+   * inner subsystems' ports stay encapsulated. Capacity was reserved. */
+  for (size_t i = 0; i < child->nports; ++i) {
     fb_bg_portdef *pd = &child->ports[i];
     if (!pd->exported)
-      continue; /* inner subsystems' ports stay encapsulated */
-    char *s = prefixed(instance_name, pd->name);
-    if (!s)
-      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-    else
-      rc = push_portdef(parent, s, pd->dir, 0, pd->elem + eoff, pd->slot, pd->dim, err);
+      continue;
+    fb_bg_portdef *np = &parent->ports[parent->nports++];
+    *np = *pd;
+    np->exported = 0;
+    np->used = 0;
+    np->elem += eoff;
+    pd->name = NULL;
   }
   parent->instances[parent->ninstances++] = inst;
   parent->causal = 0;
   /* The parent now owns the elements' and bonds' contents. */
   child->nelems = child->nbonds = 0;
   fb_bg_free(&child);
-  return rc;
+  return FB_OK;
 }
 
 /* ---- Inspection. */
