@@ -15,7 +15,7 @@ for flag in --help -h; do
   run "$flag"
   expect_status 0 "flexbond $flag"
   expect_in "$OUT" "usage: flexbond" "flexbond $flag"
-  for cmd in sim diagram causality eig; do
+  for cmd in sim diagram causality eig run modes; do
     expect_in "$OUT" "$cmd" "flexbond $flag lists $cmd"
   done
 done
@@ -25,7 +25,7 @@ expect_status 0 "flexbond --version"
 checks=$((checks + 1))
 [ "$(cat "$OUT")" = "flexbond 0.1.0" ] || fail "--version prints 'flexbond 0.1.0'"
 
-for cmd in sim diagram causality eig; do
+for cmd in sim diagram causality eig run modes; do
   run "$cmd" --help
   expect_status 0 "flexbond $cmd --help"
   expect_in "$OUT" "usage: flexbond $cmd" "flexbond $cmd --help"

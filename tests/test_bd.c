@@ -162,8 +162,8 @@ static void test_augmented(void)
   fb_err_clear(&err);
   fb_bg *bg = quarter_car(0.0, &err);
   fb_probe_spec probes[2] = {
-      {"p_cs", FB_PROBE_POWER, "b_cs", -1, 0, 1.0, NULL},
-      {"z_s", FB_PROBE_FLOW, "b_ms", -1, 1, 1.0, NULL},
+      {"p_cs", FB_PROBE_POWER, "b_cs", -1, 0, 1.0, NULL, NULL, 0},
+      {"z_s", FB_PROBE_FLOW, "b_ms", -1, 1, 1.0, NULL, NULL, 0},
   };
   fb_bd *bd = NULL;
   MUST(fb_bd_build(bg, probes, 2, &bd, &err), &err);
@@ -451,7 +451,7 @@ static void test_nonlinear_law(void)
   MUST(fb_bg_add_junction(bg, "J", FB_BG_J1, 1, &err), &err);
   MUST(fb_bg_connect(bg, "bm", "J", "m", &err), &err);
   MUST(fb_bg_connect(bg, "bk", "J", "k", &err), &err);
-  fb_probe_spec probe = {"E_k", FB_PROBE_ENERGY, "k", -1, 0, 1.0, NULL};
+  fb_probe_spec probe = {"E_k", FB_PROBE_ENERGY, "k", -1, 0, 1.0, NULL, NULL, 0};
   fb_bd *bd = NULL;
   MUST(fb_bd_build(bg, &probe, 1, &bd, &err), &err);
   if (bd) {

@@ -302,8 +302,8 @@ static void test_mkdir_p(void)
 static int simulate_mass(fb_bg **bg, fb_bd **bd, fb_result **res, fb_err *err)
 {
   /* The second probe's name needs CSV quoting: a comma and a quote. */
-  const fb_probe_spec probes[2] = {{"p", FB_PROBE_STATE, "m", 0, 0, 1.0, NULL},
-                                   {"v,\"m\"", FB_PROBE_FLOW, "b", 0, 0, 1.0, "m/s"}};
+  const fb_probe_spec probes[2] = {{"p", FB_PROBE_STATE, "m", 0, 0, 1.0, NULL, NULL, 0},
+                                   {"v,\"m\"", FB_PROBE_FLOW, "b", 0, 0, 1.0, "m/s", NULL, 0}};
   int rc = fb_bg_new("csv", bg, err);
   if (!rc)
     rc = add_const_source(*bg, "F", FB_BG_SE, CSV_FORCE, err);

@@ -123,8 +123,8 @@ static int build_msd(fb_tfun **force, const damper_law *damper, fb_bg **bg, fb_b
     rc = fb_bg_connect(*bg, "bk", "J", "spring", err);
   if (!rc)
     rc = fb_bg_connect(*bg, "br", "J", "damper", err);
-  const fb_probe_spec probes[2] = {{"x", FB_PROBE_STATE, "spring", 0, 0, 1.0, NULL},
-                                   {"v", FB_PROBE_FLOW, "bm", 0, 0, 1.0, NULL}};
+  const fb_probe_spec probes[2] = {{"x", FB_PROBE_STATE, "spring", 0, 0, 1.0, NULL, NULL, 0},
+                                   {"v", FB_PROBE_FLOW, "bm", 0, 0, 1.0, NULL, NULL, 0}};
   if (!rc)
     rc = fb_bd_build(*bg, probes, 2, bd, err);
   return rc;
@@ -668,7 +668,7 @@ static void test_no_states(void)
     rc = fb_bg_add_field(bg, "R", FB_BG_R, 1, one, &r, &err);
   if (!rc)
     rc = fb_bg_connect(bg, "b", "E", "R", &err);
-  const fb_probe_spec probe = {"i", FB_PROBE_FLOW, "b", 0, 0, 1.0, NULL};
+  const fb_probe_spec probe = {"i", FB_PROBE_FLOW, "b", 0, 0, 1.0, NULL, NULL, 0};
   if (!rc)
     rc = fb_bd_build(bg, &probe, 1, &bd, &err);
   CHECK(rc == FB_OK);

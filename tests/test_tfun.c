@@ -365,8 +365,41 @@ static void test_clone(void)
   fb_tfun_free(&f);
 }
 
+/* A callback that keeps its own copy of a plain-data context. */
+typedef struct affine {
+  double a, b;
+} affine;
+
+static double affine_eval(double t, void *ctx)
+{
+  const affine *p = ctx;
+  return p->a * t + p->b;
+}
+
+static void test_callback_copy(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  affine ctx = {2.0, -1.0};
+  const double kink = 0.5;
+  fb_tfun *f = NULL, *g = NULL;
+  CHECK(fb_tfun_new_callback_copy(affine_eval, &ctx, sizeof ctx, 1, &kink, &f, &err) == FB_OK);
+  ctx.a = 100.0; /* the function does not see later changes of the caller's copy */
+  CHECK(fb_tfun_eval(f, 3.0) == 5.0);
+  CHECK(fb_tfun_clone(f, &g, &err) == FB_OK);
+  fb_tfun_free(&f);
+  /* The clone holds a copy of its own, valid after the original is gone. */
+  CHECK(fb_tfun_eval(g, 1.0) == 1.0);
+  double bp = 0.0;
+  CHECK(fb_tfun_breakpoints(g, &bp, 1) == 1 && bp == 0.5);
+  fb_tfun_free(&g);
+  CHECK(fb_tfun_new_callback_copy(affine_eval, NULL, 0, 0, NULL, &f, &err) == FB_EINVAL);
+  CHECK(f == NULL);
+}
+
 int main(void)
 {
+  test_callback_copy();
   test_const_and_step();
   test_sine();
   test_table();

@@ -70,15 +70,15 @@ static void test_power_balance(void)
   fb_bg *bg = quarter_car_bump(&bp, &err);
   enum { W_ROAD, W_GS, W_GU, D_CS, D_CT, E_MS, E_MU, E_KS, E_KT, NP };
   const fb_probe_spec probes[NP] = {
-      {"w_road", FB_PROBE_POWER, "b_road", -1, 1, 1.0, NULL},
-      {"w_gs", FB_PROBE_POWER, "b_gs", -1, 1, 1.0, NULL},
-      {"w_gu", FB_PROBE_POWER, "b_gu", -1, 1, 1.0, NULL},
-      {"d_cs", FB_PROBE_POWER, "b_cs", -1, 1, 1.0, NULL},
-      {"d_ct", FB_PROBE_POWER, "b_ct", -1, 1, 1.0, NULL},
-      {"e_ms", FB_PROBE_ENERGY, "ms", -1, 0, 1.0, NULL},
-      {"e_mu", FB_PROBE_ENERGY, "mu", -1, 0, 1.0, NULL},
-      {"e_ks", FB_PROBE_ENERGY, "ks", -1, 0, 1.0, NULL},
-      {"e_kt", FB_PROBE_ENERGY, "kt", -1, 0, 1.0, NULL},
+      {"w_road", FB_PROBE_POWER, "b_road", -1, 1, 1.0, NULL, NULL, 0},
+      {"w_gs", FB_PROBE_POWER, "b_gs", -1, 1, 1.0, NULL, NULL, 0},
+      {"w_gu", FB_PROBE_POWER, "b_gu", -1, 1, 1.0, NULL, NULL, 0},
+      {"d_cs", FB_PROBE_POWER, "b_cs", -1, 1, 1.0, NULL, NULL, 0},
+      {"d_ct", FB_PROBE_POWER, "b_ct", -1, 1, 1.0, NULL, NULL, 0},
+      {"e_ms", FB_PROBE_ENERGY, "ms", -1, 0, 1.0, NULL, NULL, 0},
+      {"e_mu", FB_PROBE_ENERGY, "mu", -1, 0, 1.0, NULL, NULL, 0},
+      {"e_ks", FB_PROBE_ENERGY, "ks", -1, 0, 1.0, NULL, NULL, 0},
+      {"e_kt", FB_PROBE_ENERGY, "kt", -1, 0, 1.0, NULL, NULL, 0},
   };
   fb_bd *bd = NULL;
   fb_result *res = NULL;
@@ -177,8 +177,8 @@ static fb_bg *field_2dof(fb_err *err)
 static fb_result *run_xy(fb_bg *bg, fb_err *err)
 {
   const fb_probe_spec probes[2] = {
-      {"x1", FB_PROBE_FLOW, "bm1", -1, 1, 1.0, NULL},
-      {"x2", FB_PROBE_FLOW, "bm2", -1, 1, 1.0, NULL},
+      {"x1", FB_PROBE_FLOW, "bm1", -1, 1, 1.0, NULL, NULL, 0},
+      {"x2", FB_PROBE_FLOW, "bm2", -1, 1, 1.0, NULL, NULL, 0},
   };
   fb_bd *bd = NULL;
   fb_result *res = NULL;
@@ -221,8 +221,45 @@ static void test_fields_trajectories(void)
   fb_bg_free(&g2);
 }
 
+/* Static equilibrium from rest: the springs carry the weights,
+ * q_ks = ms g / ks and q_kt = (ms + mu) g / kt, momenta zero. */
+static void test_static_state(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  bump bp = {0.1, 0.5, 2.0};
+  fb_bg *bg = quarter_car_bump(&bp, &err);
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, NULL, 0, &bd, &err), &err);
+  if (bd) {
+    size_t n = fb_bd_nstates(bd);
+    double x0[8] = {0}, x[8], f[8];
+    CHECK(n == 4);
+    MUST(fb_sim_static_state(bd, 0.0, x0, x, &err), &err);
+    for (size_t i = 0; i < n; ++i) {
+      const char *name = fb_bd_state_name(bd, i);
+      if (strcmp(name, "ks.q") == 0)
+        CHECK_NEAR(x[i], 250.0 * 9.81 / 16000.0, 1e-12);
+      else if (strcmp(name, "kt.q") == 0)
+        CHECK_NEAR(x[i], 285.0 * 9.81 / 160000.0, 1e-12);
+      else
+        CHECK(x[i] == 0.0);
+    }
+    /* At rest: every state derivative vanishes to rounding of ~3000 N. */
+    CHECK(fb_bd_rhs(bd, 0.0, x, f) == 0);
+    for (size_t i = 0; i < n; ++i)
+      CHECK_NEAR(f[i], 0.0, 1e-9);
+    /* During the bump the road moves: no equilibrium, and it says so. */
+    CHECK(fb_sim_static_state(bd, 2.1, x0, x, &err) == FB_ESOLVER);
+    CHECK(strstr(err.msg, "flow sources") != NULL);
+  }
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
 int main(void)
 {
+  test_static_state();
   test_power_balance();
   test_fields_trajectories();
   return check_report("test_verify");

@@ -49,6 +49,11 @@ typedef struct fb_probe_spec {
   int integrate;      /* 1: record the time integral from t = 0 */
   double gain;        /* scale factor applied to the value (1 for none) */
   const char *unit;   /* unit to report, NULL to derive it from the domain */
+  /* When nweights > 0: one scalar output gain * sum_k weights[k] * v[k]
+   * over the nweights components of the (integrated) signal v, such as a
+   * hull torsion angle from node displacements. Borrowed during the build. */
+  const double *weights;
+  size_t nweights;
 } fb_probe_spec;
 
 typedef struct fb_bd fb_bd;
@@ -63,6 +68,17 @@ void fb_bd_free(fb_bd **bd);
 size_t fb_bd_nstates(const fb_bd *bd);
 /* "element.p" / "element.q" with "[k]" (1-based) for vector states. */
 const char *fb_bd_state_name(const fb_bd *bd, size_t i);
+/* What a state is: the momentum p of an I field, the displacement q of a
+ * C field, or the integral kept by an integrating probe. */
+typedef enum fb_state_kind {
+  FB_STATE_MOMENTUM,
+  FB_STATE_DISPLACEMENT,
+  FB_STATE_PROBE
+} fb_state_kind;
+fb_state_kind fb_bd_state_kind(const fb_bd *bd, size_t i);
+/* Graph element index owning state i (its component within the element
+ * in *component if not NULL), or -1 for a probe's integral. */
+long fb_bd_state_element(const fb_bd *bd, size_t i, size_t *component);
 /* Initial state from the graph (fb_bg_set_initial), size nstates. */
 void fb_bd_initial_state(const fb_bd *bd, double *x0);
 size_t fb_bd_nblocks(const fb_bd *bd);

@@ -76,10 +76,17 @@ int fb_tfun_new_expr(fb_expr **e, fb_tfun **out, fb_err *err);
 typedef double (*fb_tfun_fn)(double t, void *ctx);
 int fb_tfun_new_callback(fb_tfun_fn fn, void *ctx, size_t nbreak, const double *breakpoints,
                          fb_tfun **out, fb_err *err);
+/* As fb_tfun_new_callback, but the function keeps its own copy of the
+ * ctx_size bytes at ctx (plain data without pointers), so the caller need
+ * not keep ctx alive; clones copy it again. */
+int fb_tfun_new_callback_copy(fb_tfun_fn fn, const void *ctx, size_t ctx_size, size_t nbreak,
+                              const double *breakpoints, fb_tfun **out, fb_err *err);
 int fb_tfun_clone(const fb_tfun *f, fb_tfun **out, fb_err *err);
 void fb_tfun_free(fb_tfun **f);
 
 double fb_tfun_eval(const fb_tfun *f, double t);
+/* 1 if the value never changes (a constant, or an expression without t). */
+int fb_tfun_is_constant(const fb_tfun *f);
 /* Times where u or its slope jumps (sorted, ascending). Returns how many
  * there are; writes at most max of them to bp (bp may be NULL). */
 size_t fb_tfun_breakpoints(const fb_tfun *f, double *bp, size_t max);

@@ -26,14 +26,61 @@ void fb_out_abort(fb_out **o);
 /* Creates directory dir and its missing parents (mode 0777 & ~umask). */
 int fb_mkdir_p(const char *dir, fb_err *err);
 
-/* Writes r as CSV: header "t [s],name [unit],...", one row per sample,
- * values in %.10g. */
+/* The first line of a CSV file of results. */
+typedef enum fb_csv_header {
+  FB_CSV_HEADER_UNITS, /* "t [s],name [unit],..." (a cell without unit: "name") */
+  FB_CSV_HEADER_NAMES  /* "t,name,...": names only */
+} fb_csv_header;
+
+/* Writes r as CSV into fp: the header line, then one row per sample with
+ * values in %.10g. Write errors stick to the stream (ferror); with an
+ * fb_out stream, fb_out_commit reports them, which lets a caller commit
+ * several files together. */
+void fb_result_print_csv(FILE *fp, const fb_result *r, fb_csv_header header);
+
+/* Writes r as the CSV file path (fb_result_print_csv with
+ * FB_CSV_HEADER_UNITS), atomically. */
 int fb_result_write_csv(const fb_result *r, const char *path, fb_err *err);
 
+/* ---- Figures (PNG, drawn by gnuplot run as a child process: FB_EIO if it
+ * is missing or fails). The file appears only when gnuplot succeeded. */
+
+/* One curve: output column col of result (0 is the first output after
+ * time, as in fb_plot_png) against time. */
+typedef struct fb_plot_series {
+  const fb_result *result; /* borrowed */
+  size_t col;
+  const char *legend; /* key entry, NULL for none (no key at all when no
+                         series of the panel has one) */
+} fb_plot_series;
+
+/* One panel: its curves overlaid (e.g. System 1 and System 2 of the same
+ * output), in the order given (first solid blue, second dashed red, ...). */
+typedef struct fb_plot_panel {
+  const fb_plot_series *series; /* borrowed, nseries >= 1 */
+  size_t nseries;
+  const char *ylabel; /* NULL: "name [unit]" of the first series */
+} fb_plot_panel;
+
+/* Settings of a figure; fb_plot_opts_default fills the defaults below. */
+typedef struct fb_plot_opts {
+  const char *title;   /* over the whole figure, NULL for none (default) */
+  double t_min, t_max; /* time window, s; t_min >= t_max (default 0, 0):
+                          the span of the first series' result */
+  int width;           /* pixels, 0: 900 (default) */
+  int panel_height;    /* pixels per panel, 0: 220 (default) */
+} fb_plot_opts;
+
+void fb_plot_opts_default(fb_plot_opts *opts);
+
+/* Draws panels[0..npanels) stacked vertically, sharing the time axis
+ * "t [s]" over the window, into the PNG file path. FB_EINVAL if a panel
+ * has no series, a column does not exist, or a window holds no sample. */
+int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plot_opts *opts,
+                       const char *path, fb_err *err);
+
 /* Plots output columns cols[0..ncols) of r against time, one panel each
- * (labelled "name [unit]"), into the PNG file path with gnuplot (run as
- * a child process; FB_EIO if it is missing or fails). The file appears
- * only when gnuplot succeeded. title may be NULL. */
+ * (labelled "name [unit]"), over the whole run. title may be NULL. */
 int fb_plot_png(const fb_result *r, const size_t *cols, size_t ncols, const char *title,
                 const char *path, fb_err *err);
 

@@ -69,6 +69,16 @@ long fb_result_find(const fb_result *r, const char *name);
 const fb_sim_stats *fb_result_stats(const fb_result *r);
 void fb_result_free(fb_result **r);
 
+/* Static equilibrium of a mechanical diagram under its inputs at time t,
+ * reached from x0: every momentum (I state) zero, displacements (C
+ * states) q = q0 + dF_q/dp * P with P chosen so that every momentum rate
+ * vanishes, probe integrals unchanged. Starting from x0 = 0 this is the
+ * rest state the paper's settling converges to (statically indeterminate
+ * self-stress stays zero). Linear diagrams are solved exactly (dense LU
+ * of the n_p x n_p matrix dF_p/dq dF_q/dp); FB_ESOLVER if singular (a
+ * free rigid-body mode) or if the residual stays large. */
+int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_err *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -75,8 +75,10 @@ struct fb_bd {
   size_t nblocks, cap_blocks;
   bd_signal *sigs;
   size_t nsigs, cap_sigs;
-  size_t *order; /* evaluation order of non-integrator blocks */
+  size_t *order; /* evaluation order of the varying non-integrator blocks */
   size_t norder;
+  size_t *out_order; /* the part of order that the outputs depend on */
+  size_t nout_order;
   size_t *integ; /* integrator blocks, in state order */
   size_t ninteg;
   size_t nstates; /* = total dimension of integrator outputs */
@@ -84,6 +86,8 @@ struct fb_bd {
   double *w, *dw; /* signal values and perturbations */
   double *x0;
   char **state_names;
+  size_t *state_elem; /* per state: owning element, FB_NONE for probes */
+  size_t *state_comp; /* per state: component within the element */
   bd_output *outs;
   size_t nouts, cap_outs;
   size_t aug_nnz;
@@ -102,6 +106,9 @@ extern const bd_block_ops fb_bd_integrator_ops, fb_bd_source_ops, fb_bd_gain_ops
 /* Evaluation order: topological, integrators cut the cycles. FB_ECAUSAL
  * with the zero-order causal path on an algebraic loop. */
 int fb_bd_schedule(fb_bd *bd, fb_err *err);
+/* Evaluates the blocks of constant inputs once into w and drops them
+ * from the evaluation order; finds the blocks the outputs depend on. */
+int fb_bd_fold_constants(fb_bd *bd, fb_err *err);
 /* Evaluates every block at (t, x); 0, >0 recoverable, <0 fatal. */
 int fb_bd_eval(fb_bd *bd, double t, const double *x);
 

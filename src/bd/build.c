@@ -624,6 +624,31 @@ static int push_output(fb_bd *bd, const char *name, const char *unit, size_t sig
   return FB_OK;
 }
 
+/* Replaces *sig by the scalar sum_k w_k sig_k (a 1 x n gain block). */
+static int weighted_sum(fb_bd *bd, const fb_probe_spec *p, size_t *sig, fb_err *err)
+{
+  size_t n = bd->sigs[*sig].dim;
+  if (p->nweights != n || p->component >= 0)
+    return fb_err_set(err, FB_EMODEL,
+                      "probe '%s': %zu weights for a signal of dimension %zu (weights need "
+                      "one per component and no component selection)",
+                      p->name, p->nweights, n);
+  fb_mat *w = NULL;
+  size_t blk;
+  int rc = fb_mat_new_dense(1, n, p->weights, &w, err);
+  if (!rc)
+    rc = new_block(bd, &fb_bd_gain_ops, 1, 1, FB_NONE, "weights", p->name, &blk, err);
+  if (rc) {
+    fb_mat_free(&w);
+    return rc;
+  }
+  bd->blocks[blk].mat = w;
+  bd->blocks[blk].owns_mat = 1;
+  set_input_sig(bd, blk, 0, *sig);
+  *sig = out_sig(bd, blk);
+  return FB_OK;
+}
+
 static int add_probe(fb_bd *bd, const fb_probe_spec *p, fb_err *err)
 {
   if (!p->name || !*p->name || !p->target)
@@ -649,6 +674,11 @@ static int add_probe(fb_bd *bd, const fb_probe_spec *p, fb_err *err)
       return rc;
     set_input_sig(bd, blk, 0, sig);
     sig = out_sig(bd, blk);
+  }
+  if (p->nweights) {
+    rc = weighted_sum(bd, p, &sig, err);
+    if (rc)
+      return rc;
   }
   size_t dim = bd->sigs[sig].dim;
   if (p->component >= 0 && (size_t)p->component >= dim)
@@ -730,7 +760,9 @@ static int name_states(fb_bd *bd, fb_err *err)
 {
   bd->state_names = calloc(bd->nstates + 1, sizeof *bd->state_names);
   bd->x0 = calloc(bd->nstates + 1, sizeof *bd->x0);
-  if (!bd->state_names || !bd->x0)
+  bd->state_elem = malloc((bd->nstates + 1) * sizeof *bd->state_elem);
+  bd->state_comp = malloc((bd->nstates + 1) * sizeof *bd->state_comp);
+  if (!bd->state_names || !bd->x0 || !bd->state_elem || !bd->state_comp)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; k < bd->ninteg; ++k) {
     const bd_block *b = &bd->blocks[bd->integ[k]];
@@ -745,6 +777,8 @@ static int name_states(fb_bd *bd, fb_err *err)
       if (!(bd->state_names[s->off + i] = fb_strdup(name)))
         return fb_err_set(err, FB_ENOMEM, "out of memory");
       bd->x0[s->off + i] = x0 ? x0[i] : 0.0;
+      bd->state_elem[s->off + i] = b->elem;
+      bd->state_comp[s->off + i] = i;
     }
   }
   return FB_OK;
@@ -791,6 +825,8 @@ static int build(fb_bd *bd, const fb_probe_spec *probes, size_t nprobes, fb_err 
     if (!bd->w || !bd->dw)
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   }
+  if (!rc)
+    rc = fb_bd_fold_constants(bd, err);
   return rc;
 }
 
@@ -838,10 +874,13 @@ void fb_bd_free(fb_bd **bdp)
     for (size_t i = 0; i < bd->nstates; ++i)
       free(bd->state_names[i]);
   free(bd->state_names);
+  free(bd->state_elem);
+  free(bd->state_comp);
   free(bd->blocks);
   free(bd->sigs);
   free(bd->outs);
   free(bd->order);
+  free(bd->out_order);
   free(bd->integ);
   free(bd->w);
   free(bd->dw);

@@ -15,17 +15,23 @@ static int block_failed(fb_bd *bd, size_t blk, int rc)
   return rc;
 }
 
-int fb_bd_eval(fb_bd *bd, double t, const double *x)
+/* Evaluates the blocks order[0 .. n) at (t, x). */
+static int eval_blocks(fb_bd *bd, const size_t *order, size_t n, double t, const double *x)
 {
   bd->errbuf[0] = '\0'; /* the message describes the latest evaluation only */
   memcpy(bd->w, x, bd->nstates * sizeof *x);
-  for (size_t k = 0; k < bd->norder; ++k) {
-    bd_block *b = &bd->blocks[bd->order[k]];
+  for (size_t k = 0; k < n; ++k) {
+    bd_block *b = &bd->blocks[order[k]];
     int rc = b->ops->eval(b, t, bd->w);
     if (rc)
-      return block_failed(bd, bd->order[k], rc);
+      return block_failed(bd, order[k], rc);
   }
   return 0;
+}
+
+int fb_bd_eval(fb_bd *bd, double t, const double *x)
+{
+  return eval_blocks(bd, bd->order, bd->norder, t, x);
 }
 
 int fb_bd_rhs(fb_bd *bd, double t, const double *x, double *xdot)
@@ -55,6 +61,21 @@ const char *fb_bd_state_name(const fb_bd *bd, size_t i)
   return bd->state_names[i];
 }
 
+fb_state_kind fb_bd_state_kind(const fb_bd *bd, size_t i)
+{
+  size_t e = bd->state_elem[i];
+  if (e == FB_NONE)
+    return FB_STATE_PROBE;
+  return bd->bg->elems[e].kind == FB_BG_I ? FB_STATE_MOMENTUM : FB_STATE_DISPLACEMENT;
+}
+
+long fb_bd_state_element(const fb_bd *bd, size_t i, size_t *component)
+{
+  if (component)
+    *component = bd->state_comp[i];
+  return bd->state_elem[i] == FB_NONE ? -1 : (long)bd->state_elem[i];
+}
+
 void fb_bd_initial_state(const fb_bd *bd, double *x0)
 {
   memcpy(x0, bd->x0, bd->nstates * sizeof *x0);
@@ -82,7 +103,9 @@ const char *fb_bd_output_unit(const fb_bd *bd, size_t i)
 
 int fb_bd_outputs(fb_bd *bd, double t, const double *x, double *y)
 {
-  int rc = fb_bd_eval(bd, t, x);
+  /* Only the blocks the outputs depend on: sampling at 1 kHz must not
+   * cost a full evaluation per sample. */
+  int rc = eval_blocks(bd, bd->out_order, bd->nout_order, t, x);
   if (rc)
     return rc;
   for (size_t i = 0; i < bd->nouts; ++i) {

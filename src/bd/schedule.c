@@ -141,3 +141,77 @@ out:
   free(fill);
   return rc;
 }
+
+/* 1 if block i computes a constant: a source of constant functions, or a
+ * block (other than an integrator) all of whose inputs are constant. */
+static int block_is_constant(const fb_bd *bd, size_t i, const unsigned char *cst)
+{
+  const bd_block *b = &bd->blocks[i];
+  if (b->ops == &fb_bd_source_ops) {
+    for (size_t c = 0; c < b->odim; ++c)
+      if (!fb_tfun_is_constant(b->fns[c]))
+        return 0;
+    return 1;
+  }
+  for (size_t k = 0; k < b->nin; ++k)
+    if (!cst[bd->sigs[b->in[k].id].producer])
+      return 0;
+  return 1;
+}
+
+/* Marks in need[] the varying blocks upstream of the output signals. */
+static void mark_output_cone(const fb_bd *bd, const unsigned char *cst, unsigned char *need,
+                             size_t *stack)
+{
+  size_t top = 0;
+  for (size_t o = 0; o < bd->nouts; ++o)
+    stack[top++] = bd->sigs[bd->outs[o].signal].producer;
+  while (top) {
+    size_t i = stack[--top];
+    if (need[i] || cst[i] || is_integrator(bd, i))
+      continue;
+    need[i] = 1;
+    for (size_t k = 0; k < bd->blocks[i].nin; ++k)
+      stack[top++] = bd->sigs[bd->blocks[i].in[k].id].producer;
+  }
+}
+
+int fb_bd_fold_constants(fb_bd *bd, fb_err *err)
+{
+  size_t n = bd->nblocks, nedges = bd->nouts;
+  for (size_t i = 0; i < n; ++i)
+    nedges += bd->blocks[i].nin;
+  unsigned char *cst = calloc(n + 1, 1), *need = calloc(n + 1, 1);
+  size_t *stack = malloc((nedges + n + 1) * sizeof *stack);
+  bd->out_order = malloc((bd->norder + 1) * sizeof *bd->out_order);
+  int rc = cst && need && stack && bd->out_order
+               ? FB_OK
+               : fb_err_set(err, FB_ENOMEM, "out of memory scheduling the block diagram");
+  /* Constants are evaluated once, here, and left out of every later
+   * evaluation; their outputs stay in w and their perturbations stay 0. */
+  size_t kept = 0;
+  for (size_t k = 0; !rc && k < bd->norder; ++k) {
+    size_t i = bd->order[k];
+    cst[i] = (unsigned char)block_is_constant(bd, i, cst);
+    if (!cst[i]) {
+      bd->order[kept++] = i;
+      continue;
+    }
+    bd_block *b = &bd->blocks[i];
+    if (b->ops->eval(b, 0.0, bd->w))
+      rc = fb_err_set(err, FB_EMODEL, "block %s of constant inputs failed to evaluate",
+                      b->label);
+  }
+  if (!rc) {
+    bd->norder = kept;
+    mark_output_cone(bd, cst, need, stack);
+    bd->nout_order = 0;
+    for (size_t k = 0; k < bd->norder; ++k)
+      if (need[bd->order[k]])
+        bd->out_order[bd->nout_order++] = bd->order[k];
+  }
+  free(cst);
+  free(need);
+  free(stack);
+  return rc;
+}

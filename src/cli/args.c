@@ -136,12 +136,13 @@ int cli_print_help(const char *text)
   return cli_report(cli_flush_stdout(&err), &err);
 }
 
-int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopts,
-                            const char *usage, const char **model_path, int *exit_code)
+int cli_parse_file_command(int argc, char **argv, cli_option *opts, size_t nopts,
+                           const char *usage, const char *what, const char **path,
+                           int *exit_code)
 {
   size_t npos = 0;
-  *model_path = NULL;
-  *exit_code = cli_parse(argc, argv, opts, nopts, model_path, 1, &npos);
+  *path = NULL;
+  *exit_code = cli_parse(argc, argv, opts, nopts, path, 1, &npos);
   if (*exit_code != CLI_EXIT_OK)
     return 0;
   for (size_t i = 0; i < nopts; ++i)
@@ -150,8 +151,42 @@ int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopt
       return 0;
     }
   if (npos != 1) {
-    *exit_code = cli_usage_error(argv[0], "missing MODEL file");
+    *exit_code = cli_usage_error(argv[0], "missing %s file", what);
     return 0;
   }
   return 1;
+}
+
+int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopts,
+                            const char *usage, const char **model_path, int *exit_code)
+{
+  return cli_parse_file_command(argc, argv, opts, nopts, usage, "MODEL", model_path, exit_code);
+}
+
+int cli_choice(const char *cmd, const char *name, const char *text, const char *const *choices,
+               size_t nchoices, int *out)
+{
+  for (size_t i = 0; i < nchoices; ++i)
+    if (strcmp(text, choices[i]) == 0) {
+      *out = (int)i;
+      return CLI_EXIT_OK;
+    }
+  char list[256] = "";
+  size_t used = 0;
+  for (size_t i = 0; i < nchoices && used < sizeof list; ++i) {
+    int n = snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", choices[i]);
+    used += n > 0 ? (size_t)n : 0;
+  }
+  return cli_usage_error(cmd, "option '%s' must be one of %s (got '%s')", name, list, text);
+}
+
+char *cli_join_path(const char *dir, const char *name)
+{
+  size_t dlen = strlen(dir);
+  int has_slash = dlen > 0 && dir[dlen - 1] == '/';
+  size_t n = dlen + !has_slash + strlen(name) + 1;
+  char *path = malloc(n);
+  if (path)
+    snprintf(path, n, "%s%s%s", dir, has_slash ? "" : "/", name);
+  return path;
 }

@@ -5,6 +5,7 @@
 #define FLEXBOND_CLI_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/error.h"
 
@@ -38,12 +39,22 @@ typedef struct cli_option {
 int cli_parse(int argc, char **argv, cli_option *opts, size_t nopts, const char **positional,
               size_t max_positional, size_t *npositional);
 
-/* The common front of a command that takes one MODEL argument: parses
- * argv into opts (which must include "--help"), prints usage for --help.
- * Returns 1 when the command should run with *model_path, 0 when it is
- * done, with its exit code in *exit_code. */
+/* The common front of a command that takes one input file argument
+ * (what names it in messages: "MODEL", "SCENARIO"): parses argv into opts
+ * (which must include "--help"), prints usage for --help. Returns 1 when
+ * the command should run with *path, 0 when it is done, with its exit
+ * code in *exit_code. */
+int cli_parse_file_command(int argc, char **argv, cli_option *opts, size_t nopts,
+                           const char *usage, const char *what, const char **path,
+                           int *exit_code);
+/* cli_parse_file_command for a MODEL file. */
 int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopts,
                             const char *usage, const char **model_path, int *exit_code);
+
+/* Index in *out of the option's value text among choices[0..nchoices), or
+ * a usage error listing the choices. */
+int cli_choice(const char *cmd, const char *name, const char *text, const char *const *choices,
+               size_t nchoices, int *out);
 
 /* Prints "flexbond CMD: <message>" and a pointer to CMD --help to stderr;
  * returns CLI_EXIT_USAGE. */
@@ -71,11 +82,44 @@ int cli_flush_stdout(fb_err *err);
 /* Prints text (a usage text) to stdout; returns the exit code. */
 int cli_print_help(const char *text);
 
+/* dir/name in fresh memory (no doubled '/'), NULL when out of memory. */
+char *cli_join_path(const char *dir, const char *name);
+
+/* The files one command writes into an output directory, all or nothing:
+ * each file is committed (renamed into place) as soon as it is complete
+ * and recorded with cli_outdir_keep; if a later one fails,
+ * cli_outdir_close removes every recorded file and the directory itself
+ * when this command created it. */
+typedef struct cli_outdir {
+  const char *dir; /* borrowed */
+  int created;     /* dir did not exist before cli_outdir_open */
+  char **files;    /* committed files, owned */
+  size_t nfiles;
+} cli_outdir;
+
+/* Creates dir and its missing parents. */
+int cli_outdir_open(cli_outdir *od, const char *dir, fb_err *err);
+/* dir/name in fresh memory, or NULL with FB_ENOMEM recorded in err. */
+char *cli_outdir_path(const cli_outdir *od, const char *name, fb_err *err);
+/* Records the committed file path (taken over, freed by close). If that
+ * fails (out of memory) the file is removed and freed at once. */
+int cli_outdir_keep(cli_outdir *od, char *path, fb_err *err);
+/* Writes the file dir/name atomically (fb_out): write(fp, ctx) prints its
+ * content; the file is then committed and recorded. */
+typedef void (*cli_writer)(FILE *fp, const void *ctx);
+int cli_outdir_write(cli_outdir *od, const char *name, cli_writer write, const void *ctx,
+                     fb_err *err);
+/* Finishes: when status is not FB_OK, removes the recorded files and the
+ * directory if created here. Frees the record; returns status. */
+int cli_outdir_close(cli_outdir *od, int status);
+
 /* Subcommands: argv[0] is the command name, as for main. Each returns the
  * program's exit code. */
 int cli_cmd_sim(int argc, char **argv);
 int cli_cmd_diagram(int argc, char **argv);
 int cli_cmd_causality(int argc, char **argv);
 int cli_cmd_eig(int argc, char **argv);
+int cli_cmd_run(int argc, char **argv);
+int cli_cmd_modes(int argc, char **argv);
 
 #endif

@@ -4,13 +4,17 @@
  *   flexbond diagram MODEL.yaml [-o FILE.dot]
  *   flexbond causality MODEL.yaml
  *   flexbond eig MODEL.yaml
+ *   flexbond run SCENARIO.yaml -o DIR [--system rigid|flexible|both]
+ *                [--initial zero|static] [--payload weight-only|lumped] [-q]
+ *   flexbond modes SCENARIO.yaml [--system rigid|flexible]
  *   flexbond --help | -h | --version,  flexbond COMMAND --help
  *
  * Exit codes:
  *   0  success
  *   1  usage error: unknown command or option, missing or extra argument,
- *      option value that is not a finite number > 0
- *   2  input error: the model could not be parsed or is invalid
+ *      option value that is not a finite number > 0 or not one of the
+ *      choices, a system that is not available yet
+ *   2  input error: the model or scenario could not be parsed or is invalid
  *      (FB_EPARSE, FB_EINVAL, FB_EMODEL)
  *   3  causality error: conflict, derivative causality, algebraic loop
  *      (FB_ECAUSAL)
@@ -35,11 +39,13 @@ static const cli_command commands[] = {
     {"diagram", cli_cmd_diagram, "write the block diagram as Graphviz DOT"},
     {"causality", cli_cmd_causality, "list the bonds with their causal strokes"},
     {"eig", cli_cmd_eig, "eigenvalues of the model linearised at its initial state"},
+    {"run", cli_cmd_run, "simulate a vehicle scenario: CSV, the paper's Figs. 8-14, summary"},
+    {"modes", cli_cmd_modes, "natural frequencies and damped modes of a vehicle scenario"},
 };
 
 static void print_usage(FILE *fp)
 {
-  fputs("usage: flexbond COMMAND [OPTIONS] MODEL.yaml\n"
+  fputs("usage: flexbond COMMAND [OPTIONS] MODEL.yaml|SCENARIO.yaml\n"
         "       flexbond --help | --version\n"
         "\ncommands:\n",
         fp);

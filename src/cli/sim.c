@@ -6,8 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "flexbond/bd.h"
 #include "flexbond/io.h"
@@ -43,20 +41,17 @@ typedef struct sim_args {
   int plot;
 } sim_args;
 
-/* dir/name in fresh memory, NULL when out of memory. */
-static char *join_path(const char *dir, const char *name)
-{
-  size_t dlen = strlen(dir);
-  int has_slash = dlen > 0 && dir[dlen - 1] == '/';
-  size_t n = dlen + !has_slash + strlen(name) + 1;
-  char *path = malloc(n);
-  if (path)
-    snprintf(path, n, "%s%s%s", dir, has_slash ? "" : "/", name);
-  return path;
-}
+/* What stats.json reports. */
+typedef struct stats_source {
+  const fb_result *res;
+  const fb_bd *bd;
+} stats_source;
 
-static void write_stats_json(FILE *fp, const fb_sim_stats *s, const fb_bd *bd)
+/* stats.json from a stats_source (a cli_writer). */
+static void write_stats_json(FILE *fp, const void *ctx)
 {
+  const stats_source *src = ctx;
+  const fb_sim_stats *s = fb_result_stats(src->res);
   fprintf(fp,
           "{\n"
           "  \"steps\": %ld,\n"
@@ -73,74 +68,51 @@ static void write_stats_json(FILE *fp, const fb_sim_stats *s, const fb_bd *bd)
           "}\n",
           s->steps, s->rhs_evals, s->newton_setups, s->factorizations, s->newton_iters,
           s->newton_conv_fails, s->err_test_fails, s->last_order, s->wall_seconds,
-          fb_bd_nstates(bd), fb_bd_nblocks(bd));
+          fb_bd_nstates(src->bd), fb_bd_nblocks(src->bd));
 }
 
-/* Writes both files into dir, which exists. stats.json waits in its
- * temporary file until probes.csv is in place, and probes.csv is removed
- * again if stats.json cannot be committed: both files or neither. */
-static int write_files(const char *dir, const fb_result *res, const fb_bd *bd, int plot,
-                       fb_err *err)
+/* DIR/probes.png: every probe against time, a panel each. */
+static int write_plot(cli_outdir *od, const fb_result *res, fb_err *err)
 {
-  char *csv_path = join_path(dir, "probes.csv");
-  char *json_path = join_path(dir, "stats.json");
-  char *png_path = join_path(dir, "probes.png");
-  int rc = FB_OK;
-  if (!csv_path || !json_path || !png_path)
-    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", dir);
   size_t nout = fb_result_ncols(res) - 1;
-  if (rc == FB_OK && plot && nout > 0) {
-    size_t *cols = malloc(nout * sizeof *cols);
-    if (!cols)
-      rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", dir);
-    for (size_t j = 0; rc == FB_OK && j < nout; ++j)
-      cols[j] = j;
-    if (rc == FB_OK)
-      rc = fb_plot_png(res, cols, nout, NULL, png_path, err);
-    free(cols);
-    plot = rc == FB_OK; /* from here on, png_path is ours to remove on failure */
-  }
-  fb_out *json = NULL;
+  if (nout == 0)
+    return FB_OK;
+  char *path = cli_outdir_path(od, "probes.png", err);
+  size_t *cols = malloc(nout * sizeof *cols);
+  int rc = FB_OK;
+  if (!path || !cols)
+    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);
+  for (size_t j = 0; rc == FB_OK && j < nout; ++j)
+    cols[j] = j;
   if (rc == FB_OK)
-    rc = fb_out_open(json_path, &json, err);
-  if (rc == FB_OK) {
-    write_stats_json(fb_out_stream(json), fb_result_stats(res), bd);
-    rc = fb_result_write_csv(res, csv_path, err);
-    if (rc != FB_OK)
-      fb_out_abort(&json);
-  }
-  if (rc == FB_OK) {
-    rc = fb_out_commit(&json, err);
-    if (rc != FB_OK)
-      remove(csv_path);
-  }
-  if (rc != FB_OK && plot && png_path)
-    remove(png_path);
-  free(csv_path);
-  free(json_path);
-  free(png_path);
+    rc = fb_plot_png(res, cols, nout, NULL, path, err);
+  free(cols);
+  if (rc == FB_OK)
+    return cli_outdir_keep(od, path, err);
+  free(path);
   return rc;
 }
 
-static int is_directory(const char *path)
+/* probes.csv (a cli_writer). */
+static void write_probes_csv(FILE *fp, const void *res)
 {
-  struct stat st;
-  return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+  fb_result_print_csv(fp, res, FB_CSV_HEADER_UNITS);
 }
 
-/* Creates dir if needed and writes the files; a directory created here is
- * removed again (if still empty) when writing fails. */
+/* Creates dir if needed and writes the files into it, all or nothing. */
 static int write_outputs(const char *dir, const fb_result *res, const fb_bd *bd, int plot,
                          fb_err *err)
 {
-  int existed = is_directory(dir);
-  int rc = fb_mkdir_p(dir, err);
-  if (rc != FB_OK)
-    return rc;
-  rc = write_files(dir, res, bd, plot, err);
-  if (rc != FB_OK && !existed)
-    rmdir(dir);
-  return rc;
+  cli_outdir od;
+  int rc = cli_outdir_open(&od, dir, err);
+  if (rc == FB_OK && plot)
+    rc = write_plot(&od, res, err);
+  if (rc == FB_OK)
+    rc = cli_outdir_write(&od, "probes.csv", write_probes_csv, res, err);
+  const stats_source stats = {res, bd};
+  if (rc == FB_OK)
+    rc = cli_outdir_write(&od, "stats.json", write_stats_json, &stats, err);
+  return cli_outdir_close(&od, rc);
 }
 
 static void print_summary(const sim_args *a, const fb_model *m, const fb_sim_opts *opts,

@@ -39,6 +39,7 @@ struct fb_tfun {
     struct {
       fb_tfun_fn fn;
       void *ctx;
+      size_t ctx_size; /* > 0: ctx is the function's own copy */
       size_t nbreak;
       double *breaks;
     } callback;
@@ -228,8 +229,27 @@ int fb_tfun_new_callback(fb_tfun_fn fn, void *ctx, size_t nbreak, const double *
   return FB_OK;
 }
 
+int fb_tfun_new_callback_copy(fb_tfun_fn fn, const void *ctx, size_t ctx_size, size_t nbreak,
+                              const double *breakpoints, fb_tfun **out, fb_err *err)
+{
+  if (!ctx || ctx_size == 0)
+    return fb_err_set(err, FB_EINVAL, "fb_tfun_new_callback_copy: no context to copy");
+  void *own = malloc(ctx_size);
+  if (!own)
+    return fb_err_set(err, FB_ENOMEM, "out of memory creating a time function");
+  memcpy(own, ctx, ctx_size);
+  int status = fb_tfun_new_callback(fn, own, nbreak, breakpoints, out, err);
+  if (status != FB_OK) {
+    free(own);
+    return status;
+  }
+  (*out)->u.callback.ctx_size = ctx_size;
+  return FB_OK;
+}
+
 /* Deep copy; a callback's fn and ctx are copied as pointers (the caller
- * owns ctx and must keep it alive for the clone too). */
+ * owns ctx and must keep it alive for the clone too), unless the function
+ * holds its own copy of the context, which is copied again. */
 int fb_tfun_clone(const fb_tfun *f, fb_tfun **out, fb_err *err)
 {
   if (!f)
@@ -238,6 +258,10 @@ int fb_tfun_clone(const fb_tfun *f, fb_tfun **out, fb_err *err)
   case TFUN_TABLE:
     return fb_tfun_new_table(f->u.table.n, f->u.table.times, f->u.table.values, out, err);
   case TFUN_CALLBACK:
+    if (f->u.callback.ctx_size)
+      return fb_tfun_new_callback_copy(f->u.callback.fn, f->u.callback.ctx,
+                                       f->u.callback.ctx_size, f->u.callback.nbreak,
+                                       f->u.callback.breaks, out, err);
     return fb_tfun_new_callback(f->u.callback.fn, f->u.callback.ctx, f->u.callback.nbreak,
                                 f->u.callback.breaks, out, err);
   case TFUN_EXPR: {
@@ -265,7 +289,11 @@ void fb_tfun_free(fb_tfun **f)
     free((*f)->u.table.values);
     break;
   case TFUN_EXPR: fb_expr_free(&(*f)->u.expr); break;
-  case TFUN_CALLBACK: free((*f)->u.callback.breaks); break;
+  case TFUN_CALLBACK:
+    free((*f)->u.callback.breaks);
+    if ((*f)->u.callback.ctx_size)
+      free((*f)->u.callback.ctx);
+    break;
   case TFUN_CONST:
   case TFUN_STEP:
   case TFUN_SINE: break;
@@ -292,6 +320,11 @@ static double table_eval(size_t n, const double *times, const double *values, do
   }
   double w = (t - times[lo]) / (times[hi] - times[lo]);
   return values[lo] + w * (values[hi] - values[lo]);
+}
+
+int fb_tfun_is_constant(const fb_tfun *f)
+{
+  return f->kind == TFUN_CONST || (f->kind == TFUN_EXPR && !fb_expr_uses_time(f->u.expr));
 }
 
 double fb_tfun_eval(const fb_tfun *f, double t)

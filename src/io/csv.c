@@ -43,14 +43,16 @@ static void write_header_cell(FILE *fp, const char *name, const char *unit)
     fputc('"', fp);
 }
 
-static void write_header(FILE *fp, const fb_result *r)
+static void write_header(FILE *fp, const fb_result *r, fb_csv_header header)
 {
   size_t ncols = fb_result_ncols(r);
+  int with_units = header == FB_CSV_HEADER_UNITS;
   /* Column 0 is time whatever the result names it. */
-  write_header_cell(fp, "t", "s");
+  write_header_cell(fp, "t", with_units ? "s" : NULL);
   for (size_t j = 1; j < ncols; ++j) {
     fputc(',', fp);
-    write_header_cell(fp, fb_result_col_name(r, j), fb_result_col_unit(r, j));
+    write_header_cell(fp, fb_result_col_name(r, j),
+                      with_units ? fb_result_col_unit(r, j) : NULL);
   }
   fputc('\n', fp);
 }
@@ -67,15 +69,19 @@ static void write_rows(FILE *fp, const fb_result *r)
   }
 }
 
+void fb_result_print_csv(FILE *fp, const fb_result *r, fb_csv_header header)
+{
+  write_header(fp, r, header);
+  write_rows(fp, r);
+}
+
 int fb_result_write_csv(const fb_result *r, const char *path, fb_err *err)
 {
   fb_out *out = NULL;
   int rc = fb_out_open(path, &out, err);
   if (rc != FB_OK)
     return rc;
-  FILE *fp = fb_out_stream(out);
-  write_header(fp, r);
-  write_rows(fp, r);
+  fb_result_print_csv(fb_out_stream(out), r, FB_CSV_HEADER_UNITS);
   /* Write errors stick to the stream; commit reports them. */
   return fb_out_commit(&out, err);
 }

@@ -199,7 +199,7 @@ static int ml_probe(const ml_ctx *c, fb_model *m, struct fy_node *p)
   static const char *const keys[] = {"name",  "effort", "flow",        "power",
                                      "state", "energy", "component",   "integrate",
                                      "gain",  "unit",   "description", NULL};
-  fb_probe_spec spec = {NULL, FB_PROBE_EFFORT, NULL, -1, 0, 1.0, NULL};
+  fb_probe_spec spec = {NULL, FB_PROBE_EFFORT, NULL, -1, 0, 1.0, NULL, NULL, 0};
   struct fy_node *tv = NULL, *iv = ml_get(p, "integrate", NULL), *uv = ml_get(p, "unit", NULL);
   const char *target = NULL, *unit = NULL;
   size_t dim = 0;

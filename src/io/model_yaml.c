@@ -82,7 +82,7 @@ int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb
   if (ml_yaml_first_error(y->diag, file, err))
     return FB_EPARSE;
   if (!y->doc || !fy_document_root(y->doc))
-    return fb_err_set(err, FB_EPARSE, "%s:1:1: the model is empty (no YAML document)", file);
+    return fb_err_set(err, FB_EPARSE, "%s:1:1: the file is empty (no YAML document)", file);
   struct fy_document *second = fy_parse_load_document(y->parser);
   if (second) {
     /* The "---" that starts it (its root may be empty). */
@@ -91,8 +91,8 @@ int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb
     int line = m ? m->line + 1 : 1, col = m ? m->column + 1 : 1;
     fy_parse_document_destroy(y->parser, second);
     return fb_err_set(err, FB_EPARSE,
-                      "%s:%d:%d: YAML: a second document ('---'); a model file holds one", file,
-                      line, col);
+                      "%s:%d:%d: YAML: a second document ('---'); a file holds one", file, line,
+                      col);
   }
   if (ml_yaml_first_error(y->diag, file, err))
     return FB_EPARSE;
@@ -499,6 +499,18 @@ static int ml_parse_plain_number(const char *text, double *out)
   return 1;
 }
 
+/* YAML's spellings of infinity and not-a-number (.inf, -.Inf, .NaN, ...;
+ * the core schema of YAML 1.2, section 10.3.2), which strtod does not read. */
+static int ml_is_yaml_special_float(const char *text)
+{
+  static const char *const words[] = {".inf", ".Inf", ".INF", ".nan", ".NaN", ".NAN", NULL};
+  const char *t = (text[0] == '+' || text[0] == '-') ? text + 1 : text;
+  for (size_t i = 0; words[i]; ++i)
+    if (!strcmp(t, words[i]))
+      return 1;
+  return 0;
+}
+
 int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double *out)
 {
   if (ml_is_null(n))
@@ -509,6 +521,8 @@ int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double 
   if (!text)
     return fb_err_set(c->err, FB_ENOMEM, "out of memory reading a YAML scalar");
   double v = 0;
+  if (ml_is_yaml_special_float(text))
+    return ml_fail(c, n, FB_EINVAL, "must be finite (got %s)", text);
   if (ml_parse_plain_number(text, &v)) {
     if (!isfinite(v))
       return ml_fail(c, n, FB_EINVAL, "must be finite (got %s)", text);

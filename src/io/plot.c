@@ -1,5 +1,11 @@
 /* PNG figures of sampled results through gnuplot (http://gnuplot.info),
- * driven over a pipe with the data inline as a datablock. */
+ * run on a script file with the data inline as datablocks (see
+ * flexbond/io.h). Each curve gets a datablock of its own holding only the
+ * samples of the time window, so curves of different results (System 1
+ * and System 2, sampled alike or not) can share a panel. */
+#include <errno.h>
+#include <math.h>
+#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,6 +13,24 @@
 #include <unistd.h>
 
 #include "flexbond/io.h"
+
+/* Line styles of the curves of one panel, in order; a panel with more
+ * curves reuses them cyclically. Blue solid and red dashed follow the
+ * paper's System 1 / System 2 colours (Leite & Da Silva, Fig. 5). */
+static const struct {
+  const char *colour;
+  int dash_type;
+} line_styles[] = {{"#1f4e9a", 1}, {"#c0392b", 2}, {"#2e8b57", 4}, {"#7f7f7f", 5}};
+enum { NLINE_STYLES = sizeof line_styles / sizeof line_styles[0] };
+
+/* The environment handed to gnuplot (POSIX.1-2008, exec: the application
+ * declares it). */
+extern char **environ;
+
+void fb_plot_opts_default(fb_plot_opts *opts)
+{
+  *opts = (fb_plot_opts){.title = NULL, .t_min = 0, .t_max = 0, .width = 0, .panel_height = 0};
+}
 
 /* Writes s as a gnuplot single-quoted string ('' escapes a quote). */
 static void put_quoted(FILE *fp, const char *s)
@@ -20,76 +44,283 @@ static void put_quoted(FILE *fp, const char *s)
   fputc('\'', fp);
 }
 
-static void write_script(FILE *gp, const fb_result *r, const size_t *cols, size_t ncols,
-                         const char *title, const char *tmp_path)
+/* Rows [*first, *last] of r covering [t_min, t_max]: from the last sample
+ * at or before t_min to the first at or after t_max, so the curve reaches
+ * both edges of the window. 0 if the window misses the result. */
+static int window_rows(const fb_result *r, double t_min, double t_max, size_t *first,
+                       size_t *last)
 {
-  fputs("$data << EOD\n", gp);
-  for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
-    const double *row = fb_result_row(r, k);
-    fprintf(gp, "%.10g", row[0]);
-    for (size_t j = 0; j < ncols; ++j)
-      fprintf(gp, " %.10g", row[cols[j] + 1]);
-    fputc('\n', gp);
+  size_t n = fb_result_nsamples(r);
+  if (n == 0 || fb_result_row(r, 0)[0] > t_max || fb_result_row(r, n - 1)[0] < t_min)
+    return 0;
+  size_t lo = 0;
+  while (lo + 1 < n && fb_result_row(r, lo + 1)[0] <= t_min)
+    ++lo;
+  size_t hi = n - 1;
+  while (hi > lo && fb_result_row(r, hi - 1)[0] >= t_max)
+    --hi;
+  *first = lo;
+  *last = hi;
+  return 1;
+}
+
+/* Datablock $dN with the time and value columns of one series. */
+static void write_datablock(FILE *gp, size_t id, const fb_plot_series *s, double t_min,
+                            double t_max)
+{
+  size_t first = 0, last = 0;
+  window_rows(s->result, t_min, t_max, &first, &last);
+  fprintf(gp, "$d%zu << EOD\n", id);
+  for (size_t k = first; k <= last; ++k) {
+    const double *row = fb_result_row(s->result, k);
+    double v = row[s->col + 1];
+    /* gnuplot reads "NaN" as a missing point and would choke on "inf". */
+    if (isfinite(v))
+      fprintf(gp, "%.10g %.10g\n", row[0], v);
+    else
+      fprintf(gp, "%.10g NaN\n", row[0]);
   }
   fputs("EOD\n", gp);
-  size_t height = 220 * ncols + (title ? 40 : 0);
-  fprintf(gp, "set terminal pngcairo size 900,%zu font 'Sans,9'\nset output ", height);
-  put_quoted(gp, tmp_path);
-  fputs("\nset termoption noenhanced\nset grid\nset key off\nset xlabel 't [s]'\n", gp);
-  fprintf(gp, "set multiplot layout %zu,1", ncols);
-  if (title) {
-    fputs(" title ", gp);
-    put_quoted(gp, title);
+}
+
+static void write_ylabel(FILE *gp, const fb_plot_panel *p)
+{
+  fputs("set ylabel ", gp);
+  if (p->ylabel) {
+    put_quoted(gp, p->ylabel);
+  } else {
+    const fb_result *r = p->series[0].result;
+    size_t col = p->series[0].col + 1;
+    const char *unit = fb_result_col_unit(r, col);
+    /* "name [unit]" as a gnuplot string expression: no buffer needed. */
+    put_quoted(gp, fb_result_col_name(r, col));
+    if (unit && *unit) {
+      fputs(".' ['.", gp);
+      put_quoted(gp, unit);
+      fputs(".']'", gp);
+    }
   }
   fputc('\n', gp);
-  for (size_t j = 0; j < ncols; ++j) {
-    const char *name = fb_result_col_name(r, cols[j] + 1);
-    const char *unit = fb_result_col_unit(r, cols[j] + 1);
-    size_t n = strlen(name) + strlen(unit) + 4;
-    char *label = malloc(n);
-    if (label) {
-      snprintf(label, n, "%s [%s]", name, unit);
-      fputs("set ylabel ", gp);
-      put_quoted(gp, label);
-      fputc('\n', gp);
-      free(label);
+}
+
+/* Sets the y range of panel p: gnuplot's autoscale, except around a
+ * constant curve (System 1's torsion angle is identically 0), which
+ * autoscale would widen itself, with a warning on stderr. */
+static void write_yrange(FILE *gp, const fb_plot_panel *p, double t_min, double t_max)
+{
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t j = 0; j < p->nseries; ++j) {
+    size_t first = 0, last = 0;
+    window_rows(p->series[j].result, t_min, t_max, &first, &last);
+    for (size_t k = first; k <= last; ++k) {
+      double v = fb_result_row(p->series[j].result, k)[p->series[j].col + 1];
+      if (isfinite(v)) {
+        lo = fmin(lo, v);
+        hi = fmax(hi, v);
+      }
     }
-    fprintf(gp, "plot $data using 1:%zu with lines lw 1.5 lc rgb '#1f4e9a'\n", j + 2);
+  }
+  if (lo == hi) {
+    double half = lo == 0 ? 1 : 0.5 * fabs(lo);
+    fprintf(gp, "set yrange [%.10g:%.10g]\n", lo - half, hi + half);
+  } else {
+    fputs("set autoscale y\n", gp);
+  }
+}
+
+/* The plot command of panel p, whose first datablock is $d<first_id>. */
+static void write_panel(FILE *gp, const fb_plot_panel *p, size_t first_id)
+{
+  int has_key = 0;
+  for (size_t j = 0; j < p->nseries; ++j)
+    has_key |= p->series[j].legend != NULL;
+  fputs(has_key ? "set key top right\n" : "set key off\n", gp);
+  write_ylabel(gp, p);
+  fputs("plot ", gp);
+  for (size_t j = 0; j < p->nseries; ++j) {
+    size_t style = j % NLINE_STYLES;
+    fprintf(gp, "%s$d%zu using 1:2 with lines lw 1.5 dt %d lc rgb '%s'", j ? ", " : "",
+            first_id + j, line_styles[style].dash_type, line_styles[style].colour);
+    if (p->series[j].legend) {
+      fputs(" title ", gp);
+      put_quoted(gp, p->series[j].legend);
+    } else {
+      fputs(" notitle", gp);
+    }
+  }
+  fputc('\n', gp);
+}
+
+static void write_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
+                         const fb_plot_opts *o, double t_min, double t_max,
+                         const char *tmp_path)
+{
+  size_t id = 0;
+  for (size_t i = 0; i < npanels; ++i)
+    for (size_t j = 0; j < panels[i].nseries; ++j)
+      write_datablock(gp, id++, &panels[i].series[j], t_min, t_max);
+  int width = o->width > 0 ? o->width : 900;
+  size_t panel_height = o->panel_height > 0 ? (size_t)o->panel_height : 220;
+  size_t height = panel_height * npanels + (o->title ? 40 : 0);
+  fprintf(gp, "set terminal pngcairo size %d,%zu font 'Sans,9'\nset output ", width, height);
+  put_quoted(gp, tmp_path);
+  fputs("\nset termoption noenhanced\nset grid\nset xlabel 't [s]'\n", gp);
+  fprintf(gp, "set xrange [%.10g:%.10g]\n", t_min, t_max);
+  fprintf(gp, "set multiplot layout %zu,1", npanels);
+  if (o->title) {
+    fputs(" title ", gp);
+    put_quoted(gp, o->title);
+  }
+  fputc('\n', gp);
+  id = 0;
+  for (size_t i = 0; i < npanels; ++i) {
+    write_yrange(gp, &panels[i], t_min, t_max);
+    write_panel(gp, &panels[i], id);
+    id += panels[i].nseries;
   }
   fputs("unset multiplot\nset output\n", gp);
+}
+
+/* FB_EINVAL unless every panel has curves, every column exists and every
+ * curve has samples in [t_min, t_max]. */
+static int check_panels(const fb_plot_panel *panels, size_t npanels, double t_min, double t_max,
+                        const char *path, fb_err *err)
+{
+  if (npanels == 0)
+    return fb_err_set(err, FB_EINVAL, "%s: nothing to plot", path);
+  for (size_t i = 0; i < npanels; ++i) {
+    if (panels[i].nseries == 0)
+      return fb_err_set(err, FB_EINVAL, "%s: panel %zu has no curve", path, i + 1);
+    for (size_t j = 0; j < panels[i].nseries; ++j) {
+      const fb_plot_series *s = &panels[i].series[j];
+      size_t first = 0, last = 0;
+      if (s->col + 1 >= fb_result_ncols(s->result))
+        return fb_err_set(err, FB_EINVAL, "%s: no output column %zu", path, s->col);
+      if (!window_rows(s->result, t_min, t_max, &first, &last))
+        return fb_err_set(err, FB_EINVAL, "%s: no sample of '%s' in t = %g..%g s", path,
+                          fb_result_col_name(s->result, s->col + 1), t_min, t_max);
+    }
+  }
+  return FB_OK;
+}
+
+/* Writes the script of the figure, drawing into png_tmp, to the file
+ * script. A file rather than a pipe: gnuplot missing or failing early
+ * cannot raise SIGPIPE in this process, and its exit status tells. */
+static int write_script_file(const char *script, const fb_plot_panel *panels, size_t npanels,
+                             const fb_plot_opts *o, double t_min, double t_max,
+                             const char *png_tmp, const char *path, fb_err *err)
+{
+  FILE *fp = fopen(script, "w");
+  if (!fp)
+    return fb_err_set(err, FB_EIO, "%s: cannot create '%s': %s", path, script, strerror(errno));
+  write_script(fp, panels, npanels, o, t_min, t_max, png_tmp);
+  int failed = ferror(fp);
+  failed |= fclose(fp) != 0;
+  if (failed) {
+    remove(script);
+    return fb_err_set(err, FB_EIO, "%s: cannot write '%s'", path, script);
+  }
+  return FB_OK;
+}
+
+/* Runs "gnuplot script" and waits for it. gnuplot's own messages go to
+ * the inherited stderr; a non-zero exit is reported here. */
+static int run_gnuplot(char *script, const char *path, fb_err *err)
+{
+  char program[] = "gnuplot";
+  char *argv[] = {program, script, NULL};
+  pid_t pid;
+  int e = posix_spawnp(&pid, program, NULL, NULL, argv, environ);
+  if (e != 0)
+    return fb_err_set(
+        err, FB_EIO,
+        "%s: cannot start gnuplot: %s; is gnuplot (Debian package gnuplot-nox) installed?",
+        path, strerror(e));
+  int status = 0;
+  pid_t waited;
+  do
+    waited = waitpid(pid, &status, 0);
+  while (waited == -1 && errno == EINTR);
+  if (waited == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return fb_err_set(err, FB_EIO,
+                      "%s: gnuplot failed (exit status %d); is gnuplot (Debian package "
+                      "gnuplot-nox) installed?",
+                      path, waited != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+  return FB_OK;
+}
+
+/* "path.tmp.PID" followed by suffix, in fresh memory (NULL if out of it). */
+static char *tmp_name(const char *path, const char *suffix)
+{
+  size_t n = strlen(path) + strlen(suffix) + 32;
+  char *tmp = malloc(n);
+  if (tmp)
+    snprintf(tmp, n, "%s.tmp.%ld%s", path, (long)getpid(), suffix);
+  return tmp;
+}
+
+int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plot_opts *opts,
+                       const char *path, fb_err *err)
+{
+  fb_plot_opts o;
+  fb_plot_opts_default(&o);
+  if (opts)
+    o = *opts;
+  double t_min = o.t_min, t_max = o.t_max;
+  if (npanels > 0 && panels[0].nseries > 0 && !(t_min < t_max)) {
+    const fb_result *r = panels[0].series[0].result;
+    size_t n = fb_result_nsamples(r);
+    t_min = n ? fb_result_row(r, 0)[0] : 0;
+    t_max = n ? fb_result_row(r, n - 1)[0] : 0;
+  }
+  int rc = check_panels(panels, npanels, t_min, t_max, path, err);
+  if (rc != FB_OK)
+    return rc;
+  /* A run of one sample has an empty span; gnuplot needs a range. */
+  if (!(t_min < t_max))
+    t_max = t_min + 1;
+  char *png_tmp = tmp_name(path, "");
+  char *script = tmp_name(path, ".gp");
+  if (!png_tmp || !script)
+    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
+  if (rc == FB_OK)
+    rc = write_script_file(script, panels, npanels, &o, t_min, t_max, png_tmp, path, err);
+  if (rc == FB_OK) {
+    rc = run_gnuplot(script, path, err);
+    remove(script);
+  }
+  if (rc == FB_OK && rename(png_tmp, path) != 0)
+    rc = fb_err_set(err, FB_EIO, "%s: cannot rename the plot into place: %s", path,
+                    strerror(errno));
+  if (rc != FB_OK && png_tmp)
+    remove(png_tmp);
+  free(script);
+  free(png_tmp);
+  return rc;
 }
 
 int fb_plot_png(const fb_result *r, const size_t *cols, size_t ncols, const char *title,
                 const char *path, fb_err *err)
 {
-  if (ncols == 0 || fb_result_nsamples(r) == 0)
+  if (ncols == 0)
     return fb_err_set(err, FB_EINVAL, "%s: nothing to plot", path);
-  for (size_t j = 0; j < ncols; ++j)
-    if (cols[j] + 1 >= fb_result_ncols(r))
-      return fb_err_set(err, FB_EINVAL, "%s: no output column %zu", path, cols[j]);
-  size_t n = strlen(path) + 32;
-  char *tmp = malloc(n);
-  if (!tmp)
-    return fb_err_set(err, FB_ENOMEM, "out of memory");
-  snprintf(tmp, n, "%s.tmp.%ld", path, (long)getpid());
-  /* gnuplot's own messages go to its stderr; a non-zero exit is ours. */
-  FILE *gp = popen("gnuplot", "w");
-  if (!gp) {
-    free(tmp);
-    return fb_err_set(err, FB_EIO, "%s: cannot start gnuplot", path);
-  }
-  write_script(gp, r, cols, ncols, title, tmp);
-  int status = pclose(gp);
+  fb_plot_series *series = malloc(ncols * sizeof *series);
+  fb_plot_panel *panels = malloc(ncols * sizeof *panels);
   int rc = FB_OK;
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    rc = fb_err_set(err, FB_EIO,
-                    "%s: gnuplot failed (exit status %d); is gnuplot (Debian package "
-                    "gnuplot-nox) installed?",
-                    path, WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-  if (!rc && rename(tmp, path) != 0)
-    rc = fb_err_set(err, FB_EIO, "%s: cannot rename the plot into place", path);
-  if (rc)
-    remove(tmp);
-  free(tmp);
+  if (!series || !panels)
+    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
+  for (size_t j = 0; rc == FB_OK && j < ncols; ++j) {
+    series[j] = (fb_plot_series){.result = r, .col = cols[j], .legend = NULL};
+    panels[j] = (fb_plot_panel){.series = &series[j], .nseries = 1, .ylabel = NULL};
+  }
+  if (rc == FB_OK) {
+    fb_plot_opts opts;
+    fb_plot_opts_default(&opts);
+    opts.title = title;
+    rc = fb_plot_panels_png(panels, ncols, &opts, path, err);
+  }
+  free(panels);
+  free(series);
   return rc;
 }

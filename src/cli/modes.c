@@ -1,0 +1,116 @@
+/* flexbond modes: natural frequencies and damped modes of the vehicle of
+ * a scenario, linearised at its static equilibrium (fb_vehicle_modes).
+ *
+ * The undamped table lists f_n = omega_n / (2 pi) with every damper
+ * removed; the damped one the eigenvalues lambda = re +/- j im of the full
+ * model with f = |lambda| / (2 pi) and zeta = -re / |lambda| (Ogata,
+ * "Modern Control Engineering", 5th ed., section 5.3). */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "flexbond/vehicle.h"
+
+#include "cli.h"
+
+static const char modes_usage[] =
+    "usage: flexbond modes SCENARIO.yaml [--system rigid]\n"
+    "\n"
+    "Prints the modes of the vehicle linearised at its static equilibrium:\n"
+    "first the undamped natural frequencies (every damper removed), then the\n"
+    "damped eigenvalues with their damping ratios, each with the part of the\n"
+    "vehicle that holds most of the mode's kinetic energy. Zero eigenvalues\n"
+    "of the statically indeterminate support (self-stress of the springs)\n"
+    "are counted, not listed.\n"
+    "\n"
+    "options:\n"
+    "  --system rigid|flexible  hull model (default rigid: System 1)\n"
+    "  -h, --help               this text\n";
+
+static const char *const system_choices[] = {"rigid", "flexible"};
+static const fb_system systems[] = {FB_SYSTEM_RIGID, FB_SYSTEM_FLEXIBLE};
+
+/* "N static zero mode(s)" line ending of a table's heading. */
+static void print_static_count(size_t nstatic)
+{
+  printf("%zu static zero mode%s (self-stress) left out\n", nstatic, nstatic == 1 ? "" : "s");
+}
+
+static void print_undamped(const fb_mode *m, size_t n, size_t nstatic)
+{
+  printf("undamped natural frequencies: %zu modes, ", n);
+  print_static_count(nstatic);
+  printf("%4s  %12s  %s\n", "#", "f_n [Hz]", "description");
+  for (size_t i = 0; i < n; ++i)
+    printf("%4zu  %12.6g  %s\n", i + 1, m[i].freq_hz, m[i].description);
+}
+
+static void print_damped(const fb_mode *m, size_t n, size_t nstatic)
+{
+  size_t nreal = 0;
+  for (size_t i = 0; i < n; ++i)
+    nreal += m[i].im == 0;
+  printf("damped eigenvalues: %zu oscillatory, %zu real, ", n - nreal, nreal);
+  print_static_count(nstatic);
+  printf("%4s  %12s  %14s  %8s  %s\n", "#", "f_n [Hz]", "real [1/s]", "zeta", "description");
+  for (size_t i = 0; i < n; ++i) {
+    /* A real eigenvalue is a decay, not an oscillation: no frequency. */
+    if (m[i].im == 0)
+      printf("%4zu  %12s  %14.8g  %8s  (real) %s\n", i + 1, "-", m[i].re, "-",
+             m[i].description);
+    else
+      printf("%4zu  %12.6g  %14.8g  %8.4g  %s\n", i + 1, m[i].freq_hz, m[i].re,
+             m[i].damping_ratio, m[i].description);
+  }
+}
+
+/* The modes of one linearisation: undamped or damped. */
+typedef struct mode_table {
+  fb_mode *modes;
+  size_t nmodes, nstatic;
+} mode_table;
+
+/* Both tables are computed before anything is printed, so a failure
+ * prints no half table. */
+static int run(const char *path, fb_system sys)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_scenario *s = NULL;
+  mode_table undamped = {0}, damped = {0};
+  int rc = fb_scenario_load(path, &s, &err);
+  if (rc == FB_OK)
+    rc =
+        fb_vehicle_modes(s, sys, 1, &undamped.modes, &undamped.nmodes, &undamped.nstatic, &err);
+  if (rc == FB_OK)
+    rc = fb_vehicle_modes(s, sys, 0, &damped.modes, &damped.nmodes, &damped.nstatic, &err);
+  if (rc == FB_OK) {
+    printf("%s: %s, linearised at the static equilibrium\n\n", s->name ? s->name : path,
+           sys == FB_SYSTEM_RIGID ? "System 1 (rigid hull)" : "System 2 (flexible hull)");
+    print_undamped(undamped.modes, undamped.nmodes, undamped.nstatic);
+    putchar('\n');
+    print_damped(damped.modes, damped.nmodes, damped.nstatic);
+    rc = cli_flush_stdout(&err);
+  }
+  free(damped.modes);
+  free(undamped.modes);
+  fb_scenario_free(&s);
+  return cli_report(rc, &err);
+}
+
+int cli_cmd_modes(int argc, char **argv)
+{
+  enum { OPT_SYSTEM, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {
+      [OPT_SYSTEM] = {"--system", NULL, 1, NULL}, [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  const char *path;
+  int rc;
+  if (!cli_parse_file_command(argc, argv, opts, NOPTS, modes_usage, "SCENARIO", &path, &rc))
+    return rc;
+  int choice = 0;
+  if (opts[OPT_SYSTEM].value)
+    rc = cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, system_choices,
+                    sizeof system_choices / sizeof system_choices[0], &choice);
+  if (rc == CLI_EXIT_OK && systems[choice] == FB_SYSTEM_FLEXIBLE)
+    rc = cli_usage_error(argv[0], "System 2 (flexible hull) is not available yet");
+  return rc == CLI_EXIT_OK ? run(path, systems[choice]) : rc;
+}

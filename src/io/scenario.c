@@ -1,0 +1,199 @@
+/* Vehicle scenarios (flexbond/vehicle.h): loading, copying, freeing, and
+ * the bump timing every wheel follows. The file format is read in
+ * scenario_read.c and checked in scenario_check.c. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "core/util.h"
+#include "io/scenario_internal.h"
+
+const char *fb_corner_name(int corner)
+{
+  static const char *const names[FB_NCORNERS] = {"LF", "RF", "LM", "RM", "LR", "RR"};
+  return (corner >= 0 && corner < FB_NCORNERS) ? names[corner] : NULL;
+}
+
+/* ---- Bump timing. The bump's leading edge is a straight line at
+ * bump_angle to the lateral (y) axis, left side first, through the left
+ * front wheel's contact point at bump_time. Seen from the vehicle, the
+ * road moves back at speed V, so the edge reaches a wheel at (x, y) when
+ * it has travelled the wheel's distance behind LF, x_LF - x, plus the
+ * edge's extra offset at that lateral position, (y_LF - y) tan(angle)
+ * (data sheet, "Road and obstacle"). Along its path the wheel then rolls
+ * over the bump's length L in L / V. */
+
+double fb_scenario_bump_entry(const fb_scenario *s, int corner)
+{
+  if (!s || corner < 0 || corner >= FB_NCORNERS)
+    return NAN;
+  const fb_corner_params *lf = &s->corner[FB_LF], *w = &s->corner[corner];
+  return s->bump_time + ((lf->x - w->x) + (lf->y - w->y) * tan(s->bump_angle)) / s->speed;
+}
+
+double fb_scenario_bump_exit(const fb_scenario *s, int corner)
+{
+  return fb_scenario_bump_entry(s, corner) + (s ? s->bump_length / s->speed : NAN);
+}
+
+/* ---- Ownership. */
+
+void fb_scenario_free(fb_scenario **s)
+{
+  if (!s || !*s)
+    return;
+  free((*s)->name);
+  free((*s)->path);
+  free((*s)->load_x);
+  free((*s)->load_y);
+  free(*s);
+  *s = NULL;
+}
+
+/* *dst = copy of the string src (NULL stays NULL); 0 when out of memory. */
+static int sc_copy_string(const char *src, char **dst)
+{
+  *dst = src ? fb_strdup(src) : NULL;
+  return !src || *dst;
+}
+
+/* *dst = copy of the n doubles at src (NULL stays NULL); 0 when out of
+ * memory. */
+static int sc_copy_array(const double *src, size_t n, double **dst)
+{
+  *dst = NULL;
+  if (!src)
+    return 1;
+  *dst = malloc((n ? n : 1) * sizeof **dst);
+  if (*dst && n)
+    memcpy(*dst, src, n * sizeof **dst);
+  return *dst != NULL;
+}
+
+int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
+{
+  if (!s || !out)
+    return fb_err_set(err, FB_EINVAL, "fb_scenario_clone: scenario and out must not be NULL");
+  *out = NULL;
+  fb_scenario *copy = malloc(sizeof *copy);
+  if (!copy)
+    return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
+  *copy = *s;
+  int ok = sc_copy_string(s->name, &copy->name);
+  ok = sc_copy_string(s->path, &copy->path) && ok;
+  ok = sc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
+  ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
+  if (!ok) {
+    fb_scenario_free(&copy);
+    return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
+  }
+  *out = copy;
+  return FB_OK;
+}
+
+/* ---- Loading. */
+
+/* Parses, reads and checks the document; a check failure is reported at
+ * the value it names. */
+static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario *s)
+{
+  ml_yaml y;
+  fb_symtab *params = NULL;
+  memset(&y, 0, sizeof y);
+  int rc = fb_symtab_new(&params, c->err);
+  if (!rc)
+    rc = ml_yaml_parse(text, len, c->file, &y, c->err);
+  struct fy_node *root = rc ? NULL : fy_document_root(y.doc);
+  if (!rc)
+    rc = sc_read(c, root, params, s);
+  if (!rc && fb_scenario_check(s, c->err) != FB_OK)
+    rc = sc_blame_check(c, root);
+  c->globals = NULL;
+  fb_symtab_free(&params);
+  ml_yaml_release(&y);
+  return rc;
+}
+
+int fb_scenario_load_string(const char *text, size_t len, const char *display_name,
+                            fb_scenario **out, fb_err *err)
+{
+  fb_err local;
+  fb_err *e = err ? err : &local;
+  fb_err_clear(e);
+  if (!out || !text)
+    return fb_err_set(e, FB_EINVAL, "fb_scenario_load_string: text and out must not be NULL");
+  *out = NULL;
+  ml_ctx c;
+  memset(&c, 0, sizeof c);
+  c.file = display_name ? display_name : "<string>";
+  c.base_dir = ".";
+  c.err = e;
+  c.domain = FB_DOMAIN_TRANSLATION;
+  fb_scenario *s = calloc(1, sizeof *s);
+  int rc = s ? sc_load_document(&c, text, len, s)
+             : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
+  if (!rc && display_name && !(s->path = fb_strdup(display_name)))
+    rc = fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
+  if (rc) {
+    fb_scenario_free(&s);
+    return rc;
+  }
+  *out = s;
+  return FB_OK;
+}
+
+/* Reads the whole file into a new NUL-terminated buffer. */
+static int sc_read_file(const char *path, char **text, size_t *len, fb_err *err)
+{
+  FILE *fp = fopen(path, "rb");
+  if (!fp)
+    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+  size_t cap = 4096, n = 0;
+  char *buf = malloc(cap);
+  int rc = buf ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
+  while (!rc) {
+    if (n + 1 >= cap) {
+      char *grown = realloc(buf, cap * 2);
+      if (!grown) {
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
+        break;
+      }
+      buf = grown;
+      cap *= 2;
+    }
+    size_t got = fread(buf + n, 1, cap - 1 - n, fp);
+    n += got;
+    if (got == 0 && ferror(fp))
+      rc = fb_err_set(err, FB_EIO, "%s: read error", path);
+    else if (got == 0)
+      break;
+  }
+  fclose(fp);
+  if (rc) {
+    free(buf);
+    return rc;
+  }
+  buf[n] = '\0';
+  *text = buf;
+  *len = n;
+  return FB_OK;
+}
+
+int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
+{
+  fb_err_clear(err);
+  if (!path || !out)
+    return fb_err_set(err, FB_EINVAL, "fb_scenario_load: path and out must not be NULL");
+  *out = NULL;
+  char *text = NULL;
+  size_t len = 0;
+  int rc = sc_read_file(path, &text, &len, err);
+  if (!rc)
+    rc = fb_scenario_load_string(text, len, path, out, err);
+  free(text);
+  return rc;
+}

@@ -1,0 +1,227 @@
+/* Physical consistency of a vehicle scenario (fb_scenario_check). Each
+ * message starts with the key path of docs/scenario-format.md the value
+ * comes from and quotes it in the file's unit (km/h, degrees), so the
+ * loader can point at the value in the file. */
+#include <math.h>
+#include <stdio.h>
+
+#include "flexbond/sim.h"
+
+#include "io/scenario_internal.h"
+
+typedef enum sc_rule { SC_FINITE, SC_POSITIVE, SC_NONNEGATIVE } sc_rule;
+
+/* One value under a rule: finite always, and > 0 or >= 0 if asked. */
+typedef struct sc_value {
+  const char *key; /* below the prefix */
+  double value;    /* in the file's unit */
+  sc_rule rule;
+  const char *unit; /* for the message, "" for none */
+} sc_value;
+
+static int sc_check_values(const char *prefix, const sc_value *v, size_t n, fb_err *err)
+{
+  for (size_t i = 0; i < n; ++i) {
+    const char *space = v[i].unit[0] ? " " : "";
+    if (!isfinite(v[i].value))
+      return fb_err_set(err, FB_EINVAL, "%s%s: must be finite (got %g)", prefix, v[i].key,
+                        v[i].value);
+    if (v[i].rule == SC_POSITIVE && !(v[i].value > 0))
+      return fb_err_set(err, FB_EINVAL, "%s%s: must be > 0%s%s (got %.10g)", prefix, v[i].key,
+                        space, v[i].unit, v[i].value);
+    if (v[i].rule == SC_NONNEGATIVE && !(v[i].value >= 0))
+      return fb_err_set(err, FB_EINVAL, "%s%s: must be >= 0%s%s (got %.10g)", prefix, v[i].key,
+                        space, v[i].unit, v[i].value);
+  }
+  return FB_OK;
+}
+
+static int sc_check_hull(const fb_scenario *s, fb_err *err)
+{
+  const sc_value v[] = {
+      {"mass", s->hull_mass, SC_POSITIVE, "kg"},
+      {"Ixx", s->hull_ixx, SC_POSITIVE, "kg m^2"},
+      {"Iyy", s->hull_iyy, SC_POSITIVE, "kg m^2"},
+      {"material.young", s->young, SC_POSITIVE, "Pa"},
+      {"material.poisson", s->poisson, SC_FINITE, ""},
+      {"material.density", s->density, SC_POSITIVE, "kg/m^3"},
+      {"material.thickness", s->thickness, SC_POSITIVE, "m"},
+      {"edges.front_x", s->edge_front_x, SC_FINITE, "m"},
+      {"edges.rear_x", s->edge_rear_x, SC_FINITE, "m"},
+      {"edges.left_y", s->edge_left_y, SC_FINITE, "m"},
+      {"edges.right_y", s->edge_right_y, SC_FINITE, "m"},
+  };
+  int rc = sc_check_values("hull.", v, sizeof v / sizeof v[0], err);
+  if (rc)
+    return rc;
+  /* Isotropic elasticity needs -1 < nu < 0.5; a negative ratio is no
+   * steel, so the scenario keeps to [0, 0.5). */
+  if (!(s->poisson >= 0 && s->poisson < 0.5))
+    return fb_err_set(err, FB_EINVAL, "hull.material.poisson: must be in [0, 0.5) (got %.10g)",
+                      s->poisson);
+  /* The torsion angle divides by the edges' spans. */
+  if (!(s->edge_front_x > s->edge_rear_x))
+    return fb_err_set(err, FB_EINVAL,
+                      "hull.edges.front_x: must be > hull.edges.rear_x = %.10g m (got %.10g)",
+                      s->edge_rear_x, s->edge_front_x);
+  if (!(s->edge_left_y > s->edge_right_y))
+    return fb_err_set(err, FB_EINVAL,
+                      "hull.edges.left_y: must be > hull.edges.right_y = %.10g m (got %.10g)",
+                      s->edge_right_y, s->edge_left_y);
+  return FB_OK;
+}
+
+static int sc_check_load(const fb_scenario *s, fb_err *err)
+{
+  const sc_value v[] = {{"total_weight", s->total_weight, SC_POSITIVE, "N"}};
+  int rc = sc_check_values("load.", v, 1, err);
+  if (rc)
+    return rc;
+  if (s->payload != FB_PAYLOAD_WEIGHT_ONLY && s->payload != FB_PAYLOAD_LUMPED)
+    return fb_err_set(err, FB_EINVAL, "load.payload: unknown payload model %d",
+                      (int)s->payload);
+  if (s->nload < 1 || !s->load_x || !s->load_y)
+    return fb_err_set(err, FB_EINVAL,
+                      "load.points: at least one load point is needed (got %zu)", s->nload);
+  for (size_t i = 0; i < s->nload; ++i)
+    if (!isfinite(s->load_x[i]) || !isfinite(s->load_y[i]))
+      return fb_err_set(err, FB_EINVAL, "load.points[%zu]: must be finite (got x = %g, y = %g)",
+                        i, s->load_x[i], s->load_y[i]);
+  /* The lumped model spreads the payload mass W / g - m_hull over the
+   * points (data sheet, "Load and gravity"): it must be positive. */
+  const double total_mass = s->total_weight / s->gravity;
+  if (s->payload == FB_PAYLOAD_LUMPED && !(total_mass > s->hull_mass))
+    return fb_err_set(err, FB_EINVAL,
+                      "load.payload: a lumped payload needs load.total_weight / gravity "
+                      "(%.10g kg) > hull.mass (%.10g kg)",
+                      total_mass, s->hull_mass);
+  return FB_OK;
+}
+
+/* driver or engine; prefix is "driver." or "engine.". */
+static int sc_check_mount(const char *prefix, const fb_mount *m, fb_err *err)
+{
+  const sc_value v[] = {
+      {"mass", m->mass, SC_POSITIVE, "kg"},
+      {"stiffness", m->stiffness, SC_POSITIVE, "N/m"},
+      {"damping", m->damping, SC_NONNEGATIVE, "N s/m"},
+      {"x", m->x, SC_FINITE, "m"},
+      {"y", m->y, SC_FINITE, "m"},
+  };
+  return sc_check_values(prefix, v, sizeof v / sizeof v[0], err);
+}
+
+static int sc_check_corner(const fb_corner_params *c, int corner, fb_err *err)
+{
+  char prefix[32];
+  snprintf(prefix, sizeof prefix, "suspensions.%s.", fb_corner_name(corner));
+  const sc_value v[] = {
+      {"spring_k", c->spring_k, SC_POSITIVE, "N/m"},
+      {"damper_c", c->damper_c, SC_NONNEGATIVE, "N s/m"},
+      {"motion_ratio", c->motion_ratio, SC_POSITIVE, ""},
+      {"x", c->x, SC_FINITE, "m"},
+      {"y", c->y, SC_FINITE, "m"},
+      {"wheel_mass", c->wheel_mass, SC_POSITIVE, "kg"},
+      {"tire_k", c->tire_k, SC_POSITIVE, "N/m"},
+      {"tire_c", c->tire_c, SC_NONNEGATIVE, "N s/m"},
+  };
+  return sc_check_values(prefix, v, sizeof v / sizeof v[0], err);
+}
+
+static int sc_check_road(const fb_scenario *s, fb_err *err)
+{
+  const sc_value v[] = {
+      {"speed_kmh", s->speed * 3.6, SC_POSITIVE, "km/h"},
+      {"bump.height", s->bump_height, SC_NONNEGATIVE, "m"},
+      {"bump.length", s->bump_length, SC_POSITIVE, "m"},
+      {"bump.angle_deg", s->bump_angle * 180 / SC_PI, SC_FINITE, "deg"},
+      {"bump.first_contact", s->bump_time, SC_NONNEGATIVE, "s"},
+  };
+  int rc = sc_check_values("road.", v, sizeof v / sizeof v[0], err);
+  /* At 90 deg the edge runs along the path: no wheel would meet it. */
+  if (!rc && !(s->bump_angle >= 0 && s->bump_angle < 0.5 * SC_PI))
+    rc = fb_err_set(err, FB_EINVAL, "road.bump.angle_deg: must be in [0, 90) deg (got %.10g)",
+                    s->bump_angle * 180 / SC_PI);
+  return rc;
+}
+
+/* The scenario's tolerances and grid, then the solver's own limits
+ * (fb_sim_opts_check: sample count, ...). */
+static int sc_check_simulation(const fb_scenario *s, fb_err *err)
+{
+  const sc_value v[] = {
+      {"t_end", s->t_end, SC_POSITIVE, "s"},
+      {"rtol", s->rtol, SC_POSITIVE, ""},
+      {"atol", s->atol, SC_POSITIVE, ""},
+      {"max_step", s->max_step, SC_NONNEGATIVE, "s"},
+      {"sample_rate", s->sample_rate, SC_POSITIVE, "Hz"},
+  };
+  int rc = sc_check_values("simulation.", v, sizeof v / sizeof v[0], err);
+  if (rc)
+    return rc;
+  if (!(s->rtol < 1))
+    return fb_err_set(err, FB_EINVAL, "simulation.rtol: must be in (0, 1) (got %.10g)",
+                      s->rtol);
+  if (s->initial != FB_INITIAL_ZERO && s->initial != FB_INITIAL_STATIC)
+    return fb_err_set(err, FB_EINVAL, "simulation.initial: unknown initial state %d",
+                      (int)s->initial);
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_start = 0;
+  o.t_end = s->t_end;
+  o.rtol = s->rtol;
+  o.atol = s->atol;
+  o.max_step = s->max_step;
+  o.sample_rate = s->sample_rate;
+  return fb_sim_opts_check(&o, err);
+}
+
+/* Every wheel meets the bump at t >= 0 and has left it before t_end (the
+ * run must show the whole crossing). */
+static int sc_check_bump_timing(const fb_scenario *s, fb_err *err)
+{
+  int first = FB_LF, last = FB_LF;
+  for (int k = 1; k < FB_NCORNERS; ++k) {
+    if (fb_scenario_bump_entry(s, k) < fb_scenario_bump_entry(s, first))
+      first = k;
+    if (fb_scenario_bump_exit(s, k) > fb_scenario_bump_exit(s, last))
+      last = k;
+  }
+  const double t_in = fb_scenario_bump_entry(s, first), t_out = fb_scenario_bump_exit(s, last);
+  if (!(t_in >= 0))
+    return fb_err_set(err, FB_EINVAL,
+                      "road.bump.first_contact: the %s wheel would meet the bump at %.6g s, "
+                      "before the run starts at 0 s",
+                      fb_corner_name(first), t_in);
+  if (!(t_out < s->t_end))
+    return fb_err_set(err, FB_EINVAL,
+                      "road.bump: bump longer than the run: the last wheel (%s) leaves it at "
+                      "%.6g s, not before simulation.t_end = %.10g s",
+                      fb_corner_name(last), t_out, s->t_end);
+  return FB_OK;
+}
+
+int fb_scenario_check(const fb_scenario *s, fb_err *err)
+{
+  if (!s)
+    return fb_err_set(err, FB_EINVAL, "fb_scenario_check: the scenario is NULL");
+  const sc_value gravity[] = {{"gravity", s->gravity, SC_POSITIVE, "m/s^2"}};
+  int rc = sc_check_values("", gravity, 1, err);
+  if (!rc)
+    rc = sc_check_hull(s, err);
+  if (!rc)
+    rc = sc_check_load(s, err);
+  if (!rc)
+    rc = sc_check_mount("driver.", &s->driver, err);
+  if (!rc)
+    rc = sc_check_mount("engine.", &s->engine, err);
+  for (int k = 0; !rc && k < FB_NCORNERS; ++k)
+    rc = sc_check_corner(&s->corner[k], k, err);
+  if (!rc)
+    rc = sc_check_road(s, err);
+  if (!rc)
+    rc = sc_check_simulation(s, err);
+  if (!rc)
+    rc = sc_check_bump_timing(s, err);
+  return rc;
+}

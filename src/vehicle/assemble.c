@@ -1,0 +1,236 @@
+/* Assembly of the vehicle from its fragments, the paper's seven outputs,
+ * and the simulation protocol (see flexbond/vehicle.h). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "core/util.h"
+
+static const char *const output_names[FB_NOUTPUTS] = {
+    "tire_force_LF",  "spring_defl_RF", "torsion",      "driver_acc",
+    "shock_power_LM", "tire_defl_RM",   "tire_power_LR"};
+static const char *const output_units[FB_NOUTPUTS] = {"N", "m", "rad", "m/s^2", "W", "m", "W"};
+
+const char *fb_vehicle_output_name(int k)
+{
+  return k >= 0 && k < FB_NOUTPUTS ? output_names[k] : NULL;
+}
+
+const char *fb_vehicle_output_unit(int k)
+{
+  return k >= 0 && k < FB_NOUTPUTS ? output_units[k] : NULL;
+}
+
+/* Adopts a fragment built by a constructor under instance name inst. */
+static int adopt(fb_bg *bg, int rc, fb_bg **frag, const char *inst, fb_err *err)
+{
+  if (rc)
+    return fb_err_prefix(err, "%s: ", inst);
+  return fb_bg_adopt(bg, frag, inst, err);
+}
+
+/* The fragments around the hull and the bonds between them. */
+static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  fb_bg *frag = NULL;
+  int rc =
+      adopt(bg, fb_vehicle_mount(&s->driver, s->gravity, &frag, err), &frag, "driver", err);
+  if (!rc)
+    rc = adopt(bg, fb_vehicle_mount(&s->engine, s->gravity, &frag, err), &frag, "engine", err);
+  for (int c = 0; !rc && c < FB_NCORNERS; ++c) {
+    char inst[16];
+    snprintf(inst, sizeof inst, "susp_%s", fb_corner_name(c));
+    rc = adopt(bg, fb_vehicle_corner(&s->corner[c], s->gravity, &frag, err), &frag, inst, err);
+  }
+  if (!rc)
+    rc = adopt(bg, fb_vehicle_road(s, &frag, err), &frag, "road", err);
+  if (!rc)
+    rc = adopt(bg, fb_vehicle_load(s, &frag, err), &frag, "load", err);
+  /* The horizontal line of Fig. 5: eight scalar bonds into one multibond. */
+  const size_t ones[FB_NATTACH] = {1, 1, 1, 1, 1, 1, 1, 1};
+  if (!rc)
+    rc = fb_bg_add_composite(bg, "attach", FB_NATTACH, ones, err);
+  for (int c = 0; !rc && c < FB_NATTACH; ++c) {
+    char from[32], to[32], road[32], wheel[32];
+    const char *inst = c == FB_ATTACH_DRIVER   ? "driver"
+                       : c == FB_ATTACH_ENGINE ? "engine"
+                                               : NULL;
+    if (inst)
+      snprintf(from, sizeof from, "%s.hull", inst);
+    else
+      snprintf(from, sizeof from, "susp_%s.hull", fb_corner_name(c));
+    snprintf(to, sizeof to, "attach.%d", c + 1);
+    rc = fb_bg_connect(bg, NULL, from, to, err);
+    if (!rc && !inst) {
+      snprintf(road, sizeof road, "road.%s", fb_corner_name(c));
+      snprintf(wheel, sizeof wheel, "susp_%s.road", fb_corner_name(c));
+      rc = fb_bg_connect(bg, NULL, road, wheel, err);
+    }
+  }
+  if (!rc)
+    rc = fb_bg_connect(bg, "b_attach", "attach.whole", "hull.attach", err);
+  if (!rc)
+    rc = fb_bg_connect(bg, "b_load", "load.load", "hull.load", err);
+  return rc;
+}
+
+void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes)
+{
+  if (!probes || !*probes)
+    return;
+  for (size_t i = 0; i < nprobes; ++i) {
+    free((char *)(*probes)[i].target);
+    free((double *)(*probes)[i].weights);
+  }
+  free(*probes);
+  *probes = NULL;
+}
+
+/* The seven outputs as probes on the assembled graph (targets owned). */
+static int make_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec **out,
+                       fb_err *err)
+{
+  fb_probe_spec *p = calloc(FB_NOUTPUTS, sizeof *p);
+  if (!p)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  const struct {
+    fb_probe_kind kind;
+    const char *target;
+  } spec[FB_NOUTPUTS] = {
+      {FB_PROBE_EFFORT, "susp_LF.b_tire"},
+      {FB_PROBE_STATE, "susp_RF.spring"},
+      {hull->torsion_kind, NULL},
+      {FB_PROBE_EFFORT, "driver.b_mass"},
+      {FB_PROBE_POWER, "susp_LM.b_damper"},
+      {FB_PROBE_STATE, "susp_RM.tire_spring"},
+      {FB_PROBE_POWER, "susp_LR.b_tire_damper"},
+  };
+  int rc = FB_OK;
+  for (int k = 0; k < FB_NOUTPUTS; ++k) {
+    p[k].name = output_names[k];
+    p[k].kind = spec[k].kind;
+    p[k].component = -1;
+    p[k].gain = 1.0;
+    p[k].unit = output_units[k];
+    char target[256];
+    snprintf(target, sizeof target, "%s%s", spec[k].target ? "" : "hull.",
+             spec[k].target ? spec[k].target : hull->torsion_target);
+    p[k].target = fb_strdup(target);
+    if (!p[k].target)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  /* Driver acceleration: the effort on the driver's mass over the mass
+   * (the paper's gain block 1/m on e7). */
+  p[3].gain = 1.0 / s->driver.mass;
+  p[2].integrate = hull->torsion_integrate;
+  p[2].nweights = hull->ntorsion;
+  double *w = malloc(hull->ntorsion * sizeof *w);
+  if (!w)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  else
+    memcpy(w, hull->torsion_weights, hull->ntorsion * sizeof *w);
+  p[2].weights = w;
+  if (rc) {
+    fb_vehicle_probes_free(&p, FB_NOUTPUTS);
+    return rc;
+  }
+  *out = p;
+  return FB_OK;
+}
+
+int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
+                        fb_probe_spec **probes, size_t *nprobes, fb_err *err)
+{
+  *out = NULL;
+  *probes = NULL;
+  *nprobes = 0;
+  fb_hull *hull = *hullp;
+  *hullp = NULL;
+  fb_bg *bg = NULL;
+  int rc = make_probes(s, hull, probes, err);
+  if (!rc)
+    rc = fb_bg_new(s->name ? s->name : "vehicle", &bg, err);
+  if (!rc)
+    rc = fb_bg_adopt(bg, &hull->graph, "hull", err);
+  if (!rc)
+    rc = add_subsystems(s, bg, err);
+  fb_hull_free(&hull);
+  if (rc) {
+    fb_vehicle_probes_free(probes, FB_NOUTPUTS);
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  *nprobes = FB_NOUTPUTS;
+  return FB_OK;
+}
+
+int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
+                     fb_err *err)
+{
+  *graph = NULL;
+  *bd = NULL;
+  if (sys != FB_SYSTEM_RIGID)
+    return fb_err_set(err, FB_EINVAL,
+                      "System 2 (flexible hull) is not available yet: it needs the "
+                      "finite-element hull");
+  fb_hull *hull = NULL;
+  fb_probe_spec *probes = NULL;
+  size_t nprobes = 0;
+  int rc = fb_scenario_check(s, err);
+  if (!rc)
+    rc = fb_vehicle_rigid_hull(s, &hull, err);
+  if (!rc)
+    rc = fb_vehicle_assemble(s, &hull, graph, &probes, &nprobes, err);
+  if (!rc)
+    rc = fb_bd_build(*graph, probes, nprobes, bd, err);
+  fb_vehicle_probes_free(&probes, nprobes);
+  fb_hull_free(&hull);
+  if (rc)
+    fb_bg_free(graph);
+  return rc;
+}
+
+/* Solver settings of the scenario; breakpoints come from the road
+ * sources (every wheel's bump entry and exit). */
+static void scenario_opts(const fb_scenario *s, fb_sim_opts *o)
+{
+  fb_sim_opts_default(o);
+  o->t_end = s->t_end;
+  o->rtol = s->rtol;
+  o->atol = s->atol;
+  o->max_step = s->max_step;
+  o->sample_rate = s->sample_rate;
+}
+
+int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *graph = NULL;
+  fb_bd *bd = NULL;
+  int rc = fb_vehicle_build(s, sys, &graph, &bd, err);
+  double *x0 = NULL;
+  if (!rc) {
+    size_t n = fb_bd_nstates(bd);
+    x0 = calloc(n + 1, sizeof *x0);
+    if (!x0)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  if (!rc && s->initial == FB_INITIAL_STATIC) {
+    double *zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);
+    rc = zero ? fb_sim_static_state(bd, 0.0, zero, x0, err)
+              : fb_err_set(err, FB_ENOMEM, "out of memory");
+    free(zero);
+  }
+  fb_sim_opts o;
+  scenario_opts(s, &o);
+  o.x0 = x0;
+  if (!rc)
+    rc = fb_sim_run(bd, &o, out, err);
+  free(x0);
+  fb_bd_free(&bd);
+  fb_bg_free(&graph);
+  return rc;
+}

@@ -1,0 +1,357 @@
+/* The vehicle's subsystems as bond-graph fragments with ports (the paper's
+ * Fig. 5). Each fragment is built from its own parameters only; the
+ * assembly (assemble.c) connects them through ports.
+ *
+ * Sign conventions inside the fragments (all efforts are vertical forces
+ * in N, flows vertical velocities in m/s, z up):
+ *   - a 0-junction between a velocity coming in and one going out forms
+ *     their difference: in - out - (to the spring's 1-junction) = 0;
+ *   - spring and tire states are compressions (positive when shortened). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "core/util.h"
+
+/* One-port field with a scalar law (mass, stiffness or damping). */
+static int add_scalar(fb_bg *bg, const char *name, fb_bg_kind kind, double v, fb_err *err)
+{
+  fb_mat *m = NULL;
+  const size_t one = 1;
+  int rc = fb_mat_new_scaled_identity(1, v, &m, err);
+  return rc ? rc : fb_bg_add_field(bg, name, kind, 1, &one, &m, err);
+}
+
+static int add_constant_effort(fb_bg *bg, const char *name, double value, fb_err *err)
+{
+  fb_tfun *f = NULL;
+  int rc = fb_tfun_new_const(value, &f, err);
+  return rc ? rc : fb_bg_add_source(bg, name, FB_BG_SE, 1, &f, err);
+}
+
+/* Connects the bonds listed as {name, from, to} triples. */
+static int connect_all(fb_bg *bg, const char *const (*bonds)[3], size_t n, fb_err *err)
+{
+  for (size_t i = 0; i < n; ++i) {
+    int rc = fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], err);
+    if (rc)
+      return rc;
+  }
+  return FB_OK;
+}
+
+/* Row [1, y, -x] of the rigid-body map from (z', phi', theta') to the
+ * vertical velocity of hull point (x, y). */
+static void rigid_row(double x, double y, double *row)
+{
+  row[0] = 1.0;
+  row[1] = y;
+  row[2] = -x;
+}
+
+/* n x 3 matrix transformer from the hull's generalised velocities to n
+ * points' vertical velocities. */
+static int add_point_map(fb_bg *bg, const char *name, size_t n, const double *x,
+                         const double *y, fb_err *err)
+{
+  double *rows = malloc(3 * n * sizeof *rows);
+  if (!rows)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t i = 0; i < n; ++i)
+    rigid_row(x[i], y[i], rows + 3 * i);
+  fb_mat *t = NULL;
+  int rc = fb_mat_new_dense_rowmajor(n, 3, rows, &t, err);
+  free(rows);
+  return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
+}
+
+/* Attachment points in "attach" port order. */
+static void attach_points(const fb_scenario *s, double *x, double *y)
+{
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    x[c] = s->corner[c].x;
+    y[c] = s->corner[c].y;
+  }
+  x[FB_ATTACH_DRIVER] = s->driver.x;
+  y[FB_ATTACH_DRIVER] = s->driver.y;
+  x[FB_ATTACH_ENGINE] = s->engine.x;
+  y[FB_ATTACH_ENGINE] = s->engine.y;
+}
+
+/* Rigid hull inertia in (z, phi, theta): diag(m, Ixx, Iyy), plus, for the
+ * lumped payload, point masses m_p at the load points, whose kinetic
+ * energy 1/2 m_p (z' + y phi' - x theta')^2 adds m_p r r' with r the
+ * rigid row of the point (full 3x3, consistent with the points). */
+static void hull_inertia(const fb_scenario *s, double *m33)
+{
+  memset(m33, 0, 9 * sizeof *m33);
+  m33[0] = s->hull_mass;
+  m33[4] = s->hull_ixx;
+  m33[8] = s->hull_iyy;
+  if (s->payload != FB_PAYLOAD_LUMPED)
+    return;
+  double mp = (s->total_weight / s->gravity - s->hull_mass) / (double)s->nload;
+  for (size_t k = 0; k < s->nload; ++k) {
+    double r[3];
+    rigid_row(s->load_x[k], s->load_y[k], r);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        m33[3 * i + j] += mp * r[i] * r[j];
+  }
+}
+
+/* Torsion of a rigid hull: the roll of the front edge minus that of the
+ * rear edge, over the integrated generalised velocities (z, phi, theta).
+ * Each edge's roll is (z_left - z_right) / (y_left - y_right) with
+ * z = r . (z, phi, theta); for a rigid body both equal phi, so the weights
+ * cancel exactly (to zero, not to rounding). */
+static void rigid_torsion_weights(const fb_scenario *s, double *w)
+{
+  double fl[3], fr[3], rl[3], rr[3];
+  rigid_row(s->edge_front_x, s->edge_left_y, fl);
+  rigid_row(s->edge_front_x, s->edge_right_y, fr);
+  rigid_row(s->edge_rear_x, s->edge_left_y, rl);
+  rigid_row(s->edge_rear_x, s->edge_right_y, rr);
+  double dy = s->edge_left_y - s->edge_right_y;
+  for (int i = 0; i < 3; ++i)
+    w[i] = (fl[i] - fr[i]) / dy - (rl[i] - rr[i]) / dy;
+}
+
+static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  double m33[9], ax[FB_NATTACH], ay[FB_NATTACH];
+  hull_inertia(s, m33);
+  attach_points(s, ax, ay);
+  fb_mat *m = NULL;
+  const size_t three = 3;
+  int rc = fb_mat_new_dense_rowmajor(3, 3, m33, &m, err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "body", FB_BG_I, 1, &three, &m, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, 3, err);
+  if (!rc)
+    rc = add_point_map(bg, "to_attach", FB_NATTACH, ax, ay, err);
+  if (!rc)
+    rc = add_point_map(bg, "to_load", s->nload, s->load_x, s->load_y, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, FB_NATTACH, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "load", FB_BG_J1, s->nload, err);
+  static const char *const bonds[][3] = {
+      {"b_body", "J", "body"},
+      {"b_attach_in", "J", "to_attach.1"},
+      {"b_attach", "to_attach.2", "attach"},
+      {"b_load_in", "J", "to_load.1"},
+      {"b_load", "to_load.2", "load"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "attach", "attach", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "load", "load", FB_PORT_IN, err);
+  return rc;
+}
+
+void fb_hull_free(fb_hull **h)
+{
+  if (!h || !*h)
+    return;
+  fb_bg_free(&(*h)->graph);
+  free((*h)->torsion_target);
+  free((*h)->torsion_weights);
+  free(*h);
+  *h = NULL;
+}
+
+int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err)
+{
+  *out = NULL;
+  fb_hull *h = calloc(1, sizeof *h);
+  if (!h)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  h->torsion_kind = FB_PROBE_FLOW;
+  h->torsion_integrate = 1;
+  h->ntorsion = 3;
+  h->torsion_target = fb_strdup("b_body");
+  h->torsion_weights = malloc(3 * sizeof *h->torsion_weights);
+  int rc = h->torsion_target && h->torsion_weights
+               ? FB_OK
+               : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc)
+    rc = fb_bg_new("rigid_hull", &h->graph, err);
+  if (!rc)
+    rc = rigid_hull_graph(s, h->graph, err);
+  if (rc) {
+    fb_hull_free(&h);
+    return fb_err_prefix(err, "rigid hull: ");
+  }
+  rigid_torsion_weights(s, h->torsion_weights);
+  *out = h;
+  return FB_OK;
+}
+
+/* Mass on a spring and damper to a hull point. The relative velocity
+ * v_rel = v_hull - v_mass (compression rate) comes out of the 0-junction
+ * "force" (mass in, hull out, spring in), whose common effort is the
+ * spring-damper force with the sign of tension. */
+int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("mount", &bg, err);
+  if (!rc)
+    rc = add_scalar(bg, "mass", FB_BG_I, mnt->mass, err);
+  if (!rc)
+    rc = add_constant_effort(bg, "weight", -mnt->mass * gravity, err);
+  if (!rc)
+    rc = add_scalar(bg, "spring", FB_BG_C, mnt->stiffness, err);
+  if (!rc)
+    rc = add_scalar(bg, "damper", FB_BG_R, mnt->damping, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jm", FB_BG_J1, 1, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "force", FB_BG_J0, 1, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jrel", FB_BG_J1, 1, err);
+  static const char *const bonds[][3] = {
+      {"b_mass", "Jm", "mass"},       {"b_weight", "weight", "Jm"},
+      {"b_up", "Jm", "force"},        {"b_rel", "Jrel", "force"},
+      {"b_spring", "Jrel", "spring"}, {"b_damper", "Jrel", "damper"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "hull", "force", FB_PORT_OUT, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+/* Suspension, wheel and tire. The 0-junction "susp" forms the wheel's
+ * velocity relative to the hull (compression rate of the suspension),
+ * the arm (a TF of the motion ratio) turns it into the spring's rate; the
+ * 0-junction "tire" forms road minus wheel velocity (tire compression
+ * rate). */
+int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("corner", &bg, err);
+  if (!rc)
+    rc = add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
+  if (!rc)
+    rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
+  if (!rc)
+    rc = add_scalar(bg, "spring", FB_BG_C, c->spring_k, err);
+  if (!rc)
+    rc = add_scalar(bg, "damper", FB_BG_R, c->damper_c, err);
+  if (!rc)
+    rc = fb_bg_add_tf(bg, "arm", FB_BG_TF, 1, c->motion_ratio, err);
+  if (!rc)
+    rc = add_scalar(bg, "tire_spring", FB_BG_C, c->tire_k, err);
+  if (!rc)
+    rc = add_scalar(bg, "tire_damper", FB_BG_R, c->tire_c, err);
+  const char *const junctions[][2] = {
+      {"Jw", "1"}, {"susp", "0"}, {"Jsp", "1"}, {"tire", "0"}, {"Jt", "1"}};
+  for (size_t i = 0; !rc && i < sizeof junctions / sizeof junctions[0]; ++i)
+    rc = fb_bg_add_junction(bg, junctions[i][0],
+                            junctions[i][1][0] == '0' ? FB_BG_J0 : FB_BG_J1, 1, err);
+  static const char *const bonds[][3] = {
+      {"b_wheel", "Jw", "wheel"},
+      {"b_weight", "weight", "Jw"},
+      {"b_up", "Jw", "susp"},
+      {"b_arm", "susp", "arm.1"},
+      {"b_travel", "arm.2", "Jsp"},
+      {"b_spring", "Jsp", "spring"},
+      {"b_damper", "Jsp", "damper"},
+      {"b_contact", "tire", "Jw"},
+      {"b_tire", "tire", "Jt"},
+      {"b_tire_spring", "Jt", "tire_spring"},
+      {"b_tire_damper", "Jt", "tire_damper"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "hull", "susp", FB_PORT_OUT, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "road", "tire", FB_PORT_IN, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+/* Vertical velocity of the road under one wheel: the (1 - cos) bump
+ * z(s) = h/2 (1 - cos(2 pi s / L)), 0 <= s <= L, s = V (t - t_entry),
+ * so z' = (pi h V / L) sin(2 pi s / L) on the bump and 0 elsewhere. */
+typedef struct bump_rate {
+  double height, length, speed, t_entry;
+} bump_rate;
+
+static double bump_velocity(double t, void *ctx)
+{
+  const bump_rate *b = ctx;
+  double s = b->speed * (t - b->t_entry);
+  if (s < 0.0 || s > b->length)
+    return 0.0;
+  const double pi = 3.14159265358979323846;
+  return pi * b->height * b->speed / b->length * sin(2.0 * pi * s / b->length);
+}
+
+int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("road", &bg, err);
+  for (int c = 0; !rc && c < FB_NCORNERS; ++c) {
+    bump_rate b = {s->bump_height, s->bump_length, s->speed, fb_scenario_bump_entry(s, c)};
+    const double kinks[2] = {b.t_entry, fb_scenario_bump_exit(s, c)};
+    fb_tfun *f = NULL;
+    char name[16];
+    snprintf(name, sizeof name, "v_%s", fb_corner_name(c));
+    rc = fb_tfun_new_callback_copy(bump_velocity, &b, sizeof b, 2, kinks, &f, err);
+    if (!rc)
+      rc = fb_bg_add_source(bg, name, FB_BG_SF, 1, &f, err);
+    if (!rc)
+      rc = fb_bg_add_port(bg, fb_corner_name(c), name, FB_PORT_OUT, err);
+  }
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+int fb_vehicle_load(const fb_scenario *s, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  fb_tfun **f = calloc(s->nload, sizeof *f);
+  int rc = f ? fb_bg_new("load", &bg, err) : fb_err_set(err, FB_ENOMEM, "out of memory");
+  const double each = -s->total_weight / (double)s->nload;
+  for (size_t k = 0; !rc && k < s->nload; ++k)
+    rc = fb_tfun_new_const(each, &f[k], err);
+  if (!rc)
+    rc = fb_bg_add_source(bg, "weights", FB_BG_SE, s->nload, f, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "load", "weights", FB_PORT_OUT, err);
+  for (size_t k = 0; f && k < s->nload; ++k)
+    fb_tfun_free(&f[k]);
+  free(f);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}

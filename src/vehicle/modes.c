@@ -1,0 +1,208 @@
+/* Modes of the linearised vehicle (flexbond/vehicle.h): eigenvalues of
+ * the block diagram's exact Jacobian at the static equilibrium (LAPACK
+ * dgeev), each described by the body that holds the largest share of its
+ * kinetic energy. */
+#include <lapacke.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+/* Mass (or inertia) and name of the body behind momentum state i. */
+static double body_of_state(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, size_t i,
+                            char *name, size_t size)
+{
+  size_t comp = 0;
+  long e = fb_bd_state_element(bd, i, &comp);
+  const char *el = fb_bg_element_name(g, (size_t)e);
+  static const char *const hull_dof[3] = {"hull bounce", "hull roll", "hull pitch"};
+  if (strcmp(el, "hull.body") == 0 && comp < 3) {
+    snprintf(name, size, "%s", hull_dof[comp]);
+    const double m[3] = {s->hull_mass, s->hull_ixx, s->hull_iyy};
+    return m[comp];
+  }
+  if (strcmp(el, "driver.mass") == 0) {
+    snprintf(name, size, "driver seat");
+    return s->driver.mass;
+  }
+  if (strcmp(el, "engine.mass") == 0) {
+    snprintf(name, size, "engine");
+    return s->engine.mass;
+  }
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    char wheel[32];
+    snprintf(wheel, sizeof wheel, "susp_%s.wheel", fb_corner_name(c));
+    if (strcmp(el, wheel) == 0) {
+      snprintf(name, size, "wheel hop %s", fb_corner_name(c));
+      return s->corner[c].wheel_mass;
+    }
+  }
+  snprintf(name, size, "%s", el);
+  return 1.0;
+}
+
+/* Describes eigenvector v (complex, states idx[0..n)) by the largest
+ * kinetic-energy share |p|^2 / m among the momentum states. */
+static void describe(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, const size_t *idx,
+                     size_t n, const double *vre, const double *vim, char *out, size_t size)
+{
+  double total = 0.0, best = -1.0;
+  char best_name[64] = "?";
+  for (size_t k = 0; k < n; ++k) {
+    if (fb_bd_state_kind(bd, idx[k]) != FB_STATE_MOMENTUM)
+      continue;
+    char name[64];
+    double m = body_of_state(s, g, bd, idx[k], name, sizeof name);
+    double ke = (vre[k] * vre[k] + (vim ? vim[k] * vim[k] : 0.0)) / m;
+    total += ke;
+    if (ke > best) {
+      best = ke;
+      snprintf(best_name, sizeof best_name, "%s", name);
+    }
+  }
+  snprintf(out, size, "%s (%.0f%%)", best_name, total > 0 ? 100.0 * best / total : 0.0);
+}
+
+static int cmp_mode(const void *a, const void *b)
+{
+  const fb_mode *x = a, *y = b;
+  int ox = x->im > 0, oy = y->im > 0;
+  if (ox != oy)
+    return oy - ox; /* oscillatory first */
+  return (x->freq_hz > y->freq_hz) - (x->freq_hz < y->freq_hz);
+}
+
+typedef struct eig_work {
+  size_t n;
+  size_t *idx;
+  double *a, *wr, *wi, *vr;
+} eig_work;
+
+static void eig_free(eig_work *w)
+{
+  free(w->idx);
+  free(w->a);
+  free(w->wr);
+  free(w->wi);
+  free(w->vr);
+}
+
+/* Jacobian restricted to the physical states (probe integrals left out). */
+static int physical_jacobian(fb_bd *bd, const double *x, eig_work *w, fb_err *err)
+{
+  size_t nall = fb_bd_nstates(bd);
+  double *jac = malloc((nall * nall + 1) * sizeof *jac);
+  w->idx = malloc((nall + 1) * sizeof *w->idx);
+  if (!jac || !w->idx) {
+    free(jac);
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  int rc = fb_bd_jacobian_dense(bd, 0.0, x, jac, err);
+  w->n = 0;
+  for (size_t i = 0; i < nall; ++i)
+    if (fb_bd_state_kind(bd, i) != FB_STATE_PROBE)
+      w->idx[w->n++] = i;
+  size_t n = w->n;
+  w->a = malloc((n * n + 1) * sizeof *w->a);
+  w->wr = malloc((n + 1) * sizeof *w->wr);
+  w->wi = malloc((n + 1) * sizeof *w->wi);
+  w->vr = malloc((n * n + 1) * sizeof *w->vr);
+  if (!rc && (!w->a || !w->wr || !w->wi || !w->vr))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t c = 0; !rc && c < n; ++c)
+    for (size_t r = 0; r < n; ++r)
+      w->a[c * n + r] = jac[w->idx[c] * nall + w->idx[r]];
+  free(jac);
+  if (rc)
+    return rc;
+  lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)n, w->a,
+                                  (lapack_int)n, w->wr, w->wi, NULL, 1, w->vr, (lapack_int)n);
+  if (info != 0)
+    return fb_err_set(err, FB_ESOLVER, "eigenvalues: LAPACK dgeev failed (info %d)", (int)info);
+  return FB_OK;
+}
+
+/* Collects the modes from the eigen-decomposition in w. */
+static int collect(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, const eig_work *w,
+                   fb_mode **modes, size_t *nmodes, size_t *nstatic, fb_err *err)
+{
+  size_t n = w->n;
+  double scale = 0.0;
+  for (size_t k = 0; k < n; ++k)
+    scale = fmax(scale, hypot(w->wr[k], w->wi[k]));
+  fb_mode *m = calloc(n + 1, sizeof *m);
+  if (!m)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  size_t count = 0, zeros = 0;
+  const double two_pi = 6.28318530717958647693;
+  for (size_t k = 0; k < n; ++k) {
+    double mag = hypot(w->wr[k], w->wi[k]);
+    /* Zero eigenvalues (self-stress of the indeterminate support) sit at
+     * rounding level, ~n eps times the largest eigenvalue. */
+    if (mag <= 1e-9 * scale) {
+      zeros++;
+      continue;
+    }
+    if (w->wi[k] < 0)
+      continue; /* the conjugate of a mode already listed */
+    fb_mode *md = &m[count++];
+    md->re = w->wr[k];
+    md->im = w->wi[k];
+    md->freq_hz = mag / two_pi;
+    md->damping_ratio = -md->re / mag;
+    const double *vre = w->vr + k * n;
+    const double *vim = w->wi[k] > 0 ? w->vr + (k + 1) * n : NULL;
+    describe(s, g, bd, w->idx, n, vre, vim, md->description, sizeof md->description);
+  }
+  qsort(m, count, sizeof *m, cmp_mode);
+  *modes = m;
+  *nmodes = count;
+  *nstatic = zeros;
+  return FB_OK;
+}
+
+static void remove_damping(fb_scenario *s)
+{
+  s->driver.damping = 0.0;
+  s->engine.damping = 0.0;
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    s->corner[c].damper_c = 0.0;
+    s->corner[c].tire_c = 0.0;
+  }
+}
+
+int fb_vehicle_modes(const fb_scenario *s0, fb_system sys, int undamped, fb_mode **modes,
+                     size_t *nmodes, size_t *nstatic, fb_err *err)
+{
+  *modes = NULL;
+  *nmodes = *nstatic = 0;
+  fb_scenario *s = NULL;
+  fb_bg *g = NULL;
+  fb_bd *bd = NULL;
+  double *x = NULL, *zero = NULL;
+  eig_work w = {0};
+  int rc = fb_scenario_clone(s0, &s, err);
+  if (!rc && undamped)
+    remove_damping(s);
+  if (!rc)
+    rc = fb_vehicle_build(s, sys, &g, &bd, err);
+  if (!rc) {
+    x = calloc(fb_bd_nstates(bd) + 1, sizeof *x);
+    zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);
+    rc = x && zero ? fb_sim_static_state(bd, 0.0, zero, x, err)
+                   : fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  if (!rc)
+    rc = physical_jacobian(bd, x, &w, err);
+  if (!rc)
+    rc = collect(s, g, bd, &w, modes, nmodes, nstatic, err);
+  eig_free(&w);
+  free(x);
+  free(zero);
+  fb_bd_free(&bd);
+  fb_bg_free(&g);
+  fb_scenario_free(&s);
+  return rc;
+}

@@ -1,0 +1,246 @@
+#!/usr/bin/env bash
+# flexbond run and flexbond modes on vehicle scenarios: the APC example
+# writes exactly the documented files (CSV header, 15 s at 1 kHz, valid
+# summary.json agreeing with the CSV, PNGs); System 2, bad options and bad
+# scenarios exit non-zero and write nothing; a failure while writing takes
+# back what was written.
+#
+# usage: bash tests/cli_run.sh PATH/TO/flexbond REPO_ROOT
+set -u
+NAME=cli_run
+# shellcheck source=clilib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
+
+APC=$REPO_ROOT/examples/apc6x6.yaml
+HEADER='t,tire_force_LF,spring_defl_RF,torsion,driver_acc,shock_power_LM,tire_defl_RM,tire_power_LR'
+FIGURES=(fig08_tire_force_LF.png fig09_spring_defl_RF.png fig10_torsion.png
+  fig11_driver_acc.png fig12_shock_power_LM.png fig13_tire_defl_RM.png fig14_tire_power_LR.png)
+EXPECTED_FILES=$(printf '%s\n' "${FIGURES[@]}" summary.json system1.csv | sort)
+
+# expect_files DIR DESCRIPTION: DIR holds exactly the files of a run.
+expect_files() {
+  checks=$((checks + 1))
+  [ "$(ls -A "$1" | sort)" = "$EXPECTED_FILES" ] || fail "$2: files $(ls -A "$1" | tr '\n' ' ')"
+}
+
+# check_summary DIR INITIAL PAYLOAD: summary.json is valid JSON with every
+# documented key, the bump window of the data sheet, and statistics that a
+# second computation from system1.csv reproduces.
+check_summary() {
+  checks=$((checks + 1))
+  python3 -m json.tool "$1/summary.json" >/dev/null || fail "summary.json is not valid JSON"
+  checks=$((checks + 1))
+  python3 - "$1" "$2" "$3" <<'EOF' || fail "summary.json contents ($1)"
+import csv, json, math, sys
+out, initial, payload = sys.argv[1:4]
+d = json.load(open(out + "/summary.json"))
+names = ["tire_force_LF", "spring_defl_RF", "torsion", "driver_acc",
+         "shock_power_LM", "tire_defl_RM", "tire_power_LR"]
+units = ["N", "m", "rad", "m/s^2", "W", "m", "W"]
+problems = []
+def want(cond, what):
+    if not cond:
+        problems.append(what)
+want(d["scenario"] == "apc6x6", "scenario name")
+want(d["initial"] == initial and d["payload"] == payload, "settings")
+for key in ["static", "peak", "min", "rms", "peak_time", "min_time", "bump_window"]:
+    want(key in d["definitions"], "definition of " + key)
+s1 = d["system1"]
+want(list(s1["outputs"]) == names, "output names and order")
+for key in ["steps", "rhs_evals", "newton_setups", "factorizations", "newton_iters",
+            "err_test_fails", "wall_seconds"]:
+    want(isinstance(s1["solver"].get(key), (int, float)), "solver." + key)
+want(s1["solver"]["steps"] > 0, "solver steps > 0")
+# Data sheet: the LF wheel meets the bump at 5 s; the RR wheel, 2.9 m
+# behind and 2.1 m to the right at 45 degrees, leaves it after a further
+# (2.9 + 2.1 + 3.7) m at 10/3.6 m/s: 8.132 s. Printed with 10 digits.
+t0, t1 = s1["bump_window"]
+want(abs(t0 - 5.0) < 1e-9 and abs(t1 - (5.0 + 8.7 * 3.6 / 10)) < 1e-9, "bump window %s" % [t0, t1])
+rows = [[float(v) for v in r] for r in list(csv.reader(open(out + "/system1.csv")))[1:]]
+for j, name in enumerate(names, start=1):
+    o = s1["outputs"][name]
+    want(o["unit"] == units[j - 1], name + " unit")
+    before = [r[j] for r in rows if r[0] < t0]
+    after = [(r[j], r[0]) for r in rows if r[0] >= t0]
+    bump = [r[j] for r in rows if t0 <= r[0] <= t1]
+    peak = max(after, key=lambda p: p[0])
+    low = min(after, key=lambda p: p[0])
+    rms = math.sqrt(sum(v * v for v in bump) / len(bump))
+    # The CSV and the JSON both print %.10g of the same doubles: the
+    # extremes agree to 10 digits, the RMS (summed here from the rounded
+    # CSV values) to about 1e-9 relative; 1e-8 leaves room.
+    for key, ref in [("static", before[-1]), ("peak", peak[0]), ("min", low[0]), ("rms", rms)]:
+        want(abs(o[key] - ref) <= 1e-8 * max(1.0, abs(ref)), "%s %s: %r vs %r" % (name, key, o[key], ref))
+    want(o["peak_time"] == peak[1] and o["min_time"] == low[1], name + " extreme times")
+# System 1's hull is rigid: the torsion angle is identically zero (paper, Fig. 10a).
+want(all(r[3] == 0 for r in rows), "torsion identically 0")
+if problems:
+    print("\n".join(problems), file=sys.stderr)
+    sys.exit(1)
+EOF
+}
+
+# ---- The APC example, System 1, the paper's protocol (all states zero).
+run run "$APC" -o "$WORK/apc" -q
+expect_status 0 "run apc6x6"
+checks=$((checks + 1))
+[ ! -s "$ERR" ] || fail "run -q prints nothing on stderr"
+expect_files "$WORK/apc" "run apc6x6"
+checks=$((checks + 1))
+[ "$(head -n 1 "$WORK/apc/system1.csv")" = "$HEADER" ] ||
+  fail "system1.csv header: $(head -n 1 "$WORK/apc/system1.csv")"
+checks=$((checks + 1))
+[ "$(wc -l <"$WORK/apc/system1.csv")" -eq 15002 ] || fail "system1.csv has 15001 samples + header"
+checks=$((checks + 1))
+tail -n 1 "$WORK/apc/system1.csv" | grep -q '^15,' || fail "last sample at t = 15 s"
+# Gravity switched on with every state zero: the driver starts in free
+# fall, a = -g = -9.81 m/s^2 (data sheet), and the tires carry nothing yet.
+checks=$((checks + 1))
+[ "$(sed -n 2p "$WORK/apc/system1.csv")" = "0,0,0,0,-9.81,0,0,0" ] ||
+  fail "first row: $(sed -n 2p "$WORK/apc/system1.csv")"
+check_summary "$WORK/apc" zero weight-only
+for f in "${FIGURES[@]}"; do
+  checks=$((checks + 1))
+  [ "$(head -c 8 "$WORK/apc/$f" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
+    fail "$f is a PNG"
+done
+
+# Without -q: a progress line and a summary line on stderr.
+run run "$APC" -o "$WORK/apc_loud"
+expect_status 0 "run apc6x6 without -q"
+expect_in "$ERR" "simulating System 1 (rigid hull)" "progress line"
+expect_in "$ERR" "wrote 9 files -> $WORK/apc_loud" "summary line"
+
+# Overrides: static equilibrium start and the lumped payload. At rest the
+# driver does not accelerate (|a| well below the solver's noise of
+# ~1e-6 m/s^2 at rtol 1e-6, against 9.81 from the zero start).
+run run "$APC" -o "$WORK/apc_static" -q --initial static --payload lumped
+expect_status 0 "run --initial static --payload lumped"
+expect_files "$WORK/apc_static" "run --initial static"
+check_summary "$WORK/apc_static" static lumped
+checks=$((checks + 1))
+awk -F, 'NR == 2 { exit !($5 < 1e-6 && $5 > -1e-6) }' "$WORK/apc_static/system1.csv" ||
+  fail "static start: driver acceleration at t = 0 is $(sed -n 2p "$WORK/apc_static/system1.csv")"
+
+# ---- System 2 does not exist yet: usage error, nothing written.
+for sys in flexible both; do
+  run run "$APC" -o "$WORK/out_$sys" --system "$sys"
+  expect_status 1 "run --system $sys"
+  expect_in "$ERR" "System 2 (flexible hull) is not available yet" "run --system $sys"
+  expect_absent "$WORK/out_$sys" "run --system $sys"
+done
+
+# ---- Bad options.
+for bad in "--system rubber" "--initial warm" "--payload heavy"; do
+  set -- $bad
+  run run "$APC" -o "$WORK/out_opt" "$@"
+  expect_status 1 "run $bad"
+  expect_in "$ERR" "option '$1' must be one of" "run $bad"
+done
+run run "$APC"
+expect_status 1 "run without -o"
+expect_in "$ERR" "-o DIR" "run without -o"
+run run -o "$WORK/out_opt"
+expect_status 1 "run without a scenario"
+expect_in "$ERR" "missing SCENARIO" "run without a scenario"
+expect_absent "$WORK/out_opt" "bad options"
+
+# ---- Bad scenarios, made from the example: exit 2, `file:line:` and the
+# key in the message, nothing written.
+# bad_scenario NAME LINE PHRASE: runs the scenario $WORK/NAME.yaml.
+bad_scenario() {
+  local file=$WORK/$1.yaml
+  run run "$file" -o "$WORK/out_$1"
+  expect_status 2 "$1"
+  expect_in "$ERR" "flexbond: $file:$2:" "$1: file:line"
+  expect_in "$ERR" "$3" "$1: message"
+  expect_absent "$WORK/out_$1" "$1: output"
+}
+# line_of FILE REGEX: number of the first line of FILE matching REGEX.
+line_of() {
+  grep -n -m 1 -E "$2" "$1" | cut -d: -f1
+}
+
+sed '0,/spring_k:/s/spring_k: *[-0-9.e+]*/spring_k: -1/' "$APC" >"$WORK/negative.yaml"
+bad_scenario negative "$(line_of "$WORK/negative.yaml" 'spring_k: -1')" "spring_k: must be > 0"
+
+sed 's/^  LM:/  XM:/' "$APC" >"$WORK/unknown.yaml"
+bad_scenario unknown "$(line_of "$WORK/unknown.yaml" '^  XM:')" "unknown suspension 'XM'"
+
+# The loader reports a missing key at its mapping (somewhere in `hull:`).
+grep -v -E '^  Iyy:' "$APC" >"$WORK/missing.yaml"
+run run "$WORK/missing.yaml" -o "$WORK/out_missing"
+expect_status 2 "missing key"
+checks=$((checks + 1))
+grep -qE "^flexbond: $WORK/missing.yaml:[0-9]+:.*'Iyy'" "$ERR" || fail "missing key: file:line and key"
+expect_absent "$WORK/out_missing" "missing key: output"
+
+# The last wheel leaves the bump at 8.132 s: a 7 s run is too short.
+sed -E 's/^  t_end: *[0-9.e+]+/  t_end: 7/' "$APC" >"$WORK/short.yaml"
+run run "$WORK/short.yaml" -o "$WORK/out_short"
+expect_status 2 "bump longer than the run"
+checks=$((checks + 1))
+grep -qE "^flexbond: $WORK/short.yaml:[0-9]+:[0-9]+: .*bump" "$ERR" ||
+  fail "bump longer than the run: file:line and key"
+expect_absent "$WORK/out_short" "bump longer than the run: output"
+
+run run "$WORK/no_such.yaml" -o "$WORK/out_nofile"
+checks=$((checks + 1))
+[ "$status" -eq 5 ] || [ "$status" -eq 2 ] || fail "missing scenario: exit status $status"
+expect_in "$ERR" "$WORK/no_such.yaml" "missing scenario"
+expect_absent "$WORK/out_nofile" "missing scenario: output"
+
+# ---- Writing fails: exit 5, and no file of the run is left behind.
+printf 'not a directory\n' >"$WORK/plain"
+run run "$APC" -o "$WORK/plain/out" -q
+expect_status 5 "output under a regular file"
+
+# summary.json, the last file written, cannot replace a directory: the
+# figures and the CSV written before it are taken back; the directory
+# existed before, so it stays.
+mkdir -p "$WORK/blocked/summary.json"
+run run "$APC" -o "$WORK/blocked" -q
+expect_status 5 "summary.json blocked"
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/blocked")" = "summary.json" ] ||
+  fail "blocked run left: $(ls -A "$WORK/blocked" | tr '\n' ' ')"
+
+# Without gnuplot the figures fail first: nothing written, no directory.
+run_without_gnuplot() {
+  PATH=/nonexistent "$FLEXBOND" "$@" >"$OUT" 2>"$ERR"
+  status=$?
+}
+run_without_gnuplot run "$APC" -o "$WORK/out_nognuplot" -q
+expect_status 5 "run without gnuplot"
+expect_in "$ERR" "gnuplot" "run without gnuplot"
+expect_absent "$WORK/out_nognuplot" "run without gnuplot: output"
+
+# ---- modes: 11 natural frequencies of System 1 (hull bounce, roll and
+# pitch, driver, engine, six wheels), then the damped eigenvalues.
+run modes "$APC"
+expect_status 0 "modes apc6x6"
+checks=$((checks + 1))
+n=$(awk '/^undamped natural frequencies/ { on = 1; next } on && /^$/ { exit }
+         on && $1 ~ /^[0-9]+$/ { n++ } END { print n + 0 }' "$OUT")
+[ "$n" -eq 11 ] || fail "modes lists $n undamped frequencies, expected 11"
+expect_in "$OUT" "undamped natural frequencies: 11 modes" "modes heading"
+expect_in "$OUT" "damped eigenvalues:" "modes damped table"
+expect_in "$OUT" "static zero mode" "modes static count"
+expect_in "$OUT" "wheel hop" "modes descriptions"
+# Frequencies ascend (fb_vehicle_modes sorts oscillatory modes by frequency).
+checks=$((checks + 1))
+awk '/^undamped/ { on = 1; next } on && /^$/ { exit }
+     on && $1 ~ /^[0-9]+$/ { if ($2 + 0 < last) bad = 1; last = $2 + 0 } END { exit bad }' \
+  "$OUT" || fail "undamped frequencies ascend"
+
+run modes "$APC" --system flexible
+expect_status 1 "modes --system flexible"
+expect_in "$ERR" "System 2 (flexible hull) is not available yet" "modes --system flexible"
+run modes "$WORK/negative.yaml"
+expect_status 2 "modes on a bad scenario"
+expect_in "$ERR" "$WORK/negative.yaml:" "modes on a bad scenario"
+run modes
+expect_status 1 "modes without a scenario"
+
+echo "$NAME: $checks checks, $failures failed" >&2
+[ "$failures" -eq 0 ]

@@ -1,0 +1,665 @@
+/* Tests of the vehicle scenario loader (fb_scenario_* in
+ * flexbond/vehicle.h): examples/apc6x6.yaml against every number of the
+ * data sheet (../shared/reference-vehicle.md), the bump timing against
+ * hand calculation, deep copies, fb_scenario_check on hand-built
+ * scenarios, and a table of bad scenarios with the status, the
+ * "bad.yaml:LINE:COL:" and the key path each must report. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "check.h"
+
+#define EXAMPLE "../examples/apc6x6.yaml"
+
+/* Values typed from the data sheet are compared exactly as decimals read
+ * by strtod: the loader must not change them. Derived values (km/h to
+ * m/s, degrees to radians, time sums) round once or twice: 1e-12
+ * relative is far above that and far below any data error. */
+#define TIGHT 1e-12
+
+/* ---- The example against the data sheet. */
+
+static void check_hull(const fb_scenario *s)
+{
+  CHECK(s->name && !strcmp(s->name, "apc6x6"));
+  CHECK(s->path && !strcmp(s->path, EXAMPLE));
+  CHECK(s->gravity == 9.81);
+  CHECK(s->hull_mass == 4041.72);
+  CHECK(s->hull_ixx == 4173.49);
+  CHECK(s->hull_iyy == 15175.96);
+  CHECK(s->young == 200e9);
+  CHECK(s->poisson == 0.3);
+  CHECK(s->density == 7860);
+  CHECK(s->thickness == 0.0085);
+  CHECK(s->edge_front_x == 3.0 && s->edge_rear_x == -3.0);
+  CHECK(s->edge_left_y == 1.25 && s->edge_right_y == -1.25);
+}
+
+/* 56 points on the 8 x 7 grid x = -2.45 + 0.7 i, y = -0.9 + 0.3 j, x-major,
+ * centroid at the origin, 117720 / 56 = 2102.142857 N each. */
+static void check_load(const fb_scenario *s)
+{
+  CHECK(s->total_weight == 117720);
+  CHECK(s->payload == FB_PAYLOAD_WEIGHT_ONLY);
+  CHECK(s->nload == 56);
+  if (s->nload != 56)
+    return;
+  double sx = 0, sy = 0;
+  for (size_t i = 0; i < 8; ++i)
+    for (size_t j = 0; j < 7; ++j) {
+      /* Grid step written in the file to two decimals. */
+      CHECK_NEAR(s->load_x[i * 7 + j], -2.45 + 0.7 * (double)i, TIGHT);
+      CHECK_NEAR(s->load_y[i * 7 + j], -0.9 + 0.3 * (double)j, TIGHT);
+      sx += s->load_x[i * 7 + j];
+      sy += s->load_y[i * 7 + j];
+    }
+  /* Symmetric values cancel up to the rounding of 56 sums. */
+  CHECK_NEAR(sx / 56, 0, TIGHT);
+  CHECK_NEAR(sy / 56, 0, TIGHT);
+  /* The data sheet quotes the share to 6 decimals. */
+  CHECK_NEAR(s->total_weight / (double)s->nload, 2102.142857, 5e-7);
+}
+
+static void check_mounts(const fb_scenario *s)
+{
+  CHECK(s->driver.mass == 100 && s->driver.stiffness == 19620 && s->driver.damping == 1400);
+  CHECK(s->driver.x == 2.10 && s->driver.y == 0.55);
+  CHECK(s->engine.mass == 500 && s->engine.stiffness == 122625 && s->engine.damping == 24761);
+  CHECK(s->engine.x == 1.70 && s->engine.y == -0.55);
+}
+
+/* Data sheet, Table 4 and the attachment points. */
+static void check_corners(const fb_scenario *s)
+{
+  static const double spring_k[] = {145300, 145300, 345550, 345550, 602100, 602100};
+  static const double damper_c[] = {25744, 25744, 25744, 25744, 39656, 39656};
+  static const double x[] = {1.90, 1.90, 0.40, 0.40, -1.00, -1.00};
+  static const double y[] = {1.05, -1.05, 1.05, -1.05, 1.05, -1.05};
+  static const char *const names[] = {"LF", "RF", "LM", "RM", "LR", "RR"};
+  for (int k = 0; k < FB_NCORNERS; ++k) {
+    const fb_corner_params *c = &s->corner[k];
+    CHECK(!strcmp(fb_corner_name(k), names[k]));
+    CHECK(c->spring_k == spring_k[k] && c->damper_c == damper_c[k]);
+    CHECK(c->x == x[k] && c->y == y[k]);
+    CHECK(c->motion_ratio == 1);
+    CHECK(c->wheel_mass == 175 && c->tire_k == 500000 && c->tire_c == 140000);
+  }
+  CHECK(fb_corner_name(-1) == NULL && fb_corner_name(FB_NCORNERS) == NULL);
+}
+
+static void check_road_and_run(const fb_scenario *s)
+{
+  CHECK_NEAR(s->speed, 10 / 3.6, TIGHT);
+  CHECK(s->bump_height == 0.10 && s->bump_length == 3.70 && s->bump_time == 5.0);
+  CHECK_NEAR(s->bump_angle, 0.7853981633974483, TIGHT); /* pi / 4 */
+  CHECK(s->t_end == 15 && s->rtol == 1e-6 && s->atol == 1e-8);
+  CHECK(s->max_step == 0 && s->sample_rate == 1000);
+  CHECK(s->initial == FB_INITIAL_ZERO);
+}
+
+/* With V = 10 km/h = 25/9 m/s, a distance d takes 0.36 d seconds and
+ * tan 45 deg = 1, so by hand (x_LF, y_LF) = (1.90, 1.05):
+ *   LF 5 + 0.36 (0   + 0  ) = 5
+ *   RF 5 + 0.36 (0   + 2.1) = 5.756
+ *   LM 5 + 0.36 (1.5 + 0  ) = 5.54
+ *   RM 5 + 0.36 (1.5 + 2.1) = 6.296
+ *   LR 5 + 0.36 (2.9 + 0  ) = 6.044
+ *   RR 5 + 0.36 (2.9 + 2.1) = 6.8
+ * and each leaves 0.36 * 3.7 = 1.332 s later: RR at 8.132 s, "about
+ * 8.13 s" in the data sheet. */
+static void check_bump_timing(const fb_scenario *s)
+{
+  static const double entry[] = {5, 5.756, 5.54, 6.296, 6.044, 6.8};
+  for (int k = 0; k < FB_NCORNERS; ++k) {
+    CHECK_NEAR(fb_scenario_bump_entry(s, k), entry[k], TIGHT);
+    CHECK_NEAR(fb_scenario_bump_exit(s, k), entry[k] + 1.332, TIGHT);
+  }
+  double rr_exit = 5 + 0.36 * (2.9 + 2.1) + 0.36 * 3.7;
+  CHECK_NEAR(fb_scenario_bump_exit(s, FB_RR), rr_exit, TIGHT);
+  CHECK_NEAR(fb_scenario_bump_exit(s, FB_RR), 8.13, 0.005); /* the data sheet's rounding */
+  CHECK(isnan(fb_scenario_bump_entry(s, FB_NCORNERS)));
+  CHECK(isnan(fb_scenario_bump_exit(NULL, FB_LF)));
+}
+
+/* Every line of the example that gives a number says where it comes
+ * from: "# paper" or "# assumed". */
+static void check_example_sources(void)
+{
+  FILE *fp = fopen(EXAMPLE, "r");
+  CHECK(fp != NULL);
+  if (!fp)
+    return;
+  char line[512];
+  int values = 0, unsourced = 0;
+  while (fgets(line, sizeof line, fp)) {
+    const char *p = line + strspn(line, " ");
+    const char *colon = strchr(p, ':');
+    if (*p == '#' || !colon || !strncmp(p, "scenario:", 9) || !strncmp(p, "description:", 12))
+      continue;
+    const char *value = colon + 1 + strspn(colon + 1, " ");
+    if (*value == '#' || *value == '\n' || *value == '\0')
+      continue; /* a section heading */
+    ++values;
+    if (!strstr(value, "# paper") && !strstr(value, "# assumed")) {
+      ++unsourced;
+      fprintf(stderr, "no source for: %s", line);
+    }
+  }
+  fclose(fp);
+  CHECK(values >= 60);
+  CHECK(unsourced == 0);
+}
+
+static void test_example(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  int rc = fb_scenario_load(EXAMPLE, &s, &err);
+  CHECK(rc == FB_OK);
+  if (rc) {
+    fprintf(stderr, "%s\n", err.msg);
+    return;
+  }
+  check_hull(s);
+  check_load(s);
+  check_mounts(s);
+  check_corners(s);
+  check_road_and_run(s);
+  check_bump_timing(s);
+  CHECK(fb_scenario_check(s, &err) == FB_OK);
+  fb_scenario_free(&s);
+  CHECK(s == NULL);
+  fb_scenario_free(&s); /* NULL is accepted */
+  fb_scenario_free(NULL);
+  check_example_sources();
+}
+
+/* ---- Copies. */
+
+static int corners_equal(const fb_corner_params *a, const fb_corner_params *b)
+{
+  return a->spring_k == b->spring_k && a->damper_c == b->damper_c &&
+         a->motion_ratio == b->motion_ratio && a->x == b->x && a->y == b->y &&
+         a->wheel_mass == b->wheel_mass && a->tire_k == b->tire_k && a->tire_c == b->tire_c;
+}
+
+static int mounts_equal(const fb_mount *a, const fb_mount *b)
+{
+  return a->mass == b->mass && a->stiffness == b->stiffness && a->damping == b->damping &&
+         a->x == b->x && a->y == b->y;
+}
+
+static int strings_equal(const char *a, const char *b)
+{
+  return (!a && !b) || (a && b && !strcmp(a, b));
+}
+
+/* Field by field, arrays by value. */
+static int scenarios_equal(const fb_scenario *a, const fb_scenario *b)
+{
+  int eq = strings_equal(a->name, b->name) && strings_equal(a->path, b->path) &&
+           a->gravity == b->gravity && a->hull_mass == b->hull_mass &&
+           a->hull_ixx == b->hull_ixx && a->hull_iyy == b->hull_iyy && a->young == b->young &&
+           a->poisson == b->poisson && a->density == b->density &&
+           a->thickness == b->thickness && a->edge_front_x == b->edge_front_x &&
+           a->edge_rear_x == b->edge_rear_x && a->edge_left_y == b->edge_left_y &&
+           a->edge_right_y == b->edge_right_y && a->total_weight == b->total_weight &&
+           a->payload == b->payload && a->nload == b->nload &&
+           mounts_equal(&a->driver, &b->driver) && mounts_equal(&a->engine, &b->engine) &&
+           a->speed == b->speed && a->bump_height == b->bump_height &&
+           a->bump_length == b->bump_length && a->bump_angle == b->bump_angle &&
+           a->bump_time == b->bump_time && a->t_end == b->t_end && a->rtol == b->rtol &&
+           a->atol == b->atol && a->max_step == b->max_step &&
+           a->sample_rate == b->sample_rate && a->initial == b->initial;
+  for (int k = 0; eq && k < FB_NCORNERS; ++k)
+    eq = corners_equal(&a->corner[k], &b->corner[k]);
+  for (size_t i = 0; eq && i < a->nload; ++i)
+    eq = a->load_x[i] == b->load_x[i] && a->load_y[i] == b->load_y[i];
+  return eq;
+}
+
+static void test_clone(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL, *c = NULL;
+  CHECK(fb_scenario_load(EXAMPLE, &s, &err) == FB_OK);
+  if (!s)
+    return;
+  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
+  CHECK(c && scenarios_equal(s, c));
+  /* A deep copy: nothing shared, so changing one leaves the other. */
+  CHECK(c && c->name != s->name && c->path != s->path && c->load_x != s->load_x &&
+        c->load_y != s->load_y);
+  if (c) {
+    c->load_x[3] = 99;
+    c->corner[FB_RR].tire_k = 1;
+    CHECK(!scenarios_equal(s, c));
+    CHECK(s->load_x[3] == -2.45 && s->corner[FB_RR].tire_k == 500000);
+  }
+  fb_scenario_free(&c);
+  /* Strings and arrays may be NULL in a hand-built scenario. */
+  free(s->path);
+  s->path = NULL;
+  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
+  CHECK(c && c->path == NULL && scenarios_equal(s, c));
+  fb_scenario_free(&c);
+  CHECK(fb_scenario_clone(NULL, &c, &err) == FB_EINVAL && c == NULL);
+  fb_scenario_free(&s);
+}
+
+/* ---- fb_scenario_check on hand-built scenarios (no file to point at). */
+
+/* Applies change to a copy of base and expects FB_EINVAL with phrase. */
+static void expect_check(const fb_scenario *base, void (*change)(fb_scenario *),
+                         const char *phrase)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  if (fb_scenario_clone(base, &s, &err) != FB_OK)
+    return;
+  change(s);
+  int rc = fb_scenario_check(s, &err);
+  CHECK(rc == FB_EINVAL);
+  CHECK(strstr(err.msg, phrase) != NULL);
+  if (rc != FB_EINVAL || !strstr(err.msg, phrase))
+    fprintf(stderr, "  wanted '%s', got: %s\n", phrase, err.msg);
+  fb_scenario_free(&s);
+}
+
+static void set_rr_tire_k(fb_scenario *s)
+{
+  s->corner[FB_RR].tire_k = -1;
+}
+static void set_no_load(fb_scenario *s)
+{
+  s->nload = 0;
+}
+static void set_nan_point(fb_scenario *s)
+{
+  s->load_y[3] = NAN;
+}
+static void set_angle_right(fb_scenario *s)
+{
+  s->bump_angle = 2 * atan(1.0); /* 90 deg */
+}
+static void set_inf_speed(fb_scenario *s)
+{
+  s->speed = INFINITY;
+}
+static void set_bad_payload(fb_scenario *s)
+{
+  s->payload = (fb_payload_model)7;
+}
+static void set_rr_ahead(fb_scenario *s)
+{
+  s->corner[FB_RR].x = 20; /* meets the bump at 5 + 0.36 ((1.9 - 20) + 2.1) = -0.76 s */
+}
+static void set_lumped_light(fb_scenario *s)
+{
+  s->payload = FB_PAYLOAD_LUMPED;
+  s->total_weight = 39000; /* 3976 kg < 4041.72 kg */
+}
+static void set_many_samples(fb_scenario *s)
+{
+  s->sample_rate = 1e9; /* 1.5e10 samples */
+}
+static void set_lumped(fb_scenario *s)
+{
+  s->payload = FB_PAYLOAD_LUMPED;
+}
+static void set_flat_bump(fb_scenario *s)
+{
+  s->bump_height = 0;
+}
+
+static void test_check(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(fb_scenario_load(EXAMPLE, &s, &err) == FB_OK);
+  if (!s)
+    return;
+  expect_check(s, set_rr_tire_k, "suspensions.RR.tire_k: must be > 0 N/m (got -1)");
+  expect_check(s, set_no_load, "load.points: at least one load point");
+  expect_check(s, set_nan_point, "load.points[3]: must be finite");
+  expect_check(s, set_angle_right, "road.bump.angle_deg: must be in [0, 90) deg (got 90)");
+  expect_check(s, set_inf_speed, "road.speed_kmh: must be finite");
+  expect_check(s, set_bad_payload, "load.payload: unknown payload model 7");
+  expect_check(s, set_rr_ahead, "road.bump.first_contact: the RR wheel would meet the bump");
+  expect_check(s, set_lumped_light, "load.payload: a lumped payload needs");
+  expect_check(s, set_many_samples, "simulation.sample_rate:");
+  /* Allowed: the lumped payload of the data sheet (7958.28 kg), a flat bump. */
+  fb_scenario *c = NULL;
+  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
+  if (c) {
+    set_lumped(c);
+    CHECK(fb_scenario_check(c, &err) == FB_OK);
+    CHECK_NEAR(c->total_weight / c->gravity - c->hull_mass, 7958.28,
+               0.005); /* quoted to 2 dp */
+    set_flat_bump(c);
+    CHECK(fb_scenario_check(c, &err) == FB_OK);
+  }
+  fb_scenario_free(&c);
+  CHECK(fb_scenario_check(NULL, &err) == FB_EINVAL);
+  fb_scenario_free(&s);
+}
+
+/* ---- Bad scenario files: a compact copy of the example with one or two
+ * replacements. Line numbers below refer to this text. */
+
+static const char base_text[] =
+    "scenario: bad\n"                                                              /* 1 */
+    "gravity: 9.81\n"                                                              /* 2 */
+    "hull:\n"                                                                      /* 3 */
+    "  mass: 4041.72\n"                                                            /* 4 */
+    "  Ixx: 4173.49\n"                                                             /* 5 */
+    "  Iyy: 15175.96\n"                                                            /* 6 */
+    "  material: {young: 200e9, poisson: 0.3, density: 7860, thickness: 0.0085}\n" /* 7 */
+    "  edges: {front_x: 3.0, rear_x: -3.0, left_y: 1.25, right_y: -1.25}\n"        /* 8 */
+    "load:\n"                                                                      /* 9 */
+    "  total_weight: 117720\n"                                                     /* 10 */
+    "  payload: weight-only\n"                                                     /* 11 */
+    "  points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, 1.75, 2.45],"
+    " y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}\n"                                /* 12 */
+    "driver: {mass: 100, stiffness: 19620, damping: 1400, x: 2.10, y: 0.55}\n"    /* 13 */
+    "engine: {mass: 500, stiffness: 122625, damping: 24761, x: 1.70, y: -0.55}\n" /* 14 */
+    "wheel: {mass: 175, tire_k: 500000, tire_c: 140000}\n"                        /* 15 */
+    "suspensions:\n"                                                              /* 16 */
+    "  motion_ratio: 1\n"                                                         /* 17 */
+    "  LF: {spring_k: 145300, damper_c: 25744, x: 1.90, y: 1.05}\n"               /* 18 */
+    "  RF: {spring_k: 145300, damper_c: 25744, x: 1.90, y: -1.05}\n"              /* 19 */
+    "  LM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}\n"               /* 20 */
+    "  RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: -1.05}\n"              /* 21 */
+    "  LR: {spring_k: 602100, damper_c: 39656, x: -1.00, y: 1.05}\n"              /* 22 */
+    "  RR: {spring_k: 602100, damper_c: 39656, x: -1.00, y: -1.05}\n"             /* 23 */
+    "road:\n"                                                                     /* 24 */
+    "  speed_kmh: 10\n"                                                           /* 25 */
+    "  bump: {height: 0.10, length: 3.70, angle_deg: 45, first_contact: 5.0}\n"   /* 26 */
+    "simulation: {t_end: 15, rtol: 1e-6, atol: 1e-8, sample_rate: 1000, initial: zero}\n";
+
+typedef struct bad_case {
+  const char *from, *to;   /* replace the (unique) text from by to */
+  const char *from2, *to2; /* and a second one (may be NULL) */
+  int code;
+  const char *where;   /* "bad.yaml:LINE:COL:" the message must start with */
+  const char *phrase;  /* and contain (the key path and what is wrong) */
+  const char *phrase2; /* and this too (may be NULL) */
+} bad_case;
+
+static const bad_case bad_cases[] = {
+    /* Physical checks, reported at the value. */
+    {"LF: {spring_k: 145300", "LF: {spring_k: -145300", NULL, NULL, FB_EINVAL,
+     "bad.yaml:18:18:", "suspensions.LF.spring_k: must be > 0 N/m (got -145300)", NULL},
+    {"driver: {mass: 100", "driver: {mass: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:13:16:", "driver.mass: must be > 0 kg (got 0)", NULL},
+    {"damping: 24761", "damping: -1", NULL, NULL, FB_EINVAL,
+     "bad.yaml:14:", "engine.damping: must be >= 0 N s/m (got -1)", NULL},
+    {"  Ixx: 4173.49", "  Ixx: .nan", NULL, NULL, FB_EINVAL,
+     "bad.yaml:5:8:", "hull.Ixx: must be finite (got .nan)", NULL},
+    {"density: 7860", "density: -.inf", NULL, NULL, FB_EINVAL,
+     "bad.yaml:7:", "hull.material.density: must be finite (got -.inf)", NULL},
+    {"poisson: 0.3", "poisson: 0.5", NULL, NULL, FB_EINVAL,
+     "bad.yaml:7:", "hull.material.poisson: must be in [0, 0.5) (got 0.5)", NULL},
+    {"young: 200e9", "young: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:7:", "hull.material.young: must be > 0 Pa", NULL},
+    {"front_x: 3.0", "front_x: -4", NULL, NULL, FB_EINVAL,
+     "bad.yaml:8:", "hull.edges.front_x: must be > hull.edges.rear_x", NULL},
+    {"gravity: 9.81", "gravity: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:2:10:", "gravity: must be > 0 m/s^2", NULL},
+    {"total_weight: 117720", "total_weight: -1", NULL, NULL, FB_EINVAL,
+     "bad.yaml:10:17:", "load.total_weight: must be > 0 N", NULL},
+    /* A shared value: reported where the file gives it. */
+    {"wheel: {mass: 175", "wheel: {mass: -175", NULL, NULL, FB_EINVAL,
+     "bad.yaml:15:15:", "wheel.mass: must be > 0 kg (got -175)", NULL},
+    {"motion_ratio: 1", "motion_ratio: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:17:17:", "suspensions.motion_ratio: must be > 0 (got 0)", NULL},
+    /* A corner's override: reported there. */
+    {"x: 0.40, y: 1.05}", "x: 0.40, y: 1.05, tire_c: -5}", NULL, NULL, FB_EINVAL,
+     "bad.yaml:20:", "suspensions.LM.tire_c: must be >= 0 N s/m (got -5)", NULL},
+    {"speed_kmh: 10", "speed_kmh: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:25:14:", "road.speed_kmh: must be > 0 km/h (got 0)", NULL},
+    {"height: 0.10", "height: -0.1", NULL, NULL, FB_EINVAL,
+     "bad.yaml:26:", "road.bump.height: must be >= 0 m", NULL},
+    {"length: 3.70", "length: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:26:", "road.bump.length: must be > 0 m", NULL},
+    {"angle_deg: 45", "angle_deg: 90", NULL, NULL, FB_EINVAL,
+     "bad.yaml:26:", "road.bump.angle_deg: must be in [0, 90) deg (got 90)", NULL},
+    {"angle_deg: 45", "angle_deg: -1", NULL, NULL, FB_EINVAL,
+     "bad.yaml:26:", "road.bump.angle_deg: must be in [0, 90) deg (got -1)", NULL},
+    {"first_contact: 5.0", "first_contact: -1", NULL, NULL, FB_EINVAL,
+     "bad.yaml:26:", "road.bump.first_contact: must be >= 0 s", NULL},
+    /* Bump timing: RR leaves at 8.132 s (see check_bump_timing). */
+    {"t_end: 15", "t_end: 8", NULL, NULL, FB_EINVAL,
+     "bad.yaml:26:9:", "road.bump: bump longer than the run",
+     "RR) leaves it at 8.132 s, not before "
+     "simulation.t_end = 8 s"},
+    /* RF 3 m ahead of LF meets the bump at 0 + 0.36 ((1.9 - 4.9) + 2.1) = -0.324 s. */
+    {"first_contact: 5.0", "first_contact: 0",
+     "RF: {spring_k: 145300, damper_c: 25744, x: 1.90",
+     "RF: {spring_k: 145300, damper_c: 25744, x: 4.90", FB_EINVAL, "bad.yaml:26:",
+     "road.bump.first_contact: the RF wheel would meet the bump at -0.324 s", NULL},
+    {"t_end: 15", "t_end: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:27:", "simulation.t_end: must be > 0 s", NULL},
+    {"rtol: 1e-6", "rtol: 1", NULL, NULL, FB_EINVAL,
+     "bad.yaml:27:", "simulation.rtol: must be in (0, 1) (got 1)", NULL},
+    {"atol: 1e-8", "atol: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:27:", "simulation.atol: must be > 0", NULL},
+    {"sample_rate: 1000", "sample_rate: -1000", NULL, NULL, FB_EINVAL,
+     "bad.yaml:27:", "simulation.sample_rate: must be > 0 Hz", NULL},
+    {"initial: zero}", "initial: zero, max_step: -1}", NULL, NULL, FB_EINVAL,
+     "bad.yaml:27:", "simulation.max_step: must be >= 0 s", NULL},
+    /* 30000 N / 9.81 = 3058 kg is less than the hull alone. */
+    {"payload: weight-only", "payload: lumped", "total_weight: 117720", "total_weight: 30000",
+     FB_EINVAL, "bad.yaml:11:12:", "load.payload: a lumped payload needs", NULL},
+    /* Structure: corners. */
+    {"  RR: {", "  RB: {", NULL, NULL, FB_EPARSE, "bad.yaml:23:3:",
+     "suspensions.RB: unknown suspension 'RB'", "the corners are LF, RF, LM, RM, LR, RR"},
+    {"  RR: {spring_k: 602100, damper_c: 39656, x: -1.00, y: -1.05}\n", "", NULL, NULL,
+     FB_EPARSE, "bad.yaml:17:3:", "suspensions: missing corner 'RR'", NULL},
+    {"LF: {spring_k", "LF: {sprng_k", NULL, NULL, FB_EPARSE, "bad.yaml:18:",
+     "suspensions.LF.sprng_k: unknown key 'sprng_k' (did you mean 'spring_k'?)", NULL},
+    {"  LM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}", "  LM:", NULL, NULL,
+     FB_EPARSE, "bad.yaml:20:3:", "suspensions.LM: missing value", NULL},
+    /* Missing keys and sections, unknown keys. */
+    {"  Iyy: 15175.96\n", "", NULL, NULL, FB_EPARSE,
+     "bad.yaml:4:3:", "hull: missing required key 'Iyy'", NULL},
+    {"wheel: {mass: 175, tire_k: 500000, tire_c: 140000}\n", "", NULL, NULL, FB_EPARSE,
+     "bad.yaml:1:1:", "missing required key 'wheel'", NULL},
+    {"gravity: 9.81", "gravty: 9.81", NULL, NULL, FB_EPARSE,
+     "bad.yaml:2:1:", "gravty: unknown key 'gravty' (did you mean 'gravity'?)", NULL},
+    {"speed_kmh: 10", "speed: 10", NULL, NULL, FB_EPARSE,
+     "bad.yaml:25:3:", "road.speed: unknown key 'speed'", NULL},
+    /* Types and enumerations. */
+    {"tire_k: 500000", "tire_k: [500000]", NULL, NULL, FB_EPARSE,
+     "bad.yaml:15:28:", "wheel.tire_k: expected a number or expression, got a list", NULL},
+    {"driver: {mass: 100", "driver: {mass: heavy", NULL, NULL, FB_EPARSE,
+     "bad.yaml:13:16:", "driver.mass: expression 'heavy'", "unknown name 'heavy'"},
+    {"edges: {front_x: 3.0, rear_x: -3.0, left_y: 1.25, right_y: -1.25}",
+     "edges: [3.0, -3.0, 1.25, -1.25]", NULL, NULL, FB_EPARSE,
+     "bad.yaml:8:10:", "hull.edges: expected the torsion edges", "got a list"},
+    {"payload: weight-only", "payload: weightonly", NULL, NULL, FB_EPARSE, "bad.yaml:11:12:",
+     "load.payload: unknown value 'weightonly' (did you mean 'weight-only'?)",
+     "weight-only | lumped"},
+    {"initial: zero", "initial: rest", NULL, NULL, FB_EPARSE,
+     "bad.yaml:27:", "simulation.initial: unknown value 'rest'", "zero | static"},
+    {"scenario: bad", "scenario: a b", NULL, NULL, FB_EPARSE,
+     "bad.yaml:1:11:", "scenario name 'a b'", NULL},
+    /* Load points. */
+    {"points: {grid:", "points: {grd:", NULL, NULL, FB_EPARSE,
+     "bad.yaml:12:", "load.points.grd: unknown key 'grd' (did you mean 'grid'?)", NULL},
+    {"y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]", "y: []", NULL, NULL, FB_EMODEL,
+     "bad.yaml:12:", "load.points.grid.y: expected at least one value", NULL},
+    {"points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, 1.75, 2.45],"
+     " y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}",
+     "points: [[0, 0], [1, 2, 3]]", NULL, NULL, FB_EMODEL,
+     "bad.yaml:12:", "load.points[1]: expected 2 values, got 3", NULL},
+    {"points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, 1.75, 2.45],"
+     " y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}",
+     "points: []", NULL, NULL, FB_EINVAL,
+     "bad.yaml:12:11:", "load.points: at least one load point is needed", NULL},
+    /* Parameters and YAML itself. */
+    {"scenario: bad\n", "scenario: bad\nparameters: {v: 10, t: 1}\n", NULL, NULL, FB_EPARSE,
+     "bad.yaml:2:21:", "parameters.t: 't' is reserved", NULL},
+    {"gravity: 9.81", "gravity: [9.81", NULL, NULL, FB_EPARSE, "bad.yaml:", "YAML:", NULL},
+    {"gravity: 9.81", "gravity: 9.81\ngravity: 9.8", NULL, NULL, FB_EPARSE,
+     "bad.yaml:3:", "duplicate key", NULL},
+    {"simulation: {", "---\nsimulation: {", NULL, NULL, FB_EPARSE,
+     "bad.yaml:27:1:", "second document", NULL},
+};
+
+/* base_text with from -> to (from must occur exactly once); NULL if not. */
+static char *replace_once(const char *text, const char *from, const char *to)
+{
+  const char *at = strstr(text, from);
+  if (!at || strstr(at + 1, from))
+    return NULL;
+  size_t head = (size_t)(at - text), nfrom = strlen(from), nto = strlen(to);
+  char *out = malloc(strlen(text) - nfrom + nto + 1);
+  if (!out)
+    return NULL;
+  memcpy(out, text, head);
+  memcpy(out + head, to, nto);
+  strcpy(out + head + nto, at + nfrom);
+  return out;
+}
+
+static void run_bad_case(size_t i, const bad_case *b)
+{
+  char *text = replace_once(base_text, b->from, b->to);
+  char *text2 = (text && b->from2) ? replace_once(text, b->from2, b->to2) : NULL;
+  const char *use = b->from2 ? text2 : text;
+  CHECK(use != NULL); /* the case's replacement applies */
+  if (use) {
+    fb_err err;
+    fb_scenario *s = NULL;
+    int rc = fb_scenario_load_string(use, strlen(use), "bad.yaml", &s, &err);
+    int ok = rc == b->code && s == NULL && !strncmp(err.msg, b->where, strlen(b->where)) &&
+             strstr(err.msg, b->phrase) && (!b->phrase2 || strstr(err.msg, b->phrase2));
+    CHECK(ok);
+    if (!ok)
+      fprintf(stderr, "  bad case %zu: got %s: %s\n  wanted %s: %s ... %s\n", i,
+              fb_status_name(rc), err.msg, fb_status_name(b->code), b->where, b->phrase);
+    fb_scenario_free(&s);
+  }
+  free(text);
+  free(text2);
+}
+
+static void test_bad_files(void)
+{
+  size_t n = sizeof bad_cases / sizeof bad_cases[0];
+  CHECK(n >= 20);
+  for (size_t i = 0; i < n; ++i)
+    run_bad_case(i, &bad_cases[i]);
+}
+
+/* ---- Good variants of the compact text. */
+
+static fb_scenario *load_text(const char *text, const char *name)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  int rc = fb_scenario_load_string(text, strlen(text), name, &s, &err);
+  CHECK(rc == FB_OK);
+  if (rc)
+    fprintf(stderr, "  unexpected error: %s\n", err.msg);
+  return s;
+}
+
+static void test_good_variants(void)
+{
+  fb_err err;
+  fb_scenario *base = load_text(base_text, NULL), *ex = NULL;
+  CHECK(fb_scenario_load(EXAMPLE, &ex, &err) == FB_OK);
+  if (base && ex) {
+    /* The compact form reads to the example's values (name and path aside). */
+    free(base->name);
+    base->name = ex->name;
+    base->path = ex->path;
+    CHECK(scenarios_equal(base, ex));
+    base->name = NULL;
+    base->path = NULL;
+  }
+  fb_scenario_free(&ex);
+  fb_scenario_free(&base);
+
+  /* Parameters and expressions; overrides per corner; explicit points;
+   * a flat bump and the options. */
+  char *t1 = replace_once(base_text, "scenario: bad\n",
+                          "scenario: good\nparameters: {v: 36, deg: 30}\n");
+  char *t2 = t1 ? replace_once(t1, "speed_kmh: 10", "speed_kmh: v / 2") : NULL;
+  char *t3 = t2 ? replace_once(t2, "angle_deg: 45", "angle_deg: deg") : NULL;
+  char *t4 = t3 ? replace_once(t3, "x: -1.00, y: -1.05}",
+                               "x: -1.00, y: -1.05, wheel_mass: 200, tire_k: 4e5, tire_c: 0, "
+                               "motion_ratio: 0.8}")
+                : NULL;
+  char *t5 = t4 ? replace_once(t4, "height: 0.10", "height: 0") : NULL;
+  char *t6 = t5 ? replace_once(t5,
+                               "points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, "
+                               "1.75, 2.45], y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}",
+                               "points: [[1, 0.5], [-1, -0.5]]")
+                : NULL;
+  char *t7 = t6 ? replace_once(t6, "payload: weight-only", "payload: lumped") : NULL;
+  char *t8 = t7 ? replace_once(t7, "initial: zero}", "initial: static, max_step: 0.01}") : NULL;
+  CHECK(t8 != NULL);
+  fb_scenario *s = t8 ? load_text(t8, NULL) : NULL;
+  if (s) {
+    CHECK(s->path == NULL && !strcmp(s->name, "good"));
+    CHECK_NEAR(s->speed, 5, TIGHT);                       /* 18 km/h */
+    CHECK_NEAR(s->bump_angle, 0.5235987755982988, TIGHT); /* pi / 6 */
+    const fb_corner_params *rr = &s->corner[FB_RR], *lr = &s->corner[FB_LR];
+    CHECK(rr->wheel_mass == 200 && rr->tire_k == 4e5 && rr->tire_c == 0);
+    CHECK(rr->motion_ratio == 0.8);
+    CHECK(lr->wheel_mass == 175 && lr->tire_k == 500000 && lr->motion_ratio == 1);
+    CHECK(s->bump_height == 0);
+    CHECK(s->nload == 2 && s->load_x[0] == 1 && s->load_y[0] == 0.5 && s->load_x[1] == -1 &&
+          s->load_y[1] == -0.5);
+    CHECK(s->payload == FB_PAYLOAD_LUMPED && s->initial == FB_INITIAL_STATIC);
+    CHECK(s->max_step == 0.01);
+    /* RR by hand at 5 m/s, tan 30 deg = 1/sqrt(3): 5 + (2.9 + 2.1/sqrt 3)/5. */
+    CHECK_NEAR(fb_scenario_bump_entry(s, FB_RR), 5 + (2.9 + 2.1 / sqrt(3.0)) / 5, TIGHT);
+  }
+  fb_scenario_free(&s);
+  free(t1);
+  free(t2);
+  free(t3);
+  free(t4);
+  free(t5);
+  free(t6);
+  free(t7);
+  free(t8);
+}
+
+/* ---- API misuse and files. */
+
+static void test_api_errors(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(fb_scenario_load("no/such/file.yaml", &s, &err) == FB_EIO && s == NULL);
+  CHECK(strstr(err.msg, "no/such/file.yaml") != NULL);
+  CHECK(fb_scenario_load(NULL, &s, &err) == FB_EINVAL);
+  CHECK(fb_scenario_load_string(NULL, 0, "x", &s, &err) == FB_EINVAL);
+  CHECK(fb_scenario_load_string("", 0, "empty.yaml", &s, &err) == FB_EPARSE);
+  CHECK(strstr(err.msg, "empty.yaml:1:1:") == err.msg && strstr(err.msg, "empty"));
+  /* Without a display name, messages say <string>. */
+  const char *text = "scenario: x\n";
+  CHECK(fb_scenario_load_string(text, strlen(text), NULL, &s, &err) == FB_EPARSE);
+  CHECK(strstr(err.msg, "<string>:1:1:") == err.msg);
+  CHECK(fb_scenario_load_string(text, strlen(text), NULL, &s, NULL) == FB_EPARSE && s == NULL);
+}
+
+int main(void)
+{
+  test_example();
+  test_clone();
+  test_check();
+  test_bad_files();
+  test_good_variants();
+  test_api_errors();
+  return check_report("test_scenario");
+}
