@@ -3,7 +3,8 @@
 #   make deps          install the Debian packages the build needs (only those missing)
 #   make build         configure + build into $(BUILD_DIR) (RelWithDebInfo)
 #   make test          deps + build + run the CTest suite
-#   make run           deps + build + simulate and diagram examples/quarter_car.yaml into out/
+#   make run           deps + build + the default study (examples/apc6x6.yaml, System 1) into out/,
+#                      and the quarter-car example into out/quarter_car/
 #   make asan          build into $(ASAN_DIR) with ASan+UBSan and run the suite
 #   make clang         build into $(CLANG_DIR) with clang and -Werror and run the suite
 #   make format        clang-format -i every .c/.h under include/ src/ tests/
@@ -65,9 +66,10 @@ test: deps build
 	$(call run_ctest,$(BUILD_DIR))
 
 run: deps build
-	mkdir -p $(OUT_DIR)
-	./$(BUILD_DIR)/flexbond sim examples/quarter_car.yaml -o $(OUT_DIR)/ --plot
-	./$(BUILD_DIR)/flexbond diagram examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car.dot
+	./$(BUILD_DIR)/flexbond run examples/apc6x6.yaml -o $(OUT_DIR)/
+	./$(BUILD_DIR)/flexbond modes examples/apc6x6.yaml > $(OUT_DIR)/modes.txt
+	./$(BUILD_DIR)/flexbond sim examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/ --plot
+	./$(BUILD_DIR)/flexbond diagram examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/diagram.dot
 
 asan:
 	$(call cmake_build,$(ASAN_DIR),-DFLEXBOND_SANITIZE=ON)

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Reproducible timings of the flexbond command (needs hyperfine and GNU time:
-# apt-get install hyperfine time). Usage: bench/run.sh [BUILD_DIR]
-# Prints hyperfine's median wall time over repeated runs, the solver's own
-# statistics, and the peak resident memory of one run.
+# Reproducible timings (needs hyperfine and GNU time: apt-get install hyperfine
+# time, and a build: make build). Usage: bench/run.sh [BUILD_DIR]
+# For each case: hyperfine's median wall time of the whole command over
+# repeated runs, the solver's own statistics, and the peak resident memory.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 build=${1:-build}
@@ -10,12 +10,25 @@ exe=$build/flexbond
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
+median() { # hyperfine JSON -> "median X ms (min Y, max Z) over N runs"
+  python3 -c 'import json,sys; r=json.load(open(sys.argv[1]))["results"][0]; print("median %.2f ms (min %.2f, max %.2f) over %d runs" % (1e3*r["median"], 1e3*r["min"], 1e3*r["max"], len(r["times"])))' "$1"
+}
+
+echo "== System 1 (rigid hull), 15 s at 1 kHz: fb_vehicle_simulate, 21 runs in one process"
+"$build/bench_vehicle" examples/apc6x6.yaml 21 | tail -n 2
+
+echo "== System 1, whole command: flexbond run --no-figures (load, simulate, write CSV + JSON)"
+hyperfine -N --warmup 3 --runs 30 --style none --export-json "$out/h.json" \
+  "$exe run examples/apc6x6.yaml -o $out/run -q --no-figures" >/dev/null
+median "$out/h.json"
+/usr/bin/time -v "$exe" run examples/apc6x6.yaml -o "$out/run" -q --no-figures 2>&1 |
+  grep "Maximum resident"
+
 for model in examples/quarter_car.yaml examples/two_dof_fields.yaml; do
-  echo "== $model"
-  hyperfine --warmup 3 --runs 30 --style basic --export-json "$out/h.json" \
-    "$exe sim $model -o $out/run -q" >/dev/null
-  python3 -c 'import json,sys; r=json.load(open(sys.argv[1]))["results"][0]; print("median wall %.2f ms (min %.2f, max %.2f) over %d runs" % (1e3*r["median"], 1e3*r["min"], 1e3*r["max"], len(r["times"])))' "$out/h.json"
-  cat "$out/run/stats.json"
-  echo
-  /usr/bin/time -v "$exe" sim "$model" -o "$out/run" -q 2>&1 | grep "Maximum resident"
+  echo "== flexbond sim $model"
+  hyperfine -N --warmup 3 --runs 30 --style none --export-json "$out/h.json" \
+    "$exe sim $model -o $out/sim -q" >/dev/null
+  median "$out/h.json"
+  python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); print("solver %.2f ms, %d steps, %d rhs evals, %d factorisations" % (1e3*s["wall_seconds"], s["steps"], s["rhs_evals"], s["factorizations"]))' "$out/sim/stats.json"
+  /usr/bin/time -v "$exe" sim "$model" -o "$out/sim" -q 2>&1 | grep "Maximum resident"
 done

@@ -242,5 +242,12 @@ expect_in "$ERR" "$WORK/negative.yaml:" "modes on a bad scenario"
 run modes
 expect_status 1 "modes without a scenario"
 
+# --no-figures: the CSV and the summary only.
+run run "$REPO_ROOT/examples/apc6x6.yaml" -o "$WORK/nofig" --no-figures -q
+expect_status 0 "run --no-figures"
+checks=$((checks + 1))
+[ "$(cd "$WORK/nofig" && ls | tr '\n' ' ')" = "summary.json system1.csv " ] ||
+  fail "run --no-figures writes only system1.csv and summary.json: $(ls "$WORK/nofig")"
+
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

@@ -90,7 +90,19 @@ struct fb_bd {
   size_t *state_comp; /* per state: component within the element */
   bd_output *outs;
   size_t nouts, cap_outs;
-  size_t aug_nnz;
+  /* Newton subsystem: the integrators and the varying blocks upstream of
+   * their inputs; its signals, numbered z (states first), are the
+   * unknowns of the augmented matrix. */
+  unsigned char *is_const; /* per block: folded constant */
+  size_t *zmap;            /* per w entry: index in z, FB_NONE if not there */
+  size_t nz;
+  size_t *newton_blocks; /* blocks with rows in the augmented matrix */
+  size_t nnewton;
+  size_t full_nnz;       /* their triplets before dropping constant columns */
+  unsigned char *keep;   /* per such triplet: 1 if kept */
+  size_t aug_nnz;        /* kept triplets */
+  size_t *srows, *scols; /* scratch, full_nnz each */
+  double *sv0, *sv1;
   int linear;
   size_t *var_sig;    /* per bond variable: signal id or FB_NONE */
   size_t *var_alias;  /* per bond variable: aliased variable or FB_NONE */
@@ -109,6 +121,8 @@ int fb_bd_schedule(fb_bd *bd, fb_err *err);
 /* Evaluates the blocks of constant inputs once into w and drops them
  * from the evaluation order; finds the blocks the outputs depend on. */
 int fb_bd_fold_constants(fb_bd *bd, fb_err *err);
+/* Finds the Newton subsystem and the pattern of its augmented matrix. */
+int fb_bd_prepare_newton(fb_bd *bd, fb_err *err);
 /* Evaluates every block at (t, x); 0, >0 recoverable, <0 fatal. */
 int fb_bd_eval(fb_bd *bd, double t, const double *x);
 

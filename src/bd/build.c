@@ -729,7 +729,6 @@ static int layout(fb_bd *bd, fb_err *err)
       b->idim[k] = bd->sigs[b->in[k].id].dim;
     }
     b->ooff = bd->sigs[b->out].off;
-    bd->aug_nnz += b->ops->nnz(b);
     bd->linear = bd->linear && b->ops->linear;
   }
   return FB_OK;
@@ -827,6 +826,8 @@ static int build(fb_bd *bd, const fb_probe_spec *probes, size_t nprobes, fb_err 
   }
   if (!rc)
     rc = fb_bd_fold_constants(bd, err);
+  if (!rc)
+    rc = fb_bd_prepare_newton(bd, err);
   return rc;
 }
 
@@ -881,6 +882,14 @@ void fb_bd_free(fb_bd **bdp)
   free(bd->outs);
   free(bd->order);
   free(bd->out_order);
+  free(bd->is_const);
+  free(bd->zmap);
+  free(bd->newton_blocks);
+  free(bd->keep);
+  free(bd->srows);
+  free(bd->scols);
+  free(bd->sv0);
+  free(bd->sv1);
   free(bd->integ);
   free(bd->w);
   free(bd->dw);

@@ -117,7 +117,7 @@ int fb_bd_outputs(fb_bd *bd, double t, const double *x, double *y)
 
 size_t fb_bd_aug_size(const fb_bd *bd)
 {
-  return bd->nw;
+  return bd->nz;
 }
 
 size_t fb_bd_aug_nnz(const fb_bd *bd)
@@ -132,30 +132,110 @@ int fb_bd_is_linear(const fb_bd *bd)
 
 size_t fb_bd_state_row(const fb_bd *bd, size_t i)
 {
-  (void)bd;
-  return i; /* states occupy w[0 .. nstates) by construction (layout) */
+  return bd->zmap[i]; /* states occupy w[0 .. nstates) and z[0 .. nstates) */
 }
 
-/* Fills the triplets of every block, at the signals currently in w. */
-static int fill_triplets(fb_bd *bd, size_t *rows, size_t *cols, double *v0, double *v1)
+/* Fills the triplets of the Newton blocks (in w indices) into scratch. */
+static int fill_scratch(fb_bd *bd, int pattern)
 {
   size_t k = 0;
-  for (size_t i = 0; i < bd->nblocks; ++i) {
+  for (size_t n = 0; n < bd->nnewton; ++n) {
+    size_t i = bd->newton_blocks[n];
     bd_block *b = &bd->blocks[i];
-    int rc = b->ops->jac(b, bd->w, rows ? rows + k : NULL, cols ? cols + k : NULL,
-                         v0 ? v0 + k : NULL, v1 ? v1 + k : NULL);
-    if (rc)
+    int rc = b->ops->jac(b, bd->w, pattern ? bd->srows + k : NULL,
+                         pattern ? bd->scols + k : NULL, bd->sv0 + k, bd->sv1 + k);
+    if (rc && !pattern)
       return block_failed(bd, i, rc);
     k += b->ops->nnz(b);
   }
   return 0;
 }
 
+/* Marks the blocks upstream of the integrators' inputs (through varying
+ * blocks) as the Newton subsystem. */
+static void mark_newton(const fb_bd *bd, unsigned char *in, size_t *stack)
+{
+  size_t top = 0;
+  for (size_t k = 0; k < bd->ninteg; ++k) {
+    size_t i = bd->integ[k];
+    in[i] = 1;
+    stack[top++] = bd->sigs[bd->blocks[i].in[0].id].producer;
+  }
+  while (top) {
+    size_t i = stack[--top];
+    if (in[i] || bd->is_const[i])
+      continue;
+    in[i] = 1;
+    for (size_t k = 0; k < bd->blocks[i].nin; ++k)
+      stack[top++] = bd->sigs[bd->blocks[i].in[k].id].producer;
+  }
+}
+
+int fb_bd_prepare_newton(fb_bd *bd, fb_err *err)
+{
+  size_t n = bd->nblocks, nedges = 0;
+  for (size_t i = 0; i < n; ++i)
+    nedges += bd->blocks[i].nin;
+  unsigned char *in = calloc(n + 1, 1);
+  size_t *stack = malloc((nedges + bd->ninteg + 1) * sizeof *stack);
+  bd->zmap = malloc((bd->nw + 1) * sizeof *bd->zmap);
+  bd->newton_blocks = malloc((n + 1) * sizeof *bd->newton_blocks);
+  int rc = in && stack && bd->zmap && bd->newton_blocks
+               ? FB_OK
+               : fb_err_set(err, FB_ENOMEM, "out of memory preparing the Newton matrix");
+  if (!rc) {
+    mark_newton(bd, in, stack);
+    for (size_t k = 0; k < bd->nw; ++k)
+      bd->zmap[k] = FB_NONE;
+    /* z numbering follows the layout of w (integrators first, then the
+     * other blocks, each in block order), so the states come first. */
+    bd->nz = 0;
+    for (int pass = 0; pass < 2; ++pass)
+      for (size_t i = 0; i < n; ++i) {
+        const bd_block *b = &bd->blocks[i];
+        if ((b->ops == &fb_bd_integrator_ops) != (pass == 0))
+          continue;
+        for (size_t c = 0; c < b->odim; ++c)
+          bd->zmap[b->ooff + c] = in[i] ? bd->nz++ : FB_NONE;
+      }
+    bd->full_nnz = 0;
+    for (size_t i = 0; i < n; ++i)
+      if (in[i]) {
+        bd->newton_blocks[bd->nnewton++] = i;
+        bd->full_nnz += bd->blocks[i].ops->nnz(&bd->blocks[i]);
+      }
+    bd->keep = malloc(bd->full_nnz + 1);
+    bd->srows = malloc((bd->full_nnz + 1) * sizeof *bd->srows);
+    bd->scols = malloc((bd->full_nnz + 1) * sizeof *bd->scols);
+    bd->sv0 = malloc((bd->full_nnz + 1) * sizeof *bd->sv0);
+    bd->sv1 = malloc((bd->full_nnz + 1) * sizeof *bd->sv1);
+    if (!bd->keep || !bd->srows || !bd->scols || !bd->sv0 || !bd->sv1)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory preparing the Newton matrix");
+  }
+  if (!rc) {
+    /* A column outside z is a folded constant: its perturbation is 0. */
+    fill_scratch(bd, 1);
+    bd->aug_nnz = 0;
+    for (size_t k = 0; k < bd->full_nnz; ++k) {
+      bd->keep[k] = bd->zmap[bd->scols[k]] != FB_NONE;
+      bd->aug_nnz += bd->keep[k];
+    }
+  }
+  free(in);
+  free(stack);
+  return rc;
+}
+
 void fb_bd_aug_pattern(fb_bd *bd, size_t *rows, size_t *cols)
 {
   /* The pattern does not depend on the signal values; a nonlinear law's
    * Jacobian evaluation failing here only affects values, not positions. */
-  (void)fill_triplets(bd, rows, cols, NULL, NULL);
+  (void)fill_scratch(bd, 1);
+  for (size_t k = 0, m = 0; k < bd->full_nnz; ++k)
+    if (bd->keep[k]) {
+      rows[m] = bd->zmap[bd->srows[k]];
+      cols[m++] = bd->zmap[bd->scols[k]];
+    }
 }
 
 int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v1)
@@ -165,7 +245,15 @@ int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v
     if (rc)
       return rc;
   }
-  return fill_triplets(bd, NULL, NULL, v0, v1);
+  int rc = fill_scratch(bd, 0);
+  if (rc)
+    return rc;
+  for (size_t k = 0, m = 0; k < bd->full_nnz; ++k)
+    if (bd->keep[k]) {
+      v0[m] = bd->sv0[k];
+      v1[m++] = bd->sv1[k];
+    }
+  return 0;
 }
 
 int fb_bd_jacobian_dense(fb_bd *bd, double t, const double *x, double *jac, fb_err *err)

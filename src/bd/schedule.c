@@ -181,7 +181,7 @@ int fb_bd_fold_constants(fb_bd *bd, fb_err *err)
   size_t n = bd->nblocks, nedges = bd->nouts;
   for (size_t i = 0; i < n; ++i)
     nedges += bd->blocks[i].nin;
-  unsigned char *cst = calloc(n + 1, 1), *need = calloc(n + 1, 1);
+  unsigned char *cst = bd->is_const = calloc(n + 1, 1), *need = calloc(n + 1, 1);
   size_t *stack = malloc((nedges + n + 1) * sizeof *stack);
   bd->out_order = malloc((bd->norder + 1) * sizeof *bd->out_order);
   int rc = cst && need && stack && bd->out_order
@@ -210,7 +210,6 @@ int fb_bd_fold_constants(fb_bd *bd, fb_err *err)
       if (need[bd->order[k]])
         bd->out_order[bd->nout_order++] = bd->order[k];
   }
-  free(cst);
   free(need);
   free(stack);
   return rc;

@@ -37,6 +37,7 @@ static const char run_usage[] =
     "                              t = 0 (the paper), or static equilibrium\n"
     "  --payload weight-only|lumped  payload as force only (the paper), or\n"
     "                              as mass spread over the load points too\n"
+    "  --no-figures                CSV and summary only (no gnuplot)\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
     "  -h, --help                  this text\n";
 
@@ -93,6 +94,7 @@ typedef struct run_args {
   int initial; /* fb_initial_state */
   int payload; /* fb_payload_model */
   int quiet;
+  int figures; /* 0 with --no-figures */
 } run_args;
 
 /* One simulated system and its result. */
@@ -107,6 +109,7 @@ typedef struct run_outputs {
   const run_system *runs;
   size_t nruns;
   double bump_window[2]; /* first wheel's bump entry, last wheel's exit, s */
+  int figures;           /* write the PNG figures */
 } run_outputs;
 
 static const char *system_label(fb_system sys)
@@ -366,7 +369,7 @@ static int write_outputs(const char *dir, const run_outputs *o, fb_err *err)
 {
   cli_outdir od;
   int rc = cli_outdir_open(&od, dir, err);
-  for (size_t k = 0; k < FB_NOUTPUTS && rc == FB_OK; ++k)
+  for (size_t k = 0; o->figures && k < FB_NOUTPUTS && rc == FB_OK; ++k)
     rc = write_figure(&od, &figures[k], o, err);
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
     char name[32];
@@ -422,13 +425,13 @@ static int run(const run_args *a, const fb_system *systems, size_t nsystems)
     rc = simulate(a, s, &runs[i], &err);
   }
   if (rc == FB_OK) {
-    run_outputs o = {.scenario = s, .runs = runs, .nruns = nsystems};
+    run_outputs o = {.scenario = s, .runs = runs, .nruns = nsystems, .figures = a->figures};
     bump_window(s, o.bump_window);
     rc = write_outputs(a->out_dir, &o, &err);
   }
   if (rc == FB_OK && !a->quiet)
     fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", scenario_name(s),
-            FB_NOUTPUTS + nsystems + 1, a->out_dir);
+            (a->figures ? FB_NOUTPUTS : 0) + nsystems + 1, a->out_dir);
   for (size_t i = 0; i < nsystems; ++i)
     fb_result_free(&runs[i].res);
   fb_scenario_free(&s);
@@ -456,12 +459,22 @@ static int parse_systems(const char *cmd, const char *text, fb_system *systems,
 
 int cli_cmd_run(int argc, char **argv)
 {
-  enum { OPT_OUT, OPT_SYSTEM, OPT_INITIAL, OPT_PAYLOAD, OPT_QUIET, OPT_HELP, NOPTS };
+  enum {
+    OPT_OUT,
+    OPT_SYSTEM,
+    OPT_INITIAL,
+    OPT_PAYLOAD,
+    OPT_NO_FIGURES,
+    OPT_QUIET,
+    OPT_HELP,
+    NOPTS
+  };
   cli_option opts[NOPTS] = {
       [OPT_OUT] = {"--output", "-o", 1, NULL},
       [OPT_SYSTEM] = {"--system", NULL, 1, NULL},
       [OPT_INITIAL] = {"--initial", NULL, 1, NULL},
       [OPT_PAYLOAD] = {"--payload", NULL, 1, NULL},
+      [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
@@ -474,6 +487,7 @@ int cli_cmd_run(int argc, char **argv)
   if (!a.out_dir || !*a.out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a.quiet = opts[OPT_QUIET].value != NULL;
+  a.figures = opts[OPT_NO_FIGURES].value == NULL;
   fb_system systems[MAX_SYSTEMS];
   size_t nsystems = 0;
   rc = parse_systems(argv[0], opts[OPT_SYSTEM].value, systems, &nsystems);
