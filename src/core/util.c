@@ -1,7 +1,9 @@
 /* Small internal helpers (see core/util.h). */
 #include "core/util.h"
 
+#include <errno.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,5 +33,41 @@ int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize)
     return FB_ENOMEM;
   *arr = p;
   *cap = ncap;
+  return FB_OK;
+}
+
+int fb_read_file(const char *path, char **text, size_t *len, fb_err *err)
+{
+  FILE *fp = fopen(path, "rb");
+  if (!fp)
+    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+  size_t cap = 4096, n = 0;
+  char *buf = malloc(cap);
+  int rc = buf ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  while (!rc) {
+    if (n + 1 >= cap) {
+      char *grown = realloc(buf, cap * 2);
+      if (!grown) {
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
+        break;
+      }
+      buf = grown;
+      cap *= 2;
+    }
+    size_t got = fread(buf + n, 1, cap - 1 - n, fp);
+    n += got;
+    if (got == 0 && ferror(fp))
+      rc = fb_err_set(err, FB_EIO, "%s: cannot read: %s", path, strerror(errno));
+    else if (got == 0)
+      break;
+  }
+  fclose(fp);
+  if (rc) {
+    free(buf);
+    return rc;
+  }
+  buf[n] = '\0';
+  *text = buf;
+  *len = n;
   return FB_OK;
 }

@@ -4,11 +4,18 @@
 
 #include <stddef.h>
 
+#include "flexbond/error.h"
+
 /* Duplicate of s in fresh memory (NULL when out of memory). */
 char *fb_strdup(const char *s);
 
 /* Grows the array *arr of elements of size elsize (capacity *cap) so that
  * index n is valid, doubling; FB_ENOMEM (leaving *arr intact) on failure. */
 int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize);
+
+/* Reads the whole file at path into a new NUL-terminated buffer (*text,
+ * *len bytes before the NUL; the caller frees *text). FB_EIO naming the
+ * path and the system's reason when it cannot be opened or read. */
+int fb_read_file(const char *path, char **text, size_t *len, fb_err *err);
 
 #endif

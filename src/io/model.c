@@ -441,43 +441,6 @@ int fb_model_load_string(const char *text, size_t len, const char *display_name,
   return FB_OK;
 }
 
-/* Reads the whole file into a NUL-terminated buffer. */
-static int ml_read_file(const char *path, char **text, size_t *len, fb_err *err)
-{
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
-  size_t cap = 4096, n = 0;
-  char *buf = malloc(cap);
-  int rc = buf ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  while (!rc) {
-    if (n + 1 >= cap) {
-      char *grown = realloc(buf, cap * 2);
-      if (!grown) {
-        rc = fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
-        break;
-      }
-      buf = grown;
-      cap *= 2;
-    }
-    size_t got = fread(buf + n, 1, cap - 1 - n, fp);
-    n += got;
-    if (got == 0 && ferror(fp))
-      rc = fb_err_set(err, FB_EIO, "%s: read error", path);
-    else if (got == 0)
-      break;
-  }
-  fclose(fp);
-  if (rc) {
-    free(buf);
-    return rc;
-  }
-  buf[n] = '\0';
-  *text = buf;
-  *len = n;
-  return FB_OK;
-}
-
 int fb_model_load(const char *path, fb_model **out, fb_err *err)
 {
   if (!out || !path)
@@ -485,7 +448,7 @@ int fb_model_load(const char *path, fb_model **out, fb_err *err)
   *out = NULL;
   char *text = NULL;
   size_t len = 0;
-  int rc = ml_read_file(path, &text, &len, err);
+  int rc = fb_read_file(path, &text, &len, err);
   if (rc)
     return rc;
   /* Relative references are resolved from the model's own directory. */

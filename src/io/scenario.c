@@ -146,43 +146,6 @@ int fb_scenario_load_string(const char *text, size_t len, const char *display_na
   return FB_OK;
 }
 
-/* Reads the whole file into a new NUL-terminated buffer. */
-static int sc_read_file(const char *path, char **text, size_t *len, fb_err *err)
-{
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
-  size_t cap = 4096, n = 0;
-  char *buf = malloc(cap);
-  int rc = buf ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
-  while (!rc) {
-    if (n + 1 >= cap) {
-      char *grown = realloc(buf, cap * 2);
-      if (!grown) {
-        rc = fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
-        break;
-      }
-      buf = grown;
-      cap *= 2;
-    }
-    size_t got = fread(buf + n, 1, cap - 1 - n, fp);
-    n += got;
-    if (got == 0 && ferror(fp))
-      rc = fb_err_set(err, FB_EIO, "%s: read error", path);
-    else if (got == 0)
-      break;
-  }
-  fclose(fp);
-  if (rc) {
-    free(buf);
-    return rc;
-  }
-  buf[n] = '\0';
-  *text = buf;
-  *len = n;
-  return FB_OK;
-}
-
 int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
 {
   fb_err_clear(err);
@@ -191,7 +154,7 @@ int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
   *out = NULL;
   char *text = NULL;
   size_t len = 0;
-  int rc = sc_read_file(path, &text, &len, err);
+  int rc = fb_read_file(path, &text, &len, err);
   if (!rc)
     rc = fb_scenario_load_string(text, len, path, out, err);
   free(text);
