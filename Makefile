@@ -29,7 +29,7 @@ CTEST_JOBS ?= 2
 
 # clang is the second compiler; clang-format serves format/format-check.
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
-                liblapacke-dev libopenblas-dev libfyaml-dev gnuplot-nox graphviz clang \
+                liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz clang \
                 clang-format
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 APT := $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get
