@@ -63,8 +63,9 @@ int fb_mesh_nset(const fb_mesh *m, const char *name, const size_t **nodes, size_
 /* Validates the mesh: every node used by an element; no degenerate element
  * (area below 1e-12 of the mesh's bounding-box diagonal squared, repeated
  * node); no warped quadrilateral (distance of a node from the plane of
- * the other three above 1e-3 of the element's diagonal); node sets
- * non-empty. FB_EMODEL naming the element or node by user id. */
+ * the other three above 1e-3 of the element's longer diagonal); no
+ * quadrilateral that is not strictly convex; at least one element; node
+ * sets non-empty. FB_EMODEL naming the element or node by user id. */
 int fb_mesh_check(const fb_mesh *m, fb_err *err);
 
 /* ---- Shell elements. */

@@ -1,0 +1,1001 @@
+/* Abaqus/CalculiX input decks for shell meshes (see flexbond/fem.h).
+ *
+ * Syntax follows the Abaqus Analysis User's Guide, section 1.2.1 "Input
+ * syntax rules": keyword lines start with '*', comment lines with "**";
+ * keywords, parameter names and parameter values are case-insensitive and
+ * blanks in them are insignificant; data fields are separated by commas.
+ *
+ * Reading (what this reader accepts and how):
+ * - *NODE [, NSET=name]: "id, x, y, z", all three coordinates required.
+ * - *ELEMENT, TYPE=t [, ELSET=name]: "id, n1, n2, n3[, n4]"; a data line
+ *   ending with a comma continues on the next line. t is S3 or S4; S3R and
+ *   S4R are read as S3 and S4 (the R, reduced integration, is a choice of
+ *   formulation that flexbond makes itself; the geometry is the same).
+ *   Other types are errors. Elements may name nodes defined later in the
+ *   deck: ids are resolved once the whole deck is read.
+ * - *NSET, NSET=name [, GENERATE] [, INTERNAL] [, UNSORTED]: node ids and
+ *   names of node sets defined earlier, or "first, last[, step]" lines with
+ *   GENERATE; every node named, generated ones included, must exist. A
+ *   repeated *NSET of the same name (any case) extends the set.
+ * - *MATERIAL, NAME=m with *ELASTIC (isotropic: "E, nu") and *DENSITY
+ *   ("rho"), which apply to the most recent *MATERIAL.
+ * - *SHELL SECTION, MATERIAL=m: "thickness" (at most one section: a mesh
+ *   has one thickness and material). The props come from its material or,
+ *   with no section, from the deck's only material. Values are taken as SI.
+ * - *ELSET, *HEADING and every other keyword are skipped with their data
+ *   lines, except those that generate or move mesh data (*INCLUDE, *NGEN,
+ *   *NFILL, *NCOPY, *NMAP, *ELGEN, *ELCOPY), which are errors rather than
+ *   silently lost geometry. Unknown parameters of *NODE, *ELEMENT and
+ *   *NSET (e.g. SYSTEM=, INPUT=, ELSET= on *NSET) are errors too.
+ * The drilling factor has no Abaqus keyword: it is neither written nor
+ * read. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/io.h"
+
+#include "core/util.h"
+#include "fem/mesh_internal.h"
+
+#define INP_MAX_PARAMS 16
+
+/* A keyword line split in place: parameter values are NULL when absent. */
+typedef struct inp_keyword {
+  const char *name;
+  size_t nparams;
+  const char *param_names[INP_MAX_PARAMS];
+  const char *param_values[INP_MAX_PARAMS];
+} inp_keyword;
+
+/* An element whose node ids are resolved at the end of the deck. */
+typedef struct inp_element {
+  long id;
+  fb_elem_type type;
+  long nodes[4];
+  size_t line;
+} inp_element;
+
+typedef enum inp_item_kind {
+  ITEM_ID,      /* node id a */
+  ITEM_RANGE,   /* GENERATE: ids a, a + step, ... up to b */
+  ITEM_SET,     /* all nodes of the set named ref */
+  ITEM_INDICES, /* node indices a .. b - 1 (the nodes of *NODE, NSET=) */
+} inp_item_kind;
+
+typedef struct inp_item {
+  inp_item_kind kind;
+  long a, b, step;
+  const char *ref;
+  size_t line;
+} inp_item;
+
+/* One *NSET (or *NODE, NSET=) block: items [first, first + count). */
+typedef struct inp_nset_block {
+  const char *name;
+  size_t first;
+  size_t count;
+} inp_nset_block;
+
+typedef struct inp_material {
+  const char *name;
+  double young, poisson, density;
+  int has_elastic, has_density;
+} inp_material;
+
+typedef struct inp_reader {
+  const char *path;
+  char *text; /* whole file, split into lines in place */
+  size_t len;
+  size_t pos;    /* start of the next unread line */
+  char *line;    /* current significant line */
+  size_t lineno; /* its 1-based number */
+  int have_line; /* line is read but not consumed */
+  fb_err *err;
+
+  char **fields; /* fields of the current data line (into text) */
+  size_t nfields, fields_cap;
+
+  fb_mesh *mesh;
+  inp_element *elems;
+  size_t nelems, elems_cap;
+  inp_item *items;
+  size_t nitems, items_cap;
+  inp_nset_block *blocks;
+  size_t nblocks, blocks_cap;
+  inp_material *materials;
+  size_t nmaterials, materials_cap;
+  int has_section;
+  const char *section_material;
+  size_t section_line;
+  double thickness;
+} inp_reader;
+
+/* Records FB_EPARSE as "path:line: message". */
+static int inp_error(const inp_reader *r, size_t line, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int inp_error(const inp_reader *r, size_t line, const char *fmt, ...)
+{
+  char msg[FB_ERR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  return fb_err_set(r->err, FB_EPARSE, "%s:%zu: %s", r->path, line ? line : 1, msg);
+}
+
+static int inp_nomem(const inp_reader *r)
+{
+  return fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path);
+}
+
+/* A failure of a mesh call (message in sub) reported at line; out of
+ * memory keeps its code. */
+static int inp_mesh_error(const inp_reader *r, size_t line, const fb_err *sub)
+{
+  if (sub->code == FB_ENOMEM)
+    return inp_nomem(r);
+  return inp_error(r, line, "%s", sub->msg);
+}
+
+/* ---- Lines and fields. */
+
+/* Splits off the next line (without its end of line) into r->line;
+ * control characters other than tab mark a binary file. */
+static int split_line(inp_reader *r)
+{
+  char *start = r->text + r->pos;
+  const size_t left = r->len - r->pos;
+  char *nl = memchr(start, '\n', left);
+  size_t n = nl ? (size_t)(nl - start) : left;
+  r->pos += nl ? n + 1 : n;
+  start[n] = '\0';
+  if (n > 0 && start[n - 1] == '\r')
+    start[--n] = '\0';
+  ++r->lineno;
+  r->line = start;
+  for (size_t i = 0; i < n; ++i) {
+    const unsigned char c = (unsigned char)start[i];
+    if ((c < 0x20 && c != '\t') || c == 0x7f)
+      return inp_error(r, r->lineno,
+                       "binary data (byte 0x%02x in column %zu): not an Abaqus input deck", c,
+                       i + 1);
+  }
+  return FB_OK;
+}
+
+static const char *skip_blanks(const char *s)
+{
+  return s + strspn(s, " \t");
+}
+
+static int is_keyword(const char *line)
+{
+  const char *p = skip_blanks(line);
+  return p[0] == '*' && p[1] != '*';
+}
+
+/* The next line that is neither blank nor a comment, left unconsumed
+ * (peek); *got is 0 at the end of the file. */
+static int peek_line(inp_reader *r, int *got)
+{
+  *got = 1;
+  while (!r->have_line) {
+    if (r->pos >= r->len) {
+      *got = 0;
+      return FB_OK;
+    }
+    const int rc = split_line(r);
+    if (rc)
+      return rc;
+    const char *p = skip_blanks(r->line);
+    r->have_line = *p != '\0' && !(p[0] == '*' && p[1] == '*');
+  }
+  return FB_OK;
+}
+
+/* The next data line of the current keyword, consumed; *got is 0 at the
+ * next keyword (left for the caller) or at the end of the file. */
+static int next_data_line(inp_reader *r, int *got)
+{
+  int rc = peek_line(r, got);
+  if (rc || !*got)
+    return rc;
+  if (is_keyword(r->line)) {
+    *got = 0;
+    return FB_OK;
+  }
+  r->have_line = 0;
+  return FB_OK;
+}
+
+/* s without leading and trailing blanks, trimmed in place. */
+static char *trim(char *s)
+{
+  s += strspn(s, " \t");
+  size_t n = strlen(s);
+  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t'))
+    s[--n] = '\0';
+  return s;
+}
+
+/* Appends the comma-separated fields of line to r->fields (split in
+ * place). A trailing comma adds no empty field; *continued tells whether
+ * there was one. Empty fields elsewhere are errors. */
+static int append_fields(inp_reader *r, char *line, int *continued)
+{
+  char *p = line;
+  for (;;) {
+    char *comma = strchr(p, ',');
+    if (comma)
+      *comma = '\0';
+    char *field = trim(p);
+    const int last = !comma || *skip_blanks(comma + 1) == '\0';
+    *continued = comma && last;
+    if (*field == '\0' && !(last && comma))
+      return inp_error(r, r->lineno, "empty data field");
+    if (*field != '\0') {
+      if (fb_grow((void **)&r->fields, &r->fields_cap, r->nfields, sizeof *r->fields))
+        return inp_nomem(r);
+      r->fields[r->nfields++] = field;
+    }
+    if (last)
+      return FB_OK;
+    p = comma + 1;
+  }
+}
+
+static int line_fields(inp_reader *r, int *continued)
+{
+  r->nfields = 0;
+  return append_fields(r, r->line, continued);
+}
+
+/* Compares two words case-insensitively, ignoring blanks. */
+static int same_word(const char *a, const char *b)
+{
+  for (;;) {
+    a = skip_blanks(a);
+    b = skip_blanks(b);
+    if (toupper((unsigned char)*a) != toupper((unsigned char)*b))
+      return 0;
+    if (*a == '\0')
+      return 1;
+    ++a;
+    ++b;
+  }
+}
+
+/* ---- Numbers. */
+
+/* A positive integer filling the whole field. */
+static int parse_id(const inp_reader *r, const char *field, const char *what, long *out)
+{
+  char *end;
+  errno = 0;
+  const long v = strtol(field, &end, 10);
+  if (errno || end == field || *end != '\0' || v <= 0 || !isdigit((unsigned char)field[0]))
+    return inp_error(r, r->lineno, "%s '%s' is not a positive integer", what, field);
+  *out = v;
+  return FB_OK;
+}
+
+/* A finite real number filling the whole field; what says which one. */
+static int parse_real(const inp_reader *r, const char *field, const char *what, double *out)
+{
+  char *end;
+  const double v = strtod(field, &end);
+  if (end == field || *end != '\0')
+    return inp_error(r, r->lineno, "%s: '%s' is not a number", what, field);
+  if (!isfinite(v))
+    return inp_error(r, r->lineno, "%s: '%s' is not a finite number", what, field);
+  *out = v;
+  return FB_OK;
+}
+
+/* ---- Keyword lines. */
+
+static int parse_keyword(inp_reader *r, inp_keyword *kw)
+{
+  char *p = r->line + strspn(r->line, " \t") + 1; /* past the '*' */
+  kw->nparams = 0;
+  char *comma = strchr(p, ',');
+  if (comma)
+    *comma = '\0';
+  kw->name = trim(p);
+  if (*kw->name == '\0')
+    return inp_error(r, r->lineno, "keyword line without a keyword");
+  while (comma) {
+    p = comma + 1;
+    comma = strchr(p, ',');
+    if (comma)
+      *comma = '\0';
+    if (*skip_blanks(p) == '\0')
+      continue; /* "*NODE," or doubled commas */
+    if (kw->nparams == INP_MAX_PARAMS)
+      return inp_error(r, r->lineno, "more than %d parameters on *%s", INP_MAX_PARAMS,
+                       kw->name);
+    char *eq = strchr(p, '=');
+    if (eq)
+      *eq = '\0';
+    kw->param_names[kw->nparams] = trim(p);
+    kw->param_values[kw->nparams++] = eq ? trim(eq + 1) : NULL;
+  }
+  return FB_OK;
+}
+
+/* Value of parameter name ("" when given without one), or NULL. */
+static const char *param(const inp_keyword *kw, const char *name)
+{
+  for (size_t i = 0; i < kw->nparams; ++i)
+    if (same_word(kw->param_names[i], name))
+      return kw->param_values[i] ? kw->param_values[i] : "";
+  return NULL;
+}
+
+/* Every parameter of kw is one of allowed (NULL-terminated). */
+static int only_params(const inp_reader *r, const inp_keyword *kw, const char *const *allowed)
+{
+  for (size_t i = 0; i < kw->nparams; ++i) {
+    size_t k = 0;
+    while (allowed[k] && !same_word(kw->param_names[i], allowed[k]))
+      ++k;
+    if (!allowed[k])
+      return inp_error(r, r->lineno, "parameter '%s' of *%s is not supported",
+                       kw->param_names[i], kw->name);
+  }
+  return FB_OK;
+}
+
+/* A required parameter with a value. */
+static int need_param(const inp_reader *r, const inp_keyword *kw, const char *name,
+                      const char **value)
+{
+  *value = param(kw, name);
+  if (!*value || **value == '\0')
+    return inp_error(r, r->lineno, "*%s needs %s=", kw->name, name);
+  return FB_OK;
+}
+
+/* Consumes the data lines of a skipped keyword. */
+static int skip_data(inp_reader *r)
+{
+  int got = 1, rc = FB_OK;
+  while (!rc && got)
+    rc = next_data_line(r, &got);
+  return rc;
+}
+
+/* ---- Node sets. */
+
+static int add_item(inp_reader *r, inp_item_kind kind, long a, long b, long step,
+                    const char *ref)
+{
+  if (fb_grow((void **)&r->items, &r->items_cap, r->nitems, sizeof *r->items))
+    return inp_nomem(r);
+  r->items[r->nitems++] = (inp_item){kind, a, b, step, ref, r->lineno};
+  r->blocks[r->nblocks - 1].count++;
+  return FB_OK;
+}
+
+static int begin_block(inp_reader *r, const char *name)
+{
+  if (!fb_mesh_name_ok(name))
+    return inp_error(r, r->lineno,
+                     "node set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
+                     " starting with a letter or _)",
+                     name, FB_MESH_NAME_MAX);
+  if (fb_grow((void **)&r->blocks, &r->blocks_cap, r->nblocks, sizeof *r->blocks))
+    return inp_nomem(r);
+  r->blocks[r->nblocks++] = (inp_nset_block){name, r->nitems, 0};
+  return FB_OK;
+}
+
+/* "first, last[, step]" of a GENERATE line. */
+static int read_generate_line(inp_reader *r)
+{
+  long v[3] = {0, 0, 1};
+  if (r->nfields < 2 || r->nfields > 3)
+    return inp_error(r, r->lineno, "GENERATE line needs 'first, last[, step]', not %zu fields",
+                     r->nfields);
+  static const char *const what[3] = {"first node id", "last node id", "step"};
+  for (size_t k = 0; k < r->nfields; ++k) {
+    const int rc = parse_id(r, r->fields[k], what[k], &v[k]);
+    if (rc)
+      return rc;
+  }
+  if (v[1] < v[0])
+    return inp_error(r, r->lineno, "GENERATE range %ld, %ld runs backwards", v[0], v[1]);
+  return add_item(r, ITEM_RANGE, v[0], v[1], v[2], NULL);
+}
+
+/* Node ids and set names of a plain *NSET line. */
+static int read_nset_line(inp_reader *r)
+{
+  int rc = FB_OK;
+  for (size_t k = 0; k < r->nfields && !rc; ++k) {
+    const char *f = r->fields[k];
+    long id = 0;
+    if (fb_mesh_name_ok(f))
+      rc = add_item(r, ITEM_SET, 0, 0, 0, f);
+    else if (!(rc = parse_id(r, f, "node id", &id)))
+      rc = add_item(r, ITEM_ID, id, 0, 0, NULL);
+  }
+  return rc;
+}
+
+static int read_nset(inp_reader *r, const inp_keyword *kw)
+{
+  static const char *const allowed[] = {"NSET", "GENERATE", "INTERNAL", "UNSORTED", NULL};
+  const char *name = NULL;
+  int rc = only_params(r, kw, allowed);
+  if (!rc)
+    rc = need_param(r, kw, "NSET", &name);
+  if (!rc)
+    rc = begin_block(r, name);
+  const int generate = param(kw, "GENERATE") != NULL;
+  int got = 1, continued = 0;
+  while (!rc && got) {
+    rc = next_data_line(r, &got);
+    if (!rc && got)
+      rc = line_fields(r, &continued);
+    if (!rc && got)
+      rc = generate ? read_generate_line(r) : read_nset_line(r);
+  }
+  return rc;
+}
+
+/* ---- Nodes and elements. */
+
+static int read_node_line(inp_reader *r)
+{
+  int continued = 0;
+  int rc = line_fields(r, &continued);
+  if (rc)
+    return rc;
+  if (r->nfields != 4)
+    return inp_error(r, r->lineno, "node line needs 'id, x, y, z', not %zu fields", r->nfields);
+  long id = 0;
+  double xyz[3];
+  rc = parse_id(r, r->fields[0], "node id", &id);
+  for (int k = 0; k < 3 && !rc; ++k) {
+    char what[64];
+    snprintf(what, sizeof what, "%c of node %ld", "xyz"[k], id);
+    rc = parse_real(r, r->fields[1 + k], what, &xyz[k]);
+  }
+  if (rc)
+    return rc;
+  fb_err sub;
+  fb_err_clear(&sub);
+  if (fb_mesh_add_node(r->mesh, id, xyz[0], xyz[1], xyz[2], NULL, &sub))
+    return inp_mesh_error(r, r->lineno, &sub);
+  return FB_OK;
+}
+
+static int read_nodes(inp_reader *r, const inp_keyword *kw)
+{
+  static const char *const allowed[] = {"NSET", NULL};
+  int rc = only_params(r, kw, allowed);
+  const char *nset = param(kw, "NSET");
+  if (!rc && nset)
+    rc = need_param(r, kw, "NSET", &nset);
+  if (!rc && nset)
+    rc = begin_block(r, nset);
+  const long first = (long)fb_mesh_nnodes(r->mesh);
+  int got = 1;
+  while (!rc && got) {
+    rc = next_data_line(r, &got);
+    if (!rc && got)
+      rc = read_node_line(r);
+  }
+  if (!rc && nset)
+    rc = add_item(r, ITEM_INDICES, first, (long)fb_mesh_nnodes(r->mesh), 0, NULL);
+  return rc;
+}
+
+/* Element type of a TYPE= value. */
+static int element_type(const inp_reader *r, const char *name, fb_elem_type *type)
+{
+  if (same_word(name, "S3") || same_word(name, "S3R")) {
+    *type = FB_ELEM_TRI3;
+    return FB_OK;
+  }
+  if (same_word(name, "S4") || same_word(name, "S4R")) {
+    *type = FB_ELEM_QUAD4;
+    return FB_OK;
+  }
+  const char *p = skip_blanks(name);
+  if (toupper((unsigned char)p[0]) == 'S' && isdigit((unsigned char)p[1]))
+    return inp_error(r, r->lineno, "shell element type '%s' is not supported (S3, S4)", name);
+  return inp_error(r, r->lineno, "element type '%s' is not a shell (S3, S4)", name);
+}
+
+/* One element, its data continued over lines that end with a comma. */
+static int read_element_line(inp_reader *r, fb_elem_type type)
+{
+  int continued = 0, got = 1;
+  const size_t first_line = r->lineno;
+  int rc = line_fields(r, &continued);
+  while (!rc && continued) {
+    rc = next_data_line(r, &got);
+    if (!rc && !got)
+      return inp_error(r, first_line, "element data ends with a comma but does not continue");
+    if (!rc)
+      rc = append_fields(r, r->line, &continued);
+  }
+  inp_element el = {0, type, {0, 0, 0, 0}, first_line};
+  if (!rc && r->nfields == 0)
+    return inp_error(r, first_line, "element line without an element id");
+  if (!rc)
+    rc = parse_id(r, r->fields[0], "element id", &el.id);
+  if (rc)
+    return rc;
+  const size_t nn = fb_mesh_type_nodes(type);
+  if (r->nfields - 1 != nn)
+    return inp_error(r, first_line, "element %ld (%s) has %zu nodes, not %zu", el.id,
+                     fb_mesh_type_name(type), r->nfields - 1, nn);
+  for (size_t k = 0; k < nn && !rc; ++k)
+    rc = parse_id(r, r->fields[1 + k], "node id", &el.nodes[k]);
+  if (rc)
+    return rc;
+  if (fb_grow((void **)&r->elems, &r->elems_cap, r->nelems, sizeof *r->elems))
+    return inp_nomem(r);
+  r->elems[r->nelems++] = el;
+  return FB_OK;
+}
+
+static int read_elements(inp_reader *r, const inp_keyword *kw)
+{
+  static const char *const allowed[] = {"TYPE", "ELSET", NULL};
+  const char *type_name = NULL;
+  fb_elem_type type = FB_ELEM_TRI3;
+  int rc = only_params(r, kw, allowed);
+  if (!rc)
+    rc = need_param(r, kw, "TYPE", &type_name);
+  if (!rc)
+    rc = element_type(r, type_name, &type);
+  int got = 1;
+  while (!rc && got) {
+    rc = next_data_line(r, &got);
+    if (!rc && got)
+      rc = read_element_line(r, type);
+  }
+  return rc;
+}
+
+/* ---- Material and section. */
+
+static inp_material *find_material(const inp_reader *r, const char *name)
+{
+  for (size_t i = 0; i < r->nmaterials; ++i)
+    if (same_word(r->materials[i].name, name))
+      return &r->materials[i];
+  return NULL;
+}
+
+static int read_material(inp_reader *r, const inp_keyword *kw)
+{
+  const char *name = NULL;
+  int rc = need_param(r, kw, "NAME", &name);
+  if (rc)
+    return rc;
+  if (find_material(r, name))
+    return inp_error(r, r->lineno, "material '%s' is defined twice", name);
+  if (fb_grow((void **)&r->materials, &r->materials_cap, r->nmaterials, sizeof *r->materials))
+    return inp_nomem(r);
+  r->materials[r->nmaterials++] = (inp_material){name, 0.0, 0.0, 0.0, 0, 0};
+  return skip_data(r);
+}
+
+/* Reads the data line of a material option (*ELASTIC, *DENSITY) into
+ * r->fields, with min to max fields. */
+static int option_line(inp_reader *r, const char *keyword, size_t min, size_t max)
+{
+  int got = 0, continued = 0;
+  const size_t kw_line = r->lineno;
+  if (r->nmaterials == 0)
+    return inp_error(r, kw_line, "*%s outside a *MATERIAL", keyword);
+  int rc = next_data_line(r, &got);
+  if (!rc && !got)
+    return inp_error(r, kw_line, "*%s has no data line", keyword);
+  if (!rc)
+    rc = line_fields(r, &continued);
+  if (!rc && (r->nfields < min || r->nfields > max))
+    return inp_error(r, r->lineno, "*%s data line needs %zu to %zu fields, not %zu", keyword,
+                     min, max, r->nfields);
+  return rc;
+}
+
+/* After the data line of a material option: a second line would be
+ * temperature-dependent data, which a single-material shell cannot use. */
+static int no_second_line(inp_reader *r, const char *keyword)
+{
+  const size_t data_line = r->lineno;
+  int got = 0;
+  const int rc = peek_line(r, &got);
+  if (!rc && got && !is_keyword(r->line))
+    return inp_error(r, r->lineno,
+                     "a second *%s data line (temperature-dependent data) is not supported;"
+                     " the first is line %zu",
+                     keyword, data_line);
+  return rc;
+}
+
+static int read_elastic(inp_reader *r, const inp_keyword *kw)
+{
+  const char *type = param(kw, "TYPE");
+  if (type && !same_word(type, "ISOTROPIC"))
+    return inp_error(r, r->lineno, "*ELASTIC, TYPE=%s is not supported (isotropic only)", type);
+  int rc = option_line(r, "ELASTIC", 2, 3);
+  if (rc)
+    return rc;
+  inp_material *m = &r->materials[r->nmaterials - 1];
+  rc = parse_real(r, r->fields[0], "Young's modulus", &m->young);
+  if (!rc)
+    rc = parse_real(r, r->fields[1], "Poisson's ratio", &m->poisson);
+  if (!rc && !(m->young > 0.0))
+    rc = inp_error(r, r->lineno, "Young's modulus %g is not positive", m->young);
+  if (!rc && !(m->poisson > -1.0 && m->poisson < 0.5))
+    rc = inp_error(r, r->lineno, "Poisson's ratio %g is outside (-1, 0.5)", m->poisson);
+  m->has_elastic = 1;
+  return rc ? rc : no_second_line(r, "ELASTIC");
+}
+
+static int read_density(inp_reader *r)
+{
+  int rc = option_line(r, "DENSITY", 1, 2);
+  if (rc)
+    return rc;
+  inp_material *m = &r->materials[r->nmaterials - 1];
+  rc = parse_real(r, r->fields[0], "density", &m->density);
+  if (!rc && !(m->density > 0.0))
+    rc = inp_error(r, r->lineno, "density %g is not positive", m->density);
+  m->has_density = 1;
+  return rc ? rc : no_second_line(r, "DENSITY");
+}
+
+static int read_section(inp_reader *r, const inp_keyword *kw)
+{
+  if (r->has_section)
+    return inp_error(r, r->lineno,
+                     "a second *SHELL SECTION (the first is on line %zu): a mesh has one"
+                     " thickness and material",
+                     r->section_line);
+  if (param(kw, "COMPOSITE"))
+    return inp_error(r, r->lineno, "composite shell sections are not supported");
+  r->section_line = r->lineno;
+  int rc = need_param(r, kw, "MATERIAL", &r->section_material);
+  int got = 0, continued = 0;
+  if (!rc)
+    rc = next_data_line(r, &got);
+  if (!rc && !got)
+    return inp_error(r, r->section_line, "*SHELL SECTION has no data line (thickness)");
+  if (!rc)
+    rc = line_fields(r, &continued);
+  if (!rc && r->nfields == 0)
+    return inp_error(r, r->lineno, "*SHELL SECTION data line has no thickness");
+  if (!rc)
+    rc = parse_real(r, r->fields[0], "shell thickness", &r->thickness);
+  if (!rc && !(r->thickness > 0.0))
+    return inp_error(r, r->lineno, "shell thickness %g is not positive", r->thickness);
+  r->has_section = !rc;
+  return rc ? rc : skip_data(r);
+}
+
+/* ---- The deck. */
+
+static int is_one_of(const char *name, const char *const *list)
+{
+  for (size_t k = 0; list[k]; ++k)
+    if (same_word(name, list[k]))
+      return 1;
+  return 0;
+}
+
+static int read_keyword(inp_reader *r)
+{
+  static const char *const refused[] = {"INCLUDE", "NGEN",  "NFILL",  "NCOPY",
+                                        "NMAP",    "ELGEN", "ELCOPY", NULL};
+  inp_keyword kw;
+  int rc = parse_keyword(r, &kw);
+  if (rc)
+    return rc;
+  if (same_word(kw.name, "NODE"))
+    return read_nodes(r, &kw);
+  if (same_word(kw.name, "ELEMENT"))
+    return read_elements(r, &kw);
+  if (same_word(kw.name, "NSET"))
+    return read_nset(r, &kw);
+  if (same_word(kw.name, "MATERIAL"))
+    return read_material(r, &kw);
+  if (same_word(kw.name, "ELASTIC"))
+    return read_elastic(r, &kw);
+  if (same_word(kw.name, "DENSITY"))
+    return read_density(r);
+  if (same_word(kw.name, "SHELL SECTION"))
+    return read_section(r, &kw);
+  if (is_one_of(kw.name, refused))
+    return inp_error(r, r->lineno,
+                     "*%s is not supported (it would bring in or generate mesh data)", kw.name);
+  return skip_data(r);
+}
+
+static int read_deck(inp_reader *r)
+{
+  if (r->len == 0)
+    return inp_error(r, 1, "empty file: not an Abaqus input deck");
+  int got = 0;
+  for (;;) {
+    int rc = peek_line(r, &got);
+    if (rc || !got)
+      return rc;
+    if (!is_keyword(r->line))
+      return inp_error(r, r->lineno, "data line before any keyword");
+    r->have_line = 0;
+    rc = read_keyword(r);
+    if (rc)
+      return rc;
+  }
+}
+
+/* ---- Resolving ids once the deck is read. */
+
+static int resolve_node(const inp_reader *r, const inp_element *el, size_t k, size_t *index)
+{
+  const long i = fb_mesh_find_node_id(r->mesh, el->nodes[k]);
+  if (i < 0)
+    return inp_error(r, el->line, "element %ld refers to node %ld, which is not defined",
+                     el->id, el->nodes[k]);
+  *index = (size_t)i;
+  return FB_OK;
+}
+
+static int resolve_elements(const inp_reader *r)
+{
+  fb_err sub;
+  fb_err_clear(&sub);
+  for (size_t e = 0; e < r->nelems; ++e) {
+    const inp_element *el = &r->elems[e];
+    size_t nodes[4] = {0, 0, 0, 0};
+    int rc = FB_OK;
+    for (size_t k = 0; k < fb_mesh_type_nodes(el->type) && !rc; ++k)
+      rc = resolve_node(r, el, k, &nodes[k]);
+    if (rc)
+      return rc;
+    if (fb_mesh_add_element(r->mesh, el->id, el->type, nodes, &sub))
+      return inp_mesh_error(r, el->line, &sub);
+  }
+  return FB_OK;
+}
+
+/* A growing list of node indices. */
+typedef struct index_list {
+  size_t *v;
+  size_t n, cap;
+} index_list;
+
+static int push_index(const inp_reader *r, index_list *l, size_t i)
+{
+  if (fb_grow((void **)&l->v, &l->cap, l->n, sizeof *l->v))
+    return inp_nomem(r);
+  l->v[l->n++] = i;
+  return FB_OK;
+}
+
+static int push_id(const inp_reader *r, const char *set, const inp_item *it, long id,
+                   index_list *l)
+{
+  const long i = fb_mesh_find_node_id(r->mesh, id);
+  if (i < 0)
+    return inp_error(r, it->line, "node set '%s' names node %ld, which is not defined", set,
+                     id);
+  return push_index(r, l, (size_t)i);
+}
+
+static int expand_item(const inp_reader *r, const char *set, const inp_item *it, index_list *l)
+{
+  int rc = FB_OK;
+  const size_t *nodes = NULL;
+  size_t n = 0;
+  switch (it->kind) {
+  case ITEM_ID: return push_id(r, set, it, it->a, l);
+  case ITEM_RANGE:
+    /* Stepping this way cannot overflow past it->b. */
+    for (long id = it->a; !rc; id += it->step) {
+      rc = push_id(r, set, it, id, l);
+      if (it->b - id < it->step)
+        break;
+    }
+    return rc;
+  case ITEM_SET:
+    if (!fb_mesh_nset(r->mesh, it->ref, &nodes, &n))
+      return inp_error(r, it->line, "node set '%s' names node set '%s', which is not defined",
+                       set, it->ref);
+    for (size_t k = 0; k < n && !rc; ++k)
+      rc = push_index(r, l, nodes[k]);
+    return rc;
+  case ITEM_INDICES:
+    for (long k = it->a; k < it->b && !rc; ++k)
+      rc = push_index(r, l, (size_t)k);
+    return rc;
+  }
+  return rc;
+}
+
+static int resolve_nsets(const inp_reader *r)
+{
+  index_list l = {NULL, 0, 0};
+  fb_err sub;
+  fb_err_clear(&sub);
+  int rc = FB_OK;
+  for (size_t b = 0; b < r->nblocks && !rc; ++b) {
+    const inp_nset_block *blk = &r->blocks[b];
+    l.n = 0;
+    for (size_t k = 0; k < blk->count && !rc; ++k)
+      rc = expand_item(r, blk->name, &r->items[blk->first + k], &l);
+    if (!rc && fb_mesh_add_nset(r->mesh, blk->name, l.n, l.v, &sub))
+      rc = inp_mesh_error(r, blk->count ? r->items[blk->first].line : 0, &sub);
+  }
+  free(l.v);
+  return rc;
+}
+
+/* The material whose values go into props, or NULL. */
+static int chosen_material(const inp_reader *r, const inp_material **out)
+{
+  *out = NULL;
+  if (r->has_section) {
+    *out = find_material(r, r->section_material);
+    if (!*out)
+      return inp_error(r, r->section_line,
+                       "*SHELL SECTION names material '%s', which is not"
+                       " defined",
+                       r->section_material);
+  } else if (r->nmaterials == 1) {
+    *out = &r->materials[0];
+  }
+  return FB_OK;
+}
+
+static int finish(const inp_reader *r, fb_shell_props *props)
+{
+  if (fb_mesh_nnodes(r->mesh) == 0)
+    return inp_error(r, r->lineno, "the deck defines no nodes (*NODE)");
+  if (r->nelems == 0)
+    return inp_error(r, r->lineno, "the deck defines no elements (*ELEMENT)");
+  const inp_material *mat = NULL;
+  int rc = resolve_elements(r);
+  if (!rc)
+    rc = resolve_nsets(r);
+  if (!rc)
+    rc = chosen_material(r, &mat);
+  if (rc || !props)
+    return rc;
+  if (r->has_section)
+    props->thickness = r->thickness;
+  if (mat && mat->has_elastic) {
+    props->young = mat->young;
+    props->poisson = mat->poisson;
+  }
+  if (mat && mat->has_density)
+    props->density = mat->density;
+  return FB_OK;
+}
+
+static void reader_free(inp_reader *r)
+{
+  free(r->text);
+  free(r->fields);
+  free(r->elems);
+  free(r->items);
+  free(r->blocks);
+  free(r->materials);
+}
+
+int fb_mesh_read_inp(const char *path, fb_mesh **out, fb_shell_props *props, fb_err *err)
+{
+  if (!out)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp: out is NULL");
+  *out = NULL;
+  if (!path)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp: path is NULL");
+  inp_reader r;
+  memset(&r, 0, sizeof r);
+  r.path = path;
+  r.err = err;
+  int rc = fb_read_file(path, &r.text, &r.len, err);
+  if (!rc)
+    rc = fb_mesh_new(&r.mesh, err);
+  if (!rc)
+    rc = read_deck(&r);
+  if (!rc)
+    rc = finish(&r, props);
+  if (rc)
+    fb_mesh_free(&r.mesh);
+  *out = r.mesh;
+  reader_free(&r);
+  return rc;
+}
+
+/* ---- Writing. */
+
+static void write_nodes(FILE *fp, const fb_mesh *m)
+{
+  fputs("*NODE\n", fp);
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i) {
+    const double *p = fb_mesh_node_xyz(m, i);
+    fprintf(fp, "%ld, %.17g, %.17g, %.17g\n", fb_mesh_node_id(m, i), p[0], p[1], p[2]);
+  }
+}
+
+/* One *ELEMENT block per run of equal types, so that reading the deck
+ * back gives the elements in the same order. */
+static void write_elements(FILE *fp, const fb_mesh *m)
+{
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
+    const fb_elem_type type = fb_mesh_element_type(m, e);
+    if (e == 0 || type != fb_mesh_element_type(m, e - 1))
+      fprintf(fp, "*ELEMENT, TYPE=%s, ELSET=EALL\n", fb_mesh_type_name(type));
+    const size_t *nd = fb_mesh_element_nodes(m, e);
+    fprintf(fp, "%ld", fb_mesh_element_id(m, e));
+    for (size_t k = 0; k < fb_mesh_type_nodes(type); ++k)
+      fprintf(fp, ", %ld", fb_mesh_node_id(m, nd[k]));
+    fputc('\n', fp);
+  }
+}
+
+/* Sixteen ids per data line: the Abaqus limit for *NSET lines. */
+static void write_nsets(FILE *fp, const fb_mesh *m)
+{
+  for (size_t s = 0; s < fb_mesh_nnsets(m); ++s) {
+    const char *name = fb_mesh_nset_name(m, s);
+    const size_t *nodes = NULL;
+    size_t n = 0;
+    fb_mesh_nset(m, name, &nodes, &n);
+    fprintf(fp, "*NSET, NSET=%s\n", name);
+    for (size_t k = 0; k < n; ++k)
+      fprintf(fp, "%ld%s", fb_mesh_node_id(m, nodes[k]),
+              k + 1 == n || k % 16 == 15 ? "\n" : ", ");
+  }
+}
+
+static void write_props(FILE *fp, const fb_shell_props *p)
+{
+  fprintf(fp,
+          "*MATERIAL, NAME=SHELL_MATERIAL\n*ELASTIC\n%.17g, %.17g\n*DENSITY\n%.17g\n"
+          "*SHELL SECTION, ELSET=EALL, MATERIAL=SHELL_MATERIAL\n%.17g\n",
+          p->young, p->poisson, p->density, p->thickness);
+}
+
+/* p may be NULL: the deck then has no material and section. */
+int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err)
+{
+  if (!m || !path)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_write_inp: mesh or path is NULL");
+  if (p && !(isfinite(p->young) && isfinite(p->poisson) && isfinite(p->density) &&
+             isfinite(p->thickness)))
+    return fb_err_set(err, FB_EINVAL, "%s: shell properties are not finite", path);
+  fb_out *out = NULL;
+  const int rc = fb_out_open(path, &out, err);
+  if (rc)
+    return rc;
+  FILE *fp = fb_out_stream(out);
+  fprintf(fp,
+          "** flexbond shell mesh: %zu nodes, %zu elements, %zu node sets\n*HEADING\n"
+          "flexbond shell mesh\n",
+          fb_mesh_nnodes(m), fb_mesh_nelements(m), fb_mesh_nnsets(m));
+  write_nodes(fp, m);
+  write_elements(fp, m);
+  write_nsets(fp, m);
+  if (p)
+    write_props(fp, p);
+  return fb_out_commit(&out, err);
+}

@@ -1,0 +1,554 @@
+/* Shell meshes (see flexbond/fem.h): nodes, elements and node sets.
+ *
+ * Nodes and elements live in parallel arrays in insertion order. User ids
+ * are found through open-addressing hash tables (linear probing, load
+ * factor at most 1/2; Knuth, TAOCP vol. 3, section 6.4, algorithm L) whose
+ * slots hold index + 1 into the id arrays, so a lookup costs O(1) on
+ * average for meshes of 1e5 nodes and more. Node sets are kept free of
+ * duplicates, in the order their nodes were first added. */
+#include <ctype.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "core/util.h"
+#include "fem/mesh_internal.h"
+
+/* Hash table from user id to index; slot value 0 is empty, k is index
+ * k - 1 of the id array the table was built over. */
+typedef struct id_map {
+  size_t *slots;
+  size_t cap; /* power of two, or 0 */
+} id_map;
+
+typedef struct mesh_nset {
+  char *name;
+  size_t *nodes;
+  size_t n;
+  size_t cap;
+} mesh_nset;
+
+struct fb_mesh {
+  double *xyz; /* 3 per node */
+  long *node_ids;
+  size_t nnodes;
+  size_t node_cap;
+  id_map node_map;
+
+  fb_elem_type *elem_types;
+  long *elem_ids;
+  size_t *elem_nodes; /* 4 per element; the 4th is unused for triangles */
+  size_t nelems;
+  size_t elem_cap;
+  size_t ntri; /* elements of each type */
+  size_t nquad;
+  id_map elem_map;
+
+  mesh_nset *nsets;
+  size_t nnsets;
+  size_t nset_cap;
+};
+
+const char *fb_mesh_type_name(fb_elem_type type)
+{
+  switch (type) {
+  case FB_ELEM_TRI3: return "S3";
+  case FB_ELEM_QUAD4: return "S4";
+  }
+  return "?";
+}
+
+size_t fb_mesh_type_nodes(fb_elem_type type)
+{
+  switch (type) {
+  case FB_ELEM_TRI3: return 3;
+  case FB_ELEM_QUAD4: return 4;
+  }
+  return 0;
+}
+
+int fb_mesh_name_ok(const char *name)
+{
+  if (!name || !(isalpha((unsigned char)name[0]) || name[0] == '_'))
+    return 0;
+  size_t len = 0;
+  for (const char *c = name; *c; ++c, ++len) {
+    if (!isalnum((unsigned char)*c) && !strchr("_.-", *c))
+      return 0;
+  }
+  return len <= FB_MESH_NAME_MAX;
+}
+
+/* ---- Id tables. */
+
+/* Home slot of id in a table of cap (a power of two) slots: Fibonacci
+ * hashing (Knuth, TAOCP vol. 3, section 6.4, multiplicative method). */
+static size_t id_home(long id, size_t cap)
+{
+  uint64_t h = (uint64_t)id * UINT64_C(0x9E3779B97F4A7C15);
+  h ^= h >> 32;
+  return (size_t)h & (cap - 1);
+}
+
+/* Index of id among ids[] through map, or -1. */
+static long id_map_find(const id_map *map, const long *ids, long id)
+{
+  if (map->cap == 0)
+    return -1;
+  for (size_t s = id_home(id, map->cap);; s = (s + 1) & (map->cap - 1)) {
+    const size_t v = map->slots[s];
+    if (v == 0)
+      return -1;
+    if (ids[v - 1] == id)
+      return (long)(v - 1);
+  }
+}
+
+static void id_map_put(id_map *map, const long *ids, size_t index)
+{
+  size_t s = id_home(ids[index], map->cap);
+  while (map->slots[s] != 0)
+    s = (s + 1) & (map->cap - 1);
+  map->slots[s] = index + 1;
+}
+
+/* Makes room for count + 1 entries (load at most 1/2), rebuilding the
+ * table over ids[0 .. count) when it grows. */
+static int id_map_reserve(id_map *map, const long *ids, size_t count)
+{
+  if (2 * (count + 1) <= map->cap)
+    return FB_OK;
+  size_t cap = map->cap ? map->cap : 16;
+  while (2 * (count + 1) > cap) {
+    if (cap > SIZE_MAX / 2 / sizeof(size_t))
+      return FB_ENOMEM;
+    cap *= 2;
+  }
+  size_t *slots = calloc(cap, sizeof *slots);
+  if (!slots)
+    return FB_ENOMEM;
+  free(map->slots);
+  map->slots = slots;
+  map->cap = cap;
+  for (size_t i = 0; i < count; ++i)
+    id_map_put(map, ids, i);
+  return FB_OK;
+}
+
+static int id_map_copy(const id_map *src, id_map *dst)
+{
+  dst->cap = src->cap;
+  dst->slots = NULL;
+  if (src->cap == 0)
+    return FB_OK;
+  dst->slots = malloc(src->cap * sizeof *dst->slots);
+  if (!dst->slots)
+    return FB_ENOMEM;
+  memcpy(dst->slots, src->slots, src->cap * sizeof *dst->slots);
+  return FB_OK;
+}
+
+/* ---- Life cycle. */
+
+int fb_mesh_new(fb_mesh **out, fb_err *err)
+{
+  if (!out)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_new: out is NULL");
+  *out = calloc(1, sizeof **out);
+  if (!*out)
+    return fb_err_set(err, FB_ENOMEM, "out of memory creating a mesh");
+  return FB_OK;
+}
+
+void fb_mesh_free(fb_mesh **m)
+{
+  if (!m || !*m)
+    return;
+  fb_mesh *mesh = *m;
+  free(mesh->xyz);
+  free(mesh->node_ids);
+  free(mesh->node_map.slots);
+  free(mesh->elem_types);
+  free(mesh->elem_ids);
+  free(mesh->elem_nodes);
+  free(mesh->elem_map.slots);
+  for (size_t i = 0; i < mesh->nnsets; ++i) {
+    free(mesh->nsets[i].name);
+    free(mesh->nsets[i].nodes);
+  }
+  free(mesh->nsets);
+  free(mesh);
+  *m = NULL;
+}
+
+/* Fresh copy of n bytes of src in *dst (NULL stays NULL). */
+static int copy_bytes(void **dst, const void *src, size_t n)
+{
+  *dst = NULL;
+  if (!src || n == 0)
+    return FB_OK;
+  *dst = malloc(n);
+  if (!*dst)
+    return FB_ENOMEM;
+  memcpy(*dst, src, n);
+  return FB_OK;
+}
+
+static int copy_nodes(const fb_mesh *m, fb_mesh *c)
+{
+  c->nnodes = c->node_cap = m->nnodes;
+  int rc = copy_bytes((void **)&c->xyz, m->xyz, 3 * m->nnodes * sizeof *m->xyz);
+  if (!rc)
+    rc = copy_bytes((void **)&c->node_ids, m->node_ids, m->nnodes * sizeof *m->node_ids);
+  return rc ? rc : id_map_copy(&m->node_map, &c->node_map);
+}
+
+static int copy_elements(const fb_mesh *m, fb_mesh *c)
+{
+  c->nelems = c->elem_cap = m->nelems;
+  c->ntri = m->ntri;
+  c->nquad = m->nquad;
+  int rc =
+      copy_bytes((void **)&c->elem_types, m->elem_types, m->nelems * sizeof *m->elem_types);
+  if (!rc)
+    rc = copy_bytes((void **)&c->elem_ids, m->elem_ids, m->nelems * sizeof *m->elem_ids);
+  if (!rc)
+    rc = copy_bytes((void **)&c->elem_nodes, m->elem_nodes,
+                    4 * m->nelems * sizeof *m->elem_nodes);
+  return rc ? rc : id_map_copy(&m->elem_map, &c->elem_map);
+}
+
+static int copy_nsets(const fb_mesh *m, fb_mesh *c)
+{
+  if (m->nnsets == 0)
+    return FB_OK;
+  c->nsets = calloc(m->nnsets, sizeof *c->nsets);
+  if (!c->nsets)
+    return FB_ENOMEM;
+  c->nset_cap = m->nnsets;
+  for (size_t i = 0; i < m->nnsets; ++i) {
+    const mesh_nset *s = &m->nsets[i];
+    mesh_nset *d = &c->nsets[i];
+    ++c->nnsets; /* counted first so that a failure below frees it */
+    d->name = fb_strdup(s->name);
+    if (!d->name || copy_bytes((void **)&d->nodes, s->nodes, s->n * sizeof *s->nodes) != FB_OK)
+      return FB_ENOMEM;
+    d->n = d->cap = s->n;
+  }
+  return FB_OK;
+}
+
+int fb_mesh_clone(const fb_mesh *m, fb_mesh **out, fb_err *err)
+{
+  if (!out)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_clone: out is NULL");
+  *out = NULL;
+  if (!m)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_clone: mesh is NULL");
+  fb_mesh *c = calloc(1, sizeof *c);
+  int rc = c ? copy_nodes(m, c) : FB_ENOMEM;
+  if (!rc)
+    rc = copy_elements(m, c);
+  if (!rc)
+    rc = copy_nsets(m, c);
+  if (rc) {
+    fb_mesh_free(&c);
+    return fb_err_set(err, FB_ENOMEM, "out of memory copying a mesh");
+  }
+  *out = c;
+  return FB_OK;
+}
+
+/* ---- Building. */
+
+static int grow_nodes(fb_mesh *m)
+{
+  if (m->nnodes < m->node_cap)
+    return FB_OK;
+  size_t cap = m->node_cap;
+  int rc = fb_grow((void **)&m->node_ids, &cap, m->nnodes, sizeof *m->node_ids);
+  if (!rc) {
+    double *xyz = realloc(m->xyz, 3 * cap * sizeof *xyz);
+    if (!xyz)
+      return FB_ENOMEM; /* node_ids keeps its larger size: harmless */
+    m->xyz = xyz;
+    m->node_cap = cap;
+  }
+  return rc;
+}
+
+/* Adds a node; index may be NULL. Coordinates must be finite. */
+int fb_mesh_add_node(fb_mesh *m, long id, double x, double y, double z, size_t *index,
+                     fb_err *err)
+{
+  if (!m)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_add_node: mesh is NULL");
+  if (id <= 0)
+    return fb_err_set(err, FB_EINVAL, "node id %ld is not positive", id);
+  if (!isfinite(x) || !isfinite(y) || !isfinite(z))
+    return fb_err_set(err, FB_EINVAL, "node %ld: coordinates (%g, %g, %g) are not finite", id,
+                      x, y, z);
+  if (id_map_find(&m->node_map, m->node_ids, id) >= 0)
+    return fb_err_set(err, FB_EINVAL, "node id %ld is defined twice", id);
+  if (grow_nodes(m) || id_map_reserve(&m->node_map, m->node_ids, m->nnodes))
+    return fb_err_set(err, FB_ENOMEM, "out of memory adding node %ld", id);
+  const size_t k = m->nnodes;
+  m->node_ids[k] = id;
+  m->xyz[3 * k] = x;
+  m->xyz[3 * k + 1] = y;
+  m->xyz[3 * k + 2] = z;
+  id_map_put(&m->node_map, m->node_ids, k);
+  ++m->nnodes;
+  if (index)
+    *index = k;
+  return FB_OK;
+}
+
+static int grow_elements(fb_mesh *m)
+{
+  if (m->nelems < m->elem_cap)
+    return FB_OK;
+  size_t cap = m->elem_cap;
+  if (fb_grow((void **)&m->elem_ids, &cap, m->nelems, sizeof *m->elem_ids))
+    return FB_ENOMEM;
+  fb_elem_type *types = realloc(m->elem_types, cap * sizeof *types);
+  if (types)
+    m->elem_types = types;
+  size_t *nodes = realloc(m->elem_nodes, 4 * cap * sizeof *nodes);
+  if (nodes)
+    m->elem_nodes = nodes;
+  if (!types || !nodes)
+    return FB_ENOMEM;
+  m->elem_cap = cap;
+  return FB_OK;
+}
+
+/* Checks an element's arguments (repeated nodes are allowed here:
+ * fb_mesh_check reports them). */
+static int check_element_args(const fb_mesh *m, long id, fb_elem_type type, const size_t *nodes,
+                              fb_err *err)
+{
+  const size_t nn = fb_mesh_type_nodes(type);
+  if (nn == 0)
+    return fb_err_set(err, FB_EINVAL, "element %ld: invalid element type %d", id, (int)type);
+  if (id <= 0)
+    return fb_err_set(err, FB_EINVAL, "element id %ld is not positive", id);
+  if (!nodes)
+    return fb_err_set(err, FB_EINVAL, "element %ld: node list is NULL", id);
+  for (size_t k = 0; k < nn; ++k) {
+    if (nodes[k] >= m->nnodes)
+      return fb_err_set(err, FB_EINVAL,
+                        "element %ld: node index %zu out of range (the mesh has %zu nodes)", id,
+                        nodes[k], m->nnodes);
+  }
+  if (id_map_find(&m->elem_map, m->elem_ids, id) >= 0)
+    return fb_err_set(err, FB_EINVAL, "element id %ld is defined twice", id);
+  return FB_OK;
+}
+
+int fb_mesh_add_element(fb_mesh *m, long id, fb_elem_type type, const size_t *nodes,
+                        fb_err *err)
+{
+  if (!m)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_add_element: mesh is NULL");
+  int rc = check_element_args(m, id, type, nodes, err);
+  if (rc)
+    return rc;
+  if (grow_elements(m) || id_map_reserve(&m->elem_map, m->elem_ids, m->nelems))
+    return fb_err_set(err, FB_ENOMEM, "out of memory adding element %ld", id);
+  const size_t e = m->nelems;
+  const size_t nn = fb_mesh_type_nodes(type);
+  m->elem_ids[e] = id;
+  m->elem_types[e] = type;
+  for (size_t k = 0; k < 4; ++k)
+    m->elem_nodes[4 * e + k] = k < nn ? nodes[k] : 0;
+  id_map_put(&m->elem_map, m->elem_ids, e);
+  ++m->nelems;
+  if (type == FB_ELEM_TRI3)
+    ++m->ntri;
+  else
+    ++m->nquad;
+  return FB_OK;
+}
+
+/* Index of the node set called name (case-insensitive), or -1. */
+static long find_nset(const fb_mesh *m, const char *name)
+{
+  for (size_t i = 0; i < m->nnsets; ++i)
+    if (strcasecmp(m->nsets[i].name, name) == 0)
+      return (long)i;
+  return -1;
+}
+
+/* A new empty node set called name, at the end of m->nsets. */
+static int new_nset(fb_mesh *m, const char *name, mesh_nset **out)
+{
+  if (fb_grow((void **)&m->nsets, &m->nset_cap, m->nnsets, sizeof *m->nsets))
+    return FB_ENOMEM;
+  mesh_nset *s = &m->nsets[m->nnsets];
+  memset(s, 0, sizeof *s);
+  s->name = fb_strdup(name);
+  if (!s->name)
+    return FB_ENOMEM;
+  ++m->nnsets;
+  *out = s;
+  return FB_OK;
+}
+
+/* Appends the nodes of list not yet in s. A membership flag per mesh node
+ * keeps one call O(nnodes + n) instead of O(n * size of s). */
+static int extend_nset(const fb_mesh *m, mesh_nset *s, size_t n, const size_t *list)
+{
+  if (n == 0)
+    return FB_OK;
+  unsigned char *member = calloc(m->nnodes, 1);
+  if (!member)
+    return FB_ENOMEM;
+  for (size_t i = 0; i < s->n; ++i)
+    member[s->nodes[i]] = 1;
+  int rc = FB_OK;
+  for (size_t i = 0; i < n && !rc; ++i) {
+    if (member[list[i]])
+      continue;
+    rc = fb_grow((void **)&s->nodes, &s->cap, s->n, sizeof *s->nodes);
+    if (!rc) {
+      member[list[i]] = 1;
+      s->nodes[s->n++] = list[i];
+    }
+  }
+  free(member);
+  return rc;
+}
+
+/* Creates the set if needed (keeping the first spelling of its name) and
+ * adds the nodes not already in it; n may be 0 (nodes then may be NULL),
+ * which creates an empty set. */
+int fb_mesh_add_nset(fb_mesh *m, const char *name, size_t n, const size_t *nodes, fb_err *err)
+{
+  if (!m)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_add_nset: mesh is NULL");
+  if (!fb_mesh_name_ok(name))
+    return fb_err_set(
+        err, FB_EINVAL,
+        "node set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
+        " starting with a letter or _)",
+        name ? name : "(null)", FB_MESH_NAME_MAX);
+  if (n > 0 && !nodes)
+    return fb_err_set(err, FB_EINVAL, "node set '%s': node list is NULL", name);
+  for (size_t i = 0; i < n; ++i) {
+    if (nodes[i] >= m->nnodes)
+      return fb_err_set(err, FB_EINVAL,
+                        "node set '%s': node index %zu out of range (the mesh has %zu nodes)",
+                        name, nodes[i], m->nnodes);
+  }
+  const long found = find_nset(m, name);
+  mesh_nset *s = found >= 0 ? &m->nsets[found] : NULL;
+  if ((!s && new_nset(m, name, &s)) || extend_nset(m, s, n, nodes))
+    return fb_err_set(err, FB_ENOMEM, "out of memory adding to node set '%s'", name);
+  return FB_OK;
+}
+
+/* ---- Accessors. Out-of-range arguments give NULL, 0 or -1 as noted. */
+
+size_t fb_mesh_nnodes(const fb_mesh *m)
+{
+  return m ? m->nnodes : 0;
+}
+
+size_t fb_mesh_nelements(const fb_mesh *m)
+{
+  return m ? m->nelems : 0;
+}
+
+size_t fb_mesh_count(const fb_mesh *m, fb_elem_type type)
+{
+  if (!m)
+    return 0;
+  switch (type) {
+  case FB_ELEM_TRI3: return m->ntri;
+  case FB_ELEM_QUAD4: return m->nquad;
+  }
+  return 0;
+}
+
+/* x, y, z of a node, or NULL if node is out of range. */
+const double *fb_mesh_node_xyz(const fb_mesh *m, size_t node)
+{
+  return m && node < m->nnodes ? &m->xyz[3 * node] : NULL;
+}
+
+/* User id of a node, or -1 if node is out of range. */
+long fb_mesh_node_id(const fb_mesh *m, size_t node)
+{
+  return m && node < m->nnodes ? m->node_ids[node] : -1;
+}
+
+long fb_mesh_find_node_id(const fb_mesh *m, long id)
+{
+  return m ? id_map_find(&m->node_map, m->node_ids, id) : -1;
+}
+
+/* The nearest node within tol (lowest index on a tie), by a linear scan:
+ * the function serves to locate a few attachment points, and one O(n)
+ * scan costs well under a millisecond at 1e5 nodes, so a spatial index
+ * would not pay for its upkeep. -1 also if tol is negative or NaN. */
+long fb_mesh_find_node_at(const fb_mesh *m, double x, double y, double z, double tol)
+{
+  if (!m || !(tol >= 0.0))
+    return -1;
+  long best = -1;
+  double best_d2 = tol * tol;
+  for (size_t i = 0; i < m->nnodes; ++i) {
+    const double *p = &m->xyz[3 * i];
+    const double dx = p[0] - x, dy = p[1] - y, dz = p[2] - z;
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 <= best_d2 && (best < 0 || d2 < best_d2)) {
+      best = (long)i;
+      best_d2 = d2;
+    }
+  }
+  return best;
+}
+
+/* Type of element e, or 0 (no type) if e is out of range. */
+fb_elem_type fb_mesh_element_type(const fb_mesh *m, size_t e)
+{
+  return m && e < m->nelems ? m->elem_types[e] : (fb_elem_type)0;
+}
+
+/* User id of element e, or -1 if e is out of range. */
+long fb_mesh_element_id(const fb_mesh *m, size_t e)
+{
+  return m && e < m->nelems ? m->elem_ids[e] : -1;
+}
+
+/* Node indices of element e, or NULL if e is out of range. */
+const size_t *fb_mesh_element_nodes(const fb_mesh *m, size_t e)
+{
+  return m && e < m->nelems ? &m->elem_nodes[4 * e] : NULL;
+}
+
+size_t fb_mesh_nnsets(const fb_mesh *m)
+{
+  return m ? m->nnsets : 0;
+}
+
+/* Name of node set i as first given, or NULL if i is out of range. */
+const char *fb_mesh_nset_name(const fb_mesh *m, size_t i)
+{
+  return m && i < m->nnsets ? m->nsets[i].name : NULL;
+}
+
+int fb_mesh_nset(const fb_mesh *m, const char *name, const size_t **nodes, size_t *n)
+{
+  const long i = m && name ? find_nset(m, name) : -1;
+  if (i < 0)
+    return 0;
+  if (nodes)
+    *nodes = m->nsets[i].nodes;
+  if (n)
+    *n = m->nsets[i].n;
+  return 1;
+}

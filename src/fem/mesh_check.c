@@ -1,0 +1,222 @@
+/* Mesh validation (fb_mesh_check, see flexbond/fem.h).
+ *
+ * Checks, in this order, reporting the first failure (FB_EMODEL, by user
+ * id): the mesh has elements; each element in turn is not degenerate (a
+ * repeated node; an area below 1e-12 of the squared bounding-box
+ * diagonal; for a quadrilateral, a corner that is not strictly convex) and,
+ * for a quadrilateral, not warped (node 4 farther from the plane of nodes
+ * 1-3 than 1e-3 of the longer diagonal); every node is used by an element;
+ * no node set is empty.
+ *
+ * The convexity test goes beyond the header's list because a reentrant or
+ * flat corner gives a bilinear quadrilateral a Jacobian that vanishes or
+ * changes sign inside the element (Zienkiewicz, Taylor & Zhu, "The Finite
+ * Element Method: Its Basis and Fundamentals", 7th ed., section 6.5), which
+ * the shell element cannot integrate; it also guarantees that nodes 1-3 of
+ * a quadrilateral span a plane for the warp test. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "fem/mesh_internal.h"
+
+static void sub3(const double *a, const double *b, double *d)
+{
+  d[0] = a[0] - b[0];
+  d[1] = a[1] - b[1];
+  d[2] = a[2] - b[2];
+}
+
+static void cross3(const double *a, const double *b, double *c)
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double norm3(const double *a)
+{
+  return sqrt(dot3(a, a));
+}
+
+/* Squared diagonal of the bounding box of all nodes. */
+static double bbox_diag2(const fb_mesh *m)
+{
+  double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0};
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i) {
+    const double *p = fb_mesh_node_xyz(m, i);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = i == 0 || p[k] < lo[k] ? p[k] : lo[k];
+      hi[k] = i == 0 || p[k] > hi[k] ? p[k] : hi[k];
+    }
+  }
+  double d[3];
+  sub3(hi, lo, d);
+  return dot3(d, d);
+}
+
+/* Twice the vector area of an element: (b - a) x (c - a) for a triangle;
+ * for a quadrilateral the cross product of its diagonals, (c - a) x (d - b),
+ * which is the same for a plane quadrilateral and the projected area
+ * vector of a warped one. */
+static void area_vector2(const fb_mesh *m, size_t e, double *v)
+{
+  const size_t *nd = fb_mesh_element_nodes(m, e);
+  const double *a = fb_mesh_node_xyz(m, nd[0]);
+  const double *b = fb_mesh_node_xyz(m, nd[1]);
+  const double *c = fb_mesh_node_xyz(m, nd[2]);
+  double u[3], w[3];
+  if (fb_mesh_element_type(m, e) == FB_ELEM_TRI3) {
+    sub3(b, a, u);
+    sub3(c, a, w);
+  } else {
+    sub3(c, a, u);
+    sub3(fb_mesh_node_xyz(m, nd[3]), b, w);
+  }
+  cross3(u, w, v);
+}
+
+static int element_error(const fb_mesh *m, size_t e, fb_err *err, const char *what)
+{
+  return fb_err_set(err, FB_EMODEL, "element %ld (%s) is %s", fb_mesh_element_id(m, e),
+                    fb_mesh_type_name(fb_mesh_element_type(m, e)), what);
+}
+
+static int check_repeated(const fb_mesh *m, size_t e, fb_err *err)
+{
+  const size_t *nd = fb_mesh_element_nodes(m, e);
+  const size_t nn = fb_mesh_type_nodes(fb_mesh_element_type(m, e));
+  for (size_t i = 0; i < nn; ++i) {
+    for (size_t j = i + 1; j < nn; ++j) {
+      if (nd[i] != nd[j])
+        continue;
+      char what[96];
+      snprintf(what, sizeof what, "degenerate: node %ld is repeated",
+               fb_mesh_node_id(m, nd[i]));
+      return element_error(m, e, err, what);
+    }
+  }
+  return FB_OK;
+}
+
+/* Area limit min_area (m^2); a quadrilateral's corners must each span a
+ * triangle of at least that area on the positive side of its normal. */
+static int check_area(const fb_mesh *m, size_t e, double min_area, fb_err *err)
+{
+  double v[3];
+  area_vector2(m, e, v);
+  const double area = 0.5 * norm3(v);
+  char what[160];
+  if (!(area >= min_area)) {
+    snprintf(what, sizeof what, "degenerate: area %g m^2 below the limit %g m^2", area,
+             min_area);
+    return element_error(m, e, err, what);
+  }
+  if (fb_mesh_element_type(m, e) != FB_ELEM_QUAD4)
+    return FB_OK;
+  const size_t *nd = fb_mesh_element_nodes(m, e);
+  const double unit[3] = {v[0] / (2.0 * area), v[1] / (2.0 * area), v[2] / (2.0 * area)};
+  for (size_t k = 0; k < 4; ++k) {
+    double in[3], out[3], c[3];
+    sub3(fb_mesh_node_xyz(m, nd[k]), fb_mesh_node_xyz(m, nd[(k + 3) % 4]), in);
+    sub3(fb_mesh_node_xyz(m, nd[(k + 1) % 4]), fb_mesh_node_xyz(m, nd[k]), out);
+    cross3(in, out, c);
+    if (0.5 * dot3(c, unit) < min_area) {
+      snprintf(what, sizeof what, "degenerate: not convex at node %ld",
+               fb_mesh_node_id(m, nd[k]));
+      return element_error(m, e, err, what);
+    }
+  }
+  return FB_OK;
+}
+
+/* Node 4 of a quadrilateral against the plane of nodes 1-3 (which span a
+ * plane once check_area passed). */
+static int check_warp(const fb_mesh *m, size_t e, fb_err *err)
+{
+  const size_t *nd = fb_mesh_element_nodes(m, e);
+  const double *p[4];
+  for (int k = 0; k < 4; ++k)
+    p[k] = fb_mesh_node_xyz(m, nd[k]);
+  double u[3], w[3], n[3], d[3], diag2[3];
+  sub3(p[1], p[0], u);
+  sub3(p[2], p[0], w);
+  cross3(u, w, n);
+  sub3(p[3], p[0], d);
+  const double offset = fabs(dot3(d, n)) / norm3(n);
+  sub3(p[2], p[0], u);
+  sub3(p[3], p[1], diag2);
+  const double diagonal = fmax(norm3(u), norm3(diag2));
+  if (offset <= 1e-3 * diagonal)
+    return FB_OK;
+  char what[160];
+  snprintf(what, sizeof what, "warped: node %ld is %.3g mm off the plane of the other three",
+           fb_mesh_node_id(m, nd[3]), offset * 1e3);
+  return element_error(m, e, err, what);
+}
+
+static int check_elements(const fb_mesh *m, fb_err *err)
+{
+  const double min_area = 1e-12 * bbox_diag2(m);
+  int rc = FB_OK;
+  for (size_t e = 0; e < fb_mesh_nelements(m) && !rc; ++e) {
+    rc = check_repeated(m, e, err);
+    if (!rc)
+      rc = check_area(m, e, min_area, err);
+    if (!rc && fb_mesh_element_type(m, e) == FB_ELEM_QUAD4)
+      rc = check_warp(m, e, err);
+  }
+  return rc;
+}
+
+static int check_used(const fb_mesh *m, fb_err *err)
+{
+  const size_t nnodes = fb_mesh_nnodes(m);
+  unsigned char *used = calloc(nnodes ? nnodes : 1, 1);
+  if (!used)
+    return fb_err_set(err, FB_ENOMEM, "out of memory checking a mesh");
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
+    const size_t *nd = fb_mesh_element_nodes(m, e);
+    for (size_t k = 0; k < fb_mesh_type_nodes(fb_mesh_element_type(m, e)); ++k)
+      used[nd[k]] = 1;
+  }
+  size_t unused = 0;
+  while (unused < nnodes && used[unused])
+    ++unused;
+  free(used);
+  if (unused < nnodes)
+    return fb_err_set(err, FB_EMODEL, "node %ld is used by no element",
+                      fb_mesh_node_id(m, unused));
+  return FB_OK;
+}
+
+static int check_nsets(const fb_mesh *m, fb_err *err)
+{
+  for (size_t i = 0; i < fb_mesh_nnsets(m); ++i) {
+    const char *name = fb_mesh_nset_name(m, i);
+    size_t n = 0;
+    fb_mesh_nset(m, name, NULL, &n);
+    if (n == 0)
+      return fb_err_set(err, FB_EMODEL, "node set '%s' is empty", name);
+  }
+  return FB_OK;
+}
+
+int fb_mesh_check(const fb_mesh *m, fb_err *err)
+{
+  if (!m)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_check: mesh is NULL");
+  if (fb_mesh_nelements(m) == 0)
+    return fb_err_set(err, FB_EMODEL, "the mesh has no elements");
+  int rc = check_elements(m, err);
+  if (!rc)
+    rc = check_used(m, err);
+  if (!rc)
+    rc = check_nsets(m, err);
+  return rc;
+}

@@ -1,0 +1,23 @@
+/* Internal helpers shared by the mesh modules (mesh.c, mesh_check.c,
+ * inp.c, vtu.c). */
+#ifndef FLEXBOND_FEM_MESH_INTERNAL_H
+#define FLEXBOND_FEM_MESH_INTERNAL_H
+
+#include "flexbond/fem.h"
+
+/* Longest node set name accepted (Abaqus labels are at most 80
+ * characters). */
+#define FB_MESH_NAME_MAX 80
+
+/* Abaqus name of an element type, "S3" or "S4" ("?" for anything else). */
+const char *fb_mesh_type_name(fb_elem_type type);
+
+/* Number of nodes of an element type: 3, 4, or 0 if type is invalid. */
+size_t fb_mesh_type_nodes(fb_elem_type type);
+
+/* 1 if name can name a node set: 1 to FB_MESH_NAME_MAX characters from
+ * [A-Za-z0-9_.-], starting with a letter or '_'. The restriction keeps
+ * names valid unquoted in Abaqus decks and in XML attributes. */
+int fb_mesh_name_ok(const char *name);
+
+#endif

@@ -1,0 +1,180 @@
+/* VTK XML unstructured grid output (see flexbond/fem.h), ASCII.
+ *
+ * Layout per the XML formats of "VTK File Formats" (The VTK User's Guide,
+ * Kitware, 11th ed.): one Piece with Points (Float64 x 3), Cells
+ * (connectivity, offsets, types: VTK_TRIANGLE = 5, VTK_QUAD = 9, whose
+ * node orders match S3 and S4), PointData and CellData. Point data:
+ * "node_id" (the user ids), "displacement" and "rotation" (3 components
+ * each) when DOF values are given, and "nset_<name>" (Int32, 1 for the
+ * members of each node set; the prefix keeps set names from colliding with
+ * the other arrays). Cell data: "element_id". Coordinates are written with
+ * %.17g (exact), field values with %.10g (beyond the resolution of any
+ * modal or static solution). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "flexbond/io.h"
+
+#include "fem/mesh_internal.h"
+
+enum { VTK_TRIANGLE = 5, VTK_QUAD = 9 };
+
+static void open_array(FILE *fp, const char *type, const char *name, int ncomp)
+{
+  fprintf(fp, "        <DataArray type=\"%s\" Name=\"%s\"", type, name);
+  if (ncomp > 1)
+    fprintf(fp, " NumberOfComponents=\"%d\"", ncomp);
+  fputs(" format=\"ascii\">\n", fp);
+}
+
+static void close_array(FILE *fp)
+{
+  fputs("        </DataArray>\n", fp);
+}
+
+/* Components first..first+2 of every node's 6 DOF values. */
+static void write_dof_vector(FILE *fp, const fb_mesh *m, const double *dof, size_t first,
+                             const char *name)
+{
+  open_array(fp, "Float64", name, 3);
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i) {
+    const double *v = &dof[6 * i + first];
+    fprintf(fp, "          %.10g %.10g %.10g\n", v[0], v[1], v[2]);
+  }
+  close_array(fp);
+}
+
+/* Flags of the members of node set s, through a scratch array. */
+static void write_nset_flags(FILE *fp, const fb_mesh *m, size_t s, unsigned char *member)
+{
+  const char *name = fb_mesh_nset_name(m, s);
+  const size_t *nodes = NULL;
+  size_t n = 0;
+  fb_mesh_nset(m, name, &nodes, &n);
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i)
+    member[i] = 0;
+  for (size_t k = 0; k < n; ++k)
+    member[nodes[k]] = 1;
+  char array[FB_MESH_NAME_MAX + 8];
+  snprintf(array, sizeof array, "nset_%s", name);
+  open_array(fp, "Int32", array, 1);
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i)
+    fprintf(fp, "%s%d%s", i % 20 == 0 ? "          " : " ", member[i],
+            i % 20 == 19 || i + 1 == fb_mesh_nnodes(m) ? "\n" : "");
+  close_array(fp);
+}
+
+static int write_point_data(FILE *fp, const fb_mesh *m, const double *dof, fb_err *err)
+{
+  const size_t nnodes = fb_mesh_nnodes(m);
+  fprintf(fp, "      <PointData%s>\n", dof ? " Vectors=\"displacement\"" : "");
+  open_array(fp, "Int64", "node_id", 1);
+  for (size_t i = 0; i < nnodes; ++i)
+    fprintf(fp, "          %ld\n", fb_mesh_node_id(m, i));
+  close_array(fp);
+  if (dof) {
+    write_dof_vector(fp, m, dof, 0, "displacement");
+    write_dof_vector(fp, m, dof, 3, "rotation");
+  }
+  unsigned char *member = malloc(nnodes ? nnodes : 1);
+  if (!member)
+    return fb_err_set(err, FB_ENOMEM, "out of memory writing node sets");
+  for (size_t s = 0; s < fb_mesh_nnsets(m); ++s)
+    write_nset_flags(fp, m, s, member);
+  free(member);
+  fputs("      </PointData>\n", fp);
+  return FB_OK;
+}
+
+static void write_cell_data(FILE *fp, const fb_mesh *m)
+{
+  fputs("      <CellData>\n", fp);
+  open_array(fp, "Int64", "element_id", 1);
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+    fprintf(fp, "          %ld\n", fb_mesh_element_id(m, e));
+  close_array(fp);
+  fputs("      </CellData>\n", fp);
+}
+
+static void write_points(FILE *fp, const fb_mesh *m)
+{
+  fputs("      <Points>\n", fp);
+  fputs("        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n", fp);
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i) {
+    const double *p = fb_mesh_node_xyz(m, i);
+    fprintf(fp, "          %.17g %.17g %.17g\n", p[0], p[1], p[2]);
+  }
+  close_array(fp);
+  fputs("      </Points>\n", fp);
+}
+
+static void write_cells(FILE *fp, const fb_mesh *m)
+{
+  const size_t ne = fb_mesh_nelements(m);
+  fputs("      <Cells>\n", fp);
+  open_array(fp, "Int64", "connectivity", 1);
+  for (size_t e = 0; e < ne; ++e) {
+    const size_t *nd = fb_mesh_element_nodes(m, e);
+    fputs("         ", fp);
+    for (size_t k = 0; k < fb_mesh_type_nodes(fb_mesh_element_type(m, e)); ++k)
+      fprintf(fp, " %zu", nd[k]);
+    fputc('\n', fp);
+  }
+  close_array(fp);
+  open_array(fp, "Int64", "offsets", 1);
+  size_t offset = 0;
+  for (size_t e = 0; e < ne; ++e) {
+    offset += fb_mesh_type_nodes(fb_mesh_element_type(m, e));
+    fprintf(fp, "          %zu\n", offset);
+  }
+  close_array(fp);
+  open_array(fp, "UInt8", "types", 1);
+  for (size_t e = 0; e < ne; ++e)
+    fprintf(fp, "          %d\n",
+            fb_mesh_element_type(m, e) == FB_ELEM_TRI3 ? VTK_TRIANGLE : VTK_QUAD);
+  close_array(fp);
+  fputs("      </Cells>\n", fp);
+}
+
+/* dof_values, if given, must be finite (a NaN would poison the colour
+ * scale of every field in ParaView). */
+static int check_dofs(const fb_mesh *m, const double *dof, const char *path, fb_err *err)
+{
+  static const char *const names[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  for (size_t i = 0; dof && i < 6 * fb_mesh_nnodes(m); ++i) {
+    if (!isfinite(dof[i]))
+      return fb_err_set(err, FB_EINVAL, "%s: DOF value %zu (%s of node %ld) is not finite",
+                        path, i, names[i % 6], fb_mesh_node_id(m, i / 6));
+  }
+  return FB_OK;
+}
+
+int fb_mesh_write_vtu(const fb_mesh *m, const double *dof_values, const char *path, fb_err *err)
+{
+  if (!m || !path)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_write_vtu: mesh or path is NULL");
+  int rc = check_dofs(m, dof_values, path, err);
+  fb_out *out = NULL;
+  if (!rc)
+    rc = fb_out_open(path, &out, err);
+  if (rc)
+    return rc;
+  FILE *fp = fb_out_stream(out);
+  fputs("<?xml version=\"1.0\"?>\n"
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\""
+        " header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
+        fp);
+  fprintf(fp, "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", fb_mesh_nnodes(m),
+          fb_mesh_nelements(m));
+  rc = write_point_data(fp, m, dof_values, err);
+  if (rc) {
+    fb_out_abort(&out);
+    return rc;
+  }
+  write_cell_data(fp, m);
+  write_points(fp, m);
+  write_cells(fp, m);
+  fputs("    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n", fp);
+  return fb_out_commit(&out, err);
+}
