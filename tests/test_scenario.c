@@ -39,25 +39,30 @@ static void check_hull(const fb_scenario *s)
   CHECK(s->edge_left_y == 1.25 && s->edge_right_y == -1.25);
 }
 
-/* 56 points on the 8 x 7 grid x = -2.45 + 0.7 i, y = -0.9 + 0.3 j, x-major,
- * centroid at the origin, 117720 / 56 = 2102.142857 N each. */
+/* 56 points on the assumed 14 x 4 grid of System 2's hull floor lines
+ * (examples/apc6x6.yaml, docs/hull-mesh.md), x-major, centroid at the
+ * origin, 117720 / 56 = 2102.142857 N each. */
 static void check_load(const fb_scenario *s)
 {
+  static const double grid_x[14] = {-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, -0.15,
+                                    0.10,  0.40,  0.65,  0.95,  1.30,  1.90,  2.10};
+  static const double grid_y[4] = {-1.05, -0.55, 0.55, 1.05};
   CHECK(s->total_weight == 117720);
   CHECK(s->payload == FB_PAYLOAD_WEIGHT_ONLY);
   CHECK(s->nload == 56);
   if (s->nload != 56)
     return;
   double sx = 0, sy = 0;
-  for (size_t i = 0; i < 8; ++i)
-    for (size_t j = 0; j < 7; ++j) {
-      /* Grid step written in the file to two decimals. */
-      CHECK_NEAR(s->load_x[i * 7 + j], -2.45 + 0.7 * (double)i, TIGHT);
-      CHECK_NEAR(s->load_y[i * 7 + j], -0.9 + 0.3 * (double)j, TIGHT);
-      sx += s->load_x[i * 7 + j];
-      sy += s->load_y[i * 7 + j];
+  for (size_t i = 0; i < 14; ++i)
+    for (size_t j = 0; j < 4; ++j) {
+      /* The loader keeps strtod's value of the literal: exact. */
+      CHECK(s->load_x[i * 4 + j] == grid_x[i]);
+      CHECK(s->load_y[i * 4 + j] == grid_y[j]);
+      sx += s->load_x[i * 4 + j];
+      sy += s->load_y[i * 4 + j];
     }
-  /* Symmetric values cancel up to the rounding of 56 sums. */
+  /* The values sum to zero in decimal; the binary sums cancel up to the
+   * rounding of 56 additions of numbers below 2.1. */
   CHECK_NEAR(sx / 56, 0, TIGHT);
   CHECK_NEAR(sy / 56, 0, TIGHT);
   /* The data sheet quotes the share to 6 decimals. */
@@ -238,7 +243,7 @@ static void test_clone(void)
     c->load_x[3] = 99;
     c->corner[FB_RR].tire_k = 1;
     CHECK(!scenarios_equal(s, c));
-    CHECK(s->load_x[3] == -2.45 && s->corner[FB_RR].tire_k == 500000);
+    CHECK(s->load_x[3] == -2.00 && s->corner[FB_RR].tire_k == 500000);
   }
   fb_scenario_free(&c);
   /* Strings and arrays may be NULL in a hand-built scenario. */
@@ -363,8 +368,9 @@ static const char base_text[] =
     "load:\n"                                                                      /* 9 */
     "  total_weight: 117720\n"                                                     /* 10 */
     "  payload: weight-only\n"                                                     /* 11 */
-    "  points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, 1.75, 2.45],"
-    " y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}\n"                                /* 12 */
+    "  points: {grid: {x: [-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, -0.15, 0.10, 0.40, 0.65, "
+    "0.95, 1.30, 1.90, 2.10],"
+    " y: [-1.05, -0.55, 0.55, 1.05]}}\n"                                          /* 12 */
     "driver: {mass: 100, stiffness: 19620, damping: 1400, x: 2.10, y: 0.55}\n"    /* 13 */
     "engine: {mass: 500, stiffness: 122625, damping: 24761, x: 1.70, y: -0.55}\n" /* 14 */
     "wheel: {mass: 175, tire_k: 500000, tire_c: 140000}\n"                        /* 15 */
@@ -491,14 +497,16 @@ static const bad_case bad_cases[] = {
     /* Load points. */
     {"points: {grid:", "points: {grd:", NULL, NULL, FB_EPARSE,
      "bad.yaml:12:", "load.points.grd: unknown key 'grd' (did you mean 'grid'?)", NULL},
-    {"y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]", "y: []", NULL, NULL, FB_EMODEL,
+    {"y: [-1.05, -0.55, 0.55, 1.05]", "y: []", NULL, NULL, FB_EMODEL,
      "bad.yaml:12:", "load.points.grid.y: expected at least one value", NULL},
-    {"points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, 1.75, 2.45],"
-     " y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}",
+    {"points: {grid: {x: [-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, -0.15, 0.10, 0.40, 0.65, "
+     "0.95, 1.30, 1.90, 2.10],"
+     " y: [-1.05, -0.55, 0.55, 1.05]}}",
      "points: [[0, 0], [1, 2, 3]]", NULL, NULL, FB_EMODEL,
      "bad.yaml:12:", "load.points[1]: expected 2 values, got 3", NULL},
-    {"points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, 1.75, 2.45],"
-     " y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}",
+    {"points: {grid: {x: [-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, -0.15, 0.10, 0.40, 0.65, "
+     "0.95, 1.30, 1.90, 2.10],"
+     " y: [-1.05, -0.55, 0.55, 1.05]}}",
      "points: []", NULL, NULL, FB_EINVAL,
      "bad.yaml:12:11:", "load.points: at least one load point is needed", NULL},
     /* Parameters and YAML itself. */
@@ -599,8 +607,9 @@ static void test_good_variants(void)
                 : NULL;
   char *t5 = t4 ? replace_once(t4, "height: 0.10", "height: 0") : NULL;
   char *t6 = t5 ? replace_once(t5,
-                               "points: {grid: {x: [-2.45, -1.75, -1.05, -0.35, 0.35, 1.05, "
-                               "1.75, 2.45], y: [-0.9, -0.6, -0.3, 0, 0.3, 0.6, 0.9]}}",
+                               "points: {grid: {x: [-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, "
+                               "-0.15, 0.10, 0.40, 0.65, 0.95, 1.30, 1.90, 2.10],"
+                               " y: [-1.05, -0.55, 0.55, 1.05]}}",
                                "points: [[1, 0.5], [-1, -0.5]]")
                 : NULL;
   char *t7 = t6 ? replace_once(t6, "payload: weight-only", "payload: lumped") : NULL;

@@ -75,9 +75,14 @@ typedef struct fb_shell_props {
   double poisson;   /* - */
   double density;   /* kg/m^3 */
   double thickness; /* m */
-  /* Fictitious drilling stiffness: k_rz = drill_factor * E t A (per
-   * element, shared by its nodes); small (1e-3 default) so that it does not
-   * move the low frequencies (tested: a factor of 10 changes them < 0.1%). */
+  /* Fictitious drilling stiffness of the quadrilaterals: k_rz =
+   * drill_factor * E t A (per element, shared by its nodes), a penalty on
+   * rz minus the membrane's own rotation (v,x - u,y)/2, so rigid-body
+   * motions stay exact. 0 selects the default 1e-4, small enough that it
+   * does not move the low frequencies (tested: a factor of 10 changes them
+   * < 0.1% on a folded box, where it couples to the bending of the adjacent
+   * plates). Must be >= 0. Triangles ignore it: their membrane (OPT) has a
+   * real drilling freedom. */
   double drill_factor;
 } fb_shell_props;
 
@@ -93,7 +98,9 @@ typedef enum fb_mass_kind {
 int fb_shell_element(fb_elem_type type, const double *xyz, const fb_shell_props *p,
                      fb_mass_kind mass, double *ke, double *me, fb_err *err);
 
-/* Assembles K and M (6 nnodes square, sparse CSC, symmetric). */
+/* Assembles K and M (6 nnodes square, sparse CSC, symmetric); either
+ * output may be NULL (not both). An element's error is prefixed with
+ * "element <id>: ". */
 int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass, fb_mat **K,
                     fb_mat **M, fb_err *err);
 
@@ -103,9 +110,11 @@ int fb_fem_mass_properties(const fb_mesh *m, const fb_mat *M, double *mass, doub
                            double *inertia, fb_err *err);
 
 /* The DOFs kept after fixing the listed ones: keep[] receives the
- * n - nfixed indices in increasing order. */
+ * n - nfixed indices in increasing order. The fixed DOFs must be distinct
+ * and below n (FB_EINVAL otherwise: merge overlapping node sets first). */
 int fb_fem_free_dofs(size_t n, const size_t *fixed, size_t nfixed, size_t *keep, fb_err *err);
-/* Rows and columns keep[0 .. nkeep) of a (the constrained matrix). */
+/* Rows and columns keep[0 .. nkeep) of the square a (the constrained
+ * matrix), keep strictly increasing; same storage kind as a. */
 int fb_fem_submatrix(const fb_mat *a, const size_t *keep, size_t nkeep, fb_mat **out,
                      fb_err *err);
 
@@ -113,8 +122,12 @@ int fb_fem_submatrix(const fb_mat *a, const size_t *keep, size_t nkeep, fb_mat *
  * structures). Frequencies in Hz (rigid-body modes come out as ~0, never
  * NaN: negative round-off is clamped to 0); vectors (n x nmodes,
  * column-major, M-orthonormal) if not NULL. Dense LAPACK (dsygvd on
- * K + sigma M with a small shift sigma) up to dense_limit DOFs, ARPACK
- * shift-invert (dsaupd/dseupd, KLU for the shifted solves) above. */
+ * K + sigma M with a small shift sigma) up to dense_limit DOFs (and when
+ * nmodes >= n - 1, which ARPACK cannot do), ARPACK shift-invert
+ * (dsaupd/dseupd, KLU for the shifted solves) above. K and M must be
+ * symmetric, M positive definite; an eigenvalue below -sigma (K not
+ * positive semi-definite) is FB_ESOLVER.
+ * Not thread-safe on the ARPACK path (ARPACK keeps internal state). */
 int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_limit,
                  double *freq_hz, double *vectors, fb_err *err);
 

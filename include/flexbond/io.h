@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/fem.h"
 #include "flexbond/sim.h"
 
 #ifdef __cplusplus
@@ -83,6 +84,17 @@ int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plo
  * (labelled "name [unit]"), over the whole run. title may be NULL. */
 int fb_plot_png(const fb_result *r, const size_t *cols, size_t ncols, const char *title,
                 const char *path, fb_err *err);
+
+/* A deformed shell mesh as a 3-D wireframe PNG (gnuplot), like the
+ * paper's Figs. 3-4: node i drawn at its position plus scale times its
+ * translation (the first three of its six values in dof_values, which may
+ * be NULL for the undeformed mesh); elements whose normal lies within 30
+ * degrees of the y axis (the side walls) are left out; ncubes cubes of
+ * side cube_side are drawn centred at cube_xyz (3 per cube, already
+ * displaced). title may be NULL. */
+int fb_plot_mesh_png(const fb_mesh *m, const double *dof_values, double scale,
+                     const double *cube_xyz, size_t ncubes, double cube_side, const char *title,
+                     const char *path, fb_err *err);
 
 #ifdef __cplusplus
 }

@@ -15,6 +15,7 @@
 #include "flexbond/bd.h"
 #include "flexbond/bg.h"
 #include "flexbond/error.h"
+#include "flexbond/fem.h"
 #include "flexbond/sim.h"
 
 #ifdef __cplusplus
@@ -68,6 +69,27 @@ typedef struct fb_corner_params {
   double tire_c;       /* N s/m */
 } fb_corner_params;
 
+/* Most bulkheads a hull may have. */
+enum { FB_HULL_MAX_BULKHEADS = 8 };
+
+typedef struct fb_hull_mesh_params {
+  double width;       /* m, between the side walls, > 0 */
+  double height;      /* m, floor to roof, > 0 */
+  double x_rear;      /* m, rear wall */
+  double x_front;     /* m, front end of floor, roof and side-wall boxes, > x_rear */
+  double nose_length; /* m, nose tip line ahead of x_front, > 0 */
+  double nose_height; /* m, nose tip line above the floor, in (0, height) */
+  size_t nbulkheads;  /* 0 .. FB_HULL_MAX_BULKHEADS */
+  double bulkhead_x[FB_HULL_MAX_BULKHEADS]; /* m, each in (x_rear, x_front) */
+  int side_rows;           /* element rows up side walls, rear wall, bulkheads, >= 1 */
+  int nose_rows;           /* element rows along each glacis plate, >= 1 */
+  int nose_rung_divisions; /* intervals along each side wall's interior nose rung, >= 1 */
+  /* Refinement, 1 .. 64: 1 is the default mesh; d splits every element
+   * into d x d quadrilaterals or d^2 triangles, so every node of the
+   * default mesh (all the special points) stays a node. */
+  int density;
+} fb_hull_mesh_params;
+
 /* The study's parameters. Strings and arrays are owned by the scenario. */
 typedef struct fb_scenario {
   char *name;
@@ -100,6 +122,14 @@ typedef struct fb_scenario {
   /* Simulation. */
   double t_end, rtol, atol, max_step, sample_rate; /* s, -, -, s, Hz */
   fb_initial_state initial;
+  /* System 2's hull (the optional hull.mesh and hull.fe sections;
+   * has_fe_hull is 0 without them). */
+  int has_fe_hull;
+  char *hull_deck;                /* Abaqus/CalculiX deck, NULL: the generator */
+  fb_hull_mesh_params hull_mesh;  /* generator parameters */
+  fb_mass_kind hull_mass_matrix;  /* consistent (default) or lumped */
+  double hull_drill_factor;       /* fictitious drilling stiffness factor */
+  double hull_damping_ratio;      /* of the first elastic free-free mode (B = beta K) */
 } fb_scenario;
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
@@ -120,6 +150,55 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
 double fb_scenario_bump_entry(const fb_scenario *s, int corner);
 /* Time it leaves the bump: entry + bump_length / speed. */
 double fb_scenario_bump_exit(const fb_scenario *s, int corner);
+
+/* ---- System 2: the finite-element hull's mesh (docs/hull-mesh.md).
+ *
+ * A closed, welded box of flat plates of the scenario's thickness: floor
+ * (z = 0 in the hull frame below), roof (z = height), two side walls
+ * (y = +-width/2), a vertical rear wall (x = x_rear), a wedge nose of two
+ * full-width glacis plates from the box's front end (x = x_front) to a
+ * transverse nose tip line (x_front + nose_length, nose_height), and
+ * full cross-section transverse bulkheads. Every quadrilateral is a
+ * rectangle; the side walls' nose triangles (between the glacis plates)
+ * are meshed with triangles. Floor lines run through every scenario point
+ * (load points, suspension, driver and engine attachments), which are
+ * floor nodes (those at y = +-width/2 lie on the side walls' bottom
+ * edges).
+ *
+ * Frame: x positions are in the vehicle axes, i.e. relative to the hull's
+ * centre of mass, for the nominal geometry; the generator computes the
+ * plates' actual centre of mass, places the scenario points relative to
+ * it and shifts the mesh so that its centre of mass is the origin (for the
+ * fitted defaults that shift is below 1e-12 m). Heights are given above
+ * the floor; in the mesh the floor lies at z = -(centre of mass height). */
+
+
+
+/* The defaults, fitted so that the mesh's mass and inertias about its
+ * centre of mass equal the paper's (4041.72 kg, Ixx 4173.49, Iyy 15175.96
+ * kg m^2) for 8.5 mm steel and the reference scenario's points, with 28
+ * triangles and 212 quadrilaterals at density 1: width from the scenario
+ * (between the left and right suspension points, 2.10 m), height 1.7408
+ * m, x_rear -2.6580 m, x_front 2.4781 m, nose 0.80 m long and 0.60 m high,
+ * bulkheads at -2.2741 (rear compartment), -1.00 (rear axle) and 1.90 m
+ * (front axle), 2 side rows, 3 nose rows, 3 rung divisions, density 1.
+ * FB_EINVAL if s or p is NULL. */
+int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb_err *err);
+
+/* Builds the hull mesh for the scenario's points (*out is new; nodes and
+ * elements numbered 1, 2, ... in index order) with the node sets
+ *   LOAD       the nload load points, in the scenario's order;
+ *   DRIVER, ENGINE, SUSP_LF, SUSP_RF, SUSP_LM, SUSP_RM, SUSP_LR, SUSP_RR
+ *              one node each, the attachment points;
+ *   FRONT_EDGE, REAR_EDGE  the end nodes of the floor's front (x_front)
+ *              and rear (x_rear) transverse edges, left (y > 0) first:
+ *              the torsion angle's edge lines (Fig. 10);
+ *   ALL        every node.
+ * p NULL means the defaults. FB_EINVAL naming the parameter or point on
+ * bad parameters, a point outside the floor, or two distinct node lines
+ * closer than 1 mm (e.g. a bulkhead next to a load point); FB_ENOMEM. */
+int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb_mesh **out,
+                          fb_err *err);
 
 /* ---- Subsystems as bond-graph fragments. Every fragment is a new graph
  * owned by the caller (or handed to fb_vehicle_assemble). */
@@ -202,6 +281,60 @@ typedef struct fb_mode {
  * springs) are counted in *nstatic and left out. *modes is new. */
 int fb_vehicle_modes(const fb_scenario *s, fb_system sys, int undamped, fb_mode **modes,
                      size_t *nmodes, size_t *nstatic, fb_err *err);
+
+/* ---- System 2: the finite-element hull. */
+
+/* A hull mesh with its material and the nodes where the rest of the
+ * vehicle meets it, from the mesh's node sets: SUSP_LF .. SUSP_RR, DRIVER,
+ * ENGINE (one node each, in "attach" order), LOAD (nload nodes, in the
+ * scenario's load-point order), FRONT_EDGE and REAR_EDGE (left end, then
+ * right end; the torsion angle's edges). */
+typedef struct fb_fe_hull {
+  fb_mesh *mesh;
+  fb_shell_props props;
+  fb_mass_kind mass_kind;
+  size_t attach_node[FB_NATTACH];
+  size_t *load_node; /* nload */
+  size_t nload;
+  size_t edge_node[4]; /* front left, front right, rear left, rear right */
+} fb_fe_hull;
+
+/* The scenario's finite-element hull: its mesh (the deck, or the
+ * generator with hull.mesh's parameters), material and mass matrix kind.
+ * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. */
+int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
+
+/* Takes the mesh over (*mesh set to NULL) and resolves its node sets
+ * against the scenario: every set present with the right number of
+ * nodes, each node at the scenario's (x, y) within 1 mm. FB_EMODEL naming
+ * the set or node otherwise. */
+int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
+                   fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err);
+void fb_fe_hull_free(fb_fe_hull **h);
+
+/* Modes of a whole undamped vehicle: natural frequencies and mode shapes
+ * over ndof = 6 nnodes (hull) + 8 DOFs (vertical motion of the driver,
+ * the engine and the wheels LF .. RR, in that order), each shape
+ * normalised so that the largest displacement over the driver, the
+ * engine and the hull nodes is 1 (the paper's normalisation). */
+typedef struct fb_mode_set {
+  size_t nmodes, ndof;
+  double *freq_hz;         /* nmodes */
+  double *shapes;          /* ndof x nmodes, column-major */
+  char (*description)[96]; /* nmodes, e.g. "hull pitch (rigid 97%)" */
+} fb_mode_set;
+void fb_mode_set_free(fb_mode_set **m);
+
+/* The nmodes lowest modes of the free-free hull (rigid-body modes first,
+ * *nrigid of them at ~0 Hz): frequencies only. */
+int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
+                          fb_err *err);
+
+/* The nmodes lowest modes of the undamped System 2: the finite-element
+ * hull with the driver, engine, suspension springs (k r^2 for motion ratio
+ * r), wheels and tire springs attached at its nodes. */
+int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t nmodes,
+                              fb_mode_set **out, fb_err *err);
 
 #ifdef __cplusplus
 }

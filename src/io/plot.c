@@ -14,6 +14,8 @@
 
 #include "flexbond/io.h"
 
+#include "io/plot_internal.h"
+
 /* Line styles of the curves of one panel, in order; a panel with more
  * curves reuses them cyclically. Blue solid and red dashed follow the
  * paper's System 1 / System 2 colours (Leite & Da Silva, Fig. 5). */
@@ -32,8 +34,7 @@ void fb_plot_opts_default(fb_plot_opts *opts)
   *opts = (fb_plot_opts){.title = NULL, .t_min = 0, .t_max = 0, .width = 0, .panel_height = 0};
 }
 
-/* Writes s as a gnuplot single-quoted string ('' escapes a quote). */
-static void put_quoted(FILE *fp, const char *s)
+void fb_gnuplot_quoted(FILE *fp, const char *s)
 {
   fputc('\'', fp);
   for (; *s; ++s) {
@@ -87,16 +88,16 @@ static void write_ylabel(FILE *gp, const fb_plot_panel *p)
 {
   fputs("set ylabel ", gp);
   if (p->ylabel) {
-    put_quoted(gp, p->ylabel);
+    fb_gnuplot_quoted(gp, p->ylabel);
   } else {
     const fb_result *r = p->series[0].result;
     size_t col = p->series[0].col + 1;
     const char *unit = fb_result_col_unit(r, col);
     /* "name [unit]" as a gnuplot string expression: no buffer needed. */
-    put_quoted(gp, fb_result_col_name(r, col));
+    fb_gnuplot_quoted(gp, fb_result_col_name(r, col));
     if (unit && *unit) {
       fputs(".' ['.", gp);
-      put_quoted(gp, unit);
+      fb_gnuplot_quoted(gp, unit);
       fputs(".']'", gp);
     }
   }
@@ -143,7 +144,7 @@ static void write_panel(FILE *gp, const fb_plot_panel *p, size_t first_id)
             first_id + j, line_styles[style].dash_type, line_styles[style].colour);
     if (p->series[j].legend) {
       fputs(" title ", gp);
-      put_quoted(gp, p->series[j].legend);
+      fb_gnuplot_quoted(gp, p->series[j].legend);
     } else {
       fputs(" notitle", gp);
     }
@@ -163,13 +164,13 @@ static void write_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
   size_t panel_height = o->panel_height > 0 ? (size_t)o->panel_height : 220;
   size_t height = panel_height * npanels + (o->title ? 40 : 0);
   fprintf(gp, "set terminal pngcairo size %d,%zu font 'Sans,9'\nset output ", width, height);
-  put_quoted(gp, tmp_path);
+  fb_gnuplot_quoted(gp, tmp_path);
   fputs("\nset termoption noenhanced\nset grid\nset xlabel 't [s]'\n", gp);
   fprintf(gp, "set xrange [%.10g:%.10g]\n", t_min, t_max);
   fprintf(gp, "set multiplot layout %zu,1", npanels);
   if (o->title) {
     fputs(" title ", gp);
-    put_quoted(gp, o->title);
+    fb_gnuplot_quoted(gp, o->title);
   }
   fputc('\n', gp);
   id = 0;
@@ -204,17 +205,16 @@ static int check_panels(const fb_plot_panel *panels, size_t npanels, double t_mi
   return FB_OK;
 }
 
-/* Writes the script of the figure, drawing into png_tmp, to the file
+/* Writes the script made by fn, drawing into png_tmp, to the file
  * script. A file rather than a pipe: gnuplot missing or failing early
  * cannot raise SIGPIPE in this process, and its exit status tells. */
-static int write_script_file(const char *script, const fb_plot_panel *panels, size_t npanels,
-                             const fb_plot_opts *o, double t_min, double t_max,
+static int write_script_file(const char *script, fb_gnuplot_script_fn fn, const void *ctx,
                              const char *png_tmp, const char *path, fb_err *err)
 {
   FILE *fp = fopen(script, "w");
   if (!fp)
     return fb_err_set(err, FB_EIO, "%s: cannot create '%s': %s", path, script, strerror(errno));
-  write_script(fp, panels, npanels, o, t_min, t_max, png_tmp);
+  fn(fp, ctx, png_tmp);
   int failed = ferror(fp);
   failed |= fclose(fp) != 0;
   if (failed) {
@@ -260,6 +260,20 @@ static char *tmp_name(const char *path, const char *suffix)
   return tmp;
 }
 
+/* The time-series figure as a gnuplot script writer. */
+typedef struct panels_script {
+  const fb_plot_panel *panels;
+  size_t npanels;
+  const fb_plot_opts *opts;
+  double t_min, t_max;
+} panels_script;
+
+static void write_panels_script(FILE *gp, const void *ctx, const char *png_tmp)
+{
+  const panels_script *ps = ctx;
+  write_script(gp, ps->panels, ps->npanels, ps->opts, ps->t_min, ps->t_max, png_tmp);
+}
+
 int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plot_opts *opts,
                        const char *path, fb_err *err)
 {
@@ -280,12 +294,19 @@ int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plo
   /* A run of one sample has an empty span; gnuplot needs a range. */
   if (!(t_min < t_max))
     t_max = t_min + 1;
+  const panels_script ps = {panels, npanels, &o, t_min, t_max};
+  return fb_gnuplot_png(write_panels_script, &ps, path, err);
+}
+
+int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, fb_err *err)
+{
+  int rc = FB_OK;
   char *png_tmp = tmp_name(path, "");
   char *script = tmp_name(path, ".gp");
   if (!png_tmp || !script)
     rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
   if (rc == FB_OK)
-    rc = write_script_file(script, panels, npanels, &o, t_min, t_max, png_tmp, path, err);
+    rc = write_script_file(script, fn, ctx, png_tmp, path, err);
   if (rc == FB_OK) {
     rc = run_gnuplot(script, path, err);
     remove(script);

@@ -50,6 +50,7 @@ void fb_scenario_free(fb_scenario **s)
   free((*s)->path);
   free((*s)->load_x);
   free((*s)->load_y);
+  free((*s)->hull_deck);
   free(*s);
   *s = NULL;
 }
@@ -87,6 +88,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_string(s->path, &copy->path) && ok;
   ok = sc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
+  ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
   if (!ok) {
     fb_scenario_free(&copy);
     return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");

@@ -1,0 +1,480 @@
+/* System 2's finite-element hull: node-set resolution, free-free modes,
+ * and the modes of the whole undamped vehicle (flexbond/vehicle.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+void fb_fe_hull_free(fb_fe_hull **h)
+{
+  if (!h || !*h)
+    return;
+  fb_mesh_free(&(*h)->mesh);
+  free((*h)->load_node);
+  free(*h);
+  *h = NULL;
+}
+
+/* The nodes of set `name`, which must hold exactly `count` nodes. */
+static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const size_t **nodes,
+                      fb_err *err)
+{
+  size_t n = 0;
+  if (!fb_mesh_nset(m, name, nodes, &n))
+    return fb_err_set(err, FB_EMODEL, "hull mesh: no node set %s", name);
+  if (n != count)
+    return fb_err_set(err, FB_EMODEL, "hull mesh: node set %s has %zu nodes, expected %zu",
+                      name, n, count);
+  return FB_OK;
+}
+
+/* Checks that node sits at (x, y) in the hull's axes (within 1 mm). */
+static int check_at(const fb_mesh *m, size_t node, const char *what, double x, double y,
+                    fb_err *err)
+{
+  const double *p = fb_mesh_node_xyz(m, node);
+  if (fabs(p[0] - x) > 1e-3 || fabs(p[1] - y) > 1e-3)
+    return fb_err_set(err, FB_EMODEL,
+                      "hull mesh: %s node %ld is at (%.4g, %.4g) m, the scenario puts it at "
+                      "(%.4g, %.4g) m",
+                      what, fb_mesh_node_id(m, node), p[0], p[1], x, y);
+  return FB_OK;
+}
+
+static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
+{
+  int rc = FB_OK;
+  for (int a = 0; !rc && a < FB_NATTACH; ++a) {
+    char name[16];
+    double x, y;
+    if (a < FB_NCORNERS) {
+      snprintf(name, sizeof name, "SUSP_%s", fb_corner_name(a));
+      x = s->corner[a].x;
+      y = s->corner[a].y;
+    } else {
+      const fb_mount *mt = a == FB_ATTACH_DRIVER ? &s->driver : &s->engine;
+      snprintf(name, sizeof name, "%s", a == FB_ATTACH_DRIVER ? "DRIVER" : "ENGINE");
+      x = mt->x;
+      y = mt->y;
+    }
+    const size_t *nodes = NULL;
+    rc = nset_nodes(h->mesh, name, 1, &nodes, err);
+    if (!rc)
+      rc = check_at(h->mesh, nodes[0], name, x, y, err);
+    if (!rc)
+      h->attach_node[a] = nodes[0];
+  }
+  return rc;
+}
+
+static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
+{
+  const size_t *nodes = NULL;
+  int rc = nset_nodes(h->mesh, "LOAD", s->nload, &nodes, err);
+  if (!rc && !(h->load_node = malloc(s->nload * sizeof *h->load_node)))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; !rc && k < s->nload; ++k) {
+    char what[32];
+    snprintf(what, sizeof what, "LOAD[%zu]", k + 1);
+    rc = check_at(h->mesh, nodes[k], what, s->load_x[k], s->load_y[k], err);
+    h->load_node[k] = nodes[k];
+  }
+  h->nload = s->nload;
+  const char *const edges[2] = {"FRONT_EDGE", "REAR_EDGE"};
+  for (int k = 0; !rc && k < 2; ++k) {
+    rc = nset_nodes(h->mesh, edges[k], 2, &nodes, err);
+    if (!rc) {
+      h->edge_node[2 * k] = nodes[0];
+      h->edge_node[2 * k + 1] = nodes[1];
+      if (fb_mesh_node_xyz(h->mesh, nodes[0])[1] <= fb_mesh_node_xyz(h->mesh, nodes[1])[1])
+        rc = fb_err_set(err, FB_EMODEL,
+                        "hull mesh: node set %s must list its left end (larger y) first",
+                        edges[k]);
+    }
+  }
+  return rc;
+}
+
+int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
+                   fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err)
+{
+  *out = NULL;
+  fb_fe_hull *h = calloc(1, sizeof *h);
+  if (!h) {
+    fb_mesh_free(mesh);
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  h->mesh = *mesh;
+  *mesh = NULL;
+  h->props = *props;
+  h->mass_kind = mass_kind;
+  int rc = fb_mesh_check(h->mesh, err);
+  if (!rc)
+    rc = resolve_attach(s, h, err);
+  if (!rc)
+    rc = resolve_load_and_edges(s, h, err);
+  if (rc) {
+    fb_fe_hull_free(&h);
+    return rc;
+  }
+  *out = h;
+  return FB_OK;
+}
+
+int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
+                          fb_err *err)
+{
+  fb_mat *K = NULL, *M = NULL;
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, &M, err);
+  size_t n = fb_mat_nrows(K ? K : M);
+  if (!rc && nmodes > n)
+    nmodes = n;
+  /* Dense LAPACK at the default hull's size (~1500 DOFs), ARPACK above. */
+  if (!rc)
+    rc = fb_fem_modes(K, M, nmodes, 2000, freq_hz, NULL, err);
+  /* Rigid-body modes: six, at ~0 Hz, far below the first elastic mode. */
+  *nrigid = 0;
+  for (size_t k = 0; !rc && k < nmodes && k < 6; ++k)
+    if (freq_hz[k] < 1e-3 * freq_hz[nmodes - 1])
+      (*nrigid)++;
+  fb_mat_free(&K);
+  fb_mat_free(&M);
+  return rc;
+}
+
+void fb_mode_set_free(fb_mode_set **m)
+{
+  if (!m || !*m)
+    return;
+  free((*m)->freq_hz);
+  free((*m)->shapes);
+  free((*m)->description);
+  free(*m);
+  *m = NULL;
+}
+
+/* Triplet list of the whole vehicle's K or M. */
+typedef struct trips {
+  size_t n, cap;
+  size_t *r, *c;
+  double *v;
+} trips;
+
+static int trips_push(trips *t, size_t r, size_t c, double v)
+{
+  if (t->n == t->cap) {
+    size_t cap = t->cap ? 2 * t->cap : 1024;
+    size_t *nr = realloc(t->r, cap * sizeof *nr);
+    if (!nr)
+      return FB_ENOMEM;
+    t->r = nr;
+    size_t *nc = realloc(t->c, cap * sizeof *nc);
+    if (!nc)
+      return FB_ENOMEM;
+    t->c = nc;
+    double *nv = realloc(t->v, cap * sizeof *nv);
+    if (!nv)
+      return FB_ENOMEM;
+    t->v = nv;
+    t->cap = cap;
+  }
+  t->r[t->n] = r;
+  t->c[t->n] = c;
+  t->v[t->n++] = v;
+  return FB_OK;
+}
+
+static void trips_free(trips *t)
+{
+  free(t->r);
+  free(t->c);
+  free(t->v);
+}
+
+typedef struct trips_visit {
+  trips *t;
+  int failed;
+} trips_visit;
+
+static void visit_push(void *ctx, size_t r, size_t c, double v)
+{
+  trips_visit *tv = ctx;
+  tv->failed |= trips_push(tv->t, r, c, v) != FB_OK;
+}
+
+/* A spring k between DOFs a and b (b == SIZE_MAX: to the ground). */
+static int add_spring(trips *t, size_t a, size_t b, double k)
+{
+  int rc = trips_push(t, a, a, k);
+  if (!rc && b != (size_t)-1) {
+    rc = trips_push(t, b, b, k);
+    if (!rc)
+      rc = trips_push(t, a, b, -k);
+    if (!rc)
+      rc = trips_push(t, b, a, -k);
+  }
+  return rc;
+}
+
+/* Vehicle K and M: the hull's, plus the lumped bodies on their springs. */
+static int vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, fb_mat **K, fb_mat **M,
+                            fb_mat **mh_out, fb_err *err)
+{
+  fb_mat *kh = NULL, *mh = NULL;
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &kh, &mh, err);
+  if (rc)
+    return rc;
+  size_t nh = fb_mat_nrows(kh), n = nh + 2 + FB_NCORNERS;
+  trips tk = {0}, tm = {0};
+  trips_visit vk = {&tk, 0}, vm = {&tm, 0};
+  fb_mat_foreach(kh, visit_push, &vk);
+  fb_mat_foreach(mh, visit_push, &vm);
+  rc = vk.failed || vm.failed ? FB_ENOMEM : FB_OK;
+  const fb_mount *mounts[2] = {&s->driver, &s->engine};
+  for (int b = 0; !rc && b < 2; ++b) {
+    size_t hull_dof = 6 * h->attach_node[FB_ATTACH_DRIVER + b] + 2;
+    rc = add_spring(&tk, nh + (size_t)b, hull_dof, mounts[b]->stiffness);
+    if (!rc)
+      rc = trips_push(&tm, nh + (size_t)b, nh + (size_t)b, mounts[b]->mass);
+  }
+  for (int c = 0; !rc && c < FB_NCORNERS; ++c) {
+    const fb_corner_params *cp = &s->corner[c];
+    size_t wheel = nh + 2 + (size_t)c, hull_dof = 6 * h->attach_node[c] + 2;
+    /* Spring travel = r x wheel travel: stiffness r^2 k at the wheel. */
+    rc = add_spring(&tk, wheel, hull_dof, cp->motion_ratio * cp->motion_ratio * cp->spring_k);
+    if (!rc)
+      rc = add_spring(&tk, wheel, (size_t)-1, cp->tire_k);
+    if (!rc)
+      rc = trips_push(&tm, wheel, wheel, cp->wheel_mass);
+  }
+  if (rc)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
+  if (!rc)
+    rc = fb_mat_new_triplets(n, n, tk.n, tk.r, tk.c, tk.v, K, err);
+  if (!rc)
+    rc = fb_mat_new_triplets(n, n, tm.n, tm.r, tm.c, tm.v, M, err);
+  trips_free(&tk);
+  trips_free(&tm);
+  fb_mat_free(&kh);
+  *mh_out = mh;
+  return rc;
+}
+
+/* Six rigid-body modes of the hull about its centre of mass (columns of r,
+ * nh x 6): translations x, y, z, then rotations about x, y, z. */
+static void hull_rigid_modes(const fb_mesh *m, const double *cg, double *r)
+{
+  size_t nn = fb_mesh_nnodes(m), nh = 6 * nn;
+  memset(r, 0, 6 * nh * sizeof *r);
+  for (size_t i = 0; i < nn; ++i) {
+    const double *p = fb_mesh_node_xyz(m, i);
+    double d[3] = {p[0] - cg[0], p[1] - cg[1], p[2] - cg[2]};
+    for (int k = 0; k < 3; ++k) {
+      r[k * nh + 6 * i + k] = 1.0;
+      /* rotation about axis k: u = e_k x d, the node's rotation e_k */
+      double *col = r + (3 + k) * nh + 6 * i;
+      int a = (k + 1) % 3, b = (k + 2) % 3;
+      col[a] = -d[b];
+      col[b] = d[a];
+      col[3 + k] = 1.0;
+    }
+  }
+}
+
+typedef struct describe_ctx {
+  const fb_fe_hull *h;
+  const fb_mat *M, *mh;
+  double *r, *mr; /* rigid modes and M_h r (nh x 6 each) */
+  double *mv;     /* M v, ndof */
+  size_t nh, ndof;
+} describe_ctx;
+
+/* Share of the hull's kinetic energy in rigid-body motion, and the
+ * dominant rigid component (0..5), by M_h-orthogonal projection. */
+static double rigid_fraction(const describe_ctx *d, const double *v, int *dominant)
+{
+  double g[36], b[6], c[6], total = 0.0;
+  for (size_t i = 0; i < d->nh; ++i)
+    total += v[i] * d->mv[i];
+  for (int j = 0; j < 6; ++j) {
+    b[j] = 0.0;
+    for (size_t i = 0; i < d->nh; ++i)
+      b[j] += d->mr[j * d->nh + i] * v[i];
+    for (int k = 0; k < 6; ++k) {
+      double gjk = 0.0;
+      for (size_t i = 0; i < d->nh; ++i)
+        gjk += d->r[j * d->nh + i] * d->mr[k * d->nh + i];
+      g[k * 6 + j] = gjk;
+    }
+  }
+  /* Solve G c = b (G symmetric positive definite, 6 x 6): Cholesky. */
+  double l[36] = {0};
+  for (int j = 0; j < 6; ++j) {
+    double sum = g[j * 6 + j];
+    for (int k = 0; k < j; ++k)
+      sum -= l[k * 6 + j] * l[k * 6 + j];
+    l[j * 6 + j] = sqrt(sum > 0 ? sum : 1e-300);
+    for (int i = j + 1; i < 6; ++i) {
+      double t = g[j * 6 + i];
+      for (int k = 0; k < j; ++k)
+        t -= l[k * 6 + i] * l[k * 6 + j];
+      l[j * 6 + i] = t / l[j * 6 + j];
+    }
+  }
+  for (int i = 0; i < 6; ++i) {
+    double t = b[i];
+    for (int k = 0; k < i; ++k)
+      t -= l[k * 6 + i] * c[k];
+    c[i] = t / l[i * 6 + i];
+  }
+  for (int i = 5; i >= 0; --i) {
+    double t = c[i];
+    for (int k = i + 1; k < 6; ++k)
+      t -= l[i * 6 + k] * c[k];
+    c[i] = t / l[i * 6 + i];
+  }
+  double rigid = 0.0, best = -1.0;
+  for (int j = 0; j < 6; ++j) {
+    rigid += b[j] * c[j];
+    double e = c[j] * c[j] * g[j * 6 + j];
+    if (e > best) {
+      best = e;
+      *dominant = j;
+    }
+  }
+  return total > 0 ? rigid / total : 0.0;
+}
+
+static void describe_mode(const describe_ctx *d, const double *v, char *out, size_t size)
+{
+  fb_mat_gemv(d->M, 1.0, v, 0.0, d->mv);
+  double hull = 0.0, total = 0.0, best = 0.0;
+  for (size_t i = 0; i < d->ndof; ++i)
+    total += v[i] * d->mv[i];
+  for (size_t i = 0; i < d->nh; ++i)
+    hull += v[i] * d->mv[i];
+  size_t best_dof = 0;
+  for (size_t i = d->nh; i < d->ndof; ++i)
+    if (v[i] * d->mv[i] > best) {
+      best = v[i] * d->mv[i];
+      best_dof = i - d->nh;
+    }
+  if (hull >= best) {
+    static const char *const rigid_names[6] = {"surge", "sway", "bounce",
+                                               "roll",  "pitch", "yaw"};
+    int dom = 0;
+    double frac = rigid_fraction(d, v, &dom);
+    if (frac >= 0.5)
+      snprintf(out, size, "hull %s (rigid %.0f%%)", rigid_names[dom], 100.0 * frac);
+    else
+      snprintf(out, size, "hull elastic (rigid %.0f%%)", 100.0 * frac);
+    return;
+  }
+  double share = total > 0 ? 100.0 * best / total : 0.0;
+  if (best_dof == 0)
+    snprintf(out, size, "driver seat (%.0f%%)", share);
+  else if (best_dof == 1)
+    snprintf(out, size, "engine (%.0f%%)", share);
+  else
+    snprintf(out, size, "wheel hop %s (%.0f%%)", fb_corner_name((int)best_dof - 2), share);
+}
+
+/* Scales v so that the largest displacement over the hull nodes (length
+ * of the translation), the driver and the engine is 1, and positive. */
+static void normalise(const fb_fe_hull *h, size_t nh, double *v, size_t ndof)
+{
+  double big = 0.0, sign = 1.0;
+  for (size_t i = 0; i < fb_mesh_nnodes(h->mesh); ++i) {
+    const double *u = v + 6 * i;
+    double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (len > big) {
+      big = len;
+      int k = fabs(u[0]) >= fabs(u[1]) && fabs(u[0]) >= fabs(u[2]) ? 0
+              : fabs(u[1]) >= fabs(u[2])                          ? 1
+                                                                  : 2;
+      sign = u[k] < 0 ? -1.0 : 1.0;
+    }
+  }
+  for (size_t i = nh; i < nh + 2; ++i)
+    if (fabs(v[i]) > big) {
+      big = fabs(v[i]);
+      sign = v[i] < 0 ? -1.0 : 1.0;
+    }
+  if (big > 0)
+    for (size_t i = 0; i < ndof; ++i)
+      v[i] *= sign / big;
+}
+
+static int mode_set_alloc(size_t nmodes, size_t ndof, fb_mode_set **out, fb_err *err)
+{
+  fb_mode_set *ms = calloc(1, sizeof *ms);
+  if (ms) {
+    ms->nmodes = nmodes;
+    ms->ndof = ndof;
+    ms->freq_hz = malloc(nmodes * sizeof *ms->freq_hz);
+    ms->shapes = malloc(nmodes * ndof * sizeof *ms->shapes);
+    ms->description = calloc(nmodes, sizeof *ms->description);
+  }
+  if (!ms || !ms->freq_hz || !ms->shapes || !ms->description) {
+    fb_mode_set_free(&ms);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for %zu modes", nmodes);
+  }
+  *out = ms;
+  return FB_OK;
+}
+
+int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t nmodes,
+                              fb_mode_set **out, fb_err *err)
+{
+  *out = NULL;
+  fb_mat *K = NULL, *M = NULL, *mh = NULL;
+  fb_mode_set *ms = NULL;
+  describe_ctx d = {h, NULL, NULL, NULL, NULL, NULL, 0, 0};
+  int rc = vehicle_matrices(s, h, &K, &M, &mh, err);
+  if (!rc) {
+    d.M = M;
+    d.mh = mh;
+    d.ndof = fb_mat_nrows(K);
+    d.nh = fb_mat_nrows(mh);
+    if (nmodes > d.ndof)
+      nmodes = d.ndof;
+    rc = mode_set_alloc(nmodes, d.ndof, &ms, err);
+  }
+  /* Dense LAPACK at the default hull's size, ARPACK for refined meshes. */
+  if (!rc)
+    rc = fb_fem_modes(K, M, nmodes, 2000, ms->freq_hz, ms->shapes, err);
+  double mass, cg[3], inertia[9];
+  if (!rc)
+    rc = fb_fem_mass_properties(h->mesh, mh, &mass, cg, inertia, err);
+  if (!rc) {
+    d.r = malloc(6 * d.nh * sizeof *d.r);
+    d.mr = malloc(6 * d.nh * sizeof *d.mr);
+    d.mv = malloc(d.ndof * sizeof *d.mv);
+    if (!d.r || !d.mr || !d.mv)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  if (!rc) {
+    hull_rigid_modes(h->mesh, cg, d.r);
+    for (int j = 0; j < 6; ++j)
+      fb_mat_gemv(mh, 1.0, d.r + j * d.nh, 0.0, d.mr + j * d.nh);
+    for (size_t k = 0; k < nmodes; ++k) {
+      double *v = ms->shapes + k * d.ndof;
+      describe_mode(&d, v, ms->description[k], sizeof ms->description[k]);
+      normalise(h, d.nh, v, d.ndof);
+    }
+  }
+  free(d.r);
+  free(d.mr);
+  free(d.mv);
+  fb_mat_free(&K);
+  fb_mat_free(&M);
+  fb_mat_free(&mh);
+  if (rc) {
+    fb_mode_set_free(&ms);
+    return rc;
+  }
+  *out = ms;
+  return FB_OK;
+}
