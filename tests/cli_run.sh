@@ -233,9 +233,29 @@ awk '/^undamped/ { on = 1; next } on && /^$/ { exit }
      on && $1 ~ /^[0-9]+$/ { if ($2 + 0 < last) bad = 1; last = $2 + 0 } END { exit bad }' \
   "$OUT" || fail "undamped frequencies ascend"
 
-run modes "$APC" --system flexible
-expect_status 1 "modes --system flexible"
-expect_in "$ERR" "System 2 (flexible hull) is not available yet" "modes --system flexible"
+run modes "$APC" --system flexible -o "$WORK/modes2"
+expect_status 0 "modes --system flexible"
+expect_in "$OUT" "System 2, undamped" "modes --system flexible"
+for f in hull_modes.csv modes.csv mode_01.vtu mode_20.vtu mode_01.png mode_02.png mode_08.png \
+  mode_10.png; do
+  checks=$((checks + 1))
+  [ -s "$WORK/modes2/$f" ] || fail "modes --system flexible -o writes $f"
+done
+checks=$((checks + 1))
+[ "$(head -n 1 "$WORK/modes2/hull_modes.csv")" = "mode,frequency_hz,kind" ] ||
+  fail "hull_modes.csv header"
+checks=$((checks + 1))
+[ "$(grep -c ',rigid$' "$WORK/modes2/hull_modes.csv")" -eq 6 ] ||
+  fail "hull_modes.csv marks six rigid-body modes"
+run modes "$APC" -o "$WORK/modes1"
+expect_status 1 "modes -o without --system flexible"
+expect_absent "$WORK/modes1" "modes -o without --system flexible"
+run mesh "$APC" --export "$WORK/hull.inp"
+expect_status 0 "mesh --export"
+expect_in "$OUT" "28 S3 + 212 S4" "mesh counts"
+expect_in "$WORK/hull.inp" "*NSET, NSET=SUSP_LF" "mesh deck node sets"
+run mesh "$APC" --export "$WORK/hull.stl"
+expect_status 1 "mesh --export with an unknown format"
 run modes "$WORK/negative.yaml"
 expect_status 2 "modes on a bad scenario"
 expect_in "$ERR" "$WORK/negative.yaml:" "modes on a bad scenario"

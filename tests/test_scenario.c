@@ -35,8 +35,16 @@ static void check_hull(const fb_scenario *s)
   CHECK(s->poisson == 0.3);
   CHECK(s->density == 7860);
   CHECK(s->thickness == 0.0085);
-  CHECK(s->edge_front_x == 3.0 && s->edge_rear_x == -3.0);
-  CHECK(s->edge_left_y == 1.25 && s->edge_right_y == -1.25);
+  /* The torsion edges and System 2's hull: docs/hull-mesh.md. */
+  CHECK(s->edge_front_x == 2.47813311938948 && s->edge_rear_x == -2.65798412344113);
+  CHECK(s->edge_left_y == 1.05 && s->edge_right_y == -1.05);
+  CHECK(s->has_fe_hull && s->hull_deck == NULL && s->hull_mesh.density == 1);
+  CHECK(s->hull_mesh.width == 2.10 && s->hull_mesh.height == 1.74083494988748);
+  CHECK(s->hull_mesh.nbulkheads == 3 && s->hull_mesh.bulkhead_x[1] == -1.00);
+  CHECK(s->hull_mesh.side_rows == 2 && s->hull_mesh.nose_rows == 3 &&
+        s->hull_mesh.nose_rung_divisions == 3);
+  CHECK(s->hull_mass_matrix == FB_MASS_CONSISTENT && s->hull_drill_factor == 1.0e-4 &&
+        s->hull_damping_ratio == 0.02);
 }
 
 /* 56 points on the assumed 14 x 4 grid of System 2's hull floor lines
@@ -364,10 +372,11 @@ static const char base_text[] =
     "  Ixx: 4173.49\n"                                                             /* 5 */
     "  Iyy: 15175.96\n"                                                            /* 6 */
     "  material: {young: 200e9, poisson: 0.3, density: 7860, thickness: 0.0085}\n" /* 7 */
-    "  edges: {front_x: 3.0, rear_x: -3.0, left_y: 1.25, right_y: -1.25}\n"        /* 8 */
-    "load:\n"                                                                      /* 9 */
-    "  total_weight: 117720\n"                                                     /* 10 */
-    "  payload: weight-only\n"                                                     /* 11 */
+    "  edges: {front_x: 2.47813311938948, rear_x: -2.65798412344113, left_y: 1.05, right_y: "
+    "-1.05}\n"                 /* 8 */
+    "load:\n"                  /* 9 */
+    "  total_weight: 117720\n" /* 10 */
+    "  payload: weight-only\n" /* 11 */
     "  points: {grid: {x: [-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, -0.15, 0.10, 0.40, 0.65, "
     "0.95, 1.30, 1.90, 2.10],"
     " y: [-1.05, -0.55, 0.55, 1.05]}}\n"                                          /* 12 */
@@ -396,7 +405,27 @@ typedef struct bad_case {
   const char *phrase2; /* and this too (may be NULL) */
 } bad_case;
 
+#define EDGES_LINE                                                                             \
+  "  edges: {front_x: 2.47813311938948, rear_x: -2.65798412344113, left_y: 1.05, right_y: "    \
+  "-1.05}\n"
+#define FE_OK "  fe: {mass_matrix: consistent, drill_factor: 1e-4, damping_ratio: 0.02}\n"
+
 static const bad_case bad_cases[] = {
+    /* System 2's optional hull sections (lines 9 and 10 when added). */
+    {EDGES_LINE, EDGES_LINE "  mesh: {density: 1, deck: h.inp, generator: {}}\n" FE_OK, NULL,
+     NULL, FB_EPARSE, "bad.yaml:9:", "either a deck or a generator", NULL},
+    {EDGES_LINE, EDGES_LINE "  mesh: {density: 0, deck: h.inp}\n" FE_OK, NULL, NULL, FB_EINVAL,
+     "bad.yaml:9:", "hull.mesh.density", NULL},
+    {EDGES_LINE,
+     EDGES_LINE "  mesh: {density: 1, deck: h.inp}\n"
+                "  fe: {mass_matrix: consistent, drill_factor: 1e-4, damping_ratio: 1.5}\n",
+     NULL, NULL, FB_EINVAL, "bad.yaml:10:", "hull.fe.damping_ratio: must be < 1", NULL},
+    {EDGES_LINE,
+     EDGES_LINE "  mesh: {density: 1, deck: h.inp}\n"
+                "  fe: {mass_matrix: diagonal, drill_factor: 1e-4, damping_ratio: 0.02}\n",
+     NULL, NULL, FB_EPARSE, "bad.yaml:10:", "unknown value 'diagonal'", "consistent | lumped"},
+    {EDGES_LINE, EDGES_LINE "  mesh: {density: 1, deck: h.inp}\n", NULL, NULL, FB_EPARSE,
+     "bad.yaml:", "fe", NULL},
     /* Physical checks, reported at the value. */
     {"LF: {spring_k: 145300", "LF: {spring_k: -145300", NULL, NULL, FB_EINVAL,
      "bad.yaml:18:18:", "suspensions.LF.spring_k: must be > 0 N/m (got -145300)", NULL},
@@ -412,7 +441,7 @@ static const bad_case bad_cases[] = {
      "bad.yaml:7:", "hull.material.poisson: must be in [0, 0.5) (got 0.5)", NULL},
     {"young: 200e9", "young: 0", NULL, NULL, FB_EINVAL,
      "bad.yaml:7:", "hull.material.young: must be > 0 Pa", NULL},
-    {"front_x: 3.0", "front_x: -4", NULL, NULL, FB_EINVAL,
+    {"front_x: 2.47813311938948", "front_x: -4", NULL, NULL, FB_EINVAL,
      "bad.yaml:8:", "hull.edges.front_x: must be > hull.edges.rear_x", NULL},
     {"gravity: 9.81", "gravity: 0", NULL, NULL, FB_EINVAL,
      "bad.yaml:2:10:", "gravity: must be > 0 m/s^2", NULL},
@@ -484,7 +513,8 @@ static const bad_case bad_cases[] = {
      "bad.yaml:15:28:", "wheel.tire_k: expected a number or expression, got a list", NULL},
     {"driver: {mass: 100", "driver: {mass: heavy", NULL, NULL, FB_EPARSE,
      "bad.yaml:13:16:", "driver.mass: expression 'heavy'", "unknown name 'heavy'"},
-    {"edges: {front_x: 3.0, rear_x: -3.0, left_y: 1.25, right_y: -1.25}",
+    {"edges: {front_x: 2.47813311938948, rear_x: -2.65798412344113, left_y: 1.05, right_y: "
+     "-1.05}",
      "edges: [3.0, -3.0, 1.25, -1.25]", NULL, NULL, FB_EPARSE,
      "bad.yaml:8:10:", "hull.edges: expected the torsion edges", "got a list"},
     {"payload: weight-only", "payload: weightonly", NULL, NULL, FB_EPARSE, "bad.yaml:11:12:",

@@ -38,8 +38,7 @@ int fb_mesh_add_node(fb_mesh *m, long id, double x, double y, double z, size_t *
 int fb_mesh_add_element(fb_mesh *m, long id, fb_elem_type type, const size_t *nodes,
                         fb_err *err);
 /* Adds (or extends) the node set `name` with node indices. */
-int fb_mesh_add_nset(fb_mesh *m, const char *name, size_t n, const size_t *nodes,
-                     fb_err *err);
+int fb_mesh_add_nset(fb_mesh *m, const char *name, size_t n, const size_t *nodes, fb_err *err);
 
 size_t fb_mesh_nnodes(const fb_mesh *m);
 size_t fb_mesh_nelements(const fb_mesh *m);
@@ -136,8 +135,7 @@ int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_l
 /* Abaqus/CalculiX input deck: *NODE, *ELEMENT TYPE=S3 and TYPE=S4,
  * *NSET for every node set, *MATERIAL (*ELASTIC, *DENSITY) and
  * *SHELL SECTION with the thickness. Written atomically. */
-int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path,
-                      fb_err *err);
+int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err);
 /* Reads such a deck (keywords case-insensitive, comments "**", GENERATE
  * node sets, ELSET ignored); props, if not NULL, receives the material and
  * thickness when the deck has them (fields left untouched otherwise).

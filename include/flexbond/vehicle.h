@@ -125,11 +125,11 @@ typedef struct fb_scenario {
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
-  char *hull_deck;                /* Abaqus/CalculiX deck, NULL: the generator */
-  fb_hull_mesh_params hull_mesh;  /* generator parameters */
-  fb_mass_kind hull_mass_matrix;  /* consistent (default) or lumped */
-  double hull_drill_factor;       /* fictitious drilling stiffness factor */
-  double hull_damping_ratio;      /* of the first elastic free-free mode (B = beta K) */
+  char *hull_deck;               /* Abaqus/CalculiX deck, NULL: the generator */
+  fb_hull_mesh_params hull_mesh; /* generator parameters */
+  fb_mass_kind hull_mass_matrix; /* consistent (default) or lumped */
+  double hull_drill_factor;      /* fictitious drilling stiffness factor */
+  double hull_damping_ratio;     /* of the first elastic free-free mode (B = beta K) */
 } fb_scenario;
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
@@ -171,8 +171,6 @@ double fb_scenario_bump_exit(const fb_scenario *s, int corner);
  * it and shifts the mesh so that its centre of mass is the origin (for the
  * fitted defaults that shift is below 1e-12 m). Heights are given above
  * the floor; in the mesh the floor lies at z = -(centre of mass height). */
-
-
 
 /* The defaults, fitted so that the mesh's mass and inertias about its
  * centre of mass equal the paper's (4041.72 kg, Ixx 4173.49, Iyy 15175.96
@@ -319,6 +317,7 @@ void fb_fe_hull_free(fb_fe_hull **h);
  * engine and the hull nodes is 1 (the paper's normalisation). */
 typedef struct fb_mode_set {
   size_t nmodes, ndof;
+  size_t nfree;            /* zero-frequency rigid-body modes left out */
   double *freq_hz;         /* nmodes */
   double *shapes;          /* ndof x nmodes, column-major */
   char (*description)[96]; /* nmodes, e.g. "hull pitch (rigid 97%)" */
@@ -332,7 +331,10 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
 
 /* The nmodes lowest modes of the undamped System 2: the finite-element
  * hull with the driver, engine, suspension springs (k r^2 for motion ratio
- * r), wheels and tire springs attached at its nodes. */
+ * r), wheels and tire springs attached at its nodes. The springs are
+ * vertical, so the hull's horizontal rigid-body motions (surge, sway,
+ * yaw) have no stiffness: those zero-frequency modes are left out and
+ * counted in nfree. */
 int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t nmodes,
                               fb_mode_set **out, fb_err *err);
 

@@ -41,6 +41,7 @@ static const cli_command commands[] = {
     {"eig", cli_cmd_eig, "eigenvalues of the model linearised at its initial state"},
     {"run", cli_cmd_run, "simulate a vehicle scenario: CSV, the paper's Figs. 8-14, summary"},
     {"modes", cli_cmd_modes, "natural frequencies and damped modes of a vehicle scenario"},
+    {"mesh", cli_cmd_mesh, "the finite-element hull mesh of a scenario; export to .inp / .vtu"},
 };
 
 static void print_usage(FILE *fp)

@@ -13,17 +13,22 @@
 #include "cli.h"
 
 static const char modes_usage[] =
-    "usage: flexbond modes SCENARIO.yaml [--system rigid]\n"
+    "usage: flexbond modes SCENARIO.yaml [--system rigid|flexible] [-o DIR]\n"
     "\n"
     "Prints the modes of the vehicle linearised at its static equilibrium:\n"
     "first the undamped natural frequencies (every damper removed), then the\n"
     "damped eigenvalues with their damping ratios, each with the part of the\n"
     "vehicle that holds most of the mode's kinetic energy. Zero eigenvalues\n"
     "of the statically indeterminate support (self-stress of the springs)\n"
-    "are counted, not listed.\n"
+    "are counted, not listed. With --system flexible: the free-free hull's\n"
+    "modes and the undamped System 2's (the finite-element hull with the\n"
+    "driver, engine, suspensions and tires), each normalised so that its\n"
+    "largest displacement over the driver, the engine and the hull is 1.\n"
     "\n"
     "options:\n"
     "  --system rigid|flexible  hull model (default rigid: System 1)\n"
+    "  -o, --output DIR         (flexible) also write hull_modes.csv, modes.csv,\n"
+    "                           mode_NN.vtu and the pictures mode_01/02/08/10.png\n"
     "  -h, --help               this text\n";
 
 static const char *const system_choices[] = {"rigid", "flexible"};
@@ -99,9 +104,10 @@ static int run(const char *path, fb_system sys)
 
 int cli_cmd_modes(int argc, char **argv)
 {
-  enum { OPT_SYSTEM, OPT_HELP, NOPTS };
-  cli_option opts[NOPTS] = {
-      [OPT_SYSTEM] = {"--system", NULL, 1, NULL}, [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  enum { OPT_SYSTEM, OPT_OUT, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {[OPT_SYSTEM] = {"--system", NULL, 1, NULL},
+                            [OPT_OUT] = {"--output", "-o", 1, NULL},
+                            [OPT_HELP] = {"--help", "-h", 0, NULL}};
   const char *path;
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, modes_usage, "SCENARIO", &path, &rc))
@@ -110,7 +116,11 @@ int cli_cmd_modes(int argc, char **argv)
   if (opts[OPT_SYSTEM].value)
     rc = cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, system_choices,
                     sizeof system_choices / sizeof system_choices[0], &choice);
-  if (rc == CLI_EXIT_OK && systems[choice] == FB_SYSTEM_FLEXIBLE)
-    rc = cli_usage_error(argv[0], "System 2 (flexible hull) is not available yet");
-  return rc == CLI_EXIT_OK ? run(path, systems[choice]) : rc;
+  if (rc != CLI_EXIT_OK)
+    return rc;
+  if (systems[choice] == FB_SYSTEM_FLEXIBLE)
+    return cli_modes_flexible(path, opts[OPT_OUT].value);
+  if (opts[OPT_OUT].value)
+    return cli_usage_error(argv[0], "-o DIR goes with --system flexible");
+  return run(path, systems[choice]);
 }

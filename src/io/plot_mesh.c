@@ -38,7 +38,9 @@ static int is_side_wall(const fb_mesh *m, size_t e)
   return len > 0 && fabs(ny) / len > cos(30.0 * 3.14159265358979323846 / 180.0);
 }
 
-/* Each element's outline as a closed polyline (blank line between). */
+/* Each element's outline as a closed polyline. Two blank lines end each
+ * one: a single blank line would make splot join the outlines as the
+ * scans of a surface grid. */
 static void write_edges(FILE *gp, const mesh_script *ms)
 {
   fputs("$edges << EOD\n", gp);
@@ -52,7 +54,7 @@ static void write_edges(FILE *gp, const mesh_script *ms)
       node_position(ms, n[k % nn], p);
       fprintf(gp, "%.6g %.6g %.6g\n", p[0], p[1], p[2]);
     }
-    fputs("\n", gp);
+    fputs("\n\n", gp);
   }
   fputs("EOD\n", gp);
 }
@@ -74,7 +76,7 @@ static void write_cubes(FILE *gp, const mesh_script *ms)
                 ms->cubes[3 * c + 1] + ms->side * (q[1] - 0.5),
                 ms->cubes[3 * c + 2] + ms->side * (q[2] - 0.5));
       }
-      fputs("\n", gp);
+      fputs("\n\n", gp);
     }
   fputs("EOD\n", gp);
 }
@@ -87,7 +89,7 @@ static void write_mesh_script(FILE *gp, const void *ctx, const char *png_tmp)
     write_cubes(gp, ms);
   fputs("set terminal pngcairo size 1000,700 font 'Sans,10'\nset output ", gp);
   fb_gnuplot_quoted(gp, png_tmp);
-  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 60, 35\n"
+  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28\n"
         "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset zlabel 'z [m]'\n",
         gp);
   if (ms->title) {

@@ -201,6 +201,45 @@ static int sc_check_bump_timing(const fb_scenario *s, fb_err *err)
   return FB_OK;
 }
 
+/* System 2's hull sections, when present. The generator checks the
+ * geometry against the points itself, when the mesh is built. */
+static int sc_check_fe_hull(const fb_scenario *s, fb_err *err)
+{
+  if (!s->has_fe_hull)
+    return FB_OK;
+  const fb_hull_mesh_params *g = &s->hull_mesh;
+  const sc_value fe[] = {{"drill_factor", s->hull_drill_factor, SC_POSITIVE, ""},
+                         {"damping_ratio", s->hull_damping_ratio, SC_NONNEGATIVE, ""}};
+  int rc = sc_check_values("hull.fe.", fe, sizeof fe / sizeof fe[0], err);
+  if (!rc && !(s->hull_damping_ratio < 1))
+    rc = fb_err_set(err, FB_EINVAL, "hull.fe.damping_ratio: must be < 1 (got %.10g)",
+                    s->hull_damping_ratio);
+  if (rc || s->hull_deck)
+    return rc;
+  const sc_value gen[] = {{"width", g->width, SC_POSITIVE, "m"},
+                          {"height", g->height, SC_POSITIVE, "m"},
+                          {"x_rear", g->x_rear, SC_FINITE, "m"},
+                          {"x_front", g->x_front, SC_FINITE, "m"},
+                          {"nose_length", g->nose_length, SC_POSITIVE, "m"},
+                          {"nose_height", g->nose_height, SC_POSITIVE, "m"}};
+  rc = sc_check_values("hull.mesh.generator.", gen, sizeof gen / sizeof gen[0], err);
+  if (!rc && !(g->x_front > g->x_rear))
+    rc = fb_err_set(err, FB_EINVAL,
+                    "hull.mesh.generator.x_front: must be > x_rear = %.10g m (got %.10g)",
+                    g->x_rear, g->x_front);
+  if (!rc && !(g->nose_height < g->height))
+    rc = fb_err_set(err, FB_EINVAL,
+                    "hull.mesh.generator.nose_height: must be < height = %.10g m (got %.10g)",
+                    g->height, g->nose_height);
+  for (size_t k = 0; !rc && k < g->nbulkheads; ++k)
+    if (!(g->bulkhead_x[k] > g->x_rear && g->bulkhead_x[k] < g->x_front))
+      rc = fb_err_set(err, FB_EINVAL,
+                      "hull.mesh.generator.bulkheads[%zu]: must lie between x_rear and "
+                      "x_front (got %.10g m)",
+                      k, g->bulkhead_x[k]);
+  return rc;
+}
+
 int fb_scenario_check(const fb_scenario *s, fb_err *err)
 {
   if (!s)
@@ -223,5 +262,7 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = sc_check_simulation(s, err);
   if (!rc)
     rc = sc_check_bump_timing(s, err);
+  if (!rc)
+    rc = sc_check_fe_hull(s, err);
   return rc;
 }

@@ -76,9 +76,106 @@ static int sc_choice(const ml_ctx *c, struct fy_node *map, const char *key,
 
 /* ---- Sections. */
 
+/* A required whole number in [lo, hi] of map. */
+static int sc_int(const ml_ctx *c, struct fy_node *map, const char *key, size_t lo, size_t hi,
+                  int *out)
+{
+  struct fy_node *v = NULL;
+  size_t n = 0;
+  int rc = ml_require(c, map, key, &v);
+  if (!rc)
+    rc = ml_count(c, v, c->globals, lo, hi, &n);
+  *out = (int)n;
+  return rc;
+}
+
+/* hull.mesh.generator: the fitted hull geometry (docs/hull-mesh.md). */
+static int sc_generator(const ml_ctx *c, struct fy_node *mesh, fb_hull_mesh_params *p)
+{
+  static const char *const keys[] = {
+      "width",       "height",    "x_rear",    "x_front",   "nose_length",
+      "nose_height", "bulkheads", "side_rows", "nose_rows", "nose_rung_divisions",
+      NULL};
+  const sc_field f[] = {{"width", &p->width},
+                        {"height", &p->height},
+                        {"x_rear", &p->x_rear},
+                        {"x_front", &p->x_front},
+                        {"nose_length", &p->nose_length},
+                        {"nose_height", &p->nose_height}};
+  struct fy_node *gen = NULL, *bulk = NULL;
+  int rc = sc_section(c, mesh, "generator", "the hull generator's geometry", keys, &gen);
+  if (!rc)
+    rc = sc_fields(c, gen, f, sizeof f / sizeof f[0]);
+  double *x = NULL;
+  size_t n = 0;
+  if (!rc)
+    rc = ml_require(c, gen, "bulkheads", &bulk);
+  if (!rc && !ml_is_null(bulk) && fy_node_sequence_item_count(bulk) > 0)
+    rc = ml_vector(c, bulk, c->globals, 0, 0, &x, &n);
+  if (!rc && n > FB_HULL_MAX_BULKHEADS)
+    rc =
+        ml_fail(c, bulk, FB_EINVAL, "at most %d bulkheads (got %zu)", FB_HULL_MAX_BULKHEADS, n);
+  for (size_t k = 0; !rc && k < n; ++k)
+    p->bulkhead_x[k] = x[k];
+  p->nbulkheads = rc ? 0 : n;
+  free(x);
+  if (!rc)
+    rc = sc_int(c, gen, "side_rows", 1, 64, &p->side_rows);
+  if (!rc)
+    rc = sc_int(c, gen, "nose_rows", 1, 64, &p->nose_rows);
+  if (!rc)
+    rc = sc_int(c, gen, "nose_rung_divisions", 1, 64, &p->nose_rung_divisions);
+  return rc;
+}
+
+/* The optional System 2 sections hull.mesh {generator | deck, density}
+ * and hull.fe {mass_matrix, drill_factor, damping_ratio}. */
+static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
+{
+  static const char *const mesh_keys[] = {"generator", "deck", "density", NULL};
+  static const char *const fe_keys[] = {"mass_matrix", "drill_factor", "damping_ratio", NULL};
+  static const char *const masses[] = {"consistent", "lumped", NULL};
+  struct fy_node *mesh = ml_get(hull, "mesh", NULL), *fe = ml_get(hull, "fe", NULL);
+  if (!mesh && !fe)
+    return FB_OK;
+  struct fy_node *deck = NULL;
+  int rc = sc_section(c, hull, "mesh", "the hull mesh {generator | deck, density}", mesh_keys,
+                      &mesh);
+  if (!rc)
+    rc = sc_section(c, hull, "fe",
+                    "the hull's finite elements {mass_matrix, drill_factor, "
+                    "damping_ratio}",
+                    fe_keys, &fe);
+  if (!rc)
+    rc = sc_int(c, mesh, "density", 1, 64, &s->hull_mesh.density);
+  if (!rc && (deck = ml_get(mesh, "deck", NULL)) && !ml_is_null(deck)) {
+    const char *text = NULL;
+    rc = ml_string(c, deck, &text);
+    if (!rc)
+      rc = ml_resolve_path(c, deck, text, &s->hull_deck);
+    if (!rc && ml_get(mesh, "generator", NULL))
+      rc = ml_fail(c, deck, FB_EPARSE, "give either a deck or a generator, not both");
+  } else if (!rc) {
+    int density = s->hull_mesh.density;
+    rc = sc_generator(c, mesh, &s->hull_mesh);
+    s->hull_mesh.density = density;
+  }
+  int mass = 0;
+  if (!rc)
+    rc = sc_choice(c, fe, "mass_matrix", masses, &mass);
+  s->hull_mass_matrix = mass ? FB_MASS_LUMPED : FB_MASS_CONSISTENT;
+  if (!rc)
+    rc = sc_number(c, fe, "drill_factor", &s->hull_drill_factor);
+  if (!rc)
+    rc = sc_number(c, fe, "damping_ratio", &s->hull_damping_ratio);
+  s->has_fe_hull = !rc;
+  return rc;
+}
+
 static int sc_hull(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
 {
-  static const char *const keys[] = {"mass", "Ixx", "Iyy", "material", "edges", NULL};
+  static const char *const keys[] = {"mass",  "Ixx",  "Iyy", "material",
+                                     "edges", "mesh", "fe",  NULL};
   static const char *const material_keys[] = {"young", "poisson", "density", "thickness", NULL};
   static const char *const edge_keys[] = {"front_x", "rear_x", "left_y", "right_y", NULL};
   const sc_field body[] = {
@@ -106,6 +203,8 @@ static int sc_hull(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
                     edge_keys, &edge);
   if (!rc)
     rc = sc_fields(c, edge, edges, sizeof edges / sizeof edges[0]);
+  if (!rc)
+    rc = sc_fe_hull(c, hull, s);
   return rc;
 }
 

@@ -123,6 +123,26 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
   return FB_OK;
 }
 
+int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
+{
+  *out = NULL;
+  if (!s->has_fe_hull)
+    return fb_err_set(err, FB_EINVAL,
+                      "%s: System 2 needs the hull's finite-element model: add hull.mesh and "
+                      "hull.fe (docs/scenario-format.md)",
+                      s->path ? s->path : "scenario");
+  /* The scenario's material and thickness apply, also to an imported deck
+   * (its own *MATERIAL and *SHELL SECTION are read but not used). */
+  const fb_shell_props props = {s->young, s->poisson, s->density, s->thickness,
+                                s->hull_drill_factor};
+  fb_mesh *mesh = NULL;
+  int rc = s->hull_deck ? fb_mesh_read_inp(s->hull_deck, &mesh, NULL, err)
+                        : fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
+  if (rc)
+    return fb_err_prefix(err, "hull mesh: ");
+  return fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
+}
+
 int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
                           fb_err *err)
 {
@@ -284,16 +304,16 @@ static void hull_rigid_modes(const fb_mesh *m, const double *cg, double *r)
 }
 
 typedef struct describe_ctx {
-  const fb_fe_hull *h;
   const fb_mat *M, *mh;
   double *r, *mr; /* rigid modes and M_h r (nh x 6 each) */
   double *mv;     /* M v, ndof */
   size_t nh, ndof;
 } describe_ctx;
 
-/* Share of the hull's kinetic energy in rigid-body motion, and the
- * dominant rigid component (0..5), by M_h-orthogonal projection. */
-static double rigid_fraction(const describe_ctx *d, const double *v, int *dominant)
+/* The hull's kinetic energy split by M_h-orthogonal projection onto its
+ * six rigid-body modes: energy[k] of rigid component k (diagonal part of
+ * the projection) and energy[6] the elastic remainder. */
+static void hull_energies(const describe_ctx *d, const double *v, double *energy)
 {
   double g[36], b[6], c[6], total = 0.0;
   for (size_t i = 0; i < d->nh; ++i)
@@ -309,7 +329,7 @@ static double rigid_fraction(const describe_ctx *d, const double *v, int *domina
       g[k * 6 + j] = gjk;
     }
   }
-  /* Solve G c = b (G symmetric positive definite, 6 x 6): Cholesky. */
+  /* c = G^-1 b by Cholesky (G: Gram matrix of the rigid modes, SPD). */
   double l[36] = {0};
   for (int j = 0; j < 6; ++j) {
     double sum = g[j * 6 + j];
@@ -335,50 +355,45 @@ static double rigid_fraction(const describe_ctx *d, const double *v, int *domina
       t -= l[i * 6 + k] * c[k];
     c[i] = t / l[i * 6 + i];
   }
-  double rigid = 0.0, best = -1.0;
+  double rigid = 0.0;
   for (int j = 0; j < 6; ++j) {
     rigid += b[j] * c[j];
-    double e = c[j] * c[j] * g[j * 6 + j];
-    if (e > best) {
-      best = e;
-      *dominant = j;
-    }
+    energy[j] = c[j] * c[j] * g[j * 6 + j];
   }
-  return total > 0 ? rigid / total : 0.0;
+  energy[6] = fmax(total - rigid, 0.0);
 }
 
+/* Names the part of the vehicle holding the largest share of the mode's
+ * kinetic energy: a rigid motion of the hull, its elastic deformation, or
+ * one lumped body. */
 static void describe_mode(const describe_ctx *d, const double *v, char *out, size_t size)
 {
+  static const char *const hull_names[7] = {"hull surge",  "hull sway",  "hull bounce",
+                                            "hull roll",   "hull pitch", "hull yaw",
+                                            "hull elastic"};
   fb_mat_gemv(d->M, 1.0, v, 0.0, d->mv);
-  double hull = 0.0, total = 0.0, best = 0.0;
+  double total = 0.0, energy[7], best = -1.0;
   for (size_t i = 0; i < d->ndof; ++i)
     total += v[i] * d->mv[i];
-  for (size_t i = 0; i < d->nh; ++i)
-    hull += v[i] * d->mv[i];
-  size_t best_dof = 0;
-  for (size_t i = d->nh; i < d->ndof; ++i)
-    if (v[i] * d->mv[i] > best) {
-      best = v[i] * d->mv[i];
-      best_dof = i - d->nh;
+  hull_energies(d, v, energy);
+  char name[32] = "?";
+  for (int k = 0; k < 7; ++k)
+    if (energy[k] > best) {
+      best = energy[k];
+      snprintf(name, sizeof name, "%s", hull_names[k]);
     }
-  if (hull >= best) {
-    static const char *const rigid_names[6] = {"surge", "sway", "bounce",
-                                               "roll",  "pitch", "yaw"};
-    int dom = 0;
-    double frac = rigid_fraction(d, v, &dom);
-    if (frac >= 0.5)
-      snprintf(out, size, "hull %s (rigid %.0f%%)", rigid_names[dom], 100.0 * frac);
+  for (size_t i = d->nh; i < d->ndof; ++i) {
+    double e = v[i] * d->mv[i];
+    if (e <= best)
+      continue;
+    best = e;
+    size_t b = i - d->nh;
+    if (b < 2)
+      snprintf(name, sizeof name, "%s", b == 0 ? "driver seat" : "engine");
     else
-      snprintf(out, size, "hull elastic (rigid %.0f%%)", 100.0 * frac);
-    return;
+      snprintf(name, sizeof name, "wheel hop %s", fb_corner_name((int)b - 2));
   }
-  double share = total > 0 ? 100.0 * best / total : 0.0;
-  if (best_dof == 0)
-    snprintf(out, size, "driver seat (%.0f%%)", share);
-  else if (best_dof == 1)
-    snprintf(out, size, "engine (%.0f%%)", share);
-  else
-    snprintf(out, size, "wheel hop %s (%.0f%%)", fb_corner_name((int)best_dof - 2), share);
+  snprintf(out, size, "%s (%.0f%%)", name, total > 0 ? 100.0 * best / total : 0.0);
 }
 
 /* Scales v so that the largest displacement over the hull nodes (length
@@ -392,8 +407,8 @@ static void normalise(const fb_fe_hull *h, size_t nh, double *v, size_t ndof)
     if (len > big) {
       big = len;
       int k = fabs(u[0]) >= fabs(u[1]) && fabs(u[0]) >= fabs(u[2]) ? 0
-              : fabs(u[1]) >= fabs(u[2])                          ? 1
-                                                                  : 2;
+              : fabs(u[1]) >= fabs(u[2])                           ? 1
+                                                                   : 2;
       sign = u[k] < 0 ? -1.0 : 1.0;
     }
   }
@@ -425,13 +440,47 @@ static int mode_set_alloc(size_t nmodes, size_t ndof, fb_mode_set **out, fb_err 
   return FB_OK;
 }
 
+/* 1 if mode v is a free horizontal rigid-body motion of the hull (surge,
+ * sway, yaw: no spring resists them), by its shape rather than its
+ * frequency, whose round-off grows with the stiffness: 90 % or more of the
+ * kinetic energy in those three rigid components. */
+static int is_free_mode(const describe_ctx *d, const double *v)
+{
+  fb_mat_gemv(d->M, 1.0, v, 0.0, d->mv);
+  double total = 0.0, energy[7];
+  for (size_t i = 0; i < d->ndof; ++i)
+    total += v[i] * d->mv[i];
+  hull_energies(d, v, energy);
+  return total > 0 && energy[0] + energy[1] + energy[5] >= 0.9 * total;
+}
+
+/* Copies the modes that are not free rigid-body motions into ms (at most
+ * ms->nmodes), counting the others in ms->nfree. */
+static void keep_supported(const describe_ctx *d, const double *freq, const double *shapes,
+                           size_t nwant, fb_mode_set *ms)
+{
+  size_t kept = 0;
+  ms->nfree = 0;
+  for (size_t k = 0; k < nwant && kept < ms->nmodes; ++k) {
+    const double *v = shapes + k * d->ndof;
+    if (is_free_mode(d, v)) {
+      ms->nfree++;
+      continue;
+    }
+    ms->freq_hz[kept] = freq[k];
+    memcpy(ms->shapes + kept * d->ndof, v, d->ndof * sizeof *v);
+    kept++;
+  }
+  ms->nmodes = kept;
+}
+
 int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t nmodes,
                               fb_mode_set **out, fb_err *err)
 {
   *out = NULL;
   fb_mat *K = NULL, *M = NULL, *mh = NULL;
   fb_mode_set *ms = NULL;
-  describe_ctx d = {h, NULL, NULL, NULL, NULL, NULL, 0, 0};
+  describe_ctx d = {NULL, NULL, NULL, NULL, NULL, 0, 0};
   int rc = vehicle_matrices(s, h, &K, &M, &mh, err);
   if (!rc) {
     d.M = M;
@@ -442,9 +491,6 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
       nmodes = d.ndof;
     rc = mode_set_alloc(nmodes, d.ndof, &ms, err);
   }
-  /* Dense LAPACK at the default hull's size, ARPACK for refined meshes. */
-  if (!rc)
-    rc = fb_fem_modes(K, M, nmodes, 2000, ms->freq_hz, ms->shapes, err);
   double mass, cg[3], inertia[9];
   if (!rc)
     rc = fb_fem_mass_properties(h->mesh, mh, &mass, cg, inertia, err);
@@ -459,11 +505,27 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
     hull_rigid_modes(h->mesh, cg, d.r);
     for (int j = 0; j < 6; ++j)
       fb_mat_gemv(mh, 1.0, d.r + j * d.nh, 0.0, d.mr + j * d.nh);
-    for (size_t k = 0; k < nmodes; ++k) {
-      double *v = ms->shapes + k * d.ndof;
-      describe_mode(&d, v, ms->description[k], sizeof ms->description[k]);
-      normalise(h, d.nh, v, d.ndof);
-    }
+  }
+  /* Dense LAPACK at the default hull's size, ARPACK for refined meshes;
+   * three more than asked for the free horizontal rigid-body modes. */
+  size_t nwant = nmodes + 3 < d.ndof ? nmodes + 3 : d.ndof;
+  double *freq = NULL, *shapes = NULL;
+  if (!rc) {
+    freq = malloc(nwant * sizeof *freq);
+    shapes = malloc(nwant * d.ndof * sizeof *shapes);
+    if (!freq || !shapes)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  if (!rc)
+    rc = fb_fem_modes(K, M, nwant, 2000, freq, shapes, err);
+  if (!rc)
+    keep_supported(&d, freq, shapes, nwant, ms);
+  free(freq);
+  free(shapes);
+  for (size_t k = 0; !rc && k < ms->nmodes; ++k) {
+    double *v = ms->shapes + k * d.ndof;
+    describe_mode(&d, v, ms->description[k], sizeof ms->description[k]);
+    normalise(h, d.nh, v, d.ndof);
   }
   free(d.r);
   free(d.mr);

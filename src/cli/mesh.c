@@ -1,0 +1,87 @@
+/* flexbond mesh: the System 2 hull mesh of a scenario (generated or
+ * imported), its mass properties, and its export as an Abaqus/CalculiX
+ * deck (.inp) or a VTK unstructured grid (.vtu). */
+#include <stdio.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "cli.h"
+
+static const char mesh_usage[] =
+    "usage: flexbond mesh SCENARIO.yaml [--export FILE.inp|FILE.vtu]\n"
+    "\n"
+    "Builds the scenario's finite-element hull (hull.mesh: the generator or an\n"
+    "imported deck), checks it, and prints its element counts, mass, centre of\n"
+    "mass and inertias. --export writes it as an Abaqus/CalculiX input deck\n"
+    "(*NODE, *ELEMENT S3/S4, *NSET LOAD, DRIVER, ENGINE, SUSP_LF .. SUSP_RR,\n"
+    "FRONT_EDGE, REAR_EDGE, ALL, *MATERIAL, *SHELL SECTION) or, for a .vtu\n"
+    "name, as a VTK file for ParaView.\n"
+    "\n"
+    "options:\n"
+    "  --export FILE   write the mesh (.inp or .vtu, by the name's ending)\n"
+    "  -h, --help      this text\n";
+
+static int ends_with(const char *s, const char *tail)
+{
+  size_t n = strlen(s), m = strlen(tail);
+  return n >= m && strcmp(s + n - m, tail) == 0;
+}
+
+static int print_properties(const fb_fe_hull *h, fb_err *err)
+{
+  fb_mat *M = NULL;
+  double mass, cg[3], inertia[9];
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, &M, err);
+  if (!rc)
+    rc = fb_fem_mass_properties(h->mesh, M, &mass, cg, inertia, err);
+  fb_mat_free(&M);
+  if (rc)
+    return rc;
+  printf("hull mesh: %zu nodes, %zu S3 + %zu S4 elements, %g m plates\n",
+         fb_mesh_nnodes(h->mesh), fb_mesh_count(h->mesh, FB_ELEM_TRI3),
+         fb_mesh_count(h->mesh, FB_ELEM_QUAD4), h->props.thickness);
+  printf("mass %.6g kg, centre of mass (%.4g, %.4g, %.4g) m\n", mass, cg[0], cg[1], cg[2]);
+  printf("about the centre of mass: Ixx %.6g, Iyy %.6g, Izz %.6g, Ixz %.4g kg m^2\n",
+         inertia[0], inertia[4], inertia[8], inertia[2]);
+  return FB_OK;
+}
+
+static int run(const char *path, const char *export_path)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_scenario *s = NULL;
+  fb_fe_hull *h = NULL;
+  int rc = fb_scenario_load(path, &s, &err);
+  if (!rc)
+    rc = fb_vehicle_fe_hull(s, &h, &err);
+  if (!rc && export_path)
+    rc = ends_with(export_path, ".vtu")
+             ? fb_mesh_write_vtu(h->mesh, NULL, export_path, &err)
+             : fb_mesh_write_inp(h->mesh, &h->props, export_path, &err);
+  if (!rc)
+    rc = print_properties(h, &err);
+  if (!rc && export_path)
+    printf("wrote %s\n", export_path);
+  if (!rc)
+    rc = cli_flush_stdout(&err);
+  fb_fe_hull_free(&h);
+  fb_scenario_free(&s);
+  return cli_report(rc, &err);
+}
+
+int cli_cmd_mesh(int argc, char **argv)
+{
+  enum { OPT_EXPORT, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {
+      [OPT_EXPORT] = {"--export", NULL, 1, NULL}, [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  const char *path;
+  int rc;
+  if (!cli_parse_file_command(argc, argv, opts, NOPTS, mesh_usage, "SCENARIO", &path, &rc))
+    return rc;
+  const char *out = opts[OPT_EXPORT].value;
+  if (out && !ends_with(out, ".inp") && !ends_with(out, ".vtu"))
+    return cli_usage_error(argv[0], "--export needs a .inp or .vtu file name (got '%s')", out);
+  return run(path, out);
+}

@@ -1,0 +1,155 @@
+/* Modal analysis of System 2 (the finite-element hull with the driver,
+ * engine, suspensions and tires): the rigid-hull limit against System 1,
+ * the paper's normalisation, an imported deck against the generator, and
+ * the free-free hull. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "flexbond/vehicle.h"
+
+#include "check.h"
+
+static fb_scenario *load(fb_err *err)
+{
+  fb_scenario *s = NULL;
+  if (fb_scenario_load("../examples/apc6x6.yaml", &s, err))
+    fprintf(stderr, "%s\n", err->msg);
+  return s;
+}
+
+static fb_mode_set *flexible_modes(const fb_scenario *s, size_t n, fb_err *err)
+{
+  fb_fe_hull *h = NULL;
+  fb_mode_set *m = NULL;
+  int rc = fb_vehicle_fe_hull(s, &h, err);
+  if (!rc)
+    rc = fb_vehicle_flexible_modes(s, h, n, &m, err);
+  if (rc)
+    fprintf(stderr, "%s\n", err->msg);
+  fb_fe_hull_free(&h);
+  return m;
+}
+
+/* A hull 100 times stiffer behaves as System 1's rigid hull: the 11
+ * vehicle frequencies converge to System 1's. The hull's flexibility
+ * moves them by at most 1.3 % at the real stiffness and by ~1/E, so
+ * ~1.3e-4 at 100 E; 5e-4 leaves a margin. (At 1000 E the shifted
+ * eigenproblem loses digits: K's scale then dwarfs the vehicle's.) */
+static void test_rigid_limit(fb_scenario *s)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_mode *rigid = NULL;
+  size_t nr = 0, nstatic = 0;
+  CHECK(fb_vehicle_modes(s, FB_SYSTEM_RIGID, 1, &rigid, &nr, &nstatic, &err) == FB_OK);
+  const double young = s->young;
+  s->young = 100.0 * young;
+  fb_mode_set *m = flexible_modes(s, 12, &err);
+  s->young = young;
+  if (rigid && m) {
+    CHECK(nr == 11);
+    CHECK(m->nfree == 3);
+    for (size_t k = 0; k < nr && k < m->nmodes; ++k)
+      CHECK_NEAR(m->freq_hz[k] / rigid[k].freq_hz, 1.0, 5e-4);
+    /* The twelfth is the stiff hull's first elastic mode, far above. */
+    CHECK(m->nmodes == 12 && m->freq_hz[11] > 50.0);
+  }
+  free(rigid);
+  fb_mode_set_free(&m);
+}
+
+/* The paper's normalisation: the largest displacement over the hull's
+ * nodes (length of the translation), the driver and the engine is 1. */
+static void test_normalisation(const fb_scenario *s)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_mode_set *m = flexible_modes(s, 12, &err);
+  if (!m)
+    return;
+  size_t nh = m->ndof - 8;
+  for (size_t k = 0; k < m->nmodes; ++k) {
+    const double *v = m->shapes + k * m->ndof;
+    double big = fmax(fabs(v[nh]), fabs(v[nh + 1]));
+    for (size_t i = 0; i < nh; i += 6)
+      big = fmax(big, sqrt(v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]));
+    CHECK_NEAR(big, 1.0, 1e-12);
+  }
+  /* Frequencies ascend; System 2 is softer than System 1 (1.4035 Hz
+   * pitch), and its first elastic hull mode is the eighth (Fig. 4). */
+  for (size_t k = 1; k < m->nmodes; ++k)
+    CHECK(m->freq_hz[k] >= m->freq_hz[k - 1]);
+  CHECK(m->freq_hz[0] < 1.4035 && m->freq_hz[0] > 1.39);
+  CHECK(strncmp(m->description[7], "hull elastic", 12) == 0);
+  fb_mode_set_free(&m);
+}
+
+/* The generator's mesh written as an Abaqus deck and read back through
+ * the scenario (hull.mesh.deck) gives the same modes. */
+static void test_deck_round_trip(fb_scenario *s)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_fe_hull *h = NULL;
+  char path[] = "/tmp/fb_hull_XXXXXX";
+  int fd = mkstemp(path);
+  CHECK(fd >= 0);
+  close(fd);
+  CHECK(fb_vehicle_fe_hull(s, &h, &err) == FB_OK);
+  CHECK(h && fb_mesh_write_inp(h->mesh, &h->props, path, &err) == FB_OK);
+  fb_fe_hull_free(&h);
+  fb_mode_set *a = flexible_modes(s, 10, &err);
+  s->hull_deck = strdup(path);
+  fb_mode_set *b = flexible_modes(s, 10, &err);
+  if (a && b)
+    for (size_t k = 0; k < a->nmodes; ++k)
+      CHECK_NEAR(b->freq_hz[k], a->freq_hz[k], 1e-9 * a->freq_hz[k]);
+  /* A deck without the node sets the vehicle needs is refused by name. */
+  FILE *fp = fopen(path, "w");
+  fputs("*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n*ELEMENT, TYPE=S3\n1, 1, 2, 3\n", fp);
+  fclose(fp);
+  CHECK(fb_vehicle_fe_hull(s, &h, &err) == FB_EMODEL);
+  CHECK(strstr(err.msg, "no node set SUSP_LF") != NULL);
+  free(s->hull_deck);
+  s->hull_deck = NULL;
+  remove(path);
+  fb_mode_set_free(&a);
+  fb_mode_set_free(&b);
+}
+
+/* Free-free hull: exactly six rigid-body modes, then the first elastic
+ * one well above the vehicle's suspension modes. */
+static void test_free_free(const fb_scenario *s)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_fe_hull *h = NULL;
+  double f[12];
+  size_t nrigid = 0;
+  CHECK(fb_vehicle_fe_hull(s, &h, &err) == FB_OK);
+  CHECK(h && fb_fe_hull_free_modes(h, 12, f, &nrigid, &err) == FB_OK);
+  CHECK(nrigid == 6);
+  for (int k = 0; k < 6; ++k)
+    CHECK(f[k] < 1e-2);
+  CHECK(f[6] > 5.0);
+  fb_fe_hull_free(&h);
+}
+
+int main(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_scenario *s = load(&err);
+  CHECK(s != NULL);
+  if (s) {
+    test_rigid_limit(s);
+    test_normalisation(s);
+    test_deck_round_trip(s);
+    test_free_free(s);
+  }
+  fb_scenario_free(&s);
+  return check_report("test_system2_modes");
+}
