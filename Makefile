@@ -68,6 +68,8 @@ test: deps build
 run: deps build
 	./$(BUILD_DIR)/flexbond run examples/apc6x6.yaml -o $(OUT_DIR)/
 	./$(BUILD_DIR)/flexbond modes examples/apc6x6.yaml > $(OUT_DIR)/modes.txt
+	./$(BUILD_DIR)/flexbond modes examples/apc6x6.yaml --system flexible -o $(OUT_DIR)/modes/ \
+	  > $(OUT_DIR)/modes_system2.txt
 	./$(BUILD_DIR)/flexbond sim examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/ --plot
 	./$(BUILD_DIR)/flexbond diagram examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/diagram.dot
 

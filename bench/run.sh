@@ -32,3 +32,10 @@ for model in examples/quarter_car.yaml examples/two_dof_fields.yaml; do
   python3 -c 'import json,sys; s=json.load(open(sys.argv[1])); print("solver %.2f ms, %d steps, %d rhs evals, %d factorisations" % (1e3*s["wall_seconds"], s["steps"], s["rhs_evals"], s["factorizations"]))' "$out/sim/stats.json"
   /usr/bin/time -v "$exe" sim "$model" -o "$out/sim" -q 2>&1 | grep "Maximum resident"
 done
+
+echo "== System 2 modal analysis: flexbond modes --system flexible -o (hull + vehicle modes, files, pictures)"
+hyperfine -N --warmup 1 --runs 10 --style none --export-json "$out/h.json" \
+  "$exe modes examples/apc6x6.yaml --system flexible -o $out/modes" >/dev/null
+median "$out/h.json"
+/usr/bin/time -v "$exe" modes examples/apc6x6.yaml --system flexible -o "$out/modes" 2>&1 >/dev/null |
+  grep "Maximum resident"
