@@ -138,6 +138,40 @@ static void test_free_free(const fb_scenario *s)
   fb_fe_hull_free(&h);
 }
 
+/* B = beta K damps the first elastic free-free mode at the asked ratio:
+ * its modal damping v'Bv / (2 omega v'Mv) from the assembled matrices and
+ * the mode shape (from the eigensolver, independent of beta) is zeta. */
+static void test_damping(const fb_scenario *s)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_fe_hull *h = NULL;
+  fb_mat *B = NULL, *K = NULL, *M = NULL;
+  double beta = 0.0, f[7], v[7 * 1296];
+  CHECK(fb_vehicle_fe_hull(s, &h, &err) == FB_OK);
+  CHECK(h && fb_fe_hull_damping(h, 0.02, &beta, &B, &err) == FB_OK);
+  CHECK(h && fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, &M, &err) == FB_OK);
+  if (h && B && K && M && fb_mat_nrows(K) == 1296 &&
+      fb_fem_modes(K, M, 7, 2000, f, v, &err) == FB_OK) {
+    double bv[1296], mv[1296], vbv = 0.0, vmv = 0.0;
+    const double *mode = v + 6 * 1296;
+    fb_mat_gemv(B, 1.0, mode, 0.0, bv);
+    fb_mat_gemv(M, 1.0, mode, 0.0, mv);
+    for (size_t i = 0; i < 1296; ++i) {
+      vbv += mode[i] * bv[i];
+      vmv += mode[i] * mv[i];
+    }
+    const double omega = 6.28318530717958647692 * f[6];
+    /* Round-off of the eigensolver and the quadratic forms: ~1e-10. */
+    CHECK_NEAR(vbv / (2.0 * omega * vmv), 0.02, 1e-9);
+    CHECK(beta > 0);
+  }
+  fb_mat_free(&B);
+  fb_mat_free(&K);
+  fb_mat_free(&M);
+  fb_fe_hull_free(&h);
+}
+
 int main(void)
 {
   fb_err err;
@@ -149,6 +183,7 @@ int main(void)
     test_normalisation(s);
     test_deck_round_trip(s);
     test_free_free(s);
+    test_damping(s);
   }
   fb_scenario_free(&s);
   return check_report("test_system2_modes");

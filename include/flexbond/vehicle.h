@@ -324,6 +324,13 @@ typedef struct fb_mode_set {
 } fb_mode_set;
 void fb_mode_set_free(fb_mode_set **m);
 
+/* Stiffness-proportional structural damping B = beta K of the hull, with
+ * beta = 2 zeta / omega_1 so that the first elastic free-free mode has the
+ * damping ratio zeta (mass-proportional damping would damp the rigid-body
+ * motion; Clough & Penzien, "Dynamics of Structures", 2nd ed., sec. 12-3).
+ * *B is new (may be NULL if only beta is wanted). */
+int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err);
+
 /* The nmodes lowest modes of the free-free hull (rigid-body modes first,
  * *nrigid of them at ~0 Hz): frequencies only. */
 int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,

@@ -164,6 +164,56 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
   return rc;
 }
 
+typedef struct scale_visit {
+  double beta;
+  size_t n, *r, *c;
+  double *v;
+} scale_visit;
+
+static void visit_scale(void *ctx, size_t r, size_t c, double v)
+{
+  scale_visit *sv = ctx;
+  sv->r[sv->n] = r;
+  sv->c[sv->n] = c;
+  sv->v[sv->n++] = sv->beta * v;
+}
+
+int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err)
+{
+  if (B)
+    *B = NULL;
+  double f[7];
+  size_t nrigid = 0;
+  int rc = fb_fe_hull_free_modes(h, 7, f, &nrigid, err);
+  if (!rc && (nrigid != 6 || !(f[6] > 0)))
+    rc = fb_err_set(err, FB_ESOLVER,
+                    "hull damping: expected six rigid-body modes then an elastic one (got %zu "
+                    "rigid, next at %g Hz)",
+                    nrigid, f[6]);
+  if (rc)
+    return rc;
+  const double two_pi = 6.28318530717958647692;
+  *beta = 2.0 * zeta / (two_pi * f[6]);
+  if (!B)
+    return FB_OK;
+  fb_mat *K = NULL;
+  rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
+  size_t nnz = rc ? 0 : fb_mat_nnz(K);
+  scale_visit sv = {*beta, 0, malloc((nnz + 1) * sizeof(size_t)),
+                    malloc((nnz + 1) * sizeof(size_t)), malloc((nnz + 1) * sizeof(double))};
+  if (!rc && (!sv.r || !sv.c || !sv.v))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc) {
+    fb_mat_foreach(K, visit_scale, &sv);
+    rc = fb_mat_new_triplets(fb_mat_nrows(K), fb_mat_ncols(K), sv.n, sv.r, sv.c, sv.v, B, err);
+  }
+  free(sv.r);
+  free(sv.c);
+  free(sv.v);
+  fb_mat_free(&K);
+  return rc;
+}
+
 void fb_mode_set_free(fb_mode_set **m)
 {
   if (!m || !*m)
