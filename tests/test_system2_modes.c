@@ -1,7 +1,7 @@
-/* Modal analysis of System 2 (the finite-element hull with the driver,
- * engine, suspensions and tires): the rigid-hull limit against System 1,
- * the paper's normalisation, an imported deck against the generator, and
- * the free-free hull. */
+/* System 2 (the finite-element hull with the driver, engine, suspensions
+ * and tires): modal analysis (the rigid-hull limit against System 1, the
+ * paper's normalisation, an imported deck against the generator, the
+ * free-free hull, structural damping) and its bond graph. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -172,6 +172,61 @@ static void test_damping(const fb_scenario *s)
   fb_fe_hull_free(&h);
 }
 
+/* System 2's bond graph: the same fragments as System 1 with the
+ * finite-element hull fragment in place of the rigid one. At rest with
+ * every state zero, the hull's vertical momentum rates add up to the
+ * weight on the load nodes (nothing else acts yet), and the torsion
+ * output of a pure twist u_z = kappa x y of the nodes is kappa times the
+ * distance between the edges. */
+static void test_flexible_graph(const fb_scenario *s)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *g = NULL;
+  fb_bd *bd = NULL;
+  fb_fe_hull *h = NULL;
+  CHECK(fb_vehicle_build(s, FB_SYSTEM_FLEXIBLE, &g, &bd, &err) == FB_OK);
+  CHECK(fb_vehicle_fe_hull(s, &h, &err) == FB_OK);
+  if (!bd || !h) {
+    fprintf(stderr, "%s\n", err.msg);
+    fb_bd_free(&bd);
+    fb_bg_free(&g);
+    fb_fe_hull_free(&h);
+    return;
+  }
+  size_t n = fb_bd_nstates(bd), nh = 6 * fb_mesh_nnodes(h->mesh);
+  /* hull p and q, 6 wheels (p, spring q, tire q), 2 mounts (p, q) */
+  CHECK(n == 2 * nh + 18 + 4);
+  long hull_mass = fb_bg_find_element(g, "hull.mass");
+  long hull_k = fb_bg_find_element(g, "hull.stiffness");
+  CHECK(hull_mass >= 0 && hull_k >= 0);
+  double *x = calloc(n, sizeof *x), *xd = calloc(n, sizeof *xd), y[FB_NOUTPUTS];
+  CHECK(fb_bd_rhs(bd, 0.0, x, xd) == 0);
+  double fz = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    size_t comp = 0;
+    if (fb_bd_state_element(bd, i, &comp) == hull_mass && comp % 6 == 2)
+      fz += xd[i];
+  }
+  /* A sum of 56 equal shares: rounding only. */
+  CHECK_NEAR(fz, -s->total_weight, 1e-9 * s->total_weight);
+  const double kappa = 1e-3;
+  for (size_t i = 0; i < n; ++i) {
+    size_t comp = 0;
+    if (fb_bd_state_element(bd, i, &comp) == hull_k && comp % 6 == 2) {
+      const double *p = fb_mesh_node_xyz(h->mesh, comp / 6);
+      x[i] = kappa * p[0] * p[1];
+    }
+  }
+  CHECK(fb_bd_outputs(bd, 0.0, x, y) == 0);
+  CHECK_NEAR(y[2], kappa * (s->edge_front_x - s->edge_rear_x), 1e-15);
+  free(x);
+  free(xd);
+  fb_fe_hull_free(&h);
+  fb_bd_free(&bd);
+  fb_bg_free(&g);
+}
+
 int main(void)
 {
   fb_err err;
@@ -184,6 +239,7 @@ int main(void)
     test_deck_round_trip(s);
     test_free_free(s);
     test_damping(s);
+    test_flexible_graph(s);
   }
   fb_scenario_free(&s);
   return check_report("test_system2_modes");

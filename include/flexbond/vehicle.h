@@ -324,6 +324,16 @@ typedef struct fb_mode_set {
 } fb_mode_set;
 void fb_mode_set_free(fb_mode_set **m);
 
+/* System 2's hull fragment (same ports as fb_vehicle_rigid_hull): the
+ * finite-element matrices as multiport fields on the nodal-velocity
+ * multibond (M as an I field, with the lumped payload's point masses when
+ * asked; K as a C field; B = beta K as an R field) and selection
+ * transformers to the attachment and load nodes' vertical velocities. The
+ * torsion probe weighs the C field's state (the nodal displacements) at
+ * the FRONT_EDGE and REAR_EDGE nodes. */
+int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull **out,
+                             fb_err *err);
+
 /* Stiffness-proportional structural damping B = beta K of the hull, with
  * beta = 2 zeta / omega_1 so that the first elastic free-free mode has the
  * damping ratio zeta (mass-proportional damping would damp the rigid-body

@@ -172,16 +172,20 @@ int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd *
 {
   *graph = NULL;
   *bd = NULL;
-  if (sys != FB_SYSTEM_RIGID)
-    return fb_err_set(err, FB_EINVAL,
-                      "System 2 (flexible hull) is not available yet: it needs the "
-                      "finite-element hull");
   fb_hull *hull = NULL;
+  fb_fe_hull *fe = NULL;
   fb_probe_spec *probes = NULL;
   size_t nprobes = 0;
   int rc = fb_scenario_check(s, err);
-  if (!rc)
+  /* The only difference between System 1 and System 2 is this fragment. */
+  if (!rc && sys == FB_SYSTEM_FLEXIBLE) {
+    rc = fb_vehicle_fe_hull(s, &fe, err);
+    if (!rc)
+      rc = fb_vehicle_flexible_hull(s, fe, &hull, err);
+    fb_fe_hull_free(&fe);
+  } else if (!rc) {
     rc = fb_vehicle_rigid_hull(s, &hull, err);
+  }
   if (!rc)
     rc = fb_vehicle_assemble(s, &hull, graph, &probes, &nprobes, err);
   if (!rc)

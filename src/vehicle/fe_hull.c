@@ -590,3 +590,148 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
   *out = ms;
   return FB_OK;
 }
+
+/* ---- System 2's hull as a bond-graph fragment (the paper's Fig. 5,
+ * upper right): the finite-element matrices as multiport fields on the
+ * nodal velocity multibond, M as an I field, K as a C field and B as an R
+ * field, and selection transformers from the nodal velocities to the
+ * attachment and load points' vertical velocities. */
+
+typedef struct sel_rows {
+  size_t n, *r, *c;
+  double *v;
+} sel_rows;
+
+/* n x ndof matrix transformer picking the vertical DOF of each node. */
+static int add_selection(fb_bg *bg, const char *name, size_t n, const size_t *nodes,
+                         size_t ndof, fb_err *err)
+{
+  size_t *r = malloc((n + 1) * sizeof *r), *c = malloc((n + 1) * sizeof *c);
+  double *v = malloc((n + 1) * sizeof *v);
+  fb_mat *t = NULL;
+  int rc = r && c && v ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t i = 0; !rc && i < n; ++i) {
+    r[i] = i;
+    c[i] = 6 * nodes[i] + 2;
+    v[i] = 1.0;
+  }
+  if (!rc)
+    rc = fb_mat_new_triplets(n, ndof, n, r, c, v, &t, err);
+  free(r);
+  free(c);
+  free(v);
+  return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
+}
+
+/* M plus, for the lumped payload, point masses on the translations of the
+ * load nodes. */
+static int hull_mass(const fb_scenario *s, const fb_fe_hull *h, fb_mat **M, fb_err *err)
+{
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
+  if (rc || s->payload != FB_PAYLOAD_LUMPED)
+    return rc;
+  double mp = (s->total_weight / s->gravity - s->hull_mass) / (double)h->nload;
+  trips t = {0};
+  trips_visit tv = {&t, 0};
+  fb_mat_foreach(*M, visit_push, &tv);
+  for (size_t k = 0; !tv.failed && k < h->nload; ++k)
+    for (size_t d = 0; d < 3; ++d)
+      tv.failed |= trips_push(&t, 6 * h->load_node[k] + d, 6 * h->load_node[k] + d, mp) != 0;
+  size_t n = fb_mat_nrows(*M);
+  fb_mat_free(M);
+  rc = tv.failed ? fb_err_set(err, FB_ENOMEM, "out of memory")
+                 : fb_mat_new_triplets(n, n, t.n, t.r, t.c, t.v, M, err);
+  trips_free(&t);
+  return rc;
+}
+
+static int flexible_hull_graph(const fb_scenario *s, const fb_fe_hull *h, fb_bg *bg,
+                               fb_err *err)
+{
+  fb_mat *M = NULL, *K = NULL, *B = NULL;
+  double beta = 0.0;
+  int rc = hull_mass(s, h, &M, err);
+  if (!rc)
+    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
+  if (!rc)
+    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, &B, err);
+  const size_t n = K ? fb_mat_nrows(K) : 0;
+  if (!rc)
+    rc = fb_bg_add_field(bg, "mass", FB_BG_I, 1, &n, &M, err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "stiffness", FB_BG_C, 1, &n, &K, err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "damping", FB_BG_R, 1, &n, &B, err);
+  fb_mat_free(&M);
+  fb_mat_free(&K);
+  fb_mat_free(&B);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, n, err);
+  if (!rc)
+    rc = add_selection(bg, "to_attach", FB_NATTACH, h->attach_node, n, err);
+  if (!rc)
+    rc = add_selection(bg, "to_load", h->nload, h->load_node, n, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, FB_NATTACH, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "load", FB_BG_J1, h->nload, err);
+  static const char *const bonds[][3] = {
+      {"b_mass", "J", "mass"},
+      {"b_stiffness", "J", "stiffness"},
+      {"b_damping", "J", "damping"},
+      {"b_attach_in", "J", "to_attach.1"},
+      {"b_attach", "to_attach.2", "attach"},
+      {"b_load_in", "J", "to_load.1"},
+      {"b_load", "to_load.2", "load"},
+  };
+  for (size_t i = 0; !rc && i < sizeof bonds / sizeof bonds[0]; ++i)
+    rc = fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "attach", "attach", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "load", "load", FB_PORT_IN, err);
+  return rc;
+}
+
+/* Torsion: roll of the front edge minus roll of the rear edge over the
+ * nodal displacements (the C field's state): weights on the four edge
+ * nodes' vertical DOFs. */
+static int flexible_torsion(const fb_fe_hull *h, fb_hull *hull, fb_err *err)
+{
+  size_t n = 6 * fb_mesh_nnodes(h->mesh);
+  hull->torsion_weights = calloc(n, sizeof *hull->torsion_weights);
+  hull->torsion_target = malloc(sizeof "stiffness");
+  if (!hull->torsion_weights || !hull->torsion_target)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  memcpy(hull->torsion_target, "stiffness", sizeof "stiffness");
+  hull->torsion_kind = FB_PROBE_STATE;
+  hull->torsion_integrate = 0;
+  hull->ntorsion = n;
+  for (int edge = 0; edge < 2; ++edge) {
+    size_t left = h->edge_node[2 * edge], right = h->edge_node[2 * edge + 1];
+    double dy = fb_mesh_node_xyz(h->mesh, left)[1] - fb_mesh_node_xyz(h->mesh, right)[1];
+    double sign = edge == 0 ? 1.0 : -1.0;
+    hull->torsion_weights[6 * left + 2] += sign / dy;
+    hull->torsion_weights[6 * right + 2] -= sign / dy;
+  }
+  return FB_OK;
+}
+
+int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull **out,
+                             fb_err *err)
+{
+  *out = NULL;
+  fb_hull *hull = calloc(1, sizeof *hull);
+  int rc = hull ? fb_bg_new("flexible_hull", &hull->graph, err)
+                : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc)
+    rc = flexible_hull_graph(s, h, hull->graph, err);
+  if (!rc)
+    rc = flexible_torsion(h, hull, err);
+  if (rc) {
+    fb_hull_free(&hull);
+    return fb_err_prefix(err, "flexible hull: ");
+  }
+  *out = hull;
+  return FB_OK;
+}
