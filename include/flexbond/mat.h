@@ -41,6 +41,10 @@ int fb_mat_clone(const fb_mat *a, fb_mat **out, fb_err *err);
 int fb_mat_transpose(const fb_mat *a, fb_mat **out, fb_err *err);
 /* Product c = a * b (sparse result if either is sparse). */
 int fb_mat_multiply(const fb_mat *a, const fb_mat *b, fb_mat **out, fb_err *err);
+/* c = alpha a + beta b, sparse (b may be NULL: c = alpha a); a and b of
+ * the same size. */
+int fb_mat_axpby(double alpha, const fb_mat *a, double beta, const fb_mat *b, fb_mat **out,
+                 fb_err *err);
 /* Inverse of a square non-singular matrix, returned dense. Meant for small
  * matrices (transformer inverses); FB_ESOLVER if singular. */
 int fb_mat_inverse(const fb_mat *a, fb_mat **out, fb_err *err);

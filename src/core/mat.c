@@ -628,3 +628,43 @@ int fb_mat_is_symmetric(const fb_mat *a, double tol)
   }
   return 1;
 }
+
+/* Triplets of scaled entries, filled by fb_mat_foreach. */
+typedef struct scaled_triplets {
+  size_t *rows, *cols;
+  double *vals;
+  size_t count;
+  double scale;
+} scaled_triplets;
+
+static void push_scaled(void *ctx, size_t row, size_t col, double val)
+{
+  scaled_triplets *t = ctx;
+  t->rows[t->count] = row;
+  t->cols[t->count] = col;
+  t->vals[t->count++] = t->scale * val;
+}
+
+int fb_mat_axpby(double alpha, const fb_mat *a, double beta, const fb_mat *b, fb_mat **out,
+                 fb_err *err)
+{
+  *out = NULL;
+  if (b && (b->nrows != a->nrows || b->ncols != a->ncols))
+    return fb_err_set(err, FB_EINVAL, "fb_mat_axpby: %zu x %zu plus %zu x %zu", a->nrows,
+                      a->ncols, b->nrows, b->ncols);
+  const size_t cap = a->nnz + (b ? b->nnz : 0) + 1;
+  scaled_triplets t = {malloc(cap * sizeof(size_t)), malloc(cap * sizeof(size_t)),
+                       malloc(cap * sizeof(double)), 0, alpha};
+  int rc = t.rows && t.cols && t.vals ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc) {
+    fb_mat_foreach(a, push_scaled, &t);
+    t.scale = beta;
+    if (b)
+      fb_mat_foreach(b, push_scaled, &t);
+    rc = fb_mat_new_triplets(a->nrows, a->ncols, t.count, t.rows, t.cols, t.vals, out, err);
+  }
+  free(t.rows);
+  free(t.cols);
+  free(t.vals);
+  return rc;
+}

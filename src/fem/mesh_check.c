@@ -19,30 +19,7 @@
 #include <stdlib.h>
 
 #include "fem/mesh_internal.h"
-
-static void sub3(const double *a, const double *b, double *d)
-{
-  d[0] = a[0] - b[0];
-  d[1] = a[1] - b[1];
-  d[2] = a[2] - b[2];
-}
-
-static void cross3(const double *a, const double *b, double *c)
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double *a, const double *b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static double norm3(const double *a)
-{
-  return sqrt(dot3(a, a));
-}
+#include "fem/vec3.h"
 
 /* Squared diagonal of the bounding box of all nodes. */
 static double bbox_diag2(const fb_mesh *m)
@@ -56,8 +33,8 @@ static double bbox_diag2(const fb_mesh *m)
     }
   }
   double d[3];
-  sub3(hi, lo, d);
-  return dot3(d, d);
+  fb_sub3(hi, lo, d);
+  return fb_dot3(d, d);
 }
 
 /* Twice the vector area of an element: (b - a) x (c - a) for a triangle;
@@ -72,13 +49,13 @@ static void area_vector2(const fb_mesh *m, size_t e, double *v)
   const double *c = fb_mesh_node_xyz(m, nd[2]);
   double u[3], w[3];
   if (fb_mesh_element_type(m, e) == FB_ELEM_TRI3) {
-    sub3(b, a, u);
-    sub3(c, a, w);
+    fb_sub3(b, a, u);
+    fb_sub3(c, a, w);
   } else {
-    sub3(c, a, u);
-    sub3(fb_mesh_node_xyz(m, nd[3]), b, w);
+    fb_sub3(c, a, u);
+    fb_sub3(fb_mesh_node_xyz(m, nd[3]), b, w);
   }
-  cross3(u, w, v);
+  fb_cross3(u, w, v);
 }
 
 static int element_error(const fb_mesh *m, size_t e, fb_err *err, const char *what)
@@ -110,7 +87,7 @@ static int check_area(const fb_mesh *m, size_t e, double min_area, fb_err *err)
 {
   double v[3];
   area_vector2(m, e, v);
-  const double area = 0.5 * norm3(v);
+  const double area = 0.5 * fb_norm3(v);
   char what[160];
   if (!(area >= min_area)) {
     snprintf(what, sizeof what, "degenerate: area %g m^2 below the limit %g m^2", area,
@@ -123,10 +100,10 @@ static int check_area(const fb_mesh *m, size_t e, double min_area, fb_err *err)
   const double unit[3] = {v[0] / (2.0 * area), v[1] / (2.0 * area), v[2] / (2.0 * area)};
   for (size_t k = 0; k < 4; ++k) {
     double in[3], out[3], c[3];
-    sub3(fb_mesh_node_xyz(m, nd[k]), fb_mesh_node_xyz(m, nd[(k + 3) % 4]), in);
-    sub3(fb_mesh_node_xyz(m, nd[(k + 1) % 4]), fb_mesh_node_xyz(m, nd[k]), out);
-    cross3(in, out, c);
-    if (0.5 * dot3(c, unit) < min_area) {
+    fb_sub3(fb_mesh_node_xyz(m, nd[k]), fb_mesh_node_xyz(m, nd[(k + 3) % 4]), in);
+    fb_sub3(fb_mesh_node_xyz(m, nd[(k + 1) % 4]), fb_mesh_node_xyz(m, nd[k]), out);
+    fb_cross3(in, out, c);
+    if (0.5 * fb_dot3(c, unit) < min_area) {
       snprintf(what, sizeof what, "degenerate: not convex at node %ld",
                fb_mesh_node_id(m, nd[k]));
       return element_error(m, e, err, what);
@@ -144,14 +121,14 @@ static int check_warp(const fb_mesh *m, size_t e, fb_err *err)
   for (int k = 0; k < 4; ++k)
     p[k] = fb_mesh_node_xyz(m, nd[k]);
   double u[3], w[3], n[3], d[3], diag2[3];
-  sub3(p[1], p[0], u);
-  sub3(p[2], p[0], w);
-  cross3(u, w, n);
-  sub3(p[3], p[0], d);
-  const double offset = fabs(dot3(d, n)) / norm3(n);
-  sub3(p[2], p[0], u);
-  sub3(p[3], p[1], diag2);
-  const double diagonal = fmax(norm3(u), norm3(diag2));
+  fb_sub3(p[1], p[0], u);
+  fb_sub3(p[2], p[0], w);
+  fb_cross3(u, w, n);
+  fb_sub3(p[3], p[0], d);
+  const double offset = fabs(fb_dot3(d, n)) / fb_norm3(n);
+  fb_sub3(p[2], p[0], u);
+  fb_sub3(p[3], p[1], diag2);
+  const double diagonal = fmax(fb_norm3(u), fb_norm3(diag2));
   if (offset <= 1e-3 * diagonal)
     return FB_OK;
   char what[160];

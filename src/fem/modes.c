@@ -122,42 +122,12 @@ static int modes_dense(const fb_mat *K, const fb_mat *M, size_t n, double s, siz
 
 /* ---- Sparse path (ARPACK). */
 
-typedef struct shifted_fill {
-  size_t *rows, *cols;
-  double *vals;
-  size_t count;
-  double scale;
-} shifted_fill;
-
-static void add_triplet(void *ctx, size_t row, size_t col, double val)
-{
-  shifted_fill *f = ctx;
-  f->rows[f->count] = row;
-  f->cols[f->count] = col;
-  f->vals[f->count++] = f->scale * val;
-}
-
 /* KLU factors of K + s M. */
-static int factor_shifted(const fb_mat *K, const fb_mat *M, size_t n, double s, fb_lu **lu,
-                          fb_err *err)
+static int factor_shifted(const fb_mat *K, const fb_mat *M, double s, fb_lu **lu, fb_err *err)
 {
   *lu = NULL;
-  const size_t cap = fb_mat_nnz(K) + fb_mat_nnz(M) + 1;
-  shifted_fill f = {malloc(cap * sizeof(size_t)), malloc(cap * sizeof(size_t)),
-                    malloc(cap * sizeof(double)), 0, 1.0};
   fb_mat *a = NULL;
-  int rc = FB_OK;
-  if (!f.rows || !f.cols || !f.vals)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory for the shifted stiffness matrix");
-  if (!rc) {
-    fb_mat_foreach(K, add_triplet, &f);
-    f.scale = s;
-    fb_mat_foreach(M, add_triplet, &f);
-    rc = fb_mat_new_triplets(n, n, f.count, f.rows, f.cols, f.vals, &a, err);
-  }
-  free(f.rows);
-  free(f.cols);
-  free(f.vals);
+  int rc = fb_mat_axpby(1.0, K, s, M, &a, err);
   if (!rc)
     rc = fb_lu_new(a, lu, err);
   fb_mat_free(&a);
@@ -257,7 +227,7 @@ static int modes_arpack(const fb_mat *K, const fb_mat *M, size_t n, double s, si
                         double *lambda, double *vectors, fb_err *err)
 {
   fb_lu *lu;
-  int rc = factor_shifted(K, M, n, s, &lu, err);
+  int rc = factor_shifted(K, M, s, &lu, err);
   if (rc)
     return rc;
   lanczos w;

@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "fem/shell_internal.h"
+#include "fem/vec3.h"
 
 /* A quadrilateral node may lie this far (relative to the longer diagonal)
  * off the element's mean plane; fb_mesh_check rejects 1e-3 already, so
@@ -48,25 +49,6 @@ typedef struct shell_frame {
   double y[FB_SHELL_MAX_NODES];
   double area;
 } shell_frame;
-
-static void sub3(const double *a, const double *b, double *d)
-{
-  d[0] = a[0] - b[0];
-  d[1] = a[1] - b[1];
-  d[2] = a[2] - b[2];
-}
-
-static void cross3(const double *a, const double *b, double *c)
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double *a, const double *b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 static int props_error(fb_err *err, const char *what, double value)
 {
@@ -97,24 +79,24 @@ int fb_shell_check_props(const fb_shell_props *p, fb_err *err)
 static double frame_axes(const double *xyz, shell_frame *f)
 {
   double *ex = f->rot, *ey = f->rot + 3, *ez = f->rot + 6, d12[3], c[3] = {0.0, 0.0, 0.0};
-  sub3(xyz + 3, xyz, d12);
-  const double along = dot3(d12, ez);
+  fb_sub3(xyz + 3, xyz, d12);
+  const double along = fb_dot3(d12, ez);
   for (int k = 0; k < 3; ++k)
     ex[k] = d12[k] - along * ez[k];
-  const double len = sqrt(dot3(ex, ex));
+  const double len = sqrt(fb_dot3(ex, ex));
   for (int k = 0; k < 3; ++k)
     ex[k] /= len;
-  cross3(ez, ex, ey);
+  fb_cross3(ez, ex, ey);
   for (size_t a = 0; a < f->nn; ++a)
     for (int k = 0; k < 3; ++k)
       c[k] += xyz[3 * a + (size_t)k] / (double)f->nn;
   double warp = 0.0;
   for (size_t a = 0; a < f->nn; ++a) {
     double d[3];
-    sub3(xyz + 3 * a, c, d);
-    f->x[a] = dot3(d, ex);
-    f->y[a] = dot3(d, ey);
-    warp = fmax(warp, fabs(dot3(d, ez)));
+    fb_sub3(xyz + 3 * a, c, d);
+    f->x[a] = fb_dot3(d, ex);
+    f->y[a] = fb_dot3(d, ey);
+    warp = fmax(warp, fabs(fb_dot3(d, ez)));
   }
   return warp;
 }
@@ -127,12 +109,12 @@ static int degenerate(fb_err *err, const char *shape)
 static int triangle_frame(const double *xyz, shell_frame *f, fb_err *err)
 {
   double d12[3], d13[3], d23[3], normal[3];
-  sub3(xyz + 3, xyz, d12);
-  sub3(xyz + 6, xyz, d13);
-  sub3(xyz + 6, xyz + 3, d23);
-  cross3(d12, d13, normal);
-  const double twice_area = sqrt(dot3(normal, normal));
-  const double longest2 = fmax(dot3(d12, d12), fmax(dot3(d13, d13), dot3(d23, d23)));
+  fb_sub3(xyz + 3, xyz, d12);
+  fb_sub3(xyz + 6, xyz, d13);
+  fb_sub3(xyz + 6, xyz + 3, d23);
+  fb_cross3(d12, d13, normal);
+  const double twice_area = sqrt(fb_dot3(normal, normal));
+  const double longest2 = fmax(fb_dot3(d12, d12), fmax(fb_dot3(d13, d13), fb_dot3(d23, d23)));
   if (!(twice_area > 2.0 * DEGENERATE_AREA * longest2))
     return degenerate(err, "triangle");
   f->nn = 3;
@@ -149,17 +131,17 @@ static int triangle_frame(const double *xyz, shell_frame *f, fb_err *err)
 static int quad_frame(const double *xyz, shell_frame *f, fb_err *err)
 {
   double d13[3], d24[3], normal[3];
-  sub3(xyz + 6, xyz, d13);
-  sub3(xyz + 9, xyz + 3, d24);
-  cross3(d13, d24, normal);
-  const double twice_area = sqrt(dot3(normal, normal));
-  const double diag2 = fmax(dot3(d13, d13), dot3(d24, d24));
+  fb_sub3(xyz + 6, xyz, d13);
+  fb_sub3(xyz + 9, xyz + 3, d24);
+  fb_cross3(d13, d24, normal);
+  const double twice_area = sqrt(fb_dot3(normal, normal));
+  const double diag2 = fmax(fb_dot3(d13, d13), fb_dot3(d24, d24));
   if (!(twice_area > 2.0 * DEGENERATE_AREA * diag2))
     return degenerate(err, "quadrilateral");
   for (int a = 0; a < 4; ++a) {
     double side[3];
-    sub3(xyz + 3 * ((a + 1) % 4), xyz + 3 * a, side);
-    if (!(dot3(side, side) > DEGENERATE_AREA * diag2))
+    fb_sub3(xyz + 3 * ((a + 1) % 4), xyz + 3 * a, side);
+    if (!(fb_dot3(side, side) > DEGENERATE_AREA * diag2))
       return degenerate(err, "quadrilateral");
   }
   f->nn = 4;

@@ -164,20 +164,6 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
   return rc;
 }
 
-typedef struct scale_visit {
-  double beta;
-  size_t n, *r, *c;
-  double *v;
-} scale_visit;
-
-static void visit_scale(void *ctx, size_t r, size_t c, double v)
-{
-  scale_visit *sv = ctx;
-  sv->r[sv->n] = r;
-  sv->c[sv->n] = c;
-  sv->v[sv->n++] = sv->beta * v;
-}
-
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err)
 {
   if (B)
@@ -198,18 +184,8 @@ int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **
     return FB_OK;
   fb_mat *K = NULL;
   rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
-  size_t nnz = rc ? 0 : fb_mat_nnz(K);
-  scale_visit sv = {*beta, 0, malloc((nnz + 1) * sizeof(size_t)),
-                    malloc((nnz + 1) * sizeof(size_t)), malloc((nnz + 1) * sizeof(double))};
-  if (!rc && (!sv.r || !sv.c || !sv.v))
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc) {
-    fb_mat_foreach(K, visit_scale, &sv);
-    rc = fb_mat_new_triplets(fb_mat_nrows(K), fb_mat_ncols(K), sv.n, sv.r, sv.c, sv.v, B, err);
-  }
-  free(sv.r);
-  free(sv.c);
-  free(sv.v);
+  if (!rc)
+    rc = fb_mat_axpby(*beta, K, 0.0, NULL, B, err);
   fb_mat_free(&K);
   return rc;
 }
