@@ -711,8 +711,38 @@ static void test_mtx_io_errors(void)
   fb_mat_free(&a);
 }
 
+/* c = alpha a + beta b against the hand sum, mixed storage, and the
+ * size check. */
+static void test_axpby(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  const double av[4] = {1.0, 2.0, 0.0, 3.0}, d[2] = {4.0, 5.0};
+  fb_mat *a = NULL, *b = NULL, *c = NULL, *e = NULL;
+  CHECK(fb_mat_new_dense_rowmajor(2, 2, av, &a, &err) == FB_OK);
+  CHECK(fb_mat_new_diag(2, d, &b, &err) == FB_OK);
+  CHECK(fb_mat_axpby(2.0, a, -1.0, b, &c, &err) == FB_OK);
+  if (c) {
+    CHECK(fb_mat_get(c, 0, 0) == -2.0 && fb_mat_get(c, 0, 1) == 4.0);
+    CHECK(fb_mat_get(c, 1, 0) == 0.0 && fb_mat_get(c, 1, 1) == 1.0);
+    CHECK(fb_mat_nnz(c) == 3); /* the zero at (1, 0) is not stored */
+  }
+  fb_mat_free(&c);
+  CHECK(fb_mat_axpby(0.5, b, 0.0, NULL, &c, &err) == FB_OK);
+  CHECK(c && fb_mat_get(c, 1, 1) == 2.5 && fb_mat_get(c, 0, 1) == 0.0);
+  CHECK(fb_mat_new_scaled_identity(3, 1.0, &e, &err) == FB_OK);
+  fb_mat *bad = NULL;
+  CHECK(fb_mat_axpby(1.0, a, 1.0, e, &bad, &err) == FB_EINVAL && bad == NULL);
+  CHECK(strstr(err.msg, "2 x 2 plus 3 x 3") != NULL);
+  fb_mat_free(&a);
+  fb_mat_free(&b);
+  fb_mat_free(&c);
+  fb_mat_free(&e);
+}
+
 int main(void)
 {
+  test_axpby();
   test_gemv();
   test_construction();
   test_foreach_dense_and_finite();
