@@ -412,20 +412,20 @@ typedef struct bad_case {
 
 static const bad_case bad_cases[] = {
     /* System 2's optional hull sections (lines 9 and 10 when added). */
-    {EDGES_LINE, EDGES_LINE "  mesh: {density: 1, deck: h.inp, generator: {}}\n" FE_OK, NULL,
-     NULL, FB_EPARSE, "bad.yaml:9:", "either a deck or a generator", NULL},
-    {EDGES_LINE, EDGES_LINE "  mesh: {density: 0, deck: h.inp}\n" FE_OK, NULL, NULL, FB_EINVAL,
-     "bad.yaml:9:", "hull.mesh.density", NULL},
+    {EDGES_LINE, EDGES_LINE "  mesh: {deck: h.inp, generator: {}}\n" FE_OK, NULL, NULL,
+     FB_EPARSE, "bad.yaml:9:", "either a deck or a generator", NULL},
+    {EDGES_LINE, EDGES_LINE "  mesh: {density: 2, deck: h.inp}\n" FE_OK, NULL, NULL, FB_EPARSE,
+     "bad.yaml:9:", "density refines the generator's mesh", NULL},
     {EDGES_LINE,
-     EDGES_LINE "  mesh: {density: 1, deck: h.inp}\n"
+     EDGES_LINE "  mesh: {deck: h.inp}\n"
                 "  fe: {mass_matrix: consistent, drill_factor: 1e-4, damping_ratio: 1.5}\n",
      NULL, NULL, FB_EINVAL, "bad.yaml:10:", "hull.fe.damping_ratio: must be < 1", NULL},
     {EDGES_LINE,
-     EDGES_LINE "  mesh: {density: 1, deck: h.inp}\n"
+     EDGES_LINE "  mesh: {deck: h.inp}\n"
                 "  fe: {mass_matrix: diagonal, drill_factor: 1e-4, damping_ratio: 0.02}\n",
      NULL, NULL, FB_EPARSE, "bad.yaml:10:", "unknown value 'diagonal'", "consistent | lumped"},
-    {EDGES_LINE, EDGES_LINE "  mesh: {density: 1, deck: h.inp}\n", NULL, NULL, FB_EPARSE,
-     "bad.yaml:", "fe", NULL},
+    {EDGES_LINE, EDGES_LINE "  mesh: {deck: h.inp}\n", NULL, NULL, FB_EPARSE, "bad.yaml:", "fe",
+     NULL},
     /* Physical checks, reported at the value. */
     {"LF: {spring_k: 145300", "LF: {spring_k: -145300", NULL, NULL, FB_EINVAL,
      "bad.yaml:18:18:", "suspensions.LF.spring_k: must be > 0 N/m (got -145300)", NULL},

@@ -107,6 +107,11 @@ static void test_deck_round_trip(fb_scenario *s)
   if (a && b)
     for (size_t k = 0; k < a->nmodes; ++k)
       CHECK_NEAR(b->freq_hz[k], a->freq_hz[k], 1e-9 * a->freq_hz[k]);
+  /* The mesh's edge nodes must sit at the scenario's torsion edges. */
+  s->edge_front_x += 0.1;
+  CHECK(fb_vehicle_fe_hull(s, &h, &err) == FB_EMODEL);
+  CHECK(strstr(err.msg, "FRONT_EDGE node") != NULL);
+  s->edge_front_x -= 0.1;
   /* A deck without the node sets the vehicle needs is refused by name. */
   FILE *fp = fopen(path, "w");
   fputs("*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n*ELEMENT, TYPE=S3\n1, 1, 2, 3\n", fp);

@@ -335,8 +335,9 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
                              fb_err *err);
 
 /* Stiffness-proportional structural damping B = beta K of the hull, with
- * beta = 2 zeta / omega_1 so that the first elastic free-free mode has the
- * damping ratio zeta (mass-proportional damping would damp the rigid-body
+ * beta = 2 zeta / omega_1 so that the first elastic free-free mode of the
+ * bare hull (the data sheet's reference; a lumped payload's masses aside)
+ * has the damping ratio zeta (mass-proportional damping would damp the rigid-body
  * motion; Clough & Penzien, "Dynamics of Structures", 2nd ed., sec. 12-3).
  * *B is new (may be NULL if only beta is wanted). */
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err);

@@ -21,12 +21,15 @@ typedef struct triplets {
   double *kvals, *mvals;
 } triplets;
 
+/* Frees the arrays and clears the pointers (safe to call twice). */
 static void triplets_free(triplets *t)
 {
   free(t->rows);
   free(t->cols);
   free(t->kvals);
   free(t->mvals);
+  t->rows = t->cols = NULL;
+  t->kvals = t->mvals = NULL;
 }
 
 /* Room for one full element matrix per element. */

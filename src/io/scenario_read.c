@@ -146,8 +146,7 @@ static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
                     "the hull's finite elements {mass_matrix, drill_factor, "
                     "damping_ratio}",
                     fe_keys, &fe);
-  if (!rc)
-    rc = sc_int(c, mesh, "density", 1, 64, &s->hull_mesh.density);
+  struct fy_node *density = NULL;
   if (!rc && (deck = ml_get(mesh, "deck", NULL)) && !ml_is_null(deck)) {
     const char *text = NULL;
     rc = ml_string(c, deck, &text);
@@ -155,10 +154,13 @@ static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
       rc = ml_resolve_path(c, deck, text, &s->hull_deck);
     if (!rc && ml_get(mesh, "generator", NULL))
       rc = ml_fail(c, deck, FB_EPARSE, "give either a deck or a generator, not both");
+    if (!rc && (density = ml_get(mesh, "density", NULL)))
+      rc = ml_fail(c, density, FB_EPARSE,
+                   "density refines the generator's mesh; a deck is used as it is");
   } else if (!rc) {
-    int density = s->hull_mesh.density;
     rc = sc_generator(c, mesh, &s->hull_mesh);
-    s->hull_mesh.density = density;
+    if (!rc)
+      rc = sc_int(c, mesh, "density", 1, 64, &s->hull_mesh.density);
   }
   int mass = 0;
   if (!rc)

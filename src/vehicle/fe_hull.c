@@ -85,6 +85,11 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   const char *const edges[2] = {"FRONT_EDGE", "REAR_EDGE"};
   for (int k = 0; !rc && k < 2; ++k) {
     rc = nset_nodes(h->mesh, edges[k], 2, &nodes, err);
+    const double x = k == 0 ? s->edge_front_x : s->edge_rear_x;
+    if (!rc)
+      rc = check_at(h->mesh, nodes[0], edges[k], x, s->edge_left_y, err);
+    if (!rc)
+      rc = check_at(h->mesh, nodes[1], edges[k], x, s->edge_right_y, err);
     if (!rc) {
       h->edge_node[2 * k] = nodes[0];
       h->edge_node[2 * k + 1] = nodes[1];
@@ -147,18 +152,27 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
                           fb_err *err)
 {
   fb_mat *K = NULL, *M = NULL;
+  *nrigid = 0;
   int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, &M, err);
-  size_t n = fb_mat_nrows(K ? K : M);
-  if (!rc && nmodes > n)
-    nmodes = n;
+  if (!rc && nmodes > fb_mat_nrows(K))
+    nmodes = fb_mat_nrows(K);
   /* Dense LAPACK at the default hull's size (~1500 DOFs), ARPACK above. */
   if (!rc)
     rc = fb_fem_modes(K, M, nmodes, 2000, freq_hz, NULL, err);
-  /* Rigid-body modes: six, at ~0 Hz, far below the first elastic mode. */
-  *nrigid = 0;
-  for (size_t k = 0; !rc && k < nmodes && k < 6; ++k)
-    if (freq_hz[k] < 1e-3 * freq_hz[nmodes - 1])
+  /* Rigid-body modes are round-off, ~sqrt(eps) times the model's own
+   * frequency scale sqrt(trace K / trace M) (~1e4 Hz for steel shells,
+   * rounding ~1e-4 Hz); an elastic mode is above 1e-6 of that scale (0.01
+   * Hz). Counted without a cap: a deck with a loose plate has more. */
+  if (!rc) {
+    double tk = 0.0, tm = 0.0;
+    for (size_t i = 0; i < fb_mat_nrows(K); ++i) {
+      tk += fb_mat_get(K, i, i);
+      tm += fb_mat_get(M, i, i);
+    }
+    const double threshold = 1e-6 * sqrt(tk / tm) / 6.28318530717958647692;
+    while (*nrigid < nmodes && freq_hz[*nrigid] <= threshold)
       (*nrigid)++;
+  }
   fb_mat_free(&K);
   fb_mat_free(&M);
   return rc;
@@ -264,14 +278,40 @@ static int add_spring(trips *t, size_t a, size_t b, double k)
   return rc;
 }
 
+/* M plus, for the lumped payload, point masses on the translations of the
+ * load nodes. */
+static int hull_mass(const fb_scenario *s, const fb_fe_hull *h, fb_mat **M, fb_err *err)
+{
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
+  if (rc || s->payload != FB_PAYLOAD_LUMPED)
+    return rc;
+  double mp = (s->total_weight / s->gravity - s->hull_mass) / (double)h->nload;
+  trips t = {0};
+  trips_visit tv = {&t, 0};
+  fb_mat_foreach(*M, visit_push, &tv);
+  for (size_t k = 0; !tv.failed && k < h->nload; ++k)
+    for (size_t d = 0; d < 3; ++d)
+      tv.failed |= trips_push(&t, 6 * h->load_node[k] + d, 6 * h->load_node[k] + d, mp) != 0;
+  size_t n = fb_mat_nrows(*M);
+  fb_mat_free(M);
+  rc = tv.failed ? fb_err_set(err, FB_ENOMEM, "out of memory")
+                 : fb_mat_new_triplets(n, n, t.n, t.r, t.c, t.v, M, err);
+  trips_free(&t);
+  return rc;
+}
+
 /* Vehicle K and M: the hull's, plus the lumped bodies on their springs. */
 static int vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, fb_mat **K, fb_mat **M,
                             fb_mat **mh_out, fb_err *err)
 {
   fb_mat *kh = NULL, *mh = NULL;
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &kh, &mh, err);
-  if (rc)
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &kh, NULL, err);
+  if (!rc)
+    rc = hull_mass(s, h, &mh, err);
+  if (rc) {
+    fb_mat_free(&kh);
     return rc;
+  }
   size_t nh = fb_mat_nrows(kh), n = nh + 2 + FB_NCORNERS;
   trips tk = {0}, tm = {0};
   trips_visit vk = {&tk, 0}, vm = {&tm, 0};
@@ -597,28 +637,6 @@ static int add_selection(fb_bg *bg, const char *name, size_t n, const size_t *no
   free(c);
   free(v);
   return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
-}
-
-/* M plus, for the lumped payload, point masses on the translations of the
- * load nodes. */
-static int hull_mass(const fb_scenario *s, const fb_fe_hull *h, fb_mat **M, fb_err *err)
-{
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
-  if (rc || s->payload != FB_PAYLOAD_LUMPED)
-    return rc;
-  double mp = (s->total_weight / s->gravity - s->hull_mass) / (double)h->nload;
-  trips t = {0};
-  trips_visit tv = {&t, 0};
-  fb_mat_foreach(*M, visit_push, &tv);
-  for (size_t k = 0; !tv.failed && k < h->nload; ++k)
-    for (size_t d = 0; d < 3; ++d)
-      tv.failed |= trips_push(&t, 6 * h->load_node[k] + d, 6 * h->load_node[k] + d, mp) != 0;
-  size_t n = fb_mat_nrows(*M);
-  fb_mat_free(M);
-  rc = tv.failed ? fb_err_set(err, FB_ENOMEM, "out of memory")
-                 : fb_mat_new_triplets(n, n, t.n, t.r, t.c, t.v, M, err);
-  trips_free(&t);
-  return rc;
 }
 
 static int flexible_hull_graph(const fb_scenario *s, const fb_fe_hull *h, fb_bg *bg,
