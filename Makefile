@@ -27,10 +27,11 @@ BUILD_TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CTEST_JOBS ?= 2
 
-# clang is the second compiler; clang-format serves format/format-check.
+# clang is the second compiler; clang-format serves format/format-check; python3
+# checks the JSON the CLI writes (tests/cli_run.sh).
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
                 liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz clang \
-                clang-format
+                clang-format python3
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 APT := $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get
 
