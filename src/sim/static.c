@@ -7,6 +7,7 @@
  * the self-stress of a statically indeterminate support at zero, as the
  * settling from rest does). Newton on P:
  *   (dF_p/dq dF_q/dp) dP = -(F_p(x) - dF_p/dp p), then p = 0. */
+#include <cblas.h>
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -15,16 +16,21 @@
 #include "flexbond/sim.h"
 
 typedef struct static_work {
-  size_t n, np;
-  size_t *pidx;    /* momentum state indices */
-  double *jac, *f; /* n x n Jacobian, n right-hand side */
-  double *a, *rhs; /* np x np system */
+  size_t n, np, nq;
+  size_t *pidx;      /* momentum state indices */
+  size_t *qidx;      /* displacement state indices */
+  double *jac, *f;   /* n x n Jacobian, n right-hand side */
+  double *jpq, *jqp; /* np x nq and nq x np blocks of the Jacobian */
+  double *a, *rhs;   /* np x np system */
   lapack_int *piv;
 } static_work;
 
 static void work_free(static_work *w)
 {
   free(w->pidx);
+  free(w->qidx);
+  free(w->jpq);
+  free(w->jqp);
   free(w->jac);
   free(w->f);
   free(w->a);
@@ -37,15 +43,24 @@ static int work_alloc(static_work *w, const fb_bd *bd)
   memset(w, 0, sizeof *w);
   w->n = fb_bd_nstates(bd);
   w->pidx = malloc((w->n + 1) * sizeof *w->pidx);
-  for (size_t i = 0; w->pidx && i < w->n; ++i)
-    if (fb_bd_state_kind(bd, i) == FB_STATE_MOMENTUM)
+  w->qidx = malloc((w->n + 1) * sizeof *w->qidx);
+  for (size_t i = 0; w->pidx && w->qidx && i < w->n; ++i) {
+    fb_state_kind k = fb_bd_state_kind(bd, i);
+    if (k == FB_STATE_MOMENTUM)
       w->pidx[w->np++] = i;
+    else if (k == FB_STATE_DISPLACEMENT)
+      w->qidx[w->nq++] = i;
+  }
+  w->jpq = malloc((w->np * w->nq + 1) * sizeof *w->jpq);
+  w->jqp = malloc((w->np * w->nq + 1) * sizeof *w->jqp);
   w->jac = malloc((w->n * w->n + 1) * sizeof *w->jac);
   w->f = malloc((w->n + 1) * sizeof *w->f);
   w->a = malloc((w->np * w->np + 1) * sizeof *w->a);
   w->rhs = malloc((w->np + 1) * sizeof *w->rhs);
   w->piv = malloc((w->np + 1) * sizeof *w->piv);
-  return w->pidx && w->jac && w->f && w->a && w->rhs && w->piv ? FB_OK : FB_ENOMEM;
+  return w->pidx && w->qidx && w->jpq && w->jqp && w->jac && w->f && w->a && w->rhs && w->piv
+             ? FB_OK
+             : FB_ENOMEM;
 }
 
 /* Largest |F_p| and |F_q| at x (momentum and displacement rows). */
@@ -70,15 +85,17 @@ static int newton_step(fb_bd *bd, double t, static_work *w, double *x, fb_err *e
     return rc;
   if (fb_bd_rhs(bd, t, x, w->f))
     return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
-  /* a = J_pq J_qp over the displacement states q; rhs = -(F_p - J_pp p). */
+  /* a = J_pq J_qp (BLAS dgemm on the gathered blocks, column-major);
+   * rhs = -(F_p - J_pp p). */
+  size_t nq = w->nq;
+  for (size_t j = 0; j < nq; ++j)
+    for (size_t r = 0; r < np; ++r)
+      w->jpq[j * np + r] = w->jac[w->qidx[j] * n + w->pidx[r]];
   for (size_t c = 0; c < np; ++c)
-    for (size_t r = 0; r < np; ++r) {
-      double s = 0.0;
-      for (size_t q = 0; q < n; ++q)
-        if (fb_bd_state_kind(bd, q) == FB_STATE_DISPLACEMENT)
-          s += w->jac[q * n + w->pidx[r]] * w->jac[w->pidx[c] * n + q];
-      w->a[c * np + r] = s;
-    }
+    for (size_t j = 0; j < nq; ++j)
+      w->jqp[c * nq + j] = w->jac[w->pidx[c] * n + w->qidx[j]];
+  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, (int)np, (int)np, (int)nq, 1.0, w->jpq,
+              (int)np, w->jqp, (int)nq, 0.0, w->a, (int)np);
   for (size_t r = 0; r < np; ++r) {
     double s = w->f[w->pidx[r]];
     for (size_t c = 0; c < np; ++c)
@@ -92,10 +109,9 @@ static int newton_step(fb_bd *bd, double t, static_work *w, double *x, fb_err *e
                       "static equilibrium: the stiffness seen by the masses is singular (a "
                       "mass with no spring to the ground, or a free rigid-body mode)");
   /* q += J_qp dP; p = 0. */
-  for (size_t q = 0; q < n; ++q)
-    if (fb_bd_state_kind(bd, q) == FB_STATE_DISPLACEMENT)
-      for (size_t c = 0; c < np; ++c)
-        x[q] += w->jac[w->pidx[c] * n + q] * w->rhs[c];
+  for (size_t j = 0; j < nq; ++j)
+    for (size_t c = 0; c < np; ++c)
+      x[w->qidx[j]] += w->jqp[c * nq + j] * w->rhs[c];
   for (size_t c = 0; c < np; ++c)
     x[w->pidx[c]] = 0.0;
   return FB_OK;
