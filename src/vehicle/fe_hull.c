@@ -370,7 +370,7 @@ static void hull_rigid_modes(const fb_mesh *m, const double *cg, double *r)
 }
 
 typedef struct describe_ctx {
-  const fb_mat *M, *mh;
+  const fb_mat *M;
   double *r, *mr; /* rigid modes and M_h r (nh x 6 each) */
   double *mv;     /* M v, ndof */
   size_t nh, ndof;
@@ -546,11 +546,10 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
   *out = NULL;
   fb_mat *K = NULL, *M = NULL, *mh = NULL;
   fb_mode_set *ms = NULL;
-  describe_ctx d = {NULL, NULL, NULL, NULL, NULL, 0, 0};
+  describe_ctx d = {NULL, NULL, NULL, NULL, 0, 0};
   int rc = vehicle_matrices(s, h, &K, &M, &mh, err);
   if (!rc) {
     d.M = M;
-    d.mh = mh;
     d.ndof = fb_mat_nrows(K);
     d.nh = fb_mat_nrows(mh);
     if (nmodes > d.ndof)
@@ -612,11 +611,6 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
  * nodal velocity multibond, M as an I field, K as a C field and B as an R
  * field, and selection transformers from the nodal velocities to the
  * attachment and load points' vertical velocities. */
-
-typedef struct sel_rows {
-  size_t n, *r, *c;
-  double *v;
-} sel_rows;
 
 /* n x ndof matrix transformer picking the vertical DOF of each node. */
 static int add_selection(fb_bg *bg, const char *name, size_t n, const size_t *nodes,
