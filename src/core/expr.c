@@ -22,6 +22,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
+
 enum {
   EXPR_STACK_MAX = 64,   /* evaluation stack slots; a + (b + (c + ...)) needs one per level */
   EXPR_NEST_MAX = 200,   /* nested unary/parenthesis levels, bounds the parser's recursion */
@@ -257,14 +259,8 @@ static int is_name_char(char c)
 
 static int reserve_code(parser *p)
 {
-  if (p->n < p->capacity)
-    return FB_OK;
-  size_t capacity = p->capacity ? 2 * p->capacity : 16;
-  instr *code = realloc(p->code, capacity * sizeof *code);
-  if (!code)
+  if (fb_grow((void **)&p->code, &p->capacity, p->n, sizeof *p->code))
     return fb_err_set(p->err, FB_ENOMEM, "out of memory parsing an expression");
-  p->code = code;
-  p->capacity = capacity;
   return FB_OK;
 }
 

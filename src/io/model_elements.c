@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "io/model_internal.h"
 
 /* Largest dimension or port count accepted, to catch typos like 1e9
@@ -25,14 +26,8 @@ const ml_entry *ml_scope_find(const ml_scope *s, const char *name)
 
 int ml_scope_add(const ml_ctx *c, ml_scope *s, const ml_entry *e)
 {
-  if (s->nentries == s->capacity) {
-    size_t cap = s->capacity ? 2 * s->capacity : 16;
-    ml_entry *grown = realloc(s->entries, cap * sizeof *grown);
-    if (!grown)
-      return fb_err_set(c->err, FB_ENOMEM, "out of memory");
-    s->entries = grown;
-    s->capacity = cap;
-  }
+  if (fb_grow((void **)&s->entries, &s->capacity, s->nentries, sizeof *s->entries))
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory");
   s->entries[s->nentries++] = *e;
   return FB_OK;
 }

@@ -7,6 +7,8 @@
 
 #include "flexbond/vehicle.h"
 
+#include "core/util.h"
+
 void fb_fe_hull_free(fb_fe_hull **h)
 {
   if (!h || !*h)
@@ -217,29 +219,18 @@ void fb_mode_set_free(fb_mode_set **m)
 
 /* Triplet list of the whole vehicle's K or M. */
 typedef struct trips {
-  size_t n, cap;
+  size_t n;
+  size_t cap_r, cap_c, cap_v; /* one per array: fb_grow updates its own */
   size_t *r, *c;
   double *v;
 } trips;
 
 static int trips_push(trips *t, size_t r, size_t c, double v)
 {
-  if (t->n == t->cap) {
-    size_t cap = t->cap ? 2 * t->cap : 1024;
-    size_t *nr = realloc(t->r, cap * sizeof *nr);
-    if (!nr)
-      return FB_ENOMEM;
-    t->r = nr;
-    size_t *nc = realloc(t->c, cap * sizeof *nc);
-    if (!nc)
-      return FB_ENOMEM;
-    t->c = nc;
-    double *nv = realloc(t->v, cap * sizeof *nv);
-    if (!nv)
-      return FB_ENOMEM;
-    t->v = nv;
-    t->cap = cap;
-  }
+  if (fb_grow((void **)&t->r, &t->cap_r, t->n, sizeof *t->r) ||
+      fb_grow((void **)&t->c, &t->cap_c, t->n, sizeof *t->c) ||
+      fb_grow((void **)&t->v, &t->cap_v, t->n, sizeof *t->v))
+    return FB_ENOMEM;
   t->r[t->n] = r;
   t->c[t->n] = c;
   t->v[t->n++] = v;
