@@ -19,6 +19,10 @@
 extern "C" {
 #endif
 
+/* Called by fb_sim_run after every internal step with the time reached
+ * (e.g. to draw a progress bar); must not call back into the run. */
+typedef void (*fb_sim_progress_fn)(void *ctx, double t, double t_end);
+
 typedef struct fb_sim_opts {
   double t_start;            /* s */
   double t_end;              /* s, > t_start */
@@ -31,6 +35,8 @@ typedef struct fb_sim_opts {
   const double *breakpoints; /* extra breakpoints (borrowed), besides sources' */
   size_t nbreakpoints;
   const double *x0; /* initial state (borrowed), NULL for the graph's */
+  fb_sim_progress_fn progress; /* NULL for none */
+  void *progress_ctx;
 } fb_sim_opts;
 
 /* Fills the defaults stated above (t_end = 1). */

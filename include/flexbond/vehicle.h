@@ -130,6 +130,8 @@ typedef struct fb_scenario {
   fb_mass_kind hull_mass_matrix; /* consistent (default) or lumped */
   double hull_drill_factor;      /* fictitious drilling stiffness factor */
   double hull_damping_ratio;     /* of the first elastic free-free mode (B = beta K) */
+  int hull_modes;                /* 0: full order; N: N free-free modes + static
+                                    correction (fb_fe_hull_reduce) */
 } fb_scenario;
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
@@ -261,6 +263,10 @@ int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd *
  * tolerances, sampling. The result's columns are t then the seven
  * outputs, named and ordered as fb_vehicle_output_name. */
 int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err);
+/* As fb_vehicle_simulate, reporting progress through fn (NULL for none;
+ * see fb_sim_progress_fn). */
+int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                                 void *ctx, fb_result **out, fb_err *err);
 
 /* A mode of the linearised vehicle. */
 typedef struct fb_mode {

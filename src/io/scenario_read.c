@@ -129,11 +129,12 @@ static int sc_generator(const ml_ctx *c, struct fy_node *mesh, fb_hull_mesh_para
 }
 
 /* The optional System 2 sections hull.mesh {generator | deck, density}
- * and hull.fe {mass_matrix, drill_factor, damping_ratio}. */
+ * and hull.fe {mass_matrix, drill_factor, damping_ratio, modes}. */
 static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
 {
   static const char *const mesh_keys[] = {"generator", "deck", "density", NULL};
-  static const char *const fe_keys[] = {"mass_matrix", "drill_factor", "damping_ratio", NULL};
+  static const char *const fe_keys[] = {"mass_matrix", "drill_factor", "damping_ratio",
+                                        "modes", NULL};
   static const char *const masses[] = {"consistent", "lumped", NULL};
   struct fy_node *mesh = ml_get(hull, "mesh", NULL), *fe = ml_get(hull, "fe", NULL);
   if (!mesh && !fe)
@@ -144,7 +145,7 @@ static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
   if (!rc)
     rc = sc_section(c, hull, "fe",
                     "the hull's finite elements {mass_matrix, drill_factor, "
-                    "damping_ratio}",
+                    "damping_ratio, modes}",
                     fe_keys, &fe);
   struct fy_node *density = NULL;
   if (!rc && (deck = ml_get(mesh, "deck", NULL)) && !ml_is_null(deck)) {
@@ -170,6 +171,8 @@ static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
     rc = sc_number(c, fe, "drill_factor", &s->hull_drill_factor);
   if (!rc)
     rc = sc_number(c, fe, "damping_ratio", &s->hull_damping_ratio);
+  if (!rc && ml_get(fe, "modes", NULL))
+    rc = sc_int(c, fe, "modes", 0, 100000, &s->hull_modes);
   s->has_fe_hull = !rc;
   return rc;
 }

@@ -517,6 +517,8 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
       rc = emit_samples(run, run->t_now, err);
     if (rc != FB_OK)
       return rc;
+    if (run->opts->progress)
+      run->opts->progress(run->opts->progress_ctx, run->t_now, run->opts->t_end);
   } while (flag != CV_TSTOP_RETURN);
   return FB_OK;
 }

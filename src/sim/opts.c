@@ -24,6 +24,8 @@ void fb_sim_opts_default(fb_sim_opts *opts)
   opts->breakpoints = NULL;
   opts->nbreakpoints = 0;
   opts->x0 = NULL;
+  opts->progress = NULL;
+  opts->progress_ctx = NULL;
 }
 
 static int check_times(const fb_sim_opts *o, fb_err *err)

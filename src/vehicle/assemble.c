@@ -211,6 +211,12 @@ static void scenario_opts(const fb_scenario *s, fb_sim_opts *o)
 
 int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err)
 {
+  return fb_vehicle_simulate_progress(s, sys, NULL, NULL, out, err);
+}
+
+int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                                 void *ctx, fb_result **out, fb_err *err)
+{
   *out = NULL;
   fb_bg *graph = NULL;
   fb_bd *bd = NULL;
@@ -231,6 +237,8 @@ int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb
   fb_sim_opts o;
   scenario_opts(s, &o);
   o.x0 = x0;
+  o.progress = fn;
+  o.progress_ctx = ctx;
   if (!rc)
     rc = fb_sim_run(bd, &o, out, err);
   free(x0);
