@@ -103,6 +103,12 @@ void fb_bd_aug_pattern(fb_bd *bd, size_t *rows, size_t *cols);
 /* Values at (t, x): P(gamma)[rows[k], cols[k]] += v0[k] + gamma * v1[k]
  * (duplicates are summed). Returns as fb_bd_rhs. */
 int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v1);
+/* unit[r] = 1 where row r of P has the constant coefficient 1 on z_r
+ * (every block's output row except a linear solve's M y = u, and an
+ * integrator fed by its own state): z_r is defined explicitly by the
+ * other unknowns and can be eliminated first; 0 elsewhere. unit has
+ * fb_bd_aug_size entries. */
+void fb_bd_aug_unit_rows(const fb_bd *bd, unsigned char *unit);
 /* Index in z of state i, for i < nstates. */
 size_t fb_bd_state_row(const fb_bd *bd, size_t i);
 /* 1 if every block is linear and time-invariant (P0, P1 are constant). */

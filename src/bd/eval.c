@@ -238,6 +238,28 @@ void fb_bd_aug_pattern(fb_bd *bd, size_t *rows, size_t *cols)
     }
 }
 
+/* Whether the output range of b meets one of its inputs' ranges. */
+static int feeds_itself(const bd_block *b)
+{
+  for (size_t k = 0; k < b->nin; ++k)
+    if (b->ioff[k] < b->ooff + b->odim && b->ooff < b->ioff[k] + b->idim[k])
+      return 1;
+  return 0;
+}
+
+void fb_bd_aug_unit_rows(const fb_bd *bd, unsigned char *unit)
+{
+  memset(unit, 0, bd->nz);
+  for (size_t n = 0; n < bd->nnewton; ++n) {
+    const bd_block *b = &bd->blocks[bd->newton_blocks[n]];
+    if (b->ops == &fb_bd_solve_ops || feeds_itself(b))
+      continue;
+    for (size_t c = 0; c < b->odim; ++c)
+      if (bd->zmap[b->ooff + c] != FB_NONE)
+        unit[bd->zmap[b->ooff + c]] = 1;
+  }
+}
+
 int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v1)
 {
   if (!bd->linear) {

@@ -1,11 +1,23 @@
 /* Augmented sparse Newton solver (see auglin.h). KLU's 64-bit interface
- * (klu_l_*) is used, like src/core/lu.c. */
+ * (klu_l_*) is used, like src/core/lu.c.
+ *
+ * Notation: P is the augmented matrix, row-compressed with duplicates
+ * merged. E are the eliminated unknowns in elimination order, K the kept
+ * ones. For e in E the row of P reads z_e + sum_j P(e,j) z_j = r_e, so
+ *   z_e = y_e + X(e,:) z_K,  X(e,k) = -P(e,k) - sum_{j in E} P(e,j) X(j,k),
+ *                            y_e    = r_e - sum_{j in E} P(e,j) y_j,
+ * and a kept row i becomes S(i,:) z_K = r_i - sum_{j in E} P(i,j) y_j with
+ *   S(i,k) = P(i,k) + sum_{j in E} P(i,j) X(j,k).
+ * S is stored by rows, which KLU reads as the columns of S^T: it factorises
+ * S^T and solves with the transpose (klu_l_tsolve). */
 #include "sim/auglin.h"
 
 #include <float.h>
 #include <klu.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/util.h"
 
 /* After a refactorisation (which reuses the previous pivot order) a
  * reciprocal pivot ratio below this means the old pivots have gone bad,
@@ -19,20 +31,44 @@
  * working precision and the solve would return noise. */
 #define SINGULAR_RCOND DBL_EPSILON
 
+#define NONE ((size_t)-1)
+
+/* A row-compressed sparse pattern with values. */
+typedef struct csr {
+  size_t n, cap;
+  size_t *ptr; /* n + 1 */
+  size_t *col;
+  double *val;
+} csr;
+
 struct fb_auglin {
   size_t nz, nnz, nstates;
-  SuiteSparse_long *colptr; /* CSC pattern of P, duplicates merged */
-  SuiteSparse_long *rowidx;
-  double *vals; /* CSC values of P(gamma) */
-  size_t *slot; /* triplet k -> index in rowidx/vals */
+  csr p;        /* P(gamma), columns sorted within a row */
+  size_t *slot; /* triplet k -> entry of p */
+  size_t *elim; /* ne unknowns in elimination order */
+  size_t ne, nk;
+  size_t *kidx; /* z -> index in K, or NONE if eliminated */
+  csr x;        /* X: row r is X(elim[r], :) over K */
+  size_t *xrow; /* z -> row of X, or NONE */
+  csr s;        /* S over K */
+  double *acc;  /* nk accumulator, kept zero between uses */
+  double *y;    /* nz: y over E, then z */
+  double *rhs;  /* nk */
   size_t *state_rows;
-  double *work; /* right-hand side / solution over z (nz) */
+  SuiteSparse_long *sp, *si; /* S's pattern in KLU's index type */
   klu_l_common common;
   klu_l_symbolic *symbolic;
   klu_l_numeric *numeric;
-  int factored; /* numeric holds a valid LU of vals */
+  int factored; /* numeric holds a valid LU of S */
   long nfactor;
 };
+
+static void csr_free(csr *m)
+{
+  free(m->ptr);
+  free(m->col);
+  free(m->val);
+}
 
 void fb_auglin_free(fb_auglin **al)
 {
@@ -43,12 +79,19 @@ void fb_auglin_free(fb_auglin **al)
     klu_l_free_numeric(&a->numeric, &a->common);
   if (a->symbolic)
     klu_l_free_symbolic(&a->symbolic, &a->common);
-  free(a->colptr);
-  free(a->rowidx);
-  free(a->vals);
+  csr_free(&a->p);
+  csr_free(&a->x);
+  csr_free(&a->s);
   free(a->slot);
+  free(a->elim);
+  free(a->kidx);
+  free(a->xrow);
+  free(a->acc);
+  free(a->y);
+  free(a->rhs);
   free(a->state_rows);
-  free(a->work);
+  free(a->sp);
+  free(a->si);
   free(a);
   *al = NULL;
 }
@@ -99,54 +142,212 @@ static int sort_by_key(size_t nnz, const size_t *in, const size_t *key, size_t n
   return FB_OK;
 }
 
-/* Builds the CSC pattern: the triplets sorted by (column, row) with two
- * stable counting sorts (row, then column), then equal neighbours merged
- * into one slot. */
-static int build_csc(fb_auglin *a, const size_t *rows, const size_t *cols)
+/* P's row-compressed pattern: the triplets sorted by (row, column) with
+ * two stable counting sorts (column, then row), equal neighbours merged
+ * into one entry. */
+static int build_p(fb_auglin *a, const size_t *rows, const size_t *cols)
 {
-  const size_t nnz = a->nnz;
-  size_t *ident = malloc((nnz ? nnz : 1) * sizeof *ident);
-  size_t *byrow = malloc((nnz ? nnz : 1) * sizeof *byrow);
-  size_t *order = malloc((nnz ? nnz : 1) * sizeof *order);
-  int rc = (ident && byrow && order) ? FB_OK : FB_ENOMEM;
+  const size_t nnz = a->nnz, n1 = nnz ? nnz : 1;
+  size_t *ident = malloc(n1 * sizeof *ident), *bycol = malloc(n1 * sizeof *bycol);
+  size_t *order = malloc(n1 * sizeof *order);
+  a->p.n = a->nz;
+  a->p.ptr = calloc(a->nz + 1, sizeof *a->p.ptr);
+  a->p.col = malloc(n1 * sizeof *a->p.col);
+  a->p.val = malloc(n1 * sizeof *a->p.val);
+  int rc = ident && bycol && order && a->p.ptr && a->p.col && a->p.val ? FB_OK : FB_ENOMEM;
   for (size_t k = 0; rc == FB_OK && k < nnz; ++k)
     ident[k] = k;
   if (rc == FB_OK)
-    rc = sort_by_key(nnz, ident, rows, a->nz, byrow);
+    rc = sort_by_key(nnz, ident, cols, a->nz, bycol);
   if (rc == FB_OK)
-    rc = sort_by_key(nnz, byrow, cols, a->nz, order);
+    rc = sort_by_key(nnz, bycol, rows, a->nz, order);
   if (rc == FB_OK) {
-    size_t nslots = 0;
-    for (size_t p = 0; p < nnz; ++p) {
-      const size_t k = order[p];
-      const size_t prev = p ? order[p - 1] : 0;
-      if (p == 0 || rows[k] != rows[prev] || cols[k] != cols[prev]) {
-        a->rowidx[nslots] = (SuiteSparse_long)rows[k];
-        ++a->colptr[cols[k] + 1];
-        ++nslots;
+    size_t nentries = 0;
+    for (size_t q = 0; q < nnz; ++q) {
+      const size_t k = order[q], prev = q ? order[q - 1] : 0;
+      if (q == 0 || rows[k] != rows[prev] || cols[k] != cols[prev]) {
+        a->p.col[nentries++] = cols[k];
+        ++a->p.ptr[rows[k] + 1];
       }
-      a->slot[k] = nslots - 1;
+      a->slot[k] = nentries - 1;
     }
-    for (size_t j = 0; j < a->nz; ++j)
-      a->colptr[j + 1] += a->colptr[j];
+    for (size_t i = 0; i < a->nz; ++i)
+      a->p.ptr[i + 1] += a->p.ptr[i];
   }
   free(ident);
-  free(byrow);
+  free(bycol);
   free(order);
   return rc;
 }
 
-/* KLU's symbolic analysis: BTF, then COLAMD rather than KLU's default AMD
- * on A + A'. The augmented matrix is far from symmetric in pattern (block
- * rows B dy - A du = 0), and COLAMD orders the unsymmetric pattern itself:
- * on System 2's finite-element hull (9216 unknowns) its factorisations
- * fill in far less, 7 times faster over a run; small diagrams are
- * unaffected (System 1: 16.1 vs 18.1 ms). */
+/* Whether row r holds its diagonal (a promised unit row without one
+ * cannot be eliminated by its own row). */
+static int has_diagonal(const csr *p, size_t r)
+{
+  for (size_t q = p->ptr[r]; q < p->ptr[r + 1]; ++q)
+    if (p->col[q] == r)
+      return 1;
+  return 0;
+}
+
+/* Depth-first search over the dependencies of the unit rows (row e
+ * depends on the unknowns of its off-diagonal entries). Post-order is the
+ * elimination order: every dependency of e is eliminated before e. An
+ * edge back to an unknown still on the stack closes a cycle, and that
+ * unknown is kept instead. Unknowns are visited in index order, states
+ * first (bd numbers them first), so cycles through the dynamics tend to
+ * keep a state, whose value then needs no back-substitution. */
+static int plan(fb_auglin *a, const unsigned char *unit)
+{
+  const size_t nz = a->nz;
+  enum { WHITE, GRAY, BLACK };
+  unsigned char *color = calloc(nz, 1), *keep = calloc(nz, 1);
+  size_t *stack = malloc(nz * sizeof *stack), *next = malloc(nz * sizeof *next);
+  a->elim = malloc(nz * sizeof *a->elim);
+  a->kidx = malloc(nz * sizeof *a->kidx);
+  a->xrow = malloc(nz * sizeof *a->xrow);
+  int rc = color && keep && stack && next && a->elim && a->kidx && a->xrow ? FB_OK : FB_ENOMEM;
+  for (size_t i = 0; rc == FB_OK && i < nz; ++i)
+    keep[i] = !(unit && unit[i] && has_diagonal(&a->p, i));
+  for (size_t root = 0; rc == FB_OK && root < nz; ++root) {
+    if (keep[root] || color[root] != WHITE)
+      continue;
+    size_t top = 0;
+    stack[top++] = root;
+    color[root] = GRAY;
+    next[root] = a->p.ptr[root];
+    while (top) {
+      const size_t e = stack[top - 1];
+      if (next[e] == a->p.ptr[e + 1]) {
+        color[e] = BLACK;
+        --top;
+        if (!keep[e])
+          a->elim[a->ne++] = e;
+        continue;
+      }
+      const size_t j = a->p.col[next[e]++];
+      if (j == e || keep[j])
+        continue;
+      if (color[j] == GRAY) {
+        keep[j] = 1;
+      } else if (color[j] == WHITE) {
+        color[j] = GRAY;
+        next[j] = a->p.ptr[j];
+        stack[top++] = j;
+      }
+    }
+  }
+  for (size_t i = 0; rc == FB_OK && i < nz; ++i) {
+    a->kidx[i] = keep[i] ? a->nk++ : NONE;
+    a->xrow[i] = NONE;
+  }
+  for (size_t r = 0; rc == FB_OK && r < a->ne; ++r)
+    a->xrow[a->elim[r]] = r;
+  free(color);
+  free(keep);
+  free(stack);
+  free(next);
+  return rc;
+}
+
+/* Rows are built one at a time: ptr has room for all rows, row m->n is
+ * open between its entries ptr[n] .. ptr[n + 1]. */
+static void row_open(csr *m)
+{
+  m->ptr[m->n + 1] = m->ptr[m->n];
+}
+
+/* Appends column k to the open row unless mark[k] == stamp already. */
+static int row_add(csr *m, size_t *mark, size_t stamp, size_t k)
+{
+  if (mark[k] == stamp)
+    return FB_OK;
+  mark[k] = stamp;
+  const size_t at = m->ptr[m->n + 1];
+  if (fb_grow((void **)&m->col, &m->cap, at, sizeof *m->col) != FB_OK)
+    return FB_ENOMEM;
+  m->col[at] = k;
+  m->ptr[m->n + 1] = at + 1;
+  return FB_OK;
+}
+
+/* Opens a row of m with the pattern of sum_c P(row, c) u_c, where u_c is
+ * the unit vector at kidx[c] for a kept c and X(c, :) for an eliminated
+ * one; the entry c == row is left out when skip_self. */
+static int combine_pattern(const fb_auglin *a, size_t row, int skip_self, csr *m, size_t *mark,
+                           size_t stamp)
+{
+  row_open(m);
+  int rc = FB_OK;
+  for (size_t q = a->p.ptr[row]; q < a->p.ptr[row + 1] && rc == FB_OK; ++q) {
+    const size_t c = a->p.col[q];
+    if (skip_self && c == row)
+      continue;
+    if (a->kidx[c] != NONE) {
+      rc = row_add(m, mark, stamp, a->kidx[c]);
+    } else {
+      const size_t r = a->xrow[c];
+      for (size_t t = a->x.ptr[r]; t < a->x.ptr[r + 1] && rc == FB_OK; ++t)
+        rc = row_add(m, mark, stamp, a->x.col[t]);
+    }
+  }
+  m->n++;
+  return rc;
+}
+
+/* The patterns of X (a row per eliminated unknown, in order) and S (a row
+ * per kept unknown, its diagonal always stored). */
+static int symbolic(fb_auglin *a)
+{
+  size_t *mark = malloc((a->nk ? a->nk : 1) * sizeof *mark);
+  a->x.ptr = calloc(a->ne + 2, sizeof *a->x.ptr);
+  a->s.ptr = calloc(a->nk + 2, sizeof *a->s.ptr);
+  int rc = mark && a->x.ptr && a->s.ptr ? FB_OK : FB_ENOMEM;
+  for (size_t k = 0; rc == FB_OK && k < a->nk; ++k)
+    mark[k] = NONE;
+  for (size_t r = 0; rc == FB_OK && r < a->ne; ++r)
+    rc = combine_pattern(a, a->elim[r], 1, &a->x, mark, r);
+  for (size_t i = 0; rc == FB_OK && i < a->nz; ++i) {
+    const size_t k = a->kidx[i];
+    if (k == NONE)
+      continue;
+    rc = combine_pattern(a, i, 0, &a->s, mark, a->ne + k);
+    if (rc == FB_OK) { /* reopen row k to add the diagonal */
+      a->s.n--;
+      rc = row_add(&a->s, mark, a->ne + k, k);
+      a->s.n++;
+    }
+  }
+  const size_t xnnz = a->x.ptr[a->ne], snnz = a->s.ptr[a->nk];
+  if (rc == FB_OK) {
+    a->x.val = malloc((xnnz ? xnnz : 1) * sizeof *a->x.val);
+    a->s.val = malloc((snnz ? snnz : 1) * sizeof *a->s.val);
+    a->sp = malloc((a->nk + 1) * sizeof *a->sp);
+    a->si = malloc((snnz ? snnz : 1) * sizeof *a->si);
+    a->acc = calloc(a->nk ? a->nk : 1, sizeof *a->acc);
+    a->y = malloc(a->nz * sizeof *a->y);
+    a->rhs = malloc((a->nk ? a->nk : 1) * sizeof *a->rhs);
+    if (!a->x.val || !a->s.val || !a->sp || !a->si || !a->acc || !a->y || !a->rhs)
+      rc = FB_ENOMEM;
+  }
+  for (size_t k = 0; rc == FB_OK && k <= a->nk; ++k)
+    a->sp[k] = (SuiteSparse_long)a->s.ptr[k];
+  for (size_t t = 0; rc == FB_OK && t < snnz; ++t)
+    a->si[t] = (SuiteSparse_long)a->s.col[t];
+  free(mark);
+  return rc;
+}
+
+/* KLU's symbolic analysis of S^T: BTF, then AMD on S + S^T. Once the
+ * explicitly defined unknowns are eliminated, S has the nearly symmetric
+ * pattern of the dynamics (M + gamma B + gamma^2 K for a structure), for
+ * which AMD is the natural ordering. */
 static int analyze(fb_auglin *a, fb_err *err)
 {
   klu_l_defaults(&a->common);
-  a->common.ordering = 1; /* COLAMD */
-  a->symbolic = klu_l_analyze((SuiteSparse_long)a->nz, a->colptr, a->rowidx, &a->common);
+  if (a->nk == 0)
+    return FB_OK;
+  a->symbolic = klu_l_analyze((SuiteSparse_long)a->nk, a->sp, a->si, &a->common);
   if (a->symbolic)
     return FB_OK;
   if (a->common.status == KLU_OUT_OF_MEMORY)
@@ -156,7 +357,8 @@ static int analyze(fb_auglin *a, fb_err *err)
 }
 
 int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
-                  const size_t *state_rows, size_t nstates, fb_auglin **out, fb_err *err)
+                  const unsigned char *unit, const size_t *state_rows, size_t nstates,
+                  fb_auglin **out, fb_err *err)
 {
   *out = NULL;
   int rc = check_pattern(nz, nnz, rows, cols, state_rows, nstates, err);
@@ -168,14 +370,14 @@ int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
   a->nz = nz;
   a->nnz = nnz;
   a->nstates = nstates;
-  a->colptr = calloc(nz + 1, sizeof *a->colptr);
-  a->rowidx = malloc((nnz ? nnz : 1) * sizeof *a->rowidx);
-  a->vals = malloc((nnz ? nnz : 1) * sizeof *a->vals);
   a->slot = malloc((nnz ? nnz : 1) * sizeof *a->slot);
   a->state_rows = malloc((nstates ? nstates : 1) * sizeof *a->state_rows);
-  a->work = malloc(nz * sizeof *a->work);
-  if (!a->colptr || !a->rowidx || !a->vals || !a->slot || !a->state_rows || !a->work ||
-      build_csc(a, rows, cols) != FB_OK) {
+  rc = a->slot && a->state_rows ? build_p(a, rows, cols) : FB_ENOMEM;
+  if (rc == FB_OK)
+    rc = plan(a, unit);
+  if (rc == FB_OK)
+    rc = symbolic(a);
+  if (rc != FB_OK) {
     fb_auglin_free(&a);
     return fb_err_set(err, FB_ENOMEM, "out of memory creating the Newton solver");
   }
@@ -190,13 +392,41 @@ int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
   return FB_OK;
 }
 
-/* vals = P(gamma); duplicates accumulate into their shared slot. */
-static void fill_values(fb_auglin *a, double gamma, const double *v0, const double *v1)
+/* Values of the open pattern row `at` of m: sign * sum_c P(row, c) u_c
+ * (see combine_pattern), through the zeroed accumulator. */
+static void combine_values(fb_auglin *a, size_t row, int skip_self, double sign, csr *m,
+                           size_t at)
 {
-  const size_t nslots = (size_t)a->colptr[a->nz];
-  memset(a->vals, 0, (nslots ? nslots : 1) * sizeof *a->vals);
+  for (size_t q = a->p.ptr[row]; q < a->p.ptr[row + 1]; ++q) {
+    const size_t c = a->p.col[q];
+    const double v = a->p.val[q];
+    if (skip_self && c == row)
+      continue;
+    if (a->kidx[c] != NONE) {
+      a->acc[a->kidx[c]] += v;
+    } else {
+      const size_t r = a->xrow[c];
+      for (size_t t = a->x.ptr[r]; t < a->x.ptr[r + 1]; ++t)
+        a->acc[a->x.col[t]] += v * a->x.val[t];
+    }
+  }
+  for (size_t t = m->ptr[at]; t < m->ptr[at + 1]; ++t) {
+    m->val[t] = sign * a->acc[m->col[t]];
+    a->acc[m->col[t]] = 0;
+  }
+}
+
+/* P(gamma), then X and S from it. */
+static void condense(fb_auglin *a, double gamma, const double *v0, const double *v1)
+{
+  memset(a->p.val, 0, (a->p.ptr[a->nz] ? a->p.ptr[a->nz] : 1) * sizeof *a->p.val);
   for (size_t k = 0; k < a->nnz; ++k)
-    a->vals[a->slot[k]] += v0[k] + gamma * v1[k];
+    a->p.val[a->slot[k]] += v0[k] + gamma * v1[k];
+  for (size_t r = 0; r < a->ne; ++r)
+    combine_values(a, a->elim[r], 1, -1.0, &a->x, r);
+  for (size_t i = 0; i < a->nz; ++i)
+    if (a->kidx[i] != NONE)
+      combine_values(a, i, 0, 1.0, &a->s, a->kidx[i]);
 }
 
 /* Reuses the pivot order of the last full factorisation. Returns 1 if the
@@ -205,7 +435,7 @@ static void fill_values(fb_auglin *a, double gamma, const double *v0, const doub
 static int try_refactor(fb_auglin *a)
 {
   ++a->nfactor;
-  if (!klu_l_refactor(a->colptr, a->rowidx, a->vals, a->symbolic, a->numeric, &a->common) ||
+  if (!klu_l_refactor(a->sp, a->si, a->s.val, a->symbolic, a->numeric, &a->common) ||
       a->common.status != KLU_OK)
     return 0;
   return klu_l_rcond(a->symbolic, a->numeric, &a->common) &&
@@ -218,12 +448,12 @@ static int full_factor(fb_auglin *a, double gamma, fb_err *err)
   if (a->numeric)
     klu_l_free_numeric(&a->numeric, &a->common);
   ++a->nfactor;
-  a->numeric = klu_l_factor(a->colptr, a->rowidx, a->vals, a->symbolic, &a->common);
+  a->numeric = klu_l_factor(a->sp, a->si, a->s.val, a->symbolic, &a->common);
   if (a->common.status == KLU_SINGULAR)
-    return fb_err_set(
-        err, FB_ESOLVER,
-        "Newton matrix P(gamma = %g) is singular (no pivot for unknown %ld of %zu)", gamma,
-        (long)a->common.singular_col, a->nz);
+    return fb_err_set(err, FB_ESOLVER,
+                      "Newton matrix P(gamma = %g) is singular (no pivot for kept unknown %ld "
+                      "of %zu)",
+                      gamma, (long)a->common.singular_col, a->nk);
   if (!a->numeric && a->common.status == KLU_OUT_OF_MEMORY)
     return fb_err_set(err, FB_ENOMEM,
                       "out of memory in KLU factorisation of the Newton matrix");
@@ -242,8 +472,8 @@ static int full_factor(fb_auglin *a, double gamma, fb_err *err)
 int fb_auglin_setup(fb_auglin *al, double gamma, const double *v0, const double *v1,
                     fb_err *err)
 {
-  fill_values(al, gamma, v0, v1);
-  const int reuse = al->factored && try_refactor(al);
+  condense(al, gamma, v0, v1);
+  const int reuse = al->nk == 0 || (al->factored && try_refactor(al));
   al->factored = 0;
   if (!reuse) {
     const int rc = full_factor(al, gamma, err);
@@ -254,23 +484,68 @@ int fb_auglin_setup(fb_auglin *al, double gamma, const double *v0, const double 
   return FB_OK;
 }
 
+/* y over E by forward substitution, then the kept right-hand side. */
+static void forward(fb_auglin *a)
+{
+  for (size_t r = 0; r < a->ne; ++r) {
+    const size_t e = a->elim[r];
+    double ye = a->y[e];
+    for (size_t q = a->p.ptr[e]; q < a->p.ptr[e + 1]; ++q) {
+      const size_t c = a->p.col[q];
+      if (c != e && a->kidx[c] == NONE)
+        ye -= a->p.val[q] * a->y[c];
+    }
+    a->y[e] = ye;
+  }
+  for (size_t i = 0; i < a->nz; ++i) {
+    if (a->kidx[i] == NONE)
+      continue;
+    double ri = a->y[i];
+    for (size_t q = a->p.ptr[i]; q < a->p.ptr[i + 1]; ++q)
+      if (a->kidx[a->p.col[q]] == NONE)
+        ri -= a->p.val[q] * a->y[a->p.col[q]];
+    a->rhs[a->kidx[i]] = ri;
+  }
+}
+
 int fb_auglin_solve(fb_auglin *al, const double *b, double *x, fb_err *err)
 {
   if (!al->factored)
     return fb_err_set(err, FB_EINVAL, "Newton solve without a valid factorisation");
-  memset(al->work, 0, al->nz * sizeof *al->work);
+  memset(al->y, 0, al->nz * sizeof *al->y);
   for (size_t i = 0; i < al->nstates; ++i)
-    al->work[al->state_rows[i]] = b[i];
-  if (!klu_l_solve(al->symbolic, al->numeric, (SuiteSparse_long)al->nz, 1, al->work,
-                   &al->common))
+    al->y[al->state_rows[i]] = b[i];
+  forward(al);
+  if (al->nk && !klu_l_tsolve(al->symbolic, al->numeric, (SuiteSparse_long)al->nk, 1, al->rhs,
+                              &al->common))
     return fb_err_set(err, FB_ESOLVER, "KLU solve failed (status %ld)",
                       (long)al->common.status);
-  for (size_t i = 0; i < al->nstates; ++i)
-    x[i] = al->work[al->state_rows[i]];
+  for (size_t i = 0; i < al->nstates; ++i) {
+    const size_t z = al->state_rows[i];
+    if (al->kidx[z] != NONE) {
+      x[i] = al->rhs[al->kidx[z]];
+      continue;
+    }
+    const size_t r = al->xrow[z];
+    double v = al->y[z];
+    for (size_t t = al->x.ptr[r]; t < al->x.ptr[r + 1]; ++t)
+      v += al->x.val[t] * al->rhs[al->x.col[t]];
+    x[i] = v;
+  }
   return FB_OK;
 }
 
 long fb_auglin_nfactorizations(const fb_auglin *al)
 {
   return al->nfactor;
+}
+
+size_t fb_auglin_nkept(const fb_auglin *al)
+{
+  return al->nk;
+}
+
+size_t fb_auglin_kept_nnz(const fb_auglin *al)
+{
+  return al->s.ptr[al->nk];
 }

@@ -7,8 +7,18 @@
  * solve P(gamma) z = r with r = b at the state rows and 0 elsewhere, and
  * read dx = z at the state rows (block elimination of the signal unknowns;
  * e.g. Golub & Van Loan, "Matrix Computations", 4th ed., sec. 3.2.10).
- * P(gamma) is factorised with KLU (Davis & Palamadai Natarajan, ACM TOMS
- * 37(3), 2010): the ordering once, the numeric LU at each setup. */
+ *
+ * Most rows of P define one unknown explicitly: a unit coefficient on
+ * z_e and the rest on other unknowns (a gain, a sum, an integrator's
+ * z_x - gamma z_x'). Those unknowns are eliminated first, in an order
+ * where each row refers only to unknowns already eliminated or kept
+ * (a depth-first search keeps one unknown per dependency cycle). The
+ * kept unknowns (mass-matrix solves, one per cycle through the dynamics)
+ * carry the Schur complement S = P_KK - P_KE P_EE^-1 P_EK, which KLU
+ * factorises (Davis & Palamadai Natarajan, ACM TOMS 37(3), 2010). For a
+ * finite-element structure the kept unknowns are the nodal velocities
+ * and S = M + gamma B + gamma^2 K + (attached parts): the sparse Newton
+ * matrix of structural dynamics, without any inverse of M. */
 #ifndef FLEXBOND_SIM_AUGLIN_H
 #define FLEXBOND_SIM_AUGLIN_H
 
@@ -20,16 +30,21 @@ typedef struct fb_auglin fb_auglin;
 
 /* Creates the solver for the nz x nz pattern of nnz triplets (rows[k],
  * cols[k]) (duplicates allowed: their values are summed), with state i at
- * row and column state_rows[i], i < nstates. Converts the pattern to CSC
- * and runs KLU's symbolic analysis once. FB_EINVAL on an index out of
- * range or a repeated state row. */
+ * row and column state_rows[i], i < nstates. unit[r] != 0 promises that
+ * row r has the constant coefficient 1 on z_r in every setup (the
+ * triplets at (r, r) sum to v0 = 1, v1 = 0): such unknowns may be
+ * eliminated; unit may be NULL (none). Runs the elimination order and
+ * KLU's symbolic analysis once. FB_EINVAL on an index out of range or a
+ * repeated state row. */
 int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
-                  const size_t *state_rows, size_t nstates, fb_auglin **out, fb_err *err);
+                  const unsigned char *unit, const size_t *state_rows, size_t nstates,
+                  fb_auglin **out, fb_err *err);
 void fb_auglin_free(fb_auglin **al);
 
-/* Forms P(gamma) from the triplet values v0[k] + gamma * v1[k] and
- * factorises it. FB_ESOLVER if it is singular (to working precision): the
- * integrator may retry with another gamma. FB_ENOMEM is fatal. */
+/* Forms P(gamma) from the triplet values v0[k] + gamma * v1[k], condenses
+ * it and factorises the kept part. FB_ESOLVER if it is singular (to
+ * working precision): the integrator may retry with another gamma.
+ * FB_ENOMEM is fatal. */
 int fb_auglin_setup(fb_auglin *al, double gamma, const double *v0, const double *v1,
                     fb_err *err);
 
@@ -39,5 +54,10 @@ int fb_auglin_solve(fb_auglin *al, const double *b, double *x, fb_err *err);
 
 /* Numeric LU factorisations done so far (full and refactorisations). */
 long fb_auglin_nfactorizations(const fb_auglin *al);
+
+/* Unknowns kept after the elimination (the order of the factorised
+ * matrix), and that matrix's stored entries. */
+size_t fb_auglin_nkept(const fb_auglin *al);
+size_t fb_auglin_kept_nnz(const fb_auglin *al);
 
 #endif
