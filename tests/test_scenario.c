@@ -324,6 +324,10 @@ static void set_lumped(fb_scenario *s)
 {
   s->payload = FB_PAYLOAD_LUMPED;
 }
+static void set_three_modes(fb_scenario *s)
+{
+  s->hull_modes = 3;
+}
 static void set_flat_bump(fb_scenario *s)
 {
   s->bump_height = 0;
@@ -345,6 +349,7 @@ static void test_check(void)
   expect_check(s, set_rr_ahead, "road.bump.first_contact: the RR wheel would meet the bump");
   expect_check(s, set_lumped_light, "load.payload: a lumped payload needs");
   expect_check(s, set_many_samples, "simulation.sample_rate:");
+  expect_check(s, set_three_modes, "hull.fe.modes: 0 (full order) or at least the 6 rigid");
   /* Allowed: the lumped payload of the data sheet (7958.28 kg), a flat bump. */
   fb_scenario *c = NULL;
   CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);

@@ -130,6 +130,31 @@ int fb_fem_submatrix(const fb_mat *a, const size_t *keep, size_t nkeep, fb_mat *
 int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_limit,
                  double *freq_hz, double *vectors, fb_err *err);
 
+/* Frequency (Hz) at or below which a computed mode of (K, M) is a
+ * rigid-body mode. Rigid-body modes come out as round-off, ~sqrt(eps)
+ * times the model's own frequency scale sqrt(trace K / trace M) / 2 pi
+ * (~1e4 Hz for steel shells, so ~1e-4 Hz); an elastic mode is above 1e-6
+ * of that scale (0.01 Hz there). */
+double fb_fem_rigid_threshold_hz(const fb_mat *K, const fb_mat *M);
+
+/* Free-interface modal reduction with residual flexibility (MacNeal,
+ * "A hybrid method of component mode synthesis", Computers & Structures
+ * 1, 1971; Craig & Kurdila, "Fundamentals of Structural Dynamics", 2nd
+ * ed., sec. 18.3): the basis spans the nmodes lowest free-free modes of
+ * K v = w^2 M v (rigid-body modes included) and, for each of the nf
+ * force patterns F (n x nf, column-major), the elastic static response
+ * with inertia relief that those modes miss. A Rayleigh-Ritz solve on that
+ * subspace makes the basis M-orthonormal and K-orthogonal:
+ * T' M T = I, T' K T = diag(lambda), lambda ascending (rad/s)^2, with the
+ * nrigid rigid-body modes' lambda set to exactly 0. The retained modes
+ * come out unchanged; a static load in the span of F is reproduced
+ * exactly. Patterns that add nothing new (dependent within 1e-8) are
+ * dropped. *T (n x *nbasis, column-major) and *lambda (*nbasis) are new.
+ * K symmetric positive semi-definite, M symmetric positive definite. */
+int fb_fem_reduce_free(const fb_mat *K, const fb_mat *M, size_t nmodes, const double *F,
+                       size_t nf, double **T, double **lambda, size_t *nbasis, size_t *nrigid,
+                       fb_err *err);
+
 /* ---- Mesh exchange. */
 
 /* Abaqus/CalculiX input deck: *NODE, *ELEMENT TYPE=S3 and TYPE=S4,

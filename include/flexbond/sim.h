@@ -34,7 +34,7 @@ typedef struct fb_sim_opts {
   long max_steps;            /* internal steps allowed in all (default 10^7) */
   const double *breakpoints; /* extra breakpoints (borrowed), besides sources' */
   size_t nbreakpoints;
-  const double *x0; /* initial state (borrowed), NULL for the graph's */
+  const double *x0;            /* initial state (borrowed), NULL for the graph's */
   fb_sim_progress_fn progress; /* NULL for none */
   void *progress_ctx;
 } fb_sim_opts;
@@ -74,15 +74,16 @@ const double *fb_result_row(const fb_result *r, size_t k);
 long fb_result_find(const fb_result *r, const char *name);
 const fb_sim_stats *fb_result_stats(const fb_result *r);
 void fb_result_free(fb_result **r);
-
 /* Static equilibrium of a mechanical diagram under its inputs at time t,
- * reached from x0: every momentum (I state) zero, displacements (C
- * states) q = q0 + dF_q/dp * P with P chosen so that every momentum rate
- * vanishes, probe integrals unchanged. Starting from x0 = 0 this is the
- * rest state the paper's settling converges to (statically indeterminate
- * self-stress stays zero). Linear diagrams are solved exactly (dense LU
- * of the n_p x n_p matrix dF_p/dq dF_q/dp); FB_ESOLVER if singular (a
- * free rigid-body mode) or if the residual stays large. */
+ * reached from x0 by pseudo-transient continuation (implicit Euler steps
+ * of growing length, src/sim/static.c): every momentum rate and
+ * displacement rate zero, probe integrals unchanged. The equilibrium is
+ * the one the damped dynamics settle to from x0: free rigid-body motions
+ * no force drives stay put, and from x0 = 0 a statically indeterminate
+ * support keeps zero self-stress (as the paper's settling from rest).
+ * Sparse throughout (one factorisation of the Newton matrix per step).
+ * FB_ESOLVER if it does not converge (a mass on no spring under a force,
+ * an undamped system, or no equilibrium). */
 int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_err *err);
 
 #ifdef __cplusplus

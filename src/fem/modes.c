@@ -321,3 +321,13 @@ int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_l
   free(lambda);
   return rc;
 }
+
+double fb_fem_rigid_threshold_hz(const fb_mat *K, const fb_mat *M)
+{
+  double tk = 0.0, tm = 0.0;
+  for (size_t i = 0; i < fb_mat_nrows(K); ++i) {
+    tk += fb_mat_get(K, i, i);
+    tm += fb_mat_get(M, i, i);
+  }
+  return 1e-6 * sqrt(tk / tm) / 6.28318530717958647692;
+}

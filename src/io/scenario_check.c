@@ -214,6 +214,11 @@ static int sc_check_fe_hull(const fb_scenario *s, fb_err *err)
   if (!rc && !(s->hull_damping_ratio < 1))
     rc = fb_err_set(err, FB_EINVAL, "hull.fe.damping_ratio: must be < 1 (got %.10g)",
                     s->hull_damping_ratio);
+  /* A reduced hull needs its six rigid-body modes at least. */
+  if (!rc && s->hull_modes != 0 && s->hull_modes < 6)
+    rc = fb_err_set(err, FB_EINVAL,
+                    "hull.fe.modes: 0 (full order) or at least the 6 rigid-body modes (got %d)",
+                    s->hull_modes);
   if (rc || s->hull_deck)
     return rc;
   const sc_value gen[] = {{"width", g->width, SC_POSITIVE, "m"},

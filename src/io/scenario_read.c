@@ -133,8 +133,8 @@ static int sc_generator(const ml_ctx *c, struct fy_node *mesh, fb_hull_mesh_para
 static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
 {
   static const char *const mesh_keys[] = {"generator", "deck", "density", NULL};
-  static const char *const fe_keys[] = {"mass_matrix", "drill_factor", "damping_ratio",
-                                        "modes", NULL};
+  static const char *const fe_keys[] = {"mass_matrix", "drill_factor", "damping_ratio", "modes",
+                                        NULL};
   static const char *const masses[] = {"consistent", "lumped", NULL};
   struct fy_node *mesh = ml_get(hull, "mesh", NULL), *fe = ml_get(hull, "fe", NULL);
   if (!mesh && !fe)

@@ -392,6 +392,31 @@ int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
   return FB_OK;
 }
 
+int fb_auglin_new_bd(fb_bd *bd, fb_auglin **out, fb_err *err)
+{
+  *out = NULL;
+  const size_t nz = fb_bd_aug_size(bd), nnz = fb_bd_aug_nnz(bd), n = fb_bd_nstates(bd);
+  size_t *rows = malloc((nnz ? nnz : 1) * sizeof *rows);
+  size_t *cols = malloc((nnz ? nnz : 1) * sizeof *cols);
+  size_t *state_rows = malloc((n ? n : 1) * sizeof *state_rows);
+  unsigned char *unit = malloc(nz ? nz : 1);
+  int rc = rows && cols && state_rows && unit
+               ? FB_OK
+               : fb_err_set(err, FB_ENOMEM, "out of memory for the augmented Newton matrix");
+  if (rc == FB_OK) {
+    fb_bd_aug_pattern(bd, rows, cols);
+    fb_bd_aug_unit_rows(bd, unit);
+    for (size_t i = 0; i < n; ++i)
+      state_rows[i] = fb_bd_state_row(bd, i);
+    rc = fb_auglin_new(nz, nnz, rows, cols, unit, state_rows, n, out, err);
+  }
+  free(rows);
+  free(cols);
+  free(state_rows);
+  free(unit);
+  return rc;
+}
+
 /* Values of the open pattern row `at` of m: sign * sum_c P(row, c) u_c
  * (see combine_pattern), through the zeroed accumulator. */
 static void combine_values(fb_auglin *a, size_t row, int skip_self, double sign, csr *m,

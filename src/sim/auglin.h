@@ -24,6 +24,7 @@
 
 #include <stddef.h>
 
+#include "flexbond/bd.h"
 #include "flexbond/error.h"
 
 typedef struct fb_auglin fb_auglin;
@@ -40,6 +41,9 @@ int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
                   const unsigned char *unit, const size_t *state_rows, size_t nstates,
                   fb_auglin **out, fb_err *err);
 void fb_auglin_free(fb_auglin **al);
+/* The solver for bd's augmented matrix (fb_bd_aug_pattern, unit rows
+ * fb_bd_aug_unit_rows, states at fb_bd_state_row). */
+int fb_auglin_new_bd(fb_bd *bd, fb_auglin **out, fb_err *err);
 
 /* Forms P(gamma) from the triplet values v0[k] + gamma * v1[k], condenses
  * it and factorises the kept part. FB_ESOLVER if it is singular (to

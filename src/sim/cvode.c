@@ -194,31 +194,15 @@ static int make_linear_solver(sim_run *run, fb_err *err)
   return FB_OK;
 }
 
-/* Builds the augmented KLU solver from the diagram's pattern. */
+/* Builds the augmented Newton solver from the diagram's pattern. */
 static int make_auglin(sim_run *run, fb_err *err)
 {
-  const size_t nz = fb_bd_aug_size(run->bd), nnz = fb_bd_aug_nnz(run->bd);
-  size_t *rows = malloc((nnz ? nnz : 1) * sizeof *rows);
-  size_t *cols = malloc((nnz ? nnz : 1) * sizeof *cols);
-  size_t *state_rows = malloc(run->n * sizeof *state_rows);
-  unsigned char *unit = malloc(nz);
+  const size_t nnz = fb_bd_aug_nnz(run->bd);
   run->v0 = malloc((nnz ? nnz : 1) * sizeof *run->v0);
   run->v1 = malloc((nnz ? nnz : 1) * sizeof *run->v1);
-  int rc = FB_OK;
-  if (!rows || !cols || !state_rows || !unit || !run->v0 || !run->v1) {
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory for the augmented Newton matrix");
-  } else {
-    fb_bd_aug_pattern(run->bd, rows, cols);
-    for (size_t i = 0; i < run->n; ++i)
-      state_rows[i] = fb_bd_state_row(run->bd, i);
-    fb_bd_aug_unit_rows(run->bd, unit);
-    rc = fb_auglin_new(nz, nnz, rows, cols, unit, state_rows, run->n, &run->lin, err);
-  }
-  free(unit);
-  free(rows);
-  free(cols);
-  free(state_rows);
-  return rc;
+  if (!run->v0 || !run->v1)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the augmented Newton matrix");
+  return fb_auglin_new_bd(run->bd, &run->lin, err);
 }
 
 /* ---- Error messages. */

@@ -1,66 +1,65 @@
-/* Static equilibrium of a mechanical block diagram (see flexbond/sim.h).
+/* Static equilibrium of a mechanical block diagram (see flexbond/sim.h)
+ * by pseudo-transient continuation (Kelley & Keyes, "Convergence analysis
+ * of pseudo-transient continuation", SIAM J. Numer. Anal. 35(2), 1998):
+ * implicit Euler steps of growing length h on x' = F(x),
+ *   (I - h J(x_k)) dx = h F(x_k),  x_{k+1} = x_k + dx,
+ * with the integrator's own sparse Newton solver (the augmented matrix,
+ * auglin.h), so a finite-element structure costs one sparse
+ * factorisation per step and no dense matrix.
  *
- * With momenta p (I states), displacements q (C states) and inputs held at
- * time t, rest means p = 0 and p' = F_p(q) = 0. Starting from x0, the
- * displacements can only move along what the flows integrate to:
- * q = q0 + (dF_q/dp) P for some "impulse" vector P (for x0 = 0 this keeps
- * the self-stress of a statically indeterminate support at zero, as the
- * settling from rest does). Newton on P:
- *   (dF_p/dq dF_q/dp) dP = -(F_p(x) - dF_p/dp p), then p = 0. */
-#include <cblas.h>
-#include <lapacke.h>
+ * For a linear damped system each step multiplies a mode of eigenvalue
+ * lambda by 1 / (1 - h lambda): with h of 10^3 s and more, every vibration
+ * mode (|lambda| above ~1 s^-1) dies within a few steps, while the
+ * directions with lambda = 0 are left alone. Those are the free rigid-body
+ * motions no force drives (a hull's surge, sway and yaw on vertical
+ * springs) and the self-stress of a statically indeterminate support:
+ * like the paper's settling from rest, the equilibrium reached is the one
+ * in x0 + span of what the dynamics can move, and free motions neither
+ * make the matrix singular nor wander. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "flexbond/sim.h"
 
+#include "sim/auglin.h"
+
+/* First pseudo time step and its growth per iteration, s. The cap keeps
+ * I - h J away from the conditioning of J itself, and round-off from
+ * growing along free rigid-body motions (a Jordan block of lambda = 0,
+ * which a step multiplies by h / m). */
+#define H_FIRST 1e3
+#define H_GROWTH 10.0
+#define H_MAX 1e5
+#define MAX_ITER 50
+
 typedef struct static_work {
-  size_t n, np, nq;
-  size_t *pidx;      /* momentum state indices */
-  size_t *qidx;      /* displacement state indices */
-  double *jac, *f;   /* n x n Jacobian, n right-hand side */
-  double *jpq, *jqp; /* np x nq and nq x np blocks of the Jacobian */
-  double *a, *rhs;   /* np x np system */
-  lapack_int *piv;
+  size_t n;
+  double *f, *dx, *v0, *v1;
+  fb_auglin *lin;
 } static_work;
 
 static void work_free(static_work *w)
 {
-  free(w->pidx);
-  free(w->qidx);
-  free(w->jpq);
-  free(w->jqp);
-  free(w->jac);
   free(w->f);
-  free(w->a);
-  free(w->rhs);
-  free(w->piv);
+  free(w->dx);
+  free(w->v0);
+  free(w->v1);
+  fb_auglin_free(&w->lin);
 }
 
-static int work_alloc(static_work *w, const fb_bd *bd)
+static int work_alloc(static_work *w, fb_bd *bd, fb_err *err)
 {
   memset(w, 0, sizeof *w);
   w->n = fb_bd_nstates(bd);
-  w->pidx = malloc((w->n + 1) * sizeof *w->pidx);
-  w->qidx = malloc((w->n + 1) * sizeof *w->qidx);
-  for (size_t i = 0; w->pidx && w->qidx && i < w->n; ++i) {
-    fb_state_kind k = fb_bd_state_kind(bd, i);
-    if (k == FB_STATE_MOMENTUM)
-      w->pidx[w->np++] = i;
-    else if (k == FB_STATE_DISPLACEMENT)
-      w->qidx[w->nq++] = i;
-  }
-  w->jpq = malloc((w->np * w->nq + 1) * sizeof *w->jpq);
-  w->jqp = malloc((w->np * w->nq + 1) * sizeof *w->jqp);
-  w->jac = malloc((w->n * w->n + 1) * sizeof *w->jac);
+  const size_t nnz = fb_bd_aug_nnz(bd) ? fb_bd_aug_nnz(bd) : 1;
   w->f = malloc((w->n + 1) * sizeof *w->f);
-  w->a = malloc((w->np * w->np + 1) * sizeof *w->a);
-  w->rhs = malloc((w->np + 1) * sizeof *w->rhs);
-  w->piv = malloc((w->np + 1) * sizeof *w->piv);
-  return w->pidx && w->qidx && w->jpq && w->jqp && w->jac && w->f && w->a && w->rhs && w->piv
-             ? FB_OK
-             : FB_ENOMEM;
+  w->dx = malloc((w->n + 1) * sizeof *w->dx);
+  w->v0 = malloc(nnz * sizeof *w->v0);
+  w->v1 = malloc(nnz * sizeof *w->v1);
+  if (!w->f || !w->dx || !w->v0 || !w->v1)
+    return fb_err_set(err, FB_ENOMEM, "out of memory computing the static equilibrium");
+  return fb_auglin_new_bd(bd, &w->lin, err);
 }
 
 /* Largest |F_p| and |F_q| at x (momentum and displacement rows). */
@@ -76,83 +75,76 @@ static void residuals(const fb_bd *bd, const double *f, size_t n, double *rp, do
   }
 }
 
-/* One Newton step from x (updated in place). */
-static int newton_step(fb_bd *bd, double t, static_work *w, double *x, fb_err *err)
+static int eval_rhs(fb_bd *bd, double t, const double *x, double *f, fb_err *err)
 {
-  size_t n = w->n, np = w->np;
-  int rc = fb_bd_jacobian_dense(bd, t, x, w->jac, err);
-  if (rc)
-    return rc;
-  if (fb_bd_rhs(bd, t, x, w->f))
+  if (fb_bd_rhs(bd, t, x, f))
     return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
-  /* a = J_pq J_qp (BLAS dgemm on the gathered blocks, column-major);
-   * rhs = -(F_p - J_pp p). */
-  size_t nq = w->nq;
-  for (size_t j = 0; j < nq; ++j)
-    for (size_t r = 0; r < np; ++r)
-      w->jpq[j * np + r] = w->jac[w->qidx[j] * n + w->pidx[r]];
-  for (size_t c = 0; c < np; ++c)
-    for (size_t j = 0; j < nq; ++j)
-      w->jqp[c * nq + j] = w->jac[w->pidx[c] * n + w->qidx[j]];
-  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, (int)np, (int)np, (int)nq, 1.0, w->jpq,
-              (int)np, w->jqp, (int)nq, 0.0, w->a, (int)np);
-  for (size_t r = 0; r < np; ++r) {
-    double s = w->f[w->pidx[r]];
-    for (size_t c = 0; c < np; ++c)
-      s -= w->jac[w->pidx[c] * n + w->pidx[r]] * x[w->pidx[c]];
-    w->rhs[r] = -s;
-  }
-  lapack_int info = LAPACKE_dgesv(LAPACK_COL_MAJOR, (lapack_int)np, 1, w->a, (lapack_int)np,
-                                  w->piv, w->rhs, (lapack_int)np);
-  if (info != 0)
-    return fb_err_set(err, FB_ESOLVER,
-                      "static equilibrium: the stiffness seen by the masses is singular (a "
-                      "mass with no spring to the ground, or a free rigid-body mode)");
-  /* q += J_qp dP; p = 0. */
-  for (size_t j = 0; j < nq; ++j)
-    for (size_t c = 0; c < np; ++c)
-      x[w->qidx[j]] += w->jqp[c * nq + j] * w->rhs[c];
-  for (size_t c = 0; c < np; ++c)
-    x[w->pidx[c]] = 0.0;
   return FB_OK;
+}
+
+/* One implicit Euler step of length h from x (in place), ending at rest:
+ * the momenta left after a long step are round-off (and zero at the
+ * equilibrium), so they are cleared, as dynamic relaxation with kinetic
+ * damping does. Probe integrals are measurements, not part of the
+ * equilibrium, and stay as they are. */
+static int pseudo_step(fb_bd *bd, double t, double h, static_work *w, double *x, fb_err *err)
+{
+  if (fb_bd_aug_values(bd, t, x, w->v0, w->v1))
+    return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
+  int rc = fb_auglin_setup(w->lin, h, w->v0, w->v1, err);
+  for (size_t i = 0; rc == FB_OK && i < w->n; ++i)
+    w->dx[i] = h * w->f[i];
+  if (rc == FB_OK)
+    rc = fb_auglin_solve(w->lin, w->dx, w->dx, err);
+  for (size_t i = 0; rc == FB_OK && i < w->n; ++i) {
+    const fb_state_kind kind = fb_bd_state_kind(bd, i);
+    if (kind == FB_STATE_MOMENTUM)
+      x[i] = 0.0;
+    else if (kind == FB_STATE_DISPLACEMENT)
+      x[i] += w->dx[i];
+  }
+  return rc;
 }
 
 int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_err *err)
 {
   static_work w;
-  if (work_alloc(&w, bd)) {
+  int rc = work_alloc(&w, bd, err);
+  if (rc) {
     work_free(&w);
-    return fb_err_set(err, FB_ENOMEM, "out of memory computing the static equilibrium");
+    return rc;
   }
   memcpy(x_eq, x0, w.n * sizeof *x0);
   double rp0 = 0.0, rq0 = 0.0, rp = 0.0, rq = 0.0;
-  int rc = FB_OK;
-  if (fb_bd_rhs(bd, t, x_eq, w.f))
-    rc = fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
-  else
+  rc = eval_rhs(bd, t, x_eq, w.f, err);
+  if (!rc)
     residuals(bd, w.f, w.n, &rp0, &rq0);
-  /* Force balance to 1e-10 of the largest initial unbalanced force (linear
-   * diagrams converge in one step; a second confirms). */
-  const double tol = 1e-10 * fmax(rp0, 1.0);
-  for (int iter = 0; !rc && iter < 20; ++iter) {
-    rc = newton_step(bd, t, &w, x_eq, err);
-    if (!rc && fb_bd_rhs(bd, t, x_eq, w.f))
-      rc = fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
+  /* Force balance to 1e-10 of the largest initial unbalanced force, and
+   * rest: displacement rates 1e-10 of their initial size (or 1e-12). */
+  const double tol_p = 1e-10 * fmax(rp0, 1.0), tol_q = fmax(1e-10 * rq0, 1e-12);
+  double h = H_FIRST;
+  for (int iter = 0; !rc && iter < MAX_ITER; ++iter, h = fmin(h * H_GROWTH, H_MAX)) {
+    rc = pseudo_step(bd, t, h, &w, x_eq, err);
+    if (!rc)
+      rc = eval_rhs(bd, t, x_eq, w.f, err);
     if (!rc) {
       residuals(bd, w.f, w.n, &rp, &rq);
-      if (rp <= tol)
+      if (rp <= tol_p && rq <= tol_q)
         break;
     }
   }
-  if (!rc && rp > tol)
-    rc = fb_err_set(err, FB_ESOLVER,
-                    "static equilibrium not found: unbalanced force %.3g after 20 Newton steps",
-                    rp);
-  if (!rc && rq > 1e-10 * fmax(rq0, 1.0) && rq > 1e-12)
+  if (!rc && rq > tol_q)
     rc = fb_err_set(err, FB_ESOLVER,
                     "no static equilibrium at t = %g s: displacements still change at rest "
                     "(%.3g per s); are flow sources at rest then?",
                     t, rq);
+  if (!rc && rp > tol_p)
+    rc = fb_err_set(err, FB_ESOLVER,
+                    "static equilibrium not found: unbalanced force %.3g after %d steps "
+                    "(a mass with no spring to the ground, or no equilibrium at all?)",
+                    rp, MAX_ITER);
+  if (rc == FB_ESOLVER && !strstr(err->msg, "static equilibrium"))
+    fb_err_prefix(err, "static equilibrium: ");
   work_free(&w);
   return rc;
 }

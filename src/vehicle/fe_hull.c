@@ -161,17 +161,9 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
   /* Dense LAPACK at the default hull's size (~1500 DOFs), ARPACK above. */
   if (!rc)
     rc = fb_fem_modes(K, M, nmodes, 2000, freq_hz, NULL, err);
-  /* Rigid-body modes are round-off, ~sqrt(eps) times the model's own
-   * frequency scale sqrt(trace K / trace M) (~1e4 Hz for steel shells,
-   * rounding ~1e-4 Hz); an elastic mode is above 1e-6 of that scale (0.01
-   * Hz). Counted without a cap: a deck with a loose plate has more. */
+  /* Counted without a cap: a deck with a loose plate has more. */
   if (!rc) {
-    double tk = 0.0, tm = 0.0;
-    for (size_t i = 0; i < fb_mat_nrows(K); ++i) {
-      tk += fb_mat_get(K, i, i);
-      tm += fb_mat_get(M, i, i);
-    }
-    const double threshold = 1e-6 * sqrt(tk / tm) / 6.28318530717958647692;
+    const double threshold = fb_fem_rigid_threshold_hz(K, M);
     while (*nrigid < nmodes && freq_hz[*nrigid] <= threshold)
       (*nrigid)++;
   }
@@ -603,14 +595,28 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
  * field, and selection transformers from the nodal velocities to the
  * attachment and load points' vertical velocities. */
 
-/* n x ndof matrix transformer picking the vertical DOF of each node. */
+/* Matrix transformer from the hull's coordinates to the vertical
+ * velocity of each of the n nodes: a selection of the nodal DOFs, or with
+ * a reduced basis T (ndof x nb) the rows of T at those DOFs. */
 static int add_selection(fb_bg *bg, const char *name, size_t n, const size_t *nodes,
-                         size_t ndof, fb_err *err)
+                         size_t ndof, const double *T, size_t nb, fb_err *err)
 {
+  fb_mat *t = NULL;
+  int rc = FB_OK;
+  if (T) {
+    double *rows = malloc(n * nb * sizeof *rows);
+    rc = rows ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+    for (size_t j = 0; !rc && j < nb; ++j)
+      for (size_t i = 0; i < n; ++i)
+        rows[j * n + i] = T[j * ndof + 6 * nodes[i] + 2];
+    if (!rc)
+      rc = fb_mat_new_dense(n, nb, rows, &t, err);
+    free(rows);
+    return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
+  }
   size_t *r = malloc((n + 1) * sizeof *r), *c = malloc((n + 1) * sizeof *c);
   double *v = malloc((n + 1) * sizeof *v);
-  fb_mat *t = NULL;
-  int rc = r && c && v ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  rc = r && c && v ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t i = 0; !rc && i < n; ++i) {
     r[i] = i;
     c[i] = 6 * nodes[i] + 2;
@@ -624,32 +630,94 @@ static int add_selection(fb_bg *bg, const char *name, size_t n, const size_t *no
   return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
 }
 
-static int flexible_hull_graph(const fb_scenario *s, const fb_fe_hull *h, fb_bg *bg,
-                               fb_err *err)
+/* The hull's matrices in its coordinates: the nodal DOFs, or with
+ * hull.fe.modes = N the free-interface basis T of the N lowest free-free
+ * modes plus the residual flexibility of the forces the rest of the
+ * vehicle applies (the eight attachment points' vertical forces and the
+ * load, whose points carry equal shares; fb_fem_reduce_free). In the
+ * basis M = I, K = diag(lambda) and B = beta K = diag(beta lambda). */
+typedef struct hull_coords {
+  fb_mat *M, *K, *B;
+  double *T; /* ndof x nb, NULL at full order */
+  size_t ndof, nb;
+} hull_coords;
+
+static void hull_coords_free(hull_coords *c)
 {
-  fb_mat *M = NULL, *K = NULL, *B = NULL;
+  fb_mat_free(&c->M);
+  fb_mat_free(&c->K);
+  fb_mat_free(&c->B);
+  free(c->T);
+}
+
+static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, double beta, hull_coords *c,
+                         fb_err *err)
+{
+  const size_t n = c->ndof, nf = FB_NATTACH + 1;
+  double *F = calloc(n * nf, sizeof *F), *lambda = NULL;
+  size_t nrigid = 0;
+  int rc = F ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t a = 0; !rc && a < FB_NATTACH; ++a)
+    F[a * n + 6 * h->attach_node[a] + 2] = 1.0;
+  for (size_t k = 0; !rc && k < h->nload; ++k)
+    F[FB_NATTACH * n + 6 * h->load_node[k] + 2] = 1.0;
+  if (!rc && (size_t)s->hull_modes > n)
+    rc = fb_err_set(err, FB_EINVAL, "hull.fe.modes: %d modes of a %zu-DOF hull", s->hull_modes,
+                    n);
+  if (!rc)
+    rc = fb_fem_reduce_free(c->K, c->M, (size_t)s->hull_modes, F, nf, &c->T, &lambda, &c->nb,
+                            &nrigid, err);
+  free(F);
+  fb_mat_free(&c->M);
+  fb_mat_free(&c->K);
+  double *ones = rc ? NULL : malloc(c->nb * sizeof *ones);
+  if (!rc && !ones)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t i = 0; !rc && i < c->nb; ++i)
+    ones[i] = 1.0;
+  if (!rc)
+    rc = fb_mat_new_diag(c->nb, ones, &c->M, err);
+  if (!rc)
+    rc = fb_mat_new_diag(c->nb, lambda, &c->K, err);
+  for (size_t i = 0; !rc && i < c->nb; ++i)
+    lambda[i] *= beta;
+  if (!rc)
+    rc = fb_mat_new_diag(c->nb, lambda, &c->B, err);
+  free(ones);
+  free(lambda);
+  return rc;
+}
+
+static int hull_coords_new(const fb_scenario *s, const fb_fe_hull *h, hull_coords *c,
+                           fb_err *err)
+{
   double beta = 0.0;
-  int rc = hull_mass(s, h, &M, err);
+  int rc = hull_mass(s, h, &c->M, err);
   if (!rc)
-    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
+    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &c->K, NULL, err);
+  c->ndof = c->K ? fb_mat_nrows(c->K) : 0;
+  c->nb = c->ndof;
   if (!rc)
-    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, &B, err);
-  const size_t n = K ? fb_mat_nrows(K) : 0;
+    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, s->hull_modes ? NULL : &c->B, err);
+  if (!rc && s->hull_modes > 0)
+    rc = reduce_coords(s, h, beta, c, err);
+  return rc;
+}
+
+static int flexible_hull_graph(const fb_fe_hull *h, hull_coords *c, fb_bg *bg, fb_err *err)
+{
+  const size_t n = c->nb;
+  int rc = fb_bg_add_field(bg, "mass", FB_BG_I, 1, &n, &c->M, err);
   if (!rc)
-    rc = fb_bg_add_field(bg, "mass", FB_BG_I, 1, &n, &M, err);
+    rc = fb_bg_add_field(bg, "stiffness", FB_BG_C, 1, &n, &c->K, err);
   if (!rc)
-    rc = fb_bg_add_field(bg, "stiffness", FB_BG_C, 1, &n, &K, err);
-  if (!rc)
-    rc = fb_bg_add_field(bg, "damping", FB_BG_R, 1, &n, &B, err);
-  fb_mat_free(&M);
-  fb_mat_free(&K);
-  fb_mat_free(&B);
+    rc = fb_bg_add_field(bg, "damping", FB_BG_R, 1, &n, &c->B, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "J", FB_BG_J1, n, err);
   if (!rc)
-    rc = add_selection(bg, "to_attach", FB_NATTACH, h->attach_node, n, err);
+    rc = add_selection(bg, "to_attach", FB_NATTACH, h->attach_node, c->ndof, c->T, n, err);
   if (!rc)
-    rc = add_selection(bg, "to_load", h->nload, h->load_node, n, err);
+    rc = add_selection(bg, "to_load", h->nload, h->load_node, c->ndof, c->T, n, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, FB_NATTACH, err);
   if (!rc)
@@ -674,25 +742,40 @@ static int flexible_hull_graph(const fb_scenario *s, const fb_fe_hull *h, fb_bg 
 
 /* Torsion: roll of the front edge minus roll of the rear edge over the
  * nodal displacements (the C field's state): weights on the four edge
- * nodes' vertical DOFs. */
-static int flexible_torsion(const fb_fe_hull *h, fb_hull *hull, fb_err *err)
+ * nodes' vertical DOFs, or with a reduced basis (u = T q) T' times those. */
+static int flexible_torsion(const fb_fe_hull *h, const hull_coords *c, fb_hull *hull,
+                            fb_err *err)
 {
-  size_t n = 6 * fb_mesh_nnodes(h->mesh);
-  hull->torsion_weights = calloc(n, sizeof *hull->torsion_weights);
+  const size_t n = c->ndof;
+  double *w = calloc(n, sizeof *w);
+  hull->torsion_weights = calloc(c->nb, sizeof *hull->torsion_weights);
   hull->torsion_target = malloc(sizeof "stiffness");
-  if (!hull->torsion_weights || !hull->torsion_target)
+  if (!w || !hull->torsion_weights || !hull->torsion_target) {
+    free(w);
     return fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
   memcpy(hull->torsion_target, "stiffness", sizeof "stiffness");
   hull->torsion_kind = FB_PROBE_STATE;
   hull->torsion_integrate = 0;
-  hull->ntorsion = n;
+  hull->ntorsion = c->nb;
   for (int edge = 0; edge < 2; ++edge) {
     size_t left = h->edge_node[2 * edge], right = h->edge_node[2 * edge + 1];
     double dy = fb_mesh_node_xyz(h->mesh, left)[1] - fb_mesh_node_xyz(h->mesh, right)[1];
     double sign = edge == 0 ? 1.0 : -1.0;
-    hull->torsion_weights[6 * left + 2] += sign / dy;
-    hull->torsion_weights[6 * right + 2] -= sign / dy;
+    w[6 * left + 2] += sign / dy;
+    w[6 * right + 2] -= sign / dy;
   }
+  for (size_t j = 0; j < c->nb; ++j) {
+    if (!c->T) {
+      hull->torsion_weights[j] = w[j];
+      continue;
+    }
+    double sum = 0.0;
+    for (size_t i = 0; i < n; ++i)
+      sum += w[i] * c->T[j * n + i];
+    hull->torsion_weights[j] = sum;
+  }
+  free(w);
   return FB_OK;
 }
 
@@ -701,12 +784,16 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
 {
   *out = NULL;
   fb_hull *hull = calloc(1, sizeof *hull);
+  hull_coords c = {0};
   int rc = hull ? fb_bg_new("flexible_hull", &hull->graph, err)
                 : fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
-    rc = flexible_hull_graph(s, h, hull->graph, err);
+    rc = hull_coords_new(s, h, &c, err);
   if (!rc)
-    rc = flexible_torsion(h, hull, err);
+    rc = flexible_hull_graph(h, &c, hull->graph, err);
+  if (!rc)
+    rc = flexible_torsion(h, &c, hull, err);
+  hull_coords_free(&c);
   if (rc) {
     fb_hull_free(&hull);
     return fb_err_prefix(err, "flexible hull: ");
