@@ -119,6 +119,52 @@ int fb_bd_is_linear(const fb_bd *bd);
  * linearisations (no finite differences). For linear analysis. */
 int fb_bd_jacobian_dense(fb_bd *bd, double t, const double *x, double *jac, fb_err *err);
 
+/* ---- Descriptor form of a linear diagram.
+ *
+ * The augmented linearisation above already is a descriptor system over
+ * the signals z: the rows of state i say x_i' = (its integrator's input),
+ * the other rows are the blocks' algebraic relations. Written as
+ *     E z' = A z + B u(t) + f,      y = C z + D u,
+ * E is the identity at the state rows and zero elsewhere and A = E - P0 - P1
+ * over the augmented pattern. The first nstates variables are the states
+ * (fb_bd_state_name order; FB_STATE_PROBE ones are the integrals of
+ * integrating probes), then the diagram's other signals in z (index i of
+ * fb_bd_aug_pattern is variable i), then the signals only the outputs use.
+ * Sources of constant time functions are folded into f; every component
+ * of every other source is an input u_j, whose source row reads
+ * 0 = -z_s + u_j (B holds a 1 there). D is zero: the outputs read
+ * variables only. An output measuring a power e .* f (FB_PROBE_POWER, a
+ * product, not linear) takes two rows of C, its effort (times the probe's
+ * gain) and its flow: the output is the product of those two rows.
+ *
+ * The pencil (A, E) has index 1: its finite generalised eigenvalues are the
+ * eigenvalues of fb_bd_jacobian_dense. */
+typedef struct fb_descriptor {
+  size_t n;               /* descriptor variables (rows and columns of E and A) */
+  size_t nstates;         /* the first nstates variables are differential */
+  size_t ninputs;         /* columns of B and D */
+  size_t noutputs;        /* fb_bd_noutputs */
+  size_t nrows_c;         /* rows of C and D: one per output, two per power output */
+  fb_mat *E, *A;          /* n x n, sparse */
+  fb_mat *B;              /* n x ninputs, sparse */
+  fb_mat *f;              /* n x 1, sparse */
+  fb_mat *C, *D;          /* nrows_c x n and nrows_c x ninputs, sparse */
+  char **var_names;       /* n: state names, then signal names ("e:bond[k]") */
+  char **input_names;     /* ninputs: the source element's name, "[k]" if a vector */
+  size_t *input_var;      /* ninputs: the variable each input defines */
+  size_t *output_row;     /* noutputs: the output's (first) row of C */
+  int *output_is_product; /* noutputs: 1 if it is row * (row + 1) */
+} fb_descriptor;
+
+/* Builds the descriptor form of bd (*out is new, free it with
+ * fb_descriptor_free). Every block that the states or the outputs depend
+ * on must be linear and time-invariant (power outputs aside, see above),
+ * so the result does not depend on t or x: FB_EINVAL naming the first
+ * block that is not (a nonlinear law, an integrated power probe). */
+int fb_bd_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err);
+/* Frees *d and sets it to NULL; accepts NULL and *d == NULL. */
+void fb_descriptor_free(fb_descriptor **d);
+
 /* Breakpoints of all sources, sorted and unique, written to bp (at most
  * max), earliest first; returns how many were written (0 when out of
  * memory). With bp == NULL, returns an upper bound of their number. */

@@ -7,6 +7,7 @@
  *   flexbond run SCENARIO.yaml -o DIR [--system rigid|flexible|both]
  *                [--initial zero|static] [--payload weight-only|lumped] [-q]
  *   flexbond modes SCENARIO.yaml [--system rigid|flexible]
+ *   flexbond export SCENARIO.yaml -o DIR [--system rigid|flexible]
  *   flexbond --help | -h | --version,  flexbond COMMAND --help
  *
  * Exit codes:
@@ -42,6 +43,7 @@ static const cli_command commands[] = {
     {"run", cli_cmd_run, "simulate a vehicle scenario: CSV, the paper's Figs. 8-14, summary"},
     {"modes", cli_cmd_modes, "natural frequencies and damped modes of a vehicle scenario"},
     {"mesh", cli_cmd_mesh, "the finite-element hull mesh of a scenario; export to .inp / .vtu"},
+    {"export", cli_cmd_export, "a vehicle scenario's linear model in descriptor form (.mtx)"},
 };
 
 static void print_usage(FILE *fp)
