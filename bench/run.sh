@@ -39,3 +39,12 @@ hyperfine -N --warmup 1 --runs 10 --style none --export-json "$out/h.json" \
 median "$out/h.json"
 /usr/bin/time -v "$exe" modes examples/apc6x6.yaml --system flexible -o "$out/modes" 2>&1 >/dev/null |
   grep "Maximum resident"
+
+echo "== System 2, full-order hull, 15 s at 1 kHz: fb_vehicle_simulate, 3 runs (peak RSS of one)"
+"$build/bench_vehicle" examples/apc6x6.yaml 3 flexible | tail -n 2
+/usr/bin/time -v "$build/bench_vehicle" examples/apc6x6.yaml 1 flexible 2>&1 >/dev/null |
+  grep "Maximum resident"
+
+echo "== System 2, reduced hull (hull.fe.modes: 80), 15 s: fb_vehicle_simulate, 5 runs"
+sed 's/^    modes: 0 .*/    modes: 80/' examples/apc6x6.yaml >"$out/apc6x6_80.yaml"
+"$build/bench_vehicle" "$out/apc6x6_80.yaml" 5 flexible | tail -n 2
