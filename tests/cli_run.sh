@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # flexbond run and flexbond modes on vehicle scenarios: the APC example
-# writes exactly the documented files (CSV header, 15 s at 1 kHz, valid
-# summary.json agreeing with the CSV, PNGs); System 2, bad options and bad
-# scenarios exit non-zero and write nothing; a failure while writing takes
-# back what was written.
+# with System 1 writes exactly the documented files (CSV header, 15 s at
+# 1 kHz, valid summary.json agreeing with the CSV, PNGs, report.md); both
+# systems on a shortened APC write both CSVs, a comparison in summary.json
+# that the CSVs reproduce and a report whose tables and image links are
+# complete; bad options and bad scenarios exit non-zero and write nothing;
+# a failure while writing takes back what was written.
 #
 # usage: bash tests/cli_run.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -15,7 +17,7 @@ APC=$REPO_ROOT/examples/apc6x6.yaml
 HEADER='t,tire_force_LF,spring_defl_RF,torsion,driver_acc,shock_power_LM,tire_defl_RM,tire_power_LR'
 FIGURES=(fig08_tire_force_LF.png fig09_spring_defl_RF.png fig10_torsion.png
   fig11_driver_acc.png fig12_shock_power_LM.png fig13_tire_defl_RM.png fig14_tire_power_LR.png)
-EXPECTED_FILES=$(printf '%s\n' "${FIGURES[@]}" summary.json system1.csv | sort)
+EXPECTED_FILES=$(printf '%s\n' "${FIGURES[@]}" report.md summary.json system1.csv | sort)
 
 # expect_files DIR DESCRIPTION: DIR holds exactly the files of a run.
 expect_files() {
@@ -81,7 +83,7 @@ EOF
 }
 
 # ---- The APC example, System 1, the paper's protocol (all states zero).
-run run "$APC" -o "$WORK/apc" -q
+run run "$APC" -o "$WORK/apc" -q --system rigid
 expect_status 0 "run apc6x6"
 checks=$((checks + 1))
 [ ! -s "$ERR" ] || fail "run -q prints nothing on stderr"
@@ -106,15 +108,18 @@ for f in "${FIGURES[@]}"; do
 done
 
 # Without -q: a progress line and a summary line on stderr.
-run run "$APC" -o "$WORK/apc_loud"
+# stderr is not a terminal here: no "\r" progress.
+run run "$APC" -o "$WORK/apc_loud" --system rigid
 expect_status 0 "run apc6x6 without -q"
 expect_in "$ERR" "simulating System 1 (rigid hull)" "progress line"
-expect_in "$ERR" "wrote 9 files -> $WORK/apc_loud" "summary line"
+expect_in "$ERR" "wrote 10 files -> $WORK/apc_loud" "summary line"
+checks=$((checks + 1))
+! grep -q $'\r' "$ERR" || fail "no progress line when stderr is not a terminal"
 
 # Overrides: static equilibrium start and the lumped payload. At rest the
 # driver does not accelerate (|a| well below the solver's noise of
 # ~1e-6 m/s^2 at rtol 1e-6, against 9.81 from the zero start).
-run run "$APC" -o "$WORK/apc_static" -q --initial static --payload lumped
+run run "$APC" -o "$WORK/apc_static" -q --initial static --payload lumped --system rigid
 expect_status 0 "run --initial static --payload lumped"
 expect_files "$WORK/apc_static" "run --initial static"
 check_summary "$WORK/apc_static" static lumped
@@ -122,13 +127,169 @@ checks=$((checks + 1))
 awk -F, 'NR == 2 { exit !($5 < 1e-6 && $5 > -1e-6) }' "$WORK/apc_static/system1.csv" ||
   fail "static start: driver acceleration at t = 0 is $(sed -n 2p "$WORK/apc_static/system1.csv")"
 
-# ---- System 2 does not exist yet: usage error, nothing written.
-for sys in flexible both; do
-  run run "$APC" -o "$WORK/out_$sys" --system "$sys"
-  expect_status 1 "run --system $sys"
-  expect_in "$ERR" "System 2 (flexible hull) is not available yet" "run --system $sys"
-  expect_absent "$WORK/out_$sys" "run --system $sys"
+# ---- Both systems (the default) on the APC shortened to 3 s with a 0.5 m
+# bump met at 1 s, so that System 2's full-order run takes seconds.
+SHORT=$WORK/apc_short.yaml
+sed -e 's/^  t_end: 15 /  t_end: 3.0 /' -e 's/first_contact: 5.0/first_contact: 1.0/' \
+  -e 's/length: 3.70 /length: 0.5 /' "$APC" >"$SHORT"
+MODE_PICTURES=(mode_01.png mode_02.png mode_08.png mode_10.png)
+run run "$SHORT" -o "$WORK/both" -q
+expect_status 0 "run, both systems"
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/both" | sort)" = "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" \
+  report.md summary.json system1.csv system2.csv | sort)" ] ||
+  fail "both systems: files $(ls -A "$WORK/both" | tr '\n' ' ')"
+checks=$((checks + 1))
+[ "$(head -n 1 "$WORK/both/system2.csv")" = "$HEADER" ] ||
+  fail "system2.csv header: $(head -n 1 "$WORK/both/system2.csv")"
+# Same sample times, row for row: 3 s at 1 kHz.
+checks=$((checks + 1))
+[ "$(cut -d, -f1 "$WORK/both/system1.csv" | md5sum)" = \
+  "$(cut -d, -f1 "$WORK/both/system2.csv" | md5sum)" ] &&
+  [ "$(wc -l <"$WORK/both/system2.csv")" -eq 3002 ] ||
+  fail "system1.csv and system2.csv have the same 3001 sample times"
+
+# summary.json: both systems, and a comparison that a second computation
+# from the two CSVs reproduces.
+checks=$((checks + 1))
+python3 - "$WORK/both" <<'PY' || fail "summary.json comparison"
+import csv, json, math, sys
+out = sys.argv[1]
+d = json.load(open(out + "/summary.json"))
+names = ["tire_force_LF", "spring_defl_RF", "torsion", "driver_acc",
+         "shock_power_LM", "tire_defl_RM", "tire_power_LR"]
+problems = []
+def want(cond, what):
+    if not cond:
+        problems.append(what)
+def close(a, b, scale):
+    # Both files print %.10g of the same doubles: values agree to ~1e-10
+    # of their magnitude; a difference of two values to ~1e-10 of theirs.
+    return a is not None and abs(a - b) <= 1e-8 * max(1.0, scale)
+want(d["system1"]["label"] == "System 1 (rigid hull)", "system1 label")
+want(d["system2"]["label"] == "System 2 (flexible hull)", "system2 label")
+want(d["system2"]["hull_modes"] == 0, "system2 full order")
+want(list(d["comparison"]) == names, "comparison outputs")
+rows = [[[float(v) for v in r] for r in list(csv.reader(open("%s/system%d.csv" % (out, i))))[1:]]
+        for i in (1, 2)]
+t0, t1 = d["system1"]["bump_window"]
+# Data sheet timing with first_contact 1 s and L = 0.5 m: RR leaves at
+# 1 + (2.9 + 2.1 + 0.5) m / (10/3.6 m/s) = 2.98 s.
+want(abs(t0 - 1.0) < 1e-9 and abs(t1 - 2.98) < 1e-9, "bump window %s" % [t0, t1])
+for j, name in enumerate(names, start=1):
+    c = d["comparison"][name]
+    s1, s2 = d["system1"]["outputs"][name], d["system2"]["outputs"][name]
+    want(c["peak_system1"] == s1["peak"] and c["peak_system2"] == s2["peak"], name + " peaks")
+    want(c["rms_system1"] == s1["rms"] and c["rms_system2"] == s2["rms"], name + " rms")
+    pairs = [(a[0], a[j], b[j]) for a, b in zip(*rows) if a[0] >= t0]
+    diff, at = max((abs(v2 - v1), t) for t, v1, v2 in pairs)
+    at = min(t for t, v1, v2 in pairs if abs(v2 - v1) == diff)
+    scale = max(abs(v) for t, v1, v2 in pairs for v in (v1, v2))
+    want(close(c["max_abs_diff"], diff, scale), "%s max_abs_diff %r vs %r" % (name, c["max_abs_diff"], diff))
+    rng = max(v1 for t, v1, v2 in pairs) - min(v1 for t, v1, v2 in pairs)
+    want(close(c["range_system1"], rng, scale), name + " range_system1")
+    if rng > 0:
+        want(abs(c["max_abs_diff_rel"] - diff / rng) <= 1e-6 * diff / rng + 1e-12,
+             "%s max_abs_diff_rel %r vs %r" % (name, c["max_abs_diff_rel"], diff / rng))
+        want(abs(c["peak_change_rel"] - (s2["peak"] - s1["peak"]) / abs(s1["peak"])) < 1e-9,
+             name + " peak_change_rel")
+    if name != "torsion":
+        want(c["max_abs_diff"] > 0, name + ": the flexible hull changes it")
+        want(abs(c["max_abs_diff_time"] - at) < 1e-9 or diff < 1e-6 * scale, name + " time")
+# The rigid hull does not twist (paper, Fig. 10a): no range to scale by.
+c = d["comparison"]["torsion"]
+want(all(r[3] == 0 for r in rows[0]), "System 1 torsion identically 0")
+want(c["range_system1"] == 0 and c["max_abs_diff_rel"] is None, "torsion ratio null")
+want(c["peak_system2"] > 0, "System 2 twists")
+if problems:
+    print("\n".join(problems), file=sys.stderr)
+    sys.exit(1)
+PY
+
+# report.md: a comparison row per output, the full-order hull, every
+# image link pointing to a written file, and one paragraph of conclusions
+# that notes the rigid hull's zero torsion.
+REPORT=$WORK/both/report.md
+for q in "LF tire normal reaction | N" "RF suspension spring deformation | m" \
+  "hull torsion angle | rad" "driver plus seat acceleration | m/s^2" \
+  "LM shock absorber dissipated power | W" "RM tire deformation | m" \
+  "LR tire dissipated power | W"; do
+  checks=$((checks + 1))
+  [ "$(sed -n '/^## Comparison/,/^## /p' "$REPORT" | grep -c "^| $q |.*|.*|.*|.*|.*|.*|.*|.*|$")" \
+    -eq 1 ] || fail "report.md comparison row '$q'"
 done
+expect_in "$REPORT" "full order, all 1296 nodal DOFs" "report.md hull order"
+expect_in "$REPORT" "## Assumptions" "report.md assumptions"
+expect_in "$REPORT" "| 11 | " "report.md System 1 modes"
+expect_in "$REPORT" "| 20 | " "report.md System 2 modes"
+checks=$((checks + 1))
+links=$(grep -o '](\([^)]*\))' "$REPORT" | sed 's/^](//; s/)$//')
+[ "$(printf '%s\n' "$links" | sort)" = \
+  "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" | sort)" ] ||
+  fail "report.md image links: $(echo $links)"
+for f in $links; do
+  checks=$((checks + 1))
+  [ -s "$WORK/both/$f" ] || fail "report.md links $f, which is missing"
+done
+checks=$((checks + 1))
+[ "$(sed -n '/^## Conclusions/,$p' "$REPORT" | tail -n +2 | grep -c .)" -eq 1 ] ||
+  fail "report.md conclusions are one paragraph"
+expect_in "$REPORT" "The rigid hull's torsion angle is identically zero; the flexible hull's" \
+  "report.md conclusions: torsion"
+
+# --no-figures and the reduced hull: no PNG, a report without images that
+# says why, and the hull order in the report and the summary.
+run run "$SHORT" -o "$WORK/both_nofig" -q --no-figures --hull-modes 12
+expect_status 0 "run, both systems, --no-figures --hull-modes 12"
+checks=$((checks + 1))
+[ "$(cd "$WORK/both_nofig" && ls | tr '\n' ' ')" = "report.md summary.json system1.csv system2.csv " ] ||
+  fail "both systems --no-figures: $(ls "$WORK/both_nofig")"
+checks=$((checks + 1))
+! grep -q '!\[' "$WORK/both_nofig/report.md" || fail "report.md without images"
+expect_in "$WORK/both_nofig/report.md" "No figures: the run had \`--no-figures\`" \
+  "report.md says why it has no figures"
+expect_in "$WORK/both_nofig/report.md" "reduced to 12 free-free modes" "report.md reduced hull"
+expect_in "$WORK/both_nofig/summary.json" '"hull_modes": 12' "summary.json reduced hull"
+
+# Failures with both systems write nothing: System 2 asked of a scenario
+# without a finite-element hull (exit 2), and report.md blocked after
+# both runs (exit 5). Without --system such a scenario runs System 1.
+# (Deletes hull.mesh and hull.fe: from "  mesh:" to the next top-level key.)
+sed '/^  mesh:/,/^[a-z]/{/^[a-z]/!d;}' "$SHORT" >"$WORK/nofe.yaml"
+run run "$WORK/nofe.yaml" -o "$WORK/out_nofe" --system both
+expect_status 2 "run --system both without a finite-element hull"
+expect_in "$ERR" "hull.mesh" "run --system both without a finite-element hull"
+expect_absent "$WORK/out_nofe" "run --system both without a finite-element hull"
+run run "$WORK/nofe.yaml" -o "$WORK/nofe" --no-figures
+expect_status 0 "run without a finite-element hull"
+expect_in "$ERR" "only System 1 (rigid hull) ran" "default without a finite-element hull"
+checks=$((checks + 1))
+[ "$(cd "$WORK/nofe" && ls | tr '\n' ' ')" = "report.md summary.json system1.csv " ] ||
+  fail "run without a finite-element hull: $(ls "$WORK/nofe")"
+mkdir -p "$WORK/both_blocked/report.md"
+run run "$SHORT" -o "$WORK/both_blocked" -q --no-figures --hull-modes 12
+expect_status 5 "both systems, report.md blocked"
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/both_blocked")" = "report.md" ] ||
+  fail "blocked run left: $(ls -A "$WORK/both_blocked" | tr '\n' ' ')"
+
+# Progress: on a terminal, one "\r"-updated line per system up to 100 %;
+# nothing with -q. script(1) provides the terminal.
+if command -v script >/dev/null 2>&1; then
+  script -qec "'$FLEXBOND' run '$SHORT' -o '$WORK/tty' --system rigid --no-figures" /dev/null \
+    >"$WORK/tty.txt" 2>&1
+  checks=$((checks + 1))
+  grep -q $'\r'"flexbond run: apc6x6: simulating System 1 (rigid hull), t = 0..3 s: 100%" \
+    "$WORK/tty.txt" || fail "progress line on a terminal: $(tr '\r' '|' <"$WORK/tty.txt" | head -c 300)"
+  checks=$((checks + 1))
+  n=$(tr -cd '\r' <"$WORK/tty.txt" | wc -c)
+  # At most 101 redraws (0 .. 100 %) plus the terminal's CR of each line.
+  [ "$n" -gt 10 ] && [ "$n" -le 110 ] || fail "progress redraws: $n"
+  script -qec "'$FLEXBOND' run '$SHORT' -o '$WORK/tty_q' --system rigid --no-figures -q" \
+    /dev/null >"$WORK/tty_q.txt" 2>&1
+  checks=$((checks + 1))
+  [ ! -s "$WORK/tty_q.txt" ] || fail "-q on a terminal prints nothing"
+fi
 
 # ---- Bad options.
 for bad in "--system rubber" "--initial warm" "--payload heavy"; do
@@ -137,6 +298,15 @@ for bad in "--system rubber" "--initial warm" "--payload heavy"; do
   expect_status 1 "run $bad"
   expect_in "$ERR" "option '$1' must be one of" "run $bad"
 done
+for bad in "--hull-modes -1" "--hull-modes 12x" "--hull-modes 100001"; do
+  set -- $bad
+  run run "$APC" -o "$WORK/out_opt" "$@"
+  expect_status 1 "run $bad"
+  expect_in "$ERR" "option '--hull-modes' needs an integer in 0..100000" "run $bad"
+done
+run run "$APC" -o "$WORK/out_opt" --system rigid --hull-modes 12
+expect_status 1 "run --system rigid --hull-modes"
+expect_in "$ERR" "not with --system rigid" "run --system rigid --hull-modes"
 run run "$APC"
 expect_status 1 "run without -o"
 expect_in "$ERR" "-o DIR" "run without -o"
@@ -192,17 +362,17 @@ expect_absent "$WORK/out_nofile" "missing scenario: output"
 
 # ---- Writing fails: exit 5, and no file of the run is left behind.
 printf 'not a directory\n' >"$WORK/plain"
-run run "$APC" -o "$WORK/plain/out" -q
+run run "$APC" -o "$WORK/plain/out" -q --system rigid
 expect_status 5 "output under a regular file"
 
-# summary.json, the last file written, cannot replace a directory: the
-# figures and the CSV written before it are taken back; the directory
+# report.md, the last file written, cannot replace a directory: the
+# figures, CSV and summary written before it are taken back; the directory
 # existed before, so it stays.
-mkdir -p "$WORK/blocked/summary.json"
-run run "$APC" -o "$WORK/blocked" -q
-expect_status 5 "summary.json blocked"
+mkdir -p "$WORK/blocked/report.md"
+run run "$APC" -o "$WORK/blocked" -q --system rigid
+expect_status 5 "report.md blocked"
 checks=$((checks + 1))
-[ "$(ls -A "$WORK/blocked")" = "summary.json" ] ||
+[ "$(ls -A "$WORK/blocked")" = "report.md" ] ||
   fail "blocked run left: $(ls -A "$WORK/blocked" | tr '\n' ' ')"
 
 # Without gnuplot the figures fail first: nothing written, no directory.
@@ -210,7 +380,7 @@ run_without_gnuplot() {
   PATH=/nonexistent "$FLEXBOND" "$@" >"$OUT" 2>"$ERR"
   status=$?
 }
-run_without_gnuplot run "$APC" -o "$WORK/out_nognuplot" -q
+run_without_gnuplot run "$APC" -o "$WORK/out_nognuplot" -q --system rigid
 expect_status 5 "run without gnuplot"
 expect_in "$ERR" "gnuplot" "run without gnuplot"
 expect_absent "$WORK/out_nognuplot" "run without gnuplot: output"
@@ -262,12 +432,12 @@ expect_in "$ERR" "$WORK/negative.yaml:" "modes on a bad scenario"
 run modes
 expect_status 1 "modes without a scenario"
 
-# --no-figures: the CSV and the summary only.
-run run "$REPO_ROOT/examples/apc6x6.yaml" -o "$WORK/nofig" --no-figures -q
+# --no-figures: the CSV, the summary and the report only.
+run run "$REPO_ROOT/examples/apc6x6.yaml" -o "$WORK/nofig" --no-figures -q --system rigid
 expect_status 0 "run --no-figures"
 checks=$((checks + 1))
-[ "$(cd "$WORK/nofig" && ls | tr '\n' ' ')" = "summary.json system1.csv " ] ||
-  fail "run --no-figures writes only system1.csv and summary.json: $(ls "$WORK/nofig")"
+[ "$(cd "$WORK/nofig" && ls | tr '\n' ' ')" = "report.md summary.json system1.csv " ] ||
+  fail "run --no-figures writes only system1.csv, summary.json and report.md: $(ls "$WORK/nofig")"
 
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

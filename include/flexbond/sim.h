@@ -74,6 +74,14 @@ const double *fb_result_row(const fb_result *r, size_t k);
 long fb_result_find(const fb_result *r, const char *name);
 const fb_sim_stats *fb_result_stats(const fb_result *r);
 void fb_result_free(fb_result **r);
+/* The difference b - a of two results sampled at the same times (two
+ * systems of one scenario, for a plot of their difference): column 0 is
+ * the common time, column j >= 1 is b's column j minus a's, named and
+ * with the units of a's; statistics zero. FB_EINVAL naming the first
+ * mismatch if the column counts, column names, sample counts or sample
+ * times (to 1e-9 relative) differ; FB_ENOMEM. *out is new. */
+int fb_result_diff(const fb_result *b, const fb_result *a, fb_result **out, fb_err *err);
+
 /* Static equilibrium of a mechanical diagram under its inputs at time t,
  * reached from x0 by pseudo-transient continuation (implicit Euler steps
  * of growing length, src/sim/static.c): every momentum rate and

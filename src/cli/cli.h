@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/vehicle.h"
 
 #define CLI_VERSION "0.1.0"
 
@@ -126,5 +127,97 @@ int cli_cmd_export(int argc, char **argv);
 /* Modal analysis of System 2 (modes --system flexible); out_dir may be
  * NULL (print only). Returns the exit code. */
 int cli_modes_flexible(const char *path, const char *out_dir);
+
+/* ---- System 2's mode pictures (modes_flex.c), drawn by modes --system
+ * flexible and by run. */
+
+/* The vehicle modes pictured (1-based): those of the paper's Figs. 3-4. */
+enum { CLI_NPICTURED_MODES = 4 };
+extern const size_t cli_pictured_modes[CLI_NPICTURED_MODES];
+/* "mode_NN.png", the picture of 1-based mode number mode, into buf. */
+void cli_mode_picture_name(size_t mode, char *buf, size_t size);
+/* Writes the picture of every pictured mode that ms holds: the deformed
+ * hull as a wireframe (side walls left out) with the driver and the
+ * engine drawn as cubes (fb_plot_mesh_png). */
+int cli_write_mode_pictures(cli_outdir *od, const fb_fe_hull *hull, const fb_mode_set *ms,
+                            fb_err *err);
+
+/* ---- flexbond run (run.c) and its report.md (report.c, described in
+ * docs/report.md). */
+
+enum { CLI_MAX_SYSTEMS = 2 };
+
+/* One output of one run, as summary.json's "definitions" say: static
+ * value before the bump, extremes from the first bump entry to the end,
+ * RMS over the bump window. */
+typedef struct cli_output_stats {
+  double static_value, peak, peak_time, min, min_time, rms;
+} cli_output_stats;
+
+/* System 2 against System 1 for one output, from the first bump entry to
+ * the end. Ratios are fractions, NaN when their denominator is 0. */
+typedef struct cli_output_cmp {
+  double max_diff;      /* largest |S2 - S1|, in the output's unit */
+  double max_diff_time; /* its first time, s */
+  double range1;        /* System 1's peak-to-peak range, peak - min */
+  double rel_diff;      /* max_diff / range1 */
+  double peak_change;   /* (peak2 - peak1) / |peak1| */
+  double rms_change;    /* (rms2 - rms1) / rms1 */
+} cli_output_cmp;
+
+/* The paper's figure of one output (Leite & Da Silva, Figs. 8-14). */
+typedef struct cli_run_figure {
+  int number;
+  const char *output;   /* fb_vehicle_output_name */
+  const char *caption;  /* the paper's caption, the figure's title */
+  const char *quantity; /* y axis label, without the unit */
+  int crossing_only;    /* 1: the paper's 4-10 s window, 0: the whole run */
+} cli_run_figure;
+/* In output (CSV column) order. */
+extern const cli_run_figure cli_run_figures[FB_NOUTPUTS];
+/* "figNN_OUTPUT.png" of fig into buf. */
+void cli_run_figure_file(const cli_run_figure *fig, char *buf, size_t size);
+
+/* One simulated system. */
+typedef struct cli_run_system {
+  fb_system sys;
+  fb_result *res;
+  size_t col[FB_NOUTPUTS]; /* column of each output in res */
+  cli_output_stats stats[FB_NOUTPUTS];
+} cli_run_system;
+
+/* Everything run writes. */
+typedef struct cli_run_outputs {
+  const fb_scenario *scenario;
+  const cli_run_system *runs; /* System 1 first when both */
+  size_t nruns;
+  const fb_result *diff;           /* System 2 minus System 1, NULL unless both ran */
+  cli_output_cmp cmp[FB_NOUTPUTS]; /* set when diff is */
+  double bump_window[2];           /* first wheel's bump entry, last wheel's exit, s */
+  int figures;                     /* 0 with --no-figures */
+  /* System 1's undamped modes, when it ran. */
+  const fb_mode *modes1;
+  size_t nmodes1, nstatic1;
+  /* System 2's hull and undamped modes, when it ran. */
+  const fb_fe_hull *hull;
+  const fb_mode_set *modes2;
+  double hull_f1;                /* first elastic free-free hull mode, Hz */
+  double hull_beta;              /* B = beta K, s */
+  const char *hull_modes_source; /* what set scenario->hull_modes (Markdown) */
+  const char *note;              /* why a system did not run, or NULL */
+} cli_run_outputs;
+
+/* "System 1 (rigid hull)", "System 2 (flexible hull)". */
+const char *cli_system_label(fb_system sys);
+/* The scenario's name, else its path, else "scenario". */
+const char *cli_scenario_name(const fb_scenario *s);
+/* Statistics of column col of r; window is the bump window. */
+cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2]);
+/* Comparison of one output: s1, s2 its statistics in System 1 and 2,
+ * column col of diff (System 2 minus System 1) its difference. */
+cli_output_cmp cli_output_compare(const cli_output_stats *s1, const cli_output_stats *s2,
+                                  const fb_result *diff, size_t col, const double window[2]);
+/* report.md (a cli_writer over a cli_run_outputs). */
+void cli_write_report_md(FILE *fp, const void *ctx);
 
 #endif

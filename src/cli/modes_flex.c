@@ -5,7 +5,8 @@
  *   DIR/modes.csv        mode,frequency_hz,description
  *   DIR/mode_NN.vtu      each vehicle mode's hull displacement (ParaView)
  *   DIR/mode_NN.png      modes 1, 2, 8 and 10 as deformed wireframes with
- *                        the driver and the engine drawn as cubes. */
+ *                        the driver and the engine drawn as cubes
+ *                        (cli_write_mode_pictures, which run uses too). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,7 +17,6 @@
 #include "cli.h"
 
 enum { HULL_MODES = 30, VEHICLE_MODES = 20 };
-static const size_t pictured[] = {1, 2, 8, 10}; /* the paper's Figs. 3 and 4 */
 
 typedef struct flex_modes {
   const fb_scenario *s;
@@ -44,18 +44,55 @@ static void write_modes_csv(FILE *fp, const void *ctx)
             fm->vehicle->description[k]);
 }
 
+/* The modes of the paper's Figs. 3 and 4. */
+const size_t cli_pictured_modes[CLI_NPICTURED_MODES] = {1, 2, 8, 10};
+
+void cli_mode_picture_name(size_t mode, char *buf, size_t size)
+{
+  snprintf(buf, size, "mode_%02zu.png", mode);
+}
+
 /* The driver's and engine's cubes: 0.4 m above their floor nodes, moved
  * by their own vertical displacement (scaled). */
-static void cubes(const flex_modes *fm, const double *v, double scale, double *xyz)
+static void cubes(const fb_fe_hull *hull, const double *v, double scale, double *xyz)
 {
-  const fb_mesh *m = fm->hull->mesh;
+  const fb_mesh *m = hull->mesh;
   size_t nh = 6 * fb_mesh_nnodes(m);
   for (int b = 0; b < 2; ++b) {
-    const double *p = fb_mesh_node_xyz(m, fm->hull->attach_node[FB_ATTACH_DRIVER + b]);
+    const double *p = fb_mesh_node_xyz(m, hull->attach_node[FB_ATTACH_DRIVER + b]);
     xyz[3 * b] = p[0];
     xyz[3 * b + 1] = p[1];
     xyz[3 * b + 2] = p[2] + 0.4 + scale * v[nh + (size_t)b];
   }
+}
+
+int cli_write_mode_pictures(cli_outdir *od, const fb_fe_hull *hull, const fb_mode_set *ms,
+                            fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < CLI_NPICTURED_MODES; ++i) {
+    size_t k = cli_pictured_modes[i] - 1;
+    if (k >= ms->nmodes)
+      continue;
+    const double *v = ms->shapes + k * ms->ndof;
+    /* Shapes are normalised to a largest displacement of 1: draw it as
+     * 0.5 m, visible on a 6 m hull. */
+    const double scale = 0.5;
+    double cube_xyz[6];
+    cubes(hull, v, scale, cube_xyz);
+    char name[32], title[160];
+    cli_mode_picture_name(k + 1, name, sizeof name);
+    snprintf(title, sizeof title, "System 2, mode %zu: %.3f Hz, %s", k + 1, ms->freq_hz[k],
+             ms->description[k]);
+    char *path = cli_outdir_path(od, name, err);
+    rc = path ? fb_plot_mesh_png(hull->mesh, v, scale, cube_xyz, 2, 0.3, title, path, err)
+              : FB_ENOMEM;
+    if (!rc)
+      rc = cli_outdir_keep(od, path, err);
+    else
+      free(path);
+  }
+  return rc;
 }
 
 /* Writes every mode's VTU and the pictured modes' PNGs. */
@@ -74,29 +111,7 @@ static int write_shapes(cli_outdir *od, const flex_modes *fm, fb_err *err)
     else
       free(path);
   }
-  for (size_t i = 0; !rc && i < sizeof pictured / sizeof pictured[0]; ++i) {
-    size_t k = pictured[i] - 1;
-    if (k >= ms->nmodes)
-      continue;
-    const double *v = ms->shapes + k * ms->ndof;
-    /* Shapes are normalised to a largest displacement of 1: draw it as
-     * 0.5 m, visible on a 6 m hull. */
-    const double scale = 0.5;
-    double cube_xyz[6];
-    cubes(fm, v, scale, cube_xyz);
-    char name[32], title[160];
-    snprintf(name, sizeof name, "mode_%02zu.png", k + 1);
-    snprintf(title, sizeof title, "System 2, mode %zu: %.3f Hz, %s", k + 1, ms->freq_hz[k],
-             ms->description[k]);
-    char *path = cli_outdir_path(od, name, err);
-    rc = path ? fb_plot_mesh_png(fm->hull->mesh, v, scale, cube_xyz, 2, 0.3, title, path, err)
-              : FB_ENOMEM;
-    if (!rc)
-      rc = cli_outdir_keep(od, path, err);
-    else
-      free(path);
-  }
-  return rc;
+  return rc ? rc : cli_write_mode_pictures(od, fm->hull, ms, err);
 }
 
 static int write_files(const char *dir, const flex_modes *fm, fb_err *err)

@@ -1,16 +1,17 @@
 /* flexbond run: the vehicle study of Leite & Da Silva ("Modeling and
  * simulation of armored wheeled vehicles with flexible hulls using modular
  * procedures"; data sheet ../shared/reference-vehicle.md). Loads a
- * scenario, simulates it, and only then writes DIR/system1.csv, one PNG
- * per paper figure (Figs. 8-14) and DIR/summary.json, all or nothing.
- *
- * The code handles a list of systems so that System 2 (flexible hull)
- * slots in as a second result: systemN.csv, "systemN" in the summary and
- * a second, dashed curve in every figure. */
+ * scenario, computes the modes of the systems asked for, simulates each
+ * system once, and only then writes, all or nothing: DIR/systemN.csv, one
+ * PNG per paper figure (Figs. 8-14; both systems overlaid above their
+ * difference), System 2's mode pictures, DIR/summary.json and
+ * DIR/report.md (report.c; the files are described in docs/report.md). */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "flexbond/io.h"
 #include "flexbond/sim.h"
@@ -22,36 +23,38 @@ static const char run_usage[] =
     "usage: flexbond run SCENARIO.yaml -o DIR [options]\n"
     "\n"
     "Simulates the vehicle of the scenario (docs/scenario-format.md) over the\n"
-    "bump and writes, once the run succeeded:\n"
-    "  DIR/system1.csv         t and the seven outputs of the paper, one row per\n"
+    "bump, with the rigid hull (System 1) and the finite-element hull (System 2),\n"
+    "and writes, once every run succeeded (docs/report.md):\n"
+    "  DIR/system1.csv, DIR/system2.csv\n"
+    "                          t and the seven outputs of the paper, one row per\n"
     "                          sample (header: names only; SI units)\n"
-    "  DIR/figNN_OUTPUT.png    the paper's Figs. 8-14, one output each\n"
+    "  DIR/figNN_OUTPUT.png    the paper's Figs. 8-14, one output each: both\n"
+    "                          systems overlaid, their difference below\n"
+    "  DIR/mode_NN.png         System 2's modes 1, 2, 8 and 10\n"
     "  DIR/summary.json        static value, peak, minimum and RMS over the bump\n"
-    "                          of every output, and solver statistics\n"
-    "DIR is created if missing; nothing is written if the run fails.\n"
+    "                          of every output, solver statistics, and System 2\n"
+    "                          against System 1 per output\n"
+    "  DIR/report.md           scenario, assumptions, modes, figures, comparison\n"
+    "                          table and conclusions\n"
+    "DIR is created if missing; nothing is written if a run fails.\n"
     "\n"
     "options (override the scenario):\n"
     "  -o, --output DIR            output directory (required)\n"
-    "  --system rigid|flexible|both  hull model (default rigid: System 1)\n"
+    "  --system rigid|flexible|both  hull model (default both; System 1 alone if\n"
+    "                              the scenario has no finite-element hull)\n"
     "  --initial zero|static       all states zero with gravity switched on at\n"
     "                              t = 0 (the paper), or static equilibrium\n"
     "  --payload weight-only|lumped  payload as force only (the paper), or\n"
     "                              as mass spread over the load points too\n"
-    "  --no-figures                CSV and summary only (no gnuplot)\n"
+    "  --hull-modes N              System 2's hull: 0 full order, N > 0 reduced to\n"
+    "                              N free-free modes (hull.fe.modes)\n"
+    "  --no-figures                no PNG; report.md without images\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
     "  -h, --help                  this text\n";
 
-/* The paper's figures of the seven outputs (Leite & Da Silva, section 5,
- * Figs. 8-14). Figs. 12 and 14 show only 4-10 s. */
-typedef struct run_figure {
-  int number;
-  const char *output;   /* fb_vehicle_output_name */
-  const char *caption;  /* the paper's caption, the figure's title */
-  const char *quantity; /* y axis label, without the unit */
-  int crossing_only;    /* 1: the paper's 4-10 s window, 0: the whole run */
-} run_figure;
-
-static const run_figure figures[] = {
+/* Leite & Da Silva, section 5, Figs. 8-14. Figs. 12 and 14 show only
+ * 4-10 s. */
+const cli_run_figure cli_run_figures[FB_NOUTPUTS] = {
     {8, "tire_force_LF", "Normal reaction of the left front tire on the road",
      "LF tire normal reaction", 0},
     {9, "spring_defl_RF", "Right front suspension spring vertical deformation",
@@ -65,21 +68,25 @@ static const run_figure figures[] = {
     {14, "tire_power_LR", "Power dissipated by the left rear tire", "LR tire dissipated power",
      1},
 };
-_Static_assert(sizeof figures / sizeof figures[0] == FB_NOUTPUTS, "one figure per output");
+
+void cli_run_figure_file(const cli_run_figure *fig, char *buf, size_t size)
+{
+  snprintf(buf, size, "fig%02d_%s.png", fig->number, fig->output);
+}
 
 /* The window of Figs. 12 and 14, s. */
 static const double crossing_window[2] = {4.0, 10.0};
 
 /* Values of --system and the systems each asks for. */
-enum { MAX_SYSTEMS = 2 };
-static const char *const system_choices[] = {"rigid", "flexible", "both"};
+enum { SYSTEM_RIGID, SYSTEM_FLEXIBLE, SYSTEM_BOTH };
+static const char *const system_choices[] = {
+    [SYSTEM_RIGID] = "rigid", [SYSTEM_FLEXIBLE] = "flexible", [SYSTEM_BOTH] = "both"};
 static const struct {
-  fb_system systems[MAX_SYSTEMS];
+  fb_system systems[CLI_MAX_SYSTEMS];
   size_t nsystems;
-} system_sets[] = {{{FB_SYSTEM_RIGID}, 1},
-                   {{FB_SYSTEM_FLEXIBLE}, 1},
-                   {{FB_SYSTEM_RIGID, FB_SYSTEM_FLEXIBLE}, 2}};
-enum { NSYSTEM_CHOICES = sizeof system_choices / sizeof system_choices[0] };
+} system_sets[] = {[SYSTEM_RIGID] = {{FB_SYSTEM_RIGID}, 1},
+                   [SYSTEM_FLEXIBLE] = {{FB_SYSTEM_FLEXIBLE}, 1},
+                   [SYSTEM_BOTH] = {{FB_SYSTEM_RIGID, FB_SYSTEM_FLEXIBLE}, 2}};
 
 /* Values of --initial and --payload, indexed by the enums' values. */
 static const char *const initial_choices[] = {
@@ -87,57 +94,41 @@ static const char *const initial_choices[] = {
 static const char *const payload_choices[] = {
     [FB_PAYLOAD_WEIGHT_ONLY] = "weight-only", [FB_PAYLOAD_LUMPED] = "lumped"};
 
+/* The scenario's range of hull.fe.modes. */
+enum { MAX_HULL_MODES = 100000 };
+/* Modes computed for the report: the whole System 2's (as modes
+ * --system flexible prints) and the free-free hull's, enough to pass its
+ * six rigid-body modes. */
+enum { VEHICLE_MODES = 20, HULL_FREE_MODES = 12 };
+
 /* Command-line settings; an override is -1 when not given. */
 typedef struct run_args {
   const char *scenario_path;
   const char *out_dir;
-  int initial; /* fb_initial_state */
-  int payload; /* fb_payload_model */
+  int system;     /* index in system_choices */
+  int initial;    /* fb_initial_state */
+  int payload;    /* fb_payload_model */
+  int hull_modes; /* s->hull_modes */
   int quiet;
-  int figures; /* 0 with --no-figures */
+  int progress; /* draw a progress line: stderr is a terminal, no -q */
+  int figures;  /* 0 with --no-figures */
 } run_args;
 
-/* One simulated system and its result. */
-typedef struct run_system {
-  fb_system sys;
-  fb_result *res;
-} run_system;
-
-/* What the files are made of. */
-typedef struct run_outputs {
-  const fb_scenario *scenario;
-  const run_system *runs;
-  size_t nruns;
-  double bump_window[2]; /* first wheel's bump entry, last wheel's exit, s */
-  int figures;           /* write the PNG figures */
-} run_outputs;
-
-static const char *system_label(fb_system sys)
+const char *cli_system_label(fb_system sys)
 {
   return sys == FB_SYSTEM_RIGID ? "System 1 (rigid hull)" : "System 2 (flexible hull)";
 }
 
-static const char *scenario_name(const fb_scenario *s)
+const char *cli_scenario_name(const fb_scenario *s)
 {
   return s->name ? s->name : s->path ? s->path : "scenario";
-}
-
-/* Column of output name in r (>= 1), or FB_EINVAL: fb_vehicle_simulate
- * promises every output. */
-static int output_column(const fb_result *r, const char *name, size_t *col, fb_err *err)
-{
-  long j = fb_result_find(r, name);
-  if (j < 1)
-    return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'", name);
-  *col = (size_t)j;
-  return FB_OK;
 }
 
 /* ---- Figures. */
 
 /* The plotting window of fig over the run of r: the whole run, or the
  * paper's 4-10 s clipped to it (the whole run if they do not overlap). */
-static void figure_window(const run_figure *fig, const fb_result *r, double *t_min,
+static void figure_window(const cli_run_figure *fig, const fb_result *r, double *t_min,
                           double *t_max)
 {
   /* fb_plot_opts: t_min >= t_max means the result's span. */
@@ -155,45 +146,46 @@ static void figure_window(const run_figure *fig, const fb_result *r, double *t_m
 
 /* "Fig. 8. Normal reaction ...: System 1 (rigid hull)" (and " vs System 2
  * (flexible hull)" when overlaid) into buf. */
-static void figure_title(const run_figure *fig, const run_outputs *o, char *buf, size_t size)
+static void figure_title(const cli_run_figure *fig, const cli_run_outputs *o, char *buf,
+                         size_t size)
 {
   int n = snprintf(buf, size, "Fig. %d. %s: %s", fig->number, fig->caption,
-                   system_label(o->runs[0].sys));
+                   cli_system_label(o->runs[0].sys));
   for (size_t i = 1; i < o->nruns && n > 0 && (size_t)n < size; ++i)
-    n += snprintf(buf + n, size - (size_t)n, " vs %s", system_label(o->runs[i].sys));
+    n += snprintf(buf + n, size - (size_t)n, " vs %s", cli_system_label(o->runs[i].sys));
 }
 
-/* DIR/figNN_OUTPUT.png: one panel, a curve per system. */
-static int write_figure(cli_outdir *od, const run_figure *fig, const run_outputs *o,
-                        fb_err *err)
+/* DIR/figNN_OUTPUT.png of output k: a panel with a curve per system and,
+ * when both ran, a second panel with their difference. */
+static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_err *err)
 {
-  fb_plot_series series[MAX_SYSTEMS];
-  size_t col = 0;
-  int rc = FB_OK;
-  for (size_t i = 0; i < o->nruns; ++i) {
-    rc = output_column(o->runs[i].res, fig->output, &col, err);
-    if (rc != FB_OK)
-      return rc;
+  const cli_run_figure *fig = &cli_run_figures[k];
+  fb_plot_series series[CLI_MAX_SYSTEMS];
+  for (size_t i = 0; i < o->nruns; ++i)
     /* A single curve needs no key: the title names its system. */
-    series[i] = (fb_plot_series){.result = o->runs[i].res,
-                                 .col = col - 1,
-                                 .legend = o->nruns > 1 ? system_label(o->runs[i].sys) : NULL};
-  }
-  char ylabel[160], title[256], name[96];
-  snprintf(ylabel, sizeof ylabel, "%s [%s]", fig->quantity,
-           fb_result_col_unit(o->runs[0].res, col));
+    series[i] =
+        (fb_plot_series){.result = o->runs[i].res,
+                         .col = o->runs[i].col[k] - 1,
+                         .legend = o->nruns > 1 ? cli_system_label(o->runs[i].sys) : NULL};
+  /* fb_result_diff keeps System 1's columns. */
+  const fb_plot_series diff = {.result = o->diff, .col = o->runs[0].col[k] - 1, .legend = NULL};
+  const char *unit = fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]);
+  char ylabel[160], diff_ylabel[160], title[256], name[96];
+  snprintf(ylabel, sizeof ylabel, "%s [%s]", fig->quantity, unit);
+  snprintf(diff_ylabel, sizeof diff_ylabel, "System 2 - System 1 [%s]", unit);
   figure_title(fig, o, title, sizeof title);
-  snprintf(name, sizeof name, "fig%02d_%s.png", fig->number, fig->output);
-  const fb_plot_panel panel = {.series = series, .nseries = o->nruns, .ylabel = ylabel};
+  cli_run_figure_file(fig, name, sizeof name);
+  const fb_plot_panel panels[2] = {{.series = series, .nseries = o->nruns, .ylabel = ylabel},
+                                   {.series = &diff, .nseries = 1, .ylabel = diff_ylabel}};
   fb_plot_opts opts;
   fb_plot_opts_default(&opts);
   opts.title = title;
-  opts.panel_height = 460;
+  opts.panel_height = o->diff ? 320 : 460;
   figure_window(fig, o->runs[0].res, &opts.t_min, &opts.t_max);
   char *path = cli_outdir_path(od, name, err);
   if (!path)
     return FB_ENOMEM;
-  rc = fb_plot_panels_png(&panel, 1, &opts, path, err);
+  int rc = fb_plot_panels_png(panels, o->diff ? 2 : 1, &opts, path, err);
   if (rc == FB_OK)
     return cli_outdir_keep(od, path, err);
   free(path);
@@ -226,60 +218,30 @@ static void json_number(FILE *fp, double v)
     fputs("null", fp);
 }
 
-/* Figures of one output over a run (see the "definitions" of summary.json). */
-typedef struct output_summary {
-  double static_value, peak, peak_time, min, min_time, rms;
-} output_summary;
+/* A JSON object's numeric members. */
+typedef struct json_field {
+  const char *key;
+  double value;
+} json_field;
 
-/* The summary of column col of r per the "definitions" of summary.json,
- * window being the bump window: one pass over the samples. */
-static output_summary summarise(const fb_result *r, size_t col, const double window[2])
+/* {"unit": unit, key: value, ...} */
+static void json_object(FILE *fp, const char *unit, const json_field *fields, size_t nfields)
 {
-  output_summary o = {NAN, -INFINITY, NAN, INFINITY, NAN, NAN};
-  double sum_sq = 0;
-  size_t nwindow = 0;
-  for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
-    const double *row = fb_result_row(r, k);
-    double t = row[0], v = row[col];
-    if (t < window[0]) {
-      o.static_value = v;
-      continue;
-    }
-    /* Comparisons with NaN are false: NaN samples never become extremes. */
-    if (v > o.peak) {
-      o.peak = v;
-      o.peak_time = t;
-    }
-    if (v < o.min) {
-      o.min = v;
-      o.min_time = t;
-    }
-    if (t <= window[1]) {
-      sum_sq += v * v;
-      ++nwindow;
-    }
-  }
-  if (nwindow > 0)
-    o.rms = sqrt(sum_sq / (double)nwindow);
-  return o;
-}
-
-static void write_output_json(FILE *fp, const fb_result *r, size_t col, const double window[2])
-{
-  output_summary o = summarise(r, col, window);
-  const struct {
-    const char *key;
-    double value;
-  } fields[] = {
-      {"static", o.static_value}, {"peak", o.peak},        {"min", o.min}, {"rms", o.rms},
-      {"peak_time", o.peak_time}, {"min_time", o.min_time}};
   fputs("{\"unit\": ", fp);
-  json_string(fp, fb_result_col_unit(r, col));
-  for (size_t i = 0; i < sizeof fields / sizeof fields[0]; ++i) {
+  json_string(fp, unit);
+  for (size_t i = 0; i < nfields; ++i) {
     fprintf(fp, ", \"%s\": ", fields[i].key);
     json_number(fp, fields[i].value);
   }
   fputc('}', fp);
+}
+
+static void write_output_json(FILE *fp, const char *unit, const cli_output_stats *o)
+{
+  const json_field fields[] = {
+      {"static", o->static_value}, {"peak", o->peak},        {"min", o->min}, {"rms", o->rms},
+      {"peak_time", o->peak_time}, {"min_time", o->min_time}};
+  json_object(fp, unit, fields, sizeof fields / sizeof fields[0]);
 }
 
 static void write_solver_json(FILE *fp, const fb_sim_stats *s)
@@ -294,19 +256,20 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
   fputc('}', fp);
 }
 
-/* "systemN": {...} of one run. Outputs missing from the result were
- * caught by write_figure before summary.json is written. */
-static void write_system_json(FILE *fp, const run_system *run, const double window[2])
+/* "systemN": {...} of one run. */
+static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scenario *s,
+                              const double window[2])
 {
   fprintf(fp, ",\n  \"system%d\": {\n    \"label\": ", (int)run->sys);
-  json_string(fp, system_label(run->sys));
+  json_string(fp, cli_system_label(run->sys));
+  if (run->sys == FB_SYSTEM_FLEXIBLE)
+    fprintf(fp, ",\n    \"hull_modes\": %d", s->hull_modes);
   fputs(",\n    \"outputs\": {", fp);
   for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
-    const char *name = figures[k].output;
     fputs(k ? ",\n      " : "\n      ", fp);
-    json_string(fp, name);
+    json_string(fp, cli_run_figures[k].output);
     fputs(": ", fp);
-    write_output_json(fp, run->res, (size_t)fb_result_find(run->res, name), window);
+    write_output_json(fp, fb_result_col_unit(run->res, run->col[k]), &run->stats[k]);
   }
   fputs("\n    },\n    \"solver\": ", fp);
   write_solver_json(fp, fb_result_stats(run->res));
@@ -315,6 +278,32 @@ static void write_system_json(FILE *fp, const run_system *run, const double wind
   fputs(", ", fp);
   json_number(fp, window[1]);
   fputs("]\n  }", fp);
+}
+
+/* "comparison": {output: {...}, ...} of System 2 against System 1. */
+static void write_comparison_json(FILE *fp, const cli_run_outputs *o)
+{
+  fputs(",\n  \"comparison\": {", fp);
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &o->runs[1].stats[k];
+    const cli_output_cmp *c = &o->cmp[k];
+    const json_field fields[] = {{"peak_system1", s1->peak},
+                                 {"peak_system2", s2->peak},
+                                 {"rms_system1", s1->rms},
+                                 {"rms_system2", s2->rms},
+                                 {"max_abs_diff", c->max_diff},
+                                 {"max_abs_diff_time", c->max_diff_time},
+                                 {"range_system1", c->range1},
+                                 {"max_abs_diff_rel", c->rel_diff},
+                                 {"peak_change_rel", c->peak_change},
+                                 {"rms_change_rel", c->rms_change}};
+    fputs(k ? ",\n    " : "\n    ", fp);
+    json_string(fp, cli_run_figures[k].output);
+    fputs(": ", fp);
+    json_object(fp, fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]), fields,
+                sizeof fields / sizeof fields[0]);
+  }
+  fputs("\n  }", fp);
 }
 
 static const char *const definitions[][2] = {
@@ -329,16 +318,26 @@ static const char *const definitions[][2] = {
             "not of its deviation from static)"},
     {"bump_window", "[first wheel's bump entry, last wheel's bump exit], s"},
     {"solver", "CVODE statistics of the run; wall_seconds is the integration's wall time"},
+    {"hull_modes", "System 2's hull model: 0 full order, N > 0 reduced to N free-free modes "
+                   "with static correction"},
+    {"comparison", "System 2 against System 1 per output (when both ran): peak_systemN and "
+                   "rms_systemN are each system's peak and rms; max_abs_diff is the largest "
+                   "|System 2 - System 1| from bump_window[0] to the end of the run, at "
+                   "max_abs_diff_time (first occurrence); range_system1 = System 1's peak - "
+                   "min; max_abs_diff_rel = max_abs_diff / range_system1, peak_change_rel = "
+                   "(peak_system2 - peak_system1) / |peak_system1|, rms_change_rel = "
+                   "(rms_system2 - rms_system1) / rms_system1, as fractions, null when the "
+                   "denominator is 0"},
     {"units", "SI, as the \"unit\" of each output; null stands for a non-finite value"},
 };
 
-/* summary.json (a cli_writer over a run_outputs). */
+/* summary.json (a cli_writer over a cli_run_outputs). */
 static void write_summary_json(FILE *fp, const void *ctx)
 {
-  const run_outputs *o = ctx;
+  const cli_run_outputs *o = ctx;
   const fb_scenario *s = o->scenario;
   fputs("{\n  \"scenario\": ", fp);
-  json_string(fp, scenario_name(s));
+  json_string(fp, cli_scenario_name(s));
   fputs(",\n  \"initial\": ", fp);
   json_string(fp, initial_choices[s->initial]);
   fputs(",\n  \"payload\": ", fp);
@@ -352,25 +351,30 @@ static void write_summary_json(FILE *fp, const void *ctx)
   }
   fputs("\n  }", fp);
   for (size_t i = 0; i < o->nruns; ++i)
-    write_system_json(fp, &o->runs[i], o->bump_window);
+    write_system_json(fp, &o->runs[i], s, o->bump_window);
+  if (o->diff)
+    write_comparison_json(fp, o);
   fputs("\n}\n", fp);
 }
 
-/* systemN.csv (a cli_writer over a run_system). */
+/* systemN.csv (a cli_writer over a cli_run_system). */
 static void write_system_csv(FILE *fp, const void *ctx)
 {
-  const run_system *run = ctx;
+  const cli_run_system *run = ctx;
   fb_result_print_csv(fp, run->res, FB_CSV_HEADER_NAMES);
 }
 
-/* Creates dir if needed and writes every file into it, all or nothing.
- * The figures go first: they are the likeliest to fail (gnuplot). */
-static int write_outputs(const char *dir, const run_outputs *o, fb_err *err)
+/* Creates dir if needed and writes every file into it, all or nothing;
+ * *nfiles is how many. The pictures go first: they are the likeliest to
+ * fail (gnuplot); report.md, which links the others, goes last. */
+static int write_outputs(const char *dir, const cli_run_outputs *o, size_t *nfiles, fb_err *err)
 {
   cli_outdir od;
   int rc = cli_outdir_open(&od, dir, err);
   for (size_t k = 0; o->figures && k < FB_NOUTPUTS && rc == FB_OK; ++k)
-    rc = write_figure(&od, &figures[k], o, err);
+    rc = write_figure(&od, k, o, err);
+  if (rc == FB_OK && o->figures && o->modes2)
+    rc = cli_write_mode_pictures(&od, o->hull, o->modes2, err);
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
     char name[32];
     snprintf(name, sizeof name, "system%d.csv", (int)o->runs[i].sys);
@@ -378,6 +382,9 @@ static int write_outputs(const char *dir, const run_outputs *o, fb_err *err)
   }
   if (rc == FB_OK)
     rc = cli_outdir_write(&od, "summary.json", write_summary_json, o, err);
+  if (rc == FB_OK)
+    rc = cli_outdir_write(&od, "report.md", cli_write_report_md, o, err);
+  *nfiles = od.nfiles;
   return cli_outdir_close(&od, rc);
 }
 
@@ -392,68 +399,245 @@ static void bump_window(const fb_scenario *s, double window[2])
   }
 }
 
-static int simulate(const run_args *a, const fb_scenario *s, run_system *run, fb_err *err)
+/* ---- Modes, for the report. */
+
+/* The modes of the systems that run (owned). */
+typedef struct run_modes {
+  fb_mode *modes1;
+  size_t nmodes1, nstatic1;
+  fb_fe_hull *hull;
+  fb_mode_set *modes2;
+  double hull_f1, hull_beta;
+} run_modes;
+
+/* System 2's hull, its first elastic free-free frequency, its damping
+ * coefficient beta and the whole vehicle's undamped modes. */
+static int flexible_modes(const fb_scenario *s, run_modes *m, fb_err *err)
 {
-  if (!a->quiet)
-    fprintf(stderr, "flexbond run: %s: simulating %s, t = 0..%g s ...\n", scenario_name(s),
-            system_label(run->sys), s->t_end);
-  int rc = fb_vehicle_simulate(s, run->sys, &run->res, err);
-  if (rc == FB_OK && !a->quiet) {
-    const fb_sim_stats *st = fb_result_stats(run->res);
-    fprintf(stderr, "flexbond run: %s: %s: %zu samples, %ld steps, %ld rhs evals, %.3g s\n",
-            scenario_name(s), system_label(run->sys), fb_result_nsamples(run->res), st->steps,
-            st->rhs_evals, st->wall_seconds);
-  }
+  double freq[HULL_FREE_MODES];
+  size_t nrigid = 0;
+  int rc = fb_vehicle_fe_hull(s, &m->hull, err);
+  if (rc == FB_OK)
+    rc = fb_fe_hull_free_modes(m->hull, HULL_FREE_MODES, freq, &nrigid, err);
+  m->hull_f1 = nrigid < HULL_FREE_MODES ? freq[nrigid] : NAN;
+  if (rc == FB_OK)
+    rc = fb_fe_hull_damping(m->hull, s->hull_damping_ratio, &m->hull_beta, NULL, err);
+  if (rc == FB_OK)
+    rc = fb_vehicle_flexible_modes(s, m->hull, VEHICLE_MODES, &m->modes2, err);
   return rc;
 }
 
-static int run(const run_args *a, const fb_system *systems, size_t nsystems)
+static int compute_modes(const fb_scenario *s, const fb_system *systems, size_t nsystems,
+                         run_modes *m, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; i < nsystems && rc == FB_OK; ++i)
+    rc = systems[i] == FB_SYSTEM_RIGID ? fb_vehicle_modes(s, FB_SYSTEM_RIGID, 1, &m->modes1,
+                                                          &m->nmodes1, &m->nstatic1, err)
+                                       : flexible_modes(s, m, err);
+  return rc;
+}
+
+static void run_modes_free(run_modes *m)
+{
+  free(m->modes1);
+  fb_mode_set_free(&m->modes2);
+  fb_fe_hull_free(&m->hull);
+}
+
+/* ---- Simulation. */
+
+/* The "\r"-updated progress line of one run. */
+typedef struct run_progress {
+  const char *scenario, *system;
+  double t_end; /* s */
+  int percent;  /* last one drawn */
+} run_progress;
+
+static void draw_progress_line(const run_progress *p)
+{
+  fprintf(stderr, "\rflexbond run: %s: simulating %s, t = 0..%g s: %3d%%", p->scenario,
+          p->system, p->t_end, p->percent);
+  fflush(stderr);
+}
+
+/* fb_sim_progress_fn: redraws only when the whole percentage grows, so a
+ * run of a million steps writes at most 100 lines. */
+static void show_progress(void *ctx, double t, double t_end)
+{
+  run_progress *p = ctx;
+  double fraction = t_end > 0 ? t / t_end : 1;
+  int percent = (int)floor(100 * fmin(fmax(fraction, 0), 1));
+  if (percent <= p->percent)
+    return;
+  p->percent = percent;
+  draw_progress_line(p);
+}
+
+/* Columns and statistics of run's outputs. */
+static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
+{
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    long j = fb_result_find(run->res, cli_run_figures[k].output);
+    /* fb_vehicle_simulate promises every output. */
+    if (j < 1)
+      return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'",
+                        cli_run_figures[k].output);
+    run->col[k] = (size_t)j;
+    run->stats[k] = cli_output_stats_of(run->res, run->col[k], window);
+  }
+  return FB_OK;
+}
+
+static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
+                    cli_run_system *run, fb_err *err)
+{
+  run_progress p = {cli_scenario_name(s), cli_system_label(run->sys), s->t_end, 0};
+  if (a->progress)
+    draw_progress_line(&p);
+  else if (!a->quiet)
+    fprintf(stderr, "flexbond run: %s: simulating %s, t = 0..%g s ...\n", p.scenario, p.system,
+            s->t_end);
+  int rc = fb_vehicle_simulate_progress(s, run->sys, a->progress ? show_progress : NULL, &p,
+                                        &run->res, err);
+  /* End the progress line, also before an error message. */
+  if (a->progress)
+    fputc('\n', stderr);
+  if (rc == FB_OK && !a->quiet) {
+    const fb_sim_stats *st = fb_result_stats(run->res);
+    fprintf(stderr, "flexbond run: %s: %s: %zu samples, %ld steps, %ld rhs evals, %.3g s\n",
+            p.scenario, p.system, fb_result_nsamples(run->res), st->steps, st->rhs_evals,
+            st->wall_seconds);
+  }
+  return rc == FB_OK ? run_columns(run, window, err) : rc;
+}
+
+/* ---- The command. */
+
+/* The systems to run: --system's, by default both, or System 1 alone
+ * (with *note saying why) if the scenario has no finite-element hull. */
+static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *systems,
+                           const char **note)
+{
+  int choice = a->system >= 0 ? a->system : SYSTEM_BOTH;
+  *note = NULL;
+  if (a->system < 0 && !s->has_fe_hull) {
+    choice = SYSTEM_RIGID;
+    *note = "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
+            "System 1 (rigid hull) ran";
+  }
+  for (size_t i = 0; i < system_sets[choice].nsystems; ++i)
+    systems[i] = system_sets[choice].systems[i];
+  return system_sets[choice].nsystems;
+}
+
+/* System 2 minus System 1 and the comparison of every output, when both
+ * ran (System 1 first). */
+static int compare(cli_run_outputs *o, fb_result **diff, fb_err *err)
+{
+  if (o->nruns < 2)
+    return FB_OK;
+  int rc = fb_result_diff(o->runs[1].res, o->runs[0].res, diff, err);
+  for (size_t k = 0; rc == FB_OK && k < FB_NOUTPUTS; ++k)
+    o->cmp[k] = cli_output_compare(&o->runs[0].stats[k], &o->runs[1].stats[k], *diff,
+                                   o->runs[0].col[k], o->bump_window);
+  o->diff = *diff;
+  return rc;
+}
+
+/* Applies the command line's overrides to the scenario. */
+static void override(const run_args *a, fb_scenario *s)
+{
+  if (a->initial >= 0)
+    s->initial = (fb_initial_state)a->initial;
+  if (a->payload >= 0)
+    s->payload = (fb_payload_model)a->payload;
+  if (a->hull_modes >= 0)
+    s->hull_modes = a->hull_modes;
+}
+
+static int run(const run_args *a)
 {
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;
-  run_system runs[MAX_SYSTEMS] = {{0}};
+  cli_run_system runs[CLI_MAX_SYSTEMS] = {{0}};
+  fb_system systems[CLI_MAX_SYSTEMS];
+  run_modes modes = {0};
+  fb_result *diff = NULL;
+  cli_run_outputs o = {.runs = runs, .figures = a->figures};
+  size_t nfiles = 0;
   int rc = fb_scenario_load(a->scenario_path, &s, &err);
   if (rc == FB_OK) {
-    if (a->initial >= 0)
-      s->initial = (fb_initial_state)a->initial;
-    if (a->payload >= 0)
-      s->payload = (fb_payload_model)a->payload;
+    override(a, s);
+    o.scenario = s;
+    o.nruns = pick_systems(a, s, systems, &o.note);
+    o.hull_modes_source = a->hull_modes >= 0 ? "the command line (`--hull-modes`)"
+                                             : "the scenario (`hull.fe.modes`, 0 when absent)";
+    bump_window(s, o.bump_window);
+    if (o.note && !a->quiet)
+      fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
+    rc = compute_modes(s, systems, o.nruns, &modes, &err);
   }
-  for (size_t i = 0; i < nsystems && rc == FB_OK; ++i) {
+  for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i) {
     runs[i].sys = systems[i];
-    rc = simulate(a, s, &runs[i], &err);
+    rc = simulate(a, s, o.bump_window, &runs[i], &err);
   }
   if (rc == FB_OK) {
-    run_outputs o = {.scenario = s, .runs = runs, .nruns = nsystems, .figures = a->figures};
-    bump_window(s, o.bump_window);
-    rc = write_outputs(a->out_dir, &o, &err);
+    o.modes1 = modes.modes1;
+    o.nmodes1 = modes.nmodes1;
+    o.nstatic1 = modes.nstatic1;
+    o.hull = modes.hull;
+    o.modes2 = modes.modes2;
+    o.hull_f1 = modes.hull_f1;
+    o.hull_beta = modes.hull_beta;
+    rc = compare(&o, &diff, &err);
   }
+  if (rc == FB_OK)
+    rc = write_outputs(a->out_dir, &o, &nfiles, &err);
   if (rc == FB_OK && !a->quiet)
-    fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", scenario_name(s),
-            (a->figures ? FB_NOUTPUTS : 0) + nsystems + 1, a->out_dir);
-  for (size_t i = 0; i < nsystems; ++i)
+    fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", cli_scenario_name(s), nfiles,
+            a->out_dir);
+  fb_result_free(&diff);
+  for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i)
     fb_result_free(&runs[i].res);
+  run_modes_free(&modes);
   fb_scenario_free(&s);
   return cli_report(rc, &err);
 }
 
-/* The systems --system asks for (rigid when absent). A usage error for
- * System 2 while the flexible hull does not exist. */
-static int parse_systems(const char *cmd, const char *text, fb_system *systems,
-                         size_t *nsystems)
+/* The value of --hull-modes: an integer in 0 .. MAX_HULL_MODES, as
+ * hull.fe.modes. */
+static int parse_hull_modes(const char *cmd, const char *text, int *out)
 {
-  int choice = 0;
-  int rc = text ? cli_choice(cmd, "--system", text, system_choices, NSYSTEM_CHOICES, &choice)
-                : CLI_EXIT_OK;
-  *nsystems = 0;
-  for (size_t i = 0; rc == CLI_EXIT_OK && i < system_sets[choice].nsystems; ++i) {
-    systems[i] = system_sets[choice].systems[i];
-    if (systems[i] == FB_SYSTEM_FLEXIBLE)
-      rc = cli_usage_error(cmd, "System 2 (flexible hull) is not available yet");
-  }
-  if (rc == CLI_EXIT_OK)
-    *nsystems = system_sets[choice].nsystems;
+  char *end = NULL;
+  errno = 0;
+  long v = strtol(text, &end, 10);
+  if (end == text || *end != '\0' || errno == ERANGE || v < 0 || v > MAX_HULL_MODES)
+    return cli_usage_error(cmd, "option '--hull-modes' needs an integer in 0..%d (got '%s')",
+                           MAX_HULL_MODES, text);
+  *out = (int)v;
+  return CLI_EXIT_OK;
+}
+
+/* The options' values into a (after the output directory). */
+static int parse_settings(const char *cmd, const cli_option *system, const cli_option *initial,
+                          const cli_option *payload, const cli_option *hull_modes, run_args *a)
+{
+  int rc = CLI_EXIT_OK;
+  if (system->value)
+    rc = cli_choice(cmd, "--system", system->value, system_choices,
+                    sizeof system_choices / sizeof system_choices[0], &a->system);
+  if (rc == CLI_EXIT_OK && initial->value)
+    rc = cli_choice(cmd, "--initial", initial->value, initial_choices,
+                    sizeof initial_choices / sizeof initial_choices[0], &a->initial);
+  if (rc == CLI_EXIT_OK && payload->value)
+    rc = cli_choice(cmd, "--payload", payload->value, payload_choices,
+                    sizeof payload_choices / sizeof payload_choices[0], &a->payload);
+  if (rc == CLI_EXIT_OK && hull_modes->value)
+    rc = parse_hull_modes(cmd, hull_modes->value, &a->hull_modes);
+  if (rc == CLI_EXIT_OK && hull_modes->value && a->system == SYSTEM_RIGID)
+    rc = cli_usage_error(cmd, "--hull-modes sets System 2's hull: not with --system rigid");
   return rc;
 }
 
@@ -464,6 +648,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_SYSTEM,
     OPT_INITIAL,
     OPT_PAYLOAD,
+    OPT_HULL_MODES,
     OPT_NO_FIGURES,
     OPT_QUIET,
     OPT_HELP,
@@ -474,11 +659,12 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_SYSTEM] = {"--system", NULL, 1, NULL},
       [OPT_INITIAL] = {"--initial", NULL, 1, NULL},
       [OPT_PAYLOAD] = {"--payload", NULL, 1, NULL},
+      [OPT_HULL_MODES] = {"--hull-modes", NULL, 1, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
-  run_args a = {.initial = -1, .payload = -1};
+  run_args a = {.system = -1, .initial = -1, .payload = -1, .hull_modes = -1};
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, run_usage, "SCENARIO", &a.scenario_path,
                               &rc))
@@ -487,15 +673,9 @@ int cli_cmd_run(int argc, char **argv)
   if (!a.out_dir || !*a.out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a.quiet = opts[OPT_QUIET].value != NULL;
+  a.progress = !a.quiet && isatty(STDERR_FILENO);
   a.figures = opts[OPT_NO_FIGURES].value == NULL;
-  fb_system systems[MAX_SYSTEMS];
-  size_t nsystems = 0;
-  rc = parse_systems(argv[0], opts[OPT_SYSTEM].value, systems, &nsystems);
-  if (rc == CLI_EXIT_OK && opts[OPT_INITIAL].value)
-    rc = cli_choice(argv[0], "--initial", opts[OPT_INITIAL].value, initial_choices,
-                    sizeof initial_choices / sizeof initial_choices[0], &a.initial);
-  if (rc == CLI_EXIT_OK && opts[OPT_PAYLOAD].value)
-    rc = cli_choice(argv[0], "--payload", opts[OPT_PAYLOAD].value, payload_choices,
-                    sizeof payload_choices / sizeof payload_choices[0], &a.payload);
-  return rc == CLI_EXIT_OK ? run(&a, systems, nsystems) : rc;
+  rc = parse_settings(argv[0], &opts[OPT_SYSTEM], &opts[OPT_INITIAL], &opts[OPT_PAYLOAD],
+                      &opts[OPT_HULL_MODES], &a);
+  return rc == CLI_EXIT_OK ? run(&a) : rc;
 }

@@ -1,0 +1,613 @@
+/* flexbond run's statistics and its DIR/report.md (docs/report.md): the
+ * scenario, the assumptions, the runs, the mode tables and pictures, the
+ * figures, the comparison of System 2 with System 1 and a paragraph of
+ * conclusions. Every sentence of the conclusions is chosen by comparing
+ * this run's numbers with the thresholds below; nothing is written in
+ * advance. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "flexbond/sim.h"
+#include "flexbond/vehicle.h"
+
+#include "cli.h"
+
+/* A difference between the systems counts as notable above 5 % of System
+ * 1's peak-to-peak range over the bump, a peak or RMS change above 5 % of
+ * System 1's value: a few times the scatter of reading the paper's plots,
+ * well above the solvers' error (rtol 1e-6). */
+static const double notable_diff = 0.05;
+static const double notable_change = 0.05;
+
+/* 180 / pi; M_PI is not in C11. */
+#define DEGREES_PER_RADIAN 57.295779513082320877
+
+/* ---- Statistics. */
+
+cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2])
+{
+  cli_output_stats o = {NAN, -INFINITY, NAN, INFINITY, NAN, NAN};
+  double sum_sq = 0;
+  size_t nwindow = 0;
+  for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
+    const double *row = fb_result_row(r, k);
+    double t = row[0], v = row[col];
+    if (t < window[0]) {
+      o.static_value = v;
+      continue;
+    }
+    /* Comparisons with NaN are false: NaN samples never become extremes. */
+    if (v > o.peak) {
+      o.peak = v;
+      o.peak_time = t;
+    }
+    if (v < o.min) {
+      o.min = v;
+      o.min_time = t;
+    }
+    if (t <= window[1]) {
+      sum_sq += v * v;
+      ++nwindow;
+    }
+  }
+  if (nwindow > 0)
+    o.rms = sqrt(sum_sq / (double)nwindow);
+  return o;
+}
+
+/* num / den, NaN when den is 0 (a ratio to nothing says nothing). */
+static double ratio(double num, double den)
+{
+  return den != 0 ? num / den : NAN;
+}
+
+cli_output_cmp cli_output_compare(const cli_output_stats *s1, const cli_output_stats *s2,
+                                  const fb_result *diff, size_t col, const double window[2])
+{
+  cli_output_cmp c = {0, NAN, NAN, NAN, NAN, NAN};
+  for (size_t k = 0; k < fb_result_nsamples(diff); ++k) {
+    const double *row = fb_result_row(diff, k);
+    if (row[0] >= window[0] && fabs(row[col]) > c.max_diff) {
+      c.max_diff = fabs(row[col]);
+      c.max_diff_time = row[0];
+    }
+  }
+  c.range1 = s1->peak - s1->min;
+  c.rel_diff = ratio(c.max_diff, c.range1);
+  c.peak_change = ratio(s2->peak - s1->peak, fabs(s1->peak));
+  c.rms_change = ratio(s2->rms - s1->rms, s1->rms);
+  return c;
+}
+
+/* Largest |value| of column col of r over the whole run. */
+static double max_abs(const fb_result *r, size_t col)
+{
+  double m = 0;
+  for (size_t k = 0; k < fb_result_nsamples(r); ++k)
+    m = fmax(m, fabs(fb_result_row(r, k)[col]));
+  return m;
+}
+
+/* ---- Markdown. */
+
+/* Text with Markdown's punctuation escaped (CommonMark, section 2.4), so
+ * a name or a path prints as it is. */
+static void md_text(FILE *fp, const char *s)
+{
+  for (; *s; ++s) {
+    if (strchr("\\`*_[]<>|#", *s))
+      fputc('\\', fp);
+    fputc(*s, fp);
+  }
+}
+
+/* v to 4 significant digits in buf (32 bytes suffice), in fixed notation
+ * from 1e-3 to 1e6 (%g would print 20003 as 2e+04), "-" for a
+ * non-finite value. Returns buf. */
+static const char *number_text(double v, char *buf, size_t size)
+{
+  const double a = fabs(v);
+  if (!isfinite(v))
+    snprintf(buf, size, "-");
+  else if (a >= 1e-3 && a < 1e6)
+    snprintf(buf, size, "%.*f", (int)fmax(0, 3 - floor(log10(a))), v);
+  else
+    snprintf(buf, size, "%.4g", v);
+  return buf;
+}
+
+static void md_number(FILE *fp, double v)
+{
+  char buf[32];
+  fputs(number_text(v, buf, sizeof buf), fp);
+}
+
+/* A fraction as a signed or unsigned percentage, "-" for a non-finite one. */
+static void md_percent(FILE *fp, double fraction, int sign)
+{
+  if (isfinite(fraction))
+    fprintf(fp, sign ? "%+.1f %%" : "%.1f %%", 100 * fraction);
+  else
+    fputs("-", fp);
+}
+
+/* ---- Scenario. */
+
+static void write_corner_table(FILE *fp, const fb_scenario *s)
+{
+  fputs("\n| corner | spring k [N/m] | damper c [N s/m] | motion ratio | x, y [m] | "
+        "wheel [kg] | tire k [N/m] | tire c [N s/m] | bump entry, exit [s] |\n"
+        "|---|---|---|---|---|---|---|---|---|\n",
+        fp);
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    const fb_corner_params *p = &s->corner[c];
+    fprintf(
+        fp,
+        "| %s | %.10g | %.10g | %.10g | %.10g, %.10g | %.10g | %.10g | %.10g | %.4f, %.4f |\n",
+        fb_corner_name(c), p->spring_k, p->damper_c, p->motion_ratio, p->x, p->y, p->wheel_mass,
+        p->tire_k, p->tire_c, fb_scenario_bump_entry(s, c), fb_scenario_bump_exit(s, c));
+  }
+}
+
+static void write_mount_row(FILE *fp, const char *what, const fb_mount *m)
+{
+  fprintf(fp, "| %s | %.10g kg on %.10g N/m and %.10g N s/m at x, y = %.10g, %.10g m |\n", what,
+          m->mass, m->stiffness, m->damping, m->x, m->y);
+}
+
+static void write_scenario(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_scenario *s = o->scenario;
+  fputs("## Scenario\n\n| | |\n|---|---|\n| name | ", fp);
+  md_text(fp, cli_scenario_name(s));
+  fputs(" |\n| file | ", fp);
+  md_text(fp, s->path ? s->path : "-");
+  fputs(" |\n| systems | ", fp);
+  for (size_t i = 0; i < o->nruns; ++i)
+    fprintf(fp, "%s%s", i ? ", " : "", cli_system_label(o->runs[i].sys));
+  fprintf(fp,
+          " |\n| gravity | %.10g m/s^2 |\n"
+          "| hull | %.10g kg, Ixx %.10g kg m^2, Iyy %.10g kg m^2 (about its centre of mass) |\n"
+          "| load | %.10g N (hull plus payload) in equal shares at %zu points |\n",
+          s->gravity, s->hull_mass, s->hull_ixx, s->hull_iyy, s->total_weight, s->nload);
+  write_mount_row(fp, "driver plus seat", &s->driver);
+  write_mount_row(fp, "engine", &s->engine);
+  fprintf(fp,
+          "| road | %.10g km/h, straight; a (1 - cos) bump %.10g m high and %.10g m long, its "
+          "leading edge at %.10g deg to the lateral axis, left side first; the LF wheel meets "
+          "it at %.10g s |\n"
+          "| bump window | %.4f s (first wheel's entry) to %.4f s (last wheel's exit) |\n"
+          "| run | t = 0 .. %.10g s, outputs at %.10g Hz |\n",
+          s->speed * 3.6, s->bump_height, s->bump_length, s->bump_angle * DEGREES_PER_RADIAN,
+          s->bump_time, o->bump_window[0], o->bump_window[1], s->t_end, s->sample_rate);
+  write_corner_table(fp, s);
+}
+
+/* ---- Assumptions. */
+
+static void write_payload(FILE *fp, const fb_scenario *s)
+{
+  if (s->payload == FB_PAYLOAD_WEIGHT_ONLY) {
+    fprintf(fp,
+            "- Payload: weight only (`weight-only`, the paper's prescribed efforts): the "
+            "%.10g N act at the %zu load points and add no mass; the hull's inertia is its "
+            "own.\n",
+            s->total_weight, s->nload);
+    return;
+  }
+  double payload = s->total_weight / s->gravity - s->hull_mass;
+  fprintf(fp,
+          "- Payload: lumped (`lumped`): its mass, %.10g N / %.10g m/s^2 - %.10g kg = %.6g kg, "
+          "is spread equally over the %zu load points (%.6g kg each).\n",
+          s->total_weight, s->gravity, s->hull_mass, payload, s->nload,
+          payload / (double)s->nload);
+}
+
+static void write_hull_order(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_scenario *s = o->scenario;
+  if (s->hull_modes == 0)
+    fprintf(fp, "- System 2's hull model: full order, all %zu nodal DOFs (6 per node), ",
+            6 * fb_mesh_nnodes(o->hull->mesh));
+  else
+    fprintf(fp,
+            "- System 2's hull model: reduced to %d free-free modes with static correction "
+            "(of %zu nodal DOFs), ",
+            s->hull_modes, 6 * fb_mesh_nnodes(o->hull->mesh));
+  fprintf(fp, "as set by %s.\n", o->hull_modes_source);
+}
+
+static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_scenario *s = o->scenario;
+  const fb_mesh *m = o->hull->mesh;
+  fputs("- System 2's hull mesh: ", fp);
+  if (s->hull_deck) {
+    fputs("the deck ", fp);
+    md_text(fp, s->hull_deck);
+  } else {
+    fprintf(fp, "the built-in generator at density %d", s->hull_mesh.density);
+  }
+  fprintf(fp,
+          ": %zu nodes, %zu triangles (S3) and %zu quadrilaterals (S4), flat shells with 6 "
+          "DOFs per node. Material E = %.10g GPa, nu = %.10g, rho = %.10g kg/m^3, thickness "
+          "%.10g m; %s mass matrix; drilling stiffness factor %.3g.\n",
+          fb_mesh_nnodes(m), fb_mesh_count(m, FB_ELEM_TRI3), fb_mesh_count(m, FB_ELEM_QUAD4),
+          s->young / 1e9, s->poisson, s->density, s->thickness,
+          s->hull_mass_matrix == FB_MASS_LUMPED ? "lumped" : "consistent",
+          s->hull_drill_factor);
+  fprintf(fp,
+          "- System 2's structural damping: B = beta K with beta = %.4g s, so that the bare "
+          "hull's first elastic free-free mode (%.4g Hz) has a damping ratio of %.3g "
+          "(stiffness-proportional only, which leaves the rigid-body motion undamped).\n",
+          o->hull_beta, o->hull_f1, s->hull_damping_ratio);
+  write_hull_order(fp, o);
+}
+
+static void write_assumptions(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_scenario *s = o->scenario;
+  fputs("\n## Assumptions\n\n", fp);
+  if (s->initial == FB_INITIAL_ZERO)
+    fputs("- Initial state: every state zero with gravity switched on at t = 0 (`zero`, the "
+          "paper's protocol); the vehicle settles before the bump.\n",
+          fp);
+  else
+    fputs("- Initial state: the static equilibrium under gravity and the load (`static`).\n",
+          fp);
+  write_payload(fp, s);
+  fprintf(fp, "- Solver: CVODE, variable-order BDF, rtol %.3g, atol %.3g, ", s->rtol, s->atol);
+  if (s->max_step > 0)
+    fprintf(fp, "steps at most %.6g s", s->max_step);
+  else
+    fputs("no step limit", fp);
+  fputs("; outputs from the interpolating polynomial, breakpoints at every wheel's bump "
+        "entry and exit.\n"
+        "- Outputs (compression positive) as the paper's Figs. 8-14; the torsion angle is the "
+        "roll of the hull's front edge line minus that of its rear edge line, identically 0 "
+        "for the rigid hull.\n",
+        fp);
+  if (o->hull)
+    write_fe_hull(fp, o);
+  if (o->note)
+    fprintf(fp, "- Systems: %s.\n", o->note);
+}
+
+/* ---- Runs and modes. */
+
+static void write_runs(FILE *fp, const cli_run_outputs *o)
+{
+  fputs("\n## Runs\n\n| system | file | samples | steps | rhs evals | wall time [s] |\n"
+        "|---|---|---|---|---|---|\n",
+        fp);
+  for (size_t i = 0; i < o->nruns; ++i) {
+    const fb_sim_stats *st = fb_result_stats(o->runs[i].res);
+    fprintf(fp, "| %s | system%d.csv | %zu | %ld | %ld | %.3g |\n",
+            cli_system_label(o->runs[i].sys), (int)o->runs[i].sys,
+            fb_result_nsamples(o->runs[i].res), st->steps, st->rhs_evals, st->wall_seconds);
+  }
+}
+
+static void write_mode_row(FILE *fp, size_t k, double freq_hz, const char *description)
+{
+  fprintf(fp, "| %zu | %.4f | ", k + 1, freq_hz);
+  md_text(fp, description);
+  fputs(" |\n", fp);
+}
+
+static void write_modes1(FILE *fp, const cli_run_outputs *o)
+{
+  fprintf(fp,
+          "\n### System 1 (rigid hull)\n\nUndamped natural frequencies (every damper "
+          "removed) at the static equilibrium, each with the part of the vehicle that holds "
+          "most of its kinetic energy; %zu zero mode%s of the statically indeterminate "
+          "support left out.\n\n| mode | f_n [Hz] | description |\n|---|---|---|\n",
+          o->nstatic1, o->nstatic1 == 1 ? "" : "s");
+  for (size_t k = 0; k < o->nmodes1; ++k)
+    write_mode_row(fp, k, o->modes1[k].freq_hz, o->modes1[k].description);
+}
+
+static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_mode_set *ms = o->modes2;
+  if (!o->figures) {
+    fputs("\nNo mode pictures: the run had `--no-figures`.\n", fp);
+    return;
+  }
+  /* One picture per paragraph: a viewer shows them one under another. */
+  for (size_t i = 0; i < CLI_NPICTURED_MODES; ++i) {
+    size_t k = cli_pictured_modes[i] - 1;
+    if (k >= ms->nmodes)
+      continue;
+    char name[32];
+    cli_mode_picture_name(k + 1, name, sizeof name);
+    fprintf(fp, "\n![System 2, mode %zu: %.3f Hz, ", k + 1, ms->freq_hz[k]);
+    md_text(fp, ms->description[k]);
+    fprintf(fp, "](%s)\n", name);
+  }
+}
+
+static void write_modes2(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_mode_set *ms = o->modes2;
+  fprintf(fp,
+          "\n### System 2 (flexible hull)\n\nThe %zu lowest modes of the whole undamped "
+          "vehicle (the finite-element hull with the driver, the engine, the suspensions and "
+          "the tires at its nodes), each normalised so that its largest displacement over "
+          "the driver, the engine and the hull is 1; %zu horizontal rigid-body mode%s of zero "
+          "frequency left out.\n\n| mode | f_n [Hz] | description |\n|---|---|---|\n",
+          ms->nmodes, ms->nfree, ms->nfree == 1 ? "" : "s");
+  for (size_t k = 0; k < ms->nmodes; ++k)
+    write_mode_row(fp, k, ms->freq_hz[k], ms->description[k]);
+  write_mode_pictures(fp, o);
+}
+
+/* ---- Figures and tables of the outputs. */
+
+static void write_figures(FILE *fp, const cli_run_outputs *o)
+{
+  fputs("\n## Figures\n\n", fp);
+  if (!o->figures) {
+    fputs("No figures: the run had `--no-figures`. The curves are in the CSV files.\n", fp);
+    return;
+  }
+  fputs("Figs. 12 and 14 show 4-10 s, as in the paper, where the run covers it; the others "
+        "the whole run.",
+        fp);
+  fputs(o->diff ? " Each figure shows both systems above and System 2 - System 1 below.\n"
+                : "\n",
+        fp);
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    const cli_run_figure *fig = &cli_run_figures[k];
+    char name[96];
+    cli_run_figure_file(fig, name, sizeof name);
+    fprintf(fp, "\n![Fig. %d. %s](%s)\n", fig->number, fig->caption, name);
+  }
+}
+
+/* "| quantity | unit |" of output k. */
+static void write_output_cells(FILE *fp, const cli_run_outputs *o, size_t k)
+{
+  fprintf(fp, "| %s | %s |", cli_run_figures[k].quantity,
+          fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+}
+
+static void write_cells(FILE *fp, const double *v, size_t n)
+{
+  for (size_t i = 0; i < n; ++i) {
+    fputc(' ', fp);
+    md_number(fp, v[i]);
+    fputs(" |", fp);
+  }
+}
+
+static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
+{
+  fprintf(fp,
+          "\n## Comparison\n\nPeaks and the largest difference from the first bump entry "
+          "(%.4f s) to the end of the run, RMS over the bump window (%.4f s to %.4f s); "
+          "the last column is the largest |System 2 - System 1| relative to System 1's "
+          "peak-to-peak range there.\n\n"
+          "| output | unit | peak S1 | peak S2 | peak change | RMS S1 | RMS S2 | "
+          "max abs S2 - S1 | at t [s] | / S1 range |\n"
+          "|---|---|---|---|---|---|---|---|---|---|\n",
+          o->bump_window[0], o->bump_window[0], o->bump_window[1]);
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &o->runs[1].stats[k];
+    const cli_output_cmp *c = &o->cmp[k];
+    write_output_cells(fp, o, k);
+    write_cells(fp, (const double[]){s1->peak, s2->peak}, 2);
+    fputc(' ', fp);
+    md_percent(fp, c->peak_change, 1);
+    fputs(" |", fp);
+    write_cells(fp, (const double[]){s1->rms, s2->rms, c->max_diff, c->max_diff_time}, 4);
+    fputc(' ', fp);
+    md_percent(fp, c->rel_diff, 0);
+    fputs(" |\n", fp);
+  }
+}
+
+static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
+{
+  fprintf(fp,
+          "\n## Outputs\n\n%s. Static value before the bump, extremes from the first bump "
+          "entry (%.4f s) to the end of the run, RMS over the bump window (%.4f s to %.4f "
+          "s).\n\n| output | unit | static | peak | at t [s] | min | at t [s] | RMS |\n"
+          "|---|---|---|---|---|---|---|---|\n",
+          cli_system_label(o->runs[0].sys), o->bump_window[0], o->bump_window[0],
+          o->bump_window[1]);
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    const cli_output_stats *st = &o->runs[0].stats[k];
+    write_output_cells(fp, o, k);
+    write_cells(fp,
+                (const double[]){st->static_value, st->peak, st->peak_time, st->min,
+                                 st->min_time, st->rms},
+                6);
+    fputc('\n', fp);
+  }
+}
+
+/* ---- Conclusions: one paragraph, each sentence picked by the numbers. */
+
+/* Index of the torsion angle among the outputs. */
+static size_t torsion_index(void)
+{
+  size_t k = 0;
+  while (k + 1 < FB_NOUTPUTS && strcmp(cli_run_figures[k].output, "torsion") != 0)
+    ++k;
+  return k;
+}
+
+/* "Over the bump the flexible hull changes the outputs by up to ...":
+ * the largest relative difference and which outputs pass notable_diff. */
+static void conclude_differences(FILE *fp, const cli_run_outputs *o)
+{
+  size_t largest = FB_NOUTPUTS, nnotable = 0, nfinite = 0;
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    double r = o->cmp[k].rel_diff;
+    if (!isfinite(r))
+      continue;
+    ++nfinite;
+    nnotable += r > notable_diff;
+    if (largest == FB_NOUTPUTS || r > o->cmp[largest].rel_diff)
+      largest = k;
+  }
+  if (largest == FB_NOUTPUTS) {
+    fputs("No output of System 1 varies over the bump, so no difference can be scaled.", fp);
+    return;
+  }
+  fprintf(fp,
+          "Over the bump, System 2 departs from System 1 by up to %.1f %% of System 1's "
+          "peak-to-peak range, in the %s (at t = %.3f s)",
+          100 * o->cmp[largest].rel_diff, cli_run_figures[largest].quantity,
+          o->cmp[largest].max_diff_time);
+  if (nnotable == 0) {
+    fprintf(fp, "; all %zu outputs that vary in System 1 agree within %.0f %%.", nfinite,
+            100 * notable_diff);
+    return;
+  }
+  fprintf(fp, "; %zu of the %zu outputs that vary in System 1 differ by more than %.0f %% (",
+          nnotable, nfinite, 100 * notable_diff);
+  size_t listed = 0;
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k)
+    if (isfinite(o->cmp[k].rel_diff) && o->cmp[k].rel_diff > notable_diff)
+      fprintf(fp, "%s%s %.1f %%", listed++ ? ", " : "", cli_run_figures[k].quantity,
+              100 * o->cmp[k].rel_diff);
+  fputs(").", fp);
+}
+
+/* One clause on run's torsion angle: identically zero (the rigid hull's
+ * by construction), or how far the hull twists over the bump. first:
+ * the clause opens the sentence. */
+static void torsion_clause(FILE *fp, const cli_run_system *r, int first)
+{
+  const size_t k = torsion_index();
+  const cli_output_stats *st = &r->stats[k];
+  const char *unit = fb_result_col_unit(r->res, r->col[k]);
+  const char *hull = r->sys == FB_SYSTEM_RIGID ? "rigid" : "flexible";
+  fprintf(fp, "%s %s hull's torsion angle ", first ? " The" : "; the", hull);
+  if (max_abs(r->res, r->col[k]) == 0) {
+    fputs("is identically zero", fp);
+    return;
+  }
+  char twist[32], peak[32], min[32], static_value[32];
+  fprintf(fp, "reaches %s %s over the bump (%s %s at %.3f s, %s %s at %.3f s; static %s %s)",
+          number_text(fmax(fabs(st->peak), fabs(st->min)), twist, sizeof twist), unit,
+          number_text(st->peak, peak, sizeof peak), unit, st->peak_time,
+          number_text(st->min, min, sizeof min), unit, st->min_time,
+          number_text(st->static_value, static_value, sizeof static_value), unit);
+}
+
+/* The torsion angles of every run, in one sentence. */
+static void conclude_torsion(FILE *fp, const cli_run_outputs *o)
+{
+  for (size_t i = 0; i < o->nruns; ++i)
+    torsion_clause(fp, &o->runs[i], i == 0);
+  fputc('.', fp);
+}
+
+/* Peak changes beyond notable_change, and the largest RMS change. */
+static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
+{
+  size_t listed = 0, largest_rms = FB_NOUTPUTS;
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    double p = o->cmp[k].peak_change, r = o->cmp[k].rms_change;
+    if (isfinite(r) &&
+        (largest_rms == FB_NOUTPUTS || fabs(r) > fabs(o->cmp[largest_rms].rms_change)))
+      largest_rms = k;
+    if (!isfinite(p) || fabs(p) <= notable_change)
+      continue;
+    char peak1[32], peak2[32];
+    fprintf(fp, "%s%s the peak of the %s by %.1f %% (%s to %s %s)",
+            listed++ ? ", " : " Compared with System 1, System 2 ", p > 0 ? "raises" : "lowers",
+            cli_run_figures[k].quantity, 100 * fabs(p),
+            number_text(o->runs[0].stats[k].peak, peak1, sizeof peak1),
+            number_text(o->runs[1].stats[k].peak, peak2, sizeof peak2),
+            fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+  }
+  if (listed)
+    fputc('.', fp);
+  else
+    fprintf(fp, " Every peak with a non-zero System 1 value changes by %.0f %% or less.",
+            100 * notable_change);
+  if (largest_rms < FB_NOUTPUTS)
+    fprintf(fp, " The largest change of an RMS over the bump is the %s's, %+.1f %%.",
+            cli_run_figures[largest_rms].quantity, 100 * o->cmp[largest_rms].rms_change);
+}
+
+/* With one system: the output that grows the most over the bump
+ * relative to its static value, among those that carry a static value
+ * (at least notable_diff of their range over the bump; a dissipated power
+ * or an acceleration at rest is ~0, and a ratio to it says nothing). */
+static void conclude_single(FILE *fp, const cli_run_outputs *o)
+{
+  const cli_run_system *r = &o->runs[0];
+  fprintf(fp, "Only %s ran, so nothing is compared (`--system both` runs both).",
+          cli_system_label(r->sys));
+  size_t largest = FB_NOUTPUTS;
+  double factor = 0;
+  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+    const cli_output_stats *st = &r->stats[k];
+    double f = ratio(st->peak, st->static_value);
+    if (fabs(st->static_value) >= notable_diff * (st->peak - st->min) && isfinite(f) &&
+        f > factor) {
+      factor = f;
+      largest = k;
+    }
+  }
+  if (largest < FB_NOUTPUTS) {
+    const cli_output_stats *st = &r->stats[largest];
+    const char *unit = fb_result_col_unit(r->res, r->col[largest]);
+    char peak[32], static_value[32];
+    fprintf(fp,
+            " Over the bump, the %s grows the most relative to its static value: its peak, "
+            "%s %s at %.3f s, is %.3g times its static %s %s.",
+            cli_run_figures[largest].quantity, number_text(st->peak, peak, sizeof peak), unit,
+            st->peak_time, factor,
+            number_text(st->static_value, static_value, sizeof static_value), unit);
+  }
+  if (r->sys == FB_SYSTEM_FLEXIBLE)
+    conclude_torsion(fp, o);
+}
+
+static void write_conclusions(FILE *fp, const cli_run_outputs *o)
+{
+  fputs("\n## Conclusions\n\n", fp);
+  if (o->diff) {
+    conclude_differences(fp, o);
+    conclude_torsion(fp, o);
+    conclude_peaks(fp, o);
+  } else {
+    conclude_single(fp, o);
+  }
+  fputc('\n', fp);
+}
+
+void cli_write_report_md(FILE *fp, const void *ctx)
+{
+  const cli_run_outputs *o = ctx;
+  fputs("# ", fp);
+  md_text(fp, cli_scenario_name(o->scenario));
+  fputs(o->diff ? ": rigid and flexible hull over the bump\n\n"
+                : ": the vehicle over the bump\n\n",
+        fp);
+  fputs(
+      "Written by `flexbond run` (version " CLI_VERSION "); every number comes from this "
+      "run. The CSV files hold the curves, summary.json the statistics at full precision.\n\n",
+      fp);
+  write_scenario(fp, o);
+  write_assumptions(fp, o);
+  write_runs(fp, o);
+  fputs("\n## Modes\n", fp);
+  if (o->modes1)
+    write_modes1(fp, o);
+  if (o->modes2)
+    write_modes2(fp, o);
+  write_figures(fp, o);
+  if (o->diff)
+    write_comparison_table(fp, o);
+  else
+    write_outputs_table(fp, o);
+  write_conclusions(fp, o);
+}
