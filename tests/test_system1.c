@@ -26,6 +26,7 @@
 #include "apc_direct.h"
 #include "bgtest_util.h"
 #include "check.h"
+#include "energy_balance.h"
 
 static const char *const scenario_path = "../examples/apc6x6.yaml";
 
@@ -570,59 +571,7 @@ static void test_damped_eigenvalues(const fb_scenario *s, const apc_model *m)
   free(modes);
 }
 
-/* ---- 4. Energy balance. */
-
-enum { ENERGY_WORK, ENERGY_DISSIPATED, ENERGY_STORED };
-
-typedef struct energy_probe {
-  char name[48];
-  const char *target; /* borrowed from the graph */
-  fb_probe_kind kind;
-  int category;
-  double sign;
-  size_t ncols;
-} energy_probe;
-
-/* One probe per power port of every source and resistor (integrated
- * power, signed so that positive is work into the system or energy into
- * the resistor) and per storage element (its energy). */
-static size_t energy_probes(const fb_bg *g, energy_probe *p, size_t max)
-{
-  size_t n = 0;
-  for (size_t e = 0; e < fb_bg_nelements(g); ++e) {
-    const fb_bg_kind kind = fb_bg_element_kind(g, e);
-    if (kind == FB_BG_I || kind == FB_BG_C) {
-      if (n < max)
-        p[n] = (energy_probe){"", fb_bg_element_name(g, e), FB_PROBE_ENERGY, ENERGY_STORED, 1.0,
-                              1};
-      ++n;
-      continue;
-    }
-    if (kind != FB_BG_SE && kind != FB_BG_SF && kind != FB_BG_R)
-      continue;
-    for (size_t b = 0; b < fb_bg_nbonds(g); ++b) {
-      const int from = fb_bg_bond_from(g, b) == e, to = fb_bg_bond_to(g, b) == e;
-      if (!from && !to)
-        continue;
-      if (n < max) {
-        const int source = kind != FB_BG_R;
-        /* A source delivers e.f when it is the bond's tail; a resistor
-         * absorbs it when it is the head. */
-        const double sign = (source ? from : to) ? 1.0 : -1.0;
-        p[n] = (energy_probe){"",
-                              fb_bg_bond_name(g, b),
-                              FB_PROBE_POWER,
-                              source ? ENERGY_WORK : ENERGY_DISSIPATED,
-                              sign,
-                              fb_bg_bond_dim(g, b)};
-      }
-      ++n;
-    }
-  }
-  for (size_t i = 0; i < n && i < max; ++i)
-    snprintf(p[i].name, sizeof p[i].name, "energy_probe_%zu", i);
-  return n;
-}
+/* ---- 4. Energy balance (tests/energy_balance.h). */
 
 /* Work in = dissipated + stored - stored(0) at every sample over the
  * scenario's whole run, with rtol tightened to 1e-9. Every term is a CVODE
@@ -636,102 +585,18 @@ static void test_energy_balance(const fb_scenario *s)
   fb_err err;
   fb_err_clear(&err);
   fb_hull *hull = NULL;
-  fb_bg *g = NULL;
-  fb_bd *bd = NULL;
-  fb_probe_spec *std = NULL, *specs = NULL;
-  size_t nstd = 0;
-  fb_result *res = NULL;
+  energy_report rep;
   MUST(fb_vehicle_rigid_hull(s, &hull, &err), &err);
-  if (hull)
-    MUST(fb_vehicle_assemble(s, &hull, &g, &std, &nstd, &err), &err);
-  fb_vehicle_probes_free(&std, nstd);
-  const size_t n = g ? energy_probes(g, NULL, 0) : 0;
-  energy_probe *ep = calloc(n ? n : 1, sizeof *ep);
-  specs = calloc(n ? n : 1, sizeof *specs);
-  if (g && ep && specs) {
-    energy_probes(g, ep, n);
-    size_t ncols = 0, nwork = 0, ndiss = 0, nstored = 0;
-    for (size_t i = 0; i < n; ++i) {
-      specs[i] = (fb_probe_spec){
-          ep[i].name, ep[i].kind, ep[i].target, -1, ep[i].kind == FB_PROBE_POWER,
-          1.0,        NULL,       NULL,         0};
-      ncols += ep[i].ncols;
-      nwork += ep[i].category == ENERGY_WORK;
-      ndiss += ep[i].category == ENERGY_DISSIPATED;
-      nstored += ep[i].category == ENERGY_STORED;
-    }
-    fprintf(stderr,
-            "energy balance: %zu source ports, %zu resistor ports, %zu storage elements\n",
-            nwork, ndiss, nstored);
-    /* Resistors: 6 shocks, 6 tire dampers, 2 mount dampers. Storage:
-     * 6 springs, 6 tires, 2 mounts (C); hull, 6 wheels, driver, engine
-     * (I), unless the hull's field is split. */
-    CHECK(ndiss == APC_NELEM);
-    CHECK(nstored >= APC_NELEM + 9);
-    MUST(fb_bd_build(g, specs, n, &bd, &err), &err);
-    if (bd)
-      CHECK(fb_bd_noutputs(bd) == ncols);
-  }
-  if (bd) {
-    fb_sim_opts o;
-    double bp[2 * FB_NCORNERS];
-    for (int c = 0; c < FB_NCORNERS; ++c) {
-      bp[2 * c] = fb_scenario_bump_entry(s, c);
-      bp[2 * c + 1] = fb_scenario_bump_exit(s, c);
-    }
-    fb_sim_opts_default(&o);
-    o.t_end = s->t_end;
-    o.rtol = 1e-9;
-    o.atol = fmin(s->atol, 1e-10);
-    o.max_step = s->max_step;
-    o.sample_rate = s->sample_rate;
-    o.breakpoints = bp;
-    o.nbreakpoints = 2 * FB_NCORNERS;
-    MUST(fb_sim_run(bd, &o, &res, &err), &err);
-  }
-  if (res) {
-    double worst = 0.0, scale = 0.0, worst_t = 0.0, stored0 = 0.0, dissipated = 0.0,
-           smallest = INFINITY;
-    for (size_t k = 0; k < fb_result_nsamples(res); ++k) {
-      const double *y = fb_result_row(res, k) + 1;
-      double sum[3] = {0.0, 0.0, 0.0};
-      size_t col = 0;
-      for (size_t i = 0; i < n; ++i)
-        for (size_t j = 0; j < ep[i].ncols; ++j)
-          sum[ep[i].category] += ep[i].sign * y[col++];
-      if (k == 0)
-        stored0 = sum[ENERGY_STORED];
-      const double balance =
-          sum[ENERGY_WORK] - sum[ENERGY_DISSIPATED] - (sum[ENERGY_STORED] - stored0);
-      if (fabs(balance) > worst) {
-        worst = fabs(balance);
-        worst_t = fb_result_row(res, k)[0];
-      }
-      scale = fmax(scale, fabs(sum[ENERGY_WORK]));
-      dissipated = sum[ENERGY_DISSIPATED];
-    }
-    /* The smallest energy a single port exchanges by the end (work or
-     * dissipation; storage elements end where they started near rest). */
-    const double *last = fb_result_row(res, fb_result_nsamples(res) - 1) + 1;
-    size_t col = 0;
-    for (size_t i = 0; i < n; ++i)
-      for (size_t j = 0; j < ep[i].ncols; ++j, ++col)
-        if (ep[i].category != ENERGY_STORED)
-          smallest = fmin(smallest, fabs(last[col]));
-    fprintf(stderr,
-            "energy balance over %.1f s: worst |work - dissipated - stored| = %.3g J at t = "
-            "%.3f s, work scale %.6g J (ratio %.2g), dissipated at the end %.6g J, smallest "
-            "port %.3g J\n",
-            s->t_end, worst, worst_t, scale, worst / scale, dissipated, smallest);
-    CHECK(scale > 100.0 && dissipated > 100.0);
-    CHECK(worst <= 1e-7 * scale);
-  }
-  fb_result_free(&res);
-  fb_bd_free(&bd);
-  fb_bg_free(&g);
-  fb_hull_free(&hull);
-  free(ep);
-  free(specs);
+  if (!hull)
+    return;
+  MUST(energy_balance(s, &hull, 1e-9, &rep, &err), &err);
+  /* Resistors: 6 shocks, 6 tire dampers, 2 mount dampers. Storage:
+   * 6 springs, 6 tires, 2 mounts (C); hull, 6 wheels, driver, engine
+   * (I), unless the hull's field is split. */
+  CHECK(rep.ndissipative == APC_NELEM);
+  CHECK(rep.nstorage >= APC_NELEM + 9);
+  CHECK(rep.work_scale > 100.0 && rep.dissipated > 100.0);
+  CHECK(rep.worst <= 1e-7 * rep.work_scale);
 }
 
 /* ---- Motion ratios other than 1 (the data sheet's default is 1). */
