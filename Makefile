@@ -3,7 +3,8 @@
 #   make deps          install the Debian packages the build needs (only those missing)
 #   make build         configure + build into $(BUILD_DIR) (RelWithDebInfo)
 #   make test          deps + build + run the CTest suite
-#   make run           deps + build + the default study (examples/apc6x6.yaml, System 1) into out/,
+#   make run           deps + build + the default study (examples/apc6x6.yaml, Systems 1 and 2,
+#                      report.md) into out/, the modal analyses,
 #                      and the quarter-car example into out/quarter_car/
 #   make asan          build into $(ASAN_DIR) with ASan+UBSan and run the suite
 #   make clang         build into $(CLANG_DIR) with clang and -Werror and run the suite

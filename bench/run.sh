@@ -17,11 +17,11 @@ median() { # hyperfine JSON -> "median X ms (min Y, max Z) over N runs"
 echo "== System 1 (rigid hull), 15 s at 1 kHz: fb_vehicle_simulate, 21 runs in one process"
 "$build/bench_vehicle" examples/apc6x6.yaml 21 | tail -n 2
 
-echo "== System 1, whole command: flexbond run --no-figures (load, simulate, write CSV + JSON)"
+echo "== System 1, whole command: flexbond run --system rigid --no-figures (load, simulate, write CSV + JSON)"
 hyperfine -N --warmup 3 --runs 30 --style none --export-json "$out/h.json" \
-  "$exe run examples/apc6x6.yaml -o $out/run -q --no-figures" >/dev/null
+  "$exe run examples/apc6x6.yaml --system rigid -o $out/run -q --no-figures" >/dev/null
 median "$out/h.json"
-/usr/bin/time -v "$exe" run examples/apc6x6.yaml -o "$out/run" -q --no-figures 2>&1 |
+/usr/bin/time -v "$exe" run examples/apc6x6.yaml --system rigid -o "$out/run" -q --no-figures 2>&1 |
   grep "Maximum resident"
 
 for model in examples/quarter_car.yaml examples/two_dof_fields.yaml; do
@@ -48,3 +48,7 @@ echo "== System 2, full-order hull, 15 s at 1 kHz: fb_vehicle_simulate, 3 runs (
 echo "== System 2, reduced hull (hull.fe.modes: 80), 15 s: fb_vehicle_simulate, 5 runs"
 sed 's/^    modes: 0 .*/    modes: 80/' examples/apc6x6.yaml >"$out/apc6x6_80.yaml"
 "$build/bench_vehicle" "$out/apc6x6_80.yaml" 5 flexible | tail -n 2
+
+echo "== The default study, whole command: flexbond run (both systems, full order, figures, report)"
+/usr/bin/time -v "$exe" run examples/apc6x6.yaml -o "$out/study" -q 2>&1 |
+  grep -E "Elapsed|Maximum resident"
