@@ -142,6 +142,12 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
     }
     rc = fb_bd_build(g, specs, n, &bd, err);
   }
+  size_t ncols = 0;
+  for (size_t i = 0; !rc && i < n; ++i)
+    ncols += ep[i].ncols;
+  if (!rc && fb_bd_noutputs(bd) != ncols)
+    rc = fb_err_set(err, FB_EINVAL, "energy balance: %zu output columns for %zu probe columns",
+                    fb_bd_noutputs(bd), ncols);
   if (!rc) {
     fb_sim_opts o;
     double bp[2 * FB_NCORNERS];
@@ -159,6 +165,8 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
     o.nbreakpoints = 2 * FB_NCORNERS;
     rc = fb_sim_run(bd, &o, &res, err);
   }
+  if (!rc && fb_result_nsamples(res) == 0)
+    rc = fb_err_set(err, FB_EINVAL, "energy balance: the run has no samples");
   if (!rc) {
     energy_sums(res, ep, n, rep);
     fprintf(stderr,

@@ -57,13 +57,14 @@ static void test_static_weight(fb_scenario *s)
   double *xdot = calloc(nx, sizeof *xdot), *y = calloc(ny, sizeof *y);
   if (x0 && xeq && xdot && y) {
     MUST(fb_sim_static_state(bd, 0.0, x0, xeq, &err), &err);
-    /* At rest every rate vanishes: the largest momentum rate (a force) is
-     * below 1e-6 of the weight (the solver stops at 1e-10 of the initial
-     * unbalance). */
+    /* At rest every force balances: the largest momentum rate is below
+     * 1e-6 of the weight (the solver stops at 1e-10 of the initial
+     * unbalance, which is of the order of the weight). */
     CHECK(fb_bd_rhs(bd, 0.0, xeq, xdot) == 0);
     double worst = 0.0;
     for (size_t i = 0; i < nx; ++i)
-      worst = fmax(worst, fabs(xdot[i]));
+      if (fb_bd_state_kind(bd, i) == FB_STATE_MOMENTUM)
+        worst = fmax(worst, fabs(xdot[i]));
     const double weight = s->total_weight + (s->driver.mass + s->engine.mass) * s->gravity;
     CHECK(worst < 1e-6 * weight);
     /* The sum of the tire forces is not an output, but each tire's
@@ -82,8 +83,9 @@ static void test_static_weight(fb_scenario *s)
       expect += s->corner[c].wheel_mass * s->gravity;
     fprintf(stderr, "System 2 static: sum of tire spring forces %.10g N, weight %.10g N\n", sum,
             expect);
-    /* Exact solve of a linear system: 1e-8 relative. */
-    CHECK_NEAR(fabs(sum), expect, 1e-8 * expect);
+    /* Tire compression is positive; the force balance holds to 1e-10 of
+     * the weight per DOF, so 1e-8 relative for the sum of six. */
+    CHECK_NEAR(sum, expect, 1e-8 * expect);
   }
   free(x0);
   free(xeq);
@@ -146,7 +148,16 @@ static void test_limits(fb_scenario *s)
   s->young /= 1000.0;
   if (!full || !rigid || !reduced || !stiff)
     goto done;
-  CHECK(fb_result_nsamples(full) == fb_result_nsamples(rigid));
+  const fb_result *others[3] = {rigid, reduced, stiff};
+  for (int i = 0; i < 3; ++i) {
+    CHECK(fb_result_nsamples(others[i]) == fb_result_nsamples(full));
+    CHECK(fb_result_ncols(others[i]) == fb_result_ncols(full));
+    for (size_t col = 0; col < fb_result_ncols(full) && col < fb_result_ncols(others[i]); ++col)
+      CHECK(strcmp(fb_result_col_name(others[i], col), fb_result_col_name(full, col)) == 0);
+  }
+  if (fb_result_nsamples(rigid) != fb_result_nsamples(full) ||
+      fb_result_ncols(rigid) != fb_result_ncols(full))
+    goto done;
   for (size_t col = 1; col < fb_result_ncols(full); ++col) {
     const char *name = fb_result_col_name(full, col);
     const int torsion = strcmp(name, "torsion") == 0;
@@ -164,7 +175,10 @@ static void test_limits(fb_scenario *s)
     CHECK(vs_full < 0.01);
   }
   /* The flexible hull does twist: its torsion range is not round-off. */
-  CHECK(range_of(full, (size_t)fb_result_find(full, "torsion")) > 1e-5);
+  const long torsion = fb_result_find(full, "torsion");
+  CHECK(torsion > 0);
+  if (torsion > 0)
+    CHECK(range_of(full, (size_t)torsion) > 1e-5);
 done:
   fb_result_free(&full);
   fb_result_free(&rigid);

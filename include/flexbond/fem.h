@@ -150,7 +150,8 @@ double fb_fem_rigid_threshold_hz(const fb_mat *K, const fb_mat *M);
  * come out unchanged; a static load in the span of F is reproduced
  * exactly. Patterns that add nothing new (dependent within 1e-8) are
  * dropped. *T (n x *nbasis, column-major) and *lambda (*nbasis) are new.
- * K symmetric positive semi-definite, M symmetric positive definite. */
+ * K symmetric positive semi-definite, M symmetric positive definite;
+ * nmodes must include every rigid-body mode (FB_EINVAL otherwise). */
 int fb_fem_reduce_free(const fb_mat *K, const fb_mat *M, size_t nmodes, const double *F,
                        size_t nf, double **T, double **lambda, size_t *nbasis, size_t *nrigid,
                        fb_err *err);

@@ -89,9 +89,10 @@ int fb_result_diff(const fb_result *b, const fb_result *a, fb_result **out, fb_e
  * the one the damped dynamics settle to from x0: free rigid-body motions
  * no force drives stay put, and from x0 = 0 a statically indeterminate
  * support keeps zero self-stress (as the paper's settling from rest).
- * Sparse throughout (one factorisation of the Newton matrix per step).
- * FB_ESOLVER if it does not converge (a mass on no spring under a force,
- * an undamped system, or no equilibrium). */
+ * Sparse throughout (one factorisation of the Newton matrix per step);
+ * undamped systems converge too (the momenta are cleared after each
+ * step). FB_ESOLVER if it does not converge (a mass on no spring under a
+ * force, or no equilibrium), or if flow sources move at time t. */
 int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_err *err);
 
 #ifdef __cplusplus

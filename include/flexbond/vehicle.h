@@ -131,7 +131,7 @@ typedef struct fb_scenario {
   double hull_drill_factor;      /* fictitious drilling stiffness factor */
   double hull_damping_ratio;     /* of the first elastic free-free mode (B = beta K) */
   int hull_modes;                /* 0: full order; N: N free-free modes + static
-                                    correction (fb_fe_hull_reduce) */
+                                    correction (fb_fem_reduce_free) */
 } fb_scenario;
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).

@@ -26,7 +26,7 @@
 
 #include "flexbond/fem.h"
 
-/* sigma = SHIFT_RATIO * (lowest elastic eigenvalue kept). */
+/* sigma = SHIFT_RATIO * (lowest elastic eigenvalue). */
 #define SHIFT_RATIO 1e-6
 /* A residual vector whose M-norm after projection is below this fraction
  * of its norm before carries nothing the basis lacks. */
@@ -88,7 +88,8 @@ static int static_responses(const fb_mat *K, const fb_mat *M, const double *phi,
 }
 
 /* M-orthonormalises the residual vectors against the modes and each other
- * (modified Gram-Schmidt, twice), compacting the kept ones to the front
+ * (classical Gram-Schmidt, done twice: Giraud et al., Numer. Math. 101,
+ * 2005), compacting the kept ones to the front
  * of R; returns how many were kept. */
 static size_t orthonormalise(const fb_mat *M, const double *phi, size_t nmodes, double *R,
                              size_t nf, size_t n, double *mu)
@@ -147,6 +148,33 @@ static int ritz(const fb_mat *K, double *R, size_t nr, size_t n, double *lambda,
   return rc;
 }
 
+/* The modes: nmodes kept and, when the model has more, the next one, which
+ * must be elastic (the kept ones then hold every rigid-body mode) and
+ * sets the static solve's shift. lam becomes (rad/s)^2, rigid ones 0. */
+static int modes_and_shift(const fb_mat *K, const fb_mat *M, size_t nmodes, double *lam,
+                           double *basis, size_t *nrigid, double *sigma, fb_err *err)
+{
+  const size_t n = fb_mat_nrows(K), m = nmodes < n ? nmodes + 1 : n;
+  int rc = fb_fem_modes(K, M, m, 2000, lam, basis, err);
+  if (rc)
+    return rc;
+  const double threshold = fb_fem_rigid_threshold_hz(K, M), two_pi = 6.28318530717958647692;
+  size_t rigid = 0;
+  while (rigid < m && lam[rigid] <= threshold)
+    ++rigid;
+  if (rigid > nmodes)
+    return fb_err_set(err, FB_EINVAL,
+                      "modal reduction: %zu modes leave out rigid-body modes (the model has at "
+                      "least %zu)",
+                      nmodes, rigid);
+  for (size_t i = 0; i < m; ++i)
+    lam[i] = i < rigid ? 0.0 : pow(two_pi * lam[i], 2);
+  *nrigid = rigid;
+  /* No elastic mode at all (K = 0): nothing for a static correction. */
+  *sigma = rigid < m ? SHIFT_RATIO * lam[rigid] : 0.0;
+  return FB_OK;
+}
+
 int fb_fem_reduce_free(const fb_mat *K, const fb_mat *M, size_t nmodes, const double *F,
                        size_t nf, double **T, double **lambda, size_t *nbasis, size_t *nrigid,
                        fb_err *err)
@@ -158,27 +186,17 @@ int fb_fem_reduce_free(const fb_mat *K, const fb_mat *M, size_t nmodes, const do
   if (nmodes == 0 || nmodes > n)
     return fb_err_set(err, FB_EINVAL, "modal reduction: %zu modes of a %zu-DOF model", nmodes,
                       n);
-  double *basis = malloc(n * (nmodes + nf) * sizeof *basis);
-  double *lam = malloc((nmodes + nf) * sizeof *lam), *mu = malloc(n * sizeof *mu);
+  /* Room for the extra mode, then overwritten by the residual vectors. */
+  double *basis = malloc(n * (nmodes + 1 + nf) * sizeof *basis);
+  double *lam = malloc((nmodes + 1 + nf) * sizeof *lam), *mu = malloc(n * sizeof *mu);
   int rc = basis && lam && mu ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  size_t rigid = 0, nres = 0;
+  double sigma = 0.0;
   if (!rc)
-    rc = fb_fem_modes(K, M, nmodes, 2000, lam, basis, err);
-  size_t rigid = 0;
-  if (!rc) {
-    const double threshold = fb_fem_rigid_threshold_hz(K, M);
-    while (rigid < nmodes && lam[rigid] <= threshold)
-      ++rigid;
-    const double two_pi = 6.28318530717958647692;
-    for (size_t i = 0; i < nmodes; ++i)
-      lam[i] = i < rigid ? 0.0 : pow(two_pi * lam[i], 2);
-  }
-  size_t nres = 0;
-  if (!rc && nf > 0) {
-    double scale = rigid < nmodes ? lam[rigid] : 0.0;
-    if (!(scale > 0.0)) /* only rigid modes kept: the model's own scale */
-      scale = pow(6.28318530717958647692 * fb_fem_rigid_threshold_hz(K, M), 2) * 1e12;
+    rc = modes_and_shift(K, M, nmodes, lam, basis, &rigid, &sigma, err);
+  if (!rc && nf > 0 && sigma > 0.0) {
     double *R = basis + n * nmodes;
-    rc = static_responses(K, M, basis, rigid, SHIFT_RATIO * scale, F, nf, n, R, mu, err);
+    rc = static_responses(K, M, basis, rigid, sigma, F, nf, n, R, mu, err);
     if (!rc)
       nres = orthonormalise(M, basis, nmodes, R, nf, n, mu);
     if (!rc)

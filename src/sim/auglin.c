@@ -318,7 +318,10 @@ static int symbolic(fb_auglin *a)
       a->s.n++;
     }
   }
-  const size_t xnnz = a->x.ptr[a->ne], snnz = a->s.ptr[a->nk];
+  const size_t xnnz = rc == FB_OK ? a->x.ptr[a->ne] : 0;
+  const size_t snnz = rc == FB_OK ? a->s.ptr[a->nk] : 0;
+  if (rc == FB_OK && snnz > (size_t)SuiteSparse_long_max)
+    rc = FB_EINVAL;
   if (rc == FB_OK) {
     a->x.val = malloc((xnnz ? xnnz : 1) * sizeof *a->x.val);
     a->s.val = malloc((snnz ? snnz : 1) * sizeof *a->s.val);
@@ -379,7 +382,8 @@ int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
     rc = symbolic(a);
   if (rc != FB_OK) {
     fb_auglin_free(&a);
-    return fb_err_set(err, FB_ENOMEM, "out of memory creating the Newton solver");
+    return fb_err_set(err, rc, "%s creating the Newton solver",
+                      rc == FB_ENOMEM ? "out of memory" : "kept matrix too large for KLU");
   }
   if (nstates)
     memcpy(a->state_rows, state_rows, nstates * sizeof *state_rows);

@@ -698,7 +698,8 @@ static int hull_coords_new(const fb_scenario *s, const fb_fe_hull *h, hull_coord
   c->ndof = c->K ? fb_mat_nrows(c->K) : 0;
   c->nb = c->ndof;
   if (!rc)
-    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, s->hull_modes ? NULL : &c->B, err);
+    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, s->hull_modes > 0 ? NULL : &c->B,
+                            err);
   if (!rc && s->hull_modes > 0)
     rc = reduce_coords(s, h, beta, c, err);
   return rc;
