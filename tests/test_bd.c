@@ -173,6 +173,17 @@ static void test_augmented(void)
   }
   size_t n = fb_bd_nstates(bd), nz = fb_bd_aug_size(bd), nnz = fb_bd_aug_nnz(bd);
   CHECK(n == 5); /* 4 + the integrated probe */
+  /* The power probe's product feeds no state: the Newton matrix stays
+   * constant. Integrated, the product feeds a state and it does not. */
+  CHECK(fb_bd_is_linear(bd));
+  {
+    fb_probe_spec energy = {"w_cs", FB_PROBE_POWER, "b_cs", -1, 1, 1.0, NULL, NULL, 0};
+    fb_bd *bd2 = NULL;
+    MUST(fb_bd_build(bg, &energy, 1, &bd2, &err), &err);
+    if (bd2)
+      CHECK(!fb_bd_is_linear(bd2));
+    fb_bd_free(&bd2);
+  }
   size_t *rows = malloc(nnz * sizeof *rows), *cols = malloc(nnz * sizeof *cols);
   double *v0 = malloc(nnz * sizeof *v0), *v1 = malloc(nnz * sizeof *v1);
   double *p = calloc(nz * nz, sizeof *p), *x = calloc(n, sizeof *x);

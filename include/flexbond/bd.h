@@ -111,7 +111,9 @@ int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v
 void fb_bd_aug_unit_rows(const fb_bd *bd, unsigned char *unit);
 /* Index in z of state i, for i < nstates. */
 size_t fb_bd_state_row(const fb_bd *bd, size_t i);
-/* 1 if every block is linear and time-invariant (P0, P1 are constant). */
+/* 1 if every block of the Newton subsystem (those the state derivatives
+ * depend on) is linear and time-invariant: P0 and P1 are constant. A
+ * nonlinear output probe (a power's product) does not count. */
 int fb_bd_is_linear(const fb_bd *bd);
 
 /* Dense Jacobian dF/dx at (t, x), column-major nstates x nstates, by

@@ -717,7 +717,6 @@ static int layout(fb_bd *bd, fb_err *err)
       off += bd->sigs[bd->blocks[i].out].dim;
     }
   bd->nw = off;
-  bd->linear = 1;
   for (size_t i = 0; i < bd->nblocks; ++i) {
     bd_block *b = &bd->blocks[i];
     b->ioff = malloc((b->nin + 1) * sizeof *b->ioff);
@@ -729,7 +728,6 @@ static int layout(fb_bd *bd, fb_err *err)
       b->idim[k] = bd->sigs[b->in[k].id].dim;
     }
     b->ooff = bd->sigs[b->out].off;
-    bd->linear = bd->linear && b->ops->linear;
   }
   return FB_OK;
 }

