@@ -133,7 +133,8 @@ int fb_bd_jacobian_dense(fb_bd *bd, double t, const double *x, double *jac, fb_e
  * integrating probes), then the diagram's other signals in z (index i of
  * fb_bd_aug_pattern is variable i), then the signals only the outputs use.
  * Sources of constant time functions are folded into f; every component
- * of every other source is an input u_j, whose source row reads
+ * of every other source that the states or outputs depend on is an input
+ * u_j, whose source row reads
  * 0 = -z_s + u_j (B holds a 1 there). D is zero: the outputs read
  * variables only. An output measuring a power e .* f (FB_PROBE_POWER, a
  * product, not linear) takes two rows of C, its effort (times the probe's

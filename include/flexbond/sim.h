@@ -78,8 +78,9 @@ void fb_result_free(fb_result **r);
  * systems of one scenario, for a plot of their difference): column 0 is
  * the common time, column j >= 1 is b's column j minus a's, named and
  * with the units of a's; statistics zero. FB_EINVAL naming the first
- * mismatch if the column counts, column names, sample counts or sample
- * times (to 1e-9 relative) differ; FB_ENOMEM. *out is new. */
+ * mismatch if the column counts, column names or units, sample counts or
+ * sample times (to 1e-9 s, or 1e-9 relative beyond 1 s) differ, or if
+ * there are no columns; FB_ENOMEM. *out is new. */
 int fb_result_diff(const fb_result *b, const fb_result *a, fb_result **out, fb_err *err);
 
 /* Static equilibrium of a mechanical diagram under its inputs at time t,

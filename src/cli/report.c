@@ -126,8 +126,10 @@ static void md_number(FILE *fp, double v)
 /* A fraction as a signed or unsigned percentage, "-" for a non-finite one. */
 static void md_percent(FILE *fp, double fraction, int sign)
 {
+  /* A change that rounds to zero prints as +0.0 %, never -0.0 %. */
   if (isfinite(fraction))
-    fprintf(fp, sign ? "%+.1f %%" : "%.1f %%", 100 * fraction);
+    fprintf(fp, sign ? "%+.1f %%" : "%.1f %%",
+            fabs(100 * fraction) < 0.05 ? 0.0 : 100 * fraction);
   else
     fputs("-", fp);
 }
@@ -333,11 +335,12 @@ static void write_modes2(FILE *fp, const cli_run_outputs *o)
   const fb_mode_set *ms = o->modes2;
   fprintf(fp,
           "\n### System 2 (flexible hull)\n\nThe %zu lowest modes of the whole undamped "
-          "vehicle (the finite-element hull with the driver, the engine, the suspensions and "
-          "the tires at its nodes), each normalised so that its largest displacement over "
+          "vehicle (the %sfinite-element hull with the driver, the engine, the suspensions "
+          "and the tires at its nodes), each normalised so that its largest displacement over "
           "the driver, the engine and the hull is 1; %zu horizontal rigid-body mode%s of zero "
           "frequency left out.\n\n| mode | f_n [Hz] | description |\n|---|---|---|\n",
-          ms->nmodes, ms->nfree, ms->nfree == 1 ? "" : "s");
+          ms->nmodes, o->scenario->hull_modes > 0 ? "full-order " : "", ms->nfree,
+          ms->nfree == 1 ? "" : "s");
   for (size_t k = 0; k < ms->nmodes; ++k)
     write_mode_row(fp, k, ms->freq_hz[k], ms->description[k]);
   write_mode_pictures(fp, o);
@@ -551,7 +554,7 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
     const cli_output_stats *st = &r->stats[k];
     double f = ratio(st->peak, st->static_value);
     if (fabs(st->static_value) >= notable_diff * (st->peak - st->min) && isfinite(f) &&
-        f > factor) {
+        f > 1.0 && f > factor) {
       factor = f;
       largest = k;
     }

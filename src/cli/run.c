@@ -419,7 +419,7 @@ static int flexible_modes(const fb_scenario *s, run_modes *m, fb_err *err)
   int rc = fb_vehicle_fe_hull(s, &m->hull, err);
   if (rc == FB_OK)
     rc = fb_fe_hull_free_modes(m->hull, HULL_FREE_MODES, freq, &nrigid, err);
-  m->hull_f1 = nrigid < HULL_FREE_MODES ? freq[nrigid] : NAN;
+  m->hull_f1 = rc == FB_OK && nrigid < HULL_FREE_MODES ? freq[nrigid] : NAN;
   if (rc == FB_OK)
     rc = fb_fe_hull_damping(m->hull, s->hull_damping_ratio, &m->hull_beta, NULL, err);
   if (rc == FB_OK)
@@ -523,8 +523,11 @@ static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *s
   *note = NULL;
   if (a->system < 0 && !s->has_fe_hull) {
     choice = SYSTEM_RIGID;
-    *note = "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
-            "System 1 (rigid hull) ran";
+    *note = a->hull_modes >= 0
+                ? "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
+                  "System 1 (rigid hull) ran and --hull-modes had nothing to set"
+                : "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
+                  "System 1 (rigid hull) ran";
   }
   for (size_t i = 0; i < system_sets[choice].nsystems; ++i)
     systems[i] = system_sets[choice].systems[i];

@@ -10,16 +10,22 @@
 
 #include "sim/sim_internal.h"
 
-/* FB_EINVAL naming the first difference in shape, names or times. */
+/* FB_EINVAL naming the first difference in shape, names, units or times. */
 static int check_same_grid(const fb_result *b, const fb_result *a, fb_err *err)
 {
   if (a->ncols != b->ncols)
     return fb_err_set(err, FB_EINVAL, "result difference: %zu columns minus %zu columns",
                       b->ncols, a->ncols);
-  for (size_t j = 0; j < a->ncols; ++j)
+  if (a->ncols == 0)
+    return fb_err_set(err, FB_EINVAL, "result difference: no columns");
+  for (size_t j = 0; j < a->ncols; ++j) {
     if (strcmp(a->names[j], b->names[j]) != 0)
       return fb_err_set(err, FB_EINVAL, "result difference: column %zu is '%s' minus '%s'", j,
                         b->names[j], a->names[j]);
+    if (strcmp(a->units[j], b->units[j]) != 0)
+      return fb_err_set(err, FB_EINVAL, "result difference: column '%s' is in %s minus %s",
+                        a->names[j], b->units[j], a->units[j]);
+  }
   if (a->nsamples != b->nsamples)
     return fb_err_set(err, FB_EINVAL, "result difference: %zu samples minus %zu samples",
                       b->nsamples, a->nsamples);
