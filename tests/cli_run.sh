@@ -53,6 +53,12 @@ for key in ["steps", "rhs_evals", "newton_setups", "factorizations", "newton_ite
             "err_test_fails", "wall_seconds"]:
     want(isinstance(s1["solver"].get(key), (int, float)), "solver." + key)
 want(s1["solver"]["steps"] > 0, "solver steps > 0")
+# Tire contact: the paper's crossing keeps every tire in compression; the
+# LF minimum over the run is at most the CSV's (which is the same force).
+tc = s1["tire_contact"]
+want(list(tc["min_force"]) == ["LF", "RF", "LM", "RM", "LR", "RR"], "tire_contact tires")
+want(tc["tensile_intervals"] == [], "no tensile interval on the paper's crossing")
+want("tire_contact" in d["definitions"], "definition of tire_contact")
 # Data sheet: the LF wheel meets the bump at 5 s; the RR wheel, 2.9 m
 # behind and 2.1 m to the right at 45 degrees, leaves it after a further
 # (2.9 + 2.1 + 3.7) m at 10/3.6 m/s: 8.132 s. Printed with 10 digits.
@@ -222,6 +228,10 @@ for q in "LF tire normal reaction | N" "RF suspension spring deformation | m" \
 done
 expect_in "$REPORT" "full order, all 1296 nodal DOFs" "report.md hull order"
 expect_in "$REPORT" "## Assumptions" "report.md assumptions"
+expect_in "$REPORT" "## Tire contact" "report.md tire contact"
+# The shortened 0.5 m bump is sharp: every tire pulls its wheel down once.
+expect_in "$REPORT" "System 2 (flexible hull): 6 intervals where a tire's normal reaction is tensile" \
+  "report.md contact verdict"
 expect_in "$REPORT" "| 11 | " "report.md System 1 modes"
 expect_in "$REPORT" "| 20 | " "report.md System 2 modes"
 checks=$((checks + 1))

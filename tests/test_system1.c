@@ -261,7 +261,7 @@ static void test_direct_vs_flexbond(const fb_scenario *s, const apc_model *m, fb
   if (!res)
     return;
   const size_t n = fb_result_nsamples(res);
-  CHECK(fb_result_ncols(res) == 1 + FB_NOUTPUTS);
+  CHECK(fb_result_ncols(res) == 1 + FB_NOUTPUTS + FB_NCORNERS);
   CHECK(n == (size_t)llround(s->t_end * s->sample_rate) + 1);
   CHECK_NEAR(fb_result_row(res, n - 1)[0], s->t_end, 1e-9);
   double *ref = malloc(sizeof(double) * APC_NOUT * n);

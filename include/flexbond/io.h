@@ -38,6 +38,10 @@ typedef enum fb_csv_header {
  * fb_out stream, fb_out_commit reports them, which lets a caller commit
  * several files together. */
 void fb_result_print_csv(FILE *fp, const fb_result *r, fb_csv_header header);
+/* As fb_result_print_csv with only the first ncols columns (time
+ * included; all of them if ncols is larger). */
+void fb_result_print_csv_columns(FILE *fp, const fb_result *r, size_t ncols,
+                                 fb_csv_header header);
 
 /* Writes r as the CSV file path (fb_result_print_csv with
  * FB_CSV_HEADER_UNITS), atomically. */

@@ -260,13 +260,31 @@ int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd *
 
 /* Integrates the vehicle per the scenario: initial state (zero or static
  * equilibrium), breakpoints at every wheel's bump entry and exit,
- * tolerances, sampling. The result's columns are t then the seven
- * outputs, named and ordered as fb_vehicle_output_name. */
+ * tolerances, sampling. The result's columns are t, the seven outputs
+ * (named and ordered as fb_vehicle_output_name), then the six tires'
+ * normal reactions contact_force_LF .. contact_force_RR (N, compression
+ * positive; the first equals tire_force_LF). */
 int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err);
 /* As fb_vehicle_simulate, reporting progress through fn (NULL for none;
  * see fb_sim_progress_fn). */
 int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
                                  void *ctx, fb_result **out, fb_err *err);
+
+/* A time interval in which a tire's normal reaction is tensile: the
+ * linear tire pulls the wheel down, where a real tire would leave the
+ * road. */
+typedef struct fb_tension_interval {
+  int corner;              /* FB_LF .. FB_RR */
+  double t_start, t_end;   /* s: zero crossings, linearly interpolated
+                              between samples (or the run's ends) */
+  double min_force, t_min; /* the most tensile reaction (N, < 0) and its time */
+} fb_tension_interval;
+
+/* Every tensile interval in a result of fb_vehicle_simulate (its
+ * contact_force_* columns), by corner, then by time. *out is new (NULL
+ * when there is none). FB_EINVAL if the result lacks a column. */
+int fb_vehicle_tension_intervals(const fb_result *r, fb_tension_interval **out, size_t *n,
+                                 fb_err *err);
 
 /* A mode of the linearised vehicle. */
 typedef struct fb_mode {

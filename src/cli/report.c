@@ -574,6 +574,47 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
     conclude_torsion(fp, o);
 }
 
+/* ---- Tire contact: the verdict of each system, from its reactions. */
+
+static void write_contact_verdict(FILE *fp, const cli_run_system *r)
+{
+  char force[32];
+  fprintf(fp, "- %s: ", cli_system_label(r->sys));
+  if (r->ntension == 0) {
+    int c_min = 0;
+    for (int c = 1; c < FB_NCORNERS; ++c)
+      if (r->min_contact[c] < r->min_contact[c_min])
+        c_min = c;
+    fprintf(fp,
+            "every tire stays in compression over the whole run; the smallest normal "
+            "reaction is %s N (%s tire, t = %.3f s).\n",
+            number_text(r->min_contact[c_min], force, sizeof force), fb_corner_name(c_min),
+            r->min_contact_time[c_min]);
+    return;
+  }
+  fprintf(fp,
+          "%zu interval%s where a tire's normal reaction is tensile (the linear tire "
+          "pulls the wheel down; a real one would leave the road):",
+          r->ntension, r->ntension == 1 ? "" : "s");
+  for (size_t i = 0; i < r->ntension; ++i) {
+    const fb_tension_interval *t = &r->tension[i];
+    fprintf(fp, "%s %s from %.3f to %.3f s (down to %s N at %.3f s)", i ? ";" : "",
+            fb_corner_name(t->corner), t->t_start, t->t_end,
+            number_text(t->min_force, force, sizeof force), t->t_min);
+  }
+  fputs(".\n", fp);
+}
+
+static void write_contact(FILE *fp, const cli_run_outputs *o)
+{
+  fputs("\n## Tire contact\n\nThe normal reaction of every tire (tire spring plus tire "
+        "damper, compression positive) over the whole run; the tire model is linear, so a "
+        "negative reaction means the tire would have left the road.\n\n",
+        fp);
+  for (size_t i = 0; i < o->nruns; ++i)
+    write_contact_verdict(fp, &o->runs[i]);
+}
+
 static void write_conclusions(FILE *fp, const cli_run_outputs *o)
 {
   fputs("\n## Conclusions\n\n", fp);
@@ -612,5 +653,6 @@ void cli_write_report_md(FILE *fp, const void *ctx)
     write_comparison_table(fp, o);
   else
     write_outputs_table(fp, o);
+  write_contact(fp, o);
   write_conclusions(fp, o);
 }

@@ -257,6 +257,33 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
 }
 
 /* "systemN": {...} of one run. */
+/* {"min_force": {tire: {"value", "time"}, ...}, "tensile_intervals":
+ * [{"tire", "from", "to", "min_force", "at"}, ...]}. */
+static void write_contact_json(FILE *fp, const cli_run_system *run)
+{
+  fputs("{\"min_force\": {", fp);
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    fprintf(fp, "%s\"%s\": {\"value\": ", c ? ", " : "", fb_corner_name(c));
+    json_number(fp, run->min_contact[c]);
+    fputs(", \"time\": ", fp);
+    json_number(fp, run->min_contact_time[c]);
+    fputc('}', fp);
+  }
+  fputs("}, \"tensile_intervals\": [", fp);
+  for (size_t i = 0; i < run->ntension; ++i) {
+    const fb_tension_interval *t = &run->tension[i];
+    const json_field fields[] = {
+        {"from", t->t_start}, {"to", t->t_end}, {"min_force", t->min_force}, {"at", t->t_min}};
+    fprintf(fp, "%s{\"tire\": \"%s\"", i ? ", " : "", fb_corner_name(t->corner));
+    for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
+      fprintf(fp, ", \"%s\": ", fields[f].key);
+      json_number(fp, fields[f].value);
+    }
+    fputc('}', fp);
+  }
+  fputs("]}", fp);
+}
+
 static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scenario *s,
                               const double window[2])
 {
@@ -271,7 +298,9 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
     fputs(": ", fp);
     write_output_json(fp, fb_result_col_unit(run->res, run->col[k]), &run->stats[k]);
   }
-  fputs("\n    },\n    \"solver\": ", fp);
+  fputs("\n    },\n    \"tire_contact\": ", fp);
+  write_contact_json(fp, run);
+  fputs(",\n    \"solver\": ", fp);
   write_solver_json(fp, fb_result_stats(run->res));
   fputs(",\n    \"bump_window\": [", fp);
   json_number(fp, window[0]);
@@ -318,6 +347,11 @@ static const char *const definitions[][2] = {
             "not of its deviation from static)"},
     {"bump_window", "[first wheel's bump entry, last wheel's bump exit], s"},
     {"solver", "CVODE statistics of the run; wall_seconds is the integration's wall time"},
+    {"tire_contact",
+     "min_force: each tire's smallest normal reaction over the whole run (N, compression "
+     "positive) and its time; tensile_intervals: every interval where a reaction is negative "
+     "(the linear tire pulls the wheel down): from, to (s, zero crossings interpolated "
+     "between samples), min_force (N) at (s)"},
     {"hull_modes", "System 2's hull model: 0 full order, N > 0 reduced to N free-free modes "
                    "with static correction"},
     {"comparison", "System 2 against System 1 per output (when both ran): peak_systemN and "
@@ -361,7 +395,8 @@ static void write_summary_json(FILE *fp, const void *ctx)
 static void write_system_csv(FILE *fp, const void *ctx)
 {
   const cli_run_system *run = ctx;
-  fb_result_print_csv(fp, run->res, FB_CSV_HEADER_NAMES);
+  /* The paper's seven outputs; the contact forces go to the summary. */
+  fb_result_print_csv_columns(fp, run->res, 1 + FB_NOUTPUTS, FB_CSV_HEADER_NAMES);
 }
 
 /* Creates dir if needed and writes every file into it, all or nothing;
@@ -474,6 +509,29 @@ static void show_progress(void *ctx, double t, double t_end)
   draw_progress_line(p);
 }
 
+/* The tire-contact verdict: tensile intervals and the smallest normal
+ * reaction of each tire over the whole run. */
+static int run_contact(cli_run_system *run, fb_err *err)
+{
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    char name[32];
+    snprintf(name, sizeof name, "contact_force_%s", fb_corner_name(c));
+    const long j = fb_result_find(run->res, name);
+    if (j < 1)
+      return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'", name);
+    run->min_contact[c] = INFINITY;
+    run->min_contact_time[c] = NAN;
+    for (size_t k = 0; k < fb_result_nsamples(run->res); ++k) {
+      const double *row = fb_result_row(run->res, k);
+      if (row[j] < run->min_contact[c]) {
+        run->min_contact[c] = row[j];
+        run->min_contact_time[c] = row[0];
+      }
+    }
+  }
+  return fb_vehicle_tension_intervals(run->res, &run->tension, &run->ntension, err);
+}
+
 /* Columns and statistics of run's outputs. */
 static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
 {
@@ -486,7 +544,7 @@ static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
     run->col[k] = (size_t)j;
     run->stats[k] = cli_output_stats_of(run->res, run->col[k], window);
   }
-  return FB_OK;
+  return run_contact(run, err);
 }
 
 static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
@@ -602,8 +660,10 @@ static int run(const run_args *a)
     fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", cli_scenario_name(s), nfiles,
             a->out_dir);
   fb_result_free(&diff);
-  for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i)
+  for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i) {
     fb_result_free(&runs[i].res);
+    free(runs[i].tension);
+  }
   run_modes_free(&modes);
   fb_scenario_free(&s);
   return cli_report(rc, &err);

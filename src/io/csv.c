@@ -43,9 +43,8 @@ static void write_header_cell(FILE *fp, const char *name, const char *unit)
     fputc('"', fp);
 }
 
-static void write_header(FILE *fp, const fb_result *r, fb_csv_header header)
+static void write_header(FILE *fp, const fb_result *r, size_t ncols, fb_csv_header header)
 {
-  size_t ncols = fb_result_ncols(r);
   int with_units = header == FB_CSV_HEADER_UNITS;
   /* Column 0 is time whatever the result names it. */
   write_header_cell(fp, "t", with_units ? "s" : NULL);
@@ -57,9 +56,8 @@ static void write_header(FILE *fp, const fb_result *r, fb_csv_header header)
   fputc('\n', fp);
 }
 
-static void write_rows(FILE *fp, const fb_result *r)
+static void write_rows(FILE *fp, const fb_result *r, size_t ncols)
 {
-  size_t ncols = fb_result_ncols(r);
   size_t nsamples = fb_result_nsamples(r);
   for (size_t k = 0; k < nsamples; ++k) {
     const double *row = fb_result_row(r, k);
@@ -69,10 +67,18 @@ static void write_rows(FILE *fp, const fb_result *r)
   }
 }
 
+void fb_result_print_csv_columns(FILE *fp, const fb_result *r, size_t ncols,
+                                 fb_csv_header header)
+{
+  if (ncols > fb_result_ncols(r))
+    ncols = fb_result_ncols(r);
+  write_header(fp, r, ncols, header);
+  write_rows(fp, r, ncols);
+}
+
 void fb_result_print_csv(FILE *fp, const fb_result *r, fb_csv_header header)
 {
-  write_header(fp, r, header);
-  write_rows(fp, r);
+  fb_result_print_csv_columns(fp, r, fb_result_ncols(r), header);
 }
 
 int fb_result_write_csv(const fb_result *r, const char *path, fb_err *err)

@@ -167,14 +167,30 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
   return FB_OK;
 }
 
-int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
-                     fb_err *err)
+/* The six tires' normal reactions (compression positive), appended after
+ * the seven outputs when contact is asked for: probes into cp (names and
+ * targets in the caller's buffers). */
+static void contact_probes(fb_probe_spec *cp, char (*targets)[32])
+{
+  static const char *const names[FB_NCORNERS] = {"contact_force_LF", "contact_force_RF",
+                                                 "contact_force_LM", "contact_force_RM",
+                                                 "contact_force_LR", "contact_force_RR"};
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    snprintf(targets[c], sizeof targets[c], "susp_%s.b_tire", fb_corner_name(c));
+    cp[c] = (fb_probe_spec){names[c], FB_PROBE_EFFORT, targets[c], -1, 0, 1.0, "N", NULL, 0};
+  }
+}
+
+/* fb_vehicle_build, with the contact forces as extra outputs if asked. */
+static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg **graph,
+                         fb_bd **bd, fb_err *err)
 {
   *graph = NULL;
   *bd = NULL;
   fb_hull *hull = NULL;
   fb_fe_hull *fe = NULL;
-  fb_probe_spec *probes = NULL;
+  fb_probe_spec *probes = NULL, all[FB_NOUTPUTS + FB_NCORNERS];
+  char targets[FB_NCORNERS][32];
   size_t nprobes = 0;
   int rc = fb_scenario_check(s, err);
   /* The only difference between System 1 and System 2 is this fragment. */
@@ -188,13 +204,22 @@ int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd *
   }
   if (!rc)
     rc = fb_vehicle_assemble(s, &hull, graph, &probes, &nprobes, err);
-  if (!rc)
-    rc = fb_bd_build(*graph, probes, nprobes, bd, err);
+  if (!rc) {
+    memcpy(all, probes, nprobes * sizeof *all);
+    contact_probes(all + nprobes, targets);
+    rc = fb_bd_build(*graph, all, nprobes + (contact ? FB_NCORNERS : 0), bd, err);
+  }
   fb_vehicle_probes_free(&probes, nprobes);
   fb_hull_free(&hull);
   if (rc)
     fb_bg_free(graph);
   return rc;
+}
+
+int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
+                     fb_err *err)
+{
+  return vehicle_build(s, sys, 0, graph, bd, err);
 }
 
 /* Solver settings of the scenario; breakpoints come from the road
@@ -220,7 +245,7 @@ int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_pro
   *out = NULL;
   fb_bg *graph = NULL;
   fb_bd *bd = NULL;
-  int rc = fb_vehicle_build(s, sys, &graph, &bd, err);
+  int rc = vehicle_build(s, sys, 1, &graph, &bd, err);
   double *x0 = NULL;
   if (!rc) {
     size_t n = fb_bd_nstates(bd);
