@@ -1,0 +1,125 @@
+/* flexbond: ride-comfort metrics of a vertical acceleration record.
+ *
+ * From a uniformly sampled vertical acceleration a(t) (m/s^2, e.g. the
+ * driver_acc output at 1 kHz) this module computes the ISO 2631-1:1997
+ * whole-body vibration values of the Wk-weighted acceleration a_w(t)
+ * (weighted r.m.s., running r.m.s. and MTVV, VDV, crest factor), the
+ * unweighted jerk, and the absorbed power of Pradko & Lee. Definitions,
+ * sources and discretisation: docs/ride-metrics.md.
+ *
+ * Conventions: sample k of a record is at time k / fs after the record's
+ * first sample; a record of n samples spans n / fs seconds (each sample
+ * stands for one sampling interval, so sums over whole periods of a sine
+ * are exact). Arrays are borrowed and never kept. Every function that can
+ * fail returns a status of flexbond/error.h and leaves its outputs
+ * unspecified on failure. No state is kept between calls. */
+#ifndef FLEXBOND_RIDE_H
+#define FLEXBOND_RIDE_H
+
+#include <stddef.h>
+
+#include "flexbond/error.h"
+#include "flexbond/sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Lowest sample rate accepted, Hz: four times the Wk band-limiting
+ * low-pass corner (100 Hz). The bilinear transform's frequency warping
+ * makes the digital |Wk| low by 0.23 % at 31.5 Hz, 0.75 % at 63 Hz and
+ * 3.3 % at 100 Hz at fs = 1 kHz, but by 1.5 %, 5.1 % and 21 % at 400 Hz;
+ * at 200 Hz and below the low-pass cannot be realised at all. */
+#define FB_RIDE_MIN_SAMPLE_RATE 400.0
+
+/* Absorbed-power limit for military vehicles, W (the 6 W vertical
+ * tolerance of NATO Reference Mobility Model practice). */
+#define FB_RIDE_ABSORBED_POWER_LIMIT 6.0
+
+typedef struct fb_ride_metrics {
+  double a_w_rms;        /* Wk-weighted r.m.s. acceleration, m/s^2 (ISO 2631-1 6.1) */
+  double mtvv;           /* maximum transient vibration value, m/s^2 (6.3.1) */
+  double vdv;            /* vibration dose value, m/s^1.75 (6.3.2) */
+  double crest;          /* max |a_w| / a_w_rms (6.2.1); 0 when a_w_rms is 0 */
+  double absorbed_power; /* W, NAN when no K(f) table was given (fb_ride_opts) */
+  double jerk_peak;      /* max |da/dt| of the unweighted signal, m/s^3 */
+  double jerk_rms;       /* r.m.s. of da/dt, m/s^3 */
+  double duration;       /* evaluated interval, s (samples / fs) */
+} fb_ride_metrics;
+
+/* Absorbed-power coefficients K(f): the power absorbed by a seated
+ * person per unit mean-square vertical acceleration at frequency f,
+ * W / (m/s^2)^2 r.m.s. Interpolated log-log between the points; 0
+ * outside [freq_hz[0], freq_hz[n-1]]. */
+typedef struct fb_ride_kf_table {
+  const double *freq_hz; /* n > 1 values, strictly increasing, > 0 (borrowed) */
+  const double *coef;    /* n values > 0 (borrowed) */
+  size_t n;
+} fb_ride_kf_table;
+
+typedef struct fb_ride_opts {
+  double integration_time;             /* running r.m.s. window tau, s (default 1) */
+  const fb_ride_kf_table *absorbed_kf; /* NULL (default): absorbed_power = NAN */
+} fb_ride_opts;
+
+/* Fills the defaults stated above. */
+void fb_ride_opts_default(fb_ride_opts *opts);
+
+/* |Wk(j 2 pi f)|, the analytic ISO 2631-1 Annex A weighting (band
+ * limiting, acceleration-velocity transition and upward step) at f_hz
+ * >= 0; NAN for a negative or non-finite f_hz. */
+double fb_ride_wk_magnitude(double f_hz);
+
+/* Magnitude of the digital filter fb_ride_wk_filter applies at sample
+ * rate fs, at frequency f_hz in [0, fs/2]: the exact steady-state gain
+ * of that filter for a sine of frequency f_hz. NAN when fs is below
+ * FB_RIDE_MIN_SAMPLE_RATE or f_hz is outside [0, fs/2]. */
+double fb_ride_wk_digital_magnitude(double f_hz, double fs);
+
+/* Filters a[0..n-1] (m/s^2, sampled at fs Hz) through the Wk weighting
+ * into aw[0..n-1] (may be a itself). The filter starts at rest (the
+ * signal is taken as 0 before a[0]), so its transients (slowest decay
+ * time ~0.56 s, from the 0.4 Hz high-pass) are part of aw. FB_EINVAL if
+ * n is 0, a or aw is NULL, fs is not finite or below
+ * FB_RIDE_MIN_SAMPLE_RATE, or a sample is not finite. */
+int fb_ride_wk_filter(const double *a, size_t n, double fs, double *aw, fb_err *err);
+
+/* Absorbed power of a[0..n-1] (m/s^2, fs Hz), W: sum over the record's
+ * spectral lines f_k = k fs / n (0 < f_k <= fs/2) of K(f_k) times the
+ * line's mean square, the record's mean power. FB_EINVAL for n < 2, a
+ * NULL, fs not finite and positive, a non-finite sample or a malformed
+ * table (its message says which entry). Cost: n times the number of lines
+ * inside the table's band. */
+int fb_ride_absorbed_power(const double *a, size_t n, double fs, const fb_ride_kf_table *kf,
+                           double *watts, fb_err *err);
+
+/* Every metric of the whole record a[0..n-1] (m/s^2, fs Hz); opts NULL
+ * for the defaults. FB_EINVAL if fs is not finite or below
+ * FB_RIDE_MIN_SAMPLE_RATE, the record is shorter than the running r.m.s.
+ * window (tau fs samples) or than 3 samples, a sample is not finite, or
+ * opts are invalid; FB_ENOMEM. */
+int fb_ride_metrics_compute(const double *a, size_t n, double fs, const fb_ride_opts *opts,
+                            fb_ride_metrics *m, fb_err *err);
+
+/* As fb_ride_metrics_compute over the samples of a[0..n-1] whose times
+ * k / fs lie in [t0, t1) (s from the first sample, 0 <= t0 < t1 <=
+ * n / fs). The weighting filter runs from a[0], so the window sees the
+ * filter's settled state; the jerk at the window's edges uses the
+ * neighbouring samples outside it when the record has them (one-sided
+ * differences at the record's first and last sample). The window
+ * must hold at least tau fs and 3 samples. */
+int fb_ride_metrics_window(const double *a, size_t n, double fs, double t0, double t1,
+                           const fb_ride_opts *opts, fb_ride_metrics *m, fb_err *err);
+
+/* fb_ride_metrics_window on the output column named column of r, over
+ * result times [t0, t1) (absolute, as in column 0). The sample rate is
+ * taken from column 0, which must be uniform (every step within 1e-6
+ * relative of the mean step). FB_EINVAL naming the column if it is
+ * missing, or the first irregular step; FB_ENOMEM. */
+int fb_ride_metrics_result(const fb_result *r, const char *column, double t0, double t1,
+                           const fb_ride_opts *opts, fb_ride_metrics *m, fb_err *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
