@@ -64,6 +64,16 @@ want("tire_contact" in d["definitions"], "definition of tire_contact")
 # (2.9 + 2.1 + 3.7) m at 10/3.6 m/s: 8.132 s. Printed with 10 digits.
 t0, t1 = s1["bump_window"]
 want(abs(t0 - 5.0) < 1e-9 and abs(t1 - (5.0 + 8.7 * 3.6 / 10)) < 1e-9, "bump window %s" % [t0, t1])
+# Ride metrics of the driver over [first bump entry, end of the run]
+# (values: test_ride.c). Relations that hold for any record: the crest
+# factor is at least 1 and MTVV, a maximum of 1 s r.m.s. values, is at
+# least the r.m.s. of some 1 s stretch, so positive with a_w.
+ride = s1["ride"]
+want(ride["window"][0] == t0, "ride window starts at the bump entry")
+want(ride["a_w_rms"] > 0 and ride["vdv"] > 0 and ride["mtvv"] > 0, "ride metrics positive")
+want(ride["crest_factor"] >= 1.0, "crest factor >= 1")
+want(ride["absorbed_power"] is None, "absorbed power null without a K(f) table")
+want("ride" in d["definitions"], "definition of ride")
 rows = [[float(v) for v in r] for r in list(csv.reader(open(out + "/system1.csv")))[1:]]
 for j, name in enumerate(names, start=1):
     o = s1["outputs"][name]
@@ -229,6 +239,8 @@ done
 expect_in "$REPORT" "full order, all 1296 nodal DOFs" "report.md hull order"
 expect_in "$REPORT" "## Assumptions" "report.md assumptions"
 expect_in "$REPORT" "## Tire contact" "report.md tire contact"
+expect_in "$REPORT" "## Ride comfort (driver plus seat)" "report.md ride comfort"
+expect_in "$REPORT" "| VDV | m/s^1.75 |" "report.md VDV row"
 # The shortened 0.5 m bump is sharp: every tire pulls its wheel down once.
 expect_in "$REPORT" "System 2 (flexible hull): 6 intervals where a tire's normal reaction is tensile" \
   "report.md contact verdict"

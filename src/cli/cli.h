@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/ride.h"
 #include "flexbond/vehicle.h"
 
 #define CLI_VERSION "0.1.0"
@@ -189,6 +190,12 @@ typedef struct cli_run_system {
   fb_tension_interval *tension;
   size_t ntension;
   double min_contact[FB_NCORNERS], min_contact_time[FB_NCORNERS];
+  /* The driver's ride metrics over ride_window (the first wheel's bump
+   * entry to the end of the run), when has_ride; else ride_note says why. */
+  int has_ride;
+  fb_ride_metrics ride;
+  double ride_window[2];
+  char ride_note[FB_ERR_MSG_MAX];
 } cli_run_system;
 
 /* Everything run writes. */

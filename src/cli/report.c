@@ -574,6 +574,72 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
     conclude_torsion(fp, o);
 }
 
+/* ---- Ride comfort of the driver (src/ride, docs/ride-metrics.md). */
+
+/* The ride table's rows: label, unit and value. */
+enum { NRIDE_ROWS = 6 };
+static const char *const ride_labels[NRIDE_ROWS][2] = {
+    {"Wk-weighted r.m.s. a_w (ISO 2631-1)", "m/s^2"},
+    {"MTVV (1 s running r.m.s.)", "m/s^2"},
+    {"VDV", "m/s^1.75"},
+    {"crest factor", "-"},
+    {"jerk peak", "m/s^3"},
+    {"jerk r.m.s.", "m/s^3"},
+};
+
+static double ride_value(const fb_ride_metrics *m, size_t row)
+{
+  const double values[NRIDE_ROWS] = {m->a_w_rms, m->mtvv,      m->vdv,
+                                     m->crest,   m->jerk_peak, m->jerk_rms};
+  return values[row];
+}
+
+static void write_ride(FILE *fp, const cli_run_outputs *o)
+{
+  fputs("\n## Ride comfort (driver plus seat)\n\n", fp);
+  int any = 0;
+  for (size_t i = 0; i < o->nruns; ++i) {
+    const cli_run_system *r = &o->runs[i];
+    if (r->has_ride) {
+      any = 1;
+      continue;
+    }
+    fprintf(fp, "%s: no ride metrics (%s).\n\n", cli_system_label(r->sys), r->ride_note);
+  }
+  if (!any)
+    return;
+  const cli_run_system *first = NULL;
+  for (size_t i = 0; i < o->nruns && !first; ++i)
+    if (o->runs[i].has_ride)
+      first = &o->runs[i];
+  fprintf(fp,
+          "The driver's vertical acceleration from the first wheel's bump entry (%.3f s) to "
+          "the end of the run (%.3f s), weighted and evaluated per ISO 2631-1:1997 (flexbond's "
+          "docs/ride-metrics.md). The absorbed power (Pradko & Lee, "
+          "against the 6 W limit used for military vehicles) is not given: no published "
+          "K(f) table is built in.\n\n| metric | unit |",
+          first->ride_window[0], first->ride_window[1]);
+  for (size_t i = 0; i < o->nruns; ++i)
+    if (o->runs[i].has_ride)
+      fprintf(fp, " %s |", cli_system_label(o->runs[i].sys));
+  fputs("\n|---|---|", fp);
+  for (size_t i = 0; i < o->nruns; ++i)
+    if (o->runs[i].has_ride)
+      fputs("---|", fp);
+  fputc('\n', fp);
+  for (size_t k = 0; k < NRIDE_ROWS; ++k) {
+    fprintf(fp, "| %s | %s |", ride_labels[k][0], ride_labels[k][1]);
+    for (size_t i = 0; i < o->nruns; ++i) {
+      if (!o->runs[i].has_ride)
+        continue;
+      fputc(' ', fp);
+      md_number(fp, ride_value(&o->runs[i].ride, k));
+      fputs(" |", fp);
+    }
+    fputc('\n', fp);
+  }
+}
+
 /* ---- Tire contact: the verdict of each system, from its reactions. */
 
 static void write_contact_verdict(FILE *fp, const cli_run_system *r)
@@ -653,6 +719,7 @@ void cli_write_report_md(FILE *fp, const void *ctx)
     write_comparison_table(fp, o);
   else
     write_outputs_table(fp, o);
+  write_ride(fp, o);
   write_contact(fp, o);
   write_conclusions(fp, o);
 }

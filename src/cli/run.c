@@ -257,6 +257,35 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
 }
 
 /* "systemN": {...} of one run. */
+/* {"window": [t0, t1], "a_w_rms", ..., "jerk_rms"} or {"note": why}. */
+static void write_ride_json(FILE *fp, const cli_run_system *run)
+{
+  if (!run->has_ride) {
+    fputs("{\"note\": ", fp);
+    json_string(fp, run->ride_note);
+    fputc('}', fp);
+    return;
+  }
+  const fb_ride_metrics *m = &run->ride;
+  const json_field fields[] = {{"a_w_rms", m->a_w_rms},
+                               {"mtvv", m->mtvv},
+                               {"vdv", m->vdv},
+                               {"crest_factor", m->crest},
+                               {"absorbed_power", m->absorbed_power},
+                               {"jerk_peak", m->jerk_peak},
+                               {"jerk_rms", m->jerk_rms}};
+  fputs("{\"window\": [", fp);
+  json_number(fp, run->ride_window[0]);
+  fputs(", ", fp);
+  json_number(fp, run->ride_window[1]);
+  fputc(']', fp);
+  for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
+    fprintf(fp, ", \"%s\": ", fields[f].key);
+    json_number(fp, fields[f].value);
+  }
+  fputc('}', fp);
+}
+
 /* {"min_force": {tire: {"value", "time"}, ...}, "tensile_intervals":
  * [{"tire", "from", "to", "min_force", "at"}, ...]}. */
 static void write_contact_json(FILE *fp, const cli_run_system *run)
@@ -298,7 +327,9 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
     fputs(": ", fp);
     write_output_json(fp, fb_result_col_unit(run->res, run->col[k]), &run->stats[k]);
   }
-  fputs("\n    },\n    \"tire_contact\": ", fp);
+  fputs("\n    },\n    \"ride\": ", fp);
+  write_ride_json(fp, run);
+  fputs(",\n    \"tire_contact\": ", fp);
   write_contact_json(fp, run);
   fputs(",\n    \"solver\": ", fp);
   write_solver_json(fp, fb_result_stats(run->res));
@@ -347,6 +378,12 @@ static const char *const definitions[][2] = {
             "not of its deviation from static)"},
     {"bump_window", "[first wheel's bump entry, last wheel's bump exit], s"},
     {"solver", "CVODE statistics of the run; wall_seconds is the integration's wall time"},
+    {"ride",
+     "the driver's ride metrics (docs/ride-metrics.md) over window = [first wheel's bump "
+     "entry, end of the run] s: a_w_rms (ISO 2631-1 Wk-weighted r.m.s., m/s^2), mtvv "
+     "(largest 1 s running r.m.s., m/s^2), vdv (m/s^1.75), crest_factor (max |a_w| / "
+     "a_w_rms), absorbed_power (W; null: no K(f) table is built in), jerk_peak and jerk_rms "
+     "(of the unweighted acceleration, m/s^3); a note instead when they cannot be computed"},
     {"tire_contact",
      "min_force: each tire's smallest normal reaction over the whole run (N, compression "
      "positive) and its time; tensile_intervals: every interval where a reaction is negative "
@@ -532,6 +569,33 @@ static int run_contact(cli_run_system *run, fb_err *err)
   return fb_vehicle_tension_intervals(run->res, &run->tension, &run->ntension, err);
 }
 
+/* The driver's ride metrics (ISO 2631-1 and jerk) from the first wheel's
+ * bump entry to the end of the run: the response to the bump, without
+ * the settling after t = 0. A window shorter than the running r.m.s.'s
+ * 1 s (or any other refusal) is no failure of the run: the note says
+ * why the metrics are missing. */
+static void run_ride(cli_run_system *run, const double window[2])
+{
+  const size_t n = fb_result_nsamples(run->res);
+  run->has_ride = 0;
+  if (n < 2) {
+    snprintf(run->ride_note, sizeof run->ride_note, "the run has fewer than 2 samples");
+    return;
+  }
+  const double t_first = fb_result_row(run->res, 0)[0];
+  const double t_last = fb_result_row(run->res, n - 1)[0];
+  run->ride_window[0] = fmax(window[0], t_first);
+  run->ride_window[1] = t_last + (t_last - t_first) / (double)(n - 1);
+  fb_err err;
+  fb_ride_opts opts;
+  fb_ride_opts_default(&opts);
+  if (fb_ride_metrics_result(run->res, "driver_acc", run->ride_window[0], run->ride_window[1],
+                             &opts, &run->ride, &err) == FB_OK)
+    run->has_ride = 1;
+  else
+    snprintf(run->ride_note, sizeof run->ride_note, "%s", err.msg);
+}
+
 /* Columns and statistics of run's outputs. */
 static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
 {
@@ -544,6 +608,7 @@ static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
     run->col[k] = (size_t)j;
     run->stats[k] = cli_output_stats_of(run->res, run->col[k], window);
   }
+  run_ride(run, window);
   return run_contact(run, err);
 }
 
