@@ -1,0 +1,128 @@
+/* flexbond: road profiles for the wheeled-vehicle study (docs/roads.md).
+ *
+ * A road is two vertical profiles z(s), m, of the distance s, m, along a
+ * LEFT and a RIGHT track (the paths of the left and right wheels). Every
+ * profile is continuous with a continuous slope dz/ds; where its second
+ * derivative jumps (bump ends, CSV knots, fade-in ends) the road reports a
+ * breakpoint so an integrator can stop there.
+ *
+ * Time convention (constant speed V > 0, straight line): a wheel is at
+ * s(t) = s0 + V t on its track, where s0 is its position at t = 0. With
+ * the vehicle's reference point (x = 0) at s_ref + V t, a wheel at
+ * longitudinal position x (vehicle axes, forward positive) has
+ * s0 = s_ref + x, so the wheels of one side meet a feature at s_f at
+ * t = (s_f - s_ref - x) / V: the rear wheels later by their spacing.
+ *
+ * A road is immutable after construction; the time functions it makes
+ * hold their own copy of the profile, so the road may be freed first. */
+#ifndef FLEXBOND_ROAD_H
+#define FLEXBOND_ROAD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "flexbond/error.h"
+#include "flexbond/expr.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The two tracks. */
+enum { FB_ROAD_LEFT = 0, FB_ROAD_RIGHT = 1, FB_ROAD_NTRACKS = 2 };
+
+typedef struct fb_road fb_road;
+
+/* ---- (1 - cos) bumps. */
+
+/* One bump per track: z(s) = (h/2)(1 - cos(2 pi (s - s_k) / L)) for
+ * s_k <= s <= s_k + L, else 0, where s_k is the track's start (leading
+ * edge). height finite (negative: a dip), length > 0, starts finite;
+ * FB_EINVAL naming the parameter otherwise. */
+int fb_road_new_bump(double height, double length, double start_left, double start_right,
+                     fb_road **out, fb_err *err);
+
+/* The paper's oblique bump: the leading edge is a straight line at angle
+ * (rad, in (-pi/2, pi/2)) to the lateral axis, crossing the left track at
+ * s = 0 and the right track, track_width (> 0, m) to its right, at
+ * s = track_width tan(angle): left first for angle > 0. With track_width
+ * = y_LF - y_RF this reproduces fb_scenario_bump_entry. */
+int fb_road_new_oblique_bump(double height, double length, double angle, double track_width,
+                             fb_road **out, fb_err *err);
+
+/* Dimensions of a Brazilian speed bump at its maximum height: CONTRAN
+ * resolution 39/1998, art. 3, types "I" (1.50 m long, up to 0.08 m high)
+ * and "II" (3.70 m, up to 0.10 m); resolution 600/2016 keeps the lengths
+ * and maximum heights as its types "B" and "A" (accepted as aliases).
+ * FB_EINVAL for any other name. */
+int fb_road_speed_bump(const char *type, double *height, double *length, fb_err *err);
+
+/* ---- ISO 8608:2016 random roads. */
+
+typedef struct fb_road_iso8608_params {
+  char road_class;    /* 'A' .. 'H' (lower case accepted) */
+  uint64_t seed;      /* any value; the same seed gives the same road */
+  double n_min;       /* cycles/m, lower end of the band, > 0 */
+  double n_max;       /* cycles/m, upper end of the band, > n_min */
+  size_t nharmonics;  /* harmonics per track, 1 .. 1000000 */
+  double fade_length; /* m, >= 0: z is 0 for s <= 0 and faded in over
+                         [0, fade_length]; 0: no fade, z defined for all s */
+} fb_road_iso8608_params;
+
+/* Class 'C', seed 1, band 0.011 .. 2.83 cycles/m, 1024 harmonics, no
+ * fade. */
+void fb_road_iso8608_defaults(fb_road_iso8608_params *p);
+
+/* The class's geometric-mean displacement PSD at n0 = 0.1 cycles/m,
+ * Gd(n0) in m^3: 16e-6 for class A, times 4 for each class after it.
+ * FB_EINVAL for a letter outside A .. H. */
+int fb_road_iso8608_gd0(char road_class, double *gd0, fb_err *err);
+
+/* A random road whose one-sided displacement PSD is the class's
+ * Gd(n) = Gd(n0) (n / 0.1)^-2 over [n_min, n_max]: each track is a sum of
+ * nharmonics cosines at the midpoints n_k of equal sub-bands of width dn,
+ * amplitude sqrt(2 Gd(n_k) dn), and phases uniform in [0, 2 pi) drawn
+ * from xoshiro256** seeded through splitmix64 (left track first, then
+ * right: independent tracks). FB_EINVAL naming the bad parameter. */
+int fb_road_new_iso8608(const fb_road_iso8608_params *p, fb_road **out, fb_err *err);
+
+/* ---- Measured profiles. */
+
+/* Reads a CSV file: a header line naming the columns, then rows of
+ * numbers; blank lines and lines starting with '#' are skipped. Columns
+ * "s" and "z" (both tracks alike) or "s", "z_left" and "z_right", in any
+ * order, no others; s strictly increasing, at least 2 rows. Between knots
+ * the profile is the monotone piecewise cubic Hermite interpolant (PCHIP,
+ * Fritsch & Carlson 1980), C1; outside [s_first, s_last] it is held at the
+ * end value. Errors say "path:line: ..." (FB_EIO: cannot open; FB_EPARSE:
+ * malformed content). */
+int fb_road_new_csv(const char *path, fb_road **out, fb_err *err);
+
+void fb_road_free(fb_road **road);
+
+/* ---- Evaluation. track is FB_ROAD_LEFT or FB_ROAD_RIGHT (NaN otherwise). */
+
+/* Height z(s), m. */
+double fb_road_height(const fb_road *road, int track, double s);
+/* Slope dz/ds, -. */
+double fb_road_slope(const fb_road *road, int track, double s);
+/* Distances s where the track's second derivative jumps, ascending.
+ * Returns how many there are; writes at most max of them to s (s may be
+ * NULL). 0 for a bad track. */
+size_t fb_road_breaks(const fb_road *road, int track, double *s, size_t max);
+
+/* Time functions of one wheel on track at s(t) = s0 + speed t (speed > 0,
+ * s0 finite): its road height z(s(t)), m, or its road velocity
+ * speed * dz/ds(s(t)), m/s (the flow of a road source). Breakpoints at the
+ * times the wheel passes the track's breaks. *out is new and holds its own
+ * copy of the profile (the road may be freed before it). FB_EINVAL for a
+ * bad track, speed or s0. */
+int fb_road_wheel_height(const fb_road *road, int track, double speed, double s0, fb_tfun **out,
+                         fb_err *err);
+int fb_road_wheel_velocity(const fb_road *road, int track, double speed, double s0,
+                           fb_tfun **out, fb_err *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
