@@ -111,6 +111,50 @@ int fb_bg_add_field(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
  * released with ops->free. */
 int fb_bg_add_field_law(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
                         const size_t *port_dims, const fb_law_ops *ops, void *ctx, fb_err *err);
+
+/* ---- Tabulated one-port laws y = phi(x), e.g. a damper's force-velocity
+ * curve (R: x = f velocity, y = e force). phi is the monotone piecewise
+ * cubic Hermite interpolant of the knots (Fritsch & Carlson, "Monotone
+ * piecewise cubic interpolation", SIAM J. Numer. Anal. 17(2), 1980),
+ * continued linearly beyond the first and last knots with the end
+ * derivatives, so phi and phi' are continuous everywhere. Monotone data
+ * give a monotone phi; data on a straight line give that line (to
+ * rounding). Implemented in src/bg/table_law.c. */
+typedef struct fb_table_law fb_table_law;
+
+/* Builds the law through n >= 2 knots (x[i], y[i]), copied: finite values,
+ * x strictly increasing. FB_EINVAL naming the first offending knot
+ * (1-based) otherwise. */
+int fb_table_law_new(size_t n, const double *x, const double *y, fb_table_law **out,
+                     fb_err *err);
+/* Reads the knots from columns x_col and y_col of the CSV file at path: a
+ * header line of comma-separated names, then rows of numbers; blank lines,
+ * '#' comment lines and spaces around fields are ignored. FB_EIO when the
+ * file cannot be read; FB_EPARSE "path:line: ..." for a missing column, a
+ * field that is not a finite number, a row of the wrong length, x not
+ * strictly increasing, or fewer than 2 rows. */
+int fb_table_law_read_csv(const char *path, const char *x_col, const char *y_col,
+                          fb_table_law **out, fb_err *err);
+/* Frees *law, sets it to NULL; accepts NULL. */
+void fb_table_law_free(fb_table_law **law);
+/* phi(x); *slope gets phi'(x) (the exact derivative of the interpolant)
+ * when slope is not NULL. */
+double fb_table_law_eval(const fb_table_law *law, double x, double *slope);
+/* Integral of phi from 0 to x, in closed form: for an R the co-content
+ * (Millar, "Some general theorems for non-linear systems possessing
+ * resistance", Phil. Mag. 42, 1951), the law's `energy`. */
+double fb_table_law_integral(const fb_table_law *law, double x);
+/* FB_OK when phi(x) x >= 0 for every real x, i.e. a resistor with this
+ * law never delivers power (a passive R, Karnopp et al. ch. 3); phi(0)
+ * may differ from 0 by rounding (16 ulp of the largest |y|). FB_EINVAL
+ * naming a knot, x = 0 or an end whose linear continuation has the wrong
+ * sign otherwise. */
+int fb_table_law_check_passive(const fb_table_law *law, fb_err *err);
+/* Adds a one-port R element (dimension 1) named name with law e = phi(f).
+ * Takes ownership of *law and sets it to NULL, also on failure. Refuses
+ * (FB_EINVAL, see fb_table_law_check_passive) a law that is not passive. */
+int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err);
+
 /* Initial state (p for I, q for C) of a field, stacked; default zero. */
 int fb_bg_set_initial(fb_bg *bg, const char *name, size_t n, const double *x0, fb_err *err);
 /* TF or GY of dimension dim with scalar modulus. */

@@ -120,7 +120,8 @@ static int ml_field_scalar(const ml_ctx *c, const ml_scope *s, struct fy_node *e
   if (!ka && !kb)
     return b ? ml_fail(c, el, FB_EPARSE, "missing required key '%s' (or '%s', or 'matrix')", a,
                        b)
-             : ml_fail(c, el, FB_EPARSE, "missing required key '%s' (or 'matrix')", a);
+             : ml_fail(c, el, FB_EPARSE, "missing required key '%s' (or 'matrix' or 'table')",
+                       a);
   struct fy_node *v = ka ? va : vb;
   double x = 0;
   int rc = ml_number(c, v, s->syms, &x);
@@ -200,8 +201,111 @@ static int ml_field_initial(const ml_ctx *c, const ml_scope *s, struct fy_node *
   return rc;
 }
 
+/* ---- R with a tabulated force-velocity law (fb_table_law): `table:
+ * {file, velocity, force}` or `table: {points: [[v, F], ..]}`. */
+
+/* Inline [velocity, force] points; a velocity that does not increase is
+ * reported at its own point. */
+static int ml_table_points(const ml_ctx *c, const ml_scope *s, struct fy_node *n,
+                           fb_table_law **law)
+{
+  int rc = ml_expect_seq(c, n, "a list of [velocity, force] pairs");
+  size_t count = rc ? 0 : (size_t)fy_node_sequence_item_count(n);
+  if (!rc && count < 2)
+    rc = ml_fail(c, n, FB_EMODEL, "a table needs at least 2 points (got %zu)", count);
+  if (rc)
+    return rc;
+  double *v = malloc(count * sizeof *v), *f = malloc(count * sizeof *f);
+  if (!v || !f)
+    rc = fb_err_set(c->err, FB_ENOMEM, "out of memory");
+  for (size_t i = 0; !rc && i < count; ++i) {
+    struct fy_node *item = fy_node_sequence_get_by_index(n, (int)i);
+    double *pt = NULL;
+    size_t len = 0;
+    rc = ml_vector(c, item, s->syms, 2, 0, &pt, &len);
+    if (!rc) {
+      v[i] = pt[0];
+      f[i] = pt[1];
+    }
+    free(pt);
+    if (!rc && i > 0 && !(v[i] > v[i - 1]))
+      rc = ml_fail(c, item, FB_EINVAL,
+                   "velocities must be strictly increasing: %g does not exceed the previous "
+                   "point's %g",
+                   v[i], v[i - 1]);
+  }
+  if (!rc && fb_table_law_new(count, v, f, law, c->err))
+    rc = ml_blame(c, n);
+  free(v);
+  free(f);
+  return rc;
+}
+
+/* A CSV file with a header line; `velocity` (default "v") and `force`
+ * (required) name its columns. The reader's "path:line" follows the YAML
+ * location of `file`. */
+static int ml_table_file(const ml_ctx *c, struct fy_node *n, fb_table_law **law)
+{
+  struct fy_node *file = NULL, *force = NULL, *velocity = ml_get(n, "velocity", NULL);
+  const char *name = NULL, *velocity_col = "v", *force_col = NULL;
+  char *path = NULL;
+  int rc = ml_require(c, n, "file", &file);
+  if (!rc)
+    rc = ml_require(c, n, "force", &force);
+  if (!rc)
+    rc = ml_string(c, force, &force_col);
+  if (!rc && velocity)
+    rc = ml_string(c, velocity, &velocity_col);
+  if (!rc)
+    rc = ml_string(c, file, &name);
+  if (!rc)
+    rc = ml_resolve_path(c, file, name, &path);
+  if (!rc && fb_table_law_read_csv(path, velocity_col, force_col, law, c->err))
+    rc = ml_blame(c, file);
+  free(path);
+  return rc;
+}
+
+/* The table makes a one-port of dimension 1 and replaces `r`/`matrix`. */
+static int ml_r_table(ml_ctx *c, ml_scope *s, struct fy_node *el, struct fy_node *table,
+                      const char *name, ml_entry *e)
+{
+  static const char *const keys[] = {"file", "velocity", "force", "points", NULL};
+  static const char *const exclusive[] = {"r", "matrix", "dim", "ports", NULL};
+  e->nports = 1;
+  for (size_t i = 0; exclusive[i]; ++i) {
+    struct fy_node *k = NULL;
+    ml_get(el, exclusive[i], &k);
+    if (k)
+      return ml_fail_key(c, el, k, FB_EPARSE,
+                         "'table' makes a one-port of dimension 1: give either 'table' or "
+                         "'%s', not both",
+                         exclusive[i]);
+  }
+  int rc = ml_expect_map(c, table, "a table {file, velocity, force} or {points}");
+  if (!rc)
+    rc = ml_check_keys(c, table, keys);
+  if (rc)
+    return rc;
+  struct fy_node *points = ml_get(table, "points", NULL);
+  if (points && fy_node_mapping_item_count(table) != 1)
+    return ml_fail(c, table, FB_EPARSE,
+                   "a table has either 'points' or 'file' (with its columns)");
+  fb_table_law *law = NULL;
+  rc = points ? ml_table_points(c, s, points, &law) : ml_table_file(c, table, &law);
+  /* A table that is not passive is refused here (see bg.h). */
+  if (!rc && fb_bg_add_r_table(s->bg, name, &law, c->err))
+    rc = ml_blame(c, table);
+  fb_table_law_free(&law);
+  return rc;
+}
+
 static int ml_field(ml_ctx *c, ml_scope *s, struct fy_node *el, const char *name, ml_entry *e)
 {
+  struct fy_node *table_key = NULL;
+  struct fy_node *table = ml_get(el, "table", &table_key);
+  if (table_key) /* only R elements accept the key */
+    return ml_r_table(c, s, el, table, name, e);
   size_t *dims = NULL, nports = 0, total = 0;
   fb_mat *law = NULL;
   int rc = ml_port_dims(c, s, el, &dims, &nports);
@@ -356,7 +460,8 @@ static const char *const ml_keys_i[] = {ML_COMMON_KEYS, "m",      "i",       "di
                                         "ports",        "matrix", "initial", NULL};
 static const char *const ml_keys_c[] = {ML_COMMON_KEYS, "k",      "c",       "dim",
                                         "ports",        "matrix", "initial", NULL};
-static const char *const ml_keys_r[] = {ML_COMMON_KEYS, "r", "dim", "ports", "matrix", NULL};
+static const char *const ml_keys_r[] = {ML_COMMON_KEYS, "r",     "dim", "ports",
+                                        "matrix",       "table", NULL};
 static const char *const ml_keys_source[] = {ML_COMMON_KEYS, "value", "dim", NULL};
 static const char *const ml_keys_tf[] = {ML_COMMON_KEYS, "ratio", "dim", NULL};
 static const char *const ml_keys_gy[] = {ML_COMMON_KEYS, "r", "dim", NULL};
