@@ -137,6 +137,9 @@ int fb_table_law_read_csv(const char *path, const char *x_col, const char *y_col
                           fb_table_law **out, fb_err *err);
 /* Frees *law, sets it to NULL; accepts NULL. */
 void fb_table_law_free(fb_table_law **law);
+/* The law's knots: returns their number and points *x and *y at them
+ * (owned by the law, valid while it lives). */
+size_t fb_table_law_knots(const fb_table_law *law, const double **x, const double **y);
 /* phi(x); *slope gets phi'(x) (the exact derivative of the interpolant)
  * when slope is not NULL. */
 double fb_table_law_eval(const fb_table_law *law, double x, double *slope);

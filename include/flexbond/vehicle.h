@@ -59,9 +59,17 @@ typedef struct fb_mount {
  * point and the wheel (massless arm: spring travel = motion_ratio x wheel
  * travel relative to the hull), the wheel mass, the tire spring and
  * damper in parallel between the wheel and the road. */
+/* Most points of a shock absorber's force-velocity table. */
+enum { FB_DAMPER_MAX_POINTS = 64 };
+
 typedef struct fb_corner_params {
-  double spring_k;     /* N/m */
-  double damper_c;     /* N s/m */
+  double spring_k; /* N/m */
+  double damper_c; /* N s/m, the linear shock absorber (damper_npoints 0) */
+  /* A nonlinear shock absorber instead: force (N) against its own
+   * velocity (m/s, compression positive, as the spring's travel), a passive
+   * table interpolated with a continuous slope (fb_table_law). */
+  size_t damper_npoints;
+  double damper_v[FB_DAMPER_MAX_POINTS], damper_f[FB_DAMPER_MAX_POINTS];
   double motion_ratio; /* spring travel / wheel travel, > 0 */
   double x, y;         /* attachment point, m */
   double wheel_mass;   /* kg */

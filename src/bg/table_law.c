@@ -460,3 +460,10 @@ int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *e
   *law = NULL;
   return fb_bg_add_field_law(bg, name, FB_BG_R, 1, one_port, &table_law_ops, ctx, err);
 }
+
+size_t fb_table_law_knots(const fb_table_law *law, const double **x, const double **y)
+{
+  *x = law->x;
+  *y = law->y;
+  return law->n;
+}

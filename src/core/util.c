@@ -36,6 +36,19 @@ int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize)
   return FB_OK;
 }
 
+char *fb_dirname(const char *path)
+{
+  const char *slash = strrchr(path, '/');
+  const char *src = !slash ? "." : slash == path ? "/" : path;
+  const size_t len = (!slash || slash == path) ? 1 : (size_t)(slash - path);
+  char *dir = malloc(len + 1);
+  if (dir) {
+    memcpy(dir, src, len);
+    dir[len] = '\0';
+  }
+  return dir;
+}
+
 int fb_read_file(const char *path, char **text, size_t *len, fb_err *err)
 {
   FILE *fp = fopen(path, "rb");

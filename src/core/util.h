@@ -13,6 +13,10 @@ char *fb_strdup(const char *s);
  * index n is valid, doubling; FB_ENOMEM (leaving *arr intact) on failure. */
 int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize);
 
+/* The directory part of path in fresh memory: "." when path has no '/',
+ * "/" for a file in the root (NULL when out of memory). */
+char *fb_dirname(const char *path);
+
 /* Reads the whole file at path into a new NUL-terminated buffer (*text,
  * *len bytes before the NUL; the caller frees *text). FB_EIO naming the
  * path and the system's reason when it cannot be opened or read. */

@@ -452,16 +452,11 @@ int fb_model_load(const char *path, fb_model **out, fb_err *err)
   if (rc)
     return rc;
   /* Relative references are resolved from the model's own directory. */
-  const char *slash = strrchr(path, '/');
-  const char *dsrc = !slash ? "." : slash == path ? "/" : path;
-  size_t dlen = (!slash || slash == path) ? 1 : (size_t)(slash - path);
-  char *dir = malloc(dlen + 1);
+  char *dir = fb_dirname(path);
   if (!dir) {
     free(text);
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   }
-  memcpy(dir, dsrc, dlen);
-  dir[dlen] = '\0';
   rc = fb_model_load_string(text, len, path, dir, out, err);
   free(dir);
   free(text);

@@ -206,7 +206,7 @@ static int ml_field_initial(const ml_ctx *c, const ml_scope *s, struct fy_node *
 
 /* Inline [velocity, force] points; a velocity that does not increase is
  * reported at its own point. */
-static int ml_table_points(const ml_ctx *c, const ml_scope *s, struct fy_node *n,
+static int ml_table_points(const ml_ctx *c, const fb_symtab *syms, struct fy_node *n,
                            fb_table_law **law)
 {
   int rc = ml_expect_seq(c, n, "a list of [velocity, force] pairs");
@@ -222,7 +222,7 @@ static int ml_table_points(const ml_ctx *c, const ml_scope *s, struct fy_node *n
     struct fy_node *item = fy_node_sequence_get_by_index(n, (int)i);
     double *pt = NULL;
     size_t len = 0;
-    rc = ml_vector(c, item, s->syms, 2, 0, &pt, &len);
+    rc = ml_vector(c, item, syms, 2, 0, &pt, &len);
     if (!rc) {
       v[i] = pt[0];
       f[i] = pt[1];
@@ -266,11 +266,27 @@ static int ml_table_file(const ml_ctx *c, struct fy_node *n, fb_table_law **law)
   return rc;
 }
 
+int ml_table_law(const ml_ctx *c, const fb_symtab *syms, struct fy_node *table,
+                 fb_table_law **law)
+{
+  static const char *const keys[] = {"file", "velocity", "force", "points", NULL};
+  *law = NULL;
+  int rc = ml_expect_map(c, table, "a table {file, velocity, force} or {points}");
+  if (!rc)
+    rc = ml_check_keys(c, table, keys);
+  if (rc)
+    return rc;
+  struct fy_node *points = ml_get(table, "points", NULL);
+  if (points && fy_node_mapping_item_count(table) != 1)
+    return ml_fail(c, table, FB_EPARSE,
+                   "a table has either 'points' or 'file' (with its columns)");
+  return points ? ml_table_points(c, syms, points, law) : ml_table_file(c, table, law);
+}
+
 /* The table makes a one-port of dimension 1 and replaces `r`/`matrix`. */
 static int ml_r_table(ml_ctx *c, ml_scope *s, struct fy_node *el, struct fy_node *table,
                       const char *name, ml_entry *e)
 {
-  static const char *const keys[] = {"file", "velocity", "force", "points", NULL};
   static const char *const exclusive[] = {"r", "matrix", "dim", "ports", NULL};
   e->nports = 1;
   for (size_t i = 0; exclusive[i]; ++i) {
@@ -282,17 +298,8 @@ static int ml_r_table(ml_ctx *c, ml_scope *s, struct fy_node *el, struct fy_node
                          "'%s', not both",
                          exclusive[i]);
   }
-  int rc = ml_expect_map(c, table, "a table {file, velocity, force} or {points}");
-  if (!rc)
-    rc = ml_check_keys(c, table, keys);
-  if (rc)
-    return rc;
-  struct fy_node *points = ml_get(table, "points", NULL);
-  if (points && fy_node_mapping_item_count(table) != 1)
-    return ml_fail(c, table, FB_EPARSE,
-                   "a table has either 'points' or 'file' (with its columns)");
   fb_table_law *law = NULL;
-  rc = points ? ml_table_points(c, s, points, &law) : ml_table_file(c, table, &law);
+  int rc = ml_table_law(c, s->syms, table, &law);
   /* A table that is not passive is refused here (see bg.h). */
   if (!rc && fb_bg_add_r_table(s->bg, name, &law, c->err))
     rc = ml_blame(c, table);

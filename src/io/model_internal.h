@@ -141,6 +141,11 @@ int ml_vector(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t 
               int allow_scalar, double **out, size_t *len);
 /* A matrix: a list of rows, {diagonal: [..]} or {mtx: file}. */
 int ml_matrix(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_mat **out);
+/* A force-velocity table `{file, velocity, force}` (CSV columns, velocity
+ * default "v") or `{points: [[v, F], ...]}` into a new *law; errors at the
+ * table's YAML location (and the CSV's path:line). */
+int ml_table_law(const ml_ctx *c, const fb_symtab *syms, struct fy_node *table,
+                 fb_table_law **law);
 /* A source value: number or expression of t, {step:..}, {sine:..},
  * {table:..}. */
 int ml_tfun(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun **out);

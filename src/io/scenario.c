@@ -120,8 +120,19 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
   return rc;
 }
 
+/* fb_scenario_load_string with relative file references (a hull deck, a
+ * damper table) resolved from base_dir. */
+static int load_string_in(const char *text, size_t len, const char *display_name,
+                          const char *base_dir, fb_scenario **out, fb_err *err);
+
 int fb_scenario_load_string(const char *text, size_t len, const char *display_name,
                             fb_scenario **out, fb_err *err)
+{
+  return load_string_in(text, len, display_name, ".", out, err);
+}
+
+static int load_string_in(const char *text, size_t len, const char *display_name,
+                          const char *base_dir, fb_scenario **out, fb_err *err)
 {
   fb_err local;
   fb_err *e = err ? err : &local;
@@ -132,7 +143,7 @@ int fb_scenario_load_string(const char *text, size_t len, const char *display_na
   ml_ctx c;
   memset(&c, 0, sizeof c);
   c.file = display_name ? display_name : "<string>";
-  c.base_dir = ".";
+  c.base_dir = base_dir;
   c.err = e;
   c.domain = FB_DOMAIN_TRANSLATION;
   fb_scenario *s = calloc(1, sizeof *s);
@@ -157,8 +168,13 @@ int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
   char *text = NULL;
   size_t len = 0;
   int rc = fb_read_file(path, &text, &len, err);
+  /* Relative references are resolved from the scenario's own directory. */
+  char *dir = rc ? NULL : fb_dirname(path);
+  if (!rc && !dir)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
-    rc = fb_scenario_load_string(text, len, path, out, err);
+    rc = load_string_in(text, len, path, dir, out, err);
+  free(dir);
   free(text);
   return rc;
 }

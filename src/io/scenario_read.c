@@ -356,17 +356,55 @@ static int sc_corner_keys(const ml_ctx *c, struct fy_node *susp)
   return FB_OK;
 }
 
+/* The knots of a damper table into the corner (copied: the scenario is
+ * plain data), refusing a table that is not passive or too long. */
+static int sc_damper_knots(const ml_ctx *c, struct fy_node *table, const fb_table_law *law,
+                           fb_corner_params *out)
+{
+  const double *v = NULL, *f = NULL;
+  const size_t n = fb_table_law_knots(law, &v, &f);
+  if (n > FB_DAMPER_MAX_POINTS)
+    return ml_fail(c, table, FB_EINVAL, "a damper table has at most %d points (got %zu)",
+                   (int)FB_DAMPER_MAX_POINTS, n);
+  if (fb_table_law_check_passive(law, c->err))
+    return ml_blame(c, table);
+  out->damper_npoints = n;
+  memcpy(out->damper_v, v, n * sizeof *v);
+  memcpy(out->damper_f, f, n * sizeof *f);
+  return FB_OK;
+}
+
+/* The shock absorber: damper_c (N s/m) or damper_table (force against
+ * velocity, see docs/scenario-format.md), exactly one of them. */
+static int sc_shock_absorber(const ml_ctx *c, struct fy_node *node, fb_corner_params *out)
+{
+  struct fy_node *c_key = NULL, *t_key = NULL;
+  ml_get(node, "damper_c", &c_key);
+  struct fy_node *table = ml_get(node, "damper_table", &t_key);
+  out->damper_npoints = 0;
+  if (c_key && t_key)
+    return ml_fail_key(c, node, t_key, FB_EPARSE,
+                       "give either damper_c or damper_table, not both");
+  if (!t_key)
+    return sc_number(c, node, "damper_c", &out->damper_c);
+  fb_table_law *law = NULL;
+  int rc = ml_table_law(c, c->globals, table, &law);
+  if (!rc)
+    rc = sc_damper_knots(c, table, law, out);
+  fb_table_law_free(&law);
+  out->damper_c = 0.0;
+  return rc;
+}
+
 /* One corner: its own spring, damper and attachment point, and optional
  * overrides of the shared values. */
 static int sc_corner(const ml_ctx *c, struct fy_node *susp, int k,
                      const fb_corner_params *shared, fb_corner_params *out)
 {
-  static const char *const keys[] = {"spring_k",   "damper_c", "x",      "y", "motion_ratio",
-                                     "wheel_mass", "tire_k",   "tire_c", NULL};
-  const sc_field own[] = {{"spring_k", &out->spring_k},
-                          {"damper_c", &out->damper_c},
-                          {"x", &out->x},
-                          {"y", &out->y}};
+  static const char *const keys[] = {
+      "spring_k",     "damper_c",   "damper_table", "x",      "y",
+      "motion_ratio", "wheel_mass", "tire_k",       "tire_c", NULL};
+  const sc_field own[] = {{"spring_k", &out->spring_k}, {"x", &out->x}, {"y", &out->y}};
   const sc_field overrides[] = {{"motion_ratio", &out->motion_ratio},
                                 {"wheel_mass", &out->wheel_mass},
                                 {"tire_k", &out->tire_k},
@@ -380,11 +418,13 @@ static int sc_corner(const ml_ctx *c, struct fy_node *susp, int k,
                    "missing corner '%s' (the six corners are LF, RF, LM, RM, LR, RR)", name);
   if (ml_is_null(node))
     return ml_fail_key(c, susp, key, FB_EPARSE, "missing value");
-  int rc = ml_expect_map(c, node, "a suspension {spring_k, damper_c, x, y}");
+  int rc = ml_expect_map(c, node, "a suspension {spring_k, damper_c | damper_table, x, y}");
   if (!rc)
     rc = ml_check_keys(c, node, keys);
   if (!rc)
     rc = sc_fields(c, node, own, sizeof own / sizeof own[0]);
+  if (!rc)
+    rc = sc_shock_absorber(c, node, out);
   for (size_t i = 0; !rc && i < sizeof overrides / sizeof overrides[0]; ++i)
     rc = ml_opt_number(c, node, overrides[i].key, c->globals, overrides[i].dst);
   return rc;

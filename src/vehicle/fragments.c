@@ -234,6 +234,17 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
   return FB_OK;
 }
 
+/* The shock absorber "damper": linear (damper_c) or its force-velocity
+ * table (a nonlinear R law whose derivative enters the Newton matrix). */
+static int add_shock_absorber(fb_bg *bg, const fb_corner_params *c, fb_err *err)
+{
+  if (c->damper_npoints == 0)
+    return add_scalar(bg, "damper", FB_BG_R, c->damper_c, err);
+  fb_table_law *law = NULL;
+  int rc = fb_table_law_new(c->damper_npoints, c->damper_v, c->damper_f, &law, err);
+  return rc ? rc : fb_bg_add_r_table(bg, "damper", &law, err);
+}
+
 /* Suspension, wheel and tire. The 0-junction "susp" forms the wheel's
  * velocity relative to the hull (compression rate of the suspension),
  * the arm (a TF of the motion ratio) turns it into the spring's rate; the
@@ -251,7 +262,7 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   if (!rc)
     rc = add_scalar(bg, "spring", FB_BG_C, c->spring_k, err);
   if (!rc)
-    rc = add_scalar(bg, "damper", FB_BG_R, c->damper_c, err);
+    rc = add_shock_absorber(bg, c, err);
   if (!rc)
     rc = fb_bg_add_tf(bg, "arm", FB_BG_TF, 1, c->motion_ratio, err);
   if (!rc)

@@ -169,6 +169,7 @@ static void remove_damping(fb_scenario *s)
   s->engine.damping = 0.0;
   for (int c = 0; c < FB_NCORNERS; ++c) {
     s->corner[c].damper_c = 0.0;
+    s->corner[c].damper_npoints = 0;
     s->corner[c].tire_c = 0.0;
   }
 }
