@@ -89,6 +89,50 @@ int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plo
 int fb_plot_png(const fb_result *r, const size_t *cols, size_t ncols, const char *title,
                 const char *path, fb_err *err);
 
+/* ---- X-Y figures (src/io/plot_xy.c), e.g. a metric of a parameter
+ * study against the swept value. */
+
+/* One curve: the points (x[i], y[i]), i < n, joined in order and marked;
+ * a point with a non-finite y is left out and breaks the line (a failed
+ * case), one with a non-finite x is left out. */
+typedef struct fb_plot_xy_series {
+  const double *x, *y; /* borrowed, n each */
+  size_t n;
+  const char *legend; /* key entry, NULL for none (no key at all when no
+                         curve of the panel has one) */
+} fb_plot_xy_series;
+
+/* One panel: its curves overlaid, each in its own colour and marker. */
+typedef struct fb_plot_xy_panel {
+  const fb_plot_xy_series *series; /* borrowed, nseries >= 1 */
+  size_t nseries;
+  const char *ylabel; /* NULL for none */
+} fb_plot_xy_panel;
+
+/* Settings of an x-y figure; fb_plot_xy_opts_default fills the defaults. */
+typedef struct fb_plot_xy_opts {
+  const char *title;  /* over the whole figure, NULL for none (default) */
+  const char *xlabel; /* under every panel, NULL for none (default) */
+  /* A categorical x axis: label i drawn at x = i (every x must then be
+   * an index 0 .. nxtics-1); NULL (default): numbers. */
+  const char *const *xtic_labels;
+  size_t nxtics;
+  int columns; /* panels per row; 0 (default): ceil(sqrt(npanels)), at most 4 */
+  int panel_width, panel_height; /* pixels; 0 (default): 420 x 300 */
+} fb_plot_xy_opts;
+
+void fb_plot_xy_opts_default(fb_plot_xy_opts *opts);
+
+/* Draws panels[0..npanels) row by row in a grid sharing the x range (the
+ * finite x values of every curve) into the PNG file path, with one
+ * gnuplot run. A panel's y range is gnuplot's autoscale, widened around
+ * a constant curve and [-1, 1] when no point is finite. FB_EINVAL if
+ * there is no panel, a panel has no curve, a curve has points but no
+ * arrays, or an x is not a label index of a categorical axis; FB_EIO
+ * when gnuplot is missing or fails. */
+int fb_plot_xy_png(const fb_plot_xy_panel *panels, size_t npanels, const fb_plot_xy_opts *opts,
+                   const char *path, fb_err *err);
+
 /* A deformed shell mesh as a 3-D wireframe PNG (gnuplot), like the
  * paper's Figs. 3-4: node i drawn at its position plus scale times its
  * translation (the first three of its six values in dof_values, which may

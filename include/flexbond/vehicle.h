@@ -16,6 +16,7 @@
 #include "flexbond/bg.h"
 #include "flexbond/error.h"
 #include "flexbond/fem.h"
+#include "flexbond/road.h"
 #include "flexbond/sim.h"
 
 #ifdef __cplusplus
@@ -98,6 +99,8 @@ typedef struct fb_hull_mesh_params {
   int density;
 } fb_hull_mesh_params;
 
+typedef enum fb_road_kind { FB_ROAD_BUMP = 0, FB_ROAD_ISO8608, FB_ROAD_PROFILE } fb_road_kind;
+
 /* The study's parameters. Strings and arrays are owned by the scenario. */
 typedef struct fb_scenario {
   char *name;
@@ -122,7 +125,15 @@ typedef struct fb_scenario {
   /* Road: a (1 - cos) bump of height h and length L along each wheel's
    * path, its leading edge at bump_angle to the lateral axis, left side
    * first; the left front wheel meets it at bump_time. */
-  double speed;       /* m/s */
+  double speed; /* m/s */
+  /* The road under the wheels (docs/scenario-format.md, docs/roads.md):
+   * the paper's oblique bump (the bump_* fields), an ISO 8608 random road
+   * (road_iso) or a measured profile (road_profile); for the last two the
+   * left front wheel is at road_front_start (m) on its track at t = 0. */
+  fb_road_kind road_kind;
+  fb_road_iso8608_params road_iso;
+  char *road_profile; /* CSV path (resolved), owned */
+  double road_front_start;
   double bump_height; /* m */
   double bump_length; /* m */
   double bump_angle;  /* rad */
@@ -147,6 +158,50 @@ typedef struct fb_scenario {
 int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err);
 int fb_scenario_load_string(const char *text, size_t len, const char *display_name,
                             fb_scenario **out, fb_err *err);
+
+/* One replaced value of a scenario file ("flexbond sweep --set KEY=VALUE",
+ * docs/sweep.md). */
+typedef struct fb_scenario_override {
+  /* A dotted path into the YAML document ("road.speed_kmh",
+   * "suspensions.LF.spring_k", "hull.mesh.generator.bulkheads[1]"), or a
+   * key name without '.' that occurs exactly once in it ("speed_kmh"). */
+  const char *key;
+  /* The new value's text, read as if it were written in the file: a
+   * number, an expression over `parameters`, a choice ("static"). One
+   * line, no control characters. */
+  const char *value;
+} fb_scenario_override;
+
+/* Loads the scenario at path as fb_scenario_load does, after replacing,
+ * in its parsed YAML document, the scalar at each ov[i].key by
+ * ov[i].value (at the same place in the file's text, double-quoted), so
+ * the reader's every check and unit conversion applies to the new value.
+ * A value reached through a YAML alias is replaced at its anchor. n = 0
+ * is fb_scenario_load. Errors are prefixed "--set KEY=VALUE: ":
+ *   FB_EINVAL "--set KEY=VALUE: FILE[:LINE:COL]: ..." for a key that is
+ *     absent (naming the keys present), ambiguous (naming every
+ *     candidate path), not a single value (a mapping, a list, a block
+ *     scalar, an empty value), or set by two overrides, and for a value
+ *     with a control character;
+ *   the reader's "FILE:LINE:COL: KEY: message" prefixed by the override
+ *     whose value KEY is, or by every override ("--set K1=V1 --set K2=V2: ")
+ *     when the message names another key (a bump that no longer fits in
+ *     the run);
+ *   FB_EIO, FB_EPARSE (the file itself), FB_ENOMEM without prefix. */
+int fb_scenario_load_overrides(const char *path, const fb_scenario_override *ov, size_t n,
+                               fb_scenario **out, fb_err *err);
+/* As fb_scenario_load_overrides for a document in memory (display_name as
+ * for fb_scenario_load_string). */
+int fb_scenario_load_string_overrides(const char *text, size_t len, const char *display_name,
+                                      const fb_scenario_override *ov, size_t n,
+                                      fb_scenario **out, fb_err *err);
+/* The full dotted path of key (as fb_scenario_override.key) in the
+ * scenario file at path, into *full (new; the caller frees it), checking
+ * that it names a single replaceable value: lets a caller tell a bad key
+ * (FB_EINVAL, the messages of fb_scenario_load_overrides without the
+ * prefix) from a bad value before loading. FB_EIO, FB_EPARSE for the
+ * file, FB_ENOMEM. */
+int fb_scenario_override_key(const char *path, const char *key, char **full, fb_err *err);
 /* Physical consistency (positive masses, stiffnesses, ...; bump inside the
  * run). FB_EINVAL naming the key, e.g. "suspensions.LF.spring_k: must be
  * > 0 (got -1)". */
@@ -155,10 +210,18 @@ void fb_scenario_free(fb_scenario **s);
 /* Deep copy. */
 int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
 
+/* Position (m) of the wheel of `corner` on its track at t = 0: it is at
+ * start + speed t later (wheels of one side follow one track, the rear
+ * ones behind by their spacing; docs/roads.md). For the bump the left
+ * track's leading edge is at s = 0. */
+double fb_scenario_wheel_start(const fb_scenario *s, int corner);
 /* Time at which the wheel of `corner` meets the bump's leading edge:
- * bump_time + ((x_LF - x) + (y_LF - y) tan(bump_angle)) / speed. */
+ * bump_time + ((x_LF - x) + (y_LF - y) tan(bump_angle)) / speed. On a
+ * random road or a profile, the time it reaches s = 0 on its track (the
+ * start of the profile; negative when it is already past it at t = 0). */
 double fb_scenario_bump_entry(const fb_scenario *s, int corner);
-/* Time it leaves the bump: entry + bump_length / speed. */
+/* Time it leaves the bump: entry + bump_length / speed; t_end on a random
+ * road or a profile (the road goes on). */
 double fb_scenario_bump_exit(const fb_scenario *s, int corner);
 
 /* ---- System 2: the finite-element hull's mesh (docs/hull-mesh.md).
@@ -235,8 +298,9 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
 /* One suspension with its wheel and tire: ports "hull" (OUT), "road" (IN). */
 int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err);
-/* The road: one flow source per wheel (the bump's vertical velocity under
- * that wheel), ports "LF" .. "RR" (OUT). */
+/* The road: one flow source per wheel (the road's vertical velocity under
+ * that wheel: the bump, an ISO 8608 random road or a profile, src/road),
+ * ports "LF" .. "RR" (OUT). */
 int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err);
 /* The load: one effort source of dimension nload, port "load" (OUT). */
 int fb_vehicle_load(const fb_scenario *s, fb_bg **out, fb_err *err);

@@ -27,16 +27,32 @@ const char *fb_corner_name(int corner)
  * (data sheet, "Road and obstacle"). Along its path the wheel then rolls
  * over the bump's length L in L / V. */
 
+double fb_scenario_wheel_start(const fb_scenario *s, int corner)
+{
+  if (!s || corner < 0 || corner >= FB_NCORNERS)
+    return NAN;
+  const fb_corner_params *lf = &s->corner[FB_LF], *w = &s->corner[corner];
+  /* The bump's leading edge crosses the left track at s = 0, which the
+   * left front wheel reaches at bump_time. */
+  const double lf_start =
+      s->road_kind == FB_ROAD_BUMP ? -s->speed * s->bump_time : s->road_front_start;
+  return lf_start - lf->x + w->x;
+}
+
 double fb_scenario_bump_entry(const fb_scenario *s, int corner)
 {
   if (!s || corner < 0 || corner >= FB_NCORNERS)
     return NAN;
+  if (s->road_kind != FB_ROAD_BUMP)
+    return -fb_scenario_wheel_start(s, corner) / s->speed;
   const fb_corner_params *lf = &s->corner[FB_LF], *w = &s->corner[corner];
   return s->bump_time + ((lf->x - w->x) + (lf->y - w->y) * tan(s->bump_angle)) / s->speed;
 }
 
 double fb_scenario_bump_exit(const fb_scenario *s, int corner)
 {
+  if (s && s->road_kind != FB_ROAD_BUMP)
+    return corner >= 0 && corner < FB_NCORNERS ? s->t_end : NAN;
   return fb_scenario_bump_entry(s, corner) + (s ? s->bump_length / s->speed : NAN);
 }
 
@@ -51,6 +67,7 @@ void fb_scenario_free(fb_scenario **s)
   free((*s)->load_x);
   free((*s)->load_y);
   free((*s)->hull_deck);
+  free((*s)->road_profile);
   free(*s);
   *s = NULL;
 }
@@ -89,6 +106,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
+  ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
   if (!ok) {
     fb_scenario_free(&copy);
     return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
@@ -176,5 +194,20 @@ int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
     rc = load_string_in(text, len, path, dir, out, err);
   free(dir);
   free(text);
+  return rc;
+}
+
+/* ---- Hook of the overrides (scenario_override.c, flexbond sweep's
+ * --set): text edited from the file at path is loaded as that file, so
+ * that its relative references (a hull deck, a damper table) resolve from
+ * the file's directory, as fb_scenario_load's do. */
+int sc_load_edited_file(const char *text, size_t len, const char *path, fb_scenario **out,
+                        fb_err *err)
+{
+  char *dir = fb_dirname(path);
+  if (!dir)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  int rc = load_string_in(text, len, path, dir, out, err);
+  free(dir);
   return rc;
 }

@@ -128,8 +128,30 @@ static int sc_check_corner(const fb_corner_params *c, int corner, fb_err *err)
   return sc_check_values(prefix, v, sizeof v / sizeof v[0], err);
 }
 
+/* A random road or a profile: its own constructor checks its parameters
+ * (the file, read again: it may have changed since the scenario was). */
+static int sc_check_other_road(const fb_scenario *s, fb_err *err)
+{
+  const sc_value v[] = {{"speed_kmh", s->speed * 3.6, SC_POSITIVE, "km/h"}};
+  int rc = sc_check_values("road.", v, 1, err);
+  const char *key = s->road_kind == FB_ROAD_ISO8608 ? "road.iso8608" : "road.profile";
+  if (!rc && !isfinite(s->road_front_start))
+    rc = fb_err_set(err, FB_EINVAL, "%s.front_start: must be finite", key);
+  fb_road *road = NULL;
+  if (!rc && s->road_kind == FB_ROAD_ISO8608)
+    rc = fb_road_new_iso8608(&s->road_iso, &road, err);
+  else if (!rc && !s->road_profile)
+    rc = fb_err_set(err, FB_EINVAL, "road.profile.file: missing");
+  else if (!rc)
+    rc = fb_road_new_csv(s->road_profile, &road, err);
+  fb_road_free(&road);
+  return rc ? fb_err_prefix(err, "%s: ", key) : FB_OK;
+}
+
 static int sc_check_road(const fb_scenario *s, fb_err *err)
 {
+  if (s->road_kind != FB_ROAD_BUMP)
+    return sc_check_other_road(s, err);
   const sc_value v[] = {
       {"speed_kmh", s->speed * 3.6, SC_POSITIVE, "km/h"},
       {"bump.height", s->bump_height, SC_NONNEGATIVE, "m"},
@@ -265,7 +287,7 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = sc_check_road(s, err);
   if (!rc)
     rc = sc_check_simulation(s, err);
-  if (!rc)
+  if (!rc && s->road_kind == FB_ROAD_BUMP)
     rc = sc_check_bump_timing(s, err);
   if (!rc)
     rc = sc_check_fe_hull(s, err);

@@ -28,4 +28,10 @@ int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s);
  * file, keeping the key. Returns the error code. */
 int sc_blame_check(const ml_ctx *c, struct fy_node *root);
 
+/* Loads text edited from the scenario file at path (flexbond sweep's
+ * --set) as that file: relative references resolved from its directory.
+ * In scenario.c, next to the loader it shares. */
+int sc_load_edited_file(const char *text, size_t len, const char *path, fb_scenario **out,
+                        fb_err *err);
+
 #endif

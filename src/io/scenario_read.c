@@ -449,29 +449,154 @@ static int sc_suspensions(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
   return rc;
 }
 
-static int sc_road(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
+/* road.bump: height and length, or a Brazilian type (I, II; CONTRAN),
+ * then angle_deg and first_contact. */
+static int sc_bump(const ml_ctx *c, struct fy_node *bump, fb_scenario *s)
 {
-  static const char *const keys[] = {"speed_kmh", "bump", NULL};
-  static const char *const bump_keys[] = {"height", "length", "angle_deg", "first_contact",
-                                          NULL};
-  struct fy_node *road = NULL, *bump = NULL;
-  double speed_kmh = 0, angle_deg = 0;
-  const sc_field f[] = {{"height", &s->bump_height},
-                        {"length", &s->bump_length},
-                        {"angle_deg", &angle_deg},
-                        {"first_contact", &s->bump_time}};
-  int rc = sc_section(c, root, "road", "the road {speed_kmh, bump}", keys, &road);
+  static const char *const keys[] = {"height",    "length",        "type",
+                                     "angle_deg", "first_contact", NULL};
+  double angle_deg = 0;
+  const sc_field own[] = {{"angle_deg", &angle_deg}, {"first_contact", &s->bump_time}};
+  const sc_field size[] = {{"height", &s->bump_height}, {"length", &s->bump_length}};
+  struct fy_node *type_key = NULL, *type = NULL;
+  int rc = ml_expect_map(c, bump, "the bump {height, length | type, angle_deg, first_contact}");
   if (!rc)
-    rc = sc_number(c, road, "speed_kmh", &speed_kmh);
+    rc = ml_check_keys(c, bump, keys);
   if (!rc)
-    rc = sc_section(c, road, "bump", "the bump {height, length, angle_deg, first_contact}",
-                    bump_keys, &bump);
+    type = ml_get(bump, "type", &type_key);
+  if (!rc && type_key) {
+    const char *name = NULL;
+    if (ml_get(bump, "height", NULL) || ml_get(bump, "length", NULL))
+      return ml_fail_key(c, bump, type_key, FB_EPARSE,
+                         "give either a type or height and length, not both");
+    rc = ml_string(c, type, &name);
+    if (!rc && fb_road_speed_bump(name, &s->bump_height, &s->bump_length, c->err))
+      rc = ml_blame(c, type);
+  } else if (!rc) {
+    rc = sc_fields(c, bump, size, sizeof size / sizeof size[0]);
+  }
   if (!rc)
-    rc = sc_fields(c, bump, f, sizeof f / sizeof f[0]);
-  s->speed = speed_kmh / 3.6;
+    rc = sc_fields(c, bump, own, sizeof own / sizeof own[0]);
   /* Dividing by 180 first keeps 90 deg exactly pi / 2 (a power-of-two
    * scaling), so the check's "< 90 deg" bound is exact. */
   s->bump_angle = angle_deg / 180 * SC_PI;
+  return rc;
+}
+
+/* An optional whole number >= 0 of map into *out (kept when absent). */
+static int sc_opt_count(const ml_ctx *c, struct fy_node *map, const char *key, size_t hi,
+                        size_t *out)
+{
+  struct fy_node *v = ml_get(map, key, NULL);
+  return v ? ml_count(c, v, c->globals, 0, hi, out) : FB_OK;
+}
+
+/* road.iso8608: class (A .. H), seed, and optional band, harmonics,
+ * fade_in (m) and front_start (m); checked by fb_road_new_iso8608. */
+static int sc_iso8608(const ml_ctx *c, struct fy_node *iso, fb_scenario *s)
+{
+  static const char *const keys[] = {"class",   "seed",        "band", "harmonics",
+                                     "fade_in", "front_start", NULL};
+  fb_road_iso8608_params *p = &s->road_iso;
+  fb_road_iso8608_defaults(p);
+  struct fy_node *cls = NULL, *band = NULL;
+  const char *letter = NULL;
+  size_t seed = 0, harmonics = p->nharmonics;
+  int rc = ml_expect_map(c, iso,
+                         "an ISO 8608 road {class, seed, band, harmonics, fade_in, "
+                         "front_start}");
+  if (!rc)
+    rc = ml_check_keys(c, iso, keys);
+  if (!rc)
+    rc = ml_require(c, iso, "class", &cls);
+  if (!rc)
+    rc = ml_string(c, cls, &letter);
+  if (!rc && (strlen(letter) != 1 || !strchr("ABCDEFGHabcdefgh", letter[0])))
+    rc = ml_fail(c, cls, FB_EINVAL, "the class is a letter A .. H (got '%s')", letter);
+  if (!rc)
+    p->road_class = letter[0];
+  struct fy_node *seed_node = NULL;
+  if (!rc)
+    rc = ml_require(c, iso, "seed", &seed_node);
+  if (!rc)
+    rc = ml_count(c, seed_node, c->globals, 0, (size_t)-1, &seed);
+  p->seed = (uint64_t)seed;
+  if (!rc)
+    rc = sc_opt_count(c, iso, "harmonics", 1000000, &harmonics);
+  p->nharmonics = harmonics;
+  if (!rc && (band = ml_get(iso, "band", NULL))) {
+    double *b = NULL;
+    size_t len = 0;
+    rc = ml_vector(c, band, c->globals, 2, 0, &b, &len);
+    if (!rc) {
+      p->n_min = b[0];
+      p->n_max = b[1];
+    }
+    free(b);
+  }
+  if (!rc)
+    rc = ml_opt_number(c, iso, "fade_in", c->globals, &p->fade_length);
+  if (!rc)
+    rc = ml_opt_number(c, iso, "front_start", c->globals, &s->road_front_start);
+  s->road_kind = FB_ROAD_ISO8608;
+  return rc;
+}
+
+/* road.profile: a CSV file (s, z or s, z_left, z_right) and front_start. */
+static int sc_profile(const ml_ctx *c, struct fy_node *prof, fb_scenario *s)
+{
+  static const char *const keys[] = {"file", "front_start", NULL};
+  struct fy_node *file = NULL;
+  const char *name = NULL;
+  int rc = ml_expect_map(c, prof, "a road profile {file, front_start}");
+  if (!rc)
+    rc = ml_check_keys(c, prof, keys);
+  if (!rc)
+    rc = ml_require(c, prof, "file", &file);
+  if (!rc)
+    rc = ml_string(c, file, &name);
+  if (!rc)
+    rc = ml_resolve_path(c, file, name, &s->road_profile);
+  /* Read once here so that a bad file is reported at its YAML key. */
+  fb_road *road = NULL;
+  if (!rc && fb_road_new_csv(s->road_profile, &road, c->err))
+    rc = ml_blame(c, file);
+  fb_road_free(&road);
+  if (!rc)
+    rc = ml_opt_number(c, prof, "front_start", c->globals, &s->road_front_start);
+  s->road_kind = FB_ROAD_PROFILE;
+  return rc;
+}
+
+static int sc_road(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
+{
+  static const char *const keys[] = {"speed_kmh", "bump", "iso8608", "profile", NULL};
+  static const char *const kinds[] = {"bump", "iso8608", "profile"};
+  struct fy_node *road = NULL, *kind = NULL;
+  double speed_kmh = 0;
+  int rc = sc_section(c, root, "road", "the road {speed_kmh, bump | iso8608 | profile}", keys,
+                      &road);
+  if (!rc)
+    rc = sc_number(c, road, "speed_kmh", &speed_kmh);
+  s->speed = speed_kmh / 3.6;
+  int which = -1;
+  for (int k = 0; !rc && k < 3; ++k) {
+    struct fy_node *key = NULL, *v = ml_get(road, kinds[k], &key);
+    if (!key)
+      continue;
+    if (which >= 0)
+      return ml_fail_key(c, road, key, FB_EPARSE, "give one road: '%s' or '%s', not both",
+                         kinds[which], kinds[k]);
+    which = k;
+    kind = v;
+  }
+  if (!rc && which < 0)
+    return ml_fail(c, road, FB_EPARSE, "missing road: one of 'bump', 'iso8608', 'profile'");
+  s->road_kind = FB_ROAD_BUMP;
+  if (!rc)
+    rc = which == 0   ? sc_bump(c, kind, s)
+         : which == 1 ? sc_iso8608(c, kind, s)
+                      : sc_profile(c, kind, s);
   return rc;
 }
 

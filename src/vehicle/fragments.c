@@ -301,40 +301,41 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   return FB_OK;
 }
 
-/* Vertical velocity of the road under one wheel: the (1 - cos) bump
- * z(s) = h/2 (1 - cos(2 pi s / L)), 0 <= s <= L, s = V (t - t_entry),
- * so z' = (pi h V / L) sin(2 pi s / L) on the bump and 0 elsewhere. */
-typedef struct bump_rate {
-  double height, length, speed, t_entry;
-} bump_rate;
-
-static double bump_velocity(double t, void *ctx)
+/* The scenario's road (src/road): the oblique bump, an ISO 8608 random
+ * road or a measured profile. */
+static int scenario_road(const fb_scenario *s, fb_road **out, fb_err *err)
 {
-  const bump_rate *b = ctx;
-  double s = b->speed * (t - b->t_entry);
-  if (s < 0.0 || s > b->length)
-    return 0.0;
-  const double pi = 3.14159265358979323846;
-  return pi * b->height * b->speed / b->length * sin(2.0 * pi * s / b->length);
+  switch (s->road_kind) {
+  case FB_ROAD_ISO8608: return fb_road_new_iso8608(&s->road_iso, out, err);
+  case FB_ROAD_PROFILE: return fb_road_new_csv(s->road_profile, out, err);
+  default:
+    return fb_road_new_oblique_bump(s->bump_height, s->bump_length, s->bump_angle,
+                                    s->corner[FB_LF].y - s->corner[FB_RF].y, out, err);
+  }
 }
 
 int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
 {
   *out = NULL;
   fb_bg *bg = NULL;
-  int rc = fb_bg_new("road", &bg, err);
+  fb_road *road = NULL;
+  int rc = scenario_road(s, &road, err);
+  if (!rc)
+    rc = fb_bg_new("road", &bg, err);
+  /* Left wheels (y > 0) on the left track; each source is the road's
+   * vertical velocity under its wheel, with its kinks as breakpoints. */
   for (int c = 0; !rc && c < FB_NCORNERS; ++c) {
-    bump_rate b = {s->bump_height, s->bump_length, s->speed, fb_scenario_bump_entry(s, c)};
-    const double kinks[2] = {b.t_entry, fb_scenario_bump_exit(s, c)};
+    const int track = s->corner[c].y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
     fb_tfun *f = NULL;
     char name[16];
     snprintf(name, sizeof name, "v_%s", fb_corner_name(c));
-    rc = fb_tfun_new_callback_copy(bump_velocity, &b, sizeof b, 2, kinks, &f, err);
+    rc = fb_road_wheel_velocity(road, track, s->speed, fb_scenario_wheel_start(s, c), &f, err);
     if (!rc)
       rc = fb_bg_add_source(bg, name, FB_BG_SF, 1, &f, err);
     if (!rc)
       rc = fb_bg_add_port(bg, fb_corner_name(c), name, FB_PORT_OUT, err);
   }
+  fb_road_free(&road);
   if (rc) {
     fb_bg_free(&bg);
     return rc;

@@ -174,6 +174,25 @@ static void remove_damping(fb_scenario *s)
   }
 }
 
+/* The modes are those of the vehicle at rest on flat ground: a random
+ * road or a profile moves the wheels at t = 0, where the equilibrium is
+ * taken, so it is replaced by a bump of zero height (the road's sources
+ * enter no matrix: the linear model is the same). */
+static void flatten_road(fb_scenario *s)
+{
+  if (s->road_kind == FB_ROAD_BUMP)
+    return;
+  s->road_kind = FB_ROAD_BUMP;
+  s->bump_height = 0.0;
+  s->bump_length = 1.0;
+  s->bump_angle = 0.0;
+  s->bump_time = 0.0;
+  double last = 0.0;
+  for (int c = 0; c < FB_NCORNERS; ++c)
+    last = fmax(last, fb_scenario_bump_exit(s, c));
+  s->t_end = fmax(s->t_end, last + 1.0);
+}
+
 int fb_vehicle_modes(const fb_scenario *s0, fb_system sys, int undamped, fb_mode **modes,
                      size_t *nmodes, size_t *nstatic, fb_err *err)
 {
@@ -187,6 +206,8 @@ int fb_vehicle_modes(const fb_scenario *s0, fb_system sys, int undamped, fb_mode
   int rc = fb_scenario_clone(s0, &s, err);
   if (!rc && undamped)
     remove_damping(s);
+  if (!rc)
+    flatten_road(s);
   if (!rc)
     rc = fb_vehicle_build(s, sys, &g, &bd, err);
   if (!rc) {

@@ -1,0 +1,300 @@
+/* Tests of scenario overrides (fb_scenario_load_overrides and friends in
+ * flexbond/vehicle.h, the "--set KEY=VALUE" of flexbond sweep): values
+ * replaced by dotted path, by a unique bare key name, in a list and
+ * several on one line, read through the reader's own conversions
+ * (km/h, degrees, expressions, choices); every other value untouched;
+ * and the errors: absent, ambiguous and non-scalar keys, values the
+ * reader rejects (with the "--set KEY=VALUE: " prefix and the original
+ * value's FILE:LINE:COL), consequences of several values together, two
+ * overrides of one value, and values that try to change the YAML
+ * structure. Expected positions are found in the example's text here,
+ * independently of libfyaml. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "check.h"
+
+#define EXAMPLE "../examples/apc6x6.yaml"
+
+/* A value written as decimal text and read by strtod in both the file
+ * and the override is the same double: exact comparisons. Derived values
+ * (km/h to m/s, degrees to radians) are computed here by a different
+ * formula than the reader's and agree to a few ulps: 1e-12 relative. */
+#define TIGHT 1e-12
+
+static char *read_text(const char *path)
+{
+  FILE *fp = fopen(path, "rb");
+  if (!fp)
+    return NULL;
+  char *buf = malloc(1 << 20);
+  size_t n = buf ? fread(buf, 1, (1 << 20) - 1, fp) : 0;
+  fclose(fp);
+  if (buf)
+    buf[n] = '\0';
+  return buf;
+}
+
+/* "LINE:COL" (1-based) of the first occurrence of needle in text, plus
+ * offset bytes, into buf. */
+static void position_of(const char *text, const char *needle, size_t offset, char *buf,
+                        size_t size)
+{
+  const char *at = strstr(text, needle);
+  if (!at) {
+    snprintf(buf, size, "(%s not found)", needle);
+    return;
+  }
+  at += offset;
+  int line = 1;
+  const char *line_start = text;
+  for (const char *p = text; p < at; ++p)
+    if (*p == '\n') {
+      ++line;
+      line_start = p + 1;
+    }
+  snprintf(buf, size, "%d:%d", line, (int)(at - line_start) + 1);
+}
+
+/* Loads EXAMPLE with the n overrides; returns the status, message in err. */
+static int load(const fb_scenario_override *ov, size_t n, fb_scenario **s, fb_err *err)
+{
+  return fb_scenario_load_overrides(EXAMPLE, ov, n, s, err);
+}
+
+static void test_number_and_nested(void)
+{
+  fb_scenario *base = NULL, *s = NULL;
+  fb_err err;
+  CHECK(fb_scenario_load(EXAMPLE, &base, &err) == FB_OK);
+  const fb_scenario_override ov[] = {{"road.speed_kmh", "20"},
+                                     {"suspensions.LF.spring_k", "200000"},
+                                     {"angle_deg", "30"},
+                                     {"hull.mesh.generator.bulkheads[1]", "-0.9"},
+                                     {"simulation.initial", "static"}};
+  int rc = load(ov, sizeof ov / sizeof ov[0], &s, &err);
+  CHECK(rc == FB_OK);
+  if (rc != FB_OK || !base) {
+    fprintf(stderr, "  %s\n", err.msg);
+    fb_scenario_free(&base);
+    return;
+  }
+  /* 20 km/h = 50/9 m/s; 30 deg = pi/6. */
+  CHECK_NEAR(s->speed, 50.0 / 9.0, TIGHT * 50.0 / 9.0);
+  CHECK(s->corner[FB_LF].spring_k == 200000);
+  CHECK_NEAR(s->bump_angle, atan(1.0) * 4 / 6, TIGHT);
+  CHECK(s->hull_mesh.bulkhead_x[1] == -0.9);
+  CHECK(s->initial == FB_INITIAL_STATIC);
+  /* Everything else as in the file: the right front spring shares the
+   * left's value in the file but is a value of its own. */
+  CHECK(s->corner[FB_RF].spring_k == base->corner[FB_RF].spring_k);
+  CHECK(s->corner[FB_RF].spring_k == 145300);
+  CHECK(s->hull_mesh.bulkhead_x[0] == base->hull_mesh.bulkhead_x[0]);
+  CHECK(s->hull_mesh.bulkhead_x[2] == base->hull_mesh.bulkhead_x[2]);
+  CHECK(s->bump_height == base->bump_height && s->t_end == base->t_end);
+  CHECK(s->nload == base->nload && s->load_x[55] == base->load_x[55]);
+  CHECK(s->path && !strcmp(s->path, EXAMPLE));
+  fb_scenario_free(&s);
+  fb_scenario_free(&base);
+}
+
+/* A bare name, an expression, two items of one flow list on one line
+ * (the second edit after the first shifts the text), and n = 0. */
+static void test_name_expression_list(void)
+{
+  fb_scenario *s = NULL;
+  fb_err err;
+  const fb_scenario_override ov[] = {{"speed_kmh", "2 * 18"},
+                                     {"load.points.grid.x[1]", "-1.75"},
+                                     {"load.points.grid.x[0]", "-2.05"}};
+  int rc = load(ov, sizeof ov / sizeof ov[0], &s, &err);
+  CHECK(rc == FB_OK);
+  if (rc == FB_OK) {
+    CHECK_NEAR(s->speed, 10.0, TIGHT * 10); /* 36 km/h */
+    /* x-major grid of 4 y values: point 4 i + j is (x[i], y[j]). */
+    CHECK(s->load_x[0] == -2.05 && s->load_x[3] == -2.05);
+    CHECK(s->load_x[4] == -1.75 && s->load_x[7] == -1.75);
+    CHECK(s->load_x[8] == -1.35 && s->load_y[0] == -1.05);
+  }
+  fb_scenario_free(&s);
+  rc = load(NULL, 0, &s, &err);
+  CHECK(rc == FB_OK && s && fabs(s->speed - 10 / 3.6) < TIGHT);
+  fb_scenario_free(&s);
+}
+
+/* A quoted value in the file is replaced with its quotes. */
+static void test_quoted_original(const char *text)
+{
+  char *copy = malloc(strlen(text) + 8);
+  const char *at = strstr(text, "speed_kmh: 10 ");
+  CHECK(copy && at);
+  if (!copy || !at) {
+    free(copy);
+    return;
+  }
+  size_t head = (size_t)(at - text) + strlen("speed_kmh: ");
+  snprintf(copy, strlen(text) + 8, "%.*s'10'%s", (int)head, text, at + strlen("speed_kmh: 10"));
+  fb_scenario *s = NULL;
+  fb_err err;
+  const fb_scenario_override ov = {"speed_kmh", "72"};
+  int rc =
+      fb_scenario_load_string_overrides(copy, strlen(copy), "quoted.yaml", &ov, 1, &s, &err);
+  CHECK(rc == FB_OK && s && fabs(s->speed - 20.0) < TIGHT * 20); /* 72 km/h */
+  if (rc != FB_OK)
+    fprintf(stderr, "  %s\n", err.msg);
+  fb_scenario_free(&s);
+  free(copy);
+}
+
+/* The edited text loads as the file: its relative references (damper
+ * tables next to it in examples/, while this test runs in tests/)
+ * resolve from its directory, as with fb_scenario_load. */
+static void test_relative_references(void)
+{
+  const char *path = "../examples/apc6x6_shock_table.yaml";
+  fb_scenario *base = NULL, *s = NULL;
+  fb_err err;
+  const fb_scenario_override ov = {"speed_kmh", "20"};
+  int rc = fb_scenario_load(path, &base, &err);
+  CHECK(rc == FB_OK);
+  rc = fb_scenario_load_overrides(path, &ov, 1, &s, &err);
+  CHECK(rc == FB_OK);
+  if (rc != FB_OK)
+    fprintf(stderr, "  %s\n", err.msg);
+  CHECK(s && base && fabs(s->speed - 50.0 / 9.0) < TIGHT * 50.0 / 9.0 &&
+        s->corner[FB_LR].damper_npoints > 1 &&
+        s->corner[FB_LR].damper_npoints == base->corner[FB_LR].damper_npoints &&
+        s->corner[FB_LR].damper_f[1] == base->corner[FB_LR].damper_f[1]);
+  fb_scenario_free(&s);
+  fb_scenario_free(&base);
+}
+
+/* Loading must fail with code (0: any failure) and a message that
+ * starts with prefix and contains every one of the NULL-terminated
+ * parts. */
+static void expect_error(const fb_scenario_override *ov, size_t n, int code, const char *prefix,
+                         const char *const *parts)
+{
+  fb_scenario *s = NULL;
+  fb_err err;
+  int rc = load(ov, n, &s, &err);
+  CHECK(rc != FB_OK && s == NULL);
+  CHECK(code == 0 || rc == code);
+  CHECK(err.code == rc);
+  int ok = !strncmp(err.msg, prefix, strlen(prefix));
+  for (size_t i = 0; parts[i]; ++i)
+    ok = ok && strstr(err.msg, parts[i]) != NULL;
+  CHECK(ok);
+  if (!ok || rc == FB_OK)
+    fprintf(stderr, "  message: %s\n  expected prefix: %s\n", err.msg, prefix);
+  fb_scenario_free(&s);
+}
+
+static void test_bad_keys(const char *text)
+{
+  char road[32], where[128];
+  /* A bad path names the deepest mapping found, at its position, and
+   * the keys it has. */
+  position_of(text, "\nroad:", 1, road, sizeof road);
+  const fb_scenario_override missing = {"road.speedkmh", "5"};
+  snprintf(where, sizeof where, "--set road.speedkmh=5: " EXAMPLE ":");
+  expect_error(&missing, 1, FB_EINVAL, where,
+               (const char *const[]){"has no key 'speedkmh'", "speed_kmh, bump", NULL});
+  /* The road mapping's own position: its first key, "speed_kmh". */
+  position_of(text, "\nroad:\n  speed_kmh", 9, road, sizeof road);
+  snprintf(where, sizeof where, "--set road.speedkmh=5: " EXAMPLE ":%s: road: ", road);
+  expect_error(&missing, 1, FB_EINVAL, where, (const char *const[]){NULL});
+
+  const fb_scenario_override ambiguous = {"mass", "1"};
+  expect_error(&ambiguous, 1, FB_EINVAL, "--set mass=1: " EXAMPLE ": key 'mass' is ambiguous",
+               (const char *const[]){"hull.mass", "driver.mass", "engine.mass", "wheel.mass",
+                                     "give the dotted path", NULL});
+  const fb_scenario_override absent = {"speed", "1"};
+  expect_error(&absent, 1, FB_EINVAL, "--set speed=1: " EXAMPLE ": no key 'speed'",
+               (const char *const[]){"road", "simulation", NULL});
+  const fb_scenario_override typo = {"sped_kmh", "1"};
+  expect_error(&typo, 1, FB_EINVAL, "--set sped_kmh=1: " EXAMPLE ": no key 'sped_kmh'",
+               (const char *const[]){"did you mean 'road.speed_kmh'?", NULL});
+  const fb_scenario_override mapping = {"road.bump", "1"};
+  expect_error(&mapping, 1, FB_EINVAL, "--set road.bump=1: " EXAMPLE ":",
+               (const char *const[]){"road.bump: is a mapping", "height, length", NULL});
+  const fb_scenario_override list = {"bulkheads", "1"};
+  expect_error(&list, 1, FB_EINVAL, "--set bulkheads=1: " EXAMPLE ":",
+               (const char *const[]){"is a list", "hull.mesh.generator.bulkheads[0]", NULL});
+  const fb_scenario_override past_end = {"hull.mesh.generator.bulkheads[3]", "1"};
+  expect_error(&past_end, 1, FB_EINVAL, "--set hull.mesh.generator.bulkheads[3]=1: ",
+               (const char *const[]){"has no item [3] (it has 3)", NULL});
+  const fb_scenario_override malformed = {"road..speed_kmh", "1"};
+  expect_error(&malformed, 1, FB_EINVAL,
+               "--set road..speed_kmh=1: ", (const char *const[]){"malformed key", NULL});
+  const fb_scenario_override twice[] = {{"speed_kmh", "5"}, {"road.speed_kmh", "6"}};
+  expect_error(
+      twice, 2, FB_EINVAL, "--set road.speed_kmh=6: ",
+      (const char *const[]){"sets road.speed_kmh, which --set speed_kmh=5 sets too", NULL});
+
+  char *full = NULL;
+  fb_err err;
+  CHECK(fb_scenario_override_key(EXAMPLE, "speed_kmh", &full, &err) == FB_OK && full &&
+        !strcmp(full, "road.speed_kmh"));
+  free(full);
+  CHECK(fb_scenario_override_key(EXAMPLE, "mass", &full, &err) == FB_EINVAL && !full &&
+        strstr(err.msg, "hull.mass, driver.mass"));
+  CHECK(fb_scenario_override_key("no/such/file.yaml", "mass", &full, &err) == FB_EIO);
+}
+
+static void test_bad_values(const char *text)
+{
+  char value[32], prefix[160];
+  /* The reader's own message for the new value, at the original value's
+   * line and column. */
+  position_of(text, "speed_kmh: 10", strlen("speed_kmh: "), value, sizeof value);
+  const fb_scenario_override word = {"road.speed_kmh", "fast"};
+  snprintf(prefix, sizeof prefix,
+           "--set road.speed_kmh=fast: " EXAMPLE ":%s: road.speed_kmh: ", value);
+  expect_error(&word, 1, 0, prefix, (const char *const[]){"fast", NULL});
+  /* Text that would be YAML structure stays one value: double-quoted,
+   * so its text starts one column to the right. */
+  const fb_scenario_override structure = {"speed_kmh", "1, x: \"2\"\\"};
+  position_of(text, "speed_kmh: 10", strlen("speed_kmh: ") + 1, value, sizeof value);
+  snprintf(prefix, sizeof prefix,
+           "--set speed_kmh=1, x: \"2\"\\: " EXAMPLE ":%s: road.speed_kmh: ", value);
+  expect_error(&structure, 1, 0, prefix, (const char *const[]){NULL});
+  const fb_scenario_override newline = {"speed_kmh", "1\n2"};
+  expect_error(&newline, 1, FB_EINVAL, "--set speed_kmh=1\n2: " EXAMPLE ": ",
+               (const char *const[]){"control character", NULL});
+  /* fb_scenario_check's message, blamed at the new value. */
+  position_of(text, "spring_k: 145300", strlen("spring_k: "), value, sizeof value);
+  const fb_scenario_override negative = {"suspensions.LF.spring_k", "-1"};
+  snprintf(
+      prefix, sizeof prefix,
+      "--set suspensions.LF.spring_k=-1: " EXAMPLE ":%s: suspensions.LF.spring_k: ", value);
+  expect_error(&negative, 1, FB_EINVAL, prefix, (const char *const[]){"> 0", NULL});
+  /* A consequence of the values: at 2 km/h the last wheel leaves the bump
+   * at 5 + 8.7 m / (2/3.6 m/s) = 20.7 s, after t_end = 15 s. The message
+   * names road.bump, so every override is named. */
+  const fb_scenario_override slow[] = {{"speed_kmh", "2"}, {"road.bump.height", "0.2"}};
+  expect_error(slow, 1, FB_EINVAL, "--set speed_kmh=2: " EXAMPLE ":",
+               (const char *const[]){"road.bump: bump longer than the run", "20.66", NULL});
+  expect_error(slow, 2, FB_EINVAL, "--set speed_kmh=2 --set road.bump.height=0.2: " EXAMPLE ":",
+               (const char *const[]){"road.bump: bump longer than the run", NULL});
+}
+
+int main(void)
+{
+  char *text = read_text(EXAMPLE);
+  CHECK(text != NULL);
+  if (!text)
+    return check_report("test_overrides");
+  test_number_and_nested();
+  test_name_expression_list();
+  test_quoted_original(text);
+  test_relative_references();
+  test_bad_keys(text);
+  test_bad_values(text);
+  free(text);
+  return check_report("test_overrides");
+}

@@ -1,0 +1,217 @@
+/* Roads in the scenario (road.bump | road.iso8608 | road.profile) and in
+ * the vehicle's road fragment (src/road through fb_vehicle_road):
+ *   - a profile file holding the paper's bump, sampled every 2 cm, drives
+ *     the vehicle as the analytic bump does;
+ *   - the ISO 8608 example loads, runs, and is reproducible from its seed;
+ *   - wheel start positions follow the documented convention;
+ *   - bad roads are refused at their YAML location. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "check.h"
+
+static fb_result *simulate(const fb_scenario *s)
+{
+  fb_err err;
+  fb_result *r = NULL;
+  if (fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, &err) != FB_OK) {
+    fprintf(stderr, "simulate: %s\n", err.msg);
+    CHECK(0);
+  }
+  return r;
+}
+
+static char *read_text(const char *path)
+{
+  FILE *fp = fopen(path, "rb");
+  char *text = fp ? calloc(1, 1 << 16) : NULL;
+  if (text)
+    text[fread(text, 1, (1 << 16) - 1, fp)] = '\0';
+  if (fp)
+    fclose(fp);
+  return text;
+}
+
+/* The example scenario with its road section replaced by `road` (the text
+ * from "road:" up to "simulation:"), loaded from a string named bad.yaml. */
+static int load_with_road(const char *road, fb_scenario **out, fb_err *err)
+{
+  char *text = read_text("../examples/apc6x6.yaml");
+  char *from = text ? strstr(text, "\nroad:\n") : NULL;
+  char *to = from ? strstr(from, "\nsimulation:\n") : NULL;
+  int rc = FB_EIO;
+  char *yaml = from && to ? malloc(strlen(text) + strlen(road) + 4) : NULL;
+  if (yaml) {
+    const size_t head = (size_t)(from - text) + 1;
+    memcpy(yaml, text, head);
+    strcpy(yaml + head, road);
+    strcat(yaml, to);
+    rc = fb_scenario_load_string(yaml, strlen(yaml), "bad.yaml", out, err);
+  }
+  free(yaml);
+  free(text);
+  return rc;
+}
+
+/* Largest |a - b| of every output over its range in a, against tol. */
+static void check_close(const fb_result *a, const fb_result *b, double tol, const char *what)
+{
+  CHECK(fb_result_nsamples(a) == fb_result_nsamples(b));
+  for (size_t col = 1; col < fb_result_ncols(a); ++col) {
+    double lo = INFINITY, hi = -INFINITY, worst = 0.0;
+    for (size_t k = 0; k < fb_result_nsamples(a); ++k) {
+      const double va = fb_result_row(a, k)[col];
+      lo = fmin(lo, va);
+      hi = fmax(hi, va);
+      worst = fmax(worst, fabs(va - fb_result_row(b, k)[col]));
+    }
+    if (hi > lo) {
+      fprintf(stderr, "%s: %-16s %.3g of range\n", what, fb_result_col_name(a, col),
+              worst / (hi - lo));
+      CHECK(worst <= tol * (hi - lo));
+    }
+  }
+}
+
+/* The paper's bump as a measured profile: z_left(s) the (1 - cos) bump
+ * from s = 0, z_right the same from s = (y_LF - y_RF) tan(45 deg) = 2.1 m,
+ * sampled every 5 mm, with the left front wheel at -V first_contact at
+ * t = 0. PCHIP's slopes are first-order accurate next to the bump's ends,
+ * where z'' jumps: the road velocity is off by up to about h max|z''| / 2
+ * = 0.005 x 0.144 / 2 = 3.6e-4 against a largest slope of 0.085, 0.4 %.
+ * The tire forces and the tire damper's power take the road velocity
+ * directly through the tire damper (measured 0.18 % of their range); the
+ * other outputs are filtered by the suspension (1e-5). 5e-3 of each range
+ * bounds the first, while the tracks swapped (the right wheels meeting
+ * the bump 0.76 s early) would put tens of percent on RF, RM and RR. */
+static void test_profile_equals_bump(const fb_scenario *bump)
+{
+  const char *csv = "road_profile_test.csv";
+  FILE *fp = fopen(csv, "w");
+  CHECK(fp != NULL);
+  if (!fp)
+    return;
+  const double pi = 3.14159265358979323846, h = 0.10, len = 3.70, offset = 2.1, ds = 0.005;
+  fprintf(fp, "# the paper's bump, left and right tracks\ns,z_left,z_right\n");
+  for (int i = 0; i <= 2000; ++i) {
+    const double s = -1.0 + ds * i,
+                 zl = s >= 0 && s <= len ? h / 2 * (1 - cos(2 * pi * s / len)) : 0;
+    const double sr = s - offset;
+    const double zr = sr >= 0 && sr <= len ? h / 2 * (1 - cos(2 * pi * sr / len)) : 0;
+    fprintf(fp, "%.6f,%.12g,%.12g\n", s, zl, zr);
+  }
+  fclose(fp);
+  char road[256];
+  snprintf(road, sizeof road,
+           "road:\n  speed_kmh: 10\n  profile:\n    file: %s\n    front_start: %.12g\n", csv,
+           -10.0 / 3.6 * 5.0);
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(load_with_road(road, &s, &err) == FB_OK);
+  if (!s)
+    fprintf(stderr, "%s\n", err.msg);
+  if (s) {
+    CHECK(s->road_kind == FB_ROAD_PROFILE);
+    /* The bump window starts when the LF wheel reaches s = 0, at 5 s. */
+    CHECK_NEAR(fb_scenario_bump_entry(s, FB_LF), 5.0, 1e-9);
+    fb_result *a = simulate(bump), *b = simulate(s);
+    if (a && b)
+      check_close(a, b, 5e-3, "profile vs bump");
+    fb_result_free(&a);
+    fb_result_free(&b);
+  }
+  fb_scenario_free(&s);
+  remove(csv);
+}
+
+static void test_iso_example(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(fb_scenario_load("../examples/apc6x6_iso_road.yaml", &s, &err) == FB_OK);
+  if (!s) {
+    fprintf(stderr, "%s\n", err.msg);
+    return;
+  }
+  CHECK(s->road_kind == FB_ROAD_ISO8608 && s->road_iso.road_class == 'C');
+  CHECK(s->road_iso.seed == 2026 && s->road_iso.fade_length == 10.0);
+  /* Wheel starts: LF at front_start, the others behind it by x_LF - x. */
+  for (int c = 0; c < FB_NCORNERS; ++c)
+    CHECK_NEAR(fb_scenario_wheel_start(s, c), -5.0 - (s->corner[FB_LF].x - s->corner[c].x),
+               1e-12);
+  s->t_end = 3.0;
+  fb_result *a = simulate(s), *b = simulate(s);
+  if (a && b)
+    check_close(a, b, 0.0, "same seed");
+  s->road_iso.seed = 2027;
+  fb_result *c = simulate(s);
+  if (a && c) {
+    const long col = fb_result_find(a, "driver_acc");
+    double diff = 0.0;
+    for (size_t k = 0; col > 0 && k < fb_result_nsamples(a); ++k)
+      diff = fmax(diff, fabs(fb_result_row(a, k)[col] - fb_result_row(c, k)[col]));
+    CHECK(diff > 0.01); /* another road: another ride (m/s^2) */
+  }
+  fb_result_free(&a);
+  fb_result_free(&b);
+  fb_result_free(&c);
+  fb_scenario_free(&s);
+}
+
+static void expect_refused(const char *road, const char *phrase)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_scenario *s = NULL;
+  CHECK(load_with_road(road, &s, &err) != FB_OK);
+  CHECK(s == NULL);
+  CHECK(strstr(err.msg, phrase) != NULL && strstr(err.msg, "bad.yaml:") != NULL);
+  if (!strstr(err.msg, phrase))
+    fprintf(stderr, "  message: %s\n", err.msg);
+  fb_scenario_free(&s);
+}
+
+static void test_errors(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  /* A Brazilian type I bump instead of height and length. */
+  CHECK(load_with_road("road:\n  speed_kmh: 10\n  bump: {type: I, angle_deg: 45, "
+                       "first_contact: 5}\n",
+                       &s, &err) == FB_OK);
+  if (s)
+    CHECK(s->bump_height == 0.08 && s->bump_length == 1.50);
+  fb_scenario_free(&s);
+  expect_refused(
+      "road:\n  speed_kmh: 10\n  bump: {type: III, angle_deg: 45, first_contact: 5}\n", "III");
+  expect_refused("road:\n  speed_kmh: 10\n  bump: {type: I, height: 0.1, angle_deg: 45, "
+                 "first_contact: 5}\n",
+                 "either a type or height and length");
+  expect_refused("road:\n  speed_kmh: 10\n  bump: {height: 0.1, length: 3.7, angle_deg: 45, "
+                 "first_contact: 5}\n  iso8608: {class: C, seed: 1}\n",
+                 "give one road");
+  expect_refused("road:\n  speed_kmh: 10\n", "missing road");
+  expect_refused("road:\n  speed_kmh: 10\n  iso8608: {class: K, seed: 1}\n", "A .. H");
+  expect_refused("road:\n  speed_kmh: 10\n  profile: {file: no_such_road.csv}\n",
+                 "no_such_road.csv");
+}
+
+int main(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(fb_scenario_load("../examples/apc6x6.yaml", &s, &err) == FB_OK);
+  if (s) {
+    /* Wheel starts of the bump: LF at -V first_contact. */
+    CHECK_NEAR(fb_scenario_wheel_start(s, FB_LF), -s->speed * s->bump_time, 1e-12);
+    test_profile_equals_bump(s);
+  }
+  fb_scenario_free(&s);
+  test_iso_example();
+  test_errors();
+  return check_report("test_road_scenario");
+}
