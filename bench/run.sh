@@ -52,3 +52,8 @@ sed 's/^    modes: 0 .*/    modes: 80/' examples/apc6x6.yaml >"$out/apc6x6_80.ya
 echo "== The default study, whole command: flexbond run (both systems, full order, figures, report)"
 /usr/bin/time -v "$exe" run examples/apc6x6.yaml -o "$out/study" -q 2>&1 |
   grep -E "Elapsed|Maximum resident"
+
+echo "== flexbond sweep: 12 speeds of System 1 (speed_kmh=5:5:60), whole command with the figure"
+hyperfine -N --warmup 1 --runs 10 --style none --export-json "$out/h.json" \
+  "$exe sweep examples/apc6x6.yaml --set speed_kmh=5:5:60 -o $out/sweep -q" >/dev/null
+median "$out/h.json"
