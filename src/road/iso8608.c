@@ -112,8 +112,9 @@ static int check_params(const fb_road_iso8608_params *p, double *gd0, fb_err *er
   return FB_OK;
 }
 
-/* Fills one track's amplitude, wavenumber and phase arrays, drawing n
- * phases from r. */
+/* Fills one track's A_k cos(phi_k) and A_k sin(phi_k) arrays, drawing n
+ * phases phi_k from r; harmonic k is at n_k = n_min + (k + 1/2) dn with
+ * amplitude A_k = sqrt(2 Gd(n_k) dn). */
 static void fill_track(const fb_road_iso8608_params *p, double gd0, rng *r, double *data)
 {
   const size_t n = p->nharmonics;
@@ -121,9 +122,10 @@ static void fill_track(const fb_road_iso8608_params *p, double gd0, rng *r, doub
   for (size_t k = 0; k < n; ++k) {
     const double nk = p->n_min + ((double)k + 0.5) * dn;
     const double ratio = ISO_N0 / nk;
-    data[k] = sqrt(2.0 * gd0 * ratio * ratio * dn);
-    data[n + k] = TWO_PI * nk;
-    data[2 * n + k] = TWO_PI * rng_uniform(r);
+    const double amplitude = sqrt(2.0 * gd0 * ratio * ratio * dn);
+    const double phase = TWO_PI * rng_uniform(r);
+    data[k] = amplitude * cos(phase);
+    data[n + k] = amplitude * sin(phase);
   }
 }
 
@@ -136,7 +138,10 @@ int fb_road_new_iso8608(const fb_road_iso8608_params *p, fb_road **out, fb_err *
   int rc = check_params(p, &gd0, err);
   if (rc)
     return rc;
-  const road_track track = {ROAD_HARMONICS, p->nharmonics, {p->fade_length, 0.0, 0.0}};
+  const double dn = (p->n_max - p->n_min) / (double)p->nharmonics;
+  const road_track track = {ROAD_HARMONICS,
+                            p->nharmonics,
+                            {p->fade_length, TWO_PI * (p->n_min + 0.5 * dn), TWO_PI * dn}};
   rc = road_alloc(&track, &track, out, err);
   if (rc)
     return rc;

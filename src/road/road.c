@@ -15,7 +15,7 @@ size_t road_track_ndata(const road_track *t)
 {
   switch (t->kind) {
   case ROAD_BUMP: return 0;
-  case ROAD_HARMONICS:
+  case ROAD_HARMONICS: return 2 * t->n;
   case ROAD_PCHIP: return 3 * t->n;
   }
   return 0;
@@ -95,39 +95,48 @@ static void fade_weight(double fade, double s, double *w, double *dw)
   *dw = 6.0 * u * (1.0 - u) / fade;
 }
 
-static double harmonics_sum(size_t n, const double *data, double s)
+/* z(s) = sum_k A_k cos(kappa_k s + phi_k) and its slope, with kappa_k =
+ * kappa_0 + k dkappa equally spaced: e^(i kappa_k s) by complex rotation
+ * (one multiplication per harmonic instead of a cosine and a sine; the
+ * rounding grows by about eps per harmonic, 1e-13 of z for 1024). */
+static void harmonics_sum(const road_track *t, const double *data, double s, double *z,
+                          double *dz)
 {
-  const double *amp = data, *wavenumber = data + n, *phase = data + 2 * n;
-  double z = 0.0;
-  for (size_t k = 0; k < n; ++k)
-    z += amp[k] * cos(wavenumber[k] * s + phase[k]);
-  return z;
-}
-
-static double harmonics_sum_slope(size_t n, const double *data, double s)
-{
-  const double *amp = data, *wavenumber = data + n, *phase = data + 2 * n;
-  double dz = 0.0;
-  for (size_t k = 0; k < n; ++k)
-    dz -= amp[k] * wavenumber[k] * sin(wavenumber[k] * s + phase[k]);
-  return dz;
+  const size_t n = t->n;
+  const double *ac = data, *as = data + n;
+  const double kappa0 = t->param[1], dkappa = t->param[2];
+  const double rc = cos(dkappa * s), rs = sin(dkappa * s);
+  double wc = cos(kappa0 * s), ws = sin(kappa0 * s), sum = 0.0, slope = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    /* A cos(x + phi) = A cos(phi) cos(x) - A sin(phi) sin(x). */
+    sum += ac[k] * wc - as[k] * ws;
+    slope -= (kappa0 + (double)k * dkappa) * (ac[k] * ws + as[k] * wc);
+    const double next = wc * rc - ws * rs;
+    ws = ws * rc + wc * rs;
+    wc = next;
+  }
+  *z = sum;
+  *dz = slope;
 }
 
 static double harmonics_height(const road_track *t, const double *data, double s)
 {
-  double w, dw;
+  double w, dw, z, dz;
   fade_weight(t->param[0], s, &w, &dw);
-  return w == 0.0 ? 0.0 : w * harmonics_sum(t->n, data, s);
+  if (w == 0.0)
+    return 0.0;
+  harmonics_sum(t, data, s, &z, &dz);
+  return w * z;
 }
 
 static double harmonics_slope(const road_track *t, const double *data, double s)
 {
-  double w, dw;
+  double w, dw, z, dz;
   fade_weight(t->param[0], s, &w, &dw);
   if (w == 0.0)
     return 0.0;
-  const double slope = w * harmonics_sum_slope(t->n, data, s);
-  return dw == 0.0 ? slope : slope + dw * harmonics_sum(t->n, data, s);
+  harmonics_sum(t, data, s, &z, &dz);
+  return w * dz + dw * z;
 }
 
 double road_track_height(const road_track *t, const double *data, double s)

@@ -14,8 +14,10 @@
 
 typedef enum road_kind {
   ROAD_BUMP,      /* param: start, height, length; no data */
-  ROAD_HARMONICS, /* param[0]: fade length; data: amplitude[n], wavenumber[n]
-                     (rad/m), phase[n] (rad) */
+  ROAD_HARMONICS, /* param[0]: fade length, param[1]: wavenumber of harmonic
+                     0, param[2]: wavenumber step (rad/m; harmonic k has
+                     param[1] + k param[2]); data: A_k cos(phi_k)[n],
+                     A_k sin(phi_k)[n] (m) */
   ROAD_PCHIP      /* data: s[n], z[n], dz/ds[n] at the knots, n >= 2 */
 } road_kind;
 
