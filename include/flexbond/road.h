@@ -2,9 +2,11 @@
  *
  * A road is two vertical profiles z(s), m, of the distance s, m, along a
  * LEFT and a RIGHT track (the paths of the left and right wheels). Every
- * profile is continuous with a continuous slope dz/ds; where its second
- * derivative jumps (bump ends, CSV knots, fade-in ends) the road reports a
- * breakpoint so an integrator can stop there.
+ * profile is continuous, with a continuous slope dz/ds except at the ends
+ * of a CSV profile whose end slopes are not 0 (it is held at its end
+ * values outside its samples); where its second derivative jumps (bump
+ * ends, CSV knots, fade-in ends) the road reports a breakpoint so an
+ * integrator can stop there.
  *
  * Time convention (constant speed V > 0, straight line): a wheel is at
  * s(t) = s0 + V t on its track, where s0 is its position at t = 0. With

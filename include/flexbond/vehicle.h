@@ -174,7 +174,8 @@ typedef struct fb_scenario_override {
 
 /* Loads the scenario at path as fb_scenario_load does, after replacing,
  * in its parsed YAML document, the scalar at each ov[i].key by
- * ov[i].value (at the same place in the file's text, double-quoted), so
+ * ov[i].value (at the same place in the file's text, plain when that is
+ * safe, else double-quoted), so
  * the reader's every check and unit conversion applies to the new value.
  * A value reached through a YAML alias is replaced at its anchor. n = 0
  * is fb_scenario_load. Errors are prefixed "--set KEY=VALUE: ":
@@ -217,8 +218,9 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
 double fb_scenario_wheel_start(const fb_scenario *s, int corner);
 /* Time at which the wheel of `corner` meets the bump's leading edge:
  * bump_time + ((x_LF - x) + (y_LF - y) tan(bump_angle)) / speed. On a
- * random road or a profile, the time it reaches s = 0 on its track (the
- * start of the profile; negative when it is already past it at t = 0). */
+ * random road or a profile, the time it reaches s = 0 on its track (where
+ * an ISO road starts, or the s = 0 of the profile's file; negative when
+ * it is already past it at t = 0). */
 double fb_scenario_bump_entry(const fb_scenario *s, int corner);
 /* Time it leaves the bump: entry + bump_length / speed; t_end on a random
  * road or a profile (the road goes on). */

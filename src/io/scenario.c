@@ -32,11 +32,14 @@ double fb_scenario_wheel_start(const fb_scenario *s, int corner)
   if (!s || corner < 0 || corner >= FB_NCORNERS)
     return NAN;
   const fb_corner_params *lf = &s->corner[FB_LF], *w = &s->corner[corner];
-  /* The bump's leading edge crosses the left track at s = 0, which the
-   * left front wheel reaches at bump_time. */
-  const double lf_start =
-      s->road_kind == FB_ROAD_BUMP ? -s->speed * s->bump_time : s->road_front_start;
-  return lf_start - lf->x + w->x;
+  if (s->road_kind != FB_ROAD_BUMP)
+    return s->road_front_start - lf->x + w->x;
+  /* The bump's tracks (fb_road_new_oblique_bump): the leading edge at
+   * s = 0 on the left track and at (y_LF - y_RF) tan(angle) on the right
+   * one; each wheel reaches its track's edge at its own entry time, which
+   * keeps its own lateral position (y) in the timing. */
+  const double edge = w->y > 0.0 ? 0.0 : (lf->y - s->corner[FB_RF].y) * tan(s->bump_angle);
+  return edge - s->speed * fb_scenario_bump_entry(s, corner);
 }
 
 double fb_scenario_bump_entry(const fb_scenario *s, int corner)

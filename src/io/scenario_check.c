@@ -125,7 +125,12 @@ static int sc_check_corner(const fb_corner_params *c, int corner, fb_err *err)
       {"tire_k", c->tire_k, SC_POSITIVE, "N/m"},
       {"tire_c", c->tire_c, SC_NONNEGATIVE, "N s/m"},
   };
-  return sc_check_values(prefix, v, sizeof v / sizeof v[0], err);
+  int rc = sc_check_values(prefix, v, sizeof v / sizeof v[0], err);
+  /* A table has 2 .. FB_DAMPER_MAX_POINTS knots (0: the linear damper). */
+  if (!rc && (c->damper_npoints == 1 || c->damper_npoints > FB_DAMPER_MAX_POINTS))
+    rc = fb_err_set(err, FB_EINVAL, "%sdamper_table: 2 to %d points (got %zu)", prefix,
+                    (int)FB_DAMPER_MAX_POINTS, c->damper_npoints);
+  return rc;
 }
 
 /* A random road or a profile: its own constructor checks its parameters
@@ -137,15 +142,20 @@ static int sc_check_other_road(const fb_scenario *s, fb_err *err)
   const char *key = s->road_kind == FB_ROAD_ISO8608 ? "road.iso8608" : "road.profile";
   if (!rc && !isfinite(s->road_front_start))
     rc = fb_err_set(err, FB_EINVAL, "%s.front_start: must be finite", key);
+  if (rc)
+    return rc;
   fb_road *road = NULL;
-  if (!rc && s->road_kind == FB_ROAD_ISO8608)
+  if (s->road_kind == FB_ROAD_ISO8608)
     rc = fb_road_new_iso8608(&s->road_iso, &road, err);
-  else if (!rc && !s->road_profile)
+  else if (!s->road_profile)
     rc = fb_err_set(err, FB_EINVAL, "road.profile.file: missing");
-  else if (!rc)
+  else
     rc = fb_road_new_csv(s->road_profile, &road, err);
   fb_road_free(&road);
-  return rc ? fb_err_prefix(err, "%s: ", key) : FB_OK;
+  /* The road's own messages name its parameter, not the key. */
+  if (rc && rc != FB_ENOMEM)
+    fb_err_prefix(err, "%s: ", key);
+  return rc;
 }
 
 static int sc_check_road(const fb_scenario *s, fb_err *err)

@@ -492,7 +492,9 @@ static int sc_opt_count(const ml_ctx *c, struct fy_node *map, const char *key, s
 }
 
 /* road.iso8608: class (A .. H), seed, and optional band, harmonics,
- * fade_in (m) and front_start (m); checked by fb_road_new_iso8608. */
+ * fade_in (m) and front_start (m); checked by fb_road_new_iso8608. YAML
+ * numbers are read as doubles, so the seed is a whole number up to 2^53,
+ * where every integer is exact. */
 static int sc_iso8608(const ml_ctx *c, struct fy_node *iso, fb_scenario *s)
 {
   static const char *const keys[] = {"class",   "seed",        "band", "harmonics",
@@ -519,7 +521,7 @@ static int sc_iso8608(const ml_ctx *c, struct fy_node *iso, fb_scenario *s)
   if (!rc)
     rc = ml_require(c, iso, "seed", &seed_node);
   if (!rc)
-    rc = ml_count(c, seed_node, c->globals, 0, (size_t)-1, &seed);
+    rc = ml_count(c, seed_node, c->globals, 0, (size_t)1 << 53, &seed);
   p->seed = (uint64_t)seed;
   if (!rc)
     rc = sc_opt_count(c, iso, "harmonics", 1000000, &harmonics);

@@ -186,7 +186,11 @@ static void flatten_road(fb_scenario *s)
   s->bump_height = 0.0;
   s->bump_length = 1.0;
   s->bump_angle = 0.0;
+  /* Every wheel meets the (flat) bump at t >= 0: the rearmost one at
+   * bump_time + (x_LF - x) / V. */
   s->bump_time = 0.0;
+  for (int c = 0; c < FB_NCORNERS; ++c)
+    s->bump_time = fmax(s->bump_time, (s->corner[c].x - s->corner[FB_LF].x) / s->speed);
   double last = 0.0;
   for (int c = 0; c < FB_NCORNERS; ++c)
     last = fmax(last, fb_scenario_bump_exit(s, c));
