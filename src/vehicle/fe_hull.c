@@ -172,6 +172,19 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
   return rc;
 }
 
+/* beta = 2 zeta / omega_1 from the free-free hull's modes: six rigid-body
+ * modes, then the first elastic one at f1_hz. */
+static int damping_beta(double zeta, size_t nrigid, double f1_hz, double *beta, fb_err *err)
+{
+  if (nrigid != 6 || !(f1_hz > 0))
+    return fb_err_set(err, FB_ESOLVER,
+                      "hull damping: expected six rigid-body modes then an elastic one (got "
+                      "%zu rigid, next at %g Hz)",
+                      nrigid, f1_hz);
+  *beta = 2.0 * zeta / (6.28318530717958647692 * f1_hz);
+  return FB_OK;
+}
+
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err)
 {
   if (B)
@@ -179,15 +192,10 @@ int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **
   double f[7];
   size_t nrigid = 0;
   int rc = fb_fe_hull_free_modes(h, 7, f, &nrigid, err);
-  if (!rc && (nrigid != 6 || !(f[6] > 0)))
-    rc = fb_err_set(err, FB_ESOLVER,
-                    "hull damping: expected six rigid-body modes then an elastic one (got %zu "
-                    "rigid, next at %g Hz)",
-                    nrigid, f[6]);
+  if (!rc)
+    rc = damping_beta(zeta, nrigid, f[6], beta, err);
   if (rc)
     return rc;
-  const double two_pi = 6.28318530717958647692;
-  *beta = 2.0 * zeta / (two_pi * f[6]);
   if (!B)
     return FB_OK;
   fb_mat *K = NULL;
@@ -650,9 +658,9 @@ static void hull_coords_free(hull_coords *c)
   free(c->T);
 }
 
-static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, double beta, hull_coords *c,
-                         fb_err *err)
+static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords *c, fb_err *err)
 {
+  double beta = 0.0;
   const size_t n = c->ndof, nf = FB_NATTACH + 1;
   double *F = calloc(n * nf, sizeof *F), *lambda = NULL;
   size_t nrigid = 0;
@@ -668,6 +676,16 @@ static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, double beta,
     rc = fb_fem_reduce_free(c->K, c->M, (size_t)s->hull_modes, F, nf, &c->T, &lambda, &c->nb,
                             &nrigid, err);
   free(F);
+  /* beta belongs to the bare hull: with a weight-only payload M is the
+   * bare hull's, and when the reduction kept an elastic mode (its modes
+   * come first, rigid-body ones at the front) that mode gives beta
+   * without another eigensolution. */
+  const int own_mode = s->payload != FB_PAYLOAD_LUMPED && (size_t)s->hull_modes > nrigid;
+  if (!rc && own_mode)
+    rc = damping_beta(s->hull_damping_ratio, nrigid,
+                      sqrt(lambda[nrigid]) / 6.28318530717958647692, &beta, err);
+  else if (!rc)
+    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, NULL, err);
   fb_mat_free(&c->M);
   fb_mat_free(&c->K);
   double *ones = rc ? NULL : malloc(c->nb * sizeof *ones);
@@ -697,11 +715,10 @@ static int hull_coords_new(const fb_scenario *s, const fb_fe_hull *h, hull_coord
     rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &c->K, NULL, err);
   c->ndof = c->K ? fb_mat_nrows(c->K) : 0;
   c->nb = c->ndof;
-  if (!rc)
-    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, s->hull_modes > 0 ? NULL : &c->B,
-                            err);
   if (!rc && s->hull_modes > 0)
-    rc = reduce_coords(s, h, beta, c, err);
+    rc = reduce_coords(s, h, c, err);
+  else if (!rc)
+    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, &c->B, err);
   return rc;
 }
 
