@@ -470,8 +470,8 @@ static void conclude_differences(FILE *fp, const cli_run_outputs *o)
             100 * notable_diff);
     return;
   }
-  fprintf(fp, "; %zu of the %zu outputs that vary in System 1 differ by more than %.0f %% (",
-          nnotable, nfinite, 100 * notable_diff);
+  fprintf(fp, "; %zu of the %zu outputs that vary in System 1 %s by more than %.0f %% (",
+          nnotable, nfinite, nnotable == 1 ? "differs" : "differ", 100 * notable_diff);
   size_t listed = 0;
   for (size_t k = 0; k < FB_NOUTPUTS; ++k)
     if (isfinite(o->cmp[k].rel_diff) && o->cmp[k].rel_diff > notable_diff)
