@@ -186,8 +186,9 @@ typedef struct cli_run_system {
   fb_result *res;
   size_t col[FB_NOUTPUTS]; /* column of each output in res */
   cli_output_stats stats[FB_NOUTPUTS];
-  /* Tire contact: the tensile intervals (owned) and each tire's smallest
-   * normal reaction over the run with its time. */
+  /* Tire contact: the tensile intervals of the whole run (owned) and each
+   * tire's smallest normal reaction from the first bump entry on, with its
+   * time. */
   fb_tension_interval *tension;
   size_t ntension;
   double min_contact[FB_NCORNERS], min_contact_time[FB_NCORNERS];

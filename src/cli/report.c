@@ -652,8 +652,8 @@ static void write_contact_verdict(FILE *fp, const cli_run_system *r)
       if (r->min_contact[c] < r->min_contact[c_min])
         c_min = c;
     fprintf(fp,
-            "every tire stays in compression over the whole run; the smallest normal "
-            "reaction is %s N (%s tire, t = %.3f s).\n",
+            "every tire stays in compression over the whole run; from the first bump entry "
+            "on, the smallest normal reaction is %s N (%s tire, t = %.3f s).\n",
             number_text(r->min_contact[c_min], force, sizeof force), fb_corner_name(c_min),
             r->min_contact_time[c_min]);
     return;

@@ -385,10 +385,10 @@ static const char *const definitions[][2] = {
      "a_w_rms), absorbed_power (W; null: no K(f) table is built in), jerk_peak and jerk_rms "
      "(of the unweighted acceleration, m/s^3); a note instead when they cannot be computed"},
     {"tire_contact",
-     "min_force: each tire's smallest normal reaction over the whole run (N, compression "
-     "positive) and its time; tensile_intervals: every interval where a reaction is negative "
-     "(the linear tire pulls the wheel down): from, to (s, zero crossings interpolated "
-     "between samples), min_force (N) at (s)"},
+     "min_force: each tire's smallest normal reaction from bump_window[0] to the end of the "
+     "run (N, compression positive) and its time; tensile_intervals: every interval of the "
+     "whole run where a reaction is negative (the linear tire pulls the wheel down): from, "
+     "to (s, zero crossings interpolated between samples), min_force (N) at (s)"},
     {"hull_modes", "System 2's hull model: 0 full order, N > 0 reduced to N free-free modes "
                    "with static correction"},
     {"comparison", "System 2 against System 1 per output (when both ran): peak_systemN and "
@@ -546,9 +546,10 @@ static void show_progress(void *ctx, double t, double t_end)
   draw_progress_line(p);
 }
 
-/* The tire-contact verdict: tensile intervals and the smallest normal
- * reaction of each tire over the whole run. */
-static int run_contact(cli_run_system *run, fb_err *err)
+/* The tire-contact verdict: tensile intervals over the whole run, and the
+ * smallest normal reaction of each tire from the first wheel's bump entry
+ * on (from the zero start every reaction is 0 at t = 0). */
+static int run_contact(cli_run_system *run, const double window[2], fb_err *err)
 {
   for (int c = 0; c < FB_NCORNERS; ++c) {
     char name[32];
@@ -560,7 +561,7 @@ static int run_contact(cli_run_system *run, fb_err *err)
     run->min_contact_time[c] = NAN;
     for (size_t k = 0; k < fb_result_nsamples(run->res); ++k) {
       const double *row = fb_result_row(run->res, k);
-      if (row[j] < run->min_contact[c]) {
+      if (row[0] >= window[0] && row[j] < run->min_contact[c]) {
         run->min_contact[c] = row[j];
         run->min_contact_time[c] = row[0];
       }
@@ -609,7 +610,7 @@ static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
     run->stats[k] = cli_output_stats_of(run->res, run->col[k], window);
   }
   run_ride(run, window);
-  return run_contact(run, err);
+  return run_contact(run, window, err);
 }
 
 static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
