@@ -125,25 +125,33 @@ int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_
   if (!rc)
     residuals(bd, w.f, w.n, &rp0, &rq0);
   /* Force balance to 1e-10 of the largest initial unbalanced force, and
-   * rest: displacement rates 1e-10 of their initial size (or 1e-12). */
+   * rest: displacement rates 1e-10 of their initial size (or 1e-12). A
+   * stiff structure cannot always get there: its internal forces K q
+   * carry a rounding error of eps cond(K) |K q| (about 5e-8 of the load
+   * for a hull of E x 1000), so once the steps are at their longest and
+   * the force has stopped falling, a balance within 1e-7 of the initial
+   * unbalance is that rounding floor and accepted. */
   const double tol_p = 1e-10 * fmax(rp0, 1.0), tol_q = fmax(1e-10 * rq0, 1e-12);
-  double h = H_FIRST;
+  const double floor_p = 1e-7 * fmax(rp0, 1.0);
+  double h = H_FIRST, rp_prev = INFINITY;
   for (int iter = 0; !rc && iter < MAX_ITER; ++iter, h = fmin(h * H_GROWTH, H_MAX)) {
     rc = pseudo_step(bd, t, h, &w, x_eq, err);
     if (!rc)
       rc = eval_rhs(bd, t, x_eq, w.f, err);
-    if (!rc) {
-      residuals(bd, w.f, w.n, &rp, &rq);
-      if (rp <= tol_p && rq <= tol_q)
-        break;
-    }
+    if (rc)
+      break;
+    residuals(bd, w.f, w.n, &rp, &rq);
+    const int stalled = h == H_MAX && rp >= 0.5 * rp_prev;
+    if (rq <= tol_q && (rp <= tol_p || (stalled && rp <= floor_p)))
+      break;
+    rp_prev = rp;
   }
   if (!rc && rq > tol_q)
     rc = fb_err_set(err, FB_ESOLVER,
                     "no static equilibrium at t = %g s: displacements still change at rest "
                     "(%.3g per s); are flow sources at rest then?",
                     t, rq);
-  if (!rc && rp > tol_p)
+  if (!rc && rp > tol_p && rp > floor_p)
     rc = fb_err_set(err, FB_ESOLVER,
                     "static equilibrium not found: unbalanced force %.3g after %d steps "
                     "(a mass with no spring to the ground, or no equilibrium at all?)",
