@@ -81,6 +81,10 @@ int cli_report(int status, const fb_err *err);
  * FB_EIO with the reason (a closed pipe, a full disk). */
 int cli_flush_stdout(fb_err *err);
 
+/* s as a JSON string, escaped per RFC 8259 section 7 (quote, backslash,
+ * control characters as \u00XX). */
+void cli_json_string(FILE *fp, const char *s);
+
 /* Prints text (a usage text) to stdout; returns the exit code. */
 int cli_print_help(const char *text);
 

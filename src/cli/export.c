@@ -130,21 +130,7 @@ static int build_model(export_model *m, fb_bg **graph, fb_err *err)
   return rc;
 }
 
-/* ---- model.json, written by hand: strings escaped per RFC 8259 sec. 7. */
-
-static void json_string(FILE *fp, const char *s)
-{
-  fputc('"', fp);
-  for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
-    if (*c == '"' || *c == '\\')
-      fprintf(fp, "\\%c", *c);
-    else if (*c < 0x20)
-      fprintf(fp, "\\u%04x", *c);
-    else
-      fputc(*c, fp);
-  }
-  fputc('"', fp);
-}
+/* ---- model.json, written by hand (strings: cli_json_string). */
 
 static const char *variable_kind(const export_model *m, size_t i)
 {
@@ -164,7 +150,7 @@ static void write_variables(FILE *fp, const export_model *m)
   fputs("  \"variables\": [\n", fp);
   for (size_t i = 0; i < ds->n; ++i) {
     fputs("    {\"name\": ", fp);
-    json_string(fp, ds->var_names[i]);
+    cli_json_string(fp, ds->var_names[i]);
     fprintf(fp, ", \"differential\": %s, \"kind\": \"%s\"}%s\n",
             i < ds->nstates ? "true" : "false", variable_kind(m, i), i + 1 < ds->n ? "," : "");
   }
@@ -185,7 +171,7 @@ static void write_inputs(FILE *fp, const export_model *m)
             "    {\"name\": \"hdot_%s\", \"wheel\": \"%s\", \"quantity\": \"road vertical "
             "velocity\", \"unit\": \"m/s\", \"enters\": true, \"source\": ",
             fb_corner_name(c), fb_corner_name(c));
-    json_string(fp, m->ds->input_names[j]);
+    cli_json_string(fp, m->ds->input_names[j]);
     fprintf(fp, ", \"defines_variable\": %zu}%s\n", m->ds->input_var[j],
             c + 1 < FB_NCORNERS ? "," : "");
   }
@@ -199,9 +185,9 @@ static void write_outputs(FILE *fp, const export_model *m)
   for (size_t o = 0; o < ds->noutputs; ++o) {
     const size_t r = ds->output_row[o];
     fputs("    {\"name\": ", fp);
-    json_string(fp, fb_bd_output_name(m->bd, o));
+    cli_json_string(fp, fb_bd_output_name(m->bd, o));
     fputs(", \"unit\": ", fp);
-    json_string(fp, fb_bd_output_unit(m->bd, o));
+    cli_json_string(fp, fb_bd_output_unit(m->bd, o));
     if (ds->output_is_product[o])
       fprintf(fp,
               ", \"rows\": [%zu, %zu], \"product\": true, \"row_quantities\": [\"effort\", "
@@ -249,7 +235,7 @@ static void write_model_json(FILE *fp, const void *ctx)
   const export_model *m = ctx;
   const fb_descriptor *ds = m->ds;
   fputs("{\n  \"format\": \"flexbond descriptor\",\n  \"version\": 1,\n  \"scenario\": ", fp);
-  json_string(fp, m->s->name ? m->s->name : "");
+  cli_json_string(fp, m->s->name ? m->s->name : "");
   fprintf(fp,
           ",\n  \"system\": \"%s\",\n"
           "  \"form\": \"E x' = A x + Bu u(t) + f,  y = C x + D u\",\n"
@@ -265,11 +251,11 @@ static void write_model_json(FILE *fp, const void *ctx)
   fputs("  \"notes\": [\n", fp);
   for (size_t i = 0; i < sizeof notes / sizeof notes[0]; ++i) {
     fputs(i ? ",\n    " : "    ", fp);
-    json_string(fp, notes[i]);
+    cli_json_string(fp, notes[i]);
   }
   if (has_probe_integrals(m)) {
     fputs(",\n    ", fp);
-    json_string(fp, probe_note);
+    cli_json_string(fp, probe_note);
   }
   fputs("\n  ]\n}\n", fp);
 }

@@ -192,23 +192,9 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
   return rc;
 }
 
-/* ---- summary.json, written by hand: strings escaped per RFC 8259
- * section 7, numbers in %.10g, non-finite numbers (which JSON cannot
- * represent) as null. */
-
-static void json_string(FILE *fp, const char *s)
-{
-  fputc('"', fp);
-  for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
-    if (*c == '"' || *c == '\\')
-      fprintf(fp, "\\%c", *c);
-    else if (*c < 0x20)
-      fprintf(fp, "\\u%04x", *c);
-    else
-      fputc(*c, fp);
-  }
-  fputc('"', fp);
-}
+/* ---- summary.json, written by hand: strings by cli_json_string,
+ * numbers in %.10g, non-finite numbers (which JSON cannot represent) as
+ * null. */
 
 static void json_number(FILE *fp, double v)
 {
@@ -228,7 +214,7 @@ typedef struct json_field {
 static void json_object(FILE *fp, const char *unit, const json_field *fields, size_t nfields)
 {
   fputs("{\"unit\": ", fp);
-  json_string(fp, unit);
+  cli_json_string(fp, unit);
   for (size_t i = 0; i < nfields; ++i) {
     fprintf(fp, ", \"%s\": ", fields[i].key);
     json_number(fp, fields[i].value);
@@ -262,7 +248,7 @@ static void write_ride_json(FILE *fp, const cli_run_system *run)
 {
   if (!run->has_ride) {
     fputs("{\"note\": ", fp);
-    json_string(fp, run->ride_note);
+    cli_json_string(fp, run->ride_note);
     fputc('}', fp);
     return;
   }
@@ -317,13 +303,13 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
                               const double window[2])
 {
   fprintf(fp, ",\n  \"system%d\": {\n    \"label\": ", (int)run->sys);
-  json_string(fp, cli_system_label(run->sys));
+  cli_json_string(fp, cli_system_label(run->sys));
   if (run->sys == FB_SYSTEM_FLEXIBLE)
     fprintf(fp, ",\n    \"hull_modes\": %d", s->hull_modes);
   fputs(",\n    \"outputs\": {", fp);
   for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
     fputs(k ? ",\n      " : "\n      ", fp);
-    json_string(fp, cli_run_figures[k].output);
+    cli_json_string(fp, cli_run_figures[k].output);
     fputs(": ", fp);
     write_output_json(fp, fb_result_col_unit(run->res, run->col[k]), &run->stats[k]);
   }
@@ -358,7 +344,7 @@ static void write_comparison_json(FILE *fp, const cli_run_outputs *o)
                                  {"peak_change_rel", c->peak_change},
                                  {"rms_change_rel", c->rms_change}};
     fputs(k ? ",\n    " : "\n    ", fp);
-    json_string(fp, cli_run_figures[k].output);
+    cli_json_string(fp, cli_run_figures[k].output);
     fputs(": ", fp);
     json_object(fp, fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]), fields,
                 sizeof fields / sizeof fields[0]);
@@ -408,17 +394,17 @@ static void write_summary_json(FILE *fp, const void *ctx)
   const cli_run_outputs *o = ctx;
   const fb_scenario *s = o->scenario;
   fputs("{\n  \"scenario\": ", fp);
-  json_string(fp, cli_scenario_name(s));
+  cli_json_string(fp, cli_scenario_name(s));
   fputs(",\n  \"initial\": ", fp);
-  json_string(fp, initial_choices[s->initial]);
+  cli_json_string(fp, initial_choices[s->initial]);
   fputs(",\n  \"payload\": ", fp);
-  json_string(fp, payload_choices[s->payload]);
+  cli_json_string(fp, payload_choices[s->payload]);
   fputs(",\n  \"definitions\": {", fp);
   for (size_t i = 0; i < sizeof definitions / sizeof definitions[0]; ++i) {
     fputs(i ? ",\n    " : "\n    ", fp);
-    json_string(fp, definitions[i][0]);
+    cli_json_string(fp, definitions[i][0]);
     fputs(": ", fp);
-    json_string(fp, definitions[i][1]);
+    cli_json_string(fp, definitions[i][1]);
   }
   fputs("\n  }", fp);
   for (size_t i = 0; i < o->nruns; ++i)
