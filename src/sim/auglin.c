@@ -271,14 +271,15 @@ static int row_add(csr *m, size_t *mark, size_t stamp, size_t k)
   return FB_OK;
 }
 
-/* Opens a row of m with the pattern of sum_c P(row, c) u_c, where u_c is
+/* Adds a row to m with the pattern of sum_c P(row, c) u_c, where u_c is
  * the unit vector at kidx[c] for a kept c and X(c, :) for an eliminated
- * one; the entry c == row is left out when skip_self. */
-static int combine_pattern(const fb_auglin *a, size_t row, int skip_self, csr *m, size_t *mark,
-                           size_t stamp)
+ * one; the entry c == row is left out when skip_self, and column diag is
+ * stored even when structurally zero (NONE: no such column). */
+static int combine_pattern(const fb_auglin *a, size_t row, int skip_self, size_t diag, csr *m,
+                           size_t *mark, size_t stamp)
 {
   row_open(m);
-  int rc = FB_OK;
+  int rc = diag == NONE ? FB_OK : row_add(m, mark, stamp, diag);
   for (size_t q = a->p.ptr[row]; q < a->p.ptr[row + 1] && rc == FB_OK; ++q) {
     const size_t c = a->p.col[q];
     if (skip_self && c == row)
@@ -306,18 +307,10 @@ static int symbolic(fb_auglin *a)
   for (size_t k = 0; rc == FB_OK && k < a->nk; ++k)
     mark[k] = NONE;
   for (size_t r = 0; rc == FB_OK && r < a->ne; ++r)
-    rc = combine_pattern(a, a->elim[r], 1, &a->x, mark, r);
-  for (size_t i = 0; rc == FB_OK && i < a->nz; ++i) {
-    const size_t k = a->kidx[i];
-    if (k == NONE)
-      continue;
-    rc = combine_pattern(a, i, 0, &a->s, mark, a->ne + k);
-    if (rc == FB_OK) { /* reopen row k to add the diagonal */
-      a->s.n--;
-      rc = row_add(&a->s, mark, a->ne + k, k);
-      a->s.n++;
-    }
-  }
+    rc = combine_pattern(a, a->elim[r], 1, NONE, &a->x, mark, r);
+  for (size_t i = 0; rc == FB_OK && i < a->nz; ++i)
+    if (a->kidx[i] != NONE)
+      rc = combine_pattern(a, i, 0, a->kidx[i], &a->s, mark, a->ne + a->kidx[i]);
   const size_t xnnz = rc == FB_OK ? a->x.ptr[a->ne] : 0;
   const size_t snnz = rc == FB_OK ? a->s.ptr[a->nk] : 0;
   if (rc == FB_OK && snnz > (size_t)SuiteSparse_long_max)
