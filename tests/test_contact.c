@@ -11,17 +11,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
-
-static fb_result *simulate(const fb_scenario *s)
-{
-  fb_err err;
-  fb_result *r = NULL;
-  if (fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, &err) != FB_OK) {
-    fprintf(stderr, "simulate: %s\n", err.msg);
-    CHECK(0);
-  }
-  return r;
-}
+#include "vehicle_util.h"
 
 static long column(const fb_result *r, const char *prefix, int corner)
 {
@@ -67,7 +57,7 @@ static void check_against_scan(const fb_result *r, const fb_tension_interval *iv
 
 static void test_paper_crossing(const fb_scenario *s)
 {
-  fb_result *r = simulate(s);
+  fb_result *r = simulate_rigid(s);
   if (!r)
     return;
   /* The seven outputs, then the six reactions; LF is the paper's Fig. 8. */
@@ -89,7 +79,7 @@ static void test_lift_off(fb_scenario *s)
 {
   s->bump_height = 0.20;
   s->speed = 30.0 / 3.6;
-  fb_result *r = simulate(s);
+  fb_result *r = simulate_rigid(s);
   if (!r)
     return;
   fb_err err;

@@ -17,6 +17,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "vehicle_util.h"
 
 #define EXAMPLE "../examples/apc6x6.yaml"
 
@@ -25,19 +26,6 @@
  * (km/h to m/s, degrees to radians) are computed here by a different
  * formula than the reader's and agree to a few ulps: 1e-12 relative. */
 #define TIGHT 1e-12
-
-static char *read_text(const char *path)
-{
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return NULL;
-  char *buf = malloc(1 << 20);
-  size_t n = buf ? fread(buf, 1, (1 << 20) - 1, fp) : 0;
-  fclose(fp);
-  if (buf)
-    buf[n] = '\0';
-  return buf;
-}
 
 /* "LINE:COL" (1-based) of the first occurrence of needle in text, plus
  * offset bytes, into buf. */

@@ -13,68 +13,13 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
-
-static fb_result *simulate(const fb_scenario *s)
-{
-  fb_err err;
-  fb_result *r = NULL;
-  if (fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, &err) != FB_OK) {
-    fprintf(stderr, "simulate: %s\n", err.msg);
-    CHECK(0);
-  }
-  return r;
-}
-
-static char *read_text(const char *path)
-{
-  FILE *fp = fopen(path, "rb");
-  char *text = fp ? calloc(1, 1 << 16) : NULL;
-  if (text)
-    text[fread(text, 1, (1 << 16) - 1, fp)] = '\0';
-  if (fp)
-    fclose(fp);
-  return text;
-}
+#include "vehicle_util.h"
 
 /* The example scenario with its road section replaced by `road` (the text
  * from "road:" up to "simulation:"), loaded from a string named bad.yaml. */
 static int load_with_road(const char *road, fb_scenario **out, fb_err *err)
 {
-  char *text = read_text("../examples/apc6x6.yaml");
-  char *from = text ? strstr(text, "\nroad:\n") : NULL;
-  char *to = from ? strstr(from, "\nsimulation:\n") : NULL;
-  int rc = FB_EIO;
-  char *yaml = from && to ? malloc(strlen(text) + strlen(road) + 4) : NULL;
-  if (yaml) {
-    const size_t head = (size_t)(from - text) + 1;
-    memcpy(yaml, text, head);
-    strcpy(yaml + head, road);
-    strcat(yaml, to);
-    rc = fb_scenario_load_string(yaml, strlen(yaml), "bad.yaml", out, err);
-  }
-  free(yaml);
-  free(text);
-  return rc;
-}
-
-/* Largest |a - b| of every output over its range in a, against tol. */
-static void check_close(const fb_result *a, const fb_result *b, double tol, const char *what)
-{
-  CHECK(fb_result_nsamples(a) == fb_result_nsamples(b));
-  for (size_t col = 1; col < fb_result_ncols(a); ++col) {
-    double lo = INFINITY, hi = -INFINITY, worst = 0.0;
-    for (size_t k = 0; k < fb_result_nsamples(a); ++k) {
-      const double va = fb_result_row(a, k)[col];
-      lo = fmin(lo, va);
-      hi = fmax(hi, va);
-      worst = fmax(worst, fabs(va - fb_result_row(b, k)[col]));
-    }
-    if (hi > lo) {
-      fprintf(stderr, "%s: %-16s %.3g of range\n", what, fb_result_col_name(a, col),
-              worst / (hi - lo));
-      CHECK(worst <= tol * (hi - lo));
-    }
-  }
+  return load_replaced("\nroad:\n", 1, "\nsimulation:\n", road, out, err);
 }
 
 /* The paper's bump as a measured profile: z_left(s) the (1 - cos) bump
@@ -118,7 +63,7 @@ static void test_profile_equals_bump(const fb_scenario *bump)
     CHECK(s->road_kind == FB_ROAD_PROFILE);
     /* The bump window starts when the LF wheel reaches s = 0, at 5 s. */
     CHECK_NEAR(fb_scenario_bump_entry(s, FB_LF), 5.0, 1e-9);
-    fb_result *a = simulate(bump), *b = simulate(s);
+    fb_result *a = simulate_rigid(bump), *b = simulate_rigid(s);
     if (a && b)
       check_close(a, b, 5e-3, "profile vs bump");
     fb_result_free(&a);
@@ -144,11 +89,11 @@ static void test_iso_example(void)
     CHECK_NEAR(fb_scenario_wheel_start(s, c), -5.0 - (s->corner[FB_LF].x - s->corner[c].x),
                1e-12);
   s->t_end = 3.0;
-  fb_result *a = simulate(s), *b = simulate(s);
+  fb_result *a = simulate_rigid(s), *b = simulate_rigid(s);
   if (a && b)
     check_close(a, b, 0.0, "same seed");
   s->road_iso.seed = 2027;
-  fb_result *c = simulate(s);
+  fb_result *c = simulate_rigid(s);
   if (a && c) {
     const long col = fb_result_find(a, "driver_acc");
     double diff = 0.0;

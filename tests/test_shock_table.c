@@ -12,17 +12,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
-
-static fb_result *simulate(const fb_scenario *s)
-{
-  fb_err err;
-  fb_result *r = NULL;
-  if (fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, &err) != FB_OK) {
-    fprintf(stderr, "simulate: %s\n", err.msg);
-    CHECK(0);
-  }
-  return r;
-}
+#include "vehicle_util.h"
 
 /* Both runs at rtol 1e-9: their global errors are a few 1e-9 of each
  * range, and the two paths (a matrix R against a table law whose Newton
@@ -50,27 +40,9 @@ static void test_linear_table(const fb_scenario *s0)
     }
     p->damper_c = 0.0;
   }
-  fb_result *a = simulate(lin), *b = simulate(tab);
-  if (a && b) {
-    CHECK(fb_result_nsamples(a) == fb_result_nsamples(b));
-    for (size_t col = 1; col < fb_result_ncols(a); ++col) {
-      double lo = INFINITY, hi = -INFINITY, worst = 0.0;
-      for (size_t k = 0; k < fb_result_nsamples(a); ++k) {
-        const double va = fb_result_row(a, k)[col], vb = fb_result_row(b, k)[col];
-        lo = fmin(lo, va);
-        hi = fmax(hi, va);
-        worst = fmax(worst, fabs(va - vb));
-      }
-      const double range = hi - lo;
-      if (range > 0.0) {
-        fprintf(stderr, "linear table vs damper_c: %-16s %.3g of range\n",
-                fb_result_col_name(a, col), worst / range);
-        CHECK(worst <= 1e-8 * range);
-      } else {
-        CHECK(worst == 0.0);
-      }
-    }
-  }
+  fb_result *a = simulate_rigid(lin), *b = simulate_rigid(tab);
+  if (a && b)
+    check_close(a, b, 1e-8, "linear table vs damper_c");
   fb_result_free(&a);
   fb_result_free(&b);
 done:
@@ -96,43 +68,17 @@ static void test_example(void)
     CHECK(p->damper_f[0] == (rear ? -32201.0 : -20904.0));
     CHECK(p->damper_f[8] == (rear ? 13800.0 : 8959.0));
   }
-  fb_result *r = simulate(s);
+  fb_result *r = simulate_rigid(s);
   CHECK(r != NULL);
   fb_result_free(&r);
   fb_scenario_free(&s);
 }
 
-/* A YAML variant of the example with the LF corner's damper replaced. */
+/* A YAML variant of the example with the LF corner's damper replaced
+ * (the first damper_c line is the LF corner's), only checked. */
 static int load_with_lf(const char *lf_damper, fb_err *err)
 {
-  FILE *fp = fopen("../examples/apc6x6.yaml", "rb");
-  if (!fp)
-    return FB_EIO;
-  char *text = calloc(1, 1 << 16);
-  const size_t len = text ? fread(text, 1, (1 << 16) - 1, fp) : 0;
-  fclose(fp);
-  if (!text)
-    return FB_ENOMEM;
-  text[len] = '\0';
-  /* The first damper_c line is the LF corner's. */
-  char *at = strstr(text, "    damper_c: 25744");
-  char *eol = at ? strchr(at, '\n') : NULL;
-  int rc = FB_EINVAL;
-  if (at && eol) {
-    char *out = malloc(len + strlen(lf_damper) + 2);
-    if (out) {
-      const size_t head = (size_t)(at - text);
-      memcpy(out, text, head);
-      strcpy(out + head, lf_damper);
-      strcat(out, eol);
-      fb_scenario *s = NULL;
-      rc = fb_scenario_load_string(out, strlen(out), "bad.yaml", &s, err);
-      fb_scenario_free(&s);
-      free(out);
-    }
-  }
-  free(text);
-  return rc;
+  return load_replaced("    damper_c: 25744", 0, "\n", lf_damper, NULL, err);
 }
 
 static void expect_refused(const char *lf_damper, const char *phrase)
