@@ -421,16 +421,20 @@ static void test_mtf_rigid_bar(void)
 }
 
 /* Hardening spring e = k q + k3 q^3 as a nonlinear C law. */
-static int cubic_eval(void *ctx, size_t n, const double *x, double *y)
+static int cubic_eval(void *ctx, const fb_law_in *in, double *y)
 {
   const double *k = ctx;
+  const size_t n = in->n;
+  const double *x = in->x;
   for (size_t i = 0; i < n; ++i)
     y[i] = k[0] * x[i] + k[1] * x[i] * x[i] * x[i];
   return 0;
 }
-static int cubic_jac(void *ctx, size_t n, const double *x, double *jac)
+static int cubic_jac(void *ctx, const fb_law_in *in, double *jac)
 {
   const double *k = ctx;
+  const size_t n = in->n;
+  const double *x = in->x;
   for (size_t i = 0; i < n * n; ++i)
     jac[i] = 0.0;
   for (size_t i = 0; i < n; ++i)
@@ -445,7 +449,11 @@ static double cubic_energy(void *ctx, size_t n, const double *x)
     e += 0.5 * k[0] * x[i] * x[i] + 0.25 * k[1] * x[i] * x[i] * x[i] * x[i];
   return e;
 }
-static const fb_law_ops cubic_ops = {"cubic spring", cubic_eval, cubic_jac, cubic_energy, free};
+static const fb_law_ops cubic_ops = {.name = "cubic spring",
+                                     .eval = cubic_eval,
+                                     .jacobian = cubic_jac,
+                                     .energy = cubic_energy,
+                                     .free = free};
 
 static void test_nonlinear_law(void)
 {

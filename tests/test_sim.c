@@ -55,10 +55,10 @@ typedef struct damper_law {
   int nan_past_limit;
 } damper_law;
 
-static int damper_eval(void *ctx, size_t n, const double *x, double *y)
+static int damper_eval(void *ctx, const fb_law_in *in, double *y)
 {
   const damper_law *d = ctx;
-  (void)n;
+  const double *x = in->x;
   if (d->limit > 0 && fabs(x[0]) > d->limit && d->nan_past_limit) {
     y[0] = NAN;
     return 0;
@@ -69,15 +69,16 @@ static int damper_eval(void *ctx, size_t n, const double *x, double *y)
   return 0;
 }
 
-static int damper_jacobian(void *ctx, size_t n, const double *x, double *jac)
+static int damper_jacobian(void *ctx, const fb_law_in *in, double *jac)
 {
   const damper_law *d = ctx;
-  (void)n;
+  const double *x = in->x;
   jac[0] = d->r + 2 * d->c2 * fabs(x[0]);
   return 0;
 }
 
-static const fb_law_ops damper_ops = {"test damper", damper_eval, damper_jacobian, NULL, free};
+static const fb_law_ops damper_ops = {
+    .name = "test damper", .eval = damper_eval, .jacobian = damper_jacobian, .free = free};
 
 /* Mass-spring-damper: Se (force) -> 1-junction -> I (m), C (K = k), R (r).
  * Probes: displacement x (state q of the spring), velocity v (flow into

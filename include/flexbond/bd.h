@@ -116,6 +116,31 @@ size_t fb_bd_state_row(const fb_bd *bd, size_t i);
  * nonlinear output probe (a power's product) does not count. */
 int fb_bd_is_linear(const fb_bd *bd);
 
+/* ---- Switched laws (hybrid elements, see fb_law_ops in flexbond/bg.h).
+ * The guards of every switched law the diagram evaluates form one vector
+ * g(t, x), which an integrator watches for zero crossings. Each law's
+ * mode is part of the diagram's state between calls: 0 after
+ * fb_bd_build, then whatever fb_bd_init_modes and fb_bd_switch_modes
+ * chose; fb_bd_rhs, fb_bd_outputs and the linearisations use the
+ * current modes. */
+size_t fb_bd_nguards(const fb_bd *bd);
+/* Name of the element whose law owns guard i. */
+const char *fb_bd_guard_element(const fb_bd *bd, size_t i);
+/* Evaluates the diagram at (t, x) and writes the guards to g. Returns as
+ * fb_bd_rhs. */
+int fb_bd_guards(fb_bd *bd, double t, const double *x, double *g);
+/* Chooses every switched law's mode from its guards' signs at (t, x), as
+ * at the start of a run; *changed = 1 if a mode changed, else 0. */
+int fb_bd_init_modes(fb_bd *bd, double t, const double *x, int *changed);
+/* At an event at (t, x): crossed[i] is +1 or -1 where guard i has just
+ * crossed zero upwards or downwards, 0 elsewhere. Each law with a crossed
+ * guard chooses its next mode; *changed = 1 if a mode changed. */
+int fb_bd_switch_modes(fb_bd *bd, double t, const double *x, const int *crossed, int *changed);
+/* 1 if the Newton subsystem is linear within each combination of modes
+ * (every block linear, or a switched law with affine branches): P0 and
+ * P1 then change only when a mode does. */
+int fb_bd_is_piecewise_linear(const fb_bd *bd);
+
 /* Dense Jacobian dF/dx at (t, x), column-major nstates x nstates, by
  * forward propagation of each unit vector through the blocks' exact
  * linearisations (no finite differences). For linear analysis. */

@@ -73,16 +73,57 @@ typedef enum fb_bg_dir {
 
 /* A nonlinear constitutive law y = phi(x) for a field (explicit causality:
  * I: x = p, y = f; C: x = q, y = e; R: x = f, y = e). n is the stacked
- * port dimension. eval and jacobian return 0 on success, >0 for a
- * recoverable failure (the solver retries with a smaller step), <0 fatal. */
+ * port dimension.
+ *
+ * A modulated R (the "MR" of Karnopp, Margolis & Rosenberg: a
+ * resistor whose law also reads signals that carry no power) reads m more
+ * values, the states of the storage elements named with fb_bg_modulate,
+ * stacked after its own input: the law sees xu = [x (n); u (m)] and its
+ * Jacobian has n + m columns.
+ *
+ * A switched law (a hybrid element: a law with smooth branches, "modes",
+ * and conditions for passing between them; Mosterman & Biswas, "A theory
+ * of discontinuities in physical system models", J. Franklin Inst.
+ * 335(3), 1998) also gives nguards guard functions g(xu). The integrator
+ * keeps the mode fixed between events, so each branch is integrated as a
+ * smooth law, locates the zero crossings of the guards by root-finding,
+ * asks switch_mode for the next mode at each crossing and restarts there
+ * (discontinuity locking; Cellier & Kofman, "Continuous System
+ * Simulation", Springer 2006, ch. 9). Guards that mean nothing in a mode
+ * should return a constant there (e.g. 1), so that they do not stop the
+ * integration for nothing.
+ *
+ * Functions return 0 on success, >0 for a recoverable failure (the solver
+ * retries with a smaller step), <0 fatal. */
+typedef struct fb_law_in {
+  size_t n;        /* the law's own input and output dimension */
+  size_t m;        /* modulating values (0 unless fb_bg_modulate) */
+  const double *x; /* n + m values: own input, then modulating values */
+  int mode;        /* active branch of a switched law, 0 for a smooth one */
+} fb_law_in;
+
 typedef struct fb_law_ops {
   const char *name;
-  int (*eval)(void *ctx, size_t n, const double *x, double *y);
-  /* dy/dx into jac, column-major n x n. */
-  int (*jacobian)(void *ctx, size_t n, const double *x, double *jac);
-  /* Stored energy (I, C) or co-content, for energy probes; may be NULL. */
+  int (*eval)(void *ctx, const fb_law_in *in, double *y);
+  /* dy/dxu into jac, column-major n x (n + m). */
+  int (*jacobian)(void *ctx, const fb_law_in *in, double *jac);
+  /* Stored energy (I, C) or co-content, for energy probes, as a function
+   * of the state alone (not of a mode); may be NULL. */
   double (*energy)(void *ctx, size_t n, const double *x);
   void (*free)(void *ctx);
+  /* ---- Switched laws only (nguards = 0 and NULL functions otherwise). */
+  size_t nguards;
+  /* The guards at in (in its mode) into g[0 .. nguards). */
+  int (*guards)(void *ctx, const fb_law_in *in, double *g);
+  /* Sets *mode, the mode to continue in from in, whose in->mode is the
+   * current one. crossed[i] is +1 or -1 when guard i has just crossed
+   * zero upwards or downwards (the integrator's root direction), 0 when
+   * it has not; crossed is NULL at the start of a run, when the mode is
+   * chosen from the guards' signs alone. */
+  int (*switch_mode)(void *ctx, const fb_law_in *in, const int *crossed, int *mode);
+  /* 1 when every branch is affine in xu, so the Jacobian changes only
+   * with the mode and the Newton matrix only at events. */
+  int affine;
 } fb_law_ops;
 
 typedef struct fb_bg fb_bg;
@@ -111,6 +152,16 @@ int fb_bg_add_field(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
  * released with ops->free. */
 int fb_bg_add_field_law(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,
                         const size_t *port_dims, const fb_law_ops *ops, void *ctx, fb_err *err);
+
+/* Makes the nonlinear law of the R element `element` read the states (p
+ * of I, q of C, stacked in the order given) of the storage elements
+ * sources[0 .. nsources) as modulating values (see fb_law_ops). The
+ * sources are elements of bg at the time of the call and follow them
+ * through fb_bg_adopt. FB_EMODEL when an element is missing, `element` is
+ * not an R with a nonlinear law, a source is not an I or C, or the
+ * element is already modulated. */
+int fb_bg_modulate(fb_bg *bg, const char *element, size_t nsources, const char *const *sources,
+                   fb_err *err);
 
 /* ---- Tabulated one-port laws y = phi(x), e.g. a damper's force-velocity
  * curve (R: x = f velocity, y = e force). phi is the monotone piecewise
@@ -157,6 +208,34 @@ int fb_table_law_check_passive(const fb_table_law *law, fb_err *err);
  * Takes ownership of *law and sets it to NULL, also on failure. Refuses
  * (FB_EINVAL, see fb_table_law_check_passive) a law that is not passive. */
 int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err);
+
+/* ---- Unilateral compliant contact: a spring k and a damper c in
+ * parallel (Kelvin-Voigt) that can push but never pull, e.g. a tire on
+ * the road. q is the spring's compression (the penetration: contact while
+ * q > 0, a gap of -q otherwise) and f = q' its rate. The contact force is
+ *     F = max(0, k q + c f)  while q > 0,     F = 0  while q <= 0
+ * (the "no tension" condition of compliant contact, as in Hunt &
+ * Crossley, J. Appl. Mech. 42(2), 1975, who discuss the Kelvin-Voigt
+ * model's tensile force before separation). It is built from two
+ * switched laws, so that the integrator locates every change:
+ *   spring (C):  e = k q (mode 0, contact), 0 (mode 1, separated);
+ *                guard q;
+ *   damper (R, modulated by the spring's q):  e = c f (mode 0, contact),
+ *                -k q (mode 1, released: k q + c f would pull, the damper
+ *                cancels the spring), 0 (mode 2, separated);
+ *                guards q and k q + c f.
+ * Both laws are affine in each mode. The stored energy k max(q, 0)^2 / 2 is
+ * continuous at every switch and the damper never delivers power (in
+ * mode 1 its power -k q f is >= 0, since q > 0 and c f < -k q there), so
+ * an energy balance closes across contact changes.
+ *
+ * Adds the C element `spring` and the modulated R element `damper`, both
+ * one-ports of dimension 1; the caller bonds both to one 1-junction (the
+ * common compression rate), where their efforts add up to F. FB_EINVAL
+ * unless k > 0 and c >= 0 are finite. Implemented in
+ * src/bg/contact_law.c. */
+int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damper, double k,
+                                 double c, fb_err *err);
 
 /* Initial state (p for I, q for C) of a field, stacked; default zero. */
 int fb_bg_set_initial(fb_bg *bg, const char *name, size_t n, const double *x0, fb_err *err);

@@ -6,7 +6,10 @@
  * linearisation (fb_bd_aug_*), factorised with KLU. Outputs are sampled at a
  * fixed rate by CVODE's interpolating polynomial (CVodeGetDky), so sampling
  * never shortens the steps. The integrator stops exactly at breakpoints
- * (input kinks) and restarts there. */
+ * (input kinks) and restarts there. Switched laws (fb_law_ops) keep their
+ * modes between events; CVODE's root-finding locates where their guards
+ * cross zero, the laws choose their next modes there, and the integration
+ * restarts from that point when a mode changed. */
 #ifndef FLEXBOND_SIM_H
 #define FLEXBOND_SIM_H
 
@@ -52,6 +55,7 @@ typedef struct fb_sim_stats {
   long newton_iters;   /* nonlinear iterations */
   long newton_conv_fails;
   long err_test_fails;
+  long events; /* guard crossings that changed a mode (each a restart) */
   int last_order;
   double wall_seconds; /* wall time of fb_sim_run */
 } fb_sim_stats;

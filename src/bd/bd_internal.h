@@ -50,6 +50,8 @@ struct bd_block {
   fb_tfun *const *fns;   /* SOURCE: borrowed time functions */
   const fb_law_ops *law; /* LAW/ENERGY: nonlinear law */
   void *law_ctx;
+  int mode;   /* LAW: active branch of a switched law */
+  double *xu; /* LAW: the gathered inputs of a modulated law */
   size_t elem; /* origin element (FB_NONE for probes) */
   char *label; /* for DOT and messages */
 };
@@ -108,6 +110,11 @@ struct fb_bd {
   size_t *var_alias;  /* per bond variable: aliased variable or FB_NONE */
   size_t *elem_state; /* per element: state signal of I/C fields, else FB_NONE */
   size_t *elem_co;    /* per element: its co-variable signal (f of I, e of C) */
+  /* Switched laws: their blocks, and the first of their guards in the
+   * diagram's guard vector. */
+  size_t *switched, *guard_off;
+  size_t nswitched, nguards;
+  int piecewise_linear; /* linear within each mode of the switched laws */
   char errbuf[512];
 };
 
@@ -123,6 +130,11 @@ int fb_bd_schedule(fb_bd *bd, fb_err *err);
 int fb_bd_fold_constants(fb_bd *bd, fb_err *err);
 /* Finds the Newton subsystem and the pattern of its augmented matrix. */
 int fb_bd_prepare_newton(fb_bd *bd, fb_err *err);
+/* The inputs of law block b at the signals w, as its law sees them. */
+void fb_bd_law_input(bd_block *b, const double *w, fb_law_in *in);
+/* Finds the switched laws among the Newton blocks and lays out their
+ * guards. */
+int fb_bd_prepare_switching(fb_bd *bd, fb_err *err);
 /* Evaluates every block at (t, x); 0, >0 recoverable, <0 fatal. */
 int fb_bd_eval(fb_bd *bd, double t, const double *x);
 

@@ -311,42 +311,80 @@ static int product_jac(bd_block *b, const double *w, size_t *rows, size_t *cols,
 const bd_block_ops fb_bd_product_ops = {"product",   product_eval, product_jvp,
                                         product_nnz, product_jac,  0};
 
-/* ---- Nonlinear law: out = phi(in); work holds the n x n Jacobian. */
+/* ---- Nonlinear law: out = phi(in_0, in_1, ...): input 0 is the law's own
+ * input, the others its modulating values (fb_bg_modulate). A law sees
+ * them as one vector xu (gathered into xu unless there is one input);
+ * work holds its n x (n + m) Jacobian. */
+static size_t law_width(const bd_block *b)
+{
+  size_t w = 0;
+  for (size_t k = 0; k < b->nin; ++k)
+    w += b->idim[k];
+  return w;
+}
+
+void fb_bd_law_input(bd_block *b, const double *w, fb_law_in *in)
+{
+  in->n = b->odim;
+  in->m = law_width(b) - b->odim;
+  in->mode = b->mode;
+  if (b->nin == 1) {
+    in->x = w + b->ioff[0];
+    return;
+  }
+  for (size_t k = 0, c = 0; k < b->nin; c += b->idim[k++])
+    memcpy(b->xu + c, w + b->ioff[k], b->idim[k] * sizeof *b->xu);
+  in->x = b->xu;
+}
+
 static int law_eval(bd_block *b, double t, double *w)
 {
   (void)t;
-  return b->law->eval(b->law_ctx, b->odim, w + b->ioff[0], w + b->ooff);
+  fb_law_in in;
+  fb_bd_law_input(b, w, &in);
+  return b->law->eval(b->law_ctx, &in, w + b->ooff);
 }
+
+/* The law's Jacobian into b->work; columns a law leaves alone are 0. */
+static int law_jacobian(bd_block *b, const double *w)
+{
+  fb_law_in in;
+  fb_bd_law_input(b, w, &in);
+  memset(b->work, 0, in.n * (in.n + in.m) * sizeof *b->work);
+  return b->law->jacobian(b->law_ctx, &in, b->work);
+}
+
 static int law_jvp(bd_block *b, const double *w, double *dw)
 {
-  size_t n = b->odim;
-  int rc = b->law->jacobian(b->law_ctx, n, w + b->ioff[0], b->work);
+  const size_t n = b->odim;
+  int rc = law_jacobian(b, w);
   if (rc)
     return rc;
-  for (size_t i = 0; i < n; ++i) {
-    double s = 0.0;
-    for (size_t j = 0; j < n; ++j)
-      s += b->work[j * n + i] * dw[b->ioff[0] + j];
-    dw[b->ooff + i] = s;
-  }
+  for (size_t i = 0; i < n; ++i)
+    dw[b->ooff + i] = 0.0;
+  for (size_t k = 0, c = 0; k < b->nin; ++k)
+    for (size_t j = 0; j < b->idim[k]; ++j, ++c)
+      for (size_t i = 0; i < n; ++i)
+        dw[b->ooff + i] += b->work[c * n + i] * dw[b->ioff[k] + j];
   return 0;
 }
 static size_t law_nnz(const bd_block *b)
 {
-  return b->odim * (1 + b->odim);
+  return b->odim * (1 + law_width(b));
 }
 static int law_jac(bd_block *b, const double *w, size_t *rows, size_t *cols, double *v0,
                    double *v1)
 {
-  size_t n = b->odim;
-  int rc = b->law->jacobian(b->law_ctx, n, w + b->ioff[0], b->work);
+  const size_t n = b->odim;
+  int rc = law_jacobian(b, w);
   if (rc) /* keep the pattern complete even when the values failed */
-    memset(b->work, 0, n * n * sizeof *b->work);
+    memset(b->work, 0, n * law_width(b) * sizeof *b->work);
   trip t = {rows, cols, v0, v1, 0};
   put_identity(&t, b->ooff, n);
-  for (size_t j = 0; j < n; ++j)
-    for (size_t i = 0; i < n; ++i)
-      put(&t, b->ooff + i, b->ioff[0] + j, -b->work[j * n + i], 0.0);
+  for (size_t k = 0, c = 0; k < b->nin; ++k)
+    for (size_t j = 0; j < b->idim[k]; ++j, ++c)
+      for (size_t i = 0; i < n; ++i)
+        put(&t, b->ooff + i, b->ioff[k] + j, -b->work[c * n + i], 0.0);
   return rc;
 }
 const bd_block_ops fb_bd_law_ops = {"law", law_eval, law_jvp, law_nnz, law_jac, 0};

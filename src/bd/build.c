@@ -243,12 +243,20 @@ static int field_law(fb_bd *bd, size_t e, bd_input in, int inverse, const char *
                         "R '%s': a nonlinear law needs resistance causality (e = phi(f)), "
                         "but its bonds impose the effort",
                         el->name);
-    rc = new_block(bd, &fb_bd_law_ops, 1, el->dim, e, el->law_ops->name, outname, &blk, err);
+    /* Modulating inputs are connected once every state exists
+     * (connect_modulation). */
+    size_t m = 0;
+    for (size_t k = 0; k < el->nmod; ++k)
+      m += bd->bg->elems[el->mod_src[k]].dim;
+    rc = new_block(bd, &fb_bd_law_ops, 1 + el->nmod, el->dim, e, el->law_ops->name, outname,
+                   &blk, err);
     if (!rc) {
-      bd->blocks[blk].law = el->law_ops;
-      bd->blocks[blk].law_ctx = el->law_ctx;
-      bd->blocks[blk].work = malloc(el->dim * el->dim * sizeof(double));
-      if (!bd->blocks[blk].work)
+      bd_block *b = &bd->blocks[blk];
+      b->law = el->law_ops;
+      b->law_ctx = el->law_ctx;
+      b->work = malloc(el->dim * (el->dim + m) * sizeof(double));
+      b->xu = el->nmod ? malloc((el->dim + m) * sizeof(double)) : NULL;
+      if (!b->work || (el->nmod && !b->xu))
         rc = fb_err_set(err, FB_ENOMEM, "out of memory");
     }
   } else if (!inverse) {
@@ -741,8 +749,9 @@ static int check_dims(const fb_bd *bd, fb_err *err)
     if (b->ops == &fb_bd_gain_ops || b->ops == &fb_bd_solve_ops)
       need = fb_mat_ncols(b->mat);
     for (size_t k = 0; k < b->nin; ++k) {
+      /* A law's modulating inputs (k > 0) have their sources' sizes. */
       int any = b->ops == &fb_bd_mux_ops || b->ops == &fb_bd_select_ops ||
-                b->ops == &fb_bd_energy_ops;
+                b->ops == &fb_bd_energy_ops || (b->ops == &fb_bd_law_ops && k > 0);
       if (!any && b->idim[k] != need)
         return fb_err_set(err, FB_EMODEL,
                           "block '%s' (%s): input %zu has dimension %zu, "
@@ -797,6 +806,19 @@ static int alloc_vars(fb_bd *bd, fb_err *err)
   return FB_OK;
 }
 
+/* Inputs 1.. of a modulated law block are the states of its sources. */
+static void connect_modulation(fb_bd *bd)
+{
+  for (size_t i = 0; i < bd->nblocks; ++i) {
+    bd_block *b = &bd->blocks[i];
+    if (b->ops != &fb_bd_law_ops)
+      continue;
+    const fb_bg_elem *el = &bd->bg->elems[b->elem];
+    for (size_t k = 0; k < el->nmod; ++k)
+      b->in[1 + k] = (bd_input){bd->elem_state[el->mod_src[k]], 0};
+  }
+}
+
 static int build(fb_bd *bd, const fb_probe_spec *probes, size_t nprobes, fb_err *err)
 {
   int rc = fb_bg_assign_causality(bd->bg, err);
@@ -806,6 +828,8 @@ static int build(fb_bd *bd, const fb_probe_spec *probes, size_t nprobes, fb_err 
     rc = emit_element(bd, e, err);
   if (!rc)
     rc = resolve_inputs(bd, err);
+  if (!rc)
+    connect_modulation(bd);
   for (size_t i = 0; !rc && i < nprobes; ++i)
     rc = add_probe(bd, &probes[i], err);
   if (!rc)
@@ -826,6 +850,8 @@ static int build(fb_bd *bd, const fb_probe_spec *probes, size_t nprobes, fb_err 
     rc = fb_bd_fold_constants(bd, err);
   if (!rc)
     rc = fb_bd_prepare_newton(bd, err);
+  if (!rc)
+    rc = fb_bd_prepare_switching(bd, err);
   return rc;
 }
 
@@ -858,6 +884,7 @@ void fb_bd_free(fb_bd **bdp)
     free(b->ioff);
     free(b->idim);
     free(b->work);
+    free(b->xu);
     free(b->label);
     if (b->owns_mat)
       fb_mat_free(&b->mat);
@@ -896,6 +923,8 @@ void fb_bd_free(fb_bd **bdp)
   free(bd->var_alias);
   free(bd->elem_state);
   free(bd->elem_co);
+  free(bd->switched);
+  free(bd->guard_off);
   free(bd);
   *bdp = NULL;
 }

@@ -147,6 +147,9 @@ out:
 static int block_is_constant(const fb_bd *bd, size_t i, const unsigned char *cst)
 {
   const bd_block *b = &bd->blocks[i];
+  /* A switched law's output changes with its mode, not only its inputs. */
+  if (b->law && b->law->nguards)
+    return 0;
   if (b->ops == &fb_bd_source_ops) {
     for (size_t c = 0; c < b->odim; ++c)
       if (!fb_tfun_is_constant(b->fns[c]))

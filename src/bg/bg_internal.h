@@ -29,6 +29,8 @@ typedef struct fb_bg_elem {
   double modulus;   /* TF ratio, GY modulus */
   fb_tfun **values; /* sources: dim functions */
   double *x0;       /* storage fields: initial state, dim values */
+  size_t *mod_src;  /* modulated R: the storage elements whose states it reads */
+  size_t nmod;
 } fb_bg_elem;
 
 typedef struct fb_bg_bond {

@@ -67,6 +67,7 @@ static void elem_release(fb_bg_elem *el)
     free(el->values);
   }
   free(el->x0);
+  free(el->mod_src);
 }
 
 void fb_bg_free(fb_bg **bgp)
@@ -254,6 +255,8 @@ int fb_bg_add_field_law(fb_bg *bg, const char *name, fb_bg_kind kind, size_t npo
   if (!ops || !ops->eval || !ops->jacobian)
     rc = fb_err_set(err, FB_EINVAL, "'%s': a nonlinear law needs eval and jacobian functions",
                     name);
+  else if (ops->nguards && (!ops->guards || !ops->switch_mode))
+    rc = fb_err_set(err, FB_EINVAL, "'%s': a switched law needs guards and switch_mode", name);
   if (!rc)
     rc = add_field_shell(bg, name, kind, nports, port_dims, &el, err);
   if (rc) {
@@ -263,6 +266,42 @@ int fb_bg_add_field_law(fb_bg *bg, const char *name, fb_bg_kind kind, size_t npo
   }
   el->law_ops = ops;
   el->law_ctx = ctx;
+  return FB_OK;
+}
+
+int fb_bg_modulate(fb_bg *bg, const char *element, size_t nsources, const char *const *sources,
+                   fb_err *err)
+{
+  const long e = fb_bg_find_element(bg, element);
+  if (e < 0)
+    return fb_err_set(err, FB_EMODEL, "modulation: no element '%s'", element);
+  fb_bg_elem *el = &bg->elems[e];
+  if (el->kind != FB_BG_R || !el->law_ops)
+    return fb_err_set(err, FB_EMODEL,
+                      "modulation of '%s': only an R with a nonlinear law can be modulated",
+                      element);
+  if (el->nmod)
+    return fb_err_set(err, FB_EMODEL, "modulation of '%s': already modulated", element);
+  if (nsources == 0)
+    return fb_err_set(err, FB_EMODEL, "modulation of '%s': no source given", element);
+  size_t *src = malloc(nsources * sizeof *src);
+  if (!src)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; k < nsources; ++k) {
+    const long s = fb_bg_find_element(bg, sources[k]);
+    const int storage =
+        s >= 0 && (bg->elems[s].kind == FB_BG_I || bg->elems[s].kind == FB_BG_C);
+    if (!storage) {
+      free(src);
+      return fb_err_set(err, FB_EMODEL,
+                        s < 0 ? "modulation of '%s': no element '%s'"
+                              : "modulation of '%s': '%s' is not a storage element (I or C)",
+                        element, sources[k]);
+    }
+    src[k] = (size_t)s;
+  }
+  el->mod_src = src;
+  el->nmod = nsources;
   return FB_OK;
 }
 
@@ -670,6 +709,8 @@ int fb_bg_adopt(fb_bg *parent, fb_bg **childp, const char *instance_name, fb_err
     for (size_t k = 0; k < el->nports; ++k)
       if (el->bonds[k] != FB_NONE)
         el->bonds[k] += boff;
+    for (size_t k = 0; k < el->nmod; ++k)
+      el->mod_src[k] += eoff;
     parent->elems[parent->nelems++] = *el;
   }
   for (size_t i = 0; i < child->nbonds; ++i) {

@@ -416,18 +416,16 @@ int fb_table_law_read_csv(const char *path, const char *x_col, const char *y_col
 /* ---- As the law of an R element. */
 
 /* The fb_law_ops of fb_bg_add_r_table, whose element has one port of
- * dimension 1: n is always 1. */
-static int ops_eval(void *ctx, size_t n, const double *x, double *y)
+ * dimension 1 and no modulation: in->n is always 1 and in->m 0. */
+static int ops_eval(void *ctx, const fb_law_in *in, double *y)
 {
-  (void)n;
-  y[0] = fb_table_law_eval(ctx, x[0], NULL);
+  y[0] = fb_table_law_eval(ctx, in->x[0], NULL);
   return 0;
 }
 
-static int ops_jacobian(void *ctx, size_t n, const double *x, double *jac)
+static int ops_jacobian(void *ctx, const fb_law_in *in, double *jac)
 {
-  (void)n;
-  fb_table_law_eval(ctx, x[0], &jac[0]);
+  fb_table_law_eval(ctx, in->x[0], &jac[0]);
   return 0;
 }
 
@@ -443,7 +441,11 @@ static void ops_free(void *ctx)
   fb_table_law_free(&law);
 }
 
-static const fb_law_ops table_law_ops = {"table", ops_eval, ops_jacobian, ops_energy, ops_free};
+static const fb_law_ops table_law_ops = {.name = "table",
+                                         .eval = ops_eval,
+                                         .jacobian = ops_jacobian,
+                                         .energy = ops_energy,
+                                         .free = ops_free};
 
 int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err)
 {

@@ -58,7 +58,7 @@ typedef struct sim_run {
   fb_auglin *lin;
   double *v0, *v1; /* augmented values P0, P1 per triplet */
   int have_values; /* v0, v1 hold a valid evaluation */
-  int linear;      /* fb_bd_is_linear: v0, v1 never change */
+  int linear;      /* v0, v1 change only at events (fb_bd_is_piecewise_linear) */
   int jac_failed;  /* the last linearisation of the model failed */
   double gamma;    /* gamma of the matrix CVODE asked for last */
   double t_limit;  /* end of the current segment (breakpoint or t_end) */
@@ -72,6 +72,8 @@ typedef struct sim_run {
   long steps_before; /* steps of the segments before the current one */
   char cvode_msg[1024];
   fb_err lin_err;
+  int *crossed; /* per guard: CVODE's root directions at an event */
+  fb_sim_stats *stats;
 } sim_run;
 
 /* ---- Model callbacks. */
@@ -94,6 +96,13 @@ static int cv_rhs(double t, N_Vector y, N_Vector ydot, void *user_data)
   const int rc =
       fb_bd_rhs(run->bd, model_time(run, t), N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
   return rc == 0 ? 0 : (rc > 0 ? 1 : -1);
+}
+
+/* CVRootFn: the switched laws' guards. A failure is fatal for CVODE. */
+static int cv_roots(double t, N_Vector y, double *g, void *user_data)
+{
+  sim_run *run = user_data;
+  return fb_bd_guards(run->bd, model_time(run, t), N_VGetArrayPointer(y), g) == 0 ? 0 : -1;
 }
 
 /* CVLsLinSysFn: "forms" P(gamma) by refreshing the augmented values when
@@ -320,6 +329,14 @@ static int make_cvode(sim_run *run, fb_err *err)
   if (rc == FB_OK && run->linear)
     rc =
         cv_call(run, "CVodeSetLSetupFrequency", CVodeSetLSetupFrequency(run->cvode, 1000), err);
+  const size_t nguards = fb_bd_nguards(run->bd);
+  if (rc == FB_OK && nguards)
+    rc = cv_call(run, "CVodeRootInit", CVodeRootInit(run->cvode, (int)nguards, cv_roots), err);
+  /* A guard that is exactly zero where a segment starts is watched again
+   * once it moves away; that is expected, not worth a warning. */
+  if (rc == FB_OK && nguards)
+    rc =
+        cv_call(run, "CVodeSetNoInactiveRootWarn", CVodeSetNoInactiveRootWarn(run->cvode), err);
   return rc;
 }
 
@@ -341,6 +358,7 @@ static void run_free(sim_run *run)
   free(run->v0);
   free(run->v1);
   free(run->bps);
+  free(run->crossed);
 }
 
 /* ---- Breakpoints. */
@@ -484,6 +502,37 @@ static void add_segment_stats(sim_run *run, fb_sim_stats *s)
   CVodeGetLastOrder(run->cvode, &s->last_order);
 }
 
+/* CVODE stopped at a zero crossing of guards (CV_ROOT_RETURN), with
+ * run->y the state there: the laws choose their next modes, and if one
+ * changed the integration restarts from this point, because the right-
+ * hand side is not smooth across it. The samples up to the event were
+ * written with the modes before it. */
+static int handle_event(sim_run *run, double t_stop, fb_err *err)
+{
+  int flag = CVodeGetRootInfo(run->cvode, run->crossed);
+  if (flag < 0)
+    return setup_failure(run, "CVodeGetRootInfo", flag, err);
+  int changed = 0;
+  if (fb_bd_switch_modes(run->bd, model_time(run, run->t_now), N_VGetArrayPointer(run->y),
+                         run->crossed, &changed) != 0)
+    return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: switching modes failed: %s", run->t_now,
+                      fb_bd_last_error(run->bd));
+  if (!changed)
+    return FB_OK;
+  run->stats->events++;
+  run->have_values = 0; /* the linearisation belongs to the old modes */
+  /* Within roundoff of the segment's end CVODE cannot restart (the
+   * interval is too short); what is left of the segment is that roundoff,
+   * and the next segment starts afresh. */
+  if (t_stop - run->t_now <= same_time_tol(t_stop, run->t_now))
+    return FB_OK;
+  add_segment_stats(run, run->stats);
+  int rc = cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, run->t_now, run->y), err);
+  if (rc == FB_OK)
+    rc = cv_call(run, "CVodeSetStopTime", CVodeSetStopTime(run->cvode, t_stop), err);
+  return rc;
+}
+
 /* Integrates from the current time to t_stop, one internal step at a
  * time, sampling after each step. */
 static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
@@ -510,6 +559,8 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
       rc = check_finite_state(run, run->t_now, err);
     if (rc == FB_OK)
       rc = emit_samples(run, run->t_now, err);
+    if (rc == FB_OK && flag == CV_ROOT_RETURN)
+      rc = handle_event(run, t_stop, err);
     if (rc != FB_OK)
       return rc;
     if (run->opts->progress)
@@ -562,8 +613,19 @@ static int run_dynamic(sim_run *run, fb_err *err)
   run->ysam = N_VNew_Serial((sunindextype)run->n, run->sunctx);
   if (!run->y || !run->ysam)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the state vectors");
-  run->linear = fb_bd_is_linear(run->bd);
+  /* A diagram linear within each mode has a constant Newton matrix
+   * between events; the values are refreshed after each event. */
+  run->linear = fb_bd_is_linear(run->bd) || fb_bd_is_piecewise_linear(run->bd);
+  run->stats = &run->res->stats;
+  run->crossed = calloc(fb_bd_nguards(run->bd) + 1, sizeof *run->crossed);
+  if (!run->crossed)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the guards");
   int rc = initial_state(run, err);
+  int changed = 0;
+  if (rc == FB_OK &&
+      fb_bd_init_modes(run->bd, run->opts->t_start, N_VGetArrayPointer(run->y), &changed) != 0)
+    rc = fb_err_set(err, FB_ESOLVER, "at t = %.6g s: choosing the initial modes failed: %s",
+                    run->opts->t_start, fb_bd_last_error(run->bd));
   if (rc == FB_OK)
     rc = collect_breakpoints(run, err);
   if (rc == FB_OK)
@@ -571,7 +633,7 @@ static int run_dynamic(sim_run *run, fb_err *err)
   if (rc == FB_OK)
     rc = make_cvode(run, err);
   if (rc == FB_OK)
-    rc = integrate(run, &run->res->stats, err);
+    rc = integrate(run, run->stats, err);
   if (rc == FB_OK)
     run->res->stats.factorizations = fb_auglin_nfactorizations(run->lin);
   return rc;

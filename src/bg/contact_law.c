@@ -1,0 +1,150 @@
+/* Unilateral compliant contact as two switched laws (see
+ * fb_bg_add_unilateral_contact in flexbond/bg.h). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "flexbond/bg.h"
+
+typedef struct contact_params {
+  double k; /* N/m (or the domain's effort per displacement) */
+  double c; /* N s/m */
+} contact_params;
+
+enum { CONTACT = 0, RELEASED = 1 };
+enum { SPRING_SEPARATED = 1, DAMPER_SEPARATED = 2 };
+
+/* The sign a guard has after an event: the direction it crossed in, or
+ * its value's sign (zero counts as positive) when it did not cross. */
+static int guard_sign(const int *crossed, size_t i, double g)
+{
+  if (crossed && crossed[i])
+    return crossed[i];
+  return g >= 0.0 ? 1 : -1;
+}
+
+/* ---- Spring: xu = [q]. */
+
+static int spring_eval(void *ctx, const fb_law_in *in, double *y)
+{
+  const contact_params *p = ctx;
+  y[0] = in->mode == CONTACT ? p->k * in->x[0] : 0.0;
+  return 0;
+}
+
+static int spring_jacobian(void *ctx, const fb_law_in *in, double *jac)
+{
+  const contact_params *p = ctx;
+  jac[0] = in->mode == CONTACT ? p->k : 0.0;
+  return 0;
+}
+
+static double spring_energy(void *ctx, size_t n, const double *x)
+{
+  const contact_params *p = ctx;
+  (void)n;
+  const double q = fmax(x[0], 0.0);
+  return 0.5 * p->k * q * q;
+}
+
+static int spring_guards(void *ctx, const fb_law_in *in, double *g)
+{
+  (void)ctx;
+  g[0] = in->x[0];
+  return 0;
+}
+
+static int spring_switch(void *ctx, const fb_law_in *in, const int *crossed, int *mode)
+{
+  (void)ctx;
+  *mode = guard_sign(crossed, 0, in->x[0]) > 0 ? CONTACT : SPRING_SEPARATED;
+  return 0;
+}
+
+static const fb_law_ops spring_ops = {.name = "unilateral spring",
+                                      .eval = spring_eval,
+                                      .jacobian = spring_jacobian,
+                                      .energy = spring_energy,
+                                      .free = free,
+                                      .nguards = 1,
+                                      .guards = spring_guards,
+                                      .switch_mode = spring_switch,
+                                      .affine = 1};
+
+/* ---- Damper: xu = [f, q] (own flow, then the spring's compression). */
+
+static int damper_eval(void *ctx, const fb_law_in *in, double *y)
+{
+  const contact_params *p = ctx;
+  const double f = in->x[0], q = in->x[1];
+  y[0] = in->mode == CONTACT ? p->c * f : in->mode == RELEASED ? -(p->k * q) : 0.0;
+  return 0;
+}
+
+static int damper_jacobian(void *ctx, const fb_law_in *in, double *jac)
+{
+  const contact_params *p = ctx;
+  jac[0] = in->mode == CONTACT ? p->c : 0.0;   /* de/df */
+  jac[1] = in->mode == RELEASED ? -p->k : 0.0; /* de/dq */
+  return 0;
+}
+
+/* Guard 1, the force the pair would give without the clamp, means nothing
+ * once separated: a constant there. */
+static int damper_guards(void *ctx, const fb_law_in *in, double *g)
+{
+  const contact_params *p = ctx;
+  const double f = in->x[0], q = in->x[1];
+  g[0] = q;
+  g[1] = in->mode == DAMPER_SEPARATED ? 1.0 : p->k * q + p->c * f;
+  return 0;
+}
+
+static int damper_switch(void *ctx, const fb_law_in *in, const int *crossed, int *mode)
+{
+  const contact_params *p = ctx;
+  const double f = in->x[0], q = in->x[1];
+  if (guard_sign(crossed, 0, q) < 0)
+    *mode = DAMPER_SEPARATED;
+  else
+    *mode =
+        guard_sign(in->mode == DAMPER_SEPARATED ? NULL : crossed, 1, p->k * q + p->c * f) > 0
+            ? CONTACT
+            : RELEASED;
+  return 0;
+}
+
+static const fb_law_ops damper_ops = {.name = "unilateral damper",
+                                      .eval = damper_eval,
+                                      .jacobian = damper_jacobian,
+                                      .free = free,
+                                      .nguards = 2,
+                                      .guards = damper_guards,
+                                      .switch_mode = damper_switch,
+                                      .affine = 1};
+
+static int add_law(fb_bg *bg, const char *name, fb_bg_kind kind, const fb_law_ops *ops,
+                   double k, double c, fb_err *err)
+{
+  static const size_t one_port[1] = {1};
+  contact_params *p = malloc(sizeof *p);
+  if (!p)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  *p = (contact_params){k, c};
+  return fb_bg_add_field_law(bg, name, kind, 1, one_port, ops, p, err);
+}
+
+int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damper, double k,
+                                 double c, fb_err *err)
+{
+  if (!(isfinite(k) && k > 0.0) || !(isfinite(c) && c >= 0.0))
+    return fb_err_set(err, FB_EINVAL,
+                      "unilateral contact '%s'/'%s': needs a finite stiffness > 0 and damping "
+                      ">= 0 (got k = %g, c = %g)",
+                      spring, damper, k, c);
+  int rc = add_law(bg, spring, FB_BG_C, &spring_ops, k, c, err);
+  if (!rc)
+    rc = add_law(bg, damper, FB_BG_R, &damper_ops, k, c, err);
+  if (!rc)
+    rc = fb_bg_modulate(bg, damper, 1, &spring, err);
+  return rc;
+}
