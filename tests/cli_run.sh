@@ -57,7 +57,7 @@ want(s1["solver"]["steps"] > 0, "solver steps > 0")
 # LF minimum over the run is at most the CSV's (which is the same force).
 tc = s1["tire_contact"]
 want(list(tc["min_force"]) == ["LF", "RF", "LM", "RM", "LR", "RR"], "tire_contact tires")
-want(tc["tensile_intervals"] == [], "no tensile interval on the paper's crossing")
+want(tc["contact_loss_intervals"] == [], "no tensile interval on the paper's crossing")
 want("tire_contact" in d["definitions"], "definition of tire_contact")
 # Data sheet: the LF wheel meets the bump at 5 s; the RR wheel, 2.9 m
 # behind and 2.1 m to the right at 45 degrees, leaves it after a further
@@ -462,6 +462,36 @@ expect_status 0 "run --no-figures"
 checks=$((checks + 1))
 [ "$(cd "$WORK/nofig" && ls | tr '\n' ' ')" = "report.md summary.json system1.csv " ] ||
   fail "run --no-figures writes only system1.csv, summary.json and report.md: $(ls "$WORK/nofig")"
+
+# Unilateral tires (examples/apc6x6_liftoff.yaml): wheels leave the road,
+# every reaction stays >= 0, the report says so, and the summary counts the
+# contact changes; the bilateral run of the same crossing goes tensile.
+run run "$REPO_ROOT/examples/apc6x6_liftoff.yaml" -o "$WORK/liftoff" --no-figures -q \
+  --system rigid
+expect_status 0 "run with unilateral tires"
+expect_in "$WORK/liftoff/report.md" "the tires are unilateral" "report.md unilateral tires"
+expect_in "$WORK/liftoff/report.md" \
+  "System 1 (rigid hull): 5 intervals where a tire carries no load" "report.md lift-off verdict"
+checks=$((checks + 1))
+python3 - "$WORK/liftoff" <<'EOF' || fail "summary.json with unilateral tires"
+import csv, json, sys
+d = json.load(open(sys.argv[1] + "/summary.json"))["system1"]
+tc = d["tire_contact"]
+assert tc["model"] == "unilateral", tc["model"]
+assert len(tc["contact_loss_intervals"]) == 5, tc["contact_loss_intervals"]
+assert all(i["min_force"] == 0 for i in tc["contact_loss_intervals"])
+assert all(v["value"] >= 0 for v in tc["min_force"].values())
+assert d["solver"]["events"] >= 10, d["solver"]["events"]
+rows = list(csv.DictReader(open(sys.argv[1] + "/system1.csv")))
+assert min(float(r["tire_force_LF"]) for r in rows) == 0.0
+EOF
+sed 's/  tire_contact: unilateral .*$/  tire_contact: bilateral/' \
+  "$REPO_ROOT/examples/apc6x6_liftoff.yaml" >"$WORK/liftoff_bilateral.yaml"
+run run "$WORK/liftoff_bilateral.yaml" -o "$WORK/liftoff_bilateral" --no-figures -q --system rigid
+expect_status 0 "run with bilateral tires"
+expect_in "$WORK/liftoff_bilateral/report.md" \
+  "System 1 (rigid hull): 5 intervals where a tire's normal reaction is tensile" \
+  "report.md tensile verdict"
 
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

@@ -20,7 +20,7 @@ APC=$REPO_ROOT/examples/apc6x6.yaml
 OUTPUTS="tire_force_LF spring_defl_RF torsion driver_acc shock_power_LM tire_defl_RM tire_power_LR"
 METRICS=""
 for o in $OUTPUTS; do METRICS="$METRICS,${o}_peak,${o}_min,${o}_rms"; done
-METRICS="$METRICS,min_tire_force,tensile_intervals,ride_a_w_rms,ride_mtvv,ride_vdv"
+METRICS="$METRICS,min_tire_force,contact_loss_intervals,ride_a_w_rms,ride_mtvv,ride_vdv"
 METRICS="$METRICS,ride_crest_factor,ride_jerk_peak,ride_jerk_rms,solver_steps,solver_wall_time"
 
 # check_python DESCRIPTION ARGS... < SCRIPT: the script exits 0.
@@ -77,12 +77,12 @@ for name, o in s1["outputs"].items():
             problems.append("%s_%s: sweep %s, run %r" % (name, stat, row[name + "_" + stat], o[stat]))
 if int(row["solver_steps"]) != s1["solver"]["steps"]:
     problems.append("steps %s vs %s" % (row["solver_steps"], s1["solver"]["steps"]))
-# The tensile intervals of the whole run that end after the first bump
+# The contact-loss intervals of the whole run that end after the first bump
 # entry; the smallest reaction over that span is at most the LF one.
 t0 = s1["bump_window"][0]
-want = sum(1 for t in s1["tire_contact"]["tensile_intervals"] if t["to"] >= t0)
-if int(row["tensile_intervals"]) != want:
-    problems.append("tensile intervals %s vs %d" % (row["tensile_intervals"], want))
+want = sum(1 for t in s1["tire_contact"]["contact_loss_intervals"] if t["to"] >= t0)
+if int(row["contact_loss_intervals"]) != want:
+    problems.append("contact-loss intervals %s vs %d" % (row["contact_loss_intervals"], want))
 for name in ["a_w_rms", "mtvv", "vdv", "crest_factor", "jerk_peak", "jerk_rms"]:
     if float(row["ride_" + name]) != s1["ride"][name]:
         problems.append("ride %s: sweep %s, run %r" % (name, row["ride_" + name], s1["ride"][name]))

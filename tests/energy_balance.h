@@ -184,4 +184,14 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
   return rc;
 }
 
+/* energy_balance of System 1 (the rigid hull) of s at rtol. */
+static inline int energy_balance_rigid(const fb_scenario *s, double rtol, energy_report *rep,
+                                       fb_err *err)
+{
+  fb_hull *hull = NULL;
+  *rep = (energy_report){0};
+  int rc = fb_vehicle_rigid_hull(s, &hull, err);
+  return rc ? rc : energy_balance(s, &hull, rtol, rep, err);
+}
+
 #endif

@@ -1,7 +1,11 @@
-/* Tire contact verdict (fb_vehicle_tension_intervals, src/vehicle/contact.c)
- * on System 1: the paper's crossing keeps every tire in compression; a
- * 0.20 m bump at 30 km/h makes five tires pull their wheels down, and the
- * intervals must agree with a brute-force scan of the samples. */
+/* Tire contact on System 1: the verdict (fb_vehicle_contact_loss,
+ * src/vehicle/contact.c) and unilateral tires (wheel.tire_contact). The
+ * paper's crossing keeps every tire in compression; a 0.20 m bump at
+ * 30 km/h makes five linear tires pull their wheels down, and the
+ * intervals must agree with a brute-force scan of the samples. With
+ * unilateral tires the same crossing lifts the wheels off instead: no
+ * reaction is ever tensile, the run equals the linear one until the first
+ * release, and the energy balance closes across every contact change. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,7 +14,9 @@
 #include "flexbond/model.h"
 #include "flexbond/vehicle.h"
 
+#include "bgtest_util.h"
 #include "check.h"
+#include "energy_balance.h"
 #include "vehicle_util.h"
 
 static long column(const fb_result *r, const char *prefix, int corner)
@@ -20,9 +26,11 @@ static long column(const fb_result *r, const char *prefix, int corner)
   return fb_result_find(r, name);
 }
 
-/* Every sample with a negative reaction lies in an interval of its tire,
- * every interval holds one at least, and its minimum is the samples'. */
-static void check_against_scan(const fb_result *r, const fb_tension_interval *iv, size_t n)
+/* Every sample with a reaction <= 0 (after t = 0) lies in an interval of
+ * its tire, every interval holds one at least, and its minimum is the
+ * samples'. A tensile minimum lies strictly inside its interval; a zero
+ * one (unilateral tires) may be its first sample. */
+static void check_against_scan(const fb_result *r, const fb_contact_loss *iv, size_t n)
 {
   for (int c = 0; c < FB_NCORNERS; ++c) {
     const long col = column(r, "contact_force_", c);
@@ -32,7 +40,7 @@ static void check_against_scan(const fb_result *r, const fb_tension_interval *iv
     size_t negative = 0, covered = 0;
     for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
       const double *row = fb_result_row(r, k);
-      if (!(row[col] < 0.0))
+      if (!(row[col] <= 0.0) || row[0] == 0.0)
         continue;
       ++negative;
       for (size_t i = 0; i < n; ++i)
@@ -46,8 +54,11 @@ static void check_against_scan(const fb_result *r, const fb_tension_interval *iv
     for (size_t i = 0; i < n; ++i) {
       if (iv[i].corner != c)
         continue;
-      CHECK(iv[i].t_start < iv[i].t_min && iv[i].t_min < iv[i].t_end);
-      CHECK(iv[i].min_force < 0.0);
+      if (iv[i].min_force < 0.0)
+        CHECK(iv[i].t_start < iv[i].t_min && iv[i].t_min < iv[i].t_end);
+      else
+        CHECK(iv[i].min_force == 0.0 && iv[i].t_start <= iv[i].t_min &&
+              iv[i].t_min < iv[i].t_end);
       /* The minimum is a sample's value at its time. */
       const size_t k = (size_t)llround(iv[i].t_min * 1000.0);
       CHECK(fb_result_row(r, k)[col] == iv[i].min_force);
@@ -66,27 +77,39 @@ static void test_paper_crossing(const fb_scenario *s)
   for (size_t k = 0; lf > 0 && fig8 > 0 && k < fb_result_nsamples(r); k += 97)
     CHECK(fb_result_row(r, k)[lf] == fb_result_row(r, k)[fig8]);
   fb_err err;
-  fb_tension_interval *iv = NULL;
+  fb_contact_loss *iv = NULL;
   size_t n = 99;
-  CHECK(fb_vehicle_tension_intervals(r, &iv, &n, &err) == FB_OK);
+  CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_OK);
   CHECK(n == 0 && iv == NULL);
   check_against_scan(r, iv, n);
   free(iv);
   fb_result_free(&r);
 }
 
-static void test_lift_off(fb_scenario *s)
+/* The 0.20 m bump at 30 km/h. */
+static void high_bump(fb_scenario *s)
 {
   s->bump_height = 0.20;
   s->speed = 30.0 / 3.6;
+}
+
+static void set_tire_contact(fb_scenario *s, fb_tire_contact contact)
+{
+  for (int c = 0; c < FB_NCORNERS; ++c)
+    s->corner[c].tire_contact = contact;
+}
+
+static void test_lift_off(fb_scenario *s)
+{
+  high_bump(s);
   fb_result *r = simulate_rigid(s);
   if (!r)
     return;
   fb_err err;
-  fb_tension_interval *iv = NULL;
+  fb_contact_loss *iv = NULL;
   size_t n = 0;
-  CHECK(fb_vehicle_tension_intervals(r, &iv, &n, &err) == FB_OK);
-  fprintf(stderr, "0.20 m bump at 30 km/h: %zu tensile intervals\n", n);
+  CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_OK);
+  fprintf(stderr, "0.20 m bump at 30 km/h, linear tires: %zu tensile intervals\n", n);
   for (size_t i = 0; i < n; ++i)
     fprintf(stderr, "  %s %.4f .. %.4f s, down to %.1f N at %.3f s\n",
             fb_corner_name(iv[i].corner), iv[i].t_start, iv[i].t_end, iv[i].min_force,
@@ -95,6 +118,86 @@ static void test_lift_off(fb_scenario *s)
   check_against_scan(r, iv, n);
   free(iv);
   fb_result_free(&r);
+}
+
+/* The first time any reaction of r is <= 0 after t = 0 (t_end if none). */
+static double first_loss(const fb_result *r)
+{
+  for (size_t k = 1; k < fb_result_nsamples(r); ++k)
+    for (int c = 0; c < FB_NCORNERS; ++c)
+      if (fb_result_row(r, k)[column(r, "contact_force_", c)] <= 0.0)
+        return fb_result_row(r, k)[0];
+  return fb_result_row(r, fb_result_nsamples(r) - 1)[0];
+}
+
+static void test_unilateral(fb_scenario *s)
+{
+  high_bump(s);
+  set_tire_contact(s, FB_TIRE_BILATERAL);
+  fb_result *linear = simulate_rigid(s);
+  set_tire_contact(s, FB_TIRE_UNILATERAL);
+  fb_result *r = simulate_rigid(s);
+  if (!r || !linear) {
+    fb_result_free(&r);
+    fb_result_free(&linear);
+    return;
+  }
+  /* Never tensile, at any sample of any tire. */
+  double lowest = INFINITY;
+  for (size_t k = 0; k < fb_result_nsamples(r); ++k)
+    for (int c = 0; c < FB_NCORNERS; ++c)
+      lowest = fmin(lowest, fb_result_row(r, k)[column(r, "contact_force_", c)]);
+  CHECK(lowest == 0.0);
+  fb_err err;
+  fb_contact_loss *iv = NULL;
+  size_t n = 0;
+  CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_OK);
+  fprintf(stderr,
+          "0.20 m bump at 30 km/h, unilateral tires: %zu intervals off the road, "
+          "%ld contact changes\n",
+          n, fb_result_stats(r)->events);
+  for (size_t i = 0; i < n; ++i)
+    fprintf(stderr, "  %s %.4f .. %.4f s\n", fb_corner_name(iv[i].corner), iv[i].t_start,
+            iv[i].t_end);
+  CHECK(n >= 4);
+  /* Each interval is a release, a separation and a landing. */
+  CHECK(fb_result_stats(r)->events >= 2 * (long)n);
+  check_against_scan(r, iv, n);
+  /* Until the first release both tires are the same equations, stepped
+   * the same way (root-finding only watches): equal to rounding. */
+  const double t_release = first_loss(r);
+  CHECK(t_release > fb_scenario_bump_entry(s, FB_LF) &&
+        t_release < fb_scenario_bump_exit(s, FB_RR));
+  double worst = 0.0;
+  for (size_t k = 0; k < fb_result_nsamples(r) && fb_result_row(r, k)[0] < t_release; ++k)
+    for (size_t j = 1; j < fb_result_ncols(r); ++j)
+      worst = fmax(worst, fabs(fb_result_row(r, k)[j] - fb_result_row(linear, k)[j]) /
+                              (1.0 + fabs(fb_result_row(linear, k)[j])));
+  CHECK(worst <= 1e-9);
+  /* The first release is where the linear reaction crosses zero: the
+   * same first sample at or below zero. */
+  CHECK(first_loss(linear) == t_release);
+  free(iv);
+  fb_result_free(&r);
+  fb_result_free(&linear);
+}
+
+/* Work in = dissipated + stored change through every contact change, at
+ * rtol 1e-9 (the tolerance argument of test_system1.c's balance: 100
+ * rtol of the work scale, 6e-3 J here). The released damper's power
+ * -k q f and the spring's energy k max(q, 0)^2 / 2 must both be right:
+ * with k q^2 / 2 a lifted wheel's gap would count as stored energy
+ * (RM's 7 mm: 12 J). */
+static void test_unilateral_energy(fb_scenario *s)
+{
+  high_bump(s);
+  set_tire_contact(s, FB_TIRE_UNILATERAL);
+  fb_err err;
+  fb_err_clear(&err);
+  energy_report rep;
+  MUST(energy_balance_rigid(s, 1e-9, &rep, &err), &err);
+  CHECK(rep.work_scale > 100.0);
+  CHECK(rep.worst <= 1e-7 * rep.work_scale);
 }
 
 /* A result without the reactions (a model's own probes) is refused. */
@@ -128,9 +231,9 @@ static void test_missing_columns(void)
   if (bd)
     CHECK(fb_sim_run(bd, fb_model_sim_opts(m), &r, &err) == FB_OK);
   if (r) {
-    fb_tension_interval *iv = NULL;
+    fb_contact_loss *iv = NULL;
     size_t n = 0;
-    CHECK(fb_vehicle_tension_intervals(r, &iv, &n, &err) == FB_EINVAL);
+    CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_EINVAL);
     CHECK(strstr(err.msg, "contact_force_LF") != NULL);
     CHECK(iv == NULL && n == 0);
   }
@@ -147,6 +250,8 @@ int main(void)
   if (s) {
     test_paper_crossing(s);
     test_lift_off(s);
+    test_unilateral(s);
+    test_unilateral_energy(s);
   }
   test_missing_columns();
   fb_scenario_free(&s);

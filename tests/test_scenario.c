@@ -100,6 +100,7 @@ static void check_corners(const fb_scenario *s)
     CHECK(c->x == x[k] && c->y == y[k]);
     CHECK(c->motion_ratio == 1);
     CHECK(c->wheel_mass == 175 && c->tire_k == 500000 && c->tire_c == 140000);
+    CHECK(c->tire_contact == FB_TIRE_BILATERAL); /* the paper's linear tire by default */
   }
   CHECK(fb_corner_name(-1) == NULL && fb_corner_name(FB_NCORNERS) == NULL);
 }
@@ -197,7 +198,8 @@ static int corners_equal(const fb_corner_params *a, const fb_corner_params *b)
 {
   return a->spring_k == b->spring_k && a->damper_c == b->damper_c &&
          a->motion_ratio == b->motion_ratio && a->x == b->x && a->y == b->y &&
-         a->wheel_mass == b->wheel_mass && a->tire_k == b->tire_k && a->tire_c == b->tire_c;
+         a->wheel_mass == b->wheel_mass && a->tire_k == b->tire_k && a->tire_c == b->tire_c &&
+         a->tire_contact == b->tire_contact;
 }
 
 static int mounts_equal(const fb_mount *a, const fb_mount *b)
@@ -455,6 +457,11 @@ static const bad_case bad_cases[] = {
     /* A shared value: reported where the file gives it. */
     {"wheel: {mass: 175", "wheel: {mass: -175", NULL, NULL, FB_EINVAL,
      "bad.yaml:15:15:", "wheel.mass: must be > 0 kg (got -175)", NULL},
+    {"tire_c: 140000}", "tire_c: 140000, tire_contact: unilaterl}", NULL, NULL, FB_EPARSE,
+     "bad.yaml:15:", "unknown value 'unilaterl' (did you mean 'unilateral'?)",
+     "bilateral | unilateral"},
+    {"tire_c: 140000}", "tire_c: 140000, tire_contact: [1]}", NULL, NULL, FB_EPARSE,
+     "bad.yaml:15:", "tire_contact", NULL},
     {"motion_ratio: 1", "motion_ratio: 0", NULL, NULL, FB_EINVAL,
      "bad.yaml:17:17:", "suspensions.motion_ratio: must be > 0 (got 0)", NULL},
     /* A corner's override: reported there. */
@@ -649,8 +656,11 @@ static void test_good_variants(void)
                 : NULL;
   char *t7 = t6 ? replace_once(t6, "payload: weight-only", "payload: lumped") : NULL;
   char *t8 = t7 ? replace_once(t7, "initial: zero}", "initial: static, max_step: 0.01}") : NULL;
-  CHECK(t8 != NULL);
-  fb_scenario *s = t8 ? load_text(t8, NULL) : NULL;
+  char *t9 =
+      t8 ? replace_once(t8, "tire_c: 140000}", "tire_c: 140000, tire_contact: unilateral}")
+         : NULL;
+  CHECK(t9 != NULL);
+  fb_scenario *s = t9 ? load_text(t9, NULL) : NULL;
   if (s) {
     CHECK(s->path == NULL && !strcmp(s->name, "good"));
     CHECK_NEAR(s->speed, 5, TIGHT);                       /* 18 km/h */
@@ -664,6 +674,8 @@ static void test_good_variants(void)
           s->load_y[1] == -0.5);
     CHECK(s->payload == FB_PAYLOAD_LUMPED && s->initial == FB_INITIAL_STATIC);
     CHECK(s->max_step == 0.01);
+    for (int c = 0; c < FB_NCORNERS; ++c)
+      CHECK(s->corner[c].tire_contact == FB_TIRE_UNILATERAL);
     /* RR by hand at 5 m/s, tan 30 deg = 1/sqrt(3): 5 + (2.9 + 2.1/sqrt 3)/5. */
     CHECK_NEAR(fb_scenario_bump_entry(s, FB_RR), 5 + (2.9 + 2.1 / sqrt(3.0)) / 5, TIGHT);
   }
@@ -676,6 +688,7 @@ static void test_good_variants(void)
   free(t6);
   free(t7);
   free(t8);
+  free(t9);
 }
 
 /* ---- API misuse and files. */

@@ -584,12 +584,8 @@ static void test_energy_balance(const fb_scenario *s)
 {
   fb_err err;
   fb_err_clear(&err);
-  fb_hull *hull = NULL;
   energy_report rep;
-  MUST(fb_vehicle_rigid_hull(s, &hull, &err), &err);
-  if (!hull)
-    return;
-  MUST(energy_balance(s, &hull, 1e-9, &rep, &err), &err);
+  MUST(energy_balance_rigid(s, 1e-9, &rep, &err), &err);
   /* Resistors: 6 shocks, 6 tire dampers, 2 mount dampers. Storage:
    * 6 springs, 6 tires, 2 mounts (C); hull, 6 wheels, driver, engine
    * (I), unless the hull's field is split. */

@@ -63,6 +63,14 @@ typedef struct fb_mount {
 /* Most points of a shock absorber's force-velocity table. */
 enum { FB_DAMPER_MAX_POINTS = 64 };
 
+/* How a tire meets the road. */
+typedef enum fb_tire_contact {
+  FB_TIRE_BILATERAL, /* the paper's linear tire: spring and damper always
+                        attached, so the reaction may become tensile */
+  FB_TIRE_UNILATERAL /* no tension: the wheel may leave the road
+                        (fb_bg_add_unilateral_contact) */
+} fb_tire_contact;
+
 typedef struct fb_corner_params {
   double spring_k; /* N/m */
   double damper_c; /* N s/m, the linear shock absorber (damper_npoints 0) */
@@ -76,6 +84,7 @@ typedef struct fb_corner_params {
   double wheel_mass;   /* kg */
   double tire_k;       /* N/m */
   double tire_c;       /* N s/m */
+  fb_tire_contact tire_contact;
 } fb_corner_params;
 
 /* Most bulkheads a hull may have. */
@@ -344,21 +353,23 @@ int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb
 int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
                                  void *ctx, fb_result **out, fb_err *err);
 
-/* A time interval in which a tire's normal reaction is tensile: the
- * linear tire pulls the wheel down, where a real tire would leave the
- * road. */
-typedef struct fb_tension_interval {
+/* A time interval in which a tire carries no load: its normal reaction
+ * is not compressive. With the paper's linear (bilateral) tire that means
+ * tensile: the tire pulls the wheel down, where a real tire would leave
+ * the road. With unilateral contact (wheel.tire_contact) the reaction is
+ * exactly zero instead: the wheel is off the road, or leaving it. */
+typedef struct fb_contact_loss {
   int corner;              /* FB_LF .. FB_RR */
   double t_start, t_end;   /* s: zero crossings, linearly interpolated
                               between samples (or the run's ends) */
-  double min_force, t_min; /* the most tensile reaction (N, < 0) and its time */
-} fb_tension_interval;
+  double min_force, t_min; /* the smallest reaction (N, <= 0) and its time */
+} fb_contact_loss;
 
-/* Every tensile interval in a result of fb_vehicle_simulate (its
- * contact_force_* columns), by corner, then by time. *out is new (NULL
- * when there is none). FB_EINVAL if the result lacks a column. */
-int fb_vehicle_tension_intervals(const fb_result *r, fb_tension_interval **out, size_t *n,
-                                 fb_err *err);
+/* Every interval of positive length where a reaction is <= 0 in a result
+ * of fb_vehicle_simulate (its contact_force_* columns), by corner, then
+ * by time. *out is new (NULL when there is none). FB_EINVAL if the result
+ * lacks a column. */
+int fb_vehicle_contact_loss(const fb_result *r, fb_contact_loss **out, size_t *n, fb_err *err);
 
 /* A mode of the linearised vehicle. */
 typedef struct fb_mode {

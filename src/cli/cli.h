@@ -190,11 +190,11 @@ typedef struct cli_run_system {
   fb_result *res;
   size_t col[FB_NOUTPUTS]; /* column of each output in res */
   cli_output_stats stats[FB_NOUTPUTS];
-  /* Tire contact: the tensile intervals of the whole run (owned) and each
+  /* Tire contact: the contact-loss intervals of the whole run (owned) and each
    * tire's smallest normal reaction from the first bump entry on, with its
    * time. */
-  fb_tension_interval *tension;
-  size_t ntension;
+  fb_contact_loss *loss;
+  size_t nloss;
   double min_contact[FB_NCORNERS], min_contact_time[FB_NCORNERS];
   /* The driver's ride metrics over ride_window (the first wheel's bump
    * entry to the end of the run), when has_ride; else ride_note says why. */

@@ -31,7 +31,8 @@ static const char export_usage[] =
     "road height (m; its columns are zero: the tire springs integrate the\n"
     "rates) and road rate (m/s). f holds gravity and the payload. Outputs: the\n"
     "paper's seven; a power output is the product of its two rows of C.\n"
-    "DIR is created if missing; nothing is written if the export fails.\n"
+    "Unilateral tires (wheel.tire_contact) are exported in contact, their linear\n"
+    "branch. DIR is created if missing; nothing is written if the export fails.\n"
     "\n"
     "options:\n"
     "  -o, --output DIR          output directory (required)\n"
@@ -306,6 +307,10 @@ static int run(const char *path, fb_system sys, const char *dir)
   fb_bg *graph = NULL;
   export_model m = {.sys = sys};
   int rc = fb_scenario_load(path, &s, &err);
+  /* A unilateral tire is linear while in contact, its mode at rest: that
+   * branch is the linear model. */
+  for (int c = 0; s && c < FB_NCORNERS; ++c)
+    s->corner[c].tire_contact = FB_TIRE_BILATERAL;
   m.s = s;
   if (rc == FB_OK)
     rc = build_model(&m, &graph, &err);

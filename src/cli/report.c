@@ -642,11 +642,11 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Tire contact: the verdict of each system, from its reactions. */
 
-static void write_contact_verdict(FILE *fp, const cli_run_system *r)
+static void write_contact_verdict(FILE *fp, const cli_run_system *r, int unilateral)
 {
   char force[32];
   fprintf(fp, "- %s: ", cli_system_label(r->sys));
-  if (r->ntension == 0) {
+  if (r->nloss == 0) {
     int c_min = 0;
     for (int c = 1; c < FB_NCORNERS; ++c)
       if (r->min_contact[c] < r->min_contact[c_min])
@@ -658,27 +658,41 @@ static void write_contact_verdict(FILE *fp, const cli_run_system *r)
             r->min_contact_time[c_min]);
     return;
   }
-  fprintf(fp,
-          "%zu interval%s where a tire's normal reaction is tensile (the linear tire "
-          "pulls the wheel down; a real one would leave the road):",
-          r->ntension, r->ntension == 1 ? "" : "s");
-  for (size_t i = 0; i < r->ntension; ++i) {
-    const fb_tension_interval *t = &r->tension[i];
-    fprintf(fp, "%s %s from %.3f to %.3f s (down to %s N at %.3f s)", i ? ";" : "",
-            fb_corner_name(t->corner), t->t_start, t->t_end,
-            number_text(t->min_force, force, sizeof force), t->t_min);
+  if (unilateral)
+    fprintf(fp,
+            "%zu interval%s where a tire carries no load (its reaction is zero: the wheel is "
+            "leaving or off the road):",
+            r->nloss, r->nloss == 1 ? "" : "s");
+  else
+    fprintf(fp,
+            "%zu interval%s where a tire's normal reaction is tensile (the linear tire "
+            "pulls the wheel down; a real one would leave the road):",
+            r->nloss, r->nloss == 1 ? "" : "s");
+  for (size_t i = 0; i < r->nloss; ++i) {
+    const fb_contact_loss *t = &r->loss[i];
+    fprintf(fp, "%s %s from %.3f to %.3f s", i ? ";" : "", fb_corner_name(t->corner),
+            t->t_start, t->t_end);
+    if (!unilateral)
+      fprintf(fp, " (down to %s N at %.3f s)", number_text(t->min_force, force, sizeof force),
+              t->t_min);
   }
   fputs(".\n", fp);
 }
 
 static void write_contact(FILE *fp, const cli_run_outputs *o)
 {
+  const int unilateral = o->scenario->corner[0].tire_contact == FB_TIRE_UNILATERAL;
   fputs("\n## Tire contact\n\nThe normal reaction of every tire (tire spring plus tire "
-        "damper, compression positive) over the whole run; the tire model is linear, so a "
-        "negative reaction means the tire would have left the road.\n\n",
+        "damper, compression positive) over the whole run; ",
+        fp);
+  fputs(unilateral ? "the tires are unilateral (`wheel.tire_contact: unilateral`): they push "
+                     "but never pull, and a wheel whose reaction would become tensile leaves "
+                     "the road until it lands again.\n\n"
+                   : "the tire model is linear, so a negative reaction means the tire would "
+                     "have left the road.\n\n",
         fp);
   for (size_t i = 0; i < o->nruns; ++i)
-    write_contact_verdict(fp, &o->runs[i]);
+    write_contact_verdict(fp, &o->runs[i], unilateral);
 }
 
 static void write_conclusions(FILE *fp, const cli_run_outputs *o)

@@ -235,9 +235,9 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
   fprintf(fp,
           "{\"steps\": %ld, \"rhs_evals\": %ld, \"newton_setups\": %ld, "
           "\"factorizations\": %ld, \"newton_iters\": %ld, \"err_test_fails\": %ld, "
-          "\"wall_seconds\": ",
+          "\"events\": %ld, \"wall_seconds\": ",
           s->steps, s->rhs_evals, s->newton_setups, s->factorizations, s->newton_iters,
-          s->err_test_fails);
+          s->err_test_fails, s->events);
   json_number(fp, s->wall_seconds);
   fputc('}', fp);
 }
@@ -272,11 +272,13 @@ static void write_ride_json(FILE *fp, const cli_run_system *run)
   fputc('}', fp);
 }
 
-/* {"min_force": {tire: {"value", "time"}, ...}, "tensile_intervals":
- * [{"tire", "from", "to", "min_force", "at"}, ...]}. */
-static void write_contact_json(FILE *fp, const cli_run_system *run)
+/* {"model", "min_force": {tire: {"value", "time"}, ...},
+ * "contact_loss_intervals": [{"tire", "from", "to", "min_force", "at"},
+ * ...]}. */
+static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
 {
-  fputs("{\"min_force\": {", fp);
+  fprintf(fp, "{\"model\": \"%s\", \"min_force\": {",
+          s->corner[0].tire_contact == FB_TIRE_UNILATERAL ? "unilateral" : "bilateral");
   for (int c = 0; c < FB_NCORNERS; ++c) {
     fprintf(fp, "%s\"%s\": {\"value\": ", c ? ", " : "", fb_corner_name(c));
     json_number(fp, run->min_contact[c]);
@@ -284,9 +286,9 @@ static void write_contact_json(FILE *fp, const cli_run_system *run)
     json_number(fp, run->min_contact_time[c]);
     fputc('}', fp);
   }
-  fputs("}, \"tensile_intervals\": [", fp);
-  for (size_t i = 0; i < run->ntension; ++i) {
-    const fb_tension_interval *t = &run->tension[i];
+  fputs("}, \"contact_loss_intervals\": [", fp);
+  for (size_t i = 0; i < run->nloss; ++i) {
+    const fb_contact_loss *t = &run->loss[i];
     const json_field fields[] = {
         {"from", t->t_start}, {"to", t->t_end}, {"min_force", t->min_force}, {"at", t->t_min}};
     fprintf(fp, "%s{\"tire\": \"%s\"", i ? ", " : "", fb_corner_name(t->corner));
@@ -316,7 +318,7 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
   fputs("\n    },\n    \"ride\": ", fp);
   write_ride_json(fp, run);
   fputs(",\n    \"tire_contact\": ", fp);
-  write_contact_json(fp, run);
+  write_contact_json(fp, run, s);
   fputs(",\n    \"solver\": ", fp);
   write_solver_json(fp, fb_result_stats(run->res));
   fputs(",\n    \"bump_window\": [", fp);
@@ -363,7 +365,8 @@ static const char *const definitions[][2] = {
     {"rms", "root mean square of the samples with t in bump_window (of the value itself, "
             "not of its deviation from static)"},
     {"bump_window", "[first wheel's bump entry, last wheel's bump exit], s"},
-    {"solver", "CVODE statistics of the run; wall_seconds is the integration's wall time"},
+    {"solver", "CVODE statistics of the run; events: restarts at contact changes "
+               "(unilateral tires); wall_seconds is the integration's wall time"},
     {"ride",
      "the driver's ride metrics (docs/ride-metrics.md) over window = [first wheel's bump "
      "entry, end of the run] s: a_w_rms (ISO 2631-1 Wk-weighted r.m.s., m/s^2), mtvv "
@@ -371,10 +374,12 @@ static const char *const definitions[][2] = {
      "a_w_rms), absorbed_power (W; null: no K(f) table is built in), jerk_peak and jerk_rms "
      "(of the unweighted acceleration, m/s^3); a note instead when they cannot be computed"},
     {"tire_contact",
-     "min_force: each tire's smallest normal reaction from bump_window[0] to the end of the "
-     "run (N, compression positive) and its time; tensile_intervals: every interval of the "
-     "whole run where a reaction is negative (the linear tire pulls the wheel down): from, "
-     "to (s, zero crossings interpolated between samples), min_force (N) at (s)"},
+     "model: bilateral (the paper's linear tire) or unilateral (no tension: the wheel may "
+     "leave the road); min_force: each tire's smallest normal reaction from bump_window[0] "
+     "to the end of the run (N, compression positive) and its time; contact_loss_intervals: "
+     "every interval of the whole run where a reaction is not compressive (bilateral: "
+     "tensile, the tire pulls the wheel down; unilateral: zero, the wheel is off the road): "
+     "from, to (s, zero crossings interpolated between samples), min_force (N) at (s)"},
     {"hull_modes", "System 2's hull model: 0 full order, N > 0 reduced to N free-free modes "
                    "with static correction"},
     {"comparison", "System 2 against System 1 per output (when both ran): peak_systemN and "
@@ -532,7 +537,7 @@ static void show_progress(void *ctx, double t, double t_end)
   draw_progress_line(p);
 }
 
-/* The tire-contact verdict: tensile intervals over the whole run, and the
+/* The tire-contact verdict: contact-loss intervals over the whole run, and the
  * smallest normal reaction of each tire from the first wheel's bump entry
  * on (from the zero start every reaction is 0 at t = 0). */
 static int run_contact(cli_run_system *run, const double window[2], fb_err *err)
@@ -553,7 +558,7 @@ static int run_contact(cli_run_system *run, const double window[2], fb_err *err)
       }
     }
   }
-  return fb_vehicle_tension_intervals(run->res, &run->tension, &run->ntension, err);
+  return fb_vehicle_contact_loss(run->res, &run->loss, &run->nloss, err);
 }
 
 /* The driver's ride metrics (ISO 2631-1 and jerk) from the first wheel's
@@ -615,9 +620,12 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
     fputc('\n', stderr);
   if (rc == FB_OK && !a->quiet) {
     const fb_sim_stats *st = fb_result_stats(run->res);
-    fprintf(stderr, "flexbond run: %s: %s: %zu samples, %ld steps, %ld rhs evals, %.3g s\n",
+    char events[48] = "";
+    if (st->events)
+      snprintf(events, sizeof events, ", %ld contact changes", st->events);
+    fprintf(stderr, "flexbond run: %s: %s: %zu samples, %ld steps, %ld rhs evals%s, %.3g s\n",
             p.scenario, p.system, fb_result_nsamples(run->res), st->steps, st->rhs_evals,
-            st->wall_seconds);
+            events, st->wall_seconds);
   }
   return rc == FB_OK ? run_columns(run, window, err) : rc;
 }
@@ -714,7 +722,7 @@ static int run(const run_args *a)
   fb_result_free(&diff);
   for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i) {
     fb_result_free(&runs[i].res);
-    free(runs[i].tension);
+    free(runs[i].loss);
   }
   run_modes_free(&modes);
   fb_scenario_free(&s);

@@ -36,7 +36,7 @@ static const char sweep_usage[] =
     "writes, once every case has run (docs/sweep.md):\n"
     "  DIR/sweep.csv   one row per case: the keys' values, then the metrics (peak,\n"
     "                  min and RMS of the paper's seven outputs as in summary.json,\n"
-    "                  the smallest tire reaction, the tensile intervals, the\n"
+    "                  the smallest tire reaction, the contact-loss intervals, the\n"
     "                  driver's ride metrics, the solver's steps and time) and\n"
     "                  an `error` column\n"
     "  DIR/sweep.png   one panel per metric against the first key, one curve per\n"
@@ -74,7 +74,7 @@ enum {
   NSTATS,
   /* peak, min, rms of output k at NSTATS k + STAT_* */
   M_MIN_TIRE_FORCE = NSTATS * FB_NOUTPUTS,
-  M_TENSILE_INTERVALS,
+  M_CONTACT_LOSS_INTERVALS,
   /* The driver's ride metrics, as summary.json's "ride" (run.c). */
   M_RIDE_A_W_RMS,
   M_RIDE_MTVV,
@@ -90,9 +90,9 @@ static const char *const stat_names[NSTATS] = {"peak", "min", "rms"};
 static const struct {
   const char *name, *unit;
 } other_metrics[NMETRICS - M_MIN_TIRE_FORCE] = {
-    {"min_tire_force", "N"},     {"tensile_intervals", "-"}, {"ride_a_w_rms", "m/s^2"},
-    {"ride_mtvv", "m/s^2"},      {"ride_vdv", "m/s^1.75"},   {"ride_crest_factor", "-"},
-    {"ride_jerk_peak", "m/s^3"}, {"ride_jerk_rms", "m/s^3"}, {"solver_steps", "-"},
+    {"min_tire_force", "N"},     {"contact_loss_intervals", "-"}, {"ride_a_w_rms", "m/s^2"},
+    {"ride_mtvv", "m/s^2"},      {"ride_vdv", "m/s^1.75"},        {"ride_crest_factor", "-"},
+    {"ride_jerk_peak", "m/s^3"}, {"ride_jerk_rms", "m/s^3"},      {"solver_steps", "-"},
     {"solver_wall_time", "s"},
 };
 
@@ -200,14 +200,14 @@ static int min_tire_force(const fb_result *r, const double window[2], double *ou
   return FB_OK;
 }
 
-/* The tensile intervals (fb_vehicle_tension_intervals) that end after
+/* The contact-loss intervals (fb_vehicle_contact_loss) that end after
  * the first bump entry. */
-static int tensile_intervals(const fb_result *r, const double window[2], double *out,
-                             fb_err *err)
+static int contact_loss_intervals(const fb_result *r, const double window[2], double *out,
+                                  fb_err *err)
 {
-  fb_tension_interval *iv = NULL;
+  fb_contact_loss *iv = NULL;
   size_t n = 0, count = 0;
-  int rc = fb_vehicle_tension_intervals(r, &iv, &n, err);
+  int rc = fb_vehicle_contact_loss(r, &iv, &n, err);
   for (size_t i = 0; rc == FB_OK && i < n; ++i)
     count += iv[i].t_end >= window[0];
   free(iv);
@@ -265,7 +265,7 @@ static int case_metrics(const fb_scenario *s, const fb_result *r, double *m, fb_
   ride_metrics(r, window, m);
   int rc = min_tire_force(r, window, &m[M_MIN_TIRE_FORCE], err);
   if (rc == FB_OK)
-    rc = tensile_intervals(r, window, &m[M_TENSILE_INTERVALS], err);
+    rc = contact_loss_intervals(r, window, &m[M_CONTACT_LOSS_INTERVALS], err);
   return rc;
 }
 

@@ -319,12 +319,21 @@ static int sc_mount(const ml_ctx *c, struct fy_node *root, const char *key, fb_m
 /* The `wheel` section: what every corner has unless it overrides it. */
 static int sc_wheel(const ml_ctx *c, struct fy_node *root, fb_corner_params *shared)
 {
-  static const char *const keys[] = {"mass", "tire_k", "tire_c", NULL};
+  static const char *const keys[] = {"mass", "tire_k", "tire_c", "tire_contact", NULL};
+  static const char *const contacts[] = {"bilateral", "unilateral", NULL};
   const sc_field f[] = {
       {"mass", &shared->wheel_mass}, {"tire_k", &shared->tire_k}, {"tire_c", &shared->tire_c}};
   struct fy_node *sec = NULL;
-  int rc = sc_section(c, root, "wheel", "the wheels {mass, tire_k, tire_c}", keys, &sec);
-  return rc ? rc : sc_fields(c, sec, f, sizeof f / sizeof f[0]);
+  int rc = sc_section(c, root, "wheel", "the wheels {mass, tire_k, tire_c[, tire_contact]}",
+                      keys, &sec);
+  if (!rc)
+    rc = sc_fields(c, sec, f, sizeof f / sizeof f[0]);
+  /* Optional: the paper's linear tire unless told otherwise. */
+  int contact = 0;
+  if (!rc && fy_node_mapping_lookup_by_string(sec, "tire_contact", FY_NT))
+    rc = sc_choice(c, sec, "tire_contact", contacts, &contact);
+  shared->tire_contact = contact ? FB_TIRE_UNILATERAL : FB_TIRE_BILATERAL;
+  return rc;
 }
 
 /* Keys of `suspensions`: the shared motion_ratio and the six corners; an

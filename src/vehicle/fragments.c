@@ -245,6 +245,18 @@ static int add_shock_absorber(fb_bg *bg, const fb_corner_params *c, fb_err *err)
   return rc ? rc : fb_bg_add_r_table(bg, "damper", &law, err);
 }
 
+/* The tire's spring and damper, in parallel on the 1-junction "Jt": the
+ * paper's linear pair, or the same pair unable to pull (the wheel may
+ * leave the road; the elements switch their laws at contact changes). */
+static int add_tire(fb_bg *bg, const fb_corner_params *c, fb_err *err)
+{
+  if (c->tire_contact == FB_TIRE_UNILATERAL)
+    return fb_bg_add_unilateral_contact(bg, "tire_spring", "tire_damper", c->tire_k, c->tire_c,
+                                        err);
+  int rc = add_scalar(bg, "tire_spring", FB_BG_C, c->tire_k, err);
+  return rc ? rc : add_scalar(bg, "tire_damper", FB_BG_R, c->tire_c, err);
+}
+
 /* Suspension, wheel and tire. The 0-junction "susp" forms the wheel's
  * velocity relative to the hull (compression rate of the suspension),
  * the arm (a TF of the motion ratio) turns it into the spring's rate; the
@@ -266,9 +278,7 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   if (!rc)
     rc = fb_bg_add_tf(bg, "arm", FB_BG_TF, 1, c->motion_ratio, err);
   if (!rc)
-    rc = add_scalar(bg, "tire_spring", FB_BG_C, c->tire_k, err);
-  if (!rc)
-    rc = add_scalar(bg, "tire_damper", FB_BG_R, c->tire_c, err);
+    rc = add_tire(bg, c, err);
   const char *const junctions[][2] = {
       {"Jw", "1"}, {"susp", "0"}, {"Jsp", "1"}, {"tire", "0"}, {"Jt", "1"}};
   for (size_t i = 0; !rc && i < sizeof junctions / sizeof junctions[0]; ++i)
