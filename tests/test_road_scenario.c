@@ -30,7 +30,7 @@ static int load_with_road(const char *road, fb_scenario **out, fb_err *err)
  * = 0.005 x 0.144 / 2 = 3.6e-4 against a largest slope of 0.085, 0.4 %.
  * The tire forces and the tire damper's power take the road velocity
  * directly through the tire damper (measured 0.18 % of their range); the
- * other outputs are filtered by the suspension (1e-5). 5e-3 of each range
+ * other outputs are filtered by the suspension (7.4e-5 at most). 5e-3 of each range
  * bounds the first, while the tracks swapped (the right wheels meeting
  * the bump 0.76 s early) would put tens of percent on RF, RM and RR. */
 static void test_profile_equals_bump(const fb_scenario *bump)

@@ -5,8 +5,10 @@
  * profile is continuous, with a continuous slope dz/ds except at the ends
  * of a CSV profile whose end slopes are not 0 (it is held at its end
  * values outside its samples); where its second derivative jumps (bump
- * ends, CSV knots, fade-in ends) the road reports a breakpoint so an
- * integrator can stop there.
+ * ends, the ends of a CSV profile, fade-in ends) the road reports a
+ * breakpoint so an integrator can stop there. A CSV profile's interior
+ * knots are not breakpoints: its slope is continuous there and only the
+ * curvature jumps (docs/roads.md).
  *
  * Time convention (constant speed V > 0, straight line): a wheel is at
  * s(t) = s0 + V t on its track, where s0 is its position at t = 0. With
@@ -108,7 +110,8 @@ void fb_road_free(fb_road **road);
 double fb_road_height(const fb_road *road, int track, double s);
 /* Slope dz/ds, -. */
 double fb_road_slope(const fb_road *road, int track, double s);
-/* Distances s where the track's second derivative jumps, ascending.
+/* Distances s where the track's second derivative jumps (a CSV profile:
+ * its first and last knots only), ascending.
  * Returns how many there are; writes at most max of them to s (s may be
  * NULL). 0 for a bad track. */
 size_t fb_road_breaks(const fb_road *road, int track, double *s, size_t max);
