@@ -50,8 +50,8 @@ struct bd_block {
   fb_tfun *const *fns;   /* SOURCE: borrowed time functions */
   const fb_law_ops *law; /* LAW/ENERGY: nonlinear law */
   void *law_ctx;
-  int mode;   /* LAW: active branch of a switched law */
-  double *xu; /* LAW: the gathered inputs of a modulated law */
+  int mode;    /* LAW: active branch of a switched law */
+  double *xu;  /* LAW: the gathered inputs of a modulated law */
   size_t elem; /* origin element (FB_NONE for probes) */
   char *label; /* for DOT and messages */
 };
