@@ -2,6 +2,7 @@
  * against hand-written state equations, the augmented Newton matrix
  * against the dense Jacobian, algebraic-loop diagnostics. */
 #include <lapacke.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -156,6 +157,49 @@ static void test_quarter_car(void)
 
 /* The Schur complement of P(gamma) onto the states is I - gamma J:
  * solving P z = [b; 0] must give (I - gamma J)^-1 b. */
+/* The augmented matrix P(gamma) at x, assembled densely and factorised
+ * with LAPACK, solves (I - gamma J) z = e_j at the state rows for the
+ * dense Jacobian J: (I - gamma J) z_states = e_j to tol. */
+static void check_augmented_schur(fb_bd *bd, const double *x, double gamma, double tol)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  size_t n = fb_bd_nstates(bd), nz = fb_bd_aug_size(bd), nnz = fb_bd_aug_nnz(bd);
+  size_t *rows = malloc(nnz * sizeof *rows), *cols = malloc(nnz * sizeof *cols);
+  double *v0 = malloc(nnz * sizeof *v0), *v1 = malloc(nnz * sizeof *v1);
+  double *p = calloc(nz * nz, sizeof *p);
+  double *jac = malloc(n * n * sizeof *jac), *rhs = calloc(nz, sizeof *rhs);
+  lapack_int *piv = malloc(nz * sizeof *piv);
+  fb_bd_aug_pattern(bd, rows, cols);
+  CHECK(fb_bd_aug_values(bd, 0.0, x, v0, v1) == 0);
+  for (size_t k = 0; k < nnz; ++k)
+    p[cols[k] * nz + rows[k]] += v0[k] + gamma * v1[k];
+  MUST(fb_bd_jacobian_dense(bd, 0.0, x, jac, &err), &err);
+  lapack_int info =
+      LAPACKE_dgetrf(LAPACK_COL_MAJOR, (lapack_int)nz, (lapack_int)nz, p, (lapack_int)nz, piv);
+  CHECK(info == 0);
+  for (size_t j = 0; info == 0 && j < n; ++j) {
+    memset(rhs, 0, nz * sizeof *rhs);
+    rhs[fb_bd_state_row(bd, j)] = 1.0;
+    LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', (lapack_int)nz, 1, p, (lapack_int)nz, piv, rhs,
+                   (lapack_int)nz);
+    for (size_t i = 0; i < n; ++i) {
+      double r = rhs[fb_bd_state_row(bd, i)];
+      for (size_t k = 0; k < n; ++k)
+        r -= gamma * jac[k * n + i] * rhs[fb_bd_state_row(bd, k)];
+      CHECK_NEAR(r, i == j ? 1.0 : 0.0, tol);
+    }
+  }
+  free(rows);
+  free(cols);
+  free(v0);
+  free(v1);
+  free(p);
+  free(jac);
+  free(rhs);
+  free(piv);
+}
+
 static void test_augmented(void)
 {
   fb_err err;
@@ -171,7 +215,7 @@ static void test_augmented(void)
     fb_bg_free(&bg);
     return;
   }
-  size_t n = fb_bd_nstates(bd), nz = fb_bd_aug_size(bd), nnz = fb_bd_aug_nnz(bd);
+  size_t n = fb_bd_nstates(bd);
   CHECK(n == 5); /* 4 + the integrated probe */
   /* The power probe's product feeds no state: the Newton matrix stays
    * constant. Integrated, the product feeds a state and it does not. */
@@ -184,45 +228,11 @@ static void test_augmented(void)
       CHECK(!fb_bd_is_linear(bd2));
     fb_bd_free(&bd2);
   }
-  size_t *rows = malloc(nnz * sizeof *rows), *cols = malloc(nnz * sizeof *cols);
-  double *v0 = malloc(nnz * sizeof *v0), *v1 = malloc(nnz * sizeof *v1);
-  double *p = calloc(nz * nz, sizeof *p), *x = calloc(n, sizeof *x);
-  double *jac = malloc(n * n * sizeof *jac), *rhs = calloc(nz, sizeof *rhs);
-  lapack_int *piv = malloc(nz * sizeof *piv);
+  double x[5];
   for (size_t i = 0; i < n; ++i)
     x[i] = 0.01 * (double)(i + 1);
-  fb_bd_aug_pattern(bd, rows, cols);
-  CHECK(fb_bd_aug_values(bd, 0.0, x, v0, v1) == 0);
-  const double gamma = 3.7e-3;
-  for (size_t k = 0; k < nnz; ++k)
-    p[cols[k] * nz + rows[k]] += v0[k] + gamma * v1[k];
-  MUST(fb_bd_jacobian_dense(bd, 0.0, x, jac, &err), &err);
-  lapack_int info =
-      LAPACKE_dgetrf(LAPACK_COL_MAJOR, (lapack_int)nz, (lapack_int)nz, p, (lapack_int)nz, piv);
-  CHECK(info == 0);
-  for (size_t j = 0; j < n; ++j) {
-    memset(rhs, 0, nz * sizeof *rhs);
-    rhs[fb_bd_state_row(bd, j)] = 1.0;
-    LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', (lapack_int)nz, 1, p, (lapack_int)nz, piv, rhs,
-                   (lapack_int)nz);
-    /* (I - gamma J) z_states must be e_j; entries of gamma J are ~1e3
-     * times z, so rounding leaves ~1e-12. */
-    for (size_t i = 0; i < n; ++i) {
-      double r = rhs[fb_bd_state_row(bd, i)];
-      for (size_t k = 0; k < n; ++k)
-        r -= gamma * jac[k * n + i] * rhs[fb_bd_state_row(bd, k)];
-      CHECK_NEAR(r, i == j ? 1.0 : 0.0, 1e-10);
-    }
-  }
-  free(rows);
-  free(cols);
-  free(v0);
-  free(v1);
-  free(p);
-  free(x);
-  free(jac);
-  free(rhs);
-  free(piv);
+  /* Entries of gamma J are ~1e3 times z, so rounding leaves ~1e-12. */
+  check_augmented_schur(bd, x, 3.7e-3, 1e-10);
   fb_bd_free(&bd);
   fb_bg_free(&bg);
 }
@@ -502,10 +512,103 @@ static void test_nonlinear_law(void)
   fb_bg_free(&bg);
 }
 
+/* A 2-port R field modulated by a spring's compression u, with the
+ * non-symmetric bilinear law
+ *   e1 = (a + b u) f1 + c f2,   e2 = d f1 + (g + h u) f2,
+ * so that a transposed or shifted n x (n + m) Jacobian shows. */
+static int bilinear_eval(void *ctx, const fb_law_in *in, double *y)
+{
+  const double *k = ctx, *x = in->x;
+  y[0] = (k[0] + k[1] * x[2]) * x[0] + k[2] * x[1];
+  y[1] = k[3] * x[0] + (k[4] + k[5] * x[2]) * x[1];
+  return 0;
+}
+static int bilinear_jac(void *ctx, const fb_law_in *in, double *jac)
+{
+  const double *k = ctx, *x = in->x;
+  /* Column-major 2 x 3: d/df1, d/df2, d/du. */
+  jac[0] = k[0] + k[1] * x[2];
+  jac[1] = k[3];
+  jac[2] = k[2];
+  jac[3] = k[4] + k[5] * x[2];
+  jac[4] = k[1] * x[0];
+  jac[5] = k[5] * x[1];
+  return 0;
+}
+static const fb_law_ops bilinear_ops = {
+    .name = "bilinear", .eval = bilinear_eval, .jacobian = bilinear_jac, .free = free};
+
+/* Two masses, each on its own 1-junction with one port of the modulated
+ * field; a spring on the first junction is the modulating state. The
+ * exact Jacobian against central differences (exact for a bilinear law
+ * but for rounding: 1e-7 of the largest entry), and the augmented Newton
+ * matrix against it (as test_augmented). */
+static void test_modulated_field(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = NULL;
+  MUST(fb_bg_new("modulated", &bg, &err), &err);
+  double *k = malloc(6 * sizeof *k);
+  const double coef[6] = {3.0, 40.0, 0.7, -1.1, 5.0, -30.0};
+  memcpy(k, coef, sizeof coef);
+  const size_t ports[2] = {1, 1};
+  MUST(add_scalar(bg, "m1", FB_BG_I, 2.0, &err), &err);
+  MUST(add_scalar(bg, "m2", FB_BG_I, 3.0, &err), &err);
+  MUST(add_scalar(bg, "spring", FB_BG_C, 50.0, &err), &err);
+  MUST(fb_bg_add_field_law(bg, "R", FB_BG_R, 2, ports, &bilinear_ops, k, &err), &err);
+  const char *src = "spring";
+  MUST(fb_bg_modulate(bg, "R", 1, &src, &err), &err);
+  MUST(fb_bg_add_junction(bg, "J1", FB_BG_J1, 1, &err), &err);
+  MUST(fb_bg_add_junction(bg, "J2", FB_BG_J1, 1, &err), &err);
+  const char *const bonds[][3] = {{"b1", "J1", "m1"},
+                                  {"b2", "J2", "m2"},
+                                  {"bs", "J1", "spring"},
+                                  {"br1", "J1", "R.1"},
+                                  {"br2", "J2", "R.2"}};
+  for (size_t i = 0; i < 5; ++i)
+    MUST(fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], &err), &err);
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, NULL, 0, &bd, &err), &err);
+  if (bd) {
+    CHECK(!fb_bd_is_linear(bd) && fb_bd_nstates(bd) == 3);
+    const long ip1 = state_index(bd, "m1.p"), ip2 = state_index(bd, "m2.p"),
+               iq = state_index(bd, "spring.q");
+    double x[3], xd[3], jac[9];
+    x[ip1] = 0.4;
+    x[ip2] = -0.9;
+    x[iq] = 0.05;
+    /* By hand: f1 = 0.2, f2 = -0.3, u = 0.05; p1' = -(k u + e1), p2' = -e2. */
+    CHECK(fb_bd_rhs(bd, 0.0, x, xd) == 0);
+    const double f1 = 0.2, f2 = -0.3, u = 0.05;
+    CHECK_NEAR(xd[ip1], -(50.0 * u + (3.0 + 40.0 * u) * f1 + 0.7 * f2), 1e-14);
+    CHECK_NEAR(xd[ip2], -(-1.1 * f1 + (5.0 - 30.0 * u) * f2), 1e-14);
+    MUST(fb_bd_jacobian_dense(bd, 0.0, x, jac, &err), &err);
+    double worst = 0.0, scale = 0.0;
+    for (int j = 0; j < 3; ++j) {
+      const double h = 1e-5;
+      double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]}, fp[3], fm[3];
+      xp[j] += h;
+      xm[j] -= h;
+      fb_bd_rhs(bd, 0.0, xp, fp);
+      fb_bd_rhs(bd, 0.0, xm, fm);
+      for (int i = 0; i < 3; ++i) {
+        worst = fmax(worst, fabs(jac[j * 3 + i] - (fp[i] - fm[i]) / (2 * h)));
+        scale = fmax(scale, fabs(jac[j * 3 + i]));
+      }
+    }
+    CHECK(worst <= 1e-7 * scale);
+    check_augmented_schur(bd, x, 0.02, 1e-10);
+  }
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
 int main(void)
 {
   test_mtf_rigid_bar();
   test_nonlinear_law();
+  test_modulated_field();
   test_quarter_car();
   test_augmented();
   test_algebraic_loop();

@@ -137,9 +137,10 @@ static void test_impact(void)
   /* Errors. CVODE keeps each step's local error near rtol |y| + atol;
    * over this one impact (a third of a period in contact) the global error
    * stays within a few hundred rtol of the scales (v0, v0 / wn), and root
-   * location adds far less. A restitution off by a wrong release time (a
-   * sample's 0.1 ms) or a released contact that pulled would be off by 1e-2
-   * or more. */
+   * location adds far less. A bilateral contact (no release) would leave
+   * at 0.729 instead of 0.744 m/s; a release a sample (0.1 ms) late would
+   * shift the velocity by k |v_r| dt^2 / (2 m), 4e-5 m/s; both are far
+   * outside 1e3 rtol v0 = 1e-6 m/s. */
   const double q_scale = V0 / sqrt(STIFF / MASS), q_tol = 1e3 * o.rtol * q_scale;
   double worst_q = 0, worst_neg = 0, worst_balance = 0, worst_released = 0;
   for (size_t k = 0; k < fb_result_nsamples(res); ++k) {
@@ -161,7 +162,7 @@ static void test_impact(void)
   /* 1e-6 of the impact energy: a few hundred rtol, as above. */
   CHECK_NEAR(worst_balance, 0.0, 1e-6 * 0.5 * MASS * V0 * V0);
   const size_t last = fb_result_nsamples(res) - 1;
-  /* Restitution: the closed-form release velocity (e = 0.7 here). */
+  /* Restitution: the closed-form release velocity (e = 0.744 here). */
   CHECK_NEAR(col(res, last, "v"), ex.v_release, 1e3 * o.rtol * V0);
   /* The dissipated energy is what the restitution says. */
   CHECK_NEAR(col(res, last, "dissipated"), 0.5 * MASS * (V0 * V0 - ex.v_release * ex.v_release),
@@ -176,7 +177,45 @@ static void test_impact(void)
   fb_bg_free(&bg);
 }
 
-/* Each law's modes against its definition. */
+/* The largest |J - central differences of the right-hand side| at x,
+ * relative to the largest |J| entry; the modes stay as they are. Every
+ * branch is affine, so the differences are exact but for rounding. */
+static double jacobian_error(fb_bd *bd, const double *x)
+{
+  enum { NMAX = 4 };
+  const size_t n = fb_bd_nstates(bd);
+  double jac[NMAX * NMAX], xp[NMAX], fp[NMAX], fm[NMAX], worst = 0.0, scale = 0.0;
+  fb_err err;
+  if (n > NMAX || fb_bd_jacobian_dense(bd, 0.0, x, jac, &err) != FB_OK)
+    return INFINITY;
+  for (size_t j = 0; j < n; ++j) {
+    const double h = 1e-4 * fmax(1e-3, fabs(x[j]));
+    memcpy(xp, x, n * sizeof *xp);
+    xp[j] = x[j] + h;
+    fb_bd_rhs(bd, 0.0, xp, fp);
+    xp[j] = x[j] - h;
+    fb_bd_rhs(bd, 0.0, xp, fm);
+    for (size_t i = 0; i < n; ++i) {
+      worst = fmax(worst, fabs(jac[j * n + i] - (fp[i] - fm[i]) / (2 * h)));
+      scale = fmax(scale, fabs(jac[j * n + i]));
+    }
+  }
+  return worst / scale;
+}
+
+/* Guard i of the element named owner (the first if several). */
+static double guard_of(const fb_bd *bd, const double *g, const char *owner, size_t which)
+{
+  for (size_t i = 0; i < fb_bd_nguards(bd); ++i)
+    if (strcmp(fb_bd_guard_element(bd, i), owner) == 0)
+      return g[i + which];
+  return NAN;
+}
+
+/* Each law's modes against its definition: the force, the guards and the
+ * Jacobian (against central differences; 1e-8 of the largest entry is
+ * rounding for h = 1e-4 of the state, while a wrong sign or a missing
+ * entry is an error of order 1). */
 static void test_law_branches(void)
 {
   fb_err err;
@@ -187,29 +226,41 @@ static void test_law_branches(void)
   /* Affine in each mode: the Newton matrix changes only at events. */
   CHECK(fb_bd_is_piecewise_linear(bd) && !fb_bd_is_linear(bd));
   const size_t n = fb_bd_nstates(bd);
-  double x[8] = {0}, xdot[8], g[3];
-  CHECK(n == 2);
+  double x[2] = {0}, xdot[2], g[3];
+  CHECK(n == 2 && fb_bd_nguards(bd) == 3);
+  CHECK(fb_bd_guard_element(bd, 3) == NULL);
   /* States: mass p, contact_k q (diagram order). */
   const size_t ip = strcmp(fb_bd_state_name(bd, 0), "mass.p") == 0 ? 0 : 1, iq = 1 - ip;
   int changed = 0;
   /* Compressed and closing: contact, F = k q + c v. */
   x[ip] = MASS * 0.5;
   x[iq] = 0.002;
-  CHECK(fb_bd_init_modes(bd, 0.0, x, &changed) == 0);
+  CHECK(fb_bd_sync_modes(bd, 0.0, x, &changed) == 0 && !changed);
   CHECK(fb_bd_rhs(bd, 0.0, x, xdot) == 0);
   CHECK_NEAR(xdot[ip], -(STIFF * 0.002 + DAMP * 0.5), 1e-12);
   CHECK(fb_bd_guards(bd, 0.0, x, g) == 0);
-  /* Opening fast: k q + c v < 0, released, F = 0. */
+  CHECK(guard_of(bd, g, "contact_k", 0) == 0.002 && guard_of(bd, g, "contact_c", 0) == 0.002);
+  CHECK_NEAR(guard_of(bd, g, "contact_c", 1), STIFF * 0.002 + DAMP * 0.5, 1e-12);
+  CHECK_NEAR(jacobian_error(bd, x), 0.0, 1e-8);
+  /* Opening fast: k q + c v < 0, released, F = 0, and the damper's
+   * -k q term in the Jacobian cancels the spring's. */
   x[ip] = -MASS * 5.0;
-  CHECK(fb_bd_init_modes(bd, 0.0, x, &changed) == 0 && changed);
+  CHECK(fb_bd_sync_modes(bd, 0.0, x, &changed) == 0 && changed);
   CHECK(fb_bd_rhs(bd, 0.0, x, xdot) == 0);
   CHECK(xdot[ip] == 0.0);
-  /* A gap: separated, F = 0 whatever the velocity. */
+  CHECK(fb_bd_guards(bd, 0.0, x, g) == 0);
+  CHECK_NEAR(guard_of(bd, g, "contact_c", 1), STIFF * 0.002 - DAMP * 5.0, 1e-12);
+  CHECK_NEAR(jacobian_error(bd, x), 0.0, 1e-8);
+  /* A gap: separated, F = 0 whatever the velocity; the damper's force
+   * guard is the constant 1 there. */
   x[iq] = -0.001;
   x[ip] = MASS * 3.0;
-  CHECK(fb_bd_init_modes(bd, 0.0, x, &changed) == 0 && changed);
+  CHECK(fb_bd_sync_modes(bd, 0.0, x, &changed) == 0 && changed);
   CHECK(fb_bd_rhs(bd, 0.0, x, xdot) == 0);
   CHECK(xdot[ip] == 0.0);
+  CHECK(fb_bd_guards(bd, 0.0, x, g) == 0);
+  CHECK(guard_of(bd, g, "contact_k", 0) == -0.001 && guard_of(bd, g, "contact_c", 1) == 1.0);
+  CHECK_NEAR(jacobian_error(bd, x), 0.0, 1e-8);
   /* Crossings decide by direction, not by the value at the root: q
    * crossing upwards (touch-down) while numerically still -1e-18. */
   x[iq] = -1e-18;
@@ -220,6 +271,185 @@ static void test_law_branches(void)
   x[iq] = 1e-4;
   CHECK(fb_bd_rhs(bd, 0.0, x, xdot) == 0);
   CHECK_NEAR(xdot[ip], -(STIFF * 1e-4 + DAMP * 3.0), 1e-12);
+  /* A guard exactly zero takes the sign it has just after: at q = 0
+   * opening (v < 0) the contact is separated, closing it is in contact. */
+  x[iq] = 0.0;
+  x[ip] = -MASS * 1.0;
+  CHECK(fb_bd_sync_modes(bd, 0.0, x, &changed) == 0 && changed);
+  CHECK(fb_bd_guards(bd, 0.0, x, g) == 0 && guard_of(bd, g, "contact_c", 1) == 1.0);
+  x[ip] = MASS * 1.0;
+  CHECK(fb_bd_sync_modes(bd, 0.0, x, &changed) == 0 && changed);
+  x[iq] = 1e-4;
+  CHECK(fb_bd_rhs(bd, 0.0, x, xdot) == 0);
+  CHECK_NEAR(xdot[ip], -(STIFF * 1e-4 + DAMP * 1.0), 1e-12);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+/* Samples of column name of r. */
+static double sample(const fb_result *r, size_t k, const char *name)
+{
+  return fb_result_row(r, k)[fb_result_find(r, name)];
+}
+
+/* A wheel (1 kg, 10 N weight) resting on the contact, whose road drops
+ * away at 2 m/s from t_drop: an input jump at a breakpoint that turns
+ * k q + c f from +10 N to -30 N with no crossing to locate. The contact
+ * must release at once (the restart re-chooses the modes), and the wheel
+ * falls freely, q = q0 - 2 s + 5 s^2 (s = t - t_drop): it separates at
+ * s = (2 - sqrt(4 - 20 q0)) / 10 and lands again at s = (2 + sqrt(4 -
+ * 20 q0)) / 10 = 0.3995 s. */
+static void test_road_drop(void)
+{
+  const size_t one[1] = {1};
+  const double q0 = 1e-3, t_drop = 0.3005; /* k q0 = the weight */
+  const double t_land = t_drop + (2.0 + sqrt(4.0 - 20.0 * q0)) / 10.0;
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = NULL;
+  fb_bd *bd = NULL;
+  fb_mat *m = NULL;
+  fb_tfun *weight = NULL, *road = NULL;
+  int rc = fb_bg_new("drop", &bg, &err);
+  if (!rc)
+    rc = fb_mat_new_scaled_identity(1, 1.0, &m, &err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "wheel", FB_BG_I, 1, one, &m, &err);
+  if (!rc)
+    rc = fb_bg_add_unilateral_contact(bg, "tire_k", "tire_c", 1e4, 20.0, &err);
+  if (!rc)
+    rc = fb_tfun_new_const(-10.0, &weight, &err);
+  if (!rc)
+    rc = fb_bg_add_source(bg, "weight", FB_BG_SE, 1, &weight, &err);
+  if (!rc)
+    rc = fb_tfun_new_step(t_drop, 0.0, -2.0, &road, &err);
+  if (!rc)
+    rc = fb_bg_add_source(bg, "road", FB_BG_SF, 1, &road, &err);
+  const char *const junctions[][2] = {{"Jw", "1"}, {"tire", "0"}, {"Jt", "1"}};
+  for (size_t i = 0; !rc && i < 3; ++i)
+    rc = fb_bg_add_junction(bg, junctions[i][0],
+                            junctions[i][1][0] == '0' ? FB_BG_J0 : FB_BG_J1, 1, &err);
+  if (!rc)
+    rc = fb_bg_set_initial(bg, "tire_k", 1, &q0, &err);
+  const char *const bonds[][3] = {{"b_wheel", "Jw", "wheel"}, {"b_weight", "weight", "Jw"},
+                                  {"b_road", "road", "tire"}, {"b_contact", "tire", "Jw"},
+                                  {"b_tire", "tire", "Jt"},   {"bk", "Jt", "tire_k"},
+                                  {"bc", "Jt", "tire_c"}};
+  for (size_t i = 0; !rc && i < 7; ++i)
+    rc = fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], &err);
+  const fb_probe_spec probes[] = {
+      {"force", FB_PROBE_EFFORT, "b_tire", 0, 0, 1.0, NULL, NULL, 0}};
+  if (!rc)
+    rc = fb_bd_build(bg, probes, 1, &bd, &err);
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_end = 1.0;
+  o.rtol = 1e-9;
+  o.atol = 1e-12;
+  o.sample_rate = 1e4;
+  fb_result *r = NULL;
+  if (!rc)
+    rc = fb_sim_run(bd, &o, &r, &err);
+  CHECK(rc == FB_OK);
+  if (rc) {
+    fprintf(stderr, "road drop: %s\n", err.msg);
+  } else {
+    double lowest = INFINITY, t_first_load = NAN;
+    size_t loaded_in_flight = 0;
+    for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
+      const double t = fb_result_row(r, k)[0], f = sample(r, k, "force");
+      lowest = fmin(lowest, f);
+      /* Released, then separated: no load at all. */
+      loaded_in_flight += t >= t_drop && t < t_drop + 0.3 && f != 0.0;
+      if (t > t_drop && f > 0.0 && isnan(t_first_load))
+        t_first_load = t;
+    }
+    CHECK(lowest == 0.0 && loaded_in_flight == 0);
+    /* Landing: the first loaded sample is the first after the closed-form
+     * landing (samples every 0.1 ms). */
+    CHECK(t_first_load >= t_land && t_first_load < t_land + 1e-4 + 1e-9);
+    /* Release at the breakpoint, separation, landing, and the rebounds. */
+    CHECK(fb_result_stats(r)->events >= 3);
+    fprintf(stderr, "road drop: landing at %.6f s (closed form %.6f), %ld events\n",
+            t_first_load, t_land, fb_result_stats(r)->events);
+  }
+  fb_result_free(&r);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+/* The run starts at q = 0 exactly with the mass moving away at 0.5 m/s
+ * (a vehicle's zero start is q = 0 too), pushed back by 1 N: the contact
+ * must start separated, so spring and damper both stay unloaded while the
+ * mass flies out and back, q = -0.5 t + 0.5 t^2, and it lands at t = 1 s.
+ * A spring started in its contact branch would hold k q < 0 across the
+ * gap, cancelled by a released damper (a net force of zero, but a spring
+ * pulling and a damper delivering power). */
+static void test_start_at_zero_opening(void)
+{
+  const size_t one[1] = {1};
+  const double p0 = -MASS * 0.5, q0 = 0.0, t_land = 1.0;
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = NULL;
+  fb_bd *bd = NULL;
+  fb_result *r = NULL;
+  fb_mat *m = NULL;
+  fb_tfun *push = NULL;
+  int rc = fb_bg_new("opening", &bg, &err);
+  if (!rc)
+    rc = fb_mat_new_scaled_identity(1, MASS, &m, &err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "mass", FB_BG_I, 1, one, &m, &err);
+  if (!rc)
+    rc = fb_bg_add_unilateral_contact(bg, "contact_k", "contact_c", STIFF, DAMP, &err);
+  if (!rc)
+    rc = fb_tfun_new_const(1.0, &push, &err);
+  if (!rc)
+    rc = fb_bg_add_source(bg, "push", FB_BG_SE, 1, &push, &err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, 1, &err);
+  if (!rc)
+    rc = fb_bg_set_initial(bg, "mass", 1, &p0, &err);
+  if (!rc)
+    rc = fb_bg_set_initial(bg, "contact_k", 1, &q0, &err);
+  const char *const bonds[][3] = {{"bp", "push", "J"},
+                                  {"bm", "J", "mass"},
+                                  {"bk", "J", "contact_k"},
+                                  {"bc", "J", "contact_c"}};
+  for (size_t i = 0; !rc && i < 4; ++i)
+    rc = fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], &err);
+  const fb_probe_spec probes[] = {{"q", FB_PROBE_STATE, "contact_k", 0, 0, 1.0, NULL, NULL, 0},
+                                  {"force", FB_PROBE_EFFORT, "bk", 0, 0, 1.0, NULL, NULL, 0},
+                                  {"damper", FB_PROBE_EFFORT, "bc", 0, 0, 1.0, NULL, NULL, 0}};
+  if (!rc)
+    rc = fb_bd_build(bg, probes, 3, &bd, &err);
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_end = 1.2;
+  o.sample_rate = 1e4;
+  if (!rc)
+    rc = fb_sim_run(bd, &o, &r, &err);
+  CHECK(rc == FB_OK);
+  double lowest = INFINITY, worst_q = 0.0, t_first_load = NAN;
+  size_t loaded_in_flight = 0;
+  for (size_t k = 0; r && k < fb_result_nsamples(r); ++k) {
+    const double t = fb_result_row(r, k)[0];
+    const double f = sample(r, k, "force") + sample(r, k, "damper");
+    lowest = fmin(lowest, f);
+    if (t < t_land) {
+      worst_q = fmax(worst_q, fabs(sample(r, k, "q") - (-0.5 * t + 0.5 * t * t)));
+      loaded_in_flight += sample(r, k, "force") != 0.0 || sample(r, k, "damper") != 0.0;
+    }
+    if (f > 0.0 && isnan(t_first_load))
+      t_first_load = t;
+  }
+  CHECK(lowest == 0.0 && loaded_in_flight == 0);
+  /* Free flight: BDF integrates the parabola exactly but for rounding and
+   * the error control's scale (1e3 rtol of the 0.125 m excursion). */
+  CHECK_NEAR(worst_q, 0.0, 1e3 * o.rtol * 0.125);
+  CHECK(t_first_load >= t_land && t_first_load < t_land + 1e-4 + 1e-9);
+  fb_result_free(&r);
   fb_bd_free(&bd);
   fb_bg_free(&bg);
 }
@@ -241,6 +471,12 @@ static void test_bad_parameters(void)
   src = "k";
   CHECK(fb_bg_modulate(bg, "c", 1, &src, &err) == FB_EMODEL); /* already modulated */
   CHECK(strstr(err.msg, "already") != NULL);
+  /* Names are checked before anything is added. */
+  CHECK(fb_bg_add_unilateral_contact(bg, "k2", "k", 1.0, 1.0, &err) == FB_EMODEL);
+  CHECK(fb_bg_find_element(bg, "k2") < 0);
+  CHECK(fb_bg_add_unilateral_contact(bg, "k3", "k3", 1.0, 1.0, &err) == FB_EMODEL);
+  CHECK(fb_bg_add_unilateral_contact(bg, "k4", "a.b", 1.0, 1.0, &err) == FB_EMODEL);
+  CHECK(fb_bg_find_element(bg, "k3") < 0 && fb_bg_find_element(bg, "k4") < 0);
   fb_bg_free(&bg);
 }
 
@@ -248,6 +484,8 @@ int main(void)
 {
   test_impact();
   test_law_branches();
+  test_road_drop();
+  test_start_at_zero_opening();
   test_bad_parameters();
   return check_report("test_contact_law");
 }

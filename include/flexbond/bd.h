@@ -120,21 +120,30 @@ int fb_bd_is_linear(const fb_bd *bd);
  * The guards of every switched law the diagram evaluates form one vector
  * g(t, x), which an integrator watches for zero crossings. Each law's
  * mode is part of the diagram's state between calls: 0 after
- * fb_bd_build, then whatever fb_bd_init_modes and fb_bd_switch_modes
+ * fb_bd_build, then whatever fb_bd_sync_modes and fb_bd_switch_modes
  * chose; fb_bd_rhs, fb_bd_outputs and the linearisations use the
- * current modes. */
+ * current modes. These functions return as fb_bd_rhs (0, >0, <0, with
+ * fb_bd_last_error). */
 size_t fb_bd_nguards(const fb_bd *bd);
-/* Name of the element whose law owns guard i. */
+/* Name of the element whose law owns guard i, NULL if i >= nguards. */
 const char *fb_bd_guard_element(const fb_bd *bd, size_t i);
-/* Evaluates the diagram at (t, x) and writes the guards to g. Returns as
- * fb_bd_rhs. */
+/* Evaluates the diagram at (t, x) and writes the guards to g. */
 int fb_bd_guards(fb_bd *bd, double t, const double *x, double *g);
-/* Chooses every switched law's mode from its guards' signs at (t, x), as
- * at the start of a run; *changed = 1 if a mode changed, else 0. */
-int fb_bd_init_modes(fb_bd *bd, double t, const double *x, int *changed);
+/* Makes the modes consistent with (t, x), where a run starts or restarts
+ * (the start, a breakpoint whose input jump may move a guard across zero
+ * without any crossing to locate): every law chooses its mode from its
+ * guards' signs, where a guard that is exactly zero takes the sign it has
+ * just after t (at t + dt along x + dt F(t, x), dt = 1e-8 max(1, |t|),
+ * as CVODE's own root-finding decides which way a zero guard moves). The
+ * choice is repeated until no mode changes, so a law whose inputs depend
+ * on another switched law sees that law's new mode; -1 (fatal) if the
+ * modes do not settle within 16 rounds. *changed = 1 if a mode changed. */
+int fb_bd_sync_modes(fb_bd *bd, double t, const double *x, int *changed);
 /* At an event at (t, x): crossed[i] is +1 or -1 where guard i has just
- * crossed zero upwards or downwards, 0 elsewhere. Each law with a crossed
- * guard chooses its next mode; *changed = 1 if a mode changed. */
+ * crossed zero upwards or downwards, 0 elsewhere. The modes are chosen as
+ * by fb_bd_sync_modes, except that a crossed guard counts with the sign
+ * of its crossing whatever its value at the root (a root is located only
+ * to a tolerance); *changed = 1 if a mode changed. */
 int fb_bd_switch_modes(fb_bd *bd, double t, const double *x, const int *crossed, int *changed);
 /* 1 if the Newton subsystem is linear within each combination of modes
  * (every block linear, or a switched law with affine branches): P0 and

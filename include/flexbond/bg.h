@@ -115,12 +115,13 @@ typedef struct fb_law_ops {
   size_t nguards;
   /* The guards at in (in its mode) into g[0 .. nguards). */
   int (*guards)(void *ctx, const fb_law_in *in, double *g);
-  /* Sets *mode, the mode to continue in from in, whose in->mode is the
-   * current one. crossed[i] is +1 or -1 when guard i has just crossed
-   * zero upwards or downwards (the integrator's root direction), 0 when
-   * it has not; crossed is NULL at the start of a run, when the mode is
-   * chosen from the guards' signs alone. */
-  int (*switch_mode)(void *ctx, const fb_law_in *in, const int *crossed, int *mode);
+  /* Sets *mode, the mode to continue in at in (in->mode is the current
+   * one), from the guards' signs: sign[i] is +1 or -1 for guard i, the
+   * direction it has just crossed zero in at an event, else the sign of
+   * its value at in (of its value just after in, where it is exactly
+   * zero). The caller repeats the choice until no mode changes, so a law
+   * may move one mode at a time. */
+  int (*switch_mode)(void *ctx, const fb_law_in *in, const int *sign, int *mode);
   /* 1 when every branch is affine in xu, so the Jacobian changes only
    * with the mode and the Newton matrix only at events. */
   int affine;
@@ -232,8 +233,9 @@ int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *e
  * Adds the C element `spring` and the modulated R element `damper`, both
  * one-ports of dimension 1; the caller bonds both to one 1-junction (the
  * common compression rate), where their efforts add up to F. FB_EINVAL
- * unless k > 0 and c >= 0 are finite. Implemented in
- * src/bg/contact_law.c. */
+ * unless k > 0 and c >= 0 are finite; FB_EMODEL for a name that is
+ * invalid or taken, or the same for both; nothing is added then.
+ * Implemented in src/bg/contact_law.c. */
 int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damper, double k,
                                  double c, fb_err *err);
 

@@ -359,9 +359,12 @@ int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_pro
  * the road. With unilateral contact (wheel.tire_contact) the reaction is
  * exactly zero instead: the wheel is off the road, or leaving it. */
 typedef struct fb_contact_loss {
-  int corner;              /* FB_LF .. FB_RR */
-  double t_start, t_end;   /* s: zero crossings, linearly interpolated
-                              between samples (or the run's ends) */
+  int corner; /* FB_LF .. FB_RR */
+  /* s: a tensile reaction's zero crossings, linearly interpolated between
+   * samples; a unilateral tire's first and last samples of zero reaction
+   * (to one sample, since the reaction falls to exactly zero); or the
+   * run's ends. */
+  double t_start, t_end;
   double min_force, t_min; /* the smallest reaction (N, <= 0) and its time */
 } fb_contact_loss;
 

@@ -114,6 +114,8 @@ struct fb_bd {
    * diagram's guard vector. */
   size_t *switched, *guard_off;
   size_t nswitched, nguards;
+  double *guard_now, *guard_ahead, *x_ahead; /* scratch of fb_bd_sync_modes */
+  int *guard_sign;
   int piecewise_linear; /* linear within each mode of the switched laws */
   char errbuf[512];
 };

@@ -925,6 +925,10 @@ void fb_bd_free(fb_bd **bdp)
   free(bd->elem_co);
   free(bd->switched);
   free(bd->guard_off);
+  free(bd->guard_now);
+  free(bd->guard_ahead);
+  free(bd->guard_sign);
+  free(bd->x_ahead);
   free(bd);
   *bdp = NULL;
 }

@@ -1,4 +1,5 @@
 /* Switched laws of a block diagram: guards and modes (flexbond/bd.h). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -26,6 +27,12 @@ int fb_bd_prepare_switching(fb_bd *bd, fb_err *err)
       bd->switched[bd->nswitched++] = i;
       bd->nguards += bd->blocks[i].law->nguards;
     }
+  bd->guard_now = malloc((bd->nguards + 1) * sizeof *bd->guard_now);
+  bd->guard_ahead = malloc((bd->nguards + 1) * sizeof *bd->guard_ahead);
+  bd->guard_sign = malloc((bd->nguards + 1) * sizeof *bd->guard_sign);
+  bd->x_ahead = malloc((bd->nstates + 1) * sizeof *bd->x_ahead);
+  if (!bd->guard_now || !bd->guard_ahead || !bd->guard_sign || !bd->x_ahead)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the switched laws");
   bd->piecewise_linear = 1;
   for (size_t k = 0; k < bd->nnewton; ++k) {
     const bd_block *b = &bd->blocks[bd->newton_blocks[k]];
@@ -46,6 +53,8 @@ int fb_bd_is_piecewise_linear(const fb_bd *bd)
 
 const char *fb_bd_guard_element(const fb_bd *bd, size_t i)
 {
+  if (i >= bd->nguards)
+    return NULL;
   size_t k = 0;
   while (k + 1 < bd->nswitched && bd->guard_off[k + 1] <= i)
     ++k;
@@ -74,31 +83,17 @@ int fb_bd_guards(fb_bd *bd, double t, const double *x, double *g)
   return rc;
 }
 
-/* 1 if one of switched law k's guards is marked in crossed. */
-static int any_crossed(const fb_bd *bd, size_t k, const int *crossed)
+/* Asks every switched law for its next mode at (t, x) from the guard
+ * signs sign; *changed |= whether one changed. */
+static int switch_laws(fb_bd *bd, double t, const double *x, const int *sign, int *changed)
 {
-  const size_t ng = bd->blocks[bd->switched[k]].law->nguards;
-  for (size_t i = 0; i < ng; ++i)
-    if (crossed[bd->guard_off[k] + i])
-      return 1;
-  return 0;
-}
-
-/* Asks the laws (all when crossed is NULL, else those with a crossed
- * guard) for their next modes at (t, x). */
-static int switch_laws(fb_bd *bd, double t, const double *x, const int *crossed, int *changed)
-{
-  *changed = 0;
-  int rc = bd->nswitched ? fb_bd_eval(bd, t, x) : 0;
+  int rc = fb_bd_eval(bd, t, x);
   for (size_t k = 0; !rc && k < bd->nswitched; ++k) {
-    if (crossed && !any_crossed(bd, k, crossed))
-      continue;
     bd_block *b = &bd->blocks[bd->switched[k]];
     fb_law_in in;
     fb_bd_law_input(b, bd->w, &in);
     int mode = b->mode;
-    rc = b->law->switch_mode(b->law_ctx, &in, crossed ? crossed + bd->guard_off[k] : NULL,
-                             &mode);
+    rc = b->law->switch_mode(b->law_ctx, &in, sign + bd->guard_off[k], &mode);
     if (rc)
       rc = law_failed(bd, b, "mode switch", rc);
     else if (mode != b->mode) {
@@ -109,12 +104,68 @@ static int switch_laws(fb_bd *bd, double t, const double *x, const int *crossed,
   return rc;
 }
 
-int fb_bd_init_modes(fb_bd *bd, double t, const double *x, int *changed)
+/* sign[i] = the sign of guard i at (t, x), or just after t where it is
+ * exactly zero (zero there too counts as positive). */
+static int guard_signs(fb_bd *bd, double t, const double *x, int *sign)
 {
-  return switch_laws(bd, t, x, NULL, changed);
+  double *g = bd->guard_now, *ahead = bd->guard_ahead;
+  int rc = fb_bd_guards(bd, t, x, g);
+  int any_zero = 0;
+  for (size_t i = 0; !rc && i < bd->nguards; ++i)
+    any_zero |= g[i] == 0.0;
+  if (!rc && any_zero) {
+    const double dt = 1e-8 * fmax(1.0, fabs(t));
+    rc = fb_bd_rhs(bd, t, x, bd->x_ahead);
+    for (size_t i = 0; !rc && i < bd->nstates; ++i)
+      bd->x_ahead[i] = x[i] + dt * bd->x_ahead[i];
+    if (!rc)
+      rc = fb_bd_guards(bd, t + dt, bd->x_ahead, ahead);
+  }
+  for (size_t i = 0; !rc && i < bd->nguards; ++i) {
+    const double v = g[i] != 0.0 ? g[i] : ahead[i];
+    sign[i] = v < 0.0 ? -1 : 1;
+  }
+  return rc;
+}
+
+/* Rounds of mode choices before the modes are declared unsettled: each
+ * round that changes something moves at least one law, and a law has a
+ * few modes. */
+#define SYNC_ROUNDS 16
+
+/* fb_bd_sync_modes, with the guards marked in crossed (when not NULL)
+ * keeping the sign of their crossing. */
+static int settle_modes(fb_bd *bd, double t, const double *x, const int *crossed, int *changed)
+{
+  *changed = 0;
+  if (!bd->nswitched)
+    return 0;
+  for (int round = 0; round < SYNC_ROUNDS; ++round) {
+    int moved = 0;
+    int rc = guard_signs(bd, t, x, bd->guard_sign);
+    for (size_t i = 0; !rc && crossed && i < bd->nguards; ++i)
+      if (crossed[i])
+        bd->guard_sign[i] = crossed[i] > 0 ? 1 : -1;
+    if (!rc)
+      rc = switch_laws(bd, t, x, bd->guard_sign, &moved);
+    if (rc)
+      return rc;
+    if (!moved)
+      return 0;
+    *changed = 1;
+  }
+  snprintf(bd->errbuf, sizeof bd->errbuf,
+           "the modes of the switched laws do not settle at t = %g s (first law: '%s')", t,
+           fb_bd_guard_element(bd, 0));
+  return -1;
+}
+
+int fb_bd_sync_modes(fb_bd *bd, double t, const double *x, int *changed)
+{
+  return settle_modes(bd, t, x, NULL, changed);
 }
 
 int fb_bd_switch_modes(fb_bd *bd, double t, const double *x, const int *crossed, int *changed)
 {
-  return switch_laws(bd, t, x, crossed, changed);
+  return settle_modes(bd, t, x, crossed, changed);
 }

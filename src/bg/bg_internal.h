@@ -74,6 +74,9 @@ struct fb_bg {
 int fb_bg_receives_effort(const fb_bg *bg, size_t b, size_t e);
 /* +1 if bond b points into element e, -1 if it points out of it. */
 int fb_bg_orientation(const fb_bg *bg, size_t b, size_t e);
+/* FB_OK if name may name a new element of bg (non-empty, no '.', not an
+ * element or subsystem instance yet); FB_EMODEL saying why otherwise. */
+int fb_bg_check_new_name(const fb_bg *bg, const char *name, fb_err *err);
 /* "I 'Ms'" style description of an element for messages. */
 void fb_bg_describe(const fb_bg *bg, size_t e, char *buf, size_t size);
 

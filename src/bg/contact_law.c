@@ -2,8 +2,11 @@
  * fb_bg_add_unilateral_contact in flexbond/bg.h). */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "flexbond/bg.h"
+
+#include "bg/bg_internal.h"
 
 typedef struct contact_params {
   double k; /* N/m (or the domain's effort per displacement) */
@@ -12,15 +15,6 @@ typedef struct contact_params {
 
 enum { CONTACT = 0, RELEASED = 1 };
 enum { SPRING_SEPARATED = 1, DAMPER_SEPARATED = 2 };
-
-/* The sign a guard has after an event: the direction it crossed in, or
- * its value's sign (zero counts as positive) when it did not cross. */
-static int guard_sign(const int *crossed, size_t i, double g)
-{
-  if (crossed && crossed[i])
-    return crossed[i];
-  return g >= 0.0 ? 1 : -1;
-}
 
 /* ---- Spring: xu = [q]. */
 
@@ -53,10 +47,11 @@ static int spring_guards(void *ctx, const fb_law_in *in, double *g)
   return 0;
 }
 
-static int spring_switch(void *ctx, const fb_law_in *in, const int *crossed, int *mode)
+static int spring_switch(void *ctx, const fb_law_in *in, const int *sign, int *mode)
 {
   (void)ctx;
-  *mode = guard_sign(crossed, 0, in->x[0]) > 0 ? CONTACT : SPRING_SEPARATED;
+  (void)in;
+  *mode = sign[0] > 0 ? CONTACT : SPRING_SEPARATED;
   return 0;
 }
 
@@ -99,17 +94,19 @@ static int damper_guards(void *ctx, const fb_law_in *in, double *g)
   return 0;
 }
 
-static int damper_switch(void *ctx, const fb_law_in *in, const int *crossed, int *mode)
+/* Leaving separation, guard 1 was the constant: its value decides, and
+ * where it is exactly zero the next round (in contact, with guard 1 live)
+ * settles which way it moves. */
+static int damper_switch(void *ctx, const fb_law_in *in, const int *sign, int *mode)
 {
   const contact_params *p = ctx;
   const double f = in->x[0], q = in->x[1];
-  if (guard_sign(crossed, 0, q) < 0)
+  const int force_sign =
+      in->mode == DAMPER_SEPARATED ? (p->k * q + p->c * f >= 0.0 ? 1 : -1) : sign[1];
+  if (sign[0] < 0)
     *mode = DAMPER_SEPARATED;
   else
-    *mode =
-        guard_sign(in->mode == DAMPER_SEPARATED ? NULL : crossed, 1, p->k * q + p->c * f) > 0
-            ? CONTACT
-            : RELEASED;
+    *mode = force_sign > 0 ? CONTACT : RELEASED;
   return 0;
 }
 
@@ -141,7 +138,15 @@ int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damp
                       "unilateral contact '%s'/'%s': needs a finite stiffness > 0 and damping "
                       ">= 0 (got k = %g, c = %g)",
                       spring, damper, k, c);
-  int rc = add_law(bg, spring, FB_BG_C, &spring_ops, k, c, err);
+  /* Both names are checked first, so that a refusal adds neither. */
+  int rc = fb_bg_check_new_name(bg, spring, err);
+  if (!rc)
+    rc = fb_bg_check_new_name(bg, damper, err);
+  if (!rc && strcmp(spring, damper) == 0)
+    rc = fb_err_set(err, FB_EMODEL, "unilateral contact: spring and damper both named '%s'",
+                    spring);
+  if (!rc)
+    rc = add_law(bg, spring, FB_BG_C, &spring_ops, k, c, err);
   if (!rc)
     rc = add_law(bg, damper, FB_BG_R, &damper_ops, k, c, err);
   if (!rc)

@@ -127,7 +127,7 @@ static int find_instance(const fb_bg *bg, const char *name)
 }
 
 /* Checks that name can name a new element or instance of bg. */
-static int check_new_name(const fb_bg *bg, const char *name, fb_err *err)
+int fb_bg_check_new_name(const fb_bg *bg, const char *name, fb_err *err)
 {
   if (!name || !*name)
     return fb_err_set(err, FB_EMODEL, "empty element name");
@@ -145,7 +145,7 @@ static int check_new_name(const fb_bg *bg, const char *name, fb_err *err)
 static int add_elem(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, size_t nports,
                     const size_t *port_dims, fb_bg_elem **out, fb_err *err)
 {
-  int rc = check_new_name(bg, name, err);
+  int rc = fb_bg_check_new_name(bg, name, err);
   if (rc)
     return rc;
   if (dim == 0)
@@ -690,7 +690,7 @@ int fb_bg_adopt(fb_bg *parent, fb_bg **childp, const char *instance_name, fb_err
 {
   fb_bg *child = *childp;
   *childp = NULL;
-  int rc = check_new_name(parent, instance_name, err);
+  int rc = fb_bg_check_new_name(parent, instance_name, err);
   if (!rc)
     rc = prefix_names(child, instance_name, err);
   if (!rc && reserve_all(parent, child))

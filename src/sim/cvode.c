@@ -233,6 +233,8 @@ static const char *flag_hint(int flag)
   case CV_LSOLVE_FAIL:
     return "the Newton iteration failed; the Newton matrix may be singular, or the model "
            "has a discontinuity";
+  case CV_RTFUNC_FAIL:
+    return "evaluating the guards of the switched laws (contact conditions) failed";
   case CV_RHSFUNC_FAIL:
   case CV_FIRST_RHSFUNC_ERR:
   case CV_REPTD_RHSFUNC_ERR:
@@ -332,8 +334,10 @@ static int make_cvode(sim_run *run, fb_err *err)
   const size_t nguards = fb_bd_nguards(run->bd);
   if (rc == FB_OK && nguards)
     rc = cv_call(run, "CVodeRootInit", CVodeRootInit(run->cvode, (int)nguards, cv_roots), err);
-  /* A guard that is exactly zero where a segment starts is watched again
-   * once it moves away; that is expected, not worth a warning. */
+  /* CVODE leaves a guard that is exactly zero where a segment starts out
+   * of its watch until it moves away; sync_modes has already chosen the
+   * mode from the side it moves to, so that is expected, not worth a
+   * warning. */
   if (rc == FB_OK && nguards)
     rc =
         cv_call(run, "CVodeSetNoInactiveRootWarn", CVodeSetNoInactiveRootWarn(run->cvode), err);
@@ -502,6 +506,18 @@ static void add_segment_stats(sim_run *run, fb_sim_stats *s)
   CVodeGetLastOrder(run->cvode, &s->last_order);
 }
 
+/* Makes the switched laws' modes consistent with the state at t, where
+ * the integration (re)starts (fb_bd_sync_modes). */
+static int sync_modes(sim_run *run, double t, int *changed, fb_err *err)
+{
+  if (fb_bd_sync_modes(run->bd, t, N_VGetArrayPointer(run->y), changed) != 0)
+    return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: choosing the modes failed: %s", t,
+                      fb_bd_last_error(run->bd));
+  if (*changed)
+    run->have_values = 0; /* the linearisation belongs to the old modes */
+  return FB_OK;
+}
+
 /* CVODE stopped at a zero crossing of guards (CV_ROOT_RETURN), with
  * run->y the state there: the laws choose their next modes, and if one
  * changed the integration restarts from this point, because the right-
@@ -569,7 +585,28 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
   return FB_OK;
 }
 
-/* All segments between breakpoints; CVodeReInit at each breakpoint. */
+/* The restart at breakpoint t: an input may jump there and move a guard
+ * across zero with no crossing for the root-finding to locate, so the
+ * modes are made consistent with the new segment's inputs (a change
+ * counts as an event); a sample exactly at t is then rewritten with them
+ * (it shows the right limit). */
+static int restart_at_breakpoint(sim_run *run, double t, fb_err *err)
+{
+  int changed = 0;
+  int rc = cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, t, run->y), err);
+  if (rc == FB_OK)
+    rc = sync_modes(run, t, &changed, err);
+  if (rc != FB_OK || !changed)
+    return rc;
+  run->stats->events++;
+  const size_t last = run->next_sample - 1;
+  const double t_last = fb_sample_grid_time(&run->grid, last);
+  if (fabs(t_last - t) <= same_time_tol(t_last, t))
+    rc = write_sample(run, last, t_last, N_VGetArrayPointer(run->y), err);
+  return rc;
+}
+
+/* All segments between breakpoints; a restart at each breakpoint. */
 static int integrate(sim_run *run, fb_sim_stats *stats, fb_err *err)
 {
   const fb_sim_opts *o = run->opts;
@@ -580,7 +617,7 @@ static int integrate(sim_run *run, fb_sim_stats *stats, fb_err *err)
   for (size_t seg = 0; rc == FB_OK && seg <= run->nbps; ++seg) {
     if (seg > 0) {
       add_segment_stats(run, stats);
-      rc = cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, run->bps[seg - 1], run->y), err);
+      rc = restart_at_breakpoint(run, run->bps[seg - 1], err);
     }
     if (rc == FB_OK)
       rc = integrate_segment(run, seg < run->nbps ? run->bps[seg] : o->t_end, err);
@@ -622,10 +659,8 @@ static int run_dynamic(sim_run *run, fb_err *err)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the guards");
   int rc = initial_state(run, err);
   int changed = 0;
-  if (rc == FB_OK &&
-      fb_bd_init_modes(run->bd, run->opts->t_start, N_VGetArrayPointer(run->y), &changed) != 0)
-    rc = fb_err_set(err, FB_ESOLVER, "at t = %.6g s: choosing the initial modes failed: %s",
-                    run->opts->t_start, fb_bd_last_error(run->bd));
+  if (rc == FB_OK)
+    rc = sync_modes(run, run->opts->t_start, &changed, err);
   if (rc == FB_OK)
     rc = collect_breakpoints(run, err);
   if (rc == FB_OK)
