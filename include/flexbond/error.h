@@ -21,7 +21,8 @@ enum fb_status {
   FB_EMODEL = 4,  /* structurally invalid model (names, ports, dimensions) */
   FB_ECAUSAL = 5, /* causality: derivative causality, conflict, algebraic loop */
   FB_ESOLVER = 6, /* numerical failure (singular matrix, CVODE error) */
-  FB_EIO = 7      /* file could not be read or written */
+  FB_EIO = 7,     /* file could not be read or written */
+  FB_EINTR = 8    /* interrupted: the caller asked to stop (fb_sim_progress_fn) */
 };
 
 #define FB_ERR_MSG_MAX 4096

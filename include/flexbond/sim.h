@@ -23,8 +23,10 @@ extern "C" {
 #endif
 
 /* Called by fb_sim_run after every internal step with the time reached
- * (e.g. to draw a progress bar); must not call back into the run. */
-typedef void (*fb_sim_progress_fn)(void *ctx, double t, double t_end);
+ * (e.g. to draw a progress bar); must not call back into the run. Returns
+ * 0 to go on; anything else stops the run, which then fails with
+ * FB_EINTR (an interrupted command, say). */
+typedef int (*fb_sim_progress_fn)(void *ctx, double t, double t_end);
 
 typedef struct fb_sim_opts {
   double t_start;            /* s */

@@ -105,6 +105,7 @@ int cli_exit_code(int status)
   case FB_ECAUSAL: return CLI_EXIT_CAUSAL;
   case FB_ESOLVER: return CLI_EXIT_SOLVER;
   case FB_EIO: return CLI_EXIT_IO;
+  case FB_EINTR: return CLI_EXIT_INTERRUPTED;
   /* FB_EPARSE, FB_EINVAL, FB_EMODEL: the input is at fault. */
   default: return CLI_EXIT_INPUT;
   }

@@ -21,7 +21,8 @@ enum cli_exit {
   CLI_EXIT_CAUSAL = 3,
   CLI_EXIT_SOLVER = 4,
   CLI_EXIT_IO = 5,
-  CLI_EXIT_NOMEM = 6
+  CLI_EXIT_NOMEM = 6,
+  CLI_EXIT_INTERRUPTED = 130 /* 128 + SIGINT, as a shell reports a killed command */
 };
 
 /* One option a command accepts. The parser sets value: NULL when the
@@ -52,6 +53,18 @@ int cli_parse_file_command(int argc, char **argv, cli_option *opts, size_t nopts
 /* cli_parse_file_command for a MODEL file. */
 int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopts,
                             const char *usage, const char **model_path, int *exit_code);
+
+/* ---- Interruption. cli_interrupt_install makes SIGINT and SIGTERM set a
+ * flag instead of killing the program, once (a second signal kills it),
+ * so that a long command can stop cleanly: the simulations poll the flag
+ * through their progress callback and fail with FB_EINTR (exit code 130),
+ * and an interrupted command writes nothing (cli_outdir). Returns 0, or
+ * -1 if the handlers could not be installed. */
+int cli_interrupt_install(void);
+/* 1 once SIGINT or SIGTERM has arrived. */
+int cli_interrupted(void);
+/* FB_EINTR with a message once interrupted, else FB_OK. */
+int cli_check_interrupt(fb_err *err);
 
 /* Index in *out of the option's value text among choices[0..nchoices), or
  * a usage error listing the choices. */
@@ -91,33 +104,45 @@ int cli_print_help(const char *text);
 /* dir/name in fresh memory (no doubled '/'), NULL when out of memory. */
 char *cli_join_path(const char *dir, const char *name);
 
-/* The files one command writes into an output directory, all or nothing:
- * each file is committed (renamed into place) as soon as it is complete
- * and recorded with cli_outdir_keep; if a later one fails,
- * cli_outdir_close removes every recorded file and the directory itself
- * when this command created it. */
+/* The files one command writes into an output directory, all or nothing.
+ * They are written into a hidden staging directory inside dir
+ * (".flexbond-staging-XXXXXX") and recorded with cli_outdir_keep; only
+ * when the command has succeeded does cli_outdir_close move them into
+ * dir, each by a rename, keeping every file it replaces aside until all
+ * moves have succeeded (and putting them back if one fails). A failed or
+ * interrupted command removes the staging directory (and dir, if it
+ * created it and it is empty): dir's previous contents stay as they
+ * were. */
 typedef struct cli_outdir {
-  const char *dir; /* borrowed */
+  const char *dir; /* borrowed: the destination */
+  char *stage;     /* the staging directory, owned */
   int created;     /* dir did not exist before cli_outdir_open */
-  char **files;    /* committed files, owned */
+  char **files;    /* staged files, owned */
   size_t nfiles;
 } cli_outdir;
 
-/* Creates dir and its missing parents. */
+/* Creates dir and its missing parents, and the staging directory. */
 int cli_outdir_open(cli_outdir *od, const char *dir, fb_err *err);
-/* dir/name in fresh memory, or NULL with FB_ENOMEM recorded in err. */
+/* The staging path of file name (a plain file name), in fresh memory, or
+ * NULL with FB_ENOMEM recorded in err. */
 char *cli_outdir_path(const cli_outdir *od, const char *name, fb_err *err);
-/* Records the committed file path (taken over, freed by close). If that
+/* Records the staged file path (taken over, freed by close). If that
  * fails (out of memory) the file is removed and freed at once. */
 int cli_outdir_keep(cli_outdir *od, char *path, fb_err *err);
-/* Writes the file dir/name atomically (fb_out): write(fp, ctx) prints its
+/* Writes the staged file name (fb_out): write(fp, ctx) prints its
  * content; the file is then committed and recorded. */
 typedef void (*cli_writer)(FILE *fp, const void *ctx);
 int cli_outdir_write(cli_outdir *od, const char *name, cli_writer write, const void *ctx,
                      fb_err *err);
-/* Finishes: when status is not FB_OK, removes the recorded files and the
- * directory if created here. Frees the record; returns status. */
-int cli_outdir_close(cli_outdir *od, int status);
+/* Finishes. With status FB_OK (and no interruption meanwhile) moves the
+ * staged files into dir; otherwise, or if a move fails (FB_EIO in err),
+ * removes what is staged. Removes the staging directory, frees the
+ * record; returns the final status. */
+int cli_outdir_close(cli_outdir *od, int status, fb_err *err);
+
+/* Appends to err's message that nothing was written to dir (a failed or
+ * interrupted command; see cli_outdir). */
+void cli_nothing_written(fb_err *err, const char *dir);
 
 /* Subcommands: argv[0] is the command name, as for main. Each returns the
  * program's exit code. */

@@ -296,7 +296,7 @@ static int write_all(const char *dir, const export_model *m, fb_err *err)
     rc = write_matrix(&od, files[i].name, files[i].a, err);
   if (rc == FB_OK)
     rc = cli_outdir_write(&od, "model.json", write_model_json, m, err);
-  return cli_outdir_close(&od, rc);
+  return cli_outdir_close(&od, rc, err);
 }
 
 static int run(const char *path, fb_system sys, const char *dir)

@@ -24,6 +24,7 @@
  *   4  solver failure (FB_ESOLVER)
  *   5  I/O error: a file could not be read or written (FB_EIO)
  *   6  out of memory (FB_ENOMEM)
+ *   130  interrupted by SIGINT or SIGTERM (FB_EINTR); nothing was written
  * Errors are printed to stderr as "flexbond: <message>"; the library's
  * messages carry the file:line context themselves. */
 #include <stdio.h>
@@ -59,7 +60,7 @@ static void print_usage(FILE *fp)
     fprintf(fp, "  %-10s %s\n", commands[i].name, commands[i].summary);
   fputs("\n'flexbond COMMAND --help' describes a command's options.\n"
         "exit codes: 0 ok, 1 usage, 2 invalid input, 3 causality, 4 solver,\n"
-        "            5 I/O, 6 out of memory\n",
+        "            5 I/O, 6 out of memory, 130 interrupted\n",
         fp);
 }
 
@@ -101,5 +102,9 @@ int main(int argc, char **argv)
             first[0] == '-' ? "option" : "command", first);
     return CLI_EXIT_USAGE;
   }
+  if (cli_interrupt_install() != 0)
+    fputs("flexbond: warning: cannot catch SIGINT; an interrupted run may leave files "
+          "behind\n",
+          stderr);
   return cmd->run(argc - 1, argv + 1);
 }

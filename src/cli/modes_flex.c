@@ -124,7 +124,7 @@ static int write_files(const char *dir, const flex_modes *fm, fb_err *err)
     rc = cli_outdir_write(&od, "modes.csv", write_modes_csv, fm, err);
   if (!rc)
     rc = write_shapes(&od, fm, err);
-  return cli_outdir_close(&od, rc);
+  return cli_outdir_close(&od, rc, err);
 }
 
 static void print_tables(const flex_modes *fm)

@@ -448,7 +448,7 @@ static int write_outputs(const char *dir, const cli_run_outputs *o, size_t *nfil
   if (rc == FB_OK)
     rc = cli_outdir_write(&od, "report.md", cli_write_report_md, o, err);
   *nfiles = od.nfiles;
-  return cli_outdir_close(&od, rc);
+  return cli_outdir_close(&od, rc, err);
 }
 
 /* [first wheel's bump entry, last wheel's bump exit]. */
@@ -515,6 +515,7 @@ typedef struct run_progress {
   const char *scenario, *system;
   double t_end; /* s */
   int percent;  /* last one drawn */
+  int draw;     /* 0: only watch for an interruption */
 } run_progress;
 
 static void draw_progress_line(const run_progress *p)
@@ -524,17 +525,19 @@ static void draw_progress_line(const run_progress *p)
   fflush(stderr);
 }
 
-/* fb_sim_progress_fn: redraws only when the whole percentage grows, so a
- * run of a million steps writes at most 100 lines. */
-static void show_progress(void *ctx, double t, double t_end)
+/* fb_sim_progress_fn: stops the run once interrupted; redraws only when
+ * the whole percentage grows, so a run of a million steps writes at most
+ * 100 lines. */
+static int show_progress(void *ctx, double t, double t_end)
 {
   run_progress *p = ctx;
   double fraction = t_end > 0 ? t / t_end : 1;
   int percent = (int)floor(100 * fmin(fmax(fraction, 0), 1));
-  if (percent <= p->percent)
-    return;
-  p->percent = percent;
-  draw_progress_line(p);
+  if (p->draw && percent > p->percent) {
+    p->percent = percent;
+    draw_progress_line(p);
+  }
+  return cli_interrupted();
 }
 
 /* The tire-contact verdict: contact-loss intervals over the whole run, and the
@@ -607,14 +610,13 @@ static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
 static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
                     cli_run_system *run, fb_err *err)
 {
-  run_progress p = {cli_scenario_name(s), cli_system_label(run->sys), s->t_end, 0};
+  run_progress p = {cli_scenario_name(s), cli_system_label(run->sys), s->t_end, 0, a->progress};
   if (a->progress)
     draw_progress_line(&p);
   else if (!a->quiet)
     fprintf(stderr, "flexbond run: %s: simulating %s, t = 0..%g s ...\n", p.scenario, p.system,
             s->t_end);
-  int rc = fb_vehicle_simulate_progress(s, run->sys, a->progress ? show_progress : NULL, &p,
-                                        &run->res, err);
+  int rc = fb_vehicle_simulate_progress(s, run->sys, show_progress, &p, &run->res, err);
   /* End the progress line, also before an error message. */
   if (a->progress)
     fputc('\n', stderr);
@@ -700,6 +702,9 @@ static int run(const run_args *a)
       fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
     rc = compute_modes(s, systems, o.nruns, &modes, &err);
   }
+  /* The eigen-solvers do not poll the flag: look after them. */
+  if (rc == FB_OK)
+    rc = cli_check_interrupt(&err);
   for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i) {
     runs[i].sys = systems[i];
     rc = simulate(a, s, o.bump_window, &runs[i], &err);
@@ -719,6 +724,8 @@ static int run(const run_args *a)
   if (rc == FB_OK && !a->quiet)
     fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", cli_scenario_name(s), nfiles,
             a->out_dir);
+  if (rc != FB_OK)
+    cli_nothing_written(&err, a->out_dir);
   fb_result_free(&diff);
   for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i) {
     fb_result_free(&runs[i].res);

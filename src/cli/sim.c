@@ -112,7 +112,7 @@ static int write_outputs(const char *dir, const fb_result *res, const fb_bd *bd,
   const stats_source stats = {res, bd};
   if (rc == FB_OK)
     rc = cli_outdir_write(&od, "stats.json", write_stats_json, &stats, err);
-  return cli_outdir_close(&od, rc);
+  return cli_outdir_close(&od, rc, err);
 }
 
 static void print_summary(const sim_args *a, const fb_model *m, const fb_sim_opts *opts,
@@ -139,6 +139,15 @@ static fb_sim_opts effective_opts(const fb_model *m, const sim_args *a)
   return opts;
 }
 
+/* fb_sim_progress_fn: stops the simulation once interrupted. */
+static int stop_when_interrupted(void *ctx, double t, double t_end)
+{
+  (void)ctx;
+  (void)t;
+  (void)t_end;
+  return cli_interrupted();
+}
+
 static int run(const sim_args *a)
 {
   fb_err err;
@@ -150,6 +159,7 @@ static int run(const sim_args *a)
   int rc = fb_model_load(a->model_path, &m, &err);
   if (rc == FB_OK) {
     opts = effective_opts(m, a);
+    opts.progress = stop_when_interrupted;
     rc = fb_sim_opts_check(&opts, &err);
   }
   if (rc == FB_OK) {
@@ -163,6 +173,8 @@ static int run(const sim_args *a)
     rc = write_outputs(a->out_dir, res, bd, a->plot, &err);
   if (rc == FB_OK && !a->quiet)
     print_summary(a, m, &opts, res);
+  if (rc != FB_OK)
+    cli_nothing_written(&err, a->out_dir);
   fb_result_free(&res);
   fb_bd_free(&bd);
   fb_model_free(&m);

@@ -283,6 +283,15 @@ static int needs_serial(const sweep_args *a, const fb_scenario *s, int *serial, 
   return rc;
 }
 
+/* fb_sim_progress_fn: stops a case's simulation once interrupted. */
+static int stop_when_interrupted(void *ctx, double t, double t_end)
+{
+  (void)ctx;
+  (void)t;
+  (void)t_end;
+  return cli_interrupted();
+}
+
 static int simulate_case(sweep_pool *p, const fb_scenario *s, fb_result **res, fb_err *err)
 {
   int serial = 0;
@@ -291,7 +300,7 @@ static int simulate_case(sweep_pool *p, const fb_scenario *s, fb_result **res, f
     return rc;
   if (serial)
     pthread_mutex_lock(&p->arpack);
-  rc = fb_vehicle_simulate(s, p->a->sys, res, err);
+  rc = fb_vehicle_simulate_progress(s, p->a->sys, stop_when_interrupted, NULL, res, err);
   if (serial)
     pthread_mutex_unlock(&p->arpack);
   return rc;
@@ -345,13 +354,14 @@ static void report_case(sweep_pool *p, size_t i)
   pthread_mutex_unlock(&p->lock);
 }
 
-/* A thread of the pool: takes the next case until none is left. */
+/* A thread of the pool: takes the next case until none is left, or
+ * until the command is interrupted. */
 static void *worker(void *arg)
 {
   sweep_pool *p = arg;
   for (;;) {
     pthread_mutex_lock(&p->lock);
-    const size_t i = p->next < p->a->ncases ? p->next++ : SIZE_MAX;
+    const size_t i = p->next < p->a->ncases && !cli_interrupted() ? p->next++ : SIZE_MAX;
     pthread_mutex_unlock(&p->lock);
     if (i == SIZE_MAX)
       return NULL;
@@ -547,7 +557,7 @@ static int write_outputs(const sweep_args *a, const sweep_case *cases, fb_err *e
     rc = write_figure(&od, a, cases, err);
   if (rc == FB_OK)
     rc = cli_outdir_write(&od, "sweep.csv", write_csv, &o, err);
-  return cli_outdir_close(&od, rc);
+  return cli_outdir_close(&od, rc, err);
 }
 
 /* ---- The command line. */
@@ -794,15 +804,19 @@ static int sweep(const sweep_args *a)
   size_t failed = 0;
   for (size_t i = 0; i < a->ncases; ++i)
     failed += cases[i].status != FB_OK;
-  int rc = write_outputs(a, cases, &err);
+  int rc = cli_check_interrupt(&err);
+  if (rc == FB_OK)
+    rc = write_outputs(a, cases, &err);
   if (rc == FB_OK && !a->quiet)
     fprintf(stderr, "flexbond sweep: %s: %zu cases, %zu failed -> %s\n", a->scenario_name,
             a->ncases, failed, a->out_dir);
   for (size_t i = 0; i < a->ncases; ++i)
     free(cases[i].error);
   free(cases);
-  if (rc != FB_OK)
+  if (rc != FB_OK) {
+    cli_nothing_written(&err, a->out_dir);
     return cli_report(rc, &err);
+  }
   return failed ? CLI_EXIT_SOLVER : CLI_EXIT_OK;
 }
 

@@ -56,6 +56,7 @@ const char *fb_status_name(int code)
   case FB_ECAUSAL: return "FB_ECAUSAL";
   case FB_ESOLVER: return "FB_ESOLVER";
   case FB_EIO: return "FB_EIO";
+  case FB_EINTR: return "FB_EINTR";
   default: return "FB_E?";
   }
 }

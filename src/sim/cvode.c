@@ -245,6 +245,36 @@ static const char *flag_hint(int flag)
 
 /* FB_ESOLVER "at t = ... s: CVODE <flag>: <hint>" with whatever CVODE,
  * the Newton solver and the diagram said. */
+/* "; the largest local error ... is in state S": the state
+ * whose weighted local error estimate was the largest at the last step
+ * attempt (CVodeGetEstLocalErrors and CVodeGetErrWeights, which the CVODE
+ * user guide suggests after a failure to find the culprit); "" if CVODE
+ * has none yet. */
+static void worst_state(const sim_run *run, char *buf, size_t size)
+{
+  buf[0] = '\0';
+  N_Vector ele = N_VClone(run->y), ewt = N_VClone(run->y);
+  if (ele && ewt && CVodeGetEstLocalErrors(run->cvode, ele) == CV_SUCCESS &&
+      CVodeGetErrWeights(run->cvode, ewt) == CV_SUCCESS) {
+    const double *e = N_VGetArrayPointer(ele), *w = N_VGetArrayPointer(ewt);
+    size_t worst = 0;
+    double largest = 0.0;
+    for (size_t i = 0; i < run->n; ++i)
+      if (fabs(e[i] * w[i]) > largest) {
+        largest = fabs(e[i] * w[i]);
+        worst = i;
+      }
+    /* State names carry their element's ("susp_LF.wheel.p"). */
+    if (largest > 0.0 && isfinite(largest))
+      snprintf(buf, size, "; the largest local error (%.3g times its tolerance) is in state %s",
+               largest, fb_bd_state_name(run->bd, worst));
+  }
+  if (ele)
+    N_VDestroy(ele);
+  if (ewt)
+    N_VDestroy(ewt);
+}
+
 static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
 {
   char *name = CVodeGetReturnFlagName(flag); /* malloc'ed in CVODE 6.4 */
@@ -252,8 +282,10 @@ static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
   const char *lin = run->lin_err.msg;
   /* A linearisation failure surfaces as a Newton set-up failure. */
   const char *hint = flag_hint(run->jac_failed ? CV_RHSFUNC_FAIL : flag);
-  fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s%s%s%s%s%s%s", t,
-             name ? name : "(unknown flag)", hint, run->cvode_msg[0] ? "; " : "",
+  char culprit[512];
+  worst_state(run, culprit, sizeof culprit);
+  fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s%s%s%s%s%s%s%s", t,
+             name ? name : "(unknown flag)", hint, culprit, run->cvode_msg[0] ? "; " : "",
              run->cvode_msg, lin[0] ? "; " : "", lin, model && model[0] ? "; model: " : "",
              model ? model : "");
   free(name);
@@ -579,8 +611,10 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
       rc = handle_event(run, t_stop, err);
     if (rc != FB_OK)
       return rc;
-    if (run->opts->progress)
-      run->opts->progress(run->opts->progress_ctx, run->t_now, run->opts->t_end);
+    if (run->opts->progress &&
+        run->opts->progress(run->opts->progress_ctx, run->t_now, run->opts->t_end) != 0)
+      return fb_err_set(err, FB_EINTR, "at t = %.6g s: the simulation was interrupted",
+                        run->t_now);
   } while (flag != CV_TSTOP_RETURN);
   return FB_OK;
 }

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Nothing half-written: a run interrupted by SIGINT (or SIGTERM) in the
+# middle of its simulation, and a run whose solver fails, exit with their
+# documented codes (130, 4), say so, and leave the output directory's
+# previous contents exactly as they were, with no staging directory left
+# behind; a successful run replaces the files it writes and keeps the
+# others.
+#
+# usage: bash tests/cli_interrupt.sh PATH/TO/flexbond REPO_ROOT
+set -u
+NAME=cli_interrupt
+# shellcheck source=clilib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
+
+# previous DIR: a directory holding an earlier result and a user's file.
+previous() {
+  rm -rf "$1"
+  mkdir -p "$1"
+  echo "earlier result" >"$1/system2.csv"
+  echo "earlier result" >"$1/probes.csv"
+  echo "the user's notes" >"$1/notes.txt"
+}
+
+# expect_unchanged DIR DESCRIPTION: exactly the files of previous, intact.
+expect_unchanged() {
+  checks=$((checks + 1))
+  [ "$(ls -A "$1" | tr '\n' ' ')" = "notes.txt probes.csv system2.csv " ] ||
+    fail "$2: $1 now holds: $(ls -A "$1" | tr '\n' ' ')"
+  checks=$((checks + 1))
+  [ "$(cat "$1/system2.csv" "$1/probes.csv" "$1/notes.txt")" = \
+    "$(printf 'earlier result\nearlier result\nthe user'"'"'s notes')" ] ||
+    fail "$2: a previous file was changed"
+}
+
+# interrupt SIGNAL: starts System 1 on the ISO road example lengthened to
+# 3000 s (minutes of simulation) into $WORK/int, waits until its
+# simulation has started, then sends SIGNAL; sets $status.
+interrupt() {
+  previous "$WORK/int"
+  sed 's/^  t_end: 15 .*/  t_end: 3000/' "$REPO_ROOT/examples/apc6x6_iso_road.yaml" \
+    >"$WORK/long.yaml"
+  "$FLEXBOND" run "$WORK/long.yaml" -o "$WORK/int" --system rigid >"$OUT" 2>"$ERR" &
+  local pid=$! waited=0
+  while ! grep -q "simulating System 1" "$ERR" && [ "$waited" -lt 600 ]; do
+    sleep 0.1
+    waited=$((waited + 1))
+  done
+  sleep 0.5
+  kill -s "$1" "$pid"
+  wait "$pid"
+  status=$?
+}
+
+for sig in INT TERM; do
+  interrupt "$sig"
+  expect_status 130 "SIG$sig during the simulation"
+  expect_in "$ERR" "the simulation was interrupted" "SIG$sig message"
+  expect_in "$ERR" "nothing was written: $WORK/int holds what it held before" \
+    "SIG$sig says the previous results stand"
+  expect_unchanged "$WORK/int" "SIG$sig"
+done
+
+# A solver failure (the step budget of the quarter car's model exhausted).
+sed 's/^  t_end: 5$/  t_end: 5\n  max_steps: 30/' "$REPO_ROOT/examples/quarter_car.yaml" \
+  >"$WORK/too_few_steps.yaml"
+previous "$WORK/fail"
+run sim "$WORK/too_few_steps.yaml" -o "$WORK/fail"
+expect_status 4 "solver failure"
+expect_in "$ERR" "CV_TOO_MUCH_WORK" "solver failure names the CVODE flag"
+expect_in "$ERR" "raise simulation.max_steps" "solver failure gives a hint"
+expect_in "$ERR" "nothing was written" "solver failure says the previous results stand"
+expect_unchanged "$WORK/fail" "solver failure"
+
+# A successful run replaces probes.csv, adds stats.json, keeps the rest,
+# and leaves no staging directory.
+previous "$WORK/ok"
+run sim "$REPO_ROOT/examples/quarter_car.yaml" -o "$WORK/ok" -q
+expect_status 0 "successful run"
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/ok" | tr '\n' ' ')" = "notes.txt probes.csv stats.json system2.csv " ] ||
+  fail "successful run: $(ls -A "$WORK/ok" | tr '\n' ' ')"
+checks=$((checks + 1))
+[ "$(head -c 1 "$WORK/ok/probes.csv")" = "t" ] || fail "successful run: probes.csv not replaced"
+
+echo "$NAME: $checks checks, $failures failed" >&2
+[ "$failures" -eq 0 ]
