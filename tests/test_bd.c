@@ -228,6 +228,13 @@ static void test_augmented(void)
       CHECK(!fb_bd_is_linear(bd2));
     fb_bd_free(&bd2);
   }
+  /* The unknowns' names (for messages): a state's row is named as the
+   * state; a scalar signal by its name. */
+  for (size_t i = 0; i < n; ++i) {
+    char name[128];
+    fb_bd_aug_unknown_name(bd, fb_bd_state_row(bd, i), name, sizeof name);
+    CHECK(strcmp(name, fb_bd_state_name(bd, i)) == 0);
+  }
   double x[5];
   for (size_t i = 0; i < n; ++i)
     x[i] = 0.01 * (double)(i + 1);

@@ -109,6 +109,10 @@ int fb_bd_aug_values(fb_bd *bd, double t, const double *x, double *v0, double *v
  * other unknowns and can be eliminated first; 0 elsewhere. unit has
  * fb_bd_aug_size entries. */
 void fb_bd_aug_unit_rows(const fb_bd *bd, unsigned char *unit);
+/* Name of unknown z_i, i < fb_bd_aug_size, into buf: its signal's name
+ * ("e:susp_LF.b_spring", "hull.body.p"), with "[k]" (1-based) for a
+ * component of a vector signal; for messages. */
+void fb_bd_aug_unknown_name(const fb_bd *bd, size_t i, char *buf, size_t size);
 /* Index in z of state i, for i < nstates. */
 size_t fb_bd_state_row(const fb_bd *bd, size_t i);
 /* 1 if every block of the Newton subsystem (those the state derivatives

@@ -130,6 +130,22 @@ int fb_bd_is_linear(const fb_bd *bd)
   return bd->linear;
 }
 
+void fb_bd_aug_unknown_name(const fb_bd *bd, size_t i, char *buf, size_t size)
+{
+  snprintf(buf, size, "unknown %zu", i);
+  for (size_t s = 0; s < bd->nsigs; ++s) {
+    const bd_signal *sig = &bd->sigs[s];
+    for (size_t c = 0; c < sig->dim; ++c)
+      if (bd->zmap[sig->off + c] == i) {
+        if (sig->dim == 1)
+          snprintf(buf, size, "%s", sig->name);
+        else
+          snprintf(buf, size, "%s[%zu]", sig->name, c + 1);
+        return;
+      }
+  }
+}
+
 size_t fb_bd_state_row(const fb_bd *bd, size_t i)
 {
   return bd->zmap[i]; /* states occupy w[0 .. nstates) and z[0 .. nstates) */

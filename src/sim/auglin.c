@@ -61,6 +61,7 @@ struct fb_auglin {
   klu_l_numeric *numeric;
   int factored; /* numeric holds a valid LU of S */
   long nfactor;
+  long singular; /* z of the unknown without a pivot, or -1 */
 };
 
 static void csr_free(csr *m)
@@ -366,6 +367,7 @@ int fb_auglin_new(size_t nz, size_t nnz, const size_t *rows, const size_t *cols,
   a->nz = nz;
   a->nnz = nnz;
   a->nstates = nstates;
+  a->singular = -1;
   a->slot = malloc((nnz ? nnz : 1) * sizeof *a->slot);
   a->state_rows = malloc((nstates ? nstates : 1) * sizeof *a->state_rows);
   rc = a->slot && a->state_rows ? build_p(a, rows, cols) : FB_ENOMEM;
@@ -470,12 +472,18 @@ static int full_factor(fb_auglin *a, double gamma, fb_err *err)
   if (a->numeric)
     klu_l_free_numeric(&a->numeric, &a->common);
   ++a->nfactor;
+  a->singular = -1;
   a->numeric = klu_l_factor(a->sp, a->si, a->s.val, a->symbolic, &a->common);
-  if (a->common.status == KLU_SINGULAR)
+  if (a->common.status == KLU_SINGULAR) {
+    /* KLU names the column of S, a kept unknown; z is what callers know. */
+    for (size_t z = 0; z < a->nz; ++z)
+      if (a->kidx[z] != NONE && (long)a->kidx[z] == (long)a->common.singular_col)
+        a->singular = (long)z;
     return fb_err_set(err, FB_ESOLVER,
                       "Newton matrix P(gamma = %g) is singular (no pivot for kept unknown %ld "
                       "of %zu)",
                       gamma, (long)a->common.singular_col, a->nk);
+  }
   if (!a->numeric && a->common.status == KLU_OUT_OF_MEMORY)
     return fb_err_set(err, FB_ENOMEM,
                       "out of memory in KLU factorisation of the Newton matrix");
@@ -570,4 +578,9 @@ size_t fb_auglin_nkept(const fb_auglin *al)
 size_t fb_auglin_kept_nnz(const fb_auglin *al)
 {
   return al->s.ptr[al->nk];
+}
+
+long fb_auglin_singular_unknown(const fb_auglin *al)
+{
+  return al->singular;
 }

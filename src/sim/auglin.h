@@ -57,6 +57,9 @@ int fb_auglin_setup(fb_auglin *al, double gamma, const double *v0, const double 
 int fb_auglin_solve(fb_auglin *al, const double *b, double *x, fb_err *err);
 
 /* Numeric LU factorisations done so far (full and refactorisations). */
+/* The unknown (index in z) that the last failed factorisation found no
+ * pivot for, or -1 when the last factorisation did not fail that way. */
+long fb_auglin_singular_unknown(const fb_auglin *al);
 long fb_auglin_nfactorizations(const fb_auglin *al);
 
 /* Unknowns kept after the elimination (the order of the factorised

@@ -284,6 +284,15 @@ static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
   const char *hint = flag_hint(run->jac_failed ? CV_RHSFUNC_FAIL : flag);
   char culprit[512];
   worst_state(run, culprit, sizeof culprit);
+  const long singular = fb_auglin_singular_unknown(run->lin);
+  if (singular >= 0 && (flag == CV_LSETUP_FAIL || flag == CV_CONV_FAILURE)) {
+    char name[256];
+    fb_bd_aug_unknown_name(run->bd, (size_t)singular, name, sizeof name);
+    snprintf(culprit, sizeof culprit,
+             "; the Newton matrix has no pivot for %s (a mass, stiffness or damping that is "
+             "zero or cancels out there)",
+             name);
+  }
   fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s%s%s%s%s%s%s%s", t,
              name ? name : "(unknown flag)", hint, culprit, run->cvode_msg[0] ? "; " : "",
              run->cvode_msg, lin[0] ? "; " : "", lin, model && model[0] ? "; model: " : "",
