@@ -8,6 +8,12 @@
 #                      and the quarter-car example into out/quarter_car/
 #   make asan          build into $(ASAN_DIR) with ASan+UBSan and run the suite
 #   make clang         build into $(CLANG_DIR) with clang and -Werror and run the suite
+#   make fuzz          build the libFuzzer targets into $(FUZZ_DIR) (clang) and run each for
+#                      $(FUZZ_SECONDS) s; fails on any crash, leak or timeout (docs/fuzzing.md)
+#   make valgrind      build into $(VALGRIND_DIR) and run the unit tests (tests/test_*.c) under
+#                      valgrind memcheck, all but the slowest (docs/quality.md)
+#   make tidy          clang-tidy (checks in .clang-tidy) over src/ and the headers it includes
+#   make cppcheck      cppcheck over src/
 #   make format        clang-format -i every .c/.h under include/ src/ tests/
 #   make format-check  fail if any of those files is not clang-format clean
 #   make clean         remove the build directories above and out/
@@ -29,10 +35,11 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CTEST_JOBS ?= 2
 
 # clang is the second compiler; clang-format serves format/format-check; python3
-# checks the JSON the CLI writes (tests/cli_run.sh).
+# checks the JSON the CLI writes (tests/cli_run.sh); valgrind, clang-tidy and cppcheck
+# serve the targets of the same names (docs/quality.md).
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
                 liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz clang \
-                clang-format python3
+                clang-format python3 valgrind clang-tidy cppcheck
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 APT := $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get
 
@@ -90,4 +97,85 @@ format-check:
 	$(if $(FORMAT_SOURCES),clang-format --dry-run --Werror $(FORMAT_SOURCES),@echo "format-check: no sources")
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(CLANG_DIR) $(OUT_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(CLANG_DIR) $(VALGRIND_DIR) $(TIDY_DIR) $(OUT_DIR)
+
+# ---- Fuzzing (docs/fuzzing.md): each tests/fuzz/fuzz_NAME.c runs for FUZZ_SECONDS on a copy
+# of its seed corpus and crash inputs in $(FUZZ_DIR)/corpus/NAME (the repository is never
+# written), from tests/fuzz (the targets' base directory for relative file references).
+# Crash, leak and timeout inputs land in $(FUZZ_DIR)/crashes/, cleared at the start.
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_NAMES := model scenario inp
+FUZZ_ABS := $(abspath $(FUZZ_DIR))
+
+.PHONY: fuzz
+fuzz: deps
+	CC=clang cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+	  -DCMAKE_C_COMPILER=clang -DFLEXBOND_FUZZ=ON
+	cmake --build $(FUZZ_DIR) -j$(JOBS) --target $(addprefix fuzz_,$(FUZZ_NAMES))
+	@rm -rf $(FUZZ_ABS)/crashes && mkdir -p $(FUZZ_ABS)/crashes; \
+	failed=; \
+	for name in $(FUZZ_NAMES); do \
+	  dict=yaml.dict; [ $$name = inp ] && dict=inp.dict; \
+	  corpus=$(FUZZ_ABS)/corpus/$$name; mkdir -p $$corpus; \
+	  find tests/fuzz/corpus/$$name tests/fuzz/regressions/$$name -type f ! -name '.*' \
+	    -exec cp {} $$corpus/ \; ; \
+	  echo "fuzz: fuzz_$$name for $(FUZZ_SECONDS) s (log: $(FUZZ_DIR)/fuzz_$$name.log)"; \
+	  if ! (cd tests/fuzz && $(FUZZ_ABS)/fuzz_$$name $$corpus -max_total_time=$(FUZZ_SECONDS) \
+	        -timeout=5 -rss_limit_mb=2048 -dict=$$dict \
+	        -artifact_prefix=$(FUZZ_ABS)/crashes/$$name-) > $(FUZZ_ABS)/fuzz_$$name.log 2>&1; then \
+	    failed="$$failed $$name"; tail -n 40 $(FUZZ_ABS)/fuzz_$$name.log; \
+	  else \
+	    grep -E '^(#[0-9]+.*DONE|Done )' $(FUZZ_ABS)/fuzz_$$name.log; \
+	  fi; \
+	done; \
+	artifacts=$$(find $(FUZZ_ABS)/crashes -type f | sort); \
+	if [ -n "$$failed$$artifacts" ]; then \
+	  echo "fuzz: FAILED:$${failed:- (artifacts only)}"; \
+	  for a in $$artifacts; do echo "  $$a"; done; \
+	  echo "fuzz: fix each finding, then copy its input into tests/fuzz/regressions/NAME/"; \
+	  echo "      (NAME from the file name, e.g. model-crash-... -> regressions/model/, under a"; \
+	  echo "      descriptive name) so that CTest's fuzz_regressions_NAME replays it."; \
+	  exit 1; \
+	fi; \
+	echo "fuzz: no crash, leak or timeout in $(FUZZ_SECONDS) s per target"
+
+# ---- Quality checks (docs/quality.md): valgrind memcheck, clang-tidy, cppcheck.
+VALGRIND_DIR ?= build-valgrind
+TIDY_DIR ?= build-tidy
+# Left out of `make valgrind`: 57 s natively, most of an hour under memcheck (docs/quality.md).
+VALGRIND_EXCLUDE ?= ^test_system2_sim$$
+# Only definite and indirect leaks are errors (and shown); any error fails the test.
+VALGRIND_OPTIONS := --leak-check=full --show-leak-kinds=definite,indirect \
+                    --errors-for-leak-kinds=definite,indirect --error-exitcode=1 --num-callers=30
+CPPCHECK_OPTIONS := --enable=warning,style,performance,portability --std=c11 --error-exitcode=1 \
+                    --inline-suppr --suppress=missingIncludeSystem --quiet \
+                    -D_POSIX_C_SOURCE=200809L -I include -I src
+
+.PHONY: valgrind tidy cppcheck
+# One OpenBLAS thread with its SSE3 kernels: memcheck serialises threads, and it runs the
+# default AVX2 kernels about ten times slower; neither choice changes our code's memory use.
+valgrind: deps
+	$(call cmake_build,$(VALGRIND_DIR),-DFLEXBOND_SANITIZE=OFF)
+	OPENBLAS_NUM_THREADS=1 OPENBLAS_CORETYPE=Prescott \
+	  ctest --test-dir $(VALGRIND_DIR) -T memcheck -R '^test_' -E '$(VALGRIND_EXCLUDE)' \
+	  --output-on-failure -j$(CTEST_JOBS) \
+	  --overwrite MemoryCheckCommand=$$(command -v valgrind) \
+	  --overwrite 'MemoryCheckCommandOptions=$(VALGRIND_OPTIONS)' \
+	  --overwrite MemoryCheckSuppressionFile=$(CURDIR)/tests/valgrind.supp
+
+# A Debug clang tree for its compile_commands.json only (nothing is built): Debug keeps the
+# asserts, which tell the analyzer invariants it cannot see across translation units.
+tidy: deps
+	cmake -S . -B $(TIDY_DIR) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang \
+	  -DCMAKE_EXPORT_COMPILE_COMMANDS=ON > /dev/null
+	@echo "tidy: clang-tidy $$(clang-tidy --version | sed -n 's/.*version //p') over src/"
+	@find src -name '*.c' | sort | xargs -P$(JOBS) -I{} bash -c \
+	  'out=$$(clang-tidy -p $(TIDY_DIR) --quiet {} 2>&1) || \
+	   { grep -v "warnings\? generated\.$$" <<< "$$out"; exit 1; }' \
+	  || { echo "tidy: FAILED: fix each finding (docs/quality.md)"; exit 1; }
+	@echo "tidy: no findings"
+
+cppcheck: deps
+	cppcheck $(CPPCHECK_OPTIONS) -j$(JOBS) src
+	@echo "cppcheck: no findings"

@@ -166,8 +166,16 @@ int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *pat
  * node sets, ELSET ignored); props, if not NULL, receives the material and
  * thickness when the deck has them (fields left untouched otherwise).
  * Errors are "path:line: message" (unknown element type, missing node,
- * malformed numbers). */
+ * malformed numbers, and an element that is degenerate or warped, as
+ * fb_mesh_check finds, at its own line). */
 int fb_mesh_read_inp(const char *path, fb_mesh **out, fb_shell_props *props, fb_err *err);
+/* Same from the len bytes at text, which need not be NUL-terminated:
+ * errors are "display_name:line: message" (display_name NULL:
+ * "<string>"), and a NUL or other control byte (tab aside) anywhere in
+ * the text is FB_EPARSE "binary data (byte 0x00 in column c)" at its
+ * line; no byte past len is read. *out is NULL on failure. */
+int fb_mesh_read_inp_string(const char *text, size_t len, const char *display_name,
+                            fb_mesh **out, fb_shell_props *props, fb_err *err);
 /* VTK XML unstructured grid (.vtu) for ParaView, with an optional nodal
  * displacement field (6 per node; translations as a vector "displacement",
  * rotations as "rotation") and the node sets as point data flags. */

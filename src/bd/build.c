@@ -3,6 +3,7 @@
  * compute its output efforts and flows from its inputs. Junctions make
  * aliases (equal efforts at a 0-junction, equal flows at a 1-junction) and
  * one signed sum. */
+#include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -672,6 +673,9 @@ static int add_probe(fb_bd *bd, const fb_probe_spec *p, fb_err *err)
   int rc = probe_signal(bd, p, &sig, &target, err);
   if (rc)
     return rc;
+  /* Stated for the static analyzer, which cannot see that fb_bg_find_element (graph.c)
+   * returns an index below the element count. */
+  assert(sig < bd->nsigs);
   if (p->integrate) {
     char name[300];
     snprintf(name, sizeof name, "integral:%s", p->name);
@@ -711,6 +715,7 @@ static int layout(fb_bd *bd, fb_err *err)
   bd->integ = malloc((bd->nblocks + 1) * sizeof *bd->integ);
   if (!bd->integ)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
+  bd->ninteg = 0;
   size_t off = 0;
   for (size_t i = 0; i < bd->nblocks; ++i)
     if (bd->blocks[i].ops == &fb_bd_integrator_ops) {

@@ -2,6 +2,7 @@
  * are states, known at the start of an evaluation, so they cut every
  * causal cycle that passes through storage; a cycle left over is an
  * algebraic loop: a zero-order causal path (Karnopp et al., section 5.3). */
+#include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,11 +57,15 @@ static int report_loop(const fb_bd *bd, const unsigned char *done, fb_err *err)
     if (start == FB_NONE)
       start = i;
   }
-  /* Walk backwards until a block repeats: that block is on a cycle. */
+  /* Walk backwards until a block repeats: that block is on a cycle. Every block left has an
+   * input from another block left (else Kahn's algorithm would have scheduled it), as the
+   * asserts state for the static analyzer. */
+  assert(start != FB_NONE);
   size_t cur = start;
   while (!seen[cur]) {
     seen[cur] = 1;
     cur = next[cur];
+    assert(cur != FB_NONE);
   }
   char path[FB_ERR_MSG_MAX] = "";
   size_t len = 0, first = cur;

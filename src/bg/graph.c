@@ -190,6 +190,7 @@ int fb_bg_add_source(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, f
       rc = fb_err_set(err, FB_EINVAL, "'%s': component %zu has no time function", name, i + 1);
   if (!rc)
     rc = add_elem(bg, name, kind, dim, 1, &dim, &el, err);
+  /* NOLINTNEXTLINE(bugprone-sizeof-expression): an array of pointers, sized by its element */
   if (!rc && !(el->values = calloc(dim, sizeof *el->values))) {
     rc = fb_err_set(err, FB_ENOMEM, "out of memory adding '%s'", name);
     bg->nelems--;

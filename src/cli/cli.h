@@ -78,6 +78,11 @@ int cli_usage_error(const char *cmd, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+#if defined(__clang_analyzer__)
+/* For the static analyzer only (`make tidy`), which does not follow calls to variadic
+ * functions: the value is CLI_EXIT_USAGE. */
+#define cli_usage_error(cmd, ...) (cli_usage_error((cmd), __VA_ARGS__), CLI_EXIT_USAGE)
+#endif
 
 /* Converts the value of option name to a finite number > 0 in *out, or
  * reports a usage error naming the option. */

@@ -7,6 +7,7 @@
  * road height and road rate, u = [h_LF .. h_RR, hdot_LF .. hdot_RR]. The
  * model sees only the rates (each tire spring's state integrates its
  * wheel's rate), so the height columns of Bu and D are zero. */
+#include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -307,6 +308,7 @@ static int run(const char *path, fb_system sys, const char *dir)
   fb_bg *graph = NULL;
   export_model m = {.sys = sys};
   int rc = fb_scenario_load(path, &s, &err);
+  assert(rc != FB_OK || s); /* for the static analyzer: s is set on success */
   /* A unilateral tire is linear while in contact, its mode at rest: that
    * branch is the linear model. */
   for (int c = 0; s && c < FB_NCORNERS; ++c)

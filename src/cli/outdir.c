@@ -196,6 +196,11 @@ void cli_nothing_written(fb_err *err, const char *dir)
   if (!late || !dir)
     return;
   const size_t len = strlen(err->msg);
-  snprintf(err->msg + len, sizeof err->msg - len,
-           "; nothing was written: %s holds what it held before", dir);
+  struct stat st;
+  if (stat(dir, &st) == 0)
+    snprintf(err->msg + len, sizeof err->msg - len,
+             "; nothing was written: %s holds what it held before", dir);
+  else
+    snprintf(err->msg + len, sizeof err->msg - len, "; nothing was written (%s not created)",
+             dir);
 }

@@ -597,21 +597,18 @@ static double ride_value(const fb_ride_metrics *m, size_t row)
 static void write_ride(FILE *fp, const cli_run_outputs *o)
 {
   fputs("\n## Ride comfort (driver plus seat)\n\n", fp);
-  int any = 0;
+  const cli_run_system *first = NULL;
   for (size_t i = 0; i < o->nruns; ++i) {
     const cli_run_system *r = &o->runs[i];
     if (r->has_ride) {
-      any = 1;
+      if (!first)
+        first = r;
       continue;
     }
     fprintf(fp, "%s: no ride metrics (%s).\n\n", cli_system_label(r->sys), r->ride_note);
   }
-  if (!any)
+  if (!first)
     return;
-  const cli_run_system *first = NULL;
-  for (size_t i = 0; i < o->nruns && !first; ++i)
-    if (o->runs[i].has_ride)
-      first = &o->runs[i];
   fprintf(fp,
           "The driver's vertical acceleration from the first wheel's bump entry (%.3f s) to "
           "the end of the run (%.3f s), weighted and evaluated per ISO 2631-1:1997 (flexbond's "

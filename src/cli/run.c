@@ -422,9 +422,9 @@ static void write_summary_json(FILE *fp, const void *ctx)
 /* systemN.csv (a cli_writer over a cli_run_system). */
 static void write_system_csv(FILE *fp, const void *ctx)
 {
-  const cli_run_system *run = ctx;
+  const cli_run_system *sys = ctx;
   /* The paper's seven outputs; the contact forces go to the summary. */
-  fb_result_print_csv_columns(fp, run->res, 1 + FB_NOUTPUTS, FB_CSV_HEADER_NAMES);
+  fb_result_print_csv_columns(fp, sys->res, 1 + FB_NOUTPUTS, FB_CSV_HEADER_NAMES);
 }
 
 /* Creates dir if needed and writes every file into it, all or nothing;
@@ -649,9 +649,10 @@ static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *s
                 : "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
                   "System 1 (rigid hull) ran";
   }
-  for (size_t i = 0; i < system_sets[choice].nsystems; ++i)
+  const size_t n = system_sets[choice].nsystems;
+  for (size_t i = 0; i < n; ++i)
     systems[i] = system_sets[choice].systems[i];
-  return system_sets[choice].nsystems;
+  return n;
 }
 
 /* System 2 minus System 1 and the comparison of every output, when both
@@ -685,7 +686,7 @@ static int run(const run_args *a)
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   cli_run_system runs[CLI_MAX_SYSTEMS] = {{0}};
-  fb_system systems[CLI_MAX_SYSTEMS];
+  fb_system systems[CLI_MAX_SYSTEMS] = {FB_SYSTEM_RIGID};
   run_modes modes = {0};
   fb_result *diff = NULL;
   cli_run_outputs o = {.runs = runs, .figures = a->figures};

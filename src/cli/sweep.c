@@ -339,10 +339,10 @@ static void run_case(sweep_pool *p, size_t i)
 static void report_case(sweep_pool *p, size_t i)
 {
   const sweep_case *c = &p->cases[i];
-  char label[512];
   pthread_mutex_lock(&p->lock);
   ++p->done;
   if (!p->a->quiet) {
+    char label[512];
     case_label(p->a, i, 0, label, sizeof label);
     if (c->status == FB_OK)
       fprintf(stderr, "flexbond sweep: case %zu/%zu (%s): ok, %.0f steps, %.3g s\n", i + 1,
@@ -801,10 +801,21 @@ static int sweep(const sweep_args *a)
     return cli_report(fb_err_set(&err, FB_ENOMEM, "out of memory for %zu cases", a->ncases),
                       &err);
   run_cases(a, cases);
-  size_t failed = 0;
-  for (size_t i = 0; i < a->ncases; ++i)
+  size_t failed = 0, input_errors = 0;
+  for (size_t i = 0; i < a->ncases; ++i) {
     failed += cases[i].status != FB_OK;
+    /* An input error at a swept value (the reader's message then starts
+     * with the option that set it) belongs to its case. */
+    const int at_value = cases[i].error && strncmp(cases[i].error, "--set ", 6) == 0;
+    input_errors += !at_value && (cli_exit_code(cases[i].status) == CLI_EXIT_INPUT ||
+                                  cli_exit_code(cases[i].status) == CLI_EXIT_IO);
+  }
   int rc = cli_check_interrupt(&err);
+  /* Every case refused for an input none of its values touches (a bad
+   * deck all cases share, say): the study is at fault, not its cases. */
+  if (rc == FB_OK && input_errors == a->ncases)
+    rc = fb_err_set(&err, cases[0].status, "every case failed on its input; the first: %s",
+                    cases[0].error ? cases[0].error : "(out of memory)");
   if (rc == FB_OK)
     rc = write_outputs(a, cases, &err);
   if (rc == FB_OK && !a->quiet)

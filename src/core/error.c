@@ -13,7 +13,8 @@ void fb_err_clear(fb_err *err)
   err->msg[0] = '\0';
 }
 
-int fb_err_set(fb_err *err, int code, const char *fmt, ...)
+/* The parentheses keep the analyzer-only macro of error.h from expanding here. */
+int(fb_err_set)(fb_err *err, int code, const char *fmt, ...)
 {
   if (!err)
     return code;

@@ -13,6 +13,7 @@
  * power), so -2^2 = -(2^2) = -4 as in mathematics, and 2^-1 = 0.5. */
 #include "flexbond/expr.h"
 
+#include <assert.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -180,7 +181,9 @@ double fb_expr_eval(const fb_expr *e, double t)
   size_t sp = 0;
   for (size_t i = 0; i < e->n; ++i) {
     const instr *in = &e->code[i];
-    switch (op_arity(in->op)) {
+    const size_t arity = op_arity(in->op);
+    assert(sp >= arity && (arity > 0 || sp < EXPR_STACK_MAX));
+    switch (arity) {
     case 0: stack[sp++] = in->op == OP_TIME ? t : in->k; break;
     case 1: stack[sp - 1] = apply_op(in->op, stack[sp - 1], 0.0); break;
     default:
@@ -189,6 +192,7 @@ double fb_expr_eval(const fb_expr *e, double t)
       break;
     }
   }
+  assert(sp == 1);
   return stack[0];
 }
 

@@ -369,10 +369,10 @@ static int dense_multiply(const fb_mat *a, const fb_mat *b, fb_mat **out, fb_err
   int rc = dense_alloc(a->nrows, b->ncols, &c, err);
   if (rc)
     return rc;
-  if (c->nnz)
-    memset(c->vals, 0, c->nnz * sizeof *c->vals);
   for (size_t j = 0; j < b->ncols; ++j) {
     double *cj = c->vals + j * c->nrows;
+    for (size_t i = 0; i < c->nrows; ++i)
+      cj[i] = 0.0;
     for (size_t k = 0; k < a->ncols; ++k) {
       const double bkj = b->vals[k + j * b->nrows];
       const double *ak = a->vals + k * a->nrows;

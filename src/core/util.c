@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "flexbond/error.h"
 
@@ -49,11 +50,30 @@ char *fb_dirname(const char *path)
   return dir;
 }
 
+FILE *fb_open_input(const char *path, const char *mode, fb_err *err)
+{
+  struct stat st;
+  if (stat(path, &st) != 0) {
+    fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+    return NULL;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    fb_err_set(err, FB_EIO, "%s: cannot read: %s", path,
+               S_ISDIR(st.st_mode) ? "Is a directory"
+                                   : "not a regular file (a device, pipe or socket)");
+    return NULL;
+  }
+  FILE *fp = fopen(path, mode);
+  if (!fp)
+    fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+  return fp;
+}
+
 int fb_read_file(const char *path, char **text, size_t *len, fb_err *err)
 {
-  FILE *fp = fopen(path, "rb");
+  FILE *fp = fb_open_input(path, "rb", err);
   if (!fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+    return FB_EIO;
   size_t cap = 4096, n = 0;
   char *buf = malloc(cap);
   int rc = buf ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");

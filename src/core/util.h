@@ -3,6 +3,7 @@
 #define FLEXBOND_CORE_UTIL_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/error.h"
 
@@ -21,5 +22,11 @@ char *fb_dirname(const char *path);
  * *len bytes before the NUL; the caller frees *text). FB_EIO naming the
  * path and the system's reason when it cannot be opened or read. */
 int fb_read_file(const char *path, char **text, size_t *len, fb_err *err);
+/* fopen(path, mode) for reading an input file, which must be a regular
+ * file: a directory, a device (/dev/zero would never end, a terminal
+ * would wait) or a FIFO (would block) is refused. NULL with FB_EIO
+ * "path: cannot open: ..." or "path: cannot read: Is a directory" (or
+ * "not a regular file") in err. */
+FILE *fb_open_input(const char *path, const char *mode, fb_err *err);
 
 #endif

@@ -6,6 +6,7 @@
  * fb_mat_new_triplets sums into compressed sparse columns; K and M share
  * the row and column arrays because every element fills the same square
  * block of both. Nothing of model size is ever dense. */
+#include <assert.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -40,6 +41,7 @@ static int triplets_alloc(const fb_mesh *m, int want_k, int want_m, triplets *t,
     const size_t n = 6 * (size_t)fb_mesh_element_type(m, e);
     cap += n * n;
   }
+  assert(cap > 0); /* the caller rejects a mesh without elements */
   *t = (triplets){0, cap, NULL, NULL, NULL, NULL};
   if (cap > SIZE_MAX / sizeof(size_t))
     return fb_err_set(err, FB_ENOMEM, "mesh too large to assemble");

@@ -12,7 +12,9 @@
  *   S4R are read as S3 and S4 (the R, reduced integration, is a choice of
  *   formulation that flexbond makes itself; the geometry is the same).
  *   Other types are errors. Elements may name nodes defined later in the
- *   deck: ids are resolved once the whole deck is read.
+ *   deck: ids are resolved once the whole deck is read. Each element must
+ *   then pass fb_mesh_check's element tests (no repeated node, an area, a
+ *   convex and plane quadrilateral); a failure is an error at its line.
  * - *NSET, NSET=name [, GENERATE] [, INTERNAL] [, UNSORTED]: node ids and
  *   names of node sets defined earlier, or "first, last[, step]" lines with
  *   GENERATE; every node named, generated ones included, must exist. A
@@ -33,6 +35,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -131,6 +134,10 @@ static int inp_error(const inp_reader *r, size_t line, const char *fmt, ...)
   va_end(ap);
   return fb_err_set(r->err, FB_EPARSE, "%s:%zu: %s", r->path, line ? line : 1, msg);
 }
+#if defined(__clang_analyzer__)
+/* For the static analyzer only, which does not follow calls to variadic functions. */
+#define inp_error(r, line, ...) (inp_error((r), (line), __VA_ARGS__), FB_EPARSE)
+#endif
 
 static int inp_nomem(const inp_reader *r)
 {
@@ -865,6 +872,20 @@ static int chosen_material(const inp_reader *r, const inp_material **out)
   return FB_OK;
 }
 
+/* An element that no shell can integrate (a repeated node, no area, a
+ * reentrant corner, a warped quadrilateral: fb_mesh_check's element tests)
+ * is reported at its own line of the deck, where it must be fixed. The
+ * mesh's elements are in the deck's order (resolve_elements). */
+static int check_element_shapes(const inp_reader *r)
+{
+  fb_err sub;
+  fb_err_clear(&sub);
+  size_t bad = 0;
+  if (fb_mesh_check_elements(r->mesh, &bad, &sub) == FB_OK)
+    return FB_OK;
+  return inp_mesh_error(r, r->elems[bad].line, &sub);
+}
+
 static int finish(const inp_reader *r, fb_shell_props *props)
 {
   if (fb_mesh_nnodes(r->mesh) == 0)
@@ -873,6 +894,8 @@ static int finish(const inp_reader *r, fb_shell_props *props)
     return inp_error(r, r->lineno, "the deck defines no elements (*ELEMENT)");
   const inp_material *mat = NULL;
   int rc = resolve_elements(r);
+  if (!rc)
+    rc = check_element_shapes(r);
   if (!rc)
     rc = resolve_nsets(r);
   if (!rc)
@@ -900,20 +923,19 @@ static void reader_free(inp_reader *r)
   free(r->materials);
 }
 
-int fb_mesh_read_inp(const char *path, fb_mesh **out, fb_shell_props *props, fb_err *err)
+/* The parser shared by both readers: takes the NUL-terminated buffer text
+ * (len bytes before the NUL, owned: freed here) and reports errors as
+ * "name:line: ...". */
+static int read_inp_buffer(char *text, size_t len, const char *name, fb_mesh **out,
+                           fb_shell_props *props, fb_err *err)
 {
-  if (!out)
-    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp: out is NULL");
-  *out = NULL;
-  if (!path)
-    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp: path is NULL");
   inp_reader r;
   memset(&r, 0, sizeof r);
-  r.path = path;
+  r.path = name;
   r.err = err;
-  int rc = fb_read_file(path, &r.text, &r.len, err);
-  if (!rc)
-    rc = fb_mesh_new(&r.mesh, err);
+  r.text = text;
+  r.len = len;
+  int rc = fb_mesh_new(&r.mesh, err);
   if (!rc)
     rc = read_deck(&r);
   if (!rc)
@@ -923,6 +945,39 @@ int fb_mesh_read_inp(const char *path, fb_mesh **out, fb_shell_props *props, fb_
   *out = r.mesh;
   reader_free(&r);
   return rc;
+}
+
+int fb_mesh_read_inp(const char *path, fb_mesh **out, fb_shell_props *props, fb_err *err)
+{
+  if (!out)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp: out is NULL");
+  *out = NULL;
+  if (!path)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp: path is NULL");
+  char *text = NULL;
+  size_t len = 0;
+  const int rc = fb_read_file(path, &text, &len, err);
+  return rc ? rc : read_inp_buffer(text, len, path, out, props, err);
+}
+
+/* The parser splits lines in place and relies on a NUL after the last
+ * byte, so it works on a terminated copy; a NUL byte inside the text is
+ * reported as binary data by split_line. */
+int fb_mesh_read_inp_string(const char *text, size_t len, const char *display_name,
+                            fb_mesh **out, fb_shell_props *props, fb_err *err)
+{
+  if (!out)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp_string: out is NULL");
+  *out = NULL;
+  if (!text)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp_string: text is NULL");
+  const char *name = display_name ? display_name : "<string>";
+  char *copy = len < SIZE_MAX ? malloc(len + 1) : NULL;
+  if (!copy)
+    return fb_err_set(err, FB_ENOMEM, "out of memory reading %s", name);
+  memcpy(copy, text, len);
+  copy[len] = '\0';
+  return read_inp_buffer(copy, len, name, out, props, err);
 }
 
 /* ---- Writing. */

@@ -137,18 +137,21 @@ static int check_warp(const fb_mesh *m, size_t e, fb_err *err)
   return element_error(m, e, err, what);
 }
 
-static int check_elements(const fb_mesh *m, fb_err *err)
+int fb_mesh_check_elements(const fb_mesh *m, size_t *bad, fb_err *err)
 {
   const double min_area = 1e-12 * bbox_diag2(m);
-  int rc = FB_OK;
-  for (size_t e = 0; e < fb_mesh_nelements(m) && !rc; ++e) {
-    rc = check_repeated(m, e, err);
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
+    int rc = check_repeated(m, e, err);
     if (!rc)
       rc = check_area(m, e, min_area, err);
     if (!rc && fb_mesh_element_type(m, e) == FB_ELEM_QUAD4)
       rc = check_warp(m, e, err);
+    if (rc) {
+      *bad = e;
+      return rc;
+    }
   }
-  return rc;
+  return FB_OK;
 }
 
 static int check_used(const fb_mesh *m, fb_err *err)
@@ -190,7 +193,8 @@ int fb_mesh_check(const fb_mesh *m, fb_err *err)
     return fb_err_set(err, FB_EINVAL, "fb_mesh_check: mesh is NULL");
   if (fb_mesh_nelements(m) == 0)
     return fb_err_set(err, FB_EMODEL, "the mesh has no elements");
-  int rc = check_elements(m, err);
+  size_t bad = 0;
+  int rc = fb_mesh_check_elements(m, &bad, err);
   if (!rc)
     rc = check_used(m, err);
   if (!rc)

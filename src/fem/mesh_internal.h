@@ -20,4 +20,10 @@ size_t fb_mesh_type_nodes(fb_elem_type type);
  * names valid unquoted in Abaqus decks and in XML attributes. */
 int fb_mesh_name_ok(const char *name);
 
+/* The element tests of fb_mesh_check (degenerate, warped), element by
+ * element in index order: the first failure is recorded (FB_EMODEL) and
+ * its element index stored in *bad. Lets a reader report the element at
+ * its own place in the file. */
+int fb_mesh_check_elements(const fb_mesh *m, size_t *bad, fb_err *err);
+
 #endif

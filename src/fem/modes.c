@@ -308,7 +308,7 @@ int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_l
                       "fb_fem_modes: K and M must be symmetric (to %g of their largest entry) "
                       "and finite",
                       SYMMETRY_TOL);
-  double *lambda = malloc(nmodes * sizeof *lambda);
+  double *lambda = calloc(nmodes, sizeof *lambda);
   if (!lambda)
     return fb_err_set(err, FB_ENOMEM, "out of memory for %zu eigenvalues", nmodes);
   const double s = choose_shift(K, M, n);

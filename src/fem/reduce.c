@@ -197,10 +197,10 @@ int fb_fem_reduce_free(const fb_mat *K, const fb_mat *M, size_t nmodes, const do
   if (!rc && nf > 0 && sigma > 0.0) {
     double *R = basis + n * nmodes;
     rc = static_responses(K, M, basis, rigid, sigma, F, nf, n, R, mu, err);
-    if (!rc)
+    if (!rc) {
       nres = orthonormalise(M, basis, nmodes, R, nf, n, mu);
-    if (!rc)
       rc = ritz(K, R, nres, n, lam + nmodes, mu, err);
+    }
   }
   free(mu);
   if (rc) {

@@ -52,16 +52,17 @@ static void write_nset_flags(FILE *fp, const fb_mesh *m, size_t s, unsigned char
   const size_t *nodes = NULL;
   size_t n = 0;
   fb_mesh_nset(m, name, &nodes, &n);
-  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i)
+  const size_t nnodes = fb_mesh_nnodes(m);
+  for (size_t i = 0; i < nnodes; ++i)
     member[i] = 0;
   for (size_t k = 0; k < n; ++k)
     member[nodes[k]] = 1;
   char array[FB_MESH_NAME_MAX + 8];
   snprintf(array, sizeof array, "nset_%s", name);
   open_array(fp, "Int32", array, 1);
-  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i)
+  for (size_t i = 0; i < nnodes; ++i)
     fprintf(fp, "%s%d%s", i % 20 == 0 ? "          " : " ", member[i],
-            i % 20 == 19 || i + 1 == fb_mesh_nnodes(m) ? "\n" : "");
+            i % 20 == 19 || i + 1 == nnodes ? "\n" : "");
   close_array(fp);
 }
 

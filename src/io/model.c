@@ -405,6 +405,7 @@ int fb_model_load_string(const char *text, size_t len, const char *display_name,
                          const char *base_dir, fb_model **out, fb_err *err)
 {
   fb_err local;
+  /* cppcheck-suppress uninitvar ; only the address of local is taken (false positive) */
   fb_err *e = err ? err : &local;
   fb_err_clear(e);
   if (!out || !text)

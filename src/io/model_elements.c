@@ -350,6 +350,7 @@ static int ml_source(ml_ctx *c, ml_scope *s, struct fy_node *el, const char *nam
     dim = count;
   if (is_list && count != dim)
     return ml_fail(c, value, FB_EMODEL, "%zu values given for a source of dim %zu", count, dim);
+  /* NOLINTNEXTLINE(bugprone-sizeof-expression): an array of pointers, sized by its element */
   fb_tfun **f = calloc(dim, sizeof *f);
   if (!f)
     return fb_err_set(c->err, FB_ENOMEM, "out of memory");

@@ -87,6 +87,12 @@ int ml_fail_key(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int c
     __attribute__((format(printf, 5, 6)))
 #endif
     ;
+#if defined(__clang_analyzer__)
+/* For the static analyzer only, as fb_err_set in flexbond/error.h: both return their code. */
+#define ml_fail(c, at, code, ...) (ml_fail((c), (at), (code), __VA_ARGS__), (code))
+#define ml_fail_key(c, map, key, code, ...)                                                    \
+  (ml_fail_key((c), (map), (key), (code), __VA_ARGS__), (code))
+#endif
 /* Prefixes the message already in c->err (from a library call) with the
  * location of at, appends the instance chain; returns c->err->code. */
 int ml_blame(const ml_ctx *c, struct fy_node *at);

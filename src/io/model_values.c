@@ -32,7 +32,8 @@ int ml_vector(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t 
   if (count == 0 || (want && count != want))
     return want ? ml_fail(c, n, FB_EMODEL, "expected %zu values, got %zu", want, count)
                 : ml_fail(c, n, FB_EMODEL, "expected at least one value");
-  double *v = malloc(count * sizeof *v);
+  /* calloc: no element is left undefined should libfyaml's count and iteration disagree. */
+  double *v = calloc(count, sizeof *v);
   if (!v)
     return fb_err_set(c->err, FB_ENOMEM, "out of memory");
   void *iter = NULL;

@@ -22,16 +22,102 @@ static void ml_diag_discard(struct fy_diag *diag, void *user, const char *buf, s
   (void)len;
 }
 
-/* Records the first error libfyaml collected; returns 1 if there was one. */
+/* What the user should do about some of libfyaml's terse messages (its
+ * wording, matched by a fragment; "" when none matches). */
+static const char *ml_yaml_hint(const char *msg)
+{
+  static const struct {
+    const char *fragment, *hint;
+  } hints[] = {
+      {"tab character", " (indent with spaces; YAML does not allow tabs there)"},
+      {"duplicate key", " (a key may appear only once in a mapping)"},
+      {"flow", " (an unclosed '[' or '{' or a missing comma before this point?)"},
+      {"UTF8", " (the file must be UTF-8 text)"},
+  };
+  for (size_t i = 0; i < sizeof hints / sizeof hints[0]; ++i)
+    if (strstr(msg, hints[i].fragment))
+      return hints[i].hint;
+  return "";
+}
+
+/* Records the first error libfyaml collected, with the token it names
+ * (the repeated key of "duplicate key") and a hint; returns 1 if there
+ * was one. The token's text is formatted for that message only: libfyaml
+ * 0.7 (Debian bookworm) leaks its formatting buffer on the token of some
+ * other errors (a malformed quoted scalar; tests/fuzz/regressions/model). */
 static int ml_yaml_first_error(struct fy_diag *diag, const char *file, fb_err *err)
 {
   void *iter = NULL;
   const struct fy_diag_error *e = fy_diag_errors_iterate(diag, &iter);
   if (!e)
     return 0;
-  fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: %s", file, e->line, e->column,
-             e->msg ? e->msg : "syntax error");
+  const char *msg = e->msg ? e->msg : "syntax error";
+  const int duplicate = strstr(msg, "duplicate key") != NULL;
+  size_t toklen = 0;
+  const char *tok = duplicate && e->fyt ? fy_token_get_text(e->fyt, &toklen) : NULL;
+  if (tok && toklen > 0 && toklen <= 64)
+    fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: %s '%.*s'%s", file, e->line, e->column, msg,
+               (int)toklen, tok, ml_yaml_hint(msg));
+  else
+    fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: %s%s", file, e->line, e->column, msg,
+               ml_yaml_hint(msg));
   return 1;
+}
+
+/* Length of the well-formed UTF-8 sequence at s (n bytes left), 0 if it
+ * is not one: a stray continuation byte, a bad lead byte, a truncated
+ * sequence, and (The Unicode Standard 15.0, section 3.9, Table 3-7) an
+ * overlong form, a surrogate or a code point above U+10FFFF, which the
+ * lead bytes E0, ED, F0 and F4 allow only with a narrower second byte.
+ * libfyaml 0.7 loops forever on those last three after a '%'
+ * (tests/fuzz/regressions/model). */
+static size_t ml_utf8_length(const unsigned char *s, size_t n)
+{
+  size_t len = 0;
+  if (s[0] < 0x80)
+    len = 1;
+  else if (s[0] >= 0xC2 && s[0] < 0xE0)
+    len = 2;
+  else if (s[0] >= 0xE0 && s[0] < 0xF0)
+    len = 3;
+  else if (s[0] >= 0xF0 && s[0] < 0xF5)
+    len = 4;
+  if (len == 0 || len > n)
+    return 0;
+  const unsigned char lo = s[0] == 0xE0 ? 0xA0 : s[0] == 0xF0 ? 0x90 : 0x80;
+  const unsigned char hi = s[0] == 0xED ? 0x9F : s[0] == 0xF4 ? 0x8F : 0xBF;
+  if (len > 1 && (s[1] < lo || s[1] > hi))
+    return 0;
+  for (size_t k = 2; k < len; ++k)
+    if ((s[k] & 0xC0) != 0x80)
+      return 0;
+  return len;
+}
+
+/* YAML is UTF-8 text without control characters other than tab, line
+ * feed and carriage return (YAML 1.2, section 5.1, c-printable). libfyaml
+ * stops without a message at some such bytes (a NUL), which would then
+ * read as an empty file, so binary data is reported here at its line and
+ * column. */
+static int ml_check_text(const char *text, size_t len, const char *file, fb_err *err)
+{
+  const unsigned char *s = (const unsigned char *)text;
+  int line = 1, col = 1;
+  for (size_t i = 0; i < len; ++col) {
+    const unsigned char b = s[i];
+    const size_t n = ml_utf8_length(s + i, len - i);
+    if (n == 0 || (b < 0x20 && b != '\t' && b != '\n' && b != '\r') || b == 0x7F)
+      return fb_err_set(err, FB_EPARSE,
+                        "%s:%d:%d: binary data (byte 0x%02x): not a YAML text file (expected "
+                        "UTF-8 text)",
+                        file, line, col, b);
+    if (b == '\n') {
+      ++line;
+      col = 0;
+    }
+    i += n;
+  }
+  return FB_OK;
 }
 
 void ml_yaml_release(ml_yaml *y)
@@ -75,7 +161,9 @@ static int ml_yaml_open(const char *text, size_t len, ml_yaml *y, fb_err *err)
 int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb_err *err)
 {
   memset(y, 0, sizeof *y);
-  int rc = ml_yaml_open(text, len, y, err);
+  int rc = ml_check_text(text, len, file, err);
+  if (!rc)
+    rc = ml_yaml_open(text, len, y, err);
   if (rc)
     return rc;
   y->doc = fy_parse_load_document(y->parser);
@@ -169,8 +257,8 @@ static void ml_append(char *buf, size_t size, size_t *len, const char *fmt, ...)
 
 /* Segment of n inside its parent: "[i]" in a sequence, ".key" (no dot
  * at the start) in a mapping. */
-static void ml_path_segment(struct fy_node *parent, struct fy_node *n, char *buf, size_t size,
-                            size_t *len)
+static void ml_path_segment(struct fy_node *parent, const struct fy_node *n, char *buf,
+                            size_t size, size_t *len)
 {
   void *iter = NULL;
   if (fy_node_is_sequence(parent)) {
@@ -233,7 +321,8 @@ static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_
   return fb_err_set(c->err, code, "%s%s%s", where, msg, chain);
 }
 
-int ml_fail(const ml_ctx *c, struct fy_node *at, int code, const char *fmt, ...)
+/* The parentheses keep the analyzer-only macros of model_internal.h from expanding. */
+int(ml_fail)(const ml_ctx *c, struct fy_node *at, int code, const char *fmt, ...)
 {
   char msg[FB_ERR_MSG_MAX];
   va_list ap;
@@ -243,8 +332,8 @@ int ml_fail(const ml_ctx *c, struct fy_node *at, int code, const char *fmt, ...)
   return ml_report(c, at, at, NULL, code, msg);
 }
 
-int ml_fail_key(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int code,
-                const char *fmt, ...)
+int(ml_fail_key)(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int code,
+                 const char *fmt, ...)
 {
   char msg[FB_ERR_MSG_MAX];
   va_list ap;
@@ -418,7 +507,7 @@ int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allow
     if (!text)
       return ml_fail(c, map, FB_EPARSE, "keys must be plain names");
     size_t i = 0;
-    while (allowed[i] && strcmp(allowed[i], text))
+    while (allowed[i] && strcmp(allowed[i], text) != 0)
       ++i;
     if (allowed[i])
       continue;
@@ -511,6 +600,23 @@ static int ml_is_yaml_special_float(const char *text)
   return 0;
 }
 
+/* 1 if text is a number followed by a word, such as "10 km/h" or "2kg": a
+ * unit written into the value, which no expression can be (a number
+ * and a name are never next to each other in the grammar, expr.h). */
+static int ml_number_with_unit(const char *text)
+{
+  const char *digits = text + (text[0] == '-' || text[0] == '+');
+  if (!isdigit((unsigned char)digits[0]) && digits[0] != '.')
+    return 0; /* strtod would also take "inf" of a name such as "info" */
+  char *end = NULL;
+  strtod(text, &end);
+  if (end == text)
+    return 0;
+  while (*end == ' ')
+    ++end;
+  return isalpha((unsigned char)*end) || *end == '%';
+}
+
 int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double *out)
 {
   if (ml_is_null(n))
@@ -529,8 +635,18 @@ int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double 
     *out = v;
     return FB_OK;
   }
+  if (ml_number_with_unit(text))
+    return ml_fail(c, n, FB_EPARSE,
+                   "expected a number, got '%s': write the number alone; values are in SI "
+                   "units unless the key's name gives the unit (speed_kmh: km/h, angle_deg: "
+                   "degrees)",
+                   text);
   if (fb_expr_eval_const(text, syms, &v, c->err) != FB_OK) {
-    fb_err_prefix(c->err, "expression '%s': ", text);
+    char why[FB_ERR_MSG_MAX];
+    snprintf(why, sizeof why, "%s", c->err->msg);
+    fb_err_set(c->err, c->err->code,
+               "expression '%s': %s; expected a number or an expression of the parameters",
+               text, why);
     return ml_blame(c, n);
   }
   *out = v;

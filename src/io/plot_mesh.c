@@ -30,8 +30,8 @@ static int is_side_wall(const fb_mesh *m, size_t e)
   const size_t *n = fb_mesh_element_nodes(m, e);
   const double *a = fb_mesh_node_xyz(m, n[0]), *b = fb_mesh_node_xyz(m, n[1]);
   const double *c = fb_mesh_node_xyz(m, n[2]);
-  double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   double nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2];
   double nz = u[0] * v[1] - u[1] * v[0];
   double len = sqrt(nx * nx + ny * ny + nz * nz);

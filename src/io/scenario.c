@@ -156,6 +156,7 @@ static int load_string_in(const char *text, size_t len, const char *display_name
                           const char *base_dir, fb_scenario **out, fb_err *err)
 {
   fb_err local;
+  /* cppcheck-suppress uninitvar ; only the address of local is taken (false positive) */
   fb_err *e = err ? err : &local;
   fb_err_clear(e);
   if (!out || !text)

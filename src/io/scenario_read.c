@@ -349,7 +349,7 @@ static int sc_corner_keys(const ml_ctx *c, struct fy_node *susp)
     if (!text)
       return ml_fail(c, susp, FB_EPARSE, "keys must be plain names");
     size_t i = 0;
-    while (keys[i] && strcmp(keys[i], text))
+    while (keys[i] && strcmp(keys[i], text) != 0)
       ++i;
     if (keys[i])
       continue;
@@ -729,7 +729,7 @@ static struct fy_node *sc_shared_source(struct fy_node *root, const char *path)
                                         {"tire_c", "wheel.tire_c"},
                                         {"motion_ratio", "suspensions.motion_ratio"}};
   const char *last = strrchr(path, '.');
-  if (strncmp(path, "suspensions.", 12) || !last)
+  if (strncmp(path, "suspensions.", 12) != 0 || !last)
     return NULL;
   for (size_t i = 0; i < sizeof from / sizeof from[0]; ++i)
     if (!strcmp(last + 1, from[i][0])) {

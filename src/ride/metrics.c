@@ -14,6 +14,7 @@
  * Jerk is the central difference (a_{k+1} - a_{k-1}) fs / 2 of the
  * unweighted samples (second-order accurate: for a sine of angular
  * frequency w it has amplitude w sin(w h) / (w h), h = 1 / fs). */
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -90,6 +91,7 @@ static double max_running_rms(const double *aw, size_t n, size_t len)
 static void jerk_stats(const double *a, size_t n, size_t k0, size_t k1, double fs,
                        fb_ride_metrics *m)
 {
+  assert(n >= 3 && k1 <= n && k0 + 3 <= k1);
   double sum2 = 0, peak = 0;
   for (size_t k = k0; k < k1; ++k) {
     double jerk;

@@ -34,7 +34,7 @@ void fb_road_iso8608_defaults(fb_road_iso8608_params *p)
 int fb_road_iso8608_gd0(char road_class, double *gd0, fb_err *err)
 {
   const char upper =
-      road_class >= 'a' && road_class <= 'h' ? (char)(road_class - 'a' + 'A') : road_class;
+      (char)(road_class >= 'a' && road_class <= 'h' ? road_class - 'a' + 'A' : road_class);
   if (upper < 'A' || upper > 'H')
     return fb_err_set(err, FB_EINVAL,
                       "ISO 8608 road class '%c' (code %d): expected a letter A to H",

@@ -163,7 +163,6 @@ double road_track_slope(const road_track *t, const double *data, double s)
 static size_t track_breaks(const road_track *t, const double *data, double *s, size_t max)
 {
   double two[2];
-  const double *src = two;
   size_t count = 0;
   switch (t->kind) {
   case ROAD_BUMP:
@@ -189,7 +188,7 @@ static size_t track_breaks(const road_track *t, const double *data, double *s, s
     break;
   }
   if (s && count > 0)
-    memcpy(s, src, (count < max ? count : max) * sizeof *s);
+    memcpy(s, two, (count < max ? count : max) * sizeof *s);
   return count;
 }
 

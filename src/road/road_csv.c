@@ -8,6 +8,7 @@
 
 #include "flexbond/road.h"
 
+#include "core/util.h"
 #include "road/road_internal.h"
 
 /* Columns a profile file may have, in the order of the values a row
@@ -191,8 +192,10 @@ static int read_rows(profile_reader *r)
     ++r->n;
   }
   if (r->n < 2)
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: %zu data rows, need at least 2", r->path,
-                      r->line_no, r->n);
+    return fb_err_set(r->err, FB_EPARSE,
+                      "%s:%zu: %zu data row%s, need at least 2 (a row per position: s, then "
+                      "the heights, in m)",
+                      r->path, r->line_no, r->n, r->n == 1 ? "" : "s");
   return FB_OK;
 }
 
@@ -223,9 +226,9 @@ int fb_road_new_csv(const char *path, fb_road **out, fb_err *err)
     return fb_err_set(err, FB_EINVAL, "road CSV: NULL argument");
   *out = NULL;
   profile_reader r = {.path = path, .err = err};
-  r.fp = fopen(path, "r");
+  r.fp = fb_open_input(path, "r", err);
   if (!r.fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+    return FB_EIO;
   int rc = read_header(&r);
   if (!rc)
     rc = read_rows(&r);

@@ -208,6 +208,7 @@ static int plan(fb_auglin *a, const unsigned char *unit)
   a->kidx = malloc(nz * sizeof *a->kidx);
   a->xrow = malloc(nz * sizeof *a->xrow);
   int rc = color && keep && stack && next && a->elim && a->kidx && a->xrow ? FB_OK : FB_ENOMEM;
+  a->ne = a->nk = 0;
   for (size_t i = 0; rc == FB_OK && i < nz; ++i)
     keep[i] = !(unit && unit[i] && has_diagonal(&a->p, i));
   for (size_t root = 0; rc == FB_OK && root < nz; ++root) {

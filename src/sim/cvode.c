@@ -286,12 +286,12 @@ static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
   worst_state(run, culprit, sizeof culprit);
   const long singular = fb_auglin_singular_unknown(run->lin);
   if (singular >= 0 && (flag == CV_LSETUP_FAIL || flag == CV_CONV_FAILURE)) {
-    char name[256];
-    fb_bd_aug_unknown_name(run->bd, (size_t)singular, name, sizeof name);
+    char unknown[256];
+    fb_bd_aug_unknown_name(run->bd, (size_t)singular, unknown, sizeof unknown);
     snprintf(culprit, sizeof culprit,
              "; the Newton matrix has no pivot for %s (a mass, stiffness or damping that is "
              "zero or cancels out there)",
-             name);
+             unknown);
   }
   fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s%s%s%s%s%s%s%s", t,
              name ? name : "(unknown flag)", hint, culprit, run->cvode_msg[0] ? "; " : "",

@@ -134,7 +134,7 @@ int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_
   const double tol_p = 1e-10 * fmax(rp0, 1.0), tol_q = fmax(1e-10 * rq0, 1e-12);
   const double floor_p = 1e-7 * fmax(rp0, 1.0);
   double h = H_FIRST, rp_prev = INFINITY;
-  for (int iter = 0; !rc && iter < MAX_ITER; ++iter, h = fmin(h * H_GROWTH, H_MAX)) {
+  for (int iter = 0; !rc && iter < MAX_ITER; ++iter) {
     rc = pseudo_step(bd, t, h, &w, x_eq, err);
     if (!rc)
       rc = eval_rhs(bd, t, x_eq, w.f, err);
@@ -145,6 +145,7 @@ int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_
     if (rq <= tol_q && (rp <= tol_p || (stalled && rp <= floor_p)))
       break;
     rp_prev = rp;
+    h = fmin(h * H_GROWTH, H_MAX);
   }
   if (!rc && rq > tol_q)
     rc = fb_err_set(err, FB_ESOLVER,

@@ -53,7 +53,7 @@ static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
   if (!rc)
     rc = fb_bg_add_composite(bg, "attach", FB_NATTACH, ones, err);
   for (int c = 0; !rc && c < FB_NATTACH; ++c) {
-    char from[32], to[32], road[32], wheel[32];
+    char from[32], to[32];
     const char *inst = c == FB_ATTACH_DRIVER   ? "driver"
                        : c == FB_ATTACH_ENGINE ? "engine"
                                                : NULL;
@@ -64,6 +64,7 @@ static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
     snprintf(to, sizeof to, "attach.%d", c + 1);
     rc = fb_bg_connect(bg, NULL, from, to, err);
     if (!rc && !inst) {
+      char road[32], wheel[32];
       snprintf(road, sizeof road, "road.%s", fb_corner_name(c));
       snprintf(wheel, sizeof wheel, "susp_%s.road", fb_corner_name(c));
       rc = fb_bg_connect(bg, NULL, road, wheel, err);
@@ -190,7 +191,6 @@ static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg
   fb_hull *hull = NULL;
   fb_fe_hull *fe = NULL;
   fb_probe_spec *probes = NULL, all[FB_NOUTPUTS + FB_NCORNERS];
-  char targets[FB_NCORNERS][32];
   size_t nprobes = 0;
   int rc = fb_scenario_check(s, err);
   /* The only difference between System 1 and System 2 is this fragment. */
@@ -205,6 +205,7 @@ static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg
   if (!rc)
     rc = fb_vehicle_assemble(s, &hull, graph, &probes, &nprobes, err);
   if (!rc) {
+    char targets[FB_NCORNERS][32];
     memcpy(all, probes, nprobes * sizeof *all);
     contact_probes(all + nprobes, targets);
     rc = fb_bd_build(*graph, all, nprobes + (contact ? FB_NCORNERS : 0), bd, err);

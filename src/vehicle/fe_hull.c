@@ -1,5 +1,6 @@
 /* System 2's finite-element hull: node-set resolution, free-free modes,
  * and the modes of the whole undamped vehicle (flexbond/vehicle.h). */
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -347,7 +348,7 @@ static void hull_rigid_modes(const fb_mesh *m, const double *cg, double *r)
   memset(r, 0, 6 * nh * sizeof *r);
   for (size_t i = 0; i < nn; ++i) {
     const double *p = fb_mesh_node_xyz(m, i);
-    double d[3] = {p[0] - cg[0], p[1] - cg[1], p[2] - cg[2]};
+    const double d[3] = {p[0] - cg[0], p[1] - cg[1], p[2] - cg[2]};
     for (int k = 0; k < 3; ++k) {
       r[k * nh + 6 * i + k] = 1.0;
       /* rotation about axis k: u = e_k x d, the node's rotation e_k */
@@ -372,7 +373,7 @@ typedef struct describe_ctx {
  * the projection) and energy[6] the elastic remainder. */
 static void hull_energies(const describe_ctx *d, const double *v, double *energy)
 {
-  double g[36], b[6], c[6], total = 0.0;
+  double g[36], b[6], c[6] = {0}, total = 0.0;
   for (size_t i = 0; i < d->nh; ++i)
     total += v[i] * d->mv[i];
   for (int j = 0; j < 6; ++j) {
@@ -547,9 +548,11 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
       nmodes = d.ndof;
     rc = mode_set_alloc(nmodes, d.ndof, &ms, err);
   }
-  double mass, cg[3], inertia[9];
-  if (!rc)
+  double mass, cg[3];
+  if (!rc) {
+    double inertia[9];
     rc = fb_fem_mass_properties(h->mesh, mh, &mass, cg, inertia, err);
+  }
   if (!rc) {
     d.r = malloc(6 * d.nh * sizeof *d.r);
     d.mr = malloc(6 * d.nh * sizeof *d.mr);
@@ -713,6 +716,7 @@ static int hull_coords_new(const fb_scenario *s, const fb_fe_hull *h, hull_coord
   int rc = hull_mass(s, h, &c->M, err);
   if (!rc)
     rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &c->K, NULL, err);
+  assert(rc != FB_OK || c->K); /* for the static analyzer: K is set on success */
   c->ndof = c->K ? fb_mat_nrows(c->K) : 0;
   c->nb = c->ndof;
   if (!rc && s->hull_modes > 0)

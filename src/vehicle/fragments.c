@@ -358,6 +358,7 @@ int fb_vehicle_load(const fb_scenario *s, fb_bg **out, fb_err *err)
 {
   *out = NULL;
   fb_bg *bg = NULL;
+  /* NOLINTNEXTLINE(bugprone-sizeof-expression): an array of pointers, sized by its element */
   fb_tfun **f = calloc(s->nload, sizeof *f);
   int rc = f ? fb_bg_new("load", &bg, err) : fb_err_set(err, FB_ENOMEM, "out of memory");
   const double each = -s->total_weight / (double)s->nload;

@@ -842,7 +842,7 @@ static int refine(const build_mesh *coarse, int d, build_mesh *fine, fb_err *err
 {
   *fine = (build_mesh){0};
   edge_table t = {0};
-  t.recs = malloc(4 * coarse->nelems * sizeof *t.recs);
+  t.recs = calloc(4 * coarse->nelems, sizeof *t.recs);
   t.cap = 16;
   while (t.cap < 8 * coarse->nelems)
     t.cap *= 2;

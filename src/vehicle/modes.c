@@ -210,10 +210,10 @@ int fb_vehicle_modes(const fb_scenario *s0, fb_system sys, int undamped, fb_mode
   int rc = fb_scenario_clone(s0, &s, err);
   if (!rc && undamped)
     remove_damping(s);
-  if (!rc)
+  if (!rc) {
     flatten_road(s);
-  if (!rc)
     rc = fb_vehicle_build(s, sys, &g, &bd, err);
+  }
   if (!rc) {
     x = calloc(fb_bd_nstates(bd) + 1, sizeof *x);
     zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);

@@ -1,0 +1,344 @@
+#!/usr/bin/env bash
+# Bad inputs through the real flexbond command (docs/errors.md): a table of
+# broken models, scenarios, the CSV files and meshes they reference, and
+# bad command lines. For every case: the exact exit status (README, "Exit
+# codes"), the message on stderr with the file:line(:col) of the problem
+# and its key or phrase, no crash (status < 128, no sanitizer report), and
+# no output left behind: an output that did not exist is not created, and
+# one that held a previous result (previous.txt in the directory, or the
+# file itself) holds it unchanged and nothing else.
+#
+# The fixtures are generated in the scratch directory from the examples
+# (sed) or written here; line and column numbers are looked up in them
+# (`at`), so that the cases do not depend on the examples' line numbers.
+#
+# usage: bash tests/cli_bad_inputs.sh PATH/TO/flexbond REPO_ROOT
+set -u
+NAME=cli_bad_inputs
+# shellcheck source=clilib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
+
+EX=$REPO_ROOT/examples
+IN=$WORK/in
+mkdir -p "$IN" "$WORK/out" || exit 2
+# Fixtures are named relative to IN, so messages quote them as given.
+cd "$IN" || exit 2
+
+# at FILE TEXT [VALUE]: "FILE:LINE:" of the first line of FILE holding TEXT,
+# or "FILE:LINE:COL:" with COL the 1-based column of VALUE in that line.
+at() {
+  awk -v text="$2" -v value="${3-}" -v file="$1" '
+    index($0, text) {
+      printf "%s:%d:", file, NR
+      if (value != "") printf "%d:", index($0, value)
+      found = 1
+      exit
+    }
+    END { if (!found) printf "NOT-FOUND(%s in %s)", text, file }' "$1"
+}
+
+# line_of FILE LINE: the number of the first line of FILE that is LINE.
+line_of() {
+  awk -v text="$2" '$0 == text { print NR; found = 1; exit }
+    END { if (!found) printf "NOT-FOUND(%s)", text }' "$1"
+}
+
+# derive NEW FROM SED-ARGS...: NEW is FROM edited by sed; it must differ
+# (an example that changed would otherwise silently give a good file).
+derive() {
+  local new=$1 from=$2
+  shift 2
+  sed "$@" "$from" >"$new"
+  checks=$((checks + 1))
+  ! cmp -s "$new" "$from" || fail "fixture $new: sed $* changed nothing in $from"
+}
+
+# ---- Model fixtures: examples/quarter_car.yaml broken one way each.
+cp "$EX/quarter_car.yaml" m_ok.yaml
+derive m_unclosed.yaml m_ok.yaml -e 's/{name: Cs, type: R, r: cs}/{name: Cs, type: R, r: cs/'
+derive m_tab.yaml m_ok.yaml -e 's/^  - {name: Cs, type: R, r: cs}/\t- {name: Cs, type: R, r: cs}/'
+derive m_string.yaml m_ok.yaml -e 's/{name: Ms, type: I, m: ms}/{name: Ms, type: I, m: heavy}/'
+derive m_list.yaml m_ok.yaml -e 's/{name: Cs, type: R, r: cs}/{name: Cs, type: R, r: [1, 2]}/'
+derive m_unit.yaml m_ok.yaml -e 's/^  ms: 250 /  ms: 250 kg /'
+derive m_missing.yaml m_ok.yaml -e 's/{name: Ms, type: I, m: ms}/{name: Ms, type: I}/'
+derive m_unknown.yaml m_ok.yaml -e 's/^simulation:/simulaton:/'
+derive m_nan.yaml m_ok.yaml -e 's/^  ks: 16000 /  ks: .nan /'
+derive m_inf.yaml m_ok.yaml -e 's/{name: Kt, type: C, k: kt,/{name: Kt, type: C, k: -.inf,/'
+derive m_negmass.yaml m_ok.yaml -e 's/{name: Mu, type: I, m: mu}/{name: Mu, type: I, m: -35}/'
+derive m_zerok.yaml m_ok.yaml -e 's/{name: Ks, type: C, k: ks,/{name: Ks, type: C, k: 0,/'
+derive m_dupname.yaml m_ok.yaml -e 's/{name: Mu, type: I, m: mu}/{name: Ms, type: I, m: mu}/'
+derive m_dangling.yaml m_ok.yaml -e 's/^  - \[road, tire\]/  - [road, tyre]/'
+derive m_dupkey.yaml m_ok.yaml -e 's/^model: quarter_car$/model: quarter_car\nmodel: again/'
+# The damper table of examples/quarter_car_table.yaml with a word in it.
+cp "$EX/quarter_car_table.yaml" m_table.yaml
+derive damper_fv.csv "$EX/damper_fv.csv" -e 's/^0.25, 110$/0.25, lots/'
+# A subsystem's port on a 2-dimensional junction bonded to a scalar one.
+cat >m_port.yaml <<'EOF'
+model: port_dimension
+subsystems:
+  pair:
+    ports:
+      - {name: top, at: j}
+    elements:
+      - {name: j, type: 1, dim: 2}
+      - {name: M, type: I, dim: 2, m: 1}
+    bonds:
+      - [j, M]
+elements:
+  - {name: F, type: Se, value: 1}
+  - {name: body, type: 1}
+  - {name: p, type: pair}
+bonds:
+  - [F, body]
+  - [p.top, body]
+EOF
+: >m_empty.yaml
+# Binary data behind a harmless first line: a PNG signature (0x89 can
+# start no UTF-8 character), random bytes and NULs.
+{
+  printf 'model: m\n\x89PNG\r\n\x1a\n'
+  head -c 256 /dev/urandom
+  printf '\0\0\0\n'
+} >m_binary.yaml
+mkdir m_dir.yaml
+cp m_ok.yaml m_noread.yaml
+chmod 000 m_noread.yaml
+
+# ---- Scenario fixtures: examples/apc6x6.yaml broken one way each.
+cp "$EX/apc6x6.yaml" s_ok.yaml
+cp "$EX/shock_front.csv" "$EX/shock_rear.csv" .
+# road_with NEW TEXT: s_ok.yaml with its bump section replaced by TEXT.
+road_with() {
+  derive "$1" s_ok.yaml -e "/^  bump:/,/crossing of about three seconds/c\\  $2"
+}
+derive s_speed.yaml s_ok.yaml -e 's/^  speed_kmh: 10 /  speed_kmh: -10 /'
+derive s_nan.yaml s_ok.yaml -e '0,/^    spring_k: 145300 /s//    spring_k: .nan /'
+derive s_corner.yaml s_ok.yaml -e 's/^  LF:  /  LFF: /'
+derive s_nowheel.yaml s_ok.yaml -e '/^wheel:/,/^  tire_c:/d'
+derive s_kmh.yaml s_ok.yaml -e 's/^  speed_kmh: 10 /  speed_kmh: "10 km\/h" /'
+derive s_list.yaml s_ok.yaml -e '0,/^    spring_k: 145300 /s//    spring_k: [145300] /'
+derive s_tab.yaml s_ok.yaml -e 's/^  mass: 4041.72 /\tmass: 4041.72 /'
+derive s_unclosed.yaml s_ok.yaml -e 's/^\(      bulkheads: \[.*\), 1.90\]/\1, 1.90/'
+derive s_gravty.yaml s_ok.yaml -e 's/^gravity:/gravty:/'
+derive s_payload.yaml s_ok.yaml -e 's/payload: weight-only /payload: lumpd /'
+derive s_initial.yaml s_ok.yaml -e 's/^  initial: zero /  initial: warm /'
+derive s_dupkey.yaml s_ok.yaml -e 's/^gravity: 9.81 /gravity: 9.81\ngravity: 9.8 /'
+derive s_hullmass.yaml s_ok.yaml -e 's/^  mass: 4041.72 /  mass: -4041.72 /'
+derive s_tirek.yaml s_ok.yaml -e 's/^  tire_k: 500000 /  tire_k: 0 /'
+derive s_inf.yaml s_ok.yaml -e 's/^  total_weight: 117720 /  total_weight: .inf /'
+derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
+road_with s_tworoads.yaml 'iso8608: {class: C, seed: 1}\n  bump: {height: 0.1, length: 3.7, angle_deg: 45, first_contact: 5}'
+road_with s_isoclass.yaml 'iso8608: {class: Z, seed: 1}'
+road_with s_profile.yaml 'profile: {file: one_row.csv}'
+printf 's,z\n0,0\n' >one_row.csv
+# Damper tables: missing, a word among the numbers, velocities going back.
+derive s_table_missing.yaml s_ok.yaml \
+  -e '0,/damper_c: 25744 /s//damper_table: {file: no_such_table.csv, force: F} /'
+derive s_table_word.yaml s_ok.yaml -e '0,/damper_c: 25744 /s//damper_table: {file: word.csv, force: F} /'
+derive s_table_order.yaml s_ok.yaml -e '0,/damper_c: 25744 /s//damper_table: {file: order.csv, force: F} /'
+printf 'v,F\n-1,-100\n0,0\n0.5,abc\n1,100\n' >word.csv
+printf 'v,F\n-1,-100\n0,0\n1,100\n0.5,50\n' >order.csv
+: >s_empty.yaml
+# An ELF header, random bytes and NULs.
+{
+  printf '\x7fELF\x02\x01\x01\0'
+  head -c 256 /dev/urandom
+} >s_binary.yaml
+
+# ---- Mesh fixtures: the example's System 2 hull exported as a deck, read
+# back through hull.mesh.deck, with one bad thing appended each.
+run mesh s_ok.yaml --export hull.inp
+expect_status 0 "fixture: mesh --export hull.inp"
+derive s_deck.yaml s_ok.yaml -e '/^    density: 1 /d' -e '/^    generator:/,/nose_rung_divisions/c\    deck: hull.inp'
+# deck NAME TEXT: NAME.inp is hull.inp plus TEXT; NAME.yaml reads it.
+deck() {
+  {
+    cat hull.inp
+    printf '%b\n' "$2"
+  } >"$1.inp"
+  derive "$1.yaml" s_deck.yaml -e "s/deck: hull.inp/deck: $1.inp/"
+}
+# Extra nodes away from the hull: a unit square with one corner lifted
+# 0.3 m, and three points on a line.
+NODES='*NODE\n9001, 0, 0, 5\n9002, 1, 0, 5\n9003, 1, 1, 5\n9004, 0, 1, 5.3\n9005, 2, 0, 5'
+deck d_nset "*NSET, NSET=EXTRA\n99999"
+deck d_warped "$NODES\n*ELEMENT, TYPE=S4\n9001, 9001, 9002, 9003, 9004"
+deck d_zeroarea "$NODES\n*ELEMENT, TYPE=S3\n9001, 9001, 9002, 9005"
+deck d_nonode "$NODES\n*ELEMENT, TYPE=S3\n9001, 9001, 9002, 99999"
+derive d_empty.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_empty.inp/'
+: >d_empty.inp
+derive d_binary.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_binary.inp/'
+{
+  printf '\x7fELF\x02\x01\x01\0'
+  head -c 2048 /dev/urandom
+} >d_binary.inp
+derive d_missing.yaml s_deck.yaml -e 's/deck: hull.inp/deck: no_such_deck.inp/'
+
+# ---- The good fixtures pass, so each bad one fails for its own reason.
+run causality m_ok.yaml
+expect_status 0 "fixture m_ok.yaml"
+run mesh s_ok.yaml
+expect_status 0 "fixture s_ok.yaml"
+run mesh s_deck.yaml
+expect_status 0 "fixture s_deck.yaml"
+expect_in "$OUT" "216 nodes, 28 S3 + 212 S4" "fixture s_deck.yaml reads the whole deck"
+
+# ---- The cases: STATUS | ARGUMENTS | TEXT | TEXT ... (each TEXT must be
+# on stderr). In the arguments @OUT is an output directory, @FILE an output
+# file (each run twice: absent before, and holding a previous result), and
+# @EXISTING a regular file that is there before (run once).
+CASES=(
+  # Model YAML.
+  "2|sim m_unclosed.yaml -o @OUT|flexbond: $(at m_unclosed.yaml 'name: Kt' '{') YAML: |unclosed '['"
+  "2|sim m_tab.yaml -o @OUT|flexbond: $(at m_tab.yaml 'name: Cs')1: YAML: tab character|indent with spaces"
+  "2|sim m_string.yaml -o @OUT|$(at m_string.yaml heavy heavy) elements[0].m: expression 'heavy'|expected a number"
+  "2|causality m_list.yaml|$(at m_list.yaml 'r: [1' '[1') elements[3].r: expected a number or expression, got a list"
+  "2|sim m_unit.yaml -o @OUT|$(at m_unit.yaml '250 kg' 250) parameters.ms: expected a number, got '250 kg'|write the number alone"
+  "2|eig m_missing.yaml|$(at m_missing.yaml 'name: Ms' '{') elements[0]: missing required key 'm'"
+  "2|sim m_unknown.yaml -o @OUT|$(at m_unknown.yaml simulaton simulaton) simulaton: unknown key|did you mean 'simulation'?"
+  "2|sim m_nan.yaml -o @OUT|$(at m_nan.yaml .nan .nan) parameters.ks: must be finite (got .nan)"
+  "2|diagram m_inf.yaml -o @FILE.dot|$(at m_inf.yaml -.inf -.inf) elements[4].k: must be finite (got -.inf)"
+  "2|sim m_negmass.yaml -o @OUT|$(at m_negmass.yaml -35 -35) elements[1].m: must be > 0 (got -35)"
+  "2|sim m_zerok.yaml -o @OUT|$(at m_zerok.yaml 'k: 0,' '0,') elements[2].k: must be > 0 (got 0)"
+  "2|sim m_dupname.yaml -o @OUT|$(at m_dupname.yaml 'm: mu' Ms) elements[1].name: duplicate element name 'Ms'|first defined at line $(line_of m_ok.yaml '  - {name: Ms, type: I, m: ms}'))"
+  "2|sim m_dangling.yaml -o @OUT|$(at m_dangling.yaml tyre tyre) bonds[9][1]: unknown element 'tyre'|did you mean 'tire'?"
+  "2|causality m_dupkey.yaml|$(at m_dupkey.yaml again model) YAML: duplicate key 'model'"
+  "2|sim m_port.yaml -o @OUT|$(at m_port.yaml 'p.top' '[') bonds[1]: bond 'p.top->body': dimension mismatch: 'p.top' has dimension 2, 'body' has dimension 1"
+  "2|sim m_table.yaml -o @OUT|./damper_fv.csv:$(line_of damper_fv.csv '0.25, lots'): column 'F': 'lots' is not a finite number|$(at m_table.yaml 'file: damper_fv.csv' 'damper_fv') elements[3].table.file:"
+  "2|sim m_empty.yaml -o @OUT|flexbond: m_empty.yaml:1:1: the file is empty"
+  "2|sim m_binary.yaml -o @OUT|flexbond: m_binary.yaml:2:1: binary data (byte 0x89): not a YAML text file"
+  "5|sim m_dir.yaml -o @OUT|flexbond: m_dir.yaml: cannot read|directory"
+  "5|sim m_absent.yaml -o @OUT|flexbond: m_absent.yaml: cannot open|No such file"
+  "5|sim m_noread.yaml -o @OUT|flexbond: m_noread.yaml: cannot open|Permission denied"
+
+  # Scenario YAML.
+  "2|run s_speed.yaml -o @OUT|flexbond: $(at s_speed.yaml 'speed_kmh: -10' -10) road.speed_kmh: must be > 0 km/h (got -10)"
+  "2|run s_nan.yaml -o @OUT|$(at s_nan.yaml .nan .nan) suspensions.LF.spring_k: must be finite (got .nan)"
+  "2|run s_corner.yaml -o @OUT|$(at s_corner.yaml LFF LFF) suspensions.LFF: unknown suspension 'LFF'|did you mean 'LF'?"
+  "2|modes s_nowheel.yaml|$(at s_nowheel.yaml 'scenario:' scenario) missing required key 'wheel'"
+  "2|run s_kmh.yaml -o @OUT|$(at s_kmh.yaml 'speed_kmh: "' '10 km') road.speed_kmh: expected a number, got '10 km/h'|write the number alone"
+  "2|export s_list.yaml -o @OUT|$(at s_list.yaml '[145300]' '[') suspensions.LF.spring_k: expected a number or expression, got a list"
+  "2|run s_tab.yaml -o @OUT|$(at s_tab.yaml 4041.72)1: YAML: tab character"
+  "2|run s_unclosed.yaml -o @OUT|$(at s_unclosed.yaml side_rows side_rows) YAML: |unclosed '['"
+  "2|run s_gravty.yaml -o @OUT|$(at s_gravty.yaml gravty gravty) gravty: unknown key 'gravty'|did you mean 'gravity'?"
+  "2|run s_payload.yaml -o @OUT|$(at s_payload.yaml lumpd lumpd) load.payload: unknown value 'lumpd'|did you mean 'lumped'?"
+  "2|export s_initial.yaml -o @OUT|$(at s_initial.yaml warm warm) simulation.initial: unknown value 'warm'"
+  "2|run s_dupkey.yaml -o @OUT|$(at s_dupkey.yaml 'gravity: 9.8 ' gravity) YAML: duplicate key 'gravity'"
+  "2|export s_hullmass.yaml -o @OUT|$(at s_hullmass.yaml -4041.72 -4041.72) hull.mass: must be > 0 kg (got -4041.72)"
+  "2|modes s_tirek.yaml|$(at s_tirek.yaml 'tire_k: 0' 0) wheel.tire_k: must be > 0 N/m (got 0)"
+  "2|sweep s_inf.yaml --set speed_kmh=5,10 -o @OUT|$(at s_inf.yaml .inf .inf) load.total_weight: must be finite (got .inf)"
+  "2|run s_short.yaml -o @OUT|$(at s_short.yaml '    height: 0.10' height) road.bump: bump longer than the run"
+  "2|run s_tworoads.yaml -o @OUT|$(at s_tworoads.yaml 'iso8608: {' iso8608) road.iso8608: give one road"
+  "2|run s_isoclass.yaml -o @OUT|$(at s_isoclass.yaml 'class: Z' Z) road.iso8608.class:|A .. H (got 'Z')"
+  "2|run s_profile.yaml -o @OUT|$(at s_profile.yaml one_row.csv one_row) road.profile.file: ./one_row.csv:2: 1 data row, need at least 2"
+  "5|run s_table_missing.yaml -o @OUT|$(at s_table_missing.yaml no_such_table no_such) suspensions.LF.damper_table.file: ./no_such_table.csv: cannot open|No such file"
+  "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.LF.damper_table.file: ./word.csv:4: column 'F': 'abc' is not a finite number"
+  "2|export s_table_order.yaml -o @OUT|$(at s_table_order.yaml order.csv order) suspensions.LF.damper_table.file: ./order.csv:5: column 'v': 0.5 does not exceed the previous row's 1|strictly increasing"
+  "2|run s_empty.yaml -o @OUT|flexbond: s_empty.yaml:1:1: the file is empty"
+  "2|modes s_binary.yaml|flexbond: s_binary.yaml:1:1: binary data (byte 0x7f)"
+
+  # Meshes (a deck read through hull.mesh.deck).
+  "2|mesh d_nset.yaml --export @FILE.inp|./d_nset.inp:$(line_of d_nset.inp 99999): node set 'EXTRA' names node 99999, which is not defined"
+  "2|run d_warped.yaml --system flexible -o @OUT|./d_warped.inp:$(line_of d_warped.inp '9001, 9001, 9002, 9003, 9004'): element 9001 (S4) is warped: node 9004 is 300 mm off the plane"
+  "2|sweep d_warped.yaml --system flexible --set speed_kmh=5,10 -o @OUT|every case failed on its input; the first: |element 9001 (S4) is warped"
+  "2|modes d_zeroarea.yaml --system flexible -o @OUT|./d_zeroarea.inp:$(line_of d_zeroarea.inp '9001, 9001, 9002, 9005'): element 9001 (S3) is degenerate: area 0 m^2"
+  "2|export d_nonode.yaml -o @OUT|./d_nonode.inp:$(line_of d_nonode.inp '9001, 9001, 9002, 99999'): element 9001 refers to node 99999, which is not defined"
+  "2|mesh d_empty.yaml --export @FILE.vtu|./d_empty.inp:1: empty file"
+  "2|mesh d_binary.yaml|./d_binary.inp:1: binary data (byte 0x7f in column 1): not an Abaqus input deck"
+  "5|mesh d_missing.yaml --export @FILE.inp|./no_such_deck.inp: cannot open|No such file"
+
+  # Command lines.
+  "1|run s_ok.yaml -o @OUT --frobnicate|flexbond run: unknown option '--frobnicate'|flexbond run --help"
+  "1|run s_ok.yaml --system|flexbond run: option '--system' needs a value"
+  "1|sim m_ok.yaml -o|flexbond sim: option '-o' needs a value"
+  "1|run s_ok.yaml -o @OUT --system banana|option '--system' must be one of rigid, flexible, both (got 'banana')"
+  "1|modes s_ok.yaml --system banana|option '--system' must be one of rigid, flexible (got 'banana')"
+  "1|sweep s_ok.yaml --set speed_kmh=5,10 -o @OUT -j -2|option '-j' needs an integer in 1..1024 (got '-2')"
+  "1|sweep s_ok.yaml --set speed_kmh -o @OUT|--set needs KEY=SPEC (got 'speed_kmh')"
+  "1|sweep s_ok.yaml --set speed_kmh=1:0:5 -o @OUT|--set speed_kmh=1:0:5: step 0"
+  "1|sweep s_ok.yaml --set no_such_key=5 -o @OUT|no key 'no_such_key' in the scenario"
+  "1|sim m_ok.yaml -o @OUT --t-end -1|option '--t-end' needs a finite number > 0"
+  "5|export s_ok.yaml --system rigid -o @EXISTING|@EXISTING: cannot create directory: exists and is not a directory"
+  "5|sim m_ok.yaml -o @EXISTING/sub|@EXISTING/sub: cannot create directory|not a directory"
+)
+
+# expect_clean: no crash and no sanitizer report.
+expect_clean() {
+  checks=$((checks + 1))
+  [ "$status" -lt 128 ] || fail "$1: killed by signal $((status - 128))"
+  checks=$((checks + 1))
+  ! grep -qE 'Sanitizer|runtime error:' "$ERR" || fail "$1: sanitizer report"
+}
+
+# expect_untouched KIND PATH DESCRIPTION: after a failed run, PATH is as
+# before: absent, or a directory holding only previous.txt, or a file,
+# with the previous result.
+expect_untouched() {
+  checks=$((checks + 1))
+  case $1 in
+  absent) [ ! -e "$2" ] || fail "$3: $2 was created: $(ls -A "$2" 2>&1 | tr '\n' ' ')" ;;
+  dir)
+    [ "$(ls -A "$2")" = previous.txt ] && [ "$(cat "$2/previous.txt")" = "previous result" ] ||
+      fail "$3: $2 changed: $(ls -A "$2" | tr '\n' ' ')"
+    ;;
+  file) [ -f "$2" ] && [ "$(cat "$2")" = "previous result" ] || fail "$3: $2 changed" ;;
+  esac
+}
+
+# run_case N STATUS ARGS TEXT...: runs case N once per state of its output.
+run_case() {
+  local n=$1 want=$2 argstr=$3
+  shift 3
+  local states=none suffix=
+  case $argstr in
+  *@EXISTING*) states="file" ;;
+  *@OUT*) states="absent dir" ;;
+  *@FILE*)
+    states="absent file"
+    # The output file's name ends as the case wants (.inp, .dot, ...).
+    suffix=${argstr#*@FILE}
+    suffix=${suffix%% *}
+    ;;
+  esac
+  local state target output words what text
+  for state in $states; do
+    target=$WORK/out/case$n-$state
+    output=$target$suffix
+    case $state in
+    dir) mkdir -p "$output" && echo "previous result" >"$output/previous.txt" ;;
+    file) echo "previous result" >"$output" ;;
+    esac
+    words=${argstr//@OUT/$target}
+    words=${words//@FILE/$target}
+    words=${words//@EXISTING/$target}
+    what="case $n ($state): flexbond $words"
+    read -ra args <<<"$words"
+    "$FLEXBOND" "${args[@]}" >"$OUT" 2>"$ERR"
+    status=$?
+    expect_status "$want" "$what"
+    expect_clean "$what"
+    for text in "$@"; do
+      expect_in "$ERR" "${text//@EXISTING/$target}" "$what"
+    done
+    [ "$state" = none ] || expect_untouched "$state" "$output" "$what"
+  done
+}
+
+if [ "$(id -u)" -eq 0 ]; then
+  # root reads a file whatever its mode: the case cannot fail as intended.
+  echo "$NAME: SKIP case m_noread.yaml (chmod 000): running as root" >&2
+fi
+ncases=0
+for line in "${CASES[@]}"; do
+  ncases=$((ncases + 1))
+  IFS='|' read -ra fields <<<"$line"
+  if [ "$(id -u)" -eq 0 ] && [[ ${fields[1]} == *m_noread.yaml* ]]; then
+    continue
+  fi
+  run_case "$ncases" "${fields[@]}"
+done
+checks=$((checks + 1))
+[ "$ncases" -ge 40 ] || fail "the table has $ncases cases, fewer than 40"
+
+echo "$NAME: $ncases cases, $checks checks, $failures failed" >&2
+[ "$failures" -eq 0 ]
