@@ -173,6 +173,9 @@ derive d_binary.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_binary.inp/'
   head -c 2048 /dev/urandom
 } >d_binary.inp
 derive d_missing.yaml s_deck.yaml -e 's/deck: hull.inp/deck: no_such_deck.inp/'
+# A deck whose left-front suspension node set has another name.
+sed 's/NSET=SUSP_LF\b/NSET=SUSP_XX/' hull.inp >d_noset.inp
+derive d_noset.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_noset.inp/'
 
 # ---- The good fixtures pass, so each bad one fails for its own reason.
 run causality m_ok.yaml
@@ -246,6 +249,7 @@ CASES=(
   "2|mesh d_empty.yaml --export @FILE.vtu|./d_empty.inp:1: empty file"
   "2|mesh d_binary.yaml|./d_binary.inp:1: binary data (byte 0x7f in column 1): not an Abaqus input deck"
   "5|mesh d_missing.yaml --export @FILE.inp|./no_such_deck.inp: cannot open|No such file"
+  "2|run d_noset.yaml --system flexible -o @OUT|flexbond: ./d_noset.inp: hull mesh: no node set SUSP_LF"
 
   # Command lines.
   "1|run s_ok.yaml -o @OUT --frobnicate|flexbond run: unknown option '--frobnicate'|flexbond run --help"

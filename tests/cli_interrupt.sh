@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Nothing half-written: a run interrupted by SIGINT (or SIGTERM) in the
-# middle of its simulation, and a run whose solver fails, exit with their
-# documented codes (130, 4), say so, and leave the output directory's
+# middle of its simulation, a run whose solver fails and a run that fills
+# the disk exit with their documented codes (130, 4, 5), say so, and leave the output directory's
 # previous contents exactly as they were, with no staging directory left
 # behind; a successful run replaces the files it writes and keeps the
 # others.
@@ -70,6 +70,40 @@ expect_in "$ERR" "CV_TOO_MUCH_WORK" "solver failure names the CVODE flag"
 expect_in "$ERR" "raise simulation.max_steps" "solver failure gives a hint"
 expect_in "$ERR" "nothing was written" "solver failure says the previous results stand"
 expect_unchanged "$WORK/fail" "solver failure"
+
+# A full disk: System 1's outputs into a 64 KiB tmpfs (where this test may
+# mount one, as root in CI), and into any directory under a 64 KiB file-size
+# limit with SIGXFSZ ignored, so that a write fails with EFBIG as it would
+# with ENOSPC. Both must end in exit 5 with the reason and the previous
+# results intact.
+disk_full() { # DIR DESCRIPTION REASON [ulimit]
+  previous "$1"
+  if [ "${4:-}" = ulimit ]; then
+    (
+      ulimit -f 64
+      trap '' XFSZ
+      exec "$FLEXBOND" run "$REPO_ROOT/examples/apc6x6.yaml" --system rigid -o "$1" -q
+    ) >"$OUT" 2>"$ERR"
+    status=$?
+  else
+    run run "$REPO_ROOT/examples/apc6x6.yaml" --system rigid -o "$1" -q
+  fi
+  expect_status 5 "$2"
+  expect_in "$ERR" "$3" "$2 gives the reason"
+  expect_in "$ERR" "nothing was written: $1 holds what it held before" \
+    "$2 says the previous results stand"
+  expect_unchanged "$1" "$2"
+  checks=$((checks + 1))
+  [ -z "$(find "$1" -name '*.tmp.*')" ] || fail "$2: a temporary file was left behind"
+}
+disk_full "$WORK/fsize" "file-size limit" "File too large" ulimit
+mkdir -p "$WORK/small"
+if mount -t tmpfs -o size=64k tmpfs "$WORK/small" 2>/dev/null; then
+  disk_full "$WORK/small/out" "full disk" "No space left on device"
+  umount "$WORK/small"
+else
+  echo "$NAME: SKIP the full tmpfs (mount not permitted); the file-size limit stands in" >&2
+fi
 
 # A successful run replaces probes.csv, adds stats.json, keeps the rest,
 # and leaves no staging directory.

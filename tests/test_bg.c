@@ -149,6 +149,8 @@ static void test_subsystems(void)
   MUST(fb_bg_adopt(outer, &inner, "in", &err), &err);
   CHECK(fb_bg_add_port(outer, "p", "in.top", FB_PORT_OUT, &err) == FB_EMODEL);
   CHECK(strstr(err.msg, "opposite power direction") != NULL);
+  /* Without an fb_err the failure is still a failure. */
+  CHECK(fb_bg_add_port(outer, "p", "in.no_such_port", FB_PORT_IN, NULL) != FB_OK);
   MUST(fb_bg_add_port(outer, "p", "in.top", FB_PORT_IN, &err), &err);
   MUST(fb_bg_adopt(bg, &outer, "nest", &err), &err);
   MUST(add_const_source(bg, "v2", FB_BG_SF, 1.0, &err), &err);

@@ -179,6 +179,8 @@ static void expect_error(const fb_scenario_override *ov, size_t n, int code, con
   CHECK(ok);
   if (!ok || rc == FB_OK)
     fprintf(stderr, "  message: %s\n  expected prefix: %s\n", err.msg, prefix);
+  /* Without an fb_err: the same failure, no message to blame. */
+  CHECK(load(ov, n, &s, NULL) == rc && s == NULL);
   fb_scenario_free(&s);
 }
 

@@ -136,7 +136,8 @@ static int setup_solve(fb_bd *bd, size_t blk, fb_mat *a, int owned, fb_err *err)
   if (rc) {
     char who[160];
     fb_bg_describe(bd->bg, b->elem, who, sizeof who);
-    return fb_err_prefix(err, "%s: its causality needs the inverse of its matrix: ", who);
+    fb_err_prefix(err, "%s: its causality needs the inverse of its matrix: ", who);
+    return rc;
   }
   return FB_OK;
 }

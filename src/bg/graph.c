@@ -614,8 +614,10 @@ int fb_bg_add_port(fb_bg *bg, const char *port_name, const char *target, fb_bg_d
     return fb_err_set(err, FB_EMODEL, "duplicate port '%s'", port_name);
   port_ref pr;
   int rc = resolve(bg, target, &pr, err);
-  if (rc)
-    return fb_err_prefix(err, "port '%s': ", port_name);
+  if (rc) {
+    fb_err_prefix(err, "port '%s': ", port_name);
+    return rc;
+  }
   if (pr.portdef >= 0) {
     fb_bg_portdef *inner = &bg->ports[pr.portdef];
     if (inner->used)

@@ -69,8 +69,10 @@ static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *p, fb_m
       xyz[3 * a + k] = fb_mesh_node_xyz(m, nodes[a])[k];
   int rc =
       fb_shell_element(type, xyz, p, mass, t->kvals ? ke : NULL, t->mvals ? me : NULL, err);
-  if (rc)
-    return fb_err_prefix(err, "element %ld: ", fb_mesh_element_id(m, e));
+  if (rc) {
+    fb_err_prefix(err, "element %ld: ", fb_mesh_element_id(m, e));
+    return rc;
+  }
   for (size_t j = 0; j < n; ++j)
     for (size_t i = 0; i < n; ++i) {
       t->rows[t->n] = 6 * nodes[i / 6] + i % 6;

@@ -132,8 +132,8 @@ static int factor_shifted(const fb_mat *K, const fb_mat *M, double s, fb_lu **lu
     rc = fb_lu_new(a, lu, err);
   fb_mat_free(&a);
   if (rc)
-    return fb_err_prefix(err, "fb_fem_modes: K + %g M: ", s);
-  return FB_OK;
+    fb_err_prefix(err, "fb_fem_modes: K + %g M: ", s);
+  return rc;
 }
 
 /* ARPACK work arrays. */

@@ -207,21 +207,20 @@ static int check_panels(const fb_plot_panel *panels, size_t npanels, double t_mi
 
 /* Writes the script made by fn, drawing into png_tmp, to the file
  * script. A file rather than a pipe: gnuplot missing or failing early
- * cannot raise SIGPIPE in this process, and its exit status tells. */
+ * cannot raise SIGPIPE in this process, and its exit status tells.
+ * fb_out reports a full disk with its errno. */
 static int write_script_file(const char *script, fb_gnuplot_script_fn fn, const void *ctx,
                              const char *png_tmp, const char *path, fb_err *err)
 {
-  FILE *fp = fopen(script, "w");
-  if (!fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot create '%s': %s", path, script, strerror(errno));
-  fn(fp, ctx, png_tmp);
-  int failed = ferror(fp);
-  failed |= fclose(fp) != 0;
-  if (failed) {
-    remove(script);
-    return fb_err_set(err, FB_EIO, "%s: cannot write '%s'", path, script);
+  fb_out *o = NULL;
+  int rc = fb_out_open(script, &o, err);
+  if (rc == FB_OK) {
+    fn(fb_out_stream(o), ctx, png_tmp);
+    rc = fb_out_commit(&o, err);
   }
-  return FB_OK;
+  if (rc != FB_OK)
+    fb_err_prefix(err, "%s: the gnuplot script: ", path);
+  return rc;
 }
 
 /* Runs "gnuplot script" and waits for it. gnuplot's own messages go to

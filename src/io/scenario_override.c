@@ -297,10 +297,11 @@ static int ov_range(const ml_ctx *c, struct fy_node *n, size_t len, size_t *star
   return FB_OK;
 }
 
-/* "--set KEY=VALUE: " before the message in err; returns its code. */
-static int ov_blame(fb_err *err, const fb_scenario_override *o)
+/* "--set KEY=VALUE: " before the message in err; returns rc. */
+static int ov_blame(int rc, fb_err *err, const fb_scenario_override *o)
 {
-  return fb_err_prefix(err, "--set %s=%s: ", o->key, o->value);
+  fb_err_prefix(err, "--set %s=%s: ", o->key, o->value);
+  return rc;
 }
 
 /* 1 if value can stand as a plain YAML scalar in a block or flow
@@ -374,7 +375,7 @@ static int ov_find_edits(const ml_ctx *c, struct fy_node *root, size_t len,
     if (rc == FB_OK)
       rc = ov_range(c, node, len, &edits[i].start, &edits[i].end);
     if (rc != FB_OK)
-      return ov_blame(c->err, &ov[i]);
+      return ov_blame(rc, c->err, &ov[i]);
     edits[i].index = i;
   }
   qsort(edits, n, sizeof *edits, ov_edit_order);
@@ -383,7 +384,7 @@ static int ov_find_edits(const ml_ctx *c, struct fy_node *root, size_t len,
       const fb_scenario_override *o = &ov[edits[i].index], *p = &ov[edits[i - 1].index];
       fb_err_set(c->err, FB_EINVAL, "%s: sets %s, which --set %s=%s sets too", c->file,
                  edits[i].path, p->key, p->value);
-      return ov_blame(c->err, o);
+      return ov_blame(FB_EINVAL, c->err, o);
     }
   return FB_OK;
 }
@@ -455,17 +456,18 @@ static void ov_message_key(const char *msg, const char *file, char *key, size_t 
 /* Prefixes a reader error with the override whose value it names, or
  * with every override when it names another key (a consequence of the
  * values together, such as a bump that no longer ends inside the run). */
-static int ov_blame_reader(fb_err *err, const char *file, const fb_scenario_override *ov,
-                           const ov_edit *edits, size_t n)
+static void ov_blame_reader(fb_err *err, const char *file, const fb_scenario_override *ov,
+                            const ov_edit *edits, size_t n)
 {
   char key[OV_PATH_MAX];
   ov_message_key(err->msg, file, key, sizeof key);
   for (size_t i = 0; i < n; ++i)
-    if (!strcmp(key, edits[i].path))
-      return ov_blame(err, &ov[edits[i].index]);
+    if (!strcmp(key, edits[i].path)) {
+      ov_blame(err->code, err, &ov[edits[i].index]);
+      return;
+    }
   for (size_t i = n; i-- > 0;)
     fb_err_prefix(err, "--set %s=%s%s", ov[i].key, ov[i].value, i + 1 < n ? " " : ": ");
-  return err->code;
 }
 
 /* ---- Public functions. */

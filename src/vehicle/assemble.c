@@ -26,8 +26,10 @@ const char *fb_vehicle_output_unit(int k)
 /* Adopts a fragment built by a constructor under instance name inst. */
 static int adopt(fb_bg *bg, int rc, fb_bg **frag, const char *inst, fb_err *err)
 {
-  if (rc)
-    return fb_err_prefix(err, "%s: ", inst);
+  if (rc) {
+    fb_err_prefix(err, "%s: ", inst);
+    return rc;
+  }
   return fb_bg_adopt(bg, frag, inst, err);
 }
 

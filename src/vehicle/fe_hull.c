@@ -146,9 +146,14 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   fb_mesh *mesh = NULL;
   int rc = s->hull_deck ? fb_mesh_read_inp(s->hull_deck, &mesh, NULL, err)
                         : fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
+  /* Deck errors start with FILE:LINE, generator errors with "hull mesh:". */
   if (rc)
-    return fb_err_prefix(err, "hull mesh: ");
-  return fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
+    return rc;
+  rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
+  /* A deck that misses or misplaces a node set is named with it. */
+  if (rc && s->hull_deck)
+    fb_err_prefix(err, "%s: ", s->hull_deck);
+  return rc;
 }
 
 int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
@@ -818,7 +823,8 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
   hull_coords_free(&c);
   if (rc) {
     fb_hull_free(&hull);
-    return fb_err_prefix(err, "flexible hull: ");
+    fb_err_prefix(err, "flexible hull: ");
+    return rc;
   }
   *out = hull;
   return FB_OK;

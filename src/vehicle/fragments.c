@@ -187,7 +187,8 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err)
     rc = rigid_hull_graph(s, h->graph, err);
   if (rc) {
     fb_hull_free(&h);
-    return fb_err_prefix(err, "rigid hull: ");
+    fb_err_prefix(err, "rigid hull: ");
+    return rc;
   }
   rigid_torsion_weights(s, h->torsion_weights);
   *out = h;

@@ -20,10 +20,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-  static const char empty[1] = "";
-  if (fuzz_may_name_special_file(data, size))
+  const char *text = fuzz_yaml_text(data, size);
+  if (!text)
     return 0;
-  const char *text = data ? (const char *)data : empty;
   fb_err err;
   fb_scenario *s = NULL;
   const int rc = fb_scenario_load_string(text, size, "fuzz.yaml", &s, &err);

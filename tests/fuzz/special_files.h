@@ -1,11 +1,12 @@
 /* For the YAML fuzz targets: inputs that could name a special file are skipped. The model
  * and scenario loaders read every file a document names (tables, Matrix Market files,
- * road profiles) to its end, so a reference to /dev/zero or /dev/urandom would only grow
- * without bound until libFuzzer's memory limit, and one to a FIFO would block: findings
- * about the machine, not the parsers (docs/fuzzing.md, "Limits"). Relative references
- * resolve inside tests/fuzz, so a path can reach /dev, /proc or /sys only through one of
- * those names after a '/', or by spelling it with a double-quoted YAML escape (\x, \u,
- * \U, \/, or an escaped line break joining two lines without a space). */
+ * road profiles) to its end. fb_open_input refuses devices and FIFOs, but /proc and /sys
+ * hold "regular" files that block (/proc/kmsg) or run to gigabytes (/proc/kcore, which
+ * root may read): findings about the machine, not the parsers (docs/fuzzing.md,
+ * "Limits"). Relative references resolve inside tests/fuzz, so a path can reach /dev,
+ * /proc or /sys only through one of those names after a '/', or by spelling it with a
+ * double-quoted YAML escape (\x, \u, \U, \/, or an escaped line break joining two lines
+ * without a space). */
 #ifndef FLEXBOND_FUZZ_SPECIAL_FILES_H
 #define FLEXBOND_FUZZ_SPECIAL_FILES_H
 
@@ -32,6 +33,16 @@ static int fuzz_may_name_special_file(const uint8_t *data, size_t size)
     if (fuzz_contains(data, size, words[k]))
       return 1;
   return 0;
+}
+
+/* The input as the loaders' text (never NULL, also for an empty input), or NULL when it
+ * is to be skipped. */
+static const char *fuzz_yaml_text(const uint8_t *data, size_t size)
+{
+  static const char empty[1] = "";
+  if (fuzz_may_name_special_file(data, size))
+    return NULL;
+  return data ? (const char *)data : empty;
 }
 
 #endif
