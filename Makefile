@@ -8,6 +8,8 @@
 #                      and the quarter-car example into out/quarter_car/
 #   make asan          build into $(ASAN_DIR) with ASan+UBSan and run the suite
 #   make clang         build into $(CLANG_DIR) with clang and -Werror and run the suite
+#   make mpi           install OpenMPI, build into $(MPI_DIR) with -DFLEXBOND_MPI=ON (flexbond
+#                      sweep --mpi, docs/cluster.md) and run the suite, cli_sweep_mpi included
 #   make fuzz          build the libFuzzer targets into $(FUZZ_DIR) (clang) and run each for
 #                      $(FUZZ_SECONDS) s; fails on any crash, leak or timeout (docs/fuzzing.md)
 #   make valgrind      build into $(VALGRIND_DIR) and run the unit tests (tests/test_*.c) under
@@ -29,6 +31,7 @@ SHELL := /bin/bash
 BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
 CLANG_DIR ?= build-clang
+MPI_DIR ?= build-mpi
 OUT_DIR ?= out
 BUILD_TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -40,6 +43,8 @@ CTEST_JOBS ?= 2
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
                 liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz clang \
                 clang-format python3 valgrind clang-tidy cppcheck
+# OpenMPI for the optional MPI build of flexbond sweep (make mpi, docs/cluster.md).
+MPI_DEB_PACKAGES := libopenmpi-dev openmpi-bin
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 APT := $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get
 
@@ -51,22 +56,30 @@ cmake_build = cmake -S . -B $(1) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(2) && \
 # $(call run_ctest,DIR): run the whole suite of one tree.
 run_ctest = ctest --test-dir $(1) --output-on-failure -j$(CTEST_JOBS)
 
-.PHONY: deps build test run asan clang format format-check clean
+.PHONY: deps deps-mpi build test run asan clang mpi format format-check clean
 
-deps:
+# $(call install_missing,PACKAGES): apt-get install those not yet installed.
+define install_missing
 	@missing=; \
-	for pkg in $(DEB_PACKAGES); do \
+	for pkg in $(1); do \
 	  case "$$(dpkg-query -W -f='$${Status}' "$$pkg" 2>/dev/null)" in \
 	    "install ok installed") ;; \
 	    *) missing="$$missing $$pkg" ;; \
 	  esac; \
 	done; \
 	if [ -z "$$missing" ]; then \
-	  echo "deps: all packages already installed"; \
+	  echo "$@: all packages already installed"; \
 	else \
-	  echo "deps: installing$$missing"; \
+	  echo "$@: installing$$missing"; \
 	  $(APT) update && $(APT) install -y --no-install-recommends $$missing; \
 	fi
+endef
+
+deps:
+	$(call install_missing,$(DEB_PACKAGES))
+
+deps-mpi:
+	$(call install_missing,$(MPI_DEB_PACKAGES))
 
 build:
 	$(call cmake_build,$(BUILD_DIR),)
@@ -90,6 +103,11 @@ clang:
 	$(call cmake_build,$(CLANG_DIR),-DCMAKE_C_COMPILER=clang -DFLEXBOND_WERROR=ON)
 	$(call run_ctest,$(CLANG_DIR))
 
+# The MPI build of flexbond sweep (docs/cluster.md) and its whole suite, cli_sweep_mpi included.
+mpi: deps deps-mpi
+	$(call cmake_build,$(MPI_DIR),-DFLEXBOND_MPI=ON)
+	$(call run_ctest,$(MPI_DIR))
+
 format:
 	$(if $(FORMAT_SOURCES),clang-format -i $(FORMAT_SOURCES),@echo "format: no sources")
 
@@ -97,7 +115,7 @@ format-check:
 	$(if $(FORMAT_SOURCES),clang-format --dry-run --Werror $(FORMAT_SOURCES),@echo "format-check: no sources")
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(CLANG_DIR) $(VALGRIND_DIR) $(TIDY_DIR) $(OUT_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(CLANG_DIR) $(MPI_DIR) $(VALGRIND_DIR) $(TIDY_DIR) $(OUT_DIR)
 
 # ---- Fuzzing (docs/fuzzing.md): each tests/fuzz/fuzz_NAME.c runs for FUZZ_SECONDS on a copy
 # of its seed corpus and crash inputs in $(FUZZ_DIR)/corpus/NAME (the repository is never
@@ -165,10 +183,11 @@ valgrind: deps
 	  --overwrite MemoryCheckSuppressionFile=$(CURDIR)/tests/valgrind.supp
 
 # A Debug clang tree for its compile_commands.json only (nothing is built): Debug keeps the
-# asserts, which tell the analyzer invariants it cannot see across translation units.
-tidy: deps
+# asserts, which tell the analyzer invariants it cannot see across translation units. The
+# MPI build, so that src/cli/sweep_mpi.c is analysed too.
+tidy: deps deps-mpi
 	cmake -S . -B $(TIDY_DIR) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang \
-	  -DCMAKE_EXPORT_COMPILE_COMMANDS=ON > /dev/null
+	  -DFLEXBOND_MPI=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON > /dev/null
 	@echo "tidy: clang-tidy $$(clang-tidy --version | sed -n 's/.*version //p') over src/"
 	@find src -name '*.c' | sort | xargs -P$(JOBS) -I{} bash -c \
 	  'out=$$(clang-tidy -p $(TIDY_DIR) --quiet {} 2>&1) || \

@@ -28,6 +28,9 @@ extern "C" {
  * FB_EINTR (an interrupted command, say). */
 typedef int (*fb_sim_progress_fn)(void *ctx, double t, double t_end);
 
+/* The default budget of internal steps of a whole run (fb_sim_opts). */
+#define FB_SIM_DEFAULT_MAX_STEPS 10000000L
+
 typedef struct fb_sim_opts {
   double t_start;            /* s */
   double t_end;              /* s, > t_start */
@@ -36,7 +39,7 @@ typedef struct fb_sim_opts {
   double max_step;           /* s, 0 for no limit */
   double sample_rate;        /* Hz, outputs at t_start + k / sample_rate (default 1000) */
   int max_order;             /* BDF order limit 1..5 (default 5) */
-  long max_steps;            /* internal steps allowed in all (default 10^7) */
+  long max_steps;            /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
   const double *breakpoints; /* extra breakpoints (borrowed), besides sources' */
   size_t nbreakpoints;
   const double *x0;            /* initial state (borrowed), NULL for the graph's */

@@ -261,6 +261,8 @@ const char *cli_system_label(fb_system sys);
 const char *cli_scenario_name(const fb_scenario *s);
 /* Statistics of column col of r; window is the bump window. */
 cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2]);
+/* The bump window: [first wheel's bump entry, last wheel's bump exit]. */
+void cli_bump_window(const fb_scenario *s, double window[2]);
 /* Comparison of one output: s1, s2 its statistics in System 1 and 2,
  * column col of diff (System 2 minus System 1) its difference. */
 cli_output_cmp cli_output_compare(const cli_output_stats *s1, const cli_output_stats *s2,

@@ -1,18 +1,23 @@
 /* SIGINT and SIGTERM (see cli_interrupt_install in cli.h). The flag is
  * the one piece of process-wide state of the program: a signal handler
- * can reach nothing else (C11 7.14.1.1: it may only assign to a volatile
- * sig_atomic_t object). */
+ * can reach nothing else. It is a lock-free atomic, which C11 7.14.1.1p5
+ * lets a handler touch, rather than a volatile sig_atomic_t, because the
+ * threads of a sweep read it too (C11 5.1.2.4: a volatile read from
+ * another thread is a data race). */
 #include <signal.h>
+#include <stdatomic.h>
 #include <string.h>
 
 #include "cli.h"
 
-static volatile sig_atomic_t interrupted;
+_Static_assert(ATOMIC_INT_LOCK_FREE == 2, "a signal handler needs a lock-free atomic flag");
+
+static atomic_int interrupted;
 
 static void on_signal(int sig)
 {
   (void)sig;
-  interrupted = 1;
+  atomic_store(&interrupted, 1);
 }
 
 int cli_interrupt_install(void)
@@ -30,12 +35,12 @@ int cli_interrupt_install(void)
 
 int cli_interrupted(void)
 {
-  return interrupted != 0;
+  return atomic_load(&interrupted) != 0;
 }
 
 int cli_check_interrupt(fb_err *err)
 {
-  if (!interrupted)
+  if (!cli_interrupted())
     return FB_OK;
   return fb_err_set(err, FB_EINTR, "interrupted (SIGINT or SIGTERM)");
 }

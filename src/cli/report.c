@@ -25,6 +25,16 @@ static const double notable_change = 0.05;
 
 /* ---- Statistics. */
 
+void cli_bump_window(const fb_scenario *s, double window[2])
+{
+  window[0] = INFINITY;
+  window[1] = -INFINITY;
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    window[0] = fmin(window[0], fb_scenario_bump_entry(s, c));
+    window[1] = fmax(window[1], fb_scenario_bump_exit(s, c));
+  }
+}
+
 cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2])
 {
   cli_output_stats o = {NAN, -INFINITY, NAN, INFINITY, NAN, NAN};

@@ -451,17 +451,6 @@ static int write_outputs(const char *dir, const cli_run_outputs *o, size_t *nfil
   return cli_outdir_close(&od, rc, err);
 }
 
-/* [first wheel's bump entry, last wheel's bump exit]. */
-static void bump_window(const fb_scenario *s, double window[2])
-{
-  window[0] = INFINITY;
-  window[1] = -INFINITY;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    window[0] = fmin(window[0], fb_scenario_bump_entry(s, c));
-    window[1] = fmax(window[1], fb_scenario_bump_exit(s, c));
-  }
-}
-
 /* ---- Modes, for the report. */
 
 /* The modes of the systems that run (owned). */
@@ -698,7 +687,7 @@ static int run(const run_args *a)
     o.nruns = pick_systems(a, s, systems, &o.note);
     o.hull_modes_source = a->hull_modes >= 0 ? "the command line (`--hull-modes`)"
                                              : "the scenario (`hull.fe.modes`, 0 when absent)";
-    bump_window(s, o.bump_window);
+    cli_bump_window(s, o.bump_window);
     if (o.note && !a->quiet)
       fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
     rc = compute_modes(s, systems, o.nruns, &modes, &err);

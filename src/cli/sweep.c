@@ -1,35 +1,35 @@
 /* flexbond sweep: a parameter study of a vehicle scenario (docs/sweep.md).
  * Every --set KEY=SPEC gives a key of the scenario file and its values;
- * the cases are their cartesian product. Each case loads the scenario
- * with its values replacing the file's (fb_scenario_load_overrides, so
- * the reader checks and converts them as its own), simulates one system
- * and reduces the run to metrics: the summary.json statistics of the
- * paper's seven outputs (cli_output_stats_of), the tire contact, the
- * driver's ride metrics and the solver's work. The cases run on a pool of POSIX threads; the
- * library keeps no global state, except that ARPACK (fb_fem_modes above 2000 DOFs) is not
- * reentrant, so System 2 hulls that large run one at a time. A case that fails leaves its
- * message in the `error` column and the others go on. DIR/sweep.csv and DIR/sweep.png are
- * written at the end, all or nothing. */
+ * the cases are their cartesian product. The cases run on a pool of POSIX
+ * threads (sweep_pool.c) or, with --mpi in an MPI build, across ranks
+ * (sweep_mpi.c); each is loaded, simulated and measured by sweep_case.c.
+ * A case that fails leaves its message in the `error` column and the
+ * others go on. Every finished case is journaled in DIR/sweep.partial.csv
+ * (sweep_journal.c), which --resume reads back after a kill;
+ * DIR/sweep.csv and DIR/sweep.png are written at the end, all or
+ * nothing, and the journal is then removed. */
+#include "sweep.h"
+
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
-#include "flexbond/fem.h"
 #include "flexbond/io.h"
-#include "flexbond/ride.h"
-#include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
 #include "cli.h"
 
 static const char sweep_usage[] =
     "usage: flexbond sweep SCENARIO.yaml --set KEY=SPEC [--set KEY=SPEC ...] -o DIR\n"
-    "                      [--system rigid|flexible] [-j N] [--no-figures] [-q]\n"
+    "                      [--system rigid|flexible] [-j N] [--resume] [--mpi]\n"
+    "                      [--no-figures] [-q]\n"
     "\n"
     "Simulates the scenario once per combination of the values given by the\n"
     "--set options (their cartesian product, the first key varying slowest) and\n"
@@ -37,11 +37,13 @@ static const char sweep_usage[] =
     "  DIR/sweep.csv   one row per case: the keys' values, then the metrics (peak,\n"
     "                  min and RMS of the paper's seven outputs as in summary.json,\n"
     "                  the smallest tire reaction, the contact-loss intervals, the\n"
-    "                  driver's ride metrics, the solver's steps and time) and\n"
-    "                  an `error` column\n"
+    "                  driver's ride metrics, the solver's steps; every number\n"
+    "                  to the last bit) and an `error` column\n"
     "  DIR/sweep.png   one panel per metric against the first key, one curve per\n"
     "                  combination of the other keys\n"
     "A case that fails does not stop the others; the exit status is then 4.\n"
+    "Finished cases are kept in DIR/sweep.partial.csv until the end, so that a\n"
+    "killed or interrupted sweep can be resumed.\n"
     "\n"
     "  --set KEY=SPEC   KEY: a dotted path into the scenario (road.speed_kmh,\n"
     "                   suspensions.LF.spring_k, hull.mesh.generator.bulkheads[1])\n"
@@ -52,363 +54,18 @@ static const char sweep_usage[] =
     "  -o, --output DIR           output directory (required)\n"
     "  --system rigid|flexible    hull model (default rigid: System 1)\n"
     "  -j, --jobs N               cases run at once (default: the online CPUs)\n"
+    "  --resume                   run only the cases DIR/sweep.partial.csv lacks\n"
+    "  --mpi                      run across the ranks of an MPI job, one case per\n"
+    "                             rank at a time (mpirun -np N flexbond sweep --mpi\n"
+    "                             ...; an MPI build only, docs/cluster.md)\n"
     "  --no-figures               no sweep.png\n"
     "  -q, --quiet                no progress lines on stderr\n"
     "  -h, --help                 this text\n";
 
-/* Limits of a study: values per key (as the spec says), keys, cases. */
-enum { SWEEP_MAX_VALUES = 10000, SWEEP_MAX_KEYS = 16, SWEEP_MAX_CASES = 100000 };
 /* Most threads -j accepts. */
 enum { SWEEP_MAX_JOBS = 1024 };
-/* fb_fem_modes uses ARPACK above this many DOFs (the dense_limit that
- * src/vehicle/fe_hull.c and src/fem/reduce.c pass): such hulls run one
- * at a time. */
-enum { SWEEP_DENSE_LIMIT = 2000 };
-
-/* ---- Metrics of a case. */
-
-enum {
-  STAT_PEAK,
-  STAT_MIN,
-  STAT_RMS,
-  NSTATS,
-  /* peak, min, rms of output k at NSTATS k + STAT_* */
-  M_MIN_TIRE_FORCE = NSTATS * FB_NOUTPUTS,
-  M_CONTACT_LOSS_INTERVALS,
-  /* The driver's ride metrics, as summary.json's "ride" (run.c). */
-  M_RIDE_A_W_RMS,
-  M_RIDE_MTVV,
-  M_RIDE_VDV,
-  M_RIDE_CREST_FACTOR,
-  M_RIDE_JERK_PEAK,
-  M_RIDE_JERK_RMS,
-  M_SOLVER_STEPS,
-  M_SOLVER_WALL_TIME,
-  NMETRICS
-};
-static const char *const stat_names[NSTATS] = {"peak", "min", "rms"};
-static const struct {
-  const char *name, *unit;
-} other_metrics[NMETRICS - M_MIN_TIRE_FORCE] = {
-    {"min_tire_force", "N"},     {"contact_loss_intervals", "-"}, {"ride_a_w_rms", "m/s^2"},
-    {"ride_mtvv", "m/s^2"},      {"ride_vdv", "m/s^1.75"},        {"ride_crest_factor", "-"},
-    {"ride_jerk_peak", "m/s^3"}, {"ride_jerk_rms", "m/s^3"},      {"solver_steps", "-"},
-    {"solver_wall_time", "s"},
-};
-
-/* Name of metric m ("tire_force_LF_peak") into buf. */
-static void metric_name(size_t m, char *buf, size_t size)
-{
-  if (m < M_MIN_TIRE_FORCE)
-    snprintf(buf, size, "%s_%s", fb_vehicle_output_name((int)(m / NSTATS)),
-             stat_names[m % NSTATS]);
-  else
-    snprintf(buf, size, "%s", other_metrics[m - M_MIN_TIRE_FORCE].name);
-}
-
-static const char *metric_unit(size_t m)
-{
-  return m < M_MIN_TIRE_FORCE ? fb_vehicle_output_unit((int)(m / NSTATS))
-                              : other_metrics[m - M_MIN_TIRE_FORCE].unit;
-}
-
-/* ---- The study. */
-
-/* One swept key and its values (texts, as the overrides take them). */
-typedef struct sweep_key {
-  const char *key; /* as given */
-  char *path;      /* the full dotted path it names */
-  char **values;
-  size_t nvalues;
-} sweep_key;
-
-/* The outcome of one case. */
-typedef struct sweep_case {
-  int status;              /* FB_OK or what failed */
-  char *error;             /* its message (NULL when ok or out of memory) */
-  double metric[NMETRICS]; /* NaN when failed */
-} sweep_case;
-
-typedef struct sweep_args {
-  const char *scenario_path, *out_dir;
-  fb_system sys;
-  size_t jobs;
-  int quiet, figures;
-  sweep_key keys[SWEEP_MAX_KEYS];
-  size_t nkeys, ncases;
-  const char *scenario_name; /* for titles */
-} sweep_args;
-
-/* What the worker threads share. */
-typedef struct sweep_pool {
-  const sweep_args *a;
-  sweep_case *cases;
-  pthread_mutex_t lock;   /* next, done and stderr */
-  pthread_mutex_t arpack; /* held while a large System 2 hull runs */
-  size_t next, done;
-} sweep_pool;
-
-/* Index of key k's value in case i: the first key varies slowest. */
-static size_t value_index(const sweep_args *a, size_t i, size_t k)
-{
-  for (size_t j = a->nkeys; j-- > k + 1;)
-    i /= a->keys[j].nvalues;
-  return i % a->keys[k].nvalues;
-}
-
-/* "key=value, key=value" of case i into buf. */
-static void case_label(const sweep_args *a, size_t i, size_t first_key, char *buf, size_t size)
-{
-  size_t len = 0;
-  buf[0] = '\0';
-  for (size_t k = first_key; k < a->nkeys && len + 1 < size; ++k) {
-    int n = snprintf(buf + len, size - len, "%s%s=%s", k > first_key ? ", " : "",
-                     a->keys[k].key, a->keys[k].values[value_index(a, i, k)]);
-    len = n > 0 && len + (size_t)n < size ? len + (size_t)n : size - 1;
-  }
-}
-
-/* [first wheel's bump entry, last wheel's bump exit], as run's. */
-static void bump_window(const fb_scenario *s, double window[2])
-{
-  window[0] = INFINITY;
-  window[1] = -INFINITY;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    window[0] = fmin(window[0], fb_scenario_bump_entry(s, c));
-    window[1] = fmax(window[1], fb_scenario_bump_exit(s, c));
-  }
-}
-
-/* The smallest normal reaction of any tire from the first bump entry to
- * the end of the run (not from t = 0: under `initial: zero` every tire
- * starts unloaded, at 0 N). */
-static int min_tire_force(const fb_result *r, const double window[2], double *out, fb_err *err)
-{
-  *out = INFINITY;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    char name[32];
-    snprintf(name, sizeof name, "contact_force_%s", fb_corner_name(c));
-    const long j = fb_result_find(r, name);
-    if (j < 1)
-      return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'", name);
-    for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
-      const double *row = fb_result_row(r, k);
-      if (row[0] >= window[0])
-        *out = fmin(*out, row[j]);
-    }
-  }
-  return FB_OK;
-}
-
-/* The contact-loss intervals (fb_vehicle_contact_loss) that end after
- * the first bump entry. */
-static int contact_loss_intervals(const fb_result *r, const double window[2], double *out,
-                                  fb_err *err)
-{
-  fb_contact_loss *iv = NULL;
-  size_t n = 0, count = 0;
-  int rc = fb_vehicle_contact_loss(r, &iv, &n, err);
-  for (size_t i = 0; rc == FB_OK && i < n; ++i)
-    count += iv[i].t_end >= window[0];
-  free(iv);
-  *out = (double)count;
-  return rc;
-}
-
-/* The driver's ride metrics (flexbond/ride.h, default options) over
- * [first bump entry, end of the run], as run puts them in summary.json;
- * NaN when the library refuses the window (shorter than the 1 s running
- * r.m.s.): a missing metric, not a failed case. */
-static void ride_metrics(const fb_result *r, const double window[2], double *m)
-{
-  for (size_t k = M_RIDE_A_W_RMS; k <= M_RIDE_JERK_RMS; ++k)
-    m[k] = NAN;
-  const size_t n = fb_result_nsamples(r);
-  if (n < 2)
-    return;
-  const double t_first = fb_result_row(r, 0)[0], t_last = fb_result_row(r, n - 1)[0];
-  /* The last sample stands for one sampling interval (ride.h). */
-  const double t0 = fmax(window[0], t_first),
-               t1 = t_last + (t_last - t_first) / (double)(n - 1);
-  fb_ride_opts opts;
-  fb_ride_opts_default(&opts);
-  fb_ride_metrics ride;
-  fb_err err;
-  if (fb_ride_metrics_result(r, "driver_acc", t0, t1, &opts, &ride, &err) != FB_OK)
-    return;
-  m[M_RIDE_A_W_RMS] = ride.a_w_rms;
-  m[M_RIDE_MTVV] = ride.mtvv;
-  m[M_RIDE_VDV] = ride.vdv;
-  m[M_RIDE_CREST_FACTOR] = ride.crest;
-  m[M_RIDE_JERK_PEAK] = ride.jerk_peak;
-  m[M_RIDE_JERK_RMS] = ride.jerk_rms;
-}
-
-/* Every metric of a successful run r of scenario s into m. */
-static int case_metrics(const fb_scenario *s, const fb_result *r, double *m, fb_err *err)
-{
-  double window[2];
-  bump_window(s, window);
-  for (int k = 0; k < FB_NOUTPUTS; ++k) {
-    const long j = fb_result_find(r, fb_vehicle_output_name(k));
-    if (j < 1)
-      return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'",
-                        fb_vehicle_output_name(k));
-    const cli_output_stats st = cli_output_stats_of(r, (size_t)j, window);
-    m[NSTATS * k + STAT_PEAK] = st.peak;
-    m[NSTATS * k + STAT_MIN] = st.min;
-    m[NSTATS * k + STAT_RMS] = st.rms;
-  }
-  const fb_sim_stats *st = fb_result_stats(r);
-  m[M_SOLVER_STEPS] = (double)st->steps;
-  m[M_SOLVER_WALL_TIME] = st->wall_seconds;
-  ride_metrics(r, window, m);
-  int rc = min_tire_force(r, window, &m[M_MIN_TIRE_FORCE], err);
-  if (rc == FB_OK)
-    rc = contact_loss_intervals(r, window, &m[M_CONTACT_LOSS_INTERVALS], err);
-  return rc;
-}
-
-/* 1 in *serial when s's finite-element hull is large enough for ARPACK. */
-static int needs_serial(const sweep_args *a, const fb_scenario *s, int *serial, fb_err *err)
-{
-  *serial = 0;
-  if (a->sys != FB_SYSTEM_FLEXIBLE)
-    return FB_OK;
-  fb_fe_hull *hull = NULL;
-  int rc = fb_vehicle_fe_hull(s, &hull, err);
-  if (rc == FB_OK)
-    *serial = 6 * fb_mesh_nnodes(hull->mesh) > SWEEP_DENSE_LIMIT;
-  fb_fe_hull_free(&hull);
-  return rc;
-}
-
-/* fb_sim_progress_fn: stops a case's simulation once interrupted. */
-static int stop_when_interrupted(void *ctx, double t, double t_end)
-{
-  (void)ctx;
-  (void)t;
-  (void)t_end;
-  return cli_interrupted();
-}
-
-static int simulate_case(sweep_pool *p, const fb_scenario *s, fb_result **res, fb_err *err)
-{
-  int serial = 0;
-  int rc = needs_serial(p->a, s, &serial, err);
-  if (rc != FB_OK)
-    return rc;
-  if (serial)
-    pthread_mutex_lock(&p->arpack);
-  rc = fb_vehicle_simulate_progress(s, p->a->sys, stop_when_interrupted, NULL, res, err);
-  if (serial)
-    pthread_mutex_unlock(&p->arpack);
-  return rc;
-}
-
-/* Runs case i into p->cases[i]. */
-static void run_case(sweep_pool *p, size_t i)
-{
-  const sweep_args *a = p->a;
-  sweep_case *c = &p->cases[i];
-  fb_scenario_override ov[SWEEP_MAX_KEYS];
-  for (size_t k = 0; k < a->nkeys; ++k)
-    ov[k] = (fb_scenario_override){a->keys[k].key, a->keys[k].values[value_index(a, i, k)]};
-  fb_err err;
-  fb_err_clear(&err);
-  fb_scenario *s = NULL;
-  fb_result *res = NULL;
-  int rc = fb_scenario_load_overrides(a->scenario_path, ov, a->nkeys, &s, &err);
-  if (rc == FB_OK)
-    rc = simulate_case(p, s, &res, &err);
-  if (rc == FB_OK)
-    rc = case_metrics(s, res, c->metric, &err);
-  c->status = rc;
-  if (rc != FB_OK) {
-    for (size_t m = 0; m < NMETRICS; ++m)
-      c->metric[m] = NAN;
-    c->error = malloc(strlen(err.msg) + 1);
-    if (c->error)
-      memcpy(c->error, err.msg, strlen(err.msg) + 1);
-  }
-  fb_result_free(&res);
-  fb_scenario_free(&s);
-}
-
-/* "flexbond sweep: case 3/12 (speed_kmh=15): ok, 1713 steps, 0.015 s". */
-static void report_case(sweep_pool *p, size_t i)
-{
-  const sweep_case *c = &p->cases[i];
-  pthread_mutex_lock(&p->lock);
-  ++p->done;
-  if (!p->a->quiet) {
-    char label[512];
-    case_label(p->a, i, 0, label, sizeof label);
-    if (c->status == FB_OK)
-      fprintf(stderr, "flexbond sweep: case %zu/%zu (%s): ok, %.0f steps, %.3g s\n", i + 1,
-              p->a->ncases, label, c->metric[M_SOLVER_STEPS], c->metric[M_SOLVER_WALL_TIME]);
-    else
-      fprintf(stderr, "flexbond sweep: case %zu/%zu (%s): failed: %s\n", i + 1, p->a->ncases,
-              label, c->error ? c->error : "out of memory");
-  }
-  pthread_mutex_unlock(&p->lock);
-}
-
-/* A thread of the pool: takes the next case until none is left, or
- * until the command is interrupted. */
-static void *worker(void *arg)
-{
-  sweep_pool *p = arg;
-  for (;;) {
-    pthread_mutex_lock(&p->lock);
-    const size_t i = p->next < p->a->ncases && !cli_interrupted() ? p->next++ : SIZE_MAX;
-    pthread_mutex_unlock(&p->lock);
-    if (i == SIZE_MAX)
-      return NULL;
-    run_case(p, i);
-    report_case(p, i);
-  }
-}
-
-/* Runs every case on min(jobs, ncases) threads, this one among them (if
- * a thread cannot be started, the others do its share). */
-static void run_cases(const sweep_args *a, sweep_case *cases)
-{
-  sweep_pool p = {.a = a, .cases = cases, .next = 0, .done = 0};
-  pthread_mutex_init(&p.lock, NULL);
-  pthread_mutex_init(&p.arpack, NULL);
-  size_t nthreads = a->jobs < a->ncases ? a->jobs : a->ncases;
-  pthread_t *threads = nthreads > 1 ? malloc((nthreads - 1) * sizeof *threads) : NULL;
-  size_t started = 0;
-  while (threads && started + 1 < nthreads &&
-         pthread_create(&threads[started], NULL, worker, &p) == 0)
-    ++started;
-  worker(&p);
-  for (size_t t = 0; t < started; ++t)
-    pthread_join(threads[t], NULL);
-  free(threads);
-  pthread_mutex_destroy(&p.arpack);
-  pthread_mutex_destroy(&p.lock);
-}
 
 /* ---- Output files. */
-
-/* A CSV cell: quoted (RFC 4180, section 2) when it holds a comma, a
- * quote or a line break. */
-static void csv_text(FILE *fp, const char *text)
-{
-  if (!strpbrk(text, ",\"\r\n")) {
-    fputs(text, fp);
-    return;
-  }
-  fputc('"', fp);
-  for (const char *t = text; *t; ++t) {
-    if (*t == '"')
-      fputc('"', fp);
-    fputc(*t, fp);
-  }
-  fputc('"', fp);
-}
 
 /* What the files are made of. */
 typedef struct sweep_outputs {
@@ -416,46 +73,14 @@ typedef struct sweep_outputs {
   const sweep_case *cases;
 } sweep_outputs;
 
-/* sweep.csv (a cli_writer over a sweep_outputs): the keys, the metrics
- * in %.10g (empty when not finite or failed) and the error. */
+/* sweep.csv (a cli_writer over a sweep_outputs): the rows in grid
+ * order, whichever order the cases finished in. */
 static void write_csv(FILE *fp, const void *ctx)
 {
   const sweep_outputs *o = ctx;
-  const sweep_args *a = o->a;
-  for (size_t k = 0; k < a->nkeys; ++k) {
-    csv_text(fp, a->keys[k].key);
-    fputc(',', fp);
-  }
-  for (size_t m = 0; m < NMETRICS; ++m) {
-    char name[64];
-    metric_name(m, name, sizeof name);
-    fprintf(fp, "%s,", name);
-  }
-  fputs("error\n", fp);
-  for (size_t i = 0; i < a->ncases; ++i) {
-    const sweep_case *c = &o->cases[i];
-    for (size_t k = 0; k < a->nkeys; ++k) {
-      csv_text(fp, a->keys[k].values[value_index(a, i, k)]);
-      fputc(',', fp);
-    }
-    for (size_t m = 0; m < NMETRICS; ++m) {
-      if (isfinite(c->metric[m]))
-        fprintf(fp, "%.10g", c->metric[m]);
-      fputc(',', fp);
-    }
-    if (c->status != FB_OK)
-      csv_text(fp, c->error ? c->error : "out of memory");
-    fputc('\n', fp);
-  }
-}
-
-/* Value as a number if the whole text is one (for the x axis). */
-static int numeric_value(const char *text, double *out)
-{
-  char *end = NULL;
-  errno = 0;
-  *out = strtod(text, &end);
-  return end != text && *end == '\0' && errno != ERANGE && isfinite(*out);
+  sweep_csv_header(fp, o->a);
+  for (size_t i = 0; i < o->a->ncases; ++i)
+    sweep_csv_row(fp, o->a, i, &o->cases[i]);
 }
 
 /* The figure's arrays: x per value of the first key, y per metric,
@@ -493,16 +118,16 @@ static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figu
     return fb_err_set(err, FB_ENOMEM, "out of memory for the figure of %zu cases", a->ncases);
   f->categorical = 0;
   for (size_t v = 0; v < nx; ++v)
-    f->categorical |= !numeric_value(a->keys[0].values[v], &f->x[v]);
+    f->categorical |= !sweep_numeric_value(a->keys[0].values[v], &f->x[v]);
   for (size_t v = 0; f->categorical && v < nx; ++v)
     f->x[v] = (double)v;
   for (size_t r = 0; r < ncurves; ++r)
     /* Case r of the first value: the other keys' values of curve r. */
-    case_label(a, r, 1, f->legends[r], sizeof f->legends[r]);
+    sweep_case_label(a, r, 1, f->legends[r], sizeof f->legends[r]);
   for (size_t m = 0; m < NMETRICS; ++m) {
     char name[64];
-    metric_name(m, name, sizeof name);
-    snprintf(f->ylabels[m], sizeof f->ylabels[m], "%s [%s]", name, metric_unit(m));
+    sweep_metric_name(m, name, sizeof name);
+    snprintf(f->ylabels[m], sizeof f->ylabels[m], "%s [%s]", name, sweep_metric_unit(m));
     for (size_t r = 0; r < ncurves; ++r) {
       double *y = &f->y[(m * ncurves + r) * nx];
       for (size_t v = 0; v < nx; ++v)
@@ -588,7 +213,7 @@ static void sweep_key_free(sweep_key *k)
 /* A finite number, the whole text. */
 static int spec_number(const char *cmd, const char *set, const char *text, double *out)
 {
-  if (numeric_value(text, out))
+  if (sweep_numeric_value(text, out))
     return CLI_EXIT_OK;
   return cli_usage_error(cmd, "--set %s: '%s' is not a finite number", set, text);
 }
@@ -791,54 +416,171 @@ static int check_scenario(const char *cmd, sweep_args *a, char **name)
   return exit_code;
 }
 
-/* Runs the study; the exit code. */
-static int sweep(const sweep_args *a)
+/* Counts what the run left: cases not done, failed, and failed on an
+ * input none of their values touches. */
+static void tally(const sweep_args *a, const sweep_case *cases, size_t *not_done,
+                  size_t *failed, size_t *input_errors)
 {
-  sweep_case *cases = calloc(a->ncases, sizeof *cases);
-  fb_err err;
-  fb_err_clear(&err);
-  if (!cases)
-    return cli_report(fb_err_set(&err, FB_ENOMEM, "out of memory for %zu cases", a->ncases),
-                      &err);
-  run_cases(a, cases);
-  size_t failed = 0, input_errors = 0;
+  *not_done = *failed = *input_errors = 0;
   for (size_t i = 0; i < a->ncases; ++i) {
-    failed += cases[i].status != FB_OK;
+    const sweep_case *c = &cases[i];
+    *not_done += !c->done;
+    *failed += c->done && c->status != FB_OK;
     /* An input error at a swept value (the reader's message then starts
      * with the option that set it) belongs to its case. */
-    const int at_value = cases[i].error && strncmp(cases[i].error, "--set ", 6) == 0;
-    input_errors += !at_value && (cli_exit_code(cases[i].status) == CLI_EXIT_INPUT ||
-                                  cli_exit_code(cases[i].status) == CLI_EXIT_IO);
+    const int at_value = c->error && strncmp(c->error, "--set ", 6) == 0;
+    const int code = cli_exit_code(c->status);
+    *input_errors += c->done && !at_value && (code == CLI_EXIT_INPUT || code == CLI_EXIT_IO);
   }
-  int rc = cli_check_interrupt(&err);
+}
+
+static double seconds_since(const struct timespec *t0)
+{
+  struct timespec t1;
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
+}
+
+/* Runs the cases not done, on threads or (mpi_size > 0) across ranks;
+ * the status of the study as a whole. */
+static int run_cases(const sweep_args *a, sweep_case *cases, sweep_journal *journal,
+                     int mpi_size, double *seconds, fb_err *err)
+{
+  sweep_pool pool;
+  sweep_pool_init(&pool, a, cases, journal);
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+#ifdef FLEXBOND_MPI
+  if (mpi_size > 0)
+    sweep_mpi_coordinate(&pool, mpi_size);
+  else
+    sweep_pool_run(&pool, a->jobs);
+#else
+  (void)mpi_size; /* 0: there are no ranks */
+  sweep_pool_run(&pool, a->jobs);
+#endif
+  *seconds = seconds_since(&t0);
+  int rc = pool.journal_rc;
+  if (rc != FB_OK)
+    *err = pool.journal_err;
+  sweep_pool_destroy(&pool);
+  size_t not_done, failed, input_errors;
+  tally(a, cases, &not_done, &failed, &input_errors);
+  if (rc == FB_OK)
+    rc = cli_check_interrupt(err);
+  /* Cases left over without an interruption here: one on another rank. */
+  if (rc == FB_OK && not_done > 0)
+    rc = fb_err_set(err, FB_EINTR, "%zu case%s did not run (a rank was interrupted)", not_done,
+                    not_done == 1 ? "" : "s");
   /* Every case refused for an input none of its values touches (a bad
    * deck all cases share, say): the study is at fault, not its cases. */
   if (rc == FB_OK && input_errors == a->ncases)
-    rc = fb_err_set(&err, cases[0].status, "every case failed on its input; the first: %s",
+    rc = fb_err_set(err, cases[0].status, "every case failed on its input; the first: %s",
                     cases[0].error ? cases[0].error : "(out of memory)");
+  return rc;
+}
+
+/* What a failed or interrupted sweep leaves: the journal when it holds
+ * cases worth resuming (not when the study itself is at fault), said in
+ * err; else nothing, as before. */
+static void leave_journal(const sweep_args *a, const sweep_case *cases, sweep_journal **journal,
+                          int created, fb_err *err)
+{
+  size_t not_done, failed, input_errors;
+  tally(a, cases, &not_done, &failed, &input_errors);
+  /* What the file holds, not what ran: after a failed write they differ. */
+  const size_t kept = sweep_journal_rows(*journal);
+  const int keep = kept > 0 && input_errors < a->ncases;
+  sweep_journal_close(journal, !keep);
+  if (!keep) {
+    if (created)
+      rmdir(a->out_dir);
+    cli_nothing_written(err, a->out_dir);
+    return;
+  }
+  char *path = sweep_journal_path(a->out_dir);
+  const size_t len = strlen(err->msg);
+  snprintf(err->msg + len, sizeof err->msg - len,
+           "; %zu of %zu cases are done and kept in %s: run the same command with --resume "
+           "to run the others",
+           kept, a->ncases, path ? path : "the journal");
+  free(path);
+}
+
+/* Runs the study (on rank 0 of mpi_size ranks, or alone when mpi_size is
+ * 0); the exit code. */
+static int sweep(const sweep_args *a, int mpi_size)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  sweep_case *cases = calloc(a->ncases, sizeof *cases);
+  struct stat st;
+  const int created = stat(a->out_dir, &st) != 0;
+  sweep_journal *journal = NULL;
+  size_t resumed = 0;
+  int rc = cases ? fb_mkdir_p(a->out_dir, &err)
+                 : fb_err_set(&err, FB_ENOMEM, "out of memory for %zu cases", a->ncases),
+      journal_rc = FB_OK;
   if (rc == FB_OK)
-    rc = write_outputs(a, cases, &err);
+    rc = journal_rc = sweep_journal_open(a, a->out_dir, cases, &resumed, &journal, &err);
+#ifdef FLEXBOND_MPI
+  /* The other ranks wait for this verdict before they wait for cases. */
+  if (mpi_size > 0)
+    sweep_mpi_go(rc == FB_OK);
+#endif
+  double seconds = 0;
+  if (rc == FB_OK) {
+    if (resumed > 0 && !a->quiet)
+      fprintf(stderr, "flexbond sweep: resuming: %zu of %zu cases are done\n", resumed,
+              a->ncases);
+    rc = run_cases(a, cases, journal, mpi_size, &seconds, &err);
+    if (rc == FB_OK)
+      rc = write_outputs(a, cases, &err);
+    if (rc == FB_OK)
+      sweep_journal_close(&journal, 1);
+    else
+      leave_journal(a, cases, &journal, created, &err);
+  } else if (created) {
+    rmdir(a->out_dir);
+  }
+  size_t not_done = 0, failed = 0, input_errors = 0;
+  if (cases)
+    tally(a, cases, &not_done, &failed, &input_errors);
   if (rc == FB_OK && !a->quiet)
-    fprintf(stderr, "flexbond sweep: %s: %zu cases, %zu failed -> %s\n", a->scenario_name,
-            a->ncases, failed, a->out_dir);
-  for (size_t i = 0; i < a->ncases; ++i)
+    fprintf(stderr, "flexbond sweep: %s: %zu cases (%zu resumed), %zu failed, %.3g s -> %s\n",
+            a->scenario_name, a->ncases, resumed, failed, seconds, a->out_dir);
+  for (size_t i = 0; cases && i < a->ncases; ++i)
     free(cases[i].error);
   free(cases);
-  if (rc != FB_OK) {
-    cli_nothing_written(&err, a->out_dir);
+  /* A journal of another study, or one left without --resume: a matter
+   * of the command line. */
+  if (journal_rc == FB_EINVAL)
+    return cli_usage_error("sweep", "%s", err.msg);
+  if (rc != FB_OK)
     return cli_report(rc, &err);
-  }
   return failed ? CLI_EXIT_SOLVER : CLI_EXIT_OK;
 }
 
 /* The options after the --set ones are taken out. */
 static int parse_options(int argc, char **argv, sweep_args *a, int *go)
 {
-  enum { OPT_OUT, OPT_SYSTEM, OPT_JOBS, OPT_NO_FIGURES, OPT_QUIET, OPT_HELP, NOPTS };
+  enum {
+    OPT_OUT,
+    OPT_SYSTEM,
+    OPT_JOBS,
+    OPT_RESUME,
+    OPT_MPI,
+    OPT_NO_FIGURES,
+    OPT_QUIET,
+    OPT_HELP,
+    NOPTS
+  };
   cli_option opts[NOPTS] = {
       [OPT_OUT] = {"--output", "-o", 1, NULL},
       [OPT_SYSTEM] = {"--system", NULL, 1, NULL},
       [OPT_JOBS] = {"--jobs", "-j", 1, NULL},
+      [OPT_RESUME] = {"--resume", NULL, 0, NULL},
+      [OPT_MPI] = {"--mpi", NULL, 0, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
@@ -852,8 +594,12 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
   a->out_dir = opts[OPT_OUT].value;
   if (!a->out_dir || !*a->out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
-  a->quiet = opts[OPT_QUIET].value != NULL;
+  a->quiet = a->quiet || opts[OPT_QUIET].value != NULL;
   a->figures = opts[OPT_NO_FIGURES].value == NULL;
+  a->resume = opts[OPT_RESUME].value != NULL;
+  if (a->mpi && opts[OPT_JOBS].value)
+    return cli_usage_error(argv[0], "--mpi runs one case per rank at a time: instead of -j, "
+                                    "start more ranks (docs/cluster.md)");
   int system = 0;
   rc = opts[OPT_SYSTEM].value
            ? cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, systems, 2, &system)
@@ -862,30 +608,108 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
   return rc == CLI_EXIT_OK ? parse_jobs(argv[0], opts[OPT_JOBS].value, &a->jobs) : rc;
 }
 
-int cli_cmd_sweep(int argc, char **argv)
+/* Parses and checks the study into a; the exit code (go: 0 after --help). */
+static int set_up(int argc, char **argv, sweep_args *a, char **name, int *go)
 {
-  sweep_args a = {0};
   char **rest = malloc((size_t)argc * sizeof *rest),
        **sets = malloc((size_t)argc * sizeof *sets);
-  char *name = NULL;
   size_t nsets = 0;
-  int nrest = 0, go = 0;
+  int nrest = 0;
+  *go = 0;
   int rc = rest && sets ? split_sets(argc, argv, rest, &nrest, sets, &nsets)
                         : cli_usage_error(argv[0], "out of memory");
   if (rc == CLI_EXIT_OK)
-    rc = parse_options(nrest, rest, &a, &go);
-  if (rc == CLI_EXIT_OK && go)
-    rc = parse_keys(argv[0], sets, nsets, &a);
-  if (rc == CLI_EXIT_OK && go)
-    rc = check_scenario(argv[0], &a, &name);
-  if (rc == CLI_EXIT_OK && go)
-    rc = resolve_keys(argv[0], &a);
-  if (rc == CLI_EXIT_OK && go)
-    rc = sweep(&a);
+    rc = parse_options(nrest, rest, a, go);
+  if (rc == CLI_EXIT_OK && *go)
+    rc = parse_keys(argv[0], sets, nsets, a);
+  if (rc == CLI_EXIT_OK && *go)
+    rc = check_scenario(argv[0], a, name);
+  if (rc == CLI_EXIT_OK && *go)
+    rc = resolve_keys(argv[0], a);
+  free(sets);
+  free(rest);
+  return rc;
+}
+
+/* 1 if the arguments ask for --mpi (before a "--"). */
+static int wants_mpi(int argc, char **argv)
+{
+  for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; ++i)
+    if (!strcmp(argv[i], "--mpi"))
+      return 1;
+  return 0;
+}
+
+#ifdef FLEXBOND_MPI
+/* The study across the ranks of an MPI job. Every rank sets it up (the
+ * same files, the same checks); only rank 0 speaks while it does, and
+ * all go on only if all succeeded. */
+static int sweep_mpi(int argc, char **argv, sweep_args *a, char **name)
+{
+  int rank = 0, size = 1, go = 0;
+  fb_err err;
+  int rc = sweep_mpi_init(&rank, &size, &err);
+  if (rc != FB_OK)
+    return cli_report(rc, &err);
+  a->mpi = 1;
+  a->quiet = rank != 0;
+  int saved = -1;
+  if (rank != 0) {
+    fflush(stderr);
+    saved = dup(STDERR_FILENO);
+    const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null >= 0) {
+      dup2(null, STDERR_FILENO);
+      close(null);
+    }
+  }
+  rc = set_up(argc, argv, a, name, &go);
+  uint64_t fingerprint = 0;
+  if (rc == CLI_EXIT_OK && go && sweep_study_fingerprint(a, &fingerprint, &err) != FB_OK)
+    rc = cli_report(err.code, &err);
+  if (saved >= 0) {
+    fflush(stderr);
+    dup2(saved, STDERR_FILENO);
+    close(saved);
+  }
+  int bad_rank = 0;
+  if (sweep_mpi_agree(rc == CLI_EXIT_OK, fingerprint, &bad_rank)) {
+    if (rank == 0 && rc == CLI_EXIT_OK)
+      rc =
+          cli_report(fb_err_set(&err, FB_EIO,
+                                "rank %d could not set the study up, or read another scenario "
+                                "file than rank 0 (do all nodes see the scenario and the files "
+                                "it names at the same paths?)",
+                                bad_rank),
+                     &err);
+  } else if (go && rank == 0) {
+    rc = sweep(a, size);
+  } else if (go && sweep_mpi_go(0)) {
+    sweep_mpi_work(a);
+  }
+  return sweep_mpi_finish(rc);
+}
+#endif
+
+int cli_cmd_sweep(int argc, char **argv)
+{
+  sweep_args a = {0};
+  char *name = NULL;
+  int go = 0, rc;
+  if (wants_mpi(argc, argv)) {
+#ifdef FLEXBOND_MPI
+    rc = sweep_mpi(argc, argv, &a, &name);
+#else
+    rc = cli_usage_error(argv[0], "--mpi: this flexbond was built without MPI (configure with "
+                                  "cmake -DFLEXBOND_MPI=ON; docs/cluster.md)");
+#endif
+  } else {
+    rc = set_up(argc, argv, &a, &name, &go);
+    if (rc == CLI_EXIT_OK && go)
+      rc = sweep(&a, 0);
+  }
   for (size_t k = 0; k < a.nkeys; ++k)
     sweep_key_free(&a.keys[k]);
   free(name);
-  free(sets);
-  free(rest);
   return rc;
 }

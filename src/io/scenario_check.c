@@ -204,6 +204,7 @@ static int sc_check_simulation(const fb_scenario *s, fb_err *err)
   o.rtol = s->rtol;
   o.atol = s->atol;
   o.max_step = s->max_step;
+  o.max_steps = s->max_steps;
   o.sample_rate = s->sample_rate;
   return fb_sim_opts_check(&o, err);
 }

@@ -1,6 +1,7 @@
 /* Scenario files (docs/scenario-format.md): the sections read into an
  * fb_scenario with the model loader's YAML helpers, and the mapping of
  * fb_scenario_check's key paths back to the file. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -613,8 +614,8 @@ static int sc_road(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
 
 static int sc_simulation(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
 {
-  static const char *const keys[] = {"t_end",       "rtol",    "atol", "max_step",
-                                     "sample_rate", "initial", NULL};
+  static const char *const keys[] = {"t_end",       "rtol",    "atol",      "max_step",
+                                     "sample_rate", "initial", "max_steps", NULL};
   static const char *const initials[] = {"zero", "static", NULL};
   const sc_field f[] = {{"t_end", &s->t_end},
                         {"rtol", &s->rtol},
@@ -630,6 +631,13 @@ static int sc_simulation(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
   s->max_step = 0; /* no limit */
   if (!rc)
     rc = ml_opt_number(c, sim, "max_step", c->globals, &s->max_step);
+  /* The solver's budget of internal steps, as a model's (fb_sim_opts). */
+  s->max_steps = FB_SIM_DEFAULT_MAX_STEPS;
+  struct fy_node *v = NULL;
+  size_t count = 0;
+  if (!rc && (v = ml_get(sim, "max_steps", NULL)) &&
+      !(rc = ml_count(c, v, c->globals, 1, (size_t)LONG_MAX, &count)))
+    s->max_steps = (long)count;
   if (!rc)
     rc = sc_choice(c, sim, "initial", initials, &initial);
   s->initial = initial ? FB_INITIAL_STATIC : FB_INITIAL_ZERO;

@@ -20,7 +20,7 @@ void fb_sim_opts_default(fb_sim_opts *opts)
   opts->max_step = 0;
   opts->sample_rate = 1000;
   opts->max_order = 5;
-  opts->max_steps = 10000000L;
+  opts->max_steps = FB_SIM_DEFAULT_MAX_STEPS;
   opts->breakpoints = NULL;
   opts->nbreakpoints = 0;
   opts->x0 = NULL;

@@ -234,6 +234,7 @@ static void scenario_opts(const fb_scenario *s, fb_sim_opts *o)
   o->rtol = s->rtol;
   o->atol = s->atol;
   o->max_step = s->max_step;
+  o->max_steps = s->max_steps;
   o->sample_rate = s->sample_rate;
 }
 

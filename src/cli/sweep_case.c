@@ -1,0 +1,305 @@
+/* The cases of flexbond sweep (sweep.h): each loads the scenario with its
+ * values replacing the file's (fb_scenario_load_overrides, so the reader
+ * checks and converts them as its own), simulates one system and reduces
+ * the run to metrics: the summary.json statistics of the paper's seven
+ * outputs (cli_output_stats_of), the tire contact, the driver's ride
+ * metrics and the solver's work; and sweep.csv's rows. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/fem.h"
+#include "flexbond/ride.h"
+#include "flexbond/sim.h"
+
+#include "cli.h"
+#include "sweep.h"
+
+/* fb_fem_modes uses ARPACK above this many DOFs (the dense_limit that
+ * src/vehicle/fe_hull.c and src/fem/reduce.c pass): such hulls run one
+ * at a time. */
+enum { SWEEP_DENSE_LIMIT = 2000 };
+
+static const char *const stat_names[SWEEP_NSTATS] = {"peak", "min", "rms"};
+static const struct {
+  const char *name, *unit;
+} other_metrics[NMETRICS - M_MIN_TIRE_FORCE] = {
+    {"min_tire_force", "N"},     {"contact_loss_intervals", "-"}, {"ride_a_w_rms", "m/s^2"},
+    {"ride_mtvv", "m/s^2"},      {"ride_vdv", "m/s^1.75"},        {"ride_crest_factor", "-"},
+    {"ride_jerk_peak", "m/s^3"}, {"ride_jerk_rms", "m/s^3"},      {"solver_steps", "-"},
+};
+
+/* Name of metric m ("tire_force_LF_peak") into buf. */
+void sweep_metric_name(size_t m, char *buf, size_t size)
+{
+  if (m < M_MIN_TIRE_FORCE)
+    snprintf(buf, size, "%s_%s", fb_vehicle_output_name((int)(m / SWEEP_NSTATS)),
+             stat_names[m % SWEEP_NSTATS]);
+  else
+    snprintf(buf, size, "%s", other_metrics[m - M_MIN_TIRE_FORCE].name);
+}
+
+const char *sweep_metric_unit(size_t m)
+{
+  return m < M_MIN_TIRE_FORCE ? fb_vehicle_output_unit((int)(m / SWEEP_NSTATS))
+                              : other_metrics[m - M_MIN_TIRE_FORCE].unit;
+}
+
+/* Index of key k's value in case i: the first key varies slowest. */
+size_t sweep_value_index(const sweep_args *a, size_t i, size_t k)
+{
+  for (size_t j = a->nkeys; j-- > k + 1;)
+    i /= a->keys[j].nvalues;
+  return i % a->keys[k].nvalues;
+}
+
+/* "key=value, key=value" of case i into buf. */
+void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf, size_t size)
+{
+  size_t len = 0;
+  buf[0] = '\0';
+  for (size_t k = first_key; k < a->nkeys && len + 1 < size; ++k) {
+    int n = snprintf(buf + len, size - len, "%s%s=%s", k > first_key ? ", " : "",
+                     a->keys[k].key, a->keys[k].values[sweep_value_index(a, i, k)]);
+    len = n > 0 && len + (size_t)n < size ? len + (size_t)n : size - 1;
+  }
+}
+
+/* The smallest normal reaction of any tire from the first bump entry to
+ * the end of the run (not from t = 0: under `initial: zero` every tire
+ * starts unloaded, at 0 N). */
+static int min_tire_force(const fb_result *r, const double window[2], double *out, fb_err *err)
+{
+  *out = INFINITY;
+  for (int c = 0; c < FB_NCORNERS; ++c) {
+    char name[32];
+    snprintf(name, sizeof name, "contact_force_%s", fb_corner_name(c));
+    const long j = fb_result_find(r, name);
+    if (j < 1)
+      return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'", name);
+    for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
+      const double *row = fb_result_row(r, k);
+      if (row[0] >= window[0])
+        *out = fmin(*out, row[j]);
+    }
+  }
+  return FB_OK;
+}
+
+/* The contact-loss intervals (fb_vehicle_contact_loss) that end after
+ * the first bump entry. */
+static int contact_loss_intervals(const fb_result *r, const double window[2], double *out,
+                                  fb_err *err)
+{
+  fb_contact_loss *iv = NULL;
+  size_t n = 0, count = 0;
+  int rc = fb_vehicle_contact_loss(r, &iv, &n, err);
+  for (size_t i = 0; rc == FB_OK && i < n; ++i)
+    count += iv[i].t_end >= window[0];
+  free(iv);
+  *out = (double)count;
+  return rc;
+}
+
+/* The driver's ride metrics (flexbond/ride.h, default options) over
+ * [first bump entry, end of the run], as run puts them in summary.json;
+ * NaN when the library refuses the window (shorter than the 1 s running
+ * r.m.s.): a missing metric, not a failed case. */
+static void ride_metrics(const fb_result *r, const double window[2], double *m)
+{
+  for (size_t k = M_RIDE_A_W_RMS; k <= M_RIDE_JERK_RMS; ++k)
+    m[k] = NAN;
+  const size_t n = fb_result_nsamples(r);
+  if (n < 2)
+    return;
+  const double t_first = fb_result_row(r, 0)[0], t_last = fb_result_row(r, n - 1)[0];
+  /* The last sample stands for one sampling interval (ride.h). */
+  const double t0 = fmax(window[0], t_first),
+               t1 = t_last + (t_last - t_first) / (double)(n - 1);
+  fb_ride_opts opts;
+  fb_ride_opts_default(&opts);
+  fb_ride_metrics ride;
+  fb_err err;
+  if (fb_ride_metrics_result(r, "driver_acc", t0, t1, &opts, &ride, &err) != FB_OK)
+    return;
+  m[M_RIDE_A_W_RMS] = ride.a_w_rms;
+  m[M_RIDE_MTVV] = ride.mtvv;
+  m[M_RIDE_VDV] = ride.vdv;
+  m[M_RIDE_CREST_FACTOR] = ride.crest;
+  m[M_RIDE_JERK_PEAK] = ride.jerk_peak;
+  m[M_RIDE_JERK_RMS] = ride.jerk_rms;
+}
+
+/* Every metric of a successful run r of scenario s into m. */
+static int case_metrics(const fb_scenario *s, const fb_result *r, double *m, fb_err *err)
+{
+  double window[2];
+  cli_bump_window(s, window);
+  for (int k = 0; k < FB_NOUTPUTS; ++k) {
+    const long j = fb_result_find(r, fb_vehicle_output_name(k));
+    if (j < 1)
+      return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'",
+                        fb_vehicle_output_name(k));
+    const cli_output_stats st = cli_output_stats_of(r, (size_t)j, window);
+    m[SWEEP_NSTATS * k + SWEEP_STAT_PEAK] = st.peak;
+    m[SWEEP_NSTATS * k + SWEEP_STAT_MIN] = st.min;
+    m[SWEEP_NSTATS * k + SWEEP_STAT_RMS] = st.rms;
+  }
+  const fb_sim_stats *st = fb_result_stats(r);
+  m[M_SOLVER_STEPS] = (double)st->steps;
+  ride_metrics(r, window, m);
+  int rc = min_tire_force(r, window, &m[M_MIN_TIRE_FORCE], err);
+  if (rc == FB_OK)
+    rc = contact_loss_intervals(r, window, &m[M_CONTACT_LOSS_INTERVALS], err);
+  return rc;
+}
+
+/* 1 in *serial when s's finite-element hull is large enough for ARPACK. */
+static int needs_serial(const sweep_args *a, const fb_scenario *s, int *serial, fb_err *err)
+{
+  *serial = 0;
+  if (a->sys != FB_SYSTEM_FLEXIBLE)
+    return FB_OK;
+  fb_fe_hull *hull = NULL;
+  int rc = fb_vehicle_fe_hull(s, &hull, err);
+  if (rc == FB_OK)
+    *serial = 6 * fb_mesh_nnodes(hull->mesh) > SWEEP_DENSE_LIMIT;
+  fb_fe_hull_free(&hull);
+  return rc;
+}
+
+/* fb_sim_progress_fn: stops a case's simulation once interrupted. */
+static int stop_when_interrupted(void *ctx, double t, double t_end)
+{
+  (void)ctx;
+  (void)t;
+  (void)t_end;
+  return cli_interrupted();
+}
+
+static int simulate_case(const sweep_args *a, const fb_scenario *s, pthread_mutex_t *arpack,
+                         fb_result **res, fb_err *err)
+{
+  int serial = 0;
+  int rc = needs_serial(a, s, &serial, err);
+  if (rc != FB_OK)
+    return rc;
+  if (serial)
+    pthread_mutex_lock(arpack);
+  rc = fb_vehicle_simulate_progress(s, a->sys, stop_when_interrupted, NULL, res, err);
+  if (serial)
+    pthread_mutex_unlock(arpack);
+  return rc;
+}
+
+void sweep_run_case(const sweep_args *a, size_t i, pthread_mutex_t *arpack, sweep_case *c)
+{
+  fb_scenario_override ov[SWEEP_MAX_KEYS];
+  for (size_t k = 0; k < a->nkeys; ++k)
+    ov[k] =
+        (fb_scenario_override){a->keys[k].key, a->keys[k].values[sweep_value_index(a, i, k)]};
+  fb_err err;
+  fb_err_clear(&err);
+  fb_scenario *s = NULL;
+  fb_result *res = NULL;
+  c->wall_seconds = NAN;
+  int rc = fb_scenario_load_overrides(a->scenario_path, ov, a->nkeys, &s, &err);
+  if (rc == FB_OK)
+    rc = simulate_case(a, s, arpack, &res, &err);
+  if (rc == FB_OK) {
+    c->wall_seconds = fb_result_stats(res)->wall_seconds;
+    rc = case_metrics(s, res, c->metric, &err);
+  }
+  c->status = rc;
+  c->error = NULL;
+  if (rc != FB_OK) {
+    for (size_t m = 0; m < NMETRICS; ++m)
+      c->metric[m] = NAN;
+    /* Never an empty error: sweep.csv, the journal and the MPI result
+     * tell a failed case by it. */
+    if (!err.msg[0])
+      snprintf(err.msg, sizeof err.msg, "failed (%s) without a message", fb_status_name(rc));
+    c->error = malloc(strlen(err.msg) + 1);
+    if (c->error)
+      memcpy(c->error, err.msg, strlen(err.msg) + 1);
+  }
+  fb_result_free(&res);
+  fb_scenario_free(&s);
+}
+
+/* ---- sweep.csv */
+
+/* A CSV cell: quoted (RFC 4180, section 2) when it holds a comma, a
+ * quote or a line break. */
+static void csv_text(FILE *fp, const char *text)
+{
+  if (!strpbrk(text, ",\"\r\n")) {
+    fputs(text, fp);
+    return;
+  }
+  fputc('"', fp);
+  for (const char *t = text; *t; ++t) {
+    if (*t == '"')
+      fputc('"', fp);
+    fputc(*t, fp);
+  }
+  fputc('"', fp);
+}
+
+/* Value as a number if the whole text is one (for the x axis). */
+int sweep_numeric_value(const char *text, double *out)
+{
+  char *end = NULL;
+  errno = 0;
+  *out = strtod(text, &end);
+  return end != text && *end == '\0' && errno != ERANGE && isfinite(*out);
+}
+
+void sweep_format_double(double x, char *buf, size_t size)
+{
+  /* 17 significant digits always read back as the same double (IEEE 754
+   * binary64; C11 5.2.4.2.2, DECIMAL_DIG); fewer often do, and read
+   * better. */
+  for (int digits = 15; digits <= 17; ++digits) {
+    snprintf(buf, size, "%.*g", digits, x);
+    if (strtod(buf, NULL) == x)
+      return;
+  }
+}
+
+void sweep_csv_header(FILE *fp, const sweep_args *a)
+{
+  for (size_t k = 0; k < a->nkeys; ++k) {
+    csv_text(fp, a->keys[k].key);
+    fputc(',', fp);
+  }
+  for (size_t m = 0; m < NMETRICS; ++m) {
+    char name[64];
+    sweep_metric_name(m, name, sizeof name);
+    fprintf(fp, "%s,", name);
+  }
+  fputs("error\n", fp);
+}
+
+/* The keys' values, the metrics (empty when not finite or failed) and
+ * the error. */
+void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c)
+{
+  for (size_t k = 0; k < a->nkeys; ++k) {
+    csv_text(fp, a->keys[k].values[sweep_value_index(a, i, k)]);
+    fputc(',', fp);
+  }
+  for (size_t m = 0; m < NMETRICS; ++m) {
+    if (isfinite(c->metric[m])) {
+      char text[32];
+      sweep_format_double(c->metric[m], text, sizeof text);
+      fputs(text, fp);
+    }
+    fputc(',', fp);
+  }
+  if (c->status != FB_OK)
+    csv_text(fp, c->error ? c->error : "out of memory");
+  fputc('\n', fp);
+}

@@ -1,0 +1,202 @@
+/* flexbond sweep across MPI ranks (sweep.h; docs/cluster.md).
+ *
+ * Rank 0 coordinates: it hands each rank one case at a time, the next in
+ * grid order, and the next again when that rank's result comes back, so
+ * a slow case holds up no one else. It also runs cases itself, on one
+ * thread that takes them from the same pool; its main thread is the only
+ * one that calls MPI (MPI_THREAD_FUNNELED). Every result goes through
+ * sweep_pool_finish on rank 0 (journal, progress), and rank 0 writes the
+ * files, so sweep.csv is the same as a run on one machine: each case is
+ * computed by the same code from the same inputs, and its metrics cross
+ * the network as the bytes of the doubles.
+ *
+ * Messages (tag: content): SWEEP_TAG_CASE: the case's index (uint64_t),
+ * to a rank; SWEEP_TAG_STOP: nothing, to a rank; SWEEP_TAG_RESULT: from
+ * a rank, a result_msg up to its error message's NUL. A message is never
+ * longer than a result_msg, so neither side allocates. The ranks are
+ * assumed to share one binary representation of integers and doubles
+ * (one kind of node). */
+#include <mpi.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli.h"
+#include "sweep.h"
+
+enum { SWEEP_TAG_CASE = 1, SWEEP_TAG_STOP, SWEEP_TAG_RESULT };
+
+typedef struct result_msg {
+  uint64_t index;
+  int32_t status;
+  int32_t rank;
+  double wall_seconds;
+  double metric[NMETRICS];
+  char error[FB_ERR_MSG_MAX]; /* "" when ok */
+} result_msg;
+
+int sweep_mpi_init(int *rank, int *size, fb_err *err)
+{
+  int provided = 0;
+  if (MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
+    return fb_err_set(err, FB_EIO, "MPI_Init_thread failed");
+  MPI_Comm_rank(MPI_COMM_WORLD, rank);
+  MPI_Comm_size(MPI_COMM_WORLD, size);
+  if (provided < MPI_THREAD_FUNNELED) {
+    MPI_Finalize();
+    return fb_err_set(err, FB_EIO,
+                      "this MPI library does not let a threaded program call it from its main "
+                      "thread (MPI_THREAD_FUNNELED)");
+  }
+  return FB_OK;
+}
+
+int sweep_mpi_agree(int ok, uint64_t fingerprint, int *bad_rank)
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  uint64_t first_fingerprint = fingerprint;
+  MPI_Bcast(&first_fingerprint, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  ok = ok && fingerprint == first_fingerprint;
+  /* The smallest failing rank; INT32_MAX when none failed. */
+  int mine = ok ? INT32_MAX : rank, first = INT32_MAX;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  *bad_rank = first;
+  return first != INT32_MAX;
+}
+
+int sweep_mpi_go(int go)
+{
+  MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return go;
+}
+
+/* Gives rank r its next case, or tells it to stop; 1 if it got a case. */
+static int hand_out(sweep_pool *p, int r)
+{
+  size_t i;
+  if (!sweep_pool_take(p, &i)) {
+    MPI_Send(NULL, 0, MPI_BYTE, r, SWEEP_TAG_STOP, MPI_COMM_WORLD);
+    return 0;
+  }
+  const uint64_t index = i;
+  MPI_Send(&index, 1, MPI_UINT64_T, r, SWEEP_TAG_CASE, MPI_COMM_WORLD);
+  return 1;
+}
+
+/* Receives the result that probed announces into p->cases; its case's
+ * index, or SIZE_MAX for a malformed message (which only a rank of
+ * another flexbond would send). */
+static size_t receive_result(sweep_pool *p, const MPI_Status *probed)
+{
+  result_msg msg;
+  MPI_Status st;
+  MPI_Recv(&msg, (int)sizeof msg, MPI_BYTE, probed->MPI_SOURCE, SWEEP_TAG_RESULT,
+           MPI_COMM_WORLD, &st);
+  int count = 0;
+  MPI_Get_count(&st, MPI_BYTE, &count);
+  const size_t fixed = offsetof(result_msg, error);
+  if (count < 0 || (size_t)count <= fixed || msg.error[(size_t)count - fixed - 1] != '\0' ||
+      msg.index >= p->a->ncases)
+    return SIZE_MAX;
+  sweep_case *c = &p->cases[msg.index];
+  memcpy(c->metric, msg.metric, sizeof msg.metric);
+  c->status = msg.status;
+  c->rank = msg.rank;
+  c->wall_seconds = msg.wall_seconds;
+  c->error = msg.error[0] ? strdup(msg.error) : NULL;
+  return (size_t)msg.index;
+}
+
+/* The local worker: rank 0's own cases, on a thread of their own. */
+static void *local_worker(void *pool)
+{
+  return sweep_pool_worker(pool);
+}
+
+void sweep_mpi_coordinate(sweep_pool *p, int size)
+{
+  pthread_t local;
+  const int threaded = pthread_create(&local, NULL, local_worker, p) == 0;
+  int busy = 0;
+  for (int r = 1; r < size; ++r)
+    busy += hand_out(p, r);
+  /* Polled, not a blocking receive: OpenMPI spins in a blocking one and
+   * would take a core from the local worker. The pause between polls
+   * doubles from 50 us to 2 ms while nothing comes, so that a result
+   * waits at most 2 ms (a case takes 10 ms and more) and an idle
+   * coordinator wakes 500 times a second. */
+  long nap_ns = 50000;
+  while (busy > 0) {
+    int flag = 0;
+    MPI_Status st;
+    MPI_Iprobe(MPI_ANY_SOURCE, SWEEP_TAG_RESULT, MPI_COMM_WORLD, &flag, &st);
+    if (!flag) {
+      const struct timespec nap = {0, nap_ns};
+      nanosleep(&nap, NULL);
+      nap_ns = nap_ns < 1000000 ? 2 * nap_ns : 2000000;
+      continue;
+    }
+    nap_ns = 50000;
+    const size_t i = receive_result(p, &st);
+    /* A rank that was interrupted (its case says so) runs no more. */
+    const int stopped = i != SIZE_MAX && p->cases[i].status == FB_EINTR;
+    if (i != SIZE_MAX)
+      sweep_pool_finish(p, i);
+    --busy;
+    if (stopped)
+      MPI_Send(NULL, 0, MPI_BYTE, st.MPI_SOURCE, SWEEP_TAG_STOP, MPI_COMM_WORLD);
+    else
+      busy += hand_out(p, st.MPI_SOURCE);
+  }
+  /* Without a thread of its own (pthread_create failed), rank 0 runs
+   * what is left itself. */
+  if (threaded)
+    pthread_join(local, NULL);
+  else
+    sweep_pool_worker(p);
+}
+
+/* Sends case i's result c to rank 0: up to the error message's NUL. */
+static void send_result(size_t i, const sweep_case *c, int rank)
+{
+  result_msg msg = {
+      .index = i, .status = c->status, .rank = rank, .wall_seconds = c->wall_seconds};
+  memcpy(msg.metric, c->metric, sizeof msg.metric);
+  /* A failed case without its message lost it to a failed allocation. */
+  const char *error = c->error ? c->error : (c->status != FB_OK ? "out of memory" : "");
+  snprintf(msg.error, sizeof msg.error, "%s", error);
+  const size_t size = offsetof(result_msg, error) + strlen(msg.error) + 1;
+  MPI_Send(&msg, (int)size, MPI_BYTE, 0, SWEEP_TAG_RESULT, MPI_COMM_WORLD);
+}
+
+void sweep_mpi_work(const sweep_args *a)
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  /* ARPACK is per process: this rank's lock only orders its own thread. */
+  pthread_mutex_t arpack;
+  pthread_mutex_init(&arpack, NULL);
+  for (;;) {
+    uint64_t index = 0;
+    MPI_Status st;
+    MPI_Recv(&index, 1, MPI_UINT64_T, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+    if (st.MPI_TAG != SWEEP_TAG_CASE)
+      break;
+    sweep_case c = {0};
+    sweep_run_case(a, (size_t)index, &arpack, &c);
+    send_result((size_t)index, &c, rank);
+    free(c.error);
+  }
+  pthread_mutex_destroy(&arpack);
+}
+
+int sweep_mpi_finish(int exit_code)
+{
+  MPI_Bcast(&exit_code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return exit_code;
+}

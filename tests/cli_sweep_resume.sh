@@ -1,0 +1,180 @@
+#!/usr/bin/env bash
+# flexbond sweep's journal (docs/sweep.md, "Resuming"): a sweep killed with
+# SIGKILL, or one whose journal ends in a torn row, or one interrupted by
+# SIGINT, resumes with --resume and then writes the same sweep.csv, byte for
+# byte, as a sweep never stopped, running only the cases its journal lacks
+# (a failed case is kept, not run again); a journal is refused without
+# --resume, when it is another study's or has other columns, when a row
+# does not belong to the study, and while another sweep writes it; a
+# journal that cannot be written stops the sweep with the rows it holds
+# counted; --resume with no journal runs the whole study.
+#
+# usage: bash tests/cli_sweep_resume.sh PATH/TO/flexbond REPO_ROOT
+set -u
+NAME=cli_sweep_resume
+# shellcheck source=clilib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
+
+# System 1 over 60 s instead of 15 s, so that a case takes long enough
+# (about 0.1 s) to stop the sweep in the middle; the first value is a word
+# the reader refuses, a case that fails.
+sed 's/^  t_end: 15 /  t_end: 60 /' "$REPO_ROOT/examples/apc6x6.yaml" >"$WORK/long.yaml"
+grep -q '^  t_end: 60 ' "$WORK/long.yaml" || {
+  echo "$NAME: cannot lengthen the example's run" >&2
+  exit 2
+}
+SPEEDS=fast,6,10,14,18,22,26,30,34,38,42,46,50,54
+STUDY=(sweep "$WORK/long.yaml" --set "speed_kmh=$SPEEDS" --no-figures -j 1)
+JOURNAL=sweep.partial.csv
+
+# rows DIR: the number of case rows in DIR's journal.
+rows() {
+  local n
+  n=$(grep -c '^[0-9]' "$1/$JOURNAL" 2>/dev/null) || n=0
+  echo "$n"
+}
+
+# stopped DIR SIGNAL: starts the study into DIR, sends SIGNAL once the
+# journal holds at least 3 rows, and waits; sets $status.
+stopped() {
+  rm -rf "$1"
+  "$FLEXBOND" "${STUDY[@]}" -o "$1" >"$OUT" 2>"$ERR" &
+  local pid=$! waited=0
+  while [ "$(rows "$1")" -lt 3 ] && [ "$waited" -lt 600 ]; do
+    sleep 0.02
+    waited=$((waited + 1))
+  done
+  kill -s "$2" "$pid"
+  wait "$pid"
+  status=$?
+}
+
+# ---- The reference: the study never stopped (one case fails: exit 4).
+run "${STUDY[@]}" -o "$WORK/ref" -q
+expect_status 4 "uninterrupted study (one failing case)"
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/ref")" = "sweep.csv" ] || fail "the journal is removed at the end"
+
+# ---- Killed (SIGKILL): the journal stays, nothing else.
+stopped "$WORK/killed" KILL
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/killed")" = "$JOURNAL" ] ||
+  fail "a killed sweep leaves only its journal: $(ls -A "$WORK/killed" | tr '\n' ' ')"
+done_before=$(rows "$WORK/killed")
+checks=$((checks + 1))
+[ "$done_before" -ge 3 ] && [ "$done_before" -lt 14 ] ||
+  fail "killed in the middle: $done_before of 14 cases in the journal"
+# A row cut short by the kill: no line end. It is dropped.
+printf '%s' "13,FB_OK,54,12345.6" >>"$WORK/killed/$JOURNAL"
+
+# Without --resume the journal is refused and kept.
+cp "$WORK/killed/$JOURNAL" "$WORK/journal.copy"
+run "${STUDY[@]}" -o "$WORK/killed"
+expect_status 1 "a journal without --resume"
+expect_in "$ERR" "an earlier sweep into this directory stopped before it finished: add --resume" \
+  "a journal without --resume: message"
+checks=$((checks + 1))
+cmp -s "$WORK/killed/$JOURNAL" "$WORK/journal.copy" || fail "the refused journal was changed"
+
+run "${STUDY[@]}" -o "$WORK/killed" --resume
+expect_status 4 "resumed after SIGKILL (the failing case is still failed)"
+expect_in "$ERR" "resuming: $done_before of 14 cases are done" "resume says what it found"
+checks=$((checks + 1))
+[ "$(grep -c ': case [0-9]*/14 ' "$ERR")" -eq $((14 - done_before)) ] ||
+  fail "resume runs only the $((14 - done_before)) missing cases: $(grep -c ': case ' "$ERR")"
+checks=$((checks + 1))
+! grep -q 'case 1/14 (speed_kmh=fast)' "$ERR" || fail "the failed case was run again"
+checks=$((checks + 1))
+cmp -s "$WORK/ref/sweep.csv" "$WORK/killed/sweep.csv" ||
+  fail "sweep.csv after SIGKILL and --resume differs from the uninterrupted one"
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/killed")" = "sweep.csv" ] || fail "the journal is removed after resuming"
+
+# ---- Interrupted (SIGINT): exit 130, the journal kept and named.
+stopped "$WORK/int" INT
+expect_status 130 "SIGINT in the middle"
+expect_in "$ERR" "cases are done and kept in $WORK/int/$JOURNAL: run the same command with --resume" \
+  "SIGINT names the journal"
+run "${STUDY[@]}" -o "$WORK/int" --resume -q
+expect_status 4 "resumed after SIGINT"
+checks=$((checks + 1))
+cmp -s "$WORK/ref/sweep.csv" "$WORK/int/sweep.csv" ||
+  fail "sweep.csv after SIGINT and --resume differs from the uninterrupted one"
+
+# ---- Journals that do not belong to the study.
+stopped "$WORK/other" KILL
+run sweep "$WORK/long.yaml" --set "speed_kmh=$SPEEDS,58" --no-figures -o "$WORK/other" --resume
+expect_status 1 "another study's journal"
+expect_in "$ERR" "$WORK/other/$JOURNAL: the journal of another study" "another study: message"
+sed -i '4s/^\([0-9]*\),\([A-Z_]*\),\([^,]*\),/\1,\2,999,/' "$WORK/other/$JOURNAL"
+run "${STUDY[@]}" -o "$WORK/other" --resume
+expect_status 2 "a row of another case"
+expect_in "$ERR" "$WORK/other/$JOURNAL:4: case " "a row of another case names its line"
+expect_in "$ERR" "has speed_kmh=999" "a row of another case: message"
+
+# The same study with a key spelled otherwise: other columns.
+stopped "$WORK/spelled" KILL
+run sweep "$WORK/long.yaml" --set "road.speed_kmh=$SPEEDS" --no-figures -o "$WORK/spelled" \
+  --resume
+expect_status 1 "the key spelled otherwise"
+expect_in "$ERR" "$WORK/spelled/$JOURNAL:2: the journal's columns are not this sweep's" \
+  "the key spelled otherwise: message"
+
+# ---- The journal cannot be written (a file-size limit, SIGXFSZ ignored,
+# so that a write fails with EFBIG as on a full disk): no case is started
+# after that, and the message counts the rows the file holds, not the
+# cases that ran.
+rm -rf "$WORK/full"
+(
+  ulimit -f 4
+  trap '' XFSZ
+  exec "$FLEXBOND" "${STUDY[@]}" -o "$WORK/full" >"$OUT" 2>"$ERR"
+)
+status=$?
+expect_status 5 "the journal cannot be written"
+expect_in "$ERR" "$WORK/full/$JOURNAL: cannot write: File too large" "journal write: message"
+kept=$(($(wc -l <"$WORK/full/$JOURNAL") - 2))
+expect_in "$ERR" "; $kept of 14 cases are done and kept in" "journal write: the rows kept"
+checks=$((checks + 1))
+[ "$kept" -ge 1 ] && [ "$kept" -lt 13 ] || fail "journal write: $kept rows before the limit"
+checks=$((checks + 1))
+[ "$(grep -c ': case [0-9]*/14 ' "$ERR")" -eq $((kept + 1)) ] ||
+  fail "journal write: cases were started after it failed"
+run "${STUDY[@]}" -o "$WORK/full" --resume -q
+expect_status 4 "resumed after the journal failed"
+checks=$((checks + 1))
+cmp -s "$WORK/ref/sweep.csv" "$WORK/full/sweep.csv" ||
+  fail "sweep.csv after a failed journal write and --resume differs"
+
+# ---- Two sweeps into one directory: the second is refused.
+rm -rf "$WORK/two"
+"$FLEXBOND" "${STUDY[@]}" -o "$WORK/two" -q 2>/dev/null &
+first=$!
+waited=0
+while [ ! -s "$WORK/two/$JOURNAL" ] && [ "$waited" -lt 600 ]; do
+  sleep 0.02
+  waited=$((waited + 1))
+done
+run "${STUDY[@]}" -o "$WORK/two" --resume
+expect_status 5 "a second sweep into the same directory"
+expect_in "$ERR" "another flexbond sweep is writing into this directory" "second sweep: message"
+wait "$first"
+checks=$((checks + 1))
+cmp -s "$WORK/ref/sweep.csv" "$WORK/two/sweep.csv" || fail "the first sweep was disturbed"
+
+# ---- --resume with nothing to resume runs the whole study.
+run "${STUDY[@]}" -o "$WORK/fresh" --resume -q
+expect_status 4 "--resume without a journal"
+checks=$((checks + 1))
+cmp -s "$WORK/ref/sweep.csv" "$WORK/fresh/sweep.csv" || fail "--resume without a journal"
+
+# ---- --mpi in a build without MPI (the MPI build has tests/mpi/).
+if [ "${FLEXBOND_MPI_BUILD:-OFF}" != ON ]; then
+  run sweep "$WORK/long.yaml" --set speed_kmh=10 --mpi -o "$WORK/mpi"
+  expect_status 1 "--mpi without MPI"
+  expect_in "$ERR" "this flexbond was built without MPI" "--mpi without MPI: message"
+  expect_absent "$WORK/mpi" "--mpi without MPI"
+fi
+
+echo "$NAME: $checks checks, $failures failed" >&2
+[ "$failures" -eq 0 ]
