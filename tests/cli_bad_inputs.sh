@@ -177,6 +177,11 @@ derive d_missing.yaml s_deck.yaml -e 's/deck: hull.inp/deck: no_such_deck.inp/'
 sed 's/NSET=SUSP_LF\b/NSET=SUSP_XX/' hull.inp >d_noset.inp
 derive d_noset.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_noset.inp/'
 
+# deck_at NAME: "NAME.yaml:LINE:COL: hull.mesh.deck:", where NAME.yaml names its deck.
+deck_at() {
+  printf '%s hull.mesh.deck:' "$(at "$1.yaml" '    deck: ' "$(sed -n 's/^    deck: //p' "$1.yaml")")"
+}
+
 # ---- The good fixtures pass, so each bad one fails for its own reason.
 run causality m_ok.yaml
 expect_status 0 "fixture m_ok.yaml"
@@ -240,16 +245,16 @@ CASES=(
   "2|run s_empty.yaml -o @OUT|flexbond: s_empty.yaml:1:1: the file is empty"
   "2|modes s_binary.yaml|flexbond: s_binary.yaml:1:1: binary data (byte 0x7f)"
 
-  # Meshes (a deck read through hull.mesh.deck).
-  "2|mesh d_nset.yaml --export @FILE.inp|./d_nset.inp:$(line_of d_nset.inp 99999): node set 'EXTRA' names node 99999, which is not defined"
-  "2|run d_warped.yaml --system flexible -o @OUT|./d_warped.inp:$(line_of d_warped.inp '9001, 9001, 9002, 9003, 9004'): element 9001 (S4) is warped: node 9004 is 300 mm off the plane"
-  "2|sweep d_warped.yaml --system flexible --set speed_kmh=5,10 -o @OUT|every case failed on its input; the first: |element 9001 (S4) is warped"
-  "2|modes d_zeroarea.yaml --system flexible -o @OUT|./d_zeroarea.inp:$(line_of d_zeroarea.inp '9001, 9001, 9002, 9005'): element 9001 (S3) is degenerate: area 0 m^2"
-  "2|export d_nonode.yaml -o @OUT|./d_nonode.inp:$(line_of d_nonode.inp '9001, 9001, 9002, 99999'): element 9001 refers to node 99999, which is not defined"
-  "2|mesh d_empty.yaml --export @FILE.vtu|./d_empty.inp:1: empty file"
-  "2|mesh d_binary.yaml|./d_binary.inp:1: binary data (byte 0x7f in column 1): not an Abaqus input deck"
-  "5|mesh d_missing.yaml --export @FILE.inp|./no_such_deck.inp: cannot open|No such file"
-  "2|run d_noset.yaml --system flexible -o @OUT|flexbond: ./d_noset.inp: hull mesh: no node set SUSP_LF"
+  # Meshes (a deck read through hull.mesh.deck): at the scenario's key, then the deck's line.
+  "2|mesh d_nset.yaml --export @FILE.inp|flexbond: $(deck_at d_nset) ./d_nset.inp:$(line_of d_nset.inp 99999): node set 'EXTRA' names node 99999, which is not defined"
+  "2|run d_warped.yaml --system flexible -o @OUT|flexbond: $(deck_at d_warped) ./d_warped.inp:$(line_of d_warped.inp '9001, 9001, 9002, 9003, 9004'): element 9001 (S4) is warped: node 9004 is 300 mm off the plane"
+  "2|sweep d_warped.yaml --system flexible --set speed_kmh=5,10 -o @OUT|every case failed on its input; the first: |$(deck_at d_warped) ./d_warped.inp:|element 9001 (S4) is warped"
+  "2|modes d_zeroarea.yaml --system flexible -o @OUT|flexbond: $(deck_at d_zeroarea) ./d_zeroarea.inp:$(line_of d_zeroarea.inp '9001, 9001, 9002, 9005'): element 9001 (S3) is degenerate: area 0 m^2"
+  "2|export d_nonode.yaml -o @OUT|flexbond: $(deck_at d_nonode) ./d_nonode.inp:$(line_of d_nonode.inp '9001, 9001, 9002, 99999'): element 9001 refers to node 99999, which is not defined"
+  "2|mesh d_empty.yaml --export @FILE.vtu|flexbond: $(deck_at d_empty) ./d_empty.inp:1: empty file"
+  "2|mesh d_binary.yaml|flexbond: $(deck_at d_binary) ./d_binary.inp:1: binary data (byte 0x7f in column 1): not an Abaqus input deck"
+  "5|mesh d_missing.yaml --export @FILE.inp|flexbond: $(deck_at d_missing) ./no_such_deck.inp: cannot open|No such file"
+  "2|run d_noset.yaml --system flexible -o @OUT|flexbond: $(deck_at d_noset) ./d_noset.inp: no node set SUSP_LF (the vehicle needs LOAD,"
 
   # Command lines.
   "1|run s_ok.yaml -o @OUT --frobnicate|flexbond run: unknown option '--frobnicate'|flexbond run --help"

@@ -691,6 +691,33 @@ static void test_good_variants(void)
   free(t9);
 }
 
+/* A deck is resolved from the scenario's directory, and the place that
+ * names it is kept for the deck's own errors (fb_vehicle_fe_hull); a
+ * clone keeps both. */
+static void test_deck_reference(void)
+{
+  char *text = replace_once(base_text, EDGES_LINE, EDGES_LINE "  mesh: {deck: h.inp}\n" FE_OK);
+  fb_scenario *s = NULL, *c = NULL;
+  if (text) {
+    fb_err err;
+    CHECK(fb_scenario_load_string(text, strlen(text), "deck.yaml", &s, &err) == FB_OK);
+  }
+  if (s) {
+    CHECK(s->hull_deck && !strcmp(s->hull_deck, "./h.inp"));
+    /* Line 9 (the mesh line added after line 8), column 16: "h.inp". */
+    CHECK(s->hull_deck_at && !strcmp(s->hull_deck_at, "deck.yaml:9:16: hull.mesh.deck: "));
+    fb_err err;
+    CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
+    CHECK(c && c->hull_deck_at != s->hull_deck_at && !strcmp(c->hull_deck_at, s->hull_deck_at));
+  }
+  fb_scenario_free(&c);
+  fb_scenario_free(&s);
+  free(text);
+  /* The generator's scenario names no deck. */
+  CHECK(fb_scenario_load(EXAMPLE, &s, NULL) == FB_OK && s && !s->hull_deck_at);
+  fb_scenario_free(&s);
+}
+
 /* ---- API misuse and files. */
 
 static void test_api_errors(void)
@@ -717,6 +744,7 @@ int main(void)
   test_check();
   test_bad_files();
   test_good_variants();
+  test_deck_reference();
   test_api_errors();
   return check_report("test_scenario");
 }

@@ -155,6 +155,9 @@ typedef struct fb_scenario {
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
   char *hull_deck;               /* Abaqus/CalculiX deck, NULL: the generator */
+  char *hull_deck_at;            /* "FILE:LINE:COL: hull.mesh.deck: " where the scenario
+                                    names the deck, prefixed to the deck's errors; NULL:
+                                    not from a scenario file */
   fb_hull_mesh_params hull_mesh; /* generator parameters */
   fb_mass_kind hull_mass_matrix; /* consistent (default) or lumped */
   double hull_drill_factor;      /* fictitious drilling stiffness factor */
@@ -412,7 +415,9 @@ typedef struct fb_fe_hull {
 
 /* The scenario's finite-element hull: its mesh (the deck, or the
  * generator with hull.mesh's parameters), material and mass matrix kind.
- * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. */
+ * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. A deck's
+ * errors start with s->hull_deck_at, then the deck's "PATH:LINE: " (or
+ * "PATH: " for its node sets); the generator's with "hull mesh: ". */
 int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 
 /* Takes the mesh over (*mesh set to NULL) and resolves its node sets

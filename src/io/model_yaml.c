@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "io/model_internal.h"
 
 /* ---- Parsing. */
@@ -287,17 +288,16 @@ static void ml_path(struct fy_node *n, char *buf, size_t size, size_t *len)
   ml_path_segment(parent, n, buf, size, len);
 }
 
-/* The message proper, then the chain of instances being built. */
-static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_node,
-                     const char *key, int code, const char *msg)
+/* Appends "FILE:LINE:COL: KEY: " to where: the position of loc (or the
+ * file alone) and the key path of path_node, extended by key. */
+static void ml_locate(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_node,
+                      const char *key, char *where, size_t size, size_t *len)
 {
-  char where[1024];
-  size_t len = 0;
   int line = 0, col = 0;
   if (ml_mark(loc, &line, &col))
-    ml_append(where, sizeof where, &len, "%s:%d:%d: ", c->file, line, col);
+    ml_append(where, size, len, "%s:%d:%d: ", c->file, line, col);
   else
-    ml_append(where, sizeof where, &len, "%s: ", c->file);
+    ml_append(where, size, len, "%s: ", c->file);
   char path[512];
   size_t plen = 0;
   path[0] = '\0';
@@ -305,7 +305,27 @@ static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_
   if (key)
     ml_append(path, sizeof path, &plen, "%s%s", plen ? "." : "", key);
   if (plen)
-    ml_append(where, sizeof where, &len, "%s: ", path);
+    ml_append(where, size, len, "%s: ", path);
+}
+
+int ml_where(const ml_ctx *c, struct fy_node *at, char **out)
+{
+  char where[1024];
+  size_t len = 0;
+  where[0] = '\0';
+  ml_locate(c, at, at, NULL, where, sizeof where, &len);
+  *out = fb_strdup(where);
+  return *out ? FB_OK : fb_err_set(c->err, FB_ENOMEM, "out of memory for a file location");
+}
+
+/* The message proper, then the chain of instances being built. */
+static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_node,
+                     const char *key, int code, const char *msg)
+{
+  char where[1024];
+  size_t len = 0;
+  where[0] = '\0';
+  ml_locate(c, loc, path_node, key, where, sizeof where, &len);
 
   char chain[1024];
   size_t clen = 0;

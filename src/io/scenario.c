@@ -70,6 +70,7 @@ void fb_scenario_free(fb_scenario **s)
   free((*s)->load_x);
   free((*s)->load_y);
   free((*s)->hull_deck);
+  free((*s)->hull_deck_at);
   free((*s)->road_profile);
   free(*s);
   *s = NULL;
@@ -109,6 +110,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
+  ok = sc_copy_string(s->hull_deck_at, &copy->hull_deck_at) && ok;
   ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
   if (!ok) {
     fb_scenario_free(&copy);

@@ -26,10 +26,13 @@ static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const si
 {
   size_t n = 0;
   if (!fb_mesh_nset(m, name, nodes, &n))
-    return fb_err_set(err, FB_EMODEL, "hull mesh: no node set %s", name);
+    return fb_err_set(err, FB_EMODEL,
+                      "no node set %s (the vehicle needs LOAD, DRIVER, ENGINE, SUSP_LF .. "
+                      "SUSP_RR, FRONT_EDGE and REAR_EDGE, as 'flexbond mesh --export' writes)",
+                      name);
   if (n != count)
-    return fb_err_set(err, FB_EMODEL, "hull mesh: node set %s has %zu nodes, expected %zu",
-                      name, n, count);
+    return fb_err_set(err, FB_EMODEL, "node set %s has %zu nodes, expected %zu", name, n,
+                      count);
   return FB_OK;
 }
 
@@ -40,7 +43,7 @@ static int check_at(const fb_mesh *m, size_t node, const char *what, double x, d
   const double *p = fb_mesh_node_xyz(m, node);
   if (fabs(p[0] - x) > 1e-3 || fabs(p[1] - y) > 1e-3)
     return fb_err_set(err, FB_EMODEL,
-                      "hull mesh: %s node %ld is at (%.4g, %.4g) m, the scenario puts it at "
+                      "%s node %ld is at (%.4g, %.4g) m, the scenario puts it at "
                       "(%.4g, %.4g) m",
                       what, fb_mesh_node_id(m, node), p[0], p[1], x, y);
   return FB_OK;
@@ -97,8 +100,7 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
       h->edge_node[2 * k] = nodes[0];
       h->edge_node[2 * k + 1] = nodes[1];
       if (fb_mesh_node_xyz(h->mesh, nodes[0])[1] <= fb_mesh_node_xyz(h->mesh, nodes[1])[1])
-        rc = fb_err_set(err, FB_EMODEL,
-                        "hull mesh: node set %s must list its left end (larger y) first",
+        rc = fb_err_set(err, FB_EMODEL, "node set %s must list its left end (larger y) first",
                         edges[k]);
     }
   }
@@ -144,15 +146,28 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   const fb_shell_props props = {s->young, s->poisson, s->density, s->thickness,
                                 s->hull_drill_factor};
   fb_mesh *mesh = NULL;
-  int rc = s->hull_deck ? fb_mesh_read_inp(s->hull_deck, &mesh, NULL, err)
-                        : fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
-  /* Deck errors start with FILE:LINE, generator errors with "hull mesh:". */
-  if (rc)
+  const char *at = s->hull_deck_at ? s->hull_deck_at : "";
+  if (!s->hull_deck) {
+    /* The generator's own errors start with "hull mesh:". */
+    int rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
+    if (rc)
+      return rc;
+    rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
+    if (rc)
+      fb_err_prefix(err, "hull mesh: ");
     return rc;
+  }
+  /* As for a CSV table, a deck's error is reported at the scenario's
+   * hull.mesh.deck, then at the deck's own line ("DECK:LINE: ..."); the
+   * node sets keep no line, so their errors name the deck alone. */
+  int rc = fb_mesh_read_inp(s->hull_deck, &mesh, NULL, err);
+  if (rc) {
+    fb_err_prefix(err, "%s", at);
+    return rc;
+  }
   rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
-  /* A deck that misses or misplaces a node set is named with it. */
-  if (rc && s->hull_deck)
-    fb_err_prefix(err, "%s: ", s->hull_deck);
+  if (rc)
+    fb_err_prefix(err, "%s%s: ", at, s->hull_deck);
   return rc;
 }
 
