@@ -123,5 +123,53 @@ printf '%s\n' "$good" >"$WORK/good.yaml"
 run sim "$WORK/good.yaml" -o "$WORK/out_good" -q
 expect_status 0 "good model"
 
+# ---- An output file that is not a plain file (io/out.c): a symbolic link
+# is followed (its file replaced, the link kept); a FIFO or a device gets
+# the complete output written into it and stays what it was; a directory
+# or a link to nothing is refused (exit 5) with nothing written.
+DOT=$REPO_ROOT/examples/two_dof_fields.yaml
+run diagram "$DOT" -o "$WORK/ref.dot"
+expect_status 0 "diagram into a plain file"
+echo old >"$WORK/linked.dot"
+ln -s linked.dot "$WORK/link.dot"
+run diagram "$DOT" -o "$WORK/link.dot"
+expect_status 0 "diagram into a symbolic link"
+checks=$((checks + 1))
+[ -L "$WORK/link.dot" ] && cmp -s "$WORK/linked.dot" "$WORK/ref.dot" ||
+  fail "diagram into a symbolic link: the link is kept and its file replaced"
+mkfifo "$WORK/fifo.dot"
+# A regression would replace the FIFO and leave its reader waiting: time it out.
+timeout 10 cat "$WORK/fifo.dot" >"$WORK/from_fifo.dot" &
+reader=$!
+run diagram "$DOT" -o "$WORK/fifo.dot"
+expect_status 0 "diagram into a FIFO"
+wait "$reader"
+checks=$((checks + 1))
+[ -p "$WORK/fifo.dot" ] && cmp -s "$WORK/from_fifo.dot" "$WORK/ref.dot" ||
+  fail "diagram into a FIFO: the reader gets the whole output and the FIFO stays one"
+# A device of our own (mknod needs root): a null and a full one.
+if mknod "$WORK/null" c 1 3 2>/dev/null && mknod "$WORK/full" c 1 7 2>/dev/null; then
+  run diagram "$DOT" -o "$WORK/null"
+  expect_status 0 "diagram into a null device"
+  checks=$((checks + 1))
+  [ -c "$WORK/null" ] || fail "diagram into a null device: still a device"
+  run diagram "$DOT" -o "$WORK/full"
+  expect_status 5 "diagram into a full device"
+  expect_in "$ERR" "full: write failed: No space left on device" "diagram into a full device"
+  checks=$((checks + 1))
+  [ -c "$WORK/full" ] || fail "diagram into a full device: still a device"
+fi
+mkdir "$WORK/dir.dot"
+run diagram "$DOT" -o "$WORK/dir.dot"
+expect_status 5 "diagram into a directory"
+expect_in "$ERR" "dir.dot: cannot create file: Is a directory" "diagram into a directory"
+ln -s no/such/place.dot "$WORK/dangling.dot"
+run diagram "$DOT" -o "$WORK/dangling.dot"
+expect_status 5 "diagram into a link to nothing"
+expect_in "$ERR" "dangling.dot: cannot create file: a symbolic link to nothing" \
+  "diagram into a link to nothing"
+checks=$((checks + 1))
+[ -z "$(find "$WORK" -name '*.tmp.*')" ] || fail "no temporary file is left behind"
+
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

@@ -16,7 +16,12 @@ extern "C" {
 
 /* An output file being written: fb_out_open creates "path.tmp.PID",
  * fb_out_commit flushes, closes and renames it to path, fb_out_abort
- * removes it. Exactly one of commit/abort must follow a successful open. */
+ * removes it. Exactly one of commit/abort must follow a successful open.
+ * A path that is a symbolic link is followed (the file it names is
+ * replaced, the link kept); one that exists and is not a regular file (a
+ * FIFO, /dev/stdout on a terminal, a device) gets the whole output copied
+ * in by fb_out_commit, and nothing on abort. A directory or a link to
+ * nothing is refused (FB_EIO). */
 typedef struct fb_out fb_out;
 int fb_out_open(const char *path, fb_out **out, fb_err *err);
 FILE *fb_out_stream(fb_out *o);

@@ -5,7 +5,17 @@
  * system replaces the destination atomically (POSIX.1-2008, rename), so a
  * reader sees either the old complete file or the new complete one, never
  * a truncated one. The PID suffix keeps concurrent runs from sharing a
- * temporary file. */
+ * temporary file.
+ *
+ * A destination that is a symbolic link is followed: the file it names is
+ * replaced and the link kept. A destination that exists but is not a
+ * regular file (a terminal, /dev/null, a FIFO) cannot be replaced by a
+ * rename, and must not be: the output is held in an anonymous temporary
+ * file and copied into the destination, opened as it is, on commit, so
+ * that a failed run still sends nothing there. */
+/* realpath(3) with a NULL buffer is XSI (POSIX.1-2008). */
+#define _XOPEN_SOURCE 700
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,8 +28,11 @@
 
 struct fb_out {
   FILE *fp;
-  char *path;     /* destination */
-  char *tmp_path; /* "path.tmp.PID", where the data goes until commit */
+  char *path;     /* destination as given, for messages */
+  char *target;   /* the file renamed over: path, or the file a link names */
+  char *tmp_path; /* "target.tmp.PID", where the data goes until commit;
+                     NULL for a destination that is not a regular file
+                     (fp is then an anonymous tmpfile copied on commit) */
 };
 
 static char *copy_string(const char *s)
@@ -48,8 +61,41 @@ static char *make_tmp_path(const char *path)
 static void out_destroy(fb_out *o)
 {
   free(o->tmp_path);
+  free(o->target);
   free(o->path);
   free(o);
+}
+
+/* Where the data of o goes: o->target (path itself, or the regular file
+ * a symbolic link at path names) and o->tmp_path beside it, or, for an
+ * existing destination that is not a regular file, no temporary path. */
+static int out_resolve(fb_out *o, fb_err *err)
+{
+  struct stat st, lst;
+  if (lstat(o->path, &lst) != 0) {
+    if (errno != ENOENT)
+      return fb_err_set(err, FB_EIO, "%s: cannot create file: %s", o->path, strerror(errno));
+    o->target = copy_string(o->path);
+  } else if (stat(o->path, &st) != 0) {
+    return fb_err_set(err, FB_EIO, "%s: cannot create file: a symbolic link to nothing (%s)",
+                      o->path, strerror(errno));
+  } else if (S_ISDIR(st.st_mode)) {
+    return fb_err_set(err, FB_EIO, "%s: cannot create file: Is a directory", o->path);
+  } else if (!S_ISREG(st.st_mode)) {
+    return FB_OK;
+  } else if (S_ISLNK(lst.st_mode)) {
+    o->target = realpath(o->path, NULL);
+    if (!o->target && errno != ENOMEM)
+      return fb_err_set(err, FB_EIO, "%s: cannot follow the link: %s", o->path,
+                        strerror(errno));
+  } else {
+    o->target = copy_string(o->path);
+  }
+  if (o->target)
+    o->tmp_path = make_tmp_path(o->target);
+  if (!o->target || !o->tmp_path)
+    return fb_err_set(err, FB_ENOMEM, "%s: out of memory", o->path);
+  return FB_OK;
 }
 
 int fb_out_open(const char *path, fb_out **out, fb_err *err)
@@ -61,16 +107,16 @@ int fb_out_open(const char *path, fb_out **out, fb_err *err)
   if (!o)
     return fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
   o->path = copy_string(path);
-  o->tmp_path = make_tmp_path(path);
-  if (!o->path || !o->tmp_path) {
-    out_destroy(o);
-    return fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
+  int rc =
+      o->path ? out_resolve(o, err) : fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
+  if (!rc) {
+    o->fp = o->tmp_path ? fopen(o->tmp_path, "w") : tmpfile();
+    if (!o->fp)
+      rc = fb_err_set(err, FB_EIO, "%s: cannot create file: %s", path, strerror(errno));
   }
-  o->fp = fopen(o->tmp_path, "w");
-  if (!o->fp) {
-    int saved = errno;
+  if (rc) {
     out_destroy(o);
-    return fb_err_set(err, FB_EIO, "%s: cannot create file: %s", path, strerror(saved));
+    return rc;
   }
   *out = o;
   return FB_OK;
@@ -101,6 +147,37 @@ static int flush_and_close(fb_out *o)
   return status;
 }
 
+/* Copies the complete output held in o->fp into the destination that is
+ * not a regular file, opened as it is (a FIFO waits for its reader);
+ * closes o->fp. Returns 0 or an errno value. */
+static int copy_to_stream(fb_out *o)
+{
+  errno = 0;
+  int status = 0;
+  if (fflush(o->fp) != 0 || ferror(o->fp))
+    status = errno ? errno : EIO;
+  FILE *dst = status ? NULL : fopen(o->path, "w");
+  if (!status && !dst)
+    status = errno;
+  if (dst) {
+    rewind(o->fp);
+    char buf[8192];
+    size_t n;
+    errno = 0;
+    while (!status && (n = fread(buf, 1, sizeof buf, o->fp)) > 0)
+      if (fwrite(buf, 1, n, dst) != n)
+        status = errno ? errno : EIO;
+    if (!status && ferror(o->fp))
+      status = EIO;
+    errno = 0;
+    if (fclose(dst) != 0 && !status)
+      status = errno ? errno : EIO;
+  }
+  fclose(o->fp);
+  o->fp = NULL;
+  return status;
+}
+
 int fb_out_commit(fb_out **o, fb_err *err)
 {
   if (!o || !*o)
@@ -108,14 +185,14 @@ int fb_out_commit(fb_out **o, fb_err *err)
   fb_out *out = *o;
   *o = NULL;
   int rc = FB_OK;
-  int status = flush_and_close(out);
+  int status = out->tmp_path ? flush_and_close(out) : copy_to_stream(out);
   if (status != 0) {
     rc = fb_err_set(err, FB_EIO, "%s: write failed: %s", out->path, strerror(status));
-  } else if (rename(out->tmp_path, out->path) != 0) {
+  } else if (out->tmp_path && rename(out->tmp_path, out->target) != 0) {
     rc = fb_err_set(err, FB_EIO, "%s: cannot move '%s' into place: %s", out->path,
                     out->tmp_path, strerror(errno));
   }
-  if (rc != FB_OK)
+  if (rc != FB_OK && out->tmp_path)
     remove(out->tmp_path);
   out_destroy(out);
   return rc;
@@ -128,7 +205,8 @@ void fb_out_abort(fb_out **o)
   fb_out *out = *o;
   *o = NULL;
   fclose(out->fp);
-  remove(out->tmp_path);
+  if (out->tmp_path)
+    remove(out->tmp_path);
   out_destroy(out);
 }
 
