@@ -312,6 +312,7 @@ static void set_bad_payload(fb_scenario *s)
 static void set_rr_ahead(fb_scenario *s)
 {
   s->corner[FB_RR].x = 20; /* meets the bump at 5 + 0.36 ((1.9 - 20) + 2.1) = -0.76 s */
+  s->edge_front_x = 21;    /* on the floor still */
 }
 static void set_lumped_light(fb_scenario *s)
 {
@@ -484,11 +485,25 @@ static const bad_case bad_cases[] = {
      "bad.yaml:26:9:", "road.bump: bump longer than the run",
      "RR) leaves it at 8.132 s, not before "
      "simulation.t_end = 8 s"},
-    /* RF 3 m ahead of LF meets the bump at 0 + 0.36 ((1.9 - 4.9) + 2.1) = -0.324 s. */
-    {"first_contact: 5.0", "first_contact: 0",
+    /* RF 0.5 m ahead of LF meets a square bump (0 deg) at 0 + 0.36 (1.9 - 2.4) = -0.18 s. */
+    {"angle_deg: 45, first_contact: 5.0", "angle_deg: 0, first_contact: 0",
      "RF: {spring_k: 145300, damper_c: 25744, x: 1.90",
-     "RF: {spring_k: 145300, damper_c: 25744, x: 4.90", FB_EINVAL, "bad.yaml:26:",
-     "road.bump.first_contact: the RF wheel would meet the bump at -0.324 s", NULL},
+     "RF: {spring_k: 145300, damper_c: 25744, x: 2.40", FB_EINVAL, "bad.yaml:26:",
+     "road.bump.first_contact: the RF wheel would meet the bump at -0.18 s", NULL},
+    /* Points off the floor (hull.edges), and two suspensions at one point. */
+    {"x: 2.10, y: 0.55}", "x: 2.10, y: 1.55}", NULL, NULL, FB_EINVAL, "bad.yaml:13:",
+     "driver.y: must lie on the hull's floor, between hull.edges.right_y = -1.05 and left_y = "
+     "1.05 m (got 1.55)",
+     NULL},
+    {"x: -1.00, y: 1.05}", "x: -3.00, y: 1.05}", NULL, NULL, FB_EINVAL, "bad.yaml:22:",
+     "suspensions.LR.x: must lie on the hull's floor, between hull.edges.rear_x = "
+     "-2.657984123 and front_x = 2.478133119 m (got -3)",
+     NULL},
+    {"y: [-1.05, -0.55, 0.55, 1.05]", "y: [-1.05, -0.55, 0.55, 1.25]", NULL, NULL, FB_EINVAL,
+     "bad.yaml:12:", "load.points[3].y: must lie on the hull's floor", NULL},
+    {"RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: -1.05}",
+     "RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}", NULL, NULL, FB_EINVAL,
+     "bad.yaml:21:", "suspensions.RM: at (0.4, 1.05) m, where suspensions.LM already is", NULL},
     {"t_end: 15", "t_end: 0", NULL, NULL, FB_EINVAL,
      "bad.yaml:27:", "simulation.t_end: must be > 0 s", NULL},
     {"rtol: 1e-6", "rtol: 1", NULL, NULL, FB_EINVAL,

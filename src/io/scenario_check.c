@@ -133,6 +133,59 @@ static int sc_check_corner(const fb_corner_params *c, int corner, fb_err *err)
   return rc;
 }
 
+/* Points closer than this are one point (m): the 1 mm within which a
+ * deck's node must sit at the scenario's point (docs/scenario-format.md). */
+#define SC_SAME_POINT 1e-3
+
+/* Attachment and load points lie on the hull's floor, the rectangle of
+ * hull.edges (System 2 puts a node at each; on System 1 a point off the
+ * hull is a lever arm no vehicle has, almost surely a typing error).
+ * key: the point's key path, for the message. */
+static int sc_check_on_floor(const fb_scenario *s, const char *key, double x, double y,
+                             fb_err *err)
+{
+  if (x < s->edge_rear_x || x > s->edge_front_x)
+    return fb_err_set(
+        err, FB_EINVAL,
+        "%s.x: must lie on the hull's floor, between hull.edges.rear_x = %.10g and "
+        "front_x = %.10g m (got %.10g)",
+        key, s->edge_rear_x, s->edge_front_x, x);
+  if (y < s->edge_right_y || y > s->edge_left_y)
+    return fb_err_set(
+        err, FB_EINVAL,
+        "%s.y: must lie on the hull's floor, between hull.edges.right_y = %.10g and "
+        "left_y = %.10g m (got %.10g)",
+        key, s->edge_right_y, s->edge_left_y, y);
+  return FB_OK;
+}
+
+/* Every point on the floor, and no two suspensions at one point (two
+ * wheels cannot stand in one place). */
+static int sc_check_points(const fb_scenario *s, fb_err *err)
+{
+  int rc = sc_check_on_floor(s, "driver", s->driver.x, s->driver.y, err);
+  if (!rc)
+    rc = sc_check_on_floor(s, "engine", s->engine.x, s->engine.y, err);
+  for (size_t i = 0; !rc && i < s->nload; ++i) {
+    char key[48];
+    snprintf(key, sizeof key, "load.points[%zu]", i);
+    rc = sc_check_on_floor(s, key, s->load_x[i], s->load_y[i], err);
+  }
+  for (int k = 0; !rc && k < FB_NCORNERS; ++k) {
+    char key[32];
+    snprintf(key, sizeof key, "suspensions.%s", fb_corner_name(k));
+    const fb_corner_params *c = &s->corner[k];
+    rc = sc_check_on_floor(s, key, c->x, c->y, err);
+    for (int j = 0; !rc && j < k; ++j)
+      if (hypot(c->x - s->corner[j].x, c->y - s->corner[j].y) < SC_SAME_POINT)
+        rc = fb_err_set(err, FB_EINVAL,
+                        "%s: at (%.10g, %.10g) m, where suspensions.%s already is (two "
+                        "suspensions at one point)",
+                        key, c->x, c->y, fb_corner_name(j));
+  }
+  return rc;
+}
+
 /* A random road or a profile: its own constructor checks its parameters
  * (the file, read again: it may have changed since the scenario was). */
 static int sc_check_other_road(const fb_scenario *s, fb_err *err)
@@ -294,6 +347,8 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = sc_check_mount("engine.", &s->engine, err);
   for (int k = 0; !rc && k < FB_NCORNERS; ++k)
     rc = sc_check_corner(&s->corner[k], k, err);
+  if (!rc)
+    rc = sc_check_points(s, err);
   if (!rc)
     rc = sc_check_road(s, err);
   if (!rc)
