@@ -215,21 +215,31 @@ static void test_open_errors(void)
   CHECK(strcmp(listing(root, list, sizeof list), "") == 0);
 }
 
-/* A destination that is a directory: open succeeds (only the temporary
- * file is created), rename fails at commit, and the temporary file goes. */
+/* A destination that is a directory is refused at open, with nothing
+ * created; one that becomes a directory after open makes the rename fail
+ * at commit, and the temporary file goes. */
 static void test_commit_rename_error(void)
 {
   char path[512], list[256];
   fb_err err;
   fb_out *o = NULL;
   mkdir(in_root(path, sizeof path, "adir"), 0700);
+  check_io_error(fb_out_open(path, &o, &err), &err, path, EISDIR);
+  CHECK(o == NULL);
+  CHECK(strcmp(listing(root, list, sizeof list), "adir") == 0);
+  remove_tree(path);
+
+  in_root(path, sizeof path, "later_dir");
   CHECK(fb_out_open(path, &o, &err) == FB_OK);
+  if (!o)
+    return;
   fputs("data\n", fb_out_stream(o));
+  mkdir(path, 0700);
   int rc = fb_out_commit(&o, &err);
   check_io_error(rc, &err, path, EISDIR);
   CHECK(o == NULL);
   CHECK(is_dir(path));
-  CHECK(strcmp(listing(root, list, sizeof list), "adir") == 0);
+  CHECK(strcmp(listing(root, list, sizeof list), "later_dir") == 0);
   remove_tree(path);
 }
 
