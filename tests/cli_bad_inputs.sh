@@ -127,6 +127,13 @@ derive s_hullmass.yaml s_ok.yaml -e 's/^  mass: 4041.72 /  mass: -4041.72 /'
 derive s_tirek.yaml s_ok.yaml -e 's/^  tire_k: 500000 /  tire_k: 0 /'
 derive s_inf.yaml s_ok.yaml -e 's/^  total_weight: 117720 /  total_weight: .inf /'
 derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
+# Points off the floor or on one another; a hull mesh whose edges are no
+# longer hull.edges (one bulkhead fewer moves its centre of mass), and more
+# modes than the hull has: the late checks are located too.
+derive s_driver.yaml s_ok.yaml -e '/^driver:/,/^engine:/s/^  x: 2.10 /  x: 20.1 /'
+derive s_samepoint.yaml s_ok.yaml -e '/^  RM:/,/^  LR:/s/^    y: -1.05 /    y: 1.05 /'
+derive s_bulkheads.yaml s_ok.yaml -e 's/^\(      bulkheads: \)\[.*\]/\1[1.90, -1.00]/'
+derive s_modes.yaml s_ok.yaml -e 's/^    modes: 0 /    modes: 99999 /'
 road_with s_tworoads.yaml 'iso8608: {class: C, seed: 1}\n  bump: {height: 0.1, length: 3.7, angle_deg: 45, first_contact: 5}'
 road_with s_isoclass.yaml 'iso8608: {class: Z, seed: 1}'
 road_with s_profile.yaml 'profile: {file: one_row.csv}'
@@ -242,6 +249,10 @@ CASES=(
   "5|run s_table_missing.yaml -o @OUT|$(at s_table_missing.yaml no_such_table no_such) suspensions.LF.damper_table.file: ./no_such_table.csv: cannot open|No such file"
   "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.LF.damper_table.file: ./word.csv:4: column 'F': 'abc' is not a finite number"
   "2|export s_table_order.yaml -o @OUT|$(at s_table_order.yaml order.csv order) suspensions.LF.damper_table.file: ./order.csv:5: column 'v': 0.5 does not exceed the previous row's 1|strictly increasing"
+  "2|run s_driver.yaml --system rigid -o @OUT|$(at s_driver.yaml 'x: 20.1' 20.1) driver.x: must lie on the hull's floor, between hull.edges.rear_x = -2.657984123 and front_x = 2.478133119 m (got 20.1)"
+  "2|export s_samepoint.yaml --system rigid -o @OUT|s_samepoint.yaml:$(awk '/^  RM:/ { print NR + 1; exit }' s_samepoint.yaml):5: suspensions.RM: at (0.4, 1.05) m, where suspensions.LM already is"
+  "2|mesh s_bulkheads.yaml --export @FILE.inp|$(at s_bulkheads.yaml 'front_x: 2.478' 2.478) hull.edges.front_x: the scenario puts FRONT_EDGE's left end at (2.47813, 1.05) m, the mesh's node 76 at (2.33187, 1.05) m"
+  "2|run s_modes.yaml --system flexible -o @OUT|$(at s_modes.yaml 'modes: 99999' 99999) hull.fe.modes: 99999 modes, more than the hull's 1296 degrees of freedom"
   "2|run s_empty.yaml -o @OUT|flexbond: s_empty.yaml:1:1: the file is empty"
   "2|modes s_binary.yaml|flexbond: s_binary.yaml:1:1: binary data (byte 0x7f)"
 
@@ -254,7 +265,7 @@ CASES=(
   "2|mesh d_empty.yaml --export @FILE.vtu|flexbond: $(deck_at d_empty) ./d_empty.inp:1: empty file"
   "2|mesh d_binary.yaml|flexbond: $(deck_at d_binary) ./d_binary.inp:1: binary data (byte 0x7f in column 1): not an Abaqus input deck"
   "5|mesh d_missing.yaml --export @FILE.inp|flexbond: $(deck_at d_missing) ./no_such_deck.inp: cannot open|No such file"
-  "2|run d_noset.yaml --system flexible -o @OUT|flexbond: $(deck_at d_noset) ./d_noset.inp: no node set SUSP_LF (the vehicle needs LOAD,"
+  "2|run d_noset.yaml --system flexible -o @OUT|flexbond: $(deck_at d_noset) ./d_noset.inp: the mesh has no node set SUSP_LF (the vehicle needs LOAD,"
 
   # Command lines.
   "1|run s_ok.yaml -o @OUT --frobnicate|flexbond run: unknown option '--frobnicate'|flexbond run --help"
@@ -267,6 +278,10 @@ CASES=(
   "1|sweep s_ok.yaml --set speed_kmh=1:0:5 -o @OUT|--set speed_kmh=1:0:5: step 0"
   "1|sweep s_ok.yaml --set no_such_key=5 -o @OUT|no key 'no_such_key' in the scenario"
   "1|sim m_ok.yaml -o @OUT --t-end -1|option '--t-end' needs a finite number > 0"
+  "1|sim m_ok.yaml -o @OUT --rtol 5|flexbond sim: option '--rtol': must be in (0, 1), got 5"
+  "1|sim m_ok.yaml -o @OUT --sample-rate 1e12|flexbond sim: option '--sample-rate': 1e+12 Hz over 5 s gives 5e+12 samples, more than the limit of 1e+08"
+  "1|run s_ok.yaml -o @OUT --hull-modes 3|flexbond run: option '--hull-modes' needs 0 (the full-order hull) or an integer in 6..100000 (got '3')"
+  "1|run s_ok.yaml --system flexible -o @OUT --hull-modes 100000|flexbond run: option '--hull-modes': 100000 modes, more than the hull's 1296 degrees of freedom"
   "5|export s_ok.yaml --system rigid -o @EXISTING|@EXISTING: cannot create directory: exists and is not a directory"
   "5|sim m_ok.yaml -o @EXISTING/sub|@EXISTING/sub: cannot create directory|not a directory"
 )

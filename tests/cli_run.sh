@@ -322,11 +322,11 @@ for bad in "--system rubber" "--initial warm" "--payload heavy"; do
   expect_status 1 "run $bad"
   expect_in "$ERR" "option '$1' must be one of" "run $bad"
 done
-for bad in "--hull-modes -1" "--hull-modes 12x" "--hull-modes 100001"; do
+for bad in "--hull-modes -1" "--hull-modes 12x" "--hull-modes 100001" "--hull-modes 5"; do
   set -- $bad
   run run "$APC" -o "$WORK/out_opt" "$@"
   expect_status 1 "run $bad"
-  expect_in "$ERR" "option '--hull-modes' needs an integer in 0..100000" "run $bad"
+  expect_in "$ERR" "option '--hull-modes' needs 0 (the full-order hull) or an integer in 6..100000" "run $bad"
 done
 run run "$APC" -o "$WORK/out_opt" --system rigid --hull-modes 12
 expect_status 1 "run --system rigid --hull-modes"

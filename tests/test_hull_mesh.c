@@ -457,17 +457,22 @@ static void test_errors(void)
   expect_error(s, &p, "at most 8 bulkheads", NULL);
   p = p0;
   p.bulkhead_x[1] = p.bulkhead_x[2];
-  expect_error(s, &p, "coincides with bulkhead_x", NULL);
+  expect_error(
+      s, &p,
+      "hull.mesh.generator.bulkheads[2]: coincides with hull.mesh.generator.bulkheads[1]",
+      NULL);
   /* The floor is narrower than the suspension track. */
   p = p0;
   p.width = 2.0;
-  expect_error(s, &p, "suspensions.LF (1.9, 1.05) lies outside the floor", NULL);
+  expect_error(s, &p, "suspensions.LF.y: (1.9, 1.05) m lies outside the generated hull's floor",
+               NULL);
 
   fb_scenario *c = NULL;
   CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
   if (c) {
     c->load_x[5] = 5.0;
-    expect_error(c, &p0, "load.points[5] (5, -0.55) lies outside the floor", NULL);
+    expect_error(
+        c, &p0, "load.points[5].x: (5, -0.55) m lies outside the generated hull's floor", NULL);
     /* A load point 0.5 mm behind the rear axle's line (its bulkhead,
      * suspension points and three more load points). */
     c->load_x[5] = s->load_x[5];
@@ -476,7 +481,7 @@ static void test_errors(void)
     c->load_x[12] = s->load_x[12];
     c->load_x[5] = c->load_x[4];
     c->load_y[5] = c->load_y[4];
-    expect_error(c, &p0, "the 56 load points fall on only 55 nodes", NULL);
+    expect_error(c, &p0, "load.points: the 56 points fall on only 55 nodes", NULL);
     fb_scenario_free(&c);
   }
   fb_scenario_free(&s);

@@ -501,6 +501,8 @@ static const bad_case bad_cases[] = {
      NULL},
     {"y: [-1.05, -0.55, 0.55, 1.05]", "y: [-1.05, -0.55, 0.55, 1.25]", NULL, NULL, FB_EINVAL,
      "bad.yaml:12:", "load.points[3].y: must lie on the hull's floor", NULL},
+    {"x: [-2.00, -1.70,", "x: [-2.00, -2.00,", NULL, NULL, FB_EINVAL,
+     "bad.yaml:12:", "load.points[4]: at (-2, -1.05) m, where load.points[0] already is", NULL},
     {"RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: -1.05}",
      "RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}", NULL, NULL, FB_EINVAL,
      "bad.yaml:21:", "suspensions.RM: at (0.4, 1.05) m, where suspensions.LM already is", NULL},

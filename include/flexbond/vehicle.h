@@ -220,6 +220,13 @@ int fb_scenario_override_key(const char *path, const char *key, char **full, fb_
  * run). FB_EINVAL naming the key, e.g. "suspensions.LF.spring_k: must be
  * > 0 (got -1)". */
 int fb_scenario_check(const fb_scenario *s, fb_err *err);
+/* For an error about s's values found after loading (building System 2's
+ * hull, say): when err's message starts with a key path of the scenario
+ * file ("suspensions.LF.x: ..."), prefixes the file's "FILE:LINE:COL: " of
+ * that value, as fb_scenario_load does; any other message, or a scenario
+ * not from a file, is left as it is. Reads the file again. Returns
+ * err->code. */
+int fb_scenario_blame(const fb_scenario *s, fb_err *err);
 void fb_scenario_free(fb_scenario **s);
 /* Deep copy. */
 int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);

@@ -46,7 +46,7 @@ static const char run_usage[] =
     "                              t = 0 (the paper), or static equilibrium\n"
     "  --payload weight-only|lumped  payload as force only (the paper), or\n"
     "                              as mass spread over the load points too\n"
-    "  --hull-modes N              System 2's hull: 0 full order, N > 0 reduced to\n"
+    "  --hull-modes N              System 2's hull: 0 full order, N >= 6 reduced to\n"
     "                              N free-free modes (hull.fe.modes)\n"
     "  --no-figures                no PNG; report.md without images\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
@@ -669,6 +669,17 @@ static void override(const run_args *a, fb_scenario *s)
     s->hull_modes = a->hull_modes;
 }
 
+/* cli_report, except that a check of hull.fe.modes that --hull-modes
+ * replaced (more modes than the hull has) is the option's: a usage error. */
+static int report(const run_args *a, int rc, fb_err *err)
+{
+  static const char key[] = "hull.fe.modes: ";
+  const char *at = rc != FB_OK && a->hull_modes >= 0 ? strstr(err->msg, key) : NULL;
+  if (at)
+    return cli_usage_error("run", "option '--hull-modes': %s", at + strlen(key));
+  return cli_report(rc, err);
+}
+
 static int run(const run_args *a)
 {
   fb_err err;
@@ -723,18 +734,22 @@ static int run(const run_args *a)
   }
   run_modes_free(&modes);
   fb_scenario_free(&s);
-  return cli_report(rc, &err);
+  return report(a, rc, &err);
 }
 
-/* The value of --hull-modes: an integer in 0 .. MAX_HULL_MODES, as
+/* The value of --hull-modes: 0 or an integer in 6 .. MAX_HULL_MODES, as
  * hull.fe.modes. */
 static int parse_hull_modes(const char *cmd, const char *text, int *out)
 {
   char *end = NULL;
   errno = 0;
   long v = strtol(text, &end, 10);
-  if (end == text || *end != '\0' || errno == ERANGE || v < 0 || v > MAX_HULL_MODES)
-    return cli_usage_error(cmd, "option '--hull-modes' needs an integer in 0..%d (got '%s')",
+  /* A reduced hull keeps its six rigid-body modes at least. */
+  if (end == text || *end != '\0' || errno == ERANGE || v < 0 || (v > 0 && v < 6) ||
+      v > MAX_HULL_MODES)
+    return cli_usage_error(cmd,
+                           "option '--hull-modes' needs 0 (the full-order hull) or an integer "
+                           "in 6..%d (got '%s')",
                            MAX_HULL_MODES, text);
   *out = (int)v;
   return CLI_EXIT_OK;

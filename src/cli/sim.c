@@ -148,6 +148,27 @@ static int stop_when_interrupted(void *ctx, double t, double t_end)
   return cli_interrupted();
 }
 
+/* The option of a that set the solver setting an fb_sim_opts_check
+ * message names first ("simulation.rtol: ..."), NULL if the model's own
+ * value did. The sample count names sample_rate, but --t-end may have
+ * raised it. */
+static const char *overriding_option(const sim_args *a, const char *msg)
+{
+  static const struct {
+    const char *key;
+    const char *option;
+    size_t field; /* 0 t_end, 1 rtol, 2 sample_rate */
+  } map[] = {{"simulation.t_end:", "--t-end", 0},
+             {"simulation.rtol:", "--rtol", 1},
+             {"simulation.sample_rate:", "--sample-rate", 2},
+             {"simulation.sample_rate:", "--t-end", 0}};
+  const double given[3] = {a->t_end, a->rtol, a->sample_rate};
+  for (size_t i = 0; i < sizeof map / sizeof map[0]; ++i)
+    if (!strncmp(msg, map[i].key, strlen(map[i].key)) && given[map[i].field] > 0)
+      return map[i].option;
+  return NULL;
+}
+
 static int run(const sim_args *a)
 {
   fb_err err;
@@ -161,6 +182,13 @@ static int run(const sim_args *a)
     opts = effective_opts(m, a);
     opts.progress = stop_when_interrupted;
     rc = fb_sim_opts_check(&opts, &err);
+    /* The model's settings were checked where it was loaded: a failure
+     * here is an option's, a usage error. */
+    const char *option = rc == FB_OK ? NULL : overriding_option(a, err.msg);
+    if (option) {
+      fb_model_free(&m);
+      return cli_usage_error("sim", "option '%s': %s", option, strchr(err.msg, ' ') + 1);
+    }
   }
   if (rc == FB_OK) {
     size_t nprobes = 0;

@@ -143,6 +143,39 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
   return rc;
 }
 
+int fb_scenario_blame(const fb_scenario *s, fb_err *err)
+{
+  if (!err || err->code == FB_OK || !s || !s->path)
+    return err ? err->code : FB_EINVAL;
+  const size_t plen = strlen(s->path);
+  if (!strncmp(err->msg, s->path, plen) && err->msg[plen] == ':')
+    return err->code;
+  /* On the error path only: the file is read and parsed again (it holds
+   * the positions; the scenario keeps values). Any failure here leaves
+   * the message as it was. */
+  char *text = NULL;
+  size_t len = 0;
+  fb_err scratch;
+  fb_err_clear(&scratch);
+  ml_yaml y;
+  memset(&y, 0, sizeof y);
+  int rc = fb_read_file(s->path, &text, &len, &scratch);
+  if (!rc)
+    rc = ml_yaml_parse(text, len, s->path, &y, &scratch);
+  if (!rc) {
+    ml_ctx c;
+    memset(&c, 0, sizeof c);
+    c.file = s->path;
+    c.err = &scratch;
+    scratch = *err;
+    sc_blame_late(&c, fy_document_root(y.doc));
+    *err = scratch;
+  }
+  ml_yaml_release(&y);
+  free(text);
+  return err->code;
+}
+
 /* fb_scenario_load_string with relative file references (a hull deck, a
  * damper table) resolved from base_dir. */
 static int load_string_in(const char *text, size_t len, const char *display_name,

@@ -159,8 +159,8 @@ static int sc_check_on_floor(const fb_scenario *s, const char *key, double x, do
   return FB_OK;
 }
 
-/* Every point on the floor, and no two suspensions at one point (two
- * wheels cannot stand in one place). */
+/* Every point on the floor, and no two suspensions (two wheels cannot
+ * stand in one place) or load points at one point. */
 static int sc_check_points(const fb_scenario *s, fb_err *err)
 {
   int rc = sc_check_on_floor(s, "driver", s->driver.x, s->driver.y, err);
@@ -170,6 +170,13 @@ static int sc_check_points(const fb_scenario *s, fb_err *err)
     char key[48];
     snprintf(key, sizeof key, "load.points[%zu]", i);
     rc = sc_check_on_floor(s, key, s->load_x[i], s->load_y[i], err);
+    /* Each point carries its share of the weight at its own node. */
+    for (size_t j = 0; !rc && j < i; ++j)
+      if (hypot(s->load_x[i] - s->load_x[j], s->load_y[i] - s->load_y[j]) < SC_SAME_POINT)
+        rc = fb_err_set(err, FB_EINVAL,
+                        "%s: at (%.10g, %.10g) m, where load.points[%zu] already is (two load "
+                        "points at one point)",
+                        key, s->load_x[i], s->load_y[i], j);
   }
   for (int k = 0; !rc && k < FB_NCORNERS; ++k) {
     char key[32];

@@ -28,6 +28,11 @@ int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s);
  * file, keeping the key. Returns the error code. */
 int sc_blame_check(const ml_ctx *c, struct fy_node *root);
 
+/* As sc_blame_check for a message raised after loading (the hull mesh's
+ * checks, say): only one that starts with a key path whose first segment
+ * is in the file is located; any other is left as it is. */
+int sc_blame_late(const ml_ctx *c, struct fy_node *root);
+
 /* Loads text edited from the scenario file at path (flexbond sweep's
  * --set) as that file: relative references resolved from its directory.
  * In scenario.c, next to the loader it shares. */

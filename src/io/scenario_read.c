@@ -1,6 +1,7 @@
 /* Scenario files (docs/scenario-format.md): the sections read into an
  * fb_scenario with the model loader's YAML helpers, and the mapping of
  * fb_scenario_check's key paths back to the file. */
+#include <ctype.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -768,4 +769,33 @@ int sc_blame_check(const ml_ctx *c, struct fy_node *root)
   if (whole || shared)
     return ml_fail(c, shared ? shared : at, c->err->code, "%s", rest);
   return ml_blame_located(c, at);
+}
+
+/* A key path as the check messages write it: a name, then ".name" or
+ * "[i]" segments; no spaces (a context such as "hull mesh" is none). */
+static int sc_is_key_path(const char *text, size_t len)
+{
+  if (len == 0 || !(isalpha((unsigned char)text[0]) || text[0] == '_'))
+    return 0;
+  for (size_t i = 0; i < len; ++i)
+    if (!(isalnum((unsigned char)text[i]) || strchr("_.[]", text[i])))
+      return 0;
+  return 1;
+}
+
+int sc_blame_late(const ml_ctx *c, struct fy_node *root)
+{
+  const char *msg = c->err->msg;
+  const char *sep = strstr(msg, ": ");
+  if (!sep || !sc_is_key_path(msg, (size_t)(sep - msg)) || (size_t)(sep - msg) >= 256)
+    return c->err->code;
+  char key[256];
+  memcpy(key, msg, (size_t)(sep - msg));
+  key[sep - msg] = '\0';
+  int whole = 0;
+  /* Only a key whose first segment is in the file: "driver" or
+   * "load.points[3]" (a grid: at load.points), never the root. */
+  if (sc_walk(root, key, &whole) == root)
+    return c->err->code;
+  return sc_blame_check(c, root);
 }

@@ -27,25 +27,29 @@ static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const si
   size_t n = 0;
   if (!fb_mesh_nset(m, name, nodes, &n))
     return fb_err_set(err, FB_EMODEL,
-                      "no node set %s (the vehicle needs LOAD, DRIVER, ENGINE, SUSP_LF .. "
-                      "SUSP_RR, FRONT_EDGE and REAR_EDGE, as 'flexbond mesh --export' writes)",
+                      "the mesh has no node set %s (the vehicle needs LOAD, DRIVER, ENGINE, "
+                      "SUSP_LF .. SUSP_RR, FRONT_EDGE and REAR_EDGE, as 'flexbond mesh "
+                      "--export' writes)",
                       name);
   if (n != count)
-    return fb_err_set(err, FB_EMODEL, "node set %s has %zu nodes, expected %zu", name, n,
-                      count);
+    return fb_err_set(err, FB_EMODEL, "the mesh's node set %s has %zu nodes, expected %zu",
+                      name, n, count);
   return FB_OK;
 }
 
-/* Checks that node sits at (x, y) in the hull's axes (within 1 mm). */
-static int check_at(const fb_mesh *m, size_t node, const char *what, double x, double y,
-                    fb_err *err)
+/* Checks that node sits at (x, y) in the hull's axes (within 1 mm). The
+ * message starts with the scenario's key of the point, key_x or key_y as
+ * the coordinate that is off (fb_scenario_blame finds it in the file). */
+static int check_at(const fb_mesh *m, size_t node, const char *what, const char *key_x,
+                    const char *key_y, double x, double y, fb_err *err)
 {
   const double *p = fb_mesh_node_xyz(m, node);
-  if (fabs(p[0] - x) > 1e-3 || fabs(p[1] - y) > 1e-3)
+  const int x_off = fabs(p[0] - x) > 1e-3;
+  if (x_off || fabs(p[1] - y) > 1e-3)
     return fb_err_set(err, FB_EMODEL,
-                      "%s node %ld is at (%.4g, %.4g) m, the scenario puts it at "
-                      "(%.4g, %.4g) m",
-                      what, fb_mesh_node_id(m, node), p[0], p[1], x, y);
+                      "%s: the scenario puts %s at (%.6g, %.6g) m, the mesh's node %ld at "
+                      "(%.6g, %.6g) m (they must agree within 1 mm)",
+                      x_off ? key_x : key_y, what, x, y, fb_mesh_node_id(m, node), p[0], p[1]);
   return FB_OK;
 }
 
@@ -65,10 +69,15 @@ static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
       x = mt->x;
       y = mt->y;
     }
+    char key[32];
+    if (a < FB_NCORNERS)
+      snprintf(key, sizeof key, "suspensions.%s", fb_corner_name(a));
+    else
+      snprintf(key, sizeof key, "%s", a == FB_ATTACH_DRIVER ? "driver" : "engine");
     const size_t *nodes = NULL;
     rc = nset_nodes(h->mesh, name, 1, &nodes, err);
     if (!rc)
-      rc = check_at(h->mesh, nodes[0], name, x, y, err);
+      rc = check_at(h->mesh, nodes[0], name, key, key, x, y, err);
     if (!rc)
       h->attach_node[a] = nodes[0];
   }
@@ -82,25 +91,33 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   if (!rc && !(h->load_node = malloc(s->nload * sizeof *h->load_node)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; !rc && k < s->nload; ++k) {
-    char what[32];
-    snprintf(what, sizeof what, "LOAD[%zu]", k + 1);
-    rc = check_at(h->mesh, nodes[k], what, s->load_x[k], s->load_y[k], err);
+    char what[32], key[48];
+    snprintf(what, sizeof what, "LOAD node %zu", k + 1);
+    snprintf(key, sizeof key, "load.points[%zu]", k);
+    rc = check_at(h->mesh, nodes[k], what, key, key, s->load_x[k], s->load_y[k], err);
     h->load_node[k] = nodes[k];
   }
   h->nload = s->nload;
   const char *const edges[2] = {"FRONT_EDGE", "REAR_EDGE"};
+  const char *const edge_x[2] = {"hull.edges.front_x", "hull.edges.rear_x"};
   for (int k = 0; !rc && k < 2; ++k) {
     rc = nset_nodes(h->mesh, edges[k], 2, &nodes, err);
     const double x = k == 0 ? s->edge_front_x : s->edge_rear_x;
+    char what[32];
+    snprintf(what, sizeof what, "%s's left end", edges[k]);
     if (!rc)
-      rc = check_at(h->mesh, nodes[0], edges[k], x, s->edge_left_y, err);
+      rc = check_at(h->mesh, nodes[0], what, edge_x[k], "hull.edges.left_y", x, s->edge_left_y,
+                    err);
+    snprintf(what, sizeof what, "%s's right end", edges[k]);
     if (!rc)
-      rc = check_at(h->mesh, nodes[1], edges[k], x, s->edge_right_y, err);
+      rc = check_at(h->mesh, nodes[1], what, edge_x[k], "hull.edges.right_y", x,
+                    s->edge_right_y, err);
     if (!rc) {
       h->edge_node[2 * k] = nodes[0];
       h->edge_node[2 * k + 1] = nodes[1];
       if (fb_mesh_node_xyz(h->mesh, nodes[0])[1] <= fb_mesh_node_xyz(h->mesh, nodes[1])[1])
-        rc = fb_err_set(err, FB_EMODEL, "node set %s must list its left end (larger y) first",
+        rc = fb_err_set(err, FB_EMODEL,
+                        "the mesh's node set %s must list its left end (larger y) first",
                         edges[k]);
     }
   }
@@ -148,14 +165,12 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   fb_mesh *mesh = NULL;
   const char *at = s->hull_deck_at ? s->hull_deck_at : "";
   if (!s->hull_deck) {
-    /* The generator's own errors start with "hull mesh:". */
+    /* The generator's errors about a scenario value start with its key,
+     * located in the file; the others with "hull mesh:". */
     int rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
-    if (rc)
-      return rc;
-    rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
-    if (rc)
-      fb_err_prefix(err, "hull mesh: ");
-    return rc;
+    if (!rc)
+      rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
+    return rc ? fb_scenario_blame(s, err) : FB_OK;
   }
   /* As for a CSV table, a deck's error is reported at the scenario's
    * hull.mesh.deck, then at the deck's own line ("DECK:LINE: ..."); the
@@ -693,8 +708,9 @@ static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords 
   for (size_t k = 0; !rc && k < h->nload; ++k)
     F[FB_NATTACH * n + 6 * h->load_node[k] + 2] = 1.0;
   if (!rc && (size_t)s->hull_modes > n)
-    rc = fb_err_set(err, FB_EINVAL, "hull.fe.modes: %d modes of a %zu-DOF hull", s->hull_modes,
-                    n);
+    rc = fb_err_set(err, FB_EINVAL,
+                    "hull.fe.modes: %d modes, more than the hull's %zu degrees of freedom",
+                    s->hull_modes, n);
   if (!rc)
     rc = fb_fem_reduce_free(c->K, c->M, (size_t)s->hull_modes, F, nf, &c->T, &lambda, &c->nb,
                             &nrigid, err);
@@ -838,7 +854,11 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
   hull_coords_free(&c);
   if (rc) {
     fb_hull_free(&hull);
-    fb_err_prefix(err, "flexible hull: ");
+    /* A scenario value's error is located in the file (hull.fe.modes);
+     * any other gets the context. */
+    fb_scenario_blame(s, err);
+    if (err && (!s->path || strncmp(err->msg, s->path, strlen(s->path)) != 0))
+      fb_err_prefix(err, "flexible hull: ");
     return rc;
   }
   *out = hull;

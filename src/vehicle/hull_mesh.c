@@ -247,8 +247,8 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
     const double gap = l->n > 0 ? s->value - l->values[l->n - 1] : INFINITY;
     if (gap > MERGE_TOL && gap < MIN_GAP)
       return fb_err_set(err, FB_EINVAL,
-                        "hull mesh: %s (%s = %.9g) is %.3g m from %s (%s = %.9g): node lines "
-                        "must coincide or be at least %g m apart",
+                        "%s: at %s = %.9g m it is %.3g m from %s (%s = %.9g m): the generated "
+                        "hull mesh's node lines must coincide or be at least %g m apart",
                         s->what, axis, s->value, gap, l->src[i - 1].what, axis,
                         l->src[i - 1].value, MIN_GAP);
     if (gap > MERGE_TOL) {
@@ -256,8 +256,10 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
       owner = NULL;
     }
     if (s->geometric && owner)
-      return fb_err_set(err, FB_EINVAL, "hull mesh: %s coincides with %s (%s = %.9g)", s->what,
-                        owner->what, axis, s->value);
+      return fb_err_set(err, FB_EINVAL,
+                        "%s: coincides with %s (%s = %.9g m): two plates of the generated hull "
+                        "mesh on one line",
+                        s->what, owner->what, axis, s->value);
     if (s->geometric) {
       owner = s;
       l->values[l->n - 1] = s->value;
@@ -314,13 +316,14 @@ static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, doubl
   if (!xl->src || !yl->src)
     return fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the node lines");
   const double half = 0.5 * p->width;
-  add_src(xl, p->x_rear, "x_rear", 1);
-  add_src(xl, p->x_front, "x_front", 1);
-  add_src(yl, -half, "the right side wall", 1);
-  add_src(yl, half, "the left side wall", 1);
+  /* Sources are named by their scenario keys (fb_scenario_blame). */
+  add_src(xl, p->x_rear, "hull.mesh.generator.x_rear", 1);
+  add_src(xl, p->x_front, "hull.mesh.generator.x_front", 1);
+  add_src(yl, -half, "hull.mesh.generator.width", 1);
+  add_src(yl, half, "hull.mesh.generator.width", 1);
   for (size_t b = 0; b < p->nbulkheads; ++b) {
     char what[40];
-    snprintf(what, sizeof what, "bulkhead_x[%zu]", b);
+    snprintf(what, sizeof what, "hull.mesh.generator.bulkheads[%zu]", b);
     add_src(xl, p->bulkhead_x[b], what, 1);
   }
   for (size_t k = 0; k < npoints; ++k) {
@@ -329,12 +332,13 @@ static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, doubl
     point_name(k, what, sizeof what);
     point_xy(s, k, &x, &y);
     const double xh = x + cx;
-    if (!(xh >= p->x_rear - MERGE_TOL && xh <= p->x_front + MERGE_TOL &&
-          fabs(y) <= half + MERGE_TOL))
+    const int x_in = xh >= p->x_rear - MERGE_TOL && xh <= p->x_front + MERGE_TOL;
+    if (!x_in || !(fabs(y) <= half + MERGE_TOL))
       return fb_err_set(err, FB_EINVAL,
-                        "hull mesh: %s (%g, %g) lies outside the floor, x in [%.6g, %.6g], y "
-                        "in [%.6g, %.6g] about the centre of mass",
-                        what, x, y, p->x_rear - cx, p->x_front - cx, -half, half);
+                        "%s.%s: (%g, %g) m lies outside the generated hull's floor, x in "
+                        "[%.6g, %.6g], y in [%.6g, %.6g] m about the centre of mass",
+                        what, x_in ? "y" : "x", x, y, p->x_rear - cx, p->x_front - cx, -half,
+                        half);
     add_src(xl, xh, what, 0);
     add_src(yl, y, what, 0);
   }
@@ -904,7 +908,9 @@ static int add_point_sets(fb_mesh *m, const build_mesh *coarse, const fb_scenari
   const size_t *load = NULL;
   size_t nload = 0;
   if (rc == FB_OK && fb_mesh_nset(m, "LOAD", &load, &nload) && nload != s->nload)
-    rc = fb_err_set(err, FB_EINVAL, "hull mesh: the %zu load points fall on only %zu nodes",
+    rc = fb_err_set(err, FB_EINVAL,
+                    "load.points: the %zu points fall on only %zu nodes of the generated hull "
+                    "mesh (points on one node)",
                     s->nload, nload);
   const double ends[2] = {xl->values[xl->n - 1], xl->values[0]};
   const char *edge_sets[2] = {"FRONT_EDGE", "REAR_EDGE"};
