@@ -144,6 +144,17 @@ derive s_table_missing.yaml s_ok.yaml \
 derive s_table_word.yaml s_ok.yaml -e '0,/damper_c: 25744 /s//damper_table: {file: word.csv, force: F} /'
 derive s_table_order.yaml s_ok.yaml -e '0,/damper_c: 25744 /s//damper_table: {file: order.csv, force: F} /'
 printf 'v,F\n-1,-100\n0,0\n0.5,abc\n1,100\n' >word.csv
+# Data files that are not plain text or decimals (core/textfile.c): a NUL
+# in a damper table and in a road profile (it used to cut the line there),
+# a repeated column, a hexadecimal height.
+derive m_table_nul.yaml m_table.yaml -e 's/file: damper_fv.csv/file: nul_fv.csv/'
+printf 'v,F\n-1.0,-980\n-0.5,-580\n0,0\0\n0.5,300\n1.0,500\n' >nul_fv.csv
+derive s_table_dup.yaml s_ok.yaml -e '0,/damper_c: 25744 /s//damper_table: {file: dup.csv, force: F} /'
+printf 'v,F,F\n-1,-100,0\n0,0,0\n1,100,0\n' >dup.csv
+road_with s_profile_nul.yaml 'profile: {file: nul_road.csv}'
+printf 's,z\n-50,0\n0,0\n\0001,0.05\n2,0\n200,0\n' >nul_road.csv
+road_with s_profile_hex.yaml 'profile: {file: hex_road.csv}'
+printf 's,z\n-50,0\n0,0\n1,0x5\n2,0\n200,0\n' >hex_road.csv
 printf 'v,F\n-1,-100\n0,0\n1,100\n0.5,50\n' >order.csv
 : >s_empty.yaml
 # An ELF header, random bytes and NULs.
@@ -219,7 +230,7 @@ CASES=(
   "2|sim m_dangling.yaml -o @OUT|$(at m_dangling.yaml tyre tyre) bonds[9][1]: unknown element 'tyre'|did you mean 'tire'?"
   "2|causality m_dupkey.yaml|$(at m_dupkey.yaml again model) YAML: duplicate key 'model'"
   "2|sim m_port.yaml -o @OUT|$(at m_port.yaml 'p.top' '[') bonds[1]: bond 'p.top->body': dimension mismatch: 'p.top' has dimension 2, 'body' has dimension 1"
-  "2|sim m_table.yaml -o @OUT|./damper_fv.csv:$(line_of damper_fv.csv '0.25, lots'): column 'F': 'lots' is not a finite number|$(at m_table.yaml 'file: damper_fv.csv' 'damper_fv') elements[3].table.file:"
+  "2|sim m_table.yaml -o @OUT|./damper_fv.csv:$(line_of damper_fv.csv '0.25, lots'): column 'F': 'lots' is not a number|$(at m_table.yaml 'file: damper_fv.csv' 'damper_fv') elements[3].table.file:"
   "2|sim m_empty.yaml -o @OUT|flexbond: m_empty.yaml:1:1: the file is empty"
   "2|sim m_binary.yaml -o @OUT|flexbond: m_binary.yaml:2:1: binary data (byte 0x89): not a YAML text file"
   "5|sim m_dir.yaml -o @OUT|flexbond: m_dir.yaml: cannot read|directory"
@@ -247,12 +258,16 @@ CASES=(
   "2|run s_isoclass.yaml -o @OUT|$(at s_isoclass.yaml 'class: Z' Z) road.iso8608.class:|A .. H (got 'Z')"
   "2|run s_profile.yaml -o @OUT|$(at s_profile.yaml one_row.csv one_row) road.profile.file: ./one_row.csv:2: 1 data row, need at least 2"
   "5|run s_table_missing.yaml -o @OUT|$(at s_table_missing.yaml no_such_table no_such) suspensions.LF.damper_table.file: ./no_such_table.csv: cannot open|No such file"
-  "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.LF.damper_table.file: ./word.csv:4: column 'F': 'abc' is not a finite number"
+  "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.LF.damper_table.file: ./word.csv:4: column 'F': 'abc' is not a number"
   "2|export s_table_order.yaml -o @OUT|$(at s_table_order.yaml order.csv order) suspensions.LF.damper_table.file: ./order.csv:5: column 'v': 0.5 does not exceed the previous row's 1|strictly increasing"
   "2|run s_driver.yaml --system rigid -o @OUT|$(at s_driver.yaml 'x: 20.1' 20.1) driver.x: must lie on the hull's floor, between hull.edges.rear_x = -2.657984123 and front_x = 2.478133119 m (got 20.1)"
   "2|export s_samepoint.yaml --system rigid -o @OUT|s_samepoint.yaml:$(awk '/^  RM:/ { print NR + 1; exit }' s_samepoint.yaml):5: suspensions.RM: at (0.4, 1.05) m, where suspensions.LM already is"
   "2|mesh s_bulkheads.yaml --export @FILE.inp|$(at s_bulkheads.yaml 'front_x: 2.478' 2.478) hull.edges.front_x: the scenario puts FRONT_EDGE's left end at (2.47813, 1.05) m, the mesh's node 76 at (2.33187, 1.05) m"
   "2|run s_modes.yaml --system flexible -o @OUT|$(at s_modes.yaml 'modes: 99999' 99999) hull.fe.modes: 99999 modes, more than the hull's 1296 degrees of freedom"
+  "2|sim m_table_nul.yaml -o @OUT|$(at m_table_nul.yaml 'file: nul_fv.csv' 'nul_fv') elements[3].table.file: ./nul_fv.csv:4: binary data (byte 0x00 in column 4): not a CSV text file (expected UTF-8 text)"
+  "2|run s_table_dup.yaml -o @OUT|$(at s_table_dup.yaml dup.csv dup) suspensions.LF.damper_table.file: ./dup.csv:1: column 'F' appears twice"
+  "2|modes s_profile_nul.yaml|$(at s_profile_nul.yaml nul_road.csv nul_road) road.profile.file: ./nul_road.csv:4: binary data (byte 0x00 in column 1): not a CSV text file"
+  "2|run s_profile_hex.yaml -o @OUT|$(at s_profile_hex.yaml hex_road.csv hex_road) road.profile.file: ./hex_road.csv:4: column 'z': '0x5' is not a decimal number"
   "2|run s_empty.yaml -o @OUT|flexbond: s_empty.yaml:1:1: the file is empty"
   "2|modes s_binary.yaml|flexbond: s_binary.yaml:1:1: binary data (byte 0x7f)"
 

@@ -527,8 +527,9 @@ static void test_spd(void)
   fb_mat_free(&a);
 }
 
-/* Writes text to a new temporary file; path is a mkstemp template. */
-static int write_temp(char *path, const char *text)
+/* Writes len bytes of text (NUL bytes included) to a new temporary file;
+ * path is a mkstemp template. */
+static int write_temp_n(char *path, const char *text, size_t len)
 {
   const int fd = mkstemp(path);
   if (fd < 0)
@@ -538,8 +539,13 @@ static int write_temp(char *path, const char *text)
     close(fd);
     return 0;
   }
-  const int ok = fputs(text, fp) >= 0;
+  const int ok = fwrite(text, 1, len, fp) == len;
   return fclose(fp) == 0 && ok;
+}
+
+static int write_temp(char *path, const char *text)
+{
+  return write_temp_n(path, text, strlen(text));
 }
 
 static fb_mat *read_text(const char *text)
@@ -661,7 +667,7 @@ static void test_mtx_errors(void)
   snprintf(text, sizeof text, "%s4 3 1\n0 1 1.0\n", coord);
   check_mtx_error(text, 3, "row index 0 out of range 1..4");
   snprintf(text, sizeof text, "%s2 2 1\n1 1 abc\n", coord);
-  check_mtx_error(text, 3, "invalid real value 'abc'");
+  check_mtx_error(text, 3, "value 'abc' is not a number");
   snprintf(text, sizeof text, "%s2 2 1\n1 1\n", coord);
   check_mtx_error(text, 3, "missing value");
   snprintf(text, sizeof text, "%s2 2 1\n1 1 1.0 7\n", coord);
@@ -693,6 +699,58 @@ static void test_mtx_errors(void)
                   "file ends after 3 of the 4 declared entries");
   check_mtx_error("%%MatrixMarket matrix array real general\n1 1\n1 2\n", 3,
                   "unexpected text '2'");
+}
+
+/* Reading len bytes of text fails with FB_EPARSE and exactly the message
+ * "path:line: want". */
+static void check_mtx_message(const char *text, size_t len, size_t line, const char *want)
+{
+  char path[] = "/tmp/fb_test_mat_XXXXXX";
+  char msg[FB_ERR_MSG_MAX];
+  CHECK(write_temp_n(path, text, len));
+  fb_mat *a = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_mat_read_mtx(path, &a, &err) == FB_EPARSE);
+  CHECK(a == NULL);
+  snprintf(msg, sizeof msg, "%s:%zu: %s", path, line, want);
+  const int ok = strcmp(err.msg, msg) == 0;
+  CHECK(ok);
+  if (!ok)
+    fprintf(stderr, "  got    \"%s\"\n  wanted \"%s\"\n", err.msg, msg);
+  unlink(path);
+  fb_mat_free(&a);
+}
+
+#define CHECK_MTX(text, line, want) check_mtx_message(text, sizeof text - 1, line, want)
+#define COORD "%%MatrixMarket matrix coordinate real general\n"
+
+/* A NUL once cut "1500\0009" to 1500; strtod's hexadecimal, "inf" and
+ * "nan" were read as numbers; a carriage return inside a line cut it. */
+static void test_mtx_strict(void)
+{
+  CHECK_MTX(COORD "1 1 1\n1 1 1500\0009\n", 3,
+            "binary data (byte 0x00 in column 9): not a Matrix Market text file (expected "
+            "UTF-8 text)");
+  CHECK_MTX(COORD "% \xfe\n1 1 1\n1 1 1\n", 2,
+            "binary data (byte 0xfe in column 3): not a Matrix Market text file (expected "
+            "UTF-8 text)");
+  CHECK_MTX(COORD "1 1 1\n1 1 15\r00\n", 3,
+            "binary data (byte 0x0d in column 7): not a Matrix Market text file (expected "
+            "UTF-8 text)");
+  CHECK_MTX(COORD "2 2 1\n1 1 0x10\n", 3, "value '0x10' is not a decimal number");
+  CHECK_MTX(COORD "2 2 1\n1 1 -inf\n", 3, "value '-inf' is not a finite number");
+  CHECK_MTX("%%MatrixMarket matrix array real general\n1 1\nnan\n", 3,
+            "value 'nan' is not a finite number");
+  CHECK_MTX(COORD "2 2 1\n1 1 1e400\n", 3, "value '1e400' is not a finite number");
+
+  /* A byte-order mark before the header is skipped; decimals of every
+   * form are read as before. */
+  fb_mat *a = read_text("\xef\xbb\xbf%%MatrixMarket matrix coordinate real general\r\n"
+                        "2 2 4\r\n1 1 +1.5\r\n1 2 -.25\r\n2 1 3.\r\n2 2 -7.5E-3\r\n");
+  const double want[] = {1.5, -0.25, 3.0, -7.5e-3};
+  check_entries(a, 2, 2, want, 0.0);
+  fb_mat_free(&a);
 }
 
 static void test_mtx_io_errors(void)
@@ -755,6 +813,7 @@ int main(void)
   test_mtx_roundtrip();
   test_mtx_formats();
   test_mtx_errors();
+  test_mtx_strict();
   test_mtx_io_errors();
   return check_report("test_mat");
 }

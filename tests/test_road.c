@@ -591,16 +591,22 @@ static void test_iso_errors(void)
 static char tmp_dir[64];
 
 /* Writes text to tmp_dir/name; returns the path (static buffer). */
-static const char *write_file(const char *name, const char *text)
+/* Writes len bytes of text (NUL bytes included) to tmp_dir/name. */
+static const char *write_file_n(const char *name, const char *text, size_t len)
 {
   static char path[128];
   snprintf(path, sizeof path, "%s/%s", tmp_dir, name);
   FILE *fp = fopen(path, "w");
   if (fp) {
-    fputs(text, fp);
+    CHECK(fwrite(text, 1, len, fp) == len);
     fclose(fp);
   }
   return path;
+}
+
+static const char *write_file(const char *name, const char *text)
+{
+  return write_file_n(name, text, strlen(text));
 }
 
 /* z = s^2 at s = 0, 1, 2, 3. PCHIP slopes by hand: secants 1, 3, 5;
@@ -745,7 +751,7 @@ static void test_csv_errors(void)
   check_csv_error("twice.csv", "s,z,s\n", FB_EPARSE, 1, "appears twice");
   check_csv_error("one_row.csv", "s,z\n0,0\n", FB_EPARSE, 2, "need at least 2");
   check_csv_error("empty.csv", "# nothing\n", FB_EPARSE, 1, "no header");
-  check_csv_error("inf.csv", "s,z\n0,0\n1,inf\n", FB_EPARSE, 3, "not finite");
+  check_csv_error("inf.csv", "s,z\n0,0\n1,inf\n", FB_EPARSE, 3, "'inf' is not a finite number");
 
   fb_road *road = NULL;
   fb_err err;
@@ -756,12 +762,63 @@ static void test_csv_errors(void)
   CHECK(fb_road_new_csv(NULL, &road, &err) == FB_EINVAL);
 }
 
+/* Reading len bytes of text as tmp_dir/name fails with FB_EPARSE and
+ * exactly the message "path:line: want". */
+static void check_csv_message(const char *name, const char *text, size_t len, int line,
+                              const char *want)
+{
+  const char *path = write_file_n(name, text, len);
+  char msg[FB_ERR_MSG_MAX];
+  snprintf(msg, sizeof msg, "%s:%d: %s", path, line, want);
+  fb_road *road = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_road_new_csv(path, &road, &err) == FB_EPARSE);
+  CHECK(road == NULL);
+  const int ok = strcmp(err.msg, msg) == 0;
+  CHECK(ok);
+  if (!ok)
+    fprintf(stderr, "  got    \"%s\"\n  wanted \"%s\"\n", err.msg, msg);
+  fb_road_free(&road);
+}
+
+#define CHECK_CSV(name, text, line, want)                                                      \
+  check_csv_message(name, text, sizeof text - 1, line, want)
+
+/* Binary data, strtod's non-decimal numbers and repeated columns are
+ * refused with the line; a byte-order mark is skipped. */
+static void test_csv_strict(void)
+{
+  /* A NUL at the start of a line once made it read as blank, and skipped. */
+  CHECK_CSV("nul_start.csv", "s,z\n0,0\n\0001,0.01\n2,0\n", 3,
+            "binary data (byte 0x00 in column 1): not a CSV text file (expected UTF-8 text)");
+  CHECK_CSV("nul_mid.csv", "s,z\n0,0\n1,0.01\0005\n2,0\n", 3,
+            "binary data (byte 0x00 in column 7): not a CSV text file (expected UTF-8 text)");
+  CHECK_CSV("latin1.csv", "# h\xf6he\ns,z\n0,0\n1,0\n", 1,
+            "binary data (byte 0xf6 in column 4): not a CSV text file (expected UTF-8 text)");
+  CHECK_CSV("hex.csv", "s,z\n0,0\n0x10,0\n", 3, "column 's': '0x10' is not a decimal number");
+  CHECK_CSV("nan.csv", "s,z_left,z_right\n0,0,0\n1,0,NaN\n", 3,
+            "column 'z_right': 'NaN' is not a finite number");
+  CHECK_CSV("repeated.csv", "s,z,z\n0,0,0\n1,0,0\n", 1, "column 'z' appears twice");
+
+  const char *path = write_file("bom.csv", "\xef\xbb\xbfs,z\r\n0,0\r\n1,0.25\r\n2,0.5\r\n");
+  fb_road *road = NULL;
+  fb_err err;
+  CHECK(fb_road_new_csv(path, &road, &err) == FB_OK);
+  if (!road)
+    return;
+  for (int k = 0; k < FB_ROAD_NTRACKS; ++k)
+    CHECK(fb_road_height(road, k, 1.0) == 0.25 && fb_road_height(road, k, 2.0) == 0.5);
+  fb_road_free(&road);
+}
+
 static void remove_tmp_dir(void)
 {
   static const char *const names[] = {
-      "square.csv", "hand.csv",   "tracks.csv",  "bad_number.csv", "unknown.csv",
-      "order.csv",  "fields.csv", "short.csv",   "both.csv",       "one_side.csv",
-      "no_s.csv",   "twice.csv",  "one_row.csv", "empty.csv",      "inf.csv"};
+      "square.csv",  "hand.csv",  "tracks.csv",   "bad_number.csv", "unknown.csv", "order.csv",
+      "fields.csv",  "short.csv", "both.csv",     "one_side.csv",   "no_s.csv",    "twice.csv",
+      "one_row.csv", "empty.csv", "inf.csv",      "nul_start.csv",  "nul_mid.csv", "latin1.csv",
+      "hex.csv",     "nan.csv",   "repeated.csv", "bom.csv"};
   char path[128];
   for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
     snprintf(path, sizeof path, "%s/%s", tmp_dir, names[i]);
@@ -787,6 +844,7 @@ int main(void)
   test_csv_hand_slopes();
   test_csv_two_tracks();
   test_csv_errors();
+  test_csv_strict();
   remove_tmp_dir();
   return check_report("test_road");
 }

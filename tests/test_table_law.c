@@ -451,8 +451,10 @@ static void test_csv_errors(void)
       {NULL, FB_EIO, ""},
       {"# only a comment\n\n", FB_EPARSE, ":2: no header line"},
       {"v, G\n0, 0\n1, 1\n", FB_EPARSE, ":1: no column 'F' in the header 'v, G'"},
-      {"v, F\n0, 0\n1, x\n", FB_EPARSE, ":3: column 'F': 'x' is not a finite number"},
+      {"v, F\n0, 0\n1, x\n", FB_EPARSE, ":3: column 'F': 'x' is not a number"},
       {"v, F\n0, 0\n1, inf\n", FB_EPARSE, ":3: column 'F': 'inf' is not a finite number"},
+      {"v, F\n0, 0\n1, 0x10\n", FB_EPARSE, ":3: column 'F': '0x10' is not a decimal number"},
+      {"v,F,F\n-1,-100,0\n0,0,0\n1,100,0\n", FB_EPARSE, ":1: column 'F' appears twice"},
       {"v, F\n0, 0\n1\n", FB_EPARSE, ":3: expected 2 fields as in the header, found 1"},
       {"v, F\n0, 0\n# c\n0.5, 1\n0.5, 2\n", FB_EPARSE,
        ":5: column 'v': 0.5 does not exceed the previous row's 0.5"},
@@ -475,6 +477,29 @@ static void test_csv_errors(void)
       fprintf(stderr, "  csv case %zu: rc %s, message: %s\n", i, fb_status_name(rc), err.msg);
     remove(tmp_path(name));
   }
+}
+
+/* Bytes that are no text: a NUL inside a line used to end it there, so
+ * the rest of the table was silently dropped; a UTF-8 byte-order mark
+ * (spreadsheets write one) is skipped. */
+static void test_csv_bytes(void)
+{
+  static const char nul[] = "v,F\n-1.0,-980\n-0.5,-580\n0,0\0\n0.5,300\n1.0,500\n";
+  FILE *fp = fopen(tmp_path("nul.csv"), "wb");
+  CHECK(fp && fwrite(nul, 1, sizeof nul - 1, fp) == sizeof nul - 1 && fclose(fp) == 0);
+  fb_err err;
+  fb_table_law *law = NULL;
+  CHECK(fb_table_law_read_csv(tmp_path("nul.csv"), "v", "F", &law, &err) == FB_EPARSE);
+  CHECK(law == NULL &&
+        strstr(err.msg, ":4: binary data (byte 0x00 in column 4): not a CSV text "
+                        "file (expected UTF-8 text)"));
+  remove(tmp_path("nul.csv"));
+  CHECK(write_file("bom.csv", "\xEF\xBB\xBFv,F\n-1,-2\n0,0\n1,2\n"));
+  CHECK(fb_table_law_read_csv(tmp_path("bom.csv"), "v", "F", &law, &err) == FB_OK);
+  const double *v = NULL, *f = NULL;
+  CHECK(law && fb_table_law_knots(law, &v, &f) == 3 && v[0] == -1 && f[2] == 2);
+  fb_table_law_free(&law);
+  remove(tmp_path("bom.csv"));
 }
 
 /* ---- Model files. */
@@ -788,6 +813,7 @@ int main(void)
   if (mkdtemp(tmp_dir)) {
     test_csv_read();
     test_csv_errors();
+    test_csv_bytes();
     test_model_errors();
     rmdir(tmp_dir);
   } else {

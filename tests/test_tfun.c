@@ -167,15 +167,21 @@ static void test_table_errors(void)
 }
 
 /* Writes content to a fresh file in /tmp; path receives its name. */
-static void write_temp(char path[64], const char *content)
+/* Writes len bytes of content (NUL bytes included) to a new temporary file. */
+static void write_temp_n(char path[64], const char *content, size_t len)
 {
   strcpy(path, "/tmp/fb_test_tfun_XXXXXX");
   int fd = mkstemp(path);
   CHECK(fd >= 0);
   FILE *fp = fdopen(fd, "w");
   CHECK(fp != NULL);
-  fputs(content, fp);
+  CHECK(fwrite(content, 1, len, fp) == len);
   fclose(fp);
+}
+
+static void write_temp(char path[64], const char *content)
+{
+  write_temp_n(path, content, strlen(content));
 }
 
 static void test_csv(void)
@@ -243,8 +249,10 @@ static void test_csv_errors(void)
                    "column 'v': 'abc' is not a number");
   expect_csv_error("t,v\n0,1\n1,2.5.1\n", "t", "v", FB_EPARSE, 3, "'2.5.1' is not a number");
   expect_csv_error("t,v\n0,1\n,2\n", "t", "v", FB_EPARSE, 3, "column 't': '' is not a number");
-  expect_csv_error("t,v\n0,1\n1,inf\n", "t", "v", FB_EPARSE, 3, "'inf' is not finite");
-  expect_csv_error("t,v\n0,1\n1,1e999\n", "t", "v", FB_EPARSE, 3, "'1e999' is not finite");
+  expect_csv_error("t,v\n0,1\n1,inf\n", "t", "v", FB_EPARSE, 3,
+                   "column 'v': 'inf' is not a finite number");
+  expect_csv_error("t,v\n0,1\n1,1e999\n", "t", "v", FB_EPARSE, 3,
+                   "column 'v': '1e999' is not a finite number");
   expect_csv_error("t,v\n0,1\n1,2\n1,3\n", "t", "v", FB_EPARSE, 4,
                    "time 1 is not greater than the previous time 1");
   expect_csv_error("t,v\n0,1\n2,2\n1,3\n", "t", "v", FB_EPARSE, 4, "strictly increasing");
@@ -264,6 +272,114 @@ static void test_csv_errors(void)
   CHECK(fb_tfun_new_table_csv("/tmp", "t", "v", &f, &err) == FB_EIO); /* a directory */
   CHECK(strstr(err.msg, "/tmp:") == err.msg);
   CHECK(f == NULL);
+}
+
+/* Loads len bytes of content as a table of columns t, v and expects
+ * FB_EPARSE with exactly the message "path:line: want". */
+static void expect_csv_message(const char *content, size_t len, const char *time_col,
+                               const char *value_col, int line, const char *want)
+{
+  char path[64], msg[FB_ERR_MSG_MAX];
+  write_temp_n(path, content, len);
+  fb_tfun *f = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_tfun_new_table_csv(path, time_col, value_col, &f, &err) == FB_EPARSE);
+  CHECK(f == NULL);
+  snprintf(msg, sizeof msg, "%s:%d: %s", path, line, want);
+  const int ok = strcmp(err.msg, msg) == 0;
+  CHECK(ok);
+  if (!ok)
+    fprintf(stderr, "  got    \"%s\"\n  wanted \"%s\"\n", err.msg, msg);
+  fb_tfun_free(&f);
+  unlink(path);
+}
+
+#define EXPECT_CSV(text, time_col, value_col, line, want)                                      \
+  expect_csv_message(text, sizeof text - 1, time_col, value_col, line, want)
+
+/* Files that are not text are refused at the first bad byte, also in a
+ * comment (a NUL would otherwise cut its line short and drop the rest,
+ * as the damper table below once lost the row "0,0" after its NUL). */
+static void test_csv_binary(void)
+{
+  EXPECT_CSV("v,F\n-1.0,-980\n-0.5,-580\n0,0\0\n0.5,300\n1.0,500\n", "v", "F", 4,
+             "binary data (byte 0x00 in column 4): not a CSV text file (expected UTF-8 text)");
+  EXPECT_CSV("t,v\n0,1\n\0\n1,2\n", "t", "v", 3,
+             "binary data (byte 0x00 in column 1): not a CSV text file (expected UTF-8 text)");
+  EXPECT_CSV("# made by \0\nt,v\n0,1\n1,2\n", "t", "v", 1,
+             "binary data (byte 0x00 in column 11): not a CSV text file (expected UTF-8 text)");
+  /* A PNG's signature: refused before its header could be quoted. */
+  EXPECT_CSV("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", "v", "F", 1,
+             "binary data (byte 0x89 in column 1): not a CSV text file (expected UTF-8 text)");
+  /* Columns count characters: the stray continuation byte follows "é". */
+  EXPECT_CSV("t,v\n# \xc3\xa9\x80\n0,1\n", "t", "v", 2,
+             "binary data (byte 0x80 in column 4): not a CSV text file (expected UTF-8 text)");
+  EXPECT_CSV("t,v\n0,1\n1,\xff\n", "t", "v", 3,
+             "binary data (byte 0xff in column 3): not a CSV text file (expected UTF-8 text)");
+  EXPECT_CSV("t,v\n0,1\x01\n", "t", "v", 2,
+             "binary data (byte 0x01 in column 4): not a CSV text file (expected UTF-8 text)");
+  EXPECT_CSV("t,v\n0\r,1\n", "t", "v", 2,
+             "binary data (byte 0x0d in column 2): not a CSV text file (expected UTF-8 text)");
+  /* An overlong "/" (C0 AF) and a surrogate (ED A0 80) are not UTF-8. */
+  EXPECT_CSV("t,v\n0,1 # \xc0\xaf\n", "t", "v", 2,
+             "binary data (byte 0xc0 in column 7): not a CSV text file (expected UTF-8 text)");
+  EXPECT_CSV("t,v\n#\xed\xa0\x80\n", "t", "v", 2,
+             "binary data (byte 0xed in column 2): not a CSV text file (expected UTF-8 text)");
+}
+
+/* Numbers are plain decimals: strtod's other spellings are refused. */
+static void test_csv_numbers(void)
+{
+  EXPECT_CSV("t,v\n0,1\n1,0x10\n", "t", "v", 3, "column 'v': '0x10' is not a decimal number");
+  EXPECT_CSV("t,v\n0x1p3,1\n", "t", "v", 2, "column 't': '0x1p3' is not a decimal number");
+  EXPECT_CSV("t,v\n0,1\n1,infinity\n", "t", "v", 3,
+             "column 'v': 'infinity' is not a finite number");
+  EXPECT_CSV("t,v\n0,-INF\n", "t", "v", 2, "column 'v': '-INF' is not a finite number");
+  EXPECT_CSV("t,v\n0,nan\n", "t", "v", 2, "column 'v': 'nan' is not a finite number");
+  EXPECT_CSV("t,v\n0,1e\n", "t", "v", 2, "column 'v': '1e' is not a number");
+  EXPECT_CSV("t,v\n0,.\n", "t", "v", 2, "column 'v': '.' is not a number");
+  EXPECT_CSV("t,v\n0,1 2\n", "t", "v", 2, "column 'v': '1 2' is not a number");
+
+  /* Every decimal form is still read, to the value strtod gives. */
+  char path[64];
+  fb_tfun *f = NULL;
+  fb_err err;
+  write_temp(path, "t,v\n-1,+2\n.5,-.25\n1.,1E+2\n2.5e+1,-7.5e-3\n");
+  CHECK(fb_tfun_new_table_csv(path, "t", "v", &f, &err) == FB_OK);
+  CHECK(f && fb_tfun_eval(f, -1.0) == 2.0 && fb_tfun_eval(f, 0.5) == -0.25);
+  CHECK(f && fb_tfun_eval(f, 1.0) == 100.0 && fb_tfun_eval(f, 25.0) == -7.5e-3);
+  fb_tfun_free(&f);
+  unlink(path);
+}
+
+/* A byte-order mark (as Excel writes it) is skipped; one repeated
+ * column the table reads is refused, as in road profiles. */
+static void test_csv_header(void)
+{
+  char path[64];
+  write_temp(path, "\xef\xbb\xbfv,F\r\n-1.0,-980\r\n0,0\r\n1.0,500\r\n");
+  fb_tfun *f = NULL;
+  fb_err err;
+  CHECK(fb_tfun_new_table_csv(path, "v", "F", &f, &err) == FB_OK);
+  CHECK(f && fb_tfun_eval(f, -1.0) == -980.0 && fb_tfun_eval(f, 0.5) == 250.0);
+  fb_tfun_free(&f);
+  unlink(path);
+  /* Only at the very start: elsewhere U+FEFF is text like any other. */
+  EXPECT_CSV("v,F\n\xef\xbb\xbf"
+             "0,1\n",
+             "v", "F", 2,
+             "column 'v': '\xef\xbb\xbf"
+             "0' is not a number");
+
+  EXPECT_CSV("v,F,F\n-1,-980,1\n0,0,1\n1,500,1\n", "v", "F", 1, "column 'F' appears twice");
+  EXPECT_CSV("# table\nv, F, v\n0,0,0\n", "v", "F", 2, "column 'v' appears twice");
+  /* Repeats among the columns the table does not read do not matter. */
+  write_temp(path, "t,note,v,note\n0,a,1,b\n1,c,2,d\n");
+  CHECK(fb_tfun_new_table_csv(path, "t", "v", &f, &err) == FB_OK);
+  CHECK(f && fb_tfun_eval(f, 1.0) == 2.0);
+  fb_tfun_free(&f);
+  unlink(path);
 }
 
 static void test_expr_tfun(void)
@@ -407,6 +523,9 @@ int main(void)
   test_table_errors();
   test_csv();
   test_csv_errors();
+  test_csv_binary();
+  test_csv_numbers();
+  test_csv_header();
   test_expr_tfun();
   test_callback();
   test_clone();

@@ -26,6 +26,7 @@
 
 #include "flexbond/bg.h"
 
+#include "core/textfile.h"
 #include "core/util.h"
 
 struct fb_table_law {
@@ -248,39 +249,15 @@ int fb_table_law_check_passive(const fb_table_law *law, fb_err *err)
 
 /* ---- CSV files. */
 
-/* A file read whole, walked line by line; line_no counts from 1. */
-typedef struct csv_text {
-  const char *path;
-  char *next; /* start of the next line, NULL at the end */
-  size_t line_no;
-} csv_text;
-
 static char *trim(char *s)
 {
   while (*s == ' ' || *s == '\t')
     ++s;
   char *end = s + strlen(s);
-  while (end > s && (end[-1] == ' ' || end[-1] == '\t' || end[-1] == '\r'))
+  while (end > s && (end[-1] == ' ' || end[-1] == '\t'))
     --end;
   *end = '\0';
   return s;
-}
-
-/* Next line that is neither blank nor a '#' comment, trimmed; NULL at
- * the end of the text. */
-static char *next_line(csv_text *t)
-{
-  while (t->next && *t->next) {
-    char *line = t->next, *newline = strchr(line, '\n');
-    t->next = newline ? newline + 1 : NULL;
-    if (newline)
-      *newline = '\0';
-    ++t->line_no;
-    line = trim(line);
-    if (*line && *line != '#')
-      return line;
-  }
-  return NULL;
 }
 
 /* Cuts the next comma-separated field from *cursor, trimmed; *cursor
@@ -301,9 +278,13 @@ typedef struct csv_layout {
   const char *name[2];
 } csv_layout;
 
-static int read_header(csv_text *t, csv_layout *lay, fb_err *err)
+/* Each wanted column must appear once: with two, which to read is unclear. */
+static int read_header(fb_text_reader *t, csv_layout *lay, fb_err *err)
 {
-  char *line = next_line(t);
+  char *line = NULL;
+  int rc = fb_text_next_data_line(t, '#', &line);
+  if (rc)
+    return rc;
   if (!line)
     return fb_err_set(err, FB_EPARSE, "%s:%zu: no header line (file is empty or all comments)",
                       t->path, t->line_no ? t->line_no : 1);
@@ -313,9 +294,14 @@ static int read_header(csv_text *t, csv_layout *lay, fb_err *err)
   lay->nfields = 0;
   for (char *cursor = line; cursor; ++lay->nfields) {
     const char *field = next_field(&cursor);
-    for (int j = 0; j < 2; ++j)
-      if (lay->col[j] == SIZE_MAX && !strcmp(field, lay->name[j]))
-        lay->col[j] = lay->nfields;
+    for (int j = 0; j < 2; ++j) {
+      if (strcmp(field, lay->name[j]))
+        continue;
+      if (lay->col[j] != SIZE_MAX && lay->col[j] != lay->nfields)
+        return fb_err_set(err, FB_EPARSE, "%s:%zu: column '%s' appears twice", t->path,
+                          t->line_no, field);
+      lay->col[j] = lay->nfields;
+    }
   }
   for (int j = 0; j < 2; ++j)
     if (lay->col[j] == SIZE_MAX)
@@ -324,8 +310,9 @@ static int read_header(csv_text *t, csv_layout *lay, fb_err *err)
   return FB_OK;
 }
 
-/* The wanted fields of a data line as finite numbers v[0] (x), v[1] (y). */
-static int read_row(const csv_text *t, char *line, const csv_layout *lay, double v[2],
+/* The wanted fields of a data line as finite decimal numbers v[0] (x),
+ * v[1] (y). */
+static int read_row(const fb_text_reader *t, char *line, const csv_layout *lay, double v[2],
                     fb_err *err)
 {
   const char *text[2] = {NULL, NULL};
@@ -339,13 +326,9 @@ static int read_row(const csv_text *t, char *line, const csv_layout *lay, double
   if (count != lay->nfields)
     return fb_err_set(err, FB_EPARSE, "%s:%zu: expected %zu fields as in the header, found %zu",
                       t->path, t->line_no, lay->nfields, count);
-  for (int j = 0; j < 2; ++j) {
-    char *end = NULL;
-    v[j] = strtod(text[j], &end);
-    if (end == text[j] || *end || !isfinite(v[j]))
-      return fb_err_set(err, FB_EPARSE, "%s:%zu: column '%s': '%s' is not a finite number",
-                        t->path, t->line_no, lay->name[j], text[j]);
-  }
+  for (int j = 0; j < 2; ++j)
+    if (fb_parse_decimal(text[j], &v[j], err))
+      return fb_err_prefix(err, "%s:%zu: column '%s': ", t->path, t->line_no, lay->name[j]);
   return FB_OK;
 }
 
@@ -367,11 +350,11 @@ static int knots_push(knots *k, const double v[2], fb_err *err)
 }
 
 /* All data rows after the header, x strictly increasing, at least 2. */
-static int read_rows(csv_text *t, const csv_layout *lay, knots *k, fb_err *err)
+static int read_rows(fb_text_reader *t, const csv_layout *lay, knots *k, fb_err *err)
 {
   int rc = FB_OK;
-  char *line;
-  while (!rc && (line = next_line(t))) {
+  char *line = NULL;
+  while (!rc && !(rc = fb_text_next_data_line(t, '#', &line)) && line) {
     double v[2];
     rc = read_row(t, line, lay, v, err);
     if (!rc && k->n > 0 && !(v[0] > k->x[k->n - 1]))
@@ -394,12 +377,10 @@ int fb_table_law_read_csv(const char *path, const char *x_col, const char *y_col
   if (!path || !x_col || !y_col || !out)
     return fb_err_set(err, FB_EINVAL, "fb_table_law_read_csv: NULL argument");
   *out = NULL;
-  char *text = NULL;
-  size_t len = 0;
-  int rc = fb_read_file(path, &text, &len, err);
+  fb_text_reader t;
+  int rc = fb_text_open(&t, path, "CSV", err);
   if (rc)
     return rc;
-  csv_text t = {path, text, 0};
   csv_layout lay = {0, {SIZE_MAX, SIZE_MAX}, {x_col, y_col}};
   knots k = {NULL, NULL, 0, 0, 0};
   rc = read_header(&t, &lay, err);
@@ -409,7 +390,7 @@ int fb_table_law_read_csv(const char *path, const char *x_col, const char *y_col
     rc = fb_table_law_new(k.n, k.x, k.y, out, err);
   free(k.x);
   free(k.y);
-  free(text);
+  fb_text_close(&t);
   return rc;
 }
 

@@ -5,7 +5,9 @@
  * nothing more); symmetric
  * files hold the lower triangle only (the spec's rule, enforced here so an
  * entry and its mirror are never summed twice). Comment lines (starting
- * with %) and blank lines may appear anywhere after the header. */
+ * with %) and blank lines may appear anywhere after the header. Values are
+ * plain decimals (fb_parse_decimal): strtod's hexadecimal, "inf" and "nan"
+ * are refused. */
 #include <assert.h>
 #include <ctype.h>
 #include <errno.h>
@@ -18,7 +20,7 @@
 
 #include "flexbond/mat.h"
 
-#include "core/util.h"
+#include "core/textfile.h"
 
 typedef struct mtx_header {
   int coordinate; /* coordinate (sparse) or array (dense) format */
@@ -32,14 +34,8 @@ typedef struct mtx_size {
   size_t entries; /* data lines the size line announces */
 } mtx_size;
 
-typedef struct mtx_reader {
-  FILE *fp;
-  const char *path;
-  char *line;
-  size_t cap;
-  size_t lineno; /* 1-based number of the line in `line` */
-  fb_err *err;
-} mtx_reader;
+/* The file (path, err) and its current line (line, line_no). */
+typedef fb_text_reader mtx_reader;
 
 /* Entries read so far; rows/cols stay NULL for the array format. */
 typedef struct mtx_entries {
@@ -65,45 +61,13 @@ static int parse_error(const mtx_reader *r, const char *fmt, ...)
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
   /* An empty file has no line 0: the missing header belongs on line 1. */
-  const size_t line = r->lineno ? r->lineno : 1;
+  const size_t line = r->line_no ? r->line_no : 1;
   return fb_err_set(r->err, FB_EPARSE, "%s:%zu: %s", r->path, line, msg);
 }
 #if defined(__clang_analyzer__)
 /* For the static analyzer only, which does not follow calls to variadic functions. */
 #define parse_error(r, ...) (parse_error((r), __VA_ARGS__), FB_EPARSE)
 #endif
-
-/* Reads the next line without its end-of-line; *got is 0 at end of file. */
-static int read_line(mtx_reader *r, int *got)
-{
-  errno = 0;
-  const ssize_t len = getline(&r->line, &r->cap, r->fp);
-  if (len < 0) {
-    *got = 0;
-    if (ferror(r->fp))
-      return fb_err_set(r->err, FB_EIO, "%s:%zu: read error: %s", r->path, r->lineno + 1,
-                        strerror(errno ? errno : EIO));
-    return errno == ENOMEM ? fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path)
-                           : FB_OK;
-  }
-  ++r->lineno;
-  r->line[strcspn(r->line, "\r\n")] = '\0';
-  *got = 1;
-  return FB_OK;
-}
-
-/* Like read_line, skipping comment and blank lines. */
-static int next_data_line(mtx_reader *r, int *got)
-{
-  for (;;) {
-    const int rc = read_line(r, got);
-    if (rc || !*got)
-      return rc;
-    const char *p = r->line + strspn(r->line, " \t");
-    if (*p != '\0' && *p != '%')
-      return FB_OK;
-  }
-}
 
 /* Next whitespace-separated token of *cursor (NUL-terminated in place),
  * or NULL when none is left. */
@@ -137,18 +101,17 @@ static int parse_value(const mtx_reader *r, const mtx_header *h, const char *tok
 {
   if (!tok)
     return parse_error(r, "missing value");
-  char *end;
-  errno = 0;
   if (h->integer) {
+    char *end;
+    errno = 0;
     const long long v = strtoll(tok, &end, 10);
     if (errno || end == tok || *end != '\0')
       return parse_error(r, "invalid integer value '%s'", tok);
     *out = (double)v;
     return FB_OK;
   }
-  *out = strtod(tok, &end);
-  if (end == tok || *end != '\0')
-    return parse_error(r, "invalid real value '%s'", tok);
+  if (fb_parse_decimal(tok, out, r->err))
+    return fb_err_prefix(r->err, "%s:%zu: value ", r->path, r->line_no);
   return FB_OK;
 }
 
@@ -172,13 +135,12 @@ static int read_header(mtx_reader *r, mtx_header *h)
   static const char *const formats[] = {"array", "coordinate"};
   static const char *const fields[] = {"real", "integer"};
   static const char *const symmetries[] = {"general", "symmetric"};
-  int got;
-  int rc = read_line(r, &got);
+  char *cursor = NULL;
+  int rc = fb_text_next_line(r, &cursor);
   if (rc)
     return rc;
-  if (!got)
+  if (!cursor)
     return parse_error(r, "empty file, expected a '%%%%MatrixMarket matrix ...' header");
-  char *cursor = r->line;
   const char *banner = next_token(&cursor);
   const char *object = next_token(&cursor);
   if (!banner || strcasecmp(banner, "%%MatrixMarket") != 0 || !object ||
@@ -213,13 +175,12 @@ static int array_entries(const mtx_reader *r, const mtx_header *h, mtx_size *s)
 
 static int read_size(mtx_reader *r, const mtx_header *h, mtx_size *s)
 {
-  int got;
-  int rc = next_data_line(r, &got);
+  char *cursor = NULL;
+  int rc = fb_text_next_data_line(r, '%', &cursor);
   if (rc)
     return rc;
-  if (!got)
+  if (!cursor)
     return parse_error(r, "missing size line");
-  char *cursor = r->line;
   const char *rows = next_token(&cursor);
   const char *cols = next_token(&cursor);
   const char *entries = h->coordinate ? next_token(&cursor) : NULL;
@@ -279,10 +240,9 @@ static int parse_index(const mtx_reader *r, const char *what, const char *tok, s
 }
 
 /* One "i j value" line; a symmetric off-diagonal entry is also mirrored. */
-static int read_coordinate_entry(mtx_reader *r, const mtx_header *h, const mtx_size *s,
-                                 mtx_entries *e)
+static int read_coordinate_entry(const mtx_reader *r, char *cursor, const mtx_header *h,
+                                 const mtx_size *s, mtx_entries *e)
 {
-  char *cursor = r->line;
   size_t i = 0, j = 0;
   double v = 0.0;
   int rc = parse_index(r, "row", next_token(&cursor), s->nrows, &i);
@@ -302,9 +262,9 @@ static int read_coordinate_entry(mtx_reader *r, const mtx_header *h, const mtx_s
   return rc;
 }
 
-static int read_array_entry(mtx_reader *r, const mtx_header *h, mtx_entries *e)
+static int read_array_entry(const mtx_reader *r, char *cursor, const mtx_header *h,
+                            mtx_entries *e)
 {
-  char *cursor = r->line;
   double v = 0.0;
   int rc = parse_value(r, h, next_token(&cursor), &v);
   if (!rc)
@@ -316,15 +276,16 @@ static int read_entries(mtx_reader *r, const mtx_header *h, const mtx_size *s, m
 {
   size_t nread = 0;
   for (;;) {
-    int got;
-    int rc = next_data_line(r, &got);
+    char *line = NULL;
+    int rc = fb_text_next_data_line(r, '%', &line);
     if (rc)
       return rc;
-    if (!got)
+    if (!line)
       break;
     if (nread == s->entries)
       return parse_error(r, "more entries than the %zu declared", s->entries);
-    rc = h->coordinate ? read_coordinate_entry(r, h, s, e) : read_array_entry(r, h, e);
+    rc = h->coordinate ? read_coordinate_entry(r, line, h, s, e)
+                       : read_array_entry(r, line, h, e);
     if (rc)
       return rc;
     ++nread;
@@ -386,17 +347,15 @@ int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err)
   *out = NULL;
   if (!path)
     return fb_err_set(err, FB_EINVAL, "Matrix Market path is NULL");
-  FILE *fp = fb_open_input(path, "r", err);
-  if (!fp)
+  mtx_reader r;
+  if (fb_text_open(&r, path, "Matrix Market", err))
     return FB_EIO;
-  mtx_reader r = {fp, path, NULL, 0, 0, err};
   mtx_entries e = {NULL, NULL, NULL, 0, 0};
   const int rc = read_mtx(&r, &e, out);
-  free(r.line);
+  fb_text_close(&r);
   free(e.rows);
   free(e.cols);
   free(e.vals);
-  fclose(fp);
   return rc;
 }
 

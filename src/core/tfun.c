@@ -4,7 +4,6 @@
  * of a union. Breakpoints are reported so the integrator can stop at
  * discontinuities of u or u' instead of stepping across them. */
 #include <assert.h>
-#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -13,7 +12,7 @@
 
 #include "flexbond/expr.h"
 
-#include "core/util.h"
+#include "core/textfile.h"
 
 typedef enum tfun_kind {
   TFUN_CONST,
@@ -375,47 +374,15 @@ size_t fb_tfun_breakpoints(const fb_tfun *f, double *bp, size_t max)
 
 /* ---- CSV tables ---- */
 
-typedef struct csv_reader {
-  const char *path;
-  FILE *fp;
-  char *line;
-  size_t line_cap;
-  size_t line_no;
-  fb_err *err;
-} csv_reader;
-
 static char *trim(char *s)
 {
   while (*s == ' ' || *s == '\t')
     ++s;
   char *end = s + strlen(s);
-  while (end > s && (end[-1] == ' ' || end[-1] == '\t' || end[-1] == '\r' || end[-1] == '\n'))
+  while (end > s && (end[-1] == ' ' || end[-1] == '\t'))
     --end;
   *end = '\0';
   return s;
-}
-
-/* Reads the next line that is neither blank nor a '#' comment into r->line
- * (trimmed, returned through *text). Returns FB_OK with *text NULL at the end
- * of the file, FB_EIO on a read error. */
-static int csv_next_line(csv_reader *r, char **text)
-{
-  *text = NULL;
-  for (;;) {
-    errno = 0;
-    if (getline(&r->line, &r->line_cap, r->fp) < 0) {
-      if (ferror(r->fp))
-        return fb_err_set(r->err, FB_EIO, "%s:%zu: read error: %s", r->path, r->line_no + 1,
-                          strerror(errno));
-      return FB_OK;
-    }
-    ++r->line_no;
-    char *s = trim(r->line);
-    if (*s != '\0' && *s != '#') {
-      *text = s;
-      return FB_OK;
-    }
-  }
 }
 
 /* Cuts the next comma-separated field from *cursor, trimmed; *cursor becomes
@@ -449,11 +416,13 @@ static void columns_append(csv_columns *cols, const char *name)
     memcpy(cols->list + sizeof cols->list - 4, "...", 4);
 }
 
-static int csv_read_header(csv_reader *r, const char *time_col, const char *value_col,
+/* The header names the columns; time_col and value_col must each appear
+ * exactly once (a second one would leave it unclear which to read). */
+static int csv_read_header(fb_text_reader *r, const char *time_col, const char *value_col,
                            csv_columns *cols)
 {
   char *text;
-  int status = csv_next_line(r, &text);
+  int status = fb_text_next_data_line(r, '#', &text);
   if (status != FB_OK)
     return status;
   if (!text)
@@ -465,9 +434,14 @@ static int csv_read_header(csv_reader *r, const char *time_col, const char *valu
   cols->list[0] = '\0';
   for (char *cursor = text; cursor; ++cols->count) {
     const char *name = next_field(&cursor);
-    if (cols->time_index == SIZE_MAX && strcmp(name, time_col) == 0)
+    const int is_time = strcmp(name, time_col) == 0, is_value = strcmp(name, value_col) == 0;
+    if ((is_time && cols->time_index != SIZE_MAX) ||
+        (is_value && cols->value_index != SIZE_MAX))
+      return fb_err_set(r->err, FB_EPARSE, "%s:%zu: column '%s' appears twice", r->path,
+                        r->line_no, name);
+    if (is_time)
       cols->time_index = cols->count;
-    if (cols->value_index == SIZE_MAX && strcmp(name, value_col) == 0)
+    if (is_value)
       cols->value_index = cols->count;
     columns_append(cols, name);
   }
@@ -480,22 +454,17 @@ static int csv_read_header(csv_reader *r, const char *time_col, const char *valu
   return FB_OK;
 }
 
-/* Parses field text of column name as a finite number. */
-static int csv_number(const csv_reader *r, const char *name, const char *text, double *value)
+/* Parses field text of column name as a finite decimal number. */
+static int csv_number(const fb_text_reader *r, const char *name, const char *text,
+                      double *value)
 {
-  char *end = NULL;
-  *value = strtod(text, &end);
-  if (end == text || *end != '\0')
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: column '%s': '%s' is not a number", r->path,
-                      r->line_no, name, text);
-  if (!isfinite(*value))
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: column '%s': value '%s' is not finite",
-                      r->path, r->line_no, name, text);
+  if (fb_parse_decimal(text, value, r->err))
+    return fb_err_prefix(r->err, "%s:%zu: column '%s': ", r->path, r->line_no, name);
   return FB_OK;
 }
 
 /* Splits a data line and extracts its time and value. */
-static int csv_parse_row(const csv_reader *r, char *text, const csv_columns *cols,
+static int csv_parse_row(const fb_text_reader *r, char *text, const csv_columns *cols,
                          const char *time_col, const char *value_col, double *time,
                          double *value)
 {
@@ -542,14 +511,14 @@ static int csv_data_push(csv_data *d, double time, double value, fb_err *err)
 }
 
 /* Reads the header and all data rows of an open file into d. */
-static int csv_read(csv_reader *r, const char *time_col, const char *value_col, csv_data *d)
+static int csv_read(fb_text_reader *r, const char *time_col, const char *value_col, csv_data *d)
 {
   csv_columns cols;
   int status = csv_read_header(r, time_col, value_col, &cols);
   for (;;) {
     char *text = NULL;
     if (status == FB_OK)
-      status = csv_next_line(r, &text);
+      status = fb_text_next_data_line(r, '#', &text);
     if (status != FB_OK || !text)
       break;
     double time, value;
@@ -570,23 +539,22 @@ static int csv_read(csv_reader *r, const char *time_col, const char *value_col, 
 
 /* Format: a header line of comma-separated column names, then rows of
  * numbers; spaces around fields, blank lines and '#' comment lines are
- * ignored. Quoted fields are not supported. */
+ * ignored, and so is a byte-order mark at the start. Quoted fields are not
+ * supported; numbers are plain decimals (fb_parse_decimal). */
 int fb_tfun_new_table_csv(const char *path, const char *time_col, const char *value_col,
                           fb_tfun **out, fb_err *err)
 {
   if (!path || !time_col || !value_col || !out)
     return fb_err_set(err, FB_EINVAL, "fb_tfun_new_table_csv: NULL argument");
   *out = NULL;
-  csv_reader r = {.path = path, .err = err};
-  r.fp = fb_open_input(path, "r", err);
-  if (!r.fp)
+  fb_text_reader r;
+  if (fb_text_open(&r, path, "CSV", err))
     return FB_EIO;
   csv_data d = {0};
   int status = csv_read(&r, time_col, value_col, &d);
   if (status == FB_OK)
     status = fb_tfun_new_table(d.n, d.times, d.values, out, err);
-  free(r.line);
-  fclose(r.fp);
+  fb_text_close(&r);
   free(d.times);
   free(d.values);
   return status;

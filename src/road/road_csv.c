@@ -1,14 +1,11 @@
 /* Measured road profiles read from CSV files (format: flexbond/road.h,
  * docs/roads.md), interpolated by PCHIP (pchip.c). */
-#include <errno.h>
-#include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "flexbond/road.h"
 
-#include "core/util.h"
+#include "core/textfile.h"
 #include "road/road_internal.h"
 
 /* Columns a profile file may have, in the order of the values a row
@@ -18,46 +15,23 @@ static const char *const COLUMN_NAMES[NCOLS] = {"s", "z", "z_left", "z_right"};
 static const char *const EXPECTED = "expected columns s, z or s, z_left, z_right";
 
 typedef struct profile_reader {
-  const char *path;
-  FILE *fp;
-  char *line;
-  size_t cap, line_no;
+  fb_text_reader text;  /* the file, its line number and error context */
   size_t ncols;         /* fields per line */
   int column[NCOLS];    /* field index of each column, -1 if absent */
   size_t n, capacity;   /* rows read, room */
   double *value[NCOLS]; /* value[c][row], for the columns present */
-  fb_err *err;
 } profile_reader;
 
+/* Spaces and tabs cut from both ends of a field, in place. */
 static char *trim(char *text)
 {
   while (*text == ' ' || *text == '\t')
     ++text;
   char *end = text + strlen(text);
-  while (end > text && strchr(" \t\r\n", end[-1]))
+  while (end > text && (end[-1] == ' ' || end[-1] == '\t'))
     --end;
   *end = '\0';
   return text;
-}
-
-/* Next line that is neither blank nor a '#' comment, trimmed, in *text;
- * NULL at the end of the file. FB_EIO on a read error. */
-static int next_line(profile_reader *r, char **text)
-{
-  *text = NULL;
-  for (;;) {
-    errno = 0;
-    if (getline(&r->line, &r->cap, r->fp) < 0)
-      return ferror(r->fp) ? fb_err_set(r->err, FB_EIO, "%s:%zu: read error: %s", r->path,
-                                        r->line_no + 1, strerror(errno))
-                           : FB_OK;
-    ++r->line_no;
-    char *s = trim(r->line);
-    if (*s != '\0' && *s != '#') {
-      *text = s;
-      return FB_OK;
-    }
-  }
 }
 
 /* Cuts the next comma-separated field off *cursor (NULL after the last). */
@@ -85,37 +59,37 @@ static int check_column_set(const profile_reader *r)
   const int single = col[COL_Z] >= 0, pair = col[COL_ZL] >= 0 && col[COL_ZR] >= 0;
   const int any_side = col[COL_ZL] >= 0 || col[COL_ZR] >= 0;
   if (col[COL_S] < 0)
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: no column 's' (%s)", r->path, r->line_no,
-                      EXPECTED);
+    return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: no column 's' (%s)", r->text.path,
+                      r->text.line_no, EXPECTED);
   if (single && any_side)
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: both 'z' and 'z_left'/'z_right' (%s)",
-                      r->path, r->line_no, EXPECTED);
+    return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: both 'z' and 'z_left'/'z_right' (%s)",
+                      r->text.path, r->text.line_no, EXPECTED);
   if (!single && !pair)
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: no height column%s (%s)", r->path, r->line_no,
-                      any_side ? " for each side" : "", EXPECTED);
+    return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: no height column%s (%s)", r->text.path,
+                      r->text.line_no, any_side ? " for each side" : "", EXPECTED);
   return FB_OK;
 }
 
 static int read_header(profile_reader *r)
 {
   char *text = NULL;
-  int rc = next_line(r, &text);
+  int rc = fb_text_next_data_line(&r->text, '#', &text);
   if (rc)
     return rc;
   if (!text)
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: no header line (%s)", r->path,
-                      r->line_no ? r->line_no : 1, EXPECTED);
+    return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: no header line (%s)", r->text.path,
+                      r->text.line_no ? r->text.line_no : 1, EXPECTED);
   for (int c = 0; c < NCOLS; ++c)
     r->column[c] = -1;
   for (char *cursor = text; cursor; ++r->ncols) {
     const char *name = next_field(&cursor);
     const int c = column_of(name);
     if (c < 0)
-      return fb_err_set(r->err, FB_EPARSE, "%s:%zu: unknown column '%s' (%s)", r->path,
-                        r->line_no, name, EXPECTED);
+      return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: unknown column '%s' (%s)",
+                        r->text.path, r->text.line_no, name, EXPECTED);
     if (r->column[c] >= 0)
-      return fb_err_set(r->err, FB_EPARSE, "%s:%zu: column '%s' appears twice", r->path,
-                        r->line_no, name);
+      return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: column '%s' appears twice",
+                        r->text.path, r->text.line_no, name);
     r->column[c] = (int)r->ncols;
   }
   return check_column_set(r);
@@ -132,7 +106,7 @@ static int grow(profile_reader *r)
       continue;
     double *v = realloc(r->value[c], capacity * sizeof *v);
     if (!v)
-      return fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path);
+      return fb_err_set(r->text.err, FB_ENOMEM, "out of memory reading %s", r->text.path);
     r->value[c] = v;
   }
   r->capacity = capacity;
@@ -141,14 +115,9 @@ static int grow(profile_reader *r)
 
 static int parse_number(const profile_reader *r, int c, const char *text, double *v)
 {
-  char *end = NULL;
-  *v = strtod(text, &end);
-  if (end == text || *end != '\0')
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: column '%s': '%s' is not a number", r->path,
-                      r->line_no, COLUMN_NAMES[c], text);
-  if (!isfinite(*v))
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: column '%s': '%s' is not finite", r->path,
-                      r->line_no, COLUMN_NAMES[c], text);
+  if (fb_parse_decimal(text, v, r->text.err))
+    return fb_err_prefix(r->text.err, "%s:%zu: column '%s': ", r->text.path, r->text.line_no,
+                         COLUMN_NAMES[c]);
   return FB_OK;
 }
 
@@ -164,15 +133,15 @@ static int read_row(profile_reader *r, char *text)
         rc = parse_number(r, c, field, &r->value[c][r->n]);
   }
   if (!rc && count != r->ncols)
-    rc =
-        fb_err_set(r->err, FB_EPARSE, "%s:%zu: expected %zu fields as in the header, found %zu",
-                   r->path, r->line_no, r->ncols, count);
+    rc = fb_err_set(r->text.err, FB_EPARSE,
+                    "%s:%zu: expected %zu fields as in the header, found %zu", r->text.path,
+                    r->text.line_no, r->ncols, count);
   const double *s = r->value[COL_S];
   if (!rc && r->n > 0 && !(s[r->n] > s[r->n - 1]))
-    rc = fb_err_set(r->err, FB_EPARSE,
+    rc = fb_err_set(r->text.err, FB_EPARSE,
                     "%s:%zu: s = %g is not greater than the previous s = %g (s must be "
                     "strictly increasing)",
-                    r->path, r->line_no, s[r->n], s[r->n - 1]);
+                    r->text.path, r->text.line_no, s[r->n], s[r->n - 1]);
   return rc;
 }
 
@@ -180,7 +149,7 @@ static int read_rows(profile_reader *r)
 {
   for (;;) {
     char *text = NULL;
-    int rc = next_line(r, &text);
+    int rc = fb_text_next_data_line(&r->text, '#', &text);
     if (!rc && !text)
       break;
     if (!rc)
@@ -192,10 +161,10 @@ static int read_rows(profile_reader *r)
     ++r->n;
   }
   if (r->n < 2)
-    return fb_err_set(r->err, FB_EPARSE,
+    return fb_err_set(r->text.err, FB_EPARSE,
                       "%s:%zu: %zu data row%s, need at least 2 (a row per position: s, then "
                       "the heights, in m)",
-                      r->path, r->line_no, r->n, r->n == 1 ? "" : "s");
+                      r->text.path, r->text.line_no, r->n, r->n == 1 ? "" : "s");
   return FB_OK;
 }
 
@@ -225,17 +194,15 @@ int fb_road_new_csv(const char *path, fb_road **out, fb_err *err)
   if (!path || !out)
     return fb_err_set(err, FB_EINVAL, "road CSV: NULL argument");
   *out = NULL;
-  profile_reader r = {.path = path, .err = err};
-  r.fp = fb_open_input(path, "r", err);
-  if (!r.fp)
+  profile_reader r = {.ncols = 0};
+  if (fb_text_open(&r.text, path, "CSV", err))
     return FB_EIO;
   int rc = read_header(&r);
   if (!rc)
     rc = read_rows(&r);
   if (!rc)
     rc = build_road(&r, out, err);
-  fclose(r.fp);
-  free(r.line);
+  fb_text_close(&r.text);
   for (int c = 0; c < NCOLS; ++c)
     free(r.value[c]);
   return rc;

@@ -1,0 +1,176 @@
+/* Text data files read line by line (see core/textfile.h). */
+#include "core/textfile.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/error.h"
+
+#include "core/util.h"
+
+int fb_text_open(fb_text_reader *r, const char *path, const char *format, fb_err *err)
+{
+  *r = (fb_text_reader){.path = path, .format = format, .err = err};
+  r->fp = fb_open_input(path, "r", err);
+  return r->fp ? FB_OK : FB_EIO;
+}
+
+void fb_text_close(fb_text_reader *r)
+{
+  if (r->fp)
+    fclose(r->fp);
+  free(r->line);
+  r->fp = NULL;
+  r->line = NULL;
+  r->cap = 0;
+}
+
+size_t fb_utf8_length(const unsigned char *s, size_t n)
+{
+  size_t len = 0;
+  if (s[0] < 0x80)
+    len = 1;
+  else if (s[0] >= 0xC2 && s[0] < 0xE0)
+    len = 2;
+  else if (s[0] >= 0xE0 && s[0] < 0xF0)
+    len = 3;
+  else if (s[0] >= 0xF0 && s[0] < 0xF5)
+    len = 4;
+  if (len == 0 || len > n)
+    return 0;
+  /* The lead bytes E0, ED, F0 and F4 allow only a narrower second byte:
+   * the others would spell an overlong form, a surrogate or a code point
+   * above U+10FFFF. */
+  const unsigned char lo = s[0] == 0xE0 ? 0xA0 : s[0] == 0xF0 ? 0x90 : 0x80;
+  const unsigned char hi = s[0] == 0xED ? 0x9F : s[0] == 0xF4 ? 0x8F : 0xBF;
+  if (len > 1 && (s[1] < lo || s[1] > hi))
+    return 0;
+  for (size_t k = 2; k < len; ++k)
+    if ((s[k] & 0xC0) != 0x80)
+      return 0;
+  return len;
+}
+
+/* The same test as the YAML loader's and the .inp reader's: UTF-8 without
+ * control characters other than tab. The end of line is already cut, so
+ * a carriage return left inside a line is refused too (it would otherwise
+ * end the line for some readers and not others). */
+static int check_text(const fb_text_reader *r, const char *text, size_t len)
+{
+  const unsigned char *s = (const unsigned char *)text;
+  size_t col = 1;
+  for (size_t i = 0; i < len; ++col) {
+    const unsigned char b = s[i];
+    const size_t n = fb_utf8_length(s + i, len - i);
+    if (n == 0 || (b < 0x20 && b != '\t') || b == 0x7F)
+      return fb_err_set(r->err, FB_EPARSE,
+                        "%s:%zu: binary data (byte 0x%02x in column %zu): not a %s text file "
+                        "(expected UTF-8 text)",
+                        r->path, r->line_no, b, col, r->format);
+    i += n;
+  }
+  return FB_OK;
+}
+
+int fb_text_next_line(fb_text_reader *r, char **line)
+{
+  *line = NULL;
+  errno = 0;
+  const ssize_t got = getline(&r->line, &r->cap, r->fp);
+  if (got < 0) {
+    if (ferror(r->fp))
+      return fb_err_set(r->err, FB_EIO, "%s:%zu: read error: %s", r->path, r->line_no + 1,
+                        strerror(errno ? errno : EIO));
+    return errno == ENOMEM ? fb_err_set(r->err, FB_ENOMEM, "out of memory reading %s", r->path)
+                           : FB_OK;
+  }
+  ++r->line_no;
+  size_t len = (size_t)got;
+  if (len > 0 && r->line[len - 1] == '\n')
+    --len;
+  if (len > 0 && r->line[len - 1] == '\r')
+    --len;
+  r->line[len] = '\0';
+  char *start = r->line;
+  /* Excel and Notepad write a byte-order mark, which no editor shows; left
+   * in, it would become part of the first column's name. */
+  if (r->line_no == 1 && len >= 3 && memcmp(start, "\xEF\xBB\xBF", 3) == 0) {
+    start += 3;
+    len -= 3;
+  }
+  const int rc = check_text(r, start, len);
+  if (rc)
+    return rc;
+  *line = start;
+  return FB_OK;
+}
+
+int fb_text_next_data_line(fb_text_reader *r, char comment, char **line)
+{
+  for (;;) {
+    char *s = NULL;
+    const int rc = fb_text_next_line(r, &s);
+    *line = NULL;
+    if (rc || !s)
+      return rc;
+    s += strspn(s, " \t");
+    if (*s == '\0' || *s == comment)
+      continue;
+    char *end = s + strlen(s);
+    while (end[-1] == ' ' || end[-1] == '\t')
+      --end;
+    *end = '\0';
+    *line = s;
+    return FB_OK;
+  }
+}
+
+static int is_digit(char c)
+{
+  return c >= '0' && c <= '9';
+}
+
+/* 1 if the whole of s is [+-] digits [. digits] [(e|E) [+-] digits] with
+ * at least one digit before the exponent. */
+static int is_decimal(const char *s)
+{
+  size_t digits = 0;
+  if (*s == '+' || *s == '-')
+    ++s;
+  for (; is_digit(*s); ++s)
+    ++digits;
+  if (*s == '.')
+    for (++s; is_digit(*s); ++s)
+      ++digits;
+  if (digits == 0)
+    return 0;
+  if (*s == 'e' || *s == 'E') {
+    ++s;
+    if (*s == '+' || *s == '-')
+      ++s;
+    if (!is_digit(*s))
+      return 0;
+    while (is_digit(*s))
+      ++s;
+  }
+  return *s == '\0';
+}
+
+/* strtod alone would also take "0x10" (16), "infinity" and "nan(...)";
+ * it is asked only for the value, and to tell those apart in the message. */
+int fb_parse_decimal(const char *text, double *out, fb_err *err)
+{
+  char *end = NULL;
+  const double v = strtod(text, &end);
+  if (end == text || *end != '\0')
+    return fb_err_set(err, FB_EPARSE, "'%s' is not a number", text);
+  if (!isfinite(v))
+    return fb_err_set(err, FB_EPARSE, "'%s' is not a finite number", text);
+  if (!is_decimal(text))
+    return fb_err_set(err, FB_EPARSE, "'%s' is not a decimal number", text);
+  *out = v;
+  return FB_OK;
+}

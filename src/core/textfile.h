@@ -1,0 +1,65 @@
+/* Line-by-line reading of the text data files that models and scenarios
+ * reference (CSV tables, road profiles, Matrix Market), with the checks
+ * they share: lines are counted for "FILE:LINE: " messages, a file that
+ * is not UTF-8 text is refused as binary data at its first bad byte
+ * (getline's lines are then safe to treat as C strings: a NUL inside one
+ * would silently cut it), a UTF-8 byte-order mark at the start is
+ * skipped, and numbers are read as plain decimals only. */
+#ifndef FLEXBOND_CORE_TEXTFILE_H
+#define FLEXBOND_CORE_TEXTFILE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "flexbond/error.h"
+
+/* One open file; the fields are read-only for the caller. */
+typedef struct fb_text_reader {
+  const char *path;   /* borrowed: names the file in messages */
+  const char *format; /* borrowed: "CSV", "Matrix Market", in the binary-data message */
+  FILE *fp;
+  char *line;     /* the current line, owned, without its end of line */
+  size_t cap;     /* bytes allocated for line */
+  size_t line_no; /* 1-based number of line; 0 before the first */
+  fb_err *err;
+} fb_text_reader;
+
+/* Opens path for reading with fb_open_input (a regular file only). *r
+ * is initialised even on failure, so fb_text_close may always follow.
+ * FB_EIO "path: cannot open: ..." when the file cannot be opened. */
+int fb_text_open(fb_text_reader *r, const char *path, const char *format, fb_err *err);
+
+/* Reads the next line into r->line and points *line at it, without its
+ * "\n" or "\r\n"; *line is NULL at the end of the file. A UTF-8
+ * byte-order mark at the start of the file is dropped. FB_EPARSE
+ * "path:line: binary data (byte 0xNN in column C): not a FORMAT text file
+ * (expected UTF-8 text)" at a NUL or another control character than tab,
+ * DEL or invalid UTF-8 (C counts characters from 1); FB_EIO on a read
+ * error, FB_ENOMEM. */
+int fb_text_next_line(fb_text_reader *r, char **line);
+
+/* Like fb_text_next_line, skipping blank lines and lines whose first
+ * character after blanks is comment; the line returned has its leading
+ * and trailing blanks (spaces and tabs) cut. */
+int fb_text_next_data_line(fb_text_reader *r, char comment, char **line);
+
+/* Closes the file and frees the line buffer; r may be closed twice. */
+void fb_text_close(fb_text_reader *r);
+
+/* Length of the well-formed UTF-8 sequence at s (n >= 1 bytes left), or 0
+ * if there is none: a stray continuation byte, a bad lead byte, a
+ * truncated sequence, an overlong form, a surrogate or a code point above
+ * U+10FFFF (The Unicode Standard 15.0, section 3.9, Table 3-7). */
+size_t fb_utf8_length(const unsigned char *s, size_t n);
+
+/* Parses the whole of text as a plain decimal number: an optional sign,
+ * digits with at most one '.' (at least one digit), an optional exponent
+ * (e or E, optional sign, digits). No blanks around it. FB_EPARSE with the
+ * message "'TEXT' is not a number" (nothing strtod reads either: "abc",
+ * "", "2.5.1"), "'TEXT' is not a decimal number" (hexadecimal: "0x10",
+ * "0x1p3") or "'TEXT' is not a finite number" ("inf", "nan", or beyond
+ * the range of a double: "1e999"), for the caller to prefix with
+ * fb_err_prefix ("FILE:LINE: column 'z': "). *out is set only on success. */
+int fb_parse_decimal(const char *text, double *out, fb_err *err);
+
+#endif
