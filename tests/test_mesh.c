@@ -691,6 +691,7 @@ static void test_inp_bad_decks(void)
   bad_deck("bad_number.inp", "*NODE\n1, 0, 0, 0\n2, 1, 1.0x, 0\n", 3,
            "y of node 2: '1.0x' is not a number");
   bad_deck("nan.inp", "*NODE\n1, 0, 0, nan\n", 2, "z of node 1: 'nan' is not a finite number");
+  bad_deck("hex.inp", "*NODE\n1, 0, 0x1, 0\n", 2, "y of node 1: '0x1' is not a decimal number");
   bad_deck("bad_id.inp", NODES4 "*ELEMENT, TYPE=S4\n1.5, 1, 2, 3, 4\n", 7,
            "element id '1.5' is not a positive integer");
   bad_deck("short_s4.inp", NODES4 "*ELEMENT, TYPE=S4\n1, 1, 2, 3\n", 7,

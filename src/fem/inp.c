@@ -42,6 +42,7 @@
 
 #include "flexbond/io.h"
 
+#include "core/textfile.h"
 #include "core/util.h"
 #include "fem/mesh_internal.h"
 
@@ -296,15 +297,14 @@ static int parse_id(const inp_reader *r, const char *field, const char *what, lo
 }
 
 /* A finite real number filling the whole field; what says which one. */
+/* A plain decimal, as in every data file (core/textfile.h): hexadecimal,
+ * inf and nan are refused. */
 static int parse_real(const inp_reader *r, const char *field, const char *what, double *out)
 {
-  char *end;
-  const double v = strtod(field, &end);
-  if (end == field || *end != '\0')
-    return inp_error(r, r->lineno, "%s: '%s' is not a number", what, field);
-  if (!isfinite(v))
-    return inp_error(r, r->lineno, "%s: '%s' is not a finite number", what, field);
-  *out = v;
+  fb_err sub;
+  fb_err_clear(&sub);
+  if (fb_parse_decimal(field, out, &sub))
+    return inp_error(r, r->lineno, "%s: %s", what, sub.msg);
   return FB_OK;
 }
 
