@@ -68,6 +68,11 @@ derive m_negmass.yaml m_ok.yaml -e 's/{name: Mu, type: I, m: mu}/{name: Mu, type
 derive m_zerok.yaml m_ok.yaml -e 's/{name: Ks, type: C, k: ks,/{name: Ks, type: C, k: 0,/'
 derive m_dupname.yaml m_ok.yaml -e 's/{name: Mu, type: I, m: mu}/{name: Ms, type: I, m: mu}/'
 derive m_dangling.yaml m_ok.yaml -e 's/^  - \[road, tire\]/  - [road, tyre]/'
+# A source that turns infinite at 1.5 s, and NaN from the start (solver
+# failures that name the element); a run too short for a step.
+derive m_log.yaml m_ok.yaml -e 's/value: -ms \* g}/value: -ms * g * log(1.5 - t)}/'
+derive m_nan0.yaml m_ok.yaml -e 's/value: -ms \* g}/value: -ms * g * log(t - 1)}/'
+derive m_short.yaml m_ok.yaml -e 's/^  t_end: 5/  t_end: 1e-300/'
 derive m_dupkey.yaml m_ok.yaml -e 's/^model: quarter_car$/model: quarter_car\nmodel: again/'
 # The damper table of examples/quarter_car_table.yaml with a word in it.
 cp "$EX/quarter_car_table.yaml" m_table.yaml
@@ -231,6 +236,10 @@ CASES=(
   "2|causality m_dupkey.yaml|$(at m_dupkey.yaml again model) YAML: duplicate key 'model'"
   "2|sim m_port.yaml -o @OUT|$(at m_port.yaml 'p.top' '[') bonds[1]: bond 'p.top->body': dimension mismatch: 'p.top' has dimension 2, 'body' has dimension 1"
   "2|sim m_table.yaml -o @OUT|./damper_fv.csv:$(line_of damper_fv.csv '0.25, lots'): column 'F': 'lots' is not a number|$(at m_table.yaml 'file: damper_fv.csv' 'damper_fv') elements[3].table.file:"
+  "4|sim m_log.yaml -o @OUT|flexbond: at t = 1.5 s: CVODE step size |the derivative of state Ms.p is inf; the non-finite value starts at Se 'grav_body' (source): e:grav_body->body = inf; hint: a law or time function evaluated outside its domain"
+  "4|sim m_nan0.yaml -o @OUT|flexbond: at t = 0 s: the derivative of state Ms.p is nan at the initial state; the non-finite value starts at Se 'grav_body' (source): e:grav_body->body = nan"
+  "2|sim m_short.yaml -o @OUT|$(at m_short.yaml 1e-300 1e-300) simulation.t_end: the run from t_start = 0 s to t_end = 1e-300 s is too short for the solver to take a step|at least 1.49e-154 s"
+  "1|sim m_ok.yaml -o @OUT --t-end 1e-300|flexbond sim: option '--t-end': the run from t_start = 0 s to t_end = 1e-300 s is too short"
   "2|sim m_empty.yaml -o @OUT|flexbond: m_empty.yaml:1:1: the file is empty"
   "2|sim m_binary.yaml -o @OUT|flexbond: m_binary.yaml:2:1: binary data (byte 0x89): not a YAML text file"
   "5|sim m_dir.yaml -o @OUT|flexbond: m_dir.yaml: cannot read|directory"

@@ -611,8 +611,118 @@ static void test_modulated_field(void)
   fb_bg_free(&bg);
 }
 
+/* Softening spring e = k sqrt(q), defined for q >= 0 only: NaN below,
+ * and its slope k / (2 sqrt(q)) is inf at q = 0. As a C law it reads the
+ * compression, as an R law the flow. */
+static int root_eval(void *ctx, const fb_law_in *in, double *y)
+{
+  const double *k = ctx;
+  y[0] = k[0] * sqrt(in->x[0]);
+  return 0;
+}
+static int root_jac(void *ctx, const fb_law_in *in, double *jac)
+{
+  const double *k = ctx;
+  jac[0] = k[0] / (2 * sqrt(in->x[0]));
+  return 0;
+}
+static double root_energy(void *ctx, size_t n, const double *x)
+{
+  const double *k = ctx;
+  (void)n;
+  return 2.0 / 3.0 * k[0] * pow(x[0], 1.5);
+}
+static const fb_law_ops root_ops = {.name = "root",
+                                    .eval = root_eval,
+                                    .jacobian = root_jac,
+                                    .energy = root_energy,
+                                    .free = free};
+
+static fb_bg *root_graph(int as_damper, fb_err *err)
+{
+  fb_bg *bg = NULL;
+  double *k = malloc(sizeof *k);
+  k[0] = 100.0;
+  const size_t one = 1;
+  MUST(fb_bg_new("root", &bg, err), err);
+  MUST(fb_bg_add_junction(bg, "J", FB_BG_J1, 1, err), err);
+  if (as_damper) {
+    /* Sf -1 m/s -> J -> R: the law's input and output are constants,
+     * folded when the diagram is built. */
+    MUST(add_const_source(bg, "v", FB_BG_SF, -1.0, err), err);
+    MUST(add_scalar(bg, "c", FB_BG_C, 10.0, err), err);
+    MUST(fb_bg_add_field_law(bg, "r", FB_BG_R, 1, &one, &root_ops, k, err), err);
+    MUST(fb_bg_connect(bg, "bv", "v", "J", err), err);
+    MUST(fb_bg_connect(bg, "bc", "J", "c", err), err);
+    MUST(fb_bg_connect(bg, "br", "J", "r", err), err);
+  } else {
+    MUST(add_scalar(bg, "m", FB_BG_I, 2.0, err), err);
+    MUST(fb_bg_add_field_law(bg, "k", FB_BG_C, 1, &one, &root_ops, k, err), err);
+    MUST(fb_bg_connect(bg, "bm", "J", "m", err), err);
+    MUST(fb_bg_connect(bg, "bk", "J", "k", err), err);
+  }
+  return bg;
+}
+
+/* Checks kind and that buf holds want. */
+static void check_explained(fb_bd *bd, const double *x, int jacobian,
+                            fb_bd_nonfinite_kind want_kind, const char *want)
+{
+  char buf[512] = "junk";
+  const fb_bd_nonfinite_kind kind =
+      fb_bd_explain_nonfinite(bd, 0.0, x, jacobian, buf, sizeof buf);
+  CHECK(kind == want_kind);
+  CHECK(strstr(buf, want) != NULL && (want[0] || buf[0] == '\0'));
+  if (kind != want_kind || !strstr(buf, want))
+    fprintf(stderr, "  got %d \"%s\", want %d \"%s\"\n", (int)kind, buf, (int)want_kind, want);
+}
+
+/* fb_bd_explain_nonfinite finds where a non-finite value starts: a state,
+ * a law evaluated outside its domain (in the evaluation order, or among
+ * the folded constants), a law's slope; nothing when all is finite. */
+static void test_explain_nonfinite(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = root_graph(0, &err);
+  fb_bd *bd = NULL;
+  MUST(fb_bd_build(bg, NULL, 0, &bd, &err), &err);
+  if (bd) {
+    const long iq = state_index(bd, "k.q"), ip = state_index(bd, "m.p");
+    double x[2] = {0, 0}, xd[2];
+    x[ip] = 0.5;
+    x[iq] = 0.04;
+    check_explained(bd, x, 1, FB_NONFINITE_NONE, "");
+    x[iq] = NAN;
+    check_explained(bd, x, 0, FB_NONFINITE_STATE, "state k.q = nan");
+    /* q < 0: p' = -k sqrt(q) is NaN, from the law of its finite input. */
+    x[iq] = -0.01;
+    CHECK(fb_bd_rhs(bd, 0.0, x, xd) == 0 && isnan(xd[ip]));
+    check_explained(bd, x, 0, FB_NONFINITE_VALUE,
+                    "C 'k' (law 'root'): k.e = nan from finite inputs k.q = -0.01");
+    /* q = 0: every value is finite, the slope is not. */
+    x[iq] = 0.0;
+    check_explained(bd, x, 0, FB_NONFINITE_NONE, "");
+    check_explained(bd, x, 1, FB_NONFINITE_JACOBIAN,
+                    "C 'k' (law 'root'): d k.e / d k.q = inf at finite inputs k.q = 0");
+  }
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+
+  bg = root_graph(1, &err);
+  MUST(fb_bd_build(bg, NULL, 0, &bd, &err), &err);
+  if (bd) {
+    const double x[1] = {0.0};
+    check_explained(bd, x, 0, FB_NONFINITE_VALUE,
+                    "R 'r' (law 'root'): r.e = nan from finite inputs f:bv = -1");
+  }
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
 int main(void)
 {
+  test_explain_nonfinite();
   test_mtf_rigid_bar();
   test_nonlinear_law();
   test_modulated_field();

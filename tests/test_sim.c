@@ -47,23 +47,38 @@ static double free_shape(double tau)
 
 /* A damper law e = r f + c2 f |f| given as callbacks, so the diagram is
  * not linear and its Newton matrix is re-evaluated. Once |f| exceeds
- * limit (when set) it fails: fatally, or by returning NaN. */
+ * limit (when set) it fails: fatally, by returning NaN, or (inf_slope)
+ * by a Jacobian of inf while its value stays finite. With calls set, it
+ * counts its evaluations there, and evaluation number nan_call (if > 0)
+ * returns NaN, once: a glitch. */
 typedef struct damper_law {
   double r;     /* N s/m */
   double c2;    /* N s^2/m^2 */
   double limit; /* m/s, 0: never fails */
   int nan_past_limit;
+  int inf_slope;
+  long *calls;
+  long nan_call;
 } damper_law;
+
+static int past_limit(const damper_law *d, double v)
+{
+  return d->limit > 0 && fabs(v) > d->limit;
+}
 
 static int damper_eval(void *ctx, const fb_law_in *in, double *y)
 {
   const damper_law *d = ctx;
   const double *x = in->x;
-  if (d->limit > 0 && fabs(x[0]) > d->limit && d->nan_past_limit) {
+  if (d->calls && ++*d->calls == d->nan_call) {
     y[0] = NAN;
     return 0;
   }
-  if (d->limit > 0 && fabs(x[0]) > d->limit)
+  if (past_limit(d, x[0]) && d->nan_past_limit) {
+    y[0] = NAN;
+    return 0;
+  }
+  if (past_limit(d, x[0]) && !d->inf_slope)
     return -1;
   y[0] = d->r * x[0] + d->c2 * x[0] * fabs(x[0]);
   return 0;
@@ -73,7 +88,7 @@ static int damper_jacobian(void *ctx, const fb_law_in *in, double *jac)
 {
   const damper_law *d = ctx;
   const double *x = in->x;
-  jac[0] = d->r + 2 * d->c2 * fabs(x[0]);
+  jac[0] = past_limit(d, x[0]) && d->inf_slope ? INFINITY : d->r + 2 * d->c2 * fabs(x[0]);
   return 0;
 }
 
@@ -413,7 +428,7 @@ static void test_nonlinear_path(void)
 {
   fb_sim_opts o;
   tight_opts(&o, 3.0);
-  const damper_law d = {DAMP, 0, 0, 0};
+  const damper_law d = {DAMP, 0, 0, 0, 0, NULL, 0};
   fb_result *res = NULL;
   fb_err err;
   CHECK(simulate_step(0.0, &d, &o, &res, &err) == FB_OK);
@@ -455,7 +470,7 @@ static void test_quadratic_damper(void)
 {
   fb_sim_opts o;
   tight_opts(&o, 3.0);
-  const damper_law d = {DAMP, 5.0, 0, 0};
+  const damper_law d = {DAMP, 5.0, 0, 0, 0, NULL, 0};
   fb_result *res = NULL;
   fb_err err;
   CHECK(simulate_step(0.0, &d, &o, &res, &err) == FB_OK);
@@ -494,7 +509,7 @@ static void test_stiff(void)
   fb_sim_opts o;
   fb_sim_opts_default(&o);
   o.t_end = 3;
-  const damper_law d = {r, 0, 0, 0};
+  const damper_law d = {r, 0, 0, 0, 0, NULL, 0};
   fb_result *res = NULL;
   fb_err err;
   CHECK(simulate_step(0.0, &d, &o, &res, &err) == FB_OK);
@@ -596,6 +611,24 @@ static double failure_time(const char *msg)
   return t;
 }
 
+/* A failure from a non-finite value: what was not finite, where it starts
+ * (fb_bd_explain_nonfinite), the hint. */
+static void check_nonfinite_message(const char *msg, const char *what, const char *where)
+{
+  const char *w = strstr(msg, what);
+  const char *s = w ? strstr(w, "; the non-finite value starts at ") : NULL;
+  const char *h = s ? strstr(s, "; hint: a law or time function evaluated outside its domain: "
+                                "log or sqrt of a negative number, a division by zero")
+                    : NULL;
+  CHECK(w != NULL);
+  CHECK(s != NULL &&
+        strncmp(s + strlen("; the non-finite value starts at "), where, strlen(where)) == 0);
+  CHECK(h != NULL);
+  if (!w || !s || !h ||
+      strncmp(s + strlen("; the non-finite value starts at "), where, strlen(where)) != 0)
+    fprintf(stderr, "  got \"%s\"\n  want \"%s\" ... \"%s\"\n", msg, what, where);
+}
+
 static void test_failures(void)
 {
   fb_sim_opts o;
@@ -619,7 +652,7 @@ static void test_failures(void)
    * with CVODE's flag, the hint and the diagram's message. */
   fb_sim_opts_default(&o);
   o.t_end = 3;
-  const damper_law d = {DAMP, 0, 0.5, 0};
+  const damper_law d = {DAMP, 0, 0.5, 0, 0, NULL, 0};
   CHECK(simulate_step(0.0, &d, &o, &res, &err) == FB_ESOLVER);
   CHECK(res == NULL);
   double lo = 0, hi = 0.3;
@@ -639,13 +672,191 @@ static void test_failures(void)
 
   /* The same law returning NaN instead: every step towards t_cross is
    * rejected and cut until it no longer advances t; that must be reported
-   * there, not after max_steps (10^7) futile steps. */
-  const damper_law dnan = {DAMP, 0, 0.5, 1};
+   * there, not after max_steps (10^7) futile steps, with the state whose
+   * derivative is NaN, the law that made it from a finite velocity, and
+   * the hint. */
+  const damper_law dnan = {DAMP, 0, 0.5, 1, 0, NULL, 0};
   CHECK(simulate_step(0.0, &dnan, &o, &res, &err) == FB_ESOLVER);
   CHECK(res == NULL);
-  CHECK(strstr(err.msg, "no longer advances t") != NULL);
   /* The message prints 6 significant digits: 5e-6 relative at most. */
   CHECK_NEAR(failure_time(err.msg), t_cross, 1e-5 * t_cross);
+  check_nonfinite_message(err.msg, "the derivative of state mass.p is nan",
+                          "R 'damper' (law 'test damper'): damper.e = nan from finite inputs "
+                          "mass.f = 0.5");
+
+  /* CV_TOO_MUCH_WORK names the state with the largest local error. */
+  fb_sim_opts_default(&o);
+  o.t_end = 3;
+  o.max_steps = 20;
+  CHECK(simulate_step(0.0, NULL, &o, &res, &err) == FB_ESOLVER);
+  CHECK(strstr(err.msg, "the largest local error") != NULL);
+  CHECK(strstr(err.msg, "is in state ") != NULL);
+}
+
+/* F(t) = FORCE (1 + log(1.5 - t)): finite (however large) before 1.5 s,
+ * inf at 1.5 s and NaN after. */
+static double log_force(double t, void *ctx)
+{
+  (void)ctx;
+  return FORCE * (1 + log(1.5 - t));
+}
+
+/* F(t) = FORCE sqrt(t - 1): NaN from the start. */
+static double sqrt_force(double t, void *ctx)
+{
+  (void)ctx;
+  return FORCE * sqrt(t - 1);
+}
+
+static int simulate_force(double (*fn)(double, void *), const fb_sim_opts *o,
+                          const damper_law *damper, fb_result **res, fb_err *err)
+{
+  fb_tfun *force = NULL;
+  int rc = fb_tfun_new_callback(fn, NULL, 0, NULL, &force, err);
+  return rc != FB_OK ? rc : simulate(&force, damper, o, res, err);
+}
+
+/* A source whose time function leaves its domain at 1.5 s: reported at
+ * 1.5 s, naming the mass whose momentum rate is not finite and the
+ * source, not as a step size that no longer advances t for no reason. */
+static void test_nonfinite_source(void)
+{
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_end = 3;
+  fb_result *res = (fb_result *)&o; /* any non-NULL value */
+  fb_err err;
+  CHECK(simulate_force(log_force, &o, NULL, &res, &err) == FB_ESOLVER);
+  CHECK(res == NULL);
+  CHECK_NEAR(failure_time(err.msg), 1.5, 1e-5 * 1.5);
+  check_nonfinite_message(err.msg, "the derivative of state mass.p is ",
+                          "Se 'F' (source): e:bF = ");
+
+  /* With a breakpoint at 1.5 s the segment after it starts there, where
+   * CVODE's first evaluation has no shorter step to try
+   * (CV_FIRST_RHSFUNC_ERR); its sample at 1.5 s is written first and
+   * shows the output v (the flow into the mass) is still finite, so the
+   * failure is the derivative's. */
+  const double at = 1.5;
+  o.breakpoints = &at;
+  o.nbreakpoints = 1;
+  o.sample_rate = 3; /* no sample at 1.5 s */
+  CHECK(simulate_force(log_force, &o, NULL, &res, &err) == FB_ESOLVER);
+  CHECK_NEAR(failure_time(err.msg), 1.5, 1e-5 * 1.5);
+  CHECK(strstr(err.msg, "CVODE CV_FIRST_RHSFUNC_ERR: ") != NULL);
+  check_nonfinite_message(err.msg, "the derivative of state mass.p is -inf",
+                          "Se 'F' (source): e:bF = -inf");
+
+  /* NaN at the initial state: at t_start, before any step. */
+  fb_sim_opts_default(&o);
+  o.t_end = 3;
+  CHECK(simulate_force(sqrt_force, &o, NULL, &res, &err) == FB_ESOLVER);
+  CHECK(failure_time(err.msg) == 0);
+  CHECK(strstr(err.msg, "at the initial state") != NULL);
+  check_nonfinite_message(err.msg, "the derivative of state mass.p is nan",
+                          "Se 'F' (source): e:bF = nan");
+}
+
+/* A law whose slope is inf past 0.01 m/s while its value stays finite:
+ * the Newton matrix, not the right-hand side, is not finite, and the
+ * failure says so and names the law. CVODE refreshes the matrix only
+ * when it finds it stale, so the velocity must stay past the limit for a
+ * while: from 2 ms on, over most of a 3 s run. */
+static void test_nonfinite_jacobian(void)
+{
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_end = 3;
+  const damper_law d = {DAMP, 0, 0.01, 0, 1, NULL, 0};
+  fb_result *res = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(simulate_step(0.0, &d, &o, &res, &err) == FB_ESOLVER);
+  CHECK(res == NULL);
+  const double t = failure_time(err.msg);
+  CHECK(t > 0 && t < 3);
+  check_nonfinite_message(err.msg, "the Newton matrix is not finite",
+                          "R 'damper' (law 'test damper'): d damper.e / d mass.f = inf at "
+                          "finite inputs mass.f = ");
+}
+
+/* A NaN that one evaluation returns and the next does not (a step that
+ * probed a bad region, shortened, stays clear of it) is recovered from:
+ * the run succeeds and matches the closed form. */
+static void test_nonfinite_recovered(void)
+{
+  fb_sim_opts o;
+  tight_opts(&o, 3.0);
+  long calls = 0;
+  const damper_law d = {DAMP, 0, 0, 0, 0, &calls, 40};
+  fb_result *res = NULL;
+  fb_err err;
+  const int rc = simulate_step(0.0, &d, &o, &res, &err);
+  CHECK(rc == FB_OK);
+  if (rc != FB_OK)
+    fprintf(stderr, "  %s\n", err.msg);
+  CHECK(calls > 40);
+  if (res)
+    check_step_columns(res, 0.0);
+  fb_result_free(&res);
+}
+
+/* The static equilibrium of a model whose force is NaN at that time is
+ * refused naming the source; fmax in its residuals used to drop the NaN
+ * and call the NaN state an equilibrium. */
+static void test_nonfinite_static(void)
+{
+  fb_bg *bg = NULL;
+  fb_bd *bd = NULL;
+  fb_tfun *force = NULL;
+  fb_err err;
+  CHECK(fb_tfun_new_callback(log_force, NULL, 0, NULL, &force, &err) == FB_OK);
+  CHECK(build_msd(&force, NULL, &bg, &bd, &err) == FB_OK);
+  if (bd) {
+    const double x0[2] = {0, 0};
+    double x[2] = {0, 0};
+    CHECK(fb_sim_static_state(bd, 1.0, x0, x, &err) == FB_OK);
+    CHECK(fb_sim_static_state(bd, 2.0, x0, x, &err) == FB_ESOLVER);
+    CHECK(strstr(err.msg, "static equilibrium at t = 2 s: ") != NULL);
+    check_nonfinite_message(err.msg, "the derivative of state mass.p is nan",
+                            "Se 'F' (source): e:bF = nan");
+  }
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+/* A run too short for CVODE's first step is refused as invalid input, with
+ * the limit, before any integration: 1e-300 s after 0 (CVODE squares the
+ * length, which underflows), 2 roundoffs after 1 s (CV_TOO_CLOSE). */
+static void test_too_short(void)
+{
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_end = 1e-300;
+  check_opts_message(&o, "simulation.t_end: the run from t_start = 0 s to t_end = 1e-300 s is "
+                         "too short for the solver to take a step: t_end - t_start = 1e-300 s, "
+                         "it must be at least 1.49e-154 s");
+  o.t_start = 1;
+  o.t_end = nextafter(nextafter(1.0, 2.0), 2.0);
+  check_opts_message(&o, "simulation.t_end: the run from t_start = 1 s to t_end = "
+                         "1.0000000000000004 s is too short for the solver to take a step: "
+                         "t_end - t_start = 4.44e-16 s, it must be at least 2.22e-14 s");
+  fb_result *res = NULL;
+  fb_err err;
+  CHECK(simulate_step(0.0, NULL, &o, &res, &err) == FB_EINVAL);
+  CHECK(res == NULL);
+  /* Just above the limits the runs succeed, with the one sample at
+   * t_start (shorter than a sample interval). */
+  const double t_ends[2] = {1e-150, 1 + 1e-13};
+  for (int i = 0; i < 2; ++i) {
+    o.t_start = i == 0 ? 0.0 : 1.0;
+    o.t_end = t_ends[i];
+    CHECK(fb_sim_opts_check(&o, &err) == FB_OK);
+    CHECK(simulate_step(0.0, NULL, &o, &res, &err) == FB_OK);
+    if (res)
+      CHECK(fb_result_nsamples(res) == 1);
+    fb_result_free(&res);
+  }
 }
 
 /* A graph without storage is algebraic: Se -> R gives f = e / r at each
@@ -709,6 +920,11 @@ int main(void)
   test_stiff();
   test_opts();
   test_failures();
+  test_nonfinite_source();
+  test_nonfinite_jacobian();
+  test_nonfinite_recovered();
+  test_nonfinite_static();
+  test_too_short();
   test_no_states();
   return check_report("test_sim");
 }

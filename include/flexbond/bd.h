@@ -88,6 +88,36 @@ size_t fb_bd_nblocks(const fb_bd *bd);
 int fb_bd_rhs(fb_bd *bd, double t, const double *x, double *xdot);
 const char *fb_bd_last_error(const fb_bd *bd);
 
+/* Where a non-finite value of the diagram at (t, x) starts, for messages.
+ * fb_bd_rhs and the linearisations pass non-finite values on without
+ * complaint (checking every block would tax the hot path); a caller that
+ * sees one asks this function, which re-evaluates the diagram at (t, x)
+ * block by block in evaluation order (folded constants first) and stops
+ * at the first of:
+ *   FB_NONFINITE_STATE: a state in x that is not finite;
+ *   FB_NONFINITE_VALUE: a block whose output is not finite while all its
+ *     inputs are: the value starts there;
+ *   FB_NONFINITE_JACOBIAN (only when jacobian is nonzero, after every
+ *     value was found finite): a Newton block whose linearisation is not
+ *     finite at finite inputs.
+ * It writes what it found into buf (size > 0), naming the element and its
+ * block, the signal (fb_bd_aug_unknown_name's names) and the value, e.g.
+ *   "Se 'grav_body' (source): e:grav_body->body = nan"
+ *   "C 'k' (law 'root'): k.e = nan from finite inputs k.q = -0.01"
+ *   "C 'k' (law 'root'): d k.e / d k.q = inf at finite inputs k.q = 0"
+ *   "state Ms.p = inf"
+ * (input values are listed for up to 4 input components).
+ * and returns the kind; FB_NONFINITE_NONE with buf "" if every value is
+ * finite, or if a block failed (fb_bd_last_error says which). */
+typedef enum fb_bd_nonfinite_kind {
+  FB_NONFINITE_NONE,
+  FB_NONFINITE_STATE,
+  FB_NONFINITE_VALUE,
+  FB_NONFINITE_JACOBIAN
+} fb_bd_nonfinite_kind;
+fb_bd_nonfinite_kind fb_bd_explain_nonfinite(fb_bd *bd, double t, const double *x, int jacobian,
+                                             char *buf, size_t size);
+
 /* Probe outputs, one column each (vector probes expanded). */
 size_t fb_bd_noutputs(const fb_bd *bd);
 const char *fb_bd_output_name(const fb_bd *bd, size_t i);

@@ -49,7 +49,10 @@ typedef struct fb_sim_opts {
 
 /* Fills the defaults stated above (t_end = 1). */
 void fb_sim_opts_default(fb_sim_opts *opts);
-/* FB_EINVAL naming the option when opts is inconsistent. */
+/* FB_EINVAL naming the option when opts is inconsistent, or when
+ * t_end - t_start is too short for CVODE to take a first step (below
+ * max(1.5e-154 s, 100 roundoffs of |t_start|, |t_end|); src/sim/opts.c
+ * says why). */
 int fb_sim_opts_check(const fb_sim_opts *opts, fb_err *err);
 
 typedef struct fb_sim_stats {
@@ -69,7 +72,11 @@ typedef struct fb_sim_stats {
 typedef struct fb_result fb_result;
 
 /* Integrates bd from opts->t_start to opts->t_end. On failure *out is NULL
- * and err says the time, the solver's flag name and a hint. */
+ * and err says the time, the solver's flag name and a hint. A derivative,
+ * Newton matrix entry or output that is not finite is recoverable while
+ * CVODE can retry with a shorter step; if it gives up, or the initial
+ * state's derivative is not finite, err names the state (or output) and
+ * where the value starts (fb_bd_explain_nonfinite). */
 int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err);
 
 size_t fb_result_nsamples(const fb_result *r);

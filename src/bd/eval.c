@@ -1,5 +1,6 @@
 /* Evaluation of a scheduled block diagram: right-hand side, outputs,
  * augmented sparse linearisation and dense Jacobian (flexbond/bd.h). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,6 +50,109 @@ int fb_bd_rhs(fb_bd *bd, double t, const double *x, double *xdot)
 const char *fb_bd_last_error(const fb_bd *bd)
 {
   return bd->errbuf;
+}
+
+/* ---- Where a non-finite value starts (fb_bd_explain_nonfinite). */
+
+/* v for "%g": a NaN without the sign glibc prints ("-nan"), which means
+ * nothing here. */
+static double shown(double v)
+{
+  return isnan(v) ? fabs(v) : v;
+}
+
+static int all_finite(const double *v, size_t n)
+{
+  for (size_t i = 0; i < n; ++i)
+    if (!isfinite(v[i]))
+      return 0;
+  return 1;
+}
+
+/* Name of w[i]: its signal's, "[k]" (1-based) for a component of a
+ * vector signal. */
+static void w_name(const fb_bd *bd, size_t i, char *buf, size_t size)
+{
+  snprintf(buf, size, "signal %zu", i);
+  for (size_t s = 0; s < bd->nsigs; ++s) {
+    const bd_signal *sig = &bd->sigs[s];
+    if (i >= sig->off && i < sig->off + sig->dim) {
+      if (sig->dim == 1)
+        snprintf(buf, size, "%s", sig->name);
+      else
+        snprintf(buf, size, "%s[%zu]", sig->name, i - sig->off + 1);
+      return;
+    }
+  }
+}
+
+/* "Se 'grav_body' (source)", "R 'damper' (law 'quadratic')", "probe
+ * 'damper_power' (e.*f)". */
+static void block_name(const fb_bd *bd, const bd_block *b, char *buf, size_t size)
+{
+  char who[300];
+  if (b->elem == FB_NONE)
+    snprintf(who, sizeof who, "probe '%s'", bd->sigs[b->out].name);
+  else
+    fb_bg_describe(bd->bg, b->elem, who, sizeof who);
+  if (b->ops == &fb_bd_law_ops)
+    snprintf(buf, size, "%s (law '%s')", who, b->label);
+  else
+    snprintf(buf, size, "%s (%s)", who, b->label);
+}
+
+/* Inputs of at most this many components are listed with their values;
+ * a wider vector would drown the message. */
+#define LISTED_INPUTS 4
+
+/* " from finite inputs f:br = 0.51, ..." (prep "from" or "at") after
+ * the text in buf; nothing for a block without inputs (a source). */
+static void append_inputs(const fb_bd *bd, const bd_block *b, const char *prep, char *buf,
+                          size_t size)
+{
+  size_t width = 0;
+  for (size_t k = 0; k < b->nin; ++k)
+    width += b->idim[k];
+  if (width == 0)
+    return;
+  size_t len = strlen(buf);
+  len += (size_t)snprintf(buf + len, len < size ? size - len : 0, " %s finite inputs", prep);
+  if (width > LISTED_INPUTS)
+    return;
+  for (size_t k = 0, listed = 0; k < b->nin; ++k)
+    for (size_t c = 0; c < b->idim[k]; ++c, ++listed) {
+      char name[300];
+      w_name(bd, b->ioff[k] + c, name, sizeof name);
+      len += (size_t)snprintf(buf + len, len < size ? size - len : 0, "%s %s = %.6g",
+                              listed ? "," : "", name, bd->w[b->ioff[k] + c]);
+    }
+}
+
+static int inputs_finite(const fb_bd *bd, const bd_block *b)
+{
+  for (size_t k = 0; k < b->nin; ++k)
+    if (!all_finite(bd->w + b->ioff[k], b->idim[k]))
+      return 0;
+  return 1;
+}
+
+/* FB_NONFINITE_VALUE, described into buf, if block i's output (already
+ * in w) is not finite while its inputs are. */
+static fb_bd_nonfinite_kind check_block_value(const fb_bd *bd, size_t i, char *buf, size_t size)
+{
+  const bd_block *b = &bd->blocks[i];
+  const double *y = bd->w + b->ooff;
+  if (all_finite(y, b->odim) || !inputs_finite(bd, b))
+    return FB_NONFINITE_NONE;
+  size_t c = 0;
+  while (isfinite(y[c]))
+    ++c;
+  char who[400], name[300];
+  block_name(bd, b, who, sizeof who);
+  w_name(bd, b->ooff + c, name, sizeof name);
+  snprintf(buf, size, "%s: %s = %g", who, name, shown(y[c]));
+  append_inputs(bd, b, "from", buf, size);
+  return FB_NONFINITE_VALUE;
 }
 
 size_t fb_bd_nstates(const fb_bd *bd)
@@ -352,4 +456,64 @@ size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max)
       bp[u++] = all[i];
   free(all);
   return u;
+}
+
+/* FB_NONFINITE_JACOBIAN, described into buf, if a Newton block's
+ * triplets at the signals in w are not finite. A triplet of row r and
+ * column c != r holds minus the derivative of r by c (blocks.c writes
+ * B d(out) - A d(in) = 0), which is what is shown. */
+static fb_bd_nonfinite_kind check_jacobians(fb_bd *bd, char *buf, size_t size)
+{
+  (void)fill_scratch(bd, 1); /* a failed law Jacobian leaves zeros, so finite */
+  for (size_t n = 0, k = 0; n < bd->nnewton; ++n) {
+    const bd_block *b = &bd->blocks[bd->newton_blocks[n]];
+    const size_t end = k + b->ops->nnz(b);
+    for (; k < end; ++k)
+      if (!isfinite(bd->sv0[k]) || !isfinite(bd->sv1[k])) {
+        const double v = isfinite(bd->sv0[k]) ? bd->sv1[k] : bd->sv0[k];
+        const size_t r = bd->srows[k], c = bd->scols[k];
+        char who[400], rn[300], cn[300];
+        block_name(bd, b, who, sizeof who);
+        w_name(bd, r, rn, sizeof rn);
+        w_name(bd, c, cn, sizeof cn);
+        snprintf(buf, size, "%s: d %s / d %s = %g", who, rn, cn, shown(r == c ? v : -v));
+        append_inputs(bd, b, "at", buf, size);
+        return FB_NONFINITE_JACOBIAN;
+      }
+  }
+  return FB_NONFINITE_NONE;
+}
+
+fb_bd_nonfinite_kind fb_bd_explain_nonfinite(fb_bd *bd, double t, const double *x, int jacobian,
+                                             char *buf, size_t size)
+{
+  buf[0] = '\0';
+  for (size_t i = 0; i < bd->nstates; ++i)
+    if (!isfinite(x[i])) {
+      snprintf(buf, size, "state %s = %g", bd->state_names[i], shown(x[i]));
+      return FB_NONFINITE_STATE;
+    }
+  /* Folded constants keep their values in w; their inputs are constants
+   * too, so any order finds a start. */
+  fb_bd_nonfinite_kind kind = FB_NONFINITE_NONE;
+  for (size_t i = 0; !kind && i < bd->nblocks; ++i)
+    if (bd->is_const[i])
+      kind = check_block_value(bd, i, buf, size);
+  if (kind)
+    return kind;
+  /* eval_blocks, with each block checked as soon as it has run. */
+  bd->errbuf[0] = '\0';
+  memcpy(bd->w, x, bd->nstates * sizeof *x);
+  for (size_t k = 0; k < bd->norder; ++k) {
+    bd_block *b = &bd->blocks[bd->order[k]];
+    const int rc = b->ops->eval(b, t, bd->w);
+    if (rc) {
+      block_failed(bd, bd->order[k], rc);
+      return FB_NONFINITE_NONE;
+    }
+    kind = check_block_value(bd, bd->order[k], buf, size);
+    if (kind)
+      return kind;
+  }
+  return jacobian ? check_jacobians(bd, buf, size) : FB_NONFINITE_NONE;
 }

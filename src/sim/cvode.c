@@ -28,7 +28,6 @@
  * the inputs are not smooth across it. */
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
-#include <float.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
 #include <stdio.h>
@@ -74,6 +73,12 @@ typedef struct sim_run {
   fb_err lin_err;
   int *crossed; /* per guard: CVODE's root directions at an event */
   fb_sim_stats *stats;
+  /* The latest non-finite value that cv_rhs or cv_linsys met during the
+   * current CVode call (cleared before each): if CVODE gives up, that is
+   * why. nonfinite_t is the model time of that evaluation. */
+  int has_nonfinite;
+  double nonfinite_t;
+  char nonfinite[FB_SIM_NONFINITE_MAX];
 } sim_run;
 
 /* ---- Model callbacks. */
@@ -88,14 +93,40 @@ static double model_time(const sim_run *run, double t)
   return t < run->t_limit ? t : run->t_left;
 }
 
+/* Records why the derivatives f at (t, y) are not finite (f[i] is the
+ * first such), for the failure message if CVODE gives up. */
+static void note_nonfinite_rhs(sim_run *run, double t, const double *y, const double *f,
+                               size_t i)
+{
+  char what[256];
+  snprintf(what, sizeof what, "the derivative of state %s is %g", fb_bd_state_name(run->bd, i),
+           fb_sim_shown(f[i]));
+  fb_sim_explain_nonfinite(run->bd, t, y, 0, what, run->nonfinite, sizeof run->nonfinite);
+  run->nonfinite_t = t;
+  run->has_nonfinite = 1;
+}
+
 /* CVRhsFn: 0 ok, >0 recoverable (CVODE retries with a smaller step), <0
- * fatal, as fb_bd_rhs. */
+ * fatal, as fb_bd_rhs. A derivative that is not finite is recoverable:
+ * the CVODE user guide (CVRhsFn) says a recoverable return "is typically
+ * used to flag a value of the dependent variable y that is illegal in
+ * some way", and CVODE then repeats the nonlinear solve or cuts the
+ * step, so a step that probed past a log(1.5 - t) is retried shorter and
+ * may stay clear of it. One pass over ydot per call; the diagram is
+ * walked only when that pass fails. */
 static int cv_rhs(double t, N_Vector y, N_Vector ydot, void *user_data)
 {
   sim_run *run = user_data;
-  const int rc =
-      fb_bd_rhs(run->bd, model_time(run, t), N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-  return rc == 0 ? 0 : (rc > 0 ? 1 : -1);
+  const double tm = model_time(run, t), *x = N_VGetArrayPointer(y);
+  double *f = N_VGetArrayPointer(ydot);
+  const int rc = fb_bd_rhs(run->bd, tm, x, f);
+  if (rc != 0)
+    return rc > 0 ? 1 : -1;
+  const size_t bad = fb_sim_first_nonfinite(f, run->n);
+  if (bad == run->n)
+    return 0;
+  note_nonfinite_rhs(run, tm, x, f, bad);
+  return 1;
 }
 
 /* CVRootFn: the switched laws' guards. A failure is fatal for CVODE. */
@@ -127,6 +158,18 @@ static int cv_linsys(double t, N_Vector y, N_Vector fy, SUNMatrix A, booleantype
     run->jac_failed = rc != 0;
     if (rc != 0)
       return rc > 0 ? 1 : -1;
+    /* A non-finite entry would reach the factorisation; recoverable, as
+     * for the right-hand side (cv_rhs). */
+    const size_t nnz = fb_bd_aug_nnz(run->bd);
+    if (fb_sim_first_nonfinite(run->v0, nnz) < nnz ||
+        fb_sim_first_nonfinite(run->v1, nnz) < nnz) {
+      fb_sim_explain_nonfinite(run->bd, model_time(run, t), N_VGetArrayPointer(y), 1,
+                               "the Newton matrix is not finite", run->nonfinite,
+                               sizeof run->nonfinite);
+      run->nonfinite_t = model_time(run, t);
+      run->has_nonfinite = 1;
+      return 1;
+    }
     run->have_values = 1;
   }
   *jcur = evaluate || run->linear;
@@ -243,8 +286,6 @@ static const char *flag_hint(int flag)
   }
 }
 
-/* FB_ESOLVER "at t = ... s: CVODE <flag>: <hint>" with whatever CVODE,
- * the Newton solver and the diagram said. */
 /* "; the largest local error ... is in state S": the state
  * whose weighted local error estimate was the largest at the last step
  * attempt (CVodeGetEstLocalErrors and CVodeGetErrWeights, which the CVODE
@@ -275,15 +316,53 @@ static void worst_state(const sim_run *run, char *buf, size_t size)
     N_VDestroy(ewt);
 }
 
+/* Whether the local error estimates name the culprit of a failure with
+ * this flag: they do after failed error tests or Newton iterations, and
+ * for the step that ran out of work or accuracy; other flags (an illegal
+ * input, a stop time too close) leave them stale or meaningless. */
+static int local_errors_tell(int flag)
+{
+  return flag == CV_ERR_FAILURE || flag == CV_CONV_FAILURE || flag == CV_TOO_MUCH_WORK ||
+         flag == CV_TOO_MUCH_ACC;
+}
+
+/* "the derivative of state S is nan ...", with the model time of the
+ * evaluation when it reads differently from t. */
+static void nonfinite_clause(const sim_run *run, double t, char *buf, size_t size)
+{
+  char at[32], now[32];
+  snprintf(at, sizeof at, "%.6g", run->nonfinite_t);
+  snprintf(now, sizeof now, "%.6g", t);
+  if (strcmp(at, now) == 0)
+    snprintf(buf, size, "%s", run->nonfinite);
+  else
+    snprintf(buf, size, "at t = %s s, %s", at, run->nonfinite);
+}
+
+/* FB_ESOLVER "at t = ... s: CVODE <flag>: <hint>" with whatever CVODE,
+ * the Newton solver and the diagram said. A non-finite value met during
+ * the failed call explains the failure: CVODE gave up retrying it
+ * (CV_REPTD_RHSFUNC_ERR, CV_FIRST_RHSFUNC_ERR, or CV_CONV_FAILURE when
+ * the Newton matrix was not finite), so it takes the hint's place. */
 static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
 {
   char *name = CVodeGetReturnFlagName(flag); /* malloc'ed in CVODE 6.4 */
+  if (run->has_nonfinite) {
+    char clause[FB_SIM_NONFINITE_MAX + 128];
+    nonfinite_clause(run, t, clause, sizeof clause);
+    fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s%s%s", t,
+               name ? name : "(unknown flag)", clause, run->cvode_msg[0] ? "; " : "",
+               run->cvode_msg);
+    free(name);
+    return FB_ESOLVER;
+  }
   const char *model = fb_bd_last_error(run->bd);
   const char *lin = run->lin_err.msg;
   /* A linearisation failure surfaces as a Newton set-up failure. */
   const char *hint = flag_hint(run->jac_failed ? CV_RHSFUNC_FAIL : flag);
-  char culprit[512];
-  worst_state(run, culprit, sizeof culprit);
+  char culprit[512] = "";
+  if (local_errors_tell(flag))
+    worst_state(run, culprit, sizeof culprit);
   const long singular = fb_auglin_singular_unknown(run->lin);
   if (singular >= 0 && (flag == CV_LSETUP_FAIL || flag == CV_CONV_FAILURE)) {
     char unknown[256];
@@ -414,15 +493,10 @@ static int compare_doubles(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
-/* Two times closer than this are one: CVODE cannot start a segment
- * shorter than a few roundoffs of its end points (CV_TOO_CLOSE). */
-static double same_time_tol(double a, double b)
-{
-  return 100 * DBL_EPSILON * fmax(fabs(a), fabs(b));
-}
-
 /* run->bps = the sources' and opts' breakpoints strictly inside
- * (t_start, t_end), sorted, without near duplicates. */
+ * (t_start, t_end), sorted, without near duplicates: times closer than
+ * fb_sim_same_time_tol are one, since CVODE cannot start a segment
+ * shorter than a few roundoffs of its end points (CV_TOO_CLOSE). */
 static int collect_breakpoints(sim_run *run, fb_err *err)
 {
   const fb_sim_opts *o = run->opts;
@@ -440,7 +514,8 @@ static int collect_breakpoints(sim_run *run, fb_err *err)
   run->nbps = 0;
   for (size_t i = 0; i < total; ++i) {
     const double t = run->bps[i];
-    if (t - last > same_time_tol(t, last) && o->t_end - t > same_time_tol(t, o->t_end))
+    if (t - last > fb_sim_same_time_tol(t, last) &&
+        o->t_end - t > fb_sim_same_time_tol(t, o->t_end))
       last = run->bps[run->nbps++] = t;
   }
   return FB_OK;
@@ -456,6 +531,16 @@ static int write_sample(sim_run *run, size_t k, double t, const double *x, fb_er
   if (fb_bd_outputs(run->bd, t, x, row + 1) != 0)
     return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: evaluating the outputs failed: %s", t,
                       fb_bd_last_error(run->bd));
+  /* An output the dynamics do not need (a power probe, an energy) is
+   * not checked by cv_rhs; a non-finite one must not reach the table. */
+  const size_t nout = run->res->ncols - 1, bad = fb_sim_first_nonfinite(row + 1, nout);
+  if (bad < nout) {
+    char what[300], msg[FB_SIM_NONFINITE_MAX];
+    snprintf(what, sizeof what, "output %s is %g", fb_bd_output_name(run->bd, bad),
+             fb_sim_shown(row[1 + bad]));
+    fb_sim_explain_nonfinite(run->bd, t, x, 0, what, msg, sizeof msg);
+    return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: %s", t, msg);
+  }
   return FB_OK;
 }
 
@@ -480,6 +565,31 @@ static int emit_samples(sim_run *run, double tcur, fb_err *err)
 
 /* ---- Stepping. */
 
+/* CVODE's first call evaluates f at the initial state, where no shorter
+ * step can help (CV_FIRST_RHSFUNC_ERR): a non-finite derivative there is
+ * reported at once, as the initial state's. ysam is free until the
+ * first sample is interpolated. */
+static int check_initial_rhs(sim_run *run, fb_err *err)
+{
+  const double t = run->opts->t_start, *x = N_VGetArrayPointer(run->y);
+  double *f = N_VGetArrayPointer(run->ysam);
+  if (fb_bd_rhs(run->bd, t, x, f) != 0)
+    return FB_OK; /* a failing law: CVODE reports it with its flag */
+  const size_t bad = fb_sim_first_nonfinite(f, run->n);
+  if (bad == run->n)
+    return FB_OK;
+  char what[300], msg[FB_SIM_NONFINITE_MAX];
+  snprintf(what, sizeof what, "the derivative of state %s is %g at the initial state",
+           fb_bd_state_name(run->bd, bad), fb_sim_shown(f[bad]));
+  fb_sim_explain_nonfinite(run->bd, t, x, 0, what, msg, sizeof msg);
+  return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: %s", t, msg);
+}
+
+/* A guard more than a check: CVODE does not accept a step whose state
+ * is not finite (its weighted norms of the correction and of the local
+ * error are then NaN or inf, and "norm <= 1" fails), and cv_rhs refuses
+ * non-finite derivatives, so a non-finite value stops the run through
+ * cvode_failure or check_progress with its origin. */
 static int check_finite_state(const sim_run *run, double t, fb_err *err)
 {
   const double *y = N_VGetArrayPointer(run->y);
@@ -488,7 +598,7 @@ static int check_finite_state(const sim_run *run, double t, fb_err *err)
       return fb_err_set(err, FB_ESOLVER,
                         "at t = %.6g s: state %s became %g; the model diverged or a law "
                         "returned a non-finite value",
-                        t, fb_bd_state_name(run->bd, i), y[i]);
+                        t, fb_bd_state_name(run->bd, i), fb_sim_shown(y[i]));
   return FB_OK;
 }
 
@@ -502,6 +612,14 @@ static int check_progress(const sim_run *run, double t_before, fb_err *err)
     return FB_OK;
   double h = 0;
   CVodeGetLastStep(run->cvode, &h);
+  if (run->has_nonfinite) {
+    char clause[FB_SIM_NONFINITE_MAX + 128];
+    nonfinite_clause(run, run->t_now, clause, sizeof clause);
+    return fb_err_set(err, FB_ESOLVER,
+                      "at t = %.6g s: CVODE step size %g no longer advances t: every longer "
+                      "step meets a value that is not finite: %s",
+                      run->t_now, h, clause);
+  }
   return fb_err_set(err, FB_ESOLVER,
                     "at t = %.6g s: CVODE step size %g no longer advances t; the model is "
                     "probably singular, or not finite, just after this time%s%s",
@@ -519,9 +637,11 @@ static int check_budget(const sim_run *run, double t, fb_err *err)
   if (run->steps_before + nst < run->opts->max_steps)
     return FB_OK;
   char *name = CVodeGetReturnFlagName(CV_TOO_MUCH_WORK);
-  fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s (%ld steps taken)", t,
+  char culprit[512];
+  worst_state(run, culprit, sizeof culprit);
+  fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s (%ld steps taken)%s", t,
              name ? name : "CV_TOO_MUCH_WORK", flag_hint(CV_TOO_MUCH_WORK),
-             run->opts->max_steps);
+             run->opts->max_steps, culprit);
   free(name);
   return FB_ESOLVER;
 }
@@ -581,7 +701,7 @@ static int handle_event(sim_run *run, double t_stop, fb_err *err)
   /* Within roundoff of the segment's end CVODE cannot restart (the
    * interval is too short); what is left of the segment is that roundoff,
    * and the next segment starts afresh. */
-  if (t_stop - run->t_now <= same_time_tol(t_stop, run->t_now))
+  if (t_stop - run->t_now <= fb_sim_same_time_tol(t_stop, run->t_now))
     return FB_OK;
   add_segment_stats(run, run->stats);
   int rc = cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, run->t_now, run->y), err);
@@ -604,6 +724,7 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
     if (rc != FB_OK)
       return rc;
     const double t_before = run->t_now;
+    run->has_nonfinite = 0; /* what the callbacks meet during this step */
     /* tout = t_stop only bounds the initial step-size estimate. */
     flag = CVode(run->cvode, t_stop, run->y, &run->t_now, CV_ONE_STEP);
     if (flag < 0)
@@ -644,7 +765,7 @@ static int restart_at_breakpoint(sim_run *run, double t, fb_err *err)
   run->stats->events++;
   const size_t last = run->next_sample - 1;
   const double t_last = fb_sample_grid_time(&run->grid, last);
-  if (fabs(t_last - t) <= same_time_tol(t_last, t))
+  if (fabs(t_last - t) <= fb_sim_same_time_tol(t_last, t))
     rc = write_sample(run, last, t_last, N_VGetArrayPointer(run->y), err);
   return rc;
 }
@@ -704,6 +825,8 @@ static int run_dynamic(sim_run *run, fb_err *err)
   int changed = 0;
   if (rc == FB_OK)
     rc = sync_modes(run, run->opts->t_start, &changed, err);
+  if (rc == FB_OK)
+    rc = check_initial_rhs(run, err);
   if (rc == FB_OK)
     rc = collect_breakpoints(run, err);
   if (rc == FB_OK)

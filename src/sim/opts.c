@@ -1,5 +1,8 @@
 /* Simulation options and the output sample grid (see flexbond/sim.h). */
+#include <float.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "flexbond/sim.h"
 
@@ -28,6 +31,39 @@ void fb_sim_opts_default(fb_sim_opts *opts)
   opts->progress_ctx = NULL;
 }
 
+double fb_sim_same_time_tol(double a, double b)
+{
+  return 100 * DBL_EPSILON * fmax(fabs(a), fabs(b));
+}
+
+/* The shortest run CVODE 6.4 can start: its first CVode call refuses
+ * - t_end - t_start < 2 uround max(|t_start|, |t_end|): cvHin returns
+ *   CV_TOO_CLOSE (src/cvode/cvode.c; t_start = 1 s, t_end = 1 s + 2 eps
+ *   fails, + 3 eps runs). We ask for fb_sim_same_time_tol, the distance
+ *   at which the integration treats two times as one;
+ * - (tstop - t) (tout - t) <= 0, its test that the stop time lies ahead,
+ *   which for the first segment is (t_end - t_start)^2: it underflows to
+ *   0 below about 1.6e-162 s and CVODE says "tstop ... is behind current
+ *   t" (CV_ILL_INPUT; 1e-160 s runs, 1e-162 s fails). sqrt(DBL_MIN), where
+ *   the square stops being a normal double, keeps clear of it.
+ * A run shorter than one sample interval is allowed: it has one sample,
+ * at t_start. */
+static double shortest_run(double t_start, double t_end)
+{
+  return fmax(sqrt(DBL_MIN), fb_sim_same_time_tol(t_start, t_end));
+}
+
+/* The shortest "%g" of v that reads back as v, so that two times a
+ * roundoff apart print differently. */
+static void format_exact(double v, char *buf, size_t size)
+{
+  for (int digits = 6; digits <= 17; ++digits) {
+    snprintf(buf, size, "%.*g", digits, v);
+    if (strtod(buf, NULL) == v)
+      return;
+  }
+}
+
 static int check_times(const fb_sim_opts *o, fb_err *err)
 {
   if (!isfinite(o->t_start))
@@ -36,6 +72,17 @@ static int check_times(const fb_sim_opts *o, fb_err *err)
     return fb_err_set(err, FB_EINVAL,
                       "simulation.t_end: must be finite and greater than t_start = %g, got %g",
                       o->t_start, o->t_end);
+  const double shortest = shortest_run(o->t_start, o->t_end);
+  if (!(o->t_end - o->t_start >= shortest)) {
+    char t0[32], t1[32];
+    format_exact(o->t_start, t0, sizeof t0);
+    format_exact(o->t_end, t1, sizeof t1);
+    return fb_err_set(err, FB_EINVAL,
+                      "simulation.t_end: the run from t_start = %s s to t_end = %s s is too "
+                      "short for the solver to take a step: t_end - t_start = %.3g s, it must "
+                      "be at least %.3g s",
+                      t0, t1, o->t_end - o->t_start, shortest);
+  }
   if (!(o->sample_rate > 0) || !isfinite(o->sample_rate))
     return fb_err_set(err, FB_EINVAL, "simulation.sample_rate: must be positive, got %g",
                       o->sample_rate);

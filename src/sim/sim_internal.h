@@ -31,4 +31,29 @@ typedef struct fb_sample_grid {
 void fb_sample_grid_init(fb_sample_grid *g, const fb_sim_opts *opts);
 double fb_sample_grid_time(const fb_sample_grid *g, size_t k);
 
+/* Two times closer than this are one (100 roundoffs of the larger):
+ * breakpoints that close to each other or to the ends of the run are
+ * merged, and a run must be longer (fb_sim_opts_check). */
+double fb_sim_same_time_tol(double a, double b);
+
+/* ---- Non-finite values (nonfinite.c). */
+
+/* Index of the first non-finite entry of v[0 .. n), n if none. */
+size_t fb_sim_first_nonfinite(const double *v, size_t n);
+
+/* v for "%g": a NaN without the sign glibc prints ("-nan"), which means
+ * nothing to a reader. */
+double fb_sim_shown(double v);
+
+/* Room for one description of a non-finite value. */
+#define FB_SIM_NONFINITE_MAX 1024
+
+/* buf = "<what>; the non-finite value starts at <where>; hint: <hint>",
+ * where what says what was not finite ("the derivative of state Ms.p is
+ * nan"), where is fb_bd_explain_nonfinite(bd, t, x, jacobian) and hint
+ * suits what it found. Re-evaluates the diagram. Returns the kind. */
+fb_bd_nonfinite_kind fb_sim_explain_nonfinite(fb_bd *bd, double t, const double *x,
+                                              int jacobian, const char *what, char *buf,
+                                              size_t size);
+
 #endif

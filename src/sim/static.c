@@ -20,12 +20,14 @@
  * can move, and free motions neither make the matrix singular nor
  * wander. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "flexbond/sim.h"
 
 #include "sim/auglin.h"
+#include "sim/sim_internal.h"
 
 /* First pseudo time step and its growth per iteration, s. The cap keeps
  * I - h J away from the conditioning of J itself, and round-off from
@@ -78,11 +80,20 @@ static void residuals(const fb_bd *bd, const double *f, size_t n, double *rp, do
   }
 }
 
+/* F(t, x) into f, which must be finite: residuals() takes maxima with
+ * fmax, which drops a NaN, so one would pass for a balance. */
 static int eval_rhs(fb_bd *bd, double t, const double *x, double *f, fb_err *err)
 {
   if (fb_bd_rhs(bd, t, x, f))
     return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
-  return FB_OK;
+  const size_t n = fb_bd_nstates(bd), bad = fb_sim_first_nonfinite(f, n);
+  if (bad == n)
+    return FB_OK;
+  char what[300], msg[FB_SIM_NONFINITE_MAX];
+  snprintf(what, sizeof what, "the derivative of state %s is %g", fb_bd_state_name(bd, bad),
+           fb_sim_shown(f[bad]));
+  fb_sim_explain_nonfinite(bd, t, x, 0, what, msg, sizeof msg);
+  return fb_err_set(err, FB_ESOLVER, "static equilibrium at t = %g s: %s", t, msg);
 }
 
 /* One implicit Euler step of length h from x (in place), ending at rest:
@@ -94,6 +105,12 @@ static int pseudo_step(fb_bd *bd, double t, double h, static_work *w, double *x,
 {
   if (fb_bd_aug_values(bd, t, x, w->v0, w->v1))
     return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
+  const size_t nnz = fb_bd_aug_nnz(bd);
+  if (fb_sim_first_nonfinite(w->v0, nnz) < nnz || fb_sim_first_nonfinite(w->v1, nnz) < nnz) {
+    char msg[FB_SIM_NONFINITE_MAX];
+    fb_sim_explain_nonfinite(bd, t, x, 1, "the Newton matrix is not finite", msg, sizeof msg);
+    return fb_err_set(err, FB_ESOLVER, "static equilibrium at t = %g s: %s", t, msg);
+  }
   int rc = fb_auglin_setup(w->lin, h, w->v0, w->v1, err);
   for (size_t i = 0; rc == FB_OK && i < w->n; ++i)
     w->dx[i] = h * w->f[i];
