@@ -4,7 +4,8 @@
 # (make mpi). Usage: bench/sweep_mpi.sh [MPI_BUILD_DIR]
 #
 # The study: System 1 at 48 speeds (5..52 km/h) over a 60 s run instead of
-# the example's 15 s, so that a case (about 0.1 s) outweighs handing it out.
+# the example's 15 s, so that a case (about 0.065 s on one thread)
+# outweighs handing it out.
 # No figure: gnuplot would add the same 0.2 s to every line.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -15,14 +16,15 @@ trap 'rm -rf "$out"' EXIT
 if [ "$(id -u)" -eq 0 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 fi
-# One OpenBLAS thread per process: the ranks (or threads) are the parallelism.
-export OPENBLAS_NUM_THREADS=1
+# No OPENBLAS_NUM_THREADS: flexbond sweep runs OpenBLAS on one thread
+# itself, in every mode (docs/sweep.md).
 
 sed 's/^  t_end: 15 /  t_end: 60 /' examples/apc6x6.yaml >"$out/study.yaml"
 ncases=48
 study="sweep $out/study.yaml --set speed_kmh=5:1:52 --no-figures -q"
 
-# line LABEL COMMAND: hyperfine's median over 5 runs, and cases per second.
+# line LABEL COMMAND: hyperfine's median over 7 runs (after one warm-up),
+# and cases per second.
 line() {
   hyperfine -N --warmup 1 --runs 7 --style none --export-json "$out/h.json" \
     --prepare "rm -rf $out/sweep" "$2" >/dev/null

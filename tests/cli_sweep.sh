@@ -6,9 +6,9 @@
 # by sed, not by an override); one thread and two give the same numbers;
 # a two-key grid has the product of the counts as rows, in grid order; a
 # case whose bump no longer fits in the run is marked in the error column
-# while the others run, with exit 4; a categorical first key and System 2
-# run; usage errors exit 1 and write nothing; a directory that cannot be
-# made exits 5.
+# while the others run, with exit 4 and one final message on stderr, also
+# under -q; a categorical first key and System 2 run; usage errors exit 1
+# and write nothing; a directory that cannot be made exits 5.
 #
 # usage: bash tests/cli_sweep.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -143,9 +143,17 @@ assert "20.66" in bad["error"]
 assert all(v == "" for k, v in bad.items() if k not in ("speed_kmh", "error"))
 assert good["error"] == "" and float(good["tire_force_LF_peak"]) > 0
 EOF
-# A value the reader refuses fails its case the same way.
+expect_in "$ERR" "flexbond: 1 of 2 cases failed (each has its message in the error column of $WORK/fail/sweep.csv); the first, case 1 (speed_kmh=2): --set speed_kmh=2: " \
+  "failed cases: the final message"
+# A value the reader refuses fails its case the same way. -q silences the
+# progress, not the failure: one message on stderr (docs/errors.md).
 run sweep "$APC" --set speed_kmh=fast -o "$WORK/word" --no-figures -q
 expect_status 4 "a bad value fails its case"
+want="^flexbond: 1 of 1 case failed (.*); the first, case 1 (speed_kmh=fast): "
+want="$want--set speed_kmh=fast: $APC:125:14: road.speed_kmh: expression 'fast'"
+checks=$((checks + 1))
+[ "$(wc -l <"$ERR")" -eq 1 ] && grep -q "$want" "$ERR" ||
+  fail "-q with a failed case: one message on stderr"
 expect_in "$WORK/word/sweep.csv" "--set speed_kmh=fast: $APC:" "reader's message with --set prefix"
 expect_in "$WORK/word/sweep.csv" "road.speed_kmh: expression 'fast'" "reader's message"
 

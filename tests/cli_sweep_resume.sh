@@ -5,7 +5,9 @@
 # byte, as a sweep never stopped, running only the cases its journal lacks
 # (a failed case is kept, not run again); a journal is refused without
 # --resume, when it is another study's or has other columns, when a row
-# does not belong to the study, and while another sweep writes it; a
+# does not belong to the study, when another flexbond wrote it, when a
+# file the study reads (a damper table the scenario names, or one a --set
+# value names) has changed since, and while another sweep writes it; a
 # journal that cannot be written stops the sweep with the rows it holds
 # counted; --resume with no journal runs the whole study.
 #
@@ -34,17 +36,21 @@ rows() {
   echo "$n"
 }
 
-# stopped DIR SIGNAL: starts the study into DIR, sends SIGNAL once the
-# journal holds at least 3 rows, and waits; sets $status.
+# stopped DIR SIGNAL [STUDY...]: starts the study (default: $STUDY) into
+# DIR, sends SIGNAL once the journal holds at least 3 rows, and waits;
+# sets $status.
 stopped() {
-  rm -rf "$1"
-  "$FLEXBOND" "${STUDY[@]}" -o "$1" >"$OUT" 2>"$ERR" &
+  local dir=$1 signal=$2
+  shift 2
+  [ $# -gt 0 ] || set -- "${STUDY[@]}"
+  rm -rf "$dir"
+  "$FLEXBOND" "$@" -o "$dir" >"$OUT" 2>"$ERR" &
   local pid=$! waited=0
-  while [ "$(rows "$1")" -lt 3 ] && [ "$waited" -lt 600 ]; do
+  while [ "$(rows "$dir")" -lt 3 ] && [ "$waited" -lt 600 ]; do
     sleep 0.02
     waited=$((waited + 1))
   done
-  kill -s "$2" "$pid"
+  kill -s "$signal" "$pid"
   wait "$pid"
   status=$?
 }
@@ -106,10 +112,12 @@ stopped "$WORK/other" KILL
 run sweep "$WORK/long.yaml" --set "speed_kmh=$SPEEDS,58" --no-figures -o "$WORK/other" --resume
 expect_status 1 "another study's journal"
 expect_in "$ERR" "$WORK/other/$JOURNAL: the journal of another study" "another study: message"
-sed -i '4s/^\([0-9]*\),\([A-Z_]*\),\([^,]*\),/\1,\2,999,/' "$WORK/other/$JOURNAL"
+# The journal's second row (its line: after the comments and the header).
+line=$(grep -n '^[0-9]' "$WORK/other/$JOURNAL" | sed -n 2p | cut -d: -f1)
+sed -i "${line}s/^\([0-9]*\),\([A-Z_]*\),\([^,]*\),/\1,\2,999,/" "$WORK/other/$JOURNAL"
 run "${STUDY[@]}" -o "$WORK/other" --resume
 expect_status 2 "a row of another case"
-expect_in "$ERR" "$WORK/other/$JOURNAL:4: case " "a row of another case names its line"
+expect_in "$ERR" "$WORK/other/$JOURNAL:$line: case " "a row of another case names its line"
 expect_in "$ERR" "has speed_kmh=999" "a row of another case: message"
 
 # The same study with a key spelled otherwise: other columns.
@@ -117,8 +125,53 @@ stopped "$WORK/spelled" KILL
 run sweep "$WORK/long.yaml" --set "road.speed_kmh=$SPEEDS" --no-figures -o "$WORK/spelled" \
   --resume
 expect_status 1 "the key spelled otherwise"
-expect_in "$ERR" "$WORK/spelled/$JOURNAL:2: the journal's columns are not this sweep's" \
+line=$(grep -n '^case,' "$WORK/spelled/$JOURNAL" | cut -d: -f1)
+expect_in "$ERR" "$WORK/spelled/$JOURNAL:$line: the journal's columns are not this sweep's" \
   "the key spelled otherwise: message"
+
+# Another flexbond's journal (its version in its comments, and its own
+# fingerprint): refused, naming both versions.
+sed -e '1s/study [0-9a-f]*,/study 0000000000000000,/' \
+  -e 's/^# written by flexbond .*/# written by flexbond 0.0.1/' "$WORK/journal.copy" \
+  >"$WORK/spelled/$JOURNAL"
+run "${STUDY[@]}" -o "$WORK/spelled" --resume
+expect_status 1 "another flexbond's journal"
+expect_in "$ERR" "the journal of another study: it was written by flexbond 0.0.1, this is" \
+  "another flexbond's journal: message"
+
+# ---- A file the study reads changes after a partial run: the journal's
+# cases were computed from the old file, so --resume refuses it (exit 1)
+# and leaves it as it was, naming the file; once the file is back, it
+# resumes. The damper-table example (its tables copied beside it) over
+# 60 s, with the LF table swept too: shock_alt.csv, a copy of the front
+# table, is named only by a --set value.
+sed 's/^  t_end: 15 /  t_end: 60 /' "$REPO_ROOT/examples/apc6x6_shock_table.yaml" \
+  >"$WORK/table.yaml"
+cp "$REPO_ROOT/examples/shock_front.csv" "$REPO_ROOT/examples/shock_rear.csv" "$WORK/"
+cp "$WORK/shock_front.csv" "$WORK/shock_alt.csv"
+TABLES=(sweep "$WORK/table.yaml" --set suspensions.LF.damper_table.file=shock_front.csv,shock_alt.csv
+  --set speed_kmh=6,18,30,42 --no-figures -j 1)
+stopped "$WORK/table" KILL "${TABLES[@]}"
+cp "$WORK/table/$JOURNAL" "$WORK/journal.copy"
+for table in shock_front shock_alt; do
+  # Every force of the table doubled (its F column).
+  cp "$WORK/$table.csv" "$WORK/$table.orig"
+  awk -F, 'BEGIN { OFS = "," } /^[-0-9.]/ { $2 = 2 * $2 } { print }' "$WORK/$table.orig" \
+    >"$WORK/$table.csv"
+  run "${TABLES[@]}" -o "$WORK/table" --resume
+  expect_status 1 "$table.csv changed after a partial run"
+  expect_in "$ERR" "$WORK/table/$JOURNAL: the journal of another study: $WORK/$table.csv has changed since the journal was written" \
+    "$table.csv changed: message"
+  checks=$((checks + 1))
+  cmp -s "$WORK/table/$JOURNAL" "$WORK/journal.copy" ||
+    fail "$table.csv changed: the refused journal was changed"
+  mv "$WORK/$table.orig" "$WORK/$table.csv"
+done
+run "${TABLES[@]}" -o "$WORK/table" --resume -q
+expect_status 0 "the tables restored: resumed"
+checks=$((checks + 1))
+[ "$(grep -c '^shock_' "$WORK/table/sweep.csv")" -eq 8 ] ||
+  fail "the tables restored: 8 rows in sweep.csv: $(grep -c '^shock_' "$WORK/table/sweep.csv")"
 
 # ---- The journal cannot be written (a file-size limit, SIGXFSZ ignored,
 # so that a write fails with EFBIG as on a full disk): no case is started
@@ -133,7 +186,8 @@ rm -rf "$WORK/full"
 status=$?
 expect_status 5 "the journal cannot be written"
 expect_in "$ERR" "$WORK/full/$JOURNAL: cannot write: File too large" "journal write: message"
-kept=$(($(wc -l <"$WORK/full/$JOURNAL") - 2))
+# The complete rows: lines ended by '\n' but the comments and the header.
+kept=$(($(wc -l <"$WORK/full/$JOURNAL") - $(grep -vc '^[0-9]' "$WORK/full/$JOURNAL")))
 expect_in "$ERR" "; $kept of 14 cases are done and kept in" "journal write: the rows kept"
 checks=$((checks + 1))
 [ "$kept" -ge 1 ] && [ "$kept" -lt 13 ] || fail "journal write: $kept rows before the limit"

@@ -65,6 +65,12 @@ static const char sweep_usage[] =
 /* Most threads -j accepts. */
 enum { SWEEP_MAX_JOBS = 1024 };
 
+/* OpenBLAS's own call (the library links libopenblas directly,
+ * CMakeLists.txt's OPENBLAS_LIB), declared here rather than taken from a
+ * cblas.h: which cblas.h the Debian alternatives select (OpenBLAS's or
+ * the reference one, which lacks it) is not ours to choose. */
+void openblas_set_num_threads(int num_threads);
+
 /* ---- Output files. */
 
 /* What the files are made of. */
@@ -507,6 +513,23 @@ static void leave_journal(const sweep_args *a, const sweep_case *cases, sweep_jo
   free(path);
 }
 
+/* The message of a study that ran with failed cases (failed of them)
+ * into err: how many, where their messages are, and the first. */
+static void failed_cases_error(const sweep_args *a, const sweep_case *cases, size_t failed,
+                               fb_err *err)
+{
+  size_t i = 0;
+  while (i + 1 < a->ncases && !(cases[i].done && cases[i].status != FB_OK))
+    ++i;
+  char label[512];
+  sweep_case_label(a, i, 0, label, sizeof label);
+  fb_err_set(err, FB_ESOLVER,
+             "%zu of %zu case%s failed (each has its message in the error column of "
+             "%s/sweep.csv); the first, case %zu (%s): %s",
+             failed, a->ncases, a->ncases == 1 ? "" : "s", a->out_dir, i + 1, label,
+             cases[i].error ? cases[i].error : "out of memory");
+}
+
 /* Runs the study (on rank 0 of mpi_size ranks, or alone when mpi_size is
  * 0); the exit code. */
 static int sweep(const sweep_args *a, int mpi_size)
@@ -549,6 +572,10 @@ static int sweep(const sweep_args *a, int mpi_size)
   if (rc == FB_OK && !a->quiet)
     fprintf(stderr, "flexbond sweep: %s: %zu cases (%zu resumed), %zu failed, %.3g s -> %s\n",
             a->scenario_name, a->ncases, resumed, failed, seconds, a->out_dir);
+  /* Failed cases are a failure of the command, said in one message like
+   * any other (docs/errors.md), -q or not: -q silences the progress. */
+  if (rc == FB_OK && failed > 0)
+    failed_cases_error(a, cases, failed, &err);
   for (size_t i = 0; cases && i < a->ncases; ++i)
     free(cases[i].error);
   free(cases);
@@ -558,7 +585,7 @@ static int sweep(const sweep_args *a, int mpi_size)
     return cli_usage_error("sweep", "%s", err.msg);
   if (rc != FB_OK)
     return cli_report(rc, &err);
-  return failed ? CLI_EXIT_SOLVER : CLI_EXIT_OK;
+  return failed ? cli_report(FB_ESOLVER, &err) : CLI_EXIT_OK;
 }
 
 /* The options after the --set ones are taken out. */
@@ -665,7 +692,7 @@ static int sweep_mpi(int argc, char **argv, sweep_args *a, char **name)
   }
   rc = set_up(argc, argv, a, name, &go);
   uint64_t fingerprint = 0;
-  if (rc == CLI_EXIT_OK && go && sweep_study_fingerprint(a, &fingerprint, &err) != FB_OK)
+  if (rc == CLI_EXIT_OK && go && sweep_study_fingerprint(a, &fingerprint, NULL, &err) != FB_OK)
     rc = cli_report(err.code, &err);
   if (saved >= 0) {
     fflush(stderr);
@@ -675,13 +702,12 @@ static int sweep_mpi(int argc, char **argv, sweep_args *a, char **name)
   int bad_rank = 0;
   if (sweep_mpi_agree(rc == CLI_EXIT_OK, fingerprint, &bad_rank)) {
     if (rank == 0 && rc == CLI_EXIT_OK)
-      rc =
-          cli_report(fb_err_set(&err, FB_EIO,
-                                "rank %d could not set the study up, or read another scenario "
-                                "file than rank 0 (do all nodes see the scenario and the files "
-                                "it names at the same paths?)",
-                                bad_rank),
-                     &err);
+      rc = cli_report(fb_err_set(&err, FB_EIO,
+                                 "rank %d could not set the study up, or read another scenario "
+                                 "file than rank 0 or other files it names (do all nodes see "
+                                 "the same scenario and files at the same paths?)",
+                                 bad_rank),
+                      &err);
   } else if (go && rank == 0) {
     rc = sweep(a, size);
   } else if (go && sweep_mpi_go(0)) {
@@ -696,6 +722,15 @@ int cli_cmd_sweep(int argc, char **argv)
   sweep_args a = {0};
   char *name = NULL;
   int go = 0, rc;
+  /* One BLAS thread in every mode (threads, ranks, resumed): the sweep's
+   * parallelism is over cases, nested BLAS threads would only
+   * oversubscribe the cores, and OpenBLAS sizes its pool from the CPUs
+   * the process may use, which differ between a process on all cores and
+   * an MPI rank bound to one; with another pool size a System 2 case's
+   * dense eigen-solution rounds otherwise, and sweep.csv would depend on
+   * how it ran (docs/sweep.md). OpenBLAS reads OPENBLAS_NUM_THREADS when
+   * it is loaded, before main, so only its own call can do this. */
+  openblas_set_num_threads(1);
   if (wants_mpi(argc, argv)) {
 #ifdef FLEXBOND_MPI
     rc = sweep_mpi(argc, argv, &a, &name);

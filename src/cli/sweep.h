@@ -87,12 +87,12 @@ int sweep_numeric_value(const char *text, double *out);
 
 /* ---- sweep_journal.c: DIR/sweep.partial.csv, one row per finished case
  * in the order they finish, flushed at once, so that a killed sweep
- * loses at most the cases it was running. */
+ * process loses at most the cases it was running. */
 typedef struct sweep_journal sweep_journal;
 /* Opens (creates) the journal in dir, locked against a second sweep. An
  * existing journal is read back into cases (their done flag set, *resumed
  * counted) when a->resume, and refused otherwise; it must be of the same
- * study (scenario text, system, keys and values). */
+ * study (sweep_study_fingerprint). */
 int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, size_t *resumed,
                        sweep_journal **j, fb_err *err);
 /* Appends case i (finished, not interrupted) and flushes. */
@@ -101,9 +101,15 @@ int sweep_journal_append(sweep_journal *j, size_t i, const sweep_case *c, fb_err
 size_t sweep_journal_rows(const sweep_journal *j);
 /* Closes; removes the file when remove_file. */
 void sweep_journal_close(sweep_journal **j, int remove_file);
-/* The study's fingerprint: of the scenario file's bytes, the system, the
- * keys' paths and their values. */
-int sweep_study_fingerprint(const sweep_args *a, uint64_t *fingerprint, fb_err *err);
+/* The study's fingerprint: a hash of flexbond's version, the system, the
+ * keys' paths and their values, and the bytes of every file the study
+ * reads (the scenario file, every file it names at a key `file` or
+ * `deck`, every --set value of such a key; one that cannot be read
+ * counts as such). With inputs, also one line "# input HASH PATH\n" per
+ * file into *inputs (fresh memory, the caller frees it), which the
+ * journal keeps to name a file that has changed. */
+int sweep_study_fingerprint(const sweep_args *a, uint64_t *fingerprint, char **inputs,
+                            fb_err *err);
 /* The journal's path in dir, in fresh memory (NULL: out of memory). */
 char *sweep_journal_path(const char *dir);
 

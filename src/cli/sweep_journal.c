@@ -1,20 +1,29 @@
 /* The journal of a sweep (sweep.h): DIR/sweep.partial.csv, which a
  * killed or interrupted sweep leaves behind and `--resume` reads back.
  *
- *   # flexbond sweep journal (docs/sweep.md), study 3f2a..., 12 cases
+ *   # flexbond sweep journal (docs/sweep.md), study 3f2a..., 12 cases; ...
+ *   # written by flexbond 0.1.0
+ *   # input 5d1e... examples/apc6x6_shock_table.yaml
+ *   # input 9c07... examples/shock_front.csv
  *   case,status,<sweep.csv's header>
  *   4,FB_OK,<case 4's sweep.csv row>
  *
  * The rows come in the order the cases finish, each flushed at once: a
  * killed process loses only the cases it was running (a row it was
- * writing is torn, has no line end, and is dropped on resuming). The
- * metrics are printed to the last bit (sweep_format_double), so a resumed
- * sweep writes the same sweep.csv as one that was never stopped. The
- * study's fingerprint (the scenario file's bytes, the system, the keys and
- * their values) keeps a journal from being resumed by another study; an
- * exclusive flock(2) keeps two sweeps from writing one journal. */
+ * writing is torn, has no line end, and is dropped on resuming). They are
+ * not fsync'ed: that costs milliseconds a row (docs/sweep.md), under the
+ * pool's lock, and a crash of the machine costs only the cases of the rows
+ * not yet written out. The metrics are printed to the last bit
+ * (sweep_format_double), so a resumed sweep writes the same sweep.csv as
+ * one that was never stopped. The study's fingerprint (flexbond's
+ * version, the system, the keys and their values, and the bytes of every
+ * file the study reads) keeps a journal from being resumed by another
+ * study, or after a file it read has changed; the "# input" lines let the
+ * refusal name that file. An exclusive flock(2) keeps two sweeps from
+ * writing one journal. */
 #include <errno.h>
 #include <fcntl.h>
+#include <libfyaml.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -57,27 +66,257 @@ static uint64_t fnv1a_text(uint64_t h, const char *text)
   return fnv1a(h, text, strlen(text) + 1); /* with its NUL: "ab","c" != "a","bc" */
 }
 
-int sweep_study_fingerprint(const sweep_args *a, uint64_t *h, fb_err *err)
+/* ---- The files a study reads: the scenario file, and every file it
+ * names. The format's file references are the values of keys named
+ * `file` or `deck` (suspensions.*.damper_table.file, road.profile.file,
+ * hull.mesh.deck; docs/scenario-format.md): every such value of the
+ * scenario file, and every --set value of such a key. fb_scenario does
+ * not keep the damper tables' names (it holds their knots), so the names
+ * are read from the YAML document here, resolved as the reader resolves
+ * them: relative to the scenario's directory. */
+
+typedef struct study_inputs {
+  uint64_t h;  /* the fingerprint so far */
+  FILE *lines; /* "# input HASH PATH\n" per file; NULL: not wanted */
+  char *dir;   /* the scenario's directory */
+  char **seen; /* the paths hashed so far, each hashed once */
+  size_t nseen, cap;
+} study_inputs;
+
+/* The directory of path in fresh memory, as the scenario reader takes it
+ * (fb_dirname): "." for a bare name. NULL: out of memory. */
+static char *dir_of(const char *path)
 {
-  FILE *fp = fopen(a->scenario_path, "rb");
+  const char *slash = strrchr(path, '/');
+  const size_t len = !slash ? 1 : slash == path ? 1 : (size_t)(slash - path);
+  char *dir = malloc(len + 1);
+  if (dir) {
+    memcpy(dir, !slash ? "." : path, len);
+    dir[len] = '\0';
+  }
+  return dir;
+}
+
+/* The whole file at path in fresh memory: 0, or -1 with errno set. */
+static int read_whole(const char *path, char **text, size_t *len)
+{
+  *text = NULL;
+  *len = 0;
+  FILE *fp = fopen(path, "rb");
   if (!fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", a->scenario_path, strerror(errno));
-  *h = UINT64_C(14695981039346656037);
-  char buf[8192];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, fp)) > 0)
-    *h = fnv1a(*h, buf, n);
-  const int failed = ferror(fp);
+    return -1;
+  size_t cap = 0;
+  int rc = 0;
+  for (;;) {
+    if (*len == cap) {
+      char *grown = realloc(*text, cap ? 2 * cap : 8192);
+      if (!grown) {
+        errno = ENOMEM;
+        rc = -1;
+        break;
+      }
+      *text = grown;
+      cap = cap ? 2 * cap : 8192;
+    }
+    const size_t n = fread(*text + *len, 1, cap - *len, fp);
+    *len += n;
+    if (n == 0) {
+      /* A directory opens, then fails to read (EISDIR). */
+      rc = ferror(fp) ? -1 : 0;
+      break;
+    }
+  }
+  const int saved = errno; /* fclose's own would hide the read's */
   fclose(fp);
-  if (failed)
-    return fb_err_set(err, FB_EIO, "%s: cannot read", a->scenario_path);
-  *h = fnv1a_text(*h, cli_system_label(a->sys));
-  for (size_t k = 0; k < a->nkeys; ++k) {
-    *h = fnv1a_text(*h, a->keys[k].path);
-    for (size_t v = 0; v < a->keys[k].nvalues; ++v)
-      *h = fnv1a_text(*h, a->keys[k].values[v]);
+  errno = saved;
+  if (rc != 0) {
+    free(*text);
+    *text = NULL;
+  }
+  return rc;
+}
+
+/* 1 if the file at path has been added. */
+static int seen_before(const study_inputs *in, const char *path)
+{
+  for (size_t i = 0; i < in->nseen; ++i)
+    if (!strcmp(in->seen[i], path))
+      return 1;
+  return 0;
+}
+
+/* Adds the file at path (not seen before), with its bytes text (NULL: it
+ * cannot be read): its hash to the fingerprint and its line. The path
+ * goes into the line with control characters made '?', so that it stays
+ * one line. */
+static int add_input(study_inputs *in, const char *path, const char *text, size_t len,
+                     fb_err *err)
+{
+  if (in->nseen == in->cap) {
+    const size_t cap = in->cap ? 2 * in->cap : 16;
+    char **grown = realloc(in->seen, cap * sizeof *grown);
+    if (!grown)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for the study's files");
+    in->seen = grown;
+    in->cap = cap;
+  }
+  if (!(in->seen[in->nseen] = strdup(path)))
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the study's files");
+  ++in->nseen;
+  /* A file that cannot be read fails its cases, not the study; that it
+   * could not is part of the study, so that it is not resumed once the
+   * file is back. */
+  char hash[32] = "unreadable";
+  if (text)
+    snprintf(hash, sizeof hash, "%016llx",
+             (unsigned long long)fnv1a(UINT64_C(14695981039346656037), text, len));
+  in->h = fnv1a_text(in->h, hash);
+  if (in->lines) {
+    fprintf(in->lines, "# input %s ", hash);
+    for (const char *c = path; *c; ++c)
+      fputc((unsigned char)*c < 0x20 ? '?' : *c, in->lines);
+    fputc('\n', in->lines);
   }
   return FB_OK;
+}
+
+/* Adds the file a reference names (as written in the scenario or in a
+ * --set value). */
+static int add_reference(study_inputs *in, const char *ref, fb_err *err)
+{
+  if (!ref[0])
+    return FB_OK; /* the reader refuses it: a failed case */
+  char *path = ref[0] == '/' ? strdup(ref) : cli_join_path(in->dir, ref);
+  if (!path)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the study's files");
+  int rc = FB_OK;
+  if (!seen_before(in, path)) {
+    char *text = NULL;
+    size_t len = 0;
+    const int readable = read_whole(path, &text, &len) == 0;
+    rc = !readable && errno == ENOMEM ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", path)
+                                      : add_input(in, path, readable ? text : NULL, len, err);
+    free(text);
+  }
+  free(path);
+  return rc;
+}
+
+/* 1 if a key (the last segment of a dotted path, or a mapping key) names
+ * a file. */
+static int is_file_key(const char *key)
+{
+  return !strcmp(key, "file") || !strcmp(key, "deck");
+}
+
+/* 1 if the scalar n is YAML's null (`deck: ~`: no deck), as the reader
+ * takes it (ml_is_null). */
+static int is_null(struct fy_node *n)
+{
+  const char *t = fy_node_get_scalar0(n);
+  return fy_node_get_style(n) == FYNS_PLAIN &&
+         (!t || !strcmp(t, "") || !strcmp(t, "~") || !strcmp(t, "null") || !strcmp(t, "Null") ||
+          !strcmp(t, "NULL"));
+}
+
+/* Adds every file the document below n names. */
+static int add_references_below(study_inputs *in, struct fy_node *n, fb_err *err)
+{
+  void *it = NULL;
+  int rc = FB_OK;
+  if (fy_node_is_sequence(n)) {
+    struct fy_node *item;
+    while (rc == FB_OK && (item = fy_node_sequence_iterate(n, &it)))
+      rc = add_references_below(in, item, err);
+  } else if (fy_node_is_mapping(n)) {
+    struct fy_node_pair *pair;
+    while (rc == FB_OK && (pair = fy_node_mapping_iterate(n, &it))) {
+      struct fy_node *key = fy_node_pair_key(pair), *value = fy_node_pair_value(pair);
+      const char *name = key && fy_node_is_scalar(key) ? fy_node_get_scalar0(key) : NULL;
+      if (name && value && fy_node_is_scalar(value) && is_file_key(name)) {
+        const char *ref = fy_node_get_scalar0(value);
+        if (!is_null(value))
+          rc = ref ? add_reference(in, ref, err)
+                   : fb_err_set(err, FB_ENOMEM, "out of memory reading a YAML scalar");
+      } else if (value) {
+        rc = add_references_below(in, value, err);
+      }
+    }
+  }
+  return rc;
+}
+
+/* The files the scenario file (its bytes text) names. */
+static int add_scenario_references(study_inputs *in, const char *path, const char *text,
+                                   size_t len, fb_err *err)
+{
+  /* As the scenario reader parses: aliases and merge keys expanded. */
+  struct fy_parse_cfg cfg = {.flags = FYPCF_QUIET | FYPCF_RESOLVE_DOCUMENT};
+  struct fy_document *doc = fy_document_build_from_string(&cfg, text, len);
+  /* It loaded a moment ago (set_up): a failure now is a lack of memory or
+   * a file changed meanwhile. */
+  int rc = doc && fy_document_root(doc)
+               ? add_references_below(in, fy_document_root(doc), err)
+               : fb_err_set(err, FB_EPARSE, "%s: cannot parse it again (has it just changed?)",
+                            path);
+  fy_document_destroy(doc);
+  return rc;
+}
+
+static int study_inputs_add_all(const sweep_args *a, study_inputs *in, fb_err *err)
+{
+  in->h = fnv1a_text(in->h, "flexbond " CLI_VERSION);
+  in->h = fnv1a_text(in->h, cli_system_label(a->sys));
+  for (size_t k = 0; k < a->nkeys; ++k) {
+    in->h = fnv1a_text(in->h, a->keys[k].path);
+    for (size_t v = 0; v < a->keys[k].nvalues; ++v)
+      in->h = fnv1a_text(in->h, a->keys[k].values[v]);
+  }
+  char *text = NULL;
+  size_t len = 0;
+  if (read_whole(a->scenario_path, &text, &len) != 0)
+    return fb_err_set(err, errno == ENOMEM ? FB_ENOMEM : FB_EIO, "%s: cannot read: %s",
+                      a->scenario_path, strerror(errno));
+  int rc = add_input(in, a->scenario_path, text, len, err);
+  if (rc == FB_OK)
+    rc = add_scenario_references(in, a->scenario_path, text, len, err);
+  free(text);
+  /* A --set value of a file key names a file too: each case reads its own. */
+  for (size_t k = 0; rc == FB_OK && k < a->nkeys; ++k) {
+    const char *dot = strrchr(a->keys[k].path, '.');
+    if (!is_file_key(dot ? dot + 1 : a->keys[k].path))
+      continue;
+    for (size_t v = 0; rc == FB_OK && v < a->keys[k].nvalues; ++v)
+      rc = add_reference(in, a->keys[k].values[v], err);
+  }
+  return rc;
+}
+
+int sweep_study_fingerprint(const sweep_args *a, uint64_t *fingerprint, char **inputs,
+                            fb_err *err)
+{
+  study_inputs in = {.h = UINT64_C(14695981039346656037)};
+  size_t size = 0;
+  if (inputs)
+    *inputs = NULL;
+  in.dir = dir_of(a->scenario_path);
+  int rc = in.dir ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (rc == FB_OK && inputs && !(in.lines = open_memstream(inputs, &size)))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for the study's files");
+  if (rc == FB_OK)
+    rc = study_inputs_add_all(a, &in, err);
+  if (in.lines && fclose(in.lines) != 0 && rc == FB_OK)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for the study's files");
+  if (rc != FB_OK && inputs) {
+    free(*inputs);
+    *inputs = NULL;
+  }
+  for (size_t i = 0; i < in.nseen; ++i)
+    free(in.seen[i]);
+  free(in.seen);
+  free(in.dir);
+  *fingerprint = in.h;
+  return rc;
 }
 
 /* The first line, with its '\n'. */
@@ -220,35 +459,134 @@ static int read_row(const sweep_args *a, const char *path, size_t line, const cs
   return FB_OK;
 }
 
+/* The line after "# written by " in the journal's comments. */
+static const char version_line[] = "# written by flexbond " CLI_VERSION "\n";
+
+/* The end of the line at text[p..len) (past its '\n', or len). */
+static size_t line_end(const char *text, size_t len, size_t p)
+{
+  const char *nl = memchr(text + p, '\n', len - p);
+  return nl ? (size_t)(nl - text) + 1 : len;
+}
+
+/* A line "# input HASH PATH\n" of the journal or of the study's inputs:
+ * its two fields, each with its length (without the '\n'). */
+typedef struct input_line {
+  const char *hash, *path;
+  size_t hash_len, path_len;
+} input_line;
+
+/* line[0..n) (with its '\n') into *out; 0 if it is not an input line. */
+static int parse_input_line(const char *line, size_t n, input_line *out)
+{
+  static const char tag[] = "# input ";
+  const size_t t = sizeof tag - 1;
+  if (n <= t || memcmp(line, tag, t) != 0 || line[n - 1] != '\n')
+    return 0;
+  const char *space = memchr(line + t, ' ', n - t);
+  if (!space)
+    return 0;
+  *out = (input_line){.hash = line + t,
+                      .hash_len = (size_t)(space - line) - t,
+                      .path = space + 1,
+                      .path_len = (size_t)(line + n - 1 - (space + 1))};
+  return 1;
+}
+
+/* The study's input line (in inputs) of the file that old names, into
+ * *now; 0 if this study reads no file of that name. */
+static int same_file_now(const char *inputs, const input_line *old, input_line *now)
+{
+  const size_t len = strlen(inputs);
+  for (size_t p = 0, next; p < len; p = next) {
+    next = line_end(inputs, len, p);
+    if (parse_input_line(inputs + p, next - p, now) && now->path_len == old->path_len &&
+        !memcmp(now->path, old->path, old->path_len))
+      return 1;
+  }
+  return 0;
+}
+
+/* Why the journal text[0..len) is not of this study, whose files are
+ * inputs: another flexbond wrote it, a file both read has changed since,
+ * or another scenario file, system or --set values. Always FB_EINVAL. */
+static int another_study(const char *path, const char *text, size_t len, const char *inputs,
+                         fb_err *err)
+{
+  static const char written[] = "# written by ";
+  int versioned = 0;
+  /* The comments after the first line. */
+  for (size_t p = line_end(text, len, 0), next; p < len && text[p] == '#'; p = next) {
+    next = line_end(text, len, p);
+    const char *line = text + p;
+    const size_t n = next - p;
+    input_line old, now;
+    if (n > sizeof written && !memcmp(line, written, sizeof written - 1)) {
+      versioned = 1;
+      if (n != strlen(version_line) || memcmp(line, version_line, n) != 0)
+        return fb_err_set(err, FB_EINVAL,
+                          "%s: the journal of another study: it was %.*s, this is flexbond "
+                          "%s: remove it to start afresh",
+                          path, (int)(n - 3), line + 2, CLI_VERSION);
+    } else if (parse_input_line(line, n, &old) && same_file_now(inputs, &old, &now) &&
+               (old.hash_len != now.hash_len || memcmp(old.hash, now.hash, old.hash_len))) {
+      const int unreadable =
+          now.hash_len == strlen("unreadable") && !memcmp(now.hash, "unreadable", now.hash_len);
+      return fb_err_set(err, FB_EINVAL,
+                        "%s: the journal of another study: %.*s %s since the journal was "
+                        "written, and the cases it holds were computed from what it held "
+                        "then: restore the file, or remove the journal to start afresh",
+                        path, (int)old.path_len, old.path,
+                        unreadable ? "cannot be read" : "has changed");
+    }
+  }
+  if (!versioned)
+    return fb_err_set(err, FB_EINVAL,
+                      "%s: the journal of another study: an older flexbond wrote it (this is "
+                      "flexbond %s): remove it to start afresh",
+                      path, CLI_VERSION);
+  return fb_err_set(err, FB_EINVAL,
+                    "%s: the journal of another study (a different scenario file, system or "
+                    "--set values): remove it to start afresh",
+                    path);
+}
+
 /* Reads text (the journal's len bytes) into cases; *keep is the length
- * of its complete records (a torn last row is cut off). */
+ * of its complete records (a torn last row is cut off). fingerprint and
+ * inputs: this study's. */
 static int read_journal(const sweep_args *a, const char *path, const char *text, size_t len,
-                        uint64_t fingerprint, sweep_case *cases, size_t *resumed, size_t *keep,
-                        fb_err *err)
+                        uint64_t fingerprint, const char *inputs, sweep_case *cases,
+                        size_t *resumed, size_t *keep, fb_err *err)
 {
   char expected[256];
   first_line(a, fingerprint, expected, sizeof expected);
   const size_t first = strlen(expected);
   if (len < first || memcmp(text, expected, first) != 0)
-    return fb_err_set(err, FB_EINVAL,
-                      "%s: the journal of another study (a different scenario file, system or "
-                      "--set values): remove it to start afresh",
-                      path);
+    return another_study(path, text, len, inputs, err);
+  /* The comments (flexbond's version, the files read) are not compared:
+   * the fingerprint holds what matters of them, and a file's path
+   * depends on how the scenario was named on the command line. */
+  size_t pos = first, line = 2;
+  while (pos < len && text[pos] == '#') {
+    pos = line_end(text, len, pos);
+    ++line;
+  }
   char *header = header_line(a);
   if (!header)
     return fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
   const size_t hlen = strlen(header);
-  const int same = len >= first + hlen && !memcmp(text + first, header, hlen);
+  const int same = len >= pos + hlen && !memcmp(text + pos, header, hlen);
   free(header);
   /* The fingerprint holds the keys' paths, the header the keys as typed:
    * speed_kmh and road.speed_kmh are one study with other columns. */
   if (!same)
     return fb_err_set(err, FB_EINVAL,
-                      "%s:2: the journal's columns are not this sweep's (the --set keys "
+                      "%s:%zu: the journal's columns are not this sweep's (the --set keys "
                       "spelled otherwise, or another flexbond): give the keys as they were, or "
                       "remove it to start afresh",
-                      path);
-  size_t pos = first + hlen, line = 3;
+                      path, line);
+  pos += hlen;
+  ++line;
   *keep = pos;
   *resumed = 0;
   for (;;) {
@@ -299,13 +637,13 @@ static int load_or_start(const sweep_args *a, sweep_journal *j, int fd, sweep_ca
                          size_t *resumed, fb_err *err)
 {
   uint64_t fingerprint = 0;
-  char *text = NULL;
+  char *text = NULL, *inputs = NULL;
   size_t len = 0, keep = 0;
-  int rc = sweep_study_fingerprint(a, &fingerprint, err);
+  int rc = sweep_study_fingerprint(a, &fingerprint, &inputs, err);
   if (rc == FB_OK)
     rc = read_all(fd, j->path, &text, &len, err);
   if (rc == FB_OK && len > 0)
-    rc = read_journal(a, j->path, text, len, fingerprint, cases, resumed, &keep, err);
+    rc = read_journal(a, j->path, text, len, fingerprint, inputs, cases, resumed, &keep, err);
   free(text);
   if (rc == FB_OK && (ftruncate(fd, (off_t)keep) != 0 || lseek(fd, 0, SEEK_END) < 0))
     rc = fb_err_set(err, FB_EIO, "%s: %s", j->path, strerror(errno));
@@ -314,10 +652,12 @@ static int load_or_start(const sweep_args *a, sweep_journal *j, int fd, sweep_ca
     first_line(a, fingerprint, first, sizeof first);
     if (!header)
       rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", j->path);
-    else if (fputs(first, j->fp) < 0 || fputs(header, j->fp) < 0 || fflush(j->fp) != 0)
+    else if (fputs(first, j->fp) < 0 || fputs(version_line, j->fp) < 0 ||
+             fputs(inputs, j->fp) < 0 || fputs(header, j->fp) < 0 || fflush(j->fp) != 0)
       rc = fb_err_set(err, FB_EIO, "%s: cannot write: %s", j->path, strerror(errno));
     free(header);
   }
+  free(inputs);
   return rc;
 }
 
