@@ -73,6 +73,10 @@ derive m_dangling.yaml m_ok.yaml -e 's/^  - \[road, tire\]/  - [road, tyre]/'
 derive m_log.yaml m_ok.yaml -e 's/value: -ms \* g}/value: -ms * g * log(1.5 - t)}/'
 derive m_nan0.yaml m_ok.yaml -e 's/value: -ms \* g}/value: -ms * g * log(t - 1)}/'
 derive m_short.yaml m_ok.yaml -e 's/^  t_end: 5/  t_end: 1e-300/'
+# Aliases that would expand a 4 KB file a billion times, and one without
+# its anchor.
+cp "$REPO_ROOT/tests/fuzz/regressions/model/yaml_alias_billion_laughs_oom.yaml" m_bomb.yaml
+derive m_alias.yaml m_ok.yaml -e 's/{name: Ms, type: I, m: ms}/{name: Ms, type: I, m: *mass}/'
 derive m_dupkey.yaml m_ok.yaml -e 's/^model: quarter_car$/model: quarter_car\nmodel: again/'
 # The damper table of examples/quarter_car_table.yaml with a word in it.
 cp "$EX/quarter_car_table.yaml" m_table.yaml
@@ -240,6 +244,8 @@ CASES=(
   "4|sim m_nan0.yaml -o @OUT|flexbond: at t = 0 s: the derivative of state Ms.p is nan at the initial state; the non-finite value starts at Se 'grav_body' (source): e:grav_body->body = nan"
   "2|sim m_short.yaml -o @OUT|$(at m_short.yaml 1e-300 1e-300) simulation.t_end: the run from t_start = 0 s to t_end = 1e-300 s is too short for the solver to take a step|at least 1.49e-154 s"
   "1|sim m_ok.yaml -o @OUT --t-end 1e-300|flexbond sim: option '--t-end': the run from t_start = 0 s to t_end = 1e-300 s is too short"
+  "2|sim m_bomb.yaml -o @OUT|flexbond: $(at m_bomb.yaml '  a4: &a4')41: YAML: aliases would expand the document to more than 100000 nodes|*a3 here copies 11111"
+  "2|causality m_alias.yaml|flexbond: $(at m_alias.yaml '*mass' mass) YAML: invalid alias '*mass'|no anchor of that name in the file"
   "2|sim m_empty.yaml -o @OUT|flexbond: m_empty.yaml:1:1: the file is empty"
   "2|sim m_binary.yaml -o @OUT|flexbond: m_binary.yaml:2:1: binary data (byte 0x89): not a YAML text file"
   "5|sim m_dir.yaml -o @OUT|flexbond: m_dir.yaml: cannot read|directory"

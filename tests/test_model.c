@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "flexbond/bd.h"
@@ -34,6 +35,18 @@ static const bad_case bad_cases[] = {
     {"", FB_EPARSE, "bad.yaml:1:1:", "empty", NULL},
     {HEAD "elements: []\n---\nmodel: other\n", FB_EPARSE, "bad.yaml:3:1:", "second document",
      NULL},
+    /* Aliases: each libfyaml message gets its hint, the alias its name. */
+    {HEAD "elements: *nope\n", FB_EPARSE, "bad.yaml:2:12:", "YAML: invalid alias '*nope'",
+     "no anchor of that name"},
+    {HEAD "parameters: &p {a: *p}\nelements: []\n", FB_EPARSE, "bad.yaml:2:21:",
+     "YAML: cyclic reference detected '*p'", "inside the node its anchor marks"},
+    {HEAD "elements: [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[]]]\n",
+     FB_EPARSE, "bad.yaml:2:", "YAML: Max depth (64) exceeded", "nest at most 64 levels deep"},
+    {HEAD
+     "parameters: {a: &a [*b], b: &b [*c], c: &c [*d], d: &d [*e], e: &e [*f], f: &f [*g],\n"
+     "  g: &g [*h], h: &h [*i], i: &i [*j], j: &j [*k], k: &k [*l], l: &l [*m],\n"
+     "  m: &m [*n], n: &n [*o], o: &o [*p], p: &p [*q], q: &q 1}\nelements: []\n",
+     FB_EPARSE, "bad.yaml:", "YAML: max recursion depth exceeded", "define each anchor before"},
     /* Shape of the file. */
     {"- model\n- elements\n", FB_EPARSE, "bad.yaml:1:1:", "expected a model", NULL},
     {"elements: []\n", FB_EPARSE, "bad.yaml:1:", "missing required key 'model'", NULL},
@@ -729,6 +742,186 @@ static void test_yaml_features(void)
   fb_model_free(&m);
 }
 
+/* ---- Alias expansion bound (model_yaml.c, "Bounding alias expansion"). */
+
+/* A growing text; the tests stop at the first allocation failure. */
+typedef struct text_buf {
+  char *s;
+  size_t len, cap;
+} text_buf;
+
+static void text_add(text_buf *t, const char *piece, size_t times)
+{
+  size_t n = strlen(piece);
+  for (size_t i = 0; i < times; ++i) {
+    if (t->len + n + 1 > t->cap) {
+      size_t cap = 2 * (t->len + n + 1);
+      char *s = realloc(t->s, cap);
+      if (!s) {
+        fprintf(stderr, "out of memory building a test text\n");
+        exit(1);
+      }
+      t->s = s;
+      t->cap = cap;
+    }
+    memcpy(t->s + t->len, piece, n + 1);
+    t->len += n;
+  }
+}
+
+/* Loads text as "bomb.yaml": its status, message and CPU time. */
+static int load_timed(const char *text, fb_err *err, double *seconds)
+{
+  fb_model *m = NULL;
+  clock_t start = clock();
+  int rc = fb_model_load_string(text, strlen(text), "bomb.yaml", NULL, &m, err);
+  *seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
+  CHECK(rc ? m == NULL : m != NULL);
+  fb_model_free(&m);
+  return rc;
+}
+
+/* The reviewer's "billion laughs": aN lists ten *a(N-1), so aN expands to
+ * about 10^(N+1) nodes; unchecked, depth 7 took 15 GB and a minute, depth
+ * 8 was killed for memory. Refused before anything is copied, at the
+ * eighth *a3 of a4 (where the count passes 100000), in milliseconds. */
+static void test_alias_bomb(void)
+{
+  for (int depth = 7; depth <= 9; ++depth) {
+    text_buf t = {NULL, 0, 0};
+    text_add(&t, "model: bomb\nparameters:\n  a0: &a0 [x,x,x,x,x,x,x,x,x,x]\n", 1);
+    for (int n = 1; n <= depth; ++n) {
+      char line[128];
+      int k = snprintf(line, sizeof line, "  a%d: &a%d [", n, n);
+      for (int i = 0; i < 10 && k > 0 && (size_t)k < sizeof line; ++i)
+        k += snprintf(line + k, sizeof line - (size_t)k, "%s*a%d", i ? "," : "", n - 1);
+      text_add(&t, line, 1);
+      text_add(&t, "]\n", 1);
+    }
+    text_add(&t, "elements: []\n", 1);
+    fb_err err;
+    double seconds = 0;
+    int rc = load_timed(t.s, &err, &seconds);
+    CHECK(rc == FB_EPARSE);
+    CHECK(strstr(err.msg, "bomb.yaml:7:41: YAML: aliases would expand the document to more "
+                          "than 100000 nodes (the file has ") != NULL);
+    CHECK(strstr(err.msg, "*a3 here copies 11111") != NULL);
+    CHECK(seconds < 1.0);
+    if (rc != FB_EPARSE || seconds >= 1.0)
+      fprintf(stderr, "  bomb of depth %d: %s, %.2f s: %s\n", depth, fb_status_name(rc),
+              seconds, err.msg);
+    free(t.s);
+  }
+}
+
+/* "[x, ... (p), &a [x, ... (k)], *a, ... (m)]": written nodes 1 + p + 1 + k
+ * + m, expanded 1 + p + (1 + k)(1 + m). The bound is 100000 nodes or 10
+ * times the written count, whichever is more; at it the document passes
+ * the check (and is then refused as no model), one node past it not. */
+static void test_alias_bound_edge(void)
+{
+  static const struct {
+    size_t p, k, m;
+    int over;
+  } cases[] = {
+      {99, 99, 998, 0},    /* 1198 written, 100000 expanded: at the bound */
+      {100, 99, 998, 1},   /* 1199 written, 100001 expanded */
+      {9089, 100, 909, 0}, /* 10100 written, 101000 expanded: at 10 times */
+      {9099, 100, 910, 1}, /* 10111 written, 101111 expanded: 10 times + 1 */
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    const size_t p = cases[i].p, k = cases[i].k, m = cases[i].m;
+    const size_t written = 1 + p + 1 + k + m, expanded = 1 + p + (1 + k) * (1 + m);
+    const size_t bound = 10 * written > 100000 ? 10 * written : 100000;
+    CHECK(expanded == bound + (size_t)cases[i].over); /* the case is at the edge */
+    text_buf t = {NULL, 0, 0};
+    text_add(&t, "[", 1);
+    text_add(&t, "x, ", p);
+    text_add(&t, "&a [x", 1);
+    text_add(&t, ", x", k - 1);
+    text_add(&t, "]", 1);
+    text_add(&t, ", *a", m);
+    text_add(&t, "]\n", 1);
+    fb_err err;
+    double seconds = 0;
+    int rc = load_timed(t.s, &err, &seconds);
+    char want[128];
+    snprintf(want, sizeof want,
+             "bomb.yaml:1:%zu: YAML: aliases would expand the document to "
+             "more than %zu nodes (the file has %zu as written",
+             t.len - 2, bound, written);
+    int ok = rc == FB_EPARSE &&
+             (cases[i].over ? strstr(err.msg, want) != NULL
+                            : strstr(err.msg, "bomb.yaml:1:1: expected a model") != NULL);
+    CHECK(ok);
+    if (!ok)
+      fprintf(stderr, "  edge case %zu (%zu expanded, bound %zu): %s\n  want %s\n", i, expanded,
+              bound, err.msg, cases[i].over ? want : "expected a model");
+    free(t.s);
+  }
+}
+
+/* Nesting through aliases is bounded too, whichever way they point:
+ * backwards (each anchor nests the previous one 60 levels deeper) and
+ * forwards (a chain of 1000 aliases to the next anchor, which the count
+ * must not follow into a recursion 1000 deep). */
+static void test_alias_depth(void)
+{
+  text_buf t = {NULL, 0, 0};
+  text_add(&t, "model: deep\nparameters:\n  p:\n    - &a0 x\n", 1);
+  for (int n = 1; n <= 5; ++n) {
+    char item[64];
+    snprintf(item, sizeof item, "    - &a%d ", n);
+    text_add(&t, item, 1);
+    text_add(&t, "[", 60);
+    snprintf(item, sizeof item, "*a%d", n - 1);
+    text_add(&t, item, 1);
+    text_add(&t, "]", 60);
+    text_add(&t, "\n", 1);
+  }
+  fb_err err;
+  double seconds = 0;
+  CHECK(load_timed(t.s, &err, &seconds) == FB_EPARSE);
+  CHECK(strstr(err.msg, "bomb.yaml:9:") != NULL);
+  CHECK(strstr(err.msg, "YAML: aliases would nest the document more than 256 levels deep") !=
+        NULL);
+  free(t.s);
+
+  t.s = NULL;
+  t.len = t.cap = 0;
+  text_add(&t, "model: forward\nparameters:\n  p:\n", 1);
+  for (int n = 1; n < 1000; ++n) {
+    char item[64];
+    snprintf(item, sizeof item, "    - &a%d [*a%d]\n", n, n + 1);
+    text_add(&t, item, 1);
+  }
+  text_add(&t, "    - &a1000 x\n", 1);
+  CHECK(load_timed(t.s, &err, &seconds) == FB_EPARSE);
+  CHECK(strstr(err.msg, "bomb.yaml:4:") != NULL);
+  CHECK(strstr(err.msg, "more than 256 levels deep (*a2 here") != NULL);
+  free(t.s);
+}
+
+/* Sharing a few blocks, as models do, stays far inside the bound. */
+static void test_alias_sharing(void)
+{
+  fb_model *m = load_ok("model: shared\n"
+                        "parameters: {k: 5, m: 2}\n"
+                        "elements:\n"
+                        "  - &spring {name: K1, type: C, k: k, initial: &q0 0.5}\n"
+                        "  - {<<: *spring, name: K2}\n"
+                        "  - {<<: *spring, name: K3, k: 2 * k}\n"
+                        "  - &mass {name: M1, type: I, m: m, initial: *q0}\n"
+                        "  - {<<: *mass, name: M2}\n"
+                        "  - {name: J, type: 1}\n"
+                        "bonds: [[J, K1], [J, K2], [J, K3], [J, M1], [J, M2]]\n",
+                        NULL);
+  const fb_bg *bg = m ? fb_model_graph(m) : NULL;
+  CHECK(bg && has_element(bg, "K3", FB_BG_C, 1) && has_element(bg, "M2", FB_BG_I, 1));
+  CHECK(bg && fb_bg_nbonds(bg) == 5);
+  fb_model_free(&m);
+}
+
 /* ---- API edges. */
 
 static void test_api(void)
@@ -761,6 +954,10 @@ int main(void)
   test_two_dof();
   test_doc_examples();
   test_yaml_features();
+  test_alias_bomb();
+  test_alias_bound_edge();
+  test_alias_depth();
+  test_alias_sharing();
   test_api();
   return check_report("test_model");
 }

@@ -66,9 +66,13 @@ typedef struct ml_yaml {
   struct fy_document *doc;
 } ml_yaml;
 
-/* Parses exactly one YAML document from text. FB_EPARSE with
- * "FILE:LINE:COL: YAML: message" (libfyaml's first diagnostic) on a
- * syntax error; nothing is printed. */
+/* Parses exactly one YAML document from text and resolves its aliases
+ * and merge keys. FB_EPARSE with "FILE:LINE:COL: YAML: message"
+ * (libfyaml's first diagnostic) on a syntax error, and at the alias that
+ * crosses the bound, before anything is copied, if the aliases would
+ * expand the document to more than 100000 nodes or ten times its written
+ * node count, whichever is more, or nest it more than 256 levels deep
+ * (model_yaml.c, "Bounding alias expansion"); nothing is printed. */
 int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb_err *err);
 void ml_yaml_release(ml_yaml *y);
 

@@ -4,6 +4,7 @@
 #include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +35,13 @@ static const char *ml_yaml_hint(const char *msg)
       {"duplicate key", " (a key may appear only once in a mapping)"},
       {"flow", " (an unclosed '[' or '{' or a missing comma before this point?)"},
       {"UTF8", " (the file must be UTF-8 text)"},
+      {"Max depth", " (lists and mappings may nest at most 64 levels deep)"},
+      {"invalid alias", " (no anchor of that name in the file: an alias *NAME repeats the node "
+                        "marked &NAME)"},
+      {"cyclic reference", " (the alias is inside the node its anchor marks, so it would "
+                           "repeat itself forever)"},
+      {"max recursion depth", " (too many aliases in a row refer to anchors further down; "
+                              "define each anchor before its aliases)"},
   };
   for (size_t i = 0; i < sizeof hints / sizeof hints[0]; ++i)
     if (strstr(msg, hints[i].fragment))
@@ -42,10 +50,11 @@ static const char *ml_yaml_hint(const char *msg)
 }
 
 /* Records the first error libfyaml collected, with the token it names
- * (the repeated key of "duplicate key") and a hint; returns 1 if there
- * was one. The token's text is formatted for that message only: libfyaml
- * 0.7 (Debian bookworm) leaks its formatting buffer on the token of some
- * other errors (a malformed quoted scalar; tests/fuzz/regressions/model). */
+ * (the repeated key of "duplicate key", the alias of "invalid alias") and
+ * a hint; returns 1 if there was one. The token's text is formatted for
+ * those messages only: libfyaml 0.7 (Debian bookworm) leaks its
+ * formatting buffer on the token of some other errors (a malformed quoted
+ * scalar; tests/fuzz/regressions/model). */
 static int ml_yaml_first_error(struct fy_diag *diag, const char *file, fb_err *err)
 {
   void *iter = NULL;
@@ -54,11 +63,12 @@ static int ml_yaml_first_error(struct fy_diag *diag, const char *file, fb_err *e
     return 0;
   const char *msg = e->msg ? e->msg : "syntax error";
   const int duplicate = strstr(msg, "duplicate key") != NULL;
+  const int alias = strstr(msg, "invalid alias") != NULL;
   size_t toklen = 0;
-  const char *tok = duplicate && e->fyt ? fy_token_get_text(e->fyt, &toklen) : NULL;
+  const char *tok = (duplicate || alias) && e->fyt ? fy_token_get_text(e->fyt, &toklen) : NULL;
   if (tok && toklen > 0 && toklen <= 64)
-    fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: %s '%.*s'%s", file, e->line, e->column, msg,
-               (int)toklen, tok, ml_yaml_hint(msg));
+    fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: %s '%s%.*s'%s", file, e->line, e->column, msg,
+               alias ? "*" : "", (int)toklen, tok, ml_yaml_hint(msg));
   else
     fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: %s%s", file, e->line, e->column, msg,
                ml_yaml_hint(msg));
@@ -121,6 +131,278 @@ static int ml_check_text(const char *text, size_t len, const char *file, fb_err 
   return FB_OK;
 }
 
+/* ---- Bounding alias expansion.
+ *
+ * Resolving replaces each alias by a copy of the node its anchor marks,
+ * and the aliases inside that copy are copied in turn, so lines that each
+ * list ten aliases of the line before ("billion laughs") grow tenfold a
+ * line: a 4 KB model with seven such lines took 15 GB and a minute to
+ * load, with eight it was killed for memory. The expanded size is
+ * therefore counted on the unresolved tree first, without copying:
+ * size(node) = 1 + its children's sizes, size(alias) = size of the
+ * anchored node, each anchored node counted once (memoised). libfyaml 0.7
+ * has no limit to use instead: its parse configuration bounds only the
+ * nesting of the text (64 levels, "Max depth (64) exceeded";
+ * FYPCF_DISABLE_DEPTH_LIMIT lifts it), not nodes or expansion; its
+ * resolver stops only at a cycle and at aliases nested 16 deep in copies
+ * not yet resolved ("max recursion depth exceeded (16)", forward
+ * references), which the bomb's backward references never are.
+ *
+ * Bound: a document may expand to ML_EXPAND_NODES nodes, or to
+ * ML_EXPAND_FACTOR times its written node count if that is more. The
+ * example models and scenarios have at most 266 nodes, and their aliases
+ * add 6; 100000 nodes take about 12 MB and 20 ms in libfyaml (some 125
+ * bytes a node), and the factor lets a large generated file share blocks
+ * as freely while keeping its memory within ten times what its text costs
+ * without aliases. The expanded nesting is bounded as well: libfyaml
+ * accepts forward references, so a chain of aliases to anchors further
+ * down would otherwise make this count recurse once per link, and
+ * backward chains nest libfyaml's recursive copies as deep; 256 levels is
+ * four times what the parser allows the text itself and thirty times what
+ * the examples use (8). */
+
+enum {
+  ML_EXPAND_NODES = 100000, /* nodes any document may expand to */
+  ML_EXPAND_FACTOR = 10,    /* or this many times its written nodes */
+  ML_EXPAND_DEPTH = 256     /* levels of nesting after expansion */
+};
+
+/* Why counting stopped. */
+enum { ML_EXPAND_OK, ML_EXPAND_TOO_MANY, ML_EXPAND_TOO_DEEP, ML_EXPAND_CYCLE };
+
+/* An anchored node and, once counted, its expanded size. */
+typedef struct ml_anchored {
+  struct fy_node *node;
+  size_t size; /* nodes after expansion */
+  int height;  /* levels after expansion, 1 for a scalar */
+  enum { ML_UNCOUNTED, ML_COUNTING, ML_COUNTED } state;
+} ml_anchored;
+
+typedef struct ml_expand {
+  struct fy_document *doc;
+  ml_anchored *anchored; /* sorted by node address */
+  size_t nanchored;
+  size_t limit;       /* most nodes the expanded document may have */
+  size_t total;       /* written nodes other than aliases, plus the
+                         expansions of the aliases walked so far */
+  struct fy_node *at; /* the alias where counting stopped */
+  size_t at_size;     /* its expanded size (ML_EXPAND_TOO_MANY), 0 if above limit */
+} ml_expand;
+
+/* Children of a collection in document order: items, or each pair's key
+ * then value (either may be absent). */
+typedef struct ml_children {
+  struct fy_node *node;
+  void *iter;
+  struct fy_node *value; /* of the pair whose key came last */
+} ml_children;
+
+static struct fy_node *ml_next_child(ml_children *it)
+{
+  if (fy_node_is_sequence(it->node))
+    return fy_node_sequence_iterate(it->node, &it->iter);
+  if (!fy_node_is_mapping(it->node))
+    return NULL;
+  for (;;) {
+    struct fy_node *child = it->value;
+    it->value = NULL;
+    if (child)
+      return child;
+    struct fy_node_pair *pair = fy_node_mapping_iterate(it->node, &it->iter);
+    if (!pair)
+      return NULL;
+    it->value = fy_node_pair_value(pair);
+    child = fy_node_pair_key(pair);
+    if (child)
+      return child;
+  }
+}
+
+/* Nodes of the tree as written, an alias being one, and (added to
+ * *aliases) how many are aliases; the recursion is as deep as the text
+ * nests, which the parser limits to 64. */
+static size_t ml_written_nodes(struct fy_node *n, size_t *aliases)
+{
+  size_t count = 1;
+  *aliases += fy_node_is_alias(n);
+  ml_children it = {n, NULL, NULL};
+  for (struct fy_node *c; (c = ml_next_child(&it));)
+    count += ml_written_nodes(c, aliases);
+  return count;
+}
+
+static int ml_anchored_cmp(const void *a, const void *b)
+{
+  uintptr_t x = (uintptr_t)((const ml_anchored *)a)->node;
+  uintptr_t y = (uintptr_t)((const ml_anchored *)b)->node;
+  return (x > y) - (x < y);
+}
+
+static ml_anchored *ml_anchored_find(const ml_expand *x, struct fy_node *n)
+{
+  ml_anchored key = {n, 0, 0, ML_UNCOUNTED};
+  return bsearch(&key, x->anchored, x->nanchored, sizeof key, ml_anchored_cmp);
+}
+
+/* The node an alias stands for, found as libfyaml's resolver finds it
+ * (0.7: the last anchor of that name before the alias, else one after);
+ * NULL if none, which the resolver then reports as an invalid alias. */
+static struct fy_node *ml_alias_target(const ml_expand *x, struct fy_node *alias)
+{
+  struct fy_token *tok = fy_node_get_scalar_token(alias);
+  struct fy_anchor *a = tok ? fy_document_lookup_anchor_by_token(x->doc, tok) : NULL;
+  struct fy_node *target = a ? fy_anchor_node(a) : NULL;
+  /* The parser refuses an anchor on an alias; following one could loop. */
+  return target && !fy_node_is_alias(target) ? target : NULL;
+}
+
+/* *size and *height of n after expansion, n being at nesting level
+ * `level` of the expanded document (the root is 1); ML_EXPAND_OK or why
+ * not (x->at is set for a cycle: the alias inside its anchor's node). */
+static int ml_expanded(ml_expand *x, struct fy_node *n, int level, size_t *size, int *height)
+{
+  if (level > ML_EXPAND_DEPTH)
+    return ML_EXPAND_TOO_DEEP;
+  if (fy_node_is_alias(n)) {
+    struct fy_node *target = ml_alias_target(x, n);
+    const ml_anchored *a = target ? ml_anchored_find(x, target) : NULL;
+    if (a && a->state == ML_COUNTING) {
+      x->at = n;
+      return ML_EXPAND_CYCLE;
+    }
+    if (!target) {
+      *size = 1;
+      *height = 1;
+      return ML_EXPAND_OK;
+    }
+    return ml_expanded(x, target, level, size, height); /* the copy takes the alias's place */
+  }
+  ml_anchored *a = ml_anchored_find(x, n);
+  if (a && a->state == ML_COUNTED) {
+    *size = a->size;
+    *height = a->height;
+    return level - 1 + a->height > ML_EXPAND_DEPTH ? ML_EXPAND_TOO_DEEP : ML_EXPAND_OK;
+  }
+  if (a)
+    a->state = ML_COUNTING;
+  size_t sum = 1;
+  int tallest = 0;
+  ml_children it = {n, NULL, NULL};
+  for (struct fy_node *c; (c = ml_next_child(&it));) {
+    size_t s = 0;
+    int h = 0;
+    int why = ml_expanded(x, c, level + 1, &s, &h);
+    if (why)
+      return why;
+    if (s > x->limit - sum) /* sum <= limit throughout, so this cannot overflow */
+      return ML_EXPAND_TOO_MANY;
+    sum += s;
+    tallest = h > tallest ? h : tallest;
+  }
+  if (a) {
+    a->size = sum;
+    a->height = tallest + 1;
+    a->state = ML_COUNTED;
+  }
+  *size = sum;
+  *height = tallest + 1;
+  return ML_EXPAND_OK;
+}
+
+/* Walks the written tree in document order, adding each alias's expanded
+ * size to x->total (which starts with the other written nodes), so that a
+ * failure names the first alias that crosses the bound. */
+static int ml_expand_walk(ml_expand *x, struct fy_node *n, int level)
+{
+  if (fy_node_is_alias(n)) {
+    size_t size = 0;
+    int height = 0;
+    int why = ml_expanded(x, n, level, &size, &height);
+    if (why != ML_EXPAND_CYCLE)
+      x->at = n;
+    if (!why && size > x->limit - x->total)
+      why = ML_EXPAND_TOO_MANY;
+    x->at_size = why == ML_EXPAND_TOO_MANY ? size : 0;
+    x->total += why ? 0 : size;
+    return why;
+  }
+  ml_children it = {n, NULL, NULL};
+  for (struct fy_node *c; (c = ml_next_child(&it));) {
+    int why = ml_expand_walk(x, c, level + 1);
+    if (why)
+      return why;
+  }
+  return ML_EXPAND_OK;
+}
+
+static int ml_own_mark(struct fy_node *n, int *line, int *col);
+
+static int ml_expand_report(const ml_expand *x, int why, size_t written, const char *file,
+                            fb_err *err)
+{
+  int line = 1, col = 1;
+  ml_own_mark(x->at, &line, &col);
+  size_t len = 0;
+  struct fy_token *tok = fy_node_get_scalar_token(x->at);
+  const char *name = tok ? fy_token_get_text(tok, &len) : NULL;
+  if (!name || len > 64) {
+    name = "...";
+    len = 3;
+  }
+  if (why == ML_EXPAND_CYCLE)
+    return fb_err_set(err, FB_EPARSE, "%s:%d:%d: YAML: cyclic reference detected '*%.*s'%s",
+                      file, line, col, (int)len, name, ml_yaml_hint("cyclic reference"));
+  if (why == ML_EXPAND_TOO_DEEP)
+    return fb_err_set(err, FB_EPARSE,
+                      "%s:%d:%d: YAML: aliases would nest the document more than %d levels "
+                      "deep (*%.*s here copies a node that nests too deep)",
+                      file, line, col, ML_EXPAND_DEPTH, (int)len, name);
+  char copies[64];
+  if (x->at_size)
+    snprintf(copies, sizeof copies, "%zu", x->at_size);
+  else
+    snprintf(copies, sizeof copies, "more than %zu", x->limit);
+  return fb_err_set(err, FB_EPARSE,
+                    "%s:%d:%d: YAML: aliases would expand the document to more than %zu nodes "
+                    "(the file has %zu as written; *%.*s here copies %s, counting the aliases "
+                    "inside the copy)",
+                    file, line, col, x->limit, written, (int)len, name, copies);
+}
+
+/* FB_EPARSE, located at the alias that crosses the bound, if resolving the
+ * aliases of doc would exceed the bounds above; FB_ENOMEM. */
+static int ml_check_aliases(struct fy_document *doc, const char *file, fb_err *err)
+{
+  size_t n = 0;
+  void *iter = NULL;
+  while (fy_document_anchor_iterate(doc, &iter))
+    ++n;
+  if (n == 0)
+    return FB_OK; /* nothing an alias could copy */
+  ml_expand x;
+  memset(&x, 0, sizeof x);
+  x.doc = doc;
+  x.anchored = calloc(n, sizeof *x.anchored);
+  if (!x.anchored)
+    return fb_err_set(err, FB_ENOMEM, "out of memory checking the YAML aliases");
+  iter = NULL;
+  struct fy_anchor *a;
+  while (x.nanchored < n && (a = fy_document_anchor_iterate(doc, &iter)))
+    if ((x.anchored[x.nanchored].node = fy_anchor_node(a)))
+      ++x.nanchored;
+  qsort(x.anchored, x.nanchored, sizeof *x.anchored, ml_anchored_cmp);
+  struct fy_node *root = fy_document_root(doc);
+  size_t aliases = 0;
+  const size_t written = ml_written_nodes(root, &aliases);
+  x.limit = written > (size_t)-1 / ML_EXPAND_FACTOR ? (size_t)-1 : written * ML_EXPAND_FACTOR;
+  x.limit = x.limit < ML_EXPAND_NODES ? ML_EXPAND_NODES : x.limit;
+  x.total = written - aliases;
+  const int why = ml_expand_walk(&x, root, 1);
+  const int rc = why ? ml_expand_report(&x, why, written, file, err) : FB_OK;
+  free(x.anchored);
+  return rc;
+}
+
 void ml_yaml_release(ml_yaml *y)
 {
   if (y->doc)
@@ -149,9 +431,9 @@ static int ml_yaml_open(const char *text, size_t len, ml_yaml *y, fb_err *err)
 
   struct fy_parse_cfg pcfg;
   memset(&pcfg, 0, sizeof pcfg);
-  /* Resolving expands aliases and "<<" merge keys, so the loader only ever
-   * sees plain mappings, sequences and scalars. */
-  pcfg.flags = FYPCF_QUIET | FYPCF_RESOLVE_DOCUMENT;
+  /* No FYPCF_RESOLVE_DOCUMENT: ml_yaml_parse resolves aliases and "<<"
+   * merge keys itself, once ml_check_aliases has bounded their expansion. */
+  pcfg.flags = FYPCF_QUIET;
   pcfg.diag = y->diag;
   y->parser = fy_parser_create(&pcfg);
   if (!y->parser || fy_parser_set_string(y->parser, text, len) != 0)
@@ -172,6 +454,17 @@ int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb
     return FB_EPARSE;
   if (!y->doc || !fy_document_root(y->doc))
     return fb_err_set(err, FB_EPARSE, "%s:1:1: the file is empty (no YAML document)", file);
+  /* Resolving makes the loader see only plain mappings, sequences and
+   * scalars. */
+  rc = ml_check_aliases(y->doc, file, err);
+  if (rc)
+    return rc;
+  if (fy_document_resolve(y->doc) != 0) {
+    if (ml_yaml_first_error(y->diag, file, err))
+      return FB_EPARSE;
+    /* libfyaml reports every failure but a failed allocation. */
+    return fb_err_set(err, FB_ENOMEM, "%s: out of memory resolving the YAML aliases", file);
+  }
   struct fy_document *second = fy_parse_load_document(y->parser);
   if (second) {
     /* The "---" that starts it (its root may be empty). */
