@@ -726,12 +726,23 @@ static void test_deck_reference(void)
     fb_err err;
     CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
     CHECK(c && c->hull_deck_at != s->hull_deck_at && !strcmp(c->hull_deck_at, s->hull_deck_at));
+    /* The deck is the one file it names. */
+    CHECK(s->ninputs == 1 && !strcmp(s->inputs[0], "./h.inp"));
+    CHECK(c && c->ninputs == 1 && c->inputs[0] != s->inputs[0] &&
+          !strcmp(c->inputs[0], s->inputs[0]));
   }
   fb_scenario_free(&c);
   fb_scenario_free(&s);
   free(text);
-  /* The generator's scenario names no deck. */
+  /* The generator's scenario names no deck, nor any other file. */
   CHECK(fb_scenario_load(EXAMPLE, &s, NULL) == FB_OK && s && !s->hull_deck_at);
+  CHECK(s && s->ninputs == 0 && s->inputs == NULL);
+  fb_scenario_free(&s);
+  /* The tables of the shock-absorber example, each once (four corners
+   * share the front one), resolved from the scenario's directory. */
+  CHECK(fb_scenario_load("../examples/apc6x6_shock_table.yaml", &s, NULL) == FB_OK && s);
+  CHECK(s && s->ninputs == 2 && !strcmp(s->inputs[0], "../examples/shock_front.csv") &&
+        !strcmp(s->inputs[1], "../examples/shock_rear.csv"));
   fb_scenario_free(&s);
 }
 

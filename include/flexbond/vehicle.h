@@ -154,10 +154,15 @@ typedef struct fb_scenario {
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
-  char *hull_deck;               /* Abaqus/CalculiX deck, NULL: the generator */
-  char *hull_deck_at;            /* "FILE:LINE:COL: hull.mesh.deck: " where the scenario
-                                    names the deck, prefixed to the deck's errors; NULL:
-                                    not from a scenario file */
+  char *hull_deck;    /* Abaqus/CalculiX deck, NULL: the generator */
+  char *hull_deck_at; /* "FILE:LINE:COL: hull.mesh.deck: " where the scenario
+                         names the deck, prefixed to the deck's errors; NULL:
+                         not from a scenario file */
+  /* Every file the scenario names (damper tables, road profile, hull
+   * deck), as resolved, each once in reading order: what a result
+   * depends on besides the scenario itself (owned). */
+  char **inputs;
+  size_t ninputs;
   fb_hull_mesh_params hull_mesh; /* generator parameters */
   fb_mass_kind hull_mass_matrix; /* consistent (default) or lumped */
   double hull_drill_factor;      /* fictitious drilling stiffness factor */

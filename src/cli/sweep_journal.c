@@ -23,7 +23,6 @@
  * writing one journal. */
 #include <errno.h>
 #include <fcntl.h>
-#include <libfyaml.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -66,14 +65,10 @@ static uint64_t fnv1a_text(uint64_t h, const char *text)
   return fnv1a(h, text, strlen(text) + 1); /* with its NUL: "ab","c" != "a","bc" */
 }
 
-/* ---- The files a study reads: the scenario file, and every file it
- * names. The format's file references are the values of keys named
- * `file` or `deck` (suspensions.*.damper_table.file, road.profile.file,
- * hull.mesh.deck; docs/scenario-format.md): every such value of the
- * scenario file, and every --set value of such a key. fb_scenario does
- * not keep the damper tables' names (it holds their knots), so the names
- * are read from the YAML document here, resolved as the reader resolves
- * them: relative to the scenario's directory. */
+/* ---- The files a study reads: the scenario file, every file it names
+ * (fb_scenario.inputs: damper tables, road profile, hull deck), and the
+ * file every --set value of a file key names, since each case reads its
+ * own. */
 
 typedef struct study_inputs {
   uint64_t h;  /* the fingerprint so far */
@@ -180,8 +175,23 @@ static int add_input(study_inputs *in, const char *path, const char *text, size_
   return FB_OK;
 }
 
-/* Adds the file a reference names (as written in the scenario or in a
- * --set value). */
+/* Adds the file at path (resolved), once. */
+static int add_file(study_inputs *in, const char *path, fb_err *err)
+{
+  if (seen_before(in, path))
+    return FB_OK;
+  char *text = NULL;
+  size_t len = 0;
+  const int readable = read_whole(path, &text, &len) == 0;
+  const int rc = !readable && errno == ENOMEM
+                     ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", path)
+                     : add_input(in, path, readable ? text : NULL, len, err);
+  free(text);
+  return rc;
+}
+
+/* Adds the file a --set value names, resolved as the scenario reader
+ * resolves it: relative to the scenario's directory. */
 static int add_reference(study_inputs *in, const char *ref, fb_err *err)
 {
   if (!ref[0])
@@ -189,77 +199,30 @@ static int add_reference(study_inputs *in, const char *ref, fb_err *err)
   char *path = ref[0] == '/' ? strdup(ref) : cli_join_path(in->dir, ref);
   if (!path)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the study's files");
-  int rc = FB_OK;
-  if (!seen_before(in, path)) {
-    char *text = NULL;
-    size_t len = 0;
-    const int readable = read_whole(path, &text, &len) == 0;
-    rc = !readable && errno == ENOMEM ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", path)
-                                      : add_input(in, path, readable ? text : NULL, len, err);
-    free(text);
-  }
+  const int rc = add_file(in, path, err);
   free(path);
   return rc;
 }
 
-/* 1 if a key (the last segment of a dotted path, or a mapping key) names
- * a file. */
+/* 1 if a --set key (its last segment) names a file, as the scenario
+ * format's file references do (suspensions.*.damper_table.file,
+ * road.profile.file, hull.mesh.deck; docs/scenario-format.md). */
 static int is_file_key(const char *key)
 {
   return !strcmp(key, "file") || !strcmp(key, "deck");
 }
 
-/* 1 if the scalar n is YAML's null (`deck: ~`: no deck), as the reader
- * takes it (ml_is_null). */
-static int is_null(struct fy_node *n)
+/* The files the scenario names, as its reader resolved them
+ * (fb_scenario.inputs). */
+static int add_scenario_references(study_inputs *in, const char *path, fb_err *err)
 {
-  const char *t = fy_node_get_scalar0(n);
-  return fy_node_get_style(n) == FYNS_PLAIN &&
-         (!t || !strcmp(t, "") || !strcmp(t, "~") || !strcmp(t, "null") || !strcmp(t, "Null") ||
-          !strcmp(t, "NULL"));
-}
-
-/* Adds every file the document below n names. */
-static int add_references_below(study_inputs *in, struct fy_node *n, fb_err *err)
-{
-  void *it = NULL;
-  int rc = FB_OK;
-  if (fy_node_is_sequence(n)) {
-    struct fy_node *item;
-    while (rc == FB_OK && (item = fy_node_sequence_iterate(n, &it)))
-      rc = add_references_below(in, item, err);
-  } else if (fy_node_is_mapping(n)) {
-    struct fy_node_pair *pair;
-    while (rc == FB_OK && (pair = fy_node_mapping_iterate(n, &it))) {
-      struct fy_node *key = fy_node_pair_key(pair), *value = fy_node_pair_value(pair);
-      const char *name = key && fy_node_is_scalar(key) ? fy_node_get_scalar0(key) : NULL;
-      if (name && value && fy_node_is_scalar(value) && is_file_key(name)) {
-        const char *ref = fy_node_get_scalar0(value);
-        if (!is_null(value))
-          rc = ref ? add_reference(in, ref, err)
-                   : fb_err_set(err, FB_ENOMEM, "out of memory reading a YAML scalar");
-      } else if (value) {
-        rc = add_references_below(in, value, err);
-      }
-    }
-  }
-  return rc;
-}
-
-/* The files the scenario file (its bytes text) names. */
-static int add_scenario_references(study_inputs *in, const char *path, const char *text,
-                                   size_t len, fb_err *err)
-{
-  /* As the scenario reader parses: aliases and merge keys expanded. */
-  struct fy_parse_cfg cfg = {.flags = FYPCF_QUIET | FYPCF_RESOLVE_DOCUMENT};
-  struct fy_document *doc = fy_document_build_from_string(&cfg, text, len);
-  /* It loaded a moment ago (set_up): a failure now is a lack of memory or
-   * a file changed meanwhile. */
-  int rc = doc && fy_document_root(doc)
-               ? add_references_below(in, fy_document_root(doc), err)
-               : fb_err_set(err, FB_EPARSE, "%s: cannot parse it again (has it just changed?)",
-                            path);
-  fy_document_destroy(doc);
+  fb_scenario *s = NULL;
+  /* It loaded a moment ago (set_up): a failure now is a lack of memory
+   * or a file changed meanwhile, and its message says which. */
+  int rc = fb_scenario_load(path, &s, err);
+  for (size_t i = 0; rc == FB_OK && i < s->ninputs; ++i)
+    rc = add_file(in, s->inputs[i], err);
+  fb_scenario_free(&s);
   return rc;
 }
 
@@ -279,7 +242,7 @@ static int study_inputs_add_all(const sweep_args *a, study_inputs *in, fb_err *e
                       a->scenario_path, strerror(errno));
   int rc = add_input(in, a->scenario_path, text, len, err);
   if (rc == FB_OK)
-    rc = add_scenario_references(in, a->scenario_path, text, len, err);
+    rc = add_scenario_references(in, a->scenario_path, err);
   free(text);
   /* A --set value of a file key names a file too: each case reads its own. */
   for (size_t k = 0; rc == FB_OK && k < a->nkeys; ++k) {

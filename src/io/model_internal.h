@@ -26,6 +26,14 @@ typedef struct ml_frame {
 } ml_frame;
 
 /* Loader state shared by all sections. */
+/* The files a document names, resolved, each once in reading order
+ * (owned strings). */
+typedef struct ml_paths {
+  char **path;
+  size_t n, cap;
+} ml_paths;
+void ml_paths_release(ml_paths *p);
+
 typedef struct ml_ctx {
   const char *file;         /* display name used in messages */
   const char *base_dir;     /* directory for relative file references */
@@ -36,6 +44,7 @@ typedef struct ml_ctx {
   const fb_symtab *globals; /* the model's `parameters` */
   fb_bg_domain domain;      /* model default bond domain */
   const ml_frame *frames;   /* innermost instance being built, or NULL */
+  ml_paths *inputs;         /* where ml_resolve_path records, or NULL */
 } ml_ctx;
 
 /* A name declared in a graph being built: an element or a subsystem
@@ -143,7 +152,7 @@ int ml_opt_number(const ml_ctx *c, struct fy_node *map, const char *key, const f
 int ml_count(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t lo, size_t hi,
              size_t *out);
 /* Joins base_dir and a relative path (absolute paths are kept) into a new
- * string the caller frees. */
+ * string the caller frees, and records it in c->inputs. */
 int ml_resolve_path(const ml_ctx *c, struct fy_node *at, const char *path, char **out);
 
 /* ---- model_values.c: vectors, matrices, time functions. */

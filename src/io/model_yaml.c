@@ -991,6 +991,29 @@ int ml_count(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t l
   return FB_OK;
 }
 
+void ml_paths_release(ml_paths *p)
+{
+  for (size_t i = 0; i < p->n; ++i)
+    free(p->path[i]);
+  free(p->path);
+  *p = (ml_paths){0};
+}
+
+/* Adds a copy of path to p unless it is there; 0 when out of memory. */
+static int ml_paths_add(ml_paths *p, const char *path)
+{
+  for (size_t i = 0; i < p->n; ++i)
+    if (!strcmp(p->path[i], path))
+      return 1;
+  char *copy = fb_strdup(path);
+  if (!copy || fb_grow((void **)&p->path, &p->cap, p->n, sizeof *p->path) != FB_OK) {
+    free(copy);
+    return 0;
+  }
+  p->path[p->n++] = copy;
+  return 1;
+}
+
 int ml_resolve_path(const ml_ctx *c, struct fy_node *at, const char *path, char **out)
 {
   *out = NULL;
@@ -1005,6 +1028,10 @@ int ml_resolve_path(const ml_ctx *c, struct fy_node *at, const char *path, char 
     snprintf(s, need, "%s/%s", dir, path);
   else
     snprintf(s, need, "%s", path);
+  if (c->inputs && !ml_paths_add(c->inputs, s)) {
+    free(s);
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory listing the files a document names");
+  }
   *out = s;
   return FB_OK;
 }

@@ -71,6 +71,9 @@ void fb_scenario_free(fb_scenario **s)
   free((*s)->load_y);
   free((*s)->hull_deck);
   free((*s)->hull_deck_at);
+  for (size_t i = 0; i < (*s)->ninputs; ++i)
+    free((*s)->inputs[i]);
+  free((*s)->inputs);
   free((*s)->road_profile);
   free(*s);
   *s = NULL;
@@ -111,6 +114,11 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
   ok = sc_copy_string(s->hull_deck_at, &copy->hull_deck_at) && ok;
+  copy->inputs = s->ninputs ? calloc(s->ninputs, sizeof *copy->inputs) : NULL;
+  copy->ninputs = copy->inputs ? s->ninputs : 0;
+  ok = (copy->inputs || !s->ninputs) && ok;
+  for (size_t i = 0; i < copy->ninputs; ++i)
+    ok = sc_copy_string(s->inputs[i], &copy->inputs[i]) && ok;
   ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
   if (!ok) {
     fb_scenario_free(&copy);
@@ -203,9 +211,17 @@ static int load_string_in(const char *text, size_t len, const char *display_name
   c.base_dir = base_dir;
   c.err = e;
   c.domain = FB_DOMAIN_TRANSLATION;
+  ml_paths inputs = {0};
+  c.inputs = &inputs;
   fb_scenario *s = calloc(1, sizeof *s);
   int rc = s ? sc_load_document(&c, text, len, s)
              : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
+  if (s) {
+    s->inputs = inputs.path;
+    s->ninputs = inputs.n;
+  } else {
+    ml_paths_release(&inputs);
+  }
   if (!rc && display_name && !(s->path = fb_strdup(display_name)))
     rc = fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (rc) {
