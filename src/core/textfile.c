@@ -54,8 +54,8 @@ size_t fb_utf8_length(const unsigned char *s, size_t n)
   return len;
 }
 
-/* The same test as the YAML loader's and the .inp reader's: UTF-8 without
- * control characters other than tab. The end of line is already cut, so
+/* The YAML loader's test (the .inp reader's for control characters):
+ * UTF-8 without control characters other than tab. The end of line is already cut, so
  * a carriage return left inside a line is refused too (it would otherwise
  * end the line for some readers and not others). */
 static int check_text(const fb_text_reader *r, const char *text, size_t len)

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/textfile.h"
 #include "core/util.h"
 #include "io/model_internal.h"
 
@@ -75,36 +76,6 @@ static int ml_yaml_first_error(struct fy_diag *diag, const char *file, fb_err *e
   return 1;
 }
 
-/* Length of the well-formed UTF-8 sequence at s (n bytes left), 0 if it
- * is not one: a stray continuation byte, a bad lead byte, a truncated
- * sequence, and (The Unicode Standard 15.0, section 3.9, Table 3-7) an
- * overlong form, a surrogate or a code point above U+10FFFF, which the
- * lead bytes E0, ED, F0 and F4 allow only with a narrower second byte.
- * libfyaml 0.7 loops forever on those last three after a '%'
- * (tests/fuzz/regressions/model). */
-static size_t ml_utf8_length(const unsigned char *s, size_t n)
-{
-  size_t len = 0;
-  if (s[0] < 0x80)
-    len = 1;
-  else if (s[0] >= 0xC2 && s[0] < 0xE0)
-    len = 2;
-  else if (s[0] >= 0xE0 && s[0] < 0xF0)
-    len = 3;
-  else if (s[0] >= 0xF0 && s[0] < 0xF5)
-    len = 4;
-  if (len == 0 || len > n)
-    return 0;
-  const unsigned char lo = s[0] == 0xE0 ? 0xA0 : s[0] == 0xF0 ? 0x90 : 0x80;
-  const unsigned char hi = s[0] == 0xED ? 0x9F : s[0] == 0xF4 ? 0x8F : 0xBF;
-  if (len > 1 && (s[1] < lo || s[1] > hi))
-    return 0;
-  for (size_t k = 2; k < len; ++k)
-    if ((s[k] & 0xC0) != 0x80)
-      return 0;
-  return len;
-}
-
 /* YAML is UTF-8 text without control characters other than tab, line
  * feed and carriage return (YAML 1.2, section 5.1, c-printable). libfyaml
  * stops without a message at some such bytes (a NUL), which would then
@@ -116,7 +87,10 @@ static int ml_check_text(const char *text, size_t len, const char *file, fb_err 
   int line = 1, col = 1;
   for (size_t i = 0; i < len; ++col) {
     const unsigned char b = s[i];
-    const size_t n = ml_utf8_length(s + i, len - i);
+    /* Well-formed UTF-8 only: libfyaml 0.7 loops forever on an overlong
+     * form, a surrogate or a code point above U+10FFFF after a '%'
+     * (tests/fuzz/regressions/model). */
+    const size_t n = fb_utf8_length(s + i, len - i);
     if (n == 0 || (b < 0x20 && b != '\t' && b != '\n' && b != '\r') || b == 0x7F)
       return fb_err_set(err, FB_EPARSE,
                         "%s:%d:%d: binary data (byte 0x%02x): not a YAML text file (expected "
