@@ -193,7 +193,7 @@ static void plates_centroid(const fb_hull_mesh_params *p, double *cx, double *cz
 
 typedef struct line_src {
   double value;
-  char what[40]; /* for messages, e.g. "load.points[3]" */
+  char what[64]; /* for messages, e.g. "load.points[3]" */
   int geometric; /* a plate's own line (wall, bulkhead): its value wins */
   size_t origin; /* index in insertion order */
 } line_src;
@@ -322,12 +322,12 @@ static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, doubl
   add_src(yl, -half, "hull.mesh.generator.width", 1);
   add_src(yl, half, "hull.mesh.generator.width", 1);
   for (size_t b = 0; b < p->nbulkheads; ++b) {
-    char what[40];
+    char what[64];
     snprintf(what, sizeof what, "hull.mesh.generator.bulkheads[%zu]", b);
     add_src(xl, p->bulkhead_x[b], what, 1);
   }
   for (size_t k = 0; k < npoints; ++k) {
-    char what[40];
+    char what[64];
     double x, y;
     point_name(k, what, sizeof what);
     point_xy(s, k, &x, &y);
@@ -897,7 +897,7 @@ static int add_point_sets(fb_mesh *m, const build_mesh *coarse, const fb_scenari
   const size_t xp = xl->nsrc - FB_NATTACH - s->nload;
   int rc = FB_OK;
   for (size_t k = 0; k < FB_NATTACH + s->nload && rc == FB_OK; ++k) {
-    char what[40];
+    char what[64];
     point_name(k, what, sizeof what);
     const double x = xl->values[xl->line[xp + k]], y = yl->values[yl->line[Y_POINTS + k]];
     size_t node = 0;
