@@ -295,7 +295,7 @@ static int read_header(fb_text_reader *t, csv_layout *lay, fb_err *err)
   for (char *cursor = line; cursor; ++lay->nfields) {
     const char *field = next_field(&cursor);
     for (int j = 0; j < 2; ++j) {
-      if (strcmp(field, lay->name[j]))
+      if (strcmp(field, lay->name[j]) != 0)
         continue;
       if (lay->col[j] != SIZE_MAX && lay->col[j] != lay->nfields)
         return fb_err_set(err, FB_EPARSE, "%s:%zu: column '%s' appears twice", t->path,

@@ -182,10 +182,10 @@ static int add_file(study_inputs *in, const char *path, fb_err *err)
     return FB_OK;
   char *text = NULL;
   size_t len = 0;
-  const int readable = read_whole(path, &text, &len) == 0;
-  const int rc = !readable && errno == ENOMEM
+  /* text stays NULL for a file that cannot be read. */
+  const int rc = read_whole(path, &text, &len) != 0 && errno == ENOMEM
                      ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", path)
-                     : add_input(in, path, readable ? text : NULL, len, err);
+                     : add_input(in, path, text, len, err);
   free(text);
   return rc;
 }
@@ -492,7 +492,8 @@ static int another_study(const char *path, const char *text, size_t len, const c
                           "%s: remove it to start afresh",
                           path, (int)(n - 3), line + 2, CLI_VERSION);
     } else if (parse_input_line(line, n, &old) && same_file_now(inputs, &old, &now) &&
-               (old.hash_len != now.hash_len || memcmp(old.hash, now.hash, old.hash_len))) {
+               (old.hash_len != now.hash_len ||
+                memcmp(old.hash, now.hash, old.hash_len) != 0)) {
       const int unreadable =
           now.hash_len == strlen("unreadable") && !memcmp(now.hash, "unreadable", now.hash_len);
       return fb_err_set(err, FB_EINVAL,

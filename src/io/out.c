@@ -14,6 +14,7 @@
  * file and copied into the destination, opened as it is, on commit, so
  * that a failed run still sends nothing there. */
 /* realpath(3) with a NULL buffer is XSI (POSIX.1-2008). */
+/* NOLINTNEXTLINE(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp): POSIX's macro */
 #define _XOPEN_SOURCE 700
 
 #include <errno.h>
