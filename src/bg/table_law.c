@@ -326,10 +326,11 @@ static int read_row(const fb_text_reader *t, char *line, const csv_layout *lay, 
   if (count != lay->nfields)
     return fb_err_set(err, FB_EPARSE, "%s:%zu: expected %zu fields as in the header, found %zu",
                       t->path, t->line_no, lay->nfields, count);
-  for (int j = 0; j < 2; ++j)
-    if (fb_parse_decimal(text[j], &v[j], err))
-      return fb_err_prefix(err, "%s:%zu: column '%s': ", t->path, t->line_no, lay->name[j]);
-  return FB_OK;
+  int rc = FB_OK;
+  for (int j = 0; j < 2 && !rc; ++j)
+    if ((rc = fb_parse_decimal(text[j], &v[j], err)))
+      fb_err_prefix(err, "%s:%zu: column '%s': ", t->path, t->line_no, lay->name[j]);
+  return rc;
 }
 
 /* Growing knot arrays. */

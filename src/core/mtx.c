@@ -110,9 +110,10 @@ static int parse_value(const mtx_reader *r, const mtx_header *h, const char *tok
     *out = (double)v;
     return FB_OK;
   }
-  if (fb_parse_decimal(tok, out, r->err))
-    return fb_err_prefix(r->err, "%s:%zu: value ", r->path, r->line_no);
-  return FB_OK;
+  const int rc = fb_parse_decimal(tok, out, r->err);
+  if (rc)
+    fb_err_prefix(r->err, "%s:%zu: value ", r->path, r->line_no);
+  return rc;
 }
 
 static int no_more_tokens(const mtx_reader *r, char **cursor)

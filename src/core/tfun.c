@@ -458,9 +458,10 @@ static int csv_read_header(fb_text_reader *r, const char *time_col, const char *
 static int csv_number(const fb_text_reader *r, const char *name, const char *text,
                       double *value)
 {
-  if (fb_parse_decimal(text, value, r->err))
-    return fb_err_prefix(r->err, "%s:%zu: column '%s': ", r->path, r->line_no, name);
-  return FB_OK;
+  const int rc = fb_parse_decimal(text, value, r->err);
+  if (rc)
+    fb_err_prefix(r->err, "%s:%zu: column '%s': ", r->path, r->line_no, name);
+  return rc;
 }
 
 /* Splits a data line and extracts its time and value. */

@@ -115,10 +115,11 @@ static int grow(profile_reader *r)
 
 static int parse_number(const profile_reader *r, int c, const char *text, double *v)
 {
-  if (fb_parse_decimal(text, v, r->text.err))
-    return fb_err_prefix(r->text.err, "%s:%zu: column '%s': ", r->text.path, r->text.line_no,
-                         COLUMN_NAMES[c]);
-  return FB_OK;
+  const int rc = fb_parse_decimal(text, v, r->text.err);
+  if (rc)
+    fb_err_prefix(r->text.err, "%s:%zu: column '%s': ", r->text.path, r->text.line_no,
+                  COLUMN_NAMES[c]);
+  return rc;
 }
 
 /* Parses one data line into row r->n (room already made). */
