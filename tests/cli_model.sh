@@ -159,6 +159,14 @@ if mknod "$WORK/null" c 1 3 2>/dev/null && mknod "$WORK/full" c 1 7 2>/dev/null;
   checks=$((checks + 1))
   [ -c "$WORK/full" ] || fail "diagram into a full device: still a device"
 fi
+# /dev/stdout into a file the shell appends to: the earlier line stays.
+echo earlier >"$WORK/appended.dot"
+"$FLEXBOND" diagram "$DOT" -o /dev/stdout >>"$WORK/appended.dot" 2>"$ERR"
+status=$?
+expect_status 0 "diagram into /dev/stdout appended to a file"
+checks=$((checks + 1))
+{ echo earlier; cat "$WORK/ref.dot"; } | cmp -s - "$WORK/appended.dot" ||
+  fail "diagram into /dev/stdout appended to a file: the file holds its line, then the output"
 mkdir "$WORK/dir.dot"
 run diagram "$DOT" -o "$WORK/dir.dot"
 expect_status 5 "diagram into a directory"

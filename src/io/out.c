@@ -9,10 +9,11 @@
  *
  * A destination that is a symbolic link is followed: the file it names is
  * replaced and the link kept. A destination that exists but is not a
- * regular file (a terminal, /dev/null, a FIFO) cannot be replaced by a
- * rename, and must not be: the output is held in an anonymous temporary
- * file and copied into the destination, opened as it is, on commit, so
- * that a failed run still sends nothing there. */
+ * regular file (a terminal, /dev/null, a FIFO), or is the file behind a
+ * standard stream (/dev/stdout redirected by the shell), cannot be
+ * replaced by a rename, and must not be: the output is held in an
+ * anonymous temporary file and copied into the destination, opened as it
+ * is, on commit, so that a failed run still sends nothing there. */
 /* realpath(3) with a NULL buffer is XSI (POSIX.1-2008). */
 /* NOLINTNEXTLINE(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp): POSIX's macro */
 #define _XOPEN_SOURCE 700
@@ -67,6 +68,19 @@ static void out_destroy(fb_out *o)
   free(o);
 }
 
+/* 1 if st is the file behind one of the standard streams: /dev/stdout
+ * when the shell redirected it into a file, which the redirection, not a
+ * rename, must keep writing (">>" appends). */
+static int is_standard_stream(const struct stat *st)
+{
+  for (int fd = 0; fd <= 2; ++fd) {
+    struct stat s;
+    if (fstat(fd, &s) == 0 && s.st_dev == st->st_dev && s.st_ino == st->st_ino)
+      return 1;
+  }
+  return 0;
+}
+
 /* Where the data of o goes: o->target (path itself, or the regular file
  * a symbolic link at path names) and o->tmp_path beside it, or, for an
  * existing destination that is not a regular file, no temporary path. */
@@ -82,7 +96,7 @@ static int out_resolve(fb_out *o, fb_err *err)
                       o->path, strerror(errno));
   } else if (S_ISDIR(st.st_mode)) {
     return fb_err_set(err, FB_EIO, "%s: cannot create file: Is a directory", o->path);
-  } else if (!S_ISREG(st.st_mode)) {
+  } else if (!S_ISREG(st.st_mode) || (S_ISLNK(lst.st_mode) && is_standard_stream(&st))) {
     return FB_OK;
   } else if (S_ISLNK(lst.st_mode)) {
     o->target = realpath(o->path, NULL);
@@ -149,15 +163,17 @@ static int flush_and_close(fb_out *o)
 }
 
 /* Copies the complete output held in o->fp into the destination that is
- * not a regular file, opened as it is (a FIFO waits for its reader);
- * closes o->fp. Returns 0 or an errno value. */
+ * not a regular file (or is a standard stream's), opened for appending
+ * as it is: a FIFO waits for its reader, and a file behind /dev/stdout
+ * keeps what the shell's ">>" kept. Closes o->fp. Returns 0 or an errno
+ * value. */
 static int copy_to_stream(fb_out *o)
 {
   errno = 0;
   int status = 0;
   if (fflush(o->fp) != 0 || ferror(o->fp))
     status = errno ? errno : EIO;
-  FILE *dst = status ? NULL : fopen(o->path, "w");
+  FILE *dst = status ? NULL : fopen(o->path, "a");
   if (!status && !dst)
     status = errno;
   if (dst) {
