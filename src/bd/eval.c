@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bd/bd_internal.h"
+#include "core/util.h"
 
 static int block_failed(fb_bd *bd, size_t blk, int rc)
 {
@@ -54,21 +55,6 @@ const char *fb_bd_last_error(const fb_bd *bd)
 
 /* ---- Where a non-finite value starts (fb_bd_explain_nonfinite). */
 
-/* v for "%g": a NaN without the sign glibc prints ("-nan"), which means
- * nothing here. */
-static double shown(double v)
-{
-  return isnan(v) ? fabs(v) : v;
-}
-
-static int all_finite(const double *v, size_t n)
-{
-  for (size_t i = 0; i < n; ++i)
-    if (!isfinite(v[i]))
-      return 0;
-  return 1;
-}
-
 /* Name of w[i]: its signal's, "[k]" (1-based) for a component of a
  * vector signal. */
 static void w_name(const fb_bd *bd, size_t i, char *buf, size_t size)
@@ -115,23 +101,26 @@ static void append_inputs(const fb_bd *bd, const bd_block *b, const char *prep, 
     width += b->idim[k];
   if (width == 0)
     return;
-  size_t len = strlen(buf);
-  len += (size_t)snprintf(buf + len, len < size ? size - len : 0, " %s finite inputs", prep);
-  if (width > LISTED_INPUTS)
+  if (size == 0)
     return;
-  for (size_t k = 0, listed = 0; k < b->nin; ++k)
-    for (size_t c = 0; c < b->idim[k]; ++c, ++listed) {
+  /* len stays inside buf: snprintf returns what it would have written. */
+  size_t len = strlen(buf);
+  len += (size_t)snprintf(buf + len, size - len, " %s finite inputs", prep);
+  if (width > LISTED_INPUTS || len >= size)
+    return;
+  for (size_t k = 0, listed = 0; k < b->nin && len < size; ++k)
+    for (size_t c = 0; c < b->idim[k] && len < size; ++c, ++listed) {
       char name[300];
       w_name(bd, b->ioff[k] + c, name, sizeof name);
-      len += (size_t)snprintf(buf + len, len < size ? size - len : 0, "%s %s = %.6g",
-                              listed ? "," : "", name, bd->w[b->ioff[k] + c]);
+      len += (size_t)snprintf(buf + len, size - len, "%s %s = %.6g", listed ? "," : "", name,
+                              bd->w[b->ioff[k] + c]);
     }
 }
 
 static int inputs_finite(const fb_bd *bd, const bd_block *b)
 {
   for (size_t k = 0; k < b->nin; ++k)
-    if (!all_finite(bd->w + b->ioff[k], b->idim[k]))
+    if (fb_first_nonfinite(bd->w + b->ioff[k], b->idim[k]) < b->idim[k])
       return 0;
   return 1;
 }
@@ -142,15 +131,13 @@ static fb_bd_nonfinite_kind check_block_value(const fb_bd *bd, size_t i, char *b
 {
   const bd_block *b = &bd->blocks[i];
   const double *y = bd->w + b->ooff;
-  if (all_finite(y, b->odim) || !inputs_finite(bd, b))
+  const size_t c = fb_first_nonfinite(y, b->odim);
+  if (c == b->odim || !inputs_finite(bd, b))
     return FB_NONFINITE_NONE;
-  size_t c = 0;
-  while (isfinite(y[c]))
-    ++c;
   char who[400], name[300];
   block_name(bd, b, who, sizeof who);
   w_name(bd, b->ooff + c, name, sizeof name);
-  snprintf(buf, size, "%s: %s = %g", who, name, shown(y[c]));
+  snprintf(buf, size, "%s: %s = %g", who, name, fb_printable(y[c]));
   append_inputs(bd, b, "from", buf, size);
   return FB_NONFINITE_VALUE;
 }
@@ -476,7 +463,7 @@ static fb_bd_nonfinite_kind check_jacobians(fb_bd *bd, char *buf, size_t size)
         block_name(bd, b, who, sizeof who);
         w_name(bd, r, rn, sizeof rn);
         w_name(bd, c, cn, sizeof cn);
-        snprintf(buf, size, "%s: d %s / d %s = %g", who, rn, cn, shown(r == c ? v : -v));
+        snprintf(buf, size, "%s: d %s / d %s = %g", who, rn, cn, fb_printable(r == c ? v : -v));
         append_inputs(bd, b, "at", buf, size);
         return FB_NONFINITE_JACOBIAN;
       }
@@ -490,7 +477,7 @@ fb_bd_nonfinite_kind fb_bd_explain_nonfinite(fb_bd *bd, double t, const double *
   buf[0] = '\0';
   for (size_t i = 0; i < bd->nstates; ++i)
     if (!isfinite(x[i])) {
-      snprintf(buf, size, "state %s = %g", bd->state_names[i], shown(x[i]));
+      snprintf(buf, size, "state %s = %g", bd->state_names[i], fb_printable(x[i]));
       return FB_NONFINITE_STATE;
     }
   /* Folded constants keep their values in w; their inputs are constants

@@ -2,6 +2,7 @@
 #include "core/util.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +10,19 @@
 #include <sys/stat.h>
 
 #include "flexbond/error.h"
+
+size_t fb_first_nonfinite(const double *v, size_t n)
+{
+  for (size_t i = 0; i < n; ++i)
+    if (!isfinite(v[i]))
+      return i;
+  return n;
+}
+
+double fb_printable(double v)
+{
+  return isnan(v) ? fabs(v) : v;
+}
 
 char *fb_strdup(const char *s)
 {

@@ -7,6 +7,12 @@
 
 #include "flexbond/error.h"
 
+/* Index of the first value of v[0..n) that is not finite; n if all are. */
+size_t fb_first_nonfinite(const double *v, size_t n);
+/* v for "%g" in a message: a NaN without the sign glibc prints ("-nan"),
+ * which means nothing there. */
+double fb_printable(double v);
+
 /* Duplicate of s in fresh memory (NULL when out of memory). */
 char *fb_strdup(const char *s);
 

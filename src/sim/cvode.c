@@ -75,10 +75,15 @@ typedef struct sim_run {
   fb_sim_stats *stats;
   /* The latest non-finite value that cv_rhs or cv_linsys met during the
    * current CVode call (cleared before each): if CVODE gives up, that is
-   * why. nonfinite_t is the model time of that evaluation. */
+   * why. It is explained (fb_sim_explain_nonfinite walks the diagram)
+   * only then, from the model time and state kept here: a recoverable
+   * probe that CVODE steps back from costs no more than this copy. */
   int has_nonfinite;
+  int nonfinite_jacobian; /* the Newton matrix, not a derivative */
   double nonfinite_t;
-  char nonfinite[FB_SIM_NONFINITE_MAX];
+  size_t nonfinite_state; /* whose derivative ... */
+  double nonfinite_value; /* ... was this */
+  N_Vector ybad;          /* the state of that evaluation */
 } sim_run;
 
 /* ---- Model callbacks. */
@@ -93,16 +98,17 @@ static double model_time(const sim_run *run, double t)
   return t < run->t_limit ? t : run->t_left;
 }
 
-/* Records why the derivatives f at (t, y) are not finite (f[i] is the
- * first such), for the failure message if CVODE gives up. */
-static void note_nonfinite_rhs(sim_run *run, double t, const double *y, const double *f,
-                               size_t i)
+/* Keeps the evaluation at (t, y) that met a non-finite value (the
+ * derivative f_i of state i, or the Newton matrix), for the failure
+ * message if CVODE gives up. */
+static void note_nonfinite(sim_run *run, double t, N_Vector y, int jacobian, size_t i,
+                           double f_i)
 {
-  char what[256];
-  snprintf(what, sizeof what, "the derivative of state %s is %g", fb_bd_state_name(run->bd, i),
-           fb_sim_shown(f[i]));
-  fb_sim_explain_nonfinite(run->bd, t, y, 0, what, run->nonfinite, sizeof run->nonfinite);
+  N_VScale(1.0, y, run->ybad);
   run->nonfinite_t = t;
+  run->nonfinite_jacobian = jacobian;
+  run->nonfinite_state = i;
+  run->nonfinite_value = f_i;
   run->has_nonfinite = 1;
 }
 
@@ -122,10 +128,10 @@ static int cv_rhs(double t, N_Vector y, N_Vector ydot, void *user_data)
   const int rc = fb_bd_rhs(run->bd, tm, x, f);
   if (rc != 0)
     return rc > 0 ? 1 : -1;
-  const size_t bad = fb_sim_first_nonfinite(f, run->n);
+  const size_t bad = fb_first_nonfinite(f, run->n);
   if (bad == run->n)
     return 0;
-  note_nonfinite_rhs(run, tm, x, f, bad);
+  note_nonfinite(run, tm, y, 0, bad, f[bad]);
   return 1;
 }
 
@@ -161,13 +167,8 @@ static int cv_linsys(double t, N_Vector y, N_Vector fy, SUNMatrix A, booleantype
     /* A non-finite entry would reach the factorisation; recoverable, as
      * for the right-hand side (cv_rhs). */
     const size_t nnz = fb_bd_aug_nnz(run->bd);
-    if (fb_sim_first_nonfinite(run->v0, nnz) < nnz ||
-        fb_sim_first_nonfinite(run->v1, nnz) < nnz) {
-      fb_sim_explain_nonfinite(run->bd, model_time(run, t), N_VGetArrayPointer(y), 1,
-                               "the Newton matrix is not finite", run->nonfinite,
-                               sizeof run->nonfinite);
-      run->nonfinite_t = model_time(run, t);
-      run->has_nonfinite = 1;
+    if (fb_first_nonfinite(run->v0, nnz) < nnz || fb_first_nonfinite(run->v1, nnz) < nnz) {
+      note_nonfinite(run, model_time(run, t), y, 1, 0, 0.0);
       return 1;
     }
     run->have_values = 1;
@@ -330,13 +331,32 @@ static int local_errors_tell(int flag)
  * evaluation when it reads differently from t. */
 static void nonfinite_clause(const sim_run *run, double t, char *buf, size_t size)
 {
+  char what[300], explained[FB_SIM_NONFINITE_MAX];
+  if (run->nonfinite_jacobian)
+    snprintf(what, sizeof what, "the Newton matrix is not finite");
+  else
+    snprintf(what, sizeof what, "the derivative of state %s is %g",
+             fb_bd_state_name(run->bd, run->nonfinite_state),
+             fb_printable(run->nonfinite_value));
+  fb_sim_explain_nonfinite(run->bd, run->nonfinite_t, N_VGetArrayPointer(run->ybad),
+                           run->nonfinite_jacobian, what, explained, sizeof explained);
   char at[32], now[32];
   snprintf(at, sizeof at, "%.6g", run->nonfinite_t);
   snprintf(now, sizeof now, "%.6g", t);
   if (strcmp(at, now) == 0)
-    snprintf(buf, size, "%s", run->nonfinite);
+    snprintf(buf, size, "%s", explained);
   else
-    snprintf(buf, size, "at t = %s s, %s", at, run->nonfinite);
+    snprintf(buf, size, "at t = %s s, %s", at, explained);
+}
+
+/* Whether CVODE gave up on what cv_rhs and cv_linsys flag as
+ * recoverable: repeated or unrecoverable right-hand side failures, or
+ * failed Newton iterations and error tests. A law that fails outright
+ * (CV_RHSFUNC_FAIL) says why itself. */
+static int gave_up_retrying(int flag)
+{
+  return flag == CV_REPTD_RHSFUNC_ERR || flag == CV_FIRST_RHSFUNC_ERR ||
+         flag == CV_UNREC_RHSFUNC_ERR || flag == CV_CONV_FAILURE || flag == CV_ERR_FAILURE;
 }
 
 /* FB_ESOLVER "at t = ... s: CVODE <flag>: <hint>" with whatever CVODE,
@@ -347,7 +367,7 @@ static void nonfinite_clause(const sim_run *run, double t, char *buf, size_t siz
 static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
 {
   char *name = CVodeGetReturnFlagName(flag); /* malloc'ed in CVODE 6.4 */
-  if (run->has_nonfinite) {
+  if (run->has_nonfinite && gave_up_retrying(flag)) {
     char clause[FB_SIM_NONFINITE_MAX + 128];
     nonfinite_clause(run, t, clause, sizeof clause);
     fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s%s%s", t,
@@ -476,6 +496,8 @@ static void run_free(sim_run *run)
     N_VDestroy(run->y);
   if (run->ysam)
     N_VDestroy(run->ysam);
+  if (run->ybad)
+    N_VDestroy(run->ybad);
   if (run->sunctx)
     SUNContext_Free(&run->sunctx);
   fb_auglin_free(&run->lin);
@@ -533,11 +555,11 @@ static int write_sample(sim_run *run, size_t k, double t, const double *x, fb_er
                       fb_bd_last_error(run->bd));
   /* An output the dynamics do not need (a power probe, an energy) is
    * not checked by cv_rhs; a non-finite one must not reach the table. */
-  const size_t nout = run->res->ncols - 1, bad = fb_sim_first_nonfinite(row + 1, nout);
+  const size_t nout = run->res->ncols - 1, bad = fb_first_nonfinite(row + 1, nout);
   if (bad < nout) {
     char what[300], msg[FB_SIM_NONFINITE_MAX];
     snprintf(what, sizeof what, "output %s is %g", fb_bd_output_name(run->bd, bad),
-             fb_sim_shown(row[1 + bad]));
+             fb_printable(row[1 + bad]));
     fb_sim_explain_nonfinite(run->bd, t, x, 0, what, msg, sizeof msg);
     return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: %s", t, msg);
   }
@@ -575,12 +597,12 @@ static int check_initial_rhs(sim_run *run, fb_err *err)
   double *f = N_VGetArrayPointer(run->ysam);
   if (fb_bd_rhs(run->bd, t, x, f) != 0)
     return FB_OK; /* a failing law: CVODE reports it with its flag */
-  const size_t bad = fb_sim_first_nonfinite(f, run->n);
+  const size_t bad = fb_first_nonfinite(f, run->n);
   if (bad == run->n)
     return FB_OK;
   char what[300], msg[FB_SIM_NONFINITE_MAX];
   snprintf(what, sizeof what, "the derivative of state %s is %g at the initial state",
-           fb_bd_state_name(run->bd, bad), fb_sim_shown(f[bad]));
+           fb_bd_state_name(run->bd, bad), fb_printable(f[bad]));
   fb_sim_explain_nonfinite(run->bd, t, x, 0, what, msg, sizeof msg);
   return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: %s", t, msg);
 }
@@ -598,7 +620,7 @@ static int check_finite_state(const sim_run *run, double t, fb_err *err)
       return fb_err_set(err, FB_ESOLVER,
                         "at t = %.6g s: state %s became %g; the model diverged or a law "
                         "returned a non-finite value",
-                        t, fb_bd_state_name(run->bd, i), fb_sim_shown(y[i]));
+                        t, fb_bd_state_name(run->bd, i), fb_printable(y[i]));
   return FB_OK;
 }
 
@@ -812,7 +834,8 @@ static int run_dynamic(sim_run *run, fb_err *err)
     return fb_err_set(err, FB_ENOMEM, "out of memory creating the SUNDIALS context");
   run->y = N_VNew_Serial((sunindextype)run->n, run->sunctx);
   run->ysam = N_VNew_Serial((sunindextype)run->n, run->sunctx);
-  if (!run->y || !run->ysam)
+  run->ybad = N_VNew_Serial((sunindextype)run->n, run->sunctx);
+  if (!run->y || !run->ysam || !run->ybad)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the state vectors");
   /* A diagram linear within each mode has a constant Newton matrix
    * between events; the values are refreshed after each event. */

@@ -7,19 +7,6 @@
 
 #include "sim/sim_internal.h"
 
-size_t fb_sim_first_nonfinite(const double *v, size_t n)
-{
-  for (size_t i = 0; i < n; ++i)
-    if (!isfinite(v[i]))
-      return i;
-  return n;
-}
-
-double fb_sim_shown(double v)
-{
-  return isnan(v) ? fabs(v) : v;
-}
-
 static const char *hint(fb_bd_nonfinite_kind kind)
 {
   switch (kind) {
@@ -46,6 +33,9 @@ fb_bd_nonfinite_kind fb_sim_explain_nonfinite(fb_bd *bd, double t, const double 
   if (kind)
     snprintf(buf, size, "%s; the non-finite value starts at %s; hint: %s", what, where,
              hint(kind));
+  else if (fb_bd_last_error(bd)[0])
+    snprintf(buf, size, "%s; evaluating the diagram again failed: %s", what,
+             fb_bd_last_error(bd));
   else
     snprintf(buf, size, "%s; hint: %s", what, hint(kind));
   return kind;

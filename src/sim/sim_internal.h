@@ -6,6 +6,8 @@
 
 #include "flexbond/sim.h"
 
+#include "core/util.h"
+
 struct fb_result {
   size_t nsamples, ncols;
   double *data; /* nsamples x ncols, row-major */
@@ -38,12 +40,7 @@ double fb_sim_same_time_tol(double a, double b);
 
 /* ---- Non-finite values (nonfinite.c). */
 
-/* Index of the first non-finite entry of v[0 .. n), n if none. */
-size_t fb_sim_first_nonfinite(const double *v, size_t n);
-
-/* v for "%g": a NaN without the sign glibc prints ("-nan"), which means
- * nothing to a reader. */
-double fb_sim_shown(double v);
+/* fb_first_nonfinite and fb_printable: core/util.h. */
 
 /* Room for one description of a non-finite value. */
 #define FB_SIM_NONFINITE_MAX 1024

@@ -86,12 +86,12 @@ static int eval_rhs(fb_bd *bd, double t, const double *x, double *f, fb_err *err
 {
   if (fb_bd_rhs(bd, t, x, f))
     return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
-  const size_t n = fb_bd_nstates(bd), bad = fb_sim_first_nonfinite(f, n);
+  const size_t n = fb_bd_nstates(bd), bad = fb_first_nonfinite(f, n);
   if (bad == n)
     return FB_OK;
   char what[300], msg[FB_SIM_NONFINITE_MAX];
   snprintf(what, sizeof what, "the derivative of state %s is %g", fb_bd_state_name(bd, bad),
-           fb_sim_shown(f[bad]));
+           fb_printable(f[bad]));
   fb_sim_explain_nonfinite(bd, t, x, 0, what, msg, sizeof msg);
   return fb_err_set(err, FB_ESOLVER, "static equilibrium at t = %g s: %s", t, msg);
 }
@@ -106,7 +106,7 @@ static int pseudo_step(fb_bd *bd, double t, double h, static_work *w, double *x,
   if (fb_bd_aug_values(bd, t, x, w->v0, w->v1))
     return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
   const size_t nnz = fb_bd_aug_nnz(bd);
-  if (fb_sim_first_nonfinite(w->v0, nnz) < nnz || fb_sim_first_nonfinite(w->v1, nnz) < nnz) {
+  if (fb_first_nonfinite(w->v0, nnz) < nnz || fb_first_nonfinite(w->v1, nnz) < nnz) {
     char msg[FB_SIM_NONFINITE_MAX];
     fb_sim_explain_nonfinite(bd, t, x, 1, "the Newton matrix is not finite", msg, sizeof msg);
     return fb_err_set(err, FB_ESOLVER, "static equilibrium at t = %g s: %s", t, msg);
