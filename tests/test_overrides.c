@@ -273,6 +273,45 @@ static void test_bad_values(const char *text)
                (const char *const[]){"road.bump: bump longer than the run", NULL});
 }
 
+/* An error found after loading (fb_scenario_blame) about a value that an
+ * override replaced names the override, then the value's place in the
+ * file, as a loading error does; one about another value is located only,
+ * and one that names no key is left alone. A clone keeps the overrides. */
+static void test_late_blame(const char *text)
+{
+  const fb_scenario_override ov[] = {{"modes", "99999"}};
+  fb_scenario *s = NULL, *c = NULL;
+  fb_err err;
+  CHECK(load(ov, 1, &s, &err) == FB_OK && s);
+  if (!s)
+    return;
+  CHECK(s->nset == 1 && !strcmp(s->set_path[0], "hull.fe.modes") &&
+        !strcmp(s->set_label[0], "--set modes=99999"));
+  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK && c && c->nset == 1 &&
+        c->set_label[0] != s->set_label[0] && !strcmp(c->set_label[0], s->set_label[0]));
+  char modes[32], driver[32], want[256];
+  position_of(text, "    modes: 0", 11, modes, sizeof modes);
+  position_of(text, "  x: 2.10", 5, driver, sizeof driver);
+  fb_err_set(&err, FB_EINVAL, "hull.fe.modes: too many");
+  CHECK(fb_scenario_blame(c, &err) == FB_EINVAL);
+  snprintf(want, sizeof want, "--set modes=99999: " EXAMPLE ":%s: hull.fe.modes: too many",
+           modes);
+  CHECK(!strcmp(err.msg, want));
+  if (strcmp(err.msg, want))
+    fprintf(stderr, "  wanted '%s', got '%s'\n", want, err.msg);
+  fb_err_set(&err, FB_EINVAL, "driver.x: off the floor");
+  fb_scenario_blame(s, &err);
+  snprintf(want, sizeof want, EXAMPLE ":%s: driver.x: off the floor", driver);
+  CHECK(!strcmp(err.msg, want));
+  if (strcmp(err.msg, want))
+    fprintf(stderr, "  wanted '%s', got '%s'\n", want, err.msg);
+  fb_err_set(&err, FB_EMODEL, "hull mesh: no node at the driver");
+  CHECK(fb_scenario_blame(s, &err) == FB_EMODEL &&
+        !strcmp(err.msg, "hull mesh: no node at the driver"));
+  fb_scenario_free(&c);
+  fb_scenario_free(&s);
+}
+
 int main(void)
 {
   char *text = read_text(EXAMPLE);
@@ -285,6 +324,7 @@ int main(void)
   test_relative_references();
   test_bad_keys(text);
   test_bad_values(text);
+  test_late_blame(text);
   free(text);
   return check_report("test_overrides");
 }

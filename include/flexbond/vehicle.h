@@ -163,6 +163,12 @@ typedef struct fb_scenario {
    * depends on besides the scenario itself (owned). */
   char **inputs;
   size_t ninputs;
+  /* The values that overrides replaced (fb_scenario_load_overrides):
+   * each one's key path in the file and its "--set KEY=VALUE", so that a
+   * later error about that value names the override (fb_scenario_blame);
+   * owned. */
+  char **set_path, **set_label;
+  size_t nset;
   fb_hull_mesh_params hull_mesh; /* generator parameters */
   fb_mass_kind hull_mass_matrix; /* consistent (default) or lumped */
   double hull_drill_factor;      /* fictitious drilling stiffness factor */
@@ -228,9 +234,9 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err);
 /* For an error about s's values found after loading (building System 2's
  * hull, say): when err's message starts with a key path of the scenario
  * file ("suspensions.LF.x: ..."), prefixes the file's "FILE:LINE:COL: " of
- * that value, as fb_scenario_load does; any other message, or a scenario
- * not from a file, is left as it is. Reads the file again. Returns
- * err->code. */
+ * that value, as fb_scenario_load does, and, for a value an override
+ * replaced, its "--set KEY=VALUE: " (s->set_label); any other message is
+ * left as it is. Reads the file again. Returns err->code. */
 int fb_scenario_blame(const fb_scenario *s, fb_err *err);
 void fb_scenario_free(fb_scenario **s);
 /* Deep copy. */
@@ -429,7 +435,9 @@ typedef struct fb_fe_hull {
  * generator with hull.mesh's parameters), material and mass matrix kind.
  * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. A deck's
  * errors start with s->hull_deck_at, then the deck's "PATH:LINE: " (or
- * "PATH: " for its node sets); the generator's with "hull mesh: ". */
+ * "PATH: " for its node sets); the generator's with the scenario key they
+ * concern, located by fb_scenario_blame ("FILE:LINE:COL: driver.x: ..."),
+ * or with "hull mesh: " when they concern none. */
 int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 
 /* Takes the mesh over (*mesh set to NULL) and resolves its node sets

@@ -669,12 +669,15 @@ static void override(const run_args *a, fb_scenario *s)
     s->hull_modes = a->hull_modes;
 }
 
-/* cli_report, except that a check of hull.fe.modes that --hull-modes
- * replaced (more modes than the hull has) is the option's: a usage error. */
-static int report(const run_args *a, int rc, fb_err *err)
+/* cli_report, except that a check of hull.fe.modes after --hull-modes
+ * replaced it (overridden: more modes than the hull has) is the option's:
+ * a usage error. The file's own value was checked, and located, when the
+ * scenario was loaded. */
+static int report(const run_args *a, int overridden, int rc, fb_err *err)
 {
   static const char key[] = "hull.fe.modes: ";
-  const char *at = rc != FB_OK && a->hull_modes >= 0 ? strstr(err->msg, key) : NULL;
+  const char *at =
+      rc != FB_OK && overridden && a->hull_modes >= 0 ? strstr(err->msg, key) : NULL;
   if (at)
     return cli_usage_error("run", "option '--hull-modes': %s", at + strlen(key));
   return cli_report(rc, err);
@@ -692,6 +695,7 @@ static int run(const run_args *a)
   cli_run_outputs o = {.runs = runs, .figures = a->figures};
   size_t nfiles = 0;
   int rc = fb_scenario_load(a->scenario_path, &s, &err);
+  const int overridden = rc == FB_OK;
   if (rc == FB_OK) {
     override(a, s);
     o.scenario = s;
@@ -734,7 +738,7 @@ static int run(const run_args *a)
   }
   run_modes_free(&modes);
   fb_scenario_free(&s);
-  return report(a, rc, &err);
+  return report(a, overridden, rc, &err);
 }
 
 /* The value of --hull-modes: 0 or an integer in 6 .. MAX_HULL_MODES, as

@@ -61,6 +61,13 @@ double fb_scenario_bump_exit(const fb_scenario *s, int corner)
 
 /* ---- Ownership. */
 
+static void sc_free_strings(char **v, size_t n)
+{
+  for (size_t i = 0; v && i < n; ++i)
+    free(v[i]);
+  free(v);
+}
+
 void fb_scenario_free(fb_scenario **s)
 {
   if (!s || !*s)
@@ -71,9 +78,9 @@ void fb_scenario_free(fb_scenario **s)
   free((*s)->load_y);
   free((*s)->hull_deck);
   free((*s)->hull_deck_at);
-  for (size_t i = 0; i < (*s)->ninputs; ++i)
-    free((*s)->inputs[i]);
-  free((*s)->inputs);
+  sc_free_strings((*s)->inputs, (*s)->ninputs);
+  sc_free_strings((*s)->set_path, (*s)->nset);
+  sc_free_strings((*s)->set_label, (*s)->nset);
   free((*s)->road_profile);
   free(*s);
   *s = NULL;
@@ -84,6 +91,17 @@ static int sc_copy_string(const char *src, char **dst)
 {
   *dst = src ? fb_strdup(src) : NULL;
   return !src || *dst;
+}
+
+/* *dst = a copy of the n strings at src (NULL stays NULL), NULL entries
+ * where memory ran out; 0 when it did. */
+static int sc_copy_strings(char *const *src, size_t n, char ***dst)
+{
+  *dst = src && n ? calloc(n, sizeof **dst) : NULL;
+  int ok = !src || !n || *dst;
+  for (size_t i = 0; *dst && i < n; ++i)
+    ok = sc_copy_string(src[i], &(*dst)[i]) && ok;
+  return ok;
 }
 
 /* *dst = copy of the n doubles at src (NULL stays NULL); 0 when out of
@@ -114,11 +132,9 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
   ok = sc_copy_string(s->hull_deck_at, &copy->hull_deck_at) && ok;
-  copy->inputs = s->ninputs ? calloc(s->ninputs, sizeof *copy->inputs) : NULL;
-  copy->ninputs = copy->inputs ? s->ninputs : 0;
-  ok = (copy->inputs || !s->ninputs) && ok;
-  for (size_t i = 0; i < copy->ninputs; ++i)
-    ok = sc_copy_string(s->inputs[i], &copy->inputs[i]) && ok;
+  ok = sc_copy_strings(s->inputs, s->ninputs, &copy->inputs) && ok;
+  ok = sc_copy_strings(s->set_path, s->nset, &copy->set_path) && ok;
+  ok = sc_copy_strings(s->set_label, s->nset, &copy->set_label) && ok;
   ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
   if (!ok) {
     fb_scenario_free(&copy);
@@ -151,16 +167,27 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
   return rc;
 }
 
-int fb_scenario_blame(const fb_scenario *s, fb_err *err)
+/* The "--set KEY=VALUE" that replaced the value msg starts with ("PATH:
+ * ..."), NULL if none did. */
+static const char *sc_set_label(const fb_scenario *s, const char *msg)
 {
-  if (!err || err->code == FB_OK || !s || !s->path)
-    return err ? err->code : FB_EINVAL;
+  for (size_t i = 0; i < s->nset; ++i) {
+    const size_t n = strlen(s->set_path[i]);
+    if (!strncmp(msg, s->set_path[i], n) && msg[n] == ':')
+      return s->set_label[i];
+  }
+  return NULL;
+}
+
+/* "FILE:LINE:COL: " before err's message when it starts with one of the
+ * file's key paths. On the error path only: the file is read and parsed
+ * again (it holds the positions; the scenario keeps values). Any failure
+ * here leaves the message as it was. */
+static void sc_locate_late(const fb_scenario *s, fb_err *err)
+{
   const size_t plen = strlen(s->path);
   if (!strncmp(err->msg, s->path, plen) && err->msg[plen] == ':')
-    return err->code;
-  /* On the error path only: the file is read and parsed again (it holds
-   * the positions; the scenario keeps values). Any failure here leaves
-   * the message as it was. */
+    return;
   char *text = NULL;
   size_t len = 0;
   fb_err scratch;
@@ -181,6 +208,19 @@ int fb_scenario_blame(const fb_scenario *s, fb_err *err)
   }
   ml_yaml_release(&y);
   free(text);
+}
+
+int fb_scenario_blame(const fb_scenario *s, fb_err *err)
+{
+  if (!err || err->code == FB_OK || !s)
+    return err ? err->code : FB_EINVAL;
+  /* A value an override replaced is the override's, as when loading:
+   * "--set KEY=VALUE: FILE:LINE:COL: KEY: ...". */
+  const char *label = sc_set_label(s, err->msg);
+  if (s->path)
+    sc_locate_late(s, err);
+  if (label)
+    fb_err_prefix(err, "%s: ", label);
   return err->code;
 }
 

@@ -470,6 +470,27 @@ static void ov_blame_reader(fb_err *err, const char *file, const fb_scenario_ove
     fb_err_prefix(err, "--set %s=%s%s", ov[i].key, ov[i].value, i + 1 < n ? " " : ": ");
 }
 
+/* Keeps in s what each override replaced (fb_scenario.set_path and
+ * set_label), for the errors found after loading. */
+static int ov_remember(fb_scenario *s, const fb_scenario_override *ov, const ov_edit *edits,
+                       size_t n, fb_err *err)
+{
+  s->set_path = calloc(n, sizeof *s->set_path);
+  s->set_label = calloc(n, sizeof *s->set_label);
+  int ok = s->set_path && s->set_label;
+  s->nset = ok ? n : 0;
+  for (size_t i = 0; ok && i < n; ++i) {
+    const fb_scenario_override *o = &ov[edits[i].index];
+    const size_t need = strlen(o->key) + strlen(o->value) + sizeof "--set =";
+    s->set_path[i] = fb_strdup(edits[i].path);
+    s->set_label[i] = malloc(need);
+    ok = s->set_path[i] && s->set_label[i];
+    if (ok)
+      snprintf(s->set_label[i], need, "--set %s=%s", o->key, o->value);
+  }
+  return ok ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory for %zu scenario overrides", n);
+}
+
 /* ---- Public functions. */
 
 /* Applies the overrides to text and loads the result: as the file
@@ -489,6 +510,8 @@ static int ov_load(const char *text, size_t len, const char *display_name, int a
                  : fb_scenario_load_string(edited, edited_len, display_name, out, e);
   if (rc != FB_OK && edited && n > 0)
     ov_blame_reader(e, file, ov, edits, n);
+  if (rc == FB_OK && n > 0 && (rc = ov_remember(*out, ov, edits, n, e)) != FB_OK)
+    fb_scenario_free(out);
   free(edited);
   free(edits);
   return rc;

@@ -170,7 +170,9 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
     int rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
     if (!rc)
       rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
-    return rc ? fb_scenario_blame(s, err) : FB_OK;
+    if (rc)
+      fb_scenario_blame(s, err);
+    return rc;
   }
   /* As for a CSV table, a deck's error is reported at the scenario's
    * hull.mesh.deck, then at the deck's own line ("DECK:LINE: ..."); the
@@ -854,10 +856,11 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
   hull_coords_free(&c);
   if (rc) {
     fb_hull_free(&hull);
-    /* A scenario value's error is located in the file (hull.fe.modes);
-     * any other gets the context. */
+    /* A scenario value's error is located in the file (hull.fe.modes),
+     * which lengthens the message; any other gets the context. */
+    const size_t unlocated = err ? strlen(err->msg) : 0;
     fb_scenario_blame(s, err);
-    if (err && (!s->path || strncmp(err->msg, s->path, strlen(s->path)) != 0))
+    if (err && strlen(err->msg) == unlocated)
       fb_err_prefix(err, "flexible hull: ");
     return rc;
   }
