@@ -54,24 +54,39 @@ size_t fb_utf8_length(const unsigned char *s, size_t n)
   return len;
 }
 
-/* The YAML loader's test (the .inp reader's for control characters):
- * UTF-8 without control characters other than tab. The end of line is already cut, so
- * a carriage return left inside a line is refused too (it would otherwise
- * end the line for some readers and not others). */
-static int check_text(const fb_text_reader *r, const char *text, size_t len)
+size_t fb_text_find_binary(const char *text, size_t len, int line_ends, size_t *line,
+                           size_t *col)
 {
   const unsigned char *s = (const unsigned char *)text;
-  size_t col = 1;
-  for (size_t i = 0; i < len; ++col) {
+  *line = 1;
+  *col = 1;
+  for (size_t i = 0; i < len; ++*col) {
     const unsigned char b = s[i];
     const size_t n = fb_utf8_length(s + i, len - i);
-    if (n == 0 || (b < 0x20 && b != '\t') || b == 0x7F)
-      return fb_err_set(r->err, FB_EPARSE,
-                        "%s:%zu: binary data (byte 0x%02x in column %zu): not a %s text file "
-                        "(expected UTF-8 text)",
-                        r->path, r->line_no, b, col, r->format);
+    const int line_end = line_ends && (b == '\n' || b == '\r');
+    if (n == 0 || (b < 0x20 && b != '\t' && !line_end) || b == 0x7F)
+      return i;
+    if (line_end && b == '\n') {
+      ++*line;
+      *col = 0;
+    }
     i += n;
   }
+  return len;
+}
+
+/* The end of line is already cut, so a carriage return left inside a line
+ * is refused too (it would otherwise end the line for some readers and
+ * not others). */
+static int check_text(const fb_text_reader *r, const char *text, size_t len)
+{
+  size_t line, col;
+  const size_t at = fb_text_find_binary(text, len, 0, &line, &col);
+  if (at < len)
+    return fb_err_set(r->err, FB_EPARSE,
+                      "%s:%zu: binary data (byte 0x%02x in column %zu): not a %s text file "
+                      "(expected UTF-8 text)",
+                      r->path, r->line_no, (unsigned char)text[at], col, r->format);
   return FB_OK;
 }
 

@@ -52,6 +52,14 @@ void fb_text_close(fb_text_reader *r);
  * U+10FFFF (The Unicode Standard 15.0, section 3.9, Table 3-7). */
 size_t fb_utf8_length(const unsigned char *s, size_t n);
 
+/* Offset of the first byte of text[0..len) that makes it binary data: a
+ * byte that starts no well-formed UTF-8 sequence (fb_utf8_length), a
+ * control character other than tab (and, with line_ends, line feed and
+ * carriage return), or DEL; len if there is none. *line and *col
+ * (1-based; columns count characters) locate it. */
+size_t fb_text_find_binary(const char *text, size_t len, int line_ends, size_t *line,
+                           size_t *col);
+
 /* Parses the whole of text as a plain decimal number: an optional sign,
  * digits with at most one '.' (at least one digit), an optional exponent
  * (e or E, optional sign, digits). No blanks around it. FB_EPARSE with the

@@ -83,25 +83,16 @@ static int ml_yaml_first_error(struct fy_diag *diag, const char *file, fb_err *e
  * column. */
 static int ml_check_text(const char *text, size_t len, const char *file, fb_err *err)
 {
-  const unsigned char *s = (const unsigned char *)text;
-  int line = 1, col = 1;
-  for (size_t i = 0; i < len; ++col) {
-    const unsigned char b = s[i];
-    /* Well-formed UTF-8 only: libfyaml 0.7 loops forever on an overlong
-     * form, a surrogate or a code point above U+10FFFF after a '%'
-     * (tests/fuzz/regressions/model). */
-    const size_t n = fb_utf8_length(s + i, len - i);
-    if (n == 0 || (b < 0x20 && b != '\t' && b != '\n' && b != '\r') || b == 0x7F)
-      return fb_err_set(err, FB_EPARSE,
-                        "%s:%d:%d: binary data (byte 0x%02x): not a YAML text file (expected "
-                        "UTF-8 text)",
-                        file, line, col, b);
-    if (b == '\n') {
-      ++line;
-      col = 0;
-    }
-    i += n;
-  }
+  /* Well-formed UTF-8 only, too: libfyaml 0.7 loops forever on an
+   * overlong form, a surrogate or a code point above U+10FFFF after a '%'
+   * (tests/fuzz/regressions/model). */
+  size_t line, col;
+  const size_t at = fb_text_find_binary(text, len, 1, &line, &col);
+  if (at < len)
+    return fb_err_set(err, FB_EPARSE,
+                      "%s:%zu:%zu: binary data (byte 0x%02x): not a YAML text file (expected "
+                      "UTF-8 text)",
+                      file, line, col, (unsigned char)text[at]);
   return FB_OK;
 }
 
