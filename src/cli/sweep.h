@@ -103,9 +103,9 @@ size_t sweep_journal_rows(const sweep_journal *j);
 void sweep_journal_close(sweep_journal **j, int remove_file);
 /* The study's fingerprint: a hash of flexbond's version, the system, the
  * keys' paths and their values, and the bytes of every file the study
- * reads (the scenario file, every file it names at a key `file` or
- * `deck`, every --set value of such a key; one that cannot be read
- * counts as such). With inputs, also one line "# input HASH PATH\n" per
+ * reads (the scenario file, every file it names: fb_scenario.inputs,
+ * and every --set value of a `file` or `deck` key; one that cannot be
+ * read counts as such). With inputs, also one line "# input HASH PATH\n" per
  * file into *inputs (fresh memory, the caller frees it), which the
  * journal keeps to name a file that has changed. */
 int sweep_study_fingerprint(const sweep_args *a, uint64_t *fingerprint, char **inputs,
