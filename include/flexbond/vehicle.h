@@ -154,10 +154,7 @@ typedef struct fb_scenario {
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
-  char *hull_deck;    /* Abaqus/CalculiX deck, NULL: the generator */
-  char *hull_deck_at; /* "FILE:LINE:COL: hull.mesh.deck: " where the scenario
-                         names the deck, prefixed to the deck's errors; NULL:
-                         not from a scenario file */
+  char *hull_deck; /* Abaqus/CalculiX deck, NULL: the generator */
   /* Every file the scenario names (damper tables, road profile, hull
    * deck), as resolved, each once in reading order: what a result
    * depends on besides the scenario itself (owned). */
@@ -434,7 +431,8 @@ typedef struct fb_fe_hull {
 /* The scenario's finite-element hull: its mesh (the deck, or the
  * generator with hull.mesh's parameters), material and mass matrix kind.
  * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. A deck's
- * errors start with s->hull_deck_at, then the deck's "PATH:LINE: " (or
+ * errors start at the scenario's hull.mesh.deck ("FILE:LINE:COL:
+ * hull.mesh.deck: ", fb_scenario_blame), then the deck's "PATH:LINE: " (or
  * "PATH: " for its node sets); the generator's with the scenario key they
  * concern, located by fb_scenario_blame ("FILE:LINE:COL: driver.x: ..."),
  * or with "hull mesh: " when they concern none. */

@@ -111,9 +111,6 @@ int ml_fail_key(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int c
 int ml_blame(const ml_ctx *c, struct fy_node *at);
 /* As ml_blame without the key path, for messages that name their key. */
 int ml_blame_located(const ml_ctx *c, struct fy_node *at);
-/* *out = "FILE:LINE:COL: KEY: " for the node at (fresh memory, the
- * caller frees it), to prefix a later message about its value; FB_ENOMEM. */
-int ml_where(const ml_ctx *c, struct fy_node *at, char **out);
 /* 1-based line of node n, 0 if unknown. */
 int ml_line(struct fy_node *n);
 

@@ -566,16 +566,6 @@ static void ml_locate(const ml_ctx *c, struct fy_node *loc, struct fy_node *path
     ml_append(where, size, len, "%s: ", path);
 }
 
-int ml_where(const ml_ctx *c, struct fy_node *at, char **out)
-{
-  char where[1024];
-  size_t len = 0;
-  where[0] = '\0';
-  ml_locate(c, at, at, NULL, where, sizeof where, &len);
-  *out = fb_strdup(where);
-  return *out ? FB_OK : fb_err_set(c->err, FB_ENOMEM, "out of memory for a file location");
-}
-
 /* The message proper, then the chain of instances being built. */
 static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_node,
                      const char *key, int code, const char *msg)

@@ -77,7 +77,6 @@ void fb_scenario_free(fb_scenario **s)
   free((*s)->load_x);
   free((*s)->load_y);
   free((*s)->hull_deck);
-  free((*s)->hull_deck_at);
   sc_free_strings((*s)->inputs, (*s)->ninputs);
   sc_free_strings((*s)->set_path, (*s)->nset);
   sc_free_strings((*s)->set_label, (*s)->nset);
@@ -131,7 +130,6 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
-  ok = sc_copy_string(s->hull_deck_at, &copy->hull_deck_at) && ok;
   ok = sc_copy_strings(s->inputs, s->ninputs, &copy->inputs) && ok;
   ok = sc_copy_strings(s->set_path, s->nset, &copy->set_path) && ok;
   ok = sc_copy_strings(s->set_label, s->nset, &copy->set_label) && ok;

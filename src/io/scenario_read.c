@@ -155,8 +155,6 @@ static int sc_fe_hull(const ml_ctx *c, struct fy_node *hull, fb_scenario *s)
     rc = ml_string(c, deck, &text);
     if (!rc)
       rc = ml_resolve_path(c, deck, text, &s->hull_deck);
-    if (!rc)
-      rc = ml_where(c, deck, &s->hull_deck_at);
     if (!rc && ml_get(mesh, "generator", NULL))
       rc = ml_fail(c, deck, FB_EPARSE, "give either a deck or a generator, not both");
     if (!rc && (density = ml_get(mesh, "density", NULL)))

@@ -163,7 +163,6 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   const fb_shell_props props = {s->young, s->poisson, s->density, s->thickness,
                                 s->hull_drill_factor};
   fb_mesh *mesh = NULL;
-  const char *at = s->hull_deck_at ? s->hull_deck_at : "";
   if (!s->hull_deck) {
     /* The generator's errors about a scenario value start with its key,
      * located in the file; the others with "hull mesh:". */
@@ -175,16 +174,16 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
     return rc;
   }
   /* As for a CSV table, a deck's error is reported at the scenario's
-   * hull.mesh.deck, then at the deck's own line ("DECK:LINE: ..."); the
-   * node sets keep no line, so their errors name the deck alone. */
+   * hull.mesh.deck (located by fb_scenario_blame), then at the deck's own
+   * line ("DECK:LINE: ..."); the node sets keep no line, so their errors
+   * name the deck alone. */
   int rc = fb_mesh_read_inp(s->hull_deck, &mesh, NULL, err);
-  if (rc) {
-    fb_err_prefix(err, "%s", at);
-    return rc;
-  }
-  rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
   if (rc)
-    fb_err_prefix(err, "%s%s: ", at, s->hull_deck);
+    fb_err_prefix(err, "hull.mesh.deck: ");
+  if (!rc && (rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err)))
+    fb_err_prefix(err, "hull.mesh.deck: %s: ", s->hull_deck);
+  if (rc)
+    fb_scenario_blame(s, err);
   return rc;
 }
 
