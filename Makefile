@@ -2,12 +2,14 @@
 #
 #   make deps          install the Debian packages the build needs (only those missing)
 #   make build         configure + build into $(BUILD_DIR) (RelWithDebInfo)
-#   make test          deps + build + run the CTest suite
+#   make test          deps + build + run the CTest suite (warnings are errors)
 #   make run           deps + build + the default study (examples/apc6x6.yaml, Systems 1 and 2,
 #                      report.md) into out/, the modal analyses,
 #                      and the quarter-car example into out/quarter_car/
 #   make asan          build into $(ASAN_DIR) with ASan+UBSan and run the suite
 #   make clang         build into $(CLANG_DIR) with clang and -Werror and run the suite
+#   make release       Release builds (-O3) with gcc and clang, -Werror, into $(RELEASE_DIR)
+#                      and $(RELEASE_DIR)-clang; the suite runs on the gcc one
 #   make mpi           install OpenMPI, build into $(MPI_DIR) with -DFLEXBOND_MPI=ON (flexbond
 #                      sweep --mpi, docs/cluster.md) and run the suite, cli_sweep_mpi included
 #   make fuzz          build the libFuzzer targets into $(FUZZ_DIR) (clang) and run each for
@@ -32,6 +34,7 @@ BUILD_DIR ?= build
 ASAN_DIR ?= build-asan
 CLANG_DIR ?= build-clang
 MPI_DIR ?= build-mpi
+RELEASE_DIR ?= build-release
 OUT_DIR ?= out
 BUILD_TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -50,13 +53,19 @@ APT := $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get
 
 FORMAT_SOURCES = $(sort $(shell find include src tests -type f \( -name '*.c' -o -name '*.h' \) 2>/dev/null))
 
+# Warnings are errors for the developer targets (test, asan, clang, mpi, release, valgrind)
+# and in CI, never for a plain build: `make build`, `make run` and a plain `cmake` must compile
+# with any compiler and flags a user has (CMakeLists.txt's FLEXBOND_WERROR is OFF).
+WERROR ?= OFF
 # $(call cmake_build,DIR,EXTRA CMAKE ARGS): configure and build one tree.
-cmake_build = cmake -S . -B $(1) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(2) && \
+cmake_build = cmake -S . -B $(1) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DFLEXBOND_WERROR=$(WERROR) $(2) && \
               cmake --build $(1) -j$(JOBS)
 # $(call run_ctest,DIR): run the whole suite of one tree.
 run_ctest = ctest --test-dir $(1) --output-on-failure -j$(CTEST_JOBS)
 
-.PHONY: deps deps-mpi build test run asan clang mpi format format-check clean
+.PHONY: deps deps-mpi build test run asan clang mpi release format format-check clean
+
+test asan clang mpi release valgrind: WERROR := ON
 
 # $(call install_missing,PACKAGES): apt-get install those not yet installed.
 define install_missing
@@ -100,8 +109,15 @@ asan:
 	$(call run_ctest,$(ASAN_DIR))
 
 clang:
-	$(call cmake_build,$(CLANG_DIR),-DCMAKE_C_COMPILER=clang -DFLEXBOND_WERROR=ON)
+	$(call cmake_build,$(CLANG_DIR),-DCMAKE_C_COMPILER=clang)
 	$(call run_ctest,$(CLANG_DIR))
+
+# -O3 raises warnings (-Wmaybe-uninitialized) that the default build's -O2 does not.
+release: BUILD_TYPE := Release
+release: deps
+	$(call cmake_build,$(RELEASE_DIR),-DCMAKE_C_COMPILER=gcc)
+	$(call cmake_build,$(RELEASE_DIR)-clang,-DCMAKE_C_COMPILER=clang)
+	$(call run_ctest,$(RELEASE_DIR))
 
 # The MPI build of flexbond sweep (docs/cluster.md) and its whole suite, cli_sweep_mpi included.
 mpi: deps deps-mpi
@@ -115,7 +131,7 @@ format-check:
 	$(if $(FORMAT_SOURCES),clang-format --dry-run --Werror $(FORMAT_SOURCES),@echo "format-check: no sources")
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(CLANG_DIR) $(MPI_DIR) $(VALGRIND_DIR) $(TIDY_DIR) $(OUT_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(CLANG_DIR) $(MPI_DIR) $(RELEASE_DIR) $(RELEASE_DIR)-clang $(VALGRIND_DIR) $(TIDY_DIR) $(OUT_DIR)
 
 # ---- Fuzzing (docs/fuzzing.md): each tests/fuzz/fuzz_NAME.c runs for FUZZ_SECONDS on a copy
 # of its seed corpus and crash inputs in $(FUZZ_DIR)/corpus/NAME (the repository is never

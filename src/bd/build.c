@@ -4,6 +4,7 @@
  * aliases (equal efforts at a 0-junction, equal flows at a 1-junction) and
  * one signed sum. */
 #include <assert.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 static int new_signal(fb_bd *bd, size_t dim, const char *name, size_t producer, size_t *id,
                       fb_err *err)
 {
+  *id = SIZE_MAX; /* defined on failure too, so no caller reads an indeterminate index */
   if (fb_grow((void **)&bd->sigs, &bd->cap_sigs, bd->nsigs, sizeof *bd->sigs))
     return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
   bd_signal *s = &bd->sigs[bd->nsigs];
@@ -30,10 +32,12 @@ static int new_signal(fb_bd *bd, size_t dim, const char *name, size_t producer, 
 }
 
 /* Adds a block with nin inputs and an output signal of dimension odim
- * named signame; returns its index in *id. */
+ * named signame; returns its index in *id (SIZE_MAX when no block was
+ * added). */
 static int new_block(fb_bd *bd, const bd_block_ops *ops, size_t nin, size_t odim, size_t elem,
                      const char *label, const char *signame, size_t *id, fb_err *err)
 {
+  *id = SIZE_MAX;
   if (fb_grow((void **)&bd->blocks, &bd->cap_blocks, bd->nblocks, sizeof *bd->blocks))
     return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
   bd_block *b = &bd->blocks[bd->nblocks];
