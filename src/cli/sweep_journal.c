@@ -32,6 +32,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "../core/textfile.h"
 #include "cli.h"
 #include "sweep.h"
 
@@ -92,45 +93,6 @@ static char *dir_of(const char *path)
   return dir;
 }
 
-/* The whole file at path in fresh memory: 0, or -1 with errno set. */
-static int read_whole(const char *path, char **text, size_t *len)
-{
-  *text = NULL;
-  *len = 0;
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return -1;
-  size_t cap = 0;
-  int rc = 0;
-  for (;;) {
-    if (*len == cap) {
-      char *grown = realloc(*text, cap ? 2 * cap : 8192);
-      if (!grown) {
-        errno = ENOMEM;
-        rc = -1;
-        break;
-      }
-      *text = grown;
-      cap = cap ? 2 * cap : 8192;
-    }
-    const size_t n = fread(*text + *len, 1, cap - *len, fp);
-    *len += n;
-    if (n == 0) {
-      /* A directory opens, then fails to read (EISDIR). */
-      rc = ferror(fp) ? -1 : 0;
-      break;
-    }
-  }
-  const int saved = errno; /* fclose's own would hide the read's */
-  fclose(fp);
-  errno = saved;
-  if (rc != 0) {
-    free(*text);
-    *text = NULL;
-  }
-  return rc;
-}
-
 /* 1 if the file at path has been added. */
 static int seen_before(const study_inputs *in, const char *path)
 {
@@ -182,10 +144,15 @@ static int add_file(study_inputs *in, const char *path, fb_err *err)
     return FB_OK;
   char *text = NULL;
   size_t len = 0;
-  /* text stays NULL for a file that cannot be read. */
-  const int rc = read_whole(path, &text, &len) != 0 && errno == ENOMEM
-                     ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", path)
-                     : add_input(in, path, text, len, err);
+  /* Read as every reader of the study reads it (fb_read_file: a regular
+   * file within FB_INPUT_MAX_BYTES), so that a device or an endless file
+   * is refused here too instead of filling the memory. One it refuses
+   * keeps text NULL: its cases fail with the same message. */
+  fb_err scratch;
+  fb_err_clear(&scratch);
+  const int read = fb_read_file(path, &text, &len, &scratch);
+  const int rc = read == FB_ENOMEM ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", path)
+                                   : add_input(in, path, read ? NULL : text, len, err);
   free(text);
   return rc;
 }
@@ -237,9 +204,8 @@ static int study_inputs_add_all(const sweep_args *a, study_inputs *in, fb_err *e
   }
   char *text = NULL;
   size_t len = 0;
-  if (read_whole(a->scenario_path, &text, &len) != 0)
-    return fb_err_set(err, errno == ENOMEM ? FB_ENOMEM : FB_EIO, "%s: cannot read: %s",
-                      a->scenario_path, strerror(errno));
+  if (fb_read_file(a->scenario_path, &text, &len, err) != FB_OK)
+    return err->code;
   int rc = add_input(in, a->scenario_path, text, len, err);
   if (rc == FB_OK)
     rc = add_scenario_references(in, a->scenario_path, err);
@@ -574,6 +540,11 @@ static int read_journal(const sweep_args *a, const char *path, const char *text,
 
 static int read_all(int fd, const char *path, char **text, size_t *len, fb_err *err)
 {
+  /* The input files' checks (a link to a device, a journal grown past
+   * FB_INPUT_MAX_BYTES), before the size below is allocated. */
+  int rc = fb_input_check_fd(fd, path, err);
+  if (rc != FB_OK)
+    return rc;
   struct stat st;
   if (fstat(fd, &st) != 0)
     return fb_err_set(err, FB_EIO, "%s: %s", path, strerror(errno));
@@ -660,8 +631,9 @@ int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, 
     rc = load_or_start(a, j, fd, cases, resumed, err);
   if (rc != FB_OK) {
     /* A journal this call started (none was there) goes with it, so the
-     * directory is as before; another sweep's, or an earlier one, stays. */
-    if (locked && st.st_size == 0)
+     * directory is as before; another sweep's, or an earlier one, stays,
+     * and so does a link to a device (refused by read_all). */
+    if (locked && st.st_size == 0 && S_ISREG(st.st_mode))
       unlink(j->path);
     if (j->fp)
       fclose(j->fp);

@@ -2,14 +2,123 @@
 #include "core/textfile.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "flexbond/error.h"
 
 #include "core/util.h"
+
+/* The size of a file in the message: MB, or bytes for a small one. */
+static void describe_size(double bytes, char *buf, size_t size)
+{
+  if (bytes >= 1e6)
+    snprintf(buf, size, "%.1f MB", bytes / 1e6);
+  else
+    snprintf(buf, size, "%.0f bytes", bytes);
+}
+
+static int too_large(const char *path, double bytes, fb_err *err)
+{
+  char got[32];
+  describe_size(bytes, got, sizeof got);
+  return fb_err_set(err, FB_EIO,
+                    "%s: cannot read: %s, more than the %zu MiB an input file may hold "
+                    "(docs/errors.md, \"Limits\")",
+                    path, got, FB_INPUT_MAX_BYTES >> 20);
+}
+
+int fb_input_check_fd(int fd, const char *path, fb_err *err)
+{
+  struct stat st;
+  if (fstat(fd, &st) != 0)
+    return fb_err_set(err, FB_EIO, "%s: cannot read: %s", path, strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    return fb_err_set(err, FB_EIO, "%s: cannot read: %s", path,
+                      S_ISDIR(st.st_mode) ? "Is a directory"
+                                          : "not a regular file (a device, pipe or socket)");
+  if ((uintmax_t)st.st_size > FB_INPUT_MAX_BYTES)
+    return too_large(path, (double)st.st_size, err);
+  return FB_OK;
+}
+
+FILE *fb_open_input(const char *path, const char *mode, fb_err *err)
+{
+  /* O_NONBLOCK: opening a FIFO would otherwise wait for a writer before
+   * it could be refused; it changes nothing for a regular file. */
+  const int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+    return NULL;
+  }
+  if (fb_input_check_fd(fd, path, err) != FB_OK) {
+    close(fd);
+    return NULL;
+  }
+  FILE *fp = fdopen(fd, mode);
+  if (!fp) {
+    fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
+    close(fd);
+  }
+  return fp;
+}
+
+/* Appends what is left of fp to buf (*n bytes of *cap used), growing it
+ * up to FB_INPUT_MAX_BYTES + 2 bytes, so that a file that grew past the
+ * bound is seen to have. */
+static int read_rest(FILE *fp, const char *path, char **buf, size_t *cap, size_t *n,
+                     fb_err *err)
+{
+  for (;;) {
+    if (*n + 1 >= *cap) {
+      if (*cap > FB_INPUT_MAX_BYTES)
+        return too_large(path, (double)*n, err);
+      const size_t grown_cap =
+          *cap * 2 < FB_INPUT_MAX_BYTES + 2 ? *cap * 2 : FB_INPUT_MAX_BYTES + 2;
+      char *grown = realloc(*buf, grown_cap);
+      if (!grown)
+        return fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
+      *buf = grown;
+      *cap = grown_cap;
+    }
+    const size_t got = fread(*buf + *n, 1, *cap - 1 - *n, fp);
+    *n += got;
+    if (got == 0)
+      return ferror(fp) ? fb_err_set(err, FB_EIO, "%s: cannot read: %s", path,
+                                     strerror(errno ? errno : EIO))
+                        : FB_OK;
+  }
+}
+
+int fb_read_file(const char *path, char **text, size_t *len, fb_err *err)
+{
+  FILE *fp = fb_open_input(path, "rb", err);
+  if (!fp)
+    return FB_EIO;
+  /* Sized from the file (fb_open_input bounded it), plus the NUL and one
+   * byte to see the end without growing. */
+  struct stat st;
+  size_t cap = fstat(fileno(fp), &st) == 0 ? (size_t)st.st_size + 2 : 4096;
+  size_t n = 0;
+  char *buf = malloc(cap);
+  int rc = buf ? read_rest(fp, path, &buf, &cap, &n, err)
+               : fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
+  fclose(fp);
+  if (rc) {
+    free(buf);
+    return rc;
+  }
+  buf[n] = '\0';
+  *text = buf;
+  *len = n;
+  return FB_OK;
+}
 
 int fb_text_open(fb_text_reader *r, const char *path, const char *format, fb_err *err)
 {
@@ -104,6 +213,10 @@ int fb_text_next_line(fb_text_reader *r, char **line)
   }
   ++r->line_no;
   size_t len = (size_t)got;
+  /* fb_open_input bounded the file's size; this bounds one that grows. */
+  r->bytes += len;
+  if (r->bytes > FB_INPUT_MAX_BYTES)
+    return too_large(r->path, (double)r->bytes, r->err);
   if (len > 0 && r->line[len - 1] == '\n')
     --len;
   if (len > 0 && r->line[len - 1] == '\r')

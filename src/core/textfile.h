@@ -13,6 +13,37 @@
 
 #include "flexbond/error.h"
 
+/* The largest input file flexbond reads: 256 MiB (docs/errors.md,
+ * "Limits"). The YAML loaders and the deck reader hold a whole file in
+ * memory, libfyaml's tree several times more, and the sweep's fingerprint
+ * reads every file of the study once more; the largest input of any
+ * study, a road profile at 1 mm spacing over 10 km, is about 200 MB.
+ * Checked before reading, from the open file's size, so that a sparse or
+ * runaway file costs nothing; the reading stops there too, for a file
+ * that grows meanwhile or one that reports no size. */
+#define FB_INPUT_MAX_BYTES ((size_t)256 << 20)
+
+/* FB_OK if fd, open on path, is a regular file of at most
+ * FB_INPUT_MAX_BYTES, else FB_EIO "path: cannot read: Is a directory",
+ * "... not a regular file (a device, pipe or socket)" or "path: cannot
+ * read: N MB, more than the 256 MiB an input file may hold". */
+int fb_input_check_fd(int fd, const char *path, fb_err *err);
+
+/* fopen(path, mode) for reading an input file, the one way flexbond opens
+ * one: it must be a regular file (a directory, a device: /dev/zero would
+ * never end, a terminal would wait; a FIFO would block) of at most
+ * FB_INPUT_MAX_BYTES (fb_input_check_fd). The file is opened without
+ * blocking, so a FIFO is refused instead of waited on, and /proc's files
+ * that would wait fail their read. NULL with FB_EIO "path: cannot open:
+ * ..." or fb_input_check_fd's message in err. */
+FILE *fb_open_input(const char *path, const char *mode, fb_err *err);
+
+/* Reads the whole file at path (fb_open_input) into a new NUL-terminated
+ * buffer (*text, *len bytes before the NUL; the caller frees *text).
+ * FB_EIO naming the path and the system's reason when it cannot be opened
+ * or read, or grows past FB_INPUT_MAX_BYTES while read; FB_ENOMEM. */
+int fb_read_file(const char *path, char **text, size_t *len, fb_err *err);
+
 /* One open file; the fields are read-only for the caller. */
 typedef struct fb_text_reader {
   const char *path;   /* borrowed: names the file in messages */
@@ -21,10 +52,12 @@ typedef struct fb_text_reader {
   char *line;     /* the current line, owned, without its end of line */
   size_t cap;     /* bytes allocated for line */
   size_t line_no; /* 1-based number of line; 0 before the first */
+  size_t bytes;   /* read so far, at most FB_INPUT_MAX_BYTES */
   fb_err *err;
 } fb_text_reader;
 
-/* Opens path for reading with fb_open_input (a regular file only). *r
+/* Opens path for reading with fb_open_input (a regular file of at most
+ * FB_INPUT_MAX_BYTES). *r
  * is initialised even on failure, so fb_text_close may always follow.
  * FB_EIO "path: cannot open: ..." when the file cannot be opened. */
 int fb_text_open(fb_text_reader *r, const char *path, const char *format, fb_err *err);
@@ -35,7 +68,7 @@ int fb_text_open(fb_text_reader *r, const char *path, const char *format, fb_err
  * "path:line: binary data (byte 0xNN in column C): not a FORMAT text file
  * (expected UTF-8 text)" at a NUL or another control character than tab,
  * DEL or invalid UTF-8 (C counts characters from 1); FB_EIO on a read
- * error, FB_ENOMEM. */
+ * error or past FB_INPUT_MAX_BYTES, FB_ENOMEM. */
 int fb_text_next_line(fb_text_reader *r, char **line);
 
 /* Like fb_text_next_line, skipping blank lines and lines whose first

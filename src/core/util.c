@@ -1,13 +1,11 @@
 /* Small internal helpers (see core/util.h). */
 #include "core/util.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "flexbond/error.h"
 
@@ -62,59 +60,4 @@ char *fb_dirname(const char *path)
     dir[len] = '\0';
   }
   return dir;
-}
-
-FILE *fb_open_input(const char *path, const char *mode, fb_err *err)
-{
-  struct stat st;
-  if (stat(path, &st) != 0) {
-    fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
-    return NULL;
-  }
-  if (!S_ISREG(st.st_mode)) {
-    fb_err_set(err, FB_EIO, "%s: cannot read: %s", path,
-               S_ISDIR(st.st_mode) ? "Is a directory"
-                                   : "not a regular file (a device, pipe or socket)");
-    return NULL;
-  }
-  FILE *fp = fopen(path, mode);
-  if (!fp)
-    fb_err_set(err, FB_EIO, "%s: cannot open: %s", path, strerror(errno));
-  return fp;
-}
-
-int fb_read_file(const char *path, char **text, size_t *len, fb_err *err)
-{
-  FILE *fp = fb_open_input(path, "rb", err);
-  if (!fp)
-    return FB_EIO;
-  size_t cap = 4096, n = 0;
-  char *buf = malloc(cap);
-  int rc = buf ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  while (!rc) {
-    if (n + 1 >= cap) {
-      char *grown = realloc(buf, cap * 2);
-      if (!grown) {
-        rc = fb_err_set(err, FB_ENOMEM, "out of memory reading %s", path);
-        break;
-      }
-      buf = grown;
-      cap *= 2;
-    }
-    size_t got = fread(buf + n, 1, cap - 1 - n, fp);
-    n += got;
-    if (got == 0 && ferror(fp))
-      rc = fb_err_set(err, FB_EIO, "%s: cannot read: %s", path, strerror(errno));
-    else if (got == 0)
-      break;
-  }
-  fclose(fp);
-  if (rc) {
-    free(buf);
-    return rc;
-  }
-  buf[n] = '\0';
-  *text = buf;
-  *len = n;
-  return FB_OK;
 }
