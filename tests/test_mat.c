@@ -753,6 +753,48 @@ static void test_mtx_strict(void)
   fb_mat_free(&a);
 }
 
+/* The size line is checked before anything is allocated for it: against
+ * the dimensions the caller expects, FB_MTX_MAX_DIM when it expects none,
+ * the matrix's cells and what the file's bytes can hold. A header of
+ * 2e8 x 2e8 once made a 68-byte file allocate 3.2 GB (2e6 here: the old
+ * reader allocated 32 MB and returned the matrix). */
+static void test_mtx_declared_sizes(void)
+{
+  CHECK_MTX(COORD "2000000 3 1\n1 1 1\n", 2,
+            "2000000 rows, more than the 1000000 a Matrix Market file may declare "
+            "(docs/errors.md, \"Limits\")");
+  CHECK_MTX(COORD "3 2000000 1\n1 1 1\n", 2,
+            "2000000 columns, more than the 1000000 a Matrix Market file may declare "
+            "(docs/errors.md, \"Limits\")");
+  CHECK_MTX(COORD "2 2 5\n1 1 1\n", 2, "5 entries declared, more than the 4 of a 2 x 2 matrix");
+  CHECK_MTX("%%MatrixMarket matrix coordinate real symmetric\n2 2 4\n1 1 1\n", 2,
+            "4 entries declared, more than the 3 of a 2 x 2 symmetric (lower triangle) matrix");
+  CHECK_MTX(COORD "1000 1000 20\n1 1 1\n", 2,
+            "20 entries declared, more than the file's 65 bytes can hold (each takes at least "
+            "6)");
+  CHECK_MTX("%%MatrixMarket matrix array real general\n100 100\n1\n", 2,
+            "10000 entries declared, more than the file's 51 bytes can hold (each takes at "
+            "least 2)");
+
+  char path[] = "/tmp/fb_test_mat_XXXXXX";
+  fb_mat *a = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(write_temp(path, COORD "3 2 1\n1 1 1\n"));
+  CHECK(fb_mat_read_mtx_dims(path, 2, 2, &a, &err) == FB_EPARSE);
+  CHECK(a == NULL);
+  CHECK(strstr(err.msg, ":2: the matrix has 3 rows, expected 2") != NULL);
+  CHECK(fb_mat_read_mtx_dims(path, 3, 3, &a, &err) == FB_EPARSE);
+  CHECK(strstr(err.msg, ":2: the matrix has 2 columns, expected 3") != NULL);
+  CHECK(fb_mat_read_mtx_dims(path, 3, 2, &a, &err) == FB_OK);
+  CHECK(a && fb_mat_nrows(a) == 3 && fb_mat_ncols(a) == 2);
+  fb_mat_free(&a);
+  /* 0: that dimension is not known. */
+  CHECK(fb_mat_read_mtx_dims(path, 0, 2, &a, &err) == FB_OK);
+  fb_mat_free(&a);
+  unlink(path);
+}
+
 static void test_mtx_io_errors(void)
 {
   fb_err err;
@@ -814,6 +856,7 @@ int main(void)
   test_mtx_formats();
   test_mtx_errors();
   test_mtx_strict();
+  test_mtx_declared_sizes();
   test_mtx_io_errors();
   return check_report("test_mat");
 }

@@ -81,8 +81,20 @@ int fb_mat_is_spd(const fb_mat *a, int allow_singular);
 
 /* Matrix Market (https://math.nist.gov/MatrixMarket/formats.html):
  * reads "matrix coordinate real|integer general|symmetric" and
- * "matrix array real general|symmetric". Errors say path:line. */
+ * "matrix array real general|symmetric". Errors say path:line. The size
+ * line is checked before anything is allocated: nrows x ncols when they
+ * are given (0: either is not known), each at most FB_MTX_MAX_DIM when
+ * not, and no more entries than the file's bytes can hold (FB_EPARSE). */
+int fb_mat_read_mtx_dims(const char *path, size_t nrows, size_t ncols, fb_mat **out,
+                         fb_err *err);
+/* fb_mat_read_mtx_dims with neither dimension known. */
 int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err);
+/* Most rows or columns a Matrix Market file may declare when the reader
+ * does not know them: the sparse form keeps a pointer per column and its
+ * construction a counter per row, whatever the entries (16 MB at 1e6), and
+ * a field law or transformer of a bond graph has as many rows as its ports
+ * carry, nowhere near a million (docs/errors.md, "Limits"). */
+#define FB_MTX_MAX_DIM ((size_t)1000000)
 /* Writes coordinate real general with %.17g values. */
 int fb_mat_write_mtx(const fb_mat *a, const char *path, fb_err *err);
 

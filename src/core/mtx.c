@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "flexbond/mat.h"
 
@@ -33,6 +34,18 @@ typedef struct mtx_size {
   size_t ncols;
   size_t entries; /* data lines the size line announces */
 } mtx_size;
+
+/* The dimensions the caller expects, 0 where it does not know. */
+typedef struct mtx_expect {
+  size_t nrows;
+  size_t ncols;
+} mtx_expect;
+
+/* The shortest data line of each format, with its line end: "1 1 1\n"
+ * (coordinate) and "1\n" (array). A file of B bytes holds at most B / 6
+ * or B / 2 entries, whatever its size line says. */
+#define MTX_MIN_COORDINATE_LINE 6
+#define MTX_MIN_ARRAY_LINE 2
 
 /* The file (path, err) and its current line (line, line_no). */
 typedef fb_text_reader mtx_reader;
@@ -171,6 +184,48 @@ static int array_entries(const mtx_reader *r, const mtx_header *h, mtx_size *s)
   if (s->ncols != 0 && s->nrows > SIZE_MAX / sizeof(double) / s->ncols)
     return parse_error(r, "matrix %zu x %zu is too large", s->nrows, s->ncols);
   s->entries = h->symmetric ? s->ncols * (s->ncols + 1) / 2 : s->nrows * s->ncols;
+  return FB_OK;
+}
+
+/* One declared dimension against the expected one (0: any up to
+ * FB_MTX_MAX_DIM). */
+static int check_dim(const mtx_reader *r, const char *what, size_t declared, size_t expected)
+{
+  if (expected && declared != expected)
+    return parse_error(r, "the matrix has %zu %s, expected %zu", declared, what, expected);
+  if (!expected && declared > FB_MTX_MAX_DIM)
+    return parse_error(r,
+                       "%zu %s, more than the %zu a Matrix Market file may declare "
+                       "(docs/errors.md, \"Limits\")",
+                       declared, what, FB_MTX_MAX_DIM);
+  return FB_OK;
+}
+
+/* The size line against the caller's dimensions and the file's size,
+ * before anything is allocated for it: a 62-byte file must not make the
+ * reader allocate gigabytes. */
+static int check_size(const mtx_reader *r, const mtx_header *h, const mtx_size *s,
+                      const mtx_expect *x)
+{
+  int rc = check_dim(r, "rows", s->nrows, x->nrows);
+  if (!rc)
+    rc = check_dim(r, "columns", s->ncols, x->ncols);
+  if (rc)
+    return rc;
+  /* In doubles: a caller's rows x columns may overflow size_t. */
+  const double cells = (double)s->nrows * (double)s->ncols;
+  const double most = h->symmetric ? 0.5 * cells + 0.5 * (double)s->ncols : cells;
+  if ((double)s->entries > most)
+    return parse_error(r, "%zu entries declared, more than the %.0f of a %zu x %zu%s matrix",
+                       s->entries, most, s->nrows, s->ncols,
+                       h->symmetric ? " symmetric (lower triangle)" : "");
+  struct stat st;
+  const size_t line = h->coordinate ? MTX_MIN_COORDINATE_LINE : MTX_MIN_ARRAY_LINE;
+  if (fstat(fileno(r->fp), &st) == 0 && (double)s->entries > (double)st.st_size / (double)line)
+    return parse_error(r,
+                       "%zu entries declared, more than the file's %lld bytes can hold (each "
+                       "takes at least %zu)",
+                       s->entries, (long long)st.st_size, line);
   return FB_OK;
 }
 
@@ -314,13 +369,15 @@ static int symmetric_array(const mtx_reader *r, size_t n, const double *lower, f
   return rc;
 }
 
-static int read_mtx(mtx_reader *r, mtx_entries *e, fb_mat **out)
+static int read_mtx(mtx_reader *r, const mtx_expect *x, mtx_entries *e, fb_mat **out)
 {
   mtx_header h;
   mtx_size s;
   int rc = read_header(r, &h);
   if (!rc)
     rc = read_size(r, &h, &s);
+  if (!rc)
+    rc = check_size(r, &h, &s, x);
   if (rc)
     return rc;
   if (h.coordinate) {
@@ -343,6 +400,12 @@ static int read_mtx(mtx_reader *r, mtx_entries *e, fb_mat **out)
 
 int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err)
 {
+  return fb_mat_read_mtx_dims(path, 0, 0, out, err);
+}
+
+int fb_mat_read_mtx_dims(const char *path, size_t nrows, size_t ncols, fb_mat **out,
+                         fb_err *err)
+{
   if (!out)
     return fb_err_set(err, FB_EINVAL, "matrix output pointer is NULL");
   *out = NULL;
@@ -352,7 +415,8 @@ int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err)
   if (fb_text_open(&r, path, "Matrix Market", err))
     return FB_EIO;
   mtx_entries e = {NULL, NULL, NULL, 0, 0};
-  const int rc = read_mtx(&r, &e, out);
+  const mtx_expect x = {nrows, ncols};
+  const int rc = read_mtx(&r, &x, &e, out);
   fb_text_close(&r);
   free(e.rows);
   free(e.cols);
