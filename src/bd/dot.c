@@ -1,24 +1,13 @@
 /* Graphviz DOT export of a block diagram (the paper's Fig. 6): one node
- * per block, one edge per signal use, one cluster per subsystem. */
+ * per block, one edge per signal use, one cluster per subsystem. Every
+ * name inside the quoted IDs and labels goes through fb_dot_write_text
+ * (flexbond/escape.h), so none can end its string or its statement. */
 #include <stdio.h>
 #include <string.h>
 
+#include "flexbond/escape.h"
+
 #include "bd/bd_internal.h"
-
-/* Writes the first n bytes of s (up to its end) with DOT string escaping. */
-static void put_escaped_n(FILE *fp, const char *s, size_t n)
-{
-  for (size_t i = 0; i < n && s[i]; ++i) {
-    if (s[i] == '"' || s[i] == '\\')
-      fputc('\\', fp);
-    fputc(s[i], fp);
-  }
-}
-
-static void put_escaped(FILE *fp, const char *s)
-{
-  put_escaped_n(fp, s, (size_t)-1);
-}
 
 /* Length of the subsystem prefix of an element name ("a.b.x" -> 3), 0
  * for top-level elements. */
@@ -47,12 +36,12 @@ static void write_node(const fb_bd *bd, size_t i, FILE *fp)
   fprintf(fp, "  n%zu [label=\"", i);
   if (b->elem != FB_NONE) {
     fprintf(fp, "%s ", fb_bg_kind_name(bd->bg->elems[b->elem].kind));
-    put_escaped(fp, bd->bg->elems[b->elem].name);
+    fb_dot_write_text(fp, bd->bg->elems[b->elem].name);
     fputs("\\n", fp);
   } else {
     fputs("probe\\n", fp);
   }
-  put_escaped(fp, integ ? "1/s" : b->label);
+  fb_dot_write_text(fp, integ ? "1/s" : b->label);
   fprintf(fp, " [%zu]\"%s];\n", b->odim,
           integ ? ", shape=box, style=\"rounded,filled\", fillcolor=\"#dde8f8\"" : "");
 }
@@ -60,7 +49,7 @@ static void write_node(const fb_bd *bd, size_t i, FILE *fp)
 int fb_bd_write_dot(const fb_bd *bd, FILE *fp, fb_err *err)
 {
   fputs("digraph \"", fp);
-  put_escaped(fp, bd->bg->name);
+  fb_dot_write_text(fp, bd->bg->name);
   fputs("\" {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\", fontsize=10];\n"
         "  edge [fontname=\"Helvetica\", fontsize=8];\n",
         fp);
@@ -78,9 +67,9 @@ int fb_bd_write_dot(const fb_bd *bd, FILE *fp, fb_err *err)
       continue;
     if (len) {
       fputs("  subgraph \"cluster_", fp);
-      put_escaped_n(fp, g, len);
+      fb_dot_write_text_n(fp, g, len);
       fputs("\" {\n  label=\"", fp);
-      put_escaped_n(fp, g, len);
+      fb_dot_write_text_n(fp, g, len);
       fputs("\";\n", fp);
     }
     for (size_t j = i; j < bd->nblocks; ++j) {
@@ -97,7 +86,7 @@ int fb_bd_write_dot(const fb_bd *bd, FILE *fp, fb_err *err)
     for (size_t k = 0; k < b->nin; ++k) {
       const bd_signal *s = &bd->sigs[b->in[k].id];
       fprintf(fp, "  n%zu -> n%zu [label=\"", s->producer, i);
-      put_escaped(fp, s->name);
+      fb_dot_write_text(fp, s->name);
       fprintf(fp, " [%zu]\"];\n", s->dim);
     }
   }

@@ -14,15 +14,21 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "flexbond/escape.h"
 #include "flexbond/io.h"
 
 #include "fem/mesh_internal.h"
 
 enum { VTK_TRIANGLE = 5, VTK_QUAD = 9 };
 
+/* The DataArray's start tag; name (a node set's, from the deck) goes
+ * through fb_xml_write_attr (flexbond/escape.h), so no name can close the
+ * attribute or the tag, or put a character XML 1.0 forbids in the file. */
 static void open_array(FILE *fp, const char *type, const char *name, int ncomp)
 {
-  fprintf(fp, "        <DataArray type=\"%s\" Name=\"%s\"", type, name);
+  fprintf(fp, "        <DataArray type=\"%s\" Name=\"", type);
+  fb_xml_write_attr(fp, name);
+  fputc('"', fp);
   if (ncomp > 1)
     fprintf(fp, " NumberOfComponents=\"%d\"", ncomp);
   fputs(" format=\"ascii\">\n", fp);

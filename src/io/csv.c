@@ -1,46 +1,23 @@
 /* CSV output of simulation results (see flexbond/io.h).
  *
- * Fields follow RFC 4180: a header cell that contains a comma, a double
- * quote or a line break is enclosed in double quotes with inner quotes
- * doubled. Values are written with %.10g: ten significant digits are more
- * than the solver's tolerances resolve (rtol >= 1e-10 in practice), and
- * keep the files compact. */
+ * The header cells are text fields of fb_csv_write_field_parts
+ * (flexbond/escape.h): RFC 4180 quoting when a name or a unit holds a
+ * comma, a double quote or a line break, and a ' before one that starts
+ * with = + - @ (a spreadsheet would run it as a formula); ordinary names
+ * are written as they are. Values are written with %.10g: ten
+ * significant digits are more than the solver's tolerances resolve (rtol
+ * >= 1e-10 in practice), and keep the files compact. */
 #include <stdio.h>
-#include <string.h>
 
+#include "flexbond/escape.h"
 #include "flexbond/io.h"
 
-static int needs_quotes(const char *text)
-{
-  return text && strpbrk(text, ",\"\r\n") != NULL;
-}
-
-/* Writes text, doubling double quotes when inside a quoted field. */
-static void put_text(FILE *fp, const char *text, int quoted)
-{
-  for (const char *c = text; *c; ++c) {
-    if (quoted && *c == '"')
-      fputc('"', fp);
-    fputc(*c, fp);
-  }
-}
-
 /* Header cell "name [unit]", or "name" when the unit is missing, as one
- * CSV field. */
+ * CSV text field. */
 static void write_header_cell(FILE *fp, const char *name, const char *unit)
 {
-  int has_unit = unit && *unit;
-  int quoted = needs_quotes(name) || (has_unit && needs_quotes(unit));
-  if (quoted)
-    fputc('"', fp);
-  put_text(fp, name, quoted);
-  if (has_unit) {
-    fputs(" [", fp);
-    put_text(fp, unit, quoted);
-    fputc(']', fp);
-  }
-  if (quoted)
-    fputc('"', fp);
+  const char *const parts[] = {name, " [", unit, "]"};
+  fb_csv_write_field_parts(fp, parts, unit && *unit ? 4 : 1, FB_CSV_TEXT);
 }
 
 static void write_header(FILE *fp, const fb_result *r, size_t ncols, fb_csv_header header)
