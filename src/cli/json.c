@@ -1,18 +1,13 @@
 /* JSON text written by hand for the commands' summary files (cli.h). */
 #include <stdio.h>
 
+#include "flexbond/escape.h"
+
 #include "cli.h"
 
+/* The commands' name for the one JSON string writer, kept for cli.h's
+ * callers: the escaping is fb_json_write_string's (RFC 8259). */
 void cli_json_string(FILE *fp, const char *s)
 {
-  fputc('"', fp);
-  for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
-    if (*c == '"' || *c == '\\')
-      fprintf(fp, "\\%c", *c);
-    else if (*c < 0x20)
-      fprintf(fp, "\\u%04x", *c);
-    else
-      fputc(*c, fp);
-  }
-  fputc('"', fp);
+  fb_json_write_string(fp, s);
 }

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "flexbond/escape.h"
 #include "flexbond/io.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
@@ -193,16 +194,9 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
 }
 
 /* ---- summary.json, written by hand: strings by cli_json_string,
- * numbers in %.10g, non-finite numbers (which JSON cannot represent) as
- * null. */
-
-static void json_number(FILE *fp, double v)
-{
-  if (isfinite(v))
-    fprintf(fp, "%.10g", v);
-  else
-    fputs("null", fp);
-}
+ * numbers by fb_json_write_number (flexbond/escape.h: %.10g, null for a
+ * non-finite number, which JSON cannot represent). The keys are this
+ * file's own constants. */
 
 /* A JSON object's numeric members. */
 typedef struct json_field {
@@ -217,7 +211,7 @@ static void json_object(FILE *fp, const char *unit, const json_field *fields, si
   cli_json_string(fp, unit);
   for (size_t i = 0; i < nfields; ++i) {
     fprintf(fp, ", \"%s\": ", fields[i].key);
-    json_number(fp, fields[i].value);
+    fb_json_write_number(fp, fields[i].value);
   }
   fputc('}', fp);
 }
@@ -238,7 +232,7 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
           "\"events\": %ld, \"wall_seconds\": ",
           s->steps, s->rhs_evals, s->newton_setups, s->factorizations, s->newton_iters,
           s->err_test_fails, s->events);
-  json_number(fp, s->wall_seconds);
+  fb_json_write_number(fp, s->wall_seconds);
   fputc('}', fp);
 }
 
@@ -261,13 +255,13 @@ static void write_ride_json(FILE *fp, const cli_run_system *run)
                                {"jerk_peak", m->jerk_peak},
                                {"jerk_rms", m->jerk_rms}};
   fputs("{\"window\": [", fp);
-  json_number(fp, run->ride_window[0]);
+  fb_json_write_number(fp, run->ride_window[0]);
   fputs(", ", fp);
-  json_number(fp, run->ride_window[1]);
+  fb_json_write_number(fp, run->ride_window[1]);
   fputc(']', fp);
   for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
     fprintf(fp, ", \"%s\": ", fields[f].key);
-    json_number(fp, fields[f].value);
+    fb_json_write_number(fp, fields[f].value);
   }
   fputc('}', fp);
 }
@@ -281,9 +275,9 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
           s->corner[0].tire_contact == FB_TIRE_UNILATERAL ? "unilateral" : "bilateral");
   for (int c = 0; c < FB_NCORNERS; ++c) {
     fprintf(fp, "%s\"%s\": {\"value\": ", c ? ", " : "", fb_corner_name(c));
-    json_number(fp, run->min_contact[c]);
+    fb_json_write_number(fp, run->min_contact[c]);
     fputs(", \"time\": ", fp);
-    json_number(fp, run->min_contact_time[c]);
+    fb_json_write_number(fp, run->min_contact_time[c]);
     fputc('}', fp);
   }
   fputs("}, \"contact_loss_intervals\": [", fp);
@@ -294,7 +288,7 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
     fprintf(fp, "%s{\"tire\": \"%s\"", i ? ", " : "", fb_corner_name(t->corner));
     for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
       fprintf(fp, ", \"%s\": ", fields[f].key);
-      json_number(fp, fields[f].value);
+      fb_json_write_number(fp, fields[f].value);
     }
     fputc('}', fp);
   }
@@ -322,9 +316,9 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
   fputs(",\n    \"solver\": ", fp);
   write_solver_json(fp, fb_result_stats(run->res));
   fputs(",\n    \"bump_window\": [", fp);
-  json_number(fp, window[0]);
+  fb_json_write_number(fp, window[0]);
   fputs(", ", fp);
-  json_number(fp, window[1]);
+  fb_json_write_number(fp, window[1]);
   fputs("]\n  }", fp);
 }
 
