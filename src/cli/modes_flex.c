@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "flexbond/escape.h"
 #include "flexbond/io.h"
 #include "flexbond/vehicle.h"
 
@@ -39,9 +40,12 @@ static void write_modes_csv(FILE *fp, const void *ctx)
 {
   const flex_modes *fm = ctx;
   fputs("mode,frequency_hz,description\n", fp);
-  for (size_t k = 0; k < fm->vehicle->nmodes; ++k)
-    fprintf(fp, "%zu,%.10g,\"%s\"\n", k + 1, fm->vehicle->freq_hz[k],
-            fm->vehicle->description[k]);
+  for (size_t k = 0; k < fm->vehicle->nmodes; ++k) {
+    fprintf(fp, "%zu,%.10g,", k + 1, fm->vehicle->freq_hz[k]);
+    /* A text field, quoted as it always was (RFC 4180: flexbond/escape.h). */
+    fb_csv_write_field(fp, fm->vehicle->description[k], FB_CSV_QUOTE_ALWAYS | FB_CSV_TEXT);
+    fputc('\n', fp);
+  }
 }
 
 /* The modes of the paper's Figs. 3 and 4. */

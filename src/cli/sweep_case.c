@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/escape.h"
 #include "flexbond/fem.h"
 #include "flexbond/ride.h"
 #include "flexbond/sim.h"
@@ -231,23 +232,6 @@ void sweep_run_case(const sweep_args *a, size_t i, pthread_mutex_t *arpack, swee
 
 /* ---- sweep.csv */
 
-/* A CSV cell: quoted (RFC 4180, section 2) when it holds a comma, a
- * quote or a line break. */
-static void csv_text(FILE *fp, const char *text)
-{
-  if (!strpbrk(text, ",\"\r\n")) {
-    fputs(text, fp);
-    return;
-  }
-  fputc('"', fp);
-  for (const char *t = text; *t; ++t) {
-    if (*t == '"')
-      fputc('"', fp);
-    fputc(*t, fp);
-  }
-  fputc('"', fp);
-}
-
 /* Value as a number if the whole text is one (for the x axis). */
 int sweep_numeric_value(const char *text, double *out)
 {
@@ -269,10 +253,17 @@ void sweep_format_double(double x, char *buf, size_t size)
   }
 }
 
+/* The fields go through fb_csv_write_field (flexbond/escape.h, RFC 4180
+ * quoting). The keys are text, guarded against being read as spreadsheet
+ * formulas (FB_CSV_TEXT). The keys' values are not guarded: the journal
+ * (sweep_journal.c) compares them with the study's byte for byte on
+ * resuming, and most are numbers, "-1" among them. Nor are the errors:
+ * each starts with flexbond's own words ("--set KEY=VALUE: ..."), and a '
+ * would come before every one (docs/outputs.md). */
 void sweep_csv_header(FILE *fp, const sweep_args *a)
 {
   for (size_t k = 0; k < a->nkeys; ++k) {
-    csv_text(fp, a->keys[k].key);
+    fb_csv_write_field(fp, a->keys[k].key, FB_CSV_TEXT);
     fputc(',', fp);
   }
   for (size_t m = 0; m < NMETRICS; ++m) {
@@ -288,7 +279,7 @@ void sweep_csv_header(FILE *fp, const sweep_args *a)
 void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c)
 {
   for (size_t k = 0; k < a->nkeys; ++k) {
-    csv_text(fp, a->keys[k].values[sweep_value_index(a, i, k)]);
+    fb_csv_write_field(fp, a->keys[k].values[sweep_value_index(a, i, k)], 0);
     fputc(',', fp);
   }
   for (size_t m = 0; m < NMETRICS; ++m) {
@@ -300,6 +291,6 @@ void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c)
     fputc(',', fp);
   }
   if (c->status != FB_OK)
-    csv_text(fp, c->error ? c->error : "out of memory");
+    fb_csv_write_field(fp, c->error ? c->error : "out of memory", 0);
   fputc('\n', fp);
 }
