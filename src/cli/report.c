@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "flexbond/escape.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
@@ -101,16 +102,10 @@ static double max_abs(const fb_result *r, size_t col)
 
 /* ---- Markdown. */
 
-/* Text with Markdown's punctuation escaped (CommonMark, section 2.4), so
- * a name or a path prints as it is. */
-static void md_text(FILE *fp, const char *s)
-{
-  for (; *s; ++s) {
-    if (strchr("\\`*_[]<>|#", *s))
-      fputc('\\', fp);
-    fputc(*s, fp);
-  }
-}
+/* Every string from the inputs (names, paths, units, messages) goes
+ * through fb_md_write_text (flexbond/escape.h), so that it prints as it
+ * is and makes no link, image, HTML or table cell of its own; the texts
+ * of this file are Markdown already. */
 
 /* v to 4 significant digits in buf (32 bytes suffice), in fixed notation
  * from 1e-3 to 1e6 (%g would print 20003 as 2e+04), "-" for a
@@ -131,6 +126,14 @@ static void md_number(FILE *fp, double v)
 {
   char buf[32];
   fputs(number_text(v, buf, sizeof buf), fp);
+}
+
+/* "v unit": v as md_number, the unit (from the model) escaped. */
+static void md_value_unit(FILE *fp, double v, const char *unit)
+{
+  md_number(fp, v);
+  fputc(' ', fp);
+  fb_md_write_text(fp, unit);
 }
 
 /* A fraction as a signed or unsigned percentage, "-" for a non-finite one. */
@@ -172,9 +175,9 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
   fputs("## Scenario\n\n| | |\n|---|---|\n| name | ", fp);
-  md_text(fp, cli_scenario_name(s));
+  fb_md_write_text(fp, cli_scenario_name(s));
   fputs(" |\n| file | ", fp);
-  md_text(fp, s->path ? s->path : "-");
+  fb_md_write_text(fp, s->path ? s->path : "-");
   fputs(" |\n| systems | ", fp);
   for (size_t i = 0; i < o->nruns; ++i)
     fprintf(fp, "%s%s", i ? ", " : "", cli_system_label(o->runs[i].sys));
@@ -237,7 +240,7 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
   fputs("- System 2's hull mesh: ", fp);
   if (s->hull_deck) {
     fputs("the deck ", fp);
-    md_text(fp, s->hull_deck);
+    fb_md_write_text(fp, s->hull_deck);
   } else {
     fprintf(fp, "the built-in generator at density %d", s->hull_mesh.density);
   }
@@ -304,7 +307,7 @@ static void write_runs(FILE *fp, const cli_run_outputs *o)
 static void write_mode_row(FILE *fp, size_t k, double freq_hz, const char *description)
 {
   fprintf(fp, "| %zu | %.4f | ", k + 1, freq_hz);
-  md_text(fp, description);
+  fb_md_write_text(fp, description);
   fputs(" |\n", fp);
 }
 
@@ -335,7 +338,7 @@ static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
     char name[32];
     cli_mode_picture_name(k + 1, name, sizeof name);
     fprintf(fp, "\n![System 2, mode %zu: %.3f Hz, ", k + 1, ms->freq_hz[k]);
-    md_text(fp, ms->description[k]);
+    fb_md_write_text(fp, ms->description[k]);
     fprintf(fp, "](%s)\n", name);
   }
 }
@@ -382,8 +385,9 @@ static void write_figures(FILE *fp, const cli_run_outputs *o)
 /* "| quantity | unit |" of output k. */
 static void write_output_cells(FILE *fp, const cli_run_outputs *o, size_t k)
 {
-  fprintf(fp, "| %s | %s |", cli_run_figures[k].quantity,
-          fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+  fprintf(fp, "| %s | ", cli_run_figures[k].quantity);
+  fb_md_write_text(fp, fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+  fputs(" |", fp);
 }
 
 static void write_cells(FILE *fp, const double *v, size_t n)
@@ -504,12 +508,15 @@ static void torsion_clause(FILE *fp, const cli_run_system *r, int first)
     fputs("is identically zero", fp);
     return;
   }
-  char twist[32], peak[32], min[32], static_value[32];
-  fprintf(fp, "reaches %s %s over the bump (%s %s at %.3f s, %s %s at %.3f s; static %s %s)",
-          number_text(fmax(fabs(st->peak), fabs(st->min)), twist, sizeof twist), unit,
-          number_text(st->peak, peak, sizeof peak), unit, st->peak_time,
-          number_text(st->min, min, sizeof min), unit, st->min_time,
-          number_text(st->static_value, static_value, sizeof static_value), unit);
+  fputs("reaches ", fp);
+  md_value_unit(fp, fmax(fabs(st->peak), fabs(st->min)), unit);
+  fputs(" over the bump (", fp);
+  md_value_unit(fp, st->peak, unit);
+  fprintf(fp, " at %.3f s, ", st->peak_time);
+  md_value_unit(fp, st->min, unit);
+  fprintf(fp, " at %.3f s; static ", st->min_time);
+  md_value_unit(fp, st->static_value, unit);
+  fputc(')', fp);
 }
 
 /* The torsion angles of every run, in one sentence. */
@@ -531,13 +538,14 @@ static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
       largest_rms = k;
     if (!isfinite(p) || fabs(p) <= notable_change)
       continue;
-    char peak1[32], peak2[32];
-    fprintf(fp, "%s%s the peak of the %s by %.1f %% (%s to %s %s)",
+    fprintf(fp, "%s%s the peak of the %s by %.1f %% (",
             listed++ ? ", " : " Compared with System 1, System 2 ", p > 0 ? "raises" : "lowers",
-            cli_run_figures[k].quantity, 100 * fabs(p),
-            number_text(o->runs[0].stats[k].peak, peak1, sizeof peak1),
-            number_text(o->runs[1].stats[k].peak, peak2, sizeof peak2),
-            fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+            cli_run_figures[k].quantity, 100 * fabs(p));
+    md_number(fp, o->runs[0].stats[k].peak);
+    fputs(" to ", fp);
+    md_value_unit(fp, o->runs[1].stats[k].peak,
+                  fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+    fputc(')', fp);
   }
   if (listed)
     fputc('.', fp);
@@ -572,13 +580,13 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
   if (largest < FB_NOUTPUTS) {
     const cli_output_stats *st = &r->stats[largest];
     const char *unit = fb_result_col_unit(r->res, r->col[largest]);
-    char peak[32], static_value[32];
     fprintf(fp,
-            " Over the bump, the %s grows the most relative to its static value: its peak, "
-            "%s %s at %.3f s, is %.3g times its static %s %s.",
-            cli_run_figures[largest].quantity, number_text(st->peak, peak, sizeof peak), unit,
-            st->peak_time, factor,
-            number_text(st->static_value, static_value, sizeof static_value), unit);
+            " Over the bump, the %s grows the most relative to its static value: its peak, ",
+            cli_run_figures[largest].quantity);
+    md_value_unit(fp, st->peak, unit);
+    fprintf(fp, " at %.3f s, is %.3g times its static ", st->peak_time, factor);
+    md_value_unit(fp, st->static_value, unit);
+    fputc('.', fp);
   }
   if (r->sys == FB_SYSTEM_FLEXIBLE)
     conclude_torsion(fp, o);
@@ -615,7 +623,9 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
         first = r;
       continue;
     }
-    fprintf(fp, "%s: no ride metrics (%s).\n\n", cli_system_label(r->sys), r->ride_note);
+    fprintf(fp, "%s: no ride metrics (", cli_system_label(r->sys));
+    fb_md_write_text(fp, r->ride_note);
+    fputs(").\n\n", fp);
   }
   if (!first)
     return;
@@ -719,7 +729,7 @@ void cli_write_report_md(FILE *fp, const void *ctx)
 {
   const cli_run_outputs *o = ctx;
   fputs("# ", fp);
-  md_text(fp, cli_scenario_name(o->scenario));
+  fb_md_write_text(fp, cli_scenario_name(o->scenario));
   fputs(o->diff ? ": rigid and flexible hull over the bump\n\n"
                 : ": the vehicle over the bump\n\n",
         fp);
