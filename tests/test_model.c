@@ -36,6 +36,28 @@ static const bad_case bad_cases[] = {
     {HEAD "elements: []\n---\nmodel: other\n", FB_EPARSE, "bad.yaml:3:1:", "second document",
      NULL},
     /* Aliases: each libfyaml message gets its hint, the alias its name. */
+    /* Text of scalars: a NUL anywhere, control characters in one-line
+     * text (C0, DEL, C1) and keys; integers beyond 2^53; hexadecimal. */
+    {HEAD "parameters: {k: \"5\\0junk\"}\nelements: []\n", FB_EPARSE,
+     "bad.yaml:2:", "parameters.k: the value has a NUL (\\0)", NULL},
+    {HEAD "parameters: {\"k\\0x\": 5}\nelements: []\n", FB_EPARSE,
+     "bad.yaml:2:", "parameters: a key has a NUL", NULL},
+    {HEAD "subsystems:\n  \"s\\tt\": {elements: []}\nelements: []\n", FB_EPARSE,
+     "bad.yaml:3:", "subsystems: a key has a tab", NULL},
+    {HEAD "elements:\n  - {name: J, type: 1}\n  - {name: M, type: I, m: 1}\nbonds:\n"
+          "  - {name: b1, from: J, to: M}\nprobes:\n  - {flow: b1, unit: \"m\\u009b2J\"}\n",
+     FB_EPARSE, "bad.yaml:8:", "probes[0].unit: has control character 0x9b", NULL},
+    {HEAD "elements:\n  - {name: J, type: 1}\n  - {name: M, type: I, m: 1}\nbonds:\n"
+          "  - {name: b1, from: \"J\\r\", to: M}\n",
+     FB_EPARSE, "bad.yaml:6:", "bonds[0].from: has a carriage return", NULL},
+    {HEAD "elements: []\nsimulation: {max_steps: 9007199254740993}\n", FB_EINVAL,
+     "bad.yaml:3:25:", "simulation.max_steps: the integer 9007199254740993 is beyond 2^53",
+     NULL},
+    {HEAD "parameters: {k: -000009007199254740993}\nelements: []\n", FB_EINVAL,
+     "bad.yaml:2:", "parameters.k: the integer", "beyond 2^53"},
+    {HEAD "parameters: {k: 0X1P4}\nelements: []\n", FB_EPARSE,
+     "bad.yaml:2:17:", "parameters.k: '0X1P4' is not a decimal number", NULL},
+    {"---\n", FB_EPARSE, "bad.yaml:1:1:", "the file is empty (no YAML document)", NULL},
     {HEAD "elements: *nope\n", FB_EPARSE, "bad.yaml:2:12:", "YAML: invalid alias '*nope'",
      "no anchor of that name"},
     {HEAD "parameters: &p {a: *p}\nelements: []\n", FB_EPARSE, "bad.yaml:2:21:",

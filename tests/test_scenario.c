@@ -576,6 +576,18 @@ static const bad_case bad_cases[] = {
      "bad.yaml:3:", "duplicate key", NULL},
     {"simulation: {", "---\nsimulation: {", NULL, NULL, FB_EPARSE,
      "bad.yaml:27:1:", "second document", NULL},
+    /* Text of scalars (model_yaml.c): a NUL, control characters in
+     * one-line text and in a description; integers beyond 2^53. */
+    {"tire_c: 140000}", "tire_c: \"140000\\0junk\"}", NULL, NULL, FB_EPARSE,
+     "bad.yaml:", "wheel.tire_c: the value has a NUL", NULL},
+    {"scenario: bad\n", "scenario: \"bad\\x01\"\n", NULL, NULL, FB_EPARSE,
+     "bad.yaml:1:", "scenario: has control character 0x01", NULL},
+    {"scenario: bad\n", "scenario: bad\ndescription: \"a\\x1bb\"\n", NULL, NULL, FB_EPARSE,
+     "bad.yaml:2:", "description: has an escape", NULL},
+    {"payload: weight-only", "payload: \"weight-only\\n\"", NULL, NULL, FB_EPARSE,
+     "bad.yaml:", "payload: has a line break", NULL},
+    {"speed_kmh: 10", "speed_kmh: 10000000000000000000", NULL, NULL, FB_EINVAL,
+     "bad.yaml:", "road.speed_kmh: the integer 10000000000000000000 is beyond 2^53", NULL},
 };
 
 /* base_text with from -> to (from must occur exactly once); NULL if not. */
@@ -781,6 +793,19 @@ static void test_api_errors(void)
   CHECK(fb_scenario_load_string(text, strlen(text), NULL, &s, NULL) == FB_EPARSE && s == NULL);
 }
 
+/* A description is free text: tabs and line breaks (a block scalar) are
+ * kept, where a name or choice would be refused. */
+static void test_description_lines(void)
+{
+  char *t = replace_once(base_text, "scenario: bad\n",
+                         "scenario: good\ndescription: |\n  two\tcolumns\n  and lines\n");
+  CHECK(t != NULL);
+  fb_scenario *s = t ? load_text(t, "good.yaml") : NULL;
+  CHECK(s && !strcmp(s->name, "good"));
+  fb_scenario_free(&s);
+  free(t);
+}
+
 int main(void)
 {
   test_example();
@@ -788,6 +813,7 @@ int main(void)
   test_check();
   test_bad_files();
   test_good_variants();
+  test_description_lines();
   test_deck_reference();
   test_api_errors();
   return check_report("test_scenario");

@@ -76,12 +76,12 @@ typedef struct ml_yaml {
 } ml_yaml;
 
 /* Parses exactly one YAML document from text and resolves its aliases
- * and merge keys. FB_EPARSE with "FILE:LINE:COL: YAML: message"
- * (libfyaml's first diagnostic) on a syntax error, and at the alias that
- * crosses the bound, before anything is copied, if the aliases would
- * expand the document to more than 100000 nodes or ten times its written
- * node count, whichever is more, or nest it more than 256 levels deep
- * (model_yaml.c, "Bounding alias expansion"); nothing is printed. */
+ * and merge keys. A scalar whose text holds a NUL (a "\0" escape) or a
+ * key with any control character is refused, located. FB_EPARSE with "FILE:LINE:COL: YAML:
+ * message" (libfyaml's first diagnostic) on a syntax error, and at the alias that crosses the
+ * bound, before anything is copied, if the aliases would expand the document to more than
+ * 100000 nodes or ten times its written node count, whichever is more, or nest it more than 256
+ * levels deep (model_yaml.c, "Bounding alias expansion"); nothing is printed. */
 int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb_err *err);
 void ml_yaml_release(ml_yaml *y);
 
@@ -132,8 +132,15 @@ int ml_expect_map(const ml_ctx *c, struct fy_node *n, const char *what);
 int ml_expect_seq(const ml_ctx *c, struct fy_node *n, const char *what);
 /* Every key of map must be in the NULL-terminated list allowed. */
 int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allowed);
-/* Scalar text (owned by the document). */
+/* Scalar text (owned by the document) that is one line: a name, unit,
+ * label, file name, choice or reference. Every string value the loaders
+ * take goes through here, so a control character (a line break, tab,
+ * escape, DEL; model_yaml.c, "Text of scalars") is refused at its
+ * FILE:LINE:COL: KEY before it can reach an output file. */
 int ml_string(const ml_ctx *c, struct fy_node *n, const char **out);
+/* As ml_string for free text (a description), which may hold tabs and
+ * line breaks but no other control character. */
+int ml_text(const ml_ctx *c, struct fy_node *n, const char **out);
 /* 1 if s starts with a letter or '_' and has only letters, digits, '_'. */
 int ml_is_identifier(const char *s);
 /* A name made of letters, digits and '_' (what: "element name", ...). */

@@ -406,6 +406,8 @@ static int ml_yaml_open(const char *text, size_t len, ml_yaml *y, fb_err *err)
   return FB_OK;
 }
 
+static int ml_check_scalars(const ml_ctx *c, struct fy_node *n);
+
 int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb_err *err)
 {
   memset(y, 0, sizeof *y);
@@ -417,11 +419,22 @@ int ml_yaml_parse(const char *text, size_t len, const char *file, ml_yaml *y, fb
   y->doc = fy_parse_load_document(y->parser);
   if (ml_yaml_first_error(y->diag, file, err))
     return FB_EPARSE;
-  if (!y->doc || !fy_document_root(y->doc))
+  /* "---" alone starts a document whose root is an empty scalar without
+   * a token, so nothing in it has a location: the file is as empty. */
+  struct fy_node *root = y->doc ? fy_document_root(y->doc) : NULL;
+  if (!root || (fy_node_is_scalar(root) && !fy_node_get_scalar_token(root)))
     return fb_err_set(err, FB_EPARSE, "%s:1:1: the file is empty (no YAML document)", file);
+  /* Before resolving: each written scalar once, however often aliases
+   * would copy it. */
+  ml_ctx c;
+  memset(&c, 0, sizeof c);
+  c.file = file;
+  c.err = err;
+  rc = ml_check_scalars(&c, root);
   /* Resolving makes the loader see only plain mappings, sequences and
    * scalars. */
-  rc = ml_check_aliases(y->doc, file, err);
+  if (!rc)
+    rc = ml_check_aliases(y->doc, file, err);
   if (rc)
     return rc;
   if (fy_document_resolve(y->doc) != 0) {
@@ -628,6 +641,129 @@ int ml_blame_located(const ml_ctx *c, struct fy_node *at)
   return ml_report(c, at, NULL, NULL, code, msg);
 }
 
+/* ---- Text of scalars.
+ *
+ * libfyaml decodes escapes of double-quoted scalars, so "\0" puts a NUL
+ * into a scalar's text and "\n" a line break, as a block scalar ('|')
+ * does. The C strings the loader takes would end at the NUL ("140000\0junk"
+ * read as 140000), so no scalar may hold one. Names, units and the other
+ * one-line text become CSV headers, JSON, DOT, Markdown and gnuplot
+ * lines, where a line break would start a line of the file's own syntax
+ * (a gnuplot line starting with '!' runs a shell command), so the
+ * loader's string getter refuses control characters in them. */
+
+/* What the control character c is, for messages. */
+static void ml_control_name(unsigned c, char *buf, size_t size)
+{
+  static const struct {
+    unsigned c;
+    const char *name;
+  } names[] = {
+      {'\0', "a NUL (\\0)"}, {'\n', "a line break (\\n)"}, {'\r', "a carriage return (\\r)"},
+      {'\t', "a tab (\\t)"}, {0x1b, "an escape (\\e)"},    {0x7f, "a delete character (0x7f)"}};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
+    if (names[i].c == c) {
+      snprintf(buf, size, "%s", names[i].name);
+      return;
+    }
+  snprintf(buf, size, "control character 0x%02x", c);
+}
+
+/* Offset of the first control character of text[0..len) (C0, DEL, or C1:
+ * U+0080..U+009F, bytes C2 80..C2 9F), tab, line feed and carriage return
+ * excepted when layout is 1; len if none. *c gets its code. */
+static size_t ml_find_control(const char *text, size_t len, int layout, unsigned *c)
+{
+  const unsigned char *t = (const unsigned char *)text;
+  for (size_t i = 0; i < len; ++i) {
+    const int blank = t[i] == '\t' || t[i] == '\n' || t[i] == '\r';
+    if ((t[i] < 0x20 && !(layout && blank)) || t[i] == 0x7f) {
+      *c = t[i];
+      return i;
+    }
+    if (t[i] == 0xc2 && i + 1 < len && t[i + 1] >= 0x80 && t[i + 1] <= 0x9f) {
+      *c = t[i + 1];
+      return i;
+    }
+  }
+  return len;
+}
+
+/* A NUL in the text of scalar n is an error; in a key (map is its
+ * mapping), which is always a name, so is any control character. */
+static int ml_check_scalar(const ml_ctx *c, struct fy_node *map, struct fy_node *n)
+{
+  size_t len = 0;
+  const char *text = fy_node_get_scalar(n, &len);
+  unsigned code = 0;
+  if (!text || (map ? ml_find_control(text, len, 0, &code) == len : !memchr(text, 0, len)))
+    return FB_OK;
+  char what[64], msg[256];
+  ml_control_name(code, what, sizeof what);
+  if (!map) {
+    snprintf(msg, sizeof msg,
+             "the value has %s in its text (a '\\0' escape of a double-quoted scalar?); "
+             "no value may hold one (the text would end there)",
+             what);
+    return ml_report(c, n, n, NULL, FB_EPARSE, msg);
+  }
+  snprintf(msg, sizeof msg,
+           "a key has %s in its text; keys are names, one line of printable text", what);
+  /* The key's own text stays out of the key path: it is what is wrong. */
+  return ml_report(c, n, map, NULL, FB_EPARSE, msg);
+}
+
+/* ml_check_scalar on every scalar below n as written (aliases are not
+ * followed: what they copy is checked where it is written); the
+ * recursion is as deep as the text nests, which the parser limits to 64. */
+static int ml_check_scalars(const ml_ctx *c, struct fy_node *n)
+{
+  if (fy_node_is_alias(n))
+    return FB_OK;
+  if (fy_node_is_scalar(n))
+    return ml_check_scalar(c, NULL, n);
+  void *iter = NULL;
+  int rc = FB_OK;
+  if (fy_node_is_sequence(n)) {
+    struct fy_node *item;
+    while (!rc && (item = fy_node_sequence_iterate(n, &iter)))
+      rc = ml_check_scalars(c, item);
+    return rc;
+  }
+  struct fy_node_pair *pair;
+  while (!rc && fy_node_is_mapping(n) && (pair = fy_node_mapping_iterate(n, &iter))) {
+    struct fy_node *key = fy_node_pair_key(pair), *value = fy_node_pair_value(pair);
+    if (key && fy_node_is_scalar(key) && !fy_node_is_alias(key))
+      rc = ml_check_scalar(c, n, key);
+    else if (key)
+      rc = ml_check_scalars(c, key);
+    if (!rc && value)
+      rc = ml_check_scalars(c, value);
+  }
+  return rc;
+}
+
+/* FB_EPARSE at n if text holds a control character: any for one-line
+ * text, any but tab and line breaks for free text (layout 1). */
+static int ml_check_line(const ml_ctx *c, struct fy_node *n, const char *text, int layout)
+{
+  unsigned code = 0;
+  const size_t len = strlen(text);
+  const size_t at = ml_find_control(text, len, layout, &code);
+  if (at == len)
+    return FB_OK;
+  size_t chars = 1; /* UTF-8 characters up to it: the bytes that start one */
+  for (size_t i = 0; i < at; ++i)
+    chars += ((unsigned char)text[i] & 0xc0) != 0x80;
+  char what[64];
+  ml_control_name(code, what, sizeof what);
+  return ml_fail(c, n, FB_EPARSE,
+                 "has %s (character %zu of the text); names, units, labels, file names and "
+                 "the other text values are one line of printable text, without control "
+                 "characters (they go into CSV headers, JSON, DOT, Markdown and gnuplot files)",
+                 what, chars);
+}
+
 /* ---- Suggestions: optimal string alignment distance (Levenshtein with
  * adjacent transpositions; Damerau, CACM 7(3), 1964), case-insensitive. */
 
@@ -791,17 +927,31 @@ int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allow
   return FB_OK;
 }
 
-int ml_string(const ml_ctx *c, struct fy_node *n, const char **out)
+/* The text of scalar n, checked by ml_check_line. */
+static int ml_scalar_text(const ml_ctx *c, struct fy_node *n, int layout, const char **out)
 {
   *out = NULL;
   if (ml_is_null(n))
     return ml_fail(c, n, FB_EPARSE, "expected a string, got nothing");
   if (!fy_node_is_scalar(n))
     return ml_fail(c, n, FB_EPARSE, "expected a string, got %s", ml_kind_word(n));
-  *out = fy_node_get_scalar0(n);
-  if (!*out)
+  const char *text = fy_node_get_scalar0(n);
+  if (!text)
     return fb_err_set(c->err, FB_ENOMEM, "out of memory reading a YAML scalar");
-  return FB_OK;
+  int rc = ml_check_line(c, n, text, layout);
+  if (!rc)
+    *out = text;
+  return rc;
+}
+
+int ml_string(const ml_ctx *c, struct fy_node *n, const char **out)
+{
+  return ml_scalar_text(c, n, 0, out);
+}
+
+int ml_text(const ml_ctx *c, struct fy_node *n, const char **out)
+{
+  return ml_scalar_text(c, n, 1, out);
 }
 
 int ml_is_identifier(const char *s)
@@ -885,6 +1035,48 @@ static int ml_number_with_unit(const char *text)
   return isalpha((unsigned char)*end) || *end == '%';
 }
 
+/* Every integer up to 2^53 is a double exactly, not every one above
+ * (IEEE 754 binary64 has a 53-bit significand): 2^53 + 1 would read as
+ * 2^53. */
+static const char ml_exact_int_max[] = "9007199254740992";
+
+/* 1 if text is an integer ([+-]digits, no point or exponent) whose
+ * magnitude is above 2^53. */
+static int ml_integer_inexact(const char *text)
+{
+  const char *d = text + (text[0] == '+' || text[0] == '-');
+  const size_t len = strlen(d);
+  if (len == 0 || strspn(d, "0123456789") != len)
+    return 0;
+  while (d[0] == '0' && d[1])
+    ++d;
+  const size_t n = strlen(d), max = sizeof ml_exact_int_max - 1;
+  return n > max || (n == max && strcmp(d, ml_exact_int_max) > 0);
+}
+
+/* FB_OK if text, which strtod read whole as a finite number, is a plain
+ * decimal (fb_parse_decimal, as the CSV, mtx and deck readers take
+ * numbers); strtod alone also reads hexadecimal ("0x10", "0x1p-3"). */
+static int ml_check_decimal(const ml_ctx *c, struct fy_node *n, const char *text)
+{
+  char trimmed[128];
+  size_t skip = strspn(text, " \t"), len = strlen(text + skip);
+  while (len > 0 && isspace((unsigned char)text[skip + len - 1]))
+    --len;
+  if (len >= sizeof trimmed)
+    return FB_OK; /* strtod read it whole: hexadecimal is never this long in a file */
+  memcpy(trimmed, text + skip, len);
+  trimmed[len] = '\0';
+  fb_err why;
+  double v = 0;
+  if (fb_parse_decimal(trimmed, &v, &why) == FB_OK)
+    return FB_OK;
+  return ml_fail(c, n, FB_EPARSE,
+                 "%s: numbers are written in decimal digits (as 16, 0.5 or 1e-3; hexadecimal "
+                 "is not read)",
+                 why.msg);
+}
+
 int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double *out)
 {
   if (ml_is_null(n))
@@ -897,11 +1089,19 @@ int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double 
   double v = 0;
   if (ml_is_yaml_special_float(text))
     return ml_fail(c, n, FB_EINVAL, "must be finite (got %s)", text);
+  if (ml_integer_inexact(text))
+    return ml_fail(c, n, FB_EINVAL,
+                   "the integer %s is beyond 2^53 = %s, above which a double cannot hold "
+                   "every integer: it would be read as a different number; write it with an "
+                   "exponent (as 1.5e16) if a rounded value is meant",
+                   text, ml_exact_int_max);
   if (ml_parse_plain_number(text, &v)) {
     if (!isfinite(v))
       return ml_fail(c, n, FB_EINVAL, "must be finite (got %s)", text);
-    *out = v;
-    return FB_OK;
+    int rc = ml_check_decimal(c, n, text);
+    if (!rc)
+      *out = v;
+    return rc;
   }
   if (ml_number_with_unit(text))
     return ml_fail(c, n, FB_EPARSE,

@@ -654,7 +654,7 @@ static int sc_name(const ml_ctx *c, struct fy_node *root, fb_scenario *s)
   if (!rc)
     rc = ml_name(c, v, "scenario name", &name);
   if (!rc && (v = ml_get(root, "description", NULL)))
-    rc = ml_string(c, v, &description);
+    rc = ml_text(c, v, &description);
   if (rc)
     return rc;
   s->name = fb_strdup(name);
