@@ -2,13 +2,15 @@
  * subcommands (see cli.h). A small hand-written parser instead of
  * getopt_long, which is a GNU extension. */
 #include <errno.h>
-#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+/* fb_parse_decimal: numbers on the command line are read as in the data
+ * files (CSV, mtx, decks, the model and scenario YAML). */
+#include "../core/textfile.h"
 
 /* The parentheses keep the analyzer-only macro of cli.h from expanding here. */
 int(cli_usage_error)(const char *cmd, const char *fmt, ...)
@@ -87,13 +89,13 @@ int cli_parse(int argc, char **argv, cli_option *opts, size_t nopts, const char 
 
 int cli_positive_number(const char *cmd, const char *name, const char *text, double *out)
 {
-  char *end = NULL;
-  errno = 0;
-  double v = strtod(text, &end);
-  /* strtod accepts "inf" and "nan", and reports values beyond the range of
-   * double (overflow or underflow) with ERANGE: all are refused. */
-  if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v) || !(v > 0.0))
-    return cli_usage_error(cmd, "option '%s' needs a finite number > 0 (got '%s')", name, text);
+  double v = 0;
+  /* A plain decimal: strtod alone would take hexadecimal ("0x10",
+   * "0x1p-10"), "inf" and "nan". Values beyond the range of double
+   * (overflow) are refused by fb_parse_decimal, underflow to 0 by v > 0. */
+  if (fb_parse_decimal(text, &v, NULL) != FB_OK || !(v > 0.0))
+    return cli_usage_error(
+        cmd, "option '%s' needs a finite number > 0 in decimal digits (got '%s')", name, text);
   *out = v;
   return CLI_EXIT_OK;
 }
