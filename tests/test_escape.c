@@ -197,7 +197,7 @@ static const char *const hostile[] = {
     "a|b,c",
     "=cmd()",
     "'quoted'",
-    "\xC3\xA9 \xE6\x97\xA5 " SMILE,
+    ("\xC3\xA9 \xE6\x97\xA5 " SMILE),
     "\x01\x02\x1f\x7f control",
     "\\",
     "",
