@@ -62,6 +62,9 @@ static void test_derivative_causality(void)
   CHECK(rc == FB_ECAUSAL);
   CHECK(strstr(err.msg, "I 'm2' is in derivative causality on bond 'b5'") != NULL);
   CHECK(strstr(err.msg, "I 'm'") != NULL);
+  /* The origin names the dependent element for the model's file location. */
+  CHECK(err.origin == FB_ORIGIN_ELEMENT &&
+        (long)err.origin_index == fb_bg_find_element(bg, "m2"));
   fb_bg_free(&bg);
 }
 
@@ -81,6 +84,10 @@ static void test_conflict(void)
   CHECK(fb_bg_assign_causality(bg, &err) == FB_ECAUSAL);
   CHECK(strstr(err.msg, "bond 'b' ('E2' -> 'J0')") != NULL);
   CHECK(strstr(err.msg, "Se 'E1'") != NULL && strstr(err.msg, "Se 'E2'") != NULL);
+  CHECK(err.origin == FB_ORIGIN_BOND && (long)err.origin_index == fb_bg_find_bond(bg, "b"));
+  /* A later error with no origin of its own does not keep this one. */
+  fb_err_set(&err, FB_EINVAL, "unrelated");
+  CHECK(err.origin == FB_ORIGIN_NONE);
   fb_bg_free(&bg);
 }
 
@@ -96,6 +103,8 @@ static void test_unconnected_and_dims(void)
   CHECK(strstr(err.msg, "'J3' has dimension 3") && strstr(err.msg, "'m' has dimension 1"));
   CHECK(fb_bg_assign_causality(bg, &err) == FB_EMODEL);
   CHECK(strstr(err.msg, "I 'm': port 1 is not connected") != NULL);
+  CHECK(err.origin == FB_ORIGIN_ELEMENT &&
+        (long)err.origin_index == fb_bg_find_element(bg, "m"));
   CHECK(fb_bg_connect(bg, "y", "J3", "nowhere", &err) == FB_EMODEL);
   CHECK(strstr(err.msg, "unknown element or port 'nowhere'") != NULL);
   CHECK(add_scalar(bg, "m", FB_BG_C, 1.0, &err) == FB_EMODEL);
@@ -189,6 +198,8 @@ static void test_twoports_and_composite(void)
   MUST(fb_bg_connect(bg, "b2", "T.2", "I.2", &err), &err);
   CHECK(fb_bg_assign_causality(bg, &err) == FB_ECAUSAL);
   CHECK(strstr(err.msg, "TF 'T'") && strstr(err.msg, "'b1'") && strstr(err.msg, "'b2'"));
+  CHECK(err.origin == FB_ORIGIN_ELEMENT &&
+        (long)err.origin_index == fb_bg_find_element(bg, "T"));
   fb_bg_free(&bg);
 
   /* Composite: two scalar bonds stacked into one 2-dimensional multibond. */

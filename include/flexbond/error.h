@@ -27,16 +27,35 @@ enum fb_status {
 
 #define FB_ERR_MSG_MAX 4096
 
+/* What in a bond graph an error is about (fb_err.origin): set where the
+ * error is raised (src/bg) so that whoever built the graph from a file
+ * can name the file, line and key of its cause (fb_model_blame) without
+ * reading the message. */
+enum fb_err_origin {
+  FB_ORIGIN_NONE = 0,    /* not about one part of a graph, or not known */
+  FB_ORIGIN_ELEMENT = 1, /* element origin_index of the graph */
+  FB_ORIGIN_BOND = 2     /* bond origin_index of the graph */
+};
+
 typedef struct fb_err {
   int code;                 /* last status recorded, FB_OK when clear */
   char msg[FB_ERR_MSG_MAX]; /* NUL-terminated message, "" when clear */
+  int origin;               /* enum fb_err_origin; fb_err_set resets it */
+  size_t origin_index;      /* element or bond index, with origin */
 } fb_err;
 
 /* Resets err to FB_OK with an empty message. err may be NULL. */
 void fb_err_clear(fb_err *err);
 
-/* Records code and a printf-formatted message, replacing any previous one.
- * Returns code, so callers write `return fb_err_set(err, FB_EINVAL, ...);`.
+/* Records that the error just set in err is about element or bond index
+ * of the graph the failing call was given (origin: enum fb_err_origin).
+ * Returns code, so raisers write
+ * `return fb_err_set_origin(err, FB_ORIGIN_BOND, b, fb_err_set(err, ...));`.
+ * err may be NULL. */
+int fb_err_set_origin(fb_err *err, int origin, size_t index, int code);
+
+/* Records code and a printf-formatted message, replacing any previous one
+ * (and its origin). Returns code, so callers write `return fb_err_set(err, FB_EINVAL, ...);`.
  * err may be NULL (the message is then dropped). */
 int fb_err_set(fb_err *err, int code, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -53,7 +72,8 @@ int fb_err_set(fb_err *err, int code, const char *fmt, ...)
 #endif
 
 /* Prepends printf-formatted context to the recorded message (the context is
- * inserted verbatim, include the separator, e.g. "model.yaml:12: ").
+ * inserted verbatim, include the separator, e.g. "model.yaml:12: "); the
+ * origin is kept.
  * Returns err->code (FB_OK if err is NULL). */
 int fb_err_prefix(fb_err *err, const char *fmt, ...)
 #if defined(__GNUC__)

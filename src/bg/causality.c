@@ -52,11 +52,13 @@ static int set_stroke(scap *s, size_t b, size_t e, int recv, size_t cause, size_
     fb_bg_describe(s->bg, at, here, sizeof here);
     fb_bg_describe(s->bg, bd->cause, c1, sizeof c1);
     fb_bg_describe(s->bg, cause, c2, sizeof c2);
-    return fb_err_set(s->err, FB_ECAUSAL,
-                      "causal conflict at %s on bond '%s' ('%s' -> '%s'): %s gives the effort "
-                      "to '%s', but %s requires the opposite stroke",
-                      here, bd->name, s->bg->elems[bd->from].name, s->bg->elems[bd->to].name,
-                      c1, stroke_end_name(s->bg, b), c2);
+    return fb_err_set_origin(
+        s->err, FB_ORIGIN_BOND, b,
+        fb_err_set(s->err, FB_ECAUSAL,
+                   "causal conflict at %s on bond '%s' ('%s' -> '%s'): %s gives the effort "
+                   "to '%s', but %s requires the opposite stroke",
+                   here, bd->name, s->bg->elems[bd->from].name, s->bg->elems[bd->to].name, c1,
+                   stroke_end_name(s->bg, b), c2));
   }
   bd->stroke = want;
   bd->cause = cause;
@@ -84,11 +86,13 @@ static int junction_rule(scap *s, size_t e)
         fb_bg_describe(s->bg, e, here, sizeof here);
         fb_bg_describe(s->bg, s->bg->bonds[special].cause, c1, sizeof c1);
         fb_bg_describe(s->bg, s->bg->bonds[b].cause, c2, sizeof c2);
-        return fb_err_set(s->err, FB_ECAUSAL,
-                          "causal conflict at %s: bonds '%s' (from %s) and '%s' (from %s) "
-                          "both set its common %s",
-                          here, s->bg->bonds[special].name, c1, s->bg->bonds[b].name, c2,
-                          el->kind == FB_BG_J0 ? "effort" : "flow");
+        return fb_err_set_origin(
+            s->err, FB_ORIGIN_ELEMENT, e,
+            fb_err_set(s->err, FB_ECAUSAL,
+                       "causal conflict at %s: bonds '%s' (from %s) and '%s' (from %s) "
+                       "both set its common %s",
+                       here, s->bg->bonds[special].name, c1, s->bg->bonds[b].name, c2,
+                       el->kind == FB_BG_J0 ? "effort" : "flow"));
       }
       special = b;
     }
@@ -129,14 +133,16 @@ static int twoport_rule(scap *s, size_t e, int same)
     fb_bg_describe(s->bg, e, here, sizeof here);
     fb_bg_describe(s->bg, s->bg->bonds[b0].cause, c0, sizeof c0);
     fb_bg_describe(s->bg, s->bg->bonds[b1].cause, c1, sizeof c1);
-    return fb_err_set(s->err, FB_ECAUSAL,
-                      "causal conflict at %s: bond '%s' (from %s) and bond '%s' (from %s) both "
-                      "%s, but %s",
-                      here, s->bg->bonds[b0].name, c0, s->bg->bonds[b1].name, c1,
-                      r0 ? "bring it an effort" : "take an effort from it",
-                      same ? "a gyrator needs both ports alike"
-                           : "a transformer passes the effort through, in at one port and out "
-                             "at the other");
+    return fb_err_set_origin(
+        s->err, FB_ORIGIN_ELEMENT, e,
+        fb_err_set(s->err, FB_ECAUSAL,
+                   "causal conflict at %s: bond '%s' (from %s) and bond '%s' (from %s) both "
+                   "%s, but %s",
+                   here, s->bg->bonds[b0].name, c0, s->bg->bonds[b1].name, c1,
+                   r0 ? "bring it an effort" : "take an effort from it",
+                   same ? "a gyrator needs both ports alike"
+                        : "a transformer passes the effort through, in at one port and out "
+                          "at the other"));
   }
   if (!set0 && !set1)
     return FB_OK;
@@ -209,25 +215,32 @@ static int check_structure(const fb_bg *bg, fb_err *err)
       continue;
     for (size_t k = 0; k < el->nports; ++k)
       if (el->bonds[k] == FB_NONE)
-        return fb_err_set(err, FB_EMODEL, "%s '%s': port %zu is not connected",
-                          fb_bg_kind_name(el->kind), el->name, k + 1);
+        return fb_err_set_origin(err, FB_ORIGIN_ELEMENT, e,
+                                 fb_err_set(err, FB_EMODEL,
+                                            "%s '%s': port %zu is not connected",
+                                            fb_bg_kind_name(el->kind), el->name, k + 1));
     int two = el->kind == FB_BG_TF || el->kind == FB_BG_GY || el->kind == FB_BG_MTF;
     if (two && (fb_bg_orientation(bg, el->bonds[0], e) != 1 ||
                 fb_bg_orientation(bg, el->bonds[1], e) != -1))
-      return fb_err_set(err, FB_EMODEL,
-                        "%s '%s': bond '%s' must point into port 1 and bond '%s' out of port "
-                        "2 (power flows through a two-port)",
-                        fb_bg_kind_name(el->kind), el->name, bg->bonds[el->bonds[0]].name,
-                        bg->bonds[el->bonds[1]].name);
+      return fb_err_set_origin(
+          err, FB_ORIGIN_ELEMENT, e,
+          fb_err_set(err, FB_EMODEL,
+                     "%s '%s': bond '%s' must point into port 1 and bond '%s' out of port "
+                     "2 (power flows through a two-port)",
+                     fb_bg_kind_name(el->kind), el->name, bg->bonds[el->bonds[0]].name,
+                     bg->bonds[el->bonds[1]].name));
     if (el->kind == FB_BG_COMPOSITE) {
       int whole_dir = fb_bg_orientation(bg, el->bonds[el->nports - 1], e);
       for (size_t k = 0; k + 1 < el->nports; ++k)
+        /* The part bond's direction is what to turn: it is the origin. */
         if (fb_bg_orientation(bg, el->bonds[k], e) == whole_dir)
-          return fb_err_set(err, FB_EMODEL,
-                            "composite '%s': part bond '%s' and whole bond '%s' must carry "
-                            "power in opposite directions",
-                            el->name, bg->bonds[el->bonds[k]].name,
-                            bg->bonds[el->bonds[el->nports - 1]].name);
+          return fb_err_set_origin(
+              err, FB_ORIGIN_BOND, el->bonds[k],
+              fb_err_set(err, FB_EMODEL,
+                         "composite '%s': part bond '%s' and whole bond '%s' must carry "
+                         "power in opposite directions",
+                         el->name, bg->bonds[el->bonds[k]].name,
+                         bg->bonds[el->bonds[el->nports - 1]].name));
     }
   }
   return FB_OK;
@@ -300,7 +313,7 @@ static size_t note_derivative(const fb_bg *bg, size_t e, char *msg, size_t size)
 static int step_storage(scap *s)
 {
   char msg[FB_ERR_MSG_MAX] = "";
-  size_t nderiv = 0;
+  size_t nderiv = 0, first = 0;
   for (size_t e = 0; e < s->bg->nelems; ++e) {
     const fb_bg_elem *el = &s->bg->elems[e];
     if (el->kind != FB_BG_I && el->kind != FB_BG_C)
@@ -308,13 +321,18 @@ static int step_storage(scap *s)
     int rc = choose(s, e, el->kind == FB_BG_I);
     if (rc)
       return rc;
-    nderiv += note_derivative(s->bg, e, msg, sizeof msg);
+    const size_t n = note_derivative(s->bg, e, msg, sizeof msg);
+    first = nderiv == 0 && n > 0 ? e : first;
+    nderiv += n;
   }
+  /* The first element in derivative causality is the origin. */
   if (nderiv)
-    return fb_err_set(s->err, FB_ECAUSAL,
-                      "%s. Hint: dependent storage elements; add a compliance (C) or inertia "
-                      "(I) between them, or merge them into one element",
-                      msg);
+    return fb_err_set_origin(
+        s->err, FB_ORIGIN_ELEMENT, first,
+        fb_err_set(s->err, FB_ECAUSAL,
+                   "%s. Hint: dependent storage elements; add a compliance (C) or inertia "
+                   "(I) between them, or merge them into one element",
+                   msg));
   return FB_OK;
 }
 
@@ -366,9 +384,11 @@ static int check_junctions(const fb_bg *bg, fb_err *err)
     for (size_t k = 0; k < el->nports; ++k)
       n += fb_bg_receives_effort(bg, el->bonds[k], e) == special_recv;
     if (n != 1)
-      return fb_err_set(err, FB_ECAUSAL, "%s '%s': %zu bonds set its common %s (need 1)",
-                        fb_bg_kind_name(el->kind), el->name, n,
-                        el->kind == FB_BG_J0 ? "effort" : "flow");
+      return fb_err_set_origin(err, FB_ORIGIN_ELEMENT, e,
+                               fb_err_set(err, FB_ECAUSAL,
+                                          "%s '%s': %zu bonds set its common %s (need 1)",
+                                          fb_bg_kind_name(el->kind), el->name, n,
+                                          el->kind == FB_BG_J0 ? "effort" : "flow"));
   }
   return FB_OK;
 }

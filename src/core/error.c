@@ -11,6 +11,17 @@ void fb_err_clear(fb_err *err)
     return;
   err->code = FB_OK;
   err->msg[0] = '\0';
+  err->origin = FB_ORIGIN_NONE;
+  err->origin_index = 0;
+}
+
+int fb_err_set_origin(fb_err *err, int origin, size_t index, int code)
+{
+  if (err) {
+    err->origin = origin;
+    err->origin_index = index;
+  }
+  return code;
 }
 
 /* The parentheses keep the analyzer-only macro of error.h from expanding here. */
@@ -23,6 +34,8 @@ int(fb_err_set)(fb_err *err, int code, const char *fmt, ...)
   vsnprintf(err->msg, sizeof err->msg, fmt, ap);
   va_end(ap);
   err->code = code;
+  err->origin = FB_ORIGIN_NONE;
+  err->origin_index = 0;
   return code;
 }
 
