@@ -165,5 +165,84 @@ for opt in "--t-end 0x10" "--rtol 0x1p-10" "--sample-rate 0x400"; do
     sim m_ok.yaml -o "$WORK/out" "$1" "$2"
 done
 
+# ---- Graph errors found after loading name the element or bond in the
+# file (fb_err.origin, fb_model_blame), in every command that finds them.
+cat >g_port.yaml <<'EOF'
+model: unconnected
+elements:
+  - {name: F, type: Se, value: 1}
+  - {name: T, type: TF, ratio: 2}
+bonds:
+  - [F, T.1]
+EOF
+cat >g_conflict.yaml <<'EOF'
+model: conflict
+elements:
+  - {name: F1, type: Sf, value: 1}
+  - {name: F2, type: Sf, value: 2}
+  - {name: J, type: 1}
+bonds:
+  - [F1, J]
+  - [F2, J]
+EOF
+cat >g_composite.yaml <<'EOF'
+model: composite_direction
+elements:
+  - {name: E1, type: Se, value: 1}
+  - {name: E2, type: Se, value: 2}
+  - {name: H, type: composite, parts: [1, 1]}
+  - {name: M, type: I, dim: 2, m: 1}
+bonds:
+  - [E1, H.1]
+  - [H.2, E2]
+  - [H.whole, M]
+EOF
+cat >g_instance.yaml <<'EOF'
+model: instance_conflict
+subsystems:
+  driven:
+    ports:
+      - {name: a, at: j}
+    elements:
+      - {name: j, type: 1}
+      - {name: S, type: Sf, value: 1}
+    bonds:
+      - [S, j]
+elements:
+  - {name: F, type: Sf, value: 1}
+  - {name: body, type: 1}
+  - {name: p, type: driven}
+bonds:
+  - [F, body]
+  - [body, p.a]
+EOF
+for cmd in causality sim diagram eig; do
+  tail=()
+  [ "$cmd" = sim ] && tail=(-o "$WORK/out")
+  refused 2 "$cmd: unconnected port" \
+    "$(at g_port.yaml 'name: T' '{') elements[1]: TF 'T': port 2 is not connected" -- \
+    "$cmd" g_port.yaml "${tail[@]}"
+  refused 3 "$cmd: causal conflict" \
+    "$(at g_conflict.yaml '[F2, J]' '[') bonds[1]: causal conflict at Sf 'F2'" -- \
+    "$cmd" g_conflict.yaml "${tail[@]}"
+  refused 2 "$cmd: composite power direction" \
+    "$(at g_composite.yaml '[H.2, E2]' '[') bonds[1]: composite 'H': part bond 'H.2->E2'" -- \
+    "$cmd" g_composite.yaml "${tail[@]}"
+  refused 3 "$cmd: causal conflict inside a subsystem instance" \
+    "$(at g_instance.yaml '[S, j]' '[') subsystems.driven.bonds[0]: causal conflict at Sf 'p.S'" \
+    "(in instance 'p' at $(at g_instance.yaml 'name: p,' '{' | sed 's/:$//'))" -- \
+    "$cmd" g_instance.yaml "${tail[@]}"
+done
+
+# ---- A document with no content ('---' alone) is an empty file.
+printf -- '---\n' >m_dashes.yaml
+refused 2 "model of '---' alone" \
+  "flexbond: m_dashes.yaml:1:1: the file is empty (no YAML document)" -- \
+  sim m_dashes.yaml -o "$WORK/out"
+printf -- '--- # nothing\n...\n' >s_dashes.yaml
+refused 2 "scenario of '---' alone" \
+  "flexbond: s_dashes.yaml:1:1: the file is empty (no YAML document)" -- \
+  run s_dashes.yaml -o "$WORK/out"
+
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

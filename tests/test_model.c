@@ -944,6 +944,53 @@ static void test_alias_sharing(void)
   fb_model_free(&m);
 }
 
+/* ---- Errors of the graph after loading, located by fb_model_blame. */
+
+/* Loads text, assigns causality, which must fail with code, and checks
+ * that fb_model_blame located the message at where (and phrase). */
+static void expect_blamed(const char *text, int code, const char *where, const char *phrase)
+{
+  fb_model *m = load_ok(text, NULL);
+  fb_err err;
+  fb_err_clear(&err);
+  int rc = m ? fb_bg_assign_causality(fb_model_graph(m), &err) : FB_OK;
+  CHECK(rc == code && err.origin != FB_ORIGIN_NONE);
+  fb_model_blame(m, &err);
+  int ok = !strncmp(err.msg, where, strlen(where)) && strstr(err.msg, phrase);
+  CHECK(ok && err.origin == FB_ORIGIN_NONE);
+  if (!ok)
+    fprintf(stderr, "  wanted %s ... %s, got:\n    %s\n", where, phrase, err.msg);
+  /* A second call changes nothing. */
+  char once[FB_ERR_MSG_MAX];
+  snprintf(once, sizeof once, "%s", err.msg);
+  CHECK(fb_model_blame(m, &err) == code && !strcmp(once, err.msg));
+  fb_model_free(&m);
+}
+
+static void test_blame(void)
+{
+  expect_blamed("model: m\nelements:\n  - {name: F, type: Se, value: 1}\n"
+                "  - {name: T, type: TF, ratio: 2}\nbonds:\n  - [F, T.1]\n",
+                FB_EMODEL, "good.yaml:4:5: elements[1]: TF 'T': port 2 is not connected", "");
+  expect_blamed("model: m\nelements:\n  - {name: F1, type: Sf, value: 1}\n"
+                "  - {name: F2, type: Sf, value: 2}\n  - {name: J, type: 1}\nbonds:\n"
+                "  - [F1, J]\n  - [F2, J]\n",
+                FB_ECAUSAL, "good.yaml:8:5: bonds[1]: causal conflict", "");
+  expect_blamed("model: m\nsubsystems:\n  two:\n    ports: [{name: a, at: j}]\n"
+                "    elements:\n      - {name: j, type: 1}\n      - {name: M1, type: I, m: 1}\n"
+                "      - {name: M2, type: I, m: 1}\n    bonds:\n      - [j, M1]\n"
+                "      - [j, M2]\nelements:\n  - {name: F, type: Se, value: 1}\n"
+                "  - {name: q, type: two}\nbonds:\n  - [F, q.a]\n",
+                FB_ECAUSAL,
+                "good.yaml:8:9: subsystems.two.elements[2]: I 'q.M2' is in derivative",
+                "(in instance 'q' at good.yaml:14:5)");
+  /* No model, or an error without an origin: unchanged. */
+  fb_err err;
+  fb_err_set(&err, FB_EINVAL, "plain");
+  CHECK(fb_model_blame(NULL, &err) == FB_EINVAL && !strcmp(err.msg, "plain"));
+  CHECK(fb_model_blame(NULL, NULL) == FB_OK);
+}
+
 /* ---- API edges. */
 
 static void test_api(void)
@@ -967,6 +1014,7 @@ static void test_api(void)
 int main(void)
 {
   test_bad_models();
+  test_blame();
   test_parameters();
   test_subsystems();
   test_reexport();

@@ -38,6 +38,16 @@ const fb_probe_spec *fb_model_probes(const fb_model *m, size_t *nprobes);
  * absent); borrowed pointers inside stay valid while m lives. */
 const fb_sim_opts *fb_model_sim_opts(const fb_model *m);
 
+/* Locates an error raised after loading by the model's graph (causality,
+ * unconnected ports, fb_bd_build): if err has an origin (fb_err.origin)
+ * naming an element or bond of fb_model_graph(m), the message becomes
+ * "FILE:LINE:COL: KEY: message", KEY the element's or bond's entry in the
+ * file ("elements[3]", "subsystems.corner.bonds[1]"), followed by the
+ * subsystem instances it was built in; the origin is then cleared, so a
+ * second call changes nothing. m may be NULL. Returns err->code (FB_OK if
+ * err is NULL). */
+int fb_model_blame(const fb_model *m, fb_err *err);
+
 #ifdef __cplusplus
 }
 #endif

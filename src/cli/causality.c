@@ -79,6 +79,10 @@ static int run(const char *model_path)
   int rc = fb_model_load(model_path, &m, &err);
   if (rc == FB_OK)
     rc = fb_bg_assign_causality(fb_model_graph(m), &err);
+  /* The graph names the element or bond at fault; the model knows where
+   * the file wrote it. */
+  if (rc != FB_OK)
+    fb_model_blame(m, &err);
   if (rc == FB_OK) {
     const fb_bg *g = fb_model_graph(m);
     table_widths w = measure(g);

@@ -165,6 +165,8 @@ static int run(const char *model_path)
   /* Probes do not change the state equations; none are built. */
   if (rc == FB_OK)
     rc = fb_bd_build(fb_model_graph(m), NULL, 0, &bd, &err);
+  if (rc != FB_OK)
+    fb_model_blame(m, &err); /* a causality error: at its element's or bond's line */
   if (rc == FB_OK)
     rc = analyse(m, bd, &err);
   fb_bd_free(&bd);

@@ -194,6 +194,7 @@ static int run(const sim_args *a)
     size_t nprobes = 0;
     const fb_probe_spec *probes = fb_model_probes(m, &nprobes);
     rc = fb_bd_build(fb_model_graph(m), probes, nprobes, &bd, &err);
+    fb_model_blame(m, &err); /* a causality error: at its element's or bond's line */
   }
   if (rc == FB_OK)
     rc = fb_sim_run(bd, &opts, &res, &err);

@@ -20,6 +20,7 @@ struct fb_model {
   char **strings; /* owned probe names, targets and units (3 per probe) */
   fb_sim_opts opts;
   double *breakpoints; /* owned, opts.breakpoints points here */
+  ml_sites sites;      /* where the graph's elements and bonds were written */
 };
 
 void fb_model_free(fb_model **m)
@@ -32,6 +33,7 @@ void fb_model_free(fb_model **m)
   free(p->strings);
   free(p->probes);
   free(p->breakpoints);
+  ml_sites_release(&p->sites);
   fb_bg_free(&p->bg);
   free(p->name);
   free(p);
@@ -58,6 +60,26 @@ const fb_probe_spec *fb_model_probes(const fb_model *m, size_t *nprobes)
 const fb_sim_opts *fb_model_sim_opts(const fb_model *m)
 {
   return &m->opts;
+}
+
+int fb_model_blame(const fb_model *m, fb_err *err)
+{
+  if (!err)
+    return FB_OK;
+  const size_t i = err->origin_index;
+  const char *name = NULL;
+  if (m && err->code && err->origin == FB_ORIGIN_ELEMENT && i < fb_bg_nelements(m->bg))
+    name = fb_bg_element_name(m->bg, i);
+  else if (m && err->code && err->origin == FB_ORIGIN_BOND && i < fb_bg_nbonds(m->bg))
+    name = fb_bg_bond_name(m->bg, i);
+  const ml_site *site = m ? ml_sites_find(&m->sites, err->origin, name) : NULL;
+  if (!site)
+    return err->code;
+  fb_err_prefix(err, "%s", site->head);
+  const size_t len = strlen(err->msg);
+  snprintf(err->msg + len, sizeof err->msg - len, "%s", site->tail);
+  err->origin = FB_ORIGIN_NONE;
+  return err->code;
 }
 
 /* ---- Probes. */
@@ -422,6 +444,7 @@ int fb_model_load_string(const char *text, size_t len, const char *display_name,
   fb_symtab *globals = NULL;
   fb_model *m = calloc(1, sizeof *m);
   int rc = m ? FB_OK : fb_err_set(e, FB_ENOMEM, "out of memory");
+  c.sites = m ? &m->sites : NULL;
   if (!rc)
     rc = fb_symtab_new(&globals, e);
   c.globals = globals;

@@ -578,5 +578,8 @@ int ml_add_element(ml_ctx *c, ml_scope *s, struct fy_node *el)
   }
   if (!rc)
     rc = ml_scope_add(c, s, &e);
+  /* An instance is no element of the graph: its parts record themselves. */
+  if (!rc && t)
+    rc = ml_site_record(c, FB_ORIGIN_ELEMENT, name, el);
   return rc;
 }

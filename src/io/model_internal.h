@@ -34,6 +34,24 @@ typedef struct ml_paths {
 } ml_paths;
 void ml_paths_release(ml_paths *p);
 
+/* Where each element and bond of the model's graph was written, by its
+ * full name in that graph ("front.Ks", "front.b1": instance names joined
+ * by '.'), for errors the graph raises after loading (fb_err.origin,
+ * fb_model_blame). head is "FILE:LINE:COL: KEY: ", tail the instance
+ * chain " (in instance 'front' at FILE:LINE:COL)" or "" (owned strings). */
+typedef struct ml_site {
+  int kind; /* FB_ORIGIN_ELEMENT or FB_ORIGIN_BOND */
+  char *name, *head, *tail;
+} ml_site;
+
+typedef struct ml_sites {
+  ml_site *site;
+  size_t n, cap;
+} ml_sites;
+void ml_sites_release(ml_sites *s);
+/* The site of kind named name, or NULL. */
+const ml_site *ml_sites_find(const ml_sites *s, int kind, const char *name);
+
 typedef struct ml_ctx {
   const char *file;         /* display name used in messages */
   const char *base_dir;     /* directory for relative file references */
@@ -45,6 +63,8 @@ typedef struct ml_ctx {
   fb_bg_domain domain;      /* model default bond domain */
   const ml_frame *frames;   /* innermost instance being built, or NULL */
   ml_paths *inputs;         /* where ml_resolve_path records, or NULL */
+  ml_sites *sites;          /* where ml_site_record records, or NULL (while
+                               building graphs the model does not keep) */
 } ml_ctx;
 
 /* A name declared in a graph being built: an element or a subsystem
@@ -111,6 +131,10 @@ int ml_fail_key(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int c
 int ml_blame(const ml_ctx *c, struct fy_node *at);
 /* As ml_blame without the key path, for messages that name their key. */
 int ml_blame_located(const ml_ctx *c, struct fy_node *at);
+/* Records in c->sites (if any) that the element or bond (kind, as
+ * fb_err.origin) named name in the graph being built was written at node
+ * at, under its full name in the model's graph. */
+int ml_site_record(const ml_ctx *c, int kind, const char *name, struct fy_node *at);
 /* 1-based line of node n, 0 if unknown. */
 int ml_line(struct fy_node *n);
 

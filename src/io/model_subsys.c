@@ -462,16 +462,19 @@ int ml_instantiate(ml_ctx *c, ml_scope *s, struct fy_node *el, const char *insta
 
 int ml_defs_validate_unused(ml_ctx *c)
 {
-  for (size_t i = 0; i < c->ndefs; ++i) {
+  /* The scratch graphs are not the model's: their parts have no site. */
+  ml_sites *sites = c->sites;
+  int rc = FB_OK;
+  c->sites = NULL;
+  for (size_t i = 0; !rc && i < c->ndefs; ++i) {
     if (c->used[i])
       continue;
     fb_bg *scratch = NULL;
-    int rc = ml_build_def(c, i, NULL, NULL, ml_def_name(c, i), &scratch);
+    rc = ml_build_def(c, i, NULL, NULL, ml_def_name(c, i), &scratch);
     fb_bg_free(&scratch);
-    if (rc)
-      return rc;
   }
-  return FB_OK;
+  c->sites = sites;
+  return rc;
 }
 
 /* ---- Bonds. */
@@ -590,6 +593,8 @@ static int ml_bond(const ml_ctx *c, const ml_scope *s, struct fy_node *b)
     rc = ml_bond_name(c, s, b, &spec, from, to, &name);
   if (!rc && fb_bg_connect(s->bg, name, from, to, c->err))
     rc = ml_blame(c, b);
+  if (!rc)
+    rc = ml_site_record(c, FB_ORIGIN_BOND, name, b);
   if (!rc && spec.domain && fb_bg_set_bond_domain(s->bg, name, domain, c->err))
     rc = ml_blame(c, spec.domain);
   free(name);

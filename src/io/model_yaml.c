@@ -579,6 +579,22 @@ static void ml_locate(const ml_ctx *c, struct fy_node *loc, struct fy_node *path
     ml_append(where, size, len, "%s: ", path);
 }
 
+/* " (in instance 'a' at FILE:LINE:COL, in 'b' at ...)" of the instances
+ * being built, innermost first, into chain (size bytes); "" at top level. */
+static void ml_chain(const ml_ctx *c, char *chain, size_t size)
+{
+  size_t clen = 0;
+  chain[0] = '\0';
+  for (const ml_frame *f = c->frames; f; f = f->outer) {
+    int fl = 0, fc = 0;
+    ml_mark(f->at, &fl, &fc);
+    ml_append(chain, size, &clen, "%s'%s' at %s:%d:%d",
+              f == c->frames ? " (in instance " : ", in ", f->instance, c->file, fl, fc);
+  }
+  if (clen)
+    ml_append(chain, size, &clen, ")");
+}
+
 /* The message proper, then the chain of instances being built. */
 static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_node,
                      const char *key, int code, const char *msg)
@@ -587,19 +603,64 @@ static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_
   size_t len = 0;
   where[0] = '\0';
   ml_locate(c, loc, path_node, key, where, sizeof where, &len);
-
   char chain[1024];
-  size_t clen = 0;
-  for (const ml_frame *f = c->frames; f; f = f->outer) {
-    int fl = 0, fc = 0;
-    ml_mark(f->at, &fl, &fc);
-    ml_append(chain, sizeof chain, &clen, "%s'%s' at %s:%d:%d",
-              f == c->frames ? " (in instance " : ", in ", f->instance, c->file, fl, fc);
-  }
-  if (clen)
-    ml_append(chain, sizeof chain, &clen, ")");
-  chain[clen] = '\0';
+  ml_chain(c, chain, sizeof chain);
   return fb_err_set(c->err, code, "%s%s%s", where, msg, chain);
+}
+
+/* ---- Sites of graph parts, for errors raised after loading. */
+
+void ml_sites_release(ml_sites *s)
+{
+  for (size_t i = 0; i < s->n; ++i) {
+    free(s->site[i].name);
+    free(s->site[i].head);
+    free(s->site[i].tail);
+  }
+  free(s->site);
+  *s = (ml_sites){0};
+}
+
+const ml_site *ml_sites_find(const ml_sites *s, int kind, const char *name)
+{
+  for (size_t i = 0; s && name && i < s->n; ++i)
+    if (s->site[i].kind == kind && !strcmp(s->site[i].name, name))
+      return &s->site[i];
+  return NULL;
+}
+
+/* "outer.inner." of the instances being built (fb_bg_adopt prefixes each
+ * adopted name with its instance's), outermost first. */
+static void ml_frame_prefix(const ml_frame *f, char *buf, size_t size, size_t *len)
+{
+  if (!f)
+    return;
+  ml_frame_prefix(f->outer, buf, size, len);
+  ml_append(buf, size, len, "%s.", f->instance);
+}
+
+int ml_site_record(const ml_ctx *c, int kind, const char *name, struct fy_node *at)
+{
+  if (!c->sites)
+    return FB_OK;
+  char full[1024], head[1024], tail[1024];
+  size_t flen = 0, hlen = 0;
+  full[0] = head[0] = '\0';
+  ml_frame_prefix(c->frames, full, sizeof full, &flen);
+  ml_append(full, sizeof full, &flen, "%s", name);
+  ml_locate(c, at, at, NULL, head, sizeof head, &hlen);
+  ml_chain(c, tail, sizeof tail);
+  ml_site site = {kind, fb_strdup(full), fb_strdup(head), fb_strdup(tail)};
+  ml_sites *s = c->sites;
+  if (!site.name || !site.head || !site.tail ||
+      fb_grow((void **)&s->site, &s->cap, s->n, sizeof *s->site) != FB_OK) {
+    free(site.name);
+    free(site.head);
+    free(site.tail);
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory recording where '%s' is", full);
+  }
+  s->site[s->n++] = site;
+  return FB_OK;
 }
 
 /* The parentheses keep the analyzer-only macros of model_internal.h from expanding. */
