@@ -584,6 +584,28 @@ static void test_opts(void)
   fb_sim_opts_default(&o);
   o.max_steps = 0;
   check_opts_message(&o, "simulation.max_steps: must be positive, got 0");
+  /* Certain not to finish: 1 s at most 1e-8 s a step is 1e8 steps, more
+   * than the budget; 1e7 exactly is not refused. */
+  fb_sim_opts_default(&o);
+  o.max_step = 1e-8;
+  check_opts_message(&o, "simulation.max_step: 1e-08 s over the run's 1 s (t_end - t_start) "
+                         "needs at least 1e+08 steps, more than simulation.max_steps = "
+                         "10000000: the run could not finish");
+  o.max_step = 1e-7;
+  CHECK(fb_sim_opts_check(&o, &err) == FB_OK);
+  o.max_steps = 9999999;
+  check_opts_message(&o, "simulation.max_step: 1e-07 s");
+  /* The result's memory: 9.9e7 samples are within the 1e8 allowed, and
+   * within 2 GiB with the count assumed when it is not known (1 output,
+   * 2 columns: 1.6 GB), but not with 2 outputs (3 columns). */
+  fb_sim_opts_default(&o);
+  o.t_end = 9.9;
+  o.sample_rate = 1e7;
+  CHECK(fb_sim_opts_check(&o, &err) == FB_OK);
+  o.noutputs = 2;
+  check_opts_message(&o, "simulation.sample_rate: 1e+07 Hz over 9.9 s gives 9.9e+07 samples "
+                         "of 3 columns, which would need about 2.4 GB (samples x columns x 8 "
+                         "bytes), more than the 2.1 GB a run's result may take");
   fb_sim_opts_default(&o);
   const double bad[2] = {0.5, NAN};
   o.breakpoints = bad;

@@ -45,14 +45,27 @@ typedef struct fb_sim_opts {
   const double *x0;            /* initial state (borrowed), NULL for the graph's */
   fb_sim_progress_fn progress; /* NULL for none */
   void *progress_ctx;
+  /* Outputs the run records besides t, for fb_sim_opts_check's estimate of
+   * the result's memory; 0 when not known yet (counted as 1). fb_sim_run
+   * checks again with its diagram's own count. */
+  size_t noutputs;
 } fb_sim_opts;
+
+/* Most bytes the sampled result of one run may take: 2 GiB (samples x
+ * (1 + outputs) x 8 bytes; docs/errors.md, "Limits"). Written out as CSV
+ * it would be some 6 GB of text, and `flexbond run` holds three such
+ * tables at once (both systems and their difference). */
+#define FB_SIM_MAX_RESULT_BYTES ((double)(1UL << 31))
 
 /* Fills the defaults stated above (t_end = 1). */
 void fb_sim_opts_default(fb_sim_opts *opts);
-/* FB_EINVAL naming the option when opts is inconsistent, or when
+/* FB_EINVAL naming the option when opts is inconsistent, when
  * t_end - t_start is too short for CVODE to take a first step (below
  * max(1.5e-154 s, 100 roundoffs of |t_start|, |t_end|); src/sim/opts.c
- * says why). */
+ * says why), when the run is certain not to finish ((t_end - t_start) /
+ * max_step above max_steps: "simulation.max_step: ...") or when its
+ * result would take more than FB_SIM_MAX_RESULT_BYTES
+ * ("simulation.sample_rate: ... would need about X GB ..."). */
 int fb_sim_opts_check(const fb_sim_opts *opts, fb_err *err);
 
 typedef struct fb_sim_stats {

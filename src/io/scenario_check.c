@@ -204,6 +204,14 @@ static int sc_check_other_road(const fb_scenario *s, fb_err *err)
     rc = fb_err_set(err, FB_EINVAL, "%s.front_start: must be finite", key);
   if (rc)
     return rc;
+  /* Checked here too, to point at the key: the road's own message names
+   * its parameter. */
+  if (s->road_kind == FB_ROAD_ISO8608 && s->road_iso.nharmonics > FB_ROAD_ISO8608_MAX_HARMONICS)
+    return fb_err_set(err, FB_EINVAL,
+                      "road.iso8608.harmonics: at most %zu (got %zu): every road height sums "
+                      "them all, so the run's time grows with them (docs/roads.md, "
+                      "\"Limits\")",
+                      FB_ROAD_ISO8608_MAX_HARMONICS, s->road_iso.nharmonics);
   fb_road *road = NULL;
   if (s->road_kind == FB_ROAD_ISO8608)
     rc = fb_road_new_iso8608(&s->road_iso, &road, err);
@@ -238,7 +246,8 @@ static int sc_check_road(const fb_scenario *s, fb_err *err)
 }
 
 /* The scenario's tolerances and grid, then the solver's own limits
- * (fb_sim_opts_check: sample count, ...). */
+ * (fb_sim_opts_check: sample count, the result's memory, the steps that
+ * max_step forces). */
 static int sc_check_simulation(const fb_scenario *s, fb_err *err)
 {
   const sc_value v[] = {
@@ -266,6 +275,9 @@ static int sc_check_simulation(const fb_scenario *s, fb_err *err)
   o.max_step = s->max_step;
   o.max_steps = s->max_steps;
   o.sample_rate = s->sample_rate;
+  /* What fb_vehicle_build records: the seven outputs and, for the contact
+   * intervals, a tire force per corner (the most a run has). */
+  o.noutputs = FB_NOUTPUTS + FB_NCORNERS;
   return fb_sim_opts_check(&o, err);
 }
 

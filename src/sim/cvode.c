@@ -875,7 +875,11 @@ int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err)
   struct timespec t0;
   clock_gettime(CLOCK_MONOTONIC, &t0);
   *out = NULL;
-  int rc = fb_sim_opts_check(opts, err);
+  /* With the diagram's own output count, which the caller's opts may not
+   * know: the result's memory is estimated before it is allocated. */
+  fb_sim_opts checked = *opts;
+  checked.noutputs = fb_bd_noutputs(bd);
+  int rc = fb_sim_opts_check(&checked, err);
   if (rc != FB_OK)
     return rc;
   sim_run run;

@@ -29,6 +29,7 @@ void fb_sim_opts_default(fb_sim_opts *opts)
   opts->x0 = NULL;
   opts->progress = NULL;
   opts->progress_ctx = NULL;
+  opts->noutputs = 0;
 }
 
 double fb_sim_same_time_tol(double a, double b)
@@ -64,6 +65,24 @@ static void format_exact(double v, char *buf, size_t size)
   }
 }
 
+/* The result's memory, estimated before anything is allocated: it is
+ * allocated whole at the start (samples x columns doubles), so a rate
+ * that cannot fit fails now, not gigabytes later. */
+static int check_result_size(const fb_sim_opts *o, double nsamples, fb_err *err)
+{
+  const double columns = 1.0 + (double)(o->noutputs ? o->noutputs : 1);
+  const double bytes = (nsamples + 1.0) * columns * (double)sizeof(double);
+  if (bytes <= FB_SIM_MAX_RESULT_BYTES)
+    return FB_OK;
+  return fb_err_set(err, FB_EINVAL,
+                    "simulation.sample_rate: %g Hz over %g s gives %.3g samples of %.0f "
+                    "columns, which would need about %.1f GB (samples x columns x 8 bytes), "
+                    "more than the %.1f GB a run's result may take (docs/errors.md, "
+                    "\"Limits\")",
+                    o->sample_rate, o->t_end - o->t_start, nsamples + 1.0, columns, bytes / 1e9,
+                    FB_SIM_MAX_RESULT_BYTES / 1e9);
+}
+
 static int check_times(const fb_sim_opts *o, fb_err *err)
 {
   if (!isfinite(o->t_start))
@@ -92,6 +111,9 @@ static int check_times(const fb_sim_opts *o, fb_err *err)
                       "simulation.sample_rate: %g Hz over %g s gives %.3g samples, more than "
                       "the limit of %.0e",
                       o->sample_rate, o->t_end - o->t_start, nsamples, MAX_SAMPLES);
+  const int rc = check_result_size(o, nsamples, err);
+  if (rc != FB_OK)
+    return rc;
   if (o->nbreakpoints && !o->breakpoints)
     return fb_err_set(err, FB_EINVAL, "simulation.breakpoints: NULL with %zu entries",
                       o->nbreakpoints);
@@ -100,6 +122,25 @@ static int check_times(const fb_sim_opts *o, fb_err *err)
       return fb_err_set(err, FB_EINVAL, "simulation.breakpoints[%zu]: must be finite, got %g",
                         i, o->breakpoints[i]);
   return FB_OK;
+}
+
+/* CVODE never steps further than max_step, so a run takes at least
+ * (t_end - t_start) / max_step steps; above max_steps it is certain to
+ * stop with CV_TOO_MUCH_WORK, after all those steps (minutes to hours):
+ * refused now instead. */
+static int check_step_budget(const fb_sim_opts *o, fb_err *err)
+{
+  if (!(o->max_step > 0))
+    return FB_OK;
+  const double span = o->t_end - o->t_start;
+  const double fewest = ceil(span / o->max_step);
+  if (!(fewest > (double)o->max_steps))
+    return FB_OK;
+  return fb_err_set(err, FB_EINVAL,
+                    "simulation.max_step: %g s over the run's %g s (t_end - t_start) needs at "
+                    "least %.3g steps, more than simulation.max_steps = %ld: the run could not "
+                    "finish; raise max_step or max_steps",
+                    o->max_step, span, fewest, o->max_steps);
 }
 
 static int check_solver(const fb_sim_opts *o, fb_err *err)
@@ -118,7 +159,7 @@ static int check_solver(const fb_sim_opts *o, fb_err *err)
   if (o->max_steps < 1)
     return fb_err_set(err, FB_EINVAL, "simulation.max_steps: must be positive, got %ld",
                       o->max_steps);
-  return FB_OK;
+  return check_step_budget(o, err);
 }
 
 int fb_sim_opts_check(const fb_sim_opts *opts, fb_err *err)
