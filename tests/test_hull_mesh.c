@@ -437,6 +437,16 @@ static void test_errors(void)
   p = p0;
   p.density = 0;
   expect_error(s, &p, "density must be in 1 .. 64 (got 0)", NULL);
+  /* Refused from the coarse mesh's 240 elements, before any of the
+   * refined 983040 is allocated; density 16 (61440) is the most. */
+  p = p0;
+  p.density = 64;
+  expect_error(s, &p,
+               "hull.mesh.density: 64 refines the generated mesh's 240 elements into 983040, "
+               "which would need about 64.4 GB",
+               "density 16 for this mesh");
+  p.density = 17;
+  expect_error(s, &p, "hull.mesh.density: 17 refines", "into 69360");
   p = p0;
   p.nose_rows = 0;
   expect_error(s, &p, "nose_rows", NULL);

@@ -53,6 +53,17 @@
 #define MAX_DENSITY 64
 #define MAX_DIVISIONS 1000
 
+/* System 2's memory per element of the refined mesh, measured with
+ * `flexbond modes --system flexible` on the reference hull: 63 MB at
+ * density 2 (960 elements), 227 MB at density 4 (3840, 20 s), 936 MB at
+ * density 8 (15360, 5 min), about 61 KB per element (the stiffness and
+ * mass matrices, their KLU factors, the Lanczos vectors), rounded up to
+ * 64 KiB since the factors grow faster than the mesh. The bound keeps that estimate within 4
+ * GiB: 65536 elements, density 16 on the reference mesh (61440), which already takes hours;
+ * density 64 would need some 64 GB. */
+#define BYTES_PER_ELEMENT 65536.0
+#define MAX_REFINED_ELEMENTS 65536
+
 /* ---- Parameters. */
 
 int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb_err *err)
@@ -842,6 +853,36 @@ static int split_element(build_mesh *fine, const size_t *grid, size_t nn, int d,
   return rc;
 }
 
+/* The refined mesh's size, estimated from the coarse one before any of
+ * it is allocated: refining splits every element into d^2 (d = 1: the
+ * coarse mesh itself, which side_rows, nose_rows and nose_rung_divisions
+ * up to MAX_DIVISIONS can make large too). */
+static int check_refined_size(const build_mesh *coarse, int d, fb_err *err)
+{
+  const double elements = (double)coarse->nelems * (double)d * (double)d;
+  if (elements <= MAX_REFINED_ELEMENTS)
+    return FB_OK;
+  const double bytes = elements * BYTES_PER_ELEMENT;
+  const double allowed = MAX_REFINED_ELEMENTS * BYTES_PER_ELEMENT;
+  if (d == 1) /* the generator's own rows and divisions made it so large */
+    return fb_err_set(err, FB_EINVAL,
+                      "hull.mesh.generator: the generated mesh has %zu elements, which would "
+                      "need about %.1f GB of memory for System 2 (about 64 KiB per element), "
+                      "more than the %.1f GB allowed (at most %d elements; docs/hull-mesh.md, "
+                      "\"Limits\")",
+                      coarse->nelems, bytes / 1e9, allowed / 1e9, MAX_REFINED_ELEMENTS);
+  int most = 1;
+  while ((double)coarse->nelems * (most + 1) * (most + 1) <= MAX_REFINED_ELEMENTS)
+    ++most;
+  return fb_err_set(err, FB_EINVAL,
+                    "hull.mesh.density: %d refines the generated mesh's %zu elements into "
+                    "%.0f, which would need about %.1f GB of memory for System 2 (about "
+                    "64 KiB per element), more than the %.1f GB allowed (at most %d "
+                    "elements: density %d for this mesh; docs/hull-mesh.md, \"Limits\")",
+                    d, coarse->nelems, elements, bytes / 1e9, allowed / 1e9,
+                    MAX_REFINED_ELEMENTS, most);
+}
+
 static int refine(const build_mesh *coarse, int d, build_mesh *fine, fb_err *err)
 {
   *fine = (build_mesh){0};
@@ -979,6 +1020,8 @@ int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb
     const hull_geom g = {p, xl.values, yl.values, xl.n, yl.n};
     rc = mesh_plates(&coarse, &g, err);
   }
+  if (rc == FB_OK && p->density > 1)
+    rc = check_refined_size(&coarse, p->density, err);
   if (rc == FB_OK && p->density > 1)
     rc = refine(&coarse, p->density, &fine, err);
   if (rc == FB_OK)
