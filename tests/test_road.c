@@ -579,6 +579,13 @@ static void test_iso_errors(void)
   prm.nharmonics = 0;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
   CHECK(contains(err.msg, "nharmonics"));
+  /* Only slow, but hours slow: bounded (flexbond/road.h). */
+  prm.nharmonics = FB_ROAD_ISO8608_MAX_HARMONICS + 1;
+  CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
+  CHECK(road == NULL && contains(err.msg, "nharmonics must be in 1 .. 16384 (got 16385)"));
+  prm.nharmonics = FB_ROAD_ISO8608_MAX_HARMONICS;
+  CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_OK);
+  fb_road_free(&road);
   fb_road_iso8608_defaults(&prm);
   prm.fade_length = -1.0;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);

@@ -63,12 +63,21 @@ int fb_road_speed_bump(const char *type, double *height, double *length, fb_err 
 
 /* ---- ISO 8608:2016 random roads. */
 
+/* Most harmonics per track (docs/roads.md, "Limits"). Every road height
+ * sums them all, for both tracks at every wheel and every evaluation of
+ * the right-hand side, so a run's time grows with them: the reference
+ * random-road run takes about 2 s at the default 1024 and 30 s at 16384,
+ * and would take hours at a million. 16384 already spaces the default
+ * band's harmonics 1.7e-4 cycles/m apart, a road that repeats only after
+ * some 6 km. */
+#define FB_ROAD_ISO8608_MAX_HARMONICS ((size_t)16384)
+
 typedef struct fb_road_iso8608_params {
   char road_class;    /* 'A' .. 'H' (lower case accepted) */
   uint64_t seed;      /* any value; the same seed gives the same road */
   double n_min;       /* cycles/m, lower end of the band, > 0 */
   double n_max;       /* cycles/m, upper end of the band, > n_min */
-  size_t nharmonics;  /* harmonics per track, 1 .. 1000000 */
+  size_t nharmonics;  /* harmonics per track, 1 .. FB_ROAD_ISO8608_MAX_HARMONICS */
   double fade_length; /* m, >= 0: z is 0 for s <= 0 and faded in over
                          [0, fade_length]; 0: no fade, z defined for all s */
 } fb_road_iso8608_params;

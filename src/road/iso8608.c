@@ -19,7 +19,6 @@
 static const double TWO_PI = 6.28318530717958647693;
 static const double ISO_N0 = 0.1;        /* cycles/m */
 static const double ISO_GD0_A = 16.0e-6; /* m^3, class A */
-static const size_t MAX_HARMONICS = 1000000;
 
 void fb_road_iso8608_defaults(fb_road_iso8608_params *p)
 {
@@ -103,9 +102,9 @@ static int check_params(const fb_road_iso8608_params *p, double *gd0, fb_err *er
     return fb_err_set(err, FB_EINVAL,
                       "ISO 8608 road: n_max must be > n_min = %g cycles/m (got %g)", p->n_min,
                       p->n_max);
-  if (p->nharmonics < 1 || p->nharmonics > MAX_HARMONICS)
+  if (p->nharmonics < 1 || p->nharmonics > FB_ROAD_ISO8608_MAX_HARMONICS)
     return fb_err_set(err, FB_EINVAL, "ISO 8608 road: nharmonics must be in 1 .. %zu (got %zu)",
-                      MAX_HARMONICS, p->nharmonics);
+                      FB_ROAD_ISO8608_MAX_HARMONICS, p->nharmonics);
   if (!(isfinite(p->fade_length) && p->fade_length >= 0.0))
     return fb_err_set(err, FB_EINVAL, "ISO 8608 road: fade_length must be >= 0 m (got %g)",
                       p->fade_length);
