@@ -991,6 +991,18 @@ static void test_blame(void)
   CHECK(fb_model_blame(NULL, NULL) == FB_OK);
 }
 
+/* An expression is no one-line text: a block scalar's line breaks are
+ * blanks in it, where a unit or name with one is refused. */
+static void test_multiline_expression(void)
+{
+  fb_model *m = load_ok("model: m\nelements:\n  - name: F\n    type: Se\n    value: |\n"
+                        "      1 +\n      2 * t\n  - {name: M, type: I, m: 1}\nbonds:\n"
+                        "  - [F, M]\n",
+                        NULL);
+  CHECK(m != NULL);
+  fb_model_free(&m);
+}
+
 /* ---- API edges. */
 
 static void test_api(void)
@@ -1015,6 +1027,7 @@ int main(void)
 {
   test_bad_models();
   test_blame();
+  test_multiline_expression();
   test_parameters();
   test_subsystems();
   test_reexport();

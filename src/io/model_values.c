@@ -267,7 +267,9 @@ static int ml_tfun_scalar(const ml_ctx *c, struct fy_node *n, const fb_symtab *s
                           fb_tfun **out)
 {
   const char *text = NULL;
-  int rc = ml_string(c, n, &text);
+  /* An expression may span lines (a block scalar): line breaks and tabs
+   * are blanks to the parser, as in every other number's expression. */
+  int rc = ml_text(c, n, &text);
   if (rc)
     return rc;
   fb_expr *e = NULL;
