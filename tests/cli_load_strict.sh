@@ -159,10 +159,10 @@ refused 2 "hexadecimal in a scenario" \
   "$(at s_hex.yaml 'speed_kmh: 0x' '0x') road.speed_kmh: '0x1p3' is not a decimal number" -- \
   run s_hex.yaml -o "$WORK/out"
 # (inf, nan and 1e999 were refused before, as strtod reports them.)
-for opt in "--t-end 0x10" "--rtol 0x1p-10" "--sample-rate 0x400"; do
-  set -- $opt
-  refused 1 "sim $opt" "flexbond sim: option '$1' needs a finite number > 0" "(got '$2')" -- \
-    sim m_ok.yaml -o "$WORK/out" "$1" "$2"
+for opt in --t-end=0x10 --rtol=0x1p-10 --sample-rate=0x400; do
+  name=${opt%%=*} value=${opt#*=}
+  refused 1 "sim $name $value" "flexbond sim: option '$name' needs a finite number > 0" \
+    "(got '$value')" -- sim m_ok.yaml -o "$WORK/out" "$name" "$value"
 done
 
 # ---- Graph errors found after loading name the element or bond in the
