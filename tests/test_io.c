@@ -117,10 +117,11 @@ static void test_commit_creates_file(void)
   fb_out *o = NULL;
   CHECK(fb_out_open(in_root(path, sizeof path, "a.txt"), &o, &err) == FB_OK);
   CHECK(o != NULL);
-  /* Until commit the data lives only in the temporary file. */
-  char tmp_name[64];
-  snprintf(tmp_name, sizeof tmp_name, "a.txt.tmp.%ld", (long)getpid());
-  CHECK(strcmp(listing(root, list, sizeof list), tmp_name) == 0);
+  /* Until commit the data lives only in the temporary file, hidden and
+   * beside it: ".a.txt.XXXXXX.tmp". */
+  const char *tmp_name = listing(root, list, sizeof list);
+  CHECK(strncmp(tmp_name, ".a.txt.", 7) == 0 && strlen(tmp_name) == 17 &&
+        strcmp(tmp_name + 13, ".tmp") == 0);
   fputs("hello\n", fb_out_stream(o));
   fprintf(fb_out_stream(o), "%d\n", 42);
   CHECK(fb_out_commit(&o, &err) == FB_OK);

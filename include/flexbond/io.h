@@ -14,14 +14,14 @@
 extern "C" {
 #endif
 
-/* An output file being written: fb_out_open creates "path.tmp.PID",
- * fb_out_commit flushes, closes and renames it to path, fb_out_abort
- * removes it. Exactly one of commit/abort must follow a successful open.
- * A path that is a symbolic link is followed (the file it names is
- * replaced, the link kept); one that exists and is not a regular file (a
- * FIFO, /dev/stdout on a terminal, a device) gets the whole output copied
- * in by fb_out_commit, and nothing on abort. A directory or a link to
- * nothing is refused (FB_EIO). */
+/* An output file being written: fb_out_open creates a temporary file
+ * ".NAME.XXXXXX.tmp" beside path, exclusively (a file or a symbolic link
+ * already at that name is never opened), fb_out_commit flushes, closes and
+ * renames it to path, fb_out_abort removes it. Exactly one of commit/abort must follow a
+ * successful open. A path that is a symbolic link is followed (the file it names is replaced,
+ * the link kept); one that exists and is not a regular file (a FIFO, /dev/stdout on a terminal,
+ * a device) gets the whole output copied in by fb_out_commit, and nothing on abort. A directory
+ * or a link to nothing is refused (FB_EIO). */
 typedef struct fb_out fb_out;
 int fb_out_open(const char *path, fb_out **out, fb_err *err);
 FILE *fb_out_stream(fb_out *o);
@@ -31,6 +31,12 @@ void fb_out_abort(fb_out **o);
 
 /* Creates directory dir and its missing parents (mode 0777 & ~umask). */
 int fb_mkdir_p(const char *dir, fb_err *err);
+/* fb_mkdir_p that also returns, in *created (fresh memory, the caller
+ * frees it), the first directory it created: the shallowest of those that
+ * were not there, so that a caller that fails can remove them all; NULL if
+ * dir was there already. On failure, what was created is left as it is
+ * and *created names it. */
+int fb_mkdir_p_created(const char *dir, char **created, fb_err *err);
 
 /* The first line of a CSV file of results. */
 typedef enum fb_csv_header {

@@ -8,6 +8,7 @@
 #define FLEXBOND_MAT_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/error.h"
 
@@ -95,7 +96,11 @@ int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err);
  * a field law or transformer of a bond graph has as many rows as its ports
  * carry, nowhere near a million (docs/errors.md, "Limits"). */
 #define FB_MTX_MAX_DIM ((size_t)1000000)
-/* Writes coordinate real general with %.17g values. */
+/* Prints a as Matrix Market coordinate real general with %.17g values;
+ * write errors stick to fp. */
+void fb_mat_print_mtx(FILE *fp, const fb_mat *a);
+/* Writes a to path (fb_mat_print_mtx) through a temporary file created
+ * exclusively beside it and renamed into place: all or nothing. */
 int fb_mat_write_mtx(const fb_mat *a, const char *path, fb_err *err);
 
 /* Sparse LU factorisation of a square matrix with KLU

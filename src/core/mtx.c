@@ -18,10 +18,12 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "flexbond/mat.h"
 
 #include "core/textfile.h"
+#include "core/tmpfile.h"
 
 typedef struct mtx_header {
   int coordinate; /* coordinate (sparse) or array (dense) format */
@@ -231,6 +233,7 @@ static int check_size(const mtx_reader *r, const mtx_header *h, const mtx_size *
 
 static int read_size(mtx_reader *r, const mtx_header *h, mtx_size *s)
 {
+  *s = (mtx_size){0, 0, 0}; /* defined on every path, a failing one too */
   char *cursor = NULL;
   int rc = fb_text_next_data_line(r, '%', &cursor);
   if (rc)
@@ -439,22 +442,50 @@ static void write_entry(void *ctx, size_t row, size_t col, double val)
 
 /* %.17g makes every double round-trip exactly through strtod (IEEE
  * 754-2008, section 5.12.2: 17 significant digits suffice for binary64). */
+void fb_mat_print_mtx(FILE *fp, const fb_mat *a)
+{
+  size_t entries = 0;
+  fb_mat_foreach(a, count_entry, &entries);
+  fprintf(fp, "%%%%MatrixMarket matrix coordinate real general\n%zu %zu %zu\n", fb_mat_nrows(a),
+          fb_mat_ncols(a), entries);
+  fb_mat_foreach(a, write_entry, fp);
+}
+
+/* Through a temporary file beside path, created exclusively
+ * (core/tmpfile.h), renamed over path once complete. */
 int fb_mat_write_mtx(const fb_mat *a, const char *path, fb_err *err)
 {
   if (!a || !path)
     return fb_err_set(err, FB_EINVAL, "matrix or path is NULL");
-  FILE *fp = fopen(path, "w");
-  if (!fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot open for writing: %s", path, strerror(errno));
-  size_t entries = 0;
-  fb_mat_foreach(a, count_entry, &entries);
+  int fd = -1;
+  char *tmp = NULL;
+  const int e = fb_tmpfile_create(path, &fd, &tmp);
+  FILE *fp = e == 0 ? fdopen(fd, "w") : NULL;
+  if (!fp) {
+    const int why = e ? e : errno;
+    if (fd >= 0)
+      close(fd);
+    if (tmp)
+      remove(tmp);
+    free(tmp);
+    return fb_err_set(err, why == ENOMEM ? FB_ENOMEM : FB_EIO,
+                      "%s: cannot open for writing: %s", path, strerror(why));
+  }
   errno = 0;
-  fprintf(fp, "%%%%MatrixMarket matrix coordinate real general\n%zu %zu %zu\n", fb_mat_nrows(a),
-          fb_mat_ncols(a), entries);
-  fb_mat_foreach(a, write_entry, fp);
-  const int write_failed = ferror(fp);
+  fb_mat_print_mtx(fp, a);
+  const int write_failed = ferror(fp) || fflush(fp) != 0;
+  const int saved = errno;
   const int close_failed = fclose(fp) != 0;
+  int rc = FB_OK;
   if (write_failed || close_failed)
-    return fb_err_set(err, FB_EIO, "%s: write failed: %s", path, strerror(errno ? errno : EIO));
-  return FB_OK;
+    rc = fb_err_set(err, FB_EIO, "%s: write failed: %s", path,
+                    strerror(saved   ? saved
+                             : errno ? errno
+                                     : EIO));
+  else if (rename(tmp, path) != 0)
+    rc = fb_err_set(err, FB_EIO, "%s: cannot move into place: %s", path, strerror(errno));
+  if (rc != FB_OK)
+    remove(tmp);
+  free(tmp);
+  return rc;
 }

@@ -1,11 +1,11 @@
 /* Atomic output files and directory creation (see flexbond/io.h).
  *
- * An output is written to "path.tmp.PID" next to its destination and
- * renamed into place once flushed and synced: rename(2) within one file
- * system replaces the destination atomically (POSIX.1-2008, rename), so a
- * reader sees either the old complete file or the new complete one, never
- * a truncated one. The PID suffix keeps concurrent runs from sharing a
- * temporary file.
+ * An output is written to a temporary file next to its destination
+ * (fb_tmpfile_create: created exclusively, never through a link planted at
+ * its name) and renamed into place once flushed and synced: rename(2)
+ * within one file system replaces the destination atomically
+ * (POSIX.1-2008, rename), so a reader sees either the old complete file or
+ * the new complete one, never a truncated one.
  *
  * A destination that is a symbolic link is followed: the file it names is
  * replaced and the link kept. A destination that exists but is not a
@@ -28,11 +28,13 @@
 
 #include "flexbond/io.h"
 
+#include "core/tmpfile.h"
+
 struct fb_out {
   FILE *fp;
   char *path;     /* destination as given, for messages */
   char *target;   /* the file renamed over: path, or the file a link names */
-  char *tmp_path; /* "target.tmp.PID", where the data goes until commit;
+  char *tmp_path; /* the temporary file beside target, where the data goes until commit;
                      NULL for a destination that is not a regular file
                      (fp is then an anonymous tmpfile copied on commit) */
 };
@@ -44,20 +46,6 @@ static char *copy_string(const char *s)
   if (copy)
     memcpy(copy, s, n);
   return copy;
-}
-
-/* "path.tmp.PID" in fresh memory, NULL when out of memory. */
-static char *make_tmp_path(const char *path)
-{
-  const char *fmt = "%s.tmp.%ld";
-  long pid = (long)getpid();
-  int n = snprintf(NULL, 0, fmt, path, pid);
-  if (n < 0)
-    return NULL;
-  char *tmp = malloc((size_t)n + 1);
-  if (tmp)
-    snprintf(tmp, (size_t)n + 1, fmt, path, pid);
-  return tmp;
 }
 
 static void out_destroy(fb_out *o)
@@ -82,8 +70,8 @@ static int is_standard_stream(const struct stat *st)
 }
 
 /* Where the data of o goes: o->target (path itself, or the regular file
- * a symbolic link at path names) and o->tmp_path beside it, or, for an
- * existing destination that is not a regular file, no temporary path. */
+ * a symbolic link at path names), or, for an existing destination that is
+ * not a regular file, no target (the data then go to a tmpfile). */
 static int out_resolve(fb_out *o, fb_err *err)
 {
   struct stat st, lst;
@@ -106,10 +94,33 @@ static int out_resolve(fb_out *o, fb_err *err)
   } else {
     o->target = copy_string(o->path);
   }
-  if (o->target)
-    o->tmp_path = make_tmp_path(o->target);
-  if (!o->target || !o->tmp_path)
+  if (!o->target)
     return fb_err_set(err, FB_ENOMEM, "%s: out of memory", o->path);
+  return FB_OK;
+}
+
+/* Opens o->fp: a new temporary file beside o->target, or, without a
+ * target, an anonymous one. */
+static int out_create(fb_out *o, fb_err *err)
+{
+  if (!o->target) {
+    o->fp = tmpfile();
+    return o->fp ? FB_OK
+                 : fb_err_set(err, FB_EIO, "%s: cannot create file: %s", o->path,
+                              strerror(errno));
+  }
+  int fd = -1;
+  const int e = fb_tmpfile_create(o->target, &fd, &o->tmp_path);
+  if (e == ENOMEM)
+    return fb_err_set(err, FB_ENOMEM, "%s: out of memory", o->path);
+  if (e != 0)
+    return fb_err_set(err, FB_EIO, "%s: cannot create file: %s", o->path, strerror(e));
+  o->fp = fdopen(fd, "w");
+  if (!o->fp) {
+    const int saved = errno;
+    close(fd);
+    return fb_err_set(err, FB_EIO, "%s: cannot create file: %s", o->path, strerror(saved));
+  }
   return FB_OK;
 }
 
@@ -124,12 +135,11 @@ int fb_out_open(const char *path, fb_out **out, fb_err *err)
   o->path = copy_string(path);
   int rc =
       o->path ? out_resolve(o, err) : fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
-  if (!rc) {
-    o->fp = o->tmp_path ? fopen(o->tmp_path, "w") : tmpfile();
-    if (!o->fp)
-      rc = fb_err_set(err, FB_EIO, "%s: cannot create file: %s", path, strerror(errno));
-  }
+  if (!rc)
+    rc = out_create(o, err);
   if (rc) {
+    if (o->tmp_path)
+      remove(o->tmp_path);
     out_destroy(o);
     return rc;
   }
@@ -228,11 +238,15 @@ void fb_out_abort(fb_out **o)
 }
 
 /* mkdir of one component of dir (whole is dir, for the message) that
- * accepts an existing directory but not an existing file. */
-static int make_one_dir(const char *component, const char *whole, fb_err *err)
+ * accepts an existing directory but not an existing file; *made says
+ * whether this call created it. */
+static int make_one_dir(const char *component, const char *whole, int *made, fb_err *err)
 {
-  if (mkdir(component, 0777) == 0)
+  *made = 0;
+  if (mkdir(component, 0777) == 0) {
+    *made = 1;
     return FB_OK;
+  }
   int saved = errno;
   struct stat st;
   if (saved == EEXIST && stat(component, &st) == 0 && S_ISDIR(st.st_mode))
@@ -244,25 +258,45 @@ static int make_one_dir(const char *component, const char *whole, fb_err *err)
                     reason);
 }
 
-int fb_mkdir_p(const char *dir, fb_err *err)
+/* Records prefix, just created, as the first directory made (once). */
+static int note_created(const char *prefix, int made, char **created, fb_err *err)
 {
+  if (!made || !created || *created)
+    return FB_OK;
+  *created = copy_string(prefix);
+  return *created ? FB_OK : fb_err_set(err, FB_ENOMEM, "%s: out of memory", prefix);
+}
+
+int fb_mkdir_p_created(const char *dir, char **created, fb_err *err)
+{
+  if (created)
+    *created = NULL;
   if (!dir || !*dir)
     return fb_err_set(err, FB_EINVAL, "directory: empty path");
   char *prefix = copy_string(dir);
   if (!prefix)
     return fb_err_set(err, FB_ENOMEM, "%s: out of memory", dir);
-  int rc = FB_OK;
+  int rc = FB_OK, made = 0;
   /* Create each proper prefix ending before a '/', then dir itself; the
    * leading '/' of an absolute path and repeated slashes are skipped. */
   for (char *p = prefix + 1; *p && rc == FB_OK; ++p) {
     if (*p != '/' || p[-1] == '/')
       continue;
     *p = '\0';
-    rc = make_one_dir(prefix, dir, err);
+    rc = make_one_dir(prefix, dir, &made, err);
+    if (rc == FB_OK)
+      rc = note_created(prefix, made, created, err);
     *p = '/';
   }
   if (rc == FB_OK)
-    rc = make_one_dir(dir, dir, err);
+    rc = make_one_dir(dir, dir, &made, err);
+  if (rc == FB_OK)
+    rc = note_created(dir, made, created, err);
   free(prefix);
   return rc;
+}
+
+int fb_mkdir_p(const char *dir, fb_err *err)
+{
+  return fb_mkdir_p_created(dir, NULL, err);
 }

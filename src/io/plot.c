@@ -5,15 +5,15 @@
  * and System 2, sampled alike or not) can share a panel. */
 #include <errno.h>
 #include <math.h>
-#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "flexbond/io.h"
 
+#include "core/tmpfile.h"
+#include "io/child.h"
 #include "io/plot_internal.h"
 
 /* Line styles of the curves of one panel, in order; a panel with more
@@ -25,10 +25,6 @@ static const struct {
 } line_styles[] = {{"#1f4e9a", 1}, {"#c0392b", 2}, {"#2e8b57", 4}, {"#7f7f7f", 5}};
 enum { NLINE_STYLES = sizeof line_styles / sizeof line_styles[0] };
 
-/* The environment handed to gnuplot (POSIX.1-2008, exec: the application
- * declares it). */
-extern char **environ;
-
 void fb_plot_opts_default(fb_plot_opts *opts)
 {
   *opts = (fb_plot_opts){.title = NULL, .t_min = 0, .t_max = 0, .width = 0, .panel_height = 0};
@@ -38,9 +34,12 @@ void fb_gnuplot_quoted(FILE *fp, const char *s)
 {
   fputc('\'', fp);
   for (; *s; ++s) {
-    if (*s == '\'')
+    const unsigned char c = (unsigned char)*s;
+    if (c == '\'')
       fputc('\'', fp);
-    fputc(*s, fp);
+    /* A line end would end the string and the command: the next line
+     * would be gnuplot's to run ("!cmd" runs a shell command). */
+    fputc(c < 0x20 || c == 0x7f ? '?' : c, fp);
   }
   fputc('\'', fp);
 }
@@ -154,7 +153,7 @@ static void write_panel(FILE *gp, const fb_plot_panel *p, size_t first_id)
 
 static void write_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
                          const fb_plot_opts *o, double t_min, double t_max,
-                         const char *tmp_path)
+                         const char *png_name)
 {
   size_t id = 0;
   for (size_t i = 0; i < npanels; ++i)
@@ -164,7 +163,7 @@ static void write_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
   size_t panel_height = o->panel_height > 0 ? (size_t)o->panel_height : 220;
   size_t height = panel_height * npanels + (o->title ? 40 : 0);
   fprintf(gp, "set terminal pngcairo size %d,%zu font 'Sans,9'\nset output ", width, height);
-  fb_gnuplot_quoted(gp, tmp_path);
+  fb_gnuplot_quoted(gp, png_name);
   fputs("\nset termoption noenhanced\nset grid\nset xlabel 't [s]'\n", gp);
   fprintf(gp, "set xrange [%.10g:%.10g]\n", t_min, t_max);
   fprintf(gp, "set multiplot layout %zu,1", npanels);
@@ -205,17 +204,17 @@ static int check_panels(const fb_plot_panel *panels, size_t npanels, double t_mi
   return FB_OK;
 }
 
-/* Writes the script made by fn, drawing into png_tmp, to the file
+/* Writes the script made by fn, drawing into png_name, to the file
  * script. A file rather than a pipe: gnuplot missing or failing early
  * cannot raise SIGPIPE in this process, and its exit status tells.
  * fb_out reports a full disk with its errno. */
 static int write_script_file(const char *script, fb_gnuplot_script_fn fn, const void *ctx,
-                             const char *png_tmp, const char *path, fb_err *err)
+                             const char *png_name, const char *path, fb_err *err)
 {
   fb_out *o = NULL;
   int rc = fb_out_open(script, &o, err);
   if (rc == FB_OK) {
-    fn(fb_out_stream(o), ctx, png_tmp);
+    fn(fb_out_stream(o), ctx, png_name);
     rc = fb_out_commit(&o, err);
   }
   if (rc != FB_OK)
@@ -223,40 +222,14 @@ static int write_script_file(const char *script, fb_gnuplot_script_fn fn, const 
   return rc;
 }
 
-/* Runs "gnuplot script" and waits for it. gnuplot's own messages go to
- * the inherited stderr; a non-zero exit is reported here. */
-static int run_gnuplot(char *script, const char *path, fb_err *err)
+/* dir/name in fresh memory, NULL when out of it. */
+static char *in_dir(const char *dir, const char *name)
 {
-  char program[] = "gnuplot";
-  char *argv[] = {program, script, NULL};
-  pid_t pid;
-  int e = posix_spawnp(&pid, program, NULL, NULL, argv, environ);
-  if (e != 0)
-    return fb_err_set(
-        err, FB_EIO,
-        "%s: cannot start gnuplot: %s; is gnuplot (Debian package gnuplot-nox) installed?",
-        path, strerror(e));
-  int status = 0;
-  pid_t waited;
-  do
-    waited = waitpid(pid, &status, 0);
-  while (waited == -1 && errno == EINTR);
-  if (waited == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    return fb_err_set(err, FB_EIO,
-                      "%s: gnuplot failed (exit status %d); is gnuplot (Debian package "
-                      "gnuplot-nox) installed?",
-                      path, waited != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-  return FB_OK;
-}
-
-/* "path.tmp.PID" followed by suffix, in fresh memory (NULL if out of it). */
-static char *tmp_name(const char *path, const char *suffix)
-{
-  size_t n = strlen(path) + strlen(suffix) + 32;
-  char *tmp = malloc(n);
-  if (tmp)
-    snprintf(tmp, n, "%s.tmp.%ld%s", path, (long)getpid(), suffix);
-  return tmp;
+  const size_t n = strlen(dir) + strlen(name) + 2;
+  char *p = malloc(n);
+  if (p)
+    snprintf(p, n, "%s/%s", dir, name);
+  return p;
 }
 
 /* The time-series figure as a gnuplot script writer. */
@@ -267,10 +240,10 @@ typedef struct panels_script {
   double t_min, t_max;
 } panels_script;
 
-static void write_panels_script(FILE *gp, const void *ctx, const char *png_tmp)
+static void write_panels_script(FILE *gp, const void *ctx, const char *png_name)
 {
   const panels_script *ps = ctx;
-  write_script(gp, ps->panels, ps->npanels, ps->opts, ps->t_min, ps->t_max, png_tmp);
+  write_script(gp, ps->panels, ps->npanels, ps->opts, ps->t_min, ps->t_max, png_name);
 }
 
 int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plot_opts *opts,
@@ -297,26 +270,65 @@ int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plo
   return fb_gnuplot_png(write_panels_script, &ps, path, err);
 }
 
-int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, fb_err *err)
+/* The files of one gnuplot run, in its private directory: fixed names,
+ * so that gnuplot, started there, never reads a path of the user's. */
+static const char gp_script[] = "plot.gp", gp_png[] = "plot.png", gp_log[] = "gnuplot.log";
+
+/* Runs gnuplot on the script in dir and checks the PNG it drew. */
+static int draw_in(const char *dir, const char *path, fb_err *err)
 {
-  int rc = FB_OK;
-  char *png_tmp = tmp_name(path, "");
-  char *script = tmp_name(path, ".gp");
-  if (!png_tmp || !script)
+  char program[] = "gnuplot", script[sizeof gp_script];
+  memcpy(script, gp_script, sizeof gp_script);
+  char *argv[] = {program, script, NULL};
+  const fb_child_spec spec = {.program = program,
+                              .argv = argv,
+                              .cwd = dir,
+                              .log = gp_log,
+                              .timeout_s = FB_GNUPLOT_TIMEOUT_S};
+  int rc = fb_child_run(&spec, path, err);
+  char *png = rc == FB_OK ? in_dir(dir, gp_png) : NULL;
+  if (rc == FB_OK && !png)
     rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
-  if (rc == FB_OK)
-    rc = write_script_file(script, fn, ctx, png_tmp, path, err);
-  if (rc == FB_OK) {
-    rc = run_gnuplot(script, path, err);
-    remove(script);
-  }
-  if (rc == FB_OK && rename(png_tmp, path) != 0)
+  if (rc == FB_OK && fb_png_check(png, err) != FB_OK)
+    rc = fb_err_prefix(err, "%s: gnuplot exited 0 but ", path);
+  if (rc == FB_OK && rename(png, path) != 0)
     rc = fb_err_set(err, FB_EIO, "%s: cannot rename the plot into place: %s", path,
                     strerror(errno));
-  if (rc != FB_OK && png_tmp)
-    remove(png_tmp);
+  free(png);
+  return rc;
+}
+
+/* Removes the files of one gnuplot run and its directory. */
+static void remove_run_dir(char *dir)
+{
+  const char *const names[] = {gp_script, gp_png, gp_log};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
+    char *p = in_dir(dir, names[i]);
+    if (p)
+      remove(p);
+    free(p);
+  }
+  rmdir(dir);
+  free(dir);
+}
+
+int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, fb_err *err)
+{
+  /* A private directory beside path (the same file system, so the PNG
+   * is renamed into place): nobody else can plant a file or a link at
+   * the names gnuplot writes. */
+  char *dir = NULL;
+  const int e = fb_tmpdir_create(path, "plot", &dir);
+  if (e != 0)
+    return fb_err_set(err, e == ENOMEM ? FB_ENOMEM : FB_EIO,
+                      "%s: cannot create a directory for gnuplot: %s", path, strerror(e));
+  char *script = in_dir(dir, gp_script);
+  int rc = script ? write_script_file(script, fn, ctx, gp_png, path, err)
+                  : fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
+  if (rc == FB_OK)
+    rc = draw_in(dir, path, err);
   free(script);
-  free(png_tmp);
+  remove_run_dir(dir);
   return rc;
 }
 

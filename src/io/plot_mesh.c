@@ -81,14 +81,14 @@ static void write_cubes(FILE *gp, const mesh_script *ms)
   fputs("EOD\n", gp);
 }
 
-static void write_mesh_script(FILE *gp, const void *ctx, const char *png_tmp)
+static void write_mesh_script(FILE *gp, const void *ctx, const char *png_name)
 {
   const mesh_script *ms = ctx;
   write_edges(gp, ms);
   if (ms->ncubes)
     write_cubes(gp, ms);
   fputs("set terminal pngcairo size 1000,700 font 'Sans,10'\nset output ", gp);
-  fb_gnuplot_quoted(gp, png_tmp);
+  fb_gnuplot_quoted(gp, png_name);
   fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28\n"
         "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset zlabel 'z [m]'\n",
         gp);

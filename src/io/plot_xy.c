@@ -128,7 +128,7 @@ static void write_panel(FILE *gp, const fb_plot_xy_panel *p, size_t first_id)
 }
 
 /* fb_gnuplot_script_fn of the figure. */
-static void write_xy_script(FILE *gp, const void *ctx, const char *png_tmp)
+static void write_xy_script(FILE *gp, const void *ctx, const char *png_name)
 {
   const xy_script *xs = ctx;
   const fb_plot_xy_opts *o = xs->opts;
@@ -140,7 +140,7 @@ static void write_xy_script(FILE *gp, const void *ctx, const char *png_tmp)
   const size_t height = (size_t)(o->panel_height > 0 ? o->panel_height : XY_PANEL_HEIGHT);
   fprintf(gp, "set terminal pngcairo size %zu,%zu font 'Sans,9'\nset output ",
           width * xs->columns, height * xs->rows + (o->title ? 40 : 0));
-  fb_gnuplot_quoted(gp, png_tmp);
+  fb_gnuplot_quoted(gp, png_name);
   fputs("\nset termoption noenhanced\nset grid\nset offsets graph 0.03, graph 0.03, graph "
         "0.05, graph 0.05\nset xlabel ",
         gp);

@@ -1,0 +1,223 @@
+/* Child processes (see io/child.h).
+ *
+ * fork and execve rather than posix_spawn, because the child must do two
+ * things posix_spawn cannot: change to its directory (so that no path of
+ * the user's, which may hold any character, ever appears in a script the
+ * child reads) and ask the kernel to kill it when its parent dies
+ * (prctl(PR_SET_PDEATHSIG), Linux). Between fork and execve the child
+ * calls only async-signal-safe functions (POSIX.1-2008, 2.4.3), as a
+ * child of a threaded process must; the program is found in PATH before
+ * the fork for that reason. The parent polls waitpid with a growing
+ * pause, which serves the time-out without a timer or SIGCHLD handler. */
+#include "io/child.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+/* The environment handed to the child (POSIX.1-2008, exec: the
+ * application declares it). */
+extern char **environ;
+
+/* Bytes of the child's log quoted in a failure message. */
+enum { LOG_TAIL = 600 };
+
+/* The first executable program in the directories of PATH (or, without
+ * PATH, /usr/bin:/bin), in fresh memory; NULL if there is none (errno
+ * ENOENT) or out of memory. */
+static char *find_program(const char *program)
+{
+  const char *path = getenv("PATH");
+  if (!path || !*path)
+    path = "/usr/bin:/bin";
+  const size_t plen = strlen(program);
+  for (const char *p = path;; ++p) {
+    const char *end = strchr(p, ':');
+    const size_t dlen = end ? (size_t)(end - p) : strlen(p);
+    char *full = malloc(dlen + plen + 3);
+    if (!full)
+      return NULL;
+    /* An empty entry means the current directory (POSIX.1-2008, 8.3). */
+    snprintf(full, dlen + plen + 3, "%.*s/%s", dlen ? (int)dlen : 1, dlen ? p : ".", program);
+    struct stat st;
+    if (stat(full, &st) == 0 && S_ISREG(st.st_mode) && access(full, X_OK) == 0)
+      return full;
+    free(full);
+    if (!end)
+      break;
+    p = end;
+  }
+  errno = ENOENT;
+  return NULL;
+}
+
+static double now_s(void)
+{
+  struct timespec ts = {0, 0};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* In the child, after fork: only async-signal-safe calls. Never returns. */
+static void child_exec(const char *file, char *const *argv, const char *cwd, int in_fd,
+                       int log_fd, pid_t parent)
+{
+  setpgid(0, 0);
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  /* The parent may have died before prctl took effect. */
+  if (getppid() != parent)
+    _exit(127);
+  sigset_t none;
+  sigemptyset(&none);
+  sigprocmask(SIG_SETMASK, &none, NULL);
+  const int defaults[] = {SIGINT, SIGTERM, SIGQUIT, SIGHUP, SIGPIPE};
+  struct sigaction dfl;
+  memset(&dfl, 0, sizeof dfl);
+  dfl.sa_handler = SIG_DFL;
+  for (size_t i = 0; i < sizeof defaults / sizeof defaults[0]; ++i)
+    sigaction(defaults[i], &dfl, NULL);
+  if (chdir(cwd) != 0 || dup2(in_fd, STDIN_FILENO) < 0 || dup2(log_fd, STDOUT_FILENO) < 0 ||
+      dup2(log_fd, STDERR_FILENO) < 0)
+    _exit(127);
+  execve(file, argv, environ);
+  _exit(127);
+}
+
+/* Waits for pid until deadline (a now_s time); 1 with *status when it
+ * exited, 0 at the deadline, -1 on a waitpid error (errno). */
+static int wait_until(pid_t pid, double deadline, int *status)
+{
+  long pause_ns = 1000000; /* 1 ms, doubled up to 32 ms: short plots stay quick */
+  for (;;) {
+    const pid_t w = waitpid(pid, status, WNOHANG);
+    if (w == pid)
+      return 1;
+    if (w < 0 && errno != EINTR)
+      return -1;
+    if (now_s() >= deadline)
+      return 0;
+    const struct timespec pause = {0, pause_ns};
+    nanosleep(&pause, NULL);
+    if (pause_ns < 32000000)
+      pause_ns *= 2;
+  }
+}
+
+/* The last LOG_TAIL bytes of the log at cwd/log, one line (control
+ * characters as spaces), into buf; "" if there is none. */
+static void log_tail(const char *cwd, const char *log, char *buf, size_t size)
+{
+  buf[0] = '\0';
+  const size_t n = strlen(cwd) + strlen(log) + 2;
+  char *path = malloc(n);
+  if (!path)
+    return;
+  snprintf(path, n, "%s/%s", cwd, log);
+  const int fd = open(path, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  free(path);
+  if (fd < 0)
+    return;
+  const off_t end = lseek(fd, 0, SEEK_END);
+  const off_t from = end > LOG_TAIL ? end - LOG_TAIL : 0;
+  char text[LOG_TAIL + 1];
+  ssize_t got = lseek(fd, from, SEEK_SET) == from ? read(fd, text, LOG_TAIL) : -1;
+  close(fd);
+  if (got <= 0)
+    return;
+  while (got > 0 && (unsigned char)text[got - 1] <= ' ')
+    --got;
+  text[got] = '\0';
+  for (ssize_t i = 0; i < got; ++i)
+    if ((unsigned char)text[i] < ' ' || text[i] == 0x7f)
+      text[i] = ' ';
+  snprintf(buf, size, ": %s", text);
+}
+
+/* Opens /dev/null for reading and the new log cwd/log for writing, both
+ * close-on-exec (the child's dup2 copies lose the flag). */
+static int open_streams(const fb_child_spec *spec, int *in_fd, int *log_fd)
+{
+  *in_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
+  const size_t n = strlen(spec->cwd) + strlen(spec->log) + 2;
+  char *path = malloc(n);
+  if (path) {
+    snprintf(path, n, "%s/%s", spec->cwd, spec->log);
+    *log_fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  }
+  const int e = !path ? ENOMEM : errno;
+  free(path);
+  if (*in_fd >= 0 && path && *log_fd >= 0)
+    return 0;
+  if (*in_fd >= 0)
+    close(*in_fd);
+  if (path && *log_fd >= 0)
+    close(*log_fd);
+  *in_fd = *log_fd = -1;
+  return e;
+}
+
+/* The outcome of a child that ended with status. */
+static int report_status(const fb_child_spec *spec, const char *what, int status, fb_err *err)
+{
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+    return FB_OK;
+  char tail[LOG_TAIL + 8];
+  log_tail(spec->cwd, spec->log, tail, sizeof tail);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+    return fb_err_set(err, FB_EIO, "%s: %s could not be started%s", what, spec->program, tail);
+  if (WIFEXITED(status))
+    return fb_err_set(err, FB_EIO, "%s: %s failed (exit status %d)%s", what, spec->program,
+                      WEXITSTATUS(status), tail);
+  return fb_err_set(err, FB_EIO, "%s: %s was killed by signal %d%s", what, spec->program,
+                    WTERMSIG(status), tail);
+}
+
+int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err)
+{
+  char *file = find_program(spec->program);
+  if (!file)
+    return errno == ENOMEM ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", what)
+                           : fb_err_set(err, FB_EIO, "%s: cannot start %s: not found in PATH",
+                                        what, spec->program);
+  int in_fd = -1, log_fd = -1;
+  int e = open_streams(spec, &in_fd, &log_fd);
+  if (e != 0) {
+    free(file);
+    return fb_err_set(err, e == ENOMEM ? FB_ENOMEM : FB_EIO, "%s: cannot start %s: %s", what,
+                      spec->program, strerror(e));
+  }
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid == 0)
+    child_exec(file, spec->argv, spec->cwd, in_fd, log_fd, parent);
+  e = errno;
+  close(in_fd);
+  close(log_fd);
+  free(file);
+  if (pid < 0)
+    return fb_err_set(err, FB_EIO, "%s: cannot start %s: %s", what, spec->program, strerror(e));
+  /* Also here, so the group exists before any kill below (no race with
+   * the child's own call); EACCES once the child has exec'ed is fine. */
+  setpgid(pid, pid);
+  int status = 0;
+  const int done = wait_until(pid, now_s() + spec->timeout_s, &status);
+  if (done == 1)
+    return report_status(spec, what, status, err);
+  e = errno;
+  kill(-pid, SIGKILL);
+  kill(pid, SIGKILL);
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+    ;
+  if (done == 0)
+    return fb_err_set(err, FB_EIO, "%s: %s did not finish within %g s and was killed", what,
+                      spec->program, spec->timeout_s);
+  return fb_err_set(err, FB_EIO, "%s: waiting for %s: %s", what, spec->program, strerror(e));
+}
