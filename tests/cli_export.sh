@@ -14,7 +14,7 @@ NAME=cli_export
 . "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
 
 APC=$REPO_ROOT/examples/apc6x6.yaml
-EXPECTED_FILES=$(printf '%s\n' A.mtx Bu.mtx C.mtx D.mtx E.mtx f.mtx model.json | sort)
+EXPECTED_FILES=$(printf '%s\n' .flexbond-manifest A.mtx Bu.mtx C.mtx D.mtx E.mtx f.mtx model.json | sort)
 
 # expect_files DIR DESCRIPTION: DIR holds exactly the files of an export.
 expect_files() {

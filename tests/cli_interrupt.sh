@@ -94,7 +94,7 @@ disk_full() { # DIR DESCRIPTION REASON [ulimit]
     "$2 says the previous results stand"
   expect_unchanged "$1" "$2"
   checks=$((checks + 1))
-  [ -z "$(find "$1" -name '*.tmp.*')" ] || fail "$2: a temporary file was left behind"
+  [ -z "$(find "$1" -name '*.tmp*' -o -name '.flexbond*')" ] || fail "$2: a temporary file was left behind"
 }
 disk_full "$WORK/fsize" "file-size limit" "File too large" ulimit
 mkdir -p "$WORK/small"
@@ -111,7 +111,7 @@ previous "$WORK/ok"
 run sim "$REPO_ROOT/examples/quarter_car.yaml" -o "$WORK/ok" -q
 expect_status 0 "successful run"
 checks=$((checks + 1))
-[ "$(ls -A "$WORK/ok" | tr '\n' ' ')" = "notes.txt probes.csv stats.json system2.csv " ] ||
+[ "$(ls -A "$WORK/ok" | tr '\n' ' ')" = ".flexbond-manifest notes.txt probes.csv stats.json system2.csv " ] ||
   fail "successful run: $(ls -A "$WORK/ok" | tr '\n' ' ')"
 checks=$((checks + 1))
 [ "$(head -c 1 "$WORK/ok/probes.csv")" = "t" ] || fail "successful run: probes.csv not replaced"

@@ -26,7 +26,7 @@ checks=$((checks + 1))
 [ "$(head -c 4 "$WORK/qc/probes.png" | od -An -tx1 | tr -d ' ')" = "89504e47" ] ||
   fail "probes.png is a PNG"
 checks=$((checks + 1))
-[ -z "$(ls -A "$WORK/qc" | grep -v -x -e probes.csv -e stats.json -e probes.png)" ] ||
+[ -z "$(ls -A "$WORK/qc" | grep -v -x -e probes.csv -e stats.json -e probes.png -e .flexbond-manifest)" ] ||
   fail "no temporary files left in the output directory"
 
 run diagram "$REPO_ROOT/examples/two_dof_fields.yaml" -o "$WORK/d.dot"

@@ -17,7 +17,7 @@ APC=$REPO_ROOT/examples/apc6x6.yaml
 HEADER='t,tire_force_LF,spring_defl_RF,torsion,driver_acc,shock_power_LM,tire_defl_RM,tire_power_LR'
 FIGURES=(fig08_tire_force_LF.png fig09_spring_defl_RF.png fig10_torsion.png
   fig11_driver_acc.png fig12_shock_power_LM.png fig13_tire_defl_RM.png fig14_tire_power_LR.png)
-EXPECTED_FILES=$(printf '%s\n' "${FIGURES[@]}" report.md summary.json system1.csv | sort)
+EXPECTED_FILES=$(printf '%s\n' .flexbond-manifest "${FIGURES[@]}" report.md summary.json system1.csv | sort)
 
 # expect_files DIR DESCRIPTION: DIR holds exactly the files of a run.
 expect_files() {
@@ -155,7 +155,7 @@ run run "$SHORT" -o "$WORK/both" -q
 expect_status 0 "run, both systems"
 checks=$((checks + 1))
 [ "$(ls -A "$WORK/both" | sort)" = "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" \
-  report.md summary.json system1.csv system2.csv | sort)" ] ||
+  .flexbond-manifest report.md summary.json system1.csv system2.csv | sort)" ] ||
   fail "both systems: files $(ls -A "$WORK/both" | tr '\n' ' ')"
 checks=$((checks + 1))
 [ "$(head -n 1 "$WORK/both/system2.csv")" = "$HEADER" ] ||

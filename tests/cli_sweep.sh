@@ -38,7 +38,7 @@ run sweep "$APC" --set speed_kmh=5:5:60 -j 2 -o "$WORK/speeds"
 expect_status 0 "sweep of 12 speeds"
 expect_in "$ERR" "flexbond sweep: case 3/12 (speed_kmh=15): ok" "progress line of case 3"
 checks=$((checks + 1))
-[ "$(ls -A "$WORK/speeds" | tr '\n' ' ')" = "sweep.csv sweep.png " ] ||
+[ "$(ls -A "$WORK/speeds" | tr '\n' ' ')" = ".flexbond-manifest sweep.csv sweep.png " ] ||
   fail "sweep writes sweep.csv and sweep.png, and removes its journal: $(ls -A "$WORK/speeds")"
 checks=$((checks + 1))
 [ "$(head -1 "$WORK/speeds/sweep.csv")" = "speed_kmh$METRICS,error" ] ||

@@ -59,12 +59,14 @@ stopped() {
 run "${STUDY[@]}" -o "$WORK/ref" -q
 expect_status 4 "uninterrupted study (one failing case)"
 checks=$((checks + 1))
-[ "$(ls -A "$WORK/ref")" = "sweep.csv" ] || fail "the journal is removed at the end"
+[ "$(ls -A "$WORK/ref" | tr '\n' ' ')" = ".flexbond-manifest sweep.csv " ] ||
+  fail "the journal is removed at the end"
 
-# ---- Killed (SIGKILL): the journal stays, nothing else.
+# ---- Killed (SIGKILL): the journal stays, and the directory's lock file,
+# which the next command takes over; nothing else.
 stopped "$WORK/killed" KILL
 checks=$((checks + 1))
-[ "$(ls -A "$WORK/killed")" = "$JOURNAL" ] ||
+[ "$(ls -A "$WORK/killed" | tr '\n' ' ')" = ".flexbond.lock $JOURNAL " ] ||
   fail "a killed sweep leaves only its journal: $(ls -A "$WORK/killed" | tr '\n' ' ')"
 done_before=$(rows "$WORK/killed")
 checks=$((checks + 1))
@@ -94,7 +96,8 @@ checks=$((checks + 1))
 cmp -s "$WORK/ref/sweep.csv" "$WORK/killed/sweep.csv" ||
   fail "sweep.csv after SIGKILL and --resume differs from the uninterrupted one"
 checks=$((checks + 1))
-[ "$(ls -A "$WORK/killed")" = "sweep.csv" ] || fail "the journal is removed after resuming"
+[ "$(ls -A "$WORK/killed" | tr '\n' ' ')" = ".flexbond-manifest sweep.csv " ] ||
+  fail "the journal is removed after resuming"
 
 # ---- Interrupted (SIGINT): exit 130, the journal kept and named.
 stopped "$WORK/int" INT
@@ -211,7 +214,7 @@ while [ ! -s "$WORK/two/$JOURNAL" ] && [ "$waited" -lt 600 ]; do
 done
 run "${STUDY[@]}" -o "$WORK/two" --resume
 expect_status 5 "a second sweep into the same directory"
-expect_in "$ERR" "another flexbond sweep is writing into this directory" "second sweep: message"
+expect_in "$ERR" "another flexbond command is writing into this directory" "second sweep: message"
 wait "$first"
 checks=$((checks + 1))
 cmp -s "$WORK/ref/sweep.csv" "$WORK/two/sweep.csv" || fail "the first sweep was disturbed"

@@ -54,13 +54,23 @@ int cli_parse_file_command(int argc, char **argv, cli_option *opts, size_t nopts
 int cli_parse_model_command(int argc, char **argv, cli_option *opts, size_t nopts,
                             const char *usage, const char **model_path, int *exit_code);
 
-/* ---- Interruption. cli_interrupt_install makes SIGINT and SIGTERM set a
- * flag instead of killing the program, once (a second signal kills it),
- * so that a long command can stop cleanly: the simulations poll the flag
- * through their progress callback and fail with FB_EINTR (exit code 130),
- * and an interrupted command writes nothing (cli_outdir). Returns 0, or
- * -1 if the handlers could not be installed. */
+/* ---- Interruption. cli_interrupt_install, called before any other
+ * thread starts, makes SIGINT, SIGTERM and SIGHUP (those not ignored at
+ * start) set a flag instead of killing the program, so that a long
+ * command can stop cleanly: the simulations poll the flag through their
+ * progress callback and fail with FB_EINTR (exit code 130), and an
+ * interrupted command writes nothing (cli_outdir). A command that has not
+ * stopped CLI_GRACE_MS after the signal (a phase that cannot poll), or a
+ * second signal, is ended by the signal thread itself: it abandons the
+ * open output directories and exits with 130 (interrupt.c). Returns 0,
+ * or -1 if the signals could not be taken. */
 int cli_interrupt_install(void);
+/* Says that the command has returned and reports its own outcome: a
+ * signal after this no longer ends the process early. */
+void cli_interrupt_finish(void);
+/* Leaves the stopping to the command alone: no early end after a signal
+ * (an MPI rank must reach MPI_Finalize, or the job is aborted). */
+void cli_interrupt_polled_only(void);
 /* 1 once SIGINT or SIGTERM has arrived. */
 int cli_interrupted(void);
 /* FB_EINTR with a message once interrupted, else FB_OK. */
@@ -110,27 +120,41 @@ int cli_print_help(const char *text);
 char *cli_join_path(const char *dir, const char *name);
 
 /* The files one command writes into an output directory, all or nothing.
- * They are written into a hidden staging directory inside dir
- * (".flexbond-staging-XXXXXX") and recorded with cli_outdir_keep; only
- * when the command has succeeded does cli_outdir_close move them into
- * dir, each by a rename, keeping every file it replaces aside until all
- * moves have succeeded (and putting them back if one fails). A failed or
- * interrupted command removes the staging directory (and dir, if it
- * created it and it is empty): dir's previous contents stay as they
- * were. */
+ * cli_outdir_open creates dir (and its missing parents), takes dir's lock
+ * (dir/.flexbond.lock, flock(2): a second command into dir is refused with
+ * FB_EIO while one holds it; a sweep holds it for its whole run), removes
+ * the staging directories that killed commands left there; the first file
+ * makes a hidden staging directory inside dir (".flexbond-staging-XXXXXX").
+ * Files are written there and recorded with cli_outdir_keep; only when the
+ * command has succeeded does cli_outdir_close move them into dir, each by a
+ * rename, keeping every file it replaces aside until all moves have
+ * succeeded (and putting them back if one fails), and removes the files
+ * that the same command wrote there before and no longer writes (as
+ * dir/.flexbond-manifest lists them; no other file of dir is touched). A
+ * failed or interrupted command removes the staging directory, and the
+ * directories it created if they are empty: dir's previous contents stay
+ * as they were. */
 typedef struct cli_outdir {
-  const char *dir; /* borrowed: the destination */
-  char *stage;     /* the staging directory, owned */
-  int created;     /* dir did not exist before cli_outdir_open */
-  char **files;    /* staged files, owned */
+  const char *dir;     /* borrowed: the destination */
+  const char *command; /* borrowed: the command's name, for the manifest ("run") */
+  char *stage;         /* the staging directory, owned */
+  int created;         /* dir did not exist before cli_outdir_open */
+  char *first_created; /* owned: the shallowest directory open created, or NULL */
+  char *lock_path;     /* owned: dir/.flexbond.lock */
+  int lock_fd;         /* holds the lock; -1 when none is held */
+  char **files;        /* staged files, owned */
   size_t nfiles;
+  /* borrowed, or NULL: what the signal thread says of dir when it ends
+   * the command early, instead of "nothing was written" (a sweep's journal) */
+  const char *interrupt_note;
 } cli_outdir;
 
-/* Creates dir and its missing parents, and the staging directory. */
-int cli_outdir_open(cli_outdir *od, const char *dir, fb_err *err);
+/* Opens dir for command (see above). */
+int cli_outdir_open(cli_outdir *od, const char *dir, const char *command, fb_err *err);
 /* The staging path of file name (a plain file name), in fresh memory, or
- * NULL with FB_ENOMEM recorded in err. */
-char *cli_outdir_path(const cli_outdir *od, const char *name, fb_err *err);
+ * NULL with the reason (FB_ENOMEM, FB_EIO) recorded in err. The staging
+ * directory is made at the first call. */
+char *cli_outdir_path(cli_outdir *od, const char *name, fb_err *err);
 /* Records the staged file path (taken over, freed by close). If that
  * fails (out of memory) the file is removed and freed at once. */
 int cli_outdir_keep(cli_outdir *od, char *path, fb_err *err);
@@ -141,13 +165,28 @@ int cli_outdir_write(cli_outdir *od, const char *name, cli_writer write, const v
                      fb_err *err);
 /* Finishes. With status FB_OK (and no interruption meanwhile) moves the
  * staged files into dir; otherwise, or if a move fails (FB_EIO in err),
- * removes what is staged. Removes the staging directory, frees the
- * record; returns the final status. */
+ * removes what is staged. Releases the lock, removes the staging directory,
+ * frees the record; returns the final status. */
 int cli_outdir_close(cli_outdir *od, int status, fb_err *err);
+/* Removes what od staged, releases its lock and removes the directories
+ * it created (if empty), freeing nothing: what a failed close does, and
+ * what the signal thread does before the process ends (interrupt.c). */
+void cli_outdir_abandon(const cli_outdir *od);
 
 /* Appends to err's message that nothing was written to dir (a failed or
  * interrupted command; see cli_outdir). */
 void cli_nothing_written(fb_err *err, const char *dir);
+
+/* The open output directories, for the signal thread (interrupt.c): an
+ * outdir is added by cli_outdir_open and removed by cli_outdir_close
+ * (0, or -1 when too many are open); a commit holds the guard's lock,
+ * so that the signal thread never abandons a directory in the middle of
+ * one, and says when it has put results in place (committed 1), after
+ * which a signal no longer stops the command. */
+int cli_guard_add(const cli_outdir *od);
+void cli_guard_remove(const cli_outdir *od);
+void cli_guard_lock(void);
+void cli_guard_unlock(int committed);
 
 /* Subcommands: argv[0] is the command name, as for main. Each returns the
  * program's exit code. */

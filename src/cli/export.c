@@ -264,40 +264,30 @@ static void write_model_json(FILE *fp, const void *ctx)
 
 /* ---- Writing. */
 
-/* dir/name through a temporary file renamed into place (fb_mat_write_mtx
- * writes a path directly), then recorded in od. */
-static int write_matrix(cli_outdir *od, const char *name, const fb_mat *a, fb_err *err)
+/* A Matrix Market file (a cli_writer over an fb_mat). */
+static void write_mtx(FILE *fp, const void *a)
 {
-  char tmp_name[64];
-  snprintf(tmp_name, sizeof tmp_name, ".%s.tmp", name);
-  char *path = cli_outdir_path(od, name, err), *tmp = cli_outdir_path(od, tmp_name, err);
-  int rc = path && tmp ? fb_mat_write_mtx(a, tmp, err) : FB_ENOMEM;
-  if (!rc && rename(tmp, path) != 0)
-    rc = fb_err_set(err, FB_EIO, "%s: cannot rename into place", path);
-  if (rc && tmp)
-    remove(tmp);
-  free(tmp);
-  if (rc) {
-    free(path);
-    return rc;
-  }
-  return cli_outdir_keep(od, path, err);
+  fb_mat_print_mtx(fp, a);
 }
 
-static int write_all(const char *dir, const export_model *m, fb_err *err)
+static int write_matrix(cli_outdir *od, const char *name, const fb_mat *a, fb_err *err)
+{
+  return cli_outdir_write(od, name, write_mtx, a, err);
+}
+
+static int write_all(cli_outdir *od, const export_model *m, fb_err *err)
 {
   const struct {
     const char *name;
     const fb_mat *a;
   } files[] = {{"E.mtx", m->ds->E}, {"A.mtx", m->ds->A}, {"Bu.mtx", m->bu},
                {"f.mtx", m->ds->f}, {"C.mtx", m->ds->C}, {"D.mtx", m->d}};
-  cli_outdir od;
-  int rc = cli_outdir_open(&od, dir, err);
+  int rc = FB_OK;
   for (size_t i = 0; rc == FB_OK && i < sizeof files / sizeof files[0]; ++i)
-    rc = write_matrix(&od, files[i].name, files[i].a, err);
+    rc = write_matrix(od, files[i].name, files[i].a, err);
   if (rc == FB_OK)
-    rc = cli_outdir_write(&od, "model.json", write_model_json, m, err);
-  return cli_outdir_close(&od, rc, err);
+    rc = cli_outdir_write(od, "model.json", write_model_json, m, err);
+  return rc;
 }
 
 static int run(const char *path, fb_system sys, const char *dir)
@@ -314,10 +304,15 @@ static int run(const char *path, fb_system sys, const char *dir)
   for (int c = 0; s && c < FB_NCORNERS; ++c)
     s->corner[c].tire_contact = FB_TIRE_BILATERAL;
   m.s = s;
+  /* The directory is held (locked) from here to the end. */
+  cli_outdir od;
+  const int opened = rc == FB_OK && (rc = cli_outdir_open(&od, dir, "export", &err)) == FB_OK;
   if (rc == FB_OK)
     rc = build_model(&m, &graph, &err);
   if (rc == FB_OK)
-    rc = write_all(dir, &m, &err);
+    rc = write_all(&od, &m, &err);
+  if (opened)
+    rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK) {
     printf("%s: wrote %s: %zu variables (%zu differential), %d inputs, %zu outputs (%zu rows "
            "of C)\n",

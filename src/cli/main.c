@@ -106,5 +106,7 @@ int main(int argc, char **argv)
     fputs("flexbond: warning: cannot catch SIGINT; an interrupted run may leave files "
           "behind\n",
           stderr);
-  return cmd->run(argc - 1, argv + 1);
+  const int code = cmd->run(argc - 1, argv + 1);
+  cli_interrupt_finish();
+  return code;
 }

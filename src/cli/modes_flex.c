@@ -90,7 +90,7 @@ int cli_write_mode_pictures(cli_outdir *od, const fb_fe_hull *hull, const fb_mod
              ms->description[k]);
     char *path = cli_outdir_path(od, name, err);
     rc = path ? fb_plot_mesh_png(hull->mesh, v, scale, cube_xyz, 2, 0.3, title, path, err)
-              : FB_ENOMEM;
+              : err->code;
     if (!rc)
       rc = cli_outdir_keep(od, path, err);
     else
@@ -109,7 +109,7 @@ static int write_shapes(cli_outdir *od, const flex_modes *fm, fb_err *err)
     snprintf(name, sizeof name, "mode_%02zu.vtu", k + 1);
     char *path = cli_outdir_path(od, name, err);
     rc = path ? fb_mesh_write_vtu(fm->hull->mesh, ms->shapes + k * ms->ndof, path, err)
-              : FB_ENOMEM;
+              : err->code;
     if (!rc)
       rc = cli_outdir_keep(od, path, err);
     else
@@ -118,17 +118,14 @@ static int write_shapes(cli_outdir *od, const flex_modes *fm, fb_err *err)
   return rc ? rc : cli_write_mode_pictures(od, fm->hull, ms, err);
 }
 
-static int write_files(const char *dir, const flex_modes *fm, fb_err *err)
+static int write_files(cli_outdir *od, const flex_modes *fm, fb_err *err)
 {
-  cli_outdir od;
-  int rc = cli_outdir_open(&od, dir, err);
+  int rc = cli_outdir_write(od, "hull_modes.csv", write_hull_csv, fm, err);
   if (!rc)
-    rc = cli_outdir_write(&od, "hull_modes.csv", write_hull_csv, fm, err);
+    rc = cli_outdir_write(od, "modes.csv", write_modes_csv, fm, err);
   if (!rc)
-    rc = cli_outdir_write(&od, "modes.csv", write_modes_csv, fm, err);
-  if (!rc)
-    rc = write_shapes(&od, fm, err);
-  return cli_outdir_close(&od, rc, err);
+    rc = write_shapes(od, fm, err);
+  return rc;
 }
 
 static void print_tables(const flex_modes *fm)
@@ -154,6 +151,10 @@ int cli_modes_flexible(const char *path, const char *out_dir)
   fb_fe_hull *hull = NULL;
   flex_modes fm = {0};
   int rc = fb_scenario_load(path, &s, &err);
+  /* The directory is held (locked) from here to the end. */
+  cli_outdir od;
+  const int opened =
+      !rc && out_dir && (rc = cli_outdir_open(&od, out_dir, "modes", &err)) == FB_OK;
   if (!rc)
     rc = fb_vehicle_fe_hull(s, &hull, &err);
   fm.s = s;
@@ -165,7 +166,9 @@ int cli_modes_flexible(const char *path, const char *out_dir)
   if (!rc)
     rc = fb_vehicle_flexible_modes(s, hull, VEHICLE_MODES, &fm.vehicle, &err);
   if (!rc && out_dir)
-    rc = write_files(out_dir, &fm, &err);
+    rc = write_files(&od, &fm, &err);
+  if (opened)
+    rc = cli_outdir_close(&od, rc, &err);
   if (!rc) {
     print_tables(&fm);
     rc = cli_flush_stdout(&err);

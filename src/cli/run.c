@@ -185,7 +185,7 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
   figure_window(fig, o->runs[0].res, &opts.t_min, &opts.t_max);
   char *path = cli_outdir_path(od, name, err);
   if (!path)
-    return FB_ENOMEM;
+    return err->code; /* out of memory, or no staging directory */
   int rc = fb_plot_panels_png(panels, o->diff ? 2 : 1, &opts, path, err);
   if (rc == FB_OK)
     return cli_outdir_keep(od, path, err);
@@ -421,28 +421,27 @@ static void write_system_csv(FILE *fp, const void *ctx)
   fb_result_print_csv_columns(fp, sys->res, 1 + FB_NOUTPUTS, FB_CSV_HEADER_NAMES);
 }
 
-/* Creates dir if needed and writes every file into it, all or nothing;
- * *nfiles is how many. The pictures go first: they are the likeliest to
- * fail (gnuplot); report.md, which links the others, goes last. */
-static int write_outputs(const char *dir, const cli_run_outputs *o, size_t *nfiles, fb_err *err)
+/* Stages every file in od; *nfiles is how many. The pictures go first:
+ * they are the likeliest to fail (gnuplot); report.md, which links the
+ * others, goes last. */
+static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfiles, fb_err *err)
 {
-  cli_outdir od;
-  int rc = cli_outdir_open(&od, dir, err);
+  int rc = FB_OK;
   for (size_t k = 0; o->figures && k < FB_NOUTPUTS && rc == FB_OK; ++k)
-    rc = write_figure(&od, k, o, err);
+    rc = write_figure(od, k, o, err);
   if (rc == FB_OK && o->figures && o->modes2)
-    rc = cli_write_mode_pictures(&od, o->hull, o->modes2, err);
+    rc = cli_write_mode_pictures(od, o->hull, o->modes2, err);
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
     char name[32];
     snprintf(name, sizeof name, "system%d.csv", (int)o->runs[i].sys);
-    rc = cli_outdir_write(&od, name, write_system_csv, &o->runs[i], err);
+    rc = cli_outdir_write(od, name, write_system_csv, &o->runs[i], err);
   }
   if (rc == FB_OK)
-    rc = cli_outdir_write(&od, "summary.json", write_summary_json, o, err);
+    rc = cli_outdir_write(od, "summary.json", write_summary_json, o, err);
   if (rc == FB_OK)
-    rc = cli_outdir_write(&od, "report.md", cli_write_report_md, o, err);
-  *nfiles = od.nfiles;
-  return cli_outdir_close(&od, rc, err);
+    rc = cli_outdir_write(od, "report.md", cli_write_report_md, o, err);
+  *nfiles = od->nfiles;
+  return rc;
 }
 
 /* ---- Modes, for the report. */
@@ -688,8 +687,14 @@ static int run(const run_args *a)
   fb_result *diff = NULL;
   cli_run_outputs o = {.runs = runs, .figures = a->figures};
   size_t nfiles = 0;
+  cli_outdir od;
   int rc = fb_scenario_load(a->scenario_path, &s, &err);
   const int overridden = rc == FB_OK;
+  /* The directory is held from here (its lock: no other command writes
+   * there meanwhile) to the end. */
+  if (rc == FB_OK)
+    rc = cli_outdir_open(&od, a->out_dir, "run", &err);
+  const int opened = rc == FB_OK;
   if (rc == FB_OK) {
     override(a, s);
     o.scenario = s;
@@ -719,7 +724,9 @@ static int run(const run_args *a)
     rc = compare(&o, &diff, &err);
   }
   if (rc == FB_OK)
-    rc = write_outputs(a->out_dir, &o, &nfiles, &err);
+    rc = write_outputs(&od, &o, &nfiles, &err);
+  if (opened)
+    rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK && !a->quiet)
     fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", cli_scenario_name(s), nfiles,
             a->out_dir);

@@ -80,7 +80,9 @@ static int write_plot(cli_outdir *od, const fb_result *res, fb_err *err)
   char *path = cli_outdir_path(od, "probes.png", err);
   size_t *cols = malloc(nout * sizeof *cols);
   int rc = FB_OK;
-  if (!path || !cols)
+  if (!path)
+    rc = err->code; /* out of memory, or no staging directory */
+  else if (!cols)
     rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);
   for (size_t j = 0; rc == FB_OK && j < nout; ++j)
     cols[j] = j;
@@ -99,20 +101,19 @@ static void write_probes_csv(FILE *fp, const void *res)
   fb_result_print_csv(fp, res, FB_CSV_HEADER_UNITS);
 }
 
-/* Creates dir if needed and writes the files into it, all or nothing. */
-static int write_outputs(const char *dir, const fb_result *res, const fb_bd *bd, int plot,
+/* Stages the files in od. */
+static int write_outputs(cli_outdir *od, const fb_result *res, const fb_bd *bd, int plot,
                          fb_err *err)
 {
-  cli_outdir od;
-  int rc = cli_outdir_open(&od, dir, err);
-  if (rc == FB_OK && plot)
-    rc = write_plot(&od, res, err);
+  int rc = FB_OK;
+  if (plot)
+    rc = write_plot(od, res, err);
   if (rc == FB_OK)
-    rc = cli_outdir_write(&od, "probes.csv", write_probes_csv, res, err);
+    rc = cli_outdir_write(od, "probes.csv", write_probes_csv, res, err);
   const stats_source stats = {res, bd};
   if (rc == FB_OK)
-    rc = cli_outdir_write(&od, "stats.json", write_stats_json, &stats, err);
-  return cli_outdir_close(&od, rc, err);
+    rc = cli_outdir_write(od, "stats.json", write_stats_json, &stats, err);
+  return rc;
 }
 
 static void print_summary(const sim_args *a, const fb_model *m, const fb_sim_opts *opts,
@@ -196,10 +197,16 @@ static int run(const sim_args *a)
     rc = fb_bd_build(fb_model_graph(m), probes, nprobes, &bd, &err);
     fb_model_blame(m, &err); /* a causality error: at its element's or bond's line */
   }
+  /* The directory is held (locked) from here to the end. */
+  cli_outdir od;
+  const int opened =
+      rc == FB_OK && (rc = cli_outdir_open(&od, a->out_dir, "sim", &err)) == FB_OK;
   if (rc == FB_OK)
     rc = fb_sim_run(bd, &opts, &res, &err);
   if (rc == FB_OK)
-    rc = write_outputs(a->out_dir, res, bd, a->plot, &err);
+    rc = write_outputs(&od, res, bd, a->plot, &err);
+  if (opened)
+    rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK && !a->quiet)
     print_summary(a, m, &opts, res);
   if (rc != FB_OK)

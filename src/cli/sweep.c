@@ -159,7 +159,7 @@ static int write_figure(cli_outdir *od, const sweep_args *a, const sweep_case *c
   int rc = build_figure(a, cases, &f, err);
   char *path = rc == FB_OK ? cli_outdir_path(od, "sweep.png", err) : NULL;
   if (rc == FB_OK && !path)
-    rc = FB_ENOMEM;
+    rc = err->code; /* out of memory, or no staging directory */
   if (rc == FB_OK) {
     fb_plot_xy_opts opts;
     fb_plot_xy_opts_default(&opts);
@@ -178,17 +178,18 @@ static int write_figure(cli_outdir *od, const sweep_args *a, const sweep_case *c
   return rc;
 }
 
-/* The figure first (gnuplot is the likelier failure), then the CSV. */
-static int write_outputs(const sweep_args *a, const sweep_case *cases, fb_err *err)
+/* The figure first (gnuplot is the likelier failure), then the CSV, into
+ * od (the output directory the sweep holds for its whole run). */
+static int write_outputs(cli_outdir *od, const sweep_args *a, const sweep_case *cases,
+                         fb_err *err)
 {
-  cli_outdir od;
   const sweep_outputs o = {a, cases};
-  int rc = cli_outdir_open(&od, a->out_dir, err);
-  if (rc == FB_OK && a->figures)
-    rc = write_figure(&od, a, cases, err);
+  int rc = FB_OK;
+  if (a->figures)
+    rc = write_figure(od, a, cases, err);
   if (rc == FB_OK)
-    rc = cli_outdir_write(&od, "sweep.csv", write_csv, &o, err);
-  return cli_outdir_close(&od, rc, err);
+    rc = cli_outdir_write(od, "sweep.csv", write_csv, &o, err);
+  return rc;
 }
 
 /* ---- The command line. */
@@ -489,8 +490,8 @@ static int run_cases(const sweep_args *a, sweep_case *cases, sweep_journal *jour
 /* What a failed or interrupted sweep leaves: the journal when it holds
  * cases worth resuming (not when the study itself is at fault), said in
  * err; else nothing, as before. */
-static void leave_journal(const sweep_args *a, const sweep_case *cases, sweep_journal **journal,
-                          int created, fb_err *err)
+static int leave_journal(const sweep_args *a, const sweep_case *cases, sweep_journal **journal,
+                         fb_err *err)
 {
   size_t not_done, failed, input_errors;
   tally(a, cases, &not_done, &failed, &input_errors);
@@ -498,12 +499,8 @@ static void leave_journal(const sweep_args *a, const sweep_case *cases, sweep_jo
   const size_t kept = sweep_journal_rows(*journal);
   const int keep = kept > 0 && input_errors < a->ncases;
   sweep_journal_close(journal, !keep);
-  if (!keep) {
-    if (created)
-      rmdir(a->out_dir);
-    cli_nothing_written(err, a->out_dir);
-    return;
-  }
+  if (!keep)
+    return 0;
   char *path = sweep_journal_path(a->out_dir);
   const size_t len = strlen(err->msg);
   snprintf(err->msg + len, sizeof err->msg - len,
@@ -511,6 +508,7 @@ static void leave_journal(const sweep_args *a, const sweep_case *cases, sweep_jo
            "to run the others",
            kept, a->ncases, path ? path : "the journal");
   free(path);
+  return 1;
 }
 
 /* The message of a study that ran with failed cases (failed of them)
@@ -537,13 +535,26 @@ static int sweep(const sweep_args *a, int mpi_size)
   fb_err err;
   fb_err_clear(&err);
   sweep_case *cases = calloc(a->ncases, sizeof *cases);
-  struct stat st;
-  const int created = stat(a->out_dir, &st) != 0;
   sweep_journal *journal = NULL;
   size_t resumed = 0;
-  int rc = cases ? fb_mkdir_p(a->out_dir, &err)
+  /* The output directory is held (locked) from the start: the journal
+   * is written there as the cases finish. */
+  cli_outdir od;
+  int rc = cases ? cli_outdir_open(&od, a->out_dir, "sweep", &err)
                  : fb_err_set(&err, FB_ENOMEM, "out of memory for %zu cases", a->ncases),
       journal_rc = FB_OK;
+  const int opened = rc == FB_OK;
+  /* Stopped early by a signal, a sweep leaves its journal. */
+  char *journal_path = opened ? sweep_journal_path(a->out_dir) : NULL;
+  char note[FB_ERR_MSG_MAX];
+  if (journal_path) {
+    snprintf(note, sizeof note,
+             "the finished cases are kept in %s: run the same command with --resume to run "
+             "the others",
+             journal_path);
+    od.interrupt_note = note;
+  }
+  free(journal_path);
   if (rc == FB_OK)
     rc = journal_rc = sweep_journal_open(a, a->out_dir, cases, &resumed, &journal, &err);
 #ifdef FLEXBOND_MPI
@@ -558,13 +569,19 @@ static int sweep(const sweep_args *a, int mpi_size)
               a->ncases);
     rc = run_cases(a, cases, journal, mpi_size, &seconds, &err);
     if (rc == FB_OK)
-      rc = write_outputs(a, cases, &err);
+      rc = write_outputs(&od, a, cases, &err);
     if (rc == FB_OK)
+      rc = cli_outdir_close(&od, rc, &err);
+    if (rc == FB_OK) {
       sweep_journal_close(&journal, 1);
-    else
-      leave_journal(a, cases, &journal, created, &err);
-  } else if (created) {
-    rmdir(a->out_dir);
+    } else {
+      const int kept = leave_journal(a, cases, &journal, &err);
+      cli_outdir_close(&od, rc, &err);
+      if (!kept)
+        cli_nothing_written(&err, a->out_dir);
+    }
+  } else if (opened) {
+    cli_outdir_close(&od, rc, &err);
   }
   size_t not_done = 0, failed = 0, input_errors = 0;
   if (cases)
@@ -678,6 +695,9 @@ static int sweep_mpi(int argc, char **argv, sweep_args *a, char **name)
   int rc = sweep_mpi_init(&rank, &size, &err);
   if (rc != FB_OK)
     return cli_report(rc, &err);
+  /* Every rank must reach MPI_Finalize, or mpirun aborts the job: the
+   * ranks stop when their cases do, not earlier (docs/cluster.md). */
+  cli_interrupt_polled_only();
   a->mpi = 1;
   a->quiet = rank != 0;
   int saved = -1;
