@@ -41,11 +41,12 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CTEST_JOBS ?= 2
 
 # clang is the second compiler; clang-format serves format/format-check; python3
-# checks the JSON the CLI writes (tests/cli_run.sh); valgrind, clang-tidy and cppcheck
-# serve the targets of the same names (docs/quality.md).
+# checks the JSON the CLI writes (tests/cli_run.sh); strace shows which files a command
+# creates and how (tests/cli_integrity.sh); valgrind, clang-tidy and cppcheck serve the
+# targets of the same names (docs/quality.md).
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
                 liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz clang \
-                clang-format python3 valgrind clang-tidy cppcheck
+                clang-format python3 strace valgrind clang-tidy cppcheck
 # OpenMPI for the optional MPI build of flexbond sweep (make mpi, docs/cluster.md).
 MPI_DEB_PACKAGES := libopenmpi-dev openmpi-bin
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)

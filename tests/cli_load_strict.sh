@@ -216,6 +216,28 @@ bonds:
   - [F, body]
   - [body, p.a]
 EOF
+# Found while the block diagram is built, after the causality: a field
+# whose ports get mixed causality.
+cat >g_rmixed.yaml <<'EOF'
+model: r_mixed
+elements:
+  - {name: E, type: Se, value: 1}
+  - {name: F, type: Sf, value: 1}
+  - name: R
+    type: R
+    ports: 2
+    matrix: [[1, 0], [0, 1]]
+bonds:
+  - [E, R.1]
+  - [F, R.2]
+EOF
+for cmd in sim diagram eig; do
+  tail=()
+  [ "$cmd" = sim ] && tail=(-o "$WORK/out")
+  refused 3 "$cmd: a field with mixed causality" \
+    "$(at g_rmixed.yaml 'name: R' 'n') elements[2]: R 'R' has mixed causality" -- \
+    "$cmd" g_rmixed.yaml "${tail[@]}"
+done
 for cmd in causality sim diagram eig; do
   tail=()
   [ "$cmd" = sim ] && tail=(-o "$WORK/out")

@@ -245,10 +245,12 @@ static int field_law(fb_bd *bd, size_t e, bd_input in, int inverse, const char *
   int rc;
   if (el->law_ops) {
     if (inverse && el->kind == FB_BG_R)
-      return fb_err_set(err, FB_ECAUSAL,
-                        "R '%s': a nonlinear law needs resistance causality (e = phi(f)), "
-                        "but its bonds impose the effort",
-                        el->name);
+      return fb_err_set_origin(
+          err, FB_ORIGIN_ELEMENT, e,
+          fb_err_set(err, FB_ECAUSAL,
+                     "R '%s': a nonlinear law needs resistance causality (e = phi(f)), "
+                     "but its bonds impose the effort",
+                     el->name));
     /* Modulating inputs are connected once every state exists
      * (connect_modulation). */
     size_t m = 0;
@@ -326,12 +328,14 @@ static int emit_resistor(fb_bd *bd, size_t e, fb_err *err)
   int conductance = fb_bg_receives_effort(bd->bg, el->bonds[0], e);
   for (size_t k = 1; k < el->nports; ++k)
     if (fb_bg_receives_effort(bd->bg, el->bonds[k], e) != conductance)
-      return fb_err_set(err, FB_ECAUSAL,
-                        "R '%s' has mixed causality (bond '%s' imposes effort, bond '%s' "
-                        "imposes flow); give all its ports the same causality, e.g. by "
-                        "splitting the field",
-                        el->name, bd->bg->bonds[el->bonds[conductance ? 0 : k]].name,
-                        bd->bg->bonds[el->bonds[conductance ? k : 0]].name);
+      return fb_err_set_origin(
+          err, FB_ORIGIN_ELEMENT, e,
+          fb_err_set(err, FB_ECAUSAL,
+                     "R '%s' has mixed causality (bond '%s' imposes effort, bond '%s' "
+                     "imposes flow); give all its ports the same causality, e.g. by "
+                     "splitting the field",
+                     el->name, bd->bg->bonds[el->bonds[conductance ? 0 : k]].name,
+                     bd->bg->bonds[el->bonds[conductance ? k : 0]].name));
   bd_input in;
   int rc = stack_inputs(bd, e, conductance, !conductance, &in, err);
   char name[256];
@@ -402,10 +406,12 @@ static int emit_twoport(fb_bd *bd, size_t e, fb_err *err)
    * receiving effort is the conductance form f = e / r. */
   int inverted = recv1;
   if (inverted && r == 0.0)
-    return fb_err_set(err, FB_ECAUSAL,
-                      "%s '%s' has modulus 0 but its causality needs 1/modulus (bond '%s' "
-                      "gives it the effort)",
-                      fb_bg_kind_name(el->kind), el->name, bd->bg->bonds[b1].name);
+    return fb_err_set_origin(
+        err, FB_ORIGIN_ELEMENT, e,
+        fb_err_set(err, FB_ECAUSAL,
+                   "%s '%s' has modulus 0 but its causality needs 1/modulus (bond '%s' "
+                   "gives it the effort)",
+                   fb_bg_kind_name(el->kind), el->name, bd->bg->bonds[b1].name));
   double g = inverted ? 1.0 / r : r;
   int rc;
   if (el->kind == FB_BG_TF) {
@@ -521,7 +527,9 @@ static int resolve_var(const fb_bd *bd, size_t var, size_t *sig, fb_err *err)
   }
   char name[256];
   var_name(bd->bg, var, name, sizeof name);
-  return fb_err_set(err, FB_ECAUSAL, "no block computes %s (junction structure loop)", name);
+  return fb_err_set_origin(
+      err, FB_ORIGIN_BOND, var / 2,
+      fb_err_set(err, FB_ECAUSAL, "no block computes %s (junction structure loop)", name));
 }
 
 static int resolve_inputs(fb_bd *bd, fb_err *err)
