@@ -118,8 +118,9 @@ edited s_rate.yaml apc6x6.yaml -e 's/^  sample_rate: 1000 /  sample_rate: 6.6e6/
 refused 2 "$(where s_rate.yaml 'sample_rate: 6.6e6' 6.6e6) simulation.sample_rate: 6.6e+06 Hz over 15 s gives 9.9e+07 samples of 14 columns, which would need about 11.1 GB" \
   "sample_rate 6.6e6" run s_rate.yaml -o out_rate --system rigid
 
-# The model's 5 probes and t: 9.5e7 samples of 6 columns, 4.6 GB.
-refused 2 "simulation.sample_rate: 1.9e+07 Hz over 5 s gives 9.5e+07 samples of 6 columns, which would need about 4.6 GB" \
+# The model's 5 probes and t: 9.5e7 samples of 6 columns, 4.6 GB; the option
+# that raised it is named (a usage error).
+refused 1 "flexbond sim: option '--sample-rate': 1.9e+07 Hz over 5 s gives 9.5e+07 samples of 6 columns, which would need about 4.6 GB" \
   "--sample-rate 1.9e7" sim quarter_car.yaml -o out_sim_rate --sample-rate 1.9e7
 
 edited s_dense.yaml apc6x6.yaml -e 's/^    density: 1 /    density: 64 /'

@@ -137,6 +137,11 @@ static fb_sim_opts effective_opts(const fb_model *m, const sim_args *a)
     opts.rtol = a->rtol;
   if (a->sample_rate > 0)
     opts.sample_rate = a->sample_rate;
+  /* The result's columns, so that the memory it would take is checked
+   * here, where an option that raised it is named. */
+  size_t nprobes = 0;
+  fb_model_probes(m, &nprobes);
+  opts.noutputs = nprobes;
   return opts;
 }
 
