@@ -109,8 +109,7 @@ int cli_report(int status, const fb_err *err);
  * FB_EIO with the reason (a closed pipe, a full disk). */
 int cli_flush_stdout(fb_err *err);
 
-/* s as a JSON string, escaped per RFC 8259 section 7 (quote, backslash,
- * control characters as \u00XX). */
+/* s as a JSON string: fb_json_write_string (flexbond/escape.h). */
 void cli_json_string(FILE *fp, const char *s);
 
 /* Prints text (a usage text) to stdout; returns the exit code. */

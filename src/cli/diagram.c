@@ -25,6 +25,9 @@ static int write_dot_file(const fb_bd *bd, const char *path, fb_err *err)
   if (rc != FB_OK)
     return rc;
   rc = fb_bd_write_dot(bd, fb_out_stream(out), err);
+  /* A signal meanwhile: the file stays as it was. */
+  if (rc == FB_OK)
+    rc = cli_check_interrupt(err);
   if (rc != FB_OK) {
     fb_out_abort(&out);
     return rc;

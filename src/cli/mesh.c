@@ -56,6 +56,9 @@ static int run(const char *path, const char *export_path)
   int rc = fb_scenario_load(path, &s, &err);
   if (!rc)
     rc = fb_vehicle_fe_hull(s, &h, &err);
+  /* A signal during the mesh: the file is not written. */
+  if (!rc && export_path)
+    rc = cli_check_interrupt(&err);
   if (!rc && export_path)
     rc = ends_with(export_path, ".vtu")
              ? fb_mesh_write_vtu(h->mesh, NULL, export_path, &err)
