@@ -69,6 +69,8 @@ int fb_err_set(fb_err *err, int code, const char *fmt, ...)
  * impossible NULL dereferences after `if (rc) return rc;`. The compiled code
  * never sees this macro. */
 #define fb_err_set(err, code, ...) (fb_err_set((err), (code), __VA_ARGS__), (code))
+#define fb_err_set_origin(err, origin, index, code)                                            \
+  (fb_err_set_origin((err), (origin), (index), (code)), (code))
 #endif
 
 /* Prepends printf-formatted context to the recorded message (the context is

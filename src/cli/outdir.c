@@ -78,7 +78,8 @@ static void remove_entry_at(int dir_fd, const char *name, int depth)
  * the private directories of gnuplot runs inside). */
 static void remove_stage(const char *path)
 {
-  remove_entry_at(AT_FDCWD, path, 2);
+  if (path) /* none until the first file */
+    remove_entry_at(AT_FDCWD, path, 2);
 }
 
 /* 1 if name is a staging directory's name: the prefix and mkdtemp's six
@@ -372,8 +373,8 @@ static int manifest_add_line(manifest *m, const char *line)
     free(e->name);
     return FB_ENOMEM;
   }
-  strcpy(e->command, command);
-  strcpy(e->name, name);
+  memcpy(e->command, command, strlen(command) + 1);
+  memcpy(e->name, name, strlen(name) + 1);
   ++m->n;
   return FB_OK;
 }

@@ -78,13 +78,11 @@ static int write_plot(cli_outdir *od, const fb_result *res, fb_err *err)
   if (nout == 0)
     return FB_OK;
   char *path = cli_outdir_path(od, "probes.png", err);
-  size_t *cols = malloc(nout * sizeof *cols);
-  int rc = FB_OK;
   if (!path)
-    rc = err->code; /* out of memory, or no staging directory */
-  else if (!cols)
-    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);
-  for (size_t j = 0; rc == FB_OK && j < nout; ++j)
+    return err->code; /* out of memory, or no staging directory */
+  size_t *cols = malloc(nout * sizeof *cols);
+  int rc = cols ? FB_OK : fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);
+  for (size_t j = 0; cols && j < nout; ++j)
     cols[j] = j;
   if (rc == FB_OK)
     rc = fb_plot_png(res, cols, nout, NULL, path, err);

@@ -54,7 +54,7 @@ static int is_chunk_type(const unsigned char *t)
 static const char *png_problem(const unsigned char *data, size_t n)
 {
   static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (n == 0)
+  if (n == 0 || !data)
     return "the file is empty";
   if (n < sizeof signature || memcmp(data, signature, sizeof signature) != 0)
     return "no PNG signature";
