@@ -177,9 +177,10 @@ void cli_outdir_abandon(const cli_outdir *od);
 void cli_nothing_written(fb_err *err, const char *dir);
 
 /* The open output directories, for the signal thread (interrupt.c): an
- * outdir is added by cli_outdir_open and removed by cli_outdir_close
- * (0, or -1 when too many are open); a commit holds the guard's lock,
- * so that the signal thread never abandons a directory in the middle of
+ * outdir is added by cli_outdir_open (0, or -1 when too many are open)
+ * and removed by cli_outdir_close, which holds the guard's lock then
+ * (cli_guard_remove does not take it); a commit holds the lock too, so
+ * that the signal thread never abandons a directory in the middle of
  * one, and says when it has put results in place (committed 1), after
  * which a signal no longer stops the command. */
 int cli_guard_add(const cli_outdir *od);

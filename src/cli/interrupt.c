@@ -227,11 +227,9 @@ int cli_guard_add(const cli_outdir *od)
 
 void cli_guard_remove(const cli_outdir *od)
 {
-  pthread_mutex_lock(&guard.lock);
   for (size_t i = 0; i < CLI_MAX_GUARDED; ++i)
     if (guard.open[i] == od)
       guard.open[i] = NULL;
-  pthread_mutex_unlock(&guard.lock);
 }
 
 void cli_guard_lock(void)

@@ -589,14 +589,18 @@ int cli_outdir_close(cli_outdir *od, int status, fb_err *err)
   if (status == FB_OK && od->stage)
     status = commit(od, err);
   /* The stage holds, after a commit, only the files set aside; after a
-   * failure, the new files too. */
-  cli_guard_remove(od);
+   * failure, the new files too. Under the guard's lock: the signal thread
+   * must not release the lock a second time (by then the lock file may be
+   * another command's). */
+  cli_guard_lock();
   if (status == FB_OK) {
     remove_stage(od->stage);
     release_lock(od);
   } else {
     cli_outdir_abandon(od);
   }
+  cli_guard_remove(od);
+  cli_guard_unlock(0);
   outdir_free(od);
   return status;
 }

@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -217,12 +218,38 @@ static void sweep_key_free(sweep_key *k)
   free(k->path);
 }
 
-/* A finite number, the whole text. */
+/* The refusal of a number of a spec: one message for every kind (not a
+ * number, hexadecimal, inf, nan, beyond a double), as the other numeric
+ * options give (cli_positive_number). */
+static int spec_number_error(const char *cmd, const char *set, const char *text)
+{
+  return cli_usage_error(cmd,
+                         "--set %s: '%s' is not a finite number in decimal digits (as 16, 0.5 "
+                         "or 1e-3; hexadecimal, inf and nan are not read)",
+                         set, text);
+}
+
+/* A finite decimal number, the whole text (sweep_numeric_value: as the
+ * data files and the other options read numbers). */
 static int spec_number(const char *cmd, const char *set, const char *text, double *out)
 {
   if (sweep_numeric_value(text, out))
     return CLI_EXIT_OK;
-  return cli_usage_error(cmd, "--set %s: '%s' is not a finite number", set, text);
+  return spec_number_error(cmd, set, text);
+}
+
+/* 1 if a list value is meant as a number: strtod reads all of it ("0x10",
+ * "inf", "nan(1)", "1e999" too), or it is one of YAML's special floats
+ * (".inf", "-.Inf", ".NaN"). Anything else is an expression or a word,
+ * which the scenario reader judges. */
+static int looks_numeric(const char *text)
+{
+  char *end = NULL;
+  (void)strtod(text, &end);
+  if (end != text && *end == '\0')
+    return 1;
+  const char *t = text + (*text == '+' || *text == '-');
+  return t[0] == '.' && (!strcasecmp(t + 1, "inf") || !strcasecmp(t + 1, "nan"));
 }
 
 /* start:step:stop: start + i step for i = 0, 1, ... while it does not
@@ -286,6 +313,12 @@ static int parse_list(const char *cmd, const char *set, const char *spec, sweep_
     if (!add_value(k, item, len))
       return cli_usage_error(cmd, "out of memory");
     p = item + len;
+    /* A number is read as a range's are: a hexadecimal or infinite one
+     * is refused here, for the whole study, not by each of its cases. */
+    double x;
+    const char *value = k->values[k->nvalues - 1];
+    if (looks_numeric(value) && !sweep_numeric_value(value, &x))
+      return spec_number_error(cmd, set, value);
     p += strspn(p, " ");
     if (*p == '\0')
       return CLI_EXIT_OK;
@@ -294,9 +327,87 @@ static int parse_list(const char *cmd, const char *set, const char *spec, sweep_
 }
 
 /* KEY=SPEC of one --set into k (k->key points into set). */
+/* The bytes of the control character at t: 1 for C0 (U+0000..U+001F,
+ * tab and line breaks included) and DEL, 2 for C1 (U+0080..U+009F, the
+ * UTF-8 bytes C2 80..C2 9F), as the scenario reader refuses them in
+ * one-line text; 0 if there is none. *c gets its code point. */
+static size_t control_at(const unsigned char *t, unsigned *c)
+{
+  if (*t < 0x20 || *t == 0x7f) {
+    *c = *t;
+    return 1;
+  }
+  if (t[0] == 0xc2 && t[1] >= 0x80 && t[1] <= 0x9f) {
+    *c = t[1];
+    return 2;
+  }
+  return 0;
+}
+
+/* Offset of the first control character of text (with its code point in
+ * *c); strlen(text) if none. */
+static size_t find_control(const char *text, unsigned *c)
+{
+  const unsigned char *t = (const unsigned char *)text;
+  size_t i = 0;
+  while (t[i] && !control_at(t + i, c))
+    ++i;
+  return i;
+}
+
+/* text into buf with every control character written as a C escape (\n,
+ * \r, \t, \xHH; C1 as \u00HH), so that a message naming it stays one
+ * line of printable text; cut short to fit. */
+static void escape_controls(const char *text, char *buf, size_t size)
+{
+  size_t n = 0;
+  for (const unsigned char *t = (const unsigned char *)text; *t && n + 7 < size;) {
+    unsigned c = 0;
+    const size_t bytes = control_at(t, &c);
+    if (!bytes) {
+      buf[n++] = (char)*t++;
+      continue;
+    }
+    const char *named = c == '\n' ? "\\n" : c == '\r' ? "\\r" : c == '\t' ? "\\t" : NULL;
+    const int w = named ? snprintf(buf + n, size - n, "%s", named)
+                        : snprintf(buf + n, size - n, c >= 0x80 ? "\\u%04x" : "\\x%02x", c);
+    n += (size_t)w;
+    t += bytes;
+  }
+  buf[n] = '\0';
+}
+
+/* A --set option with a control character in its key or values is a
+ * usage error, for the whole study: a line break in a value would end
+ * its scalar in the scenario's text, and the key and values go into
+ * sweep.csv, the journal and the messages, each one line. */
+static int check_controls(const char *cmd, const char *set)
+{
+  unsigned c = 0;
+  const size_t at = find_control(set, &c);
+  if (!set[at])
+    return CLI_EXIT_OK;
+  const char *eq = strchr(set, '=');
+  const char *what = c == '\n'   ? "a line break"
+                     : c == '\r' ? "a carriage return"
+                     : c == '\t' ? "a tab"
+                                 : "a control character";
+  char shown[512], one[3] = {set[at], c >= 0x80 ? set[at + 1] : '\0', '\0'}, escaped[8];
+  escape_controls(set, shown, sizeof shown);
+  escape_controls(one, escaped, sizeof escaped);
+  return cli_usage_error(cmd,
+                         "--set %s: the %s has %s (%s, U+%04X) at byte %zu of the option; keys "
+                         "and values are one line of printable text",
+                         shown, eq && set + at > eq ? "value" : "key", what, escaped, c,
+                         at + 1);
+}
+
 static int parse_set(const char *cmd, char *set, sweep_key *k)
 {
   char *eq = strchr(set, '=');
+  const int controls = check_controls(cmd, set);
+  if (controls != CLI_EXIT_OK)
+    return controls;
   if (!eq || eq == set || eq[1] == '\0')
     return cli_usage_error(cmd, "--set needs KEY=SPEC (got '%s')", set);
   /* Messages name the whole option: copy the spec before splitting. */

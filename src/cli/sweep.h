@@ -82,7 +82,8 @@ void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c)
 /* The shortest text that reads back as x ("%.15g" to "%.17g"), so that
  * sweep.csv holds every bit. */
 void sweep_format_double(double x, char *buf, size_t size);
-/* 1 if the whole text is a finite number, into *out. */
+/* 1 if the whole text is a finite decimal number (fb_parse_decimal: no
+ * hexadecimal, inf or nan), into *out. */
 int sweep_numeric_value(const char *text, double *out);
 
 /* ---- sweep_journal.c: DIR/sweep.partial.csv, one row per finished case

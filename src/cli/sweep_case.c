@@ -4,7 +4,6 @@
  * the run to metrics: the summary.json statistics of the paper's seven
  * outputs (cli_output_stats_of), the tire contact, the driver's ride
  * metrics and the solver's work; and sweep.csv's rows. */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +14,7 @@
 #include "flexbond/ride.h"
 #include "flexbond/sim.h"
 
+#include "../core/textfile.h"
 #include "cli.h"
 #include "sweep.h"
 
@@ -232,13 +232,12 @@ void sweep_run_case(const sweep_args *a, size_t i, pthread_mutex_t *arpack, swee
 
 /* ---- sweep.csv */
 
-/* Value as a number if the whole text is one (for the x axis). */
+/* Value as a number if the whole text is one: the specs' numbers, the x
+ * axis, the journal's metrics. fb_parse_decimal, as the data files and the
+ * other options read numbers: strtod alone takes "0x10", "inf" and "nan". */
 int sweep_numeric_value(const char *text, double *out)
 {
-  char *end = NULL;
-  errno = 0;
-  *out = strtod(text, &end);
-  return end != text && *end == '\0' && errno != ERANGE && isfinite(*out);
+  return fb_parse_decimal(text, out, NULL) == FB_OK;
 }
 
 void sweep_format_double(double x, char *buf, size_t size)

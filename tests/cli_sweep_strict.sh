@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# flexbond sweep refuses, through the real command, what it once took:
+# numbers of a --set spec that are not plain decimals (hexadecimal, inf,
+# nan, beyond a double), in ranges and in lists; and a control character
+# in a --set key or value (C0, DEL, C1), refused at parse time, before any
+# case runs. Each refusal checks the exit status, the message, and that
+# DIR was not created (or, when it existed, not changed).
+#
+# usage: bash tests/cli_sweep_strict.sh PATH/TO/flexbond REPO_ROOT
+set -u
+NAME=cli_sweep_strict
+# shellcheck source=clilib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
+
+APC=$REPO_ROOT/examples/apc6x6.yaml
+
+# guarded ARGS...: run under a time limit, so that a study the code
+# under test would run at length fails fast instead; sets $status.
+guarded() {
+  timeout 120 "$FLEXBOND" "$@" >"$OUT" 2>"$ERR"
+  status=$?
+}
+
+# listing DIR: what DIR holds, names and contents, to tell it unchanged.
+listing() {
+  (cd "$1" && ls -lA --time-style=+ && find . -maxdepth 1 -type f -exec cat {} +) | md5sum
+}
+
+# refused DESCRIPTION STATUS MESSAGE ARGS...: sweep ARGS -o DIR exits
+# STATUS with MESSAGE on stderr, first with DIR absent (not created), then
+# with DIR holding an earlier result (not changed).
+refused() {
+  local what=$1 code=$2 message=$3
+  shift 3
+  local dir=$WORK/refused
+  rm -rf "$dir"
+  guarded sweep "$@" -o "$dir" -q --no-figures
+  expect_status "$code" "$what"
+  expect_in "$ERR" "$message" "$what: message"
+  expect_absent "$dir" "$what"
+  mkdir -p "$dir" && echo "an earlier result" >"$dir/sweep.csv"
+  local before
+  before=$(listing "$dir")
+  guarded sweep "$@" -o "$dir" -q --no-figures
+  expect_status "$code" "$what (DIR existed)"
+  expect_in "$ERR" "$message" "$what (DIR existed): message"
+  checks=$((checks + 1))
+  [ "$(listing "$dir")" = "$before" ] || fail "$what: DIR was changed: $(ls -A "$dir")"
+}
+
+# ---- Numbers of a spec: plain decimals only, as the data files and the
+# other options read them (fb_parse_decimal).
+NOT_DECIMAL="is not a finite number in decimal digits"
+# SPEC|the number refused
+for case in 0x10:1:0x11\|0x10 10:0x1:12\|0x1 0x1p3:1:10\|0x1p3 10:1:inf\|inf nan:1:12\|nan \
+  -inf:1:0\|-inf 10:1:1e999\|1e999; do
+  spec=${case%|*}
+  refused "range $spec" 1 "--set speed_kmh=$spec: '${case#*|}' $NOT_DECIMAL" "$APC" \
+    --set "speed_kmh=$spec"
+done
+for item in 0x10 0X1A 0x1p3 inf -inf +Infinity nan 'nan(1)' .inf -.Inf .NaN 1e999; do
+  refused "list value $item" 1 "--set speed_kmh=10,$item: '$item' $NOT_DECIMAL" "$APC" \
+    --set "speed_kmh=10,$item"
+done
+# Decimals in every form still run, and words and expressions still go
+# to the scenario reader (a word it refuses fails its case, exit 4).
+guarded sweep "$APC" --set speed_kmh=1e1:5e0:+2e1 -o "$WORK/decimal" -q --no-figures
+expect_status 0 "a range in exponent form"
+checks=$((checks + 1))
+[ "$(cut -d, -f1 "$WORK/decimal/sweep.csv" | tr '\n' ' ')" = "speed_kmh 10 15 20 " ] ||
+  fail "1e1:5e0:+2e1 gives 10 15 20: $(cut -d, -f1 "$WORK/decimal/sweep.csv" | tr '\n' ' ')"
+guarded sweep "$APC" --set speed_kmh=12.5,fast -o "$WORK/word" -q --no-figures
+expect_status 4 "a word in a list is the reader's to refuse"
+expect_in "$WORK/word/sweep.csv" "unknown name 'fast'" "the word's case failed"
+
+# ---- Control characters in a --set key or value: refused before any
+# case runs, the option named with them escaped, on one line.
+# control PART WHAT SHOWN ARG: --set ARG is refused for WHAT in its PART,
+# the option shown as SHOWN.
+control() {
+  refused "control character in the $1: $3" 1 "flexbond sweep: --set $3: the $1 has $2 at byte" \
+    "$APC" --set "$4"
+  checks=$((checks + 1))
+  [ "$(wc -l <"$ERR")" -eq 2 ] || fail "$3: the message is not one line (+ the --help hint)"
+}
+control value "a line break (\\n, U+000A)" "speed_kmh=10\\n20" $'speed_kmh=10\n20'
+control value "a carriage return (\\r, U+000D)" "speed_kmh=10\\r" $'speed_kmh=10\r'
+control value "a tab (\\t, U+0009)" "speed_kmh=10,\\t20" $'speed_kmh=10,\t20'
+control value "a control character (\\x01, U+0001)" "speed_kmh=1\\x010" $'speed_kmh=1\x010'
+control value "a control character (\\x7f, U+007F)" "speed_kmh=10,2\\x7f" $'speed_kmh=10,2\x7f'
+control value "a control character (\\u0085, U+0085)" "simulation.initial=zero,a\\u0085b" \
+  $'simulation.initial=zero,a\xc2\x85b'
+control value "a control character (\\u009f, U+009F)" "speed_kmh=1:1:\\u009f" \
+  $'speed_kmh=1:1:\xc2\x9f'
+control key "a line break (\\n, U+000A)" "speed\\n_kmh=10" $'speed\n_kmh=10'
+control key "a control character (\\x1b, U+001B)" "\\x1b[31mspeed_kmh=10" $'\x1b[31mspeed_kmh=10'
+# Also in the --set=KEY=SPEC form, and in a later --set of several.
+refused "control character, --set= form" 1 "--set speed_kmh=5\\n6: the value has a line break" \
+  "$APC" --set road.bump.height=0.1 $'--set=speed_kmh=5\n6'
+
+echo "$NAME: $checks checks, $failures failed" >&2
+[ "$failures" -eq 0 ]
