@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # flexbond sweep refuses, through the real command, what it once took:
 # numbers of a --set spec that are not plain decimals (hexadecimal, inf,
-# nan, beyond a double), in ranges and in lists; and a control character
-# in a --set key or value (C0, DEL, C1), refused at parse time, before any
-# case runs. Each refusal checks the exit status, the message, and that
-# DIR was not created (or, when it existed, not changed).
+# nan, beyond a double), in ranges and in lists; a control character in a
+# --set key or value (C0, DEL, C1), refused at parse time, before any
+# case runs; and a study of more cases than the bound (docs/sweep.md,
+# "Limits"), refused with the counts that make it. Each refusal checks the
+# exit status, the message, and that DIR was not created (or, when it
+# existed, not changed).
 #
 # usage: bash tests/cli_sweep_strict.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -97,6 +99,22 @@ control key "a control character (\\x1b, U+001B)" "\\x1b[31mspeed_kmh=10" $'\x1b
 # Also in the --set=KEY=SPEC form, and in a later --set of several.
 refused "control character, --set= form" 1 "--set speed_kmh=5\\n6: the value has a line break" \
   "$APC" --set road.bump.height=0.1 $'--set=speed_kmh=5\n6'
+
+# ---- The bound on the number of cases: their product, refused with the
+# counts before anything is allocated or run.
+refused "1e8 cases" 1 "the --set options give 100000000 cases (speed_kmh: 10000 values x \
+angle_deg: 10000 values), more than the 100000 a study may have" "$APC" \
+  --set speed_kmh=1:1:10000 --set angle_deg=1:1:10000
+refused "110000 cases of three keys" 1 "the --set options give 110000 cases (speed_kmh: 100 \
+values x angle_deg: 100 values x road.bump.height: 11 values), more than the 100000" "$APC" \
+  --set speed_kmh=1:1:100 --set angle_deg=1:1:100 --set road.bump.height=0.1:0.01:0.2
+sixteen=()
+for k in a b c d e f g h i j k l m n o p; do sixteen+=(--set "$k=1:1:10000"); done
+refused "16 keys of 10000 values (1e64 cases)" 1 "the --set options give 1e+64 cases (a: \
+10000 values x b: 10000 values" "$APC" "${sixteen[@]}"
+# 100000 cases are within the bound: the next check (an unknown key) speaks.
+refused "100000 cases" 1 "--set no_such_key: " "$APC" --set no_such_key=1:1:1000 \
+  --set speed_kmh=1:1:100
 
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

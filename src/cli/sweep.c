@@ -51,7 +51,8 @@ static const char sweep_usage[] =
     "                   or a key name that occurs once in it (speed_kmh);\n"
     "                   SPEC: start:step:stop (stop included, to step/1e9; at most\n"
     "                   10000 values) or a list v1,v2,... (numbers, expressions or\n"
-    "                   words such as zero,static); repeat for a grid\n"
+    "                   words such as zero,static); numbers in decimal digits;\n"
+    "                   repeat for a grid of at most 100000 cases\n"
     "  -o, --output DIR           output directory (required)\n"
     "  --system rigid|flexible    hull model (default rigid: System 1)\n"
     "  -j, --jobs N               cases run at once (default: the online CPUs)\n"
@@ -312,13 +313,13 @@ static int parse_list(const char *cmd, const char *set, const char *spec, sweep_
       return cli_usage_error(cmd, "--set %s: more than %d values", set, SWEEP_MAX_VALUES);
     if (!add_value(k, item, len))
       return cli_usage_error(cmd, "out of memory");
-    p = item + len;
     /* A number is read as a range's are: a hexadecimal or infinite one
      * is refused here, for the whole study, not by each of its cases. */
     double x;
     const char *value = k->values[k->nvalues - 1];
     if (looks_numeric(value) && !sweep_numeric_value(value, &x))
       return spec_number_error(cmd, set, value);
+    p = item + len;
     p += strspn(p, " ");
     if (*p == '\0')
       return CLI_EXIT_OK;
@@ -326,7 +327,6 @@ static int parse_list(const char *cmd, const char *set, const char *spec, sweep_
   }
 }
 
-/* KEY=SPEC of one --set into k (k->key points into set). */
 /* The bytes of the control character at t: 1 for C0 (U+0000..U+001F,
  * tab and line breaks included) and DEL, 2 for C1 (U+0080..U+009F, the
  * UTF-8 bytes C2 80..C2 9F), as the scenario reader refuses them in
@@ -402,12 +402,13 @@ static int check_controls(const char *cmd, const char *set)
                          at + 1);
 }
 
+/* KEY=SPEC of one --set into k (k->key points into set). */
 static int parse_set(const char *cmd, char *set, sweep_key *k)
 {
-  char *eq = strchr(set, '=');
   const int controls = check_controls(cmd, set);
   if (controls != CLI_EXIT_OK)
     return controls;
+  char *eq = strchr(set, '=');
   if (!eq || eq == set || eq[1] == '\0')
     return cli_usage_error(cmd, "--set needs KEY=SPEC (got '%s')", set);
   /* Messages name the whole option: copy the spec before splitting. */
@@ -473,6 +474,33 @@ static int parse_jobs(const char *cmd, const char *text, size_t *jobs)
   return CLI_EXIT_OK;
 }
 
+/* The cases of the keys in a->ncases: their product, refused (a usage
+ * error naming each key's count) above SWEEP_MAX_CASES before anything
+ * is allocated for them; sweep.h says why the bound is what it is. The
+ * product is formed in a double, which holds 16 keys of SWEEP_MAX_VALUES
+ * values (1e64) where a size_t would wrap. */
+static int count_cases(const char *cmd, sweep_args *a)
+{
+  double cases = 1;
+  char sizes[1024] = "";
+  size_t len = 0;
+  for (size_t k = 0; k < a->nkeys; ++k) {
+    cases *= (double)a->keys[k].nvalues;
+    if (len < sizeof sizes)
+      len += (size_t)snprintf(sizes + len, sizeof sizes - len, "%s%s: %zu value%s",
+                              k ? " x " : "", a->keys[k].key, a->keys[k].nvalues,
+                              a->keys[k].nvalues == 1 ? "" : "s");
+  }
+  if (cases > SWEEP_MAX_CASES)
+    return cli_usage_error(cmd,
+                           "the --set options give %.*g cases (%s), more than the %d a "
+                           "study may have (docs/sweep.md, \"Limits\"): sweep fewer values, "
+                           "or split the study into several",
+                           cases < 1e15 ? 15 : 3, cases, sizes, SWEEP_MAX_CASES);
+  a->ncases = (size_t)cases;
+  return CLI_EXIT_OK;
+}
+
 /* Parses every --set into a->keys and counts the cases. */
 static int parse_keys(const char *cmd, char **sets, size_t nsets, sweep_args *a)
 {
@@ -480,17 +508,13 @@ static int parse_keys(const char *cmd, char **sets, size_t nsets, sweep_args *a)
     return cli_usage_error(cmd, "nothing to sweep: give at least one --set KEY=SPEC");
   if (nsets > SWEEP_MAX_KEYS)
     return cli_usage_error(cmd, "at most %d --set options", SWEEP_MAX_KEYS);
-  a->ncases = 1;
   for (size_t k = 0; k < nsets; ++k) {
     a->nkeys = k + 1;
     int rc = parse_set(cmd, sets[k], &a->keys[k]);
     if (rc != CLI_EXIT_OK)
       return rc;
-    if (a->ncases * a->keys[k].nvalues > SWEEP_MAX_CASES)
-      return cli_usage_error(cmd, "more than %d cases", SWEEP_MAX_CASES);
-    a->ncases *= a->keys[k].nvalues;
   }
-  return CLI_EXIT_OK;
+  return count_cases(cmd, a);
 }
 
 /* Each key names one replaceable value of the scenario, and no two keys

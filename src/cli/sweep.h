@@ -12,7 +12,19 @@
 
 #include "flexbond/vehicle.h"
 
-/* Limits of a study: values per key (as the spec says), keys, cases. */
+/* Limits of a study: values per key (as the spec says), keys, cases.
+ * The cases are the product of the keys' counts, so two keys at the
+ * values' limit would make 1e8: checked on the command line, before
+ * anything is allocated for them. 100000 cases keep a study within what
+ * one command can hold and finish (docs/sweep.md, "Limits"): a case takes
+ * 272 bytes (sweep_case) and 240 more for the figure, 50 MB in all; its
+ * journal row about 520 bytes, so a journal of every case is some 52 MB,
+ * which --resume reads back whole within an input file's 256 MiB
+ * (FB_INPUT_MAX_BYTES), as it would at up to 2.6 KB a row (a failed
+ * case's long message in each), where a million cases would not resume;
+ * and a System 1 case takes 15-25 ms on one core, 100000 of them about
+ * 40 core-minutes (1e8: 27 GB of cases before the first runs, and three
+ * weeks of a core). */
 enum { SWEEP_MAX_VALUES = 10000, SWEEP_MAX_KEYS = 16, SWEEP_MAX_CASES = 100000 };
 
 /* The metrics of a case, in sweep.csv's order. */
