@@ -3,10 +3,15 @@
 # numbers of a --set spec that are not plain decimals (hexadecimal, inf,
 # nan, beyond a double), in ranges and in lists; a control character in a
 # --set key or value (C0, DEL, C1), refused at parse time, before any
-# case runs; and a study of more cases than the bound (docs/sweep.md,
-# "Limits"), refused with the counts that make it. Each refusal checks the
+# case runs; a study of more cases than the bound (docs/sweep.md,
+# "Limits"), refused with the counts that make it; and a journal name
+# that is a symbolic link or not a regular file. Each refusal checks the
 # exit status, the message, and that DIR was not created (or, when it
-# existed, not changed).
+# existed, not changed). The journal names every file it hashed on one
+# line whatever its path: a scenario in a directory whose name has a line
+# break is written percent-encoded, resumes to the same sweep.csv as an
+# ordinary path, and a change to it is named; an ordinary path is written
+# as it is.
 #
 # usage: bash tests/cli_sweep_strict.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -15,6 +20,7 @@ NAME=cli_sweep_strict
 . "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
 
 APC=$REPO_ROOT/examples/apc6x6.yaml
+JOURNAL=sweep.partial.csv
 
 # guarded ARGS...: run under a time limit, so that a study the code
 # under test would run at length fails fast instead; sets $status.
@@ -115,6 +121,103 @@ refused "16 keys of 10000 values (1e64 cases)" 1 "the --set options give 1e+64 c
 # 100000 cases are within the bound: the next check (an unknown key) speaks.
 refused "100000 cases" 1 "--set no_such_key: " "$APC" --set no_such_key=1:1:1000 \
   --set speed_kmh=1:1:100
+
+# ---- The journal's name: not followed through a link, a regular file.
+planted() {
+  local what=$1 message=$2
+  shift 2
+  local before
+  before=$(listing "$WORK/planted")
+  guarded sweep "$APC" --set speed_kmh=10 -o "$WORK/planted" -q --no-figures "$@"
+  expect_status 5 "$what"
+  expect_in "$ERR" "$WORK/planted/$JOURNAL: cannot open: $message" "$what: message"
+  checks=$((checks + 1))
+  [ "$(listing "$WORK/planted")" = "$before" ] || fail "$what: DIR was changed"
+}
+mkdir -p "$WORK/planted"
+ln -s "$WORK/victim" "$WORK/planted/$JOURNAL"
+planted "a link to a missing file" "it is a symbolic link, which the journal is not written"
+expect_absent "$WORK/victim" "a link to a missing file: its target"
+planted "a link to a missing file, --resume" "it is a symbolic link" --resume
+expect_absent "$WORK/victim" "a link to a missing file, --resume: its target"
+: >"$WORK/victim"
+planted "a link to an empty file, --resume" "it is a symbolic link" --resume
+checks=$((checks + 1))
+[ ! -s "$WORK/victim" ] || fail "the empty file behind the link was written"
+rm "$WORK/planted/$JOURNAL"
+mkfifo "$WORK/planted/$JOURNAL"
+planted "a FIFO" "not a regular file" --resume
+rm "$WORK/planted/$JOURNAL"
+mkdir "$WORK/planted/$JOURNAL"
+planted "a directory" "Is a directory"
+
+# ---- The journal's file lines. A 60 s run (a case of about 0.1 s), so
+# that the study can be killed in the middle; no case fails, so sweep.csv
+# holds no path.
+sed 's/^  t_end: 15 /  t_end: 60 /' "$APC" >"$WORK/long.yaml"
+grep -q '^  t_end: 60 ' "$WORK/long.yaml" || {
+  echo "$NAME: cannot lengthen the example's run" >&2
+  exit 2
+}
+ODD="$WORK/new"$'\n'"line%41"
+mkdir "$ODD" && cp "$WORK/long.yaml" "$ODD/long.yaml"
+SPEEDS=6,10,14,18,22,26,30,34,38,42,46,50,54
+
+# rows DIR: the number of case rows in DIR's journal.
+rows() {
+  local n
+  n=$(grep -c '^[0-9]' "$1/$JOURNAL" 2>/dev/null) || n=0
+  echo "$n"
+}
+
+# killed SCENARIO DIR: the study of SCENARIO into DIR, killed once its
+# journal holds 2 rows.
+killed() {
+  rm -rf "$2"
+  "$FLEXBOND" sweep "$1" --set "speed_kmh=$SPEEDS" --no-figures -j 1 -q -o "$2" \
+    >"$OUT" 2>"$ERR" &
+  local pid=$! waited=0
+  while [ "$(rows "$2")" -lt 2 ] && [ "$waited" -lt 1500 ]; do
+    sleep 0.02
+    waited=$((waited + 1))
+  done
+  kill -s KILL "$pid"
+  wait "$pid" 2>/dev/null
+}
+
+guarded sweep "$WORK/long.yaml" --set "speed_kmh=$SPEEDS" --no-figures -q -o "$WORK/ref"
+expect_status 0 "the study, never stopped"
+
+# An ordinary path is written as it is.
+killed "$WORK/long.yaml" "$WORK/plain"
+checks=$((checks + 1))
+[ "$(grep '^# input ' "$WORK/plain/$JOURNAL" | cut -d' ' -f4-)" = "$WORK/long.yaml" ] ||
+  fail "an ordinary path is written byte for byte: $(grep '^# input ' "$WORK/plain/$JOURNAL")"
+
+# A line break and a '%' in a directory's name: one line, percent-encoded.
+killed "$ODD/long.yaml" "$WORK/odd"
+checks=$((checks + 1))
+[ "$(grep '^# input ' "$WORK/odd/$JOURNAL" | cut -d' ' -f4-)" = "$WORK/new%0Aline%2541/long.yaml" ] ||
+  fail "an odd path is percent-encoded: $(grep -a '^# input ' "$WORK/odd/$JOURNAL")"
+checks=$((checks + 1))
+if [ ! -s "$WORK/odd/$JOURNAL" ] || grep -qav '^# \|^case,\|^[0-9]' "$WORK/odd/$JOURNAL"; then
+  fail "every line of the journal is a comment, the header or a row"
+fi
+guarded sweep "$ODD/long.yaml" --set "speed_kmh=$SPEEDS" --no-figures -q -o "$WORK/odd" --resume
+expect_status 0 "resumed from the journal of an odd path"
+checks=$((checks + 1))
+cmp -s "$WORK/ref/sweep.csv" "$WORK/odd/sweep.csv" ||
+  fail "sweep.csv resumed at an odd path differs from the one never stopped"
+
+# The file changed since: named, as the journal writes it (one line).
+killed "$ODD/long.yaml" "$WORK/odd2"
+echo "# changed" >>"$ODD/long.yaml"
+guarded sweep "$ODD/long.yaml" --set "speed_kmh=$SPEEDS" --no-figures -q -o "$WORK/odd2" --resume
+expect_status 1 "resumed after the odd path's file changed"
+expect_in "$ERR" "the journal of another study: $WORK/new%0Aline%2541/long.yaml has changed" \
+  "the changed file at an odd path is named"
+checks=$((checks + 1))
+[ "$(wc -l <"$ERR")" -eq 2 ] || fail "the changed file's message is one line"
 
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

@@ -119,8 +119,9 @@ void sweep_journal_close(sweep_journal **j, int remove_file);
  * reads (the scenario file, every file it names: fb_scenario.inputs,
  * and every --set value of a `file` or `deck` key; one that cannot be
  * read counts as such). With inputs, also one line "# input HASH PATH\n" per
- * file into *inputs (fresh memory, the caller frees it), which the
- * journal keeps to name a file that has changed. */
+ * file into *inputs (fresh memory, the caller frees it; PATH with every
+ * byte below 0x20, DEL and '%' percent-encoded), which the journal keeps
+ * to name a file that has changed. */
 int sweep_study_fingerprint(const sweep_args *a, uint64_t *fingerprint, char **inputs,
                             fb_err *err);
 /* The journal's path in dir, in fresh memory (NULL: out of memory). */

@@ -19,8 +19,11 @@
  * version, the system, the keys and their values, and the bytes of every
  * file the study reads) keeps a journal from being resumed by another
  * study, or after a file it read has changed; the "# input" lines let the
- * refusal name that file. An exclusive flock(2) keeps two sweeps from
- * writing one journal. */
+ * refusal name that file (its path percent-encoded where it has a control
+ * character or a '%', so that a line break in a directory's name cannot
+ * break the line). An exclusive flock(2) keeps two sweeps from writing
+ * one journal; it is opened without following a symbolic link, and only
+ * as a regular file. */
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -102,10 +105,23 @@ static int seen_before(const study_inputs *in, const char *path)
   return 0;
 }
 
+/* path as a journal line holds it: every byte below 0x20, DEL and '%'
+ * itself percent-encoded (%0A for a line break), everything else as it
+ * is. The line stays one line whatever the path, an ordinary path is its
+ * own bytes, and two paths never write the same text (the encoding is
+ * one to one), so the journal's lines are compared with the study's
+ * encoded text by text. */
+static void write_path(FILE *fp, const char *path)
+{
+  for (const unsigned char *c = (const unsigned char *)path; *c; ++c)
+    if (*c < 0x20 || *c == 0x7f || *c == '%')
+      fprintf(fp, "%%%02X", *c);
+    else
+      fputc(*c, fp);
+}
+
 /* Adds the file at path (not seen before), with its bytes text (NULL: it
- * cannot be read): its hash to the fingerprint and its line. The path
- * goes into the line with control characters made '?', so that it stays
- * one line. */
+ * cannot be read): its hash to the fingerprint and its line. */
 static int add_input(study_inputs *in, const char *path, const char *text, size_t len,
                      fb_err *err)
 {
@@ -130,8 +146,7 @@ static int add_input(study_inputs *in, const char *path, const char *text, size_
   in->h = fnv1a_text(in->h, hash);
   if (in->lines) {
     fprintf(in->lines, "# input %s ", hash);
-    for (const char *c = path; *c; ++c)
-      fputc((unsigned char)*c < 0x20 ? '?' : *c, in->lines);
+    write_path(in->lines, path);
     fputc('\n', in->lines);
   }
   return FB_OK;
@@ -422,6 +437,37 @@ static int parse_input_line(const char *line, size_t n, input_line *out)
   return 1;
 }
 
+static int hex_digit(char c)
+{
+  return c >= '0' && c <= '9'   ? c - '0'
+         : c >= 'a' && c <= 'f' ? c - 'a' + 10
+         : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                : -1;
+}
+
+/* The byte of the encoded path p[0..n) at *i, decoded (write_path's %XX,
+ * in either case: a journal edited by hand still compares), *i moved past
+ * it. A '%' without two hex digits after it stands for itself. */
+static unsigned char path_byte(const char *p, size_t n, size_t *i)
+{
+  const int hi = *i + 2 < n && p[*i] == '%' ? hex_digit(p[*i + 1]) : -1,
+            lo = hi >= 0 ? hex_digit(p[*i + 2]) : -1;
+  if (lo < 0)
+    return (unsigned char)p[(*i)++];
+  *i += 3;
+  return (unsigned char)(16 * hi + lo);
+}
+
+/* 1 if two input lines name the same path, byte for byte once decoded. */
+static int same_path(const input_line *x, const input_line *y)
+{
+  size_t i = 0, j = 0;
+  while (i < x->path_len && j < y->path_len)
+    if (path_byte(x->path, x->path_len, &i) != path_byte(y->path, y->path_len, &j))
+      return 0;
+  return i == x->path_len && j == y->path_len;
+}
+
 /* The study's input line (in inputs) of the file that old names, into
  * *now; 0 if this study reads no file of that name. */
 static int same_file_now(const char *inputs, const input_line *old, input_line *now)
@@ -429,8 +475,7 @@ static int same_file_now(const char *inputs, const input_line *old, input_line *
   const size_t len = strlen(inputs);
   for (size_t p = 0, next; p < len; p = next) {
     next = line_end(inputs, len, p);
-    if (parse_input_line(inputs + p, next - p, now) && now->path_len == old->path_len &&
-        !memcmp(now->path, old->path, old->path_len))
+    if (parse_input_line(inputs + p, next - p, now) && same_path(old, now))
       return 1;
   }
   return 0;
@@ -460,13 +505,14 @@ static int another_study(const char *path, const char *text, size_t len, const c
     } else if (parse_input_line(line, n, &old) && same_file_now(inputs, &old, &now) &&
                (old.hash_len != now.hash_len ||
                 memcmp(old.hash, now.hash, old.hash_len) != 0)) {
+      /* The file as this study writes it (percent-encoded): one line. */
       const int unreadable =
           now.hash_len == strlen("unreadable") && !memcmp(now.hash, "unreadable", now.hash_len);
       return fb_err_set(err, FB_EINVAL,
                         "%s: the journal of another study: %.*s %s since the journal was "
                         "written, and the cases it holds were computed from what it held "
                         "then: restore the file, or remove the journal to start afresh",
-                        path, (int)old.path_len, old.path,
+                        path, (int)now.path_len, now.path,
                         unreadable ? "cannot be read" : "has changed");
     }
   }
@@ -596,6 +642,37 @@ static int load_or_start(const sweep_args *a, sweep_journal *j, int fd, sweep_ca
   return rc;
 }
 
+/* Opens (creates) the journal's file at path into *fd: a regular file,
+ * never through a symbolic link (O_NOFOLLOW), which someone could have
+ * planted in DIR to make the sweep write and truncate another file.
+ * O_NONBLOCK keeps a FIFO planted there from blocking the open until it
+ * is refused; it is cleared again for the regular file. FB_EIO. */
+static int open_file(const char *path, int *fd, fb_err *err)
+{
+  *fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  if (*fd < 0)
+    return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path,
+                      errno == ELOOP ? "it is a symbolic link, which the journal is not "
+                                       "written through: remove it"
+                                     : strerror(errno));
+  struct stat st;
+  int rc = FB_OK;
+  if (fstat(*fd, &st) != 0)
+    rc = fb_err_set(err, FB_EIO, "%s: %s", path, strerror(errno));
+  else if (!S_ISREG(st.st_mode))
+    rc = fb_err_set(err, FB_EIO,
+                    "%s: cannot open: not a regular file (a device, pipe or socket), which "
+                    "cannot be the journal: remove it",
+                    path);
+  else if (fcntl(*fd, F_SETFL, fcntl(*fd, F_GETFL) & ~O_NONBLOCK) != 0)
+    rc = fb_err_set(err, FB_EIO, "%s: %s", path, strerror(errno));
+  if (rc != FB_OK) {
+    close(*fd);
+    *fd = -1;
+  }
+  return rc;
+}
+
 int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, size_t *resumed,
                        sweep_journal **out, fb_err *err)
 {
@@ -607,18 +684,15 @@ int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, 
     return fb_err_set(err, FB_ENOMEM, "%s: out of memory", dir);
   }
   j->a = a;
-  const int fd = open(j->path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  int rc = FB_OK, locked = 0;
+  int fd = -1;
+  int rc = open_file(j->path, &fd, err);
   struct stat st = {0};
-  if (fd < 0)
-    rc = fb_err_set(err, FB_EIO, "%s: cannot open: %s", j->path, strerror(errno));
-  else if (flock(fd, LOCK_EX | LOCK_NB) != 0)
+  if (rc == FB_OK && flock(fd, LOCK_EX | LOCK_NB) != 0)
     rc = fb_err_set(err, FB_EIO, "%s: %s", j->path,
                     errno == EWOULDBLOCK
                         ? "another flexbond sweep is writing into this directory"
                         : strerror(errno));
-  else
-    locked = 1;
+  const int locked = rc == FB_OK;
   if (rc == FB_OK && (fstat(fd, &st) != 0 || !(j->fp = fdopen(fd, "r+"))))
     rc = fb_err_set(err, FB_EIO, "%s: %s", j->path, strerror(errno));
   if (rc == FB_OK && !a->resume && st.st_size > 0)
@@ -632,7 +706,7 @@ int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, 
   if (rc != FB_OK) {
     /* A journal this call started (none was there) goes with it, so the
      * directory is as before; another sweep's, or an earlier one, stays,
-     * and so does a link to a device (refused by read_all). */
+     * and so does a link or a device (refused by open_file). */
     if (locked && st.st_size == 0 && S_ISREG(st.st_mode))
       unlink(j->path);
     if (j->fp)
