@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/textfile.h"
 #include "core/util.h"
 
 enum {
@@ -440,6 +441,8 @@ static int parse_number(parser *p)
   double value = strtod(token, &end);
   int complete = *end == '\0';
   int overflow = errno == ERANGE && isinf(value);
+  fb_err why;
+  const int inexact = complete && !overflow && fb_decimal_check_exact(token, value, &why);
   free(token);
   if (!complete)
     return parse_error(p, start, "cannot convert number '%.*s' (is LC_NUMERIC not \"C\"?)",
@@ -447,6 +450,8 @@ static int parse_number(parser *p)
   if (overflow)
     return parse_error(p, start, "number '%.*s' is too large for a double",
                        (int)(p->pos - start), s + start);
+  if (inexact)
+    return parse_error(p, start, "%s", why.msg);
   return emit_push(p, OP_CONST, value, start);
 }
 

@@ -289,6 +289,50 @@ static int is_decimal(const char *s)
 
 /* strtod alone would also take "0x10" (16), "infinity" and "nan(...)";
  * it is asked only for the value, and to tell those apart in the message. */
+/* Every integer up to 2^53 is a double exactly, not every one above
+ * (IEEE 754 binary64 has a 53-bit significand): 2^53 + 1 would read as
+ * 2^53. */
+static const char exact_int_max[] = "9007199254740992";
+
+/* 1 if text is an integer ([+-]digits, no point or exponent) whose
+ * magnitude is above 2^53. */
+static int integer_inexact(const char *text)
+{
+  const char *d = text + (text[0] == '+' || text[0] == '-');
+  const size_t len = strlen(d);
+  if (len == 0 || strspn(d, "0123456789") != len)
+    return 0;
+  while (d[0] == '0' && d[1])
+    ++d;
+  const size_t n = strlen(d), max = sizeof exact_int_max - 1;
+  return n > max || (n == max && strcmp(d, exact_int_max) > 0);
+}
+
+/* 1 if a digit before the exponent of text is not 0. */
+static int has_nonzero_digit(const char *text)
+{
+  for (; *text && *text != 'e' && *text != 'E'; ++text)
+    if (*text >= '1' && *text <= '9')
+      return 1;
+  return 0;
+}
+
+int fb_decimal_check_exact(const char *text, double v, fb_err *err)
+{
+  if (integer_inexact(text))
+    return fb_err_set(err, FB_EINVAL,
+                      "the integer %s is beyond 2^53 = %s, above which a double cannot hold "
+                      "every integer: it would be read as a different number; write it with "
+                      "an exponent (as 1.5e16) if a rounded value is meant",
+                      text, exact_int_max);
+  if (v == 0 && has_nonzero_digit(text))
+    return fb_err_set(err, FB_EINVAL,
+                      "%s is too small for a double (below about 4.9e-324): it would be read "
+                      "as 0; write 0 if 0 is meant",
+                      text);
+  return FB_OK;
+}
+
 int fb_parse_decimal(const char *text, double *out, fb_err *err)
 {
   char *end = NULL;
@@ -299,6 +343,8 @@ int fb_parse_decimal(const char *text, double *out, fb_err *err)
     return fb_err_set(err, FB_EPARSE, "'%s' is not a finite number", text);
   if (!is_decimal(text))
     return fb_err_set(err, FB_EPARSE, "'%s' is not a decimal number", text);
-  *out = v;
-  return FB_OK;
+  const int rc = fb_decimal_check_exact(text, v, err);
+  if (rc == FB_OK)
+    *out = v;
+  return rc;
 }

@@ -102,5 +102,12 @@ size_t fb_text_find_binary(const char *text, size_t len, int line_ends, size_t *
  * the range of a double: "1e999"), for the caller to prefix with
  * fb_err_prefix ("FILE:LINE: column 'z': "). *out is set only on success. */
 int fb_parse_decimal(const char *text, double *out, fb_err *err);
+/* FB_OK unless the decimal text, which strtod read as v, is not the
+ * number written: an integer (digits, a sign allowed) above 2^53 in
+ * magnitude, which a double cannot hold exactly, or a number with a
+ * nonzero digit that is too small for a double and reads as 0. FB_EINVAL
+ * saying which otherwise. Every reader of numbers (fb_parse_decimal, the
+ * YAML loaders, expressions) checks with it. */
+int fb_decimal_check_exact(const char *text, double v, fb_err *err);
 
 #endif

@@ -1096,25 +1096,6 @@ static int ml_number_with_unit(const char *text)
   return isalpha((unsigned char)*end) || *end == '%';
 }
 
-/* Every integer up to 2^53 is a double exactly, not every one above
- * (IEEE 754 binary64 has a 53-bit significand): 2^53 + 1 would read as
- * 2^53. */
-static const char ml_exact_int_max[] = "9007199254740992";
-
-/* 1 if text is an integer ([+-]digits, no point or exponent) whose
- * magnitude is above 2^53. */
-static int ml_integer_inexact(const char *text)
-{
-  const char *d = text + (text[0] == '+' || text[0] == '-');
-  const size_t len = strlen(d);
-  if (len == 0 || strspn(d, "0123456789") != len)
-    return 0;
-  while (d[0] == '0' && d[1])
-    ++d;
-  const size_t n = strlen(d), max = sizeof ml_exact_int_max - 1;
-  return n > max || (n == max && strcmp(d, ml_exact_int_max) > 0);
-}
-
 /* FB_OK if text, which strtod read whole as a finite number, is a plain
  * decimal (fb_parse_decimal, as the CSV, mtx and deck readers take
  * numbers); strtod alone also reads hexadecimal ("0x10", "0x1p-3"). */
@@ -1150,15 +1131,12 @@ int ml_number(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, double 
   double v = 0;
   if (ml_is_yaml_special_float(text))
     return ml_fail(c, n, FB_EINVAL, "must be finite (got %s)", text);
-  if (ml_integer_inexact(text))
-    return ml_fail(c, n, FB_EINVAL,
-                   "the integer %s is beyond 2^53 = %s, above which a double cannot hold "
-                   "every integer: it would be read as a different number; write it with an "
-                   "exponent (as 1.5e16) if a rounded value is meant",
-                   text, ml_exact_int_max);
   if (ml_parse_plain_number(text, &v)) {
     if (!isfinite(v))
       return ml_fail(c, n, FB_EINVAL, "must be finite (got %s)", text);
+    fb_err why;
+    if (fb_decimal_check_exact(text, v, &why) != FB_OK)
+      return ml_fail(c, n, FB_EINVAL, "%s", why.msg);
     int rc = ml_check_decimal(c, n, text);
     if (!rc)
       *out = v;
