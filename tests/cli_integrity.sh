@@ -211,6 +211,56 @@ checks=$((checks + 1))
 [ "$(cat "$WORK/set/probes.png" 2>/dev/null)" = "the user's own figure" ] ||
   fail "a file the user replaced was removed as a stale result"
 
+# An edit in place within the same second (same inode, same size) makes
+# the file the user's: it stays.
+run sim "$QC" -o "$WORK/edit" --plot -q
+printf 'EDITED' | dd of="$WORK/edit/probes.png" bs=1 seek=100 conv=notrunc status=none
+run sim "$QC" -o "$WORK/edit" -q
+checks=$((checks + 1))
+[ -e "$WORK/edit/probes.png" ] || fail "a figure the user edited in place was removed"
+# A manifest that is not this user's own (planted in a directory others
+# can write), or that others may change, names nothing to remove, even
+# with the exact inode, size and time of a file of ours.
+for how in chown chmod; do
+  rm -rf "$WORK/planted_m"
+  mkdir "$WORK/planted_m"
+  echo "precious" >"$WORK/planted_m/precious.txt"
+  eval "$(stat -c 'ino=%i size=%s' "$WORK/planted_m/precious.txt")"
+  mtime=$(stat -c %.9Y "$WORK/planted_m/precious.txt")
+  printf 'sim %s %s %s %s precious.txt\n' "$ino" "$size" "${mtime%.*}" "$((10#${mtime#*.}))" \
+    >"$WORK/planted_m/.flexbond-manifest"
+  if [ "$how" = chown ]; then
+    chown nobody "$WORK/planted_m/.flexbond-manifest" 2>/dev/null || continue
+  else
+    chmod 0666 "$WORK/planted_m/.flexbond-manifest"
+  fi
+  run sim "$QC" -o "$WORK/planted_m" -q
+  expect_status 0 "sim into a directory with a manifest not its own ($how)"
+  checks=$((checks + 1))
+  [ -e "$WORK/planted_m/precious.txt" ] || fail "a planted manifest ($how) removed a file"
+done
+# The same check with the manifest our own: the file goes (so the case
+# above cannot pass for another reason).
+chown "$(id -u)" "$WORK/planted_m/.flexbond-manifest"
+chmod 0644 "$WORK/planted_m/.flexbond-manifest"
+printf 'sim %s %s %s %s precious.txt\n' "$ino" "$size" "${mtime%.*}" "$((10#${mtime#*.}))" \
+  >>"$WORK/planted_m/.flexbond-manifest"
+run sim "$QC" -o "$WORK/planted_m" -q
+checks=$((checks + 1))
+[ ! -e "$WORK/planted_m/precious.txt" ] || fail "the manifest check keeps even our own file"
+# A repeated manifest line does not break the next commit.
+run sim "$QC" -o "$WORK/dup" --plot -q
+grep ' probes.png$' "$WORK/dup/.flexbond-manifest" >>"$WORK/dup/.flexbond-manifest"
+run sim "$QC" -o "$WORK/dup" -q
+expect_status 0 "sim after a manifest line was repeated"
+# A directory of the user's named like a staging directory is not one.
+mkdir -p "$WORK/userstage/.flexbond-staging-abcdef"
+echo "data" >"$WORK/userstage/.flexbond-staging-abcdef/data"
+run sim "$QC" -o "$WORK/userstage" -q
+checks=$((checks + 1))
+[ -e "$WORK/userstage/.flexbond-staging-abcdef/data" ] ||
+  fail "a user's directory named like a staging directory was removed"
+
 # ---- 4. Temporary files: a link planted at the predictable names of
 # earlier versions (FILE.tmp.PID, the PID known through exec) is never
 # followed, and every file flexbond creates is created exclusively.
@@ -300,6 +350,12 @@ sed 's/^  t_end: 5$/  t_end: 5\n  max_steps: 30/' "$QC" >"$WORK/too_few_steps.ya
 run sim "$WORK/too_few_steps.yaml" -o "$WORK/a/b/c"
 expect_status 4 "a solver failure into a/b/c"
 expect_absent "$WORK/a" "a solver failure into a/b/c: a/"
+for odd in 'a/b/../c' 'a/./b/./c' 'a/b/c/.' 'a/b/c/..'; do
+  run sim "$WORK/too_few_steps.yaml" -o "$WORK/$odd"
+  expect_status 4 "a solver failure into $odd"
+  expect_absent "$WORK/a" "a solver failure into $odd: a/"
+  rm -rf "$WORK/a"
+done
 mkdir -p "$WORK/keep"
 run sim "$WORK/too_few_steps.yaml" -o "$WORK/keep/b/c"
 expect_absent "$WORK/keep/b" "a solver failure into keep/b/c: keep/b/"

@@ -31,12 +31,13 @@ void fb_out_abort(fb_out **o);
 
 /* Creates directory dir and its missing parents (mode 0777 & ~umask). */
 int fb_mkdir_p(const char *dir, fb_err *err);
-/* fb_mkdir_p that also returns, in *created (fresh memory, the caller
- * frees it), the first directory it created: the shallowest of those that
- * were not there, so that a caller that fails can remove them all; NULL if
- * dir was there already. On failure, what was created is left as it is
- * and *created names it. */
-int fb_mkdir_p_created(const char *dir, char **created, fb_err *err);
+/* fb_mkdir_p that also returns the directories it created, in the order
+ * it created them, each as the path it gave mkdir (*created, *ncreated:
+ * fresh memory, the caller frees the strings and the array), so that a
+ * caller that fails can remove exactly those, deepest first, whatever
+ * "." and ".." dir holds; none if dir was there already. On failure, what
+ * was created is left as it is and listed. created may be NULL. */
+int fb_mkdir_p_created(const char *dir, char ***created, size_t *ncreated, fb_err *err);
 
 /* The first line of a CSV file of results. */
 typedef enum fb_csv_header {

@@ -44,8 +44,9 @@ static const char manifest_name[] = ".flexbond-manifest";
 static const char stage_prefix[] = ".flexbond-staging-";
 
 /* A manifest holds at most this many entries (a run writes about twenty
- * files; the bound keeps a damaged manifest from costing memory). */
-enum { MANIFEST_MAX_ENTRIES = 100000, LOCK_TRIES = 100 };
+ * files, modes about forty; the bound keeps a damaged manifest from
+ * costing memory or time: each entry is compared with those before it). */
+enum { MANIFEST_MAX_ENTRIES = 10000, LOCK_TRIES = 100 };
 
 /* ---- Removing what a command made. */
 
@@ -90,6 +91,16 @@ static int is_stage_name(const char *name)
   return strncmp(name, stage_prefix, n) == 0 && strlen(name + n) == 6;
 }
 
+/* 1 if name in dir_fd is a directory of this user's that only they may
+ * enter, as mkdtemp makes a staging directory: a directory a user made
+ * with such a name is not taken for one. */
+static int is_own_private_dir(int dir_fd, const char *name)
+{
+  struct stat st;
+  return fstatat(dir_fd, name, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode) &&
+         st.st_uid == geteuid() && (st.st_mode & 077) == 0;
+}
+
 /* Removes the staging directories of killed commands from dir (the lock
  * is held: no live command is staging there). */
 static void remove_stale_stages(const char *dir)
@@ -102,42 +113,17 @@ static void remove_stale_stages(const char *dir)
     return;
   }
   for (struct dirent *e; (e = readdir(d)) != NULL;)
-    if (is_stage_name(e->d_name))
+    if (is_stage_name(e->d_name) && is_own_private_dir(dirfd(d), e->d_name))
       remove_entry_at(dirfd(d), e->d_name, 2);
   closedir(d);
 }
 
-/* Length of path without its trailing slashes (but "/" stays). */
-static size_t trimmed_length(const char *path, size_t n)
-{
-  while (n > 1 && path[n - 1] == '/')
-    --n;
-  return n;
-}
-
-/* Removes od->dir and its parents up to od->first_created, those this
- * command created (deepest first), each only if empty. */
+/* Removes the directories this command created for od->dir, deepest
+ * first, each only if empty (rmdir), by the very paths it made them with. */
 static void remove_created(const cli_outdir *od)
 {
-  if (!od->first_created)
-    return;
-  const size_t stop = trimmed_length(od->first_created, strlen(od->first_created));
-  const size_t len = strlen(od->dir) + 1;
-  char *p = malloc(len);
-  if (!p)
-    return;
-  memcpy(p, od->dir, len);
-  for (size_t n = trimmed_length(p, len - 1); n >= stop;) {
-    p[n] = '\0';
-    if (rmdir(p) != 0 || n == stop)
-      break;
-    while (n > 0 && p[n - 1] != '/')
-      --n; /* to the parent: cut the last component, then its slashes */
-    n = trimmed_length(p, n);
-    if (n == 0)
-      break;
-  }
-  free(p);
+  for (size_t i = od->ncreated; i-- > 0;)
+    rmdir(od->created_dirs[i]);
 }
 
 /* Releases the lock: the holder removes the file, then closes it. */
@@ -217,15 +203,17 @@ static void outdir_free(cli_outdir *od)
   free(od->files);
   free(od->stage);
   free(od->lock_path);
-  free(od->first_created);
+  for (size_t i = 0; i < od->ncreated; ++i)
+    free(od->created_dirs[i]);
+  free(od->created_dirs);
   *od = (cli_outdir){.dir = od->dir, .command = od->command, .lock_fd = -1};
 }
 
 int cli_outdir_open(cli_outdir *od, const char *dir, const char *command, fb_err *err)
 {
   *od = (cli_outdir){.dir = dir, .command = command, .lock_fd = -1};
-  int rc = fb_mkdir_p_created(dir, &od->first_created, err);
-  od->created = od->first_created != NULL;
+  int rc = fb_mkdir_p_created(dir, &od->created_dirs, &od->ncreated, err);
+  od->created = od->ncreated > 0;
   if (rc == FB_OK)
     rc = take_lock(od, err);
   if (rc == FB_OK)
@@ -289,7 +277,7 @@ typedef struct manifest_entry {
   char *command; /* owned */
   char *name;    /* owned: a plain file name in DIR */
   unsigned long long ino, size;
-  long long mtime; /* s */
+  long long mtime, mtime_ns; /* s and ns: an edit within the second shows */
 } manifest_entry;
 
 typedef struct manifest {
@@ -337,15 +325,15 @@ static int is_plain_name(const char *name)
   return 1;
 }
 
-/* Reads "COMMAND INO SIZE MTIME NAME" into command (at most size bytes)
- * and *e; 0 if the line is not one. */
+/* Reads "COMMAND INO SIZE MTIME MTIME_NS NAME" into command (at most size
+ * bytes) and *e; 0 if the line is not one. */
 static int parse_line(const char *line, char *command, size_t size, manifest_entry *e,
                       const char **name)
 {
   int n = 0;
   char fmt[48];
-  snprintf(fmt, sizeof fmt, "%%%zu[a-z] %%llu %%llu %%lld %%n", size - 1);
-  if (sscanf(line, fmt, command, &e->ino, &e->size, &e->mtime, &n) != 4 || n == 0)
+  snprintf(fmt, sizeof fmt, "%%%zu[a-z] %%llu %%llu %%lld %%lld %%n", size - 1);
+  if (sscanf(line, fmt, command, &e->ino, &e->size, &e->mtime, &e->mtime_ns, &n) != 5 || n == 0)
     return 0;
   *name = line + n;
   return is_plain_name(*name);
@@ -355,11 +343,16 @@ static int parse_line(const char *line, char *command, size_t size, manifest_ent
 static int manifest_add_line(manifest *m, const char *line)
 {
   char command[32];
-  manifest_entry parsed = {NULL, NULL, 0, 0, 0};
+  manifest_entry parsed = {NULL, NULL, 0, 0, 0, 0};
   const char *name = NULL;
   if (!parse_line(line, command, sizeof command, &parsed, &name) ||
       m->n >= MANIFEST_MAX_ENTRIES)
     return FB_OK;
+  /* A name is one file: a repeated line (an edited manifest) would set
+   * the same file aside twice. */
+  for (size_t i = 0; i < m->n; ++i)
+    if (strcmp(m->e[i].name, name) == 0)
+      return FB_OK;
   manifest_entry *grown = realloc(m->e, (m->n + 1) * sizeof *grown);
   if (!grown)
     return FB_ENOMEM;
@@ -391,7 +384,11 @@ static int manifest_read(const cli_outdir *od, manifest *m, fb_err *err)
   fb_text_reader r;
   fb_err ignored;
   int rc = FB_OK;
-  if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) &&
+  /* Only a manifest this user wrote, that nobody else may change, is
+   * believed: in a directory others can write (a sticky /tmp), a planted
+   * one could name a file of ours to remove. */
+  if (lstat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == geteuid() &&
+      (st.st_mode & 022) == 0 && st.st_nlink == 1 &&
       fb_text_open(&r, path, "manifest", &ignored) == FB_OK) {
     char *line = NULL;
     while (rc == FB_OK && fb_text_next_data_line(&r, '#', &line) == FB_OK && line)
@@ -422,22 +419,28 @@ static void write_manifest(FILE *fp, const void *ctx)
   for (size_t i = 0; i < w->previous->n; ++i) {
     const manifest_entry *e = &w->previous->e[i];
     if (strcmp(e->command, w->od->command) != 0 && !stages(w->od, e->name))
-      fprintf(fp, "%s %llu %llu %lld %s\n", e->command, e->ino, e->size, e->mtime, e->name);
+      fprintf(fp, "%s %llu %llu %lld %lld %s\n", e->command, e->ino, e->size, e->mtime,
+              e->mtime_ns, e->name);
   }
   /* A rename keeps the inode, size and time the staged file has now. */
   for (size_t i = 0; i < w->od->nfiles; ++i) {
     struct stat st;
     if (lstat(w->od->files[i], &st) == 0)
-      fprintf(fp, "%s %llu %llu %lld %s\n", w->od->command, (unsigned long long)st.st_ino,
-              (unsigned long long)st.st_size, (long long)st.st_mtime, staged_name(w->od, i));
+      fprintf(fp, "%s %llu %llu %lld %lld %s\n", w->od->command, (unsigned long long)st.st_ino,
+              (unsigned long long)st.st_size, (long long)st.st_mtim.tv_sec,
+              (long long)st.st_mtim.tv_nsec, staged_name(w->od, i));
   }
 }
 
-/* 1 if st is the file that e recorded. */
+/* 1 if st is the file that e recorded: ours (this user's), with the
+ * inode, size and modification time it had. */
 static int is_recorded_file(const struct stat *st, const manifest_entry *e)
 {
-  return S_ISREG(st->st_mode) && (unsigned long long)st->st_ino == e->ino &&
-         (unsigned long long)st->st_size == e->size && (long long)st->st_mtime == e->mtime;
+  return S_ISREG(st->st_mode) && st->st_uid == geteuid() &&
+         (unsigned long long)st->st_ino == e->ino &&
+         (unsigned long long)st->st_size == e->size &&
+         (long long)st->st_mtim.tv_sec == e->mtime &&
+         (long long)st->st_mtim.tv_nsec == e->mtime_ns;
 }
 
 /* ---- Committing. */
@@ -566,6 +569,9 @@ static int commit(cli_outdir *od, fb_err *err)
   const manifest_writer w = {od, &previous};
   if (rc == FB_OK)
     rc = cli_outdir_write(od, manifest_name, write_manifest, &w, err);
+  /* Writable by its owner alone, as manifest_read requires. */
+  if (rc == FB_OK && chmod(od->files[od->nfiles - 1], 0644) != 0)
+    rc = fb_err_set(err, FB_EIO, "%s: %s", od->files[od->nfiles - 1], strerror(errno));
   moves mv = {NULL, 0, 0};
   if (rc == FB_OK && plan(od, &previous, &mv) != FB_OK)
     rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);

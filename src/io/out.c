@@ -258,19 +258,28 @@ static int make_one_dir(const char *component, const char *whole, int *made, fb_
                     reason);
 }
 
-/* Records prefix, just created, as the first directory made (once). */
-static int note_created(const char *prefix, int made, char **created, fb_err *err)
+/* Appends prefix, just created, to the list *created (of *ncreated). */
+static int note_created(const char *prefix, int made, char ***created, size_t *ncreated,
+                        fb_err *err)
 {
-  if (!made || !created || *created)
+  if (!made || !created)
     return FB_OK;
-  *created = copy_string(prefix);
-  return *created ? FB_OK : fb_err_set(err, FB_ENOMEM, "%s: out of memory", prefix);
+  char **grown = realloc(*created, (*ncreated + 1) * sizeof *grown);
+  char *copy = grown ? copy_string(prefix) : NULL;
+  if (grown)
+    *created = grown;
+  if (!copy)
+    return fb_err_set(err, FB_ENOMEM, "%s: out of memory", prefix);
+  (*created)[(*ncreated)++] = copy;
+  return FB_OK;
 }
 
-int fb_mkdir_p_created(const char *dir, char **created, fb_err *err)
+int fb_mkdir_p_created(const char *dir, char ***created, size_t *ncreated, fb_err *err)
 {
-  if (created)
+  if (created) {
     *created = NULL;
+    *ncreated = 0;
+  }
   if (!dir || !*dir)
     return fb_err_set(err, FB_EINVAL, "directory: empty path");
   char *prefix = copy_string(dir);
@@ -285,18 +294,18 @@ int fb_mkdir_p_created(const char *dir, char **created, fb_err *err)
     *p = '\0';
     rc = make_one_dir(prefix, dir, &made, err);
     if (rc == FB_OK)
-      rc = note_created(prefix, made, created, err);
+      rc = note_created(prefix, made, created, ncreated, err);
     *p = '/';
   }
   if (rc == FB_OK)
     rc = make_one_dir(dir, dir, &made, err);
   if (rc == FB_OK)
-    rc = note_created(dir, made, created, err);
+    rc = note_created(dir, made, created, ncreated, err);
   free(prefix);
   return rc;
 }
 
 int fb_mkdir_p(const char *dir, fb_err *err)
 {
-  return fb_mkdir_p_created(dir, NULL, err);
+  return fb_mkdir_p_created(dir, NULL, NULL, err);
 }
