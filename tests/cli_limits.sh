@@ -123,6 +123,11 @@ refused 2 "$(where s_rate.yaml 'sample_rate: 6.6e6' 6.6e6) simulation.sample_rat
 refused 1 "flexbond sim: option '--sample-rate': 1.9e+07 Hz over 5 s gives 9.5e+07 samples of 6 columns, which would need about 4.6 GB" \
   "--sample-rate 1.9e7" sim quarter_car.yaml -o out_sim_rate --sample-rate 1.9e7
 
+# max_steps itself is bounded, or a huge one would let any max_step through.
+edited s_maxsteps.yaml apc6x6.yaml -e 's/^  t_end: 15 .*/  t_end: 15\n  max_steps: 1000000000000/'
+refused 2 "$(where s_maxsteps.yaml 'max_steps: 1000000000000' 1000000000000) simulation.max_steps: must be in 1 .. 1000000000" \
+  "max_steps 1e12" run s_maxsteps.yaml -o out_maxsteps --system rigid
+
 edited s_dense.yaml apc6x6.yaml -e 's/^    density: 1 /    density: 64 /'
 refused 2 "$(where s_dense.yaml 'density: 64' 64) hull.mesh.density: 64 refines the generated mesh's 240 elements into 983040, which would need about 64.4 GB" \
   "hull density 64" mesh s_dense.yaml

@@ -583,7 +583,13 @@ static void test_opts(void)
                      "simulation.max_step: must be finite and >= 0 (0: no limit), got -0.1");
   fb_sim_opts_default(&o);
   o.max_steps = 0;
-  check_opts_message(&o, "simulation.max_steps: must be positive, got 0");
+  check_opts_message(&o, "simulation.max_steps: must be in 1 .. 1000000000");
+  /* The bound's edge: FB_SIM_MAX_STEPS is allowed, one more is not. */
+  o.max_steps = FB_SIM_MAX_STEPS + 1;
+  check_opts_message(&o, "simulation.max_steps: must be in 1 .. 1000000000");
+  o.max_steps = FB_SIM_MAX_STEPS;
+  fb_err_clear(&err);
+  CHECK(fb_sim_opts_check(&o, &err) == FB_OK);
   /* Certain not to finish: 1 s at most 1e-8 s a step is 1e8 steps, more
    * than the budget; 1e7 exactly is not refused. */
   fb_sim_opts_default(&o);

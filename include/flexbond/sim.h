@@ -30,6 +30,10 @@ typedef int (*fb_sim_progress_fn)(void *ctx, double t, double t_end);
 
 /* The default budget of internal steps of a whole run (fb_sim_opts). */
 #define FB_SIM_DEFAULT_MAX_STEPS 10000000L
+/* The most max_steps may allow: a step of System 1 with its outputs takes
+ * about 0.1 ms, so 1e9 steps are a day of computing; more is no run that
+ * finishes, and would hide a max_step that cannot be met. */
+#define FB_SIM_MAX_STEPS 1000000000L
 
 typedef struct fb_sim_opts {
   double t_start;            /* s */

@@ -156,9 +156,11 @@ static int check_solver(const fb_sim_opts *o, fb_err *err)
     return fb_err_set(err, FB_EINVAL,
                       "simulation.max_step: must be finite and >= 0 (0: no limit), got %g",
                       o->max_step);
-  if (o->max_steps < 1)
-    return fb_err_set(err, FB_EINVAL, "simulation.max_steps: must be positive, got %ld",
-                      o->max_steps);
+  if (o->max_steps < 1 || o->max_steps > FB_SIM_MAX_STEPS)
+    return fb_err_set(err, FB_EINVAL,
+                      "simulation.max_steps: must be in 1 .. %ld (about a day of solver steps "
+                      "at 0.1 ms each; docs/errors.md, \"Limits\"), got %ld",
+                      FB_SIM_MAX_STEPS, o->max_steps);
   return check_step_budget(o, err);
 }
 
