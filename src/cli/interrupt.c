@@ -37,14 +37,19 @@
 
 _Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the flag is read without the lock");
 
-/* How long the command has to stop by itself after a signal, ms. */
+/* How long the command has to stop by itself after a signal, ms; and,
+ * once it has seen the flag (it is winding down: freeing a long run's
+ * results, removing what it staged, under a loaded machine or a
+ * sanitizer), how much longer it may take to say so itself. */
 #define CLI_GRACE_MS 300
+#define CLI_WIND_DOWN_MS 2000
 
 /* Output directories open at once in one command: a sweep's and the
  * directory of its figure at most. */
 enum { CLI_MAX_GUARDED = 4 };
 
 static atomic_int interrupted;
+static atomic_int seen; /* cli_interrupted has answered 1 */
 /* The handler's pipe: [0] read by the thread, [1] written by the handler
  * (non-blocking: a full pipe already says enough). */
 static int wake[2] = {-1, -1};
@@ -130,7 +135,8 @@ static void *watch(void *arg)
   while (!wait_for_signal(-1))
     ;
   /* A second signal, or the grace period over. */
-  wait_for_signal(CLI_GRACE_MS);
+  if (!wait_for_signal(CLI_GRACE_MS) && atomic_load(&seen))
+    wait_for_signal(CLI_WIND_DOWN_MS);
   pthread_mutex_lock(&guard.lock);
   if (!guard.committed && !guard.finished && !guard.polled_only)
     stop_now();
@@ -202,7 +208,10 @@ void cli_interrupt_finish(void)
 
 int cli_interrupted(void)
 {
-  return atomic_load(&interrupted) != 0;
+  if (atomic_load(&interrupted) == 0)
+    return 0;
+  atomic_store(&seen, 1);
+  return 1;
 }
 
 int cli_check_interrupt(fb_err *err)
