@@ -392,7 +392,9 @@ static int check_controls(const char *cmd, const char *set)
                      : c == '\r' ? "a carriage return"
                      : c == '\t' ? "a tab"
                                  : "a control character";
-  char shown[512], one[3] = {set[at], c >= 0x80 ? set[at + 1] : '\0', '\0'}, escaped[8];
+  char shown[512], one[3] = {set[at], '\0', '\0'}, escaped[8];
+  if (c >= 0x80) /* a C1 control: two bytes of UTF-8 */
+    one[1] = set[at + 1];
   escape_controls(set, shown, sizeof shown);
   escape_controls(one, escaped, sizeof escaped);
   return cli_usage_error(cmd,

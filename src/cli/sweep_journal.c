@@ -657,15 +657,18 @@ static int open_file(const char *path, int *fd, fb_err *err)
                                      : strerror(errno));
   struct stat st;
   int rc = FB_OK;
-  if (fstat(*fd, &st) != 0)
+  /* fstat, then clearing O_NONBLOCK: either failing is the system's
+   * reason; a file that is not regular is ours to explain. */
+  const int sys_failed =
+      fstat(*fd, &st) != 0 ||
+      (S_ISREG(st.st_mode) && fcntl(*fd, F_SETFL, fcntl(*fd, F_GETFL) & ~O_NONBLOCK) != 0);
+  if (sys_failed)
     rc = fb_err_set(err, FB_EIO, "%s: %s", path, strerror(errno));
   else if (!S_ISREG(st.st_mode))
     rc = fb_err_set(err, FB_EIO,
                     "%s: cannot open: not a regular file (a device, pipe or socket), which "
                     "cannot be the journal: remove it",
                     path);
-  else if (fcntl(*fd, F_SETFL, fcntl(*fd, F_GETFL) & ~O_NONBLOCK) != 0)
-    rc = fb_err_set(err, FB_EIO, "%s: %s", path, strerror(errno));
   if (rc != FB_OK) {
     close(*fd);
     *fd = -1;
