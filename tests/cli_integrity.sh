@@ -356,6 +356,12 @@ for odd in 'a/b/../c' 'a/./b/./c' 'a/b/c/.' 'a/b/c/..'; do
   expect_absent "$WORK/a" "a solver failure into $odd: a/"
   rm -rf "$WORK/a"
 done
+# ... and so does one that fails while it writes (gnuplot fails).
+fake_gnuplot 'exit 1'
+PATH="$BIN:$PATH" run sim "$QC" -o "$WORK/a/b/c" --plot -q
+expect_status 5 "a gnuplot failure into a/b/c"
+expect_absent "$WORK/a" "a gnuplot failure into a/b/c: a/"
+rm -f "$BIN/gnuplot"
 mkdir -p "$WORK/keep"
 run sim "$WORK/too_few_steps.yaml" -o "$WORK/keep/b/c"
 expect_absent "$WORK/keep/b" "a solver failure into keep/b/c: keep/b/"
