@@ -27,8 +27,9 @@
  * application declares it). */
 extern char **environ;
 
-/* Bytes of the child's log quoted in a failure message. */
-enum { LOG_TAIL = 600 };
+/* Bytes of the child's log quoted in a failure message; a bound above the
+ * signal numbers of Linux (64) for resetting them all. */
+enum { LOG_TAIL = 600, CHILD_LAST_SIGNAL = 65 };
 
 /* The first executable program in the directories of PATH (or, without
  * PATH, /usr/bin:/bin), in fresh memory; NULL if there is none (errno
@@ -78,12 +79,16 @@ static void child_exec(const char *file, char *const *argv, const char *cwd, int
   sigset_t none;
   sigemptyset(&none);
   sigprocmask(SIG_SETMASK, &none, NULL);
-  const int defaults[] = {SIGINT, SIGTERM, SIGQUIT, SIGHUP, SIGPIPE};
+  /* Every signal at its default action, an ignored one too (exec keeps
+   * SIG_IGN): a shell's background job ignores SIGINT, and the child is
+   * to start the same wherever flexbond was started. Numbers past the
+   * last signal fail with EINVAL, harmlessly. */
   struct sigaction dfl;
   memset(&dfl, 0, sizeof dfl);
   dfl.sa_handler = SIG_DFL;
-  for (size_t i = 0; i < sizeof defaults / sizeof defaults[0]; ++i)
-    sigaction(defaults[i], &dfl, NULL);
+  for (int sig = 1; sig < CHILD_LAST_SIGNAL; ++sig)
+    if (sig != SIGKILL && sig != SIGSTOP)
+      sigaction(sig, &dfl, NULL);
   if (chdir(cwd) != 0 || dup2(in_fd, STDIN_FILENO) < 0 || dup2(log_fd, STDOUT_FILENO) < 0 ||
       dup2(log_fd, STDERR_FILENO) < 0)
     _exit(127);
