@@ -250,7 +250,8 @@ checks=$((checks + 1))
 [ ! -e "$WORK/planted_m/precious.txt" ] || fail "the manifest check keeps even our own file"
 # A repeated manifest line does not break the next commit.
 run sim "$QC" -o "$WORK/dup" --plot -q
-grep ' probes.png$' "$WORK/dup/.flexbond-manifest" >>"$WORK/dup/.flexbond-manifest"
+line=$(grep ' probes.png$' "$WORK/dup/.flexbond-manifest")
+echo "$line" >>"$WORK/dup/.flexbond-manifest"
 run sim "$QC" -o "$WORK/dup" -q
 expect_status 0 "sim after a manifest line was repeated"
 # A directory of the user's named like a staging directory is not one.

@@ -32,6 +32,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "flexbond/io.h"
@@ -46,7 +47,7 @@ static const char stage_prefix[] = ".flexbond-staging-";
 /* A manifest holds at most this many entries (a run writes about twenty
  * files, modes about forty; the bound keeps a damaged manifest from
  * costing memory or time: each entry is compared with those before it). */
-enum { MANIFEST_MAX_ENTRIES = 10000, LOCK_TRIES = 100 };
+enum { MANIFEST_MAX_ENTRIES = 10000, LOCK_TRIES = 100, STAGE_REMOVE_PASSES = 50 };
 
 /* ---- Removing what a command made. */
 
@@ -76,11 +77,20 @@ static void remove_entry_at(int dir_fd, const char *name, int depth)
 }
 
 /* Removes the staging directory path and what is in it (its files and
- * the private directories of gnuplot runs inside). */
+ * the private directories of gnuplot runs inside). Called by the signal
+ * thread too, while the command may still be creating a file it had
+ * begun: what appears after a pass is removed by the next, until the
+ * directory is gone (a few passes at most; bounded all the same). */
 static void remove_stage(const char *path)
 {
-  if (path) /* none until the first file */
+  struct stat st;
+  for (int pass = 0; path && pass < STAGE_REMOVE_PASSES; ++pass) {
     remove_entry_at(AT_FDCWD, path, 2);
+    if (fstatat(AT_FDCWD, path, &st, AT_SYMLINK_NOFOLLOW) != 0)
+      return;
+    const struct timespec pause = {0, 2000000};
+    nanosleep(&pause, NULL);
+  }
 }
 
 /* 1 if name is a staging directory's name: the prefix and mkdtemp's six
@@ -229,13 +239,19 @@ int cli_outdir_open(cli_outdir *od, const char *dir, const char *command, fb_err
 
 char *cli_outdir_path(cli_outdir *od, const char *name, fb_err *err)
 {
+  /* Under the guard's lock, which the signal thread holds from the
+   * moment it abandons od until the process ends: no staging directory
+   * is made, and no new file named, after it has looked. */
+  cli_guard_lock();
   /* Made at the first file: a command killed while it computes leaves
    * no staging directory behind. */
-  if (!od->stage && make_stage(od, err) != FB_OK)
-    return NULL;
-  char *path = cli_join_path(od->stage, name);
-  if (!path)
-    fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);
+  char *path = NULL;
+  if (od->stage || make_stage(od, err) == FB_OK) {
+    path = cli_join_path(od->stage, name);
+    if (!path)
+      fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);
+  }
+  cli_guard_unlock(0);
   return path;
 }
 
