@@ -15,7 +15,7 @@ void fb_err_clear(fb_err *err)
   err->origin_index = 0;
 }
 
-int fb_err_set_origin(fb_err *err, int origin, size_t index, int code)
+int(fb_err_set_origin)(fb_err *err, int origin, size_t index, int code)
 {
   if (err) {
     err->origin = origin;
