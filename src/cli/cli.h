@@ -137,12 +137,11 @@ typedef struct cli_outdir {
   const char *dir;     /* borrowed: the destination */
   const char *command; /* borrowed: the command's name, for the manifest ("run") */
   char *stage;         /* the staging directory, owned */
-  int created;         /* dir did not exist before cli_outdir_open */
   char **created_dirs; /* owned: the directories open created, in order */
-  size_t ncreated;
-  char *lock_path; /* owned: dir/.flexbond.lock */
-  int lock_fd;     /* holds the lock; -1 when none is held */
-  char **files;    /* staged files, owned */
+  size_t ncreated;     /* 0: dir was there before cli_outdir_open */
+  char *lock_path;     /* owned: dir/.flexbond.lock */
+  int lock_fd;         /* holds the lock; -1 when none is held */
+  char **files;        /* staged files, owned */
   size_t nfiles;
   /* borrowed, or NULL: what the signal thread says of dir when it ends
    * the command early, instead of "nothing was written" (a sweep's journal) */

@@ -48,6 +48,9 @@ _Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the flag is read without the lock");
  * directory of its figure at most. */
 enum { CLI_MAX_GUARDED = 4 };
 
+/* What an interrupted command says, by itself or through the thread. */
+static const char interrupted_msg[] = "interrupted (SIGINT, SIGTERM or SIGHUP)";
+
 static atomic_int interrupted;
 static atomic_int seen; /* cli_interrupted has answered 1 */
 /* The handler's pipe: [0] read by the thread, [1] written by the handler
@@ -94,8 +97,7 @@ static void say(const char *text)
 static void stop_now(void)
 {
   char msg[FB_ERR_MSG_MAX];
-  size_t len =
-      (size_t)snprintf(msg, sizeof msg, "flexbond: interrupted (SIGINT, SIGTERM or SIGHUP)");
+  size_t len = (size_t)snprintf(msg, sizeof msg, "flexbond: %s", interrupted_msg);
   for (size_t i = 0; i < CLI_MAX_GUARDED; ++i) {
     const cli_outdir *od = guard.open[i];
     if (!od)
@@ -104,11 +106,11 @@ static void stop_now(void)
     if (len < sizeof msg && od->interrupt_note)
       len += (size_t)snprintf(msg + len, sizeof msg - len, "; %s", od->interrupt_note);
     else if (len < sizeof msg)
-      len +=
-          (size_t)snprintf(msg + len, sizeof msg - len,
-                           od->created ? "; nothing was written (%s not created)"
-                                       : "; nothing was written: %s holds what it held before",
-                           od->dir);
+      len += (size_t)snprintf(msg + len, sizeof msg - len,
+                              od->ncreated > 0
+                                  ? "; nothing was written (%s not created)"
+                                  : "; nothing was written: %s holds what it held before",
+                              od->dir);
   }
   if (len < sizeof msg - 1)
     msg[len++] = '\n';
@@ -218,7 +220,7 @@ int cli_check_interrupt(fb_err *err)
 {
   if (!cli_interrupted())
     return FB_OK;
-  return fb_err_set(err, FB_EINTR, "interrupted (SIGINT, SIGTERM or SIGHUP)");
+  return fb_err_set(err, FB_EINTR, "%s", interrupted_msg);
 }
 
 int cli_guard_add(const cli_outdir *od)

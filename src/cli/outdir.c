@@ -223,7 +223,6 @@ int cli_outdir_open(cli_outdir *od, const char *dir, const char *command, fb_err
 {
   *od = (cli_outdir){.dir = dir, .command = command, .lock_fd = -1};
   int rc = fb_mkdir_p_created(dir, &od->created_dirs, &od->ncreated, err);
-  od->created = od->ncreated > 0;
   if (rc == FB_OK)
     rc = take_lock(od, err);
   if (rc == FB_OK)

@@ -25,6 +25,7 @@
 #include "flexbond/io.h"
 #include "flexbond/vehicle.h"
 
+#include "../core/textfile.h"
 #include "cli.h"
 
 static const char sweep_usage[] =
@@ -327,32 +328,13 @@ static int parse_list(const char *cmd, const char *set, const char *spec, sweep_
   }
 }
 
-/* The bytes of the control character at t: 1 for C0 (U+0000..U+001F,
- * tab and line breaks included) and DEL, 2 for C1 (U+0080..U+009F, the
- * UTF-8 bytes C2 80..C2 9F), as the scenario reader refuses them in
- * one-line text; 0 if there is none. *c gets its code point. */
-static size_t control_at(const unsigned char *t, unsigned *c)
-{
-  if (*t < 0x20 || *t == 0x7f) {
-    *c = *t;
-    return 1;
-  }
-  if (t[0] == 0xc2 && t[1] >= 0x80 && t[1] <= 0x9f) {
-    *c = t[1];
-    return 2;
-  }
-  return 0;
-}
-
-/* Offset of the first control character of text (with its code point in
- * *c); strlen(text) if none. */
+/* Offset of the first control character of text, as the scenario
+ * reader refuses them in one-line text (fb_text_find_control: tab and
+ * line breaks included), with its code point in *c; strlen(text) if
+ * none. */
 static size_t find_control(const char *text, unsigned *c)
 {
-  const unsigned char *t = (const unsigned char *)text;
-  size_t i = 0;
-  while (t[i] && !control_at(t + i, c))
-    ++i;
-  return i;
+  return fb_text_find_control(text, strlen(text), 0, c);
 }
 
 /* text into buf with every control character written as a C escape (\n,
@@ -361,13 +343,15 @@ static size_t find_control(const char *text, unsigned *c)
 static void escape_controls(const char *text, char *buf, size_t size)
 {
   size_t n = 0;
-  for (const unsigned char *t = (const unsigned char *)text; *t && n + 7 < size;) {
+  for (const char *t = text; *t && n + 7 < size;) {
     unsigned c = 0;
-    const size_t bytes = control_at(t, &c);
-    if (!bytes) {
-      buf[n++] = (char)*t++;
-      continue;
-    }
+    const size_t plain = find_control(t, &c);
+    for (size_t k = 0; k < plain && n + 7 < size; ++k)
+      buf[n++] = t[k];
+    t += plain;
+    if (!*t || n + 7 >= size)
+      break;
+    const size_t bytes = c >= 0x80 ? 2 : 1; /* C1 is two bytes of UTF-8 */
     const char *named = c == '\n' ? "\\n" : c == '\r' ? "\\r" : c == '\t' ? "\\t" : NULL;
     const int w = named ? snprintf(buf + n, size - n, "%s", named)
                         : snprintf(buf + n, size - n, c >= 0x80 ? "\\u%04x" : "\\x%02x", c);

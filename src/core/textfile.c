@@ -333,6 +333,23 @@ int fb_decimal_check_exact(const char *text, double v, fb_err *err)
   return FB_OK;
 }
 
+size_t fb_text_find_control(const char *text, size_t len, int layout, unsigned *code)
+{
+  const unsigned char *t = (const unsigned char *)text;
+  for (size_t i = 0; i < len; ++i) {
+    const int blank = t[i] == '\t' || t[i] == '\n' || t[i] == '\r';
+    if ((t[i] < 0x20 && !(layout && blank)) || t[i] == 0x7f) {
+      *code = t[i];
+      return i;
+    }
+    if (t[i] == 0xc2 && i + 1 < len && t[i + 1] >= 0x80 && t[i + 1] <= 0x9f) {
+      *code = t[i + 1];
+      return i;
+    }
+  }
+  return len;
+}
+
 int fb_parse_decimal(const char *text, double *out, fb_err *err)
 {
   char *end = NULL;

@@ -93,6 +93,14 @@ size_t fb_utf8_length(const unsigned char *s, size_t n);
 size_t fb_text_find_binary(const char *text, size_t len, int line_ends, size_t *line,
                            size_t *col);
 
+/* Offset of the first control character of text[0..len): C0 (U+0000 ..
+ * U+001F), DEL, or C1 (U+0080 .. U+009F, the UTF-8 bytes C2 80 .. C2 9F;
+ * two bytes); tab, line feed and carriage return excepted when layout is
+ * 1. *code gets its code point; len if there is none. One-line text
+ * (names, units, --set values) may hold none of them: a line break would
+ * start a line of an output file's own syntax. */
+size_t fb_text_find_control(const char *text, size_t len, int layout, unsigned *code);
+
 /* Parses the whole of text as a plain decimal number: an optional sign,
  * digits with at most one '.' (at least one digit), an optional exponent
  * (e or E, optional sign, digits). No blanks around it. FB_EPARSE with the

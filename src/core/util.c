@@ -49,6 +49,15 @@ int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize)
   return FB_OK;
 }
 
+char *fb_path_join(const char *dir, const char *name)
+{
+  const size_t n = strlen(dir) + strlen(name) + 2;
+  char *p = malloc(n);
+  if (p)
+    snprintf(p, n, "%s/%s", dir, name);
+  return p;
+}
+
 char *fb_dirname(const char *path)
 {
   const char *slash = strrchr(path, '/');

@@ -25,6 +25,8 @@ int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize);
 /* The directory part of path in fresh memory: "." when path has no '/',
  * "/" for a file in the root (NULL when out of memory). */
 char *fb_dirname(const char *path);
+/* dir/name in fresh memory (NULL when out of memory). */
+char *fb_path_join(const char *dir, const char *name);
 
 /* Input files are opened and read by core/textfile.h (fb_open_input,
  * fb_read_file), with their checks. */

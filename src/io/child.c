@@ -23,6 +23,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/util.h"
+
 /* The environment handed to the child (POSIX.1-2008, exec: the
  * application declares it). */
 extern char **environ;
@@ -116,18 +118,12 @@ static int wait_until(pid_t pid, double deadline, int *status)
   }
 }
 
-/* The last LOG_TAIL bytes of the log at cwd/log, one line (control
+/* The last LOG_TAIL bytes of the log at log_path, one line (control
  * characters as spaces), into buf; "" if there is none. */
-static void log_tail(const char *cwd, const char *log, char *buf, size_t size)
+static void log_tail(const char *log_path, char *buf, size_t size)
 {
   buf[0] = '\0';
-  const size_t n = strlen(cwd) + strlen(log) + 2;
-  char *path = malloc(n);
-  if (!path)
-    return;
-  snprintf(path, n, "%s/%s", cwd, log);
-  const int fd = open(path, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-  free(path);
+  const int fd = open(log_path, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0)
     return;
   const off_t end = lseek(fd, 0, SEEK_END);
@@ -146,36 +142,32 @@ static void log_tail(const char *cwd, const char *log, char *buf, size_t size)
   snprintf(buf, size, ": %s", text);
 }
 
-/* Opens /dev/null for reading and the new log cwd/log for writing, both
- * close-on-exec (the child's dup2 copies lose the flag). */
-static int open_streams(const fb_child_spec *spec, int *in_fd, int *log_fd)
+/* Opens /dev/null for reading and the new log at log_path for writing,
+ * both close-on-exec (the child's dup2 copies lose the flag). 0 or the
+ * errno value of the open that failed (nothing is left open then). */
+static int open_streams(const char *log_path, int *in_fd, int *log_fd)
 {
+  *log_fd = -1;
   *in_fd = open("/dev/null", O_RDONLY | O_CLOEXEC);
-  const size_t n = strlen(spec->cwd) + strlen(spec->log) + 2;
-  char *path = malloc(n);
-  if (path) {
-    snprintf(path, n, "%s/%s", spec->cwd, spec->log);
-    *log_fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-  }
-  const int e = !path ? ENOMEM : errno;
-  free(path);
-  if (*in_fd >= 0 && path && *log_fd >= 0)
+  if (*in_fd < 0)
+    return errno;
+  *log_fd = open(log_path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (*log_fd >= 0)
     return 0;
-  if (*in_fd >= 0)
-    close(*in_fd);
-  if (path && *log_fd >= 0)
-    close(*log_fd);
-  *in_fd = *log_fd = -1;
+  const int e = errno;
+  close(*in_fd);
+  *in_fd = -1;
   return e;
 }
 
 /* The outcome of a child that ended with status. */
-static int report_status(const fb_child_spec *spec, const char *what, int status, fb_err *err)
+static int report_status(const fb_child_spec *spec, const char *log_path, const char *what,
+                         int status, fb_err *err)
 {
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
     return FB_OK;
   char tail[LOG_TAIL + 8];
-  log_tail(spec->cwd, spec->log, tail, sizeof tail);
+  log_tail(log_path, tail, sizeof tail);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
     return fb_err_set(err, FB_EIO, "%s: %s could not be started%s", what, spec->program, tail);
   if (WIFEXITED(status))
@@ -185,7 +177,9 @@ static int report_status(const fb_child_spec *spec, const char *what, int status
                     WTERMSIG(status), tail);
 }
 
-int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err)
+/* fb_child_run with the log at log_path (spec->cwd/spec->log). */
+static int run_logged(const fb_child_spec *spec, const char *log_path, const char *what,
+                      fb_err *err)
 {
   char *file = find_program(spec->program);
   if (!file)
@@ -193,7 +187,7 @@ int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err)
                            : fb_err_set(err, FB_EIO, "%s: cannot start %s: not found in PATH",
                                         what, spec->program);
   int in_fd = -1, log_fd = -1;
-  int e = open_streams(spec, &in_fd, &log_fd);
+  int e = open_streams(log_path, &in_fd, &log_fd);
   if (e != 0) {
     free(file);
     return fb_err_set(err, e == ENOMEM ? FB_ENOMEM : FB_EIO, "%s: cannot start %s: %s", what,
@@ -215,7 +209,7 @@ int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err)
   int status = 0;
   const int done = wait_until(pid, now_s() + spec->timeout_s, &status);
   if (done == 1)
-    return report_status(spec, what, status, err);
+    return report_status(spec, log_path, what, status, err);
   e = errno;
   kill(-pid, SIGKILL);
   kill(pid, SIGKILL);
@@ -225,4 +219,13 @@ int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err)
     return fb_err_set(err, FB_EIO, "%s: %s did not finish within %g s and was killed", what,
                       spec->program, spec->timeout_s);
   return fb_err_set(err, FB_EIO, "%s: waiting for %s: %s", what, spec->program, strerror(e));
+}
+
+int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err)
+{
+  char *log_path = fb_path_join(spec->cwd, spec->log);
+  const int rc = log_path ? run_logged(spec, log_path, what, err)
+                          : fb_err_set(err, FB_ENOMEM, "%s: out of memory", what);
+  free(log_path);
+  return rc;
 }

@@ -730,26 +730,6 @@ static void ml_control_name(unsigned c, char *buf, size_t size)
   snprintf(buf, size, "control character 0x%02x", c);
 }
 
-/* Offset of the first control character of text[0..len) (C0, DEL, or C1:
- * U+0080..U+009F, bytes C2 80..C2 9F), tab, line feed and carriage return
- * excepted when layout is 1; len if none. *c gets its code. */
-static size_t ml_find_control(const char *text, size_t len, int layout, unsigned *c)
-{
-  const unsigned char *t = (const unsigned char *)text;
-  for (size_t i = 0; i < len; ++i) {
-    const int blank = t[i] == '\t' || t[i] == '\n' || t[i] == '\r';
-    if ((t[i] < 0x20 && !(layout && blank)) || t[i] == 0x7f) {
-      *c = t[i];
-      return i;
-    }
-    if (t[i] == 0xc2 && i + 1 < len && t[i + 1] >= 0x80 && t[i + 1] <= 0x9f) {
-      *c = t[i + 1];
-      return i;
-    }
-  }
-  return len;
-}
-
 /* The decoded text of scalar n in fresh memory (*len bytes, then a NUL;
  * the caller frees it), read through a token iterator: libfyaml 0.7.12
  * (bookworm) leaks the buffer in which fy_node_get_scalar decodes a
@@ -802,7 +782,7 @@ static int ml_check_scalar(const ml_ctx *c, struct fy_node *map, struct fy_node 
   char *text = ml_scalar_copy(n, &len);
   unsigned code = 0;
   const int clean =
-      !text || (map ? ml_find_control(text, len, 0, &code) == len : !memchr(text, 0, len));
+      !text || (map ? fb_text_find_control(text, len, 0, &code) == len : !memchr(text, 0, len));
   free(text);
   if (clean)
     return FB_OK;
@@ -857,7 +837,7 @@ static int ml_check_line(const ml_ctx *c, struct fy_node *n, const char *text, i
 {
   unsigned code = 0;
   const size_t len = strlen(text);
-  const size_t at = ml_find_control(text, len, layout, &code);
+  const size_t at = fb_text_find_control(text, len, layout, &code);
   if (at == len)
     return FB_OK;
   size_t chars = 1; /* UTF-8 characters up to it: the bytes that start one */
@@ -1261,14 +1241,9 @@ int ml_resolve_path(const ml_ctx *c, struct fy_node *at, const char *path, char 
   if (!path[0])
     return ml_fail(c, at, FB_EPARSE, "empty file name");
   const char *dir = (path[0] == '/' || !c->base_dir || !c->base_dir[0]) ? NULL : c->base_dir;
-  size_t need = strlen(path) + (dir ? strlen(dir) + 1 : 0) + 1;
-  char *s = malloc(need);
+  char *s = dir ? fb_path_join(dir, path) : fb_strdup(path);
   if (!s)
     return fb_err_set(c->err, FB_ENOMEM, "out of memory joining a file path");
-  if (dir)
-    snprintf(s, need, "%s/%s", dir, path);
-  else
-    snprintf(s, need, "%s", path);
   if (c->inputs && !ml_paths_add(c->inputs, s)) {
     free(s);
     return fb_err_set(c->err, FB_ENOMEM, "out of memory listing the files a document names");

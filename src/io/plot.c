@@ -13,6 +13,7 @@
 #include "flexbond/io.h"
 
 #include "core/tmpfile.h"
+#include "core/util.h"
 #include "io/child.h"
 #include "io/plot_internal.h"
 
@@ -222,16 +223,6 @@ static int write_script_file(const char *script, fb_gnuplot_script_fn fn, const 
   return rc;
 }
 
-/* dir/name in fresh memory, NULL when out of it. */
-static char *in_dir(const char *dir, const char *name)
-{
-  const size_t n = strlen(dir) + strlen(name) + 2;
-  char *p = malloc(n);
-  if (p)
-    snprintf(p, n, "%s/%s", dir, name);
-  return p;
-}
-
 /* The time-series figure as a gnuplot script writer. */
 typedef struct panels_script {
   const fb_plot_panel *panels;
@@ -286,7 +277,7 @@ static int draw_in(const char *dir, const char *path, fb_err *err)
                               .log = gp_log,
                               .timeout_s = FB_GNUPLOT_TIMEOUT_S};
   int rc = fb_child_run(&spec, path, err);
-  char *png = rc == FB_OK ? in_dir(dir, gp_png) : NULL;
+  char *png = rc == FB_OK ? fb_path_join(dir, gp_png) : NULL;
   if (rc == FB_OK && !png)
     rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
   if (rc == FB_OK && fb_png_check(png, err) != FB_OK)
@@ -303,7 +294,7 @@ static void remove_run_dir(char *dir)
 {
   const char *const names[] = {gp_script, gp_png, gp_log};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
-    char *p = in_dir(dir, names[i]);
+    char *p = fb_path_join(dir, names[i]);
     if (p)
       remove(p);
     free(p);
@@ -322,7 +313,7 @@ int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, f
   if (e != 0)
     return fb_err_set(err, e == ENOMEM ? FB_ENOMEM : FB_EIO,
                       "%s: cannot create a directory for gnuplot: %s", path, strerror(e));
-  char *script = in_dir(dir, gp_script);
+  char *script = fb_path_join(dir, gp_script);
   int rc = script ? write_script_file(script, fn, ctx, gp_png, path, err)
                   : fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
   if (rc == FB_OK)
