@@ -37,12 +37,51 @@ enum fb_err_origin {
   FB_ORIGIN_BOND = 2     /* bond origin_index of the graph */
 };
 
+/* Where the value an error is about came from (fb_err.source). */
+enum fb_err_source {
+  FB_SOURCE_NONE = 0,     /* not known, or not about an input value */
+  FB_SOURCE_FILE = 1,     /* written in fb_err.file at line:column */
+  FB_SOURCE_OPTION = 2,   /* a command-line option (fb_err.source_text: "--t-end") */
+  FB_SOURCE_OVERRIDE = 3  /* an override of a file's value
+                             (fb_err.source_text: "--set KEY=VALUE") */
+};
+
+enum { FB_ERR_FILE_MAX = 1024, FB_ERR_KEY_MAX = 256, FB_ERR_SOURCE_MAX = 512 };
+
+/* An error is a value: its code, its message, and, as fields set where
+ * the error arises, what it is about. Nobody parses msg to find these. */
 typedef struct fb_err {
   int code;                 /* last status recorded, FB_OK when clear */
   char msg[FB_ERR_MSG_MAX]; /* NUL-terminated message, "" when clear */
   int origin;               /* enum fb_err_origin; fb_err_set resets it */
   size_t origin_index;      /* element or bond index, with origin */
+  /* The input value concerned; fb_err_set resets them all. msg already
+   * names them for a reader ("FILE:LINE:COL: KEY: ..."); these are for
+   * programs. */
+  char key[FB_ERR_KEY_MAX];     /* key path in its file ("suspensions.axles[1].x",
+                                   "simulation.rtol"), or the name of a
+                                   setting ("rtol"); "" none */
+  char file[FB_ERR_FILE_MAX];   /* file of the value, "" none */
+  int line, column;             /* 1-based, 0 unknown */
+  int source;                   /* enum fb_err_source */
+  char source_text[FB_ERR_SOURCE_MAX]; /* the option or override, "" none */
 } fb_err;
+
+/* Records, for the error just set, the key path or setting name it is
+ * about (printf-formatted; err->msg is not changed). Returns err->code
+ * (FB_OK if err is NULL), so raisers write
+ * `return fb_err_set_key(err, "rtol"), rc;` or chain it after fb_err_set. */
+int fb_err_set_key(fb_err *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Records the file position of the error's value (file copied; line and
+ * column 1-based, 0 unknown) and source FB_SOURCE_FILE. */
+void fb_err_set_location(fb_err *err, const char *file, int line, int column);
+/* Records that the value came from an option or override (source:
+ * enum fb_err_source, text copied: "--t-end", "--set KEY=VALUE"). */
+void fb_err_set_source(fb_err *err, int source, const char *text);
 
 /* Resets err to FB_OK with an empty message. err may be NULL. */
 void fb_err_clear(fb_err *err);

@@ -13,6 +13,11 @@ void fb_err_clear(fb_err *err)
   err->msg[0] = '\0';
   err->origin = FB_ORIGIN_NONE;
   err->origin_index = 0;
+  err->key[0] = '\0';
+  err->file[0] = '\0';
+  err->line = err->column = 0;
+  err->source = FB_SOURCE_NONE;
+  err->source_text[0] = '\0';
 }
 
 int(fb_err_set_origin)(fb_err *err, int origin, size_t index, int code)
@@ -36,7 +41,41 @@ int(fb_err_set)(fb_err *err, int code, const char *fmt, ...)
   err->code = code;
   err->origin = FB_ORIGIN_NONE;
   err->origin_index = 0;
+  err->key[0] = '\0';
+  err->file[0] = '\0';
+  err->line = err->column = 0;
+  err->source = FB_SOURCE_NONE;
+  err->source_text[0] = '\0';
   return code;
+}
+
+int fb_err_set_key(fb_err *err, const char *fmt, ...)
+{
+  if (!err)
+    return FB_OK;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(err->key, sizeof err->key, fmt, ap);
+  va_end(ap);
+  return err->code;
+}
+
+void fb_err_set_location(fb_err *err, const char *file, int line, int column)
+{
+  if (!err)
+    return;
+  snprintf(err->file, sizeof err->file, "%s", file ? file : "");
+  err->line = line;
+  err->column = column;
+  err->source = FB_SOURCE_FILE;
+}
+
+void fb_err_set_source(fb_err *err, int source, const char *text)
+{
+  if (!err)
+    return;
+  err->source = source;
+  snprintf(err->source_text, sizeof err->source_text, "%s", text ? text : "");
 }
 
 int fb_err_prefix(fb_err *err, const char *fmt, ...)
