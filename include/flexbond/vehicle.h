@@ -360,6 +360,15 @@ const char *fb_vehicle_output_unit(int k);
 int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
                      fb_err *err);
 
+/* The assembled vehicle for system sys (*graph new) and every probe a
+ * simulation records (*probes new, free with fb_vehicle_probes_free): the
+ * outputs, then every tire's normal reaction contact_force_<CORNER>. */
+int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph,
+                     fb_probe_spec **probes, size_t *nprobes, fb_err *err);
+/* The scenario's solver settings (t_end, tolerances, step limits,
+ * sampling; no initial state: see s->initial). */
+void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o);
+
 /* Integrates the vehicle per the scenario: initial state (zero or static
  * equilibrium), breakpoints at every wheel's bump entry and exit,
  * tolerances, sampling. The result's columns are t, the seven outputs

@@ -225,9 +225,55 @@ int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd *
   return vehicle_build(s, sys, 0, graph, bd, err);
 }
 
-/* Solver settings of the scenario; breakpoints come from the road
- * sources (every wheel's bump entry and exit). */
-static void scenario_opts(const fb_scenario *s, fb_sim_opts *o)
+int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
+                     size_t *nprobes, fb_err *err)
+{
+  *graph = NULL;
+  *probes = NULL;
+  *nprobes = 0;
+  fb_hull *hull = NULL;
+  fb_fe_hull *fe = NULL;
+  fb_probe_spec *outputs = NULL;
+  size_t nout = 0;
+  int rc = fb_scenario_check(s, err);
+  if (!rc && sys == FB_SYSTEM_FLEXIBLE) {
+    rc = fb_vehicle_fe_hull(s, &fe, err);
+    if (!rc)
+      rc = fb_vehicle_flexible_hull(s, fe, &hull, err);
+    fb_fe_hull_free(&fe);
+  } else if (!rc) {
+    rc = fb_vehicle_rigid_hull(s, &hull, err);
+  }
+  if (!rc)
+    rc = fb_vehicle_assemble(s, &hull, graph, &outputs, &nout, err);
+  fb_hull_free(&hull);
+  fb_probe_spec *all = rc ? NULL : calloc(nout + FB_NCORNERS, sizeof *all);
+  if (!rc && !all)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc) {
+    char targets[FB_NCORNERS][32];
+    memcpy(all, outputs, nout * sizeof *all);
+    free(outputs); /* the strings moved to all */
+    outputs = NULL;
+    contact_probes(all + nout, targets);
+    for (size_t k = nout; !rc && k < nout + FB_NCORNERS; ++k) {
+      all[k].target = fb_strdup(all[k].target);
+      if (!all[k].target)
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+    }
+    *probes = all;
+    *nprobes = nout + FB_NCORNERS;
+  }
+  fb_vehicle_probes_free(&outputs, nout);
+  if (rc) {
+    fb_vehicle_probes_free(probes, *nprobes);
+    *nprobes = 0;
+    fb_bg_free(graph);
+  }
+  return rc;
+}
+
+void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o)
 {
   fb_sim_opts_default(o);
   o->t_end = s->t_end;
@@ -264,7 +310,7 @@ int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_pro
     free(zero);
   }
   fb_sim_opts o;
-  scenario_opts(s, &o);
+  fb_vehicle_sim_opts(s, &o);
   o.x0 = x0;
   o.progress = fn;
   o.progress_ctx = ctx;
