@@ -23,15 +23,6 @@
 extern "C" {
 #endif
 
-/* The six suspensions, in the order of every per-corner array. */
-enum fb_corner { FB_LF, FB_RF, FB_LM, FB_RM, FB_LR, FB_RR, FB_NCORNERS };
-/* "LF", "RF", ... */
-const char *fb_corner_name(int corner);
-
-/* Hull attachment points, in the order of the hull's "attach" port:
- * the six suspensions (FB_LF .. FB_RR), then the driver and the engine. */
-enum { FB_ATTACH_DRIVER = FB_NCORNERS, FB_ATTACH_ENGINE, FB_NATTACH };
-
 typedef enum fb_payload_model {
   FB_PAYLOAD_WEIGHT_ONLY, /* payload adds force, no mass (paper) */
   FB_PAYLOAD_LUMPED       /* payload mass spread over the load points */
@@ -48,8 +39,10 @@ typedef enum fb_system {
 } fb_system;
 
 /* A rigid body moving vertically on a spring and a damper in parallel to a
- * hull point (driver plus seat, engine). */
+ * hull point (driver plus seat, engine, a commander's seat, a cargo box). */
 typedef struct fb_mount {
+  char *name;       /* instance name ("driver"); its hull mesh node set is
+                       the name in capitals ("DRIVER"); owned */
   double mass;      /* kg */
   double stiffness; /* N/m */
   double damping;   /* N s/m */
@@ -72,6 +65,7 @@ typedef enum fb_tire_contact {
 } fb_tire_contact;
 
 typedef struct fb_corner_params {
+  char *name;      /* "LF"; instance "susp_LF", mesh node set "SUSP_LF"; owned */
   double spring_k; /* N/m */
   double damper_c; /* N s/m, the linear shock absorber (damper_npoints 0) */
   /* A nonlinear shock absorber instead: force (N) against its own
@@ -108,6 +102,38 @@ typedef struct fb_hull_mesh_params {
   int density;
 } fb_hull_mesh_params;
 
+/* Where a value of a scenario was written, for errors found after
+ * loading. key is the value's logical key path, the one src/vehicle sets
+ * in fb_err.key: "corners.LF.x", "mounts.driver.mass", "outputs[2]", and
+ * for every other value its path in the file ("hull.mass",
+ * "road.bump.height"); path is where in the file it was written
+ * ("suspensions.axles[0].y", "wheel.mass" for an inherited default).
+ * Strings owned by the scenario. */
+typedef struct fb_scenario_origin {
+  char *key;
+  char *path;
+  int line, column; /* 1-based */
+  char *override;   /* "--set KEY=VALUE" when an override replaced it, else NULL */
+} fb_scenario_origin;
+
+/* One recorded signal of the vehicle (the scenario's `outputs` list,
+ * docs/outputs.md): a signal kind of one subsystem instance, or an
+ * effort, flow or power of any bond of the assembled graph. Strings
+ * owned by the scenario. */
+typedef struct fb_output_spec {
+  char *name;   /* CSV column, unique: "tire_force_LF" */
+  char *signal; /* a kind of fb_vehicle_output_kinds: "tire_force", "effort" */
+  char *of;     /* the corner or mount it measures ("LF", "driver"); NULL
+                   for the hull's torsion and for bond signals */
+  char *bond;   /* bond signals: the bond's name in the assembled graph
+                   ("susp_LF.b_tire"); NULL otherwise */
+  char *unit;   /* from the kind (or the bond's domain), filled at load */
+  char *title;  /* figure title; from the kind when the file gives none */
+  char *label;  /* short label of the signal ("LF tire normal reaction") */
+  int figure;   /* figure number (the paper's 8 .. 14), 0 for none */
+  double window[2]; /* time window a figure shows, s; {0, 0}: the whole run */
+} fb_output_spec;
+
 typedef enum fb_road_kind { FB_ROAD_BUMP = 0, FB_ROAD_ISO8608, FB_ROAD_PROFILE } fb_road_kind;
 
 /* The study's parameters. Strings and arrays are owned by the scenario. */
@@ -116,6 +142,17 @@ typedef struct fb_scenario {
   char *path;     /* file it was loaded from (for messages), may be NULL */
   double gravity; /* m/s^2 */
   /* Hull (paper, Tables 1-2). */
+  /* Positions (every x and y of the file) are in the vehicle frame: the
+   * hull's centre of mass unless the file declares a frame origin
+   * (frame.origin, a description such as "front axle, floor"); then the
+   * hull's centre of mass in that frame is hull_cg_x/y, computed from the
+   * mesh (fb_vehicle_hull_properties) or given as hull.centre_of_mass. */
+  char *frame_origin;        /* NULL: positions relative to the hull's centre of mass */
+  int hull_cg_given;         /* hull.centre_of_mass was written */
+  double hull_cg_x, hull_cg_y; /* m, in the vehicle frame (0 without a frame) */
+  /* Rigid-body properties (paper, Table 2). With a finite-element hull
+   * they may be left out (hull_mass_given 0): the mesh's are used. */
+  int hull_mass_given;       /* mass, Ixx, Iyy written in the file */
   double hull_mass;          /* kg */
   double hull_ixx, hull_iyy; /* kg m^2 about the hull's centre of mass */
   double young, poisson;     /* Pa, - (System 2) */
@@ -129,8 +166,15 @@ typedef struct fb_scenario {
   fb_payload_model payload;
   size_t nload;
   double *load_x, *load_y; /* m, nload each */
-  fb_mount driver, engine;
-  fb_corner_params corner[FB_NCORNERS];
+  /* The mounted bodies and the corners (wheel stations), in the file's
+   * order, each with a unique name; at least 3 corners. */
+  fb_mount *mount;
+  size_t nmounts;
+  fb_corner_params *corner;
+  size_t ncorners;
+  /* The signals recorded, in CSV column order (docs/outputs.md). */
+  fb_output_spec *output;
+  size_t noutputs;
   /* Road: a (1 - cos) bump of height h and length L along each wheel's
    * path, its leading edge at bump_angle to the lateral axis, left side
    * first; the left front wheel meets it at bump_time. */
@@ -160,12 +204,10 @@ typedef struct fb_scenario {
    * depends on besides the scenario itself (owned). */
   char **inputs;
   size_t ninputs;
-  /* The values that overrides replaced (fb_scenario_load_overrides):
-   * each one's key path in the file and its "--set KEY=VALUE", so that a
-   * later error about that value names the override (fb_scenario_blame);
-   * owned. */
-  char **set_path, **set_label;
-  size_t nset;
+  /* Where each value was written (structured errors after loading:
+   * fb_scenario_locate), in reading order; owned. */
+  fb_scenario_origin *origin;
+  size_t norigins;
   fb_hull_mesh_params hull_mesh; /* generator parameters */
   fb_mass_kind hull_mass_matrix; /* consistent (default) or lumped */
   double hull_drill_factor;      /* fictitious drilling stiffness factor */
@@ -173,6 +215,14 @@ typedef struct fb_scenario {
   int hull_modes;                /* 0: full order; N: N free-free modes + static
                                     correction (fb_fem_reduce_free) */
 } fb_scenario;
+
+/* The hull's attachment points, in the order of the hull's "attach"
+ * port: the scenario's corners (s->corner[0 .. ncorners)), then its
+ * mounted bodies (s->mount[0 .. nmounts)). */
+size_t fb_scenario_nattach(const fb_scenario *s);
+/* Index of the corner or mount named name, -1 if none. */
+long fb_scenario_corner_find(const fb_scenario *s, const char *name);
+long fb_scenario_mount_find(const fb_scenario *s, const char *name);
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
  * Errors are "FILE:LINE:COL: KEY: message". */
@@ -229,12 +279,12 @@ int fb_scenario_override_key(const char *path, const char *key, char **full, fb_
  * > 0 (got -1)". */
 int fb_scenario_check(const fb_scenario *s, fb_err *err);
 /* For an error about s's values found after loading (building System 2's
- * hull, say): when err's message starts with a key path of the scenario
- * file ("suspensions.LF.x: ..."), prefixes the file's "FILE:LINE:COL: " of
- * that value, as fb_scenario_load does, and, for a value an override
- * replaced, its "--set KEY=VALUE: " (s->set_label); any other message is
- * left as it is. Reads the file again. Returns err->code. */
-int fb_scenario_blame(const fb_scenario *s, fb_err *err);
+ * hull, say), whose fb_err.key is a logical key of s->origin: sets err's
+ * file, line, column and source fields from that entry and prefixes its
+ * message "FILE:LINE:COL: PATH: " (and "--set KEY=VALUE: " for an
+ * override), as the loader's own errors read; with a key not in the
+ * table, prefixes "KEY: ". Nothing is read again. Returns err->code. */
+int fb_scenario_locate(const fb_scenario *s, fb_err *err);
 void fb_scenario_free(fb_scenario **s);
 /* Deep copy. */
 int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
@@ -346,12 +396,30 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hull, fb_bg **out,
 /* Frees what fb_vehicle_assemble returned in *probes. */
 void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes);
 
-/* The paper's seven outputs (Figs. 8-14), in the CSV column order:
- * tire_force_LF, spring_defl_RF, torsion, driver_acc, shock_power_LM,
- * tire_defl_RM, tire_power_LR. */
-enum { FB_NOUTPUTS = 7 };
-const char *fb_vehicle_output_name(int k);
-const char *fb_vehicle_output_unit(int k);
+/* ---- Outputs (docs/outputs.md). A signal kind: what it measures, of
+ * which subsystem class, its unit and default name, title and label. One
+ * table (src/vehicle/outputs.c); a new kind is one entry there. */
+typedef enum fb_output_subject {
+  FB_OUTPUT_OF_CORNER, /* `of` names a corner */
+  FB_OUTPUT_OF_MOUNT,  /* `of` names a mounted body */
+  FB_OUTPUT_OF_HULL,   /* no `of`: the hull */
+  FB_OUTPUT_OF_BOND    /* `bond` names a bond of the assembled graph */
+} fb_output_subject;
+
+typedef struct fb_output_kind {
+  const char *signal;  /* "tire_force" */
+  fb_output_subject subject;
+  const char *unit;    /* NULL for bond signals: from the bond's domain */
+  const char *name;    /* default column name, "%s" the subject's name */
+  const char *title;   /* default figure title, "%s" the subject's name */
+  const char *label;   /* default short label, "%s" the subject's name */
+  const char *doc;     /* one line for docs/outputs.md */
+} fb_output_kind;
+
+/* The kinds, n of them in *n. */
+const fb_output_kind *fb_vehicle_output_kinds(size_t *n);
+/* The kind called signal, NULL if none. */
+const fb_output_kind *fb_vehicle_output_kind_find(const char *signal);
 
 /* Assembles the vehicle for system sys (System 1 now; System 2 once the
  * finite-element hull exists) and builds its block diagram with the seven
@@ -371,10 +439,9 @@ void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o);
 
 /* Integrates the vehicle per the scenario: initial state (zero or static
  * equilibrium), breakpoints at every wheel's bump entry and exit,
- * tolerances, sampling. The result's columns are t, the seven outputs
- * (named and ordered as fb_vehicle_output_name), then the six tires'
- * normal reactions contact_force_LF .. contact_force_RR (N, compression
- * positive; the first equals tire_force_LF). */
+ * tolerances, sampling. The result's columns are t, the scenario's
+ * outputs (s->output, in order), then every tire's normal reaction
+ * contact_force_<CORNER> in corner order (N, compression positive). */
 int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err);
 /* As fb_vehicle_simulate, reporting progress through fn (NULL for none;
  * see fb_sim_progress_fn). */
@@ -387,7 +454,7 @@ int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_pro
  * the road. With unilateral contact (wheel.tire_contact) the reaction is
  * exactly zero instead: the wheel is off the road, or leaving it. */
 typedef struct fb_contact_loss {
-  int corner; /* FB_LF .. FB_RR */
+  int corner; /* index into the scenario's corners */
   /* s: a tensile reaction's zero crossings, linearly interpolated between
    * samples; a unilateral tire's first and last samples of zero reaction
    * (to one sample, since the reaction falls to exactly zero); or the
@@ -431,7 +498,8 @@ typedef struct fb_fe_hull {
   fb_mesh *mesh;
   fb_shell_props props;
   fb_mass_kind mass_kind;
-  size_t attach_node[FB_NATTACH];
+  size_t *attach_node; /* nattach, in "attach" order (fb_scenario_nattach) */
+  size_t nattach;
   size_t *load_node; /* nload */
   size_t nload;
   size_t edge_node[4]; /* front left, front right, rear left, rear right */
