@@ -156,6 +156,33 @@ int fb_plot_mesh_png(const fb_mesh *m, const double *dof_values, double scale,
                      const double *cube_xyz, size_t ncubes, double cube_side, const char *title,
                      const char *path, fb_err *err);
 
+/* ---- A vehicle scenario's values (flexbond/vehicle.h), as a report
+ * lists them. */
+
+typedef struct fb_scenario fb_scenario;
+
+/* One value; the strings live for the call only. */
+typedef struct fb_scenario_value {
+  const char *key;   /* logical key path: "hull.mass", "corners.LF.spring_k",
+                        "mounts.driver.mass", "outputs[0].name" */
+  const char *path;  /* where the file wrote it ("suspensions.axles[0].spring_k",
+                        "wheel.mass" for a value every corner takes), NULL for a
+                        default or a scenario not loaded from a file */
+  const char *unit;  /* "N/m", "" for none */
+  const char *doc;   /* one line: what it is (docs/scenario-format.md) */
+  const char *value; /* as text: "145300", "bilateral", "56 points" */
+} fb_scenario_value;
+
+/* Called for each value; a nonzero return stops the visit. */
+typedef int (*fb_scenario_value_fn)(const fb_scenario_value *v, void *ctx);
+
+/* Calls fn for every value s holds, in the order of the format's key
+ * tables (corners, mounts and outputs item by item); values of sections
+ * s does not have (a bump on a random road, a deck's generator) are left
+ * out. Returns fn's first nonzero return, else FB_OK; FB_EINVAL if s or
+ * fn is NULL. */
+int fb_scenario_each_value(const fb_scenario *s, fb_scenario_value_fn fn, void *ctx);
+
 #ifdef __cplusplus
 }
 #endif

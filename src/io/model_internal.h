@@ -137,6 +137,9 @@ int ml_blame_located(const ml_ctx *c, struct fy_node *at);
 int ml_site_record(const ml_ctx *c, int kind, const char *name, struct fy_node *at);
 /* 1-based line of node n, 0 if unknown. */
 int ml_line(struct fy_node *n);
+/* 1-based line and column of node n (or of its nearest ancestor that
+ * has them: alias copies have none); 0 if unknown. */
+int ml_mark(struct fy_node *n, int *line, int *col);
 
 /* Candidate names for "did you mean" suggestions. */
 typedef const char *(*ml_name_fn)(const void *ctx, size_t i);

@@ -495,7 +495,7 @@ static int ml_own_mark(struct fy_node *n, int *line, int *col)
 
 /* Nodes copied by alias resolution have no marks: use the nearest
  * ancestor that has one. */
-static int ml_mark(struct fy_node *n, int *line, int *col)
+int ml_mark(struct fy_node *n, int *line, int *col)
 {
   for (; n; n = fy_node_get_parent(n))
     if (ml_own_mark(n, line, col))
@@ -579,6 +579,24 @@ static void ml_locate(const ml_ctx *c, struct fy_node *loc, struct fy_node *path
     ml_append(where, size, len, "%s: ", path);
 }
 
+/* The fields of the error just recorded (fb_err.key, file, line,
+ * column), as its message's "FILE:LINE:COL: KEY: " names them. */
+static void ml_set_fields(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_node,
+                          const char *key)
+{
+  int line = 0, col = 0;
+  ml_mark(loc, &line, &col);
+  fb_err_set_location(c->err, c->file, line, col);
+  char path[512];
+  size_t plen = 0;
+  path[0] = '\0';
+  ml_path(path_node, path, sizeof path, &plen);
+  if (key)
+    ml_append(path, sizeof path, &plen, "%s%s", plen ? "." : "", key);
+  if (plen)
+    fb_err_set_key(c->err, "%s", path);
+}
+
 /* " (in instance 'a' at FILE:LINE:COL, in 'b' at ...)" of the instances
  * being built, innermost first, into chain (size bytes); "" at top level. */
 static void ml_chain(const ml_ctx *c, char *chain, size_t size)
@@ -605,7 +623,9 @@ static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_
   ml_locate(c, loc, path_node, key, where, sizeof where, &len);
   char chain[1024];
   ml_chain(c, chain, sizeof chain);
-  return fb_err_set(c->err, code, "%s%s%s", where, msg, chain);
+  fb_err_set(c->err, code, "%s%s%s", where, msg, chain);
+  ml_set_fields(c, loc, path_node, key);
+  return code;
 }
 
 /* ---- Sites of graph parts, for errors raised after loading. */

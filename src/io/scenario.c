@@ -1,8 +1,9 @@
-/* Vehicle scenarios (flexbond/vehicle.h): loading, copying, freeing, and
- * the bump timing every wheel follows. The file format is read in
- * scenario_read.c and checked in scenario_check.c. */
-#include <errno.h>
+/* Vehicle scenarios (flexbond/vehicle.h): loading, copying, freeing,
+ * finding corners and mounts, locating errors found after loading, and
+ * the bump timing every wheel follows. The file format is declared in
+ * scenario_schema.c and checked in scenario_check.c. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,51 +13,88 @@
 #include "core/util.h"
 #include "io/scenario_internal.h"
 
-const char *fb_corner_name(int corner)
+size_t fb_scenario_nattach(const fb_scenario *s)
 {
-  static const char *const names[FB_NCORNERS] = {"LF", "RF", "LM", "RM", "LR", "RR"};
-  return (corner >= 0 && corner < FB_NCORNERS) ? names[corner] : NULL;
+  return s ? s->ncorners + s->nmounts : 0;
+}
+
+long fb_scenario_corner_find(const fb_scenario *s, const char *name)
+{
+  for (size_t i = 0; s && name && i < s->ncorners; ++i)
+    if (s->corner[i].name && !strcmp(s->corner[i].name, name))
+      return (long)i;
+  return -1;
+}
+
+long fb_scenario_mount_find(const fb_scenario *s, const char *name)
+{
+  for (size_t i = 0; s && name && i < s->nmounts; ++i)
+    if (s->mount[i].name && !strcmp(s->mount[i].name, name))
+      return (long)i;
+  return -1;
 }
 
 /* ---- Bump timing. The bump's leading edge is a straight line at
- * bump_angle to the lateral (y) axis, left side first, through the left
- * front wheel's contact point at bump_time. Seen from the vehicle, the
+ * bump_angle to the lateral (y) axis, left side first, through the first
+ * corner's wheel's contact point at bump_time. Seen from the vehicle, the
  * road moves back at speed V, so the edge reaches a wheel at (x, y) when
- * it has travelled the wheel's distance behind LF, x_LF - x, plus the
- * edge's extra offset at that lateral position, (y_LF - y) tan(angle)
- * (data sheet, "Road and obstacle"). Along its path the wheel then rolls
- * over the bump's length L in L / V. */
+ * it has travelled the wheel's distance behind the first corner,
+ * x_0 - x, plus the edge's extra offset at that lateral position,
+ * (y_0 - y) tan(angle) (data sheet, "Road and obstacle"). Along its path
+ * the wheel then rolls over the bump's length L in L / V. */
+
+/* Corner index corner of s, NULL if there is none. */
+static const fb_corner_params *sc_corner(const fb_scenario *s, int corner)
+{
+  return s && corner >= 0 && (size_t)corner < s->ncorners ? &s->corner[corner] : NULL;
+}
+
+/* The first corner on the right track (y <= 0; the 6x6's RF): the bump
+ * crosses that track track_width = y_0 - y_right to the right of the
+ * first corner's (fb_road_new_oblique_bump). */
+static const fb_corner_params *sc_right_reference(const fb_scenario *s)
+{
+  for (size_t i = 0; i < s->ncorners; ++i)
+    if (!(s->corner[i].y > 0.0))
+      return &s->corner[i];
+  return &s->corner[0];
+}
 
 double fb_scenario_wheel_start(const fb_scenario *s, int corner)
 {
-  if (!s || corner < 0 || corner >= FB_NCORNERS)
+  const fb_corner_params *w = sc_corner(s, corner);
+  if (!w)
     return NAN;
-  const fb_corner_params *lf = &s->corner[FB_LF], *w = &s->corner[corner];
+  const fb_corner_params *first = &s->corner[0];
   if (s->road_kind != FB_ROAD_BUMP)
-    return s->road_front_start - lf->x + w->x;
+    return s->road_front_start - first->x + w->x;
   /* The bump's tracks (fb_road_new_oblique_bump): the leading edge at
-   * s = 0 on the left track and at (y_LF - y_RF) tan(angle) on the right
-   * one; each wheel reaches its track's edge at its own entry time, which
-   * keeps its own lateral position (y) in the timing. */
-  const double edge = w->y > 0.0 ? 0.0 : (lf->y - s->corner[FB_RF].y) * tan(s->bump_angle);
+   * s = 0 on the left track and at (y_0 - y_right) tan(angle) on the
+   * right one; each wheel reaches its track's edge at its own entry time,
+   * which keeps its own lateral position (y) in the timing. */
+  const double edge =
+      w->y > 0.0 ? 0.0 : (first->y - sc_right_reference(s)->y) * tan(s->bump_angle);
   return edge - s->speed * fb_scenario_bump_entry(s, corner);
 }
 
 double fb_scenario_bump_entry(const fb_scenario *s, int corner)
 {
-  if (!s || corner < 0 || corner >= FB_NCORNERS)
+  const fb_corner_params *w = sc_corner(s, corner);
+  if (!w)
     return NAN;
   if (s->road_kind != FB_ROAD_BUMP)
     return -fb_scenario_wheel_start(s, corner) / s->speed;
-  const fb_corner_params *lf = &s->corner[FB_LF], *w = &s->corner[corner];
-  return s->bump_time + ((lf->x - w->x) + (lf->y - w->y) * tan(s->bump_angle)) / s->speed;
+  const fb_corner_params *first = &s->corner[0];
+  return s->bump_time + ((first->x - w->x) + (first->y - w->y) * tan(s->bump_angle)) / s->speed;
 }
 
 double fb_scenario_bump_exit(const fb_scenario *s, int corner)
 {
-  if (s && s->road_kind != FB_ROAD_BUMP)
-    return corner >= 0 && corner < FB_NCORNERS ? s->t_end : NAN;
-  return fb_scenario_bump_entry(s, corner) + (s ? s->bump_length / s->speed : NAN);
+  if (!sc_corner(s, corner))
+    return NAN;
+  if (s->road_kind != FB_ROAD_BUMP)
+    return s->t_end;
+  return fb_scenario_bump_entry(s, corner) + s->bump_length / s->speed;
 }
 
 /* ---- Ownership. */
@@ -68,20 +106,50 @@ static void sc_free_strings(char **v, size_t n)
   free(v);
 }
 
+static void sc_free_output(fb_output_spec *o)
+{
+  free(o->name);
+  free(o->signal);
+  free(o->of);
+  free(o->bond);
+  free(o->unit);
+  free(o->title);
+  free(o->label);
+}
+
+static void sc_free_origin(fb_scenario_origin *o)
+{
+  free(o->key);
+  free(o->path);
+  free(o->override);
+}
+
 void fb_scenario_free(fb_scenario **s)
 {
   if (!s || !*s)
     return;
-  free((*s)->name);
-  free((*s)->path);
-  free((*s)->load_x);
-  free((*s)->load_y);
-  free((*s)->hull_deck);
-  sc_free_strings((*s)->inputs, (*s)->ninputs);
-  sc_free_strings((*s)->set_path, (*s)->nset);
-  sc_free_strings((*s)->set_label, (*s)->nset);
-  free((*s)->road_profile);
-  free(*s);
+  fb_scenario *p = *s;
+  free(p->name);
+  free(p->path);
+  free(p->frame_origin);
+  free(p->load_x);
+  free(p->load_y);
+  for (size_t i = 0; p->mount && i < p->nmounts; ++i)
+    free(p->mount[i].name);
+  free(p->mount);
+  for (size_t i = 0; p->corner && i < p->ncorners; ++i)
+    free(p->corner[i].name);
+  free(p->corner);
+  for (size_t i = 0; p->output && i < p->noutputs; ++i)
+    sc_free_output(&p->output[i]);
+  free(p->output);
+  free(p->road_profile);
+  free(p->hull_deck);
+  sc_free_strings(p->inputs, p->ninputs);
+  for (size_t i = 0; p->origin && i < p->norigins; ++i)
+    sc_free_origin(&p->origin[i]);
+  free(p->origin);
+  free(p);
   *s = NULL;
 }
 
@@ -103,6 +171,24 @@ static int sc_copy_strings(char *const *src, size_t n, char ***dst)
   return ok;
 }
 
+/* *dst = a byte copy of the n items of size bytes at src (NULL stays
+ * NULL), its owned strings to be copied next; 0 when out of memory. The
+ * copy is zeroed until then, so that a failure frees nothing twice. */
+static int sc_copy_items(const void *src, size_t n, size_t size, void **dst, void **shallow)
+{
+  *dst = NULL;
+  *shallow = NULL;
+  if (!src)
+    return 1;
+  if (n > SIZE_MAX / size)
+    return 0;
+  *dst = calloc(n ? n : 1, size);
+  *shallow = malloc((n ? n : 1) * size);
+  if (*shallow && n)
+    memcpy(*shallow, src, n * size);
+  return *dst && *shallow;
+}
+
 /* *dst = copy of the n doubles at src (NULL stays NULL); 0 when out of
  * memory. */
 static int sc_copy_array(const double *src, size_t n, double **dst)
@@ -110,10 +196,78 @@ static int sc_copy_array(const double *src, size_t n, double **dst)
   *dst = NULL;
   if (!src)
     return 1;
+  if (n > SIZE_MAX / sizeof **dst)
+    return 0;
   *dst = malloc((n ? n : 1) * sizeof **dst);
   if (*dst && n)
     memcpy(*dst, src, n * sizeof **dst);
   return *dst != NULL;
+}
+
+static int sc_copy_mounts(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_mount *m = NULL;
+  int ok = sc_copy_items(s->mount, s->nmounts, sizeof *m, (void **)&copy->mount, (void **)&m);
+  for (size_t i = 0; ok && i < s->nmounts; ++i) {
+    copy->mount[i] = m[i];
+    ok = sc_copy_string(s->mount[i].name, &copy->mount[i].name);
+  }
+  free(m);
+  return ok;
+}
+
+static int sc_copy_corners(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_corner_params *c = NULL;
+  int ok =
+      sc_copy_items(s->corner, s->ncorners, sizeof *c, (void **)&copy->corner, (void **)&c);
+  for (size_t i = 0; ok && i < s->ncorners; ++i) {
+    copy->corner[i] = c[i];
+    ok = sc_copy_string(s->corner[i].name, &copy->corner[i].name);
+  }
+  free(c);
+  return ok;
+}
+
+static int sc_copy_output(const fb_output_spec *src, fb_output_spec *dst)
+{
+  *dst = (fb_output_spec){.figure = src->figure, .window = {src->window[0], src->window[1]}};
+  int ok = sc_copy_string(src->name, &dst->name);
+  ok = sc_copy_string(src->signal, &dst->signal) && ok;
+  ok = sc_copy_string(src->of, &dst->of) && ok;
+  ok = sc_copy_string(src->bond, &dst->bond) && ok;
+  ok = sc_copy_string(src->unit, &dst->unit) && ok;
+  ok = sc_copy_string(src->title, &dst->title) && ok;
+  return sc_copy_string(src->label, &dst->label) && ok;
+}
+
+static int sc_copy_outputs(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_output_spec *o = NULL;
+  int ok =
+      sc_copy_items(s->output, s->noutputs, sizeof *o, (void **)&copy->output, (void **)&o);
+  free(o);
+  for (size_t i = 0; ok && i < s->noutputs; ++i)
+    ok = sc_copy_output(&s->output[i], &copy->output[i]);
+  return ok;
+}
+
+static int sc_copy_origins(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_scenario_origin *o = NULL;
+  int ok =
+      sc_copy_items(s->origin, s->norigins, sizeof *o, (void **)&copy->origin, (void **)&o);
+  for (size_t i = 0; ok && i < s->norigins; ++i) {
+    const fb_scenario_origin *from = &s->origin[i];
+    fb_scenario_origin *to = &copy->origin[i];
+    to->line = from->line;
+    to->column = from->column;
+    ok = sc_copy_string(from->key, &to->key);
+    ok = sc_copy_string(from->path, &to->path) && ok;
+    ok = sc_copy_string(from->override, &to->override) && ok;
+  }
+  free(o);
+  return ok;
 }
 
 int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
@@ -125,15 +279,26 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   if (!copy)
     return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
   *copy = *s;
+  /* Nothing of s's is owned by the copy until copied below. */
+  copy->name = copy->path = copy->frame_origin = copy->road_profile = copy->hull_deck = NULL;
+  copy->load_x = copy->load_y = NULL;
+  copy->mount = NULL;
+  copy->corner = NULL;
+  copy->output = NULL;
+  copy->inputs = NULL;
+  copy->origin = NULL;
   int ok = sc_copy_string(s->name, &copy->name);
   ok = sc_copy_string(s->path, &copy->path) && ok;
+  ok = sc_copy_string(s->frame_origin, &copy->frame_origin) && ok;
   ok = sc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
+  ok = sc_copy_mounts(s, copy) && ok;
+  ok = sc_copy_corners(s, copy) && ok;
+  ok = sc_copy_outputs(s, copy) && ok;
+  ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
   ok = sc_copy_strings(s->inputs, s->ninputs, &copy->inputs) && ok;
-  ok = sc_copy_strings(s->set_path, s->nset, &copy->set_path) && ok;
-  ok = sc_copy_strings(s->set_label, s->nset, &copy->set_label) && ok;
-  ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
+  ok = sc_copy_origins(s, copy) && ok;
   if (!ok) {
     fb_scenario_free(&copy);
     return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
@@ -142,10 +307,72 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   return FB_OK;
 }
 
+/* ---- Locating errors found after loading. */
+
+/* 1 if key is prefix followed by a '.' or '[' segment. */
+static int sc_encloses(const char *prefix, const char *key, size_t n)
+{
+  return !strncmp(key, prefix, n) && (key[n] == '.' || key[n] == '[');
+}
+
+const fb_scenario_origin *sc_origin_find(const fb_scenario *s, const char *key,
+                                         const char **rest)
+{
+  const fb_scenario_origin *best = NULL;
+  size_t best_len = 0;
+  /* The last of a key is the one blamed: a second corner of one name. */
+  for (size_t i = s->norigins; i-- > 0;) {
+    const fb_scenario_origin *o = &s->origin[i];
+    const size_t n = strlen(o->key);
+    if (!strcmp(o->key, key)) {
+      *rest = key + n;
+      return o;
+    }
+    if (n > best_len && sc_encloses(o->key, key, n)) {
+      best = o;
+      best_len = n;
+    }
+  }
+  *rest = key + best_len;
+  return best;
+}
+
+int sc_locate(const fb_scenario *s, fb_err *err, int named)
+{
+  if (!err)
+    return FB_EINVAL;
+  const char *rest = NULL;
+  const fb_scenario_origin *o = s && err->key[0] ? sc_origin_find(s, err->key, &rest) : NULL;
+  if (!o) {
+    if (!named && err->key[0])
+      fb_err_prefix(err, "%s: ", err->key);
+    return err->code;
+  }
+  char path[FB_ERR_KEY_MAX];
+  snprintf(path, sizeof path, "%s%s", o->path, rest);
+  const char *file = s->path ? s->path : "<string>";
+  fb_err_set_location(err, file, o->line, o->column);
+  fb_err_set_key(err, "%s", path);
+  if (o->override)
+    fb_err_set_source(err, FB_SOURCE_OVERRIDE, o->override);
+  if (named)
+    fb_err_prefix(err, "%s:%d:%d: ", file, o->line, o->column);
+  else
+    fb_err_prefix(err, "%s:%d:%d: %s: ", file, o->line, o->column, path);
+  if (o->override)
+    fb_err_prefix(err, "%s: ", o->override);
+  return err->code;
+}
+
+int fb_scenario_locate(const fb_scenario *s, fb_err *err)
+{
+  return sc_locate(s, err, 0);
+}
+
 /* ---- Loading. */
 
-/* Parses, reads and checks the document; a check failure is reported at
- * the value it names. */
+/* Parses, reads and checks the document; the check's errors are located
+ * through the values' origins. */
 static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario *s)
 {
   ml_yaml y;
@@ -154,72 +381,14 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
   int rc = fb_symtab_new(&params, c->err);
   if (!rc)
     rc = ml_yaml_parse(text, len, c->file, &y, c->err);
-  struct fy_node *root = rc ? NULL : fy_document_root(y.doc);
   if (!rc)
-    rc = sc_read(c, root, params, s);
-  if (!rc && fb_scenario_check(s, c->err) != FB_OK)
-    rc = sc_blame_check(c, root);
+    rc = sc_read(c, fy_document_root(y.doc), params, s);
+  if (!rc)
+    rc = fb_scenario_check(s, c->err);
   c->globals = NULL;
   fb_symtab_free(&params);
   ml_yaml_release(&y);
   return rc;
-}
-
-/* The "--set KEY=VALUE" that replaced the value msg starts with ("PATH:
- * ..."), NULL if none did. */
-static const char *sc_set_label(const fb_scenario *s, const char *msg)
-{
-  for (size_t i = 0; i < s->nset; ++i) {
-    const size_t n = strlen(s->set_path[i]);
-    if (!strncmp(msg, s->set_path[i], n) && msg[n] == ':')
-      return s->set_label[i];
-  }
-  return NULL;
-}
-
-/* "FILE:LINE:COL: " before err's message when it starts with one of the
- * file's key paths. On the error path only: the file is read and parsed
- * again (it holds the positions; the scenario keeps values). Any failure
- * here leaves the message as it was. */
-static void sc_locate_late(const fb_scenario *s, fb_err *err)
-{
-  const size_t plen = strlen(s->path);
-  if (!strncmp(err->msg, s->path, plen) && err->msg[plen] == ':')
-    return;
-  char *text = NULL;
-  size_t len = 0;
-  fb_err scratch;
-  fb_err_clear(&scratch);
-  ml_yaml y;
-  memset(&y, 0, sizeof y);
-  int rc = fb_read_file(s->path, &text, &len, &scratch);
-  if (!rc)
-    rc = ml_yaml_parse(text, len, s->path, &y, &scratch);
-  if (!rc) {
-    ml_ctx c;
-    memset(&c, 0, sizeof c);
-    c.file = s->path;
-    c.err = &scratch;
-    scratch = *err;
-    sc_blame_late(&c, fy_document_root(y.doc));
-    *err = scratch;
-  }
-  ml_yaml_release(&y);
-  free(text);
-}
-
-int fb_scenario_blame(const fb_scenario *s, fb_err *err)
-{
-  if (!err || err->code == FB_OK || !s)
-    return err ? err->code : FB_EINVAL;
-  /* A value an override replaced is the override's, as when loading:
-   * "--set KEY=VALUE: FILE:LINE:COL: KEY: ...". */
-  const char *label = sc_set_label(s, err->msg);
-  if (s->path)
-    sc_locate_late(s, err);
-  if (label)
-    fb_err_prefix(err, "%s: ", label);
-  return err->code;
 }
 
 /* fb_scenario_load_string with relative file references (a hull deck, a
@@ -252,16 +421,16 @@ static int load_string_in(const char *text, size_t len, const char *display_name
   ml_paths inputs = {0};
   c.inputs = &inputs;
   fb_scenario *s = calloc(1, sizeof *s);
-  int rc = s ? sc_load_document(&c, text, len, s)
-             : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
+  /* The path first: the check locates its errors in that file. */
+  int rc = s && (!display_name || (s->path = fb_strdup(display_name)))
+               ? sc_load_document(&c, text, len, s)
+               : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (s) {
     s->inputs = inputs.path;
     s->ninputs = inputs.n;
   } else {
     ml_paths_release(&inputs);
   }
-  if (!rc && display_name && !(s->path = fb_strdup(display_name)))
-    rc = fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (rc) {
     fb_scenario_free(&s);
     return rc;

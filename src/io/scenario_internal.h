@@ -1,37 +1,47 @@
 /* flexbond: internals of the vehicle scenario loader (src/io/scenario*.c).
  *
- * The scenario file (docs/scenario-format.md) is read with the model
- * loader's YAML helpers (io/model_internal.h), so its messages have the
- * same "FILE:LINE:COL: KEY: message" form. fb_scenario_check names the
- * offending value by its key path in the file ("suspensions.LF.spring_k",
- * "road.bump"); sc_blame_check turns such a message into a located one. */
+ * The scenario file (docs/scenario-format.md) is declared once, as the
+ * schema table of scenario_schema.c (io/schema.h): it reads the file,
+ * checks the values' ranges, visits them, and writes the format's key
+ * tables. Errors found after reading name their value by its logical key
+ * (fb_err.key: "corners.LF.spring_k") and are located through the
+ * scenario's origins (fb_scenario_locate), never by reading the file
+ * again. */
 #ifndef FLEXBOND_IO_SCENARIO_INTERNAL_H
 #define FLEXBOND_IO_SCENARIO_INTERNAL_H
+
+#include <stdio.h>
 
 #include "flexbond/vehicle.h"
 
 #include "io/model_internal.h"
+#include "io/schema.h"
 
 /* pi; M_PI is not in C11. */
 #define SC_PI 3.14159265358979323846
 
-/* Reads the document root into s (zeroed by the caller): evaluates the
- * `parameters` section into params (empty) and makes it c->globals for
- * the expressions that follow. On failure s may hold allocations, which
- * fb_scenario_free releases. Values are not checked for physical
- * consistency here (see fb_scenario_check). */
+/* The scenario format's table. */
+extern const sch_table sc_schema;
+
+/* Reads the document root into s (zeroed by the caller), `parameters`
+ * evaluated into params (empty) for the expressions, and moves the
+ * values' origins into s. On failure s may hold allocations, which
+ * fb_scenario_free releases. Cross-field rules are fb_scenario_check's. */
 int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s);
 
-/* c->err holds "KEY: message" from fb_scenario_check: reports it at the
- * value KEY comes from (the corner's override or the shared default for
- * per-corner values), else at the nearest enclosing node present in the
- * file, keeping the key. Returns the error code. */
-int sc_blame_check(const ml_ctx *c, struct fy_node *root);
+/* The origin of the value with logical key key, or of the nearest value
+ * enclosing it ("corners.LF" for "corners.LF.damper_table[2]"), NULL if
+ * none; *rest gets the part of key below the origin's. */
+const fb_scenario_origin *sc_origin_find(const fb_scenario *s, const char *key,
+                                         const char **rest);
 
-/* As sc_blame_check for a message raised after loading (the hull mesh's
- * checks, say): only one that starts with a key path whose first segment
- * is in the file is located; any other is left as it is. */
-int sc_blame_late(const ml_ctx *c, struct fy_node *root);
+/* fb_scenario_locate; with named set, for a message that names its key
+ * already (the solver's limits): only "FILE:LINE:COL: " is prefixed. */
+int sc_locate(const fb_scenario *s, fb_err *err, int named);
+
+/* Writes the format's key tables (what docs/scenario-format.md holds
+ * between its schema:begin and schema:end markers). */
+void fb_scenario_schema_markdown(FILE *fp);
 
 /* Loads text edited from the scenario file at path (flexbond sweep's
  * --set) as that file: relative references resolved from its directory.

@@ -22,7 +22,7 @@
 #include "core/util.h"
 #include "io/scenario_internal.h"
 
-/* Longest key path handled ("hull.mesh.generator.bulkheads[2]"). */
+/* Longest key path handled ("suspensions.axles[1].wheel.tire_k"). */
 enum { OV_PATH_MAX = 256 };
 
 /* ---- Key paths. */
@@ -433,36 +433,25 @@ static int ov_rewrite(const char *text, size_t len, const char *file,
   return rc;
 }
 
-/* The key path a reader message "FILE:LINE:COL: KEY: ..." names, into
- * key (size bytes); "" when it has none. */
-static void ov_message_key(const char *msg, const char *file, char *key, size_t size)
+/* "--set KEY=VALUE" of o into buf. */
+static void ov_label(const fb_scenario_override *o, char *buf, size_t size)
 {
-  key[0] = '\0';
-  size_t flen = strlen(file);
-  if (strncmp(msg, file, flen) != 0 || msg[flen] != ':')
-    return;
-  const char *p = msg + flen + 1;
-  p += strspn(p, "0123456789");
-  if (*p == ':')
-    p += 1 + strspn(p + 1, "0123456789");
-  if (strncmp(p, ": ", 2) != 0)
-    return;
-  p += 2;
-  size_t klen = strcspn(p, ": ");
-  if (klen < size && !strncmp(p + klen, ": ", 2))
-    snprintf(key, size, "%.*s", (int)klen, p);
+  snprintf(buf, size, "--set %s=%s", o->key, o->value);
 }
 
-/* Prefixes a reader error with the override whose value it names, or
- * with every override when it names another key (a consequence of the
- * values together, such as a bump that no longer ends inside the run). */
-static void ov_blame_reader(fb_err *err, const char *file, const fb_scenario_override *ov,
-                            const ov_edit *edits, size_t n)
+/* Prefixes a reader error with the override whose value it is about
+ * (fb_err.key, the value's path in the file), recording it as the
+ * error's source, or with every override when it is about another value
+ * (a consequence of the values together, such as a bump that no longer
+ * ends inside the run). */
+static void ov_blame_reader(fb_err *err, const fb_scenario_override *ov, const ov_edit *edits,
+                            size_t n)
 {
-  char key[OV_PATH_MAX];
-  ov_message_key(err->msg, file, key, sizeof key);
+  char label[FB_ERR_SOURCE_MAX];
   for (size_t i = 0; i < n; ++i)
-    if (!strcmp(key, edits[i].path)) {
+    if (!strcmp(err->key, edits[i].path)) {
+      ov_label(&ov[edits[i].index], label, sizeof label);
+      fb_err_set_source(err, FB_SOURCE_OVERRIDE, label);
       ov_blame(err->code, err, &ov[edits[i].index]);
       return;
     }
@@ -470,25 +459,24 @@ static void ov_blame_reader(fb_err *err, const char *file, const fb_scenario_ove
     fb_err_prefix(err, "--set %s=%s%s", ov[i].key, ov[i].value, i + 1 < n ? " " : ": ");
 }
 
-/* Keeps in s what each override replaced (fb_scenario.set_path and
- * set_label), for the errors found after loading. */
+/* Records in s's origins which values the overrides replaced, for the
+ * errors found after loading (fb_scenario_locate). */
 static int ov_remember(fb_scenario *s, const fb_scenario_override *ov, const ov_edit *edits,
                        size_t n, fb_err *err)
 {
-  s->set_path = calloc(n, sizeof *s->set_path);
-  s->set_label = calloc(n, sizeof *s->set_label);
-  int ok = s->set_path && s->set_label;
-  s->nset = ok ? n : 0;
-  for (size_t i = 0; ok && i < n; ++i) {
-    const fb_scenario_override *o = &ov[edits[i].index];
-    const size_t need = strlen(o->key) + strlen(o->value) + sizeof "--set =";
-    s->set_path[i] = fb_strdup(edits[i].path);
-    s->set_label[i] = malloc(need);
-    ok = s->set_path[i] && s->set_label[i];
-    if (ok)
-      snprintf(s->set_label[i], need, "--set %s=%s", o->key, o->value);
+  char label[FB_ERR_SOURCE_MAX];
+  for (size_t i = 0; i < n; ++i) {
+    ov_label(&ov[edits[i].index], label, sizeof label);
+    for (size_t k = 0; k < s->norigins; ++k) {
+      fb_scenario_origin *o = &s->origin[k];
+      if (strcmp(o->path, edits[i].path) != 0)
+        continue;
+      free(o->override);
+      if (!(o->override = fb_strdup(label)))
+        return fb_err_set(err, FB_ENOMEM, "out of memory for %zu scenario overrides", n);
+    }
   }
-  return ok ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory for %zu scenario overrides", n);
+  return FB_OK;
 }
 
 /* ---- Public functions. */
@@ -509,7 +497,7 @@ static int ov_load(const char *text, size_t len, const char *display_name, int a
     rc = as_file ? sc_load_edited_file(edited, edited_len, display_name, out, e)
                  : fb_scenario_load_string(edited, edited_len, display_name, out, e);
   if (rc != FB_OK && edited && n > 0)
-    ov_blame_reader(e, file, ov, edits, n);
+    ov_blame_reader(e, ov, edits, n);
   if (rc == FB_OK && n > 0 && (rc = ov_remember(*out, ov, edits, n, e)) != FB_OK)
     fb_scenario_free(out);
   free(edited);

@@ -80,17 +80,20 @@ static int check_result_size(const fb_sim_opts *o, double nsamples, fb_err *err)
                     "more than the %.1f GB a run's result may take (docs/errors.md, "
                     "\"Limits\")",
                     o->sample_rate, o->t_end - o->t_start, nsamples + 1.0, columns, bytes / 1e9,
-                    FB_SIM_MAX_RESULT_BYTES / 1e9);
+                    FB_SIM_MAX_RESULT_BYTES / 1e9),
+         fb_err_set_key(err, "simulation.sample_rate");
 }
 
 static int check_times(const fb_sim_opts *o, fb_err *err)
 {
   if (!isfinite(o->t_start))
-    return fb_err_set(err, FB_EINVAL, "simulation.t_start: must be finite, got %g", o->t_start);
+    return fb_err_set(err, FB_EINVAL, "simulation.t_start: must be finite, got %g", o->t_start),
+           fb_err_set_key(err, "simulation.t_start");
   if (!isfinite(o->t_end) || !(o->t_end > o->t_start) || !isfinite(o->t_end - o->t_start))
     return fb_err_set(err, FB_EINVAL,
                       "simulation.t_end: must be finite and greater than t_start = %g, got %g",
-                      o->t_start, o->t_end);
+                      o->t_start, o->t_end),
+           fb_err_set_key(err, "simulation.t_end");
   const double shortest = shortest_run(o->t_start, o->t_end);
   if (!(o->t_end - o->t_start >= shortest)) {
     char t0[32], t1[32];
@@ -100,27 +103,32 @@ static int check_times(const fb_sim_opts *o, fb_err *err)
                       "simulation.t_end: the run from t_start = %s s to t_end = %s s is too "
                       "short for the solver to take a step: t_end - t_start = %.3g s, it must "
                       "be at least %.3g s",
-                      t0, t1, o->t_end - o->t_start, shortest);
+                      t0, t1, o->t_end - o->t_start, shortest),
+           fb_err_set_key(err, "simulation.t_end");
   }
   if (!(o->sample_rate > 0) || !isfinite(o->sample_rate))
     return fb_err_set(err, FB_EINVAL, "simulation.sample_rate: must be positive, got %g",
-                      o->sample_rate);
+                      o->sample_rate),
+           fb_err_set_key(err, "simulation.sample_rate");
   const double nsamples = (o->t_end - o->t_start) * o->sample_rate;
   if (!(nsamples <= MAX_SAMPLES))
     return fb_err_set(err, FB_EINVAL,
                       "simulation.sample_rate: %g Hz over %g s gives %.3g samples, more than "
                       "the limit of %.0e",
-                      o->sample_rate, o->t_end - o->t_start, nsamples, MAX_SAMPLES);
+                      o->sample_rate, o->t_end - o->t_start, nsamples, MAX_SAMPLES),
+           fb_err_set_key(err, "simulation.sample_rate");
   const int rc = check_result_size(o, nsamples, err);
   if (rc != FB_OK)
     return rc;
   if (o->nbreakpoints && !o->breakpoints)
     return fb_err_set(err, FB_EINVAL, "simulation.breakpoints: NULL with %zu entries",
-                      o->nbreakpoints);
+                      o->nbreakpoints),
+           fb_err_set_key(err, "simulation.breakpoints");
   for (size_t i = 0; i < o->nbreakpoints; ++i)
     if (!isfinite(o->breakpoints[i]))
       return fb_err_set(err, FB_EINVAL, "simulation.breakpoints[%zu]: must be finite, got %g",
-                        i, o->breakpoints[i]);
+                        i, o->breakpoints[i]),
+             fb_err_set_key(err, "simulation.breakpoints");
   return FB_OK;
 }
 
@@ -140,27 +148,33 @@ static int check_step_budget(const fb_sim_opts *o, fb_err *err)
                     "simulation.max_step: %g s over the run's %g s (t_end - t_start) needs at "
                     "least %.3g steps, more than simulation.max_steps = %ld: the run could not "
                     "finish; raise max_step or max_steps",
-                    o->max_step, span, fewest, o->max_steps);
+                    o->max_step, span, fewest, o->max_steps),
+         fb_err_set_key(err, "simulation.max_step");
 }
 
 static int check_solver(const fb_sim_opts *o, fb_err *err)
 {
   if (!(o->rtol > 0 && o->rtol < 1))
-    return fb_err_set(err, FB_EINVAL, "simulation.rtol: must be in (0, 1), got %g", o->rtol);
+    return fb_err_set(err, FB_EINVAL, "simulation.rtol: must be in (0, 1), got %g", o->rtol),
+           fb_err_set_key(err, "simulation.rtol");
   if (!(o->atol > 0) || !isfinite(o->atol))
-    return fb_err_set(err, FB_EINVAL, "simulation.atol: must be positive, got %g", o->atol);
+    return fb_err_set(err, FB_EINVAL, "simulation.atol: must be positive, got %g", o->atol),
+           fb_err_set_key(err, "simulation.atol");
   if (o->max_order < 1 || o->max_order > 5)
     return fb_err_set(err, FB_EINVAL, "simulation.max_order: must be 1..5, got %d",
-                      o->max_order);
+                      o->max_order),
+           fb_err_set_key(err, "simulation.max_order");
   if (!(o->max_step >= 0) || !isfinite(o->max_step))
     return fb_err_set(err, FB_EINVAL,
                       "simulation.max_step: must be finite and >= 0 (0: no limit), got %g",
-                      o->max_step);
+                      o->max_step),
+           fb_err_set_key(err, "simulation.max_step");
   if (o->max_steps < 1 || o->max_steps > FB_SIM_MAX_STEPS)
     return fb_err_set(err, FB_EINVAL,
                       "simulation.max_steps: must be in 1 .. %ld (about a day of solver steps "
                       "at 0.1 ms each; docs/errors.md, \"Limits\"), got %ld",
-                      FB_SIM_MAX_STEPS, o->max_steps);
+                      FB_SIM_MAX_STEPS, o->max_steps),
+           fb_err_set_key(err, "simulation.max_steps");
   return check_step_budget(o, err);
 }
 

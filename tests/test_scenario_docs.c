@@ -1,0 +1,60 @@
+/* docs/scenario-format.md holds, between its schema:begin and schema:end
+ * markers, exactly the key tables the loader's own table writes
+ * (fb_scenario_schema_markdown): the reference cannot drift from the
+ * reader. On a mismatch the tables to paste are printed. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "io/scenario_internal.h"
+
+#define DOC "../docs/scenario-format.md"
+#define BEGIN "<!-- schema:begin -->\n"
+#define END "<!-- schema:end -->"
+
+/* The whole file at path (NUL-terminated, new), NULL if unreadable. */
+static char *read_all(const char *path)
+{
+  FILE *fp = fopen(path, "rb");
+  if (!fp)
+    return NULL;
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *out = open_memstream(&buf, &len);
+  int ch;
+  while (out && (ch = fgetc(fp)) != EOF)
+    fputc(ch, out);
+  fclose(fp);
+  if (out)
+    fclose(out);
+  return buf;
+}
+
+int main(void)
+{
+  char *doc = read_all(DOC);
+  CHECK(doc != NULL);
+  char *gen = NULL;
+  size_t len = 0;
+  FILE *fp = open_memstream(&gen, &len);
+  CHECK(fp != NULL);
+  if (!doc || !fp)
+    return check_report("test_scenario_docs");
+  fb_scenario_schema_markdown(fp);
+  fclose(fp);
+  char *begin = strstr(doc, BEGIN);
+  char *end = begin ? strstr(begin, END) : NULL;
+  CHECK(begin && end);
+  if (begin && end) {
+    begin += strlen(BEGIN);
+    *end = '\0';
+    const int same = !strcmp(begin, gen);
+    CHECK(same);
+    if (!same)
+      fprintf(stderr, "%s differs from the schema; its tables should be:\n%s", DOC, gen);
+  }
+  free(gen);
+  free(doc);
+  return check_report("test_scenario_docs");
+}
