@@ -309,4 +309,21 @@ cli_output_cmp cli_output_compare(const cli_output_stats *s1, const cli_output_s
 /* report.md (a cli_writer over a cli_run_outputs). */
 void cli_write_report_md(FILE *fp, const void *ctx);
 
+/* ---- Diagrams of a graph (diagram.c, docs/diagrams.md): the paper's
+ * Figs. 5 and 6, for `flexbond diagram` and the report. */
+typedef enum cli_diagram_kind {
+  CLI_DIAGRAM_FLAT,      /* the block diagram, every block in one level */
+  CLI_DIAGRAM_BLOCKS,    /* the block diagram in two levels (Fig. 6) */
+  CLI_DIAGRAM_BOND_GRAPH /* the multibond graph with its strokes (Fig. 5) */
+} cli_diagram_kind;
+/* Writes the diagram of kind of graph g to path, all or nothing, the type
+ * by path's extension: .svg or .png the picture Graphviz's dot draws of
+ * it (io/graphviz.h), any other the DOT text. The block diagrams are
+ * built with the probes p[0 .. np) (borrowed for the call), drawn as
+ * meters. Assigns g's causality
+ * (fb_bg_assign_causality), which changes g; nothing else is kept. A
+ * signal meanwhile: FB_EINTR, nothing written. */
+int cli_diagram_file(fb_bg *g, const fb_probe_spec *p, size_t np, cli_diagram_kind kind,
+                     const char *path, fb_err *err);
+
 #endif
