@@ -251,6 +251,11 @@ void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size);
  * body's acceleration of the list (the driver's, in the paper's
  * scenario); s->noutputs when there is none. */
 size_t cli_ride_output(const fb_scenario *s);
+/* The number of diagrams run draws per system, and the file of diagram
+ * k < CLI_RUN_NDIAGRAMS of system sys ("fig05_bond_graph_system1.png",
+ * "fig06_block_diagram_system1.png": the paper's Figs. 5 and 6). */
+enum { CLI_RUN_NDIAGRAMS = 2 };
+void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size);
 
 /* One simulated system. */
 typedef struct cli_run_system {

@@ -364,6 +364,27 @@ static void write_modes2(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Figures and tables of the outputs. */
 
+/* The model of every system that ran: its multibond graph (the paper's
+ * Fig. 5) and its block diagram (Fig. 6), drawn by run from the graph it
+ * simulated (docs/diagrams.md). */
+static void write_model(FILE *fp, const cli_run_outputs *o)
+{
+  if (!o->figures)
+    return;
+  fputs("\n## Model\n\nEach system's multibond graph, one box per subsystem instance "
+        "(causal strokes, multibond dimensions in brackets), and its block diagram: the top "
+        "level with one block per subsystem, one level down inside each (docs/diagrams.md).\n",
+        fp);
+  static const char *const captions[CLI_RUN_NDIAGRAMS] = {"Fig. 5. Multibond graph",
+                                                          "Fig. 6. Block diagram"};
+  for (size_t i = 0; i < o->nruns; ++i)
+    for (size_t k = 0; k < CLI_RUN_NDIAGRAMS; ++k) {
+      char name[64];
+      cli_run_diagram_file(k, o->runs[i].sys, name, sizeof name);
+      fprintf(fp, "\n![%s, %s](%s)\n", captions[k], cli_system_label(o->runs[i].sys), name);
+    }
+}
+
 static void write_figures(FILE *fp, const cli_run_outputs *o)
 {
   fputs("\n## Figures\n\n", fp);
@@ -778,6 +799,7 @@ void cli_write_report_md(FILE *fp, const void *ctx)
     write_modes1(fp, o);
   if (o->modes2)
     write_modes2(fp, o);
+  write_model(fp, o);
   write_figures(fp, o);
   if (o->diff)
     write_comparison_table(fp, o);

@@ -428,6 +428,47 @@ static void write_system_csv(FILE *fp, const void *ctx)
   fb_result_print_csv_columns(fp, c->run->res, 1 + c->noutputs, FB_CSV_HEADER_NAMES);
 }
 
+/* The paper's Figs. 5 and 6 of system sys: its multibond graph and its
+ * block diagram, "figNN_KIND_systemN.png" into buf. */
+static const struct {
+  int number;
+  cli_diagram_kind kind;
+  const char *what;
+} diagram_kinds[] = {{5, CLI_DIAGRAM_BOND_GRAPH, "bond_graph"},
+                     {6, CLI_DIAGRAM_BLOCKS, "block_diagram"}};
+_Static_assert(sizeof diagram_kinds / sizeof diagram_kinds[0] == CLI_RUN_NDIAGRAMS,
+               "one row per diagram");
+
+void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size)
+{
+  snprintf(buf, size, "fig%02d_%s_system%d.png", diagram_kinds[k].number, diagram_kinds[k].what,
+           (int)sys);
+}
+
+/* Both diagrams of system sys, drawn from the graph it ran. */
+static int write_diagrams(cli_outdir *od, const fb_scenario *s, fb_system sys, fb_err *err)
+{
+  fb_bg *g = NULL;
+  fb_probe_spec *p = NULL;
+  size_t np = 0;
+  int rc = fb_vehicle_graph(s, sys, &g, &p, &np, err);
+  for (size_t k = 0; rc == FB_OK && k < CLI_RUN_NDIAGRAMS; ++k) {
+    char name[64];
+    cli_run_diagram_file(k, sys, name, sizeof name);
+    char *path = cli_outdir_path(od, name, err);
+    /* The outputs' meters; the tire-contact probes would only crowd it. */
+    rc = path ? cli_diagram_file(g, p, s->noutputs, diagram_kinds[k].kind, path, err)
+              : err->code;
+    if (rc == FB_OK)
+      rc = cli_outdir_keep(od, path, err);
+    else
+      free(path);
+  }
+  fb_vehicle_probes_free(&p, np);
+  fb_bg_free(&g);
+  return rc;
+}
+
 /* Stages every file in od; *nfiles is how many. The pictures go first:
  * they are the likeliest to fail (gnuplot); report.md, which links the
  * others, goes last. */
@@ -438,6 +479,8 @@ static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfile
     rc = write_figure(od, k, o, err);
   if (rc == FB_OK && o->figures && o->modes2)
     rc = cli_write_mode_pictures(od, o->scenario, o->hull, o->modes2, err);
+  for (size_t i = 0; o->figures && i < o->nruns && rc == FB_OK; ++i)
+    rc = write_diagrams(od, o->scenario, o->runs[i].sys, err);
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
     char name[32];
     snprintf(name, sizeof name, "system%d.csv", (int)o->runs[i].sys);
