@@ -31,6 +31,8 @@
 
 #include "flexbond/vehicle.h"
 
+#include "apc_layout.h"
+
 #define APC_PI 3.14159265358979323846
 
 enum {
@@ -38,7 +40,7 @@ enum {
   APC_HULL_PHI,
   APC_HULL_THETA,
   APC_WHEEL = 3, /* + corner */
-  APC_DRIVER = APC_WHEEL + FB_NCORNERS,
+  APC_DRIVER = APC_WHEEL + APC_NCORNERS,
   APC_ENGINE,
   APC_NDOF,
   APC_NX = 2 * APC_NDOF /* positions then velocities */
@@ -46,8 +48,8 @@ enum {
 
 /* Elements: suspension of corner i is i, its tire APC_TIRE + i. */
 enum {
-  APC_TIRE = FB_NCORNERS,
-  APC_MOUNT_DRIVER = 2 * FB_NCORNERS,
+  APC_TIRE = APC_NCORNERS,
+  APC_MOUNT_DRIVER = 2 * APC_NCORNERS,
   APC_MOUNT_ENGINE,
   APC_NELEM
 };
@@ -63,7 +65,7 @@ typedef struct apc_model {
   double mass_inv[APC_NDOF * APC_NDOF]; /* M^-1, symmetric */
   double gravity_force[APC_NDOF];       /* generalised weights */
   apc_elem elem[APC_NELEM];
-  double entry[FB_NCORNERS], exit[FB_NCORNERS]; /* bump times, s */
+  double entry[APC_NCORNERS], exit[APC_NCORNERS]; /* bump times, s */
   double speed, bump_height, bump_length;
 } apc_model;
 
@@ -98,7 +100,7 @@ static void apc_set_elem(apc_elem *e, double k, double c, int road_corner)
  * fb_scenario_bump_entry, which is checked against this one). */
 static double apc_entry_time(const fb_scenario *s, int corner)
 {
-  const fb_corner_params *lf = &s->corner[FB_LF], *c = &s->corner[corner];
+  const fb_corner_params *lf = &s->corner[APC_LF], *c = &s->corner[corner];
   return s->bump_time + ((lf->x - c->x) + (lf->y - c->y) * tan(s->bump_angle)) / s->speed;
 }
 
@@ -119,15 +121,15 @@ static void apc_build_mass(apc_model *m, const fb_scenario *s)
           M[i + APC_NDOF * j] += point_mass * J[i] * J[j];
     }
   }
-  for (int c = 0; c < FB_NCORNERS; ++c)
+  for (int c = 0; c < APC_NCORNERS; ++c)
     M[(APC_WHEEL + c) * (APC_NDOF + 1)] = s->corner[c].wheel_mass;
-  M[APC_DRIVER * (APC_NDOF + 1)] = s->driver.mass;
-  M[APC_ENGINE * (APC_NDOF + 1)] = s->engine.mass;
+  M[APC_DRIVER * (APC_NDOF + 1)] = APC_DRIVER(s)->mass;
+  M[APC_ENGINE * (APC_NDOF + 1)] = APC_ENGINE(s)->mass;
 }
 
 static void apc_build_elements(apc_model *m, const fb_scenario *s)
 {
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     const fb_corner_params *p = &s->corner[c];
     apc_elem *susp = &m->elem[c], *tire = &m->elem[APC_TIRE + c];
     apc_set_elem(susp, p->spring_k, p->damper_c, -1);
@@ -136,7 +138,7 @@ static void apc_build_elements(apc_model *m, const fb_scenario *s)
     apc_set_elem(tire, p->tire_k, p->tire_c, c);
     tire->b[APC_WHEEL + c] = -1.0;
   }
-  const fb_mount *mounts[2] = {&s->driver, &s->engine};
+  const fb_mount *mounts[2] = {APC_DRIVER(s), APC_ENGINE(s)};
   for (int i = 0; i < 2; ++i) {
     apc_elem *e = &m->elem[APC_MOUNT_DRIVER + i];
     apc_set_elem(e, mounts[i]->stiffness, mounts[i]->damping, -1);
@@ -151,10 +153,10 @@ static void apc_build_gravity(apc_model *m, const fb_scenario *s)
   memset(Q, 0, sizeof m->gravity_force);
   for (size_t l = 0; l < s->nload; ++l)
     apc_hull_vector(s->load_x[l], s->load_y[l], Q, -s->total_weight / (double)s->nload);
-  for (int c = 0; c < FB_NCORNERS; ++c)
+  for (int c = 0; c < APC_NCORNERS; ++c)
     Q[APC_WHEEL + c] = -s->corner[c].wheel_mass * s->gravity;
-  Q[APC_DRIVER] = -s->driver.mass * s->gravity;
-  Q[APC_ENGINE] = -s->engine.mass * s->gravity;
+  Q[APC_DRIVER] = -APC_DRIVER(s)->mass * s->gravity;
+  Q[APC_ENGINE] = -APC_ENGINE(s)->mass * s->gravity;
 }
 
 /* Fills m from s. Returns 0, or the LAPACK status if M is not positive
@@ -164,7 +166,7 @@ static int apc_model_init(apc_model *m, const fb_scenario *s)
   apc_build_mass(m, s);
   apc_build_elements(m, s);
   apc_build_gravity(m, s);
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     m->entry[c] = apc_entry_time(s, c);
     m->exit[c] = m->entry[c] + s->bump_length / s->speed;
   }
@@ -240,19 +242,19 @@ static void apc_rhs(const apc_model *m, double t, const double *x, double *xdot)
 static void apc_outputs(const apc_model *m, double t, const double *x, double *y)
 {
   double d, dd, xdot[APC_NX];
-  apc_deflection(m, APC_TIRE + FB_LF, t, x, &d, &dd);
-  y[APC_OUT_TIRE_FORCE_LF] = m->elem[APC_TIRE + FB_LF].k * d + m->elem[APC_TIRE + FB_LF].c * dd;
-  apc_deflection(m, FB_RF, t, x, &d, &dd);
+  apc_deflection(m, APC_TIRE + APC_LF, t, x, &d, &dd);
+  y[APC_OUT_TIRE_FORCE_LF] = m->elem[APC_TIRE + APC_LF].k * d + m->elem[APC_TIRE + APC_LF].c * dd;
+  apc_deflection(m, APC_RF, t, x, &d, &dd);
   y[APC_OUT_SPRING_DEFL_RF] = d;
   y[APC_OUT_TORSION] = 0.0;
   apc_rhs(m, t, x, xdot);
   y[APC_OUT_DRIVER_ACC] = xdot[APC_NDOF + APC_DRIVER];
-  apc_deflection(m, FB_LM, t, x, &d, &dd);
-  y[APC_OUT_SHOCK_POWER_LM] = m->elem[FB_LM].c * dd * dd;
-  apc_deflection(m, APC_TIRE + FB_RM, t, x, &d, &dd);
+  apc_deflection(m, APC_LM, t, x, &d, &dd);
+  y[APC_OUT_SHOCK_POWER_LM] = m->elem[APC_LM].c * dd * dd;
+  apc_deflection(m, APC_TIRE + APC_RM, t, x, &d, &dd);
   y[APC_OUT_TIRE_DEFL_RM] = d;
-  apc_deflection(m, APC_TIRE + FB_LR, t, x, &d, &dd);
-  y[APC_OUT_TIRE_POWER_LR] = m->elem[APC_TIRE + FB_LR].c * dd * dd;
+  apc_deflection(m, APC_TIRE + APC_LR, t, x, &d, &dd);
+  y[APC_OUT_TIRE_POWER_LR] = m->elem[APC_TIRE + APC_LR].c * dd * dd;
 }
 
 /* Classical fourth-order Runge-Kutta, n equal steps from t0 to t1. */
@@ -284,7 +286,7 @@ static void apc_advance(const apc_model *m, double a, double b, double dt, doubl
 {
   while (a < b) {
     double stop = b;
-    for (int c = 0; c < FB_NCORNERS; ++c) {
+    for (int c = 0; c < APC_NCORNERS; ++c) {
       if (m->entry[c] > a && m->entry[c] < stop)
         stop = m->entry[c];
       if (m->exit[c] > a && m->exit[c] < stop)

@@ -14,6 +14,8 @@
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
+#include "apc_layout.h"
+
 enum { ENERGY_WORK, ENERGY_DISSIPATED, ENERGY_STORED };
 
 typedef struct energy_probe {
@@ -150,8 +152,8 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
                     fb_bd_noutputs(bd), ncols);
   if (!rc) {
     fb_sim_opts o;
-    double bp[2 * FB_NCORNERS];
-    for (int c = 0; c < FB_NCORNERS; ++c) {
+    double bp[2 * APC_NCORNERS];
+    for (int c = 0; c < APC_NCORNERS; ++c) {
       bp[2 * c] = fb_scenario_bump_entry(s, c);
       bp[2 * c + 1] = fb_scenario_bump_exit(s, c);
     }
@@ -162,7 +164,7 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
     o.max_step = s->max_step;
     o.sample_rate = s->sample_rate;
     o.breakpoints = bp;
-    o.nbreakpoints = 2 * FB_NCORNERS;
+    o.nbreakpoints = 2 * APC_NCORNERS;
     rc = fb_sim_run(bd, &o, &res, err);
   }
   if (!rc && fb_result_nsamples(res) == 0)

@@ -15,6 +15,7 @@
 #include "flexbond/vehicle.h"
 
 #include "bgtest_util.h"
+#include "apc_layout.h"
 #include "check.h"
 #include "energy_balance.h"
 #include "vehicle_util.h"
@@ -22,7 +23,7 @@
 static long column(const fb_result *r, const char *prefix, int corner)
 {
   char name[32];
-  snprintf(name, sizeof name, "%s%s", prefix, fb_corner_name(corner));
+  snprintf(name, sizeof name, "%s%s", prefix, apc_corner_name(corner));
   return fb_result_find(r, name);
 }
 
@@ -32,7 +33,7 @@ static long column(const fb_result *r, const char *prefix, int corner)
  * one (unilateral tires) may be its first sample. */
 static void check_against_scan(const fb_result *r, const fb_contact_loss *iv, size_t n)
 {
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     const long col = column(r, "contact_force_", c);
     CHECK(col > 0);
     if (col < 1)
@@ -72,14 +73,14 @@ static void test_paper_crossing(const fb_scenario *s)
   if (!r)
     return;
   /* The seven outputs, then the six reactions; LF is the paper's Fig. 8. */
-  const long lf = column(r, "contact_force_", FB_LF), fig8 = fb_result_find(r, "tire_force_LF");
-  CHECK(lf == 1 + FB_NOUTPUTS && fig8 == 1);
+  const long lf = column(r, "contact_force_", APC_LF), fig8 = fb_result_find(r, "tire_force_LF");
+  CHECK(lf == 1 + APC_NOUTPUTS && fig8 == 1);
   for (size_t k = 0; lf > 0 && fig8 > 0 && k < fb_result_nsamples(r); k += 97)
     CHECK(fb_result_row(r, k)[lf] == fb_result_row(r, k)[fig8]);
   fb_err err;
   fb_contact_loss *iv = NULL;
   size_t n = 99;
-  CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_OK);
+  CHECK(fb_vehicle_contact_loss(s, r, &iv, &n, &err) == FB_OK);
   CHECK(n == 0 && iv == NULL);
   check_against_scan(r, iv, n);
   free(iv);
@@ -95,7 +96,7 @@ static void high_bump(fb_scenario *s)
 
 static void set_tire_contact(fb_scenario *s, fb_tire_contact contact)
 {
-  for (int c = 0; c < FB_NCORNERS; ++c)
+  for (int c = 0; c < APC_NCORNERS; ++c)
     s->corner[c].tire_contact = contact;
 }
 
@@ -108,11 +109,11 @@ static void test_lift_off(fb_scenario *s)
   fb_err err;
   fb_contact_loss *iv = NULL;
   size_t n = 0;
-  CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_OK);
+  CHECK(fb_vehicle_contact_loss(s, r, &iv, &n, &err) == FB_OK);
   fprintf(stderr, "0.20 m bump at 30 km/h, linear tires: %zu tensile intervals\n", n);
   for (size_t i = 0; i < n; ++i)
     fprintf(stderr, "  %s %.4f .. %.4f s, down to %.1f N at %.3f s\n",
-            fb_corner_name(iv[i].corner), iv[i].t_start, iv[i].t_end, iv[i].min_force,
+            apc_corner_name(iv[i].corner), iv[i].t_start, iv[i].t_end, iv[i].min_force,
             iv[i].t_min);
   CHECK(n >= 4);
   check_against_scan(r, iv, n);
@@ -124,7 +125,7 @@ static void test_lift_off(fb_scenario *s)
 static double first_loss(const fb_result *r)
 {
   for (size_t k = 1; k < fb_result_nsamples(r); ++k)
-    for (int c = 0; c < FB_NCORNERS; ++c)
+    for (int c = 0; c < APC_NCORNERS; ++c)
       if (fb_result_row(r, k)[column(r, "contact_force_", c)] <= 0.0)
         return fb_result_row(r, k)[0];
   return fb_result_row(r, fb_result_nsamples(r) - 1)[0];
@@ -145,19 +146,19 @@ static void test_unilateral(fb_scenario *s)
   /* Never tensile, at any sample of any tire. */
   double lowest = INFINITY;
   for (size_t k = 0; k < fb_result_nsamples(r); ++k)
-    for (int c = 0; c < FB_NCORNERS; ++c)
+    for (int c = 0; c < APC_NCORNERS; ++c)
       lowest = fmin(lowest, fb_result_row(r, k)[column(r, "contact_force_", c)]);
   CHECK(lowest == 0.0);
   fb_err err;
   fb_contact_loss *iv = NULL;
   size_t n = 0;
-  CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_OK);
+  CHECK(fb_vehicle_contact_loss(s, r, &iv, &n, &err) == FB_OK);
   fprintf(stderr,
           "0.20 m bump at 30 km/h, unilateral tires: %zu intervals off the road, "
           "%ld contact changes\n",
           n, fb_result_stats(r)->events);
   for (size_t i = 0; i < n; ++i)
-    fprintf(stderr, "  %s %.4f .. %.4f s\n", fb_corner_name(iv[i].corner), iv[i].t_start,
+    fprintf(stderr, "  %s %.4f .. %.4f s\n", apc_corner_name(iv[i].corner), iv[i].t_start,
             iv[i].t_end);
   CHECK(n >= 4);
   /* Each interval is a release, a separation and a landing. */
@@ -166,8 +167,8 @@ static void test_unilateral(fb_scenario *s)
   /* Until the first release both tires are the same equations, stepped
    * the same way (root-finding only watches): equal to rounding. */
   const double t_release = first_loss(r);
-  CHECK(t_release > fb_scenario_bump_entry(s, FB_LF) &&
-        t_release < fb_scenario_bump_exit(s, FB_RR));
+  CHECK(t_release > fb_scenario_bump_entry(s, APC_LF) &&
+        t_release < fb_scenario_bump_exit(s, APC_RR));
   double worst = 0.0;
   for (size_t k = 0; k < fb_result_nsamples(r) && fb_result_row(r, k)[0] < t_release; ++k)
     for (size_t j = 1; j < fb_result_ncols(r); ++j)
@@ -233,7 +234,7 @@ static void test_missing_columns(void)
   if (r) {
     fb_contact_loss *iv = NULL;
     size_t n = 0;
-    CHECK(fb_vehicle_contact_loss(r, &iv, &n, &err) == FB_EINVAL);
+    CHECK(fb_vehicle_contact_loss(s, r, &iv, &n, &err) == FB_EINVAL);
     CHECK(strstr(err.msg, "contact_force_LF") != NULL);
     CHECK(iv == NULL && n == 0);
   }

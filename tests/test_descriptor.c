@@ -25,6 +25,7 @@
 #include "flexbond/vehicle.h"
 
 #include "bgtest_util.h"
+#include "apc_layout.h"
 #include "check.h"
 
 static const char *const quarter_car_path = "../examples/quarter_car.yaml";
@@ -516,24 +517,24 @@ out:
 /* System 1 with the seven outputs and the six tire forces after them. */
 static int build_system1(const fb_scenario *s, fb_bg **graph, fb_bd **bd, fb_err *err)
 {
-  char names[FB_NCORNERS][32], targets[FB_NCORNERS][48];
+  char names[APC_NCORNERS][32], targets[APC_NCORNERS][48];
   fb_probe_spec *std = NULL, *all = NULL;
   size_t nstd = 0;
   fb_hull *hull = NULL;
   int rc = fb_vehicle_rigid_hull(s, &hull, err);
   if (!rc)
     rc = fb_vehicle_assemble(s, &hull, graph, &std, &nstd, err);
-  if (!rc && !(all = malloc((nstd + FB_NCORNERS) * sizeof *all)))
+  if (!rc && !(all = malloc((nstd + APC_NCORNERS) * sizeof *all)))
     rc = FB_ENOMEM;
   if (!rc) {
     memcpy(all, std, nstd * sizeof *all);
-    for (int c = 0; c < FB_NCORNERS; ++c) {
-      snprintf(names[c], sizeof names[c], "tire_force_all_%s", fb_corner_name(c));
-      snprintf(targets[c], sizeof targets[c], "susp_%s.b_tire", fb_corner_name(c));
+    for (int c = 0; c < APC_NCORNERS; ++c) {
+      snprintf(names[c], sizeof names[c], "tire_force_all_%s", apc_corner_name(c));
+      snprintf(targets[c], sizeof targets[c], "susp_%s.b_tire", apc_corner_name(c));
       all[nstd + (size_t)c] =
           (fb_probe_spec){names[c], FB_PROBE_EFFORT, targets[c], -1, 0, 1.0, NULL, NULL, 0};
     }
-    rc = fb_bd_build(*graph, all, nstd + FB_NCORNERS, bd, err);
+    rc = fb_bd_build(*graph, all, nstd + APC_NCORNERS, bd, err);
   }
   free(all);
   fb_vehicle_probes_free(&std, nstd);
@@ -570,10 +571,10 @@ static void check_system1_statics(const fb_scenario *s, fb_bd *bd, const fb_desc
   CHECK(solve_statics(ds, z, &residual) == 0);
   CHECK(residual < 1e-13);
   double sum = 0.0, scale = 0.0;
-  double expect = s->total_weight + (s->driver.mass + s->engine.mass) * s->gravity;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  double expect = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     char name[32];
-    snprintf(name, sizeof name, "tire_force_all_%s", fb_corner_name(c));
+    snprintf(name, sizeof name, "tire_force_all_%s", apc_corner_name(c));
     const size_t o = output_index(bd, name);
     CHECK(o < ds->noutputs);
     if (o < ds->noutputs)
@@ -583,8 +584,8 @@ static void check_system1_statics(const fb_scenario *s, fb_bd *bd, const fb_desc
   fprintf(stderr, "System 1 statics: sum of tire forces %.12g N, weight %.12g N\n", sum,
           expect);
   CHECK_NEAR(sum, expect, 1e-9 * expect);
-  for (int k = 0; k < FB_NOUTPUTS; ++k) {
-    const size_t o = output_index(bd, fb_vehicle_output_name(k));
+  for (int k = 0; k < APC_NOUTPUTS; ++k) {
+    const size_t o = output_index(bd, apc_output_name(k));
     CHECK(o < ds->noutputs);
     if (o < ds->noutputs && ds->output_is_product[o])
       CHECK_NEAR(desc_output(ds, &d, o, z, &scale), 0.0, 1e-9);
@@ -613,18 +614,18 @@ static void test_system1(void)
   check_shapes(ds, bd);
   /* The road is the only time-varying source: six inputs, one per wheel;
    * the two power outputs take two rows each. */
-  CHECK(ds->ninputs == FB_NCORNERS && ds->nrows_c == ds->noutputs + 2);
+  CHECK(ds->ninputs == APC_NCORNERS && ds->nrows_c == ds->noutputs + 2);
   /* Midway through the crossing (several wheels on the bump), with a
    * state away from rest. */
   const double t = 6.2;
-  double u[FB_NCORNERS];
-  for (size_t j = 0; j < ds->ninputs && j < FB_NCORNERS; ++j) {
+  double u[APC_NCORNERS];
+  for (size_t j = 0; j < ds->ninputs && j < APC_NCORNERS; ++j) {
     char want[32];
-    snprintf(want, sizeof want, "road.v_%s", fb_corner_name((int)j));
+    snprintf(want, sizeof want, "road.v_%s", apc_corner_name((int)j));
     CHECK(strcmp(ds->input_names[j], want) == 0);
     u[j] = road_rate(s, (int)j, t);
   }
-  CHECK(u[FB_LF] != 0.0 && u[FB_LM] != 0.0 && u[FB_RR] == 0.0);
+  CHECK(u[APC_LF] != 0.0 && u[APC_LM] != 0.0 && u[APC_RR] == 0.0);
   for (size_t i = 0; i < ds->nstates; ++i)
     x[i] = 1e-3 * (double)((i * 7919) % 23) - 0.011;
   check_rows_against_eval(bd, ds, t, x, u);

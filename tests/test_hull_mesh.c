@@ -20,6 +20,7 @@
 #include "flexbond/fem.h"
 #include "flexbond/vehicle.h"
 
+#include "apc_layout.h"
 #include "check.h"
 
 #define SCENARIO "../examples/apc6x6.yaml"
@@ -171,12 +172,12 @@ static void check_edge(const fb_mesh *m, const char *name, double x, double half
 static void check_sets(const fb_mesh *m, const fb_scenario *s, const fb_hull_mesh_params *p,
                        double cx, double z_floor)
 {
-  static const char *const susp[FB_NCORNERS] = {"SUSP_LF", "SUSP_RF", "SUSP_LM",
+  static const char *const susp[APC_NCORNERS] = {"SUSP_LF", "SUSP_RF", "SUSP_LM",
                                                 "SUSP_RM", "SUSP_LR", "SUSP_RR"};
-  for (int c = 0; c < FB_NCORNERS; ++c)
+  for (int c = 0; c < APC_NCORNERS; ++c)
     check_single(m, susp[c], s->corner[c].x, s->corner[c].y, z_floor);
-  check_single(m, "DRIVER", s->driver.x, s->driver.y, z_floor);
-  check_single(m, "ENGINE", s->engine.x, s->engine.y, z_floor);
+  check_single(m, "DRIVER", APC_DRIVER(s)->x, APC_DRIVER(s)->y, z_floor);
+  check_single(m, "ENGINE", APC_ENGINE(s)->x, APC_ENGINE(s)->y, z_floor);
   const size_t *load = NULL;
   size_t n = 0;
   CHECK(fb_mesh_nset(m, "LOAD", &load, &n) && n == 56 && n == s->nload);

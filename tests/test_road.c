@@ -11,6 +11,7 @@
 #include "flexbond/road.h"
 #include "flexbond/vehicle.h"
 
+#include "apc_layout.h"
 #include "check.h"
 
 static const double PI = 3.14159265358979323846;
@@ -27,10 +28,10 @@ static int contains(const char *text, const char *part)
  * contact 5 s. */
 static void reference_scenario(fb_scenario *sc)
 {
-  static const double x[FB_NCORNERS] = {1.90, 1.90, 0.40, 0.40, -1.00, -1.00};
-  static const double y[FB_NCORNERS] = {1.05, -1.05, 1.05, -1.05, 1.05, -1.05};
+  static const double x[APC_NCORNERS] = {1.90, 1.90, 0.40, 0.40, -1.00, -1.00};
+  static const double y[APC_NCORNERS] = {1.05, -1.05, 1.05, -1.05, 1.05, -1.05};
   memset(sc, 0, sizeof *sc);
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     sc->corner[c].x = x[c];
     sc->corner[c].y = y[c];
   }
@@ -46,7 +47,7 @@ static void reference_scenario(fb_scenario *sc)
  * front wheel reaches the left track's leading edge (s = 0) at bump_time. */
 static void scenario_wheel(const fb_scenario *sc, int c, int *track, double *s0)
 {
-  const double s_ref = -(sc->speed * sc->bump_time + sc->corner[FB_LF].x);
+  const double s_ref = -(sc->speed * sc->bump_time + sc->corner[APC_LF].x);
   *track = sc->corner[c].y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
   *s0 = s_ref + sc->corner[c].x;
 }
@@ -113,15 +114,15 @@ static void test_oblique_bump(void)
   reference_scenario(&sc);
   fb_road *road = NULL;
   fb_err err;
-  const double width = sc.corner[FB_LF].y - sc.corner[FB_RF].y;
+  const double width = sc.corner[APC_LF].y - sc.corner[APC_RF].y;
   CHECK(fb_road_new_oblique_bump(sc.bump_height, sc.bump_length, sc.bump_angle, width, &road,
                                  &err) == FB_OK);
   if (!road)
     return;
-  for (int c = 0; c < FB_NCORNERS; ++c)
+  for (int c = 0; c < APC_NCORNERS; ++c)
     check_wheel_on_bump(road, &sc, c);
-  static const double entry[FB_NCORNERS] = {5.0, 5.756, 5.54, 6.296, 6.044, 6.8};
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  static const double entry[APC_NCORNERS] = {5.0, 5.756, 5.54, 6.296, 6.044, 6.8};
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     int track;
     double s0, bp[2] = {0};
     fb_tfun *v = NULL;
@@ -130,7 +131,7 @@ static void test_oblique_bump(void)
     CHECK(v && fb_tfun_breakpoints(v, bp, 2) == 2);
     /* Decimal hand values, rounding of the times only: 1e-12 s. */
     CHECK_NEAR(bp[0], entry[c], 1e-12);
-    if (c == FB_RR)
+    if (c == APC_RR)
       CHECK_NEAR(bp[1], 8.132, 1e-12);
     fb_tfun_free(&v);
   }

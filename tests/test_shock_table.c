@@ -11,6 +11,7 @@
 
 #include "flexbond/vehicle.h"
 
+#include "apc_layout.h"
 #include "check.h"
 #include "vehicle_util.h"
 
@@ -30,7 +31,7 @@ static void test_linear_table(const fb_scenario *s0)
     goto done;
   lin->rtol = tab->rtol = 1e-9;
   lin->atol = tab->atol = 1e-12;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     fb_corner_params *p = &tab->corner[c];
     const double v[3] = {-2.0, 0.0, 2.0};
     p->damper_npoints = 3;
@@ -60,9 +61,9 @@ static void test_example(void)
     fprintf(stderr, "%s\n", err.msg);
     return;
   }
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     const fb_corner_params *p = &s->corner[c];
-    const int rear = c >= FB_LR;
+    const int rear = c >= APC_LR;
     CHECK(p->damper_npoints == 9);
     CHECK(p->damper_v[0] == -1.0 && p->damper_v[8] == 1.0 && p->damper_v[4] == 0.0);
     CHECK(p->damper_f[0] == (rear ? -32201.0 : -20904.0));

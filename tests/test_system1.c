@@ -25,6 +25,7 @@
 
 #include "apc_direct.h"
 #include "bgtest_util.h"
+#include "apc_layout.h"
 #include "check.h"
 #include "energy_balance.h"
 
@@ -37,10 +38,10 @@ static const double rk4_dt = 1e-4;
 
 typedef struct static_hand {
   double hull[3];                   /* z, phi, theta */
-  double corner_force[FB_NCORNERS]; /* vertical force of the suspension on the hull, up */
-  double spring_comp[FB_NCORNERS];  /* spring compression along its axis */
-  double tire_force[FB_NCORNERS];   /* tire normal reaction */
-  double tire_comp[FB_NCORNERS];
+  double corner_force[APC_NCORNERS]; /* vertical force of the suspension on the hull, up */
+  double spring_comp[APC_NCORNERS];  /* spring compression along its axis */
+  double tire_force[APC_NCORNERS];   /* tire normal reaction */
+  double tire_comp[APC_NCORNERS];
   double outputs[APC_NOUT]; /* the seven outputs at rest */
 } static_hand;
 
@@ -56,8 +57,8 @@ typedef struct static_hand {
  * status. */
 static int static_by_hand(const fb_scenario *s, static_hand *h)
 {
-  double K[9] = {0}, q[3] = {0}, kser[FB_NCORNERS];
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  double K[9] = {0}, q[3] = {0}, kser[APC_NCORNERS];
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     const fb_corner_params *p = &s->corner[c];
     const double kv = p->motion_ratio * p->motion_ratio * p->spring_k;
     const double J[3] = {1.0, p->y, -p->x};
@@ -74,7 +75,7 @@ static int static_by_hand(const fb_scenario *s, static_hand *h)
     q[1] -= w * s->load_y[l];
     q[2] += w * s->load_x[l];
   }
-  const fb_mount *mounts[2] = {&s->driver, &s->engine};
+  const fb_mount *mounts[2] = {APC_DRIVER(s), APC_ENGINE(s)};
   for (int i = 0; i < 2; ++i) {
     const double w = mounts[i]->mass * s->gravity;
     q[0] -= w;
@@ -83,7 +84,7 @@ static int static_by_hand(const fb_scenario *s, static_hand *h)
   }
   const int info = LAPACKE_dposv(LAPACK_COL_MAJOR, 'L', 3, 1, K, 3, q, 3);
   memcpy(h->hull, q, sizeof h->hull);
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     const fb_corner_params *p = &s->corner[c];
     const double a = q[0] + p->y * q[1] - p->x * q[2];
     h->corner_force[c] = -kser[c] * (a + p->wheel_mass * s->gravity / p->tire_k);
@@ -92,9 +93,9 @@ static int static_by_hand(const fb_scenario *s, static_hand *h)
     h->tire_comp[c] = h->tire_force[c] / p->tire_k;
   }
   memset(h->outputs, 0, sizeof h->outputs);
-  h->outputs[APC_OUT_TIRE_FORCE_LF] = h->tire_force[FB_LF];
-  h->outputs[APC_OUT_SPRING_DEFL_RF] = h->spring_comp[FB_RF];
-  h->outputs[APC_OUT_TIRE_DEFL_RM] = h->tire_comp[FB_RM];
+  h->outputs[APC_OUT_TIRE_FORCE_LF] = h->tire_force[APC_LF];
+  h->outputs[APC_OUT_SPRING_DEFL_RF] = h->spring_comp[APC_RF];
+  h->outputs[APC_OUT_TIRE_DEFL_RM] = h->tire_comp[APC_RM];
   return info;
 }
 
@@ -154,12 +155,12 @@ static void test_scenario_is_data_sheet(const fb_scenario *s)
    * below, which take their parameters from it. */
   CHECK(s->hull_mass == 4041.72 && s->hull_ixx == 4173.49 && s->hull_iyy == 15175.96);
   CHECK(s->total_weight == 117720.0 && s->gravity == 9.81 && s->nload == 56);
-  CHECK(s->driver.mass == 100.0 && s->driver.stiffness == 19620.0 &&
-        s->driver.damping == 1400.0);
-  CHECK(s->engine.mass == 500.0 && s->engine.stiffness == 122625.0 &&
-        s->engine.damping == 24761.0);
+  CHECK(APC_DRIVER(s)->mass == 100.0 && APC_DRIVER(s)->stiffness == 19620.0 &&
+        APC_DRIVER(s)->damping == 1400.0);
+  CHECK(APC_ENGINE(s)->mass == 500.0 && APC_ENGINE(s)->stiffness == 122625.0 &&
+        APC_ENGINE(s)->damping == 24761.0);
   const double k[3] = {145300.0, 345550.0, 602100.0}, c[3] = {25744.0, 25744.0, 39656.0};
-  for (int i = 0; i < FB_NCORNERS; ++i) {
+  for (int i = 0; i < APC_NCORNERS; ++i) {
     const fb_corner_params *p = &s->corner[i];
     CHECK(p->spring_k == k[i / 2] && p->damper_c == c[i / 2]);
     CHECK(p->wheel_mass == 175.0 && p->tire_k == 500000.0 && p->tire_c == 140000.0);
@@ -177,12 +178,12 @@ static void test_scenario_is_data_sheet(const fb_scenario *s)
   CHECK_NEAR(cx, 0.0, 1e-12);
   CHECK_NEAR(cy, 0.0, 1e-12);
   /* Bump times: the data sheet's formula, and RR leaves at about 8.13 s. */
-  for (int i = 0; i < FB_NCORNERS; ++i) {
+  for (int i = 0; i < APC_NCORNERS; ++i) {
     CHECK_NEAR(fb_scenario_bump_entry(s, i), apc_entry_time(s, i), 1e-12);
     CHECK_NEAR(fb_scenario_bump_exit(s, i), apc_entry_time(s, i) + s->bump_length / s->speed,
                1e-12);
   }
-  CHECK_NEAR(fb_scenario_bump_exit(s, FB_RR), 8.13, 0.005);
+  CHECK_NEAR(fb_scenario_bump_exit(s, APC_RR), 8.13, 0.005);
 }
 
 /* ---- 1. The seven outputs against the direct model. */
@@ -212,8 +213,8 @@ static void check_rk4_stable(const apc_model *m)
 static void compare_outputs(const fb_result *res, const double *ref, const double *coarse)
 {
   const size_t n = fb_result_nsamples(res);
-  for (int k = 0; k < FB_NOUTPUTS; ++k) {
-    const long col = fb_result_find(res, fb_vehicle_output_name(k));
+  for (int k = 0; k < APC_NOUTPUTS; ++k) {
+    const long col = fb_result_find(res, apc_output_name(k));
     CHECK(col == 1 + k);
     if (col != 1 + k)
       continue;
@@ -230,7 +231,7 @@ static void compare_outputs(const fb_result *res, const double *ref, const doubl
     }
     if (k == APC_OUT_TORSION) {
       /* A rigid hull does not twist: exactly zero, not merely small. */
-      fprintf(stderr, "  %-15s max |torsion| = %.3g rad\n", fb_vehicle_output_name(k), worst);
+      fprintf(stderr, "  %-15s max |torsion| = %.3g rad\n", apc_output_name(k), worst);
       CHECK(worst <= 1e-12);
       continue;
     }
@@ -238,7 +239,7 @@ static void compare_outputs(const fb_result *res, const double *ref, const doubl
     fprintf(stderr,
             "  %-15s range %.6g %s, worst |flexbond - direct| = %.3g (%.3g%% of range, at t = "
             "%.3f s), RK4 error est. %.2g%% of range\n",
-            fb_vehicle_output_name(k), range, fb_vehicle_output_unit(k), worst,
+            apc_output_name(k), range, apc_output_unit(k), worst,
             100.0 * worst / range, worst_t, 100.0 * richardson / range);
     /* Acceptance: 0.5 % of the peak-to-peak range. Both sides solve the
      * same linear ODE, so the measured differences are ~1e-4 % (solver
@@ -261,7 +262,7 @@ static void test_direct_vs_flexbond(const fb_scenario *s, const apc_model *m, fb
   if (!res)
     return;
   const size_t n = fb_result_nsamples(res);
-  CHECK(fb_result_ncols(res) == 1 + FB_NOUTPUTS + FB_NCORNERS);
+  CHECK(fb_result_ncols(res) == 1 + APC_NOUTPUTS + APC_NCORNERS);
   CHECK(n == (size_t)llround(s->t_end * s->sample_rate) + 1);
   CHECK_NEAR(fb_result_row(res, n - 1)[0], s->t_end, 1e-9);
   double *ref = malloc(sizeof(double) * APC_NOUT * n);
@@ -291,12 +292,12 @@ static void test_static_hand(const fb_scenario *s, const apc_model *m, const sta
   CHECK(static_by_matrix(m, q) == 0);
   for (int i = 0; i < 3; ++i)
     CHECK_NEAR(q[i], h->hull[i], 1e-10 * fabs(h->hull[0]));
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     const double tire = -q[APC_WHEEL + c];
     CHECK_NEAR(tire, h->tire_comp[c], 1e-10 * fabs(h->tire_comp[c]));
   }
-  double sum = 0.0, expect = s->total_weight + (s->driver.mass + s->engine.mass) * s->gravity;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  double sum = 0.0, expect = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
+  for (int c = 0; c < APC_NCORNERS; ++c) {
     sum += h->tire_force[c];
     expect += s->corner[c].wheel_mass * s->gravity;
   }
@@ -304,11 +305,11 @@ static void test_static_hand(const fb_scenario *s, const apc_model *m, const sta
   fprintf(stderr,
           "static (hand): hull z = %.9g m, phi = %.9g rad, theta = %.9g rad\n"
           "  tire force LF = %.9g N, spring defl RF = %.9g m, tire defl RM = %.9g m\n",
-          h->hull[0], h->hull[1], h->hull[2], h->tire_force[FB_LF], h->spring_comp[FB_RF],
-          h->tire_comp[FB_RM]);
-  for (int c = 0; c < FB_NCORNERS; ++c)
+          h->hull[0], h->hull[1], h->hull[2], h->tire_force[APC_LF], h->spring_comp[APC_RF],
+          h->tire_comp[APC_RM]);
+  for (int c = 0; c < APC_NCORNERS; ++c)
     fprintf(stderr, "  %s: corner force %.9g N, spring %.9g m, tire %.9g N, %.9g m\n",
-            fb_corner_name(c), h->corner_force[c], h->spring_comp[c], h->tire_force[c],
+            apc_corner_name(c), h->corner_force[c], h->spring_comp[c], h->tire_force[c],
             h->tire_comp[c]);
 }
 
@@ -362,7 +363,7 @@ static void test_static_after_settling(const fb_scenario *s, const apc_model *m,
     fprintf(stderr,
             "  %-15s hand %.9g, direct %.9g, flexbond %.9g: residual %.2g, |flexbond - "
             "direct| %.2g (relative to %.3g)\n",
-            fb_vehicle_output_name(k), h->outputs[k], direct[k], y, residual, dev, scale);
+            apc_output_name(k), h->outputs[k], direct[k], y, residual, dev, scale);
     CHECK(residual <= 10.0 * exp(-sigma * t));
     CHECK(dev <= 10.0 * s->rtol);
   }
@@ -390,7 +391,7 @@ static void test_static_initial(const fb_scenario *s, const static_hand *h)
     for (int k = 0; k < APC_NOUT; ++k) {
       const double y = fb_result_row(res, row)[1 + k], scale = output_scale(k, s, h);
       fprintf(stderr, "static start, t = 0.5 s: %-15s flexbond %.12g, hand %.12g, dev %.2g\n",
-              fb_vehicle_output_name(k), y, h->outputs[k], fabs(y - h->outputs[k]) / scale);
+              apc_output_name(k), y, h->outputs[k], fabs(y - h->outputs[k]) / scale);
       CHECK_NEAR(y, h->outputs[k], 1e-9 * scale);
     }
   }
@@ -432,22 +433,22 @@ static void test_tire_forces_static(const fb_scenario *s, const static_hand *h)
 {
   fb_err err;
   fb_err_clear(&err);
-  char names[FB_NCORNERS][32], targets[FB_NCORNERS][48];
-  fb_probe_spec extra[FB_NCORNERS];
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    snprintf(names[c], sizeof names[c], "tire_force_all_%s", fb_corner_name(c));
-    snprintf(targets[c], sizeof targets[c], "susp_%s.b_tire", fb_corner_name(c));
+  char names[APC_NCORNERS][32], targets[APC_NCORNERS][48];
+  fb_probe_spec extra[APC_NCORNERS];
+  for (int c = 0; c < APC_NCORNERS; ++c) {
+    snprintf(names[c], sizeof names[c], "tire_force_all_%s", apc_corner_name(c));
+    snprintf(targets[c], sizeof targets[c], "susp_%s.b_tire", apc_corner_name(c));
     extra[c] =
         (fb_probe_spec){names[c], FB_PROBE_EFFORT, targets[c], -1, 0, 1.0, NULL, NULL, 0};
   }
   fb_bg *g = NULL;
   fb_bd *bd = NULL;
   size_t nstd = 0;
-  MUST(build_with_probes(s, extra, FB_NCORNERS, &g, &bd, &nstd, &err), &err);
+  MUST(build_with_probes(s, extra, APC_NCORNERS, &g, &bd, &nstd, &err), &err);
   double *x0 = NULL, *xeq = NULL, *y = NULL;
   if (bd) {
     const size_t nx = fb_bd_nstates(bd), ny = fb_bd_noutputs(bd);
-    CHECK(ny == nstd + FB_NCORNERS);
+    CHECK(ny == nstd + APC_NCORNERS);
     x0 = calloc(nx, sizeof *x0);
     xeq = calloc(nx, sizeof *xeq);
     y = calloc(ny, sizeof *y);
@@ -455,11 +456,11 @@ static void test_tire_forces_static(const fb_scenario *s, const static_hand *h)
   if (x0 && xeq && y) {
     MUST(fb_sim_static_state(bd, 0.0, x0, xeq, &err), &err);
     CHECK(fb_bd_outputs(bd, 0.0, xeq, y) == 0);
-    double sum = 0.0, expect = s->total_weight + (s->driver.mass + s->engine.mass) * s->gravity;
-    for (int c = 0; c < FB_NCORNERS; ++c) {
+    double sum = 0.0, expect = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
+    for (int c = 0; c < APC_NCORNERS; ++c) {
       const double f = y[nstd + (size_t)c];
       fprintf(stderr, "static state: tire force %s flexbond %.12g N, hand %.12g N\n",
-              fb_corner_name(c), f, h->tire_force[c]);
+              apc_corner_name(c), f, h->tire_force[c]);
       CHECK_NEAR(f, h->tire_force[c], 1e-9 * h->tire_force[c]);
       sum += f;
       expect += s->corner[c].wheel_mass * s->gravity;
@@ -613,7 +614,7 @@ static void test_motion_ratio(const fb_scenario *s)
   MUST(fb_scenario_clone(s, &mr, &err), &err);
   if (!mr)
     return;
-  for (int c = 0; c < FB_NCORNERS; ++c)
+  for (int c = 0; c < APC_NCORNERS; ++c)
     mr->corner[c].motion_ratio = 0.8 - 0.05 * c;
   apc_model m;
   static_hand h;
@@ -661,6 +662,12 @@ int main(void)
   MUST(fb_scenario_load(scenario_path, &s, &err), &err);
   if (!s)
     return check_report("test_system1");
+  /* The second formulation below is written for this layout. */
+  CHECK(apc_layout_ok(s));
+  if (!apc_layout_ok(s)) {
+    fb_scenario_free(&s);
+    return check_report("test_system1");
+  }
   apc_model m;
   static_hand h;
   CHECK(apc_model_init(&m, s) == 0);

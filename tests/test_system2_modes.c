@@ -10,6 +10,7 @@
 
 #include "flexbond/vehicle.h"
 
+#include "apc_layout.h"
 #include "check.h"
 
 static fb_scenario *load(fb_err *err)
@@ -206,7 +207,7 @@ static void test_flexible_graph(const fb_scenario *s)
   long hull_mass = fb_bg_find_element(g, "hull.mass");
   long hull_k = fb_bg_find_element(g, "hull.stiffness");
   CHECK(hull_mass >= 0 && hull_k >= 0);
-  double *x = calloc(n, sizeof *x), *xd = calloc(n, sizeof *xd), y[FB_NOUTPUTS];
+  double *x = calloc(n, sizeof *x), *xd = calloc(n, sizeof *xd), y[APC_NOUTPUTS];
   CHECK(fb_bd_rhs(bd, 0.0, x, xd) == 0);
   double fz = 0.0;
   for (size_t i = 0; i < n; ++i) {

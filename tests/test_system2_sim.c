@@ -19,6 +19,7 @@
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
+#include "apc_layout.h"
 #include "check.h"
 #include "energy_balance.h"
 
@@ -65,21 +66,21 @@ static void test_static_weight(fb_scenario *s)
     for (size_t i = 0; i < nx; ++i)
       if (fb_bd_state_kind(bd, i) == FB_STATE_MOMENTUM)
         worst = fmax(worst, fabs(xdot[i]));
-    const double weight = s->total_weight + (s->driver.mass + s->engine.mass) * s->gravity;
+    const double weight = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
     CHECK(worst < 1e-6 * weight);
     /* The sum of the tire forces is not an output, but each tire's
      * deflection is the state of its spring: k_t times it. */
     double sum = 0.0, expect = weight;
     for (size_t i = 0; i < nx; ++i) {
       const char *name = fb_bd_state_name(bd, i);
-      for (int c = 0; c < FB_NCORNERS; ++c) {
+      for (int c = 0; c < APC_NCORNERS; ++c) {
         char want[48];
-        snprintf(want, sizeof want, "susp_%s.tire_spring.q", fb_corner_name(c));
+        snprintf(want, sizeof want, "susp_%s.tire_spring.q", apc_corner_name(c));
         if (strcmp(name, want) == 0)
           sum += s->corner[c].tire_k * xeq[i];
       }
     }
-    for (int c = 0; c < FB_NCORNERS; ++c)
+    for (int c = 0; c < APC_NCORNERS; ++c)
       expect += s->corner[c].wheel_mass * s->gravity;
     fprintf(stderr, "System 2 static: sum of tire spring forces %.10g N, weight %.10g N\n", sum,
             expect);

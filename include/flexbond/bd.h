@@ -243,6 +243,18 @@ size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max);
 
 /* Graphviz DOT of the diagram, one cluster per subsystem. */
 int fb_bd_write_dot(const fb_bd *bd, FILE *fp, fb_err *err);
+/* Graphviz DOT of the diagram in two levels, as the paper's Fig. 6
+ * (docs/diagrams.md): the top level ("cluster_top") has one block per
+ * subsystem instance of the graph, the blocks of the top-level elements
+ * (a composite's mux and demux) and one meter per probed signal (the
+ * outputs' names and units); one level down, a cluster per instance holds
+ * its blocks (nested instances nested), with an in-port for each signal it
+ * takes from outside and an out-port for each it gives. Instances whose
+ * blocks and inner wiring are alike (six suspensions) are drawn once, the
+ * cluster naming them all. Every signal is one edge labelled with its
+ * dimension "[n]", never one per component. Names pass fb_dot_write_text.
+ * FB_EIO on a write error, FB_ENOMEM. */
+int fb_bd_write_dot_hierarchy(const fb_bd *bd, FILE *fp, fb_err *err);
 
 #ifdef __cplusplus
 }

@@ -32,6 +32,7 @@
 #define FLEXBOND_BG_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/error.h"
 #include "flexbond/expr.h"
@@ -306,6 +307,21 @@ const char *fb_bg_kind_name(fb_bg_kind kind);
 /* Units of effort, flow, effort integral and flow integral. */
 const char *fb_bg_domain_unit(fb_bg_domain d, int which);
 enum { FB_UNIT_EFFORT, FB_UNIT_FLOW, FB_UNIT_MOMENTUM, FB_UNIT_DISPLACEMENT };
+
+/* ---- Picture: the graph as a multibond graph in Graphviz DOT (the
+ * paper's Fig. 5; the conventions are in docs/diagrams.md). One node per
+ * element, named by its full name and labelled with its kind and its name
+ * within its subsystem (junctions "0" and "1", a composite drawn as a bar,
+ * the paper's "horizontal line"); one edge per bond, from its `from` to
+ * its `to` element, with a half arrow at `to` (the power direction), the
+ * bond's name and, for a multibond, its dimension "[n]" (never one edge
+ * per component); a causal stroke (arrow shape "tee") at the end whose
+ * element receives the effort, where causality has been assigned
+ * (fb_bg_assign_causality), none otherwise; one cluster per subsystem
+ * instance, nested as the instances are, labelled with the instance's
+ * name. Every name passes fb_dot_write_text. FB_EIO on a write error,
+ * FB_ENOMEM. Implemented in src/bg/dot.c. */
+int fb_bg_write_dot(const fb_bg *bg, FILE *fp, fb_err *err);
 
 #ifdef __cplusplus
 }

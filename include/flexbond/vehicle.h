@@ -1,7 +1,8 @@
-/* flexbond: the wheeled-vehicle study of Leite & Da Silva (see
- * ../shared/reference-vehicle.md): a scenario (every number of the data
- * sheet), subsystems as bond-graph fragments with ports, their assembly,
- * and the paper's seven outputs.
+/* flexbond: wheeled vehicles with rigid or flexible hulls, after Leite &
+ * Da Silva's modular procedure (the reference vehicle's data sheet is
+ * examples/apc6x6.yaml): a scenario (the vehicle as data: any number of
+ * corners and mounted bodies, the outputs it records), subsystems as
+ * bond-graph fragments with ports, their assembly through the ports.
  *
  * Axes (ISO 8855): origin at the hull's centre of mass, x forward, y left,
  * z up; roll phi about x, pitch theta about y (positive nose down). A hull
@@ -117,20 +118,20 @@ typedef struct fb_scenario_origin {
 } fb_scenario_origin;
 
 /* One recorded signal of the vehicle (the scenario's `outputs` list,
- * docs/outputs.md): a signal kind of one subsystem instance, or an
+ * docs/vehicle-outputs.md): a signal kind of one subsystem instance, or an
  * effort, flow or power of any bond of the assembled graph. Strings
  * owned by the scenario. */
 typedef struct fb_output_spec {
-  char *name;   /* CSV column, unique: "tire_force_LF" */
-  char *signal; /* a kind of fb_vehicle_output_kinds: "tire_force", "effort" */
-  char *of;     /* the corner or mount it measures ("LF", "driver"); NULL
-                   for the hull's torsion and for bond signals */
-  char *bond;   /* bond signals: the bond's name in the assembled graph
-                   ("susp_LF.b_tire"); NULL otherwise */
-  char *unit;   /* from the kind (or the bond's domain), filled at load */
-  char *title;  /* figure title; from the kind when the file gives none */
-  char *label;  /* short label of the signal ("LF tire normal reaction") */
-  int figure;   /* figure number (the paper's 8 .. 14), 0 for none */
+  char *name;       /* CSV column, unique: "tire_force_LF" */
+  char *signal;     /* a kind of fb_vehicle_output_kinds: "tire_force", "effort" */
+  char *of;         /* the corner or mount it measures ("LF", "driver"); NULL
+                       for the hull's torsion and for bond signals */
+  char *bond;       /* bond signals: the bond's name in the assembled graph
+                       ("susp_LF.b_tire"); NULL otherwise */
+  char *unit;       /* from the kind (or the bond's domain), filled at load */
+  char *title;      /* figure title; from the kind when the file gives none */
+  char *label;      /* short label of the signal ("LF tire normal reaction") */
+  int figure;       /* figure number (the paper's 8 .. 14), 0 for none */
   double window[2]; /* time window a figure shows, s; {0, 0}: the whole run */
 } fb_output_spec;
 
@@ -147,8 +148,8 @@ typedef struct fb_scenario {
    * (frame.origin, a description such as "front axle, floor"); then the
    * hull's centre of mass in that frame is hull_cg_x/y, computed from the
    * mesh (fb_vehicle_hull_properties) or given as hull.centre_of_mass. */
-  char *frame_origin;        /* NULL: positions relative to the hull's centre of mass */
-  int hull_cg_given;         /* hull.centre_of_mass was written */
+  char *frame_origin;          /* NULL: positions relative to the hull's centre of mass */
+  int hull_cg_given;           /* hull.centre_of_mass was written */
   double hull_cg_x, hull_cg_y; /* m, in the vehicle frame (0 without a frame) */
   /* Rigid-body properties (paper, Table 2). With a finite-element hull
    * they may be left out (hull_mass_given 0): the mesh's are used. */
@@ -172,7 +173,7 @@ typedef struct fb_scenario {
   size_t nmounts;
   fb_corner_params *corner;
   size_t ncorners;
-  /* The signals recorded, in CSV column order (docs/outputs.md). */
+  /* The signals recorded, in CSV column order (docs/vehicle-outputs.md). */
   fb_output_spec *output;
   size_t noutputs;
   /* Road: a (1 - cos) bump of height h and length L along each wheel's
@@ -223,6 +224,22 @@ size_t fb_scenario_nattach(const fb_scenario *s);
 /* Index of the corner or mount named name, -1 if none. */
 long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
+/* The road has two tracks: wheels with y > 0 run on the left one, the
+ * others on the right one. The lateral distance between them (m): the
+ * first corner's y (it leads the left track) minus the y of the first
+ * corner with y <= 0; 0 when every corner is on the left. */
+double fb_scenario_track_width(const fb_scenario *s);
+
+/* Completes a scenario the loader has read and checked, in place (the
+ * loader calls it last): with a declared frame (s->frame_origin), the
+ * hull's centre of mass in it (the generated mesh's, or
+ * hull.centre_of_mass without a mesh) goes into hull_cg_x/y and every
+ * position is moved to it; with a finite-element hull, the hull's mass,
+ * Ixx and Iyy are the mesh's when the file gives none, and the file's
+ * are refused (FB_EINVAL naming both, key "hull.mass" ...) when they
+ * differ from the mesh's by more than 0.5 %. Errors carry a logical key
+ * (fb_scenario_locate). */
+int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
  * Errors are "FILE:LINE:COL: KEY: message". */
@@ -314,7 +331,7 @@ double fb_scenario_bump_exit(const fb_scenario *s, int corner);
  * full cross-section transverse bulkheads. Every quadrilateral is a
  * rectangle; the side walls' nose triangles (between the glacis plates)
  * are meshed with triangles. Floor lines run through every scenario point
- * (load points, suspension, driver and engine attachments), which are
+ * (load points, the corners' and mounted bodies' attachments), which are
  * floor nodes (those at y = +-width/2 lie on the side walls' bottom
  * edges).
  *
@@ -339,15 +356,18 @@ int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb
 /* Builds the hull mesh for the scenario's points (*out is new; nodes and
  * elements numbered 1, 2, ... in index order) with the node sets
  *   LOAD       the nload load points, in the scenario's order;
- *   DRIVER, ENGINE, SUSP_LF, SUSP_RF, SUSP_LM, SUSP_RM, SUSP_LR, SUSP_RR
- *              one node each, the attachment points;
+ *   SUSP_<CORNER> per corner, <MOUNT> (the mount's name in capitals:
+ *              DRIVER, ENGINE) per mounted body: one node each, the
+ *              attachment points;
  *   FRONT_EDGE, REAR_EDGE  the end nodes of the floor's front (x_front)
  *              and rear (x_rear) transverse edges, left (y > 0) first:
  *              the torsion angle's edge lines (Fig. 10);
  *   ALL        every node.
- * p NULL means the defaults. FB_EINVAL naming the parameter or point on
- * bad parameters, a point outside the floor, or two distinct node lines
- * closer than 1 mm (e.g. a bulkhead next to a load point); FB_ENOMEM. */
+ * p NULL means the defaults. FB_EINVAL on bad parameters, a point outside
+ * the floor, or two distinct node lines closer than 1 mm (e.g. a bulkhead
+ * next to a load point), with the scenario's logical key of the value
+ * concerned in fb_err.key ("corners.LF.x", "load.points",
+ * "hull.mesh.generator.bulkheads[1]"); FB_ENOMEM. */
 int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb_mesh **out,
                           fb_err *err);
 
@@ -355,8 +375,9 @@ int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb
  * owned by the caller (or handed to fb_vehicle_assemble). */
 
 /* A hull: a graph with the ports
- *   "attach" (IN, dimension FB_NATTACH): vertical force and velocity at
- *            the attachment points, in FB_LF .. FB_ATTACH_ENGINE order;
+ *   "attach" (IN, dimension fb_scenario_nattach): vertical force and
+ *            velocity at the attachment points, the corners' then the
+ *            mounted bodies';
  *   "load"   (IN, dimension nload): the load points;
  * and the probe that measures its torsion angle (a weighted sum over a
  * vector signal, names relative to the hull fragment). */
@@ -374,31 +395,34 @@ void fb_hull_free(fb_hull **h);
  * lumped payload's point masses when asked) and matrix transformers to
  * the attachment and load points. */
 int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
-/* Driver plus seat or engine: port "hull" (OUT). */
+/* A mounted body (driver plus seat, engine, ...): port "hull" (OUT). */
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
 /* One suspension with its wheel and tire: ports "hull" (OUT), "road" (IN). */
 int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err);
 /* The road: one flow source per wheel (the road's vertical velocity under
  * that wheel: the bump, an ISO 8608 random road or a profile, src/road),
- * ports "LF" .. "RR" (OUT). */
+ * "v_<CORNER>", one port per corner named as it (OUT). */
 int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err);
 /* The load: one effort source of dimension nload, port "load" (OUT). */
 int fb_vehicle_load(const fb_scenario *s, fb_bg **out, fb_err *err);
 
-/* Connects a hull (taken over, *hull set to NULL) with the driver, engine,
- * six corners, road and load fragments built from s. Instance names:
- * "hull", "driver", "engine", "susp_LF" .. "susp_RR", "road", "load"; the
- * composite "attach" stacks the eight scalar bonds into the hull's
- * multibond (the paper's horizontal line). The hull is the only part that
- * differs between System 1 and System 2. */
+/* Connects a hull (taken over, *hull set to NULL) with the mounted
+ * bodies', corners', road and load fragments built from s, through their
+ * ports only. Instance names: "hull", each mount's name, "susp_<CORNER>",
+ * "road", "load"; the composite "attach" stacks one scalar bond per
+ * attachment point into the hull's multibond (the paper's horizontal
+ * line). The hull is the only part that differs between System 1 and
+ * System 2. *probes (new) measure s's outputs; an error about one has
+ * the key "outputs[K]". */
 int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hull, fb_bg **out,
                         fb_probe_spec **probes, size_t *nprobes, fb_err *err);
 /* Frees what fb_vehicle_assemble returned in *probes. */
 void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes);
 
-/* ---- Outputs (docs/outputs.md). A signal kind: what it measures, of
+/* ---- Outputs (docs/vehicle-outputs.md). A signal kind: what it measures, of
  * which subsystem class, its unit and default name, title and label. One
- * table (src/vehicle/outputs.c); a new kind is one entry there. */
+ * table (src/vehicle/outputs.c); a new kind is one entry there and a row of
+ * docs/vehicle-outputs.md. */
 typedef enum fb_output_subject {
   FB_OUTPUT_OF_CORNER, /* `of` names a corner */
   FB_OUTPUT_OF_MOUNT,  /* `of` names a mounted body */
@@ -407,13 +431,13 @@ typedef enum fb_output_subject {
 } fb_output_subject;
 
 typedef struct fb_output_kind {
-  const char *signal;  /* "tire_force" */
+  const char *signal; /* "tire_force" */
   fb_output_subject subject;
-  const char *unit;    /* NULL for bond signals: from the bond's domain */
-  const char *name;    /* default column name, "%s" the subject's name */
-  const char *title;   /* default figure title, "%s" the subject's name */
-  const char *label;   /* default short label, "%s" the subject's name */
-  const char *doc;     /* one line for docs/outputs.md */
+  const char *unit;  /* NULL for bond signals: from the bond's domain */
+  const char *name;  /* default column name, "%s" the subject's name */
+  const char *title; /* default figure title, "%s" the subject's name */
+  const char *label; /* default short label, "%s" the subject's name */
+  const char *doc;   /* one line for docs/vehicle-outputs.md */
 } fb_output_kind;
 
 /* The kinds, n of them in *n. */
@@ -421,18 +445,17 @@ const fb_output_kind *fb_vehicle_output_kinds(size_t *n);
 /* The kind called signal, NULL if none. */
 const fb_output_kind *fb_vehicle_output_kind_find(const char *signal);
 
-/* Assembles the vehicle for system sys (System 1 now; System 2 once the
- * finite-element hull exists) and builds its block diagram with the seven
- * output probes. *graph and *bd are new (free bd first: it borrows the
- * graph). */
+/* Assembles the vehicle for system sys and builds its block diagram with
+ * the scenario's output probes. *graph and *bd are new (free bd first: it
+ * borrows the graph). */
 int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
                      fb_err *err);
 
 /* The assembled vehicle for system sys (*graph new) and every probe a
  * simulation records (*probes new, free with fb_vehicle_probes_free): the
  * outputs, then every tire's normal reaction contact_force_<CORNER>. */
-int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph,
-                     fb_probe_spec **probes, size_t *nprobes, fb_err *err);
+int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
+                     size_t *nprobes, fb_err *err);
 /* The scenario's solver settings (t_end, tolerances, step limits,
  * sampling; no initial state: see s->initial). */
 void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o);
@@ -464,10 +487,11 @@ typedef struct fb_contact_loss {
 } fb_contact_loss;
 
 /* Every interval of positive length where a reaction is <= 0 in a result
- * of fb_vehicle_simulate (its contact_force_* columns), by corner, then
+ * of fb_vehicle_simulate of s (its contact_force_<CORNER> columns), by corner, then
  * by time. *out is new (NULL when there is none). FB_EINVAL if the result
  * lacks a column. */
-int fb_vehicle_contact_loss(const fb_result *r, fb_contact_loss **out, size_t *n, fb_err *err);
+int fb_vehicle_contact_loss(const fb_scenario *s, const fb_result *r, fb_contact_loss **out,
+                            size_t *n, fb_err *err);
 
 /* A mode of the linearised vehicle. */
 typedef struct fb_mode {
@@ -482,18 +506,18 @@ typedef struct fb_mode {
  * block diagram's exact Jacobian: with undamped set, every damper and
  * tire damper is removed first (natural frequencies). Oscillatory modes
  * come first by frequency; non-oscillatory ones (real eigenvalues) after;
- * zero eigenvalues of statically indeterminate support (the hull on six
- * springs) are counted in *nstatic and left out. *modes is new. */
+ * zero eigenvalues of statically indeterminate support (the hull on more
+ * than three springs) are counted in *nstatic and left out. *modes is new. */
 int fb_vehicle_modes(const fb_scenario *s, fb_system sys, int undamped, fb_mode **modes,
                      size_t *nmodes, size_t *nstatic, fb_err *err);
 
 /* ---- System 2: the finite-element hull. */
 
 /* A hull mesh with its material and the nodes where the rest of the
- * vehicle meets it, from the mesh's node sets: SUSP_LF .. SUSP_RR, DRIVER,
- * ENGINE (one node each, in "attach" order), LOAD (nload nodes, in the
- * scenario's load-point order), FRONT_EDGE and REAR_EDGE (left end, then
- * right end; the torsion angle's edges). */
+ * vehicle meets it, from the mesh's node sets: SUSP_<CORNER> per corner
+ * and the mounts' names in capitals (one node each, in "attach" order),
+ * LOAD (nload nodes, in the scenario's load-point order), FRONT_EDGE and
+ * REAR_EDGE (left end, then right end; the torsion angle's edges). */
 typedef struct fb_fe_hull {
   fb_mesh *mesh;
   fb_shell_props props;
@@ -507,12 +531,12 @@ typedef struct fb_fe_hull {
 
 /* The scenario's finite-element hull: its mesh (the deck, or the
  * generator with hull.mesh's parameters), material and mass matrix kind.
- * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. A deck's
- * errors start at the scenario's hull.mesh.deck ("FILE:LINE:COL:
- * hull.mesh.deck: ", fb_scenario_blame), then the deck's "PATH:LINE: " (or
- * "PATH: " for its node sets); the generator's with the scenario key they
- * concern, located by fb_scenario_blame ("FILE:LINE:COL: driver.x: ..."),
- * or with "hull mesh: " when they concern none. */
+ * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. Errors
+ * about a scenario value carry its logical key in fb_err.key (the caller
+ * locates it: fb_scenario_locate): a deck's have "hull.mesh.deck" and the
+ * deck's "PATH:LINE: " (or "PATH: " for its node sets), a node off its
+ * point the point's key; the generator's as fb_hull_mesh_generate's, or
+ * "hull mesh: " and no key when they concern no value. */
 int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 
 /* Takes the mesh over (*mesh set to NULL) and resolves its node sets
@@ -524,10 +548,10 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
 void fb_fe_hull_free(fb_fe_hull **h);
 
 /* Modes of a whole undamped vehicle: natural frequencies and mode shapes
- * over ndof = 6 nnodes (hull) + 8 DOFs (vertical motion of the driver,
- * the engine and the wheels LF .. RR, in that order), each shape
- * normalised so that the largest displacement over the driver, the
- * engine and the hull nodes is 1 (the paper's normalisation). */
+ * over ndof = 6 nnodes (hull) + nmounts + ncorners DOFs (vertical motion
+ * of the mounted bodies, then of the wheels, in the scenario's order),
+ * each shape normalised so that the largest displacement over the
+ * mounted bodies and the hull nodes is 1 (the paper's normalisation). */
 typedef struct fb_mode_set {
   size_t nmodes, ndof;
   size_t nfree;            /* zero-frequency rigid-body modes left out */
@@ -561,7 +585,7 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
                           fb_err *err);
 
 /* The nmodes lowest modes of the undamped System 2: the finite-element
- * hull with the driver, engine, suspension springs (k r^2 for motion ratio
+ * hull with the mounted bodies, suspension springs (k r^2 for motion ratio
  * r), wheels and tire springs attached at its nodes. The springs are
  * vertical, so the hull's horizontal rigid-body motions (surge, sway,
  * yaw) have no stiffness: those zero-frequency modes are left out and

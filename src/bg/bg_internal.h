@@ -80,4 +80,28 @@ int fb_bg_check_new_name(const fb_bg *bg, const char *name, fb_err *err);
 /* "I 'Ms'" style description of an element for messages. */
 void fb_bg_describe(const fb_bg *bg, size_t e, char *buf, size_t size);
 
+/* ---- Subsystem instances as element names show them (src/bg/groups.c),
+ * for the pictures of a graph: adopting a subsystem prefixes its element
+ * names "inst.", so an element "a.b.x" sits in instance "a.b", itself in
+ * "a". Every prefix of an element name is a group, also one that holds no
+ * element of its own ("a" when only "a.b" has elements). */
+typedef struct fb_bg_groups {
+  size_t n;
+  const char **name; /* group i is name[i][0 .. len[i]): borrowed from bg's element names */
+  size_t *len;
+  size_t *parent;  /* enclosing group, FB_NONE at the top level */
+  size_t *of_elem; /* per element: its innermost group, FB_NONE at the top level */
+} fb_bg_groups;
+
+/* Finds the groups of bg into *g (arrays new; free them with
+ * fb_bg_groups_free). Groups are ordered by first appearance, an
+ * enclosing group before the groups it holds. FB_ENOMEM. */
+int fb_bg_groups_make(const fb_bg *bg, fb_bg_groups *g, fb_err *err);
+void fb_bg_groups_free(fb_bg_groups *g);
+/* The outermost group that holds group i (i itself at the top level). */
+size_t fb_bg_groups_top(const fb_bg_groups *g, size_t i);
+/* name without the prefix of group i ("a.b.x" in "a.b" -> "x"); name when
+ * i is FB_NONE or name does not start with the group's name and a '.'. */
+const char *fb_bg_groups_strip(const fb_bg_groups *g, size_t i, const char *name);
+
 #endif

@@ -123,6 +123,13 @@ int cli_report(int status, const fb_err *err)
   return cli_exit_code(status);
 }
 
+int cli_report_scenario(const fb_scenario *s, int status, fb_err *err)
+{
+  if (status != FB_OK && s && err)
+    fb_scenario_locate(s, err);
+  return cli_report(status, err);
+}
+
 int cli_flush_stdout(fb_err *err)
 {
   errno = 0;

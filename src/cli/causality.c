@@ -6,19 +6,22 @@
 #include <string.h>
 
 #include "flexbond/bg.h"
-#include "flexbond/model.h"
 
 #include "cli.h"
+#include "graph_input.h"
 
 static const char causality_usage[] =
-    "usage: flexbond causality MODEL.yaml\n"
+    "usage: flexbond causality FILE.yaml [--system rigid|flexible]\n"
     "\n"
-    "Assigns causality (sequential causality assignment procedure) and\n"
+    "FILE is a model file or a vehicle scenario file, whose vehicle is\n"
+    "assembled for --system (default rigid). Assigns causality (sequential causality "
+    "assignment procedure) and\n"
     "prints one line per bond: name, power direction from -> to, dimension,\n"
     "domain, and the end with the causal stroke (the element that receives\n"
     "the effort; the other end receives the flow).\n"
     "\n"
     "options:\n"
+    "  --system S            rigid (System 1) or flexible (System 2), scenarios only\n"
     "  -h, --help            this text\n";
 
 static const char *domain_name(fb_bg_domain d)
@@ -71,36 +74,41 @@ static void print_bond(const fb_bg *g, size_t i, const table_widths *w)
   printf("stroke at %s (%s receives effort)\n", receiver, receiver);
 }
 
-static int run(const char *model_path)
+static int run(const char *path, fb_system sys, int system_given)
 {
   fb_err err;
   fb_err_clear(&err);
-  fb_model *m = NULL;
-  int rc = fb_model_load(model_path, &m, &err);
+  cli_graph_input in;
+  int rc = cli_graph_input_load(path, sys, system_given, &in, &err);
   if (rc == FB_OK)
-    rc = fb_bg_assign_causality(fb_model_graph(m), &err);
-  /* The graph names the element or bond at fault; the model knows where
+    rc = fb_bg_assign_causality(in.graph, &err);
+  /* The graph names the element or bond at fault; a model knows where
    * the file wrote it. */
   if (rc != FB_OK)
-    fb_model_blame(m, &err);
+    cli_graph_input_blame(&in, &err);
   if (rc == FB_OK) {
-    const fb_bg *g = fb_model_graph(m);
+    const fb_bg *g = in.graph;
     table_widths w = measure(g);
     for (size_t i = 0; i < fb_bg_nbonds(g); ++i)
       print_bond(g, i, &w);
     rc = cli_flush_stdout(&err);
   }
-  fb_model_free(&m);
+  cli_graph_input_free(&in);
   return cli_report(rc, &err);
 }
 
 int cli_cmd_causality(int argc, char **argv)
 {
-  enum { OPT_HELP, NOPTS };
-  cli_option opts[NOPTS] = {[OPT_HELP] = {"--help", "-h", 0, NULL}};
-  const char *model_path;
+  enum { OPT_SYSTEM, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {
+      [OPT_SYSTEM] = {"--system", NULL, 1, NULL}, [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  const char *path;
   int code;
-  if (!cli_parse_model_command(argc, argv, opts, NOPTS, causality_usage, &model_path, &code))
+  if (!cli_parse_file_command(argc, argv, opts, NOPTS, causality_usage, "FILE", &path, &code))
     return code;
-  return run(model_path);
+  fb_system sys;
+  code = cli_system_option(argv[0], opts[OPT_SYSTEM].value, &sys);
+  if (code != CLI_EXIT_OK)
+    return code;
+  return run(path, sys, opts[OPT_SYSTEM].value != NULL);
 }

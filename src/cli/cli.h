@@ -104,6 +104,10 @@ int cli_exit_code(int status);
 /* Prints "flexbond: <err->msg>" to stderr and returns the exit code for
  * status (status, not err->code, decides: it is what the call returned). */
 int cli_report(int status, const fb_err *err);
+/* cli_report for an error of a command that loaded scenario s (NULL when
+ * it did not load): an error about one of its values (fb_err.key) is
+ * first located in its file (fb_scenario_locate). */
+int cli_report_scenario(const fb_scenario *s, int status, fb_err *err);
 
 /* Flushes stdout: FB_OK if everything printed so far got through, else
  * FB_EIO with the reason (a closed pipe, a full disk). */
@@ -212,10 +216,10 @@ extern const size_t cli_pictured_modes[CLI_NPICTURED_MODES];
 /* "mode_NN.png", the picture of 1-based mode number mode, into buf. */
 void cli_mode_picture_name(size_t mode, char *buf, size_t size);
 /* Writes the picture of every pictured mode that ms holds: the deformed
- * hull as a wireframe (side walls left out) with the driver and the
- * engine drawn as cubes (fb_plot_mesh_png). */
-int cli_write_mode_pictures(cli_outdir *od, const fb_fe_hull *hull, const fb_mode_set *ms,
-                            fb_err *err);
+ * hull as a wireframe (side walls left out) with the mounted bodies
+ * drawn as cubes (fb_plot_mesh_png). */
+int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hull *hull,
+                            const fb_mode_set *ms, fb_err *err);
 
 /* ---- flexbond run (run.c) and its report.md (report.c, described in
  * docs/report.md). */
@@ -240,33 +244,34 @@ typedef struct cli_output_cmp {
   double rms_change;    /* (rms2 - rms1) / rms1 */
 } cli_output_cmp;
 
-/* The paper's figure of one output (Leite & Da Silva, Figs. 8-14). */
-typedef struct cli_run_figure {
-  int number;
-  const char *output;   /* fb_vehicle_output_name */
-  const char *caption;  /* the paper's caption, the figure's title */
-  const char *quantity; /* y axis label, without the unit */
-  int crossing_only;    /* 1: the paper's 4-10 s window, 0: the whole run */
-} cli_run_figure;
-/* In output (CSV column) order. */
-extern const cli_run_figure cli_run_figures[FB_NOUTPUTS];
-/* "figNN_OUTPUT.png" of fig into buf. */
-void cli_run_figure_file(const cli_run_figure *fig, char *buf, size_t size);
+/* The figure of output o, "figNN_NAME.png" (its figure number) or
+ * "fig_NAME.png", into buf. */
+void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size);
+/* Index of the output whose ride metrics run reports: the first mounted
+ * body's acceleration of the list (the driver's, in the paper's
+ * scenario); s->noutputs when there is none. */
+size_t cli_ride_output(const fb_scenario *s);
+/* The number of diagrams run draws per system, and the file of diagram
+ * k < CLI_RUN_NDIAGRAMS of system sys ("fig05_bond_graph_system1.png",
+ * "fig06_block_diagram_system1.png": the paper's Figs. 5 and 6). */
+enum { CLI_RUN_NDIAGRAMS = 2 };
+void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size);
 
 /* One simulated system. */
 typedef struct cli_run_system {
   fb_system sys;
   fb_result *res;
-  size_t col[FB_NOUTPUTS]; /* column of each output in res */
-  cli_output_stats stats[FB_NOUTPUTS];
+  size_t *col;             /* s->noutputs: column of each output in res */
+  cli_output_stats *stats; /* s->noutputs */
   /* Tire contact: the contact-loss intervals of the whole run (owned) and each
    * tire's smallest normal reaction from the first bump entry on, with its
    * time. */
   fb_contact_loss *loss;
   size_t nloss;
-  double min_contact[FB_NCORNERS], min_contact_time[FB_NCORNERS];
-  /* The driver's ride metrics over ride_window (the first wheel's bump
-   * entry to the end of the run), when has_ride; else ride_note says why. */
+  double *min_contact, *min_contact_time; /* s->ncorners each */
+  /* The ride metrics of output cli_ride_output over ride_window (the
+   * first wheel's bump entry to the end of the run), when has_ride; else
+   * ride_note says why. */
   int has_ride;
   fb_ride_metrics ride;
   double ride_window[2];
@@ -278,10 +283,10 @@ typedef struct cli_run_outputs {
   const fb_scenario *scenario;
   const cli_run_system *runs; /* System 1 first when both */
   size_t nruns;
-  const fb_result *diff;           /* System 2 minus System 1, NULL unless both ran */
-  cli_output_cmp cmp[FB_NOUTPUTS]; /* set when diff is */
-  double bump_window[2];           /* first wheel's bump entry, last wheel's exit, s */
-  int figures;                     /* 0 with --no-figures */
+  const fb_result *diff; /* System 2 minus System 1, NULL unless both ran */
+  cli_output_cmp *cmp;   /* s->noutputs, set when diff is */
+  double bump_window[2]; /* first wheel's bump entry, last wheel's exit, s */
+  int figures;           /* 0 with --no-figures */
   /* System 1's undamped modes, when it ran. */
   const fb_mode *modes1;
   size_t nmodes1, nstatic1;
@@ -308,5 +313,22 @@ cli_output_cmp cli_output_compare(const cli_output_stats *s1, const cli_output_s
                                   const fb_result *diff, size_t col, const double window[2]);
 /* report.md (a cli_writer over a cli_run_outputs). */
 void cli_write_report_md(FILE *fp, const void *ctx);
+
+/* ---- Diagrams of a graph (diagram.c, docs/diagrams.md): the paper's
+ * Figs. 5 and 6, for `flexbond diagram` and the report. */
+typedef enum cli_diagram_kind {
+  CLI_DIAGRAM_FLAT,      /* the block diagram, every block in one level */
+  CLI_DIAGRAM_BLOCKS,    /* the block diagram in two levels (Fig. 6) */
+  CLI_DIAGRAM_BOND_GRAPH /* the multibond graph with its strokes (Fig. 5) */
+} cli_diagram_kind;
+/* Writes the diagram of kind of graph g to path, all or nothing, the type
+ * by path's extension: .svg or .png the picture Graphviz's dot draws of
+ * it (io/graphviz.h), any other the DOT text. The block diagrams are
+ * built with the probes p[0 .. np) (borrowed for the call), drawn as
+ * meters. Assigns g's causality
+ * (fb_bg_assign_causality), which changes g; nothing else is kept. A
+ * signal meanwhile: FB_EINTR, nothing written. */
+int cli_diagram_file(fb_bg *g, const fb_probe_spec *p, size_t np, cli_diagram_kind kind,
+                     const char *path, fb_err *err);
 
 #endif

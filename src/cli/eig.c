@@ -13,14 +13,17 @@
 #include <stdlib.h>
 
 #include "flexbond/bd.h"
-#include "flexbond/model.h"
 #include "flexbond/sim.h"
 
 #include "cli.h"
+#include "graph_input.h"
 
 static const char eig_usage[] =
-    "usage: flexbond eig MODEL.yaml\n"
+    "usage: flexbond eig FILE.yaml [--system rigid|flexible]\n"
     "\n"
+    "FILE is a model file or a vehicle scenario file, whose vehicle is\n"
+    "assembled for --system (default rigid) and linearised at its graph's\n"
+    "initial state (`flexbond modes` linearises at the static equilibrium).\n"
     "Prints the eigenvalues of the Jacobian dF/dx of the model's state\n"
     "equations x' = F(t, x) at the start time and initial state, sorted by\n"
     "|imaginary part| then real part. A complex pair is printed once, with\n"
@@ -28,6 +31,7 @@ static const char eig_usage[] =
     "zeta = -Re(lambda) / |lambda|.\n"
     "\n"
     "options:\n"
+    "  --system S            rigid (System 1) or flexible (System 2), scenarios only\n"
     "  -h, --help            this text\n";
 
 /* 2 pi; M_PI is not in C11. */
@@ -80,10 +84,10 @@ static int all_finite(const double *v, size_t n)
   return 1;
 }
 
-/* Jacobian at the model's start time and initial state into jac (n x n). */
-static int linearise(const fb_model *m, fb_bd *bd, size_t n, double *jac, fb_err *err)
+/* Jacobian at the input's start time and initial state into jac (n x n). */
+static int linearise(const cli_graph_input *in, fb_bd *bd, size_t n, double *jac, fb_err *err)
 {
-  const fb_sim_opts *opts = fb_model_sim_opts(m);
+  const fb_sim_opts *opts = &in->opts;
   double *x0 = malloc(n * sizeof *x0);
   if (!x0)
     return fb_err_set(err, FB_ENOMEM, "eig: out of memory (%zu states)", n);
@@ -101,15 +105,15 @@ static int linearise(const fb_model *m, fb_bd *bd, size_t n, double *jac, fb_err
   return rc;
 }
 
-static void print_table(const fb_model *m, const fb_bd *bd, const eigenvalue *ev, size_t n)
+static void print_table(const cli_graph_input *in, const fb_bd *bd, const eigenvalue *ev,
+                        size_t n)
 {
   size_t npairs = 0;
   for (size_t i = 0; i < n; ++i)
     npairs += ev[i].im > 0;
   printf("%s: %zu states, %zu real eigenvalues, %zu complex pairs (at t = %g s, initial "
          "state)\n",
-         fb_model_name(m), fb_bd_nstates(bd), n - 2 * npairs, npairs,
-         fb_model_sim_opts(m)->t_start);
+         in->name, fb_bd_nstates(bd), n - 2 * npairs, npairs, in->opts.t_start);
   printf("%4s  %15s  %19s  %13s  %10s\n", "#", "real [1/s]", "imag [rad/s]", "f_n [Hz]",
          "zeta");
   size_t row = 0;
@@ -127,11 +131,11 @@ static void print_table(const fb_model *m, const fb_bd *bd, const eigenvalue *ev
   }
 }
 
-static int analyse(const fb_model *m, fb_bd *bd, fb_err *err)
+static int analyse(const cli_graph_input *in, fb_bd *bd, fb_err *err)
 {
   size_t n = fb_bd_nstates(bd);
   if (n == 0) {
-    printf("%s: no states, no eigenvalues\n", fb_model_name(m));
+    printf("%s: no states, no eigenvalues\n", in->name);
     return cli_flush_stdout(err);
   }
   if (n > ((size_t)-1 / sizeof(double)) / n)
@@ -142,12 +146,12 @@ static int analyse(const fb_model *m, fb_bd *bd, fb_err *err)
   if (!jac || !ev)
     rc = fb_err_set(err, FB_ENOMEM, "eig: out of memory (%zu states)", n);
   if (rc == FB_OK)
-    rc = linearise(m, bd, n, jac, err);
+    rc = linearise(in, bd, n, jac, err);
   if (rc == FB_OK)
     rc = eigenvalues(n, jac, ev, err);
   if (rc == FB_OK) {
     qsort(ev, n, sizeof *ev, compare_eigenvalues);
-    print_table(m, bd, ev, n);
+    print_table(in, bd, ev, n);
     rc = cli_flush_stdout(err);
   }
   free(ev);
@@ -155,32 +159,37 @@ static int analyse(const fb_model *m, fb_bd *bd, fb_err *err)
   return rc;
 }
 
-static int run(const char *model_path)
+static int run(const char *path, fb_system sys, int system_given)
 {
   fb_err err;
   fb_err_clear(&err);
-  fb_model *m = NULL;
+  cli_graph_input in;
   fb_bd *bd = NULL;
-  int rc = fb_model_load(model_path, &m, &err);
+  int rc = cli_graph_input_load(path, sys, system_given, &in, &err);
   /* Probes do not change the state equations; none are built. */
+  if (rc == FB_OK) {
+    rc = fb_bd_build(in.graph, NULL, 0, &bd, &err);
+    cli_graph_input_blame(&in, &err); /* a causality error: at its element's or bond's line */
+  }
   if (rc == FB_OK)
-    rc = fb_bd_build(fb_model_graph(m), NULL, 0, &bd, &err);
-  if (rc != FB_OK)
-    fb_model_blame(m, &err); /* a causality error: at its element's or bond's line */
-  if (rc == FB_OK)
-    rc = analyse(m, bd, &err);
+    rc = analyse(&in, bd, &err);
   fb_bd_free(&bd);
-  fb_model_free(&m);
+  cli_graph_input_free(&in);
   return cli_report(rc, &err);
 }
 
 int cli_cmd_eig(int argc, char **argv)
 {
-  enum { OPT_HELP, NOPTS };
-  cli_option opts[NOPTS] = {[OPT_HELP] = {"--help", "-h", 0, NULL}};
-  const char *model_path;
+  enum { OPT_SYSTEM, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {
+      [OPT_SYSTEM] = {"--system", NULL, 1, NULL}, [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  const char *path;
   int code;
-  if (!cli_parse_model_command(argc, argv, opts, NOPTS, eig_usage, &model_path, &code))
+  if (!cli_parse_file_command(argc, argv, opts, NOPTS, eig_usage, "FILE", &path, &code))
     return code;
-  return run(model_path);
+  fb_system sys;
+  code = cli_system_option(argv[0], opts[OPT_SYSTEM].value, &sys);
+  if (code != CLI_EXIT_OK)
+    return code;
+  return run(path, sys, opts[OPT_SYSTEM].value != NULL);
 }

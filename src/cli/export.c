@@ -4,7 +4,7 @@
  *     E x' = A x + Bu u(t) + f,      y = C x + D u,
  * as Matrix Market files and a model.json that names the variables, the
  * inputs and the outputs (docs/export.md). The inputs are each wheel's
- * road height and road rate, u = [h_LF .. h_RR, hdot_LF .. hdot_RR]. The
+ * road height and road rate, u = [h_<corner> ..., hdot_<corner> ...]. The
  * model sees only the rates (each tire spring's state integrates its
  * wheel's rate), so the height columns of Bu and D are zero. */
 #include <assert.h>
@@ -28,10 +28,10 @@ static const char export_usage[] =
     "  DIR/model.json          the variables x (states first; which are\n"
     "                          differential), the inputs, the outputs and\n"
     "                          which rows of C make each\n"
-    "Inputs u = [h_LF h_RF h_LM h_RM h_LR h_RR, hdot_LF .. hdot_RR]: each wheel's\n"
+    "Inputs u = [h_LF h_RF ..., hdot_LF hdot_RF ...], in corner order: each wheel's\n"
     "road height (m; its columns are zero: the tire springs integrate the\n"
     "rates) and road rate (m/s). f holds gravity and the payload. Outputs: the\n"
-    "paper's seven; a power output is the product of its two rows of C.\n"
+    "scenario's; a power output is the product of its two rows of C.\n"
     "Unilateral tires (wheel.tire_contact) are exported in contact, their linear\n"
     "branch. DIR is created if missing; nothing is written if the export fails.\n"
     "\n"
@@ -43,18 +43,16 @@ static const char export_usage[] =
 static const char *const system_choices[] = {"rigid", "flexible"};
 static const fb_system systems[] = {FB_SYSTEM_RIGID, FB_SYSTEM_FLEXIBLE};
 
-/* u = [h_LF .. h_RR, hdot_LF .. hdot_RR]: the column of wheel c's rate. */
-#define RATE_COLUMN(c) ((size_t)FB_NCORNERS + (size_t)(c))
-enum { NINPUTS = 2 * FB_NCORNERS };
-
 /* What the command writes. */
 typedef struct export_model {
   const fb_scenario *s;
   fb_system sys;
   fb_bd *bd;
   fb_descriptor *ds;
-  fb_mat *bu, *d;                 /* B and D with the height columns */
-  size_t rate_input[FB_NCORNERS]; /* descriptor input of each wheel's rate */
+  fb_mat *bu, *d;     /* B and D with the height columns */
+  size_t *rate_input; /* per corner: descriptor input of its wheel's rate */
+  size_t ninputs;     /* 2 ncorners: u = [heights, rates]; wheel c's rate is
+                         column ncorners + c */
 } export_model;
 
 /* The descriptor's input that is wheel c's road velocity source
@@ -62,14 +60,19 @@ typedef struct export_model {
 static int find_rate_inputs(export_model *m, fb_err *err)
 {
   const fb_descriptor *ds = m->ds;
-  if (ds->ninputs != FB_NCORNERS)
+  const size_t nc = m->s->ncorners;
+  if (ds->ninputs != nc)
     return fb_err_set(err, FB_EMODEL,
-                      "export: the vehicle has %zu time-varying sources, expected the %d road "
+                      "export: the vehicle has %zu time-varying sources, expected the %zu road "
                       "velocities",
-                      ds->ninputs, FB_NCORNERS);
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    char want[32];
-    snprintf(want, sizeof want, "road.v_%s", fb_corner_name(c));
+                      ds->ninputs, nc);
+  m->ninputs = 2 * nc;
+  m->rate_input = calloc(nc, sizeof *m->rate_input);
+  if (!m->rate_input)
+    return fb_err_set(err, FB_ENOMEM, "export: out of memory");
+  for (size_t c = 0; c < nc; ++c) {
+    char want[FB_ERR_KEY_MAX];
+    snprintf(want, sizeof want, "road.v_%s", m->s->corner[c].name);
     size_t j = 0;
     while (j < ds->ninputs && strcmp(ds->input_names[j], want) != 0)
       ++j;
@@ -100,9 +103,12 @@ static void map_entry(void *ctx, size_t row, size_t col, double val)
 static int widen_inputs(export_model *m, fb_err *err)
 {
   const fb_descriptor *ds = m->ds;
-  size_t to[FB_NCORNERS];
-  for (int c = 0; c < FB_NCORNERS; ++c)
-    to[m->rate_input[c]] = RATE_COLUMN(c);
+  const size_t nc = m->s->ncorners;
+  size_t *to = malloc(nc * sizeof *to);
+  if (!to)
+    return fb_err_set(err, FB_ENOMEM, "export: out of memory");
+  for (size_t c = 0; c < nc; ++c)
+    to[m->rate_input[c]] = nc + c;
   const size_t nnz = fb_mat_nnz(ds->B);
   column_map cm = {to, malloc((nnz + 1) * sizeof(size_t)), malloc((nnz + 1) * sizeof(size_t)),
                    malloc((nnz + 1) * sizeof(double)), 0};
@@ -110,10 +116,11 @@ static int widen_inputs(export_model *m, fb_err *err)
                                          : fb_err_set(err, FB_ENOMEM, "export: out of memory");
   if (!rc) {
     fb_mat_foreach(ds->B, map_entry, &cm);
-    rc = fb_mat_new_triplets(ds->n, NINPUTS, cm.n, cm.rows, cm.cols, cm.vals, &m->bu, err);
+    rc = fb_mat_new_triplets(ds->n, m->ninputs, cm.n, cm.rows, cm.cols, cm.vals, &m->bu, err);
   }
   if (!rc)
-    rc = fb_mat_new_triplets(ds->nrows_c, NINPUTS, 0, NULL, NULL, NULL, &m->d, err);
+    rc = fb_mat_new_triplets(ds->nrows_c, m->ninputs, 0, NULL, NULL, NULL, &m->d, err);
+  free(to);
   free(cm.rows);
   free(cm.cols);
   free(cm.vals);
@@ -162,20 +169,31 @@ static void write_variables(FILE *fp, const export_model *m)
 static void write_inputs(FILE *fp, const export_model *m)
 {
   fputs("  \"inputs\": [\n", fp);
-  for (int c = 0; c < FB_NCORNERS; ++c)
-    fprintf(fp,
-            "    {\"name\": \"h_%s\", \"wheel\": \"%s\", \"quantity\": \"road height\", "
-            "\"unit\": \"m\", \"enters\": false},\n",
-            fb_corner_name(c), fb_corner_name(c));
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  const size_t nc = m->s->ncorners;
+  for (size_t c = 0; c < nc; ++c) {
+    const char *name = m->s->corner[c].name;
+    char input[FB_ERR_KEY_MAX];
+    snprintf(input, sizeof input, "h_%s", name);
+    fputs("    {\"name\": ", fp);
+    cli_json_string(fp, input);
+    fputs(", \"wheel\": ", fp);
+    cli_json_string(fp, name);
+    fputs(", \"quantity\": \"road height\", \"unit\": \"m\", \"enters\": false},\n", fp);
+  }
+  for (size_t c = 0; c < nc; ++c) {
     const size_t j = m->rate_input[c];
-    fprintf(fp,
-            "    {\"name\": \"hdot_%s\", \"wheel\": \"%s\", \"quantity\": \"road vertical "
-            "velocity\", \"unit\": \"m/s\", \"enters\": true, \"source\": ",
-            fb_corner_name(c), fb_corner_name(c));
+    const char *name = m->s->corner[c].name;
+    char input[FB_ERR_KEY_MAX];
+    snprintf(input, sizeof input, "hdot_%s", name);
+    fputs("    {\"name\": ", fp);
+    cli_json_string(fp, input);
+    fputs(", \"wheel\": ", fp);
+    cli_json_string(fp, name);
+    fputs(", \"quantity\": \"road vertical velocity\", \"unit\": \"m/s\", \"enters\": true, "
+          "\"source\": ",
+          fp);
     cli_json_string(fp, m->ds->input_names[j]);
-    fprintf(fp, ", \"defines_variable\": %zu}%s\n", m->ds->input_var[j],
-            c + 1 < FB_NCORNERS ? "," : "");
+    fprintf(fp, ", \"defines_variable\": %zu}%s\n", m->ds->input_var[j], c + 1 < nc ? "," : "");
   }
   fputs("  ],\n", fp);
 }
@@ -243,9 +261,9 @@ static void write_model_json(FILE *fp, const void *ctx)
           "  \"form\": \"E x' = A x + Bu u(t) + f,  y = C x + D u\",\n"
           "  \"files\": {\"E\": \"E.mtx\", \"A\": \"A.mtx\", \"Bu\": \"Bu.mtx\", \"f\": "
           "\"f.mtx\", \"C\": \"C.mtx\", \"D\": \"D.mtx\"},\n"
-          "  \"n\": %zu,\n  \"ndifferential\": %zu,\n  \"ninputs\": %d,\n"
+          "  \"n\": %zu,\n  \"ndifferential\": %zu,\n  \"ninputs\": %zu,\n"
           "  \"noutputs\": %zu,\n  \"output_rows\": %zu,\n",
-          m->sys == FB_SYSTEM_RIGID ? "rigid" : "flexible", ds->n, ds->nstates, NINPUTS,
+          m->sys == FB_SYSTEM_RIGID ? "rigid" : "flexible", ds->n, ds->nstates, m->ninputs,
           ds->noutputs, ds->nrows_c);
   write_variables(fp, m);
   write_inputs(fp, m);
@@ -301,7 +319,7 @@ static int run(const char *path, fb_system sys, const char *dir)
   assert(rc != FB_OK || s); /* for the static analyzer: s is set on success */
   /* A unilateral tire is linear while in contact, its mode at rest: that
    * branch is the linear model. */
-  for (int c = 0; s && c < FB_NCORNERS; ++c)
+  for (size_t c = 0; s && c < s->ncorners; ++c)
     s->corner[c].tire_contact = FB_TIRE_BILATERAL;
   m.s = s;
   /* The directory is held (locked) from here to the end. */
@@ -314,19 +332,21 @@ static int run(const char *path, fb_system sys, const char *dir)
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK) {
-    printf("%s: wrote %s: %zu variables (%zu differential), %d inputs, %zu outputs (%zu rows "
+    printf("%s: wrote %s: %zu variables (%zu differential), %zu inputs, %zu outputs (%zu rows "
            "of C)\n",
-           s->name ? s->name : path, dir, m.ds->n, m.ds->nstates, NINPUTS, m.ds->noutputs,
+           s->name ? s->name : path, dir, m.ds->n, m.ds->nstates, m.ninputs, m.ds->noutputs,
            m.ds->nrows_c);
     rc = cli_flush_stdout(&err);
   }
   fb_mat_free(&m.bu);
   fb_mat_free(&m.d);
   fb_descriptor_free(&m.ds);
+  free(m.rate_input);
   fb_bd_free(&m.bd);
   fb_bg_free(&graph);
+  rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
-  return cli_report(rc, &err);
+  return rc;
 }
 
 int cli_cmd_export(int argc, char **argv)

@@ -1,9 +1,10 @@
 /* flexbond: command-line front end of the library.
  *
  *   flexbond sim MODEL.yaml -o DIR [--t-end S] [--rtol X] [--sample-rate HZ] [--quiet]
- *   flexbond diagram MODEL.yaml [-o FILE.dot]
- *   flexbond causality MODEL.yaml
- *   flexbond eig MODEL.yaml
+ *   flexbond diagram FILE.yaml [--system rigid|flexible]
+ *                    [--kind block-diagram|bond-graph|flat] [-o FILE.dot|.svg|.png]
+ *   flexbond causality FILE.yaml [--system rigid|flexible]
+ *   flexbond eig FILE.yaml [--system rigid|flexible]
  *   flexbond run SCENARIO.yaml -o DIR [--system rigid|flexible|both]
  *                [--initial zero|static] [--payload weight-only|lumped] [-q]
  *   flexbond modes SCENARIO.yaml [--system rigid|flexible]
@@ -40,7 +41,7 @@ typedef struct cli_command {
 
 static const cli_command commands[] = {
     {"sim", cli_cmd_sim, "simulate a model, write probes.csv and stats.json"},
-    {"diagram", cli_cmd_diagram, "write the block diagram as Graphviz DOT"},
+    {"diagram", cli_cmd_diagram, "draw the block diagram or the bond graph (DOT, SVG, PNG)"},
     {"causality", cli_cmd_causality, "list the bonds with their causal strokes"},
     {"eig", cli_cmd_eig, "eigenvalues of the model linearised at its initial state"},
     {"run", cli_cmd_run, "simulate a vehicle scenario: CSV, the paper's Figs. 8-14, summary"},

@@ -70,8 +70,9 @@ static int run(const char *path, const char *export_path)
   if (!rc)
     rc = cli_flush_stdout(&err);
   fb_fe_hull_free(&h);
+  rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
-  return cli_report(rc, &err);
+  return rc;
 }
 
 int cli_cmd_mesh(int argc, char **argv)

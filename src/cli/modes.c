@@ -98,8 +98,9 @@ static int run(const char *path, fb_system sys)
   }
   free(damped.modes);
   free(undamped.modes);
+  rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
-  return cli_report(rc, &err);
+  return rc;
 }
 
 int cli_cmd_modes(int argc, char **argv)

@@ -56,24 +56,26 @@ void cli_mode_picture_name(size_t mode, char *buf, size_t size)
   snprintf(buf, size, "mode_%02zu.png", mode);
 }
 
-/* The driver's and engine's cubes: 0.4 m above their floor nodes, moved
- * by their own vertical displacement (scaled). */
-static void cubes(const fb_fe_hull *hull, const double *v, double scale, double *xyz)
+/* The mounted bodies' cubes: 0.4 m above their floor nodes, moved by
+ * their own vertical displacement (scaled). */
+static void cubes(const fb_scenario *s, const fb_fe_hull *hull, const double *v, double scale,
+                  double *xyz)
 {
   const fb_mesh *m = hull->mesh;
   size_t nh = 6 * fb_mesh_nnodes(m);
-  for (int b = 0; b < 2; ++b) {
-    const double *p = fb_mesh_node_xyz(m, hull->attach_node[FB_ATTACH_DRIVER + b]);
+  for (size_t b = 0; b < s->nmounts; ++b) {
+    const double *p = fb_mesh_node_xyz(m, hull->attach_node[s->ncorners + b]);
     xyz[3 * b] = p[0];
     xyz[3 * b + 1] = p[1];
     xyz[3 * b + 2] = p[2] + 0.4 + scale * v[nh + (size_t)b];
   }
 }
 
-int cli_write_mode_pictures(cli_outdir *od, const fb_fe_hull *hull, const fb_mode_set *ms,
-                            fb_err *err)
+int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hull *hull,
+                            const fb_mode_set *ms, fb_err *err)
 {
-  int rc = FB_OK;
+  double *cube_xyz = malloc((3 * s->nmounts + 1) * sizeof *cube_xyz);
+  int rc = cube_xyz ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t i = 0; !rc && i < CLI_NPICTURED_MODES; ++i) {
     size_t k = cli_pictured_modes[i] - 1;
     if (k >= ms->nmodes)
@@ -82,20 +84,21 @@ int cli_write_mode_pictures(cli_outdir *od, const fb_fe_hull *hull, const fb_mod
     /* Shapes are normalised to a largest displacement of 1: draw it as
      * 0.5 m, visible on a 6 m hull. */
     const double scale = 0.5;
-    double cube_xyz[6];
-    cubes(hull, v, scale, cube_xyz);
+    cubes(s, hull, v, scale, cube_xyz);
     char name[32], title[160];
     cli_mode_picture_name(k + 1, name, sizeof name);
     snprintf(title, sizeof title, "System 2, mode %zu: %.3f Hz, %s", k + 1, ms->freq_hz[k],
              ms->description[k]);
     char *path = cli_outdir_path(od, name, err);
-    rc = path ? fb_plot_mesh_png(hull->mesh, v, scale, cube_xyz, 2, 0.3, title, path, err)
+    rc = path ? fb_plot_mesh_png(hull->mesh, v, scale, cube_xyz, s->nmounts, 0.3, title, path,
+                                 err)
               : err->code;
     if (!rc)
       rc = cli_outdir_keep(od, path, err);
     else
       free(path);
   }
+  free(cube_xyz);
   return rc;
 }
 
@@ -115,7 +118,7 @@ static int write_shapes(cli_outdir *od, const flex_modes *fm, fb_err *err)
     else
       free(path);
   }
-  return rc ? rc : cli_write_mode_pictures(od, fm->hull, ms, err);
+  return rc ? rc : cli_write_mode_pictures(od, fm->s, fm->hull, ms, err);
 }
 
 static int write_files(cli_outdir *od, const flex_modes *fm, fb_err *err)
@@ -175,6 +178,7 @@ int cli_modes_flexible(const char *path, const char *out_dir)
   }
   fb_mode_set_free(&fm.vehicle);
   fb_fe_hull_free(&hull);
+  rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
-  return cli_report(rc, &err);
+  return rc;
 }

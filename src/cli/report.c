@@ -30,9 +30,9 @@ void cli_bump_window(const fb_scenario *s, double window[2])
 {
   window[0] = INFINITY;
   window[1] = -INFINITY;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    window[0] = fmin(window[0], fb_scenario_bump_entry(s, c));
-    window[1] = fmax(window[1], fb_scenario_bump_exit(s, c));
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    window[0] = fmin(window[0], fb_scenario_bump_entry(s, (int)c));
+    window[1] = fmax(window[1], fb_scenario_bump_exit(s, (int)c));
   }
 }
 
@@ -155,20 +155,23 @@ static void write_corner_table(FILE *fp, const fb_scenario *s)
         "wheel [kg] | tire k [N/m] | tire c [N s/m] | bump entry, exit [s] |\n"
         "|---|---|---|---|---|---|---|---|---|\n",
         fp);
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (size_t c = 0; c < s->ncorners; ++c) {
     const fb_corner_params *p = &s->corner[c];
-    fprintf(
-        fp,
-        "| %s | %.10g | %.10g | %.10g | %.10g, %.10g | %.10g | %.10g | %.10g | %.4f, %.4f |\n",
-        fb_corner_name(c), p->spring_k, p->damper_c, p->motion_ratio, p->x, p->y, p->wheel_mass,
-        p->tire_k, p->tire_c, fb_scenario_bump_entry(s, c), fb_scenario_bump_exit(s, c));
+    fputs("| ", fp);
+    fb_md_write_text(fp, p->name);
+    fprintf(fp,
+            " | %.10g | %.10g | %.10g | %.10g, %.10g | %.10g | %.10g | %.10g | %.4f, %.4f |\n",
+            p->spring_k, p->damper_c, p->motion_ratio, p->x, p->y, p->wheel_mass, p->tire_k,
+            p->tire_c, fb_scenario_bump_entry(s, (int)c), fb_scenario_bump_exit(s, (int)c));
   }
 }
 
-static void write_mount_row(FILE *fp, const char *what, const fb_mount *m)
+static void write_mount_row(FILE *fp, const fb_mount *m)
 {
-  fprintf(fp, "| %s | %.10g kg on %.10g N/m and %.10g N s/m at x, y = %.10g, %.10g m |\n", what,
-          m->mass, m->stiffness, m->damping, m->x, m->y);
+  fputs("| ", fp);
+  fb_md_write_text(fp, m->name);
+  fprintf(fp, " | %.10g kg on %.10g N/m and %.10g N s/m at x, y = %.10g, %.10g m |\n", m->mass,
+          m->stiffness, m->damping, m->x, m->y);
 }
 
 static void write_scenario(FILE *fp, const cli_run_outputs *o)
@@ -186,8 +189,8 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
           "| hull | %.10g kg, Ixx %.10g kg m^2, Iyy %.10g kg m^2 (about its centre of mass) |\n"
           "| load | %.10g N (hull plus payload) in equal shares at %zu points |\n",
           s->gravity, s->hull_mass, s->hull_ixx, s->hull_iyy, s->total_weight, s->nload);
-  write_mount_row(fp, "driver plus seat", &s->driver);
-  write_mount_row(fp, "engine", &s->engine);
+  for (size_t b = 0; b < s->nmounts; ++b)
+    write_mount_row(fp, &s->mount[b]);
   fprintf(fp,
           "| road | %.10g km/h, straight; a (1 - cos) bump %.10g m high and %.10g m long, its "
           "leading edge at %.10g deg to the lateral axis, left side first; the LF wheel meets "
@@ -361,6 +364,27 @@ static void write_modes2(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Figures and tables of the outputs. */
 
+/* The model of every system that ran: its multibond graph (the paper's
+ * Fig. 5) and its block diagram (Fig. 6), drawn by run from the graph it
+ * simulated (docs/diagrams.md). */
+static void write_model(FILE *fp, const cli_run_outputs *o)
+{
+  if (!o->figures)
+    return;
+  fputs("\n## Model\n\nEach system's multibond graph, one box per subsystem instance "
+        "(causal strokes, multibond dimensions in brackets), and its block diagram: the top "
+        "level with one block per subsystem, one level down inside each (docs/diagrams.md).\n",
+        fp);
+  static const char *const captions[CLI_RUN_NDIAGRAMS] = {"Fig. 5. Multibond graph",
+                                                          "Fig. 6. Block diagram"};
+  for (size_t i = 0; i < o->nruns; ++i)
+    for (size_t k = 0; k < CLI_RUN_NDIAGRAMS; ++k) {
+      char name[64];
+      cli_run_diagram_file(k, o->runs[i].sys, name, sizeof name);
+      fprintf(fp, "\n![%s, %s](%s)\n", captions[k], cli_system_label(o->runs[i].sys), name);
+    }
+}
+
 static void write_figures(FILE *fp, const cli_run_outputs *o)
 {
   fputs("\n## Figures\n\n", fp);
@@ -368,24 +392,30 @@ static void write_figures(FILE *fp, const cli_run_outputs *o)
     fputs("No figures: the run had `--no-figures`. The curves are in the CSV files.\n", fp);
     return;
   }
-  fputs("Figs. 12 and 14 show 4-10 s, as in the paper, where the run covers it; the others "
-        "the whole run.",
+  fputs("A figure shows its output's window (the paper's Figs. 12 and 14: 4-10 s) where the "
+        "run covers it, else the whole run.",
         fp);
   fputs(o->diff ? " Each figure shows both systems above and System 2 - System 1 below.\n"
                 : "\n",
         fp);
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
-    const cli_run_figure *fig = &cli_run_figures[k];
-    char name[96];
+  for (size_t k = 0; k < o->scenario->noutputs; ++k) {
+    const fb_output_spec *fig = &o->scenario->output[k];
+    char name[FB_ERR_KEY_MAX];
     cli_run_figure_file(fig, name, sizeof name);
-    fprintf(fp, "\n![Fig. %d. %s](%s)\n", fig->number, fig->caption, name);
+    fputs("\n![", fp);
+    if (fig->figure > 0)
+      fprintf(fp, "Fig. %d. ", fig->figure);
+    fb_md_write_text(fp, fig->title);
+    fprintf(fp, "](%s)\n", name);
   }
 }
 
 /* "| quantity | unit |" of output k. */
 static void write_output_cells(FILE *fp, const cli_run_outputs *o, size_t k)
 {
-  fprintf(fp, "| %s | ", cli_run_figures[k].quantity);
+  fputs("| ", fp);
+  fb_md_write_text(fp, o->scenario->output[k].label);
+  fputs(" | ", fp);
   fb_md_write_text(fp, fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
   fputs(" |", fp);
 }
@@ -401,6 +431,7 @@ static void write_cells(FILE *fp, const double *v, size_t n)
 
 static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
 {
+  const size_t nout = o->scenario->noutputs;
   fprintf(fp,
           "\n## Comparison\n\nPeaks and the largest difference from the first bump entry "
           "(%.4f s) to the end of the run, RMS over the bump window (%.4f s to %.4f s); "
@@ -410,7 +441,7 @@ static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
           "max abs S2 - S1 | at t [s] | / S1 range |\n"
           "|---|---|---|---|---|---|---|---|---|---|\n",
           o->bump_window[0], o->bump_window[0], o->bump_window[1]);
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+  for (size_t k = 0; k < nout; ++k) {
     const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &o->runs[1].stats[k];
     const cli_output_cmp *c = &o->cmp[k];
     write_output_cells(fp, o, k);
@@ -427,6 +458,7 @@ static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
 
 static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
 {
+  const size_t nout = o->scenario->noutputs;
   fprintf(fp,
           "\n## Outputs\n\n%s. Static value before the bump, extremes from the first bump "
           "entry (%.4f s) to the end of the run, RMS over the bump window (%.4f s to %.4f "
@@ -434,7 +466,7 @@ static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
           "|---|---|---|---|---|---|---|---|\n",
           cli_system_label(o->runs[0].sys), o->bump_window[0], o->bump_window[0],
           o->bump_window[1]);
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+  for (size_t k = 0; k < nout; ++k) {
     const cli_output_stats *st = &o->runs[0].stats[k];
     write_output_cells(fp, o, k);
     write_cells(fp,
@@ -447,11 +479,11 @@ static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Conclusions: one paragraph, each sentence picked by the numbers. */
 
-/* Index of the torsion angle among the outputs. */
-static size_t torsion_index(void)
+/* Index of the torsion angle among the outputs, noutputs if none. */
+static size_t torsion_index(const fb_scenario *s)
 {
   size_t k = 0;
-  while (k + 1 < FB_NOUTPUTS && strcmp(cli_run_figures[k].output, "torsion") != 0)
+  while (k < s->noutputs && strcmp(s->output[k].signal, "torsion") != 0)
     ++k;
   return k;
 }
@@ -460,25 +492,27 @@ static size_t torsion_index(void)
  * the largest relative difference and which outputs pass notable_diff. */
 static void conclude_differences(FILE *fp, const cli_run_outputs *o)
 {
-  size_t largest = FB_NOUTPUTS, nnotable = 0, nfinite = 0;
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+  const size_t nout = o->scenario->noutputs;
+  size_t largest = nout, nnotable = 0, nfinite = 0;
+  for (size_t k = 0; k < nout; ++k) {
     double r = o->cmp[k].rel_diff;
     if (!isfinite(r))
       continue;
     ++nfinite;
     nnotable += r > notable_diff;
-    if (largest == FB_NOUTPUTS || r > o->cmp[largest].rel_diff)
+    if (largest == nout || r > o->cmp[largest].rel_diff)
       largest = k;
   }
-  if (largest == FB_NOUTPUTS) {
+  if (largest == nout) {
     fputs("No output of System 1 varies over the bump, so no difference can be scaled.", fp);
     return;
   }
   fprintf(fp,
           "Over the bump, System 2 departs from System 1 by up to %.1f %% of System 1's "
-          "peak-to-peak range, in the %s (at t = %.3f s)",
-          100 * o->cmp[largest].rel_diff, cli_run_figures[largest].quantity,
-          o->cmp[largest].max_diff_time);
+          "peak-to-peak range, in the ",
+          100 * o->cmp[largest].rel_diff);
+  fb_md_write_text(fp, o->scenario->output[largest].label);
+  fprintf(fp, " (at t = %.3f s)", o->cmp[largest].max_diff_time);
   if (nnotable == 0) {
     fprintf(fp, "; all %zu outputs that vary in System 1 agree within %.0f %%.", nfinite,
             100 * notable_diff);
@@ -487,19 +521,20 @@ static void conclude_differences(FILE *fp, const cli_run_outputs *o)
   fprintf(fp, "; %zu of the %zu outputs that vary in System 1 %s by more than %.0f %% (",
           nnotable, nfinite, nnotable == 1 ? "differs" : "differ", 100 * notable_diff);
   size_t listed = 0;
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k)
-    if (isfinite(o->cmp[k].rel_diff) && o->cmp[k].rel_diff > notable_diff)
-      fprintf(fp, "%s%s %.1f %%", listed++ ? ", " : "", cli_run_figures[k].quantity,
-              100 * o->cmp[k].rel_diff);
+  for (size_t k = 0; k < nout; ++k)
+    if (isfinite(o->cmp[k].rel_diff) && o->cmp[k].rel_diff > notable_diff) {
+      fputs(listed++ ? ", " : "", fp);
+      fb_md_write_text(fp, o->scenario->output[k].label);
+      fprintf(fp, " %.1f %%", 100 * o->cmp[k].rel_diff);
+    }
   fputs(").", fp);
 }
 
 /* One clause on run's torsion angle: identically zero (the rigid hull's
  * by construction), or how far the hull twists over the bump. first:
  * the clause opens the sentence. */
-static void torsion_clause(FILE *fp, const cli_run_system *r, int first)
+static void torsion_clause(FILE *fp, const cli_run_system *r, size_t k, int first)
 {
-  const size_t k = torsion_index();
   const cli_output_stats *st = &r->stats[k];
   const char *unit = fb_result_col_unit(r->res, r->col[k]);
   const char *hull = r->sys == FB_SYSTEM_RIGID ? "rigid" : "flexible";
@@ -522,25 +557,29 @@ static void torsion_clause(FILE *fp, const cli_run_system *r, int first)
 /* The torsion angles of every run, in one sentence. */
 static void conclude_torsion(FILE *fp, const cli_run_outputs *o)
 {
+  const size_t k = torsion_index(o->scenario);
+  if (k == o->scenario->noutputs)
+    return; /* not among the outputs */
   for (size_t i = 0; i < o->nruns; ++i)
-    torsion_clause(fp, &o->runs[i], i == 0);
+    torsion_clause(fp, &o->runs[i], k, i == 0);
   fputc('.', fp);
 }
 
 /* Peak changes beyond notable_change, and the largest RMS change. */
 static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
 {
-  size_t listed = 0, largest_rms = FB_NOUTPUTS;
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+  const size_t nout = o->scenario->noutputs;
+  size_t listed = 0, largest_rms = nout;
+  for (size_t k = 0; k < nout; ++k) {
     double p = o->cmp[k].peak_change, r = o->cmp[k].rms_change;
-    if (isfinite(r) &&
-        (largest_rms == FB_NOUTPUTS || fabs(r) > fabs(o->cmp[largest_rms].rms_change)))
+    if (isfinite(r) && (largest_rms == nout || fabs(r) > fabs(o->cmp[largest_rms].rms_change)))
       largest_rms = k;
     if (!isfinite(p) || fabs(p) <= notable_change)
       continue;
-    fprintf(fp, "%s%s the peak of the %s by %.1f %% (",
-            listed++ ? ", " : " Compared with System 1, System 2 ", p > 0 ? "raises" : "lowers",
-            cli_run_figures[k].quantity, 100 * fabs(p));
+    fprintf(fp, "%s%s the peak of the ", listed++ ? ", " : " Compared with System 1, System 2 ",
+            p > 0 ? "raises" : "lowers");
+    fb_md_write_text(fp, o->scenario->output[k].label);
+    fprintf(fp, " by %.1f %% (", 100 * fabs(p));
     md_number(fp, o->runs[0].stats[k].peak);
     fputs(" to ", fp);
     md_value_unit(fp, o->runs[1].stats[k].peak,
@@ -552,9 +591,11 @@ static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
   else
     fprintf(fp, " Every peak with a non-zero System 1 value changes by %.0f %% or less.",
             100 * notable_change);
-  if (largest_rms < FB_NOUTPUTS)
-    fprintf(fp, " The largest change of an RMS over the bump is the %s's, %+.1f %%.",
-            cli_run_figures[largest_rms].quantity, 100 * o->cmp[largest_rms].rms_change);
+  if (largest_rms < nout) {
+    fputs(" The largest change of an RMS over the bump is the ", fp);
+    fb_md_write_text(fp, o->scenario->output[largest_rms].label);
+    fprintf(fp, "'s, %+.1f %%.", 100 * o->cmp[largest_rms].rms_change);
+  }
 }
 
 /* With one system: the output that grows the most over the bump
@@ -563,12 +604,13 @@ static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
  * or an acceleration at rest is ~0, and a ratio to it says nothing). */
 static void conclude_single(FILE *fp, const cli_run_outputs *o)
 {
+  const size_t nout = o->scenario->noutputs;
   const cli_run_system *r = &o->runs[0];
   fprintf(fp, "Only %s ran, so nothing is compared (`--system both` runs both).",
           cli_system_label(r->sys));
-  size_t largest = FB_NOUTPUTS;
+  size_t largest = nout;
   double factor = 0;
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+  for (size_t k = 0; k < nout; ++k) {
     const cli_output_stats *st = &r->stats[k];
     double f = ratio(st->peak, st->static_value);
     if (fabs(st->static_value) >= notable_diff * (st->peak - st->min) && isfinite(f) &&
@@ -577,12 +619,12 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
       largest = k;
     }
   }
-  if (largest < FB_NOUTPUTS) {
+  if (largest < nout) {
     const cli_output_stats *st = &r->stats[largest];
     const char *unit = fb_result_col_unit(r->res, r->col[largest]);
-    fprintf(fp,
-            " Over the bump, the %s grows the most relative to its static value: its peak, ",
-            cli_run_figures[largest].quantity);
+    fputs(" Over the bump, the ", fp);
+    fb_md_write_text(fp, o->scenario->output[largest].label);
+    fputs(" grows the most relative to its static value: its peak, ", fp);
     md_value_unit(fp, st->peak, unit);
     fprintf(fp, " at %.3f s, is %.3g times its static ", st->peak_time, factor);
     md_value_unit(fp, st->static_value, unit);
@@ -592,7 +634,7 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
     conclude_torsion(fp, o);
 }
 
-/* ---- Ride comfort of the driver (src/ride, docs/ride-metrics.md). */
+/* ---- Ride comfort of a mounted body (src/ride, docs/ride-metrics.md). */
 
 /* The ride table's rows: label, unit and value. */
 enum { NRIDE_ROWS = 6 };
@@ -614,7 +656,14 @@ static double ride_value(const fb_ride_metrics *m, size_t row)
 
 static void write_ride(FILE *fp, const cli_run_outputs *o)
 {
-  fputs("\n## Ride comfort (driver plus seat)\n\n", fp);
+  const size_t kr = cli_ride_output(o->scenario);
+  fputs("\n## Ride comfort", fp);
+  if (kr < o->scenario->noutputs) {
+    fputs(" (", fp);
+    fb_md_write_text(fp, o->scenario->output[kr].label);
+    fputc(')', fp);
+  }
+  fputs("\n\n", fp);
   const cli_run_system *first = NULL;
   for (size_t i = 0; i < o->nruns; ++i) {
     const cli_run_system *r = &o->runs[i];
@@ -629,8 +678,10 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
   }
   if (!first)
     return;
+  fputs("The output `", fp);
+  fb_md_write_text(fp, o->scenario->output[kr].name);
   fprintf(fp,
-          "The driver's vertical acceleration from the first wheel's bump entry (%.3f s) to "
+          "`, from the first wheel's bump entry (%.3f s) to "
           "the end of the run (%.3f s), weighted and evaluated per ISO 2631-1:1997 (flexbond's "
           "docs/ride-metrics.md). The absorbed power (Pradko & Lee, "
           "against the 6 W limit used for military vehicles) is not given: no published "
@@ -659,20 +710,22 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Tire contact: the verdict of each system, from its reactions. */
 
-static void write_contact_verdict(FILE *fp, const cli_run_system *r, int unilateral)
+static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_system *r,
+                                  int unilateral)
 {
   char force[32];
   fprintf(fp, "- %s: ", cli_system_label(r->sys));
   if (r->nloss == 0) {
-    int c_min = 0;
-    for (int c = 1; c < FB_NCORNERS; ++c)
+    size_t c_min = 0;
+    for (size_t c = 1; c < s->ncorners; ++c)
       if (r->min_contact[c] < r->min_contact[c_min])
         c_min = c;
     fprintf(fp,
             "every tire stays in compression over the whole run; from the first bump entry "
-            "on, the smallest normal reaction is %s N (%s tire, t = %.3f s).\n",
-            number_text(r->min_contact[c_min], force, sizeof force), fb_corner_name(c_min),
-            r->min_contact_time[c_min]);
+            "on, the smallest normal reaction is %s N (",
+            number_text(r->min_contact[c_min], force, sizeof force));
+    fb_md_write_text(fp, s->corner[c_min].name);
+    fprintf(fp, " tire, t = %.3f s).\n", r->min_contact_time[c_min]);
     return;
   }
   if (unilateral)
@@ -687,8 +740,9 @@ static void write_contact_verdict(FILE *fp, const cli_run_system *r, int unilate
             r->nloss, r->nloss == 1 ? "" : "s");
   for (size_t i = 0; i < r->nloss; ++i) {
     const fb_contact_loss *t = &r->loss[i];
-    fprintf(fp, "%s %s from %.3f to %.3f s", i ? ";" : "", fb_corner_name(t->corner),
-            t->t_start, t->t_end);
+    fputs(i ? "; " : " ", fp);
+    fb_md_write_text(fp, s->corner[t->corner].name);
+    fprintf(fp, " from %.3f to %.3f s", t->t_start, t->t_end);
     if (!unilateral)
       fprintf(fp, " (down to %s N at %.3f s)", number_text(t->min_force, force, sizeof force),
               t->t_min);
@@ -709,7 +763,7 @@ static void write_contact(FILE *fp, const cli_run_outputs *o)
                      "have left the road.\n\n",
         fp);
   for (size_t i = 0; i < o->nruns; ++i)
-    write_contact_verdict(fp, &o->runs[i], unilateral);
+    write_contact_verdict(fp, o->scenario, &o->runs[i], unilateral);
 }
 
 static void write_conclusions(FILE *fp, const cli_run_outputs *o)
@@ -745,6 +799,7 @@ void cli_write_report_md(FILE *fp, const void *ctx)
     write_modes1(fp, o);
   if (o->modes2)
     write_modes2(fp, o);
+  write_model(fp, o);
   write_figures(fp, o);
   if (o->diff)
     write_comparison_table(fp, o);

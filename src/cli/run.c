@@ -53,30 +53,21 @@ static const char run_usage[] =
     "  -q, --quiet                 no progress or summary lines on stderr\n"
     "  -h, --help                  this text\n";
 
-/* Leite & Da Silva, section 5, Figs. 8-14. Figs. 12 and 14 show only
- * 4-10 s. */
-const cli_run_figure cli_run_figures[FB_NOUTPUTS] = {
-    {8, "tire_force_LF", "Normal reaction of the left front tire on the road",
-     "LF tire normal reaction", 0},
-    {9, "spring_defl_RF", "Right front suspension spring vertical deformation",
-     "RF suspension spring deformation", 0},
-    {10, "torsion", "Hull torsion angle", "hull torsion angle", 0},
-    {11, "driver_acc", "Acceleration of the driver plus his seat",
-     "driver plus seat acceleration", 0},
-    {12, "shock_power_LM", "Power dissipated by the left middle shock absorber",
-     "LM shock absorber dissipated power", 1},
-    {13, "tire_defl_RM", "Right middle tire vertical deformation", "RM tire deformation", 0},
-    {14, "tire_power_LR", "Power dissipated by the left rear tire", "LR tire dissipated power",
-     1},
-};
-
-void cli_run_figure_file(const cli_run_figure *fig, char *buf, size_t size)
+void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size)
 {
-  snprintf(buf, size, "fig%02d_%s.png", fig->number, fig->output);
+  if (o->figure > 0)
+    snprintf(buf, size, "fig%02d_%s.png", o->figure, o->name);
+  else
+    snprintf(buf, size, "fig_%s.png", o->name);
 }
 
-/* The window of Figs. 12 and 14, s. */
-static const double crossing_window[2] = {4.0, 10.0};
+size_t cli_ride_output(const fb_scenario *s)
+{
+  size_t k = 0;
+  while (k < s->noutputs && strcmp(s->output[k].signal, "acc") != 0)
+    ++k;
+  return k;
+}
 
 /* Values of --system and the systems each asks for. */
 enum { SYSTEM_RIGID, SYSTEM_FLEXIBLE, SYSTEM_BOTH };
@@ -127,18 +118,19 @@ const char *cli_scenario_name(const fb_scenario *s)
 
 /* ---- Figures. */
 
-/* The plotting window of fig over the run of r: the whole run, or the
- * paper's 4-10 s clipped to it (the whole run if they do not overlap). */
-static void figure_window(const cli_run_figure *fig, const fb_result *r, double *t_min,
+/* The plotting window of output o over the run of r: the whole run, or
+ * the output's window clipped to it (the whole run if they do not
+ * overlap). */
+static void figure_window(const fb_output_spec *o, const fb_result *r, double *t_min,
                           double *t_max)
 {
   /* fb_plot_opts: t_min >= t_max means the result's span. */
   *t_min = *t_max = 0;
   size_t n = fb_result_nsamples(r);
-  if (!fig->crossing_only || n == 0)
+  if (!(o->window[0] < o->window[1]) || n == 0)
     return;
-  double lo = fmax(crossing_window[0], fb_result_row(r, 0)[0]);
-  double hi = fmin(crossing_window[1], fb_result_row(r, n - 1)[0]);
+  double lo = fmax(o->window[0], fb_result_row(r, 0)[0]);
+  double hi = fmin(o->window[1], fb_result_row(r, n - 1)[0]);
   if (lo < hi) {
     *t_min = lo;
     *t_max = hi;
@@ -147,11 +139,13 @@ static void figure_window(const cli_run_figure *fig, const fb_result *r, double 
 
 /* "Fig. 8. Normal reaction ...: System 1 (rigid hull)" (and " vs System 2
  * (flexible hull)" when overlaid) into buf. */
-static void figure_title(const cli_run_figure *fig, const cli_run_outputs *o, char *buf,
+static void figure_title(const fb_output_spec *fig, const cli_run_outputs *o, char *buf,
                          size_t size)
 {
-  int n = snprintf(buf, size, "Fig. %d. %s: %s", fig->number, fig->caption,
-                   cli_system_label(o->runs[0].sys));
+  int n = fig->figure > 0
+              ? snprintf(buf, size, "Fig. %d. %s: %s", fig->figure, fig->title,
+                         cli_system_label(o->runs[0].sys))
+              : snprintf(buf, size, "%s: %s", fig->title, cli_system_label(o->runs[0].sys));
   for (size_t i = 1; i < o->nruns && n > 0 && (size_t)n < size; ++i)
     n += snprintf(buf + n, size - (size_t)n, " vs %s", cli_system_label(o->runs[i].sys));
 }
@@ -160,7 +154,7 @@ static void figure_title(const cli_run_figure *fig, const cli_run_outputs *o, ch
  * when both ran, a second panel with their difference. */
 static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_err *err)
 {
-  const cli_run_figure *fig = &cli_run_figures[k];
+  const fb_output_spec *fig = &o->scenario->output[k];
   fb_plot_series series[CLI_MAX_SYSTEMS];
   for (size_t i = 0; i < o->nruns; ++i)
     /* A single curve needs no key: the title names its system. */
@@ -171,8 +165,8 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
   /* fb_result_diff keeps System 1's columns. */
   const fb_plot_series diff = {.result = o->diff, .col = o->runs[0].col[k] - 1, .legend = NULL};
   const char *unit = fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]);
-  char ylabel[160], diff_ylabel[160], title[256], name[96];
-  snprintf(ylabel, sizeof ylabel, "%s [%s]", fig->quantity, unit);
+  char ylabel[320], diff_ylabel[160], title[512], name[FB_ERR_KEY_MAX];
+  snprintf(ylabel, sizeof ylabel, "%s [%s]", fig->label, unit);
   snprintf(diff_ylabel, sizeof diff_ylabel, "System 2 - System 1 [%s]", unit);
   figure_title(fig, o, title, sizeof title);
   cli_run_figure_file(fig, name, sizeof name);
@@ -238,7 +232,7 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
 
 /* "systemN": {...} of one run. */
 /* {"window": [t0, t1], "a_w_rms", ..., "jerk_rms"} or {"note": why}. */
-static void write_ride_json(FILE *fp, const cli_run_system *run)
+static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
 {
   if (!run->has_ride) {
     fputs("{\"note\": ", fp);
@@ -254,7 +248,9 @@ static void write_ride_json(FILE *fp, const cli_run_system *run)
                                {"absorbed_power", m->absorbed_power},
                                {"jerk_peak", m->jerk_peak},
                                {"jerk_rms", m->jerk_rms}};
-  fputs("{\"window\": [", fp);
+  fputs("{\"output\": ", fp);
+  cli_json_string(fp, s->output[cli_ride_output(s)].name);
+  fputs(", \"window\": [", fp);
   fb_json_write_number(fp, run->ride_window[0]);
   fputs(", ", fp);
   fb_json_write_number(fp, run->ride_window[1]);
@@ -273,8 +269,10 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
 {
   fprintf(fp, "{\"model\": \"%s\", \"min_force\": {",
           s->corner[0].tire_contact == FB_TIRE_UNILATERAL ? "unilateral" : "bilateral");
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    fprintf(fp, "%s\"%s\": {\"value\": ", c ? ", " : "", fb_corner_name(c));
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    fputs(c ? ", " : "", fp);
+    cli_json_string(fp, s->corner[c].name);
+    fputs(": {\"value\": ", fp);
     fb_json_write_number(fp, run->min_contact[c]);
     fputs(", \"time\": ", fp);
     fb_json_write_number(fp, run->min_contact_time[c]);
@@ -285,7 +283,8 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
     const fb_contact_loss *t = &run->loss[i];
     const json_field fields[] = {
         {"from", t->t_start}, {"to", t->t_end}, {"min_force", t->min_force}, {"at", t->t_min}};
-    fprintf(fp, "%s{\"tire\": \"%s\"", i ? ", " : "", fb_corner_name(t->corner));
+    fputs(i ? ", {\"tire\": " : "{\"tire\": ", fp);
+    cli_json_string(fp, s->corner[t->corner].name);
     for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
       fprintf(fp, ", \"%s\": ", fields[f].key);
       fb_json_write_number(fp, fields[f].value);
@@ -303,14 +302,14 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
   if (run->sys == FB_SYSTEM_FLEXIBLE)
     fprintf(fp, ",\n    \"hull_modes\": %d", s->hull_modes);
   fputs(",\n    \"outputs\": {", fp);
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+  for (size_t k = 0; k < s->noutputs; ++k) {
     fputs(k ? ",\n      " : "\n      ", fp);
-    cli_json_string(fp, cli_run_figures[k].output);
+    cli_json_string(fp, s->output[k].name);
     fputs(": ", fp);
     write_output_json(fp, fb_result_col_unit(run->res, run->col[k]), &run->stats[k]);
   }
   fputs("\n    },\n    \"ride\": ", fp);
-  write_ride_json(fp, run);
+  write_ride_json(fp, run, s);
   fputs(",\n    \"tire_contact\": ", fp);
   write_contact_json(fp, run, s);
   fputs(",\n    \"solver\": ", fp);
@@ -326,7 +325,7 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
 static void write_comparison_json(FILE *fp, const cli_run_outputs *o)
 {
   fputs(",\n  \"comparison\": {", fp);
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
+  for (size_t k = 0; k < o->scenario->noutputs; ++k) {
     const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &o->runs[1].stats[k];
     const cli_output_cmp *c = &o->cmp[k];
     const json_field fields[] = {{"peak_system1", s1->peak},
@@ -340,7 +339,7 @@ static void write_comparison_json(FILE *fp, const cli_run_outputs *o)
                                  {"peak_change_rel", c->peak_change},
                                  {"rms_change_rel", c->rms_change}};
     fputs(k ? ",\n    " : "\n    ", fp);
-    cli_json_string(fp, cli_run_figures[k].output);
+    cli_json_string(fp, o->scenario->output[k].name);
     fputs(": ", fp);
     json_object(fp, fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]), fields,
                 sizeof fields / sizeof fields[0]);
@@ -362,7 +361,9 @@ static const char *const definitions[][2] = {
     {"solver", "CVODE statistics of the run; events: restarts at contact changes "
                "(unilateral tires); wall_seconds is the integration's wall time"},
     {"ride",
-     "the driver's ride metrics (docs/ride-metrics.md) over window = [first wheel's bump "
+     "ride metrics (docs/ride-metrics.md) of output, the first mounted body's acceleration "
+     "among the scenario's outputs (the driver's in the paper's), over window = [first "
+     "wheel's bump "
      "entry, end of the run] s: a_w_rms (ISO 2631-1 Wk-weighted r.m.s., m/s^2), mtvv "
      "(largest 1 s running r.m.s., m/s^2), vdv (m/s^1.75), crest_factor (max |a_w| / "
      "a_w_rms), absorbed_power (W; null: no K(f) table is built in), jerk_peak and jerk_rms "
@@ -413,12 +414,59 @@ static void write_summary_json(FILE *fp, const void *ctx)
   fputs("\n}\n", fp);
 }
 
-/* systemN.csv (a cli_writer over a cli_run_system). */
+/* One system's CSV: its run and how many outputs it has. */
+typedef struct system_csv {
+  const cli_run_system *run;
+  size_t noutputs;
+} system_csv;
+
+/* systemN.csv (a cli_writer over a system_csv). */
 static void write_system_csv(FILE *fp, const void *ctx)
 {
-  const cli_run_system *sys = ctx;
-  /* The paper's seven outputs; the contact forces go to the summary. */
-  fb_result_print_csv_columns(fp, sys->res, 1 + FB_NOUTPUTS, FB_CSV_HEADER_NAMES);
+  const system_csv *c = ctx;
+  /* The scenario's outputs; the contact forces go to the summary. */
+  fb_result_print_csv_columns(fp, c->run->res, 1 + c->noutputs, FB_CSV_HEADER_NAMES);
+}
+
+/* The paper's Figs. 5 and 6 of system sys: its multibond graph and its
+ * block diagram, "figNN_KIND_systemN.png" into buf. */
+static const struct {
+  int number;
+  cli_diagram_kind kind;
+  const char *what;
+} diagram_kinds[] = {{5, CLI_DIAGRAM_BOND_GRAPH, "bond_graph"},
+                     {6, CLI_DIAGRAM_BLOCKS, "block_diagram"}};
+_Static_assert(sizeof diagram_kinds / sizeof diagram_kinds[0] == CLI_RUN_NDIAGRAMS,
+               "one row per diagram");
+
+void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size)
+{
+  snprintf(buf, size, "fig%02d_%s_system%d.png", diagram_kinds[k].number, diagram_kinds[k].what,
+           (int)sys);
+}
+
+/* Both diagrams of system sys, drawn from the graph it ran. */
+static int write_diagrams(cli_outdir *od, const fb_scenario *s, fb_system sys, fb_err *err)
+{
+  fb_bg *g = NULL;
+  fb_probe_spec *p = NULL;
+  size_t np = 0;
+  int rc = fb_vehicle_graph(s, sys, &g, &p, &np, err);
+  for (size_t k = 0; rc == FB_OK && k < CLI_RUN_NDIAGRAMS; ++k) {
+    char name[64];
+    cli_run_diagram_file(k, sys, name, sizeof name);
+    char *path = cli_outdir_path(od, name, err);
+    /* The outputs' meters; the tire-contact probes would only crowd it. */
+    rc = path ? cli_diagram_file(g, p, s->noutputs, diagram_kinds[k].kind, path, err)
+              : err->code;
+    if (rc == FB_OK)
+      rc = cli_outdir_keep(od, path, err);
+    else
+      free(path);
+  }
+  fb_vehicle_probes_free(&p, np);
+  fb_bg_free(&g);
+  return rc;
 }
 
 /* Stages every file in od; *nfiles is how many. The pictures go first:
@@ -427,14 +475,17 @@ static void write_system_csv(FILE *fp, const void *ctx)
 static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfiles, fb_err *err)
 {
   int rc = FB_OK;
-  for (size_t k = 0; o->figures && k < FB_NOUTPUTS && rc == FB_OK; ++k)
+  for (size_t k = 0; o->figures && k < o->scenario->noutputs && rc == FB_OK; ++k)
     rc = write_figure(od, k, o, err);
   if (rc == FB_OK && o->figures && o->modes2)
-    rc = cli_write_mode_pictures(od, o->hull, o->modes2, err);
+    rc = cli_write_mode_pictures(od, o->scenario, o->hull, o->modes2, err);
+  for (size_t i = 0; o->figures && i < o->nruns && rc == FB_OK; ++i)
+    rc = write_diagrams(od, o->scenario, o->runs[i].sys, err);
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
     char name[32];
     snprintf(name, sizeof name, "system%d.csv", (int)o->runs[i].sys);
-    rc = cli_outdir_write(od, name, write_system_csv, &o->runs[i], err);
+    const system_csv csv = {&o->runs[i], o->scenario->noutputs};
+    rc = cli_outdir_write(od, name, write_system_csv, &csv, err);
   }
   if (rc == FB_OK)
     rc = cli_outdir_write(od, "summary.json", write_summary_json, o, err);
@@ -525,11 +576,12 @@ static int show_progress(void *ctx, double t, double t_end)
 /* The tire-contact verdict: contact-loss intervals over the whole run, and the
  * smallest normal reaction of each tire from the first wheel's bump entry
  * on (from the zero start every reaction is 0 at t = 0). */
-static int run_contact(cli_run_system *run, const double window[2], fb_err *err)
+static int run_contact(const fb_scenario *s, cli_run_system *run, const double window[2],
+                       fb_err *err)
 {
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    char name[32];
-    snprintf(name, sizeof name, "contact_force_%s", fb_corner_name(c));
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    char name[FB_ERR_KEY_MAX];
+    snprintf(name, sizeof name, "contact_force_%s", s->corner[c].name);
     const long j = fb_result_find(run->res, name);
     if (j < 1)
       return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'", name);
@@ -543,18 +595,25 @@ static int run_contact(cli_run_system *run, const double window[2], fb_err *err)
       }
     }
   }
-  return fb_vehicle_contact_loss(run->res, &run->loss, &run->nloss, err);
+  return fb_vehicle_contact_loss(s, run->res, &run->loss, &run->nloss, err);
 }
 
-/* The driver's ride metrics (ISO 2631-1 and jerk) from the first wheel's
+/* The ride metrics (ISO 2631-1 and jerk) of the output cli_ride_output
+ * names (the driver's acceleration in the paper's scenario) from the first wheel's
  * bump entry to the end of the run: the response to the bump, without
  * the settling after t = 0. A window shorter than the running r.m.s.'s
  * 1 s (or any other refusal) is no failure of the run: the note says
  * why the metrics are missing. */
-static void run_ride(cli_run_system *run, const double window[2])
+static void run_ride(const fb_scenario *s, cli_run_system *run, const double window[2])
 {
   const size_t n = fb_result_nsamples(run->res);
+  const size_t k = cli_ride_output(s);
   run->has_ride = 0;
+  if (k == s->noutputs) {
+    snprintf(run->ride_note, sizeof run->ride_note,
+             "the outputs list no mounted body's acceleration (signal acc)");
+    return;
+  }
   if (n < 2) {
     snprintf(run->ride_note, sizeof run->ride_note, "the run has fewer than 2 samples");
     return;
@@ -566,27 +625,45 @@ static void run_ride(cli_run_system *run, const double window[2])
   fb_err err;
   fb_ride_opts opts;
   fb_ride_opts_default(&opts);
-  if (fb_ride_metrics_result(run->res, "driver_acc", run->ride_window[0], run->ride_window[1],
-                             &opts, &run->ride, &err) == FB_OK)
+  if (fb_ride_metrics_result(run->res, s->output[k].name, run->ride_window[0],
+                             run->ride_window[1], &opts, &run->ride, &err) == FB_OK)
     run->has_ride = 1;
   else
     snprintf(run->ride_note, sizeof run->ride_note, "%s", err.msg);
 }
 
-/* Columns and statistics of run's outputs. */
-static int run_columns(cli_run_system *run, const double window[2], fb_err *err)
+/* Columns and statistics of run's outputs (arrays new, freed with the
+ * run: run_system_free). */
+static int run_columns(const fb_scenario *s, cli_run_system *run, const double window[2],
+                       fb_err *err)
 {
-  for (size_t k = 0; k < FB_NOUTPUTS; ++k) {
-    long j = fb_result_find(run->res, cli_run_figures[k].output);
+  const size_t n = s->noutputs ? s->noutputs : 1, nc = s->ncorners;
+  run->col = calloc(n, sizeof *run->col);
+  run->stats = calloc(n, sizeof *run->stats);
+  run->min_contact = calloc(2 * nc, sizeof *run->min_contact);
+  if (!run->col || !run->stats || !run->min_contact)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  run->min_contact_time = run->min_contact + nc;
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    long j = fb_result_find(run->res, s->output[k].name);
     /* fb_vehicle_simulate promises every output. */
     if (j < 1)
       return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'",
-                        cli_run_figures[k].output);
+                        s->output[k].name);
     run->col[k] = (size_t)j;
     run->stats[k] = cli_output_stats_of(run->res, run->col[k], window);
   }
-  run_ride(run, window);
-  return run_contact(run, window, err);
+  run_ride(s, run, window);
+  return run_contact(s, run, window, err);
+}
+
+static void run_system_free(cli_run_system *run)
+{
+  fb_result_free(&run->res);
+  free(run->loss);
+  free(run->col);
+  free(run->stats);
+  free(run->min_contact);
 }
 
 static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
@@ -611,7 +688,7 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
             p.scenario, p.system, fb_result_nsamples(run->res), st->steps, st->rhs_evals,
             events, st->wall_seconds);
   }
-  return rc == FB_OK ? run_columns(run, window, err) : rc;
+  return rc == FB_OK ? run_columns(s, run, window, err) : rc;
 }
 
 /* ---- The command. */
@@ -644,7 +721,11 @@ static int compare(cli_run_outputs *o, fb_result **diff, fb_err *err)
   if (o->nruns < 2)
     return FB_OK;
   int rc = fb_result_diff(o->runs[1].res, o->runs[0].res, diff, err);
-  for (size_t k = 0; rc == FB_OK && k < FB_NOUTPUTS; ++k)
+  const size_t n = o->scenario->noutputs;
+  o->cmp = rc == FB_OK ? calloc(n ? n : 1, sizeof *o->cmp) : NULL;
+  if (rc == FB_OK && !o->cmp)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; rc == FB_OK && k < n; ++k)
     o->cmp[k] = cli_output_compare(&o->runs[0].stats[k], &o->runs[1].stats[k], *diff,
                                    o->runs[0].col[k], o->bump_window);
   o->diff = *diff;
@@ -662,17 +743,17 @@ static void override(const run_args *a, fb_scenario *s)
     s->hull_modes = a->hull_modes;
 }
 
-/* cli_report, except that a check of hull.fe.modes after --hull-modes
- * replaced it (overridden: more modes than the hull has) is the option's:
- * a usage error. The file's own value was checked, and located, when the
- * scenario was loaded. */
-static int report(const run_args *a, int overridden, int rc, fb_err *err)
+/* cli_report, except that an error about hull.fe.modes after
+ * --hull-modes replaced it (overridden: more modes than the hull has) is
+ * the option's: a usage error. The file's own value was checked, and
+ * located, when the scenario was loaded; any other error about a value of
+ * the scenario is located in its file (fb_scenario_locate). */
+static int report(const run_args *a, const fb_scenario *s, int rc, fb_err *err)
 {
-  static const char key[] = "hull.fe.modes: ";
-  const char *at =
-      rc != FB_OK && overridden && a->hull_modes >= 0 ? strstr(err->msg, key) : NULL;
-  if (at)
-    return cli_usage_error("run", "option '--hull-modes': %s", at + strlen(key));
+  if (rc != FB_OK && s && a->hull_modes >= 0 && !strcmp(err->key, "hull.fe.modes"))
+    return cli_usage_error("run", "option '--hull-modes': %s", err->msg);
+  if (rc != FB_OK && s)
+    fb_scenario_locate(s, err);
   return cli_report(rc, err);
 }
 
@@ -689,7 +770,6 @@ static int run(const run_args *a)
   size_t nfiles = 0;
   cli_outdir od;
   int rc = fb_scenario_load(a->scenario_path, &s, &err);
-  const int overridden = rc == FB_OK;
   /* The directory is held from here (its lock: no other command writes
    * there meanwhile) to the end. */
   if (rc == FB_OK)
@@ -733,13 +813,13 @@ static int run(const run_args *a)
   if (rc != FB_OK)
     cli_nothing_written(&err, a->out_dir);
   fb_result_free(&diff);
-  for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i) {
-    fb_result_free(&runs[i].res);
-    free(runs[i].loss);
-  }
+  free(o.cmp);
+  for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i)
+    run_system_free(&runs[i]);
   run_modes_free(&modes);
+  rc = report(a, s, rc, &err);
   fb_scenario_free(&s);
-  return report(a, overridden, rc, &err);
+  return rc;
 }
 
 /* The value of --hull-modes: 0 or an integer in 6 .. MAX_HULL_MODES, as

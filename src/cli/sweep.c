@@ -98,9 +98,9 @@ static void write_csv(FILE *fp, const void *ctx)
 typedef struct sweep_figure {
   double *x, *y;
   fb_plot_xy_series *series;
-  fb_plot_xy_panel panels[NMETRICS];
+  fb_plot_xy_panel panels[SWEEP_MAX_METRICS];
   char (*legends)[256];
-  char (*ylabels)[96];
+  char (*ylabels)[FB_ERR_KEY_MAX + 32];
   int categorical; /* the first key's values are not all numbers */
 } sweep_figure;
 
@@ -119,10 +119,10 @@ static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figu
 {
   const size_t nx = a->keys[0].nvalues, ncurves = a->ncases / nx;
   f->x = malloc(nx * sizeof *f->x);
-  f->y = malloc(NMETRICS * a->ncases * sizeof *f->y);
-  f->series = malloc(NMETRICS * ncurves * sizeof *f->series);
+  f->y = malloc(a->nmetrics * a->ncases * sizeof *f->y);
+  f->series = malloc(a->nmetrics * ncurves * sizeof *f->series);
   f->legends = malloc(ncurves * sizeof *f->legends);
-  f->ylabels = malloc(NMETRICS * sizeof *f->ylabels);
+  f->ylabels = malloc(a->nmetrics * sizeof *f->ylabels);
   if (!f->x || !f->y || !f->series || !f->legends || !f->ylabels)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the figure of %zu cases", a->ncases);
   f->categorical = 0;
@@ -133,10 +133,10 @@ static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figu
   for (size_t r = 0; r < ncurves; ++r)
     /* Case r of the first value: the other keys' values of curve r. */
     sweep_case_label(a, r, 1, f->legends[r], sizeof f->legends[r]);
-  for (size_t m = 0; m < NMETRICS; ++m) {
-    char name[64];
-    sweep_metric_name(m, name, sizeof name);
-    snprintf(f->ylabels[m], sizeof f->ylabels[m], "%s [%s]", name, sweep_metric_unit(m));
+  for (size_t m = 0; m < a->nmetrics; ++m) {
+    char name[FB_ERR_KEY_MAX];
+    sweep_metric_name(a, m, name, sizeof name);
+    snprintf(f->ylabels[m], sizeof f->ylabels[m], "%s [%s]", name, sweep_metric_unit(a, m));
     for (size_t r = 0; r < ncurves; ++r) {
       double *y = &f->y[(m * ncurves + r) * nx];
       for (size_t v = 0; v < nx; ++v)
@@ -170,7 +170,7 @@ static int write_figure(cli_outdir *od, const sweep_args *a, const sweep_case *c
     opts.xlabel = a->keys[0].key;
     opts.xtic_labels = f.categorical ? (const char *const *)a->keys[0].values : NULL;
     opts.nxtics = f.categorical ? a->keys[0].nvalues : 0;
-    rc = fb_plot_xy_png(f.panels, NMETRICS, &opts, path, err);
+    rc = fb_plot_xy_png(f.panels, a->nmetrics, &opts, path, err);
     if (rc == FB_OK) {
       rc = cli_outdir_keep(od, path, err);
       path = NULL;
@@ -535,12 +535,19 @@ static int check_scenario(const char *cmd, sweep_args *a, char **name)
   if (a->sys == FB_SYSTEM_FLEXIBLE && !s->has_fe_hull)
     exit_code = cli_usage_error(cmd, "--system flexible: the scenario has no finite-element "
                                      "hull (hull.mesh and hull.fe)");
+  if (exit_code == CLI_EXIT_OK && s->noutputs > SWEEP_MAX_OUTPUTS)
+    exit_code = cli_usage_error(cmd,
+                                "the scenario lists %zu outputs; a sweep takes at most %d "
+                                "(each adds three columns to every case)",
+                                s->noutputs, SWEEP_MAX_OUTPUTS);
   const char *n = cli_scenario_name(s);
   *name = malloc(strlen(n) + 1);
   if (*name)
     memcpy(*name, n, strlen(n) + 1);
   a->scenario_name = *name ? *name : "scenario";
-  fb_scenario_free(&s);
+  /* Kept to the end (cli_cmd_sweep frees it): its outputs name the metrics. */
+  a->base = s;
+  a->nmetrics = SWEEP_NSTATS * s->noutputs + SWEEP_NOTHER;
   return exit_code;
 }
 
@@ -554,9 +561,8 @@ static void tally(const sweep_args *a, const sweep_case *cases, size_t *not_done
     const sweep_case *c = &cases[i];
     *not_done += !c->done;
     *failed += c->done && c->status != FB_OK;
-    /* An input error at a swept value (the reader's message then starts
-     * with the option that set it) belongs to its case. */
-    const int at_value = c->error && strncmp(c->error, "--set ", 6) == 0;
+    /* An input error at a swept value belongs to its case. */
+    const int at_value = c->at_value;
     const int code = cli_exit_code(c->status);
     *input_errors += c->done && !at_value && (code == CLI_EXIT_INPUT || code == CLI_EXIT_IO);
   }
@@ -886,6 +892,7 @@ int cli_cmd_sweep(int argc, char **argv)
   }
   for (size_t k = 0; k < a.nkeys; ++k)
     sweep_key_free(&a.keys[k]);
+  fb_scenario_free(&a.base);
   free(name);
   return rc;
 }

@@ -27,16 +27,15 @@
  * weeks of a core). */
 enum { SWEEP_MAX_VALUES = 10000, SWEEP_MAX_KEYS = 16, SWEEP_MAX_CASES = 100000 };
 
-/* The metrics of a case, in sweep.csv's order. */
+/* The metrics of a case, in sweep.csv's order: peak, min and rms of
+ * every output of the scenario (output k's at SWEEP_NSTATS k +
+ * SWEEP_STAT_*), then the others (sweep_metric_other). */
+enum { SWEEP_STAT_PEAK, SWEEP_STAT_MIN, SWEEP_STAT_RMS, SWEEP_NSTATS };
 enum {
-  SWEEP_STAT_PEAK,
-  SWEEP_STAT_MIN,
-  SWEEP_STAT_RMS,
-  SWEEP_NSTATS,
-  /* peak, min, rms of output k at SWEEP_NSTATS k + SWEEP_STAT_* */
-  M_MIN_TIRE_FORCE = SWEEP_NSTATS * FB_NOUTPUTS,
+  M_MIN_TIRE_FORCE,
   M_CONTACT_LOSS_INTERVALS,
-  /* The driver's ride metrics, as summary.json's "ride" (run.c). */
+  /* The ride metrics of the first mounted body's acceleration among the
+   * outputs, as summary.json's "ride" (run.c). */
   M_RIDE_A_W_RMS,
   M_RIDE_MTVV,
   M_RIDE_VDV,
@@ -44,7 +43,13 @@ enum {
   M_RIDE_JERK_PEAK,
   M_RIDE_JERK_RMS,
   M_SOLVER_STEPS,
-  NMETRICS
+  SWEEP_NOTHER
+};
+/* Most outputs a swept scenario may list: a case's metrics are a fixed
+ * array (one MPI message, one journal row). */
+enum {
+  SWEEP_MAX_OUTPUTS = 64,
+  SWEEP_MAX_METRICS = SWEEP_NSTATS * SWEEP_MAX_OUTPUTS + SWEEP_NOTHER
 };
 
 /* One swept key and its values (texts, as the overrides take them). */
@@ -63,16 +68,24 @@ typedef struct sweep_args {
   sweep_key keys[SWEEP_MAX_KEYS];
   size_t nkeys, ncases;
   const char *scenario_name; /* for titles */
+  /* The scenario as the file gives it (no override): its outputs name
+   * the metrics, and every case must have the same ones. */
+  fb_scenario *base; /* owned */
+  size_t nmetrics;   /* SWEEP_NSTATS base->noutputs + SWEEP_NOTHER */
 } sweep_args;
+
+/* Index of the other metric M_* (after the outputs' statistics). */
+size_t sweep_metric_other(const sweep_args *a, size_t m);
 
 /* The outcome of one case. */
 typedef struct sweep_case {
-  int done;                /* it has run (or was read back from the journal) */
-  int status;              /* FB_OK or what failed */
-  char *error;             /* its message (NULL when ok or out of memory) */
-  double metric[NMETRICS]; /* NaN when failed or not computed */
-  double wall_seconds;     /* of its simulation; NaN when resumed */
-  int rank;                /* the MPI rank that ran it (0 without MPI) */
+  int done;                         /* it has run (or was read back from the journal) */
+  int status;                       /* FB_OK or what failed */
+  char *error;                      /* its message (NULL when ok or out of memory) */
+  double metric[SWEEP_MAX_METRICS]; /* a->nmetrics used; NaN when failed or not computed */
+  int at_value;        /* the error is about a value a --set of the case replaced */
+  double wall_seconds; /* of its simulation; NaN when resumed */
+  int rank;            /* the MPI rank that ran it (0 without MPI) */
 } sweep_case;
 
 /* ---- sweep_case.c */
@@ -82,8 +95,8 @@ size_t sweep_value_index(const sweep_args *a, size_t i, size_t k);
 /* "key=value, key=value" of case i from key first_key on, into buf. */
 void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf, size_t size);
 /* Name ("tire_force_LF_peak") and unit of metric m. */
-void sweep_metric_name(size_t m, char *buf, size_t size);
-const char *sweep_metric_unit(size_t m);
+void sweep_metric_name(const sweep_args *a, size_t m, char *buf, size_t size);
+const char *sweep_metric_unit(const sweep_args *a, size_t m);
 /* Loads, simulates and measures case i into c (not c->done or c->rank).
  * arpack is held while a finite-element hull large enough for ARPACK,
  * which is not reentrant, is simulated. */

@@ -26,26 +26,35 @@ enum { SWEEP_DENSE_LIMIT = 2000 };
 static const char *const stat_names[SWEEP_NSTATS] = {"peak", "min", "rms"};
 static const struct {
   const char *name, *unit;
-} other_metrics[NMETRICS - M_MIN_TIRE_FORCE] = {
+} other_metrics[SWEEP_NOTHER] = {
     {"min_tire_force", "N"},     {"contact_loss_intervals", "-"}, {"ride_a_w_rms", "m/s^2"},
     {"ride_mtvv", "m/s^2"},      {"ride_vdv", "m/s^1.75"},        {"ride_crest_factor", "-"},
     {"ride_jerk_peak", "m/s^3"}, {"ride_jerk_rms", "m/s^3"},      {"solver_steps", "-"},
 };
 
-/* Name of metric m ("tire_force_LF_peak") into buf. */
-void sweep_metric_name(size_t m, char *buf, size_t size)
+size_t sweep_metric_other(const sweep_args *a, size_t m)
 {
-  if (m < M_MIN_TIRE_FORCE)
-    snprintf(buf, size, "%s_%s", fb_vehicle_output_name((int)(m / SWEEP_NSTATS)),
-             stat_names[m % SWEEP_NSTATS]);
-  else
-    snprintf(buf, size, "%s", other_metrics[m - M_MIN_TIRE_FORCE].name);
+  return SWEEP_NSTATS * a->base->noutputs + m;
 }
 
-const char *sweep_metric_unit(size_t m)
+/* Name of metric m ("tire_force_LF_peak") into buf. */
+void sweep_metric_name(const sweep_args *a, size_t m, char *buf, size_t size)
 {
-  return m < M_MIN_TIRE_FORCE ? fb_vehicle_output_unit((int)(m / SWEEP_NSTATS))
-                              : other_metrics[m - M_MIN_TIRE_FORCE].unit;
+  const size_t nstat = SWEEP_NSTATS * a->base->noutputs;
+  if (m < nstat)
+    snprintf(buf, size, "%s_%s", a->base->output[m / SWEEP_NSTATS].name,
+             stat_names[m % SWEEP_NSTATS]);
+  else
+    snprintf(buf, size, "%s", other_metrics[m - nstat].name);
+}
+
+const char *sweep_metric_unit(const sweep_args *a, size_t m)
+{
+  const size_t nstat = SWEEP_NSTATS * a->base->noutputs;
+  if (m >= nstat)
+    return other_metrics[m - nstat].unit;
+  const char *unit = a->base->output[m / SWEEP_NSTATS].unit;
+  return unit ? unit : "-"; /* a bond's: its domain's, known after the build */
 }
 
 /* Index of key k's value in case i: the first key varies slowest. */
@@ -71,12 +80,13 @@ void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf
 /* The smallest normal reaction of any tire from the first bump entry to
  * the end of the run (not from t = 0: under `initial: zero` every tire
  * starts unloaded, at 0 N). */
-static int min_tire_force(const fb_result *r, const double window[2], double *out, fb_err *err)
+static int min_tire_force(const fb_scenario *s, const fb_result *r, const double window[2],
+                          double *out, fb_err *err)
 {
   *out = INFINITY;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    char name[32];
-    snprintf(name, sizeof name, "contact_force_%s", fb_corner_name(c));
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    char name[FB_ERR_KEY_MAX];
+    snprintf(name, sizeof name, "contact_force_%s", s->corner[c].name);
     const long j = fb_result_find(r, name);
     if (j < 1)
       return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'", name);
@@ -91,12 +101,12 @@ static int min_tire_force(const fb_result *r, const double window[2], double *ou
 
 /* The contact-loss intervals (fb_vehicle_contact_loss) that end after
  * the first bump entry. */
-static int contact_loss_intervals(const fb_result *r, const double window[2], double *out,
-                                  fb_err *err)
+static int contact_loss_intervals(const fb_scenario *s, const fb_result *r,
+                                  const double window[2], double *out, fb_err *err)
 {
   fb_contact_loss *iv = NULL;
   size_t n = 0, count = 0;
-  int rc = fb_vehicle_contact_loss(r, &iv, &n, err);
+  int rc = fb_vehicle_contact_loss(s, r, &iv, &n, err);
   for (size_t i = 0; rc == FB_OK && i < n; ++i)
     count += iv[i].t_end >= window[0];
   free(iv);
@@ -104,16 +114,20 @@ static int contact_loss_intervals(const fb_result *r, const double window[2], do
   return rc;
 }
 
-/* The driver's ride metrics (flexbond/ride.h, default options) over
- * [first bump entry, end of the run], as run puts them in summary.json;
- * NaN when the library refuses the window (shorter than the 1 s running
- * r.m.s.): a missing metric, not a failed case. */
-static void ride_metrics(const fb_result *r, const double window[2], double *m)
+/* The ride metrics (flexbond/ride.h, default options) of the first
+ * mounted body's acceleration among the outputs over [first bump entry,
+ * end of the run], as run puts them in summary.json, into m (the other
+ * metrics); NaN when there is no such output or the library refuses the
+ * window (shorter than the 1 s running r.m.s.): a missing metric, not a
+ * failed case. */
+static void ride_metrics(const fb_scenario *s, const fb_result *r, const double window[2],
+                         double *m)
 {
   for (size_t k = M_RIDE_A_W_RMS; k <= M_RIDE_JERK_RMS; ++k)
     m[k] = NAN;
   const size_t n = fb_result_nsamples(r);
-  if (n < 2)
+  const size_t out = cli_ride_output(s);
+  if (n < 2 || out == s->noutputs)
     return;
   const double t_first = fb_result_row(r, 0)[0], t_last = fb_result_row(r, n - 1)[0];
   /* The last sample stands for one sampling interval (ride.h). */
@@ -123,7 +137,7 @@ static void ride_metrics(const fb_result *r, const double window[2], double *m)
   fb_ride_opts_default(&opts);
   fb_ride_metrics ride;
   fb_err err;
-  if (fb_ride_metrics_result(r, "driver_acc", t0, t1, &opts, &ride, &err) != FB_OK)
+  if (fb_ride_metrics_result(r, s->output[out].name, t0, t1, &opts, &ride, &err) != FB_OK)
     return;
   m[M_RIDE_A_W_RMS] = ride.a_w_rms;
   m[M_RIDE_MTVV] = ride.mtvv;
@@ -133,27 +147,39 @@ static void ride_metrics(const fb_result *r, const double window[2], double *m)
   m[M_RIDE_JERK_RMS] = ride.jerk_rms;
 }
 
-/* Every metric of a successful run r of scenario s into m. */
-static int case_metrics(const fb_scenario *s, const fb_result *r, double *m, fb_err *err)
+/* Every metric of a successful run r of scenario s into m. The case's
+ * outputs must be the study's: an override may rename one (a corner's
+ * name, an output's `of`), which would shift sweep.csv's columns. */
+static int case_metrics(const sweep_args *a, const fb_scenario *s, const fb_result *r,
+                        double *m, fb_err *err)
 {
   double window[2];
   cli_bump_window(s, window);
-  for (int k = 0; k < FB_NOUTPUTS; ++k) {
-    const long j = fb_result_find(r, fb_vehicle_output_name(k));
+  if (s->noutputs != a->base->noutputs)
+    return fb_err_set(err, FB_EINVAL, "sweep: the case has %zu outputs, the study %zu",
+                      s->noutputs, a->base->noutputs);
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    if (strcmp(s->output[k].name, a->base->output[k].name) != 0)
+      return fb_err_set(err, FB_EINVAL,
+                        "sweep: the case's output %zu is '%s', the study's '%s': a swept "
+                        "value may not rename an output",
+                        k + 1, s->output[k].name, a->base->output[k].name);
+    const long j = fb_result_find(r, s->output[k].name);
     if (j < 1)
       return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'",
-                        fb_vehicle_output_name(k));
+                        s->output[k].name);
     const cli_output_stats st = cli_output_stats_of(r, (size_t)j, window);
     m[SWEEP_NSTATS * k + SWEEP_STAT_PEAK] = st.peak;
     m[SWEEP_NSTATS * k + SWEEP_STAT_MIN] = st.min;
     m[SWEEP_NSTATS * k + SWEEP_STAT_RMS] = st.rms;
   }
+  double *other = m + sweep_metric_other(a, 0);
   const fb_sim_stats *st = fb_result_stats(r);
-  m[M_SOLVER_STEPS] = (double)st->steps;
-  ride_metrics(r, window, m);
-  int rc = min_tire_force(r, window, &m[M_MIN_TIRE_FORCE], err);
+  other[M_SOLVER_STEPS] = (double)st->steps;
+  ride_metrics(s, r, window, other);
+  int rc = min_tire_force(s, r, window, &other[M_MIN_TIRE_FORCE], err);
   if (rc == FB_OK)
-    rc = contact_loss_intervals(r, window, &m[M_CONTACT_LOSS_INTERVALS], err);
+    rc = contact_loss_intervals(s, r, window, &other[M_CONTACT_LOSS_INTERVALS], err);
   return rc;
 }
 
@@ -211,12 +237,17 @@ void sweep_run_case(const sweep_args *a, size_t i, pthread_mutex_t *arpack, swee
     rc = simulate_case(a, s, arpack, &res, &err);
   if (rc == FB_OK) {
     c->wall_seconds = fb_result_stats(res)->wall_seconds;
-    rc = case_metrics(s, res, c->metric, &err);
+    rc = case_metrics(a, s, res, c->metric, &err);
   }
   c->status = rc;
   c->error = NULL;
+  /* The reader sets the source of an error about a value a --set
+   * replaced (fb_scenario_load_overrides). */
+  if (rc != FB_OK && s)
+    fb_scenario_locate(s, &err);
+  c->at_value = rc != FB_OK && err.source == FB_SOURCE_OVERRIDE;
   if (rc != FB_OK) {
-    for (size_t m = 0; m < NMETRICS; ++m)
+    for (size_t m = 0; m < a->nmetrics; ++m)
       c->metric[m] = NAN;
     /* Never an empty error: sweep.csv, the journal and the MPI result
      * tell a failed case by it. */
@@ -265,10 +296,11 @@ void sweep_csv_header(FILE *fp, const sweep_args *a)
     fb_csv_write_field(fp, a->keys[k].key, FB_CSV_TEXT);
     fputc(',', fp);
   }
-  for (size_t m = 0; m < NMETRICS; ++m) {
-    char name[64];
-    sweep_metric_name(m, name, sizeof name);
-    fprintf(fp, "%s,", name);
+  for (size_t m = 0; m < a->nmetrics; ++m) {
+    char name[FB_ERR_KEY_MAX];
+    sweep_metric_name(a, m, name, sizeof name);
+    fb_csv_write_field(fp, name, FB_CSV_TEXT);
+    fputc(',', fp);
   }
   fputs("error\n", fp);
 }
@@ -281,7 +313,7 @@ void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c)
     fb_csv_write_field(fp, a->keys[k].values[sweep_value_index(a, i, k)], 0);
     fputc(',', fp);
   }
-  for (size_t m = 0; m < NMETRICS; ++m) {
+  for (size_t m = 0; m < a->nmetrics; ++m) {
     if (isfinite(c->metric[m])) {
       char text[32];
       sweep_format_double(c->metric[m], text, sizeof text);

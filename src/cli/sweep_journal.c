@@ -7,6 +7,7 @@
  *   # input 9c07... examples/shock_front.csv
  *   case,status,<sweep.csv's header>
  *   4,FB_OK,<case 4's sweep.csv row>
+ *   7,FB_EINVAL/set,<case 7's row: an error about a value its --set replaced>
  *
  * The rows come in the order the cases finish, each flushed at once: a
  * killed process loses only the cases it was running (a row it was
@@ -349,13 +350,21 @@ static int csv_read_record(const char *text, size_t len, size_t *pos, csv_record
   return 0;
 }
 
-static int status_of_name(const char *name, int *status)
+/* The status field: a status name, with "/set" when the case's error is
+ * about a value its --set replaced (sweep_case.at_value). */
+static int status_of_name(const char *field, int *status, int *at_value)
 {
-  for (int code = FB_OK; code <= FB_EINTR; ++code)
-    if (!strcmp(name, fb_status_name(code))) {
+  static const char set[] = "/set";
+  const size_t len = strlen(field), nset = sizeof set - 1;
+  *at_value = len > nset && !strcmp(field + len - nset, set);
+  const size_t name_len = *at_value ? len - nset : len;
+  for (int code = FB_OK; code <= FB_EINTR; ++code) {
+    const char *name = fb_status_name(code);
+    if (strlen(name) == name_len && !strncmp(field, name, name_len)) {
       *status = code;
       return 1;
     }
+  }
   return 0;
 }
 
@@ -364,7 +373,7 @@ static int status_of_name(const char *name, int *status)
 static int read_row(const sweep_args *a, const char *path, size_t line, const csv_record *r,
                     sweep_case *cases, fb_err *err)
 {
-  const size_t want = 2 + a->nkeys + NMETRICS + 1;
+  const size_t want = 2 + a->nkeys + a->nmetrics + 1;
   if (r->nfields != want)
     return fb_err_set(err, FB_EPARSE, "%s:%zu: %zu fields, expected %zu", path, line,
                       r->nfields, want);
@@ -377,7 +386,8 @@ static int read_row(const sweep_args *a, const char *path, size_t line, const cs
   sweep_case *c = &cases[i];
   if (c->done)
     return fb_err_set(err, FB_EPARSE, "%s:%zu: case %llu a second time", path, line, i);
-  if (!status_of_name(r->fields[1], &c->status) || c->status == FB_EINTR)
+  if (!status_of_name(r->fields[1], &c->status, &c->at_value) || c->status == FB_EINTR ||
+      (c->at_value && c->status == FB_OK))
     return fb_err_set(err, FB_EPARSE, "%s:%zu: status '%s' is not a flexbond status", path,
                       line, r->fields[1]);
   for (size_t k = 0; k < a->nkeys; ++k) {
@@ -386,7 +396,7 @@ static int read_row(const sweep_args *a, const char *path, size_t line, const cs
       return fb_err_set(err, FB_EPARSE, "%s:%zu: case %llu has %s=%s, the study %s", path, line,
                         i, a->keys[k].key, r->fields[2 + k], value);
   }
-  for (size_t m = 0; m < NMETRICS; ++m) {
+  for (size_t m = 0; m < a->nmetrics; ++m) {
     const char *text = r->fields[2 + a->nkeys + m];
     c->metric[m] = NAN;
     if (*text && !sweep_numeric_value(text, &c->metric[m]))
@@ -727,7 +737,7 @@ int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, 
 
 int sweep_journal_append(sweep_journal *j, size_t i, const sweep_case *c, fb_err *err)
 {
-  fprintf(j->fp, "%zu,%s,", i, fb_status_name(c->status));
+  fprintf(j->fp, "%zu,%s%s,", i, fb_status_name(c->status), c->at_value ? "/set" : "");
   sweep_csv_row(j->fp, j->a, i, c);
   if (fflush(j->fp) != 0 || ferror(j->fp))
     return fb_err_set(err, FB_EIO, "%s: cannot write: %s", j->path, strerror(errno));

@@ -34,7 +34,8 @@ typedef struct result_msg {
   int32_t status;
   int32_t rank;
   double wall_seconds;
-  double metric[NMETRICS];
+  double metric[SWEEP_MAX_METRICS];
+  int32_t at_value;
   char error[FB_ERR_MSG_MAX]; /* "" when ok */
 } result_msg;
 
@@ -105,6 +106,7 @@ static size_t receive_result(sweep_pool *p, const MPI_Status *probed)
   sweep_case *c = &p->cases[msg.index];
   memcpy(c->metric, msg.metric, sizeof msg.metric);
   c->status = msg.status;
+  c->at_value = msg.at_value;
   c->rank = msg.rank;
   c->wall_seconds = msg.wall_seconds;
   c->error = msg.error[0] ? strdup(msg.error) : NULL;
@@ -163,8 +165,11 @@ void sweep_mpi_coordinate(sweep_pool *p, int size)
 /* Sends case i's result c to rank 0: up to the error message's NUL. */
 static void send_result(size_t i, const sweep_case *c, int rank)
 {
-  result_msg msg = {
-      .index = i, .status = c->status, .rank = rank, .wall_seconds = c->wall_seconds};
+  result_msg msg = {.index = i,
+                    .status = c->status,
+                    .rank = rank,
+                    .wall_seconds = c->wall_seconds,
+                    .at_value = c->at_value};
   memcpy(msg.metric, c->metric, sizeof msg.metric);
   /* A failed case without its message lost it to a failed allocation. */
   const char *error = c->error ? c->error : (c->status != FB_OK ? "out of memory" : "");

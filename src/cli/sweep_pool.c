@@ -49,7 +49,8 @@ static void report_case(const sweep_pool *p, size_t i)
     snprintf(where, sizeof where, " on rank %d", c->rank);
   if (c->status == FB_OK)
     fprintf(stderr, "flexbond sweep: case %zu/%zu (%s): ok%s, %.0f steps, %.3g s\n", i + 1,
-            p->a->ncases, label, where, c->metric[M_SOLVER_STEPS], c->wall_seconds);
+            p->a->ncases, label, where, c->metric[sweep_metric_other(p->a, M_SOLVER_STEPS)],
+            c->wall_seconds);
   else
     fprintf(stderr, "flexbond sweep: case %zu/%zu (%s): failed%s: %s\n", i + 1, p->a->ncases,
             label, where, c->error ? c->error : "out of memory");

@@ -2,6 +2,7 @@
 #include "core/util.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,6 +30,21 @@ char *fb_strdup(const char *s)
   if (d)
     memcpy(d, s, n);
   return d;
+}
+
+char *fb_strdup_printf(const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  const int n = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  char *out = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  if (!out)
+    return NULL;
+  va_start(ap, fmt);
+  vsnprintf(out, (size_t)n + 1, fmt, ap);
+  va_end(ap);
+  return out;
 }
 
 int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize)

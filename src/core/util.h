@@ -17,6 +17,12 @@ double fb_printable(double v);
 
 /* Duplicate of s in fresh memory (NULL when out of memory). */
 char *fb_strdup(const char *s);
+/* printf-formatted text in fresh memory (NULL when out of memory). */
+char *fb_strdup_printf(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
 
 /* Grows the array *arr of elements of size elsize (capacity *cap) so that
  * index n is valid, doubling; FB_ENOMEM (leaving *arr intact) on failure. */

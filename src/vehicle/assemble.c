@@ -7,21 +7,7 @@
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
-
-static const char *const output_names[FB_NOUTPUTS] = {
-    "tire_force_LF",  "spring_defl_RF", "torsion",      "driver_acc",
-    "shock_power_LM", "tire_defl_RM",   "tire_power_LR"};
-static const char *const output_units[FB_NOUTPUTS] = {"N", "m", "rad", "m/s^2", "W", "m", "W"};
-
-const char *fb_vehicle_output_name(int k)
-{
-  return k >= 0 && k < FB_NOUTPUTS ? output_names[k] : NULL;
-}
-
-const char *fb_vehicle_output_unit(int k)
-{
-  return k >= 0 && k < FB_NOUTPUTS ? output_units[k] : NULL;
-}
+#include "vehicle/vehicle_internal.h"
 
 /* Adopts a fragment built by a constructor under instance name inst. */
 static int adopt(fb_bg *bg, int rc, fb_bg **frag, const char *inst, fb_err *err)
@@ -33,45 +19,70 @@ static int adopt(fb_bg *bg, int rc, fb_bg **frag, const char *inst, fb_err *err)
   return fb_bg_adopt(bg, frag, inst, err);
 }
 
+/* Adopts the mounts' and corners' fragments: instances named after the
+ * mount ("driver") and "susp_" + the corner's name. */
+static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  fb_bg *frag = NULL;
+  int rc = FB_OK;
+  for (size_t b = 0; !rc && b < s->nmounts; ++b)
+    rc = adopt(bg, fb_vehicle_mount(&s->mount[b], s->gravity, &frag, err), &frag,
+               s->mount[b].name, err);
+  for (size_t c = 0; !rc && c < s->ncorners; ++c) {
+    char *inst = fb_strdup_printf("susp_%s", s->corner[c].name);
+    rc = inst ? adopt(bg, fb_vehicle_corner(&s->corner[c], s->gravity, &frag, err), &frag, inst,
+                      err)
+              : fb_err_set(err, FB_ENOMEM, "out of memory");
+    free(inst);
+    fb_bg_free(&frag);
+  }
+  return rc;
+}
+
+/* Bond from attachment a's fragment port "hull" into "attach.<a+1>", and
+ * for a corner from the road's port to its wheel's. */
+static int connect_attachment(const fb_scenario *s, fb_bg *bg, size_t a, fb_err *err)
+{
+  const int corner = a < s->ncorners;
+  const char *name = corner ? s->corner[a].name : s->mount[a - s->ncorners].name;
+  char *from = fb_strdup_printf("%s%s.hull", corner ? "susp_" : "", name);
+  char *to = fb_strdup_printf("attach.%zu", a + 1);
+  char *road = corner ? fb_strdup_printf("road.%s", name) : NULL;
+  char *wheel = corner ? fb_strdup_printf("susp_%s.road", name) : NULL;
+  int rc = from && to && (!corner || (road && wheel))
+               ? fb_bg_connect(bg, NULL, from, to, err)
+               : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc && corner)
+    rc = fb_bg_connect(bg, NULL, road, wheel, err);
+  free(from);
+  free(to);
+  free(road);
+  free(wheel);
+  return rc;
+}
+
 /* The fragments around the hull and the bonds between them. */
 static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
 {
   fb_bg *frag = NULL;
-  int rc =
-      adopt(bg, fb_vehicle_mount(&s->driver, s->gravity, &frag, err), &frag, "driver", err);
-  if (!rc)
-    rc = adopt(bg, fb_vehicle_mount(&s->engine, s->gravity, &frag, err), &frag, "engine", err);
-  for (int c = 0; !rc && c < FB_NCORNERS; ++c) {
-    char inst[16];
-    snprintf(inst, sizeof inst, "susp_%s", fb_corner_name(c));
-    rc = adopt(bg, fb_vehicle_corner(&s->corner[c], s->gravity, &frag, err), &frag, inst, err);
-  }
+  int rc = add_bodies(s, bg, err);
   if (!rc)
     rc = adopt(bg, fb_vehicle_road(s, &frag, err), &frag, "road", err);
   if (!rc)
     rc = adopt(bg, fb_vehicle_load(s, &frag, err), &frag, "load", err);
-  /* The horizontal line of Fig. 5: eight scalar bonds into one multibond. */
-  const size_t ones[FB_NATTACH] = {1, 1, 1, 1, 1, 1, 1, 1};
+  /* The horizontal line of Fig. 5: one scalar bond per attachment point
+   * stacked into the hull's multibond. */
+  const size_t na = fb_scenario_nattach(s);
+  size_t *ones = malloc(na * sizeof *ones);
+  if (!rc && !ones)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t a = 0; !rc && a < na; ++a)
+    ones[a] = 1;
   if (!rc)
-    rc = fb_bg_add_composite(bg, "attach", FB_NATTACH, ones, err);
-  for (int c = 0; !rc && c < FB_NATTACH; ++c) {
-    char from[32], to[32];
-    const char *inst = c == FB_ATTACH_DRIVER   ? "driver"
-                       : c == FB_ATTACH_ENGINE ? "engine"
-                                               : NULL;
-    if (inst)
-      snprintf(from, sizeof from, "%s.hull", inst);
-    else
-      snprintf(from, sizeof from, "susp_%s.hull", fb_corner_name(c));
-    snprintf(to, sizeof to, "attach.%d", c + 1);
-    rc = fb_bg_connect(bg, NULL, from, to, err);
-    if (!rc && !inst) {
-      char road[32], wheel[32];
-      snprintf(road, sizeof road, "road.%s", fb_corner_name(c));
-      snprintf(wheel, sizeof wheel, "susp_%s.road", fb_corner_name(c));
-      rc = fb_bg_connect(bg, NULL, road, wheel, err);
-    }
-  }
+    rc = fb_bg_add_composite(bg, "attach", na, ones, err);
+  free(ones);
+  for (size_t a = 0; !rc && a < na; ++a)
+    rc = connect_attachment(s, bg, a, err);
   if (!rc)
     rc = fb_bg_connect(bg, "b_attach", "attach.whole", "hull.attach", err);
   if (!rc)
@@ -84,6 +95,7 @@ void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes)
   if (!probes || !*probes)
     return;
   for (size_t i = 0; i < nprobes; ++i) {
+    free((char *)(*probes)[i].name);
     free((char *)(*probes)[i].target);
     free((double *)(*probes)[i].weights);
   }
@@ -91,52 +103,22 @@ void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes)
   *probes = NULL;
 }
 
-/* The seven outputs as probes on the assembled graph (targets owned). */
+/* The scenario's outputs as probes on the assembled graph (targets and
+ * weights owned). An error names the output's logical key. */
 static int make_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec **out,
                        fb_err *err)
 {
-  fb_probe_spec *p = calloc(FB_NOUTPUTS, sizeof *p);
+  fb_probe_spec *p = calloc(s->noutputs ? s->noutputs : 1, sizeof *p);
   if (!p)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  const struct {
-    fb_probe_kind kind;
-    const char *target;
-  } spec[FB_NOUTPUTS] = {
-      {FB_PROBE_EFFORT, "susp_LF.b_tire"},
-      {FB_PROBE_STATE, "susp_RF.spring"},
-      {hull->torsion_kind, NULL},
-      {FB_PROBE_EFFORT, "driver.b_mass"},
-      {FB_PROBE_POWER, "susp_LM.b_damper"},
-      {FB_PROBE_STATE, "susp_RM.tire_spring"},
-      {FB_PROBE_POWER, "susp_LR.b_tire_damper"},
-  };
   int rc = FB_OK;
-  for (int k = 0; k < FB_NOUTPUTS; ++k) {
-    p[k].name = output_names[k];
-    p[k].kind = spec[k].kind;
-    p[k].component = -1;
-    p[k].gain = 1.0;
-    p[k].unit = output_units[k];
-    char target[256];
-    snprintf(target, sizeof target, "%s%s", spec[k].target ? "" : "hull.",
-             spec[k].target ? spec[k].target : hull->torsion_target);
-    p[k].target = fb_strdup(target);
-    if (!p[k].target)
-      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; !rc && k < s->noutputs; ++k) {
+    rc = fb_vehicle_output_probe(s, hull, &s->output[k], &p[k], err);
+    if (rc)
+      fb_err_set_key(err, "outputs[%zu]", k);
   }
-  /* Driver acceleration: the effort on the driver's mass over the mass
-   * (the paper's gain block 1/m on e7). */
-  p[3].gain = 1.0 / s->driver.mass;
-  p[2].integrate = hull->torsion_integrate;
-  p[2].nweights = hull->ntorsion;
-  double *w = malloc(hull->ntorsion * sizeof *w);
-  if (!w)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  else
-    memcpy(w, hull->torsion_weights, hull->ntorsion * sizeof *w);
-  p[2].weights = w;
   if (rc) {
-    fb_vehicle_probes_free(&p, FB_NOUTPUTS);
+    fb_vehicle_probes_free(&p, s->noutputs);
     return rc;
   }
   *out = p;
@@ -161,68 +143,41 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
     rc = add_subsystems(s, bg, err);
   fb_hull_free(&hull);
   if (rc) {
-    fb_vehicle_probes_free(probes, FB_NOUTPUTS);
+    fb_vehicle_probes_free(probes, s->noutputs);
     fb_bg_free(&bg);
     return rc;
   }
   *out = bg;
-  *nprobes = FB_NOUTPUTS;
+  *nprobes = s->noutputs;
   return FB_OK;
 }
 
-/* The six tires' normal reactions (compression positive), appended after
- * the seven outputs when contact is asked for: probes into cp (names and
- * targets in the caller's buffers). */
-static void contact_probes(fb_probe_spec *cp, char (*targets)[32])
+/* Every tire's normal reaction (compression positive), contact_force_<CORNER>,
+ * into cp[0 .. ncorners) (names and targets new). */
+static int contact_probes(const fb_scenario *s, fb_probe_spec *cp, fb_err *err)
 {
-  static const char *const names[FB_NCORNERS] = {"contact_force_LF", "contact_force_RF",
-                                                 "contact_force_LM", "contact_force_RM",
-                                                 "contact_force_LR", "contact_force_RR"};
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    snprintf(targets[c], sizeof targets[c], "susp_%s.b_tire", fb_corner_name(c));
-    cp[c] = (fb_probe_spec){names[c], FB_PROBE_EFFORT, targets[c], -1, 0, 1.0, "N", NULL, 0};
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    cp[c] = (fb_probe_spec){NULL, FB_PROBE_EFFORT, NULL, -1, 0, 1.0, "N", NULL, 0};
+    cp[c].name = fb_strdup_printf("contact_force_%s", s->corner[c].name);
+    cp[c].target = fb_strdup_printf("susp_%s.b_tire", s->corner[c].name);
+    if (!cp[c].name || !cp[c].target)
+      return fb_err_set(err, FB_ENOMEM, "out of memory");
   }
+  return FB_OK;
 }
 
-/* fb_vehicle_build, with the contact forces as extra outputs if asked. */
-static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg **graph,
-                         fb_bd **bd, fb_err *err)
+/* The hull fragment of system sys: the only part that differs between
+ * System 1 and System 2. */
+static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull, fb_err *err)
 {
-  *graph = NULL;
-  *bd = NULL;
-  fb_hull *hull = NULL;
+  if (sys != FB_SYSTEM_FLEXIBLE)
+    return fb_vehicle_rigid_hull(s, hull, err);
   fb_fe_hull *fe = NULL;
-  fb_probe_spec *probes = NULL, all[FB_NOUTPUTS + FB_NCORNERS];
-  size_t nprobes = 0;
-  int rc = fb_scenario_check(s, err);
-  /* The only difference between System 1 and System 2 is this fragment. */
-  if (!rc && sys == FB_SYSTEM_FLEXIBLE) {
-    rc = fb_vehicle_fe_hull(s, &fe, err);
-    if (!rc)
-      rc = fb_vehicle_flexible_hull(s, fe, &hull, err);
-    fb_fe_hull_free(&fe);
-  } else if (!rc) {
-    rc = fb_vehicle_rigid_hull(s, &hull, err);
-  }
+  int rc = fb_vehicle_fe_hull(s, &fe, err);
   if (!rc)
-    rc = fb_vehicle_assemble(s, &hull, graph, &probes, &nprobes, err);
-  if (!rc) {
-    char targets[FB_NCORNERS][32];
-    memcpy(all, probes, nprobes * sizeof *all);
-    contact_probes(all + nprobes, targets);
-    rc = fb_bd_build(*graph, all, nprobes + (contact ? FB_NCORNERS : 0), bd, err);
-  }
-  fb_vehicle_probes_free(&probes, nprobes);
-  fb_hull_free(&hull);
-  if (rc)
-    fb_bg_free(graph);
+    rc = fb_vehicle_flexible_hull(s, fe, hull, err);
+  fb_fe_hull_free(&fe);
   return rc;
-}
-
-int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
-                     fb_err *err)
-{
-  return vehicle_build(s, sys, 0, graph, bd, err);
 }
 
 int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
@@ -232,37 +187,24 @@ int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_prob
   *probes = NULL;
   *nprobes = 0;
   fb_hull *hull = NULL;
-  fb_fe_hull *fe = NULL;
   fb_probe_spec *outputs = NULL;
   size_t nout = 0;
   int rc = fb_scenario_check(s, err);
-  if (!rc && sys == FB_SYSTEM_FLEXIBLE) {
-    rc = fb_vehicle_fe_hull(s, &fe, err);
-    if (!rc)
-      rc = fb_vehicle_flexible_hull(s, fe, &hull, err);
-    fb_fe_hull_free(&fe);
-  } else if (!rc) {
-    rc = fb_vehicle_rigid_hull(s, &hull, err);
-  }
+  if (!rc)
+    rc = make_hull(s, sys, &hull, err);
   if (!rc)
     rc = fb_vehicle_assemble(s, &hull, graph, &outputs, &nout, err);
   fb_hull_free(&hull);
-  fb_probe_spec *all = rc ? NULL : calloc(nout + FB_NCORNERS, sizeof *all);
+  fb_probe_spec *all = rc ? NULL : calloc(nout + s->ncorners, sizeof *all);
   if (!rc && !all)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc) {
-    char targets[FB_NCORNERS][32];
     memcpy(all, outputs, nout * sizeof *all);
-    free(outputs); /* the strings moved to all */
+    free(outputs); /* its strings moved to all */
     outputs = NULL;
-    contact_probes(all + nout, targets);
-    for (size_t k = nout; !rc && k < nout + FB_NCORNERS; ++k) {
-      all[k].target = fb_strdup(all[k].target);
-      if (!all[k].target)
-        rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-    }
     *probes = all;
-    *nprobes = nout + FB_NCORNERS;
+    *nprobes = nout + s->ncorners;
+    rc = contact_probes(s, all + nout, err);
   }
   fb_vehicle_probes_free(&outputs, nout);
   if (rc) {
@@ -271,6 +213,29 @@ int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_prob
     fb_bg_free(graph);
   }
   return rc;
+}
+
+/* The graph and its block diagram, with the contact forces as extra
+ * outputs if asked. */
+static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg **graph,
+                         fb_bd **bd, fb_err *err)
+{
+  *bd = NULL;
+  fb_probe_spec *probes = NULL;
+  size_t nprobes = 0;
+  int rc = fb_vehicle_graph(s, sys, graph, &probes, &nprobes, err);
+  if (!rc)
+    rc = fb_bd_build(*graph, probes, contact ? nprobes : s->noutputs, bd, err);
+  fb_vehicle_probes_free(&probes, nprobes);
+  if (rc)
+    fb_bg_free(graph);
+  return rc;
+}
+
+int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
+                     fb_err *err)
+{
+  return vehicle_build(s, sys, 0, graph, bd, err);
 }
 
 void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o)

@@ -50,14 +50,15 @@ static int corner_intervals(const fb_result *r, size_t col, int corner, fb_conta
   return FB_OK;
 }
 
-int fb_vehicle_contact_loss(const fb_result *r, fb_contact_loss **out, size_t *n, fb_err *err)
+int fb_vehicle_contact_loss(const fb_scenario *s, const fb_result *r, fb_contact_loss **out,
+                            size_t *n, fb_err *err)
 {
   *out = NULL;
   *n = 0;
   size_t cap = 0;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    char name[32];
-    snprintf(name, sizeof name, "contact_force_%s", fb_corner_name(c));
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    char name[FB_ERR_KEY_MAX];
+    snprintf(name, sizeof name, "contact_force_%s", s->corner[c].name);
     const long col = fb_result_find(r, name);
     if (col < 1) {
       free(*out);
@@ -65,7 +66,7 @@ int fb_vehicle_contact_loss(const fb_result *r, fb_contact_loss **out, size_t *n
       *n = 0;
       return fb_err_set(err, FB_EINVAL, "tire contact: the result has no column '%s'", name);
     }
-    if (corner_intervals(r, (size_t)col, c, out, n, &cap) != FB_OK) {
+    if (corner_intervals(r, (size_t)col, (int)c, out, n, &cap) != FB_OK) {
       free(*out);
       *out = NULL;
       *n = 0;

@@ -1,6 +1,7 @@
 /* System 2's finite-element hull: node-set resolution, free-free modes,
  * and the modes of the whole undamped vehicle (flexbond/vehicle.h). */
 #include <assert.h>
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,7 @@ void fb_fe_hull_free(fb_fe_hull **h)
   if (!h || !*h)
     return;
   fb_mesh_free(&(*h)->mesh);
+  free((*h)->attach_node);
   free((*h)->load_node);
   free(*h);
   *h = NULL;
@@ -27,9 +29,9 @@ static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const si
   size_t n = 0;
   if (!fb_mesh_nset(m, name, nodes, &n))
     return fb_err_set(err, FB_EMODEL,
-                      "the mesh has no node set %s (the vehicle needs LOAD, DRIVER, ENGINE, "
-                      "SUSP_LF .. SUSP_RR, FRONT_EDGE and REAR_EDGE, as 'flexbond mesh "
-                      "--export' writes)",
+                      "the mesh has no node set %s (the vehicle needs LOAD, one set per "
+                      "mounted body named as it in capitals, SUSP_<CORNER> per corner, "
+                      "FRONT_EDGE and REAR_EDGE, as 'flexbond mesh --export' writes)",
                       name);
   if (n != count)
     return fb_err_set(err, FB_EMODEL, "the mesh's node set %s has %zu nodes, expected %zu",
@@ -38,48 +40,71 @@ static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const si
 }
 
 /* Checks that node sits at (x, y) in the hull's axes (within 1 mm). The
- * message starts with the scenario's key of the point, key_x or key_y as
- * the coordinate that is off (fb_scenario_blame finds it in the file). */
+ * error's key is the scenario's logical key of the coordinate that is off,
+ * key_x or key_y (the caller locates it in the file: fb_scenario_locate). */
 static int check_at(const fb_mesh *m, size_t node, const char *what, const char *key_x,
                     const char *key_y, double x, double y, fb_err *err)
 {
   const double *p = fb_mesh_node_xyz(m, node);
   const int x_off = fabs(p[0] - x) > 1e-3;
-  if (x_off || fabs(p[1] - y) > 1e-3)
-    return fb_err_set(err, FB_EMODEL,
-                      "%s: the scenario puts %s at (%.6g, %.6g) m, the mesh's node %ld at "
-                      "(%.6g, %.6g) m (they must agree within 1 mm)",
-                      x_off ? key_x : key_y, what, x, y, fb_mesh_node_id(m, node), p[0], p[1]);
-  return FB_OK;
+  if (!x_off && fabs(p[1] - y) <= 1e-3)
+    return FB_OK;
+  fb_err_set(err, FB_EMODEL,
+             "the scenario puts %s at (%.6g, %.6g) m, the mesh's node %ld at (%.6g, %.6g) m "
+             "(they must agree within 1 mm)",
+             what, x, y, fb_mesh_node_id(m, node), p[0], p[1]);
+  return fb_err_set_key(err, "%s", x_off ? key_x : key_y);
+}
+
+/* Mesh node set of attachment a ("SUSP_LF", "DRIVER"), its logical key
+ * prefix ("corners.LF", "mounts.driver") and point; new strings. */
+static int attach_names(const fb_scenario *s, size_t a, char **set, char **key, double *x,
+                        double *y)
+{
+  if (a < s->ncorners) {
+    const fb_corner_params *c = &s->corner[a];
+    *set = fb_strdup_printf("SUSP_%s", c->name);
+    *key = fb_strdup_printf("corners.%s", c->name);
+    *x = c->x;
+    *y = c->y;
+  } else {
+    const fb_mount *mt = &s->mount[a - s->ncorners];
+    *set = fb_strdup(mt->name);
+    for (char *p = *set; p && *p; ++p)
+      *p = (char)toupper((unsigned char)*p);
+    *key = fb_strdup_printf("mounts.%s", mt->name);
+    *x = mt->x;
+    *y = mt->y;
+  }
+  return *set && *key ? FB_OK : FB_ENOMEM;
 }
 
 static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
 {
-  int rc = FB_OK;
-  for (int a = 0; !rc && a < FB_NATTACH; ++a) {
-    char name[16];
-    double x, y;
-    if (a < FB_NCORNERS) {
-      snprintf(name, sizeof name, "SUSP_%s", fb_corner_name(a));
-      x = s->corner[a].x;
-      y = s->corner[a].y;
-    } else {
-      const fb_mount *mt = a == FB_ATTACH_DRIVER ? &s->driver : &s->engine;
-      snprintf(name, sizeof name, "%s", a == FB_ATTACH_DRIVER ? "DRIVER" : "ENGINE");
-      x = mt->x;
-      y = mt->y;
-    }
-    char key[32];
-    if (a < FB_NCORNERS)
-      snprintf(key, sizeof key, "suspensions.%s", fb_corner_name(a));
-    else
-      snprintf(key, sizeof key, "%s", a == FB_ATTACH_DRIVER ? "driver" : "engine");
+  h->nattach = fb_scenario_nattach(s);
+  h->attach_node = malloc(h->nattach * sizeof *h->attach_node);
+  int rc = h->attach_node ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t a = 0; !rc && a < h->nattach; ++a) {
+    char *set = NULL, *key = NULL;
+    double x = 0.0, y = 0.0;
+    rc = attach_names(s, a, &set, &key, &x, &y);
+    char *kx = rc ? NULL : fb_strdup_printf("%s.x", key);
+    char *ky = rc ? NULL : fb_strdup_printf("%s.y", key);
     const size_t *nodes = NULL;
-    rc = nset_nodes(h->mesh, name, 1, &nodes, err);
+    if (!rc && !(kx && ky))
+      rc = FB_ENOMEM;
+    if (rc)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
     if (!rc)
-      rc = check_at(h->mesh, nodes[0], name, key, key, x, y, err);
+      rc = nset_nodes(h->mesh, set, 1, &nodes, err);
+    if (!rc)
+      rc = check_at(h->mesh, nodes[0], set, kx, ky, x, y, err);
     if (!rc)
       h->attach_node[a] = nodes[0];
+    free(set);
+    free(key);
+    free(kx);
+    free(ky);
   }
   return rc;
 }
@@ -91,10 +116,10 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   if (!rc && !(h->load_node = malloc(s->nload * sizeof *h->load_node)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; !rc && k < s->nload; ++k) {
-    char what[32], key[48];
+    char what[32];
     snprintf(what, sizeof what, "LOAD node %zu", k + 1);
-    snprintf(key, sizeof key, "load.points[%zu]", k);
-    rc = check_at(h->mesh, nodes[k], what, key, key, s->load_x[k], s->load_y[k], err);
+    rc = check_at(h->mesh, nodes[k], what, "load.points", "load.points", s->load_x[k],
+                  s->load_y[k], err);
     h->load_node[k] = nodes[k];
   }
   h->nload = s->nload;
@@ -164,26 +189,25 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
                                 s->hull_drill_factor};
   fb_mesh *mesh = NULL;
   if (!s->hull_deck) {
-    /* The generator's errors about a scenario value start with its key,
-     * located in the file; the others with "hull mesh:". */
+    /* The generator's errors about a scenario value carry its logical
+     * key (the caller locates it); the others start with "hull mesh:". */
     int rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
     if (!rc)
       rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
-    if (rc)
-      fb_scenario_blame(s, err);
     return rc;
   }
   /* As for a CSV table, a deck's error is reported at the scenario's
-   * hull.mesh.deck (located by fb_scenario_blame), then at the deck's own
-   * line ("DECK:LINE: ..."); the node sets keep no line, so their errors
-   * name the deck alone. */
+   * hull.mesh.deck, then at the deck's own line ("DECK:LINE: ..."); the
+   * node sets keep no line, so their errors name the deck alone; a node
+   * that is off keeps the key of the scenario's point. */
   int rc = fb_mesh_read_inp(s->hull_deck, &mesh, NULL, err);
   if (rc)
-    fb_err_prefix(err, "hull.mesh.deck: ");
-  if (!rc && (rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err)))
-    fb_err_prefix(err, "hull.mesh.deck: %s: ", s->hull_deck);
-  if (rc)
-    fb_scenario_blame(s, err);
+    fb_err_set_key(err, "hull.mesh.deck");
+  if (!rc && (rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err))) {
+    fb_err_prefix(err, "%s: ", s->hull_deck);
+    if (!err || !err->key[0])
+      fb_err_set_key(err, "hull.mesh.deck");
+  }
   return rc;
 }
 
@@ -340,22 +364,22 @@ static int vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, fb_mat **
     fb_mat_free(&kh);
     return rc;
   }
-  size_t nh = fb_mat_nrows(kh), n = nh + 2 + FB_NCORNERS;
+  const size_t nm = s->nmounts;
+  size_t nh = fb_mat_nrows(kh), n = nh + nm + s->ncorners;
   trips tk = {0}, tm = {0};
   trips_visit vk = {&tk, 0}, vm = {&tm, 0};
   fb_mat_foreach(kh, visit_push, &vk);
   fb_mat_foreach(mh, visit_push, &vm);
   rc = vk.failed || vm.failed ? FB_ENOMEM : FB_OK;
-  const fb_mount *mounts[2] = {&s->driver, &s->engine};
-  for (int b = 0; !rc && b < 2; ++b) {
-    size_t hull_dof = 6 * h->attach_node[FB_ATTACH_DRIVER + b] + 2;
-    rc = add_spring(&tk, nh + (size_t)b, hull_dof, mounts[b]->stiffness);
+  for (size_t b = 0; !rc && b < nm; ++b) {
+    const size_t hull_dof = 6 * h->attach_node[s->ncorners + b] + 2;
+    rc = add_spring(&tk, nh + b, hull_dof, s->mount[b].stiffness);
     if (!rc)
-      rc = trips_push(&tm, nh + (size_t)b, nh + (size_t)b, mounts[b]->mass);
+      rc = trips_push(&tm, nh + b, nh + b, s->mount[b].mass);
   }
-  for (int c = 0; !rc && c < FB_NCORNERS; ++c) {
+  for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     const fb_corner_params *cp = &s->corner[c];
-    size_t wheel = nh + 2 + (size_t)c, hull_dof = 6 * h->attach_node[c] + 2;
+    const size_t wheel = nh + nm + c, hull_dof = 6 * h->attach_node[c] + 2;
     /* Spring travel = r x wheel travel: stiffness r^2 k at the wheel. */
     rc = add_spring(&tk, wheel, hull_dof, cp->motion_ratio * cp->motion_ratio * cp->spring_k);
     if (!rc)
@@ -402,6 +426,7 @@ typedef struct describe_ctx {
   double *r, *mr; /* rigid modes and M_h r (nh x 6 each) */
   double *mv;     /* M v, ndof */
   size_t nh, ndof;
+  const fb_scenario *s; /* names of the mounts and corners after the hull's DOFs */
 } describe_ctx;
 
 /* The hull's kinetic energy split by M_h-orthogonal projection onto its
@@ -481,18 +506,18 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
     if (e <= best)
       continue;
     best = e;
-    size_t b = i - d->nh;
-    if (b < 2)
-      snprintf(name, sizeof name, "%s", b == 0 ? "driver seat" : "engine");
+    const size_t b = i - d->nh;
+    if (b < d->s->nmounts)
+      snprintf(name, sizeof name, "%s", d->s->mount[b].name);
     else
-      snprintf(name, sizeof name, "wheel hop %s", fb_corner_name((int)b - 2));
+      snprintf(name, sizeof name, "wheel hop %s", d->s->corner[b - d->s->nmounts].name);
   }
   snprintf(out, size, "%s (%.0f%%)", name, total > 0 ? 100.0 * best / total : 0.0);
 }
 
 /* Scales v so that the largest displacement over the hull nodes (length
- * of the translation), the driver and the engine is 1, and positive. */
-static void normalise(const fb_fe_hull *h, size_t nh, double *v, size_t ndof)
+ * of the translation) and the mounted bodies is 1, and positive. */
+static void normalise(const fb_fe_hull *h, size_t nh, size_t nmounts, double *v, size_t ndof)
 {
   double big = 0.0, sign = 1.0;
   for (size_t i = 0; i < fb_mesh_nnodes(h->mesh); ++i) {
@@ -506,7 +531,7 @@ static void normalise(const fb_fe_hull *h, size_t nh, double *v, size_t ndof)
       sign = u[k] < 0 ? -1.0 : 1.0;
     }
   }
-  for (size_t i = nh; i < nh + 2; ++i)
+  for (size_t i = nh; i < nh + nmounts; ++i)
     if (fabs(v[i]) > big) {
       big = fabs(v[i]);
       sign = v[i] < 0 ? -1.0 : 1.0;
@@ -574,7 +599,7 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
   *out = NULL;
   fb_mat *K = NULL, *M = NULL, *mh = NULL;
   fb_mode_set *ms = NULL;
-  describe_ctx d = {NULL, NULL, NULL, NULL, 0, 0};
+  describe_ctx d = {NULL, NULL, NULL, NULL, 0, 0, s};
   int rc = vehicle_matrices(s, h, &K, &M, &mh, err);
   if (!rc) {
     d.M = M;
@@ -620,7 +645,7 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
   for (size_t k = 0; !rc && k < ms->nmodes; ++k) {
     double *v = ms->shapes + k * d.ndof;
     describe_mode(&d, v, ms->description[k], sizeof ms->description[k]);
-    normalise(h, d.nh, v, d.ndof);
+    normalise(h, d.nh, s->nmounts, v, d.ndof);
   }
   free(d.r);
   free(d.mr);
@@ -700,18 +725,19 @@ static void hull_coords_free(hull_coords *c)
 static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords *c, fb_err *err)
 {
   double beta = 0.0;
-  const size_t n = c->ndof, nf = FB_NATTACH + 1;
+  const size_t n = c->ndof, nf = h->nattach + 1;
   double *F = calloc(n * nf, sizeof *F), *lambda = NULL;
   size_t nrigid = 0;
   int rc = F ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t a = 0; !rc && a < FB_NATTACH; ++a)
+  for (size_t a = 0; !rc && a < h->nattach; ++a)
     F[a * n + 6 * h->attach_node[a] + 2] = 1.0;
   for (size_t k = 0; !rc && k < h->nload; ++k)
-    F[FB_NATTACH * n + 6 * h->load_node[k] + 2] = 1.0;
-  if (!rc && (size_t)s->hull_modes > n)
-    rc = fb_err_set(err, FB_EINVAL,
-                    "hull.fe.modes: %d modes, more than the hull's %zu degrees of freedom",
-                    s->hull_modes, n);
+    F[h->nattach * n + 6 * h->load_node[k] + 2] = 1.0;
+  if (!rc && (size_t)s->hull_modes > n) {
+    fb_err_set(err, FB_EINVAL, "%d modes, more than the hull's %zu degrees of freedom",
+               s->hull_modes, n);
+    rc = fb_err_set_key(err, "hull.fe.modes");
+  }
   if (!rc)
     rc = fb_fem_reduce_free(c->K, c->M, (size_t)s->hull_modes, F, nf, &c->T, &lambda, &c->nb,
                             &nrigid, err);
@@ -774,11 +800,11 @@ static int flexible_hull_graph(const fb_fe_hull *h, hull_coords *c, fb_bg *bg, f
   if (!rc)
     rc = fb_bg_add_junction(bg, "J", FB_BG_J1, n, err);
   if (!rc)
-    rc = add_selection(bg, "to_attach", FB_NATTACH, h->attach_node, c->ndof, c->T, n, err);
+    rc = add_selection(bg, "to_attach", h->nattach, h->attach_node, c->ndof, c->T, n, err);
   if (!rc)
     rc = add_selection(bg, "to_load", h->nload, h->load_node, c->ndof, c->T, n, err);
   if (!rc)
-    rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, FB_NATTACH, err);
+    rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, h->nattach, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "load", FB_BG_J1, h->nload, err);
   static const char *const bonds[][3] = {
@@ -855,11 +881,9 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
   hull_coords_free(&c);
   if (rc) {
     fb_hull_free(&hull);
-    /* A scenario value's error is located in the file (hull.fe.modes),
-     * which lengthens the message; any other gets the context. */
-    const size_t unlocated = err ? strlen(err->msg) : 0;
-    fb_scenario_blame(s, err);
-    if (err && strlen(err->msg) == unlocated)
+    /* A scenario value's error keeps its key (the caller locates it);
+     * any other gets the context. */
+    if (err && !err->key[0])
       fb_err_prefix(err, "flexible hull: ");
     return rc;
   }

@@ -68,17 +68,18 @@ static int add_point_map(fb_bg *bg, const char *name, size_t n, const double *x,
   return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
 }
 
-/* Attachment points in "attach" port order. */
+/* Attachment points in "attach" port order: the corners, then the
+ * mounts. x and y hold fb_scenario_nattach(s) entries each. */
 static void attach_points(const fb_scenario *s, double *x, double *y)
 {
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (size_t c = 0; c < s->ncorners; ++c) {
     x[c] = s->corner[c].x;
     y[c] = s->corner[c].y;
   }
-  x[FB_ATTACH_DRIVER] = s->driver.x;
-  y[FB_ATTACH_DRIVER] = s->driver.y;
-  x[FB_ATTACH_ENGINE] = s->engine.x;
-  y[FB_ATTACH_ENGINE] = s->engine.y;
+  for (size_t b = 0; b < s->nmounts; ++b) {
+    x[s->ncorners + b] = s->mount[b].x;
+    y[s->ncorners + b] = s->mount[b].y;
+  }
 }
 
 /* Rigid hull inertia in (z, phi, theta): diag(m, Ixx, Iyy), plus, for the
@@ -122,7 +123,11 @@ static void rigid_torsion_weights(const fb_scenario *s, double *w)
 
 static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
 {
-  double m33[9], ax[FB_NATTACH], ay[FB_NATTACH];
+  const size_t na = fb_scenario_nattach(s);
+  double m33[9], *ax = malloc(2 * na * sizeof *ax);
+  if (!ax)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  double *ay = ax + na;
   hull_inertia(s, m33);
   attach_points(s, ax, ay);
   fb_mat *m = NULL;
@@ -133,11 +138,12 @@ static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
   if (!rc)
     rc = fb_bg_add_junction(bg, "J", FB_BG_J1, 3, err);
   if (!rc)
-    rc = add_point_map(bg, "to_attach", FB_NATTACH, ax, ay, err);
+    rc = add_point_map(bg, "to_attach", na, ax, ay, err);
+  free(ax);
   if (!rc)
     rc = add_point_map(bg, "to_load", s->nload, s->load_x, s->load_y, err);
   if (!rc)
-    rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, FB_NATTACH, err);
+    rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, na, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "load", FB_BG_J1, s->nload, err);
   static const char *const bonds[][3] = {
@@ -321,7 +327,7 @@ static int scenario_road(const fb_scenario *s, fb_road **out, fb_err *err)
   case FB_ROAD_PROFILE: return fb_road_new_csv(s->road_profile, out, err);
   default:
     return fb_road_new_oblique_bump(s->bump_height, s->bump_length, s->bump_angle,
-                                    s->corner[FB_LF].y - s->corner[FB_RF].y, out, err);
+                                    fb_scenario_track_width(s), out, err);
   }
 }
 
@@ -335,16 +341,18 @@ int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
     rc = fb_bg_new("road", &bg, err);
   /* Left wheels (y > 0) on the left track; each source is the road's
    * vertical velocity under its wheel, with its kinks as breakpoints. */
-  for (int c = 0; !rc && c < FB_NCORNERS; ++c) {
+  for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     const int track = s->corner[c].y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
     fb_tfun *f = NULL;
-    char name[16];
-    snprintf(name, sizeof name, "v_%s", fb_corner_name(c));
-    rc = fb_road_wheel_velocity(road, track, s->speed, fb_scenario_wheel_start(s, c), &f, err);
+    char *name = fb_strdup_printf("v_%s", s->corner[c].name);
+    rc = name ? fb_road_wheel_velocity(road, track, s->speed,
+                                       fb_scenario_wheel_start(s, (int)c), &f, err)
+              : fb_err_set(err, FB_ENOMEM, "out of memory");
     if (!rc)
       rc = fb_bg_add_source(bg, name, FB_BG_SF, 1, &f, err);
     if (!rc)
-      rc = fb_bg_add_port(bg, fb_corner_name(c), name, FB_PORT_OUT, err);
+      rc = fb_bg_add_port(bg, s->corner[c].name, name, FB_PORT_OUT, err);
+    free(name);
   }
   fb_road_free(&road);
   if (rc) {

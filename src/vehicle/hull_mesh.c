@@ -22,6 +22,7 @@
  * Nodes are shared through a table keyed by their exact coordinates: every
  * point is computed by one formula from the line arrays, so a node reached
  * from two plates has bitwise equal coordinates. */
+#include <ctype.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -30,6 +31,9 @@
 
 #include "flexbond/fem.h"
 #include "flexbond/vehicle.h"
+
+#include "core/util.h"
+#include "vehicle/vehicle_internal.h"
 
 /* Fitted defaults (docs/hull-mesh.md, "Fit"): with width 2.10 m, nose
  * 0.80 x 0.60 m and bulkheads at -1.00 and 1.90 m, Newton's method on
@@ -73,7 +77,7 @@ int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb
   /* Side walls through the outermost suspension points, so that they lie
    * on the walls' bottom edges (2.10 m for the reference scenario). */
   double half_width = 0.0;
-  for (int c = 0; c < FB_NCORNERS; ++c)
+  for (size_t c = 0; c < s->ncorners; ++c)
     half_width = fmax(half_width, fabs(s->corner[c].y));
   if (!(half_width > 0.0))
     return fb_err_set(err, FB_EINVAL,
@@ -174,7 +178,7 @@ static void add_plate(double *sums, double a, double x, double z)
  * front-bottom, nose tip, front-top, rear-top; its area and centroid by the
  * shoelace formulas (e.g. Bourke, "Calculating the area and centroid of a
  * polygon", 1988). */
-static void plates_centroid(const fb_hull_mesh_params *p, double *cx, double *cz)
+void fb_hull_mesh_centroid(const fb_hull_mesh_params *p, double *cx, double *cz)
 {
   const double w = p->width, h = p->height, xr = p->x_rear, xf = p->x_front;
   const double xn = xf + p->nose_length, zn = p->nose_height, len = xf - xr;
@@ -204,7 +208,7 @@ static void plates_centroid(const fb_hull_mesh_params *p, double *cx, double *cz
 
 typedef struct line_src {
   double value;
-  char what[64]; /* for messages, e.g. "load.points[3]" */
+  char what[80]; /* the scenario's logical key of the value, e.g. "corners.LF.x" */
   int geometric; /* a plate's own line (wall, bulkhead): its value wins */
   size_t origin; /* index in insertion order */
 } line_src;
@@ -256,21 +260,24 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
   for (size_t i = 0; i < l->nsrc; ++i) {
     const line_src *s = &l->src[i];
     const double gap = l->n > 0 ? s->value - l->values[l->n - 1] : INFINITY;
-    if (gap > MERGE_TOL && gap < MIN_GAP)
-      return fb_err_set(err, FB_EINVAL,
-                        "%s: at %s = %.9g m it is %.3g m from %s (%s = %.9g m): the generated "
-                        "hull mesh's node lines must coincide or be at least %g m apart",
-                        s->what, axis, s->value, gap, l->src[i - 1].what, axis,
-                        l->src[i - 1].value, MIN_GAP);
+    if (gap > MERGE_TOL && gap < MIN_GAP) {
+      fb_err_set(err, FB_EINVAL,
+                 "at %s = %.9g m it is %.3g m from %s (%s = %.9g m): the generated hull "
+                 "mesh's node lines must coincide or be at least %g m apart",
+                 axis, s->value, gap, l->src[i - 1].what, axis, l->src[i - 1].value, MIN_GAP);
+      return fb_err_set_key(err, "%s", s->what);
+    }
     if (gap > MERGE_TOL) {
       l->values[l->n++] = s->value;
       owner = NULL;
     }
-    if (s->geometric && owner)
-      return fb_err_set(err, FB_EINVAL,
-                        "%s: coincides with %s (%s = %.9g m): two plates of the generated hull "
-                        "mesh on one line",
-                        s->what, owner->what, axis, s->value);
+    if (s->geometric && owner) {
+      fb_err_set(err, FB_EINVAL,
+                 "coincides with %s (%s = %.9g m): two plates of the generated hull mesh on "
+                 "one line",
+                 owner->what, axis, s->value);
+      return fb_err_set_key(err, "%s", s->what);
+    }
     if (s->geometric) {
       owner = s;
       l->values[l->n - 1] = s->value;
@@ -280,33 +287,32 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
   return FB_OK;
 }
 
-/* Names of the special points: attachment point k < FB_NATTACH (in the
- * order of the hull's attach port), then the load points. */
-static void point_name(size_t k, char *buf, size_t size)
+/* Logical key of special point k's coordinate axis ('x' or 'y'):
+ * attachment point k < nattach (in the order of the hull's attach port),
+ * then the load points. */
+static void point_name(const fb_scenario *s, size_t k, char axis, char *buf, size_t size)
 {
-  if (k < FB_NCORNERS)
-    snprintf(buf, size, "suspensions.%s", fb_corner_name((int)k));
-  else if (k == FB_ATTACH_DRIVER)
-    snprintf(buf, size, "driver");
-  else if (k == FB_ATTACH_ENGINE)
-    snprintf(buf, size, "engine");
+  if (k < s->ncorners)
+    snprintf(buf, size, "corners.%s.%c", s->corner[k].name, axis);
+  else if (k < fb_scenario_nattach(s))
+    snprintf(buf, size, "mounts.%s.%c", s->mount[k - s->ncorners].name, axis);
   else
-    snprintf(buf, size, "load.points[%zu]", k - FB_NATTACH);
+    snprintf(buf, size, "load.points");
 }
 
 /* Position (x, y) of special point k in the vehicle axes. */
 static void point_xy(const fb_scenario *s, size_t k, double *x, double *y)
 {
-  if (k < FB_NCORNERS) {
+  const size_t na = fb_scenario_nattach(s);
+  if (k < s->ncorners) {
     *x = s->corner[k].x;
     *y = s->corner[k].y;
-  } else if (k == FB_ATTACH_DRIVER || k == FB_ATTACH_ENGINE) {
-    const fb_mount *m = k == FB_ATTACH_DRIVER ? &s->driver : &s->engine;
-    *x = m->x;
-    *y = m->y;
+  } else if (k < na) {
+    *x = s->mount[k - s->ncorners].x;
+    *y = s->mount[k - s->ncorners].y;
   } else {
-    *x = s->load_x[k - FB_NATTACH];
-    *y = s->load_y[k - FB_NATTACH];
+    *x = s->load_x[k - na];
+    *y = s->load_y[k - na];
   }
 }
 
@@ -321,13 +327,13 @@ static void point_xy(const fb_scenario *s, size_t k, double *x, double *y)
 static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, double cx, lines *xl,
                        lines *yl, fb_err *err)
 {
-  const size_t npoints = FB_NATTACH + s->nload;
+  const size_t npoints = fb_scenario_nattach(s) + s->nload;
   xl->src = malloc((npoints + X_POINTS(p)) * sizeof *xl->src);
   yl->src = malloc((npoints + Y_POINTS) * sizeof *yl->src);
   if (!xl->src || !yl->src)
     return fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the node lines");
   const double half = 0.5 * p->width;
-  /* Sources are named by their scenario keys (fb_scenario_blame). */
+  /* Sources are named by their scenario keys (fb_err.key of an error). */
   add_src(xl, p->x_rear, "hull.mesh.generator.x_rear", 1);
   add_src(xl, p->x_front, "hull.mesh.generator.x_front", 1);
   add_src(yl, -half, "hull.mesh.generator.width", 1);
@@ -338,20 +344,22 @@ static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, doubl
     add_src(xl, p->bulkhead_x[b], what, 1);
   }
   for (size_t k = 0; k < npoints; ++k) {
-    char what[64];
+    char what_x[80], what_y[80];
     double x, y;
-    point_name(k, what, sizeof what);
+    point_name(s, k, 'x', what_x, sizeof what_x);
+    point_name(s, k, 'y', what_y, sizeof what_y);
     point_xy(s, k, &x, &y);
     const double xh = x + cx;
     const int x_in = xh >= p->x_rear - MERGE_TOL && xh <= p->x_front + MERGE_TOL;
-    if (!x_in || !(fabs(y) <= half + MERGE_TOL))
-      return fb_err_set(err, FB_EINVAL,
-                        "%s.%s: (%g, %g) m lies outside the generated hull's floor, x in "
-                        "[%.6g, %.6g], y in [%.6g, %.6g] m about the centre of mass",
-                        what, x_in ? "y" : "x", x, y, p->x_rear - cx, p->x_front - cx, -half,
-                        half);
-    add_src(xl, xh, what, 0);
-    add_src(yl, y, what, 0);
+    if (!x_in || !(fabs(y) <= half + MERGE_TOL)) {
+      fb_err_set(err, FB_EINVAL,
+                 "(%g, %g) m lies outside the generated hull's floor, x in [%.6g, %.6g], y in "
+                 "[%.6g, %.6g] m about the centre of mass",
+                 x, y, p->x_rear - cx, p->x_front - cx, -half, half);
+      return fb_err_set_key(err, "%s", x_in ? what_y : what_x);
+    }
+    add_src(xl, xh, what_x, 0);
+    add_src(yl, y, what_y, 0);
   }
   int rc = lines_merge(xl, "x", err);
   if (rc == FB_OK)
@@ -864,23 +872,25 @@ static int check_refined_size(const build_mesh *coarse, int d, fb_err *err)
     return FB_OK;
   const double bytes = elements * BYTES_PER_ELEMENT;
   const double allowed = MAX_REFINED_ELEMENTS * BYTES_PER_ELEMENT;
-  if (d == 1) /* the generator's own rows and divisions made it so large */
-    return fb_err_set(err, FB_EINVAL,
-                      "hull.mesh.generator: the generated mesh has %zu elements, which would "
-                      "need about %.1f GB of memory for System 2 (about 64 KiB per element), "
-                      "more than the %.1f GB allowed (at most %d elements; docs/hull-mesh.md, "
-                      "\"Limits\")",
-                      coarse->nelems, bytes / 1e9, allowed / 1e9, MAX_REFINED_ELEMENTS);
+  if (d == 1) { /* the generator's own rows and divisions made it so large */
+    fb_err_set(err, FB_EINVAL,
+               "the generated mesh has %zu elements, which would need about %.1f GB of memory "
+               "for System 2 (about 64 KiB per element), more than the %.1f GB allowed (at "
+               "most %d elements; docs/hull-mesh.md, \"Limits\")",
+               coarse->nelems, bytes / 1e9, allowed / 1e9, MAX_REFINED_ELEMENTS);
+    return fb_err_set_key(err, "hull.mesh.generator");
+  }
   int most = 1;
   while ((double)coarse->nelems * (most + 1) * (most + 1) <= MAX_REFINED_ELEMENTS)
     ++most;
-  return fb_err_set(err, FB_EINVAL,
-                    "hull.mesh.density: %d refines the generated mesh's %zu elements into "
-                    "%.0f, which would need about %.1f GB of memory for System 2 (about "
-                    "64 KiB per element), more than the %.1f GB allowed (at most %d "
-                    "elements: density %d for this mesh; docs/hull-mesh.md, \"Limits\")",
-                    d, coarse->nelems, elements, bytes / 1e9, allowed / 1e9,
-                    MAX_REFINED_ELEMENTS, most);
+  fb_err_set(err, FB_EINVAL,
+             "%d refines the generated mesh's %zu elements into "
+             "%.0f, which would need about %.1f GB of memory for System 2 (about "
+             "64 KiB per element), more than the %.1f GB allowed (at most %d "
+             "elements: density %d for this mesh; docs/hull-mesh.md, \"Limits\")",
+             d, coarse->nelems, elements, bytes / 1e9, allowed / 1e9, MAX_REFINED_ELEMENTS,
+             most);
+  return fb_err_set_key(err, "hull.mesh.density");
 }
 
 static int refine(const build_mesh *coarse, int d, build_mesh *fine, fb_err *err)
@@ -933,26 +943,35 @@ static int find_node(const build_mesh *b, double x, double y, double z, size_t *
 static int add_point_sets(fb_mesh *m, const build_mesh *coarse, const fb_scenario *s,
                           const lines *xl, const lines *yl, fb_err *err)
 {
-  static const char *const attach_sets[FB_NATTACH] = {
-      "SUSP_LF", "SUSP_RF", "SUSP_LM", "SUSP_RM", "SUSP_LR", "SUSP_RR", "DRIVER", "ENGINE"};
-  const size_t xp = xl->nsrc - FB_NATTACH - s->nload;
+  const size_t na = fb_scenario_nattach(s);
+  const size_t xp = xl->nsrc - na - s->nload;
   int rc = FB_OK;
-  for (size_t k = 0; k < FB_NATTACH + s->nload && rc == FB_OK; ++k) {
-    char what[64];
-    point_name(k, what, sizeof what);
+  for (size_t k = 0; k < na + s->nload && rc == FB_OK; ++k) {
+    char what[80];
+    point_name(s, k, 'x', what, sizeof what);
     const double x = xl->values[xl->line[xp + k]], y = yl->values[yl->line[Y_POINTS + k]];
     size_t node = 0;
-    rc = find_node(coarse, x, y, 0.0, &node, what, err);
+    char *set = k < s->ncorners ? fb_strdup_printf("SUSP_%s", s->corner[k].name)
+                : k < na        ? fb_strdup(s->mount[k - s->ncorners].name)
+                                : fb_strdup("LOAD");
+    if (!set)
+      rc = fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the node sets");
+    for (char *c = set; c && k >= s->ncorners && k < na && *c; ++c)
+      *c = (char)toupper((unsigned char)*c);
     if (rc == FB_OK)
-      rc = fb_mesh_add_nset(m, k < FB_NATTACH ? attach_sets[k] : "LOAD", 1, &node, err);
+      rc = find_node(coarse, x, y, 0.0, &node, what, err);
+    if (rc == FB_OK)
+      rc = fb_mesh_add_nset(m, set, 1, &node, err);
+    free(set);
   }
   const size_t *load = NULL;
   size_t nload = 0;
   if (rc == FB_OK && fb_mesh_nset(m, "LOAD", &load, &nload) && nload != s->nload)
     rc = fb_err_set(err, FB_EINVAL,
-                    "load.points: the %zu points fall on only %zu nodes of the generated hull "
-                    "mesh (points on one node)",
-                    s->nload, nload);
+                    "the %zu points fall on only %zu nodes of the generated hull mesh (points "
+                    "on one node)",
+                    s->nload, nload),
+    fb_err_set_key(err, "load.points");
   const double ends[2] = {xl->values[xl->n - 1], xl->values[0]};
   const char *edge_sets[2] = {"FRONT_EDGE", "REAR_EDGE"};
   for (int e = 0; e < 2 && rc == FB_OK; ++e) {
@@ -1011,7 +1030,7 @@ int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb
   if (rc != FB_OK)
     return rc;
   double cx, cz;
-  plates_centroid(p, &cx, &cz);
+  fb_hull_mesh_centroid(p, &cx, &cz);
   lines xl = {0}, yl = {0};
   build_mesh coarse = {0}, fine = {0};
   fb_mesh *m = NULL;

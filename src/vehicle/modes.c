@@ -23,22 +23,21 @@ static double body_of_state(const fb_scenario *s, const fb_bg *g, const fb_bd *b
     const double m[3] = {s->hull_mass, s->hull_ixx, s->hull_iyy};
     return m[comp];
   }
-  if (strcmp(el, "driver.mass") == 0) {
-    snprintf(name, size, "driver seat");
-    return s->driver.mass;
-  }
-  if (strcmp(el, "engine.mass") == 0) {
-    snprintf(name, size, "engine");
-    return s->engine.mass;
-  }
-  for (int c = 0; c < FB_NCORNERS; ++c) {
-    char wheel[32];
-    snprintf(wheel, sizeof wheel, "susp_%s.wheel", fb_corner_name(c));
-    if (strcmp(el, wheel) == 0) {
-      snprintf(name, size, "wheel hop %s", fb_corner_name(c));
+  /* A mount's mass is "<mount>.mass", a wheel "susp_<corner>.wheel". */
+  const char *dot = strchr(el, '.');
+  for (size_t b = 0; dot && b < s->nmounts; ++b)
+    if (!strcmp(dot, ".mass") && !strncmp(el, s->mount[b].name, (size_t)(dot - el)) &&
+        s->mount[b].name[dot - el] == '\0') {
+      snprintf(name, size, "%s", s->mount[b].name);
+      return s->mount[b].mass;
+    }
+  for (size_t c = 0; dot && c < s->ncorners; ++c)
+    if (!strcmp(dot, ".wheel") && !strncmp(el, "susp_", 5) &&
+        !strncmp(el + 5, s->corner[c].name, (size_t)(dot - el - 5)) &&
+        s->corner[c].name[dot - el - 5] == '\0') {
+      snprintf(name, size, "wheel hop %s", s->corner[c].name);
       return s->corner[c].wheel_mass;
     }
-  }
   snprintf(name, size, "%s", el);
   return 1.0;
 }
@@ -165,9 +164,9 @@ static int collect(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, const 
 
 static void remove_damping(fb_scenario *s)
 {
-  s->driver.damping = 0.0;
-  s->engine.damping = 0.0;
-  for (int c = 0; c < FB_NCORNERS; ++c) {
+  for (size_t b = 0; b < s->nmounts; ++b)
+    s->mount[b].damping = 0.0;
+  for (size_t c = 0; c < s->ncorners; ++c) {
     s->corner[c].damper_c = 0.0;
     s->corner[c].damper_npoints = 0;
     s->corner[c].tire_c = 0.0;
@@ -187,13 +186,13 @@ static void flatten_road(fb_scenario *s)
   s->bump_length = 1.0;
   s->bump_angle = 0.0;
   /* Every wheel meets the (flat) bump at t >= 0: the rearmost one at
-   * bump_time + (x_LF - x) / V. */
+   * bump_time + (x_first - x) / V. */
   s->bump_time = 0.0;
-  for (int c = 0; c < FB_NCORNERS; ++c)
-    s->bump_time = fmax(s->bump_time, (s->corner[c].x - s->corner[FB_LF].x) / s->speed);
+  for (size_t c = 0; c < s->ncorners; ++c)
+    s->bump_time = fmax(s->bump_time, (s->corner[c].x - s->corner[0].x) / s->speed);
   double last = 0.0;
-  for (int c = 0; c < FB_NCORNERS; ++c)
-    last = fmax(last, fb_scenario_bump_exit(s, c));
+  for (size_t c = 0; c < s->ncorners; ++c)
+    last = fmax(last, fb_scenario_bump_exit(s, (int)c));
   s->t_end = fmax(s->t_end, last + 1.0);
 }
 

@@ -1,0 +1,157 @@
+/* One hull for both systems (flexbond/vehicle.h, fb_vehicle_hull_complete):
+ * with a finite-element hull, System 1's mass, inertias and centre of
+ * mass come from the same mesh as System 2's, so the two systems compare
+ * like with like; positions given in a declared vehicle frame are moved
+ * to the hull's centre of mass, the frame of every fragment. */
+#include <math.h>
+#include <stdio.h>
+
+#include "flexbond/vehicle.h"
+
+#include "vehicle/vehicle_internal.h"
+
+/* Largest relative gap between a typed rigid-body property and the mesh's
+ * before the file is refused: the data sheet's values and the fitted
+ * default mesh agree within 6e-6; 0.5 % is far above that round-off of a
+ * fit and far below what a changed hull (a thicker plate, another
+ * material, a bulkhead more) makes, which is what must not pass silently. */
+#define PROPERTY_TOLERANCE 0.005
+
+/* The hull's mesh, as System 2 builds it (fe_hull.c), and its bare
+ * (structural) mass, centre of mass and inertia tensor about it. */
+static int mesh_properties(const fb_scenario *s, double *mass, double *cg, double *inertia,
+                           fb_err *err)
+{
+  fb_fe_hull *h = NULL;
+  fb_mat *M = NULL;
+  int rc = fb_vehicle_fe_hull(s, &h, err);
+  if (!rc)
+    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, &M, err);
+  if (!rc)
+    rc = fb_fem_mass_properties(h->mesh, M, mass, cg, inertia, err);
+  fb_mat_free(&M);
+  fb_fe_hull_free(&h);
+  return rc;
+}
+
+/* A typed value against the mesh's: FB_EINVAL with both beyond the
+ * tolerance. */
+static int check_property(const char *key, const char *what, double typed, double mesh,
+                          const char *unit, fb_err *err)
+{
+  if (fabs(typed - mesh) <= PROPERTY_TOLERANCE * fabs(mesh))
+    return FB_OK;
+  fb_err_set(err, FB_EINVAL,
+             "the file gives the hull's %s as %.6g %s, its finite-element mesh has %.6g %s "
+             "(%+.2f %%, more than the %.1f %% allowed): System 1 and System 2 would not "
+             "have the same hull. Remove hull.mass, Ixx and Iyy to take the mesh's, or "
+             "correct them",
+             what, typed, unit, mesh, unit, 100.0 * (typed - mesh) / mesh,
+             100.0 * PROPERTY_TOLERANCE);
+  return fb_err_set_key(err, "%s", key);
+}
+
+/* Rigid-body properties from the mesh, or the typed ones checked
+ * against it. Within the tolerance the typed values stand (they are
+ * what the mesh was fitted to: the paper's Table 2). */
+static int complete_properties(fb_scenario *s, fb_err *err)
+{
+  double mass = 0.0, cg[3], inertia[9];
+  int rc = mesh_properties(s, &mass, cg, inertia, err);
+  if (rc)
+    return rc;
+  if (!s->hull_mass_given) {
+    s->hull_mass = mass;
+    s->hull_ixx = inertia[0];
+    s->hull_iyy = inertia[4];
+    return FB_OK;
+  }
+  rc = check_property("hull.mass", "mass", s->hull_mass, mass, "kg", err);
+  if (!rc)
+    rc = check_property("hull.Ixx", "roll inertia Ixx", s->hull_ixx, inertia[0], "kg m^2", err);
+  if (!rc)
+    rc =
+        check_property("hull.Iyy", "pitch inertia Iyy", s->hull_iyy, inertia[4], "kg m^2", err);
+  return rc;
+}
+
+/* Every position of s moved by (-dx, -dy). */
+static void shift_positions(fb_scenario *s, double dx, double dy)
+{
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    s->corner[c].x -= dx;
+    s->corner[c].y -= dy;
+  }
+  for (size_t b = 0; b < s->nmounts; ++b) {
+    s->mount[b].x -= dx;
+    s->mount[b].y -= dy;
+  }
+  for (size_t k = 0; k < s->nload; ++k) {
+    s->load_x[k] -= dx;
+    s->load_y[k] -= dy;
+  }
+  s->edge_front_x -= dx;
+  s->edge_rear_x -= dx;
+  s->edge_left_y -= dy;
+  s->edge_right_y -= dy;
+}
+
+/* The hull's centre of mass in the declared frame: the generated mesh's
+ * (its plates are symmetric about y = 0), else the typed one. */
+static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
+{
+  if (s->has_fe_hull && s->hull_deck) {
+    fb_err_set(err, FB_EINVAL,
+               "a hull deck's nodes are read relative to the hull's centre of mass: give the "
+               "file's positions in that frame too (no frame.origin) or generate the mesh");
+    return fb_err_set_key(err, "frame.origin");
+  }
+  if (s->has_fe_hull) {
+    double cz = 0.0;
+    fb_hull_mesh_centroid(&s->hull_mesh, x, &cz);
+    *y = 0.0;
+    if (!s->hull_cg_given)
+      return FB_OK;
+    const double length = s->hull_mesh.x_front + s->hull_mesh.nose_length - s->hull_mesh.x_rear;
+    if (fabs(s->hull_cg_x - *x) <= PROPERTY_TOLERANCE * length && fabs(s->hull_cg_y) <= 1e-3)
+      return FB_OK;
+    fb_err_set(err, FB_EINVAL,
+               "the file puts the hull's centre of mass at (%.6g, %.6g) m, its generated mesh "
+               "at (%.6g, 0) m (they must agree within %.1f %% of the hull's %.4g m length): "
+               "remove hull.centre_of_mass to take the mesh's",
+               s->hull_cg_x, s->hull_cg_y, *x, 100.0 * PROPERTY_TOLERANCE, length);
+    return fb_err_set_key(err, "hull.centre_of_mass");
+  }
+  if (!s->hull_cg_given) {
+    fb_err_set(err, FB_EINVAL,
+               "with a declared frame, a hull without a finite-element mesh needs its "
+               "centre of mass: add hull.centre_of_mass {x, y}");
+    return fb_err_set_key(err, "frame.origin");
+  }
+  *x = s->hull_cg_x;
+  *y = s->hull_cg_y;
+  return FB_OK;
+}
+
+int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
+{
+  int rc = FB_OK;
+  if (s->frame_origin) {
+    double x = 0.0, y = 0.0;
+    rc = frame_centre(s, &x, &y, err);
+    if (rc)
+      return rc;
+    s->hull_cg_x = x;
+    s->hull_cg_y = y;
+    shift_positions(s, x, y);
+  }
+  if (s->has_fe_hull)
+    rc = complete_properties(s, err);
+  else if (!s->hull_mass_given) {
+    fb_err_set(err, FB_EINVAL,
+               "a hull without a finite-element model (hull.mesh, hull.fe) needs its mass, "
+               "Ixx and Iyy");
+    rc = fb_err_set_key(err, "hull");
+  }
+  return rc;
+}

@@ -1,0 +1,36 @@
+/* The vehicle's layout as data: its attachment points, its subsystem
+ * instances by name, the road's tracks (flexbond/vehicle.h). */
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+size_t fb_scenario_nattach(const fb_scenario *s)
+{
+  return s->ncorners + s->nmounts;
+}
+
+long fb_scenario_corner_find(const fb_scenario *s, const char *name)
+{
+  for (size_t c = 0; name && c < s->ncorners; ++c)
+    if (!strcmp(s->corner[c].name, name))
+      return (long)c;
+  return -1;
+}
+
+long fb_scenario_mount_find(const fb_scenario *s, const char *name)
+{
+  for (size_t b = 0; name && b < s->nmounts; ++b)
+    if (!strcmp(s->mount[b].name, name))
+      return (long)b;
+  return -1;
+}
+
+double fb_scenario_track_width(const fb_scenario *s)
+{
+  /* The first corner leads the left track (y > 0); the right track is the
+   * first corner on the other side of the centre line. */
+  for (size_t c = 1; c < s->ncorners; ++c)
+    if (s->corner[c].y <= 0.0)
+      return s->corner[0].y - s->corner[c].y;
+  return 0.0;
+}

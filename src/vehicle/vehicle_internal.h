@@ -1,0 +1,20 @@
+/* Internal to src/vehicle: what assemble.c needs of outputs.c and
+ * layout.c. */
+#ifndef FLEXBOND_VEHICLE_INTERNAL_H
+#define FLEXBOND_VEHICLE_INTERNAL_H
+
+#include "flexbond/vehicle.h"
+
+/* The probe measuring output o on the vehicle assembled around hull
+ * (instance names of fb_vehicle_assemble). *p's name, target and
+ * weights are new (fb_vehicle_probes_free); its unit is the kind table's
+ * (NULL for bond signals: from the bond's domain). FB_EINVAL for an unknown signal or mount. */
+int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_output_spec *o,
+                            fb_probe_spec *p, fb_err *err);
+
+/* The generated hull's centre of mass in its own frame: x as the
+ * parameters give it, z above the floor (uniform plates: the area
+ * centroid; hull_mesh.c). */
+void fb_hull_mesh_centroid(const fb_hull_mesh_params *p, double *cx, double *cz);
+
+#endif
