@@ -60,7 +60,7 @@ static void test_number_and_nested(void)
   fb_err err;
   CHECK(fb_scenario_load(EXAMPLE, &base, &err) == FB_OK);
   const fb_scenario_override ov[] = {{"road.speed_kmh", "20"},
-                                     {"suspensions.LF.spring_k", "200000"},
+                                     {"suspensions.axles[0].spring_k", "200000"},
                                      {"angle_deg", "30"},
                                      {"hull.mesh.generator.bulkheads[1]", "-0.9"},
                                      {"simulation.initial", "static"}};
@@ -73,14 +73,14 @@ static void test_number_and_nested(void)
   }
   /* 20 km/h = 50/9 m/s; 30 deg = pi/6. */
   CHECK_NEAR(s->speed, 50.0 / 9.0, TIGHT * 50.0 / 9.0);
-  CHECK(s->corner[FB_LF].spring_k == 200000);
+  CHECK(s->corner[0].spring_k == 200000 && s->corner[1].spring_k == 200000);
   CHECK_NEAR(s->bump_angle, atan(1.0) * 4 / 6, TIGHT);
   CHECK(s->hull_mesh.bulkhead_x[1] == -0.9);
   CHECK(s->initial == FB_INITIAL_STATIC);
-  /* Everything else as in the file: the right front spring shares the
-   * left's value in the file but is a value of its own. */
-  CHECK(s->corner[FB_RF].spring_k == base->corner[FB_RF].spring_k);
-  CHECK(s->corner[FB_RF].spring_k == 145300);
+  /* The front axle's value is both its corners'; everything else as in
+   * the file: the middle axle's springs. */
+  CHECK(s->corner[2].spring_k == base->corner[2].spring_k);
+  CHECK(s->corner[3].spring_k == 345550);
   CHECK(s->hull_mesh.bulkhead_x[0] == base->hull_mesh.bulkhead_x[0]);
   CHECK(s->hull_mesh.bulkhead_x[2] == base->hull_mesh.bulkhead_x[2]);
   CHECK(s->bump_height == base->bump_height && s->t_end == base->t_end);
@@ -154,9 +154,9 @@ static void test_relative_references(void)
   if (rc != FB_OK)
     fprintf(stderr, "  %s\n", err.msg);
   CHECK(s && base && fabs(s->speed - 50.0 / 9.0) < TIGHT * 50.0 / 9.0 &&
-        s->corner[FB_LR].damper_npoints > 1 &&
-        s->corner[FB_LR].damper_npoints == base->corner[FB_LR].damper_npoints &&
-        s->corner[FB_LR].damper_f[1] == base->corner[FB_LR].damper_f[1]);
+        s->corner[4].damper_npoints > 1 &&
+        s->corner[4].damper_npoints == base->corner[4].damper_npoints &&
+        s->corner[4].damper_f[1] == base->corner[4].damper_f[1]);
   fb_scenario_free(&s);
   fb_scenario_free(&base);
 }
@@ -201,8 +201,8 @@ static void test_bad_keys(const char *text)
 
   const fb_scenario_override ambiguous = {"mass", "1"};
   expect_error(&ambiguous, 1, FB_EINVAL, "--set mass=1: " EXAMPLE ": key 'mass' is ambiguous",
-               (const char *const[]){"hull.mass", "driver.mass", "engine.mass", "wheel.mass",
-                                     "give the dotted path", NULL});
+               (const char *const[]){"hull.mass", "mounts[0].mass", "mounts[1].mass",
+                                     "wheel.mass", "give the dotted path", NULL});
   const fb_scenario_override absent = {"speed", "1"};
   expect_error(&absent, 1, FB_EINVAL, "--set speed=1: " EXAMPLE ": no key 'speed'",
                (const char *const[]){"road", "simulation", NULL});
@@ -232,7 +232,7 @@ static void test_bad_keys(const char *text)
         !strcmp(full, "road.speed_kmh"));
   free(full);
   CHECK(fb_scenario_override_key(EXAMPLE, "mass", &full, &err) == FB_EINVAL && !full &&
-        strstr(err.msg, "hull.mass, driver.mass"));
+        strstr(err.msg, "hull.mass, mounts[0].mass"));
   CHECK(fb_scenario_override_key("no/such/file.yaml", "mass", &full, &err) == FB_EIO);
 }
 
@@ -258,10 +258,11 @@ static void test_bad_values(const char *text)
                (const char *const[]){"control character", NULL});
   /* fb_scenario_check's message, blamed at the new value. */
   position_of(text, "spring_k: 145300", strlen("spring_k: "), value, sizeof value);
-  const fb_scenario_override negative = {"suspensions.LF.spring_k", "-1"};
-  snprintf(
-      prefix, sizeof prefix,
-      "--set suspensions.LF.spring_k=-1: " EXAMPLE ":%s: suspensions.LF.spring_k: ", value);
+  const fb_scenario_override negative = {"suspensions.axles[0].spring_k", "-1"};
+  snprintf(prefix, sizeof prefix,
+           "--set suspensions.axles[0].spring_k=-1: " EXAMPLE
+           ":%s: suspensions.axles[0].spring_k: ",
+           value);
   expect_error(&negative, 1, FB_EINVAL, prefix, (const char *const[]){"> 0", NULL});
   /* A consequence of the values: at 2 km/h the last wheel leaves the bump
    * at 5 + 8.7 m / (2/3.6 m/s) = 20.7 s, after t_end = 15 s. The message
@@ -273,11 +274,12 @@ static void test_bad_values(const char *text)
                (const char *const[]){"road.bump: bump longer than the run", NULL});
 }
 
-/* An error found after loading (fb_scenario_blame) about a value that an
- * override replaced names the override, then the value's place in the
- * file, as a loading error does; one about another value is located only,
- * and one that names no key is left alone. A clone keeps the overrides. */
-static void test_late_blame(const char *text)
+/* An error found after loading (fb_scenario_locate) about a value that
+ * an override replaced names the override, then the value's place in the
+ * file, as a loading error does, and records it in fb_err's fields; one
+ * about another value is located only, and one whose key the scenario
+ * does not have gets that key alone. A clone keeps the origins. */
+static void test_late_locate(const char *text)
 {
   const fb_scenario_override ov[] = {{"modes", "99999"}};
   fb_scenario *s = NULL, *c = NULL;
@@ -285,29 +287,32 @@ static void test_late_blame(const char *text)
   CHECK(load(ov, 1, &s, &err) == FB_OK && s);
   if (!s)
     return;
-  CHECK(s->nset == 1 && !strcmp(s->set_path[0], "hull.fe.modes") &&
-        !strcmp(s->set_label[0], "--set modes=99999"));
-  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK && c && c->nset == 1 &&
-        c->set_label[0] != s->set_label[0] && !strcmp(c->set_label[0], s->set_label[0]));
+  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK && c && c->norigins == s->norigins);
   char modes[32], driver[32], want[256];
   position_of(text, "    modes: 0", 11, modes, sizeof modes);
-  position_of(text, "  x: 2.10", 5, driver, sizeof driver);
-  fb_err_set(&err, FB_EINVAL, "hull.fe.modes: too many");
-  CHECK(fb_scenario_blame(c, &err) == FB_EINVAL);
+  position_of(text, "    x: 2.10", 7, driver, sizeof driver);
+  fb_err_set(&err, FB_EINVAL, "too many");
+  fb_err_set_key(&err, "hull.fe.modes");
+  CHECK(fb_scenario_locate(c, &err) == FB_EINVAL);
   snprintf(want, sizeof want, "--set modes=99999: " EXAMPLE ":%s: hull.fe.modes: too many",
            modes);
   CHECK(!strcmp(err.msg, want));
   if (strcmp(err.msg, want))
     fprintf(stderr, "  wanted '%s', got '%s'\n", want, err.msg);
-  fb_err_set(&err, FB_EINVAL, "driver.x: off the floor");
-  fb_scenario_blame(s, &err);
-  snprintf(want, sizeof want, EXAMPLE ":%s: driver.x: off the floor", driver);
+  CHECK(err.source == FB_SOURCE_OVERRIDE && !strcmp(err.source_text, "--set modes=99999"));
+  CHECK(!strcmp(err.file, EXAMPLE) && !strcmp(err.key, "hull.fe.modes") && err.line > 0);
+  fb_err_set(&err, FB_EINVAL, "off the floor");
+  fb_err_set_key(&err, "mounts.driver.x");
+  fb_scenario_locate(s, &err);
+  snprintf(want, sizeof want, EXAMPLE ":%s: mounts[0].x: off the floor", driver);
   CHECK(!strcmp(err.msg, want));
   if (strcmp(err.msg, want))
     fprintf(stderr, "  wanted '%s', got '%s'\n", want, err.msg);
-  fb_err_set(&err, FB_EMODEL, "hull mesh: no node at the driver");
-  CHECK(fb_scenario_blame(s, &err) == FB_EMODEL &&
-        !strcmp(err.msg, "hull mesh: no node at the driver"));
+  CHECK(err.source == FB_SOURCE_FILE);
+  fb_err_set(&err, FB_EMODEL, "no node there");
+  fb_err_set_key(&err, "hull mesh");
+  CHECK(fb_scenario_locate(s, &err) == FB_EMODEL &&
+        !strcmp(err.msg, "hull mesh: no node there"));
   fb_scenario_free(&c);
   fb_scenario_free(&s);
 }
@@ -324,7 +329,7 @@ int main(void)
   test_relative_references();
   test_bad_keys(text);
   test_bad_values(text);
-  test_late_blame(text);
+  test_late_locate(text);
   free(text);
   return check_report("test_overrides");
 }

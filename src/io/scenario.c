@@ -1,5 +1,5 @@
 /* Vehicle scenarios (flexbond/vehicle.h): loading, copying, freeing,
- * finding corners and mounts, locating errors found after loading, and
+ * locating errors found after loading, and
  * the bump timing every wheel follows. The file format is declared in
  * scenario_schema.c and checked in scenario_check.c. */
 #include <math.h>
@@ -12,27 +12,6 @@
 
 #include "core/util.h"
 #include "io/scenario_internal.h"
-
-size_t fb_scenario_nattach(const fb_scenario *s)
-{
-  return s ? s->ncorners + s->nmounts : 0;
-}
-
-long fb_scenario_corner_find(const fb_scenario *s, const char *name)
-{
-  for (size_t i = 0; s && name && i < s->ncorners; ++i)
-    if (s->corner[i].name && !strcmp(s->corner[i].name, name))
-      return (long)i;
-  return -1;
-}
-
-long fb_scenario_mount_find(const fb_scenario *s, const char *name)
-{
-  for (size_t i = 0; s && name && i < s->nmounts; ++i)
-    if (s->mount[i].name && !strcmp(s->mount[i].name, name))
-      return (long)i;
-  return -1;
-}
 
 /* ---- Bump timing. The bump's leading edge is a straight line at
  * bump_angle to the lateral (y) axis, left side first, through the first
@@ -49,17 +28,6 @@ static const fb_corner_params *sc_corner(const fb_scenario *s, int corner)
   return s && corner >= 0 && (size_t)corner < s->ncorners ? &s->corner[corner] : NULL;
 }
 
-/* The first corner on the right track (y <= 0; the 6x6's RF): the bump
- * crosses that track track_width = y_0 - y_right to the right of the
- * first corner's (fb_road_new_oblique_bump). */
-static const fb_corner_params *sc_right_reference(const fb_scenario *s)
-{
-  for (size_t i = 0; i < s->ncorners; ++i)
-    if (!(s->corner[i].y > 0.0))
-      return &s->corner[i];
-  return &s->corner[0];
-}
-
 double fb_scenario_wheel_start(const fb_scenario *s, int corner)
 {
   const fb_corner_params *w = sc_corner(s, corner);
@@ -69,11 +37,10 @@ double fb_scenario_wheel_start(const fb_scenario *s, int corner)
   if (s->road_kind != FB_ROAD_BUMP)
     return s->road_front_start - first->x + w->x;
   /* The bump's tracks (fb_road_new_oblique_bump): the leading edge at
-   * s = 0 on the left track and at (y_0 - y_right) tan(angle) on the
-   * right one; each wheel reaches its track's edge at its own entry time,
-   * which keeps its own lateral position (y) in the timing. */
-  const double edge =
-      w->y > 0.0 ? 0.0 : (first->y - sc_right_reference(s)->y) * tan(s->bump_angle);
+   * s = 0 on the left track and at track_width tan(angle) on the right
+   * one; each wheel reaches its track's edge at its own entry time, which
+   * keeps its own lateral position (y) in the timing. */
+  const double edge = w->y > 0.0 ? 0.0 : fb_scenario_track_width(s) * tan(s->bump_angle);
   return edge - s->speed * fb_scenario_bump_entry(s, corner);
 }
 
@@ -371,8 +338,8 @@ int fb_scenario_locate(const fb_scenario *s, fb_err *err)
 
 /* ---- Loading. */
 
-/* Parses, reads and checks the document; the check's errors are located
- * through the values' origins. */
+/* Parses, reads, checks and completes the document; the errors found
+ * after reading are located through the values' origins. */
 static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario *s)
 {
   ml_yaml y;
@@ -385,6 +352,10 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
     rc = sc_read(c, fy_document_root(y.doc), params, s);
   if (!rc)
     rc = fb_scenario_check(s, c->err);
+  /* Last: the frame's positions moved to the hull's centre of mass, a
+   * finite-element hull's mass properties (src/vehicle/hull_props.c). */
+  if (!rc && fb_vehicle_hull_complete(s, c->err))
+    rc = fb_scenario_locate(s, c->err);
   c->globals = NULL;
   fb_symtab_free(&params);
   ml_yaml_release(&y);

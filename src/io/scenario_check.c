@@ -166,6 +166,14 @@ static int sc_same(const char *a, const char *b)
 static int sc_check_names(const fb_scenario *s, fb_err *err)
 {
   for (size_t k = 0; k < s->ncorners; ++k)
+    if (!s->corner[k].name)
+      return fb_err_set(err, FB_EINVAL, "corners[%zu]: has no name", k),
+             fb_err_set_key(err, "corners[%zu]", k);
+  for (size_t k = 0; k < s->nmounts; ++k)
+    if (!s->mount[k].name)
+      return fb_err_set(err, FB_EINVAL, "mounts[%zu]: has no name", k),
+             fb_err_set_key(err, "mounts[%zu]", k);
+  for (size_t k = 0; k < s->ncorners; ++k)
     for (size_t j = 0; j < k; ++j)
       if (sc_same(s->corner[k].name, s->corner[j].name)) {
         char key[160];
@@ -383,15 +391,15 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     return fb_err_set(err, FB_EINVAL, "suspensions: at least 3 corners are needed (got %zu)",
                       s->ncorners),
            fb_err_set_key(err, "suspensions");
-  int rc = sc_check_ranges(s, err);
+  int rc = sc_check_names(s, err);
+  if (!rc)
+    rc = sc_check_ranges(s, err);
   if (!rc)
     rc = sc_check_hull(s, err);
   if (!rc)
     rc = sc_check_load(s, err);
   if (!rc)
     rc = sc_check_dampers(s, err);
-  if (!rc)
-    rc = sc_check_names(s, err);
   if (!rc)
     rc = sc_check_points(s, err);
   if (!rc && s->road_kind != FB_ROAD_BUMP)

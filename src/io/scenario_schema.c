@@ -603,7 +603,8 @@ static int sc_output_kind(const ml_ctx *c, struct fy_node *node, const char *sig
   if (near)
     snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);
   return ml_fail(c, node, FB_EPARSE,
-                 "unknown signal '%s'%s; the signals are in docs/outputs.md", signal, hint);
+                 "unknown signal '%s'%s; the signals are in docs/vehicle-outputs.md", signal,
+                 hint);
 }
 
 /* `of` for a corner's or a mount's signal only, `bond` for a bond's. */
@@ -938,7 +939,7 @@ static const sch_table sc_corner_table = {
 static const sch_key sc_output_keys[] = {
     {.path = "signal",
      .type = SCH_NAME,
-     .doc = "what it records: a signal kind (docs/outputs.md)",
+     .doc = "what it records: a signal kind (docs/vehicle-outputs.md)",
      O_STR(signal)},
     {.path = "of",
      .type = SCH_NAME,
