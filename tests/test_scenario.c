@@ -2,13 +2,15 @@
  * flexbond/vehicle.h): examples/apc6x6.yaml against every number of the
  * data sheet (../shared/reference-vehicle.md), the bump timing against
  * hand calculation, deep copies, fb_scenario_check on hand-built
- * scenarios, and a table of bad scenarios with the status, the
- * "bad.yaml:LINE:COL:" and the key path each must report. */
+ * scenarios, a table of bad scenarios with the status, the
+ * "bad.yaml:LINE:COL:" and the key path each must report, and the
+ * values' origins and visit. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/io.h"
 #include "flexbond/vehicle.h"
 
 #include "check.h"
@@ -79,10 +81,17 @@ static void check_load(const fb_scenario *s)
 
 static void check_mounts(const fb_scenario *s)
 {
-  CHECK(s->driver.mass == 100 && s->driver.stiffness == 19620 && s->driver.damping == 1400);
-  CHECK(s->driver.x == 2.10 && s->driver.y == 0.55);
-  CHECK(s->engine.mass == 500 && s->engine.stiffness == 122625 && s->engine.damping == 24761);
-  CHECK(s->engine.x == 1.70 && s->engine.y == -0.55);
+  CHECK(s->nmounts == 2);
+  if (s->nmounts != 2)
+    return;
+  const fb_mount *driver = &s->mount[0], *engine = &s->mount[1];
+  CHECK(!strcmp(driver->name, "driver") && !strcmp(engine->name, "engine"));
+  CHECK(driver->mass == 100 && driver->stiffness == 19620 && driver->damping == 1400);
+  CHECK(driver->x == 2.10 && driver->y == 0.55);
+  CHECK(engine->mass == 500 && engine->stiffness == 122625 && engine->damping == 24761);
+  CHECK(engine->x == 1.70 && engine->y == -0.55);
+  CHECK(fb_scenario_mount_find(s, "engine") == 1 && fb_scenario_mount_find(s, "cargo") == -1);
+  CHECK(fb_scenario_nattach(s) == 8);
 }
 
 /* Data sheet, Table 4 and the attachment points. */
@@ -93,16 +102,39 @@ static void check_corners(const fb_scenario *s)
   static const double x[] = {1.90, 1.90, 0.40, 0.40, -1.00, -1.00};
   static const double y[] = {1.05, -1.05, 1.05, -1.05, 1.05, -1.05};
   static const char *const names[] = {"LF", "RF", "LM", "RM", "LR", "RR"};
-  for (int k = 0; k < FB_NCORNERS; ++k) {
+  CHECK(s->ncorners == 6);
+  for (size_t k = 0; k < 6 && k < s->ncorners; ++k) {
     const fb_corner_params *c = &s->corner[k];
-    CHECK(!strcmp(fb_corner_name(k), names[k]));
+    CHECK(!strcmp(c->name, names[k]) && fb_scenario_corner_find(s, names[k]) == (long)k);
     CHECK(c->spring_k == spring_k[k] && c->damper_c == damper_c[k]);
     CHECK(c->x == x[k] && c->y == y[k]);
     CHECK(c->motion_ratio == 1);
     CHECK(c->wheel_mass == 175 && c->tire_k == 500000 && c->tire_c == 140000);
     CHECK(c->tire_contact == FB_TIRE_BILATERAL); /* the paper's linear tire by default */
   }
-  CHECK(fb_corner_name(-1) == NULL && fb_corner_name(FB_NCORNERS) == NULL);
+  CHECK(fb_scenario_corner_find(s, "LX") == -1);
+}
+
+/* The paper's seven outputs, Figs. 8 to 14, their defaults from the
+ * signal kinds where the file gives none. */
+static void check_outputs(const fb_scenario *s)
+{
+  static const char *const names[] = {"tire_force_LF", "spring_defl_RF", "torsion",
+                                      "driver_acc",    "shock_power_LM", "tire_defl_RM",
+                                      "tire_power_LR"};
+  CHECK(s->noutputs == 7);
+  for (size_t i = 0; i < 7 && i < s->noutputs; ++i) {
+    const fb_output_spec *o = &s->output[i];
+    CHECK(o->name && !strcmp(o->name, names[i]));
+    CHECK(o->figure == (int)(8 + i) && o->title && o->label && o->unit);
+  }
+  if (s->noutputs != 7)
+    return;
+  CHECK(!strcmp(s->output[0].unit, "N") && !strcmp(s->output[3].unit, "m/s^2"));
+  CHECK(s->output[2].of == NULL && !strcmp(s->output[3].of, "driver"));
+  CHECK(!strcmp(s->output[0].label, "LF tire normal reaction"));
+  CHECK(s->output[4].window[0] == 4 && s->output[4].window[1] == 10);
+  CHECK(s->output[0].window[0] == 0 && s->output[0].window[1] == 0);
 }
 
 static void check_road_and_run(const fb_scenario *s)
@@ -128,19 +160,19 @@ static void check_road_and_run(const fb_scenario *s)
 static void check_bump_timing(const fb_scenario *s)
 {
   static const double entry[] = {5, 5.756, 5.54, 6.296, 6.044, 6.8};
-  for (int k = 0; k < FB_NCORNERS; ++k) {
+  for (int k = 0; k < 6; ++k) {
     CHECK_NEAR(fb_scenario_bump_entry(s, k), entry[k], TIGHT);
     CHECK_NEAR(fb_scenario_bump_exit(s, k), entry[k] + 1.332, TIGHT);
   }
   double rr_exit = 5 + 0.36 * (2.9 + 2.1) + 0.36 * 3.7;
-  CHECK_NEAR(fb_scenario_bump_exit(s, FB_RR), rr_exit, TIGHT);
-  CHECK_NEAR(fb_scenario_bump_exit(s, FB_RR), 8.13, 0.005); /* the data sheet's rounding */
-  CHECK(isnan(fb_scenario_bump_entry(s, FB_NCORNERS)));
-  CHECK(isnan(fb_scenario_bump_exit(NULL, FB_LF)));
+  CHECK_NEAR(fb_scenario_bump_exit(s, 5), rr_exit, TIGHT);
+  CHECK_NEAR(fb_scenario_bump_exit(s, 5), 8.13, 0.005); /* the data sheet's rounding */
+  CHECK(isnan(fb_scenario_bump_entry(s, 6)));
+  CHECK(isnan(fb_scenario_bump_exit(NULL, 0)));
 }
 
 /* Every line of the example that gives a number says where it comes
- * from: "# paper" or "# assumed". */
+ * from: "# paper" or "# assumed" (names and titles are no data). */
 static void check_example_sources(void)
 {
   FILE *fp = fopen(EXAMPLE, "r");
@@ -157,6 +189,8 @@ static void check_example_sources(void)
     const char *value = colon + 1 + strspn(colon + 1, " ");
     if (*value == '#' || *value == '\n' || *value == '\0')
       continue; /* a section heading */
+    if (!strchr("-0123456789.[", *value))
+      continue; /* a name, a choice, a title */
     ++values;
     if (!strstr(value, "# paper") && !strstr(value, "# assumed")) {
       ++unsourced;
@@ -182,6 +216,7 @@ static void test_example(void)
   check_load(s);
   check_mounts(s);
   check_corners(s);
+  check_outputs(s);
   check_road_and_run(s);
   check_bump_timing(s);
   CHECK(fb_scenario_check(s, &err) == FB_OK);
@@ -194,18 +229,21 @@ static void test_example(void)
 
 /* ---- Copies. */
 
+static int strings_equal(const char *a, const char *b);
+
 static int corners_equal(const fb_corner_params *a, const fb_corner_params *b)
 {
   return a->spring_k == b->spring_k && a->damper_c == b->damper_c &&
          a->motion_ratio == b->motion_ratio && a->x == b->x && a->y == b->y &&
          a->wheel_mass == b->wheel_mass && a->tire_k == b->tire_k && a->tire_c == b->tire_c &&
-         a->tire_contact == b->tire_contact;
+         a->tire_contact == b->tire_contact && strings_equal(a->name, b->name);
 }
 
 static int mounts_equal(const fb_mount *a, const fb_mount *b)
 {
-  return a->mass == b->mass && a->stiffness == b->stiffness && a->damping == b->damping &&
-         a->x == b->x && a->y == b->y;
+  return strings_equal(a->name, b->name) && a->mass == b->mass &&
+         a->stiffness == b->stiffness && a->damping == b->damping && a->x == b->x &&
+         a->y == b->y;
 }
 
 static int strings_equal(const char *a, const char *b)
@@ -216,21 +254,22 @@ static int strings_equal(const char *a, const char *b)
 /* Field by field, arrays by value. */
 static int scenarios_equal(const fb_scenario *a, const fb_scenario *b)
 {
-  int eq = strings_equal(a->name, b->name) && strings_equal(a->path, b->path) &&
-           a->gravity == b->gravity && a->hull_mass == b->hull_mass &&
-           a->hull_ixx == b->hull_ixx && a->hull_iyy == b->hull_iyy && a->young == b->young &&
-           a->poisson == b->poisson && a->density == b->density &&
-           a->thickness == b->thickness && a->edge_front_x == b->edge_front_x &&
-           a->edge_rear_x == b->edge_rear_x && a->edge_left_y == b->edge_left_y &&
-           a->edge_right_y == b->edge_right_y && a->total_weight == b->total_weight &&
-           a->payload == b->payload && a->nload == b->nload &&
-           mounts_equal(&a->driver, &b->driver) && mounts_equal(&a->engine, &b->engine) &&
-           a->speed == b->speed && a->bump_height == b->bump_height &&
-           a->bump_length == b->bump_length && a->bump_angle == b->bump_angle &&
-           a->bump_time == b->bump_time && a->t_end == b->t_end && a->rtol == b->rtol &&
-           a->atol == b->atol && a->max_step == b->max_step &&
-           a->sample_rate == b->sample_rate && a->initial == b->initial;
-  for (int k = 0; eq && k < FB_NCORNERS; ++k)
+  int eq =
+      strings_equal(a->name, b->name) && strings_equal(a->path, b->path) &&
+      a->gravity == b->gravity && a->hull_mass == b->hull_mass && a->hull_ixx == b->hull_ixx &&
+      a->hull_iyy == b->hull_iyy && a->young == b->young && a->poisson == b->poisson &&
+      a->density == b->density && a->thickness == b->thickness &&
+      a->edge_front_x == b->edge_front_x && a->edge_rear_x == b->edge_rear_x &&
+      a->edge_left_y == b->edge_left_y && a->edge_right_y == b->edge_right_y &&
+      a->total_weight == b->total_weight && a->payload == b->payload && a->nload == b->nload &&
+      a->nmounts == b->nmounts && a->ncorners == b->ncorners && a->speed == b->speed &&
+      a->bump_height == b->bump_height && a->bump_length == b->bump_length &&
+      a->bump_angle == b->bump_angle && a->bump_time == b->bump_time && a->t_end == b->t_end &&
+      a->rtol == b->rtol && a->atol == b->atol && a->max_step == b->max_step &&
+      a->sample_rate == b->sample_rate && a->initial == b->initial;
+  for (size_t k = 0; eq && k < a->nmounts; ++k)
+    eq = mounts_equal(&a->mount[k], &b->mount[k]);
+  for (size_t k = 0; eq && k < a->ncorners; ++k)
     eq = corners_equal(&a->corner[k], &b->corner[k]);
   for (size_t i = 0; eq && i < a->nload; ++i)
     eq = a->load_x[i] == b->load_x[i] && a->load_y[i] == b->load_y[i];
@@ -251,9 +290,12 @@ static void test_clone(void)
         c->load_y != s->load_y);
   if (c) {
     c->load_x[3] = 99;
-    c->corner[FB_RR].tire_k = 1;
+    c->corner[5].tire_k = 1;
     CHECK(!scenarios_equal(s, c));
-    CHECK(s->load_x[3] == -2.00 && s->corner[FB_RR].tire_k == 500000);
+    CHECK(s->load_x[3] == -2.00 && s->corner[5].tire_k == 500000);
+    CHECK(c->corner[0].name != s->corner[0].name && c->mount[0].name != s->mount[0].name &&
+          c->output[0].title != s->output[0].title && c->norigins == s->norigins &&
+          c->origin[0].key != s->origin[0].key && !strcmp(c->origin[0].key, s->origin[0].key));
   }
   fb_scenario_free(&c);
   /* Strings and arrays may be NULL in a hand-built scenario. */
@@ -272,11 +314,13 @@ static void test_clone(void)
 static void expect_check(const fb_scenario *base, void (*change)(fb_scenario *),
                          const char *phrase)
 {
+  /* Not loaded from a file: no origins, messages name the logical key. */
   fb_err err;
   fb_scenario *s = NULL;
   if (fb_scenario_clone(base, &s, &err) != FB_OK)
     return;
   change(s);
+  s->norigins = 0;
   int rc = fb_scenario_check(s, &err);
   CHECK(rc == FB_EINVAL);
   CHECK(strstr(err.msg, phrase) != NULL);
@@ -287,7 +331,7 @@ static void expect_check(const fb_scenario *base, void (*change)(fb_scenario *),
 
 static void set_rr_tire_k(fb_scenario *s)
 {
-  s->corner[FB_RR].tire_k = -1;
+  s->corner[5].tire_k = -1;
 }
 static void set_no_load(fb_scenario *s)
 {
@@ -311,8 +355,8 @@ static void set_bad_payload(fb_scenario *s)
 }
 static void set_rr_ahead(fb_scenario *s)
 {
-  s->corner[FB_RR].x = 20; /* meets the bump at 5 + 0.36 ((1.9 - 20) + 2.1) = -0.76 s */
-  s->edge_front_x = 21;    /* on the floor still */
+  s->corner[5].x = 20;  /* meets the bump at 5 + 0.36 ((1.9 - 20) + 2.1) = -0.76 s */
+  s->edge_front_x = 21; /* on the floor still */
 }
 static void set_lumped_light(fb_scenario *s)
 {
@@ -343,12 +387,12 @@ static void test_check(void)
   CHECK(fb_scenario_load(EXAMPLE, &s, &err) == FB_OK);
   if (!s)
     return;
-  expect_check(s, set_rr_tire_k, "suspensions.RR.tire_k: must be > 0 N/m (got -1)");
+  expect_check(s, set_rr_tire_k, "corners.RR.wheel.tire_k: must be > 0 N/m (got -1)");
   expect_check(s, set_no_load, "load.points: at least one load point");
   expect_check(s, set_nan_point, "load.points[3]: must be finite");
   expect_check(s, set_angle_right, "road.bump.angle_deg: must be in [0, 90) deg (got 90)");
   expect_check(s, set_inf_speed, "road.speed_kmh: must be finite");
-  expect_check(s, set_bad_payload, "load.payload: unknown payload model 7");
+  expect_check(s, set_bad_payload, "load.payload: unknown value 7");
   expect_check(s, set_rr_ahead, "road.bump.first_contact: the RR wheel would meet the bump");
   expect_check(s, set_lumped_light, "load.payload: a lumped payload needs");
   expect_check(s, set_many_samples, "simulation.sample_rate:");
@@ -366,6 +410,14 @@ static void test_check(void)
   }
   fb_scenario_free(&c);
   CHECK(fb_scenario_check(NULL, &err) == FB_EINVAL);
+  /* Loaded: the same error at the value every corner takes, in the
+   * error's fields too. */
+  s->corner[5].tire_k = -1;
+  CHECK(fb_scenario_check(s, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, EXAMPLE ":") == err.msg &&
+        strstr(err.msg, ": wheel.tire_k: must be > 0 N/m (got -1)"));
+  CHECK(!strcmp(err.key, "wheel.tire_k") && !strcmp(err.file, EXAMPLE) && err.line > 0 &&
+        err.source == FB_SOURCE_FILE);
   fb_scenario_free(&s);
 }
 
@@ -387,21 +439,21 @@ static const char base_text[] =
     "  payload: weight-only\n" /* 11 */
     "  points: {grid: {x: [-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, -0.15, 0.10, 0.40, 0.65, "
     "0.95, 1.30, 1.90, 2.10],"
-    " y: [-1.05, -0.55, 0.55, 1.05]}}\n"                                          /* 12 */
-    "driver: {mass: 100, stiffness: 19620, damping: 1400, x: 2.10, y: 0.55}\n"    /* 13 */
-    "engine: {mass: 500, stiffness: 122625, damping: 24761, x: 1.70, y: -0.55}\n" /* 14 */
-    "wheel: {mass: 175, tire_k: 500000, tire_c: 140000}\n"                        /* 15 */
-    "suspensions:\n"                                                              /* 16 */
-    "  motion_ratio: 1\n"                                                         /* 17 */
-    "  LF: {spring_k: 145300, damper_c: 25744, x: 1.90, y: 1.05}\n"               /* 18 */
-    "  RF: {spring_k: 145300, damper_c: 25744, x: 1.90, y: -1.05}\n"              /* 19 */
-    "  LM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}\n"               /* 20 */
-    "  RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: -1.05}\n"              /* 21 */
-    "  LR: {spring_k: 602100, damper_c: 39656, x: -1.00, y: 1.05}\n"              /* 22 */
-    "  RR: {spring_k: 602100, damper_c: 39656, x: -1.00, y: -1.05}\n"             /* 23 */
-    "road:\n"                                                                     /* 24 */
-    "  speed_kmh: 10\n"                                                           /* 25 */
-    "  bump: {height: 0.10, length: 3.70, angle_deg: 45, first_contact: 5.0}\n"   /* 26 */
+    " y: [-1.05, -0.55, 0.55, 1.05]}}\n" /* 12 */
+    "mounts:\n"                          /* 13 */
+    "  - {name: driver, mass: 100, stiffness: 19620, damping: 1400, x: 2.10, y: 0.55}\n" /* 14
+                                                                                          */
+    "  - {name: engine, mass: 500, stiffness: 122625, damping: 24761, x: 1.70, y: -0.55}\n"
+    "wheel: {mass: 175, tire_k: 500000, tire_c: 140000}\n"                      /* 16 */
+    "suspensions:\n"                                                            /* 17 */
+    "  motion_ratio: 1\n"                                                       /* 18 */
+    "  axles:\n"                                                                /* 19 */
+    "    - {name: F, spring_k: 145300, damper_c: 25744, x: 1.90, y: 1.05}\n"    /* 20 */
+    "    - {name: M, spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}\n"    /* 21 */
+    "    - {name: R, spring_k: 602100, damper_c: 39656, x: -1.00, y: 1.05}\n"   /* 22 */
+    "road:\n"                                                                   /* 23 */
+    "  speed_kmh: 10\n"                                                         /* 24 */
+    "  bump: {height: 0.10, length: 3.70, angle_deg: 45, first_contact: 5.0}\n" /* 25 */
     "simulation: {t_end: 15, rtol: 1e-6, atol: 1e-8, sample_rate: 1000, initial: zero}\n";
 
 typedef struct bad_case {
@@ -421,13 +473,14 @@ typedef struct bad_case {
 static const bad_case bad_cases[] = {
     /* System 2's optional hull sections (lines 9 and 10 when added). */
     {EDGES_LINE, EDGES_LINE "  mesh: {deck: h.inp, generator: {}}\n" FE_OK, NULL, NULL,
-     FB_EPARSE, "bad.yaml:9:", "either a deck or a generator", NULL},
+     FB_EPARSE, "bad.yaml:9:", "give either 'deck' or 'generator', not both", NULL},
     {EDGES_LINE, EDGES_LINE "  mesh: {density: 2, deck: h.inp}\n" FE_OK, NULL, NULL, FB_EPARSE,
      "bad.yaml:9:", "density refines the generator's mesh", NULL},
     {EDGES_LINE,
      EDGES_LINE "  mesh: {deck: h.inp}\n"
                 "  fe: {mass_matrix: consistent, drill_factor: 1e-4, damping_ratio: 1.5}\n",
-     NULL, NULL, FB_EINVAL, "bad.yaml:10:", "hull.fe.damping_ratio: must be < 1", NULL},
+     NULL, NULL, FB_EINVAL,
+     "bad.yaml:10:", "hull.fe.damping_ratio: must be in [0, 1) (got 1.5)", NULL},
     {EDGES_LINE,
      EDGES_LINE "  mesh: {deck: h.inp}\n"
                 "  fe: {mass_matrix: diagonal, drill_factor: 1e-4, damping_ratio: 0.02}\n",
@@ -435,12 +488,12 @@ static const bad_case bad_cases[] = {
     {EDGES_LINE, EDGES_LINE "  mesh: {deck: h.inp}\n", NULL, NULL, FB_EPARSE, "bad.yaml:", "fe",
      NULL},
     /* Physical checks, reported at the value. */
-    {"LF: {spring_k: 145300", "LF: {spring_k: -145300", NULL, NULL, FB_EINVAL,
-     "bad.yaml:18:18:", "suspensions.LF.spring_k: must be > 0 N/m (got -145300)", NULL},
-    {"driver: {mass: 100", "driver: {mass: 0", NULL, NULL, FB_EINVAL,
-     "bad.yaml:13:16:", "driver.mass: must be > 0 kg (got 0)", NULL},
+    {"F, spring_k: 145300", "F, spring_k: -145300", NULL, NULL, FB_EINVAL,
+     "bad.yaml:20:", "suspensions.axles[0].spring_k: must be > 0 N/m (got -145300)", NULL},
+    {"driver, mass: 100", "driver, mass: 0", NULL, NULL, FB_EINVAL,
+     "bad.yaml:14:", "mounts[0].mass: must be > 0 kg (got 0)", NULL},
     {"damping: 24761", "damping: -1", NULL, NULL, FB_EINVAL,
-     "bad.yaml:14:", "engine.damping: must be >= 0 N s/m (got -1)", NULL},
+     "bad.yaml:15:", "mounts[1].damping: must be >= 0 N s/m (got -1)", NULL},
     {"  Ixx: 4173.49", "  Ixx: .nan", NULL, NULL, FB_EINVAL,
      "bad.yaml:5:8:", "hull.Ixx: must be finite (got .nan)", NULL},
     {"density: 7860", "density: -.inf", NULL, NULL, FB_EINVAL,
@@ -457,102 +510,146 @@ static const bad_case bad_cases[] = {
      "bad.yaml:10:17:", "load.total_weight: must be > 0 N", NULL},
     /* A shared value: reported where the file gives it. */
     {"wheel: {mass: 175", "wheel: {mass: -175", NULL, NULL, FB_EINVAL,
-     "bad.yaml:15:15:", "wheel.mass: must be > 0 kg (got -175)", NULL},
+     "bad.yaml:16:15:", "wheel.mass: must be > 0 kg (got -175)", NULL},
     {"tire_c: 140000}", "tire_c: 140000, tire_contact: unilaterl}", NULL, NULL, FB_EPARSE,
-     "bad.yaml:15:", "unknown value 'unilaterl' (did you mean 'unilateral'?)",
+     "bad.yaml:16:", "unknown value 'unilaterl' (did you mean 'unilateral'?)",
      "bilateral | unilateral"},
     {"tire_c: 140000}", "tire_c: 140000, tire_contact: [1]}", NULL, NULL, FB_EPARSE,
-     "bad.yaml:15:", "tire_contact", NULL},
+     "bad.yaml:16:", "tire_contact", NULL},
     {"motion_ratio: 1", "motion_ratio: 0", NULL, NULL, FB_EINVAL,
-     "bad.yaml:17:17:", "suspensions.motion_ratio: must be > 0 (got 0)", NULL},
+     "bad.yaml:18:17:", "suspensions.motion_ratio: must be > 0 (got 0)", NULL},
     /* A corner's override: reported there. */
-    {"x: 0.40, y: 1.05}", "x: 0.40, y: 1.05, tire_c: -5}", NULL, NULL, FB_EINVAL,
-     "bad.yaml:20:", "suspensions.LM.tire_c: must be >= 0 N s/m (got -5)", NULL},
+    {"x: 0.40, y: 1.05}", "x: 0.40, y: 1.05, wheel: {tire_c: -5}}", NULL, NULL, FB_EINVAL,
+     "bad.yaml:21:", "suspensions.axles[1].wheel.tire_c: must be >= 0 N s/m (got -5)", NULL},
+    /* An axle's y is its left corner's. */
+    {"x: 0.40, y: 1.05}", "x: 0.40, y: -1.05}", NULL, NULL, FB_EINVAL, "bad.yaml:21:",
+     "suspensions.axles[1].y: must be > 0 m: an axle's y is its left wheel's", NULL},
+    /* Without a top-level wheel, every item gives its own. */
+    {"wheel: {mass: 175, tire_k: 500000, tire_c: 140000}\n", "", NULL, NULL, FB_EPARSE,
+     "bad.yaml:19:", "suspensions.axles[0]: missing required key", "wheel.mass"},
     {"speed_kmh: 10", "speed_kmh: 0", NULL, NULL, FB_EINVAL,
-     "bad.yaml:25:14:", "road.speed_kmh: must be > 0 km/h (got 0)", NULL},
+     "bad.yaml:24:14:", "road.speed_kmh: must be > 0 km/h (got 0)", NULL},
     {"height: 0.10", "height: -0.1", NULL, NULL, FB_EINVAL,
-     "bad.yaml:26:", "road.bump.height: must be >= 0 m", NULL},
+     "bad.yaml:25:", "road.bump.height: must be >= 0 m", NULL},
     {"length: 3.70", "length: 0", NULL, NULL, FB_EINVAL,
-     "bad.yaml:26:", "road.bump.length: must be > 0 m", NULL},
+     "bad.yaml:25:", "road.bump.length: must be > 0 m", NULL},
     {"angle_deg: 45", "angle_deg: 90", NULL, NULL, FB_EINVAL,
-     "bad.yaml:26:", "road.bump.angle_deg: must be in [0, 90) deg (got 90)", NULL},
+     "bad.yaml:25:", "road.bump.angle_deg: must be in [0, 90) deg (got 90)", NULL},
     {"angle_deg: 45", "angle_deg: -1", NULL, NULL, FB_EINVAL,
-     "bad.yaml:26:", "road.bump.angle_deg: must be in [0, 90) deg (got -1)", NULL},
+     "bad.yaml:25:", "road.bump.angle_deg: must be in [0, 90) deg (got -1)", NULL},
     {"first_contact: 5.0", "first_contact: -1", NULL, NULL, FB_EINVAL,
-     "bad.yaml:26:", "road.bump.first_contact: must be >= 0 s", NULL},
+     "bad.yaml:25:", "road.bump.first_contact: must be >= 0 s", NULL},
     /* Bump timing: RR leaves at 8.132 s (see check_bump_timing). */
     {"t_end: 15", "t_end: 8", NULL, NULL, FB_EINVAL,
-     "bad.yaml:26:9:", "road.bump: bump longer than the run",
+     "bad.yaml:25:9:", "road.bump: bump longer than the run",
      "RR) leaves it at 8.132 s, not before "
      "simulation.t_end = 8 s"},
-    /* RF 0.5 m ahead of LF meets a square bump (0 deg) at 0 + 0.36 (1.9 - 2.4) = -0.18 s. */
-    {"angle_deg: 45, first_contact: 5.0", "angle_deg: 0, first_contact: 0",
-     "RF: {spring_k: 145300, damper_c: 25744, x: 1.90",
-     "RF: {spring_k: 145300, damper_c: 25744, x: 2.40", FB_EINVAL, "bad.yaml:26:",
-     "road.bump.first_contact: the RF wheel would meet the bump at -0.18 s", NULL},
+    /* A single corner X 0.5 m ahead of LF meets a square bump (0 deg) at
+     * 0 + 0.36 (1.9 - 2.4) = -0.18 s. */
+    {"angle_deg: 45, first_contact: 5.0", "angle_deg: 0, first_contact: 0", "road:\n",
+     "  corners: [{name: X, spring_k: 1e5, damper_c: 1e4, x: 2.40, y: 0}]\nroad:\n", FB_EINVAL,
+     "bad.yaml:26:", "road.bump.first_contact: the X wheel would meet the bump at -0.18 s",
+     NULL},
     /* Points off the floor (hull.edges), and two suspensions at one point. */
-    {"x: 2.10, y: 0.55}", "x: 2.10, y: 1.55}", NULL, NULL, FB_EINVAL, "bad.yaml:13:",
-     "driver.y: must lie on the hull's floor, between hull.edges.right_y = -1.05 and left_y = "
+    {"x: 2.10, y: 0.55}", "x: 2.10, y: 1.55}", NULL, NULL, FB_EINVAL, "bad.yaml:14:",
+     "mounts[0].y: must lie on the hull's floor, between hull.edges.right_y = -1.05 and left_y "
+     "= "
      "1.05 m (got 1.55)",
      NULL},
     {"x: -1.00, y: 1.05}", "x: -3.00, y: 1.05}", NULL, NULL, FB_EINVAL, "bad.yaml:22:",
-     "suspensions.LR.x: must lie on the hull's floor, between hull.edges.rear_x = "
+     "suspensions.axles[2].x: must lie on the hull's floor, between hull.edges.rear_x = "
      "-2.657984123 and front_x = 2.478133119 m (got -3)",
      NULL},
     {"y: [-1.05, -0.55, 0.55, 1.05]", "y: [-1.05, -0.55, 0.55, 1.25]", NULL, NULL, FB_EINVAL,
      "bad.yaml:12:", "load.points[3].y: must lie on the hull's floor", NULL},
     {"x: [-2.00, -1.70,", "x: [-2.00, -2.00,", NULL, NULL, FB_EINVAL,
      "bad.yaml:12:", "load.points[4]: at (-2, -1.05) m, where load.points[0] already is", NULL},
-    {"RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: -1.05}",
-     "RM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}", NULL, NULL, FB_EINVAL,
-     "bad.yaml:21:", "suspensions.RM: at (0.4, 1.05) m, where suspensions.LM already is", NULL},
+    {"road:\n",
+     "  corners: [{name: X, spring_k: 1e5, damper_c: 1e4, x: 0.40, y: 1.05}]\nroad:\n", NULL,
+     NULL, FB_EINVAL, "bad.yaml:23:",
+     "suspensions.corners[0]: at (0.4, 1.05) m, where corner LM already is", NULL},
+    /* Names: unique, and the corners count. */
+    {"road:\n", "  corners: [{name: LM, spring_k: 1e5, damper_c: 1e4, x: 0, y: 0}]\nroad:\n",
+     NULL, NULL, FB_EINVAL, "bad.yaml:23:", "suspensions.corners[0]: a second corner named LM",
+     NULL},
+    {"name: engine", "name: driver", NULL, NULL, FB_EINVAL,
+     "bad.yaml:15:", "mounts[1]: a second mount named driver", NULL},
+    {"    - {name: M, spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}\n"
+     "    - {name: R, spring_k: 602100, damper_c: 39656, x: -1.00, y: 1.05}\n",
+     "", NULL, NULL, FB_EINVAL, "bad.yaml:18:", "suspensions: at least 3 corners", NULL},
+    {"F, spring_k: 145300, damper_c: 25744,",
+     "F, spring_k: 145300, damper_c: 25744, "
+     "damper_table: {points: [[0, 0], [1, 1]]},",
+     NULL, NULL, FB_EPARSE, "bad.yaml:20:",
+     "suspensions.axles[0].damper_table: give either 'damper_c' or 'damper_table', not both",
+     NULL},
+    /* Outputs. */
+    {"road:\n", "outputs: [{signal: tire_forse, of: LF}]\nroad:\n", NULL, NULL, FB_EPARSE,
+     "bad.yaml:23:",
+     "outputs[0].signal: unknown signal 'tire_forse' (did you mean "
+     "'tire_force'?)",
+     NULL},
+    {"road:\n", "outputs: [{signal: tire_force}]\nroad:\n", NULL, NULL, FB_EPARSE,
+     "bad.yaml:23:", "outputs[0]: missing required key 'of'", NULL},
+    {"road:\n", "outputs: [{signal: tire_force, of: XX}]\nroad:\n", NULL, NULL, FB_EINVAL,
+     "bad.yaml:23:", "outputs[0].of: no corner named 'XX'", NULL},
+    {"road:\n", "outputs: [{signal: torsion, of: LF}]\nroad:\n", NULL, NULL, FB_EPARSE,
+     "bad.yaml:23:", "outputs[0].of: a torsion signal measures no corner or mount", NULL},
+    {"road:\n", "outputs: [{signal: acc, of: driver}, {signal: acc, of: driver}]\nroad:\n",
+     NULL, NULL, FB_EINVAL,
+     "bad.yaml:23:", "outputs[1].name: 'driver_acc' is outputs[0]'s name already", NULL},
+    {"road:\n", "outputs: [{signal: torsion, name: t}]\nroad:\n", NULL, NULL, FB_EINVAL,
+     "bad.yaml:23:", "outputs[0].name: 't' is a column of its own", NULL},
+    {"road:\n", "outputs: [{signal: torsion, figure: 3, window: [10, 20]}]\nroad:\n", NULL,
+     NULL, FB_EINVAL, "bad.yaml:23:",
+     "outputs[0].window: must be [t0, t1] with 0 <= t0 < t1 <= "
+     "simulation.t_end = 15 s (got [10, 20])",
+     NULL},
     {"t_end: 15", "t_end: 0", NULL, NULL, FB_EINVAL,
-     "bad.yaml:27:", "simulation.t_end: must be > 0 s", NULL},
+     "bad.yaml:26:", "simulation.t_end: must be > 0 s", NULL},
     {"rtol: 1e-6", "rtol: 1", NULL, NULL, FB_EINVAL,
-     "bad.yaml:27:", "simulation.rtol: must be in (0, 1) (got 1)", NULL},
+     "bad.yaml:26:", "simulation.rtol: must be in (0, 1) (got 1)", NULL},
     {"atol: 1e-8", "atol: 0", NULL, NULL, FB_EINVAL,
-     "bad.yaml:27:", "simulation.atol: must be > 0", NULL},
+     "bad.yaml:26:", "simulation.atol: must be > 0", NULL},
     {"sample_rate: 1000", "sample_rate: -1000", NULL, NULL, FB_EINVAL,
-     "bad.yaml:27:", "simulation.sample_rate: must be > 0 Hz", NULL},
+     "bad.yaml:26:", "simulation.sample_rate: must be > 0 Hz", NULL},
     {"initial: zero}", "initial: zero, max_step: -1}", NULL, NULL, FB_EINVAL,
-     "bad.yaml:27:", "simulation.max_step: must be >= 0 s", NULL},
+     "bad.yaml:26:", "simulation.max_step: must be >= 0 s", NULL},
     /* 30000 N / 9.81 = 3058 kg is less than the hull alone. */
     {"payload: weight-only", "payload: lumped", "total_weight: 117720", "total_weight: 30000",
      FB_EINVAL, "bad.yaml:11:12:", "load.payload: a lumped payload needs", NULL},
     /* Structure: corners. */
-    {"  RR: {", "  RB: {", NULL, NULL, FB_EPARSE, "bad.yaml:23:3:",
-     "suspensions.RB: unknown suspension 'RB'", "the corners are LF, RF, LM, RM, LR, RR"},
-    {"  RR: {spring_k: 602100, damper_c: 39656, x: -1.00, y: -1.05}\n", "", NULL, NULL,
-     FB_EPARSE, "bad.yaml:17:3:", "suspensions: missing corner 'RR'", NULL},
-    {"LF: {spring_k", "LF: {sprng_k", NULL, NULL, FB_EPARSE, "bad.yaml:18:",
-     "suspensions.LF.sprng_k: unknown key 'sprng_k' (did you mean 'spring_k'?)", NULL},
-    {"  LM: {spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}", "  LM:", NULL, NULL,
-     FB_EPARSE, "bad.yaml:20:3:", "suspensions.LM: missing value", NULL},
+    {"  axles:", "  axels:", NULL, NULL, FB_EPARSE,
+     "bad.yaml:19:3:", "suspensions.axels: unknown key 'axels' (did you mean 'axles'?)", NULL},
+    {"F, spring_k", "F, sprng_k", NULL, NULL, FB_EPARSE, "bad.yaml:20:",
+     "suspensions.axles[0].sprng_k: unknown key 'sprng_k' (did you mean 'spring_k'?)", NULL},
+    {"    - {name: M, spring_k: 345550, damper_c: 25744, x: 0.40, y: 1.05}", "    - 7", NULL,
+     NULL, FB_EPARSE, "bad.yaml:21:7:", "suspensions.axles[1]: expected", "a mapping"},
     /* Missing keys and sections, unknown keys. */
     {"  Iyy: 15175.96\n", "", NULL, NULL, FB_EPARSE,
      "bad.yaml:4:3:", "hull: missing required key 'Iyy'", NULL},
-    {"wheel: {mass: 175, tire_k: 500000, tire_c: 140000}\n", "", NULL, NULL, FB_EPARSE,
-     "bad.yaml:1:1:", "missing required key 'wheel'", NULL},
+    {"gravity: 9.81\n", "", NULL, NULL, FB_EPARSE,
+     "bad.yaml:1:1:", "missing required key 'gravity'", NULL},
     {"gravity: 9.81", "gravty: 9.81", NULL, NULL, FB_EPARSE,
      "bad.yaml:2:1:", "gravty: unknown key 'gravty' (did you mean 'gravity'?)", NULL},
     {"speed_kmh: 10", "speed: 10", NULL, NULL, FB_EPARSE,
-     "bad.yaml:25:3:", "road.speed: unknown key 'speed'", NULL},
+     "bad.yaml:24:3:", "road.speed: unknown key 'speed'", NULL},
     /* Types and enumerations. */
     {"tire_k: 500000", "tire_k: [500000]", NULL, NULL, FB_EPARSE,
-     "bad.yaml:15:28:", "wheel.tire_k: expected a number or expression, got a list", NULL},
-    {"driver: {mass: 100", "driver: {mass: heavy", NULL, NULL, FB_EPARSE,
-     "bad.yaml:13:16:", "driver.mass: expression 'heavy'", "unknown name 'heavy'"},
+     "bad.yaml:16:28:", "wheel.tire_k: expected a number or expression, got a list", NULL},
+    {"driver, mass: 100", "driver, mass: heavy", NULL, NULL, FB_EPARSE,
+     "bad.yaml:14:", "mounts[0].mass: expression 'heavy'", "unknown name 'heavy'"},
     {"edges: {front_x: 2.47813311938948, rear_x: -2.65798412344113, left_y: 1.05, right_y: "
      "-1.05}",
      "edges: [3.0, -3.0, 1.25, -1.25]", NULL, NULL, FB_EPARSE,
-     "bad.yaml:8:10:", "hull.edges: expected the torsion edges", "got a list"},
+     "bad.yaml:8:10:", "hull.edges: expected the edge lines", "got a list"},
     {"payload: weight-only", "payload: weightonly", NULL, NULL, FB_EPARSE, "bad.yaml:11:12:",
      "load.payload: unknown value 'weightonly' (did you mean 'weight-only'?)",
      "weight-only | lumped"},
     {"initial: zero", "initial: rest", NULL, NULL, FB_EPARSE,
-     "bad.yaml:27:", "simulation.initial: unknown value 'rest'", "zero | static"},
+     "bad.yaml:26:", "simulation.initial: unknown value 'rest'", "zero | static"},
     {"scenario: bad", "scenario: a b", NULL, NULL, FB_EPARSE,
-     "bad.yaml:1:11:", "scenario name 'a b'", NULL},
+     "bad.yaml:1:11:", "scenario: the scenario's name 'a b' must start", NULL},
     /* Load points. */
     {"points: {grid:", "points: {grd:", NULL, NULL, FB_EPARSE,
      "bad.yaml:12:", "load.points.grd: unknown key 'grd' (did you mean 'grid'?)", NULL},
@@ -575,7 +672,7 @@ static const bad_case bad_cases[] = {
     {"gravity: 9.81", "gravity: 9.81\ngravity: 9.8", NULL, NULL, FB_EPARSE,
      "bad.yaml:3:", "duplicate key", NULL},
     {"simulation: {", "---\nsimulation: {", NULL, NULL, FB_EPARSE,
-     "bad.yaml:27:1:", "second document", NULL},
+     "bad.yaml:26:1:", "second document", NULL},
     /* Text of scalars (model_yaml.c): a NUL, control characters in
      * one-line text and in a description; integers beyond 2^53. */
     {"tire_c: 140000}", "tire_c: \"140000\\0junk\"}", NULL, NULL, FB_EPARSE,
@@ -672,8 +769,8 @@ static void test_good_variants(void)
                           "scenario: good\nparameters: {v: 36, deg: 30}\n");
   char *t2 = t1 ? replace_once(t1, "speed_kmh: 10", "speed_kmh: v / 2") : NULL;
   char *t3 = t2 ? replace_once(t2, "angle_deg: 45", "angle_deg: deg") : NULL;
-  char *t4 = t3 ? replace_once(t3, "x: -1.00, y: -1.05}",
-                               "x: -1.00, y: -1.05, wheel_mass: 200, tire_k: 4e5, tire_c: 0, "
+  char *t4 = t3 ? replace_once(t3, "x: -1.00, y: 1.05}",
+                               "x: -1.00, y: 1.05, wheel: {mass: 200, tire_k: 4e5, tire_c: 0}, "
                                "motion_ratio: 0.8}")
                 : NULL;
   char *t5 = t4 ? replace_once(t4, "height: 0.10", "height: 0") : NULL;
@@ -694,19 +791,20 @@ static void test_good_variants(void)
     CHECK(s->path == NULL && !strcmp(s->name, "good"));
     CHECK_NEAR(s->speed, 5, TIGHT);                       /* 18 km/h */
     CHECK_NEAR(s->bump_angle, 0.5235987755982988, TIGHT); /* pi / 6 */
-    const fb_corner_params *rr = &s->corner[FB_RR], *lr = &s->corner[FB_LR];
+    /* The rear axle's own wheels, both its corners; the middle's shared. */
+    const fb_corner_params *rr = &s->corner[5], *lr = &s->corner[4], *lm = &s->corner[2];
     CHECK(rr->wheel_mass == 200 && rr->tire_k == 4e5 && rr->tire_c == 0);
-    CHECK(rr->motion_ratio == 0.8);
-    CHECK(lr->wheel_mass == 175 && lr->tire_k == 500000 && lr->motion_ratio == 1);
+    CHECK(rr->motion_ratio == 0.8 && lr->motion_ratio == 0.8 && lr->wheel_mass == 200);
+    CHECK(lm->wheel_mass == 175 && lm->tire_k == 500000 && lm->motion_ratio == 1);
     CHECK(s->bump_height == 0);
     CHECK(s->nload == 2 && s->load_x[0] == 1 && s->load_y[0] == 0.5 && s->load_x[1] == -1 &&
           s->load_y[1] == -0.5);
     CHECK(s->payload == FB_PAYLOAD_LUMPED && s->initial == FB_INITIAL_STATIC);
     CHECK(s->max_step == 0.01);
-    for (int c = 0; c < FB_NCORNERS; ++c)
+    for (size_t c = 0; c < s->ncorners; ++c)
       CHECK(s->corner[c].tire_contact == FB_TIRE_UNILATERAL);
     /* RR by hand at 5 m/s, tan 30 deg = 1/sqrt(3): 5 + (2.9 + 2.1/sqrt 3)/5. */
-    CHECK_NEAR(fb_scenario_bump_entry(s, FB_RR), 5 + (2.9 + 2.1 / sqrt(3.0)) / 5, TIGHT);
+    CHECK_NEAR(fb_scenario_bump_entry(s, 5), 5 + (2.9 + 2.1 / sqrt(3.0)) / 5, TIGHT);
   }
   fb_scenario_free(&s);
   free(t1);
@@ -720,45 +818,31 @@ static void test_good_variants(void)
   free(t9);
 }
 
-/* A deck is resolved from the scenario's directory, and the place that
- * names it locates the deck's own errors (fb_vehicle_fe_hull); a clone
- * keeps what it names. */
+/* A deck is resolved from the scenario's directory and read when the
+ * scenario is loaded (its mesh gives the hull's properties), so a deck
+ * that cannot be read fails the load at the line that names it: line 9
+ * (the mesh line added after line 8), column 16. A clone keeps the files
+ * a scenario names. */
 static void test_deck_reference(void)
 {
   char *text = replace_once(base_text, EDGES_LINE, EDGES_LINE "  mesh: {deck: h.inp}\n" FE_OK);
   fb_scenario *s = NULL, *c = NULL;
-  if (text) {
-    fb_err err;
-    CHECK(fb_scenario_load_string(text, strlen(text), "deck.yaml", &s, &err) == FB_OK);
-  }
-  if (s) {
-    CHECK(s->hull_deck && !strcmp(s->hull_deck, "./h.inp"));
-    fb_err err;
-    CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
-    /* The deck is the one file it names. */
-    CHECK(s->ninputs == 1 && !strcmp(s->inputs[0], "./h.inp"));
-    CHECK(c && c->ninputs == 1 && c->inputs[0] != s->inputs[0] &&
-          !strcmp(c->inputs[0], s->inputs[0]));
-  }
-  fb_scenario_free(&c);
-  fb_scenario_free(&s);
-  /* From a file, a deck that cannot be read is reported at the line that
-   * names it, line 9 (the mesh line added after line 8), column 16. */
+  fb_err err;
+  CHECK(text && fb_scenario_load_string(text, strlen(text), "deck.yaml", &s, &err) == FB_EIO);
+  CHECK(!s &&
+        strstr(err.msg, "deck.yaml:9:16: hull.mesh.deck: ./h.inp: cannot open") == err.msg);
+  CHECK(!strcmp(err.key, "hull.mesh.deck") && err.line == 9 && err.column == 16);
   char path[] = "/tmp/fb_test_scenario_deck_XXXXXX";
   const int fd = text ? mkstemp(path) : -1;
   FILE *fp = fd >= 0 ? fdopen(fd, "w") : NULL;
   CHECK(fp && fputs(text, fp) >= 0 && fclose(fp) == 0);
-  fb_err err;
-  if (fp && fb_scenario_load(path, &s, &err) == FB_OK) {
-    fb_fe_hull *h = NULL;
+  if (fp) {
     char want[128];
     snprintf(want, sizeof want, "%s:9:16: hull.mesh.deck: /tmp/h.inp: cannot open", path);
-    CHECK(fb_vehicle_fe_hull(s, &h, &err) == FB_EIO && !h && strstr(err.msg, want) == err.msg);
+    CHECK(fb_scenario_load(path, &s, &err) == FB_EIO && !s && strstr(err.msg, want) == err.msg);
     if (strstr(err.msg, want) != err.msg)
       fprintf(stderr, "  wanted '%s...', got '%s'\n", want, err.msg);
   }
-  CHECK(s != NULL);
-  fb_scenario_free(&s);
   if (fd >= 0)
     remove(path);
   free(text);
@@ -771,6 +855,55 @@ static void test_deck_reference(void)
   CHECK(fb_scenario_load("../examples/apc6x6_shock_table.yaml", &s, NULL) == FB_OK && s);
   CHECK(s && s->ninputs == 2 && !strcmp(s->inputs[0], "../examples/shock_front.csv") &&
         !strcmp(s->inputs[1], "../examples/shock_rear.csv"));
+  CHECK(s && fb_scenario_clone(s, &c, &err) == FB_OK && c && c->ninputs == 2 &&
+        c->inputs[0] != s->inputs[0] && !strcmp(c->inputs[0], s->inputs[0]));
+  CHECK(c && c->corner[0].damper_npoints > 1 &&
+        c->corner[0].damper_f[1] == s->corner[0].damper_f[1]);
+  fb_scenario_free(&c);
+  fb_scenario_free(&s);
+}
+
+/* Every value visited once, with its key, unit, where it was written,
+ * and its text. */
+typedef struct visit_log {
+  int n, spring_lf, wheel_rr, driver_mass, output_title;
+} visit_log;
+
+static int visit(const fb_scenario_value *v, void *ctx)
+{
+  visit_log *log = ctx;
+  ++log->n;
+  if (!strcmp(v->key, "corners.LF.spring_k"))
+    log->spring_lf = !strcmp(v->value, "145300") && !strcmp(v->unit, "N/m") && v->path &&
+                     !strcmp(v->path, "suspensions.axles[0].spring_k");
+  if (!strcmp(v->key, "corners.RR.wheel.mass"))
+    log->wheel_rr = !strcmp(v->value, "175") && v->path && !strcmp(v->path, "wheel.mass");
+  if (!strcmp(v->key, "mounts.driver.mass"))
+    log->driver_mass = !strcmp(v->value, "100") && !strcmp(v->unit, "kg") && v->doc;
+  if (!strcmp(v->key, "outputs[2].title"))
+    log->output_title = !strcmp(v->value, "Hull torsion angle");
+  return 0;
+}
+
+static int stop_at_first(const fb_scenario_value *v, void *ctx)
+{
+  (void)v;
+  ++*(int *)ctx;
+  return 7;
+}
+
+static void test_each_value(void)
+{
+  fb_scenario *s = NULL;
+  CHECK(fb_scenario_load(EXAMPLE, &s, NULL) == FB_OK && s);
+  if (!s)
+    return;
+  visit_log log = {0};
+  CHECK(fb_scenario_each_value(s, visit, &log) == FB_OK);
+  CHECK(log.n > 100 && log.spring_lf && log.wheel_rr && log.driver_mass && log.output_title);
+  int calls = 0;
+  CHECK(fb_scenario_each_value(s, stop_at_first, &calls) == 7 && calls == 1);
+  CHECK(fb_scenario_each_value(NULL, visit, &log) == FB_EINVAL);
   fb_scenario_free(&s);
 }
 
@@ -815,6 +948,7 @@ int main(void)
   test_good_variants();
   test_description_lines();
   test_deck_reference();
+  test_each_value();
   test_api_errors();
   return check_report("test_scenario");
 }
