@@ -26,12 +26,16 @@ static int contains(const char *text, const char *part)
 /* The data sheet's reference vehicle (../shared/reference-vehicle.md):
  * corner positions, 10 km/h, a 0.10 m x 3.70 m bump at 45 deg, first
  * contact 5 s. */
-static void reference_scenario(fb_scenario *sc)
+static void reference_scenario(fb_scenario *sc, fb_corner_params *corners)
 {
   static const double x[APC_NCORNERS] = {1.90, 1.90, 0.40, 0.40, -1.00, -1.00};
   static const double y[APC_NCORNERS] = {1.05, -1.05, 1.05, -1.05, 1.05, -1.05};
   memset(sc, 0, sizeof *sc);
+  memset(corners, 0, APC_NCORNERS * sizeof *corners);
+  sc->corner = corners;
+  sc->ncorners = APC_NCORNERS;
   for (int c = 0; c < APC_NCORNERS; ++c) {
+    sc->corner[c].name = (char *)apc_corner_name(c);
     sc->corner[c].x = x[c];
     sc->corner[c].y = y[c];
   }
@@ -111,7 +115,8 @@ static void check_wheel_on_bump(const fb_road *road, const fb_scenario *sc, int 
 static void test_oblique_bump(void)
 {
   fb_scenario sc;
-  reference_scenario(&sc);
+  fb_corner_params corners[APC_NCORNERS];
+  reference_scenario(&sc, corners);
   fb_road *road = NULL;
   fb_err err;
   const double width = sc.corner[APC_LF].y - sc.corner[APC_RF].y;
