@@ -39,7 +39,7 @@ static char *scenario_text(int naxles, int nmounts)
       "gravity: 9.81\n"
       "hull:\n  mass: %.17g\n  Ixx: %.17g\n  Iyy: %.17g\n"
       "  material: {young: 200e9, poisson: 0.3, density: 7860, thickness: 0.008}\n"
-      "  edges: {front_x: 2.5, rear_x: -2.5, left_y: 1.0, right_y: -1.0}\n",
+      "  edges: {front_x: 2.5, rear_x: -3.0, left_y: 1.0, right_y: -1.0}\n",
       3000.0, 3500.0, 12000.0);
   /* The load's centroid is off the centre of mass: its moments count. */
   add(t, cap, &len,
@@ -74,7 +74,7 @@ static char *scenario_text(int naxles, int nmounts)
       "  bump: {height: 0.05, length: 1.0, angle_deg: 0, first_contact: %.17g}\n"
       "simulation: {t_end: %.17g, rtol: 1e-8, atol: 1e-10, sample_rate: 100, initial: "
       "static}\n",
-      0.5, 0.6, 0);
+      0.3, 1.5, 0);
   return t;
 }
 

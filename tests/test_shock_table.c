@@ -75,11 +75,12 @@ static void test_example(void)
   fb_scenario_free(&s);
 }
 
-/* A YAML variant of the example with the LF corner's damper replaced
- * (the first damper_c line is the LF corner's), only checked. */
+/* A YAML variant of the example with the front axle's damper replaced
+ * (the first damper_c line is the front axle's, of corners LF and RF),
+ * only checked. */
 static int load_with_lf(const char *lf_damper, fb_err *err)
 {
-  return load_replaced("    damper_c: 25744", 0, "\n", lf_damper, NULL, err);
+  return load_replaced("      damper_c: 25744", 0, "\n", lf_damper, NULL, err);
 }
 
 static void expect_refused(const char *lf_damper, const char *phrase)
@@ -97,14 +98,14 @@ static void test_errors(void)
 {
   fb_err err;
   /* The replacement itself loads when it is good. */
-  CHECK(load_with_lf("    damper_table: {points: [[-1, -30000], [0, 0], [1, 20000]]}", &err) ==
+  CHECK(load_with_lf("      damper_table: {points: [[-1, -30000], [0, 0], [1, 20000]]}", &err) ==
         FB_OK);
-  expect_refused("    damper_c: 1\n    damper_table: {points: [[-1, -1], [1, 1]]}",
-                 "either damper_c or damper_table");
+  expect_refused("      damper_c: 1\n      damper_table: {points: [[-1, -1], [1, 1]]}",
+                 "give either 'damper_c' or 'damper_table'");
   /* Pushing when extended: a damper that delivers power. */
-  expect_refused("    damper_table: {points: [[-1, 100], [0, 0], [1, 20000]]}", "passive");
-  expect_refused("    damper_table: {points: [[1, 100], [0, 0]]}", "strictly increasing");
-  expect_refused("    damper_table: {file: missing.csv, force: F}", "missing.csv");
+  expect_refused("      damper_table: {points: [[-1, 100], [0, 0], [1, 20000]]}", "passive");
+  expect_refused("      damper_table: {points: [[1, 100], [0, 0]]}", "strictly increasing");
+  expect_refused("      damper_table: {file: missing.csv, force: F}", "missing.csv");
 }
 
 int main(void)

@@ -116,10 +116,10 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   if (!rc && !(h->load_node = malloc(s->nload * sizeof *h->load_node)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; !rc && k < s->nload; ++k) {
-    char what[32];
+    char what[32], key[48];
     snprintf(what, sizeof what, "LOAD node %zu", k + 1);
-    rc = check_at(h->mesh, nodes[k], what, "load.points", "load.points", s->load_x[k],
-                  s->load_y[k], err);
+    snprintf(key, sizeof key, "load.points[%zu]", k);
+    rc = check_at(h->mesh, nodes[k], what, key, key, s->load_x[k], s->load_y[k], err);
     h->load_node[k] = nodes[k];
   }
   h->nload = s->nload;

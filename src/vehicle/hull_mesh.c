@@ -289,7 +289,8 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
 
 /* Logical key of special point k's coordinate axis ('x' or 'y'):
  * attachment point k < nattach (in the order of the hull's attach port),
- * then the load points. */
+ * then the load points ("load.points[i]", both axes: a grid's point is
+ * no single value of the file; fb_scenario_locate finds load.points). */
 static void point_name(const fb_scenario *s, size_t k, char axis, char *buf, size_t size)
 {
   if (k < s->ncorners)
@@ -297,7 +298,7 @@ static void point_name(const fb_scenario *s, size_t k, char axis, char *buf, siz
   else if (k < fb_scenario_nattach(s))
     snprintf(buf, size, "mounts.%s.%c", s->mount[k - s->ncorners].name, axis);
   else
-    snprintf(buf, size, "load.points");
+    snprintf(buf, size, "load.points[%zu]", k - fb_scenario_nattach(s));
 }
 
 /* Position (x, y) of special point k in the vehicle axes. */
