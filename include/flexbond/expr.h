@@ -91,6 +91,30 @@ int fb_tfun_is_constant(const fb_tfun *f);
  * there are; writes at most max of them to bp (bp may be NULL). */
 size_t fb_tfun_breakpoints(const fb_tfun *f, double *bp, size_t max);
 
+/* What a time function is, for writers (fb_model_write): its kind and
+ * the parameters it was made from. Pointers are the function's own,
+ * valid while it lives. */
+typedef enum fb_tfun_kind {
+  FB_TFUN_CONST,
+  FB_TFUN_STEP,
+  FB_TFUN_SINE,
+  FB_TFUN_TABLE,
+  FB_TFUN_EXPR,
+  FB_TFUN_CALLBACK
+} fb_tfun_kind;
+typedef struct fb_tfun_info {
+  fb_tfun_kind kind;
+  double value;                                 /* CONST */
+  double t0, before, after;                     /* STEP */
+  double amplitude, freq_hz, phase_rad, offset; /* SINE */
+  size_t n;                                     /* TABLE: knots */
+  const double *times, *values;                 /* TABLE */
+  fb_tfun_fn fn;                                /* CALLBACK: the function */
+  const void *ctx;                              /* CALLBACK: its context */
+} fb_tfun_info;
+/* Fills *out (unused fields zero or NULL). */
+void fb_tfun_describe(const fb_tfun *f, fb_tfun_info *out);
+
 #ifdef __cplusplus
 }
 #endif
