@@ -278,7 +278,16 @@ static int sc_check_simulation(const fb_scenario *s, fb_err *err)
   /* What fb_vehicle_build records: the seven outputs and, for the contact
    * intervals, a tire force per corner (the most a run has). */
   o.noutputs = FB_NOUTPUTS + FB_NCORNERS;
-  return fb_sim_opts_check(&o, err);
+  rc = fb_sim_opts_check(&o, err);
+  /* The sim names the setting (err->key, "sample_rate"); in the scenario
+   * file it is simulation.KEY. */
+  if (rc && err && err->key[0]) {
+    char key[FB_ERR_KEY_MAX];
+    snprintf(key, sizeof key, "%s", err->key);
+    fb_err_prefix(err, "simulation.%s: ", key);
+    fb_err_set_key(err, "simulation.%s", key);
+  }
+  return rc;
 }
 
 /* Every wheel meets the bump at t >= 0 and has left it before t_end (the
