@@ -235,6 +235,35 @@ static long mw_declared_port(const mw *w, const char *child, size_t e, size_t k,
 
 static int mw_end_ref(mw *w, size_t b, int to_end, size_t scope, char **out);
 
+/* A port name for bond b's end in child scope c that the graph did not
+ * keep: the one the bond's made-up name "inst.p->..." shows, so that the
+ * name comes back, else "bondN_in" / "bondN_out". */
+static void mw_port_name(const mw *w, size_t b, int to_end, size_t c, char *buf, size_t size)
+{
+  const char *prefix = w->scopes[c].prefix, *bond = fb_bg_bond_name(w->bg, b);
+  const size_t clen = strlen(prefix);
+  size_t plen = clen - 1; /* the enclosing scope's prefix */
+  while (plen > 0 && prefix[plen - 1] != '.')
+    --plen;
+  snprintf(buf, size, "bond%zu_%s", b + 1, to_end ? "in" : "out");
+  const char *local = bond + plen,
+             *arrow = strncmp(bond, prefix, plen) ? NULL : strstr(local, "->");
+  if (!arrow)
+    return;
+  const char *part = to_end ? arrow + 2 : local;
+  const size_t n = to_end ? strlen(part) : (size_t)(arrow - local);
+  const size_t ilen = clen - plen; /* "inst." */
+  if (n <= ilen || strncmp(part, prefix + plen, ilen) || n - ilen >= size)
+    return;
+  char cand[256];
+  snprintf(cand, sizeof cand, "%.*s", (int)(n - ilen), part + ilen);
+  for (size_t i = 0; i < w->scopes[c].nports; ++i)
+    if (!strcmp(w->scopes[c].ports[i].name, cand))
+      return;
+  if (mw_is_name(cand))
+    snprintf(buf, size, "%s", cand);
+}
+
 /* The name, in the definition of child scope c, of the port that bond b's
  * end reaches element e through; the port is declared there. */
 static int mw_child_port(mw *w, size_t b, int to_end, size_t c, char **out)
@@ -244,8 +273,8 @@ static int mw_child_port(mw *w, size_t b, int to_end, size_t c, char **out)
   const fb_bg_dir dir = to_end ? FB_PORT_IN : FB_PORT_OUT;
   const char *prefix = w->scopes[c].prefix;
   const long pd = mw_declared_port(w, prefix, e, k, dir, fb_bg_bond_name(w->bg, b));
-  char made[64];
-  snprintf(made, sizeof made, "bond%zu_%s", b + 1, to_end ? "in" : "out");
+  char made[256];
+  mw_port_name(w, b, to_end, c, made, sizeof made);
   const char *name = made;
   if (pd >= 0) {
     fb_bg_port_info p;
