@@ -65,8 +65,9 @@ int fb_model_initial_state(const fb_model *m, fb_bd *bd, double *x0, fb_err *err
  * atomically; on failure the files already written are removed. On
  * success *files (if not NULL) gets the names written, relative to dir
  * (fresh memory: free each and the array), *nfiles their count.
- * FB_EINVAL naming the element or probe for what the format cannot hold:
- * a source that is an expression or a callback other than a road wheel,
+ * Expressions of t are written back with fb_expr_write. FB_EINVAL naming
+ * the element or probe for what the format cannot hold: a source that is
+ * a C callback other than a road wheel,
  * a nonlinear law other than a table or contact, a name or text with a
  * control character, an unnamed bond whose name cannot be remade; FB_EIO
  * on write errors. opts: t_start, t_end, rtol, atol, max_step,

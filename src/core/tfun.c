@@ -588,7 +588,10 @@ void fb_tfun_describe(const fb_tfun *f, fb_tfun_info *out)
     out->times = f->u.table.times;
     out->values = f->u.table.values;
     break;
-  case TFUN_EXPR: out->kind = FB_TFUN_EXPR; break;
+  case TFUN_EXPR:
+    out->kind = FB_TFUN_EXPR;
+    out->expr = f->u.expr;
+    break;
   case TFUN_CALLBACK:
     out->kind = FB_TFUN_CALLBACK;
     out->fn = f->u.callback.fn;

@@ -455,13 +455,29 @@ static int mw_tfun(const mw *w, FILE *fp, const fb_tfun *f, const char *elem)
     if (fb_road_wheel_describe(f, &road))
       return mw_road(w, fp, &road, elem);
     break;
-  case FB_TFUN_EXPR: break;
+  case FB_TFUN_EXPR: {
+    /* An expression of t, quoted: it holds ',' and parentheses, which a
+     * flow mapping would read. */
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    int bad = !m || fb_expr_write(t.expr, m) != 0;
+    if (m && fclose(m))
+      bad = 1;
+    if (!bad)
+      bad = fb_yaml_write_string(fp, text) != 0;
+    free(text);
+    if (!bad)
+      return FB_OK;
+    break;
+  }
   }
   return fb_err_set(w->err, FB_EINVAL,
                     "source '%s': its value is %s, which a model file cannot hold (only "
-                    "constants, steps, sines, tables and road wheels are written)",
+                    "constants, expressions, steps, sines, tables and road wheels are written)",
                     elem,
-                    t.kind == FB_TFUN_EXPR ? "a compiled expression of t" : "a C callback");
+                    t.kind == FB_TFUN_EXPR ? "an expression that cannot be written back"
+                                           : "a C callback");
 }
 
 /* `value:` of a source: one value (with `dim` when every component has
