@@ -40,10 +40,10 @@ const fb_sim_opts *fb_model_sim_opts(const fb_model *m);
 
 /* The initial state a model's run starts from (`simulation.initial`). */
 typedef enum fb_model_initial {
-  FB_MODEL_INITIAL_GIVEN,  /* the elements' `initial` values, 0 where absent (default) */
-  FB_MODEL_INITIAL_ZERO,   /* every state 0, whatever the elements say */
-  FB_MODEL_INITIAL_STATIC  /* the static equilibrium reached from the given state at
-                              t_start (fb_sim_static_state) */
+  FB_MODEL_INITIAL_GIVEN, /* the elements' `initial` values, 0 where absent (default) */
+  FB_MODEL_INITIAL_ZERO,  /* every state 0, whatever the elements say */
+  FB_MODEL_INITIAL_STATIC /* the static equilibrium reached from the given state at
+                             t_start (fb_sim_static_state) */
 } fb_model_initial;
 fb_model_initial fb_model_initial_choice(const fb_model *m);
 /* Fills x0 (fb_bd_nstates(bd) values) with the state a run of bd, built

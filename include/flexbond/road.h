@@ -155,8 +155,8 @@ typedef enum fb_road_wheel_kind {
  * fb_road_wheel_velocity is made of. Pointers borrowed (from the time
  * function described, or the caller's for fb_road_wheel_new). */
 typedef struct fb_road_wheel_info {
-  int velocity;      /* 1: the road velocity, 0: the height */
-  double speed, s0;  /* m/s, m: the wheel is at s0 + speed t */
+  int velocity;     /* 1: the road velocity, 0: the height */
+  double speed, s0; /* m/s, m: the wheel is at s0 + speed t */
   fb_road_wheel_kind kind;
   double bump_start, bump_height, bump_length; /* BUMP, m */
   fb_road_iso8608_params iso;                  /* ISO8608 */

@@ -880,6 +880,6 @@ int fb_bg_declared_port(const fb_bg *bg, size_t i, fb_bg_port_info *out)
     return FB_EINVAL;
   const fb_bg_portdef *pd = &bg->ports[i];
   *out = (fb_bg_port_info){pd->name, pd->dir, pd->exported, pd->elem,
-                              pd->slot == FB_NONE ? FB_BG_ANY_PORT : pd->slot};
+                           pd->slot == FB_NONE ? FB_BG_ANY_PORT : pd->slot};
   return FB_OK;
 }
