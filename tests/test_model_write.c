@@ -151,6 +151,8 @@ static fb_bg *mid_subsystem(void)
   MUST(fb_bg_add_junction(inner, "v", FB_BG_J1, 1, &err), &err);
   MUST(fb_bg_connect(inner, "b_m", "v", "M", &err), &err);
   MUST(fb_bg_add_port(inner, "p", "v", FB_PORT_IN, &err), &err);
+  fb_mat *kc = dense(1, 1, (const double[]){77});
+  MUST(fb_bg_add_field(inner, "Kc", FB_BG_C, 1, &one, &kc, &err), &err);
   MUST(fb_bg_new("mid", &mid, &err), &err);
   fb_mat *k = dense(1, 1, (const double[]){1234.5});
   MUST(fb_bg_add_field(mid, "K", FB_BG_C, 1, &one, &k, &err), &err);
@@ -158,6 +160,8 @@ static fb_bg *mid_subsystem(void)
   MUST(fb_bg_adopt(mid, &inner, "in", &err), &err);
   MUST(fb_bg_connect(mid, "b_k", "f", "K", &err), &err);
   MUST(fb_bg_connect(mid, NULL, "f", "in.p", &err), &err); /* "f->in.p" */
+  /* Named by mid after the inner parts: it belongs to mid, not to in. */
+  MUST(fb_bg_connect(mid, NULL, "in.v", "in.Kc", &err), &err);
   MUST(fb_bg_add_port(mid, "top", "f", FB_PORT_IN, &err), &err);
   return mid;
 }
@@ -389,6 +393,7 @@ static void test_every_kind(void)
     /* The made-up name of an unnamed bond into a subsystem came back. */
     CHECK(fb_bg_find_bond(fb_model_graph(m), "arm.2->mid.top") >= 0);
     CHECK(fb_bg_find_bond(fb_model_graph(m), "mid.f->in.p") >= 0);
+    CHECK(fb_bg_find_bond(fb_model_graph(m), "mid.in.v->in.Kc") >= 0);
   }
   fb_model_free(&m);
   if (dir)

@@ -326,28 +326,95 @@ static int mw_end_ref(mw *w, size_t b, int to_end, size_t scope, char **out)
   return *out ? FB_OK : fb_err_set(w->err, FB_ENOMEM, "out of memory");
 }
 
+/* The prefix of from one instance out from len (0 stays 0). */
+static size_t mw_outer(const char *from, size_t len)
+{
+  if (len > 0)
+    --len;
+  while (len > 0 && from[len - 1] != '.')
+    --len;
+  return len;
+}
+
+/* The ports scopes had before a tentative placement, to undo it. */
+static void mw_undo_ports(mw *w, const size_t *nports, const unsigned char *taken)
+{
+  for (size_t i = 0; i < w->nscopes; ++i)
+    while (w->scopes[i].nports > nports[i]) {
+      mw_port *p = &w->scopes[i].ports[--w->scopes[i].nports];
+      free(p->name);
+      free(p->at);
+    }
+  memcpy(w->taken, taken, fb_bg_ndeclared_ports(w->bg));
+}
+
+/* Places bond b in the scope of prefix length len: its ends' references
+ * there. 1 when its name can be written there (a model name, or the name
+ * "from->to" a model gives an unnamed bond), 0 when not (undone), < 0 on
+ * an error (rc in *rc). */
+static int mw_try_scope(mw *w, size_t b, size_t len, int *rc)
+{
+  const fb_bg *bg = w->bg;
+  const char *from = fb_bg_element_name(bg, fb_bg_bond_from(bg, b));
+  const char *name = fb_bg_bond_name(bg, b);
+  const long s = mw_scope_find(w, from, len);
+  if (s < 0 || strncmp(name, from, len))
+    return 0;
+  size_t *nports = malloc((w->nscopes + 1) * sizeof *nports);
+  unsigned char *taken = malloc(fb_bg_ndeclared_ports(bg) + 1);
+  if (!nports || !taken) {
+    free(nports);
+    free(taken);
+    *rc = fb_err_set(w->err, FB_ENOMEM, "out of memory");
+    return -1;
+  }
+  for (size_t i = 0; i < w->nscopes; ++i)
+    nports[i] = w->scopes[i].nports;
+  memcpy(taken, w->taken, fb_bg_ndeclared_ports(bg));
+  char **ref = &w->refs[2 * b];
+  *rc = mw_end_ref(w, b, 0, (size_t)s, &ref[0]);
+  if (!*rc)
+    *rc = mw_end_ref(w, b, 1, (size_t)s, &ref[1]);
+  int fits = 0;
+  if (!*rc) {
+    const char *local = name + len;
+    const size_t n = strlen(ref[0]);
+    fits = mw_is_name(local) || (!strncmp(local, ref[0], n) && !strncmp(local + n, "->", 2) &&
+                                 !strcmp(local + n + 2, ref[1]));
+  }
+  if (!fits) {
+    mw_undo_ports(w, nports, taken);
+    free(ref[0]);
+    free(ref[1]);
+    ref[0] = ref[1] = NULL;
+  } else {
+    w->bond_scope[b] = (size_t)s;
+  }
+  free(nports);
+  free(taken);
+  return *rc ? -1 : fits;
+}
+
 /* The scope of bond b: the innermost graph holding both its ends whose
- * prefix its name carries (fb_bg_adopt prefixed it); then its ends'
- * references there. */
+ * prefix its name carries (fb_bg_adopt prefixed it) and where its name
+ * can be written; then its ends' references there. */
 static int mw_place_bond(mw *w, size_t b)
 {
   const fb_bg *bg = w->bg;
   const char *from = fb_bg_element_name(bg, fb_bg_bond_from(bg, b));
   const char *to = fb_bg_element_name(bg, fb_bg_bond_to(bg, b));
-  const char *name = fb_bg_bond_name(bg, b);
-  size_t len = mw_common_prefix(from, to);
-  while (len > 0 && strncmp(name, from, len)) {
-    /* Out to the enclosing instance: back to the '.' before this one. */
-    --len;
-    while (len > 0 && from[len - 1] != '.')
-      --len;
+  int rc = FB_OK;
+  for (size_t len = mw_common_prefix(from, to);; len = mw_outer(from, len)) {
+    const int placed = mw_try_scope(w, b, len, &rc);
+    if (placed)
+      return placed < 0 ? rc : FB_OK;
+    if (len == 0)
+      break;
   }
-  const long s = mw_scope_find(w, from, len);
-  if (s < 0)
-    return fb_err_set(w->err, FB_EINVAL, "internal: no scope for bond '%s'", name);
-  w->bond_scope[b] = (size_t)s;
-  int rc = mw_end_ref(w, b, 0, (size_t)s, &w->refs[2 * b]);
-  return rc ? rc : mw_end_ref(w, b, 1, (size_t)s, &w->refs[2 * b + 1]);
+  return fb_err_set(w->err, FB_EINVAL,
+                    "bond '%s': its name is no model name and not the one a model gives an "
+                    "unnamed bond in any graph that holds both its ends",
+                    fb_bg_bond_name(bg, b));
 }
 
 /* ---- Values. */
