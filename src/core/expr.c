@@ -894,7 +894,9 @@ int fb_expr_write(const fb_expr *e, FILE *fp)
   for (size_t i = 0; rc == 0 && i < e->n; ++i) {
     const instr *in = &e->code[i];
     const size_t arity = op_arity(in->op);
-    if (arity == 0)
+    if (arity > sp || !(arity == 0 || stack[sp - 1].s) || !(arity < 2 || stack[sp - 2].s))
+      rc = -1; /* not the parser's code */
+    else if (arity == 0)
       rc = text_push(in, &stack[sp++]);
     else if (arity == 1)
       rc = text_unary(in->op, &stack[sp - 1]);

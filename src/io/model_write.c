@@ -218,7 +218,7 @@ static long mw_declared_port(const mw *w, const char *child, size_t e, size_t k,
     fb_bg_declared_port(w->bg, i, &p);
     const size_t len = strlen(child);
     if (p.exported || w->taken[i] || p.element != e || p.dir != dir ||
-        strncmp(p.name, child, len) || strchr(p.name + len, '.') ||
+        strncmp(p.name, child, len) != 0 || strchr(p.name + len, '.') ||
         p.port != (junction ? FB_BG_ANY_PORT : k))
       continue;
     const size_t n = strlen(p.name);
@@ -247,13 +247,13 @@ static void mw_port_name(const mw *w, size_t b, int to_end, size_t c, char *buf,
     --plen;
   snprintf(buf, size, "bond%zu_%s", b + 1, to_end ? "in" : "out");
   const char *local = bond + plen,
-             *arrow = strncmp(bond, prefix, plen) ? NULL : strstr(local, "->");
+             *arrow = strncmp(bond, prefix, plen) != 0 ? NULL : strstr(local, "->");
   if (!arrow)
     return;
   const char *part = to_end ? arrow + 2 : local;
   const size_t n = to_end ? strlen(part) : (size_t)(arrow - local);
   const size_t ilen = clen - plen; /* "inst." */
-  if (n <= ilen || strncmp(part, prefix + plen, ilen) || n - ilen >= size)
+  if (n <= ilen || strncmp(part, prefix + plen, ilen) != 0 || n - ilen >= size)
     return;
   char cand[256];
   snprintf(cand, sizeof cand, "%.*s", (int)(n - ilen), part + ilen);
@@ -337,9 +337,10 @@ static size_t mw_outer(const char *from, size_t len)
 }
 
 /* The ports scopes had before a tentative placement, to undo it. */
-static void mw_undo_ports(mw *w, const size_t *nports, const unsigned char *taken)
+static void mw_undo_ports(mw *w, size_t nscopes, const size_t *nports,
+                          const unsigned char *taken)
 {
-  for (size_t i = 0; i < w->nscopes; ++i)
+  for (size_t i = 0; i < nscopes; ++i)
     while (w->scopes[i].nports > nports[i]) {
       mw_port *p = &w->scopes[i].ports[--w->scopes[i].nports];
       free(p->name);
@@ -358,9 +359,10 @@ static int mw_try_scope(mw *w, size_t b, size_t len, int *rc)
   const char *from = fb_bg_element_name(bg, fb_bg_bond_from(bg, b));
   const char *name = fb_bg_bond_name(bg, b);
   const long s = mw_scope_find(w, from, len);
-  if (s < 0 || strncmp(name, from, len))
+  if (s < 0 || strncmp(name, from, len) != 0)
     return 0;
-  size_t *nports = malloc((w->nscopes + 1) * sizeof *nports);
+  const size_t nscopes = w->nscopes; /* placing a bond adds ports, no scopes */
+  size_t *nports = malloc((nscopes + 1) * sizeof *nports);
   unsigned char *taken = malloc(fb_bg_ndeclared_ports(bg) + 1);
   if (!nports || !taken) {
     free(nports);
@@ -368,7 +370,7 @@ static int mw_try_scope(mw *w, size_t b, size_t len, int *rc)
     *rc = fb_err_set(w->err, FB_ENOMEM, "out of memory");
     return -1;
   }
-  for (size_t i = 0; i < w->nscopes; ++i)
+  for (size_t i = 0; i < nscopes; ++i)
     nports[i] = w->scopes[i].nports;
   memcpy(taken, w->taken, fb_bg_ndeclared_ports(bg));
   char **ref = &w->refs[2 * b];
@@ -383,7 +385,7 @@ static int mw_try_scope(mw *w, size_t b, size_t len, int *rc)
                                  !strcmp(local + n + 2, ref[1]));
   }
   if (!fits) {
-    mw_undo_ports(w, nports, taken);
+    mw_undo_ports(w, nscopes, nports, taken);
     free(ref[0]);
     free(ref[1]);
     ref[0] = ref[1] = NULL;
@@ -737,13 +739,13 @@ static int mw_elements(mw *w, FILE *fp, size_t scope)
   const fb_bg *bg = w->bg;
   const char *prefix = w->scopes[scope].prefix;
   const size_t plen = strlen(prefix);
-  unsigned char *done = calloc(w->nscopes, 1);
+  unsigned char *done = calloc(w->nscopes + 1, 1);
   int rc = done ? FB_OK : fb_err_set(w->err, FB_ENOMEM, "out of memory");
   fputs("elements:\n", fp);
   size_t count = 0;
   for (size_t e = 0; !rc && e < fb_bg_nelements(bg); ++e) {
     const char *full = fb_bg_element_name(bg, e);
-    if (strncmp(full, prefix, plen))
+    if (strncmp(full, prefix, plen) != 0)
       continue;
     const char *local = full + plen, *dot = strchr(local, '.');
     fb_bg_contact contact;
@@ -793,7 +795,7 @@ static int mw_bonds(mw *w, FILE *fp, size_t scope)
     char made[1024];
     snprintf(made, sizeof made, "%s->%s", from, to);
     const int named = mw_is_name(local);
-    if (!named && strcmp(local, made))
+    if (!named && strcmp(local, made) != 0)
       return fb_err_set(w->err, FB_EINVAL,
                         "bond '%s': its name is no model name and not the one a model gives "
                         "an unnamed bond ('%s')",
