@@ -67,7 +67,7 @@ previous "$WORK/fail"
 run sim "$WORK/too_few_steps.yaml" -o "$WORK/fail"
 expect_status 4 "solver failure"
 expect_in "$ERR" "CV_TOO_MUCH_WORK" "solver failure names the CVODE flag"
-expect_in "$ERR" "raise simulation.max_steps" "solver failure gives a hint"
+expect_in "$ERR" "raise max_steps" "solver failure gives a hint"
 expect_in "$ERR" "nothing was written" "solver failure says the previous results stand"
 expect_unchanged "$WORK/fail" "solver failure"
 

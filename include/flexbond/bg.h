@@ -303,6 +303,71 @@ size_t fb_bg_bond_to(const fb_bg *bg, size_t i);
 /* After causality: 1 if the `to` element receives the effort (causal stroke
  * at the `to` end), 0 if the `from` element does, -1 if unassigned. */
 int fb_bg_bond_effort_to_head(const fb_bg *bg, size_t i);
+
+/* ---- Reading a graph back (e.g. to write it as a model file,
+ * fb_model_write). Every pointer returned is owned by the graph and valid
+ * while it lives and is not changed; indices as above. */
+/* Default bond domain (fb_bg_set_domain). */
+fb_bg_domain fb_bg_default_domain(const fb_bg *bg);
+/* Ports of element i: the fixed slots of sources, fields, TF, GY, MTF
+ * (port 1, 2) and composites (parts, then the whole), or the bonds
+ * attached to a junction, in the order they were connected. */
+size_t fb_bg_element_nports(const fb_bg *bg, size_t i);
+/* 1 for numbered slots, 0 for a junction (every bond adds a port). */
+int fb_bg_element_has_fixed_ports(const fb_bg *bg, size_t i);
+size_t fb_bg_element_port_dim(const fb_bg *bg, size_t i, size_t k);
+/* Bond at port k of element i, or (size_t)-1 when unconnected. */
+size_t fb_bg_element_port_bond(const fb_bg *bg, size_t i, size_t k);
+/* Law matrix of a linear field (M, K or R) or the T of an MTF; NULL for
+ * other kinds and nonlinear laws. */
+const fb_mat *fb_bg_element_matrix(const fb_bg *bg, size_t i);
+/* Nonlinear law of a field and its context (in *ctx if ctx is not NULL);
+ * NULL for a linear one. Which law it is: compare ops with a module's own
+ * accessor (fb_bg_element_table_law, fb_bg_element_contact). */
+const fb_law_ops *fb_bg_element_law(const fb_bg *bg, size_t i, const void **ctx);
+/* Modulus of a TF or GY (0 for other kinds). */
+double fb_bg_element_modulus(const fb_bg *bg, size_t i);
+/* Component k of a source's value, NULL for other kinds or k >= dim. */
+const fb_tfun *fb_bg_element_source(const fb_bg *bg, size_t i, size_t k);
+/* Initial state of an I or C (dim values), NULL when never set (zero). */
+const double *fb_bg_element_initial(const fb_bg *bg, size_t i);
+/* Elements whose states modulate R element i (fb_bg_modulate), *n of
+ * them; NULL and 0 when none. */
+const size_t *fb_bg_element_modulators(const fb_bg *bg, size_t i, size_t *n);
+/* Port index of the bond's ends at its from and to elements. */
+size_t fb_bg_bond_from_port(const fb_bg *bg, size_t i);
+size_t fb_bg_bond_to_port(const fb_bg *bg, size_t i);
+/* Subsystem instances adopted directly into bg (fb_bg_adopt), in order;
+ * the elements and bonds of instance "s" are named "s.*" (nested ones
+ * "s.t.*"). */
+size_t fb_bg_ninstances(const fb_bg *bg);
+const char *fb_bg_instance_name(const fb_bg *bg, size_t i);
+/* A declared port: the graph's own exported ones (exported = 1), and the
+ * ports of adopted instances ("inst.p", exported = 0). */
+#define FB_BG_ANY_PORT ((size_t)-1) /* a junction's: each bond adds a port */
+typedef struct fb_bg_port_info {
+  const char *name;
+  fb_bg_dir dir;
+  int exported;
+  size_t element; /* target element index */
+  size_t port;    /* its port index, or FB_BG_ANY_PORT for a junction */
+} fb_bg_port_info;
+size_t fb_bg_ndeclared_ports(const fb_bg *bg);
+/* FB_EINVAL when i >= fb_bg_ndeclared_ports. */
+int fb_bg_declared_port(const fb_bg *bg, size_t i, fb_bg_port_info *out);
+
+/* The table law of an R made by fb_bg_add_r_table, NULL for any other
+ * element (src/bg/table_law.c). */
+const fb_table_law *fb_bg_element_table_law(const fb_bg *bg, size_t i);
+/* A pair made by fb_bg_add_unilateral_contact (src/bg/contact_law.c). */
+typedef struct fb_bg_contact {
+  size_t spring, damper; /* element indices */
+  double k, c;
+} fb_bg_contact;
+/* 1 and *out filled when element i is the spring or the damper of a
+ * unilateral contact, 0 otherwise. */
+int fb_bg_element_contact(const fb_bg *bg, size_t i, fb_bg_contact *out);
+
 const char *fb_bg_kind_name(fb_bg_kind kind);
 /* Units of effort, flow, effort integral and flow integral. */
 const char *fb_bg_domain_unit(fb_bg_domain d, int which);

@@ -100,6 +100,21 @@ void fb_xml_write_text(FILE *fp, const char *s);
  * to spaces). */
 void fb_xml_write_attr(FILE *fp, const char *s);
 
+/* ---- YAML 1.2 (model files, fb_model_write). */
+
+/* s as one double-quoted YAML scalar, quotes included (YAML 1.2, section
+ * 7.3.1): '"' and '\\' are escaped, everything else is written as it is
+ * (valid UTF-8 kept, a malformed byte as U+FFFD), so the scalar reads
+ * back as s. Text with a control character (C0, DEL, C1: one that a
+ * model's loader refuses in one-line text) is refused instead: nothing
+ * is written and -1 returned; 0 otherwise. NULL writes "". */
+int fb_yaml_write_string(FILE *fp, const char *s);
+/* 1 if s may be written as a plain YAML scalar that every YAML reader
+ * reads back as the same string: a letter or '_' followed by letters,
+ * digits, '_' and '.', and not one of the words YAML 1.1 readers take
+ * for a boolean or null (true, no, on, null, y, ...). */
+int fb_yaml_is_plain(const char *s);
+
 #ifdef __cplusplus
 }
 #endif

@@ -16,6 +16,7 @@
 #define FLEXBOND_EXPR_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/error.h"
 
@@ -51,6 +52,13 @@ void fb_expr_free(fb_expr **e);
 /* Parses and evaluates a time-independent expression; FB_EPARSE if it
  * uses t, FB_EINVAL if the value is not finite. */
 int fb_expr_eval_const(const char *text, const fb_symtab *syms, double *value, fb_err *err);
+
+/* Writes e as text that fb_expr_parse reads back as the same expression
+ * (the same operations in the same order on the same constants, so the
+ * same values for every t): parameters appear as their values, numbers
+ * in at most 17 significant digits, parentheses only where needed.
+ * Returns 0, or -1 (out of memory, or a constant that is not finite). */
+int fb_expr_write(const fb_expr *e, FILE *fp);
 
 /* A scalar function of time u(t). */
 typedef struct fb_tfun fb_tfun;
@@ -90,6 +98,31 @@ int fb_tfun_is_constant(const fb_tfun *f);
 /* Times where u or its slope jumps (sorted, ascending). Returns how many
  * there are; writes at most max of them to bp (bp may be NULL). */
 size_t fb_tfun_breakpoints(const fb_tfun *f, double *bp, size_t max);
+
+/* What a time function is, for writers (fb_model_write): its kind and
+ * the parameters it was made from. Pointers are the function's own,
+ * valid while it lives. */
+typedef enum fb_tfun_kind {
+  FB_TFUN_CONST,
+  FB_TFUN_STEP,
+  FB_TFUN_SINE,
+  FB_TFUN_TABLE,
+  FB_TFUN_EXPR,
+  FB_TFUN_CALLBACK
+} fb_tfun_kind;
+typedef struct fb_tfun_info {
+  fb_tfun_kind kind;
+  double value;                                 /* CONST */
+  double t0, before, after;                     /* STEP */
+  double amplitude, freq_hz, phase_rad, offset; /* SINE */
+  size_t n;                                     /* TABLE: knots */
+  const double *times, *values;                 /* TABLE */
+  const fb_expr *expr;                          /* EXPR */
+  fb_tfun_fn fn;                                /* CALLBACK: the function */
+  const void *ctx;                              /* CALLBACK: its context */
+} fb_tfun_info;
+/* Fills *out (unused fields zero or NULL). */
+void fb_tfun_describe(const fb_tfun *f, fb_tfun_info *out);
 
 #ifdef __cplusplus
 }

@@ -38,6 +38,46 @@ const fb_probe_spec *fb_model_probes(const fb_model *m, size_t *nprobes);
  * absent); borrowed pointers inside stay valid while m lives. */
 const fb_sim_opts *fb_model_sim_opts(const fb_model *m);
 
+/* The initial state a model's run starts from (`simulation.initial`). */
+typedef enum fb_model_initial {
+  FB_MODEL_INITIAL_GIVEN, /* the elements' `initial` values, 0 where absent (default) */
+  FB_MODEL_INITIAL_ZERO,  /* every state 0, whatever the elements say */
+  FB_MODEL_INITIAL_STATIC /* the static equilibrium reached from the given state at
+                             t_start (fb_sim_static_state) */
+} fb_model_initial;
+fb_model_initial fb_model_initial_choice(const fb_model *m);
+/* Fills x0 (fb_bd_nstates(bd) values) with the state a run of bd, built
+ * from m's graph and probes, starts from; pass it as fb_sim_opts.x0.
+ * FB_ESOLVER (prefixed "simulation.initial: static: ") when the
+ * equilibrium is not found. */
+int fb_model_initial_state(const fb_model *m, fb_bd *bd, double *x0, fb_err *err);
+
+/* Writes graph bg, its probes and solver settings as one model file,
+ * DIR/NAME.yaml (docs/model-format.md), and every field or MTF matrix
+ * with more than FB_MODEL_INLINE_MAX entries as a Matrix Market file
+ * beside it (DIR/NAME.ELEMENT.mtx, ELEMENT's dots made '-'), numbers in
+ * %.17g so that loading the file (fb_model_load) rebuilds the same graph
+ * value for value. Subsystem instances of bg (elements "inst.x") become
+ * `subsystems` definitions, one per distinct content, instantiated under
+ * their instance names, so every element and bond keeps its name and the
+ * probes their targets. name must be a model name (letters, digits, '_',
+ * not starting with a digit); dir must exist. Each file is written
+ * atomically; on failure the files already written are removed. On
+ * success *files (if not NULL) gets the names written, relative to dir
+ * (fresh memory: free each and the array), *nfiles their count.
+ * Expressions of t are written back with fb_expr_write. FB_EINVAL naming
+ * the element or probe for what the format cannot hold: a source that is
+ * a C callback other than a road wheel,
+ * a nonlinear law other than a table or contact, a name or text with a
+ * control character, an unnamed bond whose name cannot be remade; FB_EIO
+ * on write errors. opts: t_start, t_end, rtol, atol, max_step,
+ * sample_rate, max_order, max_steps, breakpoints (x0 and callbacks are
+ * not written). */
+#define FB_MODEL_INLINE_MAX 16
+int fb_model_write(const fb_bg *bg, const fb_probe_spec *probes, size_t nprobes,
+                   const fb_sim_opts *opts, fb_model_initial initial, const char *dir,
+                   const char *name, char ***files, size_t *nfiles, fb_err *err);
+
 /* Locates an error raised after loading by the model's graph (causality,
  * unconnected ports, fb_bd_build): if err has an origin (fb_err.origin)
  * naming an element or bond of fb_model_graph(m), the message becomes

@@ -136,6 +136,43 @@ int fb_road_wheel_height(const fb_road *road, int track, double speed, double s0
 int fb_road_wheel_velocity(const fb_road *road, int track, double speed, double s0,
                            fb_tfun **out, fb_err *err);
 
+/* ---- Profiles from data, and wheel functions as data (for model files,
+ * docs/model-format.md, "Road sources"). */
+
+/* A measured profile from n >= 2 knots (s[i], z_left[i], z_right[i]),
+ * copied: as fb_road_new_csv without the file. FB_EINVAL naming the first
+ * knot that is not finite or whose s does not increase. */
+int fb_road_new_profile(size_t n, const double *s, const double *z_left, const double *z_right,
+                        fb_road **out, fb_err *err);
+
+typedef enum fb_road_wheel_kind {
+  FB_ROAD_WHEEL_BUMP,    /* one (1 - cos) bump on the track */
+  FB_ROAD_WHEEL_ISO8608, /* a track of an ISO 8608 random road */
+  FB_ROAD_WHEEL_PROFILE  /* a measured profile (PCHIP through knots) */
+} fb_road_wheel_kind;
+
+/* Everything a wheel function of fb_road_wheel_height or
+ * fb_road_wheel_velocity is made of. Pointers borrowed (from the time
+ * function described, or the caller's for fb_road_wheel_new). */
+typedef struct fb_road_wheel_info {
+  int velocity;     /* 1: the road velocity, 0: the height */
+  double speed, s0; /* m/s, m: the wheel is at s0 + speed t */
+  fb_road_wheel_kind kind;
+  double bump_start, bump_height, bump_length; /* BUMP, m */
+  fb_road_iso8608_params iso;                  /* ISO8608 */
+  int track;                                   /* ISO8608: FB_ROAD_LEFT or FB_ROAD_RIGHT */
+  size_t nknots;                               /* PROFILE */
+  const double *knot_s, *knot_z;               /* PROFILE, m */
+} fb_road_wheel_info;
+
+/* 1 and *out filled when f was made by fb_road_wheel_height or
+ * fb_road_wheel_velocity, 0 for any other time function. */
+int fb_road_wheel_describe(const fb_tfun *f, fb_road_wheel_info *out);
+/* The wheel function that info describes: the same function, value for
+ * value and breakpoint for breakpoint, as the one it was described from.
+ * *out is new. FB_EINVAL naming a bad parameter. */
+int fb_road_wheel_new(const fb_road_wheel_info *info, fb_tfun **out, fb_err *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -63,13 +63,18 @@ typedef struct fb_sim_opts {
 
 /* Fills the defaults stated above (t_end = 1). */
 void fb_sim_opts_default(fb_sim_opts *opts);
-/* FB_EINVAL naming the option when opts is inconsistent, when
- * t_end - t_start is too short for CVODE to take a first step (below
- * max(1.5e-154 s, 100 roundoffs of |t_start|, |t_end|); src/sim/opts.c
- * says why), when the run is certain not to finish ((t_end - t_start) /
- * max_step above max_steps: "simulation.max_step: ...") or when its
- * result would take more than FB_SIM_MAX_RESULT_BYTES
- * ("simulation.sample_rate: ... would need about X GB ..."). */
+/* FB_EINVAL when opts is inconsistent, when t_end - t_start is too short
+ * for CVODE to take a first step (below max(1.5e-154 s, 100 roundoffs of
+ * |t_start|, |t_end|); src/sim/opts.c says why), when the run is certain
+ * not to finish ((t_end - t_start) / max_step above max_steps) or when its
+ * result would take more than FB_SIM_MAX_RESULT_BYTES ("... would need
+ * about X GB ..."). The setting at fault is err->key, its field name
+ * ("rtol", "max_step", "breakpoints[2]"); the message does not repeat it
+ * ("must be in (0, 1), got 2"), since only the caller knows where the
+ * setting came from (a file's "simulation.rtol", an option "--rtol") and
+ * prefixes that. fb_sim_run's own errors about a setting set err->key
+ * too ("x0[3]" for a state that is not finite, "max_steps" when the step
+ * budget runs out). */
 int fb_sim_opts_check(const fb_sim_opts *opts, fb_err *err);
 
 typedef struct fb_sim_stats {

@@ -153,3 +153,24 @@ int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damp
     rc = fb_bg_modulate(bg, damper, 1, &spring, err);
   return rc;
 }
+
+/* The damper is recognised by its law and finds its spring through its
+ * modulation (fb_bg_add_unilateral_contact makes the spring its only
+ * modulator); a spring looks for the damper modulated by it. */
+int fb_bg_element_contact(const fb_bg *bg, size_t i, fb_bg_contact *out)
+{
+  const fb_bg_elem *el = &bg->elems[i];
+  size_t damper = FB_NONE;
+  if (el->law_ops == &damper_ops && el->nmod == 1)
+    damper = i;
+  for (size_t j = 0; damper == FB_NONE && el->law_ops == &spring_ops && j < bg->nelems; ++j)
+    if (bg->elems[j].law_ops == &damper_ops && bg->elems[j].nmod == 1 &&
+        bg->elems[j].mod_src[0] == i)
+      damper = j;
+  if (damper == FB_NONE)
+    return 0;
+  const fb_bg_elem *d = &bg->elems[damper];
+  const contact_params *p = d->law_ctx;
+  *out = (fb_bg_contact){d->mod_src[0], damper, p->k, p->c};
+  return 1;
+}

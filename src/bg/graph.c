@@ -802,3 +802,84 @@ int fb_bg_orientation(const fb_bg *bg, size_t b, size_t e)
 {
   return bg->bonds[b].to == e ? 1 : -1;
 }
+
+/* ---- Read-only access for writers (bg.h, "Reading a graph back"). */
+
+fb_bg_domain fb_bg_default_domain(const fb_bg *bg)
+{
+  return bg->domain;
+}
+size_t fb_bg_element_nports(const fb_bg *bg, size_t i)
+{
+  return bg->elems[i].nports;
+}
+size_t fb_bg_element_port_dim(const fb_bg *bg, size_t i, size_t k)
+{
+  const fb_bg_elem *el = &bg->elems[i];
+  return el->fixed_ports ? el->port_dims[k] : el->dim;
+}
+size_t fb_bg_element_port_bond(const fb_bg *bg, size_t i, size_t k)
+{
+  return bg->elems[i].bonds[k];
+}
+int fb_bg_element_has_fixed_ports(const fb_bg *bg, size_t i)
+{
+  return bg->elems[i].fixed_ports;
+}
+const fb_mat *fb_bg_element_matrix(const fb_bg *bg, size_t i)
+{
+  return bg->elems[i].law;
+}
+const fb_law_ops *fb_bg_element_law(const fb_bg *bg, size_t i, const void **ctx)
+{
+  if (ctx)
+    *ctx = bg->elems[i].law_ctx;
+  return bg->elems[i].law_ops;
+}
+double fb_bg_element_modulus(const fb_bg *bg, size_t i)
+{
+  return bg->elems[i].modulus;
+}
+const fb_tfun *fb_bg_element_source(const fb_bg *bg, size_t i, size_t k)
+{
+  const fb_bg_elem *el = &bg->elems[i];
+  return el->values && k < el->dim ? el->values[k] : NULL;
+}
+const double *fb_bg_element_initial(const fb_bg *bg, size_t i)
+{
+  return bg->elems[i].x0;
+}
+const size_t *fb_bg_element_modulators(const fb_bg *bg, size_t i, size_t *n)
+{
+  *n = bg->elems[i].nmod;
+  return bg->elems[i].mod_src;
+}
+size_t fb_bg_bond_from_port(const fb_bg *bg, size_t i)
+{
+  return bg->bonds[i].from_slot;
+}
+size_t fb_bg_bond_to_port(const fb_bg *bg, size_t i)
+{
+  return bg->bonds[i].to_slot;
+}
+size_t fb_bg_ninstances(const fb_bg *bg)
+{
+  return bg->ninstances;
+}
+const char *fb_bg_instance_name(const fb_bg *bg, size_t i)
+{
+  return bg->instances[i];
+}
+size_t fb_bg_ndeclared_ports(const fb_bg *bg)
+{
+  return bg->nports;
+}
+int fb_bg_declared_port(const fb_bg *bg, size_t i, fb_bg_port_info *out)
+{
+  if (i >= bg->nports)
+    return FB_EINVAL;
+  const fb_bg_portdef *pd = &bg->ports[i];
+  *out = (fb_bg_port_info){pd->name, pd->dir, pd->exported, pd->elem,
+                           pd->slot == FB_NONE ? FB_BG_ANY_PORT : pd->slot};
+  return FB_OK;
+}

@@ -451,3 +451,9 @@ size_t fb_table_law_knots(const fb_table_law *law, const double **x, const doubl
   *y = law->y;
   return law->n;
 }
+
+const fb_table_law *fb_bg_element_table_law(const fb_bg *bg, size_t i)
+{
+  const void *ctx = NULL;
+  return fb_bg_element_law(bg, i, &ctx) == &table_law_ops ? ctx : NULL;
+}

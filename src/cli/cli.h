@@ -203,6 +203,7 @@ int cli_cmd_modes(int argc, char **argv);
 int cli_cmd_mesh(int argc, char **argv);
 int cli_cmd_export(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
+int cli_cmd_model(int argc, char **argv);
 /* Modal analysis of System 2 (modes --system flexible); out_dir may be
  * NULL (print only). Returns the exit code. */
 int cli_modes_flexible(const char *path, const char *out_dir);

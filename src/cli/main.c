@@ -9,6 +9,7 @@
  *                [--initial zero|static] [--payload weight-only|lumped] [-q]
  *   flexbond modes SCENARIO.yaml [--system rigid|flexible]
  *   flexbond export SCENARIO.yaml -o DIR [--system rigid|flexible]
+ *   flexbond model SCENARIO.yaml -o DIR [--system rigid|flexible]
  *   flexbond sweep SCENARIO.yaml --set KEY=SPEC [--set ...] -o DIR [--system rigid|flexible]
  *                  [-j N] [--no-figures] [-q]
  *   flexbond --help | -h | --version,  flexbond COMMAND --help
@@ -48,6 +49,7 @@ static const cli_command commands[] = {
     {"modes", cli_cmd_modes, "natural frequencies and damped modes of a vehicle scenario"},
     {"mesh", cli_cmd_mesh, "the finite-element hull mesh of a scenario; export to .inp / .vtu"},
     {"export", cli_cmd_export, "a vehicle scenario's linear model in descriptor form (.mtx)"},
+    {"model", cli_cmd_model, "write a vehicle scenario's bond graph as a model file"},
     {"sweep", cli_cmd_sweep, "parameter study of a vehicle scenario on all cores: CSV, figure"},
 };
 

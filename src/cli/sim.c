@@ -153,24 +153,33 @@ static int stop_when_interrupted(void *ctx, double t, double t_end)
 }
 
 /* The option of a that set the solver setting an fb_sim_opts_check
- * message names first ("simulation.rtol: ..."), NULL if the model's own
- * value did. The sample count names sample_rate, but --t-end may have
+ * error is about (err->key, the setting's name), NULL if the model's own
+ * value did. The sample count is sample_rate's, but --t-end may have
  * raised it. */
-static const char *overriding_option(const sim_args *a, const char *msg)
+static const char *overriding_option(const sim_args *a, const char *key)
 {
   static const struct {
     const char *key;
     const char *option;
     size_t field; /* 0 t_end, 1 rtol, 2 sample_rate */
-  } map[] = {{"simulation.t_end:", "--t-end", 0},
-             {"simulation.rtol:", "--rtol", 1},
-             {"simulation.sample_rate:", "--sample-rate", 2},
-             {"simulation.sample_rate:", "--t-end", 0}};
+  } map[] = {{"t_end", "--t-end", 0},
+             {"rtol", "--rtol", 1},
+             {"sample_rate", "--sample-rate", 2},
+             {"sample_rate", "--t-end", 0}};
   const double given[3] = {a->t_end, a->rtol, a->sample_rate};
   for (size_t i = 0; i < sizeof map / sizeof map[0]; ++i)
-    if (!strncmp(msg, map[i].key, strlen(map[i].key)) && given[map[i].field] > 0)
+    if (!strcmp(key, map[i].key) && given[map[i].field] > 0)
       return map[i].option;
   return NULL;
+}
+
+/* The state the run starts from (simulation.initial), into *x0 (new). */
+static int start_state(const fb_model *m, fb_bd *bd, double **x0, fb_err *err)
+{
+  *x0 = malloc((fb_bd_nstates(bd) + 1) * sizeof **x0);
+  if (!*x0)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  return fb_model_initial_state(m, bd, *x0, err);
 }
 
 static int run(const sim_args *a)
@@ -188,10 +197,10 @@ static int run(const sim_args *a)
     rc = fb_sim_opts_check(&opts, &err);
     /* The model's settings were checked where it was loaded: a failure
      * here is an option's, a usage error. */
-    const char *option = rc == FB_OK ? NULL : overriding_option(a, err.msg);
+    const char *option = rc == FB_OK ? NULL : overriding_option(a, err.key);
     if (option) {
       fb_model_free(&m);
-      return cli_usage_error("sim", "option '%s': %s", option, strchr(err.msg, ' ') + 1);
+      return cli_usage_error("sim", "option '%s': %s", option, err.msg);
     }
   }
   if (rc == FB_OK) {
@@ -200,6 +209,11 @@ static int run(const sim_args *a)
     rc = fb_bd_build(fb_model_graph(m), probes, nprobes, &bd, &err);
     fb_model_blame(m, &err); /* a causality error: at its element's or bond's line */
   }
+  double *x0 = NULL;
+  if (rc == FB_OK)
+    rc = start_state(m, bd, &x0, &err);
+  if (rc == FB_OK)
+    opts.x0 = x0;
   /* The directory is held (locked) from here to the end. */
   cli_outdir od;
   const int opened =
@@ -215,6 +229,7 @@ static int run(const sim_args *a)
   if (rc != FB_OK)
     cli_nothing_written(&err, a->out_dir);
   fb_result_free(&res);
+  free(x0);
   fb_bd_free(&bd);
   fb_model_free(&m);
   return cli_report(rc, &err);

@@ -2,8 +2,11 @@
  * (write_utf8) and, per language, what each ASCII character becomes. */
 #include "flexbond/escape.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <string.h>
+
+#include "core/textfile.h"
 
 /* U+FFFD REPLACEMENT CHARACTER in UTF-8, for a malformed byte or a
  * character the language cannot hold. */
@@ -270,4 +273,49 @@ void fb_xml_write_text(FILE *fp, const char *s)
 void fb_xml_write_attr(FILE *fp, const char *s)
 {
   write_utf8(fp, s, (size_t)-1, xml_put_attr, 1);
+}
+
+/* ---- YAML. */
+
+static void yaml_put(FILE *fp, unsigned char c, unsigned char next)
+{
+  (void)next;
+  if (c == '"' || c == '\\')
+    fputc('\\', fp);
+  fputc(c, fp);
+}
+
+int fb_yaml_write_string(FILE *fp, const char *s)
+{
+  const char *text = s ? s : "";
+  const size_t len = strlen(text);
+  unsigned code = 0;
+  if (fb_text_find_control(text, len, 0, &code) != len)
+    return -1;
+  fputc('"', fp);
+  write_utf8(fp, text, len, yaml_put, 0);
+  fputc('"', fp);
+  return 0;
+}
+
+int fb_yaml_is_plain(const char *s)
+{
+  /* YAML 1.1's boolean and null words (yaml.org/type/bool.html,
+   * null.html), compared without case: a reader of either version keeps
+   * the rest as strings. */
+  static const char *const words[] = {"y",     "n",  "yes", "no",   "true",
+                                      "false", "on", "off", "null", NULL};
+  if (!s || !(isalpha((unsigned char)s[0]) || s[0] == '_'))
+    return 0;
+  for (const char *p = s; *p; ++p)
+    if (!(isalnum((unsigned char)*p) || *p == '_' || *p == '.'))
+      return 0;
+  for (size_t i = 0; words[i]; ++i) {
+    size_t k = 0;
+    while (s[k] && words[i][k] && tolower((unsigned char)s[k]) == words[i][k])
+      ++k;
+    if (!s[k] && !words[i][k])
+      return 0;
+  }
+  return 1;
 }

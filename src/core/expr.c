@@ -772,3 +772,141 @@ int fb_expr_eval_const(const char *text, const fb_symtab *syms, double *value, f
   *value = v;
   return FB_OK;
 }
+
+/* ---- Writing an expression back (fb_expr_write).
+ *
+ * The code is a postfix program; each value on the stack becomes the text
+ * of its subexpression with the precedence of its outermost operator,
+ * and an operand is parenthesised only where the grammar would otherwise
+ * group it differently, so the text parses to the same program: the
+ * operations in the same order, on the same constants (written in the
+ * shortest form strtod reads back exactly), hence the same values. */
+
+enum { PREC_ADD = 1, PREC_MUL = 2, PREC_NEG = 3, PREC_POW = 4, PREC_ATOM = 5 };
+
+typedef struct expr_text {
+  char *s;
+  int prec;
+} expr_text;
+
+static char *text_join(const char *a, const char *b, const char *c, const char *d,
+                       const char *e)
+{
+  const size_t n = strlen(a) + strlen(b) + strlen(c) + strlen(d) + strlen(e) + 1;
+  char *s = malloc(n);
+  if (s)
+    snprintf(s, n, "%s%s%s%s%s", a, b, c, d, e);
+  return s;
+}
+
+/* x, in parentheses when its precedence is below min, or when it starts
+ * with a minus and is the operand of an infix operator (min > 0): the
+ * grammar reads "a * -b" too, but "a * (-b)" says it plainly. */
+static char *text_operand(const expr_text *x, int min)
+{
+  const int wrap = x->prec < min || (min > 0 && min != PREC_POW && x->prec == PREC_NEG);
+  return wrap ? text_join("(", x->s, ")", "", "") : text_join(x->s, "", "", "", "");
+}
+
+static const char *func_name(opcode op)
+{
+  for (size_t i = 0; i < NFUNCS; ++i)
+    if (FUNCS[i].op == op)
+      return FUNCS[i].name;
+  return "?";
+}
+
+static int text_push(const instr *in, expr_text *x)
+{
+  char buf[40];
+  if (in->op == OP_TIME) {
+    x->prec = PREC_ATOM;
+    return (x->s = text_join("t", "", "", "", "")) ? 0 : -1;
+  }
+  if (!isfinite(in->k))
+    return -1;
+  for (int digits = 15; digits <= 17; ++digits) {
+    snprintf(buf, sizeof buf, "%.*g", digits, in->k);
+    if (strtod(buf, NULL) == in->k)
+      break;
+  }
+  /* Beyond 2^53 the parser refuses an integer without exponent. */
+  if (fabs(in->k) > 9007199254740992.0 && !strpbrk(buf, ".e"))
+    snprintf(buf, sizeof buf, "%.16e", in->k);
+  x->prec = in->k < 0 || (in->k == 0 && signbit(in->k)) ? PREC_NEG : PREC_ATOM;
+  return (x->s = text_join(buf, "", "", "", "")) ? 0 : -1;
+}
+
+static int text_unary(opcode op, expr_text *x)
+{
+  char *a = text_operand(x, op == OP_NEG ? PREC_POW : 0);
+  char *s = !a             ? NULL
+            : op == OP_NEG ? text_join("-", a, "", "", "")
+                           : text_join(func_name(op), "(", a, ")", "");
+  free(a);
+  free(x->s);
+  x->s = s;
+  x->prec = op == OP_NEG ? PREC_NEG : PREC_ATOM;
+  return s ? 0 : -1;
+}
+
+static int text_binary(opcode op, expr_text *x, expr_text *y)
+{
+  static const struct {
+    opcode op;
+    const char *sym;
+    int prec;
+  } infix[] = {{OP_ADD, " + ", PREC_ADD},
+               {OP_SUB, " - ", PREC_ADD},
+               {OP_MUL, " * ", PREC_MUL},
+               {OP_DIV, " / ", PREC_MUL}};
+  char *s = NULL;
+  int prec = PREC_ATOM;
+  for (size_t i = 0; i < 4 && !s; ++i)
+    if (infix[i].op == op) {
+      /* Left associative: the left operand may be of equal precedence. */
+      char *a = text_operand(x, infix[i].prec), *b = text_operand(y, infix[i].prec + 1);
+      s = a && b ? text_join(a, infix[i].sym, b, "", "") : NULL;
+      prec = infix[i].prec;
+      free(a);
+      free(b);
+      if (!s)
+        return -1;
+    }
+  if (!s)
+    s = text_join(func_name(op), "(", x->s, ", ", y->s);
+  char *closed = s && prec == PREC_ATOM ? text_join(s, ")", "", "", "") : s;
+  if (closed != s)
+    free(s);
+  free(x->s);
+  free(y->s);
+  y->s = NULL;
+  x->s = closed;
+  x->prec = prec;
+  return closed ? 0 : -1;
+}
+
+int fb_expr_write(const fb_expr *e, FILE *fp)
+{
+  expr_text *stack = calloc(e->n + 1, sizeof *stack);
+  size_t sp = 0;
+  int rc = stack ? 0 : -1;
+  for (size_t i = 0; rc == 0 && i < e->n; ++i) {
+    const instr *in = &e->code[i];
+    const size_t arity = op_arity(in->op);
+    if (arity > sp || !(arity == 0 || stack[sp - 1].s) || !(arity < 2 || stack[sp - 2].s))
+      rc = -1; /* not the parser's code */
+    else if (arity == 0)
+      rc = text_push(in, &stack[sp++]);
+    else if (arity == 1)
+      rc = text_unary(in->op, &stack[sp - 1]);
+    else
+      rc = text_binary(in->op, &stack[sp - 2], &stack[sp - 1]), --sp;
+  }
+  if (rc == 0 && sp == 1)
+    fputs(stack[0].s, fp);
+  for (size_t i = 0; stack && i <= e->n; ++i)
+    free(stack[i].s);
+  free(stack);
+  return rc == 0 && sp == 1 ? 0 : -1;
+}

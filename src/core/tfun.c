@@ -560,3 +560,42 @@ int fb_tfun_new_table_csv(const char *path, const char *time_col, const char *va
   free(d.values);
   return status;
 }
+
+void fb_tfun_describe(const fb_tfun *f, fb_tfun_info *out)
+{
+  memset(out, 0, sizeof *out);
+  switch (f->kind) {
+  case TFUN_CONST:
+    out->kind = FB_TFUN_CONST;
+    out->value = f->u.value;
+    break;
+  case TFUN_STEP:
+    out->kind = FB_TFUN_STEP;
+    out->t0 = f->u.step.t0;
+    out->before = f->u.step.before;
+    out->after = f->u.step.after;
+    break;
+  case TFUN_SINE:
+    out->kind = FB_TFUN_SINE;
+    out->amplitude = f->u.sine.amplitude;
+    out->freq_hz = f->u.sine.freq_hz;
+    out->phase_rad = f->u.sine.phase_rad;
+    out->offset = f->u.sine.offset;
+    break;
+  case TFUN_TABLE:
+    out->kind = FB_TFUN_TABLE;
+    out->n = f->u.table.n;
+    out->times = f->u.table.times;
+    out->values = f->u.table.values;
+    break;
+  case TFUN_EXPR:
+    out->kind = FB_TFUN_EXPR;
+    out->expr = f->u.expr;
+    break;
+  case TFUN_CALLBACK:
+    out->kind = FB_TFUN_CALLBACK;
+    out->fn = f->u.callback.fn;
+    out->ctx = f->u.callback.ctx;
+    break;
+  }
+}

@@ -17,10 +17,12 @@ struct fb_model {
   fb_bg *bg;
   fb_probe_spec *probes;
   size_t nprobes, probe_capacity;
-  char **strings; /* owned probe names, targets and units (3 per probe) */
+  char **strings;   /* owned probe names, targets and units (3 per probe) */
+  double **weights; /* owned probe weights (one array per probe, or NULL) */
   fb_sim_opts opts;
-  double *breakpoints; /* owned, opts.breakpoints points here */
-  ml_sites sites;      /* where the graph's elements and bonds were written */
+  fb_model_initial initial; /* simulation.initial */
+  double *breakpoints;      /* owned, opts.breakpoints points here */
+  ml_sites sites;           /* where the graph's elements and bonds were written */
 };
 
 void fb_model_free(fb_model **m)
@@ -31,6 +33,9 @@ void fb_model_free(fb_model **m)
   for (size_t i = 0; p->strings && i < 3 * p->probe_capacity; ++i)
     free(p->strings[i]);
   free(p->strings);
+  for (size_t i = 0; p->weights && i < p->probe_capacity; ++i)
+    free(p->weights[i]);
+  free(p->weights);
   free(p->probes);
   free(p->breakpoints);
   ml_sites_release(&p->sites);
@@ -60,6 +65,34 @@ const fb_probe_spec *fb_model_probes(const fb_model *m, size_t *nprobes)
 const fb_sim_opts *fb_model_sim_opts(const fb_model *m)
 {
   return &m->opts;
+}
+
+fb_model_initial fb_model_initial_choice(const fb_model *m)
+{
+  return m->initial;
+}
+
+int fb_model_initial_state(const fb_model *m, fb_bd *bd, double *x0, fb_err *err)
+{
+  const size_t n = fb_bd_nstates(bd);
+  if (m->initial == FB_MODEL_INITIAL_ZERO) {
+    for (size_t i = 0; i < n; ++i)
+      x0[i] = 0.0;
+    return FB_OK;
+  }
+  fb_bd_initial_state(bd, x0);
+  if (m->initial != FB_MODEL_INITIAL_STATIC)
+    return FB_OK;
+  double *given = malloc((n + 1) * sizeof *given);
+  if (!given)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t i = 0; i < n; ++i)
+    given[i] = x0[i];
+  const int rc = fb_sim_static_state(bd, m->opts.t_start, given, x0, err);
+  free(given);
+  if (rc)
+    fb_err_prefix(err, "simulation.initial: static: ");
+  return rc;
 }
 
 int fb_model_blame(const fb_model *m, fb_err *err)
@@ -169,6 +202,28 @@ static int ml_probe_component(const ml_ctx *c, struct fy_node *p, fb_probe_kind 
   return rc;
 }
 
+/* `weights`: one scalar output sum_k w_k v_k over the dim components of
+ * the (integrated) signal v, e.g. a torsion angle from a hull's nodal
+ * displacements; the array goes into *out (owned by the caller). */
+static int ml_probe_weights(const ml_ctx *c, struct fy_node *p, fb_probe_kind kind, size_t dim,
+                            fb_probe_spec *spec, double **out)
+{
+  struct fy_node *key = NULL;
+  struct fy_node *v = ml_get(p, "weights", &key);
+  *out = NULL;
+  if (!key)
+    return FB_OK;
+  if (kind == FB_PROBE_ENERGY || spec->component >= 0)
+    return ml_fail_key(c, p, key, FB_EPARSE,
+                       "weights combine all components of a signal: not with %s",
+                       kind == FB_PROBE_ENERGY ? "an energy probe" : "'component'");
+  size_t len = 0;
+  int rc = ml_vector(c, v, c->globals, dim, dim == 1, out, &len);
+  spec->weights = *out;
+  spec->nweights = rc ? 0 : len;
+  return rc;
+}
+
 /* Probe names are CSV column headers: no separators or quotes. */
 static int ml_probe_name_ok(const char *s)
 {
@@ -218,9 +273,9 @@ static int ml_probe_name(const ml_ctx *c, const fb_model *m, struct fy_node *p,
 /* Fills spec (strings go into m->strings[3i..3i+2]). */
 static int ml_probe(const ml_ctx *c, fb_model *m, struct fy_node *p)
 {
-  static const char *const keys[] = {"name",  "effort", "flow",        "power",
-                                     "state", "energy", "component",   "integrate",
-                                     "gain",  "unit",   "description", NULL};
+  static const char *const keys[] = {"name",    "effort",      "flow",      "power", "state",
+                                     "energy",  "component",   "integrate", "gain",  "unit",
+                                     "weights", "description", NULL};
   fb_probe_spec spec = {NULL, FB_PROBE_EFFORT, NULL, -1, 0, 1.0, NULL, NULL, 0};
   struct fy_node *tv = NULL, *iv = ml_get(p, "integrate", NULL), *uv = ml_get(p, "unit", NULL);
   const char *target = NULL, *unit = NULL;
@@ -237,6 +292,8 @@ static int ml_probe(const ml_ctx *c, fb_model *m, struct fy_node *p)
     rc = ml_probe_target(c, m->bg, tv, spec.kind, target, &dim);
   if (!rc)
     rc = ml_probe_component(c, p, spec.kind, dim, &spec.component);
+  if (!rc)
+    rc = ml_probe_weights(c, p, spec.kind, dim, &spec, &m->weights[m->nprobes]);
   if (!rc && iv)
     rc = ml_bool(c, iv, &spec.integrate);
   if (!rc)
@@ -274,7 +331,8 @@ static int ml_probes(const ml_ctx *c, fb_model *m, struct fy_node *root)
     return rc;
   m->probes = calloc(n, sizeof *m->probes);
   m->strings = calloc(3 * n, sizeof *m->strings);
-  if (!m->probes || !m->strings)
+  m->weights = calloc(n, sizeof *m->weights);
+  if (!m->probes || !m->strings || !m->weights)
     return fb_err_set(c->err, FB_ENOMEM, "out of memory");
   m->probe_capacity = n;
   for (size_t i = 0; !rc && i < n; ++i)
@@ -297,22 +355,40 @@ static int ml_breakpoints(const ml_ctx *c, fb_model *m, struct fy_node *sim)
   return rc;
 }
 
-/* fb_sim_opts_check names the option ("simulation.t_end: ..."): point at
- * that key's value when the file has it, else at the section (or the
- * top of the file when the section is absent: the default is at fault). */
+/* fb_sim_opts_check names the setting in err->key ("rtol"): the message
+ * becomes "FILE:LINE:COL: simulation.rtol: ..." at that key's value when
+ * the file has it, else at the section (or the top of the file when the
+ * section is absent: the default is at fault). */
 static int ml_blame_option(const ml_ctx *c, struct fy_node *sim, struct fy_node *root)
 {
-  static const char prefix[] = "simulation.";
-  const char *msg = c->err->msg;
-  char key[64];
-  size_t n = 0;
-  if (!strncmp(msg, prefix, sizeof prefix - 1))
-    for (msg += sizeof prefix - 1;
-         n + 1 < sizeof key && (isalnum((unsigned char)msg[n]) || msg[n] == '_'); ++n)
-      key[n] = msg[n];
-  key[n] = '\0';
-  struct fy_node *v = (sim && n) ? ml_get(sim, key, NULL) : NULL;
-  return ml_blame_located(c, v ? v : sim ? sim : root);
+  char key[FB_ERR_KEY_MAX], base[FB_ERR_KEY_MAX];
+  snprintf(key, sizeof key, "%s", c->err->key);
+  /* "breakpoints[1]": the value is the list's. */
+  snprintf(base, sizeof base, "%.*s", (int)strcspn(key, "["), key);
+  struct fy_node *v = (sim && *base) ? ml_get(sim, base, NULL) : NULL;
+  if (*key)
+    fb_err_prefix(c->err, "simulation.%s: ", key);
+  const int rc = ml_blame_located(c, v ? v : sim ? sim : root);
+  if (*key)
+    fb_err_set_key(c->err, "simulation.%s", key);
+  return rc;
+}
+
+/* `initial: given | zero | static`. */
+static int ml_initial(const ml_ctx *c, fb_model *m, struct fy_node *sim)
+{
+  static const char *const names[] = {"given", "zero", "static", NULL};
+  struct fy_node *v = ml_get(sim, "initial", NULL);
+  const char *text = NULL;
+  int rc = v ? ml_string(c, v, &text) : FB_OK;
+  for (size_t i = 0; !rc && v && names[i]; ++i)
+    if (!strcmp(text, names[i])) {
+      m->initial = (fb_model_initial)i;
+      return FB_OK;
+    }
+  if (!rc && v)
+    rc = ml_fail(c, v, FB_EPARSE, "expected given, zero or static (got '%s')", text);
+  return rc;
 }
 
 /* The keys of a `simulation` mapping over the defaults in m->opts. */
@@ -320,7 +396,7 @@ static int ml_sim_settings(const ml_ctx *c, fb_model *m, struct fy_node *sim)
 {
   static const char *const keys[] = {"t_start",     "t_end",       "rtol",      "atol",
                                      "max_step",    "sample_rate", "max_order", "max_steps",
-                                     "breakpoints", NULL};
+                                     "breakpoints", "initial",     NULL};
   fb_sim_opts *o = &m->opts;
   double *const reals[] = {&o->t_start, &o->t_end,    &o->rtol,
                            &o->atol,    &o->max_step, &o->sample_rate};
@@ -339,6 +415,8 @@ static int ml_sim_settings(const ml_ctx *c, fb_model *m, struct fy_node *sim)
     o->max_steps = (long)count;
   if (!rc)
     rc = ml_breakpoints(c, m, sim);
+  if (!rc)
+    rc = ml_initial(c, m, sim);
   return rc;
 }
 

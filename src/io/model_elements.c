@@ -476,6 +476,7 @@ static const char *const ml_keys_gy[] = {ML_COMMON_KEYS, "r", "dim", NULL};
 static const char *const ml_keys_mtf[] = {ML_COMMON_KEYS, "matrix", NULL};
 static const char *const ml_keys_junction[] = {ML_COMMON_KEYS, "dim", NULL};
 static const char *const ml_keys_composite[] = {ML_COMMON_KEYS, "parts", NULL};
+static const char *const ml_keys_contact[] = {ML_COMMON_KEYS, "k", "c", "damper", NULL};
 static const char *const ml_keys_instance[] = {ML_COMMON_KEYS, "parameters", NULL};
 
 static const ml_type ml_types[] = {
@@ -492,6 +493,7 @@ static const ml_type ml_types[] = {
     {"zero", FB_BG_J0, ml_junction, ml_keys_junction},
     {"one", FB_BG_J1, ml_junction, ml_keys_junction},
     {"composite", FB_BG_COMPOSITE, ml_composite, ml_keys_composite},
+    {"contact", FB_BG_C, ml_contact, ml_keys_contact},
 };
 #define ML_NTYPES (sizeof ml_types / sizeof ml_types[0])
 
@@ -529,7 +531,7 @@ static int ml_unknown_type(const ml_ctx *c, struct fy_node *at, const char *type
   }
   return ml_fail(c, at, FB_EMODEL,
                  "unknown element type '%s'%s; valid types: Se, Sf, I, C, R, TF, GY, MTF, 0 "
-                 "(zero), 1 (one), composite%s%s",
+                 "(zero), 1 (one), composite, contact%s%s",
                  type, hint, c->ndefs ? ", or a subsystem: " : "", defs);
 }
 

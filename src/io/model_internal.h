@@ -203,6 +203,14 @@ int ml_table_law(const ml_ctx *c, const fb_symtab *syms, struct fy_node *table,
  * {table:..}. */
 int ml_tfun(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun **out);
 
+/* ---- model_road.c: `{road: {speed, s0, output, bump|iso8608|profile}}`,
+ * a road wheel's velocity or height (fb_road_wheel_new). */
+int ml_tfun_road(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun **out);
+
+/* ---- model_contact.c: the `contact` element type, a unilateral
+ * spring-damper pair (fb_bg_add_unilateral_contact). */
+int ml_contact(ml_ctx *c, ml_scope *s, struct fy_node *el, const char *name, ml_entry *e);
+
 /* ---- model_elements.c. */
 
 /* Adds the element described by mapping el to scope s and records it in

@@ -294,7 +294,7 @@ static int ml_tfun_scalar(const ml_ctx *c, struct fy_node *n, const fb_symtab *s
 
 int ml_tfun(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun **out)
 {
-  static const char *const kinds[] = {"step", "sine", "table", NULL};
+  static const char *const kinds[] = {"step", "sine", "table", "road", NULL};
   *out = NULL;
   if (ml_is_null(n))
     return ml_fail(c, n, FB_EPARSE, "expected a source value, got nothing");
@@ -303,16 +303,18 @@ int ml_tfun(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun *
   if (!fy_node_is_mapping(n))
     return ml_fail(c, n, FB_EPARSE,
                    "expected a source value: a number, an expression of t, or one of "
-                   "{step: ..}, {sine: ..}, {table: ..}");
+                   "{step: ..}, {sine: ..}, {table: ..}, {road: ..}");
   int rc = ml_check_keys(c, n, kinds);
   if (rc)
     return rc;
   if (fy_node_mapping_item_count(n) != 1)
-    return ml_fail(c, n, FB_EPARSE, "give exactly one of 'step', 'sine' or 'table'");
+    return ml_fail(c, n, FB_EPARSE, "give exactly one of 'step', 'sine', 'table' or 'road'");
   struct fy_node *v = NULL;
   if ((v = ml_get(n, "step", NULL)))
     return ml_tfun_step(c, v, syms, out);
   if ((v = ml_get(n, "sine", NULL)))
     return ml_tfun_sine(c, v, syms, out);
+  if ((v = ml_get(n, "road", NULL)))
+    return ml_tfun_road(c, v, syms, out);
   return ml_tfun_table(c, ml_get(n, "table", NULL), syms, out);
 }

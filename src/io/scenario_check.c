@@ -259,7 +259,14 @@ static int sc_check_simulation(const fb_scenario *s, fb_err *err)
    * tire force per corner. */
   o.noutputs = s->noutputs + s->ncorners;
   int rc = fb_sim_opts_check(&o, err);
-  return rc ? sc_locate(s, err, 1) : FB_OK;
+  /* The sim names the setting (err->key, "sample_rate"); in the scenario
+   * file it is simulation.KEY, located and named by sc_locate. */
+  if (rc && err && err->key[0]) {
+    char key[FB_ERR_KEY_MAX];
+    snprintf(key, sizeof key, "%s", err->key);
+    fb_err_set_key(err, "simulation.%s", key);
+  }
+  return rc ? sc_locate(s, err, 0) : FB_OK;
 }
 
 /* Every wheel meets the bump at t >= 0 and has left it before t_end (the

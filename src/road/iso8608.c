@@ -148,5 +148,7 @@ int fb_road_new_iso8608(const fb_road_iso8608_params *p, fb_road **out, fb_err *
   rng_seed(&r, p->seed);
   fill_track(p, gd0, &r, (*out)->data[FB_ROAD_LEFT]);
   fill_track(p, gd0, &r, (*out)->data[FB_ROAD_RIGHT]);
+  for (int k = 0; k < FB_ROAD_NTRACKS; ++k)
+    (*out)->origin[k] = (road_origin){1, *p, k};
   return FB_OK;
 }

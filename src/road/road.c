@@ -222,22 +222,16 @@ size_t fb_road_breaks(const fb_road *road, int track, double *s, size_t max)
  * motion, the track header and the track's data (a flexible array), so
  * fb_tfun_new_callback_copy can own a self-contained copy. */
 
-typedef struct wheel_ctx {
-  double speed, s0;
-  road_track track;
-  double data[];
-} wheel_ctx;
-
-static double wheel_height(double t, void *ctx)
+double road_wheel_height(double t, void *ctx)
 {
-  const wheel_ctx *w = ctx;
+  const road_wheel_ctx *w = ctx;
   return road_track_height(&w->track, w->data, w->s0 + w->speed * t);
 }
 
 /* dz/dt = V dz/ds along s = s0 + V t. */
-static double wheel_velocity(double t, void *ctx)
+double road_wheel_velocity(double t, void *ctx)
 {
-  const wheel_ctx *w = ctx;
+  const road_wheel_ctx *w = ctx;
   return w->speed * road_track_slope(&w->track, w->data, w->s0 + w->speed * t);
 }
 
@@ -269,8 +263,8 @@ static int wheel_tfun(const fb_road *road, int track, double speed, double s0, f
   const road_track *t = &road->track[track];
   const size_t ndata = road_track_ndata(t);
   const size_t nbreak = track_breaks(t, road->data[track], NULL, 0);
-  const size_t size = sizeof(wheel_ctx) + ndata * sizeof(double);
-  wheel_ctx *w = malloc(size);
+  const size_t size = sizeof(road_wheel_ctx) + ndata * sizeof(double);
+  road_wheel_ctx *w = malloc(size);
   double *times = malloc((nbreak ? nbreak : 1) * sizeof *times);
   if (!w || !times) {
     free(w);
@@ -279,6 +273,7 @@ static int wheel_tfun(const fb_road *road, int track, double speed, double s0, f
   }
   w->speed = speed;
   w->s0 = s0;
+  w->origin = road->origin[track];
   w->track = *t;
   if (ndata)
     memcpy(w->data, road->data[track], ndata * sizeof(double));
@@ -294,11 +289,11 @@ static int wheel_tfun(const fb_road *road, int track, double speed, double s0, f
 int fb_road_wheel_height(const fb_road *road, int track, double speed, double s0, fb_tfun **out,
                          fb_err *err)
 {
-  return wheel_tfun(road, track, speed, s0, wheel_height, out, err);
+  return wheel_tfun(road, track, speed, s0, road_wheel_height, out, err);
 }
 
 int fb_road_wheel_velocity(const fb_road *road, int track, double speed, double s0,
                            fb_tfun **out, fb_err *err)
 {
-  return wheel_tfun(road, track, speed, s0, wheel_velocity, out, err);
+  return wheel_tfun(road, track, speed, s0, road_wheel_velocity, out, err);
 }

@@ -264,11 +264,10 @@ static const char *flag_hint(int flag)
 {
   switch (flag) {
   case CV_TOO_MUCH_WORK:
-    return "too many steps; raise simulation.max_steps, or check for stiffness or a too "
-           "small simulation.max_step";
+    return "too many steps; raise max_steps (the solver's step budget), or check for "
+           "stiffness or a too small max_step";
   case CV_TOO_MUCH_ACC:
-    return "the tolerances are tighter than double precision allows; loosen "
-           "simulation.rtol or atol";
+    return "the tolerances are tighter than double precision allows; loosen rtol or atol";
   case CV_ERR_FAILURE:
     return "the error test failed repeatedly; the tolerances may be too tight, or an input "
            "has a discontinuity that is not a breakpoint";
@@ -359,6 +358,13 @@ static int gave_up_retrying(int flag)
          flag == CV_UNREC_RHSFUNC_ERR || flag == CV_CONV_FAILURE || flag == CV_ERR_FAILURE;
 }
 
+/* The solver setting a flag's hint names (fb_sim_opts field, for
+ * err->key), or NULL. */
+static const char *flag_key(int flag)
+{
+  return flag == CV_TOO_MUCH_WORK ? "max_steps" : flag == CV_TOO_MUCH_ACC ? "rtol" : NULL;
+}
+
 /* FB_ESOLVER "at t = ... s: CVODE <flag>: <hint>" with whatever CVODE,
  * the Newton solver and the diagram said. A non-finite value met during
  * the failed call explains the failure: CVODE gave up retrying it
@@ -396,6 +402,8 @@ static int cvode_failure(const sim_run *run, int flag, double t, fb_err *err)
              name ? name : "(unknown flag)", hint, culprit, run->cvode_msg[0] ? "; " : "",
              run->cvode_msg, lin[0] ? "; " : "", lin, model && model[0] ? "; model: " : "",
              model ? model : "");
+  if (!run->jac_failed && flag_key(flag))
+    fb_err_set_key(err, "%s", flag_key(flag));
   free(name);
   return FB_ESOLVER;
 }
@@ -426,9 +434,12 @@ static int initial_state(sim_run *run, fb_err *err)
   else
     fb_bd_initial_state(run->bd, y);
   for (size_t i = 0; i < run->n; ++i)
-    if (!isfinite(y[i]))
-      return fb_err_set(err, FB_EINVAL, "simulation.x0[%zu] (%s): must be finite, got %g", i,
-                        fb_bd_state_name(run->bd, i), y[i]);
+    if (!isfinite(y[i])) {
+      fb_err_set(err, FB_EINVAL, "initial state x0[%zu] (%s): must be finite, got %g", i,
+                 fb_bd_state_name(run->bd, i), y[i]);
+      fb_err_set_key(err, "x0[%zu]", i);
+      return FB_EINVAL;
+    }
   return FB_OK;
 }
 
@@ -664,6 +675,7 @@ static int check_budget(const sim_run *run, double t, fb_err *err)
   fb_err_set(err, FB_ESOLVER, "at t = %.6g s: CVODE %s: %s (%ld steps taken)%s", t,
              name ? name : "CV_TOO_MUCH_WORK", flag_hint(CV_TOO_MUCH_WORK),
              run->opts->max_steps, culprit);
+  fb_err_set_key(err, "max_steps");
   free(name);
   return FB_ESOLVER;
 }

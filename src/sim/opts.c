@@ -1,6 +1,7 @@
 /* Simulation options and the output sample grid (see flexbond/sim.h). */
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -10,6 +11,33 @@
 
 /* Most output samples a run may ask for (memory guard: 1e8 rows). */
 #define MAX_SAMPLES 1e8
+
+/* "No list index" for opt_fail. */
+#define NO_INDEX ((size_t)-1)
+
+/* FB_EINVAL with the message and, as err->key, the name of the setting
+ * (its field name in fb_sim_opts, "breakpoints[2]" with an index): this
+ * module knows no file's key, the caller says where the setting came from
+ * (a model's "simulation.rtol", a command-line option). */
+static int opt_fail(fb_err *err, const char *key, size_t index, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static int opt_fail(fb_err *err, const char *key, size_t index, const char *fmt, ...)
+{
+  char msg[FB_ERR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  fb_err_set(err, FB_EINVAL, "%s", msg);
+  if (index == NO_INDEX)
+    fb_err_set_key(err, "%s", key);
+  else
+    fb_err_set_key(err, "%s[%zu]", key, index);
+  return FB_EINVAL;
+}
 
 /* Relative slack for "(t_end - t_start) * rate is an integer". */
 #define GRID_INTEGER_TOL 1e-9
@@ -74,61 +102,50 @@ static int check_result_size(const fb_sim_opts *o, double nsamples, fb_err *err)
   const double bytes = (nsamples + 1.0) * columns * (double)sizeof(double);
   if (bytes <= FB_SIM_MAX_RESULT_BYTES)
     return FB_OK;
-  return fb_err_set(err, FB_EINVAL,
-                    "simulation.sample_rate: %g Hz over %g s gives %.3g samples of %.0f "
-                    "columns, which would need about %.1f GB (samples x columns x 8 bytes), "
-                    "more than the %.1f GB a run's result may take (docs/errors.md, "
-                    "\"Limits\")",
-                    o->sample_rate, o->t_end - o->t_start, nsamples + 1.0, columns, bytes / 1e9,
-                    FB_SIM_MAX_RESULT_BYTES / 1e9),
-         fb_err_set_key(err, "simulation.sample_rate");
+  return opt_fail(err, "sample_rate", NO_INDEX,
+                  "%g Hz over %g s gives %.3g samples of %.0f "
+                  "columns, which would need about %.1f GB (samples x columns x 8 bytes), "
+                  "more than the %.1f GB a run's result may take (docs/errors.md, "
+                  "\"Limits\")",
+                  o->sample_rate, o->t_end - o->t_start, nsamples + 1.0, columns, bytes / 1e9,
+                  FB_SIM_MAX_RESULT_BYTES / 1e9);
 }
 
 static int check_times(const fb_sim_opts *o, fb_err *err)
 {
   if (!isfinite(o->t_start))
-    return fb_err_set(err, FB_EINVAL, "simulation.t_start: must be finite, got %g", o->t_start),
-           fb_err_set_key(err, "simulation.t_start");
+    return opt_fail(err, "t_start", NO_INDEX, "must be finite, got %g", o->t_start);
   if (!isfinite(o->t_end) || !(o->t_end > o->t_start) || !isfinite(o->t_end - o->t_start))
-    return fb_err_set(err, FB_EINVAL,
-                      "simulation.t_end: must be finite and greater than t_start = %g, got %g",
-                      o->t_start, o->t_end),
-           fb_err_set_key(err, "simulation.t_end");
+    return opt_fail(err, "t_end", NO_INDEX,
+                    "must be finite and greater than t_start = %g, got %g", o->t_start,
+                    o->t_end);
   const double shortest = shortest_run(o->t_start, o->t_end);
   if (!(o->t_end - o->t_start >= shortest)) {
     char t0[32], t1[32];
     format_exact(o->t_start, t0, sizeof t0);
     format_exact(o->t_end, t1, sizeof t1);
-    return fb_err_set(err, FB_EINVAL,
-                      "simulation.t_end: the run from t_start = %s s to t_end = %s s is too "
-                      "short for the solver to take a step: t_end - t_start = %.3g s, it must "
-                      "be at least %.3g s",
-                      t0, t1, o->t_end - o->t_start, shortest),
-           fb_err_set_key(err, "simulation.t_end");
+    return opt_fail(err, "t_end", NO_INDEX,
+                    "the run from t_start = %s s to t_end = %s s is too "
+                    "short for the solver to take a step: t_end - t_start = %.3g s, it must "
+                    "be at least %.3g s",
+                    t0, t1, o->t_end - o->t_start, shortest);
   }
   if (!(o->sample_rate > 0) || !isfinite(o->sample_rate))
-    return fb_err_set(err, FB_EINVAL, "simulation.sample_rate: must be positive, got %g",
-                      o->sample_rate),
-           fb_err_set_key(err, "simulation.sample_rate");
+    return opt_fail(err, "sample_rate", NO_INDEX, "must be positive, got %g", o->sample_rate);
   const double nsamples = (o->t_end - o->t_start) * o->sample_rate;
   if (!(nsamples <= MAX_SAMPLES))
-    return fb_err_set(err, FB_EINVAL,
-                      "simulation.sample_rate: %g Hz over %g s gives %.3g samples, more than "
-                      "the limit of %.0e",
-                      o->sample_rate, o->t_end - o->t_start, nsamples, MAX_SAMPLES),
-           fb_err_set_key(err, "simulation.sample_rate");
+    return opt_fail(err, "sample_rate", NO_INDEX,
+                    "%g Hz over %g s gives %.3g samples, more than "
+                    "the limit of %.0e",
+                    o->sample_rate, o->t_end - o->t_start, nsamples, MAX_SAMPLES);
   const int rc = check_result_size(o, nsamples, err);
   if (rc != FB_OK)
     return rc;
   if (o->nbreakpoints && !o->breakpoints)
-    return fb_err_set(err, FB_EINVAL, "simulation.breakpoints: NULL with %zu entries",
-                      o->nbreakpoints),
-           fb_err_set_key(err, "simulation.breakpoints");
+    return opt_fail(err, "breakpoints", NO_INDEX, "NULL with %zu entries", o->nbreakpoints);
   for (size_t i = 0; i < o->nbreakpoints; ++i)
     if (!isfinite(o->breakpoints[i]))
-      return fb_err_set(err, FB_EINVAL, "simulation.breakpoints[%zu]: must be finite, got %g",
-                        i, o->breakpoints[i]),
-             fb_err_set_key(err, "simulation.breakpoints");
+      return opt_fail(err, "breakpoints", i, "must be finite, got %g", o->breakpoints[i]);
   return FB_OK;
 }
 
@@ -144,37 +161,29 @@ static int check_step_budget(const fb_sim_opts *o, fb_err *err)
   const double fewest = ceil(span / o->max_step);
   if (!(fewest > (double)o->max_steps))
     return FB_OK;
-  return fb_err_set(err, FB_EINVAL,
-                    "simulation.max_step: %g s over the run's %g s (t_end - t_start) needs at "
-                    "least %.3g steps, more than simulation.max_steps = %ld: the run could not "
-                    "finish; raise max_step or max_steps",
-                    o->max_step, span, fewest, o->max_steps),
-         fb_err_set_key(err, "simulation.max_step");
+  return opt_fail(err, "max_step", NO_INDEX,
+                  "%g s over the run's %g s (t_end - t_start) needs at "
+                  "least %.3g steps, more than max_steps = %ld: the run could not "
+                  "finish; raise max_step or max_steps",
+                  o->max_step, span, fewest, o->max_steps);
 }
 
 static int check_solver(const fb_sim_opts *o, fb_err *err)
 {
   if (!(o->rtol > 0 && o->rtol < 1))
-    return fb_err_set(err, FB_EINVAL, "simulation.rtol: must be in (0, 1), got %g", o->rtol),
-           fb_err_set_key(err, "simulation.rtol");
+    return opt_fail(err, "rtol", NO_INDEX, "must be in (0, 1), got %g", o->rtol);
   if (!(o->atol > 0) || !isfinite(o->atol))
-    return fb_err_set(err, FB_EINVAL, "simulation.atol: must be positive, got %g", o->atol),
-           fb_err_set_key(err, "simulation.atol");
+    return opt_fail(err, "atol", NO_INDEX, "must be positive, got %g", o->atol);
   if (o->max_order < 1 || o->max_order > 5)
-    return fb_err_set(err, FB_EINVAL, "simulation.max_order: must be 1..5, got %d",
-                      o->max_order),
-           fb_err_set_key(err, "simulation.max_order");
+    return opt_fail(err, "max_order", NO_INDEX, "must be 1..5, got %d", o->max_order);
   if (!(o->max_step >= 0) || !isfinite(o->max_step))
-    return fb_err_set(err, FB_EINVAL,
-                      "simulation.max_step: must be finite and >= 0 (0: no limit), got %g",
-                      o->max_step),
-           fb_err_set_key(err, "simulation.max_step");
+    return opt_fail(err, "max_step", NO_INDEX, "must be finite and >= 0 (0: no limit), got %g",
+                    o->max_step);
   if (o->max_steps < 1 || o->max_steps > FB_SIM_MAX_STEPS)
-    return fb_err_set(err, FB_EINVAL,
-                      "simulation.max_steps: must be in 1 .. %ld (about a day of solver steps "
-                      "at 0.1 ms each; docs/errors.md, \"Limits\"), got %ld",
-                      FB_SIM_MAX_STEPS, o->max_steps),
-           fb_err_set_key(err, "simulation.max_steps");
+    return opt_fail(err, "max_steps", NO_INDEX,
+                    "must be in 1 .. %ld (about a day of solver steps "
+                    "at 0.1 ms each; docs/errors.md, \"Limits\"), got %ld",
+                    FB_SIM_MAX_STEPS, o->max_steps);
   return check_step_budget(o, err);
 }
 

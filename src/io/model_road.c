@@ -1,0 +1,192 @@
+/* Road sources in model files: `value: {road: {...}}`, the vertical
+ * velocity (or height) of the road under a wheel moving at constant speed
+ * along a (1 - cos) bump, an ISO 8608 random road or a measured profile
+ * (flexbond/road.h; docs/model-format.md, "Road sources"). The function
+ * is rebuilt by fb_road_wheel_new, so it is the one a vehicle scenario
+ * makes, breakpoints included. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/road.h"
+
+#include "io/model_internal.h"
+
+/* Largest seed read exactly: seeds are numbers, read as doubles. */
+#define ML_SEED_MAX ((size_t)1 << 53)
+
+static int ml_road_bump(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
+                        fb_road_wheel_info *w)
+{
+  static const char *const keys[] = {"at", "height", "length", NULL};
+  struct fy_node *v = NULL;
+  w->kind = FB_ROAD_WHEEL_BUMP;
+  int rc = ml_expect_map(c, n, "a bump {at, height, length}");
+  if (!rc)
+    rc = ml_check_keys(c, n, keys);
+  if (!rc)
+    rc = ml_require(c, n, "height", &v);
+  if (!rc)
+    rc = ml_number(c, v, syms, &w->bump_height);
+  if (!rc)
+    rc = ml_require(c, n, "length", &v);
+  if (!rc)
+    rc = ml_number(c, v, syms, &w->bump_length);
+  if (!rc && !(w->bump_length > 0))
+    rc = ml_fail(c, v, FB_EINVAL, "must be > 0 m (got %g)", w->bump_length);
+  if (!rc)
+    rc = ml_opt_number(c, n, "at", syms, &w->bump_start);
+  return rc;
+}
+
+/* `track: left | right`. */
+static int ml_road_track(const ml_ctx *c, struct fy_node *map, int *track)
+{
+  struct fy_node *v = ml_get(map, "track", NULL);
+  const char *text = NULL;
+  *track = FB_ROAD_LEFT;
+  int rc = v ? ml_string(c, v, &text) : FB_OK;
+  if (rc || !v)
+    return rc;
+  if (!strcmp(text, "left") || !strcmp(text, "right")) {
+    *track = text[0] == 'l' ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
+    return FB_OK;
+  }
+  return ml_fail(c, v, FB_EPARSE, "expected left or right (got '%s')", text);
+}
+
+static int ml_road_iso(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
+                       fb_road_wheel_info *w)
+{
+  static const char *const keys[] = {"class",     "seed",        "n_min", "n_max",
+                                     "harmonics", "fade_length", "track", NULL};
+  struct fy_node *v = NULL;
+  const char *cls = NULL;
+  size_t count = 0;
+  w->kind = FB_ROAD_WHEEL_ISO8608;
+  fb_road_iso8608_defaults(&w->iso);
+  int rc = ml_expect_map(c, n,
+                         "an ISO 8608 road {class, seed, n_min, n_max, harmonics, "
+                         "fade_length, track}");
+  if (!rc)
+    rc = ml_check_keys(c, n, keys);
+  if (!rc)
+    rc = ml_require(c, n, "class", &v);
+  if (!rc)
+    rc = ml_string(c, v, &cls);
+  if (!rc && strlen(cls) != 1)
+    rc = ml_fail(c, v, FB_EINVAL, "expected one letter A to H (got '%s')", cls);
+  if (!rc)
+    w->iso.road_class = cls[0];
+  if (!rc && (v = ml_get(n, "seed", NULL)) &&
+      !(rc = ml_count(c, v, syms, 0, ML_SEED_MAX, &count)))
+    w->iso.seed = (uint64_t)count;
+  if (!rc)
+    rc = ml_opt_number(c, n, "n_min", syms, &w->iso.n_min);
+  if (!rc)
+    rc = ml_opt_number(c, n, "n_max", syms, &w->iso.n_max);
+  if (!rc && (v = ml_get(n, "harmonics", NULL)))
+    rc = ml_count(c, v, syms, 1, FB_ROAD_ISO8608_MAX_HARMONICS, &w->iso.nharmonics);
+  if (!rc)
+    rc = ml_opt_number(c, n, "fade_length", syms, &w->iso.fade_length);
+  if (!rc)
+    rc = ml_road_track(c, n, &w->track);
+  return rc;
+}
+
+/* `profile: {points: [[s, z], ...]}`; the knots go into *s (s then z,
+ * owned by the caller). */
+static int ml_road_profile(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
+                           fb_road_wheel_info *w, double **knots)
+{
+  static const char *const keys[] = {"points", NULL};
+  struct fy_node *pts = NULL;
+  w->kind = FB_ROAD_WHEEL_PROFILE;
+  int rc = ml_expect_map(c, n, "a profile {points: [[s, z], ...]}");
+  if (!rc)
+    rc = ml_check_keys(c, n, keys);
+  if (!rc)
+    rc = ml_require(c, n, "points", &pts);
+  if (!rc)
+    rc = ml_expect_seq(c, pts, "a list of [s, z] pairs");
+  const size_t count = rc ? 0 : (size_t)fy_node_sequence_item_count(pts);
+  if (!rc && count < 2)
+    rc = ml_fail(c, pts, FB_EMODEL, "a profile needs at least 2 points (got %zu)", count);
+  if (rc)
+    return rc;
+  if (!(*knots = malloc(2 * count * sizeof **knots)))
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory");
+  for (size_t i = 0; !rc && i < count; ++i) {
+    double *pt = NULL;
+    size_t len = 0;
+    rc = ml_vector(c, fy_node_sequence_get_by_index(pts, (int)i), syms, 2, 0, &pt, &len);
+    if (!rc) {
+      (*knots)[i] = pt[0];
+      (*knots)[count + i] = pt[1];
+    }
+    free(pt);
+  }
+  w->nknots = count;
+  w->knot_s = *knots;
+  w->knot_z = *knots + count;
+  return rc;
+}
+
+/* `output: velocity | height`. */
+static int ml_road_output(const ml_ctx *c, struct fy_node *map, int *velocity)
+{
+  struct fy_node *v = ml_get(map, "output", NULL);
+  const char *text = NULL;
+  *velocity = 1;
+  int rc = v ? ml_string(c, v, &text) : FB_OK;
+  if (rc || !v)
+    return rc;
+  if (!strcmp(text, "velocity") || !strcmp(text, "height")) {
+    *velocity = text[0] == 'v';
+    return FB_OK;
+  }
+  return ml_fail(c, v, FB_EPARSE, "expected velocity or height (got '%s')", text);
+}
+
+/* The road's shape: exactly one of bump, iso8608 and profile. */
+static int ml_road_shape(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
+                         fb_road_wheel_info *w, double **knots)
+{
+  struct fy_node *bump = ml_get(n, "bump", NULL), *iso = ml_get(n, "iso8608", NULL),
+                 *profile = ml_get(n, "profile", NULL);
+  if (!!bump + !!iso + !!profile != 1)
+    return ml_fail(c, n, FB_EPARSE, "give exactly one of 'bump', 'iso8608' or 'profile'");
+  if (bump)
+    return ml_road_bump(c, bump, syms, w);
+  if (iso)
+    return ml_road_iso(c, iso, syms, w);
+  return ml_road_profile(c, profile, syms, w, knots);
+}
+
+int ml_tfun_road(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun **out)
+{
+  static const char *const keys[] = {"speed",   "s0",      "output", "bump",
+                                     "iso8608", "profile", NULL};
+  fb_road_wheel_info w;
+  memset(&w, 0, sizeof w);
+  double *knots = NULL;
+  struct fy_node *v = NULL;
+  int rc = ml_expect_map(c, n, "a road {speed, s0, output, bump|iso8608|profile}");
+  if (!rc)
+    rc = ml_check_keys(c, n, keys);
+  if (!rc)
+    rc = ml_require(c, n, "speed", &v);
+  if (!rc)
+    rc = ml_number(c, v, syms, &w.speed);
+  if (!rc && !(w.speed > 0))
+    rc = ml_fail(c, v, FB_EINVAL, "must be > 0 m/s (got %g)", w.speed);
+  if (!rc)
+    rc = ml_opt_number(c, n, "s0", syms, &w.s0);
+  if (!rc)
+    rc = ml_road_output(c, n, &w.velocity);
+  if (!rc)
+    rc = ml_road_shape(c, n, syms, &w, &knots);
+  if (!rc && fb_road_wheel_new(&w, out, c->err))
+    rc = ml_blame(c, n);
+  free(knots);
+  return rc;
+}
