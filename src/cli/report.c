@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "flexbond/escape.h"
+#include "flexbond/io.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
@@ -149,29 +150,37 @@ static void md_percent(FILE *fp, double fraction, int sign)
 
 /* ---- Scenario. */
 
-static void write_corner_table(FILE *fp, const fb_scenario *s)
+/* When every wheel meets the bump and leaves it: derived from the
+ * corners' positions, the speed and the road. */
+static void write_corner_timing(FILE *fp, const fb_scenario *s)
 {
-  fputs("\n| corner | spring k [N/m] | damper c [N s/m] | motion ratio | x, y [m] | "
-        "wheel [kg] | tire k [N/m] | tire c [N s/m] | bump entry, exit [s] |\n"
-        "|---|---|---|---|---|---|---|---|---|\n",
-        fp);
+  fputs("\n| corner | x, y [m] | bump entry, exit [s] |\n|---|---|---|\n", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {
     const fb_corner_params *p = &s->corner[c];
     fputs("| ", fp);
     fb_md_write_text(fp, p->name);
-    fprintf(fp,
-            " | %.10g | %.10g | %.10g | %.10g, %.10g | %.10g | %.10g | %.10g | %.4f, %.4f |\n",
-            p->spring_k, p->damper_c, p->motion_ratio, p->x, p->y, p->wheel_mass, p->tire_k,
-            p->tire_c, fb_scenario_bump_entry(s, (int)c), fb_scenario_bump_exit(s, (int)c));
+    fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", p->x, p->y,
+            fb_scenario_bump_entry(s, (int)c), fb_scenario_bump_exit(s, (int)c));
   }
 }
 
-static void write_mount_row(FILE *fp, const fb_mount *m)
+/* One row of the values table (an fb_scenario_value_fn). */
+static int write_value_row(const fb_scenario_value *v, void *ctx)
 {
+  FILE *fp = ctx;
+  /* No code spans: inside one the escapes of fb_md_write_text would show. */
   fputs("| ", fp);
-  fb_md_write_text(fp, m->name);
-  fprintf(fp, " | %.10g kg on %.10g N/m and %.10g N s/m at x, y = %.10g, %.10g m |\n", m->mass,
-          m->stiffness, m->damping, m->x, m->y);
+  fb_md_write_text(fp, v->key);
+  fputs(" | ", fp);
+  fb_md_write_text(fp, v->value);
+  fputs(" | ", fp);
+  fb_md_write_text(fp, v->unit);
+  fputs(" | ", fp);
+  fb_md_write_text(fp, v->path ? v->path : "default");
+  fputs(" | ", fp);
+  fb_md_write_text(fp, v->doc);
+  fputs(" |\n", fp);
+  return 0;
 }
 
 static void write_scenario(FILE *fp, const cli_run_outputs *o)
@@ -184,22 +193,30 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
   fputs(" |\n| systems | ", fp);
   for (size_t i = 0; i < o->nruns; ++i)
     fprintf(fp, "%s%s", i ? ", " : "", cli_system_label(o->runs[i].sys));
+  fprintf(fp, " |\n| layout | %zu corners, %zu mounted bodies, %zu outputs |\n", s->ncorners,
+          s->nmounts, s->noutputs);
+  if (s->frame_origin) {
+    fputs("| frame | the file's positions are from ", fp);
+    fb_md_write_text(fp, s->frame_origin);
+    fprintf(fp,
+            "; the hull's centre of mass is at x, y = %.10g, %.10g m there, and the positions "
+            "below are relative to it |\n",
+            s->hull_cg_x, s->hull_cg_y);
+  }
   fprintf(fp,
-          " |\n| gravity | %.10g m/s^2 |\n"
-          "| hull | %.10g kg, Ixx %.10g kg m^2, Iyy %.10g kg m^2 (about its centre of mass) |\n"
-          "| load | %.10g N (hull plus payload) in equal shares at %zu points |\n",
-          s->gravity, s->hull_mass, s->hull_ixx, s->hull_iyy, s->total_weight, s->nload);
-  for (size_t b = 0; b < s->nmounts; ++b)
-    write_mount_row(fp, &s->mount[b]);
-  fprintf(fp,
-          "| road | %.10g km/h, straight; a (1 - cos) bump %.10g m high and %.10g m long, its "
-          "leading edge at %.10g deg to the lateral axis, left side first; the LF wheel meets "
-          "it at %.10g s |\n"
-          "| bump window | %.4f s (first wheel's entry) to %.4f s (last wheel's exit) |\n"
-          "| run | t = 0 .. %.10g s, outputs at %.10g Hz |\n",
-          s->speed * 3.6, s->bump_height, s->bump_length, s->bump_angle * DEGREES_PER_RADIAN,
-          s->bump_time, o->bump_window[0], o->bump_window[1], s->t_end, s->sample_rate);
-  write_corner_table(fp, s);
+          "| hull | %.10g kg, Ixx %.10g kg m^2, Iyy %.10g kg m^2 about its centre of mass "
+          "(%s) |\n"
+          "| bump window | %.4f s (first wheel's entry) to %.4f s (last wheel's exit) |\n",
+          s->hull_mass, s->hull_ixx, s->hull_iyy,
+          s->hull_mass_given ? "the file's, checked against its mesh when it has one"
+                             : "its finite-element mesh's",
+          o->bump_window[0], o->bump_window[1]);
+  write_corner_timing(fp, s);
+  fputs("\nEvery value the run used, as the scenario format declares it "
+        "(docs/scenario-format.md), and where the file gave it:\n\n"
+        "| key | value | unit | from | meaning |\n|---|---|---|---|---|\n",
+        fp);
+  fb_scenario_each_value(s, write_value_row, fp);
 }
 
 /* ---- Assumptions. */
@@ -282,9 +299,9 @@ static void write_assumptions(FILE *fp, const cli_run_outputs *o)
     fputs("no step limit", fp);
   fputs("; outputs from the interpolating polynomial, breakpoints at every wheel's bump "
         "entry and exit.\n"
-        "- Outputs (compression positive) as the paper's Figs. 8-14; the torsion angle is the "
-        "roll of the hull's front edge line minus that of its rear edge line, identically 0 "
-        "for the rigid hull.\n",
+        "- Outputs: the scenario's list (docs/vehicle-outputs.md), compressions positive; a "
+        "torsion angle is the roll of the hull's front edge line minus that of its rear edge "
+        "line, identically 0 for the rigid hull.\n",
         fp);
   if (o->hull)
     write_fe_hull(fp, o);
