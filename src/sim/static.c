@@ -164,6 +164,7 @@ int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_
     rp_prev = rp;
     h = fmin(h * H_GROWTH, H_MAX);
   }
+  const int verdict = !rc && (rq > tol_q || (rp > tol_p && rp > floor_p));
   if (!rc && rq > tol_q)
     rc = fb_err_set(err, FB_ESOLVER,
                     "no static equilibrium at t = %g s: displacements still change at rest "
@@ -174,7 +175,9 @@ int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_
                     "static equilibrium not found: unbalanced force %.3g after %d steps "
                     "(a mass with no spring to the ground, or no equilibrium at all?)",
                     rp, MAX_ITER);
-  if (rc == FB_ESOLVER && err && !strstr(err->msg, "static equilibrium"))
+  /* The solver's own failures get the context; the two verdicts above
+   * name it already. */
+  if (rc == FB_ESOLVER && !verdict)
     fb_err_prefix(err, "static equilibrium: ");
   work_free(&w);
   return rc;
