@@ -243,7 +243,8 @@ static void apc_outputs(const apc_model *m, double t, const double *x, double *y
 {
   double d, dd, xdot[APC_NX];
   apc_deflection(m, APC_TIRE + APC_LF, t, x, &d, &dd);
-  y[APC_OUT_TIRE_FORCE_LF] = m->elem[APC_TIRE + APC_LF].k * d + m->elem[APC_TIRE + APC_LF].c * dd;
+  y[APC_OUT_TIRE_FORCE_LF] =
+      m->elem[APC_TIRE + APC_LF].k * d + m->elem[APC_TIRE + APC_LF].c * dd;
   apc_deflection(m, APC_RF, t, x, &d, &dd);
   y[APC_OUT_SPRING_DEFL_RF] = d;
   y[APC_OUT_TORSION] = 0.0;

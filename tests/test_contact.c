@@ -14,8 +14,8 @@
 #include "flexbond/model.h"
 #include "flexbond/vehicle.h"
 
-#include "bgtest_util.h"
 #include "apc_layout.h"
+#include "bgtest_util.h"
 #include "check.h"
 #include "energy_balance.h"
 #include "vehicle_util.h"
@@ -73,7 +73,8 @@ static void test_paper_crossing(const fb_scenario *s)
   if (!r)
     return;
   /* The seven outputs, then the six reactions; LF is the paper's Fig. 8. */
-  const long lf = column(r, "contact_force_", APC_LF), fig8 = fb_result_find(r, "tire_force_LF");
+  const long lf = column(r, "contact_force_", APC_LF),
+             fig8 = fb_result_find(r, "tire_force_LF");
   CHECK(lf == 1 + APC_NOUTPUTS && fig8 == 1);
   for (size_t k = 0; lf > 0 && fig8 > 0 && k < fb_result_nsamples(r); k += 97)
     CHECK(fb_result_row(r, k)[lf] == fb_result_row(r, k)[fig8]);

@@ -24,8 +24,8 @@
 #include "flexbond/model.h"
 #include "flexbond/vehicle.h"
 
-#include "bgtest_util.h"
 #include "apc_layout.h"
+#include "bgtest_util.h"
 #include "check.h"
 
 static const char *const quarter_car_path = "../examples/quarter_car.yaml";

@@ -173,7 +173,7 @@ static void check_sets(const fb_mesh *m, const fb_scenario *s, const fb_hull_mes
                        double cx, double z_floor)
 {
   static const char *const susp[APC_NCORNERS] = {"SUSP_LF", "SUSP_RF", "SUSP_LM",
-                                                "SUSP_RM", "SUSP_LR", "SUSP_RR"};
+                                                 "SUSP_RM", "SUSP_LR", "SUSP_RR"};
   for (int c = 0; c < APC_NCORNERS; ++c)
     check_single(m, susp[c], s->corner[c].x, s->corner[c].y, z_floor);
   check_single(m, "DRIVER", APC_DRIVER(s)->x, APC_DRIVER(s)->y, z_floor);
@@ -485,8 +485,8 @@ static void test_errors(void)
   CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
   if (c) {
     c->load_x[5] = 5.0;
-    expect_error(
-        c, &p0, "load.points[5]: (5, -0.55) m lies outside the generated hull's floor", NULL);
+    expect_error(c, &p0, "load.points[5]: (5, -0.55) m lies outside the generated hull's floor",
+                 NULL);
     /* A load point 0.5 mm behind the rear axle's line (its bulkhead,
      * suspension points and three more load points). */
     c->load_x[5] = s->load_x[5];

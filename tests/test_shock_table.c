@@ -98,8 +98,8 @@ static void test_errors(void)
 {
   fb_err err;
   /* The replacement itself loads when it is good. */
-  CHECK(load_with_lf("      damper_table: {points: [[-1, -30000], [0, 0], [1, 20000]]}", &err) ==
-        FB_OK);
+  CHECK(load_with_lf("      damper_table: {points: [[-1, -30000], [0, 0], [1, 20000]]}",
+                     &err) == FB_OK);
   expect_refused("      damper_c: 1\n      damper_table: {points: [[-1, -1], [1, 1]]}",
                  "give either 'damper_c' or 'damper_table'");
   /* Pushing when extended: a damper that delivers power. */

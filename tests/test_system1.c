@@ -24,8 +24,8 @@
 #include "flexbond/vehicle.h"
 
 #include "apc_direct.h"
-#include "bgtest_util.h"
 #include "apc_layout.h"
+#include "bgtest_util.h"
 #include "check.h"
 #include "energy_balance.h"
 
@@ -37,7 +37,7 @@ static const double rk4_dt = 1e-4;
 /* ---- Hand calculation of the static equilibrium. */
 
 typedef struct static_hand {
-  double hull[3];                   /* z, phi, theta */
+  double hull[3];                    /* z, phi, theta */
   double corner_force[APC_NCORNERS]; /* vertical force of the suspension on the hull, up */
   double spring_comp[APC_NCORNERS];  /* spring compression along its axis */
   double tire_force[APC_NCORNERS];   /* tire normal reaction */
@@ -239,8 +239,8 @@ static void compare_outputs(const fb_result *res, const double *ref, const doubl
     fprintf(stderr,
             "  %-15s range %.6g %s, worst |flexbond - direct| = %.3g (%.3g%% of range, at t = "
             "%.3f s), RK4 error est. %.2g%% of range\n",
-            apc_output_name(k), range, apc_output_unit(k), worst,
-            100.0 * worst / range, worst_t, 100.0 * richardson / range);
+            apc_output_name(k), range, apc_output_unit(k), worst, 100.0 * worst / range,
+            worst_t, 100.0 * richardson / range);
     /* Acceptance: 0.5 % of the peak-to-peak range. Both sides solve the
      * same linear ODE, so the measured differences are ~1e-4 % (solver
      * tolerance); a modelling slip is far larger (the driver mount put at
@@ -296,7 +296,8 @@ static void test_static_hand(const fb_scenario *s, const apc_model *m, const sta
     const double tire = -q[APC_WHEEL + c];
     CHECK_NEAR(tire, h->tire_comp[c], 1e-10 * fabs(h->tire_comp[c]));
   }
-  double sum = 0.0, expect = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
+  double sum = 0.0,
+         expect = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
   for (int c = 0; c < APC_NCORNERS; ++c) {
     sum += h->tire_force[c];
     expect += s->corner[c].wheel_mass * s->gravity;
@@ -456,7 +457,8 @@ static void test_tire_forces_static(const fb_scenario *s, const static_hand *h)
   if (x0 && xeq && y) {
     MUST(fb_sim_static_state(bd, 0.0, x0, xeq, &err), &err);
     CHECK(fb_bd_outputs(bd, 0.0, xeq, y) == 0);
-    double sum = 0.0, expect = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
+    double sum = 0.0,
+           expect = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
     for (int c = 0; c < APC_NCORNERS; ++c) {
       const double f = y[nstd + (size_t)c];
       fprintf(stderr, "static state: tire force %s flexbond %.12g N, hand %.12g N\n",

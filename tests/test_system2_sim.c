@@ -66,7 +66,8 @@ static void test_static_weight(fb_scenario *s)
     for (size_t i = 0; i < nx; ++i)
       if (fb_bd_state_kind(bd, i) == FB_STATE_MOMENTUM)
         worst = fmax(worst, fabs(xdot[i]));
-    const double weight = s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
+    const double weight =
+        s->total_weight + (APC_DRIVER(s)->mass + APC_ENGINE(s)->mass) * s->gravity;
     CHECK(worst < 1e-6 * weight);
     /* The sum of the tire forces is not an output, but each tire's
      * deflection is the state of its spring: k_t times it. */

@@ -39,11 +39,11 @@ enum fb_err_origin {
 
 /* Where the value an error is about came from (fb_err.source). */
 enum fb_err_source {
-  FB_SOURCE_NONE = 0,     /* not known, or not about an input value */
-  FB_SOURCE_FILE = 1,     /* written in fb_err.file at line:column */
-  FB_SOURCE_OPTION = 2,   /* a command-line option (fb_err.source_text: "--t-end") */
-  FB_SOURCE_OVERRIDE = 3  /* an override of a file's value
-                             (fb_err.source_text: "--set KEY=VALUE") */
+  FB_SOURCE_NONE = 0,    /* not known, or not about an input value */
+  FB_SOURCE_FILE = 1,    /* written in fb_err.file at line:column */
+  FB_SOURCE_OPTION = 2,  /* a command-line option (fb_err.source_text: "--t-end") */
+  FB_SOURCE_OVERRIDE = 3 /* an override of a file's value
+                            (fb_err.source_text: "--set KEY=VALUE") */
 };
 
 enum { FB_ERR_FILE_MAX = 1024, FB_ERR_KEY_MAX = 256, FB_ERR_SOURCE_MAX = 512 };
@@ -58,12 +58,12 @@ typedef struct fb_err {
   /* The input value concerned; fb_err_set resets them all. msg already
    * names them for a reader ("FILE:LINE:COL: KEY: ..."); these are for
    * programs. */
-  char key[FB_ERR_KEY_MAX];     /* key path in its file ("suspensions.axles[1].x",
-                                   "simulation.rtol"), or the name of a
-                                   setting ("rtol"); "" none */
-  char file[FB_ERR_FILE_MAX];   /* file of the value, "" none */
-  int line, column;             /* 1-based, 0 unknown */
-  int source;                   /* enum fb_err_source */
+  char key[FB_ERR_KEY_MAX];            /* key path in its file ("suspensions.axles[1].x",
+                                          "simulation.rtol"), or the name of a
+                                          setting ("rtol"); "" none */
+  char file[FB_ERR_FILE_MAX];          /* file of the value, "" none */
+  int line, column;                    /* 1-based, 0 unknown */
+  int source;                          /* enum fb_err_source */
   char source_text[FB_ERR_SOURCE_MAX]; /* the option or override, "" none */
 } fb_err;
 
