@@ -190,8 +190,10 @@ static fb_bg *every_kind(void)
       "0.1 * sin(2 * pi * 3 * t) - -2 ^ -0.5 * t / (1 + t) + (t - (1 - t)) / (2 / (t + 3))",
       "min(t, 0.5, 2 * t) - max(-t, atan2(t, 2)) + pow(t + 1, -(t - 2)) + -(-t) ^ 2",
       "step(t - 0.3) * ramp(t - 0.1) + abs(sign(t - 0.2)) * floor(10 * t) / ceil(t + 1e-300)",
-      "exp(-t) * log(1 + t) + log10(2 + t) + sqrt(t + 1) + tan(t / 9) + asin(t / 9) + "
-      "acos(t / 9) + atan(t) + cos(t) + 1e-17 * t + 1.2345678901234568e17 * t"};
+      /* One expression over two lines (clang's -Wstring-concatenation
+       * wants the parentheses). */
+      ("exp(-t) * log(1 + t) + log10(2 + t) + sqrt(t + 1) + tan(t / 9) + asin(t / 9) + "
+       "acos(t / 9) + atan(t) + cos(t) + 1e-17 * t + 1.2345678901234568e17 * t")};
   for (size_t i = 0; i < 4; ++i) {
     fb_expr *e = NULL;
     MUST(fb_expr_parse(exprs[i], NULL, &e, &err), &err);
