@@ -121,11 +121,13 @@ road_with() {
   derive "$1" s_ok.yaml -e "/^  bump:/,/crossing of about three seconds/c\\  $2"
 }
 derive s_speed.yaml s_ok.yaml -e 's/^  speed_kmh: 10 /  speed_kmh: -10 /'
-derive s_nan.yaml s_ok.yaml -e '0,/^    spring_k: 145300 /s//    spring_k: .nan /'
-derive s_corner.yaml s_ok.yaml -e 's/^  LF:  /  LFF: /'
+derive s_nan.yaml s_ok.yaml -e '0,/^      spring_k: 145300 /s//      spring_k: .nan /'
+# A corner that does not exist, named by an output (the corners are the
+# axles' L<name>, R<name>).
+derive s_corner.yaml s_ok.yaml -e '0,/^    of: LF$/s//    of: LFF/'
 derive s_nowheel.yaml s_ok.yaml -e '/^wheel:/,/^  tire_c:/d'
 derive s_kmh.yaml s_ok.yaml -e 's/^  speed_kmh: 10 /  speed_kmh: "10 km\/h" /'
-derive s_list.yaml s_ok.yaml -e '0,/^    spring_k: 145300 /s//    spring_k: [145300] /'
+derive s_list.yaml s_ok.yaml -e '0,/^      spring_k: 145300 /s//      spring_k: [145300] /'
 derive s_tab.yaml s_ok.yaml -e 's/^  mass: 4041.72 /\tmass: 4041.72 /'
 derive s_unclosed.yaml s_ok.yaml -e 's/^\(      bulkheads: \[.*\), 1.90\]/\1, 1.90/'
 derive s_gravty.yaml s_ok.yaml -e 's/^gravity:/gravty:/'
@@ -139,8 +141,8 @@ derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
 # Points off the floor or on one another; a hull mesh whose edges are no
 # longer hull.edges (one bulkhead fewer moves its centre of mass), and more
 # modes than the hull has: the late checks are located too.
-derive s_driver.yaml s_ok.yaml -e '/^driver:/,/^engine:/s/^  x: 2.10 /  x: 20.1 /'
-derive s_samepoint.yaml s_ok.yaml -e '/^  RM:/,/^  LR:/s/^    y: -1.05 /    y: 1.05 /'
+derive s_driver.yaml s_ok.yaml -e '/^  - name: driver /,/^  - name: engine/s/^    x: 2.10 /    x: 20.1 /'
+derive s_samepoint.yaml s_ok.yaml -e '/^    - name: M /,/^    - name: R /s/^      x: 0.40 /      x: 1.90 /'
 derive s_bulkheads.yaml s_ok.yaml -e 's/^\(      bulkheads: \)\[.*\]/\1[1.90, -1.00]/'
 derive s_modes.yaml s_ok.yaml -e 's/^    modes: 0 /    modes: 99999 /'
 road_with s_tworoads.yaml 'iso8608: {class: C, seed: 1}\n  bump: {height: 0.1, length: 3.7, angle_deg: 45, first_contact: 5}'
@@ -254,11 +256,11 @@ CASES=(
 
   # Scenario YAML.
   "2|run s_speed.yaml -o @OUT|flexbond: $(at s_speed.yaml 'speed_kmh: -10' -10) road.speed_kmh: must be > 0 km/h (got -10)"
-  "2|run s_nan.yaml -o @OUT|$(at s_nan.yaml .nan .nan) suspensions.LF.spring_k: must be finite (got .nan)"
-  "2|run s_corner.yaml -o @OUT|$(at s_corner.yaml LFF LFF) suspensions.LFF: unknown suspension 'LFF'|did you mean 'LF'?"
-  "2|modes s_nowheel.yaml|$(at s_nowheel.yaml 'scenario:' scenario) missing required key 'wheel'"
+  "2|run s_nan.yaml -o @OUT|$(at s_nan.yaml .nan .nan) suspensions.axles[0].spring_k: must be finite (got .nan)"
+  "2|run s_corner.yaml -o @OUT|$(at s_corner.yaml 'of: LFF' LFF) outputs[0].of: no corner named 'LFF'|did you mean 'LF'?"
+  "2|modes s_nowheel.yaml|$(at s_nowheel.yaml '    - name: F ' name) suspensions.axles[0]: missing required key 'suspensions.axles[0].wheel.mass' (nor is there a wheel.mass to take it from)"
   "2|run s_kmh.yaml -o @OUT|$(at s_kmh.yaml 'speed_kmh: "' '10 km') road.speed_kmh: expected a number, got '10 km/h'|write the number alone"
-  "2|export s_list.yaml -o @OUT|$(at s_list.yaml '[145300]' '[') suspensions.LF.spring_k: expected a number or expression, got a list"
+  "2|export s_list.yaml -o @OUT|$(at s_list.yaml '[145300]' '[') suspensions.axles[0].spring_k: expected a number or expression, got a list"
   "2|run s_tab.yaml -o @OUT|$(at s_tab.yaml 4041.72)1: YAML: tab character"
   "2|run s_unclosed.yaml -o @OUT|$(at s_unclosed.yaml side_rows side_rows) YAML: |unclosed '['"
   "2|run s_gravty.yaml -o @OUT|$(at s_gravty.yaml gravty gravty) gravty: unknown key 'gravty'|did you mean 'gravity'?"
@@ -269,18 +271,18 @@ CASES=(
   "2|modes s_tirek.yaml|$(at s_tirek.yaml 'tire_k: 0' 0) wheel.tire_k: must be > 0 N/m (got 0)"
   "2|sweep s_inf.yaml --set speed_kmh=5,10 -o @OUT|$(at s_inf.yaml .inf .inf) load.total_weight: must be finite (got .inf)"
   "2|run s_short.yaml -o @OUT|$(at s_short.yaml '    height: 0.10' height) road.bump: bump longer than the run"
-  "2|run s_tworoads.yaml -o @OUT|$(at s_tworoads.yaml 'iso8608: {' iso8608) road.iso8608: give one road"
+  "2|run s_tworoads.yaml -o @OUT|$(at s_tworoads.yaml 'iso8608: {' iso8608) road.iso8608: give either 'bump' or 'iso8608', not both"
   "2|run s_isoclass.yaml -o @OUT|$(at s_isoclass.yaml 'class: Z' Z) road.iso8608.class:|A .. H (got 'Z')"
   "2|run s_profile.yaml -o @OUT|$(at s_profile.yaml one_row.csv one_row) road.profile.file: ./one_row.csv:2: 1 data row, need at least 2"
-  "5|run s_table_missing.yaml -o @OUT|$(at s_table_missing.yaml no_such_table no_such) suspensions.LF.damper_table.file: ./no_such_table.csv: cannot open|No such file"
-  "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.LF.damper_table.file: ./word.csv:4: column 'F': 'abc' is not a number"
-  "2|export s_table_order.yaml -o @OUT|$(at s_table_order.yaml order.csv order) suspensions.LF.damper_table.file: ./order.csv:5: column 'v': 0.5 does not exceed the previous row's 1|strictly increasing"
-  "2|run s_driver.yaml --system rigid -o @OUT|$(at s_driver.yaml 'x: 20.1' 20.1) driver.x: must lie on the hull's floor, between hull.edges.rear_x = -2.657984123 and front_x = 2.478133119 m (got 20.1)"
-  "2|export s_samepoint.yaml --system rigid -o @OUT|s_samepoint.yaml:$(awk '/^  RM:/ { print NR + 1; exit }' s_samepoint.yaml):5: suspensions.RM: at (0.4, 1.05) m, where suspensions.LM already is"
+  "5|run s_table_missing.yaml -o @OUT|$(at s_table_missing.yaml no_such_table no_such) suspensions.axles[0].damper_table.file: ./no_such_table.csv: cannot open|No such file"
+  "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.axles[0].damper_table.file: ./word.csv:4: column 'F': 'abc' is not a number"
+  "2|export s_table_order.yaml -o @OUT|$(at s_table_order.yaml order.csv order) suspensions.axles[0].damper_table.file: ./order.csv:5: column 'v': 0.5 does not exceed the previous row's 1|strictly increasing"
+  "2|run s_driver.yaml --system rigid -o @OUT|$(at s_driver.yaml 'x: 20.1' 20.1) mounts[0].x: must lie on the hull's floor, between hull.edges.rear_x = -2.657984123 and front_x = 2.478133119 m (got 20.1)"
+  "2|export s_samepoint.yaml --system rigid -o @OUT|$(at s_samepoint.yaml '    - name: M ' name) suspensions.axles[1]: at (1.9, 1.05) m, where corner LF already is (two corners at one point)"
   "2|mesh s_bulkheads.yaml --export @FILE.inp|$(at s_bulkheads.yaml 'front_x: 2.478' 2.478) hull.edges.front_x: the scenario puts FRONT_EDGE's left end at (2.47813, 1.05) m, the mesh's node 76 at (2.33187, 1.05) m"
   "2|run s_modes.yaml --system flexible -o @OUT|$(at s_modes.yaml 'modes: 99999' 99999) hull.fe.modes: 99999 modes, more than the hull's 1296 degrees of freedom"
   "2|sim m_table_nul.yaml -o @OUT|$(at m_table_nul.yaml 'file: nul_fv.csv' 'nul_fv') elements[3].table.file: ./nul_fv.csv:4: binary data (byte 0x00 in column 4): not a CSV text file (expected UTF-8 text)"
-  "2|run s_table_dup.yaml -o @OUT|$(at s_table_dup.yaml dup.csv dup) suspensions.LF.damper_table.file: ./dup.csv:1: column 'F' appears twice"
+  "2|run s_table_dup.yaml -o @OUT|$(at s_table_dup.yaml dup.csv dup) suspensions.axles[0].damper_table.file: ./dup.csv:1: column 'F' appears twice"
   "2|modes s_profile_nul.yaml|$(at s_profile_nul.yaml nul_road.csv nul_road) road.profile.file: ./nul_road.csv:4: binary data (byte 0x00 in column 1): not a CSV text file"
   "2|run s_profile_hex.yaml -o @OUT|$(at s_profile_hex.yaml hex_road.csv hex_road) road.profile.file: ./hex_road.csv:4: column 'z': '0x5' is not a decimal number"
   "2|run s_empty.yaml -o @OUT|flexbond: s_empty.yaml:1:1: the file is empty"
@@ -289,7 +291,11 @@ CASES=(
   # Meshes (a deck read through hull.mesh.deck): at the scenario's key, then the deck's line.
   "2|mesh d_nset.yaml --export @FILE.inp|flexbond: $(deck_at d_nset) ./d_nset.inp:$(line_of d_nset.inp 99999): node set 'EXTRA' names node 99999, which is not defined"
   "2|run d_warped.yaml --system flexible -o @OUT|flexbond: $(deck_at d_warped) ./d_warped.inp:$(line_of d_warped.inp '9001, 9001, 9002, 9003, 9004'): element 9001 (S4) is warped: node 9004 is 300 mm off the plane"
-  "2|sweep d_warped.yaml --system flexible --set speed_kmh=5,10 -o @OUT|every case failed on its input; the first: |$(deck_at d_warped) ./d_warped.inp:|element 9001 (S4) is warped"
+  # The deck is read at load: a sweep refuses the scenario before any case.
+  "2|sweep d_warped.yaml --system flexible --set speed_kmh=5,10 -o @OUT|flexbond: $(deck_at d_warped) ./d_warped.inp:$(line_of d_warped.inp '9001, 9001, 9002, 9003, 9004'): element 9001 (S4) is warped"
+  # An input every case shares that only the cases find (the hull's degrees
+  # of freedom): each case fails on it, and the study with the first's message.
+  "2|sweep s_modes.yaml --system flexible --set speed_kmh=5,10 -o @OUT|flexbond: every case failed on its input; the first: $(at s_modes.yaml 'modes: 99999' 99999) hull.fe.modes: 99999 modes"
   "2|modes d_zeroarea.yaml --system flexible -o @OUT|flexbond: $(deck_at d_zeroarea) ./d_zeroarea.inp:$(line_of d_zeroarea.inp '9001, 9001, 9002, 9005'): element 9001 (S3) is degenerate: area 0 m^2"
   "2|export d_nonode.yaml -o @OUT|flexbond: $(deck_at d_nonode) ./d_nonode.inp:$(line_of d_nonode.inp '9001, 9001, 9002, 99999'): element 9001 refers to node 99999, which is not defined"
   "2|mesh d_empty.yaml --export @FILE.vtu|flexbond: $(deck_at d_empty) ./d_empty.inp:1: empty file"

@@ -131,7 +131,7 @@ refused 2 "NUL in a name" \
   sim m_nul_name.yaml -o "$WORK/out"
 derive s_nul.yaml s_ok.yaml -e '0,/spring_k: 145300 /s//spring_k: "145300\\0junk" /'
 refused 2 "NUL in a scenario number" \
-  "$(at s_nul.yaml 'spring_k: "' '145300') suspensions.LF.spring_k: the value has a NUL" -- \
+  "$(at s_nul.yaml 'spring_k: "' '145300') suspensions.axles[0].spring_k: the value has a NUL" -- \
   run s_nul.yaml -o "$WORK/out"
 
 # ---- Integers beyond 2^53 are not all doubles: 2^53 + 1 read as 2^53.
@@ -141,7 +141,7 @@ refused 2 "integer beyond 2^53" \
   sim m_big.yaml -o "$WORK/out"
 derive s_big.yaml s_ok.yaml -e '0,/spring_k: 145300 /s//spring_k: -12345678901234567890 /'
 refused 2 "scenario integer beyond 2^53" \
-  "$(at s_big.yaml 'spring_k: -' '-') suspensions.LF.spring_k: the integer -12345678901234567890 is beyond 2^53" -- \
+  "$(at s_big.yaml 'spring_k: -' '-') suspensions.axles[0].spring_k: the integer -12345678901234567890 is beyond 2^53" -- \
   run s_big.yaml -o "$WORK/out"
 # 2^53 itself, and larger numbers with a point or an exponent, still load.
 derive m_2p53.yaml m_ok.yaml -e 's|^  kt: 160000 |  kt: 9007199254740992 |' \

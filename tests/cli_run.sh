@@ -17,7 +17,11 @@ APC=$REPO_ROOT/examples/apc6x6.yaml
 HEADER='t,tire_force_LF,spring_defl_RF,torsion,driver_acc,shock_power_LM,tire_defl_RM,tire_power_LR'
 FIGURES=(fig08_tire_force_LF.png fig09_spring_defl_RF.png fig10_torsion.png
   fig11_driver_acc.png fig12_shock_power_LM.png fig13_tire_defl_RM.png fig14_tire_power_LR.png)
-EXPECTED_FILES=$(printf '%s\n' .flexbond-manifest "${FIGURES[@]}" report.md summary.json system1.csv | sort)
+# Each system's multibond graph and block diagram (the paper's Figs. 5, 6).
+DIAGRAMS1=(fig05_bond_graph_system1.png fig06_block_diagram_system1.png)
+DIAGRAMS2=(fig05_bond_graph_system2.png fig06_block_diagram_system2.png)
+EXPECTED_FILES=$(printf '%s\n' .flexbond-manifest "${FIGURES[@]}" "${DIAGRAMS1[@]}" report.md \
+  summary.json system1.csv | sort)
 
 # expect_files DIR DESCRIPTION: DIR holds exactly the files of a run.
 expect_files() {
@@ -118,7 +122,7 @@ checks=$((checks + 1))
 [ "$(sed -n 2p "$WORK/apc/system1.csv")" = "0,0,0,0,-9.81,0,0,0" ] ||
   fail "first row: $(sed -n 2p "$WORK/apc/system1.csv")"
 check_summary "$WORK/apc" zero weight-only
-for f in "${FIGURES[@]}"; do
+for f in "${FIGURES[@]}" "${DIAGRAMS1[@]}"; do
   checks=$((checks + 1))
   [ "$(head -c 8 "$WORK/apc/$f" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
     fail "$f is a PNG"
@@ -129,7 +133,7 @@ done
 run run "$APC" -o "$WORK/apc_loud" --system rigid
 expect_status 0 "run apc6x6 without -q"
 expect_in "$ERR" "simulating System 1 (rigid hull)" "progress line"
-expect_in "$ERR" "wrote 10 files -> $WORK/apc_loud" "summary line"
+expect_in "$ERR" "wrote 12 files -> $WORK/apc_loud" "summary line"
 checks=$((checks + 1))
 ! grep -q $'\r' "$ERR" || fail "no progress line when stderr is not a terminal"
 
@@ -155,7 +159,7 @@ run run "$SHORT" -o "$WORK/both" -q
 expect_status 0 "run, both systems"
 checks=$((checks + 1))
 [ "$(ls -A "$WORK/both" | sort)" = "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" \
-  .flexbond-manifest report.md summary.json system1.csv system2.csv | sort)" ] ||
+  "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" .flexbond-manifest report.md summary.json system1.csv system2.csv | sort)" ] ||
   fail "both systems: files $(ls -A "$WORK/both" | tr '\n' ' ')"
 checks=$((checks + 1))
 [ "$(head -n 1 "$WORK/both/system2.csv")" = "$HEADER" ] ||
@@ -239,7 +243,7 @@ done
 expect_in "$REPORT" "full order, all 1296 nodal DOFs" "report.md hull order"
 expect_in "$REPORT" "## Assumptions" "report.md assumptions"
 expect_in "$REPORT" "## Tire contact" "report.md tire contact"
-expect_in "$REPORT" "## Ride comfort (driver plus seat)" "report.md ride comfort"
+expect_in "$REPORT" "## Ride comfort (driver plus seat acceleration)" "report.md ride comfort"
 expect_in "$REPORT" "| VDV | m/s^1.75 |" "report.md VDV row"
 # The shortened 0.5 m bump is sharp: every tire pulls its wheel down once.
 expect_in "$REPORT" "System 2 (flexible hull): 6 intervals where a tire's normal reaction is tensile" \
@@ -249,7 +253,8 @@ expect_in "$REPORT" "| 20 | " "report.md System 2 modes"
 checks=$((checks + 1))
 links=$(grep -o '](\([^)]*\))' "$REPORT" | sed 's/^](//; s/)$//')
 [ "$(printf '%s\n' "$links" | sort)" = \
-  "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" | sort)" ] ||
+  "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" |
+    sort)" ] ||
   fail "report.md image links: $(echo $links)"
 for f in $links; do
   checks=$((checks + 1))
@@ -358,8 +363,9 @@ line_of() {
 sed '0,/spring_k:/s/spring_k: *[-0-9.e+]*/spring_k: -1/' "$APC" >"$WORK/negative.yaml"
 bad_scenario negative "$(line_of "$WORK/negative.yaml" 'spring_k: -1')" "spring_k: must be > 0"
 
-sed 's/^  LM:/  XM:/' "$APC" >"$WORK/unknown.yaml"
-bad_scenario unknown "$(line_of "$WORK/unknown.yaml" '^  XM:')" "unknown suspension 'XM'"
+# A corner that does not exist (the axles make LF .. RR), named by an output.
+sed 's/^    of: LM$/    of: XM/' "$APC" >"$WORK/unknown.yaml"
+bad_scenario unknown "$(line_of "$WORK/unknown.yaml" '^    of: XM$')" "outputs[4].of: no corner named 'XM'"
 
 # The loader reports a missing key at its mapping (somewhere in `hull:`).
 grep -v -E '^  Iyy:' "$APC" >"$WORK/missing.yaml"

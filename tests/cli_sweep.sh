@@ -112,7 +112,7 @@ assert any(len(r["tire_force_LF_peak"]) > 12 for r in rows)
 EOF
 
 # ---- A two-key grid: 3 x 3 rows, the first key varying slowest.
-run sweep "$APC" --set speed_kmh=10,20,30 --set suspensions.LF.damper_c=20000:5000:30000 \
+run sweep "$APC" --set speed_kmh=10,20,30 --set suspensions.axles[0].damper_c=20000:5000:30000 \
   -o "$WORK/grid" --no-figures -q -j 2
 expect_status 0 "two-key grid"
 checks=$((checks + 1))
@@ -120,10 +120,10 @@ checks=$((checks + 1))
 check_python "grid rows in order" "$WORK/grid/sweep.csv" <<'EOF'
 import csv, sys
 rows = list(csv.reader(open(sys.argv[1])))
-assert rows[0][:2] == ["speed_kmh", "suspensions.LF.damper_c"], rows[0]
+assert rows[0][:2] == ["speed_kmh", "suspensions.axles[0].damper_c"], rows[0]
 want = [[s, d] for s in ["10", "20", "30"] for d in ["20000", "25000", "30000"]]
 assert [r[:2] for r in rows[1:]] == want, [r[:2] for r in rows[1:]]
-# A stiffer LF damper changes the LF tire force: the cases differ.
+# Stiffer front dampers (LF and RF) change the LF tire force: the cases differ.
 assert len({r[2] for r in rows[1:4]}) == 3
 EOF
 
@@ -150,7 +150,7 @@ expect_in "$ERR" "flexbond: 1 of 2 cases failed (each has its message in the err
 run sweep "$APC" --set speed_kmh=fast -o "$WORK/word" --no-figures -q
 expect_status 4 "a bad value fails its case"
 want="^flexbond: 1 of 1 case failed (.*); the first, case 1 (speed_kmh=fast): "
-want="$want--set speed_kmh=fast: $APC:125:14: road.speed_kmh: expression 'fast'"
+want="$want--set speed_kmh=fast: $APC:152:14: road.speed_kmh: expression 'fast'"
 checks=$((checks + 1))
 [ "$(wc -l <"$ERR")" -eq 1 ] && grep -q "$want" "$ERR" ||
   fail "-q with a failed case: one message on stderr"
@@ -183,7 +183,7 @@ usage() {
   expect_in "$ERR" "$text" "$what: message"
   expect_absent "$WORK/usage" "$what"
 }
-usage "ambiguous key" "key 'mass' is ambiguous: it occurs 4 times (hull.mass, driver.mass, engine.mass, wheel.mass)" \
+usage "ambiguous key" "key 'mass' is ambiguous: it occurs 4 times (hull.mass, mounts[0].mass, mounts[1].mass, wheel.mass)" \
   "$APC" --set mass=1:1:2 -o "$WORK/usage"
 usage "absent key" "no key 'sped_kmh' in the scenario (did you mean 'road.speed_kmh'?)" \
   "$APC" --set sped_kmh=1 -o "$WORK/usage"

@@ -146,13 +146,13 @@ expect_in "$ERR" "the journal of another study: it was written by flexbond 0.0.1
 # cases were computed from the old file, so --resume refuses it (exit 1)
 # and leaves it as it was, naming the file; once the file is back, it
 # resumes. The damper-table example (its tables copied beside it) over
-# 60 s, with the LF table swept too: shock_alt.csv, a copy of the front
+# 60 s, with the front axle's table swept too: shock_alt.csv, a copy of the front
 # table, is named only by a --set value.
 sed 's/^  t_end: 15 /  t_end: 60 /' "$REPO_ROOT/examples/apc6x6_shock_table.yaml" \
   >"$WORK/table.yaml"
 cp "$REPO_ROOT/examples/shock_front.csv" "$REPO_ROOT/examples/shock_rear.csv" "$WORK/"
 cp "$WORK/shock_front.csv" "$WORK/shock_alt.csv"
-TABLES=(sweep "$WORK/table.yaml" --set suspensions.LF.damper_table.file=shock_front.csv,shock_alt.csv
+TABLES=(sweep "$WORK/table.yaml" --set suspensions.axles[0].damper_table.file=shock_front.csv,shock_alt.csv
   --set speed_kmh=6,18,30,42 --no-figures -j 1)
 stopped "$WORK/table" KILL "${TABLES[@]}"
 cp "$WORK/table/$JOURNAL" "$WORK/journal.copy"
