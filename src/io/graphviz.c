@@ -81,11 +81,13 @@ static int draw_in(const char *dir, fb_graphviz_format fmt, const char *path, fb
 {
   const int png = fmt == FB_GRAPHVIZ_PNG;
   char program[] = "dot", type[] = "-Tsvg", opt_o[] = "-o", input[sizeof gv_dot];
-  char output[sizeof gv_svg > sizeof gv_png ? sizeof gv_svg : sizeof gv_png];
+  /* The two names have the same length ("graph.png", "graph.svg"). */
+  _Static_assert(sizeof gv_svg == sizeof gv_png, "picture names of one length");
+  char output[sizeof gv_svg];
   if (png)
     memcpy(type, "-Tpng", sizeof type);
   memcpy(input, gv_dot, sizeof gv_dot);
-  memcpy(output, png ? gv_png : gv_svg, png ? sizeof gv_png : sizeof gv_svg);
+  memcpy(output, png ? gv_png : gv_svg, sizeof output);
   char *argv[] = {program, type, opt_o, output, input, NULL};
   const fb_child_spec spec = {.program = program,
                               .argv = argv,

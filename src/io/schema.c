@@ -628,9 +628,9 @@ static const char *const sch_type_words[] = {
 /* The type column: choices spelt out, a list's length. */
 static void sch_type_text(const sch_key *k, char *buf, size_t size)
 {
-  size_t len = 0;
   buf[0] = '\0';
   if (k->type == SCH_CHOICE) {
+    size_t len = 0;
     for (size_t i = 0; k->choices[i] && len + 1 < size; ++i) {
       int w = snprintf(buf + len, size - len, "%s`%s`", i ? " \\| " : "", k->choices[i]);
       len = w > 0 && len + (size_t)w < size ? len + (size_t)w : size - 1;
