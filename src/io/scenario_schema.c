@@ -21,88 +21,43 @@ typedef struct sc_reading {
 
 /* ---- Conversions between the file's units and the struct's. */
 
-static double sc_kmh_to_ms(double v)
-{
-  return v / 3.6;
-}
+/* v in one unit, in the other. */
+#define SC_CONVERT(name, expr)                                                                 \
+  static double name(double v)                                                                 \
+  {                                                                                            \
+    return expr;                                                                               \
+  }
 
-static double sc_ms_to_kmh(double v)
-{
-  return v * 3.6;
-}
-
+SC_CONVERT(sc_kmh_to_ms, v / 3.6)
+SC_CONVERT(sc_ms_to_kmh, v * 3.6)
 /* Dividing by 180 first keeps 90 deg exactly pi / 2 (a power-of-two
  * scaling), so the "< 90 deg" bound is exact. */
-static double sc_deg_to_rad(double v)
-{
-  return v / 180 * SC_PI;
-}
-
-static double sc_rad_to_deg(double v)
-{
-  return v * 180 / SC_PI;
-}
+SC_CONVERT(sc_deg_to_rad, v / 180 * SC_PI)
+SC_CONVERT(sc_rad_to_deg, v * 180 / SC_PI)
 
 static const sch_ops sc_kmh = {.to_struct = sc_kmh_to_ms, .from_struct = sc_ms_to_kmh};
 
 /* ---- When a value is there (sch_ops.present). */
 
-static int sc_has_fe_hull(const void *base)
-{
-  return ((const fb_scenario *)base)->has_fe_hull;
-}
+/* name(base) is expr over b, base as a const T *. */
+#define SC_PRESENT(name, T, expr)                                                              \
+  static int name(const void *base)                                                            \
+  {                                                                                            \
+    const T *b = base;                                                                         \
+    return expr;                                                                               \
+  }
 
-static int sc_has_generator(const void *base)
-{
-  const fb_scenario *s = base;
-  return s->has_fe_hull && !s->hull_deck;
-}
-
-static int sc_has_frame(const void *base)
-{
-  return ((const fb_scenario *)base)->frame_origin != NULL;
-}
-
-static int sc_has_cg(const void *base)
-{
-  return ((const fb_scenario *)base)->hull_cg_given;
-}
-
-static int sc_has_mass(const void *base)
-{
-  return ((const fb_scenario *)base)->hull_mass_given;
-}
-
-static int sc_is_bump(const void *base)
-{
-  return ((const fb_scenario *)base)->road_kind == FB_ROAD_BUMP;
-}
-
-static int sc_is_iso(const void *base)
-{
-  return ((const fb_scenario *)base)->road_kind == FB_ROAD_ISO8608;
-}
-
-static int sc_is_profile(const void *base)
-{
-  return ((const fb_scenario *)base)->road_kind == FB_ROAD_PROFILE;
-}
-
-static int sc_linear_damper(const void *base)
-{
-  return ((const fb_corner_params *)base)->damper_npoints == 0;
-}
-
-static int sc_table_damper(const void *base)
-{
-  return ((const fb_corner_params *)base)->damper_npoints > 0;
-}
-
-static int sc_has_window(const void *base)
-{
-  const fb_output_spec *o = base;
-  return o->window[0] != 0 || o->window[1] != 0;
-}
+SC_PRESENT(sc_has_fe_hull, fb_scenario, b->has_fe_hull)
+SC_PRESENT(sc_has_generator, fb_scenario, b->has_fe_hull && !b->hull_deck)
+SC_PRESENT(sc_has_frame, fb_scenario, b->frame_origin != NULL)
+SC_PRESENT(sc_has_cg, fb_scenario, b->hull_cg_given)
+SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
+SC_PRESENT(sc_is_bump, fb_scenario, b->road_kind == FB_ROAD_BUMP)
+SC_PRESENT(sc_is_iso, fb_scenario, b->road_kind == FB_ROAD_ISO8608)
+SC_PRESENT(sc_is_profile, fb_scenario, b->road_kind == FB_ROAD_PROFILE)
+SC_PRESENT(sc_linear_damper, fb_corner_params, b->damper_npoints == 0)
+SC_PRESENT(sc_table_damper, fb_corner_params, b->damper_npoints > 0)
+SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0)
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
@@ -112,8 +67,7 @@ static const sch_ops sc_linear_present = {.present = sc_linear_damper};
 
 static int sc_read_parameters(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
 {
-  (void)k;
-  (void)base;
+  (void)k, (void)base;
   sc_reading *rd = r->user;
   return ml_parameters(r->c, node, rd->params, NULL);
 }
@@ -189,9 +143,7 @@ static const sch_ops sc_cg_present = {.present = sc_has_cg};
 static int sc_store_bulkheads(sch_reader *r, const sch_key *k, struct fy_node *node,
                               const double *v, size_t n, void *base)
 {
-  (void)r;
-  (void)k;
-  (void)node;
+  (void)r, (void)k, (void)node;
   fb_hull_mesh_params *p = &((fb_scenario *)base)->hull_mesh;
   p->nbulkheads = n;
   memcpy(p->bulkhead_x, v, n * sizeof *v);
@@ -331,15 +283,23 @@ static int sc_grow(const sch_reader *r, void **arr, size_t *n, size_t *cap, size
   return FB_OK;
 }
 
-static int sc_mount_begin(sch_reader *r, const sch_key *k, size_t index, size_t count,
-                          void *base, void **item)
+/* A list's new item at the end of its view's items: an axle's two
+ * corners, else one. */
+static int sc_item_begin(sch_reader *r, const sch_key *k, size_t index, size_t count,
+                         void *base, void **item)
 {
-  (void)k;
-  (void)index;
-  (void)count;
+  (void)index, (void)count;
   fb_scenario *s = base;
   sc_reading *rd = r->user;
-  return sc_grow(r, (void **)&s->mount, &s->nmounts, &rd->mount_cap, sizeof *s->mount, 1, item);
+  if (!strcmp(k->view, "mounts"))
+    return sc_grow(r, (void **)&s->mount, &s->nmounts, &rd->mount_cap, sizeof *s->mount, 1,
+                   item);
+  if (!strcmp(k->view, "outputs"))
+    return sc_grow(r, (void **)&s->output, &s->noutputs, &rd->output_cap, sizeof *s->output, 1,
+                   item);
+  const size_t add = !strcmp(k->path, "suspensions.axles") ? 2 : 1;
+  return sc_grow(r, (void **)&s->corner, &s->ncorners, &rd->corner_cap, sizeof *s->corner, add,
+                 item);
 }
 
 /* Renames the item's origins to its logical key: kind.name. */
@@ -351,57 +311,12 @@ static int sc_relabel(sch_reader *r, size_t mark, const char *item_path, const c
   return sch_origins_relabel(r, mark, item_path, prefix, copy);
 }
 
-static int sc_mount_end(sch_reader *r, const sch_key *k, struct fy_node *node,
+/* A mount or a single corner: its origins as view.name. */
+static int sc_named_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                         const char *item_path, size_t mark, void *base, void *item)
 {
-  (void)k;
-  (void)node;
-  (void)base;
-  return sc_relabel(r, mark, item_path, "mounts", ((fb_mount *)item)->name, 0);
-}
-
-static size_t sc_mount_count(const void *base)
-{
-  return ((const fb_scenario *)base)->nmounts;
-}
-
-static const void *sc_mount_at(const void *base, size_t i)
-{
-  return &((const fb_scenario *)base)->mount[i];
-}
-
-static const char *sc_mount_name(const void *item)
-{
-  return ((const fb_mount *)item)->name;
-}
-
-static const sch_ops sc_mounts = {.item_begin = sc_mount_begin,
-                                  .item_end = sc_mount_end,
-                                  .count = sc_mount_count,
-                                  .item_at = sc_mount_at,
-                                  .item_name = sc_mount_name};
-
-/* A corner item: one corner, or an axle's two. */
-static int sc_corner_begin(sch_reader *r, const sch_key *k, size_t index, size_t count,
-                           void *base, void **item)
-{
-  (void)index;
-  (void)count;
-  fb_scenario *s = base;
-  sc_reading *rd = r->user;
-  const size_t add = !strcmp(k->path, "suspensions.axles") ? 2 : 1;
-  return sc_grow(r, (void **)&s->corner, &s->ncorners, &rd->corner_cap, sizeof *s->corner, add,
-                 item);
-}
-
-static int sc_corner_end(sch_reader *r, const sch_key *k, struct fy_node *node,
-                         const char *item_path, size_t mark, void *base, void *item)
-{
-  (void)k;
-  (void)node;
-  (void)base;
-  fb_corner_params *c = item;
-  return sc_relabel(r, mark, item_path, "corners", c->name, 0);
+  (void)node, (void)base;
+  return sc_relabel(r, mark, item_path, k->view, k->ops->item_name(item), 0);
 }
 
 /* "L" or "R" before name, as the corner's new name. */
@@ -420,8 +335,7 @@ static int sc_side_name(const sch_reader *r, char side, const char *name, char *
 static int sc_axle_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                        const char *item_path, size_t mark, void *base, void *item)
 {
-  (void)k;
-  (void)base;
+  (void)k, (void)base;
   fb_corner_params *left = item, *right = left + 1;
   if (!(left->y > 0))
     return ml_fail(r->c, ml_get(node, "y", NULL), FB_EINVAL,
@@ -443,28 +357,41 @@ static int sc_axle_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   return rc;
 }
 
-static size_t sc_corner_count(const void *base)
-{
-  return ((const fb_scenario *)base)->ncorners;
-}
+/* sch_ops.count and item_at over the scenario's n items arr:
+ * sc_NAME_count, sc_NAME_at; item_name over items of type T: sc_NAME_name. */
+#define SC_ITEMS(nm, arr, n)                                                                   \
+  static size_t sc_##nm##_count(const void *base)                                              \
+  {                                                                                            \
+    return ((const fb_scenario *)base)->n;                                                     \
+  }                                                                                            \
+  static const void *sc_##nm##_at(const void *base, size_t i)                                  \
+  {                                                                                            \
+    return &((const fb_scenario *)base)->arr[i];                                               \
+  }
+#define SC_ITEM_NAME(nm, T)                                                                    \
+  static const char *sc_##nm##_name(const void *item)                                          \
+  {                                                                                            \
+    return ((const T *)item)->name;                                                            \
+  }
 
-static const void *sc_corner_at(const void *base, size_t i)
-{
-  return &((const fb_scenario *)base)->corner[i];
-}
+SC_ITEMS(mount, mount, nmounts)
+SC_ITEMS(corner, corner, ncorners)
+SC_ITEMS(output, output, noutputs)
+SC_ITEM_NAME(mount, fb_mount)
+SC_ITEM_NAME(corner, fb_corner_params)
 
-static const char *sc_corner_name(const void *item)
-{
-  return ((const fb_corner_params *)item)->name;
-}
-
-static const sch_ops sc_axles = {.item_begin = sc_corner_begin,
+static const sch_ops sc_mounts = {.item_begin = sc_item_begin,
+                                  .item_end = sc_named_end,
+                                  .count = sc_mount_count,
+                                  .item_at = sc_mount_at,
+                                  .item_name = sc_mount_name};
+static const sch_ops sc_axles = {.item_begin = sc_item_begin,
                                  .item_end = sc_axle_end,
                                  .count = sc_corner_count,
                                  .item_at = sc_corner_at,
                                  .item_name = sc_corner_name};
-static const sch_ops sc_single_corners = {.item_begin = sc_corner_begin,
-                                          .item_end = sc_corner_end,
+static const sch_ops sc_single_corners = {.item_begin = sc_item_begin,
+                                          .item_end = sc_named_end,
                                           .count = sc_corner_count,
                                           .item_at = sc_corner_at,
                                           .item_name = sc_corner_name};
@@ -522,18 +449,6 @@ static const sch_ops sc_damper_table = {
     .read = sc_read_damper_table, .format = sc_format_damper_table, .present = sc_table_damper};
 
 /* ---- outputs. */
-
-static int sc_output_begin(sch_reader *r, const sch_key *k, size_t index, size_t count,
-                           void *base, void **item)
-{
-  (void)k;
-  (void)index;
-  (void)count;
-  fb_scenario *s = base;
-  sc_reading *rd = r->user;
-  return sc_grow(r, (void **)&s->output, &s->noutputs, &rd->output_cap, sizeof *s->output, 1,
-                 item);
-}
 
 /* pattern with its "%s" replaced by subject, into *out (new) unless
  * *out is set already (the file gave it). */
@@ -635,10 +550,7 @@ static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_out
 static int sc_output_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                          const char *item_path, size_t mark, void *base, void *item)
 {
-  (void)k;
-  (void)item_path;
-  (void)mark;
-  (void)base;
+  (void)k, (void)item_path, (void)mark, (void)base;
   fb_output_spec *o = item;
   const fb_output_kind *kind = NULL;
   int rc = sc_output_kind(r->c, ml_get(node, "signal", NULL), o->signal, &kind);
@@ -647,17 +559,7 @@ static int sc_output_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   return rc ? rc : sc_output_defaults(r->c, o, kind);
 }
 
-static size_t sc_output_count(const void *base)
-{
-  return ((const fb_scenario *)base)->noutputs;
-}
-
-static const void *sc_output_at(const void *base, size_t i)
-{
-  return &((const fb_scenario *)base)->output[i];
-}
-
-static const sch_ops sc_outputs = {.item_begin = sc_output_begin,
+static const sch_ops sc_outputs = {.item_begin = sc_item_begin,
                                    .item_end = sc_output_end,
                                    .count = sc_output_count,
                                    .item_at = sc_output_at};
@@ -665,10 +567,7 @@ static const sch_ops sc_outputs = {.item_begin = sc_output_begin,
 static int sc_store_window(sch_reader *r, const sch_key *k, struct fy_node *node,
                            const double *v, size_t n, void *base)
 {
-  (void)r;
-  (void)k;
-  (void)node;
-  (void)n;
+  (void)r, (void)k, (void)node, (void)n;
   fb_output_spec *o = base;
   o->window[0] = v[0];
   o->window[1] = v[1];
@@ -739,8 +638,7 @@ static int sc_bump_done(sch_reader *r, const sch_key *k, struct fy_node *node, v
 
 static int sc_iso_done(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
 {
-  (void)r;
-  (void)k;
+  (void)r, (void)k;
   if (node)
     ((fb_scenario *)base)->road_kind = FB_ROAD_ISO8608;
   return FB_OK;
@@ -789,10 +687,7 @@ static const sch_ops sc_class = {.read = sc_read_class, .format = sc_format_clas
 static int sc_store_band(sch_reader *r, const sch_key *k, struct fy_node *node, const double *v,
                          size_t n, void *base)
 {
-  (void)r;
-  (void)k;
-  (void)node;
-  (void)n;
+  (void)r, (void)k, (void)node, (void)n;
   fb_road_iso8608_params *p = &((fb_scenario *)base)->road_iso;
   p->n_min = v[0];
   p->n_max = v[1];
@@ -810,13 +705,61 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
 
 /* ---- The table. */
 
-#define S_OFF(f) .store = SCH_STORE_DOUBLE, .offset = offsetof(fb_scenario, f)
-#define C_OFF(f) .store = SCH_STORE_DOUBLE, .offset = offsetof(fb_corner_params, f)
-#define M_OFF(f) .store = SCH_STORE_DOUBLE, .offset = offsetof(fb_mount, f)
-#define O_STR(f) .store = SCH_STORE_STRING, .offset = offsetof(fb_output_spec, f)
+/* One row per key, by type. Ranges, needs and stores are the macros after
+ * these; after a NUMBER's, WHOLE's, CHOICE's or STRING's store (NO_STORE:
+ * none) come any other fields. */
+#define KEY(...)                                                                               \
+  {                                                                                            \
+    __VA_ARGS__                                                                                \
+  }
+#define NUMBER(p, u, r, n, d, ...)                                                             \
+  KEY(.path = p, .type = SCH_NUMBER, .unit = u, r, n, .doc = d, __VA_ARGS__)
+#define WHOLE(p, r, n, d, ...) KEY(.path = p, .type = SCH_WHOLE, r, n, .doc = d, __VA_ARGS__)
+#define CHOICE(p, c, n, d, ...)                                                                \
+  KEY(.path = p, .type = SCH_CHOICE, .choices = c, n, .doc = d, __VA_ARGS__)
+/* SCH_NAME, SCH_TEXT or SCH_FILE: STRING(NAME, ...). */
+#define STRING(t, p, n, d, ...) KEY(.path = p, .type = SCH_##t, n, .doc = d, __VA_ARGS__)
+#define NUMBERS(p, u, lo, hi, n, d, o)                                                         \
+  KEY(.path = p, .type = SCH_NUMBERS, .unit = u, .min_items = lo, .max_items = hi, n,          \
+      .doc = d, .ops = o)
+#define CUSTOM(p, u, t, n, d, o)                                                               \
+  KEY(.path = p, .type = SCH_CUSTOM, .unit = u, .type_doc = t, n, .doc = d, .ops = o)
+#define SECTION(p, n, d, o) KEY(.path = p, .type = SCH_SECTION, n, .doc = d, .ops = o)
+#define LIST(p, n, d, t, v, o)                                                                 \
+  KEY(.path = p, .type = SCH_LIST, n, .doc = d, .items = t, .view = v, .ops = o)
+
+/* Ranges, in the file's unit. */
+#define ANY .bounds = 0
 #define POSITIVE .bounds = SCH_LO | SCH_LO_OPEN, .lo = 0
 #define NONNEGATIVE .bounds = SCH_LO, .lo = 0
-#define ROWS(lo_, hi_) .bounds = SCH_LO | SCH_HI, .lo = lo_, .hi = hi_
+#define CLOSED(lo_, hi_) .bounds = SCH_LO | SCH_HI, .lo = lo_, .hi = hi_
+#define HALF_OPEN(lo_, hi_) .bounds = SCH_LO | SCH_HI | SCH_HI_OPEN, .lo = lo_, .hi = hi_
+#define OPEN(lo_, hi_)                                                                         \
+  .bounds = SCH_LO | SCH_LO_OPEN | SCH_HI | SCH_HI_OPEN, .lo = lo_, .hi = hi_
+
+/* Needs. ONE_OF: required, of the keys with the group's label. */
+#define REQ .need = SCH_REQUIRED
+#define OPT .need = SCH_OPTIONAL
+#define DEF(v) .need = SCH_DEFAULT, .def = v
+#define DEF_LIST(l) .need = SCH_DEFAULT, .def_list = l
+#define INHERIT(k) .need = SCH_INHERIT, .inherit = k
+#define ONE_OF(g) .need = SCH_REQUIRED, .one_of = g
+
+/* Stores: kind (DOUBLE, INT, ...) at a field of the scenario, a corner, a
+ * mount or an output. */
+#define NO_STORE .store = SCH_STORE_NONE
+#define S_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_scenario, f)
+#define C_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_corner_params, f)
+#define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f)
+#define O_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f)
+#define S_OFF(f) S_AT(DOUBLE, f)
+#define C_OFF(f) C_AT(DOUBLE, f)
+#define M_OFF(f) M_AT(DOUBLE, f)
+
+#define TABLE(keys, done)                                                                      \
+  {                                                                                            \
+    keys, sizeof keys / sizeof keys[0], done                                                   \
+  }
 
 static const char *const sc_payloads[] = {"weight-only", "lumped", NULL};
 static const char *const sc_contacts[] = {"bilateral", "unilateral", NULL};
@@ -827,651 +770,231 @@ static const double sc_band_default[] = {0.011, 2.83};
 
 /* A mounted body: suspensions' and mounts' items. */
 static const sch_key sc_mount_keys[] = {
-    {.path = "name",
-     .type = SCH_NAME,
-     .doc = "its name, unique among the mounts",
-     .store = SCH_STORE_STRING,
-     .offset = offsetof(fb_mount, name)},
-    {.path = "mass",
-     .type = SCH_NUMBER,
-     .unit = "kg",
-     POSITIVE,
-     .doc = "body mass",
-     M_OFF(mass)},
-    {.path = "stiffness",
-     .type = SCH_NUMBER,
-     .unit = "N/m",
-     POSITIVE,
-     .doc = "spring stiffness",
-     M_OFF(stiffness)},
-    {.path = "damping",
-     .type = SCH_NUMBER,
-     .unit = "N s/m",
-     NONNEGATIVE,
-     .doc = "damper coefficient",
-     M_OFF(damping)},
-    {.path = "x", .type = SCH_NUMBER, .unit = "m", .doc = "hull attachment point", M_OFF(x)},
-    {.path = "y", .type = SCH_NUMBER, .unit = "m", .doc = "hull attachment point", M_OFF(y)},
+    STRING(NAME, "name", REQ, "its name, unique among the mounts", M_AT(STRING, name)),
+    NUMBER("mass", "kg", POSITIVE, REQ, "body mass", M_OFF(mass)),
+    NUMBER("stiffness", "N/m", POSITIVE, REQ, "spring stiffness", M_OFF(stiffness)),
+    NUMBER("damping", "N s/m", NONNEGATIVE, REQ, "damper coefficient", M_OFF(damping)),
+    NUMBER("x", "m", ANY, REQ, "hull attachment point", M_OFF(x)),
+    NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y)),
 };
-static const sch_table sc_mount_table = {sc_mount_keys,
-                                         sizeof sc_mount_keys / sizeof sc_mount_keys[0], NULL};
+static const sch_table sc_mount_table = TABLE(sc_mount_keys, NULL);
 
 static const sch_key sc_corner_keys[] = {
-    {.path = "name",
-     .type = SCH_NAME,
-     .doc = "a corner's name; an axle's corners are L and R before it (F: LF, RF)",
-     .store = SCH_STORE_STRING,
-     .offset = offsetof(fb_corner_params, name)},
-    {.path = "x", .type = SCH_NUMBER, .unit = "m", .doc = "hull attachment point", C_OFF(x)},
-    {.path = "y",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "hull attachment point; an axle's left one, > 0 (the right one is at -y)",
-     C_OFF(y)},
-    {.path = "spring_k",
-     .type = SCH_NUMBER,
-     .unit = "N/m",
-     POSITIVE,
-     .doc = "suspension spring stiffness",
-     C_OFF(spring_k)},
-    {.path = "damper_c",
-     .type = SCH_NUMBER,
-     .unit = "N s/m",
-     NONNEGATIVE,
-     .one_of = "damper",
-     .doc = "linear shock absorber coefficient",
-     C_OFF(damper_c),
-     .ops = &sc_linear_present},
-    {.path = "damper_table",
-     .type = SCH_CUSTOM,
-     .one_of = "damper",
-     .type_doc = "`{file, velocity, force}` or `{points: [[v, F], ...]}`",
-     .doc = "a nonlinear shock absorber: force (N) against velocity (m/s, compression "
-            "positive), 2 to 64 points, passive",
-     .ops = &sc_damper_table},
-    {.path = "motion_ratio",
-     .type = SCH_NUMBER,
-     POSITIVE,
-     .need = SCH_INHERIT,
-     .inherit = "suspensions.motion_ratio",
-     .doc = "spring travel / wheel travel relative to the hull",
-     C_OFF(motion_ratio)},
-    {.path = "wheel",
-     .type = SCH_SECTION,
-     .need = SCH_OPTIONAL,
-     .doc = "this corner's wheel, where it differs from the top-level `wheel`"},
-    {.path = "wheel.mass",
-     .type = SCH_NUMBER,
-     .unit = "kg",
-     POSITIVE,
-     .need = SCH_INHERIT,
-     .inherit = "wheel.mass",
-     .doc = "wheel mass",
-     C_OFF(wheel_mass)},
-    {.path = "wheel.tire_k",
-     .type = SCH_NUMBER,
-     .unit = "N/m",
-     POSITIVE,
-     .need = SCH_INHERIT,
-     .inherit = "wheel.tire_k",
-     .doc = "tire stiffness",
-     C_OFF(tire_k)},
-    {.path = "wheel.tire_c",
-     .type = SCH_NUMBER,
-     .unit = "N s/m",
-     NONNEGATIVE,
-     .need = SCH_INHERIT,
-     .inherit = "wheel.tire_c",
-     .doc = "tire damping",
-     C_OFF(tire_c)},
-    {.path = "wheel.tire_contact",
-     .type = SCH_CHOICE,
-     .need = SCH_INHERIT,
-     .inherit = "wheel.tire_contact",
-     .choices = sc_contacts,
-     .doc = "how the tire meets the road",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_corner_params, tire_contact)},
+    STRING(NAME, "name", REQ,
+           "a corner's name; an axle's corners are L and R before it (F: LF, RF)",
+           C_AT(STRING, name)),
+    NUMBER("x", "m", ANY, REQ, "hull attachment point", C_OFF(x)),
+    NUMBER("y", "m", ANY, REQ,
+           "hull attachment point; an axle's left one, > 0 (the right one is at -y)", C_OFF(y)),
+    NUMBER("spring_k", "N/m", POSITIVE, REQ, "suspension spring stiffness", C_OFF(spring_k)),
+    NUMBER("damper_c", "N s/m", NONNEGATIVE, ONE_OF("damper"),
+           "linear shock absorber coefficient", C_OFF(damper_c), .ops = &sc_linear_present),
+    CUSTOM("damper_table", NULL, "`{file, velocity, force}` or `{points: [[v, F], ...]}`",
+           ONE_OF("damper"),
+           "a nonlinear shock absorber: force (N) against velocity (m/s, compression "
+           "positive), 2 to 64 points, passive",
+           &sc_damper_table),
+    NUMBER("motion_ratio", NULL, POSITIVE, INHERIT("suspensions.motion_ratio"),
+           "spring travel / wheel travel relative to the hull", C_OFF(motion_ratio)),
+    SECTION("wheel", OPT, "this corner's wheel, where it differs from the top-level `wheel`",
+            NULL),
+    NUMBER("wheel.mass", "kg", POSITIVE, INHERIT("wheel.mass"), "wheel mass",
+           C_OFF(wheel_mass)),
+    NUMBER("wheel.tire_k", "N/m", POSITIVE, INHERIT("wheel.tire_k"), "tire stiffness",
+           C_OFF(tire_k)),
+    NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, INHERIT("wheel.tire_c"), "tire damping",
+           C_OFF(tire_c)),
+    CHOICE("wheel.tire_contact", sc_contacts, INHERIT("wheel.tire_contact"),
+           "how the tire meets the road", C_AT(INT, tire_contact)),
 };
-static const sch_table sc_corner_table = {
-    sc_corner_keys, sizeof sc_corner_keys / sizeof sc_corner_keys[0], NULL};
+static const sch_table sc_corner_table = TABLE(sc_corner_keys, NULL);
 
 static const sch_key sc_output_keys[] = {
-    {.path = "signal",
-     .type = SCH_NAME,
-     .doc = "what it records: a signal kind (docs/vehicle-outputs.md)",
-     O_STR(signal)},
-    {.path = "of",
-     .type = SCH_NAME,
-     .need = SCH_OPTIONAL,
-     .doc = "the corner or mount it measures (a corner's or a mount's signal only)",
-     O_STR(of)},
-    {.path = "bond",
-     .type = SCH_TEXT,
-     .need = SCH_OPTIONAL,
-     .doc = "a bond signal's bond in the assembled graph (`susp_LF.b_tire`)",
-     O_STR(bond)},
-    {.path = "name",
-     .type = SCH_NAME,
-     .need = SCH_OPTIONAL,
-     .doc = "its CSV column, unique (default: the kind's, `tire_force_LF`)",
-     O_STR(name)},
-    {.path = "title",
-     .type = SCH_TEXT,
-     .need = SCH_OPTIONAL,
-     .doc = "its figure's title (default: the kind's)",
-     O_STR(title)},
-    {.path = "label",
-     .type = SCH_TEXT,
-     .need = SCH_OPTIONAL,
-     .doc = "its short label (default: the kind's)",
-     O_STR(label)},
-    {.path = "figure",
-     .type = SCH_WHOLE,
-     ROWS(0, 9999),
-     .need = SCH_DEFAULT,
-     .def = 0,
-     .doc = "the number of its figure, unique; 0: none",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_output_spec, figure)},
-    {.path = "window",
-     .type = SCH_NUMBERS,
-     .unit = "s",
-     .need = SCH_OPTIONAL,
-     .min_items = 2,
-     .max_items = 2,
-     .doc = "the time window its figure shows, `[t0, t1]` (default: the run)",
-     .ops = &sc_window},
+    STRING(NAME, "signal", REQ, "what it records: a signal kind (docs/vehicle-outputs.md)",
+           O_AT(STRING, signal)),
+    STRING(NAME, "of", OPT,
+           "the corner or mount it measures (a corner's or a mount's signal only)",
+           O_AT(STRING, of)),
+    STRING(TEXT, "bond", OPT, "a bond signal's bond in the assembled graph (`susp_LF.b_tire`)",
+           O_AT(STRING, bond)),
+    STRING(NAME, "name", OPT, "its CSV column, unique (default: the kind's, `tire_force_LF`)",
+           O_AT(STRING, name)),
+    STRING(TEXT, "title", OPT, "its figure's title (default: the kind's)", O_AT(STRING, title)),
+    STRING(TEXT, "label", OPT, "its short label (default: the kind's)", O_AT(STRING, label)),
+    WHOLE("figure", CLOSED(0, 9999), DEF(0), "the number of its figure, unique; 0: none",
+          O_AT(INT, figure)),
+    NUMBERS("window", "s", 2, 2, OPT,
+            "the time window its figure shows, `[t0, t1]` (default: the run)", &sc_window),
 };
-static const sch_table sc_output_table = {
-    sc_output_keys, sizeof sc_output_keys / sizeof sc_output_keys[0], NULL};
+static const sch_table sc_output_table = TABLE(sc_output_keys, NULL);
 
 static const sch_key sc_keys[] = {
-    {.path = "scenario",
-     .type = SCH_NAME,
-     .doc = "the scenario's name",
-     .store = SCH_STORE_STRING,
-     .offset = offsetof(fb_scenario, name)},
-    {.path = "description",
-     .type = SCH_TEXT,
-     .lines = 1,
-     .need = SCH_OPTIONAL,
-     .doc = "free text, ignored"},
-    {.path = "parameters",
-     .type = SCH_CUSTOM,
-     .need = SCH_OPTIONAL,
-     .type_doc = "mapping name: number",
-     .doc = "named numbers for the expressions after it, each may use the ones before it; "
-            "`t`, `pi`, `e` are reserved",
-     .ops = &sc_parameters},
-    {.path = "gravity",
-     .type = SCH_NUMBER,
-     .unit = "m/s^2",
-     POSITIVE,
-     .doc = "gravitational acceleration",
-     S_OFF(gravity)},
-    {.path = "frame",
-     .type = SCH_SECTION,
-     .need = SCH_OPTIONAL,
-     .doc = "positions in a frame of the file's own, not the hull's centre of mass",
-     .ops = &sc_frame_present},
-    {.path = "frame.origin",
-     .type = SCH_TEXT,
-     .doc = "what the origin of the positions is (`front axle, floor`)",
-     .store = SCH_STORE_STRING,
-     .offset = offsetof(fb_scenario, frame_origin)},
-    {.path = "hull", .type = SCH_SECTION, .doc = "the hull", .ops = &sc_hull_ops},
-    {.path = "hull.mass",
-     .type = SCH_NUMBER,
-     .unit = "kg",
-     POSITIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "hull mass; with mass, Ixx and Iyy left out, the finite-element hull's",
-     S_OFF(hull_mass),
-     .ops = &sc_mass_present},
-    {.path = "hull.Ixx",
-     .type = SCH_NUMBER,
-     .unit = "kg m^2",
-     POSITIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "roll inertia about the hull's centre of mass",
-     S_OFF(hull_ixx),
-     .ops = &sc_mass_present},
-    {.path = "hull.Iyy",
-     .type = SCH_NUMBER,
-     .unit = "kg m^2",
-     POSITIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "pitch inertia about the hull's centre of mass",
-     S_OFF(hull_iyy),
-     .ops = &sc_mass_present},
-    {.path = "hull.centre_of_mass",
-     .type = SCH_SECTION,
-     .need = SCH_OPTIONAL,
-     .doc = "the hull's centre of mass in the frame (only with `frame`; default: the mesh's)",
-     .ops = &sc_cg_present},
-    {.path = "hull.centre_of_mass.x",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "its x",
-     S_OFF(hull_cg_x)},
-    {.path = "hull.centre_of_mass.y",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "its y",
-     S_OFF(hull_cg_y)},
-    {.path = "hull.material", .type = SCH_SECTION, .doc = "the plates' steel (System 2)"},
-    {.path = "hull.material.young",
-     .type = SCH_NUMBER,
-     .unit = "Pa",
-     POSITIVE,
-     .doc = "Young's modulus",
-     S_OFF(young)},
-    {.path = "hull.material.poisson",
-     .type = SCH_NUMBER,
-     .bounds = SCH_LO | SCH_HI | SCH_HI_OPEN,
-     .lo = 0,
-     .hi = 0.5,
-     .doc = "Poisson's ratio",
-     S_OFF(poisson)},
-    {.path = "hull.material.density",
-     .type = SCH_NUMBER,
-     .unit = "kg/m^3",
-     POSITIVE,
-     .doc = "density",
-     S_OFF(density)},
-    {.path = "hull.material.thickness",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     POSITIVE,
-     .doc = "wall thickness",
-     S_OFF(thickness)},
-    {.path = "hull.edges",
-     .type = SCH_SECTION,
-     .doc = "the edge lines whose roll difference is the torsion angle"},
-    {.path = "hull.edges.front_x",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "x of the front edge line, > `rear_x`",
-     S_OFF(edge_front_x)},
-    {.path = "hull.edges.rear_x",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "x of the rear edge line",
-     S_OFF(edge_rear_x)},
-    {.path = "hull.edges.left_y",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "y of each edge's left end, > `right_y`",
-     S_OFF(edge_left_y)},
-    {.path = "hull.edges.right_y",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "y of each edge's right end",
-     S_OFF(edge_right_y)},
-    {.path = "hull.mesh",
-     .type = SCH_SECTION,
-     .need = SCH_OPTIONAL,
-     .doc = "System 2's hull mesh (with `hull.fe`)",
-     .ops = &sc_mesh_ops},
-    {.path = "hull.mesh.deck",
-     .type = SCH_FILE,
-     .one_of = "mesh",
-     .doc = "an Abaqus/CalculiX deck with the scenario's node sets",
-     .store = SCH_STORE_STRING,
-     .offset = offsetof(fb_scenario, hull_deck)},
-    {.path = "hull.mesh.density",
-     .type = SCH_WHOLE,
-     ROWS(1, 64),
-     .need = SCH_DEFAULT,
-     .def = 1,
-     .doc = "refinement of the generator's mesh: d x d elements for each",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, hull_mesh.density),
-     .ops = &sc_generator_present},
-    {.path = "hull.mesh.generator",
-     .type = SCH_SECTION,
-     .one_of = "mesh",
-     .doc = "the built-in generator's geometry (docs/hull-mesh.md)",
-     .ops = &sc_generator_present},
-    {.path = "hull.mesh.generator.width",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     POSITIVE,
-     .doc = "between the side walls",
-     S_OFF(hull_mesh.width)},
-    {.path = "hull.mesh.generator.height",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     POSITIVE,
-     .doc = "floor to roof",
-     S_OFF(hull_mesh.height)},
-    {.path = "hull.mesh.generator.x_rear",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "rear wall",
-     S_OFF(hull_mesh.x_rear)},
-    {.path = "hull.mesh.generator.x_front",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .doc = "front end of the box, > `x_rear`",
-     S_OFF(hull_mesh.x_front)},
-    {.path = "hull.mesh.generator.nose_length",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     POSITIVE,
-     .doc = "wedge nose ahead of `x_front`",
-     S_OFF(hull_mesh.nose_length)},
-    {.path = "hull.mesh.generator.nose_height",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     POSITIVE,
-     .doc = "nose tip line above the floor, < `height`",
-     S_OFF(hull_mesh.nose_height)},
-    {.path = "hull.mesh.generator.bulkheads",
-     .type = SCH_NUMBERS,
-     .unit = "m",
-     .max_items = FB_HULL_MAX_BULKHEADS,
-     .doc = "x of the transverse bulkheads, each between `x_rear` and `x_front`",
-     .ops = &sc_bulkheads},
-    {.path = "hull.mesh.generator.side_rows",
-     .type = SCH_WHOLE,
-     ROWS(1, 64),
-     .doc = "element rows up the walls and bulkheads",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, hull_mesh.side_rows)},
-    {.path = "hull.mesh.generator.nose_rows",
-     .type = SCH_WHOLE,
-     ROWS(1, 64),
-     .doc = "element rows along each glacis plate",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, hull_mesh.nose_rows)},
-    {.path = "hull.mesh.generator.nose_rung_divisions",
-     .type = SCH_WHOLE,
-     ROWS(1, 64),
-     .doc = "divisions of the side walls' nose rung",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, hull_mesh.nose_rung_divisions)},
-    {.path = "hull.fe",
-     .type = SCH_SECTION,
-     .need = SCH_OPTIONAL,
-     .doc = "System 2's finite elements (with `hull.mesh`)",
-     .ops = &sc_fe_ops},
-    {.path = "hull.fe.mass_matrix",
-     .type = SCH_CHOICE,
-     .choices = sc_masses,
-     .doc = "mass matrix",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, hull_mass_matrix)},
-    {.path = "hull.fe.drill_factor",
-     .type = SCH_NUMBER,
-     POSITIVE,
-     .doc = "fictitious drilling stiffness of the quadrilaterals (fem.h)",
-     S_OFF(hull_drill_factor)},
-    {.path = "hull.fe.damping_ratio",
-     .type = SCH_NUMBER,
-     .bounds = SCH_LO | SCH_HI | SCH_HI_OPEN,
-     .lo = 0,
-     .hi = 1,
-     .doc = "damping ratio of the bare hull's first elastic free-free mode (B = beta K)",
-     S_OFF(hull_damping_ratio)},
-    {.path = "hull.fe.modes",
-     .type = SCH_WHOLE,
-     ROWS(0, 100000),
-     .need = SCH_DEFAULT,
-     .def = 0,
-     .doc = "0: full order; N >= 6: N free-free modes and a static correction",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, hull_modes)},
-    {.path = "load", .type = SCH_SECTION, .doc = "hull plus payload"},
-    {.path = "load.total_weight",
-     .type = SCH_NUMBER,
-     .unit = "N",
-     POSITIVE,
-     .doc = "weight of hull plus payload, in equal shares over the load points",
-     S_OFF(total_weight)},
-    {.path = "load.payload",
-     .type = SCH_CHOICE,
-     .choices = sc_payloads,
-     .doc = "payload mass model",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, payload)},
-    {.path = "load.points",
-     .type = SCH_CUSTOM,
-     .type_doc = "`{grid: {x: [...], y: [...]}}` or `[[x, y], ...]`",
-     .unit = "m",
-     .doc = "the load points, on the floor, 1 mm apart at least",
-     .ops = &sc_points},
-    {.path = "mounts",
-     .type = SCH_LIST,
-     .need = SCH_OPTIONAL,
-     .doc = "bodies on a spring and a damper to a hull point (driver, engine)",
-     .items = &sc_mount_table,
-     .view = "mounts",
-     .ops = &sc_mounts},
-    {.path = "wheel",
-     .type = SCH_SECTION,
-     .need = SCH_OPTIONAL,
-     .doc = "every corner's wheel and tire unless the corner gives its own"},
-    {.path = "wheel.mass",
-     .type = SCH_NUMBER,
-     .unit = "kg",
-     POSITIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "wheel mass"},
-    {.path = "wheel.tire_k",
-     .type = SCH_NUMBER,
-     .unit = "N/m",
-     POSITIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "tire stiffness"},
-    {.path = "wheel.tire_c",
-     .type = SCH_NUMBER,
-     .unit = "N s/m",
-     NONNEGATIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "tire damping"},
-    {.path = "wheel.tire_contact",
-     .type = SCH_CHOICE,
-     .choices = sc_contacts,
-     .need = SCH_DEFAULT,
-     .def = 0,
-     .doc = "`bilateral`: the paper's linear tire; `unilateral`: it never pulls, the wheel "
-            "may leave the road"},
-    {.path = "suspensions",
-     .type = SCH_SECTION,
-     .doc = "the corners (wheel stations)",
-     .ops = &sc_suspensions},
-    {.path = "suspensions.motion_ratio",
-     .type = SCH_NUMBER,
-     POSITIVE,
-     .need = SCH_DEFAULT,
-     .def = 1,
-     .doc = "every corner's spring travel / wheel travel unless it gives its own"},
-    {.path = "suspensions.axles",
-     .type = SCH_LIST,
-     .need = SCH_OPTIONAL,
-     .doc = "axles, each two corners: L<name> at (x, y) and R<name> at (x, -y)",
-     .items = &sc_corner_table,
-     .view = "corners",
-     .ops = &sc_axles},
-    {.path = "suspensions.corners",
-     .type = SCH_LIST,
-     .need = SCH_OPTIONAL,
-     .doc = "single corners, after the axles' ones",
-     .items = &sc_corner_table,
-     .view = "corners",
-     .ops = &sc_single_corners},
-    {.path = "outputs",
-     .type = SCH_LIST,
-     .need = SCH_OPTIONAL,
-     .doc = "the signals recorded, in CSV column order (default: every corner's tire_force)",
-     .items = &sc_output_table,
-     .view = "outputs",
-     .ops = &sc_outputs},
-    {.path = "road", .type = SCH_SECTION, .doc = "the road under the wheels"},
-    {.path = "road.speed_kmh",
-     .type = SCH_NUMBER,
-     .unit = "km/h",
-     POSITIVE,
-     .doc = "constant forward speed on a straight line",
-     S_OFF(speed),
-     .ops = &sc_kmh},
-    {.path = "road.bump",
-     .type = SCH_SECTION,
-     .one_of = "road",
-     .doc = "the paper's oblique (1 - cos) bump",
-     .ops = &sc_bump},
-    {.path = "road.bump.height",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     NONNEGATIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "bump height h, with `length` (0: a flat road)",
-     S_OFF(bump_height)},
-    {.path = "road.bump.length",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     POSITIVE,
-     .need = SCH_OPTIONAL,
-     .doc = "bump length L along each wheel's path, with `height`",
-     S_OFF(bump_length)},
-    {.path = "road.bump.type",
-     .type = SCH_CHOICE,
-     .choices = sc_bump_types,
-     .need = SCH_OPTIONAL,
-     .doc = "a Brazilian speed bump instead of height and length: I 1.50 x 0.08 m, II 3.70 x "
-            "0.10 m (B, A: aliases)"},
-    {.path = "road.bump.angle_deg",
-     .type = SCH_NUMBER,
-     .unit = "deg",
-     .bounds = SCH_LO | SCH_HI | SCH_HI_OPEN,
-     .lo = 0,
-     .hi = 90,
-     .doc = "angle of the leading edge to the lateral axis, left side first",
-     S_OFF(bump_angle),
-     .ops = &sc_deg},
-    {.path = "road.bump.first_contact",
-     .type = SCH_NUMBER,
-     .unit = "s",
-     NONNEGATIVE,
-     .doc = "time the first corner's wheel meets the leading edge",
-     S_OFF(bump_time)},
-    {.path = "road.iso8608",
-     .type = SCH_SECTION,
-     .one_of = "road",
-     .doc = "an ISO 8608 random road (docs/roads.md)",
-     .ops = &sc_iso},
-    {.path = "road.iso8608.class",
-     .type = SCH_CUSTOM,
-     .type_doc = "letter `A` .. `H`",
-     .doc = "road class: Gd(n0) = 16e-6 m^3 for A, times 4 per class",
-     .ops = &sc_class},
-    {.path = "road.iso8608.seed",
-     .type = SCH_WHOLE,
-     ROWS(0, 9007199254740992.0),
-     .doc = "the same seed gives the same road",
-     .store = SCH_STORE_U64,
-     .offset = offsetof(fb_scenario, road_iso.seed)},
-    {.path = "road.iso8608.band",
-     .type = SCH_NUMBERS,
-     .unit = "cycles/m",
-     .min_items = 2,
-     .max_items = 2,
-     .need = SCH_DEFAULT,
-     .def_list = sc_band_default,
-     .doc = "spatial frequency band `[n_min, n_max]` of the harmonics",
-     .ops = &sc_band},
-    {.path = "road.iso8608.harmonics",
-     .type = SCH_WHOLE,
-     ROWS(1, (double)FB_ROAD_ISO8608_MAX_HARMONICS),
-     .need = SCH_DEFAULT,
-     .def = 1024,
-     .doc = "harmonics per track (the run's time grows with them)",
-     .store = SCH_STORE_SIZE,
-     .offset = offsetof(fb_scenario, road_iso.nharmonics)},
-    {.path = "road.iso8608.fade_in",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     NONNEGATIVE,
-     .need = SCH_DEFAULT,
-     .def = 0,
-     .doc = "the height fades in over the first metres",
-     S_OFF(road_iso.fade_length)},
-    {.path = "road.iso8608.front_start",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .need = SCH_DEFAULT,
-     .def = 0,
-     .doc = "the first corner's wheel's position on its track at t = 0",
-     S_OFF(road_front_start)},
-    {.path = "road.profile",
-     .type = SCH_SECTION,
-     .one_of = "road",
-     .doc = "a measured profile (docs/roads.md)",
-     .ops = &sc_profile},
-    {.path = "road.profile.file",
-     .type = SCH_FILE,
-     .doc = "CSV with columns `s, z` or `s, z_left, z_right`",
-     .store = SCH_STORE_STRING,
-     .offset = offsetof(fb_scenario, road_profile)},
-    {.path = "road.profile.front_start",
-     .type = SCH_NUMBER,
-     .unit = "m",
-     .need = SCH_DEFAULT,
-     .def = 0,
-     .doc = "the first corner's wheel's position on its track at t = 0",
-     S_OFF(road_front_start)},
-    {.path = "simulation", .type = SCH_SECTION, .doc = "the run"},
-    {.path = "simulation.t_end",
-     .type = SCH_NUMBER,
-     .unit = "s",
-     POSITIVE,
-     .doc = "end of the run (it starts at 0)",
-     S_OFF(t_end)},
-    {.path = "simulation.rtol",
-     .type = SCH_NUMBER,
-     .bounds = SCH_LO | SCH_LO_OPEN | SCH_HI | SCH_HI_OPEN,
-     .lo = 0,
-     .hi = 1,
-     .doc = "relative tolerance",
-     S_OFF(rtol)},
-    {.path = "simulation.atol",
-     .type = SCH_NUMBER,
-     POSITIVE,
-     .doc = "absolute tolerance (all states)",
-     S_OFF(atol)},
-    {.path = "simulation.max_step",
-     .type = SCH_NUMBER,
-     .unit = "s",
-     NONNEGATIVE,
-     .need = SCH_DEFAULT,
-     .def = 0,
-     .doc = "largest step, 0: no limit",
-     S_OFF(max_step)},
-    {.path = "simulation.max_steps",
-     .type = SCH_WHOLE,
-     ROWS(1, (double)FB_SIM_MAX_STEPS),
-     .need = SCH_DEFAULT,
-     .def = (double)FB_SIM_DEFAULT_MAX_STEPS,
-     .doc = "internal steps allowed in the whole run",
-     .store = SCH_STORE_LONG,
-     .offset = offsetof(fb_scenario, max_steps)},
-    {.path = "simulation.sample_rate",
-     .type = SCH_NUMBER,
-     .unit = "Hz",
-     POSITIVE,
-     .doc = "outputs at k / sample_rate",
-     S_OFF(sample_rate)},
-    {.path = "simulation.initial",
-     .type = SCH_CHOICE,
-     .choices = sc_initials,
-     .doc = "`zero`: every state zero, gravity on at t = 0; `static`: the static equilibrium",
-     .store = SCH_STORE_INT,
-     .offset = offsetof(fb_scenario, initial)},
+    STRING(NAME, "scenario", REQ, "the scenario's name", S_AT(STRING, name)),
+    STRING(TEXT, "description", OPT, "free text, ignored", .lines = 1),
+    CUSTOM("parameters", NULL, "mapping name: number", OPT,
+           "named numbers for the expressions after it, each may use the ones before it; "
+           "`t`, `pi`, `e` are reserved",
+           &sc_parameters),
+    NUMBER("gravity", "m/s^2", POSITIVE, REQ, "gravitational acceleration", S_OFF(gravity)),
+    SECTION("frame", OPT,
+            "positions in a frame of the file's own, not the hull's centre of mass",
+            &sc_frame_present),
+    STRING(TEXT, "frame.origin", REQ,
+           "what the origin of the positions is (`front axle, floor`)",
+           S_AT(STRING, frame_origin)),
+    SECTION("hull", REQ, "the hull", &sc_hull_ops),
+    NUMBER("hull.mass", "kg", POSITIVE, OPT,
+           "hull mass; with mass, Ixx and Iyy left out, the finite-element hull's",
+           S_OFF(hull_mass), .ops = &sc_mass_present),
+    NUMBER("hull.Ixx", "kg m^2", POSITIVE, OPT, "roll inertia about the hull's centre of mass",
+           S_OFF(hull_ixx), .ops = &sc_mass_present),
+    NUMBER("hull.Iyy", "kg m^2", POSITIVE, OPT, "pitch inertia about the hull's centre of mass",
+           S_OFF(hull_iyy), .ops = &sc_mass_present),
+    SECTION("hull.centre_of_mass", OPT,
+            "the hull's centre of mass in the frame (only with `frame`; default: the mesh's)",
+            &sc_cg_present),
+    NUMBER("hull.centre_of_mass.x", "m", ANY, REQ, "its x", S_OFF(hull_cg_x)),
+    NUMBER("hull.centre_of_mass.y", "m", ANY, REQ, "its y", S_OFF(hull_cg_y)),
+    SECTION("hull.material", REQ, "the plates' steel (System 2)", NULL),
+    NUMBER("hull.material.young", "Pa", POSITIVE, REQ, "Young's modulus", S_OFF(young)),
+    NUMBER("hull.material.poisson", NULL, HALF_OPEN(0, 0.5), REQ, "Poisson's ratio",
+           S_OFF(poisson)),
+    NUMBER("hull.material.density", "kg/m^3", POSITIVE, REQ, "density", S_OFF(density)),
+    NUMBER("hull.material.thickness", "m", POSITIVE, REQ, "wall thickness", S_OFF(thickness)),
+    SECTION("hull.edges", REQ, "the edge lines whose roll difference is the torsion angle",
+            NULL),
+    NUMBER("hull.edges.front_x", "m", ANY, REQ, "x of the front edge line, > `rear_x`",
+           S_OFF(edge_front_x)),
+    NUMBER("hull.edges.rear_x", "m", ANY, REQ, "x of the rear edge line", S_OFF(edge_rear_x)),
+    NUMBER("hull.edges.left_y", "m", ANY, REQ, "y of each edge's left end, > `right_y`",
+           S_OFF(edge_left_y)),
+    NUMBER("hull.edges.right_y", "m", ANY, REQ, "y of each edge's right end",
+           S_OFF(edge_right_y)),
+    SECTION("hull.mesh", OPT, "System 2's hull mesh (with `hull.fe`)", &sc_mesh_ops),
+    STRING(FILE, "hull.mesh.deck", ONE_OF("mesh"),
+           "an Abaqus/CalculiX deck with the scenario's node sets", S_AT(STRING, hull_deck)),
+    WHOLE("hull.mesh.density", CLOSED(1, 64), DEF(1),
+          "refinement of the generator's mesh: d x d elements for each",
+          S_AT(INT, hull_mesh.density), .ops = &sc_generator_present),
+    SECTION("hull.mesh.generator", ONE_OF("mesh"),
+            "the built-in generator's geometry (docs/hull-mesh.md)", &sc_generator_present),
+    NUMBER("hull.mesh.generator.width", "m", POSITIVE, REQ, "between the side walls",
+           S_OFF(hull_mesh.width)),
+    NUMBER("hull.mesh.generator.height", "m", POSITIVE, REQ, "floor to roof",
+           S_OFF(hull_mesh.height)),
+    NUMBER("hull.mesh.generator.x_rear", "m", ANY, REQ, "rear wall", S_OFF(hull_mesh.x_rear)),
+    NUMBER("hull.mesh.generator.x_front", "m", ANY, REQ, "front end of the box, > `x_rear`",
+           S_OFF(hull_mesh.x_front)),
+    NUMBER("hull.mesh.generator.nose_length", "m", POSITIVE, REQ,
+           "wedge nose ahead of `x_front`", S_OFF(hull_mesh.nose_length)),
+    NUMBER("hull.mesh.generator.nose_height", "m", POSITIVE, REQ,
+           "nose tip line above the floor, < `height`", S_OFF(hull_mesh.nose_height)),
+    NUMBERS("hull.mesh.generator.bulkheads", "m", 0, FB_HULL_MAX_BULKHEADS, REQ,
+            "x of the transverse bulkheads, each between `x_rear` and `x_front`",
+            &sc_bulkheads),
+    WHOLE("hull.mesh.generator.side_rows", CLOSED(1, 64), REQ,
+          "element rows up the walls and bulkheads", S_AT(INT, hull_mesh.side_rows)),
+    WHOLE("hull.mesh.generator.nose_rows", CLOSED(1, 64), REQ,
+          "element rows along each glacis plate", S_AT(INT, hull_mesh.nose_rows)),
+    WHOLE("hull.mesh.generator.nose_rung_divisions", CLOSED(1, 64), REQ,
+          "divisions of the side walls' nose rung", S_AT(INT, hull_mesh.nose_rung_divisions)),
+    SECTION("hull.fe", OPT, "System 2's finite elements (with `hull.mesh`)", &sc_fe_ops),
+    CHOICE("hull.fe.mass_matrix", sc_masses, REQ, "mass matrix", S_AT(INT, hull_mass_matrix)),
+    NUMBER("hull.fe.drill_factor", NULL, POSITIVE, REQ,
+           "fictitious drilling stiffness of the quadrilaterals (fem.h)",
+           S_OFF(hull_drill_factor)),
+    NUMBER("hull.fe.damping_ratio", NULL, HALF_OPEN(0, 1), REQ,
+           "damping ratio of the bare hull's first elastic free-free mode (B = beta K)",
+           S_OFF(hull_damping_ratio)),
+    WHOLE("hull.fe.modes", CLOSED(0, 100000), DEF(0),
+          "0: full order; N >= 6: N free-free modes and a static correction",
+          S_AT(INT, hull_modes)),
+    SECTION("load", REQ, "hull plus payload", NULL),
+    NUMBER("load.total_weight", "N", POSITIVE, REQ,
+           "weight of hull plus payload, in equal shares over the load points",
+           S_OFF(total_weight)),
+    CHOICE("load.payload", sc_payloads, REQ, "payload mass model", S_AT(INT, payload)),
+    CUSTOM("load.points", "m", "`{grid: {x: [...], y: [...]}}` or `[[x, y], ...]`", REQ,
+           "the load points, on the floor, 1 mm apart at least", &sc_points),
+    LIST("mounts", OPT, "bodies on a spring and a damper to a hull point (driver, engine)",
+         &sc_mount_table, "mounts", &sc_mounts),
+    SECTION("wheel", OPT, "every corner's wheel and tire unless the corner gives its own",
+            NULL),
+    NUMBER("wheel.mass", "kg", POSITIVE, OPT, "wheel mass", NO_STORE),
+    NUMBER("wheel.tire_k", "N/m", POSITIVE, OPT, "tire stiffness", NO_STORE),
+    NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, OPT, "tire damping", NO_STORE),
+    CHOICE("wheel.tire_contact", sc_contacts, DEF(0),
+           "`bilateral`: the paper's linear tire; `unilateral`: it never pulls, the wheel "
+           "may leave the road",
+           NO_STORE),
+    SECTION("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions),
+    NUMBER("suspensions.motion_ratio", NULL, POSITIVE, DEF(1),
+           "every corner's spring travel / wheel travel unless it gives its own", NO_STORE),
+    LIST("suspensions.axles", OPT,
+         "axles, each two corners: L<name> at (x, y) and R<name> at (x, -y)", &sc_corner_table,
+         "corners", &sc_axles),
+    LIST("suspensions.corners", OPT, "single corners, after the axles' ones", &sc_corner_table,
+         "corners", &sc_single_corners),
+    LIST("outputs", OPT,
+         "the signals recorded, in CSV column order (default: every corner's tire_force)",
+         &sc_output_table, "outputs", &sc_outputs),
+    SECTION("road", REQ, "the road under the wheels", NULL),
+    NUMBER("road.speed_kmh", "km/h", POSITIVE, REQ, "constant forward speed on a straight line",
+           S_OFF(speed), .ops = &sc_kmh),
+    SECTION("road.bump", ONE_OF("road"), "the paper's oblique (1 - cos) bump", &sc_bump),
+    NUMBER("road.bump.height", "m", NONNEGATIVE, OPT,
+           "bump height h, with `length` (0: a flat road)", S_OFF(bump_height)),
+    NUMBER("road.bump.length", "m", POSITIVE, OPT,
+           "bump length L along each wheel's path, with `height`", S_OFF(bump_length)),
+    CHOICE("road.bump.type", sc_bump_types, OPT,
+           "a Brazilian speed bump instead of height and length: I 1.50 x 0.08 m, II 3.70 x "
+           "0.10 m (B, A: aliases)",
+           NO_STORE),
+    NUMBER("road.bump.angle_deg", "deg", HALF_OPEN(0, 90), REQ,
+           "angle of the leading edge to the lateral axis, left side first", S_OFF(bump_angle),
+           .ops = &sc_deg),
+    NUMBER("road.bump.first_contact", "s", NONNEGATIVE, REQ,
+           "time the first corner's wheel meets the leading edge", S_OFF(bump_time)),
+    SECTION("road.iso8608", ONE_OF("road"), "an ISO 8608 random road (docs/roads.md)", &sc_iso),
+    CUSTOM("road.iso8608.class", NULL, "letter `A` .. `H`", REQ,
+           "road class: Gd(n0) = 16e-6 m^3 for A, times 4 per class", &sc_class),
+    WHOLE("road.iso8608.seed", CLOSED(0, 9007199254740992.0), REQ,
+          "the same seed gives the same road", S_AT(U64, road_iso.seed)),
+    NUMBERS("road.iso8608.band", "cycles/m", 2, 2, DEF_LIST(sc_band_default),
+            "spatial frequency band `[n_min, n_max]` of the harmonics", &sc_band),
+    WHOLE("road.iso8608.harmonics", CLOSED(1, (double)FB_ROAD_ISO8608_MAX_HARMONICS), DEF(1024),
+          "harmonics per track (the run's time grows with them)",
+          S_AT(SIZE, road_iso.nharmonics)),
+    NUMBER("road.iso8608.fade_in", "m", NONNEGATIVE, DEF(0),
+           "the height fades in over the first metres", S_OFF(road_iso.fade_length)),
+    NUMBER("road.iso8608.front_start", "m", ANY, DEF(0),
+           "the first corner's wheel's position on its track at t = 0",
+           S_OFF(road_front_start)),
+    SECTION("road.profile", ONE_OF("road"), "a measured profile (docs/roads.md)", &sc_profile),
+    STRING(FILE, "road.profile.file", REQ, "CSV with columns `s, z` or `s, z_left, z_right`",
+           S_AT(STRING, road_profile)),
+    NUMBER("road.profile.front_start", "m", ANY, DEF(0),
+           "the first corner's wheel's position on its track at t = 0",
+           S_OFF(road_front_start)),
+    SECTION("simulation", REQ, "the run", NULL),
+    NUMBER("simulation.t_end", "s", POSITIVE, REQ, "end of the run (it starts at 0)",
+           S_OFF(t_end)),
+    NUMBER("simulation.rtol", NULL, OPEN(0, 1), REQ, "relative tolerance", S_OFF(rtol)),
+    NUMBER("simulation.atol", NULL, POSITIVE, REQ, "absolute tolerance (all states)",
+           S_OFF(atol)),
+    NUMBER("simulation.max_step", "s", NONNEGATIVE, DEF(0), "largest step, 0: no limit",
+           S_OFF(max_step)),
+    WHOLE("simulation.max_steps", CLOSED(1, (double)FB_SIM_MAX_STEPS),
+          DEF((double)FB_SIM_DEFAULT_MAX_STEPS), "internal steps allowed in the whole run",
+          S_AT(LONG, max_steps)),
+    NUMBER("simulation.sample_rate", "Hz", POSITIVE, REQ, "outputs at k / sample_rate",
+           S_OFF(sample_rate)),
+    CHOICE("simulation.initial", sc_initials, REQ,
+           "`zero`: every state zero, gravity on at t = 0; `static`: the static equilibrium",
+           S_AT(INT, initial)),
 };
 
-const sch_table sc_schema = {sc_keys, sizeof sc_keys / sizeof sc_keys[0], sc_root_done};
+const sch_table sc_schema = TABLE(sc_keys, sc_root_done);
 
 /* ---- Reading, visiting, documenting. */
 
