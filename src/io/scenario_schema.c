@@ -14,7 +14,6 @@
 
 /* What the hooks share while a document is read (sch_reader.user). */
 typedef struct sc_reading {
-  fb_scenario *s;
   fb_symtab *params;
   size_t corner_cap, mount_cap, output_cap;
 } sc_reading;
@@ -636,6 +635,7 @@ static int sc_bump_done(sch_reader *r, const sch_key *k, struct fy_node *node, v
   return rc;
 }
 
+/* cppcheck-suppress constParameter ; the hook's type (sch_ops.done) fixes the node's */
 static int sc_iso_done(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
 {
   (void)r, (void)k;
@@ -1019,7 +1019,7 @@ static int sc_keep_origins(sch_reader *r, fb_scenario *s)
 
 int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s)
 {
-  sc_reading rd = {s, params, 0, 0, 0};
+  sc_reading rd = {params, 0, 0, 0};
   sch_reader r = {c, &rd, NULL, 0, 0};
   c->globals = params;
   int rc = sch_read(&r, &sc_schema, root, s);
