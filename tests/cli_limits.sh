@@ -147,7 +147,7 @@ expect_in "$OUT" "3392 S4 elements" "hull density 4"
 
 # ---- Runs that cannot finish, or only after hours.
 edited s_step.yaml apc6x6.yaml -e 's/^  max_step: 0 /  max_step: 1e-6/'
-refused 2 "$(where s_step.yaml 'max_step: 1e-6' 1e-6) simulation.max_step: 1e-06 s over the run's 15 s (t_end - t_start) needs at least 1.5e+07 steps, more than simulation.max_steps = 10000000: the run could not finish" \
+refused 2 "$(where s_step.yaml 'max_step: 1e-6' 1e-6) simulation.max_step: 1e-06 s over the run's 15 s (t_end - t_start) needs at least 1.5e+07 steps, more than max_steps = 10000000: the run could not finish; raise max_step or max_steps" \
   "max_step 1e-6 over 15 s" run s_step.yaml -o out_step --system rigid
 
 edited s_harm.yaml apc6x6_iso_road.yaml -e 's/^  iso8608:/  iso8608:\n    harmonics: 1000000/'

@@ -273,14 +273,7 @@ int sweep_numeric_value(const char *text, double *out)
 
 void sweep_format_double(double x, char *buf, size_t size)
 {
-  /* 17 significant digits always read back as the same double (IEEE 754
-   * binary64; C11 5.2.4.2.2, DECIMAL_DIG); fewer often do, and read
-   * better. */
-  for (int digits = 15; digits <= 17; ++digits) {
-    snprintf(buf, size, "%.*g", digits, x);
-    if (strtod(buf, NULL) == x)
-      return;
-  }
+  fb_format_shortest(x, 15, buf, size);
 }
 
 /* The fields go through fb_csv_write_field (flexbond/escape.h, RFC 4180

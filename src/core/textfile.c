@@ -365,3 +365,12 @@ int fb_parse_decimal(const char *text, double *out, fb_err *err)
     *out = v;
   return rc;
 }
+
+void fb_format_shortest(double v, int min_digits, char *buf, size_t size)
+{
+  for (int digits = min_digits; digits <= 17; ++digits) {
+    snprintf(buf, size, "%.*g", digits, v);
+    if (strtod(buf, NULL) == v)
+      return;
+  }
+}

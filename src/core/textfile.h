@@ -117,5 +117,10 @@ int fb_parse_decimal(const char *text, double *out, fb_err *err);
  * saying which otherwise. Every reader of numbers (fb_parse_decimal, the
  * YAML loaders, expressions) checks with it. */
 int fb_decimal_check_exact(const char *text, double v, fb_err *err);
+/* The shortest "%.Ng" of v, N from min_digits to 17, that strtod reads
+ * back as v (17 significant digits always do: C11 5.2.4.2.2,
+ * DECIMAL_DIG), into buf. min_digits sets when an exponent appears: with
+ * 15, every integer up to 1e15 is written out ("1000000", not "1e+06"). */
+void fb_format_shortest(double v, int min_digits, char *buf, size_t size);
 
 #endif

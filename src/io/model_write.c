@@ -29,6 +29,7 @@
 #include "flexbond/model.h"
 #include "flexbond/road.h"
 
+#include "core/textfile.h"
 #include "core/util.h"
 
 /* A port of a definition being written. */
@@ -72,11 +73,7 @@ typedef struct mw {
  * integer written out, since not every one of them is a double. */
 static void mw_format(double v, char *buf, size_t size)
 {
-  for (int digits = 15; digits <= 17; ++digits) {
-    snprintf(buf, size, "%.*g", digits, v);
-    if (strtod(buf, NULL) == v)
-      break;
-  }
+  fb_format_shortest(v, 15, buf, size);
   if (fabs(v) > 9007199254740992.0 && !strpbrk(buf, ".e"))
     snprintf(buf, size, "%.16e", v);
 }

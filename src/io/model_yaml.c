@@ -1226,8 +1226,11 @@ int ml_count(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, size_t l
   int rc = ml_number(c, n, syms, &v);
   if (rc)
     return rc;
-  if (v != floor(v) || v < (double)lo || v > (double)hi)
-    return ml_fail(c, n, FB_EINVAL, "must be an integer from %zu to %zu (got %g)", lo, hi, v);
+  if (v != floor(v) || v < (double)lo || v > (double)hi) {
+    char got[32];
+    fb_format_shortest(v, 15, got, sizeof got);
+    return ml_fail(c, n, FB_EINVAL, "must be an integer from %zu to %zu (got %s)", lo, hi, got);
+  }
   *out = (size_t)v;
   return FB_OK;
 }

@@ -324,6 +324,40 @@ static int sc_check_fe_hull(const fb_scenario *s, fb_err *err)
 
 /* ---- Outputs. */
 
+static const char *sc_corner_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->corner[i].name;
+}
+
+static const char *sc_mount_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->mount[i].name;
+}
+
+/* printf text appended to buf (of size) at *len, truncated at its end. */
+static void sc_append(char *buf, size_t size, size_t *len, const char *fmt, const char *arg)
+{
+  const int w = snprintf(buf + *len, size - *len, fmt, arg);
+  *len = w >= 0 && *len + (size_t)w < size ? *len + (size_t)w : size - 1;
+}
+
+/* For an unknown name: " (did you mean 'LF'?)" when one is close, then
+ * "; the corners are LF, RF, ..." (what: "corners"), into buf. */
+static void sc_names_hint(const fb_scenario *s, const char *word, size_t n, ml_name_fn name_at,
+                          const char *what, char *buf, size_t size)
+{
+  const char *near = word && *word ? ml_suggest(word, n, name_at, s) : NULL;
+  size_t len = 0;
+  buf[0] = '\0';
+  if (near)
+    sc_append(buf, size, &len, " (did you mean '%s'?)", near);
+  sc_append(buf, size, &len, n ? "; the %s are " : "; there are no %s", what);
+  for (size_t k = 0; k < n && len + 1 < size; ++k) {
+    sc_append(buf, size, &len, "%s", k ? ", " : "");
+    sc_append(buf, size, &len, "%s", name_at(s, k));
+  }
+}
+
 /* `of` names a corner or a mount, as the signal's kind asks. */
 static int sc_check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
 {
@@ -333,12 +367,18 @@ static int sc_check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
   snprintf(key, sizeof key, "outputs[%zu].of", i);
   if (!kind)
     return sc_fail(s, err, key, "unknown signal '%s'", o->signal ? o->signal : "(none)");
-  if (kind->subject == FB_OUTPUT_OF_CORNER && (!o->of || fb_scenario_corner_find(s, o->of) < 0))
-    return sc_fail(s, err, key, "no corner named '%s' (a %s signal measures a corner)",
-                   o->of ? o->of : "", o->signal);
-  if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0))
-    return sc_fail(s, err, key, "no mount named '%s' (a %s signal measures a mounted body)",
-                   o->of ? o->of : "", o->signal);
+  char hint[512];
+  if (kind->subject == FB_OUTPUT_OF_CORNER &&
+      (!o->of || fb_scenario_corner_find(s, o->of) < 0)) {
+    sc_names_hint(s, o->of, s->ncorners, sc_corner_name_at, "corners", hint, sizeof hint);
+    return sc_fail(s, err, key, "no corner named '%s' (a %s signal measures a corner)%s",
+                   o->of ? o->of : "", o->signal, hint);
+  }
+  if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
+    sc_names_hint(s, o->of, s->nmounts, sc_mount_name_at, "mounts", hint, sizeof hint);
+    return sc_fail(s, err, key, "no mount named '%s' (a %s signal measures a mounted body)%s",
+                   o->of ? o->of : "", o->signal, hint);
+  }
   return FB_OK;
 }
 

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/textfile.h"
 #include "core/util.h"
 
 /* Longest key path, and most keys one mapping may have. */
@@ -268,6 +269,15 @@ static int sch_numbers(const sch_reader *r, const sch_key *k, struct fy_node *no
 }
 
 /* A value written at node: read, recorded, stored. */
+/* Appends " (why)" to a range error's message: why the range is so. */
+static void sch_add_why(fb_err *err, const char *why)
+{
+  if (!err)
+    return;
+  const size_t len = strlen(err->msg);
+  snprintf(err->msg + len, sizeof err->msg - len, " (%s)", why);
+}
+
 static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
                           const char *path, void *base)
 {
@@ -282,6 +292,8 @@ static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
     size_t lo = 0, hi = 0, v = 0;
     sch_whole_range(k, &lo, &hi);
     rc = ml_count(c, node, c->globals, lo, hi, &v);
+    if (rc == FB_EINVAL && k->why)
+      sch_add_why(c->err, k->why);
     number = (double)v;
     break;
   }
@@ -591,19 +603,10 @@ int sch_check_value(const sch_value *v, fb_err *err)
     return FB_OK;
   char range[96];
   sch_range_text(k, range, sizeof range);
-  fb_err_set(err, FB_EINVAL, "must be %s%s%s (got %.10g)", range, k->unit ? " " : "",
-             k->unit ? k->unit : "", v->number);
+  fb_err_set(err, FB_EINVAL, "must be %s%s%s (got %.10g)%s%s%s", range, k->unit ? " " : "",
+             k->unit ? k->unit : "", v->number, k->why ? " (" : "", k->why ? k->why : "",
+             k->why ? ")" : "");
   return fb_err_set_key(err, "%s", v->path);
-}
-
-/* The shortest decimal that reads back as v: what the file wrote. */
-static void sch_format_number(double v, char *buf, size_t size)
-{
-  for (int digits = 6; digits <= 17; ++digits) {
-    snprintf(buf, size, "%.*g", digits, v);
-    if (strtod(buf, NULL) == v)
-      return;
-  }
 }
 
 void sch_format(const sch_value *v, char *buf, size_t size)
@@ -614,7 +617,8 @@ void sch_format(const sch_value *v, char *buf, size_t size)
   else if (v->text)
     snprintf(buf, size, "%s", v->text);
   else
-    sch_format_number(v->number, buf, size);
+    /* The shortest decimal that reads back as v: what the file wrote. */
+    fb_format_shortest(v->number, 6, buf, size);
 }
 
 /* ---- Documentation. */

@@ -116,6 +116,8 @@ struct sch_key {
   int lines;                   /* SCH_TEXT: line breaks allowed */
   const char *type_doc;        /* SCH_CUSTOM: the type for the documentation */
   const char *doc;             /* one line */
+  const char *why;             /* why the range is what it is, added to a range error
+                                  ("about a day of solver steps ..."); may be NULL */
   sch_store store;
   size_t offset;
   const sch_table *items; /* SCH_LIST */

@@ -124,7 +124,7 @@ static void rigid_torsion_weights(const fb_scenario *s, double *w)
 static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
 {
   const size_t na = fb_scenario_nattach(s);
-  double m33[9], *ax = malloc(2 * na * sizeof *ax);
+  double m33[9], *ax = calloc(2 * na + 1, sizeof *ax);
   if (!ax)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   double *ay = ax + na;
