@@ -7,6 +7,7 @@
 #ifndef FLEXBOND_ERROR_H
 #define FLEXBOND_ERROR_H
 
+#include <stdarg.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -99,6 +100,14 @@ int fb_err_set_origin(fb_err *err, int origin, size_t index, int code);
 int fb_err_set(fb_err *err, int code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* fb_err_set with the arguments as a va_list (for functions that take
+ * printf arguments of their own and add fields after the message). */
+int fb_err_vset(fb_err *err, int code, const char *fmt, va_list ap)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 0)))
 #endif
     ;
 

@@ -32,12 +32,18 @@ int(fb_err_set_origin)(fb_err *err, int origin, size_t index, int code)
 /* The parentheses keep the analyzer-only macro of error.h from expanding here. */
 int(fb_err_set)(fb_err *err, int code, const char *fmt, ...)
 {
-  if (!err)
-    return code;
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+  fb_err_vset(err, code, fmt, ap);
   va_end(ap);
+  return code;
+}
+
+int fb_err_vset(fb_err *err, int code, const char *fmt, va_list ap)
+{
+  if (!err)
+    return code;
+  vsnprintf(err->msg, sizeof err->msg, fmt, ap);
   err->code = code;
   err->origin = FB_ORIGIN_NONE;
   err->origin_index = 0;

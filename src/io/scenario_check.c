@@ -21,12 +21,10 @@ static int sc_fail(const fb_scenario *s, fb_err *err, const char *key, const cha
     ;
 static int sc_fail(const fb_scenario *s, fb_err *err, const char *key, const char *fmt, ...)
 {
-  char msg[FB_ERR_MSG_MAX];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  fb_err_vset(err, FB_EINVAL, fmt, ap);
   va_end(ap);
-  fb_err_set(err, FB_EINVAL, "%s", msg);
   fb_err_set_key(err, "%s", key);
   return fb_scenario_locate(s, err);
 }

@@ -26,12 +26,10 @@ static int opt_fail(fb_err *err, const char *key, size_t index, const char *fmt,
     ;
 static int opt_fail(fb_err *err, const char *key, size_t index, const char *fmt, ...)
 {
-  char msg[FB_ERR_MSG_MAX];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  fb_err_vset(err, FB_EINVAL, fmt, ap);
   va_end(ap);
-  fb_err_set(err, FB_EINVAL, "%s", msg);
   if (index == NO_INDEX)
     fb_err_set_key(err, "%s", key);
   else
