@@ -229,3 +229,32 @@ int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err)
   free(log_path);
   return rc;
 }
+
+int fb_child_make(const fb_child_spec *spec, const char *name, fb_child_check_fn check,
+                  const char *what, char **out, fb_err *err)
+{
+  *out = NULL;
+  int rc = fb_child_run(spec, what, err);
+  char *file = rc == FB_OK ? fb_path_join(spec->cwd, name) : NULL;
+  if (rc == FB_OK && !file)
+    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", what);
+  if (rc == FB_OK && check(file, err) != FB_OK)
+    rc = fb_err_prefix(err, "%s: %s exited 0 but ", what, spec->program);
+  if (rc == FB_OK)
+    *out = file;
+  else
+    free(file);
+  return rc;
+}
+
+void fb_child_dir_remove(char *dir, const char *const *names, size_t n)
+{
+  for (size_t i = 0; i < n; ++i) {
+    char *p = fb_path_join(dir, names[i]);
+    if (p)
+      remove(p);
+    free(p);
+  }
+  rmdir(dir);
+  free(dir);
+}

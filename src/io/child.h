@@ -1,7 +1,9 @@
-/* Child processes of the library (gnuplot), run the one way that is safe
- * to interrupt and to time out. */
+/* Child processes of the library (gnuplot, Graphviz's dot), run the one
+ * way that is safe to interrupt and to time out. */
 #ifndef FLEXBOND_IO_CHILD_H
 #define FLEXBOND_IO_CHILD_H
+
+#include <stddef.h>
 
 #include "flexbond/error.h"
 
@@ -26,5 +28,19 @@ typedef struct fb_child_spec {
  * exited with status 0; otherwise FB_EIO with a message "what: ..." (its
  * exit status or signal, a time-out, or why it could not start). */
 int fb_child_run(const fb_child_spec *spec, const char *what, fb_err *err);
+
+/* Checks a file a child wrote; FB_OK or an error saying what is wrong. */
+typedef int (*fb_child_check_fn)(const char *path, fb_err *err);
+
+/* Runs the child (fb_child_run) that is to write the file `name` in its
+ * directory spec->cwd, then checks that file with check: a program that
+ * exits 0 without a complete file is a failure too ("what: PROGRAM exited
+ * 0 but ..."). *out: the file's path (new; NULL on failure). */
+int fb_child_make(const fb_child_spec *spec, const char *name, fb_child_check_fn check,
+                  const char *what, char **out, fb_err *err);
+
+/* Removes the files names[0 .. n) a child's run left in dir, then dir,
+ * and frees dir (the path of a private directory: fb_tmpdir_create). */
+void fb_child_dir_remove(char *dir, const char *const *names, size_t n);
 
 #endif

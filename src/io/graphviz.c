@@ -94,30 +94,12 @@ static int draw_in(const char *dir, fb_graphviz_format fmt, const char *path, fb
                               .cwd = dir,
                               .log = gv_log,
                               .timeout_s = FB_GRAPHVIZ_TIMEOUT_S};
-  int rc = fb_child_run(&spec, path, err);
-  char *pic = rc == FB_OK ? fb_path_join(dir, output) : NULL;
-  if (rc == FB_OK && !pic)
-    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
-  if (rc == FB_OK && (png ? fb_png_check(pic, err) : fb_svg_check(pic, err)) != FB_OK)
-    rc = fb_err_prefix(err, "%s: dot exited 0 but ", path);
+  char *pic = NULL;
+  int rc = fb_child_make(&spec, output, png ? fb_png_check : fb_svg_check, path, &pic, err);
   if (rc == FB_OK)
     rc = copy_out(pic, path, err);
   free(pic);
   return rc;
-}
-
-/* Removes the files of one dot run and its directory. */
-static void remove_run_dir(char *dir)
-{
-  const char *const names[] = {gv_dot, gv_svg, gv_png, gv_log};
-  for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
-    char *p = fb_path_join(dir, names[i]);
-    if (p)
-      remove(p);
-    free(p);
-  }
-  rmdir(dir);
-  free(dir);
 }
 
 int fb_graphviz_write(fb_graphviz_fn fn, const void *ctx, fb_graphviz_format fmt,
@@ -136,7 +118,8 @@ int fb_graphviz_write(fb_graphviz_fn fn, const void *ctx, fb_graphviz_format fmt
   if (rc == FB_OK)
     rc = draw_in(dir, fmt, path, err);
   free(dot);
-  remove_run_dir(dir);
+  const char *const names[] = {gv_dot, gv_svg, gv_png, gv_log};
+  fb_child_dir_remove(dir, names, sizeof names / sizeof names[0]);
   return rc;
 }
 

@@ -276,31 +276,13 @@ static int draw_in(const char *dir, const char *path, fb_err *err)
                               .cwd = dir,
                               .log = gp_log,
                               .timeout_s = FB_GNUPLOT_TIMEOUT_S};
-  int rc = fb_child_run(&spec, path, err);
-  char *png = rc == FB_OK ? fb_path_join(dir, gp_png) : NULL;
-  if (rc == FB_OK && !png)
-    rc = fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
-  if (rc == FB_OK && fb_png_check(png, err) != FB_OK)
-    rc = fb_err_prefix(err, "%s: gnuplot exited 0 but ", path);
+  char *png = NULL;
+  int rc = fb_child_make(&spec, gp_png, fb_png_check, path, &png, err);
   if (rc == FB_OK && rename(png, path) != 0)
     rc = fb_err_set(err, FB_EIO, "%s: cannot rename the plot into place: %s", path,
                     strerror(errno));
   free(png);
   return rc;
-}
-
-/* Removes the files of one gnuplot run and its directory. */
-static void remove_run_dir(char *dir)
-{
-  const char *const names[] = {gp_script, gp_png, gp_log};
-  for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
-    char *p = fb_path_join(dir, names[i]);
-    if (p)
-      remove(p);
-    free(p);
-  }
-  rmdir(dir);
-  free(dir);
 }
 
 int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, fb_err *err)
@@ -319,7 +301,8 @@ int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, f
   if (rc == FB_OK)
     rc = draw_in(dir, path, err);
   free(script);
-  remove_run_dir(dir);
+  const char *const names[] = {gp_script, gp_png, gp_log};
+  fb_child_dir_remove(dir, names, sizeof names / sizeof names[0]);
   return rc;
 }
 
