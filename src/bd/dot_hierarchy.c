@@ -82,11 +82,12 @@ static int alike(const hier *h, size_t t, size_t u)
 static int hier_make(hier *h, const fb_bd *bd, FILE *fp, fb_err *err)
 {
   memset(h, 0, sizeof *h);
-  h->bd = bd;
-  h->fp = fp;
   int rc = fb_bg_groups_make(bd->bg, &h->g, err);
   if (rc != FB_OK)
     return rc;
+  /* Set after the call: the analyzer takes a call given &h->g to overwrite all of *h. */
+  h->bd = bd;
+  h->fp = fp;
   h->top = malloc((bd->nblocks + 1) * sizeof *h->top);
   h->inner = malloc((bd->nblocks + 1) * sizeof *h->inner);
   h->rep = malloc((h->g.n + 1) * sizeof *h->rep);

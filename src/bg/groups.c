@@ -44,7 +44,7 @@ static size_t add_group(fb_bg_groups *g, const char *name, size_t len)
 
 int fb_bg_groups_make(const fb_bg *bg, fb_bg_groups *g, fb_err *err)
 {
-  *g = (fb_bg_groups){0, NULL, NULL, NULL, NULL};
+  g->n = 0; /* each array is set below, before any use */
   size_t cap = 1;
   for (size_t e = 0; e < bg->nelems; ++e)
     for (const char *s = bg->elems[e].name; *s; ++s)

@@ -175,7 +175,7 @@ static int sc_copy_mounts(const fb_scenario *s, fb_scenario *copy)
 {
   fb_mount *m = NULL;
   int ok = sc_copy_items(s->mount, s->nmounts, sizeof *m, (void **)&copy->mount, (void **)&m);
-  for (size_t i = 0; ok && i < s->nmounts; ++i) {
+  for (size_t i = 0; ok && m && i < s->nmounts; ++i) { /* no m: no mounts */
     copy->mount[i] = m[i];
     ok = sc_copy_string(s->mount[i].name, &copy->mount[i].name);
   }
@@ -188,7 +188,7 @@ static int sc_copy_corners(const fb_scenario *s, fb_scenario *copy)
   fb_corner_params *c = NULL;
   int ok =
       sc_copy_items(s->corner, s->ncorners, sizeof *c, (void **)&copy->corner, (void **)&c);
-  for (size_t i = 0; ok && i < s->ncorners; ++i) {
+  for (size_t i = 0; ok && c && i < s->ncorners; ++i) { /* no c: no corners */
     copy->corner[i] = c[i];
     ok = sc_copy_string(s->corner[i].name, &copy->corner[i].name);
   }

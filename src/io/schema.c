@@ -515,6 +515,8 @@ static int sch_each_item(const sch_table *t, const sch_key *k, const void *base,
   for (const sch_key *o = t->key; o < k; ++o)
     if (o->type == SCH_LIST && o->view && k->view && !strcmp(o->view, k->view))
       return 0; /* visited with the first list of the view */
+  if (!k->ops)
+    return 0; /* a list's items are reached only through its ops */
   const size_t n = k->ops->count(base);
   int stop = 0;
   for (size_t i = 0; !stop && i < n; ++i) {
@@ -666,8 +668,8 @@ static void sch_group_text(const sch_table *t, const sch_key *k, char *buf, size
   len = w > 0 && (size_t)w < size ? (size_t)w : 0;
   for (size_t i = 0, n = 0; i < t->n && len + 1 < size; ++i) {
     const sch_key *o = &t->key[i];
-    if (!o->one_of || strcmp(o->one_of, k->one_of) || strncmp(o->path, k->path, parent) ||
-        strchr(o->path + parent, '.'))
+    if (!o->one_of || strcmp(o->one_of, k->one_of) != 0 ||
+        strncmp(o->path, k->path, parent) != 0 || strchr(o->path + parent, '.'))
       continue;
     w = snprintf(buf + len, size - len, "%s`%s`", n++ ? ", " : "", o->path + parent);
     len = w > 0 && len + (size_t)w < size ? len + (size_t)w : size - 1;
