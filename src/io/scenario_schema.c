@@ -478,7 +478,8 @@ static int sc_bond_column(const fb_output_spec *o, char **out)
     return FB_ENOMEM;
   snprintf(*out, n, "%s_%s", o->signal, o->bond);
   for (char *p = *out; *p; ++p)
-    *p = *p == '.' ? '_' : *p;
+    if (*p == '.')
+      *p = '_';
   return FB_OK;
 }
 
@@ -720,22 +721,22 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
 /* SCH_NAME, SCH_TEXT or SCH_FILE: STRING(NAME, ...). */
 #define STRING(t, p, n, d, ...) KEY(.path = p, .type = SCH_##t, n, .doc = d, __VA_ARGS__)
 #define NUMBERS(p, u, lo, hi, n, d, o)                                                         \
-  KEY(.path = p, .type = SCH_NUMBERS, .unit = u, .min_items = lo, .max_items = hi, n,          \
-      .doc = d, .ops = o)
+  KEY(.path = (p), .type = SCH_NUMBERS, .unit = (u), .min_items = (lo), .max_items = (hi), n,  \
+      .doc = (d), .ops = (o))
 #define CUSTOM(p, u, t, n, d, o)                                                               \
-  KEY(.path = p, .type = SCH_CUSTOM, .unit = u, .type_doc = t, n, .doc = d, .ops = o)
-#define SECTION(p, n, d, o) KEY(.path = p, .type = SCH_SECTION, n, .doc = d, .ops = o)
+  KEY(.path = (p), .type = SCH_CUSTOM, .unit = (u), .type_doc = (t), n, .doc = (d), .ops = (o))
+#define SECTION(p, n, d, o) KEY(.path = (p), .type = SCH_SECTION, n, .doc = (d), .ops = (o))
 #define LIST(p, n, d, t, v, o)                                                                 \
-  KEY(.path = p, .type = SCH_LIST, n, .doc = d, .items = t, .view = v, .ops = o)
+  KEY(.path = (p), .type = SCH_LIST, n, .doc = (d), .items = (t), .view = (v), .ops = (o))
 
 /* Ranges, in the file's unit. */
 #define ANY .bounds = 0
 #define POSITIVE .bounds = SCH_LO | SCH_LO_OPEN, .lo = 0
 #define NONNEGATIVE .bounds = SCH_LO, .lo = 0
-#define CLOSED(lo_, hi_) .bounds = SCH_LO | SCH_HI, .lo = lo_, .hi = hi_
-#define HALF_OPEN(lo_, hi_) .bounds = SCH_LO | SCH_HI | SCH_HI_OPEN, .lo = lo_, .hi = hi_
+#define CLOSED(lo_, hi_) .bounds = SCH_LO | SCH_HI, .lo = (lo_), .hi = (hi_)
+#define HALF_OPEN(lo_, hi_) .bounds = SCH_LO | SCH_HI | SCH_HI_OPEN, .lo = (lo_), .hi = (hi_)
 #define OPEN(lo_, hi_)                                                                         \
-  .bounds = SCH_LO | SCH_LO_OPEN | SCH_HI | SCH_HI_OPEN, .lo = lo_, .hi = hi_
+  .bounds = SCH_LO | SCH_LO_OPEN | SCH_HI | SCH_HI_OPEN, .lo = (lo_), .hi = (hi_)
 
 /* Needs. ONE_OF: required, of the keys with the group's label. */
 #define REQ .need = SCH_REQUIRED
@@ -758,7 +759,7 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
 
 #define TABLE(keys, done)                                                                      \
   {                                                                                            \
-    keys, sizeof keys / sizeof keys[0], done                                                   \
+    keys, sizeof(keys) / sizeof((keys)[0]), done                                               \
   }
 
 static const char *const sc_payloads[] = {"weight-only", "lumped", NULL};
