@@ -40,7 +40,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "flexbond/io.h"
+#include "flexbond/out.h"
 
 #include "core/textfile.h"
 #include "core/util.h"

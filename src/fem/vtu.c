@@ -15,7 +15,7 @@
 #include <stdlib.h>
 
 #include "flexbond/escape.h"
-#include "flexbond/io.h"
+#include "flexbond/out.h"
 
 #include "fem/mesh_internal.h"
 

@@ -1,4 +1,4 @@
-/* Atomic output files and directory creation (see flexbond/io.h).
+/* Atomic output files and directory creation (see flexbond/out.h).
  *
  * An output is written to a temporary file next to its destination
  * (fb_tmpfile_create: created exclusively, never through a link planted at
@@ -26,7 +26,7 @@
 #include <sys/types.h>
 #include <unistd.h>
 
-#include "flexbond/io.h"
+#include "flexbond/out.h"
 
 #include "core/tmpfile.h"
 
