@@ -310,6 +310,17 @@ static void test_clone(void)
 
 /* ---- fb_scenario_check on hand-built scenarios (no file to point at). */
 
+/* Drops s's origins, as a scenario built without a file has none. */
+static void drop_origins(fb_scenario *s)
+{
+  for (size_t i = 0; i < s->norigins; ++i) {
+    free(s->origin[i].key);
+    free(s->origin[i].path);
+    free(s->origin[i].override);
+  }
+  s->norigins = 0;
+}
+
 /* Applies change to a copy of base and expects FB_EINVAL with phrase. */
 static void expect_check(const fb_scenario *base, void (*change)(fb_scenario *),
                          const char *phrase)
@@ -320,7 +331,7 @@ static void expect_check(const fb_scenario *base, void (*change)(fb_scenario *),
   if (fb_scenario_clone(base, &s, &err) != FB_OK)
     return;
   change(s);
-  s->norigins = 0;
+  drop_origins(s);
   int rc = fb_scenario_check(s, &err);
   CHECK(rc == FB_EINVAL);
   CHECK(strstr(err.msg, phrase) != NULL);
