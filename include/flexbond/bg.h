@@ -316,8 +316,6 @@ size_t fb_bg_element_nports(const fb_bg *bg, size_t i);
 /* 1 for numbered slots, 0 for a junction (every bond adds a port). */
 int fb_bg_element_has_fixed_ports(const fb_bg *bg, size_t i);
 size_t fb_bg_element_port_dim(const fb_bg *bg, size_t i, size_t k);
-/* Bond at port k of element i, or (size_t)-1 when unconnected. */
-size_t fb_bg_element_port_bond(const fb_bg *bg, size_t i, size_t k);
 /* Law matrix of a linear field (M, K or R) or the T of an MTF; NULL for
  * other kinds and nonlinear laws. */
 const fb_mat *fb_bg_element_matrix(const fb_bg *bg, size_t i);
@@ -331,17 +329,9 @@ double fb_bg_element_modulus(const fb_bg *bg, size_t i);
 const fb_tfun *fb_bg_element_source(const fb_bg *bg, size_t i, size_t k);
 /* Initial state of an I or C (dim values), NULL when never set (zero). */
 const double *fb_bg_element_initial(const fb_bg *bg, size_t i);
-/* Elements whose states modulate R element i (fb_bg_modulate), *n of
- * them; NULL and 0 when none. */
-const size_t *fb_bg_element_modulators(const fb_bg *bg, size_t i, size_t *n);
 /* Port index of the bond's ends at its from and to elements. */
 size_t fb_bg_bond_from_port(const fb_bg *bg, size_t i);
 size_t fb_bg_bond_to_port(const fb_bg *bg, size_t i);
-/* Subsystem instances adopted directly into bg (fb_bg_adopt), in order;
- * the elements and bonds of instance "s" are named "s.*" (nested ones
- * "s.t.*"). */
-size_t fb_bg_ninstances(const fb_bg *bg);
-const char *fb_bg_instance_name(const fb_bg *bg, size_t i);
 /* A declared port: the graph's own exported ones (exported = 1), and the
  * ports of adopted instances ("inst.p", exported = 0). */
 #define FB_BG_ANY_PORT ((size_t)-1) /* a junction's: each bond adds a port */

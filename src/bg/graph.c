@@ -818,10 +818,6 @@ size_t fb_bg_element_port_dim(const fb_bg *bg, size_t i, size_t k)
   const fb_bg_elem *el = &bg->elems[i];
   return el->fixed_ports ? el->port_dims[k] : el->dim;
 }
-size_t fb_bg_element_port_bond(const fb_bg *bg, size_t i, size_t k)
-{
-  return bg->elems[i].bonds[k];
-}
 int fb_bg_element_has_fixed_ports(const fb_bg *bg, size_t i)
 {
   return bg->elems[i].fixed_ports;
@@ -849,11 +845,6 @@ const double *fb_bg_element_initial(const fb_bg *bg, size_t i)
 {
   return bg->elems[i].x0;
 }
-const size_t *fb_bg_element_modulators(const fb_bg *bg, size_t i, size_t *n)
-{
-  *n = bg->elems[i].nmod;
-  return bg->elems[i].mod_src;
-}
 size_t fb_bg_bond_from_port(const fb_bg *bg, size_t i)
 {
   return bg->bonds[i].from_slot;
@@ -861,14 +852,6 @@ size_t fb_bg_bond_from_port(const fb_bg *bg, size_t i)
 size_t fb_bg_bond_to_port(const fb_bg *bg, size_t i)
 {
   return bg->bonds[i].to_slot;
-}
-size_t fb_bg_ninstances(const fb_bg *bg)
-{
-  return bg->ninstances;
-}
-const char *fb_bg_instance_name(const fb_bg *bg, size_t i)
-{
-  return bg->instances[i];
 }
 size_t fb_bg_ndeclared_ports(const fb_bg *bg)
 {
