@@ -199,7 +199,8 @@ typedef struct fb_scenario {
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
-  char *hull_deck; /* Abaqus/CalculiX deck, NULL: the generator */
+  char *hull_deck;         /* Abaqus/CalculiX deck's path, NULL: the generator */
+  fb_mesh *hull_deck_mesh; /* that deck as the loader read it, once (owned) */
   /* Every file the scenario names (damper tables, road profile, hull
    * deck), as resolved, each once in reading order: what a result
    * depends on besides the scenario itself (owned). */

@@ -112,6 +112,7 @@ void fb_scenario_free(fb_scenario **s)
   free(p->output);
   free(p->road_profile);
   free(p->hull_deck);
+  fb_mesh_free(&p->hull_deck_mesh);
   sc_free_strings(p->inputs, p->ninputs);
   for (size_t i = 0; p->origin && i < p->norigins; ++i)
     sc_free_origin(&p->origin[i]);
@@ -264,6 +265,10 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_outputs(s, copy) && ok;
   ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
+  copy->hull_deck_mesh = NULL;
+  ok = (!s->hull_deck_mesh ||
+        fb_mesh_clone(s->hull_deck_mesh, &copy->hull_deck_mesh, NULL) == FB_OK) &&
+       ok;
   ok = sc_copy_strings(s->inputs, s->ninputs, &copy->inputs) && ok;
   ok = sc_copy_origins(s, copy) && ok;
   if (!ok) {
@@ -352,6 +357,12 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
     rc = sc_read(c, fy_document_root(y.doc), params, s);
   if (!rc)
     rc = fb_scenario_check(s, c->err);
+  /* A hull deck is read here, once: the builder takes the mesh from the
+   * scenario. Its errors are at hull.mesh.deck, then at the deck's line. */
+  if (!rc && s->hull_deck && fb_mesh_read_inp(s->hull_deck, &s->hull_deck_mesh, NULL, c->err)) {
+    fb_err_set_key(c->err, "hull.mesh.deck");
+    rc = fb_scenario_locate(s, c->err);
+  }
   /* Last: the frame's positions moved to the hull's centre of mass, a
    * finite-element hull's mass properties (src/vehicle/hull_props.c). */
   if (!rc && fb_vehicle_hull_complete(s, c->err))

@@ -196,13 +196,16 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
       rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
     return rc;
   }
-  /* As for a CSV table, a deck's error is reported at the scenario's
-   * hull.mesh.deck, then at the deck's own line ("DECK:LINE: ..."); the
-   * node sets keep no line, so their errors name the deck alone; a node
-   * that is off keeps the key of the scenario's point. */
-  int rc = fb_mesh_read_inp(s->hull_deck, &mesh, NULL, err);
-  if (rc)
-    fb_err_set_key(err, "hull.mesh.deck");
+  /* The deck as the loader read it (its parse errors were reported
+   * there); the node sets keep no line, so their errors name the deck
+   * alone; a node that is off keeps the key of the scenario's point. */
+  if (!s->hull_deck_mesh) {
+    fb_err_set(err, FB_EINVAL,
+               "%s: the deck is not read (the scenario's hull_deck_mesh; the loader reads it)",
+               s->hull_deck);
+    return fb_err_set_key(err, "hull.mesh.deck");
+  }
+  int rc = fb_mesh_clone(s->hull_deck_mesh, &mesh, err);
   if (!rc && (rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err))) {
     fb_err_prefix(err, "%s: ", s->hull_deck);
     if (!err || !err->key[0])
