@@ -111,6 +111,8 @@ int fb_road_new_iso8608(const fb_road_iso8608_params *p, fb_road **out, fb_err *
  * malformed content). */
 int fb_road_new_csv(const char *path, fb_road **out, fb_err *err);
 
+/* A deep copy of road (*out new). */
+int fb_road_clone(const fb_road *road, fb_road **out, fb_err *err);
 void fb_road_free(fb_road **road);
 
 /* ---- Evaluation. track is FB_ROAD_LEFT or FB_ROAD_RIGHT (NaN otherwise). */

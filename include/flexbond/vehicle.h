@@ -186,7 +186,8 @@ typedef struct fb_scenario {
    * left front wheel is at road_front_start (m) on its track at t = 0. */
   fb_road_kind road_kind;
   fb_road_iso8608_params road_iso;
-  char *road_profile; /* CSV path (resolved), owned */
+  char *road_profile;         /* CSV path (resolved), owned */
+  fb_road *road_profile_data; /* that profile as the loader read it, once (owned) */
   double road_front_start;
   double bump_height; /* m */
   double bump_length; /* m */

@@ -111,6 +111,7 @@ void fb_scenario_free(fb_scenario **s)
     sc_free_output(&p->output[i]);
   free(p->output);
   free(p->road_profile);
+  fb_road_free(&p->road_profile_data);
   free(p->hull_deck);
   fb_mesh_free(&p->hull_deck_mesh);
   sc_free_strings(p->inputs, p->ninputs);
@@ -255,6 +256,8 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->output = NULL;
   copy->inputs = NULL;
   copy->origin = NULL;
+  copy->road_profile_data = NULL;
+  copy->hull_deck_mesh = NULL;
   int ok = sc_copy_string(s->name, &copy->name);
   ok = sc_copy_string(s->path, &copy->path) && ok;
   ok = sc_copy_string(s->frame_origin, &copy->frame_origin) && ok;
@@ -264,8 +267,10 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_corners(s, copy) && ok;
   ok = sc_copy_outputs(s, copy) && ok;
   ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
+  ok = (!s->road_profile_data ||
+        fb_road_clone(s->road_profile_data, &copy->road_profile_data, NULL) == FB_OK) &&
+       ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
-  copy->hull_deck_mesh = NULL;
   ok = (!s->hull_deck_mesh ||
         fb_mesh_clone(s->hull_deck_mesh, &copy->hull_deck_mesh, NULL) == FB_OK) &&
        ok;

@@ -226,10 +226,9 @@ static int sc_check_other_road(const fb_scenario *s, fb_err *err)
   int rc = FB_OK;
   if (s->road_kind == FB_ROAD_ISO8608)
     rc = fb_road_new_iso8608(&s->road_iso, &road, err);
-  else if (!s->road_profile)
-    return sc_fail(s, err, key, "missing");
-  else
-    rc = fb_road_new_csv(s->road_profile, &road, err);
+  else if (!s->road_profile || !s->road_profile_data)
+    return sc_fail(s, err, key, "missing (the loader reads the profile's file)");
+  /* A profile was checked when its file was read, once. */
   fb_road_free(&road);
   /* The road's own messages name its parameter, not the key. */
   if (rc && rc != FB_ENOMEM) {

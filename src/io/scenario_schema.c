@@ -645,7 +645,8 @@ static int sc_iso_done(sch_reader *r, const sch_key *k, struct fy_node *node, vo
   return FB_OK;
 }
 
-/* Read once here, so that a bad file is reported at its key. */
+/* Read once, here: a bad file is reported at its key, and the builder
+ * takes the profile from the scenario (road_profile_data). */
 static int sc_profile_done(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
 {
   (void)k;
@@ -653,9 +654,8 @@ static int sc_profile_done(sch_reader *r, const sch_key *k, struct fy_node *node
   if (!node)
     return FB_OK;
   s->road_kind = FB_ROAD_PROFILE;
-  fb_road *road = NULL;
-  int rc = fb_road_new_csv(s->road_profile, &road, r->c->err);
-  fb_road_free(&road);
+  fb_road_free(&s->road_profile_data);
+  int rc = fb_road_new_csv(s->road_profile, &s->road_profile_data, r->c->err);
   return rc ? ml_blame(r->c, ml_get(node, "file", NULL)) : FB_OK;
 }
 

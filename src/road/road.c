@@ -43,6 +43,37 @@ int road_alloc(const road_track *left, const road_track *right, fb_road **out, f
   return FB_OK;
 }
 
+/* Doubles of a track's data (road_kind). */
+static size_t track_doubles(const road_track *t)
+{
+  switch (t->kind) {
+  case ROAD_HARMONICS: return 2 * t->n;
+  case ROAD_PCHIP: return 3 * t->n;
+  default: return 0;
+  }
+}
+
+int fb_road_clone(const fb_road *road, fb_road **out, fb_err *err)
+{
+  *out = calloc(1, sizeof **out);
+  if (!*out)
+    return fb_err_set(err, FB_ENOMEM, "out of memory copying a road");
+  **out = *road;
+  for (int k = 0; k < FB_ROAD_NTRACKS; ++k) {
+    const size_t n = road->data[k] ? track_doubles(&road->track[k]) : 0;
+    (*out)->data[k] = n ? malloc(n * sizeof *road->data[k]) : NULL;
+    if (n && !(*out)->data[k]) {
+      for (int j = k + 1; j < FB_ROAD_NTRACKS; ++j)
+        (*out)->data[j] = NULL;
+      fb_road_free(out);
+      return fb_err_set(err, FB_ENOMEM, "out of memory copying a road");
+    }
+    if (n)
+      memcpy((*out)->data[k], road->data[k], n * sizeof *road->data[k]);
+  }
+  return FB_OK;
+}
+
 void fb_road_free(fb_road **road)
 {
   if (!road || !*road)

@@ -324,7 +324,12 @@ static int scenario_road(const fb_scenario *s, fb_road **out, fb_err *err)
 {
   switch (s->road_kind) {
   case FB_ROAD_ISO8608: return fb_road_new_iso8608(&s->road_iso, out, err);
-  case FB_ROAD_PROFILE: return fb_road_new_csv(s->road_profile, out, err);
+  case FB_ROAD_PROFILE:
+    /* As the loader read it: the file is not read again. */
+    if (!s->road_profile_data)
+      return fb_err_set(err, FB_EINVAL, "road profile %s: not read (road_profile_data)",
+                        s->road_profile ? s->road_profile : "");
+    return fb_road_clone(s->road_profile_data, out, err);
   default:
     return fb_road_new_oblique_bump(s->bump_height, s->bump_length, s->bump_angle,
                                     fb_scenario_track_width(s), out, err);
