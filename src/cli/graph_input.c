@@ -40,9 +40,9 @@ static int load_model(const char *path, int system_given, cli_graph_input *in, f
 static int load_scenario(const char *path, fb_system sys, cli_graph_input *in, fb_err *err)
 {
   int rc = fb_scenario_load(path, &in->scenario, err);
-  if (rc == FB_OK)
-    rc =
-        fb_vehicle_graph(in->scenario, sys, &in->graph, &in->vehicle_probes, &in->nprobes, err);
+  if (rc == FB_OK && (rc = fb_vehicle_graph(in->scenario, sys, &in->graph, &in->vehicle_probes,
+                                            &in->nprobes, err)) != FB_OK)
+    fb_scenario_locate(in->scenario, err); /* an error about one of its values */
   if (rc != FB_OK)
     return rc;
   in->probes = in->vehicle_probes;

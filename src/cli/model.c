@@ -92,8 +92,9 @@ static int run(const model_args *a)
             a->sys == FB_SYSTEM_FLEXIBLE ? "flexible" : "rigid", nfiles, a->out_dir, s->name);
   if (rc != FB_OK)
     cli_nothing_written(&err, a->out_dir);
+  rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
-  return cli_report(rc, &err);
+  return rc;
 }
 
 int cli_cmd_model(int argc, char **argv)
