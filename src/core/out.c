@@ -18,6 +18,8 @@
 /* NOLINTNEXTLINE(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp): POSIX's macro */
 #define _XOPEN_SOURCE 700
 
+#include "flexbond/out.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,8 +27,6 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <unistd.h>
-
-#include "flexbond/out.h"
 
 #include "core/tmpfile.h"
 
