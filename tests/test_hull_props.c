@@ -12,19 +12,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
-
-static char *read_text(const char *path)
-{
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return NULL;
-  char *buf = calloc(1, 1 << 16);
-  const size_t n = buf ? fread(buf, 1, (1 << 16) - 1, fp) : 0;
-  fclose(fp);
-  if (buf)
-    buf[n] = '\0';
-  return buf;
-}
+#include "core/textfile.h"
 
 /* text with the first `from` replaced by `to` (new). */
 static char *replaced(const char *text, const char *from, const char *to)
@@ -155,8 +143,9 @@ static void test_frame(void)
 
 int main(void)
 {
-  char *text = read_text("../examples/apc6x6.yaml");
-  CHECK(text != NULL);
+  char *text = NULL;
+  size_t text_len = 0;
+  CHECK(fb_read_file("../examples/apc6x6.yaml", &text, &text_len, NULL) == FB_OK);
   if (text) {
     test_typed_agree(text);
     test_from_mesh(text);

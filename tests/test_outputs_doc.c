@@ -9,19 +9,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
-
-static char *read_all(const char *path)
-{
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return NULL;
-  char *buf = calloc(1, 1 << 16);
-  const size_t n = buf ? fread(buf, 1, (1 << 16) - 1, fp) : 0;
-  fclose(fp);
-  if (buf)
-    buf[n] = '\0';
-  return buf;
-}
+#include "core/textfile.h"
 
 static const char *subject_word(fb_output_subject s)
 {
@@ -36,8 +24,9 @@ static const char *subject_word(fb_output_subject s)
 
 int main(void)
 {
-  char *doc = read_all("../docs/vehicle-outputs.md");
-  CHECK(doc != NULL);
+  char *doc = NULL;
+  size_t doc_len = 0;
+  CHECK(fb_read_file("../docs/vehicle-outputs.md", &doc, &doc_len, NULL) == FB_OK);
   size_t n = 0;
   const fb_output_kind *k = fb_vehicle_output_kinds(&n);
   CHECK(n > 0);

@@ -7,34 +7,18 @@
 #include <string.h>
 
 #include "check.h"
+#include "core/textfile.h"
 #include "io/scenario_internal.h"
 
 #define DOC "../docs/scenario-format.md"
 #define BEGIN "<!-- schema:begin -->\n"
 #define END "<!-- schema:end -->"
 
-/* The whole file at path (NUL-terminated, new), NULL if unreadable. */
-static char *read_all(const char *path)
-{
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return NULL;
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *out = open_memstream(&buf, &len);
-  int ch;
-  while (out && (ch = fgetc(fp)) != EOF)
-    fputc(ch, out);
-  fclose(fp);
-  if (out)
-    fclose(out);
-  return buf;
-}
-
 int main(void)
 {
-  char *doc = read_all(DOC);
-  CHECK(doc != NULL);
+  char *doc = NULL;
+  size_t doc_len = 0;
+  CHECK(fb_read_file(DOC, &doc, &doc_len, NULL) == FB_OK);
   char *gen = NULL;
   size_t len = 0;
   FILE *fp = open_memstream(&gen, &len);
