@@ -27,15 +27,8 @@
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
+#include "bgtest_util.h"
 #include "check.h"
-
-#define MUST(call, err)                                                                        \
-  do {                                                                                         \
-    if ((call) != FB_OK) {                                                                     \
-      fprintf(stderr, "%s:%d: %s\n", __FILE__, __LINE__, (err)->msg);                          \
-      CHECK(0);                                                                                \
-    }                                                                                          \
-  } while (0)
 
 /* ---- Scratch directories. */
 
