@@ -71,9 +71,8 @@ void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf
   size_t len = 0;
   buf[0] = '\0';
   for (size_t k = first_key; k < a->nkeys && len + 1 < size; ++k) {
-    int n = snprintf(buf + len, size - len, "%s%s=%s", k > first_key ? ", " : "",
-                     a->keys[k].key, a->keys[k].values[sweep_value_index(a, i, k)]);
-    len = n > 0 && len + (size_t)n < size ? len + (size_t)n : size - 1;
+    len = fb_text_append(buf, size, len, "%s%s=%s", k > first_key ? ", " : "", a->keys[k].key,
+                         a->keys[k].values[sweep_value_index(a, i, k)]);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -373,4 +374,15 @@ void fb_format_shortest(double v, int min_digits, char *buf, size_t size)
     if (strtod(buf, NULL) == v)
       return;
   }
+}
+
+size_t fb_text_append(char *buf, size_t size, size_t len, const char *fmt, ...)
+{
+  if (len + 1 >= size)
+    return size ? size - 1 : 0;
+  va_list ap;
+  va_start(ap, fmt);
+  const int w = vsnprintf(buf + len, size - len, fmt, ap);
+  va_end(ap);
+  return w >= 0 && len + (size_t)w < size ? len + (size_t)w : size - 1;
 }

@@ -123,4 +123,14 @@ int fb_decimal_check_exact(const char *text, double v, fb_err *err);
  * 15, every integer up to 1e15 is written out ("1000000", not "1e+06"). */
 void fb_format_shortest(double v, int min_digits, char *buf, size_t size);
 
+/* Appends printf-formatted text to the text buf (size bytes) holds in its
+ * first len, and returns the new length: size - 1 once the text no longer
+ * fits (it is then cut there, so the caller's loop may stop at
+ * len + 1 >= size). buf stays NUL-terminated. */
+size_t fb_text_append(char *buf, size_t size, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
 #endif

@@ -11,6 +11,7 @@
 
 #include "flexbond/sim.h"
 
+#include "core/util.h"
 #include "io/scenario_internal.h"
 
 /* The error "KEY: message" about the value with logical key key, located. */
@@ -331,13 +332,6 @@ static const char *sc_mount_name_at(const void *ctx, size_t i)
   return ((const fb_scenario *)ctx)->mount[i].name;
 }
 
-/* printf text appended to buf (of size) at *len, truncated at its end. */
-static void sc_append(char *buf, size_t size, size_t *len, const char *fmt, const char *arg)
-{
-  const int w = snprintf(buf + *len, size - *len, fmt, arg);
-  *len = w >= 0 && *len + (size_t)w < size ? *len + (size_t)w : size - 1;
-}
-
 /* For an unknown name: " (did you mean 'LF'?)" when one is close, then
  * "; the corners are LF, RF, ..." (what: "corners"), into buf. */
 static void sc_names_hint(const fb_scenario *s, const char *word, size_t n, ml_name_fn name_at,
@@ -347,11 +341,11 @@ static void sc_names_hint(const fb_scenario *s, const char *word, size_t n, ml_n
   size_t len = 0;
   buf[0] = '\0';
   if (near)
-    sc_append(buf, size, &len, " (did you mean '%s'?)", near);
-  sc_append(buf, size, &len, n ? "; the %s are " : "; there are no %s", what);
+    len = fb_text_append(buf, size, len, " (did you mean '%s'?)", near);
+  len = fb_text_append(buf, size, len, n ? "; the %s are " : "; there are no %s", what);
   for (size_t k = 0; k < n && len + 1 < size; ++k) {
-    sc_append(buf, size, &len, "%s", k ? ", " : "");
-    sc_append(buf, size, &len, "%s", name_at(s, k));
+    len = fb_text_append(buf, size, len, "%s", k ? ", " : "");
+    len = fb_text_append(buf, size, len, "%s", name_at(s, k));
   }
 }
 

@@ -228,8 +228,7 @@ static int ov_unique_name(const ml_ctx *c, struct fy_node *root, const char *nam
     size_t len = 0;
     list[0] = '\0';
     for (size_t i = 0; i < m.n && len + 1 < sizeof list; ++i) {
-      int k = snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", m.paths[i]);
-      len = k > 0 && len + (size_t)k < sizeof list ? len + (size_t)k : sizeof list - 1;
+      len = fb_text_append(list, sizeof list, len, "%s%s", i ? ", " : "", m.paths[i]);
     }
     rc = fb_err_set(c->err, FB_EINVAL,
                     "%s: key '%s' is ambiguous: it occurs %zu times (%s); give the dotted path",

@@ -155,8 +155,7 @@ static void sc_format_numbers(const double *v, size_t n, char *buf, size_t size)
   size_t len = 0;
   buf[0] = '\0';
   for (size_t i = 0; i < n && len + 1 < size; ++i) {
-    int w = snprintf(buf + len, size - len, "%s%.10g", i ? ", " : "", v[i]);
-    len = w > 0 && len + (size_t)w < size ? len + (size_t)w : size - 1;
+    len = fb_text_append(buf, size, len, "%s%.10g", i ? ", " : "", v[i]);
   }
 }
 

@@ -638,8 +638,7 @@ static void sch_type_text(const sch_key *k, char *buf, size_t size)
   if (k->type == SCH_CHOICE) {
     size_t len = 0;
     for (size_t i = 0; k->choices[i] && len + 1 < size; ++i) {
-      int w = snprintf(buf + len, size - len, "%s`%s`", i ? " \\| " : "", k->choices[i]);
-      len = w > 0 && len + (size_t)w < size ? len + (size_t)w : size - 1;
+      len = fb_text_append(buf, size, len, "%s`%s`", i ? " \\| " : "", k->choices[i]);
     }
   } else if (k->type == SCH_CUSTOM && k->type_doc) {
     snprintf(buf, size, "%s", k->type_doc);
@@ -663,16 +662,14 @@ static void sch_group_text(const sch_table *t, const sch_key *k, char *buf, size
 {
   const char *dot = strrchr(k->path, '.');
   const size_t parent = dot ? (size_t)(dot - k->path) + 1 : 0;
-  size_t len = 0;
-  int w = snprintf(buf, size, "exactly one of ");
-  len = w > 0 && (size_t)w < size ? (size_t)w : 0;
+  buf[0] = '\0';
+  size_t len = fb_text_append(buf, size, 0, "exactly one of ");
   for (size_t i = 0, n = 0; i < t->n && len + 1 < size; ++i) {
     const sch_key *o = &t->key[i];
     if (!o->one_of || strcmp(o->one_of, k->one_of) != 0 ||
         strncmp(o->path, k->path, parent) != 0 || strchr(o->path + parent, '.'))
       continue;
-    w = snprintf(buf + len, size - len, "%s`%s`", n++ ? ", " : "", o->path + parent);
-    len = w > 0 && len + (size_t)w < size ? len + (size_t)w : size - 1;
+    len = fb_text_append(buf, size, len, "%s`%s`", n++ ? ", " : "", o->path + parent);
   }
 }
 
@@ -693,8 +690,7 @@ static void sch_default_text(const sch_table *t, const sch_key *k, char *buf, si
     size_t len = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < k->min_items && len + 1 < size; ++i) {
-      int w = snprintf(buf + len, size - len, "%s%g", i ? ", " : "", k->def_list[i]);
-      len = w > 0 && len + (size_t)w < size ? len + (size_t)w : size - 1;
+      len = fb_text_append(buf, size, len, "%s%g", i ? ", " : "", k->def_list[i]);
     }
   } else
     snprintf(buf, size, "%g", k->def);
