@@ -205,6 +205,9 @@ derive d_missing.yaml s_deck.yaml -e 's/deck: hull.inp/deck: no_such_deck.inp/'
 # A deck whose left-front suspension node set has another name.
 sed 's/NSET=SUSP_LF\b/NSET=SUSP_XX/' hull.inp >d_noset.inp
 derive d_noset.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_noset.inp/'
+# A hull mass the deck has no MASS_<NAME> set for (hull.inp has none).
+derive d_nomass.yaml s_deck.yaml \
+  -e 's/^  material:/  masses: [{name: ballast, mass: 300, x: -2.00, y: 0.55}]\n  material:/'
 
 # deck_at NAME: "NAME.yaml:LINE:COL: hull.mesh.deck:", where NAME.yaml names its deck.
 deck_at() {
@@ -302,6 +305,7 @@ CASES=(
   "2|mesh d_binary.yaml|flexbond: $(deck_at d_binary) ./d_binary.inp:1: binary data (byte 0x7f in column 1): not an Abaqus input deck"
   "5|mesh d_missing.yaml --export @FILE.inp|flexbond: $(deck_at d_missing) ./no_such_deck.inp: cannot open|No such file"
   "2|run d_noset.yaml --system flexible -o @OUT|flexbond: $(deck_at d_noset) ./d_noset.inp: the mesh has no node set SUSP_LF (the vehicle needs LOAD,"
+  "2|run d_nomass.yaml --system flexible -o @OUT|flexbond: $(at d_nomass.yaml 'masses: [' '{') hull.masses[0]: ./hull.inp: the mesh has no node set MASS_BALLAST (the vehicle needs LOAD,"
 
   # Command lines.
   "1|run s_ok.yaml -o @OUT --frobnicate|flexbond run: unknown option '--frobnicate'|flexbond run --help"

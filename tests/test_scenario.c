@@ -481,6 +481,10 @@ typedef struct bad_case {
   "-1.05}\n"
 #define FE_OK "  fe: {mass_matrix: consistent, drill_factor: 1e-4, damping_ratio: 0.02}\n"
 
+/* hull.masses with one mass of name and mass at (x, 0). */
+#define HULL_MASS(name, mass, x)                                                               \
+  "  masses: [{name: " name ", mass: " mass ", x: " x ", y: 0}]\n"
+
 static const bad_case bad_cases[] = {
     /* System 2's optional hull sections (lines 9 and 10 when added). */
     {EDGES_LINE, EDGES_LINE "  mesh: {deck: h.inp, generator: {}}\n" FE_OK, NULL, NULL,
@@ -627,6 +631,39 @@ static const bad_case bad_cases[] = {
     /* 30000 N / 9.81 = 3058 kg is less than the hull alone. */
     {"payload: weight-only", "payload: lumped", "total_weight: 117720", "total_weight: 30000",
      FB_EINVAL, "bad.yaml:11:12:", "load.payload: a lumped payload needs", NULL},
+    /* Hull masses (line 7 when added): on the floor, named uniquely among
+     * themselves (in capitals too: their node sets), the mounts and the
+     * corners, counted in a lumped payload's mass. */
+    {"  Iyy: 15175.96\n", "  Iyy: 15175.96\n" HULL_MASS("battery", "300", "3.5"), NULL, NULL,
+     FB_EINVAL, "bad.yaml:7:",
+     "hull.masses[0].x: must lie on the hull's floor, between hull.edges.rear_x = "
+     "-2.657984123 and front_x = 2.478133119 m (got 3.5)",
+     NULL},
+    {"  Iyy: 15175.96\n",
+     "  Iyy: 15175.96\n  masses:\n    - {name: battery, mass: 300, x: 0, y: 0}\n"
+     "    - {name: battery, mass: 100, x: 1, y: 0}\n",
+     NULL, NULL, FB_EINVAL, "bad.yaml:9:",
+     "hull.masses[1]: a second hull mass named battery (hull mass names are unique)", NULL},
+    {"  Iyy: 15175.96\n",
+     "  Iyy: 15175.96\n  masses:\n    - {name: battery, mass: 300, x: 0, y: 0}\n"
+     "    - {name: Battery, mass: 100, x: 1, y: 0}\n",
+     NULL, NULL, FB_EINVAL, "bad.yaml:9:",
+     "hull.masses[1]: hull mass battery's name in other capitals", "node set MASS_BATTERY"},
+    {"  Iyy: 15175.96\n", "  Iyy: 15175.96\n" HULL_MASS("engine", "300", "0"), NULL, NULL,
+     FB_EINVAL, "bad.yaml:7:", "hull.masses[0]: a mount is named engine already", NULL},
+    {"  Iyy: 15175.96\n", "  Iyy: 15175.96\n" HULL_MASS("LF", "300", "0"), NULL, NULL,
+     FB_EINVAL, "bad.yaml:7:", "hull.masses[0]: a corner is named LF already", NULL},
+    {"  Iyy: 15175.96\n", "  Iyy: 15175.96\n" HULL_MASS("battery", "0", "0"), NULL, NULL,
+     FB_EINVAL, "bad.yaml:7:", "hull.masses[0].mass: must be > 0 kg (got 0)", NULL},
+    {"  Iyy: 15175.96\n", "  Iyy: 15175.96\n  masses: [{mass: 300, x: 0, y: 0}]\n", NULL, NULL,
+     FB_EPARSE, "bad.yaml:7:", "hull.masses[0]: missing required key 'name'", NULL},
+    /* 117720 N / 9.81 = 12000 kg, less than the hull and its 8 t. */
+    {"payload: weight-only", "payload: lumped", "  Iyy: 15175.96\n",
+     "  Iyy: 15175.96\n" HULL_MASS("ballast", "8000", "0"), FB_EINVAL, "bad.yaml:12:12:",
+     "load.payload: a lumped payload needs load.total_weight / gravity (12000 kg) > hull.mass "
+     "+ "
+     "hull.masses (4041.72 + 8000 kg)",
+     NULL},
     /* Structure: corners. */
     {"  axles:", "  axels:", NULL, NULL, FB_EPARSE,
      "bad.yaml:19:3:", "suspensions.axels: unknown key 'axels' (did you mean 'axles'?)", NULL},

@@ -22,6 +22,7 @@
 #include "apc_layout.h"
 #include "check.h"
 #include "energy_balance.h"
+#include "vehicle_util.h"
 
 #define MUST(call, err)                                                                        \
   do {                                                                                         \
@@ -71,23 +72,7 @@ static void test_static_weight(fb_scenario *s)
     CHECK(worst < 1e-6 * weight);
     /* The sum of the tire forces is not an output, but each tire's
      * deflection is the state of its spring: k_t times it. */
-    double sum = 0.0, expect = weight;
-    for (size_t i = 0; i < nx; ++i) {
-      const char *name = fb_bd_state_name(bd, i);
-      for (int c = 0; c < APC_NCORNERS; ++c) {
-        char want[48];
-        snprintf(want, sizeof want, "susp_%s.tire_spring.q", apc_corner_name(c));
-        if (strcmp(name, want) == 0)
-          sum += s->corner[c].tire_k * xeq[i];
-      }
-    }
-    for (int c = 0; c < APC_NCORNERS; ++c)
-      expect += s->corner[c].wheel_mass * s->gravity;
-    fprintf(stderr, "System 2 static: sum of tire spring forces %.10g N, weight %.10g N\n", sum,
-            expect);
-    /* Tire compression is positive; the force balance holds to 1e-10 of
-     * the weight per DOF, so 1e-8 relative for the sum of six. */
-    CHECK_NEAR(sum, expect, 1e-8 * expect);
+    check_tires_carry_weight(s, bd, xeq, "System 2 static");
   }
   free(x0);
   free(xeq);

@@ -93,4 +93,43 @@ static inline int load_replaced(const char *start, size_t skip, const char *end,
   return rc;
 }
 
+/* The weight the tires carry at rest: the load, the mounted bodies, the
+ * wheels (N). */
+static inline double vehicle_weight(const fb_scenario *s)
+{
+  double w = s->total_weight;
+  for (size_t b = 0; b < s->nmounts; ++b)
+    w += s->mount[b].mass * s->gravity;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    w += s->corner[c].wheel_mass * s->gravity;
+  return w;
+}
+
+/* The sum of the tire spring forces at state x of the vehicle's block
+ * diagram bd: each tire's deflection is its spring's state, k_t times it
+ * (compression positive). */
+static inline double tire_spring_sum(const fb_scenario *s, const fb_bd *bd, const double *x)
+{
+  double sum = 0.0;
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    char want[64];
+    snprintf(want, sizeof want, "susp_%s.tire_spring.q", s->corner[c].name);
+    for (size_t i = 0; i < fb_bd_nstates(bd); ++i)
+      if (!strcmp(fb_bd_state_name(bd, i), want))
+        sum += s->corner[c].tire_k * x[i];
+  }
+  return sum;
+}
+
+/* At the static state x of bd, the tires carry the whole weight: the
+ * force balance holds to 1e-10 of the weight per DOF (the static
+ * solver's tolerance), so 1e-8 relative for the sum over the tires. */
+static inline void check_tires_carry_weight(const fb_scenario *s, const fb_bd *bd,
+                                            const double *x, const char *what)
+{
+  const double sum = tire_spring_sum(s, bd, x), expect = vehicle_weight(s);
+  fprintf(stderr, "%s: sum of tire spring forces %.10g N, weight %.10g N\n", what, sum, expect);
+  CHECK_NEAR(sum, expect, 1e-8 * expect);
+}
+
 #endif

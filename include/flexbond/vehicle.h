@@ -50,6 +50,19 @@ typedef struct fb_mount {
   double x, y;      /* attachment point, m */
 } fb_mount;
 
+/* A non-structural mass fixed to the hull's floor (a battery, ballast, an
+ * armour plate): pure inertia. Its weight is part of load.total_weight,
+ * which the load points carry; its mass moves with the hull, System 1's
+ * (m r r' on the rigid inertia, r = [1, y, -x]) and System 2's (m on the
+ * three translations of its floor node, node set MASS_<NAME>). */
+typedef struct fb_hull_point_mass {
+  char *name;  /* unique among the hull masses, mounts and corners; its hull
+                  mesh node set is MASS_ and the name in capitals
+                  ("MASS_BATTERY"); owned */
+  double mass; /* kg */
+  double x, y; /* m, on the floor */
+} fb_hull_point_mass;
+
 /* One suspension: spring and shock absorber in parallel between the hull
  * point and the wheel (massless arm: spring travel = motion_ratio x wheel
  * travel relative to the hull), the wheel mass, the tire spring and
@@ -151,18 +164,23 @@ typedef struct fb_scenario {
   char *frame_origin;          /* NULL: positions relative to the hull's centre of mass */
   int hull_cg_given;           /* hull.centre_of_mass was written */
   double hull_cg_x, hull_cg_y; /* m, in the vehicle frame (0 without a frame) */
-  /* Rigid-body properties (paper, Table 2). With a finite-element hull
-   * they may be left out (hull_mass_given 0): the mesh's are used. */
+  /* Rigid-body properties (paper, Table 2): the structure's, without the
+   * declared masses below. With a finite-element hull they may be left
+   * out (hull_mass_given 0): the mesh's are used. */
   int hull_mass_given;       /* mass, Ixx, Iyy written in the file */
   double hull_mass;          /* kg */
   double hull_ixx, hull_iyy; /* kg m^2 about the hull's centre of mass */
+  /* Non-structural masses on the hull's floor (hull.masses), in the
+   * file's order. */
+  fb_hull_point_mass *point_mass;
+  size_t npoint_masses;
   double young, poisson;     /* Pa, - (System 2) */
   double density, thickness; /* kg/m^3, m (System 2) */
   /* Edges whose roll difference is the torsion angle: front and rear
    * edge x, left and right end y (System 2 uses the mesh's node sets). */
   double edge_front_x, edge_rear_x, edge_left_y, edge_right_y; /* m */
-  /* Load: total weight of hull plus payload, spread equally over the
-   * load points. */
+  /* Load: total weight of hull plus payload (the declared hull masses'
+   * included), spread equally over the load points. */
   double total_weight; /* N */
   fb_payload_model payload;
   size_t nload;
@@ -226,6 +244,12 @@ size_t fb_scenario_nattach(const fb_scenario *s);
 /* Index of the corner or mount named name, -1 if none. */
 long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
+/* The declared hull masses' sum (kg), 0 without any. */
+double fb_scenario_point_masses_total(const fb_scenario *s);
+/* The lumped payload's mass (kg): total_weight / gravity less the hull's
+ * structure (hull_mass) and its declared masses; what FB_PAYLOAD_LUMPED
+ * spreads over the load points. */
+double fb_scenario_payload_mass(const fb_scenario *s);
 /* The road has two tracks: wheels with y > 0 run on the left one, the
  * others on the right one. The lateral distance between them (m): the
  * first corner's y (it leads the left track) minus the y of the first
@@ -333,9 +357,9 @@ double fb_scenario_bump_exit(const fb_scenario *s, int corner);
  * full cross-section transverse bulkheads. Every quadrilateral is a
  * rectangle; the side walls' nose triangles (between the glacis plates)
  * are meshed with triangles. Floor lines run through every scenario point
- * (load points, the corners' and mounted bodies' attachments), which are
- * floor nodes (those at y = +-width/2 lie on the side walls' bottom
- * edges).
+ * (load points, the corners' and mounted bodies' attachments, the hull
+ * masses), which are floor nodes (those at y = +-width/2 lie on the side
+ * walls' bottom edges).
  *
  * Frame: x positions are in the vehicle axes, i.e. relative to the hull's
  * centre of mass, for the nominal geometry; the generator computes the
@@ -361,6 +385,8 @@ int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb
  *   SUSP_<CORNER> per corner, <MOUNT> (the mount's name in capitals:
  *              DRIVER, ENGINE) per mounted body: one node each, the
  *              attachment points;
+ *   MASS_<NAME> per hull mass (its name in capitals: MASS_BATTERY): one
+ *              node, its point;
  *   FRONT_EDGE, REAR_EDGE  the end nodes of the floor's front (x_front)
  *              and rear (x_rear) transverse edges, left (y > 0) first:
  *              the torsion angle's edge lines (Fig. 10);
@@ -394,8 +420,8 @@ typedef struct fb_hull {
 void fb_hull_free(fb_hull **h);
 
 /* System 1: I field diag-dominant 3x3 (bounce, roll, pitch; with the
- * lumped payload's point masses when asked) and matrix transformers to
- * the attachment and load points. */
+ * declared hull masses and the lumped payload's point masses when asked)
+ * and matrix transformers to the attachment and load points. */
 int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
 /* A mounted body (driver plus seat, engine, ...): port "hull" (OUT). */
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
@@ -515,11 +541,13 @@ int fb_vehicle_modes(const fb_scenario *s, fb_system sys, int undamped, fb_mode 
 
 /* ---- System 2: the finite-element hull. */
 
-/* A hull mesh with its material and the nodes where the rest of the
- * vehicle meets it, from the mesh's node sets: SUSP_<CORNER> per corner
- * and the mounts' names in capitals (one node each, in "attach" order),
- * LOAD (nload nodes, in the scenario's load-point order), FRONT_EDGE and
- * REAR_EDGE (left end, then right end; the torsion angle's edges). */
+/* A hull mesh with its material, its declared masses and the nodes where
+ * the rest of the vehicle meets it, from the mesh's node sets:
+ * SUSP_<CORNER> per corner and the mounts' names in capitals (one node
+ * each, in "attach" order), LOAD (nload nodes, in the scenario's
+ * load-point order), MASS_<NAME> per hull mass (one node each),
+ * FRONT_EDGE and REAR_EDGE (left end, then right end; the torsion
+ * angle's edges). */
 typedef struct fb_fe_hull {
   fb_mesh *mesh;
   fb_shell_props props;
@@ -528,6 +556,9 @@ typedef struct fb_fe_hull {
   size_t nattach;
   size_t *load_node; /* nload */
   size_t nload;
+  size_t *point_mass_node; /* npoint_masses, in the scenario's order */
+  double *point_mass;      /* their masses, kg */
+  size_t npoint_masses;
   size_t edge_node[4]; /* front left, front right, rear left, rear right */
 } fb_fe_hull;
 
@@ -544,7 +575,8 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 /* Takes the mesh over (*mesh set to NULL) and resolves its node sets
  * against the scenario: every set present with the right number of
  * nodes, each node at the scenario's (x, y) within 1 mm. FB_EMODEL naming
- * the set or node otherwise. */
+ * the set or node otherwise (a hull mass's missing set with the mass's
+ * logical key, "hull.masses.battery"). */
 int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
                    fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err);
 void fb_fe_hull_free(fb_fe_hull **h);
@@ -565,24 +597,32 @@ void fb_mode_set_free(fb_mode_set **m);
 
 /* System 2's hull fragment (same ports as fb_vehicle_rigid_hull): the
  * finite-element matrices as multiport fields on the nodal-velocity
- * multibond (M as an I field, with the lumped payload's point masses when
- * asked; K as a C field; B = beta K as an R field) and selection
- * transformers to the attachment and load nodes' vertical velocities. The
- * torsion probe weighs the C field's state (the nodal displacements) at
- * the FRONT_EDGE and REAR_EDGE nodes. */
+ * multibond (M as an I field: the hull as built, fb_fe_hull_mass_matrix,
+ * with the lumped payload's point masses when asked; K as a C field;
+ * B = beta K as an R field) and selection transformers to the attachment
+ * and load nodes' vertical velocities. The torsion probe weighs the C
+ * field's state (the nodal displacements) at the FRONT_EDGE and
+ * REAR_EDGE nodes. */
 int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull **out,
                              fb_err *err);
 
+/* The hull's mass matrix as built (*M new): the structure's
+ * (fb_fem_assemble) plus each declared mass on the three translations of
+ * its node; the structure's alone without any. */
+int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err);
+
 /* Stiffness-proportional structural damping B = beta K of the hull, with
  * beta = 2 zeta / omega_1 so that the first elastic free-free mode of the
- * bare hull (the data sheet's reference; a lumped payload's masses aside)
- * has the damping ratio zeta (mass-proportional damping would damp the rigid-body
- * motion; Clough & Penzien, "Dynamics of Structures", 2nd ed., sec. 12-3).
- * *B is new (may be NULL if only beta is wanted). */
+ * hull as built (fb_fe_hull_mass_matrix: its structure and its declared
+ * masses; a lumped payload's masses aside) has the damping ratio zeta
+ * (mass-proportional damping would damp the rigid-body motion; Clough &
+ * Penzien, "Dynamics of Structures", 2nd ed., sec. 12-3). *B is new (may
+ * be NULL if only beta is wanted). */
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err);
 
-/* The nmodes lowest modes of the free-free hull (rigid-body modes first,
- * *nrigid of them at ~0 Hz): frequencies only. */
+/* The nmodes lowest modes of the free-free hull as built (its declared
+ * masses on it; rigid-body modes first, *nrigid of them at ~0 Hz):
+ * frequencies only. */
 int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
                           fb_err *err);
 

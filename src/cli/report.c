@@ -231,11 +231,15 @@ static void write_payload(FILE *fp, const fb_scenario *s)
             s->total_weight, s->nload);
     return;
   }
-  double payload = s->total_weight / s->gravity - s->hull_mass;
+  const double payload = fb_scenario_payload_mass(s);
+  char masses[64] = "";
+  if (s->npoint_masses)
+    snprintf(masses, sizeof masses, " - %.10g kg (the hull masses)",
+             fb_scenario_point_masses_total(s));
   fprintf(fp,
-          "- Payload: lumped (`lumped`): its mass, %.10g N / %.10g m/s^2 - %.10g kg = %.6g kg, "
-          "is spread equally over the %zu load points (%.6g kg each).\n",
-          s->total_weight, s->gravity, s->hull_mass, payload, s->nload,
+          "- Payload: lumped (`lumped`): its mass, %.10g N / %.10g m/s^2 - %.10g kg%s = %.6g "
+          "kg, is spread equally over the %zu load points (%.6g kg each).\n",
+          s->total_weight, s->gravity, s->hull_mass, masses, payload, s->nload,
           payload / (double)s->nload);
 }
 
@@ -273,10 +277,11 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
           s->hull_mass_matrix == FB_MASS_LUMPED ? "lumped" : "consistent",
           s->hull_drill_factor);
   fprintf(fp,
-          "- System 2's structural damping: B = beta K with beta = %.4g s, so that the bare "
-          "hull's first elastic free-free mode (%.4g Hz) has a damping ratio of %.3g "
+          "- System 2's structural damping: B = beta K with beta = %.4g s, so that the %s "
+          "first elastic free-free mode (%.4g Hz) has a damping ratio of %.3g "
           "(stiffness-proportional only, which leaves the rigid-body motion undamped).\n",
-          o->hull_beta, o->hull_f1, s->hull_damping_ratio);
+          o->hull_beta, s->npoint_masses ? "hull's (with its declared masses)" : "bare hull's",
+          o->hull_f1, s->hull_damping_ratio);
   write_hull_order(fp, o);
 }
 

@@ -104,6 +104,9 @@ void fb_scenario_free(fb_scenario **s)
   for (size_t i = 0; p->mount && i < p->nmounts; ++i)
     free(p->mount[i].name);
   free(p->mount);
+  for (size_t i = 0; p->point_mass && i < p->npoint_masses; ++i)
+    free(p->point_mass[i].name);
+  free(p->point_mass);
   for (size_t i = 0; p->corner && i < p->ncorners; ++i)
     free(p->corner[i].name);
   free(p->corner);
@@ -185,6 +188,23 @@ static int sc_copy_mounts(const fb_scenario *s, fb_scenario *copy)
   return ok;
 }
 
+/* The copy's items are zeroed until each is copied, so that a failure
+ * frees nothing twice. */
+static int sc_copy_point_masses(const fb_scenario *s, fb_scenario *copy)
+{
+  const size_t n = s->npoint_masses;
+  if (!s->point_mass)
+    return 1;
+  copy->point_mass = calloc(n ? n : 1, sizeof *copy->point_mass);
+  int ok = copy->point_mass != NULL;
+  for (size_t i = 0; ok && i < n; ++i) {
+    copy->point_mass[i] = s->point_mass[i];
+    copy->point_mass[i].name = NULL;
+    ok = sc_copy_string(s->point_mass[i].name, &copy->point_mass[i].name);
+  }
+  return ok;
+}
+
 static int sc_copy_corners(const fb_scenario *s, fb_scenario *copy)
 {
   fb_corner_params *c = NULL;
@@ -252,6 +272,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->name = copy->path = copy->frame_origin = copy->road_profile = copy->hull_deck = NULL;
   copy->load_x = copy->load_y = NULL;
   copy->mount = NULL;
+  copy->point_mass = NULL;
   copy->corner = NULL;
   copy->output = NULL;
   copy->inputs = NULL;
@@ -264,6 +285,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = sc_copy_mounts(s, copy) && ok;
+  ok = sc_copy_point_masses(s, copy) && ok;
   ok = sc_copy_corners(s, copy) && ok;
   ok = sc_copy_outputs(s, copy) && ok;
   ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;

@@ -4,10 +4,12 @@
  * names its value's logical key (fb_err.key) and is located through the
  * scenario's origins (fb_scenario_locate), in the file's units (km/h,
  * degrees). */
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 
 #include "flexbond/sim.h"
 
@@ -79,16 +81,25 @@ static int sc_check_load(const fb_scenario *s, fb_err *err)
       return sc_fail(s, err, key, "must be finite (got x = %g, y = %g)", s->load_x[i],
                      s->load_y[i]);
     }
-  /* The lumped model spreads the payload mass W / g - m_hull over the
-   * points (data sheet, "Load and gravity"): it must be positive. A
-   * finite-element hull's own mass is checked when its mesh is built. */
+  /* The lumped model spreads the payload mass W / g - m_hull - the hull's
+   * declared masses over the points (data sheet, "Load and gravity"): it
+   * must be positive. A finite-element hull's own mass is checked when
+   * its mesh is built. */
   const double total_mass = s->total_weight / s->gravity;
-  if (s->payload == FB_PAYLOAD_LUMPED && s->hull_mass_given && !(total_mass > s->hull_mass))
-    return sc_fail(s, err, "load.payload",
-                   "a lumped payload needs load.total_weight / gravity (%.10g kg) > "
-                   "hull.mass (%.10g kg)",
-                   total_mass, s->hull_mass);
-  return FB_OK;
+  const double masses = fb_scenario_point_masses_total(s);
+  if (s->payload != FB_PAYLOAD_LUMPED || fb_scenario_payload_mass(s) > 0)
+    return FB_OK;
+  char terms[128];
+  if (!s->npoint_masses)
+    snprintf(terms, sizeof terms, "hull.mass (%.10g kg)", s->hull_mass);
+  else if (s->hull_mass > 0)
+    snprintf(terms, sizeof terms, "hull.mass + hull.masses (%.10g + %.10g kg)", s->hull_mass,
+             masses);
+  else
+    snprintf(terms, sizeof terms, "hull.masses (%.10g kg)", masses);
+  return sc_fail(s, err, "load.payload",
+                 "a lumped payload needs load.total_weight / gravity (%.10g kg) > %s",
+                 total_mass, terms);
 }
 
 /* A table has 2 .. FB_DAMPER_MAX_POINTS knots (0: the linear damper). */
@@ -189,6 +200,57 @@ static int sc_check_names(const fb_scenario *s, fb_err *err)
                        s->mount[k].name);
       }
   return FB_OK;
+}
+
+/* A hull mass's name: unique among the hull masses (in capitals too:
+ * its mesh node set is MASS_<NAME>), the mounts and the corners. */
+static int sc_check_point_mass_name(const fb_scenario *s, size_t k, fb_err *err)
+{
+  const char *name = s->point_mass[k].name;
+  char key[160];
+  snprintf(key, sizeof key, "hull.masses.%s", name);
+  for (size_t j = 0; j < k; ++j) {
+    const char *other = s->point_mass[j].name;
+    if (sc_same(name, other))
+      return sc_fail(s, err, key, "a second hull mass named %s (hull mass names are unique)",
+                     name);
+    if (other && !strcasecmp(name, other)) {
+      char set[128];
+      snprintf(set, sizeof set, "%s", name);
+      for (char *c = set; *c; ++c)
+        *c = (char)toupper((unsigned char)*c);
+      return sc_fail(s, err, key,
+                     "hull mass %s's name in other capitals: both would be the mesh's node set "
+                     "MASS_%s",
+                     other, set);
+    }
+  }
+  const char *kind = fb_scenario_mount_find(s, name) >= 0    ? "mount"
+                     : fb_scenario_corner_find(s, name) >= 0 ? "corner"
+                                                             : NULL;
+  if (kind)
+    return sc_fail(s, err, key,
+                   "a %s is named %s already (the names of hull masses, mounts and corners "
+                   "are unique)",
+                   kind, name);
+  return FB_OK;
+}
+
+static int sc_check_point_masses(const fb_scenario *s, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t k = 0; !rc && k < s->npoint_masses; ++k) {
+    const fb_hull_point_mass *m = &s->point_mass[k];
+    if (!m->name)
+      return fb_err_set(err, FB_EINVAL, "hull.masses[%zu]: has no name", k),
+             fb_err_set_key(err, "hull.masses[%zu]", k);
+    rc = sc_check_point_mass_name(s, k, err);
+    char key[160];
+    snprintf(key, sizeof key, "hull.masses.%s", m->name);
+    if (!rc)
+      rc = sc_check_on_floor(s, key, m->x, m->y, err);
+  }
+  return rc;
 }
 
 /* Every attachment point on the floor, no two corners (two wheels cannot
@@ -440,6 +502,8 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = sc_check_dampers(s, err);
   if (!rc)
     rc = sc_check_points(s, err);
+  if (!rc)
+    rc = sc_check_point_masses(s, err);
   if (!rc && s->road_kind != FB_ROAD_BUMP)
     rc = sc_check_other_road(s, err);
   if (!rc)

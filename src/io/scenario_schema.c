@@ -15,7 +15,7 @@
 /* What the hooks share while a document is read (sch_reader.user). */
 typedef struct sc_reading {
   fb_symtab *params;
-  size_t corner_cap, mount_cap, output_cap;
+  size_t corner_cap, mount_cap, output_cap, point_mass_cap;
 } sc_reading;
 
 /* ---- Conversions between the file's units and the struct's. */
@@ -292,6 +292,9 @@ static int sc_item_begin(sch_reader *r, const sch_key *k, size_t index, size_t c
   if (!strcmp(k->view, "mounts"))
     return sc_grow(r, (void **)&s->mount, &s->nmounts, &rd->mount_cap, sizeof *s->mount, 1,
                    item);
+  if (!strcmp(k->view, "hull.masses"))
+    return sc_grow(r, (void **)&s->point_mass, &s->npoint_masses, &rd->point_mass_cap,
+                   sizeof *s->point_mass, 1, item);
   if (!strcmp(k->view, "outputs"))
     return sc_grow(r, (void **)&s->output, &s->noutputs, &rd->output_cap, sizeof *s->output, 1,
                    item);
@@ -309,7 +312,7 @@ static int sc_relabel(sch_reader *r, size_t mark, const char *item_path, const c
   return sch_origins_relabel(r, mark, item_path, prefix, copy);
 }
 
-/* A mount or a single corner: its origins as view.name. */
+/* A mount, a hull mass or a single corner: its origins as view.name. */
 static int sc_named_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                         const char *item_path, size_t mark, void *base, void *item)
 {
@@ -375,14 +378,21 @@ static int sc_axle_end(sch_reader *r, const sch_key *k, struct fy_node *node,
 SC_ITEMS(mount, mount, nmounts)
 SC_ITEMS(corner, corner, ncorners)
 SC_ITEMS(output, output, noutputs)
+SC_ITEMS(point_mass, point_mass, npoint_masses)
 SC_ITEM_NAME(mount, fb_mount)
 SC_ITEM_NAME(corner, fb_corner_params)
+SC_ITEM_NAME(point_mass, fb_hull_point_mass)
 
 static const sch_ops sc_mounts = {.item_begin = sc_item_begin,
                                   .item_end = sc_named_end,
                                   .count = sc_mount_count,
                                   .item_at = sc_mount_at,
                                   .item_name = sc_mount_name};
+static const sch_ops sc_point_masses = {.item_begin = sc_item_begin,
+                                        .item_end = sc_named_end,
+                                        .count = sc_point_mass_count,
+                                        .item_at = sc_point_mass_at,
+                                        .item_name = sc_point_mass_name};
 static const sch_ops sc_axles = {.item_begin = sc_item_begin,
                                  .item_end = sc_axle_end,
                                  .count = sc_corner_count,
@@ -752,6 +762,7 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
 #define C_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_corner_params, f)
 #define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f)
 #define O_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f)
+#define P_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_point_mass, f)
 #define S_OFF(f) S_AT(DOUBLE, f)
 #define C_OFF(f) C_AT(DOUBLE, f)
 #define M_OFF(f) M_AT(DOUBLE, f)
@@ -778,6 +789,18 @@ static const sch_key sc_mount_keys[] = {
     NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y)),
 };
 static const sch_table sc_mount_table = TABLE(sc_mount_keys, NULL);
+
+/* A non-structural mass on the hull's floor: hull.masses' items. */
+static const sch_key sc_point_mass_keys[] = {
+    STRING(NAME, "name", REQ,
+           "its name, unique among the hull masses, mounts and corners; its mesh node set is "
+           "`MASS_<NAME>`, the name in capitals",
+           P_AT(STRING, name)),
+    NUMBER("mass", "kg", POSITIVE, REQ, "its mass", P_AT(DOUBLE, mass)),
+    NUMBER("x", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, x)),
+    NUMBER("y", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, y)),
+};
+static const sch_table sc_point_mass_table = TABLE(sc_point_mass_keys, NULL);
 
 static const sch_key sc_corner_keys[] = {
     STRING(NAME, "name", REQ,
@@ -844,17 +867,24 @@ static const sch_key sc_keys[] = {
            S_AT(STRING, frame_origin)),
     SECTION("hull", REQ, "the hull", &sc_hull_ops),
     NUMBER("hull.mass", "kg", POSITIVE, OPT,
-           "hull mass; with mass, Ixx and Iyy left out, the finite-element hull's",
+           "the hull structure's mass (`masses` aside); with mass, Ixx and Iyy left out, the "
+           "finite-element hull's",
            S_OFF(hull_mass), .ops = &sc_mass_present),
-    NUMBER("hull.Ixx", "kg m^2", POSITIVE, OPT, "roll inertia about the hull's centre of mass",
-           S_OFF(hull_ixx), .ops = &sc_mass_present),
-    NUMBER("hull.Iyy", "kg m^2", POSITIVE, OPT, "pitch inertia about the hull's centre of mass",
-           S_OFF(hull_iyy), .ops = &sc_mass_present),
+    NUMBER("hull.Ixx", "kg m^2", POSITIVE, OPT,
+           "the structure's roll inertia about its centre of mass", S_OFF(hull_ixx),
+           .ops = &sc_mass_present),
+    NUMBER("hull.Iyy", "kg m^2", POSITIVE, OPT,
+           "the structure's pitch inertia about its centre of mass", S_OFF(hull_iyy),
+           .ops = &sc_mass_present),
     SECTION("hull.centre_of_mass", OPT,
             "the hull's centre of mass in the frame (only with `frame`; default: the mesh's)",
             &sc_cg_present),
     NUMBER("hull.centre_of_mass.x", "m", ANY, REQ, "its x", S_OFF(hull_cg_x)),
     NUMBER("hull.centre_of_mass.y", "m", ANY, REQ, "its y", S_OFF(hull_cg_y)),
+    LIST("hull.masses", OPT,
+         "non-structural masses fixed to the floor (battery, ballast), inertia only: their "
+         "weight is in `load.total_weight`",
+         &sc_point_mass_table, "hull.masses", &sc_point_masses),
     SECTION("hull.material", REQ, "the plates' steel (System 2)", NULL),
     NUMBER("hull.material.young", "Pa", POSITIVE, REQ, "Young's modulus", S_OFF(young)),
     NUMBER("hull.material.poisson", NULL, HALF_OPEN(0, 0.5), REQ, "Poisson's ratio",
@@ -904,14 +934,16 @@ static const sch_key sc_keys[] = {
            "fictitious drilling stiffness of the quadrilaterals (fem.h)",
            S_OFF(hull_drill_factor)),
     NUMBER("hull.fe.damping_ratio", NULL, HALF_OPEN(0, 1), REQ,
-           "damping ratio of the bare hull's first elastic free-free mode (B = beta K)",
+           "damping ratio of the hull's first elastic free-free mode, with its `masses` (B = "
+           "beta K)",
            S_OFF(hull_damping_ratio)),
     WHOLE("hull.fe.modes", CLOSED(0, 100000), DEF(0),
           "0: full order; N >= 6: N free-free modes and a static correction",
           S_AT(INT, hull_modes)),
     SECTION("load", REQ, "hull plus payload", NULL),
     NUMBER("load.total_weight", "N", POSITIVE, REQ,
-           "weight of hull plus payload, in equal shares over the load points",
+           "weight of hull (its `masses` included) plus payload, in equal shares over the load "
+           "points",
            S_OFF(total_weight)),
     CHOICE("load.payload", sc_payloads, REQ, "payload mass model", S_AT(INT, payload)),
     CUSTOM("load.points", "m", "`{grid: {x: [...], y: [...]}}` or `[[x, y], ...]`", REQ,
@@ -1022,7 +1054,7 @@ static int sc_keep_origins(sch_reader *r, fb_scenario *s)
 
 int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s)
 {
-  sc_reading rd = {params, 0, 0, 0};
+  sc_reading rd = {params, 0, 0, 0, 0};
   sch_reader r = {c, &rd, NULL, 0, 0};
   c->globals = params;
   int rc = sch_read(&r, &sc_schema, root, s);

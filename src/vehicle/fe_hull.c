@@ -18,6 +18,8 @@ void fb_fe_hull_free(fb_fe_hull **h)
   fb_mesh_free(&(*h)->mesh);
   free((*h)->attach_node);
   free((*h)->load_node);
+  free((*h)->point_mass_node);
+  free((*h)->point_mass);
   free(*h);
   *h = NULL;
 }
@@ -31,7 +33,8 @@ static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const si
     return fb_err_set(err, FB_EMODEL,
                       "the mesh has no node set %s (the vehicle needs LOAD, one set per "
                       "mounted body named as it in capitals, SUSP_<CORNER> per corner, "
-                      "FRONT_EDGE and REAR_EDGE, as 'flexbond mesh --export' writes)",
+                      "MASS_<NAME> per hull mass, FRONT_EDGE and REAR_EDGE, as 'flexbond "
+                      "mesh --export' writes)",
                       name);
   if (n != count)
     return fb_err_set(err, FB_EMODEL, "the mesh's node set %s has %zu nodes, expected %zu",
@@ -149,6 +152,41 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   return rc;
 }
 
+/* The node of each declared hull mass, MASS_<NAME>: one node, at the
+ * mass's (x, y). A missing or wrong set has the mass's logical key. */
+static int resolve_point_masses(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
+{
+  const size_t n = s->npoint_masses;
+  h->point_mass_node = malloc((n ? n : 1) * sizeof *h->point_mass_node);
+  h->point_mass = malloc((n ? n : 1) * sizeof *h->point_mass);
+  int rc =
+      h->point_mass_node && h->point_mass ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; !rc && k < n; ++k) {
+    const fb_hull_point_mass *m = &s->point_mass[k];
+    char *set = fb_strdup_printf("MASS_%s", m->name);
+    char *kx = fb_strdup_printf("hull.masses.%s.x", m->name);
+    char *ky = fb_strdup_printf("hull.masses.%s.y", m->name);
+    const size_t *nodes = NULL;
+    for (char *c = set; c && *c; ++c)
+      *c = (char)toupper((unsigned char)*c);
+    if (!set || !kx || !ky)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+    if (!rc && (rc = nset_nodes(h->mesh, set, 1, &nodes, err)))
+      fb_err_set_key(err, "hull.masses.%s", m->name);
+    if (!rc)
+      rc = check_at(h->mesh, nodes[0], set, kx, ky, m->x, m->y, err);
+    if (!rc) {
+      h->point_mass_node[k] = nodes[0];
+      h->point_mass[k] = m->mass;
+    }
+    free(set);
+    free(kx);
+    free(ky);
+  }
+  h->npoint_masses = rc ? 0 : n;
+  return rc;
+}
+
 int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
                    fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err)
 {
@@ -167,6 +205,8 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
     rc = resolve_attach(s, h, err);
   if (!rc)
     rc = resolve_load_and_edges(s, h, err);
+  if (!rc)
+    rc = resolve_point_masses(s, h, err);
   if (rc) {
     fb_fe_hull_free(&h);
     return rc;
@@ -219,7 +259,9 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
 {
   fb_mat *K = NULL, *M = NULL;
   *nrigid = 0;
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, &M, err);
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
+  if (!rc)
+    rc = fb_fe_hull_mass_matrix(h, &M, err);
   if (!rc && nmodes > fb_mat_nrows(K))
     nmodes = fb_mat_nrows(K);
   /* Dense LAPACK at the default hull's size (~1500 DOFs), ARPACK above. */
@@ -333,26 +375,47 @@ static int add_spring(trips *t, size_t a, size_t b, double k)
   return rc;
 }
 
-/* M plus, for the lumped payload, point masses on the translations of the
- * load nodes. */
-static int hull_mass(const fb_scenario *s, const fb_fe_hull *h, fb_mat **M, fb_err *err)
+/* *M plus the hull's declared masses and mass `each` on each of the first
+ * nload load nodes (0: none), every one on its node's three
+ * translations; *M is replaced, and left as it is when there are none. */
+static int add_point_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat **M,
+                            fb_err *err)
 {
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
-  if (rc || s->payload != FB_PAYLOAD_LUMPED)
-    return rc;
-  double mp = (s->total_weight / s->gravity - s->hull_mass) / (double)h->nload;
+  if (!h->npoint_masses && !nload)
+    return FB_OK;
   trips t = {0};
   trips_visit tv = {&t, 0};
   fb_mat_foreach(*M, visit_push, &tv);
-  for (size_t k = 0; !tv.failed && k < h->nload; ++k)
+  for (size_t k = 0; k < h->npoint_masses + nload; ++k) {
+    const size_t node =
+        k < h->npoint_masses ? h->point_mass_node[k] : h->load_node[k - h->npoint_masses];
+    const double m = k < h->npoint_masses ? h->point_mass[k] : each;
     for (size_t d = 0; d < 3; ++d)
-      tv.failed |= trips_push(&t, 6 * h->load_node[k] + d, 6 * h->load_node[k] + d, mp) != 0;
+      tv.failed |= trips_push(&t, 6 * node + d, 6 * node + d, m) != FB_OK;
+  }
   size_t n = fb_mat_nrows(*M);
   fb_mat_free(M);
-  rc = tv.failed ? fb_err_set(err, FB_ENOMEM, "out of memory")
-                 : fb_mat_new_triplets(n, n, t.n, t.r, t.c, t.v, M, err);
+  int rc = tv.failed ? fb_err_set(err, FB_ENOMEM, "out of memory")
+                     : fb_mat_new_triplets(n, n, t.n, t.r, t.c, t.v, M, err);
   trips_free(&t);
   return rc;
+}
+
+int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err)
+{
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
+  return rc ? rc : add_point_masses(h, 0, 0.0, M, err);
+}
+
+/* The hull's M as built (fb_fe_hull_mass_matrix) plus, for the lumped
+ * payload, its equal shares of the payload mass on the translations of
+ * the load nodes. */
+static int hull_mass(const fb_scenario *s, const fb_fe_hull *h, fb_mat **M, fb_err *err)
+{
+  const int lumped = s->payload == FB_PAYLOAD_LUMPED;
+  const double each = lumped ? fb_scenario_payload_mass(s) / (double)h->nload : 0.0;
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
+  return rc ? rc : add_point_masses(h, lumped ? h->nload : 0, each, M, err);
 }
 
 /* Vehicle K and M: the hull's, plus the lumped bodies on their springs. */
@@ -745,10 +808,11 @@ static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords 
     rc = fb_fem_reduce_free(c->K, c->M, (size_t)s->hull_modes, F, nf, &c->T, &lambda, &c->nb,
                             &nrigid, err);
   free(F);
-  /* beta belongs to the bare hull: with a weight-only payload M is the
-   * bare hull's, and when the reduction kept an elastic mode (its modes
-   * come first, rigid-body ones at the front) that mode gives beta
-   * without another eigensolution. */
+  /* beta belongs to the hull as built (its structure and declared
+   * masses, fb_fe_hull_damping): with a weight-only payload M is that
+   * hull's, and when the reduction kept an elastic mode (its modes come
+   * first, rigid-body ones at the front) that mode gives beta without
+   * another eigensolution. */
   const int own_mode = s->payload != FB_PAYLOAD_LUMPED && (size_t)s->hull_modes > nrigid;
   if (!rc && own_mode)
     rc = damping_beta(s->hull_damping_ratio, nrigid,

@@ -15,6 +15,7 @@
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
+#include "vehicle/vehicle_internal.h"
 
 /* One-port field with a scalar law (mass, stiffness or damping). */
 static int add_scalar(fb_bg *bg, const char *name, fb_bg_kind kind, double v, fb_err *err)
@@ -82,26 +83,31 @@ static void attach_points(const fb_scenario *s, double *x, double *y)
   }
 }
 
-/* Rigid hull inertia in (z, phi, theta): diag(m, Ixx, Iyy), plus, for the
- * lumped payload, point masses m_p at the load points, whose kinetic
- * energy 1/2 m_p (z' + y phi' - x theta')^2 adds m_p r r' with r the
- * rigid row of the point (full 3x3, consistent with the points). */
-static void hull_inertia(const fb_scenario *s, double *m33)
+/* Adds the point mass m at hull point (x, y) to the rigid inertia m33:
+ * its kinetic energy 1/2 m (z' + y phi' - x theta')^2 adds m r r' with r
+ * the rigid row of the point (full 3x3, consistent with the points). */
+static void add_point_inertia(double m, double x, double y, double *m33)
+{
+  double r[3];
+  rigid_row(x, y, r);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      m33[3 * i + j] += m * r[i] * r[j];
+}
+
+void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33)
 {
   memset(m33, 0, 9 * sizeof *m33);
   m33[0] = s->hull_mass;
   m33[4] = s->hull_ixx;
   m33[8] = s->hull_iyy;
+  for (size_t k = 0; k < s->npoint_masses; ++k)
+    add_point_inertia(s->point_mass[k].mass, s->point_mass[k].x, s->point_mass[k].y, m33);
   if (s->payload != FB_PAYLOAD_LUMPED)
     return;
-  double mp = (s->total_weight / s->gravity - s->hull_mass) / (double)s->nload;
-  for (size_t k = 0; k < s->nload; ++k) {
-    double r[3];
-    rigid_row(s->load_x[k], s->load_y[k], r);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        m33[3 * i + j] += mp * r[i] * r[j];
-  }
+  double mp = fb_scenario_payload_mass(s) / (double)s->nload;
+  for (size_t k = 0; k < s->nload; ++k)
+    add_point_inertia(mp, s->load_x[k], s->load_y[k], m33);
 }
 
 /* Torsion of a rigid hull: the roll of the front edge minus that of the
@@ -128,7 +134,7 @@ static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
   if (!ax)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   double *ay = ax + na;
-  hull_inertia(s, m33);
+  fb_vehicle_rigid_inertia(s, m33);
   attach_points(s, ax, ay);
   fb_mat *m = NULL;
   const size_t three = 3;

@@ -287,18 +287,28 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
   return FB_OK;
 }
 
-/* Logical key of special point k's coordinate axis ('x' or 'y'):
- * attachment point k < nattach (in the order of the hull's attach port),
- * then the load points ("load.points[i]", both axes: a grid's point is
- * no single value of the file; fb_scenario_locate finds load.points). */
+/* The special points: the attachment points (in the order of the hull's
+ * attach port), the load points, then the declared hull masses. */
+static size_t npoints(const fb_scenario *s)
+{
+  return fb_scenario_nattach(s) + s->nload + s->npoint_masses;
+}
+
+/* Logical key of special point k's coordinate axis ('x' or 'y'): a
+ * corner's, a mount's or a hull mass's, or a load point's
+ * ("load.points[i]", both axes: a grid's point is no single value of the
+ * file; fb_scenario_locate finds load.points). */
 static void point_name(const fb_scenario *s, size_t k, char axis, char *buf, size_t size)
 {
+  const size_t na = fb_scenario_nattach(s);
   if (k < s->ncorners)
     snprintf(buf, size, "corners.%s.%c", s->corner[k].name, axis);
-  else if (k < fb_scenario_nattach(s))
+  else if (k < na)
     snprintf(buf, size, "mounts.%s.%c", s->mount[k - s->ncorners].name, axis);
+  else if (k < na + s->nload)
+    snprintf(buf, size, "load.points[%zu]", k - na);
   else
-    snprintf(buf, size, "load.points[%zu]", k - fb_scenario_nattach(s));
+    snprintf(buf, size, "hull.masses.%s.%c", s->point_mass[k - na - s->nload].name, axis);
 }
 
 /* Position (x, y) of special point k in the vehicle axes. */
@@ -311,10 +321,29 @@ static void point_xy(const fb_scenario *s, size_t k, double *x, double *y)
   } else if (k < na) {
     *x = s->mount[k - s->ncorners].x;
     *y = s->mount[k - s->ncorners].y;
-  } else {
+  } else if (k < na + s->nload) {
     *x = s->load_x[k - na];
     *y = s->load_y[k - na];
+  } else {
+    *x = s->point_mass[k - na - s->nload].x;
+    *y = s->point_mass[k - na - s->nload].y;
   }
+}
+
+/* Node set of special point k (new): SUSP_ and the corner's name as it
+ * is, the mount's name in capitals, LOAD, or MASS_ and the hull mass's
+ * name in capitals. */
+static char *point_set(const fb_scenario *s, size_t k)
+{
+  const size_t na = fb_scenario_nattach(s);
+  char *set = k < s->ncorners ? fb_strdup_printf("SUSP_%s", s->corner[k].name)
+              : k < na        ? fb_strdup(s->mount[k - s->ncorners].name)
+              : k < na + s->nload
+                  ? fb_strdup("LOAD")
+                  : fb_strdup_printf("MASS_%s", s->point_mass[k - na - s->nload].name);
+  for (char *c = set; c && k >= s->ncorners && *c; ++c)
+    *c = (char)toupper((unsigned char)*c);
+  return set;
 }
 
 /* Sources in insertion order: the x lines are x_rear, x_front, the
@@ -328,9 +357,9 @@ static void point_xy(const fb_scenario *s, size_t k, double *x, double *y)
 static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, double cx, lines *xl,
                        lines *yl, fb_err *err)
 {
-  const size_t npoints = fb_scenario_nattach(s) + s->nload;
-  xl->src = malloc((npoints + X_POINTS(p)) * sizeof *xl->src);
-  yl->src = malloc((npoints + Y_POINTS) * sizeof *yl->src);
+  const size_t n = npoints(s);
+  xl->src = malloc((n + X_POINTS(p)) * sizeof *xl->src);
+  yl->src = malloc((n + Y_POINTS) * sizeof *yl->src);
   if (!xl->src || !yl->src)
     return fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the node lines");
   const double half = 0.5 * p->width;
@@ -344,7 +373,7 @@ static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, doubl
     snprintf(what, sizeof what, "hull.mesh.generator.bulkheads[%zu]", b);
     add_src(xl, p->bulkhead_x[b], what, 1);
   }
-  for (size_t k = 0; k < npoints; ++k) {
+  for (size_t k = 0; k < n; ++k) {
     char what_x[80], what_y[80];
     double x, y;
     point_name(s, k, 'x', what_x, sizeof what_x);
@@ -944,21 +973,16 @@ static int find_node(const build_mesh *b, double x, double y, double z, size_t *
 static int add_point_sets(fb_mesh *m, const build_mesh *coarse, const fb_scenario *s,
                           const lines *xl, const lines *yl, fb_err *err)
 {
-  const size_t na = fb_scenario_nattach(s);
-  const size_t xp = xl->nsrc - na - s->nload;
+  const size_t xp = xl->nsrc - npoints(s);
   int rc = FB_OK;
-  for (size_t k = 0; k < na + s->nload && rc == FB_OK; ++k) {
+  for (size_t k = 0; k < npoints(s) && rc == FB_OK; ++k) {
     char what[80];
     point_name(s, k, 'x', what, sizeof what);
     const double x = xl->values[xl->line[xp + k]], y = yl->values[yl->line[Y_POINTS + k]];
     size_t node = 0;
-    char *set = k < s->ncorners ? fb_strdup_printf("SUSP_%s", s->corner[k].name)
-                : k < na        ? fb_strdup(s->mount[k - s->ncorners].name)
-                                : fb_strdup("LOAD");
+    char *set = point_set(s, k);
     if (!set)
       rc = fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the node sets");
-    for (char *c = set; c && k >= s->ncorners && k < na && *c; ++c)
-      *c = (char)toupper((unsigned char)*c);
     if (rc == FB_OK)
       rc = find_node(coarse, x, y, 0.0, &node, what, err);
     if (rc == FB_OK)

@@ -18,7 +18,9 @@
 #define PROPERTY_TOLERANCE 0.005
 
 /* The hull's mesh, as System 2 builds it (fe_hull.c), and its bare
- * (structural) mass, centre of mass and inertia tensor about it. */
+ * (structural) mass, centre of mass and inertia tensor about it: the
+ * declared hull masses are not the structure's (hull.mass, Ixx and Iyy
+ * are the structure's alone). */
 static int mesh_properties(const fb_scenario *s, double *mass, double *cg, double *inertia,
                            fb_err *err)
 {
@@ -89,6 +91,10 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
   for (size_t k = 0; k < s->nload; ++k) {
     s->load_x[k] -= dx;
     s->load_y[k] -= dy;
+  }
+  for (size_t k = 0; k < s->npoint_masses; ++k) {
+    s->point_mass[k].x -= dx;
+    s->point_mass[k].y -= dy;
   }
   s->edge_front_x -= dx;
   s->edge_rear_x -= dx;

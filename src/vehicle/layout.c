@@ -34,3 +34,16 @@ double fb_scenario_track_width(const fb_scenario *s)
       return s->corner[0].y - s->corner[c].y;
   return 0.0;
 }
+
+double fb_scenario_point_masses_total(const fb_scenario *s)
+{
+  double sum = 0.0;
+  for (size_t k = 0; k < s->npoint_masses; ++k)
+    sum += s->point_mass[k].mass;
+  return sum;
+}
+
+double fb_scenario_payload_mass(const fb_scenario *s)
+{
+  return s->total_weight / s->gravity - s->hull_mass - fb_scenario_point_masses_total(s);
+}

@@ -1,5 +1,5 @@
 /* Internal to src/vehicle: what assemble.c needs of outputs.c and
- * layout.c. */
+ * layout.c, and the rigid hull's inertia (fragments.c). */
 #ifndef FLEXBOND_VEHICLE_INTERNAL_H
 #define FLEXBOND_VEHICLE_INTERNAL_H
 
@@ -11,6 +11,13 @@
  * (NULL for bond signals: from the bond's domain). FB_EINVAL for an unknown signal or mount. */
 int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_output_spec *o,
                             fb_probe_spec *p, fb_err *err);
+
+/* System 1's inertia in (z, phi, theta), row-major 3x3 (fragments.c):
+ * diag(hull_mass, hull_ixx, hull_iyy), the structure's, plus m r r' for
+ * each declared hull mass and, with the lumped payload, each load point's
+ * share of it, r = [1, y, -x] the point's rigid row: their kinetic
+ * energy 1/2 m (z' + y phi' - x theta')^2 (vertical motion only). */
+void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33);
 
 /* The generated hull's centre of mass in its own frame: x as the
  * parameters give it, z above the floor (uniform plates: the area
