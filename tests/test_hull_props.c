@@ -118,6 +118,32 @@ static void test_typed_disagree(const char *text)
   free(t);
 }
 
+/* A lumped payload heavier than nothing: with the hull's mass from the
+ * mesh (4041.72 kg within 6e-6), 30000 N / 9.81 = 3058 kg leaves none,
+ * refused at load.payload (line 59) once the mesh is built. */
+static void test_lumped_from_mesh(const char *text)
+{
+  char *a = replaced(text, "  mass: 4041.72", "  # mass");
+  char *b = a ? replaced(a, "  Ixx: 4173.49", "  # Ixx") : NULL;
+  char *c = b ? replaced(b, "  Iyy: 15175.96", "  # Iyy") : NULL;
+  char *d = c ? replaced(c, "total_weight: 117720", "total_weight: 30000") : NULL;
+  char *e = d ? replaced(d, "payload: weight-only", "payload: lumped") : NULL;
+  CHECK(e != NULL);
+  fb_err err;
+  fb_scenario *s = e ? load(e, &err) : NULL;
+  CHECK(s == NULL && err.code == FB_EINVAL && !strcmp(err.key, "load.payload"));
+  CHECK(strstr(err.msg, "hull.yaml:59:") == err.msg);
+  CHECK(strstr(err.msg, "3058.103976 kg) > the hull's finite-element mesh (4041.7") != NULL);
+  if (!strstr(err.msg, "finite-element mesh"))
+    fprintf(stderr, "lumped from mesh: %s\n", err.msg);
+  fb_scenario_free(&s);
+  free(a);
+  free(b);
+  free(c);
+  free(d);
+  free(e);
+}
+
 /* Positions in a declared frame (the truck: origin at its front axle)
  * are moved to the mesh's centre of mass, which then sits at the
  * origin of the mesh System 2 builds. */
@@ -150,6 +176,7 @@ int main(void)
     test_typed_agree(text);
     test_from_mesh(text);
     test_typed_disagree(text);
+    test_lumped_from_mesh(text);
   }
   test_frame();
   free(text);

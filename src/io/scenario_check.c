@@ -83,8 +83,9 @@ static int sc_check_load(const fb_scenario *s, fb_err *err)
     }
   /* The lumped model spreads the payload mass W / g - m_hull - the hull's
    * declared masses over the points (data sheet, "Load and gravity"): it
-   * must be positive. A finite-element hull's own mass is checked when
-   * its mesh is built. */
+   * must be positive. A finite-element hull's own mass, when the file
+   * gives none, is counted once its mesh is built
+   * (fb_vehicle_hull_complete). */
   const double total_mass = s->total_weight / s->gravity;
   const double masses = fb_scenario_point_masses_total(s);
   if (s->payload != FB_PAYLOAD_LUMPED || fb_scenario_payload_mass(s) > 0)

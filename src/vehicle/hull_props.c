@@ -53,6 +53,24 @@ static int check_property(const char *key, const char *what, double typed, doubl
   return fb_err_set_key(err, "%s", key);
 }
 
+/* A lumped payload's mass, once the hull's is the mesh's: the loader's
+ * check (scenario_check.c) could not count it. */
+static int check_payload(const fb_scenario *s, fb_err *err)
+{
+  const double payload = fb_scenario_payload_mass(s);
+  if (s->payload != FB_PAYLOAD_LUMPED || payload > 0)
+    return FB_OK;
+  char masses[64] = "";
+  if (s->npoint_masses)
+    snprintf(masses, sizeof masses, " + hull.masses (%.10g kg)",
+             fb_scenario_point_masses_total(s));
+  fb_err_set(err, FB_EINVAL,
+             "a lumped payload needs load.total_weight / gravity (%.10g kg) > the hull's "
+             "finite-element mesh (%.10g kg)%s",
+             s->total_weight / s->gravity, s->hull_mass, masses);
+  return fb_err_set_key(err, "load.payload");
+}
+
 /* Rigid-body properties from the mesh, or the typed ones checked
  * against it. Within the tolerance the typed values stand (they are
  * what the mesh was fitted to: the paper's Table 2). */
@@ -66,7 +84,7 @@ static int complete_properties(fb_scenario *s, fb_err *err)
     s->hull_mass = mass;
     s->hull_ixx = inertia[0];
     s->hull_iyy = inertia[4];
-    return FB_OK;
+    return check_payload(s, err);
   }
   rc = check_property("hull.mass", "mass", s->hull_mass, mass, "kg", err);
   if (!rc)
