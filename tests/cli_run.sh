@@ -454,6 +454,18 @@ run mesh "$APC" --export "$WORK/hull.inp"
 expect_status 0 "mesh --export"
 expect_in "$OUT" "28 S3 + 212 S4" "mesh counts"
 expect_in "$WORK/hull.inp" "*NSET, NSET=SUSP_LF" "mesh deck node sets"
+# Declared hull masses: mesh prints the hull with them after the
+# structure, exports their node sets, and report.md lists them.
+sed 's/^  material:/  masses: [{name: ballast, mass: 300, x: -2.00, y: 0.55}]\n  material:/' \
+  "$APC" >"$WORK/masses.yaml"
+run mesh "$WORK/masses.yaml" --export "$WORK/masses.inp"
+expect_status 0 "mesh with hull masses"
+expect_in "$OUT" "with its 1 hull masses: mass 4341.72 kg" "mesh with hull masses"
+expect_in "$WORK/masses.inp" "*NSET, NSET=MASS_BALLAST" "mesh deck's hull mass node set"
+run run "$WORK/masses.yaml" -o "$WORK/masses" --system rigid --no-figures -q
+expect_status 0 "run with hull masses"
+expect_in "$WORK/masses/report.md" "| hull masses | ballast 300 kg at x, y = -2, 0.55 m (300 kg in all" \
+  "report.md hull masses"
 run mesh "$APC" --export "$WORK/hull.stl"
 expect_status 1 "mesh --export with an unknown format"
 run modes "$WORK/negative.yaml"

@@ -13,8 +13,9 @@ static const char mesh_usage[] =
     "\n"
     "Builds the scenario's finite-element hull (hull.mesh: the generator or an\n"
     "imported deck), checks it, and prints its element counts, mass, centre of\n"
-    "mass and inertias. --export writes it as an Abaqus/CalculiX input deck\n"
-    "(*NODE, *ELEMENT S3/S4, *NSET LOAD, DRIVER, ENGINE, SUSP_LF .. SUSP_RR,\n"
+    "mass and inertias (the structure's, then with the hull.masses on it).\n"
+    "--export writes it as an Abaqus/CalculiX input deck (*NODE, *ELEMENT\n"
+    "S3/S4, *NSET LOAD, DRIVER, ENGINE, SUSP_LF .. SUSP_RR, MASS_<NAME>,\n"
     "FRONT_EDGE, REAR_EDGE, ALL, *MATERIAL, *SHELL SECTION) or, for a .vtu\n"
     "name, as a VTK file for ParaView.\n"
     "\n"
@@ -28,23 +29,34 @@ static int ends_with(const char *s, const char *tail)
   return n >= m && strcmp(s + n - m, tail) == 0;
 }
 
-static int print_properties(const fb_fe_hull *h, fb_err *err)
+/* Prints the mass properties of the structure (as_built 0) or of the
+ * hull with its declared masses. */
+static int print_mass(const fb_fe_hull *h, int as_built, fb_err *err)
 {
   fb_mat *M = NULL;
   double mass, cg[3], inertia[9];
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, &M, err);
+  int rc = as_built ? fb_fe_hull_mass_matrix(h, &M, err)
+                    : fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, &M, err);
   if (!rc)
     rc = fb_fem_mass_properties(h->mesh, M, &mass, cg, inertia, err);
   fb_mat_free(&M);
   if (rc)
     return rc;
+  if (as_built)
+    printf("with its %zu hull masses: ", h->npoint_masses);
+  printf("mass %.6g kg, centre of mass (%.4g, %.4g, %.4g) m\n", mass, cg[0], cg[1], cg[2]);
+  printf("%sabout the centre of mass: Ixx %.6g, Iyy %.6g, Izz %.6g, Ixz %.4g kg m^2\n",
+         as_built ? "  " : "", inertia[0], inertia[4], inertia[8], inertia[2]);
+  return FB_OK;
+}
+
+static int print_properties(const fb_fe_hull *h, fb_err *err)
+{
   printf("hull mesh: %zu nodes, %zu S3 + %zu S4 elements, %g m plates\n",
          fb_mesh_nnodes(h->mesh), fb_mesh_count(h->mesh, FB_ELEM_TRI3),
          fb_mesh_count(h->mesh, FB_ELEM_QUAD4), h->props.thickness);
-  printf("mass %.6g kg, centre of mass (%.4g, %.4g, %.4g) m\n", mass, cg[0], cg[1], cg[2]);
-  printf("about the centre of mass: Ixx %.6g, Iyy %.6g, Izz %.6g, Ixz %.4g kg m^2\n",
-         inertia[0], inertia[4], inertia[8], inertia[2]);
-  return FB_OK;
+  int rc = print_mass(h, 0, err);
+  return rc || !h->npoint_masses ? rc : print_mass(h, 1, err);
 }
 
 static int run(const char *path, const char *export_path)

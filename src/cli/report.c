@@ -183,6 +183,24 @@ static int write_value_row(const fb_scenario_value *v, void *ctx)
   return 0;
 }
 
+/* The hull's declared masses, a row of the scenario table (none: no row). */
+static void write_point_masses(FILE *fp, const fb_scenario *s)
+{
+  if (!s->npoint_masses)
+    return;
+  fputs("| hull masses | ", fp);
+  for (size_t k = 0; k < s->npoint_masses; ++k) {
+    const fb_hull_point_mass *m = &s->point_mass[k];
+    fputs(k ? "; " : "", fp);
+    fb_md_write_text(fp, m->name);
+    fprintf(fp, " %.10g kg at x, y = %.10g, %.10g m", m->mass, m->x, m->y);
+  }
+  fprintf(fp,
+          " (%.10g kg in all, on the floor, besides the structure above: in both systems' "
+          "inertia; their weight is part of load.total_weight) |\n",
+          fb_scenario_point_masses_total(s));
+}
+
 static void write_scenario(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
@@ -211,6 +229,7 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
           s->hull_mass_given ? "the file's, checked against its mesh when it has one"
                              : "its finite-element mesh's",
           o->bump_window[0], o->bump_window[1]);
+  write_point_masses(fp, s);
   write_corner_timing(fp, s);
   fputs("\nEvery value the run used, as the scenario format declares it "
         "(docs/scenario-format.md), and where the file gave it:\n\n"
@@ -227,8 +246,9 @@ static void write_payload(FILE *fp, const fb_scenario *s)
     fprintf(fp,
             "- Payload: weight only (`weight-only`, the paper's prescribed efforts): the "
             "%.10g N act at the %zu load points and add no mass; the hull's inertia is its "
-            "own.\n",
-            s->total_weight, s->nload);
+            "own%s.\n",
+            s->total_weight, s->nload,
+            s->npoint_masses ? " (its structure's and its masses')" : "");
     return;
   }
   const double payload = fb_scenario_payload_mass(s);
