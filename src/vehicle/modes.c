@@ -10,6 +10,8 @@
 
 #include "flexbond/vehicle.h"
 
+#include "vehicle/vehicle_internal.h"
+
 /* Mass (or inertia) and name of the body behind momentum state i. */
 static double body_of_state(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, size_t i,
                             char *name, size_t size)
@@ -19,9 +21,12 @@ static double body_of_state(const fb_scenario *s, const fb_bg *g, const fb_bd *b
   const char *el = fb_bg_element_name(g, (size_t)e);
   static const char *const hull_dof[3] = {"hull bounce", "hull roll", "hull pitch"};
   if (strcmp(el, "hull.body") == 0 && comp < 3) {
+    /* The rigid hull's I field's diagonal: the structure with its
+     * declared masses and a lumped payload. */
+    double m33[9];
+    fb_vehicle_rigid_inertia(s, m33);
     snprintf(name, size, "%s", hull_dof[comp]);
-    const double m[3] = {s->hull_mass, s->hull_ixx, s->hull_iyy};
-    return m[comp];
+    return m33[4 * comp];
   }
   /* A mount's mass is "<mount>.mass", a wheel "susp_<corner>.wheel". */
   const char *dot = strchr(el, '.');

@@ -1,5 +1,5 @@
 /* Internal to src/vehicle: what assemble.c needs of outputs.c and
- * layout.c, and the rigid hull's inertia (fragments.c). */
+ * layout.c, and modes.c of fragments.c (the rigid hull's inertia). */
 #ifndef FLEXBOND_VEHICLE_INTERNAL_H
 #define FLEXBOND_VEHICLE_INTERNAL_H
 
