@@ -11,8 +11,8 @@
  *   3. statics: System 2's tires still carry the whole weight;
  *   4. a heavy mass lowers the hull's free-free frequencies (Rayleigh:
  *      more mass, no more stiffness), and beta follows the first one;
- *   5. a clone keeps the masses, a mass too close to a node line is
- *      refused at its key. */
+ *   5. a clone keeps the masses, a declared frame moves them, a mass too
+ *      close to a node line is refused at its key. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -332,6 +332,30 @@ static void test_clone(void)
   fb_scenario_free(&s);
 }
 
+/* The truck (examples/truck4x4.yaml) declares a frame: its battery is
+ * moved to the hull's centre of mass with every other position, and its
+ * node is where the file puts it, on the cab's back wall (x = -0.80). */
+static void test_frame(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  fb_fe_hull *h = NULL;
+  MUST(fb_scenario_load("../examples/truck4x4.yaml", &s, &err), &err);
+  if (s)
+    MUST(fb_vehicle_fe_hull(s, &h, &err), &err);
+  if (!h) {
+    fb_scenario_free(&s);
+    return;
+  }
+  CHECK(s->npoint_masses == 1 && !strcmp(s->point_mass[0].name, "battery"));
+  CHECK(s->point_mass[0].x == -0.80 - s->hull_cg_x && s->point_mass[0].y == -0.50);
+  CHECK(h->npoint_masses == 1 && h->point_mass[0] == 300);
+  const double *p = fb_mesh_node_xyz(h->mesh, h->point_mass_node[0]);
+  CHECK(fabs(p[0] - s->point_mass[0].x) < 1e-9 && fabs(p[1] + 0.50) < 1e-9);
+  fb_fe_hull_free(&h);
+  fb_scenario_free(&s);
+}
+
 /* A mass 0.5 mm from the 0.40 m load line would make a sliver element:
  * refused at its x (line 17 of the edited file), naming both lines. */
 static void test_too_close(void)
@@ -358,6 +382,7 @@ int main(void)
   test_static_weight();
   test_frequencies();
   test_clone();
+  test_frame();
   test_too_close();
   return check_report("test_hull_masses");
 }
