@@ -126,9 +126,15 @@ int fb_fem_submatrix(const fb_mat *a, const size_t *keep, size_t nkeep, fb_mat *
  * (dsaupd/dseupd, KLU for the shifted solves) above. K and M must be
  * symmetric, M positive definite; an eigenvalue below -sigma (K not
  * positive semi-definite) is FB_ESOLVER.
- * Not thread-safe on the ARPACK path (ARPACK keeps internal state). */
+ * Thread-safe: ARPACK, which is not reentrant, runs under a lock of its
+ * own (one solve's Lanczos iterations at a time). */
 int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_limit,
                  double *freq_hz, double *vectors, fb_err *err);
+
+/* The dense_limit for fb_fem_modes that solves densely when nmodes is at
+ * least a fifth of the DOFs and with ARPACK otherwise: the faster of the
+ * two for a sparse finite-element K and M. */
+size_t fb_fem_dense_limit(size_t nmodes);
 
 /* Frequency (Hz) at or below which a computed mode of (K, M) is a
  * rigid-body mode. Rigid-body modes come out as round-off, ~sqrt(eps)

@@ -98,9 +98,8 @@ void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf
 void sweep_metric_name(const sweep_args *a, size_t m, char *buf, size_t size);
 const char *sweep_metric_unit(const sweep_args *a, size_t m);
 /* Loads, simulates and measures case i into c (not c->done or c->rank).
- * arpack is held while a finite-element hull large enough for ARPACK,
- * which is not reentrant, is simulated. */
-void sweep_run_case(const sweep_args *a, size_t i, pthread_mutex_t *arpack, sweep_case *c);
+ * Cases run at once on any hull: fb_fem_modes orders ARPACK's solves. */
+void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c);
 /* sweep.csv's header line and case i's row, each with its '\n'. */
 void sweep_csv_header(FILE *fp, const sweep_args *a);
 void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c);
@@ -146,11 +145,10 @@ typedef struct sweep_pool {
   const sweep_args *a;
   sweep_case *cases;
   sweep_journal *journal;
-  pthread_mutex_t lock;   /* next, finished, journal_rc and stderr */
-  pthread_mutex_t arpack; /* held while a large System 2 hull runs */
-  size_t next;            /* the first case not handed out */
-  size_t finished;        /* cases finished in this run */
-  int journal_rc;         /* the first journal failure */
+  pthread_mutex_t lock; /* next, finished, journal_rc and stderr */
+  size_t next;          /* the first case not handed out */
+  size_t finished;      /* cases finished in this run */
+  int journal_rc;       /* the first journal failure */
   fb_err journal_err;
 } sweep_pool;
 

@@ -18,11 +18,6 @@
 #include "cli.h"
 #include "sweep.h"
 
-/* fb_fem_modes uses ARPACK above this many DOFs (the dense_limit that
- * src/vehicle/fe_hull.c and src/fem/reduce.c pass): such hulls run one
- * at a time. */
-enum { SWEEP_DENSE_LIMIT = 2000 };
-
 static const char *const stat_names[SWEEP_NSTATS] = {"peak", "min", "rms"};
 static const struct {
   const char *name, *unit;
@@ -182,20 +177,6 @@ static int case_metrics(const sweep_args *a, const fb_scenario *s, const fb_resu
   return rc;
 }
 
-/* 1 in *serial when s's finite-element hull is large enough for ARPACK. */
-static int needs_serial(const sweep_args *a, const fb_scenario *s, int *serial, fb_err *err)
-{
-  *serial = 0;
-  if (a->sys != FB_SYSTEM_FLEXIBLE)
-    return FB_OK;
-  fb_fe_hull *hull = NULL;
-  int rc = fb_vehicle_fe_hull(s, &hull, err);
-  if (rc == FB_OK)
-    *serial = 6 * fb_mesh_nnodes(hull->mesh) > SWEEP_DENSE_LIMIT;
-  fb_fe_hull_free(&hull);
-  return rc;
-}
-
 /* fb_sim_progress_fn: stops a case's simulation once interrupted. */
 static int stop_when_interrupted(void *ctx, double t, double t_end)
 {
@@ -205,22 +186,13 @@ static int stop_when_interrupted(void *ctx, double t, double t_end)
   return cli_interrupted();
 }
 
-static int simulate_case(const sweep_args *a, const fb_scenario *s, pthread_mutex_t *arpack,
-                         fb_result **res, fb_err *err)
+static int simulate_case(const sweep_args *a, const fb_scenario *s, fb_result **res,
+                         fb_err *err)
 {
-  int serial = 0;
-  int rc = needs_serial(a, s, &serial, err);
-  if (rc != FB_OK)
-    return rc;
-  if (serial)
-    pthread_mutex_lock(arpack);
-  rc = fb_vehicle_simulate_progress(s, a->sys, stop_when_interrupted, NULL, res, err);
-  if (serial)
-    pthread_mutex_unlock(arpack);
-  return rc;
+  return fb_vehicle_simulate_progress(s, a->sys, stop_when_interrupted, NULL, res, err);
 }
 
-void sweep_run_case(const sweep_args *a, size_t i, pthread_mutex_t *arpack, sweep_case *c)
+void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c)
 {
   fb_scenario_override ov[SWEEP_MAX_KEYS];
   for (size_t k = 0; k < a->nkeys; ++k)
@@ -233,7 +205,7 @@ void sweep_run_case(const sweep_args *a, size_t i, pthread_mutex_t *arpack, swee
   c->wall_seconds = NAN;
   int rc = fb_scenario_load_overrides(a->scenario_path, ov, a->nkeys, &s, &err);
   if (rc == FB_OK)
-    rc = simulate_case(a, s, arpack, &res, &err);
+    rc = simulate_case(a, s, &res, &err);
   if (rc == FB_OK) {
     c->wall_seconds = fb_result_stats(res)->wall_seconds;
     rc = case_metrics(a, s, res, c->metric, &err);

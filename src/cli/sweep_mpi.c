@@ -182,9 +182,6 @@ void sweep_mpi_work(const sweep_args *a)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  /* ARPACK is per process: this rank's lock only orders its own thread. */
-  pthread_mutex_t arpack;
-  pthread_mutex_init(&arpack, NULL);
   for (;;) {
     uint64_t index = 0;
     MPI_Status st;
@@ -192,11 +189,10 @@ void sweep_mpi_work(const sweep_args *a)
     if (st.MPI_TAG != SWEEP_TAG_CASE)
       break;
     sweep_case c = {0};
-    sweep_run_case(a, (size_t)index, &arpack, &c);
+    sweep_run_case(a, (size_t)index, &c);
     send_result((size_t)index, &c, rank);
     free(c.error);
   }
-  pthread_mutex_destroy(&arpack);
 }
 
 int sweep_mpi_finish(int exit_code)

@@ -15,13 +15,11 @@ void sweep_pool_init(sweep_pool *p, const sweep_args *a, sweep_case *cases,
 {
   *p = (sweep_pool){.a = a, .cases = cases, .journal = journal};
   pthread_mutex_init(&p->lock, NULL);
-  pthread_mutex_init(&p->arpack, NULL);
   fb_err_clear(&p->journal_err);
 }
 
 void sweep_pool_destroy(sweep_pool *p)
 {
-  pthread_mutex_destroy(&p->arpack);
   pthread_mutex_destroy(&p->lock);
 }
 
@@ -80,7 +78,7 @@ void *sweep_pool_worker(void *pool)
   sweep_pool *p = pool;
   size_t i;
   while (sweep_pool_take(p, &i)) {
-    sweep_run_case(p->a, i, &p->arpack, &p->cases[i]);
+    sweep_run_case(p->a, i, &p->cases[i]);
     sweep_pool_finish(p, i);
   }
   return NULL;

@@ -155,7 +155,7 @@ static int modes_and_shift(const fb_mat *K, const fb_mat *M, size_t nmodes, doub
                            double *basis, size_t *nrigid, double *sigma, fb_err *err)
 {
   const size_t n = fb_mat_nrows(K), m = nmodes < n ? nmodes + 1 : n;
-  int rc = fb_fem_modes(K, M, m, 2000, lam, basis, err);
+  int rc = fb_fem_modes(K, M, m, fb_fem_dense_limit(m), lam, basis, err);
   if (rc)
     return rc;
   const double threshold = fb_fem_rigid_threshold_hz(K, M), two_pi = 6.28318530717958647692;
