@@ -320,7 +320,7 @@ CASES=(
   "1|sim m_ok.yaml -o @OUT --t-end -1|option '--t-end' needs a finite number > 0"
   "1|sim m_ok.yaml -o @OUT --rtol 5|flexbond sim: option '--rtol': must be in (0, 1), got 5"
   "1|sim m_ok.yaml -o @OUT --sample-rate 1e12|flexbond sim: option '--sample-rate': 1e+12 Hz over 5 s gives 5e+12 samples, more than the limit of 1e+08"
-  "1|run s_ok.yaml -o @OUT --hull-modes 3|flexbond run: option '--hull-modes' needs 0 (the full-order hull) or an integer in 6..100000 (got '3')"
+  "1|run s_ok.yaml -o @OUT --hull-modes 3|flexbond run: option '--hull-modes' needs 0 (every mode) or an integer in 6..100000 (got '3')"
   "1|run s_ok.yaml --system flexible -o @OUT --hull-modes 100000|flexbond run: option '--hull-modes': 100000 modes, more than the hull's 1296 degrees of freedom"
   "5|export s_ok.yaml --system rigid -o @EXISTING|@EXISTING: cannot create directory: exists and is not a directory"
   "5|sim m_ok.yaml -o @EXISTING/sub|@EXISTING/sub: cannot create directory|not a directory"

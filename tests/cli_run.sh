@@ -240,7 +240,7 @@ for q in "LF tire normal reaction | N" "RF suspension spring deformation | m" \
   [ "$(sed -n '/^## Comparison/,/^## /p' "$REPORT" | grep -c "^| $q |.*|.*|.*|.*|.*|.*|.*|.*|$")" \
     -eq 1 ] || fail "report.md comparison row '$q'"
 done
-expect_in "$REPORT" "full order, all 1296 nodal DOFs" "report.md hull order"
+expect_in "$REPORT" "full order in modal coordinates, every one of the 1296 free-free modes" "report.md hull order"
 expect_in "$REPORT" "## Assumptions" "report.md assumptions"
 expect_in "$REPORT" "## Tire contact" "report.md tire contact"
 expect_in "$REPORT" "## Ride comfort (driver plus seat acceleration)" "report.md ride comfort"
@@ -331,11 +331,18 @@ for bad in "--hull-modes -1" "--hull-modes 12x" "--hull-modes 100001" "--hull-mo
   set -- $bad
   run run "$APC" -o "$WORK/out_opt" "$@"
   expect_status 1 "run $bad"
-  expect_in "$ERR" "option '--hull-modes' needs 0 (the full-order hull) or an integer in 6..100000" "run $bad"
+  expect_in "$ERR" "option '--hull-modes' needs 0 (every mode) or an integer in 6..100000" "run $bad"
 done
 run run "$APC" -o "$WORK/out_opt" --system rigid --hull-modes 12
 expect_status 1 "run --system rigid --hull-modes"
 expect_in "$ERR" "not with --system rigid" "run --system rigid --hull-modes"
+run run "$APC" -o "$WORK/out_opt" --hull-coordinates cartesian
+expect_status 1 "run --hull-coordinates cartesian"
+expect_in "$ERR" "option '--hull-coordinates' must be one of" "run --hull-coordinates cartesian"
+run run "$APC" -o "$WORK/out_opt" --hull-coordinates nodal --hull-modes 12
+expect_status 1 "run --hull-coordinates nodal --hull-modes 12"
+expect_in "$ERR" "--hull-modes 12 reduces the hull to modes: not with --hull-coordinates nodal" \
+  "run --hull-coordinates nodal --hull-modes 12"
 run run "$APC"
 expect_status 1 "run without -o"
 expect_in "$ERR" "-o DIR" "run without -o"

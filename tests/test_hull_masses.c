@@ -75,6 +75,9 @@ static int build(built *b, int from_mesh, fb_payload_model payload)
   if (!b->s)
     return 0;
   b->s->payload = payload;
+  /* Nodal coordinates: the flexible hull's I field is then the mass
+   * matrix the tests project on the rigid-body modes. */
+  b->s->hull_coordinates = FB_HULL_NODAL;
   MUST(fb_vehicle_rigid_hull(b->s, &b->rigid, &err), &err);
   MUST(fb_vehicle_fe_hull(b->s, &b->h, &err), &err);
   if (b->h)
@@ -263,6 +266,10 @@ static void test_static_weight(void)
   fb_err err;
   fb_bg *g = NULL;
   fb_bd *bd = NULL;
+  /* Nodal, for the static solver's 1e-10 balance per DOF (test_system2_sim,
+   * test 1, on modal coordinates). */
+  if (s)
+    s->hull_coordinates = FB_HULL_NODAL;
   if (s)
     MUST(fb_vehicle_build(s, FB_SYSTEM_FLEXIBLE, &g, &bd, &err), &err);
   const size_t nx = bd ? fb_bd_nstates(bd) : 0;
@@ -309,8 +316,13 @@ static void test_frequencies(void)
   for (int k = 6; k < N; ++k)
     CHECK(with[k] <= bare[k] * (1 + 1e-9));
   CHECK(with[6] < 0.95 * bare[6]);
-  /* beta = 2 zeta / omega_1 of the hull as built. */
-  CHECK_NEAR(beta, 0.02 / (3.14159265358979324 * with[6]), 1e-12 * beta);
+  /* beta = 2 zeta / omega_1 of the hull as built. The damping's dense
+   * solve and these modes' Lanczos one (ARPACK: fb_fem_dense_limit) each
+   * find omega_1^2 to about eps lambda_max / lambda_1 (both are backward
+   * stable), so they agree to far less than their 16 digits: 4e-11
+   * relative measured; 1e-9 keeps a margin and still catches a beta of
+   * another mode or another mass matrix (percents off). */
+  CHECK_NEAR(beta, 0.02 / (3.14159265358979324 * with[6]), 1e-9 * beta);
   built_free(&b);
 }
 

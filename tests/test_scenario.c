@@ -386,6 +386,11 @@ static void set_three_modes(fb_scenario *s)
 {
   s->hull_modes = 3;
 }
+static void set_nodal_reduced(fb_scenario *s)
+{
+  s->hull_coordinates = FB_HULL_NODAL;
+  s->hull_modes = 80;
+}
 static void set_flat_bump(fb_scenario *s)
 {
   s->bump_height = 0;
@@ -407,7 +412,8 @@ static void test_check(void)
   expect_check(s, set_rr_ahead, "road.bump.first_contact: the RR wheel would meet the bump");
   expect_check(s, set_lumped_light, "load.payload: a lumped payload needs");
   expect_check(s, set_many_samples, "simulation.sample_rate:");
-  expect_check(s, set_three_modes, "hull.fe.modes: 0 (full order) or at least the 6 rigid");
+  expect_check(s, set_three_modes, "hull.fe.modes: 0 (every mode) or at least the 6 rigid");
+  expect_check(s, set_nodal_reduced, "hull.fe.modes: a reduced hull (80 modes) is in modal");
   /* Allowed: the lumped payload of the data sheet (7958.28 kg), a flat bump. */
   fb_scenario *c = NULL;
   CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);

@@ -258,6 +258,8 @@ int main(void)
     test_deck_round_trip(s);
     test_free_free(s);
     test_damping(s);
+    /* The nodal graph: its states are the nodal DOFs the test weighs. */
+    s->hull_coordinates = FB_HULL_NODAL;
     test_flexible_graph(s);
   }
   fb_scenario_free(&s);

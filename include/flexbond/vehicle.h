@@ -151,6 +151,14 @@ typedef struct fb_output_spec {
 typedef enum fb_road_kind { FB_ROAD_BUMP = 0, FB_ROAD_ISO8608, FB_ROAD_PROFILE } fb_road_kind;
 
 /* The study's parameters. Strings and arrays are owned by the scenario. */
+/* The coordinates of System 2's hull (hull.fe.coordinates): its nodal
+ * displacements, with M, K and B = beta K as sparse fields (the
+ * reference), or its free-free modes, where the same fields are diagonal
+ * (M = I, K = diag(omega^2), B = beta K; Craig & Kurdila, "Fundamentals
+ * of Structural Dynamics", 2nd ed., sec. 10.3). With every mode kept the
+ * two are the same model. */
+typedef enum fb_hull_coordinates { FB_HULL_NODAL = 0, FB_HULL_MODAL = 1 } fb_hull_coordinates;
+
 typedef struct fb_scenario {
   char *name;
   char *path;     /* file it was loaded from (for messages), may be NULL */
@@ -229,12 +237,13 @@ typedef struct fb_scenario {
    * fb_scenario_locate), in reading order; owned. */
   fb_scenario_origin *origin;
   size_t norigins;
-  fb_hull_mesh_params hull_mesh; /* generator parameters */
-  fb_mass_kind hull_mass_matrix; /* consistent (default) or lumped */
-  double hull_drill_factor;      /* fictitious drilling stiffness factor */
-  double hull_damping_ratio;     /* of the first elastic free-free mode (B = beta K) */
-  int hull_modes;                /* 0: full order; N: N free-free modes + static
-                                    correction (fb_fem_reduce_free) */
+  fb_hull_mesh_params hull_mesh;        /* generator parameters */
+  fb_mass_kind hull_mass_matrix;        /* consistent (default) or lumped */
+  double hull_drill_factor;             /* fictitious drilling stiffness factor */
+  double hull_damping_ratio;            /* of the first elastic free-free mode (B = beta K) */
+  fb_hull_coordinates hull_coordinates; /* System 2's hull states */
+  int hull_modes;                       /* modal: 0 every free-free mode, N: the N lowest and a
+                                           static correction (fb_fem_reduce_free); nodal: 0 */
 } fb_scenario;
 
 /* The hull's attachment points, in the order of the hull's "attach"
@@ -619,6 +628,11 @@ int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err);
  * Penzien, "Dynamics of Structures", 2nd ed., sec. 12-3). *B is new (may
  * be NULL if only beta is wanted). */
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err);
+
+/* beta = 2 zeta / omega_1 of fb_fe_hull_damping from the free-free hull's
+ * modes: nrigid (which must be six) rigid-body ones, then the first
+ * elastic one at f1_hz; FB_ESOLVER otherwise. */
+int fb_fe_hull_beta(double zeta, size_t nrigid, double f1_hz, double *beta, fb_err *err);
 
 /* The nmodes lowest modes of the free-free hull as built (its declared
  * masses on it; rigid-body modes first, *nrigid of them at ~0 Hz):

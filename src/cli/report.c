@@ -266,8 +266,13 @@ static void write_payload(FILE *fp, const fb_scenario *s)
 static void write_hull_order(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
-  if (s->hull_modes == 0)
+  if (s->hull_coordinates == FB_HULL_NODAL)
     fprintf(fp, "- System 2's hull model: full order, all %zu nodal DOFs (6 per node), ",
+            6 * fb_mesh_nnodes(o->hull->mesh));
+  else if (s->hull_modes == 0)
+    fprintf(fp,
+            "- System 2's hull model: full order in modal coordinates, every one of the "
+            "%zu free-free modes of its nodal DOFs, ",
             6 * fb_mesh_nnodes(o->hull->mesh));
   else
     fprintf(fp,

@@ -47,8 +47,11 @@ static const char run_usage[] =
     "                              t = 0 (the paper), or static equilibrium\n"
     "  --payload weight-only|lumped  payload as force only (the paper), or\n"
     "                              as mass spread over the load points too\n"
-    "  --hull-modes N              System 2's hull: 0 full order, N >= 6 reduced to\n"
-    "                              N free-free modes (hull.fe.modes)\n"
+    "  --hull-coordinates modal|nodal  System 2's hull states: its free-free modes\n"
+    "                              or its nodal displacements (hull.fe.coordinates)\n"
+    "  --hull-modes N              System 2's hull: 0 every mode, N >= 6 reduced to\n"
+    "                              N free-free modes, in modal coordinates\n"
+    "                              (hull.fe.modes)\n"
     "  --no-figures                no PNG; report.md without images\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
     "  -h, --help                  this text\n";
@@ -80,11 +83,14 @@ static const struct {
                    [SYSTEM_FLEXIBLE] = {{FB_SYSTEM_FLEXIBLE}, 1},
                    [SYSTEM_BOTH] = {{FB_SYSTEM_RIGID, FB_SYSTEM_FLEXIBLE}, 2}};
 
-/* Values of --initial and --payload, indexed by the enums' values. */
+/* Values of --initial, --payload and --hull-coordinates, indexed by the
+ * enums' values. */
 static const char *const initial_choices[] = {
     [FB_INITIAL_ZERO] = "zero", [FB_INITIAL_STATIC] = "static"};
 static const char *const payload_choices[] = {
     [FB_PAYLOAD_WEIGHT_ONLY] = "weight-only", [FB_PAYLOAD_LUMPED] = "lumped"};
+static const char *const coordinate_choices[] = {
+    [FB_HULL_NODAL] = "nodal", [FB_HULL_MODAL] = "modal"};
 
 /* The scenario's range of hull.fe.modes. */
 enum { MAX_HULL_MODES = 100000 };
@@ -97,10 +103,11 @@ enum { VEHICLE_MODES = 20, HULL_FREE_MODES = 12 };
 typedef struct run_args {
   const char *scenario_path;
   const char *out_dir;
-  int system;     /* index in system_choices */
-  int initial;    /* fb_initial_state */
-  int payload;    /* fb_payload_model */
-  int hull_modes; /* s->hull_modes */
+  int system;           /* index in system_choices */
+  int initial;          /* fb_initial_state */
+  int payload;          /* fb_payload_model */
+  int hull_coordinates; /* s->hull_coordinates */
+  int hull_modes;       /* s->hull_modes */
   int quiet;
   int progress; /* draw a progress line: stderr is a terminal, no -q */
   int figures;  /* 0 with --no-figures */
@@ -300,7 +307,8 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
   fprintf(fp, ",\n  \"system%d\": {\n    \"label\": ", (int)run->sys);
   cli_json_string(fp, cli_system_label(run->sys));
   if (run->sys == FB_SYSTEM_FLEXIBLE)
-    fprintf(fp, ",\n    \"hull_modes\": %d", s->hull_modes);
+    fprintf(fp, ",\n    \"hull_coordinates\": \"%s\",\n    \"hull_modes\": %d",
+            coordinate_choices[s->hull_coordinates], s->hull_modes);
   fputs(",\n    \"outputs\": {", fp);
   for (size_t k = 0; k < s->noutputs; ++k) {
     fputs(k ? ",\n      " : "\n      ", fp);
@@ -375,8 +383,10 @@ static const char *const definitions[][2] = {
      "every interval of the whole run where a reaction is not compressive (bilateral: "
      "tensile, the tire pulls the wheel down; unilateral: zero, the wheel is off the road): "
      "from, to (s, zero crossings interpolated between samples), min_force (N) at (s)"},
-    {"hull_modes", "System 2's hull model: 0 full order, N > 0 reduced to N free-free modes "
-                   "with static correction"},
+    {"hull_coordinates", "System 2's hull states: modal (its free-free modes) or nodal (its "
+                         "nodal displacements)"},
+    {"hull_modes", "System 2's hull model in modal coordinates: 0 every mode, N > 0 reduced "
+                   "to N free-free modes with static correction"},
     {"comparison", "System 2 against System 1 per output (when both ran): peak_systemN and "
                    "rms_systemN are each system's peak and rms; max_abs_diff is the largest "
                    "|System 2 - System 1| from bump_window[0] to the end of the run, at "
@@ -517,7 +527,7 @@ static int flexible_modes(const fb_scenario *s, run_modes *m, fb_err *err)
     rc = fb_fe_hull_free_modes(m->hull, HULL_FREE_MODES, freq, &nrigid, err);
   m->hull_f1 = rc == FB_OK && nrigid < HULL_FREE_MODES ? freq[nrigid] : NAN;
   if (rc == FB_OK)
-    rc = fb_fe_hull_damping(m->hull, s->hull_damping_ratio, &m->hull_beta, NULL, err);
+    rc = fb_fe_hull_beta(s->hull_damping_ratio, nrigid, m->hull_f1, &m->hull_beta, err);
   if (rc == FB_OK)
     rc = fb_vehicle_flexible_modes(s, m->hull, VEHICLE_MODES, &m->modes2, err);
   return rc;
@@ -741,6 +751,11 @@ static void override(const run_args *a, fb_scenario *s)
     s->payload = (fb_payload_model)a->payload;
   if (a->hull_modes >= 0)
     s->hull_modes = a->hull_modes;
+  /* A reduced hull is a modal one. */
+  if (a->hull_modes > 0)
+    s->hull_coordinates = FB_HULL_MODAL;
+  if (a->hull_coordinates >= 0)
+    s->hull_coordinates = (fb_hull_coordinates)a->hull_coordinates;
 }
 
 /* cli_report, except that an error about hull.fe.modes after
@@ -779,8 +794,9 @@ static int run(const run_args *a)
     override(a, s);
     o.scenario = s;
     o.nruns = pick_systems(a, s, systems, &o.note);
-    o.hull_modes_source = a->hull_modes >= 0 ? "the command line (`--hull-modes`)"
-                                             : "the scenario (`hull.fe.modes`, 0 when absent)";
+    o.hull_modes_source = a->hull_modes >= 0 || a->hull_coordinates >= 0
+                              ? "the command line (`--hull-modes`, `--hull-coordinates`)"
+                              : "the scenario (`hull.fe.coordinates`, `hull.fe.modes`)";
     cli_bump_window(s, o.bump_window);
     if (o.note && !a->quiet)
       fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
@@ -833,17 +849,19 @@ static int parse_hull_modes(const char *cmd, const char *text, int *out)
   if (end == text || *end != '\0' || errno == ERANGE || v < 0 || (v > 0 && v < 6) ||
       v > MAX_HULL_MODES)
     return cli_usage_error(cmd,
-                           "option '--hull-modes' needs 0 (the full-order hull) or an integer "
+                           "option '--hull-modes' needs 0 (every mode) or an integer "
                            "in 6..%d (got '%s')",
                            MAX_HULL_MODES, text);
   *out = (int)v;
   return CLI_EXIT_OK;
 }
 
-/* The options' values into a (after the output directory). */
+/* The options' values into a (after the output directory); hull holds
+ * --hull-modes, then --hull-coordinates. */
 static int parse_settings(const char *cmd, const cli_option *system, const cli_option *initial,
-                          const cli_option *payload, const cli_option *hull_modes, run_args *a)
+                          const cli_option *payload, const cli_option *hull, run_args *a)
 {
+  const cli_option *hull_modes = &hull[0], *coordinates = &hull[1];
   int rc = CLI_EXIT_OK;
   if (system->value)
     rc = cli_choice(cmd, "--system", system->value, system_choices,
@@ -856,8 +874,19 @@ static int parse_settings(const char *cmd, const cli_option *system, const cli_o
                     sizeof payload_choices / sizeof payload_choices[0], &a->payload);
   if (rc == CLI_EXIT_OK && hull_modes->value)
     rc = parse_hull_modes(cmd, hull_modes->value, &a->hull_modes);
-  if (rc == CLI_EXIT_OK && hull_modes->value && a->system == SYSTEM_RIGID)
-    rc = cli_usage_error(cmd, "--hull-modes sets System 2's hull: not with --system rigid");
+  if (rc == CLI_EXIT_OK && coordinates->value)
+    rc = cli_choice(cmd, "--hull-coordinates", coordinates->value, coordinate_choices,
+                    sizeof coordinate_choices / sizeof coordinate_choices[0],
+                    &a->hull_coordinates);
+  if (rc == CLI_EXIT_OK && (hull_modes->value || coordinates->value) &&
+      a->system == SYSTEM_RIGID)
+    rc = cli_usage_error(cmd, "--hull-modes and --hull-coordinates set System 2's hull: not "
+                              "with --system rigid");
+  if (rc == CLI_EXIT_OK && a->hull_modes > 0 && a->hull_coordinates == FB_HULL_NODAL)
+    rc = cli_usage_error(cmd,
+                         "--hull-modes %d reduces the hull to modes: not with "
+                         "--hull-coordinates nodal",
+                         a->hull_modes);
   return rc;
 }
 
@@ -869,6 +898,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_INITIAL,
     OPT_PAYLOAD,
     OPT_HULL_MODES,
+    OPT_HULL_COORDINATES,
     OPT_NO_FIGURES,
     OPT_QUIET,
     OPT_HELP,
@@ -880,11 +910,13 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_INITIAL] = {"--initial", NULL, 1, NULL},
       [OPT_PAYLOAD] = {"--payload", NULL, 1, NULL},
       [OPT_HULL_MODES] = {"--hull-modes", NULL, 1, NULL},
+      [OPT_HULL_COORDINATES] = {"--hull-coordinates", NULL, 1, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
-  run_args a = {.system = -1, .initial = -1, .payload = -1, .hull_modes = -1};
+  run_args a = {
+      .system = -1, .initial = -1, .payload = -1, .hull_coordinates = -1, .hull_modes = -1};
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, run_usage, "SCENARIO", &a.scenario_path,
                               &rc))

@@ -364,7 +364,11 @@ static int sc_check_fe_hull(const fb_scenario *s, fb_err *err)
   /* A reduced hull needs its six rigid-body modes at least. */
   if (s->hull_modes != 0 && s->hull_modes < 6)
     return sc_fail(s, err, "hull.fe.modes",
-                   "0 (full order) or at least the 6 rigid-body modes (got %d)", s->hull_modes);
+                   "0 (every mode) or at least the 6 rigid-body modes (got %d)", s->hull_modes);
+  if (s->hull_modes != 0 && s->hull_coordinates == FB_HULL_NODAL)
+    return sc_fail(s, err, "hull.fe.modes",
+                   "a reduced hull (%d modes) is in modal coordinates, not nodal ones",
+                   s->hull_modes);
   if (s->hull_deck)
     return FB_OK;
   if (!(g->x_front > g->x_rear))

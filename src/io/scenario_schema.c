@@ -776,6 +776,7 @@ static const char *const sc_payloads[] = {"weight-only", "lumped", NULL};
 static const char *const sc_contacts[] = {"bilateral", "unilateral", NULL};
 static const char *const sc_masses[] = {"consistent", "lumped", NULL};
 static const char *const sc_initials[] = {"zero", "static", NULL};
+static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
 static const char *const sc_bump_types[] = {"I", "II", "A", "B", NULL};
 static const double sc_band_default[] = {0.011, 2.83};
 
@@ -937,8 +938,12 @@ static const sch_key sc_keys[] = {
            "damping ratio of the hull's first elastic free-free mode, with its `masses` (B = "
            "beta K)",
            S_OFF(hull_damping_ratio)),
+    CHOICE("hull.fe.coordinates", sc_coordinates, DEF(1),
+           "`modal`: the hull's free-free modes (diagonal fields); `nodal`: its nodal "
+           "displacements (sparse fields, the reference)",
+           S_AT(INT, hull_coordinates)),
     WHOLE("hull.fe.modes", CLOSED(0, 100000), DEF(0),
-          "0: full order; N >= 6: N free-free modes and a static correction",
+          "modal only: 0 every mode; N >= 6: the N lowest and a static correction",
           S_AT(INT, hull_modes)),
     SECTION("load", REQ, "hull plus payload", NULL),
     NUMBER("load.total_weight", "N", POSITIVE, REQ,
