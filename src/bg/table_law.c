@@ -424,6 +424,7 @@ static void ops_free(void *ctx)
 }
 
 static const fb_law_ops table_law_ops = {.name = "table",
+                                         .id = FB_LAW_TABLE,
                                          .eval = ops_eval,
                                          .jacobian = ops_jacobian,
                                          .energy = ops_energy,
@@ -455,5 +456,6 @@ size_t fb_table_law_knots(const fb_table_law *law, const double **x, const doubl
 const fb_table_law *fb_bg_element_table_law(const fb_bg *bg, size_t i)
 {
   const void *ctx = NULL;
-  return fb_bg_element_law(bg, i, &ctx) == &table_law_ops ? ctx : NULL;
+  const fb_law_ops *law = fb_bg_element_law(bg, i, &ctx);
+  return law && law->id == FB_LAW_TABLE ? ctx : NULL;
 }
