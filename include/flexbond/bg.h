@@ -106,13 +106,16 @@ typedef struct fb_law_in {
 /* Which of the library's own laws an ops table is, as SUNDIALS names a
  * module's implementation (N_VGetVectorID): for the module that made a
  * law to recognise it again (fb_bg_element_table_law,
- * fb_bg_element_contact) without comparing ops pointers. A law of one's
- * own is FB_LAW_CUSTOM, what an ops table that does not set the id has. */
+ * fb_bg_element_contact) without comparing ops pointers, and for a
+ * harness to list them all (every id below FB_LAW_NIDS but
+ * FB_LAW_CUSTOM has one law). A law of one's own is FB_LAW_CUSTOM, what
+ * an ops table that does not set the id has. */
 typedef enum fb_law_id {
   FB_LAW_CUSTOM = 0,
   FB_LAW_TABLE,          /* fb_bg_add_r_table */
   FB_LAW_CONTACT_SPRING, /* fb_bg_add_unilateral_contact: the spring (C) */
-  FB_LAW_CONTACT_DAMPER  /* and the damper (modulated R) */
+  FB_LAW_CONTACT_DAMPER, /* and the damper (modulated R) */
+  FB_LAW_NIDS
 } fb_law_id;
 
 typedef struct fb_law_ops {
@@ -139,6 +142,10 @@ typedef struct fb_law_ops {
   /* 1 when every branch is affine in xu, so the Jacobian changes only
    * with the mode and the Newton matrix only at events. */
   int affine;
+  /* 1 for a resistor's law that never delivers power: y . x >= 0 over its
+   * own input x (the first n values of xu), in the mode its guards choose
+   * there (Karnopp et al. ch. 3). */
+  int passive;
 } fb_law_ops;
 
 typedef struct fb_bg fb_bg;

@@ -32,6 +32,11 @@ typedef struct bd_block_ops {
   /* The output is in_0 .* in_1 (a power e .* f): a descriptor gives it,
    * at an output, as its two factors. */
   int product;
+  /* 1 if its jvp and rows are exact only where its inputs are related as
+   * the diagram relates them, not at any signals: an energy's co-variable
+   * (input 1) is the gradient of the energy at its state (input 0), which
+   * its linearisation uses. */
+  int consistent_inputs;
   /* Drawn instead of the block's label ("1/s"); NULL: the label. */
   const char *symbol;
   /* Messages name the block "noun 'label'" (a law: "law 'quadratic'");

@@ -1,6 +1,18 @@
-/* What the block kinds share (bd/kinds.h): the input_dim of inputs of
- * any size and the triplet writer of their rows. */
+/* What the block kinds share (bd/kinds.h): the registry that lists
+ * them, the input_dim of inputs of any size and the triplet writer of
+ * their rows. */
 #include "bd/kinds.h"
+
+extern const bd_block_ops fb_bd_integrator_ops, fb_bd_source_ops, fb_bd_gain_ops,
+    fb_bd_solve_ops, fb_bd_sum_ops, fb_bd_mux_ops, fb_bd_select_ops, fb_bd_product_ops,
+    fb_bd_law_ops, fb_bd_energy_ops;
+
+const bd_block_ops *const fb_bd_kinds[] = {
+    &fb_bd_integrator_ops, &fb_bd_source_ops, &fb_bd_gain_ops,   &fb_bd_solve_ops,
+    &fb_bd_sum_ops,        &fb_bd_mux_ops,    &fb_bd_select_ops, &fb_bd_product_ops,
+    &fb_bd_law_ops,        &fb_bd_energy_ops,
+};
+const size_t fb_bd_nkinds = sizeof fb_bd_kinds / sizeof fb_bd_kinds[0];
 
 size_t fb_bd_input_dim_any(const bd_block *b, size_t k)
 {

@@ -1,6 +1,9 @@
 /* Stored energy of a storage field with state x (input 0) and
  * co-variable y (input 1): linear law 1/2 x.y, or the law's energy
- * function, whose gradient is y (Karnopp et al., section 7.2). */
+ * function, whose gradient is y (Karnopp et al., section 7.2). The
+ * linearisation of the law's energy uses that gradient, y, so it holds
+ * where y is the law's output at x, as in the diagram
+ * (consistent_inputs). */
 #include <stdlib.h>
 
 #include "bd/kinds.h"
@@ -60,14 +63,15 @@ static int energy_jac(bd_block *b, const double *w, size_t *rows, size_t *cols, 
   return 0;
 }
 
-static const bd_block_ops fb_bd_energy_ops = {.kind = "energy",
-                                              .unit_rows = 1,
-                                              .eval = energy_eval,
-                                              .jvp = energy_jvp,
-                                              .nnz = energy_nnz,
-                                              .jac = energy_jac,
-                                              .free = free,
-                                              .input_dim = fb_bd_input_dim_any};
+const bd_block_ops fb_bd_energy_ops = {.kind = "energy",
+                                       .unit_rows = 1,
+                                       .consistent_inputs = 1,
+                                       .eval = energy_eval,
+                                       .jvp = energy_jvp,
+                                       .nnz = energy_nnz,
+                                       .jac = energy_jac,
+                                       .free = free,
+                                       .input_dim = fb_bd_input_dim_any};
 
 int fb_bd_energy_new(const fb_law_ops *law, void *ctx, bd_kind *out, fb_err *err)
 {

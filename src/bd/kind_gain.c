@@ -59,15 +59,15 @@ static void gain_free(void *content)
   free(g);
 }
 
-static const bd_block_ops fb_bd_gain_ops = {.kind = "gain",
-                                            .linear = 1,
-                                            .unit_rows = 1,
-                                            .eval = gain_eval,
-                                            .jvp = gain_jvp,
-                                            .nnz = gain_nnz,
-                                            .jac = gain_jac,
-                                            .free = gain_free,
-                                            .input_dim = gain_input_dim};
+const bd_block_ops fb_bd_gain_ops = {.kind = "gain",
+                                     .linear = 1,
+                                     .unit_rows = 1,
+                                     .eval = gain_eval,
+                                     .jvp = gain_jvp,
+                                     .nnz = gain_nnz,
+                                     .jac = gain_jac,
+                                     .free = gain_free,
+                                     .input_dim = gain_input_dim};
 
 int fb_bd_gain_new(fb_mat *a, int owned, bd_kind *out, fb_err *err)
 {

@@ -27,14 +27,14 @@ static int integ_jvp(bd_block *b, const double *w, double *dw)
   return 0;
 }
 
-static const bd_block_ops fb_bd_integrator_ops = {.kind = "integrator",
-                                                  .state = 1,
-                                                  .linear = 1,
-                                                  .unit_rows = 1,
-                                                  .symbol = "1/s",
-                                                  .jvp = integ_jvp,
-                                                  .nnz = integ_nnz,
-                                                  .jac = integ_jac};
+const bd_block_ops fb_bd_integrator_ops = {.kind = "integrator",
+                                           .state = 1,
+                                           .linear = 1,
+                                           .unit_rows = 1,
+                                           .symbol = "1/s",
+                                           .jvp = integ_jvp,
+                                           .nnz = integ_nnz,
+                                           .jac = integ_jac};
 
 bd_kind fb_bd_integrator_new(void)
 {

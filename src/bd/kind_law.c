@@ -149,19 +149,19 @@ static void law_free(void *content)
   free(l);
 }
 
-static const bd_block_ops fb_bd_law_ops = {.kind = "law",
-                                           .unit_rows = 1,
-                                           .label_noun = "law",
-                                           .eval = law_eval,
-                                           .jvp = law_jvp,
-                                           .nnz = law_nnz,
-                                           .jac = law_jac,
-                                           .free = law_free,
-                                           .input_dim = law_input_dim,
-                                           .piecewise_linear = law_piecewise_linear,
-                                           .nguards = law_nguards,
-                                           .guards = law_guards,
-                                           .switch_mode = law_switch_mode};
+const bd_block_ops fb_bd_law_ops = {.kind = "law",
+                                    .unit_rows = 1,
+                                    .label_noun = "law",
+                                    .eval = law_eval,
+                                    .jvp = law_jvp,
+                                    .nnz = law_nnz,
+                                    .jac = law_jac,
+                                    .free = law_free,
+                                    .input_dim = law_input_dim,
+                                    .piecewise_linear = law_piecewise_linear,
+                                    .nguards = law_nguards,
+                                    .guards = law_guards,
+                                    .switch_mode = law_switch_mode};
 
 int fb_bd_law_new(const fb_law_ops *law, void *ctx, size_t n, size_t m, bd_kind *out,
                   fb_err *err)

@@ -59,15 +59,15 @@ static void mux_free(void *content)
   free(m);
 }
 
-static const bd_block_ops fb_bd_mux_ops = {.kind = "mux",
-                                           .linear = 1,
-                                           .unit_rows = 1,
-                                           .eval = mux_eval,
-                                           .jvp = mux_jvp,
-                                           .nnz = mux_nnz,
-                                           .jac = mux_jac,
-                                           .free = mux_free,
-                                           .input_dim = fb_bd_input_dim_any};
+const bd_block_ops fb_bd_mux_ops = {.kind = "mux",
+                                    .linear = 1,
+                                    .unit_rows = 1,
+                                    .eval = mux_eval,
+                                    .jvp = mux_jvp,
+                                    .nnz = mux_nnz,
+                                    .jac = mux_jac,
+                                    .free = mux_free,
+                                    .input_dim = fb_bd_input_dim_any};
 
 int fb_bd_mux_new(size_t n, const double *coef, bd_kind *out, fb_err *err)
 {

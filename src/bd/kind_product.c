@@ -34,13 +34,13 @@ static int product_jac(bd_block *b, const double *w, size_t *rows, size_t *cols,
   return 0;
 }
 
-static const bd_block_ops fb_bd_product_ops = {.kind = "product",
-                                               .unit_rows = 1,
-                                               .product = 1,
-                                               .eval = product_eval,
-                                               .jvp = product_jvp,
-                                               .nnz = product_nnz,
-                                               .jac = product_jac};
+const bd_block_ops fb_bd_product_ops = {.kind = "product",
+                                        .unit_rows = 1,
+                                        .product = 1,
+                                        .eval = product_eval,
+                                        .jvp = product_jvp,
+                                        .nnz = product_nnz,
+                                        .jac = product_jac};
 
 bd_kind fb_bd_product_new(void)
 {

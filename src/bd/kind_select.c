@@ -47,15 +47,15 @@ static int select_jac(bd_block *b, const double *w, size_t *rows, size_t *cols, 
   return 0;
 }
 
-static const bd_block_ops fb_bd_select_ops = {.kind = "demux",
-                                              .linear = 1,
-                                              .unit_rows = 1,
-                                              .eval = select_eval,
-                                              .jvp = select_jvp,
-                                              .nnz = select_nnz,
-                                              .jac = select_jac,
-                                              .free = free,
-                                              .input_dim = fb_bd_input_dim_any};
+const bd_block_ops fb_bd_select_ops = {.kind = "demux",
+                                       .linear = 1,
+                                       .unit_rows = 1,
+                                       .eval = select_eval,
+                                       .jvp = select_jvp,
+                                       .nnz = select_nnz,
+                                       .jac = select_jac,
+                                       .free = free,
+                                       .input_dim = fb_bd_input_dim_any};
 
 int fb_bd_select_new(size_t offset, double sign, bd_kind *out, fb_err *err)
 {

@@ -68,14 +68,14 @@ static void solve_free(void *content)
   free(s);
 }
 
-static const bd_block_ops fb_bd_solve_ops = {.kind = "solve",
-                                             .linear = 1,
-                                             .eval = solve_eval,
-                                             .jvp = solve_jvp,
-                                             .nnz = solve_nnz,
-                                             .jac = solve_jac,
-                                             .free = solve_free,
-                                             .input_dim = solve_input_dim};
+const bd_block_ops fb_bd_solve_ops = {.kind = "solve",
+                                      .linear = 1,
+                                      .eval = solve_eval,
+                                      .jvp = solve_jvp,
+                                      .nnz = solve_nnz,
+                                      .jac = solve_jac,
+                                      .free = solve_free,
+                                      .input_dim = solve_input_dim};
 
 int fb_bd_solve_new(fb_mat *a, int owned, bd_kind *out, fb_err *err)
 {

@@ -55,17 +55,17 @@ static size_t source_breakpoints(const bd_block *b, double *bp, size_t max)
   return n;
 }
 
-static const bd_block_ops fb_bd_source_ops = {.kind = "source",
-                                              .linear = 1,
-                                              .unit_rows = 1,
-                                              .exogenous = 1,
-                                              .eval = source_eval,
-                                              .jvp = source_jvp,
-                                              .nnz = source_nnz,
-                                              .jac = source_jac,
-                                              .free = free,
-                                              .time_varying = source_time_varying,
-                                              .breakpoints = source_breakpoints};
+const bd_block_ops fb_bd_source_ops = {.kind = "source",
+                                       .linear = 1,
+                                       .unit_rows = 1,
+                                       .exogenous = 1,
+                                       .eval = source_eval,
+                                       .jvp = source_jvp,
+                                       .nnz = source_nnz,
+                                       .jac = source_jac,
+                                       .free = free,
+                                       .time_varying = source_time_varying,
+                                       .breakpoints = source_breakpoints};
 
 int fb_bd_source_new(fb_tfun *const *fns, bd_kind *out, fb_err *err)
 {

@@ -60,14 +60,14 @@ static void sum_free(void *content)
   free(s);
 }
 
-static const bd_block_ops fb_bd_sum_ops = {.kind = "sum",
-                                           .linear = 1,
-                                           .unit_rows = 1,
-                                           .eval = sum_eval,
-                                           .jvp = sum_jvp,
-                                           .nnz = sum_nnz,
-                                           .jac = sum_jac,
-                                           .free = sum_free};
+const bd_block_ops fb_bd_sum_ops = {.kind = "sum",
+                                    .linear = 1,
+                                    .unit_rows = 1,
+                                    .eval = sum_eval,
+                                    .jvp = sum_jvp,
+                                    .nnz = sum_nnz,
+                                    .jac = sum_jac,
+                                    .free = sum_free};
 
 int fb_bd_sum_new(size_t n, const double *coef, bd_kind *out, fb_err *err)
 {

@@ -1,10 +1,12 @@
-/* The block kinds of a diagram (src/bd/kind_*.c): their constructors
- * and the triplet writer their rows share.
+/* The block kinds of a diagram (src/bd/kind_*.c): their constructors,
+ * the registry that lists them, and the triplet writer their rows share.
  *
  * A kind is one file: its content type, its operations and properties
- * (bd_block_ops in bd/bd_internal.h) and a constructor. Each block's rows
- * express its law as B d(out) - sum_k A_k d(in_k) = 0; a state gives
- * d(x) - gamma d(x') = b (flexbond/bd.h). */
+ * (bd_block_ops in bd/bd_internal.h) and a constructor; fb_bd_kinds
+ * lists its ops so that the conformance harness (tests/
+ * test_bd_conformance.c) runs it through the same checks as every other
+ * kind. Each block's rows express its law as B d(out) - sum_k A_k d(in_k)
+ * = 0; a state gives d(x) - gamma d(x') = b (flexbond/bd.h). */
 #ifndef FLEXBOND_BD_KINDS_H
 #define FLEXBOND_BD_KINDS_H
 
@@ -18,6 +20,10 @@ typedef struct bd_kind {
   const bd_block_ops *ops;
   void *content;
 } bd_kind;
+
+/* Every kind, once; fb_bd_nkinds of them. */
+extern const bd_block_ops *const fb_bd_kinds[];
+extern const size_t fb_bd_nkinds;
 
 /* ---- Constructors. Those that take a matrix with owned = 1 take it over,
  * and free it on failure too; the others borrow theirs, which must

@@ -119,7 +119,8 @@ static const fb_law_ops damper_ops = {.name = "unilateral damper",
                                       .nguards = 2,
                                       .guards = damper_guards,
                                       .switch_mode = damper_switch,
-                                      .affine = 1};
+                                      .affine = 1,
+                                      .passive = 1};
 
 static int add_law(fb_bg *bg, const char *name, fb_bg_kind kind, const fb_law_ops *ops,
                    double k, double c, fb_err *err)

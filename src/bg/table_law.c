@@ -423,12 +423,14 @@ static void ops_free(void *ctx)
   fb_table_law_free(&law);
 }
 
+/* Passive: fb_bg_add_r_table refuses a law that is not. */
 static const fb_law_ops table_law_ops = {.name = "table",
                                          .id = FB_LAW_TABLE,
                                          .eval = ops_eval,
                                          .jacobian = ops_jacobian,
                                          .energy = ops_energy,
-                                         .free = ops_free};
+                                         .free = ops_free,
+                                         .passive = 1};
 
 int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err)
 {
