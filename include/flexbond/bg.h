@@ -103,8 +103,24 @@ typedef struct fb_law_in {
   int mode;        /* active branch of a switched law, 0 for a smooth one */
 } fb_law_in;
 
+/* Which of the library's own laws an ops table is, as SUNDIALS names a
+ * module's implementation (N_VGetVectorID): for the module that made a
+ * law to recognise it again (fb_bg_element_table_law,
+ * fb_bg_element_contact) without comparing ops pointers, and for a
+ * harness to list them all (every id below FB_LAW_NIDS but
+ * FB_LAW_CUSTOM has one law). A law of one's own is FB_LAW_CUSTOM, what
+ * an ops table that does not set the id has. */
+typedef enum fb_law_id {
+  FB_LAW_CUSTOM = 0,
+  FB_LAW_TABLE,          /* fb_bg_add_r_table */
+  FB_LAW_CONTACT_SPRING, /* fb_bg_add_unilateral_contact: the spring (C) */
+  FB_LAW_CONTACT_DAMPER, /* and the damper (modulated R) */
+  FB_LAW_NIDS
+} fb_law_id;
+
 typedef struct fb_law_ops {
   const char *name;
+  fb_law_id id;
   int (*eval)(void *ctx, const fb_law_in *in, double *y);
   /* dy/dxu into jac, column-major n x (n + m). */
   int (*jacobian)(void *ctx, const fb_law_in *in, double *jac);
@@ -126,6 +142,10 @@ typedef struct fb_law_ops {
   /* 1 when every branch is affine in xu, so the Jacobian changes only
    * with the mode and the Newton matrix only at events. */
   int affine;
+  /* 1 for a resistor's law that never delivers power: y . x >= 0 over its
+   * own input x (the first n values of xu), in the mode its guards choose
+   * there (Karnopp et al. ch. 3). */
+  int passive;
 } fb_law_ops;
 
 typedef struct fb_bg fb_bg;
@@ -320,7 +340,7 @@ size_t fb_bg_element_port_dim(const fb_bg *bg, size_t i, size_t k);
  * other kinds and nonlinear laws. */
 const fb_mat *fb_bg_element_matrix(const fb_bg *bg, size_t i);
 /* Nonlinear law of a field and its context (in *ctx if ctx is not NULL);
- * NULL for a linear one. Which law it is: compare ops with a module's own
+ * NULL for a linear one. Which law it is: its id, or a module's own
  * accessor (fb_bg_element_table_law, fb_bg_element_contact). */
 const fb_law_ops *fb_bg_element_law(const fb_bg *bg, size_t i, const void **ctx);
 /* Modulus of a TF or GY (0 for other kinds). */

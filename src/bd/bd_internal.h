@@ -10,12 +10,41 @@
 
 typedef struct bd_block bd_block;
 
-/* A block kind (SUNDIALS-style ops table, one static const per kind). */
+/* A block kind, as a SUNDIALS module is one: each kind (src/bd/kind_*.c)
+ * keeps its own data in the block's content and gives the diagram its
+ * operations and properties here, so that no code outside a kind asks
+ * which kind a block is. Functions return 0, >0 recoverable, <0 fatal. */
 typedef struct bd_block_ops {
-  const char *kind;
-  /* Writes the output from the inputs (w holds every signal). Returns 0,
-   * >0 recoverable, <0 fatal. NULL for integrators (their output is the
-   * state). */
+  const char *kind; /* "gain", for messages */
+  /* ---- Properties. */
+  /* The output is a state x (an integrator): there is no eval, the
+   * diagram copies x in and reads x' from input 0, and the rows are
+   * d(x) - gamma d(x'). */
+  int state;
+  /* 1 if the values of its rows never change (linear, time-invariant). */
+  int linear;
+  /* 1 if each of its rows has the coefficient 1 on its own output
+   * component and 0 on the others (B = I in B d(out) - A d(in) = 0). */
+  int unit_rows;
+  /* The output is a function of time alone: an input u of the
+   * descriptor form (fb_bd_descriptor). */
+  int exogenous;
+  /* The output is in_0 .* in_1 (a power e .* f): a descriptor gives it,
+   * at an output, as its two factors. */
+  int product;
+  /* 1 if its jvp and rows are exact only where its inputs are related as
+   * the diagram relates them, not at any signals: an energy's co-variable
+   * (input 1) is the gradient of the energy at its state (input 0), which
+   * its linearisation uses. */
+  int consistent_inputs;
+  /* Drawn instead of the block's label ("1/s"); NULL: the label. */
+  const char *symbol;
+  /* Messages name the block "noun 'label'" (a law: "law 'quadratic'");
+   * NULL: by its label alone. */
+  const char *label_noun;
+  /* ---- Operations. */
+  /* Writes the output from the inputs (w holds every signal). NULL for a
+   * state. */
   int (*eval)(bd_block *b, double t, double *w);
   /* dw[out] = (d out / d in) dw[in], at the signals w. */
   int (*jvp)(bd_block *b, const double *w, double *dw);
@@ -24,37 +53,60 @@ typedef struct bd_block_ops {
   /* Writes rows, cols (when rows != NULL) and values v0, v1 of its
    * triplets at the signals w. */
   int (*jac)(bd_block *b, const double *w, size_t *rows, size_t *cols, double *v0, double *v1);
-  int linear; /* 1 if jac values never change */
+  /* Frees the content; NULL when the kind has none. */
+  void (*free)(void *content);
+  /* The dimension input k must have; FB_NONE for any. NULL: the output's. */
+  size_t (*input_dim)(const bd_block *b, size_t k);
+  /* 1 if the output changes with t at fixed inputs. NULL: never. */
+  int (*time_varying)(const bd_block *b);
+  /* Writes at most max of the times where the output is not smooth to bp
+   * and returns how many it wrote; with bp == NULL, returns an upper bound
+   * of their number. NULL: none. */
+  size_t (*breakpoints)(const bd_block *b, double *bp, size_t max);
+  /* 1 if its rows change only when its mode does. NULL: as linear. */
+  int (*piecewise_linear)(const bd_block *b);
+  /* ---- Switched kinds (modes and guards, see fb_law_ops); NULL for the
+   * others. */
+  size_t (*nguards)(const bd_block *b);
+  /* The guards at w, in the current mode, into g[0 .. nguards). */
+  int (*guards)(bd_block *b, const double *w, double *g);
+  /* Moves to the mode that the guard signs sign choose at w (as
+   * fb_law_ops.switch_mode); *changed = 1 if the mode changed. */
+  int (*switch_mode)(bd_block *b, const double *w, const int *sign, int *changed);
 } bd_block_ops;
 
-/* Block input: an alias-resolved signal id. During construction inputs
- * refer to bond variables (effort or flow of a bond), resolved later. */
+/* What a block input refers to: a signal; during construction a bond
+ * variable 2*bond + (flow ? 1 : 0), or the state of an element (the
+ * modulating inputs of a law, known once every storage element has its
+ * integrator), until fb_bd_build resolves them into signals. */
+typedef enum bd_ref { BD_REF_SIGNAL, BD_REF_VAR, BD_REF_STATE } bd_ref;
+
 typedef struct bd_input {
   size_t id;
-  int is_var; /* id is a variable 2*bond + (flow ? 1 : 0) until resolved */
+  bd_ref ref;
 } bd_input;
 
+/* Wiring, geometry and origin are the diagram's, not the kind's: build,
+ * layout, scheduling and the pictures treat every block alike through
+ * these fields, and a kind reads its inputs and writes its output
+ * through them. Everything else a kind needs is in its content. */
 struct bd_block {
   const bd_block_ops *ops;
+  void *content; /* the kind's own data, NULL if it needs none */
   bd_input *in;
   size_t nin;
   size_t out;          /* output signal */
   size_t *ioff, *idim; /* input offsets in w and dimensions (after layout) */
   size_t ooff, odim;   /* output offset in w and dimension */
-  double *coef;        /* SUM coefficients, MUX/SELECT signs (per input) */
-  fb_mat *mat;         /* GAIN/SOLVE matrix (owned if owns_mat) */
-  int owns_mat;
-  fb_lu *lu;             /* SOLVE factorisation (owned) */
-  double *work;          /* scratch, size of the output or law Jacobian */
-  size_t offset;         /* SELECT: first component */
-  fb_tfun *const *fns;   /* SOURCE: borrowed time functions */
-  const fb_law_ops *law; /* LAW/ENERGY: nonlinear law */
-  void *law_ctx;
-  int mode;    /* LAW: active branch of a switched law */
-  double *xu;  /* LAW: the gathered inputs of a modulated law */
-  size_t elem; /* origin element (FB_NONE for probes) */
-  char *label; /* for DOT and messages */
+  size_t elem;         /* origin element (FB_NONE for probes) */
+  char *label;         /* for DOT and messages */
 };
+
+/* The number of guards of block b (0 unless it is switched). */
+static inline size_t fb_bd_block_nguards(const bd_block *b)
+{
+  return b->ops->nguards ? b->ops->nguards(b) : 0;
+}
 
 typedef struct bd_signal {
   size_t dim;
@@ -120,10 +172,6 @@ struct fb_bd {
   char errbuf[512];
 };
 
-extern const bd_block_ops fb_bd_integrator_ops, fb_bd_source_ops, fb_bd_gain_ops,
-    fb_bd_solve_ops, fb_bd_sum_ops, fb_bd_mux_ops, fb_bd_select_ops, fb_bd_product_ops,
-    fb_bd_law_ops, fb_bd_energy_ops;
-
 /* Evaluation order: topological, integrators cut the cycles. FB_ECAUSAL
  * with the zero-order causal path on an algebraic loop. */
 int fb_bd_schedule(fb_bd *bd, fb_err *err);
@@ -132,8 +180,6 @@ int fb_bd_schedule(fb_bd *bd, fb_err *err);
 int fb_bd_fold_constants(fb_bd *bd, fb_err *err);
 /* Finds the Newton subsystem and the pattern of its augmented matrix. */
 int fb_bd_prepare_newton(fb_bd *bd, fb_err *err);
-/* The inputs of law block b at the signals w, as its law sees them. */
-void fb_bd_law_input(bd_block *b, const double *w, fb_law_in *in);
 /* Finds the switched laws among the Newton blocks and lays out their
  * guards. */
 int fb_bd_prepare_switching(fb_bd *bd, fb_err *err);

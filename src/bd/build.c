@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bd/bd_internal.h"
+#include "bd/kinds.h"
 
 #define VAR_E(b) (2 * (b))
 #define VAR_F(b) (2 * (b) + 1)
@@ -31,33 +31,33 @@ static int new_signal(fb_bd *bd, size_t dim, const char *name, size_t producer, 
   return FB_OK;
 }
 
-/* Adds a block with nin inputs and an output signal of dimension odim
+/* Adds a block of the given kind (its content taken over, freed on
+ * failure too) with nin inputs and an output signal of dimension odim
  * named signame; returns its index in *id (SIZE_MAX when no block was
  * added). */
-static int new_block(fb_bd *bd, const bd_block_ops *ops, size_t nin, size_t odim, size_t elem,
+static int new_block(fb_bd *bd, bd_kind kind, size_t nin, size_t odim, size_t elem,
                      const char *label, const char *signame, size_t *id, fb_err *err)
 {
   *id = SIZE_MAX;
-  if (fb_grow((void **)&bd->blocks, &bd->cap_blocks, bd->nblocks, sizeof *bd->blocks))
+  if (fb_grow((void **)&bd->blocks, &bd->cap_blocks, bd->nblocks, sizeof *bd->blocks)) {
+    if (kind.ops->free)
+      kind.ops->free(kind.content);
     return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
+  }
   bd_block *b = &bd->blocks[bd->nblocks];
   memset(b, 0, sizeof *b);
-  b->ops = ops;
+  b->ops = kind.ops;
+  b->content = kind.content;
   b->nin = nin;
   b->elem = elem;
   b->odim = odim;
-  b->in = calloc(nin + 1, sizeof *b->in);
-  b->coef = malloc((nin + 1) * sizeof *b->coef);
-  b->label = fb_strdup(label);
-  if (!b->in || !b->coef || !b->label) {
-    free(b->in);
-    free(b->coef);
-    free(b->label);
-    return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
-  }
-  for (size_t k = 0; k <= nin; ++k)
-    b->coef[k] = 1.0;
+  /* Counted at once, so that fb_bd_free releases the content whatever
+   * fails next. */
   size_t bid = bd->nblocks++;
+  b->in = calloc(nin + 1, sizeof *b->in);
+  b->label = fb_strdup(label);
+  if (!b->in || !b->label)
+    return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
   int rc = new_signal(bd, odim, signame, bid, &bd->blocks[bid].out, err);
   *id = bid;
   return rc;
@@ -65,14 +65,12 @@ static int new_block(fb_bd *bd, const bd_block_ops *ops, size_t nin, size_t odim
 
 static void set_input_var(fb_bd *bd, size_t blk, size_t k, size_t var)
 {
-  bd->blocks[blk].in[k].id = var;
-  bd->blocks[blk].in[k].is_var = 1;
+  bd->blocks[blk].in[k] = (bd_input){var, BD_REF_VAR};
 }
 
 static void set_input_sig(fb_bd *bd, size_t blk, size_t k, size_t sig)
 {
-  bd->blocks[blk].in[k].id = sig;
-  bd->blocks[blk].in[k].is_var = 0;
+  bd->blocks[blk].in[k] = (bd_input){sig, BD_REF_SIGNAL};
 }
 
 static size_t out_sig(const fb_bd *bd, size_t blk)
@@ -92,12 +90,12 @@ static void define_var(fb_bd *bd, size_t var, size_t sig)
 }
 
 /* Block computing var (one output); its output signal is named after var. */
-static int var_block(fb_bd *bd, const bd_block_ops *ops, size_t nin, size_t var, size_t elem,
+static int var_block(fb_bd *bd, bd_kind kind, size_t nin, size_t var, size_t elem,
                      const char *label, size_t *blk, fb_err *err)
 {
   char name[256];
   var_name(bd->bg, var, name, sizeof name);
-  int rc = new_block(bd, ops, nin, bd->bg->bonds[var / 2].dim, elem, label, name, blk, err);
+  int rc = new_block(bd, kind, nin, bd->bg->bonds[var / 2].dim, elem, label, name, blk, err);
   if (!rc)
     define_var(bd, var, out_sig(bd, *blk));
   return rc;
@@ -107,15 +105,14 @@ static int var_block(fb_bd *bd, const bd_block_ops *ops, size_t nin, size_t var,
 static int gain_var(fb_bd *bd, size_t elem, size_t var, size_t in_var, fb_mat **a,
                     const char *label, fb_err *err)
 {
+  bd_kind kind;
   size_t blk;
-  int rc = var_block(bd, &fb_bd_gain_ops, 1, var, elem, label, &blk, err);
-  if (!rc) {
-    bd->blocks[blk].mat = *a;
-    bd->blocks[blk].owns_mat = 1;
-    *a = NULL;
+  int rc = fb_bd_gain_new(*a, 1, &kind, err);
+  *a = NULL;
+  if (!rc)
+    rc = var_block(bd, kind, 1, var, elem, label, &blk, err);
+  if (!rc)
     set_input_var(bd, blk, 0, in_var);
-  }
-  fb_mat_free(a);
   return rc;
 }
 
@@ -129,21 +126,18 @@ static int scaled_gain_var(fb_bd *bd, size_t elem, size_t var, size_t in_var, do
   return rc ? rc : gain_var(bd, elem, var, in_var, &a, label, err);
 }
 
-/* Block computing out = A^-1 in: a SOLVE with the sparse LU of A (A is
- * borrowed unless owned is set). */
-static int setup_solve(fb_bd *bd, size_t blk, fb_mat *a, int owned, fb_err *err)
+/* The kind computing out = A^-1 in for element e: a solve with the
+ * sparse LU of A (A is borrowed unless owned is set). */
+static int solve_kind(const fb_bd *bd, size_t e, fb_mat *a, int owned, bd_kind *kind,
+                      fb_err *err)
 {
-  bd_block *b = &bd->blocks[blk];
-  b->mat = a;
-  b->owns_mat = owned;
-  int rc = fb_lu_new(a, &b->lu, err);
+  int rc = fb_bd_solve_new(a, owned, kind, err);
   if (rc) {
     char who[160];
-    fb_bg_describe(bd->bg, b->elem, who, sizeof who);
+    fb_bg_describe(bd->bg, e, who, sizeof who);
     fb_err_prefix(err, "%s: its causality needs the inverse of its matrix: ", who);
-    return rc;
   }
-  return FB_OK;
+  return rc;
 }
 
 static int mat_is_diagonal(const fb_mat *a)
@@ -183,7 +177,7 @@ static int diag_inverse(const fb_mat *a, fb_mat **inv, fb_err *err)
 
 /* Stacks the ports' input variables (efforts when in_is_effort) into one
  * signal; with one port of sign +1 no block is needed. Returns the input
- * as (is_var, id). */
+ * as a variable or a signal. */
 static int stack_inputs(fb_bd *bd, size_t e, int in_is_effort, int signed_flows, bd_input *in,
                         fb_err *err)
 {
@@ -191,20 +185,28 @@ static int stack_inputs(fb_bd *bd, size_t e, int in_is_effort, int signed_flows,
   size_t b0 = el->bonds[0];
   int s0 = signed_flows ? fb_bg_orientation(bd->bg, b0, e) : 1;
   if (el->nports == 1 && s0 == 1) {
-    in->is_var = 1;
+    in->ref = BD_REF_VAR;
     in->id = in_is_effort ? VAR_E(b0) : VAR_F(b0);
     return FB_OK;
   }
   char name[256];
   snprintf(name, sizeof name, "%s.%s", el->name, in_is_effort ? "e" : "f");
+  double *sign = malloc((el->nports + 1) * sizeof *sign);
+  if (!sign)
+    return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
+  for (size_t k = 0; k < el->nports; ++k)
+    sign[k] = signed_flows ? fb_bg_orientation(bd->bg, el->bonds[k], e) : 1.0;
+  bd_kind kind;
   size_t blk;
-  int rc = new_block(bd, &fb_bd_mux_ops, el->nports, el->dim, e, "mux", name, &blk, err);
+  int rc = fb_bd_mux_new(el->nports, sign, &kind, err);
+  free(sign);
+  if (!rc)
+    rc = new_block(bd, kind, el->nports, el->dim, e, "mux", name, &blk, err);
   for (size_t k = 0; !rc && k < el->nports; ++k) {
     size_t b = el->bonds[k];
     set_input_var(bd, blk, k, in_is_effort ? VAR_E(b) : VAR_F(b));
-    bd->blocks[blk].coef[k] = signed_flows ? fb_bg_orientation(bd->bg, b, e) : 1.0;
   }
-  in->is_var = 0;
+  in->ref = BD_REF_SIGNAL;
   in->id = rc ? 0 : out_sig(bd, blk);
   return rc;
 }
@@ -223,16 +225,58 @@ static int split_outputs(fb_bd *bd, size_t e, size_t sig, int out_is_flow, fb_er
       define_var(bd, var, sig);
       return FB_OK;
     }
+    bd_kind kind;
     size_t blk;
-    int rc = var_block(bd, &fb_bd_select_ops, 1, var, e, "demux", &blk, err);
+    int rc = fb_bd_select_new(off, sign, &kind, err);
+    if (!rc)
+      rc = var_block(bd, kind, 1, var, e, "demux", &blk, err);
     if (rc)
       return rc;
     set_input_sig(bd, blk, 0, sig);
-    bd->blocks[blk].offset = off;
-    bd->blocks[blk].coef[0] = sign;
     off += bd->bg->bonds[b].dim;
   }
   return FB_OK;
+}
+
+/* The kind of a field's nonlinear law, with the modulating values of
+ * its sources' states. */
+static int law_kind(const fb_bd *bd, size_t e, int inverse, bd_kind *kind, fb_err *err)
+{
+  const fb_bg_elem *el = &bd->bg->elems[e];
+  if (inverse && el->kind == FB_BG_R)
+    return fb_err_set_origin(
+        err, FB_ORIGIN_ELEMENT, e,
+        fb_err_set(err, FB_ECAUSAL,
+                   "R '%s': a nonlinear law needs resistance causality (e = phi(f)), "
+                   "but its bonds impose the effort",
+                   el->name));
+  size_t m = 0;
+  for (size_t k = 0; k < el->nmod; ++k)
+    m += bd->bg->elems[el->mod_src[k]].dim;
+  return fb_bd_law_new(el->law_ops, el->law_ctx, el->dim, m, kind, err);
+}
+
+/* The kind and label of a field's matrix law: a gain by the matrix, or
+ * for its inverse a gain by the inverse when the matrix is diagonal, else
+ * a solve. */
+static int matrix_kind(const fb_bd *bd, size_t e, int inverse, bd_kind *kind,
+                       const char **label, fb_err *err)
+{
+  fb_mat *law = bd->bg->elems[e].law;
+  if (!inverse) {
+    *label = "gain";
+    return fb_bd_gain_new(law, 0, kind, err);
+  }
+  fb_mat *dinv = NULL;
+  int rc = diag_inverse(law, &dinv, err);
+  if (rc)
+    return rc;
+  if (dinv) {
+    *label = "inverse gain";
+    return fb_bd_gain_new(dinv, 1, kind, err);
+  }
+  *label = "solve";
+  return solve_kind(bd, e, law, 0, kind, err);
 }
 
 /* out = law(in) for the field's matrix or nonlinear law; inverse for
@@ -240,56 +284,22 @@ static int split_outputs(fb_bd *bd, size_t e, size_t sig, int out_is_flow, fb_er
 static int field_law(fb_bd *bd, size_t e, bd_input in, int inverse, const char *outname,
                      size_t *out, fb_err *err)
 {
-  fb_bg_elem *el = &bd->bg->elems[e];
+  const fb_bg_elem *el = &bd->bg->elems[e];
+  bd_kind kind;
+  const char *label = el->law_ops ? el->law_ops->name : NULL;
+  int rc = el->law_ops ? law_kind(bd, e, inverse, &kind, err)
+                       : matrix_kind(bd, e, inverse, &kind, &label, err);
   size_t blk;
-  int rc;
-  if (el->law_ops) {
-    if (inverse && el->kind == FB_BG_R)
-      return fb_err_set_origin(
-          err, FB_ORIGIN_ELEMENT, e,
-          fb_err_set(err, FB_ECAUSAL,
-                     "R '%s': a nonlinear law needs resistance causality (e = phi(f)), "
-                     "but its bonds impose the effort",
-                     el->name));
-    /* Modulating inputs are connected once every state exists
-     * (connect_modulation). */
-    size_t m = 0;
-    for (size_t k = 0; k < el->nmod; ++k)
-      m += bd->bg->elems[el->mod_src[k]].dim;
-    rc = new_block(bd, &fb_bd_law_ops, 1 + el->nmod, el->dim, e, el->law_ops->name, outname,
-                   &blk, err);
-    if (!rc) {
-      bd_block *b = &bd->blocks[blk];
-      b->law = el->law_ops;
-      b->law_ctx = el->law_ctx;
-      b->work = malloc(el->dim * (el->dim + m) * sizeof(double));
-      b->xu = el->nmod ? malloc((el->dim + m) * sizeof(double)) : NULL;
-      if (!b->work || (el->nmod && !b->xu))
-        rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-    }
-  } else if (!inverse) {
-    rc = new_block(bd, &fb_bd_gain_ops, 1, el->dim, e, "gain", outname, &blk, err);
-    if (!rc)
-      bd->blocks[blk].mat = el->law;
-  } else {
-    fb_mat *dinv = NULL;
-    rc = diag_inverse(el->law, &dinv, err);
-    const bd_block_ops *ops = dinv ? &fb_bd_gain_ops : &fb_bd_solve_ops;
-    if (!rc)
-      rc = new_block(bd, ops, 1, el->dim, e, dinv ? "inverse gain" : "solve", outname, &blk,
-                     err);
-    if (!rc && dinv) {
-      bd->blocks[blk].mat = dinv;
-      bd->blocks[blk].owns_mat = 1;
-      dinv = NULL;
-    } else if (!rc) {
-      rc = setup_solve(bd, blk, el->law, 0, err);
-    }
-    fb_mat_free(&dinv);
-  }
+  if (!rc)
+    rc = new_block(bd, kind, 1 + el->nmod, el->dim, e, label, outname, &blk, err);
   if (rc)
     return rc;
-  bd->blocks[blk].in[0] = in;
+  bd_block *b = &bd->blocks[blk];
+  b->in[0] = in;
+  /* A modulated law reads the states of its sources, which exist once
+   * every element has its blocks (resolve_inputs). */
+  for (size_t k = 0; k < el->nmod; ++k)
+    b->in[1 + k] = (bd_input){el->mod_src[k], BD_REF_STATE};
   *out = out_sig(bd, blk);
   return FB_OK;
 }
@@ -306,11 +316,11 @@ static int emit_storage(fb_bd *bd, size_t e, fb_err *err)
   snprintf(name, sizeof name, "%s.%s", el->name, is_i ? "p" : "q");
   size_t blk;
   if (!rc)
-    rc = new_block(bd, &fb_bd_integrator_ops, 1, el->dim, e, "integrator", name, &blk, err);
+    rc = new_block(bd, fb_bd_integrator_new(), 1, el->dim, e, "integrator", name, &blk, err);
   if (rc)
     return rc;
   bd->blocks[blk].in[0] = deriv;
-  bd_input state = {out_sig(bd, blk), 0};
+  bd_input state = {out_sig(bd, blk), BD_REF_SIGNAL};
   size_t co;
   snprintf(name, sizeof name, "%s.%s", el->name, is_i ? "f" : "e");
   rc = field_law(bd, e, state, is_i, name, &co, err);
@@ -350,12 +360,12 @@ static int emit_source(fb_bd *bd, size_t e, fb_err *err)
 {
   const fb_bg_elem *el = &bd->bg->elems[e];
   size_t b = el->bonds[0];
+  bd_kind kind;
   size_t blk;
-  int rc = var_block(bd, &fb_bd_source_ops, 0, el->kind == FB_BG_SE ? VAR_E(b) : VAR_F(b), e,
-                     "source", &blk, err);
-  if (!rc)
-    bd->blocks[blk].fns = el->values;
-  return rc;
+  int rc = fb_bd_source_new(el->values, &kind, err);
+  return rc ? rc
+            : var_block(bd, kind, 0, el->kind == FB_BG_SE ? VAR_E(b) : VAR_F(b), e, "source",
+                        &blk, err);
 }
 
 /* 0-junction: the strong bond s gives the effort, every other bond's
@@ -377,21 +387,24 @@ static int emit_junction(fb_bd *bd, size_t e, fb_err *err)
     if (b != strong)
       bd->var_alias[zero ? VAR_E(b) : VAR_F(b)] = common;
   }
-  size_t blk;
-  int rc = var_block(bd, &fb_bd_sum_ops, el->nports - 1, zero ? VAR_F(strong) : VAR_E(strong),
-                     e, "sum", &blk, err);
-  if (rc)
-    return rc;
+  double *coef = malloc(el->nports * sizeof *coef);
+  if (!coef)
+    return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
   int ss = fb_bg_orientation(bd->bg, strong, e);
-  size_t k2 = 0;
-  for (size_t k = 0; k < el->nports; ++k) {
-    size_t b = el->bonds[k];
-    if (b == strong)
-      continue;
-    set_input_var(bd, blk, k2, zero ? VAR_F(b) : VAR_E(b));
-    bd->blocks[blk].coef[k2++] = -(double)ss * fb_bg_orientation(bd->bg, b, e);
-  }
-  return FB_OK;
+  for (size_t k = 0, k2 = 0; k < el->nports; ++k)
+    if (el->bonds[k] != strong)
+      coef[k2++] = -(double)ss * fb_bg_orientation(bd->bg, el->bonds[k], e);
+  bd_kind kind;
+  size_t blk;
+  int rc = fb_bd_sum_new(el->nports - 1, coef, &kind, err);
+  free(coef);
+  if (!rc)
+    rc = var_block(bd, kind, el->nports - 1, zero ? VAR_F(strong) : VAR_E(strong), e, "sum",
+                   &blk, err);
+  for (size_t k = 0, k2 = 0; !rc && k < el->nports; ++k)
+    if (el->bonds[k] != strong)
+      set_input_var(bd, blk, k2++, zero ? VAR_F(el->bonds[k]) : VAR_E(el->bonds[k]));
+  return rc;
 }
 
 /* TF: e1 = r e2, f2 = r f1, or inverted. GY: e1 = r f2, e2 = r f1, or
@@ -432,6 +445,20 @@ static int emit_twoport(fb_bd *bd, size_t e, fb_err *err)
   return rc;
 }
 
+/* var = A^-1 in_var (A owned by the new block if owned is set). */
+static int solve_var(fb_bd *bd, size_t e, size_t var, size_t in_var, fb_mat *a, int owned,
+                     const char *label, fb_err *err)
+{
+  bd_kind kind;
+  size_t blk;
+  int rc = solve_kind(bd, e, a, owned, &kind, err);
+  if (!rc)
+    rc = var_block(bd, kind, 1, var, e, label, &blk, err);
+  if (!rc)
+    set_input_var(bd, blk, 0, in_var);
+  return rc;
+}
+
 /* MTF: f2 = T f1, e1 = T^T e2; inverted (square T): f1 = T^-1 f2,
  * e2 = T^-T e1. */
 static int emit_mtf(fb_bd *bd, size_t e, fb_err *err)
@@ -452,20 +479,12 @@ static int emit_mtf(fb_bd *bd, size_t e, fb_err *err)
     fb_mat_free(&tt);
     return rc;
   }
-  size_t blk;
-  rc = var_block(bd, &fb_bd_solve_ops, 1, VAR_F(b1), e, "T^-1", &blk, err);
-  if (!rc) {
-    set_input_var(bd, blk, 0, VAR_F(b2));
-    rc = setup_solve(bd, blk, el->law, 0, err);
-  }
-  if (!rc)
-    rc = var_block(bd, &fb_bd_solve_ops, 1, VAR_E(b2), e, "T'^-1", &blk, err);
+  rc = solve_var(bd, e, VAR_F(b1), VAR_F(b2), el->law, 0, "T^-1", err);
   if (rc) {
     fb_mat_free(&tt);
     return rc;
   }
-  set_input_var(bd, blk, 0, VAR_E(b1));
-  return setup_solve(bd, blk, tt, 1, err);
+  return solve_var(bd, e, VAR_E(b2), VAR_E(b1), tt, 1, "T'^-1", err);
 }
 
 /* Composite: the whole multibond stacks the parts' efforts and flows. */
@@ -474,20 +493,24 @@ static int emit_composite(fb_bd *bd, size_t e, fb_err *err)
   const fb_bg_elem *el = &bd->bg->elems[e];
   size_t nparts = el->nports - 1, whole = el->bonds[nparts];
   int whole_gives_effort = fb_bg_receives_effort(bd->bg, whole, e);
+  bd_kind kind;
   size_t mux;
-  int rc = var_block(bd, &fb_bd_mux_ops, nparts,
-                     whole_gives_effort ? VAR_F(whole) : VAR_E(whole), e, "mux", &mux, err);
+  int rc = fb_bd_mux_new(nparts, NULL, &kind, err);
+  if (!rc)
+    rc = var_block(bd, kind, nparts, whole_gives_effort ? VAR_F(whole) : VAR_E(whole), e, "mux",
+                   &mux, err);
   size_t split = whole_gives_effort ? VAR_E(whole) : VAR_F(whole);
   size_t off = 0;
   for (size_t k = 0; !rc && k < nparts; ++k) {
     size_t b = el->bonds[k];
     set_input_var(bd, mux, k, whole_gives_effort ? VAR_F(b) : VAR_E(b));
     size_t blk;
-    rc = var_block(bd, &fb_bd_select_ops, 1, whole_gives_effort ? VAR_E(b) : VAR_F(b), e,
-                   "demux", &blk, err);
+    rc = fb_bd_select_new(off, 1.0, &kind, err);
+    if (!rc)
+      rc = var_block(bd, kind, 1, whole_gives_effort ? VAR_E(b) : VAR_F(b), e, "demux", &blk,
+                     err);
     if (!rc) {
       set_input_var(bd, blk, 0, split);
-      bd->blocks[blk].offset = off;
       off += bd->bg->bonds[b].dim;
     }
   }
@@ -532,17 +555,22 @@ static int resolve_var(const fb_bd *bd, size_t var, size_t *sig, fb_err *err)
       fb_err_set(err, FB_ECAUSAL, "no block computes %s (junction structure loop)", name));
 }
 
+/* Every input becomes a signal: a variable its producer's (through the
+ * junctions' aliases), an element's state its integrator's output. */
 static int resolve_inputs(fb_bd *bd, fb_err *err)
 {
   for (size_t i = 0; i < bd->nblocks; ++i) {
     bd_block *b = &bd->blocks[i];
     for (size_t k = 0; k < b->nin; ++k) {
-      if (!b->in[k].is_var)
-        continue;
-      int rc = resolve_var(bd, b->in[k].id, &b->in[k].id, err);
-      if (rc)
-        return rc;
-      b->in[k].is_var = 0;
+      bd_input *in = &b->in[k];
+      if (in->ref == BD_REF_STATE)
+        in->id = bd->elem_state[in->id];
+      if (in->ref == BD_REF_VAR) {
+        int rc = resolve_var(bd, in->id, &in->id, err);
+        if (rc)
+          return rc;
+      }
+      in->ref = BD_REF_SIGNAL;
     }
   }
   return FB_OK;
@@ -594,7 +622,7 @@ static int probe_signal(fb_bd *bd, const fb_probe_spec *p, size_t *sig, size_t *
     if (!rc)
       rc = resolve_var(bd, VAR_F(t), &sf, err);
     if (!rc)
-      rc = new_block(bd, &fb_bd_product_ops, 2, bd->bg->bonds[t].dim, FB_NONE, "e.*f", p->name,
+      rc = new_block(bd, fb_bd_product_new(), 2, bd->bg->bonds[t].dim, FB_NONE, "e.*f", p->name,
                      &blk, err);
     if (rc)
       return rc;
@@ -614,14 +642,15 @@ static int probe_signal(fb_bd *bd, const fb_probe_spec *p, size_t *sig, size_t *
   if (el->law_ops && !el->law_ops->energy)
     return fb_err_set(err, FB_EMODEL, "probe '%s': the law of '%s' has no energy function",
                       p->name, p->target);
+  bd_kind kind;
   size_t blk;
-  int rc = new_block(bd, &fb_bd_energy_ops, 2, 1, FB_NONE, "energy", p->name, &blk, err);
+  int rc = fb_bd_energy_new(el->law_ops, el->law_ctx, &kind, err);
+  if (!rc)
+    rc = new_block(bd, kind, 2, 1, FB_NONE, "energy", p->name, &blk, err);
   if (rc)
     return rc;
   set_input_sig(bd, blk, 0, bd->elem_state[t]);
   set_input_sig(bd, blk, 1, bd->elem_co[t]);
-  bd->blocks[blk].law = el->law_ops;
-  bd->blocks[blk].law_ctx = el->law_ctx;
   *sig = out_sig(bd, blk);
   return FB_OK;
 }
@@ -656,16 +685,16 @@ static int weighted_sum(fb_bd *bd, const fb_probe_spec *p, size_t *sig, fb_err *
                       "one per component and no component selection)",
                       p->name, p->nweights, n);
   fb_mat *w = NULL;
-  size_t blk;
   int rc = fb_mat_new_dense(1, n, p->weights, &w, err);
-  if (!rc)
-    rc = new_block(bd, &fb_bd_gain_ops, 1, 1, FB_NONE, "weights", p->name, &blk, err);
-  if (rc) {
-    fb_mat_free(&w);
+  if (rc)
     return rc;
-  }
-  bd->blocks[blk].mat = w;
-  bd->blocks[blk].owns_mat = 1;
+  bd_kind kind;
+  size_t blk;
+  rc = fb_bd_gain_new(w, 1, &kind, err);
+  if (!rc)
+    rc = new_block(bd, kind, 1, 1, FB_NONE, "weights", p->name, &blk, err);
+  if (rc)
+    return rc;
   set_input_sig(bd, blk, 0, *sig);
   *sig = out_sig(bd, blk);
   return FB_OK;
@@ -693,8 +722,8 @@ static int add_probe(fb_bd *bd, const fb_probe_spec *p, fb_err *err)
     char name[300];
     snprintf(name, sizeof name, "integral:%s", p->name);
     size_t blk;
-    rc = new_block(bd, &fb_bd_integrator_ops, 1, bd->sigs[sig].dim, FB_NONE, "integrator", name,
-                   &blk, err);
+    rc = new_block(bd, fb_bd_integrator_new(), 1, bd->sigs[sig].dim, FB_NONE, "integrator",
+                   name, &blk, err);
     if (rc)
       return rc;
     set_input_sig(bd, blk, 0, sig);
@@ -731,14 +760,14 @@ static int layout(fb_bd *bd, fb_err *err)
   bd->ninteg = 0;
   size_t off = 0;
   for (size_t i = 0; i < bd->nblocks; ++i)
-    if (bd->blocks[i].ops == &fb_bd_integrator_ops) {
+    if (bd->blocks[i].ops->state) {
       bd->integ[bd->ninteg++] = i;
       bd->sigs[bd->blocks[i].out].off = off;
       off += bd->sigs[bd->blocks[i].out].dim;
     }
   bd->nstates = off;
   for (size_t i = 0; i < bd->nblocks; ++i)
-    if (bd->blocks[i].ops != &fb_bd_integrator_ops) {
+    if (!bd->blocks[i].ops->state) {
       bd->sigs[bd->blocks[i].out].off = off;
       off += bd->sigs[bd->blocks[i].out].dim;
     }
@@ -763,14 +792,9 @@ static int check_dims(const fb_bd *bd, fb_err *err)
 {
   for (size_t i = 0; i < bd->nblocks; ++i) {
     const bd_block *b = &bd->blocks[i];
-    size_t need = b->odim;
-    if (b->ops == &fb_bd_gain_ops || b->ops == &fb_bd_solve_ops)
-      need = fb_mat_ncols(b->mat);
     for (size_t k = 0; k < b->nin; ++k) {
-      /* A law's modulating inputs (k > 0) have their sources' sizes. */
-      int any = b->ops == &fb_bd_mux_ops || b->ops == &fb_bd_select_ops ||
-                b->ops == &fb_bd_energy_ops || (b->ops == &fb_bd_law_ops && k > 0);
-      if (!any && b->idim[k] != need)
+      size_t need = b->ops->input_dim ? b->ops->input_dim(b, k) : b->odim;
+      if (need != FB_NONE && b->idim[k] != need)
         return fb_err_set(err, FB_EMODEL,
                           "block '%s' (%s): input %zu has dimension %zu, "
                           "expected %zu",
@@ -824,19 +848,6 @@ static int alloc_vars(fb_bd *bd, fb_err *err)
   return FB_OK;
 }
 
-/* Inputs 1.. of a modulated law block are the states of its sources. */
-static void connect_modulation(fb_bd *bd)
-{
-  for (size_t i = 0; i < bd->nblocks; ++i) {
-    bd_block *b = &bd->blocks[i];
-    if (b->ops != &fb_bd_law_ops)
-      continue;
-    const fb_bg_elem *el = &bd->bg->elems[b->elem];
-    for (size_t k = 0; k < el->nmod; ++k)
-      b->in[1 + k] = (bd_input){bd->elem_state[el->mod_src[k]], 0};
-  }
-}
-
 static int build(fb_bd *bd, const fb_probe_spec *probes, size_t nprobes, fb_err *err)
 {
   int rc = fb_bg_assign_causality(bd->bg, err);
@@ -846,8 +857,6 @@ static int build(fb_bd *bd, const fb_probe_spec *probes, size_t nprobes, fb_err 
     rc = emit_element(bd, e, err);
   if (!rc)
     rc = resolve_inputs(bd, err);
-  if (!rc)
-    connect_modulation(bd);
   for (size_t i = 0; !rc && i < nprobes; ++i)
     rc = add_probe(bd, &probes[i], err);
   if (!rc)
@@ -897,16 +906,12 @@ void fb_bd_free(fb_bd **bdp)
   fb_bd *bd = *bdp;
   for (size_t i = 0; i < bd->nblocks; ++i) {
     bd_block *b = &bd->blocks[i];
+    if (b->ops->free)
+      b->ops->free(b->content);
     free(b->in);
-    free(b->coef);
     free(b->ioff);
     free(b->idim);
-    free(b->work);
-    free(b->xu);
     free(b->label);
-    if (b->owns_mat)
-      fb_mat_free(&b->mat);
-    fb_lu_free(&b->lu);
   }
   for (size_t i = 0; i < bd->nsigs; ++i)
     free(bd->sigs[i].name);

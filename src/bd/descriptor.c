@@ -2,7 +2,7 @@
  * diagram (see flexbond/bd.h).
  *
  * The blocks already write their rows of the augmented Newton matrix
- * P(gamma) = P0 + gamma P1 (blocks.c): an integrator's row is
+ * P(gamma) = P0 + gamma P1 (bd/kinds.h): an integrator's row is
  * dx - gamma dx' (v0 = 1 on x, v1 = -1 on its input), every other block's
  * rows are its linear law B d(out) - sum_k A_k d(in_k) = 0 (v1 = 0). A
  * backward Euler step of E z' = A z is (E - gamma A) z_new = E z_old with
@@ -72,11 +72,6 @@ static void trips_put(trips *t, size_t r, size_t c, double v)
   t->vals[t->n++] = v;
 }
 
-static int is_integrator(const fb_bd *bd, size_t i)
-{
-  return bd->blocks[i].ops == &fb_bd_integrator_ops;
-}
-
 static size_t producer_of(const fb_bd *bd, size_t sig)
 {
   return bd->sigs[sig].producer;
@@ -93,7 +88,7 @@ static void mark_output_blocks(desc_build *d, size_t *stack)
   for (size_t o = 0; o < bd->nouts; ++o) {
     size_t i = producer_of(bd, bd->outs[o].signal);
     const bd_block *b = &bd->blocks[i];
-    if (b->ops == &fb_bd_product_ops && d->role[i] == ROLE_NONE && !bd->is_const[i]) {
+    if (b->ops->product && d->role[i] == ROLE_NONE && !bd->is_const[i]) {
       d->role[i] = ROLE_SPLIT_POWER;
       stack[top++] = producer_of(bd, b->in[0].id);
       stack[top++] = producer_of(bd, b->in[1].id);
@@ -178,7 +173,7 @@ static int reserve(desc_build *d, fb_err *err)
     size_t nnz = b->ops->nnz(b);
     na += nnz;
     maxblk = nnz > maxblk ? nnz : maxblk;
-    if (b->ops == &fb_bd_source_ops)
+    if (b->ops->exogenous)
       nb += b->odim;
   }
   d->f = calloc(d->n + 1, sizeof *d->f);
@@ -208,7 +203,7 @@ static int block_rows(desc_build *d, size_t i)
   int rc = b->ops->jac(b, bd->w, d->jrows, d->jcols, d->jv0, d->jv1);
   if (rc)
     return rc;
-  const int integ = is_integrator(bd, i);
+  const int integ = b->ops->state;
   for (size_t k = 0, nnz = b->ops->nnz(b); k < nnz; ++k) {
     const size_t r = d->vmap[d->jrows[k]], c = d->vmap[d->jcols[k]];
     const double e = integ ? d->jv0[k] : 0.0, a = e - d->jv0[k] - d->jv1[k];
@@ -220,7 +215,7 @@ static int block_rows(desc_build *d, size_t i)
       trips_put(&d->e, r, c, e);
     trips_put(&d->a, r, c, a);
   }
-  if (b->ops == &fb_bd_source_ops)
+  if (b->ops->exogenous)
     for (size_t c = 0; c < b->odim; ++c)
       trips_put(&d->b, d->vmap[b->ooff + c], d->ninputs++, 1.0);
   return FB_OK;
@@ -315,7 +310,7 @@ static int name_inputs(const desc_build *d, fb_descriptor *ds)
   size_t j = 0;
   for (size_t i = 0; i < bd->nblocks; ++i) {
     const bd_block *b = &bd->blocks[i];
-    if (b->ops != &fb_bd_source_ops || (d->role[i] != ROLE_NEWTON && d->role[i] != ROLE_OUTPUT))
+    if (!b->ops->exogenous || (d->role[i] != ROLE_NEWTON && d->role[i] != ROLE_OUTPUT))
       continue;
     for (size_t c = 0; c < b->odim; ++c, ++j) {
       ds->input_var[j] = d->vmap[b->ooff + c];

@@ -32,7 +32,7 @@ static const char *block_group(const fb_bd *bd, size_t i, size_t *len)
 static void write_node(const fb_bd *bd, size_t i, FILE *fp)
 {
   const bd_block *b = &bd->blocks[i];
-  int integ = b->ops == &fb_bd_integrator_ops;
+  int state = b->ops->state;
   fprintf(fp, "  n%zu [label=\"", i);
   if (b->elem != FB_NONE) {
     fprintf(fp, "%s ", fb_bg_kind_name(bd->bg->elems[b->elem].kind));
@@ -41,9 +41,9 @@ static void write_node(const fb_bd *bd, size_t i, FILE *fp)
   } else {
     fputs("probe\\n", fp);
   }
-  fb_dot_write_text(fp, integ ? "1/s" : b->label);
+  fb_dot_write_text(fp, b->ops->symbol ? b->ops->symbol : b->label);
   fprintf(fp, " [%zu]\"%s];\n", b->odim,
-          integ ? ", shape=box, style=\"rounded,filled\", fillcolor=\"#dde8f8\"" : "");
+          state ? ", shape=box, style=\"rounded,filled\", fillcolor=\"#dde8f8\"" : "");
 }
 
 int fb_bd_write_dot(const fb_bd *bd, FILE *fp, fb_err *err)

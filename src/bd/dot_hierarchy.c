@@ -140,7 +140,7 @@ static void write_block(const hier *h, size_t i, const char *indent)
 {
   const fb_bd *bd = h->bd;
   const bd_block *b = &bd->blocks[i];
-  int integ = b->ops == &fb_bd_integrator_ops;
+  int state = b->ops->state;
   fprintf(h->fp, "%sb%zu [label=\"", indent, i);
   if (b->elem != FB_NONE) {
     fprintf(h->fp, "%s ", fb_bg_kind_name(bd->bg->elems[b->elem].kind));
@@ -150,9 +150,9 @@ static void write_block(const hier *h, size_t i, const char *indent)
   } else {
     fputs("probe\\n", h->fp);
   }
-  fb_dot_write_text(h->fp, integ ? "1/s" : b->label);
+  fb_dot_write_text(h->fp, b->ops->symbol ? b->ops->symbol : b->label);
   fprintf(h->fp, " [%zu]\"%s];\n", b->odim,
-          integ ? ", style=\"rounded,filled\", fillcolor=\"#dde8f8\"" : "");
+          state ? ", style=\"rounded,filled\", fillcolor=\"#dde8f8\"" : "");
 }
 
 /* The blocks directly in group grp, then its nested groups as clusters. */

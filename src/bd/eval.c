@@ -81,8 +81,8 @@ static void block_name(const fb_bd *bd, const bd_block *b, char *buf, size_t siz
     snprintf(who, sizeof who, "probe '%s'", bd->sigs[b->out].name);
   else
     fb_bg_describe(bd->bg, b->elem, who, sizeof who);
-  if (b->ops == &fb_bd_law_ops)
-    snprintf(buf, size, "%s (law '%s')", who, b->label);
+  if (b->ops->label_noun)
+    snprintf(buf, size, "%s (%s '%s')", who, b->ops->label_noun, b->label);
   else
     snprintf(buf, size, "%s (%s)", who, b->label);
 }
@@ -300,7 +300,7 @@ int fb_bd_prepare_newton(fb_bd *bd, fb_err *err)
     for (int pass = 0; pass < 2; ++pass)
       for (size_t i = 0; i < n; ++i) {
         const bd_block *b = &bd->blocks[i];
-        if ((b->ops == &fb_bd_integrator_ops) != (pass == 0))
+        if (b->ops->state != (pass == 0))
           continue;
         for (size_t c = 0; c < b->odim; ++c)
           bd->zmap[b->ooff + c] = in[i] ? bd->nz++ : FB_NONE;
@@ -363,7 +363,7 @@ void fb_bd_aug_unit_rows(const fb_bd *bd, unsigned char *unit)
   memset(unit, 0, bd->nz);
   for (size_t n = 0; n < bd->nnewton; ++n) {
     const bd_block *b = &bd->blocks[bd->newton_blocks[n]];
-    if (b->ops == &fb_bd_solve_ops || feeds_itself(b))
+    if (!b->ops->unit_rows || feeds_itself(b))
       continue;
     for (size_t c = 0; c < b->odim; ++c)
       if (bd->zmap[b->ooff + c] != FB_NONE)
@@ -422,9 +422,8 @@ size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max)
 {
   size_t total = 0;
   for (size_t i = 0; i < bd->nblocks; ++i)
-    if (bd->blocks[i].ops == &fb_bd_source_ops)
-      for (size_t c = 0; c < bd->blocks[i].odim; ++c)
-        total += fb_tfun_breakpoints(bd->blocks[i].fns[c], NULL, 0);
+    if (bd->blocks[i].ops->breakpoints)
+      total += bd->blocks[i].ops->breakpoints(&bd->blocks[i], NULL, 0);
   if (!bp || total == 0)
     return total;
   /* Collect all, then sort, merge duplicates and keep the earliest max. */
@@ -433,9 +432,8 @@ size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max)
     return 0;
   size_t n = 0;
   for (size_t i = 0; i < bd->nblocks; ++i)
-    if (bd->blocks[i].ops == &fb_bd_source_ops)
-      for (size_t c = 0; c < bd->blocks[i].odim; ++c)
-        n += fb_tfun_breakpoints(bd->blocks[i].fns[c], all + n, total - n);
+    if (bd->blocks[i].ops->breakpoints)
+      n += bd->blocks[i].ops->breakpoints(&bd->blocks[i], all + n, total - n);
   qsort(all, n, sizeof *all, cmp_double);
   size_t u = 0;
   for (size_t i = 0; i < n && u < max; ++i)
@@ -447,7 +445,7 @@ size_t fb_bd_breakpoints(const fb_bd *bd, double *bp, size_t max)
 
 /* FB_NONFINITE_JACOBIAN, described into buf, if a Newton block's
  * triplets at the signals in w are not finite. A triplet of row r and
- * column c != r holds minus the derivative of r by c (blocks.c writes
+ * column c != r holds minus the derivative of r by c (every kind writes
  * B d(out) - A d(in) = 0), which is what is shown. */
 static fb_bd_nonfinite_kind check_jacobians(fb_bd *bd, char *buf, size_t size)
 {

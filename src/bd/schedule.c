@@ -11,7 +11,7 @@
 
 static int is_integrator(const fb_bd *bd, size_t blk)
 {
-  return bd->blocks[blk].ops == &fb_bd_integrator_ops;
+  return bd->blocks[blk].ops->state;
 }
 
 /* Producer of input k of block i, or FB_NONE if it is a state. */
@@ -147,20 +147,15 @@ out:
   return rc;
 }
 
-/* 1 if block i computes a constant: a source of constant functions, or a
- * block (other than an integrator) all of whose inputs are constant. */
+/* 1 if block i (other than an integrator) computes a constant: all its
+ * inputs are constant (a source has none) and its output changes neither
+ * with t (a source of functions that are not all constant) nor with a
+ * mode (a switched law). */
 static int block_is_constant(const fb_bd *bd, size_t i, const unsigned char *cst)
 {
   const bd_block *b = &bd->blocks[i];
-  /* A switched law's output changes with its mode, not only its inputs. */
-  if (b->law && b->law->nguards)
+  if (fb_bd_block_nguards(b) || (b->ops->time_varying && b->ops->time_varying(b)))
     return 0;
-  if (b->ops == &fb_bd_source_ops) {
-    for (size_t c = 0; c < b->odim; ++c)
-      if (!fb_tfun_is_constant(b->fns[c]))
-        return 0;
-    return 1;
-  }
   for (size_t k = 0; k < b->nin; ++k)
     if (!cst[bd->sigs[b->in[k].id].producer])
       return 0;

@@ -7,8 +7,7 @@
 
 static int is_switched(const fb_bd *bd, size_t i)
 {
-  const bd_block *b = &bd->blocks[i];
-  return b->ops == &fb_bd_law_ops && b->law->nguards && !bd->is_const[i];
+  return fb_bd_block_nguards(&bd->blocks[i]) && !bd->is_const[i];
 }
 
 int fb_bd_prepare_switching(fb_bd *bd, fb_err *err)
@@ -25,7 +24,7 @@ int fb_bd_prepare_switching(fb_bd *bd, fb_err *err)
     if (is_switched(bd, i)) {
       bd->guard_off[bd->nswitched] = bd->nguards;
       bd->switched[bd->nswitched++] = i;
-      bd->nguards += bd->blocks[i].law->nguards;
+      bd->nguards += fb_bd_block_nguards(&bd->blocks[i]);
     }
   bd->guard_now = malloc((bd->nguards + 1) * sizeof *bd->guard_now);
   bd->guard_ahead = malloc((bd->nguards + 1) * sizeof *bd->guard_ahead);
@@ -36,7 +35,8 @@ int fb_bd_prepare_switching(fb_bd *bd, fb_err *err)
   bd->piecewise_linear = 1;
   for (size_t k = 0; k < bd->nnewton; ++k) {
     const bd_block *b = &bd->blocks[bd->newton_blocks[k]];
-    bd->piecewise_linear &= b->ops->linear || (b->ops == &fb_bd_law_ops && b->law->affine);
+    bd->piecewise_linear &=
+        b->ops->piecewise_linear ? b->ops->piecewise_linear(b) : b->ops->linear;
   }
   return FB_OK;
 }
@@ -61,11 +61,12 @@ const char *fb_bd_guard_element(const fb_bd *bd, size_t i)
   return bd->bg->elems[bd->blocks[bd->switched[k]].elem].name;
 }
 
-/* Says in the diagram's message buffer which law call failed. */
-static int law_failed(fb_bd *bd, const bd_block *b, const char *what, int rc)
+/* Says in the diagram's message buffer which call of a switched block
+ * failed ("the guards of the law of 'tire'"). */
+static int switch_failed(fb_bd *bd, const bd_block *b, const char *what, int rc)
 {
-  snprintf(bd->errbuf, sizeof bd->errbuf, "the %s of the law of '%s' failed (%s)", what,
-           bd->bg->elems[b->elem].name, rc > 0 ? "recoverable" : "fatal");
+  snprintf(bd->errbuf, sizeof bd->errbuf, "the %s of the %s of '%s' failed (%s)", what,
+           b->ops->kind, bd->bg->elems[b->elem].name, rc > 0 ? "recoverable" : "fatal");
   return rc;
 }
 
@@ -74,11 +75,9 @@ int fb_bd_guards(fb_bd *bd, double t, const double *x, double *g)
   int rc = bd->nswitched ? fb_bd_eval(bd, t, x) : 0;
   for (size_t k = 0; !rc && k < bd->nswitched; ++k) {
     bd_block *b = &bd->blocks[bd->switched[k]];
-    fb_law_in in;
-    fb_bd_law_input(b, bd->w, &in);
-    rc = b->law->guards(b->law_ctx, &in, g + bd->guard_off[k]);
+    rc = b->ops->guards(b, bd->w, g + bd->guard_off[k]);
     if (rc)
-      rc = law_failed(bd, b, "guards", rc);
+      rc = switch_failed(bd, b, "guards", rc);
   }
   return rc;
 }
@@ -90,16 +89,9 @@ static int switch_laws(fb_bd *bd, double t, const double *x, const int *sign, in
   int rc = fb_bd_eval(bd, t, x);
   for (size_t k = 0; !rc && k < bd->nswitched; ++k) {
     bd_block *b = &bd->blocks[bd->switched[k]];
-    fb_law_in in;
-    fb_bd_law_input(b, bd->w, &in);
-    int mode = b->mode;
-    rc = b->law->switch_mode(b->law_ctx, &in, sign + bd->guard_off[k], &mode);
+    rc = b->ops->switch_mode(b, bd->w, sign + bd->guard_off[k], changed);
     if (rc)
-      rc = law_failed(bd, b, "mode switch", rc);
-    else if (mode != b->mode) {
-      b->mode = mode;
-      *changed = 1;
-    }
+      rc = switch_failed(bd, b, "mode switch", rc);
   }
   return rc;
 }

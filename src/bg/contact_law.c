@@ -56,6 +56,7 @@ static int spring_switch(void *ctx, const fb_law_in *in, const int *sign, int *m
 }
 
 static const fb_law_ops spring_ops = {.name = "unilateral spring",
+                                      .id = FB_LAW_CONTACT_SPRING,
                                       .eval = spring_eval,
                                       .jacobian = spring_jacobian,
                                       .energy = spring_energy,
@@ -111,13 +112,15 @@ static int damper_switch(void *ctx, const fb_law_in *in, const int *sign, int *m
 }
 
 static const fb_law_ops damper_ops = {.name = "unilateral damper",
+                                      .id = FB_LAW_CONTACT_DAMPER,
                                       .eval = damper_eval,
                                       .jacobian = damper_jacobian,
                                       .free = free,
                                       .nguards = 2,
                                       .guards = damper_guards,
                                       .switch_mode = damper_switch,
-                                      .affine = 1};
+                                      .affine = 1,
+                                      .passive = 1};
 
 static int add_law(fb_bg *bg, const char *name, fb_bg_kind kind, const fb_law_ops *ops,
                    double k, double c, fb_err *err)
@@ -154,17 +157,23 @@ int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damp
   return rc;
 }
 
+/* 1 if element i has the law of that id. */
+static int has_law(const fb_bg *bg, size_t i, fb_law_id id)
+{
+  return bg->elems[i].law_ops && bg->elems[i].law_ops->id == id;
+}
+
 /* The damper is recognised by its law and finds its spring through its
  * modulation (fb_bg_add_unilateral_contact makes the spring its only
  * modulator); a spring looks for the damper modulated by it. */
 int fb_bg_element_contact(const fb_bg *bg, size_t i, fb_bg_contact *out)
 {
-  const fb_bg_elem *el = &bg->elems[i];
   size_t damper = FB_NONE;
-  if (el->law_ops == &damper_ops && el->nmod == 1)
+  if (has_law(bg, i, FB_LAW_CONTACT_DAMPER) && bg->elems[i].nmod == 1)
     damper = i;
-  for (size_t j = 0; damper == FB_NONE && el->law_ops == &spring_ops && j < bg->nelems; ++j)
-    if (bg->elems[j].law_ops == &damper_ops && bg->elems[j].nmod == 1 &&
+  for (size_t j = 0;
+       damper == FB_NONE && has_law(bg, i, FB_LAW_CONTACT_SPRING) && j < bg->nelems; ++j)
+    if (has_law(bg, j, FB_LAW_CONTACT_DAMPER) && bg->elems[j].nmod == 1 &&
         bg->elems[j].mod_src[0] == i)
       damper = j;
   if (damper == FB_NONE)

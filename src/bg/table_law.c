@@ -423,11 +423,14 @@ static void ops_free(void *ctx)
   fb_table_law_free(&law);
 }
 
+/* Passive: fb_bg_add_r_table refuses a law that is not. */
 static const fb_law_ops table_law_ops = {.name = "table",
+                                         .id = FB_LAW_TABLE,
                                          .eval = ops_eval,
                                          .jacobian = ops_jacobian,
                                          .energy = ops_energy,
-                                         .free = ops_free};
+                                         .free = ops_free,
+                                         .passive = 1};
 
 int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err)
 {
@@ -455,5 +458,6 @@ size_t fb_table_law_knots(const fb_table_law *law, const double **x, const doubl
 const fb_table_law *fb_bg_element_table_law(const fb_bg *bg, size_t i)
 {
   const void *ctx = NULL;
-  return fb_bg_element_law(bg, i, &ctx) == &table_law_ops ? ctx : NULL;
+  const fb_law_ops *law = fb_bg_element_law(bg, i, &ctx);
+  return law && law->id == FB_LAW_TABLE ? ctx : NULL;
 }
