@@ -5,7 +5,9 @@
 #   - the solver: flexbond's fb_sim_run (summary.json "wall_seconds") and
 #     the hand program's same part (CVODE set-up, integration, outputs at
 #     the 15001 samples), one run per process, and warm: the median of 21
-#     runs in one process (bench_vehicle, system1_hand --repeat 21);
+#     runs in one process (bench_vehicle, system1_hand --repeat 21), also
+#     as the thread's CPU time (flexbond's: fb_vehicle_simulate, which adds
+#     the block diagram's build, about 1 % of it);
 #   - the whole process (wall, user + sys, peak RSS, as /usr/bin/time -v reports them but
 #     to the microsecond: bench/proctime.py):
 #     `flexbond run examples/apc6x6.yaml --system rigid --no-figures` and
@@ -70,11 +72,17 @@ for ((i = 0; i < runs; ++i)); do
     --no-figures -o "$out/flexbond" -q
 done
 "$py" bench/quiet.py 20
-"$build/bench_vehicle" examples/apc6x6.yaml 21 rigid |
-  sed -n 's/.*(integration \([0-9.]*\) ms).*/\1/p' | awk '{print $1 / 1000}' >"$out/fb_warm"
+"$build/bench_vehicle" examples/apc6x6.yaml 21 rigid >"$out/fb_warm.txt"
+sed -n 's/.*(integration \([0-9.]*\) ms.*/\1/p' "$out/fb_warm.txt" | awk '{print $1 / 1000}' \
+  >"$out/fb_warm"
+sed -n 's/.*cpu \([0-9.]*\) ms).*/\1/p' "$out/fb_warm.txt" | awk '{print $1 / 1000}' \
+  >"$out/fb_warm_cpu"
 "$py" bench/quiet.py 20
-"$hand" --repeat 21 2>&1 | sed -n 's/^run .*solver \([0-9.]*\) ms.*/\1/p' |
-  awk '{print $1 / 1000}' >"$out/hand_warm"
+"$hand" --repeat 21 2>"$out/hand_warm.txt"
+sed -n 's/^run .*solver \([0-9.]*\) ms.*/\1/p' "$out/hand_warm.txt" | awk '{print $1 / 1000}' \
+  >"$out/hand_warm"
+sed -n 's/^run .*cpu \([0-9.]*\) ms.*/\1/p' "$out/hand_warm.txt" | awk '{print $1 / 1000}' \
+  >"$out/hand_warm_cpu"
 rss() { /usr/bin/time -v "$@" 2>&1 >/dev/null | awk -F': ' '/Maximum resident/ {print $2 / 1000}'; }
 fb_rss=$(rss "$exe" run examples/apc6x6.yaml --system rigid --no-figures -o "$out/flexbond" -q)
 hand_rss=$(rss "$hand" -o "$out/hand.csv")
@@ -91,6 +99,7 @@ def line(what, fb, hand):
 print(f"== timings: median of {runs} runs, the programs alternating (warm: of 21 runs in one process)")
 line("solver, one run per process", col("fb_solver"), col("hand_solver"))
 line("solver, warm", col("fb_warm"), col("hand_warm"))
+line("solver, warm, thread CPU time", col("fb_warm_cpu"), col("hand_warm_cpu"))
 line("whole process, wall", col("fb_proc", 0), col("hand_proc", 0))
 line("whole process, user + sys", col("fb_proc", 1), col("hand_proc", 1))
 line("OPENBLAS_NUM_THREADS=1: wall", col("fb1_proc", 0), col("hand_proc", 0))
