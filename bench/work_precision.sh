@@ -14,9 +14,12 @@
 # Needs: cmake and the build's packages, python3-numpy, python3-scipy,
 # gnuplot. Each case runs WP_REPEAT times (default 5; System 2:
 # WP_REPEAT2, default 3), each run after the machine has been idle for a
-# moment (bench/quiet.py, at most QUIET_MAX s, default 5); the table has
-# the median and the minimum of the times, the plot the minimum, which
-# other work on a shared machine disturbs least. The references run once. WP_RTOLS overrides the list of rtols, WP_REF_RTOL the references'.
+# moment (bench/quiet.py, at most QUIET_MAX s, default 5), on one CPU
+# (BENCH_CPU, default the last; pinned, OpenBLAS starts no worker thread,
+# for flexbond and NumPy alike). The table has the median and the least
+# of the times, the plot the least, which other work on a shared machine
+# disturbs least. The references run once. WP_RTOLS overrides the list of
+# rtols, WP_REF_RTOL the references' rtol.
 set -euo pipefail
 
 build=${1:-build}
@@ -26,6 +29,7 @@ repeat=${WP_REPEAT:-5}
 repeat2=${WP_REPEAT2:-3}
 rtols=${WP_RTOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8"}
 ref_rtol=${WP_REF_RTOL:-1e-10}
+cpu=${BENCH_CPU:-$(($(nproc) - 1))}
 
 cmake -S . -B "$build" -DFLEXBOND_BENCH_HAND=ON >/dev/null
 cmake --build "$build" -j2 --target flexbond_cli system1_hand >/dev/null
@@ -54,11 +58,12 @@ add() {
     "$8" "$9" "${10}" "${11}" >>"$manifest"
 }
 
-# timed CMD...: one run after the machine has been idle for a moment (bench/quiet.py, at
+# timed CMD...: one run on CPU $cpu (taskset: the machine's CPUs may run at different speeds
+# under other work) after the machine has been idle for a moment (bench/quiet.py, at
 # most QUIET_MAX s, default 5); its wall time (bench/proctime.py) into $wall, its stderr into $out/stderr.txt.
 timed() {
   "$py" bench/quiet.py "${QUIET_MAX:-5}"
-  wall=$("$py" bench/proctime.py "$out/stderr.txt" "$@")
+  wall=$("$py" bench/proctime.py "$out/stderr.txt" taskset -c "$cpu" "$@")
   wall=${wall%% *}
 }
 
