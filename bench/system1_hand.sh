@@ -14,7 +14,11 @@
 #     `system1_hand -o system1.csv`.
 # Each timing is the median of RUNS (default 5) runs, the two programs
 # alternating, each run after the machine has been idle for a moment
-# (bench/quiet.py): other work on a shared machine disturbs these timings.
+# (bench/quiet.py), all on one CPU (taskset; BENCH_CPU, default the last
+# one): other work on a shared machine disturbs these timings, and on this
+# project's machine the two CPUs run the same code at speeds up to 1.4x
+# apart. Pinned, OpenBLAS starts no worker thread; one more series runs
+# flexbond unpinned, as a user runs it, to show that thread's cost.
 #
 # usage: bench/system1_hand.sh [BUILD_DIR] [RUNS]   (from the repository root)
 set -euo pipefail
@@ -53,7 +57,7 @@ time_v() {
   local file=$1
   shift
   "$py" bench/quiet.py 20
-  "$py" bench/proctime.py "$out/time.txt" "$@" >>"$file"
+  "$py" bench/proctime.py "$out/time.txt" "${pin[@]}" "$@" >>"$file"
 }
 
 : >"$out/fb_proc"
@@ -61,6 +65,8 @@ time_v() {
 : >"$out/hand_proc"
 : >"$out/fb_solver"
 : >"$out/hand_solver"
+cpu=${BENCH_CPU:-$(($(nproc) - 1))}
+pin=(taskset -c "$cpu")
 for ((i = 0; i < runs; ++i)); do
   time_v "$out/fb_proc" "$exe" run examples/apc6x6.yaml --system rigid --no-figures \
     -o "$out/flexbond" -q
@@ -68,17 +74,19 @@ for ((i = 0; i < runs; ++i)); do
     "$out/flexbond/summary.json" >>"$out/fb_solver"
   time_v "$out/hand_proc" "$hand" -o "$out/hand.csv"
   grep -o 'solver [0-9.]* ms' "$out/time.txt" | awk '{print $2 / 1000}' >>"$out/hand_solver"
-  OPENBLAS_NUM_THREADS=1 time_v "$out/fb1_proc" "$exe" run examples/apc6x6.yaml --system rigid \
-    --no-figures -o "$out/flexbond" -q
+  pin=()
+  time_v "$out/fb1_proc" "$exe" run examples/apc6x6.yaml --system rigid --no-figures \
+    -o "$out/flexbond" -q
+  pin=(taskset -c "$cpu")
 done
 "$py" bench/quiet.py 20
-"$build/bench_vehicle" examples/apc6x6.yaml 21 rigid >"$out/fb_warm.txt"
+"${pin[@]}" "$build/bench_vehicle" examples/apc6x6.yaml 21 rigid >"$out/fb_warm.txt"
 sed -n 's/.*(integration \([0-9.]*\) ms.*/\1/p' "$out/fb_warm.txt" | awk '{print $1 / 1000}' \
   >"$out/fb_warm"
 sed -n 's/.*cpu \([0-9.]*\) ms).*/\1/p' "$out/fb_warm.txt" | awk '{print $1 / 1000}' \
   >"$out/fb_warm_cpu"
 "$py" bench/quiet.py 20
-"$hand" --repeat 21 2>"$out/hand_warm.txt"
+"${pin[@]}" "$hand" --repeat 21 2>"$out/hand_warm.txt"
 sed -n 's/^run .*solver \([0-9.]*\) ms.*/\1/p' "$out/hand_warm.txt" | awk '{print $1 / 1000}' \
   >"$out/hand_warm"
 sed -n 's/^run .*cpu \([0-9.]*\) ms.*/\1/p' "$out/hand_warm.txt" | awk '{print $1 / 1000}' \
@@ -87,7 +95,7 @@ rss() { /usr/bin/time -v "$@" 2>&1 >/dev/null | awk -F': ' '/Maximum resident/ {
 fb_rss=$(rss "$exe" run examples/apc6x6.yaml --system rigid --no-figures -o "$out/flexbond" -q)
 hand_rss=$(rss "$hand" -o "$out/hand.csv")
 
-"$py" - "$out" "$runs" <<'EOF'
+"$py" - "$out" "$runs" "$cpu" <<'EOF'
 import sys, statistics as st
 out, runs = sys.argv[1], sys.argv[2]
 def col(name, k=0):
@@ -96,14 +104,14 @@ def line(what, fb, hand):
     f, h = st.median(fb), st.median(hand)
     print("  %-38s flexbond %7.2f ms (min %7.2f)  hand %7.2f ms (min %7.2f)  ratio %.2f (minima %.2f)"
           % (what, 1e3 * f, 1e3 * min(fb), 1e3 * h, 1e3 * min(hand), f / h, min(fb) / min(hand)))
-print(f"== timings: median of {runs} runs, the programs alternating (warm: of 21 runs in one process)")
+print(f"== timings on CPU {sys.argv[3]}: median of {runs} runs, the programs alternating (warm: of 21 runs in one process)")
 line("solver, one run per process", col("fb_solver"), col("hand_solver"))
 line("solver, warm", col("fb_warm"), col("hand_warm"))
 line("solver, warm, thread CPU time", col("fb_warm_cpu"), col("hand_warm_cpu"))
 line("whole process, wall", col("fb_proc", 0), col("hand_proc", 0))
 line("whole process, user + sys", col("fb_proc", 1), col("hand_proc", 1))
-line("OPENBLAS_NUM_THREADS=1: wall", col("fb1_proc", 0), col("hand_proc", 0))
-line("OPENBLAS_NUM_THREADS=1: user + sys", col("fb1_proc", 1), col("hand_proc", 1))
+line("flexbond not pinned: wall", col("fb1_proc", 0), col("hand_proc", 0))
+line("flexbond not pinned: user + sys", col("fb1_proc", 1), col("hand_proc", 1))
 EOF
 echo "  peak RSS (/usr/bin/time -v): flexbond $fb_rss MB, hand $hand_rss MB"
 echo "  (load average after timing: $(cut -d' ' -f1-3 /proc/loadavg))"

@@ -13,9 +13,13 @@
 # usage: bench/work_precision.sh [BUILD_DIR]   (from the repository root)
 # Needs: cmake and the build's packages, python3-numpy, python3-scipy,
 # gnuplot. Each case runs WP_REPEAT times (default 5; System 2:
-# WP_REPEAT2, default 3) and is timed by the median, each run after the
-# machine has been idle for a moment (bench/quiet.py); the references run
-# once. WP_RTOLS overrides the list of rtols, WP_REF_RTOL the references'.
+# WP_REPEAT2, default 3), each run after the machine has been idle for a
+# moment (bench/quiet.py, at most QUIET_MAX s, default 5), on one CPU
+# (BENCH_CPU, default the last; pinned, OpenBLAS starts no worker thread,
+# for flexbond and NumPy alike). The table has the median and the least
+# of the times, the plot the least, which other work on a shared machine
+# disturbs least. The references run once. WP_RTOLS overrides the list of
+# rtols, WP_REF_RTOL the references' rtol.
 set -euo pipefail
 
 build=${1:-build}
@@ -25,6 +29,7 @@ repeat=${WP_REPEAT:-5}
 repeat2=${WP_REPEAT2:-3}
 rtols=${WP_RTOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8"}
 ref_rtol=${WP_REF_RTOL:-1e-10}
+cpu=${BENCH_CPU:-$(($(nproc) - 1))}
 
 cmake -S . -B "$build" -DFLEXBOND_BENCH_HAND=ON >/dev/null
 cmake --build "$build" -j2 --target flexbond_cli system1_hand >/dev/null
@@ -47,16 +52,18 @@ scenario_at() {
 median() { tr ';' '\n' <<<"$1" | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 
 # add SYSTEM FORMULATION SOLVER RTOL ATOL CSV REFERENCE SOLVER_TIMES PROCESS_TIMES STEPS RHS
+# (the times of the runs as a;b;c: wp_table.py takes their median and minimum)
 add() {
   printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$1" "$2" "$3" "$4" "$5" "$6" "$7" \
-    "$(median "$8")" "$(median "$9")" "${10}" "${11}" >>"$manifest"
+    "$8" "$9" "${10}" "${11}" >>"$manifest"
 }
 
-# timed CMD...: one run after the machine has been idle for a moment (bench/quiet.py, at
-# most QUIET_MAX s, default 10); its wall time (bench/proctime.py) into $wall, its stderr into $out/stderr.txt.
+# timed CMD...: one run on CPU $cpu (taskset: the machine's CPUs may run at different speeds
+# under other work) after the machine has been idle for a moment (bench/quiet.py, at
+# most QUIET_MAX s, default 5); its wall time (bench/proctime.py) into $wall, its stderr into $out/stderr.txt.
 timed() {
-  "$py" bench/quiet.py "${QUIET_MAX:-10}"
-  wall=$("$py" bench/proctime.py "$out/stderr.txt" "$@")
+  "$py" bench/quiet.py "${QUIET_MAX:-5}"
+  wall=$("$py" bench/proctime.py "$out/stderr.txt" taskset -c "$cpu" "$@")
   wall=${wall%% *}
 }
 

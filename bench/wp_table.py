@@ -7,13 +7,17 @@ For each case of the manifest (one run's CSV and its reference's), the
 error of each output column is max over the samples of
 |y - y_ref| / (max y_ref - min y_ref); a column whose reference is
 constant (System 1's torsion, identically 0) is left out. err_max is the
-largest over the columns. TABLE.csv gets one row per case (the
+largest over the columns. The manifest's times are the runs' (a;b;c):
+TABLE.csv has their median and minimum, one row per case (the
 references included, with an empty error, and the other solvers at the
 references' tolerance, which shows how far the formulations agree; the
 first case is a reference and gives its rtol); CURVES.dat one gnuplot block
-per curve (system, formulation, solver): solver seconds and err_max.
+per curve (system, formulation, solver): the solver's least time over
+the runs, err_max and
+rtol, from the loosest rtol to the tightest.
 """
 import csv
+import statistics
 import sys
 
 import numpy as np
@@ -46,14 +50,20 @@ def main():
     columns = []
     for c in cases:
         c["errors"] = errors(c["csv"], c["reference"], columns) if c["reference"] != "-" else {}
+    for c in cases:
+        for k in ["solver_seconds", "process_seconds"]:
+            times = [float(v) for v in c[k].split(";")]
+            c[k] = "%.4g" % statistics.median(times)
+            c[k + "_min"] = "%.4g" % min(times)
     head = ["system", "formulation", "solver", "rtol", "atol", "solver_seconds",
-            "process_seconds", "steps", "rhs_evals", "err_max"] + ["err_" + n for n in columns]
+            "solver_seconds_min", "process_seconds", "process_seconds_min", "steps",
+            "rhs_evals", "err_max"] + ["err_" + n for n in columns]
     with open(table, "w", newline="") as fp:
         w = csv.writer(fp, lineterminator="\n")
         w.writerow(head)
         for c in cases:
             e = c["errors"]
-            row = [c[k] for k in head[:9]]
+            row = [c[k] for k in head[:11]]
             row.append("%.3g" % max(e.values()) if e else "")
             row += ["%.3g" % e[n] if n in e else "" for n in columns]
             w.writerow(row)
@@ -72,11 +82,12 @@ def main():
             label = "%s %s, %s" % ("System 1" if key[0] == "system1" else "System 2", key[1],
                                    key[2])
             fp.write('"%s" "err_max"\n' % label)
-            pts = sorted((float(c["solver_seconds"]), max(c["errors"].values()), c["rtol"])
-                         for c in cases
-                         if c["curve"] and (c["system"], c["formulation"], c["solver"]) == key)
-            for t, e, rtol in pts:
-                fp.write("%.6g %.6g %s\n" % (t, e, rtol))
+            pts = sorted(((float(c["rtol"]), float(c["solver_seconds_min"]), max(c["errors"].values()))
+                          for c in cases
+                          if c["curve"] and (c["system"], c["formulation"], c["solver"]) == key),
+                         reverse=True)
+            for rtol, t, e in pts:
+                fp.write("%.6g %.6g %g\n" % (t, e, rtol))
             fp.write("\n\n")
 
 
