@@ -195,7 +195,7 @@ static int toy_read(const char *text, toy *t, sch_reader *r, fb_err *err)
   c.base_dir = ".";
   c.err = err;
   fb_err_clear(err);
-  *r = (sch_reader){&c, NULL, NULL, 0, 0};
+  *r = (sch_reader){.c = &c};
   int rc = ml_yaml_parse(text, strlen(text), c.file, &y, err);
   if (!rc)
     rc = sch_read(r, &toy_table, fy_document_root(y.doc), t);

@@ -1046,16 +1046,20 @@ static int sc_keep_origins(sch_reader *r, fb_scenario *s)
     sch_origin *o = &r->origin[i];
     if (!o->given)
       continue;
-    s->origin[s->norigins++] = (fb_scenario_origin){o->key, o->path, o->line, o->column, NULL};
+    fb_scenario_origin *to = &s->origin[s->norigins++];
+    *to = (fb_scenario_origin){o->key, o->path, o->line, o->column, NULL};
     o->key = o->path = NULL;
+    if (o->override && !(to->override = fb_strdup(o->override)))
+      return fb_err_set(r->c->err, FB_ENOMEM, "out of memory for %zu origins", n);
   }
   return FB_OK;
 }
 
-int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s)
+int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
+            fb_scenario *s)
 {
   sc_reading rd = {params, 0, 0, 0, 0};
-  sch_reader r = {c, &rd, NULL, 0, 0};
+  sch_reader r = {.c = c, .user = &rd, .ov = ov, .nov = nov};
   c->globals = params;
   int rc = sch_read(&r, &sc_schema, root, s);
   if (!rc)

@@ -13,7 +13,10 @@
  * table; a list's items have a table of their own ("spring_k" in the
  * items of "suspensions.axles"), written "suspensions.axles[].spring_k"
  * in the documentation. Errors are the model loader's located ones
- * (io/model_internal.h): "FILE:LINE:COL: KEY: message". */
+ * (io/model_internal.h): "FILE:LINE:COL: KEY: message".
+ *
+ * A reader may be given overrides, values to read in place of the file's
+ * at full key paths ("suspensions.axles[1].spring_k"). */
 #ifndef FLEXBOND_IO_SCHEMA_H
 #define FLEXBOND_IO_SCHEMA_H
 
@@ -57,6 +60,9 @@ typedef enum sch_need {
 
 /* Ends of a range, sch_key.bounds. Open ends exclude their bound. */
 enum { SCH_LO = 1, SCH_HI = 2, SCH_LO_OPEN = 4, SCH_HI_OPEN = 8 };
+
+/* Longest key path. */
+enum { SCH_PATH_MAX = 256 };
 
 typedef struct sch_key sch_key;
 typedef struct sch_table sch_table;
@@ -138,20 +144,51 @@ typedef struct sch_origin {
   char *key;  /* logical key path (sch_origins_relabel renames items') */
   char *path; /* key path in the file */
   int line, column;
-  int given;     /* 0: a default, at the section it would be in */
-  double number; /* SCH_NUMBER, SCH_WHOLE, SCH_CHOICE */
+  int given;            /* 0: a default, at the section it would be in */
+  double number;        /* SCH_NUMBER, SCH_WHOLE, SCH_CHOICE */
+  const char *override; /* the label of the override read there, else NULL */
 } sch_origin;
+
+/* A value to read in place of the file's ("--set road.bump.height=0.2"),
+ * as if the file had it at path: a key the file leaves out is added at
+ * its section (made too when the file leaves that out), every other key
+ * keeps the file's value. */
+typedef struct sch_override {
+  char path[SCH_PATH_MAX];       /* full key path in the file ("outputs[0].figure") */
+  const char *value;             /* its text, one scalar as it is (never YAML structure) */
+  char label[FB_ERR_SOURCE_MAX]; /* "--set KEY=VALUE": the source of its origins and
+                                    errors; "": errors unlabelled (a path checked alone) */
+  struct fy_node *node;          /* set by sch_place: the value in the document */
+  int read;                      /* set by sch_read: a step of the reader took it */
+} sch_override;
 
 struct sch_reader {
   ml_ctx *c; /* file, errors, `parameters` */
   void *user;
+  sch_override *ov; /* the overrides, NULL if none (not owned) */
+  size_t nov;
   sch_origin *origin; /* in reading order, owned */
   size_t norigins, cap;
 };
 
-/* Reads the mapping root (its key paths from "") into base. */
+/* Reads the mapping root (its key paths from "") into base, r's
+ * overrides in place of the file's values (sch_place first). An error in
+ * an override's value, and one that no step of the reader took, names it
+ * ("--set K=V: FILE:LINE:COL: KEY: ...", its source FB_SOURCE_OVERRIDE). */
 int sch_read(sch_reader *r, const sch_table *t, struct fy_node *root, void *base);
 void sch_reader_release(sch_reader *r);
+/* Puts each override's value into the document at its path, at the line
+ * and column of the value it replaces (of the section it goes into when
+ * the file leaves the key out), so that the reader's every step and
+ * message sees it there. FB_EINVAL naming the override for a path that
+ * is malformed or names no value of t and the file (no such key, with a
+ * suggestion; an item beyond a list's; a section or a list). */
+int sch_place(sch_reader *r, const sch_table *t, struct fy_node *root);
+/* Names o, if it has a label, as the source of the error in err: the
+ * label before its message. */
+void sch_blame_override(fb_err *err, const sch_override *o);
+/* "a, b, c": the names of t's keys in its mapping at table path pre. */
+void sch_key_names(const sch_table *t, const char *pre, char *buf, size_t size);
 
 /* Records that the value at node (a key the table does not list, such
  * as one point of a list) has the key path key. */
