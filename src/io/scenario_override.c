@@ -16,20 +16,8 @@
 
 /* ---- Bare key names. */
 
-/* Key paths, in the order found. */
-typedef struct ov_paths {
-  char **path;
-  size_t n, cap;
-} ov_paths;
-
-static void ov_paths_free(ov_paths *p)
-{
-  for (size_t i = 0; i < p->n; ++i)
-    free(p->path[i]);
-  free(p->path);
-}
-
-static int ov_paths_add(ov_paths *p, const char *path, fb_err *err)
+/* Appends a copy of path to p (ml_paths: key paths, in the order found). */
+static int ov_paths_add(ml_paths *p, const char *path, fb_err *err)
 {
   char *copy = fb_strdup(path);
   if (!copy || fb_grow((void **)&p->path, &p->cap, p->n, sizeof *p->path) != FB_OK) {
@@ -47,15 +35,15 @@ static const char *ov_name(const char *path)
   return dot ? dot + 1 : path;
 }
 
-/* ml_name_fn over an ov_paths: each path's last key name. */
+/* ml_name_fn over an ml_paths: each path's last key name. */
 static const char *ov_name_at(const void *ctx, size_t i)
 {
-  return ov_name(((const ov_paths *)ctx)->path[i]);
+  return ov_name(((const ml_paths *)ctx)->path[i]);
 }
 
 /* The path of every mapping key below n (path: n's own key path, len
  * bytes), in document order. */
-static int ov_file_keys(struct fy_node *n, char *path, size_t len, ov_paths *p, fb_err *err)
+static int ov_file_keys(struct fy_node *n, char *path, size_t len, ml_paths *p, fb_err *err)
 {
   void *iter = NULL;
   int rc = FB_OK;
@@ -80,7 +68,7 @@ static int ov_file_keys(struct fy_node *n, char *path, size_t len, ov_paths *p, 
 /* The keys a bare name may name: the document's, in document order,
  * then those of the format's table that the document leaves out
  * ("simulation.max_steps"), which can be set too. */
-static int ov_keys(struct fy_node *root, ov_paths *p, fb_err *err)
+static int ov_keys(struct fy_node *root, ml_paths *p, fb_err *err)
 {
   char path[SCH_PATH_MAX] = "";
   int rc = ov_file_keys(root, path, 0, p, err);
@@ -97,7 +85,7 @@ static int ov_keys(struct fy_node *root, ov_paths *p, fb_err *err)
 
 /* FB_EINVAL for a name that no key has: a key of a close name, or the
  * sections to start a path from. */
-static int ov_no_name(const ml_ctx *c, const ov_paths *keys, const char *name)
+static int ov_no_name(const ml_ctx *c, const ml_paths *keys, const char *name)
 {
   const char *near = ml_suggest(name, keys->n, ov_name_at, keys);
   for (size_t i = 0; near && i < keys->n; ++i)
@@ -116,7 +104,7 @@ static int ov_no_name(const ml_ctx *c, const ov_paths *keys, const char *name)
 /* The full path of the one key named name into full (SCH_PATH_MAX bytes). */
 static int ov_resolve_name(const ml_ctx *c, struct fy_node *root, const char *name, char *full)
 {
-  ov_paths keys = {0};
+  ml_paths keys = {0};
   char list[1024] = "";
   size_t n = 0, len = 0;
   int rc = ov_keys(root, &keys, c->err);
@@ -132,7 +120,7 @@ static int ov_resolve_name(const ml_ctx *c, struct fy_node *root, const char *na
     rc = fb_err_set(c->err, FB_EINVAL,
                     "%s: key '%s' is ambiguous: it occurs %zu times (%s); give the dotted path",
                     c->file, name, n, list);
-  ov_paths_free(&keys);
+  ml_paths_release(&keys);
   return rc;
 }
 

@@ -262,10 +262,10 @@ static struct fy_node *sch_node_at(struct fy_node *at, const char *text)
   if (quote)
     buf[n++] = '"';
   buf[n] = '\0';
-  /* On success the node's document owns buf. */
   struct fy_node *node = fy_node_build_from_malloc_string(fy_node_document(at), buf, n);
   if (!node)
     free(buf);
+  /* NOLINTNEXTLINE(clang-analyzer-unix.Malloc): on success the node's document owns buf */
   return node;
 }
 
@@ -273,7 +273,7 @@ static struct fy_node *sch_node_at(struct fy_node *at, const char *text)
  * may use the ones before it): libfyaml 0.7's fy_node_pair_set_value
  * leaves the new value without a parent, and key paths are made from
  * parents, so this pair and the ones after it are appended again. */
-static int sch_swap_value(struct fy_node *map, struct fy_node *key, struct fy_node *value)
+static int sch_swap_value(struct fy_node *map, const struct fy_node *key, struct fy_node *value)
 {
   const int n = fy_node_mapping_item_count(map);
   int at = 0;
