@@ -20,13 +20,13 @@ typedef struct toy_item {
 
 typedef struct toy {
   char *title;
-  double width;  /* m */
-  double speed;  /* m/s, written in km/h */
-  int colour;    /* index of toy_colours */
-  int count;     /* whole number */
-  double radius; /* one of radius */
-  double side;   /* or side */
-  toy_item item[4];
+  double width;   /* m */
+  double speed;   /* m/s, written in km/h */
+  int colour;     /* index of toy_colours */
+  int count;      /* whole number */
+  double radius;  /* one of radius */
+  double side;    /* or side */
+  toy_item *item; /* allocated by the reader */
   size_t nitems;
 } toy;
 
@@ -40,18 +40,6 @@ static double toy_to_kmh(double v)
   return v * 3.6;
 }
 
-static int toy_item_begin(sch_reader *r, const sch_key *k, size_t index, size_t count,
-                          void *base, void **item)
-{
-  (void)k;
-  (void)count;
-  toy *t = base;
-  if (index >= 4)
-    return fb_err_set(r->c->err, FB_EINVAL, "too many items");
-  *item = &t->item[t->nitems++];
-  return FB_OK;
-}
-
 static int toy_item_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                         const char *item_path, size_t mark, void *base, void *item)
 {
@@ -63,27 +51,8 @@ static int toy_item_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   return sch_origins_relabel(r, mark, item_path, prefix, 0);
 }
 
-static size_t toy_count(const void *base)
-{
-  return ((const toy *)base)->nitems;
-}
-
-static const void *toy_at(const void *base, size_t i)
-{
-  return &((const toy *)base)->item[i];
-}
-
-static const char *toy_name(const void *item)
-{
-  return ((const toy_item *)item)->name;
-}
-
 static const sch_ops toy_kmh = {.to_struct = toy_to_ms, .from_struct = toy_to_kmh};
-static const sch_ops toy_items_ops = {.item_begin = toy_item_begin,
-                                      .item_end = toy_item_end,
-                                      .count = toy_count,
-                                      .item_at = toy_at,
-                                      .item_name = toy_name};
+static const sch_ops toy_items_ops = {.item_end = toy_item_end};
 static const char *const toy_colours[] = {"red", "green", "blue", NULL};
 
 static const sch_key toy_item_keys[] = {
@@ -171,6 +140,10 @@ static const sch_key toy_keys[] = {
      .doc = "the items",
      .items = &toy_item_table,
      .view = "items",
+     .offset = offsetof(toy, item),
+     .count_at = offsetof(toy, nitems),
+     .item_size = sizeof(toy_item),
+     .named = 1,
      .ops = &toy_items_ops},
 };
 static const sch_table toy_table = {toy_keys, sizeof toy_keys / sizeof toy_keys[0], NULL};
@@ -180,6 +153,7 @@ static void toy_free(toy *t)
   free(t->title);
   for (size_t i = 0; i < t->nitems; ++i)
     free(t->item[i].name);
+  free(t->item);
   memset(t, 0, sizeof *t);
 }
 

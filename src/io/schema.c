@@ -599,6 +599,11 @@ static void *sch_at(void *base, size_t offset)
   return (char *)base + offset;
 }
 
+static const void *sch_at_const(const void *base, size_t offset)
+{
+  return (const char *)base + offset;
+}
+
 /* Stores a number (in the file's unit) as k says. */
 static void sch_store_number(const sch_key *k, double v, void *base)
 {
@@ -677,7 +682,19 @@ static int sch_numbers(const sch_reader *r, const sch_key *k, struct fy_node *no
   return rc;
 }
 
-/* A value written at node: read, recorded, stored. */
+/* Stores the n numbers read (at node; NULL for the default) as k says. */
+static int sch_store_numbers(sch_reader *r, const sch_key *k, struct fy_node *node,
+                             const double *v, size_t n, void *base)
+{
+  if (k->store != SCH_STORE_DOUBLE)
+    return k->ops && k->ops->store_list ? k->ops->store_list(r, k, node, v, n, base) : FB_OK;
+  if (n) /* an empty list may come as NULL */
+    memcpy(sch_at(base, k->offset), v, n * sizeof *v);
+  if (k->min_items != k->max_items)
+    *(size_t *)sch_at(base, k->count_at) = n;
+  return FB_OK;
+}
+
 /* Appends " (why)" to a range error's message: why the range is so. */
 static void sch_add_why(fb_err *err, const char *why)
 {
@@ -687,6 +704,7 @@ static void sch_add_why(fb_err *err, const char *why)
   snprintf(err->msg + len, sizeof err->msg - len, " (%s)", why);
 }
 
+/* A value written at node: read, recorded, stored. */
 static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
                           const char *path, void *base)
 {
@@ -728,8 +746,8 @@ static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
     double *v = NULL;
     size_t n = 0;
     rc = sch_numbers(r, k, node, &v, &n);
-    if (!rc && k->ops && k->ops->store_list)
-      rc = k->ops->store_list(r, k, node, v, n, base);
+    if (!rc)
+      rc = sch_store_numbers(r, k, node, v, n, base);
     free(v);
   }
   if (!rc && k->type == SCH_CUSTOM && k->ops && k->ops->read)
@@ -747,8 +765,8 @@ static int sch_read_absent(sch_reader *r, const sch_frame *f, const sch_key *k,
     return ml_fail(r->c, f->map, FB_EPARSE, "missing required key '%s'", name);
   if (k->need == SCH_DEFAULT) {
     int rc = sch_add(r, path, path, line, column, 0, k->def, NULL);
-    if (!rc && k->type == SCH_NUMBERS && k->ops && k->ops->store_list)
-      rc = k->ops->store_list(r, k, NULL, k->def_list, k->min_items, f->base);
+    if (!rc && k->type == SCH_NUMBERS)
+      rc = sch_store_numbers(r, k, NULL, k->def_list, k->min_items, f->base);
     if (!rc && k->type != SCH_NUMBERS)
       sch_store_number(k, k->def, f->base);
     return rc;
@@ -765,6 +783,36 @@ static int sch_read_absent(sch_reader *r, const sch_frame *f, const sch_key *k,
   if (!rc)
     sch_store_number(k, o.number, f->base);
   return rc;
+}
+
+int sch_list_add(const sch_reader *r, const sch_key *k, void *base, void **item)
+{
+  char **items = sch_at(base, k->offset);
+  size_t *n = sch_at(base, k->count_at);
+  const size_t add = k->per_item ? k->per_item : 1;
+  char *grown =
+      *n < SIZE_MAX / k->item_size - add ? realloc(*items, (*n + add) * k->item_size) : NULL;
+  if (!grown)
+    return fb_err_set(r->c->err, FB_ENOMEM, "out of memory for %zu items", *n + add);
+  *items = grown;
+  *item = grown + *n * k->item_size;
+  memset(*item, 0, add * k->item_size);
+  *n += add;
+  return FB_OK;
+}
+
+const sch_key *sch_key_of(const sch_table *t, const char *path)
+{
+  for (size_t i = 0; i < t->n; ++i)
+    if (!strcmp(t->key[i].path, path))
+      return &t->key[i];
+  return NULL;
+}
+
+const char *sch_item_name(const sch_key *k, const void *item)
+{
+  const sch_key *name = k->named ? sch_key_of(k->items, "name") : NULL;
+  return name ? *(char *const *)sch_at_const(item, name->offset) : NULL;
 }
 
 /* The items of a list written at node. */
@@ -785,7 +833,7 @@ static int sch_read_list(sch_reader *r, const sch_frame *f, const sch_key *k,
     const size_t mark = r->norigins;
     rc = ml_expect_map(r->c, item, k->doc);
     if (!rc)
-      rc = k->ops->item_begin(r, k, i, count, f->base, &item_base);
+      rc = sch_list_add(r, k, f->base, &item_base);
     if (!rc)
       rc = sch_add_at(r, item_path, item, 1, 0.0, NULL);
     const sch_frame in = {k->items, "", item, item, item_path, item_base};
@@ -793,7 +841,7 @@ static int sch_read_list(sch_reader *r, const sch_frame *f, const sch_key *k,
       rc = sch_read_map(r, &in);
     if (!rc && k->items->done)
       rc = k->items->done(r, item, item_base);
-    if (!rc && k->ops->item_end)
+    if (!rc && k->ops && k->ops->item_end)
       rc = k->ops->item_end(r, k, item, item_path, mark, f->base, item_base);
   }
   return rc;
@@ -870,11 +918,6 @@ int sch_read(sch_reader *r, const sch_table *t, struct fy_node *root, void *base
 
 /* ---- Values of a struct. */
 
-static const void *sch_at_const(const void *base, size_t offset)
-{
-  return (const char *)base + offset;
-}
-
 /* The stored value of k in the file's unit. */
 static double sch_load_number(const sch_key *k, const void *base)
 {
@@ -905,7 +948,7 @@ static size_t sch_nchoices(const sch_key *k)
 static int sch_value_of(const sch_key *k, const void *base, const char *path, sch_value *v)
 {
   *v = (sch_value){k, path, base, 0.0, NULL};
-  if (k->type == SCH_CUSTOM || k->type == SCH_NUMBERS)
+  if (k->type == SCH_CUSTOM || (k->type == SCH_NUMBERS && k->store != SCH_STORE_DOUBLE))
     return k->ops && k->ops->format;
   if (k->store == SCH_STORE_NONE)
     return 0;
@@ -929,13 +972,12 @@ static int sch_each_item(const sch_table *t, const sch_key *k, const void *base,
   for (const sch_key *o = t->key; o < k; ++o)
     if (o->type == SCH_LIST && o->view && k->view && !strcmp(o->view, k->view))
       return 0; /* visited with the first list of the view */
-  if (!k->ops)
-    return 0; /* a list's items are reached only through its ops */
-  const size_t n = k->ops->count(base);
+  const size_t n = *(const size_t *)sch_at_const(base, k->count_at);
+  const char *items = *(char *const *)sch_at_const(base, k->offset);
   int stop = 0;
   for (size_t i = 0; !stop && i < n; ++i) {
-    const void *item = k->ops->item_at(base, i);
-    const char *name = k->ops->item_name ? k->ops->item_name(item) : NULL;
+    const void *item = items + i * k->item_size;
+    const char *name = sch_item_name(k, item);
     char lp[SCH_PATH_MAX];
     if (name)
       snprintf(lp, sizeof lp, "%s.%s", k->view, name);
@@ -1025,10 +1067,25 @@ int sch_check_value(const sch_value *v, fb_err *err)
   return fb_err_set_key(err, "%s", v->path);
 }
 
+/* "a, b, c": the numbers list k stores in base. */
+static void sch_format_numbers(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  const double *x = sch_at_const(base, k->offset);
+  const size_t n = k->min_items == k->max_items
+                       ? k->min_items
+                       : *(const size_t *)sch_at_const(base, k->count_at);
+  size_t len = 0;
+  buf[0] = '\0';
+  for (size_t i = 0; i < n && len + 1 < size; ++i)
+    len = fb_text_append(buf, size, len, "%s%.10g", i ? ", " : "", x[i]);
+}
+
 void sch_format(const sch_value *v, char *buf, size_t size)
 {
   const sch_key *k = v->key;
-  if ((k->type == SCH_CUSTOM || k->type == SCH_NUMBERS) && k->ops && k->ops->format)
+  if (k->type == SCH_NUMBERS && k->store == SCH_STORE_DOUBLE)
+    sch_format_numbers(k, v->base, buf, size);
+  else if ((k->type == SCH_CUSTOM || k->type == SCH_NUMBERS) && k->ops && k->ops->format)
     k->ops->format(k, v->base, buf, size);
   else if (v->text)
     snprintf(buf, size, "%s", v->text);
