@@ -157,8 +157,10 @@ static void toy_free(toy *t)
   memset(t, 0, sizeof *t);
 }
 
-/* Reads text into t; r keeps the origins (release it after). */
-static int toy_read(const char *text, toy *t, sch_reader *r, fb_err *err)
+/* Reads text into t with the nov overrides ov; r keeps the origins
+ * (release it after). */
+static int toy_read_with(const char *text, sch_override *ov, size_t nov, toy *t, sch_reader *r,
+                         fb_err *err)
 {
   ml_yaml y;
   memset(&y, 0, sizeof y);
@@ -169,12 +171,17 @@ static int toy_read(const char *text, toy *t, sch_reader *r, fb_err *err)
   c.base_dir = ".";
   c.err = err;
   fb_err_clear(err);
-  *r = (sch_reader){.c = &c};
+  *r = (sch_reader){.c = &c, .ov = ov, .nov = nov};
   int rc = ml_yaml_parse(text, strlen(text), c.file, &y, err);
   if (!rc)
     rc = sch_read(r, &toy_table, fy_document_root(y.doc), t);
   ml_yaml_release(&y);
   return rc;
+}
+
+static int toy_read(const char *text, toy *t, sch_reader *r, fb_err *err)
+{
+  return toy_read_with(text, NULL, 0, t, r, err);
 }
 
 static const char good[] = "title: a toy\n"              /* 1 */
@@ -307,6 +314,42 @@ static void test_each_and_check(void)
   toy_free(&t);
 }
 
+/* Overrides: a value the file has, a default it leaves out (at its
+ * section's place), an item's key; a key the table does not have, named
+ * with a suggestion and the override as the source. */
+static void test_overrides(void)
+{
+  toy t;
+  sch_reader r;
+  fb_err err;
+  sch_override ov[] = {{.path = "box.speed", .value = "72", .label = "--set speed=72"},
+                       {.path = "box.count", .value = "5", .label = "--set count=5"},
+                       {.path = "items[0].weight", .value = "2", .label = "--set w=2"}};
+  int rc = toy_read_with(good, ov, 3, &t, &r, &err);
+  CHECK(rc == FB_OK);
+  if (rc)
+    fprintf(stderr, "%s\n", err.msg);
+  CHECK_NEAR(t.speed, 20.0, 1e-12);
+  CHECK(t.count == 5 && t.nitems == 2 && t.item[0].weight == 2 && t.item[1].weight == 3);
+  const sch_origin *o = sch_origin_find(&r, "box.count");
+  CHECK(o && o->given && o->line == 3 && o->column == 3 && o->override &&
+        !strcmp(o->override, "--set count=5"));
+  o = sch_origin_find(&r, "box.speed");
+  CHECK(o && o->line == 4 && o->column == 10 && !strcmp(o->override, "--set speed=72"));
+  CHECK(ov[0].read && ov[1].read && ov[2].read);
+  sch_reader_release(&r);
+  toy_free(&t);
+  sch_override typo = {.path = "box.widht", .value = "1", .label = "--set box.widht=1"};
+  CHECK(toy_read_with(good, &typo, 1, &t, &r, &err) == FB_EINVAL);
+  const char *want =
+      "--set box.widht=1: toy.yaml:3:3: box: has no key 'widht' (did you mean 'width'?";
+  CHECK(!strncmp(err.msg, want, strlen(want)));
+  CHECK(err.source == FB_SOURCE_OVERRIDE && !strcmp(err.source_text, "--set box.widht=1") &&
+        !strcmp(err.key, "box") && err.line == 3);
+  sch_reader_release(&r);
+  toy_free(&t);
+}
+
 static void test_markdown(void)
 {
   char *buf = NULL;
@@ -332,6 +375,7 @@ int main(void)
   test_read_good();
   test_read_bad();
   test_each_and_check();
+  test_overrides();
   test_markdown();
   return check_report("test_schema");
 }
