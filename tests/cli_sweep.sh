@@ -174,6 +174,19 @@ rows = list(csv.DictReader(open(sys.argv[1])))
 assert len(rows) == 1 and rows[0]["error"] == "" and float(rows[0]["torsion_peak"]) > 0, rows
 EOF
 
+# ---- A key the file leaves out (wheel.tire_contact, bilateral by
+# default), by its bare name: over a 0.3 m bump at 30 km/h a bilateral
+# tire pulls the wheel down, a unilateral one never does.
+run sweep "$APC" --set tire_contact=bilateral,unilateral --set road.bump.height=0.3 \
+  --set speed_kmh=30 -o "$WORK/contact" -q --no-figures
+expect_status 0 "a key the file leaves out"
+check_python "a key the file leaves out" "$WORK/contact/sweep.csv" <<'EOF'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [r["tire_contact"] for r in rows] == ["bilateral", "unilateral"], rows
+assert float(rows[0]["min_tire_force"]) < 0 and float(rows[1]["min_tire_force"]) == 0, rows
+EOF
+
 # ---- Usage errors: exit 1, nothing written.
 usage() {
   local what=$1 text=$2
@@ -187,8 +200,12 @@ usage "ambiguous key" "key 'mass' is ambiguous: it occurs 4 times (hull.mass, mo
   "$APC" --set mass=1:1:2 -o "$WORK/usage"
 usage "absent key" "no key 'sped_kmh' in the scenario (did you mean 'road.speed_kmh'?)" \
   "$APC" --set sped_kmh=1 -o "$WORK/usage"
-usage "bad path" "road: has no key 'speed' (its keys: speed_kmh, bump)" \
+usage "bad path" "road: has no key 'speed' (its keys: speed_kmh, bump, iso8608, profile)" \
   "$APC" --set road.speed=1 -o "$WORK/usage"
+usage "bad path, close key" "simulation: has no key 'max_stpes' (did you mean 'max_steps'?" \
+  "$APC" --set simulation.max_stpes=1 -o "$WORK/usage"
+usage "item beyond the list" "suspensions.axles: has no item [3] (it has 3)" \
+  "$APC" --set suspensions.axles[3].spring_k=1 -o "$WORK/usage"
 usage "not a value" "road.bump: is a mapping" "$APC" --set road.bump=1 -o "$WORK/usage"
 usage "same value twice" "--set speed_kmh and --set road.speed_kmh both set road.speed_kmh" \
   "$APC" --set speed_kmh=1 --set road.speed_kmh=2 -o "$WORK/usage"

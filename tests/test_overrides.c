@@ -3,12 +3,15 @@
  * replaced by dotted path, by a unique bare key name, in a list and
  * several on one line, read through the reader's own conversions
  * (km/h, degrees, expressions, choices); every other value untouched;
- * and the errors: absent, ambiguous and non-scalar keys, values the
- * reader rejects (with the "--set KEY=VALUE: " prefix and the original
- * value's FILE:LINE:COL), consequences of several values together, two
- * overrides of one value, and values that try to change the YAML
- * structure. Expected positions are found in the example's text here,
- * independently of libfyaml. */
+ * keys the file leaves out (defaults, optional keys, a section of their
+ * own), set as if the file had them; and the errors: absent, unknown,
+ * ambiguous and non-scalar keys, items beyond a list's, values the
+ * reader rejects (with the "--set KEY=VALUE: " prefix, the override as
+ * the error's source and the original value's FILE:LINE:COL, or its
+ * section's), consequences of several values together, two overrides of
+ * one value, and values that try to change the YAML structure. Expected
+ * positions are found in the example's text here, independently of
+ * libfyaml. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -203,8 +206,8 @@ static void test_bad_keys(const char *text)
   expect_error(&ambiguous, 1, FB_EINVAL, "--set mass=1: " EXAMPLE ": key 'mass' is ambiguous",
                (const char *const[]){"hull.mass", "mounts[0].mass", "mounts[1].mass",
                                      "wheel.mass", "give the dotted path", NULL});
-  const fb_scenario_override absent = {"speed", "1"};
-  expect_error(&absent, 1, FB_EINVAL, "--set speed=1: " EXAMPLE ": no key 'speed'",
+  const fb_scenario_override absent = {"velocity", "1"};
+  expect_error(&absent, 1, FB_EINVAL, "--set velocity=1: " EXAMPLE ": no key 'velocity'",
                (const char *const[]){"road", "simulation", NULL});
   const fb_scenario_override typo = {"sped_kmh", "1"};
   expect_error(&typo, 1, FB_EINVAL, "--set sped_kmh=1: " EXAMPLE ": no key 'sped_kmh'",
@@ -246,10 +249,10 @@ static void test_bad_values(const char *text)
   snprintf(prefix, sizeof prefix,
            "--set road.speed_kmh=fast: " EXAMPLE ":%s: road.speed_kmh: ", value);
   expect_error(&word, 1, 0, prefix, (const char *const[]){"fast", NULL});
-  /* Text that would be YAML structure stays one value: double-quoted,
-   * so its text starts one column to the right. */
+  /* Text that would be YAML structure stays one value, at the value's
+   * place. */
   const fb_scenario_override structure = {"speed_kmh", "1, x: \"2\"\\"};
-  position_of(text, "speed_kmh: 10", strlen("speed_kmh: ") + 1, value, sizeof value);
+  position_of(text, "speed_kmh: 10", strlen("speed_kmh: "), value, sizeof value);
   snprintf(prefix, sizeof prefix,
            "--set speed_kmh=1, x: \"2\"\\: " EXAMPLE ":%s: road.speed_kmh: ", value);
   expect_error(&structure, 1, 0, prefix, (const char *const[]){NULL});
@@ -272,6 +275,141 @@ static void test_bad_values(const char *text)
                (const char *const[]){"road.bump: bump longer than the run", "20.66", NULL});
   expect_error(slow, 2, FB_EINVAL, "--set speed_kmh=2 --set road.bump.height=0.2: " EXAMPLE ":",
                (const char *const[]){"road.bump: bump longer than the run", NULL});
+}
+
+/* The origin of the value the file names path, NULL if none. */
+static const fb_scenario_origin *origin_at(const fb_scenario *s, const char *path)
+{
+  for (size_t i = 0; i < s->norigins; ++i)
+    if (!strcmp(s->origin[i].path, path))
+      return &s->origin[i];
+  return NULL;
+}
+
+/* o is at "LINE:COL" where and names the override label. */
+static int origin_is(const fb_scenario_origin *o, const char *where, const char *label)
+{
+  char at[32];
+  snprintf(at, sizeof at, "%d:%d", o ? o->line : 0, o ? o->column : 0);
+  return o && o->override && !strcmp(o->override, label) && !strcmp(at, where);
+}
+
+/* Keys the file leaves out: a default of every corner (the top-level
+ * wheel.tire_contact), one by its bare name (max_steps), an optional key
+ * (an output's column) and a key in a section the file leaves out (the
+ * middle axle's own wheel), each read as if the file had it, its origin
+ * at the section it goes into and naming the override. */
+static void test_keys_left_out(const char *text)
+{
+  const fb_scenario_override ov[] = {{"wheel.tire_contact", "unilateral"},
+                                     {"max_steps", "12345"},
+                                     {"outputs[0].name", "lf_force"},
+                                     {"suspensions.axles[1].wheel.tire_k", "600000"}};
+  fb_scenario *s = NULL;
+  fb_err err;
+  int rc = load(ov, sizeof ov / sizeof ov[0], &s, &err);
+  CHECK(rc == FB_OK && s);
+  if (rc != FB_OK || !s) {
+    fprintf(stderr, "  %s\n", err.msg);
+    return;
+  }
+  for (size_t i = 0; i < s->ncorners; ++i)
+    CHECK(s->corner[i].tire_contact == FB_TIRE_UNILATERAL);
+  CHECK(s->max_steps == 12345);
+  CHECK(!strcmp(s->output[0].name, "lf_force") && strcmp(s->output[1].name, "lf_force") != 0);
+  CHECK(s->corner[2].tire_k == 600000 && s->corner[3].tire_k == 600000);
+  CHECK(s->corner[0].tire_k == 500000 && s->corner[5].tire_k == 500000);
+  char sim[32], wheel[32], axle[32], want[256];
+  position_of(text, "\nsimulation:\n  t_end", strlen("\nsimulation:\n  "), sim, sizeof sim);
+  position_of(text, "  mass: 175", 2, wheel, sizeof wheel);
+  position_of(text, "- name: M ", 2, axle, sizeof axle);
+  CHECK(origin_is(origin_at(s, "simulation.max_steps"), sim, "--set max_steps=12345"));
+  CHECK(origin_is(origin_at(s, "wheel.tire_contact"), wheel,
+                  "--set wheel.tire_contact=unilateral"));
+  CHECK(origin_is(origin_at(s, "suspensions.axles[1].wheel.tire_k"), axle,
+                  "--set suspensions.axles[1].wheel.tire_k=600000"));
+  /* An error found later is the override's, at its section. */
+  fb_err_set(&err, FB_EINVAL, "too many");
+  fb_err_set_key(&err, "simulation.max_steps");
+  fb_scenario_locate(s, &err);
+  snprintf(want, sizeof want,
+           "--set max_steps=12345: " EXAMPLE ":%s: simulation.max_steps: too many", sim);
+  CHECK(!strcmp(err.msg, want) && err.source == FB_SOURCE_OVERRIDE);
+  if (strcmp(err.msg, want))
+    fprintf(stderr, "  wanted '%s', got '%s'\n", want, err.msg);
+  fb_scenario_free(&s);
+}
+
+/* Loading with ov fails at key (the file's path), LINE:COL where, the
+ * override as the error's source and its message prefix. */
+static void expect_source(const fb_scenario_override *ov, const char *key, const char *where,
+                          const char *phrase)
+{
+  fb_scenario *s = NULL;
+  fb_err err;
+  char label[160], prefix[256], at[32];
+  snprintf(label, sizeof label, "--set %s=%s", ov->key, ov->value);
+  snprintf(prefix, sizeof prefix, "%s: " EXAMPLE ":%s: %s: ", label, where, key);
+  CHECK(load(ov, 1, &s, &err) != FB_OK && !s);
+  snprintf(at, sizeof at, "%d:%d", err.line, err.column);
+  int ok = !strncmp(err.msg, prefix, strlen(prefix)) && strstr(err.msg, phrase) &&
+           err.source == FB_SOURCE_OVERRIDE && !strcmp(err.source_text, label) &&
+           !strcmp(err.key, key) && !strcmp(err.file, EXAMPLE) && !strcmp(at, where);
+  CHECK(ok);
+  if (!ok)
+    fprintf(stderr,
+            "  message: %s\n  expected prefix: %s and '%s' (source %d '%s', key %s, %s)\n",
+            err.msg, prefix, phrase, err.source, err.source_text, err.key, at);
+}
+
+/* Paths that name no value of the format or the file, and values of the
+ * wrong type, at a key the file has and at one it leaves out. */
+static void test_bad_paths(const char *text)
+{
+  char sim[32], initial[32], bump[32], where[160];
+  position_of(text, "\nsimulation:\n  t_end", strlen("\nsimulation:\n  "), sim, sizeof sim);
+  position_of(text, "initial: zero", strlen("initial: "), initial, sizeof initial);
+  position_of(text, "  bump:\n    height", strlen("  bump:\n    "), bump, sizeof bump);
+  const fb_scenario_override typo = {"simulation.max_stpes", "1"};
+  snprintf(where, sizeof where,
+           "--set simulation.max_stpes=1: " EXAMPLE ":%s: simulation: ", sim);
+  expect_error(
+      &typo, 1, FB_EINVAL, where,
+      (const char *const[]){"has no key 'max_stpes' (did you mean 'max_steps'?", NULL});
+  /* Each set to 1: after "--set KEY=1: FILE", the message has part. */
+  static const struct {
+    const char *key, *part;
+  } refused[] = {
+      {"max_stpes",
+       "no key 'max_stpes' in the scenario (did you mean 'simulation.max_steps'?)"},
+      {"suspensions.axles[3].spring_k", "suspensions.axles: has no item [3] (it has 3)"},
+      {"hull.masses[0].mass", "hull.masses: has no item [0] (it has 0)"},
+      {"mounts[1]", "mounts[1]: is a mapping, not a single value (its keys: name, mass"},
+      {"mounts", "mounts: is a list, not a single value; set a key of one item, e.g. "
+                 "mounts[0].name"},
+  };
+  for (size_t i = 0; i < sizeof refused / sizeof refused[0]; ++i) {
+    const fb_scenario_override o = {refused[i].key, "1"};
+    snprintf(where, sizeof where, "--set %s=1: " EXAMPLE, refused[i].key);
+    expect_error(&o, 1, FB_EINVAL, where, (const char *const[]){refused[i].part, NULL});
+  }
+  const fb_scenario_override initial_typo = {"simulation.initial", "sttic"};
+  expect_source(&initial_typo, "simulation.initial", initial, "did you mean 'static'?");
+  const fb_scenario_override steps = {"simulation.max_steps", "many"};
+  expect_source(&steps, "simulation.max_steps", sim, "many");
+  /* A key the file leaves out that its section's rule refuses: the
+   * bump's type with its height and length. */
+  const fb_scenario_override type = {"road.bump.type", "II"};
+  expect_source(&type, "road.bump.type", bump, "give either a type or height and length");
+
+  char *full = NULL;
+  fb_err err;
+  CHECK(fb_scenario_override_key(EXAMPLE, "max_steps", &full, &err) == FB_OK && full &&
+        !strcmp(full, "simulation.max_steps"));
+  free(full);
+  CHECK(fb_scenario_override_key(EXAMPLE, "mounts[2].mass", &full, &err) == FB_EINVAL &&
+        !full && strstr(err.msg, "mounts: has no item [2] (it has 2)") &&
+        err.source != FB_SOURCE_OVERRIDE);
 }
 
 /* An error found after loading (fb_scenario_locate) about a value that
@@ -329,6 +467,8 @@ int main(void)
   test_relative_references();
   test_bad_keys(text);
   test_bad_values(text);
+  test_keys_left_out(text);
+  test_bad_paths(text);
   test_late_locate(text);
   free(text);
   return check_report("test_overrides");

@@ -20,13 +20,13 @@ typedef struct toy_item {
 
 typedef struct toy {
   char *title;
-  double width;  /* m */
-  double speed;  /* m/s, written in km/h */
-  int colour;    /* index of toy_colours */
-  int count;     /* whole number */
-  double radius; /* one of radius */
-  double side;   /* or side */
-  toy_item item[4];
+  double width;   /* m */
+  double speed;   /* m/s, written in km/h */
+  int colour;     /* index of toy_colours */
+  int count;      /* whole number */
+  double radius;  /* one of radius */
+  double side;    /* or side */
+  toy_item *item; /* allocated by the reader */
   size_t nitems;
 } toy;
 
@@ -40,18 +40,6 @@ static double toy_to_kmh(double v)
   return v * 3.6;
 }
 
-static int toy_item_begin(sch_reader *r, const sch_key *k, size_t index, size_t count,
-                          void *base, void **item)
-{
-  (void)k;
-  (void)count;
-  toy *t = base;
-  if (index >= 4)
-    return fb_err_set(r->c->err, FB_EINVAL, "too many items");
-  *item = &t->item[t->nitems++];
-  return FB_OK;
-}
-
 static int toy_item_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                         const char *item_path, size_t mark, void *base, void *item)
 {
@@ -63,27 +51,8 @@ static int toy_item_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   return sch_origins_relabel(r, mark, item_path, prefix, 0);
 }
 
-static size_t toy_count(const void *base)
-{
-  return ((const toy *)base)->nitems;
-}
-
-static const void *toy_at(const void *base, size_t i)
-{
-  return &((const toy *)base)->item[i];
-}
-
-static const char *toy_name(const void *item)
-{
-  return ((const toy_item *)item)->name;
-}
-
 static const sch_ops toy_kmh = {.to_struct = toy_to_ms, .from_struct = toy_to_kmh};
-static const sch_ops toy_items_ops = {.item_begin = toy_item_begin,
-                                      .item_end = toy_item_end,
-                                      .count = toy_count,
-                                      .item_at = toy_at,
-                                      .item_name = toy_name};
+static const sch_ops toy_items_ops = {.item_end = toy_item_end};
 static const char *const toy_colours[] = {"red", "green", "blue", NULL};
 
 static const sch_key toy_item_keys[] = {
@@ -171,6 +140,10 @@ static const sch_key toy_keys[] = {
      .doc = "the items",
      .items = &toy_item_table,
      .view = "items",
+     .offset = offsetof(toy, item),
+     .count_at = offsetof(toy, nitems),
+     .item_size = sizeof(toy_item),
+     .named = 1,
      .ops = &toy_items_ops},
 };
 static const sch_table toy_table = {toy_keys, sizeof toy_keys / sizeof toy_keys[0], NULL};
@@ -180,11 +153,14 @@ static void toy_free(toy *t)
   free(t->title);
   for (size_t i = 0; i < t->nitems; ++i)
     free(t->item[i].name);
+  free(t->item);
   memset(t, 0, sizeof *t);
 }
 
-/* Reads text into t; r keeps the origins (release it after). */
-static int toy_read(const char *text, toy *t, sch_reader *r, fb_err *err)
+/* Reads text into t with the nov overrides ov; r keeps the origins
+ * (release it after). */
+static int toy_read_with(const char *text, sch_override *ov, size_t nov, toy *t, sch_reader *r,
+                         fb_err *err)
 {
   ml_yaml y;
   memset(&y, 0, sizeof y);
@@ -195,12 +171,17 @@ static int toy_read(const char *text, toy *t, sch_reader *r, fb_err *err)
   c.base_dir = ".";
   c.err = err;
   fb_err_clear(err);
-  *r = (sch_reader){&c, NULL, NULL, 0, 0};
+  *r = (sch_reader){.c = &c, .ov = ov, .nov = nov};
   int rc = ml_yaml_parse(text, strlen(text), c.file, &y, err);
   if (!rc)
     rc = sch_read(r, &toy_table, fy_document_root(y.doc), t);
   ml_yaml_release(&y);
   return rc;
+}
+
+static int toy_read(const char *text, toy *t, sch_reader *r, fb_err *err)
+{
+  return toy_read_with(text, NULL, 0, t, r, err);
 }
 
 static const char good[] = "title: a toy\n"              /* 1 */
@@ -333,6 +314,42 @@ static void test_each_and_check(void)
   toy_free(&t);
 }
 
+/* Overrides: a value the file has, a default it leaves out (at its
+ * section's place), an item's key; a key the table does not have, named
+ * with a suggestion and the override as the source. */
+static void test_overrides(void)
+{
+  toy t;
+  sch_reader r;
+  fb_err err;
+  sch_override ov[] = {{.path = "box.speed", .value = "72", .label = "--set speed=72"},
+                       {.path = "box.count", .value = "5", .label = "--set count=5"},
+                       {.path = "items[0].weight", .value = "2", .label = "--set w=2"}};
+  int rc = toy_read_with(good, ov, 3, &t, &r, &err);
+  CHECK(rc == FB_OK);
+  if (rc)
+    fprintf(stderr, "%s\n", err.msg);
+  CHECK_NEAR(t.speed, 20.0, 1e-12);
+  CHECK(t.count == 5 && t.nitems == 2 && t.item[0].weight == 2 && t.item[1].weight == 3);
+  const sch_origin *o = sch_origin_find(&r, "box.count");
+  CHECK(o && o->given && o->line == 3 && o->column == 3 && o->override &&
+        !strcmp(o->override, "--set count=5"));
+  o = sch_origin_find(&r, "box.speed");
+  CHECK(o && o->line == 4 && o->column == 10 && !strcmp(o->override, "--set speed=72"));
+  CHECK(ov[0].read && ov[1].read && ov[2].read);
+  sch_reader_release(&r);
+  toy_free(&t);
+  sch_override typo = {.path = "box.widht", .value = "1", .label = "--set box.widht=1"};
+  CHECK(toy_read_with(good, &typo, 1, &t, &r, &err) == FB_EINVAL);
+  const char *want =
+      "--set box.widht=1: toy.yaml:3:3: box: has no key 'widht' (did you mean 'width'?";
+  CHECK(!strncmp(err.msg, want, strlen(want)));
+  CHECK(err.source == FB_SOURCE_OVERRIDE && !strcmp(err.source_text, "--set box.widht=1") &&
+        !strcmp(err.key, "box") && err.line == 3);
+  sch_reader_release(&r);
+  toy_free(&t);
+}
+
 static void test_markdown(void)
 {
   char *buf = NULL;
@@ -358,6 +375,7 @@ int main(void)
   test_read_good();
   test_read_bad();
   test_each_and_check();
+  test_overrides();
   test_markdown();
   return check_report("test_schema");
 }

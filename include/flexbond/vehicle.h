@@ -285,30 +285,34 @@ int fb_scenario_load_string(const char *text, size_t len, const char *display_na
 /* One replaced value of a scenario file ("flexbond sweep --set KEY=VALUE",
  * docs/sweep.md). */
 typedef struct fb_scenario_override {
-  /* A dotted path into the YAML document ("road.speed_kmh",
-   * "suspensions.LF.spring_k", "hull.mesh.generator.bulkheads[1]"), or a
-   * key name without '.' that occurs exactly once in it ("speed_kmh"). */
+  /* A key path of the scenario file ("road.speed_kmh",
+   * "suspensions.axles[0].spring_k", "hull.mesh.generator.bulkheads[1]"),
+   * a key the file leaves out included ("simulation.max_steps",
+   * "outputs[0].name"), or a key name without '.' that names exactly one
+   * key of the file, or of the format when the file has none of that name
+   * ("speed_kmh", "max_steps"). */
   const char *key;
   /* The new value's text, read as if it were written in the file: a
    * number, an expression over `parameters`, a choice ("static"). One
-   * line, no control characters. */
+   * scalar (never YAML structure), one line, no control characters. */
   const char *value;
 } fb_scenario_override;
 
-/* Loads the scenario at path as fb_scenario_load does, after replacing,
- * in its parsed YAML document, the scalar at each ov[i].key by
- * ov[i].value (at the same place in the file's text, plain when that is
- * safe, else double-quoted), so
- * the reader's every check and unit conversion applies to the new value.
- * A value reached through a YAML alias is replaced at its anchor. n = 0
- * is fb_scenario_load. Errors are prefixed "--set KEY=VALUE: ":
+/* Loads the scenario at path as fb_scenario_load does, the reader taking
+ * each ov[i].value in place of the file's value at ov[i].key (a key the
+ * file leaves out is added in its section, and the section too when the
+ * file leaves that out), so that the reader's every check and unit
+ * conversion applies to it; the value's origin names the override, at
+ * the replaced value's line and column (at its section's for a key the
+ * file leaves out). n = 0 is fb_scenario_load. Errors:
  *   FB_EINVAL "--set KEY=VALUE: FILE[:LINE:COL]: ..." for a key that is
- *     absent (naming the keys present), ambiguous (naming every
- *     candidate path), not a single value (a mapping, a list, a block
- *     scalar, an empty value), or set by two overrides, and for a value
- *     with a control character;
+ *     malformed, names no key of the format (with a suggestion) or an
+ *     item beyond a list's, is ambiguous (naming every candidate path),
+ *     is not a single value (a section, a list), or is set by two
+ *     overrides, and for a value with a control character;
  *   the reader's "FILE:LINE:COL: KEY: message" prefixed by the override
- *     whose value KEY is, or by every override ("--set K1=V1 --set K2=V2: ")
+ *     whose value KEY is (fb_err.source FB_SOURCE_OVERRIDE, source_text
+ *     "--set KEY=VALUE"), or by every override ("--set K1=V1 --set K2=V2: ")
  *     when the message names another key (a bump that no longer fits in
  *     the run);
  *   FB_EIO, FB_EPARSE (the file itself), FB_ENOMEM without prefix. */
@@ -319,11 +323,11 @@ int fb_scenario_load_overrides(const char *path, const fb_scenario_override *ov,
 int fb_scenario_load_string_overrides(const char *text, size_t len, const char *display_name,
                                       const fb_scenario_override *ov, size_t n,
                                       fb_scenario **out, fb_err *err);
-/* The full dotted path of key (as fb_scenario_override.key) in the
- * scenario file at path, into *full (new; the caller frees it), checking
- * that it names a single replaceable value: lets a caller tell a bad key
- * (FB_EINVAL, the messages of fb_scenario_load_overrides without the
- * prefix) from a bad value before loading. FB_EIO, FB_EPARSE for the
+/* The full key path of key (as fb_scenario_override.key) in the scenario
+ * file at path, into *full (new; the caller frees it), checking that it
+ * names a single value the file has or could have: lets a caller tell a
+ * bad key (FB_EINVAL, the messages of fb_scenario_load_overrides without
+ * the prefix) from a bad value before loading. FB_EIO, FB_EPARSE for the
  * file, FB_ENOMEM. */
 int fb_scenario_override_key(const char *path, const char *key, char **full, fb_err *err);
 /* Physical consistency (positive masses, stiffnesses, ...; bump inside the

@@ -370,9 +370,11 @@ int fb_scenario_locate(const fb_scenario *s, fb_err *err)
 
 /* ---- Loading. */
 
-/* Parses, reads, checks and completes the document; the errors found
- * after reading are located through the values' origins. */
-static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario *s)
+/* Parses, reads (the overrides in place of the file's values), checks
+ * and completes the document; the errors found after reading are located
+ * through the values' origins. */
+static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_override *ov,
+                            size_t nov, fb_scenario *s)
 {
   ml_yaml y;
   fb_symtab *params = NULL;
@@ -380,8 +382,10 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
   int rc = fb_symtab_new(&params, c->err);
   if (!rc)
     rc = ml_yaml_parse(text, len, c->file, &y, c->err);
+  if (!rc && nov)
+    rc = sc_overrides_resolve(c, fy_document_root(y.doc), ov, nov);
   if (!rc)
-    rc = sc_read(c, fy_document_root(y.doc), params, s);
+    rc = sc_read(c, fy_document_root(y.doc), params, ov, nov, s);
   if (!rc)
     rc = fb_scenario_check(s, c->err);
   /* A hull deck is read here, once: the builder takes the mesh from the
@@ -394,25 +398,22 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, fb_scenario
    * finite-element hull's mass properties (src/vehicle/hull_props.c). */
   if (!rc && fb_vehicle_hull_complete(s, c->err))
     rc = fb_scenario_locate(s, c->err);
+  if (rc)
+    sc_overrides_blame(c->err, ov, nov);
   c->globals = NULL;
   fb_symtab_free(&params);
   ml_yaml_release(&y);
   return rc;
 }
 
-/* fb_scenario_load_string with relative file references (a hull deck, a
- * damper table) resolved from base_dir. */
-static int load_string_in(const char *text, size_t len, const char *display_name,
-                          const char *base_dir, fb_scenario **out, fb_err *err);
-
 int fb_scenario_load_string(const char *text, size_t len, const char *display_name,
                             fb_scenario **out, fb_err *err)
 {
-  return load_string_in(text, len, display_name, ".", out, err);
+  return sc_load(text, len, display_name, ".", NULL, 0, out, err);
 }
 
-static int load_string_in(const char *text, size_t len, const char *display_name,
-                          const char *base_dir, fb_scenario **out, fb_err *err)
+int sc_load(const char *text, size_t len, const char *display_name, const char *base_dir,
+            sch_override *ov, size_t nov, fb_scenario **out, fb_err *err)
 {
   fb_err local;
   /* cppcheck-suppress uninitvar ; only the address of local is taken (false positive) */
@@ -432,7 +433,7 @@ static int load_string_in(const char *text, size_t len, const char *display_name
   fb_scenario *s = calloc(1, sizeof *s);
   /* The path first: the check locates its errors in that file. */
   int rc = s && (!display_name || (s->path = fb_strdup(display_name)))
-               ? sc_load_document(&c, text, len, s)
+               ? sc_load_document(&c, text, len, ov, nov, s)
                : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (s) {
     s->inputs = inputs.path;
@@ -448,12 +449,8 @@ static int load_string_in(const char *text, size_t len, const char *display_name
   return FB_OK;
 }
 
-int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
+int sc_load_file(const char *path, sch_override *ov, size_t nov, fb_scenario **out, fb_err *err)
 {
-  fb_err_clear(err);
-  if (!path || !out)
-    return fb_err_set(err, FB_EINVAL, "fb_scenario_load: path and out must not be NULL");
-  *out = NULL;
   char *text = NULL;
   size_t len = 0;
   int rc = fb_read_file(path, &text, &len, err);
@@ -462,23 +459,17 @@ int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
   if (!rc && !dir)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
-    rc = load_string_in(text, len, path, dir, out, err);
+    rc = sc_load(text, len, path, dir, ov, nov, out, err);
   free(dir);
   free(text);
   return rc;
 }
 
-/* ---- Hook of the overrides (scenario_override.c, flexbond sweep's
- * --set): text edited from the file at path is loaded as that file, so
- * that its relative references (a hull deck, a damper table) resolve from
- * the file's directory, as fb_scenario_load's do. */
-int sc_load_edited_file(const char *text, size_t len, const char *path, fb_scenario **out,
-                        fb_err *err)
+int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
 {
-  char *dir = fb_dirname(path);
-  if (!dir)
-    return fb_err_set(err, FB_ENOMEM, "out of memory");
-  int rc = load_string_in(text, len, path, dir, out, err);
-  free(dir);
-  return rc;
+  fb_err_clear(err);
+  if (!path || !out)
+    return fb_err_set(err, FB_EINVAL, "fb_scenario_load: path and out must not be NULL");
+  *out = NULL;
+  return sc_load_file(path, NULL, 0, out, err);
 }

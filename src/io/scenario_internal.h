@@ -24,10 +24,12 @@
 extern const sch_table sc_schema;
 
 /* Reads the document root into s (zeroed by the caller), `parameters`
- * evaluated into params (empty) for the expressions, and moves the
- * values' origins into s. On failure s may hold allocations, which
+ * evaluated into params (empty) for the expressions, the nov overrides
+ * (full paths) read in place of the file's values, and moves the values'
+ * origins into s. On failure s may hold allocations, which
  * fb_scenario_free releases. Cross-field rules are fb_scenario_check's. */
-int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s);
+int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
+            fb_scenario *s);
 
 /* The origin of the value with logical key key, or of the nearest value
  * enclosing it ("corners.LF" for "corners.LF.damper_table[2]"), NULL if
@@ -43,10 +45,24 @@ int sc_locate(const fb_scenario *s, fb_err *err, int named);
  * between its schema:begin and schema:end markers). */
 void fb_scenario_schema_markdown(FILE *fp);
 
-/* Loads text edited from the scenario file at path (flexbond sweep's
- * --set) as that file: relative references resolved from its directory.
- * In scenario.c, next to the loader it shares. */
-int sc_load_edited_file(const char *text, size_t len, const char *path, fb_scenario **out,
-                        fb_err *err);
+/* Loads a scenario from text as fb_scenario_load_string does, relative
+ * file references (a hull deck, a damper table) resolved from base_dir,
+ * with the nov overrides (scenario_override.c; NULL and 0 for none). */
+int sc_load(const char *text, size_t len, const char *display_name, const char *base_dir,
+            sch_override *ov, size_t nov, fb_scenario **out, fb_err *err);
+/* The same for the file at path, its references resolved from its
+ * directory. */
+int sc_load_file(const char *path, sch_override *ov, size_t nov, fb_scenario **out,
+                 fb_err *err);
+
+/* ---- scenario_override.c. */
+
+/* Each override's path in full: a bare key name ("speed_kmh") becomes
+ * the path of the one key of that name the document root has, or the
+ * scenario format's table; two overrides of one value are an error. */
+int sc_overrides_resolve(const ml_ctx *c, struct fy_node *root, sch_override *ov, size_t n);
+/* An error of a load with overrides that names none of them (a
+ * consequence of their values together) is prefixed with all of them. */
+void sc_overrides_blame(fb_err *err, const sch_override *ov, size_t n);
 
 #endif

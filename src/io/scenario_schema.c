@@ -15,7 +15,6 @@
 /* What the hooks share while a document is read (sch_reader.user). */
 typedef struct sc_reading {
   fb_symtab *params;
-  size_t corner_cap, mount_cap, output_cap, point_mass_cap;
 } sc_reading;
 
 /* ---- Conversions between the file's units and the struct's. */
@@ -139,36 +138,6 @@ static const sch_ops sc_fe_ops = {.done = sc_fe_done, .present = sc_has_fe_hull}
 static const sch_ops sc_generator_present = {.present = sc_has_generator};
 static const sch_ops sc_cg_present = {.present = sc_has_cg};
 
-static int sc_store_bulkheads(sch_reader *r, const sch_key *k, struct fy_node *node,
-                              const double *v, size_t n, void *base)
-{
-  (void)r, (void)k, (void)node;
-  fb_hull_mesh_params *p = &((fb_scenario *)base)->hull_mesh;
-  p->nbulkheads = n;
-  memcpy(p->bulkhead_x, v, n * sizeof *v);
-  return FB_OK;
-}
-
-/* "a, b, c" of n numbers. */
-static void sc_format_numbers(const double *v, size_t n, char *buf, size_t size)
-{
-  size_t len = 0;
-  buf[0] = '\0';
-  for (size_t i = 0; i < n && len + 1 < size; ++i) {
-    len = fb_text_append(buf, size, len, "%s%.10g", i ? ", " : "", v[i]);
-  }
-}
-
-static void sc_format_bulkheads(const sch_key *k, const void *base, char *buf, size_t size)
-{
-  (void)k;
-  const fb_hull_mesh_params *p = &((const fb_scenario *)base)->hull_mesh;
-  sc_format_numbers(p->bulkhead_x, p->nbulkheads, buf, size);
-}
-
-static const sch_ops sc_bulkheads = {.store_list = sc_store_bulkheads,
-                                     .format = sc_format_bulkheads};
-
 /* ---- load.points: a grid or a list of [x, y]. */
 
 static int sc_set_points(const ml_ctx *c, fb_scenario *s, size_t n)
@@ -268,41 +237,6 @@ static const sch_ops sc_points = {.read = sc_read_points, .format = sc_format_po
 
 /* ---- Lists: mounts, corners (axles make two each), outputs. */
 
-/* A new zeroed item at the end of *arr (n items, capacity *cap). */
-static int sc_grow(const sch_reader *r, void **arr, size_t *n, size_t *cap, size_t size,
-                   size_t add, void **item)
-{
-  for (size_t i = 0; i < add; ++i)
-    if (fb_grow(arr, cap, *n + i, size))
-      return fb_err_set(r->c->err, FB_ENOMEM, "out of memory for %zu items", *n + add);
-  *item = (char *)*arr + *n * size;
-  memset(*item, 0, add * size);
-  *n += add;
-  return FB_OK;
-}
-
-/* A list's new item at the end of its view's items: an axle's two
- * corners, else one. */
-static int sc_item_begin(sch_reader *r, const sch_key *k, size_t index, size_t count,
-                         void *base, void **item)
-{
-  (void)index, (void)count;
-  fb_scenario *s = base;
-  sc_reading *rd = r->user;
-  if (!strcmp(k->view, "mounts"))
-    return sc_grow(r, (void **)&s->mount, &s->nmounts, &rd->mount_cap, sizeof *s->mount, 1,
-                   item);
-  if (!strcmp(k->view, "hull.masses"))
-    return sc_grow(r, (void **)&s->point_mass, &s->npoint_masses, &rd->point_mass_cap,
-                   sizeof *s->point_mass, 1, item);
-  if (!strcmp(k->view, "outputs"))
-    return sc_grow(r, (void **)&s->output, &s->noutputs, &rd->output_cap, sizeof *s->output, 1,
-                   item);
-  const size_t add = !strcmp(k->path, "suspensions.axles") ? 2 : 1;
-  return sc_grow(r, (void **)&s->corner, &s->ncorners, &rd->corner_cap, sizeof *s->corner, add,
-                 item);
-}
-
 /* Renames the item's origins to its logical key: kind.name. */
 static int sc_relabel(sch_reader *r, size_t mark, const char *item_path, const char *kind,
                       const char *name, int copy)
@@ -317,7 +251,7 @@ static int sc_named_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                         const char *item_path, size_t mark, void *base, void *item)
 {
   (void)node, (void)base;
-  return sc_relabel(r, mark, item_path, k->view, k->ops->item_name(item), 0);
+  return sc_relabel(r, mark, item_path, k->view, sch_item_name(k, item), 0);
 }
 
 /* "L" or "R" before name, as the corner's new name. */
@@ -358,51 +292,8 @@ static int sc_axle_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   return rc;
 }
 
-/* sch_ops.count and item_at over the scenario's n items arr:
- * sc_NAME_count, sc_NAME_at; item_name over items of type T: sc_NAME_name. */
-#define SC_ITEMS(nm, arr, n)                                                                   \
-  static size_t sc_##nm##_count(const void *base)                                              \
-  {                                                                                            \
-    return ((const fb_scenario *)base)->n;                                                     \
-  }                                                                                            \
-  static const void *sc_##nm##_at(const void *base, size_t i)                                  \
-  {                                                                                            \
-    return &((const fb_scenario *)base)->arr[i];                                               \
-  }
-#define SC_ITEM_NAME(nm, T)                                                                    \
-  static const char *sc_##nm##_name(const void *item)                                          \
-  {                                                                                            \
-    return ((const T *)item)->name;                                                            \
-  }
-
-SC_ITEMS(mount, mount, nmounts)
-SC_ITEMS(corner, corner, ncorners)
-SC_ITEMS(output, output, noutputs)
-SC_ITEMS(point_mass, point_mass, npoint_masses)
-SC_ITEM_NAME(mount, fb_mount)
-SC_ITEM_NAME(corner, fb_corner_params)
-SC_ITEM_NAME(point_mass, fb_hull_point_mass)
-
-static const sch_ops sc_mounts = {.item_begin = sc_item_begin,
-                                  .item_end = sc_named_end,
-                                  .count = sc_mount_count,
-                                  .item_at = sc_mount_at,
-                                  .item_name = sc_mount_name};
-static const sch_ops sc_point_masses = {.item_begin = sc_item_begin,
-                                        .item_end = sc_named_end,
-                                        .count = sc_point_mass_count,
-                                        .item_at = sc_point_mass_at,
-                                        .item_name = sc_point_mass_name};
-static const sch_ops sc_axles = {.item_begin = sc_item_begin,
-                                 .item_end = sc_axle_end,
-                                 .count = sc_corner_count,
-                                 .item_at = sc_corner_at,
-                                 .item_name = sc_corner_name};
-static const sch_ops sc_single_corners = {.item_begin = sc_item_begin,
-                                          .item_end = sc_named_end,
-                                          .count = sc_corner_count,
-                                          .item_at = sc_corner_at,
-                                          .item_name = sc_corner_name};
+static const sch_ops sc_named = {.item_end = sc_named_end};
+static const sch_ops sc_axles = {.item_end = sc_axle_end};
 
 /* At least three corners (a hull on fewer wheels has no static
  * equilibrium). */
@@ -568,29 +459,9 @@ static int sc_output_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   return rc ? rc : sc_output_defaults(r->c, o, kind);
 }
 
-static const sch_ops sc_outputs = {.item_begin = sc_item_begin,
-                                   .item_end = sc_output_end,
-                                   .count = sc_output_count,
-                                   .item_at = sc_output_at};
+static const sch_ops sc_outputs = {.item_end = sc_output_end};
 
-static int sc_store_window(sch_reader *r, const sch_key *k, struct fy_node *node,
-                           const double *v, size_t n, void *base)
-{
-  (void)r, (void)k, (void)node, (void)n;
-  fb_output_spec *o = base;
-  o->window[0] = v[0];
-  o->window[1] = v[1];
-  return FB_OK;
-}
-
-static void sc_format_window(const sch_key *k, const void *base, char *buf, size_t size)
-{
-  (void)k;
-  sc_format_numbers(((const fb_output_spec *)base)->window, 2, buf, size);
-}
-
-static const sch_ops sc_window = {
-    .store_list = sc_store_window, .format = sc_format_window, .present = sc_has_window};
+static const sch_ops sc_window = {.present = sc_has_window};
 
 /* Without an outputs list: every corner's tire_force, in corner order. */
 static int sc_default_outputs(sch_reader *r, fb_scenario *s)
@@ -598,11 +469,9 @@ static int sc_default_outputs(sch_reader *r, fb_scenario *s)
   const fb_output_kind *kind = fb_vehicle_output_kind_find("tire_force");
   if (!kind)
     return fb_err_set(r->c->err, FB_EMODEL, "no signal kind 'tire_force' for the outputs");
-  sc_reading *rd = r->user;
   for (size_t i = 0; i < s->ncorners; ++i) {
     fb_output_spec *o = NULL;
-    int rc = sc_grow(r, (void **)&s->output, &s->noutputs, &rd->output_cap, sizeof *s->output,
-                     1, (void **)&o);
+    int rc = sch_list_add(r, sch_key_of(&sc_schema, "outputs"), s, (void **)&o);
     if (!rc &&
         (!(o->signal = fb_strdup(kind->signal)) || !(o->of = fb_strdup(s->corner[i].name))))
       rc = fb_err_set(r->c->err, FB_ENOMEM, "out of memory for an output");
@@ -729,14 +598,16 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
   KEY(.path = p, .type = SCH_CHOICE, .choices = c, n, .doc = d, __VA_ARGS__)
 /* SCH_NAME, SCH_TEXT or SCH_FILE: STRING(NAME, ...). */
 #define STRING(t, p, n, d, ...) KEY(.path = p, .type = SCH_##t, n, .doc = d, __VA_ARGS__)
-#define NUMBERS(p, u, lo, hi, n, d, o)                                                         \
+#define NUMBERS(p, u, lo, hi, n, d, ...)                                                       \
   KEY(.path = (p), .type = SCH_NUMBERS, .unit = (u), .min_items = (lo), .max_items = (hi), n,  \
-      .doc = (d), .ops = (o))
+      .doc = (d), __VA_ARGS__)
 #define CUSTOM(p, u, t, n, d, o)                                                               \
   KEY(.path = (p), .type = SCH_CUSTOM, .unit = (u), .type_doc = (t), n, .doc = (d), .ops = (o))
 #define SECTION(p, n, d, o) KEY(.path = (p), .type = SCH_SECTION, n, .doc = (d), .ops = (o))
-#define LIST(p, n, d, t, v, o)                                                                 \
-  KEY(.path = (p), .type = SCH_LIST, n, .doc = (d), .items = (t), .view = (v), .ops = (o))
+/* where: ITEMS or NAMED. */
+#define LIST(p, n, d, t, v, o, where)                                                          \
+  KEY(.path = (p), .type = SCH_LIST, n, .doc = (d), .items = (t), .view = (v), .ops = (o),     \
+      where)
 
 /* Ranges, in the file's unit. */
 #define ANY .bounds = 0
@@ -763,6 +634,12 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
 #define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f)
 #define O_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f)
 #define P_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_point_mass, f)
+/* A list's items: the scenario's array arr, their number at count; an
+ * item of the file makes per of them. NAMED: visited by their names. */
+#define ITEMS(arr, count, per)                                                                 \
+  .offset = offsetof(fb_scenario, arr), .count_at = offsetof(fb_scenario, count),              \
+  .item_size = sizeof(((fb_scenario *)0)->arr[0]), .per_item = (per)
+#define NAMED(arr, count, per) ITEMS(arr, count, per), .named = 1
 #define S_OFF(f) S_AT(DOUBLE, f)
 #define C_OFF(f) C_AT(DOUBLE, f)
 #define M_OFF(f) M_AT(DOUBLE, f)
@@ -848,7 +725,8 @@ static const sch_key sc_output_keys[] = {
     WHOLE("figure", CLOSED(0, 9999), DEF(0), "the number of its figure, unique; 0: none",
           O_AT(INT, figure)),
     NUMBERS("window", "s", 2, 2, OPT,
-            "the time window its figure shows, `[t0, t1]` (default: the run)", &sc_window),
+            "the time window its figure shows, `[t0, t1]` (default: the run)",
+            O_AT(DOUBLE, window), .ops = &sc_window),
 };
 static const sch_table sc_output_table = TABLE(sc_output_keys, NULL);
 
@@ -885,7 +763,7 @@ static const sch_key sc_keys[] = {
     LIST("hull.masses", OPT,
          "non-structural masses fixed to the floor (battery, ballast), inertia only: their "
          "weight is in `load.total_weight`",
-         &sc_point_mass_table, "hull.masses", &sc_point_masses),
+         &sc_point_mass_table, "hull.masses", &sc_named, NAMED(point_mass, npoint_masses, 1)),
     SECTION("hull.material", REQ, "the plates' steel (System 2)", NULL),
     NUMBER("hull.material.young", "Pa", POSITIVE, REQ, "Young's modulus", S_OFF(young)),
     NUMBER("hull.material.poisson", NULL, HALF_OPEN(0, 0.5), REQ, "Poisson's ratio",
@@ -922,7 +800,8 @@ static const sch_key sc_keys[] = {
            "nose tip line above the floor, < `height`", S_OFF(hull_mesh.nose_height)),
     NUMBERS("hull.mesh.generator.bulkheads", "m", 0, FB_HULL_MAX_BULKHEADS, REQ,
             "x of the transverse bulkheads, each between `x_rear` and `x_front`",
-            &sc_bulkheads),
+            S_OFF(hull_mesh.bulkhead_x),
+            .count_at = offsetof(fb_scenario, hull_mesh.nbulkheads)),
     WHOLE("hull.mesh.generator.side_rows", CLOSED(1, 64), REQ,
           "element rows up the walls and bulkheads", S_AT(INT, hull_mesh.side_rows)),
     WHOLE("hull.mesh.generator.nose_rows", CLOSED(1, 64), REQ,
@@ -954,7 +833,7 @@ static const sch_key sc_keys[] = {
     CUSTOM("load.points", "m", "`{grid: {x: [...], y: [...]}}` or `[[x, y], ...]`", REQ,
            "the load points, on the floor, 1 mm apart at least", &sc_points),
     LIST("mounts", OPT, "bodies on a spring and a damper to a hull point (driver, engine)",
-         &sc_mount_table, "mounts", &sc_mounts),
+         &sc_mount_table, "mounts", &sc_named, NAMED(mount, nmounts, 1)),
     SECTION("wheel", OPT, "every corner's wheel and tire unless the corner gives its own",
             NULL),
     NUMBER("wheel.mass", "kg", POSITIVE, OPT, "wheel mass", NO_STORE),
@@ -969,12 +848,12 @@ static const sch_key sc_keys[] = {
            "every corner's spring travel / wheel travel unless it gives its own", NO_STORE),
     LIST("suspensions.axles", OPT,
          "axles, each two corners: L<name> at (x, y) and R<name> at (x, -y)", &sc_corner_table,
-         "corners", &sc_axles),
+         "corners", &sc_axles, NAMED(corner, ncorners, 2)),
     LIST("suspensions.corners", OPT, "single corners, after the axles' ones", &sc_corner_table,
-         "corners", &sc_single_corners),
+         "corners", &sc_named, NAMED(corner, ncorners, 1)),
     LIST("outputs", OPT,
          "the signals recorded, in CSV column order (default: every corner's tire_force)",
-         &sc_output_table, "outputs", &sc_outputs),
+         &sc_output_table, "outputs", &sc_outputs, ITEMS(output, noutputs, 1)),
     SECTION("road", REQ, "the road under the wheels", NULL),
     NUMBER("road.speed_kmh", "km/h", POSITIVE, REQ, "constant forward speed on a straight line",
            S_OFF(speed), .ops = &sc_kmh),
@@ -998,7 +877,7 @@ static const sch_key sc_keys[] = {
     WHOLE("road.iso8608.seed", CLOSED(0, 9007199254740992.0), REQ,
           "the same seed gives the same road", S_AT(U64, road_iso.seed)),
     NUMBERS("road.iso8608.band", "cycles/m", 2, 2, DEF_LIST(sc_band_default),
-            "spatial frequency band `[n_min, n_max]` of the harmonics", &sc_band),
+            "spatial frequency band `[n_min, n_max]` of the harmonics", .ops = &sc_band),
     WHOLE("road.iso8608.harmonics", CLOSED(1, (double)FB_ROAD_ISO8608_MAX_HARMONICS), DEF(1024),
           "harmonics per track (the run's time grows with them)",
           S_AT(SIZE, road_iso.nharmonics),
@@ -1051,16 +930,20 @@ static int sc_keep_origins(sch_reader *r, fb_scenario *s)
     sch_origin *o = &r->origin[i];
     if (!o->given)
       continue;
-    s->origin[s->norigins++] = (fb_scenario_origin){o->key, o->path, o->line, o->column, NULL};
+    fb_scenario_origin *to = &s->origin[s->norigins++];
+    *to = (fb_scenario_origin){o->key, o->path, o->line, o->column, NULL};
     o->key = o->path = NULL;
+    if (o->override && !(to->override = fb_strdup(o->override)))
+      return fb_err_set(r->c->err, FB_ENOMEM, "out of memory for %zu origins", n);
   }
   return FB_OK;
 }
 
-int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, fb_scenario *s)
+int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
+            fb_scenario *s)
 {
-  sc_reading rd = {params, 0, 0, 0, 0};
-  sch_reader r = {c, &rd, NULL, 0, 0};
+  sc_reading rd = {params};
+  sch_reader r = {.c = c, .user = &rd, .ov = ov, .nov = nov};
   c->globals = params;
   int rc = sch_read(&r, &sc_schema, root, s);
   if (!rc)

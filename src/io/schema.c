@@ -12,8 +12,8 @@
 #include "core/textfile.h"
 #include "core/util.h"
 
-/* Longest key path, and most keys one mapping may have. */
-enum { SCH_PATH_MAX = 256, SCH_MAX_CHILDREN = 48 };
+/* Most keys one mapping may have. */
+enum { SCH_MAX_CHILDREN = 48 };
 
 /* ---- Paths. */
 
@@ -29,6 +29,29 @@ static const char *sch_child_name(const sch_key *k, const char *pre)
     rest += n + 1;
   }
   return strchr(rest, '.') ? NULL : rest;
+}
+
+/* The names of t's keys in its mapping at table path pre, in table order,
+ * into names (NULL-terminated, SCH_MAX_CHILDREN at most). */
+static void sch_children(const sch_table *t, const char *pre, const char **names)
+{
+  size_t n = 0;
+  for (size_t i = 0; i < t->n && n < SCH_MAX_CHILDREN; ++i) {
+    const char *name = sch_child_name(&t->key[i], pre);
+    if (name)
+      names[n++] = name;
+  }
+  names[n] = NULL;
+}
+
+void sch_key_names(const sch_table *t, const char *pre, char *buf, size_t size)
+{
+  const char *names[SCH_MAX_CHILDREN + 1];
+  size_t len = 0;
+  sch_children(t, pre, names);
+  buf[0] = '\0';
+  for (size_t i = 0; names[i] && len + 1 < size; ++i)
+    len = fb_text_append(buf, size, len, "%s%s", i ? ", " : "", names[i]);
 }
 
 /* "a.b" from "a" and "b" ("b" alone when a is empty) into buf. */
@@ -54,11 +77,11 @@ void sch_reader_release(sch_reader *r)
   r->norigins = r->cap = 0;
 }
 
-/* Appends an origin (key and path copied). */
+/* Appends an origin (key and path copied; override, a label, borrowed). */
 static int sch_add(sch_reader *r, const char *key, const char *path, int line, int column,
-                   int given, double number)
+                   int given, double number, const char *override)
 {
-  sch_origin o = {fb_strdup(key), fb_strdup(path), line, column, given, number};
+  sch_origin o = {fb_strdup(key), fb_strdup(path), line, column, given, number, override};
   if (!o.key || !o.path || fb_grow((void **)&r->origin, &r->cap, r->norigins, sizeof o)) {
     sch_origin_release(&o);
     return fb_err_set(r->c->err, FB_ENOMEM, "out of memory recording where '%s' is", path);
@@ -69,16 +92,16 @@ static int sch_add(sch_reader *r, const char *key, const char *path, int line, i
 
 /* Appends the origin of the value at node, path its key and path. */
 static int sch_add_at(sch_reader *r, const char *path, struct fy_node *node, int given,
-                      double number)
+                      double number, const char *override)
 {
   int line = 0, column = 0;
   ml_mark(node, &line, &column);
-  return sch_add(r, path, path, line, column, given, number);
+  return sch_add(r, path, path, line, column, given, number, override);
 }
 
 int sch_record(sch_reader *r, const char *key, struct fy_node *node)
 {
-  return sch_add_at(r, key, node, 1, 0.0);
+  return sch_add_at(r, key, node, 1, 0.0, NULL);
 }
 
 const sch_origin *sch_origin_find(const sch_reader *r, const char *key)
@@ -101,7 +124,8 @@ int sch_origins_relabel(sch_reader *r, size_t mark, const char *item_path, const
     snprintf(renamed, sizeof renamed, "%s%s", prefix, key + n);
     if (copy) {
       const sch_origin *o = &r->origin[i];
-      int rc = sch_add(r, renamed, o->path, o->line, o->column, o->given, o->number);
+      int rc =
+          sch_add(r, renamed, o->path, o->line, o->column, o->given, o->number, o->override);
       if (rc)
         return rc;
       continue;
@@ -113,6 +137,397 @@ int sch_origins_relabel(sch_reader *r, size_t mark, const char *item_path, const
     r->origin[i].key = dup;
   }
   return FB_OK;
+}
+
+/* ---- Overrides. */
+
+/* The key of t named name in its mapping at table path pre, or NULL. */
+static const sch_key *sch_find(const sch_table *t, const char *pre, const char *name)
+{
+  for (size_t i = 0; i < t->n; ++i) {
+    const char *child = sch_child_name(&t->key[i], pre);
+    if (child && !strcmp(child, name))
+      return &t->key[i];
+  }
+  return NULL;
+}
+
+/* The label of the override at path, marking it and every override below
+ * it (an item of a list of numbers, a part of a custom value) read; NULL
+ * if none is at path. */
+static const char *sch_take(sch_reader *r, const char *path)
+{
+  const char *label = NULL;
+  const size_t n = strlen(path);
+  for (size_t i = 0; i < r->nov; ++i) {
+    sch_override *o = &r->ov[i];
+    const char next = o->path[n];
+    if (strncmp(o->path, path, n) != 0 || (next && next != '.' && next != '['))
+      continue;
+    o->read = 1;
+    if (!next && o->label[0])
+      label = o->label;
+  }
+  return label;
+}
+
+void sch_blame_override(fb_err *err, const sch_override *o)
+{
+  if (!o->label[0])
+    return;
+  fb_err_set_source(err, FB_SOURCE_OVERRIDE, o->label);
+  fb_err_prefix(err, "%s: ", o->label);
+}
+
+/* An error the reader raised at an override's value (fb_err.key is its
+ * path) names the override. */
+static void sch_blame(const sch_reader *r, int rc)
+{
+  fb_err *err = r->c->err;
+  for (size_t i = 0; rc && err->source != FB_SOURCE_OVERRIDE && i < r->nov; ++i)
+    if (r->ov[i].node && !strcmp(err->key, r->ov[i].path))
+      sch_blame_override(err, &r->ov[i]);
+}
+
+/* FB_EINVAL "FILE:LINE:COL: KEY: message" for override o, at node (NULL
+ * or without a place: the file alone) and key path key. */
+static int sch_refuse_at(const sch_reader *r, const sch_override *o, struct fy_node *node,
+                         const char *key, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+static int sch_refuse_at(const sch_reader *r, const sch_override *o, struct fy_node *node,
+                         const char *key, const char *fmt, ...)
+{
+  char msg[FB_ERR_MSG_MAX / 2];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  fb_err *err = r->c->err;
+  int line = 0, column = 0;
+  if (node && ml_mark(node, &line, &column))
+    fb_err_set(err, FB_EINVAL, "%s:%d:%d: %s%s%s", r->c->file, line, column, key,
+               *key ? ": " : "", msg);
+  else
+    fb_err_set(err, FB_EINVAL, "%s: %s%s%s", r->c->file, key, *key ? ": " : "", msg);
+  fb_err_set_location(err, r->c->file, line, column);
+  fb_err_set_key(err, "%s", key);
+  sch_blame_override(err, o);
+  return FB_EINVAL;
+}
+
+/* Every override was read: one that no step took would be ignored. */
+static int sch_all_read(const sch_reader *r)
+{
+  for (size_t i = 0; i < r->nov; ++i)
+    if (!r->ov[i].read)
+      return sch_refuse_at(r, &r->ov[i], r->ov[i].node, r->ov[i].path,
+                           "no step of the reader took this value");
+  return FB_OK;
+}
+
+/* A scalar of text (an empty mapping when NULL) in the document of at,
+ * parsed from text that puts it at at's line and column: libfyaml places
+ * the nodes it creates at 1:1, and the reader's messages and origins take
+ * the node's place. A text of letters, digits and '_' is written plain,
+ * any other double-quoted, so that it stays one scalar whatever it holds
+ * (libfyaml marks a quoted scalar inside its quotes, hence the quote one
+ * column before; at column 1, the text one column on). NULL when out of
+ * memory. */
+static struct fy_node *sch_node_at(struct fy_node *at, const char *text)
+{
+  static const char plain[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_";
+  const char *t = text ? text : "{}";
+  const int quote = text && (!*text || strspn(text, plain) < strlen(text));
+  int line = 1, column = 1;
+  ml_mark(at, &line, &column);
+  const size_t pad = (size_t)line - 1 + (size_t)(column > 1 + quote ? column - 1 - quote : 0);
+  char *buf = malloc(pad + 2 * strlen(t) + 3);
+  if (!buf)
+    return NULL;
+  size_t n = 0;
+  for (int i = 1; i < line; ++i)
+    buf[n++] = '\n';
+  while (n < pad)
+    buf[n++] = ' ';
+  if (quote)
+    buf[n++] = '"';
+  for (; *t; ++t) {
+    if (quote && (*t == '"' || *t == '\\'))
+      buf[n++] = '\\';
+    buf[n++] = *t;
+  }
+  if (quote)
+    buf[n++] = '"';
+  buf[n] = '\0';
+  struct fy_node *node = fy_node_build_from_malloc_string(fy_node_document(at), buf, n);
+  if (!node)
+    free(buf);
+  /* NOLINTNEXTLINE(clang-analyzer-unix.Malloc): on success the node's document owns buf */
+  return node;
+}
+
+/* map's value at key becomes value, the pairs' order kept (a parameter
+ * may use the ones before it): libfyaml 0.7's fy_node_pair_set_value
+ * leaves the new value without a parent, and key paths are made from
+ * parents, so this pair and the ones after it are appended again. */
+static int sch_swap_value(struct fy_node *map, const struct fy_node *key, struct fy_node *value)
+{
+  const int n = fy_node_mapping_item_count(map);
+  int at = 0;
+  while (at < n && fy_node_pair_key(fy_node_mapping_get_by_index(map, at)) != key)
+    ++at;
+  for (int i = at; i < n; ++i) {
+    struct fy_node *k = fy_node_pair_key(fy_node_mapping_get_by_index(map, at));
+    struct fy_node *copy = fy_node_copy(fy_node_document(map), k);
+    struct fy_node *v = copy ? fy_node_mapping_remove_by_key(map, k) : NULL;
+    if (v && i == at) {
+      fy_node_free(v);
+      v = value;
+    }
+    if (!v || fy_node_mapping_append(map, copy, v) != 0)
+      return FB_ENOMEM;
+  }
+  return FB_OK;
+}
+
+/* An override's walk down its key path: where it has got to in the
+ * table (t NULL below it, in a list of numbers or a custom value) and in
+ * the file. */
+typedef struct sch_walk {
+  const sch_reader *r;
+  sch_override *o;
+  const sch_table *t;
+  const char *pre;       /* the section's path in t, "" for its root */
+  struct fy_node *node;  /* the file's node there; a mapping while t is set */
+  char at[SCH_PATH_MAX]; /* its key path */
+} sch_walk;
+
+#define sch_refuse(w, ...) sch_refuse_at((w)->r, (w)->o, (w)->node, (w)->at, __VA_ARGS__)
+
+/* One step down: to key name ("" for none) and then item index (-1 for
+ * none), at node to (NULL, left out of the file: the node stays, the
+ * place of a message about it). */
+static void sch_walk_down(sch_walk *w, struct fy_node *to, const char *name, long index)
+{
+  char at[SCH_PATH_MAX + 32];
+  if (*name)
+    sch_join(at, sizeof at, w->at, name);
+  else
+    snprintf(at, sizeof at, "%s", w->at);
+  if (index >= 0)
+    snprintf(at + strlen(at), sizeof at - strlen(at), "[%ld]", index);
+  snprintf(w->at, sizeof w->at, "%s", at);
+  w->node = to ? to : w->node;
+}
+
+/* Appends key name with value to map, the key at the mapping's place. */
+static int sch_append(struct fy_node *map, const char *name, struct fy_node *value)
+{
+  struct fy_node *key = sch_node_at(map, name);
+  return key && fy_node_mapping_append(map, key, value) == 0 ? FB_OK : FB_ENOMEM;
+}
+
+/* seq's item old becomes value. */
+static int sch_swap_item(struct fy_node *seq, struct fy_node *old, struct fy_node *value)
+{
+  if (fy_node_sequence_insert_after(seq, old, value) != 0 || !fy_node_sequence_remove(seq, old))
+    return FB_ENOMEM;
+  fy_node_free(old);
+  return FB_OK;
+}
+
+/* Puts the value at key name of the mapping here, or at its item index
+ * (name NULL): where the file's value is, or at the mapping's place when
+ * the file leaves the key out. */
+static int sch_put(sch_walk *w, const char *name, long index)
+{
+  struct fy_node *key = NULL;
+  struct fy_node *old =
+      name ? ml_get(w->node, name, &key) : fy_node_sequence_get_by_index(w->node, (int)index);
+  struct fy_node *value = sch_node_at(old ? old : w->node, w->o->value);
+  int rc = value ? FB_OK : FB_ENOMEM;
+  if (!rc && !name)
+    rc = sch_swap_item(w->node, old, value);
+  else if (!rc && key)
+    rc = sch_swap_value(w->node, key, value);
+  else if (!rc)
+    rc = sch_append(w->node, name, value);
+  if (rc)
+    return fb_err_set(w->r->c->err, FB_ENOMEM, "out of memory setting %s", w->o->path);
+  w->o->node = value;
+  return FB_OK;
+}
+
+/* Into section k of the mapping here (child, made when the file leaves
+ * it out). */
+static int sch_walk_section(sch_walk *w, const sch_key *k, const char *name,
+                            struct fy_node *child)
+{
+  if (!child && (!(child = sch_node_at(w->node, NULL)) || sch_append(w->node, name, child)))
+    return fb_err_set(w->r->c->err, FB_ENOMEM, "out of memory setting %s", w->o->path);
+  sch_walk_down(w, child, name, -1);
+  if (!fy_node_is_mapping(child))
+    return sch_refuse(w, "is not a mapping in the file");
+  w->pre = k->path;
+  return FB_OK;
+}
+
+/* Into item index of list k (list: the file's). */
+static int sch_walk_item(sch_walk *w, const sch_key *k, const char *name, struct fy_node *list,
+                         long index)
+{
+  sch_walk_down(w, list, name, -1);
+  if (index < 0)
+    return sch_refuse(w, "is a list, not a single value; set a key of one item, e.g. %s[0].%s",
+                      w->at, k->items->key[0].path);
+  const int count = list && fy_node_is_sequence(list) ? fy_node_sequence_item_count(list) : 0;
+  if (index >= count)
+    return sch_refuse(w, "has no item [%ld] (it has %d)", index, count);
+  sch_walk_down(w, fy_node_sequence_get_by_index(list, (int)index), "", index);
+  if (!fy_node_is_mapping(w->node))
+    return sch_refuse(w, "is not a mapping in the file");
+  w->t = k->items;
+  w->pre = "";
+  return FB_OK;
+}
+
+/* FB_EINVAL for key name that the table does not have here. */
+static int sch_no_key(sch_walk *w, const char *name)
+{
+  const char *names[SCH_MAX_CHILDREN + 1];
+  char keys[512], hint[SCH_PATH_MAX + 32] = "";
+  sch_children(w->t, w->pre, names);
+  sch_key_names(w->t, w->pre, keys, sizeof keys);
+  const char *near = ml_suggest_list(name, names);
+  if (near)
+    snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
+  return sch_refuse(w, "has no key '%s' (%sits keys: %s)", name, hint, keys);
+}
+
+/* One segment of the path below the table: key name ("" for none) of a
+ * mapping of the file, then item index of a list (-1: none). */
+static int sch_walk_file(sch_walk *w, const char *name, long index, int last)
+{
+  struct fy_node *child = *name ? ml_get(w->node, name, NULL) : NULL;
+  if (*name && !child)
+    return sch_refuse(w, "has no key '%s'%s", name,
+                      fy_node_is_mapping(w->node) ? "" : " (it is not a mapping)");
+  if (*name && last && index < 0 && fy_node_is_scalar(child))
+    return sch_put(w, name, -1);
+  if (*name)
+    sch_walk_down(w, child, name, -1);
+  if (index < 0)
+    return FB_OK;
+  if (!fy_node_is_sequence(w->node))
+    return sch_refuse(w, "is not a list: no item [%ld]", index);
+  const int count = fy_node_sequence_item_count(w->node);
+  if (index >= count)
+    return sch_refuse(w, "has no item [%ld] (it has %d)", index, count);
+  struct fy_node *item = fy_node_sequence_get_by_index(w->node, (int)index);
+  if (last && fy_node_is_scalar(item))
+    return sch_put(w, NULL, index);
+  sch_walk_down(w, item, "", index);
+  return FB_OK;
+}
+
+/* One segment of the path in a mapping of the table: name, then item
+ * index (-1: none); last when the path ends there. */
+static int sch_walk_table(sch_walk *w, const char *name, long index, int last)
+{
+  const sch_key *k = *name ? sch_find(w->t, w->pre, name) : NULL;
+  if (!k)
+    return *name ? sch_no_key(w, name)
+                 : sch_refuse(w, "is a mapping, not a list: no item [%ld]", index);
+  const int many = k->type == SCH_SECTION || k->type == SCH_LIST || k->type == SCH_NUMBERS;
+  if (last && index < 0 && !many)
+    return sch_put(w, name, -1);
+  struct fy_node *child = ml_get(w->node, name, NULL);
+  if (k->type == SCH_LIST)
+    return sch_walk_item(w, k, name, child, index);
+  if (k->type == SCH_SECTION && index < 0)
+    return sch_walk_section(w, k, name, child);
+  sch_walk_down(w, child, name, -1);
+  if (k->type == SCH_SECTION)
+    return sch_refuse(w, "is a mapping, not a list: no item [%ld]", index);
+  if (k->type == SCH_NUMBERS && last && index < 0)
+    return sch_refuse(w, "is a list, not a single value; set one item, e.g. %s[0]", w->at);
+  if (!child)
+    return sch_refuse(w, "is not in the file: it has no %s to set", index < 0 ? "key" : "item");
+  w->t = NULL; /* the rest is the file's: a list of numbers, a custom value */
+  return index < 0 ? FB_OK : sch_walk_file(w, "", index, last);
+}
+
+/* The next segment of key path *p: a name (may be empty after an index:
+ * "x[1][2]") and an index (-1: none). 1 if there is one, 0 at the end,
+ * -1 if malformed. */
+static int sch_segment(const char **p, char *name, size_t size, long *index)
+{
+  const char *s = *p;
+  const size_t n = strcspn(s, ".[]");
+  *index = -1;
+  if (!*s)
+    return 0;
+  if (n >= size)
+    return -1;
+  memcpy(name, s, n);
+  name[n] = '\0';
+  s += n;
+  if (*s == '[') {
+    char *end = NULL;
+    if (s[1] < '0' || s[1] > '9')
+      return -1;
+    *index = strtol(s + 1, &end, 10);
+    if (*end != ']')
+      return -1;
+    s = end + 1;
+  }
+  if ((n == 0 && *index < 0) || (*s && *s != '.' && *s != '['))
+    return -1;
+  if (*s == '.' && (*++s == '\0' || *s == '.' || *s == '['))
+    return -1;
+  *p = s;
+  return 1;
+}
+
+/* FB_EINVAL for a path that ends at a mapping or a list. */
+static int sch_not_value(sch_walk *w)
+{
+  char keys[512] = "";
+  if (fy_node_is_sequence(w->node))
+    return sch_refuse(w, "is a list, not a single value; set one item, e.g. %s[0]", w->at);
+  if (w->t)
+    sch_key_names(w->t, w->pre, keys, sizeof keys);
+  return sch_refuse(w, "is a mapping, not a single value%s%s%s", *keys ? " (its keys: " : "",
+                    keys, *keys ? ")" : "");
+}
+
+static int sch_place_one(const sch_reader *r, const sch_table *t, struct fy_node *root,
+                         sch_override *o)
+{
+  sch_walk w = {r, o, t, "", root, ""};
+  const char *p = o->path;
+  char name[SCH_PATH_MAX];
+  long index = -1;
+  int rc = FB_OK, seg = 0;
+  while (!rc && !o->node && (seg = sch_segment(&p, name, sizeof name, &index)) == 1)
+    rc = w.t ? sch_walk_table(&w, name, index, !*p) : sch_walk_file(&w, name, index, !*p);
+  if (seg < 0)
+    return sch_refuse_at(r, o, NULL, "",
+                         "malformed key '%s': expected names joined by '.', each optionally "
+                         "followed by [index] (e.g. road.bump.height)",
+                         o->path);
+  return rc || o->node ? rc : sch_not_value(&w);
+}
+
+int sch_place(sch_reader *r, const sch_table *t, struct fy_node *root)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < r->nov; ++i)
+    rc = sch_place_one(r, t, root, &r->ov[i]);
+  return rc;
 }
 
 /* ---- Reading. */
@@ -133,13 +548,7 @@ static int sch_read_map(sch_reader *r, const sch_frame *f);
 static int sch_check_children(const sch_reader *r, const sch_frame *f)
 {
   const char *names[SCH_MAX_CHILDREN + 1];
-  size_t n = 0;
-  for (size_t i = 0; i < f->t->n && n < SCH_MAX_CHILDREN; ++i) {
-    const char *name = sch_child_name(&f->t->key[i], f->pre);
-    if (name)
-      names[n++] = name;
-  }
-  names[n] = NULL;
+  sch_children(f->t, f->pre, names);
   return ml_check_keys(r->c, f->map, names);
 }
 
@@ -188,6 +597,11 @@ static int sch_check_groups(const sch_reader *r, const sch_frame *f)
 static void *sch_at(void *base, size_t offset)
 {
   return (char *)base + offset;
+}
+
+static const void *sch_at_const(const void *base, size_t offset)
+{
+  return (const char *)base + offset;
 }
 
 /* Stores a number (in the file's unit) as k says. */
@@ -268,7 +682,19 @@ static int sch_numbers(const sch_reader *r, const sch_key *k, struct fy_node *no
   return rc;
 }
 
-/* A value written at node: read, recorded, stored. */
+/* Stores the n numbers read (at node; NULL for the default) as k says. */
+static int sch_store_numbers(sch_reader *r, const sch_key *k, struct fy_node *node,
+                             const double *v, size_t n, void *base)
+{
+  if (k->store != SCH_STORE_DOUBLE)
+    return k->ops && k->ops->store_list ? k->ops->store_list(r, k, node, v, n, base) : FB_OK;
+  if (n) /* an empty list may come as NULL */
+    memcpy(sch_at(base, k->offset), v, n * sizeof *v);
+  if (k->min_items != k->max_items)
+    *(size_t *)sch_at(base, k->count_at) = n;
+  return FB_OK;
+}
+
 /* Appends " (why)" to a range error's message: why the range is so. */
 static void sch_add_why(fb_err *err, const char *why)
 {
@@ -278,6 +704,7 @@ static void sch_add_why(fb_err *err, const char *why)
   snprintf(err->msg + len, sizeof err->msg - len, " (%s)", why);
 }
 
+/* A value written at node: read, recorded, stored. */
 static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
                           const char *path, void *base)
 {
@@ -309,7 +736,7 @@ static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
   default: break;
   }
   if (!rc)
-    rc = sch_add_at(r, path, node, 1, number);
+    rc = sch_add_at(r, path, node, 1, number, sch_take(r, path));
   if (!rc && (k->type == SCH_CHOICE || k->type == SCH_NUMBER || k->type == SCH_WHOLE))
     sch_store_number(k, number, base);
   else if (!rc)
@@ -319,8 +746,8 @@ static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
     double *v = NULL;
     size_t n = 0;
     rc = sch_numbers(r, k, node, &v, &n);
-    if (!rc && k->ops && k->ops->store_list)
-      rc = k->ops->store_list(r, k, node, v, n, base);
+    if (!rc)
+      rc = sch_store_numbers(r, k, node, v, n, base);
     free(v);
   }
   if (!rc && k->type == SCH_CUSTOM && k->ops && k->ops->read)
@@ -337,9 +764,9 @@ static int sch_read_absent(sch_reader *r, const sch_frame *f, const sch_key *k,
   if (k->need == SCH_REQUIRED && f->map)
     return ml_fail(r->c, f->map, FB_EPARSE, "missing required key '%s'", name);
   if (k->need == SCH_DEFAULT) {
-    int rc = sch_add(r, path, path, line, column, 0, k->def);
-    if (!rc && k->type == SCH_NUMBERS && k->ops && k->ops->store_list)
-      rc = k->ops->store_list(r, k, NULL, k->def_list, k->min_items, f->base);
+    int rc = sch_add(r, path, path, line, column, 0, k->def, NULL);
+    if (!rc && k->type == SCH_NUMBERS)
+      rc = sch_store_numbers(r, k, NULL, k->def_list, k->min_items, f->base);
     if (!rc && k->type != SCH_NUMBERS)
       sch_store_number(k, k->def, f->base);
     return rc;
@@ -352,10 +779,40 @@ static int sch_read_absent(sch_reader *r, const sch_frame *f, const sch_key *k,
                    "missing required key '%s' (nor is there a %s to take it from)", path,
                    k->inherit);
   const sch_origin o = *from; /* sch_add may move the array */
-  int rc = sch_add(r, path, o.path, o.line, o.column, o.given, o.number);
+  int rc = sch_add(r, path, o.path, o.line, o.column, o.given, o.number, o.override);
   if (!rc)
     sch_store_number(k, o.number, f->base);
   return rc;
+}
+
+int sch_list_add(const sch_reader *r, const sch_key *k, void *base, void **item)
+{
+  char **items = sch_at(base, k->offset);
+  size_t *n = sch_at(base, k->count_at);
+  const size_t add = k->per_item ? k->per_item : 1;
+  char *grown =
+      *n < SIZE_MAX / k->item_size - add ? realloc(*items, (*n + add) * k->item_size) : NULL;
+  if (!grown)
+    return fb_err_set(r->c->err, FB_ENOMEM, "out of memory for %zu items", *n + add);
+  *items = grown;
+  *item = grown + *n * k->item_size;
+  memset(*item, 0, add * k->item_size);
+  *n += add;
+  return FB_OK;
+}
+
+const sch_key *sch_key_of(const sch_table *t, const char *path)
+{
+  for (size_t i = 0; i < t->n; ++i)
+    if (!strcmp(t->key[i].path, path))
+      return &t->key[i];
+  return NULL;
+}
+
+const char *sch_item_name(const sch_key *k, const void *item)
+{
+  const sch_key *name = k->named ? sch_key_of(k->items, "name") : NULL;
+  return name ? *(char *const *)sch_at_const(item, name->offset) : NULL;
 }
 
 /* The items of a list written at node. */
@@ -376,15 +833,15 @@ static int sch_read_list(sch_reader *r, const sch_frame *f, const sch_key *k,
     const size_t mark = r->norigins;
     rc = ml_expect_map(r->c, item, k->doc);
     if (!rc)
-      rc = k->ops->item_begin(r, k, i, count, f->base, &item_base);
+      rc = sch_list_add(r, k, f->base, &item_base);
     if (!rc)
-      rc = sch_add_at(r, item_path, item, 1, 0.0);
+      rc = sch_add_at(r, item_path, item, 1, 0.0, NULL);
     const sch_frame in = {k->items, "", item, item, item_path, item_base};
     if (!rc)
       rc = sch_read_map(r, &in);
     if (!rc && k->items->done)
       rc = k->items->done(r, item, item_base);
-    if (!rc && k->ops->item_end)
+    if (!rc && k->ops && k->ops->item_end)
       rc = k->ops->item_end(r, k, item, item_path, mark, f->base, item_base);
   }
   return rc;
@@ -409,7 +866,7 @@ static int sch_read_key(sch_reader *r, const sch_frame *f, const sch_key *k, con
     if (!rc && key)
       rc = ml_expect_map(r->c, node, k->doc);
     if (!rc && key)
-      rc = sch_add_at(r, path, node, 1, 0.0);
+      rc = sch_add_at(r, path, node, 1, 0.0, NULL);
     const sch_frame in = {f->t, k->path, key ? node : NULL, key ? node : f->where,
                           path, f->base};
     if (!rc)
@@ -448,18 +905,18 @@ int sch_read(sch_reader *r, const sch_table *t, struct fy_node *root, void *base
   int rc = ml_expect_map(r->c, root, "a mapping of keys");
   const sch_frame f = {t, "", root, root, "", base};
   if (!rc)
+    rc = sch_place(r, t, root);
+  if (!rc)
     rc = sch_read_map(r, &f);
   if (!rc && t->done)
     rc = t->done(r, root, base);
+  if (!rc)
+    rc = sch_all_read(r);
+  sch_blame(r, rc);
   return rc;
 }
 
 /* ---- Values of a struct. */
-
-static const void *sch_at_const(const void *base, size_t offset)
-{
-  return (const char *)base + offset;
-}
 
 /* The stored value of k in the file's unit. */
 static double sch_load_number(const sch_key *k, const void *base)
@@ -491,7 +948,7 @@ static size_t sch_nchoices(const sch_key *k)
 static int sch_value_of(const sch_key *k, const void *base, const char *path, sch_value *v)
 {
   *v = (sch_value){k, path, base, 0.0, NULL};
-  if (k->type == SCH_CUSTOM || k->type == SCH_NUMBERS)
+  if (k->type == SCH_CUSTOM || (k->type == SCH_NUMBERS && k->store != SCH_STORE_DOUBLE))
     return k->ops && k->ops->format;
   if (k->store == SCH_STORE_NONE)
     return 0;
@@ -515,13 +972,12 @@ static int sch_each_item(const sch_table *t, const sch_key *k, const void *base,
   for (const sch_key *o = t->key; o < k; ++o)
     if (o->type == SCH_LIST && o->view && k->view && !strcmp(o->view, k->view))
       return 0; /* visited with the first list of the view */
-  if (!k->ops)
-    return 0; /* a list's items are reached only through its ops */
-  const size_t n = k->ops->count(base);
+  const size_t n = *(const size_t *)sch_at_const(base, k->count_at);
+  const char *items = *(char *const *)sch_at_const(base, k->offset);
   int stop = 0;
   for (size_t i = 0; !stop && i < n; ++i) {
-    const void *item = k->ops->item_at(base, i);
-    const char *name = k->ops->item_name ? k->ops->item_name(item) : NULL;
+    const void *item = items + i * k->item_size;
+    const char *name = sch_item_name(k, item);
     char lp[SCH_PATH_MAX];
     if (name)
       snprintf(lp, sizeof lp, "%s.%s", k->view, name);
@@ -611,10 +1067,25 @@ int sch_check_value(const sch_value *v, fb_err *err)
   return fb_err_set_key(err, "%s", v->path);
 }
 
+/* "a, b, c": the numbers list k stores in base. */
+static void sch_format_numbers(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  const double *x = sch_at_const(base, k->offset);
+  const size_t n = k->min_items == k->max_items
+                       ? k->min_items
+                       : *(const size_t *)sch_at_const(base, k->count_at);
+  size_t len = 0;
+  buf[0] = '\0';
+  for (size_t i = 0; i < n && len + 1 < size; ++i)
+    len = fb_text_append(buf, size, len, "%s%.10g", i ? ", " : "", x[i]);
+}
+
 void sch_format(const sch_value *v, char *buf, size_t size)
 {
   const sch_key *k = v->key;
-  if ((k->type == SCH_CUSTOM || k->type == SCH_NUMBERS) && k->ops && k->ops->format)
+  if (k->type == SCH_NUMBERS && k->store == SCH_STORE_DOUBLE)
+    sch_format_numbers(k, v->base, buf, size);
+  else if ((k->type == SCH_CUSTOM || k->type == SCH_NUMBERS) && k->ops && k->ops->format)
     k->ops->format(k, v->base, buf, size);
   else if (v->text)
     snprintf(buf, size, "%s", v->text);

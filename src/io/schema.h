@@ -13,7 +13,10 @@
  * table; a list's items have a table of their own ("spring_k" in the
  * items of "suspensions.axles"), written "suspensions.axles[].spring_k"
  * in the documentation. Errors are the model loader's located ones
- * (io/model_internal.h): "FILE:LINE:COL: KEY: message". */
+ * (io/model_internal.h): "FILE:LINE:COL: KEY: message".
+ *
+ * A reader may be given overrides, values to read in place of the file's
+ * at full key paths ("suspensions.axles[1].spring_k"). */
 #ifndef FLEXBOND_IO_SCHEMA_H
 #define FLEXBOND_IO_SCHEMA_H
 
@@ -58,6 +61,9 @@ typedef enum sch_need {
 /* Ends of a range, sch_key.bounds. Open ends exclude their bound. */
 enum { SCH_LO = 1, SCH_HI = 2, SCH_LO_OPEN = 4, SCH_HI_OPEN = 8 };
 
+/* Longest key path. */
+enum { SCH_PATH_MAX = 256 };
+
 typedef struct sch_key sch_key;
 typedef struct sch_table sch_table;
 typedef struct sch_reader sch_reader;
@@ -68,16 +74,16 @@ typedef struct sch_reader sch_reader;
 typedef struct sch_ops {
   /* SCH_CUSTOM: reads the value at node into base. */
   int (*read)(sch_reader *r, const sch_key *k, struct fy_node *node, void *base);
-  /* SCH_NUMBERS: stores the n numbers read (at node; NULL for the
-   * default) into base. */
+  /* SCH_NUMBERS not stored as doubles: stores the n numbers read (at
+   * node; NULL for the default) into base. */
   int (*store_list)(sch_reader *r, const sch_key *k, struct fy_node *node, const double *v,
                     size_t n, void *base);
   /* SCH_NUMBER: the stored value of a value in the file's unit and back
    * (km/h to m/s); the identity when NULL. */
   double (*to_struct)(double v);
   double (*from_struct)(double v);
-  /* SCH_CUSTOM and SCH_NUMBERS: the stored value as text, for
-   * sch_each_value. */
+  /* SCH_CUSTOM and SCH_NUMBERS not stored as doubles: the stored value
+   * as text, for sch_each_value. */
   void (*format)(const sch_key *k, const void *base, char *buf, size_t size);
   /* 0 when the value is absent from base (a section left out, the other
    * of two alternatives): sch_check and sch_each_value skip it and, for
@@ -86,17 +92,11 @@ typedef struct sch_ops {
   /* SCH_SECTION (and the root, through sch_table.done): after its keys
    * are read; node is NULL when the section was left out. */
   int (*done)(sch_reader *r, const sch_key *k, struct fy_node *node, void *base);
-  /* SCH_LIST: the struct item index of count is read into (*item). */
-  int (*item_begin)(sch_reader *r, const sch_key *k, size_t index, size_t count, void *base,
-                    void **item);
-  /* SCH_LIST: after item index (at node, its origins recorded from
-   * mark on, under the key path item_path) is read. */
+  /* SCH_LIST: after an item (at node, its origins recorded from mark
+   * on, under the key path item_path) is read into item (the first of
+   * the sch_key.per_item it makes). */
   int (*item_end)(sch_reader *r, const sch_key *k, struct fy_node *node, const char *item_path,
                   size_t mark, void *base, void *item);
-  /* SCH_LIST, for sch_check and sch_each_value: the struct's items. */
-  size_t (*count)(const void *base);
-  const void *(*item_at)(const void *base, size_t i);
-  const char *(*item_name)(const void *item); /* NULL: items by index */
 } sch_ops;
 
 struct sch_key {
@@ -118,11 +118,18 @@ struct sch_key {
   const char *doc;             /* one line */
   const char *why;             /* why the range is what it is, added to a range error
                                   ("about a day of solver steps ..."); may be NULL */
-  sch_store store;
-  size_t offset;
-  const sch_table *items; /* SCH_LIST */
-  const char *view;       /* SCH_LIST: the logical name of the struct's items
-                             ("corners"); lists with one view fill the same items */
+  sch_store store;             /* SCH_NUMBERS: SCH_STORE_DOUBLE, max_items of them at offset */
+  size_t offset;               /* SCH_LIST: of the pointer to its items (allocated) */
+  const sch_table *items;      /* SCH_LIST */
+  const char *view;            /* SCH_LIST: the logical name of the struct's items
+                                  ("corners"); lists with one view fill the same items */
+  /* SCH_LIST, and SCH_NUMBERS stored of no fixed length: the items'
+   * number (a size_t) is at count_at. SCH_LIST: each item is item_size
+   * bytes, and an item of the file makes per_item of them (0: one).
+   * named: they are visited by their key "name" ("corners.LF"), else by
+   * index. */
+  size_t count_at, item_size, per_item;
+  int named;
   const sch_ops *ops;
 };
 
@@ -138,20 +145,59 @@ typedef struct sch_origin {
   char *key;  /* logical key path (sch_origins_relabel renames items') */
   char *path; /* key path in the file */
   int line, column;
-  int given;     /* 0: a default, at the section it would be in */
-  double number; /* SCH_NUMBER, SCH_WHOLE, SCH_CHOICE */
+  int given;            /* 0: a default, at the section it would be in */
+  double number;        /* SCH_NUMBER, SCH_WHOLE, SCH_CHOICE */
+  const char *override; /* the label of the override read there, else NULL */
 } sch_origin;
+
+/* A value to read in place of the file's ("--set road.bump.height=0.2"),
+ * as if the file had it at path: a key the file leaves out is added at
+ * its section (made too when the file leaves that out), every other key
+ * keeps the file's value. */
+typedef struct sch_override {
+  char path[SCH_PATH_MAX];       /* full key path in the file ("outputs[0].figure") */
+  const char *value;             /* its text, one scalar as it is (never YAML structure) */
+  char label[FB_ERR_SOURCE_MAX]; /* "--set KEY=VALUE": the source of its origins and
+                                    errors; "": errors unlabelled (a path checked alone) */
+  struct fy_node *node;          /* set by sch_place: the value in the document */
+  int read;                      /* set by sch_read: a step of the reader took it */
+} sch_override;
 
 struct sch_reader {
   ml_ctx *c; /* file, errors, `parameters` */
   void *user;
+  sch_override *ov; /* the overrides, NULL if none (not owned) */
+  size_t nov;
   sch_origin *origin; /* in reading order, owned */
   size_t norigins, cap;
 };
 
-/* Reads the mapping root (its key paths from "") into base. */
+/* Reads the mapping root (its key paths from "") into base, r's
+ * overrides in place of the file's values (sch_place first). An error in
+ * an override's value, and one that no step of the reader took, names it
+ * ("--set K=V: FILE:LINE:COL: KEY: ...", its source FB_SOURCE_OVERRIDE). */
 int sch_read(sch_reader *r, const sch_table *t, struct fy_node *root, void *base);
 void sch_reader_release(sch_reader *r);
+/* Puts each override's value into the document at its path, at the line
+ * and column of the value it replaces (of the section it goes into when
+ * the file leaves the key out), so that the reader's every step and
+ * message sees it there. FB_EINVAL naming the override for a path that
+ * is malformed or names no value of t and the file (no such key, with a
+ * suggestion; an item beyond a list's; a section or a list). */
+int sch_place(sch_reader *r, const sch_table *t, struct fy_node *root);
+/* Names o, if it has a label, as the source of the error in err: the
+ * label before its message. */
+void sch_blame_override(fb_err *err, const sch_override *o);
+/* "a, b, c": the names of t's keys in its mapping at table path pre. */
+void sch_key_names(const sch_table *t, const char *pre, char *buf, size_t size);
+
+/* Appends the items that one item of list k makes to base's (zeroed),
+ * *item the first. */
+int sch_list_add(const sch_reader *r, const sch_key *k, void *base, void **item);
+/* The key of t at path, NULL if none. */
+const sch_key *sch_key_of(const sch_table *t, const char *path);
+/* An item's name (list k's items named), NULL if none. */
+const char *sch_item_name(const sch_key *k, const void *item);
 
 /* Records that the value at node (a key the table does not list, such
  * as one point of a list) has the key path key. */
