@@ -312,14 +312,14 @@ typedef struct sch_walk {
  * place of a message about it). */
 static void sch_walk_down(sch_walk *w, struct fy_node *to, const char *name, long index)
 {
-  char at[SCH_PATH_MAX + 32];
+  /* w->at is a prefix of the override's key written again, which is
+   * shorter than SCH_PATH_MAX (fb_scenario_load_overrides checks it), so
+   * the bounded appends never cut it. */
+  size_t len = strlen(w->at);
   if (*name)
-    sch_join(at, sizeof at, w->at, name);
-  else
-    snprintf(at, sizeof at, "%s", w->at);
+    len = fb_text_append(w->at, sizeof w->at, len, "%s%s", len ? "." : "", name);
   if (index >= 0)
-    snprintf(at + strlen(at), sizeof at - strlen(at), "[%ld]", index);
-  snprintf(w->at, sizeof w->at, "%s", at);
+    fb_text_append(w->at, sizeof w->at, len, "[%ld]", index);
   w->node = to ? to : w->node;
 }
 

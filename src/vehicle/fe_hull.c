@@ -781,9 +781,9 @@ static int add_selection(fb_bg *bg, const char *name, size_t n, const size_t *no
 /* The hull's matrices in its coordinates: the nodal DOFs, or in modal
  * coordinates every free-free mode (hull.fe.modes = 0: the same model as
  * the nodal one), or the free-interface basis T of the N lowest free-free
- * modes (hull.fe.modes = N) plus the residual flexibility of the forces the rest of the
- * vehicle applies (the eight attachment points' vertical forces and the
- * load, whose points carry equal shares; fb_fem_reduce_free). In the
+ * modes (hull.fe.modes = N) plus the residual flexibility of the forces
+ * the rest of the vehicle applies (each attachment point's vertical force
+ * and the load, whose points carry equal shares; fb_fem_reduce_free). In the
  * basis M = I, K = diag(lambda) and B = beta K = diag(beta lambda). */
 typedef struct hull_coords {
   fb_mat *M, *K, *B;
