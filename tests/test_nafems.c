@@ -9,7 +9,7 @@
  *
  * Checks, with their tolerances:
  *  - on the 16 x 16 mesh every reference frequency within 2 %, the
- *    accuracy the issue asks of the benchmark. The 16 x 16 discretisation
+ *    accuracy asked of the benchmark. The 16 x 16 discretisation
  *    error is below 1.9 % (FV52's fourth mode; 0.7 % for FV12 and FV16),
  *    and the reference values are not all converged thin-plate values:
  *    FV12's modes 4-6 lie about 1 % and FV16's modes about 0.5 % above the

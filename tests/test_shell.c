@@ -886,7 +886,7 @@ static void test_modes_paths(void)
 /* The fictitious drilling stiffness of the quadrilaterals must not move
  * the low frequencies: a factor of 10 from the default (1e-4 -> 1e-3)
  * changes the first ten elastic frequencies by less than 0.1 % (the
- * issue's criterion; measured 5e-4), on the folded box, where a plate's
+ * acceptance criterion; measured 5e-4), on the folded box, where a plate's
  * drilling rotation is its neighbour's bending rotation at the folds, and on
  * FV12's flat plate, where the membrane is uncoupled from the bending and
  * nothing may change beyond round-off. (1e-3 -> 1e-2 would move the box's

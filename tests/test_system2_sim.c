@@ -1,4 +1,4 @@
-/* System 2 (finite-element hull) simulated: the issue's verification.
+/* System 2 (finite-element hull) simulated, against independent answers:
  *   1. static equilibrium of the full-order model carries the whole weight
  *      through the six tires (and balances the hull's own elastic
  *      deflection);
@@ -167,7 +167,7 @@ static void test_limits(fb_scenario *s)
     fprintf(stderr,
             "  %-15s E x 1000 vs System 1: %.3g %% of range; 80 modes vs full order: %.3g %%\n",
             name, 100 * vs_rigid, 100 * vs_full);
-    /* The 1 % of the peak-to-peak range, for both. */
+    /* 1 % of the peak-to-peak range, for both: the acceptance bound. */
     CHECK(vs_rigid < 0.01);
     CHECK(vs_full < 0.01);
   }
