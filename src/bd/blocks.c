@@ -1,6 +1,9 @@
 /* What the block kinds share (bd/kinds.h): the registry that lists
- * them, the input_dim of inputs of any size and the triplet writer of
- * their rows. */
+ * them, the input_dim of inputs of any size, the content of the kinds
+ * that hold one coefficient per input, and the triplet writer of their
+ * rows. */
+#include <stdlib.h>
+
 #include "bd/kinds.h"
 
 extern const bd_block_ops fb_bd_integrator_ops, fb_bd_source_ops, fb_bd_gain_ops,
@@ -13,6 +16,32 @@ const bd_block_ops *const fb_bd_kinds[] = {
     &fb_bd_law_ops,        &fb_bd_energy_ops,
 };
 const size_t fb_bd_nkinds = sizeof fb_bd_kinds / sizeof fb_bd_kinds[0];
+
+int fb_bd_coef_kind_new(const bd_block_ops *ops, size_t n, const double *coef, bd_kind *out,
+                        fb_err *err)
+{
+  bd_coef_content *content = malloc(sizeof *content);
+  double *c = malloc((n + 1) * sizeof *c);
+  if (!content || !c) {
+    free(content);
+    free(c);
+    return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
+  }
+  for (size_t k = 0; k < n; ++k)
+    c[k] = coef ? coef[k] : 1.0;
+  content->coef = c;
+  out->ops = ops;
+  out->content = content;
+  return FB_OK;
+}
+
+void fb_bd_coef_content_free(void *content)
+{
+  bd_coef_content *c = content;
+  if (c)
+    free(c->coef);
+  free(c);
+}
 
 size_t fb_bd_input_dim_any(const bd_block *b, size_t k)
 {

@@ -1,17 +1,10 @@
 /* Mux: out = [c_1 in_1; ...; c_k in_k], the stacked ports of a field or
  * the whole of a composite. */
-#include <stdlib.h>
-#include <string.h>
-
 #include "bd/kinds.h"
-
-typedef struct mux_content {
-  double *coef; /* one per input */
-} mux_content;
 
 static int mux_apply(bd_block *b, double *v)
 {
-  const mux_content *m = b->content;
+  const bd_coef_content *m = b->content;
   size_t pos = b->ooff;
   for (size_t k = 0; k < b->nin; ++k)
     for (size_t i = 0; i < b->idim[k]; ++i)
@@ -40,7 +33,7 @@ static int mux_jac(bd_block *b, const double *w, size_t *rows, size_t *cols, dou
                    double *v1)
 {
   (void)w;
-  const mux_content *m = b->content;
+  const bd_coef_content *m = b->content;
   bd_trip t = {rows, cols, v0, v1, 0};
   size_t pos = b->ooff;
   for (size_t k = 0; k < b->nin; ++k)
@@ -51,14 +44,6 @@ static int mux_jac(bd_block *b, const double *w, size_t *rows, size_t *cols, dou
   return 0;
 }
 
-static void mux_free(void *content)
-{
-  mux_content *m = content;
-  if (m)
-    free(m->coef);
-  free(m);
-}
-
 const bd_block_ops fb_bd_mux_ops = {.kind = "mux",
                                     .linear = 1,
                                     .unit_rows = 1,
@@ -66,22 +51,10 @@ const bd_block_ops fb_bd_mux_ops = {.kind = "mux",
                                     .jvp = mux_jvp,
                                     .nnz = mux_nnz,
                                     .jac = mux_jac,
-                                    .free = mux_free,
+                                    .free = fb_bd_coef_content_free,
                                     .input_dim = fb_bd_input_dim_any};
 
 int fb_bd_mux_new(size_t n, const double *coef, bd_kind *out, fb_err *err)
 {
-  mux_content *m = malloc(sizeof *m);
-  double *c = malloc((n + 1) * sizeof *c);
-  if (!m || !c) {
-    free(m);
-    free(c);
-    return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
-  }
-  for (size_t k = 0; k < n; ++k)
-    c[k] = coef ? coef[k] : 1.0;
-  m->coef = c;
-  out->ops = &fb_bd_mux_ops;
-  out->content = m;
-  return FB_OK;
+  return fb_bd_coef_kind_new(&fb_bd_mux_ops, n, coef, out, err);
 }

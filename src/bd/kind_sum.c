@@ -1,17 +1,12 @@
 /* Signed sum: out = sum_k c_k in_k (zero inputs: out = 0), a junction's
  * law. */
-#include <stdlib.h>
 #include <string.h>
 
 #include "bd/kinds.h"
 
-typedef struct sum_content {
-  double *coef; /* one per input */
-} sum_content;
-
 static int sum_apply(bd_block *b, double *v)
 {
-  const sum_content *s = b->content;
+  const bd_coef_content *s = b->content;
   double *y = v + b->ooff;
   memset(y, 0, b->odim * sizeof *y);
   for (size_t k = 0; k < b->nin; ++k) {
@@ -43,21 +38,13 @@ static int sum_jac(bd_block *b, const double *w, size_t *rows, size_t *cols, dou
                    double *v1)
 {
   (void)w;
-  const sum_content *s = b->content;
+  const bd_coef_content *s = b->content;
   bd_trip t = {rows, cols, v0, v1, 0};
   fb_bd_trip_identity(&t, b->ooff, b->odim);
   for (size_t k = 0; k < b->nin; ++k)
     for (size_t i = 0; i < b->odim; ++i)
       fb_bd_trip_put(&t, b->ooff + i, b->ioff[k] + i, -s->coef[k], 0.0);
   return 0;
-}
-
-static void sum_free(void *content)
-{
-  sum_content *s = content;
-  if (s)
-    free(s->coef);
-  free(s);
 }
 
 const bd_block_ops fb_bd_sum_ops = {.kind = "sum",
@@ -67,21 +54,9 @@ const bd_block_ops fb_bd_sum_ops = {.kind = "sum",
                                     .jvp = sum_jvp,
                                     .nnz = sum_nnz,
                                     .jac = sum_jac,
-                                    .free = sum_free};
+                                    .free = fb_bd_coef_content_free};
 
 int fb_bd_sum_new(size_t n, const double *coef, bd_kind *out, fb_err *err)
 {
-  sum_content *s = malloc(sizeof *s);
-  double *c = malloc((n + 1) * sizeof *c);
-  if (!s || !c) {
-    free(s);
-    free(c);
-    return fb_err_set(err, FB_ENOMEM, "out of memory building the block diagram");
-  }
-  if (n)
-    memcpy(c, coef, n * sizeof *c);
-  s->coef = c;
-  out->ops = &fb_bd_sum_ops;
-  out->content = s;
-  return FB_OK;
+  return fb_bd_coef_kind_new(&fb_bd_sum_ops, n, coef, out, err);
 }

@@ -60,6 +60,18 @@ int fb_bd_energy_new(const fb_law_ops *law, void *ctx, bd_kind *out, fb_err *err
  * the whole a demux splits, an energy's vectors). */
 size_t fb_bd_input_dim_any(const bd_block *b, size_t k);
 
+/* The content of a kind whose data is one coefficient per input (sum,
+ * mux). */
+typedef struct bd_coef_content {
+  double *coef; /* one per input */
+} bd_coef_content;
+/* out as a kind of ops whose content holds a copy of the n coefficients
+ * coef (each 1 when coef is NULL). */
+int fb_bd_coef_kind_new(const bd_block_ops *ops, size_t n, const double *coef, bd_kind *out,
+                        fb_err *err);
+/* Frees a bd_coef_content (bd_block_ops.free). */
+void fb_bd_coef_content_free(void *content);
+
 /* ---- Triplet writer: rows/cols may be NULL when only values are
  * wanted, v0/v1 NULL when only the pattern is. */
 typedef struct bd_trip {
