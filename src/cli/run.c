@@ -856,12 +856,11 @@ static int parse_hull_modes(const char *cmd, const char *text, int *out)
   return CLI_EXIT_OK;
 }
 
-/* The options' values into a (after the output directory); hull holds
- * --hull-modes, then --hull-coordinates. */
+/* The options' values into a (after the output directory). */
 static int parse_settings(const char *cmd, const cli_option *system, const cli_option *initial,
-                          const cli_option *payload, const cli_option *hull, run_args *a)
+                          const cli_option *payload, const cli_option *hull_modes,
+                          const cli_option *coordinates, run_args *a)
 {
-  const cli_option *hull_modes = &hull[0], *coordinates = &hull[1];
   int rc = CLI_EXIT_OK;
   if (system->value)
     rc = cli_choice(cmd, "--system", system->value, system_choices,
@@ -928,6 +927,6 @@ int cli_cmd_run(int argc, char **argv)
   a.progress = !a.quiet && isatty(STDERR_FILENO);
   a.figures = opts[OPT_NO_FIGURES].value == NULL;
   rc = parse_settings(argv[0], &opts[OPT_SYSTEM], &opts[OPT_INITIAL], &opts[OPT_PAYLOAD],
-                      &opts[OPT_HULL_MODES], &a);
+                      &opts[OPT_HULL_MODES], &opts[OPT_HULL_COORDINATES], &a);
   return rc == CLI_EXIT_OK ? run(&a) : rc;
 }
