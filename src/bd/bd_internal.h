@@ -133,6 +133,8 @@ struct fb_bd {
   size_t norder;
   size_t *out_order; /* the part of order that the outputs depend on */
   size_t nout_order;
+  size_t *dyn_order; /* the part of order that the state derivatives depend on */
+  size_t ndyn_order;
   size_t *integ; /* integrator blocks, in state order */
   size_t ninteg;
   size_t nstates; /* = total dimension of integrator outputs */
@@ -185,5 +187,8 @@ int fb_bd_prepare_newton(fb_bd *bd, fb_err *err);
 int fb_bd_prepare_switching(fb_bd *bd, fb_err *err);
 /* Evaluates every block at (t, x); 0, >0 recoverable, <0 fatal. */
 int fb_bd_eval(fb_bd *bd, double t, const double *x);
+/* As fb_bd_eval for the blocks the state derivatives depend on, which
+ * include every switched law (they are Newton blocks). */
+int fb_bd_eval_dynamics(fb_bd *bd, double t, const double *x);
 
 #endif

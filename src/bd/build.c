@@ -930,6 +930,7 @@ void fb_bd_free(fb_bd **bdp)
   free(bd->outs);
   free(bd->order);
   free(bd->out_order);
+  free(bd->dyn_order);
   free(bd->is_const);
   free(bd->zmap);
   free(bd->newton_blocks);

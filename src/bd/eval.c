@@ -36,9 +36,14 @@ int fb_bd_eval(fb_bd *bd, double t, const double *x)
   return eval_blocks(bd, bd->order, bd->norder, t, x);
 }
 
+int fb_bd_eval_dynamics(fb_bd *bd, double t, const double *x)
+{
+  return eval_blocks(bd, bd->dyn_order, bd->ndyn_order, t, x);
+}
+
 int fb_bd_rhs(fb_bd *bd, double t, const double *x, double *xdot)
 {
-  int rc = fb_bd_eval(bd, t, x);
+  int rc = fb_bd_eval_dynamics(bd, t, x);
   if (rc)
     return rc;
   for (size_t k = 0; k < bd->ninteg; ++k) {
@@ -194,8 +199,6 @@ const char *fb_bd_output_unit(const fb_bd *bd, size_t i)
 
 int fb_bd_outputs(fb_bd *bd, double t, const double *x, double *y)
 {
-  /* Only the blocks the outputs depend on: sampling at 1 kHz must not
-   * cost a full evaluation per sample. */
   int rc = eval_blocks(bd, bd->out_order, bd->nout_order, t, x);
   if (rc)
     return rc;

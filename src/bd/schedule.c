@@ -162,13 +162,11 @@ static int block_is_constant(const fb_bd *bd, size_t i, const unsigned char *cst
   return 1;
 }
 
-/* Marks in need[] the varying blocks upstream of the output signals. */
-static void mark_output_cone(const fb_bd *bd, const unsigned char *cst, unsigned char *need,
-                             size_t *stack)
+/* Marks in need[] the varying blocks upstream of the top seed blocks on
+ * stack (their inputs' producers, through varying non-integrator blocks). */
+static void mark_cone(const fb_bd *bd, const unsigned char *cst, unsigned char *need,
+                      size_t *stack, size_t top)
 {
-  size_t top = 0;
-  for (size_t o = 0; o < bd->nouts; ++o)
-    stack[top++] = bd->sigs[bd->outs[o].signal].producer;
   while (top) {
     size_t i = stack[--top];
     if (need[i] || cst[i] || is_integrator(bd, i))
@@ -179,6 +177,34 @@ static void mark_output_cone(const fb_bd *bd, const unsigned char *cst, unsigned
   }
 }
 
+/* The part of order whose blocks need[] marks, into sub (*nsub of them). */
+static void sub_order(const fb_bd *bd, const unsigned char *need, size_t *sub, size_t *nsub)
+{
+  *nsub = 0;
+  for (size_t k = 0; k < bd->norder; ++k)
+    if (need[bd->order[k]])
+      sub[(*nsub)++] = bd->order[k];
+}
+
+/* The two parts of order that are evaluated on their own: the blocks the
+ * outputs depend on (sampling at 1 kHz must not cost a whole evaluation)
+ * and those the state derivatives depend on (a power or velocity that
+ * only a probe reads is not computed at every right-hand side). */
+static void sub_orders(fb_bd *bd, const unsigned char *cst, unsigned char *need, size_t *stack)
+{
+  size_t top = 0;
+  for (size_t o = 0; o < bd->nouts; ++o)
+    stack[top++] = bd->sigs[bd->outs[o].signal].producer;
+  mark_cone(bd, cst, need, stack, top);
+  sub_order(bd, need, bd->out_order, &bd->nout_order);
+  memset(need, 0, bd->nblocks);
+  top = 0;
+  for (size_t k = 0; k < bd->ninteg; ++k)
+    stack[top++] = bd->sigs[bd->blocks[bd->integ[k]].in[0].id].producer;
+  mark_cone(bd, cst, need, stack, top);
+  sub_order(bd, need, bd->dyn_order, &bd->ndyn_order);
+}
+
 int fb_bd_fold_constants(fb_bd *bd, fb_err *err)
 {
   size_t n = bd->nblocks, nedges = bd->nouts;
@@ -187,7 +213,8 @@ int fb_bd_fold_constants(fb_bd *bd, fb_err *err)
   unsigned char *cst = bd->is_const = calloc(n + 1, 1), *need = calloc(n + 1, 1);
   size_t *stack = malloc((nedges + n + 1) * sizeof *stack);
   bd->out_order = malloc((bd->norder + 1) * sizeof *bd->out_order);
-  int rc = cst && need && stack && bd->out_order
+  bd->dyn_order = malloc((bd->norder + 1) * sizeof *bd->dyn_order);
+  int rc = cst && need && stack && bd->out_order && bd->dyn_order
                ? FB_OK
                : fb_err_set(err, FB_ENOMEM, "out of memory scheduling the block diagram");
   /* Constants are evaluated once, here, and left out of every later
@@ -207,11 +234,7 @@ int fb_bd_fold_constants(fb_bd *bd, fb_err *err)
   }
   if (!rc) {
     bd->norder = kept;
-    mark_output_cone(bd, cst, need, stack);
-    bd->nout_order = 0;
-    for (size_t k = 0; k < bd->norder; ++k)
-      if (need[bd->order[k]])
-        bd->out_order[bd->nout_order++] = bd->order[k];
+    sub_orders(bd, cst, need, stack);
   }
   free(need);
   free(stack);

@@ -72,7 +72,7 @@ static int switch_failed(fb_bd *bd, const bd_block *b, const char *what, int rc)
 
 int fb_bd_guards(fb_bd *bd, double t, const double *x, double *g)
 {
-  int rc = bd->nswitched ? fb_bd_eval(bd, t, x) : 0;
+  int rc = bd->nswitched ? fb_bd_eval_dynamics(bd, t, x) : 0;
   for (size_t k = 0; !rc && k < bd->nswitched; ++k) {
     bd_block *b = &bd->blocks[bd->switched[k]];
     rc = b->ops->guards(b, bd->w, g + bd->guard_off[k]);
@@ -86,7 +86,7 @@ int fb_bd_guards(fb_bd *bd, double t, const double *x, double *g)
  * signs sign; *changed |= whether one changed. */
 static int switch_laws(fb_bd *bd, double t, const double *x, const int *sign, int *changed)
 {
-  int rc = fb_bd_eval(bd, t, x);
+  int rc = fb_bd_eval_dynamics(bd, t, x);
   for (size_t k = 0; !rc && k < bd->nswitched; ++k) {
     bd_block *b = &bd->blocks[bd->switched[k]];
     rc = b->ops->switch_mode(b, bd->w, sign + bd->guard_off[k], changed);
