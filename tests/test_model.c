@@ -229,6 +229,8 @@ static const bad_case bad_cases[] = {
      "bad.yaml:3:", "simulation.t_ned: unknown key 't_ned' (did you mean 't_end'?)", NULL},
     {HEAD "elements: []\nsimulation:\n  t_start: 0\n  t_end: -1\n", FB_EINVAL,
      "bad.yaml:5:10:", "simulation.t_end: must be finite and greater than t_start", NULL},
+    {HEAD "elements: []\nsimulation: {stability_limit_detection: 1}\n", FB_EPARSE,
+     "bad.yaml:3:", "simulation.stability_limit_detection: expected true or false", NULL},
     {HEAD "elements: []\nsimulation: {max_order: 7}\n", FB_EINVAL,
      "bad.yaml:3:", "simulation.max_order: must be an integer from 1 to 5", NULL},
 };
@@ -301,7 +303,8 @@ static const char params_model[] =
     "probes:\n"
     "  - {name: v, flow: bm, gain: 1 / b, unit: 1/s}\n"
     "  - {effort: bk}\n"
-    "simulation: {t_end: a * 5, sample_rate: 100 * b, max_order: a + 1, breakpoints: [a, b]}\n";
+    "simulation: {t_end: a * 5, sample_rate: 100 * b, max_order: a + 1, breakpoints: [a, b],\n"
+    "             stability_limit_detection: false}\n";
 
 static void test_parameters(void)
 {
@@ -320,6 +323,7 @@ static void test_parameters(void)
   CHECK(o->t_end == 10.0 && o->sample_rate == 600.0 && o->max_order == 3);
   CHECK(o->nbreakpoints == 2 && o->breakpoints[0] == 2.0 && o->breakpoints[1] == 6.0);
   CHECK(o->rtol == 1e-6 && o->atol == 1e-9); /* defaults of fb_sim_opts_default */
+  CHECK(o->stability_limit_detection == 0);
 
   /* The laws through the diagram: with p(0) = 1/2, q(0) = 1/64,
    * p' = F - k q = 5 - 320/64 = 0 and q' = p/m = 1/6; sums of a few exact
@@ -644,6 +648,7 @@ static void test_quarter_car(void)
   CHECK(np == 5);
   const fb_sim_opts *o = fb_model_sim_opts(m);
   CHECK(o->t_end == 5.0 && o->sample_rate == 1000.0 && o->nbreakpoints == 2);
+  CHECK(o->stability_limit_detection == 1); /* the default */
 
   /* Before the bump (t < 0.5 s) the car must rest in static equilibrium:
    * body displacement 0, suspension compression ms g / ks, tire force

@@ -36,14 +36,18 @@ typedef int (*fb_sim_progress_fn)(void *ctx, double t, double t_end);
 #define FB_SIM_MAX_STEPS 1000000000L
 
 typedef struct fb_sim_opts {
-  double t_start;            /* s */
-  double t_end;              /* s, > t_start */
-  double rtol;               /* relative tolerance (default 1e-6) */
-  double atol;               /* absolute tolerance, all states (default 1e-9) */
-  double max_step;           /* s, 0 for no limit */
-  double sample_rate;        /* Hz, outputs at t_start + k / sample_rate (default 1000) */
-  int max_order;             /* BDF order limit 1..5 (default 5) */
-  long max_steps;            /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
+  double t_start;     /* s */
+  double t_end;       /* s, > t_start */
+  double rtol;        /* relative tolerance (default 1e-6) */
+  double atol;        /* absolute tolerance, all states (default 1e-9) */
+  double max_step;    /* s, 0 for no limit */
+  double sample_rate; /* Hz, outputs at t_start + k / sample_rate (default 1000) */
+  int max_order;      /* BDF order limit 1..5 (default 5) */
+  long max_steps;     /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
+  /* 1: CVODE's BDF stability limit detection (default 1): the order is
+   * lowered where a lightly damped stiff mode, not accuracy, limits the
+   * step (Hindmarsh et al., ACM TOMS 31(3), 2005, sec. 3.3). */
+  int stability_limit_detection;
   const double *breakpoints; /* extra breakpoints (borrowed), besides sources' */
   size_t nbreakpoints;
   const double *x0;            /* initial state (borrowed), NULL for the graph's */

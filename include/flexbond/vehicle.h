@@ -221,7 +221,8 @@ typedef struct fb_scenario {
   double bump_time;   /* s */
   /* Simulation. */
   double t_end, rtol, atol, max_step, sample_rate; /* s, -, -, s, Hz */
-  long max_steps; /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
+  long max_steps;                /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
+  int stability_limit_detection; /* fb_sim_opts.stability_limit_detection */
   fb_initial_state initial;
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */

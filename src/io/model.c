@@ -394,9 +394,18 @@ static int ml_initial(const ml_ctx *c, fb_model *m, struct fy_node *sim)
 /* The keys of a `simulation` mapping over the defaults in m->opts. */
 static int ml_sim_settings(const ml_ctx *c, fb_model *m, struct fy_node *sim)
 {
-  static const char *const keys[] = {"t_start",     "t_end",       "rtol",      "atol",
-                                     "max_step",    "sample_rate", "max_order", "max_steps",
-                                     "breakpoints", "initial",     NULL};
+  static const char *const keys[] = {"t_start",
+                                     "t_end",
+                                     "rtol",
+                                     "atol",
+                                     "max_step",
+                                     "sample_rate",
+                                     "max_order",
+                                     "max_steps",
+                                     "breakpoints",
+                                     "initial",
+                                     "stability_limit_detection",
+                                     NULL};
   fb_sim_opts *o = &m->opts;
   double *const reals[] = {&o->t_start, &o->t_end,    &o->rtol,
                            &o->atol,    &o->max_step, &o->sample_rate};
@@ -413,6 +422,8 @@ static int ml_sim_settings(const ml_ctx *c, fb_model *m, struct fy_node *sim)
   if (!rc && (v = ml_get(sim, "max_steps", NULL)) &&
       !(rc = ml_count(c, v, c->globals, 1, (size_t)LONG_MAX, &count)))
     o->max_steps = (long)count;
+  if (!rc && (v = ml_get(sim, "stability_limit_detection", NULL)))
+    rc = ml_bool(c, v, &o->stability_limit_detection);
   if (!rc)
     rc = ml_breakpoints(c, m, sim);
   if (!rc)

@@ -967,7 +967,8 @@ static void mw_simulation(FILE *fp, const fb_sim_opts *o, fb_model_initial initi
     mw_num(fp, reals[i].v);
     fputc('\n', fp);
   }
-  fprintf(fp, "  max_order: %d\n  max_steps: %ld\n", o->max_order, o->max_steps);
+  fprintf(fp, "  max_order: %d\n  max_steps: %ld\n  stability_limit_detection: %s\n",
+          o->max_order, o->max_steps, o->stability_limit_detection ? "true" : "false");
   if (o->nbreakpoints) {
     fputs("  breakpoints: ", fp);
     mw_nums(fp, o->breakpoints, o->nbreakpoints);

@@ -654,6 +654,7 @@ static const char *const sc_contacts[] = {"bilateral", "unilateral", NULL};
 static const char *const sc_masses[] = {"consistent", "lumped", NULL};
 static const char *const sc_initials[] = {"zero", "static", NULL};
 static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
+static const char *const sc_switch[] = {"false", "true", NULL};
 static const char *const sc_bump_types[] = {"I", "II", "A", "B", NULL};
 static const double sc_band_default[] = {0.011, 2.83};
 
@@ -908,6 +909,10 @@ static const sch_key sc_keys[] = {
           .why = "about a day of solver steps at 0.1 ms each; docs/errors.md, \"Limits\""),
     NUMBER("simulation.sample_rate", "Hz", POSITIVE, REQ, "outputs at k / sample_rate",
            S_OFF(sample_rate)),
+    CHOICE("simulation.stability_limit_detection", sc_switch, DEF(1),
+           "CVODE's BDF stability limit detection (fewer steps for a flexible hull, the same "
+           "accuracy); `false`: CVODE's plain step selection",
+           S_AT(INT, stability_limit_detection)),
     CHOICE("simulation.initial", sc_initials, REQ,
            "`zero`: every state zero, gravity on at t = 0; `static`: the static equilibrium",
            S_AT(INT, initial)),

@@ -50,6 +50,7 @@ void fb_sim_opts_default(fb_sim_opts *opts)
   opts->sample_rate = 1000;
   opts->max_order = 5;
   opts->max_steps = FB_SIM_DEFAULT_MAX_STEPS;
+  opts->stability_limit_detection = 1;
   opts->breakpoints = NULL;
   opts->nbreakpoints = 0;
   opts->x0 = NULL;

@@ -246,6 +246,7 @@ void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o)
   o->atol = s->atol;
   o->max_step = s->max_step;
   o->max_steps = s->max_steps;
+  o->stability_limit_detection = s->stability_limit_detection;
   o->sample_rate = s->sample_rate;
 }
 
