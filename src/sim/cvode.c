@@ -41,6 +41,7 @@
 #include "flexbond/sim.h"
 
 #include "sim/auglin.h"
+#include "sim/nvector.h"
 #include "sim/sim_internal.h"
 
 /* Everything one run needs, reachable from CVODE's callbacks. */
@@ -852,9 +853,10 @@ static int run_dynamic(sim_run *run, fb_err *err)
 {
   if (SUNContext_Create(NULL, &run->sunctx) != 0)
     return fb_err_set(err, FB_ENOMEM, "out of memory creating the SUNDIALS context");
-  run->y = N_VNew_Serial((sunindextype)run->n, run->sunctx);
-  run->ysam = N_VNew_Serial((sunindextype)run->n, run->sunctx);
-  run->ybad = N_VNew_Serial((sunindextype)run->n, run->sunctx);
+  /* CVODE clones its own vectors from y, with y's operations. */
+  run->y = fb_sim_nvector_new(run->n, run->sunctx);
+  run->ysam = fb_sim_nvector_new(run->n, run->sunctx);
+  run->ybad = fb_sim_nvector_new(run->n, run->sunctx);
   if (!run->y || !run->ysam || !run->ybad)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the state vectors");
   /* A diagram linear within each mode has a constant Newton matrix
