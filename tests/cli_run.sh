@@ -280,6 +280,29 @@ expect_in "$WORK/both_nofig/report.md" "No figures: the run had \`--no-figures\`
 expect_in "$WORK/both_nofig/report.md" "reduced to 12 free-free modes" "report.md reduced hull"
 expect_in "$WORK/both_nofig/summary.json" '"hull_modes": 12' "summary.json reduced hull"
 
+# -v: every eigen-solve with its method, its modes of the hull's 1296 DOFs
+# and its time; a reduced hull's basis (12 modes and one more for the
+# static correction's shift) is ARPACK's, the nodal hull's beta LAPACK's;
+# and each system's set-up.
+run run "$SHORT" -o "$WORK/verbose" -v --no-figures --hull-modes 12
+expect_status 0 "run -v --hull-modes 12"
+expect_in "$ERR" "eigen-solve of the free-free hull (report): ARPACK shift-invert Lanczos, 12 of 1296 modes," \
+  "run -v: the report's hull modes"
+expect_in "$ERR" "eigen-solve of System 2's vehicle (report, mode pictures): ARPACK shift-invert Lanczos, 23 of 1304 modes," \
+  "run -v: the vehicle's modes"
+expect_in "$ERR" "eigen-solve of the free-free hull (System 2's hull coordinates and beta): ARPACK shift-invert Lanczos, 13 of 1296 modes," \
+  "run -v: the reduced hull's basis"
+expect_in "$ERR" "System 1 (rigid hull): set-up " "run -v: System 1's set-up"
+run run "$SHORT" -o "$WORK/verbose_nodal" -v --no-figures --system flexible \
+  --hull-coordinates nodal
+expect_status 0 "run -v --hull-coordinates nodal"
+expect_in "$ERR" "(System 2's hull coordinates and beta): dense LAPACK (dsygvd), 7 of 1296 modes," \
+  "run -v: the nodal hull's beta"
+run run "$SHORT" -o "$WORK/quiet_verbose" -q -v --no-figures --system rigid
+expect_status 0 "run -q -v"
+checks=$((checks + 1))
+[ ! -s "$ERR" ] || fail "run -q -v: -q wins, stderr holds $(head -c 200 "$ERR")"
+
 # Failures with both systems write nothing: System 2 asked of a scenario
 # without a finite-element hull (exit 2), and report.md blocked after
 # both runs (exit 5). Without --system such a scenario runs System 1.

@@ -135,6 +135,9 @@ int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_l
  * least a fifth of the DOFs and with ARPACK otherwise: the faster of the
  * two for a sparse finite-element K and M. */
 size_t fb_fem_dense_limit(size_t nmodes);
+/* 1 if fb_fem_modes of nmodes of an n-DOF model with dense_limit solves
+ * with LAPACK, 0 if with ARPACK. */
+int fb_fem_modes_dense(size_t n, size_t nmodes, size_t dense_limit);
 
 /* Frequency (Hz) at or below which a computed mode of (K, M) is a
  * rigid-body mode. Rigid-body modes come out as round-off, ~sqrt(eps)
@@ -161,6 +164,10 @@ double fb_fem_rigid_threshold_hz(const fb_mat *K, const fb_mat *M);
 int fb_fem_reduce_free(const fb_mat *K, const fb_mat *M, size_t nmodes, const double *F,
                        size_t nf, double **T, double **lambda, size_t *nbasis, size_t *nrigid,
                        fb_err *err);
+/* The modes fb_fem_reduce_free finds to keep nmodes of an n-DOF model:
+ * one more than kept, whose eigenvalue sets the static correction's
+ * shift; its eigen-solve is fb_fem_modes with fb_fem_dense_limit of those. */
+size_t fb_fem_reduce_nsolved(size_t n, size_t nmodes);
 
 /* ---- Mesh exchange. */
 

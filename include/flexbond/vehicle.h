@@ -430,6 +430,12 @@ typedef struct fb_hull {
   int torsion_integrate;
   double *torsion_weights;
   size_t ntorsion;
+  /* System 2's eigen-solve of the free-free hull (none in System 1:
+   * eig_dof 0): in modal coordinates the basis (which gives beta too),
+   * in nodal ones beta's. */
+  size_t eig_dof, eig_modes; /* the hull's DOFs, the modes solved for */
+  int eig_dense;             /* 1: LAPACK dsygvd, 0: ARPACK shift-invert */
+  double eig_seconds;        /* its wall time, with the static correction */
 } fb_hull;
 void fb_hull_free(fb_hull **h);
 
@@ -512,6 +518,20 @@ int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb
  * see fb_sim_progress_fn). */
 int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
                                  void *ctx, fb_result **out, fb_err *err);
+
+/* What a run cost besides its integration (fb_result_stats). */
+typedef struct fb_vehicle_run_info {
+  double build_seconds;      /* graph, hull (with its eigen-solve), diagram, Newton pattern */
+  double static_seconds;     /* the static equilibrium (0 unless simulation.initial: static) */
+  size_t eig_dof, eig_modes; /* System 2's hull eigen-solve, as in fb_hull */
+  int eig_dense;
+  double eig_seconds;
+} fb_vehicle_run_info;
+
+/* fb_vehicle_simulate_progress, filling *info (not NULL) on success. */
+int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                             void *ctx, fb_vehicle_run_info *info, fb_result **out,
+                             fb_err *err);
 
 /* A time interval in which a tire carries no load: its normal reaction
  * is not compressive. With the paper's linear (bilateral) tire that means
@@ -603,6 +623,8 @@ void fb_fe_hull_free(fb_fe_hull **h);
 typedef struct fb_mode_set {
   size_t nmodes, ndof;
   size_t nfree;            /* zero-frequency rigid-body modes left out */
+  size_t nsolved;          /* modes the eigen-solve found (kept, free and spare) */
+  int dense;               /* 1: it was LAPACK's dsygvd, 0: ARPACK's */
   double *freq_hz;         /* nmodes */
   double *shapes;          /* ndof x nmodes, column-major */
   char (*description)[96]; /* nmodes, e.g. "hull pitch (rigid 97%)" */

@@ -11,9 +11,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "flexbond/escape.h"
+#include "flexbond/fem.h"
 #include "flexbond/io.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
@@ -53,6 +55,8 @@ static const char run_usage[] =
     "                              N free-free modes, in modal coordinates\n"
     "                              (hull.fe.modes)\n"
     "  --no-figures                no PNG; report.md without images\n"
+    "  -v, --verbose               also what each eigen-solve and each run's set-up\n"
+    "                              cost, on stderr\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
     "  -h, --help                  this text\n";
 
@@ -109,6 +113,7 @@ typedef struct run_args {
   int hull_coordinates; /* s->hull_coordinates */
   int hull_modes;       /* s->hull_modes */
   int quiet;
+  int verbose;  /* the costs of eigen-solves and set-up too (-v) */
   int progress; /* draw a progress line: stderr is a terminal, no -q */
   int figures;  /* 0 with --no-figures */
 } run_args;
@@ -516,31 +521,63 @@ typedef struct run_modes {
   double hull_f1, hull_beta;
 } run_modes;
 
+static double seconds_since(const struct timespec *t0)
+{
+  struct timespec t1;
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
+}
+
+/* With -v: "... eigen-solve of WHAT: LAPACK|ARPACK, M of N modes, T s". */
+static void say_eigen_solve(const run_args *a, const fb_scenario *s, const char *what,
+                            size_t ndof, size_t nmodes, int dense, double seconds)
+{
+  if (a->verbose)
+    fprintf(stderr, "flexbond run: %s: eigen-solve of %s: %s, %zu of %zu modes, %.3g s\n",
+            cli_scenario_name(s), what,
+            dense ? "dense LAPACK (dsygvd)" : "ARPACK shift-invert Lanczos", nmodes, ndof,
+            seconds);
+}
+
 /* System 2's hull, its first elastic free-free frequency, its damping
- * coefficient beta and the whole vehicle's undamped modes. */
-static int flexible_modes(const fb_scenario *s, run_modes *m, fb_err *err)
+ * coefficient beta and the whole vehicle's undamped modes. The vehicle's
+ * modes are a different eigenproblem from the hull's (the suspension
+ * springs couple it to the wheels and mounts), so each has its solve. */
+static int flexible_modes(const run_args *a, const fb_scenario *s, run_modes *m, fb_err *err)
 {
   double freq[HULL_FREE_MODES];
   size_t nrigid = 0;
   int rc = fb_vehicle_fe_hull(s, &m->hull, err);
+  const size_t ndof = rc == FB_OK ? 6 * fb_mesh_nnodes(m->hull->mesh) : 0;
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
   if (rc == FB_OK)
     rc = fb_fe_hull_free_modes(m->hull, HULL_FREE_MODES, freq, &nrigid, err);
+  if (rc == FB_OK)
+    say_eigen_solve(
+        a, s, "the free-free hull (report)", ndof, HULL_FREE_MODES,
+        fb_fem_modes_dense(ndof, HULL_FREE_MODES, fb_fem_dense_limit(HULL_FREE_MODES)),
+        seconds_since(&t0));
   m->hull_f1 = rc == FB_OK && nrigid < HULL_FREE_MODES ? freq[nrigid] : NAN;
   if (rc == FB_OK)
     rc = fb_fe_hull_beta(s->hull_damping_ratio, nrigid, m->hull_f1, &m->hull_beta, err);
+  clock_gettime(CLOCK_MONOTONIC, &t0);
   if (rc == FB_OK)
     rc = fb_vehicle_flexible_modes(s, m->hull, VEHICLE_MODES, &m->modes2, err);
+  if (rc == FB_OK)
+    say_eigen_solve(a, s, "System 2's vehicle (report, mode pictures)", m->modes2->ndof,
+                    m->modes2->nsolved, m->modes2->dense, seconds_since(&t0));
   return rc;
 }
 
-static int compute_modes(const fb_scenario *s, const fb_system *systems, size_t nsystems,
-                         run_modes *m, fb_err *err)
+static int compute_modes(const run_args *a, const fb_scenario *s, const fb_system *systems,
+                         size_t nsystems, run_modes *m, fb_err *err)
 {
   int rc = FB_OK;
   for (size_t i = 0; i < nsystems && rc == FB_OK; ++i)
     rc = systems[i] == FB_SYSTEM_RIGID ? fb_vehicle_modes(s, FB_SYSTEM_RIGID, 1, &m->modes1,
                                                           &m->nmodes1, &m->nstatic1, err)
-                                       : flexible_modes(s, m, err);
+                                       : flexible_modes(a, s, m, err);
   return rc;
 }
 
@@ -685,10 +722,21 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
   else if (!a->quiet)
     fprintf(stderr, "flexbond run: %s: simulating %s, t = 0..%g s ...\n", p.scenario, p.system,
             s->t_end);
-  int rc = fb_vehicle_simulate_progress(s, run->sys, show_progress, &p, &run->res, err);
+  fb_vehicle_run_info info;
+  int rc = fb_vehicle_simulate_info(s, run->sys, show_progress, &p, &info, &run->res, err);
   /* End the progress line, also before an error message. */
   if (a->progress)
     fputc('\n', stderr);
+  if (rc == FB_OK && info.eig_dof)
+    say_eigen_solve(a, s, "the free-free hull (System 2's hull coordinates and beta)",
+                    info.eig_dof, info.eig_modes, info.eig_dense, info.eig_seconds);
+  if (rc == FB_OK && a->verbose)
+    fprintf(stderr,
+            "flexbond run: %s: %s: set-up %.3g s (graph, hull, causality, diagram), static "
+            "equilibrium %.3g s, %ld Newton matrices, %ld factorisations\n",
+            p.scenario, p.system, info.build_seconds, info.static_seconds,
+            fb_result_stats(run->res)->newton_setups,
+            fb_result_stats(run->res)->factorizations);
   if (rc == FB_OK && !a->quiet) {
     const fb_sim_stats *st = fb_result_stats(run->res);
     char events[48] = "";
@@ -800,7 +848,7 @@ static int run(const run_args *a)
     cli_bump_window(s, o.bump_window);
     if (o.note && !a->quiet)
       fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
-    rc = compute_modes(s, systems, o.nruns, &modes, &err);
+    rc = compute_modes(a, s, systems, o.nruns, &modes, &err);
   }
   /* The eigen-solvers do not poll the flag: look after them. */
   if (rc == FB_OK)
@@ -900,6 +948,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_HULL_COORDINATES,
     OPT_NO_FIGURES,
     OPT_QUIET,
+    OPT_VERBOSE,
     OPT_HELP,
     NOPTS
   };
@@ -912,6 +961,7 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_HULL_COORDINATES] = {"--hull-coordinates", NULL, 1, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
+      [OPT_VERBOSE] = {"--verbose", "-v", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
   run_args a = {
@@ -924,6 +974,7 @@ int cli_cmd_run(int argc, char **argv)
   if (!a.out_dir || !*a.out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a.quiet = opts[OPT_QUIET].value != NULL;
+  a.verbose = !a.quiet && opts[OPT_VERBOSE].value != NULL;
   a.progress = !a.quiet && isatty(STDERR_FILENO);
   a.figures = opts[OPT_NO_FIGURES].value == NULL;
   rc = parse_settings(argv[0], &opts[OPT_SYSTEM], &opts[OPT_INITIAL], &opts[OPT_PAYLOAD],

@@ -333,13 +333,18 @@ int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_l
     return fb_err_set(err, FB_ENOMEM, "out of memory for %zu eigenvalues", nmodes);
   const double s = choose_shift(K, M, n);
   /* ARPACK needs nev < ncv <= n: asking for (nearly) every mode is dense. */
-  const int dense = n <= dense_limit || nmodes + 1 >= n;
+  const int dense = fb_fem_modes_dense(n, nmodes, dense_limit);
   int rc = dense ? modes_dense(K, M, n, s, nmodes, lambda, vectors, err)
                  : modes_arpack(K, M, n, s, nmodes, lambda, vectors, err);
   if (!rc)
     rc = to_frequencies(lambda, nmodes, s, freq_hz, err);
   free(lambda);
   return rc;
+}
+
+int fb_fem_modes_dense(size_t n, size_t nmodes, size_t dense_limit)
+{
+  return n <= dense_limit || nmodes + 1 >= n;
 }
 
 size_t fb_fem_dense_limit(size_t nmodes)

@@ -151,10 +151,15 @@ static int ritz(const fb_mat *K, double *R, size_t nr, size_t n, double *lambda,
 /* The modes: nmodes kept and, when the model has more, the next one, which
  * must be elastic (the kept ones then hold every rigid-body mode) and
  * sets the static solve's shift. lam becomes (rad/s)^2, rigid ones 0. */
+size_t fb_fem_reduce_nsolved(size_t n, size_t nmodes)
+{
+  return nmodes < n ? nmodes + 1 : n;
+}
+
 static int modes_and_shift(const fb_mat *K, const fb_mat *M, size_t nmodes, double *lam,
                            double *basis, size_t *nrigid, double *sigma, fb_err *err)
 {
-  const size_t n = fb_mat_nrows(K), m = nmodes < n ? nmodes + 1 : n;
+  const size_t n = fb_mat_nrows(K), m = fb_fem_reduce_nsolved(n, nmodes);
   int rc = fb_fem_modes(K, M, m, fb_fem_dense_limit(m), lam, basis, err);
   if (rc)
     return rc;

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "flexbond/vehicle.h"
 
@@ -168,7 +169,8 @@ static int contact_probes(const fb_scenario *s, fb_probe_spec *cp, fb_err *err)
 
 /* The hull fragment of system sys: the only part that differs between
  * System 1 and System 2. */
-static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull, fb_err *err)
+static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull,
+                     fb_vehicle_run_info *info, fb_err *err)
 {
   if (sys != FB_SYSTEM_FLEXIBLE)
     return fb_vehicle_rigid_hull(s, hull, err);
@@ -177,11 +179,19 @@ static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull, fb_err
   if (!rc)
     rc = fb_vehicle_flexible_hull(s, fe, hull, err);
   fb_fe_hull_free(&fe);
+  if (!rc && info) {
+    info->eig_dof = (*hull)->eig_dof;
+    info->eig_modes = (*hull)->eig_modes;
+    info->eig_dense = (*hull)->eig_dense;
+    info->eig_seconds = (*hull)->eig_seconds;
+  }
   return rc;
 }
 
-int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
-                     size_t *nprobes, fb_err *err)
+/* fb_vehicle_graph, with the hull's eigen-solve in *info when not NULL. */
+static int vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph,
+                         fb_probe_spec **probes, size_t *nprobes, fb_vehicle_run_info *info,
+                         fb_err *err)
 {
   *graph = NULL;
   *probes = NULL;
@@ -191,7 +201,7 @@ int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_prob
   size_t nout = 0;
   int rc = fb_scenario_check(s, err);
   if (!rc)
-    rc = make_hull(s, sys, &hull, err);
+    rc = make_hull(s, sys, &hull, info, err);
   if (!rc)
     rc = fb_vehicle_assemble(s, &hull, graph, &outputs, &nout, err);
   fb_hull_free(&hull);
@@ -215,15 +225,21 @@ int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_prob
   return rc;
 }
 
+int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
+                     size_t *nprobes, fb_err *err)
+{
+  return vehicle_graph(s, sys, graph, probes, nprobes, NULL, err);
+}
+
 /* The graph and its block diagram, with the contact forces as extra
  * outputs if asked. */
 static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg **graph,
-                         fb_bd **bd, fb_err *err)
+                         fb_bd **bd, fb_vehicle_run_info *info, fb_err *err)
 {
   *bd = NULL;
   fb_probe_spec *probes = NULL;
   size_t nprobes = 0;
-  int rc = fb_vehicle_graph(s, sys, graph, &probes, &nprobes, err);
+  int rc = vehicle_graph(s, sys, graph, &probes, &nprobes, info, err);
   if (!rc)
     rc = fb_bd_build(*graph, probes, contact ? nprobes : s->noutputs, bd, err);
   fb_vehicle_probes_free(&probes, nprobes);
@@ -235,7 +251,7 @@ static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg
 int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
                      fb_err *err)
 {
-  return vehicle_build(s, sys, 0, graph, bd, err);
+  return vehicle_build(s, sys, 0, graph, bd, NULL, err);
 }
 
 void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o)
@@ -258,10 +274,28 @@ int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb
 int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
                                  void *ctx, fb_result **out, fb_err *err)
 {
+  fb_vehicle_run_info info;
+  return fb_vehicle_simulate_info(s, sys, fn, ctx, &info, out, err);
+}
+
+static double seconds_since(const struct timespec *t0)
+{
+  struct timespec t1;
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
+}
+
+int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                             void *ctx, fb_vehicle_run_info *info, fb_result **out, fb_err *err)
+{
   *out = NULL;
+  memset(info, 0, sizeof *info);
   fb_bg *graph = NULL;
   fb_bd *bd = NULL;
-  int rc = vehicle_build(s, sys, 1, &graph, &bd, err);
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  int rc = vehicle_build(s, sys, 1, &graph, &bd, info, err);
+  info->build_seconds = seconds_since(&t0);
   double *x0 = NULL;
   if (!rc) {
     size_t n = fb_bd_nstates(bd);
@@ -270,10 +304,12 @@ int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_pro
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   }
   if (!rc && s->initial == FB_INITIAL_STATIC) {
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     double *zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);
     rc = zero ? fb_sim_static_state(bd, 0.0, zero, x0, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
     free(zero);
+    info->static_seconds = seconds_since(&t0);
   }
   fb_sim_opts o;
   fb_vehicle_sim_opts(s, &o);

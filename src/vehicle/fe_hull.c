@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "flexbond/vehicle.h"
 
@@ -296,20 +297,24 @@ int fb_fe_hull_beta(double zeta, size_t nrigid, double f1_hz, double *beta, fb_e
   return FB_OK;
 }
 
+/* The free-free modes beta is found from: six rigid-body ones, then the
+ * first elastic one. */
+#define HULL_BETA_MODES 7
+
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err)
 {
   if (B)
     *B = NULL;
-  double f[7];
+  double f[HULL_BETA_MODES];
   size_t nrigid = 0;
   /* Dense, as the nodal hull's reference results were computed: ARPACK
    * agrees to round-off, but a beta that differs in its last digits moves
    * the integrator's step sequence, and with it the outputs, by the
    * solver's tolerance (4e-6 of a column's range measured on the
    * reference vehicle). */
-  int rc = free_modes(h, 7, SIZE_MAX, f, &nrigid, err);
+  int rc = free_modes(h, HULL_BETA_MODES, SIZE_MAX, f, &nrigid, err);
   if (!rc)
-    rc = fb_fe_hull_beta(zeta, nrigid, f[6], beta, err);
+    rc = fb_fe_hull_beta(zeta, nrigid, f[HULL_BETA_MODES - 1], beta, err);
   if (rc)
     return rc;
   if (!B)
@@ -714,8 +719,11 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
   }
   if (!rc)
     rc = fb_fem_modes(K, M, nwant, fb_fem_dense_limit(nwant), freq, shapes, err);
-  if (!rc)
+  if (!rc) {
     keep_supported(&d, freq, shapes, nwant, ms);
+    ms->nsolved = nwant;
+    ms->dense = fb_fem_modes_dense(d.ndof, nwant, fb_fem_dense_limit(nwant));
+  }
   free(freq);
   free(shapes);
   for (size_t k = 0; !rc && k < ms->nmodes; ++k) {
@@ -789,7 +797,17 @@ typedef struct hull_coords {
   fb_mat *M, *K, *B;
   double *T; /* ndof x nb, NULL at full order */
   size_t ndof, nb;
+  size_t eig_modes; /* the eigen-solve's, as in fb_hull */
+  int eig_dense;
+  double eig_seconds;
 } hull_coords;
+
+static double seconds_since(const struct timespec *t0)
+{
+  struct timespec t1;
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
+}
 
 static void hull_coords_free(hull_coords *c)
 {
@@ -818,8 +836,13 @@ static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords 
   /* hull.fe.modes = 0: every mode, from one dense eigen-solve; the static
    * correction then finds nothing the basis lacks and adds no vector. */
   const size_t nmodes = s->hull_modes > 0 ? (size_t)s->hull_modes : n;
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
   if (!rc)
     rc = fb_fem_reduce_free(c->K, c->M, nmodes, F, nf, &c->T, &lambda, &c->nb, &nrigid, err);
+  c->eig_modes = fb_fem_reduce_nsolved(n, nmodes);
+  c->eig_dense = fb_fem_modes_dense(n, c->eig_modes, fb_fem_dense_limit(c->eig_modes));
+  c->eig_seconds = seconds_since(&t0);
   free(F);
   /* beta belongs to the hull as built (its structure and declared
    * masses, fb_fe_hull_damping): with a weight-only payload M is that
@@ -863,9 +886,14 @@ static int hull_coords_new(const fb_scenario *s, const fb_fe_hull *h, hull_coord
   c->ndof = c->K ? fb_mat_nrows(c->K) : 0;
   c->nb = c->ndof;
   if (!rc && s->hull_coordinates == FB_HULL_MODAL)
-    rc = reduce_coords(s, h, c, err);
-  else if (!rc)
+    return reduce_coords(s, h, c, err);
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  if (!rc)
     rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, &c->B, err);
+  c->eig_modes = HULL_BETA_MODES;
+  c->eig_dense = 1;
+  c->eig_seconds = seconds_since(&t0);
   return rc;
 }
 
@@ -958,6 +986,12 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
     rc = flexible_hull_graph(h, &c, hull->graph, err);
   if (!rc)
     rc = flexible_torsion(h, &c, hull, err);
+  if (!rc) {
+    hull->eig_dof = c.ndof;
+    hull->eig_modes = c.eig_modes;
+    hull->eig_dense = c.eig_dense;
+    hull->eig_seconds = c.eig_seconds;
+  }
   hull_coords_free(&c);
   if (rc) {
     fb_hull_free(&hull);
