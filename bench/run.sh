@@ -40,7 +40,7 @@ median "$out/h.json"
 /usr/bin/time -v "$exe" modes examples/apc6x6.yaml --system flexible -o "$out/modes" 2>&1 >/dev/null |
   grep "Maximum resident"
 
-echo "== System 2, full-order hull, 15 s at 1 kHz: fb_vehicle_simulate, 3 runs (peak RSS of one)"
+echo "== System 2, every mode in modal coordinates, 15 s at 1 kHz: fb_vehicle_simulate, 3 runs (peak RSS of one)"
 "$build/bench_vehicle" examples/apc6x6.yaml 3 flexible | tail -n 2
 /usr/bin/time -v "$build/bench_vehicle" examples/apc6x6.yaml 1 flexible 2>&1 >/dev/null |
   grep "Maximum resident"
