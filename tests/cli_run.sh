@@ -280,6 +280,27 @@ expect_in "$WORK/both_nofig/report.md" "No figures: the run had \`--no-figures\`
 expect_in "$WORK/both_nofig/report.md" "reduced to 12 free-free modes" "report.md reduced hull"
 expect_in "$WORK/both_nofig/summary.json" '"hull_modes": 12' "summary.json reduced hull"
 
+# A deck as another tool would write it, never exactly flat: the example's
+# hull exported, every node moved at random by up to 1 mm in each
+# coordinate (warps up to 2e-3 of an element's diagonal). Both systems run,
+# and the hull keeps its six rigid-body modes (docs/hull-mesh.md, "Warped
+# elements").
+run mesh "$SHORT" --export "$WORK/flat.inp"
+expect_status 0 "mesh --export flat.inp"
+awk 'BEGIN { srand(7) } /^\*/ { nodes = ($0 ~ /^\*NODE/); print; next }
+  nodes && NF >= 4 { split($0, f, ",")
+    printf "%s, %.9f, %.9f, %.9f\n", f[1], f[2] + 0.002 * rand() - 0.001,
+      f[3] + 0.002 * rand() - 0.001, f[4] + 0.002 * rand() - 0.001; next } { print }' \
+  "$WORK/flat.inp" >"$WORK/perturbed.inp"
+sed -e '/^    density: 1 /d' -e '/^    generator:/,/nose_rung_divisions/c\    deck: perturbed.inp' \
+  "$SHORT" >"$WORK/apc_perturbed.yaml"
+checks=$((checks + 1))
+grep -q 'deck: perturbed.inp' "$WORK/apc_perturbed.yaml" || fail "perturbed scenario: no deck"
+run run "$WORK/apc_perturbed.yaml" -o "$WORK/perturbed" -q --no-figures
+expect_status 0 "run on a deck moved by up to 1 mm"
+run modes "$WORK/apc_perturbed.yaml" --system flexible
+expect_in "$OUT" "6 rigid-body modes, then" "modes on a deck moved by up to 1 mm"
+
 # -v: every eigen-solve with its method, its modes of the hull's 1296 DOFs
 # and its time; a reduced hull's basis (12 modes and one more for the
 # static correction's shift) is ARPACK's, the nodal hull's beta LAPACK's;

@@ -328,12 +328,12 @@ static void test_check(void)
   const double bowtie[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
   expect_check(one_element(bowtie, 4, q), "element 5 (S4) is degenerate: area 0 m^2");
 
-  /* Warp: node 4 lifted 3.1 mm above the plane z = 0 of nodes 1-3; the
-   * limit is 1e-3 * sqrt(2) m = 1.41 mm. A 1.0 mm lift passes. */
-  const double warped[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.0031}};
+  /* Warp: node 4 lifted 15 mm above the plane z = 0 of nodes 1-3; the
+   * limit is 1e-2 * sqrt(2) m = 14.1 mm. A 14 mm lift passes. */
+  const double warped[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.015}};
   expect_check(one_element(warped, 4, q),
-               "element 5 (S4) is warped: node 4 is 3.1 mm off the plane of the other three");
-  const double slight[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.001}};
+               "element 5 (S4) is warped: node 4 is 15 mm off the plane of the other three");
+  const double slight[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.014}};
   expect_check(one_element(slight, 4, q), NULL);
 
   /* Area limit 1e-12 * diag^2 = 2e-12 m^2 (the bounding box is the unit
@@ -359,17 +359,18 @@ static void test_check(void)
   expect_check(m, "the mesh has no elements");
 }
 
-/* The example of the task: element 12 over nodes 41-44, node 44 3.1 mm
- * off the plane, in a mesh where it is the second element. */
+/* A warped element's user ids in the message: element 12 over nodes
+ * 41-44, node 44 31 mm off the plane, in a mesh where it is the second
+ * element. */
 static void test_check_warp_ids(void)
 {
   fb_mesh *m = strip_mesh();
   size_t nd[4];
-  const double xyz[4][3] = {{0, 2, 0}, {1, 2, 0}, {1, 3, 0}, {0, 3, -0.0031}};
+  const double xyz[4][3] = {{0, 2, 0}, {1, 2, 0}, {1, 3, 0}, {0, 3, -0.031}};
   for (int k = 0; k < 4; ++k)
     fb_mesh_add_node(m, 41 + k, xyz[k][0], xyz[k][1], xyz[k][2], &nd[k], NULL);
   fb_mesh_add_element(m, 12, FB_ELEM_QUAD4, nd, NULL);
-  expect_check(m, "element 12 (S4) is warped: node 44 is 3.1 mm off the plane of the other "
+  expect_check(m, "element 12 (S4) is warped: node 44 is 31 mm off the plane of the other "
                   "three");
 }
 

@@ -122,6 +122,50 @@ static void check_element_spectrum(fb_elem_type type, const double *xyz)
   CHECK(w[0] > 0.0);
 }
 
+/* K r = 0 for the six rigid-body motions r of the element's own nodes
+ * (three translations, three rotations about the origin): relative to
+ * max |K| max |r| a round-off 1e-16 with the rigid links, 5e-4 without
+ * them for the warped quadrilateral below, so 1e-12 is far from both. A
+ * zero-eigenvalue count cannot tell: a warped flat element without links
+ * still has six, the rigid motions of its projected nodes. */
+static void check_element_rigid(fb_elem_type type, const double *xyz)
+{
+  const size_t nn = (size_t)type, n = 6 * nn;
+  double k[576];
+  fb_err err;
+  MUST(fb_shell_element(type, xyz, &STEEL_8MM, FB_MASS_CONSISTENT, k, NULL, &err), &err);
+  const double kmax = max_abs(n * n, k);
+  for (int mode = 0; mode < 6; ++mode) {
+    double r[24] = {0}, om[3] = {0, 0, 0};
+    if (mode >= 3)
+      om[mode - 3] = 1.0;
+    double rmax = 0.0;
+    for (size_t a = 0; a < nn; ++a) {
+      const double *x = xyz + 3 * a;
+      double *d = r + 6 * a;
+      d[0] = (mode == 0) + om[1] * x[2] - om[2] * x[1];
+      d[1] = (mode == 1) + om[2] * x[0] - om[0] * x[2];
+      d[2] = (mode == 2) + om[0] * x[1] - om[1] * x[0];
+      d[3] = om[0];
+      d[4] = om[1];
+      d[5] = om[2];
+    }
+    for (size_t i = 0; i < n; ++i)
+      rmax = fmax(rmax, fabs(r[i]));
+    double kr = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (size_t j = 0; j < n; ++j)
+        sum += k[j * n + i] * r[j];
+      kr = fmax(kr, fabs(sum));
+    }
+    CHECK(kr <= 1e-12 * kmax * rmax);
+    if (!(kr <= 1e-12 * kmax * rmax))
+      fprintf(stderr, "  rigid motion %d: |K r| = %.3e of max|K| max|r|\n", mode,
+              kr / (kmax * rmax));
+  }
+}
+
 /* An irregular triangle and quadrilateral in a general orientation. */
 static void test_element_spectrum(void)
 {
@@ -143,6 +187,21 @@ static void test_element_spectrum(void)
     }
   check_element_spectrum(FB_ELEM_TRI3, tri);
   check_element_spectrum(FB_ELEM_QUAD4, quad);
+  check_element_rigid(FB_ELEM_TRI3, tri);
+  check_element_rigid(FB_ELEM_QUAD4, quad);
+  /* Warped: the nodes alternately 0.5 mm above and below the mean plane
+   * (3.3e-4 of the longer diagonal, inside fb_mesh_check's 1e-3). */
+  static const double lift[4] = {5e-4, -5e-4, 5e-4, -5e-4};
+  double warped[12];
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) {
+      double q = 0.0;
+      for (int k = 0; k < 3; ++k)
+        q += r[i * 3 + k] * (k == 2 ? lift[a] : quad_local[3 * a + k]);
+      warped[3 * a + i] = q - 2.0;
+    }
+  check_element_spectrum(FB_ELEM_QUAD4, warped);
+  check_element_rigid(FB_ELEM_QUAD4, warped);
 }
 
 /* fb_shell_element's error for these arguments must be FB_EINVAL with a

@@ -62,7 +62,9 @@ int fb_mesh_nset(const fb_mesh *m, const char *name, const size_t **nodes, size_
 /* Validates the mesh: every node used by an element; no degenerate element
  * (area below 1e-12 of the mesh's bounding-box diagonal squared, repeated
  * node); no warped quadrilateral (distance of a node from the plane of
- * the other three above 1e-3 of the element's longer diagonal); no
+ * the other three above 1e-2 of the element's longer diagonal; below it
+ * the shell element's rigid links keep a warped element's rigid-body
+ * motions exact, src/fem/shell.c); no
  * quadrilateral that is not strictly convex; at least one element; node
  * sets non-empty. FB_EMODEL naming the element or node by user id. */
 int fb_mesh_check(const fb_mesh *m, fb_err *err);

@@ -6,7 +6,18 @@
  * Local frame: origin at the centroid of the nodes, x along edge 1-2, z
  * along the normal (for a quadrilateral, the normal of its diagonals'
  * cross product, which averages a slight warp), y = z x x; node
- * coordinates are projected on the x-y plane. Flat-element shells: the
+ * coordinates are projected on the x-y plane. A warped quadrilateral's
+ * nodes lie h_a off that plane (alternately above and below it): the flat
+ * element acts at their projections, tied to the nodes by rigid links
+ * along the normal, u_p = u_a + theta_a x (-h_a e_z), so that K = W^T K_flat W.
+ * Without the links a rigid rotation of the nodes is not a rigid motion of
+ * the projections, and a warped mesh stores energy under it (three of a
+ * hull's six rigid-body modes become spurious ones near 0.02 Hz); with
+ * them a rigid motion of the nodes is one of the flat element, exactly
+ * (the rigid-link or projection correction of warped flat shell elements:
+ * R. D. Cook, D. S. Malkus, M. E. Plesha & R. J. Witt, "Concepts and
+ * Applications of Finite Element Analysis", 4th ed., 2002, the chapter on
+ * plates and shells). Flat-element shells: the
  * membrane acts on (u, v, rz), the plate on (w, rx, ry), uncoupled in the
  * local frame (O. C. Zienkiewicz, R. L. Taylor & D. D. Fox, "The Finite
  * Element Method for Solid and Structural Mechanics", 7th ed., 2014, the
@@ -35,9 +46,16 @@
 #include "fem/vec3.h"
 
 /* A quadrilateral node may lie this far (relative to the longer diagonal)
- * off the element's mean plane; fb_mesh_check rejects 1e-3 already, so
- * this is only a guard against meshes that were never checked. */
+ * off the element's mean plane: a guard for elements that fb_mesh_check
+ * never saw, whose own limit (node 4 against the plane of nodes 1-3, about
+ * twice the mean-plane distance) rejects warps half this size. */
 #define WARP_LIMIT 1e-2
+/* An offset from the mean plane at most this fraction of the longer
+ * diagonal is the round-off of a flat element's coordinates (a generated
+ * mesh's are off by ~1e-16): no link. Linking it would change K in its
+ * last digits only, and a result frozen at 1e-9 of a range with it; what
+ * a warp this small leaves unlinked puts the rigid-body modes near 1e-7 Hz. */
+#define FLAT_OFFSET 1e-12
 /* Relative area (to the squared longest edge or diagonal) below which an
  * element is degenerate: a sliver with an angle below about 1e-10 rad. */
 #define DEGENERATE_AREA 1e-10
@@ -47,7 +65,9 @@ typedef struct shell_frame {
   double rot[9]; /* rows: local x, y, z axes in global components */
   double x[FB_SHELL_MAX_NODES];
   double y[FB_SHELL_MAX_NODES];
+  double h[FB_SHELL_MAX_NODES]; /* each node's height above the plane */
   double area;
+  double diagonal; /* a quadrilateral's longer diagonal, a triangle's longest edge */
 } shell_frame;
 
 static int props_error(fb_err *err, const char *what, double value)
@@ -96,7 +116,8 @@ static double frame_axes(const double *xyz, shell_frame *f)
     fb_sub3(xyz + 3 * a, c, d);
     f->x[a] = fb_dot3(d, ex);
     f->y[a] = fb_dot3(d, ey);
-    warp = fmax(warp, fabs(fb_dot3(d, ez)));
+    f->h[a] = fb_dot3(d, ez);
+    warp = fmax(warp, fabs(f->h[a]));
   }
   return warp;
 }
@@ -119,6 +140,7 @@ static int triangle_frame(const double *xyz, shell_frame *f, fb_err *err)
     return degenerate(err, "triangle");
   f->nn = 3;
   f->area = twice_area / 2.0;
+  f->diagonal = sqrt(longest2);
   for (int k = 0; k < 3; ++k)
     f->rot[6 + k] = normal[k] / twice_area;
   (void)frame_axes(xyz, f);
@@ -146,6 +168,7 @@ static int quad_frame(const double *xyz, shell_frame *f, fb_err *err)
   }
   f->nn = 4;
   f->area = twice_area / 2.0;
+  f->diagonal = sqrt(diag2);
   for (int k = 0; k < 3; ++k)
     f->rot[6 + k] = normal[k] / twice_area;
   const double warp = frame_axes(xyz, f);
@@ -186,6 +209,29 @@ static void local_stiffness(const shell_frame *f, const fb_shell_props *p, doubl
       kl[(6 * nj + membrane_dof[j % 3]) * n + 6 * ni + membrane_dof[i % 3]] = km[j * nsub + i];
       kl[(6 * nj + bending_dof[j % 3]) * n + 6 * ni + bending_dof[i % 3]] = kb[j * nsub + i];
     }
+}
+
+/* kl = W^T kl W for the rigid links from the nodes to their projections
+ * on the plane (local DOFs u v w rx ry rz): the projection of node a moves
+ * by u - h_a ry, v + h_a rx, w, so W is the identity plus -h_a at (u_a,
+ * ry_a) and +h_a at (v_a, rx_a). Columns first (kl W), then rows. */
+static void link_offsets(const shell_frame *f, double *kl)
+{
+  const size_t n = 6 * f->nn;
+  for (size_t a = 0; a < f->nn; ++a) {
+    const double h = f->h[a];
+    if (fabs(h) <= FLAT_OFFSET * f->diagonal)
+      continue;
+    const size_t u = 6 * a, v = u + 1, rx = u + 3, ry = u + 4;
+    for (size_t i = 0; i < n; ++i) {
+      kl[ry * n + i] -= h * kl[u * n + i];
+      kl[rx * n + i] += h * kl[v * n + i];
+    }
+    for (size_t j = 0; j < n; ++j) {
+      kl[j * n + ry] -= h * kl[j * n + u];
+      kl[j * n + rx] += h * kl[j * n + v];
+    }
+  }
 }
 
 /* kg = T^T kl T, 3x3 block by 3x3 block: kg_IJ = R^T kl_IJ R. */
@@ -277,6 +323,7 @@ int fb_shell_element(fb_elem_type type, const double *xyz, const fb_shell_props 
   if (ke) {
     double kl[24 * 24];
     local_stiffness(&f, p, kl);
+    link_offsets(&f, kl);
     to_global(n, f.rot, kl, ke);
   }
   if (me)
