@@ -164,5 +164,37 @@ for f in A.mtx Bu.mtx C.mtx D.mtx E.mtx f.mtx; do
   expect_absent "$WORK/partial/$f" "failed write: $f"
 done
 
+# ---- The hull's own matrices (flexbond mesh --export-matrices): K and M of
+# the 216-node hull (1296 DOFs), the rows named, the deck they belong to
+# with its coordinates rounded, and that deck read back as a scenario's
+# gives the same mass.
+run mesh "$APC" --export-matrices "$WORK/hull_matrices"
+expect_status 0 "mesh --export-matrices"
+expect_in "$OUT" "wrote $WORK/hull_matrices: K.mtx, M.mtx (1296 x 1296), dofs.csv, hull.inp" \
+  "mesh --export-matrices summary"
+for f in K M; do
+  checks=$((checks + 1))
+  [ "$(sed -n 2p "$WORK/hull_matrices/$f.mtx" | cut -d' ' -f1-2)" = "1296 1296" ] ||
+    fail "$f.mtx: not 1296 x 1296"
+done
+checks=$((checks + 1))
+[ "$(wc -l <"$WORK/hull_matrices/dofs.csv")" -eq 1297 ] || fail "dofs.csv: not 1296 rows"
+expect_in "$WORK/hull_matrices/dofs.csv" "1296,216,rz" "dofs.csv: the last row"
+# No coordinate is the round-off of a zero (-2.8e-17): the *NODE lines
+# carry no exponent below e-12.
+checks=$((checks + 1))
+! awk '/^\*NODE/ { n = 1; next } /^\*/ { n = 0 } n' "$WORK/hull_matrices/hull.inp" |
+  grep -Eq 'e-(1[2-9]|[2-9][0-9]|[1-9][0-9][0-9])' || fail "hull.inp: a coordinate below 1e-12"
+sed -e '/^    density: 1 /d' \
+  -e "/^    generator:/,/nose_rung_divisions/c\\    deck: $WORK/hull_matrices/hull.inp" \
+  "$APC" >"$WORK/apc_deck.yaml"
+run mesh "$WORK/apc_deck.yaml"
+expect_status 0 "mesh of the exported deck"
+expect_in "$OUT" "mass 4041.72 kg" "the exported deck's mass"
+mkdir -p "$WORK/hull_blocked/M.mtx/blocker"
+run mesh "$APC" --export-matrices "$WORK/hull_blocked"
+expect_status 5 "mesh --export-matrices into a directory whose M.mtx is a directory"
+expect_absent "$WORK/hull_blocked/K.mtx" "failed matrix export: K.mtx"
+
 echo "$NAME: $checks checks, $failures failed"
 [ "$failures" -eq 0 ]

@@ -8,6 +8,7 @@
 #define FLEXBOND_FEM_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/error.h"
 #include "flexbond/mat.h"
@@ -177,6 +178,9 @@ size_t fb_fem_reduce_nsolved(size_t n, size_t nmodes);
  * *NSET for every node set, *MATERIAL (*ELASTIC, *DENSITY) and
  * *SHELL SECTION with the thickness. Written atomically. */
 int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err);
+/* The deck's text into fp (p finite, or NULL for none); coordinates to 15
+ * significant digits, those below 1e-12 of the largest as 0. */
+void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p);
 /* Reads such a deck (keywords case-insensitive, comments "**", GENERATE
  * node sets, ELSET ignored); props, if not NULL, receives the material and
  * thickness when the deck has them (fields left untouched otherwise).

@@ -10,6 +10,7 @@
 
 static const char mesh_usage[] =
     "usage: flexbond mesh SCENARIO.yaml [--export FILE.inp|FILE.vtu]\n"
+    "                     [--export-matrices DIR]\n"
     "\n"
     "Builds the scenario's finite-element hull (hull.mesh: the generator or an\n"
     "imported deck), checks it, and prints its element counts, mass, centre of\n"
@@ -18,10 +19,15 @@ static const char mesh_usage[] =
     "S3/S4, *NSET LOAD, DRIVER, ENGINE, SUSP_LF .. SUSP_RR, MASS_<NAME>,\n"
     "FRONT_EDGE, REAR_EDGE, ALL, *MATERIAL, *SHELL SECTION) or, for a .vtu\n"
     "name, as a VTK file for ParaView.\n"
+    "--export-matrices writes into DIR the hull structure's own stiffness and\n"
+    "mass matrices as Matrix Market files (K.mtx, M.mtx; the hull.masses left\n"
+    "out), dofs.csv naming each row (node id and ux uy uz rx ry rz) and the\n"
+    "deck they belong to (hull.inp), all or none.\n"
     "\n"
     "options:\n"
-    "  --export FILE   write the mesh (.inp or .vtu, by the name's ending)\n"
-    "  -h, --help      this text\n";
+    "  --export FILE           write the mesh (.inp or .vtu, by the name's ending)\n"
+    "  --export-matrices DIR   write K.mtx, M.mtx, dofs.csv and hull.inp into DIR\n"
+    "  -h, --help              this text\n";
 
 static int ends_with(const char *s, const char *tail)
 {
@@ -59,7 +65,58 @@ static int print_properties(const fb_fe_hull *h, fb_err *err)
   return rc || !h->npoint_masses ? rc : print_mass(h, 1, err);
 }
 
-static int run(const char *path, const char *export_path)
+/* ---- --export-matrices. */
+
+static void write_mtx(FILE *fp, const void *a)
+{
+  fb_mat_print_mtx(fp, a);
+}
+
+static void write_deck(FILE *fp, const void *hull)
+{
+  const fb_fe_hull *h = hull;
+  fb_mesh_print_inp(fp, h->mesh, &h->props);
+}
+
+/* Row r (1-based, as in the .mtx files) is node_id's DOF r % 6: the
+ * assembly's order, six per node in node order (fem.h). */
+static void write_dofs(FILE *fp, const void *hull)
+{
+  static const char *const names[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  const fb_fe_hull *h = hull;
+  fputs("row,node,dof\n", fp);
+  for (size_t i = 0; i < fb_mesh_nnodes(h->mesh); ++i)
+    for (size_t k = 0; k < 6; ++k)
+      fprintf(fp, "%zu,%ld,%s\n", 6 * i + k + 1, fb_mesh_node_id(h->mesh, i), names[k]);
+}
+
+static int export_matrices(const fb_fe_hull *h, const char *dir, fb_err *err)
+{
+  fb_mat *K = NULL, *M = NULL;
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, &M, err);
+  cli_outdir od;
+  const int opened = rc == FB_OK && (rc = cli_outdir_open(&od, dir, "mesh", err)) == FB_OK;
+  if (rc == FB_OK)
+    rc = cli_outdir_write(&od, "K.mtx", write_mtx, K, err);
+  if (rc == FB_OK)
+    rc = cli_outdir_write(&od, "M.mtx", write_mtx, M, err);
+  if (rc == FB_OK)
+    rc = cli_outdir_write(&od, "dofs.csv", write_dofs, h, err);
+  if (rc == FB_OK)
+    rc = cli_outdir_write(&od, "hull.inp", write_deck, h, err);
+  if (opened)
+    rc = cli_outdir_close(&od, rc, err);
+  if (rc == FB_OK)
+    printf("wrote %s: K.mtx, M.mtx (%zu x %zu), dofs.csv, hull.inp\n", dir, fb_mat_nrows(K),
+           fb_mat_ncols(K));
+  else if (opened)
+    cli_nothing_written(err, dir);
+  fb_mat_free(&K);
+  fb_mat_free(&M);
+  return rc;
+}
+
+static int run(const char *path, const char *export_path, const char *matrices_dir)
 {
   fb_err err;
   fb_err_clear(&err);
@@ -69,7 +126,7 @@ static int run(const char *path, const char *export_path)
   if (!rc)
     rc = fb_vehicle_fe_hull(s, &h, &err);
   /* A signal during the mesh: the file is not written. */
-  if (!rc && export_path)
+  if (!rc && (export_path || matrices_dir))
     rc = cli_check_interrupt(&err);
   if (!rc && export_path)
     rc = ends_with(export_path, ".vtu")
@@ -79,6 +136,8 @@ static int run(const char *path, const char *export_path)
     rc = print_properties(h, &err);
   if (!rc && export_path)
     printf("wrote %s\n", export_path);
+  if (!rc && matrices_dir)
+    rc = export_matrices(h, matrices_dir, &err);
   if (!rc)
     rc = cli_flush_stdout(&err);
   fb_fe_hull_free(&h);
@@ -89,9 +148,10 @@ static int run(const char *path, const char *export_path)
 
 int cli_cmd_mesh(int argc, char **argv)
 {
-  enum { OPT_EXPORT, OPT_HELP, NOPTS };
-  cli_option opts[NOPTS] = {
-      [OPT_EXPORT] = {"--export", NULL, 1, NULL}, [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  enum { OPT_EXPORT, OPT_MATRICES, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {[OPT_EXPORT] = {"--export", NULL, 1, NULL},
+                            [OPT_MATRICES] = {"--export-matrices", NULL, 1, NULL},
+                            [OPT_HELP] = {"--help", "-h", 0, NULL}};
   const char *path;
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, mesh_usage, "SCENARIO", &path, &rc))
@@ -99,5 +159,8 @@ int cli_cmd_mesh(int argc, char **argv)
   const char *out = opts[OPT_EXPORT].value;
   if (out && !ends_with(out, ".inp") && !ends_with(out, ".vtu"))
     return cli_usage_error(argv[0], "--export needs a .inp or .vtu file name (got '%s')", out);
-  return run(path, out);
+  const char *dir = opts[OPT_MATRICES].value;
+  if (dir && !*dir)
+    return cli_usage_error(argv[0], "--export-matrices needs a directory");
+  return run(path, out, dir);
 }

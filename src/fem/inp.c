@@ -982,12 +982,32 @@ int fb_mesh_read_inp_string(const char *text, size_t len, const char *display_na
 
 /* ---- Writing. */
 
+/* A coordinate at most this fraction of the mesh's largest one is the
+ * round-off of a zero (a generated mesh has -2.8e-17 for 0) and is written
+ * as 0: other programs take it at its word (CalculiX's expansion of S8R
+ * shells refused such a deck with "nonpositive jacobian"). */
+#define ZERO_COORDINATE 1e-12
+
+/* One coordinate, to 15 significant digits (0.3 for 0.30000000000000004;
+ * 1e-15 relative, far below any mesh's accuracy). */
+static void write_coordinate(FILE *fp, double v, double scale)
+{
+  fprintf(fp, ", %.15g", fabs(v) <= ZERO_COORDINATE * scale ? 0.0 : v);
+}
+
 static void write_nodes(FILE *fp, const fb_mesh *m)
 {
+  double scale = 0.0;
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i)
+    for (int k = 0; k < 3; ++k)
+      scale = fmax(scale, fabs(fb_mesh_node_xyz(m, i)[k]));
   fputs("*NODE\n", fp);
   for (size_t i = 0; i < fb_mesh_nnodes(m); ++i) {
     const double *p = fb_mesh_node_xyz(m, i);
-    fprintf(fp, "%ld, %.17g, %.17g, %.17g\n", fb_mesh_node_id(m, i), p[0], p[1], p[2]);
+    fprintf(fp, "%ld", fb_mesh_node_id(m, i));
+    for (int k = 0; k < 3; ++k)
+      write_coordinate(fp, p[k], scale);
+    fputc('\n', fp);
   }
 }
 
@@ -1030,6 +1050,19 @@ static void write_props(FILE *fp, const fb_shell_props *p)
           p->young, p->poisson, p->density, p->thickness);
 }
 
+void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p)
+{
+  fprintf(fp,
+          "** flexbond shell mesh: %zu nodes, %zu elements, %zu node sets\n*HEADING\n"
+          "flexbond shell mesh\n",
+          fb_mesh_nnodes(m), fb_mesh_nelements(m), fb_mesh_nnsets(m));
+  write_nodes(fp, m);
+  write_elements(fp, m);
+  write_nsets(fp, m);
+  if (p)
+    write_props(fp, p);
+}
+
 /* p may be NULL: the deck then has no material and section. */
 int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err)
 {
@@ -1042,15 +1075,6 @@ int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *pat
   const int rc = fb_out_open(path, &out, err);
   if (rc)
     return rc;
-  FILE *fp = fb_out_stream(out);
-  fprintf(fp,
-          "** flexbond shell mesh: %zu nodes, %zu elements, %zu node sets\n*HEADING\n"
-          "flexbond shell mesh\n",
-          fb_mesh_nnodes(m), fb_mesh_nelements(m), fb_mesh_nnsets(m));
-  write_nodes(fp, m);
-  write_elements(fp, m);
-  write_nsets(fp, m);
-  if (p)
-    write_props(fp, p);
+  fb_mesh_print_inp(fb_out_stream(out), m, p);
   return fb_out_commit(&out, err);
 }
