@@ -428,7 +428,8 @@ typedef struct fb_hull {
   char *torsion_target; /* bond or element inside the fragment */
   fb_probe_kind torsion_kind;
   int torsion_integrate;
-  double *torsion_weights;
+  double *torsion_weights;     /* each edge's roll from its two end nodes */
+  double *torsion_fit_weights; /* from its transverse section, least squares */
   size_t ntorsion;
   /* System 2's eigen-solve of the free-free hull (none in System 1:
    * eig_dof 0): in modal coordinates the basis (which gives beta too),
@@ -655,6 +656,13 @@ int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err);
  * Penzien, "Dynamics of Structures", 2nd ed., sec. 12-3). *B is new (may
  * be NULL if only beta is wanted). */
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err);
+/* The torsion angle as weights on the nodal DOFs (w, 6 per node, set
+ * whole): roll of FRONT_EDGE minus roll of REAR_EDGE, each the slope dz/dy
+ * of the line through its two end nodes (fit 0, the paper's `torsion`) or
+ * the least-squares rigid rotation about x of every node within 1 mm of
+ * the plane x = the edge's x, its whole transverse section (fit 1,
+ * `torsion_fit`). */
+int fb_fe_hull_torsion_weights(const fb_fe_hull *h, int fit, double *w, fb_err *err);
 
 /* beta = 2 zeta / omega_1 of fb_fe_hull_damping from the free-free hull's
  * modes: nrigid (which must be six) rigid-body ones, then the first

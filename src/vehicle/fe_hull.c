@@ -933,17 +933,101 @@ static int flexible_hull_graph(const fb_fe_hull *h, hull_coords *c, fb_bg *bg, f
   return rc;
 }
 
+/* A node lies in an edge's transverse section when it is this close to
+ * the plane x = the edge's x (the tolerance for attachment points). */
+#define EDGE_LINE_TOL 1e-3
+
+/* w += sign times edge's roll over the nodal DOFs: the slope dz/dy of the
+ * line through its two end nodes (fit 0, the paper's definition), or the
+ * rotation about the x axis of the edge's whole transverse section, every
+ * node of the floor, walls and roof at that x, fitted by least squares as
+ * a rigid rotation (fit 1). Under a point load at an end node the paper's
+ * measure reads a displacement that grows without bound as the mesh is
+ * refined (an in-plane point load on the side wall); the section's fit
+ * averages it with the rest of the ring (tests/test_torsion.c). */
+static int edge_roll(const fb_fe_hull *h, int edge, int fit, double sign, double *w)
+{
+  const size_t left = h->edge_node[2 * edge], right = h->edge_node[2 * edge + 1];
+  const double *a = fb_mesh_node_xyz(h->mesh, left), *b = fb_mesh_node_xyz(h->mesh, right);
+  if (!fit) {
+    const double dy = a[1] - b[1];
+    w[6 * left + 2] += sign / dy;
+    w[6 * right + 2] -= sign / dy;
+    return FB_OK;
+  }
+  /* The rigid rotation about the x axis through the section's centroid
+   * that fits its nodes' (uy, uz) best: theta = sum (y' uz - z' uy) /
+   * sum (y'^2 + z'^2), y' and z' from the centroid. */
+  const double x0 = 0.5 * (a[0] + b[0]);
+  const size_t nn = fb_mesh_nnodes(h->mesh);
+  unsigned char *on = calloc(nn, 1);
+  if (!on)
+    return FB_ENOMEM;
+  double yc = 0.0, zc = 0.0, srr = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < nn; ++i) {
+    const double *p = fb_mesh_node_xyz(h->mesh, i);
+    on[i] = fabs(p[0] - x0) <= EDGE_LINE_TOL;
+    if (on[i]) {
+      yc += p[1];
+      zc += p[2];
+      ++count;
+    }
+  }
+  yc /= (double)count;
+  zc /= (double)count;
+  for (size_t i = 0; i < nn; ++i)
+    if (on[i]) {
+      const double *p = fb_mesh_node_xyz(h->mesh, i);
+      srr += (p[1] - yc) * (p[1] - yc) + (p[2] - zc) * (p[2] - zc);
+    }
+  for (size_t i = 0; i < nn; ++i)
+    if (on[i]) {
+      const double *p = fb_mesh_node_xyz(h->mesh, i);
+      w[6 * i + 2] += sign * (p[1] - yc) / srr;
+      w[6 * i + 1] -= sign * (p[2] - zc) / srr;
+    }
+  free(on);
+  return FB_OK;
+}
+
+int fb_fe_hull_torsion_weights(const fb_fe_hull *h, int fit, double *w, fb_err *err)
+{
+  memset(w, 0, 6 * fb_mesh_nnodes(h->mesh) * sizeof *w);
+  int rc = edge_roll(h, 0, fit, 1.0, w);
+  if (!rc)
+    rc = edge_roll(h, 1, fit, -1.0, w);
+  return rc ? fb_err_set(err, FB_ENOMEM, "out of memory") : FB_OK;
+}
+
+/* The torsion weights over the hull's coordinates: the nodal ones w, or
+ * with a reduced basis (u = T q) T' w. */
+static void to_coordinates(const hull_coords *c, const double *w, double *out)
+{
+  const size_t n = c->ndof;
+  for (size_t j = 0; j < c->nb; ++j) {
+    if (!c->T) {
+      out[j] = w[j];
+      continue;
+    }
+    double sum = 0.0;
+    for (size_t i = 0; i < n; ++i)
+      sum += w[i] * c->T[j * n + i];
+    out[j] = sum;
+  }
+}
+
 /* Torsion: roll of the front edge minus roll of the rear edge over the
- * nodal displacements (the C field's state): weights on the four edge
- * nodes' vertical DOFs, or with a reduced basis (u = T q) T' times those. */
+ * nodal displacements (the C field's state), by the edges' end nodes and
+ * by the least-squares line of every node along each edge. */
 static int flexible_torsion(const fb_fe_hull *h, const hull_coords *c, fb_hull *hull,
                             fb_err *err)
 {
-  const size_t n = c->ndof;
-  double *w = calloc(n, sizeof *w);
+  double *w = calloc(c->ndof, sizeof *w);
   hull->torsion_weights = calloc(c->nb, sizeof *hull->torsion_weights);
+  hull->torsion_fit_weights = calloc(c->nb, sizeof *hull->torsion_fit_weights);
   hull->torsion_target = malloc(sizeof "stiffness");
-  if (!w || !hull->torsion_weights || !hull->torsion_target) {
+  if (!w || !hull->torsion_weights || !hull->torsion_fit_weights || !hull->torsion_target) {
     free(w);
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   }
@@ -951,25 +1035,14 @@ static int flexible_torsion(const fb_fe_hull *h, const hull_coords *c, fb_hull *
   hull->torsion_kind = FB_PROBE_STATE;
   hull->torsion_integrate = 0;
   hull->ntorsion = c->nb;
-  for (int edge = 0; edge < 2; ++edge) {
-    size_t left = h->edge_node[2 * edge], right = h->edge_node[2 * edge + 1];
-    double dy = fb_mesh_node_xyz(h->mesh, left)[1] - fb_mesh_node_xyz(h->mesh, right)[1];
-    double sign = edge == 0 ? 1.0 : -1.0;
-    w[6 * left + 2] += sign / dy;
-    w[6 * right + 2] -= sign / dy;
-  }
-  for (size_t j = 0; j < c->nb; ++j) {
-    if (!c->T) {
-      hull->torsion_weights[j] = w[j];
-      continue;
-    }
-    double sum = 0.0;
-    for (size_t i = 0; i < n; ++i)
-      sum += w[i] * c->T[j * n + i];
-    hull->torsion_weights[j] = sum;
+  int rc = FB_OK;
+  for (int fit = 0; fit < 2 && !rc; ++fit) {
+    rc = fb_fe_hull_torsion_weights(h, fit, w, err);
+    if (!rc)
+      to_coordinates(c, w, fit ? hull->torsion_fit_weights : hull->torsion_weights);
   }
   free(w);
-  return FB_OK;
+  return rc;
 }
 
 int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull **out,

@@ -175,6 +175,7 @@ void fb_hull_free(fb_hull **h)
   fb_bg_free(&(*h)->graph);
   free((*h)->torsion_target);
   free((*h)->torsion_weights);
+  free((*h)->torsion_fit_weights);
   free(*h);
   *h = NULL;
 }
@@ -190,7 +191,8 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err)
   h->ntorsion = 3;
   h->torsion_target = fb_strdup("b_body");
   h->torsion_weights = malloc(3 * sizeof *h->torsion_weights);
-  int rc = h->torsion_target && h->torsion_weights
+  h->torsion_fit_weights = malloc(3 * sizeof *h->torsion_fit_weights);
+  int rc = h->torsion_target && h->torsion_weights && h->torsion_fit_weights
                ? FB_OK
                : fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
@@ -202,7 +204,9 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err)
     fb_err_prefix(err, "rigid hull: ");
     return rc;
   }
+  /* A rigid edge is a straight line: the fit and its end nodes agree. */
   rigid_torsion_weights(s, h->torsion_weights);
+  memcpy(h->torsion_fit_weights, h->torsion_weights, 3 * sizeof *h->torsion_weights);
   *out = h;
   return FB_OK;
 }

@@ -14,14 +14,17 @@
 #include "vehicle/vehicle_internal.h"
 
 /* How a kind is measured: probe kind, target inside the subject's fragment
- * (for bond signals: the output's bond), integrate, and whether the value
+ * (for bond signals: the output's bond), integrate, whether the value
  * is divided by the subject's mass (a mount's acceleration: the effort on
- * its mass over the mass, the paper's gain block 1/m on e7). */
+ * its mass over the mass, the paper's gain block 1/m on e7), and for the
+ * hull's torsion which of its weights (fb_hull: 0 the edges' end nodes,
+ * 1 the least-squares rotation of their transverse sections). */
 typedef struct output_probe {
   fb_probe_kind kind;
   const char *target;
   int integrate;
   int per_mass;
+  int fit;
 } output_probe;
 
 /* Sign conventions are the fragments': compressions and forces pushing
@@ -55,6 +58,9 @@ static const fb_output_kind kinds[] = {
      "%s mount force", "spring plus damper force of the mount, tension positive"},
     {"torsion", FB_OUTPUT_OF_HULL, "rad", "torsion", "Hull torsion angle", "hull torsion angle",
      "roll of the front edge minus roll of the rear edge (hull.edges, Fig. 10)"},
+    {"torsion_fit", FB_OUTPUT_OF_HULL, "rad", "torsion_fit", "Hull torsion angle (fitted)",
+     "hull torsion angle, fitted",
+     "as torsion, each edge's roll that of its whole transverse section, least squares"},
     {"effort", FB_OUTPUT_OF_BOND, NULL, "effort_%s", "Effort of bond %s", "%s effort",
      "effort of any bond of the assembled graph"},
     {"flow", FB_OUTPUT_OF_BOND, NULL, "flow_%s", "Flow of bond %s", "%s flow",
@@ -69,23 +75,24 @@ static const fb_output_kind kinds[] = {
 
 /* How each kind of `kinds` is measured, in the same order. */
 static const output_probe probes[] = {
-    {FB_PROBE_EFFORT, "b_tire", 0, 0},
-    {FB_PROBE_STATE, "tire_spring", 0, 0},
-    {FB_PROBE_POWER, "b_tire_damper", 0, 0},
-    {FB_PROBE_STATE, "spring", 0, 0},
-    {FB_PROBE_EFFORT, "b_spring", 0, 0},
-    {FB_PROBE_EFFORT, "b_damper", 0, 0},
-    {FB_PROBE_POWER, "b_damper", 0, 0},
-    {FB_PROBE_FLOW, "b_arm", 1, 0},
-    {FB_PROBE_EFFORT, "b_mass", 0, 1},
-    {FB_PROBE_STATE, "spring", 0, 0},
-    {FB_PROBE_EFFORT, "b_up", 0, 0},
-    {FB_PROBE_FLOW, NULL, 0, 0},
-    {FB_PROBE_EFFORT, NULL, 0, 0},
-    {FB_PROBE_FLOW, NULL, 0, 0},
-    {FB_PROBE_POWER, NULL, 0, 0},
-    {FB_PROBE_FLOW, NULL, 1, 0},
-    {FB_PROBE_EFFORT, NULL, 1, 0},
+    {FB_PROBE_EFFORT, "b_tire", 0, 0, 0},
+    {FB_PROBE_STATE, "tire_spring", 0, 0, 0},
+    {FB_PROBE_POWER, "b_tire_damper", 0, 0, 0},
+    {FB_PROBE_STATE, "spring", 0, 0, 0},
+    {FB_PROBE_EFFORT, "b_spring", 0, 0, 0},
+    {FB_PROBE_EFFORT, "b_damper", 0, 0, 0},
+    {FB_PROBE_POWER, "b_damper", 0, 0, 0},
+    {FB_PROBE_FLOW, "b_arm", 1, 0, 0},
+    {FB_PROBE_EFFORT, "b_mass", 0, 1, 0},
+    {FB_PROBE_STATE, "spring", 0, 0, 0},
+    {FB_PROBE_EFFORT, "b_up", 0, 0, 0},
+    {FB_PROBE_FLOW, NULL, 0, 0, 0},
+    {FB_PROBE_FLOW, NULL, 0, 0, 1},
+    {FB_PROBE_EFFORT, NULL, 0, 0, 0},
+    {FB_PROBE_FLOW, NULL, 0, 0, 0},
+    {FB_PROBE_POWER, NULL, 0, 0, 0},
+    {FB_PROBE_FLOW, NULL, 1, 0, 0},
+    {FB_PROBE_EFFORT, NULL, 1, 0, 0},
 };
 
 enum { NKINDS = sizeof kinds / sizeof kinds[0] };
@@ -152,7 +159,8 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_
     double *w = malloc(hull->ntorsion * sizeof *w);
     if (!w)
       return fb_err_set(err, FB_ENOMEM, "out of memory");
-    memcpy(w, hull->torsion_weights, hull->ntorsion * sizeof *w);
+    memcpy(w, how->fit ? hull->torsion_fit_weights : hull->torsion_weights,
+           hull->ntorsion * sizeof *w);
     p->weights = w;
     p->nweights = hull->ntorsion;
     break;
