@@ -494,6 +494,8 @@ for f in hull_modes.csv modes.csv mode_01.vtu mode_20.vtu mode_01.png mode_02.pn
   checks=$((checks + 1))
   [ -s "$WORK/modes2/$f" ] || fail "modes --system flexible -o writes $f"
 done
+expect_in "$WORK/modes2/mode_01.vtu" '<DataArray type="Float64" Name="frequency_hz" NumberOfTuples="1" format="ascii">1.40' \
+  "mode_01.vtu carries its frequency"
 checks=$((checks + 1))
 [ "$(head -n 1 "$WORK/modes2/hull_modes.csv")" = "mode,frequency_hz,kind" ] ||
   fail "hull_modes.csv header"

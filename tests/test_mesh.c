@@ -906,6 +906,25 @@ static void test_vtu(void)
   free(xml);
   remove(path);
 
+  /* Field data of the grid (a mode's frequency), before the piece; a
+   * non-finite value is refused like a DOF. */
+  const fb_vtu_field fields[2] = {{"frequency_hz", 10.303047717}, {"other", -0.5}};
+  CHECK(fb_mesh_write_vtu_fields(m, dof, fields, 2, path, &err) == FB_OK);
+  xml = slurp(path);
+  const double f0[1] = {10.303047717}, f1[1] = {-0.5};
+  if (xml) {
+    check_array(xml, "frequency_hz", f0, 1);
+    check_array(xml, "other", f1, 1);
+    const char *fd = strstr(xml, "<FieldData>"), *piece = strstr(xml, "<Piece");
+    CHECK(fd && piece && fd < piece);
+  }
+  free(xml);
+  remove(path);
+  const fb_vtu_field bad = {"frequency_hz", INFINITY};
+  CHECK(fb_mesh_write_vtu_fields(m, dof, &bad, 1, path, &err) == FB_EINVAL);
+  check_msg(&err, "field 0 has no name or is not finite");
+  CHECK(count_entries() == 0);
+
   /* A NaN is refused before any file exists. */
   dof[6 * 2 + 4] = NAN;
   CHECK(fb_mesh_write_vtu(m, dof, path, &err) == FB_EINVAL);

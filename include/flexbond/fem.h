@@ -200,6 +200,15 @@ int fb_mesh_read_inp_string(const char *text, size_t len, const char *display_na
  * rotations as "rotation") and the node sets as point data flags. */
 int fb_mesh_write_vtu(const fb_mesh *m, const double *dof_values, const char *path,
                       fb_err *err);
+/* A named value of a whole grid (a mode's frequency), as VTK FieldData. */
+typedef struct fb_vtu_field {
+  const char *name;
+  double value;
+} fb_vtu_field;
+/* fb_mesh_write_vtu with nfields values of the grid (finite, named). */
+int fb_mesh_write_vtu_fields(const fb_mesh *m, const double *dof_values,
+                             const fb_vtu_field *fields, size_t nfields, const char *path,
+                             fb_err *err);
 
 #ifdef __cplusplus
 }

@@ -111,7 +111,9 @@ static int write_shapes(cli_outdir *od, const flex_modes *fm, fb_err *err)
     char name[32];
     snprintf(name, sizeof name, "mode_%02zu.vtu", k + 1);
     char *path = cli_outdir_path(od, name, err);
-    rc = path ? fb_mesh_write_vtu(fm->hull->mesh, ms->shapes + k * ms->ndof, path, err)
+    const fb_vtu_field frequency = {"frequency_hz", ms->freq_hz[k]};
+    rc = path ? fb_mesh_write_vtu_fields(fm->hull->mesh, ms->shapes + k * ms->ndof, &frequency,
+                                         1, path, err)
               : err->code;
     if (!rc)
       rc = cli_outdir_keep(od, path, err);

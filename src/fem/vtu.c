@@ -157,10 +157,36 @@ static int check_dofs(const fb_mesh *m, const double *dof, const char *path, fb_
   return FB_OK;
 }
 
+/* The grid's field data: one Float64 value per name (VTK's FieldData of
+ * a dataset, which ParaView shows in its information panel). */
+static void write_field_data(FILE *fp, const fb_vtu_field *fields, size_t nfields)
+{
+  if (!nfields)
+    return;
+  fputs("    <FieldData>\n", fp);
+  for (size_t k = 0; k < nfields; ++k) {
+    fputs("      <DataArray type=\"Float64\" Name=\"", fp);
+    fb_xml_write_attr(fp, fields[k].name);
+    fprintf(fp, "\" NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n",
+            fields[k].value);
+  }
+  fputs("    </FieldData>\n", fp);
+}
+
 int fb_mesh_write_vtu(const fb_mesh *m, const double *dof_values, const char *path, fb_err *err)
+{
+  return fb_mesh_write_vtu_fields(m, dof_values, NULL, 0, path, err);
+}
+
+int fb_mesh_write_vtu_fields(const fb_mesh *m, const double *dof_values,
+                             const fb_vtu_field *fields, size_t nfields, const char *path,
+                             fb_err *err)
 {
   if (!m || !path)
     return fb_err_set(err, FB_EINVAL, "fb_mesh_write_vtu: mesh or path is NULL");
+  for (size_t k = 0; k < nfields; ++k)
+    if (!fields[k].name || !isfinite(fields[k].value))
+      return fb_err_set(err, FB_EINVAL, "%s: field %zu has no name or is not finite", path, k);
   int rc = check_dofs(m, dof_values, path, err);
   fb_out *out = NULL;
   if (!rc)
@@ -172,6 +198,7 @@ int fb_mesh_write_vtu(const fb_mesh *m, const double *dof_values, const char *pa
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\""
         " header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
         fp);
+  write_field_data(fp, fields, nfields);
   fprintf(fp, "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", fb_mesh_nnodes(m),
           fb_mesh_nelements(m));
   rc = write_point_data(fp, m, dof_values, err);
