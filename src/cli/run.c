@@ -20,6 +20,7 @@
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
+#include "../core/util.h"
 #include "cli.h"
 
 static const char run_usage[] =
@@ -521,13 +522,6 @@ typedef struct run_modes {
   double hull_f1, hull_beta;
 } run_modes;
 
-static double seconds_since(const struct timespec *t0)
-{
-  struct timespec t1;
-  clock_gettime(CLOCK_MONOTONIC, &t1);
-  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
-}
-
 /* With -v: "... eigen-solve of WHAT: LAPACK|ARPACK, M of N modes, T s". */
 static void say_eigen_solve(const run_args *a, const fb_scenario *s, const char *what,
                             size_t ndof, size_t nmodes, int dense, double seconds)
@@ -557,7 +551,7 @@ static int flexible_modes(const run_args *a, const fb_scenario *s, run_modes *m,
     say_eigen_solve(
         a, s, "the free-free hull (report)", ndof, HULL_FREE_MODES,
         fb_fem_modes_dense(ndof, HULL_FREE_MODES, fb_fem_dense_limit(HULL_FREE_MODES)),
-        seconds_since(&t0));
+        fb_seconds_since(&t0));
   m->hull_f1 = rc == FB_OK && nrigid < HULL_FREE_MODES ? freq[nrigid] : NAN;
   if (rc == FB_OK)
     rc = fb_fe_hull_beta(s->hull_damping_ratio, nrigid, m->hull_f1, &m->hull_beta, err);
@@ -566,7 +560,7 @@ static int flexible_modes(const run_args *a, const fb_scenario *s, run_modes *m,
     rc = fb_vehicle_flexible_modes(s, m->hull, VEHICLE_MODES, &m->modes2, err);
   if (rc == FB_OK)
     say_eigen_solve(a, s, "System 2's vehicle (report, mode pictures)", m->modes2->ndof,
-                    m->modes2->nsolved, m->modes2->dense, seconds_since(&t0));
+                    m->modes2->nsolved, m->modes2->dense, fb_seconds_since(&t0));
   return rc;
 }
 

@@ -26,6 +26,7 @@
 #include "flexbond/vehicle.h"
 
 #include "../core/textfile.h"
+#include "../core/util.h"
 #include "cli.h"
 
 static const char sweep_usage[] =
@@ -569,13 +570,6 @@ static void tally(const sweep_args *a, const sweep_case *cases, size_t *not_done
   }
 }
 
-static double seconds_since(const struct timespec *t0)
-{
-  struct timespec t1;
-  clock_gettime(CLOCK_MONOTONIC, &t1);
-  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
-}
-
 /* Runs the cases not done, on threads or (mpi_size > 0) across ranks;
  * the status of the study as a whole. */
 static int run_cases(const sweep_args *a, sweep_case *cases, sweep_journal *journal,
@@ -594,7 +588,7 @@ static int run_cases(const sweep_args *a, sweep_case *cases, sweep_journal *jour
   (void)mpi_size; /* 0: there are no ranks */
   sweep_pool_run(&pool, a->jobs);
 #endif
-  *seconds = seconds_since(&t0);
+  *seconds = fb_seconds_since(&t0);
   int rc = pool.journal_rc;
   if (rc != FB_OK)
     *err = pool.journal_err;

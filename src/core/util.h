@@ -7,7 +7,7 @@
 
 #include "flexbond/error.h"
 
-#include "core/textfile.h"
+#include "textfile.h" /* beside it: also found from src/cli, which has no src/ path */
 
 /* Index of the first value of v[0..n) that is not finite; n if all are. */
 size_t fb_first_nonfinite(const double *v, size_t n);
@@ -33,6 +33,10 @@ int fb_grow(void **arr, size_t *cap, size_t n, size_t elsize);
 char *fb_dirname(const char *path);
 /* dir/name in fresh memory (NULL when out of memory). */
 char *fb_path_join(const char *dir, const char *name);
+
+/* Wall time since *t0 (CLOCK_MONOTONIC), s. */
+struct timespec;
+double fb_seconds_since(const struct timespec *t0);
 
 /* Input files are opened and read by core/textfile.h (fb_open_input,
  * fb_read_file), with their checks. */

@@ -40,6 +40,7 @@
 
 #include "flexbond/sim.h"
 
+#include "core/util.h"
 #include "sim/auglin.h"
 #include "sim/nvector.h"
 #include "sim/sim_internal.h"
@@ -885,13 +886,6 @@ static int run_dynamic(sim_run *run, fb_err *err)
   return rc;
 }
 
-static double seconds_since(const struct timespec *t0)
-{
-  struct timespec t1;
-  clock_gettime(CLOCK_MONOTONIC, &t1);
-  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
-}
-
 int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err)
 {
   struct timespec t0;
@@ -919,7 +913,7 @@ int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err)
     fb_result_free(&run.res);
     return rc;
   }
-  run.res->stats.wall_seconds = seconds_since(&t0);
+  run.res->stats.wall_seconds = fb_seconds_since(&t0);
   *out = run.res;
   return FB_OK;
 }

@@ -278,13 +278,6 @@ int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_pro
   return fb_vehicle_simulate_info(s, sys, fn, ctx, &info, out, err);
 }
 
-static double seconds_since(const struct timespec *t0)
-{
-  struct timespec t1;
-  clock_gettime(CLOCK_MONOTONIC, &t1);
-  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
-}
-
 int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
                              void *ctx, fb_vehicle_run_info *info, fb_result **out, fb_err *err)
 {
@@ -295,7 +288,7 @@ int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progres
   struct timespec t0;
   clock_gettime(CLOCK_MONOTONIC, &t0);
   int rc = vehicle_build(s, sys, 1, &graph, &bd, info, err);
-  info->build_seconds = seconds_since(&t0);
+  info->build_seconds = fb_seconds_since(&t0);
   double *x0 = NULL;
   if (!rc) {
     size_t n = fb_bd_nstates(bd);
@@ -309,7 +302,7 @@ int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progres
     rc = zero ? fb_sim_static_state(bd, 0.0, zero, x0, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
     free(zero);
-    info->static_seconds = seconds_since(&t0);
+    info->static_seconds = fb_seconds_since(&t0);
   }
   fb_sim_opts o;
   fb_vehicle_sim_opts(s, &o);

@@ -802,13 +802,6 @@ typedef struct hull_coords {
   double eig_seconds;
 } hull_coords;
 
-static double seconds_since(const struct timespec *t0)
-{
-  struct timespec t1;
-  clock_gettime(CLOCK_MONOTONIC, &t1);
-  return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
-}
-
 static void hull_coords_free(hull_coords *c)
 {
   fb_mat_free(&c->M);
@@ -842,7 +835,7 @@ static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords 
     rc = fb_fem_reduce_free(c->K, c->M, nmodes, F, nf, &c->T, &lambda, &c->nb, &nrigid, err);
   c->eig_modes = fb_fem_reduce_nsolved(n, nmodes);
   c->eig_dense = fb_fem_modes_dense(n, c->eig_modes, fb_fem_dense_limit(c->eig_modes));
-  c->eig_seconds = seconds_since(&t0);
+  c->eig_seconds = fb_seconds_since(&t0);
   free(F);
   /* beta belongs to the hull as built (its structure and declared
    * masses, fb_fe_hull_damping): with a weight-only payload M is that
@@ -893,7 +886,7 @@ static int hull_coords_new(const fb_scenario *s, const fb_fe_hull *h, hull_coord
     rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, &c->B, err);
   c->eig_modes = HULL_BETA_MODES;
   c->eig_dense = 1;
-  c->eig_seconds = seconds_since(&t0);
+  c->eig_seconds = fb_seconds_since(&t0);
   return rc;
 }
 
