@@ -303,6 +303,86 @@ expect_status 0 "run on a deck moved by up to 1 mm"
 run modes "$WORK/apc_perturbed.yaml" --system flexible
 expect_in "$OUT" "6 rigid-body modes, then" "modes on a deck moved by up to 1 mm"
 
+# Plates of two thicknesses. A deck with a 20 mm floor and 8.5 mm walls
+# (the example's deck with its sections rewritten): its mass is the
+# one-thickness hull's plus the floor's extra steel, 7860 kg/m^3 x 11.5 mm
+# x the floor's 2.10 m x 5.13611724282061 m (closed form), and both
+# systems run on it. The generated truck's floor and side walls as
+# hull.sections: both systems run, and `mesh` lists each section's mass.
+python3 - "$WORK/flat.inp" "$WORK/two.inp" <<'EOF'
+import sys
+s = open(sys.argv[1]).read()
+s = s[:s.index("*MATERIAL")]
+s += "*MATERIAL, NAME=STEEL\n*ELASTIC\n200e9, 0.3\n*DENSITY\n7860\n"
+s += "*SHELL SECTION, ELSET=FLOOR, MATERIAL=STEEL\n0.020\n"
+for name in ["ROOF", "SIDES", "REAR_WALL", "GLACIS", "BULKHEADS"]:
+    s += "*SHELL SECTION, ELSET=%s, MATERIAL=STEEL\n0.0085\n" % name
+open(sys.argv[2], "w").write(s)
+EOF
+sed -e '/^  mass: 4041.72/d' -e '/^  Ixx: /d' -e '/^  Iyy: /d' -e 's/deck: perturbed.inp/deck: two.inp/' \
+  "$WORK/apc_perturbed.yaml" >"$WORK/apc_two.yaml"
+run mesh "$WORK/apc_two.yaml"
+expect_status 0 "mesh of a two-thickness deck"
+expect_in "$OUT" "FLOOR               51 elements" "two-thickness deck's floor section"
+checks=$((checks + 1))
+python3 - "$OUT" <<'EOF' || fail "two-thickness deck's mass"
+import re, sys
+mass = float(re.search(r"^mass ([0-9.e+]+) kg", open(sys.argv[1]).read(), re.M).group(1))
+expect = 4041.72 + 7860 * (0.020 - 0.0085) * 2.10 * (2.47813311938948 + 2.65798412344113)
+# 4041.72 is the one-thickness mesh's mass to 6e-6 (the fit); printed to 6 digits.
+assert abs(mass - expect) < 1e-4 * expect, (mass, expect)
+EOF
+run run "$WORK/apc_two.yaml" -o "$WORK/two" -q --no-figures
+expect_status 0 "both systems on a two-thickness deck"
+expect_in "$WORK/two/report.md" "hull.mesh.deck" "report of the two-thickness deck"
+
+TRUCK=$REPO_ROOT/examples/truck4x4.yaml
+sed 's/^  edges:  /  sections:\n    - {set: FLOOR, thickness: 0.020}\n    - {set: sides, thickness: 0.0085, nonstructural_mass: 10}\n  edges:  /' \
+  "$TRUCK" >"$WORK/truck_sections.yaml"
+cp "$REPO_ROOT"/examples/*.csv "$WORK/"
+run mesh "$WORK/truck_sections.yaml"
+expect_status 0 "mesh of the truck with sections"
+expect_in "$OUT" "SIDES               64 elements,    18.72 m^2, 0.0085 m" "truck's side section"
+expect_in "$OUT" "+ 10 kg/m^2: 1436.29 kg" "truck's side section mass"
+run run "$WORK/truck_sections.yaml" -o "$WORK/truck_sections" -q --no-figures
+expect_status 0 "both systems on the truck with sections"
+sed 's/{set: FLOOR, thickness: 0.020}/{set: FLOR, thickness: 0.020}/' "$WORK/truck_sections.yaml" \
+  >"$WORK/truck_bad_set.yaml"
+run run "$WORK/truck_bad_set.yaml" -o "$WORK/truck_bad_set" -q --no-figures
+expect_status 2 "a section of a set the mesh lacks"
+expect_in "$ERR" "truck_bad_set.yaml:26:" "bad set: file and line"
+expect_in "$ERR" "hull.sections[0].set: the hull mesh has no element set 'FLOR'" "bad set: key"
+checks=$((checks + 1))
+[ ! -e "$WORK/truck_bad_set" ] || fail "a refused scenario left output"
+
+# A deck whose attachment points are not nodes: the example's deck without
+# its SUSP_* and mount node sets, the front axle and the driver moved 3 cm
+# off the node lines, coupled to the floor's nodes within 0.3 m
+# (hull.mesh.coupling, distributing). Both systems run; without the coupling
+# the same file is refused at the point's key.
+python3 - "$WORK/flat.inp" "$WORK/nosets.inp" <<'EOF'
+import re, sys
+out, skip = [], False
+for line in open(sys.argv[1]).read().split("\n"):
+    if line.startswith("*"):
+        skip = bool(re.match(r"\*NSET, NSET=(SUSP_|DRIVER|ENGINE)", line))
+    if not skip:
+        out.append(line)
+open(sys.argv[2], "w").write("\n".join(out))
+EOF
+sed -e 's/deck: perturbed.inp/deck: nosets.inp\n    coupling: {kind: distributing, radius: 0.3, surface: FLOOR}/' \
+  -e 's/^      x: 1.90  .*/      x: 1.93/' -e 's/^    x: 2.10  .*/    x: 2.13/' \
+  "$WORK/apc_perturbed.yaml" >"$WORK/apc_coupled.yaml"
+checks=$((checks + 1))
+[ "$(grep -c -e 'x: 1.93' -e 'x: 2.13' -e 'coupling:' "$WORK/apc_coupled.yaml")" = 3 ] ||
+  fail "coupled scenario: edits missing"
+run run "$WORK/apc_coupled.yaml" -o "$WORK/coupled" -q --no-figures
+expect_status 0 "both systems with distributing couplings"
+sed '/coupling: {kind: distributing/d' "$WORK/apc_coupled.yaml" >"$WORK/apc_uncoupled.yaml"
+run run "$WORK/apc_uncoupled.yaml" -o "$WORK/uncoupled" -q --no-figures
+expect_status 2 "points off the nodes without a coupling"
+expect_in "$ERR" "the mesh has no node set SUSP_LF" "uncoupled: the missing set"
+
 # -v: every eigen-solve with its method, its modes of the hull's 1296 DOFs
 # and its time; a reduced hull's basis (12 modes and one more for the
 # static correction's shift) is ARPACK's, the nodal hull's beta LAPACK's;

@@ -320,7 +320,7 @@ static void check_mass(const fb_mesh *m, const fb_scenario *s, const fb_hull_mes
   CHECK_NEAR(iyy, s->hull_iyy, 1e-9 * s->hull_iyy);
   CHECK_NEAR(cx, 0.0, 1e-9);
 
-  const fb_shell_props sp = {s->young, s->poisson, s->density, s->thickness, 0.0};
+  const fb_shell_props sp = {s->young, s->poisson, s->density, s->thickness, 0.0, 0.0};
   fb_err err;
   fb_mat *M = NULL;
   double fe_mass = 0, cg[3] = {1, 1, 1}, inertia[9] = {0};

@@ -23,9 +23,9 @@ static const char plate_deck[] = "** plate\n"
                                  "4, 0, 0.25, 0\n"
                                  "5, 0.5, 0.25, 0\n"
                                  "6, 1.0, 0.25, 0.125\n"
-                                 "*ELEMENT, TYPE=S4\n"
+                                 "*ELEMENT, TYPE=S4, ELSET=E\n"
                                  "10, 1, 2, 5, 4\n"
-                                 "*ELEMENT, TYPE=S3R\n"
+                                 "*ELEMENT, TYPE=S3R, ELSET=E\n"
                                  "11, 2, 3, 6\n"
                                  "12, 2, 6, 5\n"
                                  "*NSET, NSET=ODD, GENERATE\n"
@@ -69,7 +69,7 @@ static int has(const fb_err *err, const char *expect)
 static void test_plate(void)
 {
   fb_mesh *m = NULL;
-  fb_shell_props p = {0, 0, 0, 0, 7};
+  fb_shell_props p = {0, 0, 0, 0, 7, 0.0};
   fb_err err;
   fb_err_clear(&err);
   CHECK(read_prefix(plate_deck, strlen(plate_deck), "plate.inp", &m, &p, &err) == FB_OK);
@@ -112,7 +112,7 @@ static void test_same_as_file(void)
   CHECK(write(fd, plate_deck, len) == (ssize_t)len);
   close(fd);
   fb_mesh *a = NULL, *b = NULL;
-  fb_shell_props pa = {0, 0, 0, 0, 0}, pb = {0, 0, 0, 0, 0};
+  fb_shell_props pa = {0, 0, 0, 0, 0, 0.0}, pb = {0, 0, 0, 0, 0, 0.0};
   fb_err err;
   CHECK(fb_mesh_read_inp(path, &a, &pa, &err) == FB_OK);
   CHECK(read_prefix(plate_deck, len, "plate.inp", &b, &pb, &err) == FB_OK);
@@ -156,7 +156,7 @@ static void test_length_bound(void)
 static void test_errors(void)
 {
   fb_mesh *m = NULL;
-  fb_shell_props p = {1, 2, 3, 4, 5};
+  fb_shell_props p = {1, 2, 3, 4, 5, 0.0};
   fb_err err;
   static const char bad_number[] = "*NODE\n1, 0, 0, 0\n2, 1, 1.0x, 0\n";
   CHECK(read_prefix(bad_number, sizeof bad_number - 1, "deck.inp", &m, &p, &err) == FB_EPARSE);

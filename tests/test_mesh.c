@@ -7,6 +7,7 @@
  * binary64). */
 #include <dirent.h>
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -496,13 +497,13 @@ static void test_inp_round_trip(void)
   fb_mesh_add_nset(m, "nothing", 0, NULL, &err);
   CHECK(fb_mesh_check(m, NULL) == FB_EMODEL); /* the empty set */
 
-  const fb_shell_props p = {2.1e11, 0.3, 7850.0, 0.1 / 3.0, 1e-3};
+  const fb_shell_props p = {2.1e11, 0.3, 7850.0, 0.1 / 3.0, 1e-3, 0.0};
   char path[512];
   in_root(path, sizeof path, "round.inp");
   CHECK(fb_mesh_write_inp(m, &p, path, &err) == FB_OK);
   CHECK(count_entries() == 1);
   fb_mesh *back = NULL;
-  fb_shell_props q = {-1, -1, -1, -1, 0.25};
+  fb_shell_props q = {-1, -1, -1, -1, 0.25, 0.0};
   CHECK(fb_mesh_read_inp(path, &back, &q, &err) == FB_OK);
   if (back)
     check_same_mesh(m, back);
@@ -528,7 +529,7 @@ static void test_inp_round_trip(void)
   char *text = slurp(path);
   CHECK(text && !strstr(text, "*MATERIAL") && !strstr(text, "*SHELL SECTION"));
   free(text);
-  fb_shell_props r = {-1, -1, -1, -1, 0.25};
+  fb_shell_props r = {-1, -1, -1, -1, 0.25, 0.0};
   CHECK(fb_mesh_read_inp(path, &back, &r, &err) == FB_OK);
   CHECK(r.young == -1 && r.poisson == -1 && r.density == -1 && r.thickness == -1);
   if (back)
@@ -567,6 +568,8 @@ static const char hand_deck[] =
     "3, 3, 7, 6\n"
     "*elset, elset=plate\n"
     "1, 2\n"
+    "*ELSET, ELSET=all\n"
+    "plate, tip\n"
     "*nset, nset=left\n"
     "1, 4\n"
     "*Nset, nset=bottom, generate\n"
@@ -582,7 +585,7 @@ static const char hand_deck[] =
     "2.1e11, 0.3\n"
     "*density\n"
     "7850.\n"
-    "*shell section, elset=plate, material=STEEL\n"
+    "*shell section, elset=ALL, material=STEEL\n"
     "0.005, 5\n"
     "*step\n"
     "*static\n"
@@ -618,7 +621,7 @@ static void test_inp_hand_deck(void)
   write_bytes(path, crlf, n);
   fb_mesh *m = NULL;
   fb_err err;
-  fb_shell_props p = {0, 0, 0, 0, 0.5};
+  fb_shell_props p = {0, 0, 0, 0, 0.5, 0.0};
   const int rc = fb_mesh_read_inp(path, &m, &p, &err);
   CHECK(rc == FB_OK);
   if (rc) {
@@ -646,6 +649,17 @@ static void test_inp_hand_deck(void)
   check_set_ids(m, "corners", corners, 3);
   CHECK(strcmp(fb_mesh_nset_name(m, 1), "left") == 0);
 
+  CHECK(fb_mesh_nelsets(m) == 3 && strcmp(fb_mesh_elset_name(m, 2), "all") == 0);
+  const size_t *elems = NULL;
+  size_t ne = 0;
+  CHECK(fb_mesh_elset(m, "PLATE", &elems, &ne) && ne == 2 && elems[0] == 0 && elems[1] == 1);
+  CHECK(fb_mesh_elset(m, "tip", &elems, &ne) && ne == 1 && elems[0] == 2);
+  CHECK(fb_mesh_elset(m, "all", &elems, &ne) && ne == 3);
+  CHECK(fb_mesh_nsections(m) == 1 && strcmp(fb_mesh_section_elset(m, 0), "all") == 0);
+  for (size_t e = 0; e < 3; ++e)
+    CHECK(fb_mesh_element_section(m, e) == 0);
+  CHECK(fb_mesh_section_props(m, 0)->thickness == 0.005);
+  /* The one section covers every element: props receives it. */
   CHECK(p.young == 2.1e11 && p.poisson == 0.3 && p.density == 7850.0 && p.thickness == 0.005);
   CHECK(p.drill_factor == 0.5);
   CHECK(fb_mesh_check(m, NULL) == FB_OK);
@@ -667,7 +681,7 @@ static void bad_deck(const char *name, const char *text, int line, const char *e
   fb_mesh *sentinel = NULL;
   fb_mesh_new(&sentinel, NULL);
   fb_mesh *m = sentinel;
-  fb_shell_props p = {1, 2, 3, 4, 5};
+  fb_shell_props p = {1, 2, 3, 4, 5, 0.0};
   fb_err err;
   fb_err_clear(&err);
   const int rc = fb_mesh_read_inp(path, &m, &p, &err);
@@ -746,10 +760,24 @@ static void test_inp_bad_decks(void)
            "Poisson's ratio 0.5 is outside (-1, 0.5)");
   bad_deck("orphan_elastic.inp", NODES4 "*ELASTIC\n2e11, 0.3\n", 6,
            "*ELASTIC outside a *MATERIAL");
+#define QUAD_STEEL                                                                             \
+  NODES4 "*ELEMENT, TYPE=S4, ELSET=E\n1, 1, 2, 3, 4\n*MATERIAL, NAME=S\n*ELASTIC\n2e11, 0.3\n" \
+         "*DENSITY\n7800\n"
   bad_deck("two_sections.inp",
-           NODES4 "*MATERIAL, NAME=S\n*SHELL SECTION, MATERIAL=S\n0.1\n"
-                  "*SHELL SECTION, MATERIAL=S\n0.2\n",
-           9, "a second *SHELL SECTION (the first is on line 7)");
+           QUAD_STEEL "*SHELL SECTION, ELSET=E, MATERIAL=S\n0.1\n"
+                      "*SHELL SECTION, ELSET=E, MATERIAL=S\n0.2\n",
+           15, "element 1 is in two *SHELL SECTIONs (this one and line 13's)");
+  bad_deck("section_no_set.inp", QUAD_STEEL "*SHELL SECTION, MATERIAL=S\n0.1\n", 13,
+           "*SHELL SECTION needs ELSET=");
+  bad_deck("section_unknown_set.inp", QUAD_STEEL "*SHELL SECTION, ELSET=F, MATERIAL=S\n0.1\n",
+           13, "*SHELL SECTION names element set 'F', which is not defined");
+  bad_deck("section_no_density.inp",
+           NODES4 "*ELEMENT, TYPE=S4, ELSET=E\n1, 1, 2, 3, 4\n*MATERIAL, NAME=S\n*ELASTIC\n"
+                  "2e11, 0.3\n*SHELL SECTION, ELSET=E, MATERIAL=S\n0.1\n",
+           11, "*SHELL SECTION's material 'S' has no *DENSITY");
+  bad_deck("elset_unknown_element.inp", QUAD_STEEL "*ELSET, ELSET=F\n1, 2\n", 14,
+           "element set 'F' names element 2, which is not defined");
+#undef QUAD_STEEL
   bad_deck("bad_name.inp", NODES4 "*NSET, NSET=\"two words\"\n1\n", 6,
            "node set name '\"two words\"' is invalid");
   bad_deck("backwards.inp", NODES4 "*NSET, NSET=G, GENERATE\n4, 1\n", 7,
@@ -933,6 +961,104 @@ static void test_vtu(void)
   fb_mesh_free(&m);
 }
 
+/* Largest |a_ij - b_ij| over the largest |a_ij| of two square matrices. */
+static double mat_rel_diff(const fb_mat *a, const fb_mat *b)
+{
+  double d = 0.0, scale = 0.0;
+  const size_t n = fb_mat_nrows(a);
+  for (size_t j = 0; j < n; ++j)
+    for (size_t i = 0; i < n; ++i) {
+      const double x = fb_mat_get(a, i, j), y = fb_mat_get(b, i, j);
+      d = fmax(d, fabs(x - y));
+      scale = fmax(scale, fabs(x));
+    }
+  return d / scale;
+}
+
+/* Sections: element 1 of the strip in a 20 mm section with a lining,
+ * element 3 in an aluminium one, element 2 with the caller's
+ * properties. The element props, K and M follow them; a deck carries them
+ * (the lining smeared into the density) so that reading it back gives the
+ * same K and M, to the 17 digits written. */
+static void test_sections(void)
+{
+  fb_mesh *m = strip_mesh();
+  fb_err err;
+  const size_t e1 = 0, e3 = 2, e13[2] = {0, 2};
+  const fb_shell_props base = {2.1e11, 0.3, 7850.0, 0.0085, 2e-4, 0.0};
+  const fb_shell_props thick = {2.1e11, 0.3, 7850.0, 0.020, 0.0, 12.0};
+  const fb_shell_props alu = {7e10, 0.33, 2700.0, 0.006, 0.0, 0.0};
+  CHECK(fb_mesh_set_section(m, "FLOOR", &thick, &err) == FB_EINVAL);
+  check_msg(&err, "element set 'FLOOR' is not defined");
+  CHECK(fb_mesh_add_elset(m, "Floor", 1, &e1, &err) == FB_OK);
+  CHECK(fb_mesh_add_elset(m, "ends", 2, e13, &err) == FB_OK);
+  CHECK(fb_mesh_add_elset(m, "tip", 1, &e3, &err) == FB_OK);
+  const size_t beyond = 3;
+  CHECK(fb_mesh_add_elset(m, "bad", 1, &beyond, &err) == FB_EINVAL);
+  check_msg(&err, "element index 3 out of range");
+  const fb_shell_props negative = {2.1e11, 0.3, 7850.0, 0.01, 0.0, -1.0};
+  CHECK(fb_mesh_set_section(m, "tip", &negative, &err) == FB_EINVAL);
+  check_msg(&err, "non-structural mass must be >= 0");
+  /* "ends" then "FLOOR": element 1 ends in the later section. */
+  CHECK(fb_mesh_set_section(m, "ends", &alu, &err) == FB_OK);
+  CHECK(fb_mesh_set_section(m, "FLOOR", &thick, &err) == FB_OK);
+  CHECK(fb_mesh_nsections(m) == 2 && strcmp(fb_mesh_section_elset(m, 1), "Floor") == 0);
+  CHECK(fb_mesh_element_section(m, 0) == 1 && fb_mesh_element_section(m, 1) == -1 &&
+        fb_mesh_element_section(m, 2) == 0);
+  const fb_shell_props p0 = fb_mesh_element_props(m, 0, &base);
+  const fb_shell_props p1 = fb_mesh_element_props(m, 1, &base);
+  CHECK(p0.thickness == 0.020 && p0.nonstructural_mass == 12.0 && p0.drill_factor == 2e-4);
+  CHECK(p1.thickness == 0.0085 && p1.density == 7850.0);
+
+  /* Mass: sum of (rho t + nsm) A over the elements, by hand. */
+  fb_mat *K = NULL, *M = NULL;
+  CHECK(fb_fem_assemble(m, &base, FB_MASS_CONSISTENT, &K, &M, &err) == FB_OK);
+  double mass = 0.0, cg[3], inertia[9];
+  CHECK(fb_fem_mass_properties(m, M, &mass, cg, inertia, &err) == FB_OK);
+  const double areal[3] = {7850.0 * 0.020 + 12.0, 7850.0 * 0.0085, 2700.0 * 0.006};
+  const double area[3] = {1.0, 1.0, 0.5}; /* the triangle (2,0) (3,0.5) (2,1) */
+  const double expect = areal[0] * area[0] + areal[1] * area[1] + areal[2] * area[2];
+  CHECK_NEAR(mass, expect, 1e-12 * expect);
+
+  /* Cloned: the sections come along. */
+  fb_mesh *c = NULL;
+  CHECK(fb_mesh_clone(m, &c, &err) == FB_OK);
+  CHECK(c && fb_mesh_nsections(c) == 2 && fb_mesh_element_section(c, 2) == 0 &&
+        fb_mesh_nelsets(c) == 3);
+  fb_mesh_free(&c);
+
+  /* Written and read back: three sections (the base's as SECTION_1, since
+   * no set holds just element 2), the same K and M. */
+  char path[512];
+  in_root(path, sizeof path, "sections.inp");
+  CHECK(fb_mesh_write_inp(m, &base, path, &err) == FB_OK);
+  fb_mesh *back = NULL;
+  const int rc = fb_mesh_read_inp(path, &back, NULL, &err);
+  CHECK(rc == FB_OK);
+  if (rc)
+    fprintf(stderr, "  %s\n", err.msg);
+  char *deck = slurp(path);
+  CHECK(deck && strstr(deck, "*ELSET, ELSET=SECTION_1\n2\n") &&
+        strstr(deck, "*SHELL SECTION, ELSET=tip, MATERIAL=MAT_2") &&
+        strstr(deck, "*SHELL SECTION, ELSET=Floor, MATERIAL=MAT_3"));
+  free(deck);
+  fb_mat *K2 = NULL, *M2 = NULL;
+  const fb_shell_props unused = {1.0, 0.0, 1.0, 1.0, 2e-4, 0.0}; /* every element has one */
+  CHECK(back && fb_mesh_nsections(back) == 3 &&
+        fb_fem_assemble(back, &unused, FB_MASS_CONSISTENT, &K2, &M2, &err) == FB_OK);
+  /* 17 significant digits reproduce every double; the smeared density
+   * rho + nsm / t is one rounding away (1e-16) from the split form. */
+  CHECK(K2 && mat_rel_diff(K, K2) < 1e-15);
+  CHECK(M2 && mat_rel_diff(M, M2) < 1e-14);
+  fb_mat_free(&K);
+  fb_mat_free(&M);
+  fb_mat_free(&K2);
+  fb_mat_free(&M2);
+  fb_mesh_free(&back);
+  remove(path);
+  fb_mesh_free(&m);
+}
+
 int main(void)
 {
   snprintf(root, sizeof root, "/tmp/flexbond_mesh_XXXXXX");
@@ -951,6 +1077,7 @@ int main(void)
   test_inp_round_trip();
   test_inp_hand_deck();
   test_inp_bad_decks();
+  test_sections();
   test_vtu();
   remove_root();
   return check_report("test_mesh");

@@ -90,7 +90,7 @@ static fb_mesh *box_corner(const int *face_tri)
   return m;
 }
 
-static const fb_shell_props STEEL_8MM = {210e9, 0.3, 7850.0, 0.0085, 0.0};
+static const fb_shell_props STEEL_8MM = {210e9, 0.3, 7850.0, 0.0085, 0.0, 0.0};
 
 /* ---- Element-level tests. */
 
@@ -285,7 +285,7 @@ static void test_element_errors(void)
  * way (x <-> y) too. */
 static double bending_energy(int quad, double a, double b, double nu, int swap)
 {
-  fb_shell_props p = {1.0, nu, 1.0, 1.0, 0.0};
+  fb_shell_props p = {1.0, nu, 1.0, 1.0, 0.0, 0.0};
   const double xy[4][2] = {{-a / 2, -b / 2}, {a / 2, -b / 2}, {a / 2, b / 2}, {-a / 2, b / 2}};
   const int tris[2][3] = {{0, 1, 2}, {0, 2, 3}}, quads[1][4] = {{0, 1, 2, 3}};
   double energy = 0.0;
@@ -465,7 +465,7 @@ static void test_total_mass(void)
 static void check_plate_consistent(int tri)
 {
   const double a = 4.0, b = 2.0, t = 0.05, rho = 7800.0, c[3] = {1.0, 2.0, 3.0};
-  const fb_shell_props p = {200e9, 0.3, rho, t, 0.0};
+  const fb_shell_props p = {200e9, 0.3, rho, t, 0.0, 0.0};
   double r[9], du[3], dv[3], origin[3];
   general_rotation(r);
   column(r, 0, a, du);
@@ -505,7 +505,7 @@ static void check_plate_consistent(int tri)
 static void check_plate_lumped(int tri)
 {
   const double t = 0.05, rho = 7800.0;
-  const fb_shell_props p = {200e9, 0.3, rho, t, 0.0};
+  const fb_shell_props p = {200e9, 0.3, rho, t, 0.0, 0.0};
   const double origin[3] = {-1.0, 0.5, 2.0}, du[3] = {3.0, 1.0, 0.5}, dv[3] = {-0.4, 1.0, 0.8};
   fb_mesh *m = NULL;
   fb_err err;
@@ -701,7 +701,7 @@ static double cantilever_ratio(int nx, int ny, int tri, double drill_factor)
 {
   const double len = 10.0, h = 1.0, t = 0.1, young = 1e9, moment = 1e3;
   const double second_moment = t * h * h * h / 12.0;
-  const fb_shell_props p = {young, 0.0, 1.0, t, drill_factor};
+  const fb_shell_props p = {young, 0.0, 1.0, t, drill_factor, 0.0};
   const double o[3] = {0.0, -h / 2, 0.0}, du[3] = {len, 0.0, 0.0}, dv[3] = {0.0, h, 0.0};
   fb_mesh *m = NULL;
   fb_err err;

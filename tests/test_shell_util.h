@@ -23,7 +23,7 @@ static inline int shell_ok(int rc, const fb_err *err, const char *what)
 #define MUST(call, err) CHECK(shell_ok((call), (err), #call))
 
 /* Steel plate of the NAFEMS free-vibration benchmarks (FV12, FV16, FV52). */
-static const fb_shell_props NAFEMS_STEEL = {200e9, 0.3, 8000.0, 0.05, 0.0};
+static const fb_shell_props NAFEMS_STEEL = {200e9, 0.3, 8000.0, 0.05, 0.0, 0.0};
 
 /* Index of the node at p, added (id = index + 1) if there is none within
  * 1e-9 m: faces built one after the other share their edge nodes. */
@@ -111,6 +111,40 @@ static inline void shell_reduce(const fb_mat *K, const fb_mat *M, const size_t *
   MUST(fb_fem_submatrix(K, keep, n - nfixed, Kf, &err), &err);
   if (M)
     MUST(fb_fem_submatrix(M, keep, n - nfixed, Mf, &err), &err);
+}
+
+/* u (6 nnodes) solves K u = f with the fixed DOFs (distinct) held at 0. */
+static inline void shell_static(const fb_mat *K, const size_t *fixed, size_t nfixed,
+                                const double *f, double *u)
+{
+  fb_err err;
+  const size_t n = fb_mat_nrows(K);
+  size_t *keep = malloc(n * sizeof *keep);
+  double *r = malloc(n * sizeof *r);
+  fb_mat *Kf = NULL;
+  fb_lu *lu = NULL;
+  CHECK(keep && r);
+  for (size_t i = 0; i < n; ++i)
+    u[i] = NAN; /* fails every later comparison if the solve fails */
+  if (keep && r) {
+    shell_reduce(K, NULL, fixed, nfixed, keep, &Kf, NULL);
+    for (size_t i = 0; i < n - nfixed; ++i)
+      r[i] = f[keep[i]];
+    if (Kf)
+      MUST(fb_lu_new(Kf, &lu, &err), &err);
+    const int solved = lu && shell_ok(fb_lu_solve(lu, r, 1, &err), &err, "fb_lu_solve");
+    CHECK(solved);
+    if (solved) {
+      for (size_t i = 0; i < n; ++i)
+        u[i] = 0.0;
+      for (size_t i = 0; i < n - nfixed; ++i)
+        u[keep[i]] = r[i];
+    }
+  }
+  fb_lu_free(&lu);
+  fb_mat_free(&Kf);
+  free(keep);
+  free(r);
 }
 
 /* Lowest nmodes frequencies (Hz) of the structure with the fixed DOFs

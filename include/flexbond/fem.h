@@ -49,6 +49,10 @@ const double *fb_mesh_node_xyz(const fb_mesh *m, size_t node);
 long fb_mesh_node_id(const fb_mesh *m, size_t node);
 /* Index of the node with user id, or -1. */
 long fb_mesh_find_node_id(const fb_mesh *m, long id);
+/* Moves every node by (dx, dy, dz) m. */
+void fb_mesh_translate(fb_mesh *m, double dx, double dy, double dz);
+/* Index of the element with user id, or -1. */
+long fb_mesh_find_element_id(const fb_mesh *m, long id);
 /* Index of the node within tol (m) of (x, y, z), or -1. */
 long fb_mesh_find_node_at(const fb_mesh *m, double x, double y, double z, double tol);
 fb_elem_type fb_mesh_element_type(const fb_mesh *m, size_t e);
@@ -59,6 +63,13 @@ size_t fb_mesh_nnsets(const fb_mesh *m);
 const char *fb_mesh_nset_name(const fb_mesh *m, size_t i);
 /* Node set by name (case-insensitive, as in Abaqus): 1 and its nodes, or 0. */
 int fb_mesh_nset(const fb_mesh *m, const char *name, const size_t **nodes, size_t *n);
+/* Element sets, as node sets: adds (or extends) the set `name` with
+ * element indices; by name (case-insensitive) 1 and its elements, or 0. */
+int fb_mesh_add_elset(fb_mesh *m, const char *name, size_t n, const size_t *elements,
+                      fb_err *err);
+size_t fb_mesh_nelsets(const fb_mesh *m);
+const char *fb_mesh_elset_name(const fb_mesh *m, size_t i);
+int fb_mesh_elset(const fb_mesh *m, const char *name, const size_t **elements, size_t *n);
 
 /* Validates the mesh: every node used by an element; no degenerate element
  * (area below 1e-12 of the mesh's bounding-box diagonal squared, repeated
@@ -86,7 +97,33 @@ typedef struct fb_shell_props {
    * plates). Must be >= 0. Triangles ignore it: their membrane (OPT) has a
    * real drilling freedom. */
   double drill_factor;
+  /* Non-structural mass per area (kg/m^2, >= 0: lining, paint, equipment
+   * spread over a plate), smeared through the thickness: the mass is that
+   * of density + nonstructural_mass / thickness (translational mass per
+   * area density * thickness + nonstructural_mass, rotary inertia that
+   * times thickness^2 / 12), which an Abaqus or CalculiX deck writes as
+   * the material's density. Stiffness ignores it. */
+  double nonstructural_mass;
 } fb_shell_props;
+
+/* ---- Shell sections: per element set properties. */
+
+/* Gives the elements of the element set elset the properties *p (copied;
+ * checked as fb_shell_check_props does), replacing any section they had;
+ * the set must exist. Elements outside every section take the properties
+ * the caller of fb_fem_assemble passes; the drilling factor is always the
+ * caller's. */
+int fb_mesh_set_section(fb_mesh *m, const char *elset, const fb_shell_props *p, fb_err *err);
+/* Sections in the order they were set (a later one may have taken every
+ * element of an earlier one): their element set's name and properties. */
+size_t fb_mesh_nsections(const fb_mesh *m);
+const char *fb_mesh_section_elset(const fb_mesh *m, size_t i);
+const fb_shell_props *fb_mesh_section_props(const fb_mesh *m, size_t i);
+/* The section of element e, or -1 for none. */
+long fb_mesh_element_section(const fb_mesh *m, size_t e);
+/* The properties element e is assembled with: its section's with base's
+ * drilling factor, or *base (not NULL) when it has none. */
+fb_shell_props fb_mesh_element_props(const fb_mesh *m, size_t e, const fb_shell_props *base);
 
 typedef enum fb_mass_kind {
   FB_MASS_CONSISTENT, /* default */
@@ -101,7 +138,8 @@ int fb_shell_element(fb_elem_type type, const double *xyz, const fb_shell_props 
                      fb_mass_kind mass, double *ke, double *me, fb_err *err);
 
 /* Assembles K and M (6 nnodes square, sparse CSC, symmetric); either
- * output may be NULL (not both). An element's error is prefixed with
+ * output may be NULL (not both). Each element takes
+ * fb_mesh_element_props(m, e, p). An element's error is prefixed with
  * "element <id>: ". */
 int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass, fb_mat **K,
                     fb_mat **M, fb_err *err);
@@ -175,15 +213,22 @@ size_t fb_fem_reduce_nsolved(size_t n, size_t nmodes);
 /* ---- Mesh exchange. */
 
 /* Abaqus/CalculiX input deck: *NODE, *ELEMENT TYPE=S3 and TYPE=S4,
- * *NSET for every node set, *MATERIAL (*ELASTIC, *DENSITY) and
- * *SHELL SECTION with the thickness. Written atomically. */
+ * *NSET and *ELSET for every set, and for each group of elements with the
+ * same properties (fb_mesh_element_props with p; elements without a
+ * section are left out when p is NULL) a *MATERIAL (*ELASTIC, *DENSITY,
+ * the non-structural mass smeared into it) and a *SHELL SECTION over its
+ * element set: the section's own when it has exactly the group's
+ * elements, else EALL (every element) or a new SECTION_<k>. Written
+ * atomically. */
 int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err);
 /* The deck's text into fp (p finite, or NULL for none); coordinates to 15
  * significant digits, those below 1e-12 of the largest as 0. */
 void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p);
 /* Reads such a deck (keywords case-insensitive, comments "**", GENERATE
- * node sets, ELSET ignored); props, if not NULL, receives the material and
- * thickness when the deck has them (fields left untouched otherwise).
+ * sets; one mesh section per *SHELL SECTION, an element in at most one);
+ * props, if not NULL, receives the material and thickness of a section
+ * that covers every element, or the only material of a deck without
+ * sections (fields left untouched otherwise).
  * Errors are "path:line: message" (unknown element type, missing node,
  * malformed numbers, and an element that is degenerate or warped, as
  * fb_mesh_check finds, at its own line). */

@@ -63,6 +63,20 @@ typedef struct fb_hull_point_mass {
   double x, y; /* m, on the floor */
 } fb_hull_point_mass;
 
+/* A shell section of the finite-element hull (hull.sections): the plates
+ * of one element set, a part of the generated hull (FLOOR, ROOF, SIDES,
+ * REAR_WALL, GLACIS, BULKHEADS, BULKHEAD_<k>) or a deck's *ELSET, with
+ * their own material and thickness (hull.material's where the file leaves
+ * them out) and a non-structural mass per area smeared into them
+ * (fb_shell_props). In the file's order: a later section takes the
+ * elements it shares with an earlier one. */
+typedef struct fb_hull_section {
+  char *set;                 /* the element set's name; owned */
+  double young, poisson;     /* Pa, - */
+  double density, thickness; /* kg/m^3, m */
+  double nonstructural_mass; /* kg/m^2 */
+} fb_hull_section;
+
 /* One suspension: spring and shock absorber in parallel between the hull
  * point and the wheel (massless arm: spring travel = motion_ratio x wheel
  * travel relative to the hull), the wheel mass, the tire spring and
@@ -159,6 +173,20 @@ typedef enum fb_road_kind { FB_ROAD_BUMP = 0, FB_ROAD_ISO8608, FB_ROAD_PROFILE }
  * two are the same model. */
 typedef enum fb_hull_coordinates { FB_HULL_NODAL = 0, FB_HULL_MODAL = 1 } fb_hull_coordinates;
 
+/* How the suspension and mount attachment points meet the hull mesh
+ * (hull.mesh.coupling, docs/hull-mesh.md "Couplings"): each is a node
+ * (NONE: its node set's one node, within 1 mm); or, with a coupling, the
+ * nodes of its node set or, without one, those of the element set
+ * `surface` within `radius` of it in plan: DISTRIBUTING spreads its force
+ * over them (equilibrium with least squares nodal forces) and averages
+ * their motion with the same weights; KINEMATIC ties it to the nearest of
+ * them by a rigid lever (its rotations included). */
+typedef enum fb_coupling_kind {
+  FB_COUPLING_NONE = 0,
+  FB_COUPLING_DISTRIBUTING = 1,
+  FB_COUPLING_KINEMATIC = 2
+} fb_coupling_kind;
+
 typedef struct fb_scenario {
   char *name;
   char *path;     /* file it was loaded from (for messages), may be NULL */
@@ -184,6 +212,9 @@ typedef struct fb_scenario {
   size_t npoint_masses;
   double young, poisson;     /* Pa, - (System 2) */
   double density, thickness; /* kg/m^3, m (System 2) */
+  /* Per element set sections (hull.sections), in the file's order. */
+  fb_hull_section *section;
+  size_t nsections;
   /* Edges whose roll difference is the torsion angle: front and rear
    * edge x, left and right end y (System 2 uses the mesh's node sets). */
   double edge_front_x, edge_rear_x, edge_left_y, edge_right_y; /* m */
@@ -243,6 +274,9 @@ typedef struct fb_scenario {
   double hull_drill_factor;             /* fictitious drilling stiffness factor */
   double hull_damping_ratio;            /* of the first elastic free-free mode (B = beta K) */
   fb_hull_coordinates hull_coordinates; /* System 2's hull states */
+  fb_coupling_kind coupling;            /* hull.mesh.coupling.kind, NONE without it */
+  double coupling_radius;               /* m, in plan */
+  char *coupling_surface;               /* element set of the candidate nodes; owned */
   int hull_modes;                       /* modal: 0 every free-free mode, N: the N lowest and a
                                            static correction (fb_fem_reduce_free); nodal: 0 */
 } fb_scenario;
@@ -576,6 +610,28 @@ int fb_vehicle_modes(const fb_scenario *s, fb_system sys, int undamped, fb_mode 
 
 /* ---- System 2: the finite-element hull. */
 
+/* How one attachment point meets the hull: its vertical velocity is
+ * sum w[k] v[dof[k]] over the hull's nodal DOFs, and its force f goes to
+ * them as w[k] f (power-conserving: no stiffness of its own). A point on a
+ * node is that node's u_z with weight 1 (src/vehicle/coupling.c). */
+typedef struct fb_hull_coupling {
+  size_t n;
+  size_t *dof; /* owned */
+  double *w;   /* owned */
+} fb_hull_coupling;
+
+/* The coupling of node's u_z alone. */
+int fb_hull_coupling_node(size_t node, fb_hull_coupling *c, fb_err *err);
+/* The scenario's coupling (s->coupling, not NONE) of the point (x0, y0)
+ * to the nodes of the mesh's node set `set` or, without one, to those of
+ * the element set s->coupling_surface within s->coupling_radius in plan;
+ * *node gets the one nearest the point. FB_EMODEL naming set when there
+ * are none, or when a distributing coupling's nodes lie on a line that
+ * misses the point by more than 1 mm. */
+int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *set, double x0,
+                           double y0, fb_hull_coupling *c, size_t *node, fb_err *err);
+void fb_hull_coupling_free(fb_hull_coupling *c);
+
 /* A hull mesh with its material, its declared masses and the nodes where
  * the rest of the vehicle meets it, from the mesh's node sets:
  * SUSP_<CORNER> per corner and the mounts' names in capitals (one node
@@ -587,9 +643,12 @@ typedef struct fb_fe_hull {
   fb_mesh *mesh;
   fb_shell_props props;
   fb_mass_kind mass_kind;
-  size_t *attach_node; /* nattach, in "attach" order (fb_scenario_nattach) */
+  size_t *attach_node;               /* nattach, in "attach" order (fb_scenario_nattach): the
+                                        node of each point, or its coupling's nearest */
+  fb_hull_coupling *attach_coupling; /* nattach: how each point drives the hull */
   size_t nattach;
-  size_t *load_node; /* nload */
+  size_t *load_node;               /* nload */
+  fb_hull_coupling *load_coupling; /* nload: each load node's u_z */
   size_t nload;
   size_t *point_mass_node; /* npoint_masses, in the scenario's order */
   double *point_mass;      /* their masses, kg */
@@ -607,8 +666,10 @@ typedef struct fb_fe_hull {
  * "hull mesh: " and no key when they concern no value. */
 int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 
-/* Takes the mesh over (*mesh set to NULL) and resolves its node sets
- * against the scenario: every set present with the right number of
+/* Takes the mesh over (*mesh set to NULL), gives it the scenario's
+ * hull.sections (fb_mesh_set_section; a missing or repeated set is
+ * FB_EINVAL with the item's key "hull.sections[i].set") and resolves its
+ * node sets against the scenario: every set present with the right number of
  * nodes, each node at the scenario's (x, y) within 1 mm. FB_EMODEL naming
  * the set or node otherwise (a hull mass's missing set with the mass's
  * logical key, "hull.masses.battery"). */

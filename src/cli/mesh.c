@@ -1,6 +1,7 @@
 /* flexbond mesh: the System 2 hull mesh of a scenario (generated or
  * imported), its mass properties, and its export as an Abaqus/CalculiX
  * deck (.inp) or a VTK unstructured grid (.vtu). */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -56,11 +57,58 @@ static int print_mass(const fb_fe_hull *h, int as_built, fb_err *err)
   return FB_OK;
 }
 
+/* Area of element e: half the norm of the sum of its sides' cross
+ * products about node 0 (exact for a flat polygon). */
+static double element_area(const fb_mesh *m, size_t e)
+{
+  const size_t *nd = fb_mesh_element_nodes(m, e);
+  const size_t nn = fb_mesh_element_type(m, e) == FB_ELEM_QUAD4 ? 4 : 3;
+  const double *x0 = fb_mesh_node_xyz(m, nd[0]);
+  double n[3] = {0, 0, 0};
+  for (size_t k = 1; k + 1 < nn; ++k) {
+    const double *a = fb_mesh_node_xyz(m, nd[k]), *b = fb_mesh_node_xyz(m, nd[k + 1]);
+    const double u[3] = {a[0] - x0[0], a[1] - x0[1], a[2] - x0[2]};
+    const double v[3] = {b[0] - x0[0], b[1] - x0[1], b[2] - x0[2]};
+    n[0] += u[1] * v[2] - u[2] * v[1];
+    n[1] += u[2] * v[0] - u[0] * v[2];
+    n[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/* One line per section (sec -1: the elements without one, which take
+ * the scenario's hull.material): elements, area, plate and mass. */
+static void print_section(const fb_fe_hull *h, long sec)
+{
+  size_t n = 0;
+  double area = 0.0;
+  for (size_t e = 0; e < fb_mesh_nelements(h->mesh); ++e)
+    if (fb_mesh_element_section(h->mesh, e) == sec) {
+      ++n;
+      area += element_area(h->mesh, e);
+    }
+  if (n == 0)
+    return;
+  const fb_shell_props *p = sec >= 0 ? fb_mesh_section_props(h->mesh, (size_t)sec) : &h->props;
+  printf("  %-16s %5zu elements, %8.4g m^2, %g m, E %g Pa, nu %g, %g kg/m^3",
+         sec >= 0 ? fb_mesh_section_elset(h->mesh, (size_t)sec) : "hull.material", n, area,
+         p->thickness, p->young, p->poisson, p->density);
+  if (p->nonstructural_mass > 0.0)
+    printf(" + %g kg/m^2", p->nonstructural_mass);
+  printf(": %.6g kg\n", (p->density * p->thickness + p->nonstructural_mass) * area);
+}
+
 static int print_properties(const fb_fe_hull *h, fb_err *err)
 {
-  printf("hull mesh: %zu nodes, %zu S3 + %zu S4 elements, %g m plates\n",
-         fb_mesh_nnodes(h->mesh), fb_mesh_count(h->mesh, FB_ELEM_TRI3),
-         fb_mesh_count(h->mesh, FB_ELEM_QUAD4), h->props.thickness);
+  const fb_mesh *m = h->mesh;
+  printf("hull mesh: %zu nodes, %zu S3 + %zu S4 elements", fb_mesh_nnodes(m),
+         fb_mesh_count(m, FB_ELEM_TRI3), fb_mesh_count(m, FB_ELEM_QUAD4));
+  if (fb_mesh_nsections(m) == 0)
+    printf(", %g m plates\n", h->props.thickness);
+  else
+    printf(", sections:\n");
+  for (long sec = -1; fb_mesh_nsections(m) && sec < (long)fb_mesh_nsections(m); ++sec)
+    print_section(h, sec);
   int rc = print_mass(h, 0, err);
   return rc || !h->npoint_masses ? rc : print_mass(h, 1, err);
 }

@@ -57,9 +57,10 @@ static int triplets_alloc(const fb_mesh *m, int want_k, int want_m, triplets *t,
 }
 
 /* Computes element e and appends its entries. */
-static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *p, fb_mass_kind mass,
-                       triplets *t, fb_err *err)
+static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *base,
+                       fb_mass_kind mass, triplets *t, fb_err *err)
 {
+  const fb_shell_props props = fb_mesh_element_props(m, e, base), *p = &props;
   const fb_elem_type type = fb_mesh_element_type(m, e);
   const size_t nn = (size_t)type, n = 6 * nn;
   const size_t *nodes = fb_mesh_element_nodes(m, e);

@@ -19,12 +19,17 @@
  *   names of node sets defined earlier, or "first, last[, step]" lines with
  *   GENERATE; every node named, generated ones included, must exist. A
  *   repeated *NSET of the same name (any case) extends the set.
+ * - *ELSET, ELSET=name [, GENERATE] [, INTERNAL] [, UNSORTED]: element
+ *   ids and names of element sets, as *NSET; ELSET= on *ELEMENT adds the
+ *   block's elements to that set.
  * - *MATERIAL, NAME=m with *ELASTIC (isotropic: "E, nu") and *DENSITY
  *   ("rho"), which apply to the most recent *MATERIAL.
- * - *SHELL SECTION, MATERIAL=m: "thickness" (at most one section: a mesh
- *   has one thickness and material). The props come from its material or,
- *   with no section, from the deck's only material. Values are taken as SI.
- * - *ELSET, *HEADING and every other keyword are skipped with their data
+ * - *SHELL SECTION, ELSET=s, MATERIAL=m: "thickness", a section of the
+ *   mesh (fb_mesh_set_section) once the deck is read; an element in two
+ *   sections is an error at the second. props receives the only section's
+ *   values when one section covers every element, or the only material's
+ *   when the deck has no section. Values are taken as SI.
+ * - *HEADING and every other keyword are skipped with their data
  *   lines, except those that generate or move mesh data (*INCLUDE, *NGEN,
  *   *NFILL, *NCOPY, *NMAP, *ELGEN, *ELCOPY), which are errors rather than
  *   silently lost geometry. Unknown parameters of *NODE, *ELEMENT and
@@ -78,12 +83,20 @@ typedef struct inp_item {
   size_t line;
 } inp_item;
 
-/* One *NSET (or *NODE, NSET=) block: items [first, first + count). */
-typedef struct inp_nset_block {
+/* One *NSET or *ELSET block (or *NODE, NSET=; *ELEMENT, ELSET=): items
+ * [first, first + count). */
+typedef struct inp_set_block {
   const char *name;
+  int elements; /* 1: an element set, 0: a node set */
   size_t first;
   size_t count;
-} inp_nset_block;
+} inp_set_block;
+
+typedef struct inp_section {
+  const char *elset, *material;
+  double thickness;
+  size_t line;
+} inp_section;
 
 typedef struct inp_material {
   const char *name;
@@ -109,14 +122,12 @@ typedef struct inp_reader {
   size_t nelems, elems_cap;
   inp_item *items;
   size_t nitems, items_cap;
-  inp_nset_block *blocks;
+  inp_set_block *blocks;
   size_t nblocks, blocks_cap;
   inp_material *materials;
   size_t nmaterials, materials_cap;
-  int has_section;
-  const char *section_material;
-  size_t section_line;
-  double thickness;
+  inp_section *sections;
+  size_t nsections, sections_cap;
 } inp_reader;
 
 /* Records FB_EPARSE as "path:line: message". */
@@ -393,29 +404,35 @@ static int add_item(inp_reader *r, inp_item_kind kind, long a, long b, long step
   return FB_OK;
 }
 
-static int begin_block(inp_reader *r, const char *name)
+static const char *set_kind(int elements)
+{
+  return elements ? "element" : "node";
+}
+
+static int begin_block(inp_reader *r, const char *name, int elements)
 {
   if (!fb_mesh_name_ok(name))
     return inp_error(r, r->lineno,
-                     "node set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
+                     "%s set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
                      " starting with a letter or _)",
-                     name, FB_MESH_NAME_MAX);
+                     set_kind(elements), name, FB_MESH_NAME_MAX);
   if (fb_grow((void **)&r->blocks, &r->blocks_cap, r->nblocks, sizeof *r->blocks))
     return inp_nomem(r);
-  r->blocks[r->nblocks++] = (inp_nset_block){name, r->nitems, 0};
+  r->blocks[r->nblocks++] = (inp_set_block){name, elements, r->nitems, 0};
   return FB_OK;
 }
 
 /* "first, last[, step]" of a GENERATE line. */
-static int read_generate_line(inp_reader *r)
+static int read_generate_line(inp_reader *r, int elements)
 {
   long v[3] = {0, 0, 1};
   if (r->nfields < 2 || r->nfields > 3)
     return inp_error(r, r->lineno, "GENERATE line needs 'first, last[, step]', not %zu fields",
                      r->nfields);
-  static const char *const what[3] = {"first node id", "last node id", "step"};
+  const char *const what[2][3] = {{"first node id", "last node id", "step"},
+                                  {"first element id", "last element id", "step"}};
   for (size_t k = 0; k < r->nfields; ++k) {
-    const int rc = parse_id(r, r->fields[k], what[k], &v[k]);
+    const int rc = parse_id(r, r->fields[k], what[elements][k], &v[k]);
     if (rc)
       return rc;
   }
@@ -424,8 +441,8 @@ static int read_generate_line(inp_reader *r)
   return add_item(r, ITEM_RANGE, v[0], v[1], v[2], NULL);
 }
 
-/* Node ids and set names of a plain *NSET line. */
-static int read_nset_line(inp_reader *r)
+/* Ids and set names of a plain *NSET or *ELSET line. */
+static int read_set_line(inp_reader *r, int elements)
 {
   int rc = FB_OK;
   for (size_t k = 0; k < r->nfields && !rc; ++k) {
@@ -433,21 +450,23 @@ static int read_nset_line(inp_reader *r)
     long id = 0;
     if (fb_mesh_name_ok(f))
       rc = add_item(r, ITEM_SET, 0, 0, 0, f);
-    else if (!(rc = parse_id(r, f, "node id", &id)))
+    else if (!(rc = parse_id(r, f, elements ? "element id" : "node id", &id)))
       rc = add_item(r, ITEM_ID, id, 0, 0, NULL);
   }
   return rc;
 }
 
-static int read_nset(inp_reader *r, const inp_keyword *kw)
+/* *NSET (elements 0) or *ELSET (elements 1). */
+static int read_set(inp_reader *r, const inp_keyword *kw, int elements)
 {
-  static const char *const allowed[] = {"NSET", "GENERATE", "INTERNAL", "UNSORTED", NULL};
+  const char *const key = elements ? "ELSET" : "NSET";
+  const char *const allowed[] = {key, "GENERATE", "INTERNAL", "UNSORTED", NULL};
   const char *name = NULL;
   int rc = only_params(r, kw, allowed);
   if (!rc)
-    rc = need_param(r, kw, "NSET", &name);
+    rc = need_param(r, kw, key, &name);
   if (!rc)
-    rc = begin_block(r, name);
+    rc = begin_block(r, name, elements);
   const int generate = param(kw, "GENERATE") != NULL;
   int got = 1, continued = 0;
   while (!rc && got) {
@@ -455,7 +474,7 @@ static int read_nset(inp_reader *r, const inp_keyword *kw)
     if (!rc && got)
       rc = line_fields(r, &continued);
     if (!rc && got)
-      rc = generate ? read_generate_line(r) : read_nset_line(r);
+      rc = generate ? read_generate_line(r, elements) : read_set_line(r, elements);
   }
   return rc;
 }
@@ -495,7 +514,7 @@ static int read_nodes(inp_reader *r, const inp_keyword *kw)
   if (!rc && nset)
     rc = need_param(r, kw, "NSET", &nset);
   if (!rc && nset)
-    rc = begin_block(r, nset);
+    rc = begin_block(r, nset, 0);
   const long first = (long)fb_mesh_nnodes(r->mesh);
   int got = 1;
   while (!rc && got) {
@@ -569,12 +588,20 @@ static int read_elements(inp_reader *r, const inp_keyword *kw)
     rc = need_param(r, kw, "TYPE", &type_name);
   if (!rc)
     rc = element_type(r, type_name, &type);
+  const char *elset = param(kw, "ELSET");
+  if (!rc && elset)
+    rc = need_param(r, kw, "ELSET", &elset);
+  if (!rc && elset)
+    rc = begin_block(r, elset, 1);
+  const long first = (long)r->nelems;
   int got = 1;
   while (!rc && got) {
     rc = next_data_line(r, &got);
     if (!rc && got)
       rc = read_element_line(r, type);
   }
+  if (!rc && elset)
+    rc = add_item(r, ITEM_INDICES, first, (long)r->nelems, 0, NULL);
   return rc;
 }
 
@@ -671,29 +698,30 @@ static int read_density(inp_reader *r)
 
 static int read_section(inp_reader *r, const inp_keyword *kw)
 {
-  if (r->has_section)
-    return inp_error(r, r->lineno,
-                     "a second *SHELL SECTION (the first is on line %zu): a mesh has one"
-                     " thickness and material",
-                     r->section_line);
   if (param(kw, "COMPOSITE"))
     return inp_error(r, r->lineno, "composite shell sections are not supported");
-  r->section_line = r->lineno;
-  int rc = need_param(r, kw, "MATERIAL", &r->section_material);
+  inp_section sec = {NULL, NULL, 0.0, r->lineno};
+  int rc = need_param(r, kw, "ELSET", &sec.elset);
+  if (!rc)
+    rc = need_param(r, kw, "MATERIAL", &sec.material);
   int got = 0, continued = 0;
   if (!rc)
     rc = next_data_line(r, &got);
   if (!rc && !got)
-    return inp_error(r, r->section_line, "*SHELL SECTION has no data line (thickness)");
+    return inp_error(r, sec.line, "*SHELL SECTION has no data line (thickness)");
   if (!rc)
     rc = line_fields(r, &continued);
   if (!rc && r->nfields == 0)
     return inp_error(r, r->lineno, "*SHELL SECTION data line has no thickness");
   if (!rc)
-    rc = parse_real(r, r->fields[0], "shell thickness", &r->thickness);
-  if (!rc && !(r->thickness > 0.0))
-    return inp_error(r, r->lineno, "shell thickness %g is not positive", r->thickness);
-  r->has_section = !rc;
+    rc = parse_real(r, r->fields[0], "shell thickness", &sec.thickness);
+  if (!rc && !(sec.thickness > 0.0))
+    return inp_error(r, r->lineno, "shell thickness %g is not positive", sec.thickness);
+  if (!rc &&
+      fb_grow((void **)&r->sections, &r->sections_cap, r->nsections, sizeof *r->sections))
+    rc = inp_nomem(r);
+  if (!rc)
+    r->sections[r->nsections++] = sec;
   return rc ? rc : skip_data(r);
 }
 
@@ -720,7 +748,9 @@ static int read_keyword(inp_reader *r)
   if (same_word(kw.name, "ELEMENT"))
     return read_elements(r, &kw);
   if (same_word(kw.name, "NSET"))
-    return read_nset(r, &kw);
+    return read_set(r, &kw, 0);
+  if (same_word(kw.name, "ELSET"))
+    return read_set(r, &kw, 1);
   if (same_word(kw.name, "MATERIAL"))
     return read_material(r, &kw);
   if (same_word(kw.name, "ELASTIC"))
@@ -797,37 +827,40 @@ static int push_index(const inp_reader *r, index_list *l, size_t i)
   return FB_OK;
 }
 
-static int push_id(const inp_reader *r, const char *set, const inp_item *it, long id,
+static int push_id(const inp_reader *r, const inp_set_block *blk, const inp_item *it, long id,
                    index_list *l)
 {
-  const long i = fb_mesh_find_node_id(r->mesh, id);
+  const long i =
+      blk->elements ? fb_mesh_find_element_id(r->mesh, id) : fb_mesh_find_node_id(r->mesh, id);
   if (i < 0)
-    return inp_error(r, it->line, "node set '%s' names node %ld, which is not defined", set,
-                     id);
+    return inp_error(r, it->line, "%s set '%s' names %s %ld, which is not defined",
+                     set_kind(blk->elements), blk->name, set_kind(blk->elements), id);
   return push_index(r, l, (size_t)i);
 }
 
-static int expand_item(const inp_reader *r, const char *set, const inp_item *it, index_list *l)
+static int expand_item(const inp_reader *r, const inp_set_block *blk, const inp_item *it,
+                       index_list *l)
 {
   int rc = FB_OK;
-  const size_t *nodes = NULL;
+  const size_t *items = NULL;
   size_t n = 0;
   switch (it->kind) {
-  case ITEM_ID: return push_id(r, set, it, it->a, l);
+  case ITEM_ID: return push_id(r, blk, it, it->a, l);
   case ITEM_RANGE:
     /* Stepping this way cannot overflow past it->b. */
     for (long id = it->a; !rc; id += it->step) {
-      rc = push_id(r, set, it, id, l);
+      rc = push_id(r, blk, it, id, l);
       if (it->b - id < it->step)
         break;
     }
     return rc;
   case ITEM_SET:
-    if (!fb_mesh_nset(r->mesh, it->ref, &nodes, &n))
-      return inp_error(r, it->line, "node set '%s' names node set '%s', which is not defined",
-                       set, it->ref);
+    if (!(blk->elements ? fb_mesh_elset(r->mesh, it->ref, &items, &n)
+                        : fb_mesh_nset(r->mesh, it->ref, &items, &n)))
+      return inp_error(r, it->line, "%s set '%s' names %s set '%s', which is not defined",
+                       set_kind(blk->elements), blk->name, set_kind(blk->elements), it->ref);
     for (size_t k = 0; k < n && !rc; ++k)
-      rc = push_index(r, l, nodes[k]);
+      rc = push_index(r, l, items[k]);
     return rc;
   case ITEM_INDICES:
     for (long k = it->a; k < it->b && !rc; ++k)
@@ -837,39 +870,101 @@ static int expand_item(const inp_reader *r, const char *set, const inp_item *it,
   return rc;
 }
 
-static int resolve_nsets(const inp_reader *r)
+/* Node and element sets, in the deck's order (a set may name sets
+ * defined before it). */
+static int resolve_sets(const inp_reader *r)
 {
   index_list l = {NULL, 0, 0};
   fb_err sub;
   fb_err_clear(&sub);
   int rc = FB_OK;
   for (size_t b = 0; b < r->nblocks && !rc; ++b) {
-    const inp_nset_block *blk = &r->blocks[b];
+    const inp_set_block *blk = &r->blocks[b];
     l.n = 0;
     for (size_t k = 0; k < blk->count && !rc; ++k)
-      rc = expand_item(r, blk->name, &r->items[blk->first + k], &l);
-    if (!rc && fb_mesh_add_nset(r->mesh, blk->name, l.n, l.v, &sub))
+      rc = expand_item(r, blk, &r->items[blk->first + k], &l);
+    if (!rc && (blk->elements ? fb_mesh_add_elset(r->mesh, blk->name, l.n, l.v, &sub)
+                              : fb_mesh_add_nset(r->mesh, blk->name, l.n, l.v, &sub)))
       rc = inp_mesh_error(r, blk->count ? r->items[blk->first].line : 0, &sub);
   }
   free(l.v);
   return rc;
 }
 
-/* The material whose values go into props, or NULL. */
-static int chosen_material(const inp_reader *r, const inp_material **out)
+/* The properties of section sec: its material's, with a default of 0
+ * (fb_mesh_set_section refuses it) for what the material leaves out. */
+static int section_props(const inp_reader *r, const inp_section *sec, fb_shell_props *p)
 {
-  *out = NULL;
-  if (r->has_section) {
-    *out = find_material(r, r->section_material);
-    if (!*out)
-      return inp_error(r, r->section_line,
-                       "*SHELL SECTION names material '%s', which is not"
-                       " defined",
-                       r->section_material);
-  } else if (r->nmaterials == 1) {
-    *out = &r->materials[0];
+  const inp_material *mat = find_material(r, sec->material);
+  if (!mat)
+    return inp_error(r, sec->line, "*SHELL SECTION names material '%s', which is not defined",
+                     sec->material);
+  if (!mat->has_elastic || !mat->has_density)
+    return inp_error(r, sec->line, "*SHELL SECTION's material '%s' has no %s", sec->material,
+                     mat->has_elastic ? "*DENSITY" : "*ELASTIC");
+  *p = (fb_shell_props){mat->young, mat->poisson, mat->density, sec->thickness, 0.0, 0.0};
+  return FB_OK;
+}
+
+/* An element already in a section: the error names both lines. */
+static int check_overlap(const inp_reader *r, const inp_section *sec)
+{
+  const size_t *elems = NULL;
+  size_t n = 0;
+  if (!fb_mesh_elset(r->mesh, sec->elset, &elems, &n))
+    return inp_error(r, sec->line,
+                     "*SHELL SECTION names element set '%s', which is not defined", sec->elset);
+  for (size_t k = 0; k < n; ++k) {
+    const long prev = fb_mesh_element_section(r->mesh, elems[k]);
+    if (prev >= 0)
+      return inp_error(r, sec->line,
+                       "element %ld is in two *SHELL SECTIONs (this one and line %zu's)",
+                       fb_mesh_element_id(r->mesh, elems[k]), r->sections[prev].line);
   }
   return FB_OK;
+}
+
+/* The sections, in the deck's order: mesh section i is r->sections[i]. */
+static int resolve_sections(const inp_reader *r)
+{
+  fb_err sub;
+  fb_err_clear(&sub);
+  int rc = FB_OK;
+  for (size_t i = 0; i < r->nsections && !rc; ++i) {
+    const inp_section *sec = &r->sections[i];
+    fb_shell_props p;
+    rc = section_props(r, sec, &p);
+    if (!rc)
+      rc = check_overlap(r, sec);
+    if (!rc && fb_mesh_set_section(r->mesh, sec->elset, &p, &sub))
+      rc = inp_mesh_error(r, sec->line, &sub);
+  }
+  return rc;
+}
+
+/* props from the only section when it covers every element, else from
+ * the only material when there is no section. */
+static void deck_props(const inp_reader *r, fb_shell_props *props)
+{
+  const fb_mesh *m = r->mesh;
+  if (r->nsections == 1) {
+    for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+      if (fb_mesh_element_section(m, e) != 0)
+        return;
+    const fb_shell_props *p = fb_mesh_section_props(m, 0);
+    props->young = p->young;
+    props->poisson = p->poisson;
+    props->density = p->density;
+    props->thickness = p->thickness;
+  } else if (r->nsections == 0 && r->nmaterials == 1) {
+    const inp_material *mat = &r->materials[0];
+    if (mat->has_elastic) {
+      props->young = mat->young;
+      props->poisson = mat->poisson;
+    }
+    if (mat->has_density)
+      props->density = mat->density;
+  }
 }
 
 /* An element that no shell can integrate (a repeated node, no area, a
@@ -892,25 +987,16 @@ static int finish(const inp_reader *r, fb_shell_props *props)
     return inp_error(r, r->lineno, "the deck defines no nodes (*NODE)");
   if (r->nelems == 0)
     return inp_error(r, r->lineno, "the deck defines no elements (*ELEMENT)");
-  const inp_material *mat = NULL;
   int rc = resolve_elements(r);
   if (!rc)
     rc = check_element_shapes(r);
   if (!rc)
-    rc = resolve_nsets(r);
+    rc = resolve_sets(r);
   if (!rc)
-    rc = chosen_material(r, &mat);
-  if (rc || !props)
-    return rc;
-  if (r->has_section)
-    props->thickness = r->thickness;
-  if (mat && mat->has_elastic) {
-    props->young = mat->young;
-    props->poisson = mat->poisson;
-  }
-  if (mat && mat->has_density)
-    props->density = mat->density;
-  return FB_OK;
+    rc = resolve_sections(r);
+  if (!rc && props)
+    deck_props(r, props);
+  return rc;
 }
 
 static void reader_free(inp_reader *r)
@@ -921,6 +1007,7 @@ static void reader_free(inp_reader *r)
   free(r->items);
   free(r->blocks);
   free(r->materials);
+  free(r->sections);
 }
 
 /* The parser shared by both readers: takes the NUL-terminated buffer text
@@ -1018,7 +1105,7 @@ static void write_elements(FILE *fp, const fb_mesh *m)
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
     const fb_elem_type type = fb_mesh_element_type(m, e);
     if (e == 0 || type != fb_mesh_element_type(m, e - 1))
-      fprintf(fp, "*ELEMENT, TYPE=%s, ELSET=EALL\n", fb_mesh_type_name(type));
+      fprintf(fp, "*ELEMENT, TYPE=%s\n", fb_mesh_type_name(type));
     const size_t *nd = fb_mesh_element_nodes(m, e);
     fprintf(fp, "%ld", fb_mesh_element_id(m, e));
     for (size_t k = 0; k < fb_mesh_type_nodes(type); ++k)
@@ -1027,8 +1114,17 @@ static void write_elements(FILE *fp, const fb_mesh *m)
   }
 }
 
-/* Sixteen ids per data line: the Abaqus limit for *NSET lines. */
-static void write_nsets(FILE *fp, const fb_mesh *m)
+/* The members of a set as ids, sixteen per data line (the Abaqus limit
+ * for *NSET and *ELSET lines). */
+static void write_ids(FILE *fp, const size_t *items, size_t n, const fb_mesh *m, int elements)
+{
+  for (size_t k = 0; k < n; ++k)
+    fprintf(fp, "%ld%s",
+            elements ? fb_mesh_element_id(m, items[k]) : fb_mesh_node_id(m, items[k]),
+            k + 1 == n || k % 16 == 15 ? "\n" : ", ");
+}
+
+static void write_sets(FILE *fp, const fb_mesh *m)
 {
   for (size_t s = 0; s < fb_mesh_nnsets(m); ++s) {
     const char *name = fb_mesh_nset_name(m, s);
@@ -1036,18 +1132,102 @@ static void write_nsets(FILE *fp, const fb_mesh *m)
     size_t n = 0;
     fb_mesh_nset(m, name, &nodes, &n);
     fprintf(fp, "*NSET, NSET=%s\n", name);
-    for (size_t k = 0; k < n; ++k)
-      fprintf(fp, "%ld%s", fb_mesh_node_id(m, nodes[k]),
-              k + 1 == n || k % 16 == 15 ? "\n" : ", ");
+    write_ids(fp, nodes, n, m, 0);
+  }
+  for (size_t s = 0; s < fb_mesh_nelsets(m); ++s) {
+    const char *name = fb_mesh_elset_name(m, s);
+    const size_t *elems = NULL;
+    size_t n = 0;
+    fb_mesh_elset(m, name, &elems, &n);
+    fprintf(fp, "*ELSET, ELSET=%s\n", name);
+    write_ids(fp, elems, n, m, 1);
   }
 }
 
-static void write_props(FILE *fp, const fb_shell_props *p)
+/* The number of elements whose section is sec (-1: none). */
+static size_t section_count(const fb_mesh *m, long sec)
 {
+  size_t n = 0;
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+    n += fb_mesh_element_section(m, e) == sec;
+  return n;
+}
+
+/* The ids of the elements whose section is sec, sixteen per line. */
+static void write_section_ids(FILE *fp, const fb_mesh *m, long sec, size_t n)
+{
+  size_t k = 0;
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+    if (fb_mesh_element_section(m, e) == sec) {
+      fprintf(fp, "%ld%s", fb_mesh_element_id(m, e), k + 1 == n || k % 16 == 15 ? "\n" : ", ");
+      ++k;
+    }
+}
+
+/* 1 if the element set name holds exactly the n elements of section sec. */
+static int set_is(const fb_mesh *m, const char *name, long sec, size_t n)
+{
+  const size_t *elems = NULL;
+  size_t count = 0;
+  if (!name || !fb_mesh_elset(m, name, &elems, &count) || count != n)
+    return 0;
+  for (size_t k = 0; k < n; ++k)
+    if (fb_mesh_element_section(m, elems[k]) != sec)
+      return 0;
+  return 1;
+}
+
+/* A name for the set of a written section: the section's own set or
+ * another that holds just its elements, EALL for every element, or the
+ * first SECTION_<k> that names no set. */
+static void section_set_name(const fb_mesh *m, long sec, size_t n, char *name, size_t size)
+{
+  const char *own = sec >= 0 ? fb_mesh_section_elset(m, (size_t)sec) : NULL;
+  for (size_t i = 0; !set_is(m, own, sec, n) && i < fb_mesh_nelsets(m); ++i)
+    own = fb_mesh_elset_name(m, i);
+  if (set_is(m, own, sec, n)) {
+    snprintf(name, size, "%s", own);
+    return;
+  }
+  if (n == fb_mesh_nelements(m) && !fb_mesh_elset(m, "EALL", NULL, NULL)) {
+    snprintf(name, size, "EALL");
+    return;
+  }
+  for (long k = sec + 2;; ++k) {
+    snprintf(name, size, "SECTION_%ld", k);
+    if (!fb_mesh_elset(m, name, NULL, NULL))
+      return;
+  }
+}
+
+/* Material MAT_<k> and the section of the n elements of section sec,
+ * whose properties are p (the non-structural mass smeared into the
+ * density, fem.h). */
+static void write_section(FILE *fp, const fb_mesh *m, long sec, size_t n,
+                          const fb_shell_props *p)
+{
+  char name[FB_MESH_NAME_MAX + 1];
+  section_set_name(m, sec, n, name, sizeof name);
+  if (!set_is(m, name, sec, n)) {
+    fprintf(fp, "*ELSET, ELSET=%s\n", name);
+    write_section_ids(fp, m, sec, n);
+  }
+  const long k = sec + 2;
   fprintf(fp,
-          "*MATERIAL, NAME=SHELL_MATERIAL\n*ELASTIC\n%.17g, %.17g\n*DENSITY\n%.17g\n"
-          "*SHELL SECTION, ELSET=EALL, MATERIAL=SHELL_MATERIAL\n%.17g\n",
-          p->young, p->poisson, p->density, p->thickness);
+          "*MATERIAL, NAME=MAT_%ld\n*ELASTIC\n%.17g, %.17g\n*DENSITY\n%.17g\n"
+          "*SHELL SECTION, ELSET=%s, MATERIAL=MAT_%ld\n%.17g\n",
+          k, p->young, p->poisson, p->density + p->nonstructural_mass / p->thickness, name, k,
+          p->thickness);
+}
+
+/* One section per group of elements with the same section (-1: p's). */
+static void write_sections(FILE *fp, const fb_mesh *m, const fb_shell_props *p)
+{
+  for (long sec = p ? -1 : 0; sec < (long)fb_mesh_nsections(m); ++sec) {
+    const size_t n = section_count(m, sec);
+    if (n > 0)
+      write_section(fp, m, sec, n, sec >= 0 ? fb_mesh_section_props(m, (size_t)sec) : p);
+  }
 }
 
 void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p)
@@ -1058,18 +1238,23 @@ void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p)
           fb_mesh_nnodes(m), fb_mesh_nelements(m), fb_mesh_nnsets(m));
   write_nodes(fp, m);
   write_elements(fp, m);
-  write_nsets(fp, m);
-  if (p)
-    write_props(fp, p);
+  write_sets(fp, m);
+  write_sections(fp, m, p);
 }
 
-/* p may be NULL: the deck then has no material and section. */
+static int finite_props(const fb_shell_props *p)
+{
+  return isfinite(p->young) && isfinite(p->poisson) && isfinite(p->density) &&
+         isfinite(p->thickness) && p->thickness > 0.0 && isfinite(p->nonstructural_mass);
+}
+
+/* p may be NULL: the deck then has sections only for the elements with
+ * one. */
 int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err)
 {
   if (!m || !path)
     return fb_err_set(err, FB_EINVAL, "fb_mesh_write_inp: mesh or path is NULL");
-  if (p && !(isfinite(p->young) && isfinite(p->poisson) && isfinite(p->density) &&
-             isfinite(p->thickness)))
+  if (p && !finite_props(p))
     return fb_err_set(err, FB_EINVAL, "%s: shell properties are not finite", path);
   fb_out *out = NULL;
   const int rc = fb_out_open(path, &out, err);

@@ -1,11 +1,14 @@
-/* Shell meshes (see flexbond/fem.h): nodes, elements and node sets.
+/* Shell meshes (see flexbond/fem.h): nodes, elements, node and element
+ * sets, and shell sections.
  *
  * Nodes and elements live in parallel arrays in insertion order. User ids
  * are found through open-addressing hash tables (linear probing, load
  * factor at most 1/2; Knuth, TAOCP vol. 3, section 6.4, algorithm L) whose
  * slots hold index + 1 into the id arrays, so a lookup costs O(1) on
- * average for meshes of 1e5 nodes and more. Node sets are kept free of
- * duplicates, in the order their nodes were first added. */
+ * average for meshes of 1e5 nodes and more. Node and element sets are
+ * kept free of duplicates, in the order their members were first added.
+ * A section is a copy of its element set's name and properties; each
+ * element records the index of the last section given to it, or -1. */
 #include <ctype.h>
 #include <math.h>
 #include <stdint.h>
@@ -15,6 +18,7 @@
 
 #include "core/util.h"
 #include "fem/mesh_internal.h"
+#include "fem/shell_internal.h"
 
 /* Hash table from user id to index; slot value 0 is empty, k is index
  * k - 1 of the id array the table was built over. */
@@ -23,12 +27,25 @@ typedef struct id_map {
   size_t cap; /* power of two, or 0 */
 } id_map;
 
-typedef struct mesh_nset {
+/* A named set of node or element indices. */
+typedef struct mesh_set {
   char *name;
-  size_t *nodes;
+  size_t *items;
   size_t n;
   size_t cap;
-} mesh_nset;
+} mesh_set;
+
+/* The sets of one kind. */
+typedef struct set_list {
+  mesh_set *sets;
+  size_t n;
+  size_t cap;
+} set_list;
+
+typedef struct mesh_section {
+  char *elset;
+  fb_shell_props props;
+} mesh_section;
 
 struct fb_mesh {
   double *xyz; /* 3 per node */
@@ -45,10 +62,13 @@ struct fb_mesh {
   size_t ntri; /* elements of each type */
   size_t nquad;
   id_map elem_map;
+  long *elem_section; /* per element (NULL until the first section) */
 
-  mesh_nset *nsets;
-  size_t nnsets;
-  size_t nset_cap;
+  set_list nsets;
+  set_list elsets;
+  mesh_section *sections;
+  size_t nsections;
+  size_t section_cap;
 };
 
 const char *fb_mesh_type_name(fb_elem_type type)
@@ -162,6 +182,15 @@ int fb_mesh_new(fb_mesh **out, fb_err *err)
   return FB_OK;
 }
 
+static void set_list_free(set_list *l)
+{
+  for (size_t i = 0; i < l->n; ++i) {
+    free(l->sets[i].name);
+    free(l->sets[i].items);
+  }
+  free(l->sets);
+}
+
 void fb_mesh_free(fb_mesh **m)
 {
   if (!m || !*m)
@@ -174,11 +203,12 @@ void fb_mesh_free(fb_mesh **m)
   free(mesh->elem_ids);
   free(mesh->elem_nodes);
   free(mesh->elem_map.slots);
-  for (size_t i = 0; i < mesh->nnsets; ++i) {
-    free(mesh->nsets[i].name);
-    free(mesh->nsets[i].nodes);
-  }
-  free(mesh->nsets);
+  free(mesh->elem_section);
+  set_list_free(&mesh->nsets);
+  set_list_free(&mesh->elsets);
+  for (size_t i = 0; i < mesh->nsections; ++i)
+    free(mesh->sections[i].elset);
+  free(mesh->sections);
   free(mesh);
   *m = NULL;
 }
@@ -217,25 +247,46 @@ static int copy_elements(const fb_mesh *m, fb_mesh *c)
   if (!rc)
     rc = copy_bytes((void **)&c->elem_nodes, m->elem_nodes,
                     4 * m->nelems * sizeof *m->elem_nodes);
+  if (!rc && m->elem_section)
+    rc = copy_bytes((void **)&c->elem_section, m->elem_section,
+                    m->nelems * sizeof *m->elem_section);
   return rc ? rc : id_map_copy(&m->elem_map, &c->elem_map);
 }
 
-static int copy_nsets(const fb_mesh *m, fb_mesh *c)
+static int copy_sets(const set_list *l, set_list *c)
 {
-  if (m->nnsets == 0)
+  if (l->n == 0)
     return FB_OK;
-  c->nsets = calloc(m->nnsets, sizeof *c->nsets);
-  if (!c->nsets)
+  c->sets = calloc(l->n, sizeof *c->sets);
+  if (!c->sets)
     return FB_ENOMEM;
-  c->nset_cap = m->nnsets;
-  for (size_t i = 0; i < m->nnsets; ++i) {
-    const mesh_nset *s = &m->nsets[i];
-    mesh_nset *d = &c->nsets[i];
-    ++c->nnsets; /* counted first so that a failure below frees it */
+  c->cap = l->n;
+  for (size_t i = 0; i < l->n; ++i) {
+    const mesh_set *s = &l->sets[i];
+    mesh_set *d = &c->sets[i];
+    ++c->n; /* counted first so that a failure below frees it */
     d->name = fb_strdup(s->name);
-    if (!d->name || copy_bytes((void **)&d->nodes, s->nodes, s->n * sizeof *s->nodes) != FB_OK)
+    if (!d->name || copy_bytes((void **)&d->items, s->items, s->n * sizeof *s->items) != FB_OK)
       return FB_ENOMEM;
     d->n = d->cap = s->n;
+  }
+  return FB_OK;
+}
+
+static int copy_sections(const fb_mesh *m, fb_mesh *c)
+{
+  if (m->nsections == 0)
+    return FB_OK;
+  c->sections = calloc(m->nsections, sizeof *c->sections);
+  if (!c->sections)
+    return FB_ENOMEM;
+  c->section_cap = m->nsections;
+  for (size_t i = 0; i < m->nsections; ++i) {
+    ++c->nsections; /* counted first so that a failure below frees it */
+    c->sections[i].props = m->sections[i].props;
+    c->sections[i].elset = fb_strdup(m->sections[i].elset);
+    if (!c->sections[i].elset)
+      return FB_ENOMEM;
   }
   return FB_OK;
 }
@@ -252,7 +303,11 @@ int fb_mesh_clone(const fb_mesh *m, fb_mesh **out, fb_err *err)
   if (!rc)
     rc = copy_elements(m, c);
   if (!rc)
-    rc = copy_nsets(m, c);
+    rc = copy_sets(&m->nsets, &c->nsets);
+  if (!rc)
+    rc = copy_sets(&m->elsets, &c->elsets);
+  if (!rc)
+    rc = copy_sections(m, c);
   if (rc) {
     fb_mesh_free(&c);
     return fb_err_set(err, FB_ENOMEM, "out of memory copying a mesh");
@@ -321,6 +376,12 @@ static int grow_elements(fb_mesh *m)
     m->elem_nodes = nodes;
   if (!types || !nodes)
     return FB_ENOMEM;
+  if (m->elem_section) {
+    long *section = realloc(m->elem_section, cap * sizeof *section);
+    if (!section)
+      return FB_ENOMEM;
+    m->elem_section = section;
+  }
   m->elem_cap = cap;
   return FB_OK;
 }
@@ -365,6 +426,8 @@ int fb_mesh_add_element(fb_mesh *m, long id, fb_elem_type type, const size_t *no
   for (size_t k = 0; k < 4; ++k)
     m->elem_nodes[4 * e + k] = k < nn ? nodes[k] : 0;
   id_map_put(&m->elem_map, m->elem_ids, e);
+  if (m->elem_section)
+    m->elem_section[e] = -1;
   ++m->nelems;
   if (type == FB_ELEM_TRI3)
     ++m->ntri;
@@ -373,49 +436,50 @@ int fb_mesh_add_element(fb_mesh *m, long id, fb_elem_type type, const size_t *no
   return FB_OK;
 }
 
-/* Index of the node set called name (case-insensitive), or -1. */
-static long find_nset(const fb_mesh *m, const char *name)
+/* Index of the set called name (case-insensitive), or -1. */
+static long find_set(const set_list *l, const char *name)
 {
-  for (size_t i = 0; i < m->nnsets; ++i)
-    if (strcasecmp(m->nsets[i].name, name) == 0)
+  for (size_t i = 0; i < l->n; ++i)
+    if (strcasecmp(l->sets[i].name, name) == 0)
       return (long)i;
   return -1;
 }
 
-/* A new empty node set called name, at the end of m->nsets. */
-static int new_nset(fb_mesh *m, const char *name, mesh_nset **out)
+/* A new empty set called name, at the end of l. */
+static int new_set(set_list *l, const char *name, mesh_set **out)
 {
-  if (fb_grow((void **)&m->nsets, &m->nset_cap, m->nnsets, sizeof *m->nsets))
+  if (fb_grow((void **)&l->sets, &l->cap, l->n, sizeof *l->sets))
     return FB_ENOMEM;
-  mesh_nset *s = &m->nsets[m->nnsets];
+  mesh_set *s = &l->sets[l->n];
   memset(s, 0, sizeof *s);
   s->name = fb_strdup(name);
   if (!s->name)
     return FB_ENOMEM;
-  ++m->nnsets;
+  ++l->n;
   *out = s;
   return FB_OK;
 }
 
-/* Appends the nodes of list not yet in s. A membership flag per mesh node
- * keeps one call O(nnodes + n) instead of O(n * size of s). */
-static int extend_nset(const fb_mesh *m, mesh_nset *s, size_t n, const size_t *list)
+/* Appends the members of list (indices below universe) not yet in s. A
+ * membership flag per index keeps one call O(universe + n) instead of
+ * O(n * size of s). */
+static int extend_set(size_t universe, mesh_set *s, size_t n, const size_t *list)
 {
   if (n == 0)
     return FB_OK;
-  unsigned char *member = calloc(m->nnodes, 1);
+  unsigned char *member = calloc(universe, 1);
   if (!member)
     return FB_ENOMEM;
   for (size_t i = 0; i < s->n; ++i)
-    member[s->nodes[i]] = 1;
+    member[s->items[i]] = 1;
   int rc = FB_OK;
   for (size_t i = 0; i < n && !rc; ++i) {
     if (member[list[i]])
       continue;
-    rc = fb_grow((void **)&s->nodes, &s->cap, s->n, sizeof *s->nodes);
+    rc = fb_grow((void **)&s->items, &s->cap, s->n, sizeof *s->items);
     if (!rc) {
       member[list[i]] = 1;
-      s->nodes[s->n++] = list[i];
+      s->items[s->n++] = list[i];
     }
   }
   free(member);
@@ -423,30 +487,84 @@ static int extend_nset(const fb_mesh *m, mesh_nset *s, size_t n, const size_t *l
 }
 
 /* Creates the set if needed (keeping the first spelling of its name) and
- * adds the nodes not already in it; n may be 0 (nodes then may be NULL),
- * which creates an empty set. */
+ * adds the members not already in it; n may be 0 (items then may be
+ * NULL), which creates an empty set. what is "node" or "element". */
+static int add_to_set(set_list *l, const char *what, size_t universe, const char *name,
+                      size_t n, const size_t *items, fb_err *err)
+{
+  if (!fb_mesh_name_ok(name))
+    return fb_err_set(err, FB_EINVAL,
+                      "%s set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
+                      " starting with a letter or _)",
+                      what, name ? name : "(null)", FB_MESH_NAME_MAX);
+  if (n > 0 && !items)
+    return fb_err_set(err, FB_EINVAL, "%s set '%s': the list is NULL", what, name);
+  for (size_t i = 0; i < n; ++i) {
+    if (items[i] >= universe)
+      return fb_err_set(err, FB_EINVAL,
+                        "%s set '%s': %s index %zu out of range (the mesh has %zu)", what, name,
+                        what, items[i], universe);
+  }
+  const long found = find_set(l, name);
+  mesh_set *s = found >= 0 ? &l->sets[found] : NULL;
+  if ((!s && new_set(l, name, &s)) || extend_set(universe, s, n, items))
+    return fb_err_set(err, FB_ENOMEM, "out of memory adding to %s set '%s'", what, name);
+  return FB_OK;
+}
+
 int fb_mesh_add_nset(fb_mesh *m, const char *name, size_t n, const size_t *nodes, fb_err *err)
 {
   if (!m)
     return fb_err_set(err, FB_EINVAL, "fb_mesh_add_nset: mesh is NULL");
-  if (!fb_mesh_name_ok(name))
-    return fb_err_set(
-        err, FB_EINVAL,
-        "node set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
-        " starting with a letter or _)",
-        name ? name : "(null)", FB_MESH_NAME_MAX);
-  if (n > 0 && !nodes)
-    return fb_err_set(err, FB_EINVAL, "node set '%s': node list is NULL", name);
-  for (size_t i = 0; i < n; ++i) {
-    if (nodes[i] >= m->nnodes)
-      return fb_err_set(err, FB_EINVAL,
-                        "node set '%s': node index %zu out of range (the mesh has %zu nodes)",
-                        name, nodes[i], m->nnodes);
+  return add_to_set(&m->nsets, "node", m->nnodes, name, n, nodes, err);
+}
+
+int fb_mesh_add_elset(fb_mesh *m, const char *name, size_t n, const size_t *elements,
+                      fb_err *err)
+{
+  if (!m)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_add_elset: mesh is NULL");
+  return add_to_set(&m->elsets, "element", m->nelems, name, n, elements, err);
+}
+
+/* The section's copy of p at the end of m->sections. */
+static int push_section(fb_mesh *m, const char *elset, const fb_shell_props *p)
+{
+  if (!m->elem_section) {
+    m->elem_section = malloc((m->elem_cap ? m->elem_cap : 1) * sizeof *m->elem_section);
+    if (!m->elem_section)
+      return FB_ENOMEM;
+    for (size_t e = 0; e < m->nelems; ++e)
+      m->elem_section[e] = -1;
   }
-  const long found = find_nset(m, name);
-  mesh_nset *s = found >= 0 ? &m->nsets[found] : NULL;
-  if ((!s && new_nset(m, name, &s)) || extend_nset(m, s, n, nodes))
-    return fb_err_set(err, FB_ENOMEM, "out of memory adding to node set '%s'", name);
+  if (fb_grow((void **)&m->sections, &m->section_cap, m->nsections, sizeof *m->sections))
+    return FB_ENOMEM;
+  mesh_section *sec = &m->sections[m->nsections];
+  sec->elset = fb_strdup(elset);
+  if (!sec->elset)
+    return FB_ENOMEM;
+  sec->props = *p;
+  ++m->nsections;
+  return FB_OK;
+}
+
+int fb_mesh_set_section(fb_mesh *m, const char *elset, const fb_shell_props *p, fb_err *err)
+{
+  if (!m || !elset || !p)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_set_section: NULL argument");
+  const long i = find_set(&m->elsets, elset);
+  if (i < 0)
+    return fb_err_set(err, FB_EINVAL, "element set '%s' is not defined", elset);
+  int rc = fb_shell_check_props(p, err);
+  if (rc) {
+    fb_err_prefix(err, "section of element set '%s': ", elset);
+    return rc;
+  }
+  if (push_section(m, m->elsets.sets[i].name, p))
+    return fb_err_set(err, FB_ENOMEM, "out of memory adding a section");
+  const mesh_set *s = &m->elsets.sets[i];
+  for (size_t k = 0; k < s->n; ++k)
+    m->elem_section[s->items[k]] = (long)m->nsections - 1;
   return FB_OK;
 }
 
@@ -488,6 +606,20 @@ long fb_mesh_node_id(const fb_mesh *m, size_t node)
 long fb_mesh_find_node_id(const fb_mesh *m, long id)
 {
   return m ? id_map_find(&m->node_map, m->node_ids, id) : -1;
+}
+
+void fb_mesh_translate(fb_mesh *m, double dx, double dy, double dz)
+{
+  for (size_t i = 0; m && i < m->nnodes; ++i) {
+    m->xyz[3 * i] += dx;
+    m->xyz[3 * i + 1] += dy;
+    m->xyz[3 * i + 2] += dz;
+  }
+}
+
+long fb_mesh_find_element_id(const fb_mesh *m, long id)
+{
+  return m ? id_map_find(&m->elem_map, m->elem_ids, id) : -1;
 }
 
 /* The nearest node within tol (lowest index on a tie), by a linear scan:
@@ -532,23 +664,74 @@ const size_t *fb_mesh_element_nodes(const fb_mesh *m, size_t e)
 
 size_t fb_mesh_nnsets(const fb_mesh *m)
 {
-  return m ? m->nnsets : 0;
+  return m ? m->nsets.n : 0;
 }
 
 /* Name of node set i as first given, or NULL if i is out of range. */
 const char *fb_mesh_nset_name(const fb_mesh *m, size_t i)
 {
-  return m && i < m->nnsets ? m->nsets[i].name : NULL;
+  return m && i < m->nsets.n ? m->nsets.sets[i].name : NULL;
+}
+
+static int get_set(const set_list *l, const char *name, const size_t **items, size_t *n)
+{
+  const long i = name ? find_set(l, name) : -1;
+  if (i < 0)
+    return 0;
+  if (items)
+    *items = l->sets[i].items;
+  if (n)
+    *n = l->sets[i].n;
+  return 1;
 }
 
 int fb_mesh_nset(const fb_mesh *m, const char *name, const size_t **nodes, size_t *n)
 {
-  const long i = m && name ? find_nset(m, name) : -1;
+  return m ? get_set(&m->nsets, name, nodes, n) : 0;
+}
+
+size_t fb_mesh_nelsets(const fb_mesh *m)
+{
+  return m ? m->elsets.n : 0;
+}
+
+/* Name of element set i as first given, or NULL if i is out of range. */
+const char *fb_mesh_elset_name(const fb_mesh *m, size_t i)
+{
+  return m && i < m->elsets.n ? m->elsets.sets[i].name : NULL;
+}
+
+int fb_mesh_elset(const fb_mesh *m, const char *name, const size_t **elements, size_t *n)
+{
+  return m ? get_set(&m->elsets, name, elements, n) : 0;
+}
+
+size_t fb_mesh_nsections(const fb_mesh *m)
+{
+  return m ? m->nsections : 0;
+}
+
+const char *fb_mesh_section_elset(const fb_mesh *m, size_t i)
+{
+  return m && i < m->nsections ? m->sections[i].elset : NULL;
+}
+
+const fb_shell_props *fb_mesh_section_props(const fb_mesh *m, size_t i)
+{
+  return m && i < m->nsections ? &m->sections[i].props : NULL;
+}
+
+long fb_mesh_element_section(const fb_mesh *m, size_t e)
+{
+  return m && m->elem_section && e < m->nelems ? m->elem_section[e] : -1;
+}
+
+fb_shell_props fb_mesh_element_props(const fb_mesh *m, size_t e, const fb_shell_props *base)
+{
+  const long i = fb_mesh_element_section(m, e);
   if (i < 0)
-    return 0;
-  if (nodes)
-    *nodes = m->nsets[i].nodes;
-  if (n)
-    *n = m->nsets[i].n;
-  return 1;
+    return *base;
+  fb_shell_props p = m->sections[i].props;
+  p.drill_factor = base->drill_factor;
+  return p;
 }

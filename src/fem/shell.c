@@ -90,6 +90,9 @@ int fb_shell_check_props(const fb_shell_props *p, fb_err *err)
     return props_error(err, "thickness must be positive and finite", p->thickness);
   if (!(p->drill_factor >= 0.0 && isfinite(p->drill_factor)))
     return props_error(err, "drilling factor must be >= 0 and finite", p->drill_factor);
+  if (!(p->nonstructural_mass >= 0.0 && isfinite(p->nonstructural_mass)))
+    return props_error(err, "non-structural mass must be >= 0 and finite",
+                       p->nonstructural_mass);
   return FB_OK;
 }
 
@@ -285,8 +288,10 @@ static void mass_matrix(const shell_frame *f, const fb_shell_props *p, fb_mass_k
                         double *me)
 {
   const size_t nn = f->nn, n = 6 * nn;
-  const double t = p->thickness, translational = p->density * t;
-  const double rotary = p->density * t * t * t / 12.0;
+  /* A non-structural mass is smeared through the thickness: the plate's
+   * density becomes density + nonstructural_mass / t (fem.h). */
+  const double t = p->thickness, translational = p->density * t + p->nonstructural_mass;
+  const double rotary = p->density * t * t * t / 12.0 + p->nonstructural_mass * t * t / 12.0;
   double s[16];
   memset(me, 0, n * n * sizeof *me);
   if (kind == FB_MASS_LUMPED) {

@@ -107,6 +107,9 @@ void fb_scenario_free(fb_scenario **s)
   for (size_t i = 0; p->point_mass && i < p->npoint_masses; ++i)
     free(p->point_mass[i].name);
   free(p->point_mass);
+  for (size_t i = 0; p->section && i < p->nsections; ++i)
+    free(p->section[i].set);
+  free(p->section);
   for (size_t i = 0; p->corner && i < p->ncorners; ++i)
     free(p->corner[i].name);
   free(p->corner);
@@ -116,6 +119,7 @@ void fb_scenario_free(fb_scenario **s)
   free(p->road_profile);
   fb_road_free(&p->road_profile_data);
   free(p->hull_deck);
+  free(p->coupling_surface);
   fb_mesh_free(&p->hull_deck_mesh);
   sc_free_strings(p->inputs, p->ninputs);
   for (size_t i = 0; p->origin && i < p->norigins; ++i)
@@ -205,6 +209,21 @@ static int sc_copy_point_masses(const fb_scenario *s, fb_scenario *copy)
   return ok;
 }
 
+static int sc_copy_sections(const fb_scenario *s, fb_scenario *copy)
+{
+  const size_t n = s->nsections;
+  if (!s->section)
+    return 1;
+  copy->section = calloc(n ? n : 1, sizeof *copy->section);
+  int ok = copy->section != NULL;
+  for (size_t i = 0; ok && i < n; ++i) {
+    copy->section[i] = s->section[i];
+    copy->section[i].set = NULL;
+    ok = sc_copy_string(s->section[i].set, &copy->section[i].set);
+  }
+  return ok;
+}
+
 static int sc_copy_corners(const fb_scenario *s, fb_scenario *copy)
 {
   fb_corner_params *c = NULL;
@@ -270,9 +289,11 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   *copy = *s;
   /* Nothing of s's is owned by the copy until copied below. */
   copy->name = copy->path = copy->frame_origin = copy->road_profile = copy->hull_deck = NULL;
+  copy->coupling_surface = NULL;
   copy->load_x = copy->load_y = NULL;
   copy->mount = NULL;
   copy->point_mass = NULL;
+  copy->section = NULL;
   copy->corner = NULL;
   copy->output = NULL;
   copy->inputs = NULL;
@@ -286,6 +307,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = sc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = sc_copy_mounts(s, copy) && ok;
   ok = sc_copy_point_masses(s, copy) && ok;
+  ok = sc_copy_sections(s, copy) && ok;
   ok = sc_copy_corners(s, copy) && ok;
   ok = sc_copy_outputs(s, copy) && ok;
   ok = sc_copy_string(s->road_profile, &copy->road_profile) && ok;
@@ -293,6 +315,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
         fb_road_clone(s->road_profile_data, &copy->road_profile_data, NULL) == FB_OK) &&
        ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
+  ok = sc_copy_string(s->coupling_surface, &copy->coupling_surface) && ok;
   ok = (!s->hull_deck_mesh ||
         fb_mesh_clone(s->hull_deck_mesh, &copy->hull_deck_mesh, NULL) == FB_OK) &&
        ok;

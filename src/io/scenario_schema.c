@@ -49,6 +49,7 @@ SC_PRESENT(sc_has_fe_hull, fb_scenario, b->has_fe_hull)
 SC_PRESENT(sc_has_generator, fb_scenario, b->has_fe_hull && !b->hull_deck)
 SC_PRESENT(sc_has_frame, fb_scenario, b->frame_origin != NULL)
 SC_PRESENT(sc_has_cg, fb_scenario, b->hull_cg_given)
+SC_PRESENT(sc_has_coupling, fb_scenario, b->coupling != FB_COUPLING_NONE)
 SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
 SC_PRESENT(sc_is_bump, fb_scenario, b->road_kind == FB_ROAD_BUMP)
 SC_PRESENT(sc_is_iso, fb_scenario, b->road_kind == FB_ROAD_ISO8608)
@@ -137,6 +138,7 @@ static const sch_ops sc_mesh_ops = {.done = sc_mesh_done, .present = sc_has_fe_h
 static const sch_ops sc_fe_ops = {.done = sc_fe_done, .present = sc_has_fe_hull};
 static const sch_ops sc_generator_present = {.present = sc_has_generator};
 static const sch_ops sc_cg_present = {.present = sc_has_cg};
+static const sch_ops sc_coupling_present = {.present = sc_has_coupling};
 
 /* ---- load.points: a grid or a list of [x, y]. */
 
@@ -634,6 +636,7 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
 #define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f)
 #define O_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f)
 #define P_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_point_mass, f)
+#define H_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_section, f)
 /* A list's items: the scenario's array arr, their number at count; an
  * item of the file makes per of them. NAMED: visited by their names. */
 #define ITEMS(arr, count, per)                                                                 \
@@ -654,6 +657,7 @@ static const char *const sc_contacts[] = {"bilateral", "unilateral", NULL};
 static const char *const sc_masses[] = {"consistent", "lumped", NULL};
 static const char *const sc_initials[] = {"zero", "static", NULL};
 static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
+static const char *const sc_couplings[] = {"none", "distributing", "kinematic", NULL};
 static const char *const sc_switch[] = {"false", "true", NULL};
 static const char *const sc_bump_types[] = {"I", "II", "A", "B", NULL};
 static const double sc_band_default[] = {0.011, 2.83};
@@ -680,6 +684,28 @@ static const sch_key sc_point_mass_keys[] = {
     NUMBER("y", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, y)),
 };
 static const sch_table sc_point_mass_table = TABLE(sc_point_mass_keys, NULL);
+
+/* A shell section of the finite-element hull: hull.sections' items. */
+static const sch_key sc_section_keys[] = {
+    STRING(NAME, "set", REQ,
+           "the element set: a part of the generated hull (`FLOOR`, `ROOF`, `SIDES`, "
+           "`REAR_WALL`, `GLACIS`, `BULKHEADS`, `BULKHEAD_<k>`) or a deck's `*ELSET`; "
+           "case-insensitive",
+           H_AT(STRING, set)),
+    NUMBER("thickness", "m", POSITIVE, INHERIT("hull.material.thickness"), "plate thickness",
+           H_AT(DOUBLE, thickness)),
+    NUMBER("young", "Pa", POSITIVE, INHERIT("hull.material.young"), "Young's modulus",
+           H_AT(DOUBLE, young)),
+    NUMBER("poisson", NULL, HALF_OPEN(0, 0.5), INHERIT("hull.material.poisson"),
+           "Poisson's ratio", H_AT(DOUBLE, poisson)),
+    NUMBER("density", "kg/m^3", POSITIVE, INHERIT("hull.material.density"), "density",
+           H_AT(DOUBLE, density)),
+    NUMBER("nonstructural_mass", "kg/m^2", NONNEGATIVE, DEF(0),
+           "mass per area carried by the plates (lining, equipment), smeared through their "
+           "thickness",
+           H_AT(DOUBLE, nonstructural_mass)),
+};
+static const sch_table sc_section_table = TABLE(sc_section_keys, NULL);
 
 static const sch_key sc_corner_keys[] = {
     STRING(NAME, "name", REQ,
@@ -765,12 +791,18 @@ static const sch_key sc_keys[] = {
          "non-structural masses fixed to the floor (battery, ballast), inertia only: their "
          "weight is in `load.total_weight`",
          &sc_point_mass_table, "hull.masses", &sc_named, NAMED(point_mass, npoint_masses, 1)),
-    SECTION("hull.material", REQ, "the plates' steel (System 2)", NULL),
+    SECTION("hull.material", REQ,
+            "the plates' steel (System 2), where `hull.sections` give none", NULL),
     NUMBER("hull.material.young", "Pa", POSITIVE, REQ, "Young's modulus", S_OFF(young)),
     NUMBER("hull.material.poisson", NULL, HALF_OPEN(0, 0.5), REQ, "Poisson's ratio",
            S_OFF(poisson)),
     NUMBER("hull.material.density", "kg/m^3", POSITIVE, REQ, "density", S_OFF(density)),
     NUMBER("hull.material.thickness", "m", POSITIVE, REQ, "wall thickness", S_OFF(thickness)),
+    LIST("hull.sections", OPT,
+         "plates of other thicknesses or materials, per element set (System 2; System 1 "
+         "takes the mesh's mass); a later item takes the elements it shares with an earlier "
+         "one",
+         &sc_section_table, "hull.sections", NULL, ITEMS(section, nsections, 1)),
     SECTION("hull.edges", REQ, "the edge lines whose roll difference is the torsion angle",
             NULL),
     NUMBER("hull.edges.front_x", "m", ANY, REQ, "x of the front edge line, > `rear_x`",
@@ -786,6 +818,18 @@ static const sch_key sc_keys[] = {
     WHOLE("hull.mesh.density", CLOSED(1, 64), DEF(1),
           "refinement of the generator's mesh: d x d elements for each",
           S_AT(INT, hull_mesh.density), .ops = &sc_generator_present),
+    SECTION("hull.mesh.coupling", OPT,
+            "how attachment points that are not nodes meet the mesh (docs/hull-mesh.md)",
+            &sc_coupling_present),
+    CHOICE("hull.mesh.coupling.kind", sc_couplings, REQ,
+           "`distributing`: force spread, motion averaged; `kinematic`: a rigid lever to the "
+           "nearest node",
+           S_AT(INT, coupling)),
+    NUMBER("hull.mesh.coupling.radius", "m", POSITIVE, REQ,
+           "a point without a node set of its own takes the nodes within this distance in plan",
+           S_OFF(coupling_radius)),
+    STRING(NAME, "hull.mesh.coupling.surface", REQ,
+           "the element set whose nodes those are (`FLOOR`)", S_AT(STRING, coupling_surface)),
     SECTION("hull.mesh.generator", ONE_OF("mesh"),
             "the built-in generator's geometry (docs/hull-mesh.md)", &sc_generator_present),
     NUMBER("hull.mesh.generator.width", "m", POSITIVE, REQ, "between the side walls",

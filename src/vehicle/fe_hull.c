@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 
 #include "flexbond/vehicle.h"
@@ -20,6 +21,12 @@ void fb_fe_hull_free(fb_fe_hull **h)
   fb_mesh_free(&(*h)->mesh);
   free((*h)->attach_node);
   free((*h)->load_node);
+  for (size_t a = 0; (*h)->attach_coupling && a < (*h)->nattach; ++a)
+    fb_hull_coupling_free(&(*h)->attach_coupling[a]);
+  free((*h)->attach_coupling);
+  for (size_t k = 0; (*h)->load_coupling && k < (*h)->nload; ++k)
+    fb_hull_coupling_free(&(*h)->load_coupling[k]);
+  free((*h)->load_coupling);
   free((*h)->point_mass_node);
   free((*h)->point_mass);
   free(*h);
@@ -84,28 +91,52 @@ static int attach_names(const fb_scenario *s, size_t a, char **set, char **key, 
   return *set && *key ? FB_OK : FB_ENOMEM;
 }
 
+/* Attachment a's node, and its coupling: the node of its one-node set
+ * within 1 mm of the point; with hull.mesh.coupling, any such node as it
+ * is, else the scenario's coupling (fb_hull_coupling_build), whose errors
+ * carry the point's key. */
+static int attach_one(const fb_scenario *s, fb_fe_hull *h, size_t a, const char *set,
+                      const char *key, const char *kx, const char *ky, double x, double y,
+                      fb_err *err)
+{
+  const size_t *nodes = NULL;
+  size_t n = 0;
+  if (s->coupling != FB_COUPLING_NONE) {
+    const int on_node = fb_mesh_nset(h->mesh, set, &nodes, &n) && n == 1 &&
+                        check_at(h->mesh, nodes[0], set, kx, ky, x, y, NULL) == FB_OK;
+    if (!on_node) {
+      const int rc = fb_hull_coupling_build(s, h->mesh, set, x, y, &h->attach_coupling[a],
+                                            &h->attach_node[a], err);
+      return rc ? fb_err_set_key(err, "%s", key), rc : FB_OK;
+    }
+  }
+  int rc = nset_nodes(h->mesh, set, 1, &nodes, err);
+  if (!rc)
+    rc = check_at(h->mesh, nodes[0], set, kx, ky, x, y, err);
+  if (!rc)
+    h->attach_node[a] = nodes[0];
+  return rc ? rc : fb_hull_coupling_node(nodes[0], &h->attach_coupling[a], err);
+}
+
 static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
 {
   h->nattach = fb_scenario_nattach(s);
-  h->attach_node = malloc(h->nattach * sizeof *h->attach_node);
-  int rc = h->attach_node ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  h->attach_node = malloc((h->nattach ? h->nattach : 1) * sizeof *h->attach_node);
+  h->attach_coupling = calloc(h->nattach ? h->nattach : 1, sizeof *h->attach_coupling);
+  int rc = h->attach_node && h->attach_coupling ? FB_OK
+                                                : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t a = 0; !rc && a < h->nattach; ++a) {
     char *set = NULL, *key = NULL;
     double x = 0.0, y = 0.0;
     rc = attach_names(s, a, &set, &key, &x, &y);
     char *kx = rc ? NULL : fb_strdup_printf("%s.x", key);
     char *ky = rc ? NULL : fb_strdup_printf("%s.y", key);
-    const size_t *nodes = NULL;
     if (!rc && !(kx && ky))
       rc = FB_ENOMEM;
     if (rc)
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
     if (!rc)
-      rc = nset_nodes(h->mesh, set, 1, &nodes, err);
-    if (!rc)
-      rc = check_at(h->mesh, nodes[0], set, kx, ky, x, y, err);
-    if (!rc)
-      h->attach_node[a] = nodes[0];
+      rc = attach_one(s, h, a, set, key, kx, ky, x, y, err);
     free(set);
     free(key);
     free(kx);
@@ -120,12 +151,16 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   int rc = nset_nodes(h->mesh, "LOAD", s->nload, &nodes, err);
   if (!rc && !(h->load_node = malloc(s->nload * sizeof *h->load_node)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc && !(h->load_coupling = calloc(s->nload, sizeof *h->load_coupling)))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; !rc && k < s->nload; ++k) {
     char what[32], key[48];
     snprintf(what, sizeof what, "LOAD node %zu", k + 1);
     snprintf(key, sizeof key, "load.points[%zu]", k);
     rc = check_at(h->mesh, nodes[k], what, key, key, s->load_x[k], s->load_y[k], err);
     h->load_node[k] = nodes[k];
+    if (!rc)
+      rc = fb_hull_coupling_node(nodes[k], &h->load_coupling[k], err);
   }
   h->nload = s->nload;
   const char *const edges[2] = {"FRONT_EDGE", "REAR_EDGE"};
@@ -189,6 +224,48 @@ static int resolve_point_masses(const fb_scenario *s, fb_fe_hull *h, fb_err *err
   return rc;
 }
 
+/* The element set names of the mesh, "A, B, C" into buf (cut at size). */
+static void elset_names(const fb_mesh *m, char *buf, size_t size)
+{
+  size_t used = 0;
+  buf[0] = '\0';
+  for (size_t i = 0; i < fb_mesh_nelsets(m) && used + 1 < size; ++i) {
+    const int n =
+        snprintf(buf + used, size - used, "%s%s", i ? ", " : "", fb_mesh_elset_name(m, i));
+    used += n > 0 ? (size_t)n : 0;
+  }
+}
+
+/* hull.sections onto the mesh, in the file's order (a later one takes
+ * the elements it shares with an earlier one, and with a deck's own
+ * sections). A set the mesh lacks, or one named twice, is the item's
+ * error. */
+static int apply_sections(const fb_scenario *s, fb_mesh *m, fb_err *err)
+{
+  for (size_t i = 0; i < s->nsections; ++i) {
+    const fb_hull_section *sec = &s->section[i];
+    for (size_t j = 0; j < i; ++j)
+      if (strcasecmp(s->section[j].set, sec->set) == 0) {
+        fb_err_set(err, FB_EINVAL,
+                   "element set '%s' has a section already (hull.sections[%zu])", sec->set, j);
+        return fb_err_set_key(err, "hull.sections[%zu].set", i);
+      }
+    if (!fb_mesh_elset(m, sec->set, NULL, NULL)) {
+      char names[512];
+      elset_names(m, names, sizeof names);
+      fb_err_set(err, FB_EINVAL, "the hull mesh has no element set '%s' (its sets: %s)",
+                 sec->set, names[0] ? names : "none");
+      return fb_err_set_key(err, "hull.sections[%zu].set", i);
+    }
+    const fb_shell_props p = {sec->young,     sec->poisson, sec->density,
+                              sec->thickness, 0.0,          sec->nonstructural_mass};
+    const int rc = fb_mesh_set_section(m, sec->set, &p, err);
+    if (rc)
+      return fb_err_set_key(err, "hull.sections[%zu]", i), rc;
+  }
+  return FB_OK;
+}
+
 int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
                    fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err)
 {
@@ -203,6 +280,8 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
   h->props = *props;
   h->mass_kind = mass_kind;
   int rc = fb_mesh_check(h->mesh, err);
+  if (!rc)
+    rc = apply_sections(s, h->mesh, err);
   if (!rc)
     rc = resolve_attach(s, h, err);
   if (!rc)
@@ -225,10 +304,10 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
                       "%s: System 2 needs the hull's finite-element model: add hull.mesh and "
                       "hull.fe (docs/scenario-format.md)",
                       s->path ? s->path : "scenario");
-  /* The scenario's material and thickness apply, also to an imported deck
-   * (its own *MATERIAL and *SHELL SECTION are read but not used). */
-  const fb_shell_props props = {s->young, s->poisson, s->density, s->thickness,
-                                s->hull_drill_factor};
+  /* The scenario's material and thickness apply to the elements that
+   * neither a deck's *SHELL SECTION nor hull.sections give properties. */
+  const fb_shell_props props = {s->young,     s->poisson,           s->density,
+                                s->thickness, s->hull_drill_factor, 0.0};
   fb_mesh *mesh = NULL;
   if (!s->hull_deck) {
     /* The generator's errors about a scenario value carry its logical
@@ -390,6 +469,21 @@ static int add_spring(trips *t, size_t a, size_t b, double k)
   return rc;
 }
 
+/* A spring k between DOF a and a coupling's point (sum w_j u_dof_j):
+ * k (e_a - w)(e_a - w)'. */
+static int add_coupled_spring(trips *t, size_t a, const fb_hull_coupling *c, double k)
+{
+  int rc = trips_push(t, a, a, k);
+  for (size_t i = 0; !rc && i < c->n; ++i) {
+    rc = trips_push(t, a, c->dof[i], -k * c->w[i]);
+    if (!rc)
+      rc = trips_push(t, c->dof[i], a, -k * c->w[i]);
+    for (size_t j = 0; !rc && j < c->n; ++j)
+      rc = trips_push(t, c->dof[i], c->dof[j], k * c->w[i] * c->w[j]);
+  }
+  return rc;
+}
+
 /* *M plus the hull's declared masses and mass `each` on each of the first
  * nload load nodes (0: none), every one on its node's three
  * translations; *M is replaced, and left as it is when there are none. */
@@ -453,16 +547,17 @@ static int vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, fb_mat **
   fb_mat_foreach(mh, visit_push, &vm);
   rc = vk.failed || vm.failed ? FB_ENOMEM : FB_OK;
   for (size_t b = 0; !rc && b < nm; ++b) {
-    const size_t hull_dof = 6 * h->attach_node[s->ncorners + b] + 2;
-    rc = add_spring(&tk, nh + b, hull_dof, s->mount[b].stiffness);
+    rc = add_coupled_spring(&tk, nh + b, &h->attach_coupling[s->ncorners + b],
+                            s->mount[b].stiffness);
     if (!rc)
       rc = trips_push(&tm, nh + b, nh + b, s->mount[b].mass);
   }
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     const fb_corner_params *cp = &s->corner[c];
-    const size_t wheel = nh + nm + c, hull_dof = 6 * h->attach_node[c] + 2;
+    const size_t wheel = nh + nm + c;
     /* Spring travel = r x wheel travel: stiffness r^2 k at the wheel. */
-    rc = add_spring(&tk, wheel, hull_dof, cp->motion_ratio * cp->motion_ratio * cp->spring_k);
+    rc = add_coupled_spring(&tk, wheel, &h->attach_coupling[c],
+                            cp->motion_ratio * cp->motion_ratio * cp->spring_k);
     if (!rc)
       rc = add_spring(&tk, wheel, (size_t)-1, cp->tire_k);
     if (!rc)
@@ -752,34 +847,41 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
  * attachment and load points' vertical velocities. */
 
 /* Matrix transformer from the hull's coordinates to the vertical
- * velocity of each of the n nodes: a selection of the nodal DOFs, or with
- * a reduced basis T (ndof x nb) the rows of T at those DOFs. */
-static int add_selection(fb_bg *bg, const char *name, size_t n, const size_t *nodes,
+ * velocity of each of the n points: the rows of their couplings over the
+ * nodal DOFs (for a point on a node, a selection), or with a reduced basis
+ * T (ndof x nb) those rows times T. */
+static int add_selection(fb_bg *bg, const char *name, size_t n, const fb_hull_coupling *rows_of,
                          size_t ndof, const double *T, size_t nb, fb_err *err)
 {
   fb_mat *t = NULL;
   int rc = FB_OK;
   if (T) {
-    double *rows = malloc(n * nb * sizeof *rows);
+    double *rows = calloc(n * nb, sizeof *rows);
     rc = rows ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
     for (size_t j = 0; !rc && j < nb; ++j)
       for (size_t i = 0; i < n; ++i)
-        rows[j * n + i] = T[j * ndof + 6 * nodes[i] + 2];
+        for (size_t k = 0; k < rows_of[i].n; ++k)
+          rows[j * n + i] += rows_of[i].w[k] * T[j * ndof + rows_of[i].dof[k]];
     if (!rc)
       rc = fb_mat_new_dense(n, nb, rows, &t, err);
     free(rows);
     return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
   }
-  size_t *r = malloc((n + 1) * sizeof *r), *c = malloc((n + 1) * sizeof *c);
-  double *v = malloc((n + 1) * sizeof *v);
+  size_t nnz = 0;
+  for (size_t i = 0; i < n; ++i)
+    nnz += rows_of[i].n;
+  size_t *r = malloc((nnz + 1) * sizeof *r), *c = malloc((nnz + 1) * sizeof *c);
+  double *v = malloc((nnz + 1) * sizeof *v);
   rc = r && c && v ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t i = 0; !rc && i < n; ++i) {
-    r[i] = i;
-    c[i] = 6 * nodes[i] + 2;
-    v[i] = 1.0;
-  }
+  nnz = 0;
+  for (size_t i = 0; !rc && i < n; ++i)
+    for (size_t k = 0; k < rows_of[i].n; ++k) {
+      r[nnz] = i;
+      c[nnz] = rows_of[i].dof[k];
+      v[nnz++] = rows_of[i].w[k];
+    }
   if (!rc)
-    rc = fb_mat_new_triplets(n, ndof, n, r, c, v, &t, err);
+    rc = fb_mat_new_triplets(n, ndof, nnz, r, c, v, &t, err);
   free(r);
   free(c);
   free(v);
@@ -818,9 +920,11 @@ static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords 
   size_t nrigid = 0;
   int rc = F ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t a = 0; !rc && a < h->nattach; ++a)
-    F[a * n + 6 * h->attach_node[a] + 2] = 1.0;
+    for (size_t i = 0; i < h->attach_coupling[a].n; ++i)
+      F[a * n + h->attach_coupling[a].dof[i]] += h->attach_coupling[a].w[i];
   for (size_t k = 0; !rc && k < h->nload; ++k)
-    F[h->nattach * n + 6 * h->load_node[k] + 2] = 1.0;
+    for (size_t i = 0; i < h->load_coupling[k].n; ++i)
+      F[h->nattach * n + h->load_coupling[k].dof[i]] += h->load_coupling[k].w[i];
   if (!rc && (size_t)s->hull_modes > n) {
     fb_err_set(err, FB_EINVAL, "%d modes, more than the hull's %zu degrees of freedom",
                s->hull_modes, n);
@@ -901,9 +1005,9 @@ static int flexible_hull_graph(const fb_fe_hull *h, hull_coords *c, fb_bg *bg, f
   if (!rc)
     rc = fb_bg_add_junction(bg, "J", FB_BG_J1, n, err);
   if (!rc)
-    rc = add_selection(bg, "to_attach", h->nattach, h->attach_node, c->ndof, c->T, n, err);
+    rc = add_selection(bg, "to_attach", h->nattach, h->attach_coupling, c->ndof, c->T, n, err);
   if (!rc)
-    rc = add_selection(bg, "to_load", h->nload, h->load_node, c->ndof, c->T, n, err);
+    rc = add_selection(bg, "to_load", h->nload, h->load_coupling, c->ndof, c->T, n, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, h->nattach, err);
   if (!rc)

@@ -6,8 +6,8 @@
  * wall, a wedge nose of two glacis plates and transverse bulkheads. The
  * generator
  *  1. computes the plates' centre of mass in the hull frame (x as given,
- *     z above the floor) from their areas and centroids (uniform thickness
- *     and density, so the area centroid is the centre of mass);
+ *     z above the floor) from their areas, centroids and masses per area
+ *     (hull.material's, or a section's);
  *  2. collects the floor's node lines: x lines at the rear wall, the box's
  *     front end, the bulkheads and every scenario point (its x plus the
  *     centre of mass's x), y lines at the side walls and every point's y;
@@ -18,16 +18,20 @@
  *     zipped together (each triangle takes one interval of one rung and the
  *     nearer node of the other), the last rung fanned to the nose tip;
  *  4. refines every element density x density times;
- *  5. shifts the mesh so that the centre of mass is the origin.
+ *  5. shifts the mesh so that the centre of mass is the origin;
+ *  6. names each plate's elements as an element set (hull_part below),
+ *     which hull.sections give their own thickness or material.
  * Nodes are shared through a table keyed by their exact coordinates: every
  * point is computed by one formula from the line arrays, so a node reached
  * from two plates has bitwise equal coordinates. */
 #include <ctype.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "flexbond/fem.h"
 #include "flexbond/vehicle.h"
@@ -67,6 +71,42 @@
  * density 64 would need some 64 GB. */
 #define BYTES_PER_ELEMENT 65536.0
 #define MAX_REFINED_ELEMENTS 65536
+
+/* The plates, as element sets: each generated element is in one part,
+ * a bulkhead b in PART_BULKHEAD + b. */
+typedef enum hull_part {
+  PART_FLOOR,
+  PART_ROOF,
+  PART_SIDES, /* both side walls, their nose triangles included */
+  PART_REAR_WALL,
+  PART_GLACIS, /* both glacis plates */
+  PART_BULKHEAD
+} hull_part;
+#define NPLAIN_PARTS PART_BULKHEAD
+static const char *const PART_NAMES[NPLAIN_PARTS] = {"FLOOR", "ROOF", "SIDES", "REAR_WALL",
+                                                     "GLACIS"};
+
+/* Mass per area of a plate in the element set called name (and, for a
+ * bulkhead, also in the set `also`) relative to hull.material's: that of
+ * the last section of the scenario naming either, else exactly 1 (so that
+ * a hull without sections has the area centroid to the last bit). */
+static double areal_density(const fb_scenario *s, const char *name, const char *also)
+{
+  double w = 1.0;
+  for (size_t i = 0; i < s->nsections; ++i) {
+    const fb_hull_section *sec = &s->section[i];
+    if (strcasecmp(sec->set, name) == 0 || (also && strcasecmp(sec->set, also) == 0))
+      w = (sec->density * sec->thickness + sec->nonstructural_mass) /
+          (s->density * s->thickness);
+  }
+  return w;
+}
+
+/* "BULKHEAD_<b + 1>" into buf. */
+static void bulkhead_set(size_t b, char *buf, size_t size)
+{
+  snprintf(buf, size, "BULKHEAD_%zu", b + 1);
+}
 
 /* ---- Parameters. */
 
@@ -173,23 +213,31 @@ static void add_plate(double *sums, double a, double x, double z)
   sums[2] += a * z;
 }
 
-/* Centre of mass (x, z) of the plates: area-weighted centroids (uniform
- * thickness and density). The side wall is the pentagon rear-bottom,
+/* Centre of mass (x, z) of the plates: their centroids weighted by area
+ * times mass per area (areal_density). The side wall is the pentagon rear-bottom,
  * front-bottom, nose tip, front-top, rear-top; its area and centroid by the
  * shoelace formulas (e.g. Bourke, "Calculating the area and centroid of a
  * polygon", 1988). */
-void fb_hull_mesh_centroid(const fb_hull_mesh_params *p, double *cx, double *cz)
+void fb_hull_mesh_centroid(const fb_scenario *s, const fb_hull_mesh_params *p, double *cx,
+                           double *cz)
 {
   const double w = p->width, h = p->height, xr = p->x_rear, xf = p->x_front;
   const double xn = xf + p->nose_length, zn = p->nose_height, len = xf - xr;
+  double rel[NPLAIN_PARTS];
+  for (int k = 0; k < NPLAIN_PARTS; ++k)
+    rel[k] = areal_density(s, PART_NAMES[k], NULL);
   double sums[3] = {0, 0, 0};
-  add_plate(sums, w * len, 0.5 * (xr + xf), 0.0); /* floor */
-  add_plate(sums, w * len, 0.5 * (xr + xf), h);   /* roof */
-  add_plate(sums, w * h, xr, 0.5 * h);            /* rear wall */
-  for (size_t b = 0; b < p->nbulkheads; ++b)
-    add_plate(sums, w * h, p->bulkhead_x[b], 0.5 * h);
-  add_plate(sums, w * hypot(p->nose_length, zn), xf + 0.5 * p->nose_length, 0.5 * zn);
-  add_plate(sums, w * hypot(p->nose_length, h - zn), xf + 0.5 * p->nose_length, 0.5 * (h + zn));
+  add_plate(sums, rel[PART_FLOOR] * w * len, 0.5 * (xr + xf), 0.0);
+  add_plate(sums, rel[PART_ROOF] * w * len, 0.5 * (xr + xf), h);
+  add_plate(sums, rel[PART_REAR_WALL] * w * h, xr, 0.5 * h);
+  for (size_t b = 0; b < p->nbulkheads; ++b) {
+    char name[32];
+    bulkhead_set(b, name, sizeof name);
+    add_plate(sums, areal_density(s, "BULKHEADS", name) * w * h, p->bulkhead_x[b], 0.5 * h);
+  }
+  const double lower = hypot(p->nose_length, zn), upper = hypot(p->nose_length, h - zn);
+  add_plate(sums, rel[PART_GLACIS] * w * lower, xf + 0.5 * p->nose_length, 0.5 * zn);
+  add_plate(sums, rel[PART_GLACIS] * w * upper, xf + 0.5 * p->nose_length, 0.5 * (h + zn));
   const double px[5] = {xr, xf, xn, xf, xr}, pz[5] = {0.0, 0.0, zn, h, h};
   double a2 = 0.0, sx = 0.0, sz = 0.0; /* twice the area, six times its moments */
   for (int i = 0; i < 5; ++i) {
@@ -199,7 +247,8 @@ void fb_hull_mesh_centroid(const fb_hull_mesh_params *p, double *cx, double *cz)
     sx += (px[i] + px[k]) * cross;
     sz += (pz[i] + pz[k]) * cross;
   }
-  add_plate(sums, a2, sx / (3.0 * a2), sz / (3.0 * a2)); /* both side walls: 2 x a2 / 2 */
+  /* both side walls: 2 x a2 / 2 */
+  add_plate(sums, rel[PART_SIDES] * a2, sx / (3.0 * a2), sz / (3.0 * a2));
   *cx = sums[1] / sums[0];
   *cz = sums[2] / sums[0];
 }
@@ -407,7 +456,9 @@ typedef struct build_mesh {
   size_t slot_cap;
   size_t *conn; /* 4 per element */
   unsigned char *nn;
+  int *part; /* hull_part per element */
   size_t nelems, elem_cap;
+  int current_part; /* of the elements being added */
 } build_mesh;
 
 static void build_free(build_mesh *b)
@@ -416,6 +467,7 @@ static void build_free(build_mesh *b)
   free(b->slots);
   free(b->conn);
   free(b->nn);
+  free(b->part);
   *b = (build_mesh){0};
 }
 
@@ -536,6 +588,10 @@ static int add_element(build_mesh *b, const size_t *nodes, size_t nn, const doub
     if (!nnv)
       return fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the elements");
     b->nn = nnv;
+    int *part = realloc(b->part, cap * sizeof *part);
+    if (!part)
+      return fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the elements");
+    b->part = part;
     b->elem_cap = cap;
   }
   double n[3] = {0, 0, 0};
@@ -546,6 +602,7 @@ static int add_element(build_mesh *b, const size_t *nodes, size_t nn, const doub
   size_t *dst = &b->conn[4 * b->nelems];
   for (size_t i = 0; i < nn; ++i)
     dst[i] = nodes[reverse ? nn - 1 - i : i];
+  b->part[b->nelems] = b->current_part;
   b->nn[b->nelems++] = (unsigned char)nn;
   return FB_OK;
 }
@@ -576,6 +633,7 @@ static int mesh_floor_roof(build_mesh *b, const hull_geom *g, fb_err *err)
   const double down[3] = {0, 0, -1}, up[3] = {0, 0, 1};
   for (int roof = 0; roof < 2; ++roof) {
     const double z = roof ? g->p->height : 0.0;
+    b->current_part = roof ? PART_ROOF : PART_FLOOR;
     for (size_t i = 0; i + 1 < g->nx; ++i)
       for (size_t j = 0; j + 1 < g->ny; ++j) {
         const double pts[4][3] = {{g->xs[i], g->ys[j], z},
@@ -751,14 +809,20 @@ static int mesh_plates(build_mesh *b, const hull_geom *g, fb_err *err)
 {
   const double back[3] = {-1, 0, 0}, fwd[3] = {1, 0, 0};
   int rc = mesh_floor_roof(b, g, err);
+  b->current_part = PART_SIDES;
   if (rc == FB_OK)
     rc = mesh_side_boxes(b, g, err);
+  b->current_part = PART_REAR_WALL;
   if (rc == FB_OK)
     rc = mesh_transverse(b, g, g->p->x_rear, back, err);
-  for (size_t k = 0; k < g->p->nbulkheads && rc == FB_OK; ++k)
+  for (size_t k = 0; k < g->p->nbulkheads && rc == FB_OK; ++k) {
+    b->current_part = PART_BULKHEAD + (int)k;
     rc = mesh_transverse(b, g, g->p->bulkhead_x[k], fwd, err);
+  }
+  b->current_part = PART_GLACIS;
   if (rc == FB_OK)
     rc = mesh_glacis(b, g, err);
+  b->current_part = PART_SIDES;
   if (rc == FB_OK)
     rc = mesh_side_noses(b, g, err);
   return rc;
@@ -946,6 +1010,7 @@ static int refine(const build_mesh *coarse, int d, build_mesh *fine, fb_err *err
       for (int i = 0; i <= d && rc == FB_OK; ++i)
         if (nn == 4 || i + j <= d)
           rc = grid_node(fine, &t, c, nn, d, i, j, grid, err);
+    fine->current_part = coarse->part[e];
     if (rc == FB_OK)
       rc = split_element(fine, grid, nn, d, err);
   }
@@ -1010,8 +1075,39 @@ static int add_point_sets(fb_mesh *m, const build_mesh *coarse, const fb_scenari
   return rc;
 }
 
-/* Copies b into a new fb_mesh, shifted by -(cx, 0, cz), with ids 1, 2, ...
- * and the node set ALL. */
+/* The elements of the parts first to last (inclusive) as the element set
+ * name, if there are any; list holds b->nelems. */
+static int add_part_set(fb_mesh *m, const build_mesh *b, int first, int last, const char *name,
+                        size_t *list, fb_err *err)
+{
+  size_t n = 0;
+  for (size_t e = 0; e < b->nelems; ++e)
+    if (b->part[e] >= first && b->part[e] <= last)
+      list[n++] = e;
+  return n ? fb_mesh_add_elset(m, name, n, list, err) : FB_OK;
+}
+
+/* The element sets of the plates: PART_NAMES, BULKHEADS (every bulkhead)
+ * and BULKHEAD_<k>, k = 1, 2, ... from the rear. */
+static int add_part_sets(fb_mesh *m, const build_mesh *b, fb_err *err)
+{
+  size_t *list = malloc((b->nelems ? b->nelems : 1) * sizeof *list);
+  int rc = list ? FB_OK : fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the sets");
+  for (int k = 0; k < NPLAIN_PARTS && rc == FB_OK; ++k)
+    rc = add_part_set(m, b, k, k, PART_NAMES[k], list, err);
+  if (rc == FB_OK)
+    rc = add_part_set(m, b, PART_BULKHEAD, INT_MAX, "BULKHEADS", list, err);
+  for (int k = 0; k < FB_HULL_MAX_BULKHEADS && rc == FB_OK; ++k) {
+    char name[32];
+    bulkhead_set((size_t)k, name, sizeof name);
+    rc = add_part_set(m, b, PART_BULKHEAD + k, PART_BULKHEAD + k, name, list, err);
+  }
+  free(list);
+  return rc;
+}
+
+/* Copies b into a new fb_mesh, shifted by -(cx, 0, cz), with ids 1, 2, ...,
+ * the node set ALL and the plates' element sets. */
 static int to_fb_mesh(const build_mesh *b, double cx, double cz, fb_mesh **out, fb_err *err)
 {
   fb_mesh *m = NULL;
@@ -1032,6 +1128,8 @@ static int to_fb_mesh(const build_mesh *b, double cx, double cz, fb_mesh **out, 
   if (rc == FB_OK)
     rc = fb_mesh_add_nset(m, "ALL", b->nnodes, all, err);
   free(all);
+  if (rc == FB_OK)
+    rc = add_part_sets(m, b, err);
   if (rc != FB_OK)
     fb_mesh_free(&m);
   *out = m;
@@ -1055,7 +1153,7 @@ int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb
   if (rc != FB_OK)
     return rc;
   double cx, cz;
-  fb_hull_mesh_centroid(p, &cx, &cz);
+  fb_hull_mesh_centroid(s, p, &cx, &cz);
   lines xl = {0}, yl = {0};
   build_mesh coarse = {0}, fine = {0};
   fb_mesh *m = NULL;

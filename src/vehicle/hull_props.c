@@ -124,15 +124,9 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
  * (its plates are symmetric about y = 0), else the typed one. */
 static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
 {
-  if (s->has_fe_hull && s->hull_deck) {
-    fb_err_set(err, FB_EINVAL,
-               "a hull deck's nodes are read relative to the hull's centre of mass: give the "
-               "file's positions in that frame too (no frame.origin) or generate the mesh");
-    return fb_err_set_key(err, "frame.origin");
-  }
   if (s->has_fe_hull) {
     double cz = 0.0;
-    fb_hull_mesh_centroid(&s->hull_mesh, x, &cz);
+    fb_hull_mesh_centroid(s, &s->hull_mesh, x, &cz);
     *y = 0.0;
     if (!s->hull_cg_given)
       return FB_OK;
@@ -157,10 +151,36 @@ static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
   return FB_OK;
 }
 
+/* A deck's nodes and the file's positions share the deck's frame: both
+ * move to the structure's centre of mass there, the frame of every
+ * fragment (System 1's rigid hull turns about it). A deck written by
+ * flexbond is centred already (to round-off). */
+static int centre_deck(fb_scenario *s, fb_err *err)
+{
+  if (s->hull_cg_given) {
+    fb_err_set(err, FB_EINVAL,
+               "a hull deck's centre of mass is its mesh's: remove hull.centre_of_mass");
+    return fb_err_set_key(err, "hull.centre_of_mass");
+  }
+  double mass = 0.0, cg[3], inertia[9];
+  const int rc = mesh_properties(s, &mass, cg, inertia, err);
+  if (rc)
+    return rc;
+  fb_mesh_translate(s->hull_deck_mesh, -cg[0], -cg[1], -cg[2]);
+  s->hull_cg_x = cg[0];
+  s->hull_cg_y = cg[1];
+  shift_positions(s, cg[0], cg[1]);
+  return FB_OK;
+}
+
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
 {
   int rc = FB_OK;
-  if (s->frame_origin) {
+  if (s->has_fe_hull && s->hull_deck_mesh) {
+    rc = centre_deck(s, err);
+    if (rc)
+      return rc;
+  } else if (s->frame_origin) {
     double x = 0.0, y = 0.0;
     rc = frame_centre(s, &x, &y, err);
     if (rc)

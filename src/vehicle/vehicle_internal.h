@@ -20,8 +20,9 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_
 void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33);
 
 /* The generated hull's centre of mass in its own frame: x as the
- * parameters give it, z above the floor (uniform plates: the area
- * centroid; hull_mesh.c). */
-void fb_hull_mesh_centroid(const fb_hull_mesh_params *p, double *cx, double *cz);
+ * parameters give it, z above the floor (the plates' masses per area from
+ * hull.material and hull.sections; hull_mesh.c). */
+void fb_hull_mesh_centroid(const fb_scenario *s, const fb_hull_mesh_params *p, double *cx,
+                           double *cz);
 
 #endif

@@ -17,7 +17,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   const char *text = data ? (const char *)data : empty;
   fb_err err;
   fb_mesh *mesh = NULL;
-  fb_shell_props props = {0.0, 0.0, 0.0, 0.0, 0.0};
+  fb_shell_props props = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   const int rc = fb_mesh_read_inp_string(text, size, "fuzz.inp", &mesh, &props, &err);
   /* A refusal must leave no mesh and say why. */
   if (rc && (rc != err.code || err.msg[0] == '\0' || mesh))

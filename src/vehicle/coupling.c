@@ -1,0 +1,212 @@
+/* Couplings of attachment points to the finite-element hull (fb_hull_coupling,
+ * flexbond/vehicle.h; docs/hull-mesh.md, "Couplings").
+ *
+ * A point at (x0, y0) in plan that carries a vertical force F meets the
+ * hull through a row w over its nodal DOFs: the point's velocity is
+ * w . v and the nodes take the forces w F. The row is power-conserving
+ * (a transformer in the bond graph), so the coupling adds no stiffness.
+ *
+ * Distributing: vertical nodal forces f_i = w_i F on the candidate nodes,
+ * in equilibrium with F at the point (sum w_i = 1, sum w_i x_i = x0,
+ * sum w_i y_i = y0) and otherwise as even as possible (least sum of
+ * w_i^2): w_i = 1/n + lambda . (p_i - p_mean), with the 2 x 2 system
+ * S lambda = p0 - p_mean, S = sum (p_i - p_mean)(p_i - p_mean)'. This is
+ * the distributing coupling of the Abaqus Analysis User's Guide (section
+ * 35.3.2, "Distributing coupling") with uniform weights, for a force
+ * normal to the plan. Nodes on one line cannot carry a moment about it: the
+ * point must then lie on the line (within 1 mm), and the system is solved
+ * on its span alone.
+ *
+ * Kinematic: a rigid lever from the nearest node n to the point, its
+ * vertical velocity v_z + (y0 - y_n) omega_x - (x0 - x_n) omega_y (the
+ * node's rotations; u = theta x r). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/fem.h"
+#include "flexbond/vehicle.h"
+
+/* Lever and line tolerance: the mesh check's 1 mm for points on nodes. */
+#define COUPLING_TOL 1e-3
+
+void fb_hull_coupling_free(fb_hull_coupling *c)
+{
+  free(c->dof);
+  free(c->w);
+  c->dof = NULL;
+  c->w = NULL;
+  c->n = 0;
+}
+
+static int coupling_alloc(fb_hull_coupling *c, size_t n, fb_err *err)
+{
+  c->dof = malloc(n * sizeof *c->dof);
+  c->w = malloc(n * sizeof *c->w);
+  c->n = n;
+  if (c->dof && c->w)
+    return FB_OK;
+  fb_hull_coupling_free(c);
+  return fb_err_set(err, FB_ENOMEM, "out of memory for a coupling");
+}
+
+int fb_hull_coupling_node(size_t node, fb_hull_coupling *c, fb_err *err)
+{
+  const int rc = coupling_alloc(c, 1, err);
+  if (!rc) {
+    c->dof[0] = 6 * node + 2;
+    c->w[0] = 1.0;
+  }
+  return rc;
+}
+
+/* The candidate nearest (x0, y0) in plan (lowest index on a tie). */
+static size_t nearest(const fb_mesh *m, const size_t *nodes, size_t n, double x0, double y0)
+{
+  size_t best = 0;
+  double best_d2 = INFINITY;
+  for (size_t i = 0; i < n; ++i) {
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    const double d2 = (p[0] - x0) * (p[0] - x0) + (p[1] - y0) * (p[1] - y0);
+    if (d2 < best_d2) {
+      best = i;
+      best_d2 = d2;
+    }
+  }
+  return best;
+}
+
+static int kinematic(const fb_mesh *m, size_t node, double x0, double y0, fb_hull_coupling *c,
+                     fb_err *err)
+{
+  const double *p = fb_mesh_node_xyz(m, node);
+  const int rc = coupling_alloc(c, 3, err);
+  if (rc)
+    return rc;
+  c->dof[0] = 6 * node + 2;
+  c->dof[1] = 6 * node + 3;
+  c->dof[2] = 6 * node + 4;
+  c->w[0] = 1.0;
+  c->w[1] = y0 - p[1];
+  c->w[2] = -(x0 - p[0]);
+  return FB_OK;
+}
+
+/* lambda = S^+ r for the symmetric 2 x 2 S (pseudo-inverse on the
+ * eigenvalues above 1e-12 of the largest). */
+static void solve_sym2(const double *S, const double *r, double *lambda)
+{
+  const double a = S[0], b = S[1], d = S[3];
+  const double mean = 0.5 * (a + d), diff = 0.5 * (a - d), rad = hypot(diff, b);
+  const double ev[2] = {mean + rad, mean - rad};
+  /* Unit eigenvector of ev[0]; the other is its perpendicular. */
+  const double theta = 0.5 * atan2(2.0 * b, a - d);
+  const double u[2][2] = {{cos(theta), sin(theta)}, {-sin(theta), cos(theta)}};
+  lambda[0] = lambda[1] = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    if (!(ev[k] > 1e-12 * ev[0]))
+      continue;
+    const double proj = (u[k][0] * r[0] + u[k][1] * r[1]) / ev[k];
+    lambda[0] += proj * u[k][0];
+    lambda[1] += proj * u[k][1];
+  }
+}
+
+static int distributing(const fb_mesh *m, const size_t *nodes, size_t n, double x0, double y0,
+                        const char *what, fb_hull_coupling *c, fb_err *err)
+{
+  double mean[2] = {0.0, 0.0}, S[4] = {0.0, 0.0, 0.0, 0.0};
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 2; ++k)
+      mean[k] += fb_mesh_node_xyz(m, nodes[i])[k] / (double)n;
+  for (size_t i = 0; i < n; ++i) {
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    const double d[2] = {p[0] - mean[0], p[1] - mean[1]};
+    S[0] += d[0] * d[0];
+    S[1] += d[0] * d[1];
+    S[3] += d[1] * d[1];
+  }
+  S[2] = S[1];
+  const double r[2] = {x0 - mean[0], y0 - mean[1]};
+  double lambda[2];
+  solve_sym2(S, r, lambda);
+  /* The offset the weights cannot reach: r - S lambda. */
+  const double miss[2] = {r[0] - (S[0] * lambda[0] + S[1] * lambda[1]),
+                          r[1] - (S[2] * lambda[0] + S[3] * lambda[1])};
+  if (hypot(miss[0], miss[1]) > COUPLING_TOL)
+    return fb_err_set(err, FB_EMODEL,
+                      "%s: its %zu coupling node%s lie on a line %.3g m from it, which cannot "
+                      "carry the moment of its force (a distributing coupling needs nodes "
+                      "around it, or use kind: kinematic)",
+                      what, n, n == 1 ? "" : "s", hypot(miss[0], miss[1]));
+  const int rc = coupling_alloc(c, n, err);
+  for (size_t i = 0; !rc && i < n; ++i) {
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    c->dof[i] = 6 * nodes[i] + 2;
+    c->w[i] = 1.0 / (double)n + lambda[0] * (p[0] - mean[0]) + lambda[1] * (p[1] - mean[1]);
+  }
+  return rc;
+}
+
+/* The nodes of the element set surface within radius of (x0, y0) in plan,
+ * each once, in index order; *out is new. */
+static int nodes_within(const fb_mesh *m, const char *surface, double radius, double x0,
+                        double y0, size_t **out, size_t *n, fb_err *err)
+{
+  const size_t *elems = NULL;
+  size_t ne = 0, nn = fb_mesh_nnodes(m);
+  *out = NULL;
+  *n = 0;
+  if (!fb_mesh_elset(m, surface, &elems, &ne))
+    return fb_err_set(err, FB_EMODEL, "the hull mesh has no element set '%s'", surface);
+  unsigned char *in = calloc(nn ? nn : 1, 1);
+  size_t *list = malloc((nn ? nn : 1) * sizeof *list);
+  if (!in || !list) {
+    free(in);
+    free(list);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a coupling");
+  }
+  for (size_t k = 0; k < ne; ++k) {
+    const size_t *nd = fb_mesh_element_nodes(m, elems[k]);
+    const size_t count = fb_mesh_element_type(m, elems[k]) == FB_ELEM_QUAD4 ? 4 : 3;
+    for (size_t j = 0; j < count; ++j) {
+      const double *p = fb_mesh_node_xyz(m, nd[j]);
+      if (hypot(p[0] - x0, p[1] - y0) <= radius)
+        in[nd[j]] = 1;
+    }
+  }
+  for (size_t i = 0; i < nn; ++i)
+    if (in[i])
+      list[(*n)++] = i;
+  free(in);
+  *out = list;
+  return FB_OK;
+}
+
+int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *set, double x0,
+                           double y0, fb_hull_coupling *c, size_t *node, fb_err *err)
+{
+  const size_t *own = NULL;
+  size_t n = 0, *found = NULL;
+  int rc = FB_OK;
+  if (!fb_mesh_nset(m, set, &own, &n)) {
+    rc = nodes_within(m, s->coupling_surface, s->coupling_radius, x0, y0, &found, &n, err);
+    own = found;
+    if (!rc && n == 0)
+      rc = fb_err_set(err, FB_EMODEL,
+                      "%s: no node of the element set '%s' lies within %g m of (%.6g, %.6g) m "
+                      "in plan, and the mesh has no node set %s",
+                      set, s->coupling_surface, s->coupling_radius, x0, y0, set);
+  } else if (n == 0) {
+    rc = fb_err_set(err, FB_EMODEL, "the mesh's node set %s is empty", set);
+  }
+  if (!rc) {
+    const size_t k = nearest(m, own, n, x0, y0);
+    *node = own[k];
+    rc = s->coupling == FB_COUPLING_KINEMATIC ? kinematic(m, own[k], x0, y0, c, err)
+                                              : distributing(m, own, n, x0, y0, set, c, err);
+  }
+  free(found);
+  return rc;
+}
