@@ -140,7 +140,7 @@ clean:
 # Crash, leak and timeout inputs land in $(FUZZ_DIR)/crashes/, cleared at the start.
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZ_NAMES := model scenario inp
+FUZZ_NAMES := model scenario inp msh
 FUZZ_ABS := $(abspath $(FUZZ_DIR))
 
 .PHONY: fuzz
@@ -151,7 +151,7 @@ fuzz: deps
 	@rm -rf $(FUZZ_ABS)/crashes && mkdir -p $(FUZZ_ABS)/crashes; \
 	failed=; \
 	for name in $(FUZZ_NAMES); do \
-	  dict=yaml.dict; [ $$name = inp ] && dict=inp.dict; \
+	  dict=yaml.dict; [ $$name = inp ] && dict=inp.dict; [ $$name = msh ] && dict=msh.dict; \
 	  corpus=$(FUZZ_ABS)/corpus/$$name; mkdir -p $$corpus; \
 	  find tests/fuzz/corpus/$$name tests/fuzz/regressions/$$name -type f ! -name '.*' \
 	    -exec cp {} $$corpus/ \; ; \

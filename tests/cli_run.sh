@@ -383,6 +383,33 @@ run run "$WORK/apc_uncoupled.yaml" -o "$WORK/uncoupled" -q --no-figures
 expect_status 2 "points off the nodes without a coupling"
 expect_in "$ERR" "the mesh has no node set SUSP_LF" "uncoupled: the missing set"
 
+# A hull meshed by gmsh (tests/data/gmsh/box_hull.geo, MSH 4.1): a closed
+# 5.0 x 2.1 x 1.6 m box of 8.5 mm plates, its physical groups FLOOR, ROOF,
+# SIDES, ENDS, LOAD (four points embedded in the floor), FRONT_EDGE and
+# REAR_EDGE. The suspension and mount points are no nodes and couple to the
+# floor (distributing, 0.3 m). Its mass is 7860 kg/m^3 x 8.5 mm x the box's
+# 43.72 m^2 (closed form); both systems run on it.
+cp "$REPO_ROOT/tests/data/gmsh/box_hull.msh" "$WORK/"
+sed -e '/^  mass: 4041.72/d' -e '/^  Ixx: /d' -e '/^  Iyy: /d' \
+  -e 's/^    front_x: .*/    front_x: 2.5/' -e 's/^    rear_x: .*/    rear_x: -2.5/' \
+  -e 's/deck: perturbed.inp/deck: box_hull.msh\n    coupling: {kind: distributing, radius: 0.3, surface: FLOOR}/' \
+  -e '/^    grid:/,/^      y: /c\    - [-1.5, -0.5]\n    - [-1.5, 0.5]\n    - [1.5, -0.5]\n    - [1.5, 0.5]' \
+  "$WORK/apc_perturbed.yaml" >"$WORK/apc_gmsh.yaml"
+run mesh "$WORK/apc_gmsh.yaml"
+expect_status 0 "mesh of a gmsh hull"
+expect_in "$OUT" "hull mesh: 900 nodes, 0 S3 + 898 S4 elements" "gmsh hull's elements"
+checks=$((checks + 1))
+python3 - "$OUT" <<'EOF' || fail "gmsh hull's mass"
+import re, sys
+mass = float(re.search(r"^mass ([0-9.e+]+) kg", open(sys.argv[1]).read(), re.M).group(1))
+expect = 7860 * 0.0085 * (2 * 5.0 * 2.1 + 2 * 5.0 * 1.6 + 2 * 2.1 * 1.6)
+assert abs(mass - expect) < 1e-5 * expect, (mass, expect)  # printed to 6 digits
+EOF
+run modes "$WORK/apc_gmsh.yaml" --system flexible
+expect_in "$OUT" "6 rigid-body modes, then" "gmsh hull's rigid-body modes"
+run run "$WORK/apc_gmsh.yaml" -o "$WORK/gmsh" -q --no-figures --hull-modes 40
+expect_status 0 "both systems on a gmsh hull with couplings"
+
 # -v: every eigen-solve with its method, its modes of the hull's 1296 DOFs
 # and its time; a reduced hull's basis (12 modes and one more for the
 # static correction's shift) is ARPACK's, the nodal hull's beta LAPACK's;

@@ -1059,6 +1059,66 @@ static void test_sections(void)
   fb_mesh_free(&m);
 }
 
+/* A gmsh MSH 4.1 text: one quadrilateral on surface 1 (physical group
+ * PLATE) and a physical point CORNER at node 3. */
+#define MSH_HEAD "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+#define MSH_QUAD                                                                               \
+  MSH_HEAD "$PhysicalNames\n2\n2 1 \"PLATE\"\n0 2 \"CORNER\"\n$EndPhysicalNames\n"             \
+           "$Entities\n1 0 1 0\n9 1 1 0 1 2\n1 0 0 0 1 1 0 1 1 0\n$EndEntities\n"              \
+           "$Nodes\n2 4 1 4\n0 9 0 1\n3\n1 1 0\n2 1 0 3\n1\n2\n4\n0 0 0\n1 0 0\n0 1 0\n"       \
+           "$EndNodes\n$Elements\n2 2 1 8\n0 9 15 1\n1 3\n2 1 3 1\n8 1 2 3 4\n$EndElements\n"
+
+static void expect_msh_error(const char *text, const char *expect)
+{
+  fb_mesh *m = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_mesh_read_msh_string(text, strlen(text), "x.msh", &m, &err) == FB_EPARSE && !m);
+  check_msg(&err, expect);
+  CHECK(strncmp(err.msg, "x.msh:", 6) == 0);
+}
+
+static void test_msh(void)
+{
+  fb_mesh *m = NULL;
+  fb_err err;
+  const char *text = MSH_QUAD;
+  const int rc = fb_mesh_read_msh_string(text, strlen(text), "quad.msh", &m, &err);
+  CHECK(rc == FB_OK);
+  if (rc)
+    fprintf(stderr, "  %s\n", err.msg);
+  CHECK(fb_mesh_nnodes(m) == 4 && fb_mesh_nelements(m) == 1);
+  CHECK(fb_mesh_element_id(m, 0) == 8 && fb_mesh_element_type(m, 0) == FB_ELEM_QUAD4);
+  const size_t *nd = fb_mesh_element_nodes(m, 0);
+  CHECK(nd && fb_mesh_node_id(m, nd[2]) == 3 && fb_mesh_node_xyz(m, nd[2])[1] == 1.0);
+  const size_t *items = NULL;
+  size_t n = 0;
+  CHECK(fb_mesh_elset(m, "PLATE", &items, &n) && n == 1);
+  CHECK(fb_mesh_nset(m, "PLATE", &items, &n) && n == 4);
+  CHECK(fb_mesh_nset(m, "CORNER", &items, &n) && n == 1 && fb_mesh_node_id(m, items[0]) == 3);
+  CHECK(!fb_mesh_elset(m, "CORNER", NULL, NULL));
+  CHECK(fb_mesh_check(m, NULL) == FB_OK);
+  fb_mesh_free(&m);
+
+  expect_msh_error("", "empty file");
+  expect_msh_error("$Nodes\n", "does not start with $MeshFormat");
+  expect_msh_error("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n", "MSH format 2.2 is not supported");
+  expect_msh_error("$MeshFormat\n4.1 1 8\n$EndMeshFormat\n", "a binary .msh file");
+  expect_msh_error(MSH_HEAD "$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n"
+                            "$EndNodes\n$Elements\n1 1 1 1\n2 1 9 1\n1 1 2 3 1 2 3\n",
+                   "x.msh:16: element type 9 is not supported");
+  expect_msh_error(MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n0 0 0\n$EndNodes\n$Elements\n"
+                            "1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n",
+                   "x.msh:13: the element names node 2, which is not defined");
+  expect_msh_error(MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n0 0 nan\n$EndNodes\n",
+                   "x.msh:8: node coordinates: expected 3 finite numbers");
+  expect_msh_error(MSH_HEAD "$Nodes\n1 99999999 1 1\n", "x.msh:5:");
+  expect_msh_error(MSH_HEAD "$PhysicalNames\n1\n2 1 \"two words\"\n$EndPhysicalNames\n",
+                   "physical name \"two words\" cannot name a set");
+  expect_msh_error(MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n", "the file ends where");
+  expect_msh_error(MSH_HEAD "$Comments\nanything\n$EndComments\n", "no triangles or quad");
+}
+
 int main(void)
 {
   snprintf(root, sizeof root, "/tmp/flexbond_mesh_XXXXXX");
@@ -1078,6 +1138,7 @@ int main(void)
   test_inp_hand_deck();
   test_inp_bad_decks();
   test_sections();
+  test_msh();
   test_vtu();
   remove_root();
   return check_report("test_mesh");

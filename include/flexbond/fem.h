@@ -240,6 +240,20 @@ int fb_mesh_read_inp(const char *path, fb_mesh **out, fb_shell_props *props, fb_
  * line; no byte past len is read. *out is NULL on failure. */
 int fb_mesh_read_inp_string(const char *text, size_t len, const char *display_name,
                             fb_mesh **out, fb_shell_props *props, fb_err *err);
+/* A gmsh mesh: MSH format 4.1, ASCII (src/fem/msh.c). Its 3-node
+ * triangles and 4-node quadrilaterals are the elements (tags as ids);
+ * every named physical group is a node set of its elements' nodes, and a
+ * surface group also an element set. Other element types of a surface
+ * (second order), binary files and other versions are FB_EPARSE
+ * "path:line: message"; *out is NULL on failure. */
+int fb_mesh_read_msh(const char *path, fb_mesh **out, fb_err *err);
+/* The same from len bytes at text (not NUL-terminated). */
+int fb_mesh_read_msh_string(const char *text, size_t len, const char *display_name,
+                            fb_mesh **out, fb_err *err);
+/* A .msh file (by its name, any case) with fb_mesh_read_msh, anything
+ * else as an Abaqus/CalculiX deck (fb_mesh_read_inp, no props). */
+int fb_mesh_read_file(const char *path, fb_mesh **out, fb_err *err);
+
 /* VTK XML unstructured grid (.vtu) for ParaView, with an optional nodal
  * displacement field (6 per node; translations as a vector "displacement",
  * rotations as "rotation") and the node sets as point data flags. */

@@ -164,6 +164,24 @@ size_t fb_utf8_length(const unsigned char *s, size_t n)
   return len;
 }
 
+size_t fb_text_split_line(char *text, size_t len, size_t *pos, char **line)
+{
+  char *start = text + *pos;
+  char *nl = memchr(start, '\n', len - *pos);
+  size_t n = nl ? (size_t)(nl - start) : len - *pos;
+  *pos += nl ? n + 1 : n;
+  start[n] = '\0';
+  if (n > 0 && start[n - 1] == '\r')
+    start[--n] = '\0';
+  *line = start;
+  for (size_t i = 0; i < n; ++i) {
+    const unsigned char c = (unsigned char)start[i];
+    if ((c < 0x20 && c != '\t') || c == 0x7f)
+      return i + 1;
+  }
+  return 0;
+}
+
 size_t fb_text_find_binary(const char *text, size_t len, int line_ends, size_t *line,
                            size_t *col)
 {

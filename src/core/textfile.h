@@ -93,6 +93,13 @@ size_t fb_utf8_length(const unsigned char *s, size_t n);
 size_t fb_text_find_binary(const char *text, size_t len, int line_ends, size_t *line,
                            size_t *col);
 
+/* Splits the line at text[*pos] (text holds len bytes and a NUL after
+ * them) off in place: its line feed, and a carriage return before it, are
+ * cut; *line points at it and *pos moves past it. Returns 0, or the
+ * 1-based column of its first control byte other than tab (binary data,
+ * which the caller refuses at that line). *pos must be below len. */
+size_t fb_text_split_line(char *text, size_t len, size_t *pos, char **line);
+
 /* Offset of the first control character of text[0..len): C0 (U+0000 ..
  * U+001F), DEL, or C1 (U+0080 .. U+009F, the UTF-8 bytes C2 80 .. C2 9F;
  * two bytes); tab, line feed and carriage return excepted when layout is

@@ -171,23 +171,12 @@ static int inp_mesh_error(const inp_reader *r, size_t line, const fb_err *sub)
  * control characters other than tab mark a binary file. */
 static int split_line(inp_reader *r)
 {
-  char *start = r->text + r->pos;
-  const size_t left = r->len - r->pos;
-  char *nl = memchr(start, '\n', left);
-  size_t n = nl ? (size_t)(nl - start) : left;
-  r->pos += nl ? n + 1 : n;
-  start[n] = '\0';
-  if (n > 0 && start[n - 1] == '\r')
-    start[--n] = '\0';
+  const size_t col = fb_text_split_line(r->text, r->len, &r->pos, &r->line);
   ++r->lineno;
-  r->line = start;
-  for (size_t i = 0; i < n; ++i) {
-    const unsigned char c = (unsigned char)start[i];
-    if ((c < 0x20 && c != '\t') || c == 0x7f)
-      return inp_error(r, r->lineno,
-                       "binary data (byte 0x%02x in column %zu): not an Abaqus input deck", c,
-                       i + 1);
-  }
+  if (col)
+    return inp_error(r, r->lineno,
+                     "binary data (byte 0x%02x in column %zu): not an Abaqus input deck",
+                     (unsigned char)r->line[col - 1], col);
   return FB_OK;
 }
 

@@ -413,7 +413,7 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
     rc = fb_scenario_check(s, c->err);
   /* A hull deck is read here, once: the builder takes the mesh from the
    * scenario. Its errors are at hull.mesh.deck, then at the deck's line. */
-  if (!rc && s->hull_deck && fb_mesh_read_inp(s->hull_deck, &s->hull_deck_mesh, NULL, c->err)) {
+  if (!rc && s->hull_deck && fb_mesh_read_file(s->hull_deck, &s->hull_deck_mesh, c->err)) {
     fb_err_set_key(c->err, "hull.mesh.deck");
     rc = fb_scenario_locate(s, c->err);
   }

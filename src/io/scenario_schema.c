@@ -814,7 +814,9 @@ static const sch_key sc_keys[] = {
            S_OFF(edge_right_y)),
     SECTION("hull.mesh", OPT, "System 2's hull mesh (with `hull.fe`)", &sc_mesh_ops),
     STRING(FILE, "hull.mesh.deck", ONE_OF("mesh"),
-           "an Abaqus/CalculiX deck with the scenario's node sets", S_AT(STRING, hull_deck)),
+           "an Abaqus/CalculiX deck (.inp) or a gmsh mesh (.msh, format 4.1) with the "
+           "scenario's node sets",
+           S_AT(STRING, hull_deck)),
     WHOLE("hull.mesh.density", CLOSED(1, 64), DEF(1),
           "refinement of the generator's mesh: d x d elements for each",
           S_AT(INT, hull_mesh.density), .ops = &sc_generator_present),

@@ -145,10 +145,29 @@ static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
   return rc;
 }
 
+/* The position in nodes[0 .. n) of a node not yet used within 1 mm of
+ * (x, y) in plan: guess first (a set in the scenario's order), then any;
+ * guess itself when there is none (check_at then reports it). */
+static size_t match_node(const fb_mesh *m, const size_t *nodes, size_t n,
+                         const unsigned char *used, size_t guess, double x, double y)
+{
+  for (size_t i = 0; i <= n; ++i) {
+    const size_t j = i == 0 ? guess : i - 1;
+    const double *p = fb_mesh_node_xyz(m, nodes[j]);
+    if (!used[j] && fabs(p[0] - x) <= 1e-3 && fabs(p[1] - y) <= 1e-3)
+      return j;
+  }
+  return guess;
+}
+
+/* LOAD's nodes in the scenario's load-point order (the set may list them
+ * in any), FRONT_EDGE's and REAR_EDGE's left end (larger y) first. */
 static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
 {
   const size_t *nodes = NULL;
-  int rc = nset_nodes(h->mesh, "LOAD", s->nload, &nodes, err);
+  unsigned char *used = calloc(s->nload ? s->nload : 1, 1);
+  int rc = used ? nset_nodes(h->mesh, "LOAD", s->nload, &nodes, err)
+                : fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc && !(h->load_node = malloc(s->nload * sizeof *h->load_node)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc && !(h->load_coupling = calloc(s->nload, sizeof *h->load_coupling)))
@@ -157,34 +176,34 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
     char what[32], key[48];
     snprintf(what, sizeof what, "LOAD node %zu", k + 1);
     snprintf(key, sizeof key, "load.points[%zu]", k);
-    rc = check_at(h->mesh, nodes[k], what, key, key, s->load_x[k], s->load_y[k], err);
-    h->load_node[k] = nodes[k];
+    const size_t j = match_node(h->mesh, nodes, s->nload, used, k, s->load_x[k], s->load_y[k]);
+    used[j] = 1;
+    rc = check_at(h->mesh, nodes[j], what, key, key, s->load_x[k], s->load_y[k], err);
+    h->load_node[k] = nodes[j];
     if (!rc)
-      rc = fb_hull_coupling_node(nodes[k], &h->load_coupling[k], err);
+      rc = fb_hull_coupling_node(nodes[j], &h->load_coupling[k], err);
   }
+  free(used);
   h->nload = s->nload;
   const char *const edges[2] = {"FRONT_EDGE", "REAR_EDGE"};
   const char *const edge_x[2] = {"hull.edges.front_x", "hull.edges.rear_x"};
   for (int k = 0; !rc && k < 2; ++k) {
     rc = nset_nodes(h->mesh, edges[k], 2, &nodes, err);
+    const int swap =
+        !rc && fb_mesh_node_xyz(h->mesh, nodes[0])[1] < fb_mesh_node_xyz(h->mesh, nodes[1])[1];
+    const size_t left = rc ? 0 : nodes[swap], right = rc ? 0 : nodes[!swap];
     const double x = k == 0 ? s->edge_front_x : s->edge_rear_x;
     char what[32];
     snprintf(what, sizeof what, "%s's left end", edges[k]);
     if (!rc)
-      rc = check_at(h->mesh, nodes[0], what, edge_x[k], "hull.edges.left_y", x, s->edge_left_y,
-                    err);
+      rc =
+          check_at(h->mesh, left, what, edge_x[k], "hull.edges.left_y", x, s->edge_left_y, err);
     snprintf(what, sizeof what, "%s's right end", edges[k]);
     if (!rc)
-      rc = check_at(h->mesh, nodes[1], what, edge_x[k], "hull.edges.right_y", x,
-                    s->edge_right_y, err);
-    if (!rc) {
-      h->edge_node[2 * k] = nodes[0];
-      h->edge_node[2 * k + 1] = nodes[1];
-      if (fb_mesh_node_xyz(h->mesh, nodes[0])[1] <= fb_mesh_node_xyz(h->mesh, nodes[1])[1])
-        rc = fb_err_set(err, FB_EMODEL,
-                        "the mesh's node set %s must list its left end (larger y) first",
-                        edges[k]);
-    }
+      rc = check_at(h->mesh, right, what, edge_x[k], "hull.edges.right_y", x, s->edge_right_y,
+                    err);
+    h->edge_node[2 * k] = left;
+    h->edge_node[2 * k + 1] = right;
   }
   return rc;
 }
