@@ -379,6 +379,17 @@ checks=$((checks + 1))
 run run "$WORK/apc_coupled.yaml" -o "$WORK/coupled" -q --no-figures
 expect_status 0 "both systems with distributing couplings"
 sed '/coupling: {kind: distributing/d' "$WORK/apc_coupled.yaml" >"$WORK/apc_uncoupled.yaml"
+# A point whose node set is one node 3 cm away: with a kinematic coupling,
+# a lever to that node; without one, refused at the point's key.
+sed -e 's/deck: perturbed.inp/deck: flat.inp\n    coupling: {kind: kinematic, radius: 0.1, surface: FLOOR}/' \
+  -e 's/^      x: 1.90  .*/      x: 1.93/' "$WORK/apc_perturbed.yaml" >"$WORK/apc_lever.yaml"
+run mesh "$WORK/apc_lever.yaml"
+expect_status 0 "a one-node set off its point, kinematic coupling"
+sed '/coupling: {kind: kinematic/d' "$WORK/apc_lever.yaml" >"$WORK/apc_no_lever.yaml"
+run mesh "$WORK/apc_no_lever.yaml"
+expect_status 2 "a one-node set off its point, no coupling"
+expect_in "$ERR" "suspensions.axles[0].x: " "off-node point: key"
+expect_in "$ERR" "flat.inp: the scenario puts SUSP_LF at (1.93" "off-node point: set"
 run run "$WORK/apc_uncoupled.yaml" -o "$WORK/uncoupled" -q --no-figures
 expect_status 2 "points off the nodes without a coupling"
 expect_in "$ERR" "the mesh has no node set SUSP_LF" "uncoupled: the missing set"

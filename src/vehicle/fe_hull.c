@@ -102,8 +102,10 @@ static int attach_one(const fb_scenario *s, fb_fe_hull *h, size_t a, const char 
   const size_t *nodes = NULL;
   size_t n = 0;
   if (s->coupling != FB_COUPLING_NONE) {
-    const int on_node = fb_mesh_nset(h->mesh, set, &nodes, &n) && n == 1 &&
-                        check_at(h->mesh, nodes[0], set, kx, ky, x, y, NULL) == FB_OK;
+    const double *p = fb_mesh_nset(h->mesh, set, &nodes, &n) && n == 1
+                          ? fb_mesh_node_xyz(h->mesh, nodes[0])
+                          : NULL;
+    const int on_node = p && fabs(p[0] - x) <= 1e-3 && fabs(p[1] - y) <= 1e-3;
     if (!on_node) {
       const int rc = fb_hull_coupling_build(s, h->mesh, set, x, y, &h->attach_coupling[a],
                                             &h->attach_node[a], err);
