@@ -189,7 +189,7 @@ static int read_names(msh_reader *r)
   if (!rc)
     rc = count_ok(r, n, "physical name count");
   for (long i = 0; !rc && i < n; ++i) {
-    long dt[2];
+    long dt[2] = {0, 0};
     rc = need_line(r, "a physical name");
     p = r->line;
     if (!rc)
@@ -224,13 +224,14 @@ static int read_names(msh_reader *r)
 static int read_entity(msh_reader *r, int dim)
 {
   long tag = 0, nphys = 0;
-  double box[6];
   int rc = need_line(r, "an entity");
   char *p = r->line;
   if (!rc)
     rc = ints(r, &p, &tag, 1, "entity");
-  if (!rc)
+  if (!rc) {
+    double box[6]; /* its point, or its bounding box: not needed */
     rc = reals(r, &p, box, dim == 0 ? 3 : 6, "entity");
+  }
   if (!rc)
     rc = ints(r, &p, &nphys, 1, "entity");
   if (!rc && (nphys < 0 || nphys > 1024))
@@ -280,7 +281,7 @@ static const char *phys_name(const msh_reader *r, int dim, long tag)
 
 static int read_node_block(msh_reader *r)
 {
-  long head[4];
+  long head[4] = {0, 0, 0, 0};
   int rc = need_line(r, "a node block");
   char *p = r->line;
   if (!rc)
@@ -317,7 +318,7 @@ static int read_node_block(msh_reader *r)
 
 static int read_nodes(msh_reader *r)
 {
-  long head[4];
+  long head[4] = {0, 0, 0, 0};
   int rc = need_line(r, "the node counts");
   char *p = r->line;
   if (!rc)
@@ -376,7 +377,7 @@ static size_t type_nodes(long type)
 
 static int read_element_block(msh_reader *r)
 {
-  long head[4];
+  long head[4] = {0, 0, 0, 0};
   int rc = need_line(r, "an element block");
   char *p = r->line;
   if (!rc)
@@ -426,7 +427,7 @@ static int read_element_block(msh_reader *r)
 
 static int read_elements(msh_reader *r)
 {
-  long head[4];
+  long head[4] = {0, 0, 0, 0};
   int rc = need_line(r, "the element counts");
   char *p = r->line;
   if (!rc)
