@@ -346,6 +346,9 @@ expect_in "$OUT" "SIDES               64 elements,    18.72 m^2, 0.0085 m" "truc
 expect_in "$OUT" "+ 10 kg/m^2: 1436.29 kg" "truck's side section mass"
 run run "$WORK/truck_sections.yaml" -o "$WORK/truck_sections" -q --no-figures
 expect_status 0 "both systems on the truck with sections"
+expect_in "$WORK/truck_sections/report.md" \
+  "Plates with a section of their own (the material above elsewhere): FLOOR (104 elements) 0.02 m" \
+  "report.md lists the sections"
 sed 's/{set: FLOOR, thickness: 0.020}/{set: FLOR, thickness: 0.020}/' "$WORK/truck_sections.yaml" \
   >"$WORK/truck_bad_set.yaml"
 run run "$WORK/truck_bad_set.yaml" -o "$WORK/truck_bad_set" -q --no-figures

@@ -271,7 +271,7 @@ static void test_line(void)
   fb_hull_coupling c = {0, NULL, NULL};
   size_t node = 0;
   CHECK(fb_hull_coupling_build(&s, m, "SUSP_X", PX, PY, &c, &node, &err) == FB_EMODEL);
-  CHECK(strstr(err.msg, "SUSP_X: its 3 coupling nodes lie on a line 0.039 m from it") != NULL);
+  CHECK(strstr(err.msg, "SUSP_X: its coupling nodes lie on a line 0.039 m from it") != NULL);
   MUST(fb_hull_coupling_build(&s, m, "SUSP_X", 0.52, 0.5005, &c, &node, &err), &err);
   CHECK(c.n == 3);
   fb_hull_coupling_free(&c);

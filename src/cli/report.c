@@ -263,6 +263,31 @@ static void write_payload(FILE *fp, const fb_scenario *s)
           payload / (double)s->nload);
 }
 
+/* The plates whose section overrides the material above, by element
+ * set (a deck's *SHELL SECTION or hull.sections), with their elements. */
+static void write_sections(FILE *fp, const fb_mesh *m)
+{
+  size_t shown = 0;
+  for (size_t i = 0; i < fb_mesh_nsections(m); ++i) {
+    size_t n = 0;
+    for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+      n += fb_mesh_element_section(m, e) == (long)i;
+    if (n == 0)
+      continue;
+    const fb_shell_props *p = fb_mesh_section_props(m, i);
+    fputs(shown++ ? "; "
+                  : "  Plates with a section of their own (the material above elsewhere): ",
+          fp);
+    fb_md_write_text(fp, fb_mesh_section_elset(m, i));
+    fprintf(fp, " (%zu elements) %.10g m, E = %.10g GPa, nu = %.10g, rho = %.10g kg/m^3", n,
+            p->thickness, p->young / 1e9, p->poisson, p->density);
+    if (p->nonstructural_mass > 0.0)
+      fprintf(fp, ", + %.10g kg/m^2 non-structural", p->nonstructural_mass);
+  }
+  if (shown)
+    fputs(".\n", fp);
+}
+
 static void write_hull_order(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
@@ -329,6 +354,7 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
           s->young / 1e9, s->poisson, s->density, s->thickness,
           s->hull_mass_matrix == FB_MASS_LUMPED ? "lumped" : "consistent",
           s->hull_drill_factor);
+  write_sections(fp, m);
   fprintf(fp,
           "- System 2's structural damping: B = beta K with beta = %.4g s, so that the %s "
           "first elastic free-free mode (%.4g Hz) has a damping ratio of %.3g "

@@ -136,10 +136,11 @@ static int distributing(const fb_mesh *m, const size_t *nodes, size_t n, double 
                           r[1] - (S[2] * lambda[0] + S[3] * lambda[1])};
   if (hypot(miss[0], miss[1]) > COUPLING_TOL)
     return fb_err_set(err, FB_EMODEL,
-                      "%s: its %zu coupling node%s lie on a line %.3g m from it, which cannot "
-                      "carry the moment of its force (a distributing coupling needs nodes "
-                      "around it, or use kind: kinematic)",
-                      what, n, n == 1 ? "" : "s", hypot(miss[0], miss[1]));
+                      "%s: %s %.3g m from it, which cannot carry the moment of its force (a "
+                      "distributing coupling needs nodes around it, or use kind: kinematic)",
+                      what,
+                      n == 1 ? "its one coupling node is" : "its coupling nodes lie on a line",
+                      hypot(miss[0], miss[1]));
   const int rc = coupling_alloc(c, n, err);
   for (size_t i = 0; !rc && i < n; ++i) {
     const double *p = fb_mesh_node_xyz(m, nodes[i]);
