@@ -1119,6 +1119,93 @@ static void test_msh(void)
   expect_msh_error(MSH_HEAD "$Comments\nanything\n$EndComments\n", "no triangles or quad");
 }
 
+/* ---- Outline. */
+
+/* nplates strips of n unit quadrilaterals sharing the edge from (0, 0, 0)
+ * to (n, 0, 0), plate p turned by phi[p] (degrees) about the x axis:
+ * nodes 0 .. n on the shared edge, then each plate's outer row. */
+static fb_mesh *fan_mesh(const double *phi, size_t nplates, size_t n)
+{
+  fb_mesh *m = NULL;
+  fb_err err;
+  int rc = fb_mesh_new(&m, &err);
+  for (size_t p = 0; p <= nplates && !rc; ++p)
+    for (size_t x = 0; x <= n && !rc; ++x) {
+      const double a = p ? phi[p - 1] * 3.14159265358979323846 / 180.0 : 0.0;
+      rc = fb_mesh_add_node(m, (long)(p * (n + 1) + x + 1), (double)x, p ? cos(a) : 0.0,
+                            p ? sin(a) : 0.0, NULL, &err);
+    }
+  for (size_t p = 0; p < nplates && !rc; ++p)
+    for (size_t x = 0; x < n && !rc; ++x) {
+      const size_t o = (p + 1) * (n + 1) + x, q[4] = {x, x + 1, o + 1, o};
+      rc = fb_mesh_add_element(m, (long)(p * n + x + 1), FB_ELEM_QUAD4, q, &err);
+    }
+  CHECK(rc == FB_OK);
+  return m;
+}
+
+/* Edges in the outline at angle (degrees); -1 on an error. Checks that
+ * they come once each, lower node first, in increasing order. */
+static long outline_count(const fb_mesh *m, double angle, size_t a, size_t b, int *has_ab)
+{
+  size_t *edge = NULL, n = 0;
+  fb_err err;
+  if (fb_mesh_outline(m, angle * 3.14159265358979323846 / 180.0, &edge, &n, &err))
+    return -1;
+  *has_ab = 0;
+  for (size_t i = 0; i < n; ++i) {
+    CHECK(edge[2 * i] < edge[2 * i + 1]);
+    if (i)
+      CHECK(edge[2 * i - 2] < edge[2 * i] ||
+            (edge[2 * i - 2] == edge[2 * i] && edge[2 * i - 1] < edge[2 * i + 1]));
+    *has_ab |= edge[2 * i] == a && edge[2 * i + 1] == b;
+  }
+  free(edge);
+  return (long)n;
+}
+
+static void test_outline(void)
+{
+  /* A plate of three quads alone: its 8 edges are all on its boundary.
+   * With others, each has 5 free edges (its outer row and its two ends);
+   * the shared edge's three pieces count where the plates fold by more
+   * than the angle, or where three plates meet. */
+  int fold;
+  fb_mesh *m = fan_mesh((const double[]){180.0}, 1, 3);
+  CHECK(outline_count(m, 20.0, 0, 1, &fold) == 8 && fold);
+  fb_mesh_free(&m);
+  m = fan_mesh((const double[]){0.0, 180.0}, 2, 3); /* one flat plate */
+  CHECK(outline_count(m, 20.0, 0, 1, &fold) == 10 && !fold);
+  fb_mesh_free(&m);
+  m = fan_mesh((const double[]){0.0, 150.0}, 2, 3); /* folded by 30 degrees */
+  CHECK(outline_count(m, 20.0, 0, 1, &fold) == 13 && fold);
+  CHECK(outline_count(m, 35.0, 0, 1, &fold) == 10 && !fold);
+  fb_mesh_free(&m);
+  m = fan_mesh((const double[]){0.0, 170.0}, 2, 3); /* by 10 */
+  CHECK(outline_count(m, 20.0, 0, 1, &fold) == 10 && !fold);
+  CHECK(outline_count(m, 5.0, 0, 1, &fold) == 13 && fold);
+  fb_mesh_free(&m);
+  /* A plate turned over (normals opposite) folds by 30 degrees, not 150. */
+  m = fan_mesh((const double[]){0.0, -30.0}, 2, 3);
+  CHECK(outline_count(m, 20.0, 0, 1, &fold) == 13 && fold);
+  CHECK(outline_count(m, 35.0, 0, 1, &fold) == 10 && !fold);
+  fb_mesh_free(&m);
+  m = fan_mesh((const double[]){0.0, 90.0, 180.0}, 3, 3); /* a T: three plates meet */
+  CHECK(outline_count(m, 89.0, 0, 1, &fold) == 18 && fold);
+  CHECK(outline_count(m, 91.0, 0, 1, &fold) == 18 && fold);
+  /* The area vector: a unit square in the plane z = 0, normal +z by its
+   * node order (0, 1, outer 1, outer 0); the turned plate's along -y. */
+  double v[3];
+  fb_mesh_element_area_vector(m, 0, v);
+  CHECK_NEAR(v[0], 0.0, 1e-15);
+  CHECK_NEAR(v[1], 0.0, 1e-15);
+  CHECK_NEAR(v[2], 1.0, 1e-15);
+  fb_mesh_element_area_vector(m, 3, v);
+  CHECK_NEAR(v[1], -1.0, 1e-15);
+  CHECK_NEAR(v[2], 0.0, 1e-15);
+  fb_mesh_free(&m);
+}
+
 int main(void)
 {
   snprintf(root, sizeof root, "/tmp/flexbond_mesh_XXXXXX");
@@ -1139,6 +1226,7 @@ int main(void)
   test_inp_bad_decks();
   test_sections();
   test_msh();
+  test_outline();
   test_vtu();
   remove_root();
   return check_report("test_mesh");

@@ -59,6 +59,17 @@ fb_elem_type fb_mesh_element_type(const fb_mesh *m, size_t e);
 long fb_mesh_element_id(const fb_mesh *m, size_t e);
 /* Node indices of element e (3 or 4). */
 const size_t *fb_mesh_element_nodes(const fb_mesh *m, size_t e);
+/* Element e's area vector into v[3] (m^2): its area times its unit
+ * normal (right-handed in the node order); a warped quadrilateral's
+ * projected area, half the cross product of its diagonals. */
+void fb_mesh_element_area_vector(const fb_mesh *m, size_t e, double *v);
+/* The mesh's outline (*edges new, 2 node indices per edge, lower first,
+ * in increasing order; free() it): every edge on one element (the
+ * boundary), on more than two (where a bulkhead meets a wall), or between
+ * two whose planes meet at more than angle (rad; the sign of their normals
+ * does not count, as plates need not share an orientation). */
+int fb_mesh_outline(const fb_mesh *m, double angle, size_t **edges, size_t *nedges,
+                    fb_err *err);
 size_t fb_mesh_nnsets(const fb_mesh *m);
 const char *fb_mesh_nset_name(const fb_mesh *m, size_t i);
 /* Node set by name (case-insensitive, as in Abaqus): 1 and its nodes, or 0. */
@@ -121,6 +132,8 @@ const char *fb_mesh_section_elset(const fb_mesh *m, size_t i);
 const fb_shell_props *fb_mesh_section_props(const fb_mesh *m, size_t i);
 /* The section of element e, or -1 for none. */
 long fb_mesh_element_section(const fb_mesh *m, size_t e);
+/* The number of elements whose section is sec (-1: those with none). */
+size_t fb_mesh_section_nelements(const fb_mesh *m, long sec);
 /* The properties element e is assembled with: its section's with base's
  * drilling factor, or *base (not NULL) when it has none. */
 fb_shell_props fb_mesh_element_props(const fb_mesh *m, size_t e, const fb_shell_props *base);

@@ -121,16 +121,42 @@ void fb_plot_xy_opts_default(fb_plot_xy_opts *opts);
 int fb_plot_xy_png(const fb_plot_xy_panel *panels, size_t npanels, const fb_plot_xy_opts *opts,
                    const char *path, fb_err *err);
 
-/* A deformed shell mesh as a 3-D wireframe PNG (gnuplot), like the
- * paper's Figs. 3-4: node i drawn at its position plus scale times its
- * translation (the first three of its six values in dof_values, which may
- * be NULL for the undeformed mesh); elements whose normal lies within 30
- * degrees of the y axis (the side walls) are left out; ncubes cubes of
- * side cube_side are drawn centred at cube_xyz (3 per cube, already
- * displaced). title may be NULL. */
-int fb_plot_mesh_png(const fb_mesh *m, const double *dof_values, double scale,
-                     const double *cube_xyz, size_t ncubes, double cube_side, const char *title,
-                     const char *path, fb_err *err);
+/* A mode shape of a vehicle with a shell hull as a 3-D PNG (gnuplot),
+ * like the paper's Figs. 3-4. Everything is drawn twice: at rest in grey
+ * and displaced, the largest displacement drawn largest_drawn long,
+ * coloured by the length of each point's displacement (the colour bar in
+ * the shape's units). The
+ * hull at rest is its outline (fb_mesh_outline: where plates meet at
+ * more than 20 degrees, more than two meet, or one ends);
+ * displaced, every element's edges, but those of elements whose normal
+ * lies within 30 degrees of the y axis (the side walls, which would hide
+ * the rest) only on the outline. Mounted bodies are cubes; each wheel is
+ * a circle in its x-z plane hanging by a line from its suspension's
+ * attachment point, its top wheel_radius / 2 below it. Axes' ranges and
+ * tics are chosen so that their labels do not meet. */
+typedef struct fb_plot_body {
+  double xyz[3]; /* its centre at rest, m */
+  double dz;     /* its vertical displacement in the shape */
+} fb_plot_body;
+typedef struct fb_plot_wheel {
+  double top[3]; /* the suspension's attachment point at rest, m */
+  double top_dz; /* the attachment point's vertical displacement */
+  double dz;     /* the wheel's */
+} fb_plot_wheel;
+typedef struct fb_plot_mode {
+  const fb_mesh *mesh;
+  const double *shape;  /* six values per node, the first three its translation */
+  double largest_drawn; /* m, > 0 */
+  const fb_plot_body *body;
+  size_t nbodies;
+  double body_side; /* m */
+  const fb_plot_wheel *wheel;
+  size_t nwheels;
+  double wheel_radius;  /* m */
+  const char *title;    /* may be NULL */
+  const char *subtitle; /* a second line under it; may be NULL */
+} fb_plot_mode;
+int fb_plot_mode_png(const fb_plot_mode *pic, const char *path, fb_err *err);
 
 /* ---- A vehicle scenario's values (flexbond/vehicle.h), as a report
  * lists them. */

@@ -216,9 +216,8 @@ enum { CLI_NPICTURED_MODES = 4 };
 extern const size_t cli_pictured_modes[CLI_NPICTURED_MODES];
 /* "mode_NN.png", the picture of 1-based mode number mode, into buf. */
 void cli_mode_picture_name(size_t mode, char *buf, size_t size);
-/* Writes the picture of every pictured mode that ms holds: the deformed
- * hull as a wireframe (side walls left out) with the mounted bodies
- * drawn as cubes (fb_plot_mesh_png). */
+/* Writes the picture of every pictured mode that ms holds: the hull, the
+ * mounted bodies and the wheels at rest and displaced (fb_plot_mode_png). */
 int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hull *hull,
                             const fb_mode_set *ms, fb_err *err);
 

@@ -57,23 +57,12 @@ static int print_mass(const fb_fe_hull *h, int as_built, fb_err *err)
   return FB_OK;
 }
 
-/* Area of element e: half the norm of the sum of its sides' cross
- * products about node 0 (exact for a flat polygon). */
+/* Area of element e (its projected area if it is warped). */
 static double element_area(const fb_mesh *m, size_t e)
 {
-  const size_t *nd = fb_mesh_element_nodes(m, e);
-  const size_t nn = fb_mesh_element_type(m, e) == FB_ELEM_QUAD4 ? 4 : 3;
-  const double *x0 = fb_mesh_node_xyz(m, nd[0]);
-  double n[3] = {0, 0, 0};
-  for (size_t k = 1; k + 1 < nn; ++k) {
-    const double *a = fb_mesh_node_xyz(m, nd[k]), *b = fb_mesh_node_xyz(m, nd[k + 1]);
-    const double u[3] = {a[0] - x0[0], a[1] - x0[1], a[2] - x0[2]};
-    const double v[3] = {b[0] - x0[0], b[1] - x0[1], b[2] - x0[2]};
-    n[0] += u[1] * v[2] - u[2] * v[1];
-    n[1] += u[2] * v[0] - u[0] * v[2];
-    n[2] += u[0] * v[1] - u[1] * v[0];
-  }
-  return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  double v[3];
+  fb_mesh_element_area_vector(m, e, v);
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
 /* One line per section (sec -1: the elements without one, which take

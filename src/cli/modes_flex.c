@@ -4,8 +4,8 @@
  *   DIR/hull_modes.csv   mode,frequency_hz,kind (rigid | elastic)
  *   DIR/modes.csv        mode,frequency_hz,description
  *   DIR/mode_NN.vtu      each vehicle mode's hull displacement (ParaView)
- *   DIR/mode_NN.png      modes 1, 2, 8 and 10 as deformed wireframes with
- *                        the driver and the engine drawn as cubes
+ *   DIR/mode_NN.png      modes 1, 2, 8 and 10: the hull, the mounted bodies
+ *                        (cubes) and the wheels at rest and displaced
  *                        (cli_write_mode_pictures, which run uses too). */
 #include <math.h>
 #include <stdio.h>
@@ -56,49 +56,92 @@ void cli_mode_picture_name(size_t mode, char *buf, size_t size)
   snprintf(buf, size, "mode_%02zu.png", mode);
 }
 
-/* The mounted bodies' cubes: 0.4 m above their floor nodes, moved by
- * their own vertical displacement (scaled). */
-static void cubes(const fb_scenario *s, const fb_fe_hull *hull, const double *v, double scale,
-                  double *xyz)
+/* The picture's parts, drawn to the hull's size: its largest extent L
+ * (m). The largest displacement is drawn 0.08 L long, which makes a mode
+ * plain and leaves the hull recognisable; a body is a cube of 0.05 L
+ * resting on its attachment point, a wheel a circle of radius 0.07 L
+ * (schematic: the model knows the wheel's mass, not its size). */
+typedef struct mode_parts {
+  fb_plot_body *body;
+  fb_plot_wheel *wheel;
+  double extent;
+} mode_parts;
+
+static double mesh_extent(const fb_mesh *m)
 {
-  const fb_mesh *m = hull->mesh;
-  size_t nh = 6 * fb_mesh_nnodes(m);
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = fmin(lo[k], fb_mesh_node_xyz(m, i)[k]);
+      hi[k] = fmax(hi[k], fb_mesh_node_xyz(m, i)[k]);
+    }
+  return fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+}
+
+/* The vertical displacement of attachment point a in the shape v: its
+ * coupling row, as the hull's transformer reads it. */
+static double attach_dz(const fb_fe_hull *hull, size_t a, const double *v)
+{
+  const fb_hull_coupling *c = &hull->attach_coupling[a];
+  double dz = 0.0;
+  for (size_t i = 0; i < c->n; ++i)
+    dz += c->w[i] * v[c->dof[i]];
+  return dz;
+}
+
+/* Bodies and wheels of mode shape v (hull, then the mounted bodies' and
+ * the wheels' vertical motion: fb_vehicle_flexible_modes). */
+static void fill_parts(const fb_scenario *s, const fb_fe_hull *hull, const double *v,
+                       mode_parts *mp)
+{
+  const size_t nh = 6 * fb_mesh_nnodes(hull->mesh);
+  const double side = 0.05 * mp->extent;
   for (size_t b = 0; b < s->nmounts; ++b) {
-    const double *p = fb_mesh_node_xyz(m, hull->attach_node[s->ncorners + b]);
-    xyz[3 * b] = p[0];
-    xyz[3 * b + 1] = p[1];
-    xyz[3 * b + 2] = p[2] + 0.4 + scale * v[nh + (size_t)b];
+    const size_t a = s->ncorners + b;
+    const double z = fb_mesh_node_xyz(hull->mesh, hull->attach_node[a])[2];
+    mp->body[b] = (fb_plot_body){{s->mount[b].x, s->mount[b].y, z + 0.5 * side}, v[nh + b]};
+  }
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const double z = fb_mesh_node_xyz(hull->mesh, hull->attach_node[c])[2];
+    mp->wheel[c] = (fb_plot_wheel){
+        {s->corner[c].x, s->corner[c].y, z}, attach_dz(hull, c, v), v[nh + s->nmounts + c]};
   }
 }
 
 int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hull *hull,
                             const fb_mode_set *ms, fb_err *err)
 {
-  double *cube_xyz = malloc((3 * s->nmounts + 1) * sizeof *cube_xyz);
-  int rc = cube_xyz ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  mode_parts mp = {malloc((s->nmounts + 1) * sizeof *mp.body),
+                   malloc((s->ncorners + 1) * sizeof *mp.wheel), mesh_extent(hull->mesh)};
+  int rc = mp.body && mp.wheel ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t i = 0; !rc && i < CLI_NPICTURED_MODES; ++i) {
-    size_t k = cli_pictured_modes[i] - 1;
+    const size_t k = cli_pictured_modes[i] - 1;
     if (k >= ms->nmodes)
       continue;
     const double *v = ms->shapes + k * ms->ndof;
-    /* Shapes are normalised to a largest displacement of 1: draw it as
-     * 0.5 m, visible on a 6 m hull. */
-    const double scale = 0.5;
-    cubes(s, hull, v, scale, cube_xyz);
-    char name[32], title[160];
+    fill_parts(s, hull, v, &mp);
+    char name[32], title[160], subtitle[200];
     cli_mode_picture_name(k + 1, name, sizeof name);
     snprintf(title, sizeof title, "System 2, mode %zu: %.3f Hz, %s", k + 1, ms->freq_hz[k],
              ms->description[k]);
+    const double drawn = 0.08 * mp.extent;
+    snprintf(subtitle, sizeof subtitle,
+             "shape normalised to a largest hull or body translation of 1; the largest "
+             "displacement drawn %.2f m long; grey: at rest",
+             drawn);
+    const fb_plot_mode pic = {hull->mesh, v,           drawn,
+                              mp.body,    s->nmounts,  0.05 * mp.extent,
+                              mp.wheel,   s->ncorners, 0.07 * mp.extent,
+                              title,      subtitle};
     char *path = cli_outdir_path(od, name, err);
-    rc = path ? fb_plot_mesh_png(hull->mesh, v, scale, cube_xyz, s->nmounts, 0.3, title, path,
-                                 err)
-              : err->code;
+    rc = path ? fb_plot_mode_png(&pic, path, err) : err->code;
     if (!rc)
       rc = cli_outdir_keep(od, path, err);
     else
       free(path);
   }
-  free(cube_xyz);
+  free(mp.body);
+  free(mp.wheel);
   return rc;
 }
 

@@ -164,6 +164,16 @@ size_t fb_utf8_length(const unsigned char *s, size_t n)
   return len;
 }
 
+int fb_text_copy(const char *text, size_t len, const char *name, char **copy, fb_err *err)
+{
+  *copy = len < SIZE_MAX ? malloc(len + 1) : NULL;
+  if (!*copy)
+    return fb_err_set(err, FB_ENOMEM, "out of memory reading %s", name);
+  memcpy(*copy, text, len);
+  (*copy)[len] = '\0';
+  return FB_OK;
+}
+
 size_t fb_text_split_line(char *text, size_t len, size_t *pos, char **line)
 {
   char *start = text + *pos;

@@ -100,6 +100,10 @@ size_t fb_text_find_binary(const char *text, size_t len, int line_ends, size_t *
  * which the caller refuses at that line). *pos must be below len. */
 size_t fb_text_split_line(char *text, size_t len, size_t *pos, char **line);
 
+/* A copy of text[0..len) with a NUL after it (*copy new, free() it), for
+ * the readers that split a caller's text in place; FB_ENOMEM naming name. */
+int fb_text_copy(const char *text, size_t len, const char *name, char **copy, fb_err *err);
+
 /* Offset of the first control character of text[0..len): C0 (U+0000 ..
  * U+001F), DEL, or C1 (U+0080 .. U+009F, the UTF-8 bytes C2 80 .. C2 9F;
  * two bytes); tab, line feed and carriage return excepted when layout is

@@ -1048,12 +1048,9 @@ int fb_mesh_read_inp_string(const char *text, size_t len, const char *display_na
   if (!text)
     return fb_err_set(err, FB_EINVAL, "fb_mesh_read_inp_string: text is NULL");
   const char *name = display_name ? display_name : "<string>";
-  char *copy = len < SIZE_MAX ? malloc(len + 1) : NULL;
-  if (!copy)
-    return fb_err_set(err, FB_ENOMEM, "out of memory reading %s", name);
-  memcpy(copy, text, len);
-  copy[len] = '\0';
-  return read_inp_buffer(copy, len, name, out, props, err);
+  char *copy;
+  const int rc = fb_text_copy(text, len, name, &copy, err);
+  return rc ? rc : read_inp_buffer(copy, len, name, out, props, err);
 }
 
 /* ---- Writing. */
@@ -1133,15 +1130,6 @@ static void write_sets(FILE *fp, const fb_mesh *m)
   }
 }
 
-/* The number of elements whose section is sec (-1: none). */
-static size_t section_count(const fb_mesh *m, long sec)
-{
-  size_t n = 0;
-  for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
-    n += fb_mesh_element_section(m, e) == sec;
-  return n;
-}
-
 /* The ids of the elements whose section is sec, sixteen per line. */
 static void write_section_ids(FILE *fp, const fb_mesh *m, long sec, size_t n)
 {
@@ -1213,7 +1201,7 @@ static void write_section(FILE *fp, const fb_mesh *m, long sec, size_t n,
 static void write_sections(FILE *fp, const fb_mesh *m, const fb_shell_props *p)
 {
   for (long sec = p ? -1 : 0; sec < (long)fb_mesh_nsections(m); ++sec) {
-    const size_t n = section_count(m, sec);
+    const size_t n = fb_mesh_section_nelements(m, sec);
     if (n > 0)
       write_section(fp, m, sec, n, sec >= 0 ? fb_mesh_section_props(m, (size_t)sec) : p);
   }

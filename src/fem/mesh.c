@@ -19,6 +19,7 @@
 #include "core/util.h"
 #include "fem/mesh_internal.h"
 #include "fem/shell_internal.h"
+#include "fem/vec3.h"
 
 /* Hash table from user id to index; slot value 0 is empty, k is index
  * k - 1 of the id array the table was built over. */
@@ -662,6 +663,29 @@ const size_t *fb_mesh_element_nodes(const fb_mesh *m, size_t e)
   return m && e < m->nelems ? &m->elem_nodes[4 * e] : NULL;
 }
 
+/* Half of (b - a) x (c - a) for a triangle; for a quadrilateral half
+ * the cross product of its diagonals, (c - a) x (d - b), which is its
+ * area vector when it is plane and the projected area vector of a warped
+ * one. */
+void fb_mesh_element_area_vector(const fb_mesh *m, size_t e, double *v)
+{
+  const size_t *nd = fb_mesh_element_nodes(m, e);
+  const double *a = fb_mesh_node_xyz(m, nd[0]);
+  const double *b = fb_mesh_node_xyz(m, nd[1]);
+  const double *c = fb_mesh_node_xyz(m, nd[2]);
+  double u[3], w[3];
+  if (fb_mesh_element_type(m, e) == FB_ELEM_TRI3) {
+    fb_sub3(b, a, u);
+    fb_sub3(c, a, w);
+  } else {
+    fb_sub3(c, a, u);
+    fb_sub3(fb_mesh_node_xyz(m, nd[3]), b, w);
+  }
+  fb_cross3(u, w, v);
+  for (int k = 0; k < 3; ++k)
+    v[k] *= 0.5;
+}
+
 size_t fb_mesh_nnsets(const fb_mesh *m)
 {
   return m ? m->nsets.n : 0;
@@ -724,6 +748,14 @@ const fb_shell_props *fb_mesh_section_props(const fb_mesh *m, size_t i)
 long fb_mesh_element_section(const fb_mesh *m, size_t e)
 {
   return m && m->elem_section && e < m->nelems ? m->elem_section[e] : -1;
+}
+
+size_t fb_mesh_section_nelements(const fb_mesh *m, long sec)
+{
+  size_t n = 0;
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+    n += fb_mesh_element_section(m, e) == sec;
+  return n;
 }
 
 fb_shell_props fb_mesh_element_props(const fb_mesh *m, size_t e, const fb_shell_props *base)

@@ -52,27 +52,6 @@ static double bbox_diag2(const fb_mesh *m)
   return fb_dot3(d, d);
 }
 
-/* Twice the vector area of an element: (b - a) x (c - a) for a triangle;
- * for a quadrilateral the cross product of its diagonals, (c - a) x (d - b),
- * which is the same for a plane quadrilateral and the projected area
- * vector of a warped one. */
-static void area_vector2(const fb_mesh *m, size_t e, double *v)
-{
-  const size_t *nd = fb_mesh_element_nodes(m, e);
-  const double *a = fb_mesh_node_xyz(m, nd[0]);
-  const double *b = fb_mesh_node_xyz(m, nd[1]);
-  const double *c = fb_mesh_node_xyz(m, nd[2]);
-  double u[3], w[3];
-  if (fb_mesh_element_type(m, e) == FB_ELEM_TRI3) {
-    fb_sub3(b, a, u);
-    fb_sub3(c, a, w);
-  } else {
-    fb_sub3(c, a, u);
-    fb_sub3(fb_mesh_node_xyz(m, nd[3]), b, w);
-  }
-  fb_cross3(u, w, v);
-}
-
 static int element_error(const fb_mesh *m, size_t e, fb_err *err, const char *what)
 {
   return fb_err_set(err, FB_EMODEL, "element %ld (%s) is %s", fb_mesh_element_id(m, e),
@@ -101,8 +80,8 @@ static int check_repeated(const fb_mesh *m, size_t e, fb_err *err)
 static int check_area(const fb_mesh *m, size_t e, double min_area, fb_err *err)
 {
   double v[3];
-  area_vector2(m, e, v);
-  const double area = 0.5 * fb_norm3(v);
+  fb_mesh_element_area_vector(m, e, v);
+  const double area = fb_norm3(v);
   char what[160];
   if (!(area >= min_area)) {
     snprintf(what, sizeof what, "degenerate: area %g m^2 below the limit %g m^2", area,
@@ -112,7 +91,7 @@ static int check_area(const fb_mesh *m, size_t e, double min_area, fb_err *err)
   if (fb_mesh_element_type(m, e) != FB_ELEM_QUAD4)
     return FB_OK;
   const size_t *nd = fb_mesh_element_nodes(m, e);
-  const double unit[3] = {v[0] / (2.0 * area), v[1] / (2.0 * area), v[2] / (2.0 * area)};
+  const double unit[3] = {v[0] / area, v[1] / area, v[2] / area};
   for (size_t k = 0; k < 4; ++k) {
     double in[3], out[3], c[3];
     fb_sub3(fb_mesh_node_xyz(m, nd[k]), fb_mesh_node_xyz(m, nd[(k + 3) % 4]), in);

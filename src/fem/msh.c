@@ -543,10 +543,7 @@ int fb_mesh_read_msh_string(const char *text, size_t len, const char *display_na
     return fb_err_set(err, FB_EINVAL, "fb_mesh_read_msh_string: NULL argument");
   *out = NULL;
   const char *name = display_name ? display_name : "<string>";
-  char *copy = len < SIZE_MAX ? malloc(len + 1) : NULL;
-  if (!copy)
-    return fb_err_set(err, FB_ENOMEM, "out of memory reading %s", name);
-  memcpy(copy, text, len);
-  copy[len] = '\0';
-  return read_msh_buffer(copy, len, name, out, err);
+  char *copy;
+  const int rc = fb_text_copy(text, len, name, &copy, err);
+  return rc ? rc : read_msh_buffer(copy, len, name, out, err);
 }

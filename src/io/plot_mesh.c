@@ -1,114 +1,317 @@
-/* Wireframe pictures of deformed shell meshes (the paper's Figs. 3 and 4)
- * through gnuplot's splot. */
+/* A vehicle's mode shape as a 3-D picture (the paper's Figs. 3 and 4)
+ * through gnuplot's splot: the hull's outline, its mounted bodies and
+ * wheels at rest in grey; the same displaced and coloured by how far
+ * each point moves. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "flexbond/io.h"
 
 #include "io/plot_internal.h"
 
-typedef struct mesh_script {
-  const fb_mesh *m;
-  const double *u;
-  double scale;
-  const double *cubes;
-  size_t ncubes;
-  double side;
-  const char *title;
-} mesh_script;
+typedef struct mode_script {
+  const fb_plot_mode *pic;
+  size_t *outline; /* the hull's outline, 2 nodes per edge (fb_mesh_outline) */
+  size_t noutline;
+  double umax;         /* largest displacement in the shape's units */
+  double scale;        /* m drawn per unit of the shape */
+  double lo[3], hi[3]; /* the drawing's extent, m */
+} mode_script;
 
-static void node_position(const mesh_script *ms, size_t node, double *p)
+enum { WHEEL_SEGMENTS = 36 };
+static const double PI = 3.14159265358979323846;
+
+static void unit_normal(const fb_mesh *m, size_t e, double *n)
 {
-  const double *x = fb_mesh_node_xyz(ms->m, node);
+  fb_mesh_element_area_vector(m, e, n);
+  const double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   for (int k = 0; k < 3; ++k)
-    p[k] = x[k] + (ms->u ? ms->scale * ms->u[6 * node + k] : 0.0);
+    n[k] = len > 0 ? n[k] / len : 0.0;
 }
 
 /* 1 if the element's normal is within 30 degrees of the y axis. */
 static int is_side_wall(const fb_mesh *m, size_t e)
 {
-  const size_t *n = fb_mesh_element_nodes(m, e);
-  const double *a = fb_mesh_node_xyz(m, n[0]), *b = fb_mesh_node_xyz(m, n[1]);
-  const double *c = fb_mesh_node_xyz(m, n[2]);
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  double nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2];
-  double nz = u[0] * v[1] - u[1] * v[0];
-  double len = sqrt(nx * nx + ny * ny + nz * nz);
-  return len > 0 && fabs(ny) / len > cos(30.0 * 3.14159265358979323846 / 180.0);
+  double n[3];
+  unit_normal(m, e, n);
+  return fabs(n[1]) > cos(30.0 * PI / 180.0);
 }
 
-/* Each element's outline as a closed polyline. Two blank lines end each
- * one: a single blank line would make splot join the outlines as the
- * scans of a surface grid. */
-static void write_edges(FILE *gp, const mesh_script *ms)
+/* ---- Points, at rest (moved 0) or displaced (moved 1). */
+
+static double node_motion(const fb_plot_mode *pic, size_t node)
 {
-  fputs("$edges << EOD\n", gp);
-  for (size_t e = 0; e < fb_mesh_nelements(ms->m); ++e) {
-    if (is_side_wall(ms->m, e))
-      continue;
-    const size_t *n = fb_mesh_element_nodes(ms->m, e);
-    size_t nn = (size_t)fb_mesh_element_type(ms->m, e);
-    for (size_t k = 0; k <= nn; ++k) {
-      double p[3];
-      node_position(ms, n[k % nn], p);
-      fprintf(gp, "%.6g %.6g %.6g\n", p[0], p[1], p[2]);
-    }
-    fputs("\n\n", gp);
+  const double *u = pic->shape + 6 * node;
+  return sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+}
+
+static void node_point(const mode_script *ms, size_t node, int moved, double *p)
+{
+  const fb_plot_mode *pic = ms->pic;
+  const double *x = fb_mesh_node_xyz(pic->mesh, node);
+  for (int k = 0; k < 3; ++k)
+    p[k] = x[k] + (moved ? ms->scale * pic->shape[6 * node + k] : 0.0);
+}
+
+/* Writes a point and, displaced, its colour value. */
+static void put(FILE *gp, const double *p, int moved, double value)
+{
+  if (moved)
+    fprintf(gp, "%.6g %.6g %.6g %.6g\n", p[0], p[1], p[2], value);
+  else
+    fprintf(gp, "%.6g %.6g %.6g\n", p[0], p[1], p[2]);
+}
+
+/* Two blank lines end each polyline: one would make splot join them as
+ * the scans of a surface grid. */
+static void end_line(FILE *gp)
+{
+  fputs("\n\n", gp);
+}
+
+static void put_node(FILE *gp, const mode_script *ms, size_t node, int moved)
+{
+  const fb_plot_mode *pic = ms->pic;
+  double p[3];
+  node_point(ms, node, moved, p);
+  put(gp, p, moved, node_motion(pic, node));
+}
+
+static void write_outline(FILE *gp, const mode_script *ms, int moved)
+{
+  for (size_t i = 0; i < ms->noutline; ++i) {
+    put_node(gp, ms, ms->outline[2 * i], moved);
+    put_node(gp, ms, ms->outline[2 * i + 1], moved);
+    end_line(gp);
   }
-  fputs("EOD\n", gp);
 }
 
-/* The twelve edges of each cube. */
-static void write_cubes(FILE *gp, const mesh_script *ms)
+static void write_elements(FILE *gp, const mode_script *ms)
 {
+  const fb_plot_mode *pic = ms->pic;
+  for (size_t e = 0; e < fb_mesh_nelements(pic->mesh); ++e) {
+    if (is_side_wall(pic->mesh, e))
+      continue;
+    const size_t *nd = fb_mesh_element_nodes(pic->mesh, e);
+    const size_t nn = (size_t)fb_mesh_element_type(pic->mesh, e);
+    for (size_t k = 0; k <= nn; ++k)
+      put_node(gp, ms, nd[k % nn], 1);
+    end_line(gp);
+  }
+}
+
+/* The twelve edges of body b's cube. */
+static void write_cube(FILE *gp, const mode_script *ms, size_t b, int moved)
+{
+  const fb_plot_mode *pic = ms->pic;
   static const int corners[12][2][3] = {
       {{0, 0, 0}, {1, 0, 0}}, {{0, 1, 0}, {1, 1, 0}}, {{0, 0, 1}, {1, 0, 1}},
       {{0, 1, 1}, {1, 1, 1}}, {{0, 0, 0}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}},
       {{0, 0, 1}, {0, 1, 1}}, {{1, 0, 1}, {1, 1, 1}}, {{0, 0, 0}, {0, 0, 1}},
       {{1, 0, 0}, {1, 0, 1}}, {{0, 1, 0}, {0, 1, 1}}, {{1, 1, 0}, {1, 1, 1}}};
-  fputs("$cubes << EOD\n", gp);
-  for (size_t c = 0; c < ms->ncubes; ++c)
-    for (int e = 0; e < 12; ++e) {
-      for (int k = 0; k < 2; ++k) {
-        const int *q = corners[e][k];
-        fprintf(gp, "%.6g %.6g %.6g\n", ms->cubes[3 * c] + ms->side * (q[0] - 0.5),
-                ms->cubes[3 * c + 1] + ms->side * (q[1] - 0.5),
-                ms->cubes[3 * c + 2] + ms->side * (q[2] - 0.5));
-      }
-      fputs("\n\n", gp);
+  const fb_plot_body *body = &pic->body[b];
+  const double dz = moved ? ms->scale * body->dz : 0.0;
+  for (int e = 0; e < 12; ++e) {
+    for (int k = 0; k < 2; ++k) {
+      const int *q = corners[e][k];
+      const double p[3] = {body->xyz[0] + pic->body_side * (q[0] - 0.5),
+                           body->xyz[1] + pic->body_side * (q[1] - 0.5),
+                           body->xyz[2] + pic->body_side * (q[2] - 0.5) + dz};
+      put(gp, p, moved, fabs(body->dz));
     }
-  fputs("EOD\n", gp);
-}
-
-static void write_mesh_script(FILE *gp, const void *ctx, const char *png_name)
-{
-  const mesh_script *ms = ctx;
-  write_edges(gp, ms);
-  if (ms->ncubes)
-    write_cubes(gp, ms);
-  fputs("set terminal pngcairo size 1000,700 font 'Sans,10'\nset output ", gp);
-  fb_gnuplot_quoted(gp, png_name);
-  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28\n"
-        "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset zlabel 'z [m]'\n",
-        gp);
-  if (ms->title) {
-    fputs("set title ", gp);
-    fb_gnuplot_quoted(gp, ms->title);
-    fputs("\n", gp);
+    end_line(gp);
   }
-  fputs("splot $edges with lines lw 1 lc rgb '#1f4e9a'", gp);
-  if (ms->ncubes)
-    fputs(", $cubes with lines lw 2 lc rgb '#b22222'", gp);
-  fputs("\nset output\n", gp);
 }
 
-int fb_plot_mesh_png(const fb_mesh *m, const double *dof_values, double scale,
-                     const double *cube_xyz, size_t ncubes, double cube_side, const char *title,
-                     const char *path, fb_err *err)
+/* Wheel w's rim and the line from its suspension's attachment point to
+ * its top. */
+static void write_wheel(FILE *gp, const mode_script *ms, size_t w, int moved)
 {
-  if (fb_mesh_nelements(m) == 0)
+  const fb_plot_mode *pic = ms->pic;
+  const fb_plot_wheel *wh = &pic->wheel[w];
+  const double r = pic->wheel_radius;
+  const double dz = moved ? ms->scale * wh->dz : 0.0;
+  const double top[3] = {wh->top[0], wh->top[1],
+                         wh->top[2] + (moved ? ms->scale * wh->top_dz : 0.0)};
+  const double rim_top[3] = {wh->top[0], wh->top[1], wh->top[2] - 0.5 * r + dz};
+  put(gp, top, moved, fabs(wh->top_dz));
+  put(gp, rim_top, moved, fabs(wh->dz));
+  end_line(gp);
+  for (int k = 0; k <= WHEEL_SEGMENTS; ++k) {
+    const double a = 2.0 * PI * k / WHEEL_SEGMENTS;
+    const double p[3] = {wh->top[0] + r * sin(a), wh->top[1], rim_top[2] - r + r * cos(a)};
+    put(gp, p, moved, fabs(wh->dz));
+  }
+  end_line(gp);
+}
+
+static void write_parts(FILE *gp, const mode_script *ms, int moved)
+{
+  const fb_plot_mode *pic = ms->pic;
+  for (size_t b = 0; b < pic->nbodies; ++b)
+    write_cube(gp, ms, b, moved);
+  for (size_t w = 0; w < pic->nwheels; ++w)
+    write_wheel(gp, ms, w, moved);
+}
+
+/* ---- The drawing's extent and its axes. */
+
+static void extend(mode_script *ms, const double *p)
+{
+  for (int k = 0; k < 3; ++k) {
+    ms->lo[k] = fmin(ms->lo[k], p[k]);
+    ms->hi[k] = fmax(ms->hi[k], p[k]);
+  }
+}
+
+/* The largest displacement in the shape: hull node, body or wheel. */
+static double largest_motion(const fb_plot_mode *pic)
+{
+  double big = 0.0;
+  for (size_t i = 0; i < fb_mesh_nnodes(pic->mesh); ++i)
+    big = fmax(big, node_motion(pic, i));
+  for (size_t b = 0; b < pic->nbodies; ++b)
+    big = fmax(big, fabs(pic->body[b].dz));
+  for (size_t w = 0; w < pic->nwheels; ++w)
+    big = fmax(big, fmax(fabs(pic->wheel[w].dz), fabs(pic->wheel[w].top_dz)));
+  return big;
+}
+
+/* The extent of everything drawn, at rest and displaced. */
+static void measure(mode_script *ms)
+{
+  const fb_plot_mode *pic = ms->pic;
+  for (int k = 0; k < 3; ++k) {
+    ms->lo[k] = INFINITY;
+    ms->hi[k] = -INFINITY;
+  }
+  for (size_t i = 0; i < fb_mesh_nnodes(pic->mesh); ++i)
+    for (int moved = 0; moved < 2; ++moved) {
+      double p[3];
+      node_point(ms, i, moved, p);
+      extend(ms, p);
+    }
+  const double h = 0.5 * pic->body_side, r = pic->wheel_radius;
+  for (size_t b = 0; b < pic->nbodies; ++b) {
+    const double *c = pic->body[b].xyz, dz = ms->scale * pic->body[b].dz;
+    extend(ms, (double[3]){c[0] - h, c[1] - h, fmin(c[2], c[2] + dz) - h});
+    extend(ms, (double[3]){c[0] + h, c[1] + h, fmax(c[2], c[2] + dz) + h});
+  }
+  for (size_t w = 0; w < pic->nwheels; ++w) {
+    const fb_plot_wheel *wh = &pic->wheel[w];
+    const double dz = ms->scale * wh->dz;
+    extend(ms, (double[3]){wh->top[0] - r, wh->top[1], wh->top[2] - 2.5 * r + fmin(dz, 0.0)});
+    extend(ms, (double[3]){wh->top[0] + r, wh->top[1],
+                           fmax(wh->top[2] + ms->scale * wh->top_dz, wh->top[2] + dz)});
+  }
+}
+
+/* A tic step of 1, 2 or 5 times a power of ten giving about four
+ * intervals over span. */
+static double tic_step(double span)
+{
+  const double raw = span / 4.0;
+  const double mag = pow(10.0, floor(log10(raw)));
+  const double r = raw / mag;
+  return (r < 1.5 ? 1.0 : r < 3.5 ? 2.0 : r < 7.5 ? 5.0 : 10.0) * mag;
+}
+
+/* The axis' range, the extent with a margin of a tenth of the largest
+ * extent, and tics that keep a third of a step from its ends: the ends
+ * are where one axis' labels meet the next axis' in the 3-D view. */
+static void write_axis(FILE *gp, char axis, double lo, double hi, double margin)
+{
+  lo -= margin;
+  hi += margin;
+  const double step = tic_step(hi - lo);
+  double first = ceil(lo / step) * step, last = floor(hi / step) * step;
+  if (first - lo < step / 3.0)
+    first += step;
+  if (hi - last < step / 3.0)
+    last -= step;
+  fprintf(gp, "set %crange [%.6g:%.6g]\n", axis, lo, hi);
+  if (last >= first)
+    fprintf(gp, "set %ctics %.6g, %.6g, %.6g\n", axis, first, step, last + 0.5 * step);
+  else
+    fprintf(gp, "set %ctics (%.6g)\n", axis, 0.5 * (lo + hi));
+}
+
+static void write_axes(FILE *gp, const mode_script *ms)
+{
+  double big = 0.0;
+  for (int k = 0; k < 3; ++k)
+    big = fmax(big, ms->hi[k] - ms->lo[k]);
+  const double margin = 0.1 * big;
+  for (int k = 0; k < 3; ++k)
+    write_axis(gp, "xyz"[k], ms -> lo[k], ms -> hi[k], margin);
+  fputs("set xyplane at ", gp);
+  fprintf(gp, "%.6g\n", ms->lo[2] - margin);
+  fputs("set xlabel 'x [m]' offset 0,-1\nset ylabel 'y [m]' offset 2,0\n"
+        "set zlabel 'z [m]' rotate parallel offset 2,0\n",
+        gp);
+}
+
+static void write_titles(FILE *gp, const fb_plot_mode *pic)
+{
+  if (pic->title) {
+    fputs("set title ", gp);
+    fb_gnuplot_quoted(gp, pic->title);
+    fputs(" font 'Sans,12'\n", gp);
+  }
+  if (pic->subtitle) {
+    fputs("set label 1 ", gp);
+    fb_gnuplot_quoted(gp, pic->subtitle);
+    fputs(" at screen 0.5, 0.915 center font 'Sans,10'\n", gp);
+  }
+}
+
+static void write_mode_script(FILE *gp, const void *ctx, const char *png_name)
+{
+  const mode_script *ms = ctx;
+  const fb_plot_mode *pic = ms->pic;
+  fputs("$rest << EOD\n", gp);
+  write_outline(gp, ms, 0);
+  write_parts(gp, ms, 0);
+  fputs("EOD\n$moved << EOD\n", gp);
+  write_elements(gp, ms);
+  write_outline(gp, ms, 1);
+  write_parts(gp, ms, 1);
+  fputs("EOD\n", gp);
+  fputs("set terminal pngcairo size 1100,760 font 'Sans,10'\nset output ", gp);
+  fb_gnuplot_quoted(gp, png_name);
+  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28, 1.45\n",
+        gp);
+  write_axes(gp, ms);
+  write_titles(gp, pic);
+  /* Dark blue to dark red through green and orange: every colour stands
+   * out against the white ground and the grey of the hull at rest. */
+  fputs("set palette defined (0 '#1f4e9a', 0.4 '#2ca25f', 0.7 '#f28e2b', 1 '#b2182b')\n", gp);
+  fprintf(gp, "set cbrange [0:%.6g]\n", ms->umax > 0 ? ms->umax : 1.0);
+  fputs("set cblabel 'displacement (shape units)'\nset colorbox vertical user origin 0.9, 0.25 "
+        "size 0.02, 0.5\n",
+        gp);
+  fputs("splot $rest with lines lw 1 lc rgb '#a8a8a8', "
+        "$moved using 1:2:3:4 with lines lw 1.5 lc palette\nset output\n",
+        gp);
+}
+
+int fb_plot_mode_png(const fb_plot_mode *pic, const char *path, fb_err *err)
+{
+  if (fb_mesh_nelements(pic->mesh) == 0)
     return fb_err_set(err, FB_EINVAL, "%s: the mesh has no elements to draw", path);
-  const mesh_script ms = {m, dof_values, scale, cube_xyz, ncubes, cube_side, title};
-  return fb_gnuplot_png(write_mesh_script, &ms, path, err);
+  if (!(pic->largest_drawn > 0) || !(pic->body_side >= 0) || !(pic->wheel_radius >= 0))
+    return fb_err_set(err, FB_EINVAL,
+                      "%s: largest displacement drawn %g m, body side %g m, wheel radius %g m",
+                      path, pic->largest_drawn, pic->body_side, pic->wheel_radius);
+  mode_script ms = {.pic = pic, .umax = largest_motion(pic)};
+  /* A shape that does not move is drawn at rest. */
+  ms.scale = ms.umax > 0 ? pic->largest_drawn / ms.umax : 0.0;
+  int rc = fb_mesh_outline(pic->mesh, 20.0 * PI / 180.0, &ms.outline, &ms.noutline, err);
+  if (!rc) {
+    measure(&ms);
+    rc = fb_gnuplot_png(write_mode_script, &ms, path, err);
+  }
+  free(ms.outline);
+  return rc;
 }
