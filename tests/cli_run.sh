@@ -335,6 +335,8 @@ EOF
 run run "$WORK/apc_two.yaml" -o "$WORK/two" -q --no-figures
 expect_status 0 "both systems on a two-thickness deck"
 expect_in "$WORK/two/report.md" "hull.mesh.deck" "report of the two-thickness deck"
+expect_in "$WORK/two/report.md" "| frame | the deck's: its structure's centre of mass is at x, y = " \
+  "report of a deck names the frame it moved to"
 
 TRUCK=$REPO_ROOT/examples/truck4x4.yaml
 sed 's/^  edges:  /  sections:\n    - {set: FLOOR, thickness: 0.020}\n    - {set: sides, thickness: 0.0085, nonstructural_mass: 10}\n  edges:  /' \

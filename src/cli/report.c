@@ -220,6 +220,12 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
             "; the hull's centre of mass is at x, y = %.10g, %.10g m there, and the positions "
             "below are relative to it |\n",
             s->hull_cg_x, s->hull_cg_y);
+  } else if (s->has_fe_hull && s->hull_deck_mesh) {
+    fprintf(fp,
+            "| frame | the deck's: its structure's centre of mass is at x, y = %.10g, %.10g m "
+            "there; the deck's nodes and the positions below were moved to be relative to it "
+            "|\n",
+            s->hull_cg_x, s->hull_cg_y);
   }
   fprintf(fp,
           "| hull | %.10g kg, Ixx %.10g kg m^2, Iyy %.10g kg m^2 about its centre of mass "
@@ -269,9 +275,7 @@ static void write_sections(FILE *fp, const fb_mesh *m)
 {
   size_t shown = 0;
   for (size_t i = 0; i < fb_mesh_nsections(m); ++i) {
-    size_t n = 0;
-    for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
-      n += fb_mesh_element_section(m, e) == (long)i;
+    const size_t n = fb_mesh_section_nelements(m, (long)i);
     if (n == 0)
       continue;
     const fb_shell_props *p = fb_mesh_section_props(m, i);

@@ -17,12 +17,16 @@
  * material, a bulkhead more) makes, which is what must not pass silently. */
 #define PROPERTY_TOLERANCE 0.005
 
+/* The structure's rigid-body properties: mass (kg), centre of mass (m)
+ * and inertia tensor about it (kg m^2, row-major). */
+typedef struct mesh_props {
+  double mass, cg[3], inertia[9];
+} mesh_props;
+
 /* The hull's mesh, as System 2 builds it (fe_hull.c), and its bare
- * (structural) mass, centre of mass and inertia tensor about it: the
- * declared hull masses are not the structure's (hull.mass, Ixx and Iyy
- * are the structure's alone). */
-static int mesh_properties(const fb_scenario *s, double *mass, double *cg, double *inertia,
-                           fb_err *err)
+ * (structural) properties: the declared hull masses are not the
+ * structure's (hull.mass, Ixx and Iyy are the structure's alone). */
+static int mesh_properties(const fb_scenario *s, mesh_props *mp, fb_err *err)
 {
   fb_fe_hull *h = NULL;
   fb_mat *M = NULL;
@@ -30,7 +34,7 @@ static int mesh_properties(const fb_scenario *s, double *mass, double *cg, doubl
   if (!rc)
     rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, &M, err);
   if (!rc)
-    rc = fb_fem_mass_properties(h->mesh, M, mass, cg, inertia, err);
+    rc = fb_fem_mass_properties(h->mesh, M, &mp->mass, mp->cg, mp->inertia, err);
   fb_mat_free(&M);
   fb_fe_hull_free(&h);
   return rc;
@@ -71,27 +75,24 @@ static int check_payload(const fb_scenario *s, fb_err *err)
   return fb_err_set_key(err, "load.payload");
 }
 
-/* Rigid-body properties from the mesh, or the typed ones checked
- * against it. Within the tolerance the typed values stand (they are
+/* Rigid-body properties from the mesh's, or the typed ones checked
+ * against them. Within the tolerance the typed values stand (they are
  * what the mesh was fitted to: the paper's Table 2). */
-static int complete_properties(fb_scenario *s, fb_err *err)
+static int complete_properties(fb_scenario *s, const mesh_props *mp, fb_err *err)
 {
-  double mass = 0.0, cg[3], inertia[9];
-  int rc = mesh_properties(s, &mass, cg, inertia, err);
-  if (rc)
-    return rc;
   if (!s->hull_mass_given) {
-    s->hull_mass = mass;
-    s->hull_ixx = inertia[0];
-    s->hull_iyy = inertia[4];
+    s->hull_mass = mp->mass;
+    s->hull_ixx = mp->inertia[0];
+    s->hull_iyy = mp->inertia[4];
     return check_payload(s, err);
   }
-  rc = check_property("hull.mass", "mass", s->hull_mass, mass, "kg", err);
+  int rc = check_property("hull.mass", "mass", s->hull_mass, mp->mass, "kg", err);
   if (!rc)
-    rc = check_property("hull.Ixx", "roll inertia Ixx", s->hull_ixx, inertia[0], "kg m^2", err);
+    rc = check_property("hull.Ixx", "roll inertia Ixx", s->hull_ixx, mp->inertia[0], "kg m^2",
+                        err);
   if (!rc)
-    rc =
-        check_property("hull.Iyy", "pitch inertia Iyy", s->hull_iyy, inertia[4], "kg m^2", err);
+    rc = check_property("hull.Iyy", "pitch inertia Iyy", s->hull_iyy, mp->inertia[4], "kg m^2",
+                        err);
   return rc;
 }
 
@@ -154,18 +155,20 @@ static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
 /* A deck's nodes and the file's positions share the deck's frame: both
  * move to the structure's centre of mass there, the frame of every
  * fragment (System 1's rigid hull turns about it). A deck written by
- * flexbond is centred already (to round-off). */
-static int centre_deck(fb_scenario *s, fb_err *err)
+ * flexbond is centred already (to round-off). The mass and the inertia
+ * about the centre of mass (*mp) do not change in the move, which keeps
+ * every node set on its point. */
+static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
 {
   if (s->hull_cg_given) {
     fb_err_set(err, FB_EINVAL,
                "a hull deck's centre of mass is its mesh's: remove hull.centre_of_mass");
     return fb_err_set_key(err, "hull.centre_of_mass");
   }
-  double mass = 0.0, cg[3], inertia[9];
-  const int rc = mesh_properties(s, &mass, cg, inertia, err);
+  const int rc = mesh_properties(s, mp, err);
   if (rc)
     return rc;
+  const double *cg = mp->cg;
   fb_mesh_translate(s->hull_deck_mesh, -cg[0], -cg[1], -cg[2]);
   s->hull_cg_x = cg[0];
   s->hull_cg_y = cg[1];
@@ -176,8 +179,9 @@ static int centre_deck(fb_scenario *s, fb_err *err)
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
 {
   int rc = FB_OK;
+  mesh_props mp = {0};
   if (s->has_fe_hull && s->hull_deck_mesh) {
-    rc = centre_deck(s, err);
+    rc = centre_deck(s, &mp, err);
     if (rc)
       return rc;
   } else if (s->frame_origin) {
@@ -189,9 +193,12 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
     s->hull_cg_y = y;
     shift_positions(s, x, y);
   }
-  if (s->has_fe_hull)
-    rc = complete_properties(s, err);
-  else if (!s->hull_mass_given) {
+  if (s->has_fe_hull) {
+    if (!s->hull_deck_mesh)
+      rc = mesh_properties(s, &mp, err);
+    if (!rc)
+      rc = complete_properties(s, &mp, err);
+  } else if (!s->hull_mass_given) {
     fb_err_set(err, FB_EINVAL,
                "a hull without a finite-element model (hull.mesh, hull.fe) needs its mass, "
                "Ixx and Iyy");
