@@ -4,8 +4,8 @@
 #   make build         configure + build into $(BUILD_DIR) (RelWithDebInfo)
 #   make test          deps + build + run the CTest suite (warnings are errors)
 #   make run           deps + build + the default study (examples/apc6x6.yaml, Systems 1 and 2,
-#                      report.md) into out/, the modal analyses,
-#                      and the quarter-car example into out/quarter_car/
+#                      report.md) into out/, the modal analyses, the frequency
+#                      response (out/freq/) and the quarter-car example into out/quarter_car/
 #   make asan          build into $(ASAN_DIR) with ASan+UBSan and run the suite
 #   make clang         build into $(CLANG_DIR) with clang and -Werror and run the suite
 #   make release       Release builds (-O3) with gcc and clang, -Werror, into $(RELEASE_DIR)
@@ -102,6 +102,7 @@ run: deps build
 	./$(BUILD_DIR)/flexbond modes examples/apc6x6.yaml > $(OUT_DIR)/modes.txt
 	./$(BUILD_DIR)/flexbond modes examples/apc6x6.yaml --system flexible -o $(OUT_DIR)/modes/ \
 	  > $(OUT_DIR)/modes_system2.txt
+	./$(BUILD_DIR)/flexbond freq examples/apc6x6.yaml -o $(OUT_DIR)/freq/ > $(OUT_DIR)/freq.txt
 	./$(BUILD_DIR)/flexbond sim examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/ --plot
 	./$(BUILD_DIR)/flexbond diagram examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/diagram.dot
 

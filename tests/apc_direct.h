@@ -81,14 +81,14 @@ enum {
   APC_NOUT
 };
 
-static void apc_hull_vector(double x, double y, double *b, double scale)
+static inline void apc_hull_vector(double x, double y, double *b, double scale)
 {
   b[APC_HULL_Z] += scale;
   b[APC_HULL_PHI] += scale * y;
   b[APC_HULL_THETA] -= scale * x;
 }
 
-static void apc_set_elem(apc_elem *e, double k, double c, int road_corner)
+static inline void apc_set_elem(apc_elem *e, double k, double c, int road_corner)
 {
   memset(e->b, 0, sizeof e->b);
   e->k = k;
@@ -98,13 +98,13 @@ static void apc_set_elem(apc_elem *e, double k, double c, int road_corner)
 
 /* Bump entry time of a wheel, from the data sheet's formula (not from
  * fb_scenario_bump_entry, which is checked against this one). */
-static double apc_entry_time(const fb_scenario *s, int corner)
+static inline double apc_entry_time(const fb_scenario *s, int corner)
 {
   const fb_corner_params *lf = &s->corner[APC_LF], *c = &s->corner[corner];
   return s->bump_time + ((lf->x - c->x) + (lf->y - c->y) * tan(s->bump_angle)) / s->speed;
 }
 
-static void apc_build_mass(apc_model *m, const fb_scenario *s)
+static inline void apc_build_mass(apc_model *m, const fb_scenario *s)
 {
   double *M = m->mass;
   memset(M, 0, sizeof m->mass);
@@ -127,7 +127,7 @@ static void apc_build_mass(apc_model *m, const fb_scenario *s)
   M[APC_ENGINE * (APC_NDOF + 1)] = APC_ENGINE(s)->mass;
 }
 
-static void apc_build_elements(apc_model *m, const fb_scenario *s)
+static inline void apc_build_elements(apc_model *m, const fb_scenario *s)
 {
   for (int c = 0; c < APC_NCORNERS; ++c) {
     const fb_corner_params *p = &s->corner[c];
@@ -147,7 +147,7 @@ static void apc_build_elements(apc_model *m, const fb_scenario *s)
   }
 }
 
-static void apc_build_gravity(apc_model *m, const fb_scenario *s)
+static inline void apc_build_gravity(apc_model *m, const fb_scenario *s)
 {
   double *Q = m->gravity_force;
   memset(Q, 0, sizeof m->gravity_force);
@@ -161,7 +161,7 @@ static void apc_build_gravity(apc_model *m, const fb_scenario *s)
 
 /* Fills m from s. Returns 0, or the LAPACK status if M is not positive
  * definite. */
-static int apc_model_init(apc_model *m, const fb_scenario *s)
+static inline int apc_model_init(apc_model *m, const fb_scenario *s)
 {
   apc_build_mass(m, s);
   apc_build_elements(m, s);
@@ -184,7 +184,7 @@ static int apc_model_init(apc_model *m, const fb_scenario *s)
 
 /* Road height and vertical velocity under a wheel: the data sheet's bump
  * z(s) = h/2 (1 - cos(2 pi s / L)), 0 <= s <= L, s = V (t - t_entry). */
-static void apc_road(const apc_model *m, int corner, double t, double *z, double *v)
+static inline void apc_road(const apc_model *m, int corner, double t, double *z, double *v)
 {
   const double s = m->speed * (t - m->entry[corner]);
   if (s <= 0.0 || s >= m->bump_length) {
@@ -198,8 +198,8 @@ static void apc_road(const apc_model *m, int corner, double t, double *z, double
 }
 
 /* Deflection and its rate of element e in state x at time t. */
-static void apc_deflection(const apc_model *m, int e, double t, const double *x, double *d,
-                           double *ddot)
+static inline void apc_deflection(const apc_model *m, int e, double t, const double *x,
+                                  double *d, double *ddot)
 {
   const apc_elem *el = &m->elem[e];
   double dq = 0.0, dv = 0.0;
@@ -218,7 +218,7 @@ static void apc_deflection(const apc_model *m, int e, double t, const double *x,
 }
 
 /* x' = f(t, x): q' = v, v' = M^-1 (Q_gravity - sum_e b_e F_e). */
-static void apc_rhs(const apc_model *m, double t, const double *x, double *xdot)
+static inline void apc_rhs(const apc_model *m, double t, const double *x, double *xdot)
 {
   double Q[APC_NDOF];
   memcpy(Q, m->gravity_force, sizeof Q);
@@ -239,7 +239,7 @@ static void apc_rhs(const apc_model *m, double t, const double *x, double *xdot)
 }
 
 /* The seven outputs (data sheet, "The seven outputs"). */
-static void apc_outputs(const apc_model *m, double t, const double *x, double *y)
+static inline void apc_outputs(const apc_model *m, double t, const double *x, double *y)
 {
   double d, dd, xdot[APC_NX];
   apc_deflection(m, APC_TIRE + APC_LF, t, x, &d, &dd);
@@ -259,7 +259,7 @@ static void apc_outputs(const apc_model *m, double t, const double *x, double *y
 }
 
 /* Classical fourth-order Runge-Kutta, n equal steps from t0 to t1. */
-static void apc_rk4(const apc_model *m, double t0, double t1, size_t n, double *x)
+static inline void apc_rk4(const apc_model *m, double t0, double t1, size_t n, double *x)
 {
   const double h = (t1 - t0) / (double)n;
   double k1[APC_NX], k2[APC_NX], k3[APC_NX], k4[APC_NX], xs[APC_NX];
@@ -283,7 +283,7 @@ static void apc_rk4(const apc_model *m, double t0, double t1, size_t n, double *
 /* Integrates over [a, b] in steps of at most dt, stopping exactly at every
  * bump entry and exit inside, where the road's acceleration jumps (the
  * RK4 error expansion needs a smooth right-hand side within each step). */
-static void apc_advance(const apc_model *m, double a, double b, double dt, double *x)
+static inline void apc_advance(const apc_model *m, double a, double b, double dt, double *x)
 {
   while (a < b) {
     double stop = b;
@@ -301,8 +301,8 @@ static void apc_advance(const apc_model *m, double a, double b, double dt, doubl
 
 /* Samples the outputs at t_k = k / rate, k = 0 .. nsamples-1, from the
  * state x0 at t = 0; y is nsamples x APC_NOUT, row-major. */
-static void apc_simulate(const apc_model *m, const double *x0, double rate, size_t nsamples,
-                         double dt, double *y)
+static inline void apc_simulate(const apc_model *m, const double *x0, double rate,
+                                size_t nsamples, double dt, double *y)
 {
   double x[APC_NX];
   memcpy(x, x0, sizeof x);
@@ -315,7 +315,7 @@ static void apc_simulate(const apc_model *m, const double *x0, double rate, size
 }
 
 /* Stiffness and damping matrices K = sum k b b^T, C = sum c b b^T. */
-static void apc_stiffness_damping(const apc_model *m, double *K, double *C)
+static inline void apc_stiffness_damping(const apc_model *m, double *K, double *C)
 {
   memset(K, 0, sizeof(double) * APC_NDOF * APC_NDOF);
   memset(C, 0, sizeof(double) * APC_NDOF * APC_NDOF);

@@ -225,6 +225,7 @@ typedef struct fb_descriptor {
   size_t *input_var;      /* ninputs: the variable each input defines */
   size_t *output_row;     /* noutputs: the output's (first) row of C */
   int *output_is_product; /* noutputs: 1 if it is row * (row + 1) */
+  int linearised;         /* 1: fb_bd_descriptor_at's linearisation */
 } fb_descriptor;
 
 /* Builds the descriptor form of bd (*out is new, free it with
@@ -233,8 +234,31 @@ typedef struct fb_descriptor {
  * so the result does not depend on t or x: FB_EINVAL naming the first
  * block that is not (a nonlinear law, an integrated power probe). */
 int fb_bd_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err);
+/* The same for a diagram with nonlinear blocks, linearised at time t and
+ * state x (bd's nstates values; the switched laws in the modes bd holds):
+ * every block contributes its Jacobian there, and the variables, inputs
+ * and outputs are deviations from their values at (t, x), so f is zero
+ * (ds->linearised is 1). For a linear diagram the matrices are
+ * fb_bd_descriptor's. A power output stays split into its two rows. */
+int fb_bd_descriptor_at(fb_bd *bd, double t, const double *x, fb_descriptor **out, fb_err *err);
 /* Frees *d and sets it to NULL; accepts NULL and *d == NULL. */
 void fb_descriptor_free(fb_descriptor **d);
+
+/* Frequency response of ds: for each frequency freq_hz[k] (Hz, >= 0) and
+ * each of ncases input cases, the steady-state output amplitudes
+ * Y = C (j omega E - A)^-1 B U + D U for the complex input amplitudes U
+ * that input(ctx, omega, u) writes for omega = 2 pi freq_hz[k]: ninputs
+ * complex values per case, interleaved real and imaginary parts, case
+ * after case (u[2 (c ninputs + j)] is the real part of input j in case
+ * c). h gets 2 nrows_c ncases nfreq values the same way, frequency after
+ * frequency: h[2 ((k ncases + c) nrows_c + r)] is the real part of row r
+ * of C. A power output's two rows are its effort's and its flow's
+ * amplitudes. FB_ESOLVER naming the frequency where j omega E - A is
+ * singular. */
+typedef void (*fb_freq_input_fn)(void *ctx, double omega, double *u);
+int fb_descriptor_freq_response(const fb_descriptor *ds, const double *freq_hz, size_t nfreq,
+                                size_t ncases, fb_freq_input_fn input, void *ctx, double *h,
+                                fb_err *err);
 
 /* Breakpoints of all sources, sorted and unique, written to bp (at most
  * max), earliest first; returns how many were written (0 when out of

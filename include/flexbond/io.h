@@ -95,6 +95,8 @@ typedef struct fb_plot_xy_panel {
   const fb_plot_xy_series *series; /* borrowed, nseries >= 1 */
   size_t nseries;
   const char *ylabel; /* NULL for none */
+  int log_y;          /* 1: a logarithmic y axis (values <= 0 left out), when
+                         some value is > 0 */
 } fb_plot_xy_panel;
 
 /* Settings of an x-y figure; fb_plot_xy_opts_default fills the defaults. */
@@ -107,6 +109,9 @@ typedef struct fb_plot_xy_opts {
   size_t nxtics;
   int columns; /* panels per row; 0 (default): ceil(sqrt(npanels)), at most 4 */
   int panel_width, panel_height; /* pixels; 0 (default): 420 x 300 */
+  int log_x;                     /* 1: a logarithmic x axis (x <= 0 left out) */
+  int lines;                     /* 1: curves as lines without marks, the
+                                    third and fourth dashed, and so on */
 } fb_plot_xy_opts;
 
 void fb_plot_xy_opts_default(fb_plot_xy_opts *opts);

@@ -114,6 +114,22 @@ int fb_lu_solve(fb_lu *lu, double *b, size_t nrhs, fb_err *err);
 size_t fb_lu_size(const fb_lu *lu);
 void fb_lu_free(fb_lu **lu);
 
+/* The complex matrix j omega E - A of a descriptor system's pencil
+ * (E, A), factorised at one angular frequency omega (rad/s) at a time
+ * for a frequency response (KLU's complex routines). fb_pencil_new
+ * analyses the pattern of E and A once (square, of one order, finite;
+ * FB_EINVAL otherwise); fb_pencil_factor factorises at omega >= 0
+ * (FB_ESOLVER naming the column when the matrix is singular there: a pole
+ * on the imaginary axis, or a pencil that is singular for every omega);
+ * fb_pencil_solve solves in place nrhs right-hand sides of n complex
+ * values each, stored as interleaved real and imaginary parts. */
+typedef struct fb_pencil fb_pencil;
+int fb_pencil_new(const fb_mat *E, const fb_mat *A, fb_pencil **out, fb_err *err);
+size_t fb_pencil_order(const fb_pencil *p);
+int fb_pencil_factor(fb_pencil *p, double omega, fb_err *err);
+int fb_pencil_solve(fb_pencil *p, double *b, size_t nrhs, fb_err *err);
+void fb_pencil_free(fb_pencil **p);
+
 #ifdef __cplusplus
 }
 #endif

@@ -528,6 +528,25 @@ const fb_output_kind *fb_vehicle_output_kinds(size_t *n);
 /* The kind called signal, NULL if none. */
 const fb_output_kind *fb_vehicle_output_kind_find(const char *signal);
 
+/* ---- The road as the input of a frequency response
+ * (src/vehicle/road_response.c). */
+
+/* Which input of ds (fb_bd_descriptor of a vehicle fb_vehicle_build made)
+ * is each corner's road velocity ("road.v_<CORNER>"): rate_input[c] for
+ * the scenario's corners. FB_EMODEL if ds has other inputs. */
+int fb_vehicle_rate_inputs(const fb_scenario *s, const fb_descriptor *ds, size_t *rate_input,
+                           fb_err *err);
+/* The time (s) after the leading wheel (the largest x) at which corner's
+ * wheel meets a point of its track on a straight run at s->speed. */
+double fb_vehicle_wheel_delay(const fb_scenario *s, size_t corner);
+/* The inputs of ds for two cases, a road height e^{j omega t} (1 m) on
+ * the left track (case 0) and on the right (case 1), reaching the wheels
+ * of the track (fb_scenario_track_width's rule) with their delays: into u,
+ * ds->ninputs (= ncorners) complex values per case, interleaved, as
+ * fb_descriptor_freq_response takes them. */
+void fb_vehicle_track_inputs(const fb_scenario *s, const size_t *rate_input, double omega,
+                             double *u);
+
 /* Assembles the vehicle for system sys and builds its block diagram with
  * the scenario's output probes. *graph and *bd are new (free bd first: it
  * borrows the graph). */

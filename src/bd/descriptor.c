@@ -43,6 +43,7 @@ typedef struct desc_build {
   size_t ninputs;
   double *f; /* dense right-hand side, n entries */
   trips e, a, b, c;
+  int linearise;         /* 1: nonlinear blocks give their Jacobians at bd->w */
   size_t *jrows, *jcols; /* one block's triplets (largest block) */
   double *jv0, *jv1;
 } desc_build;
@@ -129,7 +130,8 @@ static int assign_roles(desc_build *d, fb_err *err)
   free(stack);
   for (size_t i = 0; i < bd->nblocks; ++i) {
     const bd_block *b = &bd->blocks[i];
-    if ((d->role[i] == ROLE_NEWTON || d->role[i] == ROLE_OUTPUT) && !b->ops->linear) {
+    if (!d->linearise && (d->role[i] == ROLE_NEWTON || d->role[i] == ROLE_OUTPUT) &&
+        !b->ops->linear) {
       const char *who = b->elem == FB_NONE ? "a probe" : bd->bg->elems[b->elem].name;
       return fb_err_set(err, FB_EINVAL,
                         "descriptor form: the diagram is not linear: block '%s' (%s) of %s, "
@@ -331,7 +333,9 @@ static int make_f(const desc_build *d, fb_descriptor *ds, fb_err *err)
     trips_free(&t);
     return fb_err_set(err, FB_ENOMEM, "out of memory building the descriptor form");
   }
-  for (size_t i = 0; i < d->n; ++i)
+  /* A linearisation's variables are deviations from the point: no
+   * constant term. */
+  for (size_t i = 0; !d->linearise && i < d->n; ++i)
     if (d->f[i] != 0.0)
       trips_put(&t, i, 0, d->f[i]);
   rc = fb_mat_new_triplets(d->n, 1, t.n, t.rows, t.cols, t.vals, &ds->f, err);
@@ -401,7 +405,7 @@ static int build(desc_build *d, fb_descriptor *ds, fb_err *err)
   return make_matrices(d, ds, err);
 }
 
-int fb_bd_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err)
+static int descriptor(fb_bd *bd, int linearise, fb_descriptor **out, fb_err *err)
 {
   if (!out)
     return fb_err_set(err, FB_EINVAL, "descriptor form: output pointer is NULL");
@@ -414,14 +418,41 @@ int fb_bd_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err)
   desc_build d;
   memset(&d, 0, sizeof d);
   d.bd = bd;
+  d.linearise = linearise;
   int rc = build(&d, ds, err);
   desc_build_free(&d);
   if (rc) {
     fb_descriptor_free(&ds);
     return rc;
   }
+  ds->linearised = linearise;
   *out = ds;
   return FB_OK;
+}
+
+int fb_bd_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err)
+{
+  return descriptor(bd, 0, out, err);
+}
+
+int fb_bd_descriptor_at(fb_bd *bd, double t, const double *x, fb_descriptor **out, fb_err *err)
+{
+  if (!out)
+    return fb_err_set(err, FB_EINVAL, "descriptor form: output pointer is NULL");
+  *out = NULL;
+  if (!bd || !x)
+    return fb_err_set(err, FB_EINVAL, "descriptor form: NULL argument");
+  /* Evaluating the right-hand side leaves every signal at (t, x) in w,
+   * where the blocks' Jacobians are taken. */
+  double *xdot = malloc((bd->nstates + 1) * sizeof *xdot);
+  if (!xdot)
+    return fb_err_set(err, FB_ENOMEM, "out of memory building the descriptor form");
+  int rc = fb_bd_rhs(bd, t, x, xdot);
+  free(xdot);
+  if (rc)
+    return fb_err_set(err, rc, "descriptor form: the diagram cannot be evaluated at t = %g s",
+                      t);
+  return descriptor(bd, 1, out, err);
 }
 
 static void free_names(char **names, size_t n)

@@ -202,6 +202,7 @@ int cli_cmd_run(int argc, char **argv);
 int cli_cmd_modes(int argc, char **argv);
 int cli_cmd_mesh(int argc, char **argv);
 int cli_cmd_export(int argc, char **argv);
+int cli_cmd_freq(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
 int cli_cmd_model(int argc, char **argv);
 /* Modal analysis of System 2 (modes --system flexible); out_dir may be

@@ -55,32 +55,16 @@ typedef struct export_model {
                          column ncorners + c */
 } export_model;
 
-/* The descriptor's input that is wheel c's road velocity source
- * ("road.v_LF", fb_vehicle_road under fb_vehicle_assemble's "road"). */
+/* The descriptor's input that is wheel c's road velocity source. */
 static int find_rate_inputs(export_model *m, fb_err *err)
 {
-  const fb_descriptor *ds = m->ds;
   const size_t nc = m->s->ncorners;
-  if (ds->ninputs != nc)
-    return fb_err_set(err, FB_EMODEL,
-                      "export: the vehicle has %zu time-varying sources, expected the %zu road "
-                      "velocities",
-                      ds->ninputs, nc);
   m->ninputs = 2 * nc;
-  m->rate_input = calloc(nc, sizeof *m->rate_input);
+  m->rate_input = calloc(nc + 1, sizeof *m->rate_input);
   if (!m->rate_input)
     return fb_err_set(err, FB_ENOMEM, "export: out of memory");
-  for (size_t c = 0; c < nc; ++c) {
-    char want[FB_ERR_KEY_MAX];
-    snprintf(want, sizeof want, "road.v_%s", m->s->corner[c].name);
-    size_t j = 0;
-    while (j < ds->ninputs && strcmp(ds->input_names[j], want) != 0)
-      ++j;
-    if (j == ds->ninputs)
-      return fb_err_set(err, FB_EMODEL, "export: no road velocity source '%s'", want);
-    m->rate_input[c] = j;
-  }
-  return FB_OK;
+  const int rc = fb_vehicle_rate_inputs(m->s, m->ds, m->rate_input, err);
+  return rc ? fb_err_prefix(err, "export: ") : FB_OK;
 }
 
 /* Triplets of B moved to the rate columns. */

@@ -30,7 +30,9 @@ void fb_plot_xy_opts_default(fb_plot_xy_opts *opts)
                             .nxtics = 0,
                             .columns = 0,
                             .panel_width = 0,
-                            .panel_height = 0};
+                            .panel_height = 0,
+                            .log_x = 0,
+                            .lines = 0};
 }
 
 /* A figure being written. */
@@ -42,12 +44,18 @@ typedef struct xy_script {
   double x_lo, x_hi; /* the common x range */
 } xy_script;
 
-/* Range [*lo, *hi] of the finite values of v[0..n), extended (not
+/* 1 if v can be drawn on an axis, logarithmic when log is 1. */
+static int drawable(double v, int log)
+{
+  return isfinite(v) && (!log || v > 0);
+}
+
+/* Range [*lo, *hi] of the drawable values of v[0..n), extended (not
  * reset) from what they hold. */
-static void extend_range(const double *v, size_t n, double *lo, double *hi)
+static void extend_range(const double *v, size_t n, int log, double *lo, double *hi)
 {
   for (size_t i = 0; i < n; ++i)
-    if (isfinite(v[i])) {
+    if (drawable(v[i], log)) {
       *lo = fmin(*lo, v[i]);
       *hi = fmax(*hi, v[i]);
     }
@@ -71,14 +79,15 @@ static void write_range(FILE *gp, const char *axis, double lo, double hi)
   fprintf(gp, "set %srange [%.10g:%.10g]\n", axis, lo, hi);
 }
 
-static void write_datablock(FILE *gp, size_t id, const fb_plot_xy_series *s)
+static void write_datablock(FILE *gp, size_t id, const fb_plot_xy_series *s, int log_x,
+                            int log_y)
 {
   fprintf(gp, "$d%zu << EOD\n", id);
   for (size_t i = 0; i < s->n; ++i) {
     /* gnuplot leaves a NaN point out and breaks the line there. */
-    if (isfinite(s->x[i]) && isfinite(s->y[i]))
+    if (drawable(s->x[i], log_x) && drawable(s->y[i], log_y))
       fprintf(gp, "%.10g %.10g\n", s->x[i], s->y[i]);
-    else if (isfinite(s->x[i]))
+    else if (drawable(s->x[i], log_x))
       fprintf(gp, "%.10g NaN\n", s->x[i]);
   }
   fputs("EOD\n", gp);
@@ -100,14 +109,26 @@ static void write_xtics(FILE *gp, const fb_plot_xy_opts *o)
   fputs(")\n", gp);
 }
 
-static void write_panel(FILE *gp, const fb_plot_xy_panel *p, size_t first_id)
+/* 1 if panel p is drawn with a logarithmic y axis: it asks for one and
+ * has a value to put on it. */
+static int panel_log_y(const fb_plot_xy_panel *p)
 {
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t j = 0; p->log_y && j < p->nseries; ++j)
+    extend_range(p->series[j].y, p->series[j].n, 1, &lo, &hi);
+  return lo <= hi;
+}
+
+static void write_panel(FILE *gp, const fb_plot_xy_panel *p, size_t first_id, int lines)
+{
+  const int log_y = panel_log_y(p);
   double lo = INFINITY, hi = -INFINITY;
   int has_key = 0;
   for (size_t j = 0; j < p->nseries; ++j) {
-    extend_range(p->series[j].y, p->series[j].n, &lo, &hi);
+    extend_range(p->series[j].y, p->series[j].n, log_y, &lo, &hi);
     has_key |= p->series[j].legend != NULL;
   }
+  fputs(log_y ? "set logscale y\nset format y '%g'\n" : "unset logscale y\nset format y\n", gp);
   write_range(gp, "y", lo, hi);
   fputs(has_key ? "set key top left\n" : "set key off\n", gp);
   fputs("set ylabel ", gp);
@@ -115,8 +136,13 @@ static void write_panel(FILE *gp, const fb_plot_xy_panel *p, size_t first_id)
   fputs("\nplot ", gp);
   for (size_t j = 0; j < p->nseries; ++j) {
     const size_t style = j % NXY_STYLES;
-    fprintf(gp, "%s$d%zu using 1:2 with linespoints lw 1.5 pt %d ps 0.8 lc rgb '%s'",
-            j ? ", " : "", first_id + j, xy_styles[style].point_type, xy_styles[style].colour);
+    if (lines)
+      fprintf(gp, "%s$d%zu using 1:2 with lines lw 1.5 dt %zu lc rgb '%s'", j ? ", " : "",
+              first_id + j, 1 + j / 2 % 4, xy_styles[style].colour);
+    else
+      fprintf(gp, "%s$d%zu using 1:2 with linespoints lw 1.5 pt %d ps 0.8 lc rgb '%s'",
+              j ? ", " : "", first_id + j, xy_styles[style].point_type,
+              xy_styles[style].colour);
     if (p->series[j].legend) {
       fputs(" title ", gp);
       fb_gnuplot_quoted(gp, p->series[j].legend);
@@ -135,14 +161,17 @@ static void write_xy_script(FILE *gp, const void *ctx, const char *png_name)
   size_t id = 0;
   for (size_t i = 0; i < xs->npanels; ++i)
     for (size_t j = 0; j < xs->panels[i].nseries; ++j)
-      write_datablock(gp, id++, &xs->panels[i].series[j]);
+      write_datablock(gp, id++, &xs->panels[i].series[j], o->log_x,
+                      panel_log_y(&xs->panels[i]));
   const size_t width = (size_t)(o->panel_width > 0 ? o->panel_width : XY_PANEL_WIDTH);
   const size_t height = (size_t)(o->panel_height > 0 ? o->panel_height : XY_PANEL_HEIGHT);
   fprintf(gp, "set terminal pngcairo size %zu,%zu font 'Sans,9'\nset output ",
           width * xs->columns, height * xs->rows + (o->title ? 40 : 0));
   fb_gnuplot_quoted(gp, png_name);
-  fputs("\nset termoption noenhanced\nset grid\nset offsets graph 0.03, graph 0.03, graph "
-        "0.05, graph 0.05\nset xlabel ",
+  fputs(o->log_x ? "\nset termoption noenhanced\nset grid xtics mxtics ytics\nset logscale "
+                   "x\nset format x '%g'\nset offsets 0, 0, graph 0.05, graph 0.05\nset xlabel "
+                 : "\nset termoption noenhanced\nset grid\nset offsets graph 0.03, graph "
+                   "0.03, graph 0.05, graph 0.05\nset xlabel ",
         gp);
   fb_gnuplot_quoted(gp, o->xlabel ? o->xlabel : "");
   fputc('\n', gp);
@@ -156,7 +185,7 @@ static void write_xy_script(FILE *gp, const void *ctx, const char *png_name)
   fputc('\n', gp);
   id = 0;
   for (size_t i = 0; i < xs->npanels; ++i) {
-    write_panel(gp, &xs->panels[i], id);
+    write_panel(gp, &xs->panels[i], id, o->lines);
     id += xs->panels[i].nseries;
   }
   fputs("unset multiplot\nset output\n", gp);
@@ -210,7 +239,7 @@ int fb_plot_xy_png(const fb_plot_xy_panel *panels, size_t npanels, const fb_plot
   xs.rows = (npanels + xs.columns - 1) / xs.columns;
   for (size_t i = 0; i < npanels; ++i)
     for (size_t j = 0; j < panels[i].nseries; ++j)
-      extend_range(panels[i].series[j].x, panels[i].series[j].n, &xs.x_lo, &xs.x_hi);
+      extend_range(panels[i].series[j].x, panels[i].series[j].n, o.log_x, &xs.x_lo, &xs.x_hi);
   if (o.xtic_labels) {
     xs.x_lo = 0;
     xs.x_hi = (double)(o.nxtics - 1);

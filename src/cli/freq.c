@@ -1,0 +1,442 @@
+/* flexbond freq: the frequency response of a vehicle scenario's outputs
+ * to the road, from its descriptor form (fb_bd_descriptor,
+ * fb_descriptor_freq_response; docs/frequency-response.md):
+ *   DIR/freq_system1.csv, freq_system2.csv   |H| and phase per output and track
+ *   DIR/bode_<OUTPUT>.png                    both systems and tracks overlaid
+ * The input is a road height on one track, 1 m at the leading wheel, which
+ * the track's other wheels meet later by their distance behind it at the
+ * scenario's speed (fb_vehicle_track_inputs). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "flexbond/bd.h"
+#include "flexbond/escape.h"
+#include "flexbond/io.h"
+#include "flexbond/sim.h"
+#include "flexbond/vehicle.h"
+
+#include "cli.h"
+
+static const char freq_usage[] =
+    "usage: flexbond freq SCENARIO.yaml -o DIR [--system rigid|flexible|both]\n"
+    "                     [--f-min HZ] [--f-max HZ] [--points N] [--no-figures]\n"
+    "\n"
+    "Frequency response of the scenario's outputs to the road: H = C (j w E - A)^-1 B\n"
+    "from the vehicle's descriptor form (as flexbond export writes it), for a road\n"
+    "height on the left and on the right track, 1 m at the leading wheel, which the\n"
+    "track's other wheels meet later by their distance behind it at road.speed_kmh.\n"
+    "  DIR/freq_system1.csv    frequency [Hz], then per output and track |H| [unit/m]\n"
+    "  DIR/freq_system2.csv    and phase [deg] (in (-180, 180])\n"
+    "  DIR/bode_<OUTPUT>.png   |H| and phase, both systems and tracks overlaid\n"
+    "Power outputs, products of two signals, have no frequency response and are left\n"
+    "out. Unilateral tires are taken in contact, their linear branch; a vehicle\n"
+    "with a nonlinear law (a damper table) is linearised at its static equilibrium\n"
+    "under gravity, and the output says so.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output DIR                 output directory (required)\n"
+    "  --system rigid|flexible|both     which hull model (default both)\n"
+    "  --f-min HZ, --f-max HZ           frequency range (default 0.1 to 100 Hz)\n"
+    "  --points N                       frequencies, evenly spaced on a log scale\n"
+    "                                   (default 301: 100 per decade)\n"
+    "  --no-figures                     write the CSV files only\n"
+    "  -h, --help                       this text\n";
+
+static const char *const system_choices[] = {"rigid", "flexible", "both"};
+
+enum { FREQ_MAX_POINTS = 100000, NTRACKS = FB_ROAD_NTRACKS };
+static const char *const track_names[NTRACKS] = {"left", "right"};
+
+/* What the command computes. */
+typedef struct freq_study {
+  const fb_scenario *s;
+  size_t nfreq;
+  double *freq_hz;
+  int ran[CLI_MAX_SYSTEMS];        /* System 1, System 2 */
+  int linearised[CLI_MAX_SYSTEMS]; /* 1: at the static equilibrium */
+  double *h[CLI_MAX_SYSTEMS];      /* fb_descriptor_freq_response's layout */
+  size_t nrows[CLI_MAX_SYSTEMS];
+  size_t *row[CLI_MAX_SYSTEMS]; /* per output: its row of C, (size_t)-1 for a power */
+  double seconds[CLI_MAX_SYSTEMS];
+} freq_study;
+
+typedef struct track_ctx {
+  const fb_scenario *s;
+  const size_t *rate_input;
+} track_ctx;
+
+static void track_input(void *ctx, double omega, double *u)
+{
+  const track_ctx *t = ctx;
+  fb_vehicle_track_inputs(t->s, t->rate_input, omega, u);
+}
+
+/* The complex amplitude of output o on track t at frequency k. */
+static const double *amplitude(const freq_study *fs, int sys, size_t k, int t, size_t o)
+{
+  return fs->h[sys] + 2 * ((k * NTRACKS + (size_t)t) * fs->nrows[sys] + fs->row[sys][o]);
+}
+
+static int respond(freq_study *fs, int sys, fb_descriptor *ds, fb_err *err)
+{
+  const fb_scenario *s = fs->s;
+  size_t *rate_input = calloc(s->ncorners + 1, sizeof *rate_input);
+  fs->row[sys] = calloc(s->noutputs + 1, sizeof *fs->row[sys]);
+  fs->h[sys] = malloc((2 * NTRACKS * ds->nrows_c * fs->nfreq + 1) * sizeof *fs->h[sys]);
+  if (!rate_input || !fs->row[sys] || !fs->h[sys]) {
+    free(rate_input);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a frequency response");
+  }
+  fs->nrows[sys] = ds->nrows_c;
+  for (size_t o = 0; o < s->noutputs; ++o)
+    fs->row[sys][o] = ds->output_is_product[o] ? (size_t)-1 : ds->output_row[o];
+  int rc = fb_vehicle_rate_inputs(s, ds, rate_input, err);
+  const track_ctx tc = {s, rate_input};
+  if (!rc)
+    rc = fb_descriptor_freq_response(ds, fs->freq_hz, fs->nfreq, NTRACKS, track_input,
+                                     (void *)&tc, fs->h[sys], err);
+  free(rate_input);
+  return rc;
+}
+
+/* A nonlinear vehicle's descriptor form at its static equilibrium under
+ * gravity, reached from the initial state as flexbond run --initial
+ * static does (fb_sim_static_state). */
+static int linearise(fb_bd *bd, fb_descriptor **ds, fb_err *err)
+{
+  const size_t n = fb_bd_nstates(bd);
+  double *x0 = malloc((n + 1) * sizeof *x0), *x = malloc((n + 1) * sizeof *x);
+  int rc = x0 && x ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc) {
+    fb_bd_initial_state(bd, x0);
+    rc = fb_sim_static_state(bd, 0.0, x0, x, err);
+  }
+  if (!rc)
+    rc = fb_bd_descriptor_at(bd, 0.0, x, ds, err);
+  free(x0);
+  free(x);
+  return rc;
+}
+
+static int run_system(freq_study *fs, int sys, fb_err *err)
+{
+  fb_bg *graph = NULL;
+  fb_bd *bd = NULL;
+  fb_descriptor *ds = NULL;
+  struct timespec start, end;
+  clock_gettime(CLOCK_MONOTONIC, &start);
+  int rc =
+      fb_vehicle_build(fs->s, sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID, &graph, &bd, err);
+  if (!rc)
+    rc = fb_bd_is_linear(bd) ? fb_bd_descriptor(bd, &ds, err) : linearise(bd, &ds, err);
+  if (!rc) {
+    fs->linearised[sys] = ds->linearised;
+    rc = respond(fs, sys, ds, err);
+  }
+  clock_gettime(CLOCK_MONOTONIC, &end);
+  fs->seconds[sys] =
+      (double)(end.tv_sec - start.tv_sec) + 1e-9 * (double)(end.tv_nsec - start.tv_nsec);
+  if (!rc)
+    fs->ran[sys] = 1;
+  fb_descriptor_free(&ds);
+  fb_bd_free(&bd);
+  fb_bg_free(&graph);
+  return rc ? fb_err_prefix(
+                  err, "%s: ", cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID))
+            : FB_OK;
+}
+
+/* ---- Files. */
+
+/* The unit of |H|: the output's per metre of road. */
+static void gain_unit(const char *unit, char *buf, size_t size)
+{
+  const int compound = strpbrk(unit, "/ *") != NULL;
+  snprintf(buf, size, compound ? "(%s)/m" : "%s/m", unit);
+}
+
+/* Phase in degrees, in (-180, 180], of output o on track t at every
+ * frequency. Not unwrapped: the wheelbase filter's notches are zeros
+ * close to the imaginary axis, across which the phase has no one
+ * continuation. */
+static void phases(const freq_study *fs, int sys, int t, size_t o, double *deg)
+{
+  for (size_t k = 0; k < fs->nfreq; ++k) {
+    const double *z = amplitude(fs, sys, k, t, o);
+    deg[k] = atan2(z[1], z[0]) * 180.0 / 3.14159265358979323846;
+  }
+}
+
+typedef struct csv_ctx {
+  const freq_study *fs;
+  int sys;
+  double *phase; /* noutputs x NTRACKS x nfreq */
+} csv_ctx;
+
+static void write_header(FILE *fp, const fb_scenario *s)
+{
+  fputs("frequency [Hz]", fp);
+  for (size_t o = 0; o < s->noutputs; ++o)
+    for (int t = 0; t < NTRACKS; ++t) {
+      char unit[64];
+      gain_unit(s->output[o].unit, unit, sizeof unit);
+      const char *mag[] = {s->output[o].name, "/", track_names[t], " |H| [", unit, "]"};
+      const char *ph[] = {s->output[o].name, "/", track_names[t], " phase [deg]"};
+      fputc(',', fp);
+      fb_csv_write_field_parts(fp, mag, 6, FB_CSV_TEXT);
+      fputc(',', fp);
+      fb_csv_write_field_parts(fp, ph, 4, FB_CSV_TEXT);
+    }
+  fputc('\n', fp);
+}
+
+static void write_csv(FILE *fp, const void *ctx)
+{
+  const csv_ctx *c = ctx;
+  const freq_study *fs = c->fs;
+  const fb_scenario *s = fs->s;
+  write_header(fp, s);
+  for (size_t k = 0; k < fs->nfreq; ++k) {
+    fprintf(fp, "%.10g", fs->freq_hz[k]);
+    for (size_t o = 0; o < s->noutputs; ++o)
+      for (int t = 0; t < NTRACKS; ++t) {
+        if (fs->row[c->sys][o] == (size_t)-1) {
+          fputs(",,", fp);
+          continue;
+        }
+        const double *z = amplitude(fs, c->sys, k, t, o);
+        fprintf(fp, ",%.10g,%.8g", hypot(z[0], z[1]),
+                c->phase[(o * NTRACKS + (size_t)t) * fs->nfreq + k]);
+      }
+    fputc('\n', fp);
+  }
+}
+
+/* Every output's phases of system sys. */
+static double *all_phases(const freq_study *fs, int sys)
+{
+  const size_t n = fs->s->noutputs * NTRACKS * fs->nfreq;
+  double *phase = calloc(n + 1, sizeof *phase);
+  for (size_t o = 0; phase && o < fs->s->noutputs; ++o)
+    for (int t = 0; t < NTRACKS && fs->row[sys][o] != (size_t)-1; ++t)
+      phases(fs, sys, t, o, phase + (o * NTRACKS + (size_t)t) * fs->nfreq);
+  return phase;
+}
+
+/* The curves of one output's Bode figure: |H| and phase per system and
+ * track. */
+typedef struct bode {
+  double *mag[CLI_MAX_SYSTEMS][NTRACKS];
+  fb_plot_xy_series ms[2 * NTRACKS], ps[2 * NTRACKS];
+  char legend[2 * NTRACKS][48];
+} bode;
+
+static int draw_bode(cli_outdir *od, const freq_study *fs, double *const *phase, size_t o,
+                     fb_err *err)
+{
+  const fb_scenario *s = fs->s;
+  bode b;
+  memset(&b, 0, sizeof b);
+  size_t n = 0;
+  int rc = FB_OK;
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS && !rc; ++sys)
+    for (int t = 0; fs->ran[sys] && t < NTRACKS && !rc; ++t) {
+      double *mag = malloc((fs->nfreq + 1) * sizeof *mag);
+      b.mag[sys][t] = mag;
+      if (!mag) {
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory for a Bode figure");
+        break;
+      }
+      for (size_t k = 0; k < fs->nfreq; ++k) {
+        const double *z = amplitude(fs, sys, k, t, o);
+        mag[k] = hypot(z[0], z[1]);
+      }
+      snprintf(b.legend[n], sizeof b.legend[n], "System %d, %s track", sys + 1, track_names[t]);
+      b.ms[n] = (fb_plot_xy_series){fs->freq_hz, mag, fs->nfreq, b.legend[n]};
+      b.ps[n] =
+          (fb_plot_xy_series){fs->freq_hz, phase[sys] + (o * NTRACKS + (size_t)t) * fs->nfreq,
+                              fs->nfreq, NULL}; /* the key is above */
+      ++n;
+    }
+  char unit[64], ylabel[96], title[160], name[FB_ERR_KEY_MAX + 16];
+  gain_unit(s->output[o].unit, unit, sizeof unit);
+  snprintf(ylabel, sizeof ylabel, "|H| [%s]", unit);
+  snprintf(title, sizeof title, "%s: frequency response to the road (%.4g km/h)%s",
+           s->output[o].name, 3.6 * s->speed,
+           fs->linearised[0] || fs->linearised[1] ? ", linearised at the static equilibrium"
+                                                  : "");
+  const fb_plot_xy_panel panels[2] = {{b.ms, n, ylabel, 1}, {b.ps, n, "phase [deg]", 0}};
+  fb_plot_xy_opts opts;
+  fb_plot_xy_opts_default(&opts);
+  opts.title = title;
+  opts.xlabel = "frequency [Hz]";
+  opts.columns = 1;
+  opts.panel_width = 900;
+  opts.panel_height = 300;
+  opts.log_x = 1;
+  opts.lines = 1;
+  snprintf(name, sizeof name, "bode_%s.png", s->output[o].name);
+  char *path = rc ? NULL : cli_outdir_path(od, name, err);
+  if (!rc)
+    rc = path ? fb_plot_xy_png(panels, 2, &opts, path, err) : err->code;
+  if (!rc)
+    rc = cli_outdir_keep(od, path, err);
+  else
+    free(path);
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys)
+    for (int t = 0; t < NTRACKS; ++t)
+      free(b.mag[sys][t]);
+  return rc;
+}
+
+static int write_files(cli_outdir *od, const freq_study *fs, int figures, fb_err *err)
+{
+  double *phase[CLI_MAX_SYSTEMS] = {NULL, NULL};
+  int rc = FB_OK;
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS && !rc; ++sys) {
+    if (!fs->ran[sys])
+      continue;
+    phase[sys] = all_phases(fs, sys);
+    if (!phase[sys]) {
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory for the phases");
+      break;
+    }
+    const csv_ctx c = {fs, sys, phase[sys]};
+    rc =
+        cli_outdir_write(od, sys ? "freq_system2.csv" : "freq_system1.csv", write_csv, &c, err);
+  }
+  for (size_t o = 0; figures && !rc && o < fs->s->noutputs; ++o) {
+    const int sys = fs->ran[0] ? 0 : 1;
+    if (fs->row[sys][o] != (size_t)-1)
+      rc = draw_bode(od, fs, phase, o, err);
+  }
+  free(phase[0]);
+  free(phase[1]);
+  return rc;
+}
+
+/* ---- The command. */
+
+static void print_summary(const freq_study *fs)
+{
+  const fb_scenario *s = fs->s;
+  printf("%s: frequency response to the road at %.4g km/h, %zu frequencies from %g to %g Hz\n",
+         cli_scenario_name(s), 3.6 * s->speed, fs->nfreq, fs->freq_hz[0],
+         fs->freq_hz[fs->nfreq - 1]);
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
+    if (!fs->ran[sys])
+      continue;
+    printf("%s (%.2f s%s): largest |H|, left track\n",
+           cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID), fs->seconds[sys],
+           fs->linearised[sys] ? "; nonlinear, linearised at its static equilibrium" : "");
+    for (size_t o = 0; o < s->noutputs; ++o) {
+      if (fs->row[sys][o] == (size_t)-1) {
+        printf("  %-20s a power: no frequency response\n", s->output[o].name);
+        continue;
+      }
+      size_t best = 0;
+      double big = -1.0;
+      for (size_t k = 0; k < fs->nfreq; ++k) {
+        const double *z = amplitude(fs, sys, k, FB_ROAD_LEFT, o);
+        if (hypot(z[0], z[1]) > big) {
+          big = hypot(z[0], z[1]);
+          best = k;
+        }
+      }
+      char unit[64];
+      gain_unit(s->output[o].unit, unit, sizeof unit);
+      printf("  %-20s %12.5g %s at %.4g Hz\n", s->output[o].name, big, unit, fs->freq_hz[best]);
+    }
+  }
+}
+
+typedef struct freq_args {
+  const char *path, *dir;
+  int systems[CLI_MAX_SYSTEMS];
+  double f_min, f_max;
+  size_t points;
+  int figures;
+} freq_args;
+
+static int study(const freq_args *a)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_scenario *s = NULL;
+  freq_study fs = {.nfreq = a->points};
+  int rc = fb_scenario_load(a->path, &s, &err);
+  /* A unilateral tire is linear while in contact, its mode at rest. */
+  for (size_t c = 0; !rc && c < s->ncorners; ++c)
+    s->corner[c].tire_contact = FB_TIRE_BILATERAL;
+  fs.s = s;
+  fs.freq_hz = malloc(a->points * sizeof *fs.freq_hz);
+  if (!rc && !fs.freq_hz)
+    rc = fb_err_set(&err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; !rc && k < a->points; ++k)
+    fs.freq_hz[k] = a->f_min * pow(a->f_max / a->f_min,
+                                   a->points > 1 ? (double)k / (double)(a->points - 1) : 0.0);
+  cli_outdir od;
+  const int opened = !rc && (rc = cli_outdir_open(&od, a->dir, "freq", &err)) == FB_OK;
+  for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys)
+    if (a->systems[sys])
+      rc = run_system(&fs, sys, &err);
+  if (!rc)
+    rc = write_files(&od, &fs, a->figures, &err);
+  if (opened)
+    rc = cli_outdir_close(&od, rc, &err);
+  if (!rc) {
+    print_summary(&fs);
+    rc = cli_flush_stdout(&err);
+  }
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
+    free(fs.h[sys]);
+    free(fs.row[sys]);
+  }
+  free(fs.freq_hz);
+  rc = cli_report_scenario(s, rc, &err);
+  fb_scenario_free(&s);
+  return rc;
+}
+
+int cli_cmd_freq(int argc, char **argv)
+{
+  enum { OPT_SYSTEM, OPT_OUT, OPT_FMIN, OPT_FMAX, OPT_POINTS, OPT_NOFIG, OPT_HELP, NOPTS };
+  cli_option opts[NOPTS] = {
+      [OPT_SYSTEM] = {"--system", NULL, 1, NULL}, [OPT_OUT] = {"--output", "-o", 1, NULL},
+      [OPT_FMIN] = {"--f-min", NULL, 1, NULL},    [OPT_FMAX] = {"--f-max", NULL, 1, NULL},
+      [OPT_POINTS] = {"--points", NULL, 1, NULL}, [OPT_NOFIG] = {"--no-figures", NULL, 0, NULL},
+      [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  freq_args a = {.f_min = 0.1, .f_max = 100.0, .points = 301, .systems = {1, 1}};
+  int rc;
+  if (!cli_parse_file_command(argc, argv, opts, NOPTS, freq_usage, "SCENARIO", &a.path, &rc))
+    return rc;
+  int choice = 2;
+  if (opts[OPT_SYSTEM].value)
+    rc = cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, system_choices, 3, &choice);
+  a.systems[0] = choice != 1;
+  a.systems[1] = choice != 0;
+  if (rc == CLI_EXIT_OK && opts[OPT_FMIN].value)
+    rc = cli_positive_number(argv[0], "--f-min", opts[OPT_FMIN].value, &a.f_min);
+  if (rc == CLI_EXIT_OK && opts[OPT_FMAX].value)
+    rc = cli_positive_number(argv[0], "--f-max", opts[OPT_FMAX].value, &a.f_max);
+  double points = (double)a.points;
+  if (rc == CLI_EXIT_OK && opts[OPT_POINTS].value)
+    rc = cli_positive_number(argv[0], "--points", opts[OPT_POINTS].value, &points);
+  if (rc != CLI_EXIT_OK)
+    return rc;
+  if (points != floor(points) || points < 2 || points > FREQ_MAX_POINTS)
+    return cli_usage_error(argv[0], "--points: %s is not a whole number from 2 to %d",
+                           opts[OPT_POINTS].value, FREQ_MAX_POINTS);
+  if (!(a.f_max > a.f_min))
+    return cli_usage_error(argv[0], "--f-max (%g Hz) must be above --f-min (%g Hz)", a.f_max,
+                           a.f_min);
+  if (!opts[OPT_OUT].value)
+    return cli_usage_error(argv[0], "missing output directory (-o DIR)");
+  a.points = (size_t)points;
+  a.dir = opts[OPT_OUT].value;
+  a.figures = opts[OPT_NOFIG].value == NULL;
+  return study(&a);
+}
