@@ -180,8 +180,9 @@ fuzz: deps
 VALGRIND_DIR ?= build-valgrind
 TIDY_DIR ?= build-tidy
 # Left out of `make valgrind`: System 2's simulations, 57 s and 40 s natively, most of an hour
-# each under memcheck (docs/quality.md).
-VALGRIND_EXCLUDE ?= ^test_system2_sim$$|^test_model_write_flexible$$
+# each under memcheck, and the eight 40 s random-road runs of test_ride_psd, 19 s natively
+# (docs/quality.md); test_freq runs the same frequency-response code under memcheck.
+VALGRIND_EXCLUDE ?= ^test_system2_sim$$|^test_model_write_flexible$$|^test_ride_psd$$
 # Only definite and indirect leaks are errors (and shown); any error fails the test.
 VALGRIND_OPTIONS := --leak-check=full --show-leak-kinds=definite,indirect \
                     --errors-for-leak-kinds=definite,indirect --error-exitcode=1 --num-callers=30

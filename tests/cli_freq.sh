@@ -81,6 +81,50 @@ run freq "$REPO_ROOT/examples/apc6x6_shock_table.yaml" -o "$WORK/table" --system
 expect_status 0 "freq of a vehicle with shock tables"
 expect_in "$OUT" "nonlinear, linearised at its static equilibrium" "freq says it linearised"
 
+# On an ISO 8608 road: the ride from its spectrum as well.
+run freq "$REPO_ROOT/examples/apc6x6_iso_road.yaml" -o "$WORK/iso" --no-figures --points 11
+expect_status 0 "freq on an ISO 8608 road"
+checks=$((checks + 1))
+[ "$(ls -A "$WORK/iso" | sort | tr '\n' ' ')" = \
+  ".flexbond-manifest freq_system1.csv freq_system2.csv psd_system1.csv psd_system2.csv ride_psd.json " ] ||
+  fail "freq on an ISO road: files $(ls -A "$WORK/iso" | tr '\n' ' ')"
+expect_in "$OUT" "ride from the road spectrum: ISO 8608 class C, 0.011 to 2.83 cycles/m" \
+  "freq: the road spectrum's band"
+expect_in "$WORK/iso/psd_system1.csv" \
+  "frequency [Hz],road [m^2/Hz],tire_force_LF [N^2/Hz],spring_defl_RF [m^2/Hz]," "PSD CSV header"
+expect_in "$WORK/iso/psd_system1.csv" "driver_acc Wk-weighted [(m/s^2)^2/Hz]" "PSD CSV: weighted"
+checks=$((checks + 1))
+python3 - "$WORK/iso" <<'PY' || fail "ride_psd.json"
+import csv, json, math, sys
+d = sys.argv[1]
+j = json.load(open(f"{d}/ride_psd.json"))
+assert j["road"] == {"class": "C", "gd0_m3": 0.000256, "band_cycles_per_m": [0.011, 2.83],
+                     "speed_m_s": j["road"]["speed_m_s"], "tracks": "independent"}, j["road"]
+assert abs(j["road"]["speed_m_s"] - 30 / 3.6) < 1e-9
+for sys_ in ("system1", "system2"):
+    assert 0.3 < j[sys_]["a_w_rms"] < 1.5 and j[sys_]["a_w_output"] == "driver_acc", j[sys_]
+# The JSON's a_w is the CSV's weighted PSD integrated (trapezoidal rule in log f).
+rows = list(csv.reader(open(f"{d}/psd_system1.csv")))
+i = rows[0].index("driver_acc Wk-weighted [(m/s^2)^2/Hz]")
+f = [float(r[0]) for r in rows[1:]]
+p = [float(r[i]) for r in rows[1:]]
+ms = sum(0.5 * (p[k] * f[k] + p[k + 1] * f[k + 1]) * math.log(f[k + 1] / f[k])
+         for k in range(len(f) - 1))
+assert abs(math.sqrt(ms) - j["system1"]["a_w_rms"]) < 1e-6 * j["system1"]["a_w_rms"]
+assert abs(f[0] - 0.011 * 30 / 3.6) < 1e-9 and abs(f[-1] - 2.83 * 30 / 3.6) < 1e-6
+PY
+run freq "$REPO_ROOT/examples/apc6x6_iso_road.yaml" -o "$WORK/iso_same" --no-figures \
+  --points 11 --tracks identical --system rigid
+expect_status 0 "freq --tracks identical"
+expect_in "$WORK/iso_same/ride_psd.json" '"tracks": "identical"' "ride_psd.json: coherence"
+run freq "$APC" -o "$WORK/class" --no-figures --points 11 --road-class b --system rigid
+expect_status 0 "freq --road-class b on a bump scenario"
+expect_in "$WORK/class/ride_psd.json" '"class": "B", "gd0_m3": 6.4e-05' "freq --road-class"
+run freq "$APC" -o "$WORK/bad" --road-class J
+expect_status 1 "freq --road-class J"
+expect_in "$ERR" "not an ISO 8608 class A to H" "freq --road-class J: message"
+expect_absent "$WORK/bad" "freq --road-class J"
+
 for bad in "--points 1" "--points 2.5" "--f-min 10 --f-max 1" "--f-min -1" "--system both2"; do
   # shellcheck disable=SC2086
   run freq "$APC" -o "$WORK/bad" $bad

@@ -70,6 +70,18 @@ void fb_ride_opts_default(fb_ride_opts *opts);
  * >= 0; NAN for a negative or non-finite f_hz. */
 double fb_ride_wk_magnitude(double f_hz);
 
+/* The one-sided temporal PSD (m^2/Hz) at f_hz > 0 of a road whose spatial
+ * PSD is ISO 8608's Gd(n) = gd0 (n / 0.1)^-2 (gd0 in m^3 at 0.1
+ * cycles/m: fb_road_iso8608_gd0), driven at speed (m/s, > 0):
+ * Gd(f / speed) / speed. NAN for a bad argument. The caller limits it to
+ * the road's band. */
+double fb_ride_road_psd(double gd0, double speed, double f_hz);
+
+/* The integral of a one-sided PSD psd[0..n) (unit^2/Hz) over its
+ * frequencies f_hz[0..n) (Hz, increasing, > 0): the mean square of the
+ * signal in that band, by the trapezoidal rule in log f. */
+double fb_ride_psd_integral(const double *f_hz, const double *psd, size_t n);
+
 /* Magnitude of the digital filter fb_ride_wk_filter applies at sample
  * rate fs, at frequency f_hz in [0, fs/2]: the exact steady-state gain
  * of that filter for a sine of frequency f_hz. NAN when fs is below

@@ -6,6 +6,8 @@
  * The input is a road height on one track, 1 m at the leading wheel, which
  * the track's other wheels meet later by their distance behind it at the
  * scenario's speed (fb_vehicle_track_inputs). */
+#include "freq.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +25,7 @@
 static const char freq_usage[] =
     "usage: flexbond freq SCENARIO.yaml -o DIR [--system rigid|flexible|both]\n"
     "                     [--f-min HZ] [--f-max HZ] [--points N] [--no-figures]\n"
+    "                     [--road-class A..H] [--tracks independent|identical]\n"
     "\n"
     "Frequency response of the scenario's outputs to the road: H = C (j w E - A)^-1 B\n"
     "from the vehicle's descriptor form (as flexbond export writes it), for a road\n"
@@ -31,6 +34,9 @@ static const char freq_usage[] =
     "  DIR/freq_system1.csv    frequency [Hz], then per output and track |H| [unit/m]\n"
     "  DIR/freq_system2.csv    and phase [deg] (in (-180, 180])\n"
     "  DIR/bode_<OUTPUT>.png   |H| and phase, both systems and tracks overlaid\n"
+    "On an ISO 8608 road also the ride from its spectrum, without a time run:\n"
+    "  DIR/psd_system1.csv ... each output's PSD over the road's band [unit^2/Hz]\n"
+    "  DIR/ride_psd.json       the driver's ISO 2631-1 a_w and each output's r.m.s.\n"
     "Power outputs, products of two signals, have no frequency response and are left\n"
     "out. Unilateral tires are taken in contact, their linear branch; a vehicle\n"
     "with a nonlinear law (a damper table) is linearised at its static equilibrium\n"
@@ -43,25 +49,17 @@ static const char freq_usage[] =
     "  --points N                       frequencies, evenly spaced on a log scale\n"
     "                                   (default 301: 100 per decade)\n"
     "  --no-figures                     write the CSV files only\n"
+    "  --road-class A..H                the ride from an ISO 8608 road of that class\n"
+    "                                   (band 0.011 to 2.83 cycles/m); by default the\n"
+    "                                   scenario's road when it is an ISO 8608 one\n"
+    "  --tracks independent|identical   the road's two tracks (default independent,\n"
+    "                                   as the ISO 8608 generator makes them)\n"
     "  -h, --help                       this text\n";
 
 static const char *const system_choices[] = {"rigid", "flexible", "both"};
+static const char *const track_choices[] = {"independent", "identical"};
 
-enum { FREQ_MAX_POINTS = 100000, NTRACKS = FB_ROAD_NTRACKS };
 static const char *const track_names[NTRACKS] = {"left", "right"};
-
-/* What the command computes. */
-typedef struct freq_study {
-  const fb_scenario *s;
-  size_t nfreq;
-  double *freq_hz;
-  int ran[CLI_MAX_SYSTEMS];        /* System 1, System 2 */
-  int linearised[CLI_MAX_SYSTEMS]; /* 1: at the static equilibrium */
-  double *h[CLI_MAX_SYSTEMS];      /* fb_descriptor_freq_response's layout */
-  size_t nrows[CLI_MAX_SYSTEMS];
-  size_t *row[CLI_MAX_SYSTEMS]; /* per output: its row of C, (size_t)-1 for a power */
-  double seconds[CLI_MAX_SYSTEMS];
-} freq_study;
 
 typedef struct track_ctx {
   const fb_scenario *s;
@@ -77,7 +75,7 @@ static void track_input(void *ctx, double omega, double *u)
 /* The complex amplitude of output o on track t at frequency k. */
 static const double *amplitude(const freq_study *fs, int sys, size_t k, int t, size_t o)
 {
-  return fs->h[sys] + 2 * ((k * NTRACKS + (size_t)t) * fs->nrows[sys] + fs->row[sys][o]);
+  return cli_freq_amplitude(fs->h[sys], fs->nrows[sys], k, t, fs->row[sys][o]);
 }
 
 static int respond(freq_study *fs, int sys, fb_descriptor *ds, fb_err *err)
@@ -98,6 +96,8 @@ static int respond(freq_study *fs, int sys, fb_descriptor *ds, fb_err *err)
   if (!rc)
     rc = fb_descriptor_freq_response(ds, fs->freq_hz, fs->nfreq, NTRACKS, track_input,
                                      (void *)&tc, fs->h[sys], err);
+  if (!rc && fs->psd.on)
+    rc = cli_freq_psd_respond(fs, sys, ds, track_input, (void *)&tc, err);
   free(rate_input);
   return rc;
 }
@@ -359,6 +359,8 @@ typedef struct freq_args {
   double f_min, f_max;
   size_t points;
   int figures;
+  char road_class; /* 0: the scenario's road */
+  int identical;   /* tracks */
 } freq_args;
 
 static int study(const freq_args *a)
@@ -372,7 +374,9 @@ static int study(const freq_args *a)
   for (size_t c = 0; !rc && c < s->ncorners; ++c)
     s->corner[c].tire_contact = FB_TIRE_BILATERAL;
   fs.s = s;
-  fs.freq_hz = malloc(a->points * sizeof *fs.freq_hz);
+  if (!rc)
+    rc = cli_freq_psd_setup(&fs, a->road_class, a->identical, &err);
+  fs.freq_hz = calloc(a->points, sizeof *fs.freq_hz);
   if (!rc && !fs.freq_hz)
     rc = fb_err_set(&err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; !rc && k < a->points; ++k)
@@ -385,12 +389,17 @@ static int study(const freq_args *a)
       rc = run_system(&fs, sys, &err);
   if (!rc)
     rc = write_files(&od, &fs, a->figures, &err);
+  if (!rc && fs.psd.on)
+    rc = cli_freq_psd_write(&od, &fs, &err);
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   if (!rc) {
     print_summary(&fs);
+    if (fs.psd.on)
+      cli_freq_psd_print(&fs);
     rc = cli_flush_stdout(&err);
   }
+  cli_freq_psd_free(&fs.psd);
   for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
     free(fs.h[sys]);
     free(fs.row[sys]);
@@ -403,12 +412,27 @@ static int study(const freq_args *a)
 
 int cli_cmd_freq(int argc, char **argv)
 {
-  enum { OPT_SYSTEM, OPT_OUT, OPT_FMIN, OPT_FMAX, OPT_POINTS, OPT_NOFIG, OPT_HELP, NOPTS };
-  cli_option opts[NOPTS] = {
-      [OPT_SYSTEM] = {"--system", NULL, 1, NULL}, [OPT_OUT] = {"--output", "-o", 1, NULL},
-      [OPT_FMIN] = {"--f-min", NULL, 1, NULL},    [OPT_FMAX] = {"--f-max", NULL, 1, NULL},
-      [OPT_POINTS] = {"--points", NULL, 1, NULL}, [OPT_NOFIG] = {"--no-figures", NULL, 0, NULL},
-      [OPT_HELP] = {"--help", "-h", 0, NULL}};
+  enum {
+    OPT_SYSTEM,
+    OPT_OUT,
+    OPT_FMIN,
+    OPT_FMAX,
+    OPT_POINTS,
+    OPT_NOFIG,
+    OPT_CLASS,
+    OPT_TRACKS,
+    OPT_HELP,
+    NOPTS
+  };
+  cli_option opts[NOPTS] = {[OPT_SYSTEM] = {"--system", NULL, 1, NULL},
+                            [OPT_OUT] = {"--output", "-o", 1, NULL},
+                            [OPT_FMIN] = {"--f-min", NULL, 1, NULL},
+                            [OPT_FMAX] = {"--f-max", NULL, 1, NULL},
+                            [OPT_POINTS] = {"--points", NULL, 1, NULL},
+                            [OPT_NOFIG] = {"--no-figures", NULL, 0, NULL},
+                            [OPT_CLASS] = {"--road-class", NULL, 1, NULL},
+                            [OPT_TRACKS] = {"--tracks", NULL, 1, NULL},
+                            [OPT_HELP] = {"--help", "-h", 0, NULL}};
   freq_args a = {.f_min = 0.1, .f_max = 100.0, .points = 301, .systems = {1, 1}};
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, freq_usage, "SCENARIO", &a.path, &rc))
@@ -425,8 +449,17 @@ int cli_cmd_freq(int argc, char **argv)
   double points = (double)a.points;
   if (rc == CLI_EXIT_OK && opts[OPT_POINTS].value)
     rc = cli_positive_number(argv[0], "--points", opts[OPT_POINTS].value, &points);
+  int tracks = 0;
+  if (rc == CLI_EXIT_OK && opts[OPT_TRACKS].value)
+    rc = cli_choice(argv[0], "--tracks", opts[OPT_TRACKS].value, track_choices, 2, &tracks);
   if (rc != CLI_EXIT_OK)
     return rc;
+  a.identical = tracks == 1;
+  const char *cls = opts[OPT_CLASS].value;
+  if (cls && (strlen(cls) != 1 || !strchr("ABCDEFGHabcdefgh", cls[0])))
+    return cli_usage_error(argv[0], "--road-class: '%s' is not an ISO 8608 class A to H", cls);
+  if (cls)
+    a.road_class = cls[0];
   if (points != floor(points) || points < 2 || points > FREQ_MAX_POINTS)
     return cli_usage_error(argv[0], "--points: %s is not a whole number from 2 to %d",
                            opts[OPT_POINTS].value, FREQ_MAX_POINTS);
