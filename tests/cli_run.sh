@@ -20,7 +20,10 @@ FIGURES=(fig08_tire_force_LF.png fig09_spring_defl_RF.png fig10_torsion.png
 # Each system's multibond graph and block diagram (the paper's Figs. 5, 6).
 DIAGRAMS1=(fig05_bond_graph_system1.png fig06_block_diagram_system1.png)
 DIAGRAMS2=(fig05_bond_graph_system2.png fig06_block_diagram_system2.png)
-EXPECTED_FILES=$(printf '%s\n' .flexbond-manifest "${FIGURES[@]}" "${DIAGRAMS1[@]}" report.md \
+# The frequency response of every output but the powers (flexbond freq's figures).
+BODES=(bode_tire_force_LF.png bode_spring_defl_RF.png bode_torsion.png bode_driver_acc.png
+  bode_tire_defl_RM.png)
+EXPECTED_FILES=$(printf '%s\n' .flexbond-manifest "${FIGURES[@]}" "${DIAGRAMS1[@]}" "${BODES[@]}" report.md \
   summary.json system1.csv | sort)
 
 # expect_files DIR DESCRIPTION: DIR holds exactly the files of a run.
@@ -122,7 +125,7 @@ checks=$((checks + 1))
 [ "$(sed -n 2p "$WORK/apc/system1.csv")" = "0,0,0,0,-9.81,0,0,0" ] ||
   fail "first row: $(sed -n 2p "$WORK/apc/system1.csv")"
 check_summary "$WORK/apc" zero weight-only
-for f in "${FIGURES[@]}" "${DIAGRAMS1[@]}"; do
+for f in "${FIGURES[@]}" "${DIAGRAMS1[@]}" "${BODES[@]}"; do
   checks=$((checks + 1))
   [ "$(head -c 8 "$WORK/apc/$f" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
     fail "$f is a PNG"
@@ -133,7 +136,7 @@ done
 run run "$APC" -o "$WORK/apc_loud" --system rigid
 expect_status 0 "run apc6x6 without -q"
 expect_in "$ERR" "simulating System 1 (rigid hull)" "progress line"
-expect_in "$ERR" "wrote 12 files -> $WORK/apc_loud" "summary line"
+expect_in "$ERR" "wrote 17 files -> $WORK/apc_loud" "summary line"
 checks=$((checks + 1))
 ! grep -q $'\r' "$ERR" || fail "no progress line when stderr is not a terminal"
 
@@ -159,7 +162,7 @@ run run "$SHORT" -o "$WORK/both" -q
 expect_status 0 "run, both systems"
 checks=$((checks + 1))
 [ "$(ls -A "$WORK/both" | sort)" = "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" \
-  "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" .flexbond-manifest report.md summary.json system1.csv system2.csv | sort)" ] ||
+  "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" "${BODES[@]}" .flexbond-manifest report.md summary.json system1.csv system2.csv | sort)" ] ||
   fail "both systems: files $(ls -A "$WORK/both" | tr '\n' ' ')"
 checks=$((checks + 1))
 [ "$(head -n 1 "$WORK/both/system2.csv")" = "$HEADER" ] ||
@@ -242,6 +245,7 @@ for q in "LF tire normal reaction | N" "RF suspension spring deformation | m" \
 done
 expect_in "$REPORT" "full order in modal coordinates, every one of the 1296 free-free modes" "report.md hull order"
 expect_in "$REPORT" "## Assumptions" "report.md assumptions"
+expect_in "$REPORT" "## Frequency response" "report.md frequency response"
 expect_in "$REPORT" "Mesh convergence (an estimate, not computed in this run): at density 1 the hull's first ten elastic free-free frequencies are about 12 % to 21 % above" \
   "report.md mesh error"
 expect_in "$REPORT" "## Tire contact" "report.md tire contact"
@@ -255,8 +259,8 @@ expect_in "$REPORT" "| 20 | " "report.md System 2 modes"
 checks=$((checks + 1))
 links=$(grep -o '](\([^)]*\))' "$REPORT" | sed 's/^](//; s/)$//')
 [ "$(printf '%s\n' "$links" | sort)" = \
-  "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" |
-    sort)" ] ||
+  "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" \
+    "${BODES[@]}" | sort)" ] ||
   fail "report.md image links: $(echo $links)"
 for f in $links; do
   checks=$((checks + 1))

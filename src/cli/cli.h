@@ -298,6 +298,11 @@ typedef struct cli_run_outputs {
   double hull_beta;              /* B = beta K, s */
   const char *hull_modes_source; /* what set scenario->hull_modes (Markdown) */
   const char *note;              /* why a system did not run, or NULL */
+  /* The frequency response of the systems that ran (flexbond freq's
+   * bode_<OUTPUT>.png), NULL without figures or when it failed: then
+   * freq_note says why. */
+  const struct freq_study *freq;
+  char freq_note[FB_ERR_MSG_MAX];
 } cli_run_outputs;
 
 /* "System 1 (rigid hull)", "System 2 (flexible hull)". */

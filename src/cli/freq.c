@@ -292,7 +292,8 @@ static int draw_bode(cli_outdir *od, const freq_study *fs, double *const *phase,
   return rc;
 }
 
-static int write_files(cli_outdir *od, const freq_study *fs, int figures, fb_err *err)
+/* The CSV files (csv 1) and the Bode figures (figures 1). */
+static int write_files(cli_outdir *od, const freq_study *fs, int csv, int figures, fb_err *err)
 {
   double *phase[CLI_MAX_SYSTEMS] = {NULL, NULL};
   int rc = FB_OK;
@@ -305,8 +306,9 @@ static int write_files(cli_outdir *od, const freq_study *fs, int figures, fb_err
       break;
     }
     const csv_ctx c = {fs, sys, phase[sys]};
-    rc =
-        cli_outdir_write(od, sys ? "freq_system2.csv" : "freq_system1.csv", write_csv, &c, err);
+    if (csv)
+      rc = cli_outdir_write(od, sys ? "freq_system2.csv" : "freq_system1.csv", write_csv, &c,
+                            err);
   }
   for (size_t o = 0; figures && !rc && o < fs->s->noutputs; ++o) {
     const int sys = fs->ran[0] ? 0 : 1;
@@ -363,32 +365,66 @@ typedef struct freq_args {
   int identical;   /* tracks */
 } freq_args;
 
+int cli_freq_compute(freq_study *fs, const int systems[CLI_MAX_SYSTEMS], double f_min,
+                     double f_max, size_t points, fb_err *err)
+{
+  fs->nfreq = points;
+  fs->freq_hz = calloc(points, sizeof *fs->freq_hz);
+  if (!fs->freq_hz)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; k < points; ++k)
+    fs->freq_hz[k] =
+        f_min * pow(f_max / f_min, points > 1 ? (double)k / (double)(points - 1) : 0.0);
+  int rc = FB_OK;
+  for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys)
+    if (systems[sys])
+      rc = run_system(fs, sys, err);
+  return rc;
+}
+
+int cli_freq_write_figures(cli_outdir *od, const freq_study *fs, fb_err *err)
+{
+  return write_files(od, fs, 0, 1, err);
+}
+
+void cli_freq_study_free(freq_study *fs)
+{
+  cli_freq_psd_free(&fs->psd);
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
+    free(fs->h[sys]);
+    free(fs->row[sys]);
+  }
+  free(fs->freq_hz);
+  fb_scenario_free(&fs->own);
+}
+
+int cli_freq_bilateral(const fb_scenario *s, freq_study *fs, fb_err *err)
+{
+  /* A unilateral tire is linear while in contact, its mode at rest. */
+  const int rc = fb_scenario_clone(s, &fs->own, err);
+  for (size_t c = 0; !rc && c < fs->own->ncorners; ++c)
+    fs->own->corner[c].tire_contact = FB_TIRE_BILATERAL;
+  fs->s = fs->own;
+  return rc;
+}
+
 static int study(const freq_args *a)
 {
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;
-  freq_study fs = {.nfreq = a->points};
+  freq_study fs = {0};
   int rc = fb_scenario_load(a->path, &s, &err);
-  /* A unilateral tire is linear while in contact, its mode at rest. */
-  for (size_t c = 0; !rc && c < s->ncorners; ++c)
-    s->corner[c].tire_contact = FB_TIRE_BILATERAL;
-  fs.s = s;
+  if (!rc)
+    rc = cli_freq_bilateral(s, &fs, &err);
   if (!rc)
     rc = cli_freq_psd_setup(&fs, a->road_class, a->identical, &err);
-  fs.freq_hz = calloc(a->points, sizeof *fs.freq_hz);
-  if (!rc && !fs.freq_hz)
-    rc = fb_err_set(&err, FB_ENOMEM, "out of memory");
-  for (size_t k = 0; !rc && k < a->points; ++k)
-    fs.freq_hz[k] = a->f_min * pow(a->f_max / a->f_min,
-                                   a->points > 1 ? (double)k / (double)(a->points - 1) : 0.0);
   cli_outdir od;
   const int opened = !rc && (rc = cli_outdir_open(&od, a->dir, "freq", &err)) == FB_OK;
-  for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys)
-    if (a->systems[sys])
-      rc = run_system(&fs, sys, &err);
   if (!rc)
-    rc = write_files(&od, &fs, a->figures, &err);
+    rc = cli_freq_compute(&fs, a->systems, a->f_min, a->f_max, a->points, &err);
+  if (!rc)
+    rc = write_files(&od, &fs, 1, a->figures, &err);
   if (!rc && fs.psd.on)
     rc = cli_freq_psd_write(&od, &fs, &err);
   if (opened)
@@ -399,12 +435,7 @@ static int study(const freq_args *a)
       cli_freq_psd_print(&fs);
     rc = cli_flush_stdout(&err);
   }
-  cli_freq_psd_free(&fs.psd);
-  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
-    free(fs.h[sys]);
-    free(fs.row[sys]);
-  }
-  free(fs.freq_hz);
+  cli_freq_study_free(&fs);
   rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
   return rc;

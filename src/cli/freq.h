@@ -27,8 +27,9 @@ typedef struct freq_psd {
 } freq_psd;
 
 /* What the command computes. */
-typedef struct freq_study {
-  const fb_scenario *s;
+typedef struct freq_study { /* also struct freq_study in cli.h */
+  const fb_scenario *s;     /* own, or the caller's */
+  fb_scenario *own;         /* cli_freq_bilateral's copy */
   size_t nfreq;
   double *freq_hz;
   int ran[CLI_MAX_SYSTEMS];        /* System 1, System 2 */
@@ -47,6 +48,18 @@ static inline const double *cli_freq_amplitude(const double *h, size_t nrows, si
 {
   return h + 2 * ((k * NTRACKS + (size_t)t) * nrows + r);
 }
+
+/* fs->s: a copy of s (fs->own) whose tires are all bilateral, the
+ * linear branch a unilateral tire has at rest. */
+int cli_freq_bilateral(const fb_scenario *s, freq_study *fs, fb_err *err);
+/* The response of the systems asked for (System 1, System 2) at points
+ * frequencies from f_min to f_max evenly spaced on a log scale, and over
+ * the road's band when fs->psd is on. */
+int cli_freq_compute(freq_study *fs, const int systems[CLI_MAX_SYSTEMS], double f_min,
+                     double f_max, size_t points, fb_err *err);
+/* The Bode figures bode_<OUTPUT>.png, one per output with a response. */
+int cli_freq_write_figures(cli_outdir *od, const freq_study *fs, fb_err *err);
+void cli_freq_study_free(freq_study *fs);
 
 /* Sets up fs->psd from the scenario's road or road_class (0: none) and
  * identical; FB_EINVAL for a class outside A .. H. */

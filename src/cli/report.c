@@ -14,6 +14,7 @@
 #include "flexbond/vehicle.h"
 
 #include "cli.h"
+#include "freq.h"
 
 /* A difference between the systems counts as notable above 5 % of System
  * 1's peak-to-peak range over the bump, a peak or RMS change above 5 % of
@@ -516,6 +517,40 @@ static void write_figures(FILE *fp, const cli_run_outputs *o)
   }
 }
 
+/* The Bode figures of the systems that ran (cli_freq_write_figures). */
+static void write_frequency_response(FILE *fp, const cli_run_outputs *o)
+{
+  if (!o->figures)
+    return;
+  fputs("\n## Frequency response\n\n", fp);
+  const freq_study *fs = o->freq;
+  if (!fs) {
+    fputs("Not computed: ", fp);
+    fb_md_write_text(fp, o->freq_note);
+    fputs("\n", fp);
+    return;
+  }
+  fprintf(fp,
+          "Each output's response to a road height on the left or on the right track, 1 m at "
+          "the leading wheel, which the track's other wheels meet later by their distance "
+          "behind it at %.4g km/h: |H| and phase from %g to %g Hz, from the vehicle's linear "
+          "model (`flexbond freq`, docs/frequency-response.md)%s. Power outputs have none.\n",
+          3.6 * o->scenario->speed, fs->freq_hz[0], fs->freq_hz[fs->nfreq - 1],
+          fs->linearised[0] || fs->linearised[1]
+              ? "; its nonlinear laws are linearised at the static equilibrium"
+              : "");
+  const int sys = fs->ran[0] ? 0 : 1;
+  for (size_t k = 0; k < o->scenario->noutputs; ++k) {
+    if (fs->row[sys][k] == (size_t)-1)
+      continue;
+    fputs("\n![", fp);
+    fb_md_write_text(fp, o->scenario->output[k].title);
+    /* An output's name is letters, digits and '_' (checked at load), as
+     * in the figures' links above. */
+    fprintf(fp, ": frequency response](bode_%s.png)\n", o->scenario->output[k].name);
+  }
+}
+
 /* "| quantity | unit |" of output k. */
 static void write_output_cells(FILE *fp, const cli_run_outputs *o, size_t k)
 {
@@ -907,6 +942,7 @@ void cli_write_report_md(FILE *fp, const void *ctx)
     write_modes2(fp, o);
   write_model(fp, o);
   write_figures(fp, o);
+  write_frequency_response(fp, o);
   if (o->diff)
     write_comparison_table(fp, o);
   else

@@ -22,6 +22,7 @@
 
 #include "../core/util.h"
 #include "cli.h"
+#include "freq.h"
 
 static const char run_usage[] =
     "usage: flexbond run SCENARIO.yaml -o DIR [options]\n"
@@ -35,6 +36,8 @@ static const char run_usage[] =
     "  DIR/figNN_OUTPUT.png    the paper's Figs. 8-14, one output each: both\n"
     "                          systems overlaid, their difference below\n"
     "  DIR/mode_NN.png         System 2's modes 1, 2, 8 and 10\n"
+    "  DIR/bode_OUTPUT.png     each output's frequency response to the road, both\n"
+    "                          tracks and systems (as flexbond freq draws it)\n"
     "  DIR/summary.json        static value, peak, minimum and RMS over the bump\n"
     "                          of every output, solver statistics, and System 2\n"
     "                          against System 1 per output\n"
@@ -495,6 +498,8 @@ static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfile
     rc = write_figure(od, k, o, err);
   if (rc == FB_OK && o->figures && o->modes2)
     rc = cli_write_mode_pictures(od, o->scenario, o->hull, o->modes2, err);
+  if (rc == FB_OK && o->freq)
+    rc = cli_freq_write_figures(od, o->freq, err);
   for (size_t i = 0; o->figures && i < o->nruns && rc == FB_OK; ++i)
     rc = write_diagrams(od, o->scenario, o->runs[i].sys, err);
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
@@ -800,6 +805,26 @@ static void override(const run_args *a, fb_scenario *s)
     s->hull_coordinates = (fb_hull_coordinates)a->hull_coordinates;
 }
 
+/* The frequency response of the systems that ran, for report.md's Bode
+ * figures (flexbond freq's defaults: 301 frequencies from 0.1 to 100 Hz).
+ * It is no part of the run's result: when it fails (a nonlinear vehicle
+ * without a static equilibrium, say) the report says why instead. */
+static void frequency_response(const fb_scenario *s, cli_run_outputs *o, freq_study *fs)
+{
+  int systems[CLI_MAX_SYSTEMS] = {0, 0};
+  for (size_t i = 0; i < o->nruns; ++i)
+    systems[o->runs[i].sys == FB_SYSTEM_FLEXIBLE] = 1;
+  fb_err err;
+  fb_err_clear(&err);
+  int rc = cli_freq_bilateral(s, fs, &err);
+  if (!rc)
+    rc = cli_freq_compute(fs, systems, 0.1, 100.0, 301, &err);
+  if (rc)
+    snprintf(o->freq_note, sizeof o->freq_note, "%s", err.msg);
+  else
+    o->freq = fs;
+}
+
 /* cli_report, except that an error about hull.fe.modes after
  * --hull-modes replaced it (overridden: more modes than the hull has) is
  * the option's: a usage error. The file's own value was checked, and
@@ -861,8 +886,12 @@ static int run(const run_args *a)
     o.hull_beta = modes.hull_beta;
     rc = compare(&o, &diff, &err);
   }
+  freq_study freq = {0};
+  if (rc == FB_OK && o.figures)
+    frequency_response(s, &o, &freq);
   if (rc == FB_OK)
     rc = write_outputs(&od, &o, &nfiles, &err);
+  cli_freq_study_free(&freq);
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK && !a->quiet)
