@@ -434,7 +434,7 @@ static void compare_system1(const fb_scenario *s, const fb_descriptor *ds, const
 {
   const double w = 2.0 * 3.14159265358979323846 * f;
   for (int track = 0; track < 2; ++track) {
-    double complex hc[APC_NCORNERS], q[APC_NDOF];
+    double complex hc[APC_NCORNERS] = {0}, q[APC_NDOF] = {0};
     road_heights(s, track, w, hc);
     CHECK(hand_response(m, w, hc, q) == 0);
     const apc_elem *tire = &m->elem[APC_TIRE + APC_LF];

@@ -176,11 +176,12 @@ typedef struct csv_ctx {
   double *phase; /* noutputs x NTRACKS x nfreq */
 } csv_ctx;
 
-static void write_header(FILE *fp, const fb_scenario *s)
+/* The header; power outputs (row -1) have no columns. */
+static void write_header(FILE *fp, const fb_scenario *s, const size_t *row)
 {
   fputs("frequency [Hz]", fp);
   for (size_t o = 0; o < s->noutputs; ++o)
-    for (int t = 0; t < NTRACKS; ++t) {
+    for (int t = 0; t < NTRACKS && row[o] != (size_t)-1; ++t) {
       char unit[64];
       gain_unit(s->output[o].unit, unit, sizeof unit);
       const char *mag[] = {s->output[o].name, "/", track_names[t], " |H| [", unit, "]"};
@@ -198,15 +199,11 @@ static void write_csv(FILE *fp, const void *ctx)
   const csv_ctx *c = ctx;
   const freq_study *fs = c->fs;
   const fb_scenario *s = fs->s;
-  write_header(fp, s);
+  write_header(fp, s, fs->row[c->sys]);
   for (size_t k = 0; k < fs->nfreq; ++k) {
     fprintf(fp, "%.10g", fs->freq_hz[k]);
     for (size_t o = 0; o < s->noutputs; ++o)
-      for (int t = 0; t < NTRACKS; ++t) {
-        if (fs->row[c->sys][o] == (size_t)-1) {
-          fputs(",,", fp);
-          continue;
-        }
+      for (int t = 0; t < NTRACKS && fs->row[c->sys][o] != (size_t)-1; ++t) {
         const double *z = amplitude(fs, c->sys, k, t, o);
         fprintf(fp, ",%.10g,%.8g", hypot(z[0], z[1]),
                 c->phase[(o * NTRACKS + (size_t)t) * fs->nfreq + k]);
@@ -322,16 +319,21 @@ static int write_files(cli_outdir *od, const freq_study *fs, int csv, int figure
 
 /* ---- The command. */
 
-static void print_summary(const freq_study *fs)
+static void print_summary(const freq_study *fs, const fb_scenario *file)
 {
   const fb_scenario *s = fs->s;
   printf("%s: frequency response to the road at %.4g km/h, %zu frequencies from %g to %g Hz\n",
          cli_scenario_name(s), 3.6 * s->speed, fs->nfreq, fs->freq_hz[0],
          fs->freq_hz[fs->nfreq - 1]);
+  size_t unilateral = 0;
+  for (size_t c = 0; c < file->ncorners; ++c)
+    unilateral += file->corner[c].tire_contact == FB_TIRE_UNILATERAL;
+  if (unilateral)
+    printf("%zu unilateral tires taken in contact (their linear branch at rest)\n", unilateral);
   for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
     if (!fs->ran[sys])
       continue;
-    printf("%s (%.2f s%s): largest |H|, left track\n",
+    printf("%s (%.2f s%s): largest |H|\n",
            cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID), fs->seconds[sys],
            fs->linearised[sys] ? "; nonlinear, linearised at its static equilibrium" : "");
     for (size_t o = 0; o < s->noutputs; ++o) {
@@ -340,17 +342,21 @@ static void print_summary(const freq_study *fs)
         continue;
       }
       size_t best = 0;
+      int track = FB_ROAD_LEFT;
       double big = -1.0;
-      for (size_t k = 0; k < fs->nfreq; ++k) {
-        const double *z = amplitude(fs, sys, k, FB_ROAD_LEFT, o);
-        if (hypot(z[0], z[1]) > big) {
-          big = hypot(z[0], z[1]);
-          best = k;
+      for (size_t k = 0; k < fs->nfreq; ++k)
+        for (int t = 0; t < NTRACKS; ++t) {
+          const double *z = amplitude(fs, sys, k, t, o);
+          if (hypot(z[0], z[1]) > big) {
+            big = hypot(z[0], z[1]);
+            best = k;
+            track = t;
+          }
         }
-      }
       char unit[64];
       gain_unit(s->output[o].unit, unit, sizeof unit);
-      printf("  %-20s %12.5g %s at %.4g Hz\n", s->output[o].name, big, unit, fs->freq_hz[best]);
+      printf("  %-20s %12.5g %s at %.4g Hz, %s track\n", s->output[o].name, big, unit,
+             fs->freq_hz[best], track_names[track]);
     }
   }
 }
@@ -361,8 +367,9 @@ typedef struct freq_args {
   double f_min, f_max;
   size_t points;
   int figures;
-  char road_class; /* 0: the scenario's road */
-  int identical;   /* tracks */
+  char road_class;  /* 0: the scenario's road */
+  int identical;    /* tracks */
+  int tracks_given; /* --tracks */
 } freq_args;
 
 int cli_freq_compute(freq_study *fs, const int systems[CLI_MAX_SYSTEMS], double f_min,
@@ -419,6 +426,12 @@ static int study(const freq_args *a)
     rc = cli_freq_bilateral(s, &fs, &err);
   if (!rc)
     rc = cli_freq_psd_setup(&fs, a->road_class, a->identical, &err);
+  if (!rc && a->tracks_given && !fs.psd.on) {
+    cli_freq_study_free(&fs);
+    fb_scenario_free(&s);
+    return cli_usage_error("freq", "--tracks is for the ride from an ISO 8608 road, and the "
+                                   "scenario's road is none: add --road-class");
+  }
   cli_outdir od;
   const int opened = !rc && (rc = cli_outdir_open(&od, a->dir, "freq", &err)) == FB_OK;
   if (!rc)
@@ -430,7 +443,7 @@ static int study(const freq_args *a)
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   if (!rc) {
-    print_summary(&fs);
+    print_summary(&fs, s);
     if (fs.psd.on)
       cli_freq_psd_print(&fs);
     rc = cli_flush_stdout(&err);
@@ -486,6 +499,7 @@ int cli_cmd_freq(int argc, char **argv)
   if (rc != CLI_EXIT_OK)
     return rc;
   a.identical = tracks == 1;
+  a.tracks_given = opts[OPT_TRACKS].value != NULL;
   const char *cls = opts[OPT_CLASS].value;
   if (cls && (strlen(cls) != 1 || !strchr("ABCDEFGHabcdefgh", cls[0])))
     return cli_usage_error(argv[0], "--road-class: '%s' is not an ISO 8608 class A to H", cls);

@@ -4,7 +4,8 @@
  * ISO 2631-1 weighted r.m.s. a_w from the Wk-weighted PSD, without a time
  * run (docs/frequency-response.md, "Ride from a road spectrum"):
  *   DIR/psd_systemN.csv   frequency [Hz], the road's PSD, each output's PSD
- *   DIR/ride_psd.json     the road, the track coherence, a_w and the r.m.s. */
+ *   DIR/ride_psd.json     the road, its tracks (independent or identical), a_w
+ *                         and the r.m.s. */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -154,7 +155,8 @@ static void write_system_json(FILE *fp, const freq_study *fs, int sys, double *s
 {
   const fb_scenario *s = fs->s;
   const size_t acc = cli_ride_output(s);
-  fputs("    \"a_w_rms\": ", fp);
+  fprintf(fp,
+          "    \"linearised\": %s,\n    \"a_w_rms\": ", fs->linearised[sys] ? "true" : "false");
   fb_json_write_number(fp, acc < s->noutputs ? output_rms(fs, sys, acc, 1, scratch) : NAN);
   fputs(",\n    \"a_w_output\": ", fp);
   if (acc < s->noutputs)
@@ -242,6 +244,8 @@ void cli_freq_psd_print(const freq_study *fs)
     if (acc < s->noutputs)
       printf(" a_w %.4g m/s^2 (%s);", output_rms(fs, sys, acc, 1, scratch),
              s->output[acc].name);
+    else
+      printf(" no a_w (no output of signal acc);");
     printf(" r.m.s.");
     for (size_t o = 0; o < s->noutputs; ++o)
       if (fs->row[sys][o] != (size_t)-1)
