@@ -2,7 +2,8 @@
  * examples/apc6x6_iso_road.yaml (ISO 8608 class C at 30 km/h):
  *   the PSD route: the frequency response over the road's band
  *   (fb_descriptor_freq_response with fb_vehicle_track_inputs), the road's
- *   temporal PSD (fb_ride_road_psd) on each of the independent tracks, the
+ *   temporal PSD (fb_ride_road_psd) on each of the tracks, combined by
+ *   fb_ride_two_track_psd (the command's own combination), the
  *   driver's Wk-weighted mean square (fb_ride_wk_magnitude) and the LF
  *   tire force's, integrated over the band (fb_ride_psd_integral);
  *   the time route: the same vehicle simulated on NSEEDS roads of the
@@ -91,8 +92,7 @@ static int psd_route(const fb_scenario *s, int identical, route *out, fb_err *er
       const size_t row = ds->output_row[i ? tire : acc];
       const double *l = h + 2 * ((2 * (size_t)k) * ds->nrows_c + row);
       const double *r = h + 2 * ((2 * (size_t)k + 1) * ds->nrows_c + row);
-      power[i] = identical ? (l[0] + r[0]) * (l[0] + r[0]) + (l[1] + r[1]) * (l[1] + r[1])
-                           : l[0] * l[0] + l[1] * l[1] + r[0] * r[0] + r[1] * r[1];
+      power[i] = fb_ride_two_track_psd(l, r, 1.0, identical);
     }
     const double w = fb_ride_wk_magnitude(f[k]);
     aw[k] = w * w * power[0] * road;
@@ -177,6 +177,21 @@ static void test_road_psd(void)
   CHECK_NEAR(fb_ride_psd_integral(f, p, N), want, 1e-5 * want);
 }
 
+/* The two-track combination on responses whose sums are known: equal
+ * responses double the power when independent and quadruple it when
+ * identical; opposite ones (a roll-only output) cancel when identical. */
+static void test_two_track_psd(void)
+{
+  const double h[2] = {3.0, -4.0}, minus_h[2] = {-3.0, 4.0}, j[2] = {0.0, 5.0};
+  CHECK_NEAR(fb_ride_two_track_psd(h, h, 2.0, 0), 100.0, 1e-12);
+  CHECK_NEAR(fb_ride_two_track_psd(h, h, 2.0, 1), 200.0, 1e-12);
+  CHECK_NEAR(fb_ride_two_track_psd(h, minus_h, 2.0, 0), 100.0, 1e-12);
+  CHECK_NEAR(fb_ride_two_track_psd(h, minus_h, 2.0, 1), 0.0, 1e-12);
+  /* |(3 - 4i) + 5i|^2 = |3 + i|^2 = 10, against 25 + 25 independent. */
+  CHECK_NEAR(fb_ride_two_track_psd(h, j, 1.0, 1), 10.0, 1e-12);
+  CHECK_NEAR(fb_ride_two_track_psd(h, j, 1.0, 0), 50.0, 1e-12);
+}
+
 static void test_against_time_domain(void)
 {
   fb_err err;
@@ -220,6 +235,7 @@ static void test_against_time_domain(void)
 int main(void)
 {
   test_road_psd();
+  test_two_track_psd();
   test_against_time_domain();
   return check_report("test_ride_psd");
 }

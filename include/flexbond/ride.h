@@ -77,6 +77,17 @@ double fb_ride_wk_magnitude(double f_hz);
  * the road's band. */
 double fb_ride_road_psd(double gd0, double speed, double f_hz);
 
+/* The PSD of a vehicle's output at one frequency (its unit^2/Hz) on a
+ * road whose tracks each have the one-sided PSD road_psd (m^2/Hz): h_left
+ * and h_right are the output's complex responses (re, im; unit/m) to a
+ * unit height on the left and on the right track. Independent tracks
+ * (identical 0) add their powers, |H_l|^2 + |H_r|^2; identical ones
+ * (coherence 1) add their amplitudes, |H_l + H_r|^2 (Bendat & Piersol,
+ * "Random Data", 4th ed., sec. 6.1: the output spectrum of a two-input
+ * linear system with uncorrelated or fully coherent inputs). */
+double fb_ride_two_track_psd(const double h_left[2], const double h_right[2], double road_psd,
+                             int identical);
+
 /* The integral of a one-sided PSD psd[0..n) (unit^2/Hz) over its
  * frequencies f_hz[0..n) (Hz, increasing, > 0): the mean square of the
  * signal in that band, by the trapezoidal rule in log f. */

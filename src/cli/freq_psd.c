@@ -72,19 +72,16 @@ void cli_freq_psd_free(freq_psd *p)
 }
 
 /* The PSD of output o of system sys at band frequency k (its unit^2/Hz):
- * each track a realisation of the road's PSD S; independent tracks add
- * their powers, identical ones their amplitudes. */
+ * each track a realisation of the road's PSD, independent or identical
+ * (fb_ride_two_track_psd). */
 static double output_psd(const freq_study *fs, int sys, size_t o, size_t k)
 {
   const freq_psd *p = &fs->psd;
   const size_t r = fs->row[sys][o], n = fs->nrows[sys];
-  const double *l = cli_freq_amplitude(p->h[sys], n, k, FB_ROAD_LEFT, r);
-  const double *rt = cli_freq_amplitude(p->h[sys], n, k, FB_ROAD_RIGHT, r);
-  const double road = fb_ride_road_psd(p->gd0, fs->s->speed, p->freq_hz[k]);
-  const double power = p->identical
-                           ? (l[0] + rt[0]) * (l[0] + rt[0]) + (l[1] + rt[1]) * (l[1] + rt[1])
-                           : l[0] * l[0] + l[1] * l[1] + rt[0] * rt[0] + rt[1] * rt[1];
-  return power * road;
+  return fb_ride_two_track_psd(cli_freq_amplitude(p->h[sys], n, k, FB_ROAD_LEFT, r),
+                               cli_freq_amplitude(p->h[sys], n, k, FB_ROAD_RIGHT, r),
+                               fb_ride_road_psd(p->gd0, fs->s->speed, p->freq_hz[k]),
+                               p->identical);
 }
 
 /* The r.m.s. of output o (Wk-weighted when weighted is 1), NAN for a power

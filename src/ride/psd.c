@@ -19,6 +19,15 @@ double fb_ride_road_psd(double gd0, double speed, double f_hz)
   return gd0 * pow(f_hz / speed / N0, -WAVINESS) / speed;
 }
 
+double fb_ride_two_track_psd(const double h_left[2], const double h_right[2], double road_psd,
+                             int identical)
+{
+  const double *l = h_left, *r = h_right;
+  const double power = identical ? (l[0] + r[0]) * (l[0] + r[0]) + (l[1] + r[1]) * (l[1] + r[1])
+                                 : l[0] * l[0] + l[1] * l[1] + r[0] * r[0] + r[1] * r[1];
+  return power * road_psd;
+}
+
 double fb_ride_psd_integral(const double *f_hz, const double *psd, size_t n)
 {
   /* The trapezoidal rule in ln f, integral of psd f d(ln f): on a log grid
