@@ -319,10 +319,14 @@ static void test_frequencies(void)
   /* beta = 2 zeta / omega_1 of the hull as built. The damping's dense
    * solve and these modes' Lanczos one (ARPACK: fb_fem_dense_limit) each
    * find omega_1^2 to about eps lambda_max / lambda_1 (both are backward
-   * stable), so they agree to far less than their 16 digits: 4e-11
-   * relative measured; 1e-9 keeps a margin and still catches a beta of
-   * another mode or another mass matrix (percents off). */
-  CHECK_NEAR(beta, 0.02 / (3.14159265358979324 * with[6]), 1e-9 * beta);
+   * stable), so they agree to far less than their 16 digits. That bound
+   * is pessimistic here (the rotations' stiff, light DOFs make
+   * lambda_max huge: it gives 3e-4); what they do is rounding that
+   * depends on the BLAS kernels the CPU selects: 4e-11 and 1.5e-9
+   * relative measured on two machines. 1e-8 keeps a margin over both and
+   * still catches a beta of another mode or another mass matrix (percents
+   * off). */
+  CHECK_NEAR(beta, 0.02 / (3.14159265358979324 * with[6]), 1e-8 * beta);
   built_free(&b);
 }
 

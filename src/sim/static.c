@@ -32,7 +32,14 @@
 /* First pseudo time step and its growth per iteration, s. The cap keeps
  * I - h J away from the conditioning of J itself, and round-off from
  * growing along free rigid-body motions (a Jordan block of lambda = 0,
- * which a step multiplies by h / m). */
+ * which a step multiplies by h / m). A structure with free motions and
+ * a stiff mesh can reach that conditioning below the cap: its matrix is
+ * then M / h^2 + K along directions of K's null space, whose pivots
+ * shrink as 1 / h^2 against K's largest (the Newton solver's pivot ratio
+ * falls below its singularity threshold; where it does depends on the
+ * pivot order's rounding, so on the machine). Such a step is taken again
+ * H_GROWTH times shorter, and that length becomes the cap (the step-length
+ * control of pseudo-transient continuation; Kelley & Keyes, sec. 2). */
 #define H_FIRST 1e3
 #define H_GROWTH 10.0
 #define H_MAX 1e5
@@ -42,6 +49,7 @@ typedef struct static_work {
   size_t n;
   double *f, *dx, *v0, *v1;
   fb_auglin *lin;
+  int unfactored; /* 1: the last step's matrix was refused as singular */
 } static_work;
 
 static void work_free(static_work *w)
@@ -112,6 +120,7 @@ static int pseudo_step(fb_bd *bd, double t, double h, static_work *w, double *x,
     return fb_err_set(err, FB_ESOLVER, "static equilibrium at t = %g s: %s", t, msg);
   }
   int rc = fb_auglin_setup(w->lin, h, w->v0, w->v1, err);
+  w->unfactored = rc == FB_ESOLVER;
   for (size_t i = 0; rc == FB_OK && i < w->n; ++i)
     w->dx[i] = h * w->f[i];
   if (rc == FB_OK)
@@ -150,19 +159,26 @@ int fb_sim_static_state(fb_bd *bd, double t, const double *x0, double *x_eq, fb_
    * unbalance is that rounding floor and accepted. */
   const double tol_p = 1e-10 * fmax(rp0, 1.0), tol_q = fmax(1e-10 * rq0, 1e-12);
   const double floor_p = 1e-7 * fmax(rp0, 1.0);
-  double h = H_FIRST, rp_prev = INFINITY;
+  double h = H_FIRST, h_max = H_MAX, rp_prev = INFINITY;
   for (int iter = 0; !rc && iter < MAX_ITER; ++iter) {
     rc = pseudo_step(bd, t, h, &w, x_eq, err);
+    if (rc == FB_ESOLVER && w.unfactored && h > H_FIRST) {
+      /* x_eq is as before the step: the matrix was refused. */
+      h_max = h = h / H_GROWTH;
+      fb_err_clear(err);
+      rc = FB_OK;
+      continue;
+    }
     if (!rc)
       rc = eval_rhs(bd, t, x_eq, w.f, err);
     if (rc)
       break;
     residuals(bd, w.f, w.n, &rp, &rq);
-    const int stalled = h == H_MAX && rp >= 0.5 * rp_prev;
+    const int stalled = h == h_max && rp >= 0.5 * rp_prev;
     if (rq <= tol_q && (rp <= tol_p || (stalled && rp <= floor_p)))
       break;
     rp_prev = rp;
-    h = fmin(h * H_GROWTH, H_MAX);
+    h = fmin(h * H_GROWTH, h_max);
   }
   const int verdict = !rc && (rq > tol_q || (rp > tol_p && rp > floor_p));
   if (!rc && rq > tol_q)
