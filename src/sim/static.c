@@ -111,6 +111,7 @@ static int eval_rhs(fb_bd *bd, double t, const double *x, double *f, fb_err *err
  * equilibrium, and stay as they are. */
 static int pseudo_step(fb_bd *bd, double t, double h, static_work *w, double *x, fb_err *err)
 {
+  w->unfactored = 0;
   if (fb_bd_aug_values(bd, t, x, w->v0, w->v1))
     return fb_err_set(err, FB_ESOLVER, "static equilibrium: %s", fb_bd_last_error(bd));
   const size_t nnz = fb_bd_aug_nnz(bd);
