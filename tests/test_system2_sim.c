@@ -27,27 +27,6 @@
 #include "energy_balance.h"
 #include "vehicle_util.h"
 
-#define MUST(call, err)                                                                        \
-  do {                                                                                         \
-    if ((call) != FB_OK) {                                                                     \
-      fprintf(stderr, "%s:%d: %s\n", __FILE__, __LINE__, (err)->msg);                          \
-      CHECK(0);                                                                                \
-    }                                                                                          \
-  } while (0)
-
-static fb_scenario *load_short(void)
-{
-  fb_err err;
-  fb_scenario *s = NULL;
-  MUST(fb_scenario_load("../examples/apc6x6.yaml", &s, &err), &err);
-  if (s) {
-    s->bump_time = 1.0;
-    s->bump_length = 0.5;
-    s->t_end = 3.0;
-  }
-  return s;
-}
-
 /* 1. Tire forces at the static state of the full-order System 2, in
  * nodal coordinates. (In modal ones the static solver stops at its
  * rounding floor, 1e-7 of the initial unbalance, with the tires carrying
@@ -60,7 +39,7 @@ static void test_static_weight(fb_scenario *s)
   s->hull_coordinates = FB_HULL_NODAL;
   fb_bg *g = NULL;
   fb_bd *bd = NULL;
-  MUST(fb_vehicle_build(s, FB_SYSTEM_FLEXIBLE, &g, &bd, &err), &err);
+  REQUIRE(fb_vehicle_build(s, FB_SYSTEM_FLEXIBLE, &g, &bd, &err), &err);
   s->hull_coordinates = coordinates;
   if (!bd)
     return;
@@ -68,7 +47,7 @@ static void test_static_weight(fb_scenario *s)
   double *x0 = calloc(nx, sizeof *x0), *xeq = calloc(nx, sizeof *xeq);
   double *xdot = calloc(nx, sizeof *xdot), *y = calloc(ny, sizeof *y);
   if (x0 && xeq && xdot && y) {
-    MUST(fb_sim_static_state(bd, 0.0, x0, xeq, &err), &err);
+    REQUIRE(fb_sim_static_state(bd, 0.0, x0, xeq, &err), &err);
     /* At rest every force balances: the largest momentum rate is below
      * 1e-6 of the weight (the solver stops at 1e-10 of the initial
      * unbalance, which is of the order of the weight). */
@@ -106,21 +85,11 @@ static double worst_relative(const fb_result *a, const fb_result *b, size_t col,
   return worst / (range > 0.0 ? range : hi - lo);
 }
 
-static double range_of(const fb_result *r, size_t col)
-{
-  double lo = INFINITY, hi = -INFINITY;
-  for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
-    lo = fmin(lo, fb_result_row(r, k)[col]);
-    hi = fmax(hi, fb_result_row(r, k)[col]);
-  }
-  return hi - lo;
-}
-
 static fb_result *simulate(fb_scenario *s, fb_system sys, const char *what)
 {
   fb_err err;
   fb_result *r = NULL;
-  MUST(fb_vehicle_simulate(s, sys, &r, &err), &err);
+  REQUIRE(fb_vehicle_simulate(s, sys, &r, &err), &err);
   if (r) {
     const fb_sim_stats *st = fb_result_stats(r);
     fprintf(stderr, "%s: %ld steps, %ld rhs, %ld factorisations, %.3f s\n", what, st->steps,
@@ -161,7 +130,7 @@ static void test_limits(fb_scenario *s)
     /* System 1's torsion is identically 0, so its range cannot scale the
      * comparison: use the flexible hull's own torsion range (at E x 1000
      * the twist is 1/1000 of it, 0.1 %). */
-    const double range = torsion ? range_of(full, col) : 0.0;
+    const double range = torsion ? result_range(full, col) : 0.0;
     const double vs_rigid = worst_relative(stiff, rigid, col, range);
     const double vs_full = worst_relative(reduced, full, col, 0.0);
     fprintf(stderr,
@@ -175,7 +144,7 @@ static void test_limits(fb_scenario *s)
   const long torsion = fb_result_find(full, "torsion");
   CHECK(torsion > 0);
   if (torsion > 0)
-    CHECK(range_of(full, (size_t)torsion) > 1e-5);
+    CHECK(result_range(full, (size_t)torsion) > 1e-5);
 done:
   fb_result_free(&full);
   fb_result_free(&rigid);
@@ -200,11 +169,11 @@ static void test_energy(fb_scenario *s)
   const double bump_time = s->bump_time, t_end = s->t_end;
   s->bump_time = 0.3;
   s->t_end = 2.5;
-  MUST(fb_vehicle_fe_hull(s, &fe, &err), &err);
+  REQUIRE(fb_vehicle_fe_hull(s, &fe, &err), &err);
   if (fe)
-    MUST(fb_vehicle_flexible_hull(s, fe, &hull, &err), &err);
+    REQUIRE(fb_vehicle_flexible_hull(s, fe, &hull, &err), &err);
   if (hull) {
-    MUST(energy_balance(s, &hull, 1e-8, &rep, &err), &err);
+    REQUIRE(energy_balance(s, &hull, 1e-8, &rep, &err), &err);
     /* 14 resistor ports of System 1 plus the hull's structural damping;
      * 14 springs, 6 wheels, driver and engine plus the hull's M and K. */
     CHECK(rep.ndissipative == 15);

@@ -13,6 +13,41 @@
 
 #include "flexbond/vehicle.h"
 
+/* Stops the test at a failed call, printing the library's message. */
+#define REQUIRE(call, err)                                                                     \
+  do {                                                                                         \
+    if ((call) != FB_OK) {                                                                     \
+      fprintf(stderr, "%s:%d: %s\n", __FILE__, __LINE__, (err)->msg);                          \
+      CHECK(0);                                                                                \
+      exit(check_report(__FILE__));                                                            \
+    }                                                                                          \
+  } while (0)
+
+/* The reference scenario on a shortened crossing (bump at 1 s, 0.5 m
+ * long, 3 s in all), so that full-order System 2 runs take seconds; the
+ * physics is the scenario's. */
+static inline fb_scenario *load_short(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  REQUIRE(fb_scenario_load("../examples/apc6x6.yaml", &s, &err), &err);
+  s->bump_time = 1.0;
+  s->bump_length = 0.5;
+  s->t_end = 3.0;
+  return s;
+}
+
+/* Peak-to-peak range of column col of r. */
+static inline double result_range(const fb_result *r, size_t col)
+{
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
+    lo = fmin(lo, fb_result_row(r, k)[col]);
+    hi = fmax(hi, fb_result_row(r, k)[col]);
+  }
+  return hi - lo;
+}
+
 /* System 1 of s; a failure prints the library's message and fails. */
 static inline fb_result *simulate_rigid(const fb_scenario *s)
 {

@@ -116,6 +116,10 @@ const double *fb_result_row(const fb_result *r, size_t k);
 long fb_result_find(const fb_result *r, const char *name);
 const fb_sim_stats *fb_result_stats(const fb_result *r);
 void fb_result_free(fb_result **r);
+/* Keeps r's first ncols columns (time and the outputs before the rest),
+ * in place: the dropped columns' names, units and values are freed.
+ * FB_EINVAL if ncols is 0 or more than r has. */
+int fb_result_truncate(fb_result *r, size_t ncols, fb_err *err);
 /* The difference b - a of two results sampled at the same times (two
  * systems of one scenario, for a plot of their difference): column 0 is
  * the common time, column j >= 1 is b's column j minus a's, named and

@@ -465,6 +465,13 @@ typedef struct fb_hull {
   double *torsion_weights;     /* each edge's roll from its two end nodes */
   double *torsion_fit_weights; /* from its transverse section, least squares */
   size_t ntorsion;
+  /* What the torsion probe's signal (ntorsion coordinates q) is: System
+   * 1's (z, phi, theta) when coord_ndof is 0; else System 2's hull
+   * coordinates over its coord_ndof = 6 nnodes nodal DOFs, u = T q with T
+   * = coord_basis (coord_ndof x ntorsion, column-major; NULL when the
+   * coordinates are the nodal DOFs themselves). */
+  double *coord_basis;
+  size_t coord_ndof;
   /* System 2's eigen-solve of the free-free hull (none in System 1:
    * eig_dof 0): in modal coordinates the basis (which gives beta too),
    * in nodal ones beta's. */
@@ -586,6 +593,42 @@ typedef struct fb_vehicle_run_info {
 int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
                              void *ctx, fb_vehicle_run_info *info, fb_result **out,
                              fb_err *err);
+
+/* How a run's vehicle moves, for an animation (flexbond run --animate,
+ * docs/animation.md): sampled as its outputs are, every displacement
+ * vertical but the finite-element hull's, up positive, in m (rad for
+ * System 1's roll and pitch), from the vehicle's state at t = 0. */
+typedef struct fb_vehicle_motion {
+  fb_system sys;
+  fb_mesh *mesh;  /* System 2: the finite-element hull's mesh (owned); System 1: NULL */
+  size_t ncoords; /* the hull's coordinates: System 1's (z, phi, theta), System 2's q */
+  double *basis;  /* System 2 in modal coordinates: u = basis q over the mesh's
+                     6 nnodes DOFs (column-major, owned); NULL otherwise */
+  size_t nattach, nmounts, ncorners;
+  size_t nsamples, width; /* width = 1 + ncoords + nattach + nmounts + ncorners */
+  /* nsamples rows of width: t (s), the hull's coordinates, the attachment
+   * points' displacements ("attach" order: corners then mounts), the
+   * mounted bodies', the wheels'. Owned. */
+  double *samples;
+} fb_vehicle_motion;
+void fb_vehicle_motion_free(fb_vehicle_motion **m);
+
+/* The vehicle at time t, linear between samples (clamped to the run):
+ * each array may be NULL. node_u: six values per node of mesh (the
+ * translation, then the rotation), the mesh being m->mesh in System 2;
+ * in System 1 any mesh in the vehicle frame, whose node (x, y) rises by
+ * z + y phi - x theta and turns by (phi, theta, 0): the rigid hull's
+ * motion is vertical only. attach_dz (nattach), body_dz (nmounts),
+ * wheel_dz (ncorners). FB_EINVAL if System 2's mesh is not m->mesh. */
+int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double t,
+                         double *node_u, double *attach_dz, double *body_dz, double *wheel_dz,
+                         fb_err *err);
+
+/* fb_vehicle_simulate_info, and the motion of the run in *motion (new):
+ * the result's columns are the same as without it. */
+int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                               void *ctx, fb_vehicle_run_info *info, fb_result **out,
+                               fb_vehicle_motion **motion, fb_err *err);
 
 /* A time interval in which a tire carries no load: its normal reaction
  * is not compressive. With the paper's linear (bilateral) tire that means

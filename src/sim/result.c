@@ -70,6 +70,22 @@ int fb_result_alloc(const fb_bd *bd, size_t nsamples, fb_result **out, fb_err *e
   return FB_OK;
 }
 
+int fb_result_truncate(fb_result *r, size_t ncols, fb_err *err)
+{
+  if (ncols == 0 || ncols > r->ncols)
+    return fb_err_set(err, FB_EINVAL, "cannot keep %zu of a result's %zu columns", ncols,
+                      r->ncols);
+  for (size_t j = ncols; j < r->ncols; ++j) {
+    free(r->names[j]);
+    free(r->units[j]);
+  }
+  /* Row k moves to k ncols, never ahead of where it was read. */
+  for (size_t k = 0; k < r->nsamples; ++k)
+    memmove(r->data + k * ncols, r->data + k * r->ncols, ncols * sizeof *r->data);
+  r->ncols = ncols;
+  return FB_OK;
+}
+
 size_t fb_result_nsamples(const fb_result *r)
 {
   return r->nsamples;

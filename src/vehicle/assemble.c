@@ -168,9 +168,10 @@ static int contact_probes(const fb_scenario *s, fb_probe_spec *cp, fb_err *err)
 }
 
 /* The hull fragment of system sys: the only part that differs between
- * System 1 and System 2. */
+ * System 1 and System 2. With mesh not NULL, System 2's mesh moves to
+ * *mesh (the animation's). */
 static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull,
-                     fb_vehicle_run_info *info, fb_err *err)
+                     fb_vehicle_run_info *info, fb_mesh **mesh, fb_err *err)
 {
   if (sys != FB_SYSTEM_FLEXIBLE)
     return fb_vehicle_rigid_hull(s, hull, err);
@@ -178,6 +179,10 @@ static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull,
   int rc = fb_vehicle_fe_hull(s, &fe, err);
   if (!rc)
     rc = fb_vehicle_flexible_hull(s, fe, hull, err);
+  if (!rc && mesh) {
+    *mesh = fe->mesh;
+    fe->mesh = NULL;
+  }
   fb_fe_hull_free(&fe);
   if (!rc && info) {
     info->eig_dof = (*hull)->eig_dof;
@@ -188,10 +193,28 @@ static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull,
   return rc;
 }
 
-/* fb_vehicle_graph, with the hull's eigen-solve in *info when not NULL. */
+/* The probes after the outputs: the tires' contact forces, then with
+ * motion the vehicle's motion (its hull's basis and mesh moved into
+ * *motion, which takes them over before the assembly frees the hull). */
+static int extra_probes(const fb_scenario *s, fb_hull *hull, fb_vehicle_motion *motion,
+                        fb_probe_spec *p, fb_err *err)
+{
+  int rc = contact_probes(s, p, err);
+  if (!rc && motion) {
+    motion->ncoords = hull->ntorsion;
+    motion->basis = hull->coord_basis;
+    hull->coord_basis = NULL;
+    rc = fb_vehicle_motion_probes(s, hull, p + s->ncorners, err);
+  }
+  return rc;
+}
+
+/* fb_vehicle_graph, with the hull's eigen-solve in *info when not NULL
+ * and the motion's probes after the contact forces when motion is not
+ * NULL (which gets System 2's mesh and the hull's basis). */
 static int vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph,
                          fb_probe_spec **probes, size_t *nprobes, fb_vehicle_run_info *info,
-                         fb_err *err)
+                         fb_vehicle_motion *motion, fb_err *err)
 {
   *graph = NULL;
   *probes = NULL;
@@ -199,47 +222,54 @@ static int vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph,
   fb_hull *hull = NULL;
   fb_probe_spec *outputs = NULL;
   size_t nout = 0;
+  const size_t nextra = s->ncorners + (motion ? fb_vehicle_motion_nprobes(s) : 0);
   int rc = fb_scenario_check(s, err);
   if (!rc)
-    rc = make_hull(s, sys, &hull, info, err);
+    rc = make_hull(s, sys, &hull, info, motion ? &motion->mesh : NULL, err);
+  fb_probe_spec *extra = rc ? NULL : calloc(nextra, sizeof *extra);
+  if (!rc && !extra)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc)
+    rc = extra_probes(s, hull, motion, extra, err);
   if (!rc)
     rc = fb_vehicle_assemble(s, &hull, graph, &outputs, &nout, err);
   fb_hull_free(&hull);
-  fb_probe_spec *all = rc ? NULL : calloc(nout + s->ncorners, sizeof *all);
+  fb_probe_spec *all = rc ? NULL : calloc(nout + nextra, sizeof *all);
   if (!rc && !all)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc) {
+    /* The strings move to all. */
     memcpy(all, outputs, nout * sizeof *all);
-    free(outputs); /* its strings moved to all */
-    outputs = NULL;
+    memcpy(all + nout, extra, nextra * sizeof *all);
+    free(outputs);
+    free(extra);
+    outputs = extra = NULL;
     *probes = all;
-    *nprobes = nout + s->ncorners;
-    rc = contact_probes(s, all + nout, err);
+    *nprobes = nout + nextra;
   }
   fb_vehicle_probes_free(&outputs, nout);
-  if (rc) {
-    fb_vehicle_probes_free(probes, *nprobes);
-    *nprobes = 0;
+  fb_vehicle_probes_free(&extra, nextra);
+  if (rc)
     fb_bg_free(graph);
-  }
   return rc;
 }
 
 int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
                      size_t *nprobes, fb_err *err)
 {
-  return vehicle_graph(s, sys, graph, probes, nprobes, NULL, err);
+  return vehicle_graph(s, sys, graph, probes, nprobes, NULL, NULL, err);
 }
 
-/* The graph and its block diagram, with the contact forces as extra
- * outputs if asked. */
+/* The graph and its block diagram, with the contact forces (and the
+ * motion's probes with motion) as extra outputs if asked. */
 static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg **graph,
-                         fb_bd **bd, fb_vehicle_run_info *info, fb_err *err)
+                         fb_bd **bd, fb_vehicle_run_info *info, fb_vehicle_motion *motion,
+                         fb_err *err)
 {
   *bd = NULL;
   fb_probe_spec *probes = NULL;
   size_t nprobes = 0;
-  int rc = vehicle_graph(s, sys, graph, &probes, &nprobes, info, err);
+  int rc = vehicle_graph(s, sys, graph, &probes, &nprobes, info, motion, err);
   if (!rc)
     rc = fb_bd_build(*graph, probes, contact ? nprobes : s->noutputs, bd, err);
   fb_vehicle_probes_free(&probes, nprobes);
@@ -251,7 +281,7 @@ static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg
 int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
                      fb_err *err)
 {
-  return vehicle_build(s, sys, 0, graph, bd, NULL, err);
+  return vehicle_build(s, sys, 0, graph, bd, NULL, NULL, err);
 }
 
 void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o)
@@ -278,8 +308,11 @@ int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_pro
   return fb_vehicle_simulate_info(s, sys, fn, ctx, &info, out, err);
 }
 
-int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
-                             void *ctx, fb_vehicle_run_info *info, fb_result **out, fb_err *err)
+/* fb_vehicle_simulate_info, with the motion's columns after the contact
+ * forces when motion is not NULL. */
+static int simulate(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn, void *ctx,
+                    fb_vehicle_run_info *info, fb_vehicle_motion *motion, fb_result **out,
+                    fb_err *err)
 {
   *out = NULL;
   memset(info, 0, sizeof *info);
@@ -287,7 +320,7 @@ int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progres
   fb_bd *bd = NULL;
   struct timespec t0;
   clock_gettime(CLOCK_MONOTONIC, &t0);
-  int rc = vehicle_build(s, sys, 1, &graph, &bd, info, err);
+  int rc = vehicle_build(s, sys, 1, &graph, &bd, info, motion, err);
   info->build_seconds = fb_seconds_since(&t0);
   double *x0 = NULL;
   if (!rc) {
@@ -315,4 +348,31 @@ int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progres
   fb_bd_free(&bd);
   fb_bg_free(&graph);
   return rc;
+}
+
+int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                             void *ctx, fb_vehicle_run_info *info, fb_result **out, fb_err *err)
+{
+  return simulate(s, sys, fn, ctx, info, NULL, out, err);
+}
+
+int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                               void *ctx, fb_vehicle_run_info *info, fb_result **out,
+                               fb_vehicle_motion **motion, fb_err *err)
+{
+  *motion = NULL;
+  fb_vehicle_motion *m = calloc(1, sizeof *m);
+  if (!m)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  m->sys = sys;
+  int rc = simulate(s, sys, fn, ctx, info, m, out, err);
+  if (!rc)
+    rc = fb_vehicle_motion_take(s, *out, 1 + s->noutputs + s->ncorners, m, err);
+  if (rc) {
+    fb_result_free(out);
+    fb_vehicle_motion_free(&m);
+    return rc;
+  }
+  *motion = m;
+  return FB_OK;
 }

@@ -1182,6 +1182,9 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
     hull->eig_modes = c.eig_modes;
     hull->eig_dense = c.eig_dense;
     hull->eig_seconds = c.eig_seconds;
+    hull->coord_ndof = c.ndof;
+    hull->coord_basis = c.T; /* moved: the motion of the hull's nodes */
+    c.T = NULL;
   }
   hull_coords_free(&c);
   if (rc) {

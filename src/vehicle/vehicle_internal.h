@@ -25,4 +25,19 @@ void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33);
 void fb_hull_mesh_centroid(const fb_scenario *s, const fb_hull_mesh_params *p, double *cx,
                            double *cz);
 
+/* The motion's probes (motion.c): the hull's coordinates (its torsion
+ * probe's signal, every component), the attachment points' displacements
+ * (integrated flow of the assembly's b_attach), each mounted body's and
+ * each wheel's (integrated flow of NAME.b_mass, susp_NAME.b_wheel):
+ * fb_vehicle_motion_nprobes(s) of them into p (names and targets new). */
+size_t fb_vehicle_motion_nprobes(const fb_scenario *s);
+int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec *p,
+                             fb_err *err);
+/* Moves the columns from first on of res (the motion probes' values)
+ * into m->samples, with the time, and drops them from res. The hull's
+ * coordinates become relative to their value at the first sample, as the
+ * integrated displacements are. */
+int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
+                           fb_vehicle_motion *m, fb_err *err);
+
 #endif
