@@ -98,7 +98,7 @@ test: deps build
 	$(call run_ctest,$(BUILD_DIR))
 
 run: deps build
-	./$(BUILD_DIR)/flexbond run examples/apc6x6.yaml -o $(OUT_DIR)/
+	./$(BUILD_DIR)/flexbond run examples/apc6x6.yaml -o $(OUT_DIR)/ --animate
 	./$(BUILD_DIR)/flexbond modes examples/apc6x6.yaml > $(OUT_DIR)/modes.txt
 	./$(BUILD_DIR)/flexbond modes examples/apc6x6.yaml --system flexible -o $(OUT_DIR)/modes/ \
 	  > $(OUT_DIR)/modes_system2.txt

@@ -953,6 +953,48 @@ static void test_vtu(void)
   check_msg(&err, "field 0 has no name or is not finite");
   CHECK(count_entries() == 0);
 
+  /* An animation's frame: points at X + warp u, two markers after the
+   * nodes with a vertex cell each, their displacement (0, 0, dz), the
+   * part array telling them apart, -1 ids. */
+  const fb_vtu_marker markers[2] = {{{0.5, 0.5, 1.0}, 0.25, 1}, {{2.0, 0.0, -1.0}, -0.5, 2}};
+  const fb_vtu_frame frame = {dof, 2.0, markers, 2, fields, 1};
+  CHECK(fb_mesh_write_vtu_frame(m, &frame, path, &err) == FB_OK);
+  xml = slurp(path);
+  if (xml) {
+    CHECK(strstr(xml, "<Piece NumberOfPoints=\"9\" NumberOfCells=\"5\">") != NULL);
+    double warped[27];
+    for (size_t i = 0; i < 7; ++i)
+      for (size_t k = 0; k < 3; ++k)
+        warped[3 * i + k] = points[3 * i + k] + 2.0 * dof[6 * i + k];
+    const double mk[6] = {0.5, 0.5, 1.5, 2.0, 0.0, -2.0};
+    memcpy(warped + 21, mk, sizeof mk);
+    check_array(xml, NULL, warped, 27);
+    double mdisp[27];
+    memcpy(mdisp, disp, sizeof disp);
+    const double md[6] = {0, 0, 0.25, 0, 0, -0.5};
+    memcpy(mdisp + 21, md, sizeof md);
+    check_array(xml, "displacement", mdisp, 27);
+    const double part[9] = {0, 0, 0, 0, 0, 0, 0, 1, 2};
+    check_array(xml, "part", part, 9);
+    const double conn2[13] = {0, 1, 4, 3, 1, 2, 5, 4, 2, 6, 5, 7, 8};
+    const double off2[5] = {4, 8, 11, 12, 13}, types2[5] = {9, 9, 5, 1, 1};
+    check_array(xml, "connectivity", conn2, 13);
+    check_array(xml, "offsets", off2, 5);
+    check_array(xml, "types", types2, 5);
+    const double ids2[9] = {10, 20, 30, 40, 50, 60, 70, -1, -1}, eids2[5] = {1, 2, 3, -1, -1};
+    check_array(xml, "node_id", ids2, 9);
+    check_array(xml, "element_id", eids2, 5);
+    const double tip2[9] = {0, 0, 0, 0, 0, 0, 1, 0, 0};
+    check_array(xml, "nset_Tip", tip2, 9);
+  }
+  free(xml);
+  remove(path);
+  const fb_vtu_marker bad_marker = {{0, 0, NAN}, 0, 1};
+  const fb_vtu_frame bad_frame = {dof, 1.0, &bad_marker, 1, NULL, 0};
+  CHECK(fb_mesh_write_vtu_frame(m, &bad_frame, path, &err) == FB_EINVAL);
+  check_msg(&err, "marker 0 is not finite");
+  CHECK(count_entries() == 0);
+
   /* A NaN is refused before any file exists. */
   dof[6 * 2 + 4] = NAN;
   CHECK(fb_mesh_write_vtu(m, dof, path, &err) == FB_EINVAL);

@@ -10,7 +10,9 @@
  *   4. the hull's nodes at the attachment points move as the attachment
  *      points do: System 1 through its rigid rows, System 2 through its
  *      coordinates (u = T q, T the free-free modes);
- *   5. interpolation between samples is linear and clamped to the run.
+ *   5. interpolation between samples is linear and clamped to the run;
+ *   6. a motion kept over a window is the whole run's rows that cover
+ *      it, the same numbers (the same run, taken apart differently).
  * On the shortened crossing of test_system2_sim.c. */
 #include <ctype.h>
 #include <math.h>
@@ -87,7 +89,7 @@ static fb_vehicle_motion *check_run(const fb_scenario *s, fb_system sys)
   fb_result *plain = NULL, *r = NULL;
   fb_vehicle_motion *m = NULL;
   REQUIRE(fb_vehicle_simulate_info(s, sys, NULL, NULL, &info, &plain, &err), &err);
-  REQUIRE(fb_vehicle_simulate_motion(s, sys, NULL, NULL, &info, &r, &m, &err), &err);
+  REQUIRE(fb_vehicle_simulate_motion(s, sys, NULL, NULL, NULL, &info, &r, &m, &err), &err);
   CHECK(fb_result_ncols(r) == fb_result_ncols(plain));
   for (size_t j = 0; j < fb_result_ncols(r); ++j)
     CHECK(!strcmp(fb_result_col_name(r, j), fb_result_col_name(plain, j)));
@@ -166,7 +168,8 @@ static void check_nodes(const fb_scenario *s, const fb_vehicle_motion *m)
   double worst = 0.0, big = 0.0;
   const double t_last = m->samples[(m->nsamples - 1) * m->width];
   size_t nchecked = 0;
-  for (double t = 0.0; t <= t_last; t += 0.05) {
+  for (size_t i = 0; 0.05 * (double)i <= t_last; ++i) {
+    const double t = 0.05 * (double)i;
     REQUIRE(fb_vehicle_motion_at(m, mesh, t, u, dz, NULL, NULL, &err), &err);
     for (size_t a = 0; a < na; ++a) {
       const long node = own ? (long)a : attach_node(s, mesh, a);
@@ -213,6 +216,37 @@ static void check_interpolation(const fb_vehicle_motion *m)
   free(mid);
 }
 
+/* 6. The run again, its motion kept over [0.3, 0.7] of its span: the
+ * rows from the last at or before the window's start to the first at or
+ * after its end, bit for bit those of the whole run's motion m (the same
+ * steps; the hull's coordinates from the same t = 0 row). */
+static void check_window(const fb_scenario *s, const fb_vehicle_motion *m)
+{
+  fb_err err;
+  fb_vehicle_run_info info;
+  fb_result *r = NULL;
+  fb_vehicle_motion *w = NULL;
+  const double t_end = m->samples[(m->nsamples - 1) * m->width];
+  /* Between samples, so that each end brackets. */
+  const double window[2] = {0.3 * t_end + 1e-4, 0.7 * t_end + 1e-4};
+  REQUIRE(fb_vehicle_simulate_motion(s, m->sys, window, NULL, NULL, &info, &r, &w, &err), &err);
+  size_t lo = 0;
+  while (m->samples[(lo + 1) * m->width] <= window[0])
+    ++lo;
+  size_t hi = lo;
+  while (m->samples[hi * m->width] < window[1])
+    ++hi;
+  CHECK(w->nsamples == hi - lo + 1);
+  CHECK(w->width == m->width);
+  CHECK(w->samples[0] <= window[0] && w->samples[(w->nsamples - 1) * w->width] >= window[1]);
+  if (w->nsamples == hi - lo + 1 && w->width == m->width)
+    CHECK(!memcmp(w->samples, m->samples + lo * m->width,
+                  w->nsamples * w->width * sizeof *w->samples));
+  CHECK(fb_result_nsamples(r) == m->nsamples);
+  fb_vehicle_motion_free(&w);
+  fb_result_free(&r);
+}
+
 int main(void)
 {
   fb_scenario *s = load_short();
@@ -224,6 +258,7 @@ int main(void)
     CHECK((sys == FB_SYSTEM_FLEXIBLE) == (m->mesh != NULL));
     check_nodes(s, m);
     check_interpolation(m);
+    check_window(s, m);
     fb_vehicle_motion_free(&m);
   }
   fb_scenario_free(&s);

@@ -277,6 +277,27 @@ typedef struct fb_vtu_field {
   const char *name;
   double value;
 } fb_vtu_field;
+/* A point drawn beside the mesh in an animation's frame (a mounted body,
+ * a wheel): where it is at rest (m), its vertical displacement (m) and
+ * the part it belongs to (> 0; the mesh's nodes are part 0). */
+typedef struct fb_vtu_marker {
+  double xyz[3];
+  double dz;
+  int part;
+} fb_vtu_marker;
+/* One grid of an animation (or a mode): the mesh's nodal displacements
+ * (6 per node as in fb_mesh_write_vtu, or NULL), the points drawn at
+ * X + warp u (0: at rest, as fb_mesh_write_vtu), markers and field data. */
+typedef struct fb_vtu_frame {
+  const double *dof_values;
+  double warp;
+  const fb_vtu_marker *markers;
+  size_t nmarkers;
+  const fb_vtu_field *fields;
+  size_t nfields;
+} fb_vtu_frame;
+int fb_mesh_write_vtu_frame(const fb_mesh *m, const fb_vtu_frame *f, const char *path,
+                            fb_err *err);
 /* fb_mesh_write_vtu with nfields values of the grid (finite, named). */
 int fb_mesh_write_vtu_fields(const fb_mesh *m, const double *dof_values,
                              const fb_vtu_field *fields, size_t nfields, const char *path,

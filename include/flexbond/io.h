@@ -157,11 +157,21 @@ typedef struct fb_plot_mode {
   double body_side; /* m */
   const fb_plot_wheel *wheel;
   size_t nwheels;
-  double wheel_radius;  /* m */
-  const char *title;    /* may be NULL */
-  const char *subtitle; /* a second line under it; may be NULL */
+  double wheel_radius;      /* m */
+  const char *title;        /* may be NULL */
+  const char *subtitle;     /* a second line under it; may be NULL */
+  const char *colour_label; /* the colour bar's; NULL: "displacement (shape units)" */
 } fb_plot_mode;
 int fb_plot_mode_png(const fb_plot_mode *pic, const char *path, fb_err *err);
+/* The frames as an animated GIF (gnuplot's gif terminal), each shown
+ * frame_seconds (in (0, 60], rounded to gnuplot's hundredths): drawn as
+ * fb_plot_mode_png draws one, with one scale, colour range and extent for
+ * all (frames[0].largest_drawn for the largest displacement of any
+ * frame), so that the motion reads true. Every frame draws the same mesh,
+ * bodies and wheels at rest (frames[0]'s). The file is read back
+ * (complete, as many images as frames) before it is renamed to path. */
+int fb_plot_mode_gif(const fb_plot_mode *frames, size_t nframes, double frame_seconds,
+                     const char *path, fb_err *err);
 
 /* ---- A vehicle scenario's values (flexbond/vehicle.h), as a report
  * lists them. */

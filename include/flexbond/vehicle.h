@@ -625,10 +625,14 @@ int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double
                          fb_err *err);
 
 /* fb_vehicle_simulate_info, and the motion of the run in *motion (new):
- * the result's columns are the same as without it. */
-int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
-                               void *ctx, fb_vehicle_run_info *info, fb_result **out,
-                               fb_vehicle_motion **motion, fb_err *err);
+ * the result's columns are the same as without it. The motion keeps the
+ * samples that cover window = {t0, t1} (s: the last at or before t0 to
+ * the first at or after t1; every sample if window is NULL), so an
+ * animation of a stretch does not hold every hull coordinate of the
+ * whole run. */
+int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, const double *window,
+                               fb_sim_progress_fn fn, void *ctx, fb_vehicle_run_info *info,
+                               fb_result **out, fb_vehicle_motion **motion, fb_err *err);
 
 /* A time interval in which a tire carries no load: its normal reaction
  * is not compressive. With the paper's linear (bilateral) tire that means

@@ -258,6 +258,31 @@ size_t cli_ride_output(const fb_scenario *s);
 enum { CLI_RUN_NDIAGRAMS = 2 };
 void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size);
 
+/* ---- flexbond run --animate (animate.c, docs/animation.md). */
+enum { CLI_ANIMATE_MAX_FRAMES = 10000 };
+typedef struct cli_animate_opts {
+  int enabled;  /* --animate */
+  double fps;   /* frames per second of the run's time, > 0 */
+  double scale; /* drawn per m of displacement; 0: the largest drawn 0.08 L */
+  int gif;      /* 0 with --no-figures: the ParaView files alone */
+} cli_animate_opts;
+/* What an animation showed, for the report. */
+typedef struct cli_animation_info {
+  size_t nframes;
+  double t0, t1; /* the first and last frames' times, s */
+  double warp;   /* the displacements' drawing factor */
+  double umax;   /* m, the largest displacement of any frame */
+  int gif;
+} cli_animation_info;
+/* "animation_systemN.pvd" (ext "pvd"), ".gif", or frame's
+ * "animation_systemN_FFFF.vtu" (ext "vtu"). */
+void cli_animation_file(fb_system sys, const char *ext, size_t frame, char *buf, size_t size);
+/* m's frames over window (the bump window) at o's rate into od: a .vtu
+ * per frame, the .pvd naming them and, with o->gif, the animated GIF. */
+int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_motion *m,
+                        const double window[2], const cli_animate_opts *o,
+                        cli_animation_info *info, fb_err *err);
+
 /* One simulated system. */
 typedef struct cli_run_system {
   fb_system sys;
@@ -277,6 +302,9 @@ typedef struct cli_run_system {
   fb_ride_metrics ride;
   double ride_window[2];
   char ride_note[FB_ERR_MSG_MAX];
+  /* With --animate: the run's motion (owned) and its animation. */
+  fb_vehicle_motion *motion;
+  cli_animation_info anim;
 } cli_run_system;
 
 /* Everything run writes. */
@@ -303,6 +331,7 @@ typedef struct cli_run_outputs {
    * freq_note says why. */
   const struct freq_study *freq;
   char freq_note[FB_ERR_MSG_MAX];
+  const cli_animate_opts *animate; /* --animate's settings */
 } cli_run_outputs;
 
 /* "System 1 (rigid hull)", "System 2 (flexible hull)". */

@@ -132,7 +132,7 @@ int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hu
     const fb_plot_mode pic = {hull->mesh, v,           drawn,
                               mp.body,    s->nmounts,  0.05 * mp.extent,
                               mp.wheel,   s->ncorners, 0.07 * mp.extent,
-                              title,      subtitle};
+                              title,      subtitle,    NULL};
     char *path = cli_outdir_path(od, name, err);
     rc = path ? fb_plot_mode_png(&pic, path, err) : err->code;
     if (!rc)

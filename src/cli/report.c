@@ -551,6 +551,36 @@ static void write_frequency_response(FILE *fp, const cli_run_outputs *o)
   }
 }
 
+/* The animation of each system that ran (flexbond run --animate). */
+static void write_animation(FILE *fp, const cli_run_outputs *o)
+{
+  if (!o->animate || !o->animate->enabled)
+    return;
+  fputs("\n## Animation\n\n", fp);
+  fprintf(fp,
+          "Each system's motion over the bump window at %g frames per second of the run's "
+          "time (linear between its samples), every displacement from the vehicle's state "
+          "at the window's start, as the first wheel reaches the bump. The hull's points are "
+          "drawn at their position plus the displacement times the stated factor; the "
+          "mounted bodies (cubes) and the wheels are schematic, to the hull's size. "
+          "ParaView opens the `.pvd` time series: the displacement in metres is point data "
+          "(`displacement`), `part` tells the hull (0), the bodies (1) and the wheels (2) "
+          "apart (docs/animation.md).\n",
+          o->animate->fps);
+  for (size_t i = 0; i < o->nruns; ++i) {
+    const cli_animation_info *a = &o->runs[i].anim;
+    char pvd[64], gif[64];
+    cli_animation_file(o->runs[i].sys, "pvd", 0, pvd, sizeof pvd);
+    cli_animation_file(o->runs[i].sys, "gif", 0, gif, sizeof gif);
+    fprintf(fp,
+            "\n%s: %zu frames from t = %.3f to %.3f s, the largest displacement %.4g m, "
+            "drawn %.3g times; `%s`.\n",
+            cli_system_label(o->runs[i].sys), a->nframes, a->t0, a->t1, a->umax, a->warp, pvd);
+    if (a->gif)
+      fprintf(fp, "\n![%s over the bump](%s)\n", cli_system_label(o->runs[i].sys), gif);
+  }
+}
+
 /* "| quantity | unit |" of output k. */
 static void write_output_cells(FILE *fp, const cli_run_outputs *o, size_t k)
 {
@@ -943,6 +973,7 @@ void cli_write_report_md(FILE *fp, const void *ctx)
   write_model(fp, o);
   write_figures(fp, o);
   write_frequency_response(fp, o);
+  write_animation(fp, o);
   if (o->diff)
     write_comparison_table(fp, o);
   else

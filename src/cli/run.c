@@ -43,6 +43,9 @@ static const char run_usage[] =
     "                          against System 1 per output\n"
     "  DIR/report.md           scenario, assumptions, modes, figures, comparison\n"
     "                          table and conclusions\n"
+    "  DIR/animation_systemN.pvd, DIR/animation_systemN_FFFF.vtu, DIR/animation_systemN.gif\n"
+    "                          with --animate: each system's motion over the bump\n"
+    "                          window, a ParaView time series and an animated GIF\n"
     "DIR is created if missing; nothing is written if a run fails.\n"
     "\n"
     "options (override the scenario):\n"
@@ -58,7 +61,12 @@ static const char run_usage[] =
     "  --hull-modes N              System 2's hull: 0 every mode, N >= 6 reduced to\n"
     "                              N free-free modes, in modal coordinates\n"
     "                              (hull.fe.modes)\n"
-    "  --no-figures                no PNG; report.md without images\n"
+    "  --animate                   also the animation files (docs/animation.md)\n"
+    "  --animate-fps HZ            its frames per second of the run's time\n"
+    "                              (default 50; the GIF plays in real time)\n"
+    "  --animate-scale F           draw the displacements F times (default: the\n"
+    "                              largest 8 % of the hull's length)\n"
+    "  --no-figures                no PNG or GIF; report.md without images\n"
     "  -v, --verbose               also what each eigen-solve and each run's set-up\n"
     "                              cost, on stderr\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
@@ -120,6 +128,7 @@ typedef struct run_args {
   int verbose;  /* the costs of eigen-solves and set-up too (-v) */
   int progress; /* draw a progress line: stderr is a terminal, no -q */
   int figures;  /* 0 with --no-figures */
+  cli_animate_opts animate;
 } run_args;
 
 const char *cli_system_label(fb_system sys)
@@ -710,6 +719,7 @@ static void run_system_free(cli_run_system *run)
   free(run->col);
   free(run->stats);
   free(run->min_contact);
+  fb_vehicle_motion_free(&run->motion);
 }
 
 static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
@@ -722,7 +732,11 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
     fprintf(stderr, "flexbond run: %s: simulating %s, t = 0..%g s ...\n", p.scenario, p.system,
             s->t_end);
   fb_vehicle_run_info info;
-  int rc = fb_vehicle_simulate_info(s, run->sys, show_progress, &p, &info, &run->res, err);
+  int rc =
+      a->animate.enabled
+          ? fb_vehicle_simulate_motion(s, run->sys, window, show_progress, &p, &info, &run->res,
+                                       &run->motion, err)
+          : fb_vehicle_simulate_info(s, run->sys, show_progress, &p, &info, &run->res, err);
   /* End the progress line, also before an error message. */
   if (a->progress)
     fputc('\n', stderr);
@@ -825,6 +839,21 @@ static void frequency_response(const fb_scenario *s, cli_run_outputs *o, freq_st
     o->freq = fs;
 }
 
+/* The animation of every system that ran, with --animate. */
+static int write_animations(cli_outdir *od, const run_args *a, const fb_scenario *s,
+                            const double window[2], cli_run_system *runs, size_t nruns,
+                            fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; a->animate.enabled && i < nruns && rc == FB_OK; ++i) {
+    if (!a->quiet)
+      fprintf(stderr, "flexbond run: %s: %s: drawing the animation ...\n", cli_scenario_name(s),
+              cli_system_label(runs[i].sys));
+    rc = cli_write_animation(od, s, runs[i].motion, window, &a->animate, &runs[i].anim, err);
+  }
+  return rc;
+}
+
 /* cli_report, except that an error about hull.fe.modes after
  * --hull-modes replaced it (overridden: more modes than the hull has) is
  * the option's: a usage error. The file's own value was checked, and
@@ -848,7 +877,7 @@ static int run(const run_args *a)
   fb_system systems[CLI_MAX_SYSTEMS] = {FB_SYSTEM_RIGID};
   run_modes modes = {0};
   fb_result *diff = NULL;
-  cli_run_outputs o = {.runs = runs, .figures = a->figures};
+  cli_run_outputs o = {.runs = runs, .figures = a->figures, .animate = &a->animate};
   size_t nfiles = 0;
   cli_outdir od;
   int rc = fb_scenario_load(a->scenario_path, &s, &err);
@@ -889,6 +918,8 @@ static int run(const run_args *a)
   freq_study freq = {0};
   if (rc == FB_OK && o.figures)
     frequency_response(s, &o, &freq);
+  if (rc == FB_OK)
+    rc = write_animations(&od, a, s, o.bump_window, runs, o.nruns, &err);
   if (rc == FB_OK)
     rc = write_outputs(&od, &o, &nfiles, &err);
   cli_freq_study_free(&freq);
@@ -960,6 +991,27 @@ static int parse_settings(const char *cmd, const cli_option *system, const cli_o
   return rc;
 }
 
+/* --animate and its settings into a->animate. */
+static int parse_animate(const char *cmd, const cli_option *animate, const cli_option *fps,
+                         const cli_option *scale, run_args *a)
+{
+  a->animate = (cli_animate_opts){animate->value != NULL, 50.0, 0.0, a->figures};
+  if (!a->animate.enabled && (fps->value || scale->value))
+    return cli_usage_error(cmd, "--animate-fps and --animate-scale set the animation: give "
+                                "--animate too");
+  int rc = CLI_EXIT_OK;
+  if (fps->value)
+    rc = cli_positive_number(cmd, "--animate-fps", fps->value, &a->animate.fps);
+  if (rc == CLI_EXIT_OK && scale->value)
+    rc = cli_positive_number(cmd, "--animate-scale", scale->value, &a->animate.scale);
+  /* A frame at least every second, at most a thousand per second (the
+   * default sample rate). */
+  if (rc == CLI_EXIT_OK && (a->animate.fps < 1.0 || a->animate.fps > 1000.0))
+    rc = cli_usage_error(
+        cmd, "option '--animate-fps' needs 1..1000 frames per second (got '%s')", fps->value);
+  return rc;
+}
+
 int cli_cmd_run(int argc, char **argv)
 {
   enum {
@@ -969,6 +1021,9 @@ int cli_cmd_run(int argc, char **argv)
     OPT_PAYLOAD,
     OPT_HULL_MODES,
     OPT_HULL_COORDINATES,
+    OPT_ANIMATE,
+    OPT_ANIMATE_FPS,
+    OPT_ANIMATE_SCALE,
     OPT_NO_FIGURES,
     OPT_QUIET,
     OPT_VERBOSE,
@@ -982,6 +1037,9 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_PAYLOAD] = {"--payload", NULL, 1, NULL},
       [OPT_HULL_MODES] = {"--hull-modes", NULL, 1, NULL},
       [OPT_HULL_COORDINATES] = {"--hull-coordinates", NULL, 1, NULL},
+      [OPT_ANIMATE] = {"--animate", NULL, 0, NULL},
+      [OPT_ANIMATE_FPS] = {"--animate-fps", NULL, 1, NULL},
+      [OPT_ANIMATE_SCALE] = {"--animate-scale", NULL, 1, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_VERBOSE] = {"--verbose", "-v", 0, NULL},
@@ -1002,5 +1060,8 @@ int cli_cmd_run(int argc, char **argv)
   a.figures = opts[OPT_NO_FIGURES].value == NULL;
   rc = parse_settings(argv[0], &opts[OPT_SYSTEM], &opts[OPT_INITIAL], &opts[OPT_PAYLOAD],
                       &opts[OPT_HULL_MODES], &opts[OPT_HULL_COORDINATES], &a);
+  if (rc == CLI_EXIT_OK)
+    rc = parse_animate(argv[0], &opts[OPT_ANIMATE], &opts[OPT_ANIMATE_FPS],
+                       &opts[OPT_ANIMATE_SCALE], &a);
   return rc == CLI_EXIT_OK ? run(&a) : rc;
 }

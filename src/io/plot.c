@@ -263,10 +263,11 @@ int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plo
 
 /* The files of one gnuplot run, in its private directory: fixed names,
  * so that gnuplot, started there, never reads a path of the user's. */
-static const char gp_script[] = "plot.gp", gp_png[] = "plot.png", gp_log[] = "gnuplot.log";
+static const char gp_script[] = "plot.gp", gp_log[] = "gnuplot.log";
 
-/* Runs gnuplot on the script in dir and checks the PNG it drew. */
-static int draw_in(const char *dir, const char *path, fb_err *err)
+/* Runs gnuplot on the script in dir and checks the image it drew. */
+static int draw_in(const char *dir, const char *image_name, fb_child_check_fn check,
+                   const char *path, fb_err *err)
 {
   char program[] = "gnuplot", script[sizeof gp_script];
   memcpy(script, gp_script, sizeof gp_script);
@@ -276,18 +277,19 @@ static int draw_in(const char *dir, const char *path, fb_err *err)
                               .cwd = dir,
                               .log = gp_log,
                               .timeout_s = FB_GNUPLOT_TIMEOUT_S};
-  char *png = NULL;
-  int rc = fb_child_make(&spec, gp_png, fb_png_check, path, &png, err);
-  if (rc == FB_OK && rename(png, path) != 0)
+  char *image = NULL;
+  int rc = fb_child_make(&spec, image_name, check, path, &image, err);
+  if (rc == FB_OK && rename(image, path) != 0)
     rc = fb_err_set(err, FB_EIO, "%s: cannot rename the plot into place: %s", path,
                     strerror(errno));
-  free(png);
+  free(image);
   return rc;
 }
 
-int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, fb_err *err)
+int fb_gnuplot_draw(fb_gnuplot_script_fn fn, const void *ctx, const char *image_name,
+                    fb_child_check_fn check, const char *path, fb_err *err)
 {
-  /* A private directory beside path (the same file system, so the PNG
+  /* A private directory beside path (the same file system, so the image
    * is renamed into place): nobody else can plant a file or a link at
    * the names gnuplot writes. */
   char *dir = NULL;
@@ -296,14 +298,19 @@ int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, f
     return fb_err_set(err, e == ENOMEM ? FB_ENOMEM : FB_EIO,
                       "%s: cannot create a directory for gnuplot: %s", path, strerror(e));
   char *script = fb_path_join(dir, gp_script);
-  int rc = script ? write_script_file(script, fn, ctx, gp_png, path, err)
+  int rc = script ? write_script_file(script, fn, ctx, image_name, path, err)
                   : fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
   if (rc == FB_OK)
-    rc = draw_in(dir, path, err);
+    rc = draw_in(dir, image_name, check, path, err);
   free(script);
-  const char *const names[] = {gp_script, gp_png, gp_log};
+  const char *const names[] = {gp_script, image_name, gp_log};
   fb_child_dir_remove(dir, names, sizeof names / sizeof names[0]);
   return rc;
+}
+
+int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, fb_err *err)
+{
+  return fb_gnuplot_draw(fn, ctx, "plot.png", fb_png_check, path, err);
 }
 
 int fb_plot_png(const fb_result *r, const size_t *cols, size_t ncols, const char *title,

@@ -6,6 +6,8 @@
 
 #include "flexbond/error.h"
 
+#include "io/child.h"
+
 /* Writes s as a gnuplot single-quoted string: '' escapes a quote, and a
  * control character (a line end would end the command, letting the rest
  * of s run as gnuplot's next line) becomes '?'. gnuplot substitutes
@@ -33,5 +35,23 @@ int fb_gnuplot_png(fb_gnuplot_script_fn fn, const void *ctx, const char *path, f
  * valid CRCs, IHDR first, IEND last at the end of the file); FB_EIO "not
  * a complete PNG image: ..." otherwise. */
 int fb_png_check(const char *path, fb_err *err);
+
+/* FB_OK if the file path is a complete GIF image of one frame or more
+ * (fb_gif_frames); FB_EIO "not a complete GIF image: ..." otherwise. */
+int fb_gif_check(const char *path, fb_err *err);
+/* The number of images (frames) of the complete GIF file at path. */
+int fb_gif_frames(const char *path, size_t *nframes, fb_err *err);
+
+/* A figure larger than this is no plot of ours: refused before reading. */
+#define FB_IMAGE_MAX_BYTES (256L * 1024 * 1024)
+/* Reads the regular file path (not through a link; at most
+ * FB_IMAGE_MAX_BYTES) into *data (new, NULL when empty), its size in *n. */
+int fb_image_read(const char *path, unsigned char **data, size_t *n, fb_err *err);
+
+/* fb_gnuplot_png for any image format: the script draws into image_name
+ * (a plain name, "plot.gif"), check reads the file back before it is
+ * renamed to path. */
+int fb_gnuplot_draw(fb_gnuplot_script_fn fn, const void *ctx, const char *image_name,
+                    fb_child_check_fn check, const char *path, fb_err *err);
 
 #endif

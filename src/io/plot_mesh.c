@@ -11,8 +11,11 @@
 #include "io/plot_internal.h"
 
 typedef struct mode_script {
-  const fb_plot_mode *pic;
-  size_t *outline; /* the hull's outline, 2 nodes per edge (fb_mesh_outline) */
+  const fb_plot_mode *pic; /* the frame being drawn */
+  const fb_plot_mode *frames;
+  size_t nframes;
+  double frame_seconds; /* an animation's: how long each frame shows */
+  size_t *outline;      /* the hull's outline, 2 nodes per edge (fb_mesh_outline) */
   size_t noutline;
   double umax;         /* largest displacement in the shape's units */
   double scale;        /* m drawn per unit of the shape */
@@ -178,14 +181,10 @@ static double largest_motion(const fb_plot_mode *pic)
   return big;
 }
 
-/* The extent of everything drawn, at rest and displaced. */
-static void measure(mode_script *ms)
+/* The extent of everything drawn in ms->pic, at rest and displaced. */
+static void measure_frame(mode_script *ms)
 {
   const fb_plot_mode *pic = ms->pic;
-  for (int k = 0; k < 3; ++k) {
-    ms->lo[k] = INFINITY;
-    ms->hi[k] = -INFINITY;
-  }
   for (size_t i = 0; i < fb_mesh_nnodes(pic->mesh); ++i)
     for (int moved = 0; moved < 2; ++moved) {
       double p[3];
@@ -205,6 +204,20 @@ static void measure(mode_script *ms)
     extend(ms, (double[3]){wh->top[0] + r, wh->top[1],
                            fmax(wh->top[2] + ms->scale * wh->top_dz, wh->top[2] + dz)});
   }
+}
+
+/* The extent of every frame. */
+static void measure(mode_script *ms)
+{
+  for (int k = 0; k < 3; ++k) {
+    ms->lo[k] = INFINITY;
+    ms->hi[k] = -INFINITY;
+  }
+  for (size_t f = 0; f < ms->nframes; ++f) {
+    ms->pic = &ms->frames[f];
+    measure_frame(ms);
+  }
+  ms->pic = ms->frames;
 }
 
 /* A tic step of 1, 2 or 5 times a power of ten giving about four
@@ -266,51 +279,120 @@ static void write_titles(FILE *gp, const fb_plot_mode *pic)
   }
 }
 
-static void write_mode_script(FILE *gp, const void *ctx, const char *png_name)
+/* The settings every frame shares: view, axes, colours. */
+static void write_view(FILE *gp, const mode_script *ms)
 {
-  const mode_script *ms = ctx;
-  const fb_plot_mode *pic = ms->pic;
-  fputs("$rest << EOD\n", gp);
-  write_outline(gp, ms, 0);
-  write_parts(gp, ms, 0);
-  fputs("EOD\n$moved << EOD\n", gp);
-  write_elements(gp, ms);
-  write_outline(gp, ms, 1);
-  write_parts(gp, ms, 1);
-  fputs("EOD\n", gp);
-  fputs("set terminal pngcairo size 1100,760 font 'Sans,10'\nset output ", gp);
-  fb_gnuplot_quoted(gp, png_name);
-  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28, 1.45\n",
+  fputs("set termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28, 1.45\n",
         gp);
   write_axes(gp, ms);
-  write_titles(gp, pic);
   /* Dark blue to dark red through green and orange: every colour stands
    * out against the white ground and the grey of the hull at rest. */
   fputs("set palette defined (0 '#1f4e9a', 0.4 '#2ca25f', 0.7 '#f28e2b', 1 '#b2182b')\n", gp);
   fprintf(gp, "set cbrange [0:%.6g]\n", ms->umax > 0 ? ms->umax : 1.0);
-  fputs("set cblabel 'displacement (shape units)'\nset colorbox vertical user origin 0.9, 0.25 "
-        "size 0.02, 0.5\n",
-        gp);
-  fputs("splot $rest with lines lw 1 lc rgb '#a8a8a8', "
-        "$moved using 1:2:3:4 with lines lw 1.5 lc palette\nset output\n",
-        gp);
+  fputs("set cblabel ", gp);
+  fb_gnuplot_quoted(gp, ms->frames->colour_label ? ms->frames->colour_label
+                                                 : "displacement (shape units)");
+  fputs("\nset colorbox vertical user origin 0.9, 0.25 size 0.02, 0.5\n", gp);
 }
 
-int fb_plot_mode_png(const fb_plot_mode *pic, const char *path, fb_err *err)
+/* Frame f's displaced parts as the datablock $movedF. */
+static void write_moved(FILE *gp, mode_script *ms, size_t f)
 {
+  ms->pic = &ms->frames[f];
+  fprintf(gp, "$moved%zu << EOD\n", f);
+  write_elements(gp, ms);
+  write_outline(gp, ms, 1);
+  write_parts(gp, ms, 1);
+  fputs("EOD\n", gp);
+}
+
+static void write_mode_script(FILE *gp, const void *ctx, const char *image_name)
+{
+  mode_script ms = *(const mode_script *)ctx;
+  fputs("$rest << EOD\n", gp);
+  write_outline(gp, &ms, 0);
+  write_parts(gp, &ms, 0);
+  fputs("EOD\n", gp);
+  for (size_t f = 0; f < ms.nframes; ++f)
+    write_moved(gp, &ms, f);
+  if (ms.frame_seconds > 0)
+    /* gnuplot's delay is in hundredths of a second. */
+    fprintf(gp, "set terminal gif animate delay %d optimize size 880,608 font 'Sans,9'\n",
+            (int)fmax(1.0, round(100.0 * ms.frame_seconds)));
+  else
+    fputs("set terminal pngcairo size 1100,760 font 'Sans,10'\n", gp);
+  fputs("set output ", gp);
+  fb_gnuplot_quoted(gp, image_name);
+  fputc('\n', gp);
+  write_view(gp, &ms);
+  for (size_t f = 0; f < ms.nframes; ++f) {
+    write_titles(gp, &ms.frames[f]);
+    fprintf(gp,
+            "splot $rest with lines lw 1 lc rgb '#a8a8a8', "
+            "$moved%zu using 1:2:3:4 with lines lw 1.5 lc palette\n",
+            f);
+  }
+  fputs("set output\n", gp);
+}
+
+/* Checks the frames' sizes and fills ms's common scale, outline and
+ * extent (ms->outline new). */
+static int prepare(mode_script *ms, const char *path, fb_err *err)
+{
+  const fb_plot_mode *pic = ms->frames;
+  if (ms->nframes == 0)
+    return fb_err_set(err, FB_EINVAL, "%s: no frame to draw", path);
   if (fb_mesh_nelements(pic->mesh) == 0)
     return fb_err_set(err, FB_EINVAL, "%s: the mesh has no elements to draw", path);
   if (!(pic->largest_drawn > 0) || !(pic->body_side >= 0) || !(pic->wheel_radius >= 0))
     return fb_err_set(err, FB_EINVAL,
                       "%s: largest displacement drawn %g m, body side %g m, wheel radius %g m",
                       path, pic->largest_drawn, pic->body_side, pic->wheel_radius);
-  mode_script ms = {.pic = pic, .umax = largest_motion(pic)};
+  for (size_t f = 0; f < ms->nframes; ++f)
+    ms->umax = fmax(ms->umax, largest_motion(&ms->frames[f]));
+  if (!isfinite(ms->umax))
+    return fb_err_set(err, FB_EINVAL, "%s: a displacement is not finite", path);
   /* A shape that does not move is drawn at rest. */
-  ms.scale = ms.umax > 0 ? pic->largest_drawn / ms.umax : 0.0;
-  int rc = fb_mesh_outline(pic->mesh, 20.0 * PI / 180.0, &ms.outline, &ms.noutline, err);
-  if (!rc) {
-    measure(&ms);
+  ms->scale = ms->umax > 0 ? pic->largest_drawn / ms->umax : 0.0;
+  int rc = fb_mesh_outline(pic->mesh, 20.0 * PI / 180.0, &ms->outline, &ms->noutline, err);
+  if (!rc)
+    measure(ms);
+  return rc;
+}
+
+int fb_plot_mode_png(const fb_plot_mode *pic, const char *path, fb_err *err)
+{
+  mode_script ms = {.pic = pic, .frames = pic, .nframes = 1};
+  int rc = prepare(&ms, path, err);
+  if (!rc)
     rc = fb_gnuplot_png(write_mode_script, &ms, path, err);
+  free(ms.outline);
+  return rc;
+}
+
+int fb_plot_mode_gif(const fb_plot_mode *frames, size_t nframes, double frame_seconds,
+                     const char *path, fb_err *err)
+{
+  if (!(frame_seconds > 0 && frame_seconds <= 60))
+    return fb_err_set(err, FB_EINVAL, "%s: a frame lasts %g s, not in (0, 60]", path,
+                      frame_seconds);
+  mode_script ms = {
+      .pic = frames, .frames = frames, .nframes = nframes, .frame_seconds = frame_seconds};
+  for (size_t f = 1; f < nframes; ++f)
+    if (frames[f].mesh != frames[0].mesh || frames[f].nbodies != frames[0].nbodies ||
+        frames[f].nwheels != frames[0].nwheels)
+      return fb_err_set(err, FB_EINVAL, "%s: frame %zu draws other parts than frame 1", path,
+                        f + 1);
+  int rc = prepare(&ms, path, err);
+  if (!rc)
+    rc = fb_gnuplot_draw(write_mode_script, &ms, "plot.gif", fb_gif_check, path, err);
+  size_t drawn = 0;
+  if (!rc)
+    rc = fb_gif_frames(path, &drawn, err);
+  if (!rc && drawn != nframes) {
+    remove(path);
+    rc =
+        fb_err_set(err, FB_EIO, "%s: gnuplot drew %zu of the %zu frames", path, drawn, nframes);
   }
   free(ms.outline);
   return rc;

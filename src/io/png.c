@@ -20,9 +20,6 @@
 
 #include "io/plot_internal.h"
 
-/* A figure larger than this is no plot of ours: refused before reading. */
-#define PNG_MAX_BYTES (256L * 1024 * 1024)
-
 static uint32_t be32(const unsigned char *p)
 {
   return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | (uint32_t)p[3];
@@ -79,8 +76,7 @@ static const char *png_problem(const unsigned char *data, size_t n)
   }
 }
 
-/* Reads the regular file path (at most PNG_MAX_BYTES) into *data. */
-static int read_image(const char *path, unsigned char **data, size_t *n, fb_err *err)
+int fb_image_read(const char *path, unsigned char **data, size_t *n, fb_err *err)
 {
   *data = NULL;
   *n = 0;
@@ -93,9 +89,9 @@ static int read_image(const char *path, unsigned char **data, size_t *n, fb_err 
     return fb_err_set(err, FB_EIO, "cannot read the image back: %s", strerror(e));
   }
   int rc = FB_OK;
-  if (!S_ISREG(st.st_mode) || st.st_size > PNG_MAX_BYTES)
+  if (!S_ISREG(st.st_mode) || st.st_size > FB_IMAGE_MAX_BYTES)
     rc = fb_err_set(err, FB_EIO, "the image is not a regular file of at most %ld bytes",
-                    PNG_MAX_BYTES);
+                    FB_IMAGE_MAX_BYTES);
   else if (st.st_size > 0 && !(*data = malloc((size_t)st.st_size)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   while (rc == FB_OK && *n < (size_t)st.st_size) {
@@ -117,7 +113,7 @@ int fb_png_check(const char *path, fb_err *err)
 {
   unsigned char *data = NULL;
   size_t n = 0;
-  int rc = read_image(path, &data, &n, err);
+  int rc = fb_image_read(path, &data, &n, err);
   const char *problem = rc == FB_OK ? png_problem(data, n) : NULL;
   if (problem)
     rc = fb_err_set(err, FB_EIO, "not a complete PNG image: %s", problem);

@@ -356,9 +356,9 @@ int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progres
   return simulate(s, sys, fn, ctx, info, NULL, out, err);
 }
 
-int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
-                               void *ctx, fb_vehicle_run_info *info, fb_result **out,
-                               fb_vehicle_motion **motion, fb_err *err)
+int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, const double *window,
+                               fb_sim_progress_fn fn, void *ctx, fb_vehicle_run_info *info,
+                               fb_result **out, fb_vehicle_motion **motion, fb_err *err)
 {
   *motion = NULL;
   fb_vehicle_motion *m = calloc(1, sizeof *m);
@@ -367,7 +367,7 @@ int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, fb_sim_progr
   m->sys = sys;
   int rc = simulate(s, sys, fn, ctx, info, m, out, err);
   if (!rc)
-    rc = fb_vehicle_motion_take(s, *out, 1 + s->noutputs + s->ncorners, m, err);
+    rc = fb_vehicle_motion_take(s, *out, 1 + s->noutputs + s->ncorners, window, m, err);
   if (rc) {
     fb_result_free(out);
     fb_vehicle_motion_free(&m);

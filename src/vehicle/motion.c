@@ -62,14 +62,30 @@ int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe
   return FB_OK;
 }
 
+/* The rows of res that cover window: [*lo, *hi). */
+static void window_rows(const fb_result *res, const double *window, size_t *lo, size_t *hi)
+{
+  const size_t n = fb_result_nsamples(res);
+  *lo = 0;
+  *hi = n;
+  if (!window)
+    return;
+  while (*lo + 1 < n && fb_result_row(res, *lo + 1)[0] <= window[0])
+    ++*lo;
+  while (*hi > *lo + 1 && fb_result_row(res, *hi - 2)[0] >= window[1])
+    --*hi;
+}
+
 int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
-                           fb_vehicle_motion *m, fb_err *err)
+                           const double *window, fb_vehicle_motion *m, fb_err *err)
 {
   m->nattach = fb_scenario_nattach(s);
   m->nmounts = s->nmounts;
   m->ncorners = s->ncorners;
   m->width = 1 + m->ncoords + m->nattach + m->nmounts + m->ncorners;
-  m->nsamples = fb_result_nsamples(res);
+  size_t lo, hi;
+  window_rows(res, window, &lo, &hi);
+  m->nsamples = hi - lo;
   const size_t ncols = fb_result_ncols(res);
   if (ncols != first + m->width - 1)
     return fb_err_set(err, FB_EINVAL,
@@ -81,18 +97,17 @@ int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
   if (!m->samples)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the motion's %zu samples",
                       m->nsamples);
+  /* The hull's coordinates from t = 0's, as every integrated
+   * displacement is (System 2's q starts at the static state with
+   * simulation.initial: static). */
   for (size_t k = 0; k < m->nsamples; ++k) {
-    const double *row = fb_result_row(res, k);
+    const double *row = fb_result_row(res, lo + k), *q0 = fb_result_row(res, 0) + first;
     double *to = m->samples + k * m->width;
     to[0] = row[0];
     memcpy(to + 1, row + first, (m->width - 1) * sizeof *to);
+    for (size_t j = 0; j < m->ncoords; ++j)
+      to[1 + j] -= q0[j];
   }
-  /* The hull's coordinates from t = 0's, as every integrated
-   * displacement is (System 2's q starts at the static state with
-   * simulation.initial: static); the first row last, as the others need it. */
-  for (size_t k = m->nsamples; k-- > 0;)
-    for (size_t j = 1; j <= m->ncoords; ++j)
-      m->samples[k * m->width + j] -= m->samples[j];
   return fb_result_truncate(res, first, err);
 }
 

@@ -34,10 +34,12 @@ size_t fb_vehicle_motion_nprobes(const fb_scenario *s);
 int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec *p,
                              fb_err *err);
 /* Moves the columns from first on of res (the motion probes' values)
- * into m->samples, with the time, and drops them from res. The hull's
- * coordinates become relative to their value at the first sample, as the
- * integrated displacements are. */
+ * into m->samples, with the time, and drops them from res: the rows
+ * that cover window (the last sample at or before window[0] to the first
+ * at or after window[1]), every row if window is NULL. The hull's
+ * coordinates become relative to their value at t = 0, as the integrated
+ * displacements are. */
 int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
-                           fb_vehicle_motion *m, fb_err *err);
+                           const double *window, fb_vehicle_motion *m, fb_err *err);
 
 #endif
