@@ -107,14 +107,10 @@ static void mesh_bounds(anim *an)
   an->extent = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
 }
 
-/* The frame times: from the window's start every 1 / fps up to its end,
- * within the run. */
-static int frame_times(const anim *an, const double window[2], double fps, fb_err *err,
-                       size_t *n)
+int cli_animate_frame_count(const double window[2], double t_first, double t_last, double fps,
+                            size_t *n, fb_err *err)
 {
-  const fb_vehicle_motion *m = an->m;
-  const double t_last = m->samples[(m->nsamples - 1) * m->width];
-  const double t0 = fmax(window[0], m->samples[0]), t1 = fmin(window[1], t_last);
+  const double t0 = fmax(window[0], t_first), t1 = fmin(window[1], t_last);
   const double count = t1 >= t0 ? floor((t1 - t0) * fps + 1e-9) + 1 : 0;
   if (!(count >= 1) || count > CLI_ANIMATE_MAX_FRAMES)
     return fb_err_set(err, FB_EINVAL,
@@ -123,6 +119,16 @@ static int frame_times(const anim *an, const double window[2], double fps, fb_er
                       fps, t0, t1, count, CLI_ANIMATE_MAX_FRAMES);
   *n = (size_t)count;
   return FB_OK;
+}
+
+/* The frame times: from the window's start every 1 / fps up to its end,
+ * within the run. */
+static int frame_times(const anim *an, const double window[2], double fps, fb_err *err,
+                       size_t *n)
+{
+  const fb_vehicle_motion *m = an->m;
+  return cli_animate_frame_count(window, m->samples[0],
+                                 m->samples[(m->nsamples - 1) * m->width], fps, n, err);
 }
 
 static void frame_free(anim_frame *f)
@@ -261,7 +267,7 @@ static void write_pvd(FILE *fp, const void *ctx)
   for (size_t k = 0; k < an->nframes; ++k) {
     char name[64];
     cli_animation_file(an->m->sys, "vtu", k, name, sizeof name);
-    fprintf(fp, "    <DataSet timestep=\"%.10g\" part=\"0\" file=\"", an->frames[k].t);
+    fprintf(fp, "    <DataSet timestep=\"%.17g\" part=\"0\" file=\"", an->frames[k].t);
     fb_xml_write_attr(fp, name);
     fputs("\"/>\n", fp);
   }

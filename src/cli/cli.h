@@ -274,6 +274,11 @@ typedef struct cli_animation_info {
   double umax;   /* m, the largest displacement of any frame */
   int gif;
 } cli_animation_info;
+/* The number of frames at fps over window within the run's t_first..t_last
+ * into *n; FB_EINVAL naming --animate-fps unless 1..CLI_ANIMATE_MAX_FRAMES:
+ * run asks before it simulates, with the run's span. */
+int cli_animate_frame_count(const double window[2], double t_first, double t_last, double fps,
+                            size_t *n, fb_err *err);
 /* "animation_systemN.pvd" (ext "pvd"), ".gif", or frame's
  * "animation_systemN_FFFF.vtu" (ext "vtu"). */
 void cli_animation_file(fb_system sys, const char *ext, size_t frame, char *buf, size_t size);

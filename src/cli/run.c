@@ -62,8 +62,9 @@ static const char run_usage[] =
     "                              N free-free modes, in modal coordinates\n"
     "                              (hull.fe.modes)\n"
     "  --animate                   also the animation files (docs/animation.md)\n"
-    "  --animate-fps HZ            its frames per second of the run's time\n"
-    "                              (default 50; the GIF plays in real time)\n"
+    "  --animate-fps HZ            its frames per second of the run's time, 1 to\n"
+    "                              1000 (default 50; the GIF plays in real time\n"
+    "                              up to 100, its delays being hundredths of a s)\n"
     "  --animate-scale F           draw the displacements F times (default: the\n"
     "                              largest 8 % of the hull's length)\n"
     "  --no-figures                no PNG or GIF; report.md without images\n"
@@ -894,6 +895,12 @@ static int run(const run_args *a)
                               ? "the command line (`--hull-modes`, `--hull-coordinates`)"
                               : "the scenario (`hull.fe.coordinates`, `hull.fe.modes`)";
     cli_bump_window(s, o.bump_window);
+    size_t nframes = 0;
+    if (a->animate.enabled)
+      rc =
+          cli_animate_frame_count(o.bump_window, 0.0, s->t_end, a->animate.fps, &nframes, &err);
+  }
+  if (rc == FB_OK) {
     if (o.note && !a->quiet)
       fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
     rc = compute_modes(a, s, systems, o.nruns, &modes, &err);
