@@ -554,6 +554,24 @@ double fb_vehicle_wheel_delay(const fb_scenario *s, size_t corner);
 void fb_vehicle_track_inputs(const fb_scenario *s, const size_t *rate_input, double omega,
                              double *u);
 
+/* ---- The frequency response (src/vehicle/freq_response.c). */
+
+/* The vehicle of s for system sys as a descriptor system (*out new, free
+ * with fb_descriptor_free): fb_vehicle_build's diagram, its tires all in
+ * contact (a unilateral tire's linear branch, its mode at rest), through
+ * fb_bd_descriptor or, with a nonlinear law (a damper table), through
+ * fb_bd_descriptor_at its static equilibrium under gravity
+ * (fb_sim_static_state from the initial state; (*out)->linearised 1). */
+int fb_vehicle_descriptor(const fb_scenario *s, fb_system sys, fb_descriptor **out,
+                          fb_err *err);
+/* The response of ds (fb_vehicle_descriptor of s) to a road height of 1 m
+ * at the leading wheel of the left track (case 0) and of the right (case
+ * 1), fb_vehicle_track_inputs, at nfreq frequencies freq_hz (Hz, >= 0):
+ * into h, 2 FB_ROAD_NTRACKS ds->nrows_c nfreq values laid out as
+ * fb_descriptor_freq_response's. */
+int fb_vehicle_freq_response(const fb_scenario *s, const fb_descriptor *ds,
+                             const double *freq_hz, size_t nfreq, double *h, fb_err *err);
+
 /* Assembles the vehicle for system sys and builds its block diagram with
  * the scenario's output probes. *graph and *bd are new (free bd first: it
  * borrows the graph). */

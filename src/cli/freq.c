@@ -5,7 +5,7 @@
  *   DIR/bode_<OUTPUT>.png                    both systems and tracks overlaid
  * The input is a road height on one track, 1 m at the leading wheel, which
  * the track's other wheels meet later by their distance behind it at the
- * scenario's speed (fb_vehicle_track_inputs). */
+ * scenario's speed (fb_vehicle_freq_response). */
 #include "freq.h"
 
 #include <math.h>
@@ -17,7 +17,6 @@
 #include "flexbond/bd.h"
 #include "flexbond/escape.h"
 #include "flexbond/io.h"
-#include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
 #include "cli.h"
@@ -61,77 +60,34 @@ static const char *const track_choices[] = {"independent", "identical"};
 
 static const char *const track_names[NTRACKS] = {"left", "right"};
 
-typedef struct track_ctx {
-  const fb_scenario *s;
-  const size_t *rate_input;
-} track_ctx;
-
-static void track_input(void *ctx, double omega, double *u)
-{
-  const track_ctx *t = ctx;
-  fb_vehicle_track_inputs(t->s, t->rate_input, omega, u);
-}
-
 /* The complex amplitude of output o on track t at frequency k. */
 static const double *amplitude(const freq_study *fs, int sys, size_t k, int t, size_t o)
 {
   return cli_freq_amplitude(fs->h[sys], fs->nrows[sys], k, t, fs->row[sys][o]);
 }
 
-static int respond(freq_study *fs, int sys, fb_descriptor *ds, fb_err *err)
+static int respond(freq_study *fs, int sys, const fb_descriptor *ds, fb_err *err)
 {
   const fb_scenario *s = fs->s;
-  size_t *rate_input = calloc(s->ncorners + 1, sizeof *rate_input);
   fs->row[sys] = calloc(s->noutputs + 1, sizeof *fs->row[sys]);
   fs->h[sys] = malloc((2 * NTRACKS * ds->nrows_c * fs->nfreq + 1) * sizeof *fs->h[sys]);
-  if (!rate_input || !fs->row[sys] || !fs->h[sys]) {
-    free(rate_input);
+  if (!fs->row[sys] || !fs->h[sys])
     return fb_err_set(err, FB_ENOMEM, "out of memory for a frequency response");
-  }
   fs->nrows[sys] = ds->nrows_c;
   for (size_t o = 0; o < s->noutputs; ++o)
     fs->row[sys][o] = ds->output_is_product[o] ? (size_t)-1 : ds->output_row[o];
-  int rc = fb_vehicle_rate_inputs(s, ds, rate_input, err);
-  const track_ctx tc = {s, rate_input};
-  if (!rc)
-    rc = fb_descriptor_freq_response(ds, fs->freq_hz, fs->nfreq, NTRACKS, track_input,
-                                     (void *)&tc, fs->h[sys], err);
+  int rc = fb_vehicle_freq_response(s, ds, fs->freq_hz, fs->nfreq, fs->h[sys], err);
   if (!rc && fs->psd.on)
-    rc = cli_freq_psd_respond(fs, sys, ds, track_input, (void *)&tc, err);
-  free(rate_input);
-  return rc;
-}
-
-/* A nonlinear vehicle's descriptor form at its static equilibrium under
- * gravity, reached from the initial state as flexbond run --initial
- * static does (fb_sim_static_state). */
-static int linearise(fb_bd *bd, fb_descriptor **ds, fb_err *err)
-{
-  const size_t n = fb_bd_nstates(bd);
-  double *x0 = malloc((n + 1) * sizeof *x0), *x = malloc((n + 1) * sizeof *x);
-  int rc = x0 && x ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc) {
-    fb_bd_initial_state(bd, x0);
-    rc = fb_sim_static_state(bd, 0.0, x0, x, err);
-  }
-  if (!rc)
-    rc = fb_bd_descriptor_at(bd, 0.0, x, ds, err);
-  free(x0);
-  free(x);
+    rc = cli_freq_psd_respond(fs, sys, ds, err);
   return rc;
 }
 
 static int run_system(freq_study *fs, int sys, fb_err *err)
 {
-  fb_bg *graph = NULL;
-  fb_bd *bd = NULL;
   fb_descriptor *ds = NULL;
   struct timespec start, end;
   clock_gettime(CLOCK_MONOTONIC, &start);
-  int rc =
-      fb_vehicle_build(fs->s, sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID, &graph, &bd, err);
-  if (!rc)
-    rc = fb_bd_is_linear(bd) ? fb_bd_descriptor(bd, &ds, err) : linearise(bd, &ds, err);
+  int rc = fb_vehicle_descriptor(fs->s, sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID, &ds, err);
   if (!rc) {
     fs->linearised[sys] = ds->linearised;
     rc = respond(fs, sys, ds, err);
@@ -142,8 +98,6 @@ static int run_system(freq_study *fs, int sys, fb_err *err)
   if (!rc)
     fs->ran[sys] = 1;
   fb_descriptor_free(&ds);
-  fb_bd_free(&bd);
-  fb_bg_free(&graph);
   return rc ? fb_err_prefix(
                   err, "%s: ", cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID))
             : FB_OK;
@@ -402,17 +356,6 @@ void cli_freq_study_free(freq_study *fs)
     free(fs->row[sys]);
   }
   free(fs->freq_hz);
-  fb_scenario_free(&fs->own);
-}
-
-int cli_freq_bilateral(const fb_scenario *s, freq_study *fs, fb_err *err)
-{
-  /* A unilateral tire is linear while in contact, its mode at rest. */
-  const int rc = fb_scenario_clone(s, &fs->own, err);
-  for (size_t c = 0; !rc && c < fs->own->ncorners; ++c)
-    fs->own->corner[c].tire_contact = FB_TIRE_BILATERAL;
-  fs->s = fs->own;
-  return rc;
 }
 
 static int study(const freq_args *a)
@@ -422,8 +365,7 @@ static int study(const freq_args *a)
   fb_scenario *s = NULL;
   freq_study fs = {0};
   int rc = fb_scenario_load(a->path, &s, &err);
-  if (!rc)
-    rc = cli_freq_bilateral(s, &fs, &err);
+  fs.s = s;
   if (!rc)
     rc = cli_freq_psd_setup(&fs, a->road_class, a->identical, &err);
   if (!rc && a->tracks_given && !fs.psd.on) {

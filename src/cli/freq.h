@@ -28,8 +28,7 @@ typedef struct freq_psd {
 
 /* What the command computes. */
 typedef struct freq_study { /* also struct freq_study in cli.h */
-  const fb_scenario *s;     /* own, or the caller's */
-  fb_scenario *own;         /* cli_freq_bilateral's copy */
+  const fb_scenario *s;     /* the caller's */
   size_t nfreq;
   double *freq_hz;
   int ran[CLI_MAX_SYSTEMS];        /* System 1, System 2 */
@@ -49,9 +48,6 @@ static inline const double *cli_freq_amplitude(const double *h, size_t nrows, si
   return h + 2 * ((k * NTRACKS + (size_t)t) * nrows + r);
 }
 
-/* fs->s: a copy of s (fs->own) whose tires are all bilateral, the
- * linear branch a unilateral tire has at rest. */
-int cli_freq_bilateral(const fb_scenario *s, freq_study *fs, fb_err *err);
 /* The response of the systems asked for (System 1, System 2) at points
  * frequencies from f_min to f_max evenly spaced on a log scale, and over
  * the road's band when fs->psd is on. */
@@ -65,8 +61,7 @@ void cli_freq_study_free(freq_study *fs);
  * identical; FB_EINVAL for a class outside A .. H. */
 int cli_freq_psd_setup(freq_study *fs, char road_class, int identical, fb_err *err);
 /* The response of system sys over the road's band (fs->psd.h[sys]). */
-int cli_freq_psd_respond(freq_study *fs, int sys, const fb_descriptor *ds,
-                         fb_freq_input_fn input, void *ctx, fb_err *err);
+int cli_freq_psd_respond(freq_study *fs, int sys, const fb_descriptor *ds, fb_err *err);
 /* DIR/psd_systemN.csv and DIR/ride_psd.json. */
 int cli_freq_psd_write(cli_outdir *od, const freq_study *fs, fb_err *err);
 void cli_freq_psd_print(const freq_study *fs);

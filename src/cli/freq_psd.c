@@ -53,15 +53,13 @@ int cli_freq_psd_setup(freq_study *fs, char road_class, int identical, fb_err *e
   return FB_OK;
 }
 
-int cli_freq_psd_respond(freq_study *fs, int sys, const fb_descriptor *ds,
-                         fb_freq_input_fn input, void *ctx, fb_err *err)
+int cli_freq_psd_respond(freq_study *fs, int sys, const fb_descriptor *ds, fb_err *err)
 {
   freq_psd *p = &fs->psd;
   p->h[sys] = malloc((2 * NTRACKS * ds->nrows_c * p->nfreq + 1) * sizeof *p->h[sys]);
   if (!p->h[sys])
     return fb_err_set(err, FB_ENOMEM, "out of memory for a frequency response");
-  return fb_descriptor_freq_response(ds, p->freq_hz, p->nfreq, NTRACKS, input, ctx, p->h[sys],
-                                     err);
+  return fb_vehicle_freq_response(fs->s, ds, p->freq_hz, p->nfreq, p->h[sys], err);
 }
 
 void cli_freq_psd_free(freq_psd *p)

@@ -831,9 +831,8 @@ static void frequency_response(const fb_scenario *s, cli_run_outputs *o, freq_st
     systems[o->runs[i].sys == FB_SYSTEM_FLEXIBLE] = 1;
   fb_err err;
   fb_err_clear(&err);
-  int rc = cli_freq_bilateral(s, fs, &err);
-  if (!rc)
-    rc = cli_freq_compute(fs, systems, 0.1, 100.0, 301, &err);
+  fs->s = s;
+  const int rc = cli_freq_compute(fs, systems, 0.1, 100.0, 301, &err);
   if (rc)
     snprintf(o->freq_note, sizeof o->freq_note, "%s", err.msg);
   else
