@@ -40,13 +40,19 @@ BUILD_TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CTEST_JOBS ?= 2
 
-# clang is the second compiler; clang-format serves format/format-check; python3
-# checks the JSON the CLI writes (tests/cli_run.sh); strace shows which files a command
-# creates and how (tests/cli_integrity.sh); valgrind, clang-tidy and cppcheck serve the
-# targets of the same names (docs/quality.md).
+# What building and running need (make deps, for make build and make run): the compiler,
+# CMake, the libraries, gnuplot and Graphviz for the figures, python3 with NumPy and SciPy
+# for the Python package (docs/python.md).
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
-                liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz clang \
-                clang-format python3 strace valgrind clang-tidy cppcheck
+                liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz \
+                python3 python3-numpy python3-scipy
+# What the suite needs besides (make deps-test, for make test): strace shows which files a
+# command creates and how (tests/cli_integrity.sh).
+TEST_DEB_PACKAGES := strace
+# The developer tools (make deps-dev, for CI and the targets of docs/quality.md): clang is the
+# second compiler; clang-format serves format/format-check; valgrind, clang-tidy and cppcheck
+# serve the targets of the same names.
+DEV_DEB_PACKAGES := clang clang-format valgrind clang-tidy cppcheck
 # OpenMPI for the optional MPI build of flexbond sweep (make mpi, docs/cluster.md).
 MPI_DEB_PACKAGES := libopenmpi-dev openmpi-bin
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
@@ -64,7 +70,7 @@ cmake_build = cmake -S . -B $(1) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DFLEXBOND_WER
 # $(call run_ctest,DIR): run the whole suite of one tree.
 run_ctest = ctest --test-dir $(1) --output-on-failure -j$(CTEST_JOBS)
 
-.PHONY: deps deps-mpi build test run asan clang mpi release format format-check clean
+.PHONY: deps deps-test deps-dev deps-mpi install build test run asan clang mpi release format format-check clean
 
 test asan clang mpi release valgrind: WERROR := ON
 
@@ -88,14 +94,26 @@ endef
 deps:
 	$(call install_missing,$(DEB_PACKAGES))
 
+deps-test: deps
+	$(call install_missing,$(TEST_DEB_PACKAGES))
+
+deps-dev: deps-test
+	$(call install_missing,$(DEV_DEB_PACKAGES))
+
 deps-mpi:
 	$(call install_missing,$(MPI_DEB_PACKAGES))
 
 build:
 	$(call cmake_build,$(BUILD_DIR),)
 
-test: deps build
+test: deps-test build
 	$(call run_ctest,$(BUILD_DIR))
+
+# Installs into PREFIX (or stages under DESTDIR): docs/install.md.
+PREFIX ?= /usr/local
+install: build
+	$(if $(DESTDIR),,$(SUDO)) env DESTDIR="$(DESTDIR)" cmake --install $(BUILD_DIR) --prefix "$(PREFIX)"
+	$(if $(DESTDIR),,$(SUDO) ldconfig)
 
 run: deps build
 	./$(BUILD_DIR)/flexbond run examples/apc6x6.yaml -o $(OUT_DIR)/ --animate
@@ -106,23 +124,23 @@ run: deps build
 	./$(BUILD_DIR)/flexbond sim examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/ --plot
 	./$(BUILD_DIR)/flexbond diagram examples/quarter_car.yaml -o $(OUT_DIR)/quarter_car/diagram.dot
 
-asan:
+asan: deps-test
 	$(call cmake_build,$(ASAN_DIR),-DFLEXBOND_SANITIZE=ON)
 	$(call run_ctest,$(ASAN_DIR))
 
-clang:
+clang: deps-dev
 	$(call cmake_build,$(CLANG_DIR),-DCMAKE_C_COMPILER=clang)
 	$(call run_ctest,$(CLANG_DIR))
 
 # -O3 raises warnings (-Wmaybe-uninitialized) that the default build's -O2 does not.
 release: BUILD_TYPE := Release
-release: deps
+release: deps-dev
 	$(call cmake_build,$(RELEASE_DIR),-DCMAKE_C_COMPILER=gcc)
 	$(call cmake_build,$(RELEASE_DIR)-clang,-DCMAKE_C_COMPILER=clang)
 	$(call run_ctest,$(RELEASE_DIR))
 
 # The MPI build of flexbond sweep (docs/cluster.md) and its whole suite, cli_sweep_mpi included.
-mpi: deps deps-mpi
+mpi: deps-test deps-mpi
 	$(call cmake_build,$(MPI_DIR),-DFLEXBOND_MPI=ON)
 	$(call run_ctest,$(MPI_DIR))
 
@@ -145,7 +163,7 @@ FUZZ_NAMES := model scenario inp msh
 FUZZ_ABS := $(abspath $(FUZZ_DIR))
 
 .PHONY: fuzz
-fuzz: deps
+fuzz: deps-dev
 	CC=clang cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
 	  -DCMAKE_C_COMPILER=clang -DFLEXBOND_FUZZ=ON
 	cmake --build $(FUZZ_DIR) -j$(JOBS) --target $(addprefix fuzz_,$(FUZZ_NAMES))
@@ -193,7 +211,7 @@ CPPCHECK_OPTIONS := --enable=warning,style,performance,portability --std=c11 --e
 .PHONY: valgrind tidy cppcheck
 # One OpenBLAS thread with its SSE3 kernels: memcheck serialises threads, and it runs the
 # default AVX2 kernels about ten times slower; neither choice changes our code's memory use.
-valgrind: deps
+valgrind: deps-dev
 	$(call cmake_build,$(VALGRIND_DIR),-DFLEXBOND_SANITIZE=OFF)
 	OPENBLAS_NUM_THREADS=1 OPENBLAS_CORETYPE=Prescott \
 	  ctest --test-dir $(VALGRIND_DIR) -T memcheck -R '^test_' -E '$(VALGRIND_EXCLUDE)' \
@@ -205,7 +223,7 @@ valgrind: deps
 # A Debug clang tree for its compile_commands.json only (nothing is built): Debug keeps the
 # asserts, which tell the analyzer invariants it cannot see across translation units. The
 # MPI build, so that src/cli/sweep_mpi.c is analysed too.
-tidy: deps deps-mpi
+tidy: deps-dev deps-mpi
 	cmake -S . -B $(TIDY_DIR) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang \
 	  -DFLEXBOND_MPI=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON > /dev/null
 	@echo "tidy: clang-tidy $$(clang-tidy --version | sed -n 's/.*version //p') over src/"
@@ -215,6 +233,6 @@ tidy: deps deps-mpi
 	  || { echo "tidy: FAILED: fix each finding (docs/quality.md)"; exit 1; }
 	@echo "tidy: no findings"
 
-cppcheck: deps
+cppcheck: deps-dev
 	cppcheck $(CPPCHECK_OPTIONS) -j$(JOBS) src
 	@echo "cppcheck: no findings"

@@ -199,6 +199,39 @@ static void test_foreach_dense_and_finite(void)
   fb_mat_free(&a);
 }
 
+/* fb_mat_triplets gives back what builds the matrix again: A23 from its
+ * sparse and its dense form (the dense form's zeros left out), in column
+ * order, exactly. */
+static void test_triplets(void)
+{
+  fb_err err;
+  fb_mat *dense = dense_rowmajor(2, 3, A23_ROWMAJOR);
+  fb_mat *sparse = sparse_a23();
+  const fb_mat *both[] = {dense, sparse};
+  for (int k = 0; k < 2; ++k) {
+    size_t row[6], col[6];
+    double val[6];
+    CHECK(fb_mat_nnz(both[k]) == 6);
+    const size_t n = fb_mat_triplets(both[k], row, col, val);
+    CHECK(n == 6);
+    for (size_t i = 1; i < n; ++i)
+      CHECK(col[i] > col[i - 1] || (col[i] == col[i - 1] && row[i] > row[i - 1]));
+    fb_mat *again = NULL;
+    CHECK(fb_mat_new_triplets(2, 3, n, row, col, val, &again, &err) == FB_OK);
+    check_entries(again, 2, 3, A23_ROWMAJOR, 0.0);
+    fb_mat_free(&again);
+  }
+  const double rm[] = {0, 2, 0, 4, 0, 6};
+  fb_mat *a = dense_rowmajor(2, 3, rm);
+  size_t row[6], col[6];
+  double val[6];
+  CHECK(fb_mat_triplets(a, row, col, val) == 3); /* zeros are not entries */
+  CHECK(row[0] == 1 && col[0] == 0 && val[0] == 4.0);
+  fb_mat_free(&a);
+  fb_mat_free(&dense);
+  fb_mat_free(&sparse);
+}
+
 static void test_clone_transpose(void)
 {
   fb_err err;
@@ -846,6 +879,7 @@ int main(void)
   test_gemv();
   test_construction();
   test_foreach_dense_and_finite();
+  test_triplets();
   test_clone_transpose();
   test_multiply();
   test_inverse();

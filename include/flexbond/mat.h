@@ -65,6 +65,10 @@ double fb_mat_get(const fb_mat *a, size_t i, size_t j);
  * values only for dense) in column order. */
 typedef void (*fb_mat_visit_fn)(void *ctx, size_t row, size_t col, double val);
 void fb_mat_foreach(const fb_mat *a, fb_mat_visit_fn fn, void *ctx);
+/* The entries fb_mat_foreach visits, in its order, as triplets into row,
+ * col and val (each with room for fb_mat_nnz(a) values); returns how
+ * many were written. */
+size_t fb_mat_triplets(const fb_mat *a, size_t *row, size_t *col, double *val);
 
 /* y = alpha * A x + beta * y (y must not alias x). With beta == 0, y is
  * overwritten and its previous content (even NaN) is ignored. */

@@ -110,7 +110,9 @@ size_t fb_result_nsamples(const fb_result *r);
 size_t fb_result_ncols(const fb_result *r);
 const char *fb_result_col_name(const fb_result *r, size_t j);
 const char *fb_result_col_unit(const fb_result *r, size_t j);
-/* Row k (ncols values). */
+/* Row k (ncols values). The rows are contiguous: fb_result_row(r, 0)
+ * starts the whole nsamples x ncols table, row after row (what a
+ * language binding copies in one go). */
 const double *fb_result_row(const fb_result *r, size_t k);
 /* Column index of a named output, or -1. */
 long fb_result_find(const fb_result *r, const char *name);

@@ -7,7 +7,23 @@
  * Axes (ISO 8855): origin at the hull's centre of mass, x forward, y left,
  * z up; roll phi about x, pitch theta about y (positive nose down). A hull
  * point (x, y) moves vertically by z + y phi - x theta. Forces are positive
- * upwards; spring and tire deflections are positive in compression. */
+ * upwards; spring and tire deflections are positive in compression.
+ *
+ * In use (examples/c/peak_tire_force.c, built with pkg-config):
+ *
+ *   fb_err err;
+ *   fb_scenario *s = NULL;   (the caller's: fb_scenario_free)
+ *   fb_result *r = NULL;     (the caller's: fb_result_free)
+ *   if (fb_scenario_load("apc6x6.yaml", &s, &err) == FB_OK &&
+ *       fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, &err) == FB_OK) {
+ *     const long j = fb_result_find(r, "tire_force_LF");  (column, -1 none)
+ *     for (size_t k = 0; j >= 0 && k < fb_result_nsamples(r); ++k)
+ *       printf("%g %g\n", fb_result_row(r, k)[0], fb_result_row(r, k)[j]);
+ *   } else {
+ *     fprintf(stderr, "%s\n", err.msg);   (file:line:column: key: what)
+ *   }
+ *   fb_result_free(&r);
+ *   fb_scenario_free(&s); */
 #ifndef FLEXBOND_VEHICLE_H
 #define FLEXBOND_VEHICLE_H
 
@@ -285,6 +301,19 @@ typedef struct fb_scenario {
  * port: the scenario's corners (s->corner[0 .. ncorners)), then its
  * mounted bodies (s->mount[0 .. nmounts)). */
 size_t fb_scenario_nattach(const fb_scenario *s);
+/* The scenario's outputs (s->output) for a program that cannot read the
+ * struct (a language binding): their number, and output o's name and
+ * unit, owned by s (NULL when o >= fb_scenario_noutputs(s)). */
+size_t fb_scenario_noutputs(const fb_scenario *s);
+const char *fb_scenario_output_name(const fb_scenario *s, size_t o);
+const char *fb_scenario_output_unit(const fb_scenario *s, size_t o);
+/* Likewise the corners: their number, corner c's name (NULL when c is out
+ * of range) and attachment point (m, vehicle axes; *x and *y untouched
+ * when c is out of range), and the road speed (m/s). */
+size_t fb_scenario_ncorners(const fb_scenario *s);
+const char *fb_scenario_corner_name(const fb_scenario *s, size_t c);
+void fb_scenario_corner_position(const fb_scenario *s, size_t c, double *x, double *y);
+double fb_scenario_speed(const fb_scenario *s);
 /* Index of the corner or mount named name, -1 if none. */
 long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);

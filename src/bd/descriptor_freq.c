@@ -16,14 +16,6 @@ typedef struct entries {
   size_t n;
 } entries;
 
-static void add_entry(void *ctx, size_t row, size_t col, double val)
-{
-  entries *t = ctx;
-  t->row[t->n] = row;
-  t->col[t->n] = col;
-  t->val[t->n++] = val;
-}
-
 static void entries_free(entries *t)
 {
   free(t->row);
@@ -42,7 +34,7 @@ static int entries_of(const fb_mat *m, entries *t, fb_err *err)
     entries_free(t);
     return fb_err_set(err, FB_ENOMEM, "out of memory for a frequency response");
   }
-  fb_mat_foreach(m, add_entry, t);
+  t->n = fb_mat_triplets(m, t->row, t->col, t->val);
   return FB_OK;
 }
 

@@ -67,22 +67,6 @@ static int find_rate_inputs(export_model *m, fb_err *err)
   return rc ? fb_err_prefix(err, "export: ") : FB_OK;
 }
 
-/* Triplets of B moved to the rate columns. */
-typedef struct column_map {
-  const size_t *to; /* per descriptor input: column of Bu */
-  size_t *rows, *cols;
-  double *vals;
-  size_t n;
-} column_map;
-
-static void map_entry(void *ctx, size_t row, size_t col, double val)
-{
-  column_map *cm = ctx;
-  cm->rows[cm->n] = row;
-  cm->cols[cm->n] = cm->to[col];
-  cm->vals[cm->n++] = val;
-}
-
 /* Bu (n x 12) from B, D (rows of C x 12) zero. */
 static int widen_inputs(export_model *m, fb_err *err)
 {
@@ -93,21 +77,23 @@ static int widen_inputs(export_model *m, fb_err *err)
     return fb_err_set(err, FB_ENOMEM, "export: out of memory");
   for (size_t c = 0; c < nc; ++c)
     to[m->rate_input[c]] = nc + c;
-  const size_t nnz = fb_mat_nnz(ds->B);
-  column_map cm = {to, malloc((nnz + 1) * sizeof(size_t)), malloc((nnz + 1) * sizeof(size_t)),
-                   malloc((nnz + 1) * sizeof(double)), 0};
-  int rc = cm.rows && cm.cols && cm.vals ? FB_OK
-                                         : fb_err_set(err, FB_ENOMEM, "export: out of memory");
+  const size_t nnz = fb_mat_nnz(ds->B) + 1;
+  size_t *rows = malloc(nnz * sizeof *rows), *cols = malloc(nnz * sizeof *cols);
+  double *vals = malloc(nnz * sizeof *vals);
+  int rc = rows && cols && vals ? FB_OK : fb_err_set(err, FB_ENOMEM, "export: out of memory");
   if (!rc) {
-    fb_mat_foreach(ds->B, map_entry, &cm);
-    rc = fb_mat_new_triplets(ds->n, m->ninputs, cm.n, cm.rows, cm.cols, cm.vals, &m->bu, err);
+    /* B's entries, moved to the rate columns. */
+    const size_t n = fb_mat_triplets(ds->B, rows, cols, vals);
+    for (size_t k = 0; k < n; ++k)
+      cols[k] = to[cols[k]];
+    rc = fb_mat_new_triplets(ds->n, m->ninputs, n, rows, cols, vals, &m->bu, err);
   }
   if (!rc)
     rc = fb_mat_new_triplets(ds->nrows_c, m->ninputs, 0, NULL, NULL, NULL, &m->d, err);
   free(to);
-  free(cm.rows);
-  free(cm.cols);
-  free(cm.vals);
+  free(rows);
+  free(cols);
+  free(vals);
   return rc;
 }
 

@@ -554,6 +554,27 @@ void fb_mat_foreach(const fb_mat *a, fb_mat_visit_fn fn, void *ctx)
   }
 }
 
+typedef struct triplet_sink {
+  size_t *row, *col;
+  double *val;
+  size_t n;
+} triplet_sink;
+
+static void add_triplet(void *ctx, size_t row, size_t col, double val)
+{
+  triplet_sink *t = ctx;
+  t->row[t->n] = row;
+  t->col[t->n] = col;
+  t->val[t->n++] = val;
+}
+
+size_t fb_mat_triplets(const fb_mat *a, size_t *row, size_t *col, double *val)
+{
+  triplet_sink t = {row, col, val, 0};
+  fb_mat_foreach(a, add_triplet, &t);
+  return t.n;
+}
+
 /* y = beta * y with beta == 0 meaning "overwrite", as in BLAS dgemv. */
 static void scale_y(size_t n, double beta, double *y)
 {
@@ -629,22 +650,6 @@ int fb_mat_is_symmetric(const fb_mat *a, double tol)
   return 1;
 }
 
-/* Triplets of scaled entries, filled by fb_mat_foreach. */
-typedef struct scaled_triplets {
-  size_t *rows, *cols;
-  double *vals;
-  size_t count;
-  double scale;
-} scaled_triplets;
-
-static void push_scaled(void *ctx, size_t row, size_t col, double val)
-{
-  scaled_triplets *t = ctx;
-  t->rows[t->count] = row;
-  t->cols[t->count] = col;
-  t->vals[t->count++] = t->scale * val;
-}
-
 int fb_mat_axpby(double alpha, const fb_mat *a, double beta, const fb_mat *b, fb_mat **out,
                  fb_err *err)
 {
@@ -653,18 +658,18 @@ int fb_mat_axpby(double alpha, const fb_mat *a, double beta, const fb_mat *b, fb
     return fb_err_set(err, FB_EINVAL, "fb_mat_axpby: %zu x %zu plus %zu x %zu", a->nrows,
                       a->ncols, b->nrows, b->ncols);
   const size_t cap = a->nnz + (b ? b->nnz : 0) + 1;
-  scaled_triplets t = {malloc(cap * sizeof(size_t)), malloc(cap * sizeof(size_t)),
-                       malloc(cap * sizeof(double)), 0, alpha};
-  int rc = t.rows && t.cols && t.vals ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  size_t *rows = malloc(cap * sizeof(size_t)), *cols = malloc(cap * sizeof(size_t));
+  double *vals = malloc(cap * sizeof(double));
+  int rc = rows && cols && vals ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc) {
-    fb_mat_foreach(a, push_scaled, &t);
-    t.scale = beta;
-    if (b)
-      fb_mat_foreach(b, push_scaled, &t);
-    rc = fb_mat_new_triplets(a->nrows, a->ncols, t.count, t.rows, t.cols, t.vals, out, err);
+    const size_t na = fb_mat_triplets(a, rows, cols, vals);
+    const size_t nb = b ? fb_mat_triplets(b, rows + na, cols + na, vals + na) : 0;
+    for (size_t k = 0; k < na + nb; ++k)
+      vals[k] *= k < na ? alpha : beta;
+    rc = fb_mat_new_triplets(a->nrows, a->ncols, na + nb, rows, cols, vals, out, err);
   }
-  free(t.rows);
-  free(t.cols);
-  free(t.vals);
+  free(rows);
+  free(cols);
+  free(vals);
   return rc;
 }

@@ -9,6 +9,44 @@ size_t fb_scenario_nattach(const fb_scenario *s)
   return s->ncorners + s->nmounts;
 }
 
+size_t fb_scenario_noutputs(const fb_scenario *s)
+{
+  return s->noutputs;
+}
+
+const char *fb_scenario_output_name(const fb_scenario *s, size_t o)
+{
+  return o < s->noutputs ? s->output[o].name : NULL;
+}
+
+const char *fb_scenario_output_unit(const fb_scenario *s, size_t o)
+{
+  return o < s->noutputs ? s->output[o].unit : NULL;
+}
+
+size_t fb_scenario_ncorners(const fb_scenario *s)
+{
+  return s->ncorners;
+}
+
+const char *fb_scenario_corner_name(const fb_scenario *s, size_t c)
+{
+  return c < s->ncorners ? s->corner[c].name : NULL;
+}
+
+void fb_scenario_corner_position(const fb_scenario *s, size_t c, double *x, double *y)
+{
+  if (c >= s->ncorners)
+    return;
+  *x = s->corner[c].x;
+  *y = s->corner[c].y;
+}
+
+double fb_scenario_speed(const fb_scenario *s)
+{
+  return s->speed;
+}
+
 long fb_scenario_corner_find(const fb_scenario *s, const char *name)
 {
   for (size_t c = 0; name && c < s->ncorners; ++c)

@@ -1,0 +1,502 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""flexbond from Python: scenarios, simulations, modes, frequency responses
+and the exported linear model, over the shared library libflexbond (ctypes).
+
+    import flexbond
+    s = flexbond.Scenario("examples/apc6x6.yaml", overrides={"speed_kmh": 40})
+    r = s.run("rigid")                # a Result: r.time, r["heave_acc"], r.units
+    modes = s.modes("flexible")       # [Mode(freq_hz, damping_ratio, ...), ...]
+    fr = s.freq_response("rigid", numpy.logspace(-1, 2, 200))
+    m = s.export("rigid")             # E, A, B, f, C, D as scipy.sparse matrices
+
+Every failure of the library raises flexbond.Error, which carries the
+structured error (file, line, column, key) as attributes. docs/python.md
+documents the whole interface.
+"""
+
+import collections
+import ctypes
+import ctypes.util
+import os
+import signal
+import threading
+
+import numpy
+
+__all__ = ["Scenario", "Result", "Corner", "Mode", "Modes", "FreqResponse", "Model", "Error", "RIGID", "FLEXIBLE",
+           "library_path"]
+
+RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
+FLEXIBLE = 2   # System 2: finite-element hull (FB_SYSTEM_FLEXIBLE)
+_SYSTEMS = {"rigid": RIGID, "system1": RIGID, 1: RIGID,
+            "flexible": FLEXIBLE, "system2": FLEXIBLE, 2: FLEXIBLE}
+_SYSTEM_NAMES = {RIGID: "rigid", FLEXIBLE: "flexible"}
+_FB_EINTR = 8
+_NTRACKS = 2  # FB_ROAD_NTRACKS: left, right
+TRACKS = ("left", "right")
+
+
+# ---- The C structures the interface passes (flexbond/error.h, vehicle.h, bd.h).
+
+class _Err(ctypes.Structure):
+    _fields_ = [("code", ctypes.c_int), ("msg", ctypes.c_char * 4096),
+                ("origin", ctypes.c_int), ("origin_index", ctypes.c_size_t),
+                ("key", ctypes.c_char * 256), ("file", ctypes.c_char * 1024),
+                ("line", ctypes.c_int), ("column", ctypes.c_int),
+                ("source", ctypes.c_int), ("source_text", ctypes.c_char * 512)]
+
+
+class _Mode(ctypes.Structure):
+    _fields_ = [("re", ctypes.c_double), ("im", ctypes.c_double),
+                ("freq_hz", ctypes.c_double), ("damping_ratio", ctypes.c_double),
+                ("description", ctypes.c_char * 96)]
+
+
+class _Override(ctypes.Structure):
+    _fields_ = [("key", ctypes.c_char_p), ("value", ctypes.c_char_p)]
+
+
+class _Descriptor(ctypes.Structure):
+    _fields_ = [("n", ctypes.c_size_t), ("nstates", ctypes.c_size_t),
+                ("ninputs", ctypes.c_size_t), ("noutputs", ctypes.c_size_t),
+                ("nrows_c", ctypes.c_size_t),
+                ("E", ctypes.c_void_p), ("A", ctypes.c_void_p), ("B", ctypes.c_void_p),
+                ("f", ctypes.c_void_p), ("C", ctypes.c_void_p), ("D", ctypes.c_void_p),
+                ("var_names", ctypes.POINTER(ctypes.c_char_p)),
+                ("input_names", ctypes.POINTER(ctypes.c_char_p)),
+                ("input_var", ctypes.POINTER(ctypes.c_size_t)),
+                ("output_row", ctypes.POINTER(ctypes.c_size_t)),
+                ("output_is_product", ctypes.POINTER(ctypes.c_int)),
+                ("linearised", ctypes.c_int)]
+
+
+_PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, ctypes.c_double)
+_P = ctypes.c_void_p
+_PP = ctypes.POINTER(ctypes.c_void_p)
+_PERR = ctypes.POINTER(_Err)
+_PSIZE = ctypes.POINTER(ctypes.c_size_t)
+_PDOUBLE = ctypes.POINTER(ctypes.c_double)
+
+# name: (result type, argument types)
+_PROTOTYPES = {
+    "fb_status_name": (ctypes.c_char_p, [ctypes.c_int]),
+    "fb_scenario_load_overrides": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(_Override),
+                                                  ctypes.c_size_t, _PP, _PERR]),
+    "fb_scenario_free": (None, [_PP]),
+    "fb_scenario_noutputs": (ctypes.c_size_t, [_P]),
+    "fb_scenario_output_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_scenario_output_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_scenario_ncorners": (ctypes.c_size_t, [_P]),
+    "fb_scenario_corner_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_scenario_corner_position": (None, [_P, ctypes.c_size_t, _PDOUBLE, _PDOUBLE]),
+    "fb_scenario_speed": (ctypes.c_double, [_P]),
+    "fb_vehicle_simulate_progress": (ctypes.c_int, [_P, ctypes.c_int, _PROGRESS, _P, _PP, _PERR]),
+    "fb_result_nsamples": (ctypes.c_size_t, [_P]),
+    "fb_result_ncols": (ctypes.c_size_t, [_P]),
+    "fb_result_col_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_result_col_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_result_row": (_PDOUBLE, [_P, ctypes.c_size_t]),
+    "fb_result_free": (None, [_PP]),
+    "fb_vehicle_modes": (ctypes.c_int, [_P, ctypes.c_int, ctypes.c_int,
+                                        ctypes.POINTER(ctypes.POINTER(_Mode)), _PSIZE, _PSIZE,
+                                        _PERR]),
+    "fb_vehicle_descriptor": (ctypes.c_int, [_P, ctypes.c_int,
+                                             ctypes.POINTER(ctypes.POINTER(_Descriptor)),
+                                             _PERR]),
+    "fb_descriptor_free": (None, [ctypes.POINTER(ctypes.POINTER(_Descriptor))]),
+    "fb_vehicle_freq_response": (ctypes.c_int, [_P, ctypes.POINTER(_Descriptor), _PDOUBLE,
+                                                ctypes.c_size_t, _PDOUBLE, _PERR]),
+    "fb_mat_nrows": (ctypes.c_size_t, [_P]),
+    "fb_mat_ncols": (ctypes.c_size_t, [_P]),
+    "fb_mat_nnz": (ctypes.c_size_t, [_P]),
+    "fb_mat_triplets": (ctypes.c_size_t, [_P, _PSIZE, _PSIZE, _PDOUBLE]),
+}
+
+
+def _find_library():
+    """The shared library: $FLEXBOND_LIBRARY, else the path `cmake --install`
+    wrote next to this file, else the loader's search (ldconfig)."""
+    env = os.environ.get("FLEXBOND_LIBRARY")
+    if env:
+        return env
+    try:
+        with open(os.path.join(os.path.dirname(__file__), "library_path"), encoding="utf-8") as f:
+            path = f.read().strip()
+        if path:
+            return path
+    except FileNotFoundError:
+        pass
+    name = ctypes.util.find_library("flexbond")
+    if name:
+        return name
+    raise ImportError("flexbond: libflexbond.so not found: install flexbond (make install) or "
+                      "set FLEXBOND_LIBRARY to the library's path")
+
+
+def _load():
+    path = _find_library()
+    lib = ctypes.CDLL(path)
+    for name, (restype, argtypes) in _PROTOTYPES.items():
+        fn = getattr(lib, name)
+        fn.restype = restype
+        fn.argtypes = argtypes
+    libc = ctypes.CDLL(ctypes.util.find_library("c"))
+    libc.free.restype = None
+    libc.free.argtypes = [ctypes.c_void_p]
+    return path, lib, libc
+
+
+library_path, _lib, _libc = _load()
+
+
+# ---- Errors.
+
+class Error(Exception):
+    """A failure of the library, with the structured error of flexbond/error.h:
+    code (int) and status ("FB_EPARSE"), message, and where known the input
+    value it is about: file, line and column (1-based, 0 unknown), key (its
+    key path, "road.speed_kmh"), and source_text (the override, for a value
+    given in overrides)."""
+
+    def __init__(self, err):
+        self.code = err.code
+        self.status = _lib.fb_status_name(err.code).decode()
+        self.message = err.msg.decode(errors="replace")
+        self.file = err.file.decode(errors="replace") or None
+        self.line = err.line
+        self.column = err.column
+        self.key = err.key.decode(errors="replace") or None
+        self.source_text = err.source_text.decode(errors="replace") or None
+        super().__init__(self.message)
+
+
+def _check(rc, err):
+    if rc != 0:
+        raise Error(err)
+
+
+def _system(system):
+    key = system.lower() if isinstance(system, str) else system
+    if key not in _SYSTEMS:
+        raise ValueError("flexbond: system %r: one of 'rigid' (1) or 'flexible' (2)" % (system,))
+    return _SYSTEMS[key]
+
+
+def _text(value):
+    """An override's value as the file would write it: exact for floats."""
+    if isinstance(value, bool):
+        raise TypeError("flexbond: a boolean is no scenario value")
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+# ---- Results.
+
+class Result:
+    """One system's simulation: data (nsamples x ncols), column 0 the time.
+    names and units give each column's; r["name"] is a column."""
+
+    def __init__(self, system, names, units, data):
+        self.system = system
+        self.names = names
+        self.units = units
+        self.data = data
+        self._index = {n: j for j, n in enumerate(names)}
+
+    @property
+    def time(self):
+        return self.data[:, 0]
+
+    def __getitem__(self, name):
+        try:
+            return self.data[:, self._index[name]]
+        except KeyError:
+            raise KeyError("flexbond: no column %r; the columns are %s"
+                           % (name, ", ".join(self.names))) from None
+
+    def __contains__(self, name):
+        return name in self._index
+
+    def unit(self, name):
+        return self.units[self._index[name]]
+
+    def __len__(self):
+        return self.data.shape[0]
+
+    def __repr__(self):
+        return "<flexbond.Result %s: %d samples of %d columns>" % (
+            self.system, self.data.shape[0], self.data.shape[1])
+
+
+def _result(res, system):
+    nsamples = _lib.fb_result_nsamples(res)
+    ncols = _lib.fb_result_ncols(res)
+    names = [_lib.fb_result_col_name(res, j).decode() for j in range(ncols)]
+    units = [_lib.fb_result_col_unit(res, j).decode() for j in range(ncols)]
+    data = numpy.empty((nsamples, ncols))
+    if nsamples:
+        start = _lib.fb_result_row(res, 0)
+        data[...] = numpy.ctypeslib.as_array(start, shape=(nsamples, ncols))
+    return Result(system, names, units, data)
+
+
+Corner = collections.namedtuple("Corner", "name x y")
+
+Mode = collections.namedtuple("Mode", "eigenvalue freq_hz damping_ratio description")
+Mode.__doc__ = """A mode: eigenvalue (complex, 1/s), freq_hz (|lambda| / 2 pi, or
+Im(lambda) / 2 pi undamped), damping_ratio (-Re / |lambda|) and a description
+from its largest kinetic-energy share ("hull bounce (62%)")."""
+
+
+class Modes(list):
+    """The modes, oscillatory first by frequency; nstatic counts the zero
+    eigenvalues of a statically indeterminate support, left out."""
+
+    def __init__(self, modes, nstatic):
+        super().__init__(modes)
+        self.nstatic = nstatic
+
+
+class FreqResponse:
+    """H[k, o, t]: the complex amplitude of output names[o] per metre of road
+    height on track t (0 left, 1 right) at freq_hz[k], the wheels seeing the
+    profile delayed by their distance behind the first. units[o] is the
+    output's unit; H's is units[o] per metre. Power outputs, products of two
+    signals, have no frequency response and are left out (skipped)."""
+
+    def __init__(self, system, freq_hz, names, units, H, skipped, linearised):
+        self.system = system
+        self.freq_hz = freq_hz
+        self.names = names
+        self.units = units
+        self.H = H
+        self.skipped = skipped
+        self.linearised = linearised
+        self.tracks = TRACKS
+
+    def __getitem__(self, name):
+        try:
+            return self.H[:, self.names.index(name), :]
+        except ValueError:
+            raise KeyError("flexbond: no frequency response of %r; there are %s"
+                           % (name, ", ".join(self.names))) from None
+
+    def __repr__(self):
+        return "<flexbond.FreqResponse %s: %d outputs at %d frequencies>" % (
+            self.system, len(self.names), len(self.freq_hz))
+
+
+class Model:
+    """The vehicle's linear descriptor model E x' = A x + B u + f,
+    y = C x + D u (docs/export.md), tires held in contact; with linearised,
+    at the static equilibrium (x, u and y deviations, f zero). E, A, B, f, C
+    and D are scipy.sparse CSC matrices. var_names has n names, the first
+    nstates differential; input_names names B's columns (each wheel's road
+    rate); output_rows[o] lists the rows of C making output output_names[o]
+    (two for a power output, their product)."""
+
+    def __init__(self, system, **fields):
+        self.system = system
+        self.__dict__.update(fields)
+
+    def __repr__(self):
+        return "<flexbond.Model %s: %d variables (%d differential), %d inputs, %d outputs>" % (
+            self.system, len(self.var_names), self.nstates, len(self.input_names),
+            len(self.output_names))
+
+
+def _sparse(mat):
+    import scipy.sparse  # only the exported model needs scipy (python3-scipy)
+    nnz = _lib.fb_mat_nnz(mat)
+    rows = numpy.empty(nnz, dtype=numpy.uintp)
+    cols = numpy.empty(nnz, dtype=numpy.uintp)
+    vals = numpy.empty(nnz)
+    got = _lib.fb_mat_triplets(mat, rows.ctypes.data_as(_PSIZE), cols.ctypes.data_as(_PSIZE),
+                               vals.ctypes.data_as(_PDOUBLE))
+    shape = (_lib.fb_mat_nrows(mat), _lib.fb_mat_ncols(mat))
+    return scipy.sparse.csc_matrix((vals[:got], (rows[:got], cols[:got])), shape=shape)
+
+
+def _strings(array, n):
+    return [array[i].decode() for i in range(n)]
+
+
+class _SigintFlag:
+    """Within the block, Ctrl-C appends to flag instead of raising: Python
+    runs the handler when the solver calls back between steps, and the
+    callback then stops the run (FB_EINTR). Only the main thread can
+    handle signals; elsewhere the block changes nothing."""
+
+    def __init__(self, flag):
+        self.flag = flag
+        self.previous = None
+
+    def __enter__(self):
+        if threading.current_thread() is threading.main_thread():
+            self.previous = signal.signal(signal.SIGINT, lambda *_: self.flag.append(True))
+        return self
+
+    def __exit__(self, *exc):
+        if self.previous is not None:
+            signal.signal(signal.SIGINT, self.previous)
+
+
+# ---- Scenarios.
+
+class Scenario:
+    """A scenario file (docs/scenario-format.md), loaded and checked, with
+    overrides: {key: value}, each key a key path of the file
+    ("road.speed_kmh") or a key name that names one ("speed_kmh"), each value
+    a number or text as the file would write it (flexbond run --set)."""
+
+    def __init__(self, path, overrides=None):
+        self._s = ctypes.c_void_p()
+        self.path = os.fspath(path)
+        items = list((overrides or {}).items())
+        keep = [(str(k).encode(), _text(v).encode()) for k, v in items]
+        ov = (_Override * max(1, len(keep)))(*[_Override(k, v) for k, v in keep])
+        err = _Err()
+        _check(_lib.fb_scenario_load_overrides(os.fsencode(self.path), ov, len(keep),
+                                               ctypes.byref(self._s), ctypes.byref(err)), err)
+
+    def close(self):
+        """Frees the scenario (also done when it is garbage-collected)."""
+        if getattr(self, "_s", None):
+            _lib.fb_scenario_free(ctypes.byref(self._s))
+
+    def __del__(self):
+        if _lib is not None:  # not at interpreter exit, the library gone
+            self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _handle(self):
+        if not self._s:
+            raise ValueError("flexbond: the scenario is closed")
+        return self._s
+
+    @property
+    def outputs(self):
+        """The scenario's outputs: [(name, unit), ...], in order."""
+        s = self._handle()
+        return [(_lib.fb_scenario_output_name(s, o).decode(),
+                 _lib.fb_scenario_output_unit(s, o).decode())
+                for o in range(_lib.fb_scenario_noutputs(s))]
+
+    @property
+    def corners(self):
+        """The corners: [Corner(name, x, y), ...] (attachment points, m), in
+        the scenario's order."""
+        s = self._handle()
+        out = []
+        for c in range(_lib.fb_scenario_ncorners(s)):
+            x, y = ctypes.c_double(), ctypes.c_double()
+            _lib.fb_scenario_corner_position(s, c, ctypes.byref(x), ctypes.byref(y))
+            out.append(Corner(_lib.fb_scenario_corner_name(s, c).decode(), x.value, y.value))
+        return out
+
+    @property
+    def speed(self):
+        """The road speed, m/s."""
+        return _lib.fb_scenario_speed(self._handle())
+
+    def run(self, system):
+        """Simulates one system ("rigid" or "flexible") as flexbond run does:
+        a Result with t, the scenario's outputs and each tire's
+        contact_force_<CORNER>. Ctrl-C stops the run (KeyboardInterrupt)."""
+        sys_id = _system(system)
+        interrupted = []
+        callback = _PROGRESS(lambda _ctx, _t, _t_end: 1 if interrupted else 0)
+        res = ctypes.c_void_p()
+        err = _Err()
+        with _SigintFlag(interrupted):
+            rc = _lib.fb_vehicle_simulate_progress(self._handle(), sys_id, callback, None,
+                                                   ctypes.byref(res), ctypes.byref(err))
+        if rc == _FB_EINTR and interrupted:
+            raise KeyboardInterrupt
+        _check(rc, err)
+        try:
+            return _result(res, _SYSTEM_NAMES[sys_id])
+        finally:
+            _lib.fb_result_free(ctypes.byref(res))
+
+    def run_systems(self, systems=("rigid", "flexible")):
+        """Runs each of systems; {name: Result}."""
+        return {_SYSTEM_NAMES[_system(s)]: self.run(s) for s in systems}
+
+    def modes(self, system, undamped=False):
+        """The modes of the vehicle at its static equilibrium (flexbond modes);
+        undamped: with every damper removed (natural frequencies)."""
+        modes = ctypes.POINTER(_Mode)()
+        n, nstatic = ctypes.c_size_t(), ctypes.c_size_t()
+        err = _Err()
+        _check(_lib.fb_vehicle_modes(self._handle(), _system(system), int(bool(undamped)),
+                                     ctypes.byref(modes), ctypes.byref(n), ctypes.byref(nstatic),
+                                     ctypes.byref(err)), err)
+        try:
+            out = [Mode(complex(m.re, m.im), m.freq_hz, m.damping_ratio,
+                        m.description.decode(errors="replace"))
+                   for m in (modes[i] for i in range(n.value))]
+        finally:
+            _libc.free(ctypes.cast(modes, ctypes.c_void_p))
+        return Modes(out, nstatic.value)
+
+    def _descriptor(self, system):
+        ds = ctypes.POINTER(_Descriptor)()
+        err = _Err()
+        _check(_lib.fb_vehicle_descriptor(self._handle(), _system(system), ctypes.byref(ds),
+                                          ctypes.byref(err)), err)
+        return ds
+
+    def freq_response(self, system, freq_hz):
+        """H(j omega) = C (j omega E - A)^-1 B from each track's road height to
+        each output at freq_hz (Hz, >= 0), as flexbond freq computes it."""
+        f = numpy.ascontiguousarray(numpy.atleast_1d(numpy.asarray(freq_hz, dtype=float)))
+        if f.ndim != 1:
+            raise ValueError("flexbond: freq_hz must be one-dimensional")
+        ds = self._descriptor(system)
+        try:
+            d = ds.contents
+            h = numpy.empty(2 * _NTRACKS * d.nrows_c * max(1, f.size))
+            err = _Err()
+            _check(_lib.fb_vehicle_freq_response(self._handle(), ds, f.ctypes.data_as(_PDOUBLE),
+                                                 f.size, h.ctypes.data_as(_PDOUBLE),
+                                                 ctypes.byref(err)), err)
+            # h[2 ((k ntracks + t) nrows_c + r)] is Re, the next Im.
+            z = h[:2 * _NTRACKS * d.nrows_c * f.size].view(complex)
+            z = z.reshape(f.size, _NTRACKS, d.nrows_c)
+            keep = [o for o in range(d.noutputs) if not d.output_is_product[o]]
+            rows = [d.output_row[o] for o in keep]
+            outs = self.outputs
+            H = numpy.ascontiguousarray(z[:, :, rows].transpose(0, 2, 1))
+            skipped = [outs[o][0] for o in range(d.noutputs) if d.output_is_product[o]]
+            return FreqResponse(_SYSTEM_NAMES[_system(system)], f, [outs[o][0] for o in keep],
+                                [outs[o][1] for o in keep], H, skipped, bool(d.linearised))
+        finally:
+            _lib.fb_descriptor_free(ctypes.byref(ds))
+
+    def export(self, system):
+        """The vehicle's linear descriptor model (flexbond export) as a Model."""
+        ds = self._descriptor(system)
+        try:
+            d = ds.contents
+            rows = [[d.output_row[o], d.output_row[o] + 1] if d.output_is_product[o]
+                    else [d.output_row[o]] for o in range(d.noutputs)]
+            return Model(_SYSTEM_NAMES[_system(system)],
+                         E=_sparse(d.E), A=_sparse(d.A), B=_sparse(d.B), f=_sparse(d.f),
+                         C=_sparse(d.C), D=_sparse(d.D), nstates=d.nstates,
+                         var_names=_strings(d.var_names, d.n),
+                         input_names=_strings(d.input_names, d.ninputs),
+                         output_names=[name for name, _ in self.outputs],
+                         output_units=[unit for _, unit in self.outputs],
+                         output_rows=rows, linearised=bool(d.linearised))
+        finally:
+            _lib.fb_descriptor_free(ctypes.byref(ds))
+
+    def __repr__(self):
+        return "<flexbond.Scenario %s>" % self.path

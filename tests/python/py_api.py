@@ -1,0 +1,254 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The Python package (python/flexbond, docs/python.md) against the CLI and
+against independent answers. Run by CTest with the system python3:
+
+    py_api.py FLEXBOND_EXECUTABLE SOURCE_DIR
+
+FLEXBOND_LIBRARY names the built shared library and PYTHONPATH holds
+python/; the working directory is a scratch directory of this test."""
+
+import csv
+import os
+import re
+import subprocess
+import sys
+import unittest
+
+import numpy
+
+import flexbond
+
+CLI = sys.argv[1]
+SRC = sys.argv[2]
+APC = os.path.join(SRC, "examples", "apc6x6.yaml")
+EPS = numpy.finfo(float).eps
+
+
+def cli(*args):
+    """Runs the flexbond executable; its stdout."""
+    done = subprocess.run([CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          text=True, check=False)
+    if done.returncode != 0:
+        raise AssertionError("flexbond %s: exit %d: %s" % (" ".join(args), done.returncode,
+                                                            done.stderr))
+    return done.stdout
+
+
+def read_csv(path):
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    return rows[0], numpy.array([[float(v) for v in row] for row in rows[1:]])
+
+
+def apc_with_speed(text, path):
+    """examples/apc6x6.yaml with its speed_kmh written as text, at path."""
+    with open(APC, encoding="utf-8") as f:
+        original = f.read()
+    edited = original.replace("speed_kmh: 10 ", "speed_kmh: %s " % text, 1)
+    assert edited != original, "no speed_kmh: 10 in " + APC
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(edited)
+    return path
+
+
+def line_of(path, key):
+    """The 1-based line of the first `key:` in a file."""
+    with open(path, encoding="utf-8") as f:
+        for number, text in enumerate(f, 1):
+            if re.match(r"\s*%s\s*:" % re.escape(key), text):
+                return number
+    raise AssertionError("no %s in %s" % (key, path))
+
+
+class RunTest(unittest.TestCase):
+    def test_run_equals_cli_csv(self):
+        """System 1's outputs equal flexbond run's system1.csv, written with 10
+        significant digits: a relative 5e-10 of each value is its rounding."""
+        cli("run", APC, "--system", "rigid", "-o", "run_rigid")
+        header, table = read_csv(os.path.join("run_rigid", "system1.csv"))
+        r = flexbond.Scenario(APC).run("rigid")
+        self.assertEqual(r.names[:len(header)], header)
+        self.assertEqual(r.data.shape[0], table.shape[0])
+        numpy.testing.assert_allclose(r.data[:, :len(header)], table, rtol=5e-10, atol=0)
+        self.assertEqual(r.unit("tire_force_LF"), "N")
+        self.assertEqual(r.names[len(header):],
+                         ["contact_force_" + c.name for c in flexbond.Scenario(APC).corners])
+        numpy.testing.assert_array_equal(r.time, table[:, 0])
+
+    def test_override_equals_edited_file(self):
+        """An override is the file's value: speed_kmh 20 given as an override
+        runs as the file with 20 written in it (flexbond run of an edited
+        copy), and differently from the file's 10."""
+        fast = flexbond.Scenario(APC, overrides={"speed_kmh": 20}).run("rigid")
+        cli("run", apc_with_speed("20", "fast.yaml"), "--system", "rigid", "-o", "run_fast")
+        header, table = read_csv(os.path.join("run_fast", "system1.csv"))
+        numpy.testing.assert_allclose(fast.data[:, :len(header)], table, rtol=5e-10, atol=0)
+        slow = flexbond.Scenario(APC).run("rigid")
+        self.assertFalse(numpy.array_equal(slow["tire_force_LF"], fast["tire_force_LF"]))
+
+
+class ModesTest(unittest.TestCase):
+    def test_modes_equal_cli(self):
+        """flexbond modes prints the undamped natural frequencies with %g (six
+        significant digits: a relative 5e-6)."""
+        out = cli("modes", APC)
+        undamped = next(part for part in out.split("\n\n") if "undamped natural" in part)
+        printed = re.findall(r"^\s+\d+\s+(\S+)\s+(.*\S)\s*$", undamped, re.M)
+        self.assertTrue(printed)
+        modes = flexbond.Scenario(APC).modes("rigid", undamped=True)
+        self.assertEqual(len(modes), len(printed))
+        self.assertEqual(modes.nstatic, int(re.search(r"(\d+) static zero modes", out).group(1)))
+        for mode, (freq, description) in zip(modes, printed):
+            self.assertAlmostEqual(mode.freq_hz / float(freq), 1.0, delta=5e-6)
+            self.assertEqual(mode.description, description)
+        damped = flexbond.Scenario(APC).modes("rigid")
+        for mode in damped:
+            # The definitions of freq_hz and damping_ratio (flexbond/vehicle.h).
+            lam = mode.eigenvalue
+            self.assertAlmostEqual(mode.freq_hz, abs(lam) / (2 * numpy.pi), delta=1e-12 * abs(lam))
+            self.assertAlmostEqual(mode.damping_ratio, -lam.real / abs(lam), delta=1e-12)
+
+
+class FreqTest(unittest.TestCase):
+    def road_inputs(self, scenario, model, omega):
+        """Each track's road rates, by hand: the wheels on a track (y > 0 left)
+        see its height e^{j omega t} delayed by their distance behind the
+        leading axle over the speed; a rate is j omega times the height."""
+        corners = scenario.corners
+        lead = max(c.x for c in corners)
+        u = numpy.zeros((len(model.input_names), 2), dtype=complex)
+        for c in corners:
+            track = 0 if c.y > 0 else 1
+            delay = (lead - c.x) / scenario.speed
+            u[model.input_names.index("road.v_" + c.name), track] = \
+                1j * omega * numpy.exp(-1j * omega * delay)
+        return u
+
+    def check_system(self, system, freqs):
+        """fr.H against C (j omega E - A)^-1 B u + D u solved by SuperLU
+        (scipy.sparse.linalg.splu), another sparse LU than KLU's."""
+        import scipy.sparse
+        import scipy.sparse.linalg as sla
+        s = flexbond.Scenario(APC)
+        model = s.export(system)
+        fr = s.freq_response(system, freqs)
+        self.assertEqual(fr.skipped, [n for n, rows in zip(model.output_names, model.output_rows)
+                                      if len(rows) == 2])
+        rows = [r[0] for r in model.output_rows if len(r) == 1]
+        for k, f in enumerate(freqs):
+            omega = 2 * numpy.pi * f
+            pencil = (1j * omega * model.E - model.A).tocsc()
+            # Rows then columns scaled to a largest entry of 1 (the descriptor
+            # mixes stiffnesses of 1e6 N/m with the unit entries of algebraic
+            # rows): the condition that bounds an LU solve's error is the
+            # equilibrated matrix's (Higham, "Accuracy and Stability of
+            # Numerical Algorithms", 2nd ed., 2002, secs. 7.3 and 9.8).
+            r = 1 / abs(pencil).max(axis=1).toarray().ravel()
+            scaled_rows = scipy.sparse.diags(r) @ pencil
+            c = 1 / abs(scaled_rows).max(axis=0).toarray().ravel()
+            scaled = (scaled_rows @ scipy.sparse.diags(c)).tocsc()
+            lu = sla.splu(scaled)
+            u = self.road_inputs(s, model, omega)
+            x = c[:, None] * lu.solve(r[:, None] * (model.B @ u))
+            want = (model.C @ x + model.D @ u)[rows, :]
+            # Two LU solves of one matrix differ by about cond * eps relative
+            # to the solution (ibid., ch. 9); cond_1 estimated (Higham &
+            # Tisseur's block 1-norm estimator, scipy's onenormest) and a
+            # factor 10 for the growth factors and C's sums. Measured: cond
+            # about 5e7 for System 1, 2e13 for System 2 at 20 Hz, and the
+            # two answers 1e-13 apart.
+            inverse = sla.LinearOperator(scaled.shape, matvec=lu.solve, dtype=complex,
+                                         rmatvec=lambda y: lu.solve(y, trans="H"))
+            cond = sla.norm(scaled, 1) * sla.onenormest(inverse)
+            tol = 10 * cond * EPS
+            self.assertLess(tol, 0.1, "%s: j omega E - A too ill-conditioned at %g Hz"
+                            % (system, f))
+            for o in range(len(rows)):
+                scale = numpy.abs(want[o, :]).max()
+                err = numpy.abs(fr.H[k, o, :] - want[o, :]).max()
+                self.assertLessEqual(err, tol * scale + 1e-300,
+                                     "%s %s at %g Hz" % (system, fr.names[o], f))
+
+    def test_rigid_against_superlu(self):
+        self.check_system("rigid", [0.1, 1.0, 1.7, 9.7, 55.0])
+
+    def test_flexible_against_superlu(self):
+        self.check_system("flexible", [0.5, 3.0, 20.0])
+
+    def test_shape_and_names(self):
+        s = flexbond.Scenario(APC)
+        fr = s.freq_response("rigid", numpy.logspace(-1, 2, 7))
+        self.assertEqual(fr.H.shape, (7, len(fr.names), 2))
+        self.assertEqual(fr["tire_force_LF"].shape, (7, 2))
+        self.assertFalse(fr.linearised)  # apc6x6's laws are all linear
+        with self.assertRaises(KeyError):
+            fr["tire_power_LR"]  # a power output has no frequency response
+
+
+class ExportTest(unittest.TestCase):
+    def test_export_equals_cli(self):
+        """The matrices flexbond export writes (Matrix Market, %.17g): E, A, C
+        and f bit for bit; Bu's rate columns are B's."""
+        import scipy.io
+        cli("export", APC, "--system", "rigid", "-o", "export_rigid")
+        model = flexbond.Scenario(APC).export("rigid")
+        for name in ("E", "A", "C", "f"):
+            want = scipy.io.mmread(os.path.join("export_rigid", name + ".mtx")).toarray()
+            numpy.testing.assert_array_equal(getattr(model, name).toarray(), want, name)
+        bu = scipy.io.mmread(os.path.join("export_rigid", "Bu.mtx")).toarray()
+        corners = flexbond.Scenario(APC).corners
+        for c, corner in enumerate(corners):
+            j = model.input_names.index("road.v_" + corner.name)
+            numpy.testing.assert_array_equal(model.B.toarray()[:, j], bu[:, len(corners) + c])
+        self.assertEqual(model.E.shape, (len(model.var_names), len(model.var_names)))
+
+
+class ErrorTest(unittest.TestCase):
+    def test_bad_override_names_file_line_key(self):
+        with self.assertRaises(flexbond.Error) as caught:
+            flexbond.Scenario(APC, overrides={"speed_kmh": "fast"})
+        e = caught.exception
+        self.assertEqual(e.status, "FB_EPARSE")
+        self.assertEqual(os.path.abspath(e.file), os.path.abspath(APC))
+        self.assertEqual(e.line, line_of(APC, "speed_kmh"))
+        self.assertGreater(e.column, 0)
+        self.assertEqual(e.key, "road.speed_kmh")
+        self.assertEqual(e.source_text, "--set speed_kmh=fast")
+
+    def test_error_in_file(self):
+        with self.assertRaises(flexbond.Error) as caught:
+            flexbond.Scenario(apc_with_speed("-10", "bad.yaml"))
+        e = caught.exception
+        self.assertEqual((e.file, e.line, e.key), ("bad.yaml", line_of("bad.yaml", "speed_kmh"),
+                                                   "road.speed_kmh"))
+        self.assertIsNone(e.source_text)
+
+    def test_missing_file_and_unknown_key(self):
+        with self.assertRaises(flexbond.Error) as caught:
+            flexbond.Scenario("no-such-file.yaml")
+        self.assertEqual(caught.exception.status, "FB_EIO")
+        with self.assertRaises(flexbond.Error) as caught:
+            flexbond.Scenario(APC, overrides={"no_such_key": 1})
+        self.assertIn("no_such_key", caught.exception.message)
+
+    def test_bad_system(self):
+        with self.assertRaises(ValueError):
+            flexbond.Scenario(APC).run("stiff")
+
+
+class ReadmeTest(unittest.TestCase):
+    def test_readme_example_runs(self):
+        """The README's Python example, run from the source directory."""
+        with open(os.path.join(SRC, "README.md"), encoding="utf-8") as f:
+            section = f.read().split("\n## Python", 1)[1].split("\n## ", 1)[0]
+        blocks = re.findall(r"```python\n(.*?)```", section, re.S)
+        self.assertEqual(len(blocks), 1)
+        self.assertLessEqual(len(blocks[0].strip().splitlines()), 10)
+        done = subprocess.run([sys.executable, "-c", blocks[0]], cwd=SRC, check=False,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertTrue(done.stdout.strip())
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)
