@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Convenience wrapper around CMake/CTest for flexbond.
 #
 #   make deps          install the Debian packages the build needs (only those missing)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Times the vehicle simulation of a scenario (fb_vehicle_simulate: block
  * diagram build, static state if asked, CVODE run with 1 kHz sampling),
  * RUNS times in one process, and prints each run's wall time, the calling

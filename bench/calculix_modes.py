@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Free-free modes of a flexbond hull deck with CalculiX (bench/calculix_modes.sh).
 
 usage: calculix_modes.py DECK.inp WORKDIR [NMODES]

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The reference hull's free-free modes by CalculiX, against flexbond's
 # convergence table (docs/hull-mesh.md, "Convergence"): the decks
 # `flexbond mesh --export` writes at hull.mesh.density 2, 3 and 4, each

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Plates of several thicknesses, CalculiX against flexbond
 # (docs/hull-mesh.md, "Sections"): the reference hull exported at
 # hull.mesh.density 1 and 2, its floor and its other plates given their

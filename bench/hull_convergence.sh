@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Mesh convergence of the reference hull's free-free modes
 # (docs/hull-mesh.md, "Convergence"): `flexbond modes --system flexible`
 # of examples/apc6x6.yaml at hull.mesh.density 1 .. DMAX (default 6), the

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Runs a command once and prints "WALL_S CPU_S MAXRSS_KB": its wall time
 from fork to exit, its user + system time and its peak resident set, from
 wait4's rusage (microsecond resolution, where /usr/bin/time -v prints

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Waits until the machine is idle: until the CPUs were busy less than
 BUSY (default 0.15) of a 0.3 s window (/proc/stat), for at most
 MAX_SECONDS (default 30). A timing taken right after is less disturbed by

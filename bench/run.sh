@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Reproducible timings (needs hyperfine and GNU time: apt-get install hyperfine
 # time, and a build: make build). Usage: bench/run.sh [BUILD_DIR]
 # For each case: hyperfine's median wall time of the whole command over

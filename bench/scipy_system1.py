@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """System 1 of examples/apc6x6.yaml from `flexbond export --system rigid`,
 integrated with SciPy's solve_ivp (BDF or Radau).
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Throughput of flexbond sweep on 1 and 2 MPI ranks, and on 1 and 2 threads
 # for comparison (docs/cluster.md). Needs hyperfine and the MPI build
 # (make mpi). Usage: bench/sweep_mpi.sh [MPI_BUILD_DIR]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* System 1 of examples/apc6x6.yaml (the paper's 6x6 APC with the rigid
  * hull) written by hand as 28 ODEs and integrated with CVODE as flexbond
  * integrates it (src/sim/cvode.c): BDF up to order 5, scalar rtol/atol,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # System 1 of examples/apc6x6.yaml: flexbond against the same model written
 # by hand on CVODE (bench/system1_hand.c). Checks that both give the same
 # outputs, then times them (bench/README.md):

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Work-precision benchmark of examples/apc6x6.yaml (bench/README.md): the
 # error of each output against a tight reference versus the solver's wall
 # time, at rtol 1e-4 ... 1e-8 (atol = rtol / 100, the scenario's ratio):

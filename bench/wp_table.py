@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """The work-precision table of bench/work_precision.sh.
 
 usage: wp_table.py MANIFEST.tsv TABLE.csv CURVES.dat

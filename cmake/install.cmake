@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # What `cmake --install` (and `make install`) puts under the prefix: the
 # CLI, the static and the shared library, the public headers, flexbond.pc,
 # the Python package (python/flexbond), and the examples and documents
@@ -28,7 +29,7 @@ install(FILES ${CMAKE_BINARY_DIR}/flexbond.pc DESTINATION ${CMAKE_INSTALL_LIBDIR
 
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
-install(FILES ${CMAKE_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES ${CMAKE_SOURCE_DIR}/README.md ${CMAKE_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 # The Python package (docs/python.md), for the system python3 (Debian's
 # /usr/bin/python3 before any other on PATH: its python3-numpy is the one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* An independent model of System 1 (rigid hull) of the reference vehicle,
  * written by hand from the data sheet (/work/shared/reference-vehicle.md)
  * as a plain second-order system M q'' = Q(t, q, q'), for verifying

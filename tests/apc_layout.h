@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The reference vehicle's layout (examples/apc6x6.yaml), for the tests
  * that check it against a second formulation of its own: the library
  * itself has no fixed layout (any corners and mounted bodies from the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Helpers for building small bond graphs in tests. Every call must
  * succeed; a failure prints the library's message and counts as a failed
  * check. */

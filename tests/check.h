@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Minimal test harness: CHECK records a failure and goes on; a test
  * program returns check_report() from main. */
 #ifndef FLEXBOND_TEST_CHECK_H

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond run --animate: on the APC shortened to 3 s (a 0.5 m bump met
 # at 1 s), each system's ParaView time series and GIF, as docs/animation.md
 # describes them: one .vtu per frame at the asked rate over the bump

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Bad inputs through the real flexbond command (docs/errors.md): a table of
 # broken models, scenarios, the CSV files and meshes they reference, and
 # bad command lines. For every case: the exact exit status (README, "Exit

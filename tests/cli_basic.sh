@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Basic checks of the flexbond command that need no model: help, version,
 # usage errors (exit 1), and a missing model file (exit 5 or 2, path in the
 # message, no output created). Exit codes are documented in src/cli/main.c.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond diagram on models and vehicle scenarios (docs/diagrams.md):
 # a model without options keeps its flat block diagram; the kinds
 # bond-graph and block-diagram; both systems of the 6x6 APC drawn with few

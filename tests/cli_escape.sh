@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Strings from the inputs reach the generated documents escaped for their
 # language (docs/outputs.md), through the real commands, with the
 # characters the loaders accept in names, units and paths: a probe named

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond export: the APC example's System 1 and System 2 as descriptor
 # systems. The files exist and parse as Matrix Market (read here in a few
 # lines of Python), their sizes agree with each other and with model.json,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond freq: the frequency response of the APC example to the road.
 # Both systems write their CSV and the Bode figures; the CSV has one
 # magnitude and one phase column per output and track, with units, and

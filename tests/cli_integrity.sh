@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # What leaves the program can be trusted, through the real command:
 # - no text of the user's reaches gnuplot as code (a path with a line end
 #   and a shell escape, a probe name with one);

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Nothing half-written: a run interrupted by SIGINT (or SIGTERM) in the
 # middle of its simulation, a run whose solver fails and a run that fills
 # the disk exit with their documented codes (130, 4, 5), say so, and leave the output directory's

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The limits of docs/errors.md ("Limits") through the real flexbond command:
 # inputs that would make it read, allocate or compute without end are
 # refused up front, with the exit status, the file:line:col and key of the

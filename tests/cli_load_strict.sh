@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Strict loading of model and scenario files through the real flexbond
 # command (docs/errors.md, "Text, NUL and number checks"): control
 # characters in names, units and other one-line text, NUL escapes, integers

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The flexbond command on model files: the shipped examples run and write
 # what the README says; bad models exit non-zero with `file:line:` and the
 # key in the message, and write nothing.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond model: a vehicle scenario written as a model file. The file
 # and its matrices appear together and nothing else; `flexbond sim` on it
 # gives the outputs `flexbond run` gives (the same digits in the CSV); bad

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Regression against a released state: `flexbond run` on the APC example
 # (both systems, 15 s at 1 kHz) reproduces, sample by sample, the
 # system1.csv and system2.csv that commit 5b32e25 wrote

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond run and flexbond modes on vehicle scenarios: the APC example
 # with System 1 writes exactly the documented files (CSV header, 15 s at
 # 1 kHz, valid summary.json agreeing with the CSV, PNGs, report.md); both

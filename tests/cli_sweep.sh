@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond sweep: twelve speeds of System 1 give twelve rows, speeds 5 to
 # 60 in order, each with the header's metrics, and the rows of two speeds
 # equal what `flexbond run --system rigid` reports in summary.json for a

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond sweep's journal (docs/sweep.md, "Resuming"): a sweep killed with
 # SIGKILL, or one whose journal ends in a torn row, or one interrupted by
 # SIGINT, resumes with --resume and then writes the same sweep.csv, byte for

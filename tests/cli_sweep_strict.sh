@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond sweep refuses, through the real command, what it once took:
 # numbers of a --set spec that are not plain decimals (hexadecimal, inf,
 # nan, beyond a double), in ranges and in lists; a control character in a

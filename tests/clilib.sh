@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Shared setup and assertions of the tests/cli_*.sh scripts. Source it
 # with NAME set to the script's name and the script's arguments
 # (PATH/TO/flexbond REPO_ROOT) in $1 and $2.

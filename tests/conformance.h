@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shared by the conformance harnesses of the block kinds and of the
  * element laws (tests/test_bd_conformance.c, tests/test_law_conformance.c):
  * random points and the tolerances of their checks. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Energy balance of an assembled vehicle, for the System 1 and System 2
  * tests: one probe per power port of every source and resistor
  * (integrated power) and per storage element (its stored energy), and at

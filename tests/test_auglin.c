@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Augmented Newton solver (src/sim/auglin.c) on small systems whose
  * Newton matrix I - gamma J is known by hand. */
 #include <float.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Block diagrams from bond graphs: right-hand side and linearisation
  * against hand-written state equations, the augmented Newton matrix
  * against the dense Jacobian, algebraic-loop diagnostics. */

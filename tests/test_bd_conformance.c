@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Conformance of the block kinds (src/bd/kind_*.c) and of the elements
  * their blocks realise.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Bond graph core: construction, subsystems and ports, causality
  * assignment and its diagnostics. */
 #include <string.h>

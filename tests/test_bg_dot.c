@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The multibond-graph picture (fb_bg_write_dot) and the two-level block
  * diagram (fb_bd_write_dot_hierarchy) of small graphs whose causality is
  * worked out by hand below: each stroke is checked at its end, clusters

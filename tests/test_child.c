@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the pieces every generated file passes through on its way
  * out: exclusive temporary files and directories (core/tmpfile.h), the
  * child-process runner (io/child.h) and the PNG check

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tire contact on System 1: the verdict (fb_vehicle_contact_loss,
  * src/vehicle/contact.c) and unilateral tires (wheel.tire_contact). The
  * paper's crossing keeps every tire in compression; a 0.20 m bump at

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Unilateral compliant contact (fb_bg_add_unilateral_contact) and the
  * integrator's event handling (switched laws, root-finding, restarts),
  * against the closed-form impact of a mass on a Kelvin-Voigt contact that

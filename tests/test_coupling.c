@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Couplings of points that are not nodes (fb_hull_coupling_build,
  * src/vehicle/coupling.c) against Navier's series for a simply supported
  * plate (Timoshenko & Woinowsky-Krieger, "Theory of Plates and Shells",

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The descriptor form E z' = A z + B u + f, y = C z (fb_bd_descriptor)
  * against independent computations, on the quarter car of
  * examples/quarter_car.yaml and on System 1 of examples/apc6x6.yaml:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the escaping writers (flexbond/escape.h): each over hostile strings (quotes,
  * backslashes, line breaks, tabs, other control bytes, markup, a DOT statement, a table
  * pipe, a formula, UTF-8 both well-formed and not), against the exact expected bytes;

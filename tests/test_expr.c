@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of fb_symtab and fb_expr: grammar, precedence and associativity
  * against hand-computed values, every function against libm or a closed
  * form, parameter and time lookup, error messages and suggestions.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Frequency response (fb_descriptor_freq_response, the road inputs of
  * fb_vehicle_track_inputs) against independent answers:
  *   1. the quarter car of examples/quarter_car.yaml against its closed-form

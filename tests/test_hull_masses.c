@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Declared non-structural hull masses (hull.masses) in both systems,
  * each against an answer of its own:
  *   1. System 1's I field is diag(m, Ixx, Iyy) + sum m r r' with r = [1,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of System 2's hull mesh (fb_hull_mesh_params_default,
  * fb_hull_mesh_generate; flexbond/vehicle.h, docs/hull-mesh.md) on the
  * reference scenario:

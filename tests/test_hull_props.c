@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* One hull for both systems (fb_vehicle_hull_complete): System 1's mass,
  * inertias and centre of mass come from the finite-element mesh System 2
  * uses. Checked against the mesh's own mass properties

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of fb_mesh_read_inp_string (flexbond/fem.h): the Abaqus deck reader on a buffer
  * in memory. Each deck is passed in a heap block of exactly its length, without a NUL
  * (so the sanitizer builds catch a read past the end), with more text after it where the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the atomic output files and fb_mkdir_p (flexbond/io.h).
  *
  * Everything happens in a fresh directory from mkdtemp, and after every

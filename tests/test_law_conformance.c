@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Conformance of the library's element laws (fb_law_ops): every law id
  * of flexbond/bg.h but FB_LAW_CUSTOM, as its public constructor makes it
  * (fb_bg_add_r_table, fb_bg_add_unilateral_contact), goes through the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Vehicles as data: vehicles of 4, 6, 8 and 10 corners (and one, two or
  * three mounted bodies) built from scenario text alone, each started at
  * its static equilibrium. The independent answer is statics: the tires'

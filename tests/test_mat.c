@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of flexbond/mat.h: construction, products, inverse, KLU LU,
  * definiteness tests and Matrix Market I/O. Expected values are worked
  * out by hand (or from closed forms) in the comments next to them. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of shell meshes (flexbond/fem.h): building and accessors, ids,
  * node sets, fb_mesh_check, clone, the Abaqus deck reader and writer, and
  * the VTK XML writer. Files go to a fresh mkdtemp directory, removed at

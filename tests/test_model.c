@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the YAML model loader (flexbond/model.h): a table of bad models
  * with the status and the "FILE:LINE:" + key/phrase each must report, and
  * good models whose graphs, parameters, subsystem instances, probes and

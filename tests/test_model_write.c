@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* fb_model_write: a bond graph written as a model file and loaded back.
  *   1. a hand-built graph with every element kind, every source kind the
  *      format holds, a nested subsystem, a bond domain and every probe

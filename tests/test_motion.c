@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The vehicle's motion for an animation (fb_vehicle_simulate_motion),
  * against signals measured another way on the same run:
  *   1. the run's outputs are those of a run without it, within the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* NAFEMS free-vibration benchmarks for the flat shell elements: the thin
  * square plate 10 x 10 x 0.05 m of steel (E 200 GPa, nu 0.3, rho 8000
  * kg/m^3), free (FV12), cantilevered (FV16) and simply supported (FV52);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The serial vectors of src/sim/nvector.c against SUNDIALS' own serial
  * module: every replaced operation, on the same data, must give the same
  * bits (the integrator's steps, and so every result, depend on them to

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* docs/vehicle-outputs.md lists every signal kind of the library's table
  * (fb_vehicle_output_kinds) as a row "| `signal` | subject | unit |
  * `default name` |", and no kind the table lacks: the page cannot drift

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of scenario overrides (fb_scenario_load_overrides and friends in
  * flexbond/vehicle.h, the "--set KEY=VALUE" of flexbond sweep): values
  * replaced by dotted path, by a unique bare key name, in a list and

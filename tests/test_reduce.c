@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Free-interface modal reduction with residual flexibility
  * (fb_fem_reduce_free, src/fem/reduce.c) on a free-free steel plate,
  * against the full dense modal solution of the same matrices:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* fb_result_diff (flexbond/sim.h): the difference of two simulations of
  * a linear mass-spring-damper under two constant forces is, by
  * superposition, the closed-form step response to the difference of the

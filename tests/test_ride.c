@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Ride-comfort metrics (flexbond/ride.h): the analytic Wk weighting
  * against the ISO 2631-1 table, the digital filter's steady-state gain
  * against its own frequency response and the analytic one, the metrics

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Ride from a road spectrum against the time domain, on System 1 of
  * examples/apc6x6_iso_road.yaml (ISO 8608 class C at 30 km/h):
  *   the PSD route: the frequency response over the road's band

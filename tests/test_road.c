@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Road profiles (flexbond/road.h): the (1 - cos) bumps against their closed
  * form and the scenario's bump timing, ISO 8608 roads against the class's
  * PSD through a periodogram, CSV profiles against hand-computed PCHIP

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Roads in the scenario (road.bump | road.iso8608 | road.profile) and in
  * the vehicle's road fragment (src/road through fb_vehicle_road):
  *   - a profile file holding the paper's bump, sampled every 2 cm, drives

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the vehicle scenario loader (fb_scenario_* in
  * flexbond/vehicle.h): examples/apc6x6.yaml against every number of the
  * data sheet (../shared/reference-vehicle.md), the bump timing against

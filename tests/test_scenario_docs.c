@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* docs/scenario-format.md holds, between its schema:begin and schema:end
  * markers, exactly the key tables the loader's own table writes
  * (fb_scenario_schema_markdown): the reference cannot drift from the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the schema engine (src/io/schema.c) on a toy format of its
  * own: reading (types, defaults, inheritance, unknown keys, alternatives,
  * lists and their origins), the range check, the visit of a struct's

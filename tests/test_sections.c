@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shell sections against closed forms: a thin-walled box beam whose
  * flanges and webs are plates of different thicknesses, two element sets
  * with their own sections (fb_mesh_set_section), clamped at x = 0.

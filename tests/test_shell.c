@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the flat shell elements, assembly, mass properties, constraints
  * and modal analysis of flexbond/fem.h (the NAFEMS plate benchmarks are in
  * test_nafems.c). Expected values are closed forms, hand calculations or a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Helpers shared by the shell element tests (test_shell.c, test_nafems.c):
  * programmatic meshes of flat faces, boundary conditions by position,
  * static solves and modal analyses. Every library call must succeed; a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Nonlinear shock absorbers in the vehicle (scenario damper_table, the
  * corner fragment's table law):
  *   - a table that is the linear damper itself (F = c v at its knots)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Simulation (flexbond/sim.h) of a mass-spring-damper bond graph against
  * the closed-form response of m x'' + r x' + k x = F(t). */
 #include <math.h>

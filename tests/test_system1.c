@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Independent verification of System 1 (rigid hull) of the reference
  * vehicle (/work/shared/reference-vehicle.md) against flexbond's bond-graph
  * model (include/flexbond/vehicle.h):

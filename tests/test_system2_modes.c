@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* System 2 (the finite-element hull with the driver, engine, suspensions
  * and tires): modal analysis (the rigid-hull limit against System 1, the
  * paper's normalisation, an imported deck against the generator, the

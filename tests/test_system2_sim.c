@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* System 2 (finite-element hull) simulated, against independent answers:
  *   1. static equilibrium of the full-order model carries the whole weight
  *      through the six tires (and balances the hull's own elastic

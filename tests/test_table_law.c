@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tabulated R laws (fb_table_law, src/bg/table_law.c) and their model
  * syntax `table:` (src/io/model_elements.c): the Fritsch-Carlson
  * interpolant against hand calculations, its C1 continuity, monotonicity,

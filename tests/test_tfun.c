@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of fb_tfun: values of each kind against hand calculations or the
  * defining formula, breakpoint lists, CSV tables from temporary files
  * (good and bad), clones against their originals.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The hull's torsion angle under a static torsion load, at mesh densities
  * 1 to 4: the paper's measure (each edge's roll from its two end nodes,
  * `torsion`) against the least-squares rotation of each edge's transverse

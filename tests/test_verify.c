@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* End-to-end verification through the solver: power balance of a quarter
  * car over a bump, and the same 2-DOF system built from scalar elements and
  * from 2-port fields giving the same trajectories. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Helpers of the vehicle tests (test_contact.c, test_shock_table.c,
  * test_road_scenario.c): simulate System 1, compare two runs output by
  * output, and load the example scenario with part of its text replaced.

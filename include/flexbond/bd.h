@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: block diagrams built from causal bond graphs, and their
  * evaluation and linearisation.
  *

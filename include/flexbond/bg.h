@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: multibond graphs.
  *
  * A graph holds elements joined by bonds. Every bond carries a vector effort

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: status codes and error context.
  *
  * Every fallible function returns an int status (FB_OK on success) and, when

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: escaping of strings for the documents it writes, one writer
  * per output language (docs/outputs.md).
  *

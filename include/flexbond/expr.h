@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: arithmetic expressions over named parameters and time, and
  * time functions used by modulated sources.
  *

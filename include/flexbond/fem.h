@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: flat shell finite elements (6 DOF per node), meshes, sparse
  * assembly and modal analysis, for thin steel plates (Kirchhoff bending
  * plus membrane).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: results and figures as files (CSV, gnuplot pictures) and a
  * vehicle scenario's values as a report lists them. Files are written
  * atomically (flexbond/out.h). */

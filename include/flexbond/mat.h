@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: real matrices (dense column-major or compressed sparse column)
  * and sparse LU factorisation (SuiteSparse KLU).
  *

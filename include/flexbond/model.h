@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: bond-graph model files (YAML, format in docs/model-format.md).
  *
  * A model file declares parameters, elements, bonds, reusable subsystems

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: output files and directories. Every file is written to a
  * temporary name in its destination directory and renamed into place
  * only when complete, so a failed run never leaves a half-written file.

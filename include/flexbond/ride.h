@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: ride-comfort metrics of a vertical acceleration record.
  *
  * From a uniformly sampled vertical acceleration a(t) (m/s^2, e.g. the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: road profiles for the wheeled-vehicle study (docs/roads.md).
  *
  * A road is two vertical profiles z(s), m, of the distance s, m, along a

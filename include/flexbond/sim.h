@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: time integration of a block diagram with SUNDIALS CVODE
  * (variable-order BDF, orders 1-5, Newton iteration; Hindmarsh et al.,
  * ACM TOMS 31(3), 2005), the counterpart of MATLAB's ode15s.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: wheeled vehicles with rigid or flexible hulls, after Leite &
  * Da Silva's modular procedure (the reference vehicle's data sheet is
  * examples/apc6x6.yaml): a scenario (the vehicle as data: any number of

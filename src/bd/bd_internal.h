@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal layout of block diagrams. */
 #ifndef FLEXBOND_BD_INTERNAL_H
 #define FLEXBOND_BD_INTERNAL_H

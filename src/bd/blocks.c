@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* What the block kinds share (bd/kinds.h): the registry that lists
  * them, the input_dim of inputs of any size, the content of the kinds
  * that hold one coefficient per input, and the triplet writer of their

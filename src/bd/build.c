@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* From a causal bond graph to a block diagram (Ferreira & Da Silva, COBEM
  * 2005): every element, in its assigned causality, becomes the blocks that
  * compute its output efforts and flows from its inputs. Junctions make

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Descriptor form E z' = A z + B u + f, y = C z + D u of a linear block
  * diagram (see flexbond/bd.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Frequency response of a descriptor system E x' = A x + B u, y = C x
  * (+ D u): for u = U e^{j omega t}, the steady state is x = X e^{j omega t}
  * with (j omega E - A) X = B U, so Y = C X + D U, the transfer function

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Graphviz DOT export of a block diagram (the paper's Fig. 6): one node
  * per block, one edge per signal use, one cluster per subsystem. Every
  * name inside the quoted IDs and labels goes through fb_dot_write_text

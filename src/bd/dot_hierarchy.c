@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The block diagram in two levels, as Leite & Da Silva's Fig. 6: (a), (b)
  * the top level, where each subsystem is one block, a mux stacks the
  * efforts the subsystems impart to the hull and a demux splits the

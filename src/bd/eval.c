@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Evaluation of a scheduled block diagram: right-hand side, outputs,
  * augmented sparse linearisation and dense Jacobian (flexbond/bd.h). */
 #include <math.h>

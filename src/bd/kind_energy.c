@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Stored energy of a storage field with state x (input 0) and
  * co-variable y (input 1): linear law 1/2 x.y, or the law's energy
  * function, whose gradient is y (Karnopp et al., section 7.2). The

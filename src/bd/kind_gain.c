@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Gain: out = A in, A borrowed from the graph or owned by the block. */
 #include <stdlib.h>
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Integrator: the output is a state x, input 0 its derivative x'. Its
  * rows are d(x) - gamma d(x') = b: the only rows with gamma terms. */
 #include "bd/kinds.h"

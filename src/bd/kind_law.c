@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Nonlinear law: out = phi(in_0, in_1, ...), an fb_law_ops of the graph.
  * Input 0 is the law's own input, the others its modulating values
  * (fb_bg_modulate). A law sees them as one vector xu (gathered into xu

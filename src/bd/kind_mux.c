@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Mux: out = [c_1 in_1; ...; c_k in_k], the stacked ports of a field or
  * the whole of a composite. */
 #include "bd/kinds.h"

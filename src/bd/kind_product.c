@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Element-wise product: out = in_1 .* in_2 (a power probe's e .* f). */
 #include "bd/kinds.h"
 

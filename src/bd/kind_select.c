@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Select (demux): out = c in[offset .. offset + odim), one port of a
  * field's stacked output or one part of a composite's whole. */
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Solve: A out = in, by the sparse LU of A (M^-1 p without forming
  * M^-1), A borrowed from the graph or owned by the block. Its rows are
  * A d(out) - d(in) = 0: the one kind whose rows do not have the unit

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Source: out_i = u_i(t), time functions borrowed from the graph. */
 #include <stdlib.h>
 #include <string.h>

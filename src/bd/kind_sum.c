@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Signed sum: out = sum_k c_k in_k (zero inputs: out = 0), a junction's
  * law. */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The block kinds of a diagram (src/bd/kind_*.c): their constructors,
  * the registry that lists them, and the triplet writer their rows share.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Topological scheduling of blocks (Kahn's algorithm). Integrator outputs
  * are states, known at the start of an evaluation, so they cut every
  * causal cycle that passes through storage; a cycle left over is an

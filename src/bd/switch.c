@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Switched laws of a block diagram: guards and modes (flexbond/bd.h). */
 #include <math.h>
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal layout of a bond graph, shared by src/bg and src/bd. */
 #ifndef FLEXBOND_BG_INTERNAL_H
 #define FLEXBOND_BG_INTERNAL_H

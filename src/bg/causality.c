@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Sequential causality assignment procedure (SCAP) on multibond graphs.
  *
  * Karnopp, Margolis & Rosenberg, "System Dynamics", 5th ed., section 5.2:

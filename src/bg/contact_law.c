@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Unilateral compliant contact as two switched laws (see
  * fb_bg_add_unilateral_contact in flexbond/bg.h). */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Graphviz DOT picture of a multibond graph (the paper's Fig. 5; Leite &
  * Da Silva draw the vehicle's subsystems as separate graphs joined by
  * bonds, multibonds labelled with their dimension in brackets, and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Bond graph construction: elements, bonds, ports and subsystem adoption. */
 #include <stdio.h>
 #include <stdlib.h>

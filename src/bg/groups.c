@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Subsystem instances of a graph from its element names (see
  * fb_bg_groups in bg_internal.h): the clusters of its pictures. */
 #include <stdlib.h>

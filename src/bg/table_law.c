@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tabulated one-port laws y = phi(x) (see flexbond/bg.h), e.g. a damper's
  * force-velocity curve used as an R element's law e = phi(f).
  *

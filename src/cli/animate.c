@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond run --animate: each system's motion over the bump window as a
  * ParaView time series and an animated GIF (docs/animation.md).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Option parsing, numeric option values and error reporting shared by the
  * subcommands (see cli.h). A small hand-written parser instead of
  * getopt_long, which is a GNU extension. */

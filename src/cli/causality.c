@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond causality: assigns causality to the model's bond graph and
  * lists every bond with the end that carries its causal stroke. The stroke
  * sits at the end of the element that receives the effort (Karnopp,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal interface of the flexbond command: exit codes, the option
  * parser shared by the subcommands, and the subcommands themselves.
  * Only this program uses it; the library never prints or exits. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond diagram: a model's or a vehicle's block diagram or multibond
  * graph (the paper's Figs. 6 and 5) as Graphviz DOT, to a file (written
  * atomically) or to stdout, or drawn by Graphviz into SVG or PNG. */

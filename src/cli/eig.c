@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond eig: eigenvalues of the model linearised at its initial state,
  * A = dF/dx (t0, x0), from LAPACK's dgeev (Hessenberg QR; Anderson et al.,
  * LAPACK Users' Guide, 3rd ed., SIAM 1999, section 2.4.8).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond export: the vehicle of a scenario, assembled (fb_vehicle_build)
  * and written as the linear descriptor system of its block diagram
  * (fb_bd_descriptor, flexbond/bd.h):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond freq: the frequency response of a vehicle scenario's outputs
  * to the road, from its descriptor form (fb_bd_descriptor,
  * fb_descriptor_freq_response; docs/frequency-response.md):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shared by flexbond freq (freq.c) and its ride from a road spectrum
  * (freq_psd.c). */
 #ifndef FLEXBOND_CLI_FREQ_H

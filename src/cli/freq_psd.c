@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond freq on a random road: the outputs' PSDs from the road's
  * spectrum and the frequency response, S_y(f) = sum over the tracks'
  * cross-spectra of H S_road H*, their r.m.s. values and the driver's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* One loader for diagram, causality and eig (see graph_input.h). */
 #include "graph_input.h"
 

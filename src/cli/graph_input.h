@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The input of the commands that look at a graph (diagram, causality,
  * eig): a model file or a vehicle scenario file, loaded into one bond
  * graph with its probes and solver settings, by one code path. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* SIGINT, SIGTERM and SIGHUP (see cli_interrupt_install in cli.h).
  *
  * The handler only sets a flag and writes a byte into a pipe (both

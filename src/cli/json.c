@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* JSON text written by hand for the commands' summary files (cli.h). */
 #include <stdio.h>
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: command-line front end of the library.
  *
  *   flexbond sim MODEL.yaml -o DIR [--t-end S] [--rtol X] [--sample-rate HZ] [--quiet]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond mesh: the System 2 hull mesh of a scenario (generated or
  * imported), its mass properties, and its export as an Abaqus/CalculiX
  * deck (.inp) or a VTK unstructured grid (.vtu). */

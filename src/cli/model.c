@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond model: a vehicle scenario's assembled bond graph written as a
  * model file (fb_model_write), so that everything `flexbond run` builds
  * in C can be read, changed and simulated with `flexbond sim`. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond modes: natural frequencies and damped modes of the vehicle of
  * a scenario, linearised at its static equilibrium (fb_vehicle_modes).
  *

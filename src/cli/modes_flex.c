@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond modes --system flexible: modal analysis of System 2 (the
  * paper's Figs. 3 and 4): the free-free hull's modes and the whole
  * undamped vehicle's, printed and, with -o DIR, written as

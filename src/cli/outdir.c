@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Output directories written all or nothing (see cli_outdir in cli.h).
  *
  * Files are written into a hidden staging directory inside DIR (the same

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond run's statistics and its DIR/report.md (docs/report.md): the
  * scenario, the assumptions, the runs, the mode tables and pictures, the
  * figures, the comparison of System 2 with System 1 and a paragraph of

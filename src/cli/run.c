@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond run: the vehicle study of Leite & Da Silva ("Modeling and
  * simulation of armored wheeled vehicles with flexible hulls using modular
  * procedures"; data sheet ../shared/reference-vehicle.md). Loads a

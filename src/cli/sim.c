@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond sim: load a model, build its block diagram, integrate it, and
  * only then write DIR/probes.csv and DIR/stats.json, so a failed run
  * leaves no output behind. */

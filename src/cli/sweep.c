@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond sweep: a parameter study of a vehicle scenario (docs/sweep.md).
  * Every --set KEY=SPEC gives a key of the scenario file and its values;
  * the cases are their cartesian product. The cases run on a pool of POSIX

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond sweep, inside the command (docs/sweep.md): the study, its
  * cases and their metrics (sweep_case.c), the journal a killed sweep
  * resumes from (sweep_journal.c), the pool that runs the cases on

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The cases of flexbond sweep (sweep.h): each loads the scenario with its
  * values replacing the file's (fb_scenario_load_overrides, so the reader
  * checks and converts them as its own), simulates one system and reduces

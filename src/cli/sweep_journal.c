@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The journal of a sweep (sweep.h): DIR/sweep.partial.csv, which a
  * killed or interrupted sweep leaves behind and `--resume` reads back.
  *

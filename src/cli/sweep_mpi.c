@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond sweep across MPI ranks (sweep.h; docs/cluster.md).
  *
  * Rank 0 coordinates: it hands each rank one case at a time, the next in

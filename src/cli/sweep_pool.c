@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Who runs which case of a sweep, and what happens when one finishes
  * (sweep.h). Cases are handed out one at a time in grid order, to
  * whichever thread (or MPI rank) asks next, so long and short cases

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Status codes and error messages (see flexbond/error.h). */
 #include "flexbond/error.h"
 

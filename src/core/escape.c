@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The escaping writers of flexbond/escape.h: one walk over the UTF-8 text
  * (write_utf8) and, per language, what each ASCII character becomes. */
 #include "flexbond/escape.h"

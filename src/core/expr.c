@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Arithmetic expressions (see flexbond/expr.h for the grammar).
  *
  * A recursive-descent parser, one function per grammar rule, compiles the

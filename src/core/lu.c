@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Sparse LU factorisation with SuiteSparse KLU (Davis & Palamadai
  * Natarajan, "Algorithm 907: KLU", ACM TOMS 37(3), 2010); see
  * flexbond/mat.h. The 64-bit-index interface (klu_l_*) is used so any

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Real matrices, dense column-major or compressed sparse column (CSC); see
  * flexbond/mat.h. The LAPACK-based operations (inverse, definiteness) are
  * in mat_lapack.c, LU in lu.c and Matrix Market I/O in mtx.c; those use

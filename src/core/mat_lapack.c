@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Dense LAPACK-based matrix operations: inverse and definiteness tests
  * (see flexbond/mat.h). These work on a dense copy, so they are meant for
  * the small and medium matrices of element laws (transformer moduli, mass

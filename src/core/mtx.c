@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Matrix Market reader and writer (see flexbond/mat.h). Format: Boisvert,
  * Pozo & Remington, "The Matrix Market Exchange Formats: Initial Design",
  * NISTIR 5935, 1996. Supported: matrix coordinate|array real|integer

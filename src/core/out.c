@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Atomic output files and directory creation (see flexbond/out.h).
  *
  * An output is written to a temporary file next to its destination

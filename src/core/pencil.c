@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Solves (j omega E - A) x = b for the frequencies of a frequency
  * response: one symbolic analysis of the pattern of E and A together,
  * then a complex KLU factorisation per frequency (Davis & Palamadai

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Table of named parameters for expressions (see flexbond/expr.h).
  *
  * Entries are kept in definition order in one growable array and looked up

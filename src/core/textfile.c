@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Text data files read line by line (see core/textfile.h). */
 #include "core/textfile.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Line-by-line reading of the text data files that models and scenarios
  * reference (CSV tables, road profiles, Matrix Market), with the checks
  * they share: lines are counted for "FILE:LINE: " messages, a file that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Scalar functions of time u(t) for modulated sources (see flexbond/expr.h).
  *
  * One struct with a kind tag; each kind keeps its data in its own member

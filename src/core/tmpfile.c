@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Exclusive temporary files and directories (see core/tmpfile.h).
  *
  * Safety comes from exclusive creation alone (O_CREAT | O_EXCL, which

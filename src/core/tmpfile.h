@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Temporary files and directories beside a destination, created
  * exclusively: the one way the library makes a file or directory that it
  * later renames into place. */

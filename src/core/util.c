@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Small internal helpers (see core/util.h). */
 #include "core/util.h"
 

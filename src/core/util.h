@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Small internal helpers shared by the library's modules. */
 #ifndef FLEXBOND_CORE_UTIL_H
 #define FLEXBOND_CORE_UTIL_H

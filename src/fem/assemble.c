@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Sparse assembly of the shell model (fb_fem_assemble) and the rigid-body
  * mass properties of a mass matrix (fb_fem_mass_properties); see
  * flexbond/fem.h.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Boundary conditions by elimination of fixed DOFs: fb_fem_free_dofs and
  * fb_fem_submatrix (see flexbond/fem.h). */
 #include <stdint.h>

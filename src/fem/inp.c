@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Abaqus/CalculiX input decks for shell meshes (see flexbond/fem.h).
  *
  * Syntax follows the Abaqus Analysis User's Guide, section 1.2.1 "Input

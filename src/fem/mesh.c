@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shell meshes (see flexbond/fem.h): nodes, elements, node and element
  * sets, and shell sections.
  *

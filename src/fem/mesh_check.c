@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Mesh validation (fb_mesh_check, see flexbond/fem.h).
  *
  * Checks, in this order, reporting the first failure (FB_EMODEL, by user

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal helpers shared by the mesh modules (mesh.c, mesh_check.c,
  * inp.c, vtu.c). */
 #ifndef FLEXBOND_FEM_MESH_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* A shell mesh's outline: the edges a drawing keeps when it leaves the
  * element edges out, the "feature edges" of surface rendering. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Lowest modes of K v = w^2 M v (fb_fem_modes, see flexbond/fem.h), for a
  * symmetric positive semi-definite K (free-free structures have six zero
  * eigenvalues) and a symmetric positive definite M.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* gmsh meshes, MSH file format version 4.1 in ASCII (see flexbond/fem.h;
  * the format is specified in the gmsh reference manual, section 9.1 "MSH
  * file format").

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Free-interface modal reduction with residual flexibility (see
  * fb_fem_reduce_free in flexbond/fem.h).
  *

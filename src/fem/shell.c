@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Flat shell elements with 6 DOF per node (fb_shell_element, see
  * flexbond/fem.h): the element's local frame, the membrane and bending
  * parts placed on the local DOFs, the rotation to global axes, and the

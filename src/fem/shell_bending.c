@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Plate bending stiffness of the flat shell elements (Kirchhoff plates), in
  * the element's local frame, on the DOFs (w, rx, ry) of each node.
  *

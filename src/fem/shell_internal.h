@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal interfaces of the flat shell elements (shell.c, shell_membrane.c,
  * shell_bending.c). Everything here works in the element's local frame:
  * x along edge 1-2, z along the normal, nodes given by their in-plane

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Membrane (in-plane) stiffness of the flat shell elements, in the
  * element's local frame, on the DOFs (u, v, rz) of each node.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Small 3-vector helpers shared by the shell element and mesh checks. */
 #ifndef FLEXBOND_FEM_VEC3_H
 #define FLEXBOND_FEM_VEC3_H

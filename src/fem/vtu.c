@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* VTK XML unstructured grid output (see flexbond/fem.h), ASCII.
  *
  * Layout per the XML formats of "VTK File Formats" (The VTK User's Guide,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Child processes (see io/child.h).
  *
  * fork and execve rather than posix_spawn, because the child must do two

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Child processes of the library (gnuplot, Graphviz's dot), run the one
  * way that is safe to interrupt and to time out. */
 #ifndef FLEXBOND_IO_CHILD_H

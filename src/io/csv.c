@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* CSV output of simulation results (see flexbond/io.h).
  *
  * The header cells are text fields of fb_csv_write_field_parts

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Is a file a complete GIF image, and of how many frames?
  * (io/plot_internal.h, fb_gif_check.)
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Graphviz rendering (see io/graphviz.h), with the discipline of the
  * gnuplot figures (io/plot.c): a private directory, fixed names inside
  * it, the child run through fb_child_run, the picture checked before it

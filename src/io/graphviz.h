@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Diagrams through Graphviz (https://graphviz.org): DOT text written by
  * the caller, rendered to SVG or PNG by `dot`, the one way the library
  * runs it. */

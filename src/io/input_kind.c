@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The kind of a YAML input file, by its root mapping's keys (see
  * io/input_kind.h): decided on the parsed document, never on its text,
  * so a comment or a quoted "scenario:" cannot mislead it. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Which loader a YAML input file is for: a model (fb_model_load) or a
  * vehicle scenario (fb_scenario_load). */
 #ifndef FLEXBOND_IO_INPUT_KIND_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Model files (flexbond/model.h): the top-level sections of a model and
  * the public API. The format is documented in docs/model-format.md. */
 #include "flexbond/model.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The `contact` element of model files: a spring and a damper in
  * parallel that can push but never pull, e.g. a tire on the road
  * (fb_bg_add_unilateral_contact in flexbond/bg.h; docs/model-format.md,

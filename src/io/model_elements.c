@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Elements in model files: one mapping per element, dispatched on `type`
  * to the fb_bg constructor of that kind, or to a subsystem definition. */
 #include <math.h>

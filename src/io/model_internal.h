@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: internals of the YAML model loader (src/io/model*.c).
  *
  * The loader walks a libfyaml document tree. Every error is reported as

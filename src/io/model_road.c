@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Road sources in model files: `value: {road: {...}}`, the vertical
  * velocity (or height) of the road under a wheel moving at constant speed
  * along a (1 - cos) bump, an ISO 8608 random road or a measured profile

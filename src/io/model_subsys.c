@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Graph structure in model files: parameters, subsystem definitions and
  * their instances, exported ports, bonds and port references.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Values in model files: number lists, matrices (inline rows, diagonal,
  * Matrix Market file) and source time functions (expression of t, step,
  * sine, table). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Writes a bond graph as a model file (fb_model_write in flexbond/model.h;
  * the format is docs/model-format.md).
  *

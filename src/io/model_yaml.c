@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* YAML access for the model loader: parsing with captured diagnostics,
  * node locations and key paths for messages, and typed getters that
  * report "FILE:LINE:COL: KEY: message". */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* PNG figures of sampled results through gnuplot (http://gnuplot.info),
  * run on a script file with the data inline as datablocks (see
  * flexbond/io.h). Each curve gets a datablock of its own holding only the

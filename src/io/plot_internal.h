@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Shared by the gnuplot figure writers of src/io. */
 #ifndef FLEXBOND_IO_PLOT_INTERNAL_H
 #define FLEXBOND_IO_PLOT_INTERNAL_H

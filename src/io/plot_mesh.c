@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* A vehicle's mode shape as a 3-D picture (the paper's Figs. 3 and 4)
  * through gnuplot's splot: the hull's outline, its mounted bodies and
  * wheels at rest in grey; the same displaced and coloured by how far

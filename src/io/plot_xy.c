@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* X-Y figures through gnuplot (flexbond/io.h, fb_plot_xy_png): a grid of
  * panels, each with curves of points joined in order, such as a metric
  * of a parameter study against the swept value. The data go inline as

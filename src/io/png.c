@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Is a file a complete PNG image? (io/plot_internal.h, fb_png_check.)
  *
  * A child that draws a PNG may exit 0 having written nothing or half of

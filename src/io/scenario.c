@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Vehicle scenarios (flexbond/vehicle.h): loading, copying, freeing,
  * locating errors found after loading, and
  * the bump timing every wheel follows. The file format is declared in

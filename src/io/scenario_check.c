@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Physical consistency of a vehicle scenario (fb_scenario_check): every
  * value against its range in the format's table (scenario_schema.c),
  * then the rules between values that a table cannot state. Each error

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: internals of the vehicle scenario loader (src/io/scenario*.c).
  *
  * The scenario file (docs/scenario-format.md) is declared once, as the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Scenario overrides (flexbond/vehicle.h, fb_scenario_load_overrides):
  * "--set KEY=VALUE" reads VALUE in place of the file's value at KEY. The
  * schema reader does it (sch_place, io/schema.c): it puts the value into

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The scenario file format (docs/scenario-format.md) as one schema table
  * (io/schema.h), with the hooks for what a table cannot say: a value of
  * several shapes (the load points, a damper table), an axle that makes

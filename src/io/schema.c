@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The schema engine (io/schema.h): a YAML document read, a struct
  * checked and visited, and the reference tables written, all from one
  * table of keys. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond: a file format declared as a table of keys (src/io/schema.c).
  *
  * Each key of a YAML format is declared once, in an sch_table: its path,

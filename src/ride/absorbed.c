@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Absorbed power (Pradko & Lee, "Vibration comfort criteria", SAE paper
  * 660139, 1966; Lee & Pradko, "Analytical analysis of human vibration",
  * SAE paper 680091, 1968): the mean power a seated person absorbs under

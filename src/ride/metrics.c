@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Ride-comfort metrics of a sampled vertical acceleration (see
  * flexbond/ride.h and docs/ride-metrics.md).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Ride from a road spectrum (flexbond/ride.h): the temporal PSD of an
  * ISO 8608 road at a speed, and the mean square of a response from its
  * PSD. A road of spatial PSD Gd(n) (m^3, n in cycles/m) driven at V

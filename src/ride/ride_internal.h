@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal: shared pieces of the ride-comfort module (flexbond/ride.h). */
 #ifndef FLEXBOND_RIDE_INTERNAL_H
 #define FLEXBOND_RIDE_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* ISO 2631-1:1997 frequency weighting Wk (vertical whole-body vibration,
  * seated, standing and recumbent), analytic and digital.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* (1 - cos) bumps: the paper's oblique bump and the Brazilian speed bumps
  * (docs/roads.md). */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* ISO 8608:2016 random road profiles as sums of harmonics with random
  * phases (docs/roads.md).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Monotone piecewise cubic Hermite interpolation (PCHIP) of measured
  * profiles.
  *

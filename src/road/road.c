@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Road profiles: allocation, evaluation of the two tracks, and the time
  * functions of a wheel running along a track at constant speed (see
  * flexbond/road.h for the conventions). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Measured road profiles read from CSV files (format: flexbond/road.h,
  * docs/roads.md), interpolated by PCHIP (pchip.c). */
 #include <stdlib.h>

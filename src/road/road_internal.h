@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal representation of road tracks, shared by the road's
  * constructors (bump.c, iso8608.c, road_csv.c) and its evaluation and time
  * functions (road.c).

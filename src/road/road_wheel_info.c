@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Road wheel functions as data and back (flexbond/road.h): what a wheel's
  * time function was made of, read from its own context, and the road
  * rebuilt from that, so that a model file can hold a road source. */

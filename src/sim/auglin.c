@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Augmented sparse Newton solver (see auglin.h). KLU's 64-bit interface
  * (klu_l_*) is used, like src/core/lu.c.
  *

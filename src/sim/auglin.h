@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal: sparse direct solver for Newton systems through a block
  * diagram's augmented linearisation (see flexbond/bd.h).
  *

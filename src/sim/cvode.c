@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Time integration with SUNDIALS CVODE 6.4 (see flexbond/sim.h).
  *
  * Method: variable-order, variable-step BDF with modified Newton iteration

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Messages for non-finite values met while simulating (sim_internal.h):
  * what was not finite, where the value starts in the diagram
  * (fb_bd_explain_nonfinite), and what usually causes it. */

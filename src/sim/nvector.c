@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Serial N_Vectors whose per-element operations are compiled with this
  * project's flags (see nvector.h).
  *

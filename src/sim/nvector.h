@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal: serial N_Vectors with optimised per-element operations
  * (src/sim/nvector.c says why). */
 #ifndef FLEXBOND_SIM_NVECTOR_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Simulation options and the output sample grid (see flexbond/sim.h). */
 #include <float.h>
 #include <math.h>

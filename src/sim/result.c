@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Sampled simulation results (see flexbond/sim.h). */
 #include <stdint.h>
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The difference of two results sampled on one grid (see fb_result_diff
  * in flexbond/sim.h): what `flexbond run` plots under its overlaid
  * System 1 and System 2 curves. */

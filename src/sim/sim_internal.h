@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal: simulation results and the output sample grid. */
 #ifndef FLEXBOND_SIM_INTERNAL_H
 #define FLEXBOND_SIM_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Static equilibrium of a mechanical block diagram (see flexbond/sim.h)
  * by pseudo-transient continuation (Kelley & Keyes, "Convergence analysis
  * of pseudo-transient continuation", SIAM J. Numer. Anal. 35(2), 1998):

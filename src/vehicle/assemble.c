@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Assembly of the vehicle from its fragments, the paper's seven outputs,
  * and the simulation protocol (see flexbond/vehicle.h). */
 #include <stdio.h>

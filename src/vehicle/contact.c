@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Tire contact verdict (see fb_vehicle_contact_loss in
  * flexbond/vehicle.h): the paper checks by eye that the normal reactions
  * never become tensile; this lists where a tire carries no load. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Couplings of attachment points to the finite-element hull (fb_hull_coupling,
  * flexbond/vehicle.h; docs/hull-mesh.md, "Couplings").
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* System 2's finite-element hull: node-set resolution, free-free modes,
  * and the modes of the whole undamped vehicle (flexbond/vehicle.h). */
 #include <assert.h>

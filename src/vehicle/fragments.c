@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The vehicle's subsystems as bond-graph fragments with ports (the paper's
  * Fig. 5). Each fragment is built from its own parameters only; the
  * assembly (assemble.c) connects them through ports.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* A vehicle's frequency response to the road (docs/frequency-response.md):
  * its linear descriptor form, at the static equilibrium when a law is
  * nonlinear, and H = C (j omega E - A)^-1 B for a road height on each

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* System 2's hull mesh: fb_hull_mesh_params_default and
  * fb_hull_mesh_generate (flexbond/vehicle.h; geometry, fit and sketch in
  * docs/hull-mesh.md).

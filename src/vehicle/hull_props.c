@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* One hull for both systems (flexbond/vehicle.h, fb_vehicle_hull_complete):
  * with a finite-element hull, System 1's mass, inertias and centre of
  * mass come from the same mesh as System 2's, so the two systems compare

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The vehicle's layout as data: its attachment points, its subsystem
  * instances by name, the road's tracks (flexbond/vehicle.h). */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Modes of the linearised vehicle (flexbond/vehicle.h): eigenvalues of
  * the block diagram's exact Jacobian at the static equilibrium (LAPACK
  * dgeev), each described by the body that holds the largest share of its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The motion of a run's vehicle (flexbond/vehicle.h): probes on the
  * assembled graph that measure it, and its value at any time of the run
  * for an animation. */

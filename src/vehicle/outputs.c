@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The signals a vehicle's outputs may name (docs/vehicle-outputs.md), and the
  * probes that measure them on the assembled graph (flexbond/vehicle.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* The road as the input of a vehicle's frequency response: two tracks,
  * each a profile the wheels on it meet one after the other on a straight
  * run at the scenario's speed (the wheelbase filter of ride analysis:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Internal to src/vehicle: what assemble.c needs of outputs.c and
  * layout.c, and modes.c of fragments.c (the rigid hull's inertia). */
 #ifndef FLEXBOND_VEHICLE_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* libFuzzer target: the model loader (fb_model_load_string, docs/model-format.md) on
  * arbitrary bytes and, for every model it accepts, the block diagram built from it
  * (fb_bd_build on the model's graph and probes: causality, schedule, probe targets).

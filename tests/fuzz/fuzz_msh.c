@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* libFuzzer target: the gmsh MSH 4.1 reader (fb_mesh_read_msh_string,
  * flexbond/fem.h) on arbitrary bytes and, for every mesh it accepts, the mesh checks
  * (fb_mesh_check: node use, degenerate, warped and non-convex elements, node sets).

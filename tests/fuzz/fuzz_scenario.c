@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* libFuzzer target: the vehicle scenario loader (fb_scenario_load_string,
  * docs/scenario-format.md) on arbitrary bytes and, for every scenario it accepts, the
  * separate physical check fb_scenario_check again (it must still pass). Nothing is

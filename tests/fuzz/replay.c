@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* Replays inputs through a fuzz target without libFuzzer: main() runs
  * LLVMFuzzerTestOneInput once on every file named on the command line and on every file
  * of every directory named (not recursing; names starting with '.' are skipped, so a

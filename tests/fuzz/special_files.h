@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* For the YAML fuzz targets: inputs that could name a special file are skipped. The model
  * and scenario loaders read every file a document names (tables, Matrix Market files,
  * road profiles) to its end. fb_open_input refuses devices and FIFOs, but /proc and /sys

@@ -22,7 +22,7 @@ libdir=$(pkg-config --variable=libdir flexbond)
   fail "libdir $libdir is not the .pc file's parent"; ok
 for f in "$libdir/libflexbond.so" "$libdir/libflexbond.a" "$prefix/bin/flexbond" \
          "$prefix/include/flexbond/vehicle.h" "$prefix/share/doc/flexbond/examples/apc6x6.yaml" \
-         "$prefix/share/doc/flexbond/README.md" "$prefix/$pydir/flexbond/__init__.py"; do
+         "$prefix/share/doc/flexbond/README.md" "$prefix/share/doc/flexbond/LICENSE" "$prefix/$pydir/flexbond/__init__.py"; do
   [ -e "$f" ] || fail "not installed: $f"; ok
 done
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # flexbond sweep --mpi (docs/cluster.md), in an MPI build: a study with
 # failing cases (a solver failure and a value the reader refuses) on 3
 # ranks writes the same sweep.csv, byte for byte, as on threads in one

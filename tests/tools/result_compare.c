@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
 /* result_compare OLD.csv NEW.csv: checks that a result CSV written by
  * `flexbond run` (a header line, then one row per sample: t, then the
  * outputs) reproduces a reference one, sample by sample.
