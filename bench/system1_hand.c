@@ -35,7 +35,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <time.h>
 
-/* ---- The vehicle (examples/apc6x6.yaml; ../shared/reference-vehicle.md). */
+/* ---- The vehicle (examples/apc6x6.yaml; docs/reference-vehicle.md). */
 
 #define NCORNERS 6
 #define NMOUNTS 2

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* An independent model of System 1 (rigid hull) of the reference vehicle,
- * written by hand from the data sheet (/work/shared/reference-vehicle.md)
+ * written by hand from the data sheet (docs/reference-vehicle.md)
  * as a plain second-order system M q'' = Q(t, q, q'), for verifying
  * flexbond's bond-graph vehicle. It takes only the parameters from the
  * scenario; no bond graph, block diagram or solver of flexbond is used.

@@ -24,7 +24,7 @@ static int contains(const char *text, const char *part)
 
 /* ---- Bumps ---- */
 
-/* The data sheet's reference vehicle (../shared/reference-vehicle.md):
+/* The data sheet's reference vehicle (docs/reference-vehicle.md):
  * corner positions, 10 km/h, a 0.10 m x 3.70 m bump at 45 deg, first
  * contact 5 s. */
 static void reference_scenario(fb_scenario *sc, fb_corner_params *corners)

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Tests of the vehicle scenario loader (fb_scenario_* in
  * flexbond/vehicle.h): examples/apc6x6.yaml against every number of the
- * data sheet (../shared/reference-vehicle.md), the bump timing against
+ * data sheet (docs/reference-vehicle.md), the bump timing against
  * hand calculation, deep copies, fb_scenario_check on hand-built
  * scenarios, a table of bad scenarios with the status, the
  * "bad.yaml:LINE:COL:" and the key path each must report, and the

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Independent verification of System 1 (rigid hull) of the reference
- * vehicle (/work/shared/reference-vehicle.md) against flexbond's bond-graph
+ * vehicle (docs/reference-vehicle.md) against flexbond's bond-graph
  * model (include/flexbond/vehicle.h):
  *   1. the seven outputs of fb_vehicle_simulate against a hand-written
  *      11-DOF model (apc_direct.h) integrated by fixed-step RK4;

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond run: the vehicle study of Leite & Da Silva ("Modeling and
  * simulation of armored wheeled vehicles with flexible hulls using modular
- * procedures"; data sheet ../shared/reference-vehicle.md). Loads a
+ * procedures"; data sheet docs/reference-vehicle.md). Loads a
  * scenario, computes the modes of the systems asked for, simulates each
  * system once, and only then writes, all or nothing: DIR/systemN.csv, one
  * PNG per paper figure (Figs. 8-14; both systems overlaid above their

@@ -86,7 +86,7 @@ void fb_road_free(fb_road **road)
 }
 
 /* ---- The (1 - cos) bump: z = (h/2)(1 - cos(2 pi u / L)) for u = s - start
- * in [0, L] (the paper's bump; data sheet ../shared/reference-vehicle.md),
+ * in [0, L] (the paper's bump; data sheet docs/reference-vehicle.md),
  * so dz/ds = (pi h / L) sin(2 pi u / L): continuous (0) at both ends, its
  * derivative jumps there. */
 
