@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # What `cmake --install` (and `make install`) puts under the prefix: the
-# CLI, the static and the shared library, the public headers, flexbond.pc,
+# CLI and its manual page, the static and the shared library, the public headers, flexbond.pc,
 # the Python package (python/flexbond), and the examples and documents
 # under share/doc/flexbond. Included from CMakeLists.txt.
 
@@ -11,6 +11,15 @@ endif()
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/include/flexbond DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 if(TARGET flexbond_cli)
   install(TARGETS flexbond_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  # The manual page, from the built command's --help texts (cmake/manpage.sh).
+  find_program(BASH_EXECUTABLE bash REQUIRED)
+  add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/flexbond.1
+                     COMMAND ${BASH_EXECUTABLE} ${CMAKE_SOURCE_DIR}/cmake/manpage.sh
+                             $<TARGET_FILE:flexbond_cli> ${CMAKE_BINARY_DIR}/flexbond.1
+                     DEPENDS flexbond_cli ${CMAKE_SOURCE_DIR}/cmake/manpage.sh
+                     COMMENT "Writing the manual page flexbond.1")
+  add_custom_target(flexbond_manpage ALL DEPENDS ${CMAKE_BINARY_DIR}/flexbond.1)
+  install(FILES ${CMAKE_BINARY_DIR}/flexbond.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 endif()
 
 # flexbond.pc: the prefix relative to the .pc file's directory, one ".."

@@ -21,9 +21,15 @@ libdir=$(pkg-config --variable=libdir flexbond)
 [ "$(cd "$libdir" && pwd -P)" = "$(cd "$(dirname "$pcfile")/.." && pwd -P)" ] ||
   fail "libdir $libdir is not the .pc file's parent"; ok
 for f in "$libdir/libflexbond.so" "$libdir/libflexbond.a" "$prefix/bin/flexbond" \
-         "$prefix/include/flexbond/vehicle.h" "$prefix/share/doc/flexbond/examples/apc6x6.yaml" \
+         "$prefix/include/flexbond/vehicle.h" "$prefix/share/man/man1/flexbond.1" "$prefix/share/doc/flexbond/examples/apc6x6.yaml" \
          "$prefix/share/doc/flexbond/README.md" "$prefix/share/doc/flexbond/LICENSE" "$prefix/$pydir/flexbond/__init__.py"; do
   [ -e "$f" ] || fail "not installed: $f"; ok
+done
+
+# The manual page has a subsection per command of `flexbond --help`.
+for cmd in $("$prefix/bin/flexbond" --help | awk '/^commands:/ { on = 1; next }
+                                                on && /^  [a-z]/ { print $1 } on && /^$/ { exit }'); do
+  grep -qx ".SS flexbond $cmd" "$prefix/share/man/man1/flexbond.1" || fail "flexbond.1: no $cmd"; ok
 done
 
 # Shared: found at run time through the rpath given here.
