@@ -543,6 +543,8 @@ int fb_model_load_string(const char *text, size_t len, const char *display_name,
   if (!rc)
     rc = prc;
   if (!rc)
+    rc = ml_refuse_other_format(&c, fy_document_root(y.doc), "model");
+  if (!rc)
     rc = ml_load_root(&c, m, fy_document_root(y.doc), globals);
   ml_yaml_release(&y);
   free(c.used);

@@ -160,6 +160,12 @@ int ml_expect_map(const ml_ctx *c, struct fy_node *n, const char *what);
 int ml_expect_seq(const ml_ctx *c, struct fy_node *n, const char *what);
 /* Every key of map must be in the NULL-terminated list allowed. */
 int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allowed);
+/* The two formats' files are told apart by their root's key: a model
+ * file's "model", a scenario file's "scenario" (io/input_kind.h). Given
+ * the root of a document read as the format whose key is own, FB_EPARSE at
+ * the other format's key when the root has it and not own: the file is the
+ * other kind, and the message says which commands read it. */
+int ml_refuse_other_format(const ml_ctx *c, struct fy_node *root, const char *own);
 /* Scalar text (owned by the document) that is one line: a name, unit,
  * label, file name, choice or reference. Every string value the loaders
  * take goes through here, so a control character (a line break, tab,

@@ -997,6 +997,25 @@ int ml_is_null(struct fy_node *n)
          !strcmp(t, "NULL");
 }
 
+int ml_refuse_other_format(const ml_ctx *c, struct fy_node *root, const char *own)
+{
+  const int model = strcmp(own, "model") == 0;
+  struct fy_node *other = NULL;
+  if (!root || !fy_node_is_mapping(root) || ml_get(root, own, NULL))
+    return FB_OK;
+  ml_get(root, model ? "scenario" : "model", &other);
+  if (!other)
+    return FB_OK;
+  if (model)
+    return ml_fail_key(c, root, other, FB_EPARSE,
+                       "this is a scenario file (docs/scenario-format.md), not a model file: "
+                       "flexbond run, modes, mesh, export, freq, model and sweep read it, "
+                       "and diagram, causality and eig read either kind");
+  return ml_fail_key(c, root, other, FB_EPARSE,
+                     "this is a model file (docs/model-format.md), not a scenario file: "
+                     "flexbond sim, diagram, causality and eig read it");
+}
+
 struct fy_node *ml_get(struct fy_node *map, const char *key, struct fy_node **key_node)
 {
   struct fy_node_pair *pair = fy_node_mapping_lookup_pair_by_string(map, key, (size_t)-1);

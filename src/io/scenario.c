@@ -406,6 +406,8 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
   int rc = fb_symtab_new(&params, c->err);
   if (!rc)
     rc = ml_yaml_parse(text, len, c->file, &y, c->err);
+  if (!rc)
+    rc = ml_refuse_other_format(c, fy_document_root(y.doc), "scenario");
   if (!rc && nov)
     rc = sc_overrides_resolve(c, fy_document_root(y.doc), ov, nov);
   if (!rc)

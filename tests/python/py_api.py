@@ -231,6 +231,16 @@ class ErrorTest(unittest.TestCase):
             flexbond.Scenario(APC, overrides={"no_such_key": 1})
         self.assertIn("no_such_key", caught.exception.message)
 
+    def test_model_file_is_named(self):
+        """A model file where a scenario is expected is named as one, at its
+        model key (the loader's check, shared with every command)."""
+        path = os.path.join(SRC, "examples", "quarter_car.yaml")
+        with self.assertRaises(flexbond.Error) as caught:
+            flexbond.Scenario(path)
+        e = caught.exception
+        self.assertEqual((e.key, e.line, e.column), ("model", line_of(path, "model"), 1))
+        self.assertIn("this is a model file", e.message)
+
     def test_bad_system(self):
         with self.assertRaises(ValueError):
             flexbond.Scenario(APC).run("stiff")
