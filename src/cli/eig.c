@@ -7,6 +7,7 @@
  * s^2 + 2 zeta omega_n s + omega_n^2, omega_n = |lambda| and
  * zeta = -sigma / |lambda| (Ogata, "Modern Control Engineering", 5th ed.,
  * section 5.3); the natural frequency in Hz is omega_n / (2 pi). */
+#include <float.h>
 #include <lapacke.h>
 #include <limits.h>
 #include <math.h>
@@ -29,7 +30,9 @@ static const char eig_usage[] =
     "equations x' = F(t, x) at the start time and initial state, sorted by\n"
     "|imaginary part| then real part. A complex pair is printed once, with\n"
     "its natural frequency f_n = |lambda| / (2 pi) and damping ratio\n"
-    "zeta = -Re(lambda) / |lambda|.\n"
+    "zeta = -Re(lambda) / |lambda|. Eigenvalues within round-off of zero,\n"
+    "|lambda| <= n eps ||A||_F, are zero eigenvalues (a free body, a statically\n"
+    "indeterminate support): counted, and left out of the table.\n"
     "\n"
     "options:\n"
     "  --system S            rigid (System 1) or flexible (System 2), scenarios only\n"
@@ -106,15 +109,43 @@ static int linearise(const cli_graph_input *in, fb_bd *bd, size_t n, double *jac
   return rc;
 }
 
+/* The Frobenius norm of the n x n matrix a. */
+static double frobenius(size_t n, const double *a)
+{
+  double sum = 0.0;
+  for (size_t k = 0; k < n * n; ++k)
+    sum += a[k] * a[k];
+  return sqrt(sum);
+}
+
+/* Moves the eigenvalues with |lambda| <= zero_tol to the end of ev (the
+ * order of the others kept); returns how many are left before them. A
+ * backward-stable eigen-solver finds the eigenvalues of A + E with
+ * ||E||_F about n eps ||A||_F (Golub & Van Loan, "Matrix Computations",
+ * 4th ed., 2013, sec. 7.5.6): a zero eigenvalue comes out anywhere in
+ * that radius, with any sign and a spurious imaginary part. */
+static size_t drop_zeros(eigenvalue *ev, size_t n, double zero_tol)
+{
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (hypot(ev[i].re, ev[i].im) > zero_tol)
+      ev[kept++] = ev[i];
+  return kept;
+}
+
 static void print_table(const cli_graph_input *in, const fb_bd *bd, const eigenvalue *ev,
-                        size_t n)
+                        size_t n, double zero_tol)
 {
   size_t npairs = 0;
   for (size_t i = 0; i < n; ++i)
     npairs += ev[i].im > 0;
+  const size_t nzero = fb_bd_nstates(bd) - n;
   printf("%s: %zu states, %zu real eigenvalues, %zu complex pairs (at t = %g s, initial "
          "state)\n",
          in->name, fb_bd_nstates(bd), n - 2 * npairs, npairs, in->opts.t_start);
+  if (nzero)
+    printf("%zu zero eigenvalue%s (|lambda| <= %.3g = n eps ||A||_F: round-off) left out\n",
+           nzero, nzero == 1 ? "" : "s", zero_tol);
   printf("%4s  %15s  %19s  %13s  %10s\n", "#", "real [1/s]", "imag [rad/s]", "f_n [Hz]",
          "zeta");
   size_t row = 0;
@@ -148,11 +179,13 @@ static int analyse(const cli_graph_input *in, fb_bd *bd, fb_err *err)
     rc = fb_err_set(err, FB_ENOMEM, "eig: out of memory (%zu states)", n);
   if (rc == FB_OK)
     rc = linearise(in, bd, n, jac, err);
+  const double zero_tol = rc == FB_OK ? (double)n * DBL_EPSILON * frobenius(n, jac) : 0.0;
   if (rc == FB_OK)
     rc = eigenvalues(n, jac, ev, err);
   if (rc == FB_OK) {
-    qsort(ev, n, sizeof *ev, compare_eigenvalues);
-    print_table(in, bd, ev, n);
+    const size_t kept = drop_zeros(ev, n, zero_tol);
+    qsort(ev, kept, sizeof *ev, compare_eigenvalues);
+    print_table(in, bd, ev, kept, zero_tol);
     rc = cli_flush_stdout(err);
   }
   free(ev);
