@@ -112,9 +112,12 @@ test: deps-test build
 
 # Installs into PREFIX (or stages under DESTDIR): docs/install.md.
 PREFIX ?= /usr/local
+# sudo only for a prefix the user cannot write (/usr/local for a user); ldconfig only for a
+# system prefix, whose libraries the loader caches.
+INSTALL_SUDO = $(if $(DESTDIR),,$(shell test -w "$(PREFIX)" || echo $(SUDO)))
 install: build
-	$(if $(DESTDIR),,$(SUDO)) env DESTDIR="$(DESTDIR)" cmake --install $(BUILD_DIR) --prefix "$(PREFIX)"
-	$(if $(DESTDIR),,$(SUDO) ldconfig)
+	$(INSTALL_SUDO) env DESTDIR="$(DESTDIR)" cmake --install $(BUILD_DIR) --prefix "$(PREFIX)"
+	$(if $(DESTDIR),,$(if $(filter /usr /usr/local,$(PREFIX)),$(INSTALL_SUDO) ldconfig))
 
 run: deps build
 	./$(BUILD_DIR)/flexbond run examples/apc6x6.yaml -o $(OUT_DIR)/ --animate

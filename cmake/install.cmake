@@ -23,9 +23,16 @@ if(TARGET flexbond_cli)
 endif()
 
 # flexbond.pc: the prefix relative to the .pc file's directory, one ".."
-# per component of the library directory and one for pkgconfig/.
+# per component of the library directory and one for pkgconfig/; an
+# absolute library or include directory is written as it is.
+set(FLEXBOND_PC_LIBDIR "\${prefix}/${CMAKE_INSTALL_LIBDIR}")
+set(FLEXBOND_PC_INCLUDEDIR "\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}")
+if(IS_ABSOLUTE "${CMAKE_INSTALL_INCLUDEDIR}")
+  set(FLEXBOND_PC_INCLUDEDIR "${CMAKE_INSTALL_INCLUDEDIR}")
+endif()
 if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
   set(FLEXBOND_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+  set(FLEXBOND_PC_LIBDIR "${CMAKE_INSTALL_LIBDIR}")
 else()
   set(FLEXBOND_PC_PREFIX "\${pcfiledir}/..")
   string(REPLACE "/" ";" libdir_parts "${CMAKE_INSTALL_LIBDIR}")
@@ -57,11 +64,21 @@ if(FLEXBOND_PYTHON3 AND TARGET flexbond_shared)
         "Where the Python package goes, relative to the prefix (on python3's path for /usr/local)")
     install(FILES ${CMAKE_SOURCE_DIR}/python/flexbond/__init__.py
             DESTINATION ${FLEXBOND_PYTHON_DIR}/flexbond)
+    # Either directory may be absolute, or relative to the prefix given at
+    # install time (cmake --install --prefix).
     install(CODE "
-      set(lib \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/$<TARGET_SONAME_FILE_NAME:flexbond_shared>\")
-      set(txt \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${FLEXBOND_PYTHON_DIR}/flexbond/library_path\")
+      set(libdir \"${CMAKE_INSTALL_LIBDIR}\")
+      set(pydir \"${FLEXBOND_PYTHON_DIR}\")
+      if(NOT IS_ABSOLUTE \"\${libdir}\")
+        set(libdir \"\${CMAKE_INSTALL_PREFIX}/\${libdir}\")
+      endif()
+      if(NOT IS_ABSOLUTE \"\${pydir}\")
+        set(pydir \"\${CMAKE_INSTALL_PREFIX}/\${pydir}\")
+      endif()
+      set(txt \"\$ENV{DESTDIR}\${pydir}/flexbond/library_path\")
       message(STATUS \"Installing: \${txt}\")
-      file(WRITE \"\${txt}\" \"\${lib}\")
+      file(WRITE \"\${txt}\" \"\${libdir}/$<TARGET_SONAME_FILE_NAME:flexbond_shared>\")
+      list(APPEND CMAKE_INSTALL_MANIFEST_FILES \"\${txt}\")
     ")
   endif()
 endif()

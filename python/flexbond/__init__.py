@@ -187,7 +187,7 @@ def _text(value):
     if isinstance(value, bool):
         raise TypeError("flexbond: a boolean is no scenario value")
     if isinstance(value, float):
-        return repr(value)
+        return repr(float(value))  # numpy.float64's repr is "np.float64(...)" from NumPy 2
     return str(value)
 
 
@@ -330,16 +330,21 @@ class _SigintFlag:
 
     def __init__(self, flag):
         self.flag = flag
+        self.installed = False
         self.previous = None
 
     def __enter__(self):
         if threading.current_thread() is threading.main_thread():
             self.previous = signal.signal(signal.SIGINT, lambda *_: self.flag.append(True))
+            self.installed = True
         return self
 
     def __exit__(self, *exc):
-        if self.previous is not None:
-            signal.signal(signal.SIGINT, self.previous)
+        if self.installed:
+            # None: the handler was not set from Python (an embedding
+            # program's); the default one is what Python can put back.
+            signal.signal(signal.SIGINT,
+                          signal.default_int_handler if self.previous is None else self.previous)
 
 
 # ---- Scenarios.
@@ -408,7 +413,9 @@ class Scenario:
     def run(self, system):
         """Simulates one system ("rigid" or "flexible") as flexbond run does:
         a Result with t, the scenario's outputs and each tire's
-        contact_force_<CORNER>. Ctrl-C stops the run (KeyboardInterrupt)."""
+        contact_force_<CORNER>. Ctrl-C stops the run between solver steps
+        (KeyboardInterrupt); the set-up before them (System 2's hull
+        eigen-solve) runs to its end first."""
         sys_id = _system(system)
         interrupted = []
         callback = _PROGRESS(lambda _ctx, _t, _t_end: 1 if interrupted else 0)
@@ -417,7 +424,9 @@ class Scenario:
         with _SigintFlag(interrupted):
             rc = _lib.fb_vehicle_simulate_progress(self._handle(), sys_id, callback, None,
                                                    ctypes.byref(res), ctypes.byref(err))
-        if rc == _FB_EINTR and interrupted:
+        if interrupted:  # also a Ctrl-C after the last step: the caller asked to stop
+            if rc == 0:
+                _lib.fb_result_free(ctypes.byref(res))
             raise KeyboardInterrupt
         _check(rc, err)
         try:

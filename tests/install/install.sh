@@ -27,8 +27,10 @@ for f in "$libdir/libflexbond.so" "$libdir/libflexbond.a" "$prefix/bin/flexbond"
 done
 
 # The manual page has a subsection per command of `flexbond --help`.
-for cmd in $("$prefix/bin/flexbond" --help | awk '/^commands:/ { on = 1; next }
-                                                on && /^  [a-z]/ { print $1 } on && /^$/ { exit }'); do
+cmds=$("$prefix/bin/flexbond" --help | awk '/^commands:/ { on = 1; next }
+                                            on && /^  [a-z]/ { print $1 } on && /^$/ { exit }')
+[ -n "$cmds" ] || fail "no commands in the installed flexbond --help"
+for cmd in $cmds; do
   grep -qx ".SS flexbond $cmd" "$prefix/share/man/man1/flexbond.1" || fail "flexbond.1: no $cmd"; ok
 done
 
