@@ -496,13 +496,14 @@ class Scenario:
             d = ds.contents
             rows = [[d.output_row[o], d.output_row[o] + 1] if d.output_is_product[o]
                     else [d.output_row[o]] for o in range(d.noutputs)]
+            outs = self.outputs
             return Model(_SYSTEM_NAMES[_system(system)],
                          E=_sparse(d.E), A=_sparse(d.A), B=_sparse(d.B), f=_sparse(d.f),
                          C=_sparse(d.C), D=_sparse(d.D), nstates=d.nstates,
                          var_names=_strings(d.var_names, d.n),
                          input_names=_strings(d.input_names, d.ninputs),
-                         output_names=[name for name, _ in self.outputs],
-                         output_units=[unit for _, unit in self.outputs],
+                         output_names=[name for name, _ in outs],
+                         output_units=[unit for _, unit in outs],
                          output_rows=rows, linearised=bool(d.linearised))
         finally:
             _lib.fb_descriptor_free(ctypes.byref(ds))
