@@ -753,6 +753,8 @@ static void test_doc_examples(void)
       continue;
     ++nmodels;
     fb_model *m = load_ok(text, "../examples");
+    /* The documented models draw every bond the usual way. */
+    CHECK(m && fb_model_nwarnings(m) == 0);
     fb_model_free(&m);
   }
   fclose(fp);
@@ -989,6 +991,10 @@ static void expect_blamed(const char *text, int code, const char *where, const c
   CHECK(ok && err.origin == FB_ORIGIN_NONE);
   if (!ok)
     fprintf(stderr, "  wanted %s ... %s, got:\n    %s\n", where, phrase, err.msg);
+  /* The fields say what the message's head says. */
+  char head[FB_ERR_MSG_MAX];
+  snprintf(head, sizeof head, "%s:%d:%d: %s: ", err.file, err.line, err.column, err.key);
+  CHECK(err.source == FB_SOURCE_FILE && !strncmp(where, head, strlen(head)));
   /* A second call changes nothing. */
   char once[FB_ERR_MSG_MAX];
   snprintf(once, sizeof once, "%s", err.msg);
@@ -1018,6 +1024,47 @@ static void test_blame(void)
   fb_err_set(&err, FB_EINVAL, "plain");
   CHECK(fb_model_blame(NULL, &err) == FB_EINVAL && !strcmp(err.msg, "plain"));
   CHECK(fb_model_blame(NULL, NULL) == FB_OK);
+}
+
+/* ---- Warnings: a bond out of an I, C or R. */
+
+/* A model whose bonds are all drawn the usual way has none; one drawn out
+ * of a C, an R or port 2 of a field has one each, located like an error;
+ * the three instances of one definition share one. */
+static void test_power_out_warnings(void)
+{
+  fb_model *m = load_ok("model: m\nelements:\n  - {name: F, type: Se, value: 1}\n"
+                        "  - {name: J, type: 1}\n  - {name: K, type: C, k: 1}\n"
+                        "bonds: [[F, J], [J, K]]\n",
+                        NULL);
+  CHECK(m && fb_model_nwarnings(m) == 0 && fb_model_warning(m, 0) == NULL);
+  fb_model_free(&m);
+
+  m = load_ok("model: m\nsubsystems:\n  corner:\n    elements:\n"
+              "      - {name: K, type: C, k: 1000}\n      - {name: J, type: 1}\n"
+              "    bonds: [[K, J]]\n    ports:\n      - {name: top, at: J}\n"
+              "elements:\n  - {name: F, type: Se, value: 1}\n  - {name: J0, type: 0}\n"
+              "  - {name: a, type: corner}\n  - {name: b, type: corner}\n"
+              "  - {name: c, type: corner}\n"
+              "  - {name: D, type: R, matrix: [[1, 0], [0, 1]], ports: 2}\n"
+              "  - {name: J1, type: 1}\n"
+              "bonds:\n  - [F, J0]\n  - [J0, a.top]\n  - [J0, b.top]\n  - [J0, c.top]\n"
+              "  - [J0, D.1]\n  - {name: back, from: D.2, to: J1}\n  - [J1, J0]\n",
+              NULL);
+  CHECK(m && fb_model_nwarnings(m) == 2);
+  const fb_err *w = fb_model_warning(m, 0);
+  CHECK(w && w->code == FB_EMODEL && !strcmp(w->file, "good.yaml") && w->line == 7 &&
+        w->column == 13 && !strcmp(w->key, "subsystems.corner.bonds[0]"));
+  static const char head[] =
+      "good.yaml:7:13: subsystems.corner.bonds[0]: bond 'a.K->J' points out of C 'a.K'";
+  CHECK(w && !strncmp(w->msg, head, strlen(head)) &&
+        strstr(w->msg, "write the bond with 'K' at its 'to' end"));
+  CHECK(w && strstr(w->msg, "(in instance 'a' at good.yaml:13:5) (and 2 more instances)"));
+  w = fb_model_warning(m, 1);
+  CHECK(w && w->line == 24 && !strcmp(w->key, "bonds[5]") &&
+        strstr(w->msg, "bond 'back' points out of port 2 of R 'D'") &&
+        strstr(w->msg, "write the bond with 'D' at its 'to' end"));
+  fb_model_free(&m);
 }
 
 /* An expression is no one-line text: a block scalar's line breaks are
@@ -1056,6 +1103,7 @@ int main(void)
 {
   test_bad_models();
   test_blame();
+  test_power_out_warnings();
   test_multiline_expression();
   test_parameters();
   test_subsystems();

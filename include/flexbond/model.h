@@ -39,6 +39,19 @@ const fb_probe_spec *fb_model_probes(const fb_model *m, size_t *nprobes);
  * absent); borrowed pointers inside stay valid while m lives. */
 const fb_sim_opts *fb_model_sim_opts(const fb_model *m);
 
+/* Warnings of the load: what the file may legally say but almost never
+ * means, each located as an error would be (fb_err.file, line, column,
+ * key; msg "FILE:LINE:COL: KEY: ..."; code the status it would have as an
+ * error). Today one kind: a bond whose from end is an I, C or R element:
+ * the motion is the same, but the element's state and the bond's effort
+ * and power read with the opposite sign to the usual drawing
+ * (docs/model-format.md, "Power direction"); the bonds of
+ * all instances of one subsystem definition make one warning. The CLI
+ * prints them to stderr and goes on. fb_model_warning returns NULL for
+ * i >= fb_model_nwarnings(m); the value is owned by m. */
+size_t fb_model_nwarnings(const fb_model *m);
+const fb_err *fb_model_warning(const fb_model *m, size_t i);
+
 /* The initial state a model's run starts from (`simulation.initial`). */
 typedef enum fb_model_initial {
   FB_MODEL_INITIAL_GIVEN, /* the elements' `initial` values, 0 where absent (default) */

@@ -124,6 +124,12 @@ int cli_report(int status, const fb_err *err)
   return cli_exit_code(status);
 }
 
+void cli_report_warnings(const fb_model *m)
+{
+  for (size_t i = 0; i < fb_model_nwarnings(m); ++i)
+    fprintf(stderr, "flexbond: warning: %s\n", fb_model_warning(m, i)->msg);
+}
+
 int cli_report_scenario(const fb_scenario *s, int status, fb_err *err)
 {
   if (status != FB_OK && s && err)

@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/model.h"
 #include "flexbond/ride.h"
 #include "flexbond/vehicle.h"
 
@@ -109,6 +110,9 @@ int cli_report(int status, const fb_err *err);
  * it did not load): an error about one of its values (fb_err.key) is
  * first located in its file (fb_scenario_locate). */
 int cli_report_scenario(const fb_scenario *s, int status, fb_err *err);
+/* Prints each of the model's warnings (fb_model_warning) to stderr as
+ * "flexbond: warning: <msg>"; they do not change the exit status. */
+void cli_report_warnings(const fb_model *m);
 
 /* Flushes stdout: FB_OK if everything printed so far got through, else
  * FB_EIO with the reason (a closed pipe, a full disk). */

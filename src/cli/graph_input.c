@@ -22,6 +22,7 @@ int cli_system_option(const char *cmd, const char *text, fb_system *sys)
 static int load_model(const char *path, int system_given, cli_graph_input *in, fb_err *err)
 {
   int rc = fb_model_load(path, &in->model, err);
+  cli_report_warnings(in->model);
   if (rc == FB_OK && system_given) {
     rc = fb_err_set(err, FB_EINVAL,
                     "%s: --system chooses the hull of a vehicle scenario; this is a model "

@@ -192,6 +192,7 @@ static int run(const sim_args *a)
   fb_result *res = NULL;
   fb_sim_opts opts;
   int rc = fb_model_load(a->model_path, &m, &err);
+  cli_report_warnings(m);
   if (rc == FB_OK) {
     opts = effective_opts(m, a);
     opts.progress = stop_when_interrupted;

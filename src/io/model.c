@@ -24,6 +24,7 @@ struct fb_model {
   fb_model_initial initial; /* simulation.initial */
   double *breakpoints;      /* owned, opts.breakpoints points here */
   ml_sites sites;           /* where the graph's elements and bonds were written */
+  ml_warnings warnings;     /* of the load (fb_model_warning) */
 };
 
 void fb_model_free(fb_model **m)
@@ -40,6 +41,7 @@ void fb_model_free(fb_model **m)
   free(p->probes);
   free(p->breakpoints);
   ml_sites_release(&p->sites);
+  ml_warnings_release(&p->warnings);
   fb_bg_free(&p->bg);
   free(p->name);
   free(p);
@@ -113,7 +115,18 @@ int fb_model_blame(const fb_model *m, fb_err *err)
   const size_t len = strlen(err->msg);
   snprintf(err->msg + len, sizeof err->msg - len, "%s", site->tail);
   err->origin = FB_ORIGIN_NONE;
+  ml_site_set_fields(&m->sites, site, err);
   return err->code;
+}
+
+size_t fb_model_nwarnings(const fb_model *m)
+{
+  return m ? m->warnings.n : 0;
+}
+
+const fb_err *fb_model_warning(const fb_model *m, size_t i)
+{
+  return m && i < m->warnings.n ? &m->warnings.warning[i] : NULL;
 }
 
 /* ---- Probes. */
@@ -510,6 +523,8 @@ static int ml_load_root(ml_ctx *c, fb_model *m, struct fy_node *root, fb_symtab 
     rc = ml_probes(c, m, root);
   if (!rc)
     rc = ml_simulation(c, m, root);
+  if (!rc)
+    rc = ml_warn_power_out(m->bg, &m->sites, &m->warnings, c->err);
   return rc;
 }
 

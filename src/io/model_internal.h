@@ -43,15 +43,36 @@ void ml_paths_release(ml_paths *p);
 typedef struct ml_site {
   int kind; /* FB_ORIGIN_ELEMENT or FB_ORIGIN_BOND */
   char *name, *head, *tail;
+  char *key;        /* the key path of head ("bonds[2]"), for fb_err.key */
+  int line, column; /* of head, 0 unknown */
 } ml_site;
 
+/* The sites of one file (file: its display name, owned). */
 typedef struct ml_sites {
   ml_site *site;
   size_t n, cap;
+  char *file;
 } ml_sites;
 void ml_sites_release(ml_sites *s);
 /* The site of kind named name, or NULL. */
 const ml_site *ml_sites_find(const ml_sites *s, int kind, const char *name);
+/* Records in err the file, line, column and key of site (of sites), as
+ * its head names them. */
+void ml_site_set_fields(const ml_sites *sites, const ml_site *site, fb_err *err);
+
+/* What a file may legally say but almost never means (fb_model_warning):
+ * each an fb_err, located as an error would be (owned array). */
+typedef struct ml_warnings {
+  fb_err *warning;
+  size_t n, cap;
+} ml_warnings;
+void ml_warnings_release(ml_warnings *w);
+/* model_warn.c: appends to w one warning per bond written in the file
+ * (its site in sites; the instances of one definition share it) whose
+ * from end is an I, C or R element of bg: the motion is the same, but the element's state and
+ * the bond's effort and power read with the opposite sign to the usual
+ * drawing. FB_ENOMEM only. */
+int ml_warn_power_out(const fb_bg *bg, const ml_sites *sites, ml_warnings *w, fb_err *err);
 
 typedef struct ml_ctx {
   const char *file;         /* display name used in messages */

@@ -637,8 +637,10 @@ void ml_sites_release(ml_sites *s)
     free(s->site[i].name);
     free(s->site[i].head);
     free(s->site[i].tail);
+    free(s->site[i].key);
   }
   free(s->site);
+  free(s->file);
   *s = (ml_sites){0};
 }
 
@@ -648,6 +650,13 @@ const ml_site *ml_sites_find(const ml_sites *s, int kind, const char *name)
     if (s->site[i].kind == kind && !strcmp(s->site[i].name, name))
       return &s->site[i];
   return NULL;
+}
+
+void ml_site_set_fields(const ml_sites *sites, const ml_site *site, fb_err *err)
+{
+  fb_err_set_location(err, sites->file ? sites->file : "", site->line, site->column);
+  if (site->key[0])
+    fb_err_set_key(err, "%s", site->key);
 }
 
 /* "outer.inner." of the instances being built (fb_bg_adopt prefixes each
@@ -662,22 +671,28 @@ static void ml_frame_prefix(const ml_frame *f, char *buf, size_t size, size_t *l
 
 int ml_site_record(const ml_ctx *c, int kind, const char *name, struct fy_node *at)
 {
-  if (!c->sites)
+  ml_sites *s = c->sites;
+  if (!s)
     return FB_OK;
-  char full[1024], head[1024], tail[1024];
-  size_t flen = 0, hlen = 0;
-  full[0] = head[0] = '\0';
+  char full[1024], head[1024], tail[1024], key[512];
+  size_t flen = 0, hlen = 0, klen = 0;
+  full[0] = head[0] = key[0] = '\0';
   ml_frame_prefix(c->frames, full, sizeof full, &flen);
   ml_append(full, sizeof full, &flen, "%s", name);
   ml_locate(c, at, at, NULL, head, sizeof head, &hlen);
   ml_chain(c, tail, sizeof tail);
-  ml_site site = {kind, fb_strdup(full), fb_strdup(head), fb_strdup(tail)};
-  ml_sites *s = c->sites;
-  if (!site.name || !site.head || !site.tail ||
+  ml_path(at, key, sizeof key, &klen);
+  ml_site site = {kind, fb_strdup(full), fb_strdup(head), fb_strdup(tail), fb_strdup(key), 0,
+                  0};
+  ml_mark(at, &site.line, &site.column);
+  if (!s->file)
+    s->file = fb_strdup(c->file);
+  if (!site.name || !site.head || !site.tail || !site.key || !s->file ||
       fb_grow((void **)&s->site, &s->cap, s->n, sizeof *s->site) != FB_OK) {
     free(site.name);
     free(site.head);
     free(site.tail);
+    free(site.key);
     return fb_err_set(c->err, FB_ENOMEM, "out of memory recording where '%s' is", full);
   }
   s->site[s->n++] = site;
