@@ -685,6 +685,41 @@ assert all(v["value"] >= 0 for v in tc["min_force"].values())
 assert d["solver"]["events"] >= 10, d["solver"]["events"]
 rows = list(csv.DictReader(open(sys.argv[1] + "/system1.csv")))
 assert min(float(r["tire_force_LF"]) for r in rows) == 0.0
+# The spike flag, recomputed from the CSV (tire_force_LF is LF's reaction):
+# static = the last sample before the bump window, peak = the largest after.
+t0 = d["bump_window"][0]
+before = [float(r["tire_force_LF"]) for r in rows if float(r["t"]) < t0]
+after = [float(r["tire_force_LF"]) for r in rows if float(r["t"]) >= t0]
+lf = tc["peak_force"]["LF"]
+assert abs(lf["static"] - before[-1]) <= 1e-9 * before[-1], (lf, before[-1])
+assert abs(lf["value"] - max(after)) <= 1e-9 * max(after), (lf, max(after))
+assert abs(lf["ratio"] - max(after) / before[-1]) <= 1e-9 * lf["ratio"]
+assert tc["spike_ratio_limit"] == 3
+want = [c for c, v in tc["peak_force"].items() if v["ratio"] > 3]
+assert tc["spikes"] == want == ["LF", "RF", "LM"], (tc["spikes"], want)
+EOF
+expect_in "$WORK/liftoff/report.md" "Reaction spikes, above 3 times the static reaction: LF" \
+  "report.md flags the landing spikes"
+expect_in "$WORK/liftoff/report.md" "\`wheel.tire_contact: hunt_crossley\` lets the damping grow" \
+  "report.md points to the Hunt-Crossley tire"
+# Hunt-Crossley tires: the same lift-off with a damping that starts from
+# zero at first contact: the LF landing, 20.7 times its static reaction with
+# the constant damper, falls below half of it and is the only spike left.
+sed 's/  tire_contact: unilateral .*$/  tire_contact: hunt_crossley/' \
+  "$REPO_ROOT/examples/apc6x6_liftoff.yaml" >"$WORK/liftoff_hc.yaml"
+run run "$WORK/liftoff_hc.yaml" -o "$WORK/liftoff_hc" --no-figures -q --system rigid
+expect_status 0 "run with Hunt-Crossley tires"
+expect_in "$WORK/liftoff_hc/report.md" "\`wheel.tire_contact: hunt_crossley\`, their damping" \
+  "report.md names the Hunt-Crossley tires"
+checks=$((checks + 1))
+python3 - "$WORK/liftoff" "$WORK/liftoff_hc" <<'EOF' || fail "summary.json with Hunt-Crossley tires"
+import json, sys
+kv, hc = (json.load(open(p + "/summary.json"))["system1"]["tire_contact"] for p in sys.argv[1:])
+assert hc["model"] == "hunt_crossley", hc["model"]
+assert hc["spikes"] == ["LF"], hc["spikes"]
+assert hc["peak_force"]["LF"]["value"] < 0.5 * kv["peak_force"]["LF"]["value"]
+assert hc["peak_force"]["LF"]["static"] == kv["peak_force"]["LF"]["static"]
+assert all(v["value"] >= 0 for v in hc["min_force"].values())
 EOF
 sed 's/  tire_contact: unilateral .*$/  tire_contact: bilateral/' \
   "$REPO_ROOT/examples/apc6x6_liftoff.yaml" >"$WORK/liftoff_bilateral.yaml"

@@ -65,7 +65,7 @@ static double q_exact(const impact *i, double t)
  * force is minus the effort on the mass's bond. With energy_probes, the
  * energies and the damper's integrated power (a state of its own, and a
  * product that makes the diagram nonlinear). */
-static int build(fb_bg **bg, fb_bd **bd, int energy_probes, fb_err *err)
+static int build(fb_bg **bg, fb_bd **bd, int energy_probes, double lambda, fb_err *err)
 {
   const size_t one[1] = {1};
   fb_mat *m = NULL;
@@ -76,7 +76,10 @@ static int build(fb_bg **bg, fb_bd **bd, int energy_probes, fb_err *err)
   if (!rc)
     rc = fb_bg_add_field(*bg, "mass", FB_BG_I, 1, one, &m, err);
   if (!rc)
-    rc = fb_bg_add_unilateral_contact(*bg, "contact_k", "contact_c", STIFF, DAMP, err);
+    rc =
+        lambda > 0
+            ? fb_bg_add_hunt_crossley_contact(*bg, "contact_k", "contact_c", STIFF, lambda, err)
+            : fb_bg_add_unilateral_contact(*bg, "contact_k", "contact_c", STIFF, DAMP, err);
   if (!rc)
     rc = fb_bg_add_junction(*bg, "J", FB_BG_J1, 1, err);
   const double p0 = MASS * V0, q0 = -GAP;
@@ -106,6 +109,33 @@ static double col(const fb_result *r, size_t k, const char *name)
   return fb_result_row(r, k)[fb_result_find(r, name)];
 }
 
+/* The impact runs' settings: 0.1 s, tight tolerances, 10 kHz samples. */
+static void impact_opts(fb_sim_opts *o)
+{
+  fb_sim_opts_default(o);
+  o->t_end = 0.1;
+  o->rtol = 1e-9;
+  o->atol = 1e-12;
+  o->sample_rate = 1e4;
+}
+
+/* Runs bd (if rc is FB_OK) with o into *res; on failure prints why and
+ * frees the graph and diagram, returning 0. */
+static int run_impact(int rc, const fb_sim_opts *o, fb_bg **bg, fb_bd **bd, fb_result **res)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  if (rc == FB_OK)
+    rc = fb_sim_run(*bd, o, res, &err);
+  CHECK(rc == FB_OK);
+  if (rc == FB_OK)
+    return 1;
+  fprintf(stderr, "%s\n", err.msg);
+  fb_bd_free(bd);
+  fb_bg_free(bg);
+  return 0;
+}
+
 static void test_impact(void)
 {
   fb_err err;
@@ -113,24 +143,13 @@ static void test_impact(void)
   fb_bg *bg = NULL;
   fb_bd *bd = NULL;
   fb_result *res = NULL;
-  int rc = build(&bg, &bd, 1, &err);
+  int rc = build(&bg, &bd, 1, 0.0, &err);
   CHECK(rc == FB_OK);
   CHECK(fb_bd_nguards(bd) == 3);
   fb_sim_opts o;
-  fb_sim_opts_default(&o);
-  o.t_end = 0.1;
-  o.rtol = 1e-9;
-  o.atol = 1e-12;
-  o.sample_rate = 1e4;
-  if (rc == FB_OK)
-    rc = fb_sim_run(bd, &o, &res, &err);
-  CHECK(rc == FB_OK);
-  if (rc != FB_OK) {
-    fprintf(stderr, "%s\n", err.msg);
-    fb_bd_free(&bd);
-    fb_bg_free(&bg);
+  impact_opts(&o);
+  if (!run_impact(rc, &o, &bg, &bd, &res))
     return;
-  }
   const impact ex = closed_form();
   /* Touch-down, release, separation: three restarts, and only three (a
    * guard that means nothing in a mode must not stop the run). */
@@ -223,7 +242,7 @@ static void test_law_branches(void)
   fb_err_clear(&err);
   fb_bg *bg = NULL;
   fb_bd *bd = NULL;
-  CHECK(build(&bg, &bd, 0, &err) == FB_OK);
+  CHECK(build(&bg, &bd, 0, 0.0, &err) == FB_OK);
   /* Affine in each mode: the Newton matrix changes only at events. */
   CHECK(fb_bd_is_piecewise_linear(bd) && !fb_bd_is_linear(bd));
   const size_t n = fb_bd_nstates(bd);
@@ -283,6 +302,120 @@ static void test_law_branches(void)
   x[iq] = 1e-4;
   CHECK(fb_bd_rhs(bd, 0.0, x, xdot) == 0);
   CHECK_NEAR(xdot[ip], -(STIFF * 1e-4 + DAMP * 1.0), 1e-12);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
+/* ---- Hunt-Crossley damping: F = k q + lambda q q' (n = 1).
+ *
+ * The same impact with the damping lambda q. In contact m v' = -(k +
+ * lambda v) q with v = q', so m v dv / (k + lambda v) = -q dq, which
+ * integrates from touch-down (q = 0, v = v0) to the phase-plane invariant
+ *   q^2 = (2 m / lambda) [(v0 - v) - (k / lambda) ln((k + lambda v0) / (k + lambda v))]
+ * (Hunt & Crossley 1975; Marhefka & Orin, IEEE Trans. SMC-A 29(6), 1999).
+ * At v = 0 it gives the deepest penetration; at q = 0 again the exit
+ * velocity, the root in (-k / lambda, 0) of the bracket. The force k q +
+ * lambda q v = q (k + lambda v) stays >= 0 all along (v > -k / lambda),
+ * so the contact is never released: it ends at q = 0 with zero force,
+ * and starts there with zero force too, where the Kelvin-Voigt damper
+ * jumps to c v0. */
+#define LAMBDA 5.0e3 /* N s/m^2: lambda v0 / k = 0.5 */
+
+static double hc_bracket(double v)
+{
+  return (V0 - v) - STIFF / LAMBDA * log((STIFF + LAMBDA * V0) / (STIFF + LAMBDA * v));
+}
+
+/* The exit velocity, by bisection of the bracket (negative at -k/lambda,
+ * positive at 0). */
+static double hc_exit_velocity(void)
+{
+  double lo = -STIFF / LAMBDA * (1 - 1e-15), hi = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (hc_bracket(mid) < 0)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+static void test_hunt_crossley_impact(void)
+{
+  fb_err err;
+  fb_err_clear(&err);
+  fb_bg *bg = NULL;
+  fb_bd *bd = NULL;
+  fb_result *res = NULL;
+  int rc = build(&bg, &bd, 1, LAMBDA, &err);
+  CHECK(rc == FB_OK);
+  fb_bg_contact contact;
+  CHECK(rc == FB_OK &&
+        fb_bg_element_contact(bg, (size_t)fb_bg_find_element(bg, "contact_c"), &contact) &&
+        contact.lambda == LAMBDA && contact.c == 0.0 && contact.k == STIFF);
+  /* Not affine in contact: the Newton matrix follows q and v. The force
+   * and the Jacobian (central differences are exact for the bilinear
+   * term, as in test_law_branches) at q = 2 mm closing at 0.5 m/s. */
+  CHECK(rc == FB_OK && !fb_bd_is_piecewise_linear(bd));
+  double x[4] = {0}, xdot[4];
+  long ip = -1, iq = -1;
+  for (size_t i = 0; rc == FB_OK && i < fb_bd_nstates(bd) && i < 4; ++i) {
+    ip = strcmp(fb_bd_state_name(bd, i), "mass.p") == 0 ? (long)i : ip;
+    iq = strcmp(fb_bd_state_name(bd, i), "contact_k.q") == 0 ? (long)i : iq;
+  }
+  CHECK(ip >= 0 && iq >= 0);
+  if (ip >= 0 && iq >= 0) {
+    int changed = 0;
+    x[ip] = MASS * 0.5;
+    x[iq] = 0.002;
+    CHECK(fb_bd_sync_modes(bd, 0.0, x, &changed) == 0);
+    CHECK(fb_bd_rhs(bd, 0.0, x, xdot) == 0);
+    CHECK_NEAR(xdot[ip], -(STIFF * 0.002 + LAMBDA * 0.002 * 0.5), 1e-12);
+    CHECK_NEAR(jacobian_error(bd, x), 0.0, 1e-8);
+  }
+  fb_sim_opts o;
+  impact_opts(&o);
+  if (!run_impact(rc, &o, &bg, &bd, &res))
+    return;
+  const double v_exit = hc_exit_velocity(); /* < 0: away from the wall */
+  const double q_max =
+      sqrt(2 * MASS / LAMBDA * (V0 - STIFF / LAMBDA * log(1 + LAMBDA * V0 / STIFF)));
+  double worst_invariant = 0, deepest = 0, worst_neg = 0, first_force = NAN, worst_balance = 0;
+  for (size_t k = 0; k < fb_result_nsamples(res); ++k) {
+    const double q = col(res, k, "q"), v = col(res, k, "v"), force = col(res, k, "force");
+    worst_neg = fmin(worst_neg, force);
+    if (q > 0) {
+      worst_invariant = fmax(worst_invariant, fabs(q * q - 2 * MASS / LAMBDA * hc_bracket(v)));
+      deepest = fmax(deepest, q);
+      if (isnan(first_force))
+        first_force = force;
+    }
+    const double total =
+        col(res, k, "kinetic") + col(res, k, "spring_energy") + col(res, k, "dissipated");
+    worst_balance = fmax(worst_balance, fabs(total - 0.5 * MASS * V0 * V0));
+  }
+  /* Tolerances as in test_impact: a few hundred rtol of the scales
+   * (q_max^2 for the invariant; v0 for the velocity). The deepest sample
+   * lies within half a sample (50 us) of the true maximum, where q' = 0:
+   * q_max - q < k q_max (50 us)^2 / (2 m) = 1e-7 m. */
+  CHECK_NEAR(worst_invariant, 0.0, 1e3 * o.rtol * q_max * q_max);
+  CHECK(deepest <= q_max * (1 + 1e3 * o.rtol) && deepest > q_max - 1e-7);
+  CHECK(worst_neg == 0.0);
+  CHECK_NEAR(worst_balance, 0.0, 1e-6 * 0.5 * MASS * V0 * V0);
+  const size_t last = fb_result_nsamples(res) - 1;
+  CHECK_NEAR(col(res, last, "v"), v_exit, 1e3 * o.rtol * V0);
+  /* The first sample in contact (within 0.1 ms of touch-down, q < 1e-4 m)
+   * carries at most q (k + lambda v0) = 1.5 N, where the Kelvin-Voigt
+   * damper of test_impact starts at c v0 = 20 N. */
+  CHECK(first_force >= 0.0 && first_force <= 1e-4 * (STIFF + LAMBDA * V0));
+  fprintf(stderr,
+          "Hunt-Crossley impact: deepest %.9f m (closed form %.9f), exit velocity %.9f m/s "
+          "(closed form %.9f, restitution %.4f), worst invariant error %.3g m^2, first force "
+          "%.3g N\n",
+          deepest, q_max, col(res, last, "v"), v_exit, -v_exit / V0, worst_invariant,
+          first_force);
+  fb_result_free(&res);
   fb_bd_free(&bd);
   fb_bg_free(&bg);
 }
@@ -478,6 +611,11 @@ static void test_bad_parameters(void)
   CHECK(fb_bg_add_unilateral_contact(bg, "k3", "k3", 1.0, 1.0, &err) == FB_EMODEL);
   CHECK(fb_bg_add_unilateral_contact(bg, "k4", "a.b", 1.0, 1.0, &err) == FB_EMODEL);
   CHECK(fb_bg_find_element(bg, "k3") < 0 && fb_bg_find_element(bg, "k4") < 0);
+  CHECK(fb_bg_add_hunt_crossley_contact(bg, "h", "hc", 1.0, -1.0, &err) == FB_EINVAL);
+  CHECK(strstr(err.msg, "damping per penetration") != NULL);
+  CHECK(fb_bg_add_hunt_crossley_contact(bg, "h", "hc", INFINITY, 1.0, &err) == FB_EINVAL);
+  CHECK(fb_bg_add_hunt_crossley_contact(bg, "h", "k", 1.0, 1.0, &err) == FB_EMODEL);
+  CHECK(fb_bg_find_element(bg, "h") < 0);
   fb_bg_free(&bg);
 }
 
@@ -485,6 +623,7 @@ int main(void)
 {
   test_impact();
   test_law_branches();
+  test_hunt_crossley_impact();
   test_road_drop();
   test_start_at_zero_opening();
   test_bad_parameters();

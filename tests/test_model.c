@@ -1067,6 +1067,26 @@ static void test_power_out_warnings(void)
   fb_model_free(&m);
 }
 
+/* A contact with Hunt-Crossley damping: lambda reaches the law; c and
+ * lambda together are refused at lambda. */
+static void test_contact_lambda(void)
+{
+  fb_model *m = load_ok("model: m\nelements:\n  - {name: J, type: 1}\n"
+                        "  - {name: K, type: contact, k: 1000, lambda: 2e4, damper: D}\n"
+                        "bonds: [[J, K], [J, D]]\n",
+                        NULL);
+  fb_bg_contact contact;
+  const fb_bg *bg = m ? fb_model_graph(m) : NULL;
+  CHECK(bg && fb_bg_element_contact(bg, (size_t)fb_bg_find_element(bg, "D"), &contact) &&
+        contact.k == 1000 && contact.c == 0 && contact.lambda == 2e4);
+  fb_model_free(&m);
+  static const char both[] = "model: m\nelements:\n"
+                             "  - {name: K, type: contact, k: 1, c: 2, lambda: 3, damper: D}\n";
+  fb_err err;
+  CHECK(fb_model_load_string(both, strlen(both), "bad.yaml", NULL, &m, &err) == FB_EPARSE);
+  CHECK(!strncmp(err.msg, "bad.yaml:3:42: elements[0].lambda: give the damping as c", 56));
+}
+
 /* An expression is no one-line text: a block scalar's line breaks are
  * blanks in it, where a unit or name with one is refused. */
 static void test_multiline_expression(void)
@@ -1104,6 +1124,7 @@ int main(void)
   test_bad_models();
   test_blame();
   test_power_out_warnings();
+  test_contact_lambda();
   test_multiline_expression();
   test_parameters();
   test_subsystems();

@@ -260,6 +260,20 @@ int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *e
  * Implemented in src/bg/contact_law.c. */
 int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damper, double k,
                                  double c, fb_err *err);
+/* The same pair with Hunt & Crossley's damping (J. Appl. Mech. 42(2),
+ * 1975, with a linear spring, exponent n = 1): a damping coefficient that
+ * grows with the penetration, lambda q (lambda in N s/m^2), so that
+ *     F = max(0, k q + lambda q f)  while q > 0,     F = 0  while q <= 0.
+ * The Kelvin-Voigt damper c f jumps to c times the approach speed at
+ * first contact (a wheel landing at 2 m/s on a 140 kN s/m tire damper
+ * meets 280 kN at once); this one starts from zero force and grows with
+ * the penetration, as the contact area of a real tire does. The damper's
+ * law is then not affine in contact (de/dq = lambda f), the spring's is
+ * unchanged, and the energy argument above holds as written with
+ * c = lambda q >= 0. FB_EINVAL unless k > 0 and lambda >= 0 are finite;
+ * otherwise as fb_bg_add_unilateral_contact. */
+int fb_bg_add_hunt_crossley_contact(fb_bg *bg, const char *spring, const char *damper, double k,
+                                    double lambda, fb_err *err);
 
 /* Initial state (p for I, q for C) of a field, stacked; default zero. */
 int fb_bg_set_initial(fb_bg *bg, const char *name, size_t n, const double *x0, fb_err *err);
@@ -374,6 +388,7 @@ const fb_table_law *fb_bg_element_table_law(const fb_bg *bg, size_t i);
 typedef struct fb_bg_contact {
   size_t spring, damper; /* element indices */
   double k, c;
+  double lambda; /* N s/m^2: > 0 for fb_bg_add_hunt_crossley_contact (c is 0 then) */
 } fb_bg_contact;
 /* 1 and *out filled when element i is the spring or the damper of a
  * unilateral contact, 0 otherwise. */

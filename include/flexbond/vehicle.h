@@ -103,11 +103,18 @@ enum { FB_DAMPER_MAX_POINTS = 64 };
 
 /* How a tire meets the road. */
 typedef enum fb_tire_contact {
-  FB_TIRE_BILATERAL, /* the paper's linear tire: spring and damper always
-                        attached, so the reaction may become tensile */
-  FB_TIRE_UNILATERAL /* no tension: the wheel may leave the road
-                        (fb_bg_add_unilateral_contact) */
+  FB_TIRE_BILATERAL,    /* the paper's linear tire: spring and damper always
+                           attached, so the reaction may become tensile */
+  FB_TIRE_UNILATERAL,   /* no tension: the wheel may leave the road
+                           (fb_bg_add_unilateral_contact) */
+  FB_TIRE_HUNT_CROSSLEY /* no tension, and a damping that grows with the
+                           deflection q, tire_c q / tire_deflection_ref, so
+                           that it is tire_c at the reference deflection and
+                           0 at first contact (fb_bg_add_hunt_crossley_contact) */
 } fb_tire_contact;
+
+/* "bilateral", "unilateral", "hunt_crossley" (the scenario's names). */
+const char *fb_tire_contact_name(fb_tire_contact contact);
 
 typedef struct fb_corner_params {
   char *name;      /* "LF"; instance "susp_LF", mesh node set "SUSP_LF"; owned */
@@ -124,6 +131,12 @@ typedef struct fb_corner_params {
   double tire_k;       /* N/m */
   double tire_c;       /* N s/m */
   fb_tire_contact tire_contact;
+  /* m, FB_TIRE_HUNT_CROSSLEY only: the deflection at which the damping
+   * is tire_c. fb_vehicle_graph sets it to the tire's static deflection
+   * under an equal share of the weight on the tires, (load.total_weight +
+   * every wheel's weight) / (corners tire_k); a caller of
+   * fb_vehicle_corner sets it itself. */
+  double tire_deflection_ref;
 } fb_corner_params;
 
 /* Most bulkheads a hull may have. */

@@ -9,10 +9,19 @@
 
 #include "bg/bg_internal.h"
 
+/* The force in contact is k q + (c + lambda q) f: Kelvin-Voigt (lambda
+ * 0) or Hunt & Crossley's (c 0), whose damping grows with penetration. */
 typedef struct contact_params {
-  double k; /* N/m (or the domain's effort per displacement) */
-  double c; /* N s/m */
+  double k;      /* N/m (or the domain's effort per displacement) */
+  double c;      /* N s/m */
+  double lambda; /* N s/m^2 */
 } contact_params;
+
+/* The damping coefficient at compression q (> 0 in contact). */
+static double damping_at(const contact_params *p, double q)
+{
+  return p->c + p->lambda * q;
+}
 
 enum { CONTACT = 0, RELEASED = 1 };
 enum { SPRING_SEPARATED = 1, DAMPER_SEPARATED = 2 };
@@ -73,15 +82,18 @@ static int damper_eval(void *ctx, const fb_law_in *in, double *y)
 {
   const contact_params *p = ctx;
   const double f = in->x[0], q = in->x[1];
-  y[0] = in->mode == CONTACT ? p->c * f : in->mode == RELEASED ? -(p->k * q) : 0.0;
+  y[0] = in->mode == CONTACT ? damping_at(p, q) * f : in->mode == RELEASED ? -(p->k * q) : 0.0;
   return 0;
 }
 
 static int damper_jacobian(void *ctx, const fb_law_in *in, double *jac)
 {
   const contact_params *p = ctx;
-  jac[0] = in->mode == CONTACT ? p->c : 0.0;   /* de/df */
-  jac[1] = in->mode == RELEASED ? -p->k : 0.0; /* de/dq */
+  const double f = in->x[0], q = in->x[1];
+  jac[0] = in->mode == CONTACT ? damping_at(p, q) : 0.0; /* de/df */
+  jac[1] = in->mode == CONTACT    ? p->lambda * f        /* de/dq */
+           : in->mode == RELEASED ? -p->k
+                                  : 0.0;
   return 0;
 }
 
@@ -92,7 +104,7 @@ static int damper_guards(void *ctx, const fb_law_in *in, double *g)
   const contact_params *p = ctx;
   const double f = in->x[0], q = in->x[1];
   g[0] = q;
-  g[1] = in->mode == DAMPER_SEPARATED ? 1.0 : p->k * q + p->c * f;
+  g[1] = in->mode == DAMPER_SEPARATED ? 1.0 : p->k * q + damping_at(p, q) * f;
   return 0;
 }
 
@@ -103,8 +115,9 @@ static int damper_switch(void *ctx, const fb_law_in *in, const int *sign, int *m
 {
   const contact_params *p = ctx;
   const double f = in->x[0], q = in->x[1];
-  const int force_sign =
-      in->mode == DAMPER_SEPARATED ? (p->k * q + p->c * f >= 0.0 ? 1 : -1) : sign[1];
+  const int force_sign = in->mode == DAMPER_SEPARATED
+                             ? (p->k * q + damping_at(p, q) * f >= 0.0 ? 1 : -1)
+                             : sign[1];
   if (sign[0] < 0)
     *mode = DAMPER_SEPARATED;
   else
@@ -112,26 +125,48 @@ static int damper_switch(void *ctx, const fb_law_in *in, const int *sign, int *m
   return 0;
 }
 
-static const fb_law_ops damper_ops = {.name = "unilateral damper",
-                                      .id = FB_LAW_CONTACT_DAMPER,
-                                      .eval = damper_eval,
-                                      .jacobian = damper_jacobian,
-                                      .free = free,
-                                      .nguards = 2,
-                                      .guards = damper_guards,
-                                      .switch_mode = damper_switch,
-                                      .affine = 1,
-                                      .passive = 1};
+/* The damper's ops, with lambda 0 (affine in each mode) or > 0 (its
+ * contact branch is bilinear in f and q, so the Newton matrix changes
+ * between events too). */
+#define CONTACT_DAMPER_OPS(label, is_affine)                                                   \
+  {                                                                                            \
+    .name = label, .id = FB_LAW_CONTACT_DAMPER, .eval = damper_eval,                           \
+    .jacobian = damper_jacobian, .free = free, .nguards = 2, .guards = damper_guards,          \
+    .switch_mode = damper_switch, .affine = is_affine, .passive = 1                            \
+  }
+static const fb_law_ops damper_ops = CONTACT_DAMPER_OPS("unilateral damper", 1);
+static const fb_law_ops damper_hc_ops =
+    CONTACT_DAMPER_OPS("unilateral Hunt-Crossley damper", 0);
 
 static int add_law(fb_bg *bg, const char *name, fb_bg_kind kind, const fb_law_ops *ops,
-                   double k, double c, fb_err *err)
+                   const contact_params *params, fb_err *err)
 {
   static const size_t one_port[1] = {1};
   contact_params *p = malloc(sizeof *p);
   if (!p)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  *p = (contact_params){k, c};
+  *p = *params;
   return fb_bg_add_field_law(bg, name, kind, 1, one_port, ops, p, err);
+}
+
+/* The pair for either damping law (at most one of c, lambda nonzero). */
+static int add_contact(fb_bg *bg, const char *spring, const char *damper,
+                       const contact_params *p, fb_err *err)
+{
+  /* Both names are checked first, so that a refusal adds neither. */
+  int rc = fb_bg_check_new_name(bg, spring, err);
+  if (!rc)
+    rc = fb_bg_check_new_name(bg, damper, err);
+  if (!rc && strcmp(spring, damper) == 0)
+    rc = fb_err_set(err, FB_EMODEL, "unilateral contact: spring and damper both named '%s'",
+                    spring);
+  if (!rc)
+    rc = add_law(bg, spring, FB_BG_C, &spring_ops, p, err);
+  if (!rc)
+    rc = add_law(bg, damper, FB_BG_R, p->lambda > 0.0 ? &damper_hc_ops : &damper_ops, p, err);
+  if (!rc)
+    rc = fb_bg_modulate(bg, damper, 1, &spring, err);
+  return rc;
 }
 
 int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damper, double k,
@@ -142,20 +177,20 @@ int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damp
                       "unilateral contact '%s'/'%s': needs a finite stiffness > 0 and damping "
                       ">= 0 (got k = %g, c = %g)",
                       spring, damper, k, c);
-  /* Both names are checked first, so that a refusal adds neither. */
-  int rc = fb_bg_check_new_name(bg, spring, err);
-  if (!rc)
-    rc = fb_bg_check_new_name(bg, damper, err);
-  if (!rc && strcmp(spring, damper) == 0)
-    rc = fb_err_set(err, FB_EMODEL, "unilateral contact: spring and damper both named '%s'",
-                    spring);
-  if (!rc)
-    rc = add_law(bg, spring, FB_BG_C, &spring_ops, k, c, err);
-  if (!rc)
-    rc = add_law(bg, damper, FB_BG_R, &damper_ops, k, c, err);
-  if (!rc)
-    rc = fb_bg_modulate(bg, damper, 1, &spring, err);
-  return rc;
+  const contact_params p = {k, c, 0.0};
+  return add_contact(bg, spring, damper, &p, err);
+}
+
+int fb_bg_add_hunt_crossley_contact(fb_bg *bg, const char *spring, const char *damper, double k,
+                                    double lambda, fb_err *err)
+{
+  if (!(isfinite(k) && k > 0.0) || !(isfinite(lambda) && lambda >= 0.0))
+    return fb_err_set(err, FB_EINVAL,
+                      "Hunt-Crossley contact '%s'/'%s': needs a finite stiffness > 0 and "
+                      "damping per penetration >= 0 (got k = %g, lambda = %g)",
+                      spring, damper, k, lambda);
+  const contact_params p = {k, 0.0, lambda};
+  return add_contact(bg, spring, damper, &p, err);
 }
 
 /* 1 if element i has the law of that id. */
@@ -181,6 +216,6 @@ int fb_bg_element_contact(const fb_bg *bg, size_t i, fb_bg_contact *out)
     return 0;
   const fb_bg_elem *d = &bg->elems[damper];
   const contact_params *p = d->law_ctx;
-  *out = (fb_bg_contact){d->mod_src[0], damper, p->k, p->c};
+  *out = (fb_bg_contact){d->mod_src[0], damper, p->k, p->c, p->lambda};
   return 1;
 }

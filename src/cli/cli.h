@@ -293,6 +293,15 @@ int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_m
                         const double window[2], const cli_animate_opts *o,
                         cli_animation_info *info, fb_err *err);
 
+/* A tire reaction above this multiple of its static value is flagged in
+ * the report and summary.json as a spike. The ride over a road moves a
+ * tire's load about its static value (the paper's 10 cm bump at 10 km/h:
+ * peaks of 1.36 to 1.70 times it, System 1); three times it is an impact,
+ * such as a wheel landing on the paper's linear tire damper (20.7 times
+ * in examples/apc6x6_liftoff.yaml). */
+#define CLI_CONTACT_SPIKE_RATIO 3.0
+#define CLI_CONTACT_SPIKE_TEXT "3" /* the same, for messages */
+
 /* One simulated system. */
 typedef struct cli_run_system {
   fb_system sys;
@@ -305,6 +314,11 @@ typedef struct cli_run_system {
   fb_contact_loss *loss;
   size_t nloss;
   double *min_contact, *min_contact_time; /* s->ncorners each */
+  /* Each tire's largest reaction from the first bump entry on, its time,
+   * and its static reaction (the last sample before the bump entry, as
+   * cli_output_stats_of's static value); s->ncorners each, in the same
+   * allocation as min_contact. */
+  double *peak_contact, *peak_contact_time, *static_contact;
   /* The ride metrics of output cli_ride_output over ride_window (the
    * first wheel's bump entry to the end of the run), when has_ride; else
    * ride_note says why. */
@@ -350,6 +364,9 @@ const char *cli_system_label(fb_system sys);
 const char *cli_scenario_name(const fb_scenario *s);
 /* Statistics of column col of r; window is the bump window. */
 cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2]);
+/* 1 if tire c's largest reaction in run exceeds CLI_CONTACT_SPIKE_RATIO
+ * times its static one (which must be positive). */
+int cli_contact_spike(const cli_run_system *run, size_t c);
 /* The bump window: [first wheel's bump entry, last wheel's bump exit]. */
 void cli_bump_window(const fb_scenario *s, double window[2]);
 /* Comparison of one output: s1, s2 its statistics in System 1 and 2,

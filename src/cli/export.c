@@ -289,9 +289,10 @@ static int run(const char *path, fb_system sys, const char *dir)
   int rc = fb_scenario_load(path, &s, &err);
   assert(rc != FB_OK || s); /* for the static analyzer: s is set on success */
   /* A unilateral tire is linear while in contact, its mode at rest: that
-   * branch is the linear model. */
+   * branch is the linear model (a Hunt-Crossley one is not linear). */
   for (size_t c = 0; s && c < s->ncorners; ++c)
-    s->corner[c].tire_contact = FB_TIRE_BILATERAL;
+    if (s->corner[c].tire_contact == FB_TIRE_UNILATERAL)
+      s->corner[c].tire_contact = FB_TIRE_BILATERAL;
   m.s = s;
   /* The directory is held (locked) from here to the end. */
   cli_outdir od;

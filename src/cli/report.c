@@ -882,6 +882,48 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Tire contact: the verdict of each system, from its reactions. */
 
+int cli_contact_spike(const cli_run_system *run, size_t c)
+{
+  return run->static_contact[c] > 0.0 &&
+         run->peak_contact[c] > CLI_CONTACT_SPIKE_RATIO * run->static_contact[c];
+}
+
+/* The tires whose reaction spikes, or the largest ratio when none does. */
+static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_system *r)
+{
+  char peak[32], stat[32];
+  size_t n = 0, c_max = 0;
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    if (r->peak_contact[c] / r->static_contact[c] >
+        r->peak_contact[c_max] / r->static_contact[c_max])
+      c_max = c;
+    if (!cli_contact_spike(r, c))
+      continue;
+    fputs(n++ ? "; "
+              : "  Reaction spikes, above " CLI_CONTACT_SPIKE_TEXT
+                " times the static reaction: ",
+          fp);
+    fb_md_write_text(fp, s->corner[c].name);
+    fprintf(fp, " %s N at %.3f s (%.1f times its static %s N)",
+            number_text(r->peak_contact[c], peak, sizeof peak), r->peak_contact_time[c],
+            r->peak_contact[c] / r->static_contact[c],
+            number_text(r->static_contact[c], stat, sizeof stat));
+  }
+  if (n) {
+    fputs(s->corner[0].tire_contact == FB_TIRE_HUNT_CROSSLEY
+              ? ".\n"
+              : ". A tire damper of constant coefficient meets a landing wheel with tire_c "
+                "times its speed at once; `wheel.tire_contact: hunt_crossley` lets the "
+                "damping grow from zero with the deflection (docs/scenario-format.md).\n",
+          fp);
+    return;
+  }
+  fprintf(fp, "  No reaction exceeds " CLI_CONTACT_SPIKE_TEXT
+              " times its static value (the largest, ");
+  fb_md_write_text(fp, s->corner[c_max].name);
+  fprintf(fp, ", %.2f times).\n", r->peak_contact[c_max] / r->static_contact[c_max]);
+}
+
 static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_system *r,
                                   int unilateral)
 {
@@ -924,18 +966,34 @@ static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_
 
 static void write_contact(FILE *fp, const cli_run_outputs *o)
 {
-  const int unilateral = o->scenario->corner[0].tire_contact == FB_TIRE_UNILATERAL;
+  const fb_tire_contact model = o->scenario->corner[0].tire_contact;
+  const int unilateral = model != FB_TIRE_BILATERAL;
   fputs("\n## Tire contact\n\nThe normal reaction of every tire (tire spring plus tire "
         "damper, compression positive) over the whole run; ",
         fp);
-  fputs(unilateral ? "the tires are unilateral (`wheel.tire_contact: unilateral`): they push "
-                     "but never pull, and a wheel whose reaction would become tensile leaves "
-                     "the road until it lands again.\n\n"
-                   : "the tire model is linear, so a negative reaction means the tire would "
-                     "have left the road.\n\n",
+  if (unilateral)
+    fprintf(fp,
+            "the tires are unilateral (`wheel.tire_contact: %s`%s): they push but never "
+            "pull, and a wheel whose reaction would become tensile leaves the road until it "
+            "lands again.",
+            fb_tire_contact_name(model),
+            model == FB_TIRE_HUNT_CROSSLEY
+                ? ", their damping growing from zero at first contact to tire_c at the static "
+                  "deflection"
+                : "");
+  else
+    fputs("the tire model is linear, so a negative reaction means the tire would have left "
+          "the road.",
+          fp);
+  fputs(" A reaction above " CLI_CONTACT_SPIKE_TEXT
+        " times its static value (just before the first bump entry) is flagged as a spike: "
+        "the ride over a road moves a tire's load about its static value, an impact "
+        "multiplies it.\n\n",
         fp);
-  for (size_t i = 0; i < o->nruns; ++i)
+  for (size_t i = 0; i < o->nruns; ++i) {
     write_contact_verdict(fp, o->scenario, &o->runs[i], unilateral);
+    write_contact_spikes(fp, o->scenario, &o->runs[i]);
+  }
 }
 
 static void write_conclusions(FILE *fp, const cli_run_outputs *o)

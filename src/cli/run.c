@@ -295,7 +295,7 @@ static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenar
 static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
 {
   fprintf(fp, "{\"model\": \"%s\", \"min_force\": {",
-          s->corner[0].tire_contact == FB_TIRE_UNILATERAL ? "unilateral" : "bilateral");
+          fb_tire_contact_name(s->corner[0].tire_contact));
   for (size_t c = 0; c < s->ncorners; ++c) {
     fputs(c ? ", " : "", fp);
     cli_json_string(fp, s->corner[c].name);
@@ -305,7 +305,26 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
     fb_json_write_number(fp, run->min_contact_time[c]);
     fputc('}', fp);
   }
-  fputs("}, \"contact_loss_intervals\": [", fp);
+  fputs("}, \"peak_force\": {", fp);
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const json_field fields[] = {{"value", run->peak_contact[c]},
+                                 {"time", run->peak_contact_time[c]},
+                                 {"static", run->static_contact[c]},
+                                 {"ratio", run->peak_contact[c] / run->static_contact[c]}};
+    fputs(c ? ", " : "", fp);
+    cli_json_string(fp, s->corner[c].name);
+    fputs(": ", fp);
+    json_object(fp, "N", fields, sizeof fields / sizeof fields[0]);
+  }
+  fputs("}, \"spike_ratio_limit\": ", fp);
+  fb_json_write_number(fp, CLI_CONTACT_SPIKE_RATIO);
+  fputs(", \"spikes\": [", fp);
+  for (size_t c = 0, n = 0; c < s->ncorners; ++c)
+    if (cli_contact_spike(run, c)) {
+      fputs(n++ ? ", " : "", fp);
+      cli_json_string(fp, s->corner[c].name);
+    }
+  fputs("], \"contact_loss_intervals\": [", fp);
   for (size_t i = 0; i < run->nloss; ++i) {
     const fb_contact_loss *t = &run->loss[i];
     const json_field fields[] = {
@@ -397,8 +416,9 @@ static const char *const definitions[][2] = {
      "a_w_rms), absorbed_power (W; null: no K(f) table is built in), jerk_peak and jerk_rms "
      "(of the unweighted acceleration, m/s^3); a note instead when they cannot be computed"},
     {"tire_contact",
-     "model: bilateral (the paper's linear tire) or unilateral (no tension: the wheel may "
-     "leave the road); min_force: each tire's smallest normal reaction from bump_window[0] "
+     "model: bilateral (the paper's linear tire), unilateral (no tension: the wheel may "
+     "leave the road) or hunt_crossley (unilateral, damping growing with the deflection); "
+     "min_force: each tire's smallest normal reaction from bump_window[0] "
      "to the end of the run (N, compression positive) and its time; contact_loss_intervals: "
      "every interval of the whole run where a reaction is not compressive (bilateral: "
      "tensile, the tire pulls the wheel down; unilateral: zero, the wheel is off the road): "
@@ -631,8 +651,9 @@ static int show_progress(void *ctx, double t, double t_end)
 }
 
 /* The tire-contact verdict: contact-loss intervals over the whole run, and the
- * smallest normal reaction of each tire from the first wheel's bump entry
- * on (from the zero start every reaction is 0 at t = 0). */
+ * smallest and largest normal reaction of each tire from the first wheel's bump
+ * entry on (from the zero start every reaction is 0 at t = 0), with its static one
+ * just before. */
 static int run_contact(const fb_scenario *s, cli_run_system *run, const double window[2],
                        fb_err *err)
 {
@@ -643,12 +664,21 @@ static int run_contact(const fb_scenario *s, cli_run_system *run, const double w
     if (j < 1)
       return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'", name);
     run->min_contact[c] = INFINITY;
-    run->min_contact_time[c] = NAN;
+    run->peak_contact[c] = -INFINITY;
+    run->min_contact_time[c] = run->peak_contact_time[c] = run->static_contact[c] = NAN;
     for (size_t k = 0; k < fb_result_nsamples(run->res); ++k) {
       const double *row = fb_result_row(run->res, k);
-      if (row[0] >= window[0] && row[j] < run->min_contact[c]) {
+      if (row[0] < window[0]) {
+        run->static_contact[c] = row[j];
+        continue;
+      }
+      if (row[j] < run->min_contact[c]) {
         run->min_contact[c] = row[j];
         run->min_contact_time[c] = row[0];
+      }
+      if (row[j] > run->peak_contact[c]) {
+        run->peak_contact[c] = row[j];
+        run->peak_contact_time[c] = row[0];
       }
     }
   }
@@ -697,10 +727,13 @@ static int run_columns(const fb_scenario *s, cli_run_system *run, const double w
   const size_t n = s->noutputs ? s->noutputs : 1, nc = s->ncorners;
   run->col = calloc(n, sizeof *run->col);
   run->stats = calloc(n, sizeof *run->stats);
-  run->min_contact = calloc(2 * nc, sizeof *run->min_contact);
+  run->min_contact = calloc(5 * nc, sizeof *run->min_contact);
   if (!run->col || !run->stats || !run->min_contact)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   run->min_contact_time = run->min_contact + nc;
+  run->peak_contact = run->min_contact + 2 * nc;
+  run->peak_contact_time = run->min_contact + 3 * nc;
+  run->static_contact = run->min_contact + 4 * nc;
   for (size_t k = 0; k < s->noutputs; ++k) {
     long j = fb_result_find(run->res, s->output[k].name);
     /* fb_vehicle_simulate promises every output. */

@@ -477,7 +477,8 @@ static const char *const ml_keys_gy[] = {ML_COMMON_KEYS, "r", "dim", NULL};
 static const char *const ml_keys_mtf[] = {ML_COMMON_KEYS, "matrix", NULL};
 static const char *const ml_keys_junction[] = {ML_COMMON_KEYS, "dim", NULL};
 static const char *const ml_keys_composite[] = {ML_COMMON_KEYS, "parts", NULL};
-static const char *const ml_keys_contact[] = {ML_COMMON_KEYS, "k", "c", "damper", NULL};
+static const char *const ml_keys_contact[] = {ML_COMMON_KEYS, "k",      "c",
+                                              "lambda",       "damper", NULL};
 static const char *const ml_keys_instance[] = {ML_COMMON_KEYS, "parameters", NULL};
 
 static const ml_type ml_types[] = {

@@ -671,8 +671,8 @@ static int mw_field(mw *w, FILE *fp, size_t e, const char *elem)
     const char *damper = fb_bg_element_name(bg, contact.damper);
     fputs(", k: ", fp);
     mw_num(fp, contact.k);
-    fputs(", c: ", fp);
-    mw_num(fp, contact.c);
+    fputs(contact.lambda > 0.0 ? ", lambda: " : ", c: ", fp);
+    mw_num(fp, contact.lambda > 0.0 ? contact.lambda : contact.c);
     fputs(", damper: ", fp);
     mw_plain(fp, strrchr(damper, '.') ? strrchr(damper, '.') + 1 : damper);
   } else {

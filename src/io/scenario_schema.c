@@ -654,7 +654,8 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
   }
 
 static const char *const sc_payloads[] = {"weight-only", "lumped", NULL};
-static const char *const sc_contacts[] = {"bilateral", "unilateral", NULL};
+/* In the order of fb_tire_contact (fb_tire_contact_name). */
+static const char *const sc_contacts[] = {"bilateral", "unilateral", "hunt_crossley", NULL};
 static const char *const sc_masses[] = {"consistent", "lumped", NULL};
 static const char *const sc_initials[] = {"zero", "static", NULL};
 static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
@@ -889,7 +890,9 @@ static const sch_key sc_keys[] = {
     NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, OPT, "tire damping", NO_STORE),
     CHOICE("wheel.tire_contact", sc_contacts, DEF(0),
            "`bilateral`: the paper's linear tire; `unilateral`: it never pulls, the wheel "
-           "may leave the road",
+           "may leave the road; `hunt_crossley`: unilateral, with a damping that grows with "
+           "the deflection (Hunt & Crossley 1975): `tire_c` at the static deflection under an "
+           "equal share of the weight, 0 at first contact",
            NO_STORE),
     SECTION("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions),
     NUMBER("suspensions.motion_ratio", NULL, POSITIVE, DEF(1),

@@ -21,6 +21,17 @@ static int adopt(fb_bg *bg, int rc, fb_bg **frag, const char *inst, fb_err *err)
   return fb_bg_adopt(bg, frag, inst, err);
 }
 
+/* The weight each tire carries at rest if all carry the same: the load
+ * (hull, payload and mounted bodies: load.total_weight) and the wheels
+ * themselves, shared by the corners (N). */
+static double mean_tire_load(const fb_scenario *s)
+{
+  double weight = s->total_weight;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    weight += s->corner[c].wheel_mass * s->gravity;
+  return s->ncorners ? weight / (double)s->ncorners : 0.0;
+}
+
 /* Adopts the mounts' and corners' fragments: instances named after the
  * mount ("driver") and "susp_" + the corner's name. */
 static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
@@ -30,10 +41,12 @@ static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
   for (size_t b = 0; !rc && b < s->nmounts; ++b)
     rc = adopt(bg, fb_vehicle_mount(&s->mount[b], s->gravity, &frag, err), &frag,
                s->mount[b].name, err);
+  const double tire_load = mean_tire_load(s);
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     char *inst = fb_strdup_printf("susp_%s", s->corner[c].name);
-    rc = inst ? adopt(bg, fb_vehicle_corner(&s->corner[c], s->gravity, &frag, err), &frag, inst,
-                      err)
+    fb_corner_params corner = s->corner[c];
+    corner.tire_deflection_ref = tire_load / corner.tire_k;
+    rc = inst ? adopt(bg, fb_vehicle_corner(&corner, s->gravity, &frag, err), &frag, inst, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
     free(inst);
     fb_bg_free(&frag);

@@ -266,12 +266,22 @@ static int add_shock_absorber(fb_bg *bg, const fb_corner_params *c, fb_err *err)
 
 /* The tire's spring and damper, in parallel on the 1-junction "Jt": the
  * paper's linear pair, or the same pair unable to pull (the wheel may
- * leave the road; the elements switch their laws at contact changes). */
+ * leave the road; the elements switch their laws at contact changes),
+ * its damping constant or growing with the deflection. */
 static int add_tire(fb_bg *bg, const fb_corner_params *c, fb_err *err)
 {
   if (c->tire_contact == FB_TIRE_UNILATERAL)
     return fb_bg_add_unilateral_contact(bg, "tire_spring", "tire_damper", c->tire_k, c->tire_c,
                                         err);
+  if (c->tire_contact == FB_TIRE_HUNT_CROSSLEY) {
+    if (!(c->tire_deflection_ref > 0.0))
+      return fb_err_set(err, FB_EINVAL,
+                        "corner '%s': a Hunt-Crossley tire needs a reference deflection > 0 "
+                        "(got %g m)",
+                        c->name, c->tire_deflection_ref);
+    return fb_bg_add_hunt_crossley_contact(bg, "tire_spring", "tire_damper", c->tire_k,
+                                           c->tire_c / c->tire_deflection_ref, err);
+  }
   int rc = add_scalar(bg, "tire_spring", FB_BG_C, c->tire_k, err);
   return rc ? rc : add_scalar(bg, "tire_damper", FB_BG_R, c->tire_c, err);
 }

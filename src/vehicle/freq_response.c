@@ -31,11 +31,14 @@ static int linearise(fb_bd *bd, fb_descriptor **ds, fb_err *err)
 int fb_vehicle_descriptor(const fb_scenario *s, fb_system sys, fb_descriptor **out, fb_err *err)
 {
   *out = NULL;
-  /* A unilateral tire is linear while in contact, its mode at rest. */
+  /* A unilateral tire is linear while in contact, its mode at rest; a
+   * Hunt-Crossley one is not (its damping is lambda q) and is linearised
+   * with the rest at the static equilibrium, as fb_vehicle_modes does. */
   fb_scenario *own = NULL;
   int rc = fb_scenario_clone(s, &own, err);
   for (size_t c = 0; !rc && c < own->ncorners; ++c)
-    own->corner[c].tire_contact = FB_TIRE_BILATERAL;
+    if (own->corner[c].tire_contact == FB_TIRE_UNILATERAL)
+      own->corner[c].tire_contact = FB_TIRE_BILATERAL;
   fb_bg *graph = NULL;
   fb_bd *bd = NULL;
   if (!rc)
