@@ -36,7 +36,7 @@ rm -rf "$out"
 mkdir -p "$out/flexbond"
 
 echo "== agreement: max |hand - flexbond| / range(flexbond) per column"
-"$exe" run examples/apc6x6.yaml --system rigid --no-figures -o "$out/flexbond" -q
+"$exe" run examples/apc6x6.yaml --system rigid --no-figures --plain-header -o "$out/flexbond" -q
 "$hand" -o "$out/hand.csv" 2>&1 | sed 's/^/  /'
 "$py" - "$out/flexbond/system1.csv" "$out/hand.csv" <<'EOF'
 import sys, numpy as np

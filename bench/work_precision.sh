@@ -77,7 +77,7 @@ flexbond_case() { # SYSTEM FORMULATION RTOL RUNS REFERENCE [RUN OPTIONS...]
   dir=$out/$sys-$form-$rtol
   file=$(scenario_at "$rtol" "$atol")
   for ((i = 0; i < runs; ++i)); do
-    timed "$exe" run "$file" -o "$dir" --no-figures -q "$@"
+    timed "$exe" run "$file" -o "$dir" --no-figures --plain-header -q "$@"
     process+="${process:+;}$wall"
     stats=$("$py" -c 'import json,sys; s=json.load(open(sys.argv[1]))[sys.argv[2]]["solver"]; print(s["wall_seconds"], s["steps"], s["rhs_evals"])' \
       "$dir/summary.json" "$sys")

@@ -15,7 +15,7 @@ NAME=cli_run
 . "$(dirname "${BASH_SOURCE[0]}")/clilib.sh"
 
 APC=$REPO_ROOT/examples/apc6x6.yaml
-HEADER='t,tire_force_LF,spring_defl_RF,torsion,driver_acc,shock_power_LM,tire_defl_RM,tire_power_LR'
+HEADER='t [s],tire_force_LF [N],spring_defl_RF [m],torsion [rad],driver_acc [m/s^2],shock_power_LM [W],tire_defl_RM [m],tire_power_LR [W]'
 FIGURES=(fig08_tire_force_LF.png fig09_spring_defl_RF.png fig10_torsion.png
   fig11_driver_acc.png fig12_shock_power_LM.png fig13_tire_defl_RM.png fig14_tire_power_LR.png)
 # Each system's multibond graph and block diagram (the paper's Figs. 5, 6).
@@ -663,6 +663,16 @@ expect_status 0 "run --no-figures"
 checks=$((checks + 1))
 [ "$(cd "$WORK/nofig" && ls | tr '\n' ' ')" = "report.md summary.json system1.csv " ] ||
   fail "run --no-figures writes only system1.csv, summary.json and report.md: $(ls "$WORK/nofig")"
+# --plain-header: the paper's header, names only; the same numbers.
+run run "$REPO_ROOT/examples/apc6x6.yaml" -o "$WORK/plain_header" --no-figures -q --system rigid \
+  --plain-header
+expect_status 0 "run --plain-header"
+checks=$((checks + 1))
+[ "$(head -n 1 "$WORK/plain_header/system1.csv")" = "$(echo "$HEADER" | sed 's/ \[[^]]*\]//g')" ] ||
+  fail "run --plain-header: header $(head -n 1 "$WORK/plain_header/system1.csv")"
+checks=$((checks + 1))
+cmp -s <(tail -n +2 "$WORK/plain_header/system1.csv") <(tail -n +2 "$WORK/nofig/system1.csv") ||
+  fail "run --plain-header changes the numbers"
 
 # Unilateral tires (examples/apc6x6_liftoff.yaml): wheels leave the road,
 # every reaction stays >= 0, the report says so, and the summary counts the
@@ -684,12 +694,12 @@ assert all(i["min_force"] == 0 for i in tc["contact_loss_intervals"])
 assert all(v["value"] >= 0 for v in tc["min_force"].values())
 assert d["solver"]["events"] >= 10, d["solver"]["events"]
 rows = list(csv.DictReader(open(sys.argv[1] + "/system1.csv")))
-assert min(float(r["tire_force_LF"]) for r in rows) == 0.0
+assert min(float(r["tire_force_LF [N]"]) for r in rows) == 0.0
 # The spike flag, recomputed from the CSV (tire_force_LF is LF's reaction):
 # static = the last sample before the bump window, peak = the largest after.
 t0 = d["bump_window"][0]
-before = [float(r["tire_force_LF"]) for r in rows if float(r["t"]) < t0]
-after = [float(r["tire_force_LF"]) for r in rows if float(r["t"]) >= t0]
+before = [float(r["tire_force_LF [N]"]) for r in rows if float(r["t [s]"]) < t0]
+after = [float(r["tire_force_LF [N]"]) for r in rows if float(r["t [s]"]) >= t0]
 lf = tc["peak_force"]["LF"]
 assert abs(lf["static"] - before[-1]) <= 1e-9 * before[-1], (lf, before[-1])
 assert abs(lf["value"] - max(after)) <= 1e-9 * max(after), (lf, max(after))

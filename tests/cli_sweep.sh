@@ -19,10 +19,18 @@ NAME=cli_sweep
 
 APC=$REPO_ROOT/examples/apc6x6.yaml
 OUTPUTS="tire_force_LF spring_defl_RF torsion driver_acc shock_power_LM tire_defl_RM tire_power_LR"
+# sweep.csv's metric columns with their units (a count or ratio has none).
+UNITS=(N m rad m/s^2 W m W)
 METRICS=""
-for o in $OUTPUTS; do METRICS="$METRICS,${o}_peak,${o}_min,${o}_rms"; done
-METRICS="$METRICS,min_tire_force,contact_loss_intervals,ride_a_w_rms,ride_mtvv,ride_vdv"
-METRICS="$METRICS,ride_crest_factor,ride_jerk_peak,ride_jerk_rms,solver_steps"
+i=0
+for o in $OUTPUTS; do
+  u=${UNITS[$i]}
+  METRICS="$METRICS,${o}_peak [$u],${o}_min [$u],${o}_rms [$u]"
+  i=$((i + 1))
+done
+METRICS="$METRICS,min_tire_force [N],contact_loss_intervals,ride_a_w_rms [m/s^2],ride_mtvv [m/s^2]"
+METRICS="$METRICS,ride_vdv [m/s^1.75],ride_crest_factor,ride_jerk_peak [m/s^3],ride_jerk_rms [m/s^3]"
+METRICS="$METRICS,solver_steps"
 
 # check_python DESCRIPTION ARGS... < SCRIPT: the script exits 0.
 check_python() {
@@ -46,7 +54,9 @@ checks=$((checks + 1))
   fail "sweep.csv header: $(head -1 "$WORK/speeds/sweep.csv")"
 check_python "12 rows, speeds 5..60, every metric present" "$WORK/speeds/sweep.csv" <<'EOF'
 import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
+# Columns by name, without the units of the header ("torsion_peak [rad]").
+by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
+rows = list(map(by_name, csv.DictReader(open(sys.argv[1]))))
 assert [r["speed_kmh"] for r in rows] == [str(v) for v in range(5, 65, 5)], rows
 for r in rows:
     assert r["error"] == "", r["error"]
@@ -70,7 +80,9 @@ for speed in 10 35; do
   check_python "sweep row at $speed km/h equals run's summary.json" \
     "$WORK/speeds/sweep.csv" "$WORK/run_$speed/summary.json" "$speed" <<'EOF'
 import csv, json, sys
-rows = {r["speed_kmh"]: r for r in csv.DictReader(open(sys.argv[1]))}
+# Columns by name, without the units of the header ("torsion_peak [rad]").
+by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
+rows = {r["speed_kmh"]: r for r in map(by_name, csv.DictReader(open(sys.argv[1])))}
 s1 = json.load(open(sys.argv[2]))["system1"]
 row = rows[sys.argv[3]]
 problems = []
@@ -105,7 +117,9 @@ cmp -s "$WORK/speeds/sweep.csv" "$WORK/speeds_j1/sweep.csv" ||
 # fewer where they suffice (the speeds' 5 stays 5).
 check_python "shortest exact numbers" "$WORK/speeds/sweep.csv" <<'EOF'
 import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
+# Columns by name, without the units of the header ("torsion_peak [rad]").
+by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
+rows = list(map(by_name, csv.DictReader(open(sys.argv[1]))))
 digits = [len(v.lstrip("-").replace(".", "").split("e")[0].lstrip("0"))
           for r in rows for k, v in r.items() if k != "error" and v not in ("", "0")]
 assert max(digits) <= 17 and min(digits) < 15, (max(digits), min(digits))
@@ -128,6 +142,31 @@ assert [r[:2] for r in rows[1:]] == want, [r[:2] for r in rows[1:]]
 assert len({r[2] for r in rows[1:4]}) == 3
 EOF
 
+# ---- --plain-header: the metrics' names only; --plot: the panels of
+# sweep.png, by OUTPUT[:STAT] or by a column's name; a metric that does not
+# exist, or too many, is a usage error before anything runs.
+run sweep "$APC" --set speed_kmh=10,20 -o "$WORK/plots" --plain-header \
+  --plot tire_force_LF:min --plot torsion:rms --plot min_tire_force --plot tire_defl_RM_peak -q
+expect_status 0 "sweep with --plot and --plain-header"
+checks=$((checks + 1))
+[ "$(head -1 "$WORK/plots/sweep.csv")" = "speed_kmh$(echo "$METRICS" | sed 's/ \[[^]]*\]//g'),error" ] ||
+  fail "sweep --plain-header: header $(head -1 "$WORK/plots/sweep.csv")"
+checks=$((checks + 1))
+[ "$(head -c 4 "$WORK/plots/sweep.png" | od -An -tx1 | tr -d ' ')" = "89504e47" ] ||
+  fail "sweep --plot draws sweep.png"
+for bad in torsion:max tire_force_LX ride; do
+  run sweep "$APC" --set speed_kmh=10,20 -o "$WORK/badplot" --plot "$bad"
+  expect_status 1 "sweep --plot $bad"
+  expect_in "$ERR" "--plot $bad: no such metric; give OUTPUT[:peak|min|rms]" "sweep --plot $bad"
+done
+many=()
+for k in $(seq 17); do many+=(--plot torsion); done
+run sweep "$APC" --set speed_kmh=10,20 -o "$WORK/badplot" "${many[@]}"
+expect_status 1 "sweep with 17 --plot"
+expect_in "$ERR" "17 --plot options; sweep.png takes at most 16 panels" "sweep with 17 --plot"
+checks=$((checks + 1))
+[ ! -e "$WORK/badplot" ] || fail "a refused --plot writes nothing"
+
 # ---- A failing case: at 2 km/h the last wheel leaves the bump at
 # 5 + 8.7 m / (2/3.6 m/s) = 20.66 s, after t_end = 15 s.
 run sweep "$APC" --set speed_kmh=2,10 -o "$WORK/fail" --no-figures
@@ -136,7 +175,9 @@ expect_in "$ERR" "case 1/2 (speed_kmh=2): failed: --set speed_kmh=2: " "failure 
 expect_in "$ERR" "case 2/2 (speed_kmh=10): ok" "the other case runs"
 check_python "failed row marked, metrics empty" "$WORK/fail/sweep.csv" <<'EOF'
 import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
+# Columns by name, without the units of the header ("torsion_peak [rad]").
+by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
+rows = list(map(by_name, csv.DictReader(open(sys.argv[1]))))
 assert len(rows) == 2
 bad, good = rows
 assert bad["error"].startswith("--set speed_kmh=2: ") and "bump longer than the run" in bad["error"], bad["error"]
@@ -170,7 +211,9 @@ run sweep "$APC" --system flexible --set hull.fe.modes=20 --set simulation.t_end
 expect_status 0 "System 2"
 check_python "System 2 row" "$WORK/flex/sweep.csv" <<'EOF'
 import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
+# Columns by name, without the units of the header ("torsion_peak [rad]").
+by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
+rows = list(map(by_name, csv.DictReader(open(sys.argv[1]))))
 # The flexible hull twists: torsion is not zero, unlike System 1's.
 assert len(rows) == 1 and rows[0]["error"] == "" and float(rows[0]["torsion_peak"]) > 0, rows
 EOF
@@ -183,7 +226,9 @@ run sweep "$APC" --set tire_contact=bilateral,unilateral --set road.bump.height=
 expect_status 0 "a key the file leaves out"
 check_python "a key the file leaves out" "$WORK/contact/sweep.csv" <<'EOF'
 import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
+# Columns by name, without the units of the header ("torsion_peak [rad]").
+by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
+rows = list(map(by_name, csv.DictReader(open(sys.argv[1]))))
 assert [r["tire_contact"] for r in rows] == ["bilateral", "unilateral"], rows
 assert float(rows[0]["min_tire_force"]) < 0 and float(rows[1]["min_tire_force"]) == 0, rows
 EOF

@@ -53,7 +53,22 @@ typedef struct fb_plot_series {
 typedef struct fb_plot_panel {
   const fb_plot_series *series; /* borrowed, nseries >= 1 */
   size_t nseries;
-  const char *ylabel; /* NULL: "name [unit]" of the first series */
+  /* The y axis reads "ylabel [unit]": ylabel NULL takes the first
+   * series' column name and unit; with ylabel, unit is the values' unit
+   * (NULL: ylabel is drawn as given, values as they are). The unit gets
+   * the SI prefix that puts the largest value drawn in [1, 1000) (1.2e-5
+   * rad is drawn as 12 on a "urad" axis, 14150 N as 14.15 kN), for
+   * units that start with a plain SI symbol (N, m, rad, W, J, Pa, s, Hz,
+   * V, A, C: not kg, nor one already prefixed). */
+  const char *ylabel;
+  const char *unit;
+  /* focus_t0 < focus_t1: the y range fits the samples in [focus_t0,
+   * focus_t1] only, and the time outside it is shaded and labelled
+   * outside_label (", off scale" added where a curve leaves the range
+   * there), e.g. the settling before a bump that would dwarf the bump's
+   * differences. 0, 0 (default): the whole window. */
+  double focus_t0, focus_t1;
+  const char *outside_label; /* NULL: the shading only */
 } fb_plot_panel;
 
 /* Settings of a figure; fb_plot_opts_default fills the defaults below. */
@@ -96,8 +111,11 @@ typedef struct fb_plot_xy_panel {
   const fb_plot_xy_series *series; /* borrowed, nseries >= 1 */
   size_t nseries;
   const char *ylabel; /* NULL for none */
-  int log_y;          /* 1: a logarithmic y axis (values <= 0 left out), when
-                         some value is > 0 */
+  /* The values' unit, drawn as "ylabel [unit]" with an SI prefix on a
+   * linear axis, as fb_plot_panel's; NULL: ylabel as given. */
+  const char *unit;
+  int log_y; /* 1: a logarithmic y axis (values <= 0 left out), when
+                some value is > 0 */
 } fb_plot_xy_panel;
 
 /* Settings of an x-y figure; fb_plot_xy_opts_default fills the defaults. */

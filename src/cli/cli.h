@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/io.h"
 #include "flexbond/model.h"
 #include "flexbond/ride.h"
 #include "flexbond/vehicle.h"
@@ -340,6 +341,7 @@ typedef struct cli_run_outputs {
   cli_output_cmp *cmp;   /* s->noutputs, set when diff is */
   double bump_window[2]; /* first wheel's bump entry, last wheel's exit, s */
   int figures;           /* 0 with --no-figures */
+  fb_csv_header header;  /* of systemN.csv (--plain-header) */
   /* System 1's undamped modes, when it ran. */
   const fb_mode *modes1;
   size_t nmodes1, nstatic1;

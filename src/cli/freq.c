@@ -220,7 +220,9 @@ static int draw_bode(cli_outdir *od, const freq_study *fs, double *const *phase,
            s->output[o].name, 3.6 * s->speed,
            fs->linearised[0] || fs->linearised[1] ? ", linearised at the static equilibrium"
                                                   : "");
-  const fb_plot_xy_panel panels[2] = {{b.ms, n, ylabel, 1}, {b.ps, n, "phase [deg]", 0}};
+  const fb_plot_xy_panel panels[2] = {
+      {.series = b.ms, .nseries = n, .ylabel = ylabel, .unit = NULL, .log_y = 1},
+      {.series = b.ps, .nseries = n, .ylabel = "phase [deg]", .unit = NULL, .log_y = 0}};
   fb_plot_xy_opts opts;
   fb_plot_xy_opts_default(&opts);
   opts.title = title;

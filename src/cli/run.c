@@ -33,7 +33,7 @@ static const char run_usage[] =
     "and writes, once every run succeeded (docs/report.md):\n"
     "  DIR/system1.csv, DIR/system2.csv\n"
     "                          t and the seven outputs of the paper, one row per\n"
-    "                          sample (header: names only; SI units)\n"
+    "                          sample (header: 't [s],tire_force_LF [N],...'; SI)\n"
     "  DIR/figNN_OUTPUT.png    the paper's Figs. 8-14, one output each: both\n"
     "                          systems overlaid, their difference below\n"
     "  DIR/mode_NN.png         System 2's modes 1, 2, 8 and 10\n"
@@ -69,6 +69,8 @@ static const char run_usage[] =
     "  --animate-scale F           draw the displacements F times (default: the\n"
     "                              largest 8 % of the hull's length)\n"
     "  --no-figures                no PNG or GIF; report.md without images\n"
+    "  --plain-header              CSV headers of names only ('t,tire_force_LF,...',\n"
+    "                              the paper's), without the units\n"
     "  -v, --verbose               also what each eigen-solve and each run's set-up\n"
     "                              cost, on stderr\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
@@ -127,9 +129,10 @@ typedef struct run_args {
   int hull_coordinates; /* s->hull_coordinates */
   int hull_modes;       /* s->hull_modes */
   int quiet;
-  int verbose;  /* the costs of eigen-solves and set-up too (-v) */
-  int progress; /* draw a progress line: stderr is a terminal, no -q */
-  int figures;  /* 0 with --no-figures */
+  int verbose;          /* the costs of eigen-solves and set-up too (-v) */
+  int progress;         /* draw a progress line: stderr is a terminal, no -q */
+  int figures;          /* 0 with --no-figures */
+  fb_csv_header header; /* of systemN.csv: units, or names with --plain-header */
   cli_animate_opts animate;
 } run_args;
 
@@ -192,18 +195,29 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
   /* fb_result_diff keeps System 1's columns. */
   const fb_plot_series diff = {.result = o->diff, .col = o->runs[0].col[k] - 1, .legend = NULL};
   const char *unit = fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]);
-  char ylabel[320], diff_ylabel[160], title[512], name[FB_ERR_KEY_MAX];
-  snprintf(ylabel, sizeof ylabel, "%s [%s]", fig->label, unit);
-  snprintf(diff_ylabel, sizeof diff_ylabel, "System 2 - System 1 [%s]", unit);
+  char title[512], name[FB_ERR_KEY_MAX];
   figure_title(fig, o, title, sizeof title);
   cli_run_figure_file(fig, name, sizeof name);
-  const fb_plot_panel panels[2] = {{.series = series, .nseries = o->nruns, .ylabel = ylabel},
-                                   {.series = &diff, .nseries = 1, .ylabel = diff_ylabel}};
   fb_plot_opts opts;
   fb_plot_opts_default(&opts);
   opts.title = title;
   opts.panel_height = o->diff ? 320 : 460;
   figure_window(fig, o->runs[0].res, &opts.t_min, &opts.t_max);
+  /* The difference over the bump: before it, the settling from the zero
+   * start (the systems' static deflections differ) would set the scale
+   * and flatten the bump's differences, which the comparison is about. */
+  double bump[2];
+  cli_bump_window(o->scenario, bump);
+  const fb_plot_panel panels[2] = {
+      {.series = series, .nseries = o->nruns, .ylabel = fig->label, .unit = unit},
+      {.series = &diff,
+       .nseries = 1,
+       .ylabel = "System 2 - System 1",
+       .unit = unit,
+       .focus_t0 = bump[0],
+       .focus_t1 = INFINITY,
+       .outside_label = o->scenario->initial == FB_INITIAL_ZERO ? "settling from the zero start"
+                                                                : "before the bump"}};
   char *path = cli_outdir_path(od, name, err);
   if (!path)
     return err->code; /* out of memory, or no staging directory */
@@ -468,6 +482,7 @@ static void write_summary_json(FILE *fp, const void *ctx)
 typedef struct system_csv {
   const cli_run_system *run;
   size_t noutputs;
+  fb_csv_header header;
 } system_csv;
 
 /* systemN.csv (a cli_writer over a system_csv). */
@@ -475,7 +490,7 @@ static void write_system_csv(FILE *fp, const void *ctx)
 {
   const system_csv *c = ctx;
   /* The scenario's outputs; the contact forces go to the summary. */
-  fb_result_print_csv_columns(fp, c->run->res, 1 + c->noutputs, FB_CSV_HEADER_NAMES);
+  fb_result_print_csv_columns(fp, c->run->res, 1 + c->noutputs, c->header);
 }
 
 /* The paper's Figs. 5 and 6 of system sys: its multibond graph and its
@@ -536,7 +551,7 @@ static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfile
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
     char name[32];
     snprintf(name, sizeof name, "system%d.csv", (int)o->runs[i].sys);
-    const system_csv csv = {&o->runs[i], o->scenario->noutputs};
+    const system_csv csv = {&o->runs[i], o->scenario->noutputs, o->header};
     rc = cli_outdir_write(od, name, write_system_csv, &csv, err);
   }
   if (rc == FB_OK)
@@ -911,7 +926,8 @@ static int run(const run_args *a)
   fb_system systems[CLI_MAX_SYSTEMS] = {FB_SYSTEM_RIGID};
   run_modes modes = {0};
   fb_result *diff = NULL;
-  cli_run_outputs o = {.runs = runs, .figures = a->figures, .animate = &a->animate};
+  cli_run_outputs o = {
+      .runs = runs, .figures = a->figures, .header = a->header, .animate = &a->animate};
   size_t nfiles = 0;
   cli_outdir od;
   int rc = fb_scenario_load(a->scenario_path, &s, &err);
@@ -1065,6 +1081,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_ANIMATE_FPS,
     OPT_ANIMATE_SCALE,
     OPT_NO_FIGURES,
+    OPT_PLAIN_HEADER,
     OPT_QUIET,
     OPT_VERBOSE,
     OPT_HELP,
@@ -1081,6 +1098,7 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_ANIMATE_FPS] = {"--animate-fps", NULL, 1, NULL},
       [OPT_ANIMATE_SCALE] = {"--animate-scale", NULL, 1, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
+      [OPT_PLAIN_HEADER] = {"--plain-header", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_VERBOSE] = {"--verbose", "-v", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
@@ -1098,6 +1116,7 @@ int cli_cmd_run(int argc, char **argv)
   a.verbose = !a.quiet && opts[OPT_VERBOSE].value != NULL;
   a.progress = !a.quiet && isatty(STDERR_FILENO);
   a.figures = opts[OPT_NO_FIGURES].value == NULL;
+  a.header = opts[OPT_PLAIN_HEADER].value ? FB_CSV_HEADER_NAMES : FB_CSV_HEADER_UNITS;
   rc = parse_settings(argv[0], &opts[OPT_SYSTEM], &opts[OPT_INITIAL], &opts[OPT_PAYLOAD],
                       &opts[OPT_HULL_MODES], &opts[OPT_HULL_COORDINATES], &a);
   if (rc == CLI_EXIT_OK)

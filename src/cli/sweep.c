@@ -33,7 +33,7 @@
 static const char sweep_usage[] =
     "usage: flexbond sweep SCENARIO.yaml --set KEY=SPEC [--set KEY=SPEC ...] -o DIR\n"
     "                      [--system rigid|flexible] [-j N] [--resume] [--mpi]\n"
-    "                      [--no-figures] [-q]\n"
+    "                      [--plot METRIC ...] [--no-figures] [--plain-header] [-q]\n"
     "\n"
     "Simulates the scenario once per combination of the values given by the\n"
     "--set options (their cartesian product, the first key varying slowest) and\n"
@@ -43,8 +43,8 @@ static const char sweep_usage[] =
     "                  the smallest tire reaction, the contact-loss intervals, the\n"
     "                  driver's ride metrics, the solver's steps; every number\n"
     "                  to the last bit) and an `error` column\n"
-    "  DIR/sweep.png   one panel per metric against the first key, one curve per\n"
-    "                  combination of the other keys\n"
+    "  DIR/sweep.png   a panel per plotted metric (--plot) against the first key,\n"
+    "                  a curve per combination of the other keys\n"
     "A case that fails does not stop the others; the exit status is then 4.\n"
     "Finished cases are kept in DIR/sweep.partial.csv until the end, so that a\n"
     "killed or interrupted sweep can be resumed.\n"
@@ -64,7 +64,17 @@ static const char sweep_usage[] =
     "  --mpi                      run across the ranks of an MPI job, one case per\n"
     "                             rank at a time (mpirun -np N flexbond sweep --mpi\n"
     "                             ...; an MPI build only, docs/cluster.md)\n"
+    "  --plot METRIC              a panel of sweep.png; repeat for more (at most 16).\n"
+    "                             METRIC: OUTPUT[:STAT], an output of the scenario\n"
+    "                             and peak (default), min or rms (tire_force_LF:min),\n"
+    "                             or a column of sweep.csv (min_tire_force,\n"
+    "                             ride_a_w_rms, contact_loss_intervals, solver_steps).\n"
+    "                             Default: the first output's peak, min_tire_force,\n"
+    "                             ride_a_w_rms (with a mounted body's acceleration\n"
+    "                             among the outputs) and contact_loss_intervals\n"
     "  --no-figures               no sweep.png\n"
+    "  --plain-header             sweep.csv's header of names only, without the\n"
+    "                             metrics' units ('tire_force_LF_peak [N]')\n"
     "  -q, --quiet                no progress lines on stderr\n"
     "  -h, --help                 this text\n";
 
@@ -90,7 +100,7 @@ typedef struct sweep_outputs {
 static void write_csv(FILE *fp, const void *ctx)
 {
   const sweep_outputs *o = ctx;
-  sweep_csv_header(fp, o->a);
+  sweep_csv_header(fp, o->a, o->a->header);
   for (size_t i = 0; i < o->a->ncases; ++i)
     sweep_csv_row(fp, o->a, i, &o->cases[i]);
 }
@@ -122,10 +132,10 @@ static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figu
 {
   const size_t nx = a->keys[0].nvalues, ncurves = a->ncases / nx;
   f->x = malloc(nx * sizeof *f->x);
-  f->y = malloc(a->nmetrics * a->ncases * sizeof *f->y);
-  f->series = malloc(a->nmetrics * ncurves * sizeof *f->series);
+  f->y = malloc(a->nplots * a->ncases * sizeof *f->y);
+  f->series = malloc(a->nplots * ncurves * sizeof *f->series);
   f->legends = malloc(ncurves * sizeof *f->legends);
-  f->ylabels = malloc(a->nmetrics * sizeof *f->ylabels);
+  f->ylabels = malloc(a->nplots * sizeof *f->ylabels);
   if (!f->x || !f->y || !f->series || !f->legends || !f->ylabels)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the figure of %zu cases", a->ncases);
   f->categorical = 0;
@@ -136,20 +146,22 @@ static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figu
   for (size_t r = 0; r < ncurves; ++r)
     /* Case r of the first value: the other keys' values of curve r. */
     sweep_case_label(a, r, 1, f->legends[r], sizeof f->legends[r]);
-  for (size_t m = 0; m < a->nmetrics; ++m) {
+  for (size_t m = 0; m < a->nplots; ++m) {
     char name[FB_ERR_KEY_MAX];
-    sweep_metric_name(a, m, name, sizeof name);
-    snprintf(f->ylabels[m], sizeof f->ylabels[m], "%s [%s]", name, sweep_metric_unit(a, m));
+    sweep_metric_name(a, a->plot[m], name, sizeof name);
+    snprintf(f->ylabels[m], sizeof f->ylabels[m], "%s", name);
     for (size_t r = 0; r < ncurves; ++r) {
       double *y = &f->y[(m * ncurves + r) * nx];
       for (size_t v = 0; v < nx; ++v)
-        y[v] = cases[v * ncurves + r].metric[m];
+        y[v] = cases[v * ncurves + r].metric[a->plot[m]];
       /* The key once, in the first panel; none for a single curve. */
       f->series[m * ncurves + r] = (fb_plot_xy_series){
           .x = f->x, .y = y, .n = nx, .legend = m == 0 && ncurves > 1 ? f->legends[r] : NULL};
     }
-    f->panels[m] = (fb_plot_xy_panel){
-        .series = &f->series[m * ncurves], .nseries = ncurves, .ylabel = f->ylabels[m]};
+    f->panels[m] = (fb_plot_xy_panel){.series = &f->series[m * ncurves],
+                                      .nseries = ncurves,
+                                      .ylabel = f->ylabels[m],
+                                      .unit = sweep_metric_unit(a, a->plot[m])};
   }
   return FB_OK;
 }
@@ -173,7 +185,12 @@ static int write_figure(cli_outdir *od, const sweep_args *a, const sweep_case *c
     opts.xlabel = a->keys[0].key;
     opts.xtic_labels = f.categorical ? (const char *const *)a->keys[0].values : NULL;
     opts.nxtics = f.categorical ? a->keys[0].nvalues : 0;
-    rc = fb_plot_xy_png(f.panels, a->nmetrics, &opts, path, err);
+    /* A few panels, larger: the figure stays about 1100 pixels wide. */
+    if (a->nplots <= 4) {
+      opts.panel_width = 560;
+      opts.panel_height = 380;
+    }
+    rc = fb_plot_xy_png(f.panels, a->nplots, &opts, path, err);
     if (rc == FB_OK) {
       rc = cli_outdir_keep(od, path, err);
       path = NULL;
@@ -415,24 +432,43 @@ static int parse_set(const char *cmd, char *set, sweep_key *k)
  * does not keep) into sets; the other arguments go to rest. Options
  * that take a value are skipped with it, so a value is never read as an
  * option. */
+/* The value of the repeatable option name ("--set") at argv[*i], as
+ * "--set V" or "--set=V", appended to values; 0 if argv[*i] is not it, 1
+ * if it is, -1 if its value is missing. */
+static int take_repeated(int argc, char **argv, int *i, const char *name, char **values,
+                         size_t *n)
+{
+  const size_t len = strlen(name);
+  if (!strncmp(argv[*i], name, len) && argv[*i][len] == '=') {
+    values[(*n)++] = argv[*i] + len + 1;
+    return 1;
+  }
+  if (strcmp(argv[*i], name) != 0)
+    return 0;
+  /* No key or metric starts with '-': "--plot -o DIR" lacks its value. */
+  if (*i + 1 == argc || argv[*i + 1][0] == '-')
+    return -1;
+  values[(*n)++] = argv[++*i];
+  return 1;
+}
+
+/* Takes the repeatable --set and --plot options out of argv. */
 static int split_sets(int argc, char **argv, char **rest, int *nrest, char **sets,
-                      size_t *nsets)
+                      size_t *nsets, char **plots, size_t *nplots)
 {
   static const char *const with_value[] = {"-o", "--output", "--system", "-j", "--jobs"};
   *nrest = 0;
-  *nsets = 0;
+  *nsets = *nplots = 0;
   int i = 0;
   for (; i < argc && strcmp(argv[i], "--") != 0; ++i) {
-    if (!strncmp(argv[i], "--set=", 6)) {
-      sets[(*nsets)++] = argv[i] + 6;
+    const int set = take_repeated(argc, argv, &i, "--set", sets, nsets);
+    const int plot = set ? 0 : take_repeated(argc, argv, &i, "--plot", plots, nplots);
+    if (set < 0)
+      return cli_usage_error(argv[0], "option '--set' needs a value (KEY=SPEC)");
+    if (plot < 0)
+      return cli_usage_error(argv[0], "option '--plot' needs a value (METRIC)");
+    if (set || plot)
       continue;
-    }
-    if (!strcmp(argv[i], "--set")) {
-      if (i + 1 == argc)
-        return cli_usage_error(argv[0], "option '--set' needs a value (KEY=SPEC)");
-      sets[(*nsets)++] = argv[++i];
-      continue;
-    }
     rest[(*nrest)++] = argv[i];
     for (size_t o = 0; o < sizeof with_value / sizeof with_value[0]; ++o)
       if (!strcmp(argv[i], with_value[o]) && i + 1 < argc) {
@@ -738,6 +774,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
     OPT_RESUME,
     OPT_MPI,
     OPT_NO_FIGURES,
+    OPT_PLAIN_HEADER,
     OPT_QUIET,
     OPT_HELP,
     NOPTS
@@ -749,6 +786,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
       [OPT_RESUME] = {"--resume", NULL, 0, NULL},
       [OPT_MPI] = {"--mpi", NULL, 0, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
+      [OPT_PLAIN_HEADER] = {"--plain-header", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
@@ -763,6 +801,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a->quiet = a->quiet || opts[OPT_QUIET].value != NULL;
   a->figures = opts[OPT_NO_FIGURES].value == NULL;
+  a->header = opts[OPT_PLAIN_HEADER].value ? FB_CSV_HEADER_NAMES : FB_CSV_HEADER_UNITS;
   a->resume = opts[OPT_RESUME].value != NULL;
   if (a->mpi && opts[OPT_JOBS].value)
     return cli_usage_error(argv[0], "--mpi runs one case per rank at a time: instead of -j, "
@@ -775,16 +814,49 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
   return rc == CLI_EXIT_OK ? parse_jobs(argv[0], opts[OPT_JOBS].value, &a->jobs) : rc;
 }
 
+/* The --plot values into a->plot (the default without any). */
+static int parse_plots(const char *cmd, char **plots, size_t nplots, sweep_args *a)
+{
+  if (nplots == 0) {
+    sweep_default_plots(a);
+    return CLI_EXIT_OK;
+  }
+  if (nplots > SWEEP_MAX_PLOTS)
+    return cli_usage_error(cmd, "%zu --plot options; sweep.png takes at most %d panels", nplots,
+                           SWEEP_MAX_PLOTS);
+  a->nplots = 0;
+  for (size_t i = 0; i < nplots; ++i) {
+    size_t m = 0;
+    if (sweep_metric_find(a, plots[i], &m) != 0) {
+      char outputs[512];
+      size_t len = 0;
+      outputs[0] = '\0';
+      for (size_t k = 0; k < a->base->noutputs && len + 1 < sizeof outputs; ++k)
+        len = fb_text_append(outputs, sizeof outputs, len, "%s%s", k ? ", " : "",
+                             a->base->output[k].name);
+      return cli_usage_error(cmd,
+                             "--plot %s: no such metric; give OUTPUT[:peak|min|rms] with an "
+                             "output of the scenario (%s) or a column of sweep.csv such as "
+                             "min_tire_force",
+                             plots[i], outputs);
+    }
+    a->plot[a->nplots++] = m;
+  }
+  return CLI_EXIT_OK;
+}
+
 /* Parses and checks the study into a; the exit code (go: 0 after --help). */
 static int set_up(int argc, char **argv, sweep_args *a, char **name, int *go)
 {
   char **rest = malloc((size_t)argc * sizeof *rest),
-       **sets = malloc((size_t)argc * sizeof *sets);
-  size_t nsets = 0;
+       **sets = malloc((size_t)argc * sizeof *sets),
+       **plots = malloc((size_t)argc * sizeof *plots);
+  size_t nsets = 0, nplots = 0;
   int nrest = 0;
   *go = 0;
-  int rc = rest && sets ? split_sets(argc, argv, rest, &nrest, sets, &nsets)
-                        : cli_usage_error(argv[0], "out of memory");
+  int rc = rest && sets && plots
+               ? split_sets(argc, argv, rest, &nrest, sets, &nsets, plots, &nplots)
+               : cli_usage_error(argv[0], "out of memory");
   if (rc == CLI_EXIT_OK)
     rc = parse_options(nrest, rest, a, go);
   if (rc == CLI_EXIT_OK && *go)
@@ -793,6 +865,9 @@ static int set_up(int argc, char **argv, sweep_args *a, char **name, int *go)
     rc = check_scenario(argv[0], a, name);
   if (rc == CLI_EXIT_OK && *go)
     rc = resolve_keys(argv[0], a);
+  if (rc == CLI_EXIT_OK && *go)
+    rc = parse_plots(argv[0], plots, nplots, a);
+  free(plots);
   free(sets);
   free(rest);
   return rc;

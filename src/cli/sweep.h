@@ -11,6 +11,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "flexbond/io.h"
 #include "flexbond/vehicle.h"
 
 /* Limits of a study: values per key (as the spec says), keys, cases.
@@ -52,6 +53,9 @@ enum {
   SWEEP_MAX_OUTPUTS = 64,
   SWEEP_MAX_METRICS = SWEEP_NSTATS * SWEEP_MAX_OUTPUTS + SWEEP_NOTHER
 };
+/* Most panels of sweep.png (--plot): 16 panels of a 4 x 4 grid are
+ * still readable on a screen. */
+enum { SWEEP_MAX_PLOTS = 16 };
 
 /* One swept key and its values (texts, as the overrides take them). */
 typedef struct sweep_key {
@@ -66,6 +70,7 @@ typedef struct sweep_args {
   fb_system sys;
   size_t jobs;
   int quiet, figures, resume, mpi;
+  fb_csv_header header; /* of sweep.csv (--plain-header: names only) */
   sweep_key keys[SWEEP_MAX_KEYS];
   size_t nkeys, ncases;
   const char *scenario_name; /* for titles */
@@ -73,6 +78,10 @@ typedef struct sweep_args {
    * the metrics, and every case must have the same ones. */
   fb_scenario *base; /* owned */
   size_t nmetrics;   /* SWEEP_NSTATS base->noutputs + SWEEP_NOTHER */
+  /* The metrics sweep.png draws, a panel each (--plot, or the default of
+   * sweep_default_plots). */
+  size_t plot[SWEEP_MAX_PLOTS];
+  size_t nplots;
 } sweep_args;
 
 /* Index of the other metric M_* (after the outputs' statistics). */
@@ -98,11 +107,23 @@ void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf
 /* Name ("tire_force_LF_peak") and unit of metric m. */
 void sweep_metric_name(const sweep_args *a, size_t m, char *buf, size_t size);
 const char *sweep_metric_unit(const sweep_args *a, size_t m);
+/* The metric a --plot value names: OUTPUT[:STAT] (an output of the
+ * scenario, STAT peak (default), min or rms), another metric by its
+ * name (min_tire_force, ride_a_w_rms, ...), or any column name of
+ * sweep.csv (tire_force_LF_rms). 0 and *m set, or -1. */
+int sweep_metric_find(const sweep_args *a, const char *spec, size_t *m);
+/* The default panels of sweep.png into a->plot: the first output's peak,
+ * the smallest tire reaction, the ride's a_w r.m.s. (when an output is a
+ * mounted body's acceleration) and the number of contact-loss
+ * intervals: the load, the contact, the comfort and the lift-off. */
+void sweep_default_plots(sweep_args *a);
 /* Loads, simulates and measures case i into c (not c->done or c->rank).
  * Cases run at once on any hull: fb_fem_modes orders ARPACK's solves. */
 void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c);
-/* sweep.csv's header line and case i's row, each with its '\n'. */
-void sweep_csv_header(FILE *fp, const sweep_args *a);
+/* sweep.csv's header line and case i's row, each with its '\n'; the
+ * metrics' cells "name [unit]" (FB_CSV_HEADER_UNITS; a count or ratio,
+ * unit "-", has none) or names only. */
+void sweep_csv_header(FILE *fp, const sweep_args *a, fb_csv_header header);
 void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c);
 /* The shortest text that reads back as x ("%.15g" to "%.17g"), so that
  * sweep.csv holds every bit. */

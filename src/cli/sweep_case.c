@@ -53,6 +53,46 @@ const char *sweep_metric_unit(const sweep_args *a, size_t m)
   return unit ? unit : "-"; /* a bond's: its domain's, known after the build */
 }
 
+int sweep_metric_find(const sweep_args *a, const char *spec, size_t *m)
+{
+  const char *colon = strchr(spec, ':');
+  const size_t len = colon ? (size_t)(colon - spec) : strlen(spec);
+  for (size_t k = 0; colon && k < a->base->noutputs; ++k)
+    for (size_t st = 0; st < SWEEP_NSTATS; ++st)
+      if (strlen(a->base->output[k].name) == len &&
+          !strncmp(a->base->output[k].name, spec, len) && !strcmp(colon + 1, stat_names[st])) {
+        *m = SWEEP_NSTATS * k + st;
+        return 0;
+      }
+  if (colon)
+    return -1;
+  for (size_t k = 0; k < a->base->noutputs; ++k)
+    if (!strcmp(a->base->output[k].name, spec)) {
+      *m = SWEEP_NSTATS * k + SWEEP_STAT_PEAK;
+      return 0;
+    }
+  for (size_t i = 0; i < a->nmetrics; ++i) {
+    char name[FB_ERR_KEY_MAX];
+    sweep_metric_name(a, i, name, sizeof name);
+    if (!strcmp(name, spec)) {
+      *m = i;
+      return 0;
+    }
+  }
+  return -1;
+}
+
+void sweep_default_plots(sweep_args *a)
+{
+  a->nplots = 0;
+  if (a->base->noutputs > 0)
+    a->plot[a->nplots++] = SWEEP_STAT_PEAK;
+  a->plot[a->nplots++] = sweep_metric_other(a, M_MIN_TIRE_FORCE);
+  if (cli_ride_output(a->base) < a->base->noutputs)
+    a->plot[a->nplots++] = sweep_metric_other(a, M_RIDE_A_W_RMS);
+  a->plot[a->nplots++] = sweep_metric_other(a, M_CONTACT_LOSS_INTERVALS);
+}
+
 /* Index of key k's value in case i: the first key varies slowest. */
 size_t sweep_value_index(const sweep_args *a, size_t i, size_t k)
 {
@@ -255,16 +295,22 @@ void sweep_format_double(double x, char *buf, size_t size)
  * resuming, and most are numbers, "-1" among them. Nor are the errors:
  * each starts with flexbond's own words ("--set KEY=VALUE: ..."), and a '
  * would come before every one (docs/outputs.md). */
-void sweep_csv_header(FILE *fp, const sweep_args *a)
+void sweep_csv_header(FILE *fp, const sweep_args *a, fb_csv_header header)
 {
   for (size_t k = 0; k < a->nkeys; ++k) {
     fb_csv_write_field(fp, a->keys[k].key, FB_CSV_TEXT);
     fputc(',', fp);
   }
   for (size_t m = 0; m < a->nmetrics; ++m) {
-    char name[FB_ERR_KEY_MAX];
+    char name[FB_ERR_KEY_MAX], cell[FB_ERR_KEY_MAX + 64];
     sweep_metric_name(a, m, name, sizeof name);
-    fb_csv_write_field(fp, name, FB_CSV_TEXT);
+    const char *unit = sweep_metric_unit(a, m);
+    /* "-": a count or a ratio, no unit to give. */
+    if (header == FB_CSV_HEADER_UNITS && strcmp(unit, "-") != 0)
+      snprintf(cell, sizeof cell, "%s [%s]", name, unit);
+    else
+      snprintf(cell, sizeof cell, "%s", name);
+    fb_csv_write_field(fp, cell, FB_CSV_TEXT);
     fputc(',', fp);
   }
   fputs("error\n", fp);

@@ -283,7 +283,9 @@ static char *header_line(const sweep_args *a)
   if (!fp)
     return NULL;
   fputs("case,status,", fp);
-  sweep_csv_header(fp, a);
+  /* Always with the units: --plain-header changes sweep.csv only, so a
+   * study resumed with or without it finds its journal. */
+  sweep_csv_header(fp, a, FB_CSV_HEADER_UNITS);
   if (fclose(fp) != 0) {
     free(text);
     return NULL;

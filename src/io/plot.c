@@ -66,78 +66,185 @@ static int window_rows(const fb_result *r, double t_min, double t_max, size_t *f
   return 1;
 }
 
-/* Datablock $dN with the time and value columns of one series. */
+/* ---- SI prefixes. */
+
+/* Unit symbols a prefix may go in front of (the first symbol of a
+ * compound unit: "m/s^2", "N m"); kg and already prefixed units are not
+ * among them. */
+static const char *const si_symbols[] = {"N", "m",  "rad", "W", "J", "Pa",
+                                         "s", "Hz", "V",   "A", "C", NULL};
+
+/* 1 if unit starts with one of si_symbols, followed by its end or a
+ * character that is no letter ("m/s^2" yes, "mm", "kg", "1" no). */
+static int prefixable(const char *unit)
+{
+  if (!unit)
+    return 0;
+  size_t n = 0;
+  while ((unit[n] >= 'a' && unit[n] <= 'z') || (unit[n] >= 'A' && unit[n] <= 'Z'))
+    ++n;
+  for (size_t i = 0; n && si_symbols[i]; ++i)
+    if (strlen(si_symbols[i]) == n && !strncmp(unit, si_symbols[i], n))
+      return 1;
+  return 0;
+}
+
+double fb_plot_si_scale(double max_abs, const char *unit, char *out, size_t size)
+{
+  /* Powers of 1000 from 1e-9 to 1e9; the micro sign in UTF-8. */
+  static const char *const prefixes[] = {"n", "\xc2\xb5", "m", "", "k", "M", "G"};
+  int e3 = 0;
+  if (prefixable(unit) && isfinite(max_abs) && max_abs > 0) {
+    e3 = (int)floor(log10(max_abs) / 3.0);
+    e3 = e3 < -3 ? -3 : e3 > 3 ? 3 : e3;
+  }
+  snprintf(out, size, "%s%s", prefixes[e3 + 3], unit ? unit : "");
+  return pow(10.0, -3.0 * e3);
+}
+
+/* ---- Panels. */
+
+/* What a panel draws, worked out before its data are written: the factor
+ * its values are drawn times, the axis unit, and its y range. */
+typedef struct panel_layout {
+  double scale;
+  char unit[64];
+  int has_unit;  /* the label gets " [unit]" */
+  double lo, hi; /* y range of the drawn values; lo > hi: autoscale */
+  int off_scale; /* a sample outside the focus lies outside [lo, hi] */
+  double f0, f1; /* the focus clipped to the window, or the window */
+} panel_layout;
+
+/* Smallest and largest finite value of p's curves over [t0, t1]. */
+static void panel_extent(const fb_plot_panel *p, double t0, double t1, double *lo, double *hi)
+{
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (size_t j = 0; j < p->nseries; ++j) {
+    const fb_plot_series *s = &p->series[j];
+    size_t first = 0, last = 0;
+    if (!window_rows(s->result, t0, t1, &first, &last))
+      continue;
+    for (size_t k = first; k <= last; ++k) {
+      const double *row = fb_result_row(s->result, k);
+      if (isfinite(row[s->col + 1]) && row[0] >= t0 && row[0] <= t1) {
+        *lo = fmin(*lo, row[s->col + 1]);
+        *hi = fmax(*hi, row[s->col + 1]);
+      }
+    }
+  }
+}
+
+static panel_layout panel_layout_of(const fb_plot_panel *p, double t_min, double t_max)
+{
+  panel_layout l = {.scale = 1.0, .lo = 1.0, .hi = 0.0, .f0 = t_min, .f1 = t_max};
+  const int focus = p->focus_t0 < p->focus_t1 && p->focus_t0 < t_max && p->focus_t1 > t_min;
+  if (focus) {
+    l.f0 = fmax(p->focus_t0, t_min);
+    l.f1 = fmin(p->focus_t1, t_max);
+  }
+  double lo = 0, hi = 0;
+  panel_extent(p, l.f0, l.f1, &lo, &hi);
+  const char *unit =
+      p->ylabel ? p->unit : fb_result_col_unit(p->series[0].result, p->series[0].col + 1);
+  l.has_unit = unit && *unit;
+  if (l.has_unit)
+    l.scale = fb_plot_si_scale(fmax(fabs(lo), fabs(hi)), unit, l.unit, sizeof l.unit);
+  if (!(lo <= hi))
+    return l; /* nothing finite: autoscale */
+  if (lo == hi) {
+    /* A constant curve (System 1's torsion angle is identically 0):
+     * gnuplot's autoscale would widen the range itself, with a warning. */
+    const double half = lo == 0 ? 1 : 0.5 * fabs(lo);
+    l.lo = (lo - half) * l.scale;
+    l.hi = (hi + half) * l.scale;
+  } else if (focus) {
+    const double margin = 0.05 * (hi - lo);
+    l.lo = (lo - margin) * l.scale;
+    l.hi = (hi + margin) * l.scale;
+  }
+  if (focus) {
+    double before_lo = 0, before_hi = 0, after_lo = 0, after_hi = 0;
+    panel_extent(p, t_min, l.f0, &before_lo, &before_hi);
+    panel_extent(p, l.f1, t_max, &after_lo, &after_hi);
+    l.off_scale = fmin(before_lo, after_lo) * l.scale < l.lo ||
+                  fmax(before_hi, after_hi) * l.scale > l.hi;
+  }
+  return l;
+}
+
+/* Datablock $dN with the time and value columns of one series, the values
+ * times scale. */
 static void write_datablock(FILE *gp, size_t id, const fb_plot_series *s, double t_min,
-                            double t_max)
+                            double t_max, double scale)
 {
   size_t first = 0, last = 0;
   window_rows(s->result, t_min, t_max, &first, &last);
   fprintf(gp, "$d%zu << EOD\n", id);
   for (size_t k = first; k <= last; ++k) {
     const double *row = fb_result_row(s->result, k);
-    double v = row[s->col + 1];
-    /* gnuplot reads "NaN" as a missing point and would choke on "inf". */
+    const double v = row[s->col + 1];
     if (isfinite(v))
-      fprintf(gp, "%.10g %.10g\n", row[0], v);
+      fprintf(gp, "%.10g %.10g\n", row[0], v * scale);
     else
       fprintf(gp, "%.10g NaN\n", row[0]);
   }
   fputs("EOD\n", gp);
 }
 
-static void write_ylabel(FILE *gp, const fb_plot_panel *p)
+static void write_ylabel(FILE *gp, const fb_plot_panel *p, const panel_layout *l)
 {
   fputs("set ylabel ", gp);
-  if (p->ylabel) {
-    fb_gnuplot_quoted(gp, p->ylabel);
-  } else {
-    const fb_result *r = p->series[0].result;
-    size_t col = p->series[0].col + 1;
-    const char *unit = fb_result_col_unit(r, col);
-    /* "name [unit]" as a gnuplot string expression: no buffer needed. */
-    fb_gnuplot_quoted(gp, fb_result_col_name(r, col));
-    if (unit && *unit) {
-      fputs(".' ['.", gp);
-      fb_gnuplot_quoted(gp, unit);
-      fputs(".']'", gp);
-    }
+  /* "name [unit]" as a gnuplot string expression: no buffer needed. */
+  fb_gnuplot_quoted(gp, p->ylabel
+                            ? p->ylabel
+                            : fb_result_col_name(p->series[0].result, p->series[0].col + 1));
+  if (l->has_unit) {
+    fputs(".' ['.", gp);
+    fb_gnuplot_quoted(gp, l->unit);
+    fputs(".']'", gp);
   }
   fputc('\n', gp);
 }
 
-/* Sets the y range of panel p: gnuplot's autoscale, except around a
- * constant curve (System 1's torsion angle is identically 0), which
- * autoscale would widen itself, with a warning on stderr. */
-static void write_yrange(FILE *gp, const fb_plot_panel *p, double t_min, double t_max)
+/* The y range, and the shading of the time outside the focus. */
+static void write_yrange(FILE *gp, const fb_plot_panel *p, const panel_layout *l, double t_min,
+                         double t_max)
 {
-  double lo = INFINITY, hi = -INFINITY;
-  for (size_t j = 0; j < p->nseries; ++j) {
-    size_t first = 0, last = 0;
-    window_rows(p->series[j].result, t_min, t_max, &first, &last);
-    for (size_t k = first; k <= last; ++k) {
-      double v = fb_result_row(p->series[j].result, k)[p->series[j].col + 1];
-      if (isfinite(v)) {
-        lo = fmin(lo, v);
-        hi = fmax(hi, v);
-      }
-    }
-  }
-  if (lo == hi) {
-    double half = lo == 0 ? 1 : 0.5 * fabs(lo);
-    fprintf(gp, "set yrange [%.10g:%.10g]\n", lo - half, hi + half);
-  } else {
+  if (l->lo < l->hi)
+    fprintf(gp, "set yrange [%.10g:%.10g]\n", l->lo, l->hi);
+  else
     fputs("set autoscale y\n", gp);
+  fputs("unset object\nunset label\n", gp);
+  const double span[2][2] = {{t_min, l->f0}, {l->f1, t_max}};
+  for (int k = 0; k < 2; ++k) {
+    if (!(span[k][0] < span[k][1]))
+      continue;
+    fprintf(gp,
+            "set object %d rect from %.10g, graph 0 to %.10g, graph 1 behind "
+            "fc rgb '#e6e6e6' fs solid 1.0 noborder\n",
+            k + 1, span[k][0], span[k][1]);
+    if (!p->outside_label && !l->off_scale)
+      continue;
+    fprintf(gp, "set label %d ", k + 1);
+    fb_gnuplot_quoted(gp, p->outside_label ? p->outside_label : "");
+    if (l->off_scale) {
+      fputc('.', gp);
+      fb_gnuplot_quoted(gp, p->outside_label ? ", off scale" : "off scale");
+    }
+    fprintf(gp, " at %.10g, graph 0.9 center front boxed\n", 0.5 * (span[k][0] + span[k][1]));
   }
 }
 
 /* The plot command of panel p, whose first datablock is $d<first_id>. */
-static void write_panel(FILE *gp, const fb_plot_panel *p, size_t first_id)
+static void write_panel(FILE *gp, const fb_plot_panel *p, const panel_layout *l,
+                        size_t first_id)
 {
   int has_key = 0;
   for (size_t j = 0; j < p->nseries; ++j)
     has_key |= p->series[j].legend != NULL;
   fputs(has_key ? "set key top right\n" : "set key off\n", gp);
-  write_ylabel(gp, p);
+  write_ylabel(gp, p, l);
   fputs("plot ", gp);
   for (size_t j = 0; j < p->nseries; ++j) {
     size_t style = j % NLINE_STYLES;
@@ -153,20 +260,33 @@ static void write_panel(FILE *gp, const fb_plot_panel *p, size_t first_id)
   fputc('\n', gp);
 }
 
-static void write_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
-                         const fb_plot_opts *o, double t_min, double t_max,
-                         const char *png_name)
+/* Most panels of one figure (a layout each on the stack). */
+enum { MAX_PANELS = 64 };
+
+void fb_plot_panels_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
+                           const fb_plot_opts *o, double t_min, double t_max,
+                           const char *png_name)
 {
+  /* fb_plot_panels_png refuses more panels than fit in layout. */
+  panel_layout layout[MAX_PANELS];
+  if (npanels > MAX_PANELS)
+    return;
   size_t id = 0;
-  for (size_t i = 0; i < npanels; ++i)
+  for (size_t i = 0; i < npanels; ++i) {
+    layout[i] = panel_layout_of(&panels[i], t_min, t_max);
     for (size_t j = 0; j < panels[i].nseries; ++j)
-      write_datablock(gp, id++, &panels[i].series[j], t_min, t_max);
+      write_datablock(gp, id++, &panels[i].series[j], t_min, t_max, layout[i].scale);
+  }
   int width = o->width > 0 ? o->width : 900;
   size_t panel_height = o->panel_height > 0 ? (size_t)o->panel_height : 220;
   size_t height = panel_height * npanels + (o->title ? 40 : 0);
-  fprintf(gp, "set terminal pngcairo size %d,%zu font 'Sans,9'\nset output ", width, height);
+  fprintf(gp, "set encoding utf8\nset terminal pngcairo size %d,%zu font 'Sans,9'\nset output ",
+          width, height);
   fb_gnuplot_quoted(gp, png_name);
-  fputs("\nset termoption noenhanced\nset grid\nset xlabel 't [s]'\n", gp);
+  /* Labels over curves (the shading's) on an opaque box, to be read. */
+  fputs("\nset termoption noenhanced\nset grid\nset xlabel 't [s]'\n"
+        "set style textbox opaque noborder\n",
+        gp);
   fprintf(gp, "set xrange [%.10g:%.10g]\n", t_min, t_max);
   fprintf(gp, "set multiplot layout %zu,1", npanels);
   if (o->title) {
@@ -176,8 +296,8 @@ static void write_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
   fputc('\n', gp);
   id = 0;
   for (size_t i = 0; i < npanels; ++i) {
-    write_yrange(gp, &panels[i], t_min, t_max);
-    write_panel(gp, &panels[i], id);
+    write_yrange(gp, &panels[i], &layout[i], t_min, t_max);
+    write_panel(gp, &panels[i], &layout[i], id);
     id += panels[i].nseries;
   }
   fputs("unset multiplot\nset output\n", gp);
@@ -190,6 +310,9 @@ static int check_panels(const fb_plot_panel *panels, size_t npanels, double t_mi
 {
   if (npanels == 0)
     return fb_err_set(err, FB_EINVAL, "%s: nothing to plot", path);
+  if (npanels > MAX_PANELS)
+    return fb_err_set(err, FB_EINVAL, "%s: %zu panels, at most %d fit one figure", path,
+                      npanels, MAX_PANELS);
   for (size_t i = 0; i < npanels; ++i) {
     if (panels[i].nseries == 0)
       return fb_err_set(err, FB_EINVAL, "%s: panel %zu has no curve", path, i + 1);
@@ -235,7 +358,7 @@ typedef struct panels_script {
 static void write_panels_script(FILE *gp, const void *ctx, const char *png_name)
 {
   const panels_script *ps = ctx;
-  write_script(gp, ps->panels, ps->npanels, ps->opts, ps->t_min, ps->t_max, png_name);
+  fb_plot_panels_script(gp, ps->panels, ps->npanels, ps->opts, ps->t_min, ps->t_max, png_name);
 }
 
 int fb_plot_panels_png(const fb_plot_panel *panels, size_t npanels, const fb_plot_opts *opts,

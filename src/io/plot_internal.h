@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/io.h"
 
 #include "io/child.h"
 
@@ -15,6 +16,21 @@
  * nothing inside single quotes (no backquotes, no macros), so this is the
  * one escape every text in a script passes through. */
 void fb_gnuplot_quoted(FILE *fp, const char *s);
+
+/* The SI prefix for values of unit whose largest magnitude is max_abs:
+ * the power of 1000 that puts it in [1, 1000), from nano to giga. Writes
+ * the prefixed unit into out (size bytes) and returns the factor to
+ * multiply the values by (1e6 for "urad" as the micro sign); unit as it
+ * is and 1 when no prefix applies (see fb_plot_panel.unit), max_abs is 0
+ * or not finite. */
+double fb_plot_si_scale(double max_abs, const char *unit, char *out, size_t size);
+
+/* The script of fb_plot_panels_png for the window [t_min, t_max], drawing
+ * into png_name (for tests: the figure is this text); nothing for more
+ * than 64 panels, which fb_plot_panels_png refuses. */
+void fb_plot_panels_script(FILE *gp, const fb_plot_panel *panels, size_t npanels,
+                           const fb_plot_opts *o, double t_min, double t_max,
+                           const char *png_name);
 
 /* Writes a gnuplot script to gp that draws a PNG into the file png_name
  * (a plain name in gnuplot's working directory). */

@@ -80,14 +80,15 @@ static void write_range(FILE *gp, const char *axis, double lo, double hi)
   fprintf(gp, "set %srange [%.10g:%.10g]\n", axis, lo, hi);
 }
 
+/* The y values of series s drawn times scale. */
 static void write_datablock(FILE *gp, size_t id, const fb_plot_xy_series *s, int log_x,
-                            int log_y)
+                            int log_y, double scale)
 {
   fprintf(gp, "$d%zu << EOD\n", id);
   for (size_t i = 0; i < s->n; ++i) {
     /* gnuplot leaves a NaN point out and breaks the line there. */
     if (drawable(s->x[i], log_x) && drawable(s->y[i], log_y))
-      fprintf(gp, "%.10g %.10g\n", s->x[i], s->y[i]);
+      fprintf(gp, "%.10g %.10g\n", s->x[i], s->y[i] * scale);
     else if (drawable(s->x[i], log_x))
       fprintf(gp, "%.10g NaN\n", s->x[i]);
   }
@@ -120,9 +121,22 @@ static int panel_log_y(const fb_plot_xy_panel *p)
   return lo <= hi;
 }
 
+/* The factor panel p's values are drawn times (an SI prefix's, linear
+ * axes with a unit only) and the axis unit into unit. */
+static double panel_scale(const fb_plot_xy_panel *p, int log_y, char *unit, size_t size)
+{
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t j = 0; j < p->nseries; ++j)
+    extend_range(p->series[j].y, p->series[j].n, log_y, &lo, &hi);
+  const double max_abs = lo <= hi ? fmax(fabs(lo), fabs(hi)) : 0.0;
+  return fb_plot_si_scale(log_y || !p->ylabel ? 0.0 : max_abs, p->unit, unit, size);
+}
+
 static void write_panel(FILE *gp, const fb_plot_xy_panel *p, size_t first_id, int lines)
 {
   const int log_y = panel_log_y(p);
+  char unit[64];
+  const double scale = panel_scale(p, log_y, unit, sizeof unit);
   double lo = INFINITY, hi = -INFINITY;
   int has_key = 0;
   for (size_t j = 0; j < p->nseries; ++j) {
@@ -130,10 +144,15 @@ static void write_panel(FILE *gp, const fb_plot_xy_panel *p, size_t first_id, in
     has_key |= p->series[j].legend != NULL;
   }
   fputs(log_y ? "set logscale y\nset format y '%g'\n" : "unset logscale y\nset format y\n", gp);
-  write_range(gp, "y", lo, hi);
+  write_range(gp, "y", lo * scale, hi * scale);
   fputs(has_key ? "set key top left\n" : "set key off\n", gp);
   fputs("set ylabel ", gp);
   fb_gnuplot_quoted(gp, p->ylabel ? p->ylabel : "");
+  if (p->ylabel && p->unit) {
+    fputs(".' ['.", gp);
+    fb_gnuplot_quoted(gp, unit);
+    fputs(".']'", gp);
+  }
   fputs("\nplot ", gp);
   for (size_t j = 0; j < p->nseries; ++j) {
     const size_t style = j % NXY_STYLES;
@@ -160,13 +179,17 @@ static void write_xy_script(FILE *gp, const void *ctx, const char *png_name)
   const xy_script *xs = ctx;
   const fb_plot_xy_opts *o = xs->opts;
   size_t id = 0;
-  for (size_t i = 0; i < xs->npanels; ++i)
-    for (size_t j = 0; j < xs->panels[i].nseries; ++j)
-      write_datablock(gp, id++, &xs->panels[i].series[j], o->log_x,
-                      panel_log_y(&xs->panels[i]));
+  for (size_t i = 0; i < xs->npanels; ++i) {
+    const fb_plot_xy_panel *p = &xs->panels[i];
+    char unit[64];
+    const double scale = panel_scale(p, panel_log_y(p), unit, sizeof unit);
+    for (size_t j = 0; j < p->nseries; ++j)
+      write_datablock(gp, id++, &p->series[j], o->log_x, panel_log_y(p), scale);
+  }
   const size_t width = (size_t)(o->panel_width > 0 ? o->panel_width : XY_PANEL_WIDTH);
   const size_t height = (size_t)(o->panel_height > 0 ? o->panel_height : XY_PANEL_HEIGHT);
-  fprintf(gp, "set terminal pngcairo size %zu,%zu font 'Sans,9'\nset output ",
+  fprintf(gp,
+          "set encoding utf8\nset terminal pngcairo size %zu,%zu font 'Sans,9'\nset output ",
           width * xs->columns, height * xs->rows + (o->title ? 40 : 0));
   fb_gnuplot_quoted(gp, png_name);
   fputs(o->log_x ? "\nset termoption noenhanced\nset grid xtics mxtics ytics\nset logscale "

@@ -58,7 +58,7 @@ done
 [ "$(./peak_shared "$src/examples/apc6x6.yaml" tire_force_LF)" = \
   "$(./peak_static "$src/examples/apc6x6.yaml" tire_force_LF)" ] || fail "shared != static"; ok
 # The peak against the run's CSV: the largest tire_force_LF in system1.csv (10 digits).
-csv_peak=$(awk -F, 'NR == 1 { for (j = 1; j <= NF; ++j) if ($j == "tire_force_LF") c = j; next }
+csv_peak=$(awk -F, 'NR == 1 { for (j = 1; j <= NF; ++j) if ($j == "tire_force_LF [N]") c = j; next }
                     $c > m || NR == 2 { m = $c } END { printf "%.6g", m }' run/system1.csv)
 case $(./peak_shared "$src/examples/apc6x6.yaml" tire_force_LF) in
   "tire_force_LF: peak $csv_peak N"*) ok ;;

@@ -67,7 +67,8 @@ class RunTest(unittest.TestCase):
         cli("run", APC, "--system", "rigid", "-o", "run_rigid")
         header, table = read_csv(os.path.join("run_rigid", "system1.csv"))
         r = flexbond.Scenario(APC).run("rigid")
-        self.assertEqual(r.names[:len(header)], header)
+        # The CSV's header names each column with its unit: "tire_force_LF [N]".
+        self.assertEqual(["%s [%s]" % (n, r.unit(n)) for n in r.names[:len(header)]], header)
         self.assertEqual(r.data.shape[0], table.shape[0])
         numpy.testing.assert_allclose(r.data[:, :len(header)], table, rtol=5e-10, atol=0)
         self.assertEqual(r.unit("tire_force_LF"), "N")
