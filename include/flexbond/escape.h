@@ -36,6 +36,12 @@ void fb_json_write_string(FILE *fp, const char *s);
  * is not finite: section 6 has no NaN or infinity, and a bare nan or inf
  * makes the whole text invalid. */
 void fb_json_write_number(FILE *fp, double v);
+/* 0 if text[0..len) is one JSON text (RFC 8259: a value with whitespace
+ * around it, strict numbers and strings, valid UTF-8, nested at most 256
+ * deep), -1 otherwise with *offset (if not NULL) at about the first byte
+ * that is not (src/core/json_check.c). A file written as JSON is checked
+ * with it before it is committed. */
+int fb_json_check(const char *text, size_t len, size_t *offset);
 
 /* ---- Graphviz DOT ("The DOT Language", graphviz.org: the ID rules). */
 

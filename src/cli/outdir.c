@@ -36,6 +36,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "flexbond/escape.h"
 #include "flexbond/io.h"
 
 #include "../core/textfile.h"
@@ -268,6 +269,26 @@ int cli_outdir_keep(cli_outdir *od, char *path, fb_err *err)
   return FB_OK;
 }
 
+/* A staged file whose format flexbond can read back is checked before it
+ * is kept: a .json file must be JSON (fb_json_check). FB_EIO otherwise:
+ * the file is not what it should be, whatever wrote it. */
+static int check_written(const char *path, const char *name, fb_err *err)
+{
+  const size_t n = strlen(name);
+  if (n < 5 || strcmp(name + n - 5, ".json") != 0)
+    return FB_OK;
+  char *text = NULL;
+  size_t len = 0, at = 0;
+  int rc = fb_read_file(path, &text, &len, err);
+  if (rc == FB_OK && fb_json_check(text, len, &at) != 0)
+    rc = fb_err_set(err, FB_EIO,
+                    "%s: the file written is not valid JSON (at byte %zu); nothing "
+                    "is kept: a defect of flexbond, please report it",
+                    name, at);
+  free(text);
+  return rc;
+}
+
 int cli_outdir_write(cli_outdir *od, const char *name, cli_writer write, const void *ctx,
                      fb_err *err)
 {
@@ -282,7 +303,10 @@ int cli_outdir_write(cli_outdir *od, const char *name, cli_writer write, const v
     rc = fb_out_commit(&out, err);
   }
   if (rc == FB_OK)
+    rc = check_written(path, name, err);
+  if (rc == FB_OK)
     return cli_outdir_keep(od, path, err);
+  remove(path);
   free(path);
   return rc;
 }
