@@ -680,7 +680,8 @@ cmp -s <(tail -n +2 "$WORK/plain_header/system1.csv") <(tail -n +2 "$WORK/nofig/
 run run "$REPO_ROOT/examples/apc6x6_liftoff.yaml" -o "$WORK/liftoff" --no-figures -q \
   --system rigid
 expect_status 0 "run with unilateral tires"
-expect_in "$WORK/liftoff/report.md" "the tires are unilateral" "report.md unilateral tires"
+expect_in "$WORK/liftoff/report.md" "every tire is \`unilateral\`, unilateral: it pushes but never pulls" \
+  "report.md unilateral tires"
 expect_in "$WORK/liftoff/report.md" \
   "System 1 (rigid hull): 5 intervals where a tire carries no load" "report.md lift-off verdict"
 checks=$((checks + 1))
@@ -719,7 +720,7 @@ sed 's/  tire_contact: unilateral .*$/  tire_contact: hunt_crossley/' \
   "$REPO_ROOT/examples/apc6x6_liftoff.yaml" >"$WORK/liftoff_hc.yaml"
 run run "$WORK/liftoff_hc.yaml" -o "$WORK/liftoff_hc" --no-figures -q --system rigid
 expect_status 0 "run with Hunt-Crossley tires"
-expect_in "$WORK/liftoff_hc/report.md" "\`wheel.tire_contact: hunt_crossley\`, their damping" \
+expect_in "$WORK/liftoff_hc/report.md" "every tire is \`hunt_crossley\`, unilateral, its damping" \
   "report.md names the Hunt-Crossley tires"
 checks=$((checks + 1))
 python3 - "$WORK/liftoff" "$WORK/liftoff_hc" <<'EOF' || fail "summary.json with Hunt-Crossley tires"
@@ -738,6 +739,36 @@ expect_status 0 "run with bilateral tires"
 expect_in "$WORK/liftoff_bilateral/report.md" \
   "System 1 (rigid hull): 5 intervals where a tire's normal reaction is tensile" \
   "report.md tensile verdict"
+
+# Mixed tires (the front axle Hunt-Crossley, the others bilateral): each
+# corner reported with its own model, a bilateral tire's interval with its
+# tensile force, a unilateral one's without.
+python3 - "$REPO_ROOT/examples/apc6x6_liftoff.yaml" "$WORK/mixed.yaml" <<'EOF'
+import sys
+s = open(sys.argv[1]).read().replace("  tire_contact: unilateral ", "  tire_contact: bilateral ")
+front = "      damper_c: 25744           # paper: N s/m\n    - name: M"
+assert front in s
+s = s.replace(front, front.replace("\n", "\n      wheel: {tire_contact: hunt_crossley}\n", 1), 1)
+open(sys.argv[2], "w").write(s)
+EOF
+run run "$WORK/mixed.yaml" -o "$WORK/mixed" --no-figures -q --system rigid
+expect_status 0 "run with mixed tires"
+expect_in "$WORK/mixed/report.md" "LM, RM, LR, RR: \`bilateral\`, linear" "report.md: the bilateral corners"
+expect_in "$WORK/mixed/report.md" "LF, RF: \`hunt_crossley\`, unilateral" "report.md: the Hunt-Crossley corners"
+checks=$((checks + 1))
+python3 - "$WORK/mixed" <<'EOF' || fail "mixed tires: summary.json and the verdict"
+import json, re, sys
+d = json.load(open(sys.argv[1] + "/summary.json"))["system1"]["tire_contact"]
+assert d["model"] == "mixed", d["model"]
+assert d["models"] == {"LF": "hunt_crossley", "RF": "hunt_crossley", "LM": "bilateral",
+                       "RM": "bilateral", "LR": "bilateral", "RR": "bilateral"}, d["models"]
+for i in d["contact_loss_intervals"]:
+    assert (i["min_force"] < 0) == (d["models"][i["tire"]] == "bilateral"), i
+report = open(sys.argv[1] + "/report.md").read()
+for i in d["contact_loss_intervals"]:
+    m = re.search(r"%s from [0-9.]+ to [0-9.]+ s( \(down to)?" % i["tire"], report)
+    assert m and (m.group(1) is not None) == (i["min_force"] < 0), (i, m)
+EOF
 
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

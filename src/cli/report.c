@@ -888,17 +888,28 @@ int cli_contact_spike(const cli_run_system *run, size_t c)
          run->peak_contact[c] > CLI_CONTACT_SPIKE_RATIO * run->static_contact[c];
 }
 
+/* How many of s's corners have tire model m. */
+static size_t corners_with(const fb_scenario *s, fb_tire_contact m)
+{
+  size_t n = 0;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    n += s->corner[c].tire_contact == m;
+  return n;
+}
+
 /* The tires whose reaction spikes, or the largest ratio when none does. */
 static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_system *r)
 {
   char peak[32], stat[32];
   size_t n = 0, c_max = 0;
+  int constant_damper = 0; /* a spiking tire's damper has a constant coefficient */
   for (size_t c = 0; c < s->ncorners; ++c) {
     if (r->peak_contact[c] / r->static_contact[c] >
         r->peak_contact[c_max] / r->static_contact[c_max])
       c_max = c;
     if (!cli_contact_spike(r, c))
       continue;
+    constant_damper |= s->corner[c].tire_contact != FB_TIRE_HUNT_CROSSLEY;
     fputs(n++ ? "; "
               : "  Reaction spikes, above " CLI_CONTACT_SPIKE_TEXT
                 " times the static reaction: ",
@@ -910,11 +921,11 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
             number_text(r->static_contact[c], stat, sizeof stat));
   }
   if (n) {
-    fputs(s->corner[0].tire_contact == FB_TIRE_HUNT_CROSSLEY
-              ? ".\n"
-              : ". A tire damper of constant coefficient meets a landing wheel with tire_c "
+    fputs(constant_damper
+              ? ". A tire damper of constant coefficient meets a landing wheel with tire_c "
                 "times its speed at once; `wheel.tire_contact: hunt_crossley` lets the "
-                "damping grow from zero with the deflection (docs/scenario-format.md).\n",
+                "damping grow from zero with the deflection (docs/scenario-format.md).\n"
+              : ".\n",
           fp);
     return;
   }
@@ -924,8 +935,24 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
   fprintf(fp, ", %.2f times).\n", r->peak_contact[c_max] / r->static_contact[c_max]);
 }
 
-static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_system *r,
-                                  int unilateral)
+/* What a contact-loss interval is, for the tire models the corners have. */
+static void write_loss_kinds(FILE *fp, const fb_scenario *s, size_t nloss)
+{
+  const size_t bilateral = corners_with(s, FB_TIRE_BILATERAL);
+  fprintf(fp, "%zu interval%s where a tire", nloss, nloss == 1 ? "" : "s");
+  if (bilateral == s->ncorners)
+    fputs("'s normal reaction is tensile (the linear tire pulls the wheel down; a real one "
+          "would leave the road):",
+          fp);
+  else if (bilateral == 0)
+    fputs(" carries no load (its reaction is zero: the wheel is leaving or off the road):", fp);
+  else
+    fputs(" carries no load (a unilateral tire's reaction is zero: the wheel is leaving or off "
+          "the road; a bilateral one's is tensile, given with its lowest value):",
+          fp);
+}
+
+static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_system *r)
 {
   char force[32];
   fprintf(fp, "- %s: ", cli_system_label(r->sys));
@@ -942,56 +969,67 @@ static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_
     fprintf(fp, " tire, t = %.3f s).\n", r->min_contact_time[c_min]);
     return;
   }
-  if (unilateral)
-    fprintf(fp,
-            "%zu interval%s where a tire carries no load (its reaction is zero: the wheel is "
-            "leaving or off the road):",
-            r->nloss, r->nloss == 1 ? "" : "s");
-  else
-    fprintf(fp,
-            "%zu interval%s where a tire's normal reaction is tensile (the linear tire "
-            "pulls the wheel down; a real one would leave the road):",
-            r->nloss, r->nloss == 1 ? "" : "s");
+  write_loss_kinds(fp, s, r->nloss);
   for (size_t i = 0; i < r->nloss; ++i) {
     const fb_contact_loss *t = &r->loss[i];
     fputs(i ? "; " : " ", fp);
     fb_md_write_text(fp, s->corner[t->corner].name);
     fprintf(fp, " from %.3f to %.3f s", t->t_start, t->t_end);
-    if (!unilateral)
+    if (s->corner[t->corner].tire_contact == FB_TIRE_BILATERAL)
       fprintf(fp, " (down to %s N at %.3f s)", number_text(t->min_force, force, sizeof force),
               t->t_min);
   }
   fputs(".\n", fp);
 }
 
+/* What each tire model present means, with its corners when they differ. */
+static void write_tire_models(FILE *fp, const fb_scenario *s)
+{
+  static const char *const meaning[] = {
+      [FB_TIRE_BILATERAL] = "linear (the paper's): a negative reaction means the tire would "
+                            "have left the road",
+      [FB_TIRE_UNILATERAL] = "unilateral: it pushes but never pulls, and a wheel whose "
+                             "reaction would become tensile leaves the road until it lands "
+                             "again",
+      [FB_TIRE_HUNT_CROSSLEY] = "unilateral, its damping growing from zero at first contact "
+                                "to tire_c at the static deflection (Hunt-Crossley)"};
+  const fb_tire_contact models[] = {FB_TIRE_BILATERAL, FB_TIRE_UNILATERAL,
+                                    FB_TIRE_HUNT_CROSSLEY};
+  int first = 1;
+  for (size_t k = 0; k < sizeof models / sizeof models[0]; ++k) {
+    const size_t n = corners_with(s, models[k]);
+    if (n == 0)
+      continue;
+    fputs(first ? "" : "; ", fp);
+    first = 0;
+    if (n == s->ncorners) {
+      fprintf(fp, "every tire is `%s`, %s", fb_tire_contact_name(models[k]),
+              meaning[models[k]]);
+      continue;
+    }
+    for (size_t c = 0, i = 0; c < s->ncorners; ++c)
+      if (s->corner[c].tire_contact == models[k]) {
+        fputs(i++ ? ", " : "", fp);
+        fb_md_write_text(fp, s->corner[c].name);
+      }
+    fprintf(fp, ": `%s`, %s", fb_tire_contact_name(models[k]), meaning[models[k]]);
+  }
+  fputs(" (`wheel.tire_contact`).", fp);
+}
+
 static void write_contact(FILE *fp, const cli_run_outputs *o)
 {
-  const fb_tire_contact model = o->scenario->corner[0].tire_contact;
-  const int unilateral = model != FB_TIRE_BILATERAL;
   fputs("\n## Tire contact\n\nThe normal reaction of every tire (tire spring plus tire "
         "damper, compression positive) over the whole run; ",
         fp);
-  if (unilateral)
-    fprintf(fp,
-            "the tires are unilateral (`wheel.tire_contact: %s`%s): they push but never "
-            "pull, and a wheel whose reaction would become tensile leaves the road until it "
-            "lands again.",
-            fb_tire_contact_name(model),
-            model == FB_TIRE_HUNT_CROSSLEY
-                ? ", their damping growing from zero at first contact to tire_c at the static "
-                  "deflection"
-                : "");
-  else
-    fputs("the tire model is linear, so a negative reaction means the tire would have left "
-          "the road.",
-          fp);
+  write_tire_models(fp, o->scenario);
   fputs(" A reaction above " CLI_CONTACT_SPIKE_TEXT
         " times its static value (just before the first bump entry) is flagged as a spike: "
         "the ride over a road moves a tire's load about its static value, an impact "
         "multiplies it.\n\n",
         fp);
   for (size_t i = 0; i < o->nruns; ++i) {
-    write_contact_verdict(fp, o->scenario, &o->runs[i], unilateral);
+    write_contact_verdict(fp, o->scenario, &o->runs[i]);
     write_contact_spikes(fp, o->scenario, &o->runs[i]);
   }
 }

@@ -303,13 +303,23 @@ static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenar
   fputc('}', fp);
 }
 
-/* {"model", "min_force": {tire: {"value", "time"}, ...},
+/* {"model", "models": {tire: model, ...}, "min_force": {tire: {"value", "time"}, ...},
  * "contact_loss_intervals": [{"tire", "from", "to", "min_force", "at"},
  * ...]}. */
 static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
 {
-  fprintf(fp, "{\"model\": \"%s\", \"min_force\": {",
-          fb_tire_contact_name(s->corner[0].tire_contact));
+  /* One model for every tire, or "mixed" and each corner's in "models". */
+  int mixed = 0;
+  for (size_t c = 1; c < s->ncorners; ++c)
+    mixed |= s->corner[c].tire_contact != s->corner[0].tire_contact;
+  fprintf(fp, "{\"model\": \"%s\", \"models\": {",
+          mixed ? "mixed" : fb_tire_contact_name(s->corner[0].tire_contact));
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    fputs(c ? ", " : "", fp);
+    cli_json_string(fp, s->corner[c].name);
+    fprintf(fp, ": \"%s\"", fb_tire_contact_name(s->corner[c].tire_contact));
+  }
+  fputs("}, \"min_force\": {", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {
     fputs(c ? ", " : "", fp);
     cli_json_string(fp, s->corner[c].name);
@@ -431,7 +441,8 @@ static const char *const definitions[][2] = {
      "(of the unweighted acceleration, m/s^3); a note instead when they cannot be computed"},
     {"tire_contact",
      "model: bilateral (the paper's linear tire), unilateral (no tension: the wheel may "
-     "leave the road) or hunt_crossley (unilateral, damping growing with the deflection); "
+     "leave the road) or hunt_crossley (unilateral, damping growing with the deflection), "
+     "or mixed when the corners differ; models: each tire's; "
      "min_force: each tire's smallest normal reaction from bump_window[0] "
      "to the end of the run (N, compression positive) and its time; contact_loss_intervals: "
      "every interval of the whole run where a reaction is not compressive (bilateral: "
