@@ -50,7 +50,7 @@ checks=$((checks + 1))
 [ "$(ls -A "$WORK/speeds" | tr '\n' ' ')" = ".flexbond-manifest sweep.csv sweep.png " ] ||
   fail "sweep writes sweep.csv and sweep.png, and removes its journal: $(ls -A "$WORK/speeds")"
 checks=$((checks + 1))
-[ "$(head -1 "$WORK/speeds/sweep.csv")" = "speed_kmh$METRICS,error" ] ||
+[ "$(head -1 "$WORK/speeds/sweep.csv")" = "speed_kmh [km/h]$METRICS,error" ] ||
   fail "sweep.csv header: $(head -1 "$WORK/speeds/sweep.csv")"
 check_python "12 rows, speeds 5..60, every metric present" "$WORK/speeds/sweep.csv" <<'EOF'
 import csv, sys
@@ -135,7 +135,7 @@ checks=$((checks + 1))
 check_python "grid rows in order" "$WORK/grid/sweep.csv" <<'EOF'
 import csv, sys
 rows = list(csv.reader(open(sys.argv[1])))
-assert rows[0][:2] == ["speed_kmh", "suspensions.axles[0].damper_c"], rows[0]
+assert rows[0][:2] == ["speed_kmh [km/h]", "suspensions.axles[0].damper_c [N s/m]"], rows[0]
 want = [[s, d] for s in ["10", "20", "30"] for d in ["20000", "25000", "30000"]]
 assert [r[:2] for r in rows[1:]] == want, [r[:2] for r in rows[1:]]
 # Stiffer front dampers (LF and RF) change the LF tire force: the cases differ.
@@ -271,7 +271,7 @@ usage "no scenario" "missing SCENARIO file" --set speed_kmh=10 -o "$WORK/usage"
 run sweep "$APC" --set road.bump.height=0.1:0.1:0.3 -o "$WORK/tol" -q --no-figures
 expect_status 0 "0.1:0.1:0.3"
 checks=$((checks + 1))
-[ "$(cut -d, -f1 "$WORK/tol/sweep.csv" | tr '\n' ' ')" = "road.bump.height 0.1 0.2 0.3 " ] ||
+[ "$(cut -d, -f1 "$WORK/tol/sweep.csv" | tr '\n' ' ')" = "road.bump.height [m] 0.1 0.2 0.3 " ] ||
   fail "0.1:0.1:0.3 gives 0.1 0.2 0.3: $(cut -d, -f1 "$WORK/tol/sweep.csv" | tr '\n' ' ')"
 
 # ---- Input and I/O errors.

@@ -76,7 +76,7 @@ done
 guarded sweep "$APC" --set speed_kmh=1e1:5e0:+2e1 -o "$WORK/decimal" -q --no-figures
 expect_status 0 "a range in exponent form"
 checks=$((checks + 1))
-[ "$(cut -d, -f1 "$WORK/decimal/sweep.csv" | tr '\n' ' ')" = "speed_kmh 10 15 20 " ] ||
+[ "$(cut -d, -f1 "$WORK/decimal/sweep.csv" | tr '\n' ' ')" = "speed_kmh [km/h] 10 15 20 " ] ||
   fail "1e1:5e0:+2e1 gives 10 15 20: $(cut -d, -f1 "$WORK/decimal/sweep.csv" | tr '\n' ' ')"
 guarded sweep "$APC" --set speed_kmh=12.5,fast -o "$WORK/word" -q --no-figures
 expect_status 4 "a word in a list is the reader's to refuse"

@@ -992,8 +992,36 @@ static void test_description_lines(void)
   free(t);
 }
 
+/* The unit of a key by its full path, through lists of items and of
+ * numbers (fb_scenario_key_unit). */
+static void expect_unit(const char *path, const char *unit)
+{
+  const char *got = fb_scenario_key_unit(path);
+  const int ok = unit ? got && !strcmp(got, unit) : got == NULL;
+  CHECK(ok);
+  if (!ok)
+    fprintf(stderr, "  %s: got %s, wanted %s\n", path ? path : "NULL", got ? got : "NULL",
+            unit ? unit : "NULL");
+}
+
+static void test_key_unit(void)
+{
+  expect_unit("road.speed_kmh", "km/h");
+  expect_unit("gravity", "m/s^2");
+  expect_unit("suspensions.axles[0].spring_k", "N/m");
+  expect_unit("suspensions.axles[2].wheel.tire_c", "N s/m");
+  expect_unit("hull.mesh.generator.bulkheads[1]", "m");
+  expect_unit("simulation.initial", NULL); /* a choice */
+  expect_unit("suspensions.axles", NULL);  /* a list */
+  expect_unit("road.no_such_key", NULL);
+  expect_unit("suspensions.axles[0", NULL);
+  expect_unit("suspensions.axles[0]x", NULL);
+  expect_unit(NULL, NULL);
+}
+
 int main(void)
 {
+  test_key_unit();
   test_example();
   test_clone();
   test_check();

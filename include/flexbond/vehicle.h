@@ -408,6 +408,11 @@ int fb_scenario_load_string_overrides(const char *text, size_t len, const char *
  * the prefix) from a bad value before loading. FB_EIO, FB_EPARSE for the
  * file, FB_ENOMEM. */
 int fb_scenario_override_key(const char *path, const char *key, char **full, fb_err *err);
+/* The unit a scenario file writes the value at full_path in (a path as
+ * fb_scenario_override_key gives it: "road.speed_kmh" is "km/h",
+ * "suspensions.axles[0].spring_k" "N/m"; docs/scenario-format.md), NULL
+ * for a key without a unit or no key of the format. */
+const char *fb_scenario_key_unit(const char *full_path);
 /* Physical consistency (positive masses, stiffnesses, ...; bump inside the
  * run). FB_EINVAL naming the key, e.g. "suspensions.LF.spring_k: must be
  * > 0 (got -1)". */

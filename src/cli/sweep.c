@@ -182,7 +182,9 @@ static int write_figure(cli_outdir *od, const sweep_args *a, const sweep_case *c
     fb_plot_xy_opts opts;
     fb_plot_xy_opts_default(&opts);
     opts.title = title;
-    opts.xlabel = a->keys[0].key;
+    char xlabel[FB_ERR_KEY_MAX + 64];
+    sweep_key_label(a, 0, xlabel, sizeof xlabel);
+    opts.xlabel = xlabel;
     opts.xtic_labels = f.categorical ? (const char *const *)a->keys[0].values : NULL;
     opts.nxtics = f.categorical ? a->keys[0].nvalues : 0;
     /* A few panels, larger: the figure stays about 1100 pixels wide. */

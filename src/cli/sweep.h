@@ -120,9 +120,12 @@ void sweep_default_plots(sweep_args *a);
 /* Loads, simulates and measures case i into c (not c->done or c->rank).
  * Cases run at once on any hull: fb_fem_modes orders ARPACK's solves. */
 void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c);
+/* Key k as given with the unit the file writes it in, "speed_kmh
+ * [km/h]" (the key alone when it has none), into buf. */
+void sweep_key_label(const sweep_args *a, size_t k, char *buf, size_t size);
 /* sweep.csv's header line and case i's row, each with its '\n'; the
- * metrics' cells "name [unit]" (FB_CSV_HEADER_UNITS; a count or ratio,
- * unit "-", has none) or names only. */
+ * keys' and metrics' cells "name [unit]" (FB_CSV_HEADER_UNITS; a count
+ * or ratio, unit "-", has none) or names only. */
 void sweep_csv_header(FILE *fp, const sweep_args *a, fb_csv_header header);
 void sweep_csv_row(FILE *fp, const sweep_args *a, size_t i, const sweep_case *c);
 /* The shortest text that reads back as x ("%.15g" to "%.17g"), so that

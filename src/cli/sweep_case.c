@@ -295,10 +295,24 @@ void sweep_format_double(double x, char *buf, size_t size)
  * resuming, and most are numbers, "-1" among them. Nor are the errors:
  * each starts with flexbond's own words ("--set KEY=VALUE: ..."), and a '
  * would come before every one (docs/outputs.md). */
+void sweep_key_label(const sweep_args *a, size_t k, char *buf, size_t size)
+{
+  const char *unit = fb_scenario_key_unit(a->keys[k].path);
+  if (unit)
+    snprintf(buf, size, "%s [%s]", a->keys[k].key, unit);
+  else
+    snprintf(buf, size, "%s", a->keys[k].key);
+}
+
 void sweep_csv_header(FILE *fp, const sweep_args *a, fb_csv_header header)
 {
   for (size_t k = 0; k < a->nkeys; ++k) {
-    fb_csv_write_field(fp, a->keys[k].key, FB_CSV_TEXT);
+    char cell[FB_ERR_KEY_MAX + 64];
+    if (header == FB_CSV_HEADER_UNITS)
+      sweep_key_label(a, k, cell, sizeof cell);
+    else
+      snprintf(cell, sizeof cell, "%s", a->keys[k].key);
+    fb_csv_write_field(fp, cell, FB_CSV_TEXT);
     fputc(',', fp);
   }
   for (size_t m = 0; m < a->nmetrics; ++m) {

@@ -240,6 +240,12 @@ static int ov_check_key(const char *path, struct fy_node *root, sch_override *o,
   return rc ? rc : sch_place(&r, &sc_schema, root);
 }
 
+const char *fb_scenario_key_unit(const char *full_path)
+{
+  const sch_key *k = full_path ? sch_key_at_path(&sc_schema, full_path) : NULL;
+  return k ? k->unit : NULL;
+}
+
 int fb_scenario_override_key(const char *path, const char *key, char **full, fb_err *err)
 {
   fb_err local;

@@ -810,6 +810,26 @@ const sch_key *sch_key_of(const sch_table *t, const char *path)
   return NULL;
 }
 
+const sch_key *sch_key_at_path(const sch_table *t, const char *path)
+{
+  const char *open = strchr(path, '[');
+  if (!open)
+    return sch_key_of(t, path);
+  char head[SCH_PATH_MAX];
+  const size_t n = (size_t)(open - path);
+  if (n >= sizeof head)
+    return NULL;
+  memcpy(head, path, n);
+  head[n] = '\0';
+  const sch_key *k = sch_key_of(t, head);
+  const char *close = strchr(open, ']');
+  if (!k || !close)
+    return NULL;
+  if (close[1] == '\0')
+    return k; /* an item of a list of numbers */
+  return close[1] == '.' && k->items ? sch_key_at_path(k->items, close + 2) : NULL;
+}
+
 const char *sch_item_name(const sch_key *k, const void *item)
 {
   const sch_key *name = k->named ? sch_key_of(k->items, "name") : NULL;

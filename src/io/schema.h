@@ -197,6 +197,10 @@ void sch_key_names(const sch_table *t, const char *pre, char *buf, size_t size);
 int sch_list_add(const sch_reader *r, const sch_key *k, void *base, void **item);
 /* The key of t at path, NULL if none. */
 const sch_key *sch_key_of(const sch_table *t, const char *path);
+/* The key a full path of a file names ("suspensions.axles[0].spring_k":
+ * the items' key spring_k of list suspensions.axles; "...bulkheads[1]": a
+ * number of the list bulkheads), NULL if none. */
+const sch_key *sch_key_at_path(const sch_table *t, const char *path);
 /* An item's name (list k's items named), NULL if none. */
 const char *sch_item_name(const sch_key *k, const void *item);
 

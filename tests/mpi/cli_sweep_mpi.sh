@@ -57,7 +57,9 @@ checks=$((checks + 1))
 checks=$((checks + 1))
 python3 - "$WORK/ranks3/sweep.csv" <<'EOF' || fail "3 ranks: the rows"
 import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
+# Columns by name, without the units of the header ("speed_kmh [km/h]").
+by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
+rows = list(map(by_name, csv.DictReader(open(sys.argv[1]))))
 assert len(rows) == 10
 for r in rows:
     if r["speed_kmh"] == "fast":
