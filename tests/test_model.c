@@ -1065,6 +1065,18 @@ static void test_power_out_warnings(void)
         strstr(w->msg, "bond 'back' points out of port 2 of R 'D'") &&
         strstr(w->msg, "write the bond with 'D' at its 'to' end"));
   fb_model_free(&m);
+
+  /* A nonlinear law reversed is no mere sign: its warning says the motion
+   * changes. */
+  m = load_ok("model: m\nelements:\n  - {name: J, type: 1}\n"
+              "  - {name: K, type: contact, k: 1000, c: 10, damper: D}\n"
+              "bonds: [[K, J], [J, D]]\n",
+              NULL);
+  w = fb_model_warning(m, 0);
+  CHECK(m && fb_model_nwarnings(m) == 1 && w &&
+        strstr(w->msg, "bond 'K->J' points out of C 'K': its law (unilateral spring)") &&
+        strstr(w->msg, "compression and extension swap, and the motion differs"));
+  fb_model_free(&m);
 }
 
 /* A contact with Hunt-Crossley damping: lambda reaches the law; c and

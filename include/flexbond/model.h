@@ -44,8 +44,10 @@ const fb_sim_opts *fb_model_sim_opts(const fb_model *m);
  * key; msg "FILE:LINE:COL: KEY: ..."; code the status it would have as an
  * error). Today one kind: a bond whose from end is an I, C or R element:
  * the motion is the same, but the element's state and the bond's effort
- * and power read with the opposite sign to the usual drawing
- * (docs/model-format.md, "Power direction"); the bonds of
+ * and power read with the opposite sign to the usual drawing, or, for
+ * a nonlinear law (a table, a contact), compression and extension swap
+ * and the motion differs (docs/model-format.md, "Power direction"); the
+ * bonds of
  * all instances of one subsystem definition make one warning. The CLI
  * prints them to stderr and goes on. fb_model_warning returns NULL for
  * i >= fb_model_nwarnings(m); the value is owned by m. */

@@ -71,7 +71,8 @@ void ml_warnings_release(ml_warnings *w);
  * (its site in sites; the instances of one definition share it) whose
  * from end is an I, C or R element of bg: the motion is the same, but the element's state and
  * the bond's effort and power read with the opposite sign to the usual
- * drawing. FB_ENOMEM only. */
+ * drawing; with a nonlinear law (a table, a contact), compression and
+ * extension swap and the motion differs. FB_ENOMEM only. */
 int ml_warn_power_out(const fb_bg *bg, const ml_sites *sites, ml_warnings *w, fb_err *err);
 
 typedef struct ml_ctx {

@@ -57,8 +57,9 @@ static int power_out_collect(const fb_bg *bg, const ml_sites *sites, power_out *
 
 /* What reads with the opposite sign for an element of kind. flexbond
  * applies a law to the power flowing into its element whichever way the
- * bond is drawn (the orientation of fb_bg), so the motion is the same:
- * only the readings differ from the usual drawing. */
+ * bond is drawn (the orientation of fb_bg): a linear law is odd, so the
+ * motion is the same and only the readings differ from the usual drawing;
+ * a nonlinear one (a table, a contact) sees its input reversed. */
 static const char *power_out_readings(fb_bg_kind kind)
 {
   switch (kind) {
@@ -86,14 +87,25 @@ static void power_out_describe(const fb_bg *bg, const ml_sites *sites, const pow
   fb_err_clear(w);
   if (p->count > 1)
     snprintf(more, sizeof more, " (and %zu more instances)", p->count - 1);
-  fb_err_set(w, FB_EMODEL,
-             "%sbond '%s' points out of %s%s '%s': the motion is the same, but %s read "
-             "with the opposite sign to the usual drawing (the power is what '%s' gives "
-             "out, negative while it %s energy); write the bond with '%s' at its 'to' "
-             "end%s%s",
-             p->site->head, fb_bg_bond_name(bg, p->bond), port, fb_bg_kind_name(kind), full,
-             power_out_readings(kind), local, kind == FB_BG_R ? "dissipates" : "stores", local,
-             p->site->tail, more);
+  const fb_law_ops *law = fb_bg_element_law(bg, e, NULL);
+  if (law)
+    fb_err_set(w, FB_EMODEL,
+               "%sbond '%s' points out of %s%s '%s': its law (%s) is applied to the power "
+               "flowing into it, so it sees its input reversed (an R's flow, a C's state): "
+               "compression and "
+               "extension swap, and the motion differs from the usual drawing unless the law "
+               "is odd; write the bond with '%s' at its 'to' end%s%s",
+               p->site->head, fb_bg_bond_name(bg, p->bond), port, fb_bg_kind_name(kind), full,
+               law->name, local, p->site->tail, more);
+  else
+    fb_err_set(w, FB_EMODEL,
+               "%sbond '%s' points out of %s%s '%s': the motion is the same, but %s read "
+               "with the opposite sign to the usual drawing (the power is what '%s' gives "
+               "out, negative while it %s energy); write the bond with '%s' at its 'to' "
+               "end%s%s",
+               p->site->head, fb_bg_bond_name(bg, p->bond), port, fb_bg_kind_name(kind), full,
+               power_out_readings(kind), local, kind == FB_BG_R ? "dissipates" : "stores",
+               local, p->site->tail, more);
   ml_site_set_fields(sites, p->site, w);
 }
 
