@@ -130,9 +130,9 @@ static int damper_switch(void *ctx, const fb_law_in *in, const int *sign, int *m
  * between events too). */
 #define CONTACT_DAMPER_OPS(label, is_affine)                                                   \
   {                                                                                            \
-    .name = label, .id = FB_LAW_CONTACT_DAMPER, .eval = damper_eval,                           \
+    .name = (label), .id = FB_LAW_CONTACT_DAMPER, .eval = damper_eval,                         \
     .jacobian = damper_jacobian, .free = free, .nguards = 2, .guards = damper_guards,          \
-    .switch_mode = damper_switch, .affine = is_affine, .passive = 1                            \
+    .switch_mode = damper_switch, .affine = (is_affine), .passive = 1                          \
   }
 static const fb_law_ops damper_ops = CONTACT_DAMPER_OPS("unilateral damper", 1);
 static const fb_law_ops damper_hc_ops =
