@@ -309,17 +309,13 @@ typedef struct cli_run_system {
   fb_result *res;
   size_t *col;             /* s->noutputs: column of each output in res */
   cli_output_stats *stats; /* s->noutputs */
-  /* Tire contact: the contact-loss intervals of the whole run (owned) and each
-   * tire's smallest normal reaction from the first bump entry on, with its
-   * time. */
+  /* Tire contact: the contact-loss intervals of the whole run (owned) and
+   * the statistics of each tire's normal reaction (s->ncorners, owned;
+   * cli_output_stats_of over the bump window: its static value, and its
+   * smallest and largest from the first bump entry on, with their times). */
   fb_contact_loss *loss;
   size_t nloss;
-  double *min_contact, *min_contact_time; /* s->ncorners each */
-  /* Each tire's largest reaction from the first bump entry on, its time,
-   * and its static reaction (the last sample before the bump entry, as
-   * cli_output_stats_of's static value); s->ncorners each, in the same
-   * allocation as min_contact. */
-  double *peak_contact, *peak_contact_time, *static_contact;
+  cli_output_stats *contact;
   /* The ride metrics of output cli_ride_output over ride_window (the
    * first wheel's bump entry to the end of the run), when has_ride; else
    * ride_note says why. */
@@ -366,6 +362,8 @@ const char *cli_system_label(fb_system sys);
 const char *cli_scenario_name(const fb_scenario *s);
 /* Statistics of column col of r; window is the bump window. */
 cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2]);
+/* Tire c's largest reaction in run over its static one. */
+double cli_contact_ratio(const cli_run_system *run, size_t c);
 /* 1 if tire c's largest reaction in run exceeds CLI_CONTACT_SPIKE_RATIO
  * times its static one (which must be positive). */
 int cli_contact_spike(const cli_run_system *run, size_t c);

@@ -882,10 +882,15 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Tire contact: the verdict of each system, from its reactions. */
 
+double cli_contact_ratio(const cli_run_system *run, size_t c)
+{
+  return run->contact[c].peak / run->contact[c].static_value;
+}
+
 int cli_contact_spike(const cli_run_system *run, size_t c)
 {
-  return run->static_contact[c] > 0.0 &&
-         run->peak_contact[c] > CLI_CONTACT_SPIKE_RATIO * run->static_contact[c];
+  return run->contact[c].static_value > 0.0 &&
+         run->contact[c].peak > CLI_CONTACT_SPIKE_RATIO * run->contact[c].static_value;
 }
 
 /* How many of s's corners have tire model m. */
@@ -904,8 +909,7 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
   size_t n = 0, c_max = 0;
   int constant_damper = 0; /* a spiking tire's damper has a constant coefficient */
   for (size_t c = 0; c < s->ncorners; ++c) {
-    if (r->peak_contact[c] / r->static_contact[c] >
-        r->peak_contact[c_max] / r->static_contact[c_max])
+    if (cli_contact_ratio(r, c) > cli_contact_ratio(r, c_max))
       c_max = c;
     if (!cli_contact_spike(r, c))
       continue;
@@ -916,9 +920,9 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
           fp);
     fb_md_write_text(fp, s->corner[c].name);
     fprintf(fp, " %s N at %.3f s (%.1f times its static %s N)",
-            number_text(r->peak_contact[c], peak, sizeof peak), r->peak_contact_time[c],
-            r->peak_contact[c] / r->static_contact[c],
-            number_text(r->static_contact[c], stat, sizeof stat));
+            number_text(r->contact[c].peak, peak, sizeof peak), r->contact[c].peak_time,
+            cli_contact_ratio(r, c),
+            number_text(r->contact[c].static_value, stat, sizeof stat));
   }
   if (n) {
     fputs(constant_damper
@@ -932,7 +936,7 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
   fprintf(fp, "  No reaction exceeds " CLI_CONTACT_SPIKE_TEXT
               " times its static value (the largest, ");
   fb_md_write_text(fp, s->corner[c_max].name);
-  fprintf(fp, ", %.2f times).\n", r->peak_contact[c_max] / r->static_contact[c_max]);
+  fprintf(fp, ", %.2f times).\n", cli_contact_ratio(r, c_max));
 }
 
 /* What a contact-loss interval is, for the tire models the corners have. */
@@ -959,14 +963,14 @@ static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_
   if (r->nloss == 0) {
     size_t c_min = 0;
     for (size_t c = 1; c < s->ncorners; ++c)
-      if (r->min_contact[c] < r->min_contact[c_min])
+      if (r->contact[c].min < r->contact[c_min].min)
         c_min = c;
     fprintf(fp,
             "every tire stays in compression over the whole run; from the first bump entry "
             "on, the smallest normal reaction is %s N (",
-            number_text(r->min_contact[c_min], force, sizeof force));
+            number_text(r->contact[c_min].min, force, sizeof force));
     fb_md_write_text(fp, s->corner[c_min].name);
-    fprintf(fp, " tire, t = %.3f s).\n", r->min_contact_time[c_min]);
+    fprintf(fp, " tire, t = %.3f s).\n", r->contact[c_min].min_time);
     return;
   }
   write_loss_kinds(fp, s, r->nloss);

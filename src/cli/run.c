@@ -324,17 +324,17 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
     fputs(c ? ", " : "", fp);
     cli_json_string(fp, s->corner[c].name);
     fputs(": {\"value\": ", fp);
-    fb_json_write_number(fp, run->min_contact[c]);
+    fb_json_write_number(fp, run->contact[c].min);
     fputs(", \"time\": ", fp);
-    fb_json_write_number(fp, run->min_contact_time[c]);
+    fb_json_write_number(fp, run->contact[c].min_time);
     fputc('}', fp);
   }
   fputs("}, \"peak_force\": {", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {
-    const json_field fields[] = {{"value", run->peak_contact[c]},
-                                 {"time", run->peak_contact_time[c]},
-                                 {"static", run->static_contact[c]},
-                                 {"ratio", run->peak_contact[c] / run->static_contact[c]}};
+    const json_field fields[] = {{"value", run->contact[c].peak},
+                                 {"time", run->contact[c].peak_time},
+                                 {"static", run->contact[c].static_value},
+                                 {"ratio", cli_contact_ratio(run, c)}};
     fputs(c ? ", " : "", fp);
     cli_json_string(fp, s->corner[c].name);
     fputs(": ", fp);
@@ -689,24 +689,7 @@ static int run_contact(const fb_scenario *s, cli_run_system *run, const double w
     const long j = fb_result_find(run->res, name);
     if (j < 1)
       return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'", name);
-    run->min_contact[c] = INFINITY;
-    run->peak_contact[c] = -INFINITY;
-    run->min_contact_time[c] = run->peak_contact_time[c] = run->static_contact[c] = NAN;
-    for (size_t k = 0; k < fb_result_nsamples(run->res); ++k) {
-      const double *row = fb_result_row(run->res, k);
-      if (row[0] < window[0]) {
-        run->static_contact[c] = row[j];
-        continue;
-      }
-      if (row[j] < run->min_contact[c]) {
-        run->min_contact[c] = row[j];
-        run->min_contact_time[c] = row[0];
-      }
-      if (row[j] > run->peak_contact[c]) {
-        run->peak_contact[c] = row[j];
-        run->peak_contact_time[c] = row[0];
-      }
-    }
+    run->contact[c] = cli_output_stats_of(run->res, (size_t)j, window);
   }
   return fb_vehicle_contact_loss(s, run->res, &run->loss, &run->nloss, err);
 }
@@ -753,13 +736,9 @@ static int run_columns(const fb_scenario *s, cli_run_system *run, const double w
   const size_t n = s->noutputs ? s->noutputs : 1, nc = s->ncorners;
   run->col = calloc(n, sizeof *run->col);
   run->stats = calloc(n, sizeof *run->stats);
-  run->min_contact = calloc(5 * nc, sizeof *run->min_contact);
-  if (!run->col || !run->stats || !run->min_contact)
+  run->contact = calloc(nc ? nc : 1, sizeof *run->contact);
+  if (!run->col || !run->stats || !run->contact)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  run->min_contact_time = run->min_contact + nc;
-  run->peak_contact = run->min_contact + 2 * nc;
-  run->peak_contact_time = run->min_contact + 3 * nc;
-  run->static_contact = run->min_contact + 4 * nc;
   for (size_t k = 0; k < s->noutputs; ++k) {
     long j = fb_result_find(run->res, s->output[k].name);
     /* fb_vehicle_simulate promises every output. */
@@ -779,7 +758,7 @@ static void run_system_free(cli_run_system *run)
   free(run->loss);
   free(run->col);
   free(run->stats);
-  free(run->min_contact);
+  free(run->contact);
   fb_vehicle_motion_free(&run->motion);
 }
 
