@@ -111,7 +111,9 @@ int fb_model_blame(const fb_model *m, fb_err *err)
   const ml_site *site = m ? ml_sites_find(&m->sites, err->origin, name) : NULL;
   if (!site)
     return err->code;
-  fb_err_prefix(err, "%s", site->head);
+  char head[1024];
+  ml_site_head(&m->sites, site, head, sizeof head);
+  fb_err_prefix(err, "%s", head);
   const size_t len = strlen(err->msg);
   snprintf(err->msg + len, sizeof err->msg - len, "%s", site->tail);
   err->origin = FB_ORIGIN_NONE;

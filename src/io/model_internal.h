@@ -38,13 +38,14 @@ void ml_paths_release(ml_paths *p);
 /* Where each element and bond of the model's graph was written, by its
  * full name in that graph ("front.Ks", "front.b1": instance names joined
  * by '.'), for errors the graph raises after loading (fb_err.origin,
- * fb_model_blame). head is "FILE:LINE:COL: KEY: ", tail the instance
- * chain " (in instance 'front' at FILE:LINE:COL)" or "" (owned strings). */
+ * fb_model_blame): its key path ("bonds[2]"), line and column, and tail,
+ * the instance chain " (in instance 'front' at FILE:LINE:COL)" or ""
+ * (owned strings). */
 typedef struct ml_site {
   int kind; /* FB_ORIGIN_ELEMENT or FB_ORIGIN_BOND */
-  char *name, *head, *tail;
-  char *key;        /* the key path of head ("bonds[2]"), for fb_err.key */
-  int line, column; /* of head, 0 unknown */
+  char *name, *tail;
+  char *key;        /* "" at the document's root */
+  int line, column; /* 0 unknown */
 } ml_site;
 
 /* The sites of one file (file: its display name, owned). */
@@ -56,9 +57,11 @@ typedef struct ml_sites {
 void ml_sites_release(ml_sites *s);
 /* The site of kind named name, or NULL. */
 const ml_site *ml_sites_find(const ml_sites *s, int kind, const char *name);
-/* Records in err the file, line, column and key of site (of sites), as
- * its head names them. */
+/* Records in err the file, line, column and key of site (of sites). */
 void ml_site_set_fields(const ml_sites *sites, const ml_site *site, fb_err *err);
+/* "FILE:LINE:COL: KEY: " of site (of sites), as ml_fail begins a
+ * message, into buf (size bytes). */
+void ml_site_head(const ml_sites *sites, const ml_site *site, char *buf, size_t size);
 
 /* What a file may legally say but almost never means (fb_model_warning):
  * each an fb_err, located as an error would be (owned array). */

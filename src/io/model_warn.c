@@ -83,7 +83,8 @@ static void power_out_describe(const fb_bg *bg, const ml_sites *sites, const pow
   char port[64] = "";
   if (fb_bg_element_nports(bg, e) > 1)
     snprintf(port, sizeof port, "port %zu of ", fb_bg_bond_from_port(bg, p->bond) + 1);
-  char more[64] = "";
+  char more[64] = "", head[1024];
+  ml_site_head(sites, p->site, head, sizeof head);
   fb_err_clear(w);
   if (p->count > 1)
     snprintf(more, sizeof more, " (and %zu more instances)", p->count - 1);
@@ -95,15 +96,15 @@ static void power_out_describe(const fb_bg *bg, const ml_sites *sites, const pow
                "compression and "
                "extension swap, and the motion differs from the usual drawing unless the law "
                "is odd; write the bond with '%s' at its 'to' end%s%s",
-               p->site->head, fb_bg_bond_name(bg, p->bond), port, fb_bg_kind_name(kind), full,
-               law->name, local, p->site->tail, more);
+               head, fb_bg_bond_name(bg, p->bond), port, fb_bg_kind_name(kind), full, law->name,
+               local, p->site->tail, more);
   else
     fb_err_set(w, FB_EMODEL,
                "%sbond '%s' points out of %s%s '%s': the motion is the same, but %s read "
                "with the opposite sign to the usual drawing (the power is what '%s' gives "
                "out, negative while it %s energy); write the bond with '%s' at its 'to' "
                "end%s%s",
-               p->site->head, fb_bg_bond_name(bg, p->bond), port, fb_bg_kind_name(kind), full,
+               head, fb_bg_bond_name(bg, p->bond), port, fb_bg_kind_name(kind), full,
                power_out_readings(kind), local, kind == FB_BG_R ? "dissipates" : "stores",
                local, p->site->tail, more);
   ml_site_set_fields(sites, p->site, w);

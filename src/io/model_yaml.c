@@ -635,7 +635,6 @@ void ml_sites_release(ml_sites *s)
 {
   for (size_t i = 0; i < s->n; ++i) {
     free(s->site[i].name);
-    free(s->site[i].head);
     free(s->site[i].tail);
     free(s->site[i].key);
   }
@@ -650,6 +649,20 @@ const ml_site *ml_sites_find(const ml_sites *s, int kind, const char *name)
     if (s->site[i].kind == kind && !strcmp(s->site[i].name, name))
       return &s->site[i];
   return NULL;
+}
+
+void ml_site_head(const ml_sites *sites, const ml_site *site, char *buf, size_t size)
+{
+  /* As ml_locate writes it. */
+  const char *file = sites->file ? sites->file : "";
+  size_t len = 0;
+  buf[0] = '\0';
+  if (site->line)
+    ml_append(buf, size, &len, "%s:%d:%d: ", file, site->line, site->column);
+  else
+    ml_append(buf, size, &len, "%s: ", file);
+  if (site->key[0])
+    ml_append(buf, size, &len, "%s: ", site->key);
 }
 
 void ml_site_set_fields(const ml_sites *sites, const ml_site *site, fb_err *err)
@@ -674,23 +687,20 @@ int ml_site_record(const ml_ctx *c, int kind, const char *name, struct fy_node *
   ml_sites *s = c->sites;
   if (!s)
     return FB_OK;
-  char full[1024], head[1024], tail[1024], key[512];
-  size_t flen = 0, hlen = 0, klen = 0;
-  full[0] = head[0] = key[0] = '\0';
+  char full[1024], tail[1024], key[512];
+  size_t flen = 0, klen = 0;
+  full[0] = key[0] = '\0';
   ml_frame_prefix(c->frames, full, sizeof full, &flen);
   ml_append(full, sizeof full, &flen, "%s", name);
-  ml_locate(c, at, at, NULL, head, sizeof head, &hlen);
   ml_chain(c, tail, sizeof tail);
   ml_path(at, key, sizeof key, &klen);
-  ml_site site = {kind, fb_strdup(full), fb_strdup(head), fb_strdup(tail), fb_strdup(key), 0,
-                  0};
+  ml_site site = {kind, fb_strdup(full), fb_strdup(tail), fb_strdup(key), 0, 0};
   ml_mark(at, &site.line, &site.column);
   if (!s->file)
     s->file = fb_strdup(c->file);
-  if (!site.name || !site.head || !site.tail || !site.key || !s->file ||
+  if (!site.name || !site.tail || !site.key || !s->file ||
       fb_grow((void **)&s->site, &s->cap, s->n, sizeof *s->site) != FB_OK) {
     free(site.name);
-    free(site.head);
     free(site.tail);
     free(site.key);
     return fb_err_set(c->err, FB_ENOMEM, "out of memory recording where '%s' is", full);
