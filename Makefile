@@ -45,7 +45,7 @@ CTEST_JOBS ?= 2
 # CMake, the libraries, gnuplot and Graphviz for the figures, python3 with NumPy and SciPy
 # for the Python package (docs/python.md).
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
-                liblapacke-dev libopenblas-dev libarpack2-dev libfyaml-dev gnuplot-nox graphviz \
+                liblapacke-dev libopenblas-dev libfyaml-dev gnuplot-nox graphviz \
                 python3 python3-numpy python3-scipy
 # What the suite needs besides (make deps-test, for make test): strace shows which files a
 # command creates and how (tests/cli_integrity.sh).
@@ -203,8 +203,10 @@ VALGRIND_DIR ?= build-valgrind
 TIDY_DIR ?= build-tidy
 # Left out of `make valgrind`: System 2's simulations, 57 s and 40 s natively, most of an hour
 # each under memcheck, and the eight 40 s random-road runs of test_ride_psd, 19 s natively
-# (docs/quality.md); test_freq runs the same frequency-response code under memcheck.
-VALGRIND_EXCLUDE ?= ^test_system2_sim$$|^test_model_write_flexible$$|^test_ride_psd$$
+# (docs/quality.md); test_freq runs the same frequency-response code under memcheck. And
+# test_hull_basis's three System 2 runs (one of every mode, one nodal; 6 s natively), whose
+# solver and bases test_reduce and test_system2_modes cover.
+VALGRIND_EXCLUDE ?= ^test_system2_sim$$|^test_model_write_flexible$$|^test_ride_psd$$|^test_hull_basis$$
 # Only definite and indirect leaks are errors (and shown); any error fails the test.
 VALGRIND_OPTIONS := --leak-check=full --show-leak-kinds=definite,indirect \
                     --errors-for-leak-kinds=definite,indirect --error-exitcode=1 --num-callers=30

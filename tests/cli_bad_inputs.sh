@@ -145,7 +145,9 @@ derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
 derive s_driver.yaml s_ok.yaml -e '/^  - name: driver /,/^  - name: engine/s/^    x: 2.10 /    x: 20.1 /'
 derive s_samepoint.yaml s_ok.yaml -e '/^    - name: M /,/^    - name: R /s/^      x: 0.40 /      x: 1.90 /'
 derive s_bulkheads.yaml s_ok.yaml -e 's/^\(      bulkheads: \)\[.*\]/\1[1.90, -1.00]/'
-derive s_modes.yaml s_ok.yaml -e 's/^    modes: 0 /    modes: 99999 /'
+derive s_modes.yaml s_ok.yaml -e 's/^    modes: auto /    modes: 99999 /'
+derive s_modes0.yaml s_ok.yaml -e 's/^    modes: auto /    modes: 0 /'
+derive s_cutoff.yaml s_ok.yaml -e 's/^\(    modes: auto .*\)$/\1\n    cutoff_hz: 2/'
 road_with s_tworoads.yaml 'iso8608: {class: C, seed: 1}\n  bump: {height: 0.1, length: 3.7, angle_deg: 45, first_contact: 5}'
 road_with s_isoclass.yaml 'iso8608: {class: Z, seed: 1}'
 road_with s_profile.yaml 'profile: {file: one_row.csv}'
@@ -289,6 +291,8 @@ CASES=(
   "2|export s_samepoint.yaml --system rigid -o @OUT|$(at s_samepoint.yaml '    - name: M ' name) suspensions.axles[1]: at (1.9, 1.05) m, where corner LF already is (two corners at one point)"
   "2|mesh s_bulkheads.yaml --export @FILE.inp|$(at s_bulkheads.yaml 'front_x: 2.478' 2.478) hull.edges.front_x: the scenario puts FRONT_EDGE's left end at (2.47813, 1.05) m, the mesh's node 76 at (2.33187, 1.05) m"
   "2|run s_modes.yaml --system flexible -o @OUT|$(at s_modes.yaml 'modes: 99999' 99999) hull.fe.modes: 99999 modes, more than the hull's 1296 degrees of freedom"
+  "2|run s_modes0.yaml --system flexible -o @OUT|$(at s_modes0.yaml 'modes: 0' 0) hull.fe.modes: "
+  "2|run s_cutoff.yaml --system flexible -o @OUT|$(at s_cutoff.yaml 'cutoff_hz: 2' 2) hull.fe.cutoff_hz: a cut-off of 2 Hz is below the hull's first elastic mode, at 10.3 Hz"
   "2|sim m_table_nul.yaml -o @OUT|$(at m_table_nul.yaml 'file: nul_fv.csv' 'nul_fv') elements[3].table.file: ./nul_fv.csv:4: binary data (byte 0x00 in column 4): not a CSV text file (expected UTF-8 text)"
   "2|run s_table_dup.yaml -o @OUT|$(at s_table_dup.yaml dup.csv dup) suspensions.axles[0].damper_table.file: ./dup.csv:1: column 'F' appears twice"
   "2|modes s_profile_nul.yaml|$(at s_profile_nul.yaml nul_road.csv nul_road) road.profile.file: ./nul_road.csv:4: binary data (byte 0x00 in column 1): not a CSV text file"
@@ -325,7 +329,9 @@ CASES=(
   "1|sim m_ok.yaml -o @OUT --t-end -1|option '--t-end' needs a finite number > 0"
   "1|sim m_ok.yaml -o @OUT --rtol 5|flexbond sim: option '--rtol': must be in (0, 1), got 5"
   "1|sim m_ok.yaml -o @OUT --sample-rate 1e12|flexbond sim: option '--sample-rate': 1e+12 Hz over 5 s gives 5e+12 samples, more than the limit of 1e+08"
-  "1|run s_ok.yaml -o @OUT --hull-modes 3|flexbond run: option '--hull-modes' needs 0 (every mode) or an integer in 6..100000 (got '3')"
+  "1|run s_ok.yaml -o @OUT --hull-modes 3|flexbond run: option '--hull-modes' needs auto, all (every mode) or an integer in 6..100000 (got '3')"
+  "1|run s_ok.yaml -o @OUT --hull-cutoff -5|flexbond run: option '--hull-cutoff' needs a finite number > 0"
+  "1|run s_ok.yaml --system flexible -o @OUT --hull-cutoff 2|flexbond run: option '--hull-cutoff': a cut-off of 2 Hz is below the hull's first elastic mode, at 10.3 Hz"
   "1|run s_ok.yaml --system flexible -o @OUT --hull-modes 100000|flexbond run: option '--hull-modes': 100000 modes, more than the hull's 1296 degrees of freedom"
   "5|export s_ok.yaml --system rigid -o @EXISTING|@EXISTING: cannot create directory: exists and is not a directory"
   "5|sim m_ok.yaml -o @EXISTING/sub|@EXISTING/sub: cannot create directory|not a directory"

@@ -329,22 +329,29 @@ expect_unchanged "$WORK/sig_fig" "Ctrl-C while gnuplot draws"
 sleep 0.2
 expect_no_child "Ctrl-C while gnuplot draws"
 rm -f "$BIN/gnuplot"
-# In a phase that cannot poll: System 2's eigen-solves, on the hull
-# refined 3 x 3 (11k DOFs: seconds of ARPACK; the reference hull's take
-# well under a second now).
+# During System 2's eigen-solve, on the hull refined 7 x 7 (65844 DOFs:
+# a Cholesky factorisation and a block Lanczos solve of about a second
+# each). The solve says what it does once it has run for a second, and
+# that line is the marker; the signal must stop it within a second, with
+# nothing written.
 previous "$WORK/sig_eig2"
-sed 's/^    density: 1 .*/    density: 3/' "$APC" >"$WORK/apc_dense.yaml"
-grep -q '^    density: 3$' "$WORK/apc_dense.yaml" || fail "the refined hull's scenario"
-# The marker comes 1.5 s after the start, well inside the seconds of
-# mesh, assembly and eigen-solves (7 s in all) before any output is
-# written.
-rm -f "$WORK/never"
+sed 's/^    density: 1 .*/    density: 7/' "$APC" >"$WORK/apc_dense.yaml"
+grep -q '^    density: 7$' "$WORK/apc_dense.yaml" || fail "the refined hull's scenario"
+rm -f "$WORK/eig.started"
 (
-  sleep 1.5
-  touch "$WORK/never"
+  waited=0
+  until grep -q "eigen-solve of 65844 DOFs by block Lanczos \.\.\.$" "$ERR" 2>/dev/null ||
+    [ "$waited" -ge 1500 ]; do
+    sleep 0.02
+    waited=$((waited + 1))
+  done
+  touch "$WORK/eig.started"
 ) &
-interrupt_group "$WORK/sig_eig2" "$WORK/never" modes "$WORK/apc_dense.yaml" --system flexible \
-  -o "$WORK/sig_eig2"
+interrupt_group "$WORK/sig_eig2" "$WORK/eig.started" modes "$WORK/apc_dense.yaml" \
+  --system flexible -o "$WORK/sig_eig2"
+expect_in "$ERR" "flexbond modes: System 2 (flexible hull): eigen-solve of 65844 DOFs by block Lanczos ..." \
+  "a set-up step over a second says what it does"
+expect_in "$ERR" "interrupted during eigen-solve of 65844 DOFs" "Ctrl-C names the eigen-solve it stopped"
 expect_status 130 "Ctrl-C to the group during the eigen-solves"
 checks=$((checks + 1))
 elapsed_below "$t_signal" 1 || fail "Ctrl-C during the eigen-solves: not stopped within a second"

@@ -76,7 +76,10 @@ expect_unchanged "$WORK/fail" "solver failure"
 # mount one, as root in CI), and into any directory under a 64 KiB file-size
 # limit with SIGXFSZ ignored, so that a write fails with EFBIG as it would
 # with ENOSPC. Both must end in exit 5 with the reason and the previous
-# results intact.
+# results intact. The reason is an extended regular expression: under the
+# file-size limit it is flexbond's own write (EFBIG) or a child's, which
+# starts with every signal's default action and is killed by SIGXFSZ,
+# whichever of the figures drawn at once fails first.
 disk_full() { # DIR DESCRIPTION REASON [ulimit]
   previous "$1"
   if [ "${4:-}" = ulimit ]; then
@@ -90,14 +93,15 @@ disk_full() { # DIR DESCRIPTION REASON [ulimit]
     run run "$REPO_ROOT/examples/apc6x6.yaml" --system rigid -o "$1" -q
   fi
   expect_status 5 "$2"
-  expect_in "$ERR" "$3" "$2 gives the reason"
+  checks=$((checks + 1))
+  grep -qE -- "$3" "$ERR" || fail "$2 gives the reason: /$3/ not in stderr"
   expect_in "$ERR" "nothing was written: $1 holds what it held before" \
     "$2 says the previous results stand"
   expect_unchanged "$1" "$2"
   checks=$((checks + 1))
   [ -z "$(find "$1" -name '*.tmp*' -o -name '.flexbond*')" ] || fail "$2: a temporary file was left behind"
 }
-disk_full "$WORK/fsize" "file-size limit" "File too large" ulimit
+disk_full "$WORK/fsize" "file-size limit" "File too large|File size limit exceeded" ulimit
 mkdir -p "$WORK/small"
 if mount -t tmpfs -o size=64k tmpfs "$WORK/small" 2>/dev/null; then
   disk_full "$WORK/small/out" "full disk" "No space left on device"

@@ -595,7 +595,8 @@ static fb_mat *read_text(const char *text)
   return a;
 }
 
-/* %.17g round-trips binary64 exactly, so values are compared exactly. */
+/* %.17g round-trips binary64 exactly, so values are compared exactly; a
+ * sparse matrix comes back sparse and a dense one dense. */
 static void test_mtx_roundtrip(void)
 {
   const size_t r[] = {0, 2, 1, 2, 0};
@@ -619,6 +620,7 @@ static void test_mtx_roundtrip(void)
     CHECK(fb_mat_nrows(back) == fb_mat_nrows(both[k]));
     CHECK(fb_mat_ncols(back) == fb_mat_ncols(both[k]));
     CHECK(visit_all(back).count == visit_all(both[k]).count);
+    CHECK(fb_mat_is_sparse(back) == fb_mat_is_sparse(both[k])); /* storage kept */
     for (size_t i = 0; i < fb_mat_nrows(back); ++i)
       for (size_t j = 0; j < fb_mat_ncols(back); ++j)
         CHECK(fb_mat_get(back, i, j) == fb_mat_get(both[k], i, j));

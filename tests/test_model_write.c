@@ -470,9 +470,9 @@ static fb_result *simulate_model(fb_model *m)
 }
 
 /* Every column of b within 1e-9 of a's range of a's: the written model is
- * the assembled graph value for value, so the runs differ only by the
- * rounding of sums and products in another order (a matrix read from a
- * file is sparse where the assembled one was dense), far below this. */
+ * the assembled graph value for value and every matrix keeps its storage
+ * (mtx.c writes dense ones as arrays), so the runs differ at most by the
+ * rounding of sums taken in another order, far below this. */
 static void same_result(const fb_result *a, const fb_result *b, const char *what)
 {
   CHECK(fb_result_ncols(a) == fb_result_ncols(b));

@@ -24,8 +24,8 @@
  *  - FV12: exactly six rigid-body modes below 0.01 Hz (zero up to round-off:
  *    sqrt(eps lambda_max) / 2 pi is about 2e-3 Hz here) and a seventh above
  *    1 Hz.
- * The modes come from the ARPACK path (dense_limit 0); test_shell checks
- * it against the dense LAPACK path. */
+ * The modes come from the block Lanczos path (FB_EIG_LANCZOS); test_shell
+ * checks it against the dense LAPACK path. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -109,7 +109,8 @@ static void solve(const benchmark *b, int n, int tri, fb_mass_kind mass, double 
   CHECK(fixed != NULL);
   if (fixed) {
     b->fix(m, fixed, &nfixed);
-    shell_frequencies(m, &NAFEMS_STEEL, mass, fixed, nfixed, b->nrigid + b->nref, 0, freq);
+    shell_frequencies(m, &NAFEMS_STEEL, mass, fixed, nfixed, b->nrigid + b->nref,
+                      FB_EIG_LANCZOS, freq);
   }
   free(fixed);
   fb_mesh_free(&m);

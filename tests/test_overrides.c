@@ -428,7 +428,7 @@ static void test_late_locate(const char *text)
     return;
   CHECK(fb_scenario_clone(s, &c, &err) == FB_OK && c && c->norigins == s->norigins);
   char modes[32], driver[32], want[256];
-  position_of(text, "    modes: 0", 11, modes, sizeof modes);
+  position_of(text, "    modes: auto", 11, modes, sizeof modes);
   position_of(text, "    x: 2.10", 7, driver, sizeof driver);
   fb_err_set(&err, FB_EINVAL, "too many");
   fb_err_set_key(&err, "hull.fe.modes");

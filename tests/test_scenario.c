@@ -385,12 +385,30 @@ static void set_lumped(fb_scenario *s)
 }
 static void set_three_modes(fb_scenario *s)
 {
+  s->hull_modes_kind = FB_HULL_MODES_COUNT;
   s->hull_modes = 3;
 }
 static void set_nodal_reduced(fb_scenario *s)
 {
   s->hull_coordinates = FB_HULL_NODAL;
+  s->hull_modes_kind = FB_HULL_MODES_COUNT;
   s->hull_modes = 80;
+}
+static void set_nodal_cutoff(fb_scenario *s)
+{
+  s->hull_coordinates = FB_HULL_NODAL;
+  s->hull_cutoff_hz = 50.0;
+}
+static void set_count_cutoff(fb_scenario *s)
+{
+  s->hull_modes_kind = FB_HULL_MODES_COUNT;
+  s->hull_modes = 40;
+  s->hull_cutoff_hz = 50.0;
+}
+static void set_coarser_converged(fb_scenario *s)
+{
+  s->hull_mesh.density = 3;
+  s->hull_converged_density = 2;
 }
 static void set_flat_bump(fb_scenario *s)
 {
@@ -413,8 +431,11 @@ static void test_check(void)
   expect_check(s, set_rr_ahead, "road.bump.first_contact: the RR wheel would meet the bump");
   expect_check(s, set_lumped_light, "load.payload: a lumped payload needs");
   expect_check(s, set_many_samples, "simulation.sample_rate:");
-  expect_check(s, set_three_modes, "hull.fe.modes: 0 (every mode) or at least the 6 rigid");
-  expect_check(s, set_nodal_reduced, "hull.fe.modes: a reduced hull (80 modes) is in modal");
+  expect_check(s, set_three_modes, "hull.fe.modes: auto, all or at least the 6 rigid");
+  expect_check(s, set_nodal_reduced,
+               "hull.fe.modes: a choice of modes (a count) is for modal coordinates");
+  expect_check(s, set_nodal_cutoff, "hull.fe.cutoff_hz: a cut-off sets which modes");
+  expect_check(s, set_count_cutoff, "not with a count of modes");
   /* Allowed: the lumped payload of the data sheet (7958.28 kg), a flat bump. */
   fb_scenario *c = NULL;
   CHECK(fb_scenario_clone(s, &c, &err) == FB_OK);
@@ -424,6 +445,10 @@ static void test_check(void)
     CHECK_NEAR(c->total_weight / c->gravity - c->hull_mass, 7958.28,
                0.005); /* quoted to 2 dp */
     set_flat_bump(c);
+    CHECK(fb_scenario_check(c, &err) == FB_OK);
+    /* A mesh already finer than the converged density: no second mesh
+     * runs (flexbond run says so), which is no error. */
+    set_coarser_converged(c);
     CHECK(fb_scenario_check(c, &err) == FB_OK);
   }
   fb_scenario_free(&c);

@@ -406,7 +406,8 @@ static void check_rigid_body(const int *face_tri, const char *name)
       CHECK(max_abs(n, kd) <= 1e-12 * kmax * max_abs(n, d));
     }
     double f[7];
-    MUST(fb_fem_modes(K, M, 7, n, f, NULL, &err), &err);
+    const fb_eig_opts dense = eig_with(FB_EIG_DENSE);
+    MUST(fb_fem_modes(K, M, 7, &dense, f, NULL, &err), &err);
     fprintf(stderr, "box corner (%s): rigid-body modes up to %.2e Hz, first elastic %.2f Hz\n",
             name, f[5], f[6]);
     CHECK(f[5] < 1e-3 * f[6]);
@@ -826,7 +827,8 @@ static void test_modes_closed_form(void)
   MUST(fb_mat_new_dense(2, 2, kk, &K, &err), &err);
   MUST(fb_mat_new_dense(2, 2, mm, &M, &err), &err);
   double f[2], v[4];
-  MUST(fb_fem_modes(K, M, 2, 2, f, v, &err), &err);
+  const fb_eig_opts dense = eig_with(FB_EIG_DENSE), lanczos = eig_with(FB_EIG_LANCZOS);
+  MUST(fb_fem_modes(K, M, 2, &dense, f, v, &err), &err);
   for (int i = 0; i < 2; ++i) {
     const double w2 = (3.0 + (i ? 1 : -1) * sqrt(5.0)) * k / (2.0 * m);
     CHECK_NEAR(f[i], sqrt(w2) / (2 * PI), 1e-12 * f[i]);
@@ -843,8 +845,8 @@ static void test_modes_closed_form(void)
   double *va = malloc(n * nmodes * sizeof *va), *mv = malloc(n * sizeof *mv);
   CHECK(va && mv);
   if (K && M && va && mv) {
-    MUST(fb_fem_modes(K, M, nmodes, n, fd, NULL, &err), &err);
-    MUST(fb_fem_modes(K, M, nmodes, 0, fa, va, &err), &err);
+    MUST(fb_fem_modes(K, M, nmodes, &dense, fd, NULL, &err), &err);
+    MUST(fb_fem_modes(K, M, nmodes, &lanczos, fa, va, &err), &err);
     CHECK(fd[0] < 1e-6 && fa[0] < 1e-6);
     for (size_t j = 1; j < nmodes; ++j) {
       const double s = sin((double)j * PI / (2.0 * (double)n));
@@ -888,7 +890,7 @@ static fb_mesh *open_box(int tri)
   return m;
 }
 
-/* The dense (LAPACK) and sparse (ARPACK) paths on the same free-free box
+/* The dense (LAPACK) and sparse (block Lanczos) paths on the same free-free box
  * (1230 DOFs): six rigid-body modes below 0.01 Hz in both (zero up to
  * round-off; the first elastic mode is 27 Hz), elastic frequencies equal
  * to 1e-9 relative (both converge to near machine precision), vectors
@@ -907,9 +909,10 @@ static void test_modes_paths(void)
   double *mv = malloc(n * sizeof *mv);
   CHECK(vd && va && mv && K && M);
   if (vd && va && mv && K && M) {
-    MUST(fb_fem_modes(K, M, nmodes, n, fd, vd, &err), &err);
-    MUST(fb_fem_modes(K, M, nmodes, 100, fa, va, &err), &err);
-    fprintf(stderr, "open box, %zu DOFs: dense / ARPACK (Hz)\n", n);
+    const fb_eig_opts dense = eig_with(FB_EIG_DENSE), lanczos = eig_with(FB_EIG_LANCZOS);
+    MUST(fb_fem_modes(K, M, nmodes, &dense, fd, vd, &err), &err);
+    MUST(fb_fem_modes(K, M, nmodes, &lanczos, fa, va, &err), &err);
+    fprintf(stderr, "open box, %zu DOFs: dense / block Lanczos (Hz)\n", n);
     for (size_t i = 0; i < nmodes; ++i)
       fprintf(stderr, "  %2zu %12.6f %12.6f\n", i + 1, fd[i], fa[i]);
     for (size_t i = 0; i < 6; ++i)
@@ -960,16 +963,16 @@ static void test_drill_factor_modes(void)
   fb_mesh *box = open_box(0);
   fb_mesh *plate = shell_plate(10.0, 10.0, 16, 16, 0, 0.0);
   double f1[16], f2[16], worst_box = 0.0, worst_plate = 0.0;
-  shell_frequencies(box, &p1, FB_MASS_CONSISTENT, NULL, 0, 16, 0, f1);
-  shell_frequencies(box, &p2, FB_MASS_CONSISTENT, NULL, 0, 16, 0, f2);
+  shell_frequencies(box, &p1, FB_MASS_CONSISTENT, NULL, 0, 16, FB_EIG_AUTO, f1);
+  shell_frequencies(box, &p2, FB_MASS_CONSISTENT, NULL, 0, 16, FB_EIG_AUTO, f2);
   for (size_t i = 6; i < 16; ++i)
     worst_box = fmax(worst_box, fabs(f2[i] / f1[i] - 1.0));
   CHECK(worst_box < 1e-3);
   p1 = NAFEMS_STEEL;
   p2 = NAFEMS_STEEL;
   p2.drill_factor = 1e-3;
-  shell_frequencies(plate, &p1, FB_MASS_CONSISTENT, NULL, 0, 16, 0, f1);
-  shell_frequencies(plate, &p2, FB_MASS_CONSISTENT, NULL, 0, 16, 0, f2);
+  shell_frequencies(plate, &p1, FB_MASS_CONSISTENT, NULL, 0, 16, FB_EIG_AUTO, f1);
+  shell_frequencies(plate, &p2, FB_MASS_CONSISTENT, NULL, 0, 16, FB_EIG_AUTO, f2);
   for (size_t i = 6; i < 16; ++i)
     worst_plate = fmax(worst_plate, fabs(f2[i] / f1[i] - 1.0));
   CHECK(worst_plate < 1e-10);
@@ -981,12 +984,13 @@ static void test_drill_factor_modes(void)
   fb_mesh_free(&plate);
 }
 
-static void expect_modes_error(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t limit,
-                               int code, const char *what)
+static void expect_modes_error(const fb_mat *K, const fb_mat *M, size_t nmodes,
+                               fb_eig_method method, int code, const char *what)
 {
   double f[8];
   fb_err err;
-  CHECK(fb_fem_modes(K, M, nmodes, limit, f, NULL, &err) == code);
+  const fb_eig_opts eig = eig_with(method);
+  CHECK(fb_fem_modes(K, M, nmodes, &eig, f, NULL, &err) == code);
   CHECK(strstr(err.msg, what) != NULL);
   if (!strstr(err.msg, what))
     fprintf(stderr, "  message was: %s\n", err.msg);
@@ -1007,30 +1011,32 @@ static void test_modes_errors(void)
   MUST(fb_mat_new_scaled_identity(20, 1.0, &M, &err), &err);
   MUST(fb_mat_new_diag(20, md, &Mbad, &err), &err);
   MUST(fb_mat_new_scaled_identity(3, 1.0, &M3, &err), &err);
-  expect_modes_error(K, M, 2, 100, FB_ESOLVER, "not positive semi-definite");
-  expect_modes_error(K, M, 2, 0, FB_ESOLVER, "not positive semi-definite");
-  expect_modes_error(M, Mbad, 2, 100, FB_ESOLVER, "mass matrix is not positive definite");
-  expect_modes_error(K, M3, 2, 100, FB_EINVAL, "same non-empty square size");
-  expect_modes_error(K, M, 0, 100, FB_EINVAL, "0 modes asked of 20 DOFs");
-  expect_modes_error(K, M, 21, 100, FB_EINVAL, "21 modes asked of 20 DOFs");
+  expect_modes_error(K, M, 2, FB_EIG_DENSE, FB_ESOLVER, "not positive semi-definite");
+  expect_modes_error(K, M, 2, FB_EIG_LANCZOS, FB_ESOLVER, "not positive semi-definite");
+  expect_modes_error(M, Mbad, 2, FB_EIG_DENSE, FB_ESOLVER,
+                     "mass matrix is not positive definite");
+  expect_modes_error(K, M3, 2, FB_EIG_DENSE, FB_EINVAL, "same non-empty square size");
+  expect_modes_error(K, M, 0, FB_EIG_DENSE, FB_EINVAL, "0 modes asked of 20 DOFs");
+  expect_modes_error(K, M, 21, FB_EIG_DENSE, FB_EINVAL, "21 modes asked of 20 DOFs");
   const size_t r2[3] = {0, 0, 1}, c2[3] = {0, 1, 1};
   const double unsym[3] = {1.0, 0.5, 1.0}, with_nan[3] = {1.0, 0.0, NAN};
   fb_mat *Ku = NULL, *Kn = NULL, *I2 = NULL;
   MUST(fb_mat_new_triplets(2, 2, 3, r2, c2, unsym, &Ku, &err), &err);
   MUST(fb_mat_new_triplets(2, 2, 3, r2, c2, with_nan, &Kn, &err), &err);
   MUST(fb_mat_new_scaled_identity(2, 1.0, &I2, &err), &err);
-  expect_modes_error(Ku, I2, 1, 100, FB_EINVAL, "must be symmetric");
-  expect_modes_error(Kn, I2, 1, 100, FB_EINVAL, "must be symmetric");
+  expect_modes_error(Ku, I2, 1, FB_EIG_DENSE, FB_EINVAL, "must be symmetric");
+  expect_modes_error(Kn, I2, 1, FB_EIG_DENSE, FB_EINVAL, "must be symmetric");
   fb_mat_free(&Ku);
   fb_mat_free(&Kn);
   fb_mat_free(&I2);
-  /* Asking ARPACK for all but one mode falls back to the dense path: the
+  /* All but one mode are the dense path's, whatever the size: the
    * diagonal problem's eigenvalues are the diagonal, sorted. */
   double f[19];
   kd[0] = 0.5;
   fb_mat_free(&K);
   MUST(fb_mat_new_diag(20, kd, &K, &err), &err);
-  MUST(fb_fem_modes(K, M, 19, 0, f, NULL, &err), &err);
+  const fb_eig_opts any = eig_with(FB_EIG_AUTO);
+  MUST(fb_fem_modes(K, M, 19, &any, f, NULL, &err), &err);
   CHECK_NEAR(f[0], sqrt(0.5) / (2 * PI), 1e-12);
   CHECK_NEAR(f[18], sqrt(19.0) / (2 * PI), 1e-12);
   fb_mat_free(&K);

@@ -148,12 +148,23 @@ static inline void shell_static(const fb_mat *K, const size_t *fixed, size_t nfi
   free(r);
 }
 
+/* The eigen-solver's options with its method (FB_EIG_DENSE, FB_EIG_LANCZOS,
+ * FB_EIG_AUTO) chosen. */
+static inline fb_eig_opts eig_with(fb_eig_method method)
+{
+  fb_eig_opts o;
+  fb_eig_opts_default(&o);
+  o.method = method;
+  return o;
+}
+
 /* Lowest nmodes frequencies (Hz) of the structure with the fixed DOFs
- * removed. */
+ * removed, by the eigen-solver's method. */
 static inline void shell_frequencies(const fb_mesh *m, const fb_shell_props *p,
                                      fb_mass_kind mass, const size_t *fixed, size_t nfixed,
-                                     size_t nmodes, size_t dense_limit, double *freq)
+                                     size_t nmodes, fb_eig_method method, double *freq)
 {
+  const fb_eig_opts eig = eig_with(method);
   fb_err err;
   fb_mat *K = NULL, *M = NULL, *Kf = NULL, *Mf = NULL;
   const size_t n = 6 * fb_mesh_nnodes(m);
@@ -165,7 +176,7 @@ static inline void shell_frequencies(const fb_mesh *m, const fb_shell_props *p,
   if (keep && K && M) {
     shell_reduce(K, M, fixed, nfixed, keep, &Kf, &Mf);
     if (Kf && Mf)
-      MUST(fb_fem_modes(Kf, Mf, nmodes, dense_limit, freq, NULL, &err), &err);
+      MUST(fb_fem_modes(Kf, Mf, nmodes, &eig, freq, NULL, &err), &err);
   }
   fb_mat_free(&K);
   fb_mat_free(&M);

@@ -132,6 +132,23 @@ int fb_err_prefix(fb_err *err, const char *fmt, ...)
 #endif
     ;
 
+/* A long computation's report to whoever asked for it, and their way to
+ * stop it. fn is called when a stage begins (fraction 0), as it goes
+ * (fraction in (0, 1), or -1 when it cannot tell how far it is), and when
+ * it ends (fraction 1), with a phrase that says what the stage does and on
+ * how much ("eigen-solve of 11964 DOFs by block Lanczos"). Between the
+ * begin and the end it is called at least every few tenths of a second of
+ * work wherever the stage can poll. A nonzero return stops the
+ * computation, which then fails with FB_EINTR. A NULL fn is no report. */
+typedef int (*fb_progress_fn)(void *ctx, const char *stage, double fraction);
+typedef struct fb_progress {
+  fb_progress_fn fn;
+  void *ctx;
+} fb_progress;
+/* Calls p's fn (if p and fn are not NULL): FB_OK to go on, FB_EINTR with
+ * the message "interrupted during STAGE" when it asks to stop. */
+int fb_progress_report(const fb_progress *p, const char *stage, double fraction, fb_err *err);
+
 /* Short constant name of a status code, e.g. "FB_EPARSE". */
 const char *fb_status_name(int code);
 

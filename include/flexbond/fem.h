@@ -158,10 +158,25 @@ int fb_shell_element(fb_elem_type type, const double *xyz, const fb_shell_props 
 int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass, fb_mat **K,
                     fb_mat **M, fb_err *err);
 
+/* The mesh's six rigid-body motions about the point o (m) into r (6
+ * columns of 6 nnodes, column-major): translations along x, y, z, then
+ * rotations about x, y, z through o, each node's rotation the motion's.
+ * Null vectors of the shell elements' K (src/fem/shell.c keeps rigid-body
+ * motions exact), for fb_eig_opts.null_vectors. */
+void fb_mesh_rigid_modes(const fb_mesh *m, const double *o, double *r);
+
 /* Total mass, centre of mass and inertia tensor about it (row-major 3x3,
  * kg m^2) of a mass matrix over the mesh, from its rigid-body modes. */
 int fb_fem_mass_properties(const fb_mesh *m, const fb_mat *M, double *mass, double *cg,
                            double *inertia, fb_err *err);
+
+/* The same properties of the structure itself, element by element
+ * (r_e' M_e r_e over each element's rigid-body motions, M_e assembled with
+ * fb_mesh_element_props(m, e, p) and kind): no global matrix is built, for
+ * a program that needs a mesh's mass, centre and inertia before (or
+ * instead of) its finite-element model. */
+int fb_fem_mesh_mass_properties(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind kind,
+                                double *mass, double *cg, double *inertia, fb_err *err);
 
 /* The DOFs kept after fixing the listed ones: keep[] receives the
  * n - nfixed indices in increasing order. The fixed DOFs must be distinct
@@ -172,27 +187,144 @@ int fb_fem_free_dofs(size_t n, const size_t *fixed, size_t nfixed, size_t *keep,
 int fb_fem_submatrix(const fb_mat *a, const size_t *keep, size_t nkeep, fb_mat **out,
                      fb_err *err);
 
-/* The nmodes lowest modes of K v = w^2 M v (K may be singular: free-free
- * structures). Frequencies in Hz (rigid-body modes come out as ~0, never
- * NaN: negative round-off is clamped to 0); vectors (n x nmodes,
- * column-major, M-orthonormal) if not NULL. Dense LAPACK (dsygvd on
- * K + sigma M with a small shift sigma) up to dense_limit DOFs (and when
- * nmodes >= n - 1, which ARPACK cannot do), ARPACK shift-invert
- * (dsaupd/dseupd, KLU for the shifted solves) above. K and M must be
- * symmetric, M positive definite; an eigenvalue below -sigma (K not
- * positive semi-definite) is FB_ESOLVER.
- * Thread-safe: ARPACK, which is not reentrant, runs under a lock of its
- * own (one solve's Lanczos iterations at a time). */
-int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, size_t dense_limit,
-                 double *freq_hz, double *vectors, fb_err *err);
+/* ---- Modes and reduced bases of a structure (src/fem/modal.c,
+ * src/fem/lanczos.c). K symmetric positive semi-definite (a free
+ * structure's has six zero eigenvalues), M symmetric positive definite. */
 
-/* The dense_limit for fb_fem_modes that solves densely when nmodes is at
- * least a fifth of the DOFs and with ARPACK otherwise: the faster of the
- * two for a sparse finite-element K and M. */
-size_t fb_fem_dense_limit(size_t nmodes);
-/* 1 if fb_fem_modes of nmodes of an n-DOF model with dense_limit solves
- * with LAPACK, 0 if with ARPACK. */
-int fb_fem_modes_dense(size_t n, size_t nmodes, size_t dense_limit);
+/* How an eigen-solve runs. */
+typedef enum fb_eig_method {
+  /* LAPACK for every mode (nmodes >= n - 1) or a model of at most
+   * FB_EIG_DENSE_AUTO_DOFS, block Lanczos otherwise. */
+  FB_EIG_AUTO = 0,
+  /* LAPACK dsygvd: every mode, O(n^3) time and 4 n^2 doubles. */
+  FB_EIG_DENSE = 1,
+  /* Spectral transformation block Lanczos on a CHOLMOD factor of K + s M
+   * (fem_lanczos): the lowest modes only, memory and time about linear in
+   * the DOFs and the modes. */
+  FB_EIG_LANCZOS = 2
+} fb_eig_method;
+
+/* The largest model FB_EIG_AUTO solves densely whatever it asks (measured:
+ * below it LAPACK is as fast as the Lanczos set-up). */
+#define FB_EIG_DENSE_AUTO_DOFS 200
+
+typedef struct fb_eig_opts {
+  fb_eig_method method;
+  /* Bytes the solve may allocate for its own work (the dense matrices, the
+   * Cholesky factor, the Lanczos basis, the modes): each is checked before
+   * it is allocated (FB_ENOMEM naming the megabytes it needs); 0: no
+   * limit. */
+  size_t memory_limit;
+  fb_progress progress; /* every step of a long solve; may stop it */
+  /* 1: frequencies only, no shapes (LAPACK's eigenvalue-only path; the
+   * Lanczos vectors are made anyway). */
+  int values_only;
+  /* Known eigenvectors of eigenvalue 0 (a free structure's rigid-body
+   * motions: fb_mesh_rigid_modes), n x nnull, borrowed for the solves:
+   * block Lanczos keeps its iteration orthogonal to them, which spares it
+   * the steps a sixfold eigenvalue would take, and returns them
+   * M-orthonormalised as the first modes. Each must be a null vector of K
+   * to |K v| <= 1e-10 max|K_ii| |v| (FB_EINVAL otherwise); the dense
+   * solver needs no help and ignores them. */
+  const double *null_vectors;
+  size_t nnull;
+  /* Threads a Lanczos step's solves may use (fb_chol_set_threads): 1 (the
+   * default) or 2. */
+  int threads;
+} fb_eig_opts;
+
+/* method AUTO, no memory limit, no progress. */
+void fb_eig_opts_default(fb_eig_opts *o);
+
+/* The modal model of a structure: K and M (borrowed: they must outlive
+ * it), the Cholesky factor of K + s M with a small shift s (made when a
+ * solve or a static response first needs it, then reused), and its lowest
+ * modes once solved. Built once, asked many times. */
+typedef struct fb_fem_modal fb_fem_modal;
+
+/* Checks K and M (square, of one order, finite, symmetric to 1e-10 of
+ * their largest entry: FB_EINVAL) and chooses the shift. o NULL: the
+ * defaults. Nothing is factorised yet. */
+int fb_fem_modal_new(const fb_mat *K, const fb_mat *M, const fb_eig_opts *o, fb_fem_modal **out,
+                     fb_err *err);
+void fb_fem_modal_free(fb_fem_modal **fm);
+
+/* Solves for the lowest modes: the nmodes lowest (nmodes > 0), or with
+ * nmodes 0 every mode at or below cutoff_hz and the first one above it
+ * (the one that shows the cut-off was passed). Rigid-body modes come out
+ * at exactly 0 Hz (fb_fem_rigid_threshold_hz tells them). Replaces the
+ * modes of an earlier solve. FB_EINVAL for nmodes above n or a cut-off
+ * that is not a finite number >= 0; FB_ESOLVER when K is not positive
+ * semi-definite (an eigenvalue below -s) or the solver fails; FB_ENOMEM
+ * beyond the memory limit; FB_EINTR when the progress callback stops
+ * it. */
+int fb_fem_modal_solve(fb_fem_modal *fm, size_t nmodes, double cutoff_hz, fb_err *err);
+size_t fb_fem_modal_ndof(const fb_fem_modal *fm);
+/* The solved modes: their number, how many are rigid-body modes (the
+ * first ones), their frequencies (Hz) and eigenvalues ((rad/s)^2, the
+ * rigid ones exactly 0), and their shapes (ndof x nmodes, column-major,
+ * M-orthonormal). NULL before a solve. */
+size_t fb_fem_modal_nmodes(const fb_fem_modal *fm);
+size_t fb_fem_modal_nrigid(const fb_fem_modal *fm);
+const double *fb_fem_modal_freq_hz(const fb_fem_modal *fm);
+const double *fb_fem_modal_lambda(const fb_fem_modal *fm);
+const double *fb_fem_modal_shapes(const fb_fem_modal *fm);
+
+/* What the last solve did. */
+typedef struct fb_eig_info {
+  fb_eig_method method; /* DENSE or LANCZOS, as chosen */
+  size_t block;         /* Lanczos block size (0 dense) */
+  size_t factor_bytes;  /* the Cholesky factor's (0 when none was made) */
+  double seconds;       /* wall time of the solve, the factorisation included */
+} fb_eig_info;
+fb_eig_info fb_fem_modal_info(const fb_fem_modal *fm);
+
+/* A reduced basis (Craig & Kurdila, "Fundamentals of Structural
+ * Dynamics", 2nd ed., ch. 17-18): the nkeep lowest solved modes (every
+ * rigid-body mode among them: FB_EINVAL otherwise, or nkeep above the
+ * modes solved) and, for the nf force patterns F (ndof x nf,
+ * column-major), the residual flexibility those modes miss (MacNeal,
+ * "A hybrid method of component mode synthesis", Comput. Struct. 1,
+ * 1971): the static response with inertia relief, u = K^+ (f - M Phi_r
+ * Phi_r' f), less its part along the kept modes. order > 1 adds the
+ * next order - 1 blocks of the load-dependent Ritz sequence u_{j+1} =
+ * K^+ M u_j (E. L. Wilson, M.-W. Yuan & J. M. Dickens, "Dynamic analysis
+ * by direct superposition of Ritz vectors", Earthq. Eng. Struct. Dyn.
+ * 10, 1982), each freed of the kept modes and of the blocks before it:
+ * the inertia forces of the static shapes, the next term of what
+ * truncation misses (order 0 or 1: the static correction alone). Vectors
+ * that add nothing new (M-norm below 1e-8 of theirs before projection)
+ * are dropped. A Rayleigh-Ritz solve on the added vectors makes the
+ * whole basis M-orthonormal and K-orthogonal: T' M T = I, T' K T =
+ * diag(lambda), the kept modes unchanged and first, the added vectors
+ * after them by ascending lambda. A static load in the span of F is
+ * reproduced exactly. *T (ndof x *nbasis) and *lambda ((rad/s)^2,
+ * *nbasis) are new; *nstatic counts the vectors of the first block
+ * (the static correction), the rest are higher order. */
+int fb_fem_modal_basis(fb_fem_modal *fm, size_t nkeep, const double *F, size_t nf, size_t order,
+                       double **T, double **lambda, size_t *nbasis, size_t *nstatic,
+                       fb_err *err);
+
+/* fb_fem_modal_basis in steps, for bases of several orders from the same
+ * vectors: fb_fem_modal_extend appends a block to the added vectors *A
+ * (ndof x *nadded, new or grown; M-orthonormal, orthogonal to the nkeep
+ * kept modes): with *nadded 0 the static correction of the nf patterns F,
+ * else the next load-dependent Ritz block of the last *nlast vectors (by
+ * the shifted factor, (K + s M)^-1 M u in place of K^+ M u: a Krylov
+ * sequence of the inertia terms all the same, which needs no exact
+ * static solve); the new block's size goes to *nlast (0: nothing new). fb_fem_modal_ritz
+ * makes the basis of the kept modes and the nadded vectors A (*T, *lambda
+ * new). */
+int fb_fem_modal_extend(fb_fem_modal *fm, size_t nkeep, const double *F, size_t nf, double **A,
+                        size_t *nadded, size_t *nlast, fb_err *err);
+int fb_fem_modal_ritz(fb_fem_modal *fm, size_t nkeep, const double *A, size_t nadded,
+                      double **T, double **lambda, fb_err *err);
+
+/* The nmodes lowest modes of (K, M) in one call (a modal model made,
+ * solved and freed): frequencies (Hz) and, if vectors is not NULL, shapes
+ * (n x nmodes, M-orthonormal). o NULL: the defaults. */
+int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, const fb_eig_opts *o,
+                 double *freq_hz, double *vectors, fb_err *err);
 
 /* Frequency (Hz) at or below which a computed mode of (K, M) is a
  * rigid-body mode. Rigid-body modes come out as round-off, ~sqrt(eps)
@@ -200,29 +332,6 @@ int fb_fem_modes_dense(size_t n, size_t nmodes, size_t dense_limit);
  * (~1e4 Hz for steel shells, so ~1e-4 Hz); an elastic mode is above 1e-6
  * of that scale (0.01 Hz there). */
 double fb_fem_rigid_threshold_hz(const fb_mat *K, const fb_mat *M);
-
-/* Free-interface modal reduction with residual flexibility (MacNeal,
- * "A hybrid method of component mode synthesis", Computers & Structures
- * 1, 1971; Craig & Kurdila, "Fundamentals of Structural Dynamics", 2nd
- * ed., sec. 18.3): the basis spans the nmodes lowest free-free modes of
- * K v = w^2 M v (rigid-body modes included) and, for each of the nf
- * force patterns F (n x nf, column-major), the elastic static response
- * with inertia relief that those modes miss. A Rayleigh-Ritz solve on that
- * subspace makes the basis M-orthonormal and K-orthogonal:
- * T' M T = I, T' K T = diag(lambda), lambda ascending (rad/s)^2, with the
- * nrigid rigid-body modes' lambda set to exactly 0. The retained modes
- * come out unchanged; a static load in the span of F is reproduced
- * exactly. Patterns that add nothing new (dependent within 1e-8) are
- * dropped. *T (n x *nbasis, column-major) and *lambda (*nbasis) are new.
- * K symmetric positive semi-definite, M symmetric positive definite;
- * nmodes must include every rigid-body mode (FB_EINVAL otherwise). */
-int fb_fem_reduce_free(const fb_mat *K, const fb_mat *M, size_t nmodes, const double *F,
-                       size_t nf, double **T, double **lambda, size_t *nbasis, size_t *nrigid,
-                       fb_err *err);
-/* The modes fb_fem_reduce_free finds to keep nmodes of an n-DOF model:
- * one more than kept, whose eigenvalue sets the static correction's
- * shift; its eigen-solve is fb_fem_modes with fb_fem_dense_limit of those. */
-size_t fb_fem_reduce_nsolved(size_t n, size_t nmodes);
 
 /* ---- Mesh exchange. */
 

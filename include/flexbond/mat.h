@@ -33,6 +33,12 @@ int fb_mat_new_dense_rowmajor(size_t nrows, size_t ncols, const double *rowmajor
  * explicit zeros are kept out. Indices out of range are FB_EINVAL. */
 int fb_mat_new_triplets(size_t nrows, size_t ncols, size_t nnz, const size_t *rows,
                         const size_t *cols, const double *vals, fb_mat **out, fb_err *err);
+/* Sparse matrix from compressed sparse columns: column j's entries at
+ * colptr[j] .. colptr[j + 1] - 1 of rowidx (rows strictly increasing) and
+ * vals; explicit zeros are kept. FB_EINVAL naming the first column that is
+ * out of shape. */
+int fb_mat_new_csc(size_t nrows, size_t ncols, const size_t *colptr, const size_t *rowidx,
+                   const double *vals, fb_mat **out, fb_err *err);
 /* Square diagonal matrix (stored sparse). */
 int fb_mat_new_diag(size_t n, const double *diag, fb_mat **out, fb_err *err);
 /* s * identity(n) (stored sparse). */
@@ -101,8 +107,9 @@ int fb_mat_read_mtx(const char *path, fb_mat **out, fb_err *err);
  * a field law or transformer of a bond graph has as many rows as its ports
  * carry, nowhere near a million (docs/errors.md, "Limits"). */
 #define FB_MTX_MAX_DIM ((size_t)1000000)
-/* Prints a as Matrix Market coordinate real general with %.17g values;
- * write errors stick to fp. */
+/* Prints a as Matrix Market with %.17g values: "coordinate real general"
+ * when a is sparse, "array real general" when dense (so reading it back
+ * gives the same storage); write errors stick to fp. */
 void fb_mat_print_mtx(FILE *fp, const fb_mat *a);
 /* Writes a to path (fb_mat_print_mtx) through a temporary file created
  * exclusively beside it and renamed into place: all or nothing. */
@@ -118,6 +125,36 @@ int fb_lu_new(const fb_mat *a, fb_lu **out, fb_err *err);
 int fb_lu_solve(fb_lu *lu, double *b, size_t nrhs, fb_err *err);
 size_t fb_lu_size(const fb_lu *lu);
 void fb_lu_free(fb_lu **lu);
+
+/* Sparse Cholesky factorisation A = L L' of a symmetric positive definite
+ * matrix with CHOLMOD (supernodal: Chen, Davis, Hager & Rajamanickam, ACM
+ * TOMS 35(3), 2008): for finite-element stiffness and mass matrices, whose
+ * fill suits dense supernodes better than KLU's column-by-column LU. Only
+ * a's upper triangle is read. fb_chol_new analyses the pattern first (a
+ * fill-reducing ordering) and so knows the factor's size before it
+ * allocates it: one above memory_limit bytes (0: no limit) is FB_ENOMEM
+ * naming the megabytes it needs, with nothing allocated for it. A matrix
+ * that is not positive definite is FB_ESOLVER naming the leading minor;
+ * a non-square, empty or non-finite one FB_EINVAL. */
+typedef struct fb_chol fb_chol;
+int fb_chol_new(const fb_mat *a, size_t memory_limit, fb_chol **out, fb_err *err);
+/* The same of alpha a + beta b (b NULL: alpha a), formed as CHOLMOD takes
+ * it without an intermediate matrix: a shifted stiffness K + s M. */
+int fb_chol_new_sum(double alpha, const fb_mat *a, double beta, const fb_mat *b,
+                    size_t memory_limit, fb_chol **out, fb_err *err);
+/* Solves A x = b in place for nrhs right-hand sides stored one after the
+ * other. The factor keeps its own workspace: one caller at a time. */
+int fb_chol_solve(fb_chol *c, double *b, size_t nrhs, fb_err *err);
+/* threads 2: a solve of several right-hand sides gives half of them to a
+ * second thread (the factor is only read; each thread has a workspace of
+ * its own): some 1.5 times faster on two cores (measured on an 11964-DOF
+ * shell stiffness, 8 right-hand sides). 1: one thread (the default). */
+void fb_chol_set_threads(fb_chol *c, int threads);
+size_t fb_chol_size(const fb_chol *c);
+/* The bytes the factor and its workspace take (what memory_limit was
+ * checked against). */
+size_t fb_chol_bytes(const fb_chol *c);
+void fb_chol_free(fb_chol **c);
 
 /* The complex matrix j omega E - A of a descriptor system's pencil
  * (E, A), factorised at one angular frequency omega (rad/s) at a time

@@ -122,6 +122,12 @@ void fb_road_free(fb_road **road);
 double fb_road_height(const fb_road *road, int track, double s);
 /* Slope dz/ds, -. */
 double fb_road_slope(const fb_road *road, int track, double s);
+/* The shortest wavelength of the road's two tracks (m): half a bump's
+ * length (the (1 - cos) pulse's spectrum is down 98 % at 2 / length
+ * cycles/m), the shortest of a random road's harmonics, twice a profile's
+ * closest knot spacing (its Nyquist wavelength). A wheel at speed V meets
+ * nothing faster than V / this. */
+double fb_road_shortest_wavelength(const fb_road *road);
 /* Distances s where the track's second derivative jumps (a CSV profile:
  * its first and last knots only), ascending.
  * Returns how many there are; writes at most max of them to s (s may be

@@ -131,6 +131,12 @@ int fb_result_truncate(fb_result *r, size_t ncols, fb_err *err);
  * sample times (to 1e-9 s, or 1e-9 relative beyond 1 s) differ, or if
  * there are no columns; FB_ENOMEM. *out is new. */
 int fb_result_diff(const fb_result *b, const fb_result *a, fb_result **out, fb_err *err);
+/* For each column j >= 1 of a and b (results on one grid, with the same
+ * columns: FB_EINVAL otherwise), the largest |b - a| over the samples at
+ * t >= t0, over a's range there (its max - min; 0 when a is constant
+ * there), into rel[j - 1]: how far b departs from a in a's own scale. */
+int fb_result_rel_diff(const fb_result *a, const fb_result *b, double t0, double *rel,
+                       fb_err *err);
 
 /* Static equilibrium of a mechanical diagram under its inputs at time t,
  * reached from x0 by pseudo-transient continuation (implicit Euler steps

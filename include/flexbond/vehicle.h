@@ -56,6 +56,10 @@ typedef enum fb_system {
   FB_SYSTEM_FLEXIBLE = 2 /* System 2: finite-element hull */
 } fb_system;
 
+/* A realised vehicle and System 2's finite-element hull (below). */
+typedef struct fb_vehicle fb_vehicle;
+typedef struct fb_fe_hull fb_fe_hull;
+
 /* A rigid body moving vertically on a spring and a damper in parallel to a
  * hull point (driver plus seat, engine, a commander's seat, a cargo box). */
 typedef struct fb_mount {
@@ -203,6 +207,23 @@ typedef enum fb_road_kind { FB_ROAD_BUMP = 0, FB_ROAD_ISO8608, FB_ROAD_PROFILE }
  * two are the same model. */
 typedef enum fb_hull_coordinates { FB_HULL_NODAL = 0, FB_HULL_MODAL = 1 } fb_hull_coordinates;
 
+/* The basis of a hull in modal coordinates (hull.fe.modes): */
+typedef enum fb_hull_modes_kind {
+  /* `auto` (the default): the rigid-body modes and as many blocks of
+   * load-dependent Ritz vectors from the patterns (every attachment
+   * point's force, the load, every output read from the hull's
+   * deformation) as the receptances over the excitation's band need
+   * (FB_HULL_BLOCK_TOL, fb_hull_excitation_hz; up to hull_cutoff_hz when
+   * given). */
+  FB_HULL_MODES_AUTO = 0,
+  /* `all`: every mode, from a dense eigen-solve (the model without
+   * truncation; its cost grows as the cube of the DOFs). */
+  FB_HULL_MODES_ALL = 1,
+  /* N: the N lowest free-free modes with the static correction of every
+   * pattern (fb_fem_modal_basis). */
+  FB_HULL_MODES_COUNT = 2
+} fb_hull_modes_kind;
+
 /* How the suspension and mount attachment points meet the hull mesh
  * (hull.mesh.coupling, docs/hull-mesh.md "Couplings"): each is a node
  * (NONE: its node set's one node, within 1 mm); or, with a coupling, the
@@ -288,8 +309,19 @@ typedef struct fb_scenario {
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
-  char *hull_deck;         /* Abaqus/CalculiX deck's path, NULL: the generator */
-  fb_mesh *hull_deck_mesh; /* that deck as the loader read it, once (owned) */
+  char *hull_deck; /* Abaqus/CalculiX deck's path, NULL: the generator */
+  /* The hull's mesh as the loader made it, once: the deck as it read it
+   * (moved to the structure's centre of mass), or the generator's (owned).
+   * fb_vehicle_fe_hull copies it rather than generating it again, as long
+   * as the generator's inputs are still those it was made from,
+   * hull_source_key (fb_hull_mesh_key): a program that changes hull_mesh
+   * or a point after loading gets a mesh of its own. */
+  fb_mesh *hull_source_mesh;
+  uint64_t hull_source_key;
+  /* hull.mesh.converged_density: a density of the generator at which the
+   * hull's modes have converged (docs/hull-mesh.md), where `flexbond run`
+   * runs System 2 a second time to compare; 0: none. */
+  int hull_converged_density;
   /* Every file the scenario names (damper tables, road profile, hull
    * deck), as resolved, each once in reading order: what a result
    * depends on besides the scenario itself (owned). */
@@ -307,8 +339,12 @@ typedef struct fb_scenario {
   fb_coupling_kind coupling;            /* hull.mesh.coupling.kind, NONE without it */
   double coupling_radius;               /* m, in plan */
   char *coupling_surface;               /* element set of the candidate nodes; owned */
-  int hull_modes;                       /* modal: 0 every free-free mode, N: the N lowest and a
-                                           static correction (fb_fem_reduce_free); nodal: 0 */
+  /* Modal coordinates: which free-free modes the hull keeps
+   * (hull.fe.modes; docs/hull-mesh.md, "The modal basis"). */
+  fb_hull_modes_kind hull_modes_kind;
+  int hull_modes;        /* FB_HULL_MODES_COUNT: the N lowest */
+  double hull_cutoff_hz; /* FB_HULL_MODES_AUTO: the band's top, Hz, in place of the
+                            excitation's; 0: the excitation's */
 } fb_scenario;
 
 /* The hull's attachment points, in the order of the hull's "attach"
@@ -494,6 +530,10 @@ int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb
  * "hull.mesh.generator.bulkheads[1]"); FB_ENOMEM. */
 int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb_mesh **out,
                           fb_err *err);
+/* A fingerprint of everything fb_hull_mesh_generate(s, p) reads (the
+ * parameters, the materials and sections its centroid weighs, the points
+ * and their names): equal keys, the same mesh. */
+uint64_t fb_hull_mesh_key(const fb_scenario *s, const fb_hull_mesh_params *p);
 
 /* ---- Subsystems as bond-graph fragments. Every fragment is a new graph
  * owned by the caller (or handed to fb_vehicle_assemble). */
@@ -513,19 +553,6 @@ typedef struct fb_hull {
   double *torsion_weights;     /* each edge's roll from its two end nodes */
   double *torsion_fit_weights; /* from its transverse section, least squares */
   size_t ntorsion;
-  /* What the torsion probe's signal (ntorsion coordinates q) is: System
-   * 1's (z, phi, theta) when coord_ndof is 0; else System 2's hull
-   * coordinates over its coord_ndof = 6 nnodes nodal DOFs, u = T q with T
-   * = coord_basis (coord_ndof x ntorsion, column-major; NULL when the
-   * coordinates are the nodal DOFs themselves). */
-  double *coord_basis;
-  size_t coord_ndof;
-  /* System 2's eigen-solve of the free-free hull (none in System 1:
-   * eig_dof 0): in modal coordinates the basis (which gives beta too),
-   * in nodal ones beta's. */
-  size_t eig_dof, eig_modes; /* the hull's DOFs, the modes solved for */
-  int eig_dense;             /* 1: LAPACK dsygvd, 0: ARPACK shift-invert */
-  double eig_seconds;        /* its wall time, with the static correction */
 } fb_hull;
 void fb_hull_free(fb_hull **h);
 
@@ -612,6 +639,9 @@ void fb_vehicle_track_inputs(const fb_scenario *s, const size_t *rate_input, dou
  * (fb_sim_static_state from the initial state; (*out)->linearised 1). */
 int fb_vehicle_descriptor(const fb_scenario *s, fb_system sys, fb_descriptor **out,
                           fb_err *err);
+/* The same of the realised vehicle v (a diagram of its own with the
+ * outputs' probes alone, from the hull v holds). */
+int fb_vehicle_linearise(fb_vehicle *v, fb_descriptor **out, fb_err *err);
 /* The response of ds (fb_vehicle_descriptor of s) to a road height of 1 m
  * at the leading wheel of the left track (case 0) and of the right (case
  * 1), fb_vehicle_track_inputs, at nfreq frequencies freq_hz (Hz, >= 0):
@@ -620,45 +650,141 @@ int fb_vehicle_descriptor(const fb_scenario *s, fb_system sys, fb_descriptor **o
 int fb_vehicle_freq_response(const fb_scenario *s, const fb_descriptor *ds,
                              const double *freq_hz, size_t nfreq, double *h, fb_err *err);
 
-/* Assembles the vehicle for system sys and builds its block diagram with
- * the scenario's output probes. *graph and *bd are new (free bd first: it
- * borrows the graph). */
-int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
-                     fb_err *err);
+/* ---- A realised vehicle (src/vehicle/vehicle.c). */
 
-/* The assembled vehicle for system sys (*graph new) and every probe a
- * simulation records (*probes new, free with fb_vehicle_probes_free): the
- * outputs, then every tire's normal reaction contact_force_<CORNER>. */
-int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
-                     size_t *nprobes, fb_err *err);
-/* The scenario's solver settings (t_end, tolerances, step limits,
- * sampling; no initial state: see s->initial). */
-void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o);
+/* One system of a scenario realised once (fb_vehicle): its hull (System 2: the mesh,
+ * the finite-element K and M, one eigen-solve, the modal basis), the
+ * assembled bond graph, its block diagram and its probes. Simulations,
+ * the linearised vehicle's modes, System 2's modes with their shapes, the
+ * descriptor form, the motion of an animation and the report's pictures
+ * all take it, and none of them rebuilds what it holds (libCEED's
+ * operators, set up once and applied many times); fb_vehicle_work counts
+ * what it computed. It borrows its scenario, which must outlive it and
+ * not change meanwhile. */
 
-/* Integrates the vehicle per the scenario: initial state (zero or static
- * equilibrium), breakpoints at every wheel's bump entry and exit,
- * tolerances, sampling. The result's columns are t, the scenario's
- * outputs (s->output, in order), then every tire's normal reaction
- * contact_force_<CORNER> in corner order (N, compression positive). */
-int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err);
-/* As fb_vehicle_simulate, reporting progress through fn (NULL for none;
- * see fb_sim_progress_fn). */
-int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
-                                 void *ctx, fb_result **out, fb_err *err);
+/* The bytes a vehicle's factorisations and eigen-solves may take unless
+ * fb_vehicle_opts says otherwise: 4 GiB. */
+#define FB_VEHICLE_MEMORY_LIMIT ((size_t)4 << 30)
 
-/* What a run cost besides its integration (fb_result_stats). */
-typedef struct fb_vehicle_run_info {
-  double build_seconds;      /* graph, hull (with its eigen-solve), diagram, Newton pattern */
-  double static_seconds;     /* the static equilibrium (0 unless simulation.initial: static) */
-  size_t eig_dof, eig_modes; /* System 2's hull eigen-solve, as in fb_hull */
-  int eig_dense;
-  double eig_seconds;
-} fb_vehicle_run_info;
+typedef struct fb_vehicle_opts {
+  /* 1: probe the vehicle's motion too (fb_vehicle_run's motion, an
+   * animation): System 2's hull coordinates, the attachment points, the
+   * bodies and the wheels. */
+  int motion;
+  /* Bytes for the hull's factorisation, eigen-solve and basis (checked
+   * before each is allocated: FB_ENOMEM naming what it needs); 0:
+   * FB_VEHICLE_MEMORY_LIMIT. */
+  size_t memory_limit;
+  /* Hears of every set-up stage that can take time (the hull's assembly,
+   * factorisation, eigen-solve and basis) and may stop it (FB_EINTR). */
+  fb_progress progress;
+  /* Threads the hull's eigen-solve may use (fb_eig_opts.threads): 1 (the
+   * default: a program running vehicles on threads of its own) or 2. */
+  int threads;
+  /* Free-free modes of the hull to solve at least, for a listing
+   * (fb_hull_basis.free_hz); 0: those its model needs. */
+  size_t hull_modes;
+} fb_vehicle_opts;
+/* No motion, the default memory limit, no progress, one thread, no more
+ * hull modes than needed. */
+void fb_vehicle_opts_default(fb_vehicle_opts *o);
 
-/* fb_vehicle_simulate_progress, filling *info (not NULL) on success. */
-int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
-                             void *ctx, fb_vehicle_run_info *info, fb_result **out,
-                             fb_err *err);
+/* Realises system sys of s (o NULL: the defaults): checks the scenario
+ * (fb_scenario_check), builds the hull (System 2: fb_vehicle_fe_hull, K
+ * and M, the eigen-solve and basis of hull.fe.coordinates and
+ * hull.fe.modes), assembles the vehicle and builds its block diagram with
+ * the outputs' probes and every tire's contact force. Errors about a
+ * scenario value carry its logical key (fb_scenario_locate). */
+int fb_vehicle_new(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
+                   fb_vehicle **out, fb_err *err);
+void fb_vehicle_free(fb_vehicle **v);
+fb_system fb_vehicle_system(const fb_vehicle *v);
+const fb_scenario *fb_vehicle_scenario(const fb_vehicle *v);
+
+/* What a vehicle has computed since fb_vehicle_new, counted where the
+ * work is done. */
+typedef struct fb_vehicle_work {
+  size_t mesh_generations;    /* hull meshes generated (0: copied from the loaded scenario's) */
+  size_t assemblies;          /* finite-element assemblies of the hull's K and M */
+  size_t factorisations;      /* sparse Cholesky factorisations */
+  size_t hull_eigensolves;    /* eigen-solves of the free-free hull */
+  size_t vehicle_eigensolves; /* of the undamped System 2 (fb_vehicle_structural_modes) */
+  size_t linear_eigensolves;  /* of the linearised vehicle (fb_vehicle_linear_modes) */
+  size_t diagrams;            /* block diagrams built */
+  size_t static_solves;       /* static equilibria */
+  size_t simulations;         /* time integrations */
+  double setup_seconds;       /* fb_vehicle_new's wall time */
+  double static_seconds;      /* the static equilibria's */
+} fb_vehicle_work;
+fb_vehicle_work fb_vehicle_work_of(const fb_vehicle *v);
+
+/* How System 2's hull is represented in its model. */
+typedef struct fb_hull_basis {
+  fb_hull_coordinates coordinates;
+  fb_hull_modes_kind kind;   /* modal: how the free-free modes were chosen */
+  size_t ndof;               /* the hull's nodal DOFs */
+  size_t ncoords;            /* its coordinates in the model: ndof (nodal, or every mode),
+                                or nmodes + nstatic */
+  size_t nmodes, nrigid;     /* free-free modes kept, the rigid-body ones among them (AUTO:
+                                the rigid-body ones alone) */
+  size_t nstatic;            /* vectors beside the modes: the residual flexibility of the
+                                patterns (COUNT), or every load-dependent Ritz vector (AUTO) */
+  size_t npatterns;          /* the patterns they start from: each attachment point's force,
+                                the load, and each output read from the hull's deformation */
+  size_t nblocks;            /* AUTO: blocks of load-dependent Ritz vectors, the first the
+                                residual flexibility; 1 otherwise */
+  double cutoff_hz;          /* AUTO: the band (0, cutoff_hz] over which the basis
+                                converges (the excitation's, or hull.fe.cutoff_hz); NAN
+                                otherwise */
+  double excitation_hz;      /* AUTO by the rule: the highest frequency reaching the hull
+                                (fb_hull_excitation_hz); NAN otherwise */
+  double block_change;       /* AUTO: the receptances' largest change from the basis to the
+                                next block, over the band (below FB_HULL_BLOCK_TOL) */
+  double f1_hz, beta;        /* the hull as built: its first elastic free-free mode, and
+                                B = beta K (fb_fe_hull_damping's rule) */
+  size_t nfree, nfree_rigid; /* the free-free modes solved (those kept, beta's, a listing's) */
+  const double *free_hz;     /* their frequencies, Hz (the vehicle's) */
+  fb_eig_info eig;           /* the hull's eigen-solve */
+  size_t nestimate;          /* the error estimator's coordinates (fb_vehicle_basis_error) */
+} fb_hull_basis;
+/* System 2's (NULL for System 1). */
+const fb_hull_basis *fb_vehicle_hull_basis(const fb_vehicle *v);
+
+/* hull.fe.modes: auto. The basis is the hull's rigid-body modes and
+ * blocks of load-dependent Ritz vectors (E. L. Wilson, M.-W. Yuan & J. M.
+ * Dickens, "Dynamic analysis by direct superposition of Ritz vectors",
+ * Earthq. Eng. Struct. Dyn. 10, 1982) started from the patterns the
+ * vehicle loads the hull with or reads from it: the first block their
+ * static response with inertia relief (the residual flexibility), each
+ * next K^+ M applied to the block before. Blocks are added until one more
+ * changes the hull's receptance between every two patterns by less than
+ * FB_HULL_BLOCK_TOL of its scale (sqrt(|H_aa| |H_bb|), their peaks over
+ * the band) at every frequency of the band (0, f], with the structural
+ * damping; the basis is the one before that block, which the error
+ * estimator adds (fb_vehicle_new_estimator). f is hull.fe.cutoff_hz or
+ * fb_hull_excitation_hz, the highest frequency that reaches the hull:
+ * each wheel's hop on a fixed hull, sqrt((r^2 spring_k + tire_k) /
+ * wheel_mass) / 2 pi, each mounted body's natural frequency,
+ * sqrt(stiffness / mass) / 2 pi, and the road's highest at the
+ * scenario's speed (a bump: 2 V / length, the (1 - cos) pulse's spectrum
+ * is down 98 % there; an ISO 8608 road: V n_max; a profile: V / (2
+ * spacing), its Nyquist frequency). The tolerance keeps every output of
+ * the examples within about 1e-3 of its range of the every-mode model,
+ * whose run's own error the estimate then reports (docs/hull-mesh.md, "The
+ * modal basis": bench/basis_choice.sh chose this method by measurement
+ * against modes with static correction and Craig-Bampton;
+ * tests/test_hull_basis.c checks the error and the estimate). */
+#define FB_HULL_BLOCK_TOL 1e-3
+double fb_hull_excitation_hz(const fb_scenario *s);
+
+/* The realised bond graph and the probes of its diagram (the outputs, then
+ * every tire's contact force, then with motion the motion's), owned by the
+ * vehicle. The graph's causality is assigned: a caller may build other
+ * diagrams of it (fb_bd_build, a picture) while v lives. */
+fb_bg *fb_vehicle_bond_graph(fb_vehicle *v);
+const fb_probe_spec *fb_vehicle_probe_specs(const fb_vehicle *v, size_t *nprobes);
+/* System 2's hull (its mesh, couplings and nodes), NULL for System 1. */
+const fb_fe_hull *fb_vehicle_fe_hull_of(const fb_vehicle *v);
 
 /* How a run's vehicle moves, for an animation (flexbond run --animate,
  * docs/animation.md): sampled as its outputs are, every displacement
@@ -690,15 +816,64 @@ int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double
                          double *node_u, double *attach_dz, double *body_dz, double *wheel_dz,
                          fb_err *err);
 
-/* fb_vehicle_simulate_info, and the motion of the run in *motion (new):
- * the result's columns are the same as without it. The motion keeps the
- * samples that cover window = {t0, t1} (s: the last at or before t0 to
- * the first at or after t1; every sample if window is NULL), so an
- * animation of a stretch does not hold every hull coordinate of the
- * whole run. */
-int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, const double *window,
-                               fb_sim_progress_fn fn, void *ctx, fb_vehicle_run_info *info,
-                               fb_result **out, fb_vehicle_motion **motion, fb_err *err);
+/* Integrates the vehicle per its scenario: initial state (zero or static
+ * equilibrium), breakpoints at every wheel's bump entry and exit,
+ * tolerances, sampling. The result's columns are t, the scenario's outputs
+ * (s->output, in order), then every tire's normal reaction
+ * contact_force_<CORNER> in corner order (N, compression positive). With
+ * motion not NULL (a vehicle made with fb_vehicle_opts.motion: FB_EINVAL
+ * otherwise) *motion gets the run's motion (new), keeping the samples
+ * that cover window = {t0, t1} (s: the last at or before t0 to the first
+ * at or after t1; every sample if window is NULL), so an animation of a
+ * stretch does not hold every hull coordinate of the whole run; the
+ * result's columns are the same. fn hears of every step (NULL: none) and
+ * may stop the run (FB_EINTR). May be called again. */
+int fb_vehicle_run(fb_vehicle *v, const double *window, fb_sim_progress_fn fn, void *ctx,
+                   fb_result **out, fb_vehicle_motion **motion, fb_err *err);
+
+/* The estimator of the error of v's modal basis (System 2 in reduced modal
+ * coordinates: FB_EINVAL otherwise): a vehicle on v's realised hull (no
+ * second assembly or eigen-solve), its basis enriched by the next block
+ * of load-dependent Ritz vectors (fb_fem_modal_basis's order 2: what
+ * truncation misses to the next order in frequency), with the same
+ * probes as v's runs. Run both; fb_result_rel_diff of their results is
+ * the estimate. The two can run on two threads at once (they share only
+ * what v's realisation made). *out borrows v, which must outlive it. */
+int fb_vehicle_new_estimator(fb_vehicle *v, fb_vehicle **out, fb_err *err);
+
+/* The error of System 2's modal basis in a run r of v (fb_vehicle_run;
+ * reduced modal coordinates only: FB_EINVAL otherwise): the same run of
+ * its estimator (fb_vehicle_new_estimator), and for each output o the
+ * largest |difference| from window[0] to the end of the run over o's
+ * range there (its max - min), into est[o] (s->noutputs of them; 0 for a
+ * constant output). fn as for fb_vehicle_run. */
+int fb_vehicle_basis_error(fb_vehicle *v, const fb_result *r, const double window[2],
+                           fb_sim_progress_fn fn, void *ctx, double *est, fb_err *err);
+
+/* Convenience for a single use, each realising the vehicle, using it and
+ * freeing it: */
+
+/* Assembles the vehicle for system sys and builds its block diagram with
+ * the scenario's output probes. *graph and *bd are new (free bd first: it
+ * borrows the graph). */
+int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
+                     fb_err *err);
+
+/* The assembled vehicle for system sys (*graph new) and every probe a
+ * simulation records (*probes new, free with fb_vehicle_probes_free): the
+ * outputs, then every tire's normal reaction contact_force_<CORNER>. */
+int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
+                     size_t *nprobes, fb_err *err);
+/* The scenario's solver settings (t_end, tolerances, step limits,
+ * sampling; no initial state: see s->initial). */
+void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o);
+
+/* fb_vehicle_run of system sys of s. */
+int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err);
+/* As fb_vehicle_simulate, reporting progress through fn (NULL for none;
+ * see fb_sim_progress_fn). */
+int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
+                                 void *ctx, fb_result **out, fb_err *err);
 
 /* A time interval in which a tire carries no load: its normal reaction
  * is not compressive. With the paper's linear (bilateral) tire that means
@@ -731,12 +906,16 @@ typedef struct fb_mode {
                            "hull bounce (62%)", "wheel hop LF (91%)" */
 } fb_mode;
 
-/* Modes of the vehicle linearised at its static equilibrium, from the
+/* Modes of the vehicle v linearised at its static equilibrium, from the
  * block diagram's exact Jacobian: with undamped set, every damper and
- * tire damper is removed first (natural frequencies). Oscillatory modes
+ * tire damper is removed first (natural frequencies; a diagram of its own,
+ * from the same realised hull). Oscillatory modes
  * come first by frequency; non-oscillatory ones (real eigenvalues) after;
  * zero eigenvalues of statically indeterminate support (the hull on more
  * than three springs) are counted in *nstatic and left out. *modes is new. */
+int fb_vehicle_linear_modes(fb_vehicle *v, int undamped, fb_mode **modes, size_t *nmodes,
+                            size_t *nstatic, fb_err *err);
+/* fb_vehicle_linear_modes of system sys of s, realised for the purpose. */
 int fb_vehicle_modes(const fb_scenario *s, fb_system sys, int undamped, fb_mode **modes,
                      size_t *nmodes, size_t *nstatic, fb_err *err);
 
@@ -818,14 +997,14 @@ typedef struct fb_mode_set {
   size_t nmodes, ndof;
   size_t nfree;            /* zero-frequency rigid-body modes left out */
   size_t nsolved;          /* modes the eigen-solve found (kept, free and spare) */
-  int dense;               /* 1: it was LAPACK's dsygvd, 0: ARPACK's */
   double *freq_hz;         /* nmodes */
   double *shapes;          /* ndof x nmodes, column-major */
   char (*description)[96]; /* nmodes, e.g. "hull pitch (rigid 97%)" */
 } fb_mode_set;
 void fb_mode_set_free(fb_mode_set **m);
 
-/* System 2's hull fragment (same ports as fb_vehicle_rigid_hull): the
+/* System 2's hull fragment (same ports as fb_vehicle_rigid_hull), realised
+ * for the purpose (an fb_vehicle holds its own): the
  * finite-element matrices as multiport fields on the nodal-velocity
  * multibond (M as an I field: the hull as built, fb_fe_hull_mass_matrix,
  * with the lumped payload's point masses when asked; K as a C field;
@@ -857,25 +1036,45 @@ int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **
  * `torsion_fit`). */
 int fb_fe_hull_torsion_weights(const fb_fe_hull *h, int fit, double *w, fb_err *err);
 
+/* The free-free modes beta is found from: six rigid-body ones, then the
+ * first elastic one. */
+#define FB_HULL_BETA_MODES 7
+
+/* The nmodes lowest free-free frequencies (Hz, rigid-body ones first at 0,
+ * *nrigid of them) of a hull's K and M by o's method (o NULL: the
+ * defaults); its FB_EIG_AUTO means LAPACK (eigenvalues only) up to 3000
+ * DOFs, as the nodal reference results were computed, block Lanczos
+ * above. info (may be NULL) gets how the solve went. */
+int fb_fe_hull_frequencies(const fb_mat *K, const fb_mat *M, size_t nmodes,
+                           const fb_eig_opts *o, double *freq_hz, size_t *nrigid,
+                           fb_eig_info *info, fb_err *err);
+
 /* beta = 2 zeta / omega_1 of fb_fe_hull_damping from the free-free hull's
  * modes: nrigid (which must be six) rigid-body ones, then the first
  * elastic one at f1_hz; FB_ESOLVER otherwise. */
 int fb_fe_hull_beta(double zeta, size_t nrigid, double f1_hz, double *beta, fb_err *err);
 
 /* The nmodes lowest modes of the free-free hull as built (its declared
- * masses on it; rigid-body modes first, *nrigid of them at ~0 Hz):
- * frequencies only. */
+ * masses on it; rigid-body modes first, *nrigid of them at 0 Hz):
+ * frequencies only, from an eigen-solve of their own (an fb_vehicle's
+ * are in fb_vehicle_hull_basis). */
 int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
                           fb_err *err);
 
-/* The nmodes lowest modes of the undamped System 2: the finite-element
+/* The nmodes lowest modes of the undamped System 2 of v: the finite-element
  * hull with the mounted bodies, suspension springs (k r^2 for motion ratio
- * r), wheels and tire springs attached at its nodes. The springs are
- * vertical, so the hull's horizontal rigid-body motions (surge, sway,
- * yaw) have no stiffness: those zero-frequency modes are left out and
- * counted in nfree. */
-int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t nmodes,
-                              fb_mode_set **out, fb_err *err);
+ * r), wheels and tire springs attached at its attachment points. The
+ * springs are vertical, so the hull's horizontal rigid-body motions
+ * (surge, sway, yaw) have no stiffness: those zero-frequency modes are
+ * left out and counted in nfree. exact 1, or a hull in nodal coordinates
+ * or every mode: from the sparse nodal matrices (a factorisation and a
+ * Lanczos solve of the whole vehicle). exact 0 with a reduced basis: the
+ * Ritz modes of the basis with the bodies and wheels, a dense problem of
+ * its coordinates, accurate within the band the basis converged over
+ * (fb_hull_basis.cutoff_hz; for the reference vehicle to 1e-5 up to it,
+ * 0.5 % just above), so only those within it. FB_EINVAL for System 1. */
+int fb_vehicle_structural_modes(fb_vehicle *v, size_t nmodes, int exact, fb_mode_set **out,
+                                fb_err *err);
 
 #ifdef __cplusplus
 }

@@ -16,6 +16,17 @@
 
 #define CLI_VERSION "0.1.0"
 
+/* OpenBLAS's own call (the library links libopenblas directly,
+ * CMakeLists.txt's OPENBLAS_LIB), declared here rather than taken from a
+ * cblas.h: which cblas.h the Debian alternatives select (OpenBLAS's or
+ * the reference one, which lacks it) is not ours to choose. main sets one
+ * thread for every command (main.c says why). */
+void openblas_set_num_threads(int num_threads);
+
+/* Threads a command's own computation may use beside its main one: 2
+ * when the machine has two processors or more, else 1 (main.c). */
+int cli_threads(void);
+
 /* Exit codes of the program (the table is in main.c). */
 enum cli_exit {
   CLI_EXIT_OK = 0,
@@ -78,6 +89,20 @@ void cli_interrupt_polled_only(void);
 int cli_interrupted(void);
 /* FB_EINTR with a message once interrupted, else FB_OK. */
 int cli_check_interrupt(fb_err *err);
+
+/* ---- Long set-up stages (interrupt.c). A command passes cli_stage_progress
+ * with a cli_stage as the fb_progress of a long computation (a vehicle's
+ * realisation): a stage still running after CLI_STAGE_SILENT_MS is named
+ * once on stderr, "flexbond COMMAND: SUBJECT: STAGE ...", by the signal
+ * thread when the stage cannot call back meanwhile (a factorisation), and
+ * an interruption stops the computation at its next call (FB_EINTR). */
+#define CLI_STAGE_SILENT_MS 1000
+typedef struct cli_stage {
+  const char *command; /* "run" */
+  const char *subject; /* "apc6x6: System 2 (flexible hull)" */
+  int quiet;           /* -q: nothing said */
+} cli_stage;
+int cli_stage_progress(void *ctx, const char *stage, double fraction);
 
 /* Index in *out of the option's value text among choices[0..nchoices), or
  * a usage error listing the choices. */
@@ -181,6 +206,19 @@ int cli_outdir_close(cli_outdir *od, int status, fb_err *err);
  * it created (if empty), freeing nothing: what a failed close does, and
  * what the signal thread does before the process ends (interrupt.c). */
 void cli_outdir_abandon(const cli_outdir *od);
+
+/* Independent jobs writing into one output directory (a run's figures,
+ * each mostly waiting for its gnuplot or dot): run(od, ctx, err) each,
+ * on this thread and, with more than one CPU, one more (cli_threads).
+ * cli_outdir_path, cli_outdir_keep and cli_outdir_write may be called
+ * from both. Once a job fails or the command is interrupted no further
+ * job starts; the status is the first failed job's in the array's order
+ * (its message in err), else FB_EINTR when interrupted, else FB_OK. */
+typedef struct cli_job {
+  int (*run)(cli_outdir *od, const void *ctx, fb_err *err);
+  const void *ctx;
+} cli_job;
+int cli_jobs_run(cli_outdir *od, const cli_job *jobs, size_t n, fb_err *err);
 
 /* Appends to err's message that nothing was written to dir (a failed or
  * interrupted command; see cli_outdir). */
@@ -306,6 +344,7 @@ int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_m
 /* One simulated system. */
 typedef struct cli_run_system {
   fb_system sys;
+  const char *label; /* what the messages call it: cli_system_label(sys) unless set */
   fb_result *res;
   size_t *col;             /* s->noutputs: column of each output in res */
   cli_output_stats *stats; /* s->noutputs */
@@ -326,6 +365,9 @@ typedef struct cli_run_system {
   /* With --animate: the run's motion (owned) and its animation. */
   fb_vehicle_motion *motion;
   cli_animation_info anim;
+  /* System 2 with a reduced modal hull: the estimated error of each output
+   * from its basis (fb_vehicle_basis_error; s->noutputs, owned), else NULL. */
+  double *basis_error;
 } cli_run_system;
 
 /* Everything run writes. */
@@ -341,13 +383,24 @@ typedef struct cli_run_outputs {
   /* System 1's undamped modes, when it ran. */
   const fb_mode *modes1;
   size_t nmodes1, nstatic1;
-  /* System 2's hull and undamped modes, when it ran. */
+  /* The realised vehicles, as runs (to draw their diagrams). */
+  fb_vehicle *vehicles[CLI_MAX_SYSTEMS];
+  /* System 2's hull, its basis and its undamped modes, when it ran. */
   const fb_fe_hull *hull;
+  const fb_hull_basis *basis;
   const fb_mode_set *modes2;
-  double hull_f1;                /* first elastic free-free hull mode, Hz */
-  double hull_beta;              /* B = beta K, s */
   const char *hull_modes_source; /* what set scenario->hull_modes (Markdown) */
-  const char *note;              /* why a system did not run, or NULL */
+  /* System 2 again on the hull refined to hull.mesh.converged_density,
+   * when the scenario asks for it and System 2 ran on a coarser mesh: its
+   * run (system2_converged.csv), its basis and its density; against
+   * System 1 (diff_converged, cmp_converged: s->noutputs) when both ran.
+   * NULL and 0 otherwise. */
+  const cli_run_system *converged;
+  const fb_hull_basis *converged_basis;
+  int converged_density;
+  const fb_result *diff_converged;
+  cli_output_cmp *cmp_converged;
+  const char *note; /* why a system did not run, or NULL */
   /* The frequency response of the systems that ran (flexbond freq's
    * bode_<OUTPUT>.png), NULL without figures or when it failed: then
    * freq_note says why. */

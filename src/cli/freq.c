@@ -83,12 +83,12 @@ static int respond(freq_study *fs, int sys, const fb_descriptor *ds, fb_err *err
   return rc;
 }
 
-static int run_system(freq_study *fs, int sys, fb_err *err)
+static int run_system(freq_study *fs, int sys, fb_vehicle *v, fb_err *err)
 {
   fb_descriptor *ds = NULL;
   struct timespec start, end;
   clock_gettime(CLOCK_MONOTONIC, &start);
-  int rc = fb_vehicle_descriptor(fs->s, sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID, &ds, err);
+  int rc = fb_vehicle_linearise(v, &ds, err);
   if (!rc) {
     fs->linearised[sys] = ds->linearised;
     rc = respond(fs, sys, ds, err);
@@ -329,7 +329,7 @@ typedef struct freq_args {
   int tracks_given; /* --tracks */
 } freq_args;
 
-int cli_freq_compute(freq_study *fs, const int systems[CLI_MAX_SYSTEMS], double f_min,
+int cli_freq_compute(freq_study *fs, fb_vehicle *const vehicles[CLI_MAX_SYSTEMS], double f_min,
                      double f_max, size_t points, fb_err *err)
 {
   fs->nfreq = points;
@@ -341,8 +341,8 @@ int cli_freq_compute(freq_study *fs, const int systems[CLI_MAX_SYSTEMS], double 
         f_min * pow(f_max / f_min, points > 1 ? (double)k / (double)(points - 1) : 0.0);
   int rc = FB_OK;
   for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys)
-    if (systems[sys])
-      rc = run_system(fs, sys, err);
+    if (vehicles[sys])
+      rc = run_system(fs, sys, vehicles[sys], err);
   return rc;
 }
 
@@ -379,8 +379,22 @@ static int study(const freq_args *a)
   }
   cli_outdir od;
   const int opened = !rc && (rc = cli_outdir_open(&od, a->dir, "freq", &err)) == FB_OK;
+  /* Each system realised once; its linear model is made from it. */
+  fb_vehicle *vehicles[CLI_MAX_SYSTEMS] = {NULL, NULL};
+  cli_stage stages[CLI_MAX_SYSTEMS];
+  for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys) {
+    const fb_system which = sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID;
+    stages[sys] = (cli_stage){"freq", cli_system_label(which), 0};
+    fb_vehicle_opts vo;
+    fb_vehicle_opts_default(&vo);
+    vo.progress = (fb_progress){cli_stage_progress, &stages[sys]};
+    if (a->systems[sys])
+      rc = fb_vehicle_new(s, which, &vo, &vehicles[sys], &err);
+  }
   if (!rc)
-    rc = cli_freq_compute(&fs, a->systems, a->f_min, a->f_max, a->points, &err);
+    rc = cli_freq_compute(&fs, vehicles, a->f_min, a->f_max, a->points, &err);
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys)
+    fb_vehicle_free(&vehicles[sys]);
   if (!rc)
     rc = write_files(&od, &fs, 1, a->figures, &err);
   if (!rc && fs.psd.on)

@@ -49,10 +49,10 @@ static inline const double *cli_freq_amplitude(const double *h, size_t nrows, si
   return h + 2 * ((k * NTRACKS + (size_t)t) * nrows + r);
 }
 
-/* The response of the systems asked for (System 1, System 2) at points
- * frequencies from f_min to f_max evenly spaced on a log scale, and over
- * the road's band when fs->psd is on. */
-int cli_freq_compute(freq_study *fs, const int systems[CLI_MAX_SYSTEMS], double f_min,
+/* The response of the realised vehicles (System 1's, System 2's; NULL:
+ * not asked) at points frequencies from f_min to f_max evenly spaced on a
+ * log scale, and over the road's band when fs->psd is on. */
+int cli_freq_compute(freq_study *fs, fb_vehicle *const vehicles[CLI_MAX_SYSTEMS], double f_min,
                      double f_max, size_t points, fb_err *err);
 /* The Bode figures bode_<OUTPUT>.png, one per output with a response. */
 int cli_freq_write_figures(cli_outdir *od, const freq_study *fs, fb_err *err);

@@ -66,6 +66,17 @@ static struct {
   int polled_only; /* cli_interrupt_polled_only */
 } guard = {.lock = PTHREAD_MUTEX_INITIALIZER};
 
+/* The set-up stage a command is in (cli_stage_progress), for the thread
+ * to name when it lasts: under guard.lock. */
+static struct {
+  char line[FB_ERR_MSG_MAX]; /* what to say, newline included */
+  struct timespec start;
+  int active, said;
+} stage;
+
+/* How often the thread looks at the stage, ms. */
+#define CLI_STAGE_POLL_MS 100
+
 static void on_signal(int sig)
 {
   (void)sig;
@@ -132,11 +143,49 @@ static int wait_for_signal(int timeout_ms)
   return n > 0 && read(wake[0], &byte, 1) == 1;
 }
 
+static double ms_since(const struct timespec *t0)
+{
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return 1e3 * (double)(t.tv_sec - t0->tv_sec) + 1e-6 * (double)(t.tv_nsec - t0->tv_nsec);
+}
+
+/* With guard.lock held: names the stage once it has run long enough. */
+static void say_stage_if_due(void)
+{
+  if (stage.active && !stage.said && ms_since(&stage.start) >= CLI_STAGE_SILENT_MS) {
+    say(stage.line);
+    stage.said = 1;
+  }
+}
+
+int cli_stage_progress(void *ctx, const char *what, double fraction)
+{
+  const cli_stage *c = ctx;
+  pthread_mutex_lock(&guard.lock);
+  if (fraction == 0.0 && !c->quiet) {
+    snprintf(stage.line, sizeof stage.line, "flexbond %s: %s: %s ...\n", c->command, c->subject,
+             what);
+    clock_gettime(CLOCK_MONOTONIC, &stage.start);
+    stage.active = 1;
+    stage.said = 0;
+  } else if (fraction >= 1.0) {
+    stage.active = 0;
+  } else {
+    say_stage_if_due();
+  }
+  pthread_mutex_unlock(&guard.lock);
+  return cli_interrupted();
+}
+
 static void *watch(void *arg)
 {
   (void)arg;
-  while (!wait_for_signal(-1))
-    ;
+  while (!wait_for_signal(CLI_STAGE_POLL_MS)) {
+    pthread_mutex_lock(&guard.lock);
+    say_stage_if_due();
+    pthread_mutex_unlock(&guard.lock);
+  }
   /* A second signal, or the grace period over. */
   if (!wait_for_signal(CLI_GRACE_MS) && atomic_load(&seen))
     wait_for_signal(CLI_WIND_DOWN_MS);

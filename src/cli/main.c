@@ -32,6 +32,7 @@
  * messages carry the file:line context themselves. */
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -86,6 +87,11 @@ static int finish_stdout(void)
   return cli_report(cli_flush_stdout(&err), &err);
 }
 
+int cli_threads(void)
+{
+  return sysconf(_SC_NPROCESSORS_ONLN) > 1 ? 2 : 1;
+}
+
 int main(int argc, char **argv)
 {
   if (argc < 2) {
@@ -107,6 +113,17 @@ int main(int argc, char **argv)
             first[0] == '-' ? "option" : "command", first);
     return CLI_EXIT_USAGE;
   }
+  /* One BLAS thread for every command. flexbond's parallelism is its
+   * own: a sweep's cases, run's basis estimator beside its runs. Nested
+   * OpenBLAS threads would only contend with it (their waiting spins:
+   * System 2's run at density 3 took 1.03 s of wall time with OpenBLAS's
+   * two threads, 0.93 s with one), and OpenBLAS sizes its pool from the
+   * CPUs the process may use, which differ between a process on all
+   * cores and an MPI rank bound to one: with another pool size a dense
+   * eigen-solution rounds otherwise, and a result would depend on how it
+   * ran (docs/sweep.md). OpenBLAS reads OPENBLAS_NUM_THREADS when it is
+   * loaded, before main, so only its own call can do this. */
+  openblas_set_num_threads(1);
   if (cli_interrupt_install() != 0)
     fputs("flexbond: warning: cannot catch SIGINT; an interrupted run may leave files "
           "behind\n",

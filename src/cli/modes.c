@@ -83,12 +83,21 @@ static int run(const char *path, fb_system sys)
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   mode_table undamped = {0}, damped = {0};
+  fb_vehicle *v = NULL;
   int rc = fb_scenario_load(path, &s, &err);
+  cli_stage stage = {"modes", cli_system_label(sys), 0};
+  fb_vehicle_opts vo;
+  fb_vehicle_opts_default(&vo);
+  vo.progress = (fb_progress){cli_stage_progress, &stage};
+  /* One vehicle, both linearisations. */
   if (rc == FB_OK)
-    rc =
-        fb_vehicle_modes(s, sys, 1, &undamped.modes, &undamped.nmodes, &undamped.nstatic, &err);
+    rc = fb_vehicle_new(s, sys, &vo, &v, &err);
   if (rc == FB_OK)
-    rc = fb_vehicle_modes(s, sys, 0, &damped.modes, &damped.nmodes, &damped.nstatic, &err);
+    rc = fb_vehicle_linear_modes(v, 1, &undamped.modes, &undamped.nmodes, &undamped.nstatic,
+                                 &err);
+  if (rc == FB_OK)
+    rc = fb_vehicle_linear_modes(v, 0, &damped.modes, &damped.nmodes, &damped.nstatic, &err);
+  fb_vehicle_free(&v);
   if (rc == FB_OK) {
     printf("%s: %s, linearised at the static equilibrium\n\n", s->name ? s->name : path,
            sys == FB_SYSTEM_RIGID ? "System 1 (rigid hull)" : "System 2 (flexible hull)");

@@ -18,12 +18,14 @@
 
 #include "cli.h"
 
+/* The hull's free-free modes listed (the six rigid-body ones and the 24
+ * lowest elastic ones) and the vehicle's. */
 enum { HULL_MODES = 30, VEHICLE_MODES = 20 };
 
 typedef struct flex_modes {
   const fb_scenario *s;
   const fb_fe_hull *hull;
-  double hull_freq[HULL_MODES];
+  const double *hull_freq; /* the free-free modes the vehicle's hull solved */
   size_t nhull, nrigid;
   fb_mode_set *vehicle;
 } flex_modes;
@@ -91,7 +93,7 @@ static double attach_dz(const fb_fe_hull *hull, size_t a, const double *v)
 }
 
 /* Bodies and wheels of mode shape v (hull, then the mounted bodies' and
- * the wheels' vertical motion: fb_vehicle_flexible_modes). */
+ * the wheels' vertical motion: fb_vehicle_structural_modes). */
 static void fill_parts(const fb_scenario *s, const fb_fe_hull *hull, const double *v,
                        mode_parts *mp)
 {
@@ -197,23 +199,33 @@ int cli_modes_flexible(const char *path, const char *out_dir)
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;
-  fb_fe_hull *hull = NULL;
+  fb_vehicle *v = NULL;
   flex_modes fm = {0};
   int rc = fb_scenario_load(path, &s, &err);
   /* The directory is held (locked) from here to the end. */
   cli_outdir od;
   const int opened =
       !rc && out_dir && (rc = cli_outdir_open(&od, out_dir, "modes", &err)) == FB_OK;
+  cli_stage stage = {"modes", cli_system_label(FB_SYSTEM_FLEXIBLE), 0};
+  fb_vehicle_opts vo;
+  fb_vehicle_opts_default(&vo);
+  vo.progress = (fb_progress){cli_stage_progress, &stage};
+  vo.threads = cli_threads();
+  vo.hull_modes = HULL_MODES;
+  /* One realisation: its hull's eigen-solve gives the free-free modes, its
+   * basis the whole vehicle's. */
   if (!rc)
-    rc = fb_vehicle_fe_hull(s, &hull, &err);
+    rc = fb_vehicle_new(s, FB_SYSTEM_FLEXIBLE, &vo, &v, &err);
   fm.s = s;
-  fm.hull = hull;
   if (!rc) {
-    fm.nhull = HULL_MODES;
-    rc = fb_fe_hull_free_modes(hull, fm.nhull, fm.hull_freq, &fm.nrigid, &err);
+    const fb_hull_basis *b = fb_vehicle_hull_basis(v);
+    fm.hull = fb_vehicle_fe_hull_of(v);
+    fm.hull_freq = b->free_hz;
+    fm.nhull = b->nfree;
+    fm.nrigid = b->nfree_rigid;
+    /* The modes command's are the model's own, not its basis's. */
+    rc = fb_vehicle_structural_modes(v, VEHICLE_MODES, 1, &fm.vehicle, &err);
   }
-  if (!rc)
-    rc = fb_vehicle_flexible_modes(s, hull, VEHICLE_MODES, &fm.vehicle, &err);
   if (!rc && out_dir)
     rc = write_files(&od, &fm, &err);
   if (opened)
@@ -223,7 +235,7 @@ int cli_modes_flexible(const char *path, const char *out_dir)
     rc = cli_flush_stdout(&err);
   }
   fb_mode_set_free(&fm.vehicle);
-  fb_fe_hull_free(&hull);
+  fb_vehicle_free(&v);
   rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
   return rc;

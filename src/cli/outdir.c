@@ -256,16 +256,23 @@ char *cli_outdir_path(cli_outdir *od, const char *name, fb_err *err)
   return path;
 }
 
+/* Under the guard's lock, as cli_outdir_path: jobs on two threads
+ * (cli_jobs_run) keep files at once, and the signal thread reads the
+ * list when it abandons od. */
 int cli_outdir_keep(cli_outdir *od, char *path, fb_err *err)
 {
+  cli_guard_lock();
   char **grown = realloc(od->files, (od->nfiles + 1) * sizeof *grown);
+  if (grown) {
+    od->files = grown;
+    od->files[od->nfiles++] = path;
+  }
+  cli_guard_unlock(0);
   if (!grown) {
     remove(path);
     free(path);
     return fb_err_set(err, FB_ENOMEM, "%s: out of memory", od->dir);
   }
-  od->files = grown;
-  od->files[od->nfiles++] = path;
   return FB_OK;
 }
 
@@ -602,8 +609,17 @@ static int apply(const cli_outdir *od, moves *mv, fb_err *err)
  * in place, and undone then, so that a signal that arrives during the
  * commit leaves the previous result. Under the guard's lock, which the
  * signal thread takes before it abandons the directory. */
+static int by_path(const void *a, const void *b)
+{
+  return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
 static int commit(cli_outdir *od, fb_err *err)
 {
+  /* In name order: jobs on two threads (cli_jobs_run) stage files in
+   * either order, and the manifest and the moves should not depend on
+   * it. */
+  qsort(od->files, od->nfiles, sizeof *od->files, by_path);
   manifest previous;
   int rc = manifest_read(od, &previous, err);
   const manifest_writer w = {od, &previous};

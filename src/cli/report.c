@@ -222,7 +222,7 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
             "; the hull's centre of mass is at x, y = %.10g, %.10g m there, and the positions "
             "below are relative to it |\n",
             s->hull_cg_x, s->hull_cg_y);
-  } else if (s->has_fe_hull && s->hull_deck_mesh) {
+  } else if (s->has_fe_hull && s->hull_source_mesh) {
     fprintf(fp,
             "| frame | the deck's: its structure's centre of mass is at x, y = %.10g, %.10g m "
             "there; the deck's nodes and the positions below were moved to be relative to it "
@@ -294,23 +294,98 @@ static void write_sections(FILE *fp, const fb_mesh *m)
     fputs(".\n", fp);
 }
 
+/* The System 2 run of o (NULL if it did not run). */
+static const cli_run_system *flexible_run(const cli_run_outputs *o)
+{
+  for (size_t i = 0; i < o->nruns; ++i)
+    if (o->runs[i].sys == FB_SYSTEM_FLEXIBLE)
+      return &o->runs[i];
+  return NULL;
+}
+
+/* The estimated error of each output from the modal basis, when it was
+ * estimated. */
+static void write_basis_error(FILE *fp, const cli_run_outputs *o)
+{
+  const cli_run_system *r = flexible_run(o);
+  if (!r || !r->basis_error)
+    return;
+  const fb_scenario *s = o->scenario;
+  size_t worst = 0;
+  for (size_t k = 1; k < s->noutputs; ++k)
+    if (r->basis_error[k] > r->basis_error[worst])
+      worst = k;
+  fprintf(fp,
+          "  Its estimated error, the largest difference from the same run with the basis's "
+          "next block of load-dependent Ritz vectors from the first bump entry (%.4f s) to "
+          "the end, over each output's range there: at most %.2g %% (",
+          o->bump_window[0], s->noutputs ? 100.0 * r->basis_error[worst] : 0.0);
+  if (s->noutputs)
+    fb_md_write_text(fp, s->output[worst].label);
+  fputs("); ", fp);
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    fputs(k ? ", " : "", fp);
+    fb_md_write_text(fp, s->output[k].name);
+    fprintf(fp, " %.2g %%", 100.0 * r->basis_error[k]);
+  }
+  fputs(". The settling from a zero start excites every mode and is not part of this "
+        "estimate.",
+        fp);
+  if (s->noutputs && r->basis_error[worst] > 1e-3)
+    fputs(" Above 0.1 %, a higher `hull.fe.cutoff_hz` (or `--hull-cutoff`) keeps more modes "
+          "and lowers it.",
+          fp);
+  fputc('\n', fp);
+}
+
+/* The auto basis: its blocks, where they start from, and the band. */
+static void write_auto_basis(FILE *fp, const fb_hull_basis *b)
+{
+  fprintf(fp,
+          "- System 2's hull model: in modal coordinates, its %zu rigid-body modes and %zu "
+          "blocks of load-dependent Ritz vectors, %zu vectors in all, from %zu patterns (every "
+          "attachment point's force, the load and every output read from the hull's "
+          "deformation): the first block their static response with inertia relief, each "
+          "next one the stiffness's inverse times the mass times the one before. Blocks "
+          "were added until the next changed the hull's receptances between the patterns by "
+          "%.2g of their scale at most (below %.2g) over 0 to %.4g Hz, ",
+          b->nrigid, b->nblocks, b->nstatic, b->npatterns, b->block_change, FB_HULL_BLOCK_TOL,
+          b->cutoff_hz);
+  if (isfinite(b->excitation_hz))
+    fputs("the highest frequency that reaches the hull (the wheels' hop and the mounted "
+          "bodies' natural frequencies on a fixed hull, and the road's at this speed)",
+          fp);
+  else
+    fputs("the scenario's cut-off", fp);
+  fprintf(fp,
+          ": %zu coordinates in place of %zu nodal DOFs (docs/hull-mesh.md, \"The modal "
+          "basis\"), ",
+          b->ncoords, b->ndof);
+}
+
 static void write_hull_order(FILE *fp, const cli_run_outputs *o)
 {
-  const fb_scenario *s = o->scenario;
-  if (s->hull_coordinates == FB_HULL_NODAL)
+  const fb_hull_basis *b = o->basis;
+  if (b->coordinates == FB_HULL_NODAL)
     fprintf(fp, "- System 2's hull model: full order, all %zu nodal DOFs (6 per node), ",
-            6 * fb_mesh_nnodes(o->hull->mesh));
-  else if (s->hull_modes == 0)
+            b->ndof);
+  else if (b->ncoords >= b->ndof)
     fprintf(fp,
             "- System 2's hull model: full order in modal coordinates, every one of the "
-            "%zu free-free modes of its nodal DOFs, ",
-            6 * fb_mesh_nnodes(o->hull->mesh));
+            "%zu free-free modes of its nodal DOFs (`all`, a dense eigen-solve), ",
+            b->ndof);
+  else if (b->kind == FB_HULL_MODES_AUTO)
+    write_auto_basis(fp, b);
   else
     fprintf(fp,
-            "- System 2's hull model: reduced to %d free-free modes with static correction "
-            "(of %zu nodal DOFs), ",
-            s->hull_modes, 6 * fb_mesh_nnodes(o->hull->mesh));
+            "- System 2's hull model: in modal coordinates, its %zu lowest free-free modes "
+            "(%zu rigid-body modes) and %zu residual-flexibility vectors (the static response "
+            "the modes miss to each of %zu patterns: every attachment point's force, the load "
+            "and every output read from the hull's deformation): %zu coordinates in place of "
+            "%zu nodal DOFs (docs/hull-mesh.md, \"The modal basis\"), ",
+            b->nmodes, b->nrigid, b->nstatic, b->npatterns, b->ncoords, b->ndof);
   fprintf(fp, "as set by %s.\n", o->hull_modes_source);
+  write_basis_error(fp, o);
 }
 
 /* Mesh error of the generated hull, as measured on the reference hull
@@ -365,8 +440,9 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
           "- System 2's structural damping: B = beta K with beta = %.4g s, so that the %s "
           "first elastic free-free mode (%.4g Hz) has a damping ratio of %.3g "
           "(stiffness-proportional only, which leaves the rigid-body motion undamped).\n",
-          o->hull_beta, s->npoint_masses ? "hull's (with its declared masses)" : "bare hull's",
-          o->hull_f1, s->hull_damping_ratio);
+          o->basis->beta,
+          s->npoint_masses ? "hull's (with its declared masses)" : "bare hull's",
+          o->basis->f1_hz, s->hull_damping_ratio);
   write_mesh_error(fp, s);
   write_hull_order(fp, o);
 }
@@ -394,7 +470,7 @@ static void write_assumptions(FILE *fp, const cli_run_outputs *o)
         "torsion angle is the roll of the hull's front edge line minus that of its rear edge "
         "line, identically 0 for the rigid hull.\n",
         fp);
-  if (o->hull)
+  if (o->hull && o->basis)
     write_fe_hull(fp, o);
   if (o->note)
     fprintf(fp, "- Systems: %s.\n", o->note);
@@ -459,12 +535,17 @@ static void write_modes2(FILE *fp, const cli_run_outputs *o)
   const fb_mode_set *ms = o->modes2;
   fprintf(fp,
           "\n### System 2 (flexible hull)\n\nThe %zu lowest modes of the whole undamped "
-          "vehicle (the %sfinite-element hull with the driver, the engine, the suspensions "
-          "and the tires at its nodes), each normalised so that its largest displacement over "
-          "the driver, the engine and the hull is 1; %zu horizontal rigid-body mode%s of zero "
-          "frequency left out.\n\n| mode | f_n [Hz] | description |\n|---|---|---|\n",
-          ms->nmodes, o->scenario->hull_modes > 0 ? "full-order " : "", ms->nfree,
-          ms->nfree == 1 ? "" : "s");
+          "vehicle (the finite-element hull%s with the mounted bodies, the suspensions and "
+          "the tires at its attachment points), each normalised so that its largest "
+          "displacement over the mounted bodies and the hull is 1; %zu horizontal rigid-body "
+          "mode%s of zero frequency left out.\n\n| mode | f_n [Hz] | description |\n"
+          "|---|---|---|\n",
+          ms->nmodes,
+          o->basis && o->basis->ncoords < o->basis->ndof
+              ? " in its modal basis, the modes within the band the basis converged over "
+                "(`flexbond modes --system flexible` gives the nodal model's)"
+              : "",
+          ms->nfree, ms->nfree == 1 ? "" : "s");
   for (size_t k = 0; k < ms->nmodes; ++k)
     write_mode_row(fp, k, ms->freq_hz[k], ms->description[k]);
   write_mode_pictures(fp, o);
@@ -628,6 +709,88 @@ static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
   }
 }
 
+/* ---- System 2 at the converged mesh. */
+
+/* The largest |a - b| in column col from t0 on (a and b sampled alike). */
+static double max_abs_between(const fb_result *a, const fb_result *b, size_t col, double t0)
+{
+  double m = 0;
+  for (size_t k = 0; k < fb_result_nsamples(a) && k < fb_result_nsamples(b); ++k)
+    if (fb_result_row(a, k)[0] >= t0)
+      m = fmax(m, fabs(fb_result_row(a, k)[col] - fb_result_row(b, k)[col]));
+  return m;
+}
+
+/* The largest estimated error of r's basis over its outputs, NaN when it
+ * was not estimated. */
+static double worst_basis_error(const cli_run_system *r, size_t noutputs)
+{
+  double m = r->basis_error ? 0.0 : NAN;
+  for (size_t k = 0; r->basis_error && k < noutputs; ++k)
+    m = fmax(m, r->basis_error[k]);
+  return m;
+}
+
+static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_scenario *s = o->scenario;
+  const fb_hull_basis *b = o->converged_basis;
+  fprintf(fp,
+          "\n## At a converged mesh\n\nThe paper's mesh makes the hull too stiff (Assumptions, "
+          "\"Mesh convergence\"). System 2 ran again on the hull refined to density %d "
+          "(`hull.mesh.converged_density`; `system2_converged.csv`): %zu DOFs in the %zu "
+          "coordinates of its automatic modal basis, its first elastic free-free mode at %.4g "
+          "Hz against %.4g Hz at "
+          "density %d",
+          o->converged_density, b->ndof, b->ncoords, b->f1_hz, o->basis ? o->basis->f1_hz : NAN,
+          s->hull_mesh.density);
+  const double e = worst_basis_error(o->converged, s->noutputs);
+  if (isfinite(e))
+    fprintf(fp, ", its basis's estimated error at most %.2g %% of an output's range", 100 * e);
+  fprintf(fp,
+          ". Each mesh's System 2 against System 1 over the bump, as in the Comparison; the "
+          "last column is the two meshes' System 2 against each other, over System 1's "
+          "range.\n\n| output | unit | max abs S2 - S1 / S1 range, density %d | the same, "
+          "density %d | peak change, density %d | peak change, density %d | max abs S2 "
+          "(density %d) - S2 (density %d) / S1 range |\n|---|---|---|---|---|---|---|\n",
+          s->hull_mesh.density, o->converged_density, s->hull_mesh.density,
+          o->converged_density, o->converged_density, s->hull_mesh.density);
+}
+
+static void write_converged(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_scenario *s = o->scenario;
+  if (!o->cmp_converged) {
+    if (o->diff && s->hull_converged_density && s->hull_deck)
+      fputs("\n## At a converged mesh\n\n`hull.mesh.converged_density` refines the "
+            "generator's mesh; this hull is a deck, used as it is: no second mesh ran.\n",
+            fp);
+    else if (o->diff && s->hull_converged_density)
+      fprintf(fp,
+              "\n## At a converged mesh\n\nThis run's mesh (density %d) is at or above "
+              "`hull.mesh.converged_density` = %d: no second mesh ran.\n",
+              s->hull_mesh.density, s->hull_converged_density);
+    return;
+  }
+  write_converged_intro(fp, o);
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    const cli_output_cmp *c1 = &o->cmp[k], *c3 = &o->cmp_converged[k];
+    const size_t col = o->runs[0].col[k];
+    const double between =
+        max_abs_between(o->diff_converged, o->diff, col, o->bump_window[0]) / c1->range1;
+    write_output_cells(fp, o, k);
+    const double cells[] = {c1->rel_diff, c3->rel_diff, c1->peak_change, c3->peak_change,
+                            c1->range1 > 0 ? between : NAN};
+    const int signed_cell[] = {0, 0, 1, 1, 0};
+    for (size_t i = 0; i < sizeof cells / sizeof cells[0]; ++i) {
+      fputc(' ', fp);
+      md_percent(fp, cells[i], signed_cell[i]);
+      fputs(" |", fp);
+    }
+    fputc('\n', fp);
+  }
+}
+
 static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
@@ -660,21 +823,35 @@ static size_t torsion_index(const fb_scenario *s)
   return k;
 }
 
+/* Of a comparison's outputs: the one with the largest relative
+ * difference (n if none varies in System 1), how many vary and how many
+ * of those pass notable_diff. */
+typedef struct diff_summary {
+  size_t largest, nfinite, nnotable;
+} diff_summary;
+
+static diff_summary summarise_differences(const cli_output_cmp *cmp, size_t n)
+{
+  diff_summary d = {n, 0, 0};
+  for (size_t k = 0; k < n; ++k) {
+    const double r = cmp[k].rel_diff;
+    if (!isfinite(r))
+      continue;
+    ++d.nfinite;
+    d.nnotable += r > notable_diff;
+    if (d.largest == n || r > cmp[d.largest].rel_diff)
+      d.largest = k;
+  }
+  return d;
+}
+
 /* "Over the bump the flexible hull changes the outputs by up to ...":
  * the largest relative difference and which outputs pass notable_diff. */
 static void conclude_differences(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
-  size_t largest = nout, nnotable = 0, nfinite = 0;
-  for (size_t k = 0; k < nout; ++k) {
-    double r = o->cmp[k].rel_diff;
-    if (!isfinite(r))
-      continue;
-    ++nfinite;
-    nnotable += r > notable_diff;
-    if (largest == nout || r > o->cmp[largest].rel_diff)
-      largest = k;
-  }
+  const diff_summary d = summarise_differences(o->cmp, nout);
+  const size_t largest = d.largest, nnotable = d.nnotable, nfinite = d.nfinite;
   if (largest == nout) {
     fputs("No output of System 1 varies over the bump, so no difference can be scaled.", fp);
     return;
@@ -1038,6 +1215,60 @@ static void write_contact(FILE *fp, const cli_run_outputs *o)
   }
 }
 
+/* "At the converged mesh ...": whether the comparison's verdict (which
+ * outputs differ by more than notable_diff) is the same on the refined
+ * hull, and by how much the largest difference moved. */
+static void conclude_converged(FILE *fp, const cli_run_outputs *o)
+{
+  if (!o->cmp_converged)
+    return;
+  const size_t nout = o->scenario->noutputs;
+  const diff_summary d1 = summarise_differences(o->cmp, nout);
+  const diff_summary d3 = summarise_differences(o->cmp_converged, nout);
+  if (d1.largest == nout || d3.largest == nout)
+    return;
+  size_t changed = 0;
+  for (size_t k = 0; k < nout; ++k)
+    changed +=
+        isfinite(o->cmp[k].rel_diff) &&
+        (o->cmp[k].rel_diff > notable_diff) != (o->cmp_converged[k].rel_diff > notable_diff);
+  fprintf(fp,
+          " At the converged mesh (density %d) System 2 departs from System 1 by up to %.1f %% "
+          "of System 1's range, in the ",
+          o->converged_density, 100 * o->cmp_converged[d3.largest].rel_diff);
+  fb_md_write_text(fp, o->scenario->output[d3.largest].label);
+  fprintf(fp, ", against %.1f %% at density %d: ", 100 * o->cmp[d1.largest].rel_diff,
+          o->scenario->hull_mesh.density);
+  if (changed == 0 && d3.nnotable == 0)
+    fprintf(fp,
+            "the conclusion stands, every output that varies agrees within %.0f %% on "
+            "both meshes.",
+            100 * notable_diff);
+  else if (changed == 0)
+    fprintf(fp, "the same %zu output%s differ%s by more than %.0f %% on both meshes.",
+            d3.nnotable, d3.nnotable == 1 ? "" : "s", d3.nnotable == 1 ? "s" : "",
+            100 * notable_diff);
+  else
+    fprintf(fp,
+            "the conclusion changes for %zu output%s, which cross%s the %.0f %% line between "
+            "the meshes (the table \"At a converged mesh\").",
+            changed, changed == 1 ? "" : "s", changed == 1 ? "es" : "", 100 * notable_diff);
+  /* What the softer hull does change: how far it twists. */
+  const size_t t = torsion_index(o->scenario);
+  const cli_run_system *r1 = flexible_run(o), *r3 = o->converged;
+  if (t == nout || !r1)
+    return;
+  const double a1 = max_abs(r1->res, r1->col[t]), a3 = max_abs(r3->res, r3->col[t]);
+  const char *unit = fb_result_col_unit(r3->res, r3->col[t]);
+  fputs(" The flexible hull's torsion angle reaches ", fp);
+  md_value_unit(fp, a3, unit);
+  fputs(" at the converged mesh against ", fp);
+  md_value_unit(fp, a1, unit);
+  fputs(" (", fp);
+  md_percent(fp, ratio(a3 - a1, a1), 1);
+  fputs(").", fp);
+}
+
 static void write_conclusions(FILE *fp, const cli_run_outputs *o)
 {
   fputs("\n## Conclusions\n\n", fp);
@@ -1045,6 +1276,7 @@ static void write_conclusions(FILE *fp, const cli_run_outputs *o)
     conclude_differences(fp, o);
     conclude_torsion(fp, o);
     conclude_peaks(fp, o);
+    conclude_converged(fp, o);
   } else {
     conclude_single(fp, o);
   }
@@ -1075,9 +1307,10 @@ void cli_write_report_md(FILE *fp, const void *ctx)
   write_figures(fp, o);
   write_frequency_response(fp, o);
   write_animation(fp, o);
-  if (o->diff)
+  if (o->diff) {
     write_comparison_table(fp, o);
-  else
+    write_converged(fp, o);
+  } else
     write_outputs_table(fp, o);
   write_ride(fp, o);
   write_contact(fp, o);

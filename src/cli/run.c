@@ -9,6 +9,7 @@
  * DIR/report.md (report.c; the files are described in docs/report.md). */
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,13 +35,17 @@ static const char run_usage[] =
     "  DIR/system1.csv, DIR/system2.csv\n"
     "                          t and the seven outputs of the paper, one row per\n"
     "                          sample (header: 't [s],tire_force_LF [N],...'; SI)\n"
+    "  DIR/system2_converged.csv\n"
+    "                          with both systems and hull.mesh.converged_density:\n"
+    "                          System 2 again on the hull refined to it\n"
     "  DIR/figNN_OUTPUT.png    the paper's Figs. 8-14, one output each: both\n"
     "                          systems overlaid, their difference below\n"
     "  DIR/mode_NN.png         System 2's modes 1, 2, 8 and 10\n"
     "  DIR/bode_OUTPUT.png     each output's frequency response to the road, both\n"
     "                          tracks and systems (as flexbond freq draws it)\n"
     "  DIR/summary.json        static value, peak, minimum and RMS over the bump\n"
-    "                          of every output, solver statistics, and System 2\n"
+    "                          of every output, solver statistics, System 2's\n"
+    "                          hull basis and its estimated error, and System 2\n"
     "                          against System 1 per output\n"
     "  DIR/report.md           scenario, assumptions, modes, figures, comparison\n"
     "                          table and conclusions\n"
@@ -59,9 +64,15 @@ static const char run_usage[] =
     "                              as mass spread over the load points too\n"
     "  --hull-coordinates modal|nodal  System 2's hull states: its free-free modes\n"
     "                              or its nodal displacements (hull.fe.coordinates)\n"
-    "  --hull-modes N              System 2's hull: 0 every mode, N >= 6 reduced to\n"
-    "                              N free-free modes, in modal coordinates\n"
-    "                              (hull.fe.modes)\n"
+    "  --hull-modes auto|all|N     System 2's hull in modal coordinates\n"
+    "                              (hull.fe.modes): auto the rigid-body modes and\n"
+    "                              load-dependent Ritz vectors, as many blocks as\n"
+    "                              the excitation's band needs; all every mode (a\n"
+    "                              dense eigen-solve); N the N lowest (N >= 6) with\n"
+    "                              a static correction\n"
+    "  --hull-cutoff HZ            with auto: the band's top, in place of the\n"
+    "                              highest frequency reaching the hull\n"
+    "                              (hull.fe.cutoff_hz)\n"
     "  --animate                   also the animation files (docs/animation.md)\n"
     "  --animate-fps HZ            its frames per second of the run's time, 1 to\n"
     "                              1000 (default 50; the GIF plays in real time\n"
@@ -71,8 +82,9 @@ static const char run_usage[] =
     "  --no-figures                no PNG or GIF; report.md without images\n"
     "  --plain-header              CSV headers of names only ('t,tire_force_LF,...',\n"
     "                              the paper's), without the units\n"
-    "  -v, --verbose               also what each eigen-solve and each run's set-up\n"
-    "                              cost, on stderr\n"
+    "  -v, --verbose               also each hull's basis and eigen-solve, and what\n"
+    "                              each vehicle computed (assemblies, factorisations,\n"
+    "                              eigen-solves, simulations), on stderr\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
     "  -h, --help                  this text\n";
 
@@ -127,7 +139,9 @@ typedef struct run_args {
   int initial;          /* fb_initial_state */
   int payload;          /* fb_payload_model */
   int hull_coordinates; /* s->hull_coordinates */
+  int hull_modes_kind;  /* s->hull_modes_kind, -1 when --hull-modes is not given */
   int hull_modes;       /* s->hull_modes */
+  double hull_cutoff;   /* s->hull_cutoff_hz, 0 when --hull-cutoff is not given */
   int quiet;
   int verbose;          /* the costs of eigen-solves and set-up too (-v) */
   int progress;         /* draw a progress line: stderr is a terminal, no -q */
@@ -181,19 +195,32 @@ static void figure_title(const fb_output_spec *fig, const cli_run_outputs *o, ch
 }
 
 /* DIR/figNN_OUTPUT.png of output k: a panel with a curve per system and,
- * when both ran, a second panel with their difference. */
+ * when both ran, a second panel with their difference; with the converged
+ * mesh's run, its curve and its difference too. */
 static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_err *err)
 {
   const fb_output_spec *fig = &o->scenario->output[k];
-  fb_plot_series series[CLI_MAX_SYSTEMS];
-  for (size_t i = 0; i < o->nruns; ++i)
+  fb_plot_series series[CLI_MAX_SYSTEMS + 1];
+  size_t nseries = 0;
+  for (size_t i = 0; i < o->nruns; ++i, ++nseries)
     /* A single curve needs no key: the title names its system. */
     series[i] =
         (fb_plot_series){.result = o->runs[i].res,
                          .col = o->runs[i].col[k] - 1,
                          .legend = o->nruns > 1 ? cli_system_label(o->runs[i].sys) : NULL};
+  char paper[48] = "";
+  if (o->converged) {
+    series[nseries++] = (fb_plot_series){.result = o->converged->res,
+                                         .col = o->converged->col[k] - 1,
+                                         .legend = o->converged->label};
+    snprintf(paper, sizeof paper, "System 2 at density %d", o->scenario->hull_mesh.density);
+  }
   /* fb_result_diff keeps System 1's columns. */
-  const fb_plot_series diff = {.result = o->diff, .col = o->runs[0].col[k] - 1, .legend = NULL};
+  const fb_plot_series diff[2] = {
+      {.result = o->diff, .col = o->runs[0].col[k] - 1, .legend = o->converged ? paper : NULL},
+      {.result = o->diff_converged,
+       .col = o->runs[0].col[k] - 1,
+       .legend = o->converged ? o->converged->label : NULL}};
   const char *unit = fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]);
   char title[512], name[FB_ERR_KEY_MAX];
   figure_title(fig, o, title, sizeof title);
@@ -209,9 +236,9 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
   double bump[2];
   cli_bump_window(o->scenario, bump);
   const fb_plot_panel panels[2] = {
-      {.series = series, .nseries = o->nruns, .ylabel = fig->label, .unit = unit},
-      {.series = &diff,
-       .nseries = 1,
+      {.series = series, .nseries = nseries, .ylabel = fig->label, .unit = unit},
+      {.series = diff,
+       .nseries = o->diff_converged ? 2 : 1,
        .ylabel = "System 2 - System 1",
        .unit = unit,
        .focus_t0 = bump[0],
@@ -364,14 +391,76 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
   fputs("]}", fp);
 }
 
-static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scenario *s,
-                              const double window[2])
+/* hull.fe.modes as the file writes it: "auto", "all" or the count N, and
+ * null for nodal coordinates, which have no modes to choose. */
+static void write_hull_modes_json(FILE *fp, const fb_scenario *s, const fb_hull_basis *b)
 {
-  fprintf(fp, ",\n  \"system%d\": {\n    \"label\": ", (int)run->sys);
-  cli_json_string(fp, cli_system_label(run->sys));
-  if (run->sys == FB_SYSTEM_FLEXIBLE)
-    fprintf(fp, ",\n    \"hull_coordinates\": \"%s\",\n    \"hull_modes\": %d",
-            coordinate_choices[s->hull_coordinates], s->hull_modes);
+  if (b->coordinates != FB_HULL_MODAL)
+    fputs("null", fp);
+  else if (s->hull_modes_kind == FB_HULL_MODES_COUNT)
+    fprintf(fp, "%d", s->hull_modes);
+  else
+    fputs(s->hull_modes_kind == FB_HULL_MODES_ALL ? "\"all\"" : "\"auto\"", fp);
+}
+
+/* "hull_basis": System 2's hull model and the estimated error of each
+ * output from its basis (null where not estimated). */
+static void write_basis_json(FILE *fp, const fb_scenario *s, const fb_hull_basis *b,
+                             const cli_run_system *run, const double window[2])
+{
+  fprintf(fp, ",\n    \"hull_basis\": {\"coordinates\": \"%s\", \"modes\": ",
+          coordinate_choices[b->coordinates]);
+  write_hull_modes_json(fp, s, b);
+  const json_field fields[] = {{"dofs", (double)b->ndof},
+                               {"coordinates_count", (double)b->ncoords},
+                               {"kept_modes", (double)b->nmodes},
+                               {"rigid_modes", (double)b->nrigid},
+                               {"static_vectors", (double)b->nstatic},
+                               {"static_patterns", (double)b->npatterns},
+                               {"ritz_blocks", (double)b->nblocks},
+                               {"block_change", b->block_change},
+                               {"cutoff_hz", b->cutoff_hz},
+                               {"excitation_hz", b->excitation_hz},
+                               {"first_elastic_hz", b->f1_hz},
+                               {"beta", b->beta},
+                               {"eigen_seconds", b->eig.seconds}};
+  for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
+    fprintf(fp, ", \"%s\": ", fields[f].key);
+    fb_json_write_number(fp, fields[f].value);
+  }
+  fprintf(fp, ", \"eigen_solver\": \"%s\", \"estimated_error\": ",
+          b->eig.method == FB_EIG_DENSE ? "dense LAPACK" : "block Lanczos");
+  if (!run->basis_error) {
+    fputs("null}", fp);
+    return;
+  }
+  fputs("{\"window\": [", fp);
+  fb_json_write_number(fp, window[0]);
+  fputs(", ", fp);
+  fb_json_write_number(fp, fb_result_row(run->res, fb_result_nsamples(run->res) - 1)[0]);
+  fputs("], \"of_range\": {", fp);
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    fputs(k ? ", " : "", fp);
+    cli_json_string(fp, s->output[k].name);
+    fputs(": ", fp);
+    fb_json_write_number(fp, run->basis_error[k]);
+  }
+  fputs("}}}", fp);
+}
+
+/* "key": one system's run, with System 2's hull basis b (NULL for System
+ * 1) and, at the converged mesh, its density. */
+static void write_system_json(FILE *fp, const cli_run_outputs *o, const char *key,
+                              const cli_run_system *run, const fb_hull_basis *b, int density)
+{
+  const fb_scenario *s = o->scenario;
+  const double *window = o->bump_window;
+  fprintf(fp, ",\n  \"%s\": {\n    \"label\": ", key);
+  cli_json_string(fp, run->label ? run->label : cli_system_label(run->sys));
+  if (density > 0)
+    fprintf(fp, ",\n    \"mesh_density\": %d", density);
+  if (b)
+    write_basis_json(fp, s, b, run, window);
   fputs(",\n    \"outputs\": {", fp);
   for (size_t k = 0; k < s->noutputs; ++k) {
     fputs(k ? ",\n      " : "\n      ", fp);
@@ -392,13 +481,14 @@ static void write_system_json(FILE *fp, const cli_run_system *run, const fb_scen
   fputs("]\n  }", fp);
 }
 
-/* "comparison": {output: {...}, ...} of System 2 against System 1. */
-static void write_comparison_json(FILE *fp, const cli_run_outputs *o)
+/* "key": {output: {...}, ...} of System 2's run2 (cmp) against System 1. */
+static void write_comparison_json(FILE *fp, const cli_run_outputs *o, const char *key,
+                                  const cli_run_system *run2, const cli_output_cmp *cmp)
 {
-  fputs(",\n  \"comparison\": {", fp);
+  fprintf(fp, ",\n  \"%s\": {", key);
   for (size_t k = 0; k < o->scenario->noutputs; ++k) {
-    const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &o->runs[1].stats[k];
-    const cli_output_cmp *c = &o->cmp[k];
+    const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &run2->stats[k];
+    const cli_output_cmp *c = &cmp[k];
     const json_field fields[] = {{"peak_system1", s1->peak},
                                  {"peak_system2", s2->peak},
                                  {"rms_system1", s1->rms},
@@ -448,10 +538,20 @@ static const char *const definitions[][2] = {
      "every interval of the whole run where a reaction is not compressive (bilateral: "
      "tensile, the tire pulls the wheel down; unilateral: zero, the wheel is off the road): "
      "from, to (s, zero crossings interpolated between samples), min_force (N) at (s)"},
-    {"hull_coordinates", "System 2's hull states: modal (its free-free modes) or nodal (its "
-                         "nodal displacements)"},
-    {"hull_modes", "System 2's hull model in modal coordinates: 0 every mode, N > 0 reduced "
-                   "to N free-free modes with static correction"},
+    {"hull_basis",
+     "System 2's hull model: coordinates modal (its free-free modes) or nodal (its nodal "
+     "displacements); modes as hull.fe.modes (\"auto\": the rigid-body modes and "
+     "ritz_blocks blocks of load-dependent Ritz vectors, added until the next changed the "
+     "receptances by block_change < 1e-3 of their scale over 0 to cutoff_hz, excitation_hz "
+     "when the rule set it, the highest frequency reaching the hull; \"all\"; or a count; "
+     "null with nodal coordinates); dofs the hull's nodal DOFs, coordinates_count its "
+     "coordinates in the model, kept_modes (rigid_modes of them rigid-body) plus "
+     "static_vectors more (auto: the Ritz vectors; a count: the residual flexibility) from "
+     "static_patterns patterns (each attachment point, the load, each hull output); "
+     "first_elastic_hz and beta its damping B = beta K; estimated_error: each output's "
+     "largest difference from the same run with the basis's next block of Ritz vectors, "
+     "over its range, from window[0] to window[1] s (null: not estimated, a full or nodal "
+     "model)"},
     {"comparison", "System 2 against System 1 per output (when both ran): peak_systemN and "
                    "rms_systemN are each system's peak and rms; max_abs_diff is the largest "
                    "|System 2 - System 1| from bump_window[0] to the end of the run, at "
@@ -460,6 +560,13 @@ static const char *const definitions[][2] = {
                    "(peak_system2 - peak_system1) / |peak_system1|, rms_change_rel = "
                    "(rms_system2 - rms_system1) / rms_system1, as fractions, null when the "
                    "denominator is 0"},
+    {"system2_converged",
+     "System 2 again, on the hull refined to hull.mesh.converged_density (mesh_density; "
+     "when the scenario gives it above hull.mesh.density and both systems ran): the same "
+     "members as system2"},
+    {"comparison_converged",
+     "system2_converged against System 1, with the members of comparison (peak_system2 and "
+     "rms_system2 are the converged run's)"},
     {"units", "SI, as the \"unit\" of each output; null stands for a non-finite value"},
 };
 
@@ -482,10 +589,19 @@ static void write_summary_json(FILE *fp, const void *ctx)
     cli_json_string(fp, definitions[i][1]);
   }
   fputs("\n  }", fp);
-  for (size_t i = 0; i < o->nruns; ++i)
-    write_system_json(fp, &o->runs[i], s, o->bump_window);
+  for (size_t i = 0; i < o->nruns; ++i) {
+    const cli_run_system *r = &o->runs[i];
+    char key[16];
+    snprintf(key, sizeof key, "system%d", (int)r->sys);
+    write_system_json(fp, o, key, r, r->sys == FB_SYSTEM_FLEXIBLE ? o->basis : NULL, 0);
+  }
+  if (o->converged)
+    write_system_json(fp, o, "system2_converged", o->converged, o->converged_basis,
+                      o->converged_density);
   if (o->diff)
-    write_comparison_json(fp, o);
+    write_comparison_json(fp, o, "comparison", &o->runs[1], o->cmp);
+  if (o->cmp_converged)
+    write_comparison_json(fp, o, "comparison_converged", o->converged, o->cmp_converged);
   fputs("\n}\n", fp);
 }
 
@@ -521,13 +637,14 @@ void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size)
            (int)sys);
 }
 
-/* Both diagrams of system sys, drawn from the graph it ran. */
-static int write_diagrams(cli_outdir *od, const fb_scenario *s, fb_system sys, fb_err *err)
+/* Both diagrams of vehicle v, drawn from the graph it ran. */
+static int write_diagrams(cli_outdir *od, const fb_scenario *s, fb_vehicle *v, fb_err *err)
 {
-  fb_bg *g = NULL;
-  fb_probe_spec *p = NULL;
+  const fb_system sys = fb_vehicle_system(v);
+  fb_bg *g = fb_vehicle_bond_graph(v);
   size_t np = 0;
-  int rc = fb_vehicle_graph(s, sys, &g, &p, &np, err);
+  const fb_probe_spec *p = fb_vehicle_probe_specs(v, &np);
+  int rc = FB_OK;
   for (size_t k = 0; rc == FB_OK && k < CLI_RUN_NDIAGRAMS; ++k) {
     char name[64];
     cli_run_diagram_file(k, sys, name, sizeof name);
@@ -540,30 +657,90 @@ static int write_diagrams(cli_outdir *od, const fb_scenario *s, fb_system sys, f
     else
       free(path);
   }
-  fb_vehicle_probes_free(&p, np);
-  fb_bg_free(&g);
   return rc;
 }
 
 /* Stages every file in od; *nfiles is how many. The pictures go first:
  * they are the likeliest to fail (gnuplot); report.md, which links the
  * others, goes last. */
+/* The pictures as jobs (cli_jobs_run), the longest first so that the two
+ * threads finish together: each system's diagrams (two dot runs), the
+ * Bode figures, the mode pictures, then one figure per output. */
+typedef struct figure_job {
+  const cli_run_outputs *o;
+  size_t index; /* the output, or the run */
+} figure_job;
+
+static int diagrams_job(cli_outdir *od, const void *ctx, fb_err *err)
+{
+  const figure_job *j = ctx;
+  return write_diagrams(od, j->o->scenario, j->o->vehicles[j->index], err);
+}
+
+static int bode_job(cli_outdir *od, const void *ctx, fb_err *err)
+{
+  return cli_freq_write_figures(od, ((const figure_job *)ctx)->o->freq, err);
+}
+
+static int mode_pictures_job(cli_outdir *od, const void *ctx, fb_err *err)
+{
+  const cli_run_outputs *o = ((const figure_job *)ctx)->o;
+  return cli_write_mode_pictures(od, o->scenario, o->hull, o->modes2, err);
+}
+
+static int figure_job_run(cli_outdir *od, const void *ctx, fb_err *err)
+{
+  const figure_job *j = ctx;
+  return write_figure(od, j->index, j->o, err);
+}
+
+static int write_pictures(cli_outdir *od, const cli_run_outputs *o, fb_err *err)
+{
+  const size_t most = CLI_MAX_SYSTEMS + 2 + o->scenario->noutputs;
+  cli_job *jobs = malloc(most * sizeof *jobs);
+  figure_job *ctx = malloc(most * sizeof *ctx);
+  if (!jobs || !ctx) {
+    free(jobs);
+    free(ctx);
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  }
+  size_t n = 0;
+  for (size_t i = 0; i < o->nruns; ++i, ++n) {
+    ctx[n] = (figure_job){o, i};
+    jobs[n] = (cli_job){diagrams_job, &ctx[n]};
+  }
+  if (o->freq) {
+    ctx[n] = (figure_job){o, 0};
+    jobs[n] = (cli_job){bode_job, &ctx[n]};
+    ++n;
+  }
+  if (o->modes2) {
+    ctx[n] = (figure_job){o, 0};
+    jobs[n] = (cli_job){mode_pictures_job, &ctx[n]};
+    ++n;
+  }
+  for (size_t k = 0; k < o->scenario->noutputs; ++k, ++n) {
+    ctx[n] = (figure_job){o, k};
+    jobs[n] = (cli_job){figure_job_run, &ctx[n]};
+  }
+  const int rc = cli_jobs_run(od, jobs, n, err);
+  free(jobs);
+  free(ctx);
+  return rc;
+}
+
 static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfiles, fb_err *err)
 {
-  int rc = FB_OK;
-  for (size_t k = 0; o->figures && k < o->scenario->noutputs && rc == FB_OK; ++k)
-    rc = write_figure(od, k, o, err);
-  if (rc == FB_OK && o->figures && o->modes2)
-    rc = cli_write_mode_pictures(od, o->scenario, o->hull, o->modes2, err);
-  if (rc == FB_OK && o->freq)
-    rc = cli_freq_write_figures(od, o->freq, err);
-  for (size_t i = 0; o->figures && i < o->nruns && rc == FB_OK; ++i)
-    rc = write_diagrams(od, o->scenario, o->runs[i].sys, err);
+  int rc = o->figures ? write_pictures(od, o, err) : FB_OK;
   for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i) {
     char name[32];
     snprintf(name, sizeof name, "system%d.csv", (int)o->runs[i].sys);
     const system_csv csv = {&o->runs[i], o->scenario->noutputs, o->header};
     rc = cli_outdir_write(od, name, write_system_csv, &csv, err);
+  }
+  if (rc == FB_OK && o->converged) {
+    const system_csv csv = {o->converged, o->scenario->noutputs, o->header};
+    rc = cli_outdir_write(od, "system2_converged.csv", write_system_csv, &csv, err);
   }
   if (rc == FB_OK)
     rc = cli_outdir_write(od, "summary.json", write_summary_json, o, err);
@@ -573,67 +750,48 @@ static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfile
   return rc;
 }
 
-/* ---- Modes, for the report. */
+/* ---- The vehicles, realised once each. */
 
-/* The modes of the systems that run (owned). */
+/* One system's realised vehicle and what names its set-up's stages. */
+typedef struct run_vehicle {
+  fb_vehicle *v;
+  cli_stage stage;
+  char subject[FB_ERR_KEY_MAX];
+} run_vehicle;
+
+/* The vehicle of system sys, called label in messages (rv at its final
+ * place: its stage is borrowed by the vehicle), probing the motion too
+ * when motion (--animate). */
+static int realise(const run_args *a, const fb_scenario *s, fb_system sys, const char *label,
+                   int motion, run_vehicle *rv, fb_err *err)
+{
+  snprintf(rv->subject, sizeof rv->subject, "%s: %s", cli_scenario_name(s), label);
+  rv->stage = (cli_stage){"run", rv->subject, a->quiet};
+  fb_vehicle_opts o;
+  fb_vehicle_opts_default(&o);
+  o.motion = motion;
+  o.progress = (fb_progress){cli_stage_progress, &rv->stage};
+  o.threads = cli_threads();
+  return fb_vehicle_new(s, sys, &o, &rv->v, err);
+}
+
+/* The modes of the systems that run, for the report (owned). */
 typedef struct run_modes {
   fb_mode *modes1;
   size_t nmodes1, nstatic1;
-  fb_fe_hull *hull;
   fb_mode_set *modes2;
-  double hull_f1, hull_beta;
 } run_modes;
 
-/* With -v: "... eigen-solve of WHAT: LAPACK|ARPACK, M of N modes, T s". */
-static void say_eigen_solve(const run_args *a, const fb_scenario *s, const char *what,
-                            size_t ndof, size_t nmodes, int dense, double seconds)
-{
-  if (a->verbose)
-    fprintf(stderr, "flexbond run: %s: eigen-solve of %s: %s, %zu of %zu modes, %.3g s\n",
-            cli_scenario_name(s), what,
-            dense ? "dense LAPACK (dsygvd)" : "ARPACK shift-invert Lanczos", nmodes, ndof,
-            seconds);
-}
-
-/* System 2's hull, its first elastic free-free frequency, its damping
- * coefficient beta and the whole vehicle's undamped modes. The vehicle's
- * modes are a different eigenproblem from the hull's (the suspension
- * springs couple it to the wheels and mounts), so each has its solve. */
-static int flexible_modes(const run_args *a, const fb_scenario *s, run_modes *m, fb_err *err)
-{
-  double freq[HULL_FREE_MODES];
-  size_t nrigid = 0;
-  int rc = fb_vehicle_fe_hull(s, &m->hull, err);
-  const size_t ndof = rc == FB_OK ? 6 * fb_mesh_nnodes(m->hull->mesh) : 0;
-  struct timespec t0;
-  clock_gettime(CLOCK_MONOTONIC, &t0);
-  if (rc == FB_OK)
-    rc = fb_fe_hull_free_modes(m->hull, HULL_FREE_MODES, freq, &nrigid, err);
-  if (rc == FB_OK)
-    say_eigen_solve(
-        a, s, "the free-free hull (report)", ndof, HULL_FREE_MODES,
-        fb_fem_modes_dense(ndof, HULL_FREE_MODES, fb_fem_dense_limit(HULL_FREE_MODES)),
-        fb_seconds_since(&t0));
-  m->hull_f1 = rc == FB_OK && nrigid < HULL_FREE_MODES ? freq[nrigid] : NAN;
-  if (rc == FB_OK)
-    rc = fb_fe_hull_beta(s->hull_damping_ratio, nrigid, m->hull_f1, &m->hull_beta, err);
-  clock_gettime(CLOCK_MONOTONIC, &t0);
-  if (rc == FB_OK)
-    rc = fb_vehicle_flexible_modes(s, m->hull, VEHICLE_MODES, &m->modes2, err);
-  if (rc == FB_OK)
-    say_eigen_solve(a, s, "System 2's vehicle (report, mode pictures)", m->modes2->ndof,
-                    m->modes2->nsolved, m->modes2->dense, fb_seconds_since(&t0));
-  return rc;
-}
-
-static int compute_modes(const run_args *a, const fb_scenario *s, const fb_system *systems,
-                         size_t nsystems, run_modes *m, fb_err *err)
+/* System 1's undamped modes of its linearisation; System 2's whole
+ * undamped vehicle's, with their shapes for the pictures. */
+static int compute_modes(run_vehicle *vehicles, size_t n, run_modes *m, fb_err *err)
 {
   int rc = FB_OK;
-  for (size_t i = 0; i < nsystems && rc == FB_OK; ++i)
-    rc = systems[i] == FB_SYSTEM_RIGID ? fb_vehicle_modes(s, FB_SYSTEM_RIGID, 1, &m->modes1,
-                                                          &m->nmodes1, &m->nstatic1, err)
-                                       : flexible_modes(a, s, m, err);
+  for (size_t i = 0; i < n && rc == FB_OK; ++i)
+    rc = fb_vehicle_system(vehicles[i].v) == FB_SYSTEM_RIGID
+             ? fb_vehicle_linear_modes(vehicles[i].v, 1, &m->modes1, &m->nmodes1, &m->nstatic1,
+                                       err)
+             : fb_vehicle_structural_modes(vehicles[i].v, VEHICLE_MODES, 0, &m->modes2, err);
   return rc;
 }
 
@@ -641,7 +799,52 @@ static void run_modes_free(run_modes *m)
 {
   free(m->modes1);
   fb_mode_set_free(&m->modes2);
-  fb_fe_hull_free(&m->hull);
+}
+
+/* With -v: what realising and using the vehicle cost, counted where the
+ * work was done (fb_vehicle_work). */
+static void say_counts(const run_args *a, const run_vehicle *rv)
+{
+  if (!a->verbose)
+    return;
+  const fb_vehicle_work w = fb_vehicle_work_of(rv->v);
+  fprintf(stderr,
+          "flexbond run: %s: work: set-up %.3g s, mesh generations %zu, hull assemblies %zu, "
+          "factorisations %zu, hull eigen-solves %zu, vehicle eigen-solves %zu, linear "
+          "eigen-solves %zu, block diagrams %zu, static equilibria %zu (%.3g s), simulations "
+          "%zu\n",
+          rv->subject, w.setup_seconds, w.mesh_generations, w.assemblies, w.factorisations,
+          w.hull_eigensolves, w.vehicle_eigensolves, w.linear_eigensolves, w.diagrams,
+          w.static_solves, w.static_seconds, w.simulations);
+}
+
+/* With -v: how the hull is represented, then say_counts. */
+static void say_work(const run_args *a, const run_vehicle *rv)
+{
+  if (!a->verbose)
+    return;
+  const fb_hull_basis *b = fb_vehicle_hull_basis(rv->v);
+  if (b && b->coordinates == FB_HULL_NODAL)
+    fprintf(stderr, "flexbond run: %s: hull of %zu DOFs in nodal coordinates; ", rv->subject,
+            b->ndof);
+  else if (b && b->kind == FB_HULL_MODES_AUTO)
+    fprintf(stderr,
+            "flexbond run: %s: hull of %zu DOFs in %zu coordinates: %zu rigid-body modes and "
+            "%zu load-dependent Ritz vectors in %zu blocks (the next changes the receptances "
+            "by %.2g over 0 to %.4g Hz); ",
+            rv->subject, b->ndof, b->ncoords, b->nrigid, b->nstatic, b->nblocks,
+            b->block_change, b->cutoff_hz);
+  else if (b)
+    fprintf(stderr,
+            "flexbond run: %s: hull of %zu DOFs in %zu coordinates: %zu free-free modes kept "
+            "(%zu rigid), %zu static correction vectors; ",
+            rv->subject, b->ndof, b->ncoords, b->nmodes, b->nrigid, b->nstatic);
+  if (b)
+    fprintf(stderr, "eigen-solve %s, %zu lowest modes, %.3g s, factor %.3g MB\n",
+            b->eig.method == FB_EIG_DENSE ? "dense LAPACK (dsygvd)"
+                                          : "block Lanczos on a CHOLMOD factor",
+            b->nfree, b->eig.seconds, (double)b->eig.factor_bytes / 1e6);
+  say_counts(a, rv);
 }
 
 /* ---- Simulation. */
@@ -755,6 +958,7 @@ static int run_columns(const fb_scenario *s, cli_run_system *run, const double w
 static void run_system_free(cli_run_system *run)
 {
   fb_result_free(&run->res);
+  free(run->basis_error);
   free(run->loss);
   free(run->col);
   free(run->stats);
@@ -762,33 +966,26 @@ static void run_system_free(cli_run_system *run)
   fb_vehicle_motion_free(&run->motion);
 }
 
+/* Runs v into run, with its motion when motion (--animate; v realised
+ * with it). */
 static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
-                    cli_run_system *run, fb_err *err)
+                    cli_run_system *run, fb_vehicle *v, int motion, fb_err *err)
 {
-  run_progress p = {cli_scenario_name(s), cli_system_label(run->sys), s->t_end, 0, a->progress};
+  run_progress p = {cli_scenario_name(s), run->label ? run->label : cli_system_label(run->sys),
+                    s->t_end, 0, a->progress};
   if (a->progress)
     draw_progress_line(&p);
   else if (!a->quiet)
     fprintf(stderr, "flexbond run: %s: simulating %s, t = 0..%g s ...\n", p.scenario, p.system,
             s->t_end);
-  fb_vehicle_run_info info;
-  int rc =
-      a->animate.enabled
-          ? fb_vehicle_simulate_motion(s, run->sys, window, show_progress, &p, &info, &run->res,
-                                       &run->motion, err)
-          : fb_vehicle_simulate_info(s, run->sys, show_progress, &p, &info, &run->res, err);
+  int rc = fb_vehicle_run(v, window, show_progress, &p, &run->res, motion ? &run->motion : NULL,
+                          err);
   /* End the progress line, also before an error message. */
   if (a->progress)
     fputc('\n', stderr);
-  if (rc == FB_OK && info.eig_dof)
-    say_eigen_solve(a, s, "the free-free hull (System 2's hull coordinates and beta)",
-                    info.eig_dof, info.eig_modes, info.eig_dense, info.eig_seconds);
   if (rc == FB_OK && a->verbose)
-    fprintf(stderr,
-            "flexbond run: %s: %s: set-up %.3g s (graph, hull, causality, diagram), static "
-            "equilibrium %.3g s, %ld Newton matrices, %ld factorisations\n",
-            p.scenario, p.system, info.build_seconds, info.static_seconds,
-            fb_result_stats(run->res)->newton_setups,
+    fprintf(stderr, "flexbond run: %s: %s: %ld Newton matrices, %ld factorisations\n",
+            p.scenario, p.system, fb_result_stats(run->res)->newton_setups,
             fb_result_stats(run->res)->factorizations);
   if (rc == FB_OK && !a->quiet) {
     const fb_sim_stats *st = fb_result_stats(run->res);
@@ -813,9 +1010,10 @@ static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *s
   *note = NULL;
   if (a->system < 0 && !s->has_fe_hull) {
     choice = SYSTEM_RIGID;
-    *note = a->hull_modes >= 0
+    *note = a->hull_modes_kind >= 0 || a->hull_cutoff > 0
                 ? "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
-                  "System 1 (rigid hull) ran and --hull-modes had nothing to set"
+                  "System 1 (rigid hull) ran and --hull-modes or --hull-cutoff had nothing to "
+                  "set"
                 : "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
                   "System 1 (rigid hull) ran";
   }
@@ -850,10 +1048,14 @@ static void override(const run_args *a, fb_scenario *s)
     s->initial = (fb_initial_state)a->initial;
   if (a->payload >= 0)
     s->payload = (fb_payload_model)a->payload;
-  if (a->hull_modes >= 0)
+  if (a->hull_modes_kind >= 0) {
+    s->hull_modes_kind = (fb_hull_modes_kind)a->hull_modes_kind;
     s->hull_modes = a->hull_modes;
-  /* A reduced hull is a modal one. */
-  if (a->hull_modes > 0)
+  }
+  if (a->hull_cutoff > 0 || a->hull_modes_kind >= 0)
+    s->hull_cutoff_hz = a->hull_cutoff;
+  /* A choice of modes is a modal hull's. */
+  if (a->hull_modes_kind >= 0 || a->hull_cutoff > 0)
     s->hull_coordinates = FB_HULL_MODAL;
   if (a->hull_coordinates >= 0)
     s->hull_coordinates = (fb_hull_coordinates)a->hull_coordinates;
@@ -863,15 +1065,13 @@ static void override(const run_args *a, fb_scenario *s)
  * figures (flexbond freq's defaults: 301 frequencies from 0.1 to 100 Hz).
  * It is no part of the run's result: when it fails (a nonlinear vehicle
  * without a static equilibrium, say) the report says why instead. */
-static void frequency_response(const fb_scenario *s, cli_run_outputs *o, freq_study *fs)
+static void frequency_response(const fb_scenario *s, fb_vehicle *const *by_system,
+                               cli_run_outputs *o, freq_study *fs)
 {
-  int systems[CLI_MAX_SYSTEMS] = {0, 0};
-  for (size_t i = 0; i < o->nruns; ++i)
-    systems[o->runs[i].sys == FB_SYSTEM_FLEXIBLE] = 1;
   fb_err err;
   fb_err_clear(&err);
   fs->s = s;
-  const int rc = cli_freq_compute(fs, systems, 0.1, 100.0, 301, &err);
+  const int rc = cli_freq_compute(fs, by_system, 0.1, 100.0, 301, &err);
   if (rc)
     snprintf(o->freq_note, sizeof o->freq_note, "%s", err.msg);
   else
@@ -900,11 +1100,189 @@ static int write_animations(cli_outdir *od, const run_args *a, const fb_scenario
  * the scenario is located in its file (fb_scenario_locate). */
 static int report(const run_args *a, const fb_scenario *s, int rc, fb_err *err)
 {
-  if (rc != FB_OK && s && a->hull_modes >= 0 && !strcmp(err->key, "hull.fe.modes"))
+  if (rc != FB_OK && s && a->hull_modes_kind >= 0 && !strcmp(err->key, "hull.fe.modes"))
     return cli_usage_error("run", "option '--hull-modes': %s", err->msg);
+  if (rc != FB_OK && s && a->hull_cutoff > 0 && !strcmp(err->key, "hull.fe.cutoff_hz"))
+    return cli_usage_error("run", "option '--hull-cutoff': %s", err->msg);
   if (rc != FB_OK && s)
     fb_scenario_locate(s, err);
   return cli_report(rc, err);
+}
+
+/* The estimator of System 2's modal basis (reduced modal coordinates
+ * only: fb_vehicle_new_estimator), integrated on a thread of its own
+ * beside the runs: its result, compared with System 2's afterwards, is the
+ * estimate of each output's error from the basis. */
+typedef struct run_estimator {
+  fb_vehicle *v; /* System 2's vehicle; NULL: no estimate */
+  fb_vehicle *e; /* its estimator, made on the thread */
+  pthread_t thread;
+  int started;
+  fb_result *res;
+  int rc;
+  fb_err err;
+} run_estimator;
+
+/* fb_sim_progress_fn of the estimator: it draws nothing (the runs do),
+ * and stops once interrupted. */
+static int estimator_progress(void *ctx, double t, double t_end)
+{
+  (void)ctx;
+  (void)t;
+  (void)t_end;
+  return cli_interrupted();
+}
+
+/* The estimator made (its enriched basis from v's eigen-solve) and run,
+ * beside what the main thread does with v meanwhile (fb_vehicle_new_estimator
+ * allows it). */
+static void *estimator_thread(void *arg)
+{
+  run_estimator *x = arg;
+  fb_err_clear(&x->err);
+  x->rc = fb_vehicle_new_estimator(x->v, &x->e, &x->err);
+  if (x->rc == FB_OK)
+    x->rc = fb_vehicle_run(x->e, NULL, estimator_progress, NULL, &x->res, NULL, &x->err);
+  return NULL;
+}
+
+/* Starts the estimator of System 2's vehicle v (called label), if its
+ * basis is a reduced one. */
+static int start_estimator(const run_args *a, const fb_scenario *s, const char *label,
+                           fb_vehicle *v, run_estimator *x, fb_err *err)
+{
+  const fb_hull_basis *b = fb_vehicle_hull_basis(v);
+  if (!b || b->coordinates != FB_HULL_MODAL || b->ncoords >= b->ndof)
+    return FB_OK;
+  x->v = v;
+  if (!a->quiet)
+    fprintf(stderr,
+            "flexbond run: %s: estimating the modal basis's error beside the runs: %s with "
+            "the basis's next block of Ritz vectors, t = 0..%g s ...\n",
+            cli_scenario_name(s), label, s->t_end);
+  if (pthread_create(&x->thread, NULL, estimator_thread, x) != 0)
+    return fb_err_set(err, FB_ENOMEM, "could not start the estimator's thread");
+  x->started = 1;
+  return FB_OK;
+}
+
+/* Waits for the estimator and, when System 2's run succeeded, compares:
+ * run->basis_error (new). */
+static int finish_estimator(const double window[2], run_estimator *x, cli_run_system *run,
+                            int rc, fb_err *err)
+{
+  if (x->started)
+    pthread_join(x->thread, NULL);
+  x->started = 0;
+  if (!x->v || rc != FB_OK)
+    return rc;
+  if (x->rc != FB_OK) {
+    *err = x->err;
+    return fb_err_prefix(err, "the basis's error estimator: ");
+  }
+  run->basis_error = calloc(fb_result_ncols(run->res), sizeof *run->basis_error);
+  if (!run->basis_error)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  return fb_result_rel_diff(run->res, x->res, window[0], run->basis_error, err);
+}
+
+static void run_estimator_free(run_estimator *x)
+{
+  if (x->started)
+    pthread_join(x->thread, NULL);
+  fb_result_free(&x->res);
+  fb_vehicle_free(&x->e);
+}
+
+/* With -v: the work of the estimator e (NULL: none) of the vehicle
+ * called label. */
+static void say_estimator_work(const run_args *a, const fb_scenario *s, const char *label,
+                               fb_vehicle *e)
+{
+  if (!e)
+    return;
+  run_vehicle est = {e, {0}, {0}};
+  snprintf(est.subject, sizeof est.subject, "%s: the basis estimator of %s",
+           cli_scenario_name(s), label);
+  say_counts(a, &est);
+}
+
+/* ---- System 2 again at the converged mesh. */
+
+typedef struct run_converged {
+  fb_scenario *s; /* the file loaded again at hull.mesh.converged_density */
+  run_vehicle rv;
+  run_estimator est;
+  cli_run_system run;
+  char label[64];  /* "System 2 at density 3" */
+  fb_result *diff; /* its run minus System 1's */
+} run_converged;
+
+/* With both systems, when the scenario names a density above its own for
+ * its generated hull. */
+static int wants_converged(const fb_scenario *s, const cli_run_outputs *o)
+{
+  return o->nruns == CLI_MAX_SYSTEMS && !s->hull_deck &&
+         s->hull_converged_density > s->hull_mesh.density;
+}
+
+/* Loads the file again with hull.mesh.density at the converged density
+ * (so that the mesh, the hull's mass properties and every check are that
+ * mesh's, as if the user had written it), and runs its System 2 with its
+ * basis's error estimate. Its hull is in the automatic modal basis
+ * whatever the first System 2's was (a cut-off given for that basis
+ * stays): every mode or the nodal coordinates of the refined hull would
+ * make a dense or a large problem nobody asked for. */
+static int run_converged_system(const run_args *a, const fb_scenario *s, const double window[2],
+                                run_converged *c, fb_err *err)
+{
+  char density[16];
+  snprintf(density, sizeof density, "%d", s->hull_converged_density);
+  snprintf(c->label, sizeof c->label, "System 2 at density %d", s->hull_converged_density);
+  const fb_scenario_override ov = {"hull.mesh.density", density};
+  int rc = fb_scenario_load_overrides(a->scenario_path, &ov, 1, &c->s, err);
+  if (rc == FB_OK) {
+    override(a, c->s);
+    if (c->s->hull_modes_kind != FB_HULL_MODES_AUTO || c->s->hull_coordinates != FB_HULL_MODAL)
+      c->s->hull_cutoff_hz = 0.0;
+    c->s->hull_coordinates = FB_HULL_MODAL;
+    c->s->hull_modes_kind = FB_HULL_MODES_AUTO;
+    rc = realise(a, c->s, FB_SYSTEM_FLEXIBLE, c->label, 0, &c->rv, err);
+  }
+  if (rc == FB_OK)
+    rc = start_estimator(a, c->s, c->label, c->rv.v, &c->est, err);
+  c->run.sys = FB_SYSTEM_FLEXIBLE;
+  c->run.label = c->label;
+  if (rc == FB_OK)
+    rc = simulate(a, c->s, window, &c->run, c->rv.v, 0, err);
+  return finish_estimator(window, &c->est, &c->run, rc, err);
+}
+
+/* The converged run into o, against System 1 (runs[0]). */
+static int compare_converged(run_converged *c, cli_run_outputs *o, fb_err *err)
+{
+  const size_t n = o->scenario->noutputs;
+  int rc = fb_result_diff(c->run.res, o->runs[0].res, &c->diff, err);
+  o->cmp_converged = rc == FB_OK ? calloc(n ? n : 1, sizeof *o->cmp_converged) : NULL;
+  if (rc == FB_OK && !o->cmp_converged)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; rc == FB_OK && k < n; ++k)
+    o->cmp_converged[k] = cli_output_compare(&o->runs[0].stats[k], &c->run.stats[k], c->diff,
+                                             o->runs[0].col[k], o->bump_window);
+  o->converged = &c->run;
+  o->converged_basis = fb_vehicle_hull_basis(c->rv.v);
+  o->converged_density = c->s->hull_mesh.density;
+  o->diff_converged = c->diff;
+  return rc;
+}
+
+static void run_converged_free(run_converged *c)
+{
+  run_estimator_free(&c->est);
+  run_system_free(&c->run);
+  fb_result_free(&c->diff);
+  fb_vehicle_free(&c->rv.v);
+  fb_scenario_free(&c->s);
 }
 
 static int run(const run_args *a)
@@ -913,6 +1291,8 @@ static int run(const run_args *a)
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   cli_run_system runs[CLI_MAX_SYSTEMS] = {{0}};
+  run_vehicle vehicles[CLI_MAX_SYSTEMS];
+  memset(vehicles, 0, sizeof vehicles);
   fb_system systems[CLI_MAX_SYSTEMS] = {FB_SYSTEM_RIGID};
   run_modes modes = {0};
   fb_result *diff = NULL;
@@ -930,40 +1310,61 @@ static int run(const run_args *a)
     override(a, s);
     o.scenario = s;
     o.nruns = pick_systems(a, s, systems, &o.note);
-    o.hull_modes_source = a->hull_modes >= 0 || a->hull_coordinates >= 0
-                              ? "the command line (`--hull-modes`, `--hull-coordinates`)"
-                              : "the scenario (`hull.fe.coordinates`, `hull.fe.modes`)";
+    o.hull_modes_source =
+        a->hull_modes_kind >= 0 || a->hull_coordinates >= 0 || a->hull_cutoff > 0
+            ? "the command line (`--hull-modes`, `--hull-cutoff`, `--hull-coordinates`)"
+            : "the scenario (`hull.fe.coordinates`, `hull.fe.modes`, `hull.fe.cutoff_hz`)";
     cli_bump_window(s, o.bump_window);
     size_t nframes = 0;
     if (a->animate.enabled)
       rc =
           cli_animate_frame_count(o.bump_window, 0.0, s->t_end, a->animate.fps, &nframes, &err);
   }
-  if (rc == FB_OK) {
-    if (o.note && !a->quiet)
-      fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
-    rc = compute_modes(a, s, systems, o.nruns, &modes, &err);
-  }
-  /* The eigen-solvers do not poll the flag: look after them. */
-  if (rc == FB_OK)
-    rc = cli_check_interrupt(&err);
+  if (rc == FB_OK && o.note && !a->quiet)
+    fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
+  /* Each system realised once: everything below takes its vehicle. */
+  for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i)
+    rc = realise(a, s, systems[i], cli_system_label(systems[i]), a->animate.enabled,
+                 &vehicles[i], &err);
+  fb_vehicle *by_system[CLI_MAX_SYSTEMS] = {NULL, NULL};
+  for (size_t i = 0; i < o.nruns; ++i)
+    by_system[systems[i] == FB_SYSTEM_FLEXIBLE] = vehicles[i].v;
+  run_estimator estimator = {0};
+  if (rc == FB_OK && by_system[1])
+    rc = start_estimator(a, s, cli_system_label(FB_SYSTEM_FLEXIBLE), by_system[1], &estimator,
+                         &err);
+
   for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i) {
     runs[i].sys = systems[i];
-    rc = simulate(a, s, o.bump_window, &runs[i], &err);
+    rc = simulate(a, s, o.bump_window, &runs[i], vehicles[i].v, a->animate.enabled, &err);
   }
+  /* The modes while the estimator finishes. */
+  if (rc == FB_OK)
+    rc = compute_modes(vehicles, o.nruns, &modes, &err);
+  for (size_t i = 0; i < o.nruns; ++i)
+    if (systems[i] == FB_SYSTEM_FLEXIBLE)
+      rc = finish_estimator(o.bump_window, &estimator, &runs[i], rc, &err);
+  run_converged conv = {0};
+  if (rc == FB_OK && wants_converged(s, &o))
+    rc = run_converged_system(a, s, o.bump_window, &conv, &err);
   if (rc == FB_OK) {
     o.modes1 = modes.modes1;
     o.nmodes1 = modes.nmodes1;
     o.nstatic1 = modes.nstatic1;
-    o.hull = modes.hull;
+    if (by_system[1]) {
+      o.hull = fb_vehicle_fe_hull_of(by_system[1]);
+      o.basis = fb_vehicle_hull_basis(by_system[1]);
+    }
     o.modes2 = modes.modes2;
-    o.hull_f1 = modes.hull_f1;
-    o.hull_beta = modes.hull_beta;
+    for (size_t i = 0; i < o.nruns; ++i)
+      o.vehicles[i] = vehicles[i].v;
     rc = compare(&o, &diff, &err);
   }
+  if (rc == FB_OK && conv.rv.v)
+    rc = compare_converged(&conv, &o, &err);
   freq_study freq = {0};
   if (rc == FB_OK && o.figures)
-    frequency_response(s, &o, &freq);
+    frequency_response(s, by_system, &o, &freq);
   if (rc == FB_OK)
     rc = write_animations(&od, a, s, o.bump_window, runs, o.nruns, &err);
   if (rc == FB_OK)
@@ -971,6 +1372,14 @@ static int run(const run_args *a)
   cli_freq_study_free(&freq);
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
+  for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i)
+    say_work(a, &vehicles[i]);
+  if (rc == FB_OK && conv.rv.v)
+    say_work(a, &conv.rv);
+  if (rc == FB_OK)
+    say_estimator_work(a, s, cli_system_label(FB_SYSTEM_FLEXIBLE), estimator.e);
+  if (rc == FB_OK && conv.rv.v)
+    say_estimator_work(a, s, conv.label, conv.est.e);
   if (rc == FB_OK && !a->quiet)
     fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", cli_scenario_name(s), nfiles,
             a->out_dir);
@@ -978,36 +1387,48 @@ static int run(const run_args *a)
     cli_nothing_written(&err, a->out_dir);
   fb_result_free(&diff);
   free(o.cmp);
+  free(o.cmp_converged);
+  run_converged_free(&conv);
   for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i)
     run_system_free(&runs[i]);
   run_modes_free(&modes);
+  run_estimator_free(&estimator);
+  for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i)
+    fb_vehicle_free(&vehicles[i].v);
   rc = report(a, s, rc, &err);
   fb_scenario_free(&s);
   return rc;
 }
 
-/* The value of --hull-modes: 0 or an integer in 6 .. MAX_HULL_MODES, as
- * hull.fe.modes. */
-static int parse_hull_modes(const char *cmd, const char *text, int *out)
+/* The value of --hull-modes, as hull.fe.modes: auto, all or an integer in
+ * 6 .. MAX_HULL_MODES (the six rigid-body modes at least). */
+static int parse_hull_modes(const char *cmd, const char *text, run_args *a)
 {
+  if (!strcmp(text, "auto")) {
+    a->hull_modes_kind = FB_HULL_MODES_AUTO;
+    return CLI_EXIT_OK;
+  }
+  if (!strcmp(text, "all")) {
+    a->hull_modes_kind = FB_HULL_MODES_ALL;
+    return CLI_EXIT_OK;
+  }
   char *end = NULL;
   errno = 0;
   long v = strtol(text, &end, 10);
-  /* A reduced hull keeps its six rigid-body modes at least. */
-  if (end == text || *end != '\0' || errno == ERANGE || v < 0 || (v > 0 && v < 6) ||
-      v > MAX_HULL_MODES)
+  if (end == text || *end != '\0' || errno == ERANGE || v < 6 || v > MAX_HULL_MODES)
     return cli_usage_error(cmd,
-                           "option '--hull-modes' needs 0 (every mode) or an integer "
+                           "option '--hull-modes' needs auto, all (every mode) or an integer "
                            "in 6..%d (got '%s')",
                            MAX_HULL_MODES, text);
-  *out = (int)v;
+  a->hull_modes_kind = FB_HULL_MODES_COUNT;
+  a->hull_modes = (int)v;
   return CLI_EXIT_OK;
 }
 
 /* The options' values into a (after the output directory). */
 static int parse_settings(const char *cmd, const cli_option *system, const cli_option *initial,
                           const cli_option *payload, const cli_option *hull_modes,
-                          const cli_option *coordinates, run_args *a)
+                          const cli_option *cutoff, const cli_option *coordinates, run_args *a)
 {
   int rc = CLI_EXIT_OK;
   if (system->value)
@@ -1020,20 +1441,24 @@ static int parse_settings(const char *cmd, const cli_option *system, const cli_o
     rc = cli_choice(cmd, "--payload", payload->value, payload_choices,
                     sizeof payload_choices / sizeof payload_choices[0], &a->payload);
   if (rc == CLI_EXIT_OK && hull_modes->value)
-    rc = parse_hull_modes(cmd, hull_modes->value, &a->hull_modes);
+    rc = parse_hull_modes(cmd, hull_modes->value, a);
+  if (rc == CLI_EXIT_OK && cutoff->value)
+    rc = cli_positive_number(cmd, "--hull-cutoff", cutoff->value, &a->hull_cutoff);
+  if (rc == CLI_EXIT_OK && cutoff->value && a->hull_modes_kind > FB_HULL_MODES_AUTO)
+    rc = cli_usage_error(cmd, "--hull-cutoff sets which modes --hull-modes auto keeps: not "
+                              "with --hull-modes all or a count");
   if (rc == CLI_EXIT_OK && coordinates->value)
     rc = cli_choice(cmd, "--hull-coordinates", coordinates->value, coordinate_choices,
                     sizeof coordinate_choices / sizeof coordinate_choices[0],
                     &a->hull_coordinates);
-  if (rc == CLI_EXIT_OK && (hull_modes->value || coordinates->value) &&
+  if (rc == CLI_EXIT_OK && (hull_modes->value || cutoff->value || coordinates->value) &&
       a->system == SYSTEM_RIGID)
-    rc = cli_usage_error(cmd, "--hull-modes and --hull-coordinates set System 2's hull: not "
-                              "with --system rigid");
-  if (rc == CLI_EXIT_OK && a->hull_modes > 0 && a->hull_coordinates == FB_HULL_NODAL)
-    rc = cli_usage_error(cmd,
-                         "--hull-modes %d reduces the hull to modes: not with "
-                         "--hull-coordinates nodal",
-                         a->hull_modes);
+    rc = cli_usage_error(cmd, "--hull-modes, --hull-cutoff and --hull-coordinates set System "
+                              "2's hull: not with --system rigid");
+  if (rc == CLI_EXIT_OK && (hull_modes->value || cutoff->value) &&
+      a->hull_coordinates == FB_HULL_NODAL)
+    rc = cli_usage_error(cmd, "--hull-modes and --hull-cutoff choose a modal hull's modes: not "
+                              "with --hull-coordinates nodal");
   return rc;
 }
 
@@ -1066,6 +1491,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_INITIAL,
     OPT_PAYLOAD,
     OPT_HULL_MODES,
+    OPT_HULL_CUTOFF,
     OPT_HULL_COORDINATES,
     OPT_ANIMATE,
     OPT_ANIMATE_FPS,
@@ -1083,6 +1509,7 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_INITIAL] = {"--initial", NULL, 1, NULL},
       [OPT_PAYLOAD] = {"--payload", NULL, 1, NULL},
       [OPT_HULL_MODES] = {"--hull-modes", NULL, 1, NULL},
+      [OPT_HULL_CUTOFF] = {"--hull-cutoff", NULL, 1, NULL},
       [OPT_HULL_COORDINATES] = {"--hull-coordinates", NULL, 1, NULL},
       [OPT_ANIMATE] = {"--animate", NULL, 0, NULL},
       [OPT_ANIMATE_FPS] = {"--animate-fps", NULL, 1, NULL},
@@ -1093,8 +1520,11 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_VERBOSE] = {"--verbose", "-v", 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
-  run_args a = {
-      .system = -1, .initial = -1, .payload = -1, .hull_coordinates = -1, .hull_modes = -1};
+  run_args a = {.system = -1,
+                .initial = -1,
+                .payload = -1,
+                .hull_coordinates = -1,
+                .hull_modes_kind = -1};
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, run_usage, "SCENARIO", &a.scenario_path,
                               &rc))
@@ -1108,7 +1538,8 @@ int cli_cmd_run(int argc, char **argv)
   a.figures = opts[OPT_NO_FIGURES].value == NULL;
   a.header = opts[OPT_PLAIN_HEADER].value ? FB_CSV_HEADER_NAMES : FB_CSV_HEADER_UNITS;
   rc = parse_settings(argv[0], &opts[OPT_SYSTEM], &opts[OPT_INITIAL], &opts[OPT_PAYLOAD],
-                      &opts[OPT_HULL_MODES], &opts[OPT_HULL_COORDINATES], &a);
+                      &opts[OPT_HULL_MODES], &opts[OPT_HULL_CUTOFF],
+                      &opts[OPT_HULL_COORDINATES], &a);
   if (rc == CLI_EXIT_OK)
     rc = parse_animate(argv[0], &opts[OPT_ANIMATE], &opts[OPT_ANIMATE_FPS],
                        &opts[OPT_ANIMATE_SCALE], &a);

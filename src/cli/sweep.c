@@ -81,12 +81,6 @@ static const char sweep_usage[] =
 /* Most threads -j accepts. */
 enum { SWEEP_MAX_JOBS = 1024 };
 
-/* OpenBLAS's own call (the library links libopenblas directly,
- * CMakeLists.txt's OPENBLAS_LIB), declared here rather than taken from a
- * cblas.h: which cblas.h the Debian alternatives select (OpenBLAS's or
- * the reference one, which lacks it) is not ours to choose. */
-void openblas_set_num_threads(int num_threads);
-
 /* ---- Output files. */
 
 /* What the files are made of. */
@@ -942,15 +936,6 @@ int cli_cmd_sweep(int argc, char **argv)
   sweep_args a = {0};
   char *name = NULL;
   int go = 0, rc;
-  /* One BLAS thread in every mode (threads, ranks, resumed): the sweep's
-   * parallelism is over cases, nested BLAS threads would only
-   * oversubscribe the cores, and OpenBLAS sizes its pool from the CPUs
-   * the process may use, which differ between a process on all cores and
-   * an MPI rank bound to one; with another pool size a System 2 case's
-   * dense eigen-solution rounds otherwise, and sweep.csv would depend on
-   * how it ran (docs/sweep.md). OpenBLAS reads OPENBLAS_NUM_THREADS when
-   * it is loaded, before main, so only its own call can do this. */
-  openblas_set_num_threads(1);
   if (wants_mpi(argc, argv)) {
 #ifdef FLEXBOND_MPI
     rc = sweep_mpi(argc, argv, &a, &name);

@@ -118,7 +118,8 @@ int sweep_metric_find(const sweep_args *a, const char *spec, size_t *m);
  * intervals: the load, the contact, the comfort and the lift-off. */
 void sweep_default_plots(sweep_args *a);
 /* Loads, simulates and measures case i into c (not c->done or c->rank).
- * Cases run at once on any hull: fb_fem_modes orders ARPACK's solves. */
+ * Cases run at once on any hull: each case's eigen-solve is its own (the
+ * solver holds no shared state), so none waits for another's. */
 void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c);
 /* Key k as given with the unit the file writes it in, "speed_kmh
  * [km/h]" (the key alone when it has none), into buf. */

@@ -120,3 +120,10 @@ const char *fb_status_name(int code)
   default: return "FB_E?";
   }
 }
+
+int fb_progress_report(const fb_progress *p, const char *stage, double fraction, fb_err *err)
+{
+  if (!p || !p->fn || p->fn(p->ctx, stage, fraction) == 0)
+    return FB_OK;
+  return fb_err_set(err, FB_EINTR, "interrupted during %s", stage);
+}

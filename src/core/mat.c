@@ -228,6 +228,42 @@ int fb_mat_new_triplets(size_t nrows, size_t ncols, size_t nnz, const size_t *ro
   return rc;
 }
 
+int fb_mat_new_csc(size_t nrows, size_t ncols, const size_t *colptr, const size_t *rowidx,
+                   const double *vals, fb_mat **out, fb_err *err)
+{
+  int rc = check_out(out, err);
+  if (!rc && (!colptr || colptr[0] != 0))
+    rc =
+        fb_err_set(err, FB_EINVAL, "compressed columns: colptr is NULL or does not start at 0");
+  const size_t nnz = rc ? 0 : colptr[ncols];
+  if (!rc && nnz && (!rowidx || !vals))
+    rc = fb_err_set(err, FB_EINVAL, "compressed columns: NULL arrays");
+  for (size_t j = 0; !rc && j < ncols; ++j) {
+    if (colptr[j + 1] < colptr[j])
+      rc =
+          fb_err_set(err, FB_EINVAL, "compressed columns: column %zu ends before it starts", j);
+    for (size_t k = colptr[j]; !rc && k < colptr[j + 1]; ++k)
+      if (rowidx[k] >= nrows || (k > colptr[j] && rowidx[k] <= rowidx[k - 1]))
+        rc = fb_err_set(err, FB_EINVAL,
+                        "compressed columns: column %zu's row %zu is out of range or order", j,
+                        rowidx[k]);
+  }
+  if (rc)
+    return rc;
+  fb_mat *m;
+  rc = sparse_alloc(nrows, ncols, nnz, &m, err);
+  if (rc)
+    return rc;
+  memcpy(m->colptr, colptr, (ncols + 1) * sizeof *colptr);
+  if (nnz) {
+    memcpy(m->rowidx, rowidx, nnz * sizeof *rowidx);
+    memcpy(m->vals, vals, nnz * sizeof *vals);
+  }
+  m->nnz = nnz;
+  *out = m;
+  return FB_OK;
+}
+
 /* Diagonal matrix with entries diag[i], or s everywhere when diag is NULL;
  * zero entries are not stored. */
 static int new_diag_or_scaled(size_t n, const double *diag, double s, fb_mat **out, fb_err *err)

@@ -441,10 +441,26 @@ static void write_entry(void *ctx, size_t row, size_t col, double val)
   fprintf(ctx, "%zu %zu %.17g\n", row + 1, col + 1, val);
 }
 
+/* A dense matrix in the array format, column by column: read back, it is
+ * dense again, so a model written and reloaded computes with the same
+ * storage and in the same order as the one assembled. */
+static void print_array(FILE *fp, const fb_mat *a)
+{
+  const size_t nr = fb_mat_nrows(a), nc = fb_mat_ncols(a);
+  fprintf(fp, "%%%%MatrixMarket matrix array real general\n%zu %zu\n", nr, nc);
+  for (size_t j = 0; j < nc; ++j)
+    for (size_t i = 0; i < nr; ++i)
+      fprintf(fp, "%.17g\n", fb_mat_get(a, i, j));
+}
+
 /* %.17g makes every double round-trip exactly through strtod (IEEE
  * 754-2008, section 5.12.2: 17 significant digits suffice for binary64). */
 void fb_mat_print_mtx(FILE *fp, const fb_mat *a)
 {
+  if (!fb_mat_is_sparse(a)) {
+    print_array(fp, a);
+    return;
+  }
   size_t entries = 0;
   fb_mat_foreach(a, count_entry, &entries);
   fprintf(fp, "%%%%MatrixMarket matrix coordinate real general\n%zu %zu %zu\n", fb_mat_nrows(a),

@@ -95,3 +95,29 @@ double fb_seconds_since(const struct timespec *t0)
   clock_gettime(CLOCK_MONOTONIC, &t1);
   return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
 }
+
+const char *fb_bytes_text(double bytes, char *buf, size_t size)
+{
+  static const char *const unit[] = {"B", "kB", "MB", "GB", "TB"};
+  size_t u = 0;
+  while (bytes >= 999.5 && u + 1 < sizeof unit / sizeof unit[0]) {
+    bytes /= 1e3;
+    ++u;
+  }
+  snprintf(buf, size, u ? "%.3g %s" : "%.0f %s", bytes, unit[u]);
+  return buf;
+}
+
+int fb_check_memory(double bytes, size_t limit, fb_err *err, const char *fmt, ...)
+{
+  if (!limit || bytes <= (double)limit)
+    return FB_OK;
+  char what[FB_ERR_MSG_MAX / 2], need[32], allowed[32];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(what, sizeof what, fmt, ap);
+  va_end(ap);
+  return fb_err_set(err, FB_ENOMEM, "%s needs %s, more than the %s allowed", what,
+                    fb_bytes_text(bytes, need, sizeof need),
+                    fb_bytes_text((double)limit, allowed, sizeof allowed));
+}

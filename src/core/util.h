@@ -35,6 +35,18 @@ char *fb_dirname(const char *path);
 /* dir/name in fresh memory (NULL when out of memory). */
 char *fb_path_join(const char *dir, const char *name);
 
+/* A size in bytes as a message gives it, with the SI prefix that puts it
+ * in [1, 1000): "512 B", "98.3 kB", "1.28 MB", "4.29 GB" (into buf). */
+const char *fb_bytes_text(double bytes, char *buf, size_t size);
+/* FB_OK when bytes fit in limit (0: no limit), else FB_ENOMEM with "WHAT
+ * needs SIZE, more than the LIMIT allowed", WHAT printf-formatted from
+ * fmt: the check a large allocation makes before it is tried. */
+int fb_check_memory(double bytes, size_t limit, fb_err *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
 /* Wall time since *t0 (CLOCK_MONOTONIC), s. */
 struct timespec;
 double fb_seconds_since(const struct timespec *t0);

@@ -1,93 +1,191 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Sparse assembly of the shell model (fb_fem_assemble) and the rigid-body
- * mass properties of a mass matrix (fb_fem_mass_properties); see
- * flexbond/fem.h.
- *
- * Assembly is element by element into (row, column, value) triplets that
- * fb_mat_new_triplets sums into compressed sparse columns; K and M share
- * the row and column arrays because every element fills the same square
- * block of both. Nothing of model size is ever dense. */
+ * mass properties of a mass matrix or of a mesh (fb_fem_mass_properties,
+ * fb_fem_mesh_mass_properties); see flexbond/fem.h. Nothing of model size
+ * is ever dense. */
 #include <assert.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "flexbond/fem.h"
 
 #include "fem/shell_internal.h"
 
-/* Triplet arrays for K and M (either may be unused). */
-typedef struct triplets {
-  size_t n, cap;
-  size_t *rows, *cols;
-  double *kvals, *mvals;
-} triplets;
+/* The matrices' sparsity: the mesh's node graph (each node's neighbours
+ * in any element, itself included, ascending) and, over it, full 6 x 6
+ * blocks of compressed sparse columns: column 6 a + k holds the rows
+ * 6 b .. 6 b + 5 of each neighbour b of node a. */
+typedef struct pattern {
+  size_t nnodes;
+  size_t *adj_start; /* nnodes + 1 */
+  size_t *adj;
+  size_t *colptr; /* 6 nnodes + 1 */
+} pattern;
 
-/* Frees the arrays and clears the pointers (safe to call twice). */
-static void triplets_free(triplets *t)
+static void pattern_free(pattern *p)
 {
-  free(t->rows);
-  free(t->cols);
-  free(t->kvals);
-  free(t->mvals);
-  t->rows = t->cols = NULL;
-  t->kvals = t->mvals = NULL;
+  free(p->adj_start);
+  free(p->adj);
+  free(p->colptr);
 }
 
-/* Room for one full element matrix per element. */
-static int triplets_alloc(const fb_mesh *m, int want_k, int want_m, triplets *t, fb_err *err)
+static int cmp_size(const void *a, const void *b)
 {
-  size_t cap = 0;
-  for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
-    const size_t n = 6 * (size_t)fb_mesh_element_type(m, e);
-    cap += n * n;
+  const size_t x = *(const size_t *)a, y = *(const size_t *)b;
+  return (x > y) - (x < y);
+}
+
+/* Each node's neighbours: every node of every element it is in, sorted,
+ * repeats removed. */
+static int node_graph(const fb_mesh *m, pattern *p, fb_err *err)
+{
+  const size_t nn = fb_mesh_nnodes(m), ne = fb_mesh_nelements(m);
+  p->nnodes = nn;
+  size_t *count = calloc(nn + 1, sizeof *count);
+  p->adj_start = calloc(nn + 1, sizeof *p->adj_start);
+  if (!count || !p->adj_start) {
+    free(count);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the mesh's node graph");
   }
-  assert(cap > 0); /* the caller rejects a mesh without elements */
-  *t = (triplets){0, cap, NULL, NULL, NULL, NULL};
-  if (cap > SIZE_MAX / sizeof(size_t))
-    return fb_err_set(err, FB_ENOMEM, "mesh too large to assemble");
-  t->rows = malloc(cap * sizeof *t->rows);
-  t->cols = malloc(cap * sizeof *t->cols);
-  t->kvals = want_k ? malloc(cap * sizeof *t->kvals) : NULL;
-  t->mvals = want_m ? malloc(cap * sizeof *t->mvals) : NULL;
-  if (!t->rows || !t->cols || (want_k && !t->kvals) || (want_m && !t->mvals)) {
-    triplets_free(t);
-    return fb_err_set(err, FB_ENOMEM, "out of memory assembling %zu matrix entries", cap);
+  for (size_t e = 0; e < ne; ++e)
+    for (size_t a = 0; a < (size_t)fb_mesh_element_type(m, e); ++a)
+      count[fb_mesh_element_nodes(m, e)[a] + 1] += (size_t)fb_mesh_element_type(m, e);
+  for (size_t i = 0; i < nn; ++i)
+    count[i + 1] += count[i];
+  p->adj = malloc((count[nn] ? count[nn] : 1) * sizeof *p->adj);
+  if (!p->adj) {
+    free(count);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the mesh's node graph");
+  }
+  memcpy(p->adj_start, count, (nn + 1) * sizeof *count);
+  for (size_t e = 0; e < ne; ++e) {
+    const size_t nen = (size_t)fb_mesh_element_type(m, e);
+    const size_t *nodes = fb_mesh_element_nodes(m, e);
+    for (size_t a = 0; a < nen; ++a)
+      for (size_t b = 0; b < nen; ++b)
+        p->adj[count[nodes[a]]++] = nodes[b];
+  }
+  free(count);
+  /* Sort and compact each list in place; adj_start becomes the compact
+   * starts. */
+  size_t out = 0;
+  for (size_t i = 0; i < nn; ++i) {
+    size_t *list = p->adj + p->adj_start[i];
+    const size_t len = p->adj_start[i + 1] - p->adj_start[i];
+    qsort(list, len, sizeof *list, cmp_size);
+    const size_t start = out;
+    for (size_t k = 0; k < len; ++k)
+      if (out == start || p->adj[out - 1] != list[k])
+        p->adj[out++] = list[k];
+    p->adj_start[i] = start;
+  }
+  p->adj_start[nn] = out;
+  return FB_OK;
+}
+
+static int make_pattern(const fb_mesh *m, pattern *p, fb_err *err)
+{
+  memset(p, 0, sizeof *p);
+  int rc = node_graph(m, p, err);
+  const size_t nn = p->nnodes;
+  if (!rc && nn > SIZE_MAX / 6 - 1)
+    rc = fb_err_set(err, FB_ENOMEM, "mesh too large to assemble");
+  if (!rc && !(p->colptr = malloc((6 * nn + 1) * sizeof *p->colptr)))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for the matrices' pattern");
+  if (rc) {
+    pattern_free(p);
+    return rc;
+  }
+  p->colptr[0] = 0;
+  for (size_t i = 0; i < nn; ++i) {
+    const size_t len = 6 * (p->adj_start[i + 1] - p->adj_start[i]);
+    for (size_t k = 0; k < 6; ++k)
+      p->colptr[6 * i + k + 1] = p->colptr[6 * i + k] + len;
   }
   return FB_OK;
 }
 
-/* Computes element e and appends its entries. */
-static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *base,
-                       fb_mass_kind mass, triplets *t, fb_err *err)
+/* Where node b's rows start in node a's columns (b is a neighbour). */
+static size_t block_offset(const pattern *p, size_t a, size_t b)
 {
-  const fb_shell_props props = fb_mesh_element_props(m, e, base), *p = &props;
+  const size_t *list = p->adj + p->adj_start[a];
+  size_t k = 0;
+  while (list[k] != b)
+    ++k;
+  return 6 * k;
+}
+
+/* Computes element e and adds it into the values kv and mv (either
+ * NULL) laid out by p. */
+static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *base,
+                       fb_mass_kind mass, const pattern *p, double *kv, double *mv, fb_err *err)
+{
+  const fb_shell_props props = fb_mesh_element_props(m, e, base);
   const fb_elem_type type = fb_mesh_element_type(m, e);
-  const size_t nn = (size_t)type, n = 6 * nn;
+  const size_t nen = (size_t)type, n = 6 * nen;
   const size_t *nodes = fb_mesh_element_nodes(m, e);
   double xyz[3 * 4], ke[24 * 24], me[24 * 24];
-  for (size_t a = 0; a < nn; ++a)
+  for (size_t a = 0; a < nen; ++a)
     for (size_t k = 0; k < 3; ++k)
       xyz[3 * a + k] = fb_mesh_node_xyz(m, nodes[a])[k];
-  int rc =
-      fb_shell_element(type, xyz, p, mass, t->kvals ? ke : NULL, t->mvals ? me : NULL, err);
+  int rc = fb_shell_element(type, xyz, &props, mass, kv ? ke : NULL, mv ? me : NULL, err);
   if (rc) {
     fb_err_prefix(err, "element %ld: ", fb_mesh_element_id(m, e));
     return rc;
   }
-  for (size_t j = 0; j < n; ++j)
-    for (size_t i = 0; i < n; ++i) {
-      t->rows[t->n] = 6 * nodes[i / 6] + i % 6;
-      t->cols[t->n] = 6 * nodes[j / 6] + j % 6;
-      if (t->kvals)
-        t->kvals[t->n] = ke[j * n + i];
-      if (t->mvals)
-        t->mvals[t->n] = me[j * n + i];
-      ++t->n;
+  for (size_t ja = 0; ja < nen; ++ja)
+    for (size_t ib = 0; ib < nen; ++ib) {
+      const size_t off = block_offset(p, nodes[ja], nodes[ib]);
+      for (size_t k = 0; k < 6; ++k) {
+        const size_t dst = p->colptr[6 * nodes[ja] + k] + off, src = (6 * ja + k) * n + 6 * ib;
+        for (size_t l = 0; l < 6; ++l) {
+          if (kv)
+            kv[dst + l] += ke[src + l];
+          if (mv)
+            mv[dst + l] += me[src + l];
+        }
+      }
     }
   return FB_OK;
 }
 
+/* The matrix of values v laid out by p, its exact zeros left out. */
+static int compress(const pattern *p, const double *v, fb_mat **out, fb_err *err)
+{
+  const size_t ncols = 6 * p->nnodes, cap = p->colptr[ncols];
+  size_t *colptr = malloc((ncols + 1) * sizeof *colptr);
+  size_t *rowidx = malloc((cap ? cap : 1) * sizeof *rowidx);
+  double *vals = malloc((cap ? cap : 1) * sizeof *vals);
+  int rc = colptr && rowidx && vals ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  size_t nnz = 0;
+  for (size_t j = 0; !rc && j < ncols; ++j) {
+    colptr[j] = nnz;
+    const size_t a = j / 6;
+    size_t k = p->colptr[j];
+    for (size_t q = p->adj_start[a]; q < p->adj_start[a + 1]; ++q)
+      for (size_t l = 0; l < 6; ++l, ++k)
+        if (v[k] != 0.0) {
+          rowidx[nnz] = 6 * p->adj[q] + l;
+          vals[nnz++] = v[k];
+        }
+  }
+  if (!rc) {
+    colptr[ncols] = nnz;
+    rc = fb_mat_new_csc(ncols, ncols, colptr, rowidx, vals, out, err);
+  }
+  free(colptr);
+  free(rowidx);
+  free(vals);
+  return rc;
+}
+
+/* Assembly is element by element into the values of a pattern of 6 x 6
+ * node blocks laid out once from the mesh's node graph: each element's
+ * entries go straight to their places, in element order, so an entry is
+ * the sum of its elements' contributions in that order (as a sum of
+ * triplets would be). */
 int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass, fb_mat **K,
                     fb_mat **M, fb_err *err)
 {
@@ -102,16 +200,24 @@ int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass
   int rc = fb_shell_check_props(p, err);
   if (rc)
     return rc;
-  const size_t ndof = 6 * fb_mesh_nnodes(m);
-  triplets t;
-  rc = triplets_alloc(m, K != NULL, M != NULL, &t, err);
+  pattern pat;
+  rc = make_pattern(m, &pat, err);
+  if (rc)
+    return rc;
+  const size_t cap = pat.colptr[6 * pat.nnodes];
+  double *kv = K ? calloc(cap ? cap : 1, sizeof *kv) : NULL;
+  double *mv = M ? calloc(cap ? cap : 1, sizeof *mv) : NULL;
+  if ((K && !kv) || (M && !mv))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling %zu matrix entries", cap);
   for (size_t e = 0; !rc && e < fb_mesh_nelements(m); ++e)
-    rc = add_element(m, e, p, mass, &t, err);
+    rc = add_element(m, e, p, mass, &pat, kv, mv, err);
   if (!rc && K)
-    rc = fb_mat_new_triplets(ndof, ndof, t.n, t.rows, t.cols, t.kvals, K, err);
+    rc = compress(&pat, kv, K, err);
   if (!rc && M)
-    rc = fb_mat_new_triplets(ndof, ndof, t.n, t.rows, t.cols, t.mvals, M, err);
-  triplets_free(&t);
+    rc = compress(&pat, mv, M, err);
+  free(kv);
+  free(mv);
+  pattern_free(&pat);
   if (rc && K)
     fb_mat_free(K);
   return rc;
@@ -119,26 +225,22 @@ int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass
 
 /* ---- Mass properties. */
 
-/* Rigid-body field of the mesh's nodes (6 per node): translation along
- * axis k (k < 3) or rotation about axis k - 3 through point o, with the
- * rotational DOFs equal to the rotation. */
-static void rigid_mode(const fb_mesh *m, int k, const double *o, double *r)
+void fb_mesh_rigid_modes(const fb_mesh *m, const double *o, double *r)
 {
-  const size_t nn = fb_mesh_nnodes(m);
+  const size_t nn = fb_mesh_nnodes(m), n = 6 * nn;
+  memset(r, 0, 6 * n * sizeof *r);
   for (size_t i = 0; i < nn; ++i) {
-    double *ri = r + 6 * i;
-    for (int q = 0; q < 6; ++q)
-      ri[q] = 0.0;
-    if (k < 3) {
-      ri[k] = 1.0;
-      continue;
-    }
-    const int ax = k - 3, a1 = (ax + 1) % 3, a2 = (ax + 2) % 3;
     const double *x = fb_mesh_node_xyz(m, i);
-    /* e_ax x (x - o): components a1 and a2 only. */
-    ri[a1] = -(x[a2] - o[a2]);
-    ri[a2] = x[a1] - o[a1];
-    ri[3 + ax] = 1.0;
+    for (int k = 0; k < 3; ++k) {
+      r[(size_t)k * n + 6 * i + (size_t)k] = 1.0;
+      /* Rotation about axis k through o: u = e_k x (x - o), the node's
+       * rotation e_k. */
+      double *col = r + (size_t)(3 + k) * n + 6 * i;
+      const int a1 = (k + 1) % 3, a2 = (k + 2) % 3;
+      col[a1] = -(x[a2] - o[a2]);
+      col[a2] = x[a1] - o[a1];
+      col[3 + k] = 1.0;
+    }
   }
 }
 
@@ -155,10 +257,9 @@ static void rigid_modes(const fb_mesh *m, const fb_mat *M, const double *o, doub
                         double *mr)
 {
   const size_t n = 6 * fb_mesh_nnodes(m);
-  for (int k = 0; k < 6; ++k) {
-    rigid_mode(m, k, o, r + (size_t)k * n);
+  fb_mesh_rigid_modes(m, o, r);
+  for (int k = 0; k < 6; ++k)
     fb_mat_gemv(M, 1.0, r + (size_t)k * n, 0.0, mr + (size_t)k * n);
-  }
 }
 
 /* From the kinetic energy v^T M v / 2 of rigid motions v: with r_k the
@@ -200,5 +301,89 @@ int fb_fem_mass_properties(const fb_mesh *m, const fb_mat *M, double *mass, doub
       inertia[3 * i + j] = dot(n, r + (size_t)(3 + i) * n, mr + (size_t)(3 + j) * n);
   *mass = total;
   free(r);
+  return FB_OK;
+}
+
+/* The 6 x 6 rigid-body mass matrix about o, sum over the elements of
+ * r_e' M_e r_e (r_e: the element's rows of the six rigid-body fields about
+ * o), into g (row-major). */
+static int rigid_mass_about(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind kind,
+                            const double *o, double *g, fb_err *err)
+{
+  for (int k = 0; k < 36; ++k)
+    g[k] = 0.0;
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
+    const fb_shell_props props = fb_mesh_element_props(m, e, p);
+    const fb_elem_type type = fb_mesh_element_type(m, e);
+    const size_t nn = (size_t)type, n = 6 * nn;
+    const size_t *nodes = fb_mesh_element_nodes(m, e);
+    double xyz[3 * 4], me[24 * 24], r[6 * 24] = {0}, mr[24];
+    for (size_t a = 0; a < nn; ++a)
+      for (size_t k = 0; k < 3; ++k)
+        xyz[3 * a + k] = fb_mesh_node_xyz(m, nodes[a])[k];
+    const int rc = fb_shell_element(type, xyz, &props, kind, NULL, me, err);
+    if (rc)
+      return fb_err_prefix(err, "element %ld: ", fb_mesh_element_id(m, e)), rc;
+    /* The element's rows of rigid_mode's fields. */
+    for (int k = 0; k < 6; ++k)
+      for (size_t a = 0; a < nn; ++a) {
+        double *ra = r + (size_t)k * n + 6 * a;
+        if (k < 3) {
+          ra[k] = 1.0;
+          continue;
+        }
+        const int ax = k - 3, a1 = (ax + 1) % 3, a2 = (ax + 2) % 3;
+        ra[a1] = -(xyz[3 * a + (size_t)a2] - o[a2]);
+        ra[a2] = xyz[3 * a + (size_t)a1] - o[a1];
+        ra[3 + ax] = 1.0;
+      }
+    for (int j = 0; j < 6; ++j) {
+      for (size_t i = 0; i < n; ++i) {
+        double sum = 0.0;
+        for (size_t l = 0; l < n; ++l)
+          sum += me[l * n + i] * r[(size_t)j * n + l];
+        mr[i] = sum;
+      }
+      for (int i = 0; i < 6; ++i)
+        g[6 * i + j] += dot(n, r + (size_t)i * n, mr);
+    }
+  }
+  return FB_OK;
+}
+
+/* As fb_fem_mass_properties, from the same kinetic energies of rigid
+ * motions, summed element by element: about the node centroid first,
+ * then about the centre of mass found there. */
+int fb_fem_mesh_mass_properties(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind kind,
+                                double *mass, double *cg, double *inertia, fb_err *err)
+{
+  if (!m || !p || !mass || !cg || !inertia)
+    return fb_err_set(err, FB_EINVAL, "fb_fem_mesh_mass_properties: NULL argument");
+  const size_t nn = fb_mesh_nnodes(m);
+  if (nn == 0 || fb_mesh_nelements(m) == 0)
+    return fb_err_set(err, FB_EINVAL, "fb_fem_mesh_mass_properties: the mesh has no elements");
+  int rc = fb_shell_check_props(p, err);
+  if (rc)
+    return rc;
+  double origin[3] = {0.0, 0.0, 0.0}, g[36];
+  for (size_t i = 0; i < nn; ++i)
+    for (int k = 0; k < 3; ++k)
+      origin[k] += fb_mesh_node_xyz(m, i)[k] / (double)nn;
+  rc = rigid_mass_about(m, p, kind, origin, g, err);
+  if (rc)
+    return rc;
+  const double total = g[0];
+  if (!(total > 0.0 && isfinite(total)))
+    return fb_err_set(err, FB_EINVAL,
+                      "fb_fem_mesh_mass_properties: rigid-body mass %g is not positive", total);
+  for (int k = 0; k < 3; ++k)
+    cg[k] = origin[k] + g[6 * ((k + 1) % 3) + 3 + (k + 2) % 3] / total;
+  rc = rigid_mass_about(m, p, kind, cg, g, err);
+  if (rc)
+    return rc;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      inertia[3 * i + j] = g[6 * (3 + i) + 3 + j];
+  *mass = total;
   return FB_OK;
 }

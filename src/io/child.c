@@ -20,6 +20,7 @@
 #include <string.h>
 #include <sys/prctl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -161,7 +162,20 @@ static int open_streams(const char *log_path, int *in_fd, int *log_fd)
   return e;
 }
 
-/* The outcome of a child that ended with status. */
+/* Why a child that said nothing may have failed: its directory's file
+ * system is full (its log could not be written either), as ": " and
+ * strerror(ENOSPC) into buf; "" otherwise. */
+static void full_disk(const char *dir, char *buf, size_t size)
+{
+  struct statvfs st;
+  buf[0] = '\0';
+  if (statvfs(dir, &st) == 0 && st.f_bavail == 0)
+    snprintf(buf, size, ": %s", strerror(ENOSPC));
+}
+
+/* The outcome of a child that ended with status. Its log's tail says
+ * why; a signal is named (SIGXFSZ: "File size limit exceeded"); a silent
+ * failure on a full file system says so. */
 static int report_status(const fb_child_spec *spec, const char *log_path, const char *what,
                          int status, fb_err *err)
 {
@@ -169,13 +183,15 @@ static int report_status(const fb_child_spec *spec, const char *log_path, const 
     return FB_OK;
   char tail[LOG_TAIL + 8];
   log_tail(log_path, tail, sizeof tail);
+  if (!tail[0])
+    full_disk(spec->cwd, tail, sizeof tail);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
     return fb_err_set(err, FB_EIO, "%s: %s could not be started%s", what, spec->program, tail);
   if (WIFEXITED(status))
     return fb_err_set(err, FB_EIO, "%s: %s failed (exit status %d)%s", what, spec->program,
                       WEXITSTATUS(status), tail);
-  return fb_err_set(err, FB_EIO, "%s: %s was killed by signal %d%s", what, spec->program,
-                    WTERMSIG(status), tail);
+  return fb_err_set(err, FB_EIO, "%s: %s was killed by signal %d (%s)%s", what, spec->program,
+                    WTERMSIG(status), strsignal(WTERMSIG(status)), tail);
 }
 
 /* fb_child_run with the log at log_path (spec->cwd/spec->log). */

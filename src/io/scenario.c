@@ -121,7 +121,7 @@ void fb_scenario_free(fb_scenario **s)
   fb_road_free(&p->road_profile_data);
   free(p->hull_deck);
   free(p->coupling_surface);
-  fb_mesh_free(&p->hull_deck_mesh);
+  fb_mesh_free(&p->hull_source_mesh);
   sc_free_strings(p->inputs, p->ninputs);
   for (size_t i = 0; p->origin && i < p->norigins; ++i)
     sc_free_origin(&p->origin[i]);
@@ -300,7 +300,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->inputs = NULL;
   copy->origin = NULL;
   copy->road_profile_data = NULL;
-  copy->hull_deck_mesh = NULL;
+  copy->hull_source_mesh = NULL;
   int ok = sc_copy_string(s->name, &copy->name);
   ok = sc_copy_string(s->path, &copy->path) && ok;
   ok = sc_copy_string(s->frame_origin, &copy->frame_origin) && ok;
@@ -317,8 +317,8 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
        ok;
   ok = sc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
   ok = sc_copy_string(s->coupling_surface, &copy->coupling_surface) && ok;
-  ok = (!s->hull_deck_mesh ||
-        fb_mesh_clone(s->hull_deck_mesh, &copy->hull_deck_mesh, NULL) == FB_OK) &&
+  ok = (!s->hull_source_mesh ||
+        fb_mesh_clone(s->hull_source_mesh, &copy->hull_source_mesh, NULL) == FB_OK) &&
        ok;
   ok = sc_copy_strings(s->inputs, s->ninputs, &copy->inputs) && ok;
   ok = sc_copy_origins(s, copy) && ok;
@@ -416,7 +416,7 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
     rc = fb_scenario_check(s, c->err);
   /* A hull deck is read here, once: the builder takes the mesh from the
    * scenario. Its errors are at hull.mesh.deck, then at the deck's line. */
-  if (!rc && s->hull_deck && fb_mesh_read_file(s->hull_deck, &s->hull_deck_mesh, c->err)) {
+  if (!rc && s->hull_deck && fb_mesh_read_file(s->hull_deck, &s->hull_source_mesh, c->err)) {
     fb_err_set_key(c->err, "hull.mesh.deck");
     rc = fb_scenario_locate(s, c->err);
   }

@@ -362,14 +362,23 @@ static int sc_check_fe_hull(const fb_scenario *s, fb_err *err)
   if (!s->has_fe_hull)
     return FB_OK;
   const fb_hull_mesh_params *g = &s->hull_mesh;
+  const int count = s->hull_modes_kind == FB_HULL_MODES_COUNT;
   /* A reduced hull needs its six rigid-body modes at least. */
-  if (s->hull_modes != 0 && s->hull_modes < 6)
+  if (count && s->hull_modes < 6)
     return sc_fail(s, err, "hull.fe.modes",
-                   "0 (every mode) or at least the 6 rigid-body modes (got %d)", s->hull_modes);
-  if (s->hull_modes != 0 && s->hull_coordinates == FB_HULL_NODAL)
+                   "auto, all or at least the 6 rigid-body modes (got %d)", s->hull_modes);
+  if (s->hull_modes_kind != FB_HULL_MODES_AUTO && s->hull_coordinates == FB_HULL_NODAL)
     return sc_fail(s, err, "hull.fe.modes",
-                   "a reduced hull (%d modes) is in modal coordinates, not nodal ones",
-                   s->hull_modes);
+                   "a choice of modes (%s) is for modal coordinates, not nodal ones",
+                   count ? "a count" : "all");
+  if (s->hull_cutoff_hz != 0 &&
+      (s->hull_modes_kind != FB_HULL_MODES_AUTO || s->hull_coordinates == FB_HULL_NODAL))
+    return sc_fail(s, err, "hull.fe.cutoff_hz",
+                   "a cut-off sets which modes hull.fe.modes: auto keeps, in modal "
+                   "coordinates; not with %s",
+                   s->hull_coordinates == FB_HULL_NODAL ? "nodal coordinates"
+                   : count                              ? "a count of modes"
+                                                        : "every mode");
   if (s->hull_deck)
     return FB_OK;
   if (!(g->x_front > g->x_rear))

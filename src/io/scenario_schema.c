@@ -4,6 +4,7 @@
  * several shapes (the load points, a damper table), an axle that makes
  * two corners, the outputs' defaults from their signal kinds, and the
  * rules between keys of one section. */
+#include <errno.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,6 +135,69 @@ static int sc_mesh_done(sch_reader *r, const sch_key *k, struct fy_node *node, v
   return rc;
 }
 
+/* hull.fe.modes: `auto`, `all` or a whole number, the modes a modal hull
+ * keeps (fb_hull_modes_kind); the number's range is the scenario check's
+ * (at least the six rigid-body modes). 0, which once meant every mode, is
+ * refused with the word that says so now. */
+enum { SC_MAX_HULL_MODES = 100000 };
+
+static int sc_read_hull_modes(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
+{
+  (void)k;
+  fb_scenario *s = base;
+  const char *text = NULL;
+  int rc = ml_string(r->c, node, &text);
+  if (rc)
+    return rc;
+  if (!strcmp(text, "auto")) {
+    s->hull_modes_kind = FB_HULL_MODES_AUTO;
+    return FB_OK;
+  }
+  if (!strcmp(text, "all")) {
+    s->hull_modes_kind = FB_HULL_MODES_ALL;
+    return FB_OK;
+  }
+  char *end = NULL;
+  errno = 0;
+  const long n = strtol(text, &end, 10);
+  if (end == text || *end || errno == ERANGE || n < 0 || n > SC_MAX_HULL_MODES)
+    return ml_fail(r->c, node, FB_EPARSE,
+                   "expected auto, all or a whole number of modes in 6..%d (got '%s')",
+                   SC_MAX_HULL_MODES, text);
+  if (n == 0)
+    return ml_fail(r->c, node, FB_EPARSE,
+                   "0 no longer means every mode: write all for every mode (a dense "
+                   "eigen-solve), or auto for the modes the excitation needs");
+  s->hull_modes_kind = FB_HULL_MODES_COUNT;
+  s->hull_modes = (int)n;
+  return FB_OK;
+}
+
+static void sc_format_hull_modes(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  (void)k;
+  const fb_scenario *s = base;
+  if (s->hull_modes_kind == FB_HULL_MODES_COUNT)
+    snprintf(buf, size, "%d", s->hull_modes);
+  else
+    snprintf(buf, size, "%s", s->hull_modes_kind == FB_HULL_MODES_ALL ? "all" : "auto");
+}
+
+/* Optional values whose absence is a 0 in the scenario. */
+static int sc_has_cutoff(const void *base)
+{
+  return ((const fb_scenario *)base)->hull_cutoff_hz != 0;
+}
+
+static int sc_has_converged_density(const void *base)
+{
+  return ((const fb_scenario *)base)->hull_converged_density != 0;
+}
+
+static const sch_ops sc_cutoff_present = {.present = sc_has_cutoff};
+static const sch_ops sc_converged_present = {.present = sc_has_converged_density};
+static const sch_ops sc_hull_modes = {.read = sc_read_hull_modes,
+                                      .format = sc_format_hull_modes};
 static const sch_ops sc_hull_ops = {.done = sc_hull_done};
 static const sch_ops sc_mesh_ops = {.done = sc_mesh_done, .present = sc_has_fe_hull};
 static const sch_ops sc_fe_ops = {.done = sc_fe_done, .present = sc_has_fe_hull};
@@ -822,6 +886,11 @@ static const sch_key sc_keys[] = {
     WHOLE("hull.mesh.density", CLOSED(1, 64), DEF(1),
           "refinement of the generator's mesh: d x d elements for each",
           S_AT(INT, hull_mesh.density), .ops = &sc_generator_present),
+    WHOLE("hull.mesh.converged_density", CLOSED(2, 64), OPT,
+          "a density of the generator at which the hull's modes have converged: `flexbond "
+          "run` with both systems runs System 2 there too and compares, when it is above "
+          "hull.mesh.density and the hull is generated (docs/hull-mesh.md)",
+          S_AT(INT, hull_converged_density), .ops = &sc_converged_present),
     SECTION("hull.mesh.coupling", OPT,
             "how attachment points that are not nodes meet the mesh (docs/hull-mesh.md)",
             &sc_coupling_present),
@@ -870,9 +939,16 @@ static const sch_key sc_keys[] = {
            "`modal`: the hull's free-free modes (diagonal fields); `nodal`: its nodal "
            "displacements (sparse fields, the reference)",
            S_AT(INT, hull_coordinates)),
-    WHOLE("hull.fe.modes", CLOSED(0, 100000), DEF(0),
-          "modal only: 0 every mode; N >= 6: the N lowest and a static correction",
-          S_AT(INT, hull_modes)),
+    CUSTOM("hull.fe.modes", NULL, "`auto`, `all` or N", OPT,
+           "modal only: `auto` (the default) the rigid-body modes and blocks of "
+           "load-dependent Ritz vectors from every attachment point, the load and every hull "
+           "output, as many as the excitation's band needs; `all` every mode (a dense "
+           "eigen-solve); N >= 6 the N lowest with the static correction of those patterns",
+           &sc_hull_modes),
+    NUMBER("hull.fe.cutoff_hz", "Hz", POSITIVE, OPT,
+           "with `modes: auto`: the top of the band the basis must converge over, in place "
+           "of the highest frequency that reaches the hull",
+           S_OFF(hull_cutoff_hz), .ops = &sc_cutoff_present),
     SECTION("load", REQ, "hull plus payload", NULL),
     NUMBER("load.total_weight", "N", POSITIVE, REQ,
            "weight of hull (its `masses` included) plus payload, in equal shares over the load "

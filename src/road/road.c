@@ -329,3 +329,30 @@ int fb_road_wheel_velocity(const fb_road *road, int track, double speed, double 
 {
   return wheel_tfun(road, track, speed, s0, road_wheel_velocity, out, err);
 }
+
+/* One track's shortest wavelength (road_kind's layouts). */
+static double track_shortest_wavelength(const road_track *t, const double *data)
+{
+  switch (t->kind) {
+  case ROAD_BUMP: return 0.5 * t->param[2];
+  case ROAD_HARMONICS: {
+    const double k = t->param[1] + (double)(t->n ? t->n - 1 : 0) * t->param[2];
+    return k > 0 ? 6.28318530717958647692 / k : INFINITY;
+  }
+  case ROAD_PCHIP: {
+    double ds = INFINITY;
+    for (size_t i = 1; i < t->n; ++i)
+      ds = fmin(ds, data[i] - data[i - 1]);
+    return 2.0 * ds;
+  }
+  }
+  return INFINITY;
+}
+
+double fb_road_shortest_wavelength(const fb_road *road)
+{
+  double w = INFINITY;
+  for (int k = 0; k < FB_ROAD_NTRACKS; ++k)
+    w = fmin(w, track_shortest_wavelength(&road->track[k], road->data[k]));
+  return w;
+}

@@ -82,3 +82,22 @@ int fb_result_diff(const fb_result *b, const fb_result *a, fb_result **out, fb_e
     (*out)->data[i] = i % a->ncols == 0 ? a->data[i] : b->data[i] - a->data[i];
   return FB_OK;
 }
+
+int fb_result_rel_diff(const fb_result *a, const fb_result *b, double t0, double *rel,
+                       fb_err *err)
+{
+  int rc = check_same_grid(b, a, err);
+  for (size_t j = 1; !rc && j < a->ncols; ++j) {
+    double lo = INFINITY, hi = -INFINITY, diff = 0.0;
+    for (size_t k = 0; k < a->nsamples; ++k) {
+      const double *ra = a->data + k * a->ncols, *rb = b->data + k * b->ncols;
+      if (ra[0] < t0)
+        continue;
+      lo = fmin(lo, ra[j]);
+      hi = fmax(hi, ra[j]);
+      diff = fmax(diff, fabs(ra[j] - rb[j]));
+    }
+    rel[j - 1] = hi > lo ? diff / (hi - lo) : 0.0;
+  }
+  return rc;
+}

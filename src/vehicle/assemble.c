@@ -181,74 +181,39 @@ static int contact_probes(const fb_scenario *s, fb_probe_spec *cp, fb_err *err)
   return FB_OK;
 }
 
-/* The hull fragment of system sys: the only part that differs between
- * System 1 and System 2. With mesh not NULL, System 2's mesh moves to
- * *mesh (the animation's). */
-static int make_hull(const fb_scenario *s, fb_system sys, fb_hull **hull,
-                     fb_vehicle_run_info *info, fb_mesh **mesh, fb_err *err)
-{
-  if (sys != FB_SYSTEM_FLEXIBLE)
-    return fb_vehicle_rigid_hull(s, hull, err);
-  fb_fe_hull *fe = NULL;
-  int rc = fb_vehicle_fe_hull(s, &fe, err);
-  if (!rc)
-    rc = fb_vehicle_flexible_hull(s, fe, hull, err);
-  if (!rc && mesh) {
-    *mesh = fe->mesh;
-    fe->mesh = NULL;
-  }
-  fb_fe_hull_free(&fe);
-  if (!rc && info) {
-    info->eig_dof = (*hull)->eig_dof;
-    info->eig_modes = (*hull)->eig_modes;
-    info->eig_dense = (*hull)->eig_dense;
-    info->eig_seconds = (*hull)->eig_seconds;
-  }
-  return rc;
-}
-
-/* The probes after the outputs: the tires' contact forces, then with
- * motion the vehicle's motion (its hull's basis and mesh moved into
- * *motion, which takes them over before the assembly frees the hull). */
-static int extra_probes(const fb_scenario *s, fb_hull *hull, fb_vehicle_motion *motion,
+/* The probes after the outputs: the tires' contact forces, then the
+ * motion's. */
+static int extra_probes(const fb_scenario *s, const fb_hull *hull, unsigned extras,
                         fb_probe_spec *p, fb_err *err)
 {
-  int rc = contact_probes(s, p, err);
-  if (!rc && motion) {
-    motion->ncoords = hull->ntorsion;
-    motion->basis = hull->coord_basis;
-    hull->coord_basis = NULL;
-    rc = fb_vehicle_motion_probes(s, hull, p + s->ncorners, err);
-  }
+  int rc = extras & VEHICLE_PROBE_CONTACT ? contact_probes(s, p, err) : FB_OK;
+  if (!rc && (extras & VEHICLE_PROBE_MOTION))
+    rc = fb_vehicle_motion_probes(s, hull,
+                                  p + (extras & VEHICLE_PROBE_CONTACT ? s->ncorners : 0), err);
   return rc;
 }
 
-/* fb_vehicle_graph, with the hull's eigen-solve in *info when not NULL
- * and the motion's probes after the contact forces when motion is not
- * NULL (which gets System 2's mesh and the hull's basis). */
-static int vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph,
-                         fb_probe_spec **probes, size_t *nprobes, fb_vehicle_run_info *info,
-                         fb_vehicle_motion *motion, fb_err *err)
+int vehicle_graph_around(const fb_scenario *s, fb_hull **hullp, unsigned extras,
+                         size_t *ncoords, fb_bg **graph, fb_probe_spec **probes,
+                         size_t *nprobes, fb_err *err)
 {
   *graph = NULL;
   *probes = NULL;
   *nprobes = 0;
-  fb_hull *hull = NULL;
+  fb_hull *hull = *hullp;
   fb_probe_spec *outputs = NULL;
   size_t nout = 0;
-  const size_t nextra = s->ncorners + (motion ? fb_vehicle_motion_nprobes(s) : 0);
-  int rc = fb_scenario_check(s, err);
+  const size_t nextra = (extras & VEHICLE_PROBE_CONTACT ? s->ncorners : 0) +
+                        (extras & VEHICLE_PROBE_MOTION ? fb_vehicle_motion_nprobes(s) : 0);
+  if (ncoords)
+    *ncoords = hull->ntorsion;
+  fb_probe_spec *extra = calloc(nextra + 1, sizeof *extra);
+  int rc = extra ? extra_probes(s, hull, extras, extra, err)
+                 : fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
-    rc = make_hull(s, sys, &hull, info, motion ? &motion->mesh : NULL, err);
-  fb_probe_spec *extra = rc ? NULL : calloc(nextra, sizeof *extra);
-  if (!rc && !extra)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc)
-    rc = extra_probes(s, hull, motion, extra, err);
-  if (!rc)
-    rc = fb_vehicle_assemble(s, &hull, graph, &outputs, &nout, err);
-  fb_hull_free(&hull);
-  fb_probe_spec *all = rc ? NULL : calloc(nout + nextra, sizeof *all);
+    rc = fb_vehicle_assemble(s, hullp, graph, &outputs, &nout, err);
+  fb_hull_free(hullp);
+  fb_probe_spec *all = rc ? NULL : calloc(nout + nextra + 1, sizeof *all);
   if (!rc && !all)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc) {
@@ -268,36 +233,6 @@ static int vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph,
   return rc;
 }
 
-int fb_vehicle_graph(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_probe_spec **probes,
-                     size_t *nprobes, fb_err *err)
-{
-  return vehicle_graph(s, sys, graph, probes, nprobes, NULL, NULL, err);
-}
-
-/* The graph and its block diagram, with the contact forces (and the
- * motion's probes with motion) as extra outputs if asked. */
-static int vehicle_build(const fb_scenario *s, fb_system sys, int contact, fb_bg **graph,
-                         fb_bd **bd, fb_vehicle_run_info *info, fb_vehicle_motion *motion,
-                         fb_err *err)
-{
-  *bd = NULL;
-  fb_probe_spec *probes = NULL;
-  size_t nprobes = 0;
-  int rc = vehicle_graph(s, sys, graph, &probes, &nprobes, info, motion, err);
-  if (!rc)
-    rc = fb_bd_build(*graph, probes, contact ? nprobes : s->noutputs, bd, err);
-  fb_vehicle_probes_free(&probes, nprobes);
-  if (rc)
-    fb_bg_free(graph);
-  return rc;
-}
-
-int fb_vehicle_build(const fb_scenario *s, fb_system sys, fb_bg **graph, fb_bd **bd,
-                     fb_err *err)
-{
-  return vehicle_build(s, sys, 0, graph, bd, NULL, NULL, err);
-}
-
 void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o)
 {
   fb_sim_opts_default(o);
@@ -308,85 +243,4 @@ void fb_vehicle_sim_opts(const fb_scenario *s, fb_sim_opts *o)
   o->max_steps = s->max_steps;
   o->stability_limit_detection = s->stability_limit_detection;
   o->sample_rate = s->sample_rate;
-}
-
-int fb_vehicle_simulate(const fb_scenario *s, fb_system sys, fb_result **out, fb_err *err)
-{
-  return fb_vehicle_simulate_progress(s, sys, NULL, NULL, out, err);
-}
-
-int fb_vehicle_simulate_progress(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
-                                 void *ctx, fb_result **out, fb_err *err)
-{
-  fb_vehicle_run_info info;
-  return fb_vehicle_simulate_info(s, sys, fn, ctx, &info, out, err);
-}
-
-/* fb_vehicle_simulate_info, with the motion's columns after the contact
- * forces when motion is not NULL. */
-static int simulate(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn, void *ctx,
-                    fb_vehicle_run_info *info, fb_vehicle_motion *motion, fb_result **out,
-                    fb_err *err)
-{
-  *out = NULL;
-  memset(info, 0, sizeof *info);
-  fb_bg *graph = NULL;
-  fb_bd *bd = NULL;
-  struct timespec t0;
-  clock_gettime(CLOCK_MONOTONIC, &t0);
-  int rc = vehicle_build(s, sys, 1, &graph, &bd, info, motion, err);
-  info->build_seconds = fb_seconds_since(&t0);
-  double *x0 = NULL;
-  if (!rc) {
-    size_t n = fb_bd_nstates(bd);
-    x0 = calloc(n + 1, sizeof *x0);
-    if (!x0)
-      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  }
-  if (!rc && s->initial == FB_INITIAL_STATIC) {
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    double *zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);
-    rc = zero ? fb_sim_static_state(bd, 0.0, zero, x0, err)
-              : fb_err_set(err, FB_ENOMEM, "out of memory");
-    free(zero);
-    info->static_seconds = fb_seconds_since(&t0);
-  }
-  fb_sim_opts o;
-  fb_vehicle_sim_opts(s, &o);
-  o.x0 = x0;
-  o.progress = fn;
-  o.progress_ctx = ctx;
-  if (!rc)
-    rc = fb_sim_run(bd, &o, out, err);
-  free(x0);
-  fb_bd_free(&bd);
-  fb_bg_free(&graph);
-  return rc;
-}
-
-int fb_vehicle_simulate_info(const fb_scenario *s, fb_system sys, fb_sim_progress_fn fn,
-                             void *ctx, fb_vehicle_run_info *info, fb_result **out, fb_err *err)
-{
-  return simulate(s, sys, fn, ctx, info, NULL, out, err);
-}
-
-int fb_vehicle_simulate_motion(const fb_scenario *s, fb_system sys, const double *window,
-                               fb_sim_progress_fn fn, void *ctx, fb_vehicle_run_info *info,
-                               fb_result **out, fb_vehicle_motion **motion, fb_err *err)
-{
-  *motion = NULL;
-  fb_vehicle_motion *m = calloc(1, sizeof *m);
-  if (!m)
-    return fb_err_set(err, FB_ENOMEM, "out of memory");
-  m->sys = sys;
-  int rc = simulate(s, sys, fn, ctx, info, m, out, err);
-  if (!rc)
-    rc = fb_vehicle_motion_take(s, *out, 1 + s->noutputs + s->ncorners, window, m, err);
-  if (rc) {
-    fb_result_free(out);
-    fb_vehicle_motion_free(&m);
-    return rc;
-  }
-  *motion = m;
-  return FB_OK;
 }

@@ -14,6 +14,7 @@
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
+#include "vehicle/vehicle_internal.h"
 
 void fb_fe_hull_free(fb_fe_hull **h)
 {
@@ -318,6 +319,13 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
   return FB_OK;
 }
 
+int vehicle_source_mesh_current(const fb_scenario *s)
+{
+  if (!s->hull_source_mesh)
+    return 0;
+  return s->hull_deck || s->hull_source_key == fb_hull_mesh_key(s, &s->hull_mesh);
+}
+
 int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
 {
   *out = NULL;
@@ -331,25 +339,27 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   const fb_shell_props props = {s->young,     s->poisson,           s->density,
                                 s->thickness, s->hull_drill_factor, 0.0};
   fb_mesh *mesh = NULL;
-  if (!s->hull_deck) {
-    /* The generator's errors about a scenario value carry its logical
-     * key (the caller locates it); the others start with "hull mesh:". */
-    int rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
-    if (!rc)
-      rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
-    return rc;
-  }
-  /* The deck as the loader read it (its parse errors were reported
-   * there); the node sets keep no line, so their errors name the deck
-   * alone; a node that is off keeps the key of the scenario's point. */
-  if (!s->hull_deck_mesh) {
+  int rc = FB_OK;
+  if (vehicle_source_mesh_current(s))
+    rc = fb_mesh_clone(s->hull_source_mesh, &mesh, err);
+  else if (!s->hull_deck)
+    /* A scenario the loader did not complete, or changed since: the
+     * generator's errors about a scenario value carry its logical key
+     * (the caller locates it); the others start with "hull mesh:". */
+    rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
+  else {
     fb_err_set(err, FB_EINVAL,
-               "%s: the deck is not read (the scenario's hull_deck_mesh; the loader reads it)",
+               "%s: the deck is not read (the scenario's hull_source_mesh; the loader reads "
+               "it)",
                s->hull_deck);
     return fb_err_set_key(err, "hull.mesh.deck");
   }
-  int rc = fb_mesh_clone(s->hull_deck_mesh, &mesh, err);
-  if (!rc && (rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err))) {
+  if (rc)
+    return rc;
+  /* A deck's node sets keep no line, so their errors name the deck
+   * alone; a node that is off keeps the key of the scenario's point. */
+  rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
+  if (rc && s->hull_deck) {
     fb_err_prefix(err, "%s: ", s->hull_deck);
     if (!err || !err->key[0])
       fb_err_set_key(err, "hull.mesh.deck");
@@ -357,34 +367,70 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   return rc;
 }
 
-/* fb_fe_hull_free_modes with fb_fem_modes' dense_limit. */
-static int free_modes(const fb_fe_hull *h, size_t nmodes, size_t dense_limit, double *freq_hz,
-                      size_t *nrigid, fb_err *err)
+/* The largest hull whose free-free frequencies (beta's, the report's)
+ * come from LAPACK: the nodal reference results were computed so (the
+ * reference hull has 1296 DOFs), and Lanczos, which agrees to round-off,
+ * would still move a beta's last digits and with them the integrator's
+ * step sequence and the outputs, by the solver's tolerance (4e-6 of a
+ * column's range measured on the reference vehicle). Above it a dense
+ * solve only for a frequency would be an accident of size. */
+#define HULL_DENSE_FREQUENCY_DOFS 3000
+
+int fb_fe_hull_frequencies(const fb_mat *K, const fb_mat *M, size_t nmodes,
+                           const fb_eig_opts *o, double *freq_hz, size_t *nrigid,
+                           fb_eig_info *info, fb_err *err)
+{
+  fb_eig_opts opts;
+  if (o)
+    opts = *o;
+  else
+    fb_eig_opts_default(&opts);
+  const size_t n = fb_mat_nrows(K);
+  if (nmodes > n)
+    nmodes = n;
+  if (opts.method == FB_EIG_AUTO)
+    opts.method = n <= HULL_DENSE_FREQUENCY_DOFS ? FB_EIG_DENSE : FB_EIG_LANCZOS;
+  opts.values_only = 1;
+  fb_fem_modal *fm = NULL;
+  int rc = fb_fem_modal_new(K, M, &opts, &fm, err);
+  if (!rc)
+    rc = fb_fem_modal_solve(fm, nmodes, 0.0, err);
+  if (!rc) {
+    memcpy(freq_hz, fb_fem_modal_freq_hz(fm), nmodes * sizeof *freq_hz);
+    *nrigid = fb_fem_modal_nrigid(fm);
+    if (info)
+      *info = fb_fem_modal_info(fm);
+  }
+  fb_fem_modal_free(&fm);
+  return rc;
+}
+
+/* The eigen-solver's options of the one-shot calls below for a hull of K:
+ * the solver's own choice by size (block Lanczos above
+ * FB_EIG_DENSE_AUTO_DOFS), not the nodal reference's LAPACK up to 3000
+ * DOFs, which costs a second of a 1296-DOF hull's time for a few modes. */
+static fb_eig_opts one_shot_opts(const fb_mat *K)
+{
+  fb_eig_opts o;
+  fb_eig_opts_default(&o);
+  o.method = K && fb_mat_nrows(K) <= FB_EIG_DENSE_AUTO_DOFS ? FB_EIG_DENSE : FB_EIG_LANCZOS;
+  return o;
+}
+
+int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
+                          fb_err *err)
 {
   fb_mat *K = NULL, *M = NULL;
   *nrigid = 0;
   int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
   if (!rc)
     rc = fb_fe_hull_mass_matrix(h, &M, err);
-  if (!rc && nmodes > fb_mat_nrows(K))
-    nmodes = fb_mat_nrows(K);
+  const fb_eig_opts o = one_shot_opts(K);
   if (!rc)
-    rc = fb_fem_modes(K, M, nmodes, dense_limit, freq_hz, NULL, err);
-  /* Counted without a cap: a deck with a loose plate has more. */
-  if (!rc) {
-    const double threshold = fb_fem_rigid_threshold_hz(K, M);
-    while (*nrigid < nmodes && freq_hz[*nrigid] <= threshold)
-      (*nrigid)++;
-  }
+    rc = fb_fe_hull_frequencies(K, M, nmodes, &o, freq_hz, nrigid, NULL, err);
   fb_mat_free(&K);
   fb_mat_free(&M);
   return rc;
-}
-
-int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
-                          fb_err *err)
-{
-  return free_modes(h, nmodes, fb_fem_dense_limit(nmodes), freq_hz, nrigid, err);
 }
 
 int fb_fe_hull_beta(double zeta, size_t nrigid, double f1_hz, double *beta, fb_err *err)
@@ -398,33 +444,25 @@ int fb_fe_hull_beta(double zeta, size_t nrigid, double f1_hz, double *beta, fb_e
   return FB_OK;
 }
 
-/* The free-free modes beta is found from: six rigid-body ones, then the
- * first elastic one. */
-#define HULL_BETA_MODES 7
-
 int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **B, fb_err *err)
 {
   if (B)
     *B = NULL;
-  double f[HULL_BETA_MODES];
+  double f[FB_HULL_BETA_MODES];
   size_t nrigid = 0;
-  /* Dense, as the nodal hull's reference results were computed: ARPACK
-   * agrees to round-off, but a beta that differs in its last digits moves
-   * the integrator's step sequence, and with it the outputs, by the
-   * solver's tolerance (4e-6 of a column's range measured on the
-   * reference vehicle). */
-  int rc = free_modes(h, HULL_BETA_MODES, SIZE_MAX, f, &nrigid, err);
+  fb_mat *K = NULL, *M = NULL;
+  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
   if (!rc)
-    rc = fb_fe_hull_beta(zeta, nrigid, f[HULL_BETA_MODES - 1], beta, err);
-  if (rc)
-    return rc;
-  if (!B)
-    return FB_OK;
-  fb_mat *K = NULL;
-  rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
+    rc = fb_fe_hull_mass_matrix(h, &M, err);
+  const fb_eig_opts o = one_shot_opts(K);
   if (!rc)
+    rc = fb_fe_hull_frequencies(K, M, FB_HULL_BETA_MODES, &o, f, &nrigid, NULL, err);
+  if (!rc)
+    rc = fb_fe_hull_beta(zeta, nrigid, f[FB_HULL_BETA_MODES - 1], beta, err);
+  if (!rc && B)
     rc = fb_mat_axpby(*beta, K, 0.0, NULL, B, err);
   fb_mat_free(&K);
+  fb_mat_free(&M);
   return rc;
 }
 
@@ -509,8 +547,8 @@ static int add_coupled_spring(trips *t, size_t a, const fb_hull_coupling *c, dou
 /* *M plus the hull's declared masses and mass `each` on each of the first
  * nload load nodes (0: none), every one on its node's three
  * translations; *M is replaced, and left as it is when there are none. */
-static int add_point_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat **M,
-                            fb_err *err)
+int fb_fe_hull_add_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat **M,
+                          fb_err *err)
 {
   if (!h->npoint_masses && !nload)
     return FB_OK;
@@ -535,32 +573,13 @@ static int add_point_masses(const fb_fe_hull *h, size_t nload, double each, fb_m
 int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err)
 {
   int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
-  return rc ? rc : add_point_masses(h, 0, 0.0, M, err);
+  return rc ? rc : fb_fe_hull_add_masses(h, 0, 0.0, M, err);
 }
 
-/* The hull's M as built (fb_fe_hull_mass_matrix) plus, for the lumped
- * payload, its equal shares of the payload mass on the translations of
- * the load nodes. */
-static int hull_mass(const fb_scenario *s, const fb_fe_hull *h, fb_mat **M, fb_err *err)
+int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
+                        const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err)
 {
-  const int lumped = s->payload == FB_PAYLOAD_LUMPED;
-  const double each = lumped ? fb_scenario_payload_mass(s) / (double)h->nload : 0.0;
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, M, err);
-  return rc ? rc : add_point_masses(h, lumped ? h->nload : 0, each, M, err);
-}
-
-/* Vehicle K and M: the hull's, plus the lumped bodies on their springs. */
-static int vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, fb_mat **K, fb_mat **M,
-                            fb_mat **mh_out, fb_err *err)
-{
-  fb_mat *kh = NULL, *mh = NULL;
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &kh, NULL, err);
-  if (!rc)
-    rc = hull_mass(s, h, &mh, err);
-  if (rc) {
-    fb_mat_free(&kh);
-    return rc;
-  }
+  int rc = FB_OK;
   const size_t nm = s->nmounts;
   size_t nh = fb_mat_nrows(kh), n = nh + nm + s->ncorners;
   trips tk = {0}, tm = {0};
@@ -593,39 +612,28 @@ static int vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, fb_mat **
     rc = fb_mat_new_triplets(n, n, tm.n, tm.r, tm.c, tm.v, M, err);
   trips_free(&tk);
   trips_free(&tm);
-  fb_mat_free(&kh);
-  *mh_out = mh;
   return rc;
 }
 
-/* Six rigid-body modes of the hull about its centre of mass (columns of r,
- * nh x 6): translations x, y, z, then rotations about x, y, z. */
-static void hull_rigid_modes(const fb_mesh *m, const double *cg, double *r)
-{
-  size_t nn = fb_mesh_nnodes(m), nh = 6 * nn;
-  memset(r, 0, 6 * nh * sizeof *r);
-  for (size_t i = 0; i < nn; ++i) {
-    const double *p = fb_mesh_node_xyz(m, i);
-    const double d[3] = {p[0] - cg[0], p[1] - cg[1], p[2] - cg[2]};
-    for (int k = 0; k < 3; ++k) {
-      r[k * nh + 6 * i + k] = 1.0;
-      /* rotation about axis k: u = e_k x d, the node's rotation e_k */
-      double *col = r + (3 + k) * nh + 6 * i;
-      int a = (k + 1) % 3, b = (k + 2) % 3;
-      col[a] = -d[b];
-      col[b] = d[a];
-      col[3 + k] = 1.0;
-    }
-  }
-}
-
 typedef struct describe_ctx {
-  const fb_mat *M;
-  double *r, *mr; /* rigid modes and M_h r (nh x 6 each) */
-  double *mv;     /* M v, ndof */
+  const fb_mat *mh; /* the hull's mass */
+  double *r, *mr;   /* rigid modes and M_h r (nh x 6 each) */
+  double *mv;       /* M v, ndof */
   size_t nh, ndof;
-  const fb_scenario *s; /* names of the mounts and corners after the hull's DOFs */
+  const fb_scenario *s; /* names and masses of the mounts and corners after the hull's DOFs */
 } describe_ctx;
+
+/* d->mv = M v for the whole vehicle's M (fb_vehicle_matrices'): the
+ * hull's, then each body's and each wheel's mass. */
+static void mass_times(const describe_ctx *d, const double *v)
+{
+  const fb_scenario *s = d->s;
+  fb_mat_gemv(d->mh, 1.0, v, 0.0, d->mv);
+  for (size_t b = 0; b < s->nmounts; ++b)
+    d->mv[d->nh + b] = s->mount[b].mass * v[d->nh + b];
+  for (size_t c = 0; c < s->ncorners; ++c)
+    d->mv[d->nh + s->nmounts + c] = s->corner[c].wheel_mass * v[d->nh + s->nmounts + c];
+}
 
 /* The hull's kinetic energy split by M_h-orthogonal projection onto its
  * six rigid-body modes: energy[k] of rigid component k (diagonal part of
@@ -688,7 +696,7 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
   static const char *const hull_names[7] = {"hull surge",  "hull sway",  "hull bounce",
                                             "hull roll",   "hull pitch", "hull yaw",
                                             "hull elastic"};
-  fb_mat_gemv(d->M, 1.0, v, 0.0, d->mv);
+  mass_times(d, v);
   double total = 0.0, energy[7], best = -1.0;
   for (size_t i = 0; i < d->ndof; ++i)
     total += v[i] * d->mv[i];
@@ -739,7 +747,7 @@ static void normalise(const fb_fe_hull *h, size_t nh, size_t nmounts, double *v,
       v[i] *= sign / big;
 }
 
-static int mode_set_alloc(size_t nmodes, size_t ndof, fb_mode_set **out, fb_err *err)
+int fb_mode_set_new(size_t nmodes, size_t ndof, fb_mode_set **out, fb_err *err)
 {
   fb_mode_set *ms = calloc(1, sizeof *ms);
   if (ms) {
@@ -763,7 +771,7 @@ static int mode_set_alloc(size_t nmodes, size_t ndof, fb_mode_set **out, fb_err 
  * kinetic energy in those three rigid components. */
 static int is_free_mode(const describe_ctx *d, const double *v)
 {
-  fb_mat_gemv(d->M, 1.0, v, 0.0, d->mv);
+  mass_times(d, v);
   double total = 0.0, energy[7];
   for (size_t i = 0; i < d->ndof; ++i)
     total += v[i] * d->mv[i];
@@ -791,27 +799,14 @@ static void keep_supported(const describe_ctx *d, const double *freq, const doub
   ms->nmodes = kept;
 }
 
-int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t nmodes,
-                              fb_mode_set **out, fb_err *err)
+int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *mh,
+                             const double *freq, const double *shapes, size_t nwant,
+                             fb_mode_set *ms, fb_err *err)
 {
-  *out = NULL;
-  fb_mat *K = NULL, *M = NULL, *mh = NULL;
-  fb_mode_set *ms = NULL;
-  describe_ctx d = {NULL, NULL, NULL, NULL, 0, 0, s};
-  int rc = vehicle_matrices(s, h, &K, &M, &mh, err);
-  if (!rc) {
-    d.M = M;
-    d.ndof = fb_mat_nrows(K);
-    d.nh = fb_mat_nrows(mh);
-    if (nmodes > d.ndof)
-      nmodes = d.ndof;
-    rc = mode_set_alloc(nmodes, d.ndof, &ms, err);
-  }
-  double mass, cg[3];
-  if (!rc) {
-    double inertia[9];
-    rc = fb_fem_mass_properties(h->mesh, mh, &mass, cg, inertia, err);
-  }
+  const size_t nh = fb_mat_nrows(mh);
+  describe_ctx d = {mh, NULL, NULL, NULL, nh, nh + s->nmounts + s->ncorners, s};
+  double mass, cg[3], inertia[9];
+  int rc = fb_fem_mass_properties(h->mesh, mh, &mass, cg, inertia, err);
   if (!rc) {
     d.r = malloc(6 * d.nh * sizeof *d.r);
     d.mr = malloc(6 * d.nh * sizeof *d.mr);
@@ -820,29 +815,11 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   }
   if (!rc) {
-    hull_rigid_modes(h->mesh, cg, d.r);
+    fb_mesh_rigid_modes(h->mesh, cg, d.r);
     for (int j = 0; j < 6; ++j)
       fb_mat_gemv(mh, 1.0, d.r + j * d.nh, 0.0, d.mr + j * d.nh);
-  }
-  /* Dense LAPACK at the default hull's size, ARPACK for refined meshes;
-   * three more than asked for the free horizontal rigid-body modes. */
-  size_t nwant = nmodes + 3 < d.ndof ? nmodes + 3 : d.ndof;
-  double *freq = NULL, *shapes = NULL;
-  if (!rc) {
-    freq = malloc(nwant * sizeof *freq);
-    shapes = malloc(nwant * d.ndof * sizeof *shapes);
-    if (!freq || !shapes)
-      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  }
-  if (!rc)
-    rc = fb_fem_modes(K, M, nwant, fb_fem_dense_limit(nwant), freq, shapes, err);
-  if (!rc) {
     keep_supported(&d, freq, shapes, nwant, ms);
-    ms->nsolved = nwant;
-    ms->dense = fb_fem_modes_dense(d.ndof, nwant, fb_fem_dense_limit(nwant));
   }
-  free(freq);
-  free(shapes);
   for (size_t k = 0; !rc && k < ms->nmodes; ++k) {
     double *v = ms->shapes + k * d.ndof;
     describe_mode(&d, v, ms->description[k], sizeof ms->description[k]);
@@ -851,204 +828,6 @@ int fb_vehicle_flexible_modes(const fb_scenario *s, const fb_fe_hull *h, size_t 
   free(d.r);
   free(d.mr);
   free(d.mv);
-  fb_mat_free(&K);
-  fb_mat_free(&M);
-  fb_mat_free(&mh);
-  if (rc) {
-    fb_mode_set_free(&ms);
-    return rc;
-  }
-  *out = ms;
-  return FB_OK;
-}
-
-/* ---- System 2's hull as a bond-graph fragment (the paper's Fig. 5,
- * upper right): the finite-element matrices as multiport fields on the
- * nodal velocity multibond, M as an I field, K as a C field and B as an R
- * field, and selection transformers from the nodal velocities to the
- * attachment and load points' vertical velocities. */
-
-/* Matrix transformer from the hull's coordinates to the vertical
- * velocity of each of the n points: the rows of their couplings over the
- * nodal DOFs (for a point on a node, a selection), or with a reduced basis
- * T (ndof x nb) those rows times T. */
-static int add_selection(fb_bg *bg, const char *name, size_t n, const fb_hull_coupling *rows_of,
-                         size_t ndof, const double *T, size_t nb, fb_err *err)
-{
-  fb_mat *t = NULL;
-  int rc = FB_OK;
-  if (T) {
-    double *rows = calloc(n * nb, sizeof *rows);
-    rc = rows ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-    for (size_t j = 0; !rc && j < nb; ++j)
-      for (size_t i = 0; i < n; ++i)
-        for (size_t k = 0; k < rows_of[i].n; ++k)
-          rows[j * n + i] += rows_of[i].w[k] * T[j * ndof + rows_of[i].dof[k]];
-    if (!rc)
-      rc = fb_mat_new_dense(n, nb, rows, &t, err);
-    free(rows);
-    return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
-  }
-  size_t nnz = 0;
-  for (size_t i = 0; i < n; ++i)
-    nnz += rows_of[i].n;
-  size_t *r = malloc((nnz + 1) * sizeof *r), *c = malloc((nnz + 1) * sizeof *c);
-  double *v = malloc((nnz + 1) * sizeof *v);
-  rc = r && c && v ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  nnz = 0;
-  for (size_t i = 0; !rc && i < n; ++i)
-    for (size_t k = 0; k < rows_of[i].n; ++k) {
-      r[nnz] = i;
-      c[nnz] = rows_of[i].dof[k];
-      v[nnz++] = rows_of[i].w[k];
-    }
-  if (!rc)
-    rc = fb_mat_new_triplets(n, ndof, nnz, r, c, v, &t, err);
-  free(r);
-  free(c);
-  free(v);
-  return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
-}
-
-/* The hull's matrices in its coordinates: the nodal DOFs, or in modal
- * coordinates every free-free mode (hull.fe.modes = 0: the same model as
- * the nodal one), or the free-interface basis T of the N lowest free-free
- * modes (hull.fe.modes = N) plus the residual flexibility of the forces
- * the rest of the vehicle applies (each attachment point's vertical force
- * and the load, whose points carry equal shares; fb_fem_reduce_free). In the
- * basis M = I, K = diag(lambda) and B = beta K = diag(beta lambda). */
-typedef struct hull_coords {
-  fb_mat *M, *K, *B;
-  double *T; /* ndof x nb, NULL at full order */
-  size_t ndof, nb;
-  size_t eig_modes; /* the eigen-solve's, as in fb_hull */
-  int eig_dense;
-  double eig_seconds;
-} hull_coords;
-
-static void hull_coords_free(hull_coords *c)
-{
-  fb_mat_free(&c->M);
-  fb_mat_free(&c->K);
-  fb_mat_free(&c->B);
-  free(c->T);
-}
-
-static int reduce_coords(const fb_scenario *s, const fb_fe_hull *h, hull_coords *c, fb_err *err)
-{
-  double beta = 0.0;
-  const size_t n = c->ndof, nf = h->nattach + 1;
-  double *F = calloc(n * nf, sizeof *F), *lambda = NULL;
-  size_t nrigid = 0;
-  int rc = F ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t a = 0; !rc && a < h->nattach; ++a)
-    for (size_t i = 0; i < h->attach_coupling[a].n; ++i)
-      F[a * n + h->attach_coupling[a].dof[i]] += h->attach_coupling[a].w[i];
-  for (size_t k = 0; !rc && k < h->nload; ++k)
-    for (size_t i = 0; i < h->load_coupling[k].n; ++i)
-      F[h->nattach * n + h->load_coupling[k].dof[i]] += h->load_coupling[k].w[i];
-  if (!rc && (size_t)s->hull_modes > n) {
-    fb_err_set(err, FB_EINVAL, "%d modes, more than the hull's %zu degrees of freedom",
-               s->hull_modes, n);
-    rc = fb_err_set_key(err, "hull.fe.modes");
-  }
-  /* hull.fe.modes = 0: every mode, from one dense eigen-solve; the static
-   * correction then finds nothing the basis lacks and adds no vector. */
-  const size_t nmodes = s->hull_modes > 0 ? (size_t)s->hull_modes : n;
-  struct timespec t0;
-  clock_gettime(CLOCK_MONOTONIC, &t0);
-  if (!rc)
-    rc = fb_fem_reduce_free(c->K, c->M, nmodes, F, nf, &c->T, &lambda, &c->nb, &nrigid, err);
-  c->eig_modes = fb_fem_reduce_nsolved(n, nmodes);
-  c->eig_dense = fb_fem_modes_dense(n, c->eig_modes, fb_fem_dense_limit(c->eig_modes));
-  c->eig_seconds = fb_seconds_since(&t0);
-  free(F);
-  /* beta belongs to the hull as built (its structure and declared
-   * masses, fb_fe_hull_damping): with a weight-only payload M is that
-   * hull's, and when the reduction kept an elastic mode (its modes come
-   * first, rigid-body ones at the front) that mode gives beta without
-   * another eigensolution. */
-  const int own_mode = s->payload != FB_PAYLOAD_LUMPED && nmodes > nrigid;
-  if (!rc && own_mode)
-    rc = fb_fe_hull_beta(s->hull_damping_ratio, nrigid,
-                         sqrt(lambda[nrigid]) / 6.28318530717958647692, &beta, err);
-  else if (!rc)
-    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, NULL, err);
-  fb_mat_free(&c->M);
-  fb_mat_free(&c->K);
-  double *ones = rc ? NULL : malloc(c->nb * sizeof *ones);
-  if (!rc && !ones)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t i = 0; !rc && i < c->nb; ++i)
-    ones[i] = 1.0;
-  if (!rc)
-    rc = fb_mat_new_diag(c->nb, ones, &c->M, err);
-  if (!rc)
-    rc = fb_mat_new_diag(c->nb, lambda, &c->K, err);
-  for (size_t i = 0; !rc && i < c->nb; ++i)
-    lambda[i] *= beta;
-  if (!rc)
-    rc = fb_mat_new_diag(c->nb, lambda, &c->B, err);
-  free(ones);
-  free(lambda);
-  return rc;
-}
-
-static int hull_coords_new(const fb_scenario *s, const fb_fe_hull *h, hull_coords *c,
-                           fb_err *err)
-{
-  double beta = 0.0;
-  int rc = hull_mass(s, h, &c->M, err);
-  if (!rc)
-    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &c->K, NULL, err);
-  assert(rc != FB_OK || c->K); /* for the static analyzer: K is set on success */
-  c->ndof = c->K ? fb_mat_nrows(c->K) : 0;
-  c->nb = c->ndof;
-  if (!rc && s->hull_coordinates == FB_HULL_MODAL)
-    return reduce_coords(s, h, c, err);
-  struct timespec t0;
-  clock_gettime(CLOCK_MONOTONIC, &t0);
-  if (!rc)
-    rc = fb_fe_hull_damping(h, s->hull_damping_ratio, &beta, &c->B, err);
-  c->eig_modes = HULL_BETA_MODES;
-  c->eig_dense = 1;
-  c->eig_seconds = fb_seconds_since(&t0);
-  return rc;
-}
-
-static int flexible_hull_graph(const fb_fe_hull *h, hull_coords *c, fb_bg *bg, fb_err *err)
-{
-  const size_t n = c->nb;
-  int rc = fb_bg_add_field(bg, "mass", FB_BG_I, 1, &n, &c->M, err);
-  if (!rc)
-    rc = fb_bg_add_field(bg, "stiffness", FB_BG_C, 1, &n, &c->K, err);
-  if (!rc)
-    rc = fb_bg_add_field(bg, "damping", FB_BG_R, 1, &n, &c->B, err);
-  if (!rc)
-    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, n, err);
-  if (!rc)
-    rc = add_selection(bg, "to_attach", h->nattach, h->attach_coupling, c->ndof, c->T, n, err);
-  if (!rc)
-    rc = add_selection(bg, "to_load", h->nload, h->load_coupling, c->ndof, c->T, n, err);
-  if (!rc)
-    rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, h->nattach, err);
-  if (!rc)
-    rc = fb_bg_add_junction(bg, "load", FB_BG_J1, h->nload, err);
-  static const char *const bonds[][3] = {
-      {"b_mass", "J", "mass"},
-      {"b_stiffness", "J", "stiffness"},
-      {"b_damping", "J", "damping"},
-      {"b_attach_in", "J", "to_attach.1"},
-      {"b_attach", "to_attach.2", "attach"},
-      {"b_load_in", "J", "to_load.1"},
-      {"b_load", "to_load.2", "load"},
-  };
-  for (size_t i = 0; !rc && i < sizeof bonds / sizeof bonds[0]; ++i)
-    rc = fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], err);
-  if (!rc)
-    rc = fb_bg_add_port(bg, "attach", "attach", FB_PORT_IN, err);
-  if (!rc)
-    rc = fb_bg_add_port(bg, "load", "load", FB_PORT_IN, err);
   return rc;
 }
 
@@ -1117,85 +896,4 @@ int fb_fe_hull_torsion_weights(const fb_fe_hull *h, int fit, double *w, fb_err *
   if (!rc)
     rc = edge_roll(h, 1, fit, -1.0, w);
   return rc ? fb_err_set(err, FB_ENOMEM, "out of memory") : FB_OK;
-}
-
-/* The torsion weights over the hull's coordinates: the nodal ones w, or
- * with a reduced basis (u = T q) T' w. */
-static void to_coordinates(const hull_coords *c, const double *w, double *out)
-{
-  const size_t n = c->ndof;
-  for (size_t j = 0; j < c->nb; ++j) {
-    if (!c->T) {
-      out[j] = w[j];
-      continue;
-    }
-    double sum = 0.0;
-    for (size_t i = 0; i < n; ++i)
-      sum += w[i] * c->T[j * n + i];
-    out[j] = sum;
-  }
-}
-
-/* Torsion: roll of the front edge minus roll of the rear edge over the
- * nodal displacements (the C field's state), by the edges' end nodes and
- * by the least-squares line of every node along each edge. */
-static int flexible_torsion(const fb_fe_hull *h, const hull_coords *c, fb_hull *hull,
-                            fb_err *err)
-{
-  double *w = calloc(c->ndof, sizeof *w);
-  hull->torsion_weights = calloc(c->nb, sizeof *hull->torsion_weights);
-  hull->torsion_fit_weights = calloc(c->nb, sizeof *hull->torsion_fit_weights);
-  hull->torsion_target = malloc(sizeof "stiffness");
-  if (!w || !hull->torsion_weights || !hull->torsion_fit_weights || !hull->torsion_target) {
-    free(w);
-    return fb_err_set(err, FB_ENOMEM, "out of memory");
-  }
-  memcpy(hull->torsion_target, "stiffness", sizeof "stiffness");
-  hull->torsion_kind = FB_PROBE_STATE;
-  hull->torsion_integrate = 0;
-  hull->ntorsion = c->nb;
-  int rc = FB_OK;
-  for (int fit = 0; fit < 2 && !rc; ++fit) {
-    rc = fb_fe_hull_torsion_weights(h, fit, w, err);
-    if (!rc)
-      to_coordinates(c, w, fit ? hull->torsion_fit_weights : hull->torsion_weights);
-  }
-  free(w);
-  return rc;
-}
-
-int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull **out,
-                             fb_err *err)
-{
-  *out = NULL;
-  fb_hull *hull = calloc(1, sizeof *hull);
-  hull_coords c = {0};
-  int rc = hull ? fb_bg_new("flexible_hull", &hull->graph, err)
-                : fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc)
-    rc = hull_coords_new(s, h, &c, err);
-  if (!rc)
-    rc = flexible_hull_graph(h, &c, hull->graph, err);
-  if (!rc)
-    rc = flexible_torsion(h, &c, hull, err);
-  if (!rc) {
-    hull->eig_dof = c.ndof;
-    hull->eig_modes = c.eig_modes;
-    hull->eig_dense = c.eig_dense;
-    hull->eig_seconds = c.eig_seconds;
-    hull->coord_ndof = c.ndof;
-    hull->coord_basis = c.T; /* moved: the motion of the hull's nodes */
-    c.T = NULL;
-  }
-  hull_coords_free(&c);
-  if (rc) {
-    fb_hull_free(&hull);
-    /* A scenario value's error keeps its key (the caller locates it);
-     * any other gets the context. */
-    if (err && !err->key[0])
-      fb_err_prefix(err, "flexible hull: ");
-    return rc;
-  }
-  *out = hull;
-  return FB_OK;
 }

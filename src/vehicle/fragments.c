@@ -177,7 +177,6 @@ void fb_hull_free(fb_hull **h)
   free((*h)->torsion_target);
   free((*h)->torsion_weights);
   free((*h)->torsion_fit_weights);
-  free((*h)->coord_basis);
   free(*h);
   *h = NULL;
 }

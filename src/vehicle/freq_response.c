@@ -9,6 +9,8 @@
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
+#include "vehicle/vehicle_internal.h"
+
 /* A nonlinear vehicle's descriptor form at its static equilibrium under
  * gravity, reached from the initial state as flexbond run --initial
  * static does (fb_sim_static_state). */
@@ -28,27 +30,16 @@ static int linearise(fb_bd *bd, fb_descriptor **ds, fb_err *err)
   return rc;
 }
 
-int fb_vehicle_descriptor(const fb_scenario *s, fb_system sys, fb_descriptor **out, fb_err *err)
+int vehicle_descriptor_of(fb_bd *bd, fb_descriptor **out, fb_err *err)
 {
-  *out = NULL;
-  /* A unilateral tire is linear while in contact, its mode at rest; a
-   * Hunt-Crossley one is not (its damping is lambda q) and is linearised
-   * with the rest at the static equilibrium, as fb_vehicle_modes does. */
-  fb_scenario *own = NULL;
-  int rc = fb_scenario_clone(s, &own, err);
-  for (size_t c = 0; !rc && c < own->ncorners; ++c)
-    if (own->corner[c].tire_contact == FB_TIRE_UNILATERAL)
-      own->corner[c].tire_contact = FB_TIRE_BILATERAL;
-  fb_bg *graph = NULL;
-  fb_bd *bd = NULL;
-  if (!rc)
-    rc = fb_vehicle_build(own, sys, &graph, &bd, err);
-  if (!rc)
-    rc = fb_bd_is_linear(bd) ? fb_bd_descriptor(bd, out, err) : linearise(bd, out, err);
-  fb_bd_free(&bd);
-  fb_bg_free(&graph);
-  fb_scenario_free(&own);
-  return rc;
+  return fb_bd_is_linear(bd) ? fb_bd_descriptor(bd, out, err) : linearise(bd, out, err);
+}
+
+void vehicle_tires_in_contact(fb_scenario *s)
+{
+  for (size_t c = 0; c < s->ncorners; ++c)
+    if (s->corner[c].tire_contact == FB_TIRE_UNILATERAL)
+      s->corner[c].tire_contact = FB_TIRE_BILATERAL;
 }
 
 typedef struct track_ctx {

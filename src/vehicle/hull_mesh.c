@@ -1181,3 +1181,68 @@ int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb
   build_free(&fine);
   return rc;
 }
+
+/* ---- What a generated mesh was made from. */
+
+/* FNV-1a, 64 bits (G. Fowler, L. C. Noll & K.-P. Vo): a fingerprint of the
+ * generator's inputs, not a security measure. */
+static void key_bytes(uint64_t *h, const void *data, size_t n)
+{
+  const unsigned char *b = data;
+  for (size_t i = 0; i < n; ++i) {
+    *h ^= b[i];
+    *h *= 1099511628211u;
+  }
+}
+
+static void key_double(uint64_t *h, double v)
+{
+  key_bytes(h, &v, sizeof v);
+}
+
+static void key_name(uint64_t *h, const char *s)
+{
+  key_bytes(h, s ? s : "", (s ? strlen(s) : 0) + 1);
+}
+
+uint64_t fb_hull_mesh_key(const fb_scenario *s, const fb_hull_mesh_params *p)
+{
+  uint64_t h = 14695981039346656037u;
+  const double geometry[] = {p->width,   p->height,      p->x_rear,
+                             p->x_front, p->nose_length, p->nose_height};
+  for (size_t k = 0; k < sizeof geometry / sizeof geometry[0]; ++k)
+    key_double(&h, geometry[k]);
+  for (size_t k = 0; k < p->nbulkheads; ++k)
+    key_double(&h, p->bulkhead_x[k]);
+  const int counts[] = {(int)p->nbulkheads, p->side_rows, p->nose_rows, p->nose_rung_divisions,
+                        p->density};
+  key_bytes(&h, counts, sizeof counts);
+  key_double(&h, s->density);
+  key_double(&h, s->thickness);
+  for (size_t i = 0; i < s->nsections; ++i) {
+    key_name(&h, s->section[i].set);
+    key_double(&h, s->section[i].density);
+    key_double(&h, s->section[i].thickness);
+    key_double(&h, s->section[i].nonstructural_mass);
+  }
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    key_name(&h, s->corner[c].name);
+    key_double(&h, s->corner[c].x);
+    key_double(&h, s->corner[c].y);
+  }
+  for (size_t b = 0; b < s->nmounts; ++b) {
+    key_name(&h, s->mount[b].name);
+    key_double(&h, s->mount[b].x);
+    key_double(&h, s->mount[b].y);
+  }
+  for (size_t k = 0; k < s->npoint_masses; ++k) {
+    key_name(&h, s->point_mass[k].name);
+    key_double(&h, s->point_mass[k].x);
+    key_double(&h, s->point_mass[k].y);
+  }
+  for (size_t k = 0; k < s->nload; ++k) {
+    key_double(&h, s->load_x[k]);
+    key_double(&h, s->load_y[k]);
+  }
+  return h;
+}

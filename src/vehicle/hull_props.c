@@ -24,19 +24,19 @@ typedef struct mesh_props {
   double mass, cg[3], inertia[9];
 } mesh_props;
 
-/* The hull's mesh, as System 2 builds it (fe_hull.c), and its bare
- * (structural) properties: the declared hull masses are not the
- * structure's (hull.mass, Ixx and Iyy are the structure's alone). */
+/* The hull's mesh, as System 2 builds it (fe_hull.c: the loaded mesh with
+ * its sections and node sets), and its bare (structural) properties,
+ * summed element by element: the declared hull masses are not the
+ * structure's (hull.mass, Ixx and Iyy are the structure's alone), and no
+ * finite-element matrix is assembled here (the vehicle assembles its
+ * once). */
 static int mesh_properties(const fb_scenario *s, mesh_props *mp, fb_err *err)
 {
   fb_fe_hull *h = NULL;
-  fb_mat *M = NULL;
   int rc = fb_vehicle_fe_hull(s, &h, err);
   if (!rc)
-    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, &M, err);
-  if (!rc)
-    rc = fb_fem_mass_properties(h->mesh, M, &mp->mass, mp->cg, mp->inertia, err);
-  fb_mat_free(&M);
+    rc = fb_fem_mesh_mass_properties(h->mesh, &h->props, h->mass_kind, &mp->mass, mp->cg,
+                                     mp->inertia, err);
   fb_fe_hull_free(&h);
   return rc;
 }
@@ -170,7 +170,7 @@ static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
   if (rc)
     return rc;
   const double *cg = mp->cg;
-  fb_mesh_translate(s->hull_deck_mesh, -cg[0], -cg[1], -cg[2]);
+  fb_mesh_translate(s->hull_source_mesh, -cg[0], -cg[1], -cg[2]);
   s->hull_cg_x = cg[0];
   s->hull_cg_y = cg[1];
   shift_positions(s, cg[0], cg[1]);
@@ -181,7 +181,7 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
 {
   int rc = FB_OK;
   mesh_props mp = {0};
-  if (s->has_fe_hull && s->hull_deck_mesh) {
+  if (s->has_fe_hull && s->hull_deck) {
     rc = centre_deck(s, &mp, err);
     if (rc)
       return rc;
@@ -195,7 +195,14 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
     shift_positions(s, x, y);
   }
   if (s->has_fe_hull) {
-    if (!s->hull_deck_mesh)
+    /* The generator runs here, once, where the positions are final: the
+     * vehicle copies its mesh. */
+    if (!s->hull_deck && !vehicle_source_mesh_current(s)) {
+      fb_mesh_free(&s->hull_source_mesh);
+      rc = fb_hull_mesh_generate(s, &s->hull_mesh, &s->hull_source_mesh, err);
+      s->hull_source_key = fb_hull_mesh_key(s, &s->hull_mesh);
+    }
+    if (!rc && !s->hull_deck)
       rc = mesh_properties(s, &mp, err);
     if (!rc)
       rc = complete_properties(s, &mp, err);

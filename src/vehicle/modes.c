@@ -168,7 +168,7 @@ static int collect(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, const 
   return FB_OK;
 }
 
-static void remove_damping(fb_scenario *s)
+void vehicle_remove_damping(fb_scenario *s)
 {
   for (size_t b = 0; b < s->nmounts; ++b)
     s->mount[b].damping = 0.0;
@@ -179,11 +179,7 @@ static void remove_damping(fb_scenario *s)
   }
 }
 
-/* The modes are those of the vehicle at rest on flat ground: a random
- * road or a profile moves the wheels at t = 0, where the equilibrium is
- * taken, so it is replaced by a bump of zero height (the road's sources
- * enter no matrix: the linear model is the same). */
-static void flatten_road(fb_scenario *s)
+void vehicle_flatten_road(fb_scenario *s)
 {
   if (s->road_kind == FB_ROAD_BUMP)
     return;
@@ -202,29 +198,16 @@ static void flatten_road(fb_scenario *s)
   s->t_end = fmax(s->t_end, last + 1.0);
 }
 
-int fb_vehicle_modes(const fb_scenario *s0, fb_system sys, int undamped, fb_mode **modes,
-                     size_t *nmodes, size_t *nstatic, fb_err *err)
+int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, fb_mode **modes,
+                         size_t *nmodes, size_t *nstatic, fb_err *err)
 {
   *modes = NULL;
   *nmodes = *nstatic = 0;
-  fb_scenario *s = NULL;
-  fb_bg *g = NULL;
-  fb_bd *bd = NULL;
-  double *x = NULL, *zero = NULL;
   eig_work w = {0};
-  int rc = fb_scenario_clone(s0, &s, err);
-  if (!rc && undamped)
-    remove_damping(s);
-  if (!rc) {
-    flatten_road(s);
-    rc = fb_vehicle_build(s, sys, &g, &bd, err);
-  }
-  if (!rc) {
-    x = calloc(fb_bd_nstates(bd) + 1, sizeof *x);
-    zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);
-    rc = x && zero ? fb_sim_static_state(bd, 0.0, zero, x, err)
-                   : fb_err_set(err, FB_ENOMEM, "out of memory");
-  }
+  double *x = calloc(fb_bd_nstates(bd) + 1, sizeof *x);
+  double *zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);
+  int rc = x && zero ? fb_sim_static_state(bd, 0.0, zero, x, err)
+                     : fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
     rc = physical_jacobian(bd, x, &w, err);
   if (!rc)
@@ -232,8 +215,5 @@ int fb_vehicle_modes(const fb_scenario *s0, fb_system sys, int undamped, fb_mode
   eig_free(&w);
   free(x);
   free(zero);
-  fb_bd_free(&bd);
-  fb_bg_free(&g);
-  fb_scenario_free(&s);
   return rc;
 }

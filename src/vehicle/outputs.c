@@ -170,3 +170,9 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_
   }
   return p->target ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
 }
+
+int fb_vehicle_output_hull_fit(const fb_output_spec *o)
+{
+  const long k = find_kind(o->signal);
+  return k >= 0 && kinds[k].subject == FB_OUTPUT_OF_HULL ? probes[k].fit : -1;
+}

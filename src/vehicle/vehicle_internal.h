@@ -43,4 +43,103 @@ int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe
 int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
                            const double *window, fb_vehicle_motion *m, fb_err *err);
 
+/* -1 if output o is not read from the hull's deformation, else which
+ * torsion weights it takes (fb_fe_hull_torsion_weights' fit: 0 or 1). */
+int fb_vehicle_output_hull_fit(const fb_output_spec *o);
+
+/* 1 if the scenario's hull_source_mesh is the mesh its hull has now: a
+ * deck's, or the generator's from the inputs it has (fe_hull.c). */
+int vehicle_source_mesh_current(const fb_scenario *s);
+
+/* ---- System 2's hull, realised once (hull_model.c). */
+
+typedef struct vehicle_hull vehicle_hull;
+
+/* Builds s's finite-element hull (fb_vehicle_fe_hull), assembles its K and
+ * M once, solves its eigenproblem and makes the basis of hull.fe.coordinates
+ * and hull.fe.modes (docs/hull-mesh.md), counting each in *w. o (NULL: the
+ * defaults) gives the memory limit of the factor, the eigen-solve and the
+ * basis, the progress that hears of each stage, the eigen-solve's threads
+ * and the hull modes to solve at least. Errors about a scenario value
+ * carry its logical key ("hull.fe.modes", "hull.fe.cutoff_hz"). */
+int vehicle_hull_new(const fb_scenario *s, const fb_vehicle_opts *o, fb_vehicle_work *w,
+                     vehicle_hull **out, fb_err *err);
+void vehicle_hull_free(vehicle_hull **h);
+const fb_fe_hull *vehicle_hull_fe(const vehicle_hull *h);
+const fb_hull_basis *vehicle_hull_basis(const vehicle_hull *h);
+/* The hull fragment (fb_hull, *out new) in the realised coordinates; with
+ * enriched, in the error estimator's basis (made on the first call from
+ * the same eigen-solve; FB_EINVAL unless the coordinates are reduced
+ * modal ones). */
+int vehicle_hull_fragment(const fb_scenario *s, vehicle_hull *h, int enriched, fb_hull **out,
+                          fb_err *err);
+/* fb_vehicle_structural_modes of the realised hull. */
+int vehicle_hull_structural_modes(const fb_scenario *s, vehicle_hull *h, size_t nmodes,
+                                  int exact, fb_vehicle_work *w, fb_mode_set **out,
+                                  fb_err *err);
+
+/* ---- fe_hull.c's matrices and modes, for hull_model.c. */
+
+/* *M (the hull's, replaced) plus each declared hull mass and, each, a
+ * mass `each` on every load node (nload 0: none) on its node's three
+ * translations. */
+int fb_fe_hull_add_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat **M,
+                          fb_err *err);
+/* The undamped System 2 over the hull's nodal DOFs, then the mounted
+ * bodies' and the wheels' vertical motions: *K and *M (new) from the
+ * hull's kh and mh and the springs, bodies and wheels of s. */
+int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
+                        const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err);
+/* Completes a mode set from nwant modes (freq ascending, shapes over the
+ * DOFs of fb_vehicle_matrices', the hull's then the bodies' and wheels'):
+ * leaves out the free horizontal rigid-body motions (counted in nfree),
+ * keeps at most ms->nmodes, describes and normalises each. mh: the hull's
+ * mass. */
+int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *mh,
+                             const double *freq, const double *shapes, size_t nwant,
+                             fb_mode_set *ms, fb_err *err);
+/* A mode set with room for nmodes of ndof (*out new). */
+int fb_mode_set_new(size_t nmodes, size_t ndof, fb_mode_set **out, fb_err *err);
+
+/* ---- Variants of a scenario for the linear analyses (modes.c,
+ * freq_response.c), made on a copy: */
+
+/* Every damper and tire damper removed (natural frequencies). */
+void vehicle_remove_damping(fb_scenario *s);
+/* The vehicle at rest on flat ground: a random road or a profile moves the
+ * wheels at t = 0, where the equilibrium is taken, so it is replaced by a
+ * bump of zero height (the road's sources enter no matrix: the linear
+ * model is the same). */
+void vehicle_flatten_road(fb_scenario *s);
+/* A unilateral tire is linear while in contact, its mode at rest: it
+ * becomes bilateral. A Hunt-Crossley one is not (its damping is lambda
+ * q) and is linearised with the rest at the static equilibrium. */
+void vehicle_tires_in_contact(fb_scenario *s);
+/* The modes of the diagram bd of the graph g of s, linearised at its
+ * static equilibrium (fb_vehicle_linear_modes). */
+int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, fb_mode **modes,
+                         size_t *nmodes, size_t *nstatic, fb_err *err);
+/* bd's descriptor form: fb_bd_descriptor, or with a nonlinear law
+ * fb_bd_descriptor_at its static equilibrium under gravity from the
+ * initial state. */
+int vehicle_descriptor_of(fb_bd *bd, fb_descriptor **out, fb_err *err);
+
+/* ---- The vehicle's graph (assemble.c). */
+
+/* What a diagram of a realised vehicle probes besides the outputs. */
+enum {
+  VEHICLE_PROBE_CONTACT = 1, /* every tire's contact force */
+  VEHICLE_PROBE_MOTION = 2   /* the motion's probes (fb_vehicle_motion_probes) */
+};
+
+/* Assembles the vehicle of s around hull (taken over) with the probes of
+ * the outputs and those of extras (VEHICLE_PROBE_*): *graph and *probes
+ * new; *ncoords (if not NULL) the hull's coordinates, which the motion's
+ * first probe records. */
+int vehicle_graph_around(const fb_scenario *s, fb_hull **hull, unsigned extras, size_t *ncoords,
+                         fb_bg **graph, fb_probe_spec **probes, size_t *nprobes, fb_err *err);
+/* The basis over the hull's nodal DOFs its coordinates are in (ndof x
+ * *nb, column-major): NULL for nodal coordinates. */
+const double *vehicle_hull_coordinate_basis(const vehicle_hull *h, size_t *nb);
+
 #endif
