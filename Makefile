@@ -71,7 +71,7 @@ cmake_build = cmake -S . -B $(1) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DFLEXBOND_WER
 # $(call run_ctest,DIR): run the whole suite of one tree.
 run_ctest = ctest --test-dir $(1) --output-on-failure -j$(CTEST_JOBS)
 
-.PHONY: deps deps-test deps-dev deps-mpi install build test run asan clang mpi release format format-check clean
+.PHONY: deps deps-test deps-dev deps-mpi install install-check build test run asan clang mpi release format format-check clean
 
 test asan clang mpi release valgrind: WERROR := ON
 
@@ -110,14 +110,26 @@ build:
 test: deps-test build
 	$(call run_ctest,$(BUILD_DIR))
 
-# Installs into PREFIX (or stages under DESTDIR): docs/install.md.
+# Installs into PREFIX (or stages under DESTDIR): docs/install.md. The two reach the shell
+# only as environment variables, never pasted into a command, and $(value ...) keeps make from
+# expanding a "$" in them; install-check refuses an absolute path with anything but the
+# characters below (a backquote, "$", quote, space or line break is a mistake, and flexbond.pc
+# could not hold it). sudo only for a prefix the user cannot write (/usr/local for a user);
+# ldconfig only for a system prefix, whose libraries the loader caches.
 PREFIX ?= /usr/local
-# sudo only for a prefix the user cannot write (/usr/local for a user); ldconfig only for a
-# system prefix, whose libraries the loader caches.
-INSTALL_SUDO = $(if $(DESTDIR),,$(shell test -w "$(PREFIX)" || echo $(SUDO)))
-install: build
-	$(INSTALL_SUDO) env DESTDIR="$(DESTDIR)" cmake --install $(BUILD_DIR) --prefix "$(PREFIX)"
-	$(if $(DESTDIR),,$(if $(filter /usr /usr/local,$(PREFIX)),$(INSTALL_SUDO) ldconfig))
+install install-check: export FLEXBOND_PREFIX = $(value PREFIX)
+install install-check: export FLEXBOND_DESTDIR = $(value DESTDIR)
+install-check:
+	@case "$$FLEXBOND_PREFIX" in /*) ;; *) \
+	  echo "make install: PREFIX must be an absolute path (docs/install.md)" >&2; exit 2 ;; esac; \
+	for v in "$$FLEXBOND_PREFIX" "$$FLEXBOND_DESTDIR"; do case "$$v" in *[!A-Za-z0-9/._+,:@=~-]*) \
+	  echo "make install: PREFIX and DESTDIR may hold only letters, digits and / . _ + , : @ = ~ -" \
+	       "(docs/install.md)" >&2; exit 2 ;; esac; done
+install: install-check build
+	@sudo=; if [ -z "$$FLEXBOND_DESTDIR" ] && [ ! -w "$$FLEXBOND_PREFIX" ]; then sudo='$(SUDO)'; fi; \
+	set -x; $$sudo env DESTDIR="$$FLEXBOND_DESTDIR" cmake --install $(BUILD_DIR) --prefix "$$FLEXBOND_PREFIX"; \
+	{ set +x; } 2>/dev/null; \
+	if [ -z "$$FLEXBOND_DESTDIR" ]; then case "$$FLEXBOND_PREFIX" in /usr|/usr/local) set -x; $$sudo ldconfig ;; esac; fi
 
 run: deps build
 	./$(BUILD_DIR)/flexbond run examples/apc6x6.yaml -o $(OUT_DIR)/ --animate
@@ -174,13 +186,15 @@ fuzz: deps-dev
 	@rm -rf $(FUZZ_ABS)/crashes && mkdir -p $(FUZZ_ABS)/crashes; \
 	failed=; \
 	for name in $(FUZZ_NAMES); do \
-	  dict=yaml.dict; [ $$name = inp ] && dict=inp.dict; [ $$name = msh ] && dict=msh.dict; \
+	  dict=yaml.dict; opts="-timeout=5"; \
+	  [ $$name = inp ] && dict=inp.dict && opts="-timeout=5 -max_len=1048576 -malloc_limit_mb=64"; \
+	  [ $$name = msh ] && dict=msh.dict && opts="-timeout=2 -max_len=1048576"; \
 	  corpus=$(FUZZ_ABS)/corpus/$$name; mkdir -p $$corpus; \
 	  find tests/fuzz/corpus/$$name tests/fuzz/regressions/$$name -type f ! -name '.*' \
 	    -exec cp {} $$corpus/ \; ; \
 	  echo "fuzz: fuzz_$$name for $(FUZZ_SECONDS) s (log: $(FUZZ_DIR)/fuzz_$$name.log)"; \
 	  if ! (cd tests/fuzz && $(FUZZ_ABS)/fuzz_$$name $$corpus -max_total_time=$(FUZZ_SECONDS) \
-	        -timeout=5 -rss_limit_mb=2048 -dict=$$dict \
+	        $$opts -rss_limit_mb=2048 -dict=$$dict \
 	        -artifact_prefix=$(FUZZ_ABS)/crashes/$$name-) > $(FUZZ_ABS)/fuzz_$$name.log 2>&1; then \
 	    failed="$$failed $$name"; tail -n 40 $(FUZZ_ABS)/fuzz_$$name.log; \
 	  else \

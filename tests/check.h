@@ -37,4 +37,10 @@ static inline int check_report(const char *name)
   return check_failures ? 1 : 0;
 }
 
+/* The message as the user reads it (fb_err_describe: with a data file's
+ * excerpt), in a buffer of its own per call site's statement. */
+#define DESCRIBED(err)                                                                         \
+  fb_err_describe((err), (char[FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16]){0},                  \
+                  FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16)
+
 #endif

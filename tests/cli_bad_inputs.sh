@@ -143,6 +143,14 @@ derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
 # longer hull.edges (one bulkhead fewer moves its centre of mass), and more
 # modes than the hull has: the late checks are located too.
 derive s_driver.yaml s_ok.yaml -e '/^  - name: driver /,/^  - name: engine/s/^    x: 2.10 /    x: 20.1 /'
+# Names become mesh node sets (MASS_<NAME>, at most 80 characters): one of 85 is refused where
+# it is written, for either system.
+# Legal but implausible values: a warning at the value (exit 0), an error under --strict.
+derive s_tire1.yaml s_ok.yaml -e 's/^  tire_k: 500000 /  tire_k: 1 /'
+derive s_heavy.yaml s_ok.yaml -e 's/^  total_weight: 117720 /  total_weight: 1e12 /'
+derive s_bump100.yaml s_ok.yaml -e 's/^    height: 0.10 /    height: 100 /'
+LONG=ddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddd
+derive s_longname.yaml s_ok.yaml -e "s/^  - name: driver /  - name: $LONG /" -e "s/of: driver/of: $LONG/"
 derive s_samepoint.yaml s_ok.yaml -e '/^    - name: M /,/^    - name: R /s/^      x: 0.40 /      x: 1.90 /'
 derive s_bulkheads.yaml s_ok.yaml -e 's/^\(      bulkheads: \)\[.*\]/\1[1.90, -1.00]/'
 derive s_modes.yaml s_ok.yaml -e 's/^    modes: auto /    modes: 99999 /'
@@ -251,7 +259,7 @@ CASES=(
   "2|sweep m_ok.yaml --set ks=1:2:2 -o @OUT|m_ok.yaml:$(line_of m_ok.yaml 'model: quarter_car'):1: model: this is a model file"
   "2|modes m_ok.yaml|m_ok.yaml:$(line_of m_ok.yaml 'model: quarter_car'):1: model: this is a model file"
   "2|sim m_port.yaml -o @OUT|$(at m_port.yaml 'p.top' '[') bonds[1]: bond 'p.top->body': dimension mismatch: 'p.top' has dimension 2, 'body' has dimension 1"
-  "2|sim m_table.yaml -o @OUT|./damper_fv.csv:$(line_of damper_fv.csv '0.25, lots'): column 'F': 'lots' is not a number|$(at m_table.yaml 'file: damper_fv.csv' 'damper_fv') elements[3].table.file:"
+  "2|sim m_table.yaml -o @OUT|./damper_fv.csv:$(line_of damper_fv.csv '0.25, lots'): column 'F': not a number (read: 'lots')|$(at m_table.yaml 'file: damper_fv.csv' 'damper_fv') elements[3].table.file:"
   "4|sim m_log.yaml -o @OUT|flexbond: at t = 1.5 s: CVODE step size |the derivative of state Ms.p is inf; the non-finite value starts at Se 'grav_body' (source): e:grav_body->body = inf; hint: a law or time function evaluated outside its domain"
   "4|sim m_nan0.yaml -o @OUT|flexbond: at t = 0 s: the derivative of state Ms.p is nan at the initial state; the non-finite value starts at Se 'grav_body' (source): e:grav_body->body = nan"
   "2|sim m_short.yaml -o @OUT|$(at m_short.yaml 1e-300 1e-300) simulation.t_end: the run from t_start = 0 s to t_end = 1e-300 s is too short for the solver to take a step|at least 1.49e-154 s"
@@ -285,8 +293,12 @@ CASES=(
   "2|run s_isoclass.yaml -o @OUT|$(at s_isoclass.yaml 'class: Z' Z) road.iso8608.class:|A .. H (got 'Z')"
   "2|run s_profile.yaml -o @OUT|$(at s_profile.yaml one_row.csv one_row) road.profile.file: ./one_row.csv:2: 1 data row, need at least 2"
   "5|run s_table_missing.yaml -o @OUT|$(at s_table_missing.yaml no_such_table no_such) suspensions.axles[0].damper_table.file: ./no_such_table.csv: cannot open|No such file"
-  "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.axles[0].damper_table.file: ./word.csv:4: column 'F': 'abc' is not a number"
+  "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.axles[0].damper_table.file: ./word.csv:4: column 'F': not a number (read: 'abc')"
   "2|export s_table_order.yaml -o @OUT|$(at s_table_order.yaml order.csv order) suspensions.axles[0].damper_table.file: ./order.csv:5: column 'v': 0.5 does not exceed the previous row's 1|strictly increasing"
+  "2|run s_tire1.yaml --system rigid --strict -o @OUT|$(at s_tire1.yaml 'tire_k: 1 ' 1) wheel.tire_k: 1 N/m is implausible: a tire's radial stiffness is 1e4 to 1e8 N/m|--strict refuses implausible values: 2 in this scenario"
+  "2|export s_heavy.yaml --system rigid --strict -o @OUT|$(at s_heavy.yaml 'total_weight: 1e12' 1e12) load.total_weight: 1e+12 N is implausible"
+  "2|freq s_bump100.yaml --system rigid --strict -o @OUT|$(at s_bump100.yaml 'height: 100' 100) road.bump.height: 100 m is implausible"
+  "2|run s_longname.yaml --system rigid -o @OUT|$(at s_longname.yaml "name: $LONG" "$LONG") mounts[0].name: a name of 85 characters, more than 64"
   "2|run s_driver.yaml --system rigid -o @OUT|$(at s_driver.yaml 'x: 20.1' 20.1) mounts[0].x: must lie on the hull's floor, between hull.edges.rear_x = -2.657984123 and front_x = 2.478133119 m (got 20.1)"
   "2|export s_samepoint.yaml --system rigid -o @OUT|$(at s_samepoint.yaml '    - name: M ' name) suspensions.axles[1]: at (1.9, 1.05) m, where corner LF already is (two corners at one point)"
   "2|mesh s_bulkheads.yaml --export @FILE.inp|$(at s_bulkheads.yaml 'front_x: 2.478' 2.478) hull.edges.front_x: the scenario puts FRONT_EDGE's left end at (2.47813, 1.05) m, the mesh's node 76 at (2.33187, 1.05) m"
@@ -296,7 +308,7 @@ CASES=(
   "2|sim m_table_nul.yaml -o @OUT|$(at m_table_nul.yaml 'file: nul_fv.csv' 'nul_fv') elements[3].table.file: ./nul_fv.csv:4: binary data (byte 0x00 in column 4): not a CSV text file (expected UTF-8 text)"
   "2|run s_table_dup.yaml -o @OUT|$(at s_table_dup.yaml dup.csv dup) suspensions.axles[0].damper_table.file: ./dup.csv:1: column 'F' appears twice"
   "2|modes s_profile_nul.yaml|$(at s_profile_nul.yaml nul_road.csv nul_road) road.profile.file: ./nul_road.csv:4: binary data (byte 0x00 in column 1): not a CSV text file"
-  "2|run s_profile_hex.yaml -o @OUT|$(at s_profile_hex.yaml hex_road.csv hex_road) road.profile.file: ./hex_road.csv:4: column 'z': '0x5' is not a decimal number"
+  "2|run s_profile_hex.yaml -o @OUT|$(at s_profile_hex.yaml hex_road.csv hex_road) road.profile.file: ./hex_road.csv:4: column 'z': not a decimal number (read: '0x5')"
   "2|run s_empty.yaml -o @OUT|flexbond: s_empty.yaml:1:1: the file is empty"
   "2|modes s_binary.yaml|flexbond: s_binary.yaml:1:1: binary data (byte 0x7f)"
 
@@ -414,6 +426,15 @@ for line in "${CASES[@]}"; do
 done
 checks=$((checks + 1))
 [ "$ncases" -ge 40 ] || fail "the table has $ncases cases, fewer than 40"
+
+# Without --strict the implausible tire runs, said once per warning at the value.
+run run s_tire1.yaml --system rigid --no-figures -q -o "$WORK/out/tire1"
+expect_status 0 "an implausible tire without --strict"
+expect_in "$ERR" "flexbond: warning: $(at s_tire1.yaml 'tire_k: 1 ' 1) wheel.tire_k: 1 N/m is implausible" \
+  "an implausible tire: the warning at its value"
+expect_in "$ERR" "the static tire deflection would be 2.13e+04 m" "an implausible tire: its consequence"
+checks=$((checks + 1))
+[ "$(grep -c 'warning:' "$ERR")" -eq 2 ] || fail "an implausible tire: not two warnings"
 
 echo "$NAME: $ncases cases, $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

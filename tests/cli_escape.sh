@@ -121,5 +121,49 @@ assert [r[0] for r in rows[1:]] == ["10", bad], [r[0] for r in rows]
 assert rows[2][-1].startswith("--set speed_kmh=" + bad), rows[2][-1]
 EOF
 
+# ---- Every message is one line, whatever text it quotes: a line break in an option's value,
+# a scenario's name or a directory is written \n (fb_err_escape), in errors and status lines.
+NL='a
+b'
+run sweep "$SCEN" --system rigid --set speed_kmh=5,10 --plot "$NL" -o "$OUTDIR/nl"
+expect_status 1 "sweep --plot with a line break"
+expect_in "$ERR" "--plot a\nb: no such metric" "sweep --plot: the line break escaped"
+checks=$((checks + 1))
+[ "$(wc -l < "$ERR")" -eq 2 ] || fail "sweep --plot with a line break: not one line and the hint"
+run "$NL"
+expect_status 1 "an unknown command with a line break"
+expect_in "$ERR" "unknown command 'a\nb'" "unknown command: the line break escaped"
+mkdir -p "$WORK/nl" && cp "$SCEN" "$WORK/nl/$NL.yaml"
+run run "$WORK/nl/$NL.yaml" --system rigid --no-figures -o "$WORK/nl/$NL"
+expect_status 0 "run of a scenario whose name has a line break"
+checks=$((checks + 1))
+! grep -q '^b' "$ERR" || fail "run: a status line broken by the scenario's name"
+expect_in "$ERR" "a\nb" "run: the name escaped in the status lines"
+
+# ---- A data file named by mistake (a password file as a damper table): the message names the
+# file, line and column, never the file's text; only the terminal sees the one field that
+# failed, and sweep.csv (an output file) none of it.
+mkdir -p "$WORK/secret"
+cp "$REPO_ROOT/examples/apc6x6_shock_table.yaml" "$REPO_ROOT"/examples/shock_*.csv "$WORK/secret/"
+printf 'root:$6$SECRETHASH:19000:0:99999:7:::\ndaemon:*:19000\n' > "$WORK/secret/shadow"
+printf 'v,F\n0,0\n1,SECRETFIELD\n' > "$WORK/secret/field.csv"
+T=suspensions.axles[0].damper_table.file
+run sweep "$WORK/secret/apc6x6_shock_table.yaml" --system rigid --no-figures -q \
+  --set "$T=shock_front.csv,shadow,field.csv" -o "$WORK/secret/s"
+expect_status 4 "sweep with a password file as a damper table"
+checks=$((checks + 1))
+! grep -q SECRET "$WORK/secret/s/sweep.csv" || fail "sweep.csv quotes a data file's text"
+checks=$((checks + 1))
+! grep -q SECRETHASH "$ERR" || fail "stderr quotes more of a data file than the field that failed"
+expect_in "$WORK/secret/s/sweep.csv" "shadow:1: no column 'v' among the header's 1 field" \
+  "sweep.csv: the header's failure located"
+expect_in "$WORK/secret/s/sweep.csv" "field.csv:3: column 'F': not a number" \
+  "sweep.csv: the field's failure located"
+sed 's/shock_front\.csv/field.csv/' "$WORK/secret/apc6x6_shock_table.yaml" > "$WORK/secret/field.yaml"
+run run "$WORK/secret/field.yaml" --system rigid --no-figures -o "$WORK/secret/r"
+expect_status 2 "run with a bad field in a damper table"
+expect_in "$ERR" "field.csv:3: column 'F': not a number (read: 'SECRETFIELD')" \
+  "run: the terminal sees the field that failed"
+
 echo "$NAME: $checks checks, $failures failed"
 [ "$failures" -eq 0 ]

@@ -130,18 +130,46 @@ expect_status 1 "freq --road-class J"
 expect_in "$ERR" "not an ISO 8608 class A to H" "freq --road-class J: message"
 expect_absent "$WORK/bad" "freq --road-class J"
 
-for bad in "--points 1" "--points 2.5" "--f-min 10 --f-max 1" "--f-min -1" "--system both2"; do
+# Beyond FB_FREQ_MAX_HZ the response would overflow (--f-max 1e308 once wrote rows of inf,-nan).
+for bad in "--points 1" "--points 2.5" "--f-min 10 --f-max 1" "--f-min -1" "--system both2" \
+           "--f-max 1e308" "--f-min 1e-300 --f-max 1e10"; do
   # shellcheck disable=SC2086
   run freq "$APC" -o "$WORK/bad" $bad
   expect_status 1 "freq $bad"
   expect_absent "$WORK/bad" "freq $bad"
 done
+# The widest range allowed, 1e-300 to 1e9 Hz: every value written is finite (the grid is
+# spaced in log f, so the ratio 1e309 never forms).
+run freq "$APC" -o "$WORK/wide" --system rigid --no-figures --points 41 --f-min 1e-300 --f-max 1e9
+expect_status 0 "freq over 1e-300 to 1e9 Hz"
+checks=$((checks + 1))
+! grep -qiE 'nan|inf' "$WORK/wide/freq_system1.csv" || fail "freq over 1e-300 to 1e9 Hz: a non-finite value"
 run freq "$APC"
 expect_status 1 "freq without -o"
 expect_in "$ERR" "missing output directory" "freq without -o: message"
 run freq "$WORK/none.yaml" -o "$WORK/none"
 expect_status 5 "freq of a missing file"
 expect_absent "$WORK/none" "freq of a missing file"
+
+# ---- Each command's files stay its own: freq and modes into a run's directory would replace
+# run's bode_*.png and mode_NN.png (and a later freq --no-figures remove them from under run's
+# report.md); they are refused, nothing changes, and freq's own files still go in beside.
+run run "$APC" -o "$WORK/shared" -q
+expect_status 0 "run into a directory"
+sum_before=$(cd "$WORK/shared" && md5sum bode_*.png mode_*.png report.md)
+run freq "$APC" -o "$WORK/shared"
+expect_status 5 "freq into run's directory"
+expect_in "$ERR" "is flexbond run's, which this freq would replace" "freq into run's directory: message"
+run modes "$APC" --system flexible -o "$WORK/shared"
+expect_status 5 "modes into run's directory"
+expect_in "$ERR" "is flexbond run's, which this modes would replace" "modes into run's directory: message"
+run freq "$APC" -o "$WORK/shared" --no-figures
+expect_status 0 "freq --no-figures into run's directory"
+checks=$((checks + 1))
+[ "$(cd "$WORK/shared" && md5sum bode_*.png mode_*.png report.md)" = "$sum_before" ] ||
+  fail "run's figures or report changed under freq and modes"
+checks=$((checks + 1))
+[ -s "$WORK/shared/freq_system1.csv" ] || fail "freq --no-figures: no freq_system1.csv beside run's files"
 
 echo "$NAME: $checks checks, $failures failed"
 [ "$failures" -eq 0 ]

@@ -102,6 +102,35 @@ disk_full() { # DIR DESCRIPTION REASON [ulimit]
   [ -z "$(find "$1" -name '*.tmp*' -o -name '.flexbond*')" ] || fail "$2: a temporary file was left behind"
 }
 disk_full "$WORK/fsize" "file-size limit" "File too large|File size limit exceeded" ulimit
+
+# Every command with an output directory says the same when a write fails on its way (through
+# cli_outdir_close): the reason, that nothing was written, and what DIR holds. A 1 KiB file-size
+# limit stops each at its first file.
+APC=$REPO_ROOT/examples/apc6x6.yaml
+QC=$REPO_ROOT/examples/quarter_car.yaml
+for cmd in "sim $QC" "freq $APC --system rigid --no-figures" "modes $APC --system flexible" \
+           "export $APC --system rigid" "model $APC --system rigid" \
+           "mesh $APC --export-matrices" "sweep $APC --system rigid --set speed_kmh=5,10"; do
+  name=${cmd%% *}
+  dir=$WORK/fsize_$name
+  previous "$dir"
+  case $name in
+    mesh) out_opt=(--export-matrices "$dir"); cmd=${cmd% --export-matrices} ;;
+    *) out_opt=(-o "$dir") ;;
+  esac
+  (
+    ulimit -f 1
+    trap '' XFSZ
+    # shellcheck disable=SC2086
+    exec "$FLEXBOND" $cmd "${out_opt[@]}"
+  ) >"$OUT" 2>"$ERR"
+  status=$?
+  checks=$((checks + 1))
+  [ "$status" -ne 0 ] || fail "$name under a 1 KiB file-size limit: exit 0"
+  expect_in "$ERR" "nothing was written: $dir holds what it held before" \
+    "$name under a file-size limit says the previous results stand"
+  expect_unchanged "$dir" "$name under a file-size limit"
+done
 mkdir -p "$WORK/small"
 if mount -t tmpfs -o size=64k tmpfs "$WORK/small" 2>/dev/null; then
   disk_full "$WORK/small/out" "full disk" "No space left on device"

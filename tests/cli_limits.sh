@@ -122,6 +122,26 @@ refused 2 "huge.mtx:2: 200000000 rows, more than the 1000000 a Matrix Market fil
   "a huge Matrix Market header" sim m_mtx.yaml -o out_mtx
 expect_in "$ERR" "$(where m_mtx.yaml huge.mtx huge.mtx)" "a huge Matrix Market header"
 
+# ---- A dense eigen-solve beyond FB_DENSE_EIG_MAX (3000) states is refused before anything is
+# allocated: its time grows as n^3 and nothing could interrupt it (eig of a model of two
+# 1600-dimensional fields: 3200 states).
+{
+  printf '%%%%MatrixMarket matrix coordinate real general\n1600 1600 1600\n'
+  for i in $(seq 1 1600); do echo "$i $i 1"; done
+} >diag1600.mtx
+cat >m_dense.yaml <<'EOF'
+model: big_fields
+elements:
+  - {name: M, type: I, matrix: {mtx: diag1600.mtx}}
+  - {name: K, type: C, matrix: {mtx: diag1600.mtx}}
+  - {name: J, type: 1, dim: 1600}
+bonds:
+  - {name: b_m, from: J, to: M}
+  - {name: b_k, from: J, to: K}
+EOF
+refused 6 "eig: big_fields (3200 states): a dense eigen-solve of order 3200, more than the 3000 it may take" \
+  "a dense eigen-solve of 3200 states" eig m_dense.yaml
+
 # ---- Results and meshes that would not fit in memory.
 edited s_rate.yaml apc6x6.yaml -e 's/^  sample_rate: 1000 /  sample_rate: 6.6e6/'
 refused 2 "$(where s_rate.yaml 'sample_rate: 6.6e6' 6.6e6) simulation.sample_rate: 6.6e+06 Hz over 15 s gives 9.9e+07 samples of 14 columns, which would need about 11.1 GB" \
@@ -145,6 +165,44 @@ edited s_dense4.yaml apc6x6.yaml -e 's/^    density: 1 /    density: 4 /'
 guarded mesh s_dense4.yaml
 expect_status 0 "hull density 4"
 expect_in "$OUT" "3392 S4 elements" "hull density 4"
+
+# The same bound for a hull read from a file, deck or gmsh mesh, after it is
+# read, at the key that names the file: a 452 x 256 grid of quadrilaterals,
+# 115712 elements, such as once took 2.7 GB and 400 s of System 2.
+awk -v nx=452 -v ny=256 'BEGIN {
+  print "*NODE"
+  for (j = 0; j <= ny; j++)
+    for (i = 0; i <= nx; i++) printf "%d, %g, %g, 0\n", j * (nx + 1) + i + 1, 0.01 * i, 0.01 * j
+  print "*ELEMENT, TYPE=S4"
+  for (j = 0; j < ny; j++)
+    for (i = 0; i < nx; i++) {
+      a = j * (nx + 1) + i + 1
+      printf "%d, %d, %d, %d, %d\n", j * nx + i + 1, a, a + 1, a + nx + 2, a + nx + 1
+    }
+}' >huge.inp || exit 2
+awk -v nx=452 -v ny=256 'BEGIN {
+  n = (nx + 1) * (ny + 1); e = nx * ny
+  print "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes"
+  print 1, n, 1, n; print 2, 1, 0, n
+  for (k = 1; k <= n; k++) print k
+  for (j = 0; j <= ny; j++) for (i = 0; i <= nx; i++) print 0.01 * i, 0.01 * j, 0
+  print "$EndNodes\n$Elements"; print 1, e, 1, e; print 2, 1, 3, e
+  for (j = 0; j < ny; j++)
+    for (i = 0; i < nx; i++) {
+      a = j * (nx + 1) + i + 1
+      print j * nx + i + 1, a, a + 1, a + nx + 2, a + nx + 1
+    }
+  print "$EndElements"
+}' >huge.msh || exit 2
+HUGE="the mesh has 115712 elements, which would need about 7.6 GB of memory for System 2 (about 64 KiB per element), more than the 4.3 GB allowed (at most 65536 elements; docs/hull-mesh.md, \"Limits\")"
+for ext in inp msh; do
+  edited "s_huge$ext.yaml" apc6x6.yaml -e "s/^    generator:.*/    deck: huge.$ext/" \
+    -e '/^    density: 1 /d' -e "/^    deck: huge.$ext/,/^ \{0,4\}[a-z]/{/^      /d}"
+done
+refused 2 "$(where s_hugeinp.yaml 'deck: huge.inp' huge.inp) hull.mesh.deck: ./huge.inp: $HUGE" \
+  "a deck of 115712 elements" run s_hugeinp.yaml -o out_hugeinp --system flexible --no-figures
+refused 2 "$(where s_hugemsh.yaml 'deck: huge.msh' huge.msh) hull.mesh.deck: ./huge.msh: $HUGE" \
+  "a gmsh mesh of 115712 elements" mesh s_hugemsh.yaml
 
 # ---- Runs that cannot finish, or only after hours.
 edited s_step.yaml apc6x6.yaml -e 's/^  max_step: 0 /  max_step: 1e-6/'

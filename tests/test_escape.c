@@ -10,9 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/error.h"
 #include "flexbond/escape.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
 typedef void write_fn(FILE *fp, const char *s);
 
@@ -391,7 +393,8 @@ static void read_back(const char *dir)
 
 static void test_readers(void)
 {
-  char dir[] = "/tmp/fb_test_escape.XXXXXX";
+  char dir[TEST_PATH_MAX];
+  test_tmp_path("fb_test_escape.XXXXXX", dir, sizeof dir);
   if (!mkdtemp(dir)) {
     CHECK(!"mkdtemp");
     return;
@@ -403,8 +406,65 @@ static void test_readers(void)
     fprintf(stderr, "test_escape: could not remove %s\n", dir);
 }
 
+/* Messages are one line whatever text they quote: fb_err_set, _prefix,
+ * _append and _set_key escape control characters, and a cut keeps the
+ * message a valid NUL-terminated prefix. */
+static void test_messages(void)
+{
+  fb_err err;
+  fb_err_set(&err, FB_EINVAL, "--plot %s: no such metric",
+             "a\nb\rc\td\x01"
+             "e\x7f\xc2\x85"
+             "f");
+  CHECK(!strcmp(err.msg, "--plot a\\nb\\rc\\td\\x01e\\x7f\\u0085f: no such metric"));
+  fb_err_prefix(&err, "%s: ", "dir\nname");
+  CHECK(!strncmp(err.msg, "dir\\nname: --plot a\\nb", 22));
+  fb_err_append(&err, "; kept in %s", "x\ny");
+  CHECK(strstr(err.msg, "; kept in x\\ny") && !strchr(err.msg, '\n'));
+  fb_err_set_key(&err, "%s", "k\ney");
+  CHECK(!strcmp(err.key, "k\\ney"));
+  /* UTF-8 beyond C1 is text, not a control character. */
+  fb_err_set(&err, FB_EINVAL, "%s", "\xc3\xa9\xc2\xa0");
+  CHECK(!strcmp(err.msg, "\xc3\xa9\xc2\xa0"));
+  /* Cut short: whole escapes only. */
+  char out[5];
+  fb_err_escape(out, sizeof out, "ab\ncd");
+  CHECK(!strcmp(out, "ab\\n"));
+  fb_err_escape(out, sizeof out, "abcd\n");
+  CHECK(!strcmp(out, "abcd"));
+  /* An excerpt keeps 64 bytes of a data file's field, escaped, and says
+   * when it left anything out; describe shows it, msg never. */
+  fb_err_set(&err, FB_EPARSE, "f.csv:3: column 'v': not a number");
+  fb_err_set_excerpt(&err, "a\nb", 3);
+  CHECK(!strcmp(err.excerpt, "a\\nb"));
+  char shown[FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16];
+  CHECK(!strcmp(fb_err_describe(&err, shown, sizeof shown),
+                "f.csv:3: column 'v': not a number (read: 'a\\nb')"));
+  char field[100];
+  memset(field, 'x', sizeof field - 1);
+  field[sizeof field - 1] = '\0';
+  fb_err_set_excerpt(&err, field, strlen(field));
+  CHECK(strlen(err.excerpt) == 64 + 3 && !strcmp(err.excerpt + 64, "..."));
+  memset(field, '\x01', 64);
+  field[64] = '\0';
+  fb_err_set_excerpt(&err, field, 64); /* 64 escapes of 4 bytes do not fit */
+  CHECK(strlen(err.excerpt) < FB_ERR_EXCERPT_MAX && strstr(err.excerpt, "...") != NULL);
+  fb_err_set(&err, FB_EPARSE, "new");
+  CHECK(err.excerpt[0] == '\0'); /* a new error has none */
+  /* A message of the longest text stays within the field. */
+  char *big = malloc(3 * FB_ERR_MSG_MAX);
+  if (big) {
+    memset(big, '\n', 3 * FB_ERR_MSG_MAX - 1);
+    big[3 * FB_ERR_MSG_MAX - 1] = '\0';
+    fb_err_set(&err, FB_EINVAL, "%s", big);
+    CHECK(strlen(err.msg) < FB_ERR_MSG_MAX && !strchr(err.msg, '\n'));
+    free(big);
+  }
+}
+
 int main(void)
 {
+  test_messages();
   test_json();
   test_json_numbers();
   test_dot();

@@ -14,6 +14,7 @@
 #include "flexbond/fem.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
 /* Two S4 and one S3 over six nodes, a GENERATE set, a material and a section. */
 static const char plate_deck[] = "** plate\n"
@@ -104,7 +105,8 @@ static void test_plate(void)
 /* The same deck read from a file gives the same mesh and properties. */
 static void test_same_as_file(void)
 {
-  char path[] = "/tmp/flexbond_inp_string_XXXXXX";
+  char path[TEST_PATH_MAX];
+  test_tmp_path("flexbond_inp_string_XXXXXX", path, sizeof path);
   const int fd = mkstemp(path);
   CHECK(fd >= 0);
   if (fd < 0)

@@ -13,6 +13,7 @@
 #include "flexbond/mat.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
 /* A = [1 2 3; 4 5 6], used by several tests. */
 static const double A23_ROWMAJOR[] = {1, 2, 3, 4, 5, 6};
@@ -584,7 +585,8 @@ static int write_temp(char *path, const char *text)
 
 static fb_mat *read_text(const char *text)
 {
-  char path[] = "/tmp/fb_test_mat_XXXXXX";
+  char path[TEST_PATH_MAX];
+  test_tmp_path("fb_test_mat_XXXXXX", path, sizeof path);
   fb_mat *a = NULL;
   fb_err err;
   CHECK(write_temp(path, text));
@@ -607,7 +609,8 @@ static void test_mtx_roundtrip(void)
   fb_mat *d = dense_rowmajor(2, 2, d_rm);
   const fb_mat *both[] = {a, d};
   for (int k = 0; k < 2; ++k) {
-    char path[] = "/tmp/fb_test_mat_XXXXXX";
+    char path[TEST_PATH_MAX];
+    test_tmp_path("fb_test_mat_XXXXXX", path, sizeof path);
     fb_err err;
     CHECK(write_temp(path, ""));
     CHECK(fb_mat_write_mtx(both[k], path, &err) == FB_OK);
@@ -673,7 +676,8 @@ static void test_mtx_formats(void)
  * "<path>:<line>: " and containing needle. */
 static void check_mtx_error(const char *text, size_t line, const char *needle)
 {
-  char path[] = "/tmp/fb_test_mat_XXXXXX";
+  char path[TEST_PATH_MAX];
+  test_tmp_path("fb_test_mat_XXXXXX", path, sizeof path);
   const int failures_before = check_failures;
   CHECK(write_temp(path, text));
   fb_mat *a = NULL;
@@ -682,12 +686,14 @@ static void check_mtx_error(const char *text, size_t line, const char *needle)
   CHECK(fb_mat_read_mtx(path, &a, &err) == FB_EPARSE);
   CHECK(err.code == FB_EPARSE);
   CHECK(a == NULL);
-  char prefix[64];
+  char prefix[TEST_PATH_MAX + 32];
   snprintf(prefix, sizeof prefix, "%s:%zu: ", path, line);
-  CHECK(strncmp(err.msg, prefix, strlen(prefix)) == 0);
-  CHECK(strstr(err.msg, needle) != NULL);
+  char shown[FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16];
+  fb_err_describe(&err, shown, sizeof shown);
+  CHECK(strncmp(shown, prefix, strlen(prefix)) == 0);
+  CHECK(strstr(shown, needle) != NULL);
   if (check_failures != failures_before)
-    fprintf(stderr, "  expected '%s%s...' got: %s\n", prefix, needle, err.msg);
+    fprintf(stderr, "  expected '%s%s...' got: %s\n", prefix, needle, shown);
   unlink(path);
   fb_mat_free(&a);
 }
@@ -703,11 +709,11 @@ static void test_mtx_errors(void)
   snprintf(text, sizeof text, "%s4 3 1\n0 1 1.0\n", coord);
   check_mtx_error(text, 3, "row index 0 out of range 1..4");
   snprintf(text, sizeof text, "%s2 2 1\n1 1 abc\n", coord);
-  check_mtx_error(text, 3, "value 'abc' is not a number");
+  check_mtx_error(text, 3, "value: not a number (read: 'abc')");
   snprintf(text, sizeof text, "%s2 2 1\n1 1\n", coord);
   check_mtx_error(text, 3, "missing value");
   snprintf(text, sizeof text, "%s2 2 1\n1 1 1.0 7\n", coord);
-  check_mtx_error(text, 3, "unexpected text '7'");
+  check_mtx_error(text, 3, "unexpected text at the end of the line (read: '7')");
   snprintf(text, sizeof text, "%s2 2 3\n1 1 1\n%% c\n2 2 1\n", coord);
   check_mtx_error(text, 5, "file ends after 2 of the 3 declared entries");
   snprintf(text, sizeof text, "%s2 2 1\n1 1 1\n2 2 1\n", coord);
@@ -721,27 +727,28 @@ static void test_mtx_errors(void)
   check_mtx_error("%%MatrixMarket matrix coordinate real symmetric\n2 3 0\n", 2,
                   "must be square");
   check_mtx_error("%%MatrixMarket matrix coordinate integer general\n1 1 1\n1 1 1.5\n", 3,
-                  "invalid integer value '1.5'");
+                  "invalid integer value (read: '1.5')");
   check_mtx_error("%%MatrixMarket matrix coordinate complex general\n", 1,
-                  "unsupported field 'complex'");
+                  "unsupported field: expected real or integer (read: 'complex')");
   check_mtx_error("%%MatrixMarket matrix coordinate real hermitian\n", 1,
-                  "unsupported symmetry 'hermitian'");
+                  "unsupported symmetry: expected general or symmetric (read: 'hermitian')");
   check_mtx_error("%%MatrixMarket matrix coordinate pattern general\n", 1,
-                  "unsupported field 'pattern'");
+                  "unsupported field: expected real or integer (read: 'pattern')");
   check_mtx_error("%%MatrixMarket vector coordinate real general\n", 1, "header");
   check_mtx_error("3 3 1\n1 1 1\n", 1, "header");
   check_mtx_error("", 1, "empty file");
   check_mtx_error("%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n", 5,
                   "file ends after 3 of the 4 declared entries");
   check_mtx_error("%%MatrixMarket matrix array real general\n1 1\n1 2\n", 3,
-                  "unexpected text '2'");
+                  "unexpected text at the end of the line (read: '2')");
 }
 
 /* Reading len bytes of text fails with FB_EPARSE and exactly the message
  * "path:line: want". */
 static void check_mtx_message(const char *text, size_t len, size_t line, const char *want)
 {
-  char path[] = "/tmp/fb_test_mat_XXXXXX";
+  char path[TEST_PATH_MAX];
+  test_tmp_path("fb_test_mat_XXXXXX", path, sizeof path);
   char msg[FB_ERR_MSG_MAX];
   CHECK(write_temp_n(path, text, len));
   fb_mat *a = NULL;
@@ -750,10 +757,11 @@ static void check_mtx_message(const char *text, size_t len, size_t line, const c
   CHECK(fb_mat_read_mtx(path, &a, &err) == FB_EPARSE);
   CHECK(a == NULL);
   snprintf(msg, sizeof msg, "%s:%zu: %s", path, line, want);
-  const int ok = strcmp(err.msg, msg) == 0;
+  char shown[FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16];
+  const int ok = strcmp(fb_err_describe(&err, shown, sizeof shown), msg) == 0;
   CHECK(ok);
   if (!ok)
-    fprintf(stderr, "  got    \"%s\"\n  wanted \"%s\"\n", err.msg, msg);
+    fprintf(stderr, "  got    \"%s\"\n  wanted \"%s\"\n", shown, msg);
   unlink(path);
   fb_mat_free(&a);
 }
@@ -774,11 +782,11 @@ static void test_mtx_strict(void)
   CHECK_MTX(COORD "1 1 1\n1 1 15\r00\n", 3,
             "binary data (byte 0x0d in column 7): not a Matrix Market text file (expected "
             "UTF-8 text)");
-  CHECK_MTX(COORD "2 2 1\n1 1 0x10\n", 3, "value '0x10' is not a decimal number");
-  CHECK_MTX(COORD "2 2 1\n1 1 -inf\n", 3, "value '-inf' is not a finite number");
+  CHECK_MTX(COORD "2 2 1\n1 1 0x10\n", 3, "value: not a decimal number (read: '0x10')");
+  CHECK_MTX(COORD "2 2 1\n1 1 -inf\n", 3, "value: not a finite number (read: '-inf')");
   CHECK_MTX("%%MatrixMarket matrix array real general\n1 1\nnan\n", 3,
-            "value 'nan' is not a finite number");
-  CHECK_MTX(COORD "2 2 1\n1 1 1e400\n", 3, "value '1e400' is not a finite number");
+            "value: not a finite number (read: 'nan')");
+  CHECK_MTX(COORD "2 2 1\n1 1 1e400\n", 3, "value: not a finite number (read: '1e400')");
 
   /* A byte-order mark before the header is skipped; decimals of every
    * form are read as before. */
@@ -812,7 +820,8 @@ static void test_mtx_declared_sizes(void)
             "10000 entries declared, more than the file's 51 bytes can hold (each takes at "
             "least 2)");
 
-  char path[] = "/tmp/fb_test_mat_XXXXXX";
+  char path[TEST_PATH_MAX];
+  test_tmp_path("fb_test_mat_XXXXXX", path, sizeof path);
   fb_mat *a = NULL;
   fb_err err;
   fb_err_clear(&err);
@@ -835,7 +844,8 @@ static void test_mtx_io_errors(void)
 {
   fb_err err;
   fb_mat *a = NULL;
-  const char *missing = "/tmp/fb_test_mat_no_such_file.mtx";
+  char missing[TEST_PATH_MAX];
+  test_tmp_path("no_such_file.mtx", missing, sizeof missing);
   CHECK(fb_mat_read_mtx(missing, &a, &err) == FB_EIO);
   CHECK(a == NULL);
   CHECK(strstr(err.msg, missing) != NULL);

@@ -296,6 +296,7 @@ static void expect_check(fb_mesh *m, const char *expect)
   if (expect) {
     CHECK(rc == FB_EMODEL);
     check_msg(&err, expect);
+    CHECK(strstr(err.msg, "nan") == NULL && strstr(err.msg, "inf") == NULL);
   } else {
     CHECK(rc == FB_OK);
     if (rc)
@@ -320,6 +321,15 @@ static void test_check(void)
 
   const double line[4][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
   expect_check(one_element(line, 4, q), "element 5 (S4) is degenerate: area 0 m^2");
+
+  /* Nodes all at one point: the whole mesh has a zero bounding box, so no
+   * area limit but DBL_MIN (the warp test once printed "-nan mm"). */
+  const double point[4][3] = {{1, 2, 3}, {1, 2, 3}, {1, 2, 3}, {1, 2, 3}};
+  expect_check(one_element(point, 4, q), "element 5 (S4) is degenerate: its nodes coincide");
+  expect_check(one_element(point, 3, q), "element 5 (S3) is degenerate: its nodes coincide");
+  /* Beyond 1e154 m an area overflows a double. */
+  const double huge[4][3] = {{0, 0, 0}, {1e160, 0, 0}, {1e160, 1e160, 0}, {0, 1e160, 0}};
+  expect_check(one_element(huge, 4, q), "element 5 (S4) is too large: its area overflows");
 
   /* An arrowhead: node 3 at (0.3, 0.3) makes the corner at it reentrant
    * while the diagonals still give a positive area 0.5 * |(c-a) x (d-b)|
@@ -1103,13 +1113,28 @@ static void test_sections(void)
 }
 
 /* A gmsh MSH 4.1 text: one quadrilateral on surface 1 (physical group
- * PLATE) and a physical point CORNER at node 3. */
+ * PLATE) and a physical point CORNER at node 3; MSH_QUAD_AT gives the
+ * coordinates of nodes 3, 1, 2 and 4 (element 8 is 1 2 3 4). */
 #define MSH_HEAD "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
-#define MSH_QUAD                                                                               \
-  MSH_HEAD "$PhysicalNames\n2\n2 1 \"PLATE\"\n0 2 \"CORNER\"\n$EndPhysicalNames\n"             \
-           "$Entities\n1 0 1 0\n9 1 1 0 1 2\n1 0 0 0 1 1 0 1 1 0\n$EndEntities\n"              \
-           "$Nodes\n2 4 1 4\n0 9 0 1\n3\n1 1 0\n2 1 0 3\n1\n2\n4\n0 0 0\n1 0 0\n0 1 0\n"       \
-           "$EndNodes\n$Elements\n2 2 1 8\n0 9 15 1\n1 3\n2 1 3 1\n8 1 2 3 4\n$EndElements\n"
+#define MSH_QUAD_AT(n3, n1, n2, n4)                                                            \
+  MSH_HEAD                                                                                     \
+  "$PhysicalNames\n2\n2 1 \"PLATE\"\n0 2 \"CORNER\"\n$EndPhysicalNames\n"                      \
+  "$Entities\n1 0 1 0\n9 1 1 0 1 2\n1 0 0 0 1 1 0 1 1 0\n$EndEntities\n"                       \
+  "$Nodes\n2 4 1 4\n0 9 0 1\n3\n" n3 "\n2 1 0 3\n1\n2\n4\n" n1 "\n" n2 "\n" n4                 \
+  "\n$EndNodes\n$Elements\n2 2 1 8\n0 9 15 1\n1 3\n2 1 3 1\n8 1 2 3 4\n$EndElements\n"
+#define MSH_QUAD MSH_QUAD_AT("1 1 0", "0 0 0", "1 0 0", "0 1 0")
+
+/* The 1-based number of the line of text that starts with line. */
+static int line_of(const char *text, const char *line)
+{
+  int n = 1;
+  for (const char *p = text; *p; ++p) {
+    if ((p == text || p[-1] == '\n') && strncmp(p, line, strlen(line)) == 0)
+      return n;
+    n += *p == '\n';
+  }
+  return 0;
+}
 
 static void expect_msh_error(const char *text, const char *expect)
 {
@@ -1119,6 +1144,24 @@ static void expect_msh_error(const char *text, const char *expect)
   CHECK(fb_mesh_read_msh_string(text, strlen(text), "x.msh", &m, &err) == FB_EPARSE && !m);
   check_msg(&err, expect);
   CHECK(strncmp(err.msg, "x.msh:", 6) == 0);
+}
+
+/* The len bytes of text (NULs allowed) are refused at line (column col,
+ * 0: not known) with expect: "x.msh:LINE: " leads the message, and the
+ * error's location says the same. */
+static void expect_msh_error_at(const char *text, size_t len, int line, int col,
+                                const char *expect)
+{
+  fb_mesh *m = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_mesh_read_msh_string(text, len, "x.msh", &m, &err) == FB_EPARSE && !m);
+  char head[64];
+  snprintf(head, sizeof head, "x.msh:%d: %s", line, expect);
+  check_msg(&err, head);
+  CHECK(strncmp(err.msg, head, strlen(head)) == 0);
+  CHECK(strcmp(err.file, "x.msh") == 0 && err.line == line && err.column == col);
+  CHECK(strstr(err.msg, "nan") == NULL);
 }
 
 static void test_msh(void)
@@ -1154,12 +1197,146 @@ static void test_msh(void)
                             "1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n",
                    "x.msh:13: the element names node 2, which is not defined");
   expect_msh_error(MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n0 0 nan\n$EndNodes\n",
-                   "x.msh:8: node coordinates: expected 3 finite numbers");
+                   "x.msh:8: node coordinates: 'nan' is not a finite number");
   expect_msh_error(MSH_HEAD "$Nodes\n1 99999999 1 1\n", "x.msh:5:");
   expect_msh_error(MSH_HEAD "$PhysicalNames\n1\n2 1 \"two words\"\n$EndPhysicalNames\n",
                    "physical name \"two words\" cannot name a set");
   expect_msh_error(MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n", "the file ends where");
   expect_msh_error(MSH_HEAD "$Comments\nanything\n$EndComments\n", "no triangles or quad");
+}
+
+/* A NUL or another control byte is refused at its line and column
+ * wherever it is: on a section's name line after the elements (the read
+ * once ended there, silently, with the mesh), before them (once "no
+ * triangles"), or in data. Tabs, and CR LF line ends, are the format's. */
+static void test_msh_control_bytes(void)
+{
+  static const char after[] = MSH_QUAD "$Extra\0\n$EndExtra\n";
+  expect_msh_error_at(after, sizeof after - 1, line_of(after, "$Extra"), 7,
+                      "binary data (byte 0x00 in column 7)");
+  static const char before[] = MSH_HEAD "$Nodes\x01\n";
+  expect_msh_error_at(before, sizeof before - 1, 4, 7, "binary data (byte 0x01 in column 7)");
+  static const char data[] = MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n0 0\0 0\n";
+  expect_msh_error_at(data, sizeof data - 1, 8, 4, "binary data (byte 0x00 in column 4)");
+  static const char cr[] = MSH_HEAD "$Nodes\n1 1 1 1\r2 1 0 1\n";
+  expect_msh_error_at(cr, sizeof cr - 1, 5, 8, "binary data (byte 0x0d in column 8)");
+
+  char crlf[1024];
+  size_t n = 0;
+  for (const char *p = MSH_QUAD; *p && n + 2 < sizeof crlf; ++p) {
+    if (*p == '\n')
+      crlf[n++] = '\r';
+    crlf[n++] = *p == ' ' ? '\t' : *p;
+  }
+  fb_mesh *m = NULL;
+  fb_err err;
+  CHECK(fb_mesh_read_msh_string(crlf, n, "crlf.msh", &m, &err) == FB_OK);
+  CHECK(fb_mesh_nelements(m) == 1 && fb_mesh_nset(m, "CORNER", NULL, NULL));
+  fb_mesh_free(&m);
+}
+
+/* Every number is a plain decimal, as in .inp decks and CSV files: strtod
+ * once read the hexadecimal -0x2.8p0 as -2.5. */
+static void test_msh_numbers(void)
+{
+  static const char coord[] = MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n-0x2.8p0 0 0\n";
+  expect_msh_error_at(coord, sizeof coord - 1, 8, 0,
+                      "node coordinates: '-0x2.8p0' is not a decimal number");
+  static const char box[] = MSH_HEAD "$Entities\n0 0 1 0\n1 0 0 0 0x1 1 0 0 0\n";
+  expect_msh_error_at(box, sizeof box - 1, 6, 0, "entity: '0x1' is not a decimal number");
+  static const char version[] = "$MeshFormat\n4.1e0x 0 8\n";
+  expect_msh_error_at(version, sizeof version - 1, 2, 0, "$MeshFormat: '4.1e0x' is not a");
+  static const char tag[] = MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n0x1\n";
+  expect_msh_error_at(tag, sizeof tag - 1, 7, 0, "node tag: '0x1' is not an integer");
+  static const char count[] = MSH_HEAD "$Nodes\n1 1 1 1e0\n";
+  expect_msh_error_at(count, sizeof count - 1, 5, 0, "$Nodes: '1e0' is not an integer");
+  static const char inf[] = MSH_HEAD "$Nodes\n1 1 1 1\n2 1 0 1\n1\n0 inf 0\n";
+  expect_msh_error_at(inf, sizeof inf - 1, 8, 0,
+                      "node coordinates: 'inf' is not a finite number");
+}
+
+/* An element no shell can integrate is refused at its own line, as in an
+ * .inp deck; nodes that all coincide say so (the warp test once divided 0
+ * by 0 for them: "node 1 is -nan mm off the plane"). */
+static void test_msh_shapes(void)
+{
+  static const char same[] = MSH_QUAD_AT("0 0 0", "0 0 0", "0 0 0", "0 0 0");
+  expect_msh_error_at(same, sizeof same - 1, line_of(same, "8 1 2 3 4"), 0,
+                      "element 8 (S4) is degenerate: its nodes coincide (zero area)");
+  static const char warped[] = MSH_QUAD_AT("1 1 0", "0 0 0", "1 0 0", "0 1 0.5");
+  expect_msh_error_at(warped, sizeof warped - 1, line_of(warped, "8 1 2 3 4"), 0,
+                      "element 8 (S4) is warped: node 4 is 500 mm off the plane");
+  static const char line[] = MSH_QUAD_AT("2 0 0", "0 0 0", "1 0 0", "3 0 0");
+  expect_msh_error_at(line, sizeof line - 1, line_of(line, "8 1 2 3 4"), 0,
+                      "element 8 (S4) is degenerate: area 0 m^2 below the limit");
+}
+
+/* Entities and names are found whatever their order in the file; an
+ * entity that lists a group twice adds to it once; a group's nodes come in
+ * the order of its blocks, its sets in the order the groups are met. */
+static void test_msh_groups(void)
+{
+  static const char text[] =
+      MSH_HEAD "$PhysicalNames\n3\n0 2 \"B\"\n2 5 \"PLATE\"\n0 1 \"A\"\n$EndPhysicalNames\n"
+               "$Entities\n3 0 1 0\n30 0 0 0 1 1\n10 0 0 0 3 1 7 1\n20 0 0 0 1 2\n"
+               "5 0 0 0 1 1 0 1 5 0\n$EndEntities\n"
+               "$Nodes\n1 4 1 4\n2 5 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n$EndNodes\n"
+               "$Elements\n4 4 1 4\n0 20 15 1\n1 2\n0 30 15 1\n2 3\n2 5 3 1\n3 1 2 3 4\n"
+               "0 10 15 1\n4 1\n$EndElements\n";
+  fb_mesh *m = NULL;
+  fb_err err;
+  const int rc = fb_mesh_read_msh_string(text, strlen(text), "groups.msh", &m, &err);
+  CHECK(rc == FB_OK);
+  if (rc)
+    fprintf(stderr, "  %s\n", err.msg);
+  const size_t *items = NULL;
+  size_t n = 0;
+  CHECK(fb_mesh_nset(m, "A", &items, &n) && n == 2 && fb_mesh_node_id(m, items[0]) == 3 &&
+        fb_mesh_node_id(m, items[1]) == 1);
+  CHECK(fb_mesh_nset(m, "B", &items, &n) && n == 1 && fb_mesh_node_id(m, items[0]) == 2);
+  CHECK(fb_mesh_nset(m, "PLATE", &items, &n) && n == 4);
+  CHECK(fb_mesh_elset(m, "PLATE", &items, &n) && n == 1 &&
+        fb_mesh_elset(m, "PLATE", NULL, NULL));
+  CHECK(fb_mesh_nnsets(m) == 3 && !strcmp(fb_mesh_nset_name(m, 0), "B") &&
+        !strcmp(fb_mesh_nset_name(m, 1), "A") && !strcmp(fb_mesh_nset_name(m, 2), "PLATE"));
+  CHECK(fb_mesh_nelsets(m) == 1);
+  fb_mesh_free(&m);
+}
+
+/* Keys given twice, the bound on an entity's named groups, and the
+ * sections that must come before $Elements. */
+#define MSH_ONE_NODE                                                                           \
+  "$Nodes\n1 1 1 1\n0 1 0 1\n1\n0 0 0\n$EndNodes\n$Elements\n0 0 1 0\n$EndElements\n"
+static void test_msh_group_errors(void)
+{
+  static const char ent[] =
+      MSH_HEAD "$Entities\n2 0 0 0\n1 0 0 0 0\n1 0 0 0 0\n$EndEntities\n" MSH_ONE_NODE;
+  expect_msh_error_at(ent, sizeof ent - 1, 7, 0,
+                      "entity 1 of dimension 0 is defined twice (first at line 6)");
+  static const char name[] =
+      MSH_HEAD "$PhysicalNames\n2\n0 1 \"A\"\n0 1 \"B\"\n$EndPhysicalNames\n" MSH_ONE_NODE;
+  expect_msh_error_at(name, sizeof name - 1, 7, 0,
+                      "physical group 1 of dimension 0 is named twice (first at line 6)");
+  static const char late[] = MSH_QUAD "$Entities\n0 0 0 0\n$EndEntities\n";
+  expect_msh_error_at(late, sizeof late - 1, line_of(late, "$Entities\n0 0 0 0"), 0,
+                      "$Entities after $Elements");
+
+  char text[4096];
+  size_t n = (size_t)snprintf(text, sizeof text, MSH_HEAD "$PhysicalNames\n17\n");
+  for (int g = 1; g <= 17; ++g)
+    n += (size_t)snprintf(text + n, sizeof text - n, "0 %d \"G%d\"\n", g, g);
+  n += (size_t)snprintf(text + n, sizeof text - n,
+                        "$EndPhysicalNames\n$Entities\n1 0 0 0\n1 0 0 0 17");
+  for (int g = 1; g <= 17; ++g)
+    n += (size_t)snprintf(text + n, sizeof text - n, " %d", g);
+  n += (size_t)snprintf(text + n, sizeof text - n, "\n$EndEntities\n" MSH_ONE_NODE);
+  expect_msh_error_at(text, n, line_of(text, "1 0 0 0 17"), 0,
+                      "entity 1 is in more than 16 named physical groups");
+  text[strstr(text, "1 0 0 0 17") - text + 9] = '6'; /* 16 groups: fine (no triangles) */
+  fb_mesh *m = NULL;
+  fb_err err;
+  CHECK(fb_mesh_read_msh_string(text, n, "x.msh", &m, &err) == FB_EPARSE);
+  check_msg(&err, "no triangles or quadrilaterals");
 }
 
 /* ---- Outline. */
@@ -1269,6 +1446,11 @@ int main(void)
   test_inp_bad_decks();
   test_sections();
   test_msh();
+  test_msh_control_bytes();
+  test_msh_numbers();
+  test_msh_shapes();
+  test_msh_groups();
+  test_msh_group_errors();
   test_outline();
   test_vtu();
   remove_root();

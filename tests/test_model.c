@@ -15,6 +15,7 @@
 #include "flexbond/sim.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
 /* ---- Bad models. */
 
@@ -569,7 +570,8 @@ static const char files_model[] =
 
 static void test_files(void)
 {
-  char dir[] = "/tmp/test_model_XXXXXX";
+  char dir[TEST_PATH_MAX];
+  test_tmp_path("test_model_XXXXXX", dir, sizeof dir);
   if (!mkdtemp(dir)) {
     CHECK(!"mkdtemp failed");
     return;

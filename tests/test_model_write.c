@@ -30,12 +30,14 @@
 
 #include "bgtest_util.h"
 #include "check.h"
+#include "tmpdir.h"
 
 /* ---- Scratch directories. */
 
 static char *make_dir(void)
 {
-  char tmpl[] = "/tmp/fb_model_write_XXXXXX";
+  char tmpl[TEST_PATH_MAX];
+  test_tmp_path("fb_model_write_XXXXXX", tmpl, sizeof tmpl);
   char *d = mkdtemp(tmpl);
   return d ? strdup(d) : NULL;
 }

@@ -258,7 +258,7 @@ static void test_bad_values(const char *text)
            "--set speed_kmh=1, x: \"2\"\\: " EXAMPLE ":%s: road.speed_kmh: ", value);
   expect_error(&structure, 1, 0, prefix, (const char *const[]){NULL});
   const fb_scenario_override newline = {"speed_kmh", "1\n2"};
-  expect_error(&newline, 1, FB_EINVAL, "--set speed_kmh=1\n2: " EXAMPLE ": ",
+  expect_error(&newline, 1, FB_EINVAL, "--set speed_kmh=1\\n2: " EXAMPLE ": ",
                (const char *const[]){"control character", NULL});
   /* fb_scenario_check's message, blamed at the new value. */
   position_of(text, "spring_k: 145300", strlen("spring_k: "), value, sizeof value);

@@ -14,6 +14,7 @@
 
 #include "apc_layout.h"
 #include "check.h"
+#include "tmpdir.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -173,7 +174,7 @@ static void test_speed_bumps(void)
   CHECK(fb_road_speed_bump("B", &h, &len, &err) == FB_OK);
   CHECK(h == 0.08 && len == 1.50);
   CHECK(fb_road_speed_bump("III", &h, &len, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "'III'") && contains(err.msg, "expected I"));
+  CHECK(contains(DESCRIBED(&err), "'III'") && contains(DESCRIBED(&err), "expected I"));
   CHECK(fb_road_speed_bump(NULL, &h, &len, &err) == FB_EINVAL);
 
   CHECK(fb_road_speed_bump("I", &h, &len, &err) == FB_OK);
@@ -197,25 +198,26 @@ static void test_bump_errors(void)
   fb_err err;
   fb_road *road = NULL;
   CHECK(fb_road_new_bump(0.1, -3.7, 0.0, 0.0, &road, &err) == FB_EINVAL);
-  CHECK(road == NULL && contains(err.msg, "length must be > 0") && contains(err.msg, "-3.7"));
+  CHECK(road == NULL && contains(DESCRIBED(&err), "length must be > 0") &&
+        contains(DESCRIBED(&err), "-3.7"));
   CHECK(fb_road_new_bump(NAN, 3.7, 0.0, 0.0, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "height"));
+  CHECK(contains(DESCRIBED(&err), "height"));
   CHECK(fb_road_new_bump(0.1, 3.7, 0.0, INFINITY, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "right start"));
+  CHECK(contains(DESCRIBED(&err), "right start"));
   CHECK(fb_road_new_oblique_bump(0.1, 3.7, PI / 2, 2.1, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "angle") && contains(err.msg, "90"));
+  CHECK(contains(DESCRIBED(&err), "angle") && contains(DESCRIBED(&err), "90"));
   CHECK(fb_road_new_oblique_bump(0.1, 3.7, 0.5, 0.0, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "track width"));
+  CHECK(contains(DESCRIBED(&err), "track width"));
   CHECK(fb_road_new_bump(0.1, 3.7, 0.0, 0.0, NULL, &err) == FB_EINVAL);
 
   CHECK(fb_road_new_bump(0.1, 3.7, 0.0, 0.0, &road, &err) == FB_OK);
   fb_tfun *f = NULL;
   CHECK(fb_road_wheel_velocity(road, FB_ROAD_LEFT, 0.0, 0.0, &f, &err) == FB_EINVAL);
-  CHECK(f == NULL && contains(err.msg, "speed must be > 0"));
+  CHECK(f == NULL && contains(DESCRIBED(&err), "speed must be > 0"));
   CHECK(fb_road_wheel_height(road, 2, 1.0, 0.0, &f, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "track must be"));
+  CHECK(contains(DESCRIBED(&err), "track must be"));
   CHECK(fb_road_wheel_height(road, FB_ROAD_RIGHT, 1.0, NAN, &f, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "s0"));
+  CHECK(contains(DESCRIBED(&err), "s0"));
   CHECK(fb_road_wheel_height(NULL, FB_ROAD_RIGHT, 1.0, 0.0, &f, &err) == FB_EINVAL);
   fb_road_free(&road);
 }
@@ -242,7 +244,7 @@ static void test_iso_classes(void)
   }
   double gd0 = 0.0;
   CHECK(fb_road_iso8608_gd0('I', &gd0, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "'I'") && contains(err.msg, "A to H"));
+  CHECK(contains(DESCRIBED(&err), "'I'") && contains(DESCRIBED(&err), "A to H"));
   CHECK(fb_road_iso8608_gd0('3', &gd0, &err) == FB_EINVAL);
   CHECK(fb_road_iso8608_gd0('\0', &gd0, &err) == FB_EINVAL);
 }
@@ -573,42 +575,42 @@ static void test_iso_errors(void)
   fb_road_iso8608_defaults(&prm);
   prm.road_class = 'J';
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
-  CHECK(road == NULL && contains(err.msg, "'J'"));
+  CHECK(road == NULL && contains(DESCRIBED(&err), "'J'"));
   fb_road_iso8608_defaults(&prm);
   prm.n_min = 0.0;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "n_min"));
+  CHECK(contains(DESCRIBED(&err), "n_min"));
   fb_road_iso8608_defaults(&prm);
   prm.n_max = 0.01;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "n_max"));
+  CHECK(contains(DESCRIBED(&err), "n_max"));
   fb_road_iso8608_defaults(&prm);
   prm.nharmonics = 0;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "nharmonics"));
+  CHECK(contains(DESCRIBED(&err), "nharmonics"));
   /* Only slow, but hours slow: bounded (flexbond/road.h). */
   prm.nharmonics = FB_ROAD_ISO8608_MAX_HARMONICS + 1;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
-  CHECK(road == NULL && contains(err.msg, "nharmonics must be in 1 .. 16384 (got 16385)"));
+  CHECK(road == NULL &&
+        contains(DESCRIBED(&err), "nharmonics must be in 1 .. 16384 (got 16385)"));
   prm.nharmonics = FB_ROAD_ISO8608_MAX_HARMONICS;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_OK);
   fb_road_free(&road);
   fb_road_iso8608_defaults(&prm);
   prm.fade_length = -1.0;
   CHECK(fb_road_new_iso8608(&prm, &road, &err) == FB_EINVAL);
-  CHECK(contains(err.msg, "fade_length"));
+  CHECK(contains(DESCRIBED(&err), "fade_length"));
   CHECK(fb_road_new_iso8608(NULL, &road, &err) == FB_EINVAL);
 }
 
 /* ---- CSV profiles ---- */
 
-static char tmp_dir[64];
+static const char *tmp_dir; /* the private directory (tmpdir.h) */
 
-/* Writes text to tmp_dir/name; returns the path (static buffer). */
 /* Writes len bytes of text (NUL bytes included) to tmp_dir/name. */
 static const char *write_file_n(const char *name, const char *text, size_t len)
 {
-  static char path[128];
+  static char path[TEST_PATH_MAX];
   snprintf(path, sizeof path, "%s/%s", tmp_dir, name);
   FILE *fp = fopen(path, "w");
   if (fp) {
@@ -744,7 +746,7 @@ static void check_csv_error(const char *name, const char *text, int status, int 
   fb_err_clear(&err);
   CHECK(fb_road_new_csv(path, &road, &err) == status);
   CHECK(road == NULL);
-  const int ok = contains(err.msg, where) && contains(err.msg, part);
+  const int ok = contains(DESCRIBED(&err), where) && contains(DESCRIBED(&err), part);
   CHECK(ok);
   if (!ok)
     fprintf(stderr, "  message was: %s\n", err.msg);
@@ -753,8 +755,9 @@ static void check_csv_error(const char *name, const char *text, int status, int 
 static void test_csv_errors(void)
 {
   check_csv_error("bad_number.csv", "# profile\ns,z\n0,0\n1,abc\n", FB_EPARSE, 4,
-                  "'abc' is not a number");
-  check_csv_error("unknown.csv", "s,q\n0,0\n1,1\n", FB_EPARSE, 1, "unknown column 'q'");
+                  "not a number (read: 'abc')");
+  check_csv_error("unknown.csv", "s,q\n0,0\n1,1\n", FB_EPARSE, 1,
+                  "unknown column 2 (expected columns s, z or s, z_left, z_right) (read: 'q')");
   check_csv_error("order.csv", "s,z\n0,0\n2,1\n\n2,3\n", FB_EPARSE, 5,
                   "not greater than the previous");
   check_csv_error("fields.csv", "s,z\n0,0\n1,1,2\n", FB_EPARSE, 3, "expected 2 fields");
@@ -765,14 +768,15 @@ static void test_csv_errors(void)
   check_csv_error("twice.csv", "s,z,s\n", FB_EPARSE, 1, "appears twice");
   check_csv_error("one_row.csv", "s,z\n0,0\n", FB_EPARSE, 2, "need at least 2");
   check_csv_error("empty.csv", "# nothing\n", FB_EPARSE, 1, "no header");
-  check_csv_error("inf.csv", "s,z\n0,0\n1,inf\n", FB_EPARSE, 3, "'inf' is not a finite number");
+  check_csv_error("inf.csv", "s,z\n0,0\n1,inf\n", FB_EPARSE, 3,
+                  "not a finite number (read: 'inf')");
 
   fb_road *road = NULL;
   fb_err err;
-  char missing[128];
+  char missing[TEST_PATH_MAX];
   snprintf(missing, sizeof missing, "%s/does_not_exist.csv", tmp_dir);
   CHECK(fb_road_new_csv(missing, &road, &err) == FB_EIO);
-  CHECK(contains(err.msg, missing) && contains(err.msg, "cannot open"));
+  CHECK(contains(DESCRIBED(&err), missing) && contains(DESCRIBED(&err), "cannot open"));
   CHECK(fb_road_new_csv(NULL, &road, &err) == FB_EINVAL);
 }
 
@@ -789,7 +793,7 @@ static void check_csv_message(const char *name, const char *text, size_t len, in
   fb_err_clear(&err);
   CHECK(fb_road_new_csv(path, &road, &err) == FB_EPARSE);
   CHECK(road == NULL);
-  const int ok = strcmp(err.msg, msg) == 0;
+  const int ok = strcmp(DESCRIBED(&err), msg) == 0;
   CHECK(ok);
   if (!ok)
     fprintf(stderr, "  got    \"%s\"\n  wanted \"%s\"\n", err.msg, msg);
@@ -810,9 +814,10 @@ static void test_csv_strict(void)
             "binary data (byte 0x00 in column 7): not a CSV text file (expected UTF-8 text)");
   CHECK_CSV("latin1.csv", "# h\xf6he\ns,z\n0,0\n1,0\n", 1,
             "binary data (byte 0xf6 in column 4): not a CSV text file (expected UTF-8 text)");
-  CHECK_CSV("hex.csv", "s,z\n0,0\n0x10,0\n", 3, "column 's': '0x10' is not a decimal number");
+  CHECK_CSV("hex.csv", "s,z\n0,0\n0x10,0\n", 3,
+            "column 's': not a decimal number (read: '0x10')");
   CHECK_CSV("nan.csv", "s,z_left,z_right\n0,0,0\n1,0,NaN\n", 3,
-            "column 'z_right': 'NaN' is not a finite number");
+            "column 'z_right': not a finite number (read: 'NaN')");
   CHECK_CSV("repeated.csv", "s,z,z\n0,0,0\n1,0,0\n", 1, "column 'z' appears twice");
 
   const char *path = write_file("bom.csv", "\xef\xbb\xbfs,z\r\n0,0\r\n1,0.25\r\n2,0.5\r\n");
@@ -826,21 +831,6 @@ static void test_csv_strict(void)
   fb_road_free(&road);
 }
 
-static void remove_tmp_dir(void)
-{
-  static const char *const names[] = {
-      "square.csv",  "hand.csv",  "tracks.csv",   "bad_number.csv", "unknown.csv", "order.csv",
-      "fields.csv",  "short.csv", "both.csv",     "one_side.csv",   "no_s.csv",    "twice.csv",
-      "one_row.csv", "empty.csv", "inf.csv",      "nul_start.csv",  "nul_mid.csv", "latin1.csv",
-      "hex.csv",     "nan.csv",   "repeated.csv", "bom.csv"};
-  char path[128];
-  for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
-    snprintf(path, sizeof path, "%s/%s", tmp_dir, names[i]);
-    remove(path);
-  }
-  rmdir(tmp_dir);
-}
-
 int main(void)
 {
   test_oblique_bump();
@@ -852,13 +842,11 @@ int main(void)
   test_iso_seed();
   test_iso_slope_and_fade();
   test_iso_errors();
-  snprintf(tmp_dir, sizeof tmp_dir, "/tmp/fb_test_road_XXXXXX");
-  CHECK(mkdtemp(tmp_dir) != NULL);
+  tmp_dir = test_tmpdir();
   test_csv_values();
   test_csv_hand_slopes();
   test_csv_two_tracks();
   test_csv_errors();
   test_csv_strict();
-  remove_tmp_dir();
   return check_report("test_road");
 }

@@ -15,6 +15,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
 #define EXAMPLE "../examples/apc6x6.yaml"
 
@@ -910,19 +911,19 @@ static void test_deck_reference(void)
   CHECK(!s &&
         strstr(err.msg, "deck.yaml:9:16: hull.mesh.deck: ./h.inp: cannot open") == err.msg);
   CHECK(!strcmp(err.key, "hull.mesh.deck") && err.line == 9 && err.column == 16);
-  char path[] = "/tmp/fb_test_scenario_deck_XXXXXX";
-  const int fd = text ? mkstemp(path) : -1;
-  FILE *fp = fd >= 0 ? fdopen(fd, "w") : NULL;
+  /* In a private directory, so that no h.inp beside it exists. */
+  char path[TEST_PATH_MAX];
+  test_tmp_path("deck.yaml", path, sizeof path);
+  FILE *fp = text ? fopen(path, "w") : NULL;
   CHECK(fp && fputs(text, fp) >= 0 && fclose(fp) == 0);
   if (fp) {
-    char want[128];
-    snprintf(want, sizeof want, "%s:9:16: hull.mesh.deck: /tmp/h.inp: cannot open", path);
+    char want[TEST_PATH_MAX + 64];
+    snprintf(want, sizeof want, "%s:9:16: hull.mesh.deck: %s/h.inp: cannot open", path,
+             test_tmpdir());
     CHECK(fb_scenario_load(path, &s, &err) == FB_EIO && !s && strstr(err.msg, want) == err.msg);
     if (strstr(err.msg, want) != err.msg)
       fprintf(stderr, "  wanted '%s...', got '%s'\n", want, err.msg);
   }
-  if (fd >= 0)
-    remove(path);
   free(text);
   /* The generator's scenario names no deck, nor any other file. */
   CHECK(fb_scenario_load(EXAMPLE, &s, NULL) == FB_OK && s && !s->hull_deck);

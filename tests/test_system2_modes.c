@@ -13,6 +13,7 @@
 
 #include "apc_layout.h"
 #include "check.h"
+#include "tmpdir.h"
 
 static fb_scenario *load(fb_err *err)
 {
@@ -111,7 +112,8 @@ static void test_deck_round_trip(fb_scenario *s)
   fb_err err;
   fb_err_clear(&err);
   fb_fe_hull *h = NULL;
-  char path[] = "/tmp/fb_hull_XXXXXX";
+  char path[TEST_PATH_MAX];
+  test_tmp_path("fb_hull_XXXXXX", path, sizeof path);
   int fd = mkstemp(path);
   CHECK(fd >= 0);
   close(fd);
@@ -209,7 +211,9 @@ static void test_warped_decks(fb_scenario *s)
   fb_err err;
   fb_err_clear(&err);
   fb_fe_hull *h = NULL;
-  char flat[] = "/tmp/fb_flat_XXXXXX", warped[] = "/tmp/fb_warp_XXXXXX";
+  char flat[TEST_PATH_MAX], warped[TEST_PATH_MAX];
+  test_tmp_path("fb_flat_XXXXXX", flat, sizeof flat);
+  test_tmp_path("fb_warp_XXXXXX", warped, sizeof warped);
   int fd1 = mkstemp(flat), fd2 = mkstemp(warped);
   CHECK(fd1 >= 0 && fd2 >= 0);
   close(fd1);

@@ -16,6 +16,7 @@
 #include "flexbond/expr.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -32,7 +33,7 @@ static void test_const_and_step(void)
   fb_tfun_free(&f);
   CHECK(f == NULL);
   CHECK(fb_tfun_new_const(NAN, &f, &err) == FB_EINVAL);
-  CHECK(strstr(err.msg, "not finite") != NULL);
+  CHECK(strstr(DESCRIBED(&err), "not finite") != NULL);
 
   CHECK(fb_tfun_new_step(1.0, 2.0, 5.0, &f, &err) == FB_OK);
   CHECK_NEAR(fb_tfun_eval(f, 0.0), 2.0, 0);
@@ -44,7 +45,7 @@ static void test_const_and_step(void)
   CHECK(fb_tfun_breakpoints(f, NULL, 0) == 1); /* count only */
   fb_tfun_free(&f);
   CHECK(fb_tfun_new_step(INFINITY, 0, 1, &f, &err) == FB_EINVAL);
-  CHECK(strstr(err.msg, "step time") != NULL);
+  CHECK(strstr(DESCRIBED(&err), "step time") != NULL);
 }
 
 static void test_sine(void)
@@ -154,24 +155,24 @@ static void test_table_errors(void)
   fb_err err;
   double t_equal[] = {0.0, 1.0, 1.0}, t_down[] = {0.0, 2.0, 1.0}, v[] = {1.0, 2.0, 3.0};
   CHECK(fb_tfun_new_table(0, t_equal, v, &f, &err) == FB_EINVAL);
-  CHECK(strstr(err.msg, "at least 1") != NULL);
+  CHECK(strstr(DESCRIBED(&err), "at least 1") != NULL);
   CHECK(fb_tfun_new_table(3, t_equal, v, &f, &err) == FB_EINVAL);
-  CHECK(strstr(err.msg, "strictly increasing: times[2] = 1 is not greater than times[1] = 1") !=
-        NULL);
+  CHECK(strstr(DESCRIBED(&err),
+               "strictly increasing: times[2] = 1 is not greater than times[1] = 1") != NULL);
   CHECK(fb_tfun_new_table(3, t_down, v, &f, &err) == FB_EINVAL);
-  CHECK(strstr(err.msg, "times[2]") != NULL);
+  CHECK(strstr(DESCRIBED(&err), "times[2]") != NULL);
   double t_ok[] = {0.0, 1.0, 2.0}, v_nan[] = {0.0, NAN, 1.0};
   CHECK(fb_tfun_new_table(3, t_ok, v_nan, &f, &err) == FB_EINVAL);
-  CHECK(strstr(err.msg, "values[1] is not finite") != NULL);
+  CHECK(strstr(DESCRIBED(&err), "values[1] is not finite") != NULL);
   CHECK(fb_tfun_new_table(3, t_ok, NULL, &f, &err) == FB_EINVAL);
   CHECK(f == NULL);
 }
 
 /* Writes content to a fresh file in /tmp; path receives its name. */
 /* Writes len bytes of content (NUL bytes included) to a new temporary file. */
-static void write_temp_n(char path[64], const char *content, size_t len)
+static void write_temp_n(char path[TEST_PATH_MAX], const char *content, size_t len)
 {
-  strcpy(path, "/tmp/fb_test_tfun_XXXXXX");
+  test_tmp_path("fb_test_tfun_XXXXXX", path, TEST_PATH_MAX);
   int fd = mkstemp(path);
   CHECK(fd >= 0);
   FILE *fp = fdopen(fd, "w");
@@ -180,14 +181,14 @@ static void write_temp_n(char path[64], const char *content, size_t len)
   fclose(fp);
 }
 
-static void write_temp(char path[64], const char *content)
+static void write_temp(char path[TEST_PATH_MAX], const char *content)
 {
   write_temp_n(path, content, strlen(content));
 }
 
 static void test_csv(void)
 {
-  char path[64];
+  char path[TEST_PATH_MAX];
   write_temp(path, "# recorded road profile\n"
                    " time , force, other\n"
                    "0, 1, 9\n"
@@ -210,7 +211,7 @@ static void test_csv(void)
   fb_tfun_free(&f);
   /* Columns may come in any order. */
   CHECK(fb_tfun_new_table_csv(path, "time", "other", &f, &err) == FB_EPARSE);
-  CHECK(strstr(err.msg, ":8: column 'other': 'x' is not a number") != NULL);
+  CHECK(strstr(DESCRIBED(&err), ":8: column 'other': not a number (read: 'x')") != NULL);
   unlink(path);
 
   write_temp(path, "t,u\r\n0,1e-3\r\n2,-1.5e-3\r\n"); /* CRLF line ends */
@@ -225,7 +226,7 @@ static void test_csv(void)
 static void expect_csv_error(const char *content, const char *time_col, const char *value_col,
                              int code, int line, const char *want)
 {
-  char path[64], where[96];
+  char path[TEST_PATH_MAX], where[TEST_PATH_MAX + 32];
   write_temp(path, content);
   fb_tfun *f = NULL;
   fb_err err;
@@ -233,27 +234,29 @@ static void expect_csv_error(const char *content, const char *time_col, const ch
   CHECK(fb_tfun_new_table_csv(path, time_col, value_col, &f, &err) == code);
   CHECK(f == NULL);
   snprintf(where, sizeof where, "%s:%d: ", path, line);
-  int ok = strstr(err.msg, where) == err.msg && strstr(err.msg, want) != NULL;
+  const char *shown = DESCRIBED(&err);
+  int ok = strncmp(shown, where, strlen(where)) == 0 && strstr(shown, want) != NULL;
   CHECK(ok);
   if (!ok)
-    fprintf(stderr, "  got \"%s\", wanted \"%s...%s\"\n", err.msg, where, want);
+    fprintf(stderr, "  got \"%s\", wanted \"%s...%s\"\n", shown, where, want);
   unlink(path);
 }
 
 static void test_csv_errors(void)
 {
   expect_csv_error("time, a\n0,1\n", "time", "x", FB_EPARSE, 1,
-                   "no column 'x' in header (columns: time, a)");
+                   "no column 'x' among the header's 2 fields");
   expect_csv_error("# c\n\nq,v\n0,1\n", "t", "v", FB_EPARSE, 3,
-                   "no column 't' in header (columns: q, v)");
+                   "no column 't' among the header's 2 fields");
   expect_csv_error("t,v\n0,1\n1,abc\n", "t", "v", FB_EPARSE, 3,
-                   "column 'v': 'abc' is not a number");
-  expect_csv_error("t,v\n0,1\n1,2.5.1\n", "t", "v", FB_EPARSE, 3, "'2.5.1' is not a number");
-  expect_csv_error("t,v\n0,1\n,2\n", "t", "v", FB_EPARSE, 3, "column 't': '' is not a number");
+                   "column 'v': not a number (read: 'abc')");
+  expect_csv_error("t,v\n0,1\n1,2.5.1\n", "t", "v", FB_EPARSE, 3,
+                   "not a number (read: '2.5.1')");
+  expect_csv_error("t,v\n0,1\n,2\n", "t", "v", FB_EPARSE, 3, "column 't': not a number");
   expect_csv_error("t,v\n0,1\n1,inf\n", "t", "v", FB_EPARSE, 3,
-                   "column 'v': 'inf' is not a finite number");
+                   "column 'v': not a finite number (read: 'inf')");
   expect_csv_error("t,v\n0,1\n1,1e999\n", "t", "v", FB_EPARSE, 3,
-                   "column 'v': '1e999' is not a finite number");
+                   "column 'v': not a finite number (read: '1e999')");
   expect_csv_error("t,v\n0,1\n1,2\n1,3\n", "t", "v", FB_EPARSE, 4,
                    "time 1 is not greater than the previous time 1");
   expect_csv_error("t,v\n0,1\n2,2\n1,3\n", "t", "v", FB_EPARSE, 4, "strictly increasing");
@@ -266,12 +269,14 @@ static void test_csv_errors(void)
 
   fb_tfun *f = NULL;
   fb_err err;
-  const char *missing = "/tmp/fb_test_tfun_does_not_exist.csv";
+  char missing[TEST_PATH_MAX], dir_colon[TEST_PATH_MAX + 1];
+  test_tmp_path("does_not_exist.csv", missing, sizeof missing);
+  snprintf(dir_colon, sizeof dir_colon, "%s:", test_tmpdir());
   CHECK(fb_tfun_new_table_csv(missing, "t", "v", &f, &err) == FB_EIO);
   CHECK(strstr(err.msg, missing) == err.msg);
-  CHECK(strstr(err.msg, strerror(ENOENT)) != NULL);
-  CHECK(fb_tfun_new_table_csv("/tmp", "t", "v", &f, &err) == FB_EIO); /* a directory */
-  CHECK(strstr(err.msg, "/tmp:") == err.msg);
+  CHECK(strstr(DESCRIBED(&err), strerror(ENOENT)) != NULL);
+  CHECK(fb_tfun_new_table_csv(test_tmpdir(), "t", "v", &f, &err) == FB_EIO); /* a directory */
+  CHECK(strstr(err.msg, dir_colon) == err.msg);
   CHECK(f == NULL);
 }
 
@@ -280,7 +285,7 @@ static void test_csv_errors(void)
 static void expect_csv_message(const char *content, size_t len, const char *time_col,
                                const char *value_col, int line, const char *want)
 {
-  char path[64], msg[FB_ERR_MSG_MAX];
+  char path[TEST_PATH_MAX], msg[FB_ERR_MSG_MAX];
   write_temp_n(path, content, len);
   fb_tfun *f = NULL;
   fb_err err;
@@ -288,7 +293,7 @@ static void expect_csv_message(const char *content, size_t len, const char *time
   CHECK(fb_tfun_new_table_csv(path, time_col, value_col, &f, &err) == FB_EPARSE);
   CHECK(f == NULL);
   snprintf(msg, sizeof msg, "%s:%d: %s", path, line, want);
-  const int ok = strcmp(err.msg, msg) == 0;
+  const int ok = strcmp(DESCRIBED(&err), msg) == 0;
   CHECK(ok);
   if (!ok)
     fprintf(stderr, "  got    \"%s\"\n  wanted \"%s\"\n", err.msg, msg);
@@ -332,18 +337,19 @@ static void test_csv_binary(void)
 /* Numbers are plain decimals: strtod's other spellings are refused. */
 static void test_csv_numbers(void)
 {
-  EXPECT_CSV("t,v\n0,1\n1,0x10\n", "t", "v", 3, "column 'v': '0x10' is not a decimal number");
-  EXPECT_CSV("t,v\n0x1p3,1\n", "t", "v", 2, "column 't': '0x1p3' is not a decimal number");
+  EXPECT_CSV("t,v\n0,1\n1,0x10\n", "t", "v", 3,
+             "column 'v': not a decimal number (read: '0x10')");
+  EXPECT_CSV("t,v\n0x1p3,1\n", "t", "v", 2, "column 't': not a decimal number (read: '0x1p3')");
   EXPECT_CSV("t,v\n0,1\n1,infinity\n", "t", "v", 3,
-             "column 'v': 'infinity' is not a finite number");
-  EXPECT_CSV("t,v\n0,-INF\n", "t", "v", 2, "column 'v': '-INF' is not a finite number");
-  EXPECT_CSV("t,v\n0,nan\n", "t", "v", 2, "column 'v': 'nan' is not a finite number");
-  EXPECT_CSV("t,v\n0,1e\n", "t", "v", 2, "column 'v': '1e' is not a number");
-  EXPECT_CSV("t,v\n0,.\n", "t", "v", 2, "column 'v': '.' is not a number");
-  EXPECT_CSV("t,v\n0,1 2\n", "t", "v", 2, "column 'v': '1 2' is not a number");
+             "column 'v': not a finite number (read: 'infinity')");
+  EXPECT_CSV("t,v\n0,-INF\n", "t", "v", 2, "column 'v': not a finite number (read: '-INF')");
+  EXPECT_CSV("t,v\n0,nan\n", "t", "v", 2, "column 'v': not a finite number (read: 'nan')");
+  EXPECT_CSV("t,v\n0,1e\n", "t", "v", 2, "column 'v': not a number (read: '1e')");
+  EXPECT_CSV("t,v\n0,.\n", "t", "v", 2, "column 'v': not a number (read: '.')");
+  EXPECT_CSV("t,v\n0,1 2\n", "t", "v", 2, "column 'v': not a number (read: '1 2')");
 
   /* Every decimal form is still read, to the value strtod gives. */
-  char path[64];
+  char path[TEST_PATH_MAX];
   fb_tfun *f = NULL;
   fb_err err;
   write_temp(path, "t,v\n-1,+2\n.5,-.25\n1.,1E+2\n2.5e+1,-7.5e-3\n");
@@ -358,7 +364,7 @@ static void test_csv_numbers(void)
  * column the table reads is refused, as in road profiles. */
 static void test_csv_header(void)
 {
-  char path[64];
+  char path[TEST_PATH_MAX];
   write_temp(path, "\xef\xbb\xbfv,F\r\n-1.0,-980\r\n0,0\r\n1.0,500\r\n");
   fb_tfun *f = NULL;
   fb_err err;
@@ -370,8 +376,8 @@ static void test_csv_header(void)
   EXPECT_CSV("v,F\n\xef\xbb\xbf"
              "0,1\n",
              "v", "F", 2,
-             "column 'v': '\xef\xbb\xbf"
-             "0' is not a number");
+             "column 'v': not a number (read: '\xef\xbb\xbf"
+             "0')");
 
   EXPECT_CSV("v,F,F\n-1,-980,1\n0,0,1\n1,500,1\n", "v", "F", 1, "column 'F' appears twice");
   EXPECT_CSV("# table\nv, F, v\n0,0,0\n", "v", "F", 2, "column 'v' appears twice");
@@ -430,7 +436,7 @@ static void test_callback(void)
   CHECK(fb_tfun_new_callback(ramp_fn, &ctx, 2, NULL, &f, &err) == FB_EINVAL);
   const double bad[] = {1.0, NAN};
   CHECK(fb_tfun_new_callback(ramp_fn, &ctx, 2, bad, &f, &err) == FB_EINVAL);
-  CHECK(strstr(err.msg, "breakpoints[1]") != NULL);
+  CHECK(strstr(DESCRIBED(&err), "breakpoints[1]") != NULL);
 }
 
 /* Clones f, frees f (so shared storage would show under ASan), and checks

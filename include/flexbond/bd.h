@@ -254,8 +254,13 @@ void fb_descriptor_free(fb_descriptor **d);
  * c). h gets 2 nrows_c ncases nfreq values the same way, frequency after
  * frequency: h[2 ((k ncases + c) nrows_c + r)] is the real part of row r
  * of C. A power output's two rows are its effort's and its flow's
- * amplitudes. FB_ESOLVER naming the frequency where j omega E - A is
- * singular. */
+ * amplitudes. FB_EINVAL for a frequency that is not a number from 0 to
+ * FB_FREQ_MAX_HZ; FB_ESOLVER naming the frequency where j omega E - A is
+ * singular or the response is not finite. */
+/* The highest frequency a response is computed at: 1 GHz, six decades
+ * above anything a vehicle's structure answers; it keeps omega = 2 pi f
+ * and omega E far from overflow (a frequency of 1e308 Hz made them inf). */
+#define FB_FREQ_MAX_HZ 1e9
 typedef void (*fb_freq_input_fn)(void *ctx, double omega, double *u);
 int fb_descriptor_freq_response(const fb_descriptor *ds, const double *freq_hz, size_t nfreq,
                                 size_t ncases, fb_freq_input_fn input, void *ctx, double *h,

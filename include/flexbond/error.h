@@ -48,7 +48,12 @@ enum fb_err_source {
                             (fb_err.source_text: "--set KEY=VALUE") */
 };
 
-enum { FB_ERR_FILE_MAX = 1024, FB_ERR_KEY_MAX = 256, FB_ERR_SOURCE_MAX = 512 };
+enum {
+  FB_ERR_FILE_MAX = 1024,
+  FB_ERR_KEY_MAX = 256,
+  FB_ERR_SOURCE_MAX = 512,
+  FB_ERR_EXCERPT_MAX = 72 /* 64 bytes of text, its escapes and "..." */
+};
 
 /* An error is a value: its code, its message, and, as fields set where
  * the error arises, what it is about. Nobody parses msg to find these. */
@@ -67,6 +72,13 @@ typedef struct fb_err {
   int line, column;                    /* 1-based, 0 unknown */
   int source;                          /* enum fb_err_source */
   char source_text[FB_ERR_SOURCE_MAX]; /* the option or override, "" none */
+  /* The text of a data file (a table, a profile, a matrix, a mesh) the
+   * error is about: the one field that failed, escaped and cut at 64
+   * bytes; "" none. msg never quotes a data file's text, so that a
+   * message may go into an output file (sweep.csv) and a file named by
+   * mistake (/etc/shadow) is not copied anywhere; a front end may show
+   * this to its user beside msg. */
+  char excerpt[FB_ERR_EXCERPT_MAX];
 } fb_err;
 
 /* Records, for the error just set, the key path or setting name it is
@@ -131,6 +143,32 @@ int fb_err_prefix(fb_err *err, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+
+/* Records the data-file text the error just set is about (fb_err.excerpt):
+ * the first n bytes of text (n at most what it holds), escaped as
+ * fb_err_escape does, cut at 64 bytes with "...". */
+void fb_err_set_excerpt(fb_err *err, const char *text, size_t n);
+
+/* The message as a user reads it, into buf (size bytes): msg and, when
+ * there is one, the excerpt after it: "...: not a number (read: 'abc')".
+ * For a terminal or an exception, not for a file. Returns buf. */
+char *fb_err_describe(const fb_err *err, char *buf, size_t size);
+
+/* Appends printf-formatted text to the recorded message (as far as it
+ * fits). Returns err->code (FB_OK if err is NULL). */
+int fb_err_append(fb_err *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* text into out (size bytes, NUL-terminated, cut short to fit) as one line
+ * of printable text: every control character (U+0000..U+001F, U+007F and,
+ * in UTF-8, U+0080..U+009F) as a C escape: \n, \r, \t, \xHH, \u00HH. A
+ * message is one line whatever text it quotes; every message that
+ * fb_err_set, fb_err_vset, fb_err_prefix and fb_err_append record passes
+ * through this, as does the key of fb_err_set_key. */
+void fb_err_escape(char *out, size_t size, const char *text);
 
 /* A long computation's report to whoever asked for it, and their way to
  * stop it. fn is called when a stage begins (fraction 0), as it goes

@@ -39,7 +39,9 @@ int fb_mesh_add_node(fb_mesh *m, long id, double x, double y, double z, size_t *
  * with a user id (unique, > 0). */
 int fb_mesh_add_element(fb_mesh *m, long id, fb_elem_type type, const size_t *nodes,
                         fb_err *err);
-/* Adds (or extends) the node set `name` with node indices. */
+/* Adds (or extends) the node set `name` with node indices: those already in
+ * it are skipped, in O(1) each, so a set can be built a few members at a
+ * time; members keep the order they first came in. */
 int fb_mesh_add_nset(fb_mesh *m, const char *name, size_t n, const size_t *nodes, fb_err *err);
 
 size_t fb_mesh_nnodes(const fb_mesh *m);
@@ -348,7 +350,9 @@ int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *pat
  * significant digits, those below 1e-12 of the largest as 0. */
 void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p);
 /* Reads such a deck (keywords case-insensitive, comments "**", GENERATE
- * sets; one mesh section per *SHELL SECTION, an element in at most one);
+ * sets, sets that name the sets before them, each member kept once in
+ * memory for the members alone however often the deck names a set; one
+ * mesh section per *SHELL SECTION, an element in at most one);
  * props, if not NULL, receives the material and thickness of a section
  * that covers every element, or the only material of a deck without
  * sections (fields left untouched otherwise).

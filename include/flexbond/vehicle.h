@@ -331,6 +331,10 @@ typedef struct fb_scenario {
    * fb_scenario_locate), in reading order; owned. */
   fb_scenario_origin *origin;
   size_t norigins;
+  /* Values a real vehicle almost never has, each located at its value
+   * (fb_scenario_warning); owned. */
+  fb_err *warning;
+  size_t nwarnings;
   fb_hull_mesh_params hull_mesh;        /* generator parameters */
   fb_mass_kind hull_mass_matrix;        /* consistent (default) or lumped */
   double hull_drill_factor;             /* fictitious drilling stiffness factor */
@@ -367,6 +371,12 @@ double fb_scenario_speed(const fb_scenario *s);
 /* Index of the corner or mount named name, -1 if none. */
 long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
+/* The plausibility warnings of a loaded scenario, each "FILE:LINE:COL:
+ * KEY: VALUE is implausible: WHY" with the fields of a located error
+ * (docs/errors.md, "Implausible values"); NULL for i out of range; owned
+ * by s. */
+size_t fb_scenario_nwarnings(const fb_scenario *s);
+const fb_err *fb_scenario_warning(const fb_scenario *s, size_t i);
 /* The declared hull masses' sum (kg), 0 without any. */
 double fb_scenario_point_masses_total(const fb_scenario *s);
 /* The lumped payload's mass (kg): total_weight / gravity less the hull's
@@ -391,7 +401,10 @@ double fb_scenario_track_width(const fb_scenario *s);
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
- * Errors are "FILE:LINE:COL: KEY: message". */
+ * Errors are "FILE:LINE:COL: KEY: message". A value that is legal but
+ * implausible (outside what real vehicles have: a 20 m plate, a tire of
+ * 1 N/m, a weight below the hull's masses) is no error but a warning the
+ * scenario keeps: fb_scenario_nwarnings, fb_scenario_warning. */
 int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err);
 int fb_scenario_load_string(const char *text, size_t len, const char *display_name,
                             fb_scenario **out, fb_err *err);

@@ -18,12 +18,12 @@ import collections
 import ctypes
 import ctypes.util
 import os
-import signal
 import threading
+import warnings
 
 import numpy
 
-__all__ = ["Scenario", "Result", "Corner", "Mode", "Modes", "FreqResponse", "Model", "Error", "RIGID", "FLEXIBLE",
+__all__ = ["Scenario", "Result", "Corner", "Mode", "Modes", "FreqResponse", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
            "library_path"]
 
 RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
@@ -31,6 +31,7 @@ FLEXIBLE = 2   # System 2: finite-element hull (FB_SYSTEM_FLEXIBLE)
 _SYSTEMS = {"rigid": RIGID, "system1": RIGID, 1: RIGID,
             "flexible": FLEXIBLE, "system2": FLEXIBLE, 2: FLEXIBLE}
 _SYSTEM_NAMES = {RIGID: "rigid", FLEXIBLE: "flexible"}
+_FB_EINVAL = 2
 _FB_EINTR = 8
 _NTRACKS = 2  # FB_ROAD_NTRACKS: left, right
 TRACKS = ("left", "right")
@@ -43,7 +44,8 @@ class _Err(ctypes.Structure):
                 ("origin", ctypes.c_int), ("origin_index", ctypes.c_size_t),
                 ("key", ctypes.c_char * 256), ("file", ctypes.c_char * 1024),
                 ("line", ctypes.c_int), ("column", ctypes.c_int),
-                ("source", ctypes.c_int), ("source_text", ctypes.c_char * 512)]
+                ("source", ctypes.c_int), ("source_text", ctypes.c_char * 512),
+                ("excerpt", ctypes.c_char * 72)]
 
 
 class _Mode(ctypes.Structure):
@@ -71,6 +73,16 @@ class _Descriptor(ctypes.Structure):
 
 
 _PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, ctypes.c_double)
+# fb_progress_fn: (ctx, stage, fraction) -> nonzero to stop.
+_STAGE_PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_char_p,
+                                   ctypes.c_double)
+
+
+class _VehicleOpts(ctypes.Structure):
+    """fb_vehicle_opts (flexbond/vehicle.h), filled by fb_vehicle_opts_default."""
+    _fields_ = [("motion", ctypes.c_int), ("memory_limit", ctypes.c_size_t),
+                ("progress_fn", _STAGE_PROGRESS), ("progress_ctx", ctypes.c_void_p),
+                ("threads", ctypes.c_int), ("hull_modes", ctypes.c_size_t)]
 _P = ctypes.c_void_p
 _PP = ctypes.POINTER(ctypes.c_void_p)
 _PERR = ctypes.POINTER(_Err)
@@ -83,6 +95,8 @@ _PROTOTYPES = {
     "fb_scenario_load_overrides": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(_Override),
                                                   ctypes.c_size_t, _PP, _PERR]),
     "fb_scenario_free": (None, [_PP]),
+    "fb_scenario_nwarnings": (ctypes.c_size_t, [_P]),
+    "fb_scenario_warning": (_PERR, [_P, ctypes.c_size_t]),
     "fb_scenario_noutputs": (ctypes.c_size_t, [_P]),
     "fb_scenario_output_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_scenario_output_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
@@ -90,19 +104,22 @@ _PROTOTYPES = {
     "fb_scenario_corner_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_scenario_corner_position": (None, [_P, ctypes.c_size_t, _PDOUBLE, _PDOUBLE]),
     "fb_scenario_speed": (ctypes.c_double, [_P]),
-    "fb_vehicle_simulate_progress": (ctypes.c_int, [_P, ctypes.c_int, _PROGRESS, _P, _PP, _PERR]),
+    "fb_vehicle_opts_default": (None, [ctypes.POINTER(_VehicleOpts)]),
+    "fb_vehicle_new": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_VehicleOpts), _PP,
+                                      _PERR]),
+    "fb_vehicle_free": (None, [_PP]),
+    "fb_vehicle_run": (ctypes.c_int, [_P, _PDOUBLE, _PROGRESS, _P, _PP, _P, _PERR]),
+    "fb_vehicle_linear_modes": (ctypes.c_int, [_P, ctypes.c_int,
+                                               ctypes.POINTER(ctypes.POINTER(_Mode)), _PSIZE,
+                                               _PSIZE, _PERR]),
     "fb_result_nsamples": (ctypes.c_size_t, [_P]),
     "fb_result_ncols": (ctypes.c_size_t, [_P]),
     "fb_result_col_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_result_col_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_result_row": (_PDOUBLE, [_P, ctypes.c_size_t]),
     "fb_result_free": (None, [_PP]),
-    "fb_vehicle_modes": (ctypes.c_int, [_P, ctypes.c_int, ctypes.c_int,
-                                        ctypes.POINTER(ctypes.POINTER(_Mode)), _PSIZE, _PSIZE,
-                                        _PERR]),
-    "fb_vehicle_descriptor": (ctypes.c_int, [_P, ctypes.c_int,
-                                             ctypes.POINTER(ctypes.POINTER(_Descriptor)),
-                                             _PERR]),
+    "fb_vehicle_linearise": (ctypes.c_int, [_P, ctypes.POINTER(ctypes.POINTER(_Descriptor)),
+                                            _PERR]),
     "fb_descriptor_free": (None, [ctypes.POINTER(ctypes.POINTER(_Descriptor))]),
     "fb_vehicle_freq_response": (ctypes.c_int, [_P, ctypes.POINTER(_Descriptor), _PDOUBLE,
                                                 ctypes.c_size_t, _PDOUBLE, _PERR]),
@@ -155,8 +172,9 @@ class Error(Exception):
     """A failure of the library, with the structured error of flexbond/error.h:
     code (int) and status ("FB_EPARSE"), message, and where known the input
     value it is about: file, line and column (1-based, 0 unknown), key (its
-    key path, "road.speed_kmh"), and source_text (the override, for a value
-    given in overrides)."""
+    key path, "road.speed_kmh"), source_text (the override, for a value
+    given in overrides), and excerpt: the one field of a data file (a table,
+    a profile) that failed, which message never quotes; str(error) shows it."""
 
     def __init__(self, err):
         self.code = err.code
@@ -167,12 +185,35 @@ class Error(Exception):
         self.column = err.column
         self.key = err.key.decode(errors="replace") or None
         self.source_text = err.source_text.decode(errors="replace") or None
-        super().__init__(self.message)
+        self.excerpt = err.excerpt.decode(errors="replace") or None
+        super().__init__(self.message if self.excerpt is None
+                         else f"{self.message} (read: '{self.excerpt}')")
+
+
+class PlausibilityWarning(UserWarning):
+    """A scenario value that is legal but implausible (flexbond's warning
+    "FILE:LINE:COL: KEY: VALUE is implausible: WHY"); Scenario(...,
+    strict=True) raises Error instead."""
 
 
 def _check(rc, err):
     if rc != 0:
         raise Error(err)
+
+
+def _c_text(text, what, key=None):
+    """text as the NUL-terminated bytes C reads (a path through os.fsencode).
+    A NUL inside would end it there, silently: "12\\x0099" read as 12, a
+    path "s.yaml\\x00.x" as s.yaml, so such text raises Error instead."""
+    b = os.fsencode(text) if what == "path" else str(text).encode()
+    if b"\0" not in b:
+        return b
+    err = _Err()
+    err.code = _FB_EINVAL
+    err.msg = f"{what} {text!r}: holds a NUL character".encode()[:4000]
+    if key is not None:
+        err.key = str(key).encode(errors="replace").replace(b"\0", b"\\0")[:255]
+    raise Error(err)
 
 
 def _system(system):
@@ -322,29 +363,33 @@ def _strings(array, n):
     return [array[i].decode() for i in range(n)]
 
 
-class _SigintFlag:
-    """Within the block, Ctrl-C appends to flag instead of raising: Python
-    runs the handler when the solver calls back between steps, and the
-    callback then stops the run (FB_EINTR). Only the main thread can
-    handle signals; elsewhere the block changes nothing."""
+def _until_done(work):
+    """work() on a thread of its own, the caller waiting: a Ctrl-C
+    (KeyboardInterrupt) or any other exception in the caller reaches it at
+    once, whatever the library is doing, and asks work to stop (the
+    returned list, which the progress callbacks see, gets an entry). The
+    library stops at its next progress report (a solver step, a stage of
+    the hull's eigen-solve); what work computes after that is dropped.
+    Returns work's value or raises its exception."""
+    stop, box = [], {}
 
-    def __init__(self, flag):
-        self.flag = flag
-        self.installed = False
-        self.previous = None
+    def run():
+        try:
+            box["value"] = work(stop)
+        except BaseException as e:  # handed to the caller
+            box["error"] = e
 
-    def __enter__(self):
-        if threading.current_thread() is threading.main_thread():
-            self.previous = signal.signal(signal.SIGINT, lambda *_: self.flag.append(True))
-            self.installed = True
-        return self
-
-    def __exit__(self, *exc):
-        if self.installed:
-            # None: the handler was not set from Python (an embedding
-            # program's); the default one is what Python can put back.
-            signal.signal(signal.SIGINT,
-                          signal.default_int_handler if self.previous is None else self.previous)
+    thread = threading.Thread(target=run, name="flexbond", daemon=True)
+    thread.start()
+    try:
+        while thread.is_alive():
+            thread.join(0.05)
+    except BaseException:
+        stop.append(True)
+        raise
+    if "error" in box:
+        raise box["error"]
+    return box["value"]
 
 
 # ---- Scenarios.
@@ -353,21 +398,39 @@ class Scenario:
     """A scenario file (docs/scenario-format.md), loaded and checked, with
     overrides: {key: value}, each key a key path of the file
     ("road.speed_kmh") or a key name that names one ("speed_kmh"), each value
-    a number or text as the file would write it (flexbond run --set)."""
+    a number or text as the file would write it (flexbond run --set).
+    Implausible values (a 20 m plate, a tire of 1 N/m) are warnings
+    (PlausibilityWarning, and the list warnings); strict=True raises Error
+    at the first, as flexbond's --strict."""
 
-    def __init__(self, path, overrides=None):
+    def __init__(self, path, overrides=None, strict=False):
         self._s = ctypes.c_void_p()
+        # Calls running on their threads (_with_vehicle): close() waits for them.
+        self._calls = threading.Condition()
+        self._ncalls = 0
         self.path = os.fspath(path)
         items = list((overrides or {}).items())
-        keep = [(str(k).encode(), _text(v).encode()) for k, v in items]
+        keep = [(_c_text(k, "override key"), _c_text(_text(v), "override value", key=k))
+                for k, v in items]
         ov = (_Override * max(1, len(keep)))(*[_Override(k, v) for k, v in keep])
         err = _Err()
-        _check(_lib.fb_scenario_load_overrides(os.fsencode(self.path), ov, len(keep),
+        _check(_lib.fb_scenario_load_overrides(_c_text(self.path, "path"), ov, len(keep),
                                                ctypes.byref(self._s), ctypes.byref(err)), err)
+        found = [_lib.fb_scenario_warning(self._s, i).contents
+                 for i in range(_lib.fb_scenario_nwarnings(self._s))]
+        if strict and found:
+            self.close()
+            raise Error(found[0])
+        self.warnings = [Error(w).message for w in found]
+        for message in self.warnings:
+            warnings.warn(message, PlausibilityWarning, stacklevel=2)
 
     def close(self):
-        """Frees the scenario (also done when it is garbage-collected)."""
+        """Frees the scenario (also done when it is garbage-collected), once
+        the calls a Ctrl-C left running on their threads have stopped."""
         if getattr(self, "_s", None):
+            with self._calls:
+                self._calls.wait_for(lambda: self._ncalls == 0)
             _lib.fb_scenario_free(ctypes.byref(self._s))
 
     def __del__(self):
@@ -413,26 +476,23 @@ class Scenario:
     def run(self, system):
         """Simulates one system ("rigid" or "flexible") as flexbond run does:
         a Result with t, the scenario's outputs and each tire's
-        contact_force_<CORNER>. Ctrl-C stops the run between solver steps
-        (KeyboardInterrupt); the set-up before them (System 2's hull
-        eigen-solve) runs to its end first."""
-        sys_id = _system(system)
-        interrupted = []
-        callback = _PROGRESS(lambda _ctx, _t, _t_end: 1 if interrupted else 0)
-        res = ctypes.c_void_p()
-        err = _Err()
-        with _SigintFlag(interrupted):
-            rc = _lib.fb_vehicle_simulate_progress(self._handle(), sys_id, callback, None,
-                                                   ctypes.byref(res), ctypes.byref(err))
-        if interrupted:  # also a Ctrl-C after the last step: the caller asked to stop
-            if rc == 0:
+        contact_force_<CORNER>. Ctrl-C raises KeyboardInterrupt at once,
+        in the set-up (System 2's hull eigen-solve) or between solver steps,
+        and stops the library at its next report."""
+        name = _SYSTEM_NAMES[_system(system)]
+
+        def use(v, stop):
+            callback = _PROGRESS(lambda _ctx, _t, _t_end: 1 if stop else 0)
+            res = ctypes.c_void_p()
+            err = _Err()
+            _check(_lib.fb_vehicle_run(v, None, callback, None, ctypes.byref(res), None,
+                                       ctypes.byref(err)), err)
+            try:
+                return _result(res, name)
+            finally:
                 _lib.fb_result_free(ctypes.byref(res))
-            raise KeyboardInterrupt
-        _check(rc, err)
-        try:
-            return _result(res, _SYSTEM_NAMES[sys_id])
-        finally:
-            _lib.fb_result_free(ctypes.byref(res))
+
+        return self._with_vehicle(system, use)
 
     def run_systems(self, systems=("rigid", "flexible")):
         """Runs each of systems; {name: Result}."""
@@ -440,27 +500,68 @@ class Scenario:
 
     def modes(self, system, undamped=False):
         """The modes of the vehicle at its static equilibrium (flexbond modes);
-        undamped: with every damper removed (natural frequencies)."""
-        modes = ctypes.POINTER(_Mode)()
-        n, nstatic = ctypes.c_size_t(), ctypes.c_size_t()
-        err = _Err()
-        _check(_lib.fb_vehicle_modes(self._handle(), _system(system), int(bool(undamped)),
-                                     ctypes.byref(modes), ctypes.byref(n), ctypes.byref(nstatic),
-                                     ctypes.byref(err)), err)
-        try:
-            out = [Mode(complex(m.re, m.im), m.freq_hz, m.damping_ratio,
-                        m.description.decode(errors="replace"))
-                   for m in (modes[i] for i in range(n.value))]
-        finally:
-            _libc.free(ctypes.cast(modes, ctypes.c_void_p))
-        return Modes(out, nstatic.value)
+        undamped: with every damper removed (natural frequencies). A dense
+        eigen-solve of the vehicle's states: refused (Error) beyond
+        FB_DENSE_EIG_MAX of them (hull.fe.modes all on a fine mesh)."""
+        def use(v, _stop):
+            modes = ctypes.POINTER(_Mode)()
+            n, nstatic = ctypes.c_size_t(), ctypes.c_size_t()
+            err = _Err()
+            _check(_lib.fb_vehicle_linear_modes(v, int(bool(undamped)), ctypes.byref(modes),
+                                                ctypes.byref(n), ctypes.byref(nstatic),
+                                                ctypes.byref(err)), err)
+            try:
+                out = [Mode(complex(m.re, m.im), m.freq_hz, m.damping_ratio,
+                            m.description.decode(errors="replace"))
+                       for m in (modes[i] for i in range(n.value))]
+            finally:
+                _libc.free(ctypes.cast(modes, ctypes.c_void_p))
+            return Modes(out, nstatic.value)
 
-    def _descriptor(self, system):
-        ds = ctypes.POINTER(_Descriptor)()
-        err = _Err()
-        _check(_lib.fb_vehicle_descriptor(self._handle(), _system(system), ctypes.byref(ds),
-                                          ctypes.byref(err)), err)
-        return ds
+        return self._with_vehicle(system, use)
+
+    def _with_vehicle(self, system, use):
+        """use(vehicle, stop) on system of this scenario, realised once with a
+        progress callback that stops it when stop is set; in _until_done, so
+        that Ctrl-C reaches the caller at once. close() waits for the call."""
+        sys_id = _system(system)
+        s = self._handle()
+
+        def work(stop):
+            try:
+                callback = _STAGE_PROGRESS(lambda _ctx, _stage, _fraction: 1 if stop else 0)
+                opts = _VehicleOpts()
+                _lib.fb_vehicle_opts_default(ctypes.byref(opts))
+                opts.progress_fn = callback
+                v = ctypes.c_void_p()
+                err = _Err()
+                _check(_lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts), ctypes.byref(v),
+                                           ctypes.byref(err)), err)
+                try:
+                    return use(v, stop)
+                finally:
+                    _lib.fb_vehicle_free(ctypes.byref(v))
+            finally:
+                with self._calls:
+                    self._ncalls -= 1
+                    self._calls.notify_all()
+
+        with self._calls:  # counted before the thread starts: close() waits for it
+            self._ncalls += 1
+        return _until_done(work)
+
+    def _with_descriptor(self, system, use):
+        """use(descriptor) of system's linear model (flexbond export)."""
+        def on_vehicle(v, _stop):
+            ds = ctypes.POINTER(_Descriptor)()
+            err = _Err()
+            _check(_lib.fb_vehicle_linearise(v, ctypes.byref(ds), ctypes.byref(err)), err)
+            try:
+                return use(ds)
+            finally:
+                _lib.fb_descriptor_free(ctypes.byref(ds))
+
+        return self._with_vehicle(system, on_vehicle)
 
     def freq_response(self, system, freq_hz):
         """H(j omega) = C (j omega E - A)^-1 B from each track's road height to
@@ -468,45 +569,47 @@ class Scenario:
         f = numpy.ascontiguousarray(numpy.atleast_1d(numpy.asarray(freq_hz, dtype=float)))
         if f.ndim != 1:
             raise ValueError("flexbond: freq_hz must be one-dimensional")
-        ds = self._descriptor(system)
-        try:
+        s = self._handle()
+        outs = self.outputs
+        name = _SYSTEM_NAMES[_system(system)]
+
+        def use(ds):
             d = ds.contents
             h = numpy.empty(2 * _NTRACKS * d.nrows_c * max(1, f.size))
             err = _Err()
-            _check(_lib.fb_vehicle_freq_response(self._handle(), ds, f.ctypes.data_as(_PDOUBLE),
-                                                 f.size, h.ctypes.data_as(_PDOUBLE),
+            _check(_lib.fb_vehicle_freq_response(s, ds, f.ctypes.data_as(_PDOUBLE), f.size,
+                                                 h.ctypes.data_as(_PDOUBLE),
                                                  ctypes.byref(err)), err)
             # h[2 ((k ntracks + t) nrows_c + r)] is Re, the next Im.
             z = h[:2 * _NTRACKS * d.nrows_c * f.size].view(complex)
             z = z.reshape(f.size, _NTRACKS, d.nrows_c)
             keep = [o for o in range(d.noutputs) if not d.output_is_product[o]]
             rows = [d.output_row[o] for o in keep]
-            outs = self.outputs
             H = numpy.ascontiguousarray(z[:, :, rows].transpose(0, 2, 1))
             skipped = [outs[o][0] for o in range(d.noutputs) if d.output_is_product[o]]
-            return FreqResponse(_SYSTEM_NAMES[_system(system)], f, [outs[o][0] for o in keep],
+            return FreqResponse(name, f, [outs[o][0] for o in keep],
                                 [outs[o][1] for o in keep], H, skipped, bool(d.linearised))
-        finally:
-            _lib.fb_descriptor_free(ctypes.byref(ds))
+
+        return self._with_descriptor(system, use)
 
     def export(self, system):
         """The vehicle's linear descriptor model (flexbond export) as a Model."""
-        ds = self._descriptor(system)
-        try:
+        outs = self.outputs
+        name = _SYSTEM_NAMES[_system(system)]
+
+        def use(ds):
             d = ds.contents
             rows = [[d.output_row[o], d.output_row[o] + 1] if d.output_is_product[o]
                     else [d.output_row[o]] for o in range(d.noutputs)]
-            outs = self.outputs
-            return Model(_SYSTEM_NAMES[_system(system)],
-                         E=_sparse(d.E), A=_sparse(d.A), B=_sparse(d.B), f=_sparse(d.f),
+            return Model(name, E=_sparse(d.E), A=_sparse(d.A), B=_sparse(d.B), f=_sparse(d.f),
                          C=_sparse(d.C), D=_sparse(d.D), nstates=d.nstates,
                          var_names=_strings(d.var_names, d.n),
                          input_names=_strings(d.input_names, d.ninputs),
-                         output_names=[name for name, _ in outs],
+                         output_names=[n for n, _ in outs],
                          output_units=[unit for _, unit in outs],
                          output_rows=rows, linearised=bool(d.linearised))
-        finally:
-            _lib.fb_descriptor_free(ctypes.byref(ds))
+
+        return self._with_descriptor(system, use)
 
     def __repr__(self):
         return "<flexbond.Scenario %s>" % self.path

@@ -4,6 +4,7 @@
  * with (j omega E - A) X = B U, so Y = C X + D U, the transfer function
  * H(j omega) = C (j omega E - A)^-1 B + D applied to U (see flexbond/bd.h).
  * One sparse complex factorisation per frequency (fb_pencil). */
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -96,10 +97,30 @@ static int response_new(const fb_descriptor *ds, size_t ncases, response *r, fb_
   return rc;
 }
 
+/* FB_ESOLVER unless all n values of one frequency's response are finite:
+ * an overflow in the complex solve (a pencil near singular at freq_hz)
+ * must not reach a caller as a result. */
+static int check_finite(const double *y, size_t n, double freq_hz, fb_err *err)
+{
+  for (size_t i = 0; i < n; ++i)
+    if (!isfinite(y[i]))
+      return fb_err_set(err, FB_ESOLVER,
+                        "frequency response: not finite at %g Hz (j omega E - A is singular "
+                        "there to double precision)",
+                        freq_hz);
+  return FB_OK;
+}
+
 int fb_descriptor_freq_response(const fb_descriptor *ds, const double *freq_hz, size_t nfreq,
                                 size_t ncases, fb_freq_input_fn input, void *ctx, double *h,
                                 fb_err *err)
 {
+  for (size_t k = 0; k < nfreq; ++k)
+    if (!(freq_hz[k] >= 0.0 && freq_hz[k] <= FB_FREQ_MAX_HZ))
+      return fb_err_set(err, FB_EINVAL,
+                        "frequency response: frequency %zu is %g Hz, not a number from 0 to "
+                        "%g Hz",
+                        k, freq_hz[k], FB_FREQ_MAX_HZ);
   response r;
   int rc = response_new(ds, ncases, &r, err);
   const size_t ny = ds->nrows_c;
@@ -118,6 +139,7 @@ int fb_descriptor_freq_response(const fb_descriptor *ds, const double *freq_hz, 
     apply(&r.d, r.u, ds->ninputs, r.dy, ny, ncases);
     for (size_t i = 0; i < 2 * ny * ncases; ++i)
       y[i] += r.dy[i];
+    rc = check_finite(y, 2 * ny * ncases, freq_hz[k], err);
   }
   response_free(&r);
   return rc;

@@ -289,8 +289,6 @@ static int read_header(fb_text_reader *t, csv_layout *lay, fb_err *err)
   if (!line)
     return fb_err_set(err, FB_EPARSE, "%s:%zu: no header line (file is empty or all comments)",
                       t->path, t->line_no ? t->line_no : 1);
-  char header[256];
-  snprintf(header, sizeof header, "%s", line);
   lay->col[0] = lay->col[1] = SIZE_MAX;
   lay->nfields = 0;
   for (char *cursor = line; cursor; ++lay->nfields) {
@@ -306,8 +304,9 @@ static int read_header(fb_text_reader *t, csv_layout *lay, fb_err *err)
   }
   for (int j = 0; j < 2; ++j)
     if (lay->col[j] == SIZE_MAX)
-      return fb_err_set(err, FB_EPARSE, "%s:%zu: no column '%s' in the header '%s'", t->path,
-                        t->line_no, lay->name[j], header);
+      return fb_err_set(err, FB_EPARSE, "%s:%zu: no column '%s' among the header's %zu field%s",
+                        t->path, t->line_no, lay->name[j], lay->nfields,
+                        lay->nfields == 1 ? "" : "s");
   return FB_OK;
 }
 
@@ -329,7 +328,7 @@ static int read_row(const fb_text_reader *t, char *line, const csv_layout *lay, 
                       t->path, t->line_no, lay->nfields, count);
   int rc = FB_OK;
   for (int j = 0; j < 2 && !rc; ++j)
-    if ((rc = fb_parse_decimal(text[j], &v[j], err)))
+    if ((rc = fb_parse_decimal_field(text[j], &v[j], err)))
       fb_err_prefix(err, "%s:%zu: column '%s': ", t->path, t->line_no, lay->name[j]);
   return rc;
 }

@@ -13,15 +13,40 @@
  * files (CSV, mtx, decks, the model and scenario YAML). */
 #include "../core/textfile.h"
 
-/* The parentheses keep the analyzer-only macro of cli.h from expanding here. */
-int(cli_usage_error)(const char *cmd, const char *fmt, ...)
+static void say(const char *end, const char *fmt, va_list ap)
+{
+  fb_err e;
+  fb_err_vset(&e, FB_OK, fmt, ap);
+  fprintf(stderr, "%s%s", e.msg, end);
+}
+
+void cli_say(const char *fmt, ...)
 {
   va_list ap;
   va_start(ap, fmt);
-  fprintf(stderr, "flexbond %s: ", cmd);
-  vfprintf(stderr, fmt, ap);
-  fprintf(stderr, "\nTry 'flexbond %s --help'.\n", cmd);
+  say("\n", fmt, ap);
   va_end(ap);
+}
+
+void cli_say_more(const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  say("", fmt, ap);
+  va_end(ap);
+}
+
+/* The parentheses keep the analyzer-only macro of cli.h from expanding here. */
+int(cli_usage_error)(const char *cmd, const char *fmt, ...)
+{
+  /* Through fb_err_vset, as every message: one line, its quoted text's
+   * control characters escaped. */
+  fb_err e;
+  va_list ap;
+  va_start(ap, fmt);
+  fb_err_vset(&e, FB_EINVAL, fmt, ap);
+  va_end(ap);
+  fprintf(stderr, "flexbond %s: %s\nTry 'flexbond %s --help'.\n", cmd, e.msg, cmd);
   return CLI_EXIT_USAGE;
 }
 
@@ -119,9 +144,35 @@ int cli_report(int status, const fb_err *err)
 {
   if (status == FB_OK)
     return CLI_EXIT_OK;
-  const char *msg = err && err->msg[0] ? err->msg : fb_status_name(status);
+  char shown[FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16];
+  const char *msg =
+      err && err->msg[0] ? fb_err_describe(err, shown, sizeof shown) : fb_status_name(status);
   fprintf(stderr, "flexbond: %s\n", msg);
   return cli_exit_code(status);
+}
+
+int cli_scenario_warnings(const fb_scenario *s, int strict, fb_err *err)
+{
+  const size_t n = fb_scenario_nwarnings(s);
+  if (strict && n) {
+    *err = *fb_scenario_warning(s, 0);
+    err->code = FB_EINVAL;
+    return fb_err_append(err, " (--strict refuses implausible values: %zu in this scenario)",
+                         n);
+  }
+  for (size_t i = 0; i < n; ++i)
+    cli_say("flexbond: warning: %s", fb_scenario_warning(s, i)->msg);
+  return FB_OK;
+}
+
+int cli_scenario_load(const char *path, int strict, fb_scenario **s, fb_err *err)
+{
+  int rc = fb_scenario_load(path, s, err);
+  if (rc == FB_OK)
+    rc = cli_scenario_warnings(*s, strict, err);
+  if (rc != FB_OK)
+    fb_scenario_free(s);
+  return rc;
 }
 
 void cli_report_warnings(const fb_model *m)

@@ -111,6 +111,29 @@ int cli_choice(const char *cmd, const char *name, const char *text, const char *
 
 /* Prints "flexbond CMD: <message>" and a pointer to CMD --help to stderr;
  * returns CLI_EXIT_USAGE. */
+/* Loads the scenario at path as fb_scenario_load does and says its
+ * plausibility warnings on stderr ("flexbond: warning: FILE:LINE:COL:
+ * KEY: ..."); strict (--strict): the first of them is an error instead
+ * (FB_EINVAL, the warning's fields), and *s is freed. */
+int cli_scenario_load(const char *path, int strict, fb_scenario **s, fb_err *err);
+/* The warnings of a loaded s as cli_scenario_load says them; strict: the
+ * first as an error. */
+int cli_scenario_warnings(const fb_scenario *s, int strict, fb_err *err);
+
+/* A status line on stderr, printf-formatted like a message: the control
+ * characters of the text it quotes (a scenario's name, a directory) are
+ * escaped (fb_err_escape), so that a line stays a line. cli_say ends it
+ * with a line break, cli_say_more does not. */
+void cli_say(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+void cli_say_more(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
@@ -181,6 +204,9 @@ typedef struct cli_outdir {
   /* borrowed, or NULL: what the signal thread says of dir when it ends
    * the command early, instead of "nothing was written" (a sweep's journal) */
   const char *interrupt_note;
+  /* 1: the command has said in err what became of dir on its failure (a
+   * sweep's kept journal); else cli_outdir_close says nothing was written */
+  int failure_noted;
 } cli_outdir;
 
 /* Opens dir for command (see above). */
@@ -199,8 +225,11 @@ int cli_outdir_write(cli_outdir *od, const char *name, cli_writer write, const v
                      fb_err *err);
 /* Finishes. With status FB_OK (and no interruption meanwhile) moves the
  * staged files into dir; otherwise, or if a move fails (FB_EIO in err),
- * removes what is staged. Releases the lock, removes the staging directory,
- * frees the record; returns the final status. */
+ * removes what is staged and, for a failure on the way (not a bad input,
+ * refused before anything started), appends to err's message that nothing
+ * was written and what dir holds. Releases the lock, removes the staging
+ * directory, frees the record; returns the final status. Every command
+ * with an output directory ends through here, so that each says the same. */
 int cli_outdir_close(cli_outdir *od, int status, fb_err *err);
 /* Removes what od staged, releases its lock and removes the directories
  * it created (if empty), freeing nothing: what a failed close does, and
@@ -219,10 +248,6 @@ typedef struct cli_job {
   const void *ctx;
 } cli_job;
 int cli_jobs_run(cli_outdir *od, const cli_job *jobs, size_t n, fb_err *err);
-
-/* Appends to err's message that nothing was written to dir (a failed or
- * interrupted command; see cli_outdir). */
-void cli_nothing_written(fb_err *err, const char *dir);
 
 /* The open output directories, for the signal thread (interrupt.c): an
  * outdir is added by cli_outdir_open (0, or -1 when too many are open)
@@ -250,8 +275,8 @@ int cli_cmd_freq(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
 int cli_cmd_model(int argc, char **argv);
 /* Modal analysis of System 2 (modes --system flexible); out_dir may be
- * NULL (print only). Returns the exit code. */
-int cli_modes_flexible(const char *path, const char *out_dir);
+ * NULL (print only); strict: --strict. Returns the exit code. */
+int cli_modes_flexible(const char *path, const char *out_dir, int strict);
 
 /* ---- System 2's mode pictures (modes_flex.c), drawn by modes --system
  * flexible and by run. */

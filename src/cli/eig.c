@@ -16,7 +16,9 @@
 
 #include "flexbond/bd.h"
 #include "flexbond/sim.h"
+#include "flexbond/vehicle.h"
 
+#include "../core/util.h"
 #include "cli.h"
 #include "graph_input.h"
 
@@ -170,11 +172,13 @@ static int analyse(const cli_graph_input *in, fb_bd *bd, fb_err *err)
     printf("%s: no states, no eigenvalues\n", in->name);
     return cli_flush_stdout(err);
   }
-  if (n > ((size_t)-1 / sizeof(double)) / n)
-    return fb_err_set(err, FB_ENOMEM, "eig: %zu states: matrix too large", n);
+  /* The Jacobian and the matrix dgeev overwrites. */
+  int rc = fb_check_dense_eig(n, 2, FB_VEHICLE_MEMORY_LIMIT, err, "eig: %s (%zu states)",
+                              in->name, n);
+  if (rc)
+    return rc;
   double *jac = malloc(n * n * sizeof *jac);
   eigenvalue *ev = malloc(n * sizeof *ev);
-  int rc = FB_OK;
   if (!jac || !ev)
     rc = fb_err_set(err, FB_ENOMEM, "eig: out of memory (%zu states)", n);
   if (rc == FB_OK)

@@ -39,6 +39,7 @@ static const char export_usage[] =
     "options:\n"
     "  -o, --output DIR          output directory (required)\n"
     "  --system rigid|flexible   hull model (default flexible: System 2)\n"
+    "  --strict                  refuse implausible values instead of warning\n"
     "  -h, --help                this text\n";
 
 static const char *const system_choices[] = {"rigid", "flexible"};
@@ -279,14 +280,14 @@ static int write_all(cli_outdir *od, const export_model *m, fb_err *err)
   return rc;
 }
 
-static int run(const char *path, fb_system sys, const char *dir)
+static int run(const char *path, fb_system sys, const char *dir, int strict)
 {
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   fb_bg *graph = NULL;
   export_model m = {.sys = sys};
-  int rc = fb_scenario_load(path, &s, &err);
+  int rc = cli_scenario_load(path, strict, &s, &err);
   assert(rc != FB_OK || s); /* for the static analyzer: s is set on success */
   /* A unilateral tire is linear while in contact, its mode at rest: that
    * branch is the linear model (a Hunt-Crossley one is not linear). */
@@ -323,9 +324,10 @@ static int run(const char *path, fb_system sys, const char *dir)
 
 int cli_cmd_export(int argc, char **argv)
 {
-  enum { OPT_SYSTEM, OPT_OUT, OPT_HELP, NOPTS };
+  enum { OPT_SYSTEM, OPT_OUT, OPT_STRICT, OPT_HELP, NOPTS };
   cli_option opts[NOPTS] = {[OPT_SYSTEM] = {"--system", NULL, 1, NULL},
                             [OPT_OUT] = {"--output", "-o", 1, NULL},
+                            [OPT_STRICT] = {"--strict", NULL, 0, NULL},
                             [OPT_HELP] = {"--help", "-h", 0, NULL}};
   const char *path;
   int rc;
@@ -339,5 +341,5 @@ int cli_cmd_export(int argc, char **argv)
     return rc;
   if (!opts[OPT_OUT].value)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
-  return run(path, systems[choice], opts[OPT_OUT].value);
+  return run(path, systems[choice], opts[OPT_OUT].value, opts[OPT_STRICT].value != NULL);
 }

@@ -54,6 +54,7 @@ static const char freq_usage[] =
     "                                   scenario's road when it is an ISO 8608 one\n"
     "  --tracks independent|identical   the road's two tracks (default independent,\n"
     "                                   as the ISO 8608 generator makes them)\n"
+    "  --strict                         refuse implausible values instead of warning\n"
     "  -h, --help                       this text\n";
 
 static const char *const system_choices[] = {"rigid", "flexible", "both"};
@@ -326,6 +327,7 @@ typedef struct freq_args {
   int figures;
   char road_class;  /* 0: the scenario's road */
   int identical;    /* tracks */
+  int strict;       /* --strict */
   int tracks_given; /* --tracks */
 } freq_args;
 
@@ -336,9 +338,16 @@ int cli_freq_compute(freq_study *fs, fb_vehicle *const vehicles[CLI_MAX_SYSTEMS]
   fs->freq_hz = calloc(points, sizeof *fs->freq_hz);
   if (!fs->freq_hz)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
+  /* Evenly spaced in log f, interpolated between the logarithms: the
+   * ratio f_max / f_min itself may overflow (1e9 / 1e-300). The ends are
+   * the given values exactly. */
+  const double log_min = log(f_min), log_max = log(f_max);
   for (size_t k = 0; k < points; ++k)
-    fs->freq_hz[k] =
-        f_min * pow(f_max / f_min, points > 1 ? (double)k / (double)(points - 1) : 0.0);
+    fs->freq_hz[k] = exp(log_min + (log_max - log_min) *
+                                       (points > 1 ? (double)k / (double)(points - 1) : 0.0));
+  fs->freq_hz[0] = f_min;
+  if (points > 1)
+    fs->freq_hz[points - 1] = f_max;
   int rc = FB_OK;
   for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys)
     if (vehicles[sys])
@@ -367,7 +376,7 @@ static int study(const freq_args *a)
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   freq_study fs = {0};
-  int rc = fb_scenario_load(a->path, &s, &err);
+  int rc = cli_scenario_load(a->path, a->strict, &s, &err);
   fs.s = s;
   if (!rc)
     rc = cli_freq_psd_setup(&fs, a->road_class, a->identical, &err);
@@ -424,6 +433,7 @@ int cli_cmd_freq(int argc, char **argv)
     OPT_NOFIG,
     OPT_CLASS,
     OPT_TRACKS,
+    OPT_STRICT,
     OPT_HELP,
     NOPTS
   };
@@ -435,11 +445,13 @@ int cli_cmd_freq(int argc, char **argv)
                             [OPT_NOFIG] = {"--no-figures", NULL, 0, NULL},
                             [OPT_CLASS] = {"--road-class", NULL, 1, NULL},
                             [OPT_TRACKS] = {"--tracks", NULL, 1, NULL},
+                            [OPT_STRICT] = {"--strict", NULL, 0, NULL},
                             [OPT_HELP] = {"--help", "-h", 0, NULL}};
   freq_args a = {.f_min = 0.1, .f_max = 100.0, .points = 301, .systems = {1, 1}};
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, freq_usage, "SCENARIO", &a.path, &rc))
     return rc;
+  a.strict = opts[OPT_STRICT].value != NULL;
   int choice = 2;
   if (opts[OPT_SYSTEM].value)
     rc = cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, system_choices, 3, &choice);
@@ -467,6 +479,9 @@ int cli_cmd_freq(int argc, char **argv)
   if (points != floor(points) || points < 2 || points > FREQ_MAX_POINTS)
     return cli_usage_error(argv[0], "--points: %s is not a whole number from 2 to %d",
                            opts[OPT_POINTS].value, FREQ_MAX_POINTS);
+  if (a.f_max > FB_FREQ_MAX_HZ)
+    return cli_usage_error(argv[0], "--f-max (%g Hz) must be at most %g Hz", a.f_max,
+                           FB_FREQ_MAX_HZ);
   if (!(a.f_max > a.f_min))
     return cli_usage_error(argv[0], "--f-max (%g Hz) must be above --f-min (%g Hz)", a.f_max,
                            a.f_min);

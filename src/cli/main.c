@@ -109,8 +109,8 @@ int main(int argc, char **argv)
   }
   const cli_command *cmd = find_command(first);
   if (!cmd) {
-    fprintf(stderr, "flexbond: unknown %s '%s'\nTry 'flexbond --help'.\n",
-            first[0] == '-' ? "option" : "command", first);
+    cli_say("flexbond: unknown %s '%s'", first[0] == '-' ? "option" : "command", first);
+    fputs("Try 'flexbond --help'.\n", stderr);
     return CLI_EXIT_USAGE;
   }
   /* One BLAS thread for every command. flexbond's parallelism is its

@@ -29,6 +29,7 @@ static const char mesh_usage[] =
     "options:\n"
     "  --export FILE           write the mesh (.inp or .vtu, by the name's ending)\n"
     "  --export-matrices DIR   write K.mtx, M.mtx, dofs.csv and hull.inp into DIR\n"
+    "  --strict                refuse implausible values instead of warning\n"
     "  -h, --help              this text\n";
 
 static int ends_with(const char *s, const char *tail)
@@ -147,20 +148,18 @@ static int export_matrices(const fb_fe_hull *h, const char *dir, fb_err *err)
   if (rc == FB_OK)
     printf("wrote %s: K.mtx, M.mtx (%zu x %zu), dofs.csv, hull.inp\n", dir, fb_mat_nrows(K),
            fb_mat_ncols(K));
-  else if (opened)
-    cli_nothing_written(err, dir);
   fb_mat_free(&K);
   fb_mat_free(&M);
   return rc;
 }
 
-static int run(const char *path, const char *export_path, const char *matrices_dir)
+static int run(const char *path, const char *export_path, const char *matrices_dir, int strict)
 {
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   fb_fe_hull *h = NULL;
-  int rc = fb_scenario_load(path, &s, &err);
+  int rc = cli_scenario_load(path, strict, &s, &err);
   if (!rc)
     rc = fb_vehicle_fe_hull(s, &h, &err);
   /* A signal during the mesh: the file is not written. */
@@ -186,9 +185,10 @@ static int run(const char *path, const char *export_path, const char *matrices_d
 
 int cli_cmd_mesh(int argc, char **argv)
 {
-  enum { OPT_EXPORT, OPT_MATRICES, OPT_HELP, NOPTS };
+  enum { OPT_EXPORT, OPT_MATRICES, OPT_STRICT, OPT_HELP, NOPTS };
   cli_option opts[NOPTS] = {[OPT_EXPORT] = {"--export", NULL, 1, NULL},
                             [OPT_MATRICES] = {"--export-matrices", NULL, 1, NULL},
+                            [OPT_STRICT] = {"--strict", NULL, 0, NULL},
                             [OPT_HELP] = {"--help", "-h", 0, NULL}};
   const char *path;
   int rc;
@@ -200,5 +200,5 @@ int cli_cmd_mesh(int argc, char **argv)
   const char *dir = opts[OPT_MATRICES].value;
   if (dir && !*dir)
     return cli_usage_error(argv[0], "--export-matrices needs a directory");
-  return run(path, out, dir);
+  return run(path, out, dir, opts[OPT_STRICT].value != NULL);
 }

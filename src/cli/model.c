@@ -28,12 +28,14 @@ static const char model_usage[] =
     "  -o, --output DIR      output directory (required)\n"
     "  --system S            rigid (System 1, default) or flexible (System 2)\n"
     "  -q, --quiet           no summary line on stderr\n"
+    "  --strict              refuse implausible values instead of warning\n"
     "  -h, --help            this text\n";
 
 typedef struct model_args {
   const char *path, *out_dir;
   fb_system sys;
   int quiet;
+  int strict; /* --strict */
 } model_args;
 
 /* Writes the model into od's staging directory and records its files. */
@@ -80,7 +82,7 @@ static int run(const model_args *a)
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   size_t nfiles = 0;
-  int rc = fb_scenario_load(a->path, &s, &err);
+  int rc = cli_scenario_load(a->path, a->strict, &s, &err);
   cli_outdir od;
   const int opened =
       rc == FB_OK && (rc = cli_outdir_open(&od, a->out_dir, "model", &err)) == FB_OK;
@@ -89,10 +91,8 @@ static int run(const model_args *a)
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK && !a->quiet)
-    fprintf(stderr, "flexbond model: %s (%s hull): %zu files -> %s/%s.yaml\n", s->name,
+    cli_say("flexbond model: %s (%s hull): %zu files -> %s/%s.yaml", s->name,
             a->sys == FB_SYSTEM_FLEXIBLE ? "flexible" : "rigid", nfiles, a->out_dir, s->name);
-  if (rc != FB_OK)
-    cli_nothing_written(&err, a->out_dir);
   rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
   return rc;
@@ -100,14 +100,13 @@ static int run(const model_args *a)
 
 int cli_cmd_model(int argc, char **argv)
 {
-  enum { OPT_OUT, OPT_SYSTEM, OPT_QUIET, OPT_HELP, NOPTS };
+  enum { OPT_OUT, OPT_SYSTEM, OPT_QUIET, OPT_STRICT, OPT_HELP, NOPTS };
   cli_option opts[NOPTS] = {
-      [OPT_OUT] = {"--output", "-o", 1, NULL},
-      [OPT_SYSTEM] = {"--system", NULL, 1, NULL},
-      [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
+      [OPT_OUT] = {"--output", "-o", 1, NULL},  [OPT_SYSTEM] = {"--system", NULL, 1, NULL},
+      [OPT_QUIET] = {"--quiet", "-q", 0, NULL}, [OPT_STRICT] = {"--strict", NULL, 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
-  model_args a = {NULL, NULL, FB_SYSTEM_RIGID, 0};
+  model_args a = {NULL, NULL, FB_SYSTEM_RIGID, 0, 0};
   int rc;
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, model_usage, "SCENARIO", &a.path, &rc))
     return rc;
@@ -115,6 +114,7 @@ int cli_cmd_model(int argc, char **argv)
   if (!a.out_dir || !*a.out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a.quiet = opts[OPT_QUIET].value != NULL;
+  a.strict = opts[OPT_STRICT].value != NULL;
   if (opts[OPT_SYSTEM].value) {
     static const char *const systems[] = {"rigid", "flexible"};
     int which = 0;

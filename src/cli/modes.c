@@ -30,6 +30,7 @@ static const char modes_usage[] =
     "  --system rigid|flexible  hull model (default rigid: System 1)\n"
     "  -o, --output DIR         (flexible) also write hull_modes.csv, modes.csv,\n"
     "                           mode_NN.vtu and the pictures mode_01/02/08/10.png\n"
+    "  --strict                 refuse implausible values instead of warning\n"
     "  -h, --help               this text\n";
 
 static const char *const system_choices[] = {"rigid", "flexible"};
@@ -77,14 +78,14 @@ typedef struct mode_table {
 
 /* Both tables are computed before anything is printed, so a failure
  * prints no half table. */
-static int run(const char *path, fb_system sys)
+static int run(const char *path, fb_system sys, int strict)
 {
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   mode_table undamped = {0}, damped = {0};
   fb_vehicle *v = NULL;
-  int rc = fb_scenario_load(path, &s, &err);
+  int rc = cli_scenario_load(path, strict, &s, &err);
   cli_stage stage = {"modes", cli_system_label(sys), 0};
   fb_vehicle_opts vo;
   fb_vehicle_opts_default(&vo);
@@ -115,9 +116,10 @@ static int run(const char *path, fb_system sys)
 
 int cli_cmd_modes(int argc, char **argv)
 {
-  enum { OPT_SYSTEM, OPT_OUT, OPT_HELP, NOPTS };
+  enum { OPT_SYSTEM, OPT_OUT, OPT_STRICT, OPT_HELP, NOPTS };
   cli_option opts[NOPTS] = {[OPT_SYSTEM] = {"--system", NULL, 1, NULL},
                             [OPT_OUT] = {"--output", "-o", 1, NULL},
+                            [OPT_STRICT] = {"--strict", NULL, 0, NULL},
                             [OPT_HELP] = {"--help", "-h", 0, NULL}};
   const char *path;
   int rc;
@@ -130,8 +132,8 @@ int cli_cmd_modes(int argc, char **argv)
   if (rc != CLI_EXIT_OK)
     return rc;
   if (systems[choice] == FB_SYSTEM_FLEXIBLE)
-    return cli_modes_flexible(path, opts[OPT_OUT].value);
+    return cli_modes_flexible(path, opts[OPT_OUT].value, opts[OPT_STRICT].value != NULL);
   if (opts[OPT_OUT].value)
     return cli_usage_error(argv[0], "-o DIR goes with --system flexible");
-  return run(path, systems[choice]);
+  return run(path, systems[choice], opts[OPT_STRICT].value != NULL);
 }

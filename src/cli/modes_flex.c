@@ -194,14 +194,14 @@ static void print_tables(const flex_modes *fm)
     printf("%4zu  %12.6g  %s\n", k + 1, fm->vehicle->freq_hz[k], fm->vehicle->description[k]);
 }
 
-int cli_modes_flexible(const char *path, const char *out_dir)
+int cli_modes_flexible(const char *path, const char *out_dir, int strict)
 {
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   fb_vehicle *v = NULL;
   flex_modes fm = {0};
-  int rc = fb_scenario_load(path, &s, &err);
+  int rc = cli_scenario_load(path, strict, &s, &err);
   /* The directory is held (locked) from here to the end. */
   cli_outdir od;
   const int opened =

@@ -490,6 +490,31 @@ static int is_recorded_file(const struct stat *st, const manifest_entry *e)
          (long long)st->st_mtim.tv_nsec == e->mtime_ns;
 }
 
+/* FB_EIO if od would replace a file another command wrote into DIR and
+ * that is still as it wrote it: `freq -o D` after `run -o D` would take
+ * over run's bode_*.png, and a later `freq --no-figures -o D` remove them
+ * from under run's report.md. Each command's files stay its own; the
+ * user chooses another directory (or removes the files). */
+static int check_takeover(const cli_outdir *od, const manifest *previous, fb_err *err)
+{
+  struct stat st;
+  for (size_t i = 0; i < previous->n; ++i) {
+    const manifest_entry *e = &previous->e[i];
+    if (strcmp(e->command, od->command) == 0 || !stages(od, e->name))
+      continue;
+    char *final = cli_join_path(od->dir, e->name);
+    const int theirs = final && lstat(final, &st) == 0 && is_recorded_file(&st, e);
+    free(final);
+    if (theirs)
+      return fb_err_set(err, FB_EIO,
+                        "%s/%s is flexbond %s's, which this %s would replace: a command "
+                        "never replaces another's files; write into another directory, or "
+                        "remove %s's files first",
+                        od->dir, e->name, e->command, od->command, e->command);
+  }
+  return FB_OK;
+}
+
 /* ---- Committing. */
 
 /* One rename of the commit: from -> to, undone by to -> from. */
@@ -622,6 +647,8 @@ static int commit(cli_outdir *od, fb_err *err)
   qsort(od->files, od->nfiles, sizeof *od->files, by_path);
   manifest previous;
   int rc = manifest_read(od, &previous, err);
+  if (rc == FB_OK)
+    rc = check_takeover(od, &previous, err);
   const manifest_writer w = {od, &previous};
   if (rc == FB_OK)
     rc = cli_outdir_write(od, manifest_name, write_manifest, &w, err);
@@ -646,6 +673,23 @@ static int commit(cli_outdir *od, fb_err *err)
   return rc;
 }
 
+/* Appends to err's message that nothing was written to dir. */
+static void nothing_written(fb_err *err, const char *dir)
+{
+  /* Said where a user may wonder about the previous results: after a run
+   * was interrupted or failed on its way, not for a bad input, which is
+   * refused before anything starts. */
+  const int late = err->code == FB_ESOLVER || err->code == FB_EINTR || err->code == FB_EIO ||
+                   err->code == FB_ENOMEM;
+  if (!late || !dir)
+    return;
+  struct stat st;
+  if (stat(dir, &st) == 0)
+    fb_err_append(err, "; nothing was written: %s holds what it held before", dir);
+  else
+    fb_err_append(err, "; nothing was written (%s not created)", dir);
+}
+
 int cli_outdir_close(cli_outdir *od, int status, fb_err *err)
 {
   if (status == FB_OK && od->stage)
@@ -663,25 +707,10 @@ int cli_outdir_close(cli_outdir *od, int status, fb_err *err)
   }
   cli_guard_remove(od);
   cli_guard_unlock(0);
+  const char *dir = od->dir;
+  const int noted = od->failure_noted;
   outdir_free(od);
+  if (status != FB_OK && !noted)
+    nothing_written(err, dir);
   return status;
-}
-
-void cli_nothing_written(fb_err *err, const char *dir)
-{
-  /* Said where a user may wonder about the previous results: after a run
-   * was interrupted or failed on its way, not for a bad input, which is
-   * refused before anything starts. */
-  const int late = err->code == FB_ESOLVER || err->code == FB_EINTR || err->code == FB_EIO ||
-                   err->code == FB_ENOMEM;
-  if (!late || !dir)
-    return;
-  const size_t len = strlen(err->msg);
-  struct stat st;
-  if (stat(dir, &st) == 0)
-    snprintf(err->msg + len, sizeof err->msg - len,
-             "; nothing was written: %s holds what it held before", dir);
-  else
-    snprintf(err->msg + len, sizeof err->msg - len, "; nothing was written (%s not created)",
-             dir);
 }

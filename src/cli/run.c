@@ -86,6 +86,7 @@ static const char run_usage[] =
     "                              each vehicle computed (assemblies, factorisations,\n"
     "                              eigen-solves, simulations), on stderr\n"
     "  -q, --quiet                 no progress or summary lines on stderr\n"
+    "  --strict                    refuse implausible values instead of warning\n"
     "  -h, --help                  this text\n";
 
 void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size)
@@ -143,6 +144,7 @@ typedef struct run_args {
   int hull_modes;       /* s->hull_modes */
   double hull_cutoff;   /* s->hull_cutoff_hz, 0 when --hull-cutoff is not given */
   int quiet;
+  int strict;           /* --strict: an implausible value is an error */
   int verbose;          /* the costs of eigen-solves and set-up too (-v) */
   int progress;         /* draw a progress line: stderr is a terminal, no -q */
   int figures;          /* 0 with --no-figures */
@@ -808,11 +810,10 @@ static void say_counts(const run_args *a, const run_vehicle *rv)
   if (!a->verbose)
     return;
   const fb_vehicle_work w = fb_vehicle_work_of(rv->v);
-  fprintf(stderr,
-          "flexbond run: %s: work: set-up %.3g s, mesh generations %zu, hull assemblies %zu, "
+  cli_say("flexbond run: %s: work: set-up %.3g s, mesh generations %zu, hull assemblies %zu, "
           "factorisations %zu, hull eigen-solves %zu, vehicle eigen-solves %zu, linear "
           "eigen-solves %zu, block diagrams %zu, static equilibria %zu (%.3g s), simulations "
-          "%zu\n",
+          "%zu",
           rv->subject, w.setup_seconds, w.mesh_generations, w.assemblies, w.factorisations,
           w.hull_eigensolves, w.vehicle_eigensolves, w.linear_eigensolves, w.diagrams,
           w.static_solves, w.static_seconds, w.simulations);
@@ -825,22 +826,22 @@ static void say_work(const run_args *a, const run_vehicle *rv)
     return;
   const fb_hull_basis *b = fb_vehicle_hull_basis(rv->v);
   if (b && b->coordinates == FB_HULL_NODAL)
-    fprintf(stderr, "flexbond run: %s: hull of %zu DOFs in nodal coordinates; ", rv->subject,
-            b->ndof);
+    cli_say_more("flexbond run: %s: hull of %zu DOFs in nodal coordinates; ", rv->subject,
+                 b->ndof);
   else if (b && b->kind == FB_HULL_MODES_AUTO)
-    fprintf(stderr,
-            "flexbond run: %s: hull of %zu DOFs in %zu coordinates: %zu rigid-body modes and "
-            "%zu load-dependent Ritz vectors in %zu blocks (the next changes the receptances "
-            "by %.2g over 0 to %.4g Hz); ",
-            rv->subject, b->ndof, b->ncoords, b->nrigid, b->nstatic, b->nblocks,
-            b->block_change, b->cutoff_hz);
+    cli_say_more(
+        "flexbond run: %s: hull of %zu DOFs in %zu coordinates: %zu rigid-body modes and "
+        "%zu load-dependent Ritz vectors in %zu blocks (the next changes the receptances "
+        "by %.2g over 0 to %.4g Hz); ",
+        rv->subject, b->ndof, b->ncoords, b->nrigid, b->nstatic, b->nblocks, b->block_change,
+        b->cutoff_hz);
   else if (b)
-    fprintf(stderr,
-            "flexbond run: %s: hull of %zu DOFs in %zu coordinates: %zu free-free modes kept "
-            "(%zu rigid), %zu static correction vectors; ",
-            rv->subject, b->ndof, b->ncoords, b->nmodes, b->nrigid, b->nstatic);
+    cli_say_more(
+        "flexbond run: %s: hull of %zu DOFs in %zu coordinates: %zu free-free modes kept "
+        "(%zu rigid), %zu static correction vectors; ",
+        rv->subject, b->ndof, b->ncoords, b->nmodes, b->nrigid, b->nstatic);
   if (b)
-    fprintf(stderr, "eigen-solve %s, %zu lowest modes, %.3g s, factor %.3g MB\n",
+    cli_say("eigen-solve %s, %zu lowest modes, %.3g s, factor %.3g MB",
             b->eig.method == FB_EIG_DENSE ? "dense LAPACK (dsygvd)"
                                           : "block Lanczos on a CHOLMOD factor",
             b->nfree, b->eig.seconds, (double)b->eig.factor_bytes / 1e6);
@@ -859,8 +860,9 @@ typedef struct run_progress {
 
 static void draw_progress_line(const run_progress *p)
 {
-  fprintf(stderr, "\rflexbond run: %s: simulating %s, t = 0..%g s: %3d%%", p->scenario,
-          p->system, p->t_end, p->percent);
+  fputc('\r', stderr);
+  cli_say_more("flexbond run: %s: simulating %s, t = 0..%g s: %3d%%", p->scenario, p->system,
+               p->t_end, p->percent);
   fflush(stderr);
 }
 
@@ -976,25 +978,24 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
   if (a->progress)
     draw_progress_line(&p);
   else if (!a->quiet)
-    fprintf(stderr, "flexbond run: %s: simulating %s, t = 0..%g s ...\n", p.scenario, p.system,
-            s->t_end);
+    cli_say("flexbond run: %s: simulating %s, t = 0..%g s ...", p.scenario, p.system, s->t_end);
   int rc = fb_vehicle_run(v, window, show_progress, &p, &run->res, motion ? &run->motion : NULL,
                           err);
   /* End the progress line, also before an error message. */
   if (a->progress)
     fputc('\n', stderr);
   if (rc == FB_OK && a->verbose)
-    fprintf(stderr, "flexbond run: %s: %s: %ld Newton matrices, %ld factorisations\n",
-            p.scenario, p.system, fb_result_stats(run->res)->newton_setups,
+    cli_say("flexbond run: %s: %s: %ld Newton matrices, %ld factorisations", p.scenario,
+            p.system, fb_result_stats(run->res)->newton_setups,
             fb_result_stats(run->res)->factorizations);
   if (rc == FB_OK && !a->quiet) {
     const fb_sim_stats *st = fb_result_stats(run->res);
     char events[48] = "";
     if (st->events)
       snprintf(events, sizeof events, ", %ld contact changes", st->events);
-    fprintf(stderr, "flexbond run: %s: %s: %zu samples, %ld steps, %ld rhs evals%s, %.3g s\n",
-            p.scenario, p.system, fb_result_nsamples(run->res), st->steps, st->rhs_evals,
-            events, st->wall_seconds);
+    cli_say("flexbond run: %s: %s: %zu samples, %ld steps, %ld rhs evals%s, %.3g s", p.scenario,
+            p.system, fb_result_nsamples(run->res), st->steps, st->rhs_evals, events,
+            st->wall_seconds);
   }
   return rc == FB_OK ? run_columns(s, run, window, err) : rc;
 }
@@ -1086,7 +1087,7 @@ static int write_animations(cli_outdir *od, const run_args *a, const fb_scenario
   int rc = FB_OK;
   for (size_t i = 0; a->animate.enabled && i < nruns && rc == FB_OK; ++i) {
     if (!a->quiet)
-      fprintf(stderr, "flexbond run: %s: %s: drawing the animation ...\n", cli_scenario_name(s),
+      cli_say("flexbond run: %s: %s: drawing the animation ...", cli_scenario_name(s),
               cli_system_label(runs[i].sys));
     rc = cli_write_animation(od, s, runs[i].motion, window, &a->animate, &runs[i].anim, err);
   }
@@ -1156,9 +1157,8 @@ static int start_estimator(const run_args *a, const fb_scenario *s, const char *
     return FB_OK;
   x->v = v;
   if (!a->quiet)
-    fprintf(stderr,
-            "flexbond run: %s: estimating the modal basis's error beside the runs: %s with "
-            "the basis's next block of Ritz vectors, t = 0..%g s ...\n",
+    cli_say("flexbond run: %s: estimating the modal basis's error beside the runs: %s with "
+            "the basis's next block of Ritz vectors, t = 0..%g s ...",
             cli_scenario_name(s), label, s->t_end);
   if (pthread_create(&x->thread, NULL, estimator_thread, x) != 0)
     return fb_err_set(err, FB_ENOMEM, "could not start the estimator's thread");
@@ -1300,7 +1300,7 @@ static int run(const run_args *a)
       .runs = runs, .figures = a->figures, .header = a->header, .animate = &a->animate};
   size_t nfiles = 0;
   cli_outdir od;
-  int rc = fb_scenario_load(a->scenario_path, &s, &err);
+  int rc = cli_scenario_load(a->scenario_path, a->strict, &s, &err);
   /* The directory is held from here (its lock: no other command writes
    * there meanwhile) to the end. */
   if (rc == FB_OK)
@@ -1321,7 +1321,7 @@ static int run(const run_args *a)
           cli_animate_frame_count(o.bump_window, 0.0, s->t_end, a->animate.fps, &nframes, &err);
   }
   if (rc == FB_OK && o.note && !a->quiet)
-    fprintf(stderr, "flexbond run: %s: %s\n", cli_scenario_name(s), o.note);
+    cli_say("flexbond run: %s: %s", cli_scenario_name(s), o.note);
   /* Each system realised once: everything below takes its vehicle. */
   for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i)
     rc = realise(a, s, systems[i], cli_system_label(systems[i]), a->animate.enabled,
@@ -1381,10 +1381,8 @@ static int run(const run_args *a)
   if (rc == FB_OK && conv.rv.v)
     say_estimator_work(a, s, conv.label, conv.est.e);
   if (rc == FB_OK && !a->quiet)
-    fprintf(stderr, "flexbond run: %s: wrote %zu files -> %s\n", cli_scenario_name(s), nfiles,
+    cli_say("flexbond run: %s: wrote %zu files -> %s", cli_scenario_name(s), nfiles,
             a->out_dir);
-  if (rc != FB_OK)
-    cli_nothing_written(&err, a->out_dir);
   fb_result_free(&diff);
   free(o.cmp);
   free(o.cmp_converged);
@@ -1500,6 +1498,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_PLAIN_HEADER,
     OPT_QUIET,
     OPT_VERBOSE,
+    OPT_STRICT,
     OPT_HELP,
     NOPTS
   };
@@ -1518,6 +1517,7 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_PLAIN_HEADER] = {"--plain-header", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_VERBOSE] = {"--verbose", "-v", 0, NULL},
+      [OPT_STRICT] = {"--strict", NULL, 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
   run_args a = {.system = -1,
@@ -1533,6 +1533,7 @@ int cli_cmd_run(int argc, char **argv)
   if (!a.out_dir || !*a.out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a.quiet = opts[OPT_QUIET].value != NULL;
+  a.strict = opts[OPT_STRICT].value != NULL;
   a.verbose = !a.quiet && opts[OPT_VERBOSE].value != NULL;
   a.progress = !a.quiet && isatty(STDERR_FILENO);
   a.figures = opts[OPT_NO_FIGURES].value == NULL;

@@ -119,9 +119,8 @@ static void print_summary(const sim_args *a, const fb_model *m, const fb_sim_opt
                           const fb_result *res)
 {
   const fb_sim_stats *s = fb_result_stats(res);
-  fprintf(stderr,
-          "flexbond sim: %s: t = %g..%g s, %zu samples x %zu outputs, %ld steps, "
-          "%ld rhs evals, %.3g s -> %s\n",
+  cli_say("flexbond sim: %s: t = %g..%g s, %zu samples x %zu outputs, %ld steps, "
+          "%ld rhs evals, %.3g s -> %s",
           fb_model_name(m), opts->t_start, opts->t_end, fb_result_nsamples(res),
           fb_result_ncols(res) - 1, s->steps, s->rhs_evals, s->wall_seconds, a->out_dir);
 }
@@ -228,8 +227,6 @@ static int run(const sim_args *a)
     rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK && !a->quiet)
     print_summary(a, m, &opts, res);
-  if (rc != FB_OK)
-    cli_nothing_written(&err, a->out_dir);
   fb_result_free(&res);
   free(x0);
   fb_bd_free(&bd);

@@ -76,6 +76,7 @@ static const char sweep_usage[] =
     "  --plain-header             sweep.csv's header of names only, without the\n"
     "                             metrics' units ('tire_force_LF_peak [N]')\n"
     "  -q, --quiet                no progress lines on stderr\n"
+    "  --strict                   refuse implausible values (the scenario's, a case's)\n"
     "  -h, --help                 this text\n";
 
 /* Most threads -j accepts. */
@@ -353,30 +354,6 @@ static size_t find_control(const char *text, unsigned *c)
   return fb_text_find_control(text, strlen(text), 0, c);
 }
 
-/* text into buf with every control character written as a C escape (\n,
- * \r, \t, \xHH; C1 as \u00HH), so that a message naming it stays one
- * line of printable text; cut short to fit. */
-static void escape_controls(const char *text, char *buf, size_t size)
-{
-  size_t n = 0;
-  for (const char *t = text; *t && n + 7 < size;) {
-    unsigned c = 0;
-    const size_t plain = find_control(t, &c);
-    for (size_t k = 0; k < plain && n + 7 < size; ++k)
-      buf[n++] = t[k];
-    t += plain;
-    if (!*t || n + 7 >= size)
-      break;
-    const size_t bytes = c >= 0x80 ? 2 : 1; /* C1 is two bytes of UTF-8 */
-    const char *named = c == '\n' ? "\\n" : c == '\r' ? "\\r" : c == '\t' ? "\\t" : NULL;
-    const int w = named ? snprintf(buf + n, size - n, "%s", named)
-                        : snprintf(buf + n, size - n, c >= 0x80 ? "\\u%04x" : "\\x%02x", c);
-    n += (size_t)w;
-    t += bytes;
-  }
-  buf[n] = '\0';
-}
-
 /* A --set option with a control character in its key or values is a
  * usage error, for the whole study: a line break in a value would end
  * its scalar in the scenario's text, and the key and values go into
@@ -392,16 +369,14 @@ static int check_controls(const char *cmd, const char *set)
                      : c == '\r' ? "a carriage return"
                      : c == '\t' ? "a tab"
                                  : "a control character";
-  char shown[512], one[3] = {set[at], '\0', '\0'}, escaped[8];
+  char one[3] = {set[at], '\0', '\0'};
   if (c >= 0x80) /* a C1 control: two bytes of UTF-8 */
     one[1] = set[at + 1];
-  escape_controls(set, shown, sizeof shown);
-  escape_controls(one, escaped, sizeof escaped);
+  /* The message shows both escaped, as every message (fb_err_escape). */
   return cli_usage_error(cmd,
                          "--set %s: the %s has %s (%s, U+%04X) at byte %zu of the option; keys "
                          "and values are one line of printable text",
-                         shown, eq && set + at > eq ? "value" : "key", what, escaped, c,
-                         at + 1);
+                         set, eq && set + at > eq ? "value" : "key", what, one, c, at + 1);
 }
 
 /* KEY=SPEC of one --set into k (k->key points into set). */
@@ -563,7 +538,7 @@ static int check_scenario(const char *cmd, sweep_args *a, char **name)
 {
   fb_err err;
   fb_scenario *s = NULL;
-  int rc = fb_scenario_load(a->scenario_path, &s, &err);
+  int rc = cli_scenario_load(a->scenario_path, a->strict, &s, &err);
   if (rc != FB_OK)
     return cli_report(rc, &err);
   int exit_code = CLI_EXIT_OK;
@@ -657,11 +632,10 @@ static int leave_journal(const sweep_args *a, const sweep_case *cases, sweep_jou
   if (!keep)
     return 0;
   char *path = sweep_journal_path(a->out_dir);
-  const size_t len = strlen(err->msg);
-  snprintf(err->msg + len, sizeof err->msg - len,
-           "; %zu of %zu cases are done and kept in %s: run the same command with --resume "
-           "to run the others",
-           kept, a->ncases, path ? path : "the journal");
+  fb_err_append(err,
+                "; %zu of %zu cases are done and kept in %s: run the same command with "
+                "--resume to run the others",
+                kept, a->ncases, path ? path : "the journal");
   free(path);
   return 1;
 }
@@ -720,8 +694,7 @@ static int sweep(const sweep_args *a, int mpi_size)
   double seconds = 0;
   if (rc == FB_OK) {
     if (resumed > 0 && !a->quiet)
-      fprintf(stderr, "flexbond sweep: resuming: %zu of %zu cases are done\n", resumed,
-              a->ncases);
+      cli_say("flexbond sweep: resuming: %zu of %zu cases are done", resumed, a->ncases);
     rc = run_cases(a, cases, journal, mpi_size, &seconds, &err);
     if (rc == FB_OK)
       rc = write_outputs(&od, a, cases, &err);
@@ -730,10 +703,8 @@ static int sweep(const sweep_args *a, int mpi_size)
     if (rc == FB_OK) {
       sweep_journal_close(&journal, 1);
     } else {
-      const int kept = leave_journal(a, cases, &journal, &err);
+      od.failure_noted = leave_journal(a, cases, &journal, &err);
       cli_outdir_close(&od, rc, &err);
-      if (!kept)
-        cli_nothing_written(&err, a->out_dir);
     }
   } else if (opened) {
     cli_outdir_close(&od, rc, &err);
@@ -742,7 +713,7 @@ static int sweep(const sweep_args *a, int mpi_size)
   if (cases)
     tally(a, cases, &not_done, &failed, &input_errors);
   if (rc == FB_OK && !a->quiet)
-    fprintf(stderr, "flexbond sweep: %s: %zu cases (%zu resumed), %zu failed, %.3g s -> %s\n",
+    cli_say("flexbond sweep: %s: %zu cases (%zu resumed), %zu failed, %.3g s -> %s",
             a->scenario_name, a->ncases, resumed, failed, seconds, a->out_dir);
   /* Failed cases are a failure of the command, said in one message like
    * any other (docs/errors.md), -q or not: -q silences the progress. */
@@ -772,6 +743,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
     OPT_NO_FIGURES,
     OPT_PLAIN_HEADER,
     OPT_QUIET,
+    OPT_STRICT,
     OPT_HELP,
     NOPTS
   };
@@ -784,6 +756,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
       [OPT_PLAIN_HEADER] = {"--plain-header", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
+      [OPT_STRICT] = {"--strict", NULL, 0, NULL},
       [OPT_HELP] = {"--help", "-h", 0, NULL},
   };
   static const char *const systems[] = {"rigid", "flexible"};
@@ -796,6 +769,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
   if (!a->out_dir || !*a->out_dir)
     return cli_usage_error(argv[0], "missing output directory (-o DIR)");
   a->quiet = a->quiet || opts[OPT_QUIET].value != NULL;
+  a->strict = opts[OPT_STRICT].value != NULL;
   a->figures = opts[OPT_NO_FIGURES].value == NULL;
   a->header = opts[OPT_PLAIN_HEADER].value ? FB_CSV_HEADER_NAMES : FB_CSV_HEADER_UNITS;
   a->resume = opts[OPT_RESUME].value != NULL;

@@ -70,6 +70,7 @@ typedef struct sweep_args {
   fb_system sys;
   size_t jobs;
   int quiet, figures, resume, mpi;
+  int strict;           /* --strict: a case with an implausible value fails as a bad input */
   fb_csv_header header; /* of sweep.csv (--plain-header: names only) */
   sweep_key keys[SWEEP_MAX_KEYS];
   size_t nkeys, ncases;

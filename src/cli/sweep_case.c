@@ -245,6 +245,11 @@ void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c)
   fb_result *res = NULL;
   c->wall_seconds = NAN;
   int rc = fb_scenario_load_overrides(a->scenario_path, ov, a->nkeys, &s, &err);
+  /* The scenario's warnings were said once, at the start; under --strict
+   * (where it has none) a case's implausible value fails it, as any bad
+   * input of a case. */
+  if (rc == FB_OK && a->strict)
+    rc = cli_scenario_warnings(s, 1, &err);
   if (rc == FB_OK)
     rc = simulate_case(a, s, &res, &err);
   if (rc == FB_OK) {

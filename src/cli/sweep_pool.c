@@ -47,12 +47,11 @@ static void report_case(const sweep_pool *p, size_t i)
   if (p->a->mpi)
     snprintf(where, sizeof where, " on rank %d", c->rank);
   if (c->status == FB_OK)
-    fprintf(stderr, "flexbond sweep: case %zu/%zu (%s): ok%s, %.0f steps, %.3g s\n", i + 1,
-            p->a->ncases, label, where, c->metric[sweep_metric_other(p->a, M_SOLVER_STEPS)],
-            c->wall_seconds);
+    cli_say("flexbond sweep: case %zu/%zu (%s): ok%s, %.0f steps, %.3g s", i + 1, p->a->ncases,
+            label, where, c->metric[sweep_metric_other(p->a, M_SOLVER_STEPS)], c->wall_seconds);
   else
-    fprintf(stderr, "flexbond sweep: case %zu/%zu (%s): failed%s: %s\n", i + 1, p->a->ncases,
-            label, where, c->error ? c->error : "out of memory");
+    cli_say("flexbond sweep: case %zu/%zu (%s): failed%s: %s", i + 1, p->a->ncases, label,
+            where, c->error ? c->error : "out of memory");
 }
 
 void sweep_pool_finish(sweep_pool *p, size_t i)

@@ -19,6 +19,74 @@ void fb_err_clear(fb_err *err)
   err->line = err->column = 0;
   err->source = FB_SOURCE_NONE;
   err->source_text[0] = '\0';
+  err->excerpt[0] = '\0';
+}
+
+/* The bytes of the control character at t (0 if none), its code in *c:
+ * one for C0 and DEL, two for a C1 control in UTF-8 (0xC2 0x80..0x9F). */
+static size_t control_at(const unsigned char *t, unsigned *c)
+{
+  if (t[0] < 0x20 || t[0] == 0x7f) {
+    *c = t[0];
+    return 1;
+  }
+  if (t[0] == 0xc2 && t[1] >= 0x80 && t[1] <= 0x9f) {
+    *c = t[1];
+    return 2;
+  }
+  return 0;
+}
+
+/* The C escape of control character c into esc. */
+static void escape_control(unsigned c, char *esc, size_t size)
+{
+  if (c == '\n')
+    snprintf(esc, size, "\\n");
+  else if (c == '\r')
+    snprintf(esc, size, "\\r");
+  else if (c == '\t')
+    snprintf(esc, size, "\\t");
+  else if (c >= 0x80)
+    snprintf(esc, size, "\\u%04x", c);
+  else
+    snprintf(esc, size, "\\x%02x", c);
+}
+
+/* fb_err_escape's work; returns how many bytes of text it wrote out. */
+static size_t escape_into(char *out, size_t size, const char *text)
+{
+  size_t n = 0;
+  const unsigned char *t = (const unsigned char *)(text ? text : "");
+  const unsigned char *start = t;
+  while (*t) {
+    unsigned c = 0;
+    const size_t len = control_at(t, &c);
+    char esc[8] = {(char)*t, '\0'};
+    if (len)
+      escape_control(c, esc, sizeof esc);
+    const size_t w = strlen(esc);
+    if (n + w >= size)
+      break;
+    memcpy(out + n, esc, w);
+    n += w;
+    t += len ? len : 1;
+  }
+  out[n] = '\0';
+  return (size_t)(t - start);
+}
+
+void fb_err_escape(char *out, size_t size, const char *text)
+{
+  if (out && size)
+    escape_into(out, size, text);
+}
+
+/* vsnprintf into dst (size bytes) as fb_err_escape writes it. */
+static void escaped_vprintf(char *dst, size_t size, const char *fmt, va_list ap)
+{
+  char raw[FB_ERR_MSG_MAX];
+  vsnprintf(raw, sizeof raw, fmt, ap);
+  fb_err_escape(dst, size, raw);
 }
 
 int(fb_err_set_origin)(fb_err *err, int origin, size_t index, int code)
@@ -44,7 +112,7 @@ int fb_err_vset(fb_err *err, int code, const char *fmt, va_list ap)
 {
   if (!err)
     return code;
-  vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+  escaped_vprintf(err->msg, sizeof err->msg, fmt, ap);
   err->code = code;
   err->origin = FB_ORIGIN_NONE;
   err->origin_index = 0;
@@ -53,6 +121,7 @@ int fb_err_vset(fb_err *err, int code, const char *fmt, va_list ap)
   err->line = err->column = 0;
   err->source = FB_SOURCE_NONE;
   err->source_text[0] = '\0';
+  err->excerpt[0] = '\0';
   return code;
 }
 
@@ -62,7 +131,7 @@ int fb_err_set_key(fb_err *err, const char *fmt, ...)
     return FB_OK;
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(err->key, sizeof err->key, fmt, ap);
+  escaped_vprintf(err->key, sizeof err->key, fmt, ap);
   va_end(ap);
   return err->code;
 }
@@ -92,7 +161,7 @@ int fb_err_prefix(fb_err *err, const char *fmt, ...)
   char head[FB_ERR_MSG_MAX];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(head, sizeof head, fmt, ap);
+  escaped_vprintf(head, sizeof head, fmt, ap);
   va_end(ap);
   /* Truncation keeps the head (the context) and cuts the tail. */
   size_t hlen = strlen(head);
@@ -102,6 +171,59 @@ int fb_err_prefix(fb_err *err, const char *fmt, ...)
   memmove(err->msg + hlen, err->msg, mlen);
   memcpy(err->msg, head, hlen);
   err->msg[hlen + mlen] = '\0';
+  return err->code;
+}
+
+/* The length of the first n bytes of text up to a NUL, counted to max. */
+static size_t bounded_length(const char *text, size_t n, size_t max)
+{
+  size_t len = 0;
+  while (len < max && len < n && text[len])
+    ++len;
+  return len;
+}
+
+/* The bytes of a data file's text an excerpt keeps (fb_err.excerpt). */
+#define EXCERPT_BYTES 64
+
+void fb_err_set_excerpt(fb_err *err, const char *text, size_t n)
+{
+  if (!err || !text)
+    return;
+  char raw[EXCERPT_BYTES + 1];
+  const size_t len = bounded_length(text, n, EXCERPT_BYTES + 1);
+  const size_t kept = len < EXCERPT_BYTES ? len : EXCERPT_BYTES;
+  memcpy(raw, text, kept);
+  raw[kept] = '\0';
+  /* Escapes may not all fit: "..." says when anything is left out. */
+  const size_t written = escape_into(err->excerpt, sizeof err->excerpt - 3, raw);
+  /* cppcheck-suppress knownConditionTrueFalse ; false only for a caller's empty field */
+  if (len > kept || written < kept)
+    memcpy(err->excerpt + strlen(err->excerpt), "...", sizeof "...");
+}
+
+char *fb_err_describe(const fb_err *err, char *buf, size_t size)
+{
+  if (!buf || !size)
+    return buf;
+  if (!err)
+    buf[0] = '\0';
+  else if (err->excerpt[0])
+    snprintf(buf, size, "%s (read: '%s')", err->msg, err->excerpt);
+  else
+    snprintf(buf, size, "%s", err->msg);
+  return buf;
+}
+
+int fb_err_append(fb_err *err, const char *fmt, ...)
+{
+  if (!err)
+    return FB_OK;
+  const size_t len = strlen(err->msg);
+  va_list ap;
+  va_start(ap, fmt);
+  escaped_vprintf(err->msg + len, sizeof err->msg - len, fmt, ap);
+  va_end(ap);
   return err->code;
 }
 

@@ -80,6 +80,15 @@ static int parse_error(const mtx_reader *r, const char *fmt, ...)
   const size_t line = r->line_no ? r->line_no : 1;
   return fb_err_set(r->err, FB_EPARSE, "%s:%zu: %s", r->path, line, msg);
 }
+
+/* rc, after recording tok (may be NULL) as the error's excerpt: a
+ * matrix file's text goes there, never into the message. */
+static int quoting(const mtx_reader *r, const char *tok, int rc)
+{
+  if (tok)
+    fb_err_set_excerpt(r->err, tok, strlen(tok));
+  return rc;
+}
 #if defined(__clang_analyzer__)
 /* For the static analyzer only, which does not follow calls to variadic functions. */
 #define parse_error(r, ...) (parse_error((r), __VA_ARGS__), FB_EPARSE)
@@ -122,20 +131,21 @@ static int parse_value(const mtx_reader *r, const mtx_header *h, const char *tok
     errno = 0;
     const long long v = strtoll(tok, &end, 10);
     if (errno || end == tok || *end != '\0')
-      return parse_error(r, "invalid integer value '%s'", tok);
+      return quoting(r, tok, parse_error(r, "invalid integer value"));
     *out = (double)v;
     return FB_OK;
   }
-  const int rc = fb_parse_decimal(tok, out, r->err);
+  const int rc = fb_parse_decimal_field(tok, out, r->err);
   if (rc)
-    fb_err_prefix(r->err, "%s:%zu: value ", r->path, r->line_no);
+    fb_err_prefix(r->err, "%s:%zu: value: ", r->path, r->line_no);
   return rc;
 }
 
 static int no_more_tokens(const mtx_reader *r, char **cursor)
 {
   const char *extra = next_token(cursor);
-  return extra ? parse_error(r, "unexpected text '%s' at end of line", extra) : FB_OK;
+  return extra ? quoting(r, extra, parse_error(r, "unexpected text at the end of the line"))
+               : FB_OK;
 }
 
 /* Matches tok case-insensitively against choices[0..n); index or -1. */
@@ -170,13 +180,13 @@ static int read_header(mtx_reader *r, mtx_header *h)
   h->integer = choose(field, fields, 2);
   h->symmetric = choose(symmetry, symmetries, 2);
   if (h->coordinate < 0)
-    return parse_error(r, "unsupported format '%s' (array or coordinate)",
-                       format ? format : "");
+    return quoting(r, format,
+                   parse_error(r, "unsupported format: expected array or coordinate"));
   if (h->integer < 0)
-    return parse_error(r, "unsupported field '%s' (real or integer)", field ? field : "");
+    return quoting(r, field, parse_error(r, "unsupported field: expected real or integer"));
   if (h->symmetric < 0)
-    return parse_error(r, "unsupported symmetry '%s' (general or symmetric)",
-                       symmetry ? symmetry : "");
+    return quoting(r, symmetry,
+                   parse_error(r, "unsupported symmetry: expected general or symmetric"));
   return no_more_tokens(r, &cursor);
 }
 
@@ -292,7 +302,7 @@ static int parse_index(const mtx_reader *r, const char *what, const char *tok, s
   if (!tok)
     return parse_error(r, "missing %s index", what);
   if (!parse_count(tok, &v))
-    return parse_error(r, "invalid %s index '%s'", what, tok);
+    return quoting(r, tok, parse_error(r, "invalid %s index", what));
   if (v < 1 || v > n)
     return parse_error(r, "%s index %zu out of range 1..%zu", what, v, n);
   *out = v - 1;

@@ -347,20 +347,30 @@ static int has_nonzero_digit(const char *text)
   return 0;
 }
 
+/* fb_decimal_check_exact, the text quoted in the message or (quote 0, a
+ * data file's field) only in fb_err.excerpt. */
+static int check_exact(const char *text, double v, int quote, fb_err *err)
+{
+  int rc = FB_OK;
+  if (integer_inexact(text))
+    rc = fb_err_set(err, FB_EINVAL,
+                    "the integer %s%sis beyond 2^53 = %s, above which a double cannot hold "
+                    "every integer: it would be read as a different number; write it with "
+                    "an exponent (as 1.5e16) if a rounded value is meant",
+                    quote ? text : "", quote ? " " : "", exact_int_max);
+  else if (v == 0 && has_nonzero_digit(text))
+    rc = fb_err_set(err, FB_EINVAL,
+                    "%s is too small for a double (below about 4.9e-324): it would be read "
+                    "as 0; write 0 if 0 is meant",
+                    quote ? text : "the number");
+  if (rc && !quote)
+    fb_err_set_excerpt(err, text, strlen(text));
+  return rc;
+}
+
 int fb_decimal_check_exact(const char *text, double v, fb_err *err)
 {
-  if (integer_inexact(text))
-    return fb_err_set(err, FB_EINVAL,
-                      "the integer %s is beyond 2^53 = %s, above which a double cannot hold "
-                      "every integer: it would be read as a different number; write it with "
-                      "an exponent (as 1.5e16) if a rounded value is meant",
-                      text, exact_int_max);
-  if (v == 0 && has_nonzero_digit(text))
-    return fb_err_set(err, FB_EINVAL,
-                      "%s is too small for a double (below about 4.9e-324): it would be read "
-                      "as 0; write 0 if 0 is meant",
-                      text);
-  return FB_OK;
+  return check_exact(text, v, 1, err);
 }
 
 size_t fb_text_find_control(const char *text, size_t len, int layout, unsigned *code)
@@ -380,20 +390,38 @@ size_t fb_text_find_control(const char *text, size_t len, int layout, unsigned *
   return len;
 }
 
-int fb_parse_decimal(const char *text, double *out, fb_err *err)
+static int parse_decimal(const char *text, double *out, int quote, fb_err *err)
 {
   char *end = NULL;
   const double v = strtod(text, &end);
+  const char *why = NULL;
   if (end == text || *end != '\0')
-    return fb_err_set(err, FB_EPARSE, "'%s' is not a number", text);
-  if (!isfinite(v))
-    return fb_err_set(err, FB_EPARSE, "'%s' is not a finite number", text);
-  if (!is_decimal(text))
-    return fb_err_set(err, FB_EPARSE, "'%s' is not a decimal number", text);
-  const int rc = fb_decimal_check_exact(text, v, err);
+    why = "not a number";
+  else if (!isfinite(v))
+    why = "not a finite number";
+  else if (!is_decimal(text))
+    why = "not a decimal number";
+  if (why && quote)
+    return fb_err_set(err, FB_EPARSE, "'%s' is %s", text, why);
+  if (why) {
+    fb_err_set(err, FB_EPARSE, "%s", why);
+    fb_err_set_excerpt(err, text, strlen(text));
+    return FB_EPARSE;
+  }
+  const int rc = check_exact(text, v, quote, err);
   if (rc == FB_OK)
     *out = v;
   return rc;
+}
+
+int fb_parse_decimal(const char *text, double *out, fb_err *err)
+{
+  return parse_decimal(text, out, 1, err);
+}
+
+int fb_parse_decimal_field(const char *text, double *out, fb_err *err)
+{
+  return parse_decimal(text, out, 0, err);
 }
 
 void fb_format_shortest(double v, int min_digits, char *buf, size_t size)

@@ -122,6 +122,11 @@ size_t fb_text_find_control(const char *text, size_t len, int layout, unsigned *
  * the range of a double: "1e999"), for the caller to prefix with
  * fb_err_prefix ("FILE:LINE: column 'z': "). *out is set only on success. */
 int fb_parse_decimal(const char *text, double *out, fb_err *err);
+/* fb_parse_decimal for a field of a data file (a table, a profile, a
+ * matrix, a mesh): the message says what is wrong without quoting text
+ * ("not a number"), which goes to fb_err.excerpt, so that no data file's
+ * text reaches a message (or the output file a message may go into). */
+int fb_parse_decimal_field(const char *text, double *out, fb_err *err);
 /* FB_OK unless the decimal text, which strtod read as v, is not the
  * number written: an integer (digits, a sign allowed) above 2^53 in
  * magnitude, which a double cannot hold exactly, or a number with a

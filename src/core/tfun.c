@@ -405,17 +405,7 @@ typedef struct csv_columns {
   size_t count;      /* fields in the header */
   size_t time_index; /* SIZE_MAX until found */
   size_t value_index;
-  char list[512]; /* "a, b, c" for messages, cut with "..." if long */
 } csv_columns;
-
-static void columns_append(csv_columns *cols, const char *name)
-{
-  size_t used = strlen(cols->list);
-  size_t room = sizeof cols->list - used;
-  int n = snprintf(cols->list + used, room, "%s%s", used ? ", " : "", name);
-  if (n < 0 || (size_t)n >= room)
-    memcpy(cols->list + sizeof cols->list - 4, "...", 4);
-}
 
 /* The header names the columns; time_col and value_col must each appear
  * exactly once (a second one would leave it unclear which to read). */
@@ -432,7 +422,6 @@ static int csv_read_header(fb_text_reader *r, const char *time_col, const char *
                       r->line_no ? r->line_no : 1);
   cols->count = 0;
   cols->time_index = cols->value_index = SIZE_MAX;
-  cols->list[0] = '\0';
   for (char *cursor = text; cursor; ++cols->count) {
     const char *name = next_field(&cursor);
     const int is_time = strcmp(name, time_col) == 0, is_value = strcmp(name, value_col) == 0;
@@ -444,14 +433,14 @@ static int csv_read_header(fb_text_reader *r, const char *time_col, const char *
       cols->time_index = cols->count;
     if (is_value)
       cols->value_index = cols->count;
-    columns_append(cols, name);
   }
   const char *missing = cols->time_index == SIZE_MAX    ? time_col
                         : cols->value_index == SIZE_MAX ? value_col
                                                         : NULL;
   if (missing)
-    return fb_err_set(r->err, FB_EPARSE, "%s:%zu: no column '%s' in header (columns: %s)",
-                      r->path, r->line_no, missing, cols->list);
+    return fb_err_set(r->err, FB_EPARSE,
+                      "%s:%zu: no column '%s' among the header's %zu field%s", r->path,
+                      r->line_no, missing, cols->count, cols->count == 1 ? "" : "s");
   return FB_OK;
 }
 
@@ -459,7 +448,7 @@ static int csv_read_header(fb_text_reader *r, const char *time_col, const char *
 static int csv_number(const fb_text_reader *r, const char *name, const char *text,
                       double *value)
 {
-  const int rc = fb_parse_decimal(text, value, r->err);
+  const int rc = fb_parse_decimal_field(text, value, r->err);
   if (rc)
     fb_err_prefix(r->err, "%s:%zu: column '%s': ", r->path, r->line_no, name);
   return rc;
@@ -515,7 +504,7 @@ static int csv_data_push(csv_data *d, double time, double value, fb_err *err)
 /* Reads the header and all data rows of an open file into d. */
 static int csv_read(fb_text_reader *r, const char *time_col, const char *value_col, csv_data *d)
 {
-  csv_columns cols;
+  csv_columns cols = {0};
   int status = csv_read_header(r, time_col, value_col, &cols);
   for (;;) {
     char *text = NULL;

@@ -108,6 +108,28 @@ const char *fb_bytes_text(double bytes, char *buf, size_t size)
   return buf;
 }
 
+int fb_check_dense_eig(size_t n, size_t nmatrices, size_t limit, fb_err *err, const char *fmt,
+                       ...)
+{
+  char what[FB_ERR_MSG_MAX / 2];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(what, sizeof what, fmt, ap);
+  va_end(ap);
+  if (n > FB_DENSE_EIG_MAX) {
+    /* 20 s at FB_DENSE_EIG_MAX, n^3 beyond. */
+    const double seconds = 20.0 * pow((double)n / FB_DENSE_EIG_MAX, 3.0);
+    return fb_err_set(err, FB_ENOMEM,
+                      "%s: a dense eigen-solve of order %zu, more than the %d it may take "
+                      "(its time grows as the cube of the order: some %.0f %s here, which "
+                      "nothing could interrupt)",
+                      what, n, FB_DENSE_EIG_MAX, seconds < 120 ? seconds : seconds / 60,
+                      seconds < 120 ? "s" : "minutes");
+  }
+  const double bytes = (double)nmatrices * (double)n * (double)n * sizeof(double);
+  return fb_check_memory(bytes, limit, err, "%s", what);
+}
+
 int fb_check_memory(double bytes, size_t limit, fb_err *err, const char *fmt, ...)
 {
   if (!limit || bytes <= (double)limit)

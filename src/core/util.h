@@ -41,6 +41,23 @@ const char *fb_bytes_text(double bytes, char *buf, size_t size);
 /* FB_OK when bytes fit in limit (0: no limit), else FB_ENOMEM with "WHAT
  * needs SIZE, more than the LIMIT allowed", WHAT printf-formatted from
  * fmt: the check a large allocation makes before it is tried. */
+/* The largest order a dense eigen-solve (LAPACK dgeev) is asked to take:
+ * 3000, where it took 20 s with eigenvectors on this project's reference
+ * machine (2 cores, bench/README.md) and three n x n matrices take 216 MB.
+ * Its time grows as n^3 and cannot be interrupted: 10000 states would be
+ * some 12 minutes, 24000 (System 2 with every mode of a density-3 hull)
+ * hours. */
+#define FB_DENSE_EIG_MAX 3000
+/* FB_OK when a dense eigen-solve of order n, holding nmatrices n x n
+ * matrices, is within FB_DENSE_EIG_MAX and limit bytes (0: no limit);
+ * else FB_ENOMEM saying what (printf-formatted from fmt) would need,
+ * checked before anything is allocated. */
+int fb_check_dense_eig(size_t n, size_t nmatrices, size_t limit, fb_err *err, const char *fmt,
+                       ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
 int fb_check_memory(double bytes, size_t limit, fb_err *err, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))

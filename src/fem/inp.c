@@ -17,9 +17,11 @@
  *   then pass fb_mesh_check's element tests (no repeated node, an area, a
  *   convex and plane quadrilateral); a failure is an error at its line.
  * - *NSET, NSET=name [, GENERATE] [, INTERNAL] [, UNSORTED]: node ids and
- *   names of node sets defined earlier, or "first, last[, step]" lines with
- *   GENERATE; every node named, generated ones included, must exist. A
- *   repeated *NSET of the same name (any case) extends the set.
+ *   names of node sets defined earlier (by an earlier block: the set as it
+ *   stands there), or "first, last[, step]" lines with GENERATE; every node
+ *   named, generated ones included, must exist. A repeated *NSET of the
+ *   same name (any case) extends the set. A set holds each node once, in
+ *   the order first named, however often the deck names it (resolve_sets).
  * - *ELSET, ELSET=name [, GENERATE] [, INTERNAL] [, UNSORTED]: element
  *   ids and names of element sets, as *NSET; ELSET= on *ELEMENT adds the
  *   block's elements to that set.
@@ -384,9 +386,21 @@ static int skip_data(inp_reader *r)
 
 /* ---- Node sets. */
 
+/* 1 if the block's last item is this one: a set holds each member once,
+ * so a name or a GENERATE line repeated ("ALL, ALL, ...") is kept once. */
+static int repeats_last_item(const inp_reader *r, inp_item_kind kind, long a, long b, long step,
+                             const char *ref)
+{
+  const inp_item *last = r->blocks[r->nblocks - 1].count ? &r->items[r->nitems - 1] : NULL;
+  return last && last->kind == kind && last->a == a && last->b == b && last->step == step &&
+         (!ref || same_word(last->ref, ref));
+}
+
 static int add_item(inp_reader *r, inp_item_kind kind, long a, long b, long step,
                     const char *ref)
 {
+  if (repeats_last_item(r, kind, a, b, step, ref))
+    return FB_OK;
   if (fb_grow((void **)&r->items, &r->items_cap, r->nitems, sizeof *r->items))
     return inp_nomem(r);
   r->items[r->nitems++] = (inp_item){kind, a, b, step, ref, r->lineno};
@@ -803,81 +817,207 @@ static int resolve_elements(const inp_reader *r)
   return FB_OK;
 }
 
-/* A growing list of node indices. */
-typedef struct index_list {
-  size_t *v;
-  size_t n, cap;
-} index_list;
+/* ---- Sets, once the deck is read.
+ *
+ * A set's data lines may name other sets besides ids (Abaqus Keywords
+ * Reference and CalculiX CrunchiX User's Manual, *NSET and *ELSET: node or
+ * element numbers and the names of sets defined before), and a deck may
+ * name a large set over and over ("ALL, ALL, ..." on every line). Members go into the mesh's
+ * set as they are met, where one already there costs O(1) (fb_mesh_add_nset), so a set takes
+ * memory for its members only: expanding a whole block before removing repeats once took 1.7 GB
+ * for a 4.8 MB deck. A set named again adds only what it gained since it was last merged into
+ * the same set (inp_merge: sets only grow, their members in the order they came), so the time
+ * is linear in the deck and the sets' sizes. Blocks are resolved in the deck's order: a set may
+ * name the sets defined before it, as they stand at that point. */
 
-static int push_index(const inp_reader *r, index_list *l, size_t i)
+/* Members collected before they are added to the mesh's set, in order. */
+#define FILL_CHUNK 256
+
+/* The block being resolved. */
+typedef struct set_fill {
+  const inp_set_block *blk;
+  int existed; /* an earlier block defined the set */
+  size_t line; /* of the block's first item (1 if none) */
+  size_t pending[FILL_CHUNK];
+  size_t npending;
+} set_fill;
+
+/* How much of set x is in set t already (both of one kind): x's first
+ * merged members, as in x's member list. */
+typedef struct inp_merge {
+  const char *t, *x; /* NULL t: an empty slot */
+  uint64_t key;
+  size_t merged;
+} inp_merge;
+
+/* Open addressing, linear probing, load at most 1/2 (as mesh.c's tables). */
+typedef struct merge_table {
+  inp_merge *slots;
+  size_t cap, n; /* cap a power of two, or 0 */
+} merge_table;
+
+static uint64_t merge_key(const char *t, const char *x)
 {
-  if (fb_grow((void **)&l->v, &l->cap, l->n, sizeof *l->v))
-    return inp_nomem(r);
-  l->v[l->n++] = i;
+  const uint64_t k = fb_mesh_name_key(t) ^ (fb_mesh_name_key(x) * UINT64_C(0x9E3779B97F4A7C15));
+  return k ^ (k >> 32);
+}
+
+static inp_merge *merge_slot(const merge_table *tb, const char *t, const char *x, uint64_t key)
+{
+  for (size_t s = (size_t)key & (tb->cap - 1);; s = (s + 1) & (tb->cap - 1)) {
+    inp_merge *e = &tb->slots[s];
+    if (!e->t || (e->key == key && same_word(e->t, t) && same_word(e->x, x)))
+      return e;
+  }
+}
+
+/* Room for one entry more. */
+static int merge_reserve(merge_table *tb)
+{
+  if (2 * (tb->n + 1) <= tb->cap)
+    return FB_OK;
+  merge_table grown = {NULL, tb->cap ? 2 * tb->cap : 16, tb->n};
+  grown.slots = calloc(grown.cap, sizeof *grown.slots);
+  if (!grown.slots)
+    return FB_ENOMEM;
+  for (size_t s = 0; s < tb->cap; ++s)
+    if (tb->slots[s].t)
+      *merge_slot(&grown, tb->slots[s].t, tb->slots[s].x, tb->slots[s].key) = tb->slots[s];
+  free(tb->slots);
+  *tb = grown;
   return FB_OK;
 }
 
-static int push_id(const inp_reader *r, const inp_set_block *blk, const inp_item *it, long id,
-                   index_list *l)
+/* The entry of (t, x), new with nothing merged if there was none; NULL
+ * when out of memory. */
+static inp_merge *merge_entry(merge_table *tb, const char *t, const char *x)
 {
+  if (merge_reserve(tb))
+    return NULL;
+  const uint64_t key = merge_key(t, x);
+  inp_merge *e = merge_slot(tb, t, x, key);
+  if (!e->t) {
+    *e = (inp_merge){t, x, key, 0};
+    ++tb->n;
+  }
+  return e;
+}
+
+/* Set name of the block's kind: 1 and its members, or 0. */
+static int find_set(const inp_reader *r, int elements, const char *name, const size_t **items,
+                    size_t *n)
+{
+  return elements ? fb_mesh_elset(r->mesh, name, items, n)
+                  : fb_mesh_nset(r->mesh, name, items, n);
+}
+
+/* Adds the n members at v to the block's set (n = 0 makes it exist). */
+static int add_members(const inp_reader *r, const set_fill *f, size_t n, const size_t *v)
+{
+  fb_err sub;
+  fb_err_clear(&sub);
+  const inp_set_block *blk = f->blk;
+  const int rc = blk->elements ? fb_mesh_add_elset(r->mesh, blk->name, n, v, &sub)
+                               : fb_mesh_add_nset(r->mesh, blk->name, n, v, &sub);
+  return rc ? inp_mesh_error(r, f->line, &sub) : FB_OK;
+}
+
+static int flush(const inp_reader *r, set_fill *f)
+{
+  const int rc = add_members(r, f, f->npending, f->pending);
+  f->npending = 0;
+  return rc;
+}
+
+static int push_index(const inp_reader *r, set_fill *f, size_t i)
+{
+  const int rc = f->npending == FILL_CHUNK ? flush(r, f) : FB_OK;
+  if (!rc)
+    f->pending[f->npending++] = i;
+  return rc;
+}
+
+static int push_id(const inp_reader *r, set_fill *f, const inp_item *it, long id)
+{
+  const inp_set_block *blk = f->blk;
   const long i =
       blk->elements ? fb_mesh_find_element_id(r->mesh, id) : fb_mesh_find_node_id(r->mesh, id);
   if (i < 0)
     return inp_error(r, it->line, "%s set '%s' names %s %ld, which is not defined",
                      set_kind(blk->elements), blk->name, set_kind(blk->elements), id);
-  return push_index(r, l, (size_t)i);
+  return push_index(r, f, (size_t)i);
 }
 
-static int expand_item(const inp_reader *r, const inp_set_block *blk, const inp_item *it,
-                       index_list *l)
+/* The members of the set it names that are not in the block's set yet. */
+static int merge_set(const inp_reader *r, merge_table *memo, set_fill *f, const inp_item *it)
 {
-  int rc = FB_OK;
+  const inp_set_block *blk = f->blk;
   const size_t *items = NULL;
   size_t n = 0;
+  const int self = same_word(it->ref, blk->name);
+  if (!(self ? f->existed : find_set(r, blk->elements, it->ref, &items, &n)))
+    return inp_error(r, it->line, "%s set '%s' names %s set '%s', which is not defined",
+                     set_kind(blk->elements), blk->name, set_kind(blk->elements), it->ref);
+  if (self) /* a set holds its own members already */
+    return FB_OK;
+  inp_merge *e = merge_entry(memo, blk->name, it->ref);
+  if (!e)
+    return inp_nomem(r);
+  if (e->merged == n)
+    return FB_OK;
+  int rc = flush(r, f); /* the members named before come first */
+  if (!rc)
+    rc = add_members(r, f, n - e->merged, items + e->merged);
+  if (!rc)
+    e->merged = n;
+  return rc;
+}
+
+static int resolve_item(const inp_reader *r, merge_table *memo, set_fill *f, const inp_item *it)
+{
+  int rc = FB_OK;
   switch (it->kind) {
-  case ITEM_ID: return push_id(r, blk, it, it->a, l);
+  case ITEM_ID: return push_id(r, f, it, it->a);
   case ITEM_RANGE:
     /* Stepping this way cannot overflow past it->b. */
     for (long id = it->a; !rc; id += it->step) {
-      rc = push_id(r, blk, it, id, l);
+      rc = push_id(r, f, it, id);
       if (it->b - id < it->step)
         break;
     }
     return rc;
-  case ITEM_SET:
-    if (!(blk->elements ? fb_mesh_elset(r->mesh, it->ref, &items, &n)
-                        : fb_mesh_nset(r->mesh, it->ref, &items, &n)))
-      return inp_error(r, it->line, "%s set '%s' names %s set '%s', which is not defined",
-                       set_kind(blk->elements), blk->name, set_kind(blk->elements), it->ref);
-    for (size_t k = 0; k < n && !rc; ++k)
-      rc = push_index(r, l, items[k]);
-    return rc;
+  case ITEM_SET: return merge_set(r, memo, f, it);
   case ITEM_INDICES:
     for (long k = it->a; k < it->b && !rc; ++k)
-      rc = push_index(r, l, (size_t)k);
+      rc = push_index(r, f, (size_t)k);
     return rc;
   }
   return rc;
 }
 
-/* Node and element sets, in the deck's order (a set may name sets
- * defined before it). */
+/* One block; memo holds the merges of its kind of sets. */
+static int resolve_block(const inp_reader *r, merge_table *memo, const inp_set_block *blk)
+{
+  set_fill f;
+  f.blk = blk;
+  f.existed = find_set(r, blk->elements, blk->name, NULL, NULL);
+  f.line = blk->count ? r->items[blk->first].line : 1;
+  f.npending = 0;
+  int rc = FB_OK;
+  for (size_t k = 0; k < blk->count && !rc; ++k)
+    rc = resolve_item(r, memo, &f, &r->items[blk->first + k]);
+  return rc ? rc : flush(r, &f);
+}
+
+/* Node and element sets, in the deck's order. */
 static int resolve_sets(const inp_reader *r)
 {
-  index_list l = {NULL, 0, 0};
-  fb_err sub;
-  fb_err_clear(&sub);
+  merge_table memo[2] = {{NULL, 0, 0}, {NULL, 0, 0}}; /* node sets, element sets */
   int rc = FB_OK;
-  for (size_t b = 0; b < r->nblocks && !rc; ++b) {
-    const inp_set_block *blk = &r->blocks[b];
-    l.n = 0;
-    for (size_t k = 0; k < blk->count && !rc; ++k)
-      rc = expand_item(r, blk, &r->items[blk->first + k], &l);
-    if (!rc && (blk->elements ? fb_mesh_add_elset(r->mesh, blk->name, l.n, l.v, &sub)
-                              : fb_mesh_add_nset(r->mesh, blk->name, l.n, l.v, &sub)))
-      rc = inp_mesh_error(r, blk->count ? r->items[blk->first].line : 0, &sub);
-  }
-  free(l.v);
+  for (size_t b = 0; b < r->nblocks && !rc; ++b)
+    rc = resolve_block(r, &memo[r->blocks[b].elements], &r->blocks[b]);
+  free(memo[0].slots);
+  free(memo[1].slots);
   return rc;
 }
 

@@ -7,7 +7,10 @@
  * factor at most 1/2; Knuth, TAOCP vol. 3, section 6.4, algorithm L) whose
  * slots hold index + 1 into the id arrays, so a lookup costs O(1) on
  * average for meshes of 1e5 nodes and more. Node and element sets are
- * kept free of duplicates, in the order their members were first added.
+ * kept free of duplicates, in the order their members were first added;
+ * the same kind of table finds a set by name and a member in its set, so
+ * adding n members costs O(n) whatever the set's or the mesh's size (a
+ * reader may add a set's members a few at a time).
  * A section is a copy of its element set's name and properties; each
  * element records the index of the last section given to it, or -1. */
 #include <ctype.h>
@@ -29,19 +32,23 @@ typedef struct id_map {
   size_t cap; /* power of two, or 0 */
 } id_map;
 
-/* A named set of node or element indices. */
+/* A named set of node or element indices; members maps a member to its
+ * position in items (slot value k: items[k - 1]). */
 typedef struct mesh_set {
   char *name;
   size_t *items;
   size_t n;
   size_t cap;
+  id_map members;
 } mesh_set;
 
-/* The sets of one kind. */
+/* The sets of one kind; names maps a name, case-insensitively, to its set
+ * (slot value k: sets[k - 1]). */
 typedef struct set_list {
   mesh_set *sets;
   size_t n;
   size_t cap;
+  id_map names;
 } set_list;
 
 typedef struct mesh_section {
@@ -105,11 +112,11 @@ int fb_mesh_name_ok(const char *name)
 
 /* ---- Id tables. */
 
-/* Home slot of id in a table of cap (a power of two) slots: Fibonacci
+/* Home slot of key in a table of cap (a power of two) slots: Fibonacci
  * hashing (Knuth, TAOCP vol. 3, section 6.4, multiplicative method). */
-static size_t id_home(long id, size_t cap)
+static size_t slot_home(uint64_t key, size_t cap)
 {
-  uint64_t h = (uint64_t)id * UINT64_C(0x9E3779B97F4A7C15);
+  uint64_t h = key * UINT64_C(0x9E3779B97F4A7C15);
   h ^= h >> 32;
   return (size_t)h & (cap - 1);
 }
@@ -119,7 +126,7 @@ static long id_map_find(const id_map *map, const long *ids, long id)
 {
   if (map->cap == 0)
     return -1;
-  for (size_t s = id_home(id, map->cap);; s = (s + 1) & (map->cap - 1)) {
+  for (size_t s = slot_home((uint64_t)id, map->cap);; s = (s + 1) & (map->cap - 1)) {
     const size_t v = map->slots[s];
     if (v == 0)
       return -1;
@@ -128,18 +135,21 @@ static long id_map_find(const id_map *map, const long *ids, long id)
   }
 }
 
-static void id_map_put(id_map *map, const long *ids, size_t index)
+/* The first empty slot from key's home on (the table has one: its load is
+ * at most 1/2). */
+static size_t *free_slot(const id_map *map, uint64_t key)
 {
-  size_t s = id_home(ids[index], map->cap);
+  size_t s = slot_home(key, map->cap);
   while (map->slots[s] != 0)
     s = (s + 1) & (map->cap - 1);
-  map->slots[s] = index + 1;
+  return &map->slots[s];
 }
 
-/* Makes room for count + 1 entries (load at most 1/2), rebuilding the
- * table over ids[0 .. count) when it grows. */
-static int id_map_reserve(id_map *map, const long *ids, size_t count)
+/* Makes room for count + 1 entries (load at most 1/2). A table that grows
+ * is empty (*grown = 1): the caller puts its count entries back. */
+static int map_grow(id_map *map, size_t count, int *grown)
 {
+  *grown = 0;
   if (2 * (count + 1) <= map->cap)
     return FB_OK;
   size_t cap = map->cap ? map->cap : 16;
@@ -154,9 +164,24 @@ static int id_map_reserve(id_map *map, const long *ids, size_t count)
   free(map->slots);
   map->slots = slots;
   map->cap = cap;
-  for (size_t i = 0; i < count; ++i)
-    id_map_put(map, ids, i);
+  *grown = 1;
   return FB_OK;
+}
+
+static void id_map_put(id_map *map, const long *ids, size_t index)
+{
+  *free_slot(map, (uint64_t)ids[index]) = index + 1;
+}
+
+/* Makes room for count + 1 entries, rebuilding the table over
+ * ids[0 .. count) when it grows. */
+static int id_map_reserve(id_map *map, const long *ids, size_t count)
+{
+  int grown = 0;
+  const int rc = map_grow(map, count, &grown);
+  for (size_t i = 0; grown && i < count; ++i)
+    id_map_put(map, ids, i);
+  return rc;
 }
 
 static int id_map_copy(const id_map *src, id_map *dst)
@@ -189,8 +214,10 @@ static void set_list_free(set_list *l)
   for (size_t i = 0; i < l->n; ++i) {
     free(l->sets[i].name);
     free(l->sets[i].items);
+    free(l->sets[i].members.slots);
   }
   free(l->sets);
+  free(l->names.slots);
 }
 
 void fb_mesh_free(fb_mesh **m)
@@ -260,7 +287,7 @@ static int copy_sets(const set_list *l, set_list *c)
   if (l->n == 0)
     return FB_OK;
   c->sets = calloc(l->n, sizeof *c->sets);
-  if (!c->sets)
+  if (!c->sets || id_map_copy(&l->names, &c->names) != FB_OK)
     return FB_ENOMEM;
   c->cap = l->n;
   for (size_t i = 0; i < l->n; ++i) {
@@ -268,7 +295,9 @@ static int copy_sets(const set_list *l, set_list *c)
     mesh_set *d = &c->sets[i];
     ++c->n; /* counted first so that a failure below frees it */
     d->name = fb_strdup(s->name);
-    if (!d->name || copy_bytes((void **)&d->items, s->items, s->n * sizeof *s->items) != FB_OK)
+    if (!d->name ||
+        copy_bytes((void **)&d->items, s->items, s->n * sizeof *s->items) != FB_OK ||
+        id_map_copy(&s->members, &d->members) != FB_OK)
       return FB_ENOMEM;
     d->n = d->cap = s->n;
   }
@@ -438,53 +467,89 @@ int fb_mesh_add_element(fb_mesh *m, long id, fb_elem_type type, const size_t *no
   return FB_OK;
 }
 
+/* FNV-1a (G. Fowler, L. C. Noll & K.-P. Vo) of the upper case, so that
+ * names equal but for case have one key. */
+uint64_t fb_mesh_name_key(const char *name)
+{
+  uint64_t h = UINT64_C(14695981039346656037);
+  for (const char *c = name; *c; ++c) {
+    h ^= (unsigned char)toupper((unsigned char)*c);
+    h *= UINT64_C(1099511628211);
+  }
+  return h;
+}
+
 /* Index of the set called name (case-insensitive), or -1. */
 static long find_set(const set_list *l, const char *name)
 {
-  for (size_t i = 0; i < l->n; ++i)
-    if (strcasecmp(l->sets[i].name, name) == 0)
-      return (long)i;
-  return -1;
+  const id_map *map = &l->names;
+  if (map->cap == 0)
+    return -1;
+  for (size_t s = slot_home(fb_mesh_name_key(name), map->cap);; s = (s + 1) & (map->cap - 1)) {
+    const size_t v = map->slots[s];
+    if (v == 0)
+      return -1;
+    if (strcasecmp(l->sets[v - 1].name, name) == 0)
+      return (long)(v - 1);
+  }
 }
 
 /* A new empty set called name, at the end of l. */
 static int new_set(set_list *l, const char *name, mesh_set **out)
 {
-  if (fb_grow((void **)&l->sets, &l->cap, l->n, sizeof *l->sets))
+  int grown = 0;
+  if (fb_grow((void **)&l->sets, &l->cap, l->n, sizeof *l->sets) ||
+      map_grow(&l->names, l->n, &grown))
     return FB_ENOMEM;
+  for (size_t i = 0; grown && i < l->n; ++i)
+    *free_slot(&l->names, fb_mesh_name_key(l->sets[i].name)) = i + 1;
   mesh_set *s = &l->sets[l->n];
   memset(s, 0, sizeof *s);
   s->name = fb_strdup(name);
   if (!s->name)
     return FB_ENOMEM;
-  ++l->n;
+  *free_slot(&l->names, fb_mesh_name_key(name)) = ++l->n;
   *out = s;
   return FB_OK;
 }
 
-/* Appends the members of list (indices below universe) not yet in s. A
- * membership flag per index keeps one call O(universe + n) instead of
- * O(n * size of s). */
-static int extend_set(size_t universe, mesh_set *s, size_t n, const size_t *list)
+static int is_member(const mesh_set *s, size_t index)
 {
-  if (n == 0)
-    return FB_OK;
-  unsigned char *member = calloc(universe, 1);
-  if (!member)
-    return FB_ENOMEM;
-  for (size_t i = 0; i < s->n; ++i)
-    member[s->items[i]] = 1;
-  int rc = FB_OK;
-  for (size_t i = 0; i < n && !rc; ++i) {
-    if (member[list[i]])
-      continue;
-    rc = fb_grow((void **)&s->items, &s->cap, s->n, sizeof *s->items);
-    if (!rc) {
-      member[list[i]] = 1;
-      s->items[s->n++] = list[i];
-    }
+  const id_map *map = &s->members;
+  if (map->cap == 0)
+    return 0;
+  for (size_t k = slot_home(index, map->cap);; k = (k + 1) & (map->cap - 1)) {
+    const size_t v = map->slots[k];
+    if (v == 0)
+      return 0;
+    if (s->items[v - 1] == index)
+      return 1;
   }
-  free(member);
+}
+
+/* Appends index, not a member yet, to s. */
+static int append_member(mesh_set *s, size_t index)
+{
+  int grown = 0;
+  if (fb_grow((void **)&s->items, &s->cap, s->n, sizeof *s->items) ||
+      map_grow(&s->members, s->n, &grown))
+    return FB_ENOMEM;
+  for (size_t i = 0; grown && i < s->n; ++i)
+    *free_slot(&s->members, s->items[i]) = i + 1;
+  s->items[s->n] = index;
+  *free_slot(&s->members, index) = ++s->n;
+  return FB_OK;
+}
+
+/* Appends the members of list not yet in s: O(n) on average through the
+ * member table, however large s and the mesh are, so that a reader can
+ * add a set's members as it meets them instead of collecting them first. */
+static int extend_set(mesh_set *s, size_t n, const size_t *list)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; i < n && !rc; ++i)
+    if (!is_member(s, list[i]))
+      rc = append_member(s, list[i]);
   return rc;
 }
 
@@ -509,7 +574,7 @@ static int add_to_set(set_list *l, const char *what, size_t universe, const char
   }
   const long found = find_set(l, name);
   mesh_set *s = found >= 0 ? &l->sets[found] : NULL;
-  if ((!s && new_set(l, name, &s)) || extend_set(universe, s, n, items))
+  if ((!s && new_set(l, name, &s)) || extend_set(s, n, items))
     return fb_err_set(err, FB_ENOMEM, "out of memory adding to %s set '%s'", what, name);
   return FB_OK;
 }

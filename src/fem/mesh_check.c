@@ -3,11 +3,14 @@
  *
  * Checks, in this order, reporting the first failure (FB_EMODEL, by user
  * id): the mesh has elements; each element in turn is not degenerate (a
- * repeated node; an area below 1e-12 of the squared bounding-box
- * diagonal; for a quadrilateral, a corner that is not strictly convex) and,
+ * repeated node; nodes that all coincide; an area below 1e-12 of the
+ * squared bounding-box diagonal, and never below the smallest normal
+ * double; for a quadrilateral, a corner that is not strictly convex) and,
  * for a quadrilateral, not warped (node 4 farther from the plane of nodes
  * 1-3 than WARP_MAX of the longer diagonal); every node is used by an element;
- * no node set is empty.
+ * no node set is empty. An element whose area or warp a double cannot hold
+ * (coordinates beyond about 1e154 m) is "too large", rather than given an
+ * area or a warp of inf or NaN.
  *
  * The convexity test goes beyond the header's list because a reentrant or
  * flat corner gives a bilinear quadrilateral a Jacobian that vanishes or
@@ -15,6 +18,7 @@
  * Element Method: Its Basis and Fundamentals", 7th ed., section 6.5), which
  * the shell element cannot integrate; it also guarantees that nodes 1-3 of
  * a quadrilateral span a plane for the warp test. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -76,35 +80,72 @@ static int check_repeated(const fb_mesh *m, size_t e, fb_err *err)
   return FB_OK;
 }
 
-/* Area limit min_area (m^2); a quadrilateral's corners must each span a
- * triangle of at least that area on the positive side of its normal. */
-static int check_area(const fb_mesh *m, size_t e, double min_area, fb_err *err)
+/* An element too large for its area or warp to be computed in doubles
+ * (coordinates beyond about 1e154 m): they would be inf or NaN. */
+static int too_large(const fb_mesh *m, size_t e, fb_err *err)
 {
-  double v[3];
-  fb_mesh_element_area_vector(m, e, v);
-  const double area = fb_norm3(v);
-  char what[160];
-  if (!(area >= min_area)) {
-    snprintf(what, sizeof what, "degenerate: area %g m^2 below the limit %g m^2", area,
-             min_area);
-    return element_error(m, e, err, what);
-  }
-  if (fb_mesh_element_type(m, e) != FB_ELEM_QUAD4)
-    return FB_OK;
+  return element_error(m, e, err, "too large: its area overflows a double");
+}
+
+/* 1 if the nodes of element e are all at one point. */
+static int nodes_coincide(const fb_mesh *m, size_t e)
+{
   const size_t *nd = fb_mesh_element_nodes(m, e);
-  const double unit[3] = {v[0] / area, v[1] / area, v[2] / area};
+  const double *p = fb_mesh_node_xyz(m, nd[0]);
+  for (size_t k = 1; k < fb_mesh_type_nodes(fb_mesh_element_type(m, e)); ++k) {
+    const double *q = fb_mesh_node_xyz(m, nd[k]);
+    if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2])
+      return 0;
+  }
+  return 1;
+}
+
+/* A quadrilateral's corners must each span a triangle of at least
+ * min_area on the positive side of its normal (unit). */
+static int check_corners(const fb_mesh *m, size_t e, const double *unit, double min_area,
+                         fb_err *err)
+{
+  const size_t *nd = fb_mesh_element_nodes(m, e);
   for (size_t k = 0; k < 4; ++k) {
     double in[3], out[3], c[3];
     fb_sub3(fb_mesh_node_xyz(m, nd[k]), fb_mesh_node_xyz(m, nd[(k + 3) % 4]), in);
     fb_sub3(fb_mesh_node_xyz(m, nd[(k + 1) % 4]), fb_mesh_node_xyz(m, nd[k]), out);
     fb_cross3(in, out, c);
-    if (0.5 * fb_dot3(c, unit) < min_area) {
+    const double corner = 0.5 * fb_dot3(c, unit);
+    if (!isfinite(corner))
+      return too_large(m, e, err);
+    if (corner < min_area) {
+      char what[96];
       snprintf(what, sizeof what, "degenerate: not convex at node %ld",
                fb_mesh_node_id(m, nd[k]));
       return element_error(m, e, err, what);
     }
   }
   return FB_OK;
+}
+
+/* Area limit min_area (m^2, positive). Nodes that all coincide are said
+ * to rather than compared with the limit: for a mesh of nothing else it is
+ * DBL_MIN, a number that would tell the reader nothing. */
+static int check_area(const fb_mesh *m, size_t e, double min_area, fb_err *err)
+{
+  double v[3];
+  fb_mesh_element_area_vector(m, e, v);
+  const double area = fb_norm3(v);
+  if (!isfinite(area))
+    return too_large(m, e, err);
+  if (area < min_area && nodes_coincide(m, e))
+    return element_error(m, e, err, "degenerate: its nodes coincide (zero area)");
+  if (area < min_area) {
+    char what[160];
+    snprintf(what, sizeof what, "degenerate: area %g m^2 below the limit %g m^2", area,
+             min_area);
+    return element_error(m, e, err, what);
+  }
+  if (fb_mesh_element_type(m, e) != FB_ELEM_QUAD4)
+    return FB_OK;
+  const double unit[3] = {v[0] / area, v[1] / area, v[2] / area};
+  return check_corners(m, e, unit, min_area, err);
 }
 
 /* Node 4 of a quadrilateral against the plane of nodes 1-3 (which span a
@@ -124,6 +165,8 @@ static int check_warp(const fb_mesh *m, size_t e, fb_err *err)
   fb_sub3(p[2], p[0], u);
   fb_sub3(p[3], p[1], diag2);
   const double diagonal = fmax(fb_norm3(u), fb_norm3(diag2));
+  if (!isfinite(offset) || !isfinite(diagonal))
+    return too_large(m, e, err);
   if (offset <= WARP_MAX * diagonal)
     return FB_OK;
   char what[160];
@@ -134,7 +177,11 @@ static int check_warp(const fb_mesh *m, size_t e, fb_err *err)
 
 int fb_mesh_check_elements(const fb_mesh *m, size_t *bad, fb_err *err)
 {
-  const double min_area = 1e-12 * bbox_diag2(m);
+  /* At least DBL_MIN: a zero area never passes, and a quadrilateral's
+   * corners then span a plane for check_warp (a mesh whose nodes all
+   * coincide has a zero bounding box, and once made check_warp divide 0
+   * by 0 and print "-nan mm"). */
+  const double min_area = fmax(1e-12 * bbox_diag2(m), DBL_MIN);
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
     int rc = check_repeated(m, e, err);
     if (!rc)

@@ -4,6 +4,8 @@
 #ifndef FLEXBOND_FEM_MESH_INTERNAL_H
 #define FLEXBOND_FEM_MESH_INTERNAL_H
 
+#include <stdint.h>
+
 #include "flexbond/fem.h"
 
 /* Longest node set name accepted (Abaqus labels are at most 80
@@ -20,6 +22,10 @@ size_t fb_mesh_type_nodes(fb_elem_type type);
  * [A-Za-z0-9_.-], starting with a letter or '_'. The restriction keeps
  * names valid unquoted in Abaqus decks and in XML attributes. */
 int fb_mesh_name_ok(const char *name);
+
+/* A hash of a set name that ignores case, as set names do (fb_mesh_nset):
+ * for tables keyed by set names. */
+uint64_t fb_mesh_name_key(const char *name);
 
 /* The element tests of fb_mesh_check (degenerate, warped), element by
  * element in index order: the first failure is recorded (FB_EMODEL) and

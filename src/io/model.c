@@ -114,8 +114,7 @@ int fb_model_blame(const fb_model *m, fb_err *err)
   char head[1024];
   ml_site_head(&m->sites, site, head, sizeof head);
   fb_err_prefix(err, "%s", head);
-  const size_t len = strlen(err->msg);
-  snprintf(err->msg + len, sizeof err->msg - len, "%s", site->tail);
+  fb_err_append(err, "%s", site->tail);
   err->origin = FB_ORIGIN_NONE;
   ml_site_set_fields(&m->sites, site, err);
   return err->code;

@@ -202,7 +202,13 @@ int ml_string(const ml_ctx *c, struct fy_node *n, const char **out);
 int ml_text(const ml_ctx *c, struct fy_node *n, const char **out);
 /* 1 if s starts with a letter or '_' and has only letters, digits, '_'. */
 int ml_is_identifier(const char *s);
-/* A name made of letters, digits and '_' (what: "element name", ...). */
+/* The longest name: a scenario's names become mesh node sets behind a
+ * prefix of up to 5 characters ("SUSP_LF", "MASS_BATTERY"), and a node
+ * set's name, an Abaqus label, has at most 80 (FB_MESH_NAME_MAX); 64
+ * leaves room, and a longer name is a slip, not a need. */
+#define ML_NAME_MAX 64
+/* A name of 1 to ML_NAME_MAX letters, digits and '_', not starting with a
+ * digit (what: "element name", ...). */
 int ml_name(const ml_ctx *c, struct fy_node *n, const char *what, const char **out);
 /* YAML boolean true/false (also yes/no, on/off). */
 int ml_bool(const ml_ctx *c, struct fy_node *n, int *out);

@@ -732,20 +732,28 @@ int(ml_fail_key)(const ml_ctx *c, struct fy_node *map, struct fy_node *key, int 
   return ml_report(c, key ? key : map, map, text ? text : "?", code, msg);
 }
 
-int ml_blame(const ml_ctx *c, struct fy_node *at)
+/* The error just recorded, reported again at at (key_at: the key to name,
+ * NULL for none): its message behind the location, its data-file excerpt
+ * kept. */
+static int blame(const ml_ctx *c, struct fy_node *at, struct fy_node *key_at)
 {
-  char msg[FB_ERR_MSG_MAX];
+  char msg[FB_ERR_MSG_MAX], excerpt[FB_ERR_EXCERPT_MAX];
   int code = c->err->code ? c->err->code : FB_EMODEL;
   snprintf(msg, sizeof msg, "%s", c->err->msg);
-  return ml_report(c, at, at, NULL, code, msg);
+  snprintf(excerpt, sizeof excerpt, "%s", c->err->excerpt);
+  const int rc = ml_report(c, at, key_at, NULL, code, msg);
+  snprintf(c->err->excerpt, sizeof c->err->excerpt, "%s", excerpt);
+  return rc;
+}
+
+int ml_blame(const ml_ctx *c, struct fy_node *at)
+{
+  return blame(c, at, at);
 }
 
 int ml_blame_located(const ml_ctx *c, struct fy_node *at)
 {
-  char msg[FB_ERR_MSG_MAX];
-  int code = c->err->code ? c->err->code : FB_EMODEL;
-  snprintf(msg, sizeof msg, "%s", c->err->msg);
-  return ml_report(c, at, NULL, NULL, code, msg);
+  return blame(c, at, NULL);
 }
 
 /* ---- Text of scalars.
@@ -1154,6 +1162,11 @@ int ml_name(const ml_ctx *c, struct fy_node *n, const char *what, const char **o
                    "%s '%s' must start with a letter or '_' and contain only letters, "
                    "digits and '_'",
                    what, *out);
+  if (strlen(*out) > ML_NAME_MAX)
+    return ml_fail(c, n, FB_EINVAL,
+                   "a name of %zu characters, more than %d (names become mesh node sets, "
+                   "whose labels have at most 80)",
+                   strlen(*out), ML_NAME_MAX);
   return FB_OK;
 }
 

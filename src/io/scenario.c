@@ -126,6 +126,7 @@ void fb_scenario_free(fb_scenario **s)
   for (size_t i = 0; p->origin && i < p->norigins; ++i)
     sc_free_origin(&p->origin[i]);
   free(p->origin);
+  free(p->warning);
   free(p);
   *s = NULL;
 }
@@ -299,6 +300,8 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->output = NULL;
   copy->inputs = NULL;
   copy->origin = NULL;
+  copy->warning = NULL;
+  copy->nwarnings = 0; /* a copy is edited and checked again: no warnings of s's */
   copy->road_profile_data = NULL;
   copy->hull_source_mesh = NULL;
   int ok = sc_copy_string(s->name, &copy->name);
@@ -364,6 +367,10 @@ int sc_locate(const fb_scenario *s, fb_err *err, int named)
 {
   if (!err)
     return FB_EINVAL;
+  /* Located already, in this scenario's file (a kept warning made an
+   * error): its message has the location. */
+  if (err->line > 0 && s && s->path && !strcmp(err->file, s->path))
+    return err->code;
   const char *rest = NULL;
   const fb_scenario_origin *o = s && err->key[0] ? sc_origin_find(s, err->key, &rest) : NULL;
   if (!o) {
@@ -424,6 +431,8 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
    * finite-element hull's mass properties (src/vehicle/hull_props.c). */
   if (!rc && fb_vehicle_hull_complete(s, c->err))
     rc = fb_scenario_locate(s, c->err);
+  if (!rc)
+    rc = sc_plausibility(s, c->err);
   if (rc)
     sc_overrides_blame(c->err, ov, nov);
   c->globals = NULL;

@@ -32,6 +32,11 @@ extern const sch_table sc_schema;
 int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
             fb_scenario *s);
 
+/* Finds the implausible values of the loaded, checked and completed s
+ * (scenario_plausible.c) and keeps a located warning for each in
+ * s->warning. FB_ENOMEM only. */
+int sc_plausibility(fb_scenario *s, fb_err *err);
+
 /* The origin of the value with logical key key, or of the nearest value
  * enclosing it ("corners.LF" for "corners.LF.damper_table[2]"), NULL if
  * none; *rest gets the part of key below the origin's. */

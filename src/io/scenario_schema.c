@@ -686,6 +686,10 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
   .bounds = SCH_LO | SCH_LO_OPEN | SCH_HI | SCH_HI_OPEN, .lo = (lo_), .hi = (hi_)
 
 /* Needs. ONE_OF: required, of the keys with the group's label. */
+/* What real vehicles have (sch_key.plausible_*): why says it, in words
+ * and numbers, for the warning. */
+#define PLAUSIBLE(lo_, hi_, why_)                                                              \
+  .plausible_lo = (lo_), .plausible_hi = (hi_), .plausible_why = (why_)
 #define REQ .need = SCH_REQUIRED
 #define OPT .need = SCH_OPTIONAL
 #define DEF(v) .need = SCH_DEFAULT, .def = v
@@ -728,11 +732,20 @@ static const char *const sc_switch[] = {"false", "true", NULL};
 static const char *const sc_bump_types[] = {"I", "II", "A", "B", NULL};
 static const double sc_band_default[] = {0.011, 2.83};
 
+/* Plausible ranges shared by several keys. */
+#define SC_WHY_THICKNESS                                                                       \
+  "vehicle plates are 0.2 mm to 0.3 m thick (was it meant in mm? thicknesses are in m)"
+#define SC_WHY_WHEEL_MASS "a wheel (tire, rim, hub) weighs 1 kg to 5 t"
+#define SC_WHY_TIRE_K "a tire's radial stiffness is 1e4 to 1e8 N/m (a truck tire about 1e6)"
+
 /* A mounted body: suspensions' and mounts' items. */
 static const sch_key sc_mount_keys[] = {
     STRING(NAME, "name", REQ, "its name, unique among the mounts", M_AT(STRING, name)),
-    NUMBER("mass", "kg", POSITIVE, REQ, "body mass", M_OFF(mass)),
-    NUMBER("stiffness", "N/m", POSITIVE, REQ, "spring stiffness", M_OFF(stiffness)),
+    NUMBER(
+        "mass", "kg", POSITIVE, REQ, "body mass", M_OFF(mass),
+        PLAUSIBLE(1, 1e5, "a mounted body (a seat, an engine, a turret) weighs 1 kg to 100 t")),
+    NUMBER("stiffness", "N/m", POSITIVE, REQ, "spring stiffness", M_OFF(stiffness),
+           PLAUSIBLE(1e2, 1e9, "a mount's spring is 1e2 to 1e9 N/m")),
     NUMBER("damping", "N s/m", NONNEGATIVE, REQ, "damper coefficient", M_OFF(damping)),
     NUMBER("x", "m", ANY, REQ, "hull attachment point", M_OFF(x)),
     NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y)),
@@ -745,7 +758,8 @@ static const sch_key sc_point_mass_keys[] = {
            "its name, unique among the hull masses, mounts and corners; its mesh node set is "
            "`MASS_<NAME>`, the name in capitals",
            P_AT(STRING, name)),
-    NUMBER("mass", "kg", POSITIVE, REQ, "its mass", P_AT(DOUBLE, mass)),
+    NUMBER("mass", "kg", POSITIVE, REQ, "its mass", P_AT(DOUBLE, mass),
+           PLAUSIBLE(0.1, 1e5, "a mass carried by the hull weighs 0.1 kg to 100 t")),
     NUMBER("x", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, x)),
     NUMBER("y", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, y)),
 };
@@ -759,7 +773,7 @@ static const sch_key sc_section_keys[] = {
            "case-insensitive",
            H_AT(STRING, set)),
     NUMBER("thickness", "m", POSITIVE, INHERIT("hull.material.thickness"), "plate thickness",
-           H_AT(DOUBLE, thickness)),
+           H_AT(DOUBLE, thickness), PLAUSIBLE(2e-4, 0.3, SC_WHY_THICKNESS)),
     NUMBER("young", "Pa", POSITIVE, INHERIT("hull.material.young"), "Young's modulus",
            H_AT(DOUBLE, young)),
     NUMBER("poisson", NULL, HALF_OPEN(0, 0.5), INHERIT("hull.material.poisson"),
@@ -780,7 +794,8 @@ static const sch_key sc_corner_keys[] = {
     NUMBER("x", "m", ANY, REQ, "hull attachment point", C_OFF(x)),
     NUMBER("y", "m", ANY, REQ,
            "hull attachment point; an axle's left one, > 0 (the right one is at -y)", C_OFF(y)),
-    NUMBER("spring_k", "N/m", POSITIVE, REQ, "suspension spring stiffness", C_OFF(spring_k)),
+    NUMBER("spring_k", "N/m", POSITIVE, REQ, "suspension spring stiffness", C_OFF(spring_k),
+           PLAUSIBLE(1e3, 1e8, "a suspension spring is 1e3 to 1e8 N/m")),
     NUMBER("damper_c", "N s/m", NONNEGATIVE, ONE_OF("damper"),
            "linear shock absorber coefficient", C_OFF(damper_c), .ops = &sc_linear_present),
     CUSTOM("damper_table", NULL, "`{file, velocity, force}` or `{points: [[v, F], ...]}`",
@@ -792,10 +807,10 @@ static const sch_key sc_corner_keys[] = {
            "spring travel / wheel travel relative to the hull", C_OFF(motion_ratio)),
     SECTION("wheel", OPT, "this corner's wheel, where it differs from the top-level `wheel`",
             NULL),
-    NUMBER("wheel.mass", "kg", POSITIVE, INHERIT("wheel.mass"), "wheel mass",
-           C_OFF(wheel_mass)),
+    NUMBER("wheel.mass", "kg", POSITIVE, INHERIT("wheel.mass"), "wheel mass", C_OFF(wheel_mass),
+           PLAUSIBLE(1, 5e3, SC_WHY_WHEEL_MASS)),
     NUMBER("wheel.tire_k", "N/m", POSITIVE, INHERIT("wheel.tire_k"), "tire stiffness",
-           C_OFF(tire_k)),
+           C_OFF(tire_k), PLAUSIBLE(1e4, 1e8, SC_WHY_TIRE_K)),
     NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, INHERIT("wheel.tire_c"), "tire damping",
            C_OFF(tire_c)),
     CHOICE("wheel.tire_contact", sc_contacts, INHERIT("wheel.tire_contact"),
@@ -841,7 +856,8 @@ static const sch_key sc_keys[] = {
     NUMBER("hull.mass", "kg", POSITIVE, OPT,
            "the hull structure's mass (`masses` aside); with mass, Ixx and Iyy left out, the "
            "finite-element hull's",
-           S_OFF(hull_mass), .ops = &sc_mass_present),
+           S_OFF(hull_mass), .ops = &sc_mass_present,
+           PLAUSIBLE(10, 2e5, "a hull structure weighs 10 kg to 200 t")),
     NUMBER("hull.Ixx", "kg m^2", POSITIVE, OPT,
            "the structure's roll inertia about its centre of mass", S_OFF(hull_ixx),
            .ops = &sc_mass_present),
@@ -859,11 +875,14 @@ static const sch_key sc_keys[] = {
          &sc_point_mass_table, "hull.masses", &sc_named, NAMED(point_mass, npoint_masses, 1)),
     SECTION("hull.material", REQ,
             "the plates' steel (System 2), where `hull.sections` give none", NULL),
-    NUMBER("hull.material.young", "Pa", POSITIVE, REQ, "Young's modulus", S_OFF(young)),
+    NUMBER("hull.material.young", "Pa", POSITIVE, REQ, "Young's modulus", S_OFF(young),
+           PLAUSIBLE(1e8, 1e12, "structural materials are 1e8 to 1e12 Pa (steel 2.1e11)")),
     NUMBER("hull.material.poisson", NULL, HALF_OPEN(0, 0.5), REQ, "Poisson's ratio",
            S_OFF(poisson)),
-    NUMBER("hull.material.density", "kg/m^3", POSITIVE, REQ, "density", S_OFF(density)),
-    NUMBER("hull.material.thickness", "m", POSITIVE, REQ, "wall thickness", S_OFF(thickness)),
+    NUMBER("hull.material.density", "kg/m^3", POSITIVE, REQ, "density", S_OFF(density),
+           PLAUSIBLE(300, 2e4, "structural materials are 300 (wood) to 20000 kg/m^3")),
+    NUMBER("hull.material.thickness", "m", POSITIVE, REQ, "wall thickness", S_OFF(thickness),
+           PLAUSIBLE(2e-4, 0.3, SC_WHY_THICKNESS)),
     LIST("hull.sections", OPT,
          "plates of other thicknesses or materials, per element set (System 2; System 1 "
          "takes the mesh's mass); a later item takes the elements it shares with an earlier "
@@ -953,7 +972,8 @@ static const sch_key sc_keys[] = {
     NUMBER("load.total_weight", "N", POSITIVE, REQ,
            "weight of hull (its `masses` included) plus payload, in equal shares over the load "
            "points",
-           S_OFF(total_weight)),
+           S_OFF(total_weight),
+           PLAUSIBLE(1e3, 2e6, "a road vehicle weighs 1 kN to 2 MN (0.1 to 200 t)")),
     CHOICE("load.payload", sc_payloads, REQ, "payload mass model", S_AT(INT, payload)),
     CUSTOM("load.points", "m", "`{grid: {x: [...], y: [...]}}` or `[[x, y], ...]`", REQ,
            "the load points, on the floor, 1 mm apart at least", &sc_points),
@@ -961,8 +981,10 @@ static const sch_key sc_keys[] = {
          &sc_mount_table, "mounts", &sc_named, NAMED(mount, nmounts, 1)),
     SECTION("wheel", OPT, "every corner's wheel and tire unless the corner gives its own",
             NULL),
-    NUMBER("wheel.mass", "kg", POSITIVE, OPT, "wheel mass", NO_STORE),
-    NUMBER("wheel.tire_k", "N/m", POSITIVE, OPT, "tire stiffness", NO_STORE),
+    NUMBER("wheel.mass", "kg", POSITIVE, OPT, "wheel mass", NO_STORE,
+           PLAUSIBLE(1, 5e3, SC_WHY_WHEEL_MASS)),
+    NUMBER("wheel.tire_k", "N/m", POSITIVE, OPT, "tire stiffness", NO_STORE,
+           PLAUSIBLE(1e4, 1e8, SC_WHY_TIRE_K)),
     NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, OPT, "tire damping", NO_STORE),
     CHOICE("wheel.tire_contact", sc_contacts, DEF(0),
            "`bilateral`: the paper's linear tire; `unilateral`: it never pulls, the wheel "
@@ -983,12 +1005,16 @@ static const sch_key sc_keys[] = {
          &sc_output_table, "outputs", &sc_outputs, ITEMS(output, noutputs, 1)),
     SECTION("road", REQ, "the road under the wheels", NULL),
     NUMBER("road.speed_kmh", "km/h", POSITIVE, REQ, "constant forward speed on a straight line",
-           S_OFF(speed), .ops = &sc_kmh),
+           S_OFF(speed), .ops = &sc_kmh,
+           PLAUSIBLE(0, 200, "wheeled vehicles drive at most about 200 km/h")),
     SECTION("road.bump", ONE_OF("road"), "the paper's oblique (1 - cos) bump", &sc_bump),
-    NUMBER("road.bump.height", "m", NONNEGATIVE, OPT,
-           "bump height h, with `length` (0: a flat road)", S_OFF(bump_height)),
+    NUMBER(
+        "road.bump.height", "m", NONNEGATIVE, OPT,
+        "bump height h, with `length` (0: a flat road)", S_OFF(bump_height),
+        PLAUSIBLE(0, 1.5, "obstacles a wheeled vehicle crosses are at most about 1.5 m high")),
     NUMBER("road.bump.length", "m", POSITIVE, OPT,
-           "bump length L along each wheel's path, with `height`", S_OFF(bump_length)),
+           "bump length L along each wheel's path, with `height`", S_OFF(bump_length),
+           PLAUSIBLE(0.01, 100, "a bump is 1 cm to 100 m long")),
     CHOICE("road.bump.type", sc_bump_types, OPT,
            "a Brazilian speed bump instead of height and length: I 1.50 x 0.08 m, II 3.70 x "
            "0.10 m (B, A: aliases)",

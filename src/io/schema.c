@@ -699,10 +699,7 @@ static int sch_store_numbers(sch_reader *r, const sch_key *k, struct fy_node *no
 /* Appends " (why)" to a range error's message: why the range is so. */
 static void sch_add_why(fb_err *err, const char *why)
 {
-  if (!err)
-    return;
-  const size_t len = strlen(err->msg);
-  snprintf(err->msg + len, sizeof err->msg - len, " (%s)", why);
+  fb_err_append(err, " (%s)", why);
 }
 
 /* A value written at node: read, recorded, stored. */
@@ -1086,6 +1083,18 @@ int sch_check_value(const sch_value *v, fb_err *err)
              k->unit ? k->unit : "", v->number, k->why ? " (" : "", k->why ? k->why : "",
              k->why ? ")" : "");
   return fb_err_set_key(err, "%s", v->path);
+}
+
+int sch_check_plausible(const sch_value *v, fb_err *w)
+{
+  const sch_key *k = v->key;
+  if (!k->plausible_why || (k->type != SCH_NUMBER && k->type != SCH_WHOLE) ||
+      (v->number >= k->plausible_lo && v->number <= k->plausible_hi))
+    return 0;
+  fb_err_set(w, FB_EINVAL, "%.10g%s%s is implausible: %s", v->number, k->unit ? " " : "",
+             k->unit ? k->unit : "", k->plausible_why);
+  fb_err_set_key(w, "%s", v->path);
+  return 1;
 }
 
 /* "a, b, c": the numbers list k stores in base. */

@@ -119,11 +119,17 @@ struct sch_key {
   const char *doc;             /* one line */
   const char *why;             /* why the range is what it is, added to a range error
                                   ("about a day of solver steps ..."); may be NULL */
-  sch_store store;             /* SCH_NUMBERS: SCH_STORE_DOUBLE, max_items of them at offset */
-  size_t offset;               /* SCH_LIST: of the pointer to its items (allocated) */
-  const sch_table *items;      /* SCH_LIST */
-  const char *view;            /* SCH_LIST: the logical name of the struct's items
-                                  ("corners"); lists with one view fill the same items */
+  /* What real vehicles have, in the file's unit (plausible_why says so):
+   * a value outside is legal but almost never meant (20 for a thickness
+   * in m, meant as mm), a warning at its file:line (sch_check_plausible).
+   * plausible_why NULL: no such range. */
+  double plausible_lo, plausible_hi;
+  const char *plausible_why;
+  sch_store store;        /* SCH_NUMBERS: SCH_STORE_DOUBLE, max_items of them at offset */
+  size_t offset;          /* SCH_LIST: of the pointer to its items (allocated) */
+  const sch_table *items; /* SCH_LIST */
+  const char *view;       /* SCH_LIST: the logical name of the struct's items
+                             ("corners"); lists with one view fill the same items */
   /* SCH_LIST, and SCH_NUMBERS stored of no fixed length: the items'
    * number (a size_t) is at count_at. SCH_LIST: each item is item_size
    * bytes, and an item of the file makes per_item of them (0: one).
@@ -232,6 +238,10 @@ int sch_each(const sch_table *t, const void *base, sch_value_fn fn, void *ctx);
 /* The range check of one value: FB_OK, or FB_EINVAL with the message
  * "must be > 0 N/m (got -1)" and err's key set to v->path (unlocated). */
 int sch_check_value(const sch_value *v, fb_err *err);
+/* 1 if v (a number) lies outside its key's plausible range, with the
+ * warning "VALUE UNIT is implausible: WHY" in w, its key v->path
+ * (unlocated); else 0, w untouched. */
+int sch_check_plausible(const sch_value *v, fb_err *w);
 /* v's value as text ("145300", "bilateral"). */
 void sch_format(const sch_value *v, char *buf, size_t size);
 

@@ -85,9 +85,12 @@ static int read_header(profile_reader *r)
   for (char *cursor = text; cursor; ++r->ncols) {
     const char *name = next_field(&cursor);
     const int c = column_of(name);
-    if (c < 0)
-      return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: unknown column '%s' (%s)",
-                        r->text.path, r->text.line_no, name, EXPECTED);
+    if (c < 0) {
+      fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: unknown column %zu (%s)", r->text.path,
+                 r->text.line_no, r->ncols + 1, EXPECTED);
+      fb_err_set_excerpt(r->text.err, name, strlen(name));
+      return FB_EPARSE;
+    }
     if (r->column[c] >= 0)
       return fb_err_set(r->text.err, FB_EPARSE, "%s:%zu: column '%s' appears twice",
                         r->text.path, r->text.line_no, name);
@@ -116,7 +119,7 @@ static int grow(profile_reader *r)
 
 static int parse_number(const profile_reader *r, int c, const char *text, double *v)
 {
-  const int rc = fb_parse_decimal(text, v, r->text.err);
+  const int rc = fb_parse_decimal_field(text, v, r->text.err);
   if (rc)
     fb_err_prefix(r->text.err, "%s:%zu: column '%s': ", r->text.path, r->text.line_no,
                   COLUMN_NAMES[c]);

@@ -326,6 +326,22 @@ int vehicle_source_mesh_current(const fb_scenario *s)
   return s->hull_deck || s->hull_source_key == fb_hull_mesh_key(s, &s->hull_mesh);
 }
 
+/* System 2's hull from a mesh (taken over), whatever made it: the
+ * generator, a deck or a gmsh file meet here, so the size bound they
+ * share is checked here, after a file is read (the generator checks it
+ * before it builds the mesh, hull_mesh.c). */
+static int fe_hull_of_mesh(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
+                           fb_fe_hull **out, fb_err *err)
+{
+  const size_t n = fb_mesh_nelements(*mesh);
+  const int rc = vehicle_hull_check_size((double)n, "", err);
+  if (rc) {
+    fb_mesh_free(mesh);
+    return fb_err_prefix(err, "the mesh has %zu elements, ", n), rc;
+  }
+  return fb_fe_hull_new(s, mesh, props, s->hull_mass_matrix, out, err);
+}
+
 int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
 {
   *out = NULL;
@@ -356,9 +372,10 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   }
   if (rc)
     return rc;
-  /* A deck's node sets keep no line, so their errors name the deck
-   * alone; a node that is off keeps the key of the scenario's point. */
-  rc = fb_fe_hull_new(s, &mesh, &props, s->hull_mass_matrix, out, err);
+  /* A deck's errors of size and of its node sets, which keep no line,
+   * name the deck alone; a node that is off keeps the key of the
+   * scenario's point. */
+  rc = fe_hull_of_mesh(s, &mesh, &props, out, err);
   if (rc && s->hull_deck) {
     fb_err_prefix(err, "%s: ", s->hull_deck);
     if (!err || !err->key[0])

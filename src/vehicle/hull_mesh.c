@@ -62,16 +62,25 @@
 #define MAX_DENSITY 64
 #define MAX_DIVISIONS 1000
 
-/* System 2's memory per element of the refined mesh, measured with
- * `flexbond modes --system flexible` on the reference hull: 63 MB at
- * density 2 (960 elements), 227 MB at density 4 (3840, 20 s), 936 MB at
- * density 8 (15360, 5 min), about 61 KB per element (the stiffness and
- * mass matrices, their KLU factors, the Lanczos vectors), rounded up to
- * 64 KiB since the factors grow faster than the mesh. The bound keeps that estimate within 4
- * GiB: 65536 elements, density 16 on the reference mesh (61440), which already takes hours;
- * density 64 would need some 64 GB. */
-#define BYTES_PER_ELEMENT 65536.0
-#define MAX_REFINED_ELEMENTS 65536
+/* The most elements System 2's hull may have, whatever makes its mesh (the
+ * generator, a deck, a gmsh file: vehicle_hull_check_size), and the memory
+ * per element that bound stands for. Peak RSS (GNU time) and wall time
+ * (RelWithDebInfo, 2 cores) on the reference hull refined d times, with
+ * CHOLMOD's factors and block Lanczos for a modal basis (docs/benchmarks.md):
+ *
+ *   d  elements  `modes --system flexible`     `run --system flexible`
+ *   2       960     51 MB  52 KiB/element  0.3 s     35 MB  35 KiB/element  0.4 s
+ *   4      3840    208 MB  53              1.9 s    111 MB  28              1.1 s
+ *   7     11760    661 MB  55               10 s    349 MB  29                6 s
+ *  16     61440   3301 MB  52               58 s   1807 MB  29               25 s
+ *
+ * modes, which solves the whole vehicle's modes besides the hull's, takes
+ * the most; the matrices, factors, Lanczos vectors and basis grow about as
+ * the mesh. 64 KiB per element stays above every measured value (16 % above
+ * the largest); the bound keeps that estimate within 4 GiB: 65536 elements,
+ * density 16 on the reference hull. */
+#define HULL_BYTES_PER_ELEMENT 65536.0
+#define HULL_MAX_ELEMENTS 65536
 
 /* The plates, as element sets: each generated element is in one part,
  * a bulkhead b in PART_BULKHEAD + b. */
@@ -956,36 +965,44 @@ static int split_element(build_mesh *fine, const size_t *grid, size_t nn, int d,
   return rc;
 }
 
+int vehicle_hull_check_size(double elements, const char *hint, fb_err *err)
+{
+  if (elements <= HULL_MAX_ELEMENTS)
+    return FB_OK;
+  return fb_err_set(err, FB_EINVAL,
+                    "which would need about %.1f GB of memory for System 2 (about %.0f KiB per "
+                    "element), more than the %.1f GB allowed (at most %d elements%s; "
+                    "docs/hull-mesh.md, \"Limits\")",
+                    elements * HULL_BYTES_PER_ELEMENT / 1e9, HULL_BYTES_PER_ELEMENT / 1024.0,
+                    HULL_MAX_ELEMENTS * HULL_BYTES_PER_ELEMENT / 1e9, HULL_MAX_ELEMENTS, hint);
+}
+
 /* The refined mesh's size, estimated from the coarse one before any of
  * it is allocated: refining splits every element into d^2 (d = 1: the
  * coarse mesh itself, which side_rows, nose_rows and nose_rung_divisions
- * up to MAX_DIVISIONS can make large too). */
+ * up to MAX_DIVISIONS can make large too). The error names the value to
+ * change: the density, with the largest this mesh allows, or the
+ * generator's rows and divisions. */
 static int check_refined_size(const build_mesh *coarse, int d, fb_err *err)
 {
   const double elements = (double)coarse->nelems * (double)d * (double)d;
-  if (elements <= MAX_REFINED_ELEMENTS)
-    return FB_OK;
-  const double bytes = elements * BYTES_PER_ELEMENT;
-  const double allowed = MAX_REFINED_ELEMENTS * BYTES_PER_ELEMENT;
-  if (d == 1) { /* the generator's own rows and divisions made it so large */
-    fb_err_set(err, FB_EINVAL,
-               "the generated mesh has %zu elements, which would need about %.1f GB of memory "
-               "for System 2 (about 64 KiB per element), more than the %.1f GB allowed (at "
-               "most %d elements; docs/hull-mesh.md, \"Limits\")",
-               coarse->nelems, bytes / 1e9, allowed / 1e9, MAX_REFINED_ELEMENTS);
-    return fb_err_set_key(err, "hull.mesh.generator");
+  char hint[64] = "";
+  if (d > 1) {
+    int most = 1;
+    while ((double)coarse->nelems * (most + 1) * (most + 1) <= HULL_MAX_ELEMENTS)
+      ++most;
+    snprintf(hint, sizeof hint, ": density %d for this mesh", most);
   }
-  int most = 1;
-  while ((double)coarse->nelems * (most + 1) * (most + 1) <= MAX_REFINED_ELEMENTS)
-    ++most;
-  fb_err_set(err, FB_EINVAL,
-             "%d refines the generated mesh's %zu elements into "
-             "%.0f, which would need about %.1f GB of memory for System 2 (about "
-             "64 KiB per element), more than the %.1f GB allowed (at most %d "
-             "elements: density %d for this mesh; docs/hull-mesh.md, \"Limits\")",
-             d, coarse->nelems, elements, bytes / 1e9, allowed / 1e9, MAX_REFINED_ELEMENTS,
-             most);
-  return fb_err_set_key(err, "hull.mesh.density");
+  const int rc = vehicle_hull_check_size(elements, hint, err);
+  if (rc && d == 1) {
+    fb_err_prefix(err, "the generated mesh has %zu elements, ", coarse->nelems);
+    fb_err_set_key(err, "hull.mesh.generator");
+  } else if (rc) {
+    fb_err_prefix(err, "%d refines the generated mesh's %zu elements into %.0f, ", d,
+                  coarse->nelems, elements);
+    fb_err_set_key(err, "hull.mesh.density");
+  }
+  return rc;
 }
 
 static int refine(const build_mesh *coarse, int d, build_mesh *fine, fb_err *err)
@@ -1163,7 +1180,7 @@ int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb
     const hull_geom g = {p, xl.values, yl.values, xl.n, yl.n};
     rc = mesh_plates(&coarse, &g, err);
   }
-  if (rc == FB_OK && p->density > 1)
+  if (rc == FB_OK)
     rc = check_refined_size(&coarse, p->density, err);
   if (rc == FB_OK && p->density > 1)
     rc = refine(&coarse, p->density, &fine, err);

@@ -11,6 +11,7 @@
 
 #include "flexbond/vehicle.h"
 
+#include "core/util.h"
 #include "vehicle/vehicle_internal.h"
 
 /* Mass (or inertia) and name of the body behind momentum state i. */
@@ -198,16 +199,24 @@ void vehicle_flatten_road(fb_scenario *s)
   s->t_end = fmax(s->t_end, last + 1.0);
 }
 
-int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, fb_mode **modes,
-                         size_t *nmodes, size_t *nstatic, fb_err *err)
+int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, size_t memory_limit,
+                         fb_mode **modes, size_t *nmodes, size_t *nstatic, fb_err *err)
 {
   *modes = NULL;
   *nmodes = *nstatic = 0;
+  /* The Jacobian, the matrix dgeev overwrites and its eigenvectors. */
+  const size_t n = fb_bd_nstates(bd);
+  int rc = fb_check_dense_eig(n, 3, memory_limit, err,
+                              "the vehicle's modes (%zu states; hull.fe.modes auto or a number "
+                              "of modes keeps them few)",
+                              n);
+  if (rc)
+    return rc;
   eig_work w = {0};
-  double *x = calloc(fb_bd_nstates(bd) + 1, sizeof *x);
-  double *zero = calloc(fb_bd_nstates(bd) + 1, sizeof *zero);
-  int rc = x && zero ? fb_sim_static_state(bd, 0.0, zero, x, err)
-                     : fb_err_set(err, FB_ENOMEM, "out of memory");
+  double *x = calloc(n + 1, sizeof *x);
+  double *zero = calloc(n + 1, sizeof *zero);
+  rc = x && zero ? fb_sim_static_state(bd, 0.0, zero, x, err)
+                 : fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
     rc = physical_jacobian(bd, x, &w, err);
   if (!rc)

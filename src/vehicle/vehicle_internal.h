@@ -26,6 +26,14 @@ void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33);
 void fb_hull_mesh_centroid(const fb_scenario *s, const fb_hull_mesh_params *p, double *cx,
                            double *cz);
 
+/* System 2's one bound on its hull, whatever makes the mesh (hull_mesh.c):
+ * FB_EINVAL when `elements` (a mesh's count, or the generator's before it
+ * refines) is above the most a hull may have, with the message "which
+ * would need about ... GB of memory for System 2 ..., more than the ...
+ * allowed (at most N elements<hint>; ...)" for the caller to prefix with
+ * the source and its count and to give the key that names the source. */
+int vehicle_hull_check_size(double elements, const char *hint, fb_err *err);
+
 /* The motion's probes (motion.c): the hull's coordinates (its torsion
  * probe's signal, every component), the attachment points' displacements
  * (integrated flow of the assembly's b_attach), each mounted body's and
@@ -116,9 +124,11 @@ void vehicle_flatten_road(fb_scenario *s);
  * q) and is linearised with the rest at the static equilibrium. */
 void vehicle_tires_in_contact(fb_scenario *s);
 /* The modes of the diagram bd of the graph g of s, linearised at its
- * static equilibrium (fb_vehicle_linear_modes). */
-int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, fb_mode **modes,
-                         size_t *nmodes, size_t *nstatic, fb_err *err);
+ * static equilibrium (fb_vehicle_linear_modes): a dense eigen-solve,
+ * refused beforehand (fb_check_dense_eig) beyond FB_DENSE_EIG_MAX states
+ * or memory_limit bytes. */
+int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, size_t memory_limit,
+                         fb_mode **modes, size_t *nmodes, size_t *nstatic, fb_err *err);
 /* bd's descriptor form: fb_bd_descriptor, or with a nonlinear law
  * fb_bd_descriptor_at its static equilibrium under gravity from the
  * initial state. */

@@ -1,9 +1,12 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* libFuzzer target: the Abaqus/CalculiX deck reader (fb_mesh_read_inp_string,
  * flexbond/fem.h) on arbitrary bytes and, for every mesh it accepts, the mesh checks
- * (fb_mesh_check: node use, degenerate, warped and non-convex elements, node sets).
- * Refused inputs are fine; a crash, a leak, undefined behaviour, an error without a
- * message or a slow input is a finding (docs/fuzzing.md). */
+ * (fb_mesh_check: node use, degenerate, warped and non-convex elements, node sets) and
+ * its sets, which must hold each member once however often the deck names it (sets
+ * that name sets, src/fem/inp.c). Refused inputs are fine; a crash, a leak, undefined
+ * behaviour, an error without a message, a set with a repeated member, or a slow or
+ * memory-hungry input (a reader that multiplies set references) is a finding
+ * (docs/fuzzing.md). */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -11,6 +14,34 @@
 #include "flexbond/fem.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+/* 1 if every node set (elements 0) or element set (1) of m holds distinct members
+ * of the mesh: one stamp per node or element, the set's index + 1, so the check
+ * costs O(mesh + members). */
+static int sets_distinct(const fb_mesh *m, int elements)
+{
+  const size_t universe = elements ? fb_mesh_nelements(m) : fb_mesh_nnodes(m);
+  const size_t nsets = elements ? fb_mesh_nelsets(m) : fb_mesh_nnsets(m);
+  size_t *stamp = calloc(universe ? universe : 1, sizeof *stamp);
+  if (!stamp)
+    abort();
+  int ok = 1;
+  for (size_t s = 0; s < nsets && ok; ++s) {
+    const size_t *items = NULL;
+    size_t n = 0;
+    if (elements)
+      fb_mesh_elset(m, fb_mesh_elset_name(m, s), &items, &n);
+    else
+      fb_mesh_nset(m, fb_mesh_nset_name(m, s), &items, &n);
+    for (size_t k = 0; k < n && ok; ++k) {
+      ok = items[k] < universe && stamp[items[k]] != s + 1;
+      if (ok)
+        stamp[items[k]] = s + 1;
+    }
+  }
+  free(stamp);
+  return ok;
+}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -26,6 +57,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   if (!rc) {
     const int crc = fb_mesh_check(mesh, &err);
     if (crc && (crc != err.code || err.msg[0] == '\0'))
+      abort();
+    if (!sets_distinct(mesh, 0) || !sets_distinct(mesh, 1))
       abort();
   }
   fb_mesh_free(&mesh);

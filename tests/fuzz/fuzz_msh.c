@@ -3,7 +3,10 @@
  * flexbond/fem.h) on arbitrary bytes and, for every mesh it accepts, the mesh checks
  * (fb_mesh_check: node use, degenerate, warped and non-convex elements, node sets).
  * Refused inputs are fine; a crash, a leak, undefined behaviour, an error without a
- * message or a slow input is a finding (docs/fuzzing.md). */
+ * message or a slow input is a finding (docs/fuzzing.md). The seed
+ * corpus/msh/many_point_blocks.msh (12000 point entities, each with an element block of
+ * its own, 0.6 MB) takes about 0.1 s here; a reader that searches every entity or every
+ * set per block takes 3 s on it: a timeout at -timeout=2. */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>

@@ -82,4 +82,20 @@ case $(cat "staged/opt/flexbond/$pydir/flexbond/library_path") in
   /opt/flexbond/*/libflexbond.so.0) ok ;;
   *) fail "DESTDIR: library_path $(cat "staged/opt/flexbond/$pydir/flexbond/library_path")" ;;
 esac
+# `make install` hands PREFIX and DESTDIR to the shell as data: a command in either is never
+# run, not even by `make -n` (make's own $(shell) once ran it), and install-check refuses it,
+# a "$" make would have expanded, a quote or a line break, before anything is built.
+rm -f injected
+mk() { env -u MAKEFLAGS -u MAKELEVEL make -s -C "$src" "$@"; }
+mk -n install BUILD_DIR="$build" PREFIX="/x/\`touch $PWD/injected\`" > /dev/null 2>&1 || true
+[ ! -e injected ] || fail "make -n install ran a command in PREFIX"; ok
+nl='
+'
+for bad in "PREFIX=/x/\`touch $PWD/injected\`" 'PREFIX=$HOME/x' "PREFIX=/a\"b" "PREFIX=/a${nl}b" \
+           'PREFIX=relative' "DESTDIR=/s/\$(touch $PWD/injected)"; do
+  if mk install-check "$bad" 2> err.txt; then fail "install-check took $bad"; fi
+  grep -q "^make install: PREFIX" err.txt || fail "install-check: $(cat err.txt)"; ok
+done
+[ ! -e injected ] || fail "install-check ran a command"; ok
+mk install-check PREFIX=/opt/flexbond-1.0 DESTDIR="$PWD/staged" || fail "install-check refused a plain prefix"; ok
 echo "install: $checks checks passed"

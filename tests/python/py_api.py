@@ -110,6 +110,28 @@ class InterruptTest(unittest.TestCase):
         self.assertIs(signal.getsignal(signal.SIGINT), before)
 
 
+    def test_ctrl_c_stops_a_set_up(self):
+        """Every long call raises KeyboardInterrupt at once, also in System 2's
+        set-up (the hull's assembly, factorisation and eigen-solve, about
+        1.6 s at density 6), and the library stops at its next report:
+        close() waits for it."""
+        import signal
+        import threading
+        import time
+        s = flexbond.Scenario(APC, overrides={"hull.mesh.density": 6})
+        for call in (lambda: s.export("flexible"), lambda: s.modes("flexible"),
+                     lambda: s.run("flexible")):
+            timer = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))
+            start = time.monotonic()
+            timer.start()
+            with self.assertRaises(KeyboardInterrupt):
+                call()
+            timer.join()
+            # 0.2 s and the 50 ms the caller waits at a time; far under the set-up.
+            self.assertLess(time.monotonic() - start, 1.0)
+        s.close()  # after the stopped calls have ended
+
+
 class ModesTest(unittest.TestCase):
     def test_modes_equal_cli(self):
         """flexbond modes prints the undamped natural frequencies with %g (six
@@ -207,6 +229,16 @@ class FreqTest(unittest.TestCase):
         with self.assertRaises(KeyError):
             fr["tire_power_LR"]  # a power output has no frequency response
 
+    def test_bad_frequencies(self):
+        """No frequency response is non-finite: inf, NaN, a negative value or
+        one above 1 GHz (where omega E overflowed) raises flexbond.Error."""
+        s = flexbond.Scenario(APC)
+        for bad in (numpy.inf, numpy.nan, -1.0, 1e308):
+            with self.assertRaises(flexbond.Error, msg=repr(bad)):
+                s.freq_response("rigid", [1.0, bad])
+        fr = s.freq_response("rigid", [1e-3, 1e9])
+        self.assertTrue(numpy.all(numpy.isfinite(fr.H)))
+
 
 class ExportTest(unittest.TestCase):
     def test_export_equals_cli(self):
@@ -237,6 +269,58 @@ class ErrorTest(unittest.TestCase):
         self.assertGreater(e.column, 0)
         self.assertEqual(e.key, "road.speed_kmh")
         self.assertEqual(e.source_text, "--set speed_kmh=fast")
+
+    def test_nul_is_refused(self):
+        """C would read text only up to a NUL: an override "12\\x0099" as 12.
+        A NUL in a value, a key or the path raises Error, naming what."""
+        cases = [({"speed_kmh": "12\x0099"}, APC, "override value"),
+                 ({"speed_kmh\x00junk": 12}, APC, "override key"),
+                 ({}, APC + "\x00.x", "path")]
+        for overrides, path, what in cases:
+            with self.assertRaises(flexbond.Error, msg=what) as caught:
+                flexbond.Scenario(path, overrides=overrides)
+            self.assertEqual(caught.exception.status, "FB_EINVAL")
+            self.assertIn(what, caught.exception.message)
+            self.assertIn("NUL", caught.exception.message)
+
+    def test_data_file_field_is_an_excerpt(self):
+        """A data file's failing field is Error.excerpt, never in the message
+        (which may go into an output file); str(error) shows it."""
+        with open(os.path.join(SRC, "examples", "apc6x6_shock_table.yaml"),
+                  encoding="utf-8") as f:
+            text = f.read().replace("shock_front.csv", "py_bad_table.csv")
+        with open("py_table.yaml", "w", encoding="utf-8") as f:
+            f.write(text)
+        for name in ("shock_rear.csv",):
+            with open(os.path.join(SRC, "examples", name), encoding="utf-8") as src, \
+                    open(name, "w", encoding="utf-8") as dst:
+                dst.write(src.read())
+        with open("py_bad_table.csv", "w", encoding="utf-8") as f:
+            f.write("v,F\n0,0\n1,SECRET\n")
+        with self.assertRaises(flexbond.Error) as caught:
+            flexbond.Scenario("py_table.yaml")
+        e = caught.exception
+        self.assertEqual(e.excerpt, "SECRET")
+        self.assertNotIn("SECRET", e.message)
+        self.assertTrue(e.message.endswith("py_bad_table.csv:3: column 'F': not a number"),
+                        e.message)
+        self.assertTrue(str(e).endswith("(read: 'SECRET')"), str(e))
+
+    def test_implausible_value(self):
+        """A tire of 1 N/m is legal but implausible: a PlausibilityWarning at
+        its file:line:col, kept in warnings; strict=True raises Error."""
+        import warnings
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            s = flexbond.Scenario(APC, overrides={"tire_k": 1})
+        self.assertTrue(s.warnings and all("implausible" in w for w in s.warnings))
+        self.assertEqual([str(w.message) for w in caught], s.warnings)
+        self.assertTrue(all(w.category is flexbond.PlausibilityWarning for w in caught))
+        self.assertIn(":%d:" % line_of(APC, "tire_k"), s.warnings[0])
+        with self.assertRaises(flexbond.Error) as raised:
+            flexbond.Scenario(APC, overrides={"tire_k": 1}, strict=True)
+        self.assertEqual(raised.exception.key, "wheel.tire_k")
+        self.assertEqual(flexbond.Scenario(APC, strict=True).warnings, [])
 
     def test_error_in_file(self):
         with self.assertRaises(flexbond.Error) as caught:

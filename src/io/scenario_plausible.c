@@ -1,0 +1,144 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Plausibility of a loaded scenario (sc_plausibility): values that are
+ * legal but that a real vehicle almost never has, which are far more
+ * often a slip (a unit, a digit) than a design. Each is a warning located
+ * at its value ("FILE:LINE:COL: KEY: ..."), kept in the scenario; nothing
+ * is refused here (the command line's --strict refuses, docs/errors.md).
+ *
+ * Two kinds: one value outside what its key's table entry declares
+ * plausible (scenario_schema.c, PLAUSIBLE), and the consequence of several
+ * values together, which no one value shows: the static deflections the
+ * weight gives the tires and springs, and the masses the total weight
+ * must hold. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/util.h"
+#include "io/scenario_internal.h"
+
+/* A static tire deflection above this (m) is no tire's: a truck tire of
+ * 0.5 m radius deflects some 3 to 5 cm under its load. */
+#define SC_TIRE_DEFLECTION_MAX 0.25
+/* A static suspension deflection (at the wheel) above this (m) is no
+ * road vehicle's: their whole travel is some 0.1 to 0.6 m. */
+#define SC_SPRING_DEFLECTION_MAX 1.0
+
+typedef struct sc_warn_ctx {
+  fb_scenario *s;
+  int rc;
+  fb_err *err;
+} sc_warn_ctx;
+
+/* Keeps w (an unlocated warning with its logical key) in s, located; a
+ * warning already kept (the same value, inherited by several corners) is
+ * not kept twice. */
+static int sc_keep(fb_scenario *s, fb_err *w, fb_err *err)
+{
+  fb_scenario_locate(s, w);
+  for (size_t i = 0; i < s->nwarnings; ++i)
+    if (!strcmp(s->warning[i].msg, w->msg))
+      return FB_OK;
+  fb_err *grown = realloc(s->warning, (s->nwarnings + 1) * sizeof *grown);
+  if (!grown)
+    return fb_err_set(err, FB_ENOMEM, "out of memory keeping a warning");
+  s->warning = grown;
+  s->warning[s->nwarnings++] = *w;
+  return FB_OK;
+}
+
+static int sc_warn_value(const sch_value *v, void *ctx)
+{
+  sc_warn_ctx *c = ctx;
+  fb_err w;
+  fb_err_clear(&w);
+  if (sch_check_plausible(v, &w))
+    c->rc = sc_keep(c->s, &w, c->err);
+  return c->rc;
+}
+
+/* The static deflections of corner k's tire and spring under an equal
+ * share of the weight (the static solution shares it by lever arms; an
+ * equal share is what a reader checks a data sheet with). */
+static int sc_warn_deflections(fb_scenario *s, size_t k, fb_err *err)
+{
+  const fb_corner_params *c = &s->corner[k];
+  const double share = s->total_weight / (double)s->ncorners;
+  const double tire = (share + c->wheel_mass * s->gravity) / c->tire_k;
+  const double wheel_rate = c->spring_k * c->motion_ratio * c->motion_ratio;
+  const double spring = share / wheel_rate;
+  fb_err w;
+  fb_err_clear(&w);
+  if (tire > SC_TIRE_DEFLECTION_MAX) {
+    fb_err_set(&w, FB_EINVAL,
+               "%.10g N/m is implausible: the static tire deflection would be %.3g m (%.4g N "
+               "on the tire), more than the %g m of any tire",
+               c->tire_k, tire, share + c->wheel_mass * s->gravity, SC_TIRE_DEFLECTION_MAX);
+    fb_err_set_key(&w, "corners.%s.wheel.tire_k", c->name);
+    return sc_keep(s, &w, err);
+  }
+  if (spring > SC_SPRING_DEFLECTION_MAX) {
+    fb_err_set(&w, FB_EINVAL,
+               "%.10g N/m is implausible: the static suspension deflection would be %.3g m "
+               "(%.4g N of the total weight's share over a wheel rate of %.4g N/m), more "
+               "than the %g m of any suspension's travel",
+               c->spring_k, spring, share, wheel_rate, SC_SPRING_DEFLECTION_MAX);
+    fb_err_set_key(&w, "corners.%s.spring_k", c->name);
+    return sc_keep(s, &w, err);
+  }
+  return FB_OK;
+}
+
+/* load.total_weight is the hull's weight (its declared masses included)
+ * plus the payload (docs/scenario-format.md): below the masses it must
+ * include, some of the vehicle is counted twice or a unit slipped. */
+static int sc_warn_masses(fb_scenario *s, fb_err *err)
+{
+  const double total = s->total_weight / s->gravity;
+  const double declared = s->hull_mass + fb_scenario_point_masses_total(s);
+  if (!(declared > total))
+    return FB_OK;
+  fb_err w;
+  fb_err_clear(&w);
+  fb_err_set(&w, FB_EINVAL,
+             "%.10g N is implausible: %.4g kg, less than the %.4g kg of the hull (%.4g kg) "
+             "and its masses (%.4g kg) that it includes",
+             s->total_weight, total, declared, s->hull_mass, fb_scenario_point_masses_total(s));
+  fb_err_set_key(&w, "load.total_weight");
+  return sc_keep(s, &w, err);
+}
+
+/* 1 if a warning about the value with logical key key is kept. */
+static int sc_warned(const fb_scenario *s, const char *key)
+{
+  for (size_t i = 0; i < s->nwarnings; ++i)
+    if (!strcmp(s->warning[i].key, key))
+      return 1;
+  return 0;
+}
+
+int sc_plausibility(fb_scenario *s, fb_err *err)
+{
+  sc_warn_ctx c = {s, FB_OK, err};
+  sch_each(&sc_schema, s, sc_warn_value, &c);
+  /* The rules between values start from the total weight: when it is
+   * itself implausible, they would only repeat that warning elsewhere. */
+  if (sc_warned(s, "load.total_weight"))
+    return c.rc;
+  for (size_t k = 0; c.rc == FB_OK && k < s->ncorners; ++k)
+    c.rc = sc_warn_deflections(s, k, err);
+  if (c.rc == FB_OK)
+    c.rc = sc_warn_masses(s, err);
+  return c.rc;
+}
+
+size_t fb_scenario_nwarnings(const fb_scenario *s)
+{
+  return s ? s->nwarnings : 0;
+}
+
+const fb_err *fb_scenario_warning(const fb_scenario *s, size_t i)
+{
+  return s && i < s->nwarnings ? &s->warning[i] : NULL;
+}
