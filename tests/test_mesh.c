@@ -18,8 +18,9 @@
 #include "flexbond/fem.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
-static char root[256];
+static const char *root; /* the private directory (tmpdir.h) */
 
 static const char *in_root(char *buf, size_t size, const char *name)
 {
@@ -70,22 +71,6 @@ static int count_entries(void)
   if (d)
     closedir(d);
   return n;
-}
-
-static void remove_root(void)
-{
-  DIR *d = opendir(root);
-  for (struct dirent *e = d ? readdir(d) : NULL; e; e = readdir(d)) {
-    char path[512];
-    if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-      continue;
-    in_root(path, sizeof path, e->d_name);
-    if (rmdir(path) != 0)
-      remove(path);
-  }
-  if (d)
-    closedir(d);
-  rmdir(root);
 }
 
 /* The message contains expect; prints it otherwise. */
@@ -1428,11 +1413,7 @@ static void test_outline(void)
 
 int main(void)
 {
-  snprintf(root, sizeof root, "/tmp/flexbond_mesh_XXXXXX");
-  if (!mkdtemp(root)) {
-    perror("mkdtemp");
-    return 1;
-  }
+  root = test_tmpdir();
   test_build();
   test_bad_arguments();
   test_many_ids();
@@ -1453,6 +1434,5 @@ int main(void)
   test_msh_group_errors();
   test_outline();
   test_vtu();
-  remove_root();
   return check_report("test_mesh");
 }
