@@ -114,9 +114,12 @@ test: deps-test build
 # only as environment variables, never pasted into a command, and $(value ...) keeps make from
 # expanding a "$" in them; install-check refuses an absolute path with anything but the
 # characters below (a backquote, "$", quote, space or line break is a mistake, and flexbond.pc
-# could not hold it). sudo only for a prefix the user cannot write (/usr/local for a user);
-# ldconfig only for a system prefix, whose libraries the loader caches.
+# could not hold it), before anything is built (the build runs after the check, not beside it
+# under -j). Make itself never exports them (unexport: an exported variable given on the command
+# line is expanded, "$(shell ...)" and all). sudo only for a prefix the user cannot write
+# (/usr/local for a user); ldconfig only for a system prefix, whose libraries the loader caches.
 PREFIX ?= /usr/local
+unexport PREFIX DESTDIR
 install install-check: export FLEXBOND_PREFIX = $(value PREFIX)
 install install-check: export FLEXBOND_DESTDIR = $(value DESTDIR)
 install-check:
@@ -125,8 +128,9 @@ install-check:
 	for v in "$$FLEXBOND_PREFIX" "$$FLEXBOND_DESTDIR"; do case "$$v" in *[!A-Za-z0-9/._+,:@=~-]*) \
 	  echo "make install: PREFIX and DESTDIR may hold only letters, digits and / . _ + , : @ = ~ -" \
 	       "(docs/install.md)" >&2; exit 2 ;; esac; done
-install: install-check build
-	@sudo=; if [ -z "$$FLEXBOND_DESTDIR" ] && [ ! -w "$$FLEXBOND_PREFIX" ]; then sudo='$(SUDO)'; fi; \
+install: install-check
+	@$(MAKE) --no-print-directory build
+	@set -e; sudo=; if [ -z "$$FLEXBOND_DESTDIR" ] && [ ! -w "$$FLEXBOND_PREFIX" ]; then sudo='$(SUDO)'; fi; \
 	set -x; $$sudo env DESTDIR="$$FLEXBOND_DESTDIR" cmake --install $(BUILD_DIR) --prefix "$$FLEXBOND_PREFIX"; \
 	{ set +x; } 2>/dev/null; \
 	if [ -z "$$FLEXBOND_DESTDIR" ]; then case "$$FLEXBOND_PREFIX" in /usr|/usr/local) set -x; $$sudo ldconfig ;; esac; fi

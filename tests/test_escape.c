@@ -423,6 +423,18 @@ static void test_messages(void)
   CHECK(strstr(err.msg, "; kept in x\\ny") && !strchr(err.msg, '\n'));
   fb_err_set_key(&err, "%s", "k\ney");
   CHECK(!strcmp(err.key, "k\\ney"));
+  /* Bytes that are not UTF-8 (a lone continuation, an 8-bit CSI, a cut
+   * sequence) are \xHH: nothing but whole characters reaches a terminal. */
+  fb_err_set(&err, FB_EINVAL, "%s",
+             "a\xff\x9b"
+             "31m\xc3");
+  CHECK(!strcmp(err.msg, "a\\xff\\x9b31m\\xc3"));
+  /* An excerpt is cut at a character's start. */
+  char utf[70];
+  memset(utf, 'a', 63);
+  memcpy(utf + 63, "\xc3\xa9z", 4);
+  fb_err_set_excerpt(&err, utf, strlen(utf));
+  CHECK(strlen(err.excerpt) == 63 + 3 && !strcmp(err.excerpt + 63, "..."));
   /* UTF-8 beyond C1 is text, not a control character. */
   fb_err_set(&err, FB_EINVAL, "%s", "\xc3\xa9\xc2\xa0");
   CHECK(!strcmp(err.msg, "\xc3\xa9\xc2\xa0"));

@@ -61,9 +61,10 @@ static int read_prefix(const char *text, size_t len, const char *name, fb_mesh *
 
 static int has(const fb_err *err, const char *expect)
 {
-  const int ok = strstr(err->msg, expect) != NULL;
+  const char *shown = DESCRIBED(err);
+  const int ok = strstr(shown, expect) != NULL;
   if (!ok)
-    fprintf(stderr, "  expected \"%s\" in: %s\n", expect, err->msg);
+    fprintf(stderr, "  expected \"%s\" in: %s\n", expect, shown);
   return ok;
 }
 
@@ -165,7 +166,7 @@ static void test_errors(void)
   CHECK(read_prefix(bad_number, sizeof bad_number - 1, "deck.inp", &m, &p, &err) == FB_EPARSE);
   CHECK(m == NULL && err.code == FB_EPARSE);
   CHECK(strncmp(err.msg, "deck.inp:3: ", 12) == 0);
-  CHECK(has(&err, "y of node 2: '1.0x' is not a number"));
+  CHECK(has(&err, "y of node 2: not a number (read: '1.0x')"));
   CHECK(p.young == 1 && p.poisson == 2 && p.density == 3 && p.thickness == 4 &&
         p.drill_factor == 5);
   CHECK(read_prefix(bad_number, sizeof bad_number - 1, NULL, &m, &p, &err) == FB_EPARSE);

@@ -728,7 +728,7 @@ static const bad_case bad_cases[] = {
     {"initial: zero", "initial: rest", NULL, NULL, FB_EPARSE,
      "bad.yaml:26:", "simulation.initial: unknown value 'rest'", "zero | static"},
     {"scenario: bad", "scenario: a b", NULL, NULL, FB_EPARSE,
-     "bad.yaml:1:11:", "scenario: the scenario's name 'a b' must start", NULL},
+     "bad.yaml:1:11:", "scenario: the name 'a b' must start", NULL},
     /* Load points. */
     {"points: {grid:", "points: {grd:", NULL, NULL, FB_EPARSE,
      "bad.yaml:12:", "load.points.grd: unknown key 'grd' (did you mean 'grid'?)", NULL},

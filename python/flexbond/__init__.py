@@ -363,14 +363,15 @@ def _strings(array, n):
     return [array[i].decode() for i in range(n)]
 
 
-def _until_done(work):
-    """work() on a thread of its own, the caller waiting: a Ctrl-C
+def _until_done(work, on_no_start=None):
+    """work(stop) on a thread of its own, the caller waiting: a Ctrl-C
     (KeyboardInterrupt) or any other exception in the caller reaches it at
-    once, whatever the library is doing, and asks work to stop (the
-    returned list, which the progress callbacks see, gets an entry). The
-    library stops at its next progress report (a solver step, a stage of
-    the hull's eigen-solve); what work computes after that is dropped.
-    Returns work's value or raises its exception."""
+    once, whatever the library is doing, and asks work to stop (stop, the
+    list the progress callbacks see, gets an entry). The library stops at
+    its next progress report (a solver step, a stage of the hull's
+    eigen-solve); what work computes after that is dropped. on_no_start()
+    runs if the thread cannot start. Returns work's value or raises its
+    exception."""
     stop, box = [], {}
 
     def run():
@@ -380,7 +381,12 @@ def _until_done(work):
             box["error"] = e
 
     thread = threading.Thread(target=run, name="flexbond", daemon=True)
-    thread.start()
+    try:
+        thread.start()
+    except BaseException:
+        if on_no_start is not None:
+            on_no_start()
+        raise
     try:
         while thread.is_alive():
             thread.join(0.05)
@@ -416,22 +422,31 @@ class Scenario:
         err = _Err()
         _check(_lib.fb_scenario_load_overrides(_c_text(self.path, "path"), ov, len(keep),
                                                ctypes.byref(self._s), ctypes.byref(err)), err)
-        found = [_lib.fb_scenario_warning(self._s, i).contents
+        # Copied out of the scenario, which close() frees.
+        found = [Error(_lib.fb_scenario_warning(self._s, i).contents)
                  for i in range(_lib.fb_scenario_nwarnings(self._s))]
         if strict and found:
             self.close()
-            raise Error(found[0])
-        self.warnings = [Error(w).message for w in found]
+            first = found[0]
+            first.message += (" (--strict refuses implausible values: %d in this scenario)"
+                              % len(found))
+            first.args = (first.message,)
+            raise first
+        self.warnings = [w.message for w in found]
         for message in self.warnings:
             warnings.warn(message, PlausibilityWarning, stacklevel=2)
 
     def close(self):
         """Frees the scenario (also done when it is garbage-collected), once
-        the calls a Ctrl-C left running on their threads have stopped."""
-        if getattr(self, "_s", None):
-            with self._calls:
-                self._calls.wait_for(lambda: self._ncalls == 0)
-            _lib.fb_scenario_free(ctypes.byref(self._s))
+        the calls a Ctrl-C left running on their threads have stopped. Under
+        the calls' lock: a call starting meanwhile finds it closed."""
+        calls = getattr(self, "_calls", None)
+        if calls is None:
+            return
+        with calls:
+            calls.wait_for(lambda: self._ncalls == 0)
+            if self._s:
+                _lib.fb_scenario_free(ctypes.byref(self._s))
 
     def __del__(self):
         if _lib is not None:  # not at interpreter exit, the library gone
@@ -525,7 +540,14 @@ class Scenario:
         progress callback that stops it when stop is set; in _until_done, so
         that Ctrl-C reaches the caller at once. close() waits for the call."""
         sys_id = _system(system)
-        s = self._handle()
+        with self._calls:  # open, and counted, at once: close() waits for the call
+            s = self._handle()
+            self._ncalls += 1
+
+        def done():
+            with self._calls:
+                self._ncalls -= 1
+                self._calls.notify_all()
 
         def work(stop):
             try:
@@ -542,13 +564,9 @@ class Scenario:
                 finally:
                     _lib.fb_vehicle_free(ctypes.byref(v))
             finally:
-                with self._calls:
-                    self._ncalls -= 1
-                    self._calls.notify_all()
+                done()
 
-        with self._calls:  # counted before the thread starts: close() waits for it
-            self._ncalls += 1
-        return _until_done(work)
+        return _until_done(work, on_no_start=done)
 
     def _with_descriptor(self, system, use):
         """use(descriptor) of system's linear model (flexbond export)."""

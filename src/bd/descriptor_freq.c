@@ -118,8 +118,8 @@ int fb_descriptor_freq_response(const fb_descriptor *ds, const double *freq_hz, 
   for (size_t k = 0; k < nfreq; ++k)
     if (!(freq_hz[k] >= 0.0 && freq_hz[k] <= FB_FREQ_MAX_HZ))
       return fb_err_set(err, FB_EINVAL,
-                        "frequency response: frequency %zu is %g Hz, not a number from 0 to "
-                        "%g Hz",
+                        "frequency response: the frequency at index %zu is %g Hz, not a number "
+                        "from 0 to %g Hz",
                         k, freq_hz[k], FB_FREQ_MAX_HZ);
   response r;
   int rc = response_new(ds, ncases, &r, err);

@@ -69,7 +69,7 @@ static struct {
 /* The set-up stage a command is in (cli_stage_progress), for the thread
  * to name when it lasts: under guard.lock. */
 static struct {
-  char line[FB_ERR_MSG_MAX]; /* what to say, newline included */
+  char line[FB_ERR_MSG_MAX + 1]; /* what to say, newline included */
   struct timespec start;
   int active, said;
 } stage;
@@ -115,6 +115,8 @@ static void stop_now(void)
     if (!od)
       continue;
     cli_outdir_abandon(od);
+    char dir[1024]; /* escaped, as every message (fb_err_escape) */
+    fb_err_escape(dir, sizeof dir, od->dir);
     if (len < sizeof msg && od->interrupt_note)
       len += (size_t)snprintf(msg + len, sizeof msg - len, "; %s", od->interrupt_note);
     else if (len < sizeof msg)
@@ -122,7 +124,7 @@ static void stop_now(void)
                               od->ncreated > 0
                                   ? "; nothing was written (%s not created)"
                                   : "; nothing was written: %s holds what it held before",
-                              od->dir);
+                              dir);
   }
   if (len < sizeof msg - 1)
     msg[len++] = '\n';
@@ -164,8 +166,9 @@ int cli_stage_progress(void *ctx, const char *what, double fraction)
   const cli_stage *c = ctx;
   pthread_mutex_lock(&guard.lock);
   if (fraction == 0.0 && !c->quiet) {
-    snprintf(stage.line, sizeof stage.line, "flexbond %s: %s: %s ...\n", c->command, c->subject,
-             what);
+    fb_err line; /* formatted and escaped as every message */
+    fb_err_set(&line, FB_OK, "flexbond %s: %s: %s ...", c->command, c->subject, what);
+    snprintf(stage.line, sizeof stage.line, "%s\n", line.msg);
     clock_gettime(CLOCK_MONOTONIC, &stage.start);
     stage.active = 1;
     stage.said = 0;

@@ -245,11 +245,14 @@ void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c)
   fb_result *res = NULL;
   c->wall_seconds = NAN;
   int rc = fb_scenario_load_overrides(a->scenario_path, ov, a->nkeys, &s, &err);
-  /* The scenario's warnings were said once, at the start; under --strict
-   * (where it has none) a case's implausible value fails it, as any bad
-   * input of a case. */
+  /* The scenario's warnings were said once, at the start; a case says
+   * those about its own swept values (located at the --set), and under
+   * --strict such a value fails the case, as any bad input of a case. */
   if (rc == FB_OK && a->strict)
     rc = cli_scenario_warnings(s, 1, &err);
+  for (size_t w = 0; rc == FB_OK && !a->quiet && w < fb_scenario_nwarnings(s); ++w)
+    if (fb_scenario_warning(s, w)->source == FB_SOURCE_OVERRIDE)
+      cli_say("flexbond: warning: case %zu: %s", i + 1, fb_scenario_warning(s, w)->msg);
   if (rc == FB_OK)
     rc = simulate_case(a, s, &res, &err);
   if (rc == FB_OK) {

@@ -22,34 +22,61 @@ void fb_err_clear(fb_err *err)
   err->excerpt[0] = '\0';
 }
 
-/* The bytes of the control character at t (0 if none), its code in *c:
- * one for C0 and DEL, two for a C1 control in UTF-8 (0xC2 0x80..0x9F). */
-static size_t control_at(const unsigned char *t, unsigned *c)
+/* The length of the well-formed UTF-8 sequence at t (The Unicode
+ * Standard, Table 3-7: no overlong forms, surrogates or code points above
+ * U+10FFFF), 1 for ASCII, 0 if the bytes are not one. */
+static size_t utf8_length(const unsigned char *t)
 {
-  if (t[0] < 0x20 || t[0] == 0x7f) {
-    *c = t[0];
+  if (t[0] < 0x80)
     return 1;
+  unsigned lo = 0x80, hi = 0xbf;
+  size_t n;
+  if (t[0] >= 0xc2 && t[0] <= 0xdf)
+    n = 2;
+  else if (t[0] >= 0xe0 && t[0] <= 0xef) {
+    n = 3;
+    lo = t[0] == 0xe0 ? 0xa0 : 0x80;
+    hi = t[0] == 0xed ? 0x9f : 0xbf;
+  } else if (t[0] >= 0xf0 && t[0] <= 0xf4) {
+    n = 4;
+    lo = t[0] == 0xf0 ? 0x90 : 0x80;
+    hi = t[0] == 0xf4 ? 0x8f : 0xbf;
+  } else {
+    return 0;
   }
-  if (t[0] == 0xc2 && t[1] >= 0x80 && t[1] <= 0x9f) {
-    *c = t[1];
-    return 2;
-  }
-  return 0;
+  if (t[1] < lo || t[1] > hi)
+    return 0;
+  for (size_t k = 2; k < n; ++k)
+    if (t[k] < 0x80 || t[k] > 0xbf)
+      return 0;
+  return n;
 }
 
-/* The C escape of control character c into esc. */
-static void escape_control(unsigned c, char *esc, size_t size)
+/* What the text at t is written as (into esc, NUL-terminated): a control
+ * character (C0, DEL, C1) as a C escape (\n, \r, \t, \xHH, \u00HH), a
+ * byte that is not UTF-8 as \xHH, anything else as it is (a whole UTF-8
+ * sequence, never a part). Returns the bytes of t it stands for. */
+static size_t escaped_at(const unsigned char *t, char *esc, size_t size)
 {
-  if (c == '\n')
-    snprintf(esc, size, "\\n");
-  else if (c == '\r')
-    snprintf(esc, size, "\\r");
-  else if (c == '\t')
-    snprintf(esc, size, "\\t");
-  else if (c >= 0x80)
-    snprintf(esc, size, "\\u%04x", c);
-  else
-    snprintf(esc, size, "\\x%02x", c);
+  const size_t n = utf8_length(t);
+  if (n == 0 || t[0] < 0x20 || t[0] == 0x7f) {
+    if (t[0] == '\n')
+      snprintf(esc, size, "\\n");
+    else if (t[0] == '\r')
+      snprintf(esc, size, "\\r");
+    else if (t[0] == '\t')
+      snprintf(esc, size, "\\t");
+    else
+      snprintf(esc, size, "\\x%02x", t[0]);
+    return 1;
+  }
+  if (n == 2 && t[0] == 0xc2 && t[1] <= 0x9f) {
+    snprintf(esc, size, "\\u%04x", t[1]);
+    return 2;
+  }
+  memcpy(esc, t, n);
+  esc[n] = '\0';
+  return n;
 }
 
 /* fb_err_escape's work; returns how many bytes of text it wrote out. */
@@ -59,17 +86,14 @@ static size_t escape_into(char *out, size_t size, const char *text)
   const unsigned char *t = (const unsigned char *)(text ? text : "");
   const unsigned char *start = t;
   while (*t) {
-    unsigned c = 0;
-    const size_t len = control_at(t, &c);
-    char esc[8] = {(char)*t, '\0'};
-    if (len)
-      escape_control(c, esc, sizeof esc);
+    char esc[8];
+    const size_t len = escaped_at(t, esc, sizeof esc);
     const size_t w = strlen(esc);
     if (n + w >= size)
       break;
     memcpy(out + n, esc, w);
     n += w;
-    t += len ? len : 1;
+    t += len;
   }
   out[n] = '\0';
   return (size_t)(t - start);
@@ -192,7 +216,10 @@ void fb_err_set_excerpt(fb_err *err, const char *text, size_t n)
     return;
   char raw[EXCERPT_BYTES + 1];
   const size_t len = bounded_length(text, n, EXCERPT_BYTES + 1);
-  const size_t kept = len < EXCERPT_BYTES ? len : EXCERPT_BYTES;
+  size_t kept = len < EXCERPT_BYTES ? len : EXCERPT_BYTES;
+  /* A cut inside a UTF-8 sequence would leave a part of a character. */
+  while (kept > 0 && kept < len && ((unsigned char)text[kept] & 0xc0) == 0x80)
+    --kept;
   memcpy(raw, text, kept);
   raw[kept] = '\0';
   /* Escapes may not all fit: "..." says when anything is left out. */

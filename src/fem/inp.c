@@ -165,7 +165,17 @@ static int inp_mesh_error(const inp_reader *r, size_t line, const fb_err *sub)
 {
   if (sub->code == FB_ENOMEM)
     return inp_nomem(r);
-  return inp_error(r, line, "%s", sub->msg);
+  const int rc = inp_error(r, line, "%s", sub->msg);
+  fb_err_set_excerpt(r->err, sub->excerpt, sizeof sub->excerpt);
+  return rc;
+}
+
+/* rc, after recording the deck's text the error just set is about as its
+ * excerpt: a deck's text goes there, never into the message (errors.md). */
+static int inp_quoting(const inp_reader *r, const char *text, int rc)
+{
+  fb_err_set_excerpt(r->err, text, strlen(text));
+  return rc;
 }
 
 /* ---- Lines and fields. */
@@ -294,7 +304,7 @@ static int parse_id(const inp_reader *r, const char *field, const char *what, lo
   errno = 0;
   const long v = strtol(field, &end, 10);
   if (errno || end == field || *end != '\0' || v <= 0 || !isdigit((unsigned char)field[0]))
-    return inp_error(r, r->lineno, "%s '%s' is not a positive integer", what, field);
+    return inp_quoting(r, field, inp_error(r, r->lineno, "%s: not a positive integer", what));
   *out = v;
   return FB_OK;
 }
@@ -306,8 +316,8 @@ static int parse_real(const inp_reader *r, const char *field, const char *what, 
 {
   fb_err sub;
   fb_err_clear(&sub);
-  if (fb_parse_decimal(field, out, &sub))
-    return inp_error(r, r->lineno, "%s: %s", what, sub.msg);
+  if (fb_parse_decimal_field(field, out, &sub))
+    return inp_quoting(r, field, inp_error(r, r->lineno, "%s: %s", what, sub.msg));
   return FB_OK;
 }
 
@@ -416,10 +426,11 @@ static const char *set_kind(int elements)
 static int begin_block(inp_reader *r, const char *name, int elements)
 {
   if (!fb_mesh_name_ok(name))
-    return inp_error(r, r->lineno,
-                     "%s set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
-                     " starting with a letter or _)",
-                     set_kind(elements), name, FB_MESH_NAME_MAX);
+    return inp_quoting(r, name,
+                       inp_error(r, r->lineno,
+                                 "%s set name is invalid (1 to %d characters from A-Z a-z 0-9 "
+                                 "_ . -, starting with a letter or _)",
+                                 set_kind(elements), FB_MESH_NAME_MAX));
   if (fb_grow((void **)&r->blocks, &r->blocks_cap, r->nblocks, sizeof *r->blocks))
     return inp_nomem(r);
   r->blocks[r->nblocks++] = (inp_set_block){name, elements, r->nitems, 0};

@@ -559,11 +559,15 @@ static int extend_set(mesh_set *s, size_t n, const size_t *list)
 static int add_to_set(set_list *l, const char *what, size_t universe, const char *name,
                       size_t n, const size_t *items, fb_err *err)
 {
-  if (!fb_mesh_name_ok(name))
-    return fb_err_set(err, FB_EINVAL,
-                      "%s set name '%s' is invalid (1 to %d characters from A-Z a-z 0-9 _ . -,"
-                      " starting with a letter or _)",
-                      what, name ? name : "(null)", FB_MESH_NAME_MAX);
+  if (!fb_mesh_name_ok(name)) {
+    /* The name may be a file's text: in the excerpt, not the message. */
+    fb_err_set(err, FB_EINVAL,
+               "%s set name is invalid (1 to %d characters from A-Z a-z 0-9 _ . -, starting "
+               "with a letter or _)",
+               what, FB_MESH_NAME_MAX);
+    fb_err_set_excerpt(err, name ? name : "(null)", name ? strlen(name) : 6);
+    return FB_EINVAL;
+  }
   if (n > 0 && !items)
     return fb_err_set(err, FB_EINVAL, "%s set '%s': the list is NULL", what, name);
   for (size_t i = 0; i < n; ++i) {

@@ -146,7 +146,17 @@ static int msh_mesh_error(const msh_reader *r, size_t line, const fb_err *sub)
 {
   if (sub->code == FB_ENOMEM)
     return msh_nomem(r);
-  return msh_error(r, line, "%s", sub->msg);
+  const int rc = msh_error(r, line, "%s", sub->msg);
+  fb_err_set_excerpt(r->err, sub->excerpt, sizeof sub->excerpt);
+  return rc;
+}
+
+/* rc, after recording the file's text the error just set is about as its
+ * excerpt: a mesh file's text goes there, never into the message. */
+static int msh_quoting(const msh_reader *r, const char *text, int rc)
+{
+  fb_err_set_excerpt(r->err, text, strlen(text));
+  return rc;
 }
 
 /* ---- Lines and fields. */
@@ -208,11 +218,11 @@ static int ints(msh_reader *r, char **p, long *v, size_t n, const char *what)
     if (!f)
       return msh_error(r, r->lineno, "%s: expected %zu integers", what, n);
     if (!is_integer(f))
-      return msh_error(r, r->lineno, "%s: '%s' is not an integer", what, f);
+      return msh_quoting(r, f, msh_error(r, r->lineno, "%s: not an integer", what));
     errno = 0;
     v[k] = strtol(f, NULL, 10);
     if (errno)
-      return msh_error(r, r->lineno, "%s: integer %s is out of range", what, f);
+      return msh_quoting(r, f, msh_error(r, r->lineno, "%s: an integer out of range", what));
   }
   return FB_OK;
 }
@@ -226,8 +236,8 @@ static int reals(msh_reader *r, char **p, double *v, size_t n, const char *what)
     const char *f = next_field(p);
     if (!f)
       return msh_error(r, r->lineno, "%s: expected %zu numbers", what, n);
-    if (fb_parse_decimal(f, &v[k], &sub))
-      return msh_error(r, r->lineno, "%s: %s", what, sub.msg);
+    if (fb_parse_decimal_field(f, &v[k], &sub))
+      return msh_quoting(r, f, msh_error(r, r->lineno, "%s: %s", what, sub.msg));
   }
   return FB_OK;
 }
@@ -236,7 +246,7 @@ static int reals(msh_reader *r, char **p, double *v, size_t n, const char *what)
 static int line_done(msh_reader *r, const char *p, const char *what)
 {
   p += strspn(p, " \t");
-  return *p ? msh_error(r, r->lineno, "%s: unexpected '%s'", what, p) : FB_OK;
+  return *p ? msh_quoting(r, p, msh_error(r, r->lineno, "%s: unexpected text", what)) : FB_OK;
 }
 
 /* A count read from a file, bounded by what the rest of the text could
@@ -294,10 +304,11 @@ static int read_name(msh_reader *r)
     return rc;
   *q2 = '\0';
   if (!fb_mesh_name_ok(q1 + 1))
-    return msh_error(r, r->lineno,
-                     "physical name \"%s\" cannot name a set (1 to %d characters from A-Z a-z "
-                     "0-9 _ . -, starting with a letter or _)",
-                     q1 + 1, FB_MESH_NAME_MAX);
+    return msh_quoting(r, q1 + 1,
+                       msh_error(r, r->lineno,
+                                 "the physical name cannot name a set (1 to %d characters from "
+                                 "A-Z a-z 0-9 _ . -, starting with a letter or _)",
+                                 FB_MESH_NAME_MAX));
   if (fb_grow((void **)&r->names, &r->names_cap, r->nnames, sizeof *r->names))
     return msh_nomem(r);
   msh_name *nm = &r->names[r->nnames];
@@ -419,10 +430,51 @@ static msh_entity *find_entity(const msh_reader *r, int dim, long tag)
   return r->nents ? bsearch(&key, r->ents, r->nents, sizeof *r->ents, entity_key) : NULL;
 }
 
+/* A physical name, for sorting by its text. */
+typedef struct name_ref {
+  const msh_name *name;
+} name_ref;
+
+static int by_name(const void *a, const void *b)
+{
+  const msh_name *x = ((const name_ref *)a)->name, *y = ((const name_ref *)b)->name;
+  const int c = strcasecmp(x->name, y->name);
+  return c ? c : (x->line > y->line) - (x->line < y->line);
+}
+
+/* FB_EPARSE at the second of two physical groups with one name (set names
+ * are case-insensitive): their sets would merge, silently. */
+static int check_names_unique(msh_reader *r)
+{
+  if (r->nnames < 2)
+    return FB_OK;
+  name_ref *by = malloc(r->nnames * sizeof *by);
+  if (!by)
+    return msh_nomem(r);
+  for (size_t i = 0; i < r->nnames; ++i)
+    by[i].name = &r->names[i];
+  qsort(by, r->nnames, sizeof *by, by_name);
+  int rc = FB_OK;
+  for (size_t i = 1; !rc && i < r->nnames; ++i) {
+    const msh_name *first = by[i - 1].name, *second = by[i].name;
+    if (!strcasecmp(first->name, second->name))
+      rc = msh_error(r, second->line,
+                     "physical group %ld of dimension %d has the name of group %ld of "
+                     "dimension %d (line %zu): each group needs its own, or their sets merge",
+                     second->tag, second->dim, first->tag, first->dim, first->line);
+  }
+  free(by);
+  return rc;
+}
+
 /* Sorts names and entities by (dimension, tag), refusing a key given
- * twice at its second line (the format gives each once). */
+ * twice at its second line (the format gives each once), and a name given
+ * to two groups. */
 static int sort_keys(msh_reader *r)
 {
+  const int unique = check_names_unique(r);
+  if (unique)
+    return unique;
   if (r->nnames)
     qsort(r->names, r->nnames, sizeof *r->names, name_order);
   for (size_t i = 1; i < r->nnames; ++i)
@@ -703,7 +755,8 @@ static int read_sections(msh_reader *r)
     if (*name == '\0')
       continue;
     if (*name != '$')
-      return msh_error(r, r->lineno, "expected a section ($Name), got '%.40s'", name);
+      return msh_quoting(r, name,
+                         msh_error(r, r->lineno, "expected a section ($Name) on this line"));
     if (!have_format && strcmp(name, "$MeshFormat") != 0)
       return msh_error(r, r->lineno, "not a .msh file: it does not start with $MeshFormat");
     have_format = 1;

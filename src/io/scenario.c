@@ -420,6 +420,8 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
   if (!rc)
     rc = sc_read(c, fy_document_root(y.doc), params, ov, nov, s);
   if (!rc)
+    rc = sc_plausible_values(s, c->err);
+  if (!rc)
     rc = fb_scenario_check(s, c->err);
   /* A hull deck is read here, once: the builder takes the mesh from the
    * scenario. Its errors are at hull.mesh.deck, then at the deck's line. */
@@ -432,7 +434,12 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
   if (!rc && fb_vehicle_hull_complete(s, c->err))
     rc = fb_scenario_locate(s, c->err);
   if (!rc)
-    rc = sc_plausibility(s, c->err);
+    rc = sc_plausible_rules(s, c->err);
+  /* An implausible value is often the cause of the error (a thickness in
+   * mm against the hull's mass): the error names the first. */
+  if (rc && rc != FB_ENOMEM && s->nwarnings)
+    fb_err_append(c->err, " (the scenario also has an implausible value: %s)",
+                  s->warning[0].msg);
   if (rc)
     sc_overrides_blame(c->err, ov, nov);
   c->globals = NULL;

@@ -32,10 +32,14 @@ extern const sch_table sc_schema;
 int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
             fb_scenario *s);
 
-/* Finds the implausible values of the loaded, checked and completed s
- * (scenario_plausible.c) and keeps a located warning for each in
- * s->warning. FB_ENOMEM only. */
-int sc_plausibility(fb_scenario *s, fb_err *err);
+/* The implausible values of s (scenario_plausible.c), each kept as a
+ * located warning in s->warning: sc_plausible_values, each value against
+ * its key's plausible range, as soon as s is read (so that an error found
+ * later can name them too: a thickness in mm makes the hull's mass wrong);
+ * sc_plausible_rules, the consequences of several values, once s is
+ * checked and completed. FB_ENOMEM only. */
+int sc_plausible_values(fb_scenario *s, fb_err *err);
+int sc_plausible_rules(fb_scenario *s, fb_err *err);
 
 /* The origin of the value with logical key key, or of the nearest value
  * enclosing it ("corners.LF" for "corners.LF.damper_table[2]"), NULL if

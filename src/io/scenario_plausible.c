@@ -118,19 +118,25 @@ static int sc_warned(const fb_scenario *s, const char *key)
   return 0;
 }
 
-int sc_plausibility(fb_scenario *s, fb_err *err)
+int sc_plausible_values(fb_scenario *s, fb_err *err)
 {
   sc_warn_ctx c = {s, FB_OK, err};
   sch_each(&sc_schema, s, sc_warn_value, &c);
+  return c.rc;
+}
+
+int sc_plausible_rules(fb_scenario *s, fb_err *err)
+{
   /* The rules between values start from the total weight: when it is
    * itself implausible, they would only repeat that warning elsewhere. */
   if (sc_warned(s, "load.total_weight"))
-    return c.rc;
-  for (size_t k = 0; c.rc == FB_OK && k < s->ncorners; ++k)
-    c.rc = sc_warn_deflections(s, k, err);
-  if (c.rc == FB_OK)
-    c.rc = sc_warn_masses(s, err);
-  return c.rc;
+    return FB_OK;
+  int rc = FB_OK;
+  for (size_t k = 0; rc == FB_OK && k < s->ncorners; ++k)
+    rc = sc_warn_deflections(s, k, err);
+  if (rc == FB_OK)
+    rc = sc_warn_masses(s, err);
+  return rc;
 }
 
 size_t fb_scenario_nwarnings(const fb_scenario *s)

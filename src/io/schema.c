@@ -723,7 +723,7 @@ static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
     break;
   }
   case SCH_CHOICE: rc = sch_choice(r, k, node, &number); break;
-  case SCH_NAME: rc = ml_name(c, node, k->doc, &text); break;
+  case SCH_NAME: rc = ml_name(c, node, "the name", &text); break;
   case SCH_TEXT: rc = k->lines ? ml_text(c, node, &text) : ml_string(c, node, &text); break;
   case SCH_FILE:
     rc = ml_string(c, node, &text);
