@@ -165,5 +165,23 @@ expect_status 2 "run with a bad field in a damper table"
 expect_in "$ERR" "field.csv:3: column 'F': not a number (read: 'SECRETFIELD')" \
   "run: the terminal sees the field that failed"
 
+# ---- The same for a mesh deck: its text reaches the terminal as the one field that failed,
+# never a message that goes into sweep.csv.
+(cd "$WORK/secret" && "$FLEXBOND" mesh "$REPO_ROOT/examples/apc6x6.yaml" --export hull.inp) \
+  >/dev/null 2>&1
+sed '0,/^1, /s/^1, [^,]*,/1, SECRETNODE,/' "$WORK/secret/hull.inp" >"$WORK/secret/bad.inp"
+sed -e '/^    density: 1 /d' -e '/^    generator:/,/nose_rung_divisions/c\    deck: hull.inp' \
+  "$REPO_ROOT/examples/apc6x6.yaml" >"$WORK/secret/deck.yaml"
+run sweep "$WORK/secret/deck.yaml" --system flexible --no-figures -q \
+  --set "hull.mesh.deck=hull.inp,bad.inp" -o "$WORK/secret/sd"
+expect_status 4 "sweep with a mesh deck holding text where a number goes"
+checks=$((checks + 1))
+! grep -q SECRET "$WORK/secret/sd/sweep.csv" || fail "sweep.csv quotes a mesh deck's text"
+expect_in "$WORK/secret/sd/sweep.csv" "bad.inp:" "sweep.csv: the deck's failure located"
+sed 's/deck: hull.inp/deck: bad.inp/' "$WORK/secret/deck.yaml" >"$WORK/secret/bad_deck.yaml"
+run mesh "$WORK/secret/bad_deck.yaml"
+expect_status 2 "mesh of a deck holding text where a number goes"
+expect_in "$ERR" "(read: 'SECRETNODE')" "the terminal sees the deck's field that failed"
+
 echo "$NAME: $checks checks, $failures failed"
 [ "$failures" -eq 0 ]
