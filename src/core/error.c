@@ -86,7 +86,7 @@ static size_t escape_into(char *out, size_t size, const char *text)
   const unsigned char *t = (const unsigned char *)(text ? text : "");
   const unsigned char *start = t;
   while (*t) {
-    char esc[8];
+    char esc[16]; /* the longest: "\\u00HH", or a 4-byte character */
     const size_t len = escaped_at(t, esc, sizeof esc);
     const size_t w = strlen(esc);
     if (n + w >= size)
