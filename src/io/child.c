@@ -162,15 +162,27 @@ static int open_streams(const char *log_path, int *in_fd, int *log_fd)
   return e;
 }
 
+/* Below this much free space (bytes) a child's silent failure is put
+ * down to a full file system: a figure or a picture is some 10 kB to
+ * 1 MB, and by the time the child has ended, it (or another job beside
+ * it) may have removed what it had written, so that "nothing free" is
+ * seldom what is seen. */
+#define FULL_DISK_BYTES (1024.0 * 1024.0)
+
 /* Why a child that said nothing may have failed: its directory's file
- * system is full (its log could not be written either), as ": " and
- * strerror(ENOSPC) into buf; "" otherwise. */
+ * system is (nearly) full, so that its log could not be written either,
+ * as ": " and strerror(ENOSPC) with what is free into buf; "" otherwise. */
 static void full_disk(const char *dir, char *buf, size_t size)
 {
   struct statvfs st;
   buf[0] = '\0';
-  if (statvfs(dir, &st) == 0 && st.f_bavail == 0)
-    snprintf(buf, size, ": %s", strerror(ENOSPC));
+  if (statvfs(dir, &st) != 0)
+    return;
+  const double free_bytes = (double)st.f_bavail * (double)st.f_frsize;
+  char text[32];
+  if (free_bytes < FULL_DISK_BYTES)
+    snprintf(buf, size, ": %s (%s free now)", strerror(ENOSPC),
+             fb_bytes_text(free_bytes, text, sizeof text));
 }
 
 /* The outcome of a child that ended with status. Its log's tail says
