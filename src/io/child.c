@@ -179,10 +179,11 @@ static void full_disk(const char *dir, char *buf, size_t size)
   if (statvfs(dir, &st) != 0)
     return;
   const double free_bytes = (double)st.f_bavail * (double)st.f_frsize;
-  char text[32];
-  if (free_bytes < FULL_DISK_BYTES)
+  if (free_bytes < FULL_DISK_BYTES) {
+    char text[32];
     snprintf(buf, size, ": %s (%s free now)", strerror(ENOSPC),
              fb_bytes_text(free_bytes, text, sizeof text));
+  }
 }
 
 /* The outcome of a child that ended with status. Its log's tail says
