@@ -198,15 +198,6 @@ int fb_err_prefix(fb_err *err, const char *fmt, ...)
   return err->code;
 }
 
-/* The length of the first n bytes of text up to a NUL, counted to max. */
-static size_t bounded_length(const char *text, size_t n, size_t max)
-{
-  size_t len = 0;
-  while (len < max && len < n && text[len])
-    ++len;
-  return len;
-}
-
 /* The bytes of a data file's text an excerpt keeps (fb_err.excerpt). */
 #define EXCERPT_BYTES 64
 
@@ -215,7 +206,8 @@ void fb_err_set_excerpt(fb_err *err, const char *text, size_t n)
   if (!err || !text)
     return;
   char raw[EXCERPT_BYTES + 1];
-  const size_t len = bounded_length(text, n, EXCERPT_BYTES + 1);
+  /* Counted to one byte past what is kept: whether anything is left out. */
+  const size_t len = strnlen(text, n < EXCERPT_BYTES + 1 ? n : EXCERPT_BYTES + 1);
   size_t kept = len < EXCERPT_BYTES ? len : EXCERPT_BYTES;
   /* A cut inside a UTF-8 sequence would leave a part of a character. */
   while (kept > 0 && kept < len && ((unsigned char)text[kept] & 0xc0) == 0x80)
