@@ -192,7 +192,7 @@ static int load(const char *path, int density, study *st, fb_err *err)
 {
   char value[16];
   snprintf(value, sizeof value, "%d", density);
-  const fb_scenario_override ov = {"hull.mesh.density", value};
+  const fb_scenario_override ov = {.key = "hull.mesh.density", .value = value};
   st->density = density;
   int rc = fb_scenario_load_overrides(path, &ov, 1, &st->s, err);
   if (!rc)

@@ -43,4 +43,10 @@ static inline int check_report(const char *name)
   fb_err_describe((err), (char[FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16]){0},                  \
                   FB_ERR_MSG_MAX + FB_ERR_EXCERPT_MAX + 16)
 
+/* 1 if err is about member field of the part kind kind, item index, of
+ * a description (fb_err.part; "" the whole item), with no element. */
+#define PART_IS(err, kind_, index_, field_)                                                    \
+  ((err)->part.kind == (kind_) && (err)->part.index == (index_) &&                             \
+   (err)->part.element == FB_ERR_NO_ELEMENT && !strcmp((err)->part.field, (field_)))
+
 #endif

@@ -513,7 +513,7 @@ checks=$((checks + 1))
 sed '/^  mesh:/,/^[a-z]/{/^[a-z]/!d;}' "$SHORT" >"$WORK/nofe.yaml"
 run run "$WORK/nofe.yaml" -o "$WORK/out_nofe" --system both
 expect_status 2 "run --system both without a finite-element hull"
-expect_in "$ERR" "hull.mesh" "run --system both without a finite-element hull"
+expect_in "$ERR" "hull.fe: System 2 needs the hull's finite-element model" "run --system both without a finite-element hull"
 expect_absent "$WORK/out_nofe" "run --system both without a finite-element hull"
 run run "$WORK/nofe.yaml" -o "$WORK/nofe" --no-figures
 expect_status 0 "run without a finite-element hull"

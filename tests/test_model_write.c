@@ -502,7 +502,7 @@ static void vehicle_case(const char *path, fb_system sys, const char *t_end)
 {
   fb_err err;
   fb_scenario *s = NULL;
-  const fb_scenario_override ov = {"simulation.t_end", t_end};
+  const fb_scenario_override ov = {.key = "simulation.t_end", .value = t_end};
   MUST(fb_scenario_load_overrides(path, &ov, t_end ? 1 : 0, &s, &err), &err);
   if (!s)
     return;

@@ -21,6 +21,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "io/scenario_internal.h"
 #include "vehicle_util.h"
 
 #define EXAMPLE "../examples/apc6x6.yaml"
@@ -63,11 +64,12 @@ static void test_number_and_nested(void)
   fb_scenario *base = NULL, *s = NULL;
   fb_err err;
   CHECK(fb_scenario_load(EXAMPLE, &base, &err) == FB_OK);
-  const fb_scenario_override ov[] = {{"road.speed_kmh", "20"},
-                                     {"suspensions.axles[0].spring_k", "200000"},
-                                     {"angle_deg", "30"},
-                                     {"hull.mesh.generator.bulkheads[1]", "-2 * 0.5"},
-                                     {"simulation.initial", "static"}};
+  const fb_scenario_override ov[] = {
+      {.key = "road.speed_kmh", .value = "20"},
+      {.key = "suspensions.axles[0].spring_k", .value = "200000"},
+      {.key = "angle_deg", .value = "30"},
+      {.key = "hull.mesh.generator.bulkheads[1]", .value = "-2 * 0.5"},
+      {.key = "simulation.initial", .value = "static"}};
   int rc = load(ov, sizeof ov / sizeof ov[0], &s, &err);
   CHECK(rc == FB_OK);
   if (rc != FB_OK || !base) {
@@ -100,9 +102,9 @@ static void test_name_expression_list(void)
 {
   fb_scenario *s = NULL;
   fb_err err;
-  const fb_scenario_override ov[] = {{"speed_kmh", "2 * 18"},
-                                     {"load.points.grid.x[1]", "-1.75"},
-                                     {"load.points.grid.x[0]", "-2.05"}};
+  const fb_scenario_override ov[] = {{.key = "speed_kmh", .value = "2 * 18"},
+                                     {.key = "load.points.grid.x[1]", .value = "-1.75"},
+                                     {.key = "load.points.grid.x[0]", .value = "-2.05"}};
   int rc = load(ov, sizeof ov / sizeof ov[0], &s, &err);
   CHECK(rc == FB_OK);
   if (rc == FB_OK) {
@@ -132,7 +134,7 @@ static void test_quoted_original(const char *text)
   snprintf(copy, strlen(text) + 8, "%.*s'10'%s", (int)head, text, at + strlen("speed_kmh: 10"));
   fb_scenario *s = NULL;
   fb_err err;
-  const fb_scenario_override ov = {"speed_kmh", "72"};
+  const fb_scenario_override ov = {.key = "speed_kmh", .value = "72"};
   int rc =
       fb_scenario_load_string_overrides(copy, strlen(copy), "quoted.yaml", &ov, 1, &s, &err);
   CHECK(rc == FB_OK && s && fabs(s->speed - 20.0) < TIGHT * 20); /* 72 km/h */
@@ -150,7 +152,7 @@ static void test_relative_references(void)
   const char *path = "../examples/apc6x6_shock_table.yaml";
   fb_scenario *base = NULL, *s = NULL;
   fb_err err;
-  const fb_scenario_override ov = {"speed_kmh", "20"};
+  const fb_scenario_override ov = {.key = "speed_kmh", .value = "20"};
   int rc = fb_scenario_load(path, &base, &err);
   CHECK(rc == FB_OK);
   rc = fb_scenario_load_overrides(path, &ov, 1, &s, &err);
@@ -194,7 +196,7 @@ static void test_bad_keys(const char *text)
   /* A bad path names the deepest mapping found, at its position, and
    * the keys it has. */
   position_of(text, "\nroad:", 1, road, sizeof road);
-  const fb_scenario_override missing = {"road.speedkmh", "5"};
+  const fb_scenario_override missing = {.key = "road.speedkmh", .value = "5"};
   snprintf(where, sizeof where, "--set road.speedkmh=5: " EXAMPLE ":");
   expect_error(&missing, 1, FB_EINVAL, where,
                (const char *const[]){"has no key 'speedkmh'", "speed_kmh, bump", NULL});
@@ -203,29 +205,31 @@ static void test_bad_keys(const char *text)
   snprintf(where, sizeof where, "--set road.speedkmh=5: " EXAMPLE ":%s: road: ", road);
   expect_error(&missing, 1, FB_EINVAL, where, (const char *const[]){NULL});
 
-  const fb_scenario_override ambiguous = {"mass", "1"};
+  const fb_scenario_override ambiguous = {.key = "mass", .value = "1"};
   expect_error(&ambiguous, 1, FB_EINVAL, "--set mass=1: " EXAMPLE ": key 'mass' is ambiguous",
                (const char *const[]){"hull.mass", "mounts[0].mass", "mounts[1].mass",
                                      "wheel.mass", "give the dotted path", NULL});
-  const fb_scenario_override absent = {"velocity", "1"};
+  const fb_scenario_override absent = {.key = "velocity", .value = "1"};
   expect_error(&absent, 1, FB_EINVAL, "--set velocity=1: " EXAMPLE ": no key 'velocity'",
                (const char *const[]){"road", "simulation", NULL});
-  const fb_scenario_override typo = {"sped_kmh", "1"};
+  const fb_scenario_override typo = {.key = "sped_kmh", .value = "1"};
   expect_error(&typo, 1, FB_EINVAL, "--set sped_kmh=1: " EXAMPLE ": no key 'sped_kmh'",
                (const char *const[]){"did you mean 'road.speed_kmh'?", NULL});
-  const fb_scenario_override mapping = {"road.bump", "1"};
+  const fb_scenario_override mapping = {.key = "road.bump", .value = "1"};
   expect_error(&mapping, 1, FB_EINVAL, "--set road.bump=1: " EXAMPLE ":",
                (const char *const[]){"road.bump: is a mapping", "height, length", NULL});
-  const fb_scenario_override list = {"bulkheads", "1"};
+  const fb_scenario_override list = {.key = "bulkheads", .value = "1"};
   expect_error(&list, 1, FB_EINVAL, "--set bulkheads=1: " EXAMPLE ":",
                (const char *const[]){"is a list", "hull.mesh.generator.bulkheads[0]", NULL});
-  const fb_scenario_override past_end = {"hull.mesh.generator.bulkheads[3]", "1"};
+  const fb_scenario_override past_end = {.key = "hull.mesh.generator.bulkheads[3]",
+                                         .value = "1"};
   expect_error(&past_end, 1, FB_EINVAL, "--set hull.mesh.generator.bulkheads[3]=1: ",
                (const char *const[]){"has no item [3] (it has 3)", NULL});
-  const fb_scenario_override malformed = {"road..speed_kmh", "1"};
+  const fb_scenario_override malformed = {.key = "road..speed_kmh", .value = "1"};
   expect_error(&malformed, 1, FB_EINVAL,
                "--set road..speed_kmh=1: ", (const char *const[]){"malformed key", NULL});
-  const fb_scenario_override twice[] = {{"speed_kmh", "5"}, {"road.speed_kmh", "6"}};
+  const fb_scenario_override twice[] = {{.key = "speed_kmh", .value = "5"},
+                                        {.key = "road.speed_kmh", .value = "6"}};
   expect_error(
       twice, 2, FB_EINVAL, "--set road.speed_kmh=6: ",
       (const char *const[]){"sets road.speed_kmh, which --set speed_kmh=5 sets too", NULL});
@@ -246,23 +250,23 @@ static void test_bad_values(const char *text)
   /* The reader's own message for the new value, at the original value's
    * line and column. */
   position_of(text, "speed_kmh: 10", strlen("speed_kmh: "), value, sizeof value);
-  const fb_scenario_override word = {"road.speed_kmh", "fast"};
+  const fb_scenario_override word = {.key = "road.speed_kmh", .value = "fast"};
   snprintf(prefix, sizeof prefix,
            "--set road.speed_kmh=fast: " EXAMPLE ":%s: road.speed_kmh: ", value);
   expect_error(&word, 1, 0, prefix, (const char *const[]){"fast", NULL});
   /* Text that would be YAML structure stays one value, at the value's
    * place. */
-  const fb_scenario_override structure = {"speed_kmh", "1, x: \"2\"\\"};
+  const fb_scenario_override structure = {.key = "speed_kmh", .value = "1, x: \"2\"\\"};
   position_of(text, "speed_kmh: 10", strlen("speed_kmh: "), value, sizeof value);
   snprintf(prefix, sizeof prefix,
            "--set speed_kmh=1, x: \"2\"\\: " EXAMPLE ":%s: road.speed_kmh: ", value);
   expect_error(&structure, 1, 0, prefix, (const char *const[]){NULL});
-  const fb_scenario_override newline = {"speed_kmh", "1\n2"};
+  const fb_scenario_override newline = {.key = "speed_kmh", .value = "1\n2"};
   expect_error(&newline, 1, FB_EINVAL, "--set speed_kmh=1\\n2: " EXAMPLE ": ",
                (const char *const[]){"control character", NULL});
   /* fb_scenario_check's message, blamed at the new value. */
   position_of(text, "spring_k: 145300", strlen("spring_k: "), value, sizeof value);
-  const fb_scenario_override negative = {"suspensions.axles[0].spring_k", "-1"};
+  const fb_scenario_override negative = {.key = "suspensions.axles[0].spring_k", .value = "-1"};
   snprintf(prefix, sizeof prefix,
            "--set suspensions.axles[0].spring_k=-1: " EXAMPLE
            ":%s: suspensions.axles[0].spring_k: ",
@@ -270,25 +274,29 @@ static void test_bad_values(const char *text)
   expect_error(&negative, 1, FB_EINVAL, prefix, (const char *const[]){"> 0", NULL});
   /* A consequence of the values: at 2 km/h the last wheel leaves the bump
    * at 5 + 8.7 m / (2/3.6 m/s) = 20.7 s, after t_end = 15 s. The message
-   * names road.bump, so every override is named. */
-  const fb_scenario_override slow[] = {{"speed_kmh", "2"}, {"road.bump.height", "0.2"}};
-  expect_error(slow, 1, FB_EINVAL, "--set speed_kmh=2: " EXAMPLE ":",
-               (const char *const[]){"road.bump: bump longer than the run", "20.66", NULL});
+   * names the bump's length, which no override set, so every override is
+   * named. */
+  const fb_scenario_override slow[] = {{.key = "speed_kmh", .value = "2"},
+                                       {.key = "road.bump.height", .value = "0.2"}};
+  expect_error(
+      slow, 1, FB_EINVAL, "--set speed_kmh=2: " EXAMPLE ":",
+      (const char *const[]){"road.bump.length: bump longer than the run", "20.66", NULL});
   expect_error(slow, 2, FB_EINVAL, "--set speed_kmh=2 --set road.bump.height=0.2: " EXAMPLE ":",
-               (const char *const[]){"road.bump: bump longer than the run", NULL});
+               (const char *const[]){"road.bump.length: bump longer than the run", NULL});
 }
 
 /* The origin of the value the file names path, NULL if none. */
-static const fb_scenario_origin *origin_at(const fb_scenario *s, const char *path)
+static const sc_value_origin *origin_at(const fb_scenario *s, const char *path)
 {
-  for (size_t i = 0; i < s->norigins; ++i)
-    if (!strcmp(s->origin[i].path, path))
-      return &s->origin[i];
+  const sc_source *src = sc_source_of(s);
+  for (size_t i = 0; src && i < src->norigins; ++i)
+    if (!strcmp(src->origin[i].path, path))
+      return &src->origin[i];
   return NULL;
 }
 
 /* o is at "LINE:COL" where and names the override label. */
-static int origin_is(const fb_scenario_origin *o, const char *where, const char *label)
+static int origin_is(const sc_value_origin *o, const char *where, const char *label)
 {
   char at[32];
   snprintf(at, sizeof at, "%d:%d", o ? o->line : 0, o ? o->column : 0);
@@ -302,10 +310,11 @@ static int origin_is(const fb_scenario_origin *o, const char *where, const char 
  * at the section it goes into and naming the override. */
 static void test_keys_left_out(const char *text)
 {
-  const fb_scenario_override ov[] = {{"wheel.tire_contact", "unilateral"},
-                                     {"max_steps", "12345"},
-                                     {"outputs[0].name", "lf_force"},
-                                     {"suspensions.axles[1].wheel.tire_k", "600000"}};
+  const fb_scenario_override ov[] = {
+      {.key = "wheel.tire_contact", .value = "unilateral"},
+      {.key = "max_steps", .value = "12345"},
+      {.key = "outputs[0].name", .value = "lf_force"},
+      {.key = "suspensions.axles[1].wheel.tire_k", .value = "600000"}};
   fb_scenario *s = NULL;
   fb_err err;
   int rc = load(ov, sizeof ov / sizeof ov[0], &s, &err);
@@ -371,7 +380,7 @@ static void test_bad_paths(const char *text)
   position_of(text, "\nsimulation:\n  t_end", strlen("\nsimulation:\n  "), sim, sizeof sim);
   position_of(text, "initial: zero", strlen("initial: "), initial, sizeof initial);
   position_of(text, "  bump:\n    height", strlen("  bump:\n    "), bump, sizeof bump);
-  const fb_scenario_override typo = {"simulation.max_stpes", "1"};
+  const fb_scenario_override typo = {.key = "simulation.max_stpes", .value = "1"};
   snprintf(where, sizeof where,
            "--set simulation.max_stpes=1: " EXAMPLE ":%s: simulation: ", sim);
   expect_error(
@@ -390,17 +399,17 @@ static void test_bad_paths(const char *text)
                  "mounts[0].name"},
   };
   for (size_t i = 0; i < sizeof refused / sizeof refused[0]; ++i) {
-    const fb_scenario_override o = {refused[i].key, "1"};
+    const fb_scenario_override o = {.key = refused[i].key, .value = "1"};
     snprintf(where, sizeof where, "--set %s=1: " EXAMPLE, refused[i].key);
     expect_error(&o, 1, FB_EINVAL, where, (const char *const[]){refused[i].part, NULL});
   }
-  const fb_scenario_override initial_typo = {"simulation.initial", "sttic"};
+  const fb_scenario_override initial_typo = {.key = "simulation.initial", .value = "sttic"};
   expect_source(&initial_typo, "simulation.initial", initial, "did you mean 'static'?");
-  const fb_scenario_override steps = {"simulation.max_steps", "many"};
+  const fb_scenario_override steps = {.key = "simulation.max_steps", .value = "many"};
   expect_source(&steps, "simulation.max_steps", sim, "many");
   /* A key the file leaves out that its section's rule refuses: the
    * bump's type with its height and length. */
-  const fb_scenario_override type = {"road.bump.type", "II"};
+  const fb_scenario_override type = {.key = "road.bump.type", .value = "II"};
   expect_source(&type, "road.bump.type", bump, "give either a type or height and length");
 
   char *full = NULL;
@@ -420,13 +429,14 @@ static void test_bad_paths(const char *text)
  * does not have gets that key alone. A clone keeps the origins. */
 static void test_late_locate(const char *text)
 {
-  const fb_scenario_override ov[] = {{"modes", "99999"}};
+  const fb_scenario_override ov[] = {{.key = "modes", .value = "99999"}};
   fb_scenario *s = NULL, *c = NULL;
   fb_err err;
   CHECK(load(ov, 1, &s, &err) == FB_OK && s);
   if (!s)
     return;
-  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK && c && c->norigins == s->norigins);
+  CHECK(fb_scenario_clone(s, &c, &err) == FB_OK && c && sc_source_of(c) &&
+        sc_source_of(c)->norigins == sc_source_of(s)->norigins);
   char modes[32], driver[32], want[256];
   position_of(text, "    modes: auto", 11, modes, sizeof modes);
   position_of(text, "    x: 2.10", 7, driver, sizeof driver);

@@ -15,6 +15,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "io/scenario_internal.h"
 #include "tmpdir.h"
 
 #define EXAMPLE "../examples/apc6x6.yaml"
@@ -296,8 +297,12 @@ static void test_clone(void)
     CHECK(!scenarios_equal(s, c));
     CHECK(s->load_x[3] == -2.00 && s->corner[5].tire_k == 500000);
     CHECK(c->corner[0].name != s->corner[0].name && c->mount[0].name != s->mount[0].name &&
-          c->output[0].title != s->output[0].title && c->norigins == s->norigins &&
-          c->origin[0].key != s->origin[0].key && !strcmp(c->origin[0].key, s->origin[0].key));
+          c->output[0].title != s->output[0].title);
+    /* The source is copied, its origins with it; not the warnings. */
+    const sc_source *a = sc_source_of(s), *b = sc_source_of(c);
+    CHECK(a && b && a != b && b->norigins == a->norigins &&
+          b->origin[0].key != a->origin[0].key && !strcmp(b->origin[0].key, a->origin[0].key) &&
+          b->nwarnings == 0);
   }
   fb_scenario_free(&c);
   /* Strings and arrays may be NULL in a hand-built scenario. */
@@ -312,22 +317,20 @@ static void test_clone(void)
 
 /* ---- fb_scenario_check on hand-built scenarios (no file to point at). */
 
-/* Drops s's origins, as a scenario built without a file has none. */
+/* Drops s's source, as a scenario built without a file has none. */
 static void drop_origins(fb_scenario *s)
 {
-  for (size_t i = 0; i < s->norigins; ++i) {
-    free(s->origin[i].key);
-    free(s->origin[i].path);
-    free(s->origin[i].override);
-  }
-  s->norigins = 0;
+  if (s->source)
+    s->source->ops->free(s->source);
+  s->source = NULL;
 }
 
 /* Applies change to a copy of base and expects FB_EINVAL with phrase. */
 static void expect_check(const fb_scenario *base, void (*change)(fb_scenario *),
                          const char *phrase)
 {
-  /* Not loaded from a file: no origins, messages name the logical key. */
+  /* Not loaded from a file: no origins; located, a message names the
+   * part of the description in its own words (fb_scenario_part_text). */
   fb_err err;
   fb_scenario *s = NULL;
   if (fb_scenario_clone(base, &s, &err) != FB_OK)
@@ -335,6 +338,8 @@ static void expect_check(const fb_scenario *base, void (*change)(fb_scenario *),
   change(s);
   drop_origins(s);
   int rc = fb_scenario_check(s, &err);
+  CHECK(err.part.kind != FB_PART_NONE);
+  fb_scenario_locate(s, &err);
   CHECK(rc == FB_EINVAL);
   CHECK(strstr(err.msg, phrase) != NULL);
   if (rc != FB_EINVAL || !strstr(err.msg, phrase))
@@ -423,19 +428,21 @@ static void test_check(void)
   CHECK(fb_scenario_load(EXAMPLE, &s, &err) == FB_OK);
   if (!s)
     return;
-  expect_check(s, set_rr_tire_k, "corners.RR.wheel.tire_k: must be > 0 N/m (got -1)");
-  expect_check(s, set_no_load, "load.points: at least one load point");
-  expect_check(s, set_nan_point, "load.points[3]: must be finite");
-  expect_check(s, set_angle_right, "road.bump.angle_deg: must be in [0, 90) deg (got 90)");
-  expect_check(s, set_inf_speed, "road.speed_kmh: must be finite");
-  expect_check(s, set_bad_payload, "load.payload: unknown value 7");
-  expect_check(s, set_rr_ahead, "road.bump.first_contact: the RR wheel would meet the bump");
-  expect_check(s, set_lumped_light, "load.payload: a lumped payload needs");
-  expect_check(s, set_many_samples, "simulation.sample_rate:");
-  expect_check(s, set_three_modes, "hull.fe.modes: auto, all or at least the 6 rigid");
+  /* SI units, the description's members: a file's keys and units are its
+   * reader's (test_scenario_errors). */
+  expect_check(s, set_rr_tire_k, "corner[5] (RR).tire_k: must be > 0 N/m (got -1)");
+  expect_check(s, set_no_load, "load_x: at least one load point");
+  expect_check(s, set_nan_point, "load point 3: must be finite");
+  expect_check(s, set_angle_right, "bump_angle: must be in [0, 1.5708) rad (got 1.570796327)");
+  expect_check(s, set_inf_speed, "speed: must be > 0 m/s (got inf)");
+  expect_check(s, set_bad_payload, "payload: unknown value 7");
+  expect_check(s, set_rr_ahead, "bump_time: the RR wheel would meet the bump");
+  expect_check(s, set_lumped_light, "payload: a lumped payload needs");
+  expect_check(s, set_many_samples, "sample_rate: ");
+  expect_check(s, set_three_modes, "hull_modes: auto, all or at least the 6 rigid");
   expect_check(s, set_nodal_reduced,
-               "hull.fe.modes: a choice of modes (a count) is for modal coordinates");
-  expect_check(s, set_nodal_cutoff, "hull.fe.cutoff_hz: a cut-off sets which modes");
+               "hull_modes: a choice of modes (a count) is for modal coordinates");
+  expect_check(s, set_nodal_cutoff, "hull_cutoff_hz: a cut-off sets which modes");
   expect_check(s, set_count_cutoff, "not with a count of modes");
   /* Allowed: the lumped payload of the data sheet (7958.28 kg), a flat bump. */
   fb_scenario *c = NULL;
@@ -458,6 +465,8 @@ static void test_check(void)
    * error's fields too. */
   s->corner[5].tire_k = -1;
   CHECK(fb_scenario_check(s, &err) == FB_EINVAL);
+  CHECK(PART_IS(&err, FB_PART_CORNER, 5, "tire_k"));
+  fb_scenario_locate(s, &err);
   CHECK(strstr(err.msg, EXAMPLE ":") == err.msg &&
         strstr(err.msg, ": wheel.tire_k: must be > 0 N/m (got -1)"));
   CHECK(!strcmp(err.key, "wheel.tire_k") && !strcmp(err.file, EXAMPLE) && err.line > 0 &&
@@ -551,7 +560,7 @@ static const bad_case bad_cases[] = {
     {"young: 200e9", "young: 0", NULL, NULL, FB_EINVAL,
      "bad.yaml:7:", "hull.material.young: must be > 0 Pa", NULL},
     {"front_x: 2.47813311938948", "front_x: -4", NULL, NULL, FB_EINVAL,
-     "bad.yaml:8:", "hull.edges.front_x: must be > hull.edges.rear_x", NULL},
+     "bad.yaml:8:", "hull.edges.front_x: the front edge must be ahead of the rear edge", NULL},
     {"gravity: 9.81", "gravity: 0", NULL, NULL, FB_EINVAL,
      "bad.yaml:2:10:", "gravity: must be > 0 m/s^2", NULL},
     {"total_weight: 117720", "total_weight: -1", NULL, NULL, FB_EINVAL,
@@ -589,9 +598,8 @@ static const bad_case bad_cases[] = {
      "bad.yaml:25:", "road.bump.first_contact: must be >= 0 s", NULL},
     /* Bump timing: RR leaves at 8.132 s (see check_bump_timing). */
     {"t_end: 15", "t_end: 8", NULL, NULL, FB_EINVAL,
-     "bad.yaml:25:9:", "road.bump: bump longer than the run",
-     "RR) leaves it at 8.132 s, not before "
-     "simulation.t_end = 8 s"},
+     "bad.yaml:25:", "road.bump.length: bump longer than the run",
+     "RR) leaves it at 8.132 s, not before the run's end at 8 s"},
     /* A single corner X 0.5 m ahead of LF meets a square bump (0 deg) at
      * 0 + 0.36 (1.9 - 2.4) = -0.18 s. */
     {"angle_deg: 45, first_contact: 5.0", "angle_deg: 0, first_contact: 0", "road:\n",
@@ -600,18 +608,18 @@ static const bad_case bad_cases[] = {
      NULL},
     /* Points off the floor (hull.edges), and two suspensions at one point. */
     {"x: 2.10, y: 0.55}", "x: 2.10, y: 1.55}", NULL, NULL, FB_EINVAL, "bad.yaml:14:",
-     "mounts[0].y: must lie on the hull's floor, between hull.edges.right_y = -1.05 and left_y "
-     "= "
-     "1.05 m (got 1.55)",
+     "mounts[0].y: must lie on the hull's floor, between the right end's y = -1.05 and the "
+     "left "
+     "end's y = 1.05 m (got 1.55)",
      NULL},
     {"x: -1.00, y: 1.05}", "x: -3.00, y: 1.05}", NULL, NULL, FB_EINVAL, "bad.yaml:22:",
-     "suspensions.axles[2].x: must lie on the hull's floor, between hull.edges.rear_x = "
-     "-2.657984123 and front_x = 2.478133119 m (got -3)",
+     "suspensions.axles[2].x: must lie on the hull's floor, between the rear edge's x = "
+     "-2.657984123 and the front edge's x = 2.478133119 m (got -3)",
      NULL},
     {"y: [-1.05, -0.55, 0.55, 1.05]", "y: [-1.05, -0.55, 0.55, 1.25]", NULL, NULL, FB_EINVAL,
-     "bad.yaml:12:", "load.points[3].y: must lie on the hull's floor", NULL},
+     "bad.yaml:12:", "load.points[3]: must lie on the hull's floor", NULL},
     {"x: [-2.00, -1.70,", "x: [-2.00, -2.00,", NULL, NULL, FB_EINVAL,
-     "bad.yaml:12:", "load.points[4]: at (-2, -1.05) m, where load.points[0] already is", NULL},
+     "bad.yaml:12:", "load.points[4]: at (-2, -1.05) m, where load point 0 already is", NULL},
     {"road:\n",
      "  corners: [{name: X, spring_k: 1e5, damper_c: 1e4, x: 0.40, y: 1.05}]\nroad:\n", NULL,
      NULL, FB_EINVAL, "bad.yaml:23:",
@@ -645,7 +653,7 @@ static const bad_case bad_cases[] = {
      "bad.yaml:23:", "outputs[0].of: a torsion signal measures no corner or mount", NULL},
     {"road:\n", "outputs: [{signal: acc, of: driver}, {signal: acc, of: driver}]\nroad:\n",
      NULL, NULL, FB_EINVAL,
-     "bad.yaml:23:", "outputs[1].name: 'driver_acc' is outputs[0]'s name already", NULL},
+     "bad.yaml:23:", "outputs[1].name: 'driver_acc' is output 0's name already", NULL},
     {"road:\n", "outputs: [{signal: torsion, name: t}]\nroad:\n", NULL, NULL, FB_EINVAL,
      "bad.yaml:23:", "outputs[0].name: 't' is a column of its own", NULL},
     {"road:\n", "outputs: [{signal: torsion, figure: 3, window: [20, 10]}]\nroad:\n", NULL,
@@ -669,8 +677,8 @@ static const bad_case bad_cases[] = {
      * corners, counted in a lumped payload's mass. */
     {"  Iyy: 15175.96\n", "  Iyy: 15175.96\n" HULL_MASS("battery", "300", "3.5"), NULL, NULL,
      FB_EINVAL, "bad.yaml:7:",
-     "hull.masses[0].x: must lie on the hull's floor, between hull.edges.rear_x = "
-     "-2.657984123 and front_x = 2.478133119 m (got 3.5)",
+     "hull.masses[0].x: must lie on the hull's floor, between the rear edge's x = "
+     "-2.657984123 and the front edge's x = 2.478133119 m (got 3.5)",
      NULL},
     {"  Iyy: 15175.96\n",
      "  Iyy: 15175.96\n  masses:\n    - {name: battery, mass: 300, x: 0, y: 0}\n"
@@ -693,9 +701,8 @@ static const bad_case bad_cases[] = {
     /* 117720 N / 9.81 = 12000 kg, less than the hull and its 8 t. */
     {"payload: weight-only", "payload: lumped", "  Iyy: 15175.96\n",
      "  Iyy: 15175.96\n" HULL_MASS("ballast", "8000", "0"), FB_EINVAL, "bad.yaml:12:12:",
-     "load.payload: a lumped payload needs load.total_weight / gravity (12000 kg) > hull.mass "
-     "+ "
-     "hull.masses (4041.72 + 8000 kg)",
+     "load.payload: a lumped payload needs the total weight / gravity (12000 kg) > the hull's "
+     "structure (4041.72 kg) + its declared masses (8000 kg)",
      NULL},
     /* Structure: corners. */
     {"  axles:", "  axels:", NULL, NULL, FB_EPARSE,

@@ -52,8 +52,28 @@ enum {
   FB_ERR_FILE_MAX = 1024,
   FB_ERR_KEY_MAX = 256,
   FB_ERR_SOURCE_MAX = 512,
-  FB_ERR_EXCERPT_MAX = 72 /* 64 bytes of text, its escapes and "..." */
+  FB_ERR_EXCERPT_MAX = 72, /* 64 bytes of text, its escapes and "..." */
+  FB_ERR_FIELD_MAX = 64
 };
+
+/* fb_err_part.element of a part that is no element of an array. */
+#define FB_ERR_NO_ELEMENT ((size_t)-1)
+
+/* What part of a description an error is about, as typed fields set
+ * where the error arises (fb_err.part): which item (kind, a number the
+ * describing layer defines, such as enum fb_part_kind of vehicle.h; 0
+ * none), which one of its list (index), which of its members (field, its
+ * name in the item's struct: "spring_k", "hull_mesh.x_rear"; "" the whole
+ * item) and which element of an array member. Whoever made the
+ * description says where that part came from (a file's line and key, an
+ * override, a program's argument) without the layer that raised the error
+ * knowing any of them, and without reading the message. */
+typedef struct fb_err_part {
+  int kind;
+  size_t index;
+  size_t element; /* FB_ERR_NO_ELEMENT: none */
+  char field[FB_ERR_FIELD_MAX];
+} fb_err_part;
 
 /* An error is a value: its code, its message, and, as fields set where
  * the error arises, what it is about. Nobody parses msg to find these. */
@@ -79,7 +99,15 @@ typedef struct fb_err {
    * mistake (/etc/shadow) is not copied anywhere; a front end may show
    * this to its user beside msg. */
   char excerpt[FB_ERR_EXCERPT_MAX];
+  /* The part of a description the error is about (kind 0: none); reset
+   * by fb_err_set. */
+  fb_err_part part;
 } fb_err;
+
+/* Records, for the error just set, the part of a description it is about
+ * (fb_err_part; field copied, cut to fit). Returns err->code (FB_OK if err
+ * is NULL). */
+int fb_err_set_part(fb_err *err, int kind, size_t index, size_t element, const char *field);
 
 /* Records, for the error just set, the key path or setting name it is
  * about (printf-formatted; err->msg is not changed). Returns err->code

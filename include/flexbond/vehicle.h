@@ -164,19 +164,21 @@ typedef struct fb_hull_mesh_params {
   int density;
 } fb_hull_mesh_params;
 
-/* Where a value of a scenario was written, for errors found after
- * loading. key is the value's logical key path, the one src/vehicle sets
- * in fb_err.key: "corners.LF.x", "mounts.driver.mass", "outputs[2]", and
- * for every other value its path in the file ("hull.mass",
- * "road.bump.height"); path is where in the file it was written
- * ("suspensions.axles[0].y", "wheel.mass" for an inherited default).
- * Strings owned by the scenario. */
-typedef struct fb_scenario_origin {
-  char *key;
-  char *path;
-  int line, column; /* 1-based */
-  char *override;   /* "--set KEY=VALUE" when an override replaced it, else NULL */
-} fb_scenario_origin;
+/* Where a description came from, as whoever made it keeps it (src/io
+ * keeps a file's origin of every value and its plausibility warnings):
+ * content behind ops, copied with the description (fb_scenario_clone)
+ * and freed with it. The library never looks inside: it names the parts
+ * of the description its errors are about (fb_err.part), and the maker
+ * says where they came from (fb_scenario_locate). */
+typedef struct fb_scenario_source fb_scenario_source;
+typedef struct fb_scenario_source_ops {
+  /* A deep copy of src into *out; FB_ENOMEM when memory runs out. */
+  int (*clone)(const fb_scenario_source *src, fb_scenario_source **out);
+  void (*free)(fb_scenario_source *src);
+} fb_scenario_source_ops;
+struct fb_scenario_source {
+  const fb_scenario_source_ops *ops;
+};
 
 /* One recorded signal of the vehicle (the scenario's `outputs` list,
  * docs/vehicle-outputs.md): a signal kind of one subsystem instance, or an
@@ -237,6 +239,40 @@ typedef enum fb_coupling_kind {
   FB_COUPLING_DISTRIBUTING = 1,
   FB_COUPLING_KINEMATIC = 2
 } fb_coupling_kind;
+
+/* The parts of a vehicle description an error can be about
+ * (fb_err.part.kind; fb_err_part.field is a member's name in the part's
+ * struct): the vehicle's own members (fb_scenario, index 0; "t_end",
+ * "hull_mesh.x_rear", "road_iso"), an item of one of its lists (index:
+ * its place in the list), or a load point (index k: load_x[k], load_y[k]).
+ * The library raises these, never a file's key: the description's maker
+ * says where the part came from (fb_scenario_locate for a file). */
+typedef enum fb_part_kind {
+  FB_PART_NONE = 0,
+  FB_PART_VEHICLE = 1,    /* fb_scenario's members */
+  FB_PART_CORNER = 2,     /* corner[index], fb_corner_params */
+  FB_PART_MOUNT = 3,      /* mount[index], fb_mount */
+  FB_PART_HULL_MASS = 4,  /* point_mass[index], fb_hull_point_mass */
+  FB_PART_SECTION = 5,    /* section[index], fb_hull_section */
+  FB_PART_OUTPUT = 6,     /* output[index], fb_output_spec */
+  FB_PART_LOAD_POINT = 7, /* (load_x[index], load_y[index]); field "" */
+  FB_PART_KINDS = 8
+} fb_part_kind;
+
+/* fb_err_set_part's arguments for member m of part kind k, index i:
+ * `fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, spring_k))`. The
+ * member's name is the C expression's, checked by the compiler through
+ * FB_PART_TYPE's struct. */
+#define FB_PART_AT(k, i, m) (k), (i), FB_ERR_NO_ELEMENT, fb_part_member_(k, m)
+/* The same for element e of array member m ("hull_mesh.bulkhead_x"). */
+#define FB_PART_ELEMENT(k, i, m, e) (k), (i), (e), fb_part_member_(k, m)
+#define fb_part_member_(k, m) (#m + 0 * offsetof(FB_PART_TYPE_##k, m))
+typedef struct fb_scenario FB_PART_TYPE_FB_PART_VEHICLE;
+typedef struct fb_corner_params FB_PART_TYPE_FB_PART_CORNER;
+typedef struct fb_mount FB_PART_TYPE_FB_PART_MOUNT;
+typedef struct fb_hull_point_mass FB_PART_TYPE_FB_PART_HULL_MASS;
+typedef struct fb_hull_section FB_PART_TYPE_FB_PART_SECTION;
+typedef struct fb_output_spec FB_PART_TYPE_FB_PART_OUTPUT;
 
 typedef struct fb_scenario {
   char *name;
@@ -327,14 +363,10 @@ typedef struct fb_scenario {
    * depends on besides the scenario itself (owned). */
   char **inputs;
   size_t ninputs;
-  /* Where each value was written (structured errors after loading:
-   * fb_scenario_locate), in reading order; owned. */
-  fb_scenario_origin *origin;
-  size_t norigins;
-  /* Values a real vehicle almost never has, each located at its value
-   * (fb_scenario_warning); owned. */
-  fb_err *warning;
-  size_t nwarnings;
+  /* Where the description came from (a file's origins of its values and
+   * plausibility warnings: fb_scenario_locate, fb_scenario_warning), its
+   * maker's; NULL for one made without a file. Owned. */
+  fb_scenario_source *source;
   fb_hull_mesh_params hull_mesh;        /* generator parameters */
   fb_mass_kind hull_mass_matrix;        /* consistent (default) or lumped */
   double hull_drill_factor;             /* fictitious drilling stiffness factor */
@@ -350,6 +382,12 @@ typedef struct fb_scenario {
   double hull_cutoff_hz; /* FB_HULL_MODES_AUTO: the band's top, Hz, in place of the
                             excitation's; 0: the excitation's */
 } fb_scenario;
+
+/* The part p of s in the description's own words, into buf (size bytes):
+ * the C path of the member ("corner[2] (LR).spring_k",
+ * "hull_mesh.bulkhead_x[1]", "load point 3"), for a description that no
+ * file or program argument gave. s may be NULL (no names). Returns buf. */
+char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size);
 
 /* The hull's attachment points, in the order of the hull's "attach"
  * port: the scenario's corners (s->corner[0 .. ncorners)), then its
@@ -423,6 +461,11 @@ typedef struct fb_scenario_override {
    * number, an expression over `parameters`, a choice ("static"). One
    * scalar (never YAML structure), one line, no control characters. */
   const char *value;
+  /* How the caller wrote the override, for its messages and for
+   * fb_err.source_text ("overrides['speed_kmh']=-5" from Python); NULL:
+   * "--set KEY=VALUE", the command line's. Initialise the struct by
+   * member names: members may be added. */
+  const char *label;
 } fb_scenario_override;
 
 /* Loads the scenario at path as fb_scenario_load does, the reader taking
@@ -462,9 +505,14 @@ int fb_scenario_override_key(const char *path, const char *key, char **full, fb_
  * "suspensions.axles[0].spring_k" "N/m"; docs/scenario-format.md), NULL
  * for a key without a unit or no key of the format. */
 const char *fb_scenario_key_unit(const char *full_path);
-/* Physical consistency (positive masses, stiffnesses, ...; bump inside the
- * run). FB_EINVAL naming the key, e.g. "suspensions.LF.spring_k: must be
- * > 0 (got -1)". */
+/* What a vehicle needs of a description, whoever made it: every value
+ * finite and physical (positive masses and stiffnesses, a Poisson's ratio
+ * in [0, 1/2), SI units), and the rules between values (points on the
+ * floor, unique names, the bump inside the run, outputs that name a
+ * corner or mount). FB_EINVAL about the part concerned (fb_err.part:
+ * "must be > 0 N/m (got -1)" about corner 2's spring_k), which the
+ * description's maker locates (fb_scenario_locate: the file's line and
+ * key). fb_vehicle_new checks its description so. */
 int fb_scenario_check(const fb_scenario *s, fb_err *err);
 /* For an error about s's values found after loading (building System 2's
  * hull, say), whose fb_err.key is a logical key of s->origin: sets err's

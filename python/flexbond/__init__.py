@@ -39,13 +39,24 @@ TRACKS = ("left", "right")
 
 # ---- The C structures the interface passes (flexbond/error.h, vehicle.h, bd.h).
 
+# fb_part_kind (flexbond/vehicle.h), by value; FB_ERR_NO_ELEMENT.
+_PART_KINDS = (None, "vehicle", "corner", "mount", "point_mass", "section", "output",
+               "load_point")
+_NO_ELEMENT = ctypes.c_size_t(-1).value
+
+
+class _ErrPart(ctypes.Structure):
+    _fields_ = [("kind", ctypes.c_int), ("index", ctypes.c_size_t),
+                ("element", ctypes.c_size_t), ("field", ctypes.c_char * 64)]
+
+
 class _Err(ctypes.Structure):
     _fields_ = [("code", ctypes.c_int), ("msg", ctypes.c_char * 4096),
                 ("origin", ctypes.c_int), ("origin_index", ctypes.c_size_t),
                 ("key", ctypes.c_char * 256), ("file", ctypes.c_char * 1024),
                 ("line", ctypes.c_int), ("column", ctypes.c_int),
                 ("source", ctypes.c_int), ("source_text", ctypes.c_char * 512),
-                ("excerpt", ctypes.c_char * 72)]
+                ("excerpt", ctypes.c_char * 72), ("part", _ErrPart)]
 
 
 class _Mode(ctypes.Structure):
@@ -55,7 +66,8 @@ class _Mode(ctypes.Structure):
 
 
 class _Override(ctypes.Structure):
-    _fields_ = [("key", ctypes.c_char_p), ("value", ctypes.c_char_p)]
+    _fields_ = [("key", ctypes.c_char_p), ("value", ctypes.c_char_p),
+                ("label", ctypes.c_char_p)]
 
 
 class _Descriptor(ctypes.Structure):
@@ -95,6 +107,7 @@ _PROTOTYPES = {
     "fb_scenario_load_overrides": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(_Override),
                                                   ctypes.c_size_t, _PP, _PERR]),
     "fb_scenario_free": (None, [_PP]),
+    "fb_scenario_locate": (ctypes.c_int, [_P, _PERR]),
     "fb_scenario_nwarnings": (ctypes.c_size_t, [_P]),
     "fb_scenario_warning": (_PERR, [_P, ctypes.c_size_t]),
     "fb_scenario_noutputs": (ctypes.c_size_t, [_P]),
@@ -174,7 +187,11 @@ class Error(Exception):
     value it is about: file, line and column (1-based, 0 unknown), key (its
     key path, "road.speed_kmh"), source_text (the override, for a value
     given in overrides), and excerpt: the one field of a data file (a table,
-    a profile) that failed, which message never quotes; str(error) shows it."""
+    a profile) that failed, which message never quotes; str(error) shows it.
+    part: the part of the vehicle it is about, as the library names it
+    (flexbond/vehicle.h, fb_part_kind), a tuple (kind, index, field, element)
+    such as ("corner", 2, "spring_k", None) or ("vehicle", 0, "hull_modes",
+    None); None when it is about no part."""
 
     def __init__(self, err):
         self.code = err.code
@@ -186,6 +203,10 @@ class Error(Exception):
         self.key = err.key.decode(errors="replace") or None
         self.source_text = err.source_text.decode(errors="replace") or None
         self.excerpt = err.excerpt.decode(errors="replace") or None
+        p = err.part
+        self.part = None if not 0 < p.kind < len(_PART_KINDS) else (
+            _PART_KINDS[p.kind], p.index, p.field.decode(errors="replace"),
+            None if p.element == _NO_ELEMENT else p.element)
         super().__init__(self.message if self.excerpt is None
                          else f"{self.message} (read: '{self.excerpt}')")
 
@@ -198,6 +219,15 @@ class PlausibilityWarning(UserWarning):
 
 def _check(rc, err):
     if rc != 0:
+        raise Error(err)
+
+
+def _check_about(s, rc, err):
+    """_check for a call on scenario s, whose error may be about one of its
+    values (Error.part): located first where that value was written (the
+    file's line and key, or the override as the caller wrote it)."""
+    if rc != 0:
+        _lib.fb_scenario_locate(s, ctypes.byref(err))
         raise Error(err)
 
 
@@ -416,9 +446,12 @@ class Scenario:
         self._ncalls = 0
         self.path = os.fspath(path)
         items = list((overrides or {}).items())
-        keep = [(_c_text(k, "override key"), _c_text(_text(v), "override value", key=k))
+        # An error about an override names it as the caller wrote it:
+        # overrides['speed_kmh']=-5, not flexbond's --set.
+        keep = [(_c_text(k, "override key"), _c_text(_text(v), "override value", key=k),
+                 _c_text("overrides[%r]=%r" % (k, v), "override key"))
                 for k, v in items]
-        ov = (_Override * max(1, len(keep)))(*[_Override(k, v) for k, v in keep])
+        ov = (_Override * max(1, len(keep)))(*[_Override(*o) for o in keep])
         err = _Err()
         _check(_lib.fb_scenario_load_overrides(_c_text(self.path, "path"), ov, len(keep),
                                                ctypes.byref(self._s), ctypes.byref(err)), err)
@@ -428,8 +461,8 @@ class Scenario:
         if strict and found:
             self.close()
             first = found[0]
-            first.message += (" (--strict refuses implausible values: %d in this scenario)"
-                              % len(found))
+            first.message += (" (strict=True refuses implausible values: %d in this "
+                              "scenario)" % len(found))
             first.args = (first.message,)
             raise first
         self.warnings = [w.message for w in found]
@@ -557,8 +590,8 @@ class Scenario:
                 opts.progress_fn = callback
                 v = ctypes.c_void_p()
                 err = _Err()
-                _check(_lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts), ctypes.byref(v),
-                                           ctypes.byref(err)), err)
+                _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts),
+                                                    ctypes.byref(v), ctypes.byref(err)), err)
                 try:
                     return use(v, stop)
                 finally:

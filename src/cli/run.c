@@ -1094,16 +1094,23 @@ static int write_animations(cli_outdir *od, const run_args *a, const fb_scenario
   return rc;
 }
 
-/* cli_report, except that an error about hull.fe.modes after
- * --hull-modes replaced it (overridden: more modes than the hull has) is
- * the option's: a usage error. The file's own value was checked, and
- * located, when the scenario was loaded; any other error about a value of
- * the scenario is located in its file (fb_scenario_locate). */
+/* 1 if err is about the scenario's member field (fb_err.part). */
+static int about_member(const fb_err *err, const char *field)
+{
+  return err->part.kind == FB_PART_VEHICLE && !strcmp(err->part.field, field);
+}
+
+/* cli_report, except that an error about the hull's modes after
+ * --hull-modes replaced them (overridden: more modes than the hull has) is
+ * the option's: a usage error; likewise --hull-cutoff. The file's own
+ * value was checked, and located, when the scenario was loaded; any other
+ * error about a value of the scenario is located in its file
+ * (fb_scenario_locate). */
 static int report(const run_args *a, const fb_scenario *s, int rc, fb_err *err)
 {
-  if (rc != FB_OK && s && a->hull_modes_kind >= 0 && !strcmp(err->key, "hull.fe.modes"))
+  if (rc != FB_OK && s && a->hull_modes_kind >= 0 && about_member(err, "hull_modes"))
     return cli_usage_error("run", "option '--hull-modes': %s", err->msg);
-  if (rc != FB_OK && s && a->hull_cutoff > 0 && !strcmp(err->key, "hull.fe.cutoff_hz"))
+  if (rc != FB_OK && s && a->hull_cutoff > 0 && about_member(err, "hull_cutoff_hz"))
     return cli_usage_error("run", "option '--hull-cutoff': %s", err->msg);
   if (rc != FB_OK && s)
     fb_scenario_locate(s, err);
@@ -1239,7 +1246,7 @@ static int run_converged_system(const run_args *a, const fb_scenario *s, const d
   char density[16];
   snprintf(density, sizeof density, "%d", s->hull_converged_density);
   snprintf(c->label, sizeof c->label, "System 2 at density %d", s->hull_converged_density);
-  const fb_scenario_override ov = {"hull.mesh.density", density};
+  const fb_scenario_override ov = {.key = "hull.mesh.density", .value = density};
   int rc = fb_scenario_load_overrides(a->scenario_path, &ov, 1, &c->s, err);
   if (rc == FB_OK) {
     override(a, c->s);

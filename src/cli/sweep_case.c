@@ -237,8 +237,8 @@ void sweep_run_case(const sweep_args *a, size_t i, sweep_case *c)
 {
   fb_scenario_override ov[SWEEP_MAX_KEYS];
   for (size_t k = 0; k < a->nkeys; ++k)
-    ov[k] =
-        (fb_scenario_override){a->keys[k].key, a->keys[k].values[sweep_value_index(a, i, k)]};
+    ov[k] = (fb_scenario_override){.key = a->keys[k].key,
+                                   .value = a->keys[k].values[sweep_value_index(a, i, k)]};
   fb_err err;
   fb_err_clear(&err);
   fb_scenario *s = NULL;

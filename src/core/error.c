@@ -20,6 +20,7 @@ void fb_err_clear(fb_err *err)
   err->source = FB_SOURCE_NONE;
   err->source_text[0] = '\0';
   err->excerpt[0] = '\0';
+  err->part = (fb_err_part){0, 0, FB_ERR_NO_ELEMENT, ""};
 }
 
 /* The length of the well-formed UTF-8 sequence at t (The Unicode
@@ -146,7 +147,19 @@ int fb_err_vset(fb_err *err, int code, const char *fmt, va_list ap)
   err->source = FB_SOURCE_NONE;
   err->source_text[0] = '\0';
   err->excerpt[0] = '\0';
+  err->part = (fb_err_part){0, 0, FB_ERR_NO_ELEMENT, ""};
   return code;
+}
+
+int fb_err_set_part(fb_err *err, int kind, size_t index, size_t element, const char *field)
+{
+  if (!err)
+    return FB_OK;
+  err->part.kind = kind;
+  err->part.index = index;
+  err->part.element = element;
+  snprintf(err->part.field, sizeof err->part.field, "%s", field ? field : "");
+  return err->code;
 }
 
 int fb_err_set_key(fb_err *err, const char *fmt, ...)

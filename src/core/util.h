@@ -68,6 +68,24 @@ int fb_check_memory(double bytes, size_t limit, fb_err *err, const char *fmt, ..
 struct timespec;
 double fb_seconds_since(const struct timespec *t0);
 
+/* The bounds of a value's range: FB_RANGE_LO (lo) and FB_RANGE_HI (hi),
+ * each closed or open (_OPEN); none: any finite value. */
+enum { FB_RANGE_LO = 1, FB_RANGE_HI = 2, FB_RANGE_LO_OPEN = 4, FB_RANGE_HI_OPEN = 8 };
+/* 1 if x lies within the bounds (x finite is the caller's). */
+int fb_range_contains(unsigned bounds, double lo, double hi, double x);
+/* The range as a message says it, into buf: "> 0", "in [0, 0.5)", "<= 1";
+ * "" for none. */
+void fb_range_text(unsigned bounds, double lo, double hi, char *buf, size_t size);
+
+/* Candidate names for "did you mean" suggestions (suggest.c): name i of
+ * ctx's n. */
+typedef const char *(*fb_name_fn)(const void *ctx, size_t i);
+/* The candidate closest to word by edit distance (about one edit per
+ * three characters at most), or NULL if none is close. */
+const char *fb_suggest(const char *word, size_t n, fb_name_fn name_at, const void *ctx);
+/* Same over a NULL-terminated list of strings. */
+const char *fb_suggest_list(const char *word, const char *const *list);
+
 /* Input files are opened and read by core/textfile.h (fb_open_input,
  * fb_read_file), with their checks. */
 

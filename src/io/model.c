@@ -178,8 +178,8 @@ static int ml_probe_target(const ml_ctx *c, const fb_bg *bg, struct fy_node *at,
   long i = on_bond ? fb_bg_find_bond(bg, target) : fb_bg_find_element(bg, target);
   if (i < 0) {
     const char *near = on_bond
-                           ? ml_suggest(target, fb_bg_nbonds(bg), ml_bond_name_at, bg)
-                           : ml_suggest(target, fb_bg_nelements(bg), ml_element_name_at, bg);
+                           ? fb_suggest(target, fb_bg_nbonds(bg), ml_bond_name_at, bg)
+                           : fb_suggest(target, fb_bg_nelements(bg), ml_element_name_at, bg);
     char hint[256] = "";
     if (near)
       snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);

@@ -520,7 +520,7 @@ static const char *ml_type_name_at(const void *ctx, size_t i)
 
 static int ml_unknown_type(const ml_ctx *c, struct fy_node *at, const char *type)
 {
-  const char *near = ml_suggest(type, ML_NTYPES + c->ndefs, ml_type_name_at, c);
+  const char *near = fb_suggest(type, ML_NTYPES + c->ndefs, ml_type_name_at, c);
   char hint[256] = "";
   if (near)
     snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);

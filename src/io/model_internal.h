@@ -167,13 +167,6 @@ int ml_line(struct fy_node *n);
  * has them: alias copies have none); 0 if unknown. */
 int ml_mark(struct fy_node *n, int *line, int *col);
 
-/* Candidate names for "did you mean" suggestions. */
-typedef const char *(*ml_name_fn)(const void *ctx, size_t i);
-/* Closest candidate to word by edit distance, or NULL if none is close. */
-const char *ml_suggest(const char *word, size_t n, ml_name_fn name_at, const void *ctx);
-/* Same over a NULL-terminated list of strings. */
-const char *ml_suggest_list(const char *word, const char *const *list);
-
 /* 1 if n is absent or a YAML null (empty, ~, null). */
 int ml_is_null(struct fy_node *n);
 /* Value of key in map; NULL if absent. *key_node gets the key (may be NULL). */

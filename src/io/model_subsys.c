@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "io/model_internal.h"
 
 /* ---- Parameters. */
@@ -48,7 +49,7 @@ static int ml_check_override(const ml_ctx *c, struct fy_node *defaults,
     names[i] =
         fy_node_get_scalar0(fy_node_pair_key(fy_node_mapping_get_by_index(defaults, (int)i)));
   names[n] = NULL;
-  const char *near = name ? ml_suggest_list(name, names) : NULL;
+  const char *near = name ? fb_suggest_list(name, names) : NULL;
   char hint[256] = "";
   if (near)
     snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);
@@ -266,7 +267,7 @@ static int ml_check_instance_port(const ml_ctx *c, struct fy_node *at, const ml_
                    "'%s' is a subsystem instance: name one of its ports as '%s.PORT' (%s)",
                    e->name, e->name, list);
   ml_port_list pl = {c, def};
-  const char *near = ml_suggest(port, n, ml_port_name_at, &pl);
+  const char *near = fb_suggest(port, n, ml_port_name_at, &pl);
   char hint[256] = "";
   if (near)
     snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);
@@ -316,7 +317,7 @@ static int ml_check_ref(const ml_ctx *c, const ml_scope *s, struct fy_node *at, 
   head[hlen] = '\0';
   const ml_entry *e = ml_scope_find(s, head);
   if (!e) {
-    const char *near = ml_suggest(head, s->nentries, ml_entry_name_at, s);
+    const char *near = fb_suggest(head, s->nentries, ml_entry_name_at, s);
     char hint[256] = "";
     if (near)
       snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);
@@ -496,7 +497,7 @@ int ml_domain(const ml_ctx *c, struct fy_node *n, fb_bg_domain *out)
       *out = values[i];
       return FB_OK;
     }
-  const char *near = ml_suggest_list(text, names);
+  const char *near = fb_suggest_list(text, names);
   char hint[256] = "";
   if (near)
     snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);

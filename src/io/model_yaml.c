@@ -938,76 +938,6 @@ static int ml_check_line(const ml_ctx *c, struct fy_node *n, const char *text, i
 /* ---- Suggestions: optimal string alignment distance (Levenshtein with
  * adjacent transpositions; Damerau, CACM 7(3), 1964), case-insensitive. */
 
-enum { ML_SUGGEST_MAX = 64 };
-
-static size_t ml_min3(size_t a, size_t b, size_t c)
-{
-  size_t m = a < b ? a : b;
-  return m < c ? m : c;
-}
-
-static size_t ml_edit_distance(const char *a, const char *b)
-{
-  size_t la = strlen(a), lb = strlen(b);
-  size_t rows[3][ML_SUGGEST_MAX + 1];
-  size_t *prev2 = rows[0], *prev = rows[1], *cur = rows[2];
-  for (size_t j = 0; j <= lb; ++j)
-    prev[j] = j;
-  for (size_t i = 1; i <= la; ++i) {
-    cur[0] = i;
-    for (size_t j = 1; j <= lb; ++j) {
-      int ca = tolower((unsigned char)a[i - 1]), cb = tolower((unsigned char)b[j - 1]);
-      size_t cost = ca != cb;
-      cur[j] = ml_min3(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost);
-      if (i > 1 && j > 1 && ca == tolower((unsigned char)b[j - 2]) &&
-          tolower((unsigned char)a[i - 2]) == cb && prev2[j - 2] + 1 < cur[j])
-        cur[j] = prev2[j - 2] + 1;
-    }
-    size_t *t = prev2;
-    prev2 = prev;
-    prev = cur;
-    cur = t;
-  }
-  return prev[lb];
-}
-
-const char *ml_suggest(const char *word, size_t n, ml_name_fn name_at, const void *ctx)
-{
-  size_t lw = strlen(word);
-  if (lw == 0 || lw > ML_SUGGEST_MAX)
-    return NULL;
-  const char *best = NULL;
-  size_t best_d = (size_t)-1;
-  for (size_t i = 0; i < n; ++i) {
-    const char *cand = name_at(ctx, i);
-    size_t lc = cand ? strlen(cand) : 0;
-    if (lc == 0 || lc > ML_SUGGEST_MAX)
-      continue;
-    size_t d = ml_edit_distance(word, cand);
-    /* Close enough: about one edit per three characters, and never a
-     * complete rewrite of a short word. */
-    size_t longest = lw > lc ? lw : lc;
-    if (d <= (lw + 2) / 3 && d < longest && d < best_d) {
-      best = cand;
-      best_d = d;
-    }
-  }
-  return best;
-}
-
-static const char *ml_list_at(const void *ctx, size_t i)
-{
-  return ((const char *const *)ctx)[i];
-}
-
-const char *ml_suggest_list(const char *word, const char *const *list)
-{
-  size_t n = 0;
-  while (list[n])
-    ++n;
-  return ml_suggest(word, n, ml_list_at, list);
-}
-
 /* ---- Typed getters. */
 
 static const char *ml_kind_word(struct fy_node *n)
@@ -1105,7 +1035,7 @@ int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allow
       ++i;
     if (allowed[i])
       continue;
-    const char *near = ml_suggest_list(text, allowed);
+    const char *near = fb_suggest_list(text, allowed);
     if (near)
       return ml_fail_key(c, map, key, FB_EPARSE, "unknown key '%s' (did you mean '%s'?)", text,
                          near);

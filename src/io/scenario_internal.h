@@ -28,7 +28,8 @@ extern const sch_table sc_schema;
  * evaluated into params (empty) for the expressions, the nov overrides
  * (full paths) read in place of the file's values, and moves the values'
  * origins into s. On failure s may hold allocations, which
- * fb_scenario_free releases. Cross-field rules are fb_scenario_check's. */
+ * fb_scenario_free releases. Ranges are sc_check_ranges', the rules between
+ * values fb_scenario_check's. */
 int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
             fb_scenario *s);
 
@@ -41,11 +42,53 @@ int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov
 int sc_plausible_values(fb_scenario *s, fb_err *err);
 int sc_plausible_rules(fb_scenario *s, fb_err *err);
 
+/* Where a value of a scenario was written, for errors found after
+ * loading. key is the value's logical key path, the one an error's part
+ * maps to (sc_part_key): "corners.LF.x", "mounts.driver.mass", "outputs[2]", and
+ * for every other value its path in the file ("hull.mass",
+ * "road.bump.height"); path is where in the file it was written
+ * ("suspensions.axles[0].y", "wheel.mass" for an inherited default).
+ * Strings owned by the scenario. */
+typedef struct sc_value_origin {
+  char *key;
+  char *path;
+  int line, column; /* 1-based */
+  char *override;   /* "--set KEY=VALUE" when an override replaced it, else NULL */
+} sc_value_origin;
+
+/* A loaded scenario's source (fb_scenario_source): where each value was
+ * written, in reading order, and the values a real vehicle almost never
+ * has, each located at its value (fb_scenario_warning). A copy of the
+ * scenario copies the origins, not the warnings: it is edited and checked
+ * again. */
+typedef struct sc_source {
+  fb_scenario_source base;
+  sc_value_origin *origin;
+  size_t norigins;
+  fb_err *warning;
+  size_t nwarnings;
+} sc_source;
+
+/* s's source as the loader made it; NULL when it has none or another's. */
+sc_source *sc_source_of(const fb_scenario *s);
+/* A new, empty source for s (its s->source); FB_ENOMEM. */
+int sc_source_new(fb_scenario *s, fb_err *err);
+
 /* The origin of the value with logical key key, or of the nearest value
  * enclosing it ("corners.LF" for "corners.LF.damper_table[2]"), NULL if
  * none; *rest gets the part of key below the origin's. */
-const fb_scenario_origin *sc_origin_find(const fb_scenario *s, const char *key,
-                                         const char **rest);
+const sc_value_origin *sc_origin_find(const fb_scenario *s, const char *key, const char **rest);
+
+/* Every value of s against its key's range in the format's table, in
+ * the file's units; the first error located (fb_scenario_locate). */
+int sc_check_ranges(const fb_scenario *s, fb_err *err);
+
+/* The logical key of the part of s an error is about (fb_err.part: a
+ * member of the scenario, of a corner, ...) into key: the key of the
+ * format's table that gives that member, under its item's key
+ * ("corners.LF.spring_k", "hull.mesh.generator.bulkheads[1]",
+ * "load.points[3]"). 0 when no key gives it, or s has no such item. */
+int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size);
 
 /* fb_scenario_locate; with named set, for a message that names its key
  * already (the solver's limits): only "FILE:LINE:COL: " is prefixed. */

@@ -36,7 +36,7 @@ static const char *ov_name(const char *path)
   return dot ? dot + 1 : path;
 }
 
-/* ml_name_fn over an ml_paths: each path's last key name. */
+/* fb_name_fn over an ml_paths: each path's last key name. */
 static const char *ov_name_at(const void *ctx, size_t i)
 {
   return ov_name(((const ml_paths *)ctx)->path[i]);
@@ -88,7 +88,7 @@ static int ov_keys(struct fy_node *root, ml_paths *p, fb_err *err)
  * sections to start a path from. */
 static int ov_no_name(const ml_ctx *c, const ml_paths *keys, const char *name)
 {
-  const char *near = ml_suggest(name, keys->n, ov_name_at, keys);
+  const char *near = fb_suggest(name, keys->n, ov_name_at, keys);
   for (size_t i = 0; near && i < keys->n; ++i)
     if (ov_name(keys->path[i]) == near)
       return fb_err_set(c->err, FB_EINVAL,
@@ -204,7 +204,10 @@ static int ov_load(const char *fn, const char *text, size_t len, const char *nam
       break;
     o[i].value = ov[i].value;
     snprintf(o[i].path, sizeof o[i].path, "%s", ov[i].key);
-    snprintf(o[i].label, sizeof o[i].label, "--set %s=%s", ov[i].key, ov[i].value);
+    if (ov[i].label)
+      snprintf(o[i].label, sizeof o[i].label, "%s", ov[i].label);
+    else
+      snprintf(o[i].label, sizeof o[i].label, "--set %s=%s", ov[i].key, ov[i].value);
   }
   if (!rc)
     rc = path ? sc_load_file(path, o, n, out, e) : sc_load(text, len, name, ".", o, n, out, e);

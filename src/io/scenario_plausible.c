@@ -37,14 +37,17 @@ typedef struct sc_warn_ctx {
 static int sc_keep(fb_scenario *s, fb_err *w, fb_err *err)
 {
   fb_scenario_locate(s, w);
-  for (size_t i = 0; i < s->nwarnings; ++i)
-    if (!strcmp(s->warning[i].msg, w->msg))
+  sc_source *src = sc_source_of(s);
+  if (!src)
+    return fb_err_set(err, FB_EINVAL, "a warning about a scenario the loader did not make");
+  for (size_t i = 0; i < src->nwarnings; ++i)
+    if (!strcmp(src->warning[i].msg, w->msg))
       return FB_OK;
-  fb_err *grown = realloc(s->warning, (s->nwarnings + 1) * sizeof *grown);
+  fb_err *grown = realloc(src->warning, (src->nwarnings + 1) * sizeof *grown);
   if (!grown)
     return fb_err_set(err, FB_ENOMEM, "out of memory keeping a warning");
-  s->warning = grown;
-  s->warning[s->nwarnings++] = *w;
+  src->warning = grown;
+  src->warning[src->nwarnings++] = *w;
   return FB_OK;
 }
 
@@ -112,8 +115,9 @@ static int sc_warn_masses(fb_scenario *s, fb_err *err)
 /* 1 if a warning about the value with logical key key is kept. */
 static int sc_warned(const fb_scenario *s, const char *key)
 {
-  for (size_t i = 0; i < s->nwarnings; ++i)
-    if (!strcmp(s->warning[i].key, key))
+  const sc_source *src = sc_source_of(s);
+  for (size_t i = 0; src && i < src->nwarnings; ++i)
+    if (!strcmp(src->warning[i].key, key))
       return 1;
   return 0;
 }
@@ -141,10 +145,12 @@ int sc_plausible_rules(fb_scenario *s, fb_err *err)
 
 size_t fb_scenario_nwarnings(const fb_scenario *s)
 {
-  return s ? s->nwarnings : 0;
+  const sc_source *src = sc_source_of(s);
+  return src ? src->nwarnings : 0;
 }
 
 const fb_err *fb_scenario_warning(const fb_scenario *s, size_t i)
 {
-  return s && i < s->nwarnings ? &s->warning[i] : NULL;
+  const sc_source *src = sc_source_of(s);
+  return src && i < src->nwarnings ? &src->warning[i] : NULL;
 }

@@ -465,7 +465,7 @@ static int sc_output_defaults(const ml_ctx *c, fb_output_spec *o, const fb_outpu
   return rc ? fb_err_set(c->err, FB_ENOMEM, "out of memory for an output") : FB_OK;
 }
 
-/* ml_name_fn over the signal kinds. */
+/* fb_name_fn over the signal kinds. */
 static const char *sc_kind_signal(const void *ctx, size_t i)
 {
   return ((const fb_output_kind *)ctx)[i].signal;
@@ -480,7 +480,7 @@ static int sc_output_kind(const ml_ctx *c, struct fy_node *node, const char *sig
     return FB_OK;
   size_t n = 0;
   const fb_output_kind *kinds = fb_vehicle_output_kinds(&n);
-  const char *near = ml_suggest(signal, n, sc_kind_signal, kinds);
+  const char *near = fb_suggest(signal, n, sc_kind_signal, kinds);
   char hint[96] = "";
   if (near)
     snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);
@@ -670,7 +670,14 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
       .doc = (d), __VA_ARGS__)
 #define CUSTOM(p, u, t, n, d, o)                                                               \
   KEY(.path = (p), .type = SCH_CUSTOM, .unit = (u), .type_doc = (t), n, .doc = (d), .ops = (o))
+/* A CUSTOM that stands for a member (S_IS, C_IS). */
+#define CUSTOM_IS(p, u, t, n, d, o, m)                                                         \
+  KEY(.path = (p), .type = SCH_CUSTOM, .unit = (u), .type_doc = (t), n, .doc = (d),            \
+      .ops = (o), m)
 #define SECTION(p, n, d, o) KEY(.path = (p), .type = SCH_SECTION, n, .doc = (d), .ops = (o))
+/* A SECTION that stands for a member (S_IS). */
+#define SECTION_IS(p, n, d, o, m)                                                              \
+  KEY(.path = (p), .type = SCH_SECTION, n, .doc = (d), .ops = (o), m)
 /* where: ITEMS or NAMED. */
 #define LIST(p, n, d, t, v, o, where)                                                          \
   KEY(.path = (p), .type = SCH_LIST, n, .doc = (d), .items = (t), .view = (v), .ops = (o),     \
@@ -700,12 +707,21 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
 /* Stores: kind (DOUBLE, INT, ...) at a field of the scenario, a corner, a
  * mount or an output. */
 #define NO_STORE .store = SCH_STORE_NONE
-#define S_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_scenario, f)
-#define C_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_corner_params, f)
-#define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f)
-#define O_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f)
-#define P_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_point_mass, f)
-#define H_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_section, f)
+#define S_AT(kind, f)                                                                          \
+  .store = SCH_STORE_##kind, .offset = offsetof(fb_scenario, f), .member = #f
+#define C_AT(kind, f)                                                                          \
+  .store = SCH_STORE_##kind, .offset = offsetof(fb_corner_params, f), .member = #f
+#define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f), .member = #f
+#define O_AT(kind, f)                                                                          \
+  .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f), .member = #f
+#define P_AT(kind, f)                                                                          \
+  .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_point_mass, f), .member = #f
+#define H_AT(kind, f)                                                                          \
+  .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_section, f), .member = #f
+/* A key that stores no member of its own (a section, a custom value)
+ * but stands for member f of the scenario in errors (fb_err.part). */
+#define S_IS(f) .member = (#f + 0 * offsetof(fb_scenario, f))
+#define C_IS(f) .member = (#f + 0 * offsetof(fb_corner_params, f))
 /* A list's items: the scenario's array arr, their number at count; an
  * item of the file makes per of them. NAMED: visited by their names. */
 #define ITEMS(arr, count, per)                                                                 \
@@ -798,11 +814,11 @@ static const sch_key sc_corner_keys[] = {
            PLAUSIBLE(1e3, 1e8, "a suspension spring is 1e3 to 1e8 N/m")),
     NUMBER("damper_c", "N s/m", NONNEGATIVE, ONE_OF("damper"),
            "linear shock absorber coefficient", C_OFF(damper_c), .ops = &sc_linear_present),
-    CUSTOM("damper_table", NULL, "`{file, velocity, force}` or `{points: [[v, F], ...]}`",
-           ONE_OF("damper"),
-           "a nonlinear shock absorber: force (N) against velocity (m/s, compression "
-           "positive), 2 to 64 points, passive",
-           &sc_damper_table),
+    CUSTOM_IS("damper_table", NULL, "`{file, velocity, force}` or `{points: [[v, F], ...]}`",
+              ONE_OF("damper"),
+              "a nonlinear shock absorber: force (N) against velocity (m/s, compression "
+              "positive), 2 to 64 points, passive",
+              &sc_damper_table, C_IS(damper_npoints)),
     NUMBER("motion_ratio", NULL, POSITIVE, INHERIT("suspensions.motion_ratio"),
            "spring travel / wheel travel relative to the hull", C_OFF(motion_ratio)),
     SECTION("wheel", OPT, "this corner's wheel, where it differs from the top-level `wheel`",
@@ -852,7 +868,7 @@ static const sch_key sc_keys[] = {
     STRING(TEXT, "frame.origin", REQ,
            "what the origin of the positions is (`front axle, floor`)",
            S_AT(STRING, frame_origin)),
-    SECTION("hull", REQ, "the hull", &sc_hull_ops),
+    SECTION_IS("hull", REQ, "the hull", &sc_hull_ops, S_IS(hull_mass_given)),
     NUMBER("hull.mass", "kg", POSITIVE, OPT,
            "the hull structure's mass (`masses` aside); with mass, Ixx and Iyy left out, the "
            "finite-element hull's",
@@ -864,9 +880,10 @@ static const sch_key sc_keys[] = {
     NUMBER("hull.Iyy", "kg m^2", POSITIVE, OPT,
            "the structure's pitch inertia about its centre of mass", S_OFF(hull_iyy),
            .ops = &sc_mass_present),
-    SECTION("hull.centre_of_mass", OPT,
-            "the hull's centre of mass in the frame (only with `frame`; default: the mesh's)",
-            &sc_cg_present),
+    SECTION_IS("hull.centre_of_mass", OPT,
+               "the hull's centre of mass in the frame (only with `frame`; default: the "
+               "mesh's)",
+               &sc_cg_present, S_IS(hull_cg_given)),
     NUMBER("hull.centre_of_mass.x", "m", ANY, REQ, "its x", S_OFF(hull_cg_x)),
     NUMBER("hull.centre_of_mass.y", "m", ANY, REQ, "its y", S_OFF(hull_cg_y)),
     LIST("hull.masses", OPT,
@@ -922,8 +939,9 @@ static const sch_key sc_keys[] = {
            S_OFF(coupling_radius)),
     STRING(NAME, "hull.mesh.coupling.surface", REQ,
            "the element set whose nodes those are (`FLOOR`)", S_AT(STRING, coupling_surface)),
-    SECTION("hull.mesh.generator", ONE_OF("mesh"),
-            "the built-in generator's geometry (docs/hull-mesh.md)", &sc_generator_present),
+    SECTION_IS("hull.mesh.generator", ONE_OF("mesh"),
+               "the built-in generator's geometry (docs/hull-mesh.md)", &sc_generator_present,
+               S_IS(hull_mesh)),
     NUMBER("hull.mesh.generator.width", "m", POSITIVE, REQ, "between the side walls",
            S_OFF(hull_mesh.width)),
     NUMBER("hull.mesh.generator.height", "m", POSITIVE, REQ, "floor to roof",
@@ -945,7 +963,8 @@ static const sch_key sc_keys[] = {
           "element rows along each glacis plate", S_AT(INT, hull_mesh.nose_rows)),
     WHOLE("hull.mesh.generator.nose_rung_divisions", CLOSED(1, 64), REQ,
           "divisions of the side walls' nose rung", S_AT(INT, hull_mesh.nose_rung_divisions)),
-    SECTION("hull.fe", OPT, "System 2's finite elements (with `hull.mesh`)", &sc_fe_ops),
+    SECTION_IS("hull.fe", OPT, "System 2's finite elements (with `hull.mesh`)", &sc_fe_ops,
+               S_IS(has_fe_hull)),
     CHOICE("hull.fe.mass_matrix", sc_masses, REQ, "mass matrix", S_AT(INT, hull_mass_matrix)),
     NUMBER("hull.fe.drill_factor", NULL, POSITIVE, REQ,
            "fictitious drilling stiffness of the quadrilaterals (fem.h)",
@@ -958,12 +977,13 @@ static const sch_key sc_keys[] = {
            "`modal`: the hull's free-free modes (diagonal fields); `nodal`: its nodal "
            "displacements (sparse fields, the reference)",
            S_AT(INT, hull_coordinates)),
-    CUSTOM("hull.fe.modes", NULL, "`auto`, `all` or N", OPT,
-           "modal only: `auto` (the default) the rigid-body modes and blocks of "
-           "load-dependent Ritz vectors from every attachment point, the load and every hull "
-           "output, as many as the excitation's band needs; `all` every mode (a dense "
-           "eigen-solve); N >= 6 the N lowest with the static correction of those patterns",
-           &sc_hull_modes),
+    CUSTOM_IS(
+        "hull.fe.modes", NULL, "`auto`, `all` or N", OPT,
+        "modal only: `auto` (the default) the rigid-body modes and blocks of "
+        "load-dependent Ritz vectors from every attachment point, the load and every hull "
+        "output, as many as the excitation's band needs; `all` every mode (a dense "
+        "eigen-solve); N >= 6 the N lowest with the static correction of those patterns",
+        &sc_hull_modes, S_IS(hull_modes)),
     NUMBER("hull.fe.cutoff_hz", "Hz", POSITIVE, OPT,
            "with `modes: auto`: the top of the band the basis must converge over, in place "
            "of the highest frequency that reaches the hull",
@@ -975,8 +995,8 @@ static const sch_key sc_keys[] = {
            S_OFF(total_weight),
            PLAUSIBLE(1e3, 2e6, "a road vehicle weighs 1 kN to 2 MN (0.1 to 200 t)")),
     CHOICE("load.payload", sc_payloads, REQ, "payload mass model", S_AT(INT, payload)),
-    CUSTOM("load.points", "m", "`{grid: {x: [...], y: [...]}}` or `[[x, y], ...]`", REQ,
-           "the load points, on the floor, 1 mm apart at least", &sc_points),
+    CUSTOM_IS("load.points", "m", "`{grid: {x: [...], y: [...]}}` or `[[x, y], ...]`", REQ,
+              "the load points, on the floor, 1 mm apart at least", &sc_points, S_IS(load_x)),
     LIST("mounts", OPT, "bodies on a spring and a damper to a hull point (driver, engine)",
          &sc_mount_table, "mounts", &sc_named, NAMED(mount, nmounts, 1)),
     SECTION("wheel", OPT, "every corner's wheel and tire unless the corner gives its own",
@@ -992,7 +1012,8 @@ static const sch_key sc_keys[] = {
            "the deflection (Hunt & Crossley 1975): `tire_c` at the static deflection under an "
            "equal share of the weight, 0 at first contact",
            NO_STORE),
-    SECTION("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions),
+    SECTION_IS("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions,
+               S_IS(corner)),
     NUMBER("suspensions.motion_ratio", NULL, POSITIVE, DEF(1),
            "every corner's spring travel / wheel travel unless it gives its own", NO_STORE),
     LIST("suspensions.axles", OPT,
@@ -1024,7 +1045,8 @@ static const sch_key sc_keys[] = {
            .ops = &sc_deg),
     NUMBER("road.bump.first_contact", "s", NONNEGATIVE, REQ,
            "time the first corner's wheel meets the leading edge", S_OFF(bump_time)),
-    SECTION("road.iso8608", ONE_OF("road"), "an ISO 8608 random road (docs/roads.md)", &sc_iso),
+    SECTION_IS("road.iso8608", ONE_OF("road"), "an ISO 8608 random road (docs/roads.md)",
+               &sc_iso, S_IS(road_iso)),
     CUSTOM("road.iso8608.class", NULL, "letter `A` .. `H`", REQ,
            "road class: Gd(n0) = 16e-6 m^3 for A, times 4 per class", &sc_class),
     WHOLE("road.iso8608.seed", CLOSED(0, 9007199254740992.0), REQ,
@@ -1072,6 +1094,111 @@ static const sch_key sc_keys[] = {
 
 const sch_table sc_schema = TABLE(sc_keys, sc_root_done);
 
+/* ---- Every value in its range, in the file's units (scenario_internal.h). */
+
+typedef struct sc_range_check {
+  fb_err *err;
+  int rc;
+} sc_range_check;
+
+static int sc_check_one(const sch_value *v, void *ctx)
+{
+  sc_range_check *c = ctx;
+  c->rc = sch_check_value(v, c->err);
+  return c->rc;
+}
+
+int sc_check_ranges(const fb_scenario *s, fb_err *err)
+{
+  sc_range_check c = {err, FB_OK};
+  sch_each(&sc_schema, s, sc_check_one, &c);
+  return c.rc ? fb_scenario_locate(s, err) : FB_OK;
+}
+
+/* ---- A part of the description as its key (fb_err.part). */
+
+/* The table of part kind kind's items, and the logical key of item i of
+ * s ("corners.LF", "outputs[2]"; "" for the scenario itself) into
+ * prefix; NULL when s has no such item. */
+static const sch_table *sc_part_table(const fb_scenario *s, int kind, size_t i, char *prefix,
+                                      size_t size)
+{
+  prefix[0] = '\0';
+  switch (kind) {
+  case FB_PART_VEHICLE: return &sc_schema;
+  case FB_PART_CORNER:
+    if (i >= s->ncorners || !s->corner[i].name)
+      return NULL;
+    snprintf(prefix, size, "corners.%s", s->corner[i].name);
+    return &sc_corner_table;
+  case FB_PART_MOUNT:
+    if (i >= s->nmounts || !s->mount[i].name)
+      return NULL;
+    snprintf(prefix, size, "mounts.%s", s->mount[i].name);
+    return &sc_mount_table;
+  case FB_PART_HULL_MASS:
+    if (i >= s->npoint_masses || !s->point_mass[i].name)
+      return NULL;
+    snprintf(prefix, size, "hull.masses.%s", s->point_mass[i].name);
+    return &sc_point_mass_table;
+  case FB_PART_SECTION:
+    if (i >= s->nsections)
+      return NULL;
+    snprintf(prefix, size, "hull.sections[%zu]", i);
+    return &sc_section_table;
+  case FB_PART_OUTPUT:
+    if (i >= s->noutputs)
+      return NULL;
+    snprintf(prefix, size, "outputs[%zu]", i);
+    return &sc_output_table;
+  default: return NULL;
+  }
+}
+
+/* 1 if s has an origin at exactly key. */
+static int sc_has_origin(const fb_scenario *s, const char *key)
+{
+  const char *rest = NULL;
+  return sc_origin_find(s, key, &rest) && rest && !*rest;
+}
+
+int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size)
+{
+  char prefix[SCH_PATH_MAX];
+  if (p->kind == FB_PART_LOAD_POINT) {
+    if (p->index >= s->nload)
+      return 0;
+    snprintf(key, size, "load.points[%zu]", p->index);
+    return 1;
+  }
+  const sch_table *t = sc_part_table(s, p->kind, p->index, prefix, sizeof prefix);
+  if (!t || (!p->field[0] && !prefix[0]))
+    return 0;
+  if (!p->field[0]) {
+    snprintf(key, size, "%s", prefix);
+    return 1;
+  }
+  /* Two keys may give one member (a road's front_start): the one the
+   * file wrote, else the first. */
+  int found = 0;
+  for (size_t k = 0; k < t->n; ++k) {
+    const sch_key *sk = &t->key[k];
+    if (!sk->member || strcmp(sk->member, p->field) != 0)
+      continue;
+    char full[SCH_PATH_MAX];
+    int n = snprintf(full, sizeof full, "%s%s%s", prefix, prefix[0] ? "." : "", sk->path);
+    if (p->element != FB_ERR_NO_ELEMENT && n > 0 && (size_t)n < sizeof full)
+      snprintf(full + n, sizeof full - (size_t)n, "[%zu]", p->element);
+    const int written = sc_has_origin(s, full);
+    if (!found || written)
+      snprintf(key, size, "%s", full);
+    found = 1;
+    if (written)
+      break;
+  }
+  return found;
+}
+
 /* ---- Reading, visiting, documenting. */
 
 /* The reader's origins, given ones only, moved into s. */
@@ -1080,15 +1207,18 @@ static int sc_keep_origins(sch_reader *r, fb_scenario *s)
   size_t n = 0;
   for (size_t i = 0; i < r->norigins; ++i)
     n += r->origin[i].given;
-  s->origin = calloc(n ? n : 1, sizeof *s->origin);
-  if (!s->origin)
+  sc_source *src = sc_source_of(s);
+  if (!src)
+    return fb_err_set(r->c->err, FB_EINVAL, "a scenario without the loader's source");
+  src->origin = calloc(n ? n : 1, sizeof *src->origin);
+  if (!src->origin)
     return fb_err_set(r->c->err, FB_ENOMEM, "out of memory for %zu origins", n);
   for (size_t i = 0; i < r->norigins; ++i) {
     sch_origin *o = &r->origin[i];
     if (!o->given)
       continue;
-    fb_scenario_origin *to = &s->origin[s->norigins++];
-    *to = (fb_scenario_origin){o->key, o->path, o->line, o->column, NULL};
+    sc_value_origin *to = &src->origin[src->norigins++];
+    *to = (sc_value_origin){o->key, o->path, o->line, o->column, NULL};
     o->key = o->path = NULL;
     if (o->override && !(to->override = fb_strdup(o->override)))
       return fb_err_set(r->c->err, FB_ENOMEM, "out of memory for %zu origins", n);
@@ -1127,7 +1257,7 @@ static int sc_visit_value(const sch_value *v, void *ctx)
   char text[256];
   sch_format(v, text, sizeof text);
   const char *rest = NULL;
-  const fb_scenario_origin *o = sc_origin_find(visit->s, v->path, &rest);
+  const sc_value_origin *o = sc_origin_find(visit->s, v->path, &rest);
   const fb_scenario_value value = {v->path, o && !*rest ? o->path : NULL,
                                    v->key->unit ? v->key->unit : "", v->key->doc, text};
   return visit->fn(&value, visit->ctx);

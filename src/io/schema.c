@@ -402,7 +402,7 @@ static int sch_no_key(sch_walk *w, const char *name)
   char keys[512], hint[SCH_PATH_MAX + 32] = "";
   sch_children(w->t, w->pre, names);
   sch_key_names(w->t, w->pre, keys, sizeof keys);
-  const char *near = ml_suggest_list(name, names);
+  const char *near = fb_suggest_list(name, names);
   if (near)
     snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
   return sch_refuse(w, "has no key '%s' (%sits keys: %s)", name, hint, keys);
@@ -652,7 +652,7 @@ static int sch_choice(const sch_reader *r, const sch_key *k, struct fy_node *nod
     int w = snprintf(list + len, sizeof list - len, "%s%s", i ? " | " : "", k->choices[i]);
     len = w > 0 && len + (size_t)w < sizeof list ? len + (size_t)w : len;
   }
-  const char *near = ml_suggest_list(text, k->choices);
+  const char *near = fb_suggest_list(text, k->choices);
   char hint[96] = "";
   if (near)
     snprintf(hint, sizeof hint, " (did you mean '%s'?)", near);
@@ -1033,20 +1033,10 @@ int sch_each(const sch_table *t, const void *base, sch_value_fn fn, void *ctx)
   return sch_each_in(t, "", base, "", fn, ctx);
 }
 
-/* "> 0 N/m", "in [0, 0.5)" of k's range into buf. */
+/* "> 0", "in [0, 0.5)" of k's range into buf. */
 static void sch_range_text(const sch_key *k, char *buf, size_t size)
 {
-  const int lo = (k->bounds & SCH_LO) != 0, hi = (k->bounds & SCH_HI) != 0;
-  const int lo_open = (k->bounds & SCH_LO_OPEN) != 0, hi_open = (k->bounds & SCH_HI_OPEN) != 0;
-  if (lo && hi)
-    snprintf(buf, size, "in %c%g, %g%c", lo_open ? '(' : '[', k->lo, k->hi,
-             hi_open ? ')' : ']');
-  else if (lo)
-    snprintf(buf, size, "%s %g", lo_open ? ">" : ">=", k->lo);
-  else if (hi)
-    snprintf(buf, size, "%s %g", hi_open ? "<" : "<=", k->hi);
-  else
-    buf[0] = '\0';
+  fb_range_text(k->bounds, k->lo, k->hi, buf, size);
 }
 
 /* 1 if the stored value x is inside k's range (bounds converted to the
@@ -1057,11 +1047,7 @@ static int sch_in_range(const sch_key *k, const void *base, double x)
   if (k->store == SCH_STORE_DOUBLE && to)
     x = *(const double *)sch_at_const(base, k->offset);
   const double lo = to ? to(k->lo) : k->lo, hi = to ? to(k->hi) : k->hi;
-  if ((k->bounds & SCH_LO) && !((k->bounds & SCH_LO_OPEN) ? x > lo : x >= lo))
-    return 0;
-  if ((k->bounds & SCH_HI) && !((k->bounds & SCH_HI_OPEN) ? x < hi : x <= hi))
-    return 0;
-  return 1;
+  return fb_range_contains(k->bounds, lo, hi, x);
 }
 
 int sch_check_value(const sch_value *v, fb_err *err)

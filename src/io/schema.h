@@ -24,6 +24,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "core/util.h"
 #include "io/model_internal.h"
 
 typedef enum sch_type {
@@ -60,7 +61,12 @@ typedef enum sch_need {
 } sch_need;
 
 /* Ends of a range, sch_key.bounds. Open ends exclude their bound. */
-enum { SCH_LO = 1, SCH_HI = 2, SCH_LO_OPEN = 4, SCH_HI_OPEN = 8 };
+enum {
+  SCH_LO = FB_RANGE_LO,
+  SCH_HI = FB_RANGE_HI,
+  SCH_LO_OPEN = FB_RANGE_LO_OPEN,
+  SCH_HI_OPEN = FB_RANGE_HI_OPEN
+};
 
 /* Longest key path. */
 enum { SCH_PATH_MAX = 256 };
@@ -138,6 +144,11 @@ struct sch_key {
   size_t count_at, item_size, per_item;
   int named;
   const sch_ops *ops;
+  /* The description's member the key gives (its name in the struct its
+   * table fills: "spring_k", "hull_mesh.x_rear"), set by the store macros
+   * or, for a section or a custom value, by the table: what maps an
+   * error's fb_err.part back to the key. NULL: none. */
+  const char *member;
 };
 
 struct sch_table {

@@ -119,7 +119,7 @@ void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes)
 }
 
 /* The scenario's outputs as probes on the assembled graph (targets and
- * weights owned). An error names the output's logical key. */
+ * weights owned). An error is about its output (fb_err.part). */
 static int make_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec **out,
                        fb_err *err)
 {
@@ -128,9 +128,9 @@ static int make_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec 
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   int rc = FB_OK;
   for (size_t k = 0; !rc && k < s->noutputs; ++k) {
-    rc = fb_vehicle_output_probe(s, hull, &s->output[k], &p[k], err);
-    if (rc)
-      fb_err_set_key(err, "outputs[%zu]", k);
+    rc = fb_vehicle_output_probe(s, hull, k, &p[k], err);
+    if (rc && err && !err->part.kind)
+      fb_err_set_part(err, FB_PART_OUTPUT, k, FB_ERR_NO_ELEMENT, "");
   }
   if (rc) {
     fb_vehicle_probes_free(&p, s->noutputs);

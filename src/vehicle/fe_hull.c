@@ -44,8 +44,8 @@ static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const si
     return fb_err_set(err, FB_EMODEL,
                       "the mesh has no node set %s (the vehicle needs LOAD, one set per "
                       "mounted body named as it in capitals, SUSP_<CORNER> per corner, "
-                      "MASS_<NAME> per hull mass, FRONT_EDGE and REAR_EDGE, as 'flexbond "
-                      "mesh --export' writes)",
+                      "MASS_<NAME> per hull mass, FRONT_EDGE and REAR_EDGE: "
+                      "docs/hull-mesh.md)",
                       name);
   if (n != count)
     return fb_err_set(err, FB_EMODEL, "the mesh's node set %s has %zu nodes, expected %zu",
@@ -53,11 +53,18 @@ static int nset_nodes(const fb_mesh *m, const char *name, size_t count, const si
   return FB_OK;
 }
 
+/* Where a point of the description is: its part (kind and index), and
+ * the members of its x and y (both "" for a load point, one item). */
+typedef struct point_part {
+  int kind;
+  size_t index;
+  const char *x, *y;
+} point_part;
+
 /* Checks that node sits at (x, y) in the hull's axes (within 1 mm). The
- * error's key is the scenario's logical key of the coordinate that is off,
- * key_x or key_y (the caller locates it in the file: fb_scenario_locate). */
-static int check_at(const fb_mesh *m, size_t node, const char *what, const char *key_x,
-                    const char *key_y, double x, double y, fb_err *err)
+ * error is about the point's coordinate that is off (fb_err.part). */
+static int check_at(const fb_mesh *m, size_t node, const char *what, const point_part *pp,
+                    double x, double y, fb_err *err)
 {
   const double *p = fb_mesh_node_xyz(m, node);
   const int x_off = fabs(p[0] - x) > 1e-3;
@@ -67,18 +74,18 @@ static int check_at(const fb_mesh *m, size_t node, const char *what, const char 
              "the scenario puts %s at (%.6g, %.6g) m, the mesh's node %ld at (%.6g, %.6g) m "
              "(they must agree within 1 mm)",
              what, x, y, fb_mesh_node_id(m, node), p[0], p[1]);
-  return fb_err_set_key(err, "%s", x_off ? key_x : key_y);
+  return fb_err_set_part(err, pp->kind, pp->index, FB_ERR_NO_ELEMENT, x_off ? pp->x : pp->y);
 }
 
-/* Mesh node set of attachment a ("SUSP_LF", "DRIVER"), its logical key
- * prefix ("corners.LF", "mounts.driver") and point; new strings. */
-static int attach_names(const fb_scenario *s, size_t a, char **set, char **key, double *x,
+/* Mesh node set of attachment a ("SUSP_LF", "DRIVER"; a new string), its
+ * part and point. */
+static int attach_names(const fb_scenario *s, size_t a, char **set, point_part *pp, double *x,
                         double *y)
 {
   if (a < s->ncorners) {
     const fb_corner_params *c = &s->corner[a];
     *set = fb_strdup_printf("SUSP_%s", c->name);
-    *key = fb_strdup_printf("corners.%s", c->name);
+    *pp = (point_part){FB_PART_CORNER, a, "x", "y"};
     *x = c->x;
     *y = c->y;
   } else {
@@ -86,20 +93,19 @@ static int attach_names(const fb_scenario *s, size_t a, char **set, char **key, 
     *set = fb_strdup(mt->name);
     for (char *p = *set; p && *p; ++p)
       *p = (char)toupper((unsigned char)*p);
-    *key = fb_strdup_printf("mounts.%s", mt->name);
+    *pp = (point_part){FB_PART_MOUNT, a - s->ncorners, "x", "y"};
     *x = mt->x;
     *y = mt->y;
   }
-  return *set && *key ? FB_OK : FB_ENOMEM;
+  return *set ? FB_OK : FB_ENOMEM;
 }
 
 /* Attachment a's node, and its coupling: the node of its one-node set
  * within 1 mm of the point; with hull.mesh.coupling, any such node as it
  * is, else the scenario's coupling (fb_hull_coupling_build), whose errors
- * carry the point's key. */
+ * are about the point. */
 static int attach_one(const fb_scenario *s, fb_fe_hull *h, size_t a, const char *set,
-                      const char *key, const char *kx, const char *ky, double x, double y,
-                      fb_err *err)
+                      const point_part *pp, double x, double y, fb_err *err)
 {
   const size_t *nodes = NULL;
   size_t n = 0;
@@ -111,12 +117,12 @@ static int attach_one(const fb_scenario *s, fb_fe_hull *h, size_t a, const char 
     if (!on_node) {
       const int rc = fb_hull_coupling_build(s, h->mesh, set, x, y, &h->attach_coupling[a],
                                             &h->attach_node[a], err);
-      return rc ? fb_err_set_key(err, "%s", key), rc : FB_OK;
+      return rc ? fb_err_set_part(err, pp->kind, pp->index, FB_ERR_NO_ELEMENT, ""), rc : FB_OK;
     }
   }
   int rc = nset_nodes(h->mesh, set, 1, &nodes, err);
   if (!rc)
-    rc = check_at(h->mesh, nodes[0], set, kx, ky, x, y, err);
+    rc = check_at(h->mesh, nodes[0], set, pp, x, y, err);
   if (!rc)
     h->attach_node[a] = nodes[0];
   return rc ? rc : fb_hull_coupling_node(nodes[0], &h->attach_coupling[a], err);
@@ -130,21 +136,15 @@ static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
   int rc = h->attach_node && h->attach_coupling ? FB_OK
                                                 : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t a = 0; !rc && a < h->nattach; ++a) {
-    char *set = NULL, *key = NULL;
+    char *set = NULL;
+    point_part pp;
     double x = 0.0, y = 0.0;
-    rc = attach_names(s, a, &set, &key, &x, &y);
-    char *kx = rc ? NULL : fb_strdup_printf("%s.x", key);
-    char *ky = rc ? NULL : fb_strdup_printf("%s.y", key);
-    if (!rc && !(kx && ky))
-      rc = FB_ENOMEM;
+    rc = attach_names(s, a, &set, &pp, &x, &y);
     if (rc)
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
     if (!rc)
-      rc = attach_one(s, h, a, set, key, kx, ky, x, y, err);
+      rc = attach_one(s, h, a, set, &pp, x, y, err);
     free(set);
-    free(key);
-    free(kx);
-    free(ky);
   }
   return rc;
 }
@@ -177,12 +177,12 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   if (!rc && !(h->load_coupling = calloc(s->nload, sizeof *h->load_coupling)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; !rc && k < s->nload; ++k) {
-    char what[32], key[48];
+    char what[32];
     snprintf(what, sizeof what, "LOAD node %zu", k + 1);
-    snprintf(key, sizeof key, "load.points[%zu]", k);
+    const point_part pp = {FB_PART_LOAD_POINT, k, "", ""};
     const size_t j = match_node(h->mesh, nodes, s->nload, used, k, s->load_x[k], s->load_y[k]);
     used[j] = 1;
-    rc = check_at(h->mesh, nodes[j], what, key, key, s->load_x[k], s->load_y[k], err);
+    rc = check_at(h->mesh, nodes[j], what, &pp, s->load_x[k], s->load_y[k], err);
     h->load_node[k] = nodes[j];
     if (!rc)
       rc = fb_hull_coupling_node(nodes[j], &h->load_coupling[k], err);
@@ -190,7 +190,8 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
   free(used);
   h->nload = s->nload;
   const char *const edges[2] = {"FRONT_EDGE", "REAR_EDGE"};
-  const char *const edge_x[2] = {"hull.edges.front_x", "hull.edges.rear_x"};
+  const char *const edge_x[2] = {fb_part_member_(FB_PART_VEHICLE, edge_front_x),
+                                 fb_part_member_(FB_PART_VEHICLE, edge_rear_x)};
   for (int k = 0; !rc && k < 2; ++k) {
     rc = nset_nodes(h->mesh, edges[k], 2, &nodes, err);
     const int swap =
@@ -199,13 +200,14 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
     const double x = k == 0 ? s->edge_front_x : s->edge_rear_x;
     char what[32];
     snprintf(what, sizeof what, "%s's left end", edges[k]);
+    point_part pp = {FB_PART_VEHICLE, 0, edge_x[k],
+                     fb_part_member_(FB_PART_VEHICLE, edge_left_y)};
     if (!rc)
-      rc =
-          check_at(h->mesh, left, what, edge_x[k], "hull.edges.left_y", x, s->edge_left_y, err);
+      rc = check_at(h->mesh, left, what, &pp, x, s->edge_left_y, err);
     snprintf(what, sizeof what, "%s's right end", edges[k]);
+    pp.y = fb_part_member_(FB_PART_VEHICLE, edge_right_y);
     if (!rc)
-      rc = check_at(h->mesh, right, what, edge_x[k], "hull.edges.right_y", x, s->edge_right_y,
-                    err);
+      rc = check_at(h->mesh, right, what, &pp, x, s->edge_right_y, err);
     h->edge_node[2 * k] = left;
     h->edge_node[2 * k + 1] = right;
   }
@@ -213,7 +215,7 @@ static int resolve_load_and_edges(const fb_scenario *s, fb_fe_hull *h, fb_err *e
 }
 
 /* The node of each declared hull mass, MASS_<NAME>: one node, at the
- * mass's (x, y). A missing or wrong set has the mass's logical key. */
+ * mass's (x, y). A missing or wrong set is the mass's error. */
 static int resolve_point_masses(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
 {
   const size_t n = s->npoint_masses;
@@ -224,24 +226,21 @@ static int resolve_point_masses(const fb_scenario *s, fb_fe_hull *h, fb_err *err
   for (size_t k = 0; !rc && k < n; ++k) {
     const fb_hull_point_mass *m = &s->point_mass[k];
     char *set = fb_strdup_printf("MASS_%s", m->name);
-    char *kx = fb_strdup_printf("hull.masses.%s.x", m->name);
-    char *ky = fb_strdup_printf("hull.masses.%s.y", m->name);
+    const point_part pp = {FB_PART_HULL_MASS, k, "x", "y"};
     const size_t *nodes = NULL;
     for (char *c = set; c && *c; ++c)
       *c = (char)toupper((unsigned char)*c);
-    if (!set || !kx || !ky)
+    if (!set)
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
     if (!rc && (rc = nset_nodes(h->mesh, set, 1, &nodes, err)))
-      fb_err_set_key(err, "hull.masses.%s", m->name);
+      fb_err_set_part(err, FB_PART_HULL_MASS, k, FB_ERR_NO_ELEMENT, "");
     if (!rc)
-      rc = check_at(h->mesh, nodes[0], set, kx, ky, m->x, m->y, err);
+      rc = check_at(h->mesh, nodes[0], set, &pp, m->x, m->y, err);
     if (!rc) {
       h->point_mass_node[k] = nodes[0];
       h->point_mass[k] = m->mass;
     }
     free(set);
-    free(kx);
-    free(ky);
   }
   h->npoint_masses = rc ? 0 : n;
   return rc;
@@ -269,22 +268,22 @@ static int apply_sections(const fb_scenario *s, fb_mesh *m, fb_err *err)
     const fb_hull_section *sec = &s->section[i];
     for (size_t j = 0; j < i; ++j)
       if (strcasecmp(s->section[j].set, sec->set) == 0) {
-        fb_err_set(err, FB_EINVAL,
-                   "element set '%s' has a section already (hull.sections[%zu])", sec->set, j);
-        return fb_err_set_key(err, "hull.sections[%zu].set", i);
+        fb_err_set(err, FB_EINVAL, "element set '%s' has a section already (section %zu)",
+                   sec->set, j);
+        return fb_err_set_part(err, FB_PART_AT(FB_PART_SECTION, i, set));
       }
     if (!fb_mesh_elset(m, sec->set, NULL, NULL)) {
       char names[512];
       elset_names(m, names, sizeof names);
       fb_err_set(err, FB_EINVAL, "the hull mesh has no element set '%s' (its sets: %s)",
                  sec->set, names[0] ? names : "none");
-      return fb_err_set_key(err, "hull.sections[%zu].set", i);
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_SECTION, i, set));
     }
     const fb_shell_props p = {sec->young,     sec->poisson, sec->density,
                               sec->thickness, 0.0,          sec->nonstructural_mass};
     const int rc = fb_mesh_set_section(m, sec->set, &p, err);
     if (rc)
-      return fb_err_set_key(err, "hull.sections[%zu]", i), rc;
+      return fb_err_set_part(err, FB_PART_SECTION, i, FB_ERR_NO_ELEMENT, ""), rc;
   }
   return FB_OK;
 }
@@ -347,9 +346,9 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   *out = NULL;
   if (!s->has_fe_hull)
     return fb_err_set(err, FB_EINVAL,
-                      "%s: System 2 needs the hull's finite-element model: add hull.mesh and "
-                      "hull.fe (docs/scenario-format.md)",
-                      s->path ? s->path : "scenario");
+                      "System 2 needs the hull's finite-element model: a mesh and its "
+                      "elements (docs/scenario-format.md)"),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, has_fe_hull));
   /* The scenario's material and thickness apply to the elements that
    * neither a deck's *SHELL SECTION nor hull.sections give properties. */
   const fb_shell_props props = {s->young,     s->poisson,           s->density,
@@ -360,26 +359,26 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
     rc = fb_mesh_clone(s->hull_source_mesh, &mesh, err);
   else if (!s->hull_deck)
     /* A scenario the loader did not complete, or changed since: the
-     * generator's errors about a scenario value carry its logical key
-     * (the caller locates it); the others start with "hull mesh:". */
+     * generator's errors about a scenario value name its part (the
+     * caller locates it); the others start with "hull mesh:". */
     rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
   else {
     fb_err_set(err, FB_EINVAL,
                "%s: the deck is not read (the scenario's hull_source_mesh; the loader reads "
                "it)",
                s->hull_deck);
-    return fb_err_set_key(err, "hull.mesh.deck");
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_deck));
   }
   if (rc)
     return rc;
   /* A deck's errors of size and of its node sets, which keep no line,
-   * name the deck alone; a node that is off keeps the key of the
+   * name the deck alone; a node that is off stays the error of the
    * scenario's point. */
   rc = fe_hull_of_mesh(s, &mesh, &props, out, err);
   if (rc && s->hull_deck) {
     fb_err_prefix(err, "%s: ", s->hull_deck);
-    if (!err || !err->key[0])
-      fb_err_set_key(err, "hull.mesh.deck");
+    if (err && !err->part.kind)
+      fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_deck));
   }
   return rc;
 }

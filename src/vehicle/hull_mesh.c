@@ -148,11 +148,23 @@ int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb
   return FB_OK;
 }
 
+/* The error just set (its code) is about the generator's parameter
+ * member (fb_hull_mesh_params, the scenario's hull_mesh), element element.
+ * Returns code. */
+static int param_part(fb_err *err, const char *member, size_t element, int code)
+{
+  char field[FB_ERR_FIELD_MAX];
+  snprintf(field, sizeof field, "hull_mesh.%s", member);
+  fb_err_set_part(err, FB_PART_VEHICLE, 0, element, field);
+  return code;
+}
+
 static int check_count(const char *name, int value, int max, fb_err *err)
 {
   if (value < 1 || value > max)
-    return fb_err_set(err, FB_EINVAL, "hull mesh: %s must be in 1 .. %d (got %d)", name, max,
-                      value);
+    return param_part(err, name, FB_ERR_NO_ELEMENT,
+                      fb_err_set(err, FB_EINVAL, "hull mesh: %s must be in 1 .. %d (got %d)",
+                                 name, max, value));
   return FB_OK;
 }
 
@@ -162,23 +174,30 @@ static int check_params(const fb_hull_mesh_params *p, fb_err *err)
   const char *dim_names[] = {"width", "height", "nose_length"};
   for (size_t i = 0; i < 3; ++i)
     if (!(isfinite(dims[i]) && dims[i] > 0.0))
-      return fb_err_set(err, FB_EINVAL, "hull mesh: %s must be > 0 (got %g)", dim_names[i],
-                        dims[i]);
+      return param_part(err, dim_names[i], FB_ERR_NO_ELEMENT,
+                        fb_err_set(err, FB_EINVAL, "hull mesh: %s must be > 0 (got %g)",
+                                   dim_names[i], dims[i]));
   if (!(isfinite(p->x_rear) && isfinite(p->x_front) && p->x_front > p->x_rear))
-    return fb_err_set(err, FB_EINVAL, "hull mesh: x_front (%g) must be > x_rear (%g)",
-                      p->x_front, p->x_rear);
+    return param_part(err, "x_front", FB_ERR_NO_ELEMENT,
+                      fb_err_set(err, FB_EINVAL,
+                                 "hull mesh: x_front (%g) must be > x_rear (%g)", p->x_front,
+                                 p->x_rear));
   if (!(p->nose_height > 0.0 && p->nose_height < p->height))
-    return fb_err_set(err, FB_EINVAL,
-                      "hull mesh: nose_height must be in (0, height = %g) (got %g)", p->height,
-                      p->nose_height);
+    return param_part(err, "nose_height", FB_ERR_NO_ELEMENT,
+                      fb_err_set(err, FB_EINVAL,
+                                 "hull mesh: nose_height must be in (0, height = %g) (got %g)",
+                                 p->height, p->nose_height));
   if (p->nbulkheads > FB_HULL_MAX_BULKHEADS)
-    return fb_err_set(err, FB_EINVAL, "hull mesh: at most %d bulkheads (got %zu)",
-                      FB_HULL_MAX_BULKHEADS, p->nbulkheads);
+    return param_part(err, "bulkhead_x", FB_ERR_NO_ELEMENT,
+                      fb_err_set(err, FB_EINVAL, "hull mesh: at most %d bulkheads (got %zu)",
+                                 FB_HULL_MAX_BULKHEADS, p->nbulkheads));
   for (size_t b = 0; b < p->nbulkheads; ++b)
     if (!(p->bulkhead_x[b] > p->x_rear && p->bulkhead_x[b] < p->x_front))
-      return fb_err_set(err, FB_EINVAL,
-                        "hull mesh: bulkhead_x[%zu] = %g must lie inside the box (%g, %g)", b,
-                        p->bulkhead_x[b], p->x_rear, p->x_front);
+      return param_part(
+          err, "bulkhead_x", b,
+          fb_err_set(err, FB_EINVAL,
+                     "hull mesh: bulkhead_x[%zu] = %g must lie inside the box (%g, %g)", b,
+                     p->bulkhead_x[b], p->x_rear, p->x_front));
   int rc = check_count("side_rows", p->side_rows, MAX_DIVISIONS, err);
   if (rc == FB_OK)
     rc = check_count("nose_rows", p->nose_rows, MAX_DIVISIONS, err);
@@ -267,9 +286,10 @@ void fb_hull_mesh_centroid(const fb_scenario *s, const fb_hull_mesh_params *p, d
 
 typedef struct line_src {
   double value;
-  char what[80]; /* the scenario's logical key of the value, e.g. "corners.LF.x" */
-  int geometric; /* a plate's own line (wall, bulkhead): its value wins */
-  size_t origin; /* index in insertion order */
+  fb_err_part part; /* the description's value it comes from (an error's fb_err.part) */
+  char what[80];    /* that value for a reader: "corner LF's x", "bulkhead 2" */
+  int geometric;    /* a plate's own line (wall, bulkhead): its value wins */
+  size_t origin;    /* index in insertion order */
 } line_src;
 
 typedef struct lines {
@@ -294,13 +314,29 @@ static int cmp_src(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
-static void add_src(lines *l, double value, const char *what, int geometric)
+static void add_src(lines *l, double value, const fb_err_part *part, const char *what,
+                    int geometric)
 {
   line_src *s = &l->src[l->nsrc];
   s->value = value;
+  s->part = *part;
   snprintf(s->what, sizeof s->what, "%s", what);
   s->geometric = geometric;
   s->origin = l->nsrc++;
+}
+
+/* The part (kind, index, element, field) as a value. */
+static fb_err_part part_of(int kind, size_t index, size_t element, const char *field)
+{
+  fb_err_part p = {kind, index, element, ""};
+  snprintf(p.field, sizeof p.field, "%s", field);
+  return p;
+}
+
+/* Records part as the error's (fb_err.part); returns err->code. */
+static int set_part(fb_err *err, const fb_err_part *part)
+{
+  return fb_err_set_part(err, part->kind, part->index, part->element, part->field);
 }
 
 /* Sorts the sources and merges those within MERGE_TOL of the line's
@@ -324,7 +360,7 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
                  "at %s = %.9g m it is %.3g m from %s (%s = %.9g m): the generated hull "
                  "mesh's node lines must coincide or be at least %g m apart",
                  axis, s->value, gap, l->src[i - 1].what, axis, l->src[i - 1].value, MIN_GAP);
-      return fb_err_set_key(err, "%s", s->what);
+      return set_part(err, &s->part);
     }
     if (gap > MERGE_TOL) {
       l->values[l->n++] = s->value;
@@ -335,7 +371,7 @@ static int lines_merge(lines *l, const char *axis, fb_err *err)
                  "coincides with %s (%s = %.9g m): two plates of the generated hull mesh on "
                  "one line",
                  owner->what, axis, s->value);
-      return fb_err_set_key(err, "%s", s->what);
+      return set_part(err, &s->part);
     }
     if (s->geometric) {
       owner = s;
@@ -353,21 +389,26 @@ static size_t npoints(const fb_scenario *s)
   return fb_scenario_nattach(s) + s->nload + s->npoint_masses;
 }
 
-/* Logical key of special point k's coordinate axis ('x' or 'y'): a
- * corner's, a mount's or a hull mass's, or a load point's
- * ("load.points[i]", both axes: a grid's point is no single value of the
- * file; fb_scenario_locate finds load.points). */
-static void point_name(const fb_scenario *s, size_t k, char axis, char *buf, size_t size)
+/* The part of special point k's coordinate axis ("x" or "y"): a
+ * corner's, a mount's or a hull mass's member, or a load point (one item
+ * for both axes), and its words for a reader ("corner LF's x"). */
+static void point_part(const fb_scenario *s, size_t k, const char *axis, fb_err_part *part,
+                       char *what, size_t size)
 {
   const size_t na = fb_scenario_nattach(s);
-  if (k < s->ncorners)
-    snprintf(buf, size, "corners.%s.%c", s->corner[k].name, axis);
-  else if (k < na)
-    snprintf(buf, size, "mounts.%s.%c", s->mount[k - s->ncorners].name, axis);
-  else if (k < na + s->nload)
-    snprintf(buf, size, "load.points[%zu]", k - na);
-  else
-    snprintf(buf, size, "hull.masses.%s.%c", s->point_mass[k - na - s->nload].name, axis);
+  if (k < s->ncorners) {
+    *part = part_of(FB_PART_CORNER, k, FB_ERR_NO_ELEMENT, axis);
+    snprintf(what, size, "corner %s's %s", s->corner[k].name, axis);
+  } else if (k < na) {
+    *part = part_of(FB_PART_MOUNT, k - s->ncorners, FB_ERR_NO_ELEMENT, axis);
+    snprintf(what, size, "mount %s's %s", s->mount[k - s->ncorners].name, axis);
+  } else if (k < na + s->nload) {
+    *part = part_of(FB_PART_LOAD_POINT, k - na, FB_ERR_NO_ELEMENT, "");
+    snprintf(what, size, "load point %zu's %s", k - na, axis);
+  } else {
+    *part = part_of(FB_PART_HULL_MASS, k - na - s->nload, FB_ERR_NO_ELEMENT, axis);
+    snprintf(what, size, "hull mass %s's %s", s->point_mass[k - na - s->nload].name, axis);
+  }
 }
 
 /* Position (x, y) of special point k in the vehicle axes. */
@@ -422,21 +463,28 @@ static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, doubl
   if (!xl->src || !yl->src)
     return fb_err_set(err, FB_ENOMEM, "hull mesh: out of memory for the node lines");
   const double half = 0.5 * p->width;
-  /* Sources are named by their scenario keys (fb_err.key of an error). */
-  add_src(xl, p->x_rear, "hull.mesh.generator.x_rear", 1);
-  add_src(xl, p->x_front, "hull.mesh.generator.x_front", 1);
-  add_src(yl, -half, "hull.mesh.generator.width", 1);
-  add_src(yl, half, "hull.mesh.generator.width", 1);
+  /* Sources are named by the description's values (fb_err.part of an
+   * error). */
+  const fb_err_part rear = part_of(FB_PART_AT(FB_PART_VEHICLE, 0, hull_mesh.x_rear));
+  const fb_err_part front = part_of(FB_PART_AT(FB_PART_VEHICLE, 0, hull_mesh.x_front));
+  const fb_err_part width = part_of(FB_PART_AT(FB_PART_VEHICLE, 0, hull_mesh.width));
+  add_src(xl, p->x_rear, &rear, "the rear wall", 1);
+  add_src(xl, p->x_front, &front, "the front end of the box", 1);
+  add_src(yl, -half, &width, "the right side wall", 1);
+  add_src(yl, half, &width, "the left side wall", 1);
   for (size_t b = 0; b < p->nbulkheads; ++b) {
     char what[64];
-    snprintf(what, sizeof what, "hull.mesh.generator.bulkheads[%zu]", b);
-    add_src(xl, p->bulkhead_x[b], what, 1);
+    snprintf(what, sizeof what, "bulkhead %zu", b);
+    const fb_err_part bulkhead =
+        part_of(FB_PART_ELEMENT(FB_PART_VEHICLE, 0, hull_mesh.bulkhead_x, b));
+    add_src(xl, p->bulkhead_x[b], &bulkhead, what, 1);
   }
   for (size_t k = 0; k < n; ++k) {
     char what_x[80], what_y[80];
+    fb_err_part part_x, part_y;
     double x, y;
-    point_name(s, k, 'x', what_x, sizeof what_x);
-    point_name(s, k, 'y', what_y, sizeof what_y);
+    point_part(s, k, "x", &part_x, what_x, sizeof what_x);
+    point_part(s, k, "y", &part_y, what_y, sizeof what_y);
     point_xy(s, k, &x, &y);
     const double xh = x + cx;
     const int x_in = xh >= p->x_rear - MERGE_TOL && xh <= p->x_front + MERGE_TOL;
@@ -445,10 +493,10 @@ static int build_lines(const fb_scenario *s, const fb_hull_mesh_params *p, doubl
                  "(%g, %g) m lies outside the generated hull's floor, x in [%.6g, %.6g], y in "
                  "[%.6g, %.6g] m about the centre of mass",
                  x, y, p->x_rear - cx, p->x_front - cx, -half, half);
-      return fb_err_set_key(err, "%s", x_in ? what_y : what_x);
+      return set_part(err, x_in ? &part_y : &part_x);
     }
-    add_src(xl, xh, what_x, 0);
-    add_src(yl, y, what_y, 0);
+    add_src(xl, xh, &part_x, what_x, 0);
+    add_src(yl, y, &part_y, what_y, 0);
   }
   int rc = lines_merge(xl, "x", err);
   if (rc == FB_OK)
@@ -996,11 +1044,11 @@ static int check_refined_size(const build_mesh *coarse, int d, fb_err *err)
   const int rc = vehicle_hull_check_size(elements, hint, err);
   if (rc && d == 1) {
     fb_err_prefix(err, "the generated mesh has %zu elements, ", coarse->nelems);
-    fb_err_set_key(err, "hull.mesh.generator");
+    fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_mesh));
   } else if (rc) {
     fb_err_prefix(err, "%d refines the generated mesh's %zu elements into %.0f, ", d,
                   coarse->nelems, elements);
-    fb_err_set_key(err, "hull.mesh.density");
+    fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_mesh.density));
   }
   return rc;
 }
@@ -1060,7 +1108,8 @@ static int add_point_sets(fb_mesh *m, const build_mesh *coarse, const fb_scenari
   int rc = FB_OK;
   for (size_t k = 0; k < npoints(s) && rc == FB_OK; ++k) {
     char what[80];
-    point_name(s, k, 'x', what, sizeof what);
+    fb_err_part part;
+    point_part(s, k, "x", &part, what, sizeof what);
     const double x = xl->values[xl->line[xp + k]], y = yl->values[yl->line[Y_POINTS + k]];
     size_t node = 0;
     char *set = point_set(s, k);
@@ -1079,7 +1128,7 @@ static int add_point_sets(fb_mesh *m, const build_mesh *coarse, const fb_scenari
                     "the %zu points fall on only %zu nodes of the generated hull mesh (points "
                     "on one node)",
                     s->nload, nload),
-    fb_err_set_key(err, "load.points");
+    fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, load_x));
   const double ends[2] = {xl->values[xl->n - 1], xl->values[0]};
   const char *edge_sets[2] = {"FRONT_EDGE", "REAR_EDGE"};
   for (int e = 0; e < 2 && rc == FB_OK; ++e) {

@@ -294,7 +294,7 @@ static int modes_wanted(const fb_scenario *s, vehicle_hull *h, size_t *nmodes, f
     if ((size_t)s->hull_modes > n) {
       fb_err_set(err, FB_EINVAL, "%d modes, more than the hull's %zu degrees of freedom",
                  s->hull_modes, n);
-      return fb_err_set_key(err, "hull.fe.modes");
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes));
     }
     *nmodes =
         max_size((size_t)s->hull_modes < n ? (size_t)s->hull_modes + 1 : n, h->list_modes);
@@ -307,8 +307,8 @@ static int modes_wanted(const fb_scenario *s, vehicle_hull *h, size_t *nmodes, f
     *nmodes = max_size(FB_HULL_BETA_MODES, h->list_modes);
     break;
   default:
-    return fb_err_set(err, FB_EINVAL, "hull.fe.modes: unknown kind %d",
-                      (int)s->hull_modes_kind);
+    return fb_err_set(err, FB_EINVAL, "unknown kind of modes %d", (int)s->hull_modes_kind),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes));
   }
   if (*nmodes > n)
     *nmodes = n;
@@ -335,7 +335,7 @@ static int modes_kept(const fb_scenario *s, vehicle_hull *h, fb_err *err)
                  "a cut-off of %g Hz is below the hull's first elastic mode, at %.4g Hz: the "
                  "basis would represent no dynamics of the hull's own",
                  s->hull_cutoff_hz, f[nrigid]);
-      return fb_err_set_key(err, "hull.fe.cutoff_hz");
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cutoff_hz));
     }
   }
   if (keep < nrigid) {
@@ -343,7 +343,7 @@ static int modes_kept(const fb_scenario *s, vehicle_hull *h, fb_err *err)
                "%zu modes leave out rigid-body modes of the hull (it has %zu): keep at least "
                "those",
                keep, nrigid);
-    return fb_err_set_key(err, "hull.fe.modes");
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes));
   }
   h->nkeep = keep;
   return FB_OK;
@@ -694,9 +694,9 @@ int vehicle_hull_new(const fb_scenario *s, const fb_vehicle_opts *vo, fb_vehicle
   fb_mat_free(&built);
   if (rc) {
     vehicle_hull_free(&h);
-    /* A scenario value's error keeps its key (the caller locates it);
-     * any other gets the context. */
-    if (err && !err->key[0] && rc != FB_EINTR)
+    /* An error about a part of the description keeps it (the caller
+     * locates it); any other gets the context. */
+    if (err && !err->part.kind && rc != FB_EINTR)
       fb_err_prefix(err, "flexible hull: ");
     return rc;
   }

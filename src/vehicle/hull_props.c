@@ -43,19 +43,19 @@ static int mesh_properties(const fb_scenario *s, mesh_props *mp, fb_err *err)
 
 /* A typed value against the mesh's: FB_EINVAL with both beyond the
  * tolerance. */
-static int check_property(const char *key, const char *what, double typed, double mesh,
+static int check_property(const char *field, const char *what, double typed, double mesh,
                           const char *unit, fb_err *err)
 {
   if (fabs(typed - mesh) <= PROPERTY_TOLERANCE * fabs(mesh))
     return FB_OK;
   fb_err_set(err, FB_EINVAL,
-             "the file gives the hull's %s as %.6g %s, its finite-element mesh has %.6g %s "
+             "the hull's %s is given as %.6g %s, its finite-element mesh has %.6g %s "
              "(%+.2f %%, more than the %.1f %% allowed): System 1 and System 2 would not "
-             "have the same hull. Remove hull.mass, Ixx and Iyy to take the mesh's, or "
-             "correct them",
+             "have the same hull. Leave out the hull's mass, Ixx and Iyy to take the mesh's, "
+             "or correct them",
              what, typed, unit, mesh, unit, 100.0 * (typed - mesh) / mesh,
              100.0 * PROPERTY_TOLERANCE);
-  return fb_err_set_key(err, "%s", key);
+  return fb_err_set_part(err, FB_PART_VEHICLE, 0, FB_ERR_NO_ELEMENT, field);
 }
 
 /* A lumped payload's mass, once the hull's is the mesh's: the loader's
@@ -67,13 +67,13 @@ static int check_payload(const fb_scenario *s, fb_err *err)
     return FB_OK;
   char masses[64] = "";
   if (s->npoint_masses)
-    snprintf(masses, sizeof masses, " + hull.masses (%.10g kg)",
+    snprintf(masses, sizeof masses, " + the hull's declared masses (%.10g kg)",
              fb_scenario_point_masses_total(s));
   fb_err_set(err, FB_EINVAL,
-             "a lumped payload needs load.total_weight / gravity (%.10g kg) > the hull's "
+             "a lumped payload needs the total weight / gravity (%.10g kg) > the hull's "
              "finite-element mesh (%.10g kg)%s",
              s->total_weight / s->gravity, s->hull_mass, masses);
-  return fb_err_set_key(err, "load.payload");
+  return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, payload));
 }
 
 /* Rigid-body properties from the mesh's, or the typed ones checked
@@ -87,13 +87,14 @@ static int complete_properties(fb_scenario *s, const mesh_props *mp, fb_err *err
     s->hull_iyy = mp->inertia[4];
     return check_payload(s, err);
   }
-  int rc = check_property("hull.mass", "mass", s->hull_mass, mp->mass, "kg", err);
+  int rc = check_property(fb_part_member_(FB_PART_VEHICLE, hull_mass), "mass", s->hull_mass,
+                          mp->mass, "kg", err);
   if (!rc)
-    rc = check_property("hull.Ixx", "roll inertia Ixx", s->hull_ixx, mp->inertia[0], "kg m^2",
-                        err);
+    rc = check_property(fb_part_member_(FB_PART_VEHICLE, hull_ixx), "roll inertia Ixx",
+                        s->hull_ixx, mp->inertia[0], "kg m^2", err);
   if (!rc)
-    rc = check_property("hull.Iyy", "pitch inertia Iyy", s->hull_iyy, mp->inertia[4], "kg m^2",
-                        err);
+    rc = check_property(fb_part_member_(FB_PART_VEHICLE, hull_iyy), "pitch inertia Iyy",
+                        s->hull_iyy, mp->inertia[4], "kg m^2", err);
   return rc;
 }
 
@@ -136,17 +137,17 @@ static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
     if (fabs(s->hull_cg_x - *x) <= PROPERTY_TOLERANCE * length && fabs(s->hull_cg_y) <= 1e-3)
       return FB_OK;
     fb_err_set(err, FB_EINVAL,
-               "the file puts the hull's centre of mass at (%.6g, %.6g) m, its generated mesh "
-               "at (%.6g, 0) m (they must agree within %.1f %% of the hull's %.4g m length): "
-               "remove hull.centre_of_mass to take the mesh's",
+               "the hull's centre of mass is given at (%.6g, %.6g) m, its generated mesh's "
+               "is at (%.6g, 0) m (they must agree within %.1f %% of the hull's %.4g m "
+               "length): leave it out to take the mesh's",
                s->hull_cg_x, s->hull_cg_y, *x, 100.0 * PROPERTY_TOLERANCE, length);
-    return fb_err_set_key(err, "hull.centre_of_mass");
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cg_given));
   }
   if (!s->hull_cg_given) {
     fb_err_set(err, FB_EINVAL,
                "with a declared frame, a hull without a finite-element mesh needs its "
-               "centre of mass: add hull.centre_of_mass {x, y}");
-    return fb_err_set_key(err, "frame.origin");
+               "centre of mass in that frame");
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, frame_origin));
   }
   *x = s->hull_cg_x;
   *y = s->hull_cg_y;
@@ -163,8 +164,8 @@ static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
 {
   if (s->hull_cg_given) {
     fb_err_set(err, FB_EINVAL,
-               "a hull deck's centre of mass is its mesh's: remove hull.centre_of_mass");
-    return fb_err_set_key(err, "hull.centre_of_mass");
+               "a hull deck's centre of mass is its mesh's: leave the hull's out");
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cg_given));
   }
   const int rc = mesh_properties(s, mp, err);
   if (rc)
@@ -208,9 +209,8 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
       rc = complete_properties(s, &mp, err);
   } else if (!s->hull_mass_given) {
     fb_err_set(err, FB_EINVAL,
-               "a hull without a finite-element model (hull.mesh, hull.fe) needs its mass, "
-               "Ixx and Iyy");
-    rc = fb_err_set_key(err, "hull");
+               "a hull without a finite-element model needs its mass, Ixx and Iyy");
+    rc = fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_mass_given));
   }
   return rc;
 }

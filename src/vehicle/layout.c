@@ -1,9 +1,46 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The vehicle's layout as data: its attachment points, its subsystem
  * instances by name, the road's tracks (flexbond/vehicle.h). */
+#include <stdio.h>
 #include <string.h>
 
 #include "flexbond/vehicle.h"
+
+#include "core/textfile.h"
+
+/* The name of item i of part kind kind of s, NULL if it has none. */
+static const char *part_name(const fb_scenario *s, int kind, size_t i)
+{
+  switch (kind) {
+  case FB_PART_CORNER: return i < s->ncorners ? s->corner[i].name : NULL;
+  case FB_PART_MOUNT: return i < s->nmounts ? s->mount[i].name : NULL;
+  case FB_PART_HULL_MASS: return i < s->npoint_masses ? s->point_mass[i].name : NULL;
+  case FB_PART_SECTION: return i < s->nsections ? s->section[i].set : NULL;
+  case FB_PART_OUTPUT: return i < s->noutputs ? s->output[i].name : NULL;
+  default: return NULL;
+  }
+}
+
+char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size)
+{
+  static const char *const list[FB_PART_KINDS] = {
+      "", "", "corner", "mount", "point_mass", "section", "output", "load point"};
+  const int kind = p->kind > 0 && p->kind < FB_PART_KINDS ? p->kind : FB_PART_NONE;
+  const char *name = s ? part_name(s, kind, p->index) : NULL;
+  size_t n = 0;
+  buf[0] = '\0';
+  if (kind == FB_PART_LOAD_POINT)
+    n = fb_text_append(buf, size, n, "load point %zu", p->index);
+  else if (kind > FB_PART_VEHICLE)
+    n = fb_text_append(buf, size, n, "%s[%zu]", list[kind], p->index);
+  if (name)
+    n = fb_text_append(buf, size, n, " (%s)", name);
+  if (p->field[0])
+    n = fb_text_append(buf, size, n, "%s%s", n ? "." : "", p->field);
+  if (p->element != FB_ERR_NO_ELEMENT)
+    fb_text_append(buf, size, n, "[%zu]", p->element);
+  return buf;
+}
 
 size_t fb_scenario_nattach(const fb_scenario *s)
 {

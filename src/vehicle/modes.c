@@ -206,10 +206,11 @@ int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, size_t
   *nmodes = *nstatic = 0;
   /* The Jacobian, the matrix dgeev overwrites and its eigenvectors. */
   const size_t n = fb_bd_nstates(bd);
-  int rc = fb_check_dense_eig(n, 3, memory_limit, err,
-                              "the vehicle's modes (%zu states; hull.fe.modes auto or a number "
-                              "of modes keeps them few)",
-                              n);
+  int rc =
+      fb_check_dense_eig(n, 3, memory_limit, err,
+                         "the vehicle's modes (%zu states; the hull's automatic basis or a "
+                         "count of modes keeps them few)",
+                         n);
   if (rc)
     return rc;
   eig_work w = {0};

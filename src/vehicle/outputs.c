@@ -58,7 +58,7 @@ static const fb_output_kind kinds[] = {
     {"force", FB_OUTPUT_OF_MOUNT, "N", "%s_force", "Force of the %s mount on the hull",
      "%s mount force", "spring plus damper force of the mount, tension positive"},
     {"torsion", FB_OUTPUT_OF_HULL, "rad", "torsion", "Hull torsion angle", "hull torsion angle",
-     "roll of the front edge minus roll of the rear edge (hull.edges, Fig. 10)"},
+     "roll of the front edge minus roll of the rear edge (the torsion edges, Fig. 10)"},
     {"torsion_fit", FB_OUTPUT_OF_HULL, "rad", "torsion_fit", "Hull torsion angle (fitted)",
      "hull torsion angle, fitted",
      "as torsion, each edge's roll that of its whole transverse section, least squares"},
@@ -123,13 +123,15 @@ const fb_output_kind *fb_vehicle_output_kind_find(const char *signal)
 /* The probe of output o on the assembled graph (instance names of
  * assemble.c: "susp_<corner>", the mount's name, "hull"). p's target and
  * weights are new. */
-int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_output_spec *o,
+int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t index,
                             fb_probe_spec *p, fb_err *err)
 {
+  const fb_output_spec *o = &s->output[index];
   const long k = find_kind(o->signal);
   memset(p, 0, sizeof *p);
   if (k < 0)
-    return fb_err_set(err, FB_EINVAL, "unknown signal '%s'", o->signal);
+    return fb_err_set(err, FB_EINVAL, "unknown signal '%s'", o->signal),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal));
   const fb_output_kind *info = &kinds[k];
   const output_probe *how = &probes[k];
   p->name = fb_strdup(o->name);
@@ -147,7 +149,8 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_
   case FB_OUTPUT_OF_MOUNT: {
     const long b = fb_scenario_mount_find(s, o->of);
     if (b < 0)
-      return fb_err_set(err, FB_EINVAL, "no mount '%s'", o->of);
+      return fb_err_set(err, FB_EINVAL, "no mount '%s'", o->of),
+             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, of));
     if (how->per_mass)
       p->gain = 1.0 / s->mount[b].mass;
     p->target = fb_strdup_printf("%s.%s", o->of, how->target);

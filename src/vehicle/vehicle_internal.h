@@ -6,11 +6,12 @@
 
 #include "flexbond/vehicle.h"
 
-/* The probe measuring output o on the vehicle assembled around hull
- * (instance names of fb_vehicle_assemble). *p's name, target and
- * weights are new (fb_vehicle_probes_free); its unit is the kind table's
- * (NULL for bond signals: from the bond's domain). FB_EINVAL for an unknown signal or mount. */
-int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, const fb_output_spec *o,
+/* The probe measuring output s->output[index] on the vehicle assembled
+ * around hull (instance names of fb_vehicle_assemble). *p's name, target
+ * and weights are new (fb_vehicle_probes_free); its unit is the kind
+ * table's (NULL for bond signals: from the bond's domain). FB_EINVAL for
+ * an unknown signal or mount, about the output's member (fb_err.part). */
+int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t index,
                             fb_probe_spec *p, fb_err *err);
 
 /* System 1's inertia in (z, phi, theta), row-major 3x3 (fragments.c):

@@ -279,7 +279,28 @@ class ErrorTest(unittest.TestCase):
         self.assertEqual(e.line, line_of(APC, "speed_kmh"))
         self.assertGreater(e.column, 0)
         self.assertEqual(e.key, "road.speed_kmh")
-        self.assertEqual(e.source_text, "--set speed_kmh=fast")
+        self.assertEqual(e.source_text, "overrides['speed_kmh']='fast'")
+        self.assertTrue(e.message.startswith("overrides['speed_kmh']='fast': "), e.message)
+        self.assertNotIn("--set", e.message)
+
+    def test_vehicle_error_names_its_part_and_override(self):
+        """An error the vehicle finds (more modes than the hull has) names the
+        part of the description (Error.part) and, located, the override as
+        Python wrote it at the file's line of hull.fe.modes."""
+        s = flexbond.Scenario(APC, overrides={"hull.fe.coordinates": "modal",
+                                              "hull.fe.modes": 99999})
+        try:
+            with self.assertRaises(flexbond.Error) as caught:
+                s.run("flexible")
+        finally:
+            s.close()
+        e = caught.exception
+        self.assertEqual(e.part, ("vehicle", 0, "hull_modes", None))
+        self.assertEqual(e.key, "hull.fe.modes")
+        self.assertEqual(os.path.abspath(e.file), os.path.abspath(APC))
+        self.assertGreater(e.line, 0)
+        self.assertEqual(e.source_text, "overrides['hull.fe.modes']=99999")
+        self.assertIn("99999 modes, more than the hull's", e.message)
 
     def test_nul_is_refused(self):
         """C would read text only up to a NUL: an override "12\\x0099" as 12.
@@ -333,7 +354,7 @@ class ErrorTest(unittest.TestCase):
         self.assertEqual(raised.exception.key, "wheel.tire_k")
         self.assertEqual(raised.exception.status, "FB_EINVAL")
         self.assertIn("1 N/m is implausible", raised.exception.message)
-        self.assertIn("--strict refuses implausible values: 2", str(raised.exception))
+        self.assertIn("strict=True refuses implausible values: 2", str(raised.exception))
         self.assertEqual(flexbond.Scenario(APC, strict=True).warnings, [])
 
     def test_error_in_file(self):

@@ -1,0 +1,686 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Physical consistency of a vehicle description (fb_scenario_check):
+ * every value a vehicle can be built from (a positive mass, a Poisson's
+ * ratio below 1/2), then the rules between values. The description may
+ * come from a file, a program or a binding: each error names the part of
+ * the description it is about (fb_err.part) in SI units, and whoever made
+ * the description says where that part came from (fb_scenario_locate for
+ * a file). A file's own ranges, in its units, are its reader's. */
+#include <ctype.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+#include "flexbond/sim.h"
+#include "flexbond/vehicle.h"
+
+#include "core/textfile.h"
+#include "core/util.h"
+
+/* The error about member field of part kind, index i: FB_EINVAL with the
+ * message. */
+static int fail(fb_err *err, int kind, size_t i, const char *field, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+static int fail(fb_err *err, int kind, size_t i, const char *field, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  fb_err_vset(err, FB_EINVAL, fmt, ap);
+  va_end(ap);
+  return fb_err_set_part(err, kind, i, FB_ERR_NO_ELEMENT, field);
+}
+
+/* ---- Every value a vehicle can be built from. */
+
+enum {
+  LO = FB_RANGE_LO,
+  LO_OPEN = FB_RANGE_LO_OPEN,
+  HI = FB_RANGE_HI,
+  HI_OPEN = FB_RANGE_HI_OPEN
+};
+typedef enum { REAL, WHOLE } value_type;
+
+/* The values a member may take: bounds (LO, HI, open or closed), SI. */
+typedef struct range {
+  unsigned bounds;
+  double lo, hi;
+} range;
+
+/* A member of a part's struct and the values it may take. when: the
+ * member matters only if it returns 1 (NULL: always). */
+typedef struct field {
+  const char *member;
+  size_t offset;
+  value_type type; /* REAL: a double; WHOLE: an int */
+  range range;
+  const char *unit;
+  int (*when)(const fb_scenario *s);
+} field;
+
+static int is_bump(const fb_scenario *s)
+{
+  return s->road_kind == FB_ROAD_BUMP;
+}
+static int has_mass(const fb_scenario *s)
+{
+  return s->hull_mass_given;
+}
+static int has_fe(const fb_scenario *s)
+{
+  return s->has_fe_hull;
+}
+static int has_coupling(const fb_scenario *s)
+{
+  return s->has_fe_hull && s->coupling != FB_COUPLING_NONE;
+}
+
+#define F(T, m, t, r, u, w)                                                                    \
+  {                                                                                            \
+#m, offsetof(T, m), t, r, u, w                                                             \
+  }
+#define POSITIVE                                                                               \
+  {                                                                                            \
+    LO | LO_OPEN, 0, 0                                                                         \
+  }
+#define NONNEGATIVE                                                                            \
+  {                                                                                            \
+    LO, 0, 0                                                                                   \
+  }
+#define ANY                                                                                    \
+  {                                                                                            \
+    0, 0, 0                                                                                    \
+  }
+#define RATIO                                                                                  \
+  {                                                                                            \
+    LO | HI | HI_OPEN, 0, 0.5                                                                  \
+  } /* Poisson's ratio, [0, 1/2) */
+#define CLOSED(l, h)                                                                           \
+  {                                                                                            \
+    LO | HI, (l), (h)                                                                          \
+  }
+#define HALF_OPEN(l, h)                                                                        \
+  {                                                                                            \
+    LO | HI | HI_OPEN, (l), (h)                                                                \
+  }
+#define OPEN(l, h)                                                                             \
+  {                                                                                            \
+    LO | LO_OPEN | HI | HI_OPEN, (l), (h)                                                      \
+  }
+
+static const field vehicle_fields[] = {
+    F(fb_scenario, gravity, REAL, POSITIVE, "m/s^2", NULL),
+    F(fb_scenario, hull_mass, REAL, POSITIVE, "kg", has_mass),
+    F(fb_scenario, hull_ixx, REAL, POSITIVE, "kg m^2", has_mass),
+    F(fb_scenario, hull_iyy, REAL, POSITIVE, "kg m^2", has_mass),
+    F(fb_scenario, young, REAL, POSITIVE, "Pa", NULL),
+    F(fb_scenario, poisson, REAL, RATIO, NULL, NULL),
+    F(fb_scenario, density, REAL, POSITIVE, "kg/m^3", NULL),
+    F(fb_scenario, thickness, REAL, POSITIVE, "m", NULL),
+    F(fb_scenario, edge_front_x, REAL, ANY, "m", NULL),
+    F(fb_scenario, edge_rear_x, REAL, ANY, "m", NULL),
+    F(fb_scenario, edge_left_y, REAL, ANY, "m", NULL),
+    F(fb_scenario, edge_right_y, REAL, ANY, "m", NULL),
+    F(fb_scenario, total_weight, REAL, POSITIVE, "N", NULL),
+    F(fb_scenario, payload, WHOLE, CLOSED(FB_PAYLOAD_WEIGHT_ONLY, FB_PAYLOAD_LUMPED), NULL,
+      NULL),
+    F(fb_scenario, speed, REAL, POSITIVE, "m/s", NULL),
+    F(fb_scenario, bump_height, REAL, NONNEGATIVE, "m", is_bump),
+    F(fb_scenario, bump_length, REAL, POSITIVE, "m", is_bump),
+    F(fb_scenario, bump_angle, REAL, HALF_OPEN(0, 1.5707963267948966), "rad", is_bump),
+    F(fb_scenario, bump_time, REAL, NONNEGATIVE, "s", is_bump),
+    F(fb_scenario, t_end, REAL, POSITIVE, "s", NULL),
+    F(fb_scenario, rtol, REAL, OPEN(0, 1), NULL, NULL),
+    F(fb_scenario, atol, REAL, POSITIVE, NULL, NULL),
+    F(fb_scenario, max_step, REAL, NONNEGATIVE, "s", NULL),
+    F(fb_scenario, sample_rate, REAL, POSITIVE, "Hz", NULL),
+    F(fb_scenario, initial, WHOLE, CLOSED(FB_INITIAL_ZERO, FB_INITIAL_STATIC), NULL, NULL),
+    F(fb_scenario, hull_mass_matrix, WHOLE, CLOSED(FB_MASS_CONSISTENT, FB_MASS_LUMPED), NULL,
+      has_fe),
+    F(fb_scenario, hull_drill_factor, REAL, POSITIVE, NULL, has_fe),
+    F(fb_scenario, hull_damping_ratio, REAL, HALF_OPEN(0, 1), NULL, has_fe),
+    F(fb_scenario, hull_coordinates, WHOLE, CLOSED(FB_HULL_NODAL, FB_HULL_MODAL), NULL, has_fe),
+    F(fb_scenario, coupling_radius, REAL, POSITIVE, "m", has_coupling),
+    F(fb_scenario, hull_cutoff_hz, REAL, NONNEGATIVE, "Hz", has_fe),
+};
+
+static const field corner_fields[] = {
+    F(fb_corner_params, x, REAL, ANY, "m", NULL),
+    F(fb_corner_params, y, REAL, ANY, "m", NULL),
+    F(fb_corner_params, spring_k, REAL, POSITIVE, "N/m", NULL),
+    F(fb_corner_params, damper_c, REAL, NONNEGATIVE, "N s/m", NULL),
+    F(fb_corner_params, motion_ratio, REAL, POSITIVE, NULL, NULL),
+    F(fb_corner_params, wheel_mass, REAL, POSITIVE, "kg", NULL),
+    F(fb_corner_params, tire_k, REAL, POSITIVE, "N/m", NULL),
+    F(fb_corner_params, tire_c, REAL, NONNEGATIVE, "N s/m", NULL),
+    F(fb_corner_params, tire_contact, WHOLE, CLOSED(FB_TIRE_BILATERAL, FB_TIRE_HUNT_CROSSLEY),
+      NULL, NULL),
+};
+
+static const field mount_fields[] = {
+    F(fb_mount, mass, REAL, POSITIVE, "kg", NULL),
+    F(fb_mount, stiffness, REAL, POSITIVE, "N/m", NULL),
+    F(fb_mount, damping, REAL, NONNEGATIVE, "N s/m", NULL),
+    F(fb_mount, x, REAL, ANY, "m", NULL),
+    F(fb_mount, y, REAL, ANY, "m", NULL),
+};
+
+static const field point_mass_fields[] = {
+    F(fb_hull_point_mass, mass, REAL, POSITIVE, "kg", NULL),
+    F(fb_hull_point_mass, x, REAL, ANY, "m", NULL),
+    F(fb_hull_point_mass, y, REAL, ANY, "m", NULL),
+};
+
+static const field section_fields[] = {
+    F(fb_hull_section, thickness, REAL, POSITIVE, "m", NULL),
+    F(fb_hull_section, young, REAL, POSITIVE, "Pa", NULL),
+    F(fb_hull_section, poisson, REAL, RATIO, NULL, NULL),
+    F(fb_hull_section, density, REAL, POSITIVE, "kg/m^3", NULL),
+    F(fb_hull_section, nonstructural_mass, REAL, NONNEGATIVE, "kg/m^2", NULL),
+};
+
+#undef F
+#undef POSITIVE
+#undef NONNEGATIVE
+#undef ANY
+#undef RATIO
+#undef CLOSED
+#undef HALF_OPEN
+#undef OPEN
+
+/* Member f of the item at base: finite, within its bounds. */
+static int check_field(const field *f, const void *base, int kind, size_t i, fb_err *err)
+{
+  const unsigned char *at = (const unsigned char *)base + f->offset;
+  double x;
+  if (f->type == REAL)
+    memcpy(&x, at, sizeof x);
+  else {
+    int v;
+    memcpy(&v, at, sizeof v);
+    x = v;
+  }
+  const range *r = &f->range;
+  if (isfinite(x) && fb_range_contains(r->bounds, r->lo, r->hi, x))
+    return FB_OK;
+  char text[64];
+  fb_range_text(r->bounds, r->lo, r->hi, text, sizeof text);
+  if (!text[0])
+    snprintf(text, sizeof text, "finite");
+  if (f->type == WHOLE)
+    return fail(err, kind, i, f->member, "unknown value %.0f", x);
+  return fail(err, kind, i, f->member, "must be %s%s%s (got %.10g)", text, f->unit ? " " : "",
+              f->unit ? f->unit : "", x);
+}
+
+/* Every field of n items of item_size bytes from base, of part kind. */
+static int check_items(const fb_scenario *s, const field *fields, size_t nfields,
+                       const void *base, size_t n, size_t item_size, int kind, fb_err *err)
+{
+  for (size_t i = 0; i < n; ++i)
+    for (size_t k = 0; k < nfields; ++k) {
+      if (fields[k].when && !fields[k].when(s))
+        continue;
+      const int rc =
+          check_field(&fields[k], (const unsigned char *)base + i * item_size, kind, i, err);
+      if (rc)
+        return rc;
+    }
+  return FB_OK;
+}
+
+#define NFIELDS(a) (sizeof(a) / sizeof((a)[0]))
+
+static int check_values(const fb_scenario *s, fb_err *err)
+{
+  int rc = check_items(s, vehicle_fields, NFIELDS(vehicle_fields), s, 1, sizeof *s,
+                       FB_PART_VEHICLE, err);
+  if (!rc)
+    rc = check_items(s, corner_fields, NFIELDS(corner_fields), s->corner, s->ncorners,
+                     sizeof *s->corner, FB_PART_CORNER, err);
+  if (!rc)
+    rc = check_items(s, mount_fields, NFIELDS(mount_fields), s->mount, s->nmounts,
+                     sizeof *s->mount, FB_PART_MOUNT, err);
+  if (!rc)
+    rc = check_items(s, point_mass_fields, NFIELDS(point_mass_fields), s->point_mass,
+                     s->npoint_masses, sizeof *s->point_mass, FB_PART_HULL_MASS, err);
+  if (!rc)
+    rc = check_items(s, section_fields, NFIELDS(section_fields), s->section, s->nsections,
+                     sizeof *s->section, FB_PART_SECTION, err);
+  return rc;
+}
+
+/* ---- Rules between values. */
+
+static int check_hull(const fb_scenario *s, fb_err *err)
+{
+  /* The torsion angle divides by the edges' spans. */
+  if (!(s->edge_front_x > s->edge_rear_x))
+    return fail(err, FB_PART_VEHICLE, 0, "edge_front_x",
+                "the front edge must be ahead of the rear edge, at x = %.10g m (got %.10g)",
+                s->edge_rear_x, s->edge_front_x);
+  if (!(s->edge_left_y > s->edge_right_y))
+    return fail(err, FB_PART_VEHICLE, 0, "edge_left_y",
+                "the edges' left end must be left of their right end, at y = %.10g m (got "
+                "%.10g)",
+                s->edge_right_y, s->edge_left_y);
+  return FB_OK;
+}
+
+static int check_load(const fb_scenario *s, fb_err *err)
+{
+  if (s->nload < 1 || !s->load_x || !s->load_y)
+    return fail(err, FB_PART_VEHICLE, 0, "load_x",
+                "at least one load point is needed (got %zu)", s->nload);
+  for (size_t i = 0; i < s->nload; ++i)
+    if (!isfinite(s->load_x[i]) || !isfinite(s->load_y[i]))
+      return fail(err, FB_PART_LOAD_POINT, i, "", "must be finite (got x = %g, y = %g)",
+                  s->load_x[i], s->load_y[i]);
+  /* The lumped model spreads the payload mass W / g - m_hull - the hull's
+   * declared masses over the points (data sheet, "Load and gravity"): it
+   * must be positive. A finite-element hull's own mass, when the
+   * description gives none, is counted once its mesh is built
+   * (fb_vehicle_hull_complete). */
+  if (s->payload != FB_PAYLOAD_LUMPED || fb_scenario_payload_mass(s) > 0)
+    return FB_OK;
+  const double masses = fb_scenario_point_masses_total(s);
+  return fail(err, FB_PART_VEHICLE, 0, "payload",
+              "a lumped payload needs the total weight / gravity (%.10g kg) > the hull's "
+              "structure (%.10g kg) + its declared masses (%.10g kg)",
+              s->total_weight / s->gravity, s->hull_mass, masses);
+}
+
+/* A table has 2 .. FB_DAMPER_MAX_POINTS knots (0: the linear damper). */
+static int check_dampers(const fb_scenario *s, fb_err *err)
+{
+  for (size_t k = 0; k < s->ncorners; ++k) {
+    const fb_corner_params *c = &s->corner[k];
+    if (c->damper_npoints == 1 || c->damper_npoints > FB_DAMPER_MAX_POINTS)
+      return fail(err, FB_PART_CORNER, k, "damper_npoints", "2 to %d points (got %zu)",
+                  (int)FB_DAMPER_MAX_POINTS, c->damper_npoints);
+  }
+  return FB_OK;
+}
+
+/* Points closer than this are one point (m): the 1 mm within which a
+ * deck's node must sit at the description's point. */
+#define SAME_POINT 1e-3
+
+/* A point on the hull's floor, the rectangle of the torsion edges (System
+ * 2 puts a node at each; on System 1 a point off the hull is a lever arm
+ * no vehicle has, almost surely a typing error). kind, i: its part; the
+ * members of its x and y ("" for a load point). */
+static int check_on_floor(const fb_scenario *s, int kind, size_t i, const char *fx,
+                          const char *fy, double x, double y, fb_err *err)
+{
+  if (x < s->edge_rear_x || x > s->edge_front_x)
+    return fail(err, kind, i, fx,
+                "must lie on the hull's floor, between the rear edge's x = %.10g and the front "
+                "edge's x = %.10g m (got %.10g)",
+                s->edge_rear_x, s->edge_front_x, x);
+  if (y < s->edge_right_y || y > s->edge_left_y)
+    return fail(err, kind, i, fy,
+                "must lie on the hull's floor, between the right end's y = %.10g and the left "
+                "end's y = %.10g m (got %.10g)",
+                s->edge_right_y, s->edge_left_y, y);
+  return FB_OK;
+}
+
+static int check_load_points(const fb_scenario *s, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < s->nload; ++i) {
+    rc = check_on_floor(s, FB_PART_LOAD_POINT, i, "", "", s->load_x[i], s->load_y[i], err);
+    /* Each point carries its share of the weight at its own node. */
+    for (size_t j = 0; !rc && j < i; ++j)
+      if (hypot(s->load_x[i] - s->load_x[j], s->load_y[i] - s->load_y[j]) < SAME_POINT)
+        rc = fail(err, FB_PART_LOAD_POINT, i, "",
+                  "at (%.10g, %.10g) m, where load point %zu already is (two load points at "
+                  "one point)",
+                  s->load_x[i], s->load_y[i], j);
+  }
+  return rc;
+}
+
+/* 1 if a and b are one name (a missing name is no name). */
+static int same(const char *a, const char *b)
+{
+  return a && b && !strcmp(a, b);
+}
+
+/* Names unique among the corners and among the mounts: they name the
+ * subsystem instances, mesh node sets and outputs. The later one is
+ * blamed. */
+static int check_names(const fb_scenario *s, fb_err *err)
+{
+  for (size_t k = 0; k < s->ncorners; ++k)
+    if (!s->corner[k].name)
+      return fail(err, FB_PART_CORNER, k, "name", "has no name");
+  for (size_t k = 0; k < s->nmounts; ++k)
+    if (!s->mount[k].name)
+      return fail(err, FB_PART_MOUNT, k, "name", "has no name");
+  for (size_t k = 0; k < s->ncorners; ++k)
+    for (size_t j = 0; j < k; ++j)
+      if (same(s->corner[k].name, s->corner[j].name))
+        return fail(err, FB_PART_CORNER, k, "",
+                    "a second corner named %s (corner names are unique)", s->corner[k].name);
+  for (size_t k = 0; k < s->nmounts; ++k)
+    for (size_t j = 0; j < k; ++j)
+      if (same(s->mount[k].name, s->mount[j].name))
+        return fail(err, FB_PART_MOUNT, k, "",
+                    "a second mount named %s (mount names are unique)", s->mount[k].name);
+  return FB_OK;
+}
+
+/* A hull mass's name: unique among the hull masses (in capitals too:
+ * its mesh node set is MASS_<NAME>), the mounts and the corners. */
+static int check_point_mass_name(const fb_scenario *s, size_t k, fb_err *err)
+{
+  const char *name = s->point_mass[k].name;
+  for (size_t j = 0; j < k; ++j) {
+    const char *other = s->point_mass[j].name;
+    if (same(name, other))
+      return fail(err, FB_PART_HULL_MASS, k, "",
+                  "a second hull mass named %s (hull mass names are unique)", name);
+    if (other && !strcasecmp(name, other)) {
+      char set[128];
+      snprintf(set, sizeof set, "%s", name);
+      for (char *c = set; *c; ++c)
+        *c = (char)toupper((unsigned char)*c);
+      return fail(err, FB_PART_HULL_MASS, k, "",
+                  "hull mass %s's name in other capitals: both would be the mesh's node set "
+                  "MASS_%s",
+                  other, set);
+    }
+  }
+  const char *kind = fb_scenario_mount_find(s, name) >= 0    ? "mount"
+                     : fb_scenario_corner_find(s, name) >= 0 ? "corner"
+                                                             : NULL;
+  if (kind)
+    return fail(err, FB_PART_HULL_MASS, k, "",
+                "a %s is named %s already (the names of hull masses, mounts and corners are "
+                "unique)",
+                kind, name);
+  return FB_OK;
+}
+
+static int check_point_masses(const fb_scenario *s, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t k = 0; !rc && k < s->npoint_masses; ++k) {
+    const fb_hull_point_mass *m = &s->point_mass[k];
+    if (!m->name)
+      return fail(err, FB_PART_HULL_MASS, k, "name", "has no name");
+    rc = check_point_mass_name(s, k, err);
+    if (!rc)
+      rc = check_on_floor(s, FB_PART_HULL_MASS, k, "x", "y", m->x, m->y, err);
+  }
+  return rc;
+}
+
+/* Every attachment point on the floor, no two corners (two wheels cannot
+ * stand in one place) at one point. */
+static int check_points(const fb_scenario *s, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t k = 0; !rc && k < s->nmounts; ++k)
+    rc = check_on_floor(s, FB_PART_MOUNT, k, "x", "y", s->mount[k].x, s->mount[k].y, err);
+  if (!rc)
+    rc = check_load_points(s, err);
+  for (size_t k = 0; !rc && k < s->ncorners; ++k) {
+    const fb_corner_params *c = &s->corner[k];
+    rc = check_on_floor(s, FB_PART_CORNER, k, "x", "y", c->x, c->y, err);
+    for (size_t j = 0; !rc && j < k; ++j)
+      if (hypot(c->x - s->corner[j].x, c->y - s->corner[j].y) < SAME_POINT)
+        rc = fail(err, FB_PART_CORNER, k, "",
+                  "at (%.10g, %.10g) m, where corner %s already is (two corners at one point)",
+                  c->x, c->y, s->corner[j].name);
+  }
+  return rc;
+}
+
+/* A random road or a profile: its own constructor checks its parameters;
+ * a profile was checked when its maker read it. */
+static int check_other_road(const fb_scenario *s, fb_err *err)
+{
+  if (s->road_kind == FB_ROAD_PROFILE) {
+    if (!s->road_profile_data)
+      return fail(err, FB_PART_VEHICLE, 0, "road_profile_data",
+                  "a profile road needs its profile (read by whoever made the description)");
+    return FB_OK;
+  }
+  if (s->road_kind != FB_ROAD_ISO8608)
+    return fail(err, FB_PART_VEHICLE, 0, "road_kind", "unknown road kind %d",
+                (int)s->road_kind);
+  fb_road *road = NULL;
+  const int rc = fb_road_new_iso8608(&s->road_iso, &road, err);
+  fb_road_free(&road);
+  /* The road's own messages name its parameter. */
+  if (rc && rc != FB_ENOMEM)
+    fb_err_set_part(err, FB_PART_VEHICLE, 0, FB_ERR_NO_ELEMENT, "road_iso");
+  return rc;
+}
+
+/* The solver's own limits (fb_sim_opts_check: sample count, the result's
+ * memory, the steps that max_step forces), whose errors name their
+ * setting: the description's member of the same name. */
+static int check_simulation(const fb_scenario *s, fb_err *err)
+{
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_start = 0;
+  o.t_end = s->t_end;
+  o.rtol = s->rtol;
+  o.atol = s->atol;
+  o.max_step = s->max_step;
+  o.max_steps = s->max_steps;
+  o.sample_rate = s->sample_rate;
+  /* What a run records: the outputs and, for the contact intervals, a
+   * tire force per corner. */
+  o.noutputs = s->noutputs + s->ncorners;
+  const int rc = fb_sim_opts_check(&o, err);
+  if (rc && err && err->key[0])
+    fb_err_set_part(err, FB_PART_VEHICLE, 0, FB_ERR_NO_ELEMENT, err->key);
+  return rc;
+}
+
+/* Every wheel meets the bump at t >= 0 and has left it before t_end (the
+ * run must show the whole crossing). */
+static int check_bump_timing(const fb_scenario *s, fb_err *err)
+{
+  int first = 0, last = 0;
+  for (int k = 1; k < (int)s->ncorners; ++k) {
+    if (fb_scenario_bump_entry(s, k) < fb_scenario_bump_entry(s, first))
+      first = k;
+    if (fb_scenario_bump_exit(s, k) > fb_scenario_bump_exit(s, last))
+      last = k;
+  }
+  const double t_in = fb_scenario_bump_entry(s, first), t_out = fb_scenario_bump_exit(s, last);
+  if (!(t_in >= 0))
+    return fail(err, FB_PART_VEHICLE, 0, "bump_time",
+                "the %s wheel would meet the bump at %.6g s, before the run starts at 0 s",
+                s->corner[first].name, t_in);
+  if (!(t_out < s->t_end))
+    return fail(err, FB_PART_VEHICLE, 0, "bump_length",
+                "bump longer than the run: the last wheel (%s) leaves it at %.6g s, not before "
+                "the run's end at %.10g s",
+                s->corner[last].name, t_out, s->t_end);
+  return FB_OK;
+}
+
+/* System 2's hull, when present. The generator checks the geometry
+ * against the points itself, when the mesh is built. */
+static int check_fe_hull(const fb_scenario *s, fb_err *err)
+{
+  if (!s->has_fe_hull)
+    return FB_OK;
+  const fb_hull_mesh_params *g = &s->hull_mesh;
+  const int count = s->hull_modes_kind == FB_HULL_MODES_COUNT;
+  /* A reduced hull needs its six rigid-body modes at least. */
+  if (count && s->hull_modes < 6)
+    return fail(err, FB_PART_VEHICLE, 0, "hull_modes",
+                "auto, all or at least the 6 rigid-body modes (got %d)", s->hull_modes);
+  if (s->hull_modes_kind != FB_HULL_MODES_AUTO && s->hull_coordinates == FB_HULL_NODAL)
+    return fail(err, FB_PART_VEHICLE, 0, "hull_modes",
+                "a choice of modes (%s) is for modal coordinates, not nodal ones",
+                count ? "a count" : "all");
+  if (s->hull_cutoff_hz != 0 &&
+      (s->hull_modes_kind != FB_HULL_MODES_AUTO || s->hull_coordinates == FB_HULL_NODAL))
+    return fail(err, FB_PART_VEHICLE, 0, "hull_cutoff_hz",
+                "a cut-off sets which modes the automatic basis keeps, in modal coordinates; "
+                "not with %s",
+                s->hull_coordinates == FB_HULL_NODAL ? "nodal coordinates"
+                : count                              ? "a count of modes"
+                                                     : "every mode");
+  if (s->hull_deck)
+    return FB_OK;
+  if (!(g->x_front > g->x_rear))
+    return fail(err, FB_PART_VEHICLE, 0, "hull_mesh.x_front",
+                "must be > the rear wall's x_rear = %.10g m (got %.10g)", g->x_rear,
+                g->x_front);
+  if (!(g->nose_height < g->height))
+    return fail(err, FB_PART_VEHICLE, 0, "hull_mesh.nose_height",
+                "must be < the hull's height = %.10g m (got %.10g)", g->height, g->nose_height);
+  for (size_t k = 0; k < g->nbulkheads; ++k)
+    if (!(g->bulkhead_x[k] > g->x_rear && g->bulkhead_x[k] < g->x_front))
+      return fb_err_set(err, FB_EINVAL, "must lie between x_rear and x_front (got %.10g m)",
+                        g->bulkhead_x[k]),
+             fb_err_set_part(err, FB_PART_VEHICLE, 0, k, "hull_mesh.bulkhead_x");
+  return FB_OK;
+}
+
+/* ---- Outputs. */
+
+static const char *corner_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->corner[i].name;
+}
+
+static const char *mount_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->mount[i].name;
+}
+
+/* For an unknown name: " (did you mean 'LF'?)" when one is close, then
+ * "; the corners are LF, RF, ..." (what: "corners"), into buf. */
+static void names_hint(const fb_scenario *s, const char *word, size_t n, fb_name_fn name_at,
+                       const char *what, char *buf, size_t size)
+{
+  const char *near = word && *word ? fb_suggest(word, n, name_at, s) : NULL;
+  size_t len = 0;
+  buf[0] = '\0';
+  if (near)
+    len = fb_text_append(buf, size, len, " (did you mean '%s'?)", near);
+  len = fb_text_append(buf, size, len, n ? "; the %s are " : "; there are no %s", what);
+  for (size_t k = 0; k < n && len + 1 < size; ++k) {
+    len = fb_text_append(buf, size, len, "%s", k ? ", " : "");
+    len = fb_text_append(buf, size, len, "%s", name_at(s, k));
+  }
+}
+
+/* The output's subject names a corner or a mount, as its signal asks. */
+static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
+{
+  const fb_output_spec *o = &s->output[i];
+  const fb_output_kind *kind = o->signal ? fb_vehicle_output_kind_find(o->signal) : NULL;
+  if (!kind)
+    return fail(err, FB_PART_OUTPUT, i, "signal", "unknown signal '%s'",
+                o->signal ? o->signal : "(none)");
+  char hint[512];
+  if (kind->subject == FB_OUTPUT_OF_CORNER &&
+      (!o->of || fb_scenario_corner_find(s, o->of) < 0)) {
+    names_hint(s, o->of, s->ncorners, corner_name_at, "corners", hint, sizeof hint);
+    return fail(err, FB_PART_OUTPUT, i, "of",
+                "no corner named '%s' (a %s signal measures a corner)%s", o->of ? o->of : "",
+                o->signal, hint);
+  }
+  if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
+    names_hint(s, o->of, s->nmounts, mount_name_at, "mounts", hint, sizeof hint);
+    return fail(err, FB_PART_OUTPUT, i, "of",
+                "no mount named '%s' (a %s signal measures a mounted body)%s",
+                o->of ? o->of : "", o->signal, hint);
+  }
+  return FB_OK;
+}
+
+/* A column of its own: not the time's, not a contact force's. */
+static int check_output_name(const fb_scenario *s, size_t i, fb_err *err)
+{
+  const char *name = s->output[i].name;
+  if (!name || !strcmp(name, "t") || !strncmp(name, "contact_force_", 14))
+    return fail(err, FB_PART_OUTPUT, i, "name",
+                "'%s' is a column of its own (t, contact_force_<CORNER>): give another name",
+                name ? name : "");
+  for (size_t j = 0; j < i; ++j)
+    if (same(s->output[j].name, name))
+      return fail(err, FB_PART_OUTPUT, i, "name",
+                  "'%s' is output %zu's name already (names are unique)", name, j);
+  return FB_OK;
+}
+
+static int check_output_figure(const fb_scenario *s, size_t i, fb_err *err)
+{
+  const fb_output_spec *o = &s->output[i];
+  for (size_t j = 0; o->figure && j < i; ++j)
+    if (s->output[j].figure == o->figure)
+      return fail(err, FB_PART_OUTPUT, i, "figure", "figure %d is output %zu's already",
+                  o->figure, j);
+  /* Not bounded by t_end: a shorter run shows the part of the window it
+   * covers, or the whole run. */
+  const double *w = o->window;
+  if ((w[0] != 0 || w[1] != 0) && !(w[0] >= 0 && w[0] < w[1]))
+    return fail(err, FB_PART_OUTPUT, i, "window",
+                "must be [t0, t1] with 0 <= t0 < t1 (got [%.10g, %.10g])", w[0], w[1]);
+  return FB_OK;
+}
+
+static int check_outputs(const fb_scenario *s, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < s->noutputs; ++i) {
+    rc = check_output_subject(s, i, err);
+    if (!rc)
+      rc = check_output_name(s, i, err);
+    if (!rc)
+      rc = check_output_figure(s, i, err);
+  }
+  return rc;
+}
+
+int fb_scenario_check(const fb_scenario *s, fb_err *err)
+{
+  if (!s)
+    return fb_err_set(err, FB_EINVAL, "fb_scenario_check: the scenario is NULL");
+  if (s->ncorners < 3 || !s->corner)
+    return fail(err, FB_PART_VEHICLE, 0, "corner", "at least 3 corners are needed (got %zu)",
+                s->ncorners);
+  int rc = check_names(s, err);
+  if (!rc)
+    rc = check_values(s, err);
+  if (!rc)
+    rc = check_hull(s, err);
+  if (!rc)
+    rc = check_load(s, err);
+  if (!rc)
+    rc = check_dampers(s, err);
+  if (!rc)
+    rc = check_points(s, err);
+  if (!rc)
+    rc = check_point_masses(s, err);
+  if (!rc && s->road_kind != FB_ROAD_BUMP)
+    rc = check_other_road(s, err);
+  if (!rc)
+    rc = check_simulation(s, err);
+  if (!rc && s->road_kind == FB_ROAD_BUMP)
+    rc = check_bump_timing(s, err);
+  if (!rc)
+    rc = check_fe_hull(s, err);
+  if (!rc)
+    rc = check_outputs(s, err);
+  return rc;
+}

@@ -1,0 +1,303 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* A vehicle description's own operations (flexbond/vehicle.h): the bump
+ * timing every wheel follows, freeing and deep copies. Where the
+ * description came from (a file's origins and warnings) is its maker's,
+ * behind fb_scenario_source's ops. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/vehicle.h"
+
+#include "core/util.h"
+
+/* ---- Bump timing. The bump's leading edge is a straight line at
+ * bump_angle to the lateral (y) axis, left side first, through the first
+ * corner's wheel's contact point at bump_time. Seen from the vehicle, the
+ * road moves back at speed V, so the edge reaches a wheel at (x, y) when
+ * it has travelled the wheel's distance behind the first corner,
+ * x_0 - x, plus the edge's extra offset at that lateral position,
+ * (y_0 - y) tan(angle) (data sheet, "Road and obstacle"). Along its path
+ * the wheel then rolls over the bump's length L in L / V. */
+
+/* Corner index corner of s, NULL if there is none. */
+static const fb_corner_params *desc_corner(const fb_scenario *s, int corner)
+{
+  return s && corner >= 0 && (size_t)corner < s->ncorners ? &s->corner[corner] : NULL;
+}
+
+double fb_scenario_wheel_start(const fb_scenario *s, int corner)
+{
+  const fb_corner_params *w = desc_corner(s, corner);
+  if (!w)
+    return NAN;
+  const fb_corner_params *first = &s->corner[0];
+  if (s->road_kind != FB_ROAD_BUMP)
+    return s->road_front_start - first->x + w->x;
+  /* The bump's tracks (fb_road_new_oblique_bump): the leading edge at
+   * s = 0 on the left track and at track_width tan(angle) on the right
+   * one; each wheel reaches its track's edge at its own entry time, which
+   * keeps its own lateral position (y) in the timing. */
+  const double edge = w->y > 0.0 ? 0.0 : fb_scenario_track_width(s) * tan(s->bump_angle);
+  return edge - s->speed * fb_scenario_bump_entry(s, corner);
+}
+
+double fb_scenario_bump_entry(const fb_scenario *s, int corner)
+{
+  const fb_corner_params *w = desc_corner(s, corner);
+  if (!w)
+    return NAN;
+  if (s->road_kind != FB_ROAD_BUMP)
+    return -fb_scenario_wheel_start(s, corner) / s->speed;
+  const fb_corner_params *first = &s->corner[0];
+  return s->bump_time + ((first->x - w->x) + (first->y - w->y) * tan(s->bump_angle)) / s->speed;
+}
+
+double fb_scenario_bump_exit(const fb_scenario *s, int corner)
+{
+  if (!desc_corner(s, corner))
+    return NAN;
+  if (s->road_kind != FB_ROAD_BUMP)
+    return s->t_end;
+  return fb_scenario_bump_entry(s, corner) + s->bump_length / s->speed;
+}
+
+/* ---- Ownership. */
+
+static void desc_free_strings(char **v, size_t n)
+{
+  for (size_t i = 0; v && i < n; ++i)
+    free(v[i]);
+  free(v);
+}
+
+static void desc_free_output(fb_output_spec *o)
+{
+  free(o->name);
+  free(o->signal);
+  free(o->of);
+  free(o->bond);
+  free(o->unit);
+  free(o->title);
+  free(o->label);
+}
+
+void fb_scenario_free(fb_scenario **s)
+{
+  if (!s || !*s)
+    return;
+  fb_scenario *p = *s;
+  free(p->name);
+  free(p->path);
+  free(p->frame_origin);
+  free(p->load_x);
+  free(p->load_y);
+  for (size_t i = 0; p->mount && i < p->nmounts; ++i)
+    free(p->mount[i].name);
+  free(p->mount);
+  for (size_t i = 0; p->point_mass && i < p->npoint_masses; ++i)
+    free(p->point_mass[i].name);
+  free(p->point_mass);
+  for (size_t i = 0; p->section && i < p->nsections; ++i)
+    free(p->section[i].set);
+  free(p->section);
+  for (size_t i = 0; p->corner && i < p->ncorners; ++i)
+    free(p->corner[i].name);
+  free(p->corner);
+  for (size_t i = 0; p->output && i < p->noutputs; ++i)
+    desc_free_output(&p->output[i]);
+  free(p->output);
+  free(p->road_profile);
+  fb_road_free(&p->road_profile_data);
+  free(p->hull_deck);
+  free(p->coupling_surface);
+  fb_mesh_free(&p->hull_source_mesh);
+  desc_free_strings(p->inputs, p->ninputs);
+  if (p->source)
+    p->source->ops->free(p->source);
+  free(p);
+  *s = NULL;
+}
+
+/* *dst = copy of the string src (NULL stays NULL); 0 when out of memory. */
+static int desc_copy_string(const char *src, char **dst)
+{
+  *dst = src ? fb_strdup(src) : NULL;
+  return !src || *dst;
+}
+
+/* *dst = a copy of the n strings at src (NULL stays NULL), NULL entries
+ * where memory ran out; 0 when it did. */
+static int desc_copy_strings(char *const *src, size_t n, char ***dst)
+{
+  *dst = src && n ? calloc(n, sizeof **dst) : NULL;
+  int ok = !src || !n || *dst;
+  for (size_t i = 0; *dst && i < n; ++i)
+    ok = desc_copy_string(src[i], &(*dst)[i]) && ok;
+  return ok;
+}
+
+/* *dst = a byte copy of the n items of size bytes at src (NULL stays
+ * NULL), its owned strings to be copied next; 0 when out of memory. The
+ * copy is zeroed until then, so that a failure frees nothing twice. */
+static int desc_copy_items(const void *src, size_t n, size_t size, void **dst, void **shallow)
+{
+  *dst = NULL;
+  *shallow = NULL;
+  if (!src)
+    return 1;
+  if (n > SIZE_MAX / size)
+    return 0;
+  *dst = calloc(n ? n : 1, size);
+  *shallow = malloc((n ? n : 1) * size);
+  if (*shallow && n)
+    memcpy(*shallow, src, n * size);
+  return *dst && *shallow;
+}
+
+/* *dst = copy of the n doubles at src (NULL stays NULL); 0 when out of
+ * memory. */
+static int desc_copy_array(const double *src, size_t n, double **dst)
+{
+  *dst = NULL;
+  if (!src)
+    return 1;
+  if (n > SIZE_MAX / sizeof **dst)
+    return 0;
+  *dst = malloc((n ? n : 1) * sizeof **dst);
+  if (*dst && n)
+    memcpy(*dst, src, n * sizeof **dst);
+  return *dst != NULL;
+}
+
+static int desc_copy_mounts(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_mount *m = NULL;
+  int ok = desc_copy_items(s->mount, s->nmounts, sizeof *m, (void **)&copy->mount, (void **)&m);
+  for (size_t i = 0; ok && m && i < s->nmounts; ++i) { /* no m: no mounts */
+    copy->mount[i] = m[i];
+    ok = desc_copy_string(s->mount[i].name, &copy->mount[i].name);
+  }
+  free(m);
+  return ok;
+}
+
+/* The copy's items are zeroed until each is copied, so that a failure
+ * frees nothing twice. */
+static int desc_copy_point_masses(const fb_scenario *s, fb_scenario *copy)
+{
+  const size_t n = s->npoint_masses;
+  if (!s->point_mass)
+    return 1;
+  copy->point_mass = calloc(n ? n : 1, sizeof *copy->point_mass);
+  int ok = copy->point_mass != NULL;
+  for (size_t i = 0; ok && i < n; ++i) {
+    copy->point_mass[i] = s->point_mass[i];
+    copy->point_mass[i].name = NULL;
+    ok = desc_copy_string(s->point_mass[i].name, &copy->point_mass[i].name);
+  }
+  return ok;
+}
+
+static int desc_copy_sections(const fb_scenario *s, fb_scenario *copy)
+{
+  const size_t n = s->nsections;
+  if (!s->section)
+    return 1;
+  copy->section = calloc(n ? n : 1, sizeof *copy->section);
+  int ok = copy->section != NULL;
+  for (size_t i = 0; ok && i < n; ++i) {
+    copy->section[i] = s->section[i];
+    copy->section[i].set = NULL;
+    ok = desc_copy_string(s->section[i].set, &copy->section[i].set);
+  }
+  return ok;
+}
+
+static int desc_copy_corners(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_corner_params *c = NULL;
+  int ok =
+      desc_copy_items(s->corner, s->ncorners, sizeof *c, (void **)&copy->corner, (void **)&c);
+  for (size_t i = 0; ok && c && i < s->ncorners; ++i) { /* no c: no corners */
+    copy->corner[i] = c[i];
+    ok = desc_copy_string(s->corner[i].name, &copy->corner[i].name);
+  }
+  free(c);
+  return ok;
+}
+
+static int desc_copy_output(const fb_output_spec *src, fb_output_spec *dst)
+{
+  *dst = (fb_output_spec){.figure = src->figure, .window = {src->window[0], src->window[1]}};
+  int ok = desc_copy_string(src->name, &dst->name);
+  ok = desc_copy_string(src->signal, &dst->signal) && ok;
+  ok = desc_copy_string(src->of, &dst->of) && ok;
+  ok = desc_copy_string(src->bond, &dst->bond) && ok;
+  ok = desc_copy_string(src->unit, &dst->unit) && ok;
+  ok = desc_copy_string(src->title, &dst->title) && ok;
+  return desc_copy_string(src->label, &dst->label) && ok;
+}
+
+static int desc_copy_outputs(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_output_spec *o = NULL;
+  int ok =
+      desc_copy_items(s->output, s->noutputs, sizeof *o, (void **)&copy->output, (void **)&o);
+  free(o);
+  for (size_t i = 0; ok && i < s->noutputs; ++i)
+    ok = desc_copy_output(&s->output[i], &copy->output[i]);
+  return ok;
+}
+
+int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
+{
+  if (!s || !out)
+    return fb_err_set(err, FB_EINVAL, "fb_scenario_clone: scenario and out must not be NULL");
+  *out = NULL;
+  fb_scenario *copy = malloc(sizeof *copy);
+  if (!copy)
+    return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
+  *copy = *s;
+  /* Nothing of s's is owned by the copy until copied below. */
+  copy->name = copy->path = copy->frame_origin = copy->road_profile = copy->hull_deck = NULL;
+  copy->coupling_surface = NULL;
+  copy->load_x = copy->load_y = NULL;
+  copy->mount = NULL;
+  copy->point_mass = NULL;
+  copy->section = NULL;
+  copy->corner = NULL;
+  copy->output = NULL;
+  copy->inputs = NULL;
+  copy->source = NULL;
+  copy->road_profile_data = NULL;
+  copy->hull_source_mesh = NULL;
+  int ok = desc_copy_string(s->name, &copy->name);
+  ok = desc_copy_string(s->path, &copy->path) && ok;
+  ok = desc_copy_string(s->frame_origin, &copy->frame_origin) && ok;
+  ok = desc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
+  ok = desc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
+  ok = desc_copy_mounts(s, copy) && ok;
+  ok = desc_copy_point_masses(s, copy) && ok;
+  ok = desc_copy_sections(s, copy) && ok;
+  ok = desc_copy_corners(s, copy) && ok;
+  ok = desc_copy_outputs(s, copy) && ok;
+  ok = desc_copy_string(s->road_profile, &copy->road_profile) && ok;
+  ok = (!s->road_profile_data ||
+        fb_road_clone(s->road_profile_data, &copy->road_profile_data, NULL) == FB_OK) &&
+       ok;
+  ok = desc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
+  ok = desc_copy_string(s->coupling_surface, &copy->coupling_surface) && ok;
+  ok = (!s->hull_source_mesh ||
+        fb_mesh_clone(s->hull_source_mesh, &copy->hull_source_mesh, NULL) == FB_OK) &&
+       ok;
+  ok = desc_copy_strings(s->inputs, s->ninputs, &copy->inputs) && ok;
+  ok = (!s->source || s->source->ops->clone(s->source, &copy->source) == FB_OK) && ok;
+  if (!ok) {
+    fb_scenario_free(&copy);
+    return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
+  }
+  *out = copy;
+  return FB_OK;
+}

@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""The library's layers (docs/architecture.md): no module below src/io
+(core, bg, bd, sim, fem, road, ride, vehicle) includes or calls io or cli,
+names a scenario file's key, or names the command line.
+
+  layering.py SOURCE_DIR OBJECT_DIR...
+
+Checked three ways, each from what the build and the format declare, so
+that nothing here needs updating when a key or a function is added:
+- includes: no "io/...", "cli/..." or flexbond/io.h, flexbond/model.h;
+- calls: no symbol a lower module's object file leaves undefined is
+  defined by an io or cli object file (nm over the OBJECT_DIRs);
+- text: no string literal of a lower module holds a key path of the
+  scenario format (the dotted keys of docs/scenario-format.md's tables,
+  which test_scenario_docs keeps equal to the reader's table), a command
+  line option ("--set") or the command's name before a subcommand.
+Exit 1 with every finding; 0 when there is none."""
+import os
+import re
+import subprocess
+import sys
+
+LOWER = ("core", "bg", "bd", "sim", "fem", "road", "ride", "vehicle")
+UPPER = ("io", "cli")
+# The command's subcommands (src/cli/main.c).
+COMMANDS = ("run", "sweep", "freq", "modes", "export", "model", "mesh", "sim", "diagram",
+            "causality", "eig")
+FORBIDDEN_INCLUDES = re.compile(r'#\s*include\s*"(io/|cli/|flexbond/io\.h|flexbond/model\.h)')
+
+
+def sources(src, module):
+    d = os.path.join(src, "src", module)
+    return [os.path.join(d, f) for f in sorted(os.listdir(d)) if f.endswith((".c", ".h"))]
+
+
+def literals(text):
+    """The string literals of C source text, comments and character
+    constants skipped."""
+    out, i, n = [], 0, len(text)
+    while i < n:
+        c = text[i]
+        if text.startswith("/*", i):
+            end = text.find("*/", i + 2)
+            i = n if end < 0 else end + 2
+        elif text.startswith("//", i):
+            end = text.find("\n", i)
+            i = n if end < 0 else end
+        elif c in "\"'":
+            j, buf = i + 1, []
+            while j < n and text[j] != c:
+                if text[j] == "\\":
+                    buf.append(text[j:j + 2])
+                    j += 2
+                else:
+                    buf.append(text[j])
+                    j += 1
+            if c == '"':
+                out.append("".join(buf))
+            i = j + 1
+        else:
+            i += 1
+    return out
+
+
+def scenario_keys(src):
+    """The dotted key paths of the scenario format (its documented tables)."""
+    doc = open(os.path.join(src, "docs", "scenario-format.md"), encoding="utf-8").read()
+    begin, end = doc.index("<!-- schema:begin -->"), doc.index("<!-- schema:end -->")
+    keys = set(re.findall(r"^\| `([A-Za-z_][\w.]*)` \|", doc[begin:end], re.M))
+    return sorted(k for k in keys if "." in k)
+
+
+def defined_symbols(objects):
+    out = set()
+    for o in objects:
+        lines = subprocess.run(["nm", "--defined-only", "-g", o], check=True,
+                               capture_output=True, text=True).stdout.splitlines()
+        out.update(line.split()[-1] for line in lines if line.strip())
+    return out
+
+
+def undefined_symbols(obj):
+    lines = subprocess.run(["nm", "-u", obj], check=True, capture_output=True,
+                           text=True).stdout.splitlines()
+    return {line.split()[-1] for line in lines if line.strip()}
+
+
+def objects(dirs, module):
+    found = []
+    for d in dirs:
+        for root, _, files in os.walk(d):
+            if os.path.basename(root) == module and os.sep + "src" in root:
+                found += [os.path.join(root, f) for f in files if f.endswith(".o")]
+    return found
+
+
+def main():
+    src, objdirs = sys.argv[1], sys.argv[2:]
+    findings = []
+    keys = scenario_keys(src)
+    if len(keys) < 50:
+        findings.append("docs/scenario-format.md: only %d keys found" % len(keys))
+    # A key as a literal, or a literal that starts with it and goes on
+    # into the key's items or members ("hull.masses.%s").
+    key_in = re.compile(r"(?<![\w.])(%s)(?![\w])" % "|".join(re.escape(k) for k in keys))
+    cli_in = re.compile(r"(?<![\w-])--(set|system|strict|hull-[a-z]+)\b|\bflexbond (%s)\b" %
+                        "|".join(COMMANDS))
+    # The checks bite: each finds what it is for in text made to hold it.
+    bad = 'x = "hull.fe.modes"; /* "road.speed_kmh" */ y = "see --set k=v"; z = \'"\';'
+    bites = [lit for lit in literals(bad) if key_in.search(lit) or cli_in.search(lit)]
+    if bites != ["hull.fe.modes", "see --set k=v"]:
+        findings.append("the text checks do not bite: %r" % bites)
+    if not FORBIDDEN_INCLUDES.search('#include "io/scenario_internal.h"'):
+        findings.append("the include check does not bite")
+    for module in LOWER:
+        for path in sources(src, module):
+            text = open(path, encoding="utf-8").read()
+            rel = os.path.relpath(path, src)
+            for m in FORBIDDEN_INCLUDES.finditer(text):
+                findings.append("%s: includes %s" % (rel, m.group(1)))
+            for lit in literals(text):
+                m = key_in.search(lit)
+                if m:
+                    findings.append("%s: names the scenario key %s in \"%s\"" %
+                                    (rel, m.group(1), lit))
+                m = cli_in.search(lit)
+                if m:
+                    findings.append("%s: names the command line in \"%s\"" % (rel, lit))
+    if objdirs:
+        upper = defined_symbols([o for m in UPPER for o in objects(objdirs, m)])
+        lower = [o for m in LOWER for o in objects(objdirs, m)]
+        if not upper or len(lower) < 50:
+            findings.append("object files not found under %s" % " ".join(objdirs))
+        for o in lower:
+            for sym in sorted(undefined_symbols(o) & upper):
+                findings.append("%s: calls %s, defined in io or cli" %
+                                (os.path.basename(o), sym))
+    for f in findings:
+        print("layering: " + f)
+    print("layering: %d findings (%d scenario keys checked)" % (len(findings), len(keys)))
+    return 1 if findings else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
