@@ -4,11 +4,14 @@
 # (both systems, 15 s at 1 kHz) reproduces, sample by sample, the
 # system1.csv and system2.csv that commit 5b32e25 wrote
 # (tests/data/apc6x6_5b32e25/README.md). Every output column must be within
-# 1e-9 of that column's range in the reference (1e-12 absolute for a
+# 1e-4 of that column's range in the reference (1e-12 absolute for a
 # constant column: System 1's torsion), with the same header, row count
-# and time column; tests/tools/result_compare.c does the comparison. First
-# the comparator is checked on its own: it accepts the reference against
-# itself and rejects copies changed by little more than the tolerance.
+# and time column; tests/tools/result_compare.c does the comparison and
+# says why 1e-4: the integration's own error, measured against a converged
+# run, with a margin, and below what a 1 % change of a tire's stiffness
+# shows. First the comparator is checked on its own: it accepts the
+# reference against itself and rejects copies changed by little more than
+# the tolerance.
 #
 # usage: bash tests/cli_regression.sh PATH/TO/flexbond REPO_ROOT
 # with FLEXBOND_RESULT_COMPARE the result_compare executable (CTest sets
@@ -53,34 +56,35 @@ for s in 1 2; do
   expect_in "$OUT" "0.000e+00 x range" "reference system$s.csv against itself: zero differences"
 done
 
-# One value of System 1's LF tire force changed by 1e-6 relative: rejected,
-# the message naming the column, row, time and both values. Line 5001 is
-# sample 5000, t = 4.999 s, where the tire carries its static load.
+# One value of System 1's LF tire force changed by 1e-3 relative (about
+# 8e-4 of the column's range): rejected, the message naming the column,
+# row, time and both values. Line 5001 is sample 5000, t = 4.999 s, where
+# the tire carries its static load.
 P=$WORK/perturbed1.csv
-perturb "$REF/system1.csv" "$P" 5001 2 mul 1.000001
+perturb "$REF/system1.csv" "$P" 5001 2 mul 1.001
 # The comparator prints values as %.17g, as awk does here.
 old=$(awk -F, 'NR == 5001 { printf "%.17g", $2 }' "$REF/system1.csv")
 new=$(awk -F, 'NR == 5001 { printf "%.17g", $2 }' "$P")
 checks=$((checks + 1))
 [ "$old" != "$new" ] || fail "perturbed copy: value unchanged ($old)"
 compare "$REF/system1.csv" "$P"
-expect_status 1 "perturbed tire_force_LF (1e-6 relative)"
+expect_status 1 "perturbed tire_force_LF (1e-3 relative)"
 expect_in "$ERR" "column 'tire_force_LF': 1 of 15001 samples differ" "perturbed: column named"
 expect_in "$ERR" "worst at row 5000 (line 5001), t = 4.999 s" "perturbed: row and time named"
 expect_in "$ERR" "old $old, new $new," "perturbed: both values shown"
 expect_in "$OUT" "tire_power_LR" "perturbed: every column still listed"
 
 # Either side of the tolerance at one sample of System 2's driver
-# acceleration: 0.9e-9 of the column's range added passes, 1.1e-9 fails.
+# acceleration: 0.9e-4 of the column's range added passes, 1.1e-4 fails.
 R=$(range "$REF/system2.csv" 5)
-for frac in 0.9e-9 1.1e-9; do
+for frac in 0.9e-4 1.1e-4; do
   P=$WORK/driver_acc_$frac.csv
   perturb "$REF/system2.csv" "$P" 9001 5 add "$(awk -v r="$R" -v f="$frac" 'BEGIN { printf "%.17g", r * f }')"
   compare "$REF/system2.csv" "$P"
-  if [ "$frac" = 0.9e-9 ]; then
-    expect_status 0 "driver_acc plus 0.9e-9 x range at one sample"
+  if [ "$frac" = 0.9e-4 ]; then
+    expect_status 0 "driver_acc plus 0.9e-4 x range at one sample"
   else
-    expect_status 1 "driver_acc plus 1.1e-9 x range at one sample"
+    expect_status 1 "driver_acc plus 1.1e-4 x range at one sample"
     expect_in "$ERR" "column 'driver_acc': 1 of 15001 samples differ" "driver_acc: column named"
     expect_in "$ERR" "worst at row 9000 (line 9001), t = 8.999 s" "driver_acc: row and time"
   fi
@@ -120,31 +124,16 @@ compare "$WORK/bad.csv" "$WORK/bad.csv"
 expect_status 2 "unparsable value"
 expect_in "$ERR" "bad.csv:3: field 2 ('x') is not a number" "unparsable value"
 
-# ---- The current build against the reference, with OpenBLAS as it was
-# when the reference was made (tests/data/apc6x6_5b32e25/README.md):
-# System 2 depends on OpenBLAS's kernels and thread count (most likely
-# through the dense eigen-solve its hull damping comes from): other choices move
-# system2.csv by up to ~7e-6 of a column's range. One thread, and the
-# Haswell (AVX2) kernels.
-checks=$((checks + 1))
-if [ "$(uname -m)" != x86_64 ] || ! grep -qw avx2 /proc/cpuinfo 2>/dev/null; then
-  fail "the reference needs OpenBLAS's Haswell kernels: an x86-64 CPU with AVX2"
-fi
-# The reference's System 2 had the hull in nodal coordinates, now the
-# reference formulation beside the default modal one (which agrees with it
-# to the solver's tolerance, tests/test_system2_sim.c).
-# Its solver had no stability limit detection, which now moves System 2's
-# steps (to the same accuracy, src/sim/cvode.c): the copy run here turns it
-# off.
-export OPENBLAS_CORETYPE=Haswell OPENBLAS_NUM_THREADS=1
-sed 's/^simulation:$/simulation:\n  stability_limit_detection: false/' \
-  "$REPO_ROOT/examples/apc6x6.yaml" >"$WORK/apc6x6.yaml"
-checks=$((checks + 1))
-grep -q '^  stability_limit_detection: false$' "$WORK/apc6x6.yaml" ||
-  fail "the copy of apc6x6.yaml does not turn stability limit detection off"
+# ---- The current build against the reference, as it runs anywhere: no
+# BLAS kernel or thread count pinned, the solver's own step selection (the
+# reference's had no stability limit detection), beta from whichever
+# eigen-solver the hull's size calls for. Its System 2 had the hull in
+# nodal coordinates, the reference formulation beside the default modal
+# one (a reduced model of the same hull, compared with it in
+# tests/test_system2_sim.c), which the run here asks for.
 # --plain-header: the reference's header, names only (the paper's CSV).
-run run "$WORK/apc6x6.yaml" -o "$WORK/out" --no-figures -q --hull-coordinates nodal \
-  --plain-header
+run run "$REPO_ROOT/examples/apc6x6.yaml" -o "$WORK/out" --no-figures -q \
+  --hull-coordinates nodal --plain-header
 expect_status 0 "run apc6x6, both systems"
 for s in 1 2; do
   compare "$REF/system$s.csv" "$WORK/out/system$s.csv"

@@ -499,7 +499,7 @@ PY
 run run "$SHORT" -o "$WORK/verbose_nodal" -v --no-figures --system flexible \
   --hull-coordinates nodal
 expect_status 0 "run -v --hull-coordinates nodal"
-expect_in "$ERR" "hull of 1296 DOFs in nodal coordinates; eigen-solve dense LAPACK (dsygvd), 12 lowest modes," \
+expect_in "$ERR" "hull of 1296 DOFs in nodal coordinates; eigen-solve block Lanczos on a CHOLMOD factor, 12 lowest modes," \
   "run -v: the nodal hull's frequencies"
 run run "$SHORT" -o "$WORK/quiet_verbose" -q -v --no-figures --system rigid
 expect_status 0 "run -q -v"

@@ -266,7 +266,7 @@ typedef enum fb_part_kind {
 #define FB_PART_AT(k, i, m) (k), (i), FB_ERR_NO_ELEMENT, fb_part_member_(k, m)
 /* The same for element e of array member m ("hull_mesh.bulkhead_x"). */
 #define FB_PART_ELEMENT(k, i, m, e) (k), (i), (e), fb_part_member_(k, m)
-#define fb_part_member_(k, m) (#m + 0 * offsetof(FB_PART_TYPE_##k, m))
+#define fb_part_member_(k, m) (&#m[0 * offsetof(FB_PART_TYPE_##k, m)])
 typedef struct fb_scenario FB_PART_TYPE_FB_PART_VEHICLE;
 typedef struct fb_corner_params FB_PART_TYPE_FB_PART_CORNER;
 typedef struct fb_mount FB_PART_TYPE_FB_PART_MOUNT;

@@ -53,9 +53,9 @@
 #define WARP_LIMIT 1e-2
 /* An offset from the mean plane at most this fraction of the longer
  * diagonal is the round-off of a flat element's coordinates (a generated
- * mesh's are off by ~1e-16): no link. Linking it would change K in its
- * last digits only, and a result frozen at 1e-9 of a range with it; what
- * a warp this small leaves unlinked puts the rigid-body modes near 1e-7 Hz. */
+ * mesh's are off by ~1e-16): no link, which would change K in its last
+ * digits only; what a warp this small leaves unlinked puts the rigid-body
+ * modes near 1e-7 Hz. */
 #define FLAT_OFFSET 1e-12
 /* Relative area (to the squared longest edge or diagonal) below which an
  * element is degenerate: a sliver with an angle below about 1e-10 rad. */

@@ -720,8 +720,8 @@ static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format
   .store = SCH_STORE_##kind, .offset = offsetof(fb_hull_section, f), .member = #f
 /* A key that stores no member of its own (a section, a custom value)
  * but stands for member f of the scenario in errors (fb_err.part). */
-#define S_IS(f) .member = (#f + 0 * offsetof(fb_scenario, f))
-#define C_IS(f) .member = (#f + 0 * offsetof(fb_corner_params, f))
+#define S_IS(f) .member = (&#f[0 * offsetof(fb_scenario, f)])
+#define C_IS(f) .member = (&#f[0 * offsetof(fb_corner_params, f)])
 /* A list's items: the scenario's array arr, their number at count; an
  * item of the file makes per of them. NAMED: visited by their names. */
 #define ITEMS(arr, count, per)                                                                 \

@@ -383,15 +383,6 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
   return rc;
 }
 
-/* The largest hull whose free-free frequencies (beta's, the report's)
- * come from LAPACK: the nodal reference results were computed so (the
- * reference hull has 1296 DOFs), and Lanczos, which agrees to round-off,
- * would still move a beta's last digits and with them the integrator's
- * step sequence and the outputs, by the solver's tolerance (4e-6 of a
- * column's range measured on the reference vehicle). Above it a dense
- * solve only for a frequency would be an accident of size. */
-#define HULL_DENSE_FREQUENCY_DOFS 3000
-
 int fb_fe_hull_frequencies(const fb_mat *K, const fb_mat *M, size_t nmodes,
                            const fb_eig_opts *o, double *freq_hz, size_t *nrigid,
                            fb_eig_info *info, fb_err *err)
@@ -404,8 +395,6 @@ int fb_fe_hull_frequencies(const fb_mat *K, const fb_mat *M, size_t nmodes,
   const size_t n = fb_mat_nrows(K);
   if (nmodes > n)
     nmodes = n;
-  if (opts.method == FB_EIG_AUTO)
-    opts.method = n <= HULL_DENSE_FREQUENCY_DOFS ? FB_EIG_DENSE : FB_EIG_LANCZOS;
   opts.values_only = 1;
   fb_fem_modal *fm = NULL;
   int rc = fb_fem_modal_new(K, M, &opts, &fm, err);
@@ -421,18 +410,6 @@ int fb_fe_hull_frequencies(const fb_mat *K, const fb_mat *M, size_t nmodes,
   return rc;
 }
 
-/* The eigen-solver's options of the one-shot calls below for a hull of K:
- * the solver's own choice by size (block Lanczos above
- * FB_EIG_DENSE_AUTO_DOFS), not the nodal reference's LAPACK up to 3000
- * DOFs, which costs a second of a 1296-DOF hull's time for a few modes. */
-static fb_eig_opts one_shot_opts(const fb_mat *K)
-{
-  fb_eig_opts o;
-  fb_eig_opts_default(&o);
-  o.method = K && fb_mat_nrows(K) <= FB_EIG_DENSE_AUTO_DOFS ? FB_EIG_DENSE : FB_EIG_LANCZOS;
-  return o;
-}
-
 int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, size_t *nrigid,
                           fb_err *err)
 {
@@ -441,9 +418,8 @@ int fb_fe_hull_free_modes(const fb_fe_hull *h, size_t nmodes, double *freq_hz, s
   int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
   if (!rc)
     rc = fb_fe_hull_mass_matrix(h, &M, err);
-  const fb_eig_opts o = one_shot_opts(K);
   if (!rc)
-    rc = fb_fe_hull_frequencies(K, M, nmodes, &o, freq_hz, nrigid, NULL, err);
+    rc = fb_fe_hull_frequencies(K, M, nmodes, NULL, freq_hz, nrigid, NULL, err);
   fb_mat_free(&K);
   fb_mat_free(&M);
   return rc;
@@ -470,9 +446,8 @@ int fb_fe_hull_damping(const fb_fe_hull *h, double zeta, double *beta, fb_mat **
   int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
   if (!rc)
     rc = fb_fe_hull_mass_matrix(h, &M, err);
-  const fb_eig_opts o = one_shot_opts(K);
   if (!rc)
-    rc = fb_fe_hull_frequencies(K, M, FB_HULL_BETA_MODES, &o, f, &nrigid, NULL, err);
+    rc = fb_fe_hull_frequencies(K, M, FB_HULL_BETA_MODES, NULL, f, &nrigid, NULL, err);
   if (!rc)
     rc = fb_fe_hull_beta(zeta, nrigid, f[FB_HULL_BETA_MODES - 1], beta, err);
   if (!rc && B)

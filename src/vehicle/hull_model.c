@@ -245,8 +245,7 @@ static int hull_beta(const fb_scenario *s, vehicle_hull *h, const fb_mat *built,
 }
 
 /* Nodal coordinates: the report's free-free frequencies (and the
- * listing's), which give beta, by fb_fe_hull_frequencies (as the
- * reference results were made). */
+ * listing's), which give beta, by fb_fe_hull_frequencies. */
 static int realise_nodal(const fb_scenario *s, vehicle_hull *h, const fb_mat *built,
                          const fb_eig_opts *o, fb_vehicle_work *w, fb_err *err)
 {

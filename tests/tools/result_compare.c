@@ -28,11 +28,18 @@
 #include <string.h>
 
 /* A reference column that varies: the new one may differ from it by at
- * most 1e-9 of its range at every sample. The CSV prints %.10g, so one
- * unit in the last printed digit of a value v is 1e-9 |v| to 1e-10 |v|;
- * for the APC outputs |v| <= R, so this allows about a last-digit
- * rounding flip and nothing that a different integration would give. */
-#define REL_TOL 1e-9
+ * most 1e-4 of its range at every sample. The reference and a correct
+ * build are each an integration at the scenario's tolerances (rtol 1e-6,
+ * atol 1e-8) of the same model, each within its global error of the
+ * exact solution, and never closer than that: other BLAS kernels, thread
+ * counts, step sequences or eigen-solvers move the result within it.
+ * Measured on the APC (tests/data/apc6x6_5b32e25/README.md): the
+ * reference lies within 9.0e-6 of a column's range of a run at rtol
+ * 1e-10, atol 1e-12 (the converged solution), and the build within
+ * 5.3e-6 of the reference; 1e-4 allows five times their sum. A change
+ * of the model shows above it: a tire stiffness 1 % stiffer moves every
+ * column by 1.8e-4 (driver_acc) to 8.0e-3 (tire_defl_RM) of its range. */
+#define REL_TOL 1e-4
 /* A reference column that is constant (range 0) has no scale to be
  * relative to: the rigid hull's torsion angle is exactly zero at every
  * sample, as that hull cannot twist. An absolute bound is used instead;
