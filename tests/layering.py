@@ -21,7 +21,7 @@ import re
 import subprocess
 import sys
 
-LOWER = ("core", "bg", "bd", "sim", "fem", "road", "ride", "vehicle")
+LOWER = ("core", "bg", "bd", "sim", "fem", "road", "ride", "vehicle", "study")
 UPPER = ("io", "cli")
 # The command's subcommands (src/cli/main.c).
 COMMANDS = ("run", "sweep", "freq", "modes", "export", "model", "mesh", "sim", "diagram",

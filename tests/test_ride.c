@@ -12,7 +12,7 @@
 #include "flexbond/ride.h"
 
 #include "check.h"
-#include "sim/sim_internal.h"
+#include "result_util.h"
 
 static const double PI = 3.14159265358979323846;
 static const double FS = 1000.0; /* Hz, the project's output rate */
@@ -241,24 +241,10 @@ static void test_absorbed_power_parseval(void)
  * sine), built by hand. */
 static fb_result *make_result(size_t n, double t_first)
 {
-  fb_result *r = calloc(1, sizeof *r);
-  if (!r)
-    return NULL;
-  const char *names[] = {"t", "other", "driver_acc"}, *units[] = {"s", "1", "m/s^2"};
-  r->nsamples = n;
-  r->ncols = 3;
-  r->names = calloc(3, sizeof *r->names);
-  r->units = calloc(3, sizeof *r->units);
-  r->data = malloc(n * 3 * sizeof *r->data);
-  if (!r->names || !r->units || !r->data) {
-    fb_result_free(&r);
-    return NULL;
-  }
-  for (size_t j = 0; j < 3; ++j) {
-    r->names[j] = strdup(names[j]);
-    r->units[j] = strdup(units[j]);
-  }
-  for (size_t k = 0; k < n; ++k) {
+  const char *const names[] = {"t", "other", "driver_acc"}, *const units[] = {"s", "1",
+                                                                              "m/s^2"};
+  fb_result *r = test_result_new(n, 3, names, units);
+  for (size_t k = 0; r && k < n; ++k) {
     double *row = r->data + 3 * k;
     row[0] = t_first + (double)k / FS;
     row[1] = 0;

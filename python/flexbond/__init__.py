@@ -65,6 +65,29 @@ class _Mode(ctypes.Structure):
                 ("description", ctypes.c_char * 96)]
 
 
+class _OutputStats(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_double) for n in
+                ("static", "peak", "peak_time", "min", "min_time", "rms")]
+
+
+class _OutputCmp(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_double) for n in
+                ("max_diff", "max_diff_time", "range1", "rel_diff", "peak_change",
+                 "rms_change")]
+
+
+class _ContactLoss(ctypes.Structure):
+    _fields_ = [("corner", ctypes.c_int), ("t_start", ctypes.c_double),
+                ("t_end", ctypes.c_double), ("min_force", ctypes.c_double),
+                ("t_min", ctypes.c_double)]
+
+
+class _RideMetrics(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_double) for n in
+                ("a_w_rms", "mtvv", "vdv", "crest", "absorbed_power", "jerk_peak",
+                 "jerk_rms", "duration")]
+
+
 class _Override(ctypes.Structure):
     _fields_ = [("key", ctypes.c_char_p), ("value", ctypes.c_char_p),
                 ("label", ctypes.c_char_p)]
@@ -122,6 +145,19 @@ _PROTOTYPES = {
                                       _PERR]),
     "fb_vehicle_free": (None, [_PP]),
     "fb_vehicle_run": (ctypes.c_int, [_P, _PDOUBLE, _PROGRESS, _P, _PP, _P, _PERR]),
+    "fb_run_summary_new": (ctypes.c_int, [_P, _P, _PDOUBLE, _PP, _PERR]),
+    "fb_run_summary_free": (None, [_PP]),
+    "fb_run_summary_window": (None, [_P, _PDOUBLE]),
+    "fb_run_summary_output": (ctypes.POINTER(_OutputStats), [_P, ctypes.c_size_t]),
+    "fb_run_summary_contact": (ctypes.POINTER(_OutputStats), [_P, ctypes.c_size_t]),
+    "fb_run_summary_contact_ratio": (ctypes.c_double, [_P, ctypes.c_size_t]),
+    "fb_run_summary_contact_spike": (ctypes.c_int, [_P, ctypes.c_size_t]),
+    "fb_run_summary_nlosses": (ctypes.c_size_t, [_P]),
+    "fb_run_summary_loss": (ctypes.POINTER(_ContactLoss), [_P, ctypes.c_size_t]),
+    "fb_run_summary_ride": (ctypes.c_int, [_P, ctypes.POINTER(_RideMetrics), _PDOUBLE,
+                                           ctypes.POINTER(ctypes.c_char_p)]),
+    "fb_study_compare": (ctypes.c_int, [_P, _P, _P, _P, _P, ctypes.POINTER(_OutputCmp), _PP,
+                                        _PERR]),
     "fb_vehicle_linear_modes": (ctypes.c_int, [_P, ctypes.c_int,
                                                ctypes.POINTER(ctypes.POINTER(_Mode)), _PSIZE,
                                                _PSIZE, _PERR]),
@@ -313,6 +349,81 @@ def _result(res, system):
 
 
 Corner = collections.namedtuple("Corner", "name x y")
+
+OutputStats = collections.namedtuple("OutputStats", "static peak peak_time min min_time rms")
+OutputStats.__doc__ = """One output over the response window (flexbond/study.h): static (the
+last sample before it), peak and min from its start on with their first times,
+rms over it; summary.json's "outputs"."""
+
+ContactLoss = collections.namedtuple("ContactLoss", "tire start end min_force at")
+ContactLoss.__doc__ = """A tire's interval of lost contact: from start to end (s), its
+smallest reaction min_force (N, <= 0) at time at."""
+
+OutputComparison = collections.namedtuple(
+    "OutputComparison", "max_diff max_diff_time range1 rel_diff peak_change rms_change")
+OutputComparison.__doc__ = """An output of the second system against the first, from the
+window's start on: the largest |difference| and its time, the first system's
+range, their ratio, and the relative changes of peak and rms (NaN where a
+denominator is 0); summary.json's "comparison"."""
+
+
+class RunSummary:
+    """A run summarised by the library's study layer, as flexbond run writes
+    it in summary.json: result (the Result), window (the response window, s),
+    outputs {name: OutputStats}, contact {tire: OutputStats} of each tire's
+    normal reaction, contact_ratio {tire: peak / static}, spikes (tires above
+    flexbond's spike ratio), contact_loss [ContactLoss], and ride: the ride
+    metrics {a_w_rms, mtvv, vdv, crest, absorbed_power, jerk_peak, jerk_rms,
+    duration} of the first mounted body's acceleration over ride_window, or
+    None with ride_note saying why."""
+
+    def __init__(self, scenario, system, res, summary):
+        self.system = system
+        self.result = _result(res, system)
+        window = (ctypes.c_double * 2)()
+        _lib.fb_run_summary_window(summary, window)
+        self.window = (window[0], window[1])
+        names = [_lib.fb_scenario_output_name(scenario, k).decode()
+                 for k in range(_lib.fb_scenario_noutputs(scenario))]
+        tires = [_lib.fb_scenario_corner_name(scenario, c).decode()
+                 for c in range(_lib.fb_scenario_ncorners(scenario))]
+        self.outputs = {n: _stats(_lib.fb_run_summary_output(summary, k).contents)
+                        for k, n in enumerate(names)}
+        self.contact = {n: _stats(_lib.fb_run_summary_contact(summary, c).contents)
+                        for c, n in enumerate(tires)}
+        self.contact_ratio = {n: _lib.fb_run_summary_contact_ratio(summary, c)
+                              for c, n in enumerate(tires)}
+        self.spikes = [n for c, n in enumerate(tires)
+                       if _lib.fb_run_summary_contact_spike(summary, c)]
+        self.contact_loss = []
+        for i in range(_lib.fb_run_summary_nlosses(summary)):
+            loss = _lib.fb_run_summary_loss(summary, i).contents
+            self.contact_loss.append(ContactLoss(tires[loss.corner], loss.t_start, loss.t_end,
+                                                 loss.min_force, loss.t_min))
+        ride = _RideMetrics()
+        note = ctypes.c_char_p()
+        if _lib.fb_run_summary_ride(summary, ctypes.byref(ride), window, ctypes.byref(note)):
+            self.ride = {n: getattr(ride, n) for n, _ in _RideMetrics._fields_}
+            self.ride_window = (window[0], window[1])
+            self.ride_note = None
+        else:
+            self.ride, self.ride_window = None, None
+            self.ride_note = note.value.decode(errors="replace")
+
+
+def _stats(s):
+    return OutputStats(s.static, s.peak, s.peak_time, s.min, s.min_time, s.rms)
+
+
+class Study:
+    """Systems of one scenario run and compared, as flexbond run does: runs
+    {system: RunSummary} and, with two systems, comparison {output:
+    OutputComparison} of the second against the first (System 2 against
+    System 1 for the default ("rigid", "flexible"))."""
+
+    def __init__(self, runs, comparison):
+        self.runs = runs
+        self.comparison = comparison
 
 Mode = collections.namedtuple("Mode", "eigenvalue freq_hz damping_ratio description")
 Mode.__doc__ = """A mode: eigenvalue (complex, 1/s), freq_hz (|lambda| / 2 pi, or
@@ -541,6 +652,50 @@ class Scenario:
                 _lib.fb_result_free(ctypes.byref(res))
 
         return self._with_vehicle(system, use)
+
+    def study(self, systems=("rigid", "flexible")):
+        """Runs each of systems (one or two) and summarises it with the
+        library's study layer, and compares two (flexbond/study.h): a Study,
+        the numbers flexbond run writes in summary.json."""
+        names = [_SYSTEM_NAMES[_system(s)] for s in systems]
+        if not 1 <= len(names) <= 2:
+            raise ValueError("flexbond: study takes one or two systems, got %d" % len(names))
+
+        def use(v, stop):
+            callback = _PROGRESS(lambda _ctx, _t, _t_end: 1 if stop else 0)
+            res, summary = ctypes.c_void_p(), ctypes.c_void_p()
+            err = _Err()
+            _check(_lib.fb_vehicle_run(v, None, callback, None, ctypes.byref(res), None,
+                                       ctypes.byref(err)), err)
+            if _lib.fb_run_summary_new(self._s, res, None, ctypes.byref(summary),
+                                       ctypes.byref(err)) != 0:
+                _lib.fb_result_free(ctypes.byref(res))
+                raise Error(err)
+            return res, summary
+
+        handles = []
+        try:
+            for system in systems:
+                handles.append(self._with_vehicle(system, use))
+            runs = {n: RunSummary(self._s, n, res, summary)
+                    for n, (res, summary) in zip(names, handles)}
+            comparison = None
+            if len(handles) == 2:
+                noutputs = _lib.fb_scenario_noutputs(self._s)
+                cmp = (_OutputCmp * max(1, noutputs))()
+                err = _Err()
+                (r1, s1), (r2, s2) = handles
+                _check(_lib.fb_study_compare(self._s, r1, r2, s1, s2, cmp, None,
+                                             ctypes.byref(err)), err)
+                comparison = {
+                    _lib.fb_scenario_output_name(self._s, k).decode():
+                        OutputComparison(*(getattr(cmp[k], n) for n, _ in _OutputCmp._fields_))
+                    for k in range(noutputs)}
+            return Study(runs, comparison)
+        finally:
+            for res, summary in handles:
+                _lib.fb_run_summary_free(ctypes.byref(summary))
+                _lib.fb_result_free(ctypes.byref(res))
 
     def run_systems(self, systems=("rigid", "flexible")):
         """Runs each of systems; {name: Result}."""

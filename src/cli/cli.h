@@ -12,6 +12,7 @@
 #include "flexbond/io.h"
 #include "flexbond/model.h"
 #include "flexbond/ride.h"
+#include "flexbond/study.h"
 #include "flexbond/vehicle.h"
 
 #define CLI_VERSION "0.1.0"
@@ -296,31 +297,9 @@ int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hu
 
 enum { CLI_MAX_SYSTEMS = 2 };
 
-/* One output of one run, as summary.json's "definitions" say: static
- * value before the bump, extremes from the first bump entry to the end,
- * RMS over the bump window. */
-typedef struct cli_output_stats {
-  double static_value, peak, peak_time, min, min_time, rms;
-} cli_output_stats;
-
-/* System 2 against System 1 for one output, from the first bump entry to
- * the end. Ratios are fractions, NaN when their denominator is 0. */
-typedef struct cli_output_cmp {
-  double max_diff;      /* largest |S2 - S1|, in the output's unit */
-  double max_diff_time; /* its first time, s */
-  double range1;        /* System 1's peak-to-peak range, peak - min */
-  double rel_diff;      /* max_diff / range1 */
-  double peak_change;   /* (peak2 - peak1) / |peak1| */
-  double rms_change;    /* (rms2 - rms1) / rms1 */
-} cli_output_cmp;
-
 /* The figure of output o, "figNN_NAME.png" (its figure number) or
  * "fig_NAME.png", into buf. */
 void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size);
-/* Index of the output whose ride metrics run reports: the first mounted
- * body's acceleration of the list (the driver's, in the paper's
- * scenario); s->noutputs when there is none. */
-size_t cli_ride_output(const fb_scenario *s);
 /* The number of diagrams run draws per system, and the file of diagram
  * k < CLI_RUN_NDIAGRAMS of system sys ("fig05_bond_graph_system1.png",
  * "fig06_block_diagram_system1.png": the paper's Figs. 5 and 6). */
@@ -357,36 +336,17 @@ int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_m
                         const double window[2], const cli_animate_opts *o,
                         cli_animation_info *info, fb_err *err);
 
-/* A tire reaction above this multiple of its static value is flagged in
- * the report and summary.json as a spike. The ride over a road moves a
- * tire's load about its static value (the paper's 10 cm bump at 10 km/h:
- * peaks of 1.36 to 1.70 times it, System 1); three times it is an impact,
- * such as a wheel landing on the paper's linear tire damper (20.7 times
- * in examples/apc6x6_liftoff.yaml). */
-#define CLI_CONTACT_SPIKE_RATIO 3.0
-#define CLI_CONTACT_SPIKE_TEXT "3" /* the same, for messages */
+/* FB_CONTACT_SPIKE_RATIO (flexbond/study.h) for messages. */
+#define CLI_CONTACT_SPIKE_TEXT "3"
 
 /* One simulated system. */
 typedef struct cli_run_system {
   fb_system sys;
   const char *label; /* what the messages call it: cli_system_label(sys) unless set */
   fb_result *res;
-  size_t *col;             /* s->noutputs: column of each output in res */
-  cli_output_stats *stats; /* s->noutputs */
-  /* Tire contact: the contact-loss intervals of the whole run (owned) and
-   * the statistics of each tire's normal reaction (s->ncorners, owned;
-   * cli_output_stats_of over the bump window: its static value, and its
-   * smallest and largest from the first bump entry on, with their times). */
-  fb_contact_loss *loss;
-  size_t nloss;
-  cli_output_stats *contact;
-  /* The ride metrics of output cli_ride_output over ride_window (the
-   * first wheel's bump entry to the end of the run), when has_ride; else
-   * ride_note says why. */
-  int has_ride;
-  fb_ride_metrics ride;
-  double ride_window[2];
-  char ride_note[FB_ERR_MSG_MAX];
+  /* Its outputs' and tires' statistics, contact losses and ride metrics
+   * (flexbond/study.h; owned). */
+  fb_run_summary *sum;
   /* With --animate: the run's motion (owned) and its animation. */
   fb_vehicle_motion *motion;
   cli_animation_info anim;
@@ -401,7 +361,7 @@ typedef struct cli_run_outputs {
   const cli_run_system *runs; /* System 1 first when both */
   size_t nruns;
   const fb_result *diff; /* System 2 minus System 1, NULL unless both ran */
-  cli_output_cmp *cmp;   /* s->noutputs, set when diff is */
+  fb_output_cmp *cmp;    /* s->noutputs, set when diff is */
   double bump_window[2]; /* first wheel's bump entry, last wheel's exit, s */
   int figures;           /* 0 with --no-figures */
   fb_csv_header header;  /* of systemN.csv (--plain-header) */
@@ -424,7 +384,7 @@ typedef struct cli_run_outputs {
   const fb_hull_basis *converged_basis;
   int converged_density;
   const fb_result *diff_converged;
-  cli_output_cmp *cmp_converged;
+  fb_output_cmp *cmp_converged;
   const char *note; /* why a system did not run, or NULL */
   /* The frequency response of the systems that ran (flexbond freq's
    * bode_<OUTPUT>.png), NULL without figures or when it failed: then
@@ -438,19 +398,6 @@ typedef struct cli_run_outputs {
 const char *cli_system_label(fb_system sys);
 /* The scenario's name, else its path, else "scenario". */
 const char *cli_scenario_name(const fb_scenario *s);
-/* Statistics of column col of r; window is the bump window. */
-cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2]);
-/* Tire c's largest reaction in run over its static one. */
-double cli_contact_ratio(const cli_run_system *run, size_t c);
-/* 1 if tire c's largest reaction in run exceeds CLI_CONTACT_SPIKE_RATIO
- * times its static one (which must be positive). */
-int cli_contact_spike(const cli_run_system *run, size_t c);
-/* The bump window: [first wheel's bump entry, last wheel's bump exit]. */
-void cli_bump_window(const fb_scenario *s, double window[2]);
-/* Comparison of one output: s1, s2 its statistics in System 1 and 2,
- * column col of diff (System 2 minus System 1) its difference. */
-cli_output_cmp cli_output_compare(const cli_output_stats *s1, const cli_output_stats *s2,
-                                  const fb_result *diff, size_t col, const double window[2]);
 /* report.md (a cli_writer over a cli_run_outputs). */
 void cli_write_report_md(FILE *fp, const void *ctx);
 

@@ -113,7 +113,7 @@ static void write_psd_csv(FILE *fp, const void *ctx)
   const psd_csv *c = ctx;
   const freq_study *fs = c->fs;
   const fb_scenario *s = fs->s;
-  const size_t acc = cli_ride_output(s);
+  const size_t acc = fb_study_ride_output(s);
   fputs("frequency [Hz],road [m^2/Hz]", fp);
   for (size_t o = 0; o < s->noutputs; ++o) {
     if (fs->row[c->sys][o] == (size_t)-1)
@@ -150,7 +150,7 @@ static void write_psd_csv(FILE *fp, const void *ctx)
 static void write_system_json(FILE *fp, const freq_study *fs, int sys, double *scratch)
 {
   const fb_scenario *s = fs->s;
-  const size_t acc = cli_ride_output(s);
+  const size_t acc = fb_study_ride_output(s);
   fprintf(fp,
           "    \"linearised\": %s,\n    \"a_w_rms\": ", fs->linearised[sys] ? "true" : "false");
   fb_json_write_number(fp, acc < s->noutputs ? output_rms(fs, sys, acc, 1, scratch) : NAN);
@@ -232,7 +232,7 @@ void cli_freq_psd_print(const freq_study *fs)
          "%s tracks\n",
          p->road_class, p->n_min, p->n_max, p->freq_hz[0], p->freq_hz[p->nfreq - 1],
          p->identical ? "identical" : "independent");
-  const size_t acc = cli_ride_output(s);
+  const size_t acc = fb_study_ride_output(s);
   for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
     if (!fs->ran[sys])
       continue;

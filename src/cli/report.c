@@ -27,71 +27,10 @@ static const double notable_change = 0.05;
 /* 180 / pi; M_PI is not in C11. */
 #define DEGREES_PER_RADIAN 57.295779513082320877
 
-/* ---- Statistics. */
-
-void cli_bump_window(const fb_scenario *s, double window[2])
-{
-  window[0] = INFINITY;
-  window[1] = -INFINITY;
-  for (size_t c = 0; c < s->ncorners; ++c) {
-    window[0] = fmin(window[0], fb_scenario_bump_entry(s, (int)c));
-    window[1] = fmax(window[1], fb_scenario_bump_exit(s, (int)c));
-  }
-}
-
-cli_output_stats cli_output_stats_of(const fb_result *r, size_t col, const double window[2])
-{
-  cli_output_stats o = {NAN, -INFINITY, NAN, INFINITY, NAN, NAN};
-  double sum_sq = 0;
-  size_t nwindow = 0;
-  for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
-    const double *row = fb_result_row(r, k);
-    double t = row[0], v = row[col];
-    if (t < window[0]) {
-      o.static_value = v;
-      continue;
-    }
-    /* Comparisons with NaN are false: NaN samples never become extremes. */
-    if (v > o.peak) {
-      o.peak = v;
-      o.peak_time = t;
-    }
-    if (v < o.min) {
-      o.min = v;
-      o.min_time = t;
-    }
-    if (t <= window[1]) {
-      sum_sq += v * v;
-      ++nwindow;
-    }
-  }
-  if (nwindow > 0)
-    o.rms = sqrt(sum_sq / (double)nwindow);
-  return o;
-}
-
 /* num / den, NaN when den is 0 (a ratio to nothing says nothing). */
 static double ratio(double num, double den)
 {
   return den != 0 ? num / den : NAN;
-}
-
-cli_output_cmp cli_output_compare(const cli_output_stats *s1, const cli_output_stats *s2,
-                                  const fb_result *diff, size_t col, const double window[2])
-{
-  cli_output_cmp c = {0, NAN, NAN, NAN, NAN, NAN};
-  for (size_t k = 0; k < fb_result_nsamples(diff); ++k) {
-    const double *row = fb_result_row(diff, k);
-    if (row[0] >= window[0] && fabs(row[col]) > c.max_diff) {
-      c.max_diff = fabs(row[col]);
-      c.max_diff_time = row[0];
-    }
-  }
-  c.range1 = s1->peak - s1->min;
-  c.rel_diff = ratio(c.max_diff, c.range1);
-  c.peak_change = ratio(s2->peak - s1->peak, fabs(s1->peak));
-  c.rms_change = ratio(s2->rms - s1->rms, s1->rms);
-  return c;
 }
 
 /* Largest |value| of column col of r over the whole run. */
@@ -669,7 +608,8 @@ static void write_output_cells(FILE *fp, const cli_run_outputs *o, size_t k)
   fputs("| ", fp);
   fb_md_write_text(fp, o->scenario->output[k].label);
   fputs(" | ", fp);
-  fb_md_write_text(fp, fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+  fb_md_write_text(
+      fp, fb_result_col_unit(o->runs[0].res, fb_run_summary_column(o->runs[0].sum, k)));
   fputs(" |", fp);
 }
 
@@ -695,8 +635,9 @@ static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
           "|---|---|---|---|---|---|---|---|---|---|\n",
           o->bump_window[0], o->bump_window[0], o->bump_window[1]);
   for (size_t k = 0; k < nout; ++k) {
-    const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &o->runs[1].stats[k];
-    const cli_output_cmp *c = &o->cmp[k];
+    const fb_output_stats *s1 = fb_run_summary_output(o->runs[0].sum, k),
+                          *s2 = fb_run_summary_output(o->runs[1].sum, k);
+    const fb_output_cmp *c = &o->cmp[k];
     write_output_cells(fp, o, k);
     write_cells(fp, (const double[]){s1->peak, s2->peak}, 2);
     fputc(' ', fp);
@@ -774,8 +715,8 @@ static void write_converged(FILE *fp, const cli_run_outputs *o)
   }
   write_converged_intro(fp, o);
   for (size_t k = 0; k < s->noutputs; ++k) {
-    const cli_output_cmp *c1 = &o->cmp[k], *c3 = &o->cmp_converged[k];
-    const size_t col = o->runs[0].col[k];
+    const fb_output_cmp *c1 = &o->cmp[k], *c3 = &o->cmp_converged[k];
+    const size_t col = fb_run_summary_column(o->runs[0].sum, k);
     const double between =
         max_abs_between(o->diff_converged, o->diff, col, o->bump_window[0]) / c1->range1;
     write_output_cells(fp, o, k);
@@ -802,7 +743,7 @@ static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
           cli_system_label(o->runs[0].sys), o->bump_window[0], o->bump_window[0],
           o->bump_window[1]);
   for (size_t k = 0; k < nout; ++k) {
-    const cli_output_stats *st = &o->runs[0].stats[k];
+    const fb_output_stats *st = fb_run_summary_output(o->runs[0].sum, k);
     write_output_cells(fp, o, k);
     write_cells(fp,
                 (const double[]){st->static_value, st->peak, st->peak_time, st->min,
@@ -830,7 +771,7 @@ typedef struct diff_summary {
   size_t largest, nfinite, nnotable;
 } diff_summary;
 
-static diff_summary summarise_differences(const cli_output_cmp *cmp, size_t n)
+static diff_summary summarise_differences(const fb_output_cmp *cmp, size_t n)
 {
   diff_summary d = {n, 0, 0};
   for (size_t k = 0; k < n; ++k) {
@@ -884,11 +825,11 @@ static void conclude_differences(FILE *fp, const cli_run_outputs *o)
  * the clause opens the sentence. */
 static void torsion_clause(FILE *fp, const cli_run_system *r, size_t k, int first)
 {
-  const cli_output_stats *st = &r->stats[k];
-  const char *unit = fb_result_col_unit(r->res, r->col[k]);
+  const fb_output_stats *st = fb_run_summary_output(r->sum, k);
+  const char *unit = fb_result_col_unit(r->res, fb_run_summary_column(r->sum, k));
   const char *hull = r->sys == FB_SYSTEM_RIGID ? "rigid" : "flexible";
   fprintf(fp, "%s %s hull's torsion angle ", first ? " The" : "; the", hull);
-  if (max_abs(r->res, r->col[k]) == 0) {
+  if (max_abs(r->res, fb_run_summary_column(r->sum, k)) == 0) {
     fputs("is identically zero", fp);
     return;
   }
@@ -929,10 +870,10 @@ static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
             p > 0 ? "raises" : "lowers");
     fb_md_write_text(fp, o->scenario->output[k].label);
     fprintf(fp, " by %.1f %% (", 100 * fabs(p));
-    md_number(fp, o->runs[0].stats[k].peak);
+    md_number(fp, fb_run_summary_output(o->runs[0].sum, k)->peak);
     fputs(" to ", fp);
-    md_value_unit(fp, o->runs[1].stats[k].peak,
-                  fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]));
+    md_value_unit(fp, fb_run_summary_output(o->runs[1].sum, k)->peak,
+                  fb_result_col_unit(o->runs[0].res, fb_run_summary_column(o->runs[0].sum, k)));
     fputc(')', fp);
   }
   if (listed)
@@ -960,8 +901,8 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
   size_t largest = nout;
   double factor = 0;
   for (size_t k = 0; k < nout; ++k) {
-    const cli_output_stats *st = &r->stats[k];
-    double f = ratio(st->peak, st->static_value);
+    const fb_output_stats *st = fb_run_summary_output(r->sum, k);
+    const double f = ratio(st->peak, st->static_value);
     if (fabs(st->static_value) >= notable_diff * (st->peak - st->min) && isfinite(f) &&
         f > 1.0 && f > factor) {
       factor = f;
@@ -969,8 +910,8 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
     }
   }
   if (largest < nout) {
-    const cli_output_stats *st = &r->stats[largest];
-    const char *unit = fb_result_col_unit(r->res, r->col[largest]);
+    const fb_output_stats *st = fb_run_summary_output(r->sum, largest);
+    const char *unit = fb_result_col_unit(r->res, fb_run_summary_column(r->sum, largest));
     fputs(" Over the bump, the ", fp);
     fb_md_write_text(fp, o->scenario->output[largest].label);
     fputs(" grows the most relative to its static value: its peak, ", fp);
@@ -1005,7 +946,7 @@ static double ride_value(const fb_ride_metrics *m, size_t row)
 
 static void write_ride(FILE *fp, const cli_run_outputs *o)
 {
-  const size_t kr = cli_ride_output(o->scenario);
+  const size_t kr = fb_study_ride_output(o->scenario);
   fputs("\n## Ride comfort", fp);
   if (kr < o->scenario->noutputs) {
     fputs(" (", fp);
@@ -1014,15 +955,20 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
   }
   fputs("\n\n", fp);
   const cli_run_system *first = NULL;
-  for (size_t i = 0; i < o->nruns; ++i) {
+  fb_ride_metrics ride[CLI_MAX_SYSTEMS];
+  int has[CLI_MAX_SYSTEMS] = {0};
+  double window[2];
+  for (size_t i = 0; i < o->nruns && i < CLI_MAX_SYSTEMS; ++i) {
     const cli_run_system *r = &o->runs[i];
-    if (r->has_ride) {
+    const char *note = NULL;
+    has[i] = fb_run_summary_ride(r->sum, &ride[i], first ? NULL : window, &note);
+    if (has[i]) {
       if (!first)
         first = r;
       continue;
     }
     fprintf(fp, "%s: no ride metrics (", cli_system_label(r->sys));
-    fb_md_write_text(fp, r->ride_note);
+    fb_md_write_text(fp, note);
     fputs(").\n\n", fp);
   }
   if (!first)
@@ -1035,22 +981,22 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
           "docs/ride-metrics.md). The absorbed power (Pradko & Lee, "
           "against the 6 W limit used for military vehicles) is not given: no published "
           "K(f) table is built in.\n\n| metric | unit |",
-          first->ride_window[0], first->ride_window[1]);
-  for (size_t i = 0; i < o->nruns; ++i)
-    if (o->runs[i].has_ride)
+          window[0], window[1]);
+  for (size_t i = 0; i < o->nruns && i < CLI_MAX_SYSTEMS; ++i)
+    if (has[i])
       fprintf(fp, " %s |", cli_system_label(o->runs[i].sys));
   fputs("\n|---|---|", fp);
-  for (size_t i = 0; i < o->nruns; ++i)
-    if (o->runs[i].has_ride)
+  for (size_t i = 0; i < o->nruns && i < CLI_MAX_SYSTEMS; ++i)
+    if (has[i])
       fputs("---|", fp);
   fputc('\n', fp);
   for (size_t k = 0; k < NRIDE_ROWS; ++k) {
     fprintf(fp, "| %s | %s |", ride_labels[k][0], ride_labels[k][1]);
-    for (size_t i = 0; i < o->nruns; ++i) {
-      if (!o->runs[i].has_ride)
+    for (size_t i = 0; i < o->nruns && i < CLI_MAX_SYSTEMS; ++i) {
+      if (!has[i])
         continue;
       fputc(' ', fp);
-      md_number(fp, ride_value(&o->runs[i].ride, k));
+      md_number(fp, ride_value(&ride[i], k));
       fputs(" |", fp);
     }
     fputc('\n', fp);
@@ -1058,17 +1004,6 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
 }
 
 /* ---- Tire contact: the verdict of each system, from its reactions. */
-
-double cli_contact_ratio(const cli_run_system *run, size_t c)
-{
-  return run->contact[c].peak / run->contact[c].static_value;
-}
-
-int cli_contact_spike(const cli_run_system *run, size_t c)
-{
-  return run->contact[c].static_value > 0.0 &&
-         run->contact[c].peak > CLI_CONTACT_SPIKE_RATIO * run->contact[c].static_value;
-}
 
 /* How many of s's corners have tire model m. */
 static size_t corners_with(const fb_scenario *s, fb_tire_contact m)
@@ -1086,9 +1021,9 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
   size_t n = 0, c_max = 0;
   int constant_damper = 0; /* a spiking tire's damper has a constant coefficient */
   for (size_t c = 0; c < s->ncorners; ++c) {
-    if (cli_contact_ratio(r, c) > cli_contact_ratio(r, c_max))
+    if (fb_run_summary_contact_ratio(r->sum, c) > fb_run_summary_contact_ratio(r->sum, c_max))
       c_max = c;
-    if (!cli_contact_spike(r, c))
+    if (!fb_run_summary_contact_spike(r->sum, c))
       continue;
     constant_damper |= s->corner[c].tire_contact != FB_TIRE_HUNT_CROSSLEY;
     fputs(n++ ? "; "
@@ -1097,9 +1032,10 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
           fp);
     fb_md_write_text(fp, s->corner[c].name);
     fprintf(fp, " %s N at %.3f s (%.1f times its static %s N)",
-            number_text(r->contact[c].peak, peak, sizeof peak), r->contact[c].peak_time,
-            cli_contact_ratio(r, c),
-            number_text(r->contact[c].static_value, stat, sizeof stat));
+            number_text(fb_run_summary_contact(r->sum, c)->peak, peak, sizeof peak),
+            fb_run_summary_contact(r->sum, c)->peak_time,
+            fb_run_summary_contact_ratio(r->sum, c),
+            number_text(fb_run_summary_contact(r->sum, c)->static_value, stat, sizeof stat));
   }
   if (n) {
     fputs(constant_damper
@@ -1113,7 +1049,7 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
   fprintf(fp, "  No reaction exceeds " CLI_CONTACT_SPIKE_TEXT
               " times its static value (the largest, ");
   fb_md_write_text(fp, s->corner[c_max].name);
-  fprintf(fp, ", %.2f times).\n", cli_contact_ratio(r, c_max));
+  fprintf(fp, ", %.2f times).\n", fb_run_summary_contact_ratio(r->sum, c_max));
 }
 
 /* What a contact-loss interval is, for the tire models the corners have. */
@@ -1137,22 +1073,22 @@ static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_
 {
   char force[32];
   fprintf(fp, "- %s: ", cli_system_label(r->sys));
-  if (r->nloss == 0) {
+  if (fb_run_summary_nlosses(r->sum) == 0) {
     size_t c_min = 0;
     for (size_t c = 1; c < s->ncorners; ++c)
-      if (r->contact[c].min < r->contact[c_min].min)
+      if (fb_run_summary_contact(r->sum, c)->min < fb_run_summary_contact(r->sum, c_min)->min)
         c_min = c;
     fprintf(fp,
             "every tire stays in compression over the whole run; from the first bump entry "
             "on, the smallest normal reaction is %s N (",
-            number_text(r->contact[c_min].min, force, sizeof force));
+            number_text(fb_run_summary_contact(r->sum, c_min)->min, force, sizeof force));
     fb_md_write_text(fp, s->corner[c_min].name);
-    fprintf(fp, " tire, t = %.3f s).\n", r->contact[c_min].min_time);
+    fprintf(fp, " tire, t = %.3f s).\n", fb_run_summary_contact(r->sum, c_min)->min_time);
     return;
   }
-  write_loss_kinds(fp, s, r->nloss);
-  for (size_t i = 0; i < r->nloss; ++i) {
-    const fb_contact_loss *t = &r->loss[i];
+  write_loss_kinds(fp, s, fb_run_summary_nlosses(r->sum));
+  for (size_t i = 0; i < fb_run_summary_nlosses(r->sum); ++i) {
+    const fb_contact_loss *t = fb_run_summary_loss(r->sum, i);
     fputs(i ? "; " : " ", fp);
     fb_md_write_text(fp, s->corner[t->corner].name);
     fprintf(fp, " from %.3f to %.3f s", t->t_start, t->t_end);
@@ -1258,8 +1194,9 @@ static void conclude_converged(FILE *fp, const cli_run_outputs *o)
   const cli_run_system *r1 = flexible_run(o), *r3 = o->converged;
   if (t == nout || !r1)
     return;
-  const double a1 = max_abs(r1->res, r1->col[t]), a3 = max_abs(r3->res, r3->col[t]);
-  const char *unit = fb_result_col_unit(r3->res, r3->col[t]);
+  const double a1 = max_abs(r1->res, fb_run_summary_column(r1->sum, t)),
+               a3 = max_abs(r3->res, fb_run_summary_column(r3->sum, t));
+  const char *unit = fb_result_col_unit(r3->res, fb_run_summary_column(r3->sum, t));
   fputs(" The flexible hull's torsion angle reaches ", fp);
   md_value_unit(fp, a3, unit);
   fputs(" at the converged mesh against ", fp);

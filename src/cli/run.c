@@ -97,14 +97,6 @@ void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size)
     snprintf(buf, size, "fig_%s.png", o->name);
 }
 
-size_t cli_ride_output(const fb_scenario *s)
-{
-  size_t k = 0;
-  while (k < s->noutputs && strcmp(s->output[k].signal, "acc") != 0)
-    ++k;
-  return k;
-}
-
 /* Values of --system and the systems each asks for. */
 enum { SYSTEM_RIGID, SYSTEM_FLEXIBLE, SYSTEM_BOTH };
 static const char *const system_choices[] = {
@@ -208,22 +200,24 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
     /* A single curve needs no key: the title names its system. */
     series[i] =
         (fb_plot_series){.result = o->runs[i].res,
-                         .col = o->runs[i].col[k] - 1,
+                         .col = fb_run_summary_column(o->runs[i].sum, k) - 1,
                          .legend = o->nruns > 1 ? cli_system_label(o->runs[i].sys) : NULL};
   char paper[48] = "";
   if (o->converged) {
     series[nseries++] = (fb_plot_series){.result = o->converged->res,
-                                         .col = o->converged->col[k] - 1,
+                                         .col = fb_run_summary_column(o->converged->sum, k) - 1,
                                          .legend = o->converged->label};
     snprintf(paper, sizeof paper, "System 2 at density %d", o->scenario->hull_mesh.density);
   }
   /* fb_result_diff keeps System 1's columns. */
-  const fb_plot_series diff[2] = {
-      {.result = o->diff, .col = o->runs[0].col[k] - 1, .legend = o->converged ? paper : NULL},
-      {.result = o->diff_converged,
-       .col = o->runs[0].col[k] - 1,
-       .legend = o->converged ? o->converged->label : NULL}};
-  const char *unit = fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]);
+  const fb_plot_series diff[2] = {{.result = o->diff,
+                                   .col = fb_run_summary_column(o->runs[0].sum, k) - 1,
+                                   .legend = o->converged ? paper : NULL},
+                                  {.result = o->diff_converged,
+                                   .col = fb_run_summary_column(o->runs[0].sum, k) - 1,
+                                   .legend = o->converged ? o->converged->label : NULL}};
+  const char *unit =
+      fb_result_col_unit(o->runs[0].res, fb_run_summary_column(o->runs[0].sum, k));
   char title[512], name[FB_ERR_KEY_MAX];
   figure_title(fig, o, title, sizeof title);
   cli_run_figure_file(fig, name, sizeof name);
@@ -236,7 +230,7 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
    * start (the systems' static deflections differ) would set the scale
    * and flatten the bump's differences, which the comparison is about. */
   double bump[2];
-  cli_bump_window(o->scenario, bump);
+  fb_study_response_window(o->scenario, bump);
   const fb_plot_panel panels[2] = {
       {.series = series, .nseries = nseries, .ylabel = fig->label, .unit = unit},
       {.series = diff,
@@ -280,7 +274,7 @@ static void json_object(FILE *fp, const char *unit, const json_field *fields, si
   fputc('}', fp);
 }
 
-static void write_output_json(FILE *fp, const char *unit, const cli_output_stats *o)
+static void write_output_json(FILE *fp, const char *unit, const fb_output_stats *o)
 {
   const json_field fields[] = {
       {"static", o->static_value}, {"peak", o->peak},        {"min", o->min}, {"rms", o->rms},
@@ -304,13 +298,16 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
 /* {"window": [t0, t1], "a_w_rms", ..., "jerk_rms"} or {"note": why}. */
 static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
 {
-  if (!run->has_ride) {
+  fb_ride_metrics ride;
+  double window[2];
+  const char *note = NULL;
+  if (!fb_run_summary_ride(run->sum, &ride, window, &note)) {
     fputs("{\"note\": ", fp);
-    cli_json_string(fp, run->ride_note);
+    cli_json_string(fp, note);
     fputc('}', fp);
     return;
   }
-  const fb_ride_metrics *m = &run->ride;
+  const fb_ride_metrics *m = &ride;
   const json_field fields[] = {{"a_w_rms", m->a_w_rms},
                                {"mtvv", m->mtvv},
                                {"vdv", m->vdv},
@@ -319,11 +316,11 @@ static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenar
                                {"jerk_peak", m->jerk_peak},
                                {"jerk_rms", m->jerk_rms}};
   fputs("{\"output\": ", fp);
-  cli_json_string(fp, s->output[cli_ride_output(s)].name);
+  cli_json_string(fp, s->output[fb_study_ride_output(s)].name);
   fputs(", \"window\": [", fp);
-  fb_json_write_number(fp, run->ride_window[0]);
+  fb_json_write_number(fp, window[0]);
   fputs(", ", fp);
-  fb_json_write_number(fp, run->ride_window[1]);
+  fb_json_write_number(fp, window[1]);
   fputc(']', fp);
   for (size_t f = 0; f < sizeof fields / sizeof fields[0]; ++f) {
     fprintf(fp, ", \"%s\": ", fields[f].key);
@@ -353,33 +350,33 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
     fputs(c ? ", " : "", fp);
     cli_json_string(fp, s->corner[c].name);
     fputs(": {\"value\": ", fp);
-    fb_json_write_number(fp, run->contact[c].min);
+    fb_json_write_number(fp, fb_run_summary_contact(run->sum, c)->min);
     fputs(", \"time\": ", fp);
-    fb_json_write_number(fp, run->contact[c].min_time);
+    fb_json_write_number(fp, fb_run_summary_contact(run->sum, c)->min_time);
     fputc('}', fp);
   }
   fputs("}, \"peak_force\": {", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {
-    const json_field fields[] = {{"value", run->contact[c].peak},
-                                 {"time", run->contact[c].peak_time},
-                                 {"static", run->contact[c].static_value},
-                                 {"ratio", cli_contact_ratio(run, c)}};
+    const json_field fields[] = {{"value", fb_run_summary_contact(run->sum, c)->peak},
+                                 {"time", fb_run_summary_contact(run->sum, c)->peak_time},
+                                 {"static", fb_run_summary_contact(run->sum, c)->static_value},
+                                 {"ratio", fb_run_summary_contact_ratio(run->sum, c)}};
     fputs(c ? ", " : "", fp);
     cli_json_string(fp, s->corner[c].name);
     fputs(": ", fp);
     json_object(fp, "N", fields, sizeof fields / sizeof fields[0]);
   }
   fputs("}, \"spike_ratio_limit\": ", fp);
-  fb_json_write_number(fp, CLI_CONTACT_SPIKE_RATIO);
+  fb_json_write_number(fp, FB_CONTACT_SPIKE_RATIO);
   fputs(", \"spikes\": [", fp);
   for (size_t c = 0, n = 0; c < s->ncorners; ++c)
-    if (cli_contact_spike(run, c)) {
+    if (fb_run_summary_contact_spike(run->sum, c)) {
       fputs(n++ ? ", " : "", fp);
       cli_json_string(fp, s->corner[c].name);
     }
   fputs("], \"contact_loss_intervals\": [", fp);
-  for (size_t i = 0; i < run->nloss; ++i) {
-    const fb_contact_loss *t = &run->loss[i];
+  for (size_t i = 0; i < fb_run_summary_nlosses(run->sum); ++i) {
+    const fb_contact_loss *t = fb_run_summary_loss(run->sum, i);
     const json_field fields[] = {
         {"from", t->t_start}, {"to", t->t_end}, {"min_force", t->min_force}, {"at", t->t_min}};
     fputs(i ? ", {\"tire\": " : "{\"tire\": ", fp);
@@ -468,7 +465,8 @@ static void write_system_json(FILE *fp, const cli_run_outputs *o, const char *ke
     fputs(k ? ",\n      " : "\n      ", fp);
     cli_json_string(fp, s->output[k].name);
     fputs(": ", fp);
-    write_output_json(fp, fb_result_col_unit(run->res, run->col[k]), &run->stats[k]);
+    write_output_json(fp, fb_result_col_unit(run->res, fb_run_summary_column(run->sum, k)),
+                      fb_run_summary_output(run->sum, k));
   }
   fputs("\n    },\n    \"ride\": ", fp);
   write_ride_json(fp, run, s);
@@ -485,12 +483,13 @@ static void write_system_json(FILE *fp, const cli_run_outputs *o, const char *ke
 
 /* "key": {output: {...}, ...} of System 2's run2 (cmp) against System 1. */
 static void write_comparison_json(FILE *fp, const cli_run_outputs *o, const char *key,
-                                  const cli_run_system *run2, const cli_output_cmp *cmp)
+                                  const cli_run_system *run2, const fb_output_cmp *cmp)
 {
   fprintf(fp, ",\n  \"%s\": {", key);
   for (size_t k = 0; k < o->scenario->noutputs; ++k) {
-    const cli_output_stats *s1 = &o->runs[0].stats[k], *s2 = &run2->stats[k];
-    const cli_output_cmp *c = &cmp[k];
+    const fb_output_stats *s1 = fb_run_summary_output(o->runs[0].sum, k),
+                          *s2 = fb_run_summary_output(run2->sum, k);
+    const fb_output_cmp *c = &cmp[k];
     const json_field fields[] = {{"peak_system1", s1->peak},
                                  {"peak_system2", s2->peak},
                                  {"rms_system1", s1->rms},
@@ -504,8 +503,9 @@ static void write_comparison_json(FILE *fp, const cli_run_outputs *o, const char
     fputs(k ? ",\n    " : "\n    ", fp);
     cli_json_string(fp, o->scenario->output[k].name);
     fputs(": ", fp);
-    json_object(fp, fb_result_col_unit(o->runs[0].res, o->runs[0].col[k]), fields,
-                sizeof fields / sizeof fields[0]);
+    json_object(fp,
+                fb_result_col_unit(o->runs[0].res, fb_run_summary_column(o->runs[0].sum, k)),
+                fields, sizeof fields / sizeof fields[0]);
   }
   fputs("\n  }", fp);
 }
@@ -881,90 +881,19 @@ static int show_progress(void *ctx, double t, double t_end)
   return cli_interrupted();
 }
 
-/* The tire-contact verdict: contact-loss intervals over the whole run, and the
- * smallest and largest normal reaction of each tire from the first wheel's bump
- * entry on (from the zero start every reaction is 0 at t = 0), with its static one
- * just before. */
-static int run_contact(const fb_scenario *s, cli_run_system *run, const double window[2],
-                       fb_err *err)
-{
-  for (size_t c = 0; c < s->ncorners; ++c) {
-    char name[FB_ERR_KEY_MAX];
-    snprintf(name, sizeof name, "contact_force_%s", s->corner[c].name);
-    const long j = fb_result_find(run->res, name);
-    if (j < 1)
-      return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'", name);
-    run->contact[c] = cli_output_stats_of(run->res, (size_t)j, window);
-  }
-  return fb_vehicle_contact_loss(s, run->res, &run->loss, &run->nloss, err);
-}
-
-/* The ride metrics (ISO 2631-1 and jerk) of the output cli_ride_output
- * names (the driver's acceleration in the paper's scenario) from the first wheel's
- * bump entry to the end of the run: the response to the bump, without
- * the settling after t = 0. A window shorter than the running r.m.s.'s
- * 1 s (or any other refusal) is no failure of the run: the note says
- * why the metrics are missing. */
-static void run_ride(const fb_scenario *s, cli_run_system *run, const double window[2])
-{
-  const size_t n = fb_result_nsamples(run->res);
-  const size_t k = cli_ride_output(s);
-  run->has_ride = 0;
-  if (k == s->noutputs) {
-    snprintf(run->ride_note, sizeof run->ride_note,
-             "the outputs list no mounted body's acceleration (signal acc)");
-    return;
-  }
-  if (n < 2) {
-    snprintf(run->ride_note, sizeof run->ride_note, "the run has fewer than 2 samples");
-    return;
-  }
-  const double t_first = fb_result_row(run->res, 0)[0];
-  const double t_last = fb_result_row(run->res, n - 1)[0];
-  run->ride_window[0] = fmax(window[0], t_first);
-  run->ride_window[1] = t_last + (t_last - t_first) / (double)(n - 1);
-  fb_err err;
-  fb_ride_opts opts;
-  fb_ride_opts_default(&opts);
-  if (fb_ride_metrics_result(run->res, s->output[k].name, run->ride_window[0],
-                             run->ride_window[1], &opts, &run->ride, &err) == FB_OK)
-    run->has_ride = 1;
-  else
-    snprintf(run->ride_note, sizeof run->ride_note, "%s", err.msg);
-}
-
-/* Columns and statistics of run's outputs (arrays new, freed with the
- * run: run_system_free). */
+/* The run's summary (flexbond/study.h): its outputs' and tires'
+ * statistics over window, contact losses and ride metrics. */
 static int run_columns(const fb_scenario *s, cli_run_system *run, const double window[2],
                        fb_err *err)
 {
-  const size_t n = s->noutputs ? s->noutputs : 1, nc = s->ncorners;
-  run->col = calloc(n, sizeof *run->col);
-  run->stats = calloc(n, sizeof *run->stats);
-  run->contact = calloc(nc ? nc : 1, sizeof *run->contact);
-  if (!run->col || !run->stats || !run->contact)
-    return fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t k = 0; k < s->noutputs; ++k) {
-    long j = fb_result_find(run->res, s->output[k].name);
-    /* fb_vehicle_simulate promises every output. */
-    if (j < 1)
-      return fb_err_set(err, FB_EINVAL, "run: the result has no output '%s'",
-                        s->output[k].name);
-    run->col[k] = (size_t)j;
-    run->stats[k] = cli_output_stats_of(run->res, run->col[k], window);
-  }
-  run_ride(s, run, window);
-  return run_contact(s, run, window, err);
+  return fb_run_summary_new(s, run->res, window, &run->sum, err);
 }
 
 static void run_system_free(cli_run_system *run)
 {
   fb_result_free(&run->res);
   free(run->basis_error);
-  free(run->loss);
-  free(run->col);
-  free(run->stats);
-  free(run->contact);
+  fb_run_summary_free(&run->sum);
   fb_vehicle_motion_free(&run->motion);
 }
 
@@ -1030,14 +959,12 @@ static int compare(cli_run_outputs *o, fb_result **diff, fb_err *err)
 {
   if (o->nruns < 2)
     return FB_OK;
-  int rc = fb_result_diff(o->runs[1].res, o->runs[0].res, diff, err);
   const size_t n = o->scenario->noutputs;
-  o->cmp = rc == FB_OK ? calloc(n ? n : 1, sizeof *o->cmp) : NULL;
-  if (rc == FB_OK && !o->cmp)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t k = 0; rc == FB_OK && k < n; ++k)
-    o->cmp[k] = cli_output_compare(&o->runs[0].stats[k], &o->runs[1].stats[k], *diff,
-                                   o->runs[0].col[k], o->bump_window);
+  o->cmp = calloc(n ? n : 1, sizeof *o->cmp);
+  int rc = o->cmp ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc)
+    rc = fb_study_compare(o->scenario, o->runs[0].res, o->runs[1].res, o->runs[0].sum,
+                          o->runs[1].sum, o->cmp, diff, err);
   o->diff = *diff;
   return rc;
 }
@@ -1269,13 +1196,11 @@ static int run_converged_system(const run_args *a, const fb_scenario *s, const d
 static int compare_converged(run_converged *c, cli_run_outputs *o, fb_err *err)
 {
   const size_t n = o->scenario->noutputs;
-  int rc = fb_result_diff(c->run.res, o->runs[0].res, &c->diff, err);
-  o->cmp_converged = rc == FB_OK ? calloc(n ? n : 1, sizeof *o->cmp_converged) : NULL;
-  if (rc == FB_OK && !o->cmp_converged)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t k = 0; rc == FB_OK && k < n; ++k)
-    o->cmp_converged[k] = cli_output_compare(&o->runs[0].stats[k], &c->run.stats[k], c->diff,
-                                             o->runs[0].col[k], o->bump_window);
+  o->cmp_converged = calloc(n ? n : 1, sizeof *o->cmp_converged);
+  int rc = o->cmp_converged ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc)
+    rc = fb_study_compare(o->scenario, o->runs[0].res, c->run.res, o->runs[0].sum, c->run.sum,
+                          o->cmp_converged, &c->diff, err);
   o->converged = &c->run;
   o->converged_basis = fb_vehicle_hull_basis(c->rv.v);
   o->converged_density = c->s->hull_mesh.density;
@@ -1321,7 +1246,7 @@ static int run(const run_args *a)
         a->hull_modes_kind >= 0 || a->hull_coordinates >= 0 || a->hull_cutoff > 0
             ? "the command line (`--hull-modes`, `--hull-cutoff`, `--hull-coordinates`)"
             : "the scenario (`hull.fe.coordinates`, `hull.fe.modes`, `hull.fe.cutoff_hz`)";
-    cli_bump_window(s, o.bump_window);
+    fb_study_response_window(s, o.bump_window);
     size_t nframes = 0;
     if (a->animate.enabled)
       rc =

@@ -3,8 +3,9 @@
  * values replacing the file's (fb_scenario_load_overrides, so the reader
  * checks and converts them as its own), simulates one system and reduces
  * the run to metrics: the summary.json statistics of the paper's seven
- * outputs (cli_output_stats_of), the tire contact, the driver's ride
- * metrics and the solver's work; and sweep.csv's rows. */
+ * outputs, the tire contact, the driver's ride metrics (the study layer's
+ * run summary, fb_run_summary_new) and the solver's work; and sweep.csv's
+ * rows. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,7 +89,7 @@ void sweep_default_plots(sweep_args *a)
   if (a->base->noutputs > 0)
     a->plot[a->nplots++] = SWEEP_STAT_PEAK;
   a->plot[a->nplots++] = sweep_metric_other(a, M_MIN_TIRE_FORCE);
-  if (cli_ride_output(a->base) < a->base->noutputs)
+  if (fb_study_ride_output(a->base) < a->base->noutputs)
     a->plot[a->nplots++] = sweep_metric_other(a, M_RIDE_A_W_RMS);
   a->plot[a->nplots++] = sweep_metric_other(a, M_CONTACT_LOSS_INTERVALS);
 }
@@ -112,67 +113,16 @@ void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf
   }
 }
 
-/* The smallest normal reaction of any tire from the first bump entry to
- * the end of the run (not from t = 0: under `initial: zero` every tire
- * starts unloaded, at 0 N). */
-static int min_tire_force(const fb_scenario *s, const fb_result *r, const double window[2],
-                          double *out, fb_err *err)
-{
-  *out = INFINITY;
-  for (size_t c = 0; c < s->ncorners; ++c) {
-    char name[FB_ERR_KEY_MAX];
-    snprintf(name, sizeof name, "contact_force_%s", s->corner[c].name);
-    const long j = fb_result_find(r, name);
-    if (j < 1)
-      return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'", name);
-    for (size_t k = 0; k < fb_result_nsamples(r); ++k) {
-      const double *row = fb_result_row(r, k);
-      if (row[0] >= window[0])
-        *out = fmin(*out, row[j]);
-    }
-  }
-  return FB_OK;
-}
-
-/* The contact-loss intervals (fb_vehicle_contact_loss) that end after
- * the first bump entry. */
-static int contact_loss_intervals(const fb_scenario *s, const fb_result *r,
-                                  const double window[2], double *out, fb_err *err)
-{
-  fb_contact_loss *iv = NULL;
-  size_t n = 0, count = 0;
-  int rc = fb_vehicle_contact_loss(s, r, &iv, &n, err);
-  for (size_t i = 0; rc == FB_OK && i < n; ++i)
-    count += iv[i].t_end >= window[0];
-  free(iv);
-  *out = (double)count;
-  return rc;
-}
-
-/* The ride metrics (flexbond/ride.h, default options) of the first
- * mounted body's acceleration among the outputs over [first bump entry,
- * end of the run], as run puts them in summary.json, into m (the other
- * metrics); NaN when there is no such output or the library refuses the
- * window (shorter than the 1 s running r.m.s.): a missing metric, not a
- * failed case. */
-static void ride_metrics(const fb_scenario *s, const fb_result *r, const double window[2],
-                         double *m)
+/* The ride metrics of the summary (the first mounted body's acceleration
+ * over [first bump entry, end of the run], as run puts them in
+ * summary.json) into m (the other metrics); NaN when there are none: a
+ * missing metric, not a failed case. */
+static void ride_metrics(const fb_run_summary *sum, double *m)
 {
   for (size_t k = M_RIDE_A_W_RMS; k <= M_RIDE_JERK_RMS; ++k)
     m[k] = NAN;
-  const size_t n = fb_result_nsamples(r);
-  const size_t out = cli_ride_output(s);
-  if (n < 2 || out == s->noutputs)
-    return;
-  const double t_first = fb_result_row(r, 0)[0], t_last = fb_result_row(r, n - 1)[0];
-  /* The last sample stands for one sampling interval (ride.h). */
-  const double t0 = fmax(window[0], t_first),
-               t1 = t_last + (t_last - t_first) / (double)(n - 1);
-  fb_ride_opts opts;
-  fb_ride_opts_default(&opts);
   fb_ride_metrics ride;
-  fb_err err;
-  if (fb_ride_metrics_result(r, s->output[out].name, t0, t1, &opts, &ride, &err) != FB_OK)
+  if (!fb_run_summary_ride(sum, &ride, NULL, NULL))
     return;
   m[M_RIDE_A_W_RMS] = ride.a_w_rms;
   m[M_RIDE_MTVV] = ride.mtvv;
@@ -182,40 +132,55 @@ static void ride_metrics(const fb_scenario *s, const fb_result *r, const double 
   m[M_RIDE_JERK_RMS] = ride.jerk_rms;
 }
 
+/* The smallest normal reaction of any tire from the first bump entry to
+ * the end of the run (not from t = 0: under `initial: zero` every tire
+ * starts unloaded, at 0 N), and the contact-loss intervals that end after
+ * the first bump entry. */
+static void contact_metrics(const fb_scenario *s, const fb_run_summary *sum, double *min_force,
+                            double *nloss)
+{
+  double window[2];
+  fb_run_summary_window(sum, window);
+  *min_force = INFINITY;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    *min_force = fmin(*min_force, fb_run_summary_contact(sum, c)->min);
+  size_t count = 0;
+  for (size_t i = 0; i < fb_run_summary_nlosses(sum); ++i)
+    count += fb_run_summary_loss(sum, i)->t_end >= window[0];
+  *nloss = (double)count;
+}
+
 /* Every metric of a successful run r of scenario s into m. The case's
  * outputs must be the study's: an override may rename one (a corner's
  * name, an output's `of`), which would shift sweep.csv's columns. */
 static int case_metrics(const sweep_args *a, const fb_scenario *s, const fb_result *r,
                         double *m, fb_err *err)
 {
-  double window[2];
-  cli_bump_window(s, window);
   if (s->noutputs != a->base->noutputs)
     return fb_err_set(err, FB_EINVAL, "sweep: the case has %zu outputs, the study %zu",
                       s->noutputs, a->base->noutputs);
-  for (size_t k = 0; k < s->noutputs; ++k) {
+  for (size_t k = 0; k < s->noutputs; ++k)
     if (strcmp(s->output[k].name, a->base->output[k].name) != 0)
       return fb_err_set(err, FB_EINVAL,
                         "sweep: the case's output %zu is '%s', the study's '%s': a swept "
                         "value may not rename an output",
                         k + 1, s->output[k].name, a->base->output[k].name);
-    const long j = fb_result_find(r, s->output[k].name);
-    if (j < 1)
-      return fb_err_set(err, FB_EINVAL, "sweep: the result has no output '%s'",
-                        s->output[k].name);
-    const cli_output_stats st = cli_output_stats_of(r, (size_t)j, window);
-    m[SWEEP_NSTATS * k + SWEEP_STAT_PEAK] = st.peak;
-    m[SWEEP_NSTATS * k + SWEEP_STAT_MIN] = st.min;
-    m[SWEEP_NSTATS * k + SWEEP_STAT_RMS] = st.rms;
+  fb_run_summary *sum = NULL;
+  const int rc = fb_run_summary_new(s, r, NULL, &sum, err);
+  if (rc)
+    return fb_err_prefix(err, "sweep: "), rc;
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    const fb_output_stats *st = fb_run_summary_output(sum, k);
+    m[SWEEP_NSTATS * k + SWEEP_STAT_PEAK] = st->peak;
+    m[SWEEP_NSTATS * k + SWEEP_STAT_MIN] = st->min;
+    m[SWEEP_NSTATS * k + SWEEP_STAT_RMS] = st->rms;
   }
   double *other = m + sweep_metric_other(a, 0);
-  const fb_sim_stats *st = fb_result_stats(r);
-  other[M_SOLVER_STEPS] = (double)st->steps;
-  ride_metrics(s, r, window, other);
-  int rc = min_tire_force(s, r, window, &other[M_MIN_TIRE_FORCE], err);
-  if (rc == FB_OK)
-    rc = contact_loss_intervals(s, r, window, &other[M_CONTACT_LOSS_INTERVALS], err);
-  return rc;
+  other[M_SOLVER_STEPS] = (double)fb_result_stats(r)->steps;
+  ride_metrics(sum, other);
+  contact_metrics(s, sum, &other[M_MIN_TIRE_FORCE], &other[M_CONTACT_LOSS_INTERVALS]);
+  fb_run_summary_free(&sum);
+  return FB_OK;
 }
 
 /* fb_sim_progress_fn: stops a case's simulation once interrupted. */

@@ -8,6 +8,8 @@ FLEXBOND_LIBRARY names the built shared library and PYTHONPATH holds
 python/; the working directory is a scratch directory of this test."""
 
 import csv
+import math
+import json
 import os
 import re
 import subprocess
@@ -86,6 +88,110 @@ class RunTest(unittest.TestCase):
         numpy.testing.assert_allclose(fast.data[:, :len(header)], table, rtol=5e-10, atol=0)
         slow = flexbond.Scenario(APC).run("rigid")
         self.assertFalse(numpy.array_equal(slow["tire_force_LF"], fast["tire_force_LF"]))
+
+
+class StudyTest(unittest.TestCase):
+    """Scenario.study gives the numbers flexbond run writes in summary.json:
+    the same library calls (flexbond/study.h), printed there with 10
+    significant digits, so a relative 5e-10 of each value is its rounding
+    (and 1e-12 absolute for a value that is 0, such as System 1's torsion).
+    System 2 adds the rounding of its hull's eigen-solve, which the command
+    runs on two threads and a library user on one (fb_vehicle_opts.threads),
+    and of BLAS (one thread here, as in the command: CMakeLists.txt): the
+    integration carries it to at most 3e-8 of an output's range over the
+    response (measured: the driver's settled acceleration before the bump,
+    a residual of 1e-4 m/s^2; the ride metrics 7e-9 of themselves), so
+    System 2's values may differ by 1e-7 of their output's range, its ride
+    metrics by 1e-7 of themselves, and an extreme's time may move to another
+    sample where two extremes tie to that rounding."""
+
+    def assertSame(self, py, js, what, scale=0.0, rtol=5e-10):
+        if js is None:  # JSON's null for NaN
+            self.assertTrue(math.isnan(py), what)
+            return
+        tol = rtol * abs(js) + max(1e-12, 1e-7 * scale)
+        self.assertTrue(abs(py - js) <= tol, "%s: %r vs %r (tolerance %g)" % (what, py, js, tol))
+
+    def study_and_summary(self, path, out, systems):
+        cli("run", path, "--system", "both" if len(systems) == 2 else systems[0], "-o", out,
+            "--no-figures")
+        with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
+            summary = json.load(f)
+        scenario = flexbond.Scenario(path)
+        try:
+            return scenario.study(systems), summary
+        finally:
+            scenario.close()
+
+    def check_run(self, run, js, flexible):
+        """run against summary.json's js; flexible: with System 2's rounding."""
+        self.assertSame(run.window[0], js["bump_window"][0], "window")
+        for name, st in run.outputs.items():
+            o = js["outputs"][name]
+            scale = o["peak"] - o["min"] if flexible else 0.0
+            for field in ("static", "peak", "min", "rms"):
+                self.assertSame(getattr(st, field), o[field], "%s.%s" % (name, field), scale)
+            for field, value in (("peak_time", "peak"), ("min_time", "min")):
+                if not flexible:
+                    self.assertSame(getattr(st, field), o[field], "%s.%s" % (name, field))
+                    continue
+                # Two extremes that tie to System 2's rounding may swap: the
+                # value at Python's time must be the command's extreme.
+                at = int(numpy.argmin(abs(run.result.time - getattr(st, field))))
+                self.assertSame(run.result[name][at], o[value], "%s at %s" % (name, field), scale)
+        contact = js["tire_contact"]
+        for tire, st in run.contact.items():
+            peak, low = contact["peak_force"][tire], contact["min_force"][tire]
+            scale = peak["value"] - low["value"] if flexible else 0.0
+            self.assertSame(st.min, low["value"], tire + " min", scale)
+            self.assertSame(st.peak, peak["value"], tire + " peak", scale)
+            self.assertSame(st.static, peak["static"], tire + " static", scale)
+            self.assertSame(run.contact_ratio[tire], peak["ratio"], tire + " ratio",
+                            scale / peak["static"])
+            at = int(numpy.argmin(abs(run.result.time - st.min_time)))
+            self.assertSame(run.result["contact_force_" + tire][at], low["value"], tire, scale)
+        self.assertEqual(run.spikes, contact["spikes"])
+        self.assertEqual(len(run.contact_loss), len(contact["contact_loss_intervals"]))
+        for loss, iv in zip(run.contact_loss, contact["contact_loss_intervals"]):
+            self.assertEqual(loss.tire, iv["tire"])
+            for field, key in (("start", "from"), ("end", "to"), ("min_force", "min_force"),
+                               ("at", "at")):
+                self.assertSame(getattr(loss, field), iv[key], "loss " + key)
+        ride = js["ride"]
+        self.assertEqual(run.ride is None, "note" in ride)
+        if run.ride is not None:
+            self.assertSame(run.ride_window[1], ride["window"][1], "ride window")
+            for field, key in (("a_w_rms", "a_w_rms"), ("mtvv", "mtvv"), ("vdv", "vdv"),
+                               ("crest", "crest_factor"), ("jerk_peak", "jerk_peak"),
+                               ("jerk_rms", "jerk_rms")):
+                self.assertSame(run.ride[field], ride[key], "ride " + key,
+                                rtol=1e-7 if flexible else 5e-10)
+
+    def test_both_systems_equal_summary_json(self):
+        study, js = self.study_and_summary(APC, "study_apc", ("rigid", "flexible"))
+        self.check_run(study.runs["rigid"], js["system1"], flexible=False)
+        self.check_run(study.runs["flexible"], js["system2"], flexible=True)
+        for name, c in study.comparison.items():
+            o = js["comparison"][name]
+            r1 = o["range_system1"]
+            self.assertSame(c.range1, r1, name + " range_system1")
+            self.assertSame(c.max_diff, o["max_abs_diff"], name + " max_abs_diff", r1)
+            self.assertSame(c.rel_diff, o["max_abs_diff_rel"], name + " max_abs_diff_rel", 1.0)
+            for field, key, of in (("peak_change", "peak_change_rel", "peak_system1"),
+                                   ("rms_change", "rms_change_rel", "rms_system1")):
+                base = abs(o[of]) if o[of] else 1.0
+                self.assertSame(getattr(c, field), o[key], "%s %s" % (name, key), r1 / base)
+        self.assertIsNotNone(study.runs["rigid"].ride)
+
+    def test_contact_loss_equals_summary_json(self):
+        """A wheel that leaves the road (apc6x6_liftoff.yaml): its intervals
+        and spikes as summary.json lists them."""
+        path = os.path.join(SRC, "examples", "apc6x6_liftoff.yaml")
+        study, js = self.study_and_summary(path, "study_liftoff", ("rigid",))
+        run = study.runs["rigid"]
+        self.assertGreater(len(run.contact_loss), 0)
+        self.assertIsNone(study.comparison)
+        self.check_run(run, js["system1"], flexible=False)
 
 
 class InterruptTest(unittest.TestCase):
