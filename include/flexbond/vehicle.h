@@ -703,6 +703,12 @@ int fb_vehicle_descriptor(const fb_scenario *s, fb_system sys, fb_descriptor **o
 /* The same of the realised vehicle v (a diagram of its own with the
  * outputs' probes alone, from the hull v holds). */
 int fb_vehicle_linearise(fb_vehicle *v, fb_descriptor **out, fb_err *err);
+/* The descriptor form of a vehicle's block diagram bd (fb_vehicle_build):
+ * exact when every block is linear (fb_bd_descriptor), else linearised at
+ * its static equilibrium under gravity reached from its initial state
+ * (fb_bd_descriptor_at; (*out)->linearised 1). The one rule of every
+ * front end's export: flexbond export, Python's Scenario.export. */
+int fb_vehicle_diagram_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err);
 /* The response of ds (fb_vehicle_descriptor of s) to a road height of 1 m
  * at the leading wheel of the left track (case 0) and of the right (case
  * 1), fb_vehicle_track_inputs, at nfreq frequencies freq_hz (Hz, >= 0):

@@ -34,7 +34,10 @@ static const char export_usage[] =
     "rates) and road rate (m/s). f holds gravity and the payload. Outputs: the\n"
     "scenario's; a power output is the product of its two rows of C.\n"
     "Unilateral tires (wheel.tire_contact) are exported in contact, their linear\n"
-    "branch. DIR is created if missing; nothing is written if the export fails.\n"
+    "branch. A nonlinear law (a damper table) makes the model a linearisation at\n"
+    "the static equilibrium (every variable a deviation, f zero; model.json says\n"
+    "\"linearised\": true). DIR is created if missing; nothing is written if the\n"
+    "export fails.\n"
     "\n"
     "options:\n"
     "  -o, --output DIR          output directory (required)\n"
@@ -103,7 +106,7 @@ static int build_model(export_model *m, fb_bg **graph, fb_err *err)
 {
   int rc = fb_vehicle_build(m->s, m->sys, graph, &m->bd, err);
   if (!rc)
-    rc = fb_bd_descriptor(m->bd, &m->ds, err);
+    rc = fb_vehicle_diagram_descriptor(m->bd, &m->ds, err);
   if (!rc)
     rc = find_rate_inputs(m, err);
   if (!rc)
@@ -234,9 +237,9 @@ static void write_model_json(FILE *fp, const void *ctx)
           "  \"files\": {\"E\": \"E.mtx\", \"A\": \"A.mtx\", \"Bu\": \"Bu.mtx\", \"f\": "
           "\"f.mtx\", \"C\": \"C.mtx\", \"D\": \"D.mtx\"},\n"
           "  \"n\": %zu,\n  \"ndifferential\": %zu,\n  \"ninputs\": %zu,\n"
-          "  \"noutputs\": %zu,\n  \"output_rows\": %zu,\n",
+          "  \"noutputs\": %zu,\n  \"output_rows\": %zu,\n  \"linearised\": %s,\n",
           m->sys == FB_SYSTEM_RIGID ? "rigid" : "flexible", ds->n, ds->nstates, m->ninputs,
-          ds->noutputs, ds->nrows_c);
+          ds->noutputs, ds->nrows_c, ds->linearised ? "true" : "false");
   write_variables(fp, m);
   write_inputs(fp, m);
   write_outputs(fp, m);
@@ -306,9 +309,12 @@ static int run(const char *path, fb_system sys, const char *dir, int strict)
     rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK) {
     printf("%s: wrote %s: %zu variables (%zu differential), %zu inputs, %zu outputs (%zu rows "
-           "of C)\n",
+           "of C)%s\n",
            s->name ? s->name : path, dir, m.ds->n, m.ds->nstates, m.ninputs, m.ds->noutputs,
-           m.ds->nrows_c);
+           m.ds->nrows_c,
+           m.ds->linearised ? "; a nonlinear law made it a linearisation at the static "
+                              "equilibrium (every variable a deviation, f zero)"
+                            : "");
     rc = cli_flush_stdout(&err);
   }
   fb_mat_free(&m.bu);

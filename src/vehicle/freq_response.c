@@ -30,7 +30,7 @@ static int linearise(fb_bd *bd, fb_descriptor **ds, fb_err *err)
   return rc;
 }
 
-int vehicle_descriptor_of(fb_bd *bd, fb_descriptor **out, fb_err *err)
+int fb_vehicle_diagram_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err)
 {
   return fb_bd_is_linear(bd) ? fb_bd_descriptor(bd, out, err) : linearise(bd, out, err);
 }

@@ -365,7 +365,7 @@ int fb_vehicle_linearise(fb_vehicle *v, fb_descriptor **out, fb_err *err)
   variant x;
   int rc = variant_new(v, vehicle_tires_in_contact, NULL, 0, &x, err);
   if (!rc) {
-    rc = vehicle_descriptor_of(x.bd, out, err);
+    rc = fb_vehicle_diagram_descriptor(x.bd, out, err);
     variant_free(&x);
   }
   return rc;

@@ -130,10 +130,6 @@ void vehicle_tires_in_contact(fb_scenario *s);
  * or memory_limit bytes. */
 int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, size_t memory_limit,
                          fb_mode **modes, size_t *nmodes, size_t *nstatic, fb_err *err);
-/* bd's descriptor form: fb_bd_descriptor, or with a nonlinear law
- * fb_bd_descriptor_at its static equilibrium under gravity from the
- * initial state. */
-int vehicle_descriptor_of(fb_bd *bd, fb_descriptor **out, fb_err *err);
 
 /* ---- The vehicle's graph (assemble.c). */
 

@@ -358,21 +358,34 @@ class FreqTest(unittest.TestCase):
 
 
 class ExportTest(unittest.TestCase):
-    def test_export_equals_cli(self):
+    def check_export_equals_cli(self, path, out, linearised):
         """The matrices flexbond export writes (Matrix Market, %.17g): E, A, C
-        and f bit for bit; Bu's rate columns are B's."""
+        and f bit for bit; Bu's rate columns are B's; both say whether a
+        nonlinear law made the model a linearisation."""
         import scipy.io
-        cli("export", APC, "--system", "rigid", "-o", "export_rigid")
-        model = flexbond.Scenario(APC).export("rigid")
+        cli("export", path, "--system", "rigid", "-o", out)
+        model = flexbond.Scenario(path).export("rigid")
         for name in ("E", "A", "C", "f"):
-            want = scipy.io.mmread(os.path.join("export_rigid", name + ".mtx")).toarray()
+            want = scipy.io.mmread(os.path.join(out, name + ".mtx")).toarray()
             numpy.testing.assert_array_equal(getattr(model, name).toarray(), want, name)
-        bu = scipy.io.mmread(os.path.join("export_rigid", "Bu.mtx")).toarray()
-        corners = flexbond.Scenario(APC).corners
+        bu = scipy.io.mmread(os.path.join(out, "Bu.mtx")).toarray()
+        corners = flexbond.Scenario(path).corners
         for c, corner in enumerate(corners):
             j = model.input_names.index("road.v_" + corner.name)
             numpy.testing.assert_array_equal(model.B.toarray()[:, j], bu[:, len(corners) + c])
         self.assertEqual(model.E.shape, (len(model.var_names), len(model.var_names)))
+        with open(os.path.join(out, "model.json"), encoding="utf-8") as f:
+            self.assertEqual(json.load(f)["linearised"], linearised)
+        self.assertEqual(model.linearised, linearised)
+
+    def test_export_equals_cli(self):
+        self.check_export_equals_cli(APC, "export_rigid", False)
+
+    def test_nonlinear_export_equals_cli(self):
+        """A damper table: both front ends linearise it at the static
+        equilibrium, through the same library call."""
+        self.check_export_equals_cli(os.path.join(SRC, "examples", "apc6x6_shock_table.yaml"),
+                                     "export_table", True)
 
 
 class ErrorTest(unittest.TestCase):
