@@ -136,10 +136,20 @@ static void test_subsystems(void)
   MUST(fb_bg_add_junction(bg, "J0", FB_BG_J1, 1, &err), &err);
   MUST(fb_bg_connect(bg, "bv", "v", "J0", &err), &err);
   fb_bg *c1 = corner(10.0, &err), *c2 = corner(20.0, &err);
+  /* A fragment's labels of its components are kept through adoption,
+   * where its element's name is prefixed. */
+  const char *const spring[1] = {"front spring"};
+  MUST(fb_bg_set_labels(c1, "k", spring, &err), &err);
+  CHECK(fb_bg_set_labels(c1, "nothing", spring, &err) == FB_EMODEL);
   MUST(fb_bg_adopt(bg, &c1, "front", &err), &err);
   MUST(fb_bg_adopt(bg, &c2, "rear", &err), &err);
   CHECK(c1 == NULL && c2 == NULL);
   CHECK(fb_bg_find_element(bg, "front.k") >= 0 && fb_bg_find_element(bg, "rear.J") >= 0);
+  const long fk = fb_bg_find_element(bg, "front.k"), rk = fb_bg_find_element(bg, "rear.k");
+  CHECK(fk >= 0 && fb_bg_element_label(bg, (size_t)fk, 0) &&
+        !strcmp(fb_bg_element_label(bg, (size_t)fk, 0), "front spring"));
+  CHECK(fk >= 0 && !fb_bg_element_label(bg, (size_t)fk, 1));
+  CHECK(rk >= 0 && !fb_bg_element_label(bg, (size_t)rk, 0));
   CHECK(fb_bg_find_bond(bg, "rear.bk") >= 0);
   /* Power leaves the junction into both corners' input ports. */
   MUST(fb_bg_connect(bg, "bf", "J0", "front.top", &err), &err);

@@ -329,6 +329,15 @@ const char *fb_bg_element_name(const fb_bg *bg, size_t i);
 fb_bg_kind fb_bg_element_kind(const fb_bg *bg, size_t i);
 /* Stacked dimension of the element's ports (state size for I and C). */
 size_t fb_bg_element_dim(const fb_bg *bg, size_t i);
+/* What each component of an element is to a reader ("hull bounce",
+ * "wheel hop LF"), as the fragment that made it declares: labels holds
+ * the element's dimension of them (copied); kept through adoption, where
+ * names are prefixed. A mode's description names the body it moves by its
+ * label, never by parsing the element's name. FB_EMODEL for no such
+ * element. */
+int fb_bg_set_labels(fb_bg *bg, const char *element, const char *const *labels, fb_err *err);
+/* Component component's label of element i, NULL when it has none. */
+const char *fb_bg_element_label(const fb_bg *bg, size_t i, size_t component);
 const char *fb_bg_bond_name(const fb_bg *bg, size_t i);
 size_t fb_bg_bond_dim(const fb_bg *bg, size_t i);
 fb_bg_domain fb_bg_bond_domain(const fb_bg *bg, size_t i);

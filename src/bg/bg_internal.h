@@ -32,6 +32,7 @@ typedef struct fb_bg_elem {
   double *x0;       /* storage fields: initial state, dim values */
   size_t *mod_src;  /* modulated R: the storage elements whose states it reads */
   size_t nmod;
+  char **labels; /* dim labels of its components for a reader (owned), NULL: none */
 } fb_bg_elem;
 
 typedef struct fb_bg_bond {

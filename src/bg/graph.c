@@ -69,6 +69,39 @@ static void elem_release(fb_bg_elem *el)
   }
   free(el->x0);
   free(el->mod_src);
+  for (size_t i = 0; el->labels && i < el->dim; ++i)
+    free(el->labels[i]);
+  free(el->labels);
+}
+
+int fb_bg_set_labels(fb_bg *bg, const char *element, const char *const *labels, fb_err *err)
+{
+  const long i = fb_bg_find_element(bg, element);
+  if (i < 0)
+    return fb_err_set(err, FB_EMODEL, "no element '%s' to label", element);
+  fb_bg_elem *el = &bg->elems[i];
+  char **copy = calloc(el->dim, sizeof *copy);
+  int ok = copy != NULL;
+  for (size_t k = 0; ok && k < el->dim; ++k)
+    ok = (copy[k] = fb_strdup(labels[k])) != NULL;
+  if (!ok) {
+    for (size_t k = 0; copy && k < el->dim; ++k)
+      free(copy[k]);
+    free(copy);
+    return fb_err_set(err, FB_ENOMEM, "out of memory labelling '%s'", element);
+  }
+  for (size_t k = 0; el->labels && k < el->dim; ++k)
+    free(el->labels[k]);
+  free(el->labels);
+  el->labels = copy;
+  return FB_OK;
+}
+
+const char *fb_bg_element_label(const fb_bg *bg, size_t i, size_t component)
+{
+  if (i >= bg->nelems || component >= bg->elems[i].dim || !bg->elems[i].labels)
+    return NULL;
+  return bg->elems[i].labels[component];
 }
 
 void fb_bg_free(fb_bg **bgp)

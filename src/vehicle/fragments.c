@@ -142,6 +142,9 @@ static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
   int rc = fb_mat_new_dense_rowmajor(3, 3, m33, &m, err);
   if (!rc)
     rc = fb_bg_add_field(bg, "body", FB_BG_I, 1, &three, &m, err);
+  static const char *const rigid_motions[3] = {"hull bounce", "hull roll", "hull pitch"};
+  if (!rc)
+    rc = fb_bg_set_labels(bg, "body", rigid_motions, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "J", FB_BG_J1, 3, err);
   if (!rc)
@@ -223,6 +226,10 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
   int rc = fb_bg_new("mount", &bg, err);
   if (!rc)
     rc = add_scalar(bg, "mass", FB_BG_I, mnt->mass, err);
+  /* The body a mode of the vehicle may move: the mount itself. */
+  const char *const body[1] = {mnt->name ? mnt->name : "mounted body"};
+  if (!rc)
+    rc = fb_bg_set_labels(bg, "mass", body, err);
   if (!rc)
     rc = add_constant_effort(bg, "weight", -mnt->mass * gravity, err);
   if (!rc)
@@ -297,6 +304,12 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   int rc = fb_bg_new("corner", &bg, err);
   if (!rc)
     rc = add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
+  /* The wheel's mode: its hop. */
+  char hop[96];
+  snprintf(hop, sizeof hop, "wheel hop %s", c->name ? c->name : "");
+  const char *const body[1] = {hop};
+  if (!rc)
+    rc = fb_bg_set_labels(bg, "wheel", body, err);
   if (!rc)
     rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
   if (!rc)

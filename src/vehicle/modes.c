@@ -14,45 +14,25 @@
 #include "core/util.h"
 #include "vehicle/vehicle_internal.h"
 
-/* Mass (or inertia) and name of the body behind momentum state i. */
-static double body_of_state(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, size_t i,
-                            char *name, size_t size)
+/* Mass (or inertia) and name of the body behind momentum state i: the
+ * diagonal entry of its I field's matrix, and the label its fragment
+ * declared for that component (fb_bg_set_labels; the element's name when
+ * it declared none, the finite-element hull's coordinates). */
+static double body_of_state(const fb_bg *g, const fb_bd *bd, size_t i, char *name, size_t size)
 {
   size_t comp = 0;
-  long e = fb_bd_state_element(bd, i, &comp);
-  const char *el = fb_bg_element_name(g, (size_t)e);
-  static const char *const hull_dof[3] = {"hull bounce", "hull roll", "hull pitch"};
-  if (strcmp(el, "hull.body") == 0 && comp < 3) {
-    /* The rigid hull's I field's diagonal: the structure with its
-     * declared masses and a lumped payload. */
-    double m33[9];
-    fb_vehicle_rigid_inertia(s, m33);
-    snprintf(name, size, "%s", hull_dof[comp]);
-    return m33[4 * comp];
-  }
-  /* A mount's mass is "<mount>.mass", a wheel "susp_<corner>.wheel". */
-  const char *dot = strchr(el, '.');
-  for (size_t b = 0; dot && b < s->nmounts; ++b)
-    if (!strcmp(dot, ".mass") && !strncmp(el, s->mount[b].name, (size_t)(dot - el)) &&
-        s->mount[b].name[dot - el] == '\0') {
-      snprintf(name, size, "%s", s->mount[b].name);
-      return s->mount[b].mass;
-    }
-  for (size_t c = 0; dot && c < s->ncorners; ++c)
-    if (!strcmp(dot, ".wheel") && !strncmp(el, "susp_", 5) &&
-        !strncmp(el + 5, s->corner[c].name, (size_t)(dot - el - 5)) &&
-        s->corner[c].name[dot - el - 5] == '\0') {
-      snprintf(name, size, "wheel hop %s", s->corner[c].name);
-      return s->corner[c].wheel_mass;
-    }
-  snprintf(name, size, "%s", el);
-  return 1.0;
+  const long e = fb_bd_state_element(bd, i, &comp);
+  const char *label = fb_bg_element_label(g, (size_t)e, comp);
+  snprintf(name, size, "%s", label ? label : fb_bg_element_name(g, (size_t)e));
+  const fb_mat *m = fb_bg_element_matrix(g, (size_t)e);
+  const double mass = m ? fb_mat_get(m, comp, comp) : 0.0;
+  return mass > 0 ? mass : 1.0;
 }
 
 /* Describes eigenvector v (complex, states idx[0..n)) by the largest
  * kinetic-energy share |p|^2 / m among the momentum states. */
-static void describe(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, const size_t *idx,
-                     size_t n, const double *vre, const double *vim, char *out, size_t size)
+static void describe(const fb_bg *g, const fb_bd *bd, const size_t *idx, size_t n,
+                     const double *vre, const double *vim, char *out, size_t size)
 {
   double total = 0.0, best = -1.0;
   char best_name[64] = "?";
@@ -60,7 +40,7 @@ static void describe(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, cons
     if (fb_bd_state_kind(bd, idx[k]) != FB_STATE_MOMENTUM)
       continue;
     char name[64];
-    double m = body_of_state(s, g, bd, idx[k], name, sizeof name);
+    double m = body_of_state(g, bd, idx[k], name, sizeof name);
     double ke = (vre[k] * vre[k] + (vim ? vim[k] * vim[k] : 0.0)) / m;
     total += ke;
     if (ke > best) {
@@ -131,8 +111,8 @@ static int physical_jacobian(fb_bd *bd, const double *x, eig_work *w, fb_err *er
 }
 
 /* Collects the modes from the eigen-decomposition in w. */
-static int collect(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, const eig_work *w,
-                   fb_mode **modes, size_t *nmodes, size_t *nstatic, fb_err *err)
+static int collect(const fb_bg *g, const fb_bd *bd, const eig_work *w, fb_mode **modes,
+                   size_t *nmodes, size_t *nstatic, fb_err *err)
 {
   size_t n = w->n;
   double scale = 0.0;
@@ -160,7 +140,7 @@ static int collect(const fb_scenario *s, const fb_bg *g, const fb_bd *bd, const 
     md->damping_ratio = -md->re / mag;
     const double *vre = w->vr + k * n;
     const double *vim = w->wi[k] > 0 ? w->vr + (k + 1) * n : NULL;
-    describe(s, g, bd, w->idx, n, vre, vim, md->description, sizeof md->description);
+    describe(g, bd, w->idx, n, vre, vim, md->description, sizeof md->description);
   }
   qsort(m, count, sizeof *m, cmp_mode);
   *modes = m;
@@ -199,8 +179,8 @@ void vehicle_flatten_road(fb_scenario *s)
   s->t_end = fmax(s->t_end, last + 1.0);
 }
 
-int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, size_t memory_limit,
-                         fb_mode **modes, size_t *nmodes, size_t *nstatic, fb_err *err)
+int vehicle_linear_modes(const fb_bg *g, fb_bd *bd, size_t memory_limit, fb_mode **modes,
+                         size_t *nmodes, size_t *nstatic, fb_err *err)
 {
   *modes = NULL;
   *nmodes = *nstatic = 0;
@@ -221,7 +201,7 @@ int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, size_t
   if (!rc)
     rc = physical_jacobian(bd, x, &w, err);
   if (!rc)
-    rc = collect(s, g, bd, &w, modes, nmodes, nstatic, err);
+    rc = collect(g, bd, &w, modes, nmodes, nstatic, err);
   eig_free(&w);
   free(x);
   free(zero);

@@ -350,8 +350,7 @@ int fb_vehicle_linear_modes(fb_vehicle *v, int undamped, fb_mode **modes, size_t
   int rc = variant_new(v, undamped ? vehicle_remove_damping : NULL, vehicle_flatten_road, 0, &x,
                        err);
   if (!rc) {
-    rc = vehicle_linear_modes(x.s, x.graph, x.bd, v->opts.memory_limit, modes, nmodes, nstatic,
-                              err);
+    rc = vehicle_linear_modes(x.graph, x.bd, v->opts.memory_limit, modes, nmodes, nstatic, err);
     v->work.static_solves++;
     v->work.linear_eigensolves += rc == FB_OK;
     variant_free(&x);

@@ -124,12 +124,12 @@ void vehicle_flatten_road(fb_scenario *s);
  * becomes bilateral. A Hunt-Crossley one is not (its damping is lambda
  * q) and is linearised with the rest at the static equilibrium. */
 void vehicle_tires_in_contact(fb_scenario *s);
-/* The modes of the diagram bd of the graph g of s, linearised at its
+/* The modes of the diagram bd of the vehicle graph g, linearised at its
  * static equilibrium (fb_vehicle_linear_modes): a dense eigen-solve,
  * refused beforehand (fb_check_dense_eig) beyond FB_DENSE_EIG_MAX states
  * or memory_limit bytes. */
-int vehicle_linear_modes(const fb_scenario *s, const fb_bg *g, fb_bd *bd, size_t memory_limit,
-                         fb_mode **modes, size_t *nmodes, size_t *nstatic, fb_err *err);
+int vehicle_linear_modes(const fb_bg *g, fb_bd *bd, size_t memory_limit, fb_mode **modes,
+                         size_t *nmodes, size_t *nstatic, fb_err *err);
 
 /* ---- The vehicle's graph (assemble.c). */
 
