@@ -816,6 +816,12 @@ typedef struct fb_hull_basis {
 } fb_hull_basis;
 /* System 2's (NULL for System 1). */
 const fb_hull_basis *fb_vehicle_hull_basis(const fb_vehicle *v);
+/* The free-free modes System 2's hull solved (fb_hull_basis.free_hz, at
+ * least fb_vehicle_opts.hull_modes of them), for a program that cannot
+ * read fb_hull_basis (a language binding): their number (0 for System 1),
+ * their frequencies (Hz, ascending; owned by v) in *freq_hz and the
+ * rigid-body ones among them, first, in *nrigid. */
+size_t fb_vehicle_hull_free_modes(const fb_vehicle *v, const double **freq_hz, size_t *nrigid);
 
 /* hull.fe.modes: auto. The basis is the hull's rigid-body modes and
  * blocks of load-dependent Ritz vectors (E. L. Wilson, M.-W. Yuan & J. M.

@@ -88,6 +88,14 @@ class _RideMetrics(ctypes.Structure):
                  "jerk_rms", "duration")]
 
 
+class _ModeSet(ctypes.Structure):
+    _fields_ = [("nmodes", ctypes.c_size_t), ("ndof", ctypes.c_size_t),
+                ("nfree", ctypes.c_size_t), ("nsolved", ctypes.c_size_t),
+                ("freq_hz", ctypes.POINTER(ctypes.c_double)),
+                ("shapes", ctypes.POINTER(ctypes.c_double)),
+                ("description", ctypes.POINTER(ctypes.c_char * 96))]
+
+
 class _Override(ctypes.Structure):
     _fields_ = [("key", ctypes.c_char_p), ("value", ctypes.c_char_p),
                 ("label", ctypes.c_char_p)]
@@ -145,6 +153,12 @@ _PROTOTYPES = {
                                       _PERR]),
     "fb_vehicle_free": (None, [_PP]),
     "fb_vehicle_run": (ctypes.c_int, [_P, _PDOUBLE, _PROGRESS, _P, _PP, _P, _PERR]),
+    "fb_vehicle_hull_free_modes": (ctypes.c_size_t, [_P, ctypes.POINTER(_PDOUBLE),
+                                                      ctypes.POINTER(ctypes.c_size_t)]),
+    "fb_vehicle_structural_modes": (ctypes.c_int, [_P, ctypes.c_size_t, ctypes.c_int,
+                                                   ctypes.POINTER(ctypes.POINTER(_ModeSet)),
+                                                   _PERR]),
+    "fb_mode_set_free": (None, [ctypes.POINTER(ctypes.POINTER(_ModeSet))]),
     "fb_run_summary_new": (ctypes.c_int, [_P, _P, _PDOUBLE, _PP, _PERR]),
     "fb_run_summary_free": (None, [_PP]),
     "fb_run_summary_window": (None, [_P, _PDOUBLE]),
@@ -413,6 +427,12 @@ class RunSummary:
 
 def _stats(s):
     return OutputStats(s.static, s.peak, s.peak_time, s.min, s.min_time, s.rms)
+
+
+HullModes = collections.namedtuple("HullModes", "hull_freq_hz nrigid vehicle nfree")
+HullModes.__doc__ = """System 2's structural modes (Scenario.hull_modes): the free-free
+hull's frequencies (Hz, the nrigid rigid-body ones first) and the undamped
+vehicle's [(freq_hz, description)], nfree zero-frequency modes left out."""
 
 
 class Study:
@@ -697,6 +717,32 @@ class Scenario:
                 _lib.fb_run_summary_free(ctypes.byref(summary))
                 _lib.fb_result_free(ctypes.byref(res))
 
+    def hull_modes(self, nhull=30, nvehicle=20):
+        """System 2's structural modes, as flexbond modes --system flexible
+        lists them: a HullModes with the free-free hull's lowest nhull
+        frequencies (hull_freq_hz, Hz; its nrigid rigid-body ones first) and
+        the undamped vehicle's lowest nvehicle modes from its sparse nodal
+        model (vehicle: [(freq_hz, description)], the nfree horizontal
+        rigid-body modes of zero frequency left out)."""
+        def use(v, _stop):
+            freq = _PDOUBLE()
+            nrigid = ctypes.c_size_t()
+            n = _lib.fb_vehicle_hull_free_modes(v, ctypes.byref(freq), ctypes.byref(nrigid))
+            hull = [freq[k] for k in range(n)]
+            ms = ctypes.POINTER(_ModeSet)()
+            err = _Err()
+            _check(_lib.fb_vehicle_structural_modes(v, int(nvehicle), 1, ctypes.byref(ms),
+                                                    ctypes.byref(err)), err)
+            try:
+                m = ms.contents
+                vehicle = [(m.freq_hz[k], m.description[k].value.decode(errors="replace"))
+                           for k in range(m.nmodes)]
+                return HullModes(hull, nrigid.value, vehicle, m.nfree)
+            finally:
+                _lib.fb_mode_set_free(ctypes.byref(ms))
+
+        return self._with_vehicle("flexible", use, hull_modes=int(nhull))
+
     def run_systems(self, systems=("rigid", "flexible")):
         """Runs each of systems; {name: Result}."""
         return {_SYSTEM_NAMES[_system(s)]: self.run(s) for s in systems}
@@ -723,7 +769,7 @@ class Scenario:
 
         return self._with_vehicle(system, use)
 
-    def _with_vehicle(self, system, use):
+    def _with_vehicle(self, system, use, hull_modes=0):
         """use(vehicle, stop) on system of this scenario, realised once with a
         progress callback that stops it when stop is set; in _until_done, so
         that Ctrl-C reaches the caller at once. close() waits for the call."""
@@ -743,6 +789,7 @@ class Scenario:
                 opts = _VehicleOpts()
                 _lib.fb_vehicle_opts_default(ctypes.byref(opts))
                 opts.progress_fn = callback
+                opts.hull_modes = hull_modes
                 v = ctypes.c_void_p()
                 err = _Err()
                 _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts),

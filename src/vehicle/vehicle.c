@@ -72,6 +72,14 @@ const fb_hull_basis *fb_vehicle_hull_basis(const fb_vehicle *v)
   return v->hull ? vehicle_hull_basis(v->hull) : NULL;
 }
 
+size_t fb_vehicle_hull_free_modes(const fb_vehicle *v, const double **freq_hz, size_t *nrigid)
+{
+  const fb_hull_basis *b = fb_vehicle_hull_basis(v);
+  *freq_hz = b ? b->free_hz : NULL;
+  *nrigid = b ? b->nfree_rigid : 0;
+  return b ? b->nfree : 0;
+}
+
 fb_bg *fb_vehicle_bond_graph(fb_vehicle *v)
 {
   return v->graph;

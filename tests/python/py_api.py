@@ -90,6 +90,31 @@ class RunTest(unittest.TestCase):
         self.assertFalse(numpy.array_equal(slow["tire_force_LF"], fast["tire_force_LF"]))
 
 
+class HullModesTest(unittest.TestCase):
+    def test_hull_modes_equal_cli(self):
+        """Scenario.hull_modes lists what flexbond modes --system flexible
+        writes (hull_modes.csv, modes.csv, %.10g): the same realised vehicle
+        and eigen-solves, so the frequencies to their printed digits (the
+        command's eigen-solve runs on two threads, this one on one: the
+        frequencies move by rounding, far below 5e-10 of themselves), and
+        the same descriptions."""
+        cli("modes", APC, "--system", "flexible", "-o", "modes_flex")
+        with open(os.path.join("modes_flex", "hull_modes.csv"), newline="",
+                  encoding="utf-8") as f:
+            hull_rows = list(csv.reader(f))[1:]
+        with open(os.path.join("modes_flex", "modes.csv"), newline="", encoding="utf-8") as f:
+            vehicle_rows = list(csv.reader(f))[1:]
+        modes = flexbond.Scenario(APC).hull_modes()
+        self.assertEqual(len(modes.hull_freq_hz), len(hull_rows))
+        self.assertEqual(modes.nrigid, sum(row[2] == "rigid" for row in hull_rows))
+        for f, row in zip(modes.hull_freq_hz[modes.nrigid:], hull_rows[modes.nrigid:]):
+            self.assertTrue(abs(f - float(row[1])) <= 5e-10 * f, (f, row))
+        self.assertEqual(len(modes.vehicle), len(vehicle_rows))
+        for (f, description), row in zip(modes.vehicle, vehicle_rows):
+            self.assertTrue(abs(f - float(row[1])) <= 5e-10 * f, (f, row))
+            self.assertEqual(description, row[2])
+
+
 class StudyTest(unittest.TestCase):
     """Scenario.study gives the numbers flexbond run writes in summary.json:
     the same library calls (flexbond/study.h), printed there with 10
