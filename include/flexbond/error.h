@@ -102,6 +102,11 @@ typedef struct fb_err {
   /* The part of a description the error is about (kind 0: none); reset
    * by fb_err_set. */
   fb_err_part part;
+  /* Where in msg the text its raiser wrote starts, after the context
+   * prefixed since (fb_err_prefix: a file's "FILE:LINE:COL: KEY: ", an
+   * override's): a front end that says where the value came from in its
+   * own terms (a Python argument's path) shows msg + text_start after it. */
+  size_t text_start;
 } fb_err;
 
 /* Records, for the error just set, the part of a description it is about

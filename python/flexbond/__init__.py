@@ -17,7 +17,9 @@ documents the whole interface.
 import collections
 import ctypes
 import ctypes.util
+import json
 import os
+import re
 import threading
 import warnings
 
@@ -56,7 +58,8 @@ class _Err(ctypes.Structure):
                 ("key", ctypes.c_char * 256), ("file", ctypes.c_char * 1024),
                 ("line", ctypes.c_int), ("column", ctypes.c_int),
                 ("source", ctypes.c_int), ("source_text", ctypes.c_char * 512),
-                ("excerpt", ctypes.c_char * 72), ("part", _ErrPart)]
+                ("excerpt", ctypes.c_char * 72), ("part", _ErrPart),
+                ("text_start", ctypes.c_size_t)]
 
 
 class _Mode(ctypes.Structure):
@@ -138,6 +141,8 @@ _PROTOTYPES = {
     "fb_scenario_load_overrides": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(_Override),
                                                   ctypes.c_size_t, _PP, _PERR]),
     "fb_scenario_free": (None, [_PP]),
+    "fb_scenario_load_string": (ctypes.c_int, [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_char_p,
+                                               _PP, _PERR]),
     "fb_scenario_locate": (ctypes.c_int, [_P, _PERR]),
     "fb_scenario_nwarnings": (ctypes.c_size_t, [_P]),
     "fb_scenario_warning": (_PERR, [_P, ctypes.c_size_t]),
@@ -241,7 +246,9 @@ class Error(Exception):
     part: the part of the vehicle it is about, as the library names it
     (flexbond/vehicle.h, fb_part_kind), a tuple (kind, index, field, element)
     such as ("corner", 2, "spring_k", None) or ("vehicle", 0, "hull_modes",
-    None); None when it is about no part."""
+    None); None when it is about no part. path: for a vehicle described by
+    Python data (Scenario.from_dict), the value's place in it,
+    "description['suspensions']['axles'][0]['spring_k']"; None otherwise."""
 
     def __init__(self, err):
         self.code = err.code
@@ -253,6 +260,7 @@ class Error(Exception):
         self.key = err.key.decode(errors="replace") or None
         self.source_text = err.source_text.decode(errors="replace") or None
         self.excerpt = err.excerpt.decode(errors="replace") or None
+        self.path = None
         p = err.part
         self.part = None if not 0 < p.kind < len(_PART_KINDS) else (
             _PART_KINDS[p.kind], p.index, p.field.decode(errors="replace"),
@@ -272,13 +280,33 @@ def _check(rc, err):
         raise Error(err)
 
 
-def _check_about(s, rc, err):
+def _key_path(name, key):
+    """The Python path of a scenario key path in the data named name:
+    "suspensions.axles[0].spring_k" -> name['suspensions']['axles'][0]['spring_k']."""
+    parts = re.findall(r"([^.\[\]]+)|\[(\d+)\]", key)
+    return name + "".join("[%d]" % int(i) if i else "[%r]" % k for k, i in parts)
+
+
+def _in_data(error, err, name):
+    """error (from err), about a value of the data named name: said at the
+    value's path there, not at the line of the text it was read from."""
+    error.path = _key_path(name, error.key) if error.key else name
+    text = err.msg[err.text_start:].decode(errors="replace")
+    error.message = "%s: %s" % (error.path, text)
+    error.file, error.line, error.column = None, 0, 0
+    error.args = (error.message if error.excerpt is None
+                  else "%s (read: '%s')" % (error.message, error.excerpt),)
+    return error
+
+
+def _check_about(s, rc, err, data_name=None):
     """_check for a call on scenario s, whose error may be about one of its
     values (Error.part): located first where that value was written (the
-    file's line and key, or the override as the caller wrote it)."""
+    file's line and key, or the override as the caller wrote it; for a
+    scenario made from data named data_name, the value's path there)."""
     if rc != 0:
         _lib.fb_scenario_locate(s, ctypes.byref(err))
-        raise Error(err)
+        raise Error(err) if data_name is None else _in_data(Error(err), err, data_name)
 
 
 def _c_text(text, what, key=None):
@@ -571,11 +599,7 @@ class Scenario:
     at the first, as flexbond's --strict."""
 
     def __init__(self, path, overrides=None, strict=False):
-        self._s = ctypes.c_void_p()
-        # Calls running on their threads (_with_vehicle): close() waits for them.
-        self._calls = threading.Condition()
-        self._ncalls = 0
-        self.path = os.fspath(path)
+        self._begin(os.fspath(path))
         items = list((overrides or {}).items())
         # An error about an override names it as the caller wrote it:
         # overrides['speed_kmh']=-5, not flexbond's --set.
@@ -586,8 +610,45 @@ class Scenario:
         err = _Err()
         _check(_lib.fb_scenario_load_overrides(_c_text(self.path, "path"), ov, len(keep),
                                                ctypes.byref(self._s), ctypes.byref(err)), err)
+        self._warn(strict, Error)
+
+    @classmethod
+    def from_dict(cls, description, name="description", strict=False):
+        """A vehicle described by Python data rather than a file: description
+        holds what a scenario file would (docs/scenario-format.md: the same
+        keys, lists and values, numbers as numbers or expressions as text;
+        relative file names resolve from the current directory). It is read
+        and checked as a file is; an error or warning names the value by its
+        path in the data, "description['road']['speed_kmh']: ...", in
+        Error.path, and name is the data's name in those paths."""
+        self = cls.__new__(cls)
+        self._begin("<%s>" % name)
+        self._data_name = name
+        try:
+            text = json.dumps(description, indent=1, ensure_ascii=False)
+        except (TypeError, ValueError) as e:
+            raise ValueError("flexbond: the description is not plain data: %s" % e) from None
+        data = _c_text(text, "description")
+        err = _Err()
+        if _lib.fb_scenario_load_string(data, len(data), _c_text(self.path, "name"),
+                                        ctypes.byref(self._s), ctypes.byref(err)) != 0:
+            raise _in_data(Error(err), err, name)
+        self._warn(strict, lambda e: _in_data(Error(e), e, name))
+        return self
+
+    def _begin(self, path):
+        self._data_name = None
+        self._s = ctypes.c_void_p()
+        # Calls running on their threads (_with_vehicle): close() waits for them.
+        self._calls = threading.Condition()
+        self._ncalls = 0
+        self.path = path
+
+    def _warn(self, strict, error_of):
+        """The loaded scenario's plausibility warnings (error_of makes each
+        an Error): warned, or with strict the first raised."""
         # Copied out of the scenario, which close() frees.
-        found = [Error(_lib.fb_scenario_warning(self._s, i).contents)
+        found = [error_of(_lib.fb_scenario_warning(self._s, i).contents)
                  for i in range(_lib.fb_scenario_nwarnings(self._s))]
         if strict and found:
             self.close()
@@ -793,7 +854,8 @@ class Scenario:
                 v = ctypes.c_void_p()
                 err = _Err()
                 _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts),
-                                                    ctypes.byref(v), ctypes.byref(err)), err)
+                                                    ctypes.byref(v), ctypes.byref(err)), err,
+                             self._data_name)
                 try:
                     return use(v, stop)
                 finally:

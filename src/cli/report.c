@@ -957,7 +957,7 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
   const cli_run_system *first = NULL;
   fb_ride_metrics ride[CLI_MAX_SYSTEMS];
   int has[CLI_MAX_SYSTEMS] = {0};
-  double window[2];
+  double window[2] = {0, 0};
   for (size_t i = 0; i < o->nruns && i < CLI_MAX_SYSTEMS; ++i) {
     const cli_run_system *r = &o->runs[i];
     const char *note = NULL;

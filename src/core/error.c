@@ -21,6 +21,7 @@ void fb_err_clear(fb_err *err)
   err->source_text[0] = '\0';
   err->excerpt[0] = '\0';
   err->part = (fb_err_part){0, 0, FB_ERR_NO_ELEMENT, ""};
+  err->text_start = 0;
 }
 
 /* The length of the well-formed UTF-8 sequence at t (The Unicode
@@ -148,6 +149,7 @@ int fb_err_vset(fb_err *err, int code, const char *fmt, va_list ap)
   err->source_text[0] = '\0';
   err->excerpt[0] = '\0';
   err->part = (fb_err_part){0, 0, FB_ERR_NO_ELEMENT, ""};
+  err->text_start = 0;
   return code;
 }
 
@@ -208,6 +210,7 @@ int fb_err_prefix(fb_err *err, const char *fmt, ...)
   memmove(err->msg + hlen, err->msg, mlen);
   memcpy(err->msg, head, hlen);
   err->msg[hlen + mlen] = '\0';
+  err->text_start = err->text_start + hlen < hlen + mlen ? err->text_start + hlen : hlen + mlen;
   return err->code;
 }
 

@@ -624,7 +624,9 @@ static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_
   ml_locate(c, loc, path_node, key, where, sizeof where, &len);
   char chain[1024];
   ml_chain(c, chain, sizeof chain);
-  fb_err_set(c->err, code, "%s%s%s", where, msg, chain);
+  /* The location as a prefix: fb_err.text_start marks the message. */
+  fb_err_set(c->err, code, "%s%s", msg, chain);
+  fb_err_prefix(c->err, "%s", where);
   ml_set_fields(c, loc, path_node, key);
   return code;
 }

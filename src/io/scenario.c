@@ -204,9 +204,12 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
     rc = sc_plausible_rules(s, c->err);
   /* An implausible value is often the cause of the error (a thickness in
    * mm against the hull's mass): the error names the first. */
-  if (rc && rc != FB_ENOMEM && fb_scenario_nwarnings(s))
-    fb_err_append(c->err, " (the scenario also has an implausible value: %s)",
-                  fb_scenario_warning(s, 0)->msg);
+  if (rc && rc != FB_ENOMEM && fb_scenario_nwarnings(s)) {
+    /* Named by its key: the error names the file already. */
+    const fb_err *w = fb_scenario_warning(s, 0);
+    fb_err_append(c->err, " (the scenario also has an implausible value: %s%s%s)", w->key,
+                  w->key[0] ? ": " : "", w->msg + w->text_start);
+  }
   if (rc)
     sc_overrides_blame(c->err, ov, nov);
   c->globals = NULL;

@@ -90,6 +90,89 @@ class RunTest(unittest.TestCase):
         self.assertFalse(numpy.array_equal(slow["tire_force_LF"], fast["tire_force_LF"]))
 
 
+def apc_description():
+    """examples/apc6x6.yaml's System 1 as Python data: its hull, load,
+    mounts, wheels, suspensions, outputs, road and run, written by hand."""
+    return {
+        "scenario": "apc6x6",
+        "gravity": 9.81,
+        "hull": {"mass": 4041.72, "Ixx": 4173.49, "Iyy": 15175.96,
+                 "material": {"young": 200e9, "poisson": 0.3, "density": 7860,
+                              "thickness": 0.0085},
+                 "edges": {"front_x": 2.47813311938948, "rear_x": -2.65798412344113,
+                           "left_y": 1.05, "right_y": -1.05}},
+        "load": {"total_weight": 117720, "payload": "weight-only",
+                 "points": {"grid": {
+                     "x": [-2.00, -1.70, -1.35, -1.00, -0.75, -0.45, -0.15, 0.10, 0.40, 0.65,
+                           0.95, 1.30, 1.90, 2.10],
+                     "y": [-1.05, -0.55, 0.55, 1.05]}}},
+        "mounts": [{"name": "driver", "mass": 100, "stiffness": 19620, "damping": 1400,
+                    "x": 2.10, "y": 0.55},
+                   {"name": "engine", "mass": 500, "stiffness": 122625, "damping": 24761,
+                    "x": 1.70, "y": -0.55}],
+        "wheel": {"mass": 175, "tire_k": 500000, "tire_c": 140000},
+        "suspensions": {"motion_ratio": 1, "axles": [
+            {"name": "F", "x": 1.90, "y": 1.05, "spring_k": 145300, "damper_c": 25744},
+            {"name": "M", "x": 0.40, "y": 1.05, "spring_k": 345550, "damper_c": 25744},
+            {"name": "R", "x": -1.00, "y": 1.05, "spring_k": 602100, "damper_c": 39656}]},
+        "outputs": [{"signal": "tire_force", "of": "LF"}, {"signal": "spring_defl", "of": "RF"},
+                    {"signal": "torsion"}, {"signal": "acc", "of": "driver", "name": "driver_acc"},
+                    {"signal": "shock_power", "of": "LM"}, {"signal": "tire_defl", "of": "RM"},
+                    {"signal": "tire_power", "of": "LR"}],
+        "road": {"speed_kmh": 10,
+                 "bump": {"height": 0.10, "length": 3.70, "angle_deg": 45,
+                          "first_contact": 5.0}},
+        "simulation": {"t_end": 15, "rtol": 1e-6, "atol": 1e-8, "sample_rate": 1000,
+                       "initial": "zero"},
+    }
+
+
+class FromDictTest(unittest.TestCase):
+    def test_dict_runs_as_its_file(self):
+        """A vehicle described by Python data runs as the same description
+        written in a file does (JSON, which YAML reads) and as
+        examples/apc6x6.yaml, whose values it copies: the same outputs, bit
+        for bit."""
+        description = apc_description()
+        with open("apc.json", "w", encoding="utf-8") as f:
+            json.dump(description, f)
+        from_data = flexbond.Scenario.from_dict(description).run("rigid")
+        from_file = flexbond.Scenario("apc.json").run("rigid")
+        numpy.testing.assert_array_equal(from_data.data, from_file.data)
+        example = flexbond.Scenario(APC).run("rigid")
+        self.assertEqual(from_data.names, example.names)
+        numpy.testing.assert_array_equal(from_data.data, example.data)
+
+    def test_errors_name_the_data_path(self):
+        """An error names the value by its path in the data, never by a line
+        of the text it was read from: a range error of the reader, a rule of
+        the library's check, an unknown key, a plausibility warning."""
+        cases = [(("suspensions", "axles", 1, "spring_k"), -5,
+                  "description['suspensions']['axles'][1]['spring_k']: must be > 0"),
+                 (("mounts", 0, "x"), 9.0,
+                  "description['mounts'][0]['x']: must lie on the hull's floor"),
+                 (("road", "speed_kmh"), "fast", "description['road']['speed_kmh']: ")]
+        for path, value, start in cases:
+            description = apc_description()
+            where = description
+            for k in path[:-1]:
+                where = where[k]
+            where[path[-1]] = value
+            with self.assertRaises(flexbond.Error, msg=start) as caught:
+                flexbond.Scenario.from_dict(description)
+            e = caught.exception
+            self.assertTrue(e.message.startswith(start), e.message)
+            self.assertEqual(e.path, start.split(":")[0])
+            self.assertIsNone(e.file)
+            self.assertNotIn("<description>", e.message)
+        description = apc_description()
+        description["wheel"]["tire_k"] = 1.0  # legal, implausible
+        with self.assertWarns(flexbond.PlausibilityWarning) as warned:
+            flexbond.Scenario.from_dict(description, name="truck")
+        self.assertTrue(str(warned.warning).startswith("truck['wheel']['tire_k']: "),
+                        str(warned.warning))
+
+
 class HullModesTest(unittest.TestCase):
     def test_hull_modes_equal_cli(self):
         """Scenario.hull_modes lists what flexbond modes --system flexible
@@ -545,6 +628,24 @@ class ReadmeTest(unittest.TestCase):
         self.assertEqual(done.returncode, 0, done.stderr)
         self.assertTrue(done.stdout.strip())
 
+
+    def test_optimisation_loop_runs(self):
+        """docs/python.md's optimisation loop, run from the source directory:
+        it ends within the travel limit with a smaller a_w than it started
+        from (COBYLA keeps the best point it evaluated)."""
+        with open(os.path.join(SRC, "docs", "python.md"), encoding="utf-8") as f:
+            section = f.read().split("\n## An optimisation loop", 1)[1].split("\n## ", 1)[0]
+        blocks = re.findall(r"```python\n(.*?)```", section, re.S)
+        self.assertEqual(len(blocks), 1)
+        done = subprocess.run([sys.executable, "-c", blocks[0]], cwd=SRC, check=False,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        found = re.search(r"driver a_w: ([\d.]+) m/s\^2 \(was ([\d.]+)\)", done.stdout)
+        self.assertIsNotNone(found, done.stdout)
+        self.assertLess(float(found.group(1)), float(found.group(2)))
+        left = re.search(r"travel left: (-?[\d.]+) m", done.stdout)
+        self.assertIsNotNone(left, done.stdout)
+        self.assertGreaterEqual(float(left.group(1)), -1e-4)
 
 if __name__ == "__main__":
     unittest.main(argv=sys.argv[:1], verbosity=2)
