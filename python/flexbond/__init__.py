@@ -33,6 +33,7 @@ FLEXIBLE = 2   # System 2: finite-element hull (FB_SYSTEM_FLEXIBLE)
 _SYSTEMS = {"rigid": RIGID, "system1": RIGID, 1: RIGID,
             "flexible": FLEXIBLE, "system2": FLEXIBLE, 2: FLEXIBLE}
 _SYSTEM_NAMES = {RIGID: "rigid", FLEXIBLE: "flexible"}
+_SYSTEM_LABELS = {RIGID: "System 1 (rigid hull)", FLEXIBLE: "System 2 (flexible hull)"}
 _FB_EINVAL = 2
 _FB_EINTR = 8
 _NTRACKS = 2  # FB_ROAD_NTRACKS: left, right
@@ -552,6 +553,37 @@ def _strings(array, n):
     return [array[i].decode() for i in range(n)]
 
 
+class _Reporter:
+    """The progress of one call: progress(stage, fraction), the caller's
+    function (None: none), hears each stage of the set-up (System 2's
+    assembly, factorisation, eigen-solve and basis, with the library's own
+    words) and every solver step ("simulating System 1 (rigid hull), t =
+    0..15 s", t / t_end). An exception it raises stops the library at its
+    next report and reaches the caller; so does a Ctrl-C (stop, the list
+    _until_done appends to)."""
+
+    def __init__(self, progress, stop, label):
+        self.progress, self.stop, self.label, self.error = progress, stop, label, None
+        # The ctypes callbacks, kept alive while the library may call them.
+        self.stage_fn = _STAGE_PROGRESS(self._stage)
+        self.run_fn = _PROGRESS(self._run)
+
+    def _report(self, stage, fraction):
+        if self.progress is not None and self.error is None:
+            try:
+                self.progress(stage, fraction)
+            except BaseException as e:  # raised to the caller when the library stops
+                self.error = e
+        return 1 if self.stop or self.error is not None else 0
+
+    def _stage(self, _ctx, stage, fraction):
+        return self._report(stage.decode(errors="replace"), fraction)
+
+    def _run(self, _ctx, t, t_end):
+        return self._report("simulating %s, t = 0..%g s" % (self.label, t_end),
+                            t / t_end if t_end > 0 else 1.0)
+
+
 def _until_done(work, on_no_start=None):
     """work(stop) on a thread of its own, the caller waiting: a Ctrl-C
     (KeyboardInterrupt) or any other exception in the caller reaches it at
@@ -713,40 +745,40 @@ class Scenario:
         """The road speed, m/s."""
         return _lib.fb_scenario_speed(self._handle())
 
-    def run(self, system):
+    def run(self, system, progress=None):
         """Simulates one system ("rigid" or "flexible") as flexbond run does:
         a Result with t, the scenario's outputs and each tire's
         contact_force_<CORNER>. Ctrl-C raises KeyboardInterrupt at once,
         in the set-up (System 2's hull eigen-solve) or between solver steps,
-        and stops the library at its next report."""
+        and stops the library at its next report. progress(stage, fraction),
+        when given, hears each stage and step; an exception it raises stops
+        the run and reaches the caller."""
         name = _SYSTEM_NAMES[_system(system)]
 
-        def use(v, stop):
-            callback = _PROGRESS(lambda _ctx, _t, _t_end: 1 if stop else 0)
+        def use(v, reporter):
             res = ctypes.c_void_p()
             err = _Err()
-            _check(_lib.fb_vehicle_run(v, None, callback, None, ctypes.byref(res), None,
+            _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res), None,
                                        ctypes.byref(err)), err)
             try:
                 return _result(res, name)
             finally:
                 _lib.fb_result_free(ctypes.byref(res))
 
-        return self._with_vehicle(system, use)
+        return self._with_vehicle(system, use, progress=progress)
 
-    def study(self, systems=("rigid", "flexible")):
+    def study(self, systems=("rigid", "flexible"), progress=None):
         """Runs each of systems (one or two) and summarises it with the
         library's study layer, and compares two (flexbond/study.h): a Study,
-        the numbers flexbond run writes in summary.json."""
+        the numbers flexbond run writes in summary.json. progress as run's."""
         names = [_SYSTEM_NAMES[_system(s)] for s in systems]
         if not 1 <= len(names) <= 2:
             raise ValueError("flexbond: study takes one or two systems, got %d" % len(names))
 
-        def use(v, stop):
-            callback = _PROGRESS(lambda _ctx, _t, _t_end: 1 if stop else 0)
+        def use(v, reporter):
             res, summary = ctypes.c_void_p(), ctypes.c_void_p()
             err = _Err()
-            _check(_lib.fb_vehicle_run(v, None, callback, None, ctypes.byref(res), None,
+            _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res), None,
                                        ctypes.byref(err)), err)
             if _lib.fb_run_summary_new(self._s, res, None, ctypes.byref(summary),
                                        ctypes.byref(err)) != 0:
@@ -757,7 +789,7 @@ class Scenario:
         handles = []
         try:
             for system in systems:
-                handles.append(self._with_vehicle(system, use))
+                handles.append(self._with_vehicle(system, use, progress=progress))
             runs = {n: RunSummary(self._s, n, res, summary)
                     for n, (res, summary) in zip(names, handles)}
             comparison = None
@@ -778,13 +810,13 @@ class Scenario:
                 _lib.fb_run_summary_free(ctypes.byref(summary))
                 _lib.fb_result_free(ctypes.byref(res))
 
-    def hull_modes(self, nhull=30, nvehicle=20):
+    def hull_modes(self, nhull=30, nvehicle=20, progress=None):
         """System 2's structural modes, as flexbond modes --system flexible
         lists them: a HullModes with the free-free hull's lowest nhull
         frequencies (hull_freq_hz, Hz; its nrigid rigid-body ones first) and
         the undamped vehicle's lowest nvehicle modes from its sparse nodal
         model (vehicle: [(freq_hz, description)], the nfree horizontal
-        rigid-body modes of zero frequency left out)."""
+        rigid-body modes of zero frequency left out). progress as run's."""
         def use(v, _stop):
             freq = _PDOUBLE()
             nrigid = ctypes.c_size_t()
@@ -802,17 +834,18 @@ class Scenario:
             finally:
                 _lib.fb_mode_set_free(ctypes.byref(ms))
 
-        return self._with_vehicle("flexible", use, hull_modes=int(nhull))
+        return self._with_vehicle("flexible", use, hull_modes=int(nhull), progress=progress)
 
     def run_systems(self, systems=("rigid", "flexible")):
         """Runs each of systems; {name: Result}."""
         return {_SYSTEM_NAMES[_system(s)]: self.run(s) for s in systems}
 
-    def modes(self, system, undamped=False):
+    def modes(self, system, undamped=False, progress=None):
         """The modes of the vehicle at its static equilibrium (flexbond modes);
         undamped: with every damper removed (natural frequencies). A dense
         eigen-solve of the vehicle's states: refused (Error) beyond
-        FB_DENSE_EIG_MAX of them (hull.fe.modes all on a fine mesh)."""
+        FB_DENSE_EIG_MAX of them (hull.fe.modes all on a fine mesh).
+        progress as run's."""
         def use(v, _stop):
             modes = ctypes.POINTER(_Mode)()
             n, nstatic = ctypes.c_size_t(), ctypes.c_size_t()
@@ -828,12 +861,14 @@ class Scenario:
                 _libc.free(ctypes.cast(modes, ctypes.c_void_p))
             return Modes(out, nstatic.value)
 
-        return self._with_vehicle(system, use)
+        return self._with_vehicle(system, use, progress=progress)
 
-    def _with_vehicle(self, system, use, hull_modes=0):
-        """use(vehicle, stop) on system of this scenario, realised once with a
-        progress callback that stops it when stop is set; in _until_done, so
-        that Ctrl-C reaches the caller at once. close() waits for the call."""
+    def _with_vehicle(self, system, use, hull_modes=0, progress=None):
+        """use(vehicle, reporter) on system of this scenario, realised once
+        with a _Reporter (the caller's progress, and the stop a Ctrl-C sets);
+        in _until_done, so that Ctrl-C reaches the caller at once. An
+        exception of progress is raised in place of the library's FB_EINTR.
+        close() waits for the call."""
         sys_id = _system(system)
         with self._calls:  # open, and counted, at once: close() waits for the call
             s = self._handle()
@@ -845,11 +880,11 @@ class Scenario:
                 self._calls.notify_all()
 
         def work(stop):
+            reporter = _Reporter(progress, stop, _SYSTEM_LABELS[sys_id])
             try:
-                callback = _STAGE_PROGRESS(lambda _ctx, _stage, _fraction: 1 if stop else 0)
                 opts = _VehicleOpts()
                 _lib.fb_vehicle_opts_default(ctypes.byref(opts))
-                opts.progress_fn = callback
+                opts.progress_fn = reporter.stage_fn
                 opts.hull_modes = hull_modes
                 v = ctypes.c_void_p()
                 err = _Err()
@@ -857,9 +892,13 @@ class Scenario:
                                                     ctypes.byref(v), ctypes.byref(err)), err,
                              self._data_name)
                 try:
-                    return use(v, stop)
+                    return use(v, reporter)
                 finally:
                     _lib.fb_vehicle_free(ctypes.byref(v))
+            except Error:
+                if reporter.error is not None:
+                    raise reporter.error from None
+                raise
             finally:
                 done()
 

@@ -302,6 +302,37 @@ class StudyTest(unittest.TestCase):
         self.check_run(run, js["system1"], flexible=False)
 
 
+class ProgressTest(unittest.TestCase):
+    def test_progress_hears_stages_and_steps(self):
+        """progress(stage, fraction) hears System 2's set-up stages in the
+        library's words and every solver step, its fraction growing to 1."""
+        heard = []
+        flexbond.Scenario(APC).run("flexible", progress=lambda s, f: heard.append((s, f)))
+        stages = {s for s, _ in heard if not s.startswith("simulating")}
+        self.assertTrue(any("eigen-solve" in s for s in stages), stages)
+        steps = [f for s, f in heard if s.startswith("simulating System 2 (flexible hull)")]
+        self.assertGreater(len(steps), 100)
+        self.assertEqual(steps, sorted(steps))
+        self.assertAlmostEqual(steps[-1], 1.0)
+
+    def test_progress_exception_stops_the_run(self):
+        """An exception progress raises stops the library at its next report
+        and reaches the caller as it was raised."""
+        class Enough(Exception):
+            pass
+
+        def stop_halfway(stage, fraction):
+            if stage.startswith("simulating") and fraction > 0.5:
+                raise Enough(stage)
+
+        calls = []
+        with self.assertRaises(Enough):
+            flexbond.Scenario(APC).run("rigid",
+                                       progress=lambda s, f: (calls.append(f),
+                                                              stop_halfway(s, f)))
+        self.assertLess(max(calls), 0.6)  # stopped at the next step, not at the end
+
+
 class InterruptTest(unittest.TestCase):
     def test_ctrl_c_stops_a_run(self):
         """SIGINT during a run stops it between solver steps (KeyboardInterrupt)
