@@ -474,8 +474,35 @@ static void test_messages(void)
   }
 }
 
+/* fb_err.text_start: the text after where the value came from. A
+ * prefix before any location builds the sentence; the location marks
+ * where it starts; context after that (an override's label) leaves the
+ * mark on the same text. */
+static void test_text_start(void)
+{
+  fb_err err;
+  fb_err_set(&err, FB_EINVAL, "which would need %d GB", 64);
+  fb_err_prefix(&err, "64 refines the mesh, ");
+  CHECK(err.text_start == 0);
+  fb_err_prefix_location(&err, "s.yaml:3:4: %s: ", "hull.mesh.density");
+  fb_err_prefix(&err, "--set density=64: ");
+  CHECK(!strcmp(err.msg, "--set density=64: s.yaml:3:4: hull.mesh.density: 64 refines the "
+                         "mesh, which would need 64 GB"));
+  CHECK(!strcmp(err.msg + err.text_start, "64 refines the mesh, which would need 64 GB"));
+  fb_err_set(&err, FB_EINVAL, "new");
+  CHECK(err.text_start == 0);
+  /* A location longer than what is left of the message: the mark stays
+   * inside it. */
+  char loc[FB_ERR_MSG_MAX];
+  memset(loc, 'x', sizeof loc - 10);
+  loc[sizeof loc - 10] = '\0';
+  fb_err_prefix_location(&err, "%s: ", loc);
+  CHECK(err.text_start <= strlen(err.msg));
+}
+
 int main(void)
 {
+  test_text_start();
   test_messages();
   test_json();
   test_json_numbers();

@@ -129,6 +129,31 @@ static void test_summary(void)
     CHECK(cmp && fb_study_compare(s, r1, r1, sum, sum, cmp, NULL, &err) == FB_OK);
     for (size_t k = 0; cmp && k < s->noutputs; ++k)
       CHECK(cmp[k].max_diff == 0 && (cmp[k].peak_change == 0 || isnan(cmp[k].peak_change)));
+    /* Against a stiffer front spring: each output's largest difference
+     * from the window on, second run minus first, as the columns give it,
+     * and the peak change from the two summaries. */
+    s->corner[0].spring_k *= 1.2;
+    fb_result *r2 = NULL, *diff = NULL;
+    fb_run_summary *sum2 = NULL;
+    CHECK(fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r2, &err) == FB_OK);
+    CHECK(r2 && fb_run_summary_new(s, r2, NULL, &sum2, &err) == FB_OK);
+    CHECK(cmp && sum2 && fb_study_compare(s, r1, r2, sum, sum2, cmp, &diff, &err) == FB_OK);
+    for (size_t k = 0; cmp && diff && k < s->noutputs; ++k) {
+      const size_t col = fb_run_summary_column(sum, k);
+      double largest = 0;
+      for (size_t i = 0; i < fb_result_nsamples(r1); ++i)
+        if (fb_result_row(r1, i)[0] >= window[0])
+          largest = fmax(largest, fabs(fb_result_row(r2, i)[col] - fb_result_row(r1, i)[col]));
+      CHECK(cmp[k].max_diff == largest);
+      const fb_output_stats *a = fb_run_summary_output(sum, k),
+                            *b = fb_run_summary_output(sum2, k);
+      if (a->peak != 0)
+        CHECK(cmp[k].peak_change == (b->peak - a->peak) / fabs(a->peak));
+    }
+    CHECK(cmp && cmp[0].max_diff > 0); /* the LF tire feels its stiffer spring */
+    fb_result_free(&diff);
+    fb_run_summary_free(&sum2);
+    fb_result_free(&r2);
     free(cmp);
   }
   fb_run_summary_free(&sum);

@@ -102,16 +102,19 @@ typedef struct fb_err {
   /* The part of a description the error is about (kind 0: none); reset
    * by fb_err_set. */
   fb_err_part part;
-  /* Where in msg the text its raiser wrote starts, after the context
-   * prefixed since (fb_err_prefix: a file's "FILE:LINE:COL: KEY: ", an
-   * override's): a front end that says where the value came from in its
-   * own terms (a Python argument's path) shows msg + text_start after it. */
+  /* Where in msg the text about the value starts, after where it came
+   * from (fb_err_prefix_location: a file's "FILE:LINE:COL: KEY: ") and
+   * any context prefixed after that (an override's): a front end that
+   * says where the value came from in its own terms (a Python argument's
+   * path) shows msg + text_start after it. 0: no location. */
   size_t text_start;
 } fb_err;
 
 /* Records, for the error just set, the part of a description it is about
- * (fb_err_part; field copied, cut to fit). Returns err->code (FB_OK if err
- * is NULL). */
+ * (fb_err_part; field copied, cut to fit). Returns err->code, FB_OK if err
+ * is NULL: a raiser returns its own status, `return fb_err_set(err,
+ * FB_EINVAL, ...), fb_err_set_part(err, ...), FB_EINVAL;`, so that a call
+ * without an fb_err still fails. */
 int fb_err_set_part(fb_err *err, int kind, size_t index, size_t element, const char *field);
 
 /* Records, for the error just set, the key path or setting name it is
@@ -172,6 +175,17 @@ int fb_err_vset(fb_err *err, int code, const char *fmt, va_list ap)
  * origin is kept.
  * Returns err->code (FB_OK if err is NULL). */
 int fb_err_prefix(fb_err *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* fb_err_prefix for the prefix that says where the value came from
+ * ("FILE:LINE:COL: KEY: "): fb_err.text_start then marks the text after
+ * it. A plain fb_err_prefix before any location is part of the text (it
+ * builds the sentence); after one, it is context (an override's label)
+ * and text_start moves with the text. */
+int fb_err_prefix_location(fb_err *err, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif

@@ -95,7 +95,8 @@ size_t fb_run_summary_column(const fb_run_summary *sum, size_t k);
 const fb_output_stats *fb_run_summary_contact(const fb_run_summary *sum, size_t c);
 double fb_run_summary_contact_ratio(const fb_run_summary *sum, size_t c);
 int fb_run_summary_contact_spike(const fb_run_summary *sum, size_t c);
-/* The contact-loss intervals of the whole run, in time order; NULL beyond. */
+/* The contact-loss intervals of the whole run, by corner, then by time
+ * (fb_vehicle_contact_loss); NULL beyond. */
 size_t fb_run_summary_nlosses(const fb_run_summary *sum);
 const fb_contact_loss *fb_run_summary_loss(const fb_run_summary *sum, size_t i);
 /* The ride metrics (1) and their window [t0, t1], or 0 and *note saying

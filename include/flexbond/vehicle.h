@@ -433,8 +433,9 @@ double fb_scenario_track_width(const fb_scenario *s);
  * hull.centre_of_mass without a mesh) goes into hull_cg_x/y and every
  * position is moved to it; with a finite-element hull, the hull's mass,
  * Ixx and Iyy are the mesh's when the file gives none, and the file's
- * are refused (FB_EINVAL naming both, key "hull.mass" ...) when they
- * differ from the mesh's by more than 0.5 %. Errors carry a logical key
+ * are refused (FB_EINVAL naming both, about the part hull_mass ...) when
+ * they differ from the mesh's by more than 0.5 %. Errors name the part of
+ * the description they are about (fb_err.part); the caller locates them
  * (fb_scenario_locate). */
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
 
@@ -505,21 +506,28 @@ int fb_scenario_override_key(const char *path, const char *key, char **full, fb_
  * "suspensions.axles[0].spring_k" "N/m"; docs/scenario-format.md), NULL
  * for a key without a unit or no key of the format. */
 const char *fb_scenario_key_unit(const char *full_path);
-/* What a vehicle needs of a description, whoever made it: every value
- * finite and physical (positive masses and stiffnesses, a Poisson's ratio
- * in [0, 1/2), SI units), and the rules between values (points on the
+/* What a vehicle needs of a description, whoever made it: each scalar the
+ * vehicle is built from finite and physical (positive masses and
+ * stiffnesses, a Poisson's ratio in [0, 1/2), SI units; a damper table's
+ * points, a road's parameters and the generator's geometry are checked by
+ * their own constructors), and the rules between values (points on the
  * floor, unique names, the bump inside the run, outputs that name a
  * corner or mount). FB_EINVAL about the part concerned (fb_err.part:
  * "must be > 0 N/m (got -1)" about corner 2's spring_k), which the
  * description's maker locates (fb_scenario_locate: the file's line and
  * key). fb_vehicle_new checks its description so. */
 int fb_scenario_check(const fb_scenario *s, fb_err *err);
-/* For an error about s's values found after loading (building System 2's
- * hull, say), whose fb_err.key is a logical key of s->origin: sets err's
- * file, line, column and source fields from that entry and prefixes its
- * message "FILE:LINE:COL: PATH: " (and "--set KEY=VALUE: " for an
- * override), as the loader's own errors read; with a key not in the
- * table, prefixes "KEY: ". Nothing is read again. Returns err->code. */
+/* For an error about s's values found after loading (by fb_scenario_check,
+ * fb_vehicle_new, building System 2's hull: none of them locates its own
+ * errors), whose fb_err.part names the part of the description, or whose
+ * fb_err.key is a key path of the file: for a loaded scenario, sets err's
+ * key, file, line, column and source fields from where the loader read
+ * that value and prefixes its message "FILE:LINE:COL: PATH: " (and the
+ * override's label, "--set KEY=VALUE: "), as the loader's own errors read
+ * (fb_err_prefix_location: fb_err.text_start marks the text after it);
+ * for a scenario made without a file, prefixes the part in the
+ * description's words (fb_scenario_part_text). Nothing is read again.
+ * Returns err->code. */
 int fb_scenario_locate(const fb_scenario *s, fb_err *err);
 void fb_scenario_free(fb_scenario **s);
 /* Deep copy. */
@@ -586,9 +594,9 @@ int fb_hull_mesh_params_default(const fb_scenario *s, fb_hull_mesh_params *p, fb
  *   ALL        every node.
  * p NULL means the defaults. FB_EINVAL on bad parameters, a point outside
  * the floor, or two distinct node lines closer than 1 mm (e.g. a bulkhead
- * next to a load point), with the scenario's logical key of the value
- * concerned in fb_err.key ("corners.LF.x", "load.points",
- * "hull.mesh.generator.bulkheads[1]"); FB_ENOMEM. */
+ * next to a load point), about the part of the description concerned
+ * (fb_err.part: corner 0's x, load point 3, the member
+ * hull_mesh.bulkhead_x's element 1); FB_ENOMEM. */
 int fb_hull_mesh_generate(const fb_scenario *s, const fb_hull_mesh_params *p, fb_mesh **out,
                           fb_err *err);
 /* A fingerprint of everything fb_hull_mesh_generate(s, p) reads (the
@@ -761,7 +769,8 @@ void fb_vehicle_opts_default(fb_vehicle_opts *o);
  * and M, the eigen-solve and basis of hull.fe.coordinates and
  * hull.fe.modes), assembles the vehicle and builds its block diagram with
  * the outputs' probes and every tire's contact force. Errors about a
- * scenario value carry its logical key (fb_scenario_locate). */
+ * value of the description name its part (fb_err.part), which the caller
+ * locates (fb_scenario_locate). */
 int fb_vehicle_new(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
                    fb_vehicle **out, fb_err *err);
 void fb_vehicle_free(fb_vehicle **v);
@@ -1042,21 +1051,21 @@ typedef struct fb_fe_hull {
 
 /* The scenario's finite-element hull: its mesh (the deck, or the
  * generator with hull.mesh's parameters), material and mass matrix kind.
- * FB_EINVAL if the scenario has no hull.mesh / hull.fe sections. Errors
- * about a scenario value carry its logical key in fb_err.key (the caller
- * locates it: fb_scenario_locate): a deck's have "hull.mesh.deck" and the
- * deck's "PATH:LINE: " (or "PATH: " for its node sets), a node off its
- * point the point's key; the generator's as fb_hull_mesh_generate's, or
- * "hull mesh: " and no key when they concern no value. */
+ * FB_EINVAL if the scenario has no finite-element model (has_fe_hull).
+ * Errors about a value of the description name its part (fb_err.part; the
+ * caller locates it: fb_scenario_locate): a deck's are about hull_deck,
+ * with the deck's "PATH:LINE: " (or "PATH: " for its node sets), a node
+ * off its point about the point; the generator's as
+ * fb_hull_mesh_generate's, or "hull mesh: " and no part when they concern
+ * no value. */
 int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 
 /* Takes the mesh over (*mesh set to NULL), gives it the scenario's
- * hull.sections (fb_mesh_set_section; a missing or repeated set is
- * FB_EINVAL with the item's key "hull.sections[i].set") and resolves its
- * node sets against the scenario: every set present with the right number of
- * nodes, each node at the scenario's (x, y) within 1 mm. FB_EMODEL naming
- * the set or node otherwise (a hull mass's missing set with the mass's
- * logical key, "hull.masses.battery"). */
+ * sections (fb_mesh_set_section; a missing or repeated set is FB_EINVAL
+ * about section i's set) and resolves its node sets against the scenario:
+ * every set present with the right number of nodes, each node at the
+ * scenario's (x, y) within 1 mm. FB_EMODEL naming the set or node
+ * otherwise (a hull mass's missing set about that hull mass). */
 int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
                    fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err);
 void fb_fe_hull_free(fb_fe_hull **h);

@@ -787,6 +787,9 @@ class Scenario:
             return res, summary
 
         handles = []
+        with self._calls:  # the scenario stays open until the summaries are read
+            self._handle()
+            self._ncalls += 1
         try:
             for system in systems:
                 handles.append(self._with_vehicle(system, use, progress=progress))
@@ -809,6 +812,9 @@ class Scenario:
             for res, summary in handles:
                 _lib.fb_run_summary_free(ctypes.byref(summary))
                 _lib.fb_result_free(ctypes.byref(res))
+            with self._calls:
+                self._ncalls -= 1
+                self._calls.notify_all()
 
     def hull_modes(self, nhull=30, nvehicle=20, progress=None):
         """System 2's structural modes, as flexbond modes --system flexible
@@ -821,7 +827,7 @@ class Scenario:
             freq = _PDOUBLE()
             nrigid = ctypes.c_size_t()
             n = _lib.fb_vehicle_hull_free_modes(v, ctypes.byref(freq), ctypes.byref(nrigid))
-            hull = [freq[k] for k in range(n)]
+            hull = [freq[k] for k in range(min(n, int(nhull)))]
             ms = ctypes.POINTER(_ModeSet)()
             err = _Err()
             _check(_lib.fb_vehicle_structural_modes(v, int(nvehicle), 1, ctypes.byref(ms),

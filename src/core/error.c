@@ -193,15 +193,13 @@ void fb_err_set_source(fb_err *err, int source, const char *text)
   snprintf(err->source_text, sizeof err->source_text, "%s", text ? text : "");
 }
 
-int fb_err_prefix(fb_err *err, const char *fmt, ...)
+/* Prepends head (formatted, escaped) to err's message; a location moves
+ * fb_err.text_start past it, any other head only keeps it on the same
+ * text once a location is there. */
+static int prefix(fb_err *err, int location, const char *fmt, va_list ap)
 {
-  if (!err)
-    return FB_OK;
   char head[FB_ERR_MSG_MAX];
-  va_list ap;
-  va_start(ap, fmt);
   escaped_vprintf(head, sizeof head, fmt, ap);
-  va_end(ap);
   /* Truncation keeps the head (the context) and cuts the tail. */
   size_t hlen = strlen(head);
   size_t mlen = strlen(err->msg);
@@ -210,8 +208,33 @@ int fb_err_prefix(fb_err *err, const char *fmt, ...)
   memmove(err->msg + hlen, err->msg, mlen);
   memcpy(err->msg, head, hlen);
   err->msg[hlen + mlen] = '\0';
-  err->text_start = err->text_start + hlen < hlen + mlen ? err->text_start + hlen : hlen + mlen;
+  if (location || err->text_start > 0) {
+    const size_t start = err->text_start + hlen;
+    err->text_start = start < hlen + mlen ? start : hlen + mlen;
+  }
   return err->code;
+}
+
+int fb_err_prefix(fb_err *err, const char *fmt, ...)
+{
+  if (!err)
+    return FB_OK;
+  va_list ap;
+  va_start(ap, fmt);
+  const int rc = prefix(err, 0, fmt, ap);
+  va_end(ap);
+  return rc;
+}
+
+int fb_err_prefix_location(fb_err *err, const char *fmt, ...)
+{
+  if (!err)
+    return FB_OK;
+  va_list ap;
+  va_start(ap, fmt);
+  const int rc = prefix(err, 1, fmt, ap);
+  va_end(ap);
+  return rc;
 }
 
 /* The bytes of a data file's text an excerpt keeps (fb_err.excerpt). */

@@ -626,7 +626,7 @@ static int ml_report(const ml_ctx *c, struct fy_node *loc, struct fy_node *path_
   ml_chain(c, chain, sizeof chain);
   /* The location as a prefix: fb_err.text_start marks the message. */
   fb_err_set(c->err, code, "%s%s", msg, chain);
-  fb_err_prefix(c->err, "%s", where);
+  fb_err_prefix_location(c->err, "%s", where);
   ml_set_fields(c, loc, path_node, key);
   return code;
 }

@@ -132,15 +132,15 @@ int sc_locate(const fb_scenario *s, fb_err *err, int named)
       fb_err_set_key(err, "%s", key);
     } else {
       char text[FB_ERR_KEY_MAX];
-      return fb_err_prefix(err,
-                           "%s: ", fb_scenario_part_text(s, &err->part, text, sizeof text));
+      return fb_err_prefix_location(
+          err, "%s: ", fb_scenario_part_text(s, &err->part, text, sizeof text));
     }
   }
   const char *rest = NULL;
   const sc_value_origin *o = s && err->key[0] ? sc_origin_find(s, err->key, &rest) : NULL;
   if (!o) {
     if (!named && err->key[0])
-      fb_err_prefix(err, "%s: ", err->key);
+      fb_err_prefix_location(err, "%s: ", err->key);
     return err->code;
   }
   char path[FB_ERR_KEY_MAX];
@@ -151,9 +151,9 @@ int sc_locate(const fb_scenario *s, fb_err *err, int named)
   if (o->override)
     fb_err_set_source(err, FB_SOURCE_OVERRIDE, o->override);
   if (named)
-    fb_err_prefix(err, "%s:%d:%d: ", file, o->line, o->column);
+    fb_err_prefix_location(err, "%s:%d:%d: ", file, o->line, o->column);
   else
-    fb_err_prefix(err, "%s:%d:%d: %s: ", file, o->line, o->column, path);
+    fb_err_prefix_location(err, "%s:%d:%d: %s: ", file, o->line, o->column, path);
   if (o->override)
     fb_err_prefix(err, "%s: ", o->override);
   return err->code;

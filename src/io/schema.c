@@ -1055,12 +1055,12 @@ int sch_check_value(const sch_value *v, fb_err *err)
   const sch_key *k = v->key;
   if (k->type == SCH_CHOICE && !v->text)
     return fb_err_set(err, FB_EINVAL, "unknown value %.0f", v->number),
-           fb_err_set_key(err, "%s", v->path);
+           fb_err_set_key(err, "%s", v->path), FB_EINVAL;
   if (k->type != SCH_NUMBER && k->type != SCH_WHOLE)
     return FB_OK;
   if (!isfinite(v->number))
     return fb_err_set(err, FB_EINVAL, "must be finite (got %g)", v->number),
-           fb_err_set_key(err, "%s", v->path);
+           fb_err_set_key(err, "%s", v->path), FB_EINVAL;
   if (sch_in_range(k, v->base, v->number))
     return FB_OK;
   char range[96];
@@ -1068,7 +1068,7 @@ int sch_check_value(const sch_value *v, fb_err *err)
   fb_err_set(err, FB_EINVAL, "must be %s%s%s (got %.10g)%s%s%s", range, k->unit ? " " : "",
              k->unit ? k->unit : "", v->number, k->why ? " (" : "", k->why ? k->why : "",
              k->why ? ")" : "");
-  return fb_err_set_key(err, "%s", v->path);
+  return fb_err_set_key(err, "%s", v->path), FB_EINVAL;
 }
 
 int sch_check_plausible(const sch_value *v, fb_err *w)

@@ -21,7 +21,7 @@
 #include "core/util.h"
 
 /* The error about member field of part kind, index i: FB_EINVAL with the
- * message. */
+ * message (returned also when err is NULL). */
 static int fail(fb_err *err, int kind, size_t i, const char *field, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
@@ -33,7 +33,8 @@ static int fail(fb_err *err, int kind, size_t i, const char *field, const char *
   va_start(ap, fmt);
   fb_err_vset(err, FB_EINVAL, fmt, ap);
   va_end(ap);
-  return fb_err_set_part(err, kind, i, FB_ERR_NO_ELEMENT, field);
+  fb_err_set_part(err, kind, i, FB_ERR_NO_ELEMENT, field);
+  return FB_EINVAL;
 }
 
 /* ---- Every value a vehicle can be built from. */
@@ -66,6 +67,10 @@ typedef struct field {
 static int is_bump(const fb_scenario *s)
 {
   return s->road_kind == FB_ROAD_BUMP;
+}
+static int not_bump(const fb_scenario *s)
+{
+  return s->road_kind != FB_ROAD_BUMP;
 }
 static int has_mass(const fb_scenario *s)
 {
@@ -134,6 +139,7 @@ static const field vehicle_fields[] = {
     F(fb_scenario, bump_length, REAL, POSITIVE, "m", is_bump),
     F(fb_scenario, bump_angle, REAL, HALF_OPEN(0, 1.5707963267948966), "rad", is_bump),
     F(fb_scenario, bump_time, REAL, NONNEGATIVE, "s", is_bump),
+    F(fb_scenario, road_front_start, REAL, ANY, "m", not_bump),
     F(fb_scenario, t_end, REAL, POSITIVE, "s", NULL),
     F(fb_scenario, rtol, REAL, OPEN(0, 1), NULL, NULL),
     F(fb_scenario, atol, REAL, POSITIVE, NULL, NULL),
@@ -550,7 +556,7 @@ static int check_fe_hull(const fb_scenario *s, fb_err *err)
     if (!(g->bulkhead_x[k] > g->x_rear && g->bulkhead_x[k] < g->x_front))
       return fb_err_set(err, FB_EINVAL, "must lie between x_rear and x_front (got %.10g m)",
                         g->bulkhead_x[k]),
-             fb_err_set_part(err, FB_PART_VEHICLE, 0, k, "hull_mesh.bulkhead_x");
+             fb_err_set_part(err, FB_PART_VEHICLE, 0, k, "hull_mesh.bulkhead_x"), FB_EINVAL;
   return FB_OK;
 }
 

@@ -74,7 +74,8 @@ static int check_at(const fb_mesh *m, size_t node, const char *what, const point
              "the scenario puts %s at (%.6g, %.6g) m, the mesh's node %ld at (%.6g, %.6g) m "
              "(they must agree within 1 mm)",
              what, x, y, fb_mesh_node_id(m, node), p[0], p[1]);
-  return fb_err_set_part(err, pp->kind, pp->index, FB_ERR_NO_ELEMENT, x_off ? pp->x : pp->y);
+  return fb_err_set_part(err, pp->kind, pp->index, FB_ERR_NO_ELEMENT, x_off ? pp->x : pp->y),
+         FB_EMODEL;
 }
 
 /* Mesh node set of attachment a ("SUSP_LF", "DRIVER"; a new string), its
@@ -270,14 +271,14 @@ static int apply_sections(const fb_scenario *s, fb_mesh *m, fb_err *err)
       if (strcasecmp(s->section[j].set, sec->set) == 0) {
         fb_err_set(err, FB_EINVAL, "element set '%s' has a section already (section %zu)",
                    sec->set, j);
-        return fb_err_set_part(err, FB_PART_AT(FB_PART_SECTION, i, set));
+        return fb_err_set_part(err, FB_PART_AT(FB_PART_SECTION, i, set)), FB_EINVAL;
       }
     if (!fb_mesh_elset(m, sec->set, NULL, NULL)) {
       char names[512];
       elset_names(m, names, sizeof names);
       fb_err_set(err, FB_EINVAL, "the hull mesh has no element set '%s' (its sets: %s)",
                  sec->set, names[0] ? names : "none");
-      return fb_err_set_part(err, FB_PART_AT(FB_PART_SECTION, i, set));
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_SECTION, i, set)), FB_EINVAL;
     }
     const fb_shell_props p = {sec->young,     sec->poisson, sec->density,
                               sec->thickness, 0.0,          sec->nonstructural_mass};
@@ -348,7 +349,7 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
     return fb_err_set(err, FB_EINVAL,
                       "System 2 needs the hull's finite-element model: a mesh and its "
                       "elements (docs/scenario-format.md)"),
-           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, has_fe_hull));
+           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, has_fe_hull)), FB_EINVAL;
   /* The scenario's material and thickness apply to the elements that
    * neither a deck's *SHELL SECTION nor hull.sections give properties. */
   const fb_shell_props props = {s->young,     s->poisson,           s->density,
@@ -367,7 +368,7 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
                "%s: the deck is not read (the scenario's hull_source_mesh; the loader reads "
                "it)",
                s->hull_deck);
-    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_deck));
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_deck)), FB_EINVAL;
   }
   if (rc)
     return rc;

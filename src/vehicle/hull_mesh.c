@@ -333,10 +333,12 @@ static fb_err_part part_of(int kind, size_t index, size_t element, const char *f
   return p;
 }
 
-/* Records part as the error's (fb_err.part); returns err->code. */
+/* Records part as the error's (fb_err.part) just set, FB_EINVAL; returns
+ * FB_EINVAL (also when err is NULL). */
 static int set_part(fb_err *err, const fb_err_part *part)
 {
-  return fb_err_set_part(err, part->kind, part->index, part->element, part->field);
+  fb_err_set_part(err, part->kind, part->index, part->element, part->field);
+  return FB_EINVAL;
 }
 
 /* Sorts the sources and merges those within MERGE_TOL of the line's

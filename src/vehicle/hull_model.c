@@ -293,7 +293,7 @@ static int modes_wanted(const fb_scenario *s, vehicle_hull *h, size_t *nmodes, f
     if ((size_t)s->hull_modes > n) {
       fb_err_set(err, FB_EINVAL, "%d modes, more than the hull's %zu degrees of freedom",
                  s->hull_modes, n);
-      return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes));
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes)), FB_EINVAL;
     }
     *nmodes =
         max_size((size_t)s->hull_modes < n ? (size_t)s->hull_modes + 1 : n, h->list_modes);
@@ -307,7 +307,7 @@ static int modes_wanted(const fb_scenario *s, vehicle_hull *h, size_t *nmodes, f
     break;
   default:
     return fb_err_set(err, FB_EINVAL, "unknown kind of modes %d", (int)s->hull_modes_kind),
-           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes));
+           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes)), FB_EINVAL;
   }
   if (*nmodes > n)
     *nmodes = n;
@@ -334,7 +334,7 @@ static int modes_kept(const fb_scenario *s, vehicle_hull *h, fb_err *err)
                  "a cut-off of %g Hz is below the hull's first elastic mode, at %.4g Hz: the "
                  "basis would represent no dynamics of the hull's own",
                  s->hull_cutoff_hz, f[nrigid]);
-      return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cutoff_hz));
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cutoff_hz)), FB_EINVAL;
     }
   }
   if (keep < nrigid) {
@@ -342,7 +342,7 @@ static int modes_kept(const fb_scenario *s, vehicle_hull *h, fb_err *err)
                "%zu modes leave out rigid-body modes of the hull (it has %zu): keep at least "
                "those",
                keep, nrigid);
-    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes));
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_modes)), FB_EINVAL;
   }
   h->nkeep = keep;
   return FB_OK;

@@ -55,7 +55,7 @@ static int check_property(const char *field, const char *what, double typed, dou
              "or correct them",
              what, typed, unit, mesh, unit, 100.0 * (typed - mesh) / mesh,
              100.0 * PROPERTY_TOLERANCE);
-  return fb_err_set_part(err, FB_PART_VEHICLE, 0, FB_ERR_NO_ELEMENT, field);
+  return fb_err_set_part(err, FB_PART_VEHICLE, 0, FB_ERR_NO_ELEMENT, field), FB_EINVAL;
 }
 
 /* A lumped payload's mass, once the hull's is the mesh's: the loader's
@@ -73,7 +73,7 @@ static int check_payload(const fb_scenario *s, fb_err *err)
              "a lumped payload needs the total weight / gravity (%.10g kg) > the hull's "
              "finite-element mesh (%.10g kg)%s",
              s->total_weight / s->gravity, s->hull_mass, masses);
-  return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, payload));
+  return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, payload)), FB_EINVAL;
 }
 
 /* Rigid-body properties from the mesh's, or the typed ones checked
@@ -141,13 +141,13 @@ static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
                "is at (%.6g, 0) m (they must agree within %.1f %% of the hull's %.4g m "
                "length): leave it out to take the mesh's",
                s->hull_cg_x, s->hull_cg_y, *x, 100.0 * PROPERTY_TOLERANCE, length);
-    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cg_given));
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cg_given)), FB_EINVAL;
   }
   if (!s->hull_cg_given) {
     fb_err_set(err, FB_EINVAL,
                "with a declared frame, a hull without a finite-element mesh needs its "
                "centre of mass in that frame");
-    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, frame_origin));
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, frame_origin)), FB_EINVAL;
   }
   *x = s->hull_cg_x;
   *y = s->hull_cg_y;
@@ -165,7 +165,7 @@ static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
   if (s->hull_cg_given) {
     fb_err_set(err, FB_EINVAL,
                "a hull deck's centre of mass is its mesh's: leave the hull's out");
-    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cg_given));
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cg_given)), FB_EINVAL;
   }
   const int rc = mesh_properties(s, mp, err);
   if (rc)
@@ -210,7 +210,8 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
   } else if (!s->hull_mass_given) {
     fb_err_set(err, FB_EINVAL,
                "a hull without a finite-element model needs its mass, Ixx and Iyy");
-    rc = fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_mass_given));
+    fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_mass_given));
+    rc = FB_EINVAL;
   }
   return rc;
 }

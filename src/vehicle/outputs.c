@@ -131,7 +131,7 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   memset(p, 0, sizeof *p);
   if (k < 0)
     return fb_err_set(err, FB_EINVAL, "unknown signal '%s'", o->signal),
-           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal));
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EINVAL;
   const fb_output_kind *info = &kinds[k];
   const output_probe *how = &probes[k];
   p->name = fb_strdup(o->name);
@@ -150,7 +150,7 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
     const long b = fb_scenario_mount_find(s, o->of);
     if (b < 0)
       return fb_err_set(err, FB_EINVAL, "no mount '%s'", o->of),
-             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, of));
+             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, of)), FB_EINVAL;
     if (how->per_mass)
       p->gain = 1.0 / s->mount[b].mass;
     p->target = fb_strdup_printf("%s.%s", o->of, how->target);

@@ -69,8 +69,8 @@ typedef struct vehicle_hull vehicle_hull;
  * and hull.fe.modes (docs/hull-mesh.md), counting each in *w. o (NULL: the
  * defaults) gives the memory limit of the factor, the eigen-solve and the
  * basis, the progress that hears of each stage, the eigen-solve's threads
- * and the hull modes to solve at least. Errors about a scenario value
- * carry its logical key ("hull.fe.modes", "hull.fe.cutoff_hz"). */
+ * and the hull modes to solve at least. Errors about a value of the
+ * description name its part (fb_err.part: hull_modes, hull_cutoff_hz). */
 int vehicle_hull_new(const fb_scenario *s, const fb_vehicle_opts *o, fb_vehicle_work *w,
                      vehicle_hull **out, fb_err *err);
 void vehicle_hull_free(vehicle_hull **h);
