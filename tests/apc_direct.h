@@ -33,6 +33,7 @@
 #include "flexbond/vehicle.h"
 
 #include "apc_layout.h"
+#include "road_util.h"
 
 #define APC_PI 3.14159265358979323846
 
@@ -98,11 +99,12 @@ static inline void apc_set_elem(apc_elem *e, double k, double c, int road_corner
 }
 
 /* Bump entry time of a wheel, from the data sheet's formula (not from
- * fb_scenario_bump_entry, which is checked against this one). */
+ * fb_scenario_road_entry, which is checked against this one). */
 static inline double apc_entry_time(const fb_scenario *s, int corner)
 {
   const fb_corner_params *lf = &s->corner[APC_LF], *c = &s->corner[corner];
-  return s->bump_time + ((lf->x - c->x) + (lf->y - c->y) * tan(s->bump_angle)) / s->speed;
+  return road_bump(s)->first_contact +
+         ((lf->x - c->x) + (lf->y - c->y) * tan(road_bump(s)->angle)) / s->speed;
 }
 
 static inline void apc_build_mass(apc_model *m, const fb_scenario *s)
@@ -169,11 +171,11 @@ static inline int apc_model_init(apc_model *m, const fb_scenario *s)
   apc_build_gravity(m, s);
   for (int c = 0; c < APC_NCORNERS; ++c) {
     m->entry[c] = apc_entry_time(s, c);
-    m->exit[c] = m->entry[c] + s->bump_length / s->speed;
+    m->exit[c] = m->entry[c] + road_bump(s)->length / s->speed;
   }
   m->speed = s->speed;
-  m->bump_height = s->bump_height;
-  m->bump_length = s->bump_length;
+  m->bump_height = road_bump(s)->height;
+  m->bump_length = road_bump(s)->length;
   double A[APC_NDOF * APC_NDOF];
   memcpy(A, m->mass, sizeof A);
   memset(m->mass_inv, 0, sizeof m->mass_inv);

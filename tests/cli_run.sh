@@ -611,11 +611,11 @@ expect_absent "$WORK/out_missing" "missing key: output"
 # The last wheel leaves the bump at 8.132 s: a 7 s run is too short.
 sed -E 's/^  t_end: *[0-9.e+]+/  t_end: 7/' "$APC" >"$WORK/short.yaml"
 run run "$WORK/short.yaml" -o "$WORK/out_short"
-expect_status 2 "bump longer than the run"
+expect_status 2 "run shorter than the bump"
 checks=$((checks + 1))
-grep -qE "^flexbond: $WORK/short.yaml:[0-9]+:[0-9]+: .*bump" "$ERR" ||
-  fail "bump longer than the run: file:line and key"
-expect_absent "$WORK/out_short" "bump longer than the run: output"
+grep -qE "^flexbond: $WORK/short.yaml:[0-9]+:[0-9]+: simulation.t_end: .*bump" "$ERR" ||
+  fail "run shorter than the bump: file:line and key"
+expect_absent "$WORK/out_short" "run shorter than the bump: output"
 
 run run "$WORK/no_such.yaml" -o "$WORK/out_nofile"
 checks=$((checks + 1))

@@ -180,7 +180,7 @@ by_name = lambda r: {k.split(" [")[0]: v for k, v in r.items()}
 rows = list(map(by_name, csv.DictReader(open(sys.argv[1]))))
 assert len(rows) == 2
 bad, good = rows
-assert bad["error"].startswith("--set speed_kmh=2: ") and "bump longer than the run" in bad["error"], bad["error"]
+assert bad["error"].startswith("--set speed_kmh=2: ") and "the run ends at 15 s, before the last wheel" in bad["error"], bad["error"]
 assert "20.66" in bad["error"]
 assert all(v == "" for k, v in bad.items() if k not in ("speed_kmh", "error"))
 assert good["error"] == "" and float(good["tire_force_LF_peak"]) > 0

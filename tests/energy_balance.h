@@ -155,8 +155,8 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
     fb_sim_opts o;
     double bp[2 * APC_NCORNERS];
     for (int c = 0; c < APC_NCORNERS; ++c) {
-      bp[2 * c] = fb_scenario_bump_entry(s, c);
-      bp[2 * c + 1] = fb_scenario_bump_exit(s, c);
+      bp[2 * c] = fb_scenario_road_entry(s, c);
+      bp[2 * c + 1] = fb_scenario_road_exit(s, c);
     }
     fb_sim_opts_default(&o);
     o.t_end = s->t_end;

@@ -19,6 +19,7 @@
 #include "bgtest_util.h"
 #include "check.h"
 #include "energy_balance.h"
+#include "road_util.h"
 #include "vehicle_util.h"
 
 static long column(const fb_result *r, const char *prefix, int corner)
@@ -92,7 +93,7 @@ static void test_paper_crossing(const fb_scenario *s)
 /* The 0.20 m bump at 30 km/h. */
 static void high_bump(fb_scenario *s)
 {
-  s->bump_height = 0.20;
+  road_bump(s)->height = 0.20;
   s->speed = 30.0 / 3.6;
 }
 
@@ -179,8 +180,8 @@ static void test_unilateral(fb_scenario *s)
   /* Until the first release both tires are the same equations, stepped
    * the same way (root-finding only watches): equal to rounding. */
   const double t_release = first_loss(r);
-  CHECK(t_release > fb_scenario_bump_entry(s, APC_LF) &&
-        t_release < fb_scenario_bump_exit(s, APC_RR));
+  CHECK(t_release > fb_scenario_road_entry(s, APC_LF) &&
+        t_release < fb_scenario_road_exit(s, APC_RR));
   double worst = 0.0;
   for (size_t k = 0; k < fb_result_nsamples(r) && fb_result_row(r, k)[0] < t_release; ++k)
     for (size_t j = 1; j < fb_result_ncols(r); ++j)

@@ -28,6 +28,7 @@
 #include "apc_layout.h"
 #include "bgtest_util.h"
 #include "check.h"
+#include "road_util.h"
 
 static const char *const quarter_car_path = "../examples/quarter_car.yaml";
 static const char *const scenario_path = "../examples/apc6x6.yaml";
@@ -547,11 +548,12 @@ static int build_system1(const fb_scenario *s, fb_bg **graph, fb_bd **bd, fb_err
  * bump z(s) = h/2 (1 - cos(2 pi s / L)), s = V (t - t_entry)). */
 static double road_rate(const fb_scenario *s, int c, double t)
 {
-  const double pi = 3.14159265358979323846, entry = fb_scenario_bump_entry(s, c);
+  const double pi = 3.14159265358979323846, entry = fb_scenario_road_entry(s, c);
   const double dist = s->speed * (t - entry);
-  if (dist < 0.0 || dist > s->bump_length)
+  if (dist < 0.0 || dist > road_bump(s)->length)
     return 0.0;
-  return pi * s->bump_height * s->speed / s->bump_length * sin(2 * pi * dist / s->bump_length);
+  return pi * road_bump(s)->height * s->speed / road_bump(s)->length *
+         sin(2 * pi * dist / road_bump(s)->length);
 }
 
 /* Statics of System 1: the six tire forces (the extra outputs) carry the

@@ -25,6 +25,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "road_util.h"
 #include "vehicle_util.h"
 
 /* The reference scenario with the first wheel meeting the bump at 2 s and
@@ -34,10 +35,10 @@ static fb_scenario *load_crossing(void)
   fb_err err;
   fb_scenario *s = NULL;
   REQUIRE(fb_scenario_load("../examples/apc6x6.yaml", &s, &err), &err);
-  s->bump_time = 2.0;
+  road_bump(s)->first_contact = 2.0;
   double last = 0.0;
   for (size_t c = 0; c < s->ncorners; ++c)
-    last = fmax(last, fb_scenario_bump_exit(s, (int)c));
+    last = fmax(last, fb_scenario_road_exit(s, (int)c));
   s->t_end = ceil((last + 0.4) * 10.0) / 10.0;
   return s;
 }
@@ -96,7 +97,7 @@ static void test_accuracy(fb_scenario *s)
   s->hull_coordinates = FB_HULL_MODAL;
   s->hull_modes_kind = FB_HULL_MODES_AUTO;
   fb_result *r = run(v), *r_all = run(all), *r_nodal = run(nodal);
-  const double window[2] = {s->bump_time, s->t_end};
+  const double window[2] = {road_bump(s)->first_contact, s->t_end};
   double *est = malloc(s->noutputs * sizeof *est);
   CHECK(est != NULL);
   if (est)

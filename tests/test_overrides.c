@@ -22,6 +22,7 @@
 
 #include "check.h"
 #include "io/scenario_internal.h"
+#include "road_util.h"
 #include "vehicle_util.h"
 
 #define EXAMPLE "../examples/apc6x6.yaml"
@@ -80,7 +81,7 @@ static void test_number_and_nested(void)
   /* 20 km/h = 50/9 m/s; 30 deg = pi/6. */
   CHECK_NEAR(s->speed, 50.0 / 9.0, TIGHT * 50.0 / 9.0);
   CHECK(s->corner[0].spring_k == 200000 && s->corner[1].spring_k == 200000);
-  CHECK_NEAR(s->bump_angle, atan(1.0) * 4 / 6, TIGHT);
+  CHECK_NEAR(road_bump(s)->angle, atan(1.0) * 4 / 6, TIGHT);
   CHECK(s->hull_mesh.bulkhead_x[1] == -1.0); /* the same wall: the mesh must still fit */
   CHECK(s->initial == FB_INITIAL_STATIC);
   /* The front axle's value is both its corners'; everything else as in
@@ -89,7 +90,7 @@ static void test_number_and_nested(void)
   CHECK(s->corner[3].spring_k == 345550);
   CHECK(s->hull_mesh.bulkhead_x[0] == base->hull_mesh.bulkhead_x[0]);
   CHECK(s->hull_mesh.bulkhead_x[2] == base->hull_mesh.bulkhead_x[2]);
-  CHECK(s->bump_height == base->bump_height && s->t_end == base->t_end);
+  CHECK(road_bump(s)->height == road_bump(base)->height && s->t_end == base->t_end);
   CHECK(s->nload == base->nload && s->load_x[55] == base->load_x[55]);
   CHECK(s->path && !strcmp(s->path, EXAMPLE));
   fb_scenario_free(&s);
@@ -278,11 +279,10 @@ static void test_bad_values(const char *text)
    * named. */
   const fb_scenario_override slow[] = {{.key = "speed_kmh", .value = "2"},
                                        {.key = "road.bump.height", .value = "0.2"}};
-  expect_error(
-      slow, 1, FB_EINVAL, "--set speed_kmh=2: " EXAMPLE ":",
-      (const char *const[]){"road.bump.length: bump longer than the run", "20.66", NULL});
+  expect_error(slow, 1, FB_EINVAL, "--set speed_kmh=2: " EXAMPLE ":",
+               (const char *const[]){"simulation.t_end: the run ends", "20.66", NULL});
   expect_error(slow, 2, FB_EINVAL, "--set speed_kmh=2 --set road.bump.height=0.2: " EXAMPLE ":",
-               (const char *const[]){"road.bump.length: bump longer than the run", NULL});
+               (const char *const[]){"simulation.t_end: the run ends", NULL});
 }
 
 /* The origin of the value the file names path, NULL if none. */

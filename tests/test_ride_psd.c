@@ -30,6 +30,7 @@
 
 #include "bgtest_util.h"
 #include "check.h"
+#include "road_util.h"
 
 static const char *const scenario_path = "../examples/apc6x6_iso_road.yaml";
 
@@ -71,10 +72,12 @@ static int psd_route(const fb_scenario *s, int identical, route *out, fb_err *er
   fb_descriptor *ds = NULL;
   track_ctx ctx = {s, {0}};
   double f[NPSD], aw[NPSD], force[NPSD], gd0 = 0.0, *h = NULL;
-  const double lo = s->speed * s->road_iso.n_min, hi = s->speed * s->road_iso.n_max;
+  fb_road_iso8608_params iso;
+  CHECK(fb_scenario_road_random(s, &iso));
+  const double lo = s->speed * iso.n_min, hi = s->speed * iso.n_max;
   for (int k = 0; k < NPSD; ++k)
     f[k] = lo * pow(hi / lo, k / (NPSD - 1.0));
-  int rc = fb_road_iso8608_gd0(s->road_iso.road_class, &gd0, err);
+  int rc = fb_road_iso8608_gd0(iso.road_class, &gd0, err);
   if (!rc)
     rc = fb_vehicle_build(s, FB_SYSTEM_RIGID, &graph, &bd, err);
   if (!rc)
@@ -117,7 +120,7 @@ static int time_route(const fb_scenario *base, uint64_t seed, route *out, fb_err
   fb_result *r = NULL;
   int rc = fb_scenario_clone(base, &s, err);
   if (!rc) {
-    s->road_iso.seed = seed;
+    road_random(s)->seed = seed;
     s->t_end = T_END;
     rc = fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, err);
   }
@@ -201,7 +204,7 @@ static void test_against_time_domain(void)
   MUST(fb_scenario_load(scenario_path, &s, &err), &err);
   if (!s)
     return;
-  CHECK(s->road_kind == FB_ROAD_ISO8608);
+  CHECK(s->road_type == &fb_road_type_iso8608);
   route psd = {0, 0}, same = {0, 0}, run[NSEEDS];
   MUST(psd_route(s, 0, &psd, &err), &err);
   MUST(psd_route(s, 1, &same, &err), &err);

@@ -14,6 +14,7 @@
 
 #include "apc_layout.h"
 #include "check.h"
+#include "road_util.h"
 #include "tmpdir.h"
 
 static const double PI = 3.14159265358979323846;
@@ -42,10 +43,11 @@ static void reference_scenario(fb_scenario *sc, fb_corner_params *corners)
     sc->corner[c].y = y[c];
   }
   sc->speed = 10.0 / 3.6;
-  sc->bump_height = 0.10;
-  sc->bump_length = 3.70;
-  sc->bump_angle = PI / 4.0;
-  sc->bump_time = 5.0;
+  CHECK(fb_scenario_set_road(sc, &fb_road_type_bump, NULL, NULL) == FB_OK);
+  road_bump(sc)->height = 0.10;
+  road_bump(sc)->length = 3.70;
+  road_bump(sc)->angle = PI / 4.0;
+  road_bump(sc)->first_contact = 5.0;
 }
 
 /* A wheel's track and start position for the scenario's convention: the
@@ -53,7 +55,7 @@ static void reference_scenario(fb_scenario *sc, fb_corner_params *corners)
  * front wheel reaches the left track's leading edge (s = 0) at bump_time. */
 static void scenario_wheel(const fb_scenario *sc, int c, int *track, double *s0)
 {
-  const double s_ref = -(sc->speed * sc->bump_time + sc->corner[APC_LF].x);
+  const double s_ref = -(sc->speed * road_bump(sc)->first_contact + sc->corner[APC_LF].x);
   *track = sc->corner[c].y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
   *s0 = s_ref + sc->corner[c].x;
 }
@@ -86,14 +88,14 @@ static void check_wheel_on_bump(const fb_road *road, const fb_scenario *sc, int 
    * times of ~8 s agree to rounding (a few ulp, 1e-15 s): 1e-12 s. */
   double bp[4] = {0};
   CHECK(fb_tfun_breakpoints(v, bp, 4) == 2);
-  CHECK_NEAR(bp[0], fb_scenario_bump_entry(sc, c), 1e-12);
-  CHECK_NEAR(bp[1], fb_scenario_bump_exit(sc, c), 1e-12);
+  CHECK_NEAR(bp[0], fb_scenario_road_entry(sc, c), 1e-12);
+  CHECK_NEAR(bp[1], fb_scenario_road_exit(sc, c), 1e-12);
   CHECK(fb_tfun_breakpoints(z, NULL, 0) == 2);
   /* Height and velocity against the closed form at 37 times across the
    * bump and either side; arguments of cos/sin of at most ~20 rad carry
    * rounding of ~1e-15: 1e-13 m and m/s. */
-  const double t_in = fb_scenario_bump_entry(sc, c);
-  const double h = sc->bump_height, len = sc->bump_length, V = sc->speed;
+  const double t_in = fb_scenario_road_entry(sc, c);
+  const double h = road_bump(sc)->height, len = road_bump(sc)->length, V = sc->speed;
   for (int i = -2; i <= 34; ++i) {
     const double t = t_in + (double)i / 32.0 * len / V;
     CHECK_NEAR(fb_tfun_eval(z, t), bump_z(h, len, V, t_in, t), 1e-13);
@@ -111,7 +113,7 @@ static void check_wheel_on_bump(const fb_road *road, const fb_scenario *sc, int 
 }
 
 /* The paper's oblique bump reproduces the scenario's timing
- * (fb_scenario_bump_entry / _exit) and the data sheet's hand-computed
+ * (fb_scenario_road_entry / _exit) and the data sheet's hand-computed
  * entries: LF 5, LM 5 + 1.5 / V = 5.54, RF 5 + 2.1 / V = 5.756, LR 6.044,
  * RM 6.296, RR 6.8 s; RR leaves at 8.132 s (V = 25/9 m/s). */
 static void test_oblique_bump(void)
@@ -122,8 +124,8 @@ static void test_oblique_bump(void)
   fb_road *road = NULL;
   fb_err err;
   const double width = sc.corner[APC_LF].y - sc.corner[APC_RF].y;
-  CHECK(fb_road_new_oblique_bump(sc.bump_height, sc.bump_length, sc.bump_angle, width, &road,
-                                 &err) == FB_OK);
+  CHECK(fb_road_new_oblique_bump(road_bump(&sc)->height, road_bump(&sc)->length,
+                                 road_bump(&sc)->angle, width, &road, &err) == FB_OK);
   if (!road)
     return;
   for (int c = 0; c < APC_NCORNERS; ++c)

@@ -14,6 +14,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "road_util.h"
 #include "vehicle_util.h"
 
 /* The example scenario with its road section replaced by `road` (the text
@@ -61,9 +62,9 @@ static void test_profile_equals_bump(const fb_scenario *bump)
   if (!s)
     fprintf(stderr, "%s\n", err.msg);
   if (s) {
-    CHECK(s->road_kind == FB_ROAD_PROFILE);
+    CHECK(s->road_type == &fb_road_type_profile);
     /* The bump window starts when the LF wheel reaches s = 0, at 5 s. */
-    CHECK_NEAR(fb_scenario_bump_entry(s, 0), 5.0, 1e-9);
+    CHECK_NEAR(fb_scenario_road_entry(s, 0), 5.0, 1e-9);
     fb_result *a = simulate_rigid(bump), *b = simulate_rigid(s);
     if (a && b)
       check_close(a, b, 5e-3, "profile vs bump");
@@ -83,8 +84,8 @@ static void test_iso_example(void)
     fprintf(stderr, "%s\n", err.msg);
     return;
   }
-  CHECK(s->road_kind == FB_ROAD_ISO8608 && s->road_iso.road_class == 'C');
-  CHECK(s->road_iso.seed == 2026 && s->road_iso.fade_length == 10.0);
+  const fb_road_random_params *iso = road_random(s);
+  CHECK(iso->road_class == 'C' - 'A' && iso->seed == 2026 && iso->fade_in == 10.0);
   /* Wheel starts: LF at front_start, the others behind it by x_LF - x. */
   for (int c = 0; c < (int)s->ncorners; ++c)
     CHECK_NEAR(fb_scenario_wheel_start(s, c), -5.0 - (s->corner[0].x - s->corner[c].x), 1e-12);
@@ -92,7 +93,7 @@ static void test_iso_example(void)
   fb_result *a = simulate_rigid(s), *b = simulate_rigid(s);
   if (a && b)
     check_close(a, b, 0.0, "same seed");
-  s->road_iso.seed = 2027;
+  road_random(s)->seed = 2027;
   fb_result *c = simulate_rigid(s);
   if (a && c) {
     const long col = fb_result_find(a, "driver_acc");
@@ -129,7 +130,7 @@ static void test_errors(void)
                        "first_contact: 5}\n",
                        &s, &err) == FB_OK);
   if (s)
-    CHECK(s->bump_height == 0.08 && s->bump_length == 1.50);
+    CHECK(road_bump(s)->height == 0.08 && road_bump(s)->length == 1.50);
   fb_scenario_free(&s);
   expect_refused(
       "road:\n  speed_kmh: 10\n  bump: {type: III, angle_deg: 45, first_contact: 5}\n", "III");
@@ -140,7 +141,11 @@ static void test_errors(void)
                  "first_contact: 5}\n  iso8608: {class: C, seed: 1}\n",
                  "give either 'bump' or 'iso8608', not both");
   expect_refused("road:\n  speed_kmh: 10\n", "missing one of 'bump', 'iso8608', 'profile'");
-  expect_refused("road:\n  speed_kmh: 10\n  iso8608: {class: K, seed: 1}\n", "A .. H");
+  expect_refused("road:\n  speed_kmh: 10\n  iso8608: {class: K, seed: 1}\n",
+                 "road.iso8608.class: unknown value 'K'; expected A | B");
+  expect_refused(
+      "road:\n  speed_kmh: 10\n  bump: {height: 0.1, angle_deg: 45, first_contact: 5}\n",
+      "road.bump: a bump needs its length (or a type)");
   expect_refused("road:\n  speed_kmh: 10\n  profile: {file: no_such_road.csv}\n",
                  "no_such_road.csv");
 }
@@ -152,7 +157,7 @@ int main(void)
   CHECK(fb_scenario_load("../examples/apc6x6.yaml", &s, &err) == FB_OK);
   if (s) {
     /* Wheel starts of the bump: LF at -V first_contact. */
-    CHECK_NEAR(fb_scenario_wheel_start(s, 0), -s->speed * s->bump_time, 1e-12);
+    CHECK_NEAR(fb_scenario_wheel_start(s, 0), -s->speed * road_bump(s)->first_contact, 1e-12);
     test_profile_equals_bump(s);
   }
   fb_scenario_free(&s);

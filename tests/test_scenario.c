@@ -16,6 +16,7 @@
 
 #include "check.h"
 #include "io/scenario_internal.h"
+#include "road_util.h"
 #include "tmpdir.h"
 
 #define EXAMPLE "../examples/apc6x6.yaml"
@@ -143,8 +144,9 @@ static void check_outputs(const fb_scenario *s)
 static void check_road_and_run(const fb_scenario *s)
 {
   CHECK_NEAR(s->speed, 10 / 3.6, TIGHT);
-  CHECK(s->bump_height == 0.10 && s->bump_length == 3.70 && s->bump_time == 5.0);
-  CHECK_NEAR(s->bump_angle, 0.7853981633974483, TIGHT); /* pi / 4 */
+  CHECK(road_bump(s)->height == 0.10 && road_bump(s)->length == 3.70 &&
+        road_bump(s)->first_contact == 5.0);
+  CHECK_NEAR(road_bump(s)->angle, 0.7853981633974483, TIGHT); /* pi / 4 */
   CHECK(s->t_end == 15 && s->rtol == 1e-6 && s->atol == 1e-8);
   CHECK(s->max_step == 0 && s->sample_rate == 1000);
   CHECK(s->initial == FB_INITIAL_ZERO);
@@ -164,14 +166,14 @@ static void check_bump_timing(const fb_scenario *s)
 {
   static const double entry[] = {5, 5.756, 5.54, 6.296, 6.044, 6.8};
   for (int k = 0; k < 6; ++k) {
-    CHECK_NEAR(fb_scenario_bump_entry(s, k), entry[k], TIGHT);
-    CHECK_NEAR(fb_scenario_bump_exit(s, k), entry[k] + 1.332, TIGHT);
+    CHECK_NEAR(fb_scenario_road_entry(s, k), entry[k], TIGHT);
+    CHECK_NEAR(fb_scenario_road_exit(s, k), entry[k] + 1.332, TIGHT);
   }
   double rr_exit = 5 + 0.36 * (2.9 + 2.1) + 0.36 * 3.7;
-  CHECK_NEAR(fb_scenario_bump_exit(s, 5), rr_exit, TIGHT);
-  CHECK_NEAR(fb_scenario_bump_exit(s, 5), 8.13, 0.005); /* the data sheet's rounding */
-  CHECK(isnan(fb_scenario_bump_entry(s, 6)));
-  CHECK(isnan(fb_scenario_bump_exit(NULL, 0)));
+  CHECK_NEAR(fb_scenario_road_exit(s, 5), rr_exit, TIGHT);
+  CHECK_NEAR(fb_scenario_road_exit(s, 5), 8.13, 0.005); /* the data sheet's rounding */
+  CHECK(isnan(fb_scenario_road_entry(s, 6)));
+  CHECK(isnan(fb_scenario_road_exit(NULL, 0)));
 }
 
 /* Every line of the example that gives a number says where it comes
@@ -257,19 +259,21 @@ static int strings_equal(const char *a, const char *b)
 /* Field by field, arrays by value. */
 static int scenarios_equal(const fb_scenario *a, const fb_scenario *b)
 {
-  int eq =
-      strings_equal(a->name, b->name) && strings_equal(a->path, b->path) &&
-      a->gravity == b->gravity && a->hull_mass == b->hull_mass && a->hull_ixx == b->hull_ixx &&
-      a->hull_iyy == b->hull_iyy && a->young == b->young && a->poisson == b->poisson &&
-      a->density == b->density && a->thickness == b->thickness &&
-      a->edge_front_x == b->edge_front_x && a->edge_rear_x == b->edge_rear_x &&
-      a->edge_left_y == b->edge_left_y && a->edge_right_y == b->edge_right_y &&
-      a->total_weight == b->total_weight && a->payload == b->payload && a->nload == b->nload &&
-      a->nmounts == b->nmounts && a->ncorners == b->ncorners && a->speed == b->speed &&
-      a->bump_height == b->bump_height && a->bump_length == b->bump_length &&
-      a->bump_angle == b->bump_angle && a->bump_time == b->bump_time && a->t_end == b->t_end &&
-      a->rtol == b->rtol && a->atol == b->atol && a->max_step == b->max_step &&
-      a->sample_rate == b->sample_rate && a->initial == b->initial;
+  int eq = strings_equal(a->name, b->name) && strings_equal(a->path, b->path) &&
+           a->gravity == b->gravity && a->hull_mass == b->hull_mass &&
+           a->hull_ixx == b->hull_ixx && a->hull_iyy == b->hull_iyy && a->young == b->young &&
+           a->poisson == b->poisson && a->density == b->density &&
+           a->thickness == b->thickness && a->edge_front_x == b->edge_front_x &&
+           a->edge_rear_x == b->edge_rear_x && a->edge_left_y == b->edge_left_y &&
+           a->edge_right_y == b->edge_right_y && a->total_weight == b->total_weight &&
+           a->payload == b->payload && a->nload == b->nload && a->nmounts == b->nmounts &&
+           a->ncorners == b->ncorners && a->speed == b->speed &&
+           road_bump(a)->height == road_bump(b)->height &&
+           road_bump(a)->length == road_bump(b)->length &&
+           road_bump(a)->angle == road_bump(b)->angle &&
+           road_bump(a)->first_contact == road_bump(b)->first_contact && a->t_end == b->t_end &&
+           a->rtol == b->rtol && a->atol == b->atol && a->max_step == b->max_step &&
+           a->sample_rate == b->sample_rate && a->initial == b->initial;
   for (size_t k = 0; eq && k < a->nmounts; ++k)
     eq = mounts_equal(&a->mount[k], &b->mount[k]);
   for (size_t k = 0; eq && k < a->ncorners; ++k)
@@ -361,7 +365,7 @@ static void set_nan_point(fb_scenario *s)
 }
 static void set_angle_right(fb_scenario *s)
 {
-  s->bump_angle = 2 * atan(1.0); /* 90 deg */
+  road_bump(s)->angle = 2 * atan(1.0); /* 90 deg */
 }
 static void set_inf_speed(fb_scenario *s)
 {
@@ -418,7 +422,7 @@ static void set_coarser_converged(fb_scenario *s)
 }
 static void set_flat_bump(fb_scenario *s)
 {
-  s->bump_height = 0;
+  road_bump(s)->height = 0;
 }
 
 static void test_check(void)
@@ -433,10 +437,10 @@ static void test_check(void)
   expect_check(s, set_rr_tire_k, "corner[5] (RR).tire_k: must be > 0 N/m (got -1)");
   expect_check(s, set_no_load, "load_x: at least one load point");
   expect_check(s, set_nan_point, "load point 3: must be finite");
-  expect_check(s, set_angle_right, "bump_angle: must be in [0, 1.5708) rad (got 1.570796327)");
+  expect_check(s, set_angle_right, "road (bump).angle_deg: must be in [0, 90) deg (got 90)");
   expect_check(s, set_inf_speed, "speed: must be > 0 m/s (got inf)");
   expect_check(s, set_bad_payload, "payload: unknown value 7");
-  expect_check(s, set_rr_ahead, "bump_time: the RR wheel would meet the bump");
+  expect_check(s, set_rr_ahead, "road (bump): the RR wheel would meet the road's bump");
   expect_check(s, set_lumped_light, "payload: a lumped payload needs");
   expect_check(s, set_many_samples, "sample_rate: ");
   expect_check(s, set_three_modes, "hull_modes: auto, all or at least the 6 rigid");
@@ -596,16 +600,15 @@ static const bad_case bad_cases[] = {
      "bad.yaml:25:", "road.bump.angle_deg: must be in [0, 90) deg (got -1)", NULL},
     {"first_contact: 5.0", "first_contact: -1", NULL, NULL, FB_EINVAL,
      "bad.yaml:25:", "road.bump.first_contact: must be >= 0 s", NULL},
-    /* Bump timing: RR leaves at 8.132 s (see check_bump_timing). */
+    /* Bump timing: RR leaves at 8.132 s (see check_road_timing). */
     {"t_end: 15", "t_end: 8", NULL, NULL, FB_EINVAL,
-     "bad.yaml:25:", "road.bump.length: bump longer than the run",
-     "RR) leaves it at 8.132 s, not before the run's end at 8 s"},
+     "bad.yaml:", "simulation.t_end: the run ends at 8 s",
+     "before the last wheel (RR) leaves the road's bump at 8.132 s"},
     /* A single corner X 0.5 m ahead of LF meets a square bump (0 deg) at
      * 0 + 0.36 (1.9 - 2.4) = -0.18 s. */
     {"angle_deg: 45, first_contact: 5.0", "angle_deg: 0, first_contact: 0", "road:\n",
      "  corners: [{name: X, spring_k: 1e5, damper_c: 1e4, x: 2.40, y: 0}]\nroad:\n", FB_EINVAL,
-     "bad.yaml:26:", "road.bump.first_contact: the X wheel would meet the bump at -0.18 s",
-     NULL},
+     "bad.yaml:26:", "road.bump: the X wheel would meet the road's bump at -0.18 s", NULL},
     /* Points off the floor (hull.edges), and two suspensions at one point. */
     {"x: 2.10, y: 0.55}", "x: 2.10, y: 1.55}", NULL, NULL, FB_EINVAL, "bad.yaml:14:",
      "mounts[0].y: must lie on the hull's floor, between the right end's y = -1.05 and the "
@@ -875,14 +878,14 @@ static void test_good_variants(void)
   fb_scenario *s = t9 ? load_text(t9, NULL) : NULL;
   if (s) {
     CHECK(s->path == NULL && !strcmp(s->name, "good"));
-    CHECK_NEAR(s->speed, 5, TIGHT);                       /* 18 km/h */
-    CHECK_NEAR(s->bump_angle, 0.5235987755982988, TIGHT); /* pi / 6 */
+    CHECK_NEAR(s->speed, 5, TIGHT);                             /* 18 km/h */
+    CHECK_NEAR(road_bump(s)->angle, 0.5235987755982988, TIGHT); /* pi / 6 */
     /* The rear axle's own wheels, both its corners; the middle's shared. */
     const fb_corner_params *rr = &s->corner[5], *lr = &s->corner[4], *lm = &s->corner[2];
     CHECK(rr->wheel_mass == 200 && rr->tire_k == 4e5 && rr->tire_c == 0);
     CHECK(rr->motion_ratio == 0.8 && lr->motion_ratio == 0.8 && lr->wheel_mass == 200);
     CHECK(lm->wheel_mass == 175 && lm->tire_k == 500000 && lm->motion_ratio == 1);
-    CHECK(s->bump_height == 0);
+    CHECK(road_bump(s)->height == 0);
     CHECK(s->nload == 2 && s->load_x[0] == 1 && s->load_y[0] == 0.5 && s->load_x[1] == -1 &&
           s->load_y[1] == -0.5);
     CHECK(s->payload == FB_PAYLOAD_LUMPED && s->initial == FB_INITIAL_STATIC);
@@ -890,7 +893,7 @@ static void test_good_variants(void)
     for (size_t c = 0; c < s->ncorners; ++c)
       CHECK(s->corner[c].tire_contact == FB_TIRE_UNILATERAL);
     /* RR by hand at 5 m/s, tan 30 deg = 1/sqrt(3): 5 + (2.9 + 2.1/sqrt 3)/5. */
-    CHECK_NEAR(fb_scenario_bump_entry(s, 5), 5 + (2.9 + 2.1 / sqrt(3.0)) / 5, TIGHT);
+    CHECK_NEAR(fb_scenario_road_entry(s, 5), 5 + (2.9 + 2.1 / sqrt(3.0)) / 5, TIGHT);
   }
   fb_scenario_free(&s);
   free(t1);

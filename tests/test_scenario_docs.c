@@ -26,7 +26,7 @@ int main(void)
   CHECK(fp != NULL);
   if (!doc || !fp)
     return check_report("test_scenario_docs");
-  fb_scenario_schema_markdown(fp);
+  CHECK(fb_scenario_schema_markdown(fp, NULL) == FB_OK);
   fclose(fp);
   char *begin = strstr(doc, BEGIN);
   char *end = begin ? strstr(begin, END) : NULL;

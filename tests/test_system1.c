@@ -29,6 +29,7 @@
 #include "bgtest_util.h"
 #include "check.h"
 #include "energy_balance.h"
+#include "road_util.h"
 
 static const char *const scenario_path = "../examples/apc6x6.yaml";
 
@@ -168,7 +169,7 @@ static void test_scenario_is_data_sheet(const fb_scenario *s)
     CHECK(p->motion_ratio == 1.0);
   }
   CHECK_NEAR(s->speed, 10.0 / 3.6, 1e-12);
-  CHECK(s->bump_time == 5.0 && s->t_end == 15.0 && s->rtol <= 1e-6);
+  CHECK(road_bump(s)->first_contact == 5.0 && s->t_end == 15.0 && s->rtol <= 1e-6);
   CHECK(s->payload == FB_PAYLOAD_WEIGHT_ONLY && s->initial == FB_INITIAL_ZERO);
   /* The load points' centroid is at the centre of mass (data sheet). */
   double cx = 0.0, cy = 0.0;
@@ -180,11 +181,11 @@ static void test_scenario_is_data_sheet(const fb_scenario *s)
   CHECK_NEAR(cy, 0.0, 1e-12);
   /* Bump times: the data sheet's formula, and RR leaves at about 8.13 s. */
   for (int i = 0; i < APC_NCORNERS; ++i) {
-    CHECK_NEAR(fb_scenario_bump_entry(s, i), apc_entry_time(s, i), 1e-12);
-    CHECK_NEAR(fb_scenario_bump_exit(s, i), apc_entry_time(s, i) + s->bump_length / s->speed,
-               1e-12);
+    CHECK_NEAR(fb_scenario_road_entry(s, i), apc_entry_time(s, i), 1e-12);
+    CHECK_NEAR(fb_scenario_road_exit(s, i),
+               apc_entry_time(s, i) + road_bump(s)->length / s->speed, 1e-12);
   }
-  CHECK_NEAR(fb_scenario_bump_exit(s, APC_RR), 8.13, 0.005);
+  CHECK_NEAR(fb_scenario_road_exit(s, APC_RR), 8.13, 0.005);
 }
 
 /* ---- 1. The seven outputs against the direct model. */

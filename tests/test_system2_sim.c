@@ -26,6 +26,7 @@
 #include "apc_layout.h"
 #include "check.h"
 #include "energy_balance.h"
+#include "road_util.h"
 #include "vehicle_util.h"
 
 /* 1. Tire forces at the static state of the full-order System 2, in
@@ -169,8 +170,8 @@ static void test_energy(fb_scenario *s)
   fb_fe_hull *fe = NULL;
   fb_hull *hull = NULL;
   energy_report rep;
-  const double bump_time = s->bump_time, t_end = s->t_end;
-  s->bump_time = 0.3;
+  const double bump_time = road_bump(s)->first_contact, t_end = s->t_end;
+  road_bump(s)->first_contact = 0.3;
   s->t_end = 2.5;
   REQUIRE(fb_vehicle_fe_hull(s, &fe, &err), &err);
   if (fe)
@@ -186,7 +187,7 @@ static void test_energy(fb_scenario *s)
   }
   fb_hull_free(&hull);
   fb_fe_hull_free(&fe);
-  s->bump_time = bump_time;
+  road_bump(s)->first_contact = bump_time;
   s->t_end = t_end;
 }
 
@@ -201,10 +202,11 @@ static void test_energy(fb_scenario *s)
  * nodal run to seconds. */
 static void test_modal_nodal(fb_scenario *s)
 {
-  const double bump_time = s->bump_time, t_end = s->t_end, rtol = s->rtol, atol = s->atol;
+  const double bump_time = road_bump(s)->first_contact, t_end = s->t_end, rtol = s->rtol,
+               atol = s->atol;
   const double speed = s->speed;
   s->speed = 10.0;
-  s->bump_time = 0.05;
+  road_bump(s)->first_contact = 0.05;
   s->t_end = 0.7;
   s->rtol = 1e-9;
   s->atol = atol * 1e-3;
@@ -227,7 +229,7 @@ static void test_modal_nodal(fb_scenario *s)
   }
   fb_result_free(&nodal);
   fb_result_free(&modal);
-  s->bump_time = bump_time;
+  road_bump(s)->first_contact = bump_time;
   s->t_end = t_end;
   s->rtol = rtol;
   s->atol = atol;

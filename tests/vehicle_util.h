@@ -14,6 +14,8 @@
 
 #include "flexbond/vehicle.h"
 
+#include "road_util.h"
+
 /* Stops the test at a failed call, printing the library's message. */
 #define REQUIRE(call, err)                                                                     \
   do {                                                                                         \
@@ -32,8 +34,8 @@ static inline fb_scenario *load_short(void)
   fb_err err;
   fb_scenario *s = NULL;
   REQUIRE(fb_scenario_load("../examples/apc6x6.yaml", &s, &err), &err);
-  s->bump_time = 1.0;
-  s->bump_length = 0.5;
+  road_bump(s)->first_contact = 1.0;
+  road_bump(s)->length = 0.5;
   s->t_end = 3.0;
   return s;
 }
@@ -104,8 +106,9 @@ static inline char *read_text(const char *path)
  * end (kept) replaced by text, loaded as bad.yaml into *out (may be NULL:
  * the scenario is only checked). FB_EIO when the file or the markers are
  * missing. */
-static inline int load_replaced(const char *start, size_t skip, const char *end,
-                                const char *text, fb_scenario **out, fb_err *err)
+static inline int load_replaced_with(const char *start, size_t skip, const char *end,
+                                     const char *text, const fb_scenario_load_opts *opts,
+                                     fb_scenario **out, fb_err *err)
 {
   char *file = read_text("../examples/apc6x6.yaml");
   char *from = file ? strstr(file, start) : NULL;
@@ -118,7 +121,7 @@ static inline int load_replaced(const char *start, size_t skip, const char *end,
     strcpy(yaml + head, text);
     strcat(yaml, to);
     fb_scenario *s = NULL;
-    rc = fb_scenario_load_string(yaml, strlen(yaml), "bad.yaml", &s, err);
+    rc = fb_scenario_load_string_with(yaml, strlen(yaml), "bad.yaml", opts, &s, err);
     if (out)
       *out = s;
     else
@@ -127,6 +130,13 @@ static inline int load_replaced(const char *start, size_t skip, const char *end,
   free(yaml);
   free(file);
   return rc;
+}
+
+/* load_replaced with the loader's options (NULL: none). */
+static inline int load_replaced(const char *start, size_t skip, const char *end,
+                                const char *text, fb_scenario **out, fb_err *err)
+{
+  return load_replaced_with(start, skip, end, text, NULL, out, err);
 }
 
 /* The weight the tires carry at rest: the load, the mounted bodies, the

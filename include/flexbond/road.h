@@ -28,6 +28,7 @@
 
 #include "flexbond/error.h"
 #include "flexbond/expr.h"
+#include "flexbond/param.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -51,7 +52,7 @@ int fb_road_new_bump(double height, double length, double start_left, double sta
  * (rad, in (-pi/2, pi/2)) to the lateral axis, crossing the left track at
  * s = 0 and the right track, track_width (> 0, m) to its right, at
  * s = track_width tan(angle): left first for angle > 0. With track_width
- * = y_LF - y_RF this reproduces fb_scenario_bump_entry. */
+ * = y_LF - y_RF this reproduces fb_scenario_road_entry. */
 int fb_road_new_oblique_bump(double height, double length, double angle, double track_width,
                              fb_road **out, fb_err *err);
 
@@ -181,6 +182,157 @@ int fb_road_wheel_describe(const fb_tfun *f, fb_road_wheel_info *out);
  * value and breakpoint for breakpoint, as the one it was described from.
  * *out is new. FB_EINVAL naming a bad parameter. */
 int fb_road_wheel_new(const fb_road_wheel_info *info, fb_tfun **out, fb_err *err);
+
+/* ---- The road gallery: road types a vehicle description can name.
+ *
+ * A road type is content plus ops: its name, one line of documentation,
+ * the parameters it reads (flexbond/param.h) from a parameter block of
+ * its own (at most FB_ROAD_PARAMS_MAX bytes, held in the description),
+ * and what it does with them: check them, make the road (from the
+ * primitives above, so that every road has a model-file form), and say
+ * where each wheel starts on its track and when it meets the road's
+ * feature. Built-in types: fb_road_type_bump, fb_road_type_iso8608,
+ * fb_road_type_profile (docs/roads.md); a program adds its own to a
+ * gallery (fb_road_gallery_add) and names them in its descriptions
+ * (docs/architecture.md, "Adding a road type"). */
+
+/* Most bytes of a road type's parameter block. */
+#define FB_ROAD_PARAMS_MAX ((size_t)256)
+
+/* The parameter block a vehicle description holds for its road type;
+ * its bytes are the type's own struct (fb_road_bump_params, ...). */
+typedef union fb_road_params {
+  max_align_t align_;
+  unsigned char bytes[FB_ROAD_PARAMS_MAX];
+} fb_road_params;
+
+/* What a road type needs of the vehicle to place the road under it: the
+ * speed (m/s, > 0), the track width (m, the first corner's y less that of
+ * the first corner on the other side) and the first corner's wheel
+ * position (m, vehicle axes). A wheel at y > 0 runs on FB_ROAD_LEFT, else
+ * on FB_ROAD_RIGHT. */
+typedef struct fb_road_layout {
+  double speed;
+  double track_width;
+  double first_x, first_y;
+} fb_road_layout;
+
+typedef struct fb_road_type fb_road_type;
+
+/* The ops of a road type. params is the type's block. Errors about one
+ * parameter name it in err->part.field (fb_err_set_part with kind 0: the
+ * description's maker adds its own kind). NULL ops are noted. */
+typedef struct fb_road_type_ops {
+  /* Fills a new block before its maker sets any value (after the
+   * declared defaults are written; NULL: nothing more): e.g. NaN for an
+   * optional value left out. */
+  void (*init)(void *params);
+  /* After the maker has set the values: reads what they name (a file)
+   * and resolves alternatives (a named bump type into its height and
+   * length). NULL: nothing to do. */
+  int (*prepare)(void *params, fb_err *err);
+  /* The rules between values that declared ranges cannot state, for the
+   * vehicle's layout. NULL: none. */
+  int (*check)(const void *params, const fb_road_layout *layout, fb_err *err);
+  /* The road under the vehicle (*out new). */
+  int (*make)(const void *params, const fb_road_layout *layout, fb_road **out, fb_err *err);
+  /* Where the wheel at (x, y) is on its track at t = 0, m. */
+  double (*wheel_start)(const void *params, const fb_road_layout *layout, double x, double y);
+  /* Where the road's feature begins and ends on track, m: a wheel meets
+   * it when it reaches *begin and leaves it at *end (INFINITY: never).
+   * NULL: from 0 on. */
+  void (*feature)(const void *params, const fb_road_layout *layout, int track, double *begin,
+                  double *end);
+  /* The highest frequency the road puts into a wheel at speed, Hz, when
+   * the road knows it better than the speed over its shortest wavelength
+   * (fb_road_shortest_wavelength); NULL: that. */
+  double (*top_hz)(const void *params, double speed);
+  /* The stationary random road it is, for spectral ride analysis: 1 and
+   * *out filled, or 0 for a road that is none. NULL: none. */
+  int (*random)(const void *params, fb_road_iso8608_params *out);
+  /* After a byte copy of a block into to: makes to's owned members its
+   * own (strings, data). NULL: the block owns nothing. */
+  int (*copy)(void *to, const void *from, fb_err *err);
+  /* Frees the block's owned members (the block itself is the holder's).
+   * NULL: it owns nothing. */
+  void (*release)(void *params);
+} fb_road_type_ops;
+
+struct fb_road_type {
+  const char *name; /* letters, digits and '_', not from a digit: "bump" */
+  const char *doc;  /* one line */
+  const fb_param *param;
+  size_t nparams;
+  size_t params_size; /* <= FB_ROAD_PARAMS_MAX */
+  const fb_road_type_ops *ops;
+};
+
+/* 0 if t is a sound road type: a well-formed name and documentation,
+ * sound parameter declarations (fb_params_declared) in a block that
+ * fits, the ops every type must have (make, wheel_start), and copy and
+ * release given together. FB_EINVAL naming the fault otherwise. */
+int fb_road_type_check(const fb_road_type *t, fb_err *err);
+
+/* A new block of type t in *p: zeroed, the declared defaults, then
+ * t's init. */
+void fb_road_params_init(const fb_road_type *t, fb_road_params *p);
+/* A deep copy of from into *to (a block of type t). FB_ENOMEM. */
+int fb_road_params_copy(const fb_road_type *t, fb_road_params *to, const fb_road_params *from,
+                        fb_err *err);
+/* Frees the owned members of a block of type t (NULL: a block of no
+ * type), and zeroes it. A type's release must accept a zeroed block. */
+void fb_road_params_release(const fb_road_type *t, fb_road_params *p);
+
+/* The paper's oblique (1 - cos) bump (fb_road_new_oblique_bump), or a
+ * Brazilian speed bump of a named type (fb_road_speed_bump). */
+typedef struct fb_road_bump_params {
+  double height;        /* m, >= 0; NaN: from type */
+  double length;        /* m, > 0; NaN: from type */
+  int type;             /* index into fb_road_bump_types, -1: height and length given */
+  double angle;         /* rad, of the leading edge to the lateral axis, in [0, pi/2) */
+  double first_contact; /* s, when the first corner's wheel meets the leading edge */
+} fb_road_bump_params;
+/* The names fb_road_speed_bump knows, NULL-terminated. */
+extern const char *const fb_road_bump_types[];
+
+/* An ISO 8608 random road (fb_road_new_iso8608); the first corner's
+ * wheel at front_start on its track at t = 0. */
+typedef struct fb_road_random_params {
+  int road_class;     /* 0 .. 7: class A .. H */
+  uint64_t seed;      /* the same seed gives the same road */
+  double band[2];     /* cycles/m: n_min, n_max */
+  size_t harmonics;   /* per track */
+  double fade_in;     /* m */
+  double front_start; /* m */
+} fb_road_random_params;
+
+/* A measured profile from a CSV file (fb_road_new_csv), read once by
+ * prepare; the first corner's wheel at front_start at t = 0. */
+typedef struct fb_road_profile_params {
+  char *file;         /* owned */
+  fb_road *profile;   /* owned, as read */
+  double front_start; /* m */
+} fb_road_profile_params;
+
+extern const fb_road_type fb_road_type_bump;
+extern const fb_road_type fb_road_type_iso8608;
+extern const fb_road_type fb_road_type_profile;
+
+/* A set of road types: the built-in ones, and those a program adds. */
+typedef struct fb_road_gallery fb_road_gallery;
+
+/* A gallery of the built-in types (*out new). FB_ENOMEM. */
+int fb_road_gallery_new(fb_road_gallery **out, fb_err *err);
+/* Adds t (borrowed: it must outlive the gallery and every description
+ * that names it). FB_EINVAL when t is not sound (fb_road_type_check) or
+ * its name is taken. */
+int fb_road_gallery_add(fb_road_gallery *g, const fb_road_type *t, fb_err *err);
+size_t fb_road_gallery_count(const fb_road_gallery *g);
+/* Type i in the order added (built-ins first), NULL out of range. */
+const fb_road_type *fb_road_gallery_at(const fb_road_gallery *g, size_t i);
+/* The type named name, NULL if none. */
+const fb_road_type *fb_road_gallery_find(const fb_road_gallery *g, const char *name);
+void fb_road_gallery_free(fb_road_gallery **g);
 
 #ifdef __cplusplus
 }

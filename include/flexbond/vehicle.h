@@ -198,8 +198,6 @@ typedef struct fb_output_spec {
   double window[2]; /* time window a figure shows, s; {0, 0}: the whole run */
 } fb_output_spec;
 
-typedef enum fb_road_kind { FB_ROAD_BUMP = 0, FB_ROAD_ISO8608, FB_ROAD_PROFILE } fb_road_kind;
-
 /* The study's parameters. Strings and arrays are owned by the scenario. */
 /* The coordinates of System 2's hull (hull.fe.coordinates): its nodal
  * displacements, with M, K and B = beta K as sparse fields (the
@@ -256,7 +254,8 @@ typedef enum fb_part_kind {
   FB_PART_SECTION = 5,    /* section[index], fb_hull_section */
   FB_PART_OUTPUT = 6,     /* output[index], fb_output_spec */
   FB_PART_LOAD_POINT = 7, /* (load_x[index], load_y[index]); field "" */
-  FB_PART_KINDS = 8
+  FB_PART_ROAD = 8,       /* the road type's parameter field (fb_param.name); index 0 */
+  FB_PART_KINDS = 9
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -320,23 +319,14 @@ typedef struct fb_scenario {
   /* The signals recorded, in CSV column order (docs/vehicle-outputs.md). */
   fb_output_spec *output;
   size_t noutputs;
-  /* Road: a (1 - cos) bump of height h and length L along each wheel's
-   * path, its leading edge at bump_angle to the lateral axis, left side
-   * first; the left front wheel meets it at bump_time. */
   double speed; /* m/s */
-  /* The road under the wheels (docs/scenario-format.md, docs/roads.md):
-   * the paper's oblique bump (the bump_* fields), an ISO 8608 random road
-   * (road_iso) or a measured profile (road_profile); for the last two the
-   * left front wheel is at road_front_start (m) on its track at t = 0. */
-  fb_road_kind road_kind;
-  fb_road_iso8608_params road_iso;
-  char *road_profile;         /* CSV path (resolved), owned */
-  fb_road *road_profile_data; /* that profile as the loader read it, once (owned) */
-  double road_front_start;
-  double bump_height; /* m */
-  double bump_length; /* m */
-  double bump_angle;  /* rad */
-  double bump_time;   /* s */
+  /* The road under the wheels (docs/roads.md): a type of a road gallery
+   * (fb_road_type_bump, fb_road_type_iso8608, fb_road_type_profile or a
+   * program's own; borrowed, it outlives the description) and its
+   * parameter block, which the description owns (fb_road_params_release
+   * when it is freed). fb_scenario_set_road sets both. */
+  const fb_road_type *road_type;
+  fb_road_params road;
   /* Simulation. */
   double t_end, rtol, atol, max_step, sample_rate; /* s, -, -, s, Hz */
   long max_steps;                /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
@@ -494,6 +484,26 @@ int fb_scenario_load_overrides(const char *path, const fb_scenario_override *ov,
 int fb_scenario_load_string_overrides(const char *text, size_t len, const char *display_name,
                                       const fb_scenario_override *ov, size_t n,
                                       fb_scenario **out, fb_err *err);
+/* What a load knows besides the document. Initialise by member names:
+ * members may be added. */
+typedef struct fb_scenario_load_opts {
+  /* The road types the document may name (road.<type>); NULL: the
+   * built-in ones. Borrowed for the call; its types are borrowed by the
+   * scenario, and must outlive it. */
+  const fb_road_gallery *roads;
+  /* Values read in place of the document's, as for
+   * fb_scenario_load_overrides. */
+  const fb_scenario_override *overrides;
+  size_t noverrides;
+} fb_scenario_load_opts;
+/* fb_scenario_load_overrides and fb_scenario_load_string_overrides with
+ * the options o (NULL: none). An error about a road type's parameter is
+ * located at its key, road.<type>.<parameter>. */
+int fb_scenario_load_with(const char *path, const fb_scenario_load_opts *o, fb_scenario **out,
+                          fb_err *err);
+int fb_scenario_load_string_with(const char *text, size_t len, const char *display_name,
+                                 const fb_scenario_load_opts *o, fb_scenario **out,
+                                 fb_err *err);
 /* The full key path of key (as fb_scenario_override.key) in the scenario
  * file at path, into *full (new; the caller frees it), checking that it
  * names a single value the file has or could have: lets a caller tell a
@@ -533,20 +543,35 @@ void fb_scenario_free(fb_scenario **s);
 /* Deep copy. */
 int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
 
+/* The road of s: releases the old type's block, sets type t (borrowed:
+ * it outlives s) and a new block of its defaults (fb_road_params_init),
+ * which *params points to (owned by s) for the caller to fill; then
+ * fb_scenario_prepare_road. FB_EINVAL when t is not sound
+ * (fb_road_type_check). */
+int fb_scenario_set_road(fb_scenario *s, const fb_road_type *t, void **params, fb_err *err);
+/* The road type's prepare op (reads what its values name, resolves
+ * alternatives); errors name their parameter (FB_PART_ROAD). */
+int fb_scenario_prepare_road(fb_scenario *s, fb_err *err);
+/* What the road type needs of the vehicle (fb_road_layout). */
+fb_road_layout fb_scenario_road_layout(const fb_scenario *s);
+/* 1 and *out filled when the road is a stationary random one (its
+ * type's random op), else 0. */
+int fb_scenario_road_random(const fb_scenario *s, fb_road_iso8608_params *out);
+
 /* Position (m) of the wheel of `corner` on its track at t = 0: it is at
  * start + speed t later (wheels of one side follow one track, the rear
- * ones behind by their spacing; docs/roads.md). For the bump the left
- * track's leading edge is at s = 0. */
+ * ones behind by their spacing; docs/roads.md); the road type's
+ * wheel_start. */
 double fb_scenario_wheel_start(const fb_scenario *s, int corner);
-/* Time at which the wheel of `corner` meets the bump's leading edge:
- * bump_time + ((x_LF - x) + (y_LF - y) tan(bump_angle)) / speed. On a
- * random road or a profile, the time it reaches s = 0 on its track (where
- * an ISO road starts, or the s = 0 of the profile's file; negative when
- * it is already past it at t = 0). */
-double fb_scenario_bump_entry(const fb_scenario *s, int corner);
-/* Time it leaves the bump: entry + bump_length / speed; t_end on a random
- * road or a profile (the road goes on). */
-double fb_scenario_bump_exit(const fb_scenario *s, int corner);
+/* Time at which the wheel of `corner` meets the road's feature (the
+ * bump's leading edge: first_contact + ((x_LF - x) + (y_LF - y)
+ * tan(angle)) / speed); on a road whose feature starts at s = 0 of its
+ * tracks (a random road, a profile), the time it reaches s = 0 (negative
+ * when it is already past it at t = 0). */
+double fb_scenario_road_entry(const fb_scenario *s, int corner);
+/* Time it leaves the feature (the bump's: entry + length / speed); t_end
+ * on a road that goes on. */
+double fb_scenario_road_exit(const fb_scenario *s, int corner);
 
 /* ---- System 2: the finite-element hull's mesh (docs/hull-mesh.md).
  *

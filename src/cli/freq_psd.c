@@ -30,12 +30,11 @@ int cli_freq_psd_setup(freq_study *fs, char road_class, int identical, fb_err *e
   freq_psd *p = &fs->psd;
   fb_road_iso8608_params iso;
   fb_road_iso8608_defaults(&iso);
-  if (!road_class && s->road_kind == FB_ROAD_ISO8608)
-    iso = s->road_iso;
-  else if (road_class)
-    iso.road_class = road_class;
-  else
+  const int random = !road_class && fb_scenario_road_random(s, &iso);
+  if (!random && !road_class)
     return FB_OK;
+  if (!random)
+    iso.road_class = road_class;
   int rc = fb_road_iso8608_gd0(iso.road_class, &p->gd0, err);
   if (rc)
     return rc;

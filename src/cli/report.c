@@ -101,7 +101,7 @@ static void write_corner_timing(FILE *fp, const fb_scenario *s)
     fputs("| ", fp);
     fb_md_write_text(fp, p->name);
     fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", p->x, p->y,
-            fb_scenario_bump_entry(s, (int)c), fb_scenario_bump_exit(s, (int)c));
+            fb_scenario_road_entry(s, (int)c), fb_scenario_road_exit(s, (int)c));
   }
 }
 

@@ -29,6 +29,16 @@ void fb_range_text(unsigned bounds, double lo, double hi, char *buf, size_t size
     buf[0] = '\0';
 }
 
+int fb_is_identifier(const char *name)
+{
+  if (!name || !(isalpha((unsigned char)name[0]) || name[0] == '_'))
+    return 0;
+  for (const char *c = name + 1; *c; ++c)
+    if (!(isalnum((unsigned char)*c) || *c == '_'))
+      return 0;
+  return 1;
+}
+
 enum { SUGGEST_MAX = 64 };
 
 static size_t min3(size_t a, size_t b, size_t c)

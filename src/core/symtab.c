@@ -4,12 +4,13 @@
  * Entries are kept in definition order in one growable array and looked up
  * by linear search: models have tens of parameters, and the order is needed
  * by fb_symtab_name anyway. */
-#include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "flexbond/expr.h"
+
+#include "core/util.h"
 
 typedef struct symtab_entry {
   char *name;
@@ -52,17 +53,6 @@ static size_t symtab_find(const fb_symtab *tab, const char *name)
   return i;
 }
 
-/* 1 if name can be written in an expression: [A-Za-z_][A-Za-z0-9_]*. */
-static int is_identifier(const char *name)
-{
-  if (!(isalpha((unsigned char)name[0]) || name[0] == '_'))
-    return 0;
-  for (const char *c = name + 1; *c; ++c)
-    if (!(isalnum((unsigned char)*c) || *c == '_'))
-      return 0;
-  return 1;
-}
-
 /* Makes room for one more entry. */
 static int symtab_reserve(fb_symtab *tab, fb_err *err)
 {
@@ -83,7 +73,7 @@ int fb_symtab_set(fb_symtab *tab, const char *name, double value, fb_err *err)
 {
   if (!tab || !name)
     return fb_err_set(err, FB_EINVAL, "fb_symtab_set: table or name is NULL");
-  if (!is_identifier(name))
+  if (!fb_is_identifier(name))
     return fb_err_set(err, FB_EINVAL,
                       "invalid parameter name '%s' (use letters, digits and '_', "
                       "not starting with a digit)",

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/param.h"
 
 #include "textfile.h" /* beside it: also found from src/cli, which has no src/ path */
 
@@ -68,14 +69,16 @@ int fb_check_memory(double bytes, size_t limit, fb_err *err, const char *fmt, ..
 struct timespec;
 double fb_seconds_since(const struct timespec *t0);
 
-/* The bounds of a value's range: FB_RANGE_LO (lo) and FB_RANGE_HI (hi),
- * each closed or open (_OPEN); none: any finite value. */
-enum { FB_RANGE_LO = 1, FB_RANGE_HI = 2, FB_RANGE_LO_OPEN = 4, FB_RANGE_HI_OPEN = 8 };
+/* Ranges: FB_RANGE_* of flexbond/param.h. */
 /* 1 if x lies within the bounds (x finite is the caller's). */
 int fb_range_contains(unsigned bounds, double lo, double hi, double x);
 /* The range as a message says it, into buf: "> 0", "in [0, 0.5)", "<= 1";
  * "" for none. */
 void fb_range_text(unsigned bounds, double lo, double hi, char *buf, size_t size);
+
+/* 1 if name is an identifier, [A-Za-z_][A-Za-z0-9_]* (NULL: 0): a name
+ * an expression, a key or a C member can be. */
+int fb_is_identifier(const char *name);
 
 /* Candidate names for "did you mean" suggestions (suggest.c): name i of
  * ctx's n. */

@@ -26,6 +26,7 @@ static void sc_source_free(fb_scenario_source *base)
   }
   free(src->origin);
   free(src->warning);
+  sc_schema_release(&src->schema);
   free(src);
 }
 
@@ -49,6 +50,7 @@ static int sc_source_clone(const fb_scenario_source *base, fb_scenario_source **
   if (!to)
     return FB_ENOMEM;
   to->base.ops = &sc_source_ops;
+  to->schema = sc_schema_share(from->schema);
   to->origin = calloc(from->norigins ? from->norigins : 1, sizeof *to->origin);
   int ok = to->origin != NULL;
   for (size_t i = 0; ok && i < from->norigins; ++i) {
@@ -172,6 +174,7 @@ int fb_scenario_locate(const fb_scenario *s, fb_err *err)
 static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_override *ov,
                             size_t nov, fb_scenario *s)
 {
+  const sch_table *t = sc_schema_table(sc_source_of(s)->schema);
   ml_yaml y;
   fb_symtab *params = NULL;
   memset(&y, 0, sizeof y);
@@ -181,9 +184,9 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
   if (!rc)
     rc = ml_refuse_other_format(c, fy_document_root(y.doc), "scenario");
   if (!rc && nov)
-    rc = sc_overrides_resolve(c, fy_document_root(y.doc), ov, nov);
+    rc = sc_overrides_resolve(c, t, fy_document_root(y.doc), ov, nov);
   if (!rc)
-    rc = sc_read(c, fy_document_root(y.doc), params, ov, nov, s);
+    rc = sc_read(c, t, fy_document_root(y.doc), params, ov, nov, s);
   if (!rc)
     rc = sc_plausible_values(s, c->err);
   if (!rc)
@@ -221,11 +224,12 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
 int fb_scenario_load_string(const char *text, size_t len, const char *display_name,
                             fb_scenario **out, fb_err *err)
 {
-  return sc_load(text, len, display_name, ".", NULL, 0, out, err);
+  return sc_load(text, len, display_name, ".", NULL, NULL, 0, out, err);
 }
 
 int sc_load(const char *text, size_t len, const char *display_name, const char *base_dir,
-            sch_override *ov, size_t nov, fb_scenario **out, fb_err *err)
+            const fb_road_gallery *roads, sch_override *ov, size_t nov, fb_scenario **out,
+            fb_err *err)
 {
   fb_err local;
   /* cppcheck-suppress uninitvar ; only the address of local is taken (false positive) */
@@ -248,6 +252,8 @@ int sc_load(const char *text, size_t len, const char *display_name, const char *
                ? sc_source_new(s, e)
                : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (!rc)
+    rc = sc_schema_new(roads, &sc_source_of(s)->schema, e);
+  if (!rc)
     rc = sc_load_document(&c, text, len, ov, nov, s);
   if (s) {
     s->inputs = inputs.path;
@@ -263,7 +269,8 @@ int sc_load(const char *text, size_t len, const char *display_name, const char *
   return FB_OK;
 }
 
-int sc_load_file(const char *path, sch_override *ov, size_t nov, fb_scenario **out, fb_err *err)
+int sc_load_file(const char *path, const fb_road_gallery *roads, sch_override *ov, size_t nov,
+                 fb_scenario **out, fb_err *err)
 {
   char *text = NULL;
   size_t len = 0;
@@ -273,7 +280,7 @@ int sc_load_file(const char *path, sch_override *ov, size_t nov, fb_scenario **o
   if (!rc && !dir)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
-    rc = sc_load(text, len, path, dir, ov, nov, out, err);
+    rc = sc_load(text, len, path, dir, roads, ov, nov, out, err);
   free(dir);
   free(text);
   return rc;
@@ -285,5 +292,5 @@ int fb_scenario_load(const char *path, fb_scenario **out, fb_err *err)
   if (!path || !out)
     return fb_err_set(err, FB_EINVAL, "fb_scenario_load: path and out must not be NULL");
   *out = NULL;
-  return sc_load_file(path, NULL, 0, out, err);
+  return sc_load_file(path, NULL, NULL, 0, out, err);
 }

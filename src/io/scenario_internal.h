@@ -18,11 +18,27 @@
 #include "io/model_internal.h"
 #include "io/schema.h"
 
-/* pi; M_PI is not in C11. */
-#define SC_PI 3.14159265358979323846
+/* The scenario format's own keys (scenario_schema.c), without the road
+ * types: a format's table is these and a gallery's types, an sc_schema. */
+extern const sch_table sc_format;
+/* The key of sc_format after which the road types' sections go. */
+#define SC_ROAD_TYPES_AFTER "road.speed_kmh"
 
-/* The scenario format's table. */
-extern const sch_table sc_schema;
+/* The format's table with the road types of a gallery
+ * (scenario_gallery.c): sc_format's keys and, for each type, a section
+ * road.<type> of its declared parameters. Immutable once made, shared by
+ * count (the scenarios read with it, their copies). */
+typedef struct sc_schema sc_schema;
+/* The table for gallery g (borrowed for the call; its types must outlive
+ * the schema), NULL: the built-in types. *out new. FB_ENOMEM. */
+int sc_schema_new(const fb_road_gallery *g, sc_schema **out, fb_err *err);
+/* sc again, one more holder. */
+sc_schema *sc_schema_share(sc_schema *sc);
+void sc_schema_release(sc_schema **sc);
+const sch_table *sc_schema_table(const sc_schema *sc);
+/* The schema s was read with, shared; or, for a description without a
+ * file, one of the built-in types and s's own (*out new). FB_ENOMEM. */
+int sc_schema_of(const fb_scenario *s, sc_schema **out, fb_err *err);
 
 /* Reads the document root into s (zeroed by the caller), `parameters`
  * evaluated into params (empty) for the expressions, the nov overrides
@@ -30,8 +46,8 @@ extern const sch_table sc_schema;
  * origins into s. On failure s may hold allocations, which
  * fb_scenario_free releases. Ranges are sc_check_ranges', the rules between
  * values fb_scenario_check's. */
-int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
-            fb_scenario *s);
+int sc_read(ml_ctx *c, const sch_table *t, struct fy_node *root, fb_symtab *params,
+            sch_override *ov, size_t nov, fb_scenario *s);
 
 /* The implausible values of s (scenario_plausible.c), each kept as a
  * located warning in s->warning: sc_plausible_values, each value against
@@ -67,6 +83,7 @@ typedef struct sc_source {
   size_t norigins;
   fb_err *warning;
   size_t nwarnings;
+  sc_schema *schema; /* the table it was read with, shared */
 } sc_source;
 
 /* s's source as the loader made it; NULL when it has none or another's. */
@@ -96,24 +113,27 @@ int sc_locate(const fb_scenario *s, fb_err *err, int named);
 
 /* Writes the format's key tables (what docs/scenario-format.md holds
  * between its schema:begin and schema:end markers). */
-void fb_scenario_schema_markdown(FILE *fp);
+int fb_scenario_schema_markdown(FILE *fp, fb_err *err);
 
 /* Loads a scenario from text as fb_scenario_load_string does, relative
  * file references (a hull deck, a damper table) resolved from base_dir,
- * with the nov overrides (scenario_override.c; NULL and 0 for none). */
+ * the road types of roads (NULL: the built-in ones), with the nov
+ * overrides (scenario_override.c; NULL and 0 for none). */
 int sc_load(const char *text, size_t len, const char *display_name, const char *base_dir,
-            sch_override *ov, size_t nov, fb_scenario **out, fb_err *err);
+            const fb_road_gallery *roads, sch_override *ov, size_t nov, fb_scenario **out,
+            fb_err *err);
 /* The same for the file at path, its references resolved from its
  * directory. */
-int sc_load_file(const char *path, sch_override *ov, size_t nov, fb_scenario **out,
-                 fb_err *err);
+int sc_load_file(const char *path, const fb_road_gallery *roads, sch_override *ov, size_t nov,
+                 fb_scenario **out, fb_err *err);
 
 /* ---- scenario_override.c. */
 
 /* Each override's path in full: a bare key name ("speed_kmh") becomes
  * the path of the one key of that name the document root has, or the
  * scenario format's table; two overrides of one value are an error. */
-int sc_overrides_resolve(const ml_ctx *c, struct fy_node *root, sch_override *ov, size_t n);
+int sc_overrides_resolve(const ml_ctx *c, const sch_table *t, struct fy_node *root,
+                         sch_override *ov, size_t n);
 /* An error of a load with overrides that names none of them (a
  * consequence of their values together) is prefixed with all of them. */
 void sc_overrides_blame(fb_err *err, const sch_override *ov, size_t n);

@@ -69,24 +69,25 @@ static int ov_file_keys(struct fy_node *n, char *path, size_t len, ml_paths *p, 
 /* The keys a bare name may name: the document's, in document order,
  * then those of the format's table that the document leaves out
  * ("simulation.max_steps"), which can be set too. */
-static int ov_keys(struct fy_node *root, ml_paths *p, fb_err *err)
+static int ov_keys(const sch_table *t, struct fy_node *root, ml_paths *p, fb_err *err)
 {
   char path[SCH_PATH_MAX] = "";
   int rc = ov_file_keys(root, path, 0, p, err);
   const size_t in_file = p->n;
-  for (size_t i = 0; !rc && i < sc_schema.n; ++i) {
+  for (size_t i = 0; !rc && i < t->n; ++i) {
     size_t j = 0;
-    while (j < in_file && strcmp(p->path[j], sc_schema.key[i].path) != 0)
+    while (j < in_file && strcmp(p->path[j], t->key[i].path) != 0)
       ++j;
     if (j == in_file)
-      rc = ov_paths_add(p, sc_schema.key[i].path, err);
+      rc = ov_paths_add(p, t->key[i].path, err);
   }
   return rc;
 }
 
 /* FB_EINVAL for a name that no key has: a key of a close name, or the
  * sections to start a path from. */
-static int ov_no_name(const ml_ctx *c, const ml_paths *keys, const char *name)
+static int ov_no_name(const ml_ctx *c, const sch_table *t, const ml_paths *keys,
+                      const char *name)
 {
   const char *near = fb_suggest(name, keys->n, ov_name_at, keys);
   for (size_t i = 0; near && i < keys->n; ++i)
@@ -95,7 +96,7 @@ static int ov_no_name(const ml_ctx *c, const ml_paths *keys, const char *name)
                         "%s: no key '%s' in the scenario (did you mean '%s'?)", c->file, name,
                         keys->path[i]);
   char sections[512];
-  sch_key_names(&sc_schema, "", sections, sizeof sections);
+  sch_key_names(t, "", sections, sizeof sections);
   return fb_err_set(c->err, FB_EINVAL,
                     "%s: no key '%s' in the scenario (give a dotted path from one of its "
                     "sections: %s)",
@@ -103,12 +104,13 @@ static int ov_no_name(const ml_ctx *c, const ml_paths *keys, const char *name)
 }
 
 /* The full path of the one key named name into full (SCH_PATH_MAX bytes). */
-static int ov_resolve_name(const ml_ctx *c, struct fy_node *root, const char *name, char *full)
+static int ov_resolve_name(const ml_ctx *c, const sch_table *t, struct fy_node *root,
+                           const char *name, char *full)
 {
   ml_paths keys = {0};
   char list[1024] = "";
   size_t n = 0, len = 0;
-  int rc = ov_keys(root, &keys, c->err);
+  int rc = ov_keys(t, root, &keys, c->err);
   for (size_t i = 0; !rc && i < keys.n; ++i)
     if (!strcmp(ov_name(keys.path[i]), name) && n++ == 0)
       snprintf(full, SCH_PATH_MAX, "%s", keys.path[i]);
@@ -116,7 +118,7 @@ static int ov_resolve_name(const ml_ctx *c, struct fy_node *root, const char *na
     if (!strcmp(ov_name(keys.path[i]), name))
       len = fb_text_append(list, sizeof list, len, "%s%s", len ? ", " : "", keys.path[i]);
   if (!rc && n == 0)
-    rc = ov_no_name(c, &keys, name);
+    rc = ov_no_name(c, t, &keys, name);
   if (!rc && n > 1)
     rc = fb_err_set(c->err, FB_EINVAL,
                     "%s: key '%s' is ambiguous: it occurs %zu times (%s); give the dotted path",
@@ -137,7 +139,8 @@ static int ov_has_control(const char *text)
 }
 
 /* o's path in full (o->path holds the key as given). */
-static int ov_resolve(const ml_ctx *c, struct fy_node *root, sch_override *o)
+static int ov_resolve(const ml_ctx *c, const sch_table *t, struct fy_node *root,
+                      sch_override *o)
 {
   char name[SCH_PATH_MAX];
   if (!o->path[0])
@@ -148,13 +151,14 @@ static int ov_resolve(const ml_ctx *c, struct fy_node *root, sch_override *o)
   if (strpbrk(o->path, ".[]"))
     return FB_OK;
   snprintf(name, sizeof name, "%s", o->path);
-  return ov_resolve_name(c, root, name, o->path);
+  return ov_resolve_name(c, t, root, name, o->path);
 }
 
-int sc_overrides_resolve(const ml_ctx *c, struct fy_node *root, sch_override *ov, size_t n)
+int sc_overrides_resolve(const ml_ctx *c, const sch_table *t, struct fy_node *root,
+                         sch_override *ov, size_t n)
 {
   for (size_t i = 0; i < n; ++i) {
-    int rc = ov_resolve(c, root, &ov[i]);
+    int rc = ov_resolve(c, t, root, &ov[i]);
     for (size_t j = 0; !rc && j < i; ++j)
       if (!strcmp(ov[j].path, ov[i].path))
         rc = fb_err_set(c->err, FB_EINVAL, "%s: sets %s, which %s sets too", c->file,
@@ -183,13 +187,15 @@ void sc_overrides_blame(fb_err *err, const sch_override *ov, size_t n)
 /* Loads text (path NULL) or the file at path with the overrides; fn names
  * the public function for a NULL argument. */
 static int ov_load(const char *fn, const char *text, size_t len, const char *name,
-                   const char *path, const fb_scenario_override *ov, size_t n,
-                   fb_scenario **out, fb_err *err)
+                   const char *path, const fb_scenario_load_opts *opts, fb_scenario **out,
+                   fb_err *err)
 {
   fb_err local;
   /* cppcheck-suppress uninitvar ; only the address of local is taken (false positive) */
   fb_err *e = err ? err : &local;
   fb_err_clear(e);
+  const fb_scenario_override *ov = opts ? opts->overrides : NULL;
+  const size_t n = opts ? opts->noverrides : 0;
   if (!(text || path) || !out || (n > 0 && !ov))
     return fb_err_set(e, FB_EINVAL, "%s: NULL argument", fn);
   *out = NULL;
@@ -210,7 +216,8 @@ static int ov_load(const char *fn, const char *text, size_t len, const char *nam
       snprintf(o[i].label, sizeof o[i].label, "--set %s=%s", ov[i].key, ov[i].value);
   }
   if (!rc)
-    rc = path ? sc_load_file(path, o, n, out, e) : sc_load(text, len, name, ".", o, n, out, e);
+    rc = path ? sc_load_file(path, opts ? opts->roads : NULL, o, n, out, e)
+              : sc_load(text, len, name, ".", opts ? opts->roads : NULL, o, n, out, e);
   free(o);
   return rc;
 }
@@ -219,17 +226,32 @@ int fb_scenario_load_string_overrides(const char *text, size_t len, const char *
                                       const fb_scenario_override *ov, size_t n,
                                       fb_scenario **out, fb_err *err)
 {
-  return ov_load("fb_scenario_load_string_overrides", text, len, display_name, NULL, ov, n, out,
+  const fb_scenario_load_opts o = {.overrides = ov, .noverrides = n};
+  return ov_load("fb_scenario_load_string_overrides", text, len, display_name, NULL, &o, out,
                  err);
+}
+
+int fb_scenario_load_string_with(const char *text, size_t len, const char *display_name,
+                                 const fb_scenario_load_opts *o, fb_scenario **out, fb_err *err)
+{
+  return ov_load("fb_scenario_load_string_with", text, len, display_name, NULL, o, out, err);
+}
+
+int fb_scenario_load_with(const char *path, const fb_scenario_load_opts *o, fb_scenario **out,
+                          fb_err *err)
+{
+  return ov_load("fb_scenario_load_with", NULL, 0, NULL, path, o, out, err);
 }
 
 int fb_scenario_load_overrides(const char *path, const fb_scenario_override *ov, size_t n,
                                fb_scenario **out, fb_err *err)
 {
-  return ov_load("fb_scenario_load_overrides", NULL, 0, NULL, path, ov, n, out, err);
+  const fb_scenario_load_opts o = {.overrides = ov, .noverrides = n};
+  return ov_load("fb_scenario_load_overrides", NULL, 0, NULL, path, &o, out, err);
 }
 
-/* fb_scenario_override_key in the parsed document root of path. */
+/* fb_scenario_override_key in the parsed document root of path (the
+ * built-in road types). */
 static int ov_check_key(const char *path, struct fy_node *root, sch_override *o, fb_err *err)
 {
   ml_ctx c;
@@ -237,16 +259,28 @@ static int ov_check_key(const char *path, struct fy_node *root, sch_override *o,
   c.file = path;
   c.err = err;
   sch_reader r = {.c = &c, .ov = o, .nov = 1};
+  sc_schema *sc = NULL;
   int rc = ml_expect_map(&c, root, "a mapping of keys");
   if (!rc)
-    rc = sc_overrides_resolve(&c, root, o, 1);
-  return rc ? rc : sch_place(&r, &sc_schema, root);
+    rc = sc_schema_new(NULL, &sc, err);
+  if (!rc)
+    rc = sc_overrides_resolve(&c, sc_schema_table(sc), root, o, 1);
+  if (!rc)
+    rc = sch_place(&r, sc_schema_table(sc), root);
+  sc_schema_release(&sc);
+  return rc;
 }
 
 const char *fb_scenario_key_unit(const char *full_path)
 {
-  const sch_key *k = full_path ? sch_key_at_path(&sc_schema, full_path) : NULL;
-  return k ? k->unit : NULL;
+  sc_schema *sc = NULL;
+  if (!full_path || sc_schema_new(NULL, &sc, NULL))
+    return NULL;
+  /* Units are the tables' static text: they outlive the schema. */
+  const sch_key *k = sch_key_at_path(sc_schema_table(sc), full_path);
+  const char *unit = k ? k->unit : NULL;
+  sc_schema_release(&sc);
+  return unit;
 }
 
 int fb_scenario_override_key(const char *path, const char *key, char **full, fb_err *err)

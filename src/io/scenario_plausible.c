@@ -124,8 +124,13 @@ static int sc_warned(const fb_scenario *s, const char *key)
 
 int sc_plausible_values(fb_scenario *s, fb_err *err)
 {
+  sc_schema *sc = NULL;
+  int rc = sc_schema_of(s, &sc, err);
+  if (rc)
+    return rc;
   sc_warn_ctx c = {s, FB_OK, err};
-  sch_each(&sc_schema, s, sc_warn_value, &c);
+  sch_each(sc_schema_table(sc), s, sc_warn_value, &c);
+  sc_schema_release(&sc);
   return c.rc;
 }
 

@@ -17,6 +17,7 @@
 /* What the hooks share while a document is read (sch_reader.user). */
 typedef struct sc_reading {
   fb_symtab *params;
+  const sch_table *table; /* the format's, with the gallery's road types */
 } sc_reading;
 
 /* ---- Conversions between the file's units and the struct's. */
@@ -30,10 +31,6 @@ typedef struct sc_reading {
 
 SC_CONVERT(sc_kmh_to_ms, v / 3.6)
 SC_CONVERT(sc_ms_to_kmh, v * 3.6)
-/* Dividing by 180 first keeps 90 deg exactly pi / 2 (a power-of-two
- * scaling), so the "< 90 deg" bound is exact. */
-SC_CONVERT(sc_deg_to_rad, v / 180 * SC_PI)
-SC_CONVERT(sc_rad_to_deg, v * 180 / SC_PI)
 
 static const sch_ops sc_kmh = {.to_struct = sc_kmh_to_ms, .from_struct = sc_ms_to_kmh};
 
@@ -41,8 +38,9 @@ static const sch_ops sc_kmh = {.to_struct = sc_kmh_to_ms, .from_struct = sc_ms_t
 
 /* name(base) is expr over b, base as a const T *. */
 #define SC_PRESENT(name, T, expr)                                                              \
-  static int name(const void *base)                                                            \
+  static int name(const sch_key *k, const void *base)                                          \
   {                                                                                            \
+    (void)k;                                                                                   \
     const T *b = base;                                                                         \
     return expr;                                                                               \
   }
@@ -53,9 +51,6 @@ SC_PRESENT(sc_has_frame, fb_scenario, b->frame_origin != NULL)
 SC_PRESENT(sc_has_cg, fb_scenario, b->hull_cg_given)
 SC_PRESENT(sc_has_coupling, fb_scenario, b->coupling != FB_COUPLING_NONE)
 SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
-SC_PRESENT(sc_is_bump, fb_scenario, b->road_kind == FB_ROAD_BUMP)
-SC_PRESENT(sc_is_iso, fb_scenario, b->road_kind == FB_ROAD_ISO8608)
-SC_PRESENT(sc_is_profile, fb_scenario, b->road_kind == FB_ROAD_PROFILE)
 SC_PRESENT(sc_linear_damper, fb_corner_params, b->damper_npoints == 0)
 SC_PRESENT(sc_table_damper, fb_corner_params, b->damper_npoints > 0)
 SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0)
@@ -184,13 +179,15 @@ static void sc_format_hull_modes(const sch_key *k, const void *base, char *buf, 
 }
 
 /* Optional values whose absence is a 0 in the scenario. */
-static int sc_has_cutoff(const void *base)
+static int sc_has_cutoff(const sch_key *k, const void *base)
 {
+  (void)k;
   return ((const fb_scenario *)base)->hull_cutoff_hz != 0;
 }
 
-static int sc_has_converged_density(const void *base)
+static int sc_has_converged_density(const sch_key *k, const void *base)
 {
+  (void)k;
   return ((const fb_scenario *)base)->hull_converged_density != 0;
 }
 
@@ -538,7 +535,8 @@ static int sc_default_outputs(sch_reader *r, fb_scenario *s)
     return fb_err_set(r->c->err, FB_EMODEL, "no signal kind 'tire_force' for the outputs");
   for (size_t i = 0; i < s->ncorners; ++i) {
     fb_output_spec *o = NULL;
-    int rc = sch_list_add(r, sch_key_of(&sc_schema, "outputs"), s, (void **)&o);
+    const sc_reading *rd = r->user;
+    int rc = sch_list_add(r, sch_key_of(rd->table, "outputs"), s, (void **)&o);
     if (!rc &&
         (!(o->signal = fb_strdup(kind->signal)) || !(o->of = fb_strdup(s->corner[i].name))))
       rc = fb_err_set(r->c->err, FB_ENOMEM, "out of memory for an output");
@@ -554,100 +552,6 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 {
   return ml_get(node, "outputs", NULL) ? FB_OK : sc_default_outputs(r, base);
 }
-
-/* ---- road. */
-
-/* The bump: height and length, or a Brazilian type instead. */
-static int sc_bump_done(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
-{
-  (void)k;
-  fb_scenario *s = base;
-  if (!node)
-    return FB_OK;
-  s->road_kind = FB_ROAD_BUMP;
-  struct fy_node *type_key = NULL, *type = ml_get(node, "type", &type_key);
-  const int height = ml_get(node, "height", NULL) != NULL;
-  const int length = ml_get(node, "length", NULL) != NULL;
-  if (type_key && (height || length))
-    return ml_fail_key(r->c, node, type_key, FB_EPARSE,
-                       "give either a type or height and length, not both");
-  if (!type_key && !(height && length))
-    return ml_fail(r->c, node, FB_EPARSE, "missing required key '%s' (or give a type)",
-                   height ? "length" : "height");
-  const char *name = NULL;
-  int rc = type_key ? ml_string(r->c, type, &name) : FB_OK;
-  if (!rc && type_key && fb_road_speed_bump(name, &s->bump_height, &s->bump_length, r->c->err))
-    rc = ml_blame(r->c, type);
-  return rc;
-}
-
-/* cppcheck-suppress constParameter ; the hook's type (sch_ops.done) fixes the node's */
-static int sc_iso_done(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
-{
-  (void)r, (void)k;
-  if (node)
-    ((fb_scenario *)base)->road_kind = FB_ROAD_ISO8608;
-  return FB_OK;
-}
-
-/* Read once, here: a bad file is reported at its key, and the builder
- * takes the profile from the scenario (road_profile_data). */
-static int sc_profile_done(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
-{
-  (void)k;
-  fb_scenario *s = base;
-  if (!node)
-    return FB_OK;
-  s->road_kind = FB_ROAD_PROFILE;
-  fb_road_free(&s->road_profile_data);
-  int rc = fb_road_new_csv(s->road_profile, &s->road_profile_data, r->c->err);
-  return rc ? ml_blame(r->c, ml_get(node, "file", NULL)) : FB_OK;
-}
-
-static const sch_ops sc_bump = {.done = sc_bump_done, .present = sc_is_bump};
-static const sch_ops sc_iso = {.done = sc_iso_done, .present = sc_is_iso};
-static const sch_ops sc_profile = {.done = sc_profile_done, .present = sc_is_profile};
-static const sch_ops sc_deg = {.to_struct = sc_deg_to_rad, .from_struct = sc_rad_to_deg};
-
-/* The road class: one letter A .. H, either case. */
-static int sc_read_class(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
-{
-  (void)k;
-  const char *letter = NULL;
-  int rc = ml_string(r->c, node, &letter);
-  if (!rc && (strlen(letter) != 1 || !strchr("ABCDEFGHabcdefgh", letter[0])))
-    rc = ml_fail(r->c, node, FB_EINVAL, "the class is a letter A .. H (got '%s')", letter);
-  if (!rc)
-    ((fb_scenario *)base)->road_iso.road_class = letter[0];
-  return rc;
-}
-
-static void sc_format_class(const sch_key *k, const void *base, char *buf, size_t size)
-{
-  (void)k;
-  snprintf(buf, size, "%c", ((const fb_scenario *)base)->road_iso.road_class);
-}
-
-static const sch_ops sc_class = {.read = sc_read_class, .format = sc_format_class};
-
-static int sc_store_band(sch_reader *r, const sch_key *k, struct fy_node *node, const double *v,
-                         size_t n, void *base)
-{
-  (void)r, (void)k, (void)node, (void)n;
-  fb_road_iso8608_params *p = &((fb_scenario *)base)->road_iso;
-  p->n_min = v[0];
-  p->n_max = v[1];
-  return FB_OK;
-}
-
-static void sc_format_band(const sch_key *k, const void *base, char *buf, size_t size)
-{
-  (void)k;
-  const fb_road_iso8608_params *p = &((const fb_scenario *)base)->road_iso;
-  snprintf(buf, size, "%.10g, %.10g", p->n_min, p->n_max);
-}
-
-static const sch_ops sc_band = {.store_list = sc_store_band, .format = sc_format_band};
 
 /* ---- The table. */
 
@@ -745,8 +649,6 @@ static const char *const sc_initials[] = {"zero", "static", NULL};
 static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
 static const char *const sc_couplings[] = {"none", "distributing", "kinematic", NULL};
 static const char *const sc_switch[] = {"false", "true", NULL};
-static const char *const sc_bump_types[] = {"I", "II", "A", "B", NULL};
-static const double sc_band_default[] = {0.011, 2.83};
 
 /* Plausible ranges shared by several keys. */
 #define SC_WHY_THICKNESS                                                                       \
@@ -1024,51 +926,10 @@ static const sch_key sc_keys[] = {
     LIST("outputs", OPT,
          "the signals recorded, in CSV column order (default: every corner's tire_force)",
          &sc_output_table, "outputs", &sc_outputs, ITEMS(output, noutputs, 1)),
-    SECTION("road", REQ, "the road under the wheels", NULL),
+    SECTION_IS("road", REQ, "the road under the wheels", NULL, S_IS(road_type)),
     NUMBER("road.speed_kmh", "km/h", POSITIVE, REQ, "constant forward speed on a straight line",
            S_OFF(speed), .ops = &sc_kmh,
            PLAUSIBLE(0, 200, "wheeled vehicles drive at most about 200 km/h")),
-    SECTION("road.bump", ONE_OF("road"), "the paper's oblique (1 - cos) bump", &sc_bump),
-    NUMBER(
-        "road.bump.height", "m", NONNEGATIVE, OPT,
-        "bump height h, with `length` (0: a flat road)", S_OFF(bump_height),
-        PLAUSIBLE(0, 1.5, "obstacles a wheeled vehicle crosses are at most about 1.5 m high")),
-    NUMBER("road.bump.length", "m", POSITIVE, OPT,
-           "bump length L along each wheel's path, with `height`", S_OFF(bump_length),
-           PLAUSIBLE(0.01, 100, "a bump is 1 cm to 100 m long")),
-    CHOICE("road.bump.type", sc_bump_types, OPT,
-           "a Brazilian speed bump instead of height and length: I 1.50 x 0.08 m, II 3.70 x "
-           "0.10 m (B, A: aliases)",
-           NO_STORE),
-    NUMBER("road.bump.angle_deg", "deg", HALF_OPEN(0, 90), REQ,
-           "angle of the leading edge to the lateral axis, left side first", S_OFF(bump_angle),
-           .ops = &sc_deg),
-    NUMBER("road.bump.first_contact", "s", NONNEGATIVE, REQ,
-           "time the first corner's wheel meets the leading edge", S_OFF(bump_time)),
-    SECTION_IS("road.iso8608", ONE_OF("road"), "an ISO 8608 random road (docs/roads.md)",
-               &sc_iso, S_IS(road_iso)),
-    CUSTOM("road.iso8608.class", NULL, "letter `A` .. `H`", REQ,
-           "road class: Gd(n0) = 16e-6 m^3 for A, times 4 per class", &sc_class),
-    WHOLE("road.iso8608.seed", CLOSED(0, 9007199254740992.0), REQ,
-          "the same seed gives the same road", S_AT(U64, road_iso.seed)),
-    NUMBERS("road.iso8608.band", "cycles/m", 2, 2, DEF_LIST(sc_band_default),
-            "spatial frequency band `[n_min, n_max]` of the harmonics", .ops = &sc_band),
-    WHOLE("road.iso8608.harmonics", CLOSED(1, (double)FB_ROAD_ISO8608_MAX_HARMONICS), DEF(1024),
-          "harmonics per track (the run's time grows with them)",
-          S_AT(SIZE, road_iso.nharmonics),
-          .why = "each is a sine per track in every evaluation of the road; docs/roads.md, "
-                 "\"Limits\""),
-    NUMBER("road.iso8608.fade_in", "m", NONNEGATIVE, DEF(0),
-           "the height fades in over the first metres", S_OFF(road_iso.fade_length)),
-    NUMBER("road.iso8608.front_start", "m", ANY, DEF(0),
-           "the first corner's wheel's position on its track at t = 0",
-           S_OFF(road_front_start)),
-    SECTION("road.profile", ONE_OF("road"), "a measured profile (docs/roads.md)", &sc_profile),
-    STRING(FILE, "road.profile.file", REQ, "CSV with columns `s, z` or `s, z_left, z_right`",
-           S_AT(STRING, road_profile)),
-    NUMBER("road.profile.front_start", "m", ANY, DEF(0),
-           "the first corner's wheel's position on its track at t = 0",
-           S_OFF(road_front_start)),
     SECTION("simulation", REQ, "the run", NULL),
     NUMBER("simulation.t_end", "s", POSITIVE, REQ, "end of the run (it starts at 0)",
            S_OFF(t_end)),
@@ -1092,7 +953,7 @@ static const sch_key sc_keys[] = {
            S_AT(INT, initial)),
 };
 
-const sch_table sc_schema = TABLE(sc_keys, sc_root_done);
+const sch_table sc_format = TABLE(sc_keys, sc_root_done);
 
 /* ---- Every value in its range, in the file's units (scenario_internal.h). */
 
@@ -1110,8 +971,13 @@ static int sc_check_one(const sch_value *v, void *ctx)
 
 int sc_check_ranges(const fb_scenario *s, fb_err *err)
 {
+  sc_schema *sc = NULL;
+  int rc = sc_schema_of(s, &sc, err);
+  if (rc)
+    return rc;
   sc_range_check c = {err, FB_OK};
-  sch_each(&sc_schema, s, sc_check_one, &c);
+  sch_each(sc_schema_table(sc), s, sc_check_one, &c);
+  sc_schema_release(&sc);
   return c.rc ? fb_scenario_locate(s, err) : FB_OK;
 }
 
@@ -1120,12 +986,12 @@ int sc_check_ranges(const fb_scenario *s, fb_err *err)
 /* The table of part kind kind's items, and the logical key of item i of
  * s ("corners.LF", "outputs[2]"; "" for the scenario itself) into
  * prefix; NULL when s has no such item. */
-static const sch_table *sc_part_table(const fb_scenario *s, int kind, size_t i, char *prefix,
-                                      size_t size)
+static const sch_table *sc_part_table(const fb_scenario *s, const sch_table *format, int kind,
+                                      size_t i, char *prefix, size_t size)
 {
   prefix[0] = '\0';
   switch (kind) {
-  case FB_PART_VEHICLE: return &sc_schema;
+  case FB_PART_VEHICLE: return format;
   case FB_PART_CORNER:
     if (i >= s->ncorners || !s->corner[i].name)
       return NULL;
@@ -1162,24 +1028,24 @@ static int sc_has_origin(const fb_scenario *s, const char *key)
   return sc_origin_find(s, key, &rest) && rest && !*rest;
 }
 
-int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size)
+/* The key of the road type's parameter p->field. */
+static int sc_road_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size)
 {
-  char prefix[SCH_PATH_MAX];
-  if (p->kind == FB_PART_LOAD_POINT) {
-    if (p->index >= s->nload)
-      return 0;
-    snprintf(key, size, "load.points[%zu]", p->index);
-    return 1;
-  }
-  const sch_table *t = sc_part_table(s, p->kind, p->index, prefix, sizeof prefix);
-  if (!t || (!p->field[0] && !prefix[0]))
+  if (!s->road_type)
     return 0;
-  if (!p->field[0]) {
-    snprintf(key, size, "%s", prefix);
-    return 1;
-  }
-  /* Two keys may give one member (a road's front_start): the one the
-   * file wrote, else the first. */
+  int n =
+      snprintf(key, size, "road.%s%s%s", s->road_type->name, p->field[0] ? "." : "", p->field);
+  if (p->element != FB_ERR_NO_ELEMENT && n > 0 && (size_t)n < size)
+    snprintf(key + n, size - (size_t)n, "[%zu]", p->element);
+  return 1;
+}
+
+/* The key of member p->field of t's part, under prefix. */
+static int sc_member_key(const fb_scenario *s, const sch_table *t, const char *prefix,
+                         const fb_err_part *p, char *key, size_t size)
+{
+  /* Two keys may give one member: the one the file wrote, else the
+   * first. */
   int found = 0;
   for (size_t k = 0; k < t->n; ++k) {
     const sch_key *sk = &t->key[k];
@@ -1196,6 +1062,33 @@ int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t si
     if (written)
       break;
   }
+  return found;
+}
+
+int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size)
+{
+  char prefix[SCH_PATH_MAX];
+  if (p->kind == FB_PART_LOAD_POINT) {
+    if (p->index >= s->nload)
+      return 0;
+    snprintf(key, size, "load.points[%zu]", p->index);
+    return 1;
+  }
+  if (p->kind == FB_PART_ROAD)
+    return sc_road_part_key(s, p, key, size);
+  sc_schema *sc = NULL;
+  if (sc_schema_of(s, &sc, NULL))
+    return 0;
+  const sch_table *t =
+      sc_part_table(s, sc_schema_table(sc), p->kind, p->index, prefix, sizeof prefix);
+  int found = 0;
+  if (t && !p->field[0] && prefix[0]) {
+    snprintf(key, size, "%s", prefix);
+    found = 1;
+  } else if (t && p->field[0]) {
+    found = sc_member_key(s, t, prefix, p, key, size);
+  }
+  sc_schema_release(&sc);
   return found;
 }
 
@@ -1226,22 +1119,27 @@ static int sc_keep_origins(sch_reader *r, fb_scenario *s)
   return FB_OK;
 }
 
-int sc_read(ml_ctx *c, struct fy_node *root, fb_symtab *params, sch_override *ov, size_t nov,
-            fb_scenario *s)
+int sc_read(ml_ctx *c, const sch_table *t, struct fy_node *root, fb_symtab *params,
+            sch_override *ov, size_t nov, fb_scenario *s)
 {
-  sc_reading rd = {params};
+  sc_reading rd = {params, t};
   sch_reader r = {.c = c, .user = &rd, .ov = ov, .nov = nov};
   c->globals = params;
-  int rc = sch_read(&r, &sc_schema, root, s);
+  int rc = sch_read(&r, t, root, s);
   if (!rc)
     rc = sc_keep_origins(&r, s);
   sch_reader_release(&r);
   return rc;
 }
 
-void fb_scenario_schema_markdown(FILE *fp)
+int fb_scenario_schema_markdown(FILE *fp, fb_err *err)
 {
-  sch_markdown(&sc_schema, fp);
+  sc_schema *sc = NULL;
+  const int rc = sc_schema_new(NULL, &sc, err);
+  if (!rc)
+    sch_markdown(sc_schema_table(sc), fp);
+  sc_schema_release(&sc);
+  return rc;
 }
 
 /* fb_scenario_each_value's visit of one value. */
@@ -1267,6 +1165,11 @@ int fb_scenario_each_value(const fb_scenario *s, fb_scenario_value_fn fn, void *
 {
   if (!s || !fn)
     return FB_EINVAL;
+  sc_schema *sc = NULL;
+  if (sc_schema_of(s, &sc, NULL))
+    return FB_ENOMEM;
   sc_visit visit = {s, fn, ctx};
-  return sch_each(&sc_schema, s, sc_visit_value, &visit);
+  const int stop = sch_each(sc_schema_table(sc), s, sc_visit_value, &visit);
+  sc_schema_release(&sc);
+  return stop;
 }

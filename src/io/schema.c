@@ -611,7 +611,8 @@ static void sch_store_number(const sch_key *k, double v, void *base)
   void *p = sch_at(base, k->offset);
   switch (k->store) {
   case SCH_STORE_DOUBLE:
-    *(double *)p = k->ops && k->ops->to_struct ? k->ops->to_struct(v) : v;
+    *(double *)p = (k->ops && k->ops->to_struct ? k->ops->to_struct(v) : v) *
+                   (k->scale != 0.0 ? k->scale : 1.0);
     break;
   case SCH_STORE_INT: *(int *)p = (int)v; break;
   case SCH_STORE_LONG: *(long *)p = (long)v; break;
@@ -885,6 +886,8 @@ static int sch_read_key(sch_reader *r, const sch_frame *f, const sch_key *k, con
       rc = ml_expect_map(r->c, node, k->doc);
     if (!rc && key)
       rc = sch_add_at(r, path, node, 1, 0.0, NULL);
+    if (!rc && key && k->ops && k->ops->begin)
+      rc = k->ops->begin(r, k, node, f->base);
     const sch_frame in = {f->t, k->path, key ? node : NULL, key ? node : f->where,
                           path, f->base};
     if (!rc)
@@ -942,7 +945,7 @@ static double sch_load_number(const sch_key *k, const void *base)
   const void *p = sch_at_const(base, k->offset);
   switch (k->store) {
   case SCH_STORE_DOUBLE: {
-    const double v = *(const double *)p;
+    const double v = *(const double *)p / (k->scale != 0.0 ? k->scale : 1.0);
     return k->ops && k->ops->from_struct ? k->ops->from_struct(v) : v;
   }
   case SCH_STORE_INT: return *(const int *)p;
@@ -1013,7 +1016,7 @@ static int sch_each_in(const sch_table *t, const char *pre, const void *base, co
   for (size_t i = 0; !stop && i < t->n; ++i) {
     const sch_key *k = &t->key[i];
     const char *name = sch_child_name(k, pre);
-    if (!name || (k->ops && k->ops->present && !k->ops->present(base)))
+    if (!name || (k->ops && k->ops->present && !k->ops->present(k, base)))
       continue;
     char path[SCH_PATH_MAX];
     sch_join(path, sizeof path, lp, name);

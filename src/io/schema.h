@@ -95,7 +95,9 @@ typedef struct sch_ops {
   /* 0 when the value is absent from base (a section left out, the other
    * of two alternatives): sch_check and sch_each_value skip it and, for
    * a section, every key in it. */
-  int (*present)(const void *base);
+  int (*present)(const sch_key *k, const void *base);
+  /* SCH_SECTION: before its keys are read, when the file has it. */
+  int (*begin)(sch_reader *r, const sch_key *k, struct fy_node *node, void *base);
   /* SCH_SECTION (and the root, through sch_table.done): after its keys
    * are read; node is NULL when the section was left out. */
   int (*done)(sch_reader *r, const sch_key *k, struct fy_node *node, void *base);
@@ -149,6 +151,12 @@ struct sch_key {
    * or, for a section or a custom value, by the table: what maps an
    * error's fb_err.part back to the key. NULL: none. */
   const char *member;
+  /* SCH_NUMBER stored as a double: the stored value is the file's times
+   * scale (0: 1; after ops->to_struct, if any). */
+  double scale;
+  /* What the hooks of a generated key need (a road type, a parameter's
+   * declaration); NULL for the table's own keys. */
+  const void *data;
 };
 
 struct sch_table {

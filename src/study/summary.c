@@ -30,8 +30,8 @@ void fb_study_response_window(const fb_scenario *s, double window[2])
   window[0] = INFINITY;
   window[1] = -INFINITY;
   for (size_t c = 0; c < s->ncorners; ++c) {
-    window[0] = fmin(window[0], fb_scenario_bump_entry(s, (int)c));
-    window[1] = fmax(window[1], fb_scenario_bump_exit(s, (int)c));
+    window[0] = fmin(window[0], fb_scenario_road_entry(s, (int)c));
+    window[1] = fmax(window[1], fb_scenario_road_exit(s, (int)c));
   }
 }
 

@@ -19,6 +19,7 @@
 
 #include "core/textfile.h"
 #include "core/util.h"
+#include "vehicle/vehicle_internal.h"
 
 /* The error about member field of part kind, index i: FB_EINVAL with the
  * message (returned also when err is NULL). */
@@ -64,14 +65,6 @@ typedef struct field {
   int (*when)(const fb_scenario *s);
 } field;
 
-static int is_bump(const fb_scenario *s)
-{
-  return s->road_kind == FB_ROAD_BUMP;
-}
-static int not_bump(const fb_scenario *s)
-{
-  return s->road_kind != FB_ROAD_BUMP;
-}
 static int has_mass(const fb_scenario *s)
 {
   return s->hull_mass_given;
@@ -135,11 +128,6 @@ static const field vehicle_fields[] = {
     F(fb_scenario, payload, WHOLE, CLOSED(FB_PAYLOAD_WEIGHT_ONLY, FB_PAYLOAD_LUMPED), NULL,
       NULL),
     F(fb_scenario, speed, REAL, POSITIVE, "m/s", NULL),
-    F(fb_scenario, bump_height, REAL, NONNEGATIVE, "m", is_bump),
-    F(fb_scenario, bump_length, REAL, POSITIVE, "m", is_bump),
-    F(fb_scenario, bump_angle, REAL, HALF_OPEN(0, 1.5707963267948966), "rad", is_bump),
-    F(fb_scenario, bump_time, REAL, NONNEGATIVE, "s", is_bump),
-    F(fb_scenario, road_front_start, REAL, ANY, "m", not_bump),
     F(fb_scenario, t_end, REAL, POSITIVE, "s", NULL),
     F(fb_scenario, rtol, REAL, OPEN(0, 1), NULL, NULL),
     F(fb_scenario, atol, REAL, POSITIVE, NULL, NULL),
@@ -450,26 +438,20 @@ static int check_points(const fb_scenario *s, fb_err *err)
   return rc;
 }
 
-/* A random road or a profile: its own constructor checks its parameters;
- * a profile was checked when its maker read it. */
-static int check_other_road(const fb_scenario *s, fb_err *err)
+/* The road: its type's declared ranges, then its own rules. */
+static int check_road(const fb_scenario *s, fb_err *err)
 {
-  if (s->road_kind == FB_ROAD_PROFILE) {
-    if (!s->road_profile_data)
-      return fail(err, FB_PART_VEHICLE, 0, "road_profile_data",
-                  "a profile road needs its profile (read by whoever made the description)");
-    return FB_OK;
-  }
-  if (s->road_kind != FB_ROAD_ISO8608)
-    return fail(err, FB_PART_VEHICLE, 0, "road_kind", "unknown road kind %d",
-                (int)s->road_kind);
-  fb_road *road = NULL;
-  const int rc = fb_road_new_iso8608(&s->road_iso, &road, err);
-  fb_road_free(&road);
-  /* The road's own messages name its parameter. */
-  if (rc && rc != FB_ENOMEM)
-    fb_err_set_part(err, FB_PART_VEHICLE, 0, FB_ERR_NO_ELEMENT, "road_iso");
-  return rc;
+  const fb_road_type *t = s->road_type;
+  if (!t)
+    return fail(err, FB_PART_VEHICLE, 0, "road_type", "no road (fb_scenario_set_road)");
+  int rc = fb_road_type_check(t, err);
+  if (rc)
+    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, road_type)), rc;
+  rc = fb_params_check(t->param, t->nparams, s->road.bytes, err);
+  const fb_road_layout layout = fb_scenario_road_layout(s);
+  if (!rc && t->ops->check)
+    rc = t->ops->check(s->road.bytes, &layout, err);
+  return vehicle_road_error(rc, err);
 }
 
 /* The solver's own limits (fb_sim_opts_check: sample count, the result's
@@ -495,27 +477,34 @@ static int check_simulation(const fb_scenario *s, fb_err *err)
   return rc;
 }
 
-/* Every wheel meets the bump at t >= 0 and has left it before t_end (the
- * run must show the whole crossing). */
-static int check_bump_timing(const fb_scenario *s, fb_err *err)
+/* A road with a feature of finite length (a bump): every wheel meets it
+ * at t >= 0 and has left it before t_end (the run must show the whole
+ * crossing). */
+static int check_road_timing(const fb_scenario *s, fb_err *err)
 {
+  double begin = 0.0, end = INFINITY;
+  const fb_road_layout layout = fb_scenario_road_layout(s);
+  if (s->road_type->ops->feature)
+    s->road_type->ops->feature(s->road.bytes, &layout, FB_ROAD_LEFT, &begin, &end);
+  if (!isfinite(end)) /* a road that goes on */
+    return FB_OK;
   int first = 0, last = 0;
   for (int k = 1; k < (int)s->ncorners; ++k) {
-    if (fb_scenario_bump_entry(s, k) < fb_scenario_bump_entry(s, first))
+    if (fb_scenario_road_entry(s, k) < fb_scenario_road_entry(s, first))
       first = k;
-    if (fb_scenario_bump_exit(s, k) > fb_scenario_bump_exit(s, last))
+    if (fb_scenario_road_exit(s, k) > fb_scenario_road_exit(s, last))
       last = k;
   }
-  const double t_in = fb_scenario_bump_entry(s, first), t_out = fb_scenario_bump_exit(s, last);
+  const double t_in = fb_scenario_road_entry(s, first), t_out = fb_scenario_road_exit(s, last);
   if (!(t_in >= 0))
-    return fail(err, FB_PART_VEHICLE, 0, "bump_time",
-                "the %s wheel would meet the bump at %.6g s, before the run starts at 0 s",
-                s->corner[first].name, t_in);
+    return fail(err, FB_PART_ROAD, 0, "",
+                "the %s wheel would meet the road's %s at %.6g s, before the run starts at 0 s",
+                s->corner[first].name, s->road_type->name, t_in);
   if (!(t_out < s->t_end))
-    return fail(err, FB_PART_VEHICLE, 0, "bump_length",
-                "bump longer than the run: the last wheel (%s) leaves it at %.6g s, not before "
-                "the run's end at %.10g s",
-                s->corner[last].name, t_out, s->t_end);
+    return fail(err, FB_PART_VEHICLE, 0, "t_end",
+                "the run ends at %.10g s, before the last wheel (%s) leaves the road's %s at "
+                "%.6g s",
+                s->t_end, s->corner[last].name, s->road_type->name, t_out);
   return FB_OK;
 }
 
@@ -678,12 +667,12 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = check_points(s, err);
   if (!rc)
     rc = check_point_masses(s, err);
-  if (!rc && s->road_kind != FB_ROAD_BUMP)
-    rc = check_other_road(s, err);
+  if (!rc)
+    rc = check_road(s, err);
   if (!rc)
     rc = check_simulation(s, err);
-  if (!rc && s->road_kind == FB_ROAD_BUMP)
-    rc = check_bump_timing(s, err);
+  if (!rc)
+    rc = check_road_timing(s, err);
   if (!rc)
     rc = check_fe_hull(s, err);
   if (!rc)

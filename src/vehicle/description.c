@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* A vehicle description's own operations (flexbond/vehicle.h): the bump
- * timing every wheel follows, freeing and deep copies. Where the
+/* A vehicle description's own operations (flexbond/vehicle.h): its road
+ * (the type's block, where each wheel runs on it), freeing and deep
+ * copies. Where the
  * description came from (a file's origins and warnings) is its maker's,
  * behind fb_scenario_source's ops. */
 #include <math.h>
@@ -11,20 +12,26 @@
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
+#include "vehicle/vehicle_internal.h"
 
-/* ---- Bump timing. The bump's leading edge is a straight line at
- * bump_angle to the lateral (y) axis, left side first, through the first
- * corner's wheel's contact point at bump_time. Seen from the vehicle, the
- * road moves back at speed V, so the edge reaches a wheel at (x, y) when
- * it has travelled the wheel's distance behind the first corner,
- * x_0 - x, plus the edge's extra offset at that lateral position,
- * (y_0 - y) tan(angle) (data sheet, "Road and obstacle"). Along its path
- * the wheel then rolls over the bump's length L in L / V. */
+/* ---- The road's placement: its type places each wheel on its track
+ * and says where the road's feature lies along it; seen from the
+ * vehicle, the road moves back at speed V, so a wheel starting at s0
+ * reaches s at (s - s0) / V. */
 
 /* Corner index corner of s, NULL if there is none. */
 static const fb_corner_params *desc_corner(const fb_scenario *s, int corner)
 {
-  return s && corner >= 0 && (size_t)corner < s->ncorners ? &s->corner[corner] : NULL;
+  return s && s->road_type && corner >= 0 && (size_t)corner < s->ncorners ? &s->corner[corner]
+                                                                          : NULL;
+}
+
+fb_road_layout fb_scenario_road_layout(const fb_scenario *s)
+{
+  const fb_road_layout l = {s->speed, fb_scenario_track_width(s),
+                            s->ncorners ? s->corner[0].x : 0.0,
+                            s->ncorners ? s->corner[0].y : 0.0};
+  return l;
 }
 
 double fb_scenario_wheel_start(const fb_scenario *s, int corner)
@@ -32,35 +39,69 @@ double fb_scenario_wheel_start(const fb_scenario *s, int corner)
   const fb_corner_params *w = desc_corner(s, corner);
   if (!w)
     return NAN;
-  const fb_corner_params *first = &s->corner[0];
-  if (s->road_kind != FB_ROAD_BUMP)
-    return s->road_front_start - first->x + w->x;
-  /* The bump's tracks (fb_road_new_oblique_bump): the leading edge at
-   * s = 0 on the left track and at track_width tan(angle) on the right
-   * one; each wheel reaches its track's edge at its own entry time, which
-   * keeps its own lateral position (y) in the timing. */
-  const double edge = w->y > 0.0 ? 0.0 : fb_scenario_track_width(s) * tan(s->bump_angle);
-  return edge - s->speed * fb_scenario_bump_entry(s, corner);
+  const fb_road_layout l = fb_scenario_road_layout(s);
+  return s->road_type->ops->wheel_start(s->road.bytes, &l, w->x, w->y);
 }
 
-double fb_scenario_bump_entry(const fb_scenario *s, int corner)
+/* Where the feature lies on the track of corner's wheel (from 0 on, for
+ * a type without one). */
+static void desc_feature(const fb_scenario *s, const fb_corner_params *w, double *begin,
+                         double *end)
+{
+  *begin = 0.0;
+  *end = INFINITY;
+  const fb_road_layout l = fb_scenario_road_layout(s);
+  if (s->road_type->ops->feature)
+    s->road_type->ops->feature(s->road.bytes, &l, w->y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT,
+                               begin, end);
+}
+
+double fb_scenario_road_entry(const fb_scenario *s, int corner)
 {
   const fb_corner_params *w = desc_corner(s, corner);
   if (!w)
     return NAN;
-  if (s->road_kind != FB_ROAD_BUMP)
-    return -fb_scenario_wheel_start(s, corner) / s->speed;
-  const fb_corner_params *first = &s->corner[0];
-  return s->bump_time + ((first->x - w->x) + (first->y - w->y) * tan(s->bump_angle)) / s->speed;
+  double begin = 0.0, end = 0.0;
+  desc_feature(s, w, &begin, &end);
+  return (begin - fb_scenario_wheel_start(s, corner)) / s->speed;
 }
 
-double fb_scenario_bump_exit(const fb_scenario *s, int corner)
+double fb_scenario_road_exit(const fb_scenario *s, int corner)
 {
-  if (!desc_corner(s, corner))
+  const fb_corner_params *w = desc_corner(s, corner);
+  if (!w)
     return NAN;
-  if (s->road_kind != FB_ROAD_BUMP)
-    return s->t_end;
-  return fb_scenario_bump_entry(s, corner) + s->bump_length / s->speed;
+  double begin = 0.0, end = 0.0;
+  desc_feature(s, w, &begin, &end);
+  return isfinite(end) ? (end - fb_scenario_wheel_start(s, corner)) / s->speed : s->t_end;
+}
+
+int fb_scenario_set_road(fb_scenario *s, const fb_road_type *t, void **params, fb_err *err)
+{
+  const int rc = fb_road_type_check(t, err);
+  if (rc)
+    return rc;
+  fb_road_params_release(s->road_type, &s->road);
+  s->road_type = t;
+  fb_road_params_init(t, &s->road);
+  if (params)
+    *params = s->road.bytes;
+  return FB_OK;
+}
+
+int fb_scenario_prepare_road(fb_scenario *s, fb_err *err)
+{
+  if (!s->road_type)
+    return fb_err_set(err, FB_EINVAL, "the description has no road"),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, road_type)), FB_EINVAL;
+  const fb_road_type_ops *ops = s->road_type->ops;
+  return ops->prepare ? vehicle_road_error(ops->prepare(s->road.bytes, err), err) : FB_OK;
+}
+
+int fb_scenario_road_random(const fb_scenario *s, fb_road_iso8608_params *out)
+{
+  return s->road_type && s->road_type->ops->random &&
+         s->road_type->ops->random(s->road.bytes, out);
 }
 
 /* ---- Ownership. */
@@ -108,8 +149,7 @@ void fb_scenario_free(fb_scenario **s)
   for (size_t i = 0; p->output && i < p->noutputs; ++i)
     desc_free_output(&p->output[i]);
   free(p->output);
-  free(p->road_profile);
-  fb_road_free(&p->road_profile_data);
+  fb_road_params_release(p->road_type, &p->road);
   free(p->hull_deck);
   free(p->coupling_surface);
   fb_mesh_free(&p->hull_source_mesh);
@@ -261,7 +301,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
     return fb_err_set(err, FB_ENOMEM, "out of memory copying a scenario");
   *copy = *s;
   /* Nothing of s's is owned by the copy until copied below. */
-  copy->name = copy->path = copy->frame_origin = copy->road_profile = copy->hull_deck = NULL;
+  copy->name = copy->path = copy->frame_origin = copy->hull_deck = NULL;
   copy->coupling_surface = NULL;
   copy->load_x = copy->load_y = NULL;
   copy->mount = NULL;
@@ -271,7 +311,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->output = NULL;
   copy->inputs = NULL;
   copy->source = NULL;
-  copy->road_profile_data = NULL;
+  memset(&copy->road, 0, sizeof copy->road);
   copy->hull_source_mesh = NULL;
   int ok = desc_copy_string(s->name, &copy->name);
   ok = desc_copy_string(s->path, &copy->path) && ok;
@@ -283,9 +323,8 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = desc_copy_sections(s, copy) && ok;
   ok = desc_copy_corners(s, copy) && ok;
   ok = desc_copy_outputs(s, copy) && ok;
-  ok = desc_copy_string(s->road_profile, &copy->road_profile) && ok;
-  ok = (!s->road_profile_data ||
-        fb_road_clone(s->road_profile_data, &copy->road_profile_data, NULL) == FB_OK) &&
+  ok = (!s->road_type ||
+        fb_road_params_copy(s->road_type, &copy->road, &s->road, NULL) == FB_OK) &&
        ok;
   ok = desc_copy_string(s->hull_deck, &copy->hull_deck) && ok;
   ok = desc_copy_string(s->coupling_surface, &copy->coupling_surface) && ok;
@@ -300,4 +339,11 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   }
   *out = copy;
   return FB_OK;
+}
+
+int vehicle_road_error(int rc, fb_err *err)
+{
+  if (rc && err && err->part.field[0] && !err->part.kind)
+    err->part.kind = FB_PART_ROAD;
+  return rc;
 }

@@ -352,22 +352,14 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   return FB_OK;
 }
 
-/* The scenario's road (src/road): the oblique bump, an ISO 8608 random
- * road or a measured profile. */
+/* The scenario's road, as its type makes it. */
 static int scenario_road(const fb_scenario *s, fb_road **out, fb_err *err)
 {
-  switch (s->road_kind) {
-  case FB_ROAD_ISO8608: return fb_road_new_iso8608(&s->road_iso, out, err);
-  case FB_ROAD_PROFILE:
-    /* As the loader read it: the file is not read again. */
-    if (!s->road_profile_data)
-      return fb_err_set(err, FB_EINVAL, "road profile %s: not read (road_profile_data)",
-                        s->road_profile ? s->road_profile : "");
-    return fb_road_clone(s->road_profile_data, out, err);
-  default:
-    return fb_road_new_oblique_bump(s->bump_height, s->bump_length, s->bump_angle,
-                                    fb_scenario_track_width(s), out, err);
-  }
+  if (!s->road_type)
+    return fb_err_set(err, FB_EINVAL, "the description has no road"),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, road_type)), FB_EINVAL;
+  const fb_road_layout layout = fb_scenario_road_layout(s);
+  return vehicle_road_error(s->road_type->ops->make(s->road.bytes, &layout, out, err), err);
 }
 
 int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)

@@ -104,21 +104,22 @@ const fb_hull_basis *vehicle_hull_basis(const vehicle_hull *h)
 /* ---- The band of hull.fe.modes: auto. */
 
 /* The highest frequency (Hz) in the road's input at the scenario's
- * speed, V over the road's shortest wavelength (fb_road_shortest_wavelength,
- * whose rules these are for the roads the vehicle makes from the
- * scenario's values). */
+ * speed: the road type's own (top_hz) or V over the road's shortest
+ * wavelength (fb_road_shortest_wavelength). */
 static double road_hz(const fb_scenario *s)
 {
-  switch (s->road_kind) {
-  case FB_ROAD_BUMP: return s->bump_length > 0 ? 2.0 * s->speed / s->bump_length : 0.0;
-  case FB_ROAD_ISO8608: return s->speed * s->road_iso.n_max;
-  case FB_ROAD_PROFILE: {
-    const double w =
-        s->road_profile_data ? fb_road_shortest_wavelength(s->road_profile_data) : INFINITY;
-    return w > 0 && isfinite(w) ? s->speed / w : 0.0;
-  }
-  }
-  return 0.0;
+  const fb_road_type *t = s->road_type;
+  if (!t)
+    return 0.0;
+  if (t->ops->top_hz)
+    return t->ops->top_hz(s->road.bytes, s->speed);
+  const fb_road_layout layout = fb_scenario_road_layout(s);
+  fb_road *road = NULL;
+  if (t->ops->make(s->road.bytes, &layout, &road, NULL))
+    return 0.0;
+  const double w = fb_road_shortest_wavelength(road);
+  fb_road_free(&road);
+  return w > 0 && isfinite(w) ? s->speed / w : 0.0;
 }
 
 double fb_hull_excitation_hz(const fb_scenario *s)

@@ -162,20 +162,21 @@ void vehicle_remove_damping(fb_scenario *s)
 
 void vehicle_flatten_road(fb_scenario *s)
 {
-  if (s->road_kind == FB_ROAD_BUMP)
-    return;
-  s->road_kind = FB_ROAD_BUMP;
-  s->bump_height = 0.0;
-  s->bump_length = 1.0;
-  s->bump_angle = 0.0;
+  fb_road_bump_params *flat = NULL;
+  if (fb_scenario_set_road(s, &fb_road_type_bump, (void **)&flat, NULL))
+    return; /* the built-in type is sound */
+  flat->height = 0.0;
+  flat->length = 1.0;
+  flat->angle = 0.0;
   /* Every wheel meets the (flat) bump at t >= 0: the rearmost one at
-   * bump_time + (x_first - x) / V. */
-  s->bump_time = 0.0;
+   * first_contact + (x_first - x) / V. */
+  flat->first_contact = 0.0;
   for (size_t c = 0; c < s->ncorners; ++c)
-    s->bump_time = fmax(s->bump_time, (s->corner[c].x - s->corner[0].x) / s->speed);
+    flat->first_contact =
+        fmax(flat->first_contact, (s->corner[c].x - s->corner[0].x) / s->speed);
   double last = 0.0;
   for (size_t c = 0; c < s->ncorners; ++c)
-    last = fmax(last, fb_scenario_bump_exit(s, (int)c));
+    last = fmax(last, fb_scenario_road_exit(s, (int)c));
   s->t_end = fmax(s->t_end, last + 1.0);
 }
 

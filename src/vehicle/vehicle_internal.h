@@ -120,6 +120,10 @@ void vehicle_remove_damping(fb_scenario *s);
  * bump of zero height (the road's sources enter no matrix: the linear
  * model is the same). */
 void vehicle_flatten_road(fb_scenario *s);
+/* rc, after making a road type's error about one of its parameters
+ * (err->part.field set, no kind) a part of the description
+ * (FB_PART_ROAD). */
+int vehicle_road_error(int rc, fb_err *err);
 /* A unilateral tire is linear while in contact, its mode at rest: it
  * becomes bilateral. A Hunt-Crossley one is not (its damping is lambda
  * q) and is linearised with the rest at the static equilibrium. */

@@ -1,0 +1,135 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The road gallery (flexbond/road.h): the soundness of a road type, its
+ * parameter blocks, and the set of types a description may name. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/road.h"
+
+#include "core/util.h"
+
+/* The built-in types, one line each. */
+static const fb_road_type *const gallery_builtin[] = {
+    &fb_road_type_bump,
+    &fb_road_type_iso8608,
+    &fb_road_type_profile,
+};
+
+struct fb_road_gallery {
+  const fb_road_type **type; /* borrowed entries, owned array */
+  size_t n, cap;
+};
+
+static int type_fail(fb_err *err, const fb_road_type *t, const char *what)
+{
+  return fb_err_set(err, FB_EINVAL, "road type %s: %s", t && t->name ? t->name : "(unnamed)",
+                    what);
+}
+
+int fb_road_type_check(const fb_road_type *t, fb_err *err)
+{
+  if (!t || !fb_is_identifier(t->name))
+    return type_fail(err, t, "a name is letters, digits and '_', not from a digit");
+  if (!t->doc || !t->doc[0])
+    return type_fail(err, t, "undocumented");
+  if (t->params_size > FB_ROAD_PARAMS_MAX)
+    return type_fail(err, t, "its parameter block exceeds FB_ROAD_PARAMS_MAX");
+  if (t->nparams && !t->param)
+    return type_fail(err, t, "parameters counted but not declared");
+  if (!t->ops || !t->ops->make || !t->ops->wheel_start)
+    return type_fail(err, t, "a type makes its road and places its wheels (make, wheel_start)");
+  if (!t->ops->copy != !t->ops->release)
+    return type_fail(err, t, "a block that owns members is copied and released (both ops)");
+  int rc = fb_params_declared(t->param, t->nparams, t->params_size, err);
+  if (rc)
+    fb_err_prefix(err, "road type %s: ", t->name);
+  return rc;
+}
+
+void fb_road_params_init(const fb_road_type *t, fb_road_params *p)
+{
+  memset(p, 0, sizeof *p);
+  fb_params_defaults(t->param, t->nparams, p->bytes);
+  if (t->ops->init)
+    t->ops->init(p->bytes);
+}
+
+int fb_road_params_copy(const fb_road_type *t, fb_road_params *to, const fb_road_params *from,
+                        fb_err *err)
+{
+  memcpy(to, from, sizeof *to);
+  if (!t->ops->copy)
+    return FB_OK;
+  const int rc = t->ops->copy(to->bytes, from->bytes, err);
+  if (rc) /* the copy's members are the original's until copy succeeds */
+    memset(to, 0, sizeof *to);
+  return rc;
+}
+
+void fb_road_params_release(const fb_road_type *t, fb_road_params *p)
+{
+  if (t && t->ops->release)
+    t->ops->release(p->bytes);
+  memset(p, 0, sizeof *p);
+}
+
+int fb_road_gallery_new(fb_road_gallery **out, fb_err *err)
+{
+  *out = NULL;
+  fb_road_gallery *g = calloc(1, sizeof *g);
+  if (!g)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a road gallery");
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < sizeof gallery_builtin / sizeof gallery_builtin[0]; ++i)
+    rc = fb_road_gallery_add(g, gallery_builtin[i], err);
+  if (rc)
+    fb_road_gallery_free(&g);
+  *out = g;
+  return rc;
+}
+
+int fb_road_gallery_add(fb_road_gallery *g, const fb_road_type *t, fb_err *err)
+{
+  int rc = fb_road_type_check(t, err);
+  if (rc)
+    return rc;
+  if (fb_road_gallery_find(g, t->name))
+    return type_fail(err, t, "a type of that name is already in the gallery");
+  if (g->n == g->cap) {
+    const size_t cap = g->cap ? 2 * g->cap : 8;
+    const fb_road_type **grown = realloc(g->type, cap * sizeof *grown);
+    if (!grown)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for %zu road types", cap);
+    g->type = grown;
+    g->cap = cap;
+  }
+  g->type[g->n++] = t;
+  return FB_OK;
+}
+
+size_t fb_road_gallery_count(const fb_road_gallery *g)
+{
+  return g ? g->n : 0;
+}
+
+const fb_road_type *fb_road_gallery_at(const fb_road_gallery *g, size_t i)
+{
+  return g && i < g->n ? g->type[i] : NULL;
+}
+
+const fb_road_type *fb_road_gallery_find(const fb_road_gallery *g, const char *name)
+{
+  for (size_t i = 0; g && name && i < g->n; ++i)
+    if (!strcmp(g->type[i]->name, name))
+      return g->type[i];
+  return NULL;
+}
+
+void fb_road_gallery_free(fb_road_gallery **g)
+{
+  if (!g || !*g)
+    return;
+  free((*g)->type);
+  free(*g);
+  *g = NULL;
+}
