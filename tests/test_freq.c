@@ -30,6 +30,7 @@
 #include "flexbond/vehicle.h"
 
 #include "apc_direct.h"
+#include "apc_harmonic.h"
 #include "bgtest_util.h"
 #include "check.h"
 
@@ -372,53 +373,6 @@ static void test_linearise_table(void)
 
 /* ---- System 1 against the hand-derived equations. */
 
-/* Each tire's road height for a unit height on track (0 left, 1 right) at
- * the leading wheel, with its wheel's delay from the positions. */
-static void road_heights(const fb_scenario *s, int track, double omega, double complex *hc)
-{
-  double lead = -INFINITY;
-  for (int c = 0; c < APC_NCORNERS; ++c)
-    lead = fmax(lead, s->corner[c].x);
-  for (int c = 0; c < APC_NCORNERS; ++c) {
-    const int left = s->corner[c].y > 0;
-    const double tau = (lead - s->corner[c].x) / s->speed;
-    hc[c] = left == (track == 0) ? cexp(-I * omega * tau) : 0.0;
-  }
-}
-
-/* The hand model's steady state q (APC_NDOF complex) under road heights
- * hc: (K + j w C - w^2 M) q = -sum over tires b_e (k_e + j w c_e) h_e. */
-static int hand_response(const apc_model *m, double omega, const double complex *hc,
-                         double complex *q)
-{
-  double K[APC_NDOF * APC_NDOF], C[APC_NDOF * APC_NDOF];
-  apc_stiffness_damping(m, K, C);
-  lapack_complex_double a[APC_NDOF * APC_NDOF], b[APC_NDOF];
-  for (int i = 0; i < APC_NDOF * APC_NDOF; ++i)
-    a[i] = K[i] + I * omega * C[i] - omega * omega * m->mass[i];
-  for (int i = 0; i < APC_NDOF; ++i)
-    b[i] = 0.0;
-  for (int c = 0; c < APC_NCORNERS; ++c) {
-    const apc_elem *e = &m->elem[APC_TIRE + c];
-    for (int i = 0; i < APC_NDOF; ++i)
-      b[i] -= e->b[i] * (e->k + I * omega * e->c) * hc[c];
-  }
-  lapack_int ipiv[APC_NDOF];
-  if (LAPACKE_zgesv(LAPACK_COL_MAJOR, APC_NDOF, 1, a, APC_NDOF, ipiv, b, APC_NDOF) != 0)
-    return -1;
-  memcpy(q, b, sizeof b);
-  return 0;
-}
-
-static double complex deflection(const apc_model *m, int e, const double complex *q,
-                                 const double complex *hc)
-{
-  double complex d = 0.0;
-  for (int i = 0; i < APC_NDOF; ++i)
-    d += m->elem[e].b[i] * q[i];
-  return m->elem[e].road_corner >= 0 ? d + hc[m->elem[e].road_corner] : d;
-}
-
 typedef struct sys1 {
   const fb_scenario *s;
   size_t rate_input[APC_NCORNERS];
@@ -435,15 +389,9 @@ static void compare_system1(const fb_scenario *s, const fb_descriptor *ds, const
 {
   const double w = 2.0 * 3.14159265358979323846 * f;
   for (int track = 0; track < 2; ++track) {
-    double complex hc[APC_NCORNERS] = {0}, q[APC_NDOF] = {0};
-    road_heights(s, track, w, hc);
-    CHECK(hand_response(m, w, hc, q) == 0);
+    double complex want[APC_NOUTPUTS] = {0};
+    CHECK(apc_harmonic_outputs(m, s, w, track, want) == 0);
     const apc_elem *tire = &m->elem[APC_TIRE + APC_LF];
-    const double complex want[APC_NOUTPUTS] = {
-        [APC_OUT_TIRE_FORCE_LF] = (tire->k + I * w * tire->c) * deflection(m, APC_TIRE, q, hc),
-        [APC_OUT_SPRING_DEFL_RF] = deflection(m, APC_RF, q, hc),
-        [APC_OUT_DRIVER_ACC] = -w * w * q[APC_DRIVER],
-        [APC_OUT_TIRE_DEFL_RM] = deflection(m, APC_TIRE + APC_RM, q, hc)};
     /* Scales: a tire's force per metre is some kt = 1e6 N/m, a deflection
      * some 1 m/m, the driver's acceleration w^2 m/m. */
     const double scale[APC_NOUTPUTS] = {[APC_OUT_TIRE_FORCE_LF] = tire->k,

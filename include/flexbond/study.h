@@ -17,6 +17,7 @@
 
 #include "flexbond/error.h"
 #include "flexbond/ride.h"
+#include "flexbond/road.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
@@ -113,6 +114,118 @@ int fb_run_summary_ride(const fb_run_summary *sum, fb_ride_metrics *m, double wi
 int fb_study_compare(const fb_scenario *s, const fb_result *r1, const fb_result *r2,
                      const fb_run_summary *sum1, const fb_run_summary *sum2, fb_output_cmp *cmp,
                      fb_result **diff, fb_err *err);
+
+/* ---- The frequency response of a vehicle (src/study/freq.c,
+ * docs/frequency-response.md): each output's complex amplitude per metre
+ * of road height on one track, 1 m at the leading wheel, which the
+ * track's other wheels meet later by their distance behind it at the
+ * scenario's speed (fb_vehicle_freq_response). */
+
+/* The most frequencies a study takes: 100 000, 32 MB of responses (two
+ * tracks, 16 bytes each) for a vehicle of ten outputs. */
+#define FB_STUDY_FREQ_MAX_POINTS ((size_t)100000)
+
+/* n >= 1 frequencies from f_min to f_max (Hz, 0 < f_min <= f_max) evenly
+ * spaced on a log scale into freq_hz, the ends exactly f_min and f_max. */
+void fb_study_freq_log_grid(double f_min, double f_max, size_t n, double *freq_hz);
+
+/* The response of a realised vehicle (fb_study_freq_new): its linear
+ * model and the response at the frequencies asked; opaque. */
+typedef struct fb_study_freq fb_study_freq;
+
+/* The linear model of v (fb_vehicle_linearise: exact, or linearised at
+ * its static equilibrium when a law is nonlinear) and its response at
+ * freq_hz[0 .. nfreq) (Hz, >= 0, at most FB_STUDY_FREQ_MAX_POINTS; copied).
+ * nfreq 0 keeps the linear model alone, for fb_study_ride_psd_new. v is
+ * borrowed for the call; the study keeps a pointer to v's scenario
+ * (fb_vehicle_scenario), which must outlive it. *out is new
+ * (fb_study_freq_free). */
+int fb_study_freq_new(fb_vehicle *v, const double *freq_hz, size_t nfreq, fb_study_freq **out,
+                      fb_err *err);
+void fb_study_freq_free(fb_study_freq **f);
+
+/* The scenario, the frequencies (Hz; owned by f) and whether the model is
+ * a linearisation (1) or exact (0). */
+const fb_scenario *fb_study_freq_scenario(const fb_study_freq *f);
+size_t fb_study_freq_nfreq(const fb_study_freq *f);
+const double *fb_study_freq_hz(const fb_study_freq *f);
+int fb_study_freq_linearised(const fb_study_freq *f);
+/* 1 when output o (< s->noutputs) has a response: a power output, the
+ * product of two signals, has none. */
+int fb_study_freq_has_output(const fb_study_freq *f, size_t o);
+/* Output o's complex amplitude (re, im; its unit per metre) on track
+ * (FB_ROAD_LEFT, FB_ROAD_RIGHT) at frequency k, owned by f; NULL for a
+ * power output or an index out of range. */
+const double *fb_study_freq_at(const fb_study_freq *f, size_t o, int track, size_t k);
+/* Output o's largest |H| over the frequencies and both tracks, where
+ * (*k, *track; either may be NULL); NAN for a power output. */
+double fb_study_freq_peak(const fb_study_freq *f, size_t o, size_t *k, int *track);
+
+/* ---- The ride from a road spectrum (src/study/ride_psd.c,
+ * docs/frequency-response.md "Ride from a road spectrum"): on an ISO 8608
+ * road each output's PSD, S_y(f) = the tracks' H S_road H* combined by
+ * fb_ride_two_track_psd, its r.m.s. over the road's band, and the
+ * driver's ISO 2631-1 weighted r.m.s. a_w from the Wk-weighted PSD of
+ * fb_study_ride_output, without a time run. */
+
+/* Frequencies over the road's band, evenly spaced on a log scale: enough
+ * that the trapezoidal rule in log f resolves the narrowest resonance
+ * (the wheel hop, damping ratio 0.2 or more: a width of 40 % of its
+ * frequency) with some 30 points. */
+enum { FB_STUDY_RIDE_PSD_POINTS = 600 };
+
+/* The ISO 8608 road of a ride: the class road_class ('A' .. 'H', either
+ * case) with ISO 8608's band (fb_road_iso8608_defaults) or, road_class 0,
+ * s's own road when it is a stationary random one (its type's random op,
+ * fb_scenario_road_random). 1 and *iso set when there is such a road, else
+ * 0. */
+int fb_study_ride_psd_iso8608(const fb_scenario *s, char road_class,
+                              fb_road_iso8608_params *iso);
+
+/* The road a ride was computed on. */
+typedef struct fb_study_psd_road {
+  char road_class;     /* 'A' .. 'H' */
+  double gd0;          /* m^3, Gd at 0.1 cycles/m (fb_road_iso8608_gd0) */
+  double n_min, n_max; /* the band, cycles/m */
+  double speed;        /* m/s */
+  int identical;       /* 1: both tracks one profile; 0: independent */
+} fb_study_psd_road;
+
+/* The ride from a road spectrum (fb_study_ride_psd_new); opaque. */
+typedef struct fb_study_ride_psd fb_study_ride_psd;
+
+/* The ride of the vehicle whose linear model lin holds (fb_study_freq_new,
+ * any frequencies; borrowed for the call) on the road iso (its class and
+ * band; borrowed), its tracks identical (1) or independent (0, as
+ * fb_road_new_iso8608 makes them): the response at
+ * FB_STUDY_RIDE_PSD_POINTS frequencies from speed n_min to speed n_max,
+ * each output's PSD and r.m.s., and a_w. Keeps a pointer to lin's
+ * scenario, which must outlive it. *out is new (fb_study_ride_psd_free).
+ * FB_EINVAL for a class outside A .. H or a band that is not
+ * 0 < n_min < n_max. */
+int fb_study_ride_psd_new(const fb_study_freq *lin, const fb_road_iso8608_params *iso,
+                          int identical, fb_study_ride_psd **out, fb_err *err);
+void fb_study_ride_psd_free(fb_study_ride_psd **r);
+
+/* The road (owned by r), whether the model is a linearisation, and the
+ * band's frequencies (Hz; owned by r) with the road's temporal PSD there
+ * (m^2/Hz per track, fb_ride_road_psd). */
+const fb_study_psd_road *fb_study_ride_psd_road(const fb_study_ride_psd *r);
+int fb_study_ride_psd_linearised(const fb_study_ride_psd *r);
+size_t fb_study_ride_psd_nfreq(const fb_study_ride_psd *r);
+const double *fb_study_ride_psd_hz(const fb_study_ride_psd *r);
+const double *fb_study_ride_psd_road_psd(const fb_study_ride_psd *r);
+/* Output o's PSD at the band's frequencies (its unit^2/Hz; owned by r),
+ * NULL for a power output or o out of range; its r.m.s. over the band,
+ * NAN then. */
+const double *fb_study_ride_psd_output(const fb_study_ride_psd *r, size_t o);
+double fb_study_ride_psd_rms(const fb_study_ride_psd *r, size_t o);
+/* The output a_w is of (fb_study_ride_output; s->noutputs when none),
+ * its Wk-weighted PSD ((m/s^2)^2/Hz; owned by r; NULL when none) and a_w,
+ * its r.m.s. (m/s^2; NAN when none). */
+size_t fb_study_ride_psd_a_w_output(const fb_study_ride_psd *r);
+const double *fb_study_ride_psd_weighted(const fb_study_ride_psd *r);
+double fb_study_ride_psd_a_w(const fb_study_ride_psd *r);
 
 #ifdef __cplusplus
 }

@@ -25,7 +25,8 @@ import warnings
 
 import numpy
 
-__all__ = ["Scenario", "Result", "Corner", "Mode", "Modes", "FreqResponse", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
+__all__ = ["Scenario", "Result", "Corner", "Mode", "Modes", "FreqResponse", "RidePSD",
+           "PsdRoad", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
            "library_path"]
 
 RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
@@ -37,6 +38,7 @@ _SYSTEM_LABELS = {RIGID: "System 1 (rigid hull)", FLEXIBLE: "System 2 (flexible 
 _FB_EINVAL = 2
 _FB_EINTR = 8
 _NTRACKS = 2  # FB_ROAD_NTRACKS: left, right
+_FREQ_MAX_POINTS = 100000  # FB_STUDY_FREQ_MAX_POINTS
 TRACKS = ("left", "right")
 
 
@@ -125,6 +127,20 @@ _STAGE_PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_char_
                                    ctypes.c_double)
 
 
+class _Iso8608(ctypes.Structure):
+    """fb_road_iso8608_params (flexbond/road.h)."""
+    _fields_ = [("road_class", ctypes.c_char), ("seed", ctypes.c_uint64),
+                ("n_min", ctypes.c_double), ("n_max", ctypes.c_double),
+                ("nharmonics", ctypes.c_size_t), ("fade_length", ctypes.c_double)]
+
+
+class _PsdRoad(ctypes.Structure):
+    """fb_study_psd_road (flexbond/study.h)."""
+    _fields_ = [("road_class", ctypes.c_char), ("gd0", ctypes.c_double),
+                ("n_min", ctypes.c_double), ("n_max", ctypes.c_double),
+                ("speed", ctypes.c_double), ("identical", ctypes.c_int)]
+
+
 class _VehicleOpts(ctypes.Structure):
     """fb_vehicle_opts (flexbond/vehicle.h), filled by fb_vehicle_opts_default."""
     _fields_ = [("motion", ctypes.c_int), ("memory_limit", ctypes.c_size_t),
@@ -178,6 +194,31 @@ _PROTOTYPES = {
                                            ctypes.POINTER(ctypes.c_char_p)]),
     "fb_study_compare": (ctypes.c_int, [_P, _P, _P, _P, _P, ctypes.POINTER(_OutputCmp), _PP,
                                         _PERR]),
+    "fb_study_freq_log_grid": (None, [ctypes.c_double, ctypes.c_double, ctypes.c_size_t,
+                                      _PDOUBLE]),
+    "fb_study_freq_new": (ctypes.c_int, [_P, _PDOUBLE, ctypes.c_size_t, _PP, _PERR]),
+    "fb_study_freq_free": (None, [_PP]),
+    "fb_study_freq_nfreq": (ctypes.c_size_t, [_P]),
+    "fb_study_freq_hz": (_PDOUBLE, [_P]),
+    "fb_study_freq_linearised": (ctypes.c_int, [_P]),
+    "fb_study_freq_has_output": (ctypes.c_int, [_P, ctypes.c_size_t]),
+    "fb_study_freq_at": (_PDOUBLE, [_P, ctypes.c_size_t, ctypes.c_int, ctypes.c_size_t]),
+    "fb_study_freq_peak": (ctypes.c_double, [_P, ctypes.c_size_t, _PSIZE,
+                                             ctypes.POINTER(ctypes.c_int)]),
+    "fb_study_ride_psd_iso8608": (ctypes.c_int, [_P, ctypes.c_char, ctypes.POINTER(_Iso8608)]),
+    "fb_study_ride_psd_new": (ctypes.c_int, [_P, ctypes.POINTER(_Iso8608), ctypes.c_int, _PP,
+                                             _PERR]),
+    "fb_study_ride_psd_free": (None, [_PP]),
+    "fb_study_ride_psd_road": (ctypes.POINTER(_PsdRoad), [_P]),
+    "fb_study_ride_psd_linearised": (ctypes.c_int, [_P]),
+    "fb_study_ride_psd_nfreq": (ctypes.c_size_t, [_P]),
+    "fb_study_ride_psd_hz": (_PDOUBLE, [_P]),
+    "fb_study_ride_psd_road_psd": (_PDOUBLE, [_P]),
+    "fb_study_ride_psd_output": (_PDOUBLE, [_P, ctypes.c_size_t]),
+    "fb_study_ride_psd_rms": (ctypes.c_double, [_P, ctypes.c_size_t]),
+    "fb_study_ride_psd_a_w_output": (ctypes.c_size_t, [_P]),
+    "fb_study_ride_psd_weighted": (_PDOUBLE, [_P]),
+    "fb_study_ride_psd_a_w": (ctypes.c_double, [_P]),
     "fb_vehicle_linear_modes": (ctypes.c_int, [_P, ctypes.c_int,
                                                ctypes.POINTER(ctypes.POINTER(_Mode)), _PSIZE,
                                                _PSIZE, _PERR]),
@@ -493,10 +534,13 @@ class FreqResponse:
     """H[k, o, t]: the complex amplitude of output names[o] per metre of road
     height on track t (0 left, 1 right) at freq_hz[k], the wheels seeing the
     profile delayed by their distance behind the first. units[o] is the
-    output's unit; H's is units[o] per metre. Power outputs, products of two
-    signals, have no frequency response and are left out (skipped)."""
+    output's unit; H's is units[o] per metre. magnitude and phase_deg are
+    |H| and its phase in degrees, (-180, 180], as flexbond freq writes them;
+    peaks {name: (|H|, freq_hz, track)} each output's largest |H| and where,
+    as it prints them. Power outputs, products of two signals, have no
+    frequency response and are left out (skipped)."""
 
-    def __init__(self, system, freq_hz, names, units, H, skipped, linearised):
+    def __init__(self, system, freq_hz, names, units, H, skipped, linearised, peaks):
         self.system = system
         self.freq_hz = freq_hz
         self.names = names
@@ -504,7 +548,16 @@ class FreqResponse:
         self.H = H
         self.skipped = skipped
         self.linearised = linearised
+        self.peaks = peaks
         self.tracks = TRACKS
+
+    @property
+    def magnitude(self):
+        return numpy.abs(self.H)
+
+    @property
+    def phase_deg(self):
+        return numpy.degrees(numpy.angle(self.H))
 
     def __getitem__(self, name):
         try:
@@ -516,6 +569,86 @@ class FreqResponse:
     def __repr__(self):
         return "<flexbond.FreqResponse %s: %d outputs at %d frequencies>" % (
             self.system, len(self.names), len(self.freq_hz))
+
+
+PsdRoad = collections.namedtuple("PsdRoad", "road_class gd0 band speed tracks")
+PsdRoad.__doc__ = """The ISO 8608 road of a RidePSD: its class ("A" .. "H"), gd0 (m^3,
+the displacement PSD at 0.1 cycles/m), band (n_min, n_max) in cycles/m, speed
+(m/s) and tracks ("independent" or "identical")."""
+
+
+class RidePSD:
+    """The ride from a road spectrum (Scenario.ride_psd), as flexbond freq
+    computes it on an ISO 8608 road without a time run: road (a PsdRoad),
+    freq_hz (the band's frequencies, Hz), road_psd (the road's temporal PSD
+    per track, m^2/Hz), psd {name: each output's PSD, unit^2/Hz}, rms {name:
+    its r.m.s. over the band}, a_w (m/s^2, the ISO 2631-1 weighted r.m.s. of
+    a_w_output, the first mounted body's acceleration; None without one)
+    and weighted (that output's Wk-weighted PSD, or None): ride_psd.json's
+    and psd_systemN.csv's numbers. Power outputs have none (skipped)."""
+
+    def __init__(self, system, road, linearised, freq_hz, road_psd, psd, rms, a_w_output,
+                 weighted, a_w, skipped):
+        self.system, self.road, self.linearised = system, road, linearised
+        self.freq_hz, self.road_psd, self.psd, self.rms = freq_hz, road_psd, psd, rms
+        self.a_w_output, self.weighted, self.a_w = a_w_output, weighted, a_w
+        self.skipped = skipped
+
+    def __repr__(self):
+        return "<flexbond.RidePSD %s: ISO 8608 class %s, a_w %s>" % (
+            self.system, self.road.road_class, "none" if self.a_w is None else
+            "%.4g m/s^2" % self.a_w)
+
+
+def _array(ptr, n):
+    """A copy of n doubles the library owns."""
+    return numpy.ctypeslib.as_array(ptr, shape=(n,)).copy()
+
+
+def _freq_response(name, outs, f):
+    """The FreqResponse of study f (fb_study_freq), copied out of it."""
+    n = _lib.fb_study_freq_nfreq(f)
+    freq_hz = _array(_lib.fb_study_freq_hz(f), n) if n else numpy.empty(0)
+    keep = [o for o in range(len(outs)) if _lib.fb_study_freq_has_output(f, o)]
+    H = numpy.empty((n, len(keep), _NTRACKS), dtype=complex)
+    peaks = {}
+    for i, o in enumerate(keep):
+        for t in range(_NTRACKS):
+            for k in range(n):
+                z = _lib.fb_study_freq_at(f, o, t, k)
+                H[k, i, t] = complex(z[0], z[1])
+        k, track = ctypes.c_size_t(), ctypes.c_int()
+        big = _lib.fb_study_freq_peak(f, o, ctypes.byref(k), ctypes.byref(track))
+        if n:
+            peaks[outs[o][0]] = (big, freq_hz[k.value], TRACKS[track.value])
+    skipped = [outs[o][0] for o in range(len(outs)) if o not in keep]
+    return FreqResponse(name, freq_hz, [outs[o][0] for o in keep], [outs[o][1] for o in keep],
+                        H, skipped, bool(_lib.fb_study_freq_linearised(f)), peaks)
+
+
+def _ride_psd(name, outs, r):
+    """The RidePSD of ride r (fb_study_ride_psd), copied out of it."""
+    road = _lib.fb_study_ride_psd_road(r).contents
+    n = _lib.fb_study_ride_psd_nfreq(r)
+    psd, rms, skipped = {}, {}, []
+    for o, (oname, _unit) in enumerate(outs):
+        p = _lib.fb_study_ride_psd_output(r, o)
+        if not p:
+            skipped.append(oname)
+            continue
+        psd[oname] = _array(p, n)
+        rms[oname] = _lib.fb_study_ride_psd_rms(r, o)
+    acc = _lib.fb_study_ride_psd_a_w_output(r)
+    weighted = _lib.fb_study_ride_psd_weighted(r)
+    return RidePSD(name,
+                   PsdRoad(road.road_class.decode(), road.gd0, (road.n_min, road.n_max),
+                           road.speed, "identical" if road.identical else "independent"),
+                   bool(_lib.fb_study_ride_psd_linearised(r)),
+                   _array(_lib.fb_study_ride_psd_hz(r), n),
+                   _array(_lib.fb_study_ride_psd_road_psd(r), n), psd, rms,
+                   outs[acc][0] if acc < len(outs) else None,
+                   _array(weighted, n) if weighted else None,
+                   _lib.fb_study_ride_psd_a_w(r) if weighted else None, skipped)
 
 
 class Model:
@@ -923,34 +1056,85 @@ class Scenario:
 
         return self._with_vehicle(system, on_vehicle)
 
-    def freq_response(self, system, freq_hz):
+    def _with_freq(self, system, freq_hz, use, progress=None):
+        """use(study) of system's frequency response at freq_hz (a contiguous
+        float array; may be empty: the linear model alone), fb_study_freq."""
+        def on_vehicle(v, _reporter):
+            f = ctypes.c_void_p()
+            err = _Err()
+            _check(_lib.fb_study_freq_new(v, freq_hz.ctypes.data_as(_PDOUBLE), freq_hz.size,
+                                          ctypes.byref(f), ctypes.byref(err)), err)
+            try:
+                return use(f)
+            finally:
+                _lib.fb_study_freq_free(ctypes.byref(f))
+
+        return self._with_vehicle(system, on_vehicle, progress=progress)
+
+    def freq_response(self, system, freq_hz, progress=None):
         """H(j omega) = C (j omega E - A)^-1 B from each track's road height to
-        each output at freq_hz (Hz, >= 0), as flexbond freq computes it."""
+        each output at freq_hz (Hz, >= 0), as flexbond freq computes it (the
+        library's study layer, fb_study_freq): a FreqResponse. progress as
+        run's."""
         f = numpy.ascontiguousarray(numpy.atleast_1d(numpy.asarray(freq_hz, dtype=float)))
         if f.ndim != 1:
             raise ValueError("flexbond: freq_hz must be one-dimensional")
-        s = self._handle()
+        outs = self.outputs
+        name = _SYSTEM_NAMES[_system(system)]
+        return self._with_freq(system, f, lambda fr: _freq_response(name, outs, fr), progress)
+
+    def freq(self, system, f_min=0.1, f_max=100.0, points=301, progress=None):
+        """The frequency response as flexbond freq computes it with --f-min,
+        --f-max and --points (its defaults): points frequencies from f_min
+        to f_max (Hz) evenly spaced on a log scale, the ends exact. A
+        FreqResponse: freq_systemN.csv's |H| (magnitude) and phase
+        (phase_deg), and the largest |H| it prints (peaks)."""
+        points = int(points)
+        if not (0 < f_min < f_max) or not 2 <= points <= _FREQ_MAX_POINTS:
+            raise ValueError("flexbond: freq needs 0 < f_min < f_max and 2 <= points <= %d"
+                             % _FREQ_MAX_POINTS)
+        f = numpy.empty(points)
+        _lib.fb_study_freq_log_grid(float(f_min), float(f_max), points,
+                                    f.ctypes.data_as(_PDOUBLE))
+        return self.freq_response(system, f, progress=progress)
+
+    def ride_psd(self, system, road_class=None, tracks="independent", progress=None):
+        """The ride from an ISO 8608 road's spectrum, as flexbond freq computes
+        it (--road-class, --tracks): the road of class road_class ("A" ..
+        "H") over ISO 8608's band, or (None) the scenario's own ISO 8608
+        road; its tracks "independent" (as the road generator makes them)
+        or "identical". Each output's PSD from the frequency response and
+        the road's PSD, its r.m.s. over the band and the driver's a_w,
+        without a time run: a RidePSD. ValueError when there is no ISO 8608
+        road. progress as run's."""
+        if tracks not in ("independent", "identical"):
+            raise ValueError("flexbond: tracks is 'independent' or 'identical', not %r"
+                             % (tracks,))
+        cls = b"\0"
+        if road_class is not None:
+            if not (isinstance(road_class, str) and len(road_class) == 1
+                    and road_class.upper() in "ABCDEFGH"):
+                raise ValueError("flexbond: road_class %r is not an ISO 8608 class A to H"
+                                 % (road_class,))
+            cls = road_class.encode()
+        iso = _Iso8608()
+        if not _lib.fb_study_ride_psd_iso8608(self._handle(), cls, ctypes.byref(iso)):
+            raise ValueError("flexbond: the scenario's road is no ISO 8608 road: give "
+                             "road_class")
         outs = self.outputs
         name = _SYSTEM_NAMES[_system(system)]
 
-        def use(ds):
-            d = ds.contents
-            h = numpy.empty(2 * _NTRACKS * d.nrows_c * max(1, f.size))
+        def use(lin):
+            r = ctypes.c_void_p()
             err = _Err()
-            _check(_lib.fb_vehicle_freq_response(s, ds, f.ctypes.data_as(_PDOUBLE), f.size,
-                                                 h.ctypes.data_as(_PDOUBLE),
-                                                 ctypes.byref(err)), err)
-            # h[2 ((k ntracks + t) nrows_c + r)] is Re, the next Im.
-            z = h[:2 * _NTRACKS * d.nrows_c * f.size].view(complex)
-            z = z.reshape(f.size, _NTRACKS, d.nrows_c)
-            keep = [o for o in range(d.noutputs) if not d.output_is_product[o]]
-            rows = [d.output_row[o] for o in keep]
-            H = numpy.ascontiguousarray(z[:, :, rows].transpose(0, 2, 1))
-            skipped = [outs[o][0] for o in range(d.noutputs) if d.output_is_product[o]]
-            return FreqResponse(name, f, [outs[o][0] for o in keep],
-                                [outs[o][1] for o in keep], H, skipped, bool(d.linearised))
+            _check(_lib.fb_study_ride_psd_new(lin, ctypes.byref(iso), int(tracks == "identical"),
+                                              ctypes.byref(r), ctypes.byref(err)), err)
+            try:
+                return _ride_psd(name, outs, r)
+            finally:
+                _lib.fb_study_ride_psd_free(ctypes.byref(r))
 
-        return self._with_descriptor(system, use)
+        return self._with_freq(system, numpy.empty(0), use, progress)
 
     def export(self, system):
         """The vehicle's linear descriptor model (flexbond export) as a Model."""

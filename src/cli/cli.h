@@ -25,7 +25,7 @@
 void openblas_set_num_threads(int num_threads);
 
 /* Threads a command's own computation may use beside its main one: 2
- * when the machine has two processors or more, else 1 (main.c). */
+ * when the machine has two processors or more, else 1 (jobs.c). */
 int cli_threads(void);
 
 /* Exit codes of the program (the table is in main.c). */
@@ -292,6 +292,13 @@ void cli_mode_picture_name(size_t mode, char *buf, size_t size);
 int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hull *hull,
                             const fb_mode_set *ms, fb_err *err);
 
+/* Kinds of diagram of a graph (diagram.c, cli_diagram_file). */
+typedef enum cli_diagram_kind {
+  CLI_DIAGRAM_FLAT,      /* the block diagram, every block in one level */
+  CLI_DIAGRAM_BLOCKS,    /* the block diagram in two levels (Fig. 6) */
+  CLI_DIAGRAM_BOND_GRAPH /* the multibond graph with its strokes (Fig. 5) */
+} cli_diagram_kind;
+
 /* ---- flexbond run (run.c) and its report.md (report.c, described in
  * docs/report.md). */
 
@@ -305,6 +312,8 @@ void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size);
  * "fig06_block_diagram_system1.png": the paper's Figs. 5 and 6). */
 enum { CLI_RUN_NDIAGRAMS = 2 };
 void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size);
+/* The kind of diagram k < CLI_RUN_NDIAGRAMS (names.c). */
+cli_diagram_kind cli_run_diagram_kind(size_t k);
 
 /* ---- flexbond run --animate (animate.c, docs/animation.md). */
 enum { CLI_ANIMATE_MAX_FRAMES = 10000 };
@@ -386,10 +395,10 @@ typedef struct cli_run_outputs {
   const fb_result *diff_converged;
   fb_output_cmp *cmp_converged;
   const char *note; /* why a system did not run, or NULL */
-  /* The frequency response of the systems that ran (flexbond freq's
-   * bode_<OUTPUT>.png), NULL without figures or when it failed: then
-   * freq_note says why. */
-  const struct freq_study *freq;
+  /* The frequency response of each system that ran, by system (flexbond
+   * freq's bode_<OUTPUT>.png; borrowed), NULL without figures or when it
+   * failed: then freq_note says why. */
+  fb_study_freq *freq[CLI_MAX_SYSTEMS];
   char freq_note[FB_ERR_MSG_MAX];
   const cli_animate_opts *animate; /* --animate's settings */
 } cli_run_outputs;
@@ -401,13 +410,27 @@ const char *cli_scenario_name(const fb_scenario *s);
 /* report.md (a cli_writer over a cli_run_outputs). */
 void cli_write_report_md(FILE *fp, const void *ctx);
 
+/* ---- Frequency responses (flexbond freq, and run's report), as the
+ * study layer computes them (flexbond/study.h). */
+
+/* The tracks' names, "left" and "right". */
+extern const char *const cli_track_names[FB_ROAD_NTRACKS];
+/* The unit of |H|, the output's unit per metre of road, into buf. */
+void cli_gain_unit(const char *unit, char *buf, size_t size);
+/* The phase of a complex amplitude z (re, im), degrees in (-180, 180]. */
+double cli_phase_deg(const double z[2]);
+/* bode_<OUTPUT>.png for each output with a response: |H| and phase of
+ * each system's response fr[sys] (NULL: not run) and track overlaid. */
+int cli_bode_write_figures(cli_outdir *od, fb_study_freq *const fr[CLI_MAX_SYSTEMS],
+                           fb_err *err);
+/* The ride from a road spectrum of each system r[sys] (NULL: not run) of
+ * s: DIR/psd_systemN.csv and DIR/ride_psd.json, and its lines on stdout. */
+int cli_ride_psd_write(cli_outdir *od, const fb_scenario *s,
+                       fb_study_ride_psd *const r[CLI_MAX_SYSTEMS], fb_err *err);
+void cli_ride_psd_print(const fb_scenario *s, fb_study_ride_psd *const r[CLI_MAX_SYSTEMS]);
+
 /* ---- Diagrams of a graph (diagram.c, docs/diagrams.md): the paper's
  * Figs. 5 and 6, for `flexbond diagram` and the report. */
-typedef enum cli_diagram_kind {
-  CLI_DIAGRAM_FLAT,      /* the block diagram, every block in one level */
-  CLI_DIAGRAM_BLOCKS,    /* the block diagram in two levels (Fig. 6) */
-  CLI_DIAGRAM_BOND_GRAPH /* the multibond graph with its strokes (Fig. 5) */
-} cli_diagram_kind;
 /* Writes the diagram of kind of graph g to path, all or nothing, the type
  * by path's extension: .svg or .png the picture Graphviz's dot draws of
  * it (io/graphviz.h), any other the DOT text. The block diagrams are

@@ -1,14 +1,14 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond freq: the frequency response of a vehicle scenario's outputs
- * to the road, from its descriptor form (fb_bd_descriptor,
- * fb_descriptor_freq_response; docs/frequency-response.md):
+ * to the road and, on an ISO 8608 road, the ride from its spectrum, as the
+ * study layer computes them (fb_study_freq, fb_study_ride_psd;
+ * docs/frequency-response.md), written:
  *   DIR/freq_system1.csv, freq_system2.csv   |H| and phase per output and track
- *   DIR/bode_<OUTPUT>.png                    both systems and tracks overlaid
+ *   DIR/bode_<OUTPUT>.png                    both systems and tracks overlaid (bode.c)
+ *   DIR/psd_systemN.csv, ride_psd.json       the ride (freq_psd.c)
  * The input is a road height on one track, 1 m at the leading wheel, which
  * the track's other wheels meet later by their distance behind it at the
  * scenario's speed (fb_vehicle_freq_response). */
-#include "freq.h"
-
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -60,88 +60,60 @@ static const char freq_usage[] =
 static const char *const system_choices[] = {"rigid", "flexible", "both"};
 static const char *const track_choices[] = {"independent", "identical"};
 
-static const char *const track_names[NTRACKS] = {"left", "right"};
+/* What the command computes: per system (System 1, System 2; NULL when
+ * not asked) its frequency response and, on an ISO 8608 road, its ride
+ * from the road's spectrum (owned). */
+typedef struct freq_study {
+  fb_study_freq *fr[CLI_MAX_SYSTEMS];
+  fb_study_ride_psd *psd[CLI_MAX_SYSTEMS];
+  double seconds[CLI_MAX_SYSTEMS];
+} freq_study;
 
-/* The complex amplitude of output o on track t at frequency k. */
-static const double *amplitude(const freq_study *fs, int sys, size_t k, int t, size_t o)
+static double seconds_since(const struct timespec *start)
 {
-  return cli_freq_amplitude(fs->h[sys], fs->nrows[sys], k, t, fs->row[sys][o]);
-}
-
-static int respond(freq_study *fs, int sys, const fb_descriptor *ds, fb_err *err)
-{
-  const fb_scenario *s = fs->s;
-  fs->row[sys] = calloc(s->noutputs + 1, sizeof *fs->row[sys]);
-  fs->h[sys] = malloc((2 * NTRACKS * ds->nrows_c * fs->nfreq + 1) * sizeof *fs->h[sys]);
-  if (!fs->row[sys] || !fs->h[sys])
-    return fb_err_set(err, FB_ENOMEM, "out of memory for a frequency response");
-  fs->nrows[sys] = ds->nrows_c;
-  for (size_t o = 0; o < s->noutputs; ++o)
-    fs->row[sys][o] = ds->output_is_product[o] ? (size_t)-1 : ds->output_row[o];
-  int rc = fb_vehicle_freq_response(s, ds, fs->freq_hz, fs->nfreq, fs->h[sys], err);
-  if (!rc && fs->psd.on)
-    rc = cli_freq_psd_respond(fs, sys, ds, err);
-  return rc;
-}
-
-static int run_system(freq_study *fs, int sys, fb_vehicle *v, fb_err *err)
-{
-  fb_descriptor *ds = NULL;
-  struct timespec start, end;
-  clock_gettime(CLOCK_MONOTONIC, &start);
-  int rc = fb_vehicle_linearise(v, &ds, err);
-  if (!rc) {
-    fs->linearised[sys] = ds->linearised;
-    rc = respond(fs, sys, ds, err);
-  }
+  struct timespec end;
   clock_gettime(CLOCK_MONOTONIC, &end);
-  fs->seconds[sys] =
-      (double)(end.tv_sec - start.tv_sec) + 1e-9 * (double)(end.tv_nsec - start.tv_nsec);
-  if (!rc)
-    fs->ran[sys] = 1;
-  fb_descriptor_free(&ds);
+  return (double)(end.tv_sec - start->tv_sec) + 1e-9 * (double)(end.tv_nsec - start->tv_nsec);
+}
+
+/* System sys's response at freq_hz and, with iso (NULL: none), its ride
+ * on that road. */
+static int run_system(freq_study *fs, int sys, fb_vehicle *v, const double *freq_hz,
+                      size_t nfreq, const fb_road_iso8608_params *iso, int identical,
+                      fb_err *err)
+{
+  struct timespec start;
+  clock_gettime(CLOCK_MONOTONIC, &start);
+  int rc = fb_study_freq_new(v, freq_hz, nfreq, &fs->fr[sys], err);
+  if (!rc && iso)
+    rc = fb_study_ride_psd_new(fs->fr[sys], iso, identical, &fs->psd[sys], err);
+  fs->seconds[sys] = seconds_since(&start);
   return rc ? fb_err_prefix(
                   err, "%s: ", cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID))
             : FB_OK;
 }
 
-/* ---- Files. */
-
-/* The unit of |H|: the output's per metre of road. */
-static void gain_unit(const char *unit, char *buf, size_t size)
+static void free_study(freq_study *fs)
 {
-  const int compound = strpbrk(unit, "/ *") != NULL;
-  snprintf(buf, size, compound ? "(%s)/m" : "%s/m", unit);
-}
-
-/* Phase in degrees, in (-180, 180], of output o on track t at every
- * frequency. Not unwrapped: the wheelbase filter's notches are zeros
- * close to the imaginary axis, across which the phase has no one
- * continuation. */
-static void phases(const freq_study *fs, int sys, int t, size_t o, double *deg)
-{
-  for (size_t k = 0; k < fs->nfreq; ++k) {
-    const double *z = amplitude(fs, sys, k, t, o);
-    deg[k] = atan2(z[1], z[0]) * 180.0 / 3.14159265358979323846;
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
+    fb_study_freq_free(&fs->fr[sys]);
+    fb_study_ride_psd_free(&fs->psd[sys]);
   }
 }
 
-typedef struct csv_ctx {
-  const freq_study *fs;
-  int sys;
-  double *phase; /* noutputs x NTRACKS x nfreq */
-} csv_ctx;
+/* ---- Files. */
 
-/* The header; power outputs (row -1) have no columns. */
-static void write_header(FILE *fp, const fb_scenario *s, const size_t *row)
+/* The header; power outputs have no columns. */
+static void write_header(FILE *fp, const fb_study_freq *f)
 {
+  const fb_scenario *s = fb_study_freq_scenario(f);
   fputs("frequency [Hz]", fp);
   for (size_t o = 0; o < s->noutputs; ++o)
-    for (int t = 0; t < NTRACKS && row[o] != (size_t)-1; ++t) {
+    for (int t = 0; t < FB_ROAD_NTRACKS && fb_study_freq_has_output(f, o); ++t) {
       char unit[64];
-      gain_unit(s->output[o].unit, unit, sizeof unit);
-      const char *mag[] = {s->output[o].name, "/", track_names[t], " |H| [", unit, "]"};
-      const char *ph[] = {s->output[o].name, "/", track_names[t], " phase [deg]"};
+      cli_gain_unit(s->output[o].unit, unit, sizeof unit);
+      const char *mag[] = {s->output[o].name, "/", cli_track_names[t], " |H| [", unit, "]"};
+      const char *ph[] = {s->output[o].name, "/", cli_track_names[t], " phase [deg]"};
       fputc(',', fp);
       fb_csv_write_field_parts(fp, mag, 6, FB_CSV_TEXT);
       fputc(',', fp);
@@ -150,173 +122,77 @@ static void write_header(FILE *fp, const fb_scenario *s, const size_t *row)
   fputc('\n', fp);
 }
 
+/* freq_systemN.csv: |H| and phase per output and track. */
 static void write_csv(FILE *fp, const void *ctx)
 {
-  const csv_ctx *c = ctx;
-  const freq_study *fs = c->fs;
-  const fb_scenario *s = fs->s;
-  write_header(fp, s, fs->row[c->sys]);
-  for (size_t k = 0; k < fs->nfreq; ++k) {
-    fprintf(fp, "%.10g", fs->freq_hz[k]);
+  const fb_study_freq *f = ctx;
+  const fb_scenario *s = fb_study_freq_scenario(f);
+  write_header(fp, f);
+  for (size_t k = 0; k < fb_study_freq_nfreq(f); ++k) {
+    fprintf(fp, "%.10g", fb_study_freq_hz(f)[k]);
     for (size_t o = 0; o < s->noutputs; ++o)
-      for (int t = 0; t < NTRACKS && fs->row[c->sys][o] != (size_t)-1; ++t) {
-        const double *z = amplitude(fs, c->sys, k, t, o);
-        fprintf(fp, ",%.10g,%.8g", hypot(z[0], z[1]),
-                c->phase[(o * NTRACKS + (size_t)t) * fs->nfreq + k]);
+      for (int t = 0; t < FB_ROAD_NTRACKS && fb_study_freq_has_output(f, o); ++t) {
+        const double *z = fb_study_freq_at(f, o, t, k);
+        fprintf(fp, ",%.10g,%.8g", hypot(z[0], z[1]), cli_phase_deg(z));
       }
     fputc('\n', fp);
   }
 }
 
-/* Every output's phases of system sys. */
-static double *all_phases(const freq_study *fs, int sys)
+static int write_files(cli_outdir *od, const fb_scenario *s, const freq_study *fs, int figures,
+                       fb_err *err)
 {
-  const size_t n = fs->s->noutputs * NTRACKS * fs->nfreq;
-  double *phase = calloc(n + 1, sizeof *phase);
-  for (size_t o = 0; phase && o < fs->s->noutputs; ++o)
-    for (int t = 0; t < NTRACKS && fs->row[sys][o] != (size_t)-1; ++t)
-      phases(fs, sys, t, o, phase + (o * NTRACKS + (size_t)t) * fs->nfreq);
-  return phase;
-}
-
-/* The curves of one output's Bode figure: |H| and phase per system and
- * track. */
-typedef struct bode {
-  double *mag[CLI_MAX_SYSTEMS][NTRACKS];
-  fb_plot_xy_series ms[2 * NTRACKS], ps[2 * NTRACKS];
-  char legend[2 * NTRACKS][48];
-} bode;
-
-static int draw_bode(cli_outdir *od, const freq_study *fs, double *const *phase, size_t o,
-                     fb_err *err)
-{
-  const fb_scenario *s = fs->s;
-  bode b;
-  memset(&b, 0, sizeof b);
-  size_t n = 0;
   int rc = FB_OK;
   for (int sys = 0; sys < CLI_MAX_SYSTEMS && !rc; ++sys)
-    for (int t = 0; fs->ran[sys] && t < NTRACKS && !rc; ++t) {
-      double *mag = malloc((fs->nfreq + 1) * sizeof *mag);
-      b.mag[sys][t] = mag;
-      if (!mag) {
-        rc = fb_err_set(err, FB_ENOMEM, "out of memory for a Bode figure");
-        break;
-      }
-      for (size_t k = 0; k < fs->nfreq; ++k) {
-        const double *z = amplitude(fs, sys, k, t, o);
-        mag[k] = hypot(z[0], z[1]);
-      }
-      snprintf(b.legend[n], sizeof b.legend[n], "System %d, %s track", sys + 1, track_names[t]);
-      b.ms[n] = (fb_plot_xy_series){fs->freq_hz, mag, fs->nfreq, b.legend[n]};
-      b.ps[n] =
-          (fb_plot_xy_series){fs->freq_hz, phase[sys] + (o * NTRACKS + (size_t)t) * fs->nfreq,
-                              fs->nfreq, NULL}; /* the key is above */
-      ++n;
-    }
-  char unit[64], ylabel[96], title[160], name[FB_ERR_KEY_MAX + 16];
-  gain_unit(s->output[o].unit, unit, sizeof unit);
-  snprintf(ylabel, sizeof ylabel, "|H| [%s]", unit);
-  snprintf(title, sizeof title, "%s: frequency response to the road (%.4g km/h)%s",
-           s->output[o].name, 3.6 * s->speed,
-           fs->linearised[0] || fs->linearised[1] ? ", linearised at the static equilibrium"
-                                                  : "");
-  const fb_plot_xy_panel panels[2] = {
-      {.series = b.ms, .nseries = n, .ylabel = ylabel, .unit = NULL, .log_y = 1},
-      {.series = b.ps, .nseries = n, .ylabel = "phase [deg]", .unit = NULL, .log_y = 0}};
-  fb_plot_xy_opts opts;
-  fb_plot_xy_opts_default(&opts);
-  opts.title = title;
-  opts.xlabel = "frequency [Hz]";
-  opts.columns = 1;
-  opts.panel_width = 900;
-  opts.panel_height = 300;
-  opts.log_x = 1;
-  opts.lines = 1;
-  snprintf(name, sizeof name, "bode_%s.png", s->output[o].name);
-  char *path = rc ? NULL : cli_outdir_path(od, name, err);
-  if (!rc)
-    rc = path ? fb_plot_xy_png(panels, 2, &opts, path, err) : err->code;
-  if (!rc)
-    rc = cli_outdir_keep(od, path, err);
-  else
-    free(path);
-  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys)
-    for (int t = 0; t < NTRACKS; ++t)
-      free(b.mag[sys][t]);
-  return rc;
-}
-
-/* The CSV files (csv 1) and the Bode figures (figures 1). */
-static int write_files(cli_outdir *od, const freq_study *fs, int csv, int figures, fb_err *err)
-{
-  double *phase[CLI_MAX_SYSTEMS] = {NULL, NULL};
-  int rc = FB_OK;
-  for (int sys = 0; sys < CLI_MAX_SYSTEMS && !rc; ++sys) {
-    if (!fs->ran[sys])
-      continue;
-    phase[sys] = all_phases(fs, sys);
-    if (!phase[sys]) {
-      rc = fb_err_set(err, FB_ENOMEM, "out of memory for the phases");
-      break;
-    }
-    const csv_ctx c = {fs, sys, phase[sys]};
-    if (csv)
-      rc = cli_outdir_write(od, sys ? "freq_system2.csv" : "freq_system1.csv", write_csv, &c,
-                            err);
-  }
-  for (size_t o = 0; figures && !rc && o < fs->s->noutputs; ++o) {
-    const int sys = fs->ran[0] ? 0 : 1;
-    if (fs->row[sys][o] != (size_t)-1)
-      rc = draw_bode(od, fs, phase, o, err);
-  }
-  free(phase[0]);
-  free(phase[1]);
+    if (fs->fr[sys])
+      rc = cli_outdir_write(od, sys ? "freq_system2.csv" : "freq_system1.csv", write_csv,
+                            fs->fr[sys], err);
+  if (!rc && figures)
+    rc = cli_bode_write_figures(od, fs->fr, err);
+  if (!rc && (fs->psd[0] || fs->psd[1]))
+    rc = cli_ride_psd_write(od, s, fs->psd, err);
   return rc;
 }
 
 /* ---- The command. */
 
-static void print_summary(const freq_study *fs, const fb_scenario *file)
+static void print_system(const fb_study_freq *f, int sys, double seconds)
 {
-  const fb_scenario *s = fs->s;
+  const fb_scenario *s = fb_study_freq_scenario(f);
+  printf("%s (%.2f s%s): largest |H|\n",
+         cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID), seconds,
+         fb_study_freq_linearised(f) ? "; nonlinear, linearised at its static equilibrium"
+                                     : "");
+  for (size_t o = 0; o < s->noutputs; ++o) {
+    if (!fb_study_freq_has_output(f, o)) {
+      printf("  %-20s a power: no frequency response\n", s->output[o].name);
+      continue;
+    }
+    size_t best = 0;
+    int track = FB_ROAD_LEFT;
+    const double big = fb_study_freq_peak(f, o, &best, &track);
+    char unit[64];
+    cli_gain_unit(s->output[o].unit, unit, sizeof unit);
+    printf("  %-20s %12.5g %s at %.4g Hz, %s track\n", s->output[o].name, big, unit,
+           fb_study_freq_hz(f)[best], cli_track_names[track]);
+  }
+}
+
+static void print_summary(const freq_study *fs, const fb_scenario *s)
+{
+  const fb_study_freq *any = fs->fr[0] ? fs->fr[0] : fs->fr[1];
+  const size_t nfreq = fb_study_freq_nfreq(any);
+  const double *f = fb_study_freq_hz(any);
   printf("%s: frequency response to the road at %.4g km/h, %zu frequencies from %g to %g Hz\n",
-         cli_scenario_name(s), 3.6 * s->speed, fs->nfreq, fs->freq_hz[0],
-         fs->freq_hz[fs->nfreq - 1]);
+         cli_scenario_name(s), 3.6 * s->speed, nfreq, f[0], f[nfreq - 1]);
   size_t unilateral = 0;
-  for (size_t c = 0; c < file->ncorners; ++c)
-    unilateral += file->corner[c].tire_contact == FB_TIRE_UNILATERAL;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    unilateral += s->corner[c].tire_contact == FB_TIRE_UNILATERAL;
   if (unilateral)
     printf("%zu unilateral tires taken in contact (their linear branch at rest)\n", unilateral);
-  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
-    if (!fs->ran[sys])
-      continue;
-    printf("%s (%.2f s%s): largest |H|\n",
-           cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID), fs->seconds[sys],
-           fs->linearised[sys] ? "; nonlinear, linearised at its static equilibrium" : "");
-    for (size_t o = 0; o < s->noutputs; ++o) {
-      if (fs->row[sys][o] == (size_t)-1) {
-        printf("  %-20s a power: no frequency response\n", s->output[o].name);
-        continue;
-      }
-      size_t best = 0;
-      int track = FB_ROAD_LEFT;
-      double big = -1.0;
-      for (size_t k = 0; k < fs->nfreq; ++k)
-        for (int t = 0; t < NTRACKS; ++t) {
-          const double *z = amplitude(fs, sys, k, t, o);
-          if (hypot(z[0], z[1]) > big) {
-            big = hypot(z[0], z[1]);
-            best = k;
-            track = t;
-          }
-        }
-      char unit[64];
-      gain_unit(s->output[o].unit, unit, sizeof unit);
-      printf("  %-20s %12.5g %s at %.4g Hz, %s track\n", s->output[o].name, big, unit,
-             fs->freq_hz[best], track_names[track]);
-    }
-  }
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys)
+    if (fs->fr[sys])
+      print_system(fs->fr[sys], sys, fs->seconds[sys]);
 }
 
 typedef struct freq_args {
@@ -331,43 +207,32 @@ typedef struct freq_args {
   int tracks_given; /* --tracks */
 } freq_args;
 
-int cli_freq_compute(freq_study *fs, fb_vehicle *const vehicles[CLI_MAX_SYSTEMS], double f_min,
-                     double f_max, size_t points, fb_err *err)
+/* Each asked system realised, its linear model made from it and its
+ * response computed, then the vehicle freed. */
+static int compute(freq_study *fs, const fb_scenario *s, const freq_args *a,
+                   const fb_road_iso8608_params *iso, fb_err *err)
 {
-  fs->nfreq = points;
-  fs->freq_hz = calloc(points, sizeof *fs->freq_hz);
-  if (!fs->freq_hz)
+  double *freq_hz = malloc(a->points * sizeof *freq_hz);
+  if (!freq_hz)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  /* Evenly spaced in log f, interpolated between the logarithms: the
-   * ratio f_max / f_min itself may overflow (1e9 / 1e-300). The ends are
-   * the given values exactly. */
-  const double log_min = log(f_min), log_max = log(f_max);
-  for (size_t k = 0; k < points; ++k)
-    fs->freq_hz[k] = exp(log_min + (log_max - log_min) *
-                                       (points > 1 ? (double)k / (double)(points - 1) : 0.0));
-  fs->freq_hz[0] = f_min;
-  if (points > 1)
-    fs->freq_hz[points - 1] = f_max;
+  fb_study_freq_log_grid(a->f_min, a->f_max, a->points, freq_hz);
   int rc = FB_OK;
-  for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys)
-    if (vehicles[sys])
-      rc = run_system(fs, sys, vehicles[sys], err);
-  return rc;
-}
-
-int cli_freq_write_figures(cli_outdir *od, const freq_study *fs, fb_err *err)
-{
-  return write_files(od, fs, 0, 1, err);
-}
-
-void cli_freq_study_free(freq_study *fs)
-{
-  cli_freq_psd_free(&fs->psd);
-  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
-    free(fs->h[sys]);
-    free(fs->row[sys]);
+  for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys) {
+    if (!a->systems[sys])
+      continue;
+    const fb_system which = sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID;
+    cli_stage stage = {"freq", cli_system_label(which), 0};
+    fb_vehicle_opts vo;
+    fb_vehicle_opts_default(&vo);
+    vo.progress = (fb_progress){cli_stage_progress, &stage};
+    fb_vehicle *v = NULL;
+    rc = fb_vehicle_new(s, which, &vo, &v, err);
+    if (!rc)
+      rc = run_system(fs, sys, v, freq_hz, a->points, iso, a->identical, err);
+    fb_vehicle_free(&v);
   }
-  free(fs->freq_hz);
+  free(freq_hz);
+  return rc;
 }
 
 static int study(const freq_args *a)
@@ -376,47 +241,29 @@ static int study(const freq_args *a)
   fb_err_clear(&err);
   fb_scenario *s = NULL;
   freq_study fs = {0};
+  fb_road_iso8608_params iso;
   int rc = cli_scenario_load(a->path, a->strict, &s, &err);
-  fs.s = s;
-  if (!rc)
-    rc = cli_freq_psd_setup(&fs, a->road_class, a->identical, &err);
-  if (!rc && a->tracks_given && !fs.psd.on) {
-    cli_freq_study_free(&fs);
+  const int ride = !rc && fb_study_ride_psd_iso8608(s, a->road_class, &iso);
+  if (!rc && a->tracks_given && !ride) {
     fb_scenario_free(&s);
     return cli_usage_error("freq", "--tracks is for the ride from an ISO 8608 road, and the "
                                    "scenario's road is none: add --road-class");
   }
   cli_outdir od;
   const int opened = !rc && (rc = cli_outdir_open(&od, a->dir, "freq", &err)) == FB_OK;
-  /* Each system realised once; its linear model is made from it. */
-  fb_vehicle *vehicles[CLI_MAX_SYSTEMS] = {NULL, NULL};
-  cli_stage stages[CLI_MAX_SYSTEMS];
-  for (int sys = 0; !rc && sys < CLI_MAX_SYSTEMS; ++sys) {
-    const fb_system which = sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID;
-    stages[sys] = (cli_stage){"freq", cli_system_label(which), 0};
-    fb_vehicle_opts vo;
-    fb_vehicle_opts_default(&vo);
-    vo.progress = (fb_progress){cli_stage_progress, &stages[sys]};
-    if (a->systems[sys])
-      rc = fb_vehicle_new(s, which, &vo, &vehicles[sys], &err);
-  }
   if (!rc)
-    rc = cli_freq_compute(&fs, vehicles, a->f_min, a->f_max, a->points, &err);
-  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys)
-    fb_vehicle_free(&vehicles[sys]);
+    rc = compute(&fs, s, a, ride ? &iso : NULL, &err);
   if (!rc)
-    rc = write_files(&od, &fs, 1, a->figures, &err);
-  if (!rc && fs.psd.on)
-    rc = cli_freq_psd_write(&od, &fs, &err);
+    rc = write_files(&od, s, &fs, a->figures, &err);
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   if (!rc) {
     print_summary(&fs, s);
-    if (fs.psd.on)
-      cli_freq_psd_print(&fs);
+    if (ride)
+      cli_ride_psd_print(s, fs.psd);
     rc = cli_flush_stdout(&err);
   }
-  cli_freq_study_free(&fs);
+  free_study(&fs);
   rc = cli_report_scenario(s, rc, &err);
   fb_scenario_free(&s);
   return rc;
@@ -476,9 +323,9 @@ int cli_cmd_freq(int argc, char **argv)
     return cli_usage_error(argv[0], "--road-class: '%s' is not an ISO 8608 class A to H", cls);
   if (cls)
     a.road_class = cls[0];
-  if (points != floor(points) || points < 2 || points > FREQ_MAX_POINTS)
+  if (points != floor(points) || points < 2 || points > (int)FB_STUDY_FREQ_MAX_POINTS)
     return cli_usage_error(argv[0], "--points: %s is not a whole number from 2 to %d",
-                           opts[OPT_POINTS].value, FREQ_MAX_POINTS);
+                           opts[OPT_POINTS].value, (int)FB_STUDY_FREQ_MAX_POINTS);
   if (a.f_max > FB_FREQ_MAX_HZ)
     return cli_usage_error(argv[0], "--f-max (%g Hz) must be at most %g Hz", a.f_max,
                            FB_FREQ_MAX_HZ);

@@ -4,8 +4,14 @@
  * threads halve the time of a run's figures on two cores. */
 #include <pthread.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include "cli.h"
+
+int cli_threads(void)
+{
+  return sysconf(_SC_NPROCESSORS_ONLN) > 1 ? 2 : 1;
+}
 
 typedef struct jobs {
   cli_outdir *od;

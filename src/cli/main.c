@@ -32,7 +32,6 @@
  * messages carry the file:line context themselves. */
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "cli.h"
 
@@ -85,11 +84,6 @@ static int finish_stdout(void)
   fb_err err;
   fb_err_clear(&err);
   return cli_report(cli_flush_stdout(&err), &err);
-}
-
-int cli_threads(void)
-{
-  return sysconf(_SC_NPROCESSORS_ONLN) > 1 ? 2 : 1;
 }
 
 int main(int argc, char **argv)

@@ -15,7 +15,6 @@
 #include "flexbond/vehicle.h"
 
 #include "cli.h"
-#include "freq.h"
 
 /* A difference between the systems counts as notable above 5 % of System
  * 1's peak-to-peak range over the bump, a peak or RMS change above 5 % of
@@ -538,31 +537,32 @@ static void write_figures(FILE *fp, const cli_run_outputs *o)
   }
 }
 
-/* The Bode figures of the systems that ran (cli_freq_write_figures). */
+/* The Bode figures of the systems that ran (cli_bode_write_figures). */
 static void write_frequency_response(FILE *fp, const cli_run_outputs *o)
 {
   if (!o->figures)
     return;
   fputs("\n## Frequency response\n\n", fp);
-  const freq_study *fs = o->freq;
+  const fb_study_freq *fs = o->freq[0] ? o->freq[0] : o->freq[1];
   if (!fs) {
     fputs("Not computed: ", fp);
     fb_md_write_text(fp, o->freq_note);
     fputs("\n", fp);
     return;
   }
+  const double *f = fb_study_freq_hz(fs);
   fprintf(fp,
           "Each output's response to a road height on the left or on the right track, 1 m at "
           "the leading wheel, which the track's other wheels meet later by their distance "
           "behind it at %.4g km/h: |H| and phase from %g to %g Hz, from the vehicle's linear "
           "model (`flexbond freq`, docs/frequency-response.md)%s. Power outputs have none.\n",
-          3.6 * o->scenario->speed, fs->freq_hz[0], fs->freq_hz[fs->nfreq - 1],
-          fs->linearised[0] || fs->linearised[1]
+          3.6 * o->scenario->speed, f[0], f[fb_study_freq_nfreq(fs) - 1],
+          (o->freq[0] && fb_study_freq_linearised(o->freq[0])) ||
+                  (o->freq[1] && fb_study_freq_linearised(o->freq[1]))
               ? "; its nonlinear laws are linearised at the static equilibrium"
               : "");
-  const int sys = fs->ran[0] ? 0 : 1;
   for (size_t k = 0; k < o->scenario->noutputs; ++k) {
-    if (fs->row[sys][k] == (size_t)-1)
+    if (!fb_study_freq_has_output(fs, k))
       continue;
     fputs("\n![", fp);
     fb_md_write_text(fp, o->scenario->output[k].title);

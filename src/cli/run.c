@@ -24,7 +24,6 @@
 
 #include "../core/util.h"
 #include "cli.h"
-#include "freq.h"
 
 static const char run_usage[] =
     "usage: flexbond run SCENARIO.yaml -o DIR [options]\n"
@@ -89,14 +88,6 @@ static const char run_usage[] =
     "  --strict                    refuse implausible values instead of warning\n"
     "  -h, --help                  this text\n";
 
-void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size)
-{
-  if (o->figure > 0)
-    snprintf(buf, size, "fig%02d_%s.png", o->figure, o->name);
-  else
-    snprintf(buf, size, "fig_%s.png", o->name);
-}
-
 /* Values of --system and the systems each asks for. */
 enum { SYSTEM_RIGID, SYSTEM_FLEXIBLE, SYSTEM_BOTH };
 static const char *const system_choices[] = {
@@ -143,16 +134,6 @@ typedef struct run_args {
   fb_csv_header header; /* of systemN.csv: units, or names with --plain-header */
   cli_animate_opts animate;
 } run_args;
-
-const char *cli_system_label(fb_system sys)
-{
-  return sys == FB_SYSTEM_RIGID ? "System 1 (rigid hull)" : "System 2 (flexible hull)";
-}
-
-const char *cli_scenario_name(const fb_scenario *s)
-{
-  return s->name ? s->name : s->path ? s->path : "scenario";
-}
 
 /* ---- Figures. */
 
@@ -622,23 +603,6 @@ static void write_system_csv(FILE *fp, const void *ctx)
   fb_result_print_csv_columns(fp, c->run->res, 1 + c->noutputs, c->header);
 }
 
-/* The paper's Figs. 5 and 6 of system sys: its multibond graph and its
- * block diagram, "figNN_KIND_systemN.png" into buf. */
-static const struct {
-  int number;
-  cli_diagram_kind kind;
-  const char *what;
-} diagram_kinds[] = {{5, CLI_DIAGRAM_BOND_GRAPH, "bond_graph"},
-                     {6, CLI_DIAGRAM_BLOCKS, "block_diagram"}};
-_Static_assert(sizeof diagram_kinds / sizeof diagram_kinds[0] == CLI_RUN_NDIAGRAMS,
-               "one row per diagram");
-
-void cli_run_diagram_file(size_t k, fb_system sys, char *buf, size_t size)
-{
-  snprintf(buf, size, "fig%02d_%s_system%d.png", diagram_kinds[k].number, diagram_kinds[k].what,
-           (int)sys);
-}
-
 /* Both diagrams of vehicle v, drawn from the graph it ran. */
 static int write_diagrams(cli_outdir *od, const fb_scenario *s, fb_vehicle *v, fb_err *err)
 {
@@ -652,7 +616,7 @@ static int write_diagrams(cli_outdir *od, const fb_scenario *s, fb_vehicle *v, f
     cli_run_diagram_file(k, sys, name, sizeof name);
     char *path = cli_outdir_path(od, name, err);
     /* The outputs' meters; the tire-contact probes would only crowd it. */
-    rc = path ? cli_diagram_file(g, p, s->noutputs, diagram_kinds[k].kind, path, err)
+    rc = path ? cli_diagram_file(g, p, s->noutputs, cli_run_diagram_kind(k), path, err)
               : err->code;
     if (rc == FB_OK)
       rc = cli_outdir_keep(od, path, err);
@@ -681,7 +645,7 @@ static int diagrams_job(cli_outdir *od, const void *ctx, fb_err *err)
 
 static int bode_job(cli_outdir *od, const void *ctx, fb_err *err)
 {
-  return cli_freq_write_figures(od, ((const figure_job *)ctx)->o->freq, err);
+  return cli_bode_write_figures(od, ((const figure_job *)ctx)->o->freq, err);
 }
 
 static int mode_pictures_job(cli_outdir *od, const void *ctx, fb_err *err)
@@ -711,7 +675,7 @@ static int write_pictures(cli_outdir *od, const cli_run_outputs *o, fb_err *err)
     ctx[n] = (figure_job){o, i};
     jobs[n] = (cli_job){diagrams_job, &ctx[n]};
   }
-  if (o->freq) {
+  if (o->freq[0] || o->freq[1]) {
     ctx[n] = (figure_job){o, 0};
     jobs[n] = (cli_job){bode_job, &ctx[n]};
     ++n;
@@ -993,17 +957,22 @@ static void override(const run_args *a, fb_scenario *s)
  * figures (flexbond freq's defaults: 301 frequencies from 0.1 to 100 Hz).
  * It is no part of the run's result: when it fails (a nonlinear vehicle
  * without a static equilibrium, say) the report says why instead. */
-static void frequency_response(const fb_scenario *s, fb_vehicle *const *by_system,
-                               cli_run_outputs *o, freq_study *fs)
+static void frequency_response(fb_vehicle *const *by_system, cli_run_outputs *o)
 {
   fb_err err;
   fb_err_clear(&err);
-  fs->s = s;
-  const int rc = cli_freq_compute(fs, by_system, 0.1, 100.0, 301, &err);
-  if (rc)
+  enum { POINTS = 301 };
+  double freq_hz[POINTS];
+  fb_study_freq_log_grid(0.1, 100.0, POINTS, freq_hz);
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys) {
+    if (!by_system[sys] ||
+        !fb_study_freq_new(by_system[sys], freq_hz, POINTS, &o->freq[sys], &err))
+      continue;
+    fb_err_prefix(&err, "%s: ", cli_system_label(sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID));
     snprintf(o->freq_note, sizeof o->freq_note, "%s", err.msg);
-  else
-    o->freq = fs;
+    fb_study_freq_free(&o->freq[0]);
+    return;
+  }
 }
 
 /* The animation of every system that ran, with --animate. */
@@ -1294,14 +1263,14 @@ static int run(const run_args *a)
   }
   if (rc == FB_OK && conv.rv.v)
     rc = compare_converged(&conv, &o, &err);
-  freq_study freq = {0};
   if (rc == FB_OK && o.figures)
-    frequency_response(s, by_system, &o, &freq);
+    frequency_response(by_system, &o);
   if (rc == FB_OK)
     rc = write_animations(&od, a, s, o.bump_window, runs, o.nruns, &err);
   if (rc == FB_OK)
     rc = write_outputs(&od, &o, &nfiles, &err);
-  cli_freq_study_free(&freq);
+  for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys)
+    fb_study_freq_free(&o.freq[sys]);
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i)

@@ -19,6 +19,7 @@ import unittest
 import numpy
 
 import flexbond
+from cli_files import read_csv, run_cli
 
 CLI = sys.argv[1]
 SRC = sys.argv[2]
@@ -28,18 +29,7 @@ EPS = numpy.finfo(float).eps
 
 def cli(*args):
     """Runs the flexbond executable; its stdout."""
-    done = subprocess.run([CLI, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                          text=True, check=False)
-    if done.returncode != 0:
-        raise AssertionError("flexbond %s: exit %d: %s" % (" ".join(args), done.returncode,
-                                                            done.stderr))
-    return done.stdout
-
-
-def read_csv(path):
-    with open(path, newline="", encoding="utf-8") as f:
-        rows = list(csv.reader(f))
-    return rows[0], numpy.array([[float(v) for v in row] for row in rows[1:]])
+    return run_cli(CLI, *args)
 
 
 def apc_with_speed(text, path):
