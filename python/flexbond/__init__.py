@@ -25,7 +25,7 @@ import warnings
 
 import numpy
 
-__all__ = ["Scenario", "Result", "Corner", "Mode", "Modes", "FreqResponse", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
+__all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
            "library_path"]
 
 RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
@@ -192,6 +192,20 @@ _PROTOTYPES = {
     "fb_descriptor_free": (None, [ctypes.POINTER(ctypes.POINTER(_Descriptor))]),
     "fb_vehicle_freq_response": (ctypes.c_int, [_P, ctypes.POINTER(_Descriptor), _PDOUBLE,
                                                 ctypes.c_size_t, _PDOUBLE, _PERR]),
+    "fb_vehicle_input_name": (ctypes.c_char_p, [ctypes.c_size_t]),
+    "fb_vehicle_stepper_new": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_VehicleOpts),
+                                              _PP, _PERR]),
+    "fb_vehicle_stepper_free": (None, [_PP]),
+    "fb_vehicle_stepper_advance": (ctypes.c_int, [_P, ctypes.c_double, _PERR]),
+    "fb_vehicle_stepper_time": (ctypes.c_double, [_P]),
+    "fb_vehicle_stepper_noutputs": (ctypes.c_size_t, [_P]),
+    "fb_vehicle_stepper_output_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_vehicle_stepper_output_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_vehicle_stepper_outputs": (ctypes.c_int, [_P, _PDOUBLE, _PERR]),
+    "fb_vehicle_stepper_set_input": (ctypes.c_int, [_P, ctypes.c_char_p, ctypes.c_double,
+                                                    _PERR]),
+    "fb_vehicle_stepper_input": (ctypes.c_double, [_P, ctypes.c_size_t]),
+    "fb_vehicle_stepper_set_scenario": (ctypes.c_int, [_P, _P, _PERR]),
     "fb_mat_nrows": (ctypes.c_size_t, [_P]),
     "fb_mat_ncols": (ctypes.c_size_t, [_P]),
     "fb_mat_nnz": (ctypes.c_size_t, [_P]),
@@ -632,7 +646,8 @@ class Scenario:
 
     def __init__(self, path, overrides=None, strict=False):
         self._begin(os.fspath(path))
-        items = list((overrides or {}).items())
+        self.overrides = dict(overrides or {})
+        items = list(self.overrides.items())
         # An error about an override names it as the caller wrote it:
         # overrides['speed_kmh']=-5, not flexbond's --set.
         keep = [(_c_text(k, "override key"), _c_text(_text(v), "override value", key=k),
@@ -670,6 +685,7 @@ class Scenario:
 
     def _begin(self, path):
         self._data_name = None
+        self.overrides = None  # a file's: {key: value}, as given
         self._s = ctypes.c_void_p()
         # Calls running on their threads (_with_vehicle): close() waits for them.
         self._calls = threading.Condition()
@@ -842,6 +858,13 @@ class Scenario:
 
         return self._with_vehicle("flexible", use, hull_modes=int(nhull), progress=progress)
 
+    def simulation(self, system, progress=None):
+        """A Simulation of one system of this scenario that the caller
+        advances, reads and changes on the way (co-simulation); it keeps a
+        copy of the scenario, which may be closed meanwhile. progress as
+        run's, for the set-up (System 2's hull); Ctrl-C stops the set-up."""
+        return Simulation(self, system, progress)
+
     def run_systems(self, systems=("rigid", "flexible")):
         """Runs each of systems; {name: Result}."""
         return {_SYSTEM_NAMES[_system(s)]: self.run(s) for s in systems}
@@ -973,3 +996,185 @@ class Scenario:
 
     def __repr__(self):
         return "<flexbond.Scenario %s>" % self.path
+
+
+# ---- Stepping.
+
+class Simulation:
+    """One system of a scenario simulated step by step, as an FMI
+    co-simulation slave (fmi2DoStep) or a Chrono system (DoStepDynamics) is:
+    advance(t) integrates to time t exactly, outputs reads every output
+    there, set(...) changes an input or a value of the scenario, and the
+    next advance goes on from there (flexbond/vehicle.h, fb_vehicle_stepper).
+    Made by Scenario.simulation(system). It integrates as Scenario.run
+    does; cut at the caller's times, its outputs agree with the run's
+    within the scenario's tolerances.
+
+    What can change, at the current time, the integration restarting there
+    from the current state:
+      - an input (inputs: {name: value}), held until changed (zero-order
+        hold): "load_force", a vertical force on the load (N, up positive),
+        shared by the load points as the payload's weight is;
+      - any value of the scenario (set({key: value}) with the keys of
+        Scenario's overrides, or set_scenario(other)): the vehicle is
+        realised again and goes on from the current state, which must mean
+        the same there (no corner, mount or hull coordinate added or
+        removed: Error otherwise). The road is a function of time: a new
+        speed or bump moves it under the wheels from now on.
+
+    advance runs in the calling thread: a Ctrl-C is seen when it returns,
+    so advance in steps that take a moment each."""
+
+    def __init__(self, scenario, system, progress=None):
+        self._st = ctypes.c_void_p()
+        sys_id = _system(system)
+        self.system = _SYSTEM_NAMES[sys_id]
+        self._path, self._overrides = scenario.path, scenario.overrides
+        with scenario._calls:  # open, and counted, at once: close() waits
+            s = scenario._handle()
+            scenario._ncalls += 1
+
+        def done():
+            with scenario._calls:
+                scenario._ncalls -= 1
+                scenario._calls.notify_all()
+
+        def work(stop):
+            reporter = _Reporter(progress, stop, _SYSTEM_LABELS[sys_id])
+            st = ctypes.c_void_p()
+            try:
+                opts = _VehicleOpts()
+                _lib.fb_vehicle_opts_default(ctypes.byref(opts))
+                opts.progress_fn = reporter.stage_fn
+                err = _Err()
+                rc = _lib.fb_vehicle_stepper_new(s, sys_id, ctypes.byref(opts), ctypes.byref(st),
+                                                 ctypes.byref(err))
+                if rc != 0 and reporter.error is not None:
+                    raise reporter.error
+                _check_about(s, rc, err, scenario._data_name)
+                if stop:  # the caller has gone: nobody will free it
+                    _lib.fb_vehicle_stepper_free(ctypes.byref(st))
+                return st
+            finally:
+                done()
+
+        self._st = _until_done(work, on_no_start=done)
+        self._names()
+
+    def _names(self):
+        n = _lib.fb_vehicle_stepper_noutputs(self._st)
+        self.names = [_lib.fb_vehicle_stepper_output_name(self._st, k).decode()
+                      for k in range(n)]
+        self.units = {name: _lib.fb_vehicle_stepper_output_unit(self._st, k).decode()
+                      for k, name in enumerate(self.names)}
+        self._index = {name: k for k, name in enumerate(self.names)}
+        self._y = numpy.empty(max(1, n))
+
+    def _handle(self):
+        if not self._st:
+            raise ValueError("flexbond: the simulation is closed")
+        return self._st
+
+    @property
+    def time(self):
+        """The time reached, s."""
+        return _lib.fb_vehicle_stepper_time(self._handle())
+
+    def advance(self, t):
+        """Integrates to time t (s), from the current time to the scenario's
+        t_end; returns self. Error if t is outside that range or the
+        integration fails (the simulation cannot go on after a failure)."""
+        err = _Err()
+        _check(_lib.fb_vehicle_stepper_advance(self._handle(), float(t), ctypes.byref(err)), err)
+        return self
+
+    def step(self, dt):
+        """advance(time + dt)."""
+        return self.advance(self.time + float(dt))
+
+    @property
+    def outputs(self):
+        """Every output at the current time: {name: value} in the order of
+        Scenario.run's columns after t (the scenario's outputs, then each
+        tire's contact_force_<CORNER>), SI units (units: {name: unit})."""
+        err = _Err()
+        _check(_lib.fb_vehicle_stepper_outputs(self._handle(), self._y.ctypes.data_as(_PDOUBLE),
+                                               ctypes.byref(err)), err)
+        return dict(zip(self.names, self._y.tolist()))
+
+    def output(self, name):
+        """One output at the current time."""
+        if name not in self._index:
+            raise KeyError("flexbond: no output %r; the outputs are %s"
+                           % (name, ", ".join(self.names)))
+        return self.outputs[name]
+
+    __getitem__ = output
+
+    @property
+    def inputs(self):
+        """The inputs and the values they hold: {name: value}."""
+        st = self._handle()
+        out, i = {}, 0
+        while _lib.fb_vehicle_input_name(i) is not None:
+            out[_lib.fb_vehicle_input_name(i).decode()] = _lib.fb_vehicle_stepper_input(st, i)
+            i += 1
+        return out
+
+    def set_input(self, name, value):
+        """Holds input name at value from the current time on."""
+        err = _Err()
+        _check(_lib.fb_vehicle_stepper_set_input(self._handle(), _c_text(name, "input name"),
+                                                 float(value), ctypes.byref(err)), err)
+
+    def set_scenario(self, scenario):
+        """Goes on with scenario (a Scenario of the same kind of vehicle)
+        from the current time and state, the inputs held as they are."""
+        with scenario._calls:
+            s = scenario._handle()
+            err = _Err()
+            rc = _lib.fb_vehicle_stepper_set_scenario(self._handle(), s, ctypes.byref(err))
+            _check_about(s, rc, err, scenario._data_name)
+        self._path, self._overrides = scenario.path, scenario.overrides
+        self._names()
+
+    def set(self, changes):
+        """Changes {name: value} at the current time: each name an input
+        (held at value) or a key of the scenario file as Scenario's
+        overrides take it ("speed_kmh", "suspensions.axles[0].spring_k"),
+        all of those applied at once on top of the scenario's own overrides
+        (a scenario read from a file: Scenario.from_dict's have none; give
+        set_scenario the changed description instead)."""
+        inputs = self.inputs
+        held = {k: v for k, v in changes.items() if k in inputs}
+        values = {k: v for k, v in changes.items() if k not in inputs}
+        if values:
+            if self._overrides is None:
+                raise ValueError("flexbond: %s is no input (%s), and a scenario made from data "
+                                 "takes its changes through set_scenario"
+                                 % (", ".join(map(repr, values)), ", ".join(inputs)))
+            merged = dict(self._overrides)
+            merged.update(values)
+            with Scenario(self._path, overrides=merged) as changed:
+                self.set_scenario(changed)
+        for name, value in held.items():
+            self.set_input(name, value)
+
+    def close(self):
+        """Frees the simulation (also done when it is garbage-collected)."""
+        if getattr(self, "_st", None):
+            _lib.fb_vehicle_stepper_free(ctypes.byref(self._st))
+
+    def __del__(self):
+        if _lib is not None:
+            self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __repr__(self):
+        return "<flexbond.Simulation %s at t = %g s>" % (
+            self.system, self.time if self._st else float("nan"))
