@@ -892,12 +892,13 @@ class Scenario:
 
         return self._with_vehicle(system, use, progress=progress)
 
-    def _with_vehicle(self, system, use, hull_modes=0, progress=None):
-        """use(vehicle, reporter) on system of this scenario, realised once
-        with a _Reporter (the caller's progress, and the stop a Ctrl-C sets);
-        in _until_done, so that Ctrl-C reaches the caller at once. An
-        exception of progress is raised in place of the library's FB_EINTR.
-        close() waits for the call."""
+    def _in_call(self, system, body, hull_modes=0, progress=None):
+        """body(s, sys_id, opts, reporter) for system of this scenario (s its
+        handle, opts the fb_vehicle_opts with a _Reporter: the caller's
+        progress, and the stop a Ctrl-C sets); in _until_done, so that
+        Ctrl-C reaches the caller at once. An exception of progress is
+        raised in place of the library's FB_EINTR. close() waits for the
+        call."""
         sys_id = _system(system)
         with self._calls:  # open, and counted, at once: close() waits for the call
             s = self._handle()
@@ -915,15 +916,7 @@ class Scenario:
                 _lib.fb_vehicle_opts_default(ctypes.byref(opts))
                 opts.progress_fn = reporter.stage_fn
                 opts.hull_modes = hull_modes
-                v = ctypes.c_void_p()
-                err = _Err()
-                _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts),
-                                                    ctypes.byref(v), ctypes.byref(err)), err,
-                             self._data_name)
-                try:
-                    return use(v, reporter)
-                finally:
-                    _lib.fb_vehicle_free(ctypes.byref(v))
+                return body(s, sys_id, opts, reporter)
             except Error:
                 if reporter.error is not None:
                     raise reporter.error from None
@@ -932,6 +925,21 @@ class Scenario:
                 done()
 
         return _until_done(work, on_no_start=done)
+
+    def _with_vehicle(self, system, use, hull_modes=0, progress=None):
+        """use(vehicle, reporter) on system of this scenario, realised once
+        (_in_call)."""
+        def body(s, sys_id, opts, reporter):
+            v = ctypes.c_void_p()
+            err = _Err()
+            _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts), ctypes.byref(v),
+                                                ctypes.byref(err)), err, self._data_name)
+            try:
+                return use(v, reporter)
+            finally:
+                _lib.fb_vehicle_free(ctypes.byref(v))
+
+        return self._in_call(system, body, hull_modes, progress)
 
     def _with_descriptor(self, system, use):
         """use(descriptor) of system's linear model (flexbond export)."""
@@ -1030,35 +1038,18 @@ class Simulation:
         sys_id = _system(system)
         self.system = _SYSTEM_NAMES[sys_id]
         self._path, self._overrides = scenario.path, scenario.overrides
-        with scenario._calls:  # open, and counted, at once: close() waits
-            s = scenario._handle()
-            scenario._ncalls += 1
 
-        def done():
-            with scenario._calls:
-                scenario._ncalls -= 1
-                scenario._calls.notify_all()
-
-        def work(stop):
-            reporter = _Reporter(progress, stop, _SYSTEM_LABELS[sys_id])
+        def body(s, sys_id, opts, reporter):
             st = ctypes.c_void_p()
-            try:
-                opts = _VehicleOpts()
-                _lib.fb_vehicle_opts_default(ctypes.byref(opts))
-                opts.progress_fn = reporter.stage_fn
-                err = _Err()
-                rc = _lib.fb_vehicle_stepper_new(s, sys_id, ctypes.byref(opts), ctypes.byref(st),
-                                                 ctypes.byref(err))
-                if rc != 0 and reporter.error is not None:
-                    raise reporter.error
-                _check_about(s, rc, err, scenario._data_name)
-                if stop:  # the caller has gone: nobody will free it
-                    _lib.fb_vehicle_stepper_free(ctypes.byref(st))
-                return st
-            finally:
-                done()
+            err = _Err()
+            _check_about(s, _lib.fb_vehicle_stepper_new(s, sys_id, ctypes.byref(opts),
+                                                        ctypes.byref(st), ctypes.byref(err)),
+                         err, scenario._data_name)
+            if reporter.stop:  # the caller has gone: nobody will free it
+                _lib.fb_vehicle_stepper_free(ctypes.byref(st))
+            return st
 
-        self._st = _until_done(work, on_no_start=done)
+        self._st = scenario._in_call(system, body, progress=progress)
         self._names()
 
     def _names(self):
