@@ -5,7 +5,7 @@
  * way, and a stiffness changed by a new diagram from the current state,
  * against the closed-form response of m x'' + r x' + k x = F from the
  * state at the change; the work of the held force against its closed
- * form. */
+ * form; a failure stops the stepper. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -271,11 +271,41 @@ static void test_bad_times(void)
   fb_bg_free(&bg);
 }
 
+/* A held force made NaN: the restart reports the state's derivative as
+ * not finite, and the stepper refuses to go on after that failure. */
+static void test_failure_stops(void)
+{
+  fb_err err;
+  fb_bg *bg = NULL;
+  fb_bd *bd = NULL;
+  fb_tfun *f = NULL;
+  double force = 1.0;
+  MUST(fb_tfun_new_callback(held_force, &force, 0, NULL, &f, &err), &err);
+  MUST(build(&f, STIFF, DAMP, &bg, &bd, &err), &err);
+  fb_sim_opts o;
+  tight_opts(&o, 1.0);
+  fb_sim_stepper *st = NULL;
+  MUST(fb_sim_stepper_create(bd, &o, &st, &err), &err);
+  if (st) {
+    MUST(fb_sim_stepper_advance(st, 0.25, &err), &err);
+    force = NAN;
+    CHECK(fb_sim_stepper_reset(st, &err) == FB_ESOLVER);
+    CHECK(strstr(err.msg, "mass.p") && strstr(err.msg, "restart state"));
+    CHECK(fb_sim_stepper_advance(st, 0.5, &err) == FB_EINVAL);
+    CHECK(strstr(err.msg, "failed earlier") != NULL);
+    CHECK(fb_sim_stepper_time(st) == 0.25);
+  }
+  fb_sim_stepper_free(&st);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
+}
+
 int main(void)
 {
   test_steps_equal_run();
   test_held_input();
   test_new_diagram_from_state();
   test_bad_times();
+  test_failure_stops();
   return check_report("test_sim_stepper");
 }
