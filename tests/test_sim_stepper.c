@@ -75,24 +75,60 @@ static double response(double k, double r, double force, double x0, double v0, d
   return force / k + exp(-a * tau) * (u0 * cos(wd * tau) + (v0 + a * u0) / wd * sin(wd * tau));
 }
 
+/* An oscillator's graph and diagram, and a stepper over it. */
+typedef struct oscillator {
+  fb_bg *bg;
+  fb_bd *bd;
+  fb_sim_stepper *st;
+} oscillator;
+
+/* The oscillator of stiffness k and damping r driven by *force (taken
+ * over), with a stepper from its rest at t = 0 to t_end (the tight
+ * options); 1 when every part is made, else 0 and a failed check. */
+static int oscillator_start(oscillator *o, fb_tfun **force, double k, double r, double t_end)
+{
+  fb_err err;
+  fb_sim_opts opts;
+  tight_opts(&opts, t_end);
+  MUST(build(force, k, r, &o->bg, &o->bd, &err), &err);
+  if (o->bd)
+    MUST(fb_sim_stepper_create(o->bd, &opts, &o->st, &err), &err);
+  return o->st != NULL;
+}
+
+/* The same driven by a force the test holds in *force. */
+static int oscillator_held(oscillator *o, double *force, double k, double r, double t_end)
+{
+  fb_err err;
+  fb_tfun *f = NULL;
+  MUST(fb_tfun_new_callback(held_force, force, 0, NULL, &f, &err), &err);
+  return f && oscillator_start(o, &f, k, r, t_end);
+}
+
+static void oscillator_free(oscillator *o)
+{
+  fb_sim_stepper_free(&o->st);
+  fb_bd_free(&o->bd);
+  fb_bg_free(&o->bg);
+}
+
 /* A step of 10 N at 0.25 s (a breakpoint) on the damped oscillator: 200
  * advances to the sample times against one fb_sim_run, and both against
  * the closed form. */
 static void test_steps_equal_run(void)
 {
   fb_err err;
-  fb_bg *bg = NULL;
-  fb_bd *bd = NULL;
   fb_tfun *f = NULL;
+  oscillator osc = {0};
   MUST(fb_tfun_new_step(0.25, 0.0, 10.0, &f, &err), &err);
-  MUST(build(&f, STIFF, DAMP, &bg, &bd, &err), &err);
   fb_sim_opts o;
   tight_opts(&o, 2.0);
   fb_result *res = NULL;
-  fb_sim_stepper *st = NULL;
-  MUST(fb_sim_run(bd, &o, &res, &err), &err);
-  MUST(fb_sim_stepper_create(bd, &o, &st, &err), &err);
-  if (!res || !st)
+  if (!f || !oscillator_start(&osc, &f, STIFF, DAMP, o.t_end))
+    goto done;
+  fb_sim_stepper *st = osc.st;
+  MUST(fb_sim_run(osc.bd, &o, &res, &err), &err);
+  if (!res)
     goto done;
   /* The static deflection F / k = 12.5 mm is the scale. */
   const double scale = 10.0 / STIFF;
@@ -125,10 +161,8 @@ static void test_steps_equal_run(void)
    * absolute is 1e-5 of either. */
   CHECK(worst_diff <= 1e-6);
 done:
-  fb_sim_stepper_free(&st);
   fb_result_free(&res);
-  fb_bd_free(&bd);
-  fb_bg_free(&bg);
+  oscillator_free(&osc);
 }
 
 /* An undamped oscillator at rest under a held force F: 10 N from 0.3 s,
@@ -139,18 +173,11 @@ done:
 static void test_held_input(void)
 {
   fb_err err;
-  fb_bg *bg = NULL;
-  fb_bd *bd = NULL;
-  fb_tfun *f = NULL;
   double force = 0;
-  MUST(fb_tfun_new_callback(held_force, &force, 0, NULL, &f, &err), &err);
-  MUST(build(&f, STIFF, 0.0, &bg, &bd, &err), &err);
-  fb_sim_opts o;
-  tight_opts(&o, 1.5);
-  fb_sim_stepper *st = NULL;
-  MUST(fb_sim_stepper_create(bd, &o, &st, &err), &err);
-  if (!st)
+  oscillator osc = {0};
+  if (!oscillator_held(&osc, &force, STIFF, 0.0, 1.5))
     goto done;
+  fb_sim_stepper *st = osc.st;
   const double change[] = {0.3, 0.7}, value[] = {10.0, -5.0};
   double y[NOUT], x1 = 0, v1 = 0, t1 = 0, work_before = 0, worst_x = 0, worst_work = 0;
   for (int step = 1; step <= 150; ++step) {
@@ -185,9 +212,7 @@ static void test_held_input(void)
   CHECK(worst_work <= 1e-12);
   CHECK(fabs(fb_sim_stepper_time(st) - 1.5) == 0);
 done:
-  fb_sim_stepper_free(&st);
-  fb_bd_free(&bd);
-  fb_bg_free(&bg);
+  oscillator_free(&osc);
 }
 
 /* A stiffness changed at 0.4 s from 800 to 200 N/m: a new diagram, and a
@@ -196,46 +221,39 @@ done:
 static void test_new_diagram_from_state(void)
 {
   fb_err err;
-  fb_bg *bg1 = NULL, *bg2 = NULL;
-  fb_bd *bd1 = NULL, *bd2 = NULL;
-  fb_tfun *f1 = NULL, *f2 = NULL;
-  MUST(fb_tfun_new_const(10.0, &f1, &err), &err);
-  MUST(fb_tfun_new_const(10.0, &f2, &err), &err);
-  MUST(build(&f1, STIFF, DAMP, &bg1, &bd1, &err), &err);
-  MUST(build(&f2, 200.0, DAMP, &bg2, &bd2, &err), &err);
-  fb_sim_opts o;
-  tight_opts(&o, 2.0);
-  fb_sim_stepper *st1 = NULL, *st2 = NULL;
-  MUST(fb_sim_stepper_create(bd1, &o, &st1, &err), &err);
+  double force = 10.0;
+  oscillator first = {0}, second = {0};
+  fb_tfun *f = NULL;
+  MUST(fb_tfun_new_const(force, &f, &err), &err);
+  if (f)
+    MUST(build(&f, 200.0, DAMP, &second.bg, &second.bd, &err), &err);
   double y[NOUT] = {0};
-  if (st1) {
-    MUST(fb_sim_stepper_advance(st1, 0.4, &err), &err);
-    MUST(fb_sim_stepper_outputs(st1, y, &err), &err);
-    CHECK(fb_sim_stepper_nstates(st1) == fb_bd_nstates(bd2));
-    o.t_start = fb_sim_stepper_time(st1);
-    o.x0 = fb_sim_stepper_state(st1);
-    MUST(fb_sim_stepper_create(bd2, &o, &st2, &err), &err);
+  if (second.bd && oscillator_held(&first, &force, STIFF, DAMP, 2.0)) {
+    MUST(fb_sim_stepper_advance(first.st, 0.4, &err), &err);
+    MUST(fb_sim_stepper_outputs(first.st, y, &err), &err);
+    CHECK(fb_sim_stepper_nstates(first.st) == fb_bd_nstates(second.bd));
+    fb_sim_opts o;
+    tight_opts(&o, 2.0);
+    o.t_start = fb_sim_stepper_time(first.st);
+    o.x0 = fb_sim_stepper_state(first.st);
+    MUST(fb_sim_stepper_create(second.bd, &o, &second.st, &err), &err);
   }
   double worst = 0;
-  for (int step = 1; st2 && step <= 16; ++step) {
+  for (int step = 1; second.st && step <= 16; ++step) {
     const double t = 0.4 + 0.1 * step;
     double y2[NOUT];
-    MUST(fb_sim_stepper_advance(st2, t, &err), &err);
-    MUST(fb_sim_stepper_outputs(st2, y2, &err), &err);
-    worst =
-        fmax(worst, fabs(y2[OUT_X] - response(200.0, DAMP, 10.0, y[OUT_X], y[OUT_V], t - 0.4)));
+    MUST(fb_sim_stepper_advance(second.st, t, &err), &err);
+    MUST(fb_sim_stepper_outputs(second.st, y2, &err), &err);
+    worst = fmax(worst,
+                 fabs(y2[OUT_X] - response(200.0, DAMP, force, y[OUT_X], y[OUT_V], t - 0.4)));
   }
   /* The new static deflection is 50 mm; rtol 1e-8 as above (measured
    * 1.6e-8 m). A stepper that restarted from rest, or kept the old
    * stiffness, is off by millimetres. */
   fprintf(stderr, "new stiffness: worst |x - closed form| %.3g m\n", worst);
-  CHECK(st2 && worst <= 1e-7);
-  fb_sim_stepper_free(&st2);
-  fb_sim_stepper_free(&st1);
-  fb_bd_free(&bd2);
-  fb_bd_free(&bd1);
-  fb_bg_free(&bg2);
-  fb_bg_free(&bg1);
+  CHECK(second.st && worst <= 1e-7);
+  oscillator_free(&second);
+  oscillator_free(&first);
 }
 
 /* Times out of order and past the horizon are refused with the key "t";
@@ -243,16 +261,10 @@ static void test_new_diagram_from_state(void)
 static void test_bad_times(void)
 {
   fb_err err;
-  fb_bg *bg = NULL;
-  fb_bd *bd = NULL;
-  fb_tfun *f = NULL;
-  MUST(fb_tfun_new_const(1.0, &f, &err), &err);
-  MUST(build(&f, STIFF, DAMP, &bg, &bd, &err), &err);
-  fb_sim_opts o;
-  tight_opts(&o, 1.0);
-  fb_sim_stepper *st = NULL;
-  MUST(fb_sim_stepper_create(bd, &o, &st, &err), &err);
-  if (st) {
+  double force = 1.0;
+  oscillator osc = {0};
+  if (oscillator_held(&osc, &force, STIFF, DAMP, 1.0)) {
+    fb_sim_stepper *st = osc.st;
     MUST(fb_sim_stepper_advance(st, 0.5, &err), &err);
     MUST(fb_sim_stepper_advance(st, 0.5, &err), &err);
     CHECK(fb_sim_stepper_time(st) == 0.5);
@@ -265,10 +277,8 @@ static void test_bad_times(void)
     fb_sim_stepper_stats(st, &stats);
     CHECK(stats.steps > 0 && stats.rhs_evals > stats.steps);
   }
-  fb_sim_stepper_free(&st);
-  fb_sim_stepper_free(&st); /* a second free is harmless */
-  fb_bd_free(&bd);
-  fb_bg_free(&bg);
+  oscillator_free(&osc);
+  oscillator_free(&osc); /* a second free is harmless */
 }
 
 /* A held force made NaN: the restart reports the state's derivative as
@@ -276,17 +286,10 @@ static void test_bad_times(void)
 static void test_failure_stops(void)
 {
   fb_err err;
-  fb_bg *bg = NULL;
-  fb_bd *bd = NULL;
-  fb_tfun *f = NULL;
   double force = 1.0;
-  MUST(fb_tfun_new_callback(held_force, &force, 0, NULL, &f, &err), &err);
-  MUST(build(&f, STIFF, DAMP, &bg, &bd, &err), &err);
-  fb_sim_opts o;
-  tight_opts(&o, 1.0);
-  fb_sim_stepper *st = NULL;
-  MUST(fb_sim_stepper_create(bd, &o, &st, &err), &err);
-  if (st) {
+  oscillator osc = {0};
+  if (oscillator_held(&osc, &force, STIFF, DAMP, 1.0)) {
+    fb_sim_stepper *st = osc.st;
     MUST(fb_sim_stepper_advance(st, 0.25, &err), &err);
     force = NAN;
     CHECK(fb_sim_stepper_reset(st, &err) == FB_ESOLVER);
@@ -295,9 +298,7 @@ static void test_failure_stops(void)
     CHECK(strstr(err.msg, "failed earlier") != NULL);
     CHECK(fb_sim_stepper_time(st) == 0.25);
   }
-  fb_sim_stepper_free(&st);
-  fb_bd_free(&bd);
-  fb_bg_free(&bg);
+  oscillator_free(&osc);
 }
 
 int main(void)
