@@ -279,6 +279,10 @@ static void test_bad_times(void)
   }
   oscillator_free(&osc);
   oscillator_free(&osc); /* a second free is harmless */
+  /* A horizon of 1e7 s: a run's 1e9 samples (32 GB) would be refused,
+   * a stepper records none. */
+  CHECK(oscillator_held(&osc, &force, STIFF, DAMP, 1e7));
+  oscillator_free(&osc);
 }
 
 /* A held force made NaN: the restart reports the state's derivative as

@@ -138,7 +138,8 @@ typedef struct fb_sim_stepper fb_sim_stepper;
  * meanwhile). opts as fb_sim_run's, checked the same way; opts->t_end
  * is the horizon no advance may pass, and the breakpoints and x0 are
  * copied (not kept). opts->sample_rate plays no part: nothing is
- * recorded. *out is new (fb_sim_stepper_free). Errors as fb_sim_run's
+ * recorded, so a long horizon costs no memory (fb_sim_run's bound on
+ * its result does not apply). *out is new (fb_sim_stepper_free). Errors as fb_sim_run's
  * about the initial state. */
 int fb_sim_stepper_create(fb_bd *bd, const fb_sim_opts *opts, fb_sim_stepper **out,
                           fb_err *err);

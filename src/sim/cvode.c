@@ -991,10 +991,18 @@ static int stepper_new(fb_bd *bd, const fb_sim_opts *opts, fb_result *res, sim_r
 int fb_sim_stepper_create(fb_bd *bd, const fb_sim_opts *opts, fb_sim_stepper **out, fb_err *err)
 {
   *out = NULL;
+  /* Nothing is recorded: the samples' count and memory, which the check
+   * bounds for a run, are no limit on a stepper (a co-simulation may go
+   * on for days); one sample over the horizon passes that part. */
   fb_sim_opts checked = *opts;
   checked.noutputs = fb_bd_noutputs(bd);
-  const int rc = fb_sim_opts_check(&checked, err);
-  return rc == FB_OK ? stepper_new(bd, opts, NULL, out, err) : rc;
+  const double horizon = opts->t_end - opts->t_start;
+  if (horizon > 0 && isfinite(horizon))
+    checked.sample_rate = 1.0 / horizon;
+  int rc = fb_sim_opts_check(&checked, err);
+  if (rc == FB_OK)
+    rc = stepper_new(bd, &checked, NULL, out, err);
+  return rc;
 }
 
 void fb_sim_stepper_free(fb_sim_stepper **st)
