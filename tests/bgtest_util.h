@@ -38,4 +38,26 @@ static inline int add_const_source(fb_bg *bg, const char *name, fb_bg_kind kind,
   return rc ? rc : fb_bg_add_source(bg, name, kind, 1, &f, err);
 }
 
+/* A force source "F" of function *force (taken over) on a 1-junction "J"
+ * shared by a mass "mass" and a spring "spring": bonds "bF", "bm" and
+ * "bk" (a damper, if any, is the caller's). */
+static inline int add_forced_oscillator(fb_bg *bg, fb_tfun **force, double mass, double stiff,
+                                        fb_err *err)
+{
+  int rc = fb_bg_add_source(bg, "F", FB_BG_SE, 1, force, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, 1, err);
+  if (!rc)
+    rc = add_scalar(bg, "mass", FB_BG_I, mass, err);
+  if (!rc)
+    rc = add_scalar(bg, "spring", FB_BG_C, stiff, err);
+  if (!rc)
+    rc = fb_bg_connect(bg, "bF", "F", "J", err);
+  if (!rc)
+    rc = fb_bg_connect(bg, "bm", "J", "mass", err);
+  if (!rc)
+    rc = fb_bg_connect(bg, "bk", "J", "spring", err);
+  return rc;
+}
+
 #endif

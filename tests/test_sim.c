@@ -10,6 +10,7 @@
 #include "flexbond/bg.h"
 #include "flexbond/sim.h"
 
+#include "bgtest_util.h"
 #include "check.h"
 
 /* Underdamped: omega_n = 5 rad/s, zeta = r / (2 sqrt(k m)) = 0.15. */
@@ -103,24 +104,14 @@ static int build_msd(fb_tfun **force, const damper_law *damper, fb_bg **bg, fb_b
                      fb_err *err)
 {
   const size_t one[1] = {1};
-  fb_mat *m = NULL, *k = NULL, *r = NULL;
+  fb_mat *r = NULL;
   *bd = NULL;
   int rc = fb_bg_new("msd", bg, err);
   if (rc != FB_OK) {
     fb_tfun_free(force);
     return rc;
   }
-  rc = fb_bg_add_source(*bg, "F", FB_BG_SE, 1, force, err);
-  if (!rc)
-    rc = fb_bg_add_junction(*bg, "J", FB_BG_J1, 1, err);
-  if (!rc)
-    rc = fb_mat_new_scaled_identity(1, MASS, &m, err);
-  if (!rc)
-    rc = fb_bg_add_field(*bg, "mass", FB_BG_I, 1, one, &m, err);
-  if (!rc)
-    rc = fb_mat_new_scaled_identity(1, STIFF, &k, err);
-  if (!rc)
-    rc = fb_bg_add_field(*bg, "spring", FB_BG_C, 1, one, &k, err);
+  rc = add_forced_oscillator(*bg, force, MASS, STIFF, err);
   if (!rc && damper) {
     damper_law *d = malloc(sizeof *d);
     if (d)
@@ -132,12 +123,6 @@ static int build_msd(fb_tfun **force, const damper_law *damper, fb_bg **bg, fb_b
     if (!rc)
       rc = fb_bg_add_field(*bg, "damper", FB_BG_R, 1, one, &r, err);
   }
-  if (!rc)
-    rc = fb_bg_connect(*bg, "bF", "F", "J", err);
-  if (!rc)
-    rc = fb_bg_connect(*bg, "bm", "J", "mass", err);
-  if (!rc)
-    rc = fb_bg_connect(*bg, "bk", "J", "spring", err);
   if (!rc)
     rc = fb_bg_connect(*bg, "br", "J", "damper", err);
   const fb_probe_spec probes[2] = {{"x", FB_PROBE_STATE, "spring", 0, 0, 1.0, NULL, NULL, 0},

@@ -167,6 +167,13 @@ void fb_bg_set_domain(fb_bg *bg, fb_bg_domain domain);
 /* Source of dimension dim; values[i] is component i. */
 int fb_bg_add_source(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, fb_tfun **values,
                      fb_err *err);
+/* Replaces component k of source name's time function with *f (taken
+ * over, *f set to NULL, also on failure): a vehicle's constant load made
+ * an input a stepper holds, say. A diagram reads the functions of the
+ * graph it was built from, except constant ones, which it folds when it
+ * is built: change the graph before building the diagram. FB_EMODEL if
+ * name is no source, FB_EINVAL if k is not below its dimension. */
+int fb_bg_set_source(fb_bg *bg, const char *name, size_t k, fb_tfun **f, fb_err *err);
 /* I, C or R field with nports ports of dimensions port_dims; law is the
  * stacked matrix (M, K or R) of size sum(port_dims). */
 int fb_bg_add_field(fb_bg *bg, const char *name, fb_bg_kind kind, size_t nports,

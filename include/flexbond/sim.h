@@ -106,6 +106,74 @@ typedef struct fb_result fb_result;
  * where the value starts (fb_bd_explain_nonfinite). */
 int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err);
 
+/* ---- Stepping (co-simulation): advance, read, change, continue.
+ *
+ * A stepper is fb_sim_run cut at the caller's times, in the sense of an
+ * FMI 2.0 co-simulation slave's fmi2DoStep (or Chrono's
+ * DoStepDynamics): the caller advances it to a time, reads the
+ * diagram's outputs there, may change what the diagram reads, and
+ * advances again. fb_sim_run is a stepper advanced once to t_end, so a
+ * run cut into N advances integrates the same way, except that CVODE
+ * shortens the step that reaches each stop time (CVodeSetStopTime): the
+ * outputs agree with one run's within the tolerances, not to the bit.
+ *
+ * What a change means. The diagram reads its inputs through the graph's
+ * time functions; a source whose function returns a value the caller
+ * holds (fb_tfun_new_callback over the caller's variable) is an input
+ * held constant between changes (zero-order hold). After changing such
+ * a value (or anything else the diagram reads, such as a law's
+ * parameter through its context) at the stepper's current time, call
+ * fb_sim_stepper_reset: the integrator restarts there from the current
+ * state (CVodeReInit: order 1, a fresh history, a new Newton matrix),
+ * the switched laws choose their modes anew, and the sources'
+ * breakpoints are collected again. A change of the diagram itself (a
+ * parameter built into its blocks, such as a stiffness matrix) is a new
+ * diagram: create a new stepper on it at t_start = the current time with
+ * x0 = fb_sim_stepper_state (the states must mean the same: same count
+ * and names), as a vehicle stepper does (flexbond/vehicle.h). */
+typedef struct fb_sim_stepper fb_sim_stepper;
+
+/* A stepper of bd at opts->t_start (bd borrowed: it must outlive the
+ * stepper, and is evaluated by it, so no other simulation may use it
+ * meanwhile). opts as fb_sim_run's, checked the same way; opts->t_end
+ * is the horizon no advance may pass, and the breakpoints and x0 are
+ * copied (not kept). opts->sample_rate plays no part: nothing is
+ * recorded, so a long horizon costs no memory (fb_sim_run's bound on
+ * its result does not apply). *out is new (fb_sim_stepper_free). Errors as fb_sim_run's
+ * about the initial state. */
+int fb_sim_stepper_create(fb_bd *bd, const fb_sim_opts *opts, fb_sim_stepper **out,
+                          fb_err *err);
+/* Integrates from the current time to t (s), exactly (the last step is
+ * shortened to land on t), stopping and restarting at every breakpoint
+ * on the way; switched laws' events are handled as in fb_sim_run. At a
+ * breakpoint t the state afterwards is its right limit. opts->progress
+ * hears every step. FB_EINVAL (err->key "t") if t is before the current
+ * time or after t_end; t within 100 roundoffs of the current time
+ * (CVODE cannot take so short a step) does nothing.
+ * On an integration failure (FB_ESOLVER as fb_sim_run's) the stepper
+ * stays at the time of the failure and refuses to go on (FB_EINVAL);
+ * after FB_EINTR (the progress function said stop) it may go on. */
+int fb_sim_stepper_advance(fb_sim_stepper *st, double t, fb_err *err);
+/* Restarts the integrator at the current time and state after a change
+ * of what the diagram reads (above). FB_ESOLVER if the diagram's
+ * derivative is not finite there. */
+int fb_sim_stepper_reset(fb_sim_stepper *st, fb_err *err);
+/* The time reached, s. */
+double fb_sim_stepper_time(const fb_sim_stepper *st);
+/* The state there: fb_sim_stepper_nstates values in fb_bd_state_name
+ * order, owned by st and valid until its next advance, reset or free
+ * (NULL for a diagram without states). */
+size_t fb_sim_stepper_nstates(const fb_sim_stepper *st);
+const double *fb_sim_stepper_state(const fb_sim_stepper *st);
+/* The diagram's outputs at the current time and state into y
+ * (fb_bd_noutputs values, fb_bd_output_name order, the units of
+ * fb_bd_output_unit). FB_ESOLVER naming a non-finite output. */
+int fb_sim_stepper_outputs(fb_sim_stepper *st, double *y, fb_err *err);
+/* The solver's counters so far (wall_seconds 0). */
+void fb_sim_stepper_stats(const fb_sim_stepper *st, fb_sim_stats *stats);
+/* Frees *st and sets it to NULL; accepts NULL and *st == NULL. */
+void fb_sim_stepper_free(fb_sim_stepper **st);
+
 size_t fb_result_nsamples(const fb_result *r);
 /* 1 + number of outputs (column 0 is time). */
 size_t fb_result_ncols(const fb_result *r);

@@ -957,6 +957,79 @@ int fb_vehicle_new_estimator(fb_vehicle *v, fb_vehicle **out, fb_err *err);
 int fb_vehicle_basis_error(fb_vehicle *v, const fb_result *r, const double window[2],
                            fb_sim_progress_fn fn, void *ctx, double *est, fb_err *err);
 
+/* ---- Stepping a vehicle (src/vehicle/stepper.c): a simulation advanced
+ * by the caller, read between advances and changed on the way, as an
+ * FMI co-simulation slave is with fmi2DoStep (or a Chrono system with
+ * DoStepDynamics): a controller, a driver model or an optimiser in the
+ * loop. It integrates as fb_vehicle_run does (the same diagram, initial
+ * state, tolerances and road), cut at the caller's times
+ * (fb_sim_stepper: the outputs agree with a run's within its
+ * tolerances).
+ *
+ * Two kinds of change, each applied at the current time, the
+ * integration restarting there from the current state:
+ *  - an input (fb_vehicle_input_name), held at its value until changed
+ *    (zero-order hold, FMI's "input at the communication point");
+ *  - the scenario (fb_vehicle_stepper_set_scenario): any of its values,
+ *    a spring's stiffness, a damper's table, the road; the vehicle is
+ *    realised again (System 2: the hull's eigen-solve again) and goes on
+ *    from the current state, which must mean the same in the new vehicle
+ *    (the same states by name: no corner, mount or hull coordinate added
+ *    or removed). The road is a function of time: a new speed or bump
+ *    moves the road under the wheels from the current time on, as if it
+ *    had always been so. */
+
+/* The inputs: "load_force", a vertical force on the load (N, up
+ * positive), shared by the load points as the payload's weight is (0 at
+ * first: the vehicle as its scenario says). */
+#define FB_VEHICLE_NINPUTS 1
+/* Input i's name (NULL for i >= FB_VEHICLE_NINPUTS); the index of the
+ * input named name, -1 if none. */
+const char *fb_vehicle_input_name(size_t i);
+long fb_vehicle_input_find(const char *name);
+
+typedef struct fb_vehicle_stepper fb_vehicle_stepper;
+
+/* Realises system sys of s (o NULL: the defaults; o->motion is ignored)
+ * and puts it at t = 0 in its initial state (s->initial: zero or the
+ * static equilibrium), every input 0. The stepper keeps a copy of s (s
+ * may be freed afterwards). *out is new (fb_vehicle_stepper_free).
+ * Errors as fb_vehicle_new's and fb_vehicle_run's. */
+int fb_vehicle_stepper_new(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
+                           fb_vehicle_stepper **out, fb_err *err);
+void fb_vehicle_stepper_free(fb_vehicle_stepper **st);
+/* Integrates to t (s), t from the current time to the scenario's t_end
+ * (FB_EINVAL otherwise, err->key "t"): fb_sim_stepper_advance. */
+int fb_vehicle_stepper_advance(fb_vehicle_stepper *st, double t, fb_err *err);
+/* The time reached, s. */
+double fb_vehicle_stepper_time(const fb_vehicle_stepper *st);
+/* The outputs: the scenario's (s->output, in order), then every tire's
+ * normal reaction contact_force_<CORNER> (N), as fb_vehicle_run's
+ * columns after t. Names and units owned by st, valid until the next
+ * fb_vehicle_stepper_set_scenario; find: the index of the output named
+ * name, -1 if none. */
+size_t fb_vehicle_stepper_noutputs(const fb_vehicle_stepper *st);
+const char *fb_vehicle_stepper_output_name(const fb_vehicle_stepper *st, size_t k);
+const char *fb_vehicle_stepper_output_unit(const fb_vehicle_stepper *st, size_t k);
+long fb_vehicle_stepper_output_find(const fb_vehicle_stepper *st, const char *name);
+/* The outputs at the current time into y (noutputs values, SI units). */
+int fb_vehicle_stepper_outputs(fb_vehicle_stepper *st, double *y, fb_err *err);
+/* Holds input name at value from the current time on. FB_EINVAL
+ * (err->key the name) for an unknown input or a value that is not
+ * finite. */
+int fb_vehicle_stepper_set_input(fb_vehicle_stepper *st, const char *name, double value,
+                                 fb_err *err);
+/* The value input i holds (NAN for i >= FB_VEHICLE_NINPUTS). */
+double fb_vehicle_stepper_input(const fb_vehicle_stepper *st, size_t i);
+/* Goes on with scenario s (copied; the same system) from the current
+ * time and state, the inputs held as they are. FB_EINVAL naming the
+ * first state that differs if s's vehicle has other states, or if its
+ * t_end is not after the current time (err->key "t_end"); errors of
+ * fb_vehicle_new about s. On failure the stepper is unchanged. */
+int fb_vehicle_stepper_set_scenario(fb_vehicle_stepper *st, const fb_scenario *s, fb_err *err);
+/* The scenario the stepper simulates now (its copy, owned by st). */
+const fb_scenario *fb_vehicle_stepper_scenario(const fb_vehicle_stepper *st);
+
 /* Convenience for a single use, each realising the vehicle, using it and
  * freeing it: */
 

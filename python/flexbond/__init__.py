@@ -25,8 +25,8 @@ import warnings
 
 import numpy
 
-__all__ = ["Scenario", "Result", "Corner", "Mode", "Modes", "FreqResponse", "RidePSD",
-           "PsdRoad", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
+__all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse",
+           "RidePSD", "PsdRoad", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
            "library_path"]
 
 RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
@@ -233,6 +233,20 @@ _PROTOTYPES = {
     "fb_descriptor_free": (None, [ctypes.POINTER(ctypes.POINTER(_Descriptor))]),
     "fb_vehicle_freq_response": (ctypes.c_int, [_P, ctypes.POINTER(_Descriptor), _PDOUBLE,
                                                 ctypes.c_size_t, _PDOUBLE, _PERR]),
+    "fb_vehicle_input_name": (ctypes.c_char_p, [ctypes.c_size_t]),
+    "fb_vehicle_stepper_new": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_VehicleOpts),
+                                              _PP, _PERR]),
+    "fb_vehicle_stepper_free": (None, [_PP]),
+    "fb_vehicle_stepper_advance": (ctypes.c_int, [_P, ctypes.c_double, _PERR]),
+    "fb_vehicle_stepper_time": (ctypes.c_double, [_P]),
+    "fb_vehicle_stepper_noutputs": (ctypes.c_size_t, [_P]),
+    "fb_vehicle_stepper_output_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_vehicle_stepper_output_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_vehicle_stepper_outputs": (ctypes.c_int, [_P, _PDOUBLE, _PERR]),
+    "fb_vehicle_stepper_set_input": (ctypes.c_int, [_P, ctypes.c_char_p, ctypes.c_double,
+                                                    _PERR]),
+    "fb_vehicle_stepper_input": (ctypes.c_double, [_P, ctypes.c_size_t]),
+    "fb_vehicle_stepper_set_scenario": (ctypes.c_int, [_P, _P, _PERR]),
     "fb_mat_nrows": (ctypes.c_size_t, [_P]),
     "fb_mat_ncols": (ctypes.c_size_t, [_P]),
     "fb_mat_nnz": (ctypes.c_size_t, [_P]),
@@ -765,7 +779,8 @@ class Scenario:
 
     def __init__(self, path, overrides=None, strict=False):
         self._begin(os.fspath(path))
-        items = list((overrides or {}).items())
+        self.overrides = dict(overrides or {})
+        items = list(self.overrides.items())
         # An error about an override names it as the caller wrote it:
         # overrides['speed_kmh']=-5, not flexbond's --set.
         keep = [(_c_text(k, "override key"), _c_text(_text(v), "override value", key=k),
@@ -803,6 +818,7 @@ class Scenario:
 
     def _begin(self, path):
         self._data_name = None
+        self.overrides = None  # a file's: {key: value}, as given
         self._s = ctypes.c_void_p()
         # Calls running on their threads (_with_vehicle): close() waits for them.
         self._calls = threading.Condition()
@@ -975,6 +991,13 @@ class Scenario:
 
         return self._with_vehicle("flexible", use, hull_modes=int(nhull), progress=progress)
 
+    def simulation(self, system, progress=None):
+        """A Simulation of one system of this scenario that the caller
+        advances, reads and changes on the way (co-simulation); it keeps a
+        copy of the scenario, which may be closed meanwhile. progress as
+        run's, for the set-up (System 2's hull); Ctrl-C stops the set-up."""
+        return Simulation(self, system, progress)
+
     def run_systems(self, systems=("rigid", "flexible")):
         """Runs each of systems; {name: Result}."""
         return {_SYSTEM_NAMES[_system(s)]: self.run(s) for s in systems}
@@ -1002,12 +1025,13 @@ class Scenario:
 
         return self._with_vehicle(system, use, progress=progress)
 
-    def _with_vehicle(self, system, use, hull_modes=0, progress=None):
-        """use(vehicle, reporter) on system of this scenario, realised once
-        with a _Reporter (the caller's progress, and the stop a Ctrl-C sets);
-        in _until_done, so that Ctrl-C reaches the caller at once. An
-        exception of progress is raised in place of the library's FB_EINTR.
-        close() waits for the call."""
+    def _in_call(self, system, body, hull_modes=0, progress=None):
+        """body(s, sys_id, opts, reporter) for system of this scenario (s its
+        handle, opts the fb_vehicle_opts with a _Reporter: the caller's
+        progress, and the stop a Ctrl-C sets); in _until_done, so that
+        Ctrl-C reaches the caller at once. An exception of progress is
+        raised in place of the library's FB_EINTR. close() waits for the
+        call."""
         sys_id = _system(system)
         with self._calls:  # open, and counted, at once: close() waits for the call
             s = self._handle()
@@ -1025,15 +1049,7 @@ class Scenario:
                 _lib.fb_vehicle_opts_default(ctypes.byref(opts))
                 opts.progress_fn = reporter.stage_fn
                 opts.hull_modes = hull_modes
-                v = ctypes.c_void_p()
-                err = _Err()
-                _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts),
-                                                    ctypes.byref(v), ctypes.byref(err)), err,
-                             self._data_name)
-                try:
-                    return use(v, reporter)
-                finally:
-                    _lib.fb_vehicle_free(ctypes.byref(v))
+                return body(s, sys_id, opts, reporter)
             except Error:
                 if reporter.error is not None:
                     raise reporter.error from None
@@ -1042,6 +1058,21 @@ class Scenario:
                 done()
 
         return _until_done(work, on_no_start=done)
+
+    def _with_vehicle(self, system, use, hull_modes=0, progress=None):
+        """use(vehicle, reporter) on system of this scenario, realised once
+        (_in_call)."""
+        def body(s, sys_id, opts, reporter):
+            v = ctypes.c_void_p()
+            err = _Err()
+            _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts), ctypes.byref(v),
+                                                ctypes.byref(err)), err, self._data_name)
+            try:
+                return use(v, reporter)
+            finally:
+                _lib.fb_vehicle_free(ctypes.byref(v))
+
+        return self._in_call(system, body, hull_modes, progress)
 
     def _with_descriptor(self, system, use):
         """use(descriptor) of system's linear model (flexbond export)."""
@@ -1157,3 +1188,168 @@ class Scenario:
 
     def __repr__(self):
         return "<flexbond.Scenario %s>" % self.path
+
+
+# ---- Stepping.
+
+class Simulation:
+    """One system of a scenario simulated step by step, as an FMI
+    co-simulation slave (fmi2DoStep) or a Chrono system (DoStepDynamics) is:
+    advance(t) integrates to time t exactly, outputs reads every output
+    there, set(...) changes an input or a value of the scenario, and the
+    next advance goes on from there (flexbond/vehicle.h, fb_vehicle_stepper).
+    Made by Scenario.simulation(system). It integrates as Scenario.run
+    does; cut at the caller's times, its outputs agree with the run's
+    within the scenario's tolerances.
+
+    What can change, at the current time, the integration restarting there
+    from the current state:
+      - an input (inputs: {name: value}), held until changed (zero-order
+        hold): "load_force", a vertical force on the load (N, up positive),
+        shared by the load points as the payload's weight is;
+      - any value of the scenario (set({key: value}) with the keys of
+        Scenario's overrides, or set_scenario(other)): the vehicle is
+        realised again and goes on from the current state, which must mean
+        the same there (no corner, mount or hull coordinate added or
+        removed: Error otherwise). The road is a function of time: a new
+        speed or bump moves it under the wheels from now on.
+
+    advance runs in the calling thread: a Ctrl-C is seen when it returns,
+    so advance in steps that take a moment each."""
+
+    def __init__(self, scenario, system, progress=None):
+        self._st = ctypes.c_void_p()
+        sys_id = _system(system)
+        self.system = _SYSTEM_NAMES[sys_id]
+        self._path, self._overrides = scenario.path, scenario.overrides
+
+        def body(s, sys_id, opts, reporter):
+            st = ctypes.c_void_p()
+            err = _Err()
+            _check_about(s, _lib.fb_vehicle_stepper_new(s, sys_id, ctypes.byref(opts),
+                                                        ctypes.byref(st), ctypes.byref(err)),
+                         err, scenario._data_name)
+            if reporter.stop:  # the caller has gone: nobody will free it
+                _lib.fb_vehicle_stepper_free(ctypes.byref(st))
+            return st
+
+        self._st = scenario._in_call(system, body, progress=progress)
+        self._names()
+
+    def _names(self):
+        n = _lib.fb_vehicle_stepper_noutputs(self._st)
+        self.names = [_lib.fb_vehicle_stepper_output_name(self._st, k).decode()
+                      for k in range(n)]
+        self.units = {name: _lib.fb_vehicle_stepper_output_unit(self._st, k).decode()
+                      for k, name in enumerate(self.names)}
+        self._index = {name: k for k, name in enumerate(self.names)}
+        self._y = numpy.empty(max(1, n))
+
+    def _handle(self):
+        if not self._st:
+            raise ValueError("flexbond: the simulation is closed")
+        return self._st
+
+    @property
+    def time(self):
+        """The time reached, s."""
+        return _lib.fb_vehicle_stepper_time(self._handle())
+
+    def advance(self, t):
+        """Integrates to time t (s), from the current time to the scenario's
+        t_end; returns self. Error if t is outside that range or the
+        integration fails (the simulation cannot go on after a failure)."""
+        err = _Err()
+        _check(_lib.fb_vehicle_stepper_advance(self._handle(), float(t), ctypes.byref(err)), err)
+        return self
+
+    def step(self, dt):
+        """advance(time + dt)."""
+        return self.advance(self.time + float(dt))
+
+    @property
+    def outputs(self):
+        """Every output at the current time: {name: value} in the order of
+        Scenario.run's columns after t (the scenario's outputs, then each
+        tire's contact_force_<CORNER>), SI units (units: {name: unit})."""
+        err = _Err()
+        _check(_lib.fb_vehicle_stepper_outputs(self._handle(), self._y.ctypes.data_as(_PDOUBLE),
+                                               ctypes.byref(err)), err)
+        return dict(zip(self.names, self._y.tolist()))
+
+    def output(self, name):
+        """One output at the current time."""
+        if name not in self._index:
+            raise KeyError("flexbond: no output %r; the outputs are %s"
+                           % (name, ", ".join(self.names)))
+        return self.outputs[name]
+
+    __getitem__ = output
+
+    @property
+    def inputs(self):
+        """The inputs and the values they hold: {name: value}."""
+        st = self._handle()
+        out, i = {}, 0
+        while _lib.fb_vehicle_input_name(i) is not None:
+            out[_lib.fb_vehicle_input_name(i).decode()] = _lib.fb_vehicle_stepper_input(st, i)
+            i += 1
+        return out
+
+    def set_input(self, name, value):
+        """Holds input name at value from the current time on."""
+        err = _Err()
+        _check(_lib.fb_vehicle_stepper_set_input(self._handle(), _c_text(name, "input name"),
+                                                 float(value), ctypes.byref(err)), err)
+
+    def set_scenario(self, scenario):
+        """Goes on with scenario (a Scenario of the same kind of vehicle)
+        from the current time and state, the inputs held as they are."""
+        with scenario._calls:
+            s = scenario._handle()
+            err = _Err()
+            rc = _lib.fb_vehicle_stepper_set_scenario(self._handle(), s, ctypes.byref(err))
+            _check_about(s, rc, err, scenario._data_name)
+        self._path, self._overrides = scenario.path, scenario.overrides
+        self._names()
+
+    def set(self, changes):
+        """Changes {name: value} at the current time: each name an input
+        (held at value) or a key of the scenario file as Scenario's
+        overrides take it ("speed_kmh", "suspensions.axles[0].spring_k"),
+        all of those applied at once on top of the scenario's own overrides
+        (a scenario read from a file: Scenario.from_dict's have none; give
+        set_scenario the changed description instead)."""
+        inputs = self.inputs
+        held = {k: v for k, v in changes.items() if k in inputs}
+        values = {k: v for k, v in changes.items() if k not in inputs}
+        if values:
+            if self._overrides is None:
+                raise ValueError("flexbond: %s is no input (%s), and a scenario made from data "
+                                 "takes its changes through set_scenario"
+                                 % (", ".join(map(repr, values)), ", ".join(inputs)))
+            merged = dict(self._overrides)
+            merged.update(values)
+            with Scenario(self._path, overrides=merged) as changed:
+                self.set_scenario(changed)
+        for name, value in held.items():
+            self.set_input(name, value)
+
+    def close(self):
+        """Frees the simulation (also done when it is garbage-collected)."""
+        if getattr(self, "_st", None):
+            _lib.fb_vehicle_stepper_free(ctypes.byref(self._st))
+
+    def __del__(self):
+        if _lib is not None:
+            self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __repr__(self):
+        return "<flexbond.Simulation %s at t = %g s>" % (
+            self.system, self.time if self._st else float("nan"))

@@ -241,6 +241,27 @@ int fb_bg_add_source(fb_bg *bg, const char *name, fb_bg_kind kind, size_t dim, f
   return rc;
 }
 
+int fb_bg_set_source(fb_bg *bg, const char *name, size_t k, fb_tfun **f, fb_err *err)
+{
+  const long i = fb_bg_find_element(bg, name);
+  int rc = FB_OK;
+  if (i < 0 || !bg->elems[i].values)
+    rc = fb_err_set(err, FB_EMODEL, "'%s': no such source", name);
+  else if (k >= bg->elems[i].dim)
+    rc =
+        fb_err_set(err, FB_EINVAL, "'%s': component %zu of %zu", name, k + 1, bg->elems[i].dim);
+  else if (!*f)
+    rc = fb_err_set(err, FB_EINVAL, "'%s': component %zu has no time function", name, k + 1);
+  if (rc) {
+    fb_tfun_free(f);
+    return rc;
+  }
+  fb_tfun_free(&bg->elems[i].values[k]);
+  bg->elems[i].values[k] = *f;
+  *f = NULL;
+  return FB_OK;
+}
+
 static int is_field_kind(fb_bg_kind kind)
 {
   return kind == FB_BG_I || kind == FB_BG_C || kind == FB_BG_R;

@@ -46,11 +46,14 @@
 #include "sim/nvector.h"
 #include "sim/sim_internal.h"
 
-/* Everything one run needs, reachable from CVODE's callbacks. */
-typedef struct sim_run {
+/* Everything one run needs, reachable from CVODE's callbacks: the
+ * stepper of flexbond/sim.h. fb_sim_run is a stepper that records the
+ * samples (res) and is advanced once to t_end. */
+struct fb_sim_stepper {
   fb_bd *bd;
-  const fb_sim_opts *opts;
-  size_t n; /* states */
+  fb_sim_opts o;           /* the caller's options, x0 and breakpoints not kept */
+  const fb_sim_opts *opts; /* &o */
+  size_t n;                /* states */
   SUNContext sunctx;
   void *cvode;
   N_Vector y;    /* state at the integrator's current time */
@@ -63,19 +66,24 @@ typedef struct sim_run {
   int linear;      /* v0, v1 change only at events (fb_bd_is_piecewise_linear) */
   int jac_failed;  /* the last linearisation of the model failed */
   double gamma;    /* gamma of the matrix CVODE asked for last */
-  double t_limit;  /* end of the current segment (breakpoint or t_end) */
+  double t_limit;  /* end of the current segment (breakpoint or stop time) */
   double t_left;   /* the double just below t_limit */
   double t_now;    /* time the integrator has reached */
-  double *bps;     /* breakpoints strictly inside (t_start, t_end) */
+  double *extra;   /* opts' breakpoints (a copy: a stepper outlives the caller's array) */
+  size_t nextra;
+  double *bps; /* breakpoints strictly inside (t_now at the last (re)start, t_end) */
   size_t nbps;
+  size_t next_bp;      /* the first breakpoint not yet reached */
+  int pending_restart; /* a mode changed within roundoff of a stop time: restart there */
+  int failed;          /* an advance failed: the integrator's state is not to be trusted */
   fb_sample_grid grid;
   size_t next_sample;
-  fb_result *res;
+  fb_result *res;    /* the samples (fb_sim_run), NULL for a caller's stepper */
   long steps_before; /* steps of the segments before the current one */
   char cvode_msg[1024];
   fb_err lin_err;
-  int *crossed; /* per guard: CVODE's root directions at an event */
-  fb_sim_stats *stats;
+  int *crossed;     /* per guard: CVODE's root directions at an event */
+  fb_sim_stats acc; /* the counters of the segments before the current one */
   /* The latest non-finite value that cv_rhs or cv_linsys met during the
    * current CVode call (cleared before each): if CVODE gives up, that is
    * why. It is explained (fb_sim_explain_nonfinite walks the diagram)
@@ -87,7 +95,8 @@ typedef struct sim_run {
   size_t nonfinite_state; /* whose derivative ... */
   double nonfinite_value; /* ... was this */
   N_Vector ybad;          /* the state of that evaluation */
-} sim_run;
+};
+typedef struct fb_sim_stepper sim_run;
 
 /* ---- Model callbacks. */
 
@@ -428,12 +437,12 @@ static int cv_call(const sim_run *run, const char *call, int flag, fb_err *err)
   return flag < 0 ? setup_failure(run, call, flag, err) : FB_OK;
 }
 
-/* Initial state: opts->x0 or the graph's, finite. */
-static int initial_state(sim_run *run, fb_err *err)
+/* Initial state: x0 (opts->x0) or the graph's, finite. */
+static int initial_state(sim_run *run, const double *x0, fb_err *err)
 {
   double *y = N_VGetArrayPointer(run->y);
-  if (run->opts->x0)
-    memcpy(y, run->opts->x0, run->n * sizeof *y);
+  if (x0)
+    memcpy(y, x0, run->n * sizeof *y);
   else
     fb_bd_initial_state(run->bd, y);
   for (size_t i = 0; i < run->n; ++i)
@@ -526,6 +535,7 @@ static void run_free(sim_run *run)
   free(run->v0);
   free(run->v1);
   free(run->bps);
+  free(run->extra);
   free(run->crossed);
 }
 
@@ -537,25 +547,29 @@ static int compare_doubles(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
-/* run->bps = the sources' and opts' breakpoints strictly inside
- * (t_start, t_end), sorted, without near duplicates: times closer than
+/* run->bps = the sources' and opts' breakpoints strictly inside (t_from,
+ * t_end), sorted, without near duplicates: times closer than
  * fb_sim_same_time_tol are one, since CVODE cannot start a segment
- * shorter than a few roundoffs of its end points (CV_TOO_CLOSE). */
-static int collect_breakpoints(sim_run *run, fb_err *err)
+ * shorter than a few roundoffs of its end points (CV_TOO_CLOSE). Called
+ * at the start and again after a change of the diagram's inputs, whose
+ * time functions may have breakpoints of their own. */
+static int collect_breakpoints(sim_run *run, double t_from, fb_err *err)
 {
   const fb_sim_opts *o = run->opts;
   const size_t bound = fb_bd_breakpoints(run->bd, NULL, 0);
-  run->bps = malloc((bound + o->nbreakpoints + 1) * sizeof *run->bps);
+  free(run->bps);
+  run->nbps = run->next_bp = 0;
+  run->bps = malloc((bound + run->nextra + 1) * sizeof *run->bps);
   if (!run->bps)
-    return fb_err_set(err, FB_ENOMEM, "out of memory for %zu breakpoints",
-                      bound + o->nbreakpoints);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for %zu breakpoints", bound + run->nextra);
   const size_t nsrc = fb_bd_breakpoints(run->bd, run->bps, bound);
-  const size_t total = nsrc + o->nbreakpoints;
-  if (o->nbreakpoints)
-    memcpy(run->bps + nsrc, o->breakpoints, o->nbreakpoints * sizeof *run->bps);
+  const size_t total = nsrc + run->nextra;
+  if (run->nextra)
+    memcpy(run->bps + nsrc, run->extra, run->nextra * sizeof *run->bps);
   qsort(run->bps, total, sizeof *run->bps, compare_doubles);
-  double last = o->t_start;
+  double last = t_from;
   run->nbps = 0;
+  run->next_bp = 0;
   for (size_t i = 0; i < total; ++i) {
     const double t = run->bps[i];
     if (t - last > fb_sim_same_time_tol(t, last) &&
@@ -567,32 +581,39 @@ static int collect_breakpoints(sim_run *run, fb_err *err)
 
 /* ---- Sampling. */
 
-/* Writes row k of the result: t, then the outputs at state x. */
-static int write_sample(sim_run *run, size_t k, double t, const double *x, fb_err *err)
+/* The outputs at (t, x) into y, every one finite. */
+static int eval_outputs(sim_run *run, double t, const double *x, double *y, fb_err *err)
 {
-  double *row = run->res->data + k * run->res->ncols;
-  row[0] = t;
-  if (fb_bd_outputs(run->bd, t, x, row + 1) != 0)
+  if (fb_bd_outputs(run->bd, t, x, y) != 0)
     return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: evaluating the outputs failed: %s", t,
                       fb_bd_last_error(run->bd));
   /* An output the dynamics do not need (a power probe, an energy) is
-   * not checked by cv_rhs; a non-finite one must not reach the table. */
-  const size_t nout = run->res->ncols - 1, bad = fb_first_nonfinite(row + 1, nout);
+   * not checked by cv_rhs; a non-finite one must not reach the caller. */
+  const size_t nout = fb_bd_noutputs(run->bd), bad = fb_first_nonfinite(y, nout);
   if (bad < nout) {
     char what[300], msg[FB_SIM_NONFINITE_MAX];
     snprintf(what, sizeof what, "output %s is %g", fb_bd_output_name(run->bd, bad),
-             fb_printable(row[1 + bad]));
+             fb_printable(y[bad]));
     fb_sim_explain_nonfinite(run->bd, t, x, 0, what, msg, sizeof msg);
     return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: %s", t, msg);
   }
   return FB_OK;
 }
 
+/* Writes row k of the result: t, then the outputs at state x. */
+static int write_sample(sim_run *run, size_t k, double t, const double *x, fb_err *err)
+{
+  double *row = run->res->data + k * run->res->ncols;
+  row[0] = t;
+  return eval_outputs(run, t, x, row + 1, err);
+}
+
 /* Every pending sample at or before tcur, interpolated within the last
- * step by CVODE's Nordsieck polynomial. */
+ * step by CVODE's Nordsieck polynomial; none for a stepper that does not
+ * record. */
 static int emit_samples(sim_run *run, double tcur, fb_err *err)
 {
-  while (run->next_sample < run->grid.n) {
+  while (run->res && run->next_sample < run->grid.n) {
     const double t = fb_sample_grid_time(&run->grid, run->next_sample);
     if (t > tcur)
       break;
@@ -609,13 +630,13 @@ static int emit_samples(sim_run *run, double tcur, fb_err *err)
 
 /* ---- Stepping. */
 
-/* CVODE's first call evaluates f at the initial state, where no shorter
- * step can help (CV_FIRST_RHSFUNC_ERR): a non-finite derivative there is
- * reported at once, as the initial state's. ysam is free until the
- * first sample is interpolated. */
+/* CVODE's first call after a (re)start evaluates f at the state there,
+ * where no shorter step can help (CV_FIRST_RHSFUNC_ERR): a non-finite
+ * derivative there is reported at once, as the state's. ysam is free
+ * until the next sample is interpolated. */
 static int check_initial_rhs(sim_run *run, fb_err *err)
 {
-  const double t = run->opts->t_start, *x = N_VGetArrayPointer(run->y);
+  const double t = run->t_now, *x = N_VGetArrayPointer(run->y);
   double *f = N_VGetArrayPointer(run->ysam);
   if (fb_bd_rhs(run->bd, t, x, f) != 0)
     return FB_OK; /* a failing law: CVODE reports it with its flag */
@@ -623,8 +644,9 @@ static int check_initial_rhs(sim_run *run, fb_err *err)
   if (bad == run->n)
     return FB_OK;
   char what[300], msg[FB_SIM_NONFINITE_MAX];
-  snprintf(what, sizeof what, "the derivative of state %s is %g at the initial state",
-           fb_bd_state_name(run->bd, bad), fb_printable(f[bad]));
+  snprintf(what, sizeof what, "the derivative of state %s is %g at the %s state",
+           fb_bd_state_name(run->bd, bad), fb_printable(f[bad]),
+           t == run->opts->t_start ? "initial" : "restart");
   fb_sim_explain_nonfinite(run->bd, t, x, 0, what, msg, sizeof msg);
   return fb_err_set(err, FB_ESOLVER, "at t = %.6g s: %s", t, msg);
 }
@@ -691,14 +713,16 @@ static int check_budget(const sim_run *run, double t, fb_err *err)
   return FB_ESOLVER;
 }
 
-/* Adds the counters of the segment just finished (CVodeReInit resets
- * them). */
-static void add_segment_stats(sim_run *run, fb_sim_stats *s)
+/* s = run->acc plus the counters of the current segment (CVodeReInit
+ * resets CVODE's own). */
+static void current_stats(const sim_run *run, fb_sim_stats *s)
 {
+  *s = run->acc;
+  if (!run->cvode)
+    return;
   long v = 0;
   CVodeGetNumSteps(run->cvode, &v);
   s->steps += v;
-  run->steps_before += v;
   CVodeGetNumRhsEvals(run->cvode, &v);
   s->rhs_evals += v;
   CVodeGetNumLinSolvSetups(run->cvode, &v);
@@ -710,6 +734,16 @@ static void add_segment_stats(sim_run *run, fb_sim_stats *s)
   CVodeGetNumErrTestFails(run->cvode, &v);
   s->err_test_fails += v;
   CVodeGetLastOrder(run->cvode, &s->last_order);
+  s->factorizations = fb_auglin_nfactorizations(run->lin);
+}
+
+/* Adds the counters of the segment just finished to run->acc, before a
+ * restart (CVodeReInit resets them). */
+static void add_segment_stats(sim_run *run)
+{
+  const long before = run->acc.steps;
+  current_stats(run, &run->acc);
+  run->steps_before += run->acc.steps - before;
 }
 
 /* Makes the switched laws' modes consistent with the state at t, where
@@ -722,6 +756,15 @@ static int sync_modes(sim_run *run, double t, int *changed, fb_err *err)
   if (*changed)
     run->have_values = 0; /* the linearisation belongs to the old modes */
   return FB_OK;
+}
+
+/* Restarts the integration at the current time and state: order 1, a
+ * fresh history, since the right-hand side is not smooth across it. */
+static int restart_here(sim_run *run, fb_err *err)
+{
+  add_segment_stats(run);
+  run->pending_restart = 0;
+  return cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, run->t_now, run->y), err);
 }
 
 /* CVODE stopped at a zero crossing of guards (CV_ROOT_RETURN), with
@@ -741,22 +784,51 @@ static int handle_event(sim_run *run, double t_stop, fb_err *err)
                       fb_bd_last_error(run->bd));
   if (!changed)
     return FB_OK;
-  run->stats->events++;
+  run->acc.events++;
   run->have_values = 0; /* the linearisation belongs to the old modes */
   /* Within roundoff of the segment's end CVODE cannot restart (the
    * interval is too short); what is left of the segment is that roundoff,
-   * and the next segment starts afresh. */
-  if (t_stop - run->t_now <= fb_sim_same_time_tol(t_stop, run->t_now))
+   * and the next segment starts afresh (at a breakpoint, or through
+   * pending_restart at a caller's stop time). */
+  if (t_stop - run->t_now <= fb_sim_same_time_tol(t_stop, run->t_now)) {
+    run->pending_restart = 1;
     return FB_OK;
-  add_segment_stats(run, run->stats);
-  int rc = cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, run->t_now, run->y), err);
+  }
+  int rc = restart_here(run, err);
   if (rc == FB_OK)
     rc = cv_call(run, "CVodeSetStopTime", CVodeSetStopTime(run->cvode, t_stop), err);
   return rc;
 }
 
+/* One internal step towards t_stop, with its checks, samples and event. */
+static int take_step(sim_run *run, double t_stop, int *flag, fb_err *err)
+{
+  int rc = check_budget(run, run->t_now, err);
+  if (rc != FB_OK)
+    return rc;
+  const double t_before = run->t_now;
+  run->has_nonfinite = 0; /* what the callbacks meet during this step */
+  /* tout = t_stop only bounds the initial step-size estimate. */
+  *flag = CVode(run->cvode, t_stop, run->y, &run->t_now, CV_ONE_STEP);
+  if (*flag < 0)
+    return cvode_failure(run, *flag, run->t_now, err);
+  /* Failures CVODE recovered from are no news. */
+  run->lin_err.msg[0] = '\0';
+  run->jac_failed = 0;
+  rc = check_progress(run, t_before, err);
+  if (rc == FB_OK)
+    rc = check_finite_state(run, run->t_now, err);
+  if (rc == FB_OK)
+    rc = emit_samples(run, run->t_now, err);
+  if (rc == FB_OK && *flag == CV_ROOT_RETURN)
+    rc = handle_event(run, t_stop, err);
+  return rc;
+}
+
 /* Integrates from the current time to t_stop, one internal step at a
- * time, sampling after each step. */
+ * time, sampling after each step. CVODE lands on t_stop exactly
+ * (CVodeSetStopTime): a caller's stop time costs a shortened step, not
+ * a restart. */
 static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
 {
   run->t_limit = t_stop;
@@ -765,25 +837,7 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
   if (flag < 0)
     return setup_failure(run, "CVodeSetStopTime", flag, err);
   do {
-    int rc = check_budget(run, run->t_now, err);
-    if (rc != FB_OK)
-      return rc;
-    const double t_before = run->t_now;
-    run->has_nonfinite = 0; /* what the callbacks meet during this step */
-    /* tout = t_stop only bounds the initial step-size estimate. */
-    flag = CVode(run->cvode, t_stop, run->y, &run->t_now, CV_ONE_STEP);
-    if (flag < 0)
-      return cvode_failure(run, flag, run->t_now, err);
-    /* Failures CVODE recovered from are no news. */
-    run->lin_err.msg[0] = '\0';
-    run->jac_failed = 0;
-    rc = check_progress(run, t_before, err);
-    if (rc == FB_OK)
-      rc = check_finite_state(run, run->t_now, err);
-    if (rc == FB_OK)
-      rc = emit_samples(run, run->t_now, err);
-    if (rc == FB_OK && flag == CV_ROOT_RETURN)
-      rc = handle_event(run, t_stop, err);
+    const int rc = take_step(run, t_stop, &flag, err);
     if (rc != FB_OK)
       return rc;
     if (run->opts->progress &&
@@ -791,6 +845,7 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
       return fb_err_set(err, FB_EINTR, "at t = %.6g s: the simulation was interrupted",
                         run->t_now);
   } while (flag != CV_TSTOP_RETURN);
+  run->t_now = t_stop; /* CVODE returns tstop itself; no roundoff left to carry */
   return FB_OK;
 }
 
@@ -802,12 +857,14 @@ static int integrate_segment(sim_run *run, double t_stop, fb_err *err)
 static int restart_at_breakpoint(sim_run *run, double t, fb_err *err)
 {
   int changed = 0;
-  int rc = cv_call(run, "CVodeReInit", CVodeReInit(run->cvode, t, run->y), err);
+  int rc = restart_here(run, err);
   if (rc == FB_OK)
     rc = sync_modes(run, t, &changed, err);
   if (rc != FB_OK || !changed)
     return rc;
-  run->stats->events++;
+  run->acc.events++;
+  if (!run->res)
+    return FB_OK;
   const size_t last = run->next_sample - 1;
   const double t_last = fb_sample_grid_time(&run->grid, last);
   if (fabs(t_last - t) <= fb_sim_same_time_tol(t_last, t))
@@ -815,27 +872,27 @@ static int restart_at_breakpoint(sim_run *run, double t, fb_err *err)
   return rc;
 }
 
-/* All segments between breakpoints; a restart at each breakpoint. */
-static int integrate(sim_run *run, fb_sim_stats *stats, fb_err *err)
+/* The segments from the current time to t: a stop at every breakpoint
+ * on the way, with a restart there (also at t itself when t is one, so
+ * that the state at t is the right limit the next advance starts
+ * from). */
+static int integrate_to(sim_run *run, double t, fb_err *err)
 {
-  const fb_sim_opts *o = run->opts;
-  int rc =
-      write_sample(run, 0, fb_sample_grid_time(&run->grid, 0), N_VGetArrayPointer(run->y), err);
-  run->next_sample = 1;
-  run->t_now = o->t_start;
-  for (size_t seg = 0; rc == FB_OK && seg <= run->nbps; ++seg) {
-    if (seg > 0) {
-      add_segment_stats(run, stats);
-      rc = restart_at_breakpoint(run, run->bps[seg - 1], err);
-    }
+  int rc = FB_OK;
+  while (rc == FB_OK && t - run->t_now > fb_sim_same_time_tol(t, run->t_now)) {
+    if (run->pending_restart)
+      rc = restart_here(run, err);
+    const int to_bp =
+        run->next_bp < run->nbps &&
+        run->bps[run->next_bp] - t <= fb_sim_same_time_tol(t, run->bps[run->next_bp]);
+    const double stop = to_bp ? run->bps[run->next_bp] : t;
     if (rc == FB_OK)
-      rc = integrate_segment(run, seg < run->nbps ? run->bps[seg] : o->t_end, err);
+      rc = integrate_segment(run, stop, err);
+    if (rc == FB_OK && to_bp) {
+      rc = restart_at_breakpoint(run, stop, err);
+      run->next_bp++;
+    }
   }
-  if (rc == FB_OK)
-    add_segment_stats(run, stats);
-  if (rc == FB_OK && run->next_sample != run->grid.n)
-    rc = fb_err_set(err, FB_ESOLVER, "internal: %zu of %zu samples written", run->next_sample,
-                    run->grid.n);
   return rc;
 }
 
@@ -851,7 +908,20 @@ static int sample_static(sim_run *run, fb_err *err)
   return FB_OK;
 }
 
-static int run_dynamic(sim_run *run, fb_err *err)
+/* Copies opts' breakpoints, which the stepper outlives. */
+static int keep_breakpoints(sim_run *run, const fb_sim_opts *opts, fb_err *err)
+{
+  run->nextra = opts->nbreakpoints;
+  run->extra = malloc((run->nextra + 1) * sizeof *run->extra);
+  if (!run->extra)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for %zu breakpoints", run->nextra);
+  if (run->nextra)
+    memcpy(run->extra, opts->breakpoints, run->nextra * sizeof *run->extra);
+  return FB_OK;
+}
+
+/* The integrator at opts->t_start, x0 (NULL: the graph's). */
+static int start_dynamic(sim_run *run, const double *x0, fb_err *err)
 {
   if (SUNContext_Create(NULL, &run->sunctx) != 0)
     return fb_err_set(err, FB_ENOMEM, "out of memory creating the SUNDIALS context");
@@ -864,27 +934,154 @@ static int run_dynamic(sim_run *run, fb_err *err)
   /* A diagram linear within each mode has a constant Newton matrix
    * between events; the values are refreshed after each event. */
   run->linear = fb_bd_is_linear(run->bd) || fb_bd_is_piecewise_linear(run->bd);
-  run->stats = &run->res->stats;
   run->crossed = calloc(fb_bd_nguards(run->bd) + 1, sizeof *run->crossed);
   if (!run->crossed)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the guards");
-  int rc = initial_state(run, err);
+  int rc = initial_state(run, x0, err);
   int changed = 0;
   if (rc == FB_OK)
     rc = sync_modes(run, run->opts->t_start, &changed, err);
   if (rc == FB_OK)
     rc = check_initial_rhs(run, err);
   if (rc == FB_OK)
-    rc = collect_breakpoints(run, err);
+    rc = collect_breakpoints(run, run->opts->t_start, err);
   if (rc == FB_OK)
     rc = make_auglin(run, err);
   if (rc == FB_OK)
     rc = make_cvode(run, err);
-  if (rc == FB_OK)
-    rc = integrate(run, run->stats, err);
-  if (rc == FB_OK)
-    run->res->stats.factorizations = fb_auglin_nfactorizations(run->lin);
   return rc;
+}
+
+/* A stepper over bd at opts->t_start (checked options), recording into
+ * res when not NULL (taken over). */
+static int stepper_new(fb_bd *bd, const fb_sim_opts *opts, fb_result *res, sim_run **out,
+                       fb_err *err)
+{
+  *out = NULL;
+  sim_run *run = calloc(1, sizeof *run);
+  if (!run) {
+    fb_result_free(&res);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a simulation");
+  }
+  run->bd = bd;
+  run->o = *opts;
+  run->o.x0 = NULL;
+  run->o.breakpoints = NULL;
+  run->opts = &run->o;
+  run->n = fb_bd_nstates(bd);
+  run->t_now = opts->t_start;
+  run->res = res;
+  fb_err_clear(&run->lin_err);
+  fb_sample_grid_init(&run->grid, opts);
+  int rc = keep_breakpoints(run, opts, err);
+  if (rc == FB_OK && run->n)
+    rc = start_dynamic(run, opts->x0, err);
+  if (rc == FB_OK && res && run->n)
+    rc = write_sample(run, 0, fb_sample_grid_time(&run->grid, 0), N_VGetArrayPointer(run->y),
+                      err);
+  run->next_sample = 1;
+  if (rc != FB_OK) {
+    fb_sim_stepper_free(&run);
+    return rc;
+  }
+  *out = run;
+  return FB_OK;
+}
+
+int fb_sim_stepper_create(fb_bd *bd, const fb_sim_opts *opts, fb_sim_stepper **out, fb_err *err)
+{
+  *out = NULL;
+  /* Nothing is recorded: the samples' count and memory, which the check
+   * bounds for a run, are no limit on a stepper (a co-simulation may go
+   * on for days); one sample over the horizon passes that part. */
+  fb_sim_opts checked = *opts;
+  checked.noutputs = fb_bd_noutputs(bd);
+  const double horizon = opts->t_end - opts->t_start;
+  if (horizon > 0 && isfinite(horizon))
+    checked.sample_rate = 1.0 / horizon;
+  int rc = fb_sim_opts_check(&checked, err);
+  if (rc == FB_OK)
+    rc = stepper_new(bd, &checked, NULL, out, err);
+  return rc;
+}
+
+void fb_sim_stepper_free(fb_sim_stepper **st)
+{
+  if (!st || !*st)
+    return;
+  run_free(*st);
+  fb_result_free(&(*st)->res);
+  free(*st);
+  *st = NULL;
+}
+
+int fb_sim_stepper_advance(fb_sim_stepper *st, double t, fb_err *err)
+{
+  if (st->failed)
+    return fb_err_set(err, FB_EINVAL,
+                      "the simulation failed earlier, at t = %.6g s; it cannot go on",
+                      st->t_now);
+  if (!(t >= st->t_now) || t - st->o.t_end > fb_sim_same_time_tol(t, st->o.t_end)) {
+    fb_err_set(err, FB_EINVAL, "advance to t = %g s: must be in [%.9g, %.9g] s (now to t_end)",
+               t, st->t_now, st->o.t_end);
+    fb_err_set_key(err, "t");
+    return FB_EINVAL;
+  }
+  if (!st->n) {
+    st->t_now = t;
+    return FB_OK;
+  }
+  const int rc = integrate_to(st, fmin(t, st->o.t_end), err);
+  st->failed = rc != FB_OK && rc != FB_EINTR;
+  return rc;
+}
+
+int fb_sim_stepper_reset(fb_sim_stepper *st, fb_err *err)
+{
+  if (st->failed)
+    return fb_err_set(err, FB_EINVAL,
+                      "the simulation failed earlier, at t = %.6g s; it cannot go on",
+                      st->t_now);
+  if (!st->n)
+    return FB_OK;
+  int changed = 0;
+  int rc = restart_here(st, err);
+  st->have_values = 0; /* the linearisation belongs to the old inputs or parameters */
+  if (rc == FB_OK)
+    rc = sync_modes(st, st->t_now, &changed, err);
+  st->acc.events += changed;
+  if (rc == FB_OK)
+    rc = check_initial_rhs(st, err);
+  if (rc == FB_OK)
+    rc = collect_breakpoints(st, st->t_now, err);
+  st->failed = rc != FB_OK;
+  return rc;
+}
+
+double fb_sim_stepper_time(const fb_sim_stepper *st)
+{
+  return st->t_now;
+}
+
+size_t fb_sim_stepper_nstates(const fb_sim_stepper *st)
+{
+  return st->n;
+}
+
+const double *fb_sim_stepper_state(const fb_sim_stepper *st)
+{
+  return st->n ? N_VGetArrayPointer(st->y) : NULL;
+}
+
+int fb_sim_stepper_outputs(fb_sim_stepper *st, double *y, fb_err *err)
+{
+  const double none = 0;
+  return eval_outputs(st, st->t_now, st->n ? N_VGetArrayPointer(st->y) : &none, y, err);
+}
+
+void fb_sim_stepper_stats(const fb_sim_stepper *st, fb_sim_stats *stats)
+{
+  current_stats(st, stats);
 }
 
 int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err)
@@ -899,22 +1096,24 @@ int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err)
   int rc = fb_sim_opts_check(&checked, err);
   if (rc != FB_OK)
     return rc;
-  sim_run run;
-  memset(&run, 0, sizeof run);
-  run.bd = bd;
-  run.opts = opts;
-  run.n = fb_bd_nstates(bd);
-  fb_err_clear(&run.lin_err);
-  fb_sample_grid_init(&run.grid, opts);
-  rc = fb_result_alloc(bd, run.grid.n, &run.res, err);
+  fb_sample_grid grid;
+  fb_sample_grid_init(&grid, opts);
+  fb_result *res = NULL;
+  rc = fb_result_alloc(bd, grid.n, &res, err);
+  sim_run *run = NULL;
   if (rc == FB_OK)
-    rc = run.n ? run_dynamic(&run, err) : sample_static(&run, err);
-  run_free(&run);
-  if (rc != FB_OK) {
-    fb_result_free(&run.res);
-    return rc;
+    rc = stepper_new(bd, opts, res, &run, err);
+  if (rc == FB_OK)
+    rc = run->n ? integrate_to(run, opts->t_end, err) : sample_static(run, err);
+  if (rc == FB_OK && run->n && run->next_sample != run->grid.n)
+    rc = fb_err_set(err, FB_ESOLVER, "internal: %zu of %zu samples written", run->next_sample,
+                    run->grid.n);
+  if (rc == FB_OK) {
+    current_stats(run, &run->res->stats);
+    run->res->stats.wall_seconds = fb_seconds_since(&t0);
+    *out = run->res;
+    run->res = NULL;
   }
-  run.res->stats.wall_seconds = fb_seconds_since(&t0);
-  *out = run.res;
-  return FB_OK;
+  fb_sim_stepper_free(&run);
+  return rc;
 }

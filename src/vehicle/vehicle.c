@@ -31,6 +31,9 @@ struct fb_vehicle {
   size_t nprobes;
   fb_bd *bd;
   size_t ncoords; /* the hull's coordinates (the motion's first probe) */
+  /* The inputs a stepper holds (FB_VEHICLE_NINPUTS values, borrowed from
+   * it), which the load reads; NULL: the load is the constant weight. */
+  const double *held;
   fb_vehicle_work work;
 };
 
@@ -120,6 +123,8 @@ static int build_diagram(fb_vehicle *v, const fb_scenario *s, int enriched, unsi
   int rc = hull_fragment(v, s, enriched, &hull, err);
   if (!rc)
     rc = vehicle_graph_around(s, &hull, extras, &v->ncoords, graph, probes, nprobes, err);
+  if (!rc && v->held)
+    rc = vehicle_hold_inputs(s, v->held, *graph, err);
   if (!rc)
     rc = fb_bd_build(*graph, *probes, *nprobes, bd, err);
   if (!rc)
@@ -169,8 +174,8 @@ static int variant_new(fb_vehicle *v, void (*change)(fb_scenario *),
 
 /* ---- Realisation. */
 
-int fb_vehicle_new(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
-                   fb_vehicle **out, fb_err *err)
+int vehicle_new_held(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
+                     const double *held, fb_vehicle **out, fb_err *err)
 {
   *out = NULL;
   if (!s)
@@ -184,6 +189,7 @@ int fb_vehicle_new(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   v->s = s;
   v->sys = sys;
+  v->held = held;
   if (o)
     v->opts = *o;
   else
@@ -205,11 +211,20 @@ int fb_vehicle_new(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o
   return FB_OK;
 }
 
+int fb_vehicle_new(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
+                   fb_vehicle **out, fb_err *err)
+{
+  return vehicle_new_held(s, sys, o, NULL, out, err);
+}
+
+fb_bd *vehicle_diagram(fb_vehicle *v)
+{
+  return v->bd;
+}
+
 /* ---- Runs. */
 
-/* The initial state of diagram bd per s->initial into *x0 (new): zero,
- * or the static equilibrium. */
-static int initial_state(fb_vehicle *v, fb_bd *bd, double **x0, fb_err *err)
+int vehicle_initial_state(fb_vehicle *v, fb_bd *bd, double **x0, fb_err *err)
 {
   const size_t n = fb_bd_nstates(bd);
   *x0 = calloc(n + 1, sizeof **x0);
@@ -232,7 +247,7 @@ static int integrate(fb_vehicle *v, fb_bd *bd, fb_sim_progress_fn fn, void *ctx,
                      fb_result **out, fb_err *err)
 {
   double *x0 = NULL;
-  int rc = initial_state(v, bd, &x0, err);
+  int rc = vehicle_initial_state(v, bd, &x0, err);
   fb_sim_opts o;
   fb_vehicle_sim_opts(v->s, &o);
   o.x0 = x0;
