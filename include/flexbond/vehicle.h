@@ -59,6 +59,8 @@ typedef enum fb_system {
 /* A realised vehicle and System 2's finite-element hull (below). */
 typedef struct fb_vehicle fb_vehicle;
 typedef struct fb_fe_hull fb_fe_hull;
+/* A kind of output signal (below, "Outputs"). */
+typedef struct fb_output_kind fb_output_kind;
 
 /* A rigid body moving vertically on a spring and a damper in parallel to a
  * hull point (driver plus seat, engine, a commander's seat, a cargo box). */
@@ -549,6 +551,42 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
  * fb_scenario_prepare_road. FB_EINVAL when t is not sound
  * (fb_road_type_check). */
 int fb_scenario_set_road(fb_scenario *s, const fb_road_type *t, void **params, fb_err *err);
+/* ---- A description made by a program (src/vehicle/builder.c): a new
+ * one, then its parts added by copy (the description owns what it holds;
+ * the caller keeps its arguments). Scalars (gravity, the hull's
+ * material, the simulation's settings, has_fe_hull and hull_mesh for
+ * System 2, ...) are set in the struct; fb_scenario_check says what is
+ * missing or wrong, naming the part (fb_scenario_part_text). */
+
+/* *out new: named name (NULL: "vehicle"), no corner, mount, load point
+ * or output yet, no road (fb_scenario_set_road), System 1 only
+ * (has_fe_hull 0); standard gravity 9.80665 m/s^2, a weight-only
+ * payload, the solver's defaults (fb_sim_opts_default: t_end 1 s,
+ * rtol 1e-6, atol 1e-9, 1000 samples/s) and a start from the static
+ * equilibrium; for System 2, modal hull coordinates with the `auto`
+ * basis. FB_ENOMEM. */
+int fb_scenario_new(const char *name, fb_scenario **out, fb_err *err);
+/* The rigid hull's mass (kg) and inertias about its centre of mass
+ * (kg m^2), given (hull_mass_given). */
+void fb_scenario_set_rigid_hull(fb_scenario *s, double mass, double ixx, double iyy);
+/* Appends a copy of c (its name copied; c stays the caller's). FB_EINVAL
+ * without a name, FB_ENOMEM. The same for a mounted body and a hull
+ * mass; a load point is its position (m). */
+int fb_scenario_add_corner(fb_scenario *s, const fb_corner_params *c, fb_err *err);
+int fb_scenario_add_mount(fb_scenario *s, const fb_mount *m, fb_err *err);
+int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err);
+int fb_scenario_add_load_point(fb_scenario *s, double x, double y, fb_err *err);
+/* Appends a copy of the output o: its signal (a kind of
+ * fb_vehicle_output_kinds) and subject (`of` a corner or mount added
+ * before, `bond`, or none for the hull); name, unit, title and label
+ * left NULL come from the kind (fb_output_spec_complete). FB_EINVAL for
+ * an unknown signal or a subject the kind does not take. */
+int fb_scenario_add_output(fb_scenario *s, const fb_output_spec *o, fb_err *err);
+/* Fills o's name, title, label and unit where NULL from kind's patterns
+ * ("tire_force_%s" with o->of; a bond signal's column is the signal and
+ * the bond, '.' as '_'). FB_ENOMEM. */
+int fb_output_spec_complete(fb_output_spec *o, const fb_output_kind *kind, fb_err *err);
+
 /* The road type's prepare op (reads what its values name, resolves
  * alternatives); errors name their parameter (FB_PART_ROAD). */
 int fb_scenario_prepare_road(fb_scenario *s, fb_err *err);
@@ -689,7 +727,7 @@ typedef enum fb_output_subject {
   FB_OUTPUT_OF_BOND    /* `bond` names a bond of the assembled graph */
 } fb_output_subject;
 
-typedef struct fb_output_kind {
+struct fb_output_kind {
   const char *signal; /* "tire_force" */
   fb_output_subject subject;
   const char *unit;  /* NULL for bond signals: from the bond's domain */
@@ -697,7 +735,7 @@ typedef struct fb_output_kind {
   const char *title; /* default figure title, "%s" the subject's name */
   const char *label; /* default short label, "%s" the subject's name */
   const char *doc;   /* one line for docs/vehicle-outputs.md */
-} fb_output_kind;
+};
 
 /* The kinds, n of them in *n. */
 const fb_output_kind *fb_vehicle_output_kinds(size_t *n);

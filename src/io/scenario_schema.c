@@ -413,55 +413,6 @@ static const sch_ops sc_damper_table = {
 
 /* ---- outputs. */
 
-/* pattern with its "%s" replaced by subject, into *out (new) unless
- * *out is set already (the file gave it). */
-static int sc_pattern(const char *pattern, const char *subject, char **out)
-{
-  if (*out || !pattern)
-    return FB_OK;
-  const char *at = strstr(pattern, "%s");
-  const size_t n = strlen(pattern) + strlen(subject) + 1;
-  *out = malloc(n);
-  if (!*out)
-    return FB_ENOMEM;
-  if (at)
-    snprintf(*out, n, "%.*s%s%s", (int)(at - pattern), pattern, subject, at + 2);
-  else
-    snprintf(*out, n, "%s", pattern);
-  return FB_OK;
-}
-
-/* A bond signal's column: signal_bond, the bond's '.' made '_'. */
-static int sc_bond_column(const fb_output_spec *o, char **out)
-{
-  if (*out)
-    return FB_OK;
-  const size_t n = strlen(o->signal) + strlen(o->bond) + 2;
-  *out = malloc(n);
-  if (!*out)
-    return FB_ENOMEM;
-  snprintf(*out, n, "%s_%s", o->signal, o->bond);
-  for (char *p = *out; *p; ++p)
-    if (*p == '.')
-      *p = '_';
-  return FB_OK;
-}
-
-/* The name, title, label and unit an output takes from its kind. */
-static int sc_output_defaults(const ml_ctx *c, fb_output_spec *o, const fb_output_kind *kind)
-{
-  const int bond = kind->subject == FB_OUTPUT_OF_BOND;
-  const char *subject = bond ? o->bond : o->of ? o->of : "";
-  int rc = bond ? sc_bond_column(o, &o->name) : sc_pattern(kind->name, subject, &o->name);
-  if (!rc)
-    rc = sc_pattern(kind->title, subject, &o->title);
-  if (!rc)
-    rc = sc_pattern(kind->label, subject, &o->label);
-  if (!rc)
-    rc = sc_pattern(kind->unit, "", &o->unit);
-  return rc ? fb_err_set(c->err, FB_ENOMEM, "out of memory for an output") : FB_OK;
-}
-
 /* fb_name_fn over the signal kinds. */
 static const char *sc_kind_signal(const void *ctx, size_t i)
 {
@@ -520,7 +471,7 @@ static int sc_output_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   int rc = sc_output_kind(r->c, ml_get(node, "signal", NULL), o->signal, &kind);
   if (!rc)
     rc = sc_output_subject(r->c, node, o, kind);
-  return rc ? rc : sc_output_defaults(r->c, o, kind);
+  return rc ? rc : fb_output_spec_complete(o, kind, r->c->err);
 }
 
 static const sch_ops sc_outputs = {.item_end = sc_output_end};
@@ -541,7 +492,7 @@ static int sc_default_outputs(sch_reader *r, fb_scenario *s)
         (!(o->signal = fb_strdup(kind->signal)) || !(o->of = fb_strdup(s->corner[i].name))))
       rc = fb_err_set(r->c->err, FB_ENOMEM, "out of memory for an output");
     if (!rc)
-      rc = sc_output_defaults(r->c, o, kind);
+      rc = fb_output_spec_complete(o, kind, r->c->err);
     if (rc)
       return rc;
   }

@@ -113,7 +113,7 @@ static void desc_free_strings(char **v, size_t n)
   free(v);
 }
 
-static void desc_free_output(fb_output_spec *o)
+void vehicle_output_release(fb_output_spec *o)
 {
   free(o->name);
   free(o->signal);
@@ -147,7 +147,7 @@ void fb_scenario_free(fb_scenario **s)
     free(p->corner[i].name);
   free(p->corner);
   for (size_t i = 0; p->output && i < p->noutputs; ++i)
-    desc_free_output(&p->output[i]);
+    vehicle_output_release(&p->output[i]);
   free(p->output);
   fb_road_params_release(p->road_type, &p->road);
   free(p->hull_deck);

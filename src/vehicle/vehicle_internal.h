@@ -120,6 +120,8 @@ void vehicle_remove_damping(fb_scenario *s);
  * bump of zero height (the road's sources enter no matrix: the linear
  * model is the same). */
 void vehicle_flatten_road(fb_scenario *s);
+/* Frees the strings of an output (the output itself is its holder's). */
+void vehicle_output_release(fb_output_spec *o);
 /* rc, after making a road type's error about one of its parameters
  * (err->part.field set, no kind) a part of the description
  * (FB_PART_ROAD). */
