@@ -12,6 +12,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "road_util.h"
 #include "vehicle_util.h"
 
 static const double PI = 3.14159265358979323846;
@@ -176,6 +177,9 @@ static void test_refusals(void)
   CHECK(fb_scenario_add_output(s, &nowhere, &err) == FB_EINVAL && strstr(err.msg, "XX"));
   const fb_output_spec hull_of = {.signal = "torsion", .of = "LF"};
   CHECK(fb_scenario_add_output(s, &hull_of, &err) == FB_EINVAL);
+  const fb_output_spec again = {.signal = "tire_force", .of = "LF"};
+  CHECK(fb_scenario_add_output(s, &again, &err) == FB_EINVAL &&
+        strstr(err.msg, "tire_force_LF"));
   CHECK(s->ncorners == 6 && s->noutputs == 7); /* refused: nothing added */
   s->corner[5].tire_k = -1;
   CHECK(fb_scenario_check(s, &err) == FB_EINVAL);
@@ -212,9 +216,66 @@ static void test_ownership(void)
   fb_scenario_free(&copy);
 }
 
+/* Column name of r, row k; NaN when r lacks it. */
+static double value(const fb_result *r, const char *name, size_t k)
+{
+  const long col = fb_result_find(r, name);
+  return col > 0 ? fb_result_row(r, k)[col] : NAN;
+}
+
+/* Every signal kind is measurable on the vehicle: each corner kind by the
+ * corner's fragment, each mount kind by the mount's, the hull's and the
+ * bond kinds; and their values obey the fragments' laws: the tire force
+ * is the tire bond's effort and the contact force, the spring force is
+ * k times its deflection (linear springs: to rounding, 1e-9 of the
+ * force), the shock absorber's power is its force times its rate, which
+ * for the linear damper is force^2 / c (1e-9 of the power). */
+static void test_every_signal(void)
+{
+  fb_err err;
+  fb_scenario *s = build_apc(&err);
+  if (!s)
+    return;
+  road_bump(s)->first_contact = 0.5; /* the whole crossing within 4 s */
+  s->t_end = 4;
+  size_t nkinds = 0;
+  const fb_output_kind *kinds = fb_vehicle_output_kinds(&nkinds);
+  for (size_t k = 0; k < nkinds; ++k) {
+    fb_output_spec o = {.signal = (char *)kinds[k].signal};
+    if (kinds[k].subject == FB_OUTPUT_OF_CORNER)
+      o.of = "LF";
+    else if (kinds[k].subject == FB_OUTPUT_OF_MOUNT)
+      o.of = "driver";
+    else if (kinds[k].subject == FB_OUTPUT_OF_BOND)
+      o.bond = "susp_LF.b_tire";
+    const int rc = fb_scenario_add_output(s, &o, &err);
+    CHECK(rc == FB_OK || strstr(err.msg, "name")); /* a name the paper's outputs took */
+  }
+  fb_result *r = simulate_rigid(s);
+  for (size_t o = 0; r && o < s->noutputs; ++o) {
+    const long col = fb_result_find(r, s->output[o].name);
+    CHECK(col > 0);
+    for (size_t k = 0; col > 0 && k < fb_result_nsamples(r); k += 100)
+      CHECK(isfinite(fb_result_row(r, k)[col]));
+  }
+  const double k_s = s->corner[0].spring_k, c_d = s->corner[0].damper_c;
+  for (size_t k = 0; r && k < fb_result_nsamples(r); k += 50) {
+    const double tire = value(r, "tire_force_LF", k);
+    CHECK(tire == value(r, "effort_susp_LF_b_tire", k) &&
+          tire == value(r, "contact_force_LF", k));
+    const double spring = value(r, "spring_force_LF", k);
+    CHECK_NEAR(spring, k_s * value(r, "spring_defl_LF", k), 1e-9 * (1 + fabs(spring)));
+    const double shock = value(r, "shock_force_LF", k), power = value(r, "shock_power_LF", k);
+    CHECK_NEAR(power, shock * shock / c_d, 1e-9 * (1 + fabs(power)));
+  }
+  fb_result_free(&r);
+  fb_scenario_free(&s);
+}
+
 int main(void)
 {
   test_same_as_file();
+  test_every_signal();
   test_refusals();
   test_ownership();
   return check_report("test_builder");

@@ -580,7 +580,8 @@ int fb_scenario_add_load_point(fb_scenario *s, double x, double y, fb_err *err);
  * fb_vehicle_output_kinds) and subject (`of` a corner or mount added
  * before, `bond`, or none for the hull); name, unit, title and label
  * left NULL come from the kind (fb_output_spec_complete). FB_EINVAL for
- * an unknown signal or a subject the kind does not take. */
+ * an unknown signal, a subject the kind does not take, or a name an
+ * output has already. */
 int fb_scenario_add_output(fb_scenario *s, const fb_output_spec *o, fb_err *err);
 /* Fills o's name, title, label and unit where NULL from kind's patterns
  * ("tire_force_%s" with o->of; a bond signal's column is the signal and

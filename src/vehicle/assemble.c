@@ -32,18 +32,43 @@ static double mean_tire_load(const fb_scenario *s)
   return s->ncorners ? weight / (double)s->ncorners : 0.0;
 }
 
-/* Adopts the mounts' and corners' fragments: instances named after the
- * mount ("driver") and "susp_" + the corner's name. */
+/* The one place the fragments' instance names are made: a mount's is its
+ * name ("driver"), a corner's "susp_" and its name (so "LF" may be both
+ * a corner and a mount's name without a clash), the hull's "hull". */
+char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i)
+{
+  switch (subject) {
+  case FB_OUTPUT_OF_CORNER: return fb_strdup_printf("susp_%s", s->corner[i].name);
+  case FB_OUTPUT_OF_MOUNT: return fb_strdup(s->mount[i].name);
+  default: return fb_strdup("hull");
+  }
+}
+
+char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
+                     const char *local)
+{
+  char *inst = vehicle_instance(s, subject, i);
+  char *full = inst ? fb_strdup_printf("%s.%s", inst, local) : NULL;
+  free(inst);
+  return full;
+}
+
+/* Adopts the mounts' and corners' fragments, under their instance names. */
 static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
 {
   fb_bg *frag = NULL;
   int rc = FB_OK;
-  for (size_t b = 0; !rc && b < s->nmounts; ++b)
-    rc = adopt(bg, fb_vehicle_mount(&s->mount[b], s->gravity, &frag, err), &frag,
-               s->mount[b].name, err);
+  for (size_t b = 0; !rc && b < s->nmounts; ++b) {
+    char *inst = vehicle_instance(s, FB_OUTPUT_OF_MOUNT, b);
+    rc = inst ? adopt(bg, fb_vehicle_mount(&s->mount[b], s->gravity, &frag, err), &frag, inst,
+                      err)
+              : fb_err_set(err, FB_ENOMEM, "out of memory");
+    free(inst);
+    fb_bg_free(&frag);
+  }
   const double tire_load = mean_tire_load(s);
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
-    char *inst = fb_strdup_printf("susp_%s", s->corner[c].name);
+    char *inst = vehicle_instance(s, FB_OUTPUT_OF_CORNER, c);
     fb_corner_params corner = s->corner[c];
     corner.tire_deflection_ref = tire_load / corner.tire_k;
     rc = inst ? adopt(bg, fb_vehicle_corner(&corner, s->gravity, &frag, err), &frag, inst, err)
@@ -59,11 +84,12 @@ static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
 static int connect_attachment(const fb_scenario *s, fb_bg *bg, size_t a, fb_err *err)
 {
   const int corner = a < s->ncorners;
-  const char *name = corner ? s->corner[a].name : s->mount[a - s->ncorners].name;
-  char *from = fb_strdup_printf("%s%s.hull", corner ? "susp_" : "", name);
+  const fb_output_subject subject = corner ? FB_OUTPUT_OF_CORNER : FB_OUTPUT_OF_MOUNT;
+  const size_t i = corner ? a : a - s->ncorners;
+  char *from = vehicle_target(s, subject, i, "hull");
   char *to = fb_strdup_printf("attach.%zu", a + 1);
-  char *road = corner ? fb_strdup_printf("road.%s", name) : NULL;
-  char *wheel = corner ? fb_strdup_printf("susp_%s.road", name) : NULL;
+  char *road = corner ? fb_strdup_printf("road.%s", s->corner[a].name) : NULL;
+  char *wheel = corner ? vehicle_target(s, subject, i, "road") : NULL;
   int rc = from && to && (!corner || (road && wheel))
                ? fb_bg_connect(bg, NULL, from, to, err)
                : fb_err_set(err, FB_ENOMEM, "out of memory");
@@ -168,13 +194,17 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
 }
 
 /* Every tire's normal reaction (compression positive), contact_force_<CORNER>,
- * into cp[0 .. ncorners) (names and targets new). */
+ * into cp[0 .. ncorners) (names and targets new): the corner's
+ * tire_force. */
 static int contact_probes(const fb_scenario *s, fb_probe_spec *cp, fb_err *err)
 {
+  const vehicle_signal *tire = vehicle_fragment_signal(FB_OUTPUT_OF_CORNER, "tire_force");
+  if (!tire)
+    return fb_err_set(err, FB_EMODEL, "the corner offers no tire_force");
   for (size_t c = 0; c < s->ncorners; ++c) {
-    cp[c] = (fb_probe_spec){NULL, FB_PROBE_EFFORT, NULL, -1, 0, 1.0, "N", NULL, 0};
+    cp[c] = (fb_probe_spec){NULL, tire->kind, NULL, -1, tire->integrate, 1.0, "N", NULL, 0};
     cp[c].name = fb_strdup_printf("contact_force_%s", s->corner[c].name);
-    cp[c].target = fb_strdup_printf("susp_%s.b_tire", s->corner[c].name);
+    cp[c].target = vehicle_target(s, FB_OUTPUT_OF_CORNER, c, tire->target);
     if (!cp[c].name || !cp[c].target)
       return fb_err_set(err, FB_ENOMEM, "out of memory");
   }

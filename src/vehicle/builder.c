@@ -224,6 +224,10 @@ int fb_scenario_add_output(fb_scenario *s, const fb_output_spec *o, fb_err *err)
       rc = fb_err_set(err, FB_ENOMEM, "out of memory for an output");
   if (!rc)
     rc = fb_output_spec_complete(&copy, kind, err);
+  for (size_t i = 0; !rc && i < s->noutputs; ++i)
+    if (!strcmp(s->output[i].name, copy.name))
+      rc = fb_err_set(err, FB_EINVAL, "an output named %s is there already (names are unique)",
+                      copy.name);
   fb_output_spec *item = NULL;
   if (!rc && !builder_grow((void **)&s->output, s->noutputs, sizeof *item, (void **)&item))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory for an output");

@@ -418,3 +418,49 @@ int fb_vehicle_load(const fb_scenario *s, fb_bg **out, fb_err *err)
   *out = bg;
   return FB_OK;
 }
+
+/* ---- What the fragments offer to measure (outputs.c, motion.c): each
+ * signal's probe on one of the fragment's own bonds or elements, named
+ * as the fragment above names them. */
+
+/* The corner's (fb_vehicle_corner). Compressions and forces pushing the
+ * parts apart positive, powers into the dissipating element. */
+static const vehicle_signal corner_signals[] = {
+    {"tire_force", FB_PROBE_EFFORT, "b_tire", 0, 0},
+    {"tire_defl", FB_PROBE_STATE, "tire_spring", 0, 0},
+    {"tire_power", FB_PROBE_POWER, "b_tire_damper", 0, 0},
+    {"spring_defl", FB_PROBE_STATE, "spring", 0, 0},
+    {"spring_force", FB_PROBE_EFFORT, "b_spring", 0, 0},
+    {"shock_force", FB_PROBE_EFFORT, "b_damper", 0, 0},
+    {"shock_power", FB_PROBE_POWER, "b_damper", 0, 0},
+    {"wheel_travel", FB_PROBE_FLOW, "b_arm", 1, 0},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0},
+};
+
+/* The mounted body's (fb_vehicle_mount): its acceleration is the effort
+ * on its mass over the mass (the paper's gain block 1/m on e7). */
+static const vehicle_signal mount_signals[] = {
+    {"acc", FB_PROBE_EFFORT, "b_mass", 0, 1},
+    {"travel", FB_PROBE_STATE, "spring", 0, 0},
+    {"force", FB_PROBE_EFFORT, "b_up", 0, 0},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_mass", 1, 0},
+};
+
+static const vehicle_signal *signal_in(const vehicle_signal *list, size_t n, const char *signal)
+{
+  for (size_t i = 0; signal && i < n; ++i)
+    if (!strcmp(list[i].signal, signal))
+      return &list[i];
+  return NULL;
+}
+
+const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const char *signal)
+{
+  switch (subject) {
+  case FB_OUTPUT_OF_CORNER:
+    return signal_in(corner_signals, sizeof corner_signals / sizeof corner_signals[0], signal);
+  case FB_OUTPUT_OF_MOUNT:
+    return signal_in(mount_signals, sizeof mount_signals / sizeof mount_signals[0], signal);
+  default: return NULL;
+  }
+}

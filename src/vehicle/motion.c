@@ -39,6 +39,12 @@ static fb_probe_spec displacement_probe(char *name, char *target)
 int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec *p,
                              fb_err *err)
 {
+  const vehicle_signal *body =
+                           vehicle_fragment_signal(FB_OUTPUT_OF_MOUNT, VEHICLE_SIGNAL_MOTION),
+                       *wheel =
+                           vehicle_fragment_signal(FB_OUTPUT_OF_CORNER, VEHICLE_SIGNAL_MOTION);
+  if (!body || !wheel)
+    return fb_err_set(err, FB_EMODEL, "a fragment offers no motion");
   size_t k = 0;
   p[k] = (fb_probe_spec){fb_strdup("#hull"),
                          hull->torsion_kind,
@@ -53,10 +59,10 @@ int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe
   p[k++] = displacement_probe(fb_strdup("#attach"), fb_strdup("b_attach"));
   for (size_t b = 0; b < s->nmounts; ++b, ++k)
     p[k] = displacement_probe(fb_strdup_printf("#body_%s", s->mount[b].name),
-                              fb_strdup_printf("%s.b_mass", s->mount[b].name));
+                              vehicle_target(s, FB_OUTPUT_OF_MOUNT, b, body->target));
   for (size_t c = 0; c < s->ncorners; ++c, ++k)
     p[k] = displacement_probe(fb_strdup_printf("#wheel_%s", s->corner[c].name),
-                              fb_strdup_printf("susp_%s.b_wheel", s->corner[c].name));
+                              vehicle_target(s, FB_OUTPUT_OF_CORNER, c, wheel->target));
   for (size_t i = 0; i < k; ++i)
     if (!p[i].name || !p[i].target)
       return fb_err_set(err, FB_ENOMEM, "out of memory");

@@ -2,10 +2,13 @@
 /* The signals a vehicle's outputs may name (docs/vehicle-outputs.md), and the
  * probes that measure them on the assembled graph (flexbond/vehicle.h).
  *
- * Each kind is one row: what it measures (a probe kind on a bond or an
- * element of its subject's fragment, fragments.c), its unit and its
- * default name, title and label. A new kind is one row here and one line
- * in docs/vehicle-outputs.md; nothing else names a kind. */
+ * Each kind is one row: its subject, its unit and its default name,
+ * title and label. How it is measured is its subject's to say: a corner's
+ * or a mount's fragment declares the probe of each signal it offers on
+ * its own bonds and elements (fragments.c), the hull its torsion
+ * (fb_hull), and a bond signal is a probe on the bond named. A new
+ * corner signal is one row here, one in the corner's declaration and one
+ * line in docs/vehicle-outputs.md. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,19 +17,21 @@
 #include "core/util.h"
 #include "vehicle/vehicle_internal.h"
 
-/* How a kind is measured: probe kind, target inside the subject's fragment
- * (for bond signals: the output's bond), integrate, whether the value
- * is divided by the subject's mass (a mount's acceleration: the effort on
- * its mass over the mass, the paper's gain block 1/m on e7), and for the
- * hull's torsion which of its weights (fb_hull: 0 the edges' end nodes,
- * 1 the least-squares rotation of their transverse sections). */
-typedef struct output_probe {
+/* How a bond signal is measured: the probe on the output's bond,
+ * integrated for a displacement or a momentum. A corner's or a mount's
+ * signal is its fragment's to measure (vehicle_fragment_signal); the
+ * hull's torsion the hull's (fb_hull.torsion_*). */
+typedef struct bond_probe {
+  const char *signal;
   fb_probe_kind kind;
-  const char *target;
   int integrate;
-  int per_mass;
-  int fit;
-} output_probe;
+} bond_probe;
+
+static const bond_probe bond_probes[] = {
+    {"effort", FB_PROBE_EFFORT, 0},   {"flow", FB_PROBE_FLOW, 0},
+    {"power", FB_PROBE_POWER, 0},     {"displacement", FB_PROBE_FLOW, 1},
+    {"momentum", FB_PROBE_EFFORT, 1},
+};
 
 /* Sign conventions are the fragments': compressions and forces pushing
  * the parts apart positive; powers positive into the dissipating element. */
@@ -74,30 +79,7 @@ static const fb_output_kind kinds[] = {
      "time integral of a bond's effort from t = 0"},
 };
 
-/* How each kind of `kinds` is measured, in the same order. */
-static const output_probe probes[] = {
-    {FB_PROBE_EFFORT, "b_tire", 0, 0, 0},
-    {FB_PROBE_STATE, "tire_spring", 0, 0, 0},
-    {FB_PROBE_POWER, "b_tire_damper", 0, 0, 0},
-    {FB_PROBE_STATE, "spring", 0, 0, 0},
-    {FB_PROBE_EFFORT, "b_spring", 0, 0, 0},
-    {FB_PROBE_EFFORT, "b_damper", 0, 0, 0},
-    {FB_PROBE_POWER, "b_damper", 0, 0, 0},
-    {FB_PROBE_FLOW, "b_arm", 1, 0, 0},
-    {FB_PROBE_EFFORT, "b_mass", 0, 1, 0},
-    {FB_PROBE_STATE, "spring", 0, 0, 0},
-    {FB_PROBE_EFFORT, "b_up", 0, 0, 0},
-    {FB_PROBE_FLOW, NULL, 0, 0, 0},
-    {FB_PROBE_FLOW, NULL, 0, 0, 1},
-    {FB_PROBE_EFFORT, NULL, 0, 0, 0},
-    {FB_PROBE_FLOW, NULL, 0, 0, 0},
-    {FB_PROBE_POWER, NULL, 0, 0, 0},
-    {FB_PROBE_FLOW, NULL, 1, 0, 0},
-    {FB_PROBE_EFFORT, NULL, 1, 0, 0},
-};
-
 enum { NKINDS = sizeof kinds / sizeof kinds[0] };
-_Static_assert(sizeof probes / sizeof probes[0] == NKINDS, "one probe per kind");
 
 const fb_output_kind *fb_vehicle_output_kinds(size_t *n)
 {
@@ -120,9 +102,75 @@ const fb_output_kind *fb_vehicle_output_kind_find(const char *signal)
   return k < 0 ? NULL : &kinds[k];
 }
 
-/* The probe of output o on the assembled graph (instance names of
- * assemble.c: "susp_<corner>", the mount's name, "hull"). p's target and
- * weights are new. */
+/* The hull's torsions: the edges' end nodes (0) or the least-squares
+ * rotation of their transverse sections (1), of fb_hull's weights. */
+static int hull_fit(const char *signal)
+{
+  return !strcmp(signal, "torsion_fit");
+}
+
+/* A corner's or a mount's output o: its fragment's probe of the
+ * signal, in the instance of o's subject. */
+static int body_probe(const fb_scenario *s, const fb_output_kind *info, size_t index,
+                      fb_probe_spec *p, fb_err *err)
+{
+  const fb_output_spec *o = &s->output[index];
+  const int corner = info->subject == FB_OUTPUT_OF_CORNER;
+  const long i = corner ? fb_scenario_corner_find(s, o->of) : fb_scenario_mount_find(s, o->of);
+  if (i < 0)
+    return fb_err_set(err, FB_EINVAL, "no %s '%s'", corner ? "corner" : "mount",
+                      o->of ? o->of : ""),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, of)), FB_EINVAL;
+  const vehicle_signal *how = vehicle_fragment_signal(info->subject, o->signal);
+  if (!how)
+    return fb_err_set(err, FB_EMODEL, "the %s fragment offers no %s",
+                      corner ? "corner" : "mount", o->signal),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EMODEL;
+  p->kind = how->kind;
+  p->integrate = how->integrate;
+  if (how->per_mass)
+    p->gain = 1.0 / s->mount[i].mass;
+  p->target = vehicle_target(s, info->subject, (size_t)i, how->target);
+  return FB_OK;
+}
+
+/* The hull's torsion: the hull says where and with which weights. */
+static int hull_probe(const fb_hull *hull, const fb_output_spec *o, fb_probe_spec *p,
+                      fb_err *err)
+{
+  p->kind = hull->torsion_kind;
+  p->integrate = hull->torsion_integrate;
+  p->target = fb_strdup_printf("hull.%s", hull->torsion_target);
+  double *w = malloc(hull->ntorsion * sizeof *w);
+  if (!w)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  memcpy(w, hull_fit(o->signal) ? hull->torsion_fit_weights : hull->torsion_weights,
+         hull->ntorsion * sizeof *w);
+  p->weights = w;
+  p->nweights = hull->ntorsion;
+  return FB_OK;
+}
+
+static const bond_probe *find_bond_probe(const char *signal)
+{
+  for (size_t i = 0; i < sizeof bond_probes / sizeof bond_probes[0]; ++i)
+    if (!strcmp(bond_probes[i].signal, signal))
+      return &bond_probes[i];
+  return NULL;
+}
+
+/* A bond signal: a probe on the bond o names. */
+static int bond_probe_of(const fb_output_spec *o, fb_probe_spec *p, fb_err *err)
+{
+  const bond_probe *how = find_bond_probe(o->signal);
+  if (!how)
+    return fb_err_set(err, FB_EMODEL, "no probe for the bond signal %s", o->signal);
+  p->kind = how->kind;
+  p->integrate = how->integrate;
+  p->target = fb_strdup(o->bond);
+  return FB_OK;
+}
+
 int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t index,
                             fb_probe_spec *p, fb_err *err)
 {
@@ -133,49 +181,24 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
     return fb_err_set(err, FB_EINVAL, "unknown signal '%s'", o->signal),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EINVAL;
   const fb_output_kind *info = &kinds[k];
-  const output_probe *how = &probes[k];
   p->name = fb_strdup(o->name);
   if (!p->name)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  p->kind = how->kind;
   p->component = -1;
   p->gain = 1.0;
   p->unit = info->unit;
-  p->integrate = how->integrate;
+  int rc = FB_OK;
   switch (info->subject) {
   case FB_OUTPUT_OF_CORNER:
-    p->target = fb_strdup_printf("susp_%s.%s", o->of, how->target);
-    break;
-  case FB_OUTPUT_OF_MOUNT: {
-    const long b = fb_scenario_mount_find(s, o->of);
-    if (b < 0)
-      return fb_err_set(err, FB_EINVAL, "no mount '%s'", o->of),
-             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, of)), FB_EINVAL;
-    if (how->per_mass)
-      p->gain = 1.0 / s->mount[b].mass;
-    p->target = fb_strdup_printf("%s.%s", o->of, how->target);
-    break;
+  case FB_OUTPUT_OF_MOUNT: rc = body_probe(s, info, index, p, err); break;
+  case FB_OUTPUT_OF_HULL: rc = hull_probe(hull, o, p, err); break;
+  case FB_OUTPUT_OF_BOND: rc = bond_probe_of(o, p, err); break;
   }
-  case FB_OUTPUT_OF_HULL: {
-    p->kind = hull->torsion_kind;
-    p->integrate = hull->torsion_integrate;
-    p->target = fb_strdup_printf("hull.%s", hull->torsion_target);
-    double *w = malloc(hull->ntorsion * sizeof *w);
-    if (!w)
-      return fb_err_set(err, FB_ENOMEM, "out of memory");
-    memcpy(w, how->fit ? hull->torsion_fit_weights : hull->torsion_weights,
-           hull->ntorsion * sizeof *w);
-    p->weights = w;
-    p->nweights = hull->ntorsion;
-    break;
-  }
-  case FB_OUTPUT_OF_BOND: p->target = fb_strdup(o->bond); break;
-  }
-  return p->target ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  return rc ? rc : p->target ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
 }
 
 int fb_vehicle_output_hull_fit(const fb_output_spec *o)
 {
   const long k = find_kind(o->signal);
-  return k >= 0 && kinds[k].subject == FB_OUTPUT_OF_HULL ? probes[k].fit : -1;
+  return k >= 0 && kinds[k].subject == FB_OUTPUT_OF_HULL ? hull_fit(o->signal) : -1;
 }

@@ -120,6 +120,30 @@ void vehicle_remove_damping(fb_scenario *s);
  * bump of zero height (the road's sources enter no matrix: the linear
  * model is the same). */
 void vehicle_flatten_road(fb_scenario *s);
+/* A signal a fragment offers to measure (fragments.c): its probe on one
+ * of the fragment's own bonds or elements (target, as the fragment names
+ * it), integrated or not, divided by the subject's mass or not. */
+typedef struct vehicle_signal {
+  const char *signal;
+  fb_probe_kind kind;
+  const char *target;
+  int integrate;
+  int per_mass;
+} vehicle_signal;
+/* Every corner's and mount's own signal: its body's vertical
+ * displacement (the animation's motion, motion.c). */
+#define VEHICLE_SIGNAL_MOTION "#motion"
+/* The signal the fragment of subject's kind offers (a corner's, a
+ * mount's), NULL if it offers none of that name. */
+const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const char *signal);
+/* The name the assembly gives item i's fragment in the vehicle's graph
+ * (a corner's "susp_<name>", a mount's own name; assemble.c), and the
+ * full name of the fragment's own bond or element local in it; new,
+ * NULL when out of memory. */
+char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i);
+char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
+                     const char *local);
+
 /* Frees the strings of an output (the output itself is its holder's). */
 void vehicle_output_release(fb_output_spec *o);
 /* rc, after making a road type's error about one of its parameters
