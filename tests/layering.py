@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """The library's layers (docs/architecture.md): no module below src/io
-(core, bg, bd, sim, fem, road, ride, vehicle) includes or calls io or cli,
-names a scenario file's key, or names the command line.
+(core, bg, bd, sim, fem, road, ride, vehicle, study) includes or calls io
+or cli, names a scenario file's key, or names the command line; and the
+command's own files (src/cli) call one another without a cycle.
 
   layering.py SOURCE_DIR OBJECT_DIR...
 
@@ -14,7 +15,10 @@ that nothing here needs updating when a key or a function is added:
 - text: no string literal of a lower module holds a key path of the
   scenario format (the dotted keys of docs/scenario-format.md's tables,
   which test_scenario_docs keeps equal to the reader's table), a command
-  line option ("--set") or the command's name before a subcommand.
+  line option ("--set") or the command's name before a subcommand;
+- cycles: the files of src/cli, as nodes, and "calls a symbol defined
+  by" as edges (nm), hold no cycle: each renders what the library
+  computes, so none needs another that needs it back.
 Exit 1 with every finding; 0 when there is none."""
 import os
 import re
@@ -86,6 +90,57 @@ def undefined_symbols(obj):
     return {line.split()[-1] for line in lines if line.strip()}
 
 
+def cycles(graph):
+    """The strongly connected components of more than one node of graph
+    (node -> set of nodes), each sorted (Tarjan, iterative)."""
+    index, low, on, stack, out, counter = {}, {}, set(), [], [], [0]
+    for root in sorted(graph):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph[root])))]
+        index[root] = low[root] = counter[0]
+        counter[0] += 1
+        stack.append(root)
+        on.add(root)
+        while work:
+            node, children = work[-1]
+            child = next(children, None)
+            if child is not None:
+                if child not in index:
+                    index[child] = low[child] = counter[0]
+                    counter[0] += 1
+                    stack.append(child)
+                    on.add(child)
+                    work.append((child, iter(sorted(graph.get(child, ())))))
+                elif child in on:
+                    low[node] = min(low[node], index[child])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp.append(w)
+                    if w == node:
+                        break
+                if len(comp) > 1:
+                    out.append(sorted(comp))
+    return out
+
+
+def call_graph(objs):
+    """Each object's file name -> the files that define what it calls."""
+    owner = {}
+    for o in objs:
+        for sym in defined_symbols([o]):
+            owner[sym] = os.path.basename(o)
+    return {os.path.basename(o): {owner[s] for s in undefined_symbols(o) if s in owner} -
+            {os.path.basename(o)} for o in objs}
+
+
 def objects(dirs, module):
     found = []
     for d in dirs:
@@ -113,6 +168,8 @@ def main():
         findings.append("the text checks do not bite: %r" % bites)
     if not FORBIDDEN_INCLUDES.search('#include "io/scenario_internal.h"'):
         findings.append("the include check does not bite")
+    if cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) != [["a", "b", "c"]]:
+        findings.append("the cycle check does not bite")
     for module in LOWER:
         for path in sources(src, module):
             text = open(path, encoding="utf-8").read()
@@ -136,6 +193,11 @@ def main():
             for sym in sorted(undefined_symbols(o) & upper):
                 findings.append("%s: calls %s, defined in io or cli" %
                                 (os.path.basename(o), sym))
+        cli = objects(objdirs, "cli")
+        if len(cli) < 10:
+            findings.append("src/cli's object files not found under %s" % " ".join(objdirs))
+        for comp in cycles(call_graph(cli)):
+            findings.append("src/cli: %s call one another in a cycle" % ", ".join(comp))
     for f in findings:
         print("layering: " + f)
     print("layering: %d findings (%d scenario keys checked)" % (len(findings), len(keys)))

@@ -257,7 +257,9 @@ int cli_jobs_run(cli_outdir *od, const cli_job *jobs, size_t n, fb_err *err);
  * that the signal thread never abandons a directory in the middle of
  * one, and says when it has put results in place (committed 1), after
  * which a signal no longer stops the command. */
-int cli_guard_add(const cli_outdir *od);
+/* abandon: what the signal thread calls on od (cli_outdir_abandon,
+ * handed in so that the guard does not call back into outdir.c). */
+int cli_guard_add(const cli_outdir *od, void (*abandon)(const cli_outdir *od));
 void cli_guard_remove(const cli_outdir *od);
 void cli_guard_lock(void);
 void cli_guard_unlock(int committed);

@@ -61,6 +61,7 @@ static int wake[2] = {-1, -1};
 static struct {
   pthread_mutex_t lock;
   const cli_outdir *open[CLI_MAX_GUARDED];
+  void (*abandon[CLI_MAX_GUARDED])(const cli_outdir *od);
   int committed;   /* a commit has put new results in place */
   int finished;    /* the command has returned: it reports itself */
   int polled_only; /* cli_interrupt_polled_only */
@@ -114,7 +115,7 @@ static void stop_now(void)
     const cli_outdir *od = guard.open[i];
     if (!od)
       continue;
-    cli_outdir_abandon(od);
+    guard.abandon[i](od);
     char dir[1024]; /* escaped, as every message (fb_err_escape) */
     fb_err_escape(dir, sizeof dir, od->dir);
     if (len < sizeof msg && od->interrupt_note)
@@ -276,13 +277,14 @@ int cli_check_interrupt(fb_err *err)
   return fb_err_set(err, FB_EINTR, "%s", interrupted_msg);
 }
 
-int cli_guard_add(const cli_outdir *od)
+int cli_guard_add(const cli_outdir *od, void (*abandon)(const cli_outdir *od))
 {
   int rc = -1;
   pthread_mutex_lock(&guard.lock);
   for (size_t i = 0; i < CLI_MAX_GUARDED && rc != 0; ++i)
     if (!guard.open[i]) {
       guard.open[i] = od;
+      guard.abandon[i] = abandon;
       rc = 0;
     }
   pthread_mutex_unlock(&guard.lock);

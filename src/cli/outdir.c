@@ -229,7 +229,7 @@ int cli_outdir_open(cli_outdir *od, const char *dir, const char *command, fb_err
     rc = take_lock(od, err);
   if (rc == FB_OK)
     remove_stale_stages(dir);
-  if (rc == FB_OK && cli_guard_add(od) != 0)
+  if (rc == FB_OK && cli_guard_add(od, cli_outdir_abandon) != 0)
     rc = fb_err_set(err, FB_EINVAL, "%s: too many output directories open at once", dir);
   if (rc != FB_OK) {
     cli_outdir_abandon(od);
