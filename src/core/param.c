@@ -114,12 +114,14 @@ void fb_params_defaults(const fb_param *p, size_t n, void *block)
   for (size_t i = 0; i < n; ++i) {
     if (p[i].need != FB_PARAM_DEFAULT)
       continue;
-    void *at = (char *)block + p[i].offset;
+    char *at = (char *)block + p[i].offset;
     const double s = param_scale(&p[i]);
     switch (p[i].store) {
     case FB_PARAM_DOUBLE:
-      for (size_t e = 0; e < (p[i].kind == FB_PARAM_REALS ? p[i].count : 1); ++e)
-        ((double *)at)[e] = (p[i].kind == FB_PARAM_REALS ? p[i].def_list[e] : p[i].def) * s;
+      for (size_t e = 0; e < (p[i].kind == FB_PARAM_REALS ? p[i].count : 1); ++e) {
+        const double v = (p[i].kind == FB_PARAM_REALS ? p[i].def_list[e] : p[i].def) * s;
+        memcpy(at + e * sizeof v, &v, sizeof v);
+      }
       break;
     case FB_PARAM_INT: *(int *)at = (int)p[i].def; break;
     case FB_PARAM_SIZE: *(size_t *)at = (size_t)p[i].def; break;
@@ -139,10 +141,11 @@ static int param_check_one(const fb_param *p, const void *block, fb_err *err)
   }
   if (p->kind == FB_PARAM_CHOICE) {
     const int c = *(const int *)param_at(p, block);
-    return c < 0 && p->need == FB_PARAM_OPTIONAL ? FB_OK
-           : c < 0 || (size_t)c >= param_nchoices(p)
-               ? param_fail(err, p, "not one of its choices")
-               : FB_OK;
+    if (c < 0 && p->need == FB_PARAM_OPTIONAL) /* left out */
+      return FB_OK;
+    return c >= 0 && (size_t)c < param_nchoices(p)
+               ? FB_OK
+               : param_fail(err, p, "not one of its choices");
   }
   const size_t n = p->kind == FB_PARAM_REALS ? p->count : 1;
   for (size_t e = 0; e < n; ++e) {

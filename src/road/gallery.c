@@ -15,8 +15,13 @@ static const fb_road_type *const gallery_builtin[] = {
     &fb_road_type_profile,
 };
 
+/* One type of a gallery, borrowed. */
+typedef struct gallery_entry {
+  const fb_road_type *type;
+} gallery_entry;
+
 struct fb_road_gallery {
-  const fb_road_type **type; /* borrowed entries, owned array */
+  gallery_entry *entry; /* owned array of borrowed types */
   size_t n, cap;
 };
 
@@ -97,13 +102,13 @@ int fb_road_gallery_add(fb_road_gallery *g, const fb_road_type *t, fb_err *err)
     return type_fail(err, t, "a type of that name is already in the gallery");
   if (g->n == g->cap) {
     const size_t cap = g->cap ? 2 * g->cap : 8;
-    const fb_road_type **grown = realloc(g->type, cap * sizeof *grown);
+    gallery_entry *grown = realloc(g->entry, cap * sizeof *grown);
     if (!grown)
       return fb_err_set(err, FB_ENOMEM, "out of memory for %zu road types", cap);
-    g->type = grown;
+    g->entry = grown;
     g->cap = cap;
   }
-  g->type[g->n++] = t;
+  g->entry[g->n++].type = t;
   return FB_OK;
 }
 
@@ -114,14 +119,14 @@ size_t fb_road_gallery_count(const fb_road_gallery *g)
 
 const fb_road_type *fb_road_gallery_at(const fb_road_gallery *g, size_t i)
 {
-  return g && i < g->n ? g->type[i] : NULL;
+  return g && i < g->n ? g->entry[i].type : NULL;
 }
 
 const fb_road_type *fb_road_gallery_find(const fb_road_gallery *g, const char *name)
 {
   for (size_t i = 0; g && name && i < g->n; ++i)
-    if (!strcmp(g->type[i]->name, name))
-      return g->type[i];
+    if (!strcmp(g->entry[i].type->name, name))
+      return g->entry[i].type;
   return NULL;
 }
 
@@ -129,7 +134,7 @@ void fb_road_gallery_free(fb_road_gallery **g)
 {
   if (!g || !*g)
     return;
-  free((*g)->type);
+  free((*g)->entry);
   free(*g);
   *g = NULL;
 }
