@@ -32,6 +32,13 @@ static double mean_tire_load(const fb_scenario *s)
   return s->ncorners ? weight / (double)s->ncorners : 0.0;
 }
 
+fb_corner_params vehicle_corner_loaded(const fb_scenario *s, size_t c)
+{
+  fb_corner_params corner = s->corner[c];
+  corner.tire_static_deflection = mean_tire_load(s) / corner.tire_k;
+  return corner;
+}
+
 /* Adopts the mounts' and corners' fragments: instances named after the
  * mount ("driver") and "susp_" + the corner's name. */
 static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
@@ -41,11 +48,9 @@ static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
   for (size_t b = 0; !rc && b < s->nmounts; ++b)
     rc = adopt(bg, fb_vehicle_mount(&s->mount[b], s->gravity, &frag, err), &frag,
                s->mount[b].name, err);
-  const double tire_load = mean_tire_load(s);
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     char *inst = fb_strdup_printf("susp_%s", s->corner[c].name);
-    fb_corner_params corner = s->corner[c];
-    corner.tire_deflection_ref = tire_load / corner.tire_k;
+    const fb_corner_params corner = vehicle_corner_loaded(s, c);
     rc = inst ? adopt(bg, fb_vehicle_corner(&corner, s->gravity, &frag, err), &frag, inst, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
     free(inst);
