@@ -247,26 +247,23 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
   const fb_tire_model *m = i_model < nmodels ? models[i_model] : NULL;
   if (!m)
     return fb_err_set(r->c->err, FB_EINVAL, "%s: no tire model", path);
-  /* The values the corner's own section stored, before the block is
-   * made anew. */
-  const fb_tire_params own = c->tire;
   int rc = fb_corner_set_tire(c, m, NULL, r->c->err);
   if (!rc)
     rc = sc_tire_foreign(r, models, m, node);
+  /* Each value as read (its origin's number): the corner's own, else
+   * the top level's, recorded as the corner's. */
   for (size_t i = 0; !rc && i < m->nparams; ++i) {
     const fb_param *p = &m->param[i];
     char top[SCH_PATH_MAX];
     snprintf(top, sizeof top, "wheel.%s.%s", m->name, p->name);
     snprintf(path, sizeof path, "%s.%s", item_path, top);
-    if (sch_origin_find(r, path)) /* the corner's own */
-      memcpy(c->tire.bytes + p->offset, own.bytes + p->offset,
-             p->store == FB_PARAM_DOUBLE ? sizeof(double)
-             : p->store == FB_PARAM_INT  ? sizeof(int)
-                                         : sizeof(size_t));
-    else if ((o = sch_origin_find(r, top)) != NULL) { /* the top-level wheel's */
+    const int own = (o = sch_origin_find(r, path)) != NULL;
+    if (!own)
+      o = sch_origin_find(r, top);
+    if (o)
       sc_param_store(p, o->number, c->tire.bytes);
+    if (o && !own)
       rc = sch_origin_inherit(r, path, top);
-    }
   }
   return rc;
 }
