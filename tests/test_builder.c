@@ -41,8 +41,7 @@ static int add_corners(fb_scenario *s, fb_err *err)
                                   .y = side ? -axles[a].y : axles[a].y,
                                   .wheel_mass = 175,
                                   .tire_k = 500000,
-                                  .tire_c = 140000,
-                                  .tire_contact = FB_TIRE_BILATERAL};
+                                  .tire_c = 140000};
       rc = fb_scenario_add_corner(s, &c, err);
     }
   return rc;

@@ -97,10 +97,10 @@ static void high_bump(fb_scenario *s)
   s->speed = 30.0 / 3.6;
 }
 
-static void set_tire_contact(fb_scenario *s, fb_tire_contact contact)
+static void set_tire_contact(fb_scenario *s, const fb_tire_model *m)
 {
   for (int c = 0; c < APC_NCORNERS; ++c)
-    s->corner[c].tire_contact = contact;
+    CHECK(fb_corner_set_tire(&s->corner[c], m, NULL, NULL) == FB_OK);
 }
 
 static void test_lift_off(fb_scenario *s)
@@ -136,8 +136,8 @@ static double first_loss(const fb_result *r)
 
 /* The high bump run with tires a, then with tires b (the scenario keeps
  * b's); 0 with both results freed if either fails. */
-static int high_bump_pair(fb_scenario *s, fb_tire_contact a, fb_tire_contact b, fb_result **ra,
-                          fb_result **rb)
+static int high_bump_pair(fb_scenario *s, const fb_tire_model *a, const fb_tire_model *b,
+                          fb_result **ra, fb_result **rb)
 {
   high_bump(s);
   set_tire_contact(s, a);
@@ -154,7 +154,7 @@ static int high_bump_pair(fb_scenario *s, fb_tire_contact a, fb_tire_contact b, 
 static void test_unilateral(fb_scenario *s)
 {
   fb_result *linear = NULL, *r = NULL;
-  if (!high_bump_pair(s, FB_TIRE_BILATERAL, FB_TIRE_UNILATERAL, &linear, &r))
+  if (!high_bump_pair(s, &fb_tire_model_bilateral, &fb_tire_model_unilateral, &linear, &r))
     return;
   /* Never tensile, at any sample of any tire. */
   double lowest = INFINITY;
@@ -215,7 +215,7 @@ static void check_energy_balance(const fb_scenario *s)
 static void test_unilateral_energy(fb_scenario *s)
 {
   high_bump(s);
-  set_tire_contact(s, FB_TIRE_UNILATERAL);
+  set_tire_contact(s, &fb_tire_model_unilateral);
   check_energy_balance(s);
 }
 
@@ -231,7 +231,7 @@ static void test_unilateral_energy(fb_scenario *s)
 static void test_hunt_crossley(fb_scenario *s)
 {
   fb_result *kv = NULL, *hc = NULL;
-  if (!high_bump_pair(s, FB_TIRE_UNILATERAL, FB_TIRE_HUNT_CROSSLEY, &kv, &hc))
+  if (!high_bump_pair(s, &fb_tire_model_unilateral, &fb_tire_model_hunt_crossley, &kv, &hc))
     return;
   double lowest = INFINITY, peak_kv = 0, peak_hc = 0;
   for (int c = 0; c < APC_NCORNERS; ++c) {

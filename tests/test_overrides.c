@@ -324,7 +324,7 @@ static void test_keys_left_out(const char *text)
     return;
   }
   for (size_t i = 0; i < s->ncorners; ++i)
-    CHECK(s->corner[i].tire_contact == FB_TIRE_UNILATERAL);
+    CHECK(fb_corner_tire_model(&s->corner[i]) == &fb_tire_model_unilateral);
   CHECK(s->max_steps == 12345);
   CHECK(!strcmp(s->output[0].name, "lf_force") && strcmp(s->output[1].name, "lf_force") != 0);
   CHECK(s->corner[2].tire_k == 600000 && s->corner[3].tire_k == 600000);

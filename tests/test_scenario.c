@@ -114,7 +114,8 @@ static void check_corners(const fb_scenario *s)
     CHECK(c->x == x[k] && c->y == y[k]);
     CHECK(c->motion_ratio == 1);
     CHECK(c->wheel_mass == 175 && c->tire_k == 500000 && c->tire_c == 140000);
-    CHECK(c->tire_contact == FB_TIRE_BILATERAL); /* the paper's linear tire by default */
+    CHECK(fb_corner_tire_model(c) ==
+          &fb_tire_model_bilateral); /* the paper's linear tire by default */
   }
   CHECK(fb_scenario_corner_find(s, "LX") == -1);
 }
@@ -241,7 +242,9 @@ static int corners_equal(const fb_corner_params *a, const fb_corner_params *b)
   return a->spring_k == b->spring_k && a->damper_c == b->damper_c &&
          a->motion_ratio == b->motion_ratio && a->x == b->x && a->y == b->y &&
          a->wheel_mass == b->wheel_mass && a->tire_k == b->tire_k && a->tire_c == b->tire_c &&
-         a->tire_contact == b->tire_contact && strings_equal(a->name, b->name);
+         fb_corner_tire_model(a) == fb_corner_tire_model(b) &&
+         !memcmp(a->tire.bytes, b->tire.bytes, sizeof a->tire.bytes) &&
+         strings_equal(a->name, b->name);
 }
 
 static int mounts_equal(const fb_mount *a, const fb_mount *b)
@@ -891,7 +894,7 @@ static void test_good_variants(void)
     CHECK(s->payload == FB_PAYLOAD_LUMPED && s->initial == FB_INITIAL_STATIC);
     CHECK(s->max_step == 0.01);
     for (size_t c = 0; c < s->ncorners; ++c)
-      CHECK(s->corner[c].tire_contact == FB_TIRE_UNILATERAL);
+      CHECK(fb_corner_tire_model(&s->corner[c]) == &fb_tire_model_unilateral);
     /* RR by hand at 5 m/s, tan 30 deg = 1/sqrt(3): 5 + (2.9 + 2.1/sqrt 3)/5. */
     CHECK_NEAR(fb_scenario_road_entry(s, 5), 5 + (2.9 + 2.1 / sqrt(3.0)) / 5, TIGHT);
   }

@@ -101,6 +101,20 @@ static inline char *read_text(const char *path)
   return buf;
 }
 
+/* The scenario text yaml, as the file "bad.yaml", with the loader's
+ * options (NULL: none); into *out, or freed when out is NULL. */
+static inline int load_text_with(const char *yaml, const fb_scenario_load_opts *opts,
+                                 fb_scenario **out, fb_err *err)
+{
+  fb_scenario *s = NULL;
+  const int rc = fb_scenario_load_string_with(yaml, strlen(yaml), "bad.yaml", opts, &s, err);
+  if (out)
+    *out = s;
+  else
+    fb_scenario_free(&s);
+  return rc;
+}
+
 /* ../examples/apc6x6.yaml with the text from the first occurrence of
  * start (after its first skip characters) up to the next occurrence of
  * end (kept) replaced by text, loaded as bad.yaml into *out (may be NULL:
@@ -120,12 +134,7 @@ static inline int load_replaced_with(const char *start, size_t skip, const char 
     memcpy(yaml, file, head);
     strcpy(yaml + head, text);
     strcat(yaml, to);
-    fb_scenario *s = NULL;
-    rc = fb_scenario_load_string_with(yaml, strlen(yaml), "bad.yaml", opts, &s, err);
-    if (out)
-      *out = s;
-    else
-      fb_scenario_free(&s);
+    rc = load_text_with(yaml, opts, out, err);
   }
   free(yaml);
   free(file);

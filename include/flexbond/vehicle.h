@@ -36,6 +36,7 @@
 #include "flexbond/fem.h"
 #include "flexbond/road.h"
 #include "flexbond/sim.h"
+#include "flexbond/tire.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -107,21 +108,6 @@ typedef struct fb_hull_section {
 /* Most points of a shock absorber's force-velocity table. */
 enum { FB_DAMPER_MAX_POINTS = 64 };
 
-/* How a tire meets the road. */
-typedef enum fb_tire_contact {
-  FB_TIRE_BILATERAL,    /* the paper's linear tire: spring and damper always
-                           attached, so the reaction may become tensile */
-  FB_TIRE_UNILATERAL,   /* no tension: the wheel may leave the road
-                           (fb_bg_add_unilateral_contact) */
-  FB_TIRE_HUNT_CROSSLEY /* no tension, and a damping that grows with the
-                           deflection q, tire_c q / tire_deflection_ref, so
-                           that it is tire_c at the reference deflection and
-                           0 at first contact (fb_bg_add_hunt_crossley_contact) */
-} fb_tire_contact;
-
-/* "bilateral", "unilateral", "hunt_crossley" (the scenario's names). */
-const char *fb_tire_contact_name(fb_tire_contact contact);
-
 typedef struct fb_corner_params {
   char *name;      /* "LF"; instance "susp_LF", mesh node set "SUSP_LF"; owned */
   double spring_k; /* N/m */
@@ -136,13 +122,17 @@ typedef struct fb_corner_params {
   double wheel_mass;   /* kg */
   double tire_k;       /* N/m */
   double tire_c;       /* N s/m */
-  fb_tire_contact tire_contact;
-  /* m, FB_TIRE_HUNT_CROSSLEY only: the deflection at which the damping
-   * is tire_c. fb_vehicle_graph sets it to the tire's static deflection
-   * under an equal share of the weight on the tires, (load.total_weight +
-   * every wheel's weight) / (corners tire_k); a caller of
-   * fb_vehicle_corner sets it itself. */
-  double tire_deflection_ref;
+  /* How the tire meets the road: a model of a tire gallery
+   * (flexbond/tire.h; borrowed, NULL: fb_tire_model_bilateral) and its
+   * parameter block. fb_corner_set_tire sets both. */
+  const fb_tire_model *tire_model;
+  fb_tire_params tire;
+  /* m: the tire's static deflection under an equal share of the weight
+   * on the tires, (load.total_weight + every wheel's weight) / (corners
+   * tire_k), for a model that scales with it (fb_tire_context);
+   * fb_vehicle_graph sets it, a caller of fb_vehicle_corner sets it
+   * itself. */
+  double tire_static_deflection;
 } fb_corner_params;
 
 /* Most bulkheads a hull may have. */
@@ -257,7 +247,8 @@ typedef enum fb_part_kind {
   FB_PART_OUTPUT = 6,     /* output[index], fb_output_spec */
   FB_PART_LOAD_POINT = 7, /* (load_x[index], load_y[index]); field "" */
   FB_PART_ROAD = 8,       /* the road type's parameter field (fb_param.name); index 0 */
-  FB_PART_KINDS = 9
+  FB_PART_TIRE = 9,       /* corner[index]'s tire model's parameter field (fb_param.name) */
+  FB_PART_KINDS = 10
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -493,6 +484,9 @@ typedef struct fb_scenario_load_opts {
    * built-in ones. Borrowed for the call; its types are borrowed by the
    * scenario, and must outlive it. */
   const fb_road_gallery *roads;
+  /* The tire models the document may name (wheel.tire_contact); NULL:
+   * the built-in ones. Borrowed as roads is. */
+  const fb_tire_gallery *tires;
   /* Values read in place of the document's, as for
    * fb_scenario_load_overrides. */
   const fb_scenario_override *overrides;
@@ -544,6 +538,24 @@ int fb_scenario_locate(const fb_scenario *s, fb_err *err);
 void fb_scenario_free(fb_scenario **s);
 /* Deep copy. */
 int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
+
+/* The tire of corner c: model m (borrowed: it outlives c) and a new
+ * block of its defaults (fb_tire_params_init), which *params points to
+ * (inside c) for the caller to fill. FB_EINVAL when m is not sound
+ * (fb_tire_model_check). */
+int fb_corner_set_tire(fb_corner_params *c, const fb_tire_model *m, void **params, fb_err *err);
+/* The model of corner c's tire: c->tire_model, fb_tire_model_bilateral
+ * when it has none (a corner made by hand, zeroed). */
+const fb_tire_model *fb_corner_tire_model(const fb_corner_params *c);
+/* What c's tire model knows of c (fb_tire_context; c->name borrowed). */
+fb_tire_context fb_corner_tire_context(const fb_corner_params *c);
+
+/* Every tire of s whose model names a model for linear analyses
+ * (fb_tire_model.in_contact: a unilateral tire's branch in contact, at
+ * rest) becomes that model, with its defaults; the others stay (a
+ * Hunt-Crossley tire is linearised with the rest at the static
+ * equilibrium). */
+void fb_scenario_tires_in_contact(fb_scenario *s);
 
 /* The road of s: releases the old type's block, sets type t (borrowed:
  * it outlives s) and a new block of its defaults (fb_road_params_init),

@@ -292,11 +292,10 @@ static int run(const char *path, fb_system sys, const char *dir, int strict)
   export_model m = {.sys = sys};
   int rc = cli_scenario_load(path, strict, &s, &err);
   assert(rc != FB_OK || s); /* for the static analyzer: s is set on success */
-  /* A unilateral tire is linear while in contact, its mode at rest: that
-   * branch is the linear model (a Hunt-Crossley one is not linear). */
-  for (size_t c = 0; s && c < s->ncorners; ++c)
-    if (s->corner[c].tire_contact == FB_TIRE_UNILATERAL)
-      s->corner[c].tire_contact = FB_TIRE_BILATERAL;
+  /* A tire model that names its branch in contact (a unilateral tire's,
+   * at rest) is exported as that branch (fb_scenario_tires_in_contact). */
+  if (s)
+    fb_scenario_tires_in_contact(s);
   m.s = s;
   /* The directory is held (locked) from here to the end. */
   cli_outdir od;

@@ -187,7 +187,7 @@ static void print_summary(const freq_study *fs, const fb_scenario *s)
          cli_scenario_name(s), 3.6 * s->speed, nfreq, f[0], f[nfreq - 1]);
   size_t unilateral = 0;
   for (size_t c = 0; c < s->ncorners; ++c)
-    unilateral += s->corner[c].tire_contact == FB_TIRE_UNILATERAL;
+    unilateral += fb_corner_tire_model(&s->corner[c])->in_contact != NULL;
   if (unilateral)
     printf("%zu unilateral tires taken in contact (their linear branch at rest)\n", unilateral);
   for (int sys = 0; sys < CLI_MAX_SYSTEMS; ++sys)

@@ -1006,11 +1006,20 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
 /* ---- Tire contact: the verdict of each system, from its reactions. */
 
 /* How many of s's corners have tire model m. */
-static size_t corners_with(const fb_scenario *s, fb_tire_contact m)
+static size_t corners_with(const fb_scenario *s, const fb_tire_model *m)
 {
   size_t n = 0;
   for (size_t c = 0; c < s->ncorners; ++c)
-    n += s->corner[c].tire_contact == m;
+    n += fb_corner_tire_model(&s->corner[c]) == m;
+  return n;
+}
+
+/* How many of s's corners have a tire that can pull. */
+static size_t corners_pulling(const fb_scenario *s)
+{
+  size_t n = 0;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    n += fb_corner_tire_model(&s->corner[c])->pulls != 0;
   return n;
 }
 
@@ -1025,7 +1034,7 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
       c_max = c;
     if (!fb_run_summary_contact_spike(r->sum, c))
       continue;
-    constant_damper |= s->corner[c].tire_contact != FB_TIRE_HUNT_CROSSLEY;
+    constant_damper |= !fb_corner_tire_model(&s->corner[c])->soft_landing;
     fputs(n++ ? "; "
               : "  Reaction spikes, above " CLI_CONTACT_SPIKE_TEXT
                 " times the static reaction: ",
@@ -1055,7 +1064,7 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
 /* What a contact-loss interval is, for the tire models the corners have. */
 static void write_loss_kinds(FILE *fp, const fb_scenario *s, size_t nloss)
 {
-  const size_t bilateral = corners_with(s, FB_TIRE_BILATERAL);
+  const size_t bilateral = corners_pulling(s);
   fprintf(fp, "%zu interval%s where a tire", nloss, nloss == 1 ? "" : "s");
   if (bilateral == s->ncorners)
     fputs("'s normal reaction is tensile (the linear tire pulls the wheel down; a real one "
@@ -1092,44 +1101,35 @@ static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_
     fputs(i ? "; " : " ", fp);
     fb_md_write_text(fp, s->corner[t->corner].name);
     fprintf(fp, " from %.3f to %.3f s", t->t_start, t->t_end);
-    if (s->corner[t->corner].tire_contact == FB_TIRE_BILATERAL)
+    if (fb_corner_tire_model(&s->corner[t->corner])->pulls)
       fprintf(fp, " (down to %s N at %.3f s)", number_text(t->min_force, force, sizeof force),
               t->t_min);
   }
   fputs(".\n", fp);
 }
 
-/* What each tire model present means, with its corners when they differ. */
+/* What each tire model present means, with its corners when they
+ * differ: the models in the order the corners first name them. */
 static void write_tire_models(FILE *fp, const fb_scenario *s)
 {
-  static const char *const meaning[] = {
-      [FB_TIRE_BILATERAL] = "linear (the paper's): a negative reaction means the tire would "
-                            "have left the road",
-      [FB_TIRE_UNILATERAL] = "unilateral: it pushes but never pulls, and a wheel whose "
-                             "reaction would become tensile leaves the road until it lands "
-                             "again",
-      [FB_TIRE_HUNT_CROSSLEY] = "unilateral, its damping growing from zero at first contact "
-                                "to tire_c at the static deflection (Hunt-Crossley)"};
-  const fb_tire_contact models[] = {FB_TIRE_BILATERAL, FB_TIRE_UNILATERAL,
-                                    FB_TIRE_HUNT_CROSSLEY};
-  int first = 1;
-  for (size_t k = 0; k < sizeof models / sizeof models[0]; ++k) {
-    const size_t n = corners_with(s, models[k]);
-    if (n == 0)
+  for (size_t k = 0; k < s->ncorners; ++k) {
+    const fb_tire_model *m = fb_corner_tire_model(&s->corner[k]);
+    size_t seen = 0;
+    for (size_t c = 0; c < k; ++c)
+      seen += fb_corner_tire_model(&s->corner[c]) == m;
+    if (seen)
       continue;
-    fputs(first ? "" : "; ", fp);
-    first = 0;
-    if (n == s->ncorners) {
-      fprintf(fp, "every tire is `%s`, %s", fb_tire_contact_name(models[k]),
-              meaning[models[k]]);
+    fputs(k ? "; " : "", fp);
+    if (corners_with(s, m) == s->ncorners) {
+      fprintf(fp, "every tire is `%s`, %s", m->name, m->meaning);
       continue;
     }
-    for (size_t c = 0, i = 0; c < s->ncorners; ++c)
-      if (s->corner[c].tire_contact == models[k]) {
+    for (size_t c = k, i = 0; c < s->ncorners; ++c)
+      if (fb_corner_tire_model(&s->corner[c]) == m) {
         fputs(i++ ? ", " : "", fp);
         fb_md_write_text(fp, s->corner[c].name);
       }
-    fprintf(fp, ": `%s`, %s", fb_tire_contact_name(models[k]), meaning[models[k]]);
+    fprintf(fp, ": `%s`, %s", m->name, m->meaning);
   }
   fputs(" (`wheel.tire_contact`).", fp);
 }

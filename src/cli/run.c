@@ -318,13 +318,13 @@ static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_sce
   /* One model for every tire, or "mixed" and each corner's in "models". */
   int mixed = 0;
   for (size_t c = 1; c < s->ncorners; ++c)
-    mixed |= s->corner[c].tire_contact != s->corner[0].tire_contact;
+    mixed |= fb_corner_tire_model(&s->corner[c]) != fb_corner_tire_model(&s->corner[0]);
   fprintf(fp, "{\"model\": \"%s\", \"models\": {",
-          mixed ? "mixed" : fb_tire_contact_name(s->corner[0].tire_contact));
+          mixed ? "mixed" : fb_corner_tire_model(&s->corner[0])->name);
   for (size_t c = 0; c < s->ncorners; ++c) {
     fputs(c ? ", " : "", fp);
     cli_json_string(fp, s->corner[c].name);
-    fprintf(fp, ": \"%s\"", fb_tire_contact_name(s->corner[c].tire_contact));
+    fprintf(fp, ": \"%s\"", fb_corner_tire_model(&s->corner[c])->name);
   }
   fputs("}, \"min_force\": {", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {

@@ -228,7 +228,7 @@ int fb_scenario_load_string(const char *text, size_t len, const char *display_na
 }
 
 int sc_load(const char *text, size_t len, const char *display_name, const char *base_dir,
-            const fb_road_gallery *roads, sch_override *ov, size_t nov, fb_scenario **out,
+            const fb_scenario_load_opts *opts, sch_override *ov, size_t nov, fb_scenario **out,
             fb_err *err)
 {
   fb_err local;
@@ -252,7 +252,8 @@ int sc_load(const char *text, size_t len, const char *display_name, const char *
                ? sc_source_new(s, e)
                : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (!rc)
-    rc = sc_schema_new(roads, &sc_source_of(s)->schema, e);
+    rc = sc_schema_new(opts ? opts->roads : NULL, opts ? opts->tires : NULL,
+                       &sc_source_of(s)->schema, e);
   if (!rc)
     rc = sc_load_document(&c, text, len, ov, nov, s);
   if (s) {
@@ -269,8 +270,8 @@ int sc_load(const char *text, size_t len, const char *display_name, const char *
   return FB_OK;
 }
 
-int sc_load_file(const char *path, const fb_road_gallery *roads, sch_override *ov, size_t nov,
-                 fb_scenario **out, fb_err *err)
+int sc_load_file(const char *path, const fb_scenario_load_opts *opts, sch_override *ov,
+                 size_t nov, fb_scenario **out, fb_err *err)
 {
   char *text = NULL;
   size_t len = 0;
@@ -280,7 +281,7 @@ int sc_load_file(const char *path, const fb_road_gallery *roads, sch_override *o
   if (!rc && !dir)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
-    rc = sc_load(text, len, path, dir, roads, ov, nov, out, err);
+    rc = sc_load(text, len, path, dir, opts, ov, nov, out, err);
   free(dir);
   free(text);
   return rc;

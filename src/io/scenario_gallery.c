@@ -1,10 +1,14 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The scenario format's table with a road gallery's types
- * (scenario_internal.h): the format's own keys, and for each road type
- * a section road.<type> whose keys are the type's declared parameters
- * (flexbond/param.h), made here once per gallery. */
+/* The scenario format's table with a road gallery's types and a tire
+ * gallery's models (scenario_internal.h): the format's own keys; for
+ * each road type a section road.<type> whose keys are the type's
+ * declared parameters (flexbond/param.h); for each tire model a choice
+ * of wheel.tire_contact and a section wheel.<model> of its parameters,
+ * at the top level and in every corner's items. Made here once per pair
+ * of galleries. */
 #include <math.h>
 #include <stdatomic.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,9 +18,13 @@
 #include "io/scenario_internal.h"
 
 struct sc_schema {
-  sch_table table; /* first: a schema is its table */
-  sch_key *key;    /* owned, table.n of them */
-  char **path;     /* the generated keys' paths, owned */
+  sch_table table;            /* first: a schema is its table */
+  sch_key *key;               /* owned, table.n of them */
+  sch_table corner_table;     /* the corners' items, with the tire models */
+  sch_key *corner_key;        /* owned, corner_table.n of them */
+  const char **tire_name;     /* the tire models' names, NULL-terminated, owned array */
+  const fb_tire_model **tire; /* the models, NULL-terminated, owned array */
+  char **path;                /* the generated keys' paths, owned */
   size_t npaths;
   atomic_size_t refs;
 };
@@ -84,16 +92,19 @@ static const sch_need sc_param_needs[] = {[FB_PARAM_REQUIRED] = SCH_REQUIRED,
                                           [FB_PARAM_OPTIONAL] = SCH_OPTIONAL,
                                           [FB_PARAM_DEFAULT] = SCH_DEFAULT};
 
-/* A copy of "road.<type>[.<param>]", kept by the schema. */
-static const char *sc_key_path(sc_schema *sc, const fb_road_type *t, const fb_param *p)
+/* A copy of "<section>.<entry>[.<param>]", kept by the schema. */
+static const char *sc_key_path(sc_schema *sc, const char *section, const char *entry,
+                               const fb_param *p)
 {
-  char *path = fb_strdup_printf("road.%s%s%s", t->name, p ? "." : "", p ? p->name : "");
+  char *path = fb_strdup_printf("%s.%s%s%s", section, entry, p ? "." : "", p ? p->name : "");
   if (path)
     sc->path[sc->npaths++] = path;
   return path;
 }
 
-static sch_key sc_param_key(const char *path, const fb_param *p)
+/* The key of parameter p at path, its block at offset block in the
+ * struct its table fills. */
+static sch_key sc_param_key(const char *path, const fb_param *p, size_t block)
 {
   const sch_key k = {
       .path = path,
@@ -114,7 +125,7 @@ static sch_key sc_param_key(const char *path, const fb_param *p)
       .plausible_hi = p->plausible_hi,
       .plausible_why = p->plausible_why,
       .store = sc_param_stores[p->store],
-      .offset = offsetof(fb_scenario, road) + p->offset,
+      .offset = block + p->offset,
       .ops = &sc_param_ops,
       .scale = p->scale,
       .data = p,
@@ -125,7 +136,7 @@ static sch_key sc_param_key(const char *path, const fb_param *p)
 /* The keys of type t from sc->key[*n] on. */
 static int sc_type_keys(sc_schema *sc, const fb_road_type *t, size_t *n, fb_err *err)
 {
-  const char *path = sc_key_path(sc, t, NULL);
+  const char *path = sc_key_path(sc, "road", t->name, NULL);
   if (!path)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   sc->key[(*n)++] = (sch_key){.path = path,
@@ -136,57 +147,226 @@ static int sc_type_keys(sc_schema *sc, const fb_road_type *t, size_t *n, fb_err 
                               .ops = &sc_road_ops,
                               .data = t};
   for (size_t i = 0; i < t->nparams; ++i) {
-    if (!(path = sc_key_path(sc, t, &t->param[i])))
+    if (!(path = sc_key_path(sc, "road", t->name, &t->param[i])))
       return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-    sc->key[(*n)++] = sc_param_key(path, &t->param[i]);
+    sc->key[(*n)++] = sc_param_key(path, &t->param[i], offsetof(fb_scenario, road));
   }
   return FB_OK;
 }
 
-/* The generated keys' count: a section and its parameters per type. */
-static size_t sc_gallery_keys(const fb_road_gallery *g)
+/* ---- Tire models: a choice, and a section of parameters per model. */
+
+/* A corner's section wheel.<model> is there when it is the corner's
+ * model. */
+static int sc_tire_present(const sch_key *k, const void *base)
+{
+  return fb_corner_tire_model(base) == k->data;
+}
+
+static const sch_ops sc_tire_ops = {.present = sc_tire_present};
+
+/* The sections of every model of g after the choice, at sc->key or
+ * sc->corner_key (corner: stored in the corner's block, else only read
+ * to be inherited). */
+static int sc_tire_keys(sc_schema *sc, const fb_tire_gallery *g, int corner, sch_key *key,
+                        size_t *n, fb_err *err)
+{
+  for (size_t j = 0; j < fb_tire_gallery_count(g); ++j) {
+    const fb_tire_model *m = fb_tire_gallery_at(g, j);
+    if (!m->nparams) /* nothing to give */
+      continue;
+    const char *path = sc_key_path(sc, "wheel", m->name, NULL);
+    if (!path)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+    key[(*n)++] = (sch_key){.path = path,
+                            .type = SCH_SECTION,
+                            .need = SCH_OPTIONAL,
+                            .doc = corner ? "this corner's parameters of the model, where they "
+                                            "differ from the top-level `wheel`'s"
+                                          : "the parameters of that model, for every corner "
+                                            "whose tire it is unless the corner gives its own",
+                            .ops = corner ? &sc_tire_ops : NULL,
+                            .data = m};
+    for (size_t i = 0; i < m->nparams; ++i) {
+      if (!(path = sc_key_path(sc, "wheel", m->name, &m->param[i])))
+        return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+      sch_key k = sc_param_key(path, &m->param[i], offsetof(fb_corner_params, tire));
+      /* Left out in a corner: the top level's (sc_corner_tire); the top
+       * level's is only read, to be inherited. */
+      if (corner)
+        k.need = SCH_OPTIONAL;
+      else
+        k.store = SCH_STORE_NONE;
+      key[(*n)++] = k;
+    }
+  }
+  return FB_OK;
+}
+
+/* Stores v (in the written unit) as p's value in block. */
+static void sc_param_store(const fb_param *p, double v, void *block)
+{
+  void *at = (char *)block + p->offset;
+  switch (p->store) {
+  case FB_PARAM_DOUBLE: *(double *)at = v * (p->scale != 0.0 ? p->scale : 1.0); break;
+  case FB_PARAM_INT: *(int *)at = (int)v; break;
+  case FB_PARAM_SIZE: *(size_t *)at = (size_t)v; break;
+  case FB_PARAM_U64: *(uint64_t *)at = (uint64_t)v; break;
+  case FB_PARAM_STRING: break;
+  }
+}
+
+/* A section of another model than m written in the corner's wheel. */
+static int sc_tire_foreign(sch_reader *r, const fb_tire_model *const *models,
+                           const fb_tire_model *m, struct fy_node *node)
+{
+  struct fy_node *wheel = node ? ml_get(node, "wheel", NULL) : NULL;
+  for (size_t j = 0; wheel && models[j]; ++j) {
+    const fb_tire_model *x = models[j];
+    struct fy_node *key = NULL;
+    if (x != m && (ml_get(wheel, x->name, &key), key))
+      return ml_fail_key(r->c, wheel, key, FB_EPARSE,
+                         "the parameters of a `%s` tire, but this corner's tire is `%s` (%s)",
+                         x->name, m->name, SC_TIRE_CHOICE);
+  }
+  return FB_OK;
+}
+
+int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
+                   const char *item_path, fb_corner_params *c)
+{
+  const sch_key *choice = sch_key_of(list->items, SC_TIRE_CHOICE);
+  const fb_tire_model *const *models = choice ? choice->data : NULL;
+  char path[SCH_PATH_MAX + 64];
+  snprintf(path, sizeof path, "%s.%s", item_path, SC_TIRE_CHOICE);
+  const sch_origin *o = sch_origin_find(r, path);
+  size_t nmodels = 0;
+  while (models && models[nmodels])
+    ++nmodels;
+  const size_t i_model = o ? (size_t)o->number : 0;
+  const fb_tire_model *m = i_model < nmodels ? models[i_model] : NULL;
+  if (!m)
+    return fb_err_set(r->c->err, FB_EINVAL, "%s: no tire model", path);
+  int rc = fb_corner_set_tire(c, m, NULL, r->c->err);
+  if (!rc)
+    rc = sc_tire_foreign(r, models, m, node);
+  /* Each value as read (its origin's number): the corner's own, else
+   * the top level's, recorded as the corner's. */
+  for (size_t i = 0; !rc && i < m->nparams; ++i) {
+    const fb_param *p = &m->param[i];
+    char top[SCH_PATH_MAX];
+    snprintf(top, sizeof top, "wheel.%s.%s", m->name, p->name);
+    snprintf(path, sizeof path, "%s.%s", item_path, top);
+    const int own = (o = sch_origin_find(r, path)) != NULL;
+    if (!own)
+      o = sch_origin_find(r, top);
+    if (o)
+      sc_param_store(p, o->number, c->tire.bytes);
+    if (o && !own)
+      rc = sch_origin_inherit(r, path, top);
+  }
+  return rc;
+}
+
+/* The generated keys' count: a section and its parameters per entry. */
+static size_t sc_gallery_keys(const fb_road_gallery *roads, const fb_tire_gallery *tires)
 {
   size_t n = 0;
-  for (size_t i = 0; i < fb_road_gallery_count(g); ++i)
-    n += 1 + fb_road_gallery_at(g, i)->nparams;
+  for (size_t i = 0; i < fb_road_gallery_count(roads); ++i)
+    n += 1 + fb_road_gallery_at(roads, i)->nparams;
+  for (size_t i = 0; i < fb_tire_gallery_count(tires); ++i)
+    n += 1 + fb_tire_gallery_at(tires, i)->nparams;
   return n;
 }
 
-static int sc_schema_fill(sc_schema *sc, const fb_road_gallery *g, fb_err *err)
+/* The top-level choice's documentation: each model's name and doc, kept
+ * by the schema; NULL when out of memory. */
+static const char *sc_tire_doc(sc_schema *sc, const fb_tire_gallery *g)
 {
-  const sch_table *own = &sc_format;
-  const size_t extra = sc_gallery_keys(g);
-  sc->key = calloc(own->n + extra, sizeof *sc->key);
-  sc->path = calloc(extra ? extra : 1, sizeof *sc->path);
-  if (!sc->key || !sc->path)
-    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-  size_t n = 0;
+  char *doc = fb_strdup("how every tire meets the road, a tire model");
+  for (size_t j = 0; doc && j < fb_tire_gallery_count(g); ++j) {
+    const fb_tire_model *m = fb_tire_gallery_at(g, j);
+    char *more = fb_strdup_printf("%s%s `%s`: %s", doc, j ? ";" : ":", m->name, m->doc);
+    free(doc);
+    doc = more;
+  }
+  if (doc)
+    sc->path[sc->npaths++] = doc;
+  return doc;
+}
+
+/* Copies table own into key (room for own->n and the galleries' keys):
+ * after SC_TIRE_CHOICE the tire models' choices and sections, after
+ * SC_ROAD_TYPES_AFTER the road types' (roads NULL: none); *n keys. */
+static int sc_copy_with(sc_schema *sc, const sch_table *own, const fb_road_gallery *roads,
+                        const fb_tire_gallery *tires, int corner, sch_key *key, size_t *n,
+                        fb_err *err)
+{
   int rc = FB_OK;
   for (size_t i = 0; !rc && i < own->n; ++i) {
-    sc->key[n++] = own->key[i];
-    /* The road's types follow its own keys. */
-    for (size_t j = 0;
-         !rc && !strcmp(own->key[i].path, SC_ROAD_TYPES_AFTER) && j < fb_road_gallery_count(g);
+    sch_key *k = &key[(*n)++];
+    *k = own->key[i];
+    if (k->items == &sc_corner_format) /* the corners' lists read the corners with them */
+      k->items = &sc->corner_table;
+    if (!strcmp(k->path, SC_TIRE_CHOICE)) {
+      k->choices = sc->tire_name;
+      k->data = sc->tire; /* the models, for sc_corner_tire */
+      if (!corner && !(k->doc = sc_tire_doc(sc, tires)))
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+      if (!rc)
+        rc = sc_tire_keys(sc, tires, corner, key, n, err);
+    }
+    for (size_t j = 0; !rc && roads && !strcmp(k->path, SC_ROAD_TYPES_AFTER) &&
+                       j < fb_road_gallery_count(roads);
          ++j)
-      rc = sc_type_keys(sc, fb_road_gallery_at(g, j), &n, err);
+      rc = sc_type_keys(sc, fb_road_gallery_at(roads, j), n, err);
   }
+  return rc;
+}
+
+static int sc_schema_fill(sc_schema *sc, const fb_road_gallery *roads,
+                          const fb_tire_gallery *tires, fb_err *err)
+{
+  const sch_table *own = &sc_format;
+  const size_t extra = sc_gallery_keys(roads, tires), ntires = fb_tire_gallery_count(tires);
+  sc->key = calloc(own->n + extra, sizeof *sc->key);
+  sc->corner_key = calloc(sc_corner_format.n + extra, sizeof *sc->corner_key);
+  sc->path = calloc(2 * extra + 2, sizeof *sc->path); /* and the choice's doc */
+  sc->tire_name = calloc(ntires + 1, sizeof *sc->tire_name);
+  sc->tire = calloc(ntires + 1, sizeof *sc->tire);
+  if (!sc->key || !sc->corner_key || !sc->path || !sc->tire_name || !sc->tire)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+  for (size_t i = 0; i < ntires; ++i) {
+    sc->tire[i] = fb_tire_gallery_at(tires, i);
+    sc->tire_name[i] = sc->tire[i]->name;
+  }
+  size_t nc = 0, n = 0;
+  int rc = sc_copy_with(sc, &sc_corner_format, NULL, tires, 1, sc->corner_key, &nc, err);
+  sc->corner_table = (sch_table){sc->corner_key, nc, sc_corner_format.done};
+  if (!rc)
+    rc = sc_copy_with(sc, own, roads, tires, 0, sc->key, &n, err);
   sc->table = (sch_table){sc->key, n, own->done};
   return rc;
 }
 
-int sc_schema_new(const fb_road_gallery *g, sc_schema **out, fb_err *err)
+int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires, sc_schema **out,
+                  fb_err *err)
 {
   *out = NULL;
   fb_road_gallery *builtin = NULL;
-  int rc = g ? FB_OK : fb_road_gallery_new(&builtin, err);
+  fb_tire_gallery *builtin_tires = NULL;
+  int rc = roads ? FB_OK : fb_road_gallery_new(&builtin, err);
+  if (!rc && !tires)
+    rc = fb_tire_gallery_new(&builtin_tires, err);
   sc_schema *sc = rc ? NULL : calloc(1, sizeof *sc);
   if (!rc && !sc)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   if (!rc) {
     atomic_init(&sc->refs, 1);
-    rc = sc_schema_fill(sc, g ? g : builtin, err);
+    rc = sc_schema_fill(sc, roads ? roads : builtin, tires ? tires : builtin_tires, err);
   }
   fb_road_gallery_free(&builtin);
+  fb_tire_gallery_free(&builtin_tires);
   if (rc)
     sc_schema_release(&sc);
   *out = sc;
@@ -209,6 +389,9 @@ void sc_schema_release(sc_schema **sc)
       free((*sc)->path[i]);
     free((*sc)->path);
     free((*sc)->key);
+    free((*sc)->corner_key);
+    free((void *)(*sc)->tire_name);
+    free((void *)(*sc)->tire);
     free(*sc);
   }
   *sc = NULL;
@@ -226,13 +409,22 @@ int sc_schema_of(const fb_scenario *s, sc_schema **out, fb_err *err)
     *out = sc_schema_share(src->schema);
     return FB_OK;
   }
-  /* A description no file gave: the built-in types, and its own. */
+  /* A description no file gave: the built-in entries, and its own. */
   fb_road_gallery *g = NULL;
+  fb_tire_gallery *tires = NULL;
   int rc = fb_road_gallery_new(&g, err);
   if (!rc && s && s->road_type && !fb_road_gallery_find(g, s->road_type->name))
     rc = fb_road_gallery_add(g, s->road_type, err);
   if (!rc)
-    rc = sc_schema_new(g, out, err);
+    rc = fb_tire_gallery_new(&tires, err);
+  for (size_t c = 0; !rc && s && c < s->ncorners; ++c) {
+    const fb_tire_model *m = fb_corner_tire_model(&s->corner[c]);
+    if (!fb_tire_gallery_find(tires, m->name))
+      rc = fb_tire_gallery_add(tires, m, err);
+  }
+  if (!rc)
+    rc = sc_schema_new(g, tires, out, err);
   fb_road_gallery_free(&g);
+  fb_tire_gallery_free(&tires);
   return rc;
 }

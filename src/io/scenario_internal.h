@@ -23,15 +23,27 @@
 extern const sch_table sc_format;
 /* The key of sc_format after which the road types' sections go. */
 #define SC_ROAD_TYPES_AFTER "road.speed_kmh"
-
+/* The key of sc_format, and of its corners' items, after which the tire
+ * models' sections go; its choices are the models' names. */
+#define SC_TIRE_CHOICE "wheel.tire_contact"
+/* The corners' items (scenario_schema.c), without the tire models. */
+extern const sch_table sc_corner_format;
+/* After a corner's keys are read (item at node, under item_path): its
+ * tire model (the choice's value, given or inherited) and that model's
+ * parameters, the corner's own else the top-level wheel's
+ * (scenario_gallery.c). FB_EPARSE at a section of another model. */
+int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
+                   const char *item_path, fb_corner_params *c);
 /* The format's table with the road types of a gallery
  * (scenario_gallery.c): sc_format's keys and, for each type, a section
  * road.<type> of its declared parameters. Immutable once made, shared by
  * count (the scenarios read with it, their copies). */
 typedef struct sc_schema sc_schema;
-/* The table for gallery g (borrowed for the call; its types must outlive
- * the schema), NULL: the built-in types. *out new. FB_ENOMEM. */
-int sc_schema_new(const fb_road_gallery *g, sc_schema **out, fb_err *err);
+/* The table for the road types of roads and the tire models of tires
+ * (borrowed for the call; their entries must outlive the schema), NULL:
+ * the built-in ones. *out new. FB_ENOMEM. */
+int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires, sc_schema **out,
+                  fb_err *err);
 /* sc again, one more holder. */
 sc_schema *sc_schema_share(sc_schema *sc);
 void sc_schema_release(sc_schema **sc);
@@ -117,15 +129,15 @@ int fb_scenario_schema_markdown(FILE *fp, fb_err *err);
 
 /* Loads a scenario from text as fb_scenario_load_string does, relative
  * file references (a hull deck, a damper table) resolved from base_dir,
- * the road types of roads (NULL: the built-in ones), with the nov
+ * the galleries of opts (NULL: the built-in ones), with the nov
  * overrides (scenario_override.c; NULL and 0 for none). */
 int sc_load(const char *text, size_t len, const char *display_name, const char *base_dir,
-            const fb_road_gallery *roads, sch_override *ov, size_t nov, fb_scenario **out,
+            const fb_scenario_load_opts *opts, sch_override *ov, size_t nov, fb_scenario **out,
             fb_err *err);
 /* The same for the file at path, its references resolved from its
  * directory. */
-int sc_load_file(const char *path, const fb_road_gallery *roads, sch_override *ov, size_t nov,
-                 fb_scenario **out, fb_err *err);
+int sc_load_file(const char *path, const fb_scenario_load_opts *opts, sch_override *ov,
+                 size_t nov, fb_scenario **out, fb_err *err);
 
 /* ---- scenario_override.c. */
 

@@ -356,8 +356,25 @@ static int sc_axle_end(sch_reader *r, const sch_key *k, struct fy_node *node,
   return rc;
 }
 
+/* A single corner: its tire, then its origins as corners.name. */
+static int sc_corner_end(sch_reader *r, const sch_key *k, struct fy_node *node,
+                         const char *item_path, size_t mark, void *base, void *item)
+{
+  const int rc = sc_corner_tire(r, k, node, item_path, item);
+  return rc ? rc : sc_named_end(r, k, node, item_path, mark, base, item);
+}
+
+/* An axle: its tire, then its two corners. */
+static int sc_axle_tire_end(sch_reader *r, const sch_key *k, struct fy_node *node,
+                            const char *item_path, size_t mark, void *base, void *item)
+{
+  const int rc = sc_corner_tire(r, k, node, item_path, item);
+  return rc ? rc : sc_axle_end(r, k, node, item_path, mark, base, item);
+}
+
 static const sch_ops sc_named = {.item_end = sc_named_end};
-static const sch_ops sc_axles = {.item_end = sc_axle_end};
+static const sch_ops sc_axles = {.item_end = sc_axle_tire_end};
+static const sch_ops sc_corners = {.item_end = sc_corner_end};
 
 /* At least three corners (a hull on fewer wheels has no static
  * equilibrium). */
@@ -593,8 +610,6 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
   }
 
 static const char *const sc_payloads[] = {"weight-only", "lumped", NULL};
-/* In the order of fb_tire_contact (fb_tire_contact_name). */
-static const char *const sc_contacts[] = {"bilateral", "unilateral", "hunt_crossley", NULL};
 static const char *const sc_masses[] = {"consistent", "lumped", NULL};
 static const char *const sc_initials[] = {"zero", "static", NULL};
 static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
@@ -682,10 +697,12 @@ static const sch_key sc_corner_keys[] = {
            C_OFF(tire_k), PLAUSIBLE(1e4, 1e8, SC_WHY_TIRE_K)),
     NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, INHERIT("wheel.tire_c"), "tire damping",
            C_OFF(tire_c)),
-    CHOICE("wheel.tire_contact", sc_contacts, INHERIT("wheel.tire_contact"),
-           "how the tire meets the road", C_AT(INT, tire_contact)),
+    /* Its choices are a tire gallery's models (scenario_gallery.c), each
+     * with a section wheel.<model> of its parameters after it. */
+    CHOICE(SC_TIRE_CHOICE, NULL, INHERIT(SC_TIRE_CHOICE), "how the tire meets the road",
+           NO_STORE, C_IS(tire_model)),
 };
-static const sch_table sc_corner_table = TABLE(sc_corner_keys, NULL);
+const sch_table sc_corner_format = TABLE(sc_corner_keys, NULL);
 
 static const sch_key sc_output_keys[] = {
     STRING(NAME, "signal", REQ, "what it records: a signal kind (docs/vehicle-outputs.md)",
@@ -859,21 +876,17 @@ static const sch_key sc_keys[] = {
     NUMBER("wheel.tire_k", "N/m", POSITIVE, OPT, "tire stiffness", NO_STORE,
            PLAUSIBLE(1e4, 1e8, SC_WHY_TIRE_K)),
     NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, OPT, "tire damping", NO_STORE),
-    CHOICE("wheel.tire_contact", sc_contacts, DEF(0),
-           "`bilateral`: the paper's linear tire; `unilateral`: it never pulls, the wheel "
-           "may leave the road; `hunt_crossley`: unilateral, with a damping that grows with "
-           "the deflection (Hunt & Crossley 1975): `tire_c` at the static deflection under an "
-           "equal share of the weight, 0 at first contact",
+    CHOICE(SC_TIRE_CHOICE, NULL, DEF(0), "how every tire meets the road (the tire models')",
            NO_STORE),
     SECTION_IS("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions,
                S_IS(corner)),
     NUMBER("suspensions.motion_ratio", NULL, POSITIVE, DEF(1),
            "every corner's spring travel / wheel travel unless it gives its own", NO_STORE),
     LIST("suspensions.axles", OPT,
-         "axles, each two corners: L<name> at (x, y) and R<name> at (x, -y)", &sc_corner_table,
+         "axles, each two corners: L<name> at (x, y) and R<name> at (x, -y)", &sc_corner_format,
          "corners", &sc_axles, NAMED(corner, ncorners, 2)),
-    LIST("suspensions.corners", OPT, "single corners, after the axles' ones", &sc_corner_table,
-         "corners", &sc_named, NAMED(corner, ncorners, 1)),
+    LIST("suspensions.corners", OPT, "single corners, after the axles' ones", &sc_corner_format,
+         "corners", &sc_corners, NAMED(corner, ncorners, 1)),
     LIST("outputs", OPT,
          "the signals recorded, in CSV column order (default: every corner's tire_force)",
          &sc_output_table, "outputs", &sc_outputs, ITEMS(output, noutputs, 1)),
@@ -947,7 +960,7 @@ static const sch_table *sc_part_table(const fb_scenario *s, const sch_table *for
     if (i >= s->ncorners || !s->corner[i].name)
       return NULL;
     snprintf(prefix, size, "corners.%s", s->corner[i].name);
-    return &sc_corner_table;
+    return &sc_corner_format;
   case FB_PART_MOUNT:
     if (i >= s->nmounts || !s->mount[i].name)
       return NULL;
@@ -1027,6 +1040,10 @@ int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t si
   }
   if (p->kind == FB_PART_ROAD)
     return sc_road_part_key(s, p, key, size);
+  if (p->kind == FB_PART_TIRE) /* corners.<name>.wheel.<model>.<parameter> */
+    return p->index < s->ncorners && s->corner[p->index].name && p->field[0] &&
+           snprintf(key, size, "corners.%s.%s.%s.%s", s->corner[p->index].name, "wheel",
+                    fb_corner_tire_model(&s->corner[p->index])->name, p->field) > 0;
   sc_schema *sc = NULL;
   if (sc_schema_of(s, &sc, NULL))
     return 0;
@@ -1086,7 +1103,7 @@ int sc_read(ml_ctx *c, const sch_table *t, struct fy_node *root, fb_symtab *para
 int fb_scenario_schema_markdown(FILE *fp, fb_err *err)
 {
   sc_schema *sc = NULL;
-  const int rc = sc_schema_new(NULL, &sc, err);
+  const int rc = sc_schema_new(NULL, NULL, &sc, err);
   if (!rc)
     sch_markdown(sc_schema_table(sc), fp);
   sc_schema_release(&sc);

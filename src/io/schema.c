@@ -113,6 +113,16 @@ const sch_origin *sch_origin_find(const sch_reader *r, const char *key)
   return NULL;
 }
 
+int sch_origin_inherit(sch_reader *r, const char *key, const char *from)
+{
+  const sch_origin *o = sch_origin_find(r, from);
+  if (!o)
+    return fb_err_set(r->c->err, FB_EINVAL, "no value at %s to inherit", from);
+  const sch_origin copy = *o; /* sch_add may move the array */
+  return sch_add(r, key, copy.path, copy.line, copy.column, copy.given, copy.number,
+                 copy.override);
+}
+
 int sch_origins_relabel(sch_reader *r, size_t mark, const char *item_path, const char *prefix,
                         int copy)
 {

@@ -237,6 +237,9 @@ int sch_record(sch_reader *r, const char *key, struct fy_node *node);
  * copies appended when copy is set (an item that makes two). */
 int sch_origins_relabel(sch_reader *r, size_t mark, const char *item_path, const char *prefix,
                         int copy);
+/* Records that the value at key path key is the one read at from (its
+ * origin copied: an inherited value). FB_EINVAL when from has none. */
+int sch_origin_inherit(sch_reader *r, const char *key, const char *from);
 /* The origin of the value read at path, NULL if none. */
 const sch_origin *sch_origin_find(const sch_reader *r, const char *path);
 

@@ -1,11 +1,13 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The road gallery (flexbond/road.h): the soundness of a road type, its
  * parameter blocks, and the set of types a description may name. */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "flexbond/road.h"
 
+#include "core/registry.h"
 #include "core/util.h"
 
 /* The built-in types, one line each. */
@@ -15,15 +17,12 @@ static const fb_road_type *const gallery_builtin[] = {
     &fb_road_type_profile,
 };
 
-/* One type of a gallery, borrowed. */
-typedef struct gallery_entry {
-  const fb_road_type *type;
-} gallery_entry;
-
 struct fb_road_gallery {
-  gallery_entry *entry; /* owned array of borrowed types */
-  size_t n, cap;
+  fb_registry reg; /* the types */
 };
+
+/* The registry reads an entry's name as its first member. */
+_Static_assert(offsetof(fb_road_type, name) == 0, "a road type's name is its first member");
 
 static int type_fail(fb_err *err, const fb_road_type *t, const char *what)
 {
@@ -100,41 +99,29 @@ int fb_road_gallery_add(fb_road_gallery *g, const fb_road_type *t, fb_err *err)
     return rc;
   if (fb_road_gallery_find(g, t->name))
     return type_fail(err, t, "a type of that name is already in the gallery");
-  if (g->n == g->cap) {
-    const size_t cap = g->cap ? 2 * g->cap : 8;
-    gallery_entry *grown = realloc(g->entry, cap * sizeof *grown);
-    if (!grown)
-      return fb_err_set(err, FB_ENOMEM, "out of memory for %zu road types", cap);
-    g->entry = grown;
-    g->cap = cap;
-  }
-  g->entry[g->n++].type = t;
-  return FB_OK;
+  return fb_registry_add(&g->reg, t, "road types", err);
 }
 
 size_t fb_road_gallery_count(const fb_road_gallery *g)
 {
-  return g ? g->n : 0;
+  return g ? g->reg.n : 0;
 }
 
 const fb_road_type *fb_road_gallery_at(const fb_road_gallery *g, size_t i)
 {
-  return g && i < g->n ? g->entry[i].type : NULL;
+  return fb_registry_at(g ? &g->reg : NULL, i);
 }
 
 const fb_road_type *fb_road_gallery_find(const fb_road_gallery *g, const char *name)
 {
-  for (size_t i = 0; g && name && i < g->n; ++i)
-    if (!strcmp(g->entry[i].type->name, name))
-      return g->entry[i].type;
-  return NULL;
+  return fb_registry_find(g ? &g->reg : NULL, name);
 }
 
 void fb_road_gallery_free(fb_road_gallery **g)
 {
   if (!g || !*g)
     return;
-  free((*g)->entry);
+  fb_registry_release(&(*g)->reg);
   free(*g);
   *g = NULL;
 }

@@ -32,6 +32,13 @@ static double mean_tire_load(const fb_scenario *s)
   return s->ncorners ? weight / (double)s->ncorners : 0.0;
 }
 
+fb_corner_params vehicle_corner_loaded(const fb_scenario *s, size_t c)
+{
+  fb_corner_params corner = s->corner[c];
+  corner.tire_static_deflection = mean_tire_load(s) / corner.tire_k;
+  return corner;
+}
+
 /* The one place the fragments' instance names are made: a mount's is its
  * name ("driver"), a corner's "susp_" and its name (so "LF" may be both
  * a corner and a mount's name without a clash), the hull's "hull". */
@@ -66,11 +73,9 @@ static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
     free(inst);
     fb_bg_free(&frag);
   }
-  const double tire_load = mean_tire_load(s);
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     char *inst = vehicle_instance(s, FB_OUTPUT_OF_CORNER, c);
-    fb_corner_params corner = s->corner[c];
-    corner.tire_deflection_ref = tire_load / corner.tire_k;
+    const fb_corner_params corner = vehicle_corner_loaded(s, c);
     rc = inst ? adopt(bg, fb_vehicle_corner(&corner, s->gravity, &frag, err), &frag, inst, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
     free(inst);

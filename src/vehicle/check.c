@@ -152,8 +152,6 @@ static const field corner_fields[] = {
     F(fb_corner_params, wheel_mass, REAL, POSITIVE, "kg", NULL),
     F(fb_corner_params, tire_k, REAL, POSITIVE, "N/m", NULL),
     F(fb_corner_params, tire_c, REAL, NONNEGATIVE, "N s/m", NULL),
-    F(fb_corner_params, tire_contact, WHOLE, CLOSED(FB_TIRE_BILATERAL, FB_TIRE_HUNT_CROSSLEY),
-      NULL, NULL),
 };
 
 static const field mount_fields[] = {
@@ -454,6 +452,33 @@ static int check_road(const fb_scenario *s, fb_err *err)
   return vehicle_road_error(rc, err);
 }
 
+/* Each corner's tire: a sound model, its block within the declared
+ * ranges, and the model's own rules for the loaded corner; errors name
+ * the corner's tire parameter (FB_PART_TIRE) or its model. */
+static int check_tires(const fb_scenario *s, fb_err *err)
+{
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const fb_tire_model *m = fb_corner_tire_model(&s->corner[c]);
+    int rc = fb_tire_model_check(m, err);
+    if (rc)
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, tire_model)), rc;
+    const fb_corner_params loaded = vehicle_corner_loaded(s, c);
+    const fb_tire_context ctx = fb_corner_tire_context(&loaded);
+    rc = fb_params_check(m->param, m->nparams, loaded.tire.bytes, err);
+    if (!rc && m->ops->check)
+      rc = m->ops->check(loaded.tire.bytes, &ctx, err);
+    if (rc && err && err->part.field[0]) { /* the parameter's own kind and corner */
+      err->part.kind = FB_PART_TIRE;
+      err->part.index = c;
+    } else if (rc) {
+      fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, tire_model));
+    }
+    if (rc)
+      return rc;
+  }
+  return FB_OK;
+}
+
 /* The solver's own limits (fb_sim_opts_check: sample count, the result's
  * memory, the steps that max_step forces), whose errors name their
  * setting: the description's member of the same name. */
@@ -667,6 +692,8 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = check_points(s, err);
   if (!rc)
     rc = check_point_masses(s, err);
+  if (!rc)
+    rc = check_tires(s, err);
   if (!rc)
     rc = check_road(s, err);
   if (!rc)

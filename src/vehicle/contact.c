@@ -9,16 +9,6 @@
 
 #include "core/util.h"
 
-const char *fb_tire_contact_name(fb_tire_contact contact)
-{
-  switch (contact) {
-  case FB_TIRE_BILATERAL: return "bilateral";
-  case FB_TIRE_UNILATERAL: return "unilateral";
-  case FB_TIRE_HUNT_CROSSLEY: return "hunt_crossley";
-  }
-  return "?";
-}
-
 /* Time at which the reaction crosses zero between samples k - 1 and k
  * (linear interpolation). */
 static double crossing(const fb_result *r, size_t col, size_t k)

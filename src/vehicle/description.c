@@ -76,6 +76,28 @@ double fb_scenario_road_exit(const fb_scenario *s, int corner)
   return isfinite(end) ? (end - fb_scenario_wheel_start(s, corner)) / s->speed : s->t_end;
 }
 
+int fb_corner_set_tire(fb_corner_params *c, const fb_tire_model *m, void **params, fb_err *err)
+{
+  const int rc = fb_tire_model_check(m, err);
+  if (rc)
+    return rc;
+  c->tire_model = m;
+  fb_tire_params_init(m, &c->tire);
+  if (params)
+    *params = c->tire.bytes;
+  return FB_OK;
+}
+
+const fb_tire_model *fb_corner_tire_model(const fb_corner_params *c)
+{
+  return c->tire_model ? c->tire_model : &fb_tire_model_bilateral;
+}
+
+fb_tire_context fb_corner_tire_context(const fb_corner_params *c)
+{
+  return (fb_tire_context){c->name, c->tire_k, c->tire_c, c->tire_static_deflection};
+}
+
 int fb_scenario_set_road(fb_scenario *s, const fb_road_type *t, void **params, fb_err *err)
 {
   const int rc = fb_road_type_check(t, err);

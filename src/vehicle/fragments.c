@@ -19,7 +19,7 @@
 #include "vehicle/vehicle_internal.h"
 
 /* One-port field with a scalar law (mass, stiffness or damping). */
-static int add_scalar(fb_bg *bg, const char *name, fb_bg_kind kind, double v, fb_err *err)
+int vehicle_add_scalar(fb_bg *bg, const char *name, fb_bg_kind kind, double v, fb_err *err)
 {
   fb_mat *m = NULL;
   const size_t one = 1;
@@ -225,7 +225,7 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
   fb_bg *bg = NULL;
   int rc = fb_bg_new("mount", &bg, err);
   if (!rc)
-    rc = add_scalar(bg, "mass", FB_BG_I, mnt->mass, err);
+    rc = vehicle_add_scalar(bg, "mass", FB_BG_I, mnt->mass, err);
   /* The body a mode of the vehicle may move: the mount itself. */
   const char *const body[1] = {mnt->name ? mnt->name : "mounted body"};
   if (!rc)
@@ -233,9 +233,9 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
   if (!rc)
     rc = add_constant_effort(bg, "weight", -mnt->mass * gravity, err);
   if (!rc)
-    rc = add_scalar(bg, "spring", FB_BG_C, mnt->stiffness, err);
+    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, mnt->stiffness, err);
   if (!rc)
-    rc = add_scalar(bg, "damper", FB_BG_R, mnt->damping, err);
+    rc = vehicle_add_scalar(bg, "damper", FB_BG_R, mnt->damping, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "Jm", FB_BG_J1, 1, err);
   if (!rc)
@@ -264,32 +264,19 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
 static int add_shock_absorber(fb_bg *bg, const fb_corner_params *c, fb_err *err)
 {
   if (c->damper_npoints == 0)
-    return add_scalar(bg, "damper", FB_BG_R, c->damper_c, err);
+    return vehicle_add_scalar(bg, "damper", FB_BG_R, c->damper_c, err);
   fb_table_law *law = NULL;
   int rc = fb_table_law_new(c->damper_npoints, c->damper_v, c->damper_f, &law, err);
   return rc ? rc : fb_bg_add_r_table(bg, "damper", &law, err);
 }
 
-/* The tire's spring and damper, in parallel on the 1-junction "Jt": the
- * paper's linear pair, or the same pair unable to pull (the wheel may
- * leave the road; the elements switch their laws at contact changes),
- * its damping constant or growing with the deflection. */
+/* The tire's spring and damper, in parallel on the 1-junction "Jt", as
+ * the corner's tire model builds them (flexbond/tire.h). */
 static int add_tire(fb_bg *bg, const fb_corner_params *c, fb_err *err)
 {
-  if (c->tire_contact == FB_TIRE_UNILATERAL)
-    return fb_bg_add_unilateral_contact(bg, "tire_spring", "tire_damper", c->tire_k, c->tire_c,
-                                        err);
-  if (c->tire_contact == FB_TIRE_HUNT_CROSSLEY) {
-    if (!(c->tire_deflection_ref > 0.0))
-      return fb_err_set(err, FB_EINVAL,
-                        "corner '%s': a Hunt-Crossley tire needs a reference deflection > 0 "
-                        "(got %g m)",
-                        c->name, c->tire_deflection_ref);
-    return fb_bg_add_hunt_crossley_contact(bg, "tire_spring", "tire_damper", c->tire_k,
-                                           c->tire_c / c->tire_deflection_ref, err);
-  }
-  int rc = add_scalar(bg, "tire_spring", FB_BG_C, c->tire_k, err);
-  return rc ? rc : add_scalar(bg, "tire_damper", FB_BG_R, c->tire_c, err);
+  const fb_tire_model *m = fb_corner_tire_model(c);
+  const fb_tire_context ctx = fb_corner_tire_context(c);
+  return m->ops->build(c->tire.bytes, &ctx, bg, err);
 }
 
 /* Suspension, wheel and tire. The 0-junction "susp" forms the wheel's
@@ -303,7 +290,7 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   fb_bg *bg = NULL;
   int rc = fb_bg_new("corner", &bg, err);
   if (!rc)
-    rc = add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
+    rc = vehicle_add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
   /* The wheel's mode: its hop. */
   char hop[96];
   snprintf(hop, sizeof hop, "wheel hop %s", c->name ? c->name : "");
@@ -313,7 +300,7 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   if (!rc)
     rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
   if (!rc)
-    rc = add_scalar(bg, "spring", FB_BG_C, c->spring_k, err);
+    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, c->spring_k, err);
   if (!rc)
     rc = add_shock_absorber(bg, c, err);
   if (!rc)

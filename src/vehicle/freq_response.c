@@ -35,11 +35,13 @@ int fb_vehicle_diagram_descriptor(fb_bd *bd, fb_descriptor **out, fb_err *err)
   return fb_bd_is_linear(bd) ? fb_bd_descriptor(bd, out, err) : linearise(bd, out, err);
 }
 
-void vehicle_tires_in_contact(fb_scenario *s)
+void fb_scenario_tires_in_contact(fb_scenario *s)
 {
-  for (size_t c = 0; c < s->ncorners; ++c)
-    if (s->corner[c].tire_contact == FB_TIRE_UNILATERAL)
-      s->corner[c].tire_contact = FB_TIRE_BILATERAL;
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const fb_tire_model *linear = fb_corner_tire_model(&s->corner[c])->in_contact;
+    if (linear) /* a model of a sound gallery: its in_contact is sound */
+      fb_corner_set_tire(&s->corner[c], linear, NULL, NULL);
+  }
 }
 
 typedef struct track_ctx {

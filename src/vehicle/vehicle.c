@@ -385,7 +385,7 @@ int fb_vehicle_linearise(fb_vehicle *v, fb_descriptor **out, fb_err *err)
 {
   *out = NULL;
   variant x;
-  int rc = variant_new(v, vehicle_tires_in_contact, NULL, 0, &x, err);
+  int rc = variant_new(v, fb_scenario_tires_in_contact, NULL, 0, &x, err);
   if (!rc) {
     rc = fb_vehicle_diagram_descriptor(x.bd, out, err);
     variant_free(&x);

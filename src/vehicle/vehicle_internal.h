@@ -14,6 +14,14 @@
 int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t index,
                             fb_probe_spec *p, fb_err *err);
 
+/* Corner c of s with its tire's static deflection under an equal share
+ * of the weight on the tires (assemble.c; fb_corner_params). */
+fb_corner_params vehicle_corner_loaded(const fb_scenario *s, size_t c);
+
+/* A one-port C or R element of constant scalar parameter v
+ * (fragments.c): the corners' linear springs, dampers and tires. */
+int vehicle_add_scalar(fb_bg *bg, const char *name, fb_bg_kind kind, double v, fb_err *err);
+
 /* System 1's inertia in (z, phi, theta), row-major 3x3 (fragments.c):
  * diag(hull_mass, hull_ixx, hull_iyy), the structure's, plus m r r' for
  * each declared hull mass and, with the lumped payload, each load point's
@@ -150,10 +158,6 @@ void vehicle_output_release(fb_output_spec *o);
  * (err->part.field set, no kind) a part of the description
  * (FB_PART_ROAD). */
 int vehicle_road_error(int rc, fb_err *err);
-/* A unilateral tire is linear while in contact, its mode at rest: it
- * becomes bilateral. A Hunt-Crossley one is not (its damping is lambda
- * q) and is linearised with the rest at the static equilibrium. */
-void vehicle_tires_in_contact(fb_scenario *s);
 /* The modes of the diagram bd of the vehicle graph g, linearised at its
  * static equilibrium (fb_vehicle_linear_modes): a dense eigen-solve,
  * refused beforehand (fb_check_dense_eig) beyond FB_DENSE_EIG_MAX states
