@@ -233,6 +233,10 @@ typedef struct fb_scenario_sweep_source {
    * one key do). */
   const fb_scenario_override *overrides;
   size_t noverrides;
+  /* How the caller names its axes in messages: "axes" labels a case's
+   * value "axes['speed_kmh']=-5" (fb_scenario_override.label); NULL: the
+   * default label. */
+  const char *axes_name;
 } fb_scenario_sweep_source;
 
 /* ops's load (fb_scenario_load_with, or fb_scenario_load_string_with,

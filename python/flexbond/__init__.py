@@ -163,7 +163,7 @@ class _SweepSource(ctypes.Structure):
     """fb_scenario_sweep_source (flexbond/io.h)."""
     _fields_ = [("path", ctypes.c_char_p), ("text", ctypes.c_char_p), ("len", ctypes.c_size_t),
                 ("display_name", ctypes.c_char_p), ("overrides", ctypes.POINTER(_Override)),
-                ("noverrides", ctypes.c_size_t)]
+                ("noverrides", ctypes.c_size_t), ("axes_name", ctypes.c_char_p)]
 
 
 class _SweepCase(ctypes.Structure):
@@ -1144,8 +1144,11 @@ class Scenario:
             *[_SweepAxis(_c_text(k, "sweep key"), v, n) for k, (v, n) in zip(keys, values)])
         base_ov, nbase = _overrides((k, v) for k, v in (self.overrides or {}).items()
                                     if k not in axes)
+        # A case's error names its value as the caller wrote the axes:
+        # axes['wheel.tire_k']=-1, not flexbond's --set.
         src = _SweepSource(None if self._text else _c_text(self.path, "path"), self._text,
-                           len(self._text or b""), _c_text(self.path, "name"), base_ov, nbase)
+                           len(self._text or b""), _c_text(self.path, "name"), base_ov, nbase,
+                           b"axes")
         with self._calls:  # open, and counted, at once: close() waits for the sweep
             s = self._handle()
             self._ncalls += 1

@@ -93,7 +93,15 @@ class SweepAgainstCommand(unittest.TestCase):
                                 "%s of case %s: sweep.csv %r, Python %r" %
                                 (m, row, row[m], case[m]))
                 compared += not math.isnan(case[m])
-            self.assertEqual(row["error"] or None, case["error"])
+            # The same message, each front end naming the value its own way.
+            if row["error"]:
+                cli_label, cli_rest = row["error"].split(": ", 1)
+                py_label, py_rest = case["error"].split(": ", 1)
+                self.assertEqual(cli_rest, py_rest)
+                self.assertEqual(cli_label, "--set wheel.tire_k=-1")
+                self.assertEqual(py_label, "axes['wheel.tire_k']=-1")
+            else:
+                self.assertIsNone(case["error"])
         # 6 cases ran, each with its 23 output statistics, contact and ride
         # metrics and steps: hundreds of numbers, every one equal.
         self.assertGreater(compared, 150)
