@@ -349,7 +349,7 @@ typedef struct fb_study_sweep_case {
   int worker;           /* who ran it, as the front end numbers them (0 here) */
 } fb_study_sweep_case;
 
-/* Case i's outcome into *out (its pointers owned by sw, valid until the
+/* Case i's outcome (i < ncases) into *out (its pointers owned by sw, valid until the
  * case is recorded again or sw freed); 1 if it is done, 0 if it is not
  * (*out then holds NaN metrics and status FB_EINTR). */
 int fb_study_sweep_case_get(const fb_study_sweep *sw, size_t i, fb_study_sweep_case *out);

@@ -17,8 +17,6 @@
 #include "cli.h"
 #include "sweep.h"
 
-static const char *const stat_names[FB_STUDY_SWEEP_NSTATS] = {"peak", "min", "rms"};
-
 /* ---- The study's callbacks (fb_study_sweep_ops), on the pool's threads. */
 
 /* Case i's scenario: the file read with the case's --set values in place
@@ -112,19 +110,32 @@ static void metric_name(const sweep_args *a, size_t m, char *buf, size_t size)
   fb_study_sweep_metric_name(a->study, m, buf, size);
 }
 
-int sweep_metric_find(const sweep_args *a, const char *spec, size_t *m)
+/* OUTPUT:STAT: one of output OUTPUT's statistics, by its column name
+ * OUTPUT_STAT; -1 if none is. */
+static int find_stat(const sweep_args *a, const char *spec, const char *colon, size_t *m)
 {
-  const char *colon = strchr(spec, ':');
-  const size_t len = colon ? (size_t)(colon - spec) : strlen(spec);
-  for (size_t k = 0; colon && k < a->base->noutputs; ++k)
-    for (size_t st = 0; st < FB_STUDY_SWEEP_NSTATS; ++st)
-      if (strlen(a->base->output[k].name) == len &&
-          !strncmp(a->base->output[k].name, spec, len) && !strcmp(colon + 1, stat_names[st])) {
+  const size_t len = (size_t)(colon - spec);
+  char want[FB_ERR_KEY_MAX], name[FB_ERR_KEY_MAX];
+  snprintf(want, sizeof want, "%.*s_%s", (int)len, spec, colon + 1);
+  for (size_t k = 0; k < a->base->noutputs; ++k) {
+    if (strlen(a->base->output[k].name) != len || strncmp(a->base->output[k].name, spec, len))
+      continue;
+    for (size_t st = 0; st < FB_STUDY_SWEEP_NSTATS; ++st) {
+      metric_name(a, FB_STUDY_SWEEP_NSTATS * k + st, name, sizeof name);
+      if (!strcmp(name, want)) {
         *m = FB_STUDY_SWEEP_NSTATS * k + st;
         return 0;
       }
+    }
+  }
+  return -1;
+}
+
+int sweep_metric_find(const sweep_args *a, const char *spec, size_t *m)
+{
+  const char *colon = strchr(spec, ':');
   if (colon)
-    return -1;
+    return find_stat(a, spec, colon, m);
   for (size_t k = 0; k < a->base->noutputs; ++k)
     if (!strcmp(a->base->output[k].name, spec)) {
       *m = FB_STUDY_SWEEP_NSTATS * k + FB_STUDY_SWEEP_PEAK;

@@ -118,11 +118,11 @@ int fb_study_sweep_new(const fb_scenario *base, fb_system sys, const fb_study_sw
     return fb_err_set(err, FB_EINVAL, "sweep: no function makes a case's scenario");
   size_t ncases = 0;
   int rc = count_cases(axes, naxes, &ncases, err);
-  fb_study_sweep *sw = rc == FB_OK ? calloc(1, sizeof *sw) : NULL;
-  if (rc == FB_OK && !sw)
-    return fb_err_set(err, FB_ENOMEM, "sweep: out of memory");
   if (rc != FB_OK)
     return rc;
+  fb_study_sweep *sw = calloc(1, sizeof *sw);
+  if (!sw)
+    return fb_err_set(err, FB_ENOMEM, "sweep: out of memory");
   *sw = (fb_study_sweep){.base = base, .sys = sys, .ops = *ops, .ncases = ncases};
   sw->nmetrics = FB_STUDY_SWEEP_NSTATS * base->noutputs + FB_STUDY_SWEEP_NOTHER;
   pthread_mutex_init(&sw->lock, NULL);
