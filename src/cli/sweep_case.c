@@ -5,12 +5,9 @@
  * a finished case says), the names --plot takes, and sweep.csv's rows. */
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "flexbond/escape.h"
-#include "flexbond/fem.h"
-#include "flexbond/ride.h"
 #include "flexbond/sim.h"
 
 #include "../core/textfile.h"
