@@ -137,6 +137,19 @@ class SweepOptions(unittest.TestCase):
             for m in sw.metrics:
                 self.assertTrue(same_number(row[m], case[m]), m)
 
+    def test_system2_same_numbers(self):
+        # System 2 (the finite-element hull, its modal basis solved in each
+        # case) the same way: OpenBLAS on one thread on both sides.
+        with tempfile.TemporaryDirectory(dir=".") as tmp:
+            rows = cli_sweep(tmp, {"first_contact": [0.5], "t_end": [2.0],
+                                   "speed_kmh": [36, 54]}, "--system", "flexible")
+        with flexbond.Scenario(APC, overrides=SHORT) as s:
+            sw = s.sweep({"speed_kmh": [36, 54]}, system="flexible", threads=2)
+        self.assertEqual(sw.failed, [])
+        for row, case in zip(rows, sw.cases):
+            for m in sw.metrics:
+                self.assertTrue(same_number(row[m], case[m]), m)
+
     def test_description_sweeps_as_its_file(self):
         with flexbond.Scenario(APC, overrides=SHORT) as s:
             from_file = s.sweep({"speed_kmh": [36]}, threads=1)
