@@ -11,6 +11,7 @@
 #include "flexbond/fem.h"
 #include "flexbond/out.h"
 #include "flexbond/sim.h"
+#include "flexbond/study.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -218,6 +219,31 @@ typedef int (*fb_scenario_value_fn)(const fb_scenario_value *v, void *ctx);
  * out. Returns fn's first nonzero return, else FB_OK; FB_EINVAL if s or
  * fn is NULL. */
 int fb_scenario_each_value(const fb_scenario *s, fb_scenario_value_fn fn, void *ctx);
+
+/* ---- A sweep's cases loaded from a scenario file or text
+ * (flexbond/study.h, fb_study_sweep_ops): each case's scenario is the
+ * document read with its own overrides after the source's. */
+typedef struct fb_scenario_sweep_source {
+  const char *path; /* the scenario file; NULL: the text below */
+  const char *text; /* a document in memory (fb_scenario_load_string), len bytes */
+  size_t len;
+  const char *display_name; /* the text's name in messages */
+  /* Values every case reads in place of the document's, before the
+   * case's own (a key set by both fails the case, as two overrides of
+   * one key do). */
+  const fb_scenario_override *overrides;
+  size_t noverrides;
+  /* How the caller names its axes in messages: "axes" labels a case's
+   * value "axes['speed_kmh']=-5" (fb_scenario_override.label); NULL: the
+   * default label. */
+  const char *axes_name;
+} fb_scenario_sweep_source;
+
+/* ops's load (fb_scenario_load_with, or fb_scenario_load_string_with,
+ * with src's overrides and then the case's) and locate
+ * (fb_scenario_locate), with ctx src: borrowed, it and everything it
+ * points to must outlive the sweep. stop, finished: NULL. */
+void fb_scenario_sweep_ops(const fb_scenario_sweep_source *src, fb_study_sweep_ops *ops);
 
 #ifdef __cplusplus
 }

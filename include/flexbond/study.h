@@ -227,6 +227,160 @@ size_t fb_study_ride_psd_a_w_output(const fb_study_ride_psd *r);
 const double *fb_study_ride_psd_weighted(const fb_study_ride_psd *r);
 double fb_study_ride_psd_a_w(const fb_study_ride_psd *r);
 
+/* ---- Parameter sweeps (src/study/sweep.c, docs/sweep.md): a scenario
+ * run once per combination of values of some of its keys (the cases: the
+ * cartesian product of the axes, the first axis varying slowest), each
+ * case reduced to the same metrics: every output's peak, min and r.m.s.
+ * over the response window (fb_run_summary_new), the smallest tire
+ * reaction, the contact-loss intervals, the ride metrics and the solver's
+ * steps. Built once (fb_study_sweep_new), run on threads
+ * (fb_study_sweep_run) or case by case (fb_study_sweep_run_case, for a
+ * front end that hands the cases to other processes), and read case by
+ * case (fb_study_sweep_case_get). The study layer reads no file: the
+ * front end makes each case's scenario (fb_study_sweep_ops.load; the io
+ * layer's fb_scenario_sweep_ops loads a file with the case's overrides). */
+
+/* Most axes of a sweep, and most cases: a case holds its metrics (some
+ * 200 doubles for 64 outputs), so 100000 cases are some 160 MB at most,
+ * and a System 1 case takes 15-25 ms on one core, 100000 of them about
+ * 40 core-minutes. */
+enum { FB_STUDY_SWEEP_MAX_AXES = 16 };
+#define FB_STUDY_SWEEP_MAX_CASES ((size_t)100000)
+
+/* The metrics of a case, in this order: output k's statistics at
+ * FB_STUDY_SWEEP_NSTATS k + FB_STUDY_SWEEP_{PEAK,MIN,RMS}, then the other
+ * metrics at fb_study_sweep_metric_other. */
+enum { FB_STUDY_SWEEP_PEAK, FB_STUDY_SWEEP_MIN, FB_STUDY_SWEEP_RMS, FB_STUDY_SWEEP_NSTATS };
+enum {
+  FB_STUDY_SWEEP_MIN_TIRE_FORCE, /* N: any tire's smallest reaction from the window on */
+  FB_STUDY_SWEEP_CONTACT_LOSS_INTERVALS, /* those ending after the window's start */
+  /* fb_run_summary_ride's metrics (NaN without a mounted body's
+   * acceleration among the outputs: a missing metric, not a failure) */
+  FB_STUDY_SWEEP_RIDE_A_W_RMS,
+  FB_STUDY_SWEEP_RIDE_MTVV,
+  FB_STUDY_SWEEP_RIDE_VDV,
+  FB_STUDY_SWEEP_RIDE_CREST_FACTOR,
+  FB_STUDY_SWEEP_RIDE_JERK_PEAK,
+  FB_STUDY_SWEEP_RIDE_JERK_RMS,
+  FB_STUDY_SWEEP_SOLVER_STEPS,
+  FB_STUDY_SWEEP_NOTHER
+};
+
+/* One swept key and its values, as text the scenario's reader takes
+ * (fb_scenario_override). Borrowed by fb_study_sweep_new, which copies. */
+typedef struct fb_study_sweep_axis {
+  const char *key;
+  const char *const *values;
+  size_t nvalues;
+} fb_study_sweep_axis;
+
+/* What the front end does for a sweep; every function may be called from
+ * several threads at once, each for its own case. Initialise by member
+ * names: members may be added. */
+typedef struct fb_study_sweep_ops {
+  /* Makes case i's scenario: the base one with ov[0 .. n) (the case's
+   * values, one per axis) in place of its values, checked as a loaded
+   * one. *out is new (the sweep frees it). An error about a value of ov
+   * has fb_err.source FB_SOURCE_OVERRIDE. Required. */
+  int (*load)(void *ctx, size_t i, const fb_scenario_override *ov, size_t n, fb_scenario **out,
+              fb_err *err);
+  /* Locates an error found in s after it was made (a failed simulation:
+   * fb_scenario_locate for a loaded one); NULL: errors stay as they are. */
+  int (*locate)(void *ctx, const fb_scenario *s, fb_err *err);
+  /* Polled before a case starts and at every solver step: nonzero stops
+   * the sweep (a case stopped so is FB_EINTR, and not done). NULL: never
+   * (fb_study_sweep_cancel still stops it). */
+  int (*stop)(void *ctx);
+  /* Case i has finished (fb_study_sweep_finish: run here or recorded),
+   * called under the sweep's lock, one case at a time: a journal, a
+   * progress line. Not FB_OK stops the sweep: fb_study_sweep_run returns
+   * it with its err. NULL: nothing. */
+  int (*finished)(void *ctx, size_t i, fb_err *err);
+  void *ctx;
+} fb_study_sweep_ops;
+
+/* A sweep (fb_study_sweep_new); opaque. */
+typedef struct fb_study_sweep fb_study_sweep;
+
+/* The sweep of base (the scenario without overrides, whose outputs name
+ * the metrics and every case must have: borrowed, it must outlive the
+ * sweep) over axes[0 .. naxes) (1 .. FB_STUDY_SWEEP_MAX_AXES, each with
+ * at least one value; copied), simulating system sys, its cases made and
+ * reported by ops (copied; ops->ctx must outlive the sweep). No case runs
+ * yet. *out is new (fb_study_sweep_free). FB_EINVAL for no axis, too
+ * many, an axis without a value or more than FB_STUDY_SWEEP_MAX_CASES
+ * cases, or no ops->load; FB_ENOMEM. */
+int fb_study_sweep_new(const fb_scenario *base, fb_system sys, const fb_study_sweep_axis *axes,
+                       size_t naxes, const fb_study_sweep_ops *ops, fb_study_sweep **out,
+                       fb_err *err);
+void fb_study_sweep_free(fb_study_sweep **sw);
+
+/* The cases, axes and metrics per case. */
+size_t fb_study_sweep_ncases(const fb_study_sweep *sw);
+size_t fb_study_sweep_naxes(const fb_study_sweep *sw);
+size_t fb_study_sweep_nmetrics(const fb_study_sweep *sw);
+/* Axis k's key and its value v (owned by sw; NULL out of range). */
+const char *fb_study_sweep_axis_key(const fb_study_sweep *sw, size_t k);
+size_t fb_study_sweep_axis_nvalues(const fb_study_sweep *sw, size_t k);
+const char *fb_study_sweep_axis_value(const fb_study_sweep *sw, size_t k, size_t v);
+/* The index of axis k's value in case i (the first axis varies slowest),
+ * and that value (owned by sw). */
+size_t fb_study_sweep_value_index(const fb_study_sweep *sw, size_t i, size_t k);
+const char *fb_study_sweep_case_value(const fb_study_sweep *sw, size_t i, size_t k);
+/* Case i's overrides, one per axis, into ov[0 .. naxes) (pointing into
+ * sw; label NULL). */
+void fb_study_sweep_case_overrides(const fb_study_sweep *sw, size_t i,
+                                   fb_scenario_override *ov);
+
+/* The index of the other metric m (FB_STUDY_SWEEP_MIN_TIRE_FORCE ...). */
+size_t fb_study_sweep_metric_other(const fb_study_sweep *sw, size_t m);
+/* Metric m's name ("tire_force_LF_peak", "min_tire_force") into buf, and
+ * its unit ("N"; "-" for a count or a ratio; static or owned by base). */
+void fb_study_sweep_metric_name(const fb_study_sweep *sw, size_t m, char *buf, size_t size);
+const char *fb_study_sweep_metric_unit(const fb_study_sweep *sw, size_t m);
+
+/* The outcome of a case. */
+typedef struct fb_study_sweep_case {
+  int status;           /* FB_OK, or what failed */
+  int at_value;         /* 1: the error is about one of the case's own values */
+  const char *error;    /* its message; NULL when ok (or when out of memory) */
+  const double *metric; /* nmetrics; NaN when failed or not defined */
+  double wall_seconds;  /* of its simulation; NaN when not known */
+  int worker;           /* who ran it, as the front end numbers them (0 here) */
+} fb_study_sweep_case;
+
+/* Case i's outcome (i < ncases) into *out (its pointers owned by sw, valid until the
+ * case is recorded again or sw freed); 1 if it is done, 0 if it is not
+ * (*out then holds NaN metrics and status FB_EINTR). */
+int fb_study_sweep_case_get(const fb_study_sweep *sw, size_t i, fb_study_sweep_case *out);
+int fb_study_sweep_case_done(const fb_study_sweep *sw, size_t i);
+
+/* Runs case i now on this thread (its scenario made by ops->load,
+ * simulated, measured) and records its outcome, without ops->finished
+ * (fb_study_sweep_finish); its status. A case's failure is its outcome,
+ * not an error of the sweep. Two threads may run two cases at once. */
+int fb_study_sweep_run_case(fb_study_sweep *sw, size_t i);
+/* Records case i's outcome c computed elsewhere (another process, a
+ * journal read back; c and what it points to copied): done, unless its
+ * status is FB_EINTR (a stopped case is run again). No ops->finished. */
+void fb_study_sweep_record(fb_study_sweep *sw, size_t i, const fb_study_sweep_case *c);
+/* Takes the next case not done and not taken, in grid order, into *i: 1,
+ * or 0 when none is left or the sweep was stopped. Thread-safe: each case
+ * is taken once. */
+int fb_study_sweep_next(fb_study_sweep *sw, size_t *i);
+/* Case i has finished: calls ops->finished when it is done (a case
+ * stopped is not); its status, which stops the sweep when not FB_OK. */
+int fb_study_sweep_finish(fb_study_sweep *sw, size_t i);
+/* Runs every case not done on min(threads, cases left) threads (this one
+ * among them), each taking the next case as it finishes one. FB_OK when
+ * none is left to run; else what stopped it: ops->finished's failure
+ * (its err), or FB_EINTR (stopped, or cancelled). Cases may run on
+ * another thread meanwhile (fb_study_sweep_next, _run_case, _finish). */
+int fb_study_sweep_run(fb_study_sweep *sw, size_t threads, fb_err *err);
+/* Stops the sweep: no case starts any more, and those running stop at
+ * their next solver step. Thread-safe, from any thread. */
+void fb_study_sweep_cancel(fb_study_sweep *sw);
+
 #ifdef __cplusplus
 }
 #endif

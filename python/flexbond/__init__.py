@@ -26,8 +26,8 @@ import warnings
 import numpy
 
 __all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse",
-           "RidePSD", "PsdRoad", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
-           "library_path"]
+           "RidePSD", "PsdRoad", "Model", "Sweep", "Error", "PlausibilityWarning", "RIGID",
+           "FLEXIBLE", "library_path"]
 
 RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
 FLEXIBLE = 2   # System 2: finite-element hull (FB_SYSTEM_FLEXIBLE)
@@ -141,6 +141,38 @@ class _PsdRoad(ctypes.Structure):
                 ("speed", ctypes.c_double), ("identical", ctypes.c_int)]
 
 
+_SWEEP_FINISHED = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_size_t,
+                                   ctypes.POINTER(_Err))
+
+
+class _SweepAxis(ctypes.Structure):
+    """fb_study_sweep_axis (flexbond/study.h)."""
+    _fields_ = [("key", ctypes.c_char_p), ("values", ctypes.POINTER(ctypes.c_char_p)),
+                ("nvalues", ctypes.c_size_t)]
+
+
+class _SweepOps(ctypes.Structure):
+    """fb_study_sweep_ops: load, locate and stop are the library's own
+    (fb_scenario_sweep_ops), never called from Python."""
+    _fields_ = [("load", ctypes.c_void_p), ("locate", ctypes.c_void_p),
+                ("stop", ctypes.c_void_p), ("finished", _SWEEP_FINISHED),
+                ("ctx", ctypes.c_void_p)]
+
+
+class _SweepSource(ctypes.Structure):
+    """fb_scenario_sweep_source (flexbond/io.h)."""
+    _fields_ = [("path", ctypes.c_char_p), ("text", ctypes.c_char_p), ("len", ctypes.c_size_t),
+                ("display_name", ctypes.c_char_p), ("overrides", ctypes.POINTER(_Override)),
+                ("noverrides", ctypes.c_size_t), ("axes_name", ctypes.c_char_p)]
+
+
+class _SweepCase(ctypes.Structure):
+    """fb_study_sweep_case (flexbond/study.h)."""
+    _fields_ = [("status", ctypes.c_int), ("at_value", ctypes.c_int),
+                ("error", ctypes.c_char_p), ("metric", ctypes.POINTER(ctypes.c_double)),
+                ("wall_seconds", ctypes.c_double), ("worker", ctypes.c_int)]
+
+
 class _VehicleOpts(ctypes.Structure):
     """fb_vehicle_opts (flexbond/vehicle.h), filled by fb_vehicle_opts_default."""
     _fields_ = [("motion", ctypes.c_int), ("memory_limit", ctypes.c_size_t),
@@ -194,6 +226,21 @@ _PROTOTYPES = {
                                            ctypes.POINTER(ctypes.c_char_p)]),
     "fb_study_compare": (ctypes.c_int, [_P, _P, _P, _P, _P, ctypes.POINTER(_OutputCmp), _PP,
                                         _PERR]),
+    "fb_scenario_sweep_ops": (None, [ctypes.POINTER(_SweepSource), ctypes.POINTER(_SweepOps)]),
+    "fb_study_sweep_new": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_SweepAxis),
+                                          ctypes.c_size_t, ctypes.POINTER(_SweepOps), _PP,
+                                          _PERR]),
+    "fb_study_sweep_free": (None, [_PP]),
+    "fb_study_sweep_ncases": (ctypes.c_size_t, [_P]),
+    "fb_study_sweep_nmetrics": (ctypes.c_size_t, [_P]),
+    "fb_study_sweep_case_value": (ctypes.c_char_p, [_P, ctypes.c_size_t, ctypes.c_size_t]),
+    "fb_study_sweep_metric_name": (None, [_P, ctypes.c_size_t, ctypes.c_char_p,
+                                          ctypes.c_size_t]),
+    "fb_study_sweep_metric_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_study_sweep_case_get": (ctypes.c_int, [_P, ctypes.c_size_t,
+                                               ctypes.POINTER(_SweepCase)]),
+    "fb_study_sweep_run": (ctypes.c_int, [_P, ctypes.c_size_t, _PERR]),
+    "fb_study_sweep_cancel": (None, [_P]),
     "fb_study_freq_log_grid": (None, [ctypes.c_double, ctypes.c_double, ctypes.c_size_t,
                                       _PDOUBLE]),
     "fb_study_freq_new": (ctypes.c_int, [_P, _PDOUBLE, ctypes.c_size_t, _PP, _PERR]),
@@ -536,6 +583,76 @@ Im(lambda) / 2 pi undamped), damping_ratio (-Re / |lambda|) and a description
 from its largest kinetic-energy share ("hull bounce (62%)")."""
 
 
+class Sweep:
+    """A parameter study's cases (Scenario.sweep), with the numbers flexbond
+    sweep writes in sweep.csv: keys (the swept keys, as given), metrics (the
+    metric columns in sweep.csv's order: each output's peak, min and rms,
+    min_tire_force, contact_loss_intervals, the ride metrics, solver_steps),
+    units {metric: unit} ("-" for a count or a ratio), and cases: a dict per
+    case in grid order (the first key varying slowest) of each key's value
+    (its text, as the scenario reads it), each metric (a float, NaN where
+    sweep.csv's cell is empty: a failed case, a metric the run does not
+    define) and "error" (None, or the case's message). sweep[name] is a
+    column over the cases (a numpy array for a metric); failed lists the
+    failed cases' indices."""
+
+    def __init__(self, system, keys, metrics, units, cases):
+        self.system, self.keys, self.metrics, self.units = system, keys, metrics, units
+        self.cases = cases
+        self.failed = [i for i, c in enumerate(cases) if c["error"] is not None]
+
+    @property
+    def columns(self):
+        """sweep.csv's columns: the keys, the metrics and "error"."""
+        return self.keys + self.metrics + ["error"]
+
+    def __len__(self):
+        return len(self.cases)
+
+    def __getitem__(self, name):
+        if name not in self.columns:
+            raise KeyError("flexbond: no column %r (the columns: %s)" %
+                           (name, ", ".join(self.columns)))
+        column = [c[name] for c in self.cases]
+        return numpy.array(column, dtype=float) if name in self.units else column
+
+    def __repr__(self):
+        return "Sweep(%s, %d cases over %s, %d failed)" % (
+            self.system, len(self.cases), ", ".join(self.keys), len(self.failed))
+
+
+def _sweep_stage(sw, keys, i):
+    """A finished case's progress line, as flexbond sweep says it."""
+    c = _SweepCase()
+    _lib.fb_study_sweep_case_get(sw, i, ctypes.byref(c))
+    label = ", ".join("%s=%s" % (k, _lib.fb_study_sweep_case_value(sw, i, j).decode())
+                      for j, k in enumerate(keys))
+    what = "ok" if c.status == 0 else "failed: %s" % (
+        c.error.decode(errors="replace") if c.error else "out of memory")
+    return "case %d/%d (%s): %s" % (i + 1, _lib.fb_study_sweep_ncases(sw), label, what)
+
+
+def _sweep(sw, keys, system):
+    """The Sweep of a run fb_study_sweep."""
+    names, units = [], {}
+    buf = ctypes.create_string_buffer(512)
+    nmetrics = _lib.fb_study_sweep_nmetrics(sw)
+    for m in range(nmetrics):
+        _lib.fb_study_sweep_metric_name(sw, m, buf, len(buf))
+        names.append(buf.value.decode())
+        units[names[-1]] = _lib.fb_study_sweep_metric_unit(sw, m).decode()
+    cases = []
+    for i in range(_lib.fb_study_sweep_ncases(sw)):
+        c = _SweepCase()
+        _lib.fb_study_sweep_case_get(sw, i, ctypes.byref(c))
+        case = {k: _lib.fb_study_sweep_case_value(sw, i, j).decode() for j, k in enumerate(keys)}
+        case.update((n, c.metric[m]) for m, n in enumerate(names))
+        case["error"] = None if c.status == 0 else (
+            c.error.decode(errors="replace") if c.error else "out of memory")
+        cases.append(case)
+    return Sweep(system, keys, names, units, cases)
+
+
 class Modes(list):
     """The modes, oscillatory first by frequency; nstatic counts the zero
     eigenvalues of a statically indeterminate support, left out."""
@@ -769,6 +886,16 @@ def _until_done(work, on_no_start=None):
 
 # ---- Scenarios.
 
+def _overrides(items):
+    """(key, value) pairs as an fb_scenario_override array and its length.
+    An error about an override names it as the caller wrote it:
+    overrides['speed_kmh']=-5, not flexbond's --set."""
+    keep = [(_c_text(k, "override key"), _c_text(_text(v), "override value", key=k),
+             _c_text("overrides[%r]=%r" % (k, v), "override key"))
+            for k, v in items]
+    return (_Override * max(1, len(keep)))(*[_Override(*o) for o in keep]), len(keep)
+
+
 class Scenario:
     """A scenario file (docs/scenario-format.md), loaded and checked, with
     overrides: {key: value}, each key a key path of the file
@@ -781,15 +908,9 @@ class Scenario:
     def __init__(self, path, overrides=None, strict=False):
         self._begin(os.fspath(path))
         self.overrides = dict(overrides or {})
-        items = list(self.overrides.items())
-        # An error about an override names it as the caller wrote it:
-        # overrides['speed_kmh']=-5, not flexbond's --set.
-        keep = [(_c_text(k, "override key"), _c_text(_text(v), "override value", key=k),
-                 _c_text("overrides[%r]=%r" % (k, v), "override key"))
-                for k, v in items]
-        ov = (_Override * max(1, len(keep)))(*[_Override(*o) for o in keep])
+        ov, n = _overrides(self.overrides.items())
         err = _Err()
-        _check(_lib.fb_scenario_load_overrides(_c_text(self.path, "path"), ov, len(keep),
+        _check(_lib.fb_scenario_load_overrides(_c_text(self.path, "path"), ov, n,
                                                ctypes.byref(self._s), ctypes.byref(err)), err)
         self._warn(strict, Error)
 
@@ -810,6 +931,7 @@ class Scenario:
         except (TypeError, ValueError) as e:
             raise ValueError("flexbond: the description is not plain data: %s" % e) from None
         data = _c_text(text, "description")
+        self._text = data  # a sweep reads it again for each case
         err = _Err()
         if _lib.fb_scenario_load_string(data, len(data), _c_text(self.path, "name"),
                                         ctypes.byref(self._s), ctypes.byref(err)) != 0:
@@ -820,6 +942,7 @@ class Scenario:
     def _begin(self, path):
         self._data_name = None
         self.overrides = None  # a file's: {key: value}, as given
+        self._text = None  # a description's document (from_dict)
         self._s = ctypes.c_void_p()
         # Calls running on their threads (_with_vehicle): close() waits for them.
         self._calls = threading.Condition()
@@ -991,6 +1114,96 @@ class Scenario:
                 _lib.fb_mode_set_free(ctypes.byref(ms))
 
         return self._with_vehicle("flexible", use, hull_modes=int(nhull), progress=progress)
+
+    def sweep(self, axes, system="rigid", threads=None, progress=None):
+        """A parameter study, as flexbond sweep runs it (docs/sweep.md): the
+        scenario once per combination of axes' values ({key: [value, ...]},
+        keys and values as overrides take them; the first key varies
+        slowest), each case read with its values after the scenario's own
+        overrides (one of a swept key is replaced), simulated with system
+        and measured by the library's study layer (fb_study_sweep) on
+        threads threads (default: the CPUs). A case that fails keeps its
+        message and the others go on. Returns a Sweep: sweep.csv's columns.
+        progress(stage, fraction), when given, hears each finished case
+        ("case 3/12 (speed_kmh=15): ok", cases finished / cases); an
+        exception it raises stops the sweep and reaches the caller, as
+        Ctrl-C does."""
+        sys_id = _system(system)
+        axes = dict(axes)
+        if isinstance(threads, bool) or (threads is not None and int(threads) < 1):
+            raise ValueError("flexbond: threads must be a positive integer, got %r" % (threads,))
+        nthreads = int(threads) if threads is not None else (os.cpu_count() or 1)
+        keys = list(axes)
+        values = []
+        for k in keys:
+            if isinstance(axes[k], (str, bytes)):
+                raise TypeError("flexbond: sweep axis %r: a list of values, not one text" % k)
+            texts = [_text(v) for v in axes[k]]
+            values.append(((ctypes.c_char_p * max(1, len(texts)))(
+                *[_c_text(t, "sweep value", key=k) for t in texts]), len(texts)))
+        axis = (_SweepAxis * max(1, len(keys)))(
+            *[_SweepAxis(_c_text(k, "sweep key"), v, n) for k, (v, n) in zip(keys, values)])
+        base_ov, nbase = _overrides((k, v) for k, v in (self.overrides or {}).items()
+                                    if k not in axes)
+        # A case's error names its value as the caller wrote the axes:
+        # axes['wheel.tire_k']=-1, not flexbond's --set.
+        src = _SweepSource(None if self._text else _c_text(self.path, "path"), self._text,
+                           len(self._text or b""), _c_text(self.path, "name"), base_ov, nbase,
+                           b"axes")
+        with self._calls:  # open, and counted, at once: close() waits for the sweep
+            s = self._handle()
+            self._ncalls += 1
+        held = {"sw": None}  # the sweep while it runs, for a Ctrl-C to cancel
+        lock = threading.Lock()
+        seen = {"finished": 0, "error": None}
+
+        def finished(_ctx, i, err):
+            try:
+                if progress is not None:
+                    seen["finished"] += 1
+                    progress(_sweep_stage(held["sw"], keys, i),
+                             seen["finished"] / _lib.fb_study_sweep_ncases(held["sw"]))
+                return 0
+            except BaseException as e:  # raised to the caller once the sweep has stopped
+                seen["error"] = e
+                err.contents.code = _FB_EINTR
+                err.contents.msg = b"stopped by the progress function"
+                return _FB_EINTR
+
+        finished_fn = _SWEEP_FINISHED(finished)
+
+        def done():
+            with self._calls:
+                self._ncalls -= 1
+                self._calls.notify_all()
+
+        def work(_stop):
+            sw, err, ops = ctypes.c_void_p(), _Err(), _SweepOps()
+            try:
+                _lib.fb_scenario_sweep_ops(ctypes.byref(src), ctypes.byref(ops))
+                ops.finished = finished_fn
+                _check(_lib.fb_study_sweep_new(s, sys_id, axis, len(keys), ctypes.byref(ops),
+                                               ctypes.byref(sw), ctypes.byref(err)), err)
+                with lock:
+                    held["sw"] = sw
+                rc = _lib.fb_study_sweep_run(sw, nthreads, ctypes.byref(err))
+                if seen["error"] is not None:
+                    raise seen["error"]
+                _check(rc, err)
+                return _sweep(sw, keys, _SYSTEM_NAMES[sys_id])
+            finally:
+                with lock:
+                    held["sw"] = None
+                _lib.fb_study_sweep_free(ctypes.byref(sw))
+                done()
+
+        try:
+            return _until_done(work, on_no_start=done)
+        except BaseException:
+            with lock:
+                if held["sw"]:
+                    _lib.fb_study_sweep_cancel(held["sw"])
+            raise
 
     def simulation(self, system, progress=None):
         """A Simulation of one system of this scenario that the caller

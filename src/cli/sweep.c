@@ -1,14 +1,14 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* flexbond sweep: a parameter study of a vehicle scenario (docs/sweep.md).
  * Every --set KEY=SPEC gives a key of the scenario file and its values;
- * the cases are their cartesian product. The cases run on a pool of POSIX
- * threads (sweep_pool.c) or, with --mpi in an MPI build, across ranks
- * (sweep_mpi.c); each is loaded, simulated and measured by sweep_case.c.
- * A case that fails leaves its message in the `error` column and the
- * others go on. Every finished case is journaled in DIR/sweep.partial.csv
- * (sweep_journal.c), which --resume reads back after a kill;
- * DIR/sweep.csv and DIR/sweep.png are written at the end, all or
- * nothing, and the journal is then removed. */
+ * the cases are their cartesian product. The study layer runs them
+ * (fb_study_sweep: each case loaded through sweep_case.c, simulated and
+ * measured, on a pool of threads) or, with --mpi in an MPI build, rank 0
+ * hands them to the ranks (sweep_mpi.c). A case that fails leaves its
+ * message in the `error` column and the others go on. Every finished
+ * case is journaled in DIR/sweep.partial.csv (sweep_journal.c), which
+ * --resume reads back after a kill; DIR/sweep.csv and DIR/sweep.png are
+ * written at the end, all or nothing, and the journal is then removed. */
 #include "sweep.h"
 
 #include <errno.h>
@@ -84,20 +84,14 @@ enum { SWEEP_MAX_JOBS = 1024 };
 
 /* ---- Output files. */
 
-/* What the files are made of. */
-typedef struct sweep_outputs {
-  const sweep_args *a;
-  const sweep_case *cases;
-} sweep_outputs;
-
-/* sweep.csv (a cli_writer over a sweep_outputs): the rows in grid
+/* sweep.csv (a cli_writer over the sweep_args): the rows in grid
  * order, whichever order the cases finished in. */
 static void write_csv(FILE *fp, const void *ctx)
 {
-  const sweep_outputs *o = ctx;
-  sweep_csv_header(fp, o->a, o->a->header);
-  for (size_t i = 0; i < o->a->ncases; ++i)
-    sweep_csv_row(fp, o->a, i, &o->cases[i]);
+  const sweep_args *a = ctx;
+  sweep_csv_header(fp, a, a->header);
+  for (size_t i = 0; i < a->ncases; ++i)
+    sweep_csv_row(fp, a, i);
 }
 
 /* The figure's arrays: x per value of the first key, y per metric,
@@ -106,7 +100,7 @@ static void write_csv(FILE *fp, const void *ctx)
 typedef struct sweep_figure {
   double *x, *y;
   fb_plot_xy_series *series;
-  fb_plot_xy_panel panels[SWEEP_MAX_METRICS];
+  fb_plot_xy_panel panels[SWEEP_MAX_PLOTS];
   char (*legends)[256];
   char (*ylabels)[FB_ERR_KEY_MAX + 32];
   int categorical; /* the first key's values are not all numbers */
@@ -122,8 +116,7 @@ static void sweep_figure_free(sweep_figure *f)
 }
 
 /* Fills f from the cases; FB_ENOMEM. */
-static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figure *f,
-                        fb_err *err)
+static int build_figure(const sweep_args *a, sweep_figure *f, fb_err *err)
 {
   const size_t nx = a->keys[0].nvalues, ncurves = a->ncases / nx;
   f->x = malloc(nx * sizeof *f->x);
@@ -143,12 +136,15 @@ static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figu
     sweep_case_label(a, r, 1, f->legends[r], sizeof f->legends[r]);
   for (size_t m = 0; m < a->nplots; ++m) {
     char name[FB_ERR_KEY_MAX];
-    sweep_metric_name(a, a->plot[m], name, sizeof name);
+    fb_study_sweep_metric_name(a->study, a->plot[m], name, sizeof name);
     snprintf(f->ylabels[m], sizeof f->ylabels[m], "%s", name);
     for (size_t r = 0; r < ncurves; ++r) {
       double *y = &f->y[(m * ncurves + r) * nx];
-      for (size_t v = 0; v < nx; ++v)
-        y[v] = cases[v * ncurves + r].metric[a->plot[m]];
+      for (size_t v = 0; v < nx; ++v) {
+        fb_study_sweep_case c;
+        fb_study_sweep_case_get(a->study, v * ncurves + r, &c);
+        y[v] = c.metric[a->plot[m]];
+      }
       /* The key once, in the first panel; none for a single curve. */
       f->series[m * ncurves + r] = (fb_plot_xy_series){
           .x = f->x, .y = y, .n = nx, .legend = m == 0 && ncurves > 1 ? f->legends[r] : NULL};
@@ -156,20 +152,19 @@ static int build_figure(const sweep_args *a, const sweep_case *cases, sweep_figu
     f->panels[m] = (fb_plot_xy_panel){.series = &f->series[m * ncurves],
                                       .nseries = ncurves,
                                       .ylabel = f->ylabels[m],
-                                      .unit = sweep_metric_unit(a, a->plot[m])};
+                                      .unit = fb_study_sweep_metric_unit(a->study, a->plot[m])};
   }
   return FB_OK;
 }
 
 /* DIR/sweep.png: every metric against the first key. */
-static int write_figure(cli_outdir *od, const sweep_args *a, const sweep_case *cases,
-                        fb_err *err)
+static int write_figure(cli_outdir *od, const sweep_args *a, fb_err *err)
 {
   sweep_figure f = {0};
   char title[512];
   snprintf(title, sizeof title, "flexbond sweep: %s, %s, %zu cases", a->scenario_name,
            cli_system_label(a->sys), a->ncases);
-  int rc = build_figure(a, cases, &f, err);
+  int rc = build_figure(a, &f, err);
   char *path = rc == FB_OK ? cli_outdir_path(od, "sweep.png", err) : NULL;
   if (rc == FB_OK && !path)
     rc = err->code; /* out of memory, or no staging directory */
@@ -200,15 +195,13 @@ static int write_figure(cli_outdir *od, const sweep_args *a, const sweep_case *c
 
 /* The figure first (gnuplot is the likelier failure), then the CSV, into
  * od (the output directory the sweep holds for its whole run). */
-static int write_outputs(cli_outdir *od, const sweep_args *a, const sweep_case *cases,
-                         fb_err *err)
+static int write_outputs(cli_outdir *od, const sweep_args *a, fb_err *err)
 {
-  const sweep_outputs o = {a, cases};
   int rc = FB_OK;
   if (a->figures)
-    rc = write_figure(od, a, cases, err);
+    rc = write_figure(od, a, err);
   if (rc == FB_OK)
-    rc = cli_outdir_write(od, "sweep.csv", write_csv, &o, err);
+    rc = cli_outdir_write(od, "sweep.csv", write_csv, a, err);
   return rc;
 }
 
@@ -557,53 +550,54 @@ static int check_scenario(const char *cmd, sweep_args *a, char **name)
   a->scenario_name = *name ? *name : "scenario";
   /* Kept to the end (cli_cmd_sweep frees it): its outputs name the metrics. */
   a->base = s;
-  a->nmetrics = SWEEP_NSTATS * s->noutputs + SWEEP_NOTHER;
   return exit_code;
 }
 
 /* Counts what the run left: cases not done, failed, and failed on an
  * input none of their values touches. */
-static void tally(const sweep_args *a, const sweep_case *cases, size_t *not_done,
-                  size_t *failed, size_t *input_errors)
+static void tally(const sweep_args *a, size_t *not_done, size_t *failed, size_t *input_errors)
 {
   *not_done = *failed = *input_errors = 0;
   for (size_t i = 0; i < a->ncases; ++i) {
-    const sweep_case *c = &cases[i];
-    *not_done += !c->done;
-    *failed += c->done && c->status != FB_OK;
+    fb_study_sweep_case c;
+    const int done = fb_study_sweep_case_get(a->study, i, &c);
+    *not_done += !done;
+    *failed += done && c.status != FB_OK;
     /* An input error at a swept value belongs to its case. */
-    const int at_value = c->at_value;
-    const int code = cli_exit_code(c->status);
-    *input_errors += c->done && !at_value && (code == CLI_EXIT_INPUT || code == CLI_EXIT_IO);
+    const int code = cli_exit_code(c.status);
+    *input_errors += done && !c.at_value && (code == CLI_EXIT_INPUT || code == CLI_EXIT_IO);
   }
+}
+
+/* The first case's message, or the first failed one's with failed. */
+static size_t first_case(const sweep_args *a, int failed, fb_study_sweep_case *c)
+{
+  size_t i = 0;
+  while (failed && i + 1 < a->ncases &&
+         !(fb_study_sweep_case_get(a->study, i, c) && c->status != FB_OK))
+    ++i;
+  fb_study_sweep_case_get(a->study, i, c);
+  return i;
 }
 
 /* Runs the cases not done, on threads or (mpi_size > 0) across ranks;
  * the status of the study as a whole. */
-static int run_cases(const sweep_args *a, sweep_case *cases, sweep_journal *journal,
-                     int mpi_size, double *seconds, fb_err *err)
+static int run_cases(const sweep_args *a, int mpi_size, double *seconds, fb_err *err)
 {
-  sweep_pool pool;
-  sweep_pool_init(&pool, a, cases, journal);
   struct timespec t0;
   clock_gettime(CLOCK_MONOTONIC, &t0);
 #ifdef FLEXBOND_MPI
-  if (mpi_size > 0)
-    sweep_mpi_coordinate(&pool, mpi_size);
-  else
-    sweep_pool_run(&pool, a->jobs);
+  int rc = mpi_size > 0 ? sweep_mpi_coordinate(a, mpi_size, err)
+                        : fb_study_sweep_run(a->study, a->jobs, err);
 #else
   (void)mpi_size; /* 0: there are no ranks */
-  sweep_pool_run(&pool, a->jobs);
+  int rc = fb_study_sweep_run(a->study, a->jobs, err);
 #endif
   *seconds = fb_seconds_since(&t0);
-  int rc = pool.journal_rc;
-  if (rc != FB_OK)
-    *err = pool.journal_err;
-  sweep_pool_destroy(&pool);
   size_t not_done, failed, input_errors;
-  tally(a, cases, &not_done, &failed, &input_errors);
-  if (rc == FB_OK)
+  tally(a, &not_done, &failed, &input_errors);
+  /* Stopped by an interruption: the command's words for it. */
+  if (rc == FB_OK || rc == FB_EINTR)
     rc = cli_check_interrupt(err);
   /* Cases left over without an interruption here: one on another rank. */
   if (rc == FB_OK && not_done > 0)
@@ -611,20 +605,21 @@ static int run_cases(const sweep_args *a, sweep_case *cases, sweep_journal *jour
                     not_done == 1 ? "" : "s");
   /* Every case refused for an input none of its values touches (a bad
    * deck all cases share, say): the study is at fault, not its cases. */
+  fb_study_sweep_case c;
+  first_case(a, 0, &c);
   if (rc == FB_OK && input_errors == a->ncases)
-    rc = fb_err_set(err, cases[0].status, "every case failed on its input; the first: %s",
-                    cases[0].error ? cases[0].error : "(out of memory)");
+    rc = fb_err_set(err, c.status, "every case failed on its input; the first: %s",
+                    c.error ? c.error : "(out of memory)");
   return rc;
 }
 
 /* What a failed or interrupted sweep leaves: the journal when it holds
  * cases worth resuming (not when the study itself is at fault), said in
  * err; else nothing, as before. */
-static int leave_journal(const sweep_args *a, const sweep_case *cases, sweep_journal **journal,
-                         fb_err *err)
+static int leave_journal(const sweep_args *a, sweep_journal **journal, fb_err *err)
 {
   size_t not_done, failed, input_errors;
-  tally(a, cases, &not_done, &failed, &input_errors);
+  tally(a, &not_done, &failed, &input_errors);
   /* What the file holds, not what ran: after a failed write they differ. */
   const size_t kept = sweep_journal_rows(*journal);
   const int keep = kept > 0 && input_errors < a->ncases;
@@ -642,36 +637,30 @@ static int leave_journal(const sweep_args *a, const sweep_case *cases, sweep_jou
 
 /* The message of a study that ran with failed cases (failed of them)
  * into err: how many, where their messages are, and the first. */
-static void failed_cases_error(const sweep_args *a, const sweep_case *cases, size_t failed,
-                               fb_err *err)
+static void failed_cases_error(const sweep_args *a, size_t failed, fb_err *err)
 {
-  size_t i = 0;
-  while (i + 1 < a->ncases && !(cases[i].done && cases[i].status != FB_OK))
-    ++i;
+  fb_study_sweep_case c;
+  const size_t i = first_case(a, 1, &c);
   char label[512];
   sweep_case_label(a, i, 0, label, sizeof label);
   fb_err_set(err, FB_ESOLVER,
              "%zu of %zu case%s failed (each has its message in the error column of "
              "%s/sweep.csv); the first, case %zu (%s): %s",
              failed, a->ncases, a->ncases == 1 ? "" : "s", a->out_dir, i + 1, label,
-             cases[i].error ? cases[i].error : "out of memory");
+             c.error ? c.error : "out of memory");
 }
 
 /* Runs the study (on rank 0 of mpi_size ranks, or alone when mpi_size is
  * 0); the exit code. */
-static int sweep(const sweep_args *a, int mpi_size)
+static int sweep(sweep_args *a, int mpi_size)
 {
   fb_err err;
   fb_err_clear(&err);
-  sweep_case *cases = calloc(a->ncases, sizeof *cases);
-  sweep_journal *journal = NULL;
   size_t resumed = 0;
   /* The output directory is held (locked) from the start: the journal
    * is written there as the cases finish. */
   cli_outdir od;
-  int rc = cases ? cli_outdir_open(&od, a->out_dir, "sweep", &err)
-                 : fb_err_set(&err, FB_ENOMEM, "out of memory for %zu cases", a->ncases),
-      journal_rc = FB_OK;
+  int rc = cli_outdir_open(&od, a->out_dir, "sweep", &err), journal_rc = FB_OK;
   const int opened = rc == FB_OK;
   /* Stopped early by a signal, a sweep leaves its journal. */
   char *journal_path = opened ? sweep_journal_path(a->out_dir) : NULL;
@@ -685,7 +674,7 @@ static int sweep(const sweep_args *a, int mpi_size)
   }
   free(journal_path);
   if (rc == FB_OK)
-    rc = journal_rc = sweep_journal_open(a, a->out_dir, cases, &resumed, &journal, &err);
+    rc = journal_rc = sweep_journal_open(a, a->out_dir, &resumed, &a->journal, &err);
 #ifdef FLEXBOND_MPI
   /* The other ranks wait for this verdict before they wait for cases. */
   if (mpi_size > 0)
@@ -695,33 +684,29 @@ static int sweep(const sweep_args *a, int mpi_size)
   if (rc == FB_OK) {
     if (resumed > 0 && !a->quiet)
       cli_say("flexbond sweep: resuming: %zu of %zu cases are done", resumed, a->ncases);
-    rc = run_cases(a, cases, journal, mpi_size, &seconds, &err);
+    rc = run_cases(a, mpi_size, &seconds, &err);
     if (rc == FB_OK)
-      rc = write_outputs(&od, a, cases, &err);
+      rc = write_outputs(&od, a, &err);
     if (rc == FB_OK)
       rc = cli_outdir_close(&od, rc, &err);
     if (rc == FB_OK) {
-      sweep_journal_close(&journal, 1);
+      sweep_journal_close(&a->journal, 1);
     } else {
-      od.failure_noted = leave_journal(a, cases, &journal, &err);
+      od.failure_noted = leave_journal(a, &a->journal, &err);
       cli_outdir_close(&od, rc, &err);
     }
   } else if (opened) {
     cli_outdir_close(&od, rc, &err);
   }
   size_t not_done = 0, failed = 0, input_errors = 0;
-  if (cases)
-    tally(a, cases, &not_done, &failed, &input_errors);
+  tally(a, &not_done, &failed, &input_errors);
   if (rc == FB_OK && !a->quiet)
     cli_say("flexbond sweep: %s: %zu cases (%zu resumed), %zu failed, %.3g s -> %s",
             a->scenario_name, a->ncases, resumed, failed, seconds, a->out_dir);
   /* Failed cases are a failure of the command, said in one message like
    * any other (docs/errors.md), -q or not: -q silences the progress. */
   if (rc == FB_OK && failed > 0)
-    failed_cases_error(a, cases, failed, &err);
-  for (size_t i = 0; cases && i < a->ncases; ++i)
-    free(cases[i].error);
-  free(cases);
+    failed_cases_error(a, failed, &err);
   /* A journal of another study, or one left without --resume: a matter
    * of the command line. */
   if (journal_rc == FB_EINVAL)
@@ -815,6 +800,14 @@ static int parse_plots(const char *cmd, char **plots, size_t nplots, sweep_args 
   return CLI_EXIT_OK;
 }
 
+/* The study layer's sweep of a (sweep_study_new); the exit code. */
+static int make_study(sweep_args *a)
+{
+  fb_err err;
+  const int rc = sweep_study_new(a, &err);
+  return rc == FB_OK ? CLI_EXIT_OK : cli_report(rc, &err);
+}
+
 /* Parses and checks the study into a; the exit code (go: 0 after --help). */
 static int set_up(int argc, char **argv, sweep_args *a, char **name, int *go)
 {
@@ -835,6 +828,8 @@ static int set_up(int argc, char **argv, sweep_args *a, char **name, int *go)
     rc = check_scenario(argv[0], a, name);
   if (rc == CLI_EXIT_OK && *go)
     rc = resolve_keys(argv[0], a);
+  if (rc == CLI_EXIT_OK && *go)
+    rc = make_study(a);
   if (rc == CLI_EXIT_OK && *go)
     rc = parse_plots(argv[0], plots, nplots, a);
   free(plots);
@@ -922,6 +917,7 @@ int cli_cmd_sweep(int argc, char **argv)
     if (rc == CLI_EXIT_OK && go)
       rc = sweep(&a, 0);
   }
+  fb_study_sweep_free(&a.study);
   for (size_t k = 0; k < a.nkeys; ++k)
     sweep_key_free(&a.keys[k]);
   fb_scenario_free(&a.base);

@@ -354,7 +354,7 @@ static int csv_read_record(const char *text, size_t len, size_t *pos, csv_record
 }
 
 /* The status field: a status name, with "/set" when the case's error is
- * about a value its --set replaced (sweep_case.at_value). */
+ * about a value its --set replaced (fb_study_sweep_case.at_value). */
 static int status_of_name(const char *field, int *status, int *at_value)
 {
   static const char set[] = "/set";
@@ -371,10 +371,25 @@ static int status_of_name(const char *field, int *status, int *at_value)
   return 0;
 }
 
-/* Record r of the journal (at line) into cases: the case it names must
- * be one of the study's, not yet read, with its keys' values. */
+/* The metrics of a row, from its first metric's field on, into m
+ * (a->nmetrics; NaN for an empty field). */
+static int read_metrics(const sweep_args *a, const char *path, size_t line, char *const *fields,
+                        double *m, fb_err *err)
+{
+  for (size_t k = 0; k < a->nmetrics; ++k) {
+    m[k] = NAN;
+    if (*fields[k] && !sweep_numeric_value(fields[k], &m[k]))
+      return fb_err_set(err, FB_EPARSE, "%s:%zu: '%s' is not a finite number", path, line,
+                        fields[k]);
+  }
+  return FB_OK;
+}
+
+/* Record r of the journal (at line) into the study: the case it names
+ * must be one of the study's, not yet read, with its keys' values. m:
+ * room for a->nmetrics metrics. */
 static int read_row(const sweep_args *a, const char *path, size_t line, const csv_record *r,
-                    sweep_case *cases, fb_err *err)
+                    double *m, fb_err *err)
 {
   const size_t want = 2 + a->nkeys + a->nmetrics + 1;
   /* want >= 3 (the case, its status, its error); said for the analyzer,
@@ -388,33 +403,28 @@ static int read_row(const sweep_args *a, const char *path, size_t line, const cs
   if (end == r->fields[0] || *end || errno || i >= a->ncases || r->fields[0][0] == '-')
     return fb_err_set(err, FB_EPARSE, "%s:%zu: case '%s' is not one of 0..%zu", path, line,
                       r->fields[0], a->ncases - 1);
-  sweep_case *c = &cases[i];
-  if (c->done)
+  if (fb_study_sweep_case_done(a->study, i))
     return fb_err_set(err, FB_EPARSE, "%s:%zu: case %llu a second time", path, line, i);
-  if (!status_of_name(r->fields[1], &c->status, &c->at_value) || c->status == FB_EINTR ||
-      (c->at_value && c->status == FB_OK))
+  fb_study_sweep_case c = {.metric = m, .wall_seconds = NAN};
+  if (!status_of_name(r->fields[1], &c.status, &c.at_value) || c.status == FB_EINTR ||
+      (c.at_value && c.status == FB_OK))
     return fb_err_set(err, FB_EPARSE, "%s:%zu: status '%s' is not a flexbond status", path,
                       line, r->fields[1]);
   for (size_t k = 0; k < a->nkeys; ++k) {
-    const char *value = a->keys[k].values[sweep_value_index(a, i, k)];
+    const char *value = fb_study_sweep_case_value(a->study, i, k);
     if (strcmp(r->fields[2 + k], value) != 0)
       return fb_err_set(err, FB_EPARSE, "%s:%zu: case %llu has %s=%s, the study %s", path, line,
                         i, a->keys[k].key, r->fields[2 + k], value);
   }
-  for (size_t m = 0; m < a->nmetrics; ++m) {
-    const char *text = r->fields[2 + a->nkeys + m];
-    c->metric[m] = NAN;
-    if (*text && !sweep_numeric_value(text, &c->metric[m]))
-      return fb_err_set(err, FB_EPARSE, "%s:%zu: '%s' is not a finite number", path, line,
-                        text);
-  }
+  const int rc = read_metrics(a, path, line, r->fields + 2 + a->nkeys, m, err);
+  if (rc != FB_OK)
+    return rc;
   const char *error = r->fields[want - 1];
-  if ((c->status == FB_OK) != (*error == '\0'))
+  if ((c.status == FB_OK) != (*error == '\0'))
     return fb_err_set(err, FB_EPARSE, "%s:%zu: status %s with %s error", path, line,
                       r->fields[1], *error ? "an" : "no");
-  c->error = *error ? strdup(error) : NULL;
-  c->wall_seconds = NAN;
-  c->done = 1;
+  c.error = *error ? error : NULL;
+  fb_study_sweep_record(a->study, (size_t)i, &c);
   return FB_OK;
 }
 
@@ -546,8 +556,8 @@ static int another_study(const char *path, const char *text, size_t len, const c
  * of its complete records (a torn last row is cut off). fingerprint and
  * inputs: this study's. */
 static int read_journal(const sweep_args *a, const char *path, const char *text, size_t len,
-                        uint64_t fingerprint, const char *inputs, sweep_case *cases,
-                        size_t *resumed, size_t *keep, fb_err *err)
+                        uint64_t fingerprint, const char *inputs, size_t *resumed, size_t *keep,
+                        fb_err *err)
 {
   char expected[256];
   first_line(a, fingerprint, expected, sizeof expected);
@@ -580,18 +590,23 @@ static int read_journal(const sweep_args *a, const char *path, const char *text,
   ++line;
   *keep = pos;
   *resumed = 0;
+  double *m = malloc(a->nmetrics * sizeof *m);
+  if (!m)
+    return fb_err_set(err, FB_ENOMEM, "%s: out of memory", path);
   for (;;) {
     csv_record r = {0};
     const size_t start = pos;
     const int got = pos < len ? csv_read_record(text, len, &pos, &r) : 0;
     int rc = got < 0 ? fb_err_set(err, FB_ENOMEM, "%s: out of memory", path)
-             : got   ? read_row(a, path, line, &r, cases, err)
+             : got   ? read_row(a, path, line, &r, m, err)
                      : FB_OK;
     for (size_t p = start; got > 0 && p < pos; ++p)
       line += text[p] == '\n';
     csv_record_free(&r);
-    if (rc != FB_OK || got <= 0)
+    if (rc != FB_OK || got <= 0) {
+      free(m);
       return rc;
+    }
     *keep = pos;
     ++*resumed;
   }
@@ -629,8 +644,8 @@ static int read_all(int fd, const char *path, char **text, size_t *len, fb_err *
 
 /* Reads an existing journal into cases, or starts an empty one: the
  * file is then cut to what is kept and positioned at its end. */
-static int load_or_start(const sweep_args *a, sweep_journal *j, int fd, sweep_case *cases,
-                         size_t *resumed, fb_err *err)
+static int load_or_start(const sweep_args *a, sweep_journal *j, int fd, size_t *resumed,
+                         fb_err *err)
 {
   uint64_t fingerprint = 0;
   char *text = NULL, *inputs = NULL;
@@ -639,7 +654,7 @@ static int load_or_start(const sweep_args *a, sweep_journal *j, int fd, sweep_ca
   if (rc == FB_OK)
     rc = read_all(fd, j->path, &text, &len, err);
   if (rc == FB_OK && len > 0)
-    rc = read_journal(a, j->path, text, len, fingerprint, inputs, cases, resumed, &keep, err);
+    rc = read_journal(a, j->path, text, len, fingerprint, inputs, resumed, &keep, err);
   free(text);
   if (rc == FB_OK && (ftruncate(fd, (off_t)keep) != 0 || lseek(fd, 0, SEEK_END) < 0))
     rc = fb_err_set(err, FB_EIO, "%s: %s", j->path, strerror(errno));
@@ -691,7 +706,7 @@ static int open_file(const char *path, int *fd, fb_err *err)
   return rc;
 }
 
-int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, size_t *resumed,
+int sweep_journal_open(const sweep_args *a, const char *dir, size_t *resumed,
                        sweep_journal **out, fb_err *err)
 {
   *out = NULL;
@@ -720,7 +735,7 @@ int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, 
                    "--resume to run only its missing cases, or remove the file to start afresh",
                    j->path);
   if (rc == FB_OK)
-    rc = load_or_start(a, j, fd, cases, resumed, err);
+    rc = load_or_start(a, j, fd, resumed, err);
   if (rc != FB_OK) {
     /* A journal this call started (none was there) goes with it, so the
      * directory is as before; another sweep's, or an earlier one, stays,
@@ -740,10 +755,12 @@ int sweep_journal_open(const sweep_args *a, const char *dir, sweep_case *cases, 
   return FB_OK;
 }
 
-int sweep_journal_append(sweep_journal *j, size_t i, const sweep_case *c, fb_err *err)
+int sweep_journal_append(sweep_journal *j, size_t i, fb_err *err)
 {
-  fprintf(j->fp, "%zu,%s%s,", i, fb_status_name(c->status), c->at_value ? "/set" : "");
-  sweep_csv_row(j->fp, j->a, i, c);
+  fb_study_sweep_case c;
+  fb_study_sweep_case_get(j->a->study, i, &c);
+  fprintf(j->fp, "%zu,%s%s,", i, fb_status_name(c.status), c.at_value ? "/set" : "");
+  sweep_csv_row(j->fp, j->a, i);
   if (fflush(j->fp) != 0 || ferror(j->fp))
     return fb_err_set(err, FB_EIO, "%s: cannot write: %s", j->path, strerror(errno));
   ++j->rows;

@@ -4,9 +4,12 @@
  * Rank 0 coordinates: it hands each rank one case at a time, the next in
  * grid order, and the next again when that rank's result comes back, so
  * a slow case holds up no one else. It also runs cases itself, on one
- * thread that takes them from the same pool; its main thread is the only
- * one that calls MPI (MPI_THREAD_FUNNELED). Every result goes through
- * sweep_pool_finish on rank 0 (journal, progress), and rank 0 writes the
+ * thread that takes them from the same study (fb_study_sweep_run); its
+ * main thread is the only one that calls MPI (MPI_THREAD_FUNNELED). The
+ * study layer runs every case (fb_study_sweep_run_case, on whichever
+ * rank); this file is only the transport: which case goes to which rank,
+ * and its outcome back. Every result is recorded in rank 0's study
+ * (fb_study_sweep_record, _finish: journal, progress), and rank 0 writes the
  * files, so sweep.csv is the same as a run on one machine: each case is
  * computed by the same code from the same inputs, and its metrics cross
  * the network as the bytes of the doubles.
@@ -18,10 +21,10 @@
  * assumed to share one binary representation of integers and doubles
  * (one kind of node). */
 #include <mpi.h>
+#include <pthread.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -77,10 +80,10 @@ int sweep_mpi_go(int go)
 }
 
 /* Gives rank r its next case, or tells it to stop; 1 if it got a case. */
-static int hand_out(sweep_pool *p, int r)
+static int hand_out(fb_study_sweep *sw, int r)
 {
   size_t i;
-  if (!sweep_pool_take(p, &i)) {
+  if (!fb_study_sweep_next(sw, &i)) {
     MPI_Send(NULL, 0, MPI_BYTE, r, SWEEP_TAG_STOP, MPI_COMM_WORLD);
     return 0;
   }
@@ -89,10 +92,10 @@ static int hand_out(sweep_pool *p, int r)
   return 1;
 }
 
-/* Receives the result that probed announces into p->cases; its case's
+/* Receives the result that probed announces into the study; its case's
  * index, or SIZE_MAX for a malformed message (which only a rank of
  * another flexbond would send). */
-static size_t receive_result(sweep_pool *p, const MPI_Status *probed)
+static size_t receive_result(fb_study_sweep *sw, const MPI_Status *probed)
 {
   result_msg msg;
   MPI_Status st;
@@ -102,31 +105,41 @@ static size_t receive_result(sweep_pool *p, const MPI_Status *probed)
   MPI_Get_count(&st, MPI_BYTE, &count);
   const size_t fixed = offsetof(result_msg, error);
   if (count < 0 || (size_t)count <= fixed || msg.error[(size_t)count - fixed - 1] != '\0' ||
-      msg.index >= p->a->ncases)
+      msg.index >= fb_study_sweep_ncases(sw))
     return SIZE_MAX;
-  sweep_case *c = &p->cases[msg.index];
-  memcpy(c->metric, msg.metric, sizeof msg.metric);
-  c->status = msg.status;
-  c->at_value = msg.at_value;
-  c->rank = msg.rank;
-  c->wall_seconds = msg.wall_seconds;
-  c->error = msg.error[0] ? strdup(msg.error) : NULL;
+  const fb_study_sweep_case c = {.status = msg.status,
+                                 .at_value = msg.at_value,
+                                 .error = msg.error[0] ? msg.error : NULL,
+                                 .metric = msg.metric,
+                                 .wall_seconds = msg.wall_seconds,
+                                 .worker = msg.rank};
+  fb_study_sweep_record(sw, (size_t)msg.index, &c);
   return (size_t)msg.index;
 }
 
-/* The local worker: rank 0's own cases, on a thread of their own. */
-static void *local_worker(void *pool)
+/* Rank 0's own cases, on a thread of their own. */
+typedef struct local_run {
+  fb_study_sweep *sw;
+  int rc;
+  fb_err err;
+} local_run;
+
+static void *local_worker(void *arg)
 {
-  return sweep_pool_worker(pool);
+  local_run *l = arg;
+  l->rc = fb_study_sweep_run(l->sw, 1, &l->err);
+  return NULL;
 }
 
-void sweep_mpi_coordinate(sweep_pool *p, int size)
+int sweep_mpi_coordinate(const sweep_args *a, int size, fb_err *err)
 {
+  local_run l = {.sw = a->study, .rc = FB_OK};
+  fb_err_clear(&l.err);
   pthread_t local;
-  const int threaded = pthread_create(&local, NULL, local_worker, p) == 0;
+  const int threaded = pthread_create(&local, NULL, local_worker, &l) == 0;
   int busy = 0;
   for (int r = 1; r < size; ++r)
-    busy += hand_out(p, r);
+    busy += hand_out(a->study, r);
   /* Polled, not a blocking receive: OpenMPI spins in a blocking one and
    * would take a core from the local worker. The pause between polls
    * doubles from 50 us to 2 ms while nothing comes, so that a result
@@ -144,34 +157,38 @@ void sweep_mpi_coordinate(sweep_pool *p, int size)
       continue;
     }
     nap_ns = 50000;
-    const size_t i = receive_result(p, &st);
-    /* A rank that was interrupted (its case says so) runs no more. */
-    const int stopped = i != SIZE_MAX && p->cases[i].status == FB_EINTR;
+    const size_t i = receive_result(a->study, &st);
+    /* A rank that was interrupted (its case is not done) runs no more. */
+    const int stopped = i != SIZE_MAX && !fb_study_sweep_case_done(a->study, i);
     if (i != SIZE_MAX)
-      sweep_pool_finish(p, i);
+      fb_study_sweep_finish(a->study, i);
     --busy;
     if (stopped)
       MPI_Send(NULL, 0, MPI_BYTE, st.MPI_SOURCE, SWEEP_TAG_STOP, MPI_COMM_WORLD);
     else
-      busy += hand_out(p, st.MPI_SOURCE);
+      busy += hand_out(a->study, st.MPI_SOURCE);
   }
   /* Without a thread of its own (pthread_create failed), rank 0 runs
    * what is left itself. */
   if (threaded)
     pthread_join(local, NULL);
   else
-    sweep_pool_worker(p);
+    local_worker(&l);
+  if (l.rc != FB_OK)
+    *err = l.err;
+  return l.rc;
 }
 
-/* Sends case i's result c to rank 0: up to the error message's NUL. */
-static void send_result(size_t i, const sweep_case *c, int rank)
+/* Sends case i's outcome c (nmetrics of them) to rank 0: up to the error
+ * message's NUL. */
+static void send_result(size_t i, const fb_study_sweep_case *c, size_t nmetrics, int rank)
 {
   result_msg msg = {.index = i,
                     .status = c->status,
                     .rank = rank,
                     .wall_seconds = c->wall_seconds,
                     .at_value = c->at_value};
-  memcpy(msg.metric, c->metric, sizeof msg.metric);
+  memcpy(msg.metric, c->metric, nmetrics * sizeof *msg.metric);
   /* A failed case without its message lost it to a failed allocation. */
   const char *error = c->error ? c->error : (c->status != FB_OK ? "out of memory" : "");
   snprintf(msg.error, sizeof msg.error, "%s", error);
@@ -189,10 +206,10 @@ void sweep_mpi_work(const sweep_args *a)
     MPI_Recv(&index, 1, MPI_UINT64_T, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
     if (st.MPI_TAG != SWEEP_TAG_CASE)
       break;
-    sweep_case c = {0};
-    sweep_run_case(a, (size_t)index, &c);
-    send_result((size_t)index, &c, rank);
-    free(c.error);
+    fb_study_sweep_run_case(a->study, (size_t)index);
+    fb_study_sweep_case c;
+    fb_study_sweep_case_get(a->study, (size_t)index, &c);
+    send_result((size_t)index, &c, a->nmetrics, rank);
   }
 }
 
