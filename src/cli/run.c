@@ -917,20 +917,27 @@ static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *s
   return n;
 }
 
-/* System 2 minus System 1 and the comparison of every output, when both
- * ran (System 1 first). */
-static int compare(cli_run_outputs *o, fb_result **diff, fb_err *err)
+/* The report's data (flexbond/study.h) of the runs of o, with the
+ * converged one when it ran: its comparisons become o's views. */
+static int build_report(cli_run_outputs *o, fb_study_report **rep, fb_err *err)
 {
-  if (o->nruns < 2)
-    return FB_OK;
-  const size_t n = o->scenario->noutputs;
-  o->cmp = calloc(n ? n : 1, sizeof *o->cmp);
-  int rc = o->cmp ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc)
-    rc = fb_study_compare(o->scenario, o->runs[0].res, o->runs[1].res, o->runs[0].sum,
-                          o->runs[1].sum, o->cmp, diff, err);
-  o->diff = *diff;
-  return rc;
+  fb_study_run runs[CLI_MAX_SYSTEMS], conv = {0};
+  for (size_t i = 0; i < o->nruns; ++i)
+    runs[i] =
+        (fb_study_run){o->runs[i].sys, o->runs[i].res, o->runs[i].sum, o->runs[i].basis_error};
+  if (o->converged)
+    conv = (fb_study_run){o->converged->sys, o->converged->res, o->converged->sum,
+                          o->converged->basis_error};
+  const int rc =
+      fb_study_report_new(o->scenario, runs, o->nruns, o->converged ? &conv : NULL, rep, err);
+  if (rc != FB_OK)
+    return rc;
+  o->report = *rep;
+  o->diff = fb_study_report_diff(*rep, FB_STUDY_CMP_SYSTEM2);
+  o->cmp = fb_study_report_cmp(*rep, FB_STUDY_CMP_SYSTEM2);
+  o->diff_converged = fb_study_report_diff(*rep, FB_STUDY_CMP_CONVERGED);
+  o->cmp_converged = fb_study_report_cmp(*rep, FB_STUDY_CMP_CONVERGED);
+  return FB_OK;
 }
 
 /* Applies the command line's overrides to the scenario. */
@@ -1117,8 +1124,7 @@ typedef struct run_converged {
   run_vehicle rv;
   run_estimator est;
   cli_run_system run;
-  char label[64];  /* "System 2 at density 3" */
-  fb_result *diff; /* its run minus System 1's */
+  char label[64]; /* "System 2 at density 3" */
 } run_converged;
 
 /* With both systems, when the scenario names a density above its own for
@@ -1161,27 +1167,18 @@ static int run_converged_system(const run_args *a, const fb_scenario *s, const d
   return finish_estimator(window, &c->est, &c->run, rc, err);
 }
 
-/* The converged run into o, against System 1 (runs[0]). */
-static int compare_converged(run_converged *c, cli_run_outputs *o, fb_err *err)
+/* The converged run into o; the report compares it with System 1. */
+static void use_converged(const run_converged *c, cli_run_outputs *o)
 {
-  const size_t n = o->scenario->noutputs;
-  o->cmp_converged = calloc(n ? n : 1, sizeof *o->cmp_converged);
-  int rc = o->cmp_converged ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc)
-    rc = fb_study_compare(o->scenario, o->runs[0].res, c->run.res, o->runs[0].sum, c->run.sum,
-                          o->cmp_converged, &c->diff, err);
   o->converged = &c->run;
   o->converged_basis = fb_vehicle_hull_basis(c->rv.v);
   o->converged_density = c->s->hull_mesh.density;
-  o->diff_converged = c->diff;
-  return rc;
 }
 
 static void run_converged_free(run_converged *c)
 {
   run_estimator_free(&c->est);
   run_system_free(&c->run);
-  fb_result_free(&c->diff);
   fb_vehicle_free(&c->rv.v);
   fb_scenario_free(&c->s);
 }
@@ -1196,7 +1193,7 @@ static int run(const run_args *a)
   memset(vehicles, 0, sizeof vehicles);
   fb_system systems[CLI_MAX_SYSTEMS] = {FB_SYSTEM_RIGID};
   run_modes modes = {0};
-  fb_result *diff = NULL;
+  fb_study_report *rep = NULL;
   cli_run_outputs o = {
       .runs = runs, .figures = a->figures, .header = a->header, .animate = &a->animate};
   size_t nfiles = 0;
@@ -1259,10 +1256,10 @@ static int run(const run_args *a)
     o.modes2 = modes.modes2;
     for (size_t i = 0; i < o.nruns; ++i)
       o.vehicles[i] = vehicles[i].v;
-    rc = compare(&o, &diff, &err);
+    if (conv.rv.v)
+      use_converged(&conv, &o);
+    rc = build_report(&o, &rep, &err);
   }
-  if (rc == FB_OK && conv.rv.v)
-    rc = compare_converged(&conv, &o, &err);
   if (rc == FB_OK && o.figures)
     frequency_response(by_system, &o);
   if (rc == FB_OK)
@@ -1284,9 +1281,7 @@ static int run(const run_args *a)
   if (rc == FB_OK && !a->quiet)
     cli_say("flexbond run: %s: wrote %zu files -> %s", cli_scenario_name(s), nfiles,
             a->out_dir);
-  fb_result_free(&diff);
-  free(o.cmp);
-  free(o.cmp_converged);
+  fb_study_report_free(&rep);
   run_converged_free(&conv);
   for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i)
     run_system_free(&runs[i]);
