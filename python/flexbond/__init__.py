@@ -26,7 +26,8 @@ import warnings
 import numpy
 
 __all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse",
-           "RidePSD", "PsdRoad", "Model", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
+           "RidePSD", "PsdRoad", "Model", "Study", "RunSummary", "Differences", "Error",
+           "PlausibilityWarning", "RIGID", "FLEXIBLE", "NOTABLE_DIFF", "NOTABLE_CHANGE",
            "library_path"]
 
 RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
@@ -80,6 +81,16 @@ class _OutputCmp(ctypes.Structure):
     _fields_ = [(n, ctypes.c_double) for n in
                 ("max_diff", "max_diff_time", "range1", "rel_diff", "peak_change",
                  "rms_change")]
+
+
+class _StudyRun(ctypes.Structure):
+    """fb_study_run (flexbond/study.h): a run handed to a report, borrowed."""
+    _fields_ = [("sys", ctypes.c_int), ("res", ctypes.c_void_p), ("sum", ctypes.c_void_p),
+                ("basis_error", ctypes.POINTER(ctypes.c_double))]
+
+
+class _Differences(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_size_t) for n in ("largest", "nvarying", "nnotable")]
 
 
 class _ContactLoss(ctypes.Structure):
@@ -194,6 +205,22 @@ _PROTOTYPES = {
                                            ctypes.POINTER(ctypes.c_char_p)]),
     "fb_study_compare": (ctypes.c_int, [_P, _P, _P, _P, _P, ctypes.POINTER(_OutputCmp), _PP,
                                         _PERR]),
+    "fb_study_report_new": (ctypes.c_int, [_P, ctypes.POINTER(_StudyRun), ctypes.c_size_t,
+                                           ctypes.POINTER(_StudyRun), _PP, _PERR]),
+    "fb_study_report_free": (None, [_PP]),
+    "fb_study_report_window": (None, [_P, _PDOUBLE]),
+    "fb_study_report_wheel_window": (None, [_P, ctypes.c_size_t, _PDOUBLE]),
+    "fb_study_report_tires_with": (ctypes.c_size_t, [_P, ctypes.c_int]),
+    "fb_study_report_cmp": (ctypes.POINTER(_OutputCmp), [_P, ctypes.c_int]),
+    "fb_study_report_differences": (_Differences, [_P, ctypes.c_int]),
+    "fb_study_report_notable": (ctypes.c_int, [_P, ctypes.c_int, ctypes.c_size_t]),
+    "fb_study_report_largest_rms_change": (ctypes.c_size_t, [_P]),
+    "fb_study_report_torsion_output": (ctypes.c_size_t, [_P]),
+    "fb_study_report_run": (ctypes.POINTER(_StudyRun), [_P, ctypes.c_size_t]),
+    "fb_study_run_max_abs": (ctypes.c_double, [ctypes.POINTER(_StudyRun), ctypes.c_size_t]),
+    "fb_study_report_largest_growth": (ctypes.c_size_t, [_P, _PDOUBLE]),
+    "fb_study_report_contact_extremes": (None, [_P, ctypes.POINTER(_StudyRun), _PSIZE, _PSIZE]),
+    "fb_tire_contact_name": (ctypes.c_char_p, [ctypes.c_int]),
     "fb_study_freq_log_grid": (None, [ctypes.c_double, ctypes.c_double, ctypes.c_size_t,
                                       _PDOUBLE]),
     "fb_study_freq_new": (ctypes.c_int, [_P, _PDOUBLE, ctypes.c_size_t, _PP, _PERR]),
@@ -509,6 +536,50 @@ class RunSummary:
             self.ride_note = note.value.decode(errors="replace")
 
 
+def _findings(s, rep, names):
+    """Study's members from the report data rep of the runs of systems names."""
+    outputs = [_lib.fb_scenario_output_name(s, k).decode()
+               for k in range(_lib.fb_scenario_noutputs(s))]
+    tires = [_lib.fb_scenario_corner_name(s, c).decode()
+             for c in range(_lib.fb_scenario_ncorners(s))]
+
+    def output(k):
+        return outputs[k] if k < len(outputs) else None
+
+    window = (ctypes.c_double * 2)()
+    _lib.fb_study_report_window(rep, window)
+    found = {"window": (window[0], window[1]), "wheel_windows": {}, "comparison": None,
+             "differences": None, "torsion_max_abs": {}, "contact_extremes": {}}
+    for c, tire in enumerate(tires):
+        _lib.fb_study_report_wheel_window(rep, c, window)
+        found["wheel_windows"][tire] = (window[0], window[1])
+    found["tire_models"] = {_lib.fb_tire_contact_name(m).decode(): n for m in range(3)
+                            for n in [_lib.fb_study_report_tires_with(rep, m)] if n}
+    cmp = _lib.fb_study_report_cmp(rep, 0)  # FB_STUDY_CMP_SYSTEM2
+    if cmp:
+        found["comparison"] = {
+            name: OutputComparison(*(getattr(cmp[k], n) for n, _ in _OutputCmp._fields_))
+            for k, name in enumerate(outputs)}
+        d = _lib.fb_study_report_differences(rep, 0)
+        found["differences"] = Differences(
+            output(d.largest), d.nvarying, d.nnotable,
+            [n for k, n in enumerate(outputs) if _lib.fb_study_report_notable(rep, 0, k)])
+    found["largest_rms_change"] = output(_lib.fb_study_report_largest_rms_change(rep))
+    torsion = _lib.fb_study_report_torsion_output(rep)
+    found["torsion"] = output(torsion)
+    factor = ctypes.c_double()
+    grows = output(_lib.fb_study_report_largest_growth(rep, ctypes.byref(factor)))
+    found["largest_growth"] = (grows, factor.value) if grows else None
+    for i, name in enumerate(names):
+        run = _lib.fb_study_report_run(rep, i)
+        if found["torsion"]:
+            found["torsion_max_abs"][name] = _lib.fb_study_run_max_abs(run, torsion)
+        most, least = ctypes.c_size_t(), ctypes.c_size_t()
+        _lib.fb_study_report_contact_extremes(rep, run, ctypes.byref(most), ctypes.byref(least))
+        found["contact_extremes"][name] = (tires[most.value], tires[least.value])
+    return found
+
+
 def _stats(s):
     return OutputStats(s.static, s.peak, s.peak_time, s.min, s.min_time, s.rms)
 
@@ -519,15 +590,40 @@ hull's frequencies (Hz, the nrigid rigid-body ones first) and the undamped
 vehicle's [(freq_hz, description)], nfree zero-frequency modes left out."""
 
 
-class Study:
-    """Systems of one scenario run and compared, as flexbond run does: runs
-    {system: RunSummary} and, with two systems, comparison {output:
-    OutputComparison} of the second against the first (System 2 against
-    System 1 for the default ("rigid", "flexible"))."""
+Differences = collections.namedtuple("Differences", "largest nvarying nnotable notable")
+Differences.__doc__ = """Of a comparison's outputs (flexbond/study.h): the name of the one
+with the largest relative difference (None when no output varies in the
+first system), how many vary there, how many of those differ by more than
+NOTABLE_DIFF of the first system's range, and their names."""
 
-    def __init__(self, runs, comparison):
+NOTABLE_DIFF = 0.05    # FB_STUDY_NOTABLE_DIFF: a notable difference, of the range
+NOTABLE_CHANGE = 0.05  # FB_STUDY_NOTABLE_CHANGE: a notable peak or r.m.s. change
+
+
+class Study:
+    """Systems of one scenario run and compared, as flexbond run does, with
+    the findings its report.md states, all from the library's report data
+    (fb_study_report):
+
+    runs {system: RunSummary}; comparison {output: OutputComparison} of the
+    second against the first with two systems (System 2 against System 1
+    for the default ("rigid", "flexible")), else None; window, the response
+    window (s); wheel_windows {tire: (entry, exit)}, when each wheel meets
+    the road's feature and leaves it (s); tire_models {model: number of
+    tires}; differences, a Differences with two systems, else None;
+    largest_rms_change, the output whose r.m.s. changes the most (None
+    without a comparison); torsion, the torsion angle's output (None when
+    none) and torsion_max_abs {system: its largest |value| over the run};
+    largest_growth (output, peak / static) of the first system, the output
+    that grows the most relative to its static value (None when none); and
+    contact_extremes {system: (tire, tire)}, the tire whose peak reaction is
+    the largest multiple of its static one and the one with the smallest
+    reaction over the window."""
+
+    def __init__(self, runs, comparison, **findings):
         self.runs = runs
         self.comparison = comparison
+        self.__dict__.update(findings)
 
 Mode = collections.namedtuple("Mode", "eigenvalue freq_hz damping_ratio description")
 Mode.__doc__ = """A mode: eigenvalue (complex, 1/s), freq_hz (|lambda| / 2 pi, or
@@ -944,19 +1040,7 @@ class Scenario:
                 handles.append(self._with_vehicle(system, use, progress=progress))
             runs = {n: RunSummary(self._s, n, res, summary)
                     for n, (res, summary) in zip(names, handles)}
-            comparison = None
-            if len(handles) == 2:
-                noutputs = _lib.fb_scenario_noutputs(self._s)
-                cmp = (_OutputCmp * max(1, noutputs))()
-                err = _Err()
-                (r1, s1), (r2, s2) = handles
-                _check(_lib.fb_study_compare(self._s, r1, r2, s1, s2, cmp, None,
-                                             ctypes.byref(err)), err)
-                comparison = {
-                    _lib.fb_scenario_output_name(self._s, k).decode():
-                        OutputComparison(*(getattr(cmp[k], n) for n, _ in _OutputCmp._fields_))
-                    for k in range(noutputs)}
-            return Study(runs, comparison)
+            return self._report(names, handles, runs)
         finally:
             for res, summary in handles:
                 _lib.fb_run_summary_free(ctypes.byref(summary))
@@ -964,6 +1048,20 @@ class Scenario:
             with self._calls:
                 self._ncalls -= 1
                 self._calls.notify_all()
+
+    def _report(self, names, handles, runs):
+        """The Study of the runs handles [(result, summary)] of systems names,
+        from the library's report data (fb_study_report)."""
+        study_runs = (_StudyRun * len(handles))(
+            *(_StudyRun(_SYSTEMS[n], res.value, summary.value, None)
+              for n, (res, summary) in zip(names, handles)))
+        rep, err = ctypes.c_void_p(), _Err()
+        _check(_lib.fb_study_report_new(self._s, study_runs, len(handles), None,
+                                        ctypes.byref(rep), ctypes.byref(err)), err)
+        try:
+            return Study(runs, **_findings(self._s, rep, names))
+        finally:
+            _lib.fb_study_report_free(ctypes.byref(rep))
 
     def hull_modes(self, nhull=30, nvehicle=20, progress=None):
         """System 2's structural modes, as flexbond modes --system flexible
