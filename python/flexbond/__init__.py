@@ -26,7 +26,7 @@ import warnings
 import numpy
 
 __all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse",
-           "RidePSD", "PsdRoad", "Model", "Study", "RunSummary", "Differences", "Error",
+           "RidePSD", "PsdRoad", "Model", "ModelFile", "Study", "RunSummary", "Differences", "Error",
            "PlausibilityWarning", "RIGID", "FLEXIBLE", "NOTABLE_DIFF", "NOTABLE_CHANGE",
            "library_path"]
 
@@ -157,6 +157,18 @@ class _VehicleOpts(ctypes.Structure):
     _fields_ = [("motion", ctypes.c_int), ("memory_limit", ctypes.c_size_t),
                 ("progress_fn", _STAGE_PROGRESS), ("progress_ctx", ctypes.c_void_p),
                 ("threads", ctypes.c_int), ("hull_modes", ctypes.c_size_t)]
+class _SimOpts(ctypes.Structure):
+    """fb_sim_opts (flexbond/sim.h), filled by fb_model_sim_opts_with."""
+    _fields_ = [(n, ctypes.c_double) for n in
+                ("t_start", "t_end", "rtol", "atol", "max_step", "sample_rate")] + [
+                    ("max_order", ctypes.c_int), ("max_steps", ctypes.c_long),
+                    ("stability_limit_detection", ctypes.c_int),
+                    ("breakpoints", ctypes.POINTER(ctypes.c_double)),
+                    ("nbreakpoints", ctypes.c_size_t), ("x0", ctypes.POINTER(ctypes.c_double)),
+                    ("progress", _PROGRESS), ("progress_ctx", ctypes.c_void_p),
+                    ("noutputs", ctypes.c_size_t)]
+
+
 _P = ctypes.c_void_p
 _PP = ctypes.POINTER(ctypes.c_void_p)
 _PERR = ctypes.POINTER(_Err)
@@ -221,6 +233,16 @@ _PROTOTYPES = {
     "fb_study_report_largest_growth": (ctypes.c_size_t, [_P, _PDOUBLE]),
     "fb_study_report_contact_extremes": (None, [_P, ctypes.POINTER(_StudyRun), _PSIZE, _PSIZE]),
     "fb_tire_contact_name": (ctypes.c_char_p, [ctypes.c_int]),
+    "fb_model_load": (ctypes.c_int, [ctypes.c_char_p, _PP, _PERR]),
+    "fb_model_free": (None, [_PP]),
+    "fb_model_name": (ctypes.c_char_p, [_P]),
+    "fb_model_nwarnings": (ctypes.c_size_t, [_P]),
+    "fb_model_warning": (_PERR, [_P, ctypes.c_size_t]),
+    "fb_model_sim_new": (ctypes.c_int, [_P, _PP, _PERR]),
+    "fb_model_sim_free": (None, [_PP]),
+    "fb_model_sim_opts_with": (_SimOpts, [_P, ctypes.c_double, ctypes.c_double,
+                                          ctypes.c_double]),
+    "fb_model_sim_run": (ctypes.c_int, [_P, ctypes.POINTER(_SimOpts), _PP, _PERR]),
     "fb_study_freq_log_grid": (None, [ctypes.c_double, ctypes.c_double, ctypes.c_size_t,
                                       _PDOUBLE]),
     "fb_study_freq_new": (ctypes.c_int, [_P, _PDOUBLE, ctypes.c_size_t, _PP, _PERR]),
@@ -1289,6 +1311,63 @@ class Scenario:
 
 
 # ---- Stepping.
+
+class ModelFile:
+    """A bond-graph model file (docs/model-format.md) loaded and checked as
+    flexbond sim reads it; Error at its file, line and key when it is wrong.
+    name is its model's name; warnings the load's warnings (the messages
+    flexbond sim prints and goes on). close() frees it (also done by the
+    garbage collector and by a with block)."""
+
+    def __init__(self, path):
+        self._m = ctypes.c_void_p()
+        err = _Err()
+        _check(_lib.fb_model_load(_c_text(os.fspath(path), "path"), ctypes.byref(self._m),
+                                  ctypes.byref(err)), err)
+        self.name = _lib.fb_model_name(self._m).decode()
+        self.warnings = [_lib.fb_model_warning(self._m, i).contents.msg.decode(
+            errors="replace") for i in range(_lib.fb_model_nwarnings(self._m))]
+
+    def simulate(self, t_end=None, rtol=None, sample_rate=None):
+        """The model run as flexbond sim runs it, from its simulation.initial
+        state, with its file's solver settings or t_end (s), rtol and
+        sample_rate (Hz) instead (--t-end, --rtol, --sample-rate): a Result
+        with t and each probe, probes.csv's columns. The call holds the
+        interpreter's thread until the run ends."""
+        if not self._m:
+            raise ValueError("flexbond: the model file is closed")
+        given = [0.0 if v is None else float(v) for v in (t_end, rtol, sample_rate)]
+        for name, v in zip(("t_end", "rtol", "sample_rate"), given):
+            if not v >= 0:  # also NaN; 0 would mean "the file's"
+                raise ValueError("flexbond: %s must be > 0 (got %r)" % (name, v))
+        opts = _lib.fb_model_sim_opts_with(self._m, *given)
+        ms, res, err = ctypes.c_void_p(), ctypes.c_void_p(), _Err()
+        try:
+            _check(_lib.fb_model_sim_new(self._m, ctypes.byref(ms), ctypes.byref(err)), err)
+            _check(_lib.fb_model_sim_run(ms, ctypes.byref(opts), ctypes.byref(res),
+                                         ctypes.byref(err)), err)
+            return _result(res, self.name)
+        finally:
+            _lib.fb_result_free(ctypes.byref(res))
+            _lib.fb_model_sim_free(ctypes.byref(ms))
+
+    def close(self):
+        if self._m:
+            _lib.fb_model_free(ctypes.byref(self._m))
+
+    def __del__(self):
+        if getattr(self, "_m", None):
+            self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __repr__(self):
+        return "<flexbond.ModelFile %s>" % self.name
+
 
 class Simulation:
     """One system of a scenario simulated step by step, as an FMI
