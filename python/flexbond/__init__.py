@@ -886,7 +886,22 @@ def _until_done(work, on_no_start=None):
 
 # ---- Scenarios.
 
-class Scenario:
+class _Closing:
+    """close() when a with block ends and when collected (not at interpreter
+    exit, the library gone)."""
+
+    def __del__(self):
+        if _lib is not None:
+            self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+class Scenario(_Closing):
     """A scenario file (docs/scenario-format.md), loaded and checked, with
     overrides: {key: value}, each key a key path of the file
     ("road.speed_kmh") or a key name that names one ("speed_kmh"), each value
@@ -971,16 +986,6 @@ class Scenario:
             calls.wait_for(lambda: self._ncalls == 0)
             if self._s:
                 _lib.fb_scenario_free(ctypes.byref(self._s))
-
-    def __del__(self):
-        if _lib is not None:  # not at interpreter exit, the library gone
-            self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
 
     def _handle(self):
         if not self._s:
@@ -1312,7 +1317,7 @@ class Scenario:
 
 # ---- Stepping.
 
-class ModelFile:
+class ModelFile(_Closing):
     """A bond-graph model file (docs/model-format.md) loaded and checked as
     flexbond sim reads it; Error at its file, line and key when it is wrong.
     name is its model's name; warnings the load's warnings (the messages
@@ -1355,21 +1360,11 @@ class ModelFile:
         if self._m:
             _lib.fb_model_free(ctypes.byref(self._m))
 
-    def __del__(self):
-        if getattr(self, "_m", None):
-            self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
     def __repr__(self):
         return "<flexbond.ModelFile %s>" % self.name
 
 
-class Simulation:
+class Simulation(_Closing):
     """One system of a scenario simulated step by step, as an FMI
     co-simulation slave (fmi2DoStep) or a Chrono system (DoStepDynamics) is:
     advance(t) integrates to time t exactly, outputs reads every output
@@ -1516,16 +1511,6 @@ class Simulation:
         """Frees the simulation (also done when it is garbage-collected)."""
         if getattr(self, "_st", None):
             _lib.fb_vehicle_stepper_free(ctypes.byref(self._st))
-
-    def __del__(self):
-        if _lib is not None:
-            self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
 
     def __repr__(self):
         return "<flexbond.Simulation %s at t = %g s>" % (
