@@ -1200,6 +1200,36 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
  * its node; the structure's alone without any. */
 int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err);
 
+/* ---- What a finite-element hull is (src/vehicle/fe_hull_facts.c), as
+ * `flexbond mesh` prints it and the Python package gives it. */
+
+/* A hull's mass (kg), centre of mass (m) and inertia tensor about it
+ * (row-major 3 x 3, kg m^2), from its mass matrix's rigid-body modes
+ * (fb_fem_mass_properties). */
+typedef struct fb_hull_mass_props {
+  double mass;
+  double cg[3];
+  double inertia[9];
+} fb_hull_mass_props;
+
+/* Of h's structure alone (with_masses 0: its shells, fb_fem_assemble) or
+ * of the hull as built (1: with its declared masses,
+ * fb_fe_hull_mass_matrix). */
+int fb_fe_hull_mass_props(const fb_fe_hull *h, int with_masses, fb_hull_mass_props *out,
+                          fb_err *err);
+/* h's mesh (owned by h) and how many declared masses it carries. */
+const fb_mesh *fb_fe_hull_mesh(const fb_fe_hull *h);
+size_t fb_fe_hull_npoint_masses(const fb_fe_hull *h);
+/* The elements of section sec of h's mesh (fb_mesh_element_section; -1:
+ * those of no section, which take h's material): how many, their area
+ * (m^2; a warped element's projected area) and their mass (kg: the plate's
+ * density times its thickness, plus its non-structural mass, per m^2). */
+typedef struct fb_hull_section_totals {
+  size_t nelements;
+  double area, mass;
+} fb_hull_section_totals;
+fb_hull_section_totals fb_fe_hull_section_totals(const fb_fe_hull *h, long sec);
+
 /* Stiffness-proportional structural damping B = beta K of the hull, with
  * beta = 2 zeta / omega_1 so that the first elastic free-free mode of the
  * hull as built (fb_fe_hull_mass_matrix: its structure and its declared

@@ -26,7 +26,7 @@ import warnings
 import numpy
 
 __all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse",
-           "RidePSD", "PsdRoad", "Model", "ModelFile", "Study", "RunSummary", "Differences", "Error",
+           "RidePSD", "PsdRoad", "Model", "ModelFile", "Study", "HullMesh", "RunSummary", "Differences", "Error",
            "PlausibilityWarning", "RIGID", "FLEXIBLE", "NOTABLE_DIFF", "NOTABLE_CHANGE",
            "library_path"]
 
@@ -87,6 +87,16 @@ class _StudyRun(ctypes.Structure):
     """fb_study_run (flexbond/study.h): a run handed to a report, borrowed."""
     _fields_ = [("sys", ctypes.c_int), ("res", ctypes.c_void_p), ("sum", ctypes.c_void_p),
                 ("basis_error", ctypes.POINTER(ctypes.c_double))]
+
+
+class _HullMassProps(ctypes.Structure):
+    _fields_ = [("mass", ctypes.c_double), ("cg", ctypes.c_double * 3),
+                ("inertia", ctypes.c_double * 9)]
+
+
+class _SectionTotals(ctypes.Structure):
+    _fields_ = [("nelements", ctypes.c_size_t), ("area", ctypes.c_double),
+                ("mass", ctypes.c_double)]
 
 
 class _Differences(ctypes.Structure):
@@ -233,6 +243,17 @@ _PROTOTYPES = {
     "fb_study_report_largest_growth": (ctypes.c_size_t, [_P, _PDOUBLE]),
     "fb_study_report_contact_extremes": (None, [_P, ctypes.POINTER(_StudyRun), _PSIZE, _PSIZE]),
     "fb_tire_contact_name": (ctypes.c_char_p, [ctypes.c_int]),
+    "fb_vehicle_fe_hull": (ctypes.c_int, [_P, _PP, _PERR]),
+    "fb_fe_hull_free": (None, [_PP]),
+    "fb_fe_hull_mesh": (_P, [_P]),
+    "fb_fe_hull_npoint_masses": (ctypes.c_size_t, [_P]),
+    "fb_fe_hull_mass_props": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_HullMassProps),
+                                             _PERR]),
+    "fb_fe_hull_section_totals": (_SectionTotals, [_P, ctypes.c_long]),
+    "fb_mesh_nnodes": (ctypes.c_size_t, [_P]),
+    "fb_mesh_count": (ctypes.c_size_t, [_P, ctypes.c_int]),
+    "fb_mesh_nsections": (ctypes.c_size_t, [_P]),
+    "fb_mesh_section_elset": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_model_load": (ctypes.c_int, [ctypes.c_char_p, _PP, _PERR]),
     "fb_model_free": (None, [_PP]),
     "fb_model_name": (ctypes.c_char_p, [_P]),
@@ -604,6 +625,45 @@ def _findings(s, rep, names):
 
 def _stats(s):
     return OutputStats(s.static, s.peak, s.peak_time, s.min, s.min_time, s.rms)
+
+
+MassProps = collections.namedtuple("MassProps", "mass cg inertia")
+MassProps.__doc__ = """A hull's mass (kg), centre of mass (x, y, z; m) and inertia tensor
+about it (3 x 3 numpy array, kg m^2)."""
+
+SectionTotals = collections.namedtuple("SectionTotals", "nelements area mass")
+SectionTotals.__doc__ = """The elements of one plate section: how many, their area (m^2) and
+their mass (kg)."""
+
+HullMesh = collections.namedtuple("HullMesh", "nodes tri3 quad4 sections structure as_built")
+HullMesh.__doc__ = """System 2's hull mesh (Scenario.hull_mesh), as flexbond mesh prints it:
+its node and element counts (S3 triangles, S4 quadrilaterals), sections
+{element set: SectionTotals} when the plates differ ("hull.material" for
+the elements of none; empty when they are all one), the structure's
+MassProps and the hull's as built with its declared masses (None without
+any)."""
+
+
+def _mass_props(h, with_masses):
+    p, err = _HullMassProps(), _Err()
+    _check(_lib.fb_fe_hull_mass_props(h, with_masses, ctypes.byref(p), ctypes.byref(err)), err)
+    return MassProps(p.mass, tuple(p.cg), numpy.array(p.inertia).reshape(3, 3))
+
+
+def _hull_mesh(h):
+    """The HullMesh of the realised finite-element hull h."""
+    mesh = _lib.fb_fe_hull_mesh(h)
+    sections = {}
+    nsections = _lib.fb_mesh_nsections(mesh)
+    for sec in range(-1, nsections) if nsections else ():
+        totals = _lib.fb_fe_hull_section_totals(h, sec)
+        if totals.nelements:
+            name = ("hull.material" if sec < 0
+                    else _lib.fb_mesh_section_elset(mesh, sec).decode(errors="replace"))
+            sections[name] = SectionTotals(totals.nelements, totals.area, totals.mass)
+    as_built = _mass_props(h, 1) if _lib.fb_fe_hull_npoint_masses(h) else None
+    return HullMesh(_lib.fb_mesh_nnodes(mesh), _lib.fb_mesh_count(mesh, 3),
+                    _lib.fb_mesh_count(mesh, 4), sections, _mass_props(h, 0), as_built)
 
 
 HullModes = collections.namedtuple("HullModes", "hull_freq_hz nrigid vehicle nfree")
@@ -1089,6 +1149,26 @@ class Scenario(_Closing):
             return Study(runs, **_findings(self._s, rep, names))
         finally:
             _lib.fb_study_report_free(ctypes.byref(rep))
+
+    def hull_mesh(self):
+        """System 2's finite-element hull as flexbond mesh builds and
+        describes it (the generator or the deck, checked): a HullMesh, from
+        the same library calls (fb_fe_hull_mass_props,
+        fb_fe_hull_section_totals). Error when the scenario has no
+        finite-element hull."""
+        with self._calls:  # the scenario stays open until the hull is read
+            s = self._handle()
+            self._ncalls += 1
+        h, err = ctypes.c_void_p(), _Err()
+        try:
+            _check_about(s, _lib.fb_vehicle_fe_hull(s, ctypes.byref(h), ctypes.byref(err)), err,
+                         self._data_name)
+            return _hull_mesh(h)
+        finally:
+            _lib.fb_fe_hull_free(ctypes.byref(h))
+            with self._calls:
+                self._ncalls -= 1
+                self._calls.notify_all()
 
     def hull_modes(self, nhull=30, nvehicle=20, progress=None):
         """System 2's structural modes, as flexbond modes --system flexible

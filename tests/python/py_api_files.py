@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""The Python package against the flexbond commands on model files:
-flexbond sim (ModelFile.simulate). Run by CTest with the system python3:
+"""The Python package against the flexbond commands on model files and on
+a scenario's hull mesh: flexbond sim (ModelFile.simulate) and flexbond mesh
+(Scenario.hull_mesh). Run by CTest with the system python3:
 
     py_api_files.py FLEXBOND_EXECUTABLE SOURCE_DIR
 
@@ -8,12 +9,17 @@ FLEXBOND_LIBRARY names the built shared library and PYTHONPATH holds
 python/; the working directory is a scratch directory of this test.
 
 Both sides call the same library functions on the same file (fb_model_sim:
-the same diagram, initial state and solver settings), so they compute the
-same doubles and every difference is the command's printing: probes.csv
-writes 10 significant digits (%.10g: a relative 5e-10 of each value is its
-rounding)."""
+the same diagram, initial state and solver settings; fb_fe_hull_mass_props
+and fb_fe_hull_section_totals for the hull), so they compute the same
+doubles and every difference is the command's printing: probes.csv writes
+10 significant digits (%.10g: a relative 5e-10 of each value is its
+rounding), flexbond mesh %.6g for a mass, an inertia and a section's mass
+(5e-6) and %.4g for a centre of mass, a product of inertia and a section's
+area (5e-4)."""
 
 import os
+import re
+import shutil
 import sys
 import unittest
 
@@ -71,6 +77,84 @@ class ModelSimTest(unittest.TestCase):
                 model.simulate(t_end=-1)
             with self.assertRaises(flexbond.Error):
                 model.simulate(rtol=2.0)  # fb_sim_run's check: rtol in (0, 1)
+
+
+def printed_near(value, text, digits):
+    """value as %.{digits}g prints it (text): within half a unit of its
+    last significant digit."""
+    printed = float(text)
+    return abs(value - printed) <= 0.5 * 10.0 ** (1 - digits) * abs(printed) * (1 + 1e-12)
+
+
+def truck_with_sections():
+    """examples/truck4x4.yaml with a thicker floor and heavier sides (as
+    tests/cli_run.sh makes it), in the working directory beside its
+    tables."""
+    with open(os.path.join(EXAMPLES, "truck4x4.yaml"), encoding="utf-8") as f:
+        text = f.read()
+    edited = re.sub(r"^  edges:  ", "  sections:\n    - {set: FLOOR, thickness: 0.020}\n"
+                    "    - {set: sides, thickness: 0.0085, nonstructural_mass: 10}\n  edges:  ",
+                    text, count=1, flags=re.M)
+    assert edited != text, "no '  edges:' in truck4x4.yaml"
+    for name in os.listdir(EXAMPLES):
+        if name.endswith(".csv"):
+            shutil.copy(os.path.join(EXAMPLES, name), name)
+    with open("truck_sections.yaml", "w", encoding="utf-8") as f:
+        f.write(edited)
+    return "truck_sections.yaml"
+
+
+class HullMeshTest(unittest.TestCase):
+    def assertMass(self, props, mass_line, inertia_line):
+        mass = re.search(r"mass (\S+) kg, centre of mass \((\S+), (\S+), (\S+)\) m", mass_line)
+        self.assertTrue(printed_near(props.mass, mass.group(1), 6), (props.mass, mass_line))
+        for x, text in zip(props.cg, mass.groups()[1:]):
+            self.assertTrue(printed_near(x, text, 4), (props.cg, mass_line))
+        inertia = re.search(r"Ixx (\S+), Iyy (\S+), Izz (\S+), Ixz (\S+) kg m\^2", inertia_line)
+        for (i, j, digits), text in zip(((0, 0, 6), (1, 1, 6), (2, 2, 6), (0, 2, 4)),
+                                        inertia.groups()):
+            self.assertTrue(printed_near(props.inertia[i, j], text, digits),
+                            (props.inertia, inertia_line))
+
+    def check(self, path):
+        """flexbond mesh's lines against Scenario.hull_mesh."""
+        lines = run_cli(CLI, "mesh", path).splitlines()
+        with flexbond.Scenario(path) as scenario:
+            hull = scenario.hull_mesh()
+        counts = re.match(r"hull mesh: (\d+) nodes, (\d+) S3 \+ (\d+) S4 elements", lines[0])
+        self.assertEqual((hull.nodes, hull.tri3, hull.quad4), tuple(map(int, counts.groups())))
+        sections = [re.match(r"  (\S+) +(\d+) elements, +(\S+) m\^2, .*: (\S+) kg$", line)
+                    for line in lines[1:]]
+        sections = [m for m in sections if m]
+        self.assertEqual(list(hull.sections), [m.group(1) for m in sections])
+        for m in sections:
+            totals = hull.sections[m.group(1)]
+            self.assertEqual(totals.nelements, int(m.group(2)))
+            self.assertTrue(printed_near(totals.area, m.group(3), 4), (totals, m.group(0)))
+            self.assertTrue(printed_near(totals.mass, m.group(4), 6), (totals, m.group(0)))
+        first = next(i for i, line in enumerate(lines) if line.startswith("mass "))
+        self.assertMass(hull.structure, lines[first], lines[first + 1])
+        built = [i for i, line in enumerate(lines) if line.startswith("with its ")]
+        self.assertEqual(hull.as_built is None, not built)
+        if built:
+            self.assertMass(hull.as_built, lines[built[0]], lines[built[0] + 1])
+            self.assertGreater(hull.as_built.mass, hull.structure.mass)
+        return hull
+
+    def test_generated_hull(self):
+        self.check(os.path.join(EXAMPLES, "apc6x6.yaml"))
+
+    def test_hull_with_masses(self):
+        """truck4x4.yaml declares a hull mass: the hull as built too."""
+        self.assertIsNotNone(self.check(os.path.join(EXAMPLES, "truck4x4.yaml")).as_built)
+
+    def test_sections(self):
+        """Sections: each one's elements, area and mass; their masses add
+        up to the structure's."""
+        hull = self.check(truck_with_sections())
+        self.assertEqual(set(hull.sections), {"hull.material", "FLOOR", "SIDES"})
+        total = sum(s.mass for s in hull.sections.values())
+        self.assertAlmostEqual(total / hull.structure.mass, 1.0, delta=1e-9)
 
 
 if __name__ == "__main__":
