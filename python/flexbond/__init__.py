@@ -99,6 +99,13 @@ class _SectionTotals(ctypes.Structure):
                 ("mass", ctypes.c_double)]
 
 
+class _BdEigen(ctypes.Structure):
+    """fb_bd_eigen (flexbond/bd.h)."""
+    _fields_ = [("nstates", ctypes.c_size_t), ("n", ctypes.c_size_t),
+                ("re", ctypes.POINTER(ctypes.c_double)), ("im", ctypes.POINTER(ctypes.c_double)),
+                ("zero_tol", ctypes.c_double)]
+
+
 class _Differences(ctypes.Structure):
     _fields_ = [(n, ctypes.c_size_t) for n in ("largest", "nvarying", "nnotable")]
 
@@ -254,6 +261,20 @@ _PROTOTYPES = {
     "fb_mesh_count": (ctypes.c_size_t, [_P, ctypes.c_int]),
     "fb_mesh_nsections": (ctypes.c_size_t, [_P]),
     "fb_mesh_section_elset": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_bd_build": (ctypes.c_int, [_P, _P, ctypes.c_size_t, _PP, _PERR]),
+    "fb_bd_free": (None, [_PP]),
+    "fb_bd_nstates": (ctypes.c_size_t, [_P]),
+    "fb_bd_eigen_new": (ctypes.c_int, [_P, ctypes.c_double, _PDOUBLE, ctypes.c_size_t,
+                                       ctypes.c_char_p, ctypes.POINTER(ctypes.POINTER(_BdEigen)),
+                                       _PERR]),
+    "fb_bd_eigen_free": (None, [ctypes.POINTER(ctypes.POINTER(_BdEigen))]),
+    "fb_bg_free": (None, [_PP]),
+    "fb_vehicle_graph": (ctypes.c_int, [_P, ctypes.c_int, _PP, _PP, _PSIZE, _PERR]),
+    "fb_vehicle_probes_free": (None, [_PP, ctypes.c_size_t]),
+    "fb_vehicle_sim_opts": (None, [_P, ctypes.POINTER(_SimOpts)]),
+    "fb_model_graph": (_P, [_P]),
+    "fb_model_sim_opts": (ctypes.POINTER(_SimOpts), [_P]),
+    "fb_model_blame": (ctypes.c_int, [_P, _PERR]),
     "fb_model_load": (ctypes.c_int, [ctypes.c_char_p, _PP, _PERR]),
     "fb_model_free": (None, [_PP]),
     "fb_model_name": (ctypes.c_char_p, [_P]),
@@ -625,6 +646,36 @@ def _findings(s, rep, names):
 
 def _stats(s):
     return OutputStats(s.static, s.peak, s.peak_time, s.min, s.min_time, s.rms)
+
+
+Eigenvalues = collections.namedtuple("Eigenvalues", "values nstates zero_tol t")
+Eigenvalues.__doc__ = """The eigenvalues of a graph's state equations linearised at its
+initial state at time t (s), as flexbond eig lists them: values (complex,
+1/s; by |imaginary part|, then real part, a pair's positive member first),
+the diagram's nstates, and zero_tol (n eps ||A||_F): the nstates -
+len(values) eigenvalues within it of 0 are round-off, left out."""
+
+_VEHICLE_MEMORY_LIMIT = 4 << 30  # FB_VEHICLE_MEMORY_LIMIT, bytes
+
+
+def _eigenvalues(graph, t, x0, what, on_error):
+    """The Eigenvalues of graph (no probes: they do not change the state
+    equations) at time t and state x0 (NULL: the graph's initial state);
+    on_error(err) locates an error of the graph before it is raised."""
+    bd, e, err = ctypes.c_void_p(), ctypes.POINTER(_BdEigen)(), _Err()
+    try:
+        if _lib.fb_bd_build(graph, None, 0, ctypes.byref(bd), ctypes.byref(err)) != 0:
+            on_error(err)
+            raise Error(err)
+        _check(_lib.fb_bd_eigen_new(bd, t, x0, _VEHICLE_MEMORY_LIMIT, what.encode(),
+                                    ctypes.byref(e), ctypes.byref(err)), err)
+        n = e.contents.n if e else 0
+        values = numpy.array([complex(e.contents.re[i], e.contents.im[i]) for i in range(n)])
+        return Eigenvalues(values, _lib.fb_bd_nstates(bd) if bd else 0,
+                           e.contents.zero_tol if e else 0.0, t)
+    finally:
+        _lib.fb_bd_eigen_free(ctypes.byref(e))
+        _lib.fb_bd_free(ctypes.byref(bd))
 
 
 MassProps = collections.namedtuple("MassProps", "mass cg inertia")
@@ -1150,6 +1201,32 @@ class Scenario(_Closing):
         finally:
             _lib.fb_study_report_free(ctypes.byref(rep))
 
+    def eigenvalues(self, system="rigid"):
+        """The eigenvalues of system's graph linearised at its initial state
+        (every state 0) and start time, as flexbond eig lists them
+        (fb_bd_eigen_new): Eigenvalues. modes() linearises at the static
+        equilibrium instead."""
+        sys_id = _system(system)
+        with self._calls:  # the scenario stays open until the graph is made
+            s = self._handle()
+            self._ncalls += 1
+        graph, probes, nprobes, err = ctypes.c_void_p(), ctypes.c_void_p(), ctypes.c_size_t(), \
+            _Err()
+        try:
+            _check_about(s, _lib.fb_vehicle_graph(s, sys_id, ctypes.byref(graph),
+                                                  ctypes.byref(probes), ctypes.byref(nprobes),
+                                                  ctypes.byref(err)), err, self._data_name)
+            opts = _SimOpts()
+            _lib.fb_vehicle_sim_opts(s, ctypes.byref(opts))
+            return _eigenvalues(graph, opts.t_start, opts.x0,
+                                "eigenvalues of " + _SYSTEM_NAMES[sys_id], lambda err: None)
+        finally:
+            _lib.fb_vehicle_probes_free(ctypes.byref(probes), nprobes.value)
+            _lib.fb_bg_free(ctypes.byref(graph))
+            with self._calls:
+                self._ncalls -= 1
+                self._calls.notify_all()
+
     def hull_mesh(self):
         """System 2's finite-element hull as flexbond mesh builds and
         describes it (the generator or the deck, checked): a HullMesh, from
@@ -1435,6 +1512,17 @@ class ModelFile(_Closing):
         finally:
             _lib.fb_result_free(ctypes.byref(res))
             _lib.fb_model_sim_free(ctypes.byref(ms))
+
+    def eigenvalues(self):
+        """The eigenvalues of the model's state equations linearised at its
+        graph's initial state and start time, as flexbond eig lists them
+        (fb_bd_eigen_new): Eigenvalues."""
+        if not self._m:
+            raise ValueError("flexbond: the model file is closed")
+        opts = _lib.fb_model_sim_opts(self._m).contents
+        return _eigenvalues(_lib.fb_model_graph(self._m), opts.t_start, opts.x0,
+                            "eigenvalues of " + self.name,
+                            lambda err: _lib.fb_model_blame(self._m, ctypes.byref(err)))
 
     def close(self):
         if self._m:

@@ -2,7 +2,6 @@
 /* flexbond mesh: the System 2 hull mesh of a scenario (generated or
  * imported), its mass properties, and its export as an Abaqus/CalculiX
  * deck (.inp) or a VTK unstructured grid (.vtu). */
-#include <math.h>
 #include <stdio.h>
 #include <string.h>
 

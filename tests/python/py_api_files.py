@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Python package against the flexbond commands on model files and on
-a scenario's hull mesh: flexbond sim (ModelFile.simulate) and flexbond mesh
-(Scenario.hull_mesh). Run by CTest with the system python3:
+a scenario's hull mesh and graph: flexbond sim (ModelFile.simulate),
+flexbond mesh (Scenario.hull_mesh) and flexbond eig (ModelFile.eigenvalues,
+Scenario.eigenvalues). Run by CTest with the system python3:
 
     py_api_files.py FLEXBOND_EXECUTABLE SOURCE_DIR
 
@@ -10,18 +11,22 @@ python/; the working directory is a scratch directory of this test.
 
 Both sides call the same library functions on the same file (fb_model_sim:
 the same diagram, initial state and solver settings; fb_fe_hull_mass_props
-and fb_fe_hull_section_totals for the hull), so they compute the same
-doubles and every difference is the command's printing: probes.csv writes
-10 significant digits (%.10g: a relative 5e-10 of each value is its
-rounding), flexbond mesh %.6g for a mass, an inertia and a section's mass
-(5e-6) and %.4g for a centre of mass, a product of inertia and a section's
-area (5e-4)."""
+and fb_fe_hull_section_totals for the hull, fb_bd_eigen_new for the
+eigenvalues), so they compute the same doubles and every difference is the
+command's printing: probes.csv writes 10 significant digits (%.10g: a
+relative 5e-10 of each value is its rounding), flexbond mesh %.6g for a
+mass, an inertia and a section's mass (5e-6) and %.4g for a centre of
+mass, a product of inertia and a section's area (5e-4), flexbond eig %.8g
+for an eigenvalue's parts (5e-8), %.6g for a natural frequency, %.4g for
+a damping ratio and %.3g for the zero tolerance."""
 
 import os
 import re
 import shutil
 import sys
 import unittest
+
+import numpy
 
 import flexbond
 from cli_files import read_csv, run_cli
@@ -155,6 +160,53 @@ class HullMeshTest(unittest.TestCase):
         self.assertEqual(set(hull.sections), {"hull.material", "FLOOR", "SIDES"})
         total = sum(s.mass for s in hull.sections.values())
         self.assertAlmostEqual(total / hull.structure.mass, 1.0, delta=1e-9)
+
+
+class EigTest(unittest.TestCase):
+    def check(self, printed, eig):
+        """flexbond eig's table against Eigenvalues eig: the counts, the
+        zero tolerance and every row (a complex pair once, its upper
+        member)."""
+        head = re.match(r"\S+: (\d+) states, (\d+) real eigenvalues, (\d+) complex pairs "
+                        r"\(at t = (\S+) s", printed)
+        values = eig.values
+        upper = [v for v in values if v.imag >= 0]
+        self.assertEqual(int(head.group(1)), eig.nstates)
+        self.assertEqual(int(head.group(2)), sum(v.imag == 0 for v in values))
+        self.assertEqual(int(head.group(3)), sum(v.imag > 0 for v in values))
+        self.assertEqual(float(head.group(4)), eig.t)
+        zeros = re.search(r"(\d+) zero eigenvalues? \(\|lambda\| <= (\S+) =", printed)
+        self.assertEqual(int(zeros.group(1)) if zeros else 0, eig.nstates - len(values))
+        if zeros:
+            self.assertTrue(printed_near(eig.zero_tol, zeros.group(2), 3))
+        rows = re.findall(r"^\s+\d+\s+(\S+)\s+(?:\+/-\s+(\S+)\s+(\S+)\s+(\S+)|0)$", printed,
+                          re.M)
+        self.assertEqual(len(rows), len(upper))
+        for v, (re_text, im_text, fn_text, zeta_text) in zip(upper, rows):
+            self.assertTrue(printed_near(v.real, re_text, 8), (v, re_text))
+            if not im_text:
+                self.assertEqual(v.imag, 0.0)
+                continue
+            self.assertTrue(printed_near(v.imag, im_text, 8), (v, im_text))
+            self.assertTrue(printed_near(abs(v) / (2 * numpy.pi), fn_text, 6), (v, fn_text))
+            self.assertTrue(printed_near(-v.real / abs(v), zeta_text, 4), (v, zeta_text))
+
+    def test_model_file(self):
+        for name in ("quarter_car", "two_dof_fields"):
+            path = os.path.join(EXAMPLES, name + ".yaml")
+            with flexbond.ModelFile(path) as model:
+                self.check(run_cli(CLI, "eig", path), model.eigenvalues())
+
+    def test_scenario(self):
+        """Both systems of apc6x6.yaml: System 1's zero eigenvalues (a
+        statically indeterminate support) are counted alike."""
+        path = os.path.join(EXAMPLES, "apc6x6.yaml")
+        with flexbond.Scenario(path) as scenario:
+            for system in ("rigid", "flexible"):
+                eig = scenario.eigenvalues(system)
+                self.check(run_cli(CLI, "eig", path, "--system", system), eig)
+            self.assertGreater(scenario.eigenvalues("rigid").nstates,
+                               len(scenario.eigenvalues("rigid").values))
 
 
 if __name__ == "__main__":
