@@ -83,6 +83,14 @@ class _OutputCmp(ctypes.Structure):
                  "rms_change")]
 
 
+class _SimStats(ctypes.Structure):
+    """fb_sim_stats (flexbond/sim.h)."""
+    _fields_ = [(n, ctypes.c_long) for n in
+                ("steps", "rhs_evals", "newton_setups", "factorizations", "newton_iters",
+                 "newton_conv_fails", "err_test_fails", "events")] + [
+                    ("last_order", ctypes.c_int), ("wall_seconds", ctypes.c_double)]
+
+
 class _StudyRun(ctypes.Structure):
     """fb_study_run (flexbond/study.h): a run handed to a report, borrowed."""
     _fields_ = [("sys", ctypes.c_int), ("res", ctypes.c_void_p), ("sum", ctypes.c_void_p),
@@ -319,6 +327,7 @@ _PROTOTYPES = {
     "fb_result_col_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_result_row": (_PDOUBLE, [_P, ctypes.c_size_t]),
     "fb_result_free": (None, [_PP]),
+    "fb_result_stats": (ctypes.POINTER(_SimStats), [_P]),
     "fb_vehicle_linearise": (ctypes.c_int, [_P, ctypes.POINTER(ctypes.POINTER(_Descriptor)),
                                             _PERR]),
     "fb_descriptor_free": (None, [ctypes.POINTER(ctypes.POINTER(_Descriptor))]),
@@ -491,13 +500,18 @@ def _text(value):
 
 class Result:
     """One system's simulation: data (nsamples x ncols), column 0 the time.
-    names and units give each column's; r["name"] is a column."""
+    names and units give each column's; r["name"] is a column. stats holds
+    the solver's counts (summary.json's and stats.json's "solver": steps,
+    rhs_evals, newton_setups, factorizations, newton_iters,
+    newton_conv_fails, err_test_fails, events, last_order) and the
+    integration's wall_seconds."""
 
-    def __init__(self, system, names, units, data):
+    def __init__(self, system, names, units, data, stats=None):
         self.system = system
         self.names = names
         self.units = units
         self.data = data
+        self.stats = stats or {}
         self._index = {n: j for j, n in enumerate(names)}
 
     @property
@@ -534,7 +548,9 @@ def _result(res, system):
     if nsamples:
         start = _lib.fb_result_row(res, 0)
         data[...] = numpy.ctypeslib.as_array(start, shape=(nsamples, ncols))
-    return Result(system, names, units, data)
+    stats = _lib.fb_result_stats(res).contents
+    return Result(system, names, units, data,
+                  {n: getattr(stats, n) for n, _ in _SimStats._fields_})
 
 
 Corner = collections.namedtuple("Corner", "name x y")

@@ -20,6 +20,7 @@ mass, a product of inertia and a section's area (5e-4), flexbond eig %.8g
 for an eigenvalue's parts (5e-8), %.6g for a natural frequency, %.4g for
 a damping ratio and %.3g for the zero tolerance."""
 
+import json
 import os
 import re
 import shutil
@@ -47,6 +48,13 @@ class ModelSimTest(unittest.TestCase):
         with flexbond.ModelFile(path) as model:
             result = model.simulate(**settings)
         self.assertEqual(["%s [%s]" % nu for nu in zip(result.names, result.units)], header)
+        # The same run, step for step: stats.json's solver counts exactly.
+        with open(os.path.join(out, "stats.json"), encoding="utf-8") as f:
+            stats = json.load(f)
+        counts = [key for key in stats if key in result.stats and key != "wall_seconds"]
+        self.assertGreaterEqual(len(counts), 8)
+        for key in counts:
+            self.assertEqual(result.stats[key], stats[key], key)
         self.assertEqual(result.data.shape, table.shape)
         worst = abs(result.data - table).max(axis=0)
         scale = abs(table).max(axis=0)

@@ -137,6 +137,11 @@ class ReportTest(unittest.TestCase):
         self.assertPrinted(st.runs["rigid"].outputs[name].peak, grows.group(2), "peak")
         self.assertPrinted(factor, grows.group(4), "growth")
         self.assertEqual(st.torsion_max_abs, {"rigid": 0.0})  # printed for System 2 alone
+        # The same run, step for step: summary.json's solver counts exactly.
+        solver = js["system1"]["solver"]
+        for key in solver:
+            if key != "wall_seconds":
+                self.assertEqual(st.runs["rigid"].result.stats[key], solver[key], key)
 
     def test_two_systems(self):
         """Both systems of truck4x4.yaml, whose soft hull makes every output
