@@ -1217,6 +1217,10 @@ typedef struct fb_hull_mass_props {
  * fb_fe_hull_mass_matrix). */
 int fb_fe_hull_mass_props(const fb_fe_hull *h, int with_masses, fb_hull_mass_props *out,
                           fb_err *err);
+/* The structure's own stiffness and mass matrices (*K, *M new; N/m, kg;
+ * six DOFs per node in node order, fb_fem_assemble), the declared masses
+ * left out. */
+int fb_fe_hull_matrices(const fb_fe_hull *h, fb_mat **K, fb_mat **M, fb_err *err);
 /* h's mesh (owned by h) and how many declared masses it carries. */
 const fb_mesh *fb_fe_hull_mesh(const fb_fe_hull *h);
 size_t fb_fe_hull_npoint_masses(const fb_fe_hull *h);

@@ -15,6 +15,7 @@ documents the whole interface.
 """
 
 import collections
+import contextlib
 import ctypes
 import ctypes.util
 import json
@@ -264,6 +265,7 @@ _PROTOTYPES = {
     "fb_fe_hull_npoint_masses": (ctypes.c_size_t, [_P]),
     "fb_fe_hull_mass_props": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_HullMassProps),
                                              _PERR]),
+    "fb_fe_hull_matrices": (ctypes.c_int, [_P, _PP, _PP, _PERR]),
     "fb_fe_hull_section_totals": (_SectionTotals, [_P, ctypes.c_long]),
     "fb_mesh_nnodes": (ctypes.c_size_t, [_P]),
     "fb_mesh_count": (ctypes.c_size_t, [_P, ctypes.c_int]),
@@ -347,6 +349,7 @@ _PROTOTYPES = {
                                                     _PERR]),
     "fb_vehicle_stepper_input": (ctypes.c_double, [_P, ctypes.c_size_t]),
     "fb_vehicle_stepper_set_scenario": (ctypes.c_int, [_P, _P, _PERR]),
+    "fb_mat_free": (None, [_PP]),
     "fb_mat_nrows": (ctypes.c_size_t, [_P]),
     "fb_mat_ncols": (ctypes.c_size_t, [_P]),
     "fb_mat_nnz": (ctypes.c_size_t, [_P]),
@@ -658,6 +661,13 @@ def _findings(s, rep, names):
         _lib.fb_study_report_contact_extremes(rep, run, ctypes.byref(most), ctypes.byref(least))
         found["contact_extremes"][name] = (tires[most.value], tires[least.value])
     return found
+
+
+def _free_runs(handles):
+    """Frees the runs [(result, summary)] of a study."""
+    for res, summary in handles:
+        _lib.fb_run_summary_free(ctypes.byref(summary))
+        _lib.fb_result_free(ctypes.byref(res))
 
 
 def _stats(s):
@@ -1186,22 +1196,41 @@ class Scenario(_Closing):
             return res, summary
 
         handles = []
-        with self._calls:  # the scenario stays open until the summaries are read
-            self._handle()
-            self._ncalls += 1
-        try:
+        # The scenario stays open until the summaries are read.
+        with self._held(), contextlib.ExitStack() as cleanup:
+            cleanup.callback(_free_runs, handles)
             for system in systems:
                 handles.append(self._with_vehicle(system, use, progress=progress))
             runs = {n: RunSummary(self._s, n, res, summary)
                     for n, (res, summary) in zip(names, handles)}
             return self._report(names, handles, runs)
+
+    @contextlib.contextmanager
+    def _held(self):
+        """The scenario's handle, counted as a call from here to the block's
+        end, so that close() waits for it."""
+        with self._calls:
+            s = self._handle()
+            self._ncalls += 1
+        try:
+            yield s
         finally:
-            for res, summary in handles:
-                _lib.fb_run_summary_free(ctypes.byref(summary))
-                _lib.fb_result_free(ctypes.byref(res))
             with self._calls:
                 self._ncalls -= 1
                 self._calls.notify_all()
+
+    @contextlib.contextmanager
+    def _fe_hull(self):
+        """System 2's finite-element hull of the scenario (fb_vehicle_fe_hull),
+        freed at the block's end."""
+        with self._held() as s:
+            h, err = ctypes.c_void_p(), _Err()
+            _check_about(s, _lib.fb_vehicle_fe_hull(s, ctypes.byref(h), ctypes.byref(err)), err,
+                         self._data_name)
+            try:
+                yield h
+            finally:
+                _lib.fb_fe_hull_free(ctypes.byref(h))
 
     def _report(self, names, handles, runs):
         """The Study of the runs handles [(result, summary)] of systems names,
@@ -1223,25 +1252,20 @@ class Scenario(_Closing):
         (fb_bd_eigen_new): Eigenvalues. modes() linearises at the static
         equilibrium instead."""
         sys_id = _system(system)
-        with self._calls:  # the scenario stays open until the graph is made
-            s = self._handle()
-            self._ncalls += 1
         graph, probes, nprobes, err = ctypes.c_void_p(), ctypes.c_void_p(), ctypes.c_size_t(), \
             _Err()
-        try:
-            _check_about(s, _lib.fb_vehicle_graph(s, sys_id, ctypes.byref(graph),
-                                                  ctypes.byref(probes), ctypes.byref(nprobes),
-                                                  ctypes.byref(err)), err, self._data_name)
-            opts = _SimOpts()
-            _lib.fb_vehicle_sim_opts(s, ctypes.byref(opts))
-            return _eigenvalues(graph, opts.t_start, opts.x0,
-                                "eigenvalues of " + _SYSTEM_NAMES[sys_id], lambda err: None)
-        finally:
-            _lib.fb_vehicle_probes_free(ctypes.byref(probes), nprobes.value)
-            _lib.fb_bg_free(ctypes.byref(graph))
-            with self._calls:
-                self._ncalls -= 1
-                self._calls.notify_all()
+        with self._held() as s:  # open until the graph is made
+            try:
+                _check_about(s, _lib.fb_vehicle_graph(s, sys_id, ctypes.byref(graph),
+                                                      ctypes.byref(probes), ctypes.byref(nprobes),
+                                                      ctypes.byref(err)), err, self._data_name)
+                opts = _SimOpts()
+                _lib.fb_vehicle_sim_opts(s, ctypes.byref(opts))
+                return _eigenvalues(graph, opts.t_start, opts.x0,
+                                    "eigenvalues of " + _SYSTEM_NAMES[sys_id], lambda err: None)
+            finally:
+                _lib.fb_vehicle_probes_free(ctypes.byref(probes), nprobes.value)
+                _lib.fb_bg_free(ctypes.byref(graph))
 
     def hull_mesh(self):
         """System 2's finite-element hull as flexbond mesh builds and
@@ -1249,19 +1273,23 @@ class Scenario(_Closing):
         the same library calls (fb_fe_hull_mass_props,
         fb_fe_hull_section_totals). Error when the scenario has no
         finite-element hull."""
-        with self._calls:  # the scenario stays open until the hull is read
-            s = self._handle()
-            self._ncalls += 1
-        h, err = ctypes.c_void_p(), _Err()
-        try:
-            _check_about(s, _lib.fb_vehicle_fe_hull(s, ctypes.byref(h), ctypes.byref(err)), err,
-                         self._data_name)
+        with self._fe_hull() as h:
             return _hull_mesh(h)
-        finally:
-            _lib.fb_fe_hull_free(ctypes.byref(h))
-            with self._calls:
-                self._ncalls -= 1
-                self._calls.notify_all()
+
+    def hull_matrices(self):
+        """The hull structure's own stiffness and mass matrices (K, M; N/m
+        and kg, six DOFs per node in node order, the hull.masses left out)
+        as scipy.sparse matrices: flexbond mesh --export-matrices's K.mtx
+        and M.mtx, from the same library call (fb_fe_hull_matrices)."""
+        with self._fe_hull() as h:
+            K, M, err = ctypes.c_void_p(), ctypes.c_void_p(), _Err()
+            try:
+                _check(_lib.fb_fe_hull_matrices(h, ctypes.byref(K), ctypes.byref(M),
+                                                ctypes.byref(err)), err)
+                return _sparse(K), _sparse(M)
+            finally:
+                _lib.fb_mat_free(ctypes.byref(K))
+                _lib.fb_mat_free(ctypes.byref(M))
 
     def hull_modes(self, nhull=30, nvehicle=20, progress=None):
         """System 2's structural modes, as flexbond modes --system flexible

@@ -113,7 +113,7 @@ static void write_dofs(FILE *fp, const void *hull)
 static int export_matrices(const fb_fe_hull *h, const char *dir, fb_err *err)
 {
   fb_mat *K = NULL, *M = NULL;
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, &M, err);
+  int rc = fb_fe_hull_matrices(h, &K, &M, err);
   cli_outdir od;
   const int opened = rc == FB_OK && (rc = cli_outdir_open(&od, dir, "mesh", err)) == FB_OK;
   if (rc == FB_OK)

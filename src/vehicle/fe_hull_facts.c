@@ -18,6 +18,11 @@ int fb_fe_hull_mass_props(const fb_fe_hull *h, int with_masses, fb_hull_mass_pro
   return rc;
 }
 
+int fb_fe_hull_matrices(const fb_fe_hull *h, fb_mat **K, fb_mat **M, fb_err *err)
+{
+  return fb_fem_assemble(h->mesh, &h->props, h->mass_kind, K, M, err);
+}
+
 const fb_mesh *fb_fe_hull_mesh(const fb_fe_hull *h)
 {
   return h->mesh;

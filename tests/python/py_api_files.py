@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Python package against the flexbond commands on model files and on
 a scenario's hull mesh and graph: flexbond sim (ModelFile.simulate),
-flexbond mesh (Scenario.hull_mesh) and flexbond eig (ModelFile.eigenvalues,
-Scenario.eigenvalues). Run by CTest with the system python3:
+flexbond mesh (Scenario.hull_mesh, Scenario.hull_matrices) and flexbond eig
+(ModelFile.eigenvalues, Scenario.eigenvalues). Run by CTest with the system
+python3:
 
     py_api_files.py FLEXBOND_EXECUTABLE SOURCE_DIR
 
@@ -156,6 +157,22 @@ class HullMeshTest(unittest.TestCase):
 
     def test_generated_hull(self):
         self.check(os.path.join(EXAMPLES, "apc6x6.yaml"))
+
+    def test_matrices(self):
+        """Scenario.hull_matrices against --export-matrices's K.mtx and
+        M.mtx, written with %.17g: the same doubles, bit for bit."""
+        import scipy.io  # python3-scipy, as the exported model's tests
+        path = os.path.join(EXAMPLES, "truck4x4.yaml")
+        run_cli(CLI, "mesh", path, "--export-matrices", "hull_matrices")
+        with flexbond.Scenario(path) as scenario:
+            K, M = scenario.hull_matrices()
+            nodes = scenario.hull_mesh().nodes
+        for mine, name in ((K, "K.mtx"), (M, "M.mtx")):
+            theirs = scipy.io.mmread(os.path.join("hull_matrices", name)).tocsc()
+            self.assertEqual(mine.shape, theirs.shape)
+            self.assertEqual(abs(mine - theirs).max(), 0.0, name)
+            self.assertGreater(mine.nnz, 0)
+        self.assertEqual(K.shape[0], 6 * nodes)
 
     def test_hull_with_masses(self):
         """truck4x4.yaml declares a hull mass: the hull as built too."""
