@@ -242,6 +242,24 @@ double fb_study_ride_psd_a_w(const fb_study_ride_psd *r);
 #define FB_STUDY_NOTABLE_DIFF 0.05
 #define FB_STUDY_NOTABLE_CHANGE 0.05
 
+/* An estimated error of System 2's modal basis (fb_study_run.basis_error)
+ * above this fraction of an output's range is worth keeping more modes. */
+#define FB_STUDY_BASIS_ERROR_NOTABLE 1e-3
+
+/* The mesh error of the generated hull, as measured on the reference hull
+ * (bench/hull_convergence.sh, docs/hull-mesh.md "Convergence"): at
+ * density 1 its first ten elastic free-free frequencies are 12 % to 21 %
+ * above the converged ones, and the error falls as 1 / density^2 (observed
+ * orders 1.4 to 2.4; at densities 2 to 6 the measured errors lie within
+ * these bounds over d^2, the lowest mode up to 0.6 of a point below). */
+#define FB_STUDY_MESH_ERROR_LOW 0.12
+#define FB_STUDY_MESH_ERROR_HIGH 0.21
+
+/* The estimated band of that error at s's mesh density into band
+ * (fractions of the converged frequencies) and 1; 0 when there is no
+ * estimate: a deck, or no finite-element hull. */
+int fb_study_mesh_error(const fb_scenario *s, double band[2]);
+
 /* One run handed to a report; everything borrowed, outliving the report. */
 typedef struct fb_study_run {
   fb_system sys;

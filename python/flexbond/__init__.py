@@ -243,6 +243,7 @@ _PROTOTYPES = {
                                            ctypes.POINTER(ctypes.c_char_p)]),
     "fb_study_compare": (ctypes.c_int, [_P, _P, _P, _P, _P, ctypes.POINTER(_OutputCmp), _PP,
                                         _PERR]),
+    "fb_study_mesh_error": (ctypes.c_int, [_P, _PDOUBLE]),
     "fb_study_report_new": (ctypes.c_int, [_P, ctypes.POINTER(_StudyRun), ctypes.c_size_t,
                                            ctypes.POINTER(_StudyRun), _PP, _PERR]),
     "fb_study_report_free": (None, [_PP]),
@@ -630,8 +631,10 @@ def _findings(s, rep, names):
         return outputs[k] if k < len(outputs) else None
 
     window = (ctypes.c_double * 2)()
+    mesh_error = (tuple(window) if _lib.fb_study_mesh_error(s, window) else None)
     _lib.fb_study_report_window(rep, window)
-    found = {"window": (window[0], window[1]), "wheel_windows": {}, "comparison": None,
+    found = {"window": (window[0], window[1]), "mesh_error": mesh_error,
+             "wheel_windows": {}, "comparison": None,
              "differences": None, "torsion_max_abs": {}, "contact_extremes": {}}
     for c, tire in enumerate(tires):
         _lib.fb_study_report_wheel_window(rep, c, window)
@@ -777,7 +780,10 @@ class Study:
     that grows the most relative to its static value (None when none); and
     contact_extremes {system: (tire, tire)}, the tire whose peak reaction is
     the largest multiple of its static one and the one with the smallest
-    reaction over the window."""
+    reaction over the window; mesh_error, the estimated band (low, high) by
+    which a generated hull's first elastic free-free frequencies lie above
+    their converged values, as fractions (None for a deck or without a
+    finite-element hull)."""
 
     def __init__(self, runs, comparison, **findings):
         self.runs = runs

@@ -254,7 +254,7 @@ static void write_basis_error(FILE *fp, const cli_run_outputs *o)
   fputs(". The settling from a zero start excites every mode and is not part of this "
         "estimate.",
         fp);
-  if (s->noutputs && r->basis_error[worst] > 1e-3)
+  if (s->noutputs && r->basis_error[worst] > FB_STUDY_BASIS_ERROR_NOTABLE)
     fputs(" Above 0.1 %, a higher `hull.fe.cutoff_hz` (or `--hull-cutoff`) keeps more modes "
           "and lowers it.",
           fp);
@@ -311,32 +311,24 @@ static void write_hull_order(FILE *fp, const cli_run_outputs *o)
   write_basis_error(fp, o);
 }
 
-/* Mesh error of the generated hull, as measured on the reference hull
- * (bench/hull_convergence.sh, docs/hull-mesh.md "Convergence"): at
- * density 1 its first ten elastic free-free frequencies are 12 % to 21 %
- * above the converged ones, and the error falls as 1 / density^2 (observed
- * orders 1.4 to 2.4; at densities 2 to 6 the measured errors lie within
- * these bounds over d^2, the lowest mode up to 0.6 of a point below). */
-#define MESH_ERROR_LOW 12.0
-#define MESH_ERROR_HIGH 21.0
-
+/* The estimated mesh error of a generated hull (fb_study_mesh_error). */
 static void write_mesh_error(FILE *fp, const fb_scenario *s)
 {
-  if (s->hull_deck) {
+  double band[2];
+  if (!fb_study_mesh_error(s, band)) {
     fputs("- Mesh convergence: not estimated for a deck; compare with a finer deck of the "
           "same hull.\n",
           fp);
     return;
   }
-  const double d2 = (double)s->hull_mesh.density * (double)s->hull_mesh.density;
   fprintf(fp,
           "- Mesh convergence (an estimate, not computed in this run): at density %d the "
           "hull's first ten elastic free-free frequencies are about %.2g %% to %.2g %% above "
           "their converged values (the reference hull's measured %.0f %% to %.0f %% at "
           "density 1, falling as 1 / density^2; docs/hull-mesh.md, \"Convergence\"). The "
           "vehicle's suspension modes move by less than 0.1 %% with the mesh.\n",
-          s->hull_mesh.density, MESH_ERROR_LOW / d2, MESH_ERROR_HIGH / d2, MESH_ERROR_LOW,
-          MESH_ERROR_HIGH);
+          s->hull_mesh.density, 100 * band[0], 100 * band[1], 100 * FB_STUDY_MESH_ERROR_LOW,
+          100 * FB_STUDY_MESH_ERROR_HIGH);
 }
 
 static void write_fe_hull(FILE *fp, const cli_run_outputs *o)

@@ -131,6 +131,16 @@ const fb_result *fb_study_report_diff(const fb_study_report *rep, fb_study_cmp_k
 
 /* ---- Findings. */
 
+int fb_study_mesh_error(const fb_scenario *s, double band[2])
+{
+  if (!s->has_fe_hull || s->hull_deck || s->hull_mesh.density < 1)
+    return 0;
+  const double d2 = (double)s->hull_mesh.density * (double)s->hull_mesh.density;
+  band[0] = FB_STUDY_MESH_ERROR_LOW / d2;
+  band[1] = FB_STUDY_MESH_ERROR_HIGH / d2;
+  return 1;
+}
+
 /* rel_diff of a varying output (System 1's range not 0) is finite. */
 static int notable(const fb_output_cmp *c)
 {

@@ -178,6 +178,9 @@ class ReportTest(unittest.TestCase):
                            rms.group(2), "rms change", 100.0)
         self.assertIn("The rigid hull's torsion angle is identically zero", text)
         self.assertEqual(st.torsion_max_abs["rigid"], 0.0)
+        band = re.search(r"frequencies are about (\S+) % to (\S+) % above", report)
+        for value, printed in zip(st.mesh_error, band.groups()):
+            self.assertPrinted(100 * value, printed, "mesh error")
         reaches = re.search(r"the flexible hull's torsion angle reaches (\S+) rad", text)
         twist = st.torsion_max_abs["flexible"]
         self.assertPrinted(twist, reaches.group(1), "torsion", twist)
