@@ -947,6 +947,9 @@ int fb_vehicle_run(fb_vehicle *v, const double *window, fb_sim_progress_fn fn, v
  * the estimate. The two can run on two threads at once (they share only
  * what v's realisation made). *out borrows v, which must outlive it. */
 int fb_vehicle_new_estimator(fb_vehicle *v, fb_vehicle **out, fb_err *err);
+/* 1 when v's basis has an estimator: System 2 in reduced modal
+ * coordinates (fewer than its nodal DOFs). */
+int fb_vehicle_basis_reduced(const fb_vehicle *v);
 
 /* The error of System 2's modal basis in a run r of v (fb_vehicle_run;
  * reduced modal coordinates only: FB_EINVAL otherwise): the same run of

@@ -244,6 +244,9 @@ _PROTOTYPES = {
     "fb_study_compare": (ctypes.c_int, [_P, _P, _P, _P, _P, ctypes.POINTER(_OutputCmp), _PP,
                                         _PERR]),
     "fb_study_mesh_error": (ctypes.c_int, [_P, _PDOUBLE]),
+    "fb_study_response_window": (None, [_P, _PDOUBLE]),
+    "fb_vehicle_basis_reduced": (ctypes.c_int, [_P]),
+    "fb_vehicle_basis_error": (ctypes.c_int, [_P, _P, _PDOUBLE, _PROGRESS, _P, _PDOUBLE, _PERR]),
     "fb_study_report_new": (ctypes.c_int, [_P, ctypes.POINTER(_StudyRun), ctypes.c_size_t,
                                            ctypes.POINTER(_StudyRun), _PP, _PERR]),
     "fb_study_report_free": (None, [_PP]),
@@ -584,9 +587,11 @@ class RunSummary:
     flexbond's spike ratio), contact_loss [ContactLoss], and ride: the ride
     metrics {a_w_rms, mtvv, vdv, crest, absorbed_power, jerk_peak, jerk_rms,
     duration} of the first mounted body's acceleration over ride_window, or
-    None with ride_note saying why."""
+    None with ride_note saying why; basis_error {output: estimated error of
+    System 2's reduced modal basis, over the output's range} when
+    Scenario.study estimated it, else None."""
 
-    def __init__(self, scenario, system, res, summary):
+    def __init__(self, scenario, system, res, summary, basis_error=None):
         self.system = system
         self.result = _result(res, system)
         window = (ctypes.c_double * 2)()
@@ -598,6 +603,8 @@ class RunSummary:
                  for c in range(_lib.fb_scenario_ncorners(scenario))]
         self.outputs = {n: _stats(_lib.fb_run_summary_output(summary, k).contents)
                         for k, n in enumerate(names)}
+        self.basis_error = (None if basis_error is None
+                            else {n: basis_error[k] for k, n in enumerate(names)})
         self.contact = {n: _stats(_lib.fb_run_summary_contact(summary, c).contents)
                         for c, n in enumerate(tires)}
         self.contact_ratio = {n: _lib.fb_run_summary_contact_ratio(summary, c)
@@ -668,7 +675,7 @@ def _findings(s, rep, names):
 
 def _free_runs(handles):
     """Frees the runs [(result, summary)] of a study."""
-    for res, summary in handles:
+    for res, summary, _ in handles:
         _lib.fb_run_summary_free(ctypes.byref(summary))
         _lib.fb_result_free(ctypes.byref(res))
 
@@ -1182,10 +1189,13 @@ class Scenario(_Closing):
 
         return self._with_vehicle(system, use, progress=progress)
 
-    def study(self, systems=("rigid", "flexible"), progress=None):
+    def study(self, systems=("rigid", "flexible"), progress=None, basis_error=False):
         """Runs each of systems (one or two) and summarises it with the
         library's study layer, and compares two (flexbond/study.h): a Study,
-        the numbers flexbond run writes in summary.json. progress as run's."""
+        the numbers flexbond run writes in summary.json. progress as run's.
+        basis_error: also estimate the error of System 2's reduced modal
+        basis, as flexbond run does (a second run with the basis's next
+        block of Ritz vectors, fb_vehicle_basis_error)."""
         names = [_SYSTEM_NAMES[_system(s)] for s in systems]
         if not 1 <= len(names) <= 2:
             raise ValueError("flexbond: study takes one or two systems, got %d" % len(names))
@@ -1195,11 +1205,16 @@ class Scenario(_Closing):
             err = _Err()
             _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res), None,
                                        ctypes.byref(err)), err)
-            if _lib.fb_run_summary_new(self._s, res, None, ctypes.byref(summary),
-                                       ctypes.byref(err)) != 0:
-                _lib.fb_result_free(ctypes.byref(res))
-                raise Error(err)
-            return res, summary
+            run = [(res, summary, None)]
+            try:
+                _check(_lib.fb_run_summary_new(self._s, res, None, ctypes.byref(summary),
+                                               ctypes.byref(err)), err)
+                if basis_error and _lib.fb_vehicle_basis_reduced(v):
+                    run[0] = (res, summary, self._basis_error(v, res, reporter))
+                return run[0]
+            except BaseException:
+                _free_runs(run)
+                raise
 
         handles = []
         # The scenario stays open until the summaries are read.
@@ -1207,9 +1222,20 @@ class Scenario(_Closing):
             cleanup.callback(_free_runs, handles)
             for system in systems:
                 handles.append(self._with_vehicle(system, use, progress=progress))
-            runs = {n: RunSummary(self._s, n, res, summary)
-                    for n, (res, summary) in zip(names, handles)}
+            runs = {n: RunSummary(self._s, n, res, summary, est)
+                    for n, (res, summary, est) in zip(names, handles)}
             return self._report(names, handles, runs)
+
+    def _basis_error(self, v, res, reporter):
+        """Each output's estimated error from v's reduced basis in its run
+        res, over its range (fb_vehicle_basis_error): a double array."""
+        window = (ctypes.c_double * 2)()
+        _lib.fb_study_response_window(self._s, window)
+        est = (ctypes.c_double * max(1, _lib.fb_scenario_noutputs(self._s)))()
+        err = _Err()
+        _check(_lib.fb_vehicle_basis_error(v, res, window, reporter.run_fn, None, est,
+                                           ctypes.byref(err)), err)
+        return est
 
     @contextlib.contextmanager
     def _held(self):
@@ -1242,8 +1268,9 @@ class Scenario(_Closing):
         """The Study of the runs handles [(result, summary)] of systems names,
         from the library's report data (fb_study_report)."""
         study_runs = (_StudyRun * len(handles))(
-            *(_StudyRun(_SYSTEMS[n], res.value, summary.value, None)
-              for n, (res, summary) in zip(names, handles)))
+            *(_StudyRun(_SYSTEMS[n], res.value, summary.value,
+                        ctypes.cast(est, _PDOUBLE) if est is not None else None)
+              for n, (res, summary, est) in zip(names, handles)))
         rep, err = ctypes.c_void_p(), _Err()
         _check(_lib.fb_study_report_new(self._s, study_runs, len(handles), None,
                                         ctypes.byref(rep), ctypes.byref(err)), err)

@@ -1062,8 +1062,7 @@ static void *estimator_thread(void *arg)
 static int start_estimator(const run_args *a, const fb_scenario *s, const char *label,
                            fb_vehicle *v, run_estimator *x, fb_err *err)
 {
-  const fb_hull_basis *b = fb_vehicle_hull_basis(v);
-  if (!b || b->coordinates != FB_HULL_MODAL || b->ncoords >= b->ndof)
+  if (!fb_vehicle_basis_reduced(v))
     return FB_OK;
   x->v = v;
   if (!a->quiet)

@@ -46,12 +46,9 @@ def run(path, out, system):
         return report, json.load(f)
 
 
-def study(path, systems):
-    scenario = flexbond.Scenario(path)
-    try:
-        return scenario.study(systems)
-    finally:
-        scenario.close()
+def study(path, systems, **options):
+    with flexbond.Scenario(path) as scenario:
+        return scenario.study(systems, **options)
 
 
 def half_unit(text):
@@ -149,7 +146,7 @@ class ReportTest(unittest.TestCase):
         outputs with their differences, the largest r.m.s. change and the
         torsion angles, as the conclusions state them."""
         report, js = run(TRUCK, "report_truck", "both")
-        st = study(TRUCK, ("rigid", "flexible"))
+        st = study(TRUCK, ("rigid", "flexible"), basis_error=True)
         labels = [row[0] for row in table(report, "| output | unit | peak S1 |")]
         self.check_common(st, report, js, labels, flexible=True)
         names = list(st.runs["rigid"].outputs)
@@ -192,6 +189,25 @@ class ReportTest(unittest.TestCase):
                 self.assertLessEqual(abs(c.rel_diff - o["max_abs_diff_rel"]),
                                      5e-10 * o["max_abs_diff_rel"] + SYSTEM2_ROUNDING)
         self.assertTrue(math.isfinite(st.window[1]))
+        self.check_basis_error(st, report, js, label)
+
+    def check_basis_error(self, st, report, js, label):
+        """System 2's estimated basis error: summary.json's estimated_error
+        (%.10g; both runs of the estimate carry System 2's rounding, hence
+        twice its allowance of the output's range) and the output report.md
+        names as the worst."""
+        self.assertIsNone(st.runs["rigid"].basis_error)
+        mine = st.runs["flexible"].basis_error
+        theirs = js["system2"]["hull_basis"]["estimated_error"]["of_range"]
+        self.assertEqual(set(mine), set(theirs))
+        for name, value in mine.items():
+            self.assertLessEqual(abs(value - theirs[name]),
+                                 5e-10 * abs(theirs[name]) + 2 * SYSTEM2_ROUNDING, name)
+        worst = max(mine, key=mine.get)
+        most = re.search(r"over each output's range there: at most (\S+) % \((.+?)\); ", report)
+        self.assertEqual(label[worst], most.group(2))
+        self.assertPrinted(100 * mine[worst], most.group(1), "worst basis error",
+                           200 * SYSTEM2_ROUNDING)
 
 
 if __name__ == "__main__":
