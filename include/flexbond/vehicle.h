@@ -411,6 +411,17 @@ double fb_scenario_point_masses_total(const fb_scenario *s);
  * structure (hull_mass) and its declared masses; what FB_PAYLOAD_LUMPED
  * spreads over the load points. */
 double fb_scenario_payload_mass(const fb_scenario *s);
+/* The density at which System 2 runs a second time to compare, its modes
+ * converged: hull_converged_density when it is above the generated hull's
+ * own density; 0 when there is none (or the hull is a deck, used as it
+ * is). */
+int fb_scenario_converged_density(const fb_scenario *s);
+/* Puts s's hull in the automatic modal basis (FB_HULL_MODES_AUTO), as a
+ * rerun on the converged mesh takes it whatever basis s had: every mode
+ * or the nodal coordinates of the refined hull would make a dense or a
+ * large problem nobody asked for. A cut-off given for the automatic basis
+ * stays; any other is dropped. */
+void fb_scenario_use_auto_basis(fb_scenario *s);
 /* The road has two tracks: wheels with y > 0 run on the left one, the
  * others on the right one. The lateral distance between them (m): the
  * first corner's y (it leads the left track) minus the y of the first

@@ -246,6 +246,10 @@ _PROTOTYPES = {
     "fb_study_mesh_error": (ctypes.c_int, [_P, _PDOUBLE]),
     "fb_study_response_window": (None, [_P, _PDOUBLE]),
     "fb_vehicle_basis_reduced": (ctypes.c_int, [_P]),
+    "fb_scenario_converged_density": (ctypes.c_int, [_P]),
+    "fb_scenario_use_auto_basis": (None, [_P]),
+    "fb_study_report_mesh_crossings": (ctypes.c_size_t, [_P]),
+    "fb_study_report_mesh_diff": (ctypes.c_double, [_P, ctypes.c_size_t]),
     "fb_vehicle_basis_error": (ctypes.c_int, [_P, _P, _PDOUBLE, _PROGRESS, _P, _PDOUBLE, _PERR]),
     "fb_study_report_new": (ctypes.c_int, [_P, ctypes.POINTER(_StudyRun), ctypes.c_size_t,
                                            ctypes.POINTER(_StudyRun), _PP, _PERR]),
@@ -671,6 +675,56 @@ def _findings(s, rep, names):
         _lib.fb_study_report_contact_extremes(rep, run, ctypes.byref(most), ctypes.byref(least))
         found["contact_extremes"][name] = (tires[most.value], tires[least.value])
     return found
+
+
+def _summarised_run(s, v, reporter, window, basis_error):
+    """v run (a vehicle of scenario s) and summarised over window, with its
+    reduced basis's error estimate when basis_error: (result, summary,
+    basis error or None)."""
+    res, summary, err = ctypes.c_void_p(), ctypes.c_void_p(), _Err()
+    _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res), None,
+                               ctypes.byref(err)), err)
+    run = [(res, summary, None)]
+    try:
+        _check(_lib.fb_run_summary_new(s, res, window, ctypes.byref(summary), ctypes.byref(err)),
+               err)
+        if basis_error and _lib.fb_vehicle_basis_reduced(v):
+            est = (ctypes.c_double * max(1, _lib.fb_scenario_noutputs(s)))()
+            _check(_lib.fb_vehicle_basis_error(v, res, window, reporter.run_fn, None, est,
+                                               ctypes.byref(err)), err)
+            run[0] = (res, summary, est)
+        return run[0]
+    except BaseException:
+        _free_runs(run)
+        raise
+
+
+def _study_run(sys_id, handle):
+    res, summary, est = handle
+    return _StudyRun(sys_id, res.value, summary.value,
+                     ctypes.cast(est, _PDOUBLE) if est is not None else None)
+
+
+def _converged_findings(s, rep, fine, density):
+    """Study's members of the converged run fine (or None) at density."""
+    if not fine:
+        return {"converged": None, "converged_density": None, "comparison_converged": None,
+                "differences_converged": None, "mesh_crossings": 0, "mesh_diff": None}
+    outputs = [_lib.fb_scenario_output_name(s, k).decode()
+               for k in range(_lib.fb_scenario_noutputs(s))]
+    cmp = _lib.fb_study_report_cmp(rep, 1)  # FB_STUDY_CMP_CONVERGED
+    d = _lib.fb_study_report_differences(rep, 1)
+    return {
+        "converged": RunSummary(s, "flexible", fine[0], fine[1], fine[2]),
+        "converged_density": density,
+        "comparison_converged": {
+            name: OutputComparison(*(getattr(cmp[k], n) for n, _ in _OutputCmp._fields_))
+            for k, name in enumerate(outputs)},
+        "differences_converged": Differences(
+            outputs[d.largest] if d.largest < len(outputs) else None, d.nvarying, d.nnotable,
+            [n for k, n in enumerate(outputs) if _lib.fb_study_report_notable(rep, 1, k)]),
+        "mesh_crossings": _lib.fb_study_report_mesh_crossings(rep),
+        "mesh_diff": {n: _lib.fb_study_report_mesh_diff(rep, k) for k, n in enumerate(outputs)}}
 
 
 def _free_runs(handles):
@@ -1189,53 +1243,55 @@ class Scenario(_Closing):
 
         return self._with_vehicle(system, use, progress=progress)
 
-    def study(self, systems=("rigid", "flexible"), progress=None, basis_error=False):
+    def study(self, systems=("rigid", "flexible"), progress=None, basis_error=False,
+              converged=False):
         """Runs each of systems (one or two) and summarises it with the
         library's study layer, and compares two (flexbond/study.h): a Study,
         the numbers flexbond run writes in summary.json. progress as run's.
         basis_error: also estimate the error of System 2's reduced modal
         basis, as flexbond run does (a second run with the basis's next
-        block of Ritz vectors, fb_vehicle_basis_error)."""
+        block of Ritz vectors, fb_vehicle_basis_error). converged: with both
+        systems, also run System 2 again on the hull refined to the
+        scenario's hull.mesh.converged_density, as flexbond run does when it
+        is above hull.mesh.density (a scenario loaded from a file)."""
         names = [_SYSTEM_NAMES[_system(s)] for s in systems]
         if not 1 <= len(names) <= 2:
             raise ValueError("flexbond: study takes one or two systems, got %d" % len(names))
 
-        def use(v, reporter):
-            res, summary = ctypes.c_void_p(), ctypes.c_void_p()
-            err = _Err()
-            _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res), None,
-                                       ctypes.byref(err)), err)
-            run = [(res, summary, None)]
-            try:
-                _check(_lib.fb_run_summary_new(self._s, res, None, ctypes.byref(summary),
-                                               ctypes.byref(err)), err)
-                if basis_error and _lib.fb_vehicle_basis_reduced(v):
-                    run[0] = (res, summary, self._basis_error(v, res, reporter))
-                return run[0]
-            except BaseException:
-                _free_runs(run)
-                raise
-
-        handles = []
+        window = (ctypes.c_double * 2)()
+        handles, fine = [], []
         # The scenario stays open until the summaries are read.
         with self._held(), contextlib.ExitStack() as cleanup:
             cleanup.callback(_free_runs, handles)
+            cleanup.callback(_free_runs, fine)
+            _lib.fb_study_response_window(self._s, window)
             for system in systems:
-                handles.append(self._with_vehicle(system, use, progress=progress))
+                handles.append(self._with_vehicle(
+                    system, lambda v, r: _summarised_run(self._s, v, r, window, basis_error),
+                    progress=progress))
+            density = _lib.fb_scenario_converged_density(self._s)
+            if converged and len(handles) == 2 and density and self._data_name is None:
+                fine.append(self._converged_run(density, window, basis_error, progress))
             runs = {n: RunSummary(self._s, n, res, summary, est)
                     for n, (res, summary, est) in zip(names, handles)}
-            return self._report(names, handles, runs)
+            return self._report(names, handles, runs, fine[0] if fine else None, density)
 
-    def _basis_error(self, v, res, reporter):
-        """Each output's estimated error from v's reduced basis in its run
-        res, over its range (fb_vehicle_basis_error): a double array."""
-        window = (ctypes.c_double * 2)()
-        _lib.fb_study_response_window(self._s, window)
-        est = (ctypes.c_double * max(1, _lib.fb_scenario_noutputs(self._s)))()
-        err = _Err()
-        _check(_lib.fb_vehicle_basis_error(v, res, window, reporter.run_fn, None, est,
-                                           ctypes.byref(err)), err)
-        return est
+    def _converged_run(self, density, window, basis_error, progress):
+        """System 2 of the file loaded again with hull.mesh.density at
+        density, in the automatic modal basis (fb_scenario_use_auto_basis),
+        summarised over this scenario's window: (result, summary, basis
+        error or None), as flexbond run's rerun."""
+        overrides = dict(self.overrides)
+        overrides["hull.mesh.density"] = density
+        with warnings.catch_warnings():  # this scenario's warnings, said once
+            warnings.simplefilter("ignore", PlausibilityWarning)
+            refined = Scenario(self.path, overrides)
+        with refined:
+            _lib.fb_scenario_use_auto_basis(refined._s)
+            return refined._with_vehicle(
+                "flexible", lambda v, r: _summarised_run(refined._s, v, r, window, basis_error),
+                progress=progress)
+
 
     @contextlib.contextmanager
     def _held(self):
@@ -1264,18 +1320,21 @@ class Scenario(_Closing):
             finally:
                 _lib.fb_fe_hull_free(ctypes.byref(h))
 
-    def _report(self, names, handles, runs):
-        """The Study of the runs handles [(result, summary)] of systems names,
+    def _report(self, names, handles, runs, fine, density):
+        """The Study of the runs handles [(result, summary, basis error)] of
+        systems names and of System 2 on the converged mesh (fine, or None),
         from the library's report data (fb_study_report)."""
         study_runs = (_StudyRun * len(handles))(
-            *(_StudyRun(_SYSTEMS[n], res.value, summary.value,
-                        ctypes.cast(est, _PDOUBLE) if est is not None else None)
-              for n, (res, summary, est) in zip(names, handles)))
+            *(_study_run(_SYSTEMS[n], h) for n, h in zip(names, handles)))
+        conv = _study_run(FLEXIBLE, fine) if fine else None
         rep, err = ctypes.c_void_p(), _Err()
-        _check(_lib.fb_study_report_new(self._s, study_runs, len(handles), None,
+        _check(_lib.fb_study_report_new(self._s, study_runs, len(handles),
+                                        ctypes.byref(conv) if conv else None,
                                         ctypes.byref(rep), ctypes.byref(err)), err)
         try:
-            return Study(runs, **_findings(self._s, rep, names))
+            found = _findings(self._s, rep, names)
+            found.update(_converged_findings(self._s, rep, fine, density))
+            return Study(runs, **found)
         finally:
             _lib.fb_study_report_free(ctypes.byref(rep))
 

@@ -1130,17 +1130,14 @@ typedef struct run_converged {
  * its generated hull. */
 static int wants_converged(const fb_scenario *s, const cli_run_outputs *o)
 {
-  return o->nruns == CLI_MAX_SYSTEMS && !s->hull_deck &&
-         s->hull_converged_density > s->hull_mesh.density;
+  return o->nruns == CLI_MAX_SYSTEMS && fb_scenario_converged_density(s) > 0;
 }
 
 /* Loads the file again with hull.mesh.density at the converged density
  * (so that the mesh, the hull's mass properties and every check are that
- * mesh's, as if the user had written it), and runs its System 2 with its
- * basis's error estimate. Its hull is in the automatic modal basis
- * whatever the first System 2's was (a cut-off given for that basis
- * stays): every mode or the nodal coordinates of the refined hull would
- * make a dense or a large problem nobody asked for. */
+ * mesh's, as if the user had written it), and runs its System 2, in the
+ * automatic modal basis (fb_scenario_use_auto_basis), with its basis's
+ * error estimate. */
 static int run_converged_system(const run_args *a, const fb_scenario *s, const double window[2],
                                 run_converged *c, fb_err *err)
 {
@@ -1151,10 +1148,7 @@ static int run_converged_system(const run_args *a, const fb_scenario *s, const d
   int rc = fb_scenario_load_overrides(a->scenario_path, &ov, 1, &c->s, err);
   if (rc == FB_OK) {
     override(a, c->s);
-    if (c->s->hull_modes_kind != FB_HULL_MODES_AUTO || c->s->hull_coordinates != FB_HULL_MODAL)
-      c->s->hull_cutoff_hz = 0.0;
-    c->s->hull_coordinates = FB_HULL_MODAL;
-    c->s->hull_modes_kind = FB_HULL_MODES_AUTO;
+    fb_scenario_use_auto_basis(c->s);
     rc = realise(a, c->s, FB_SYSTEM_FLEXIBLE, c->label, 0, &c->rv, err);
   }
   if (rc == FB_OK)

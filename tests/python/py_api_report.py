@@ -209,6 +209,58 @@ class ReportTest(unittest.TestCase):
         self.assertPrinted(100 * mine[worst], most.group(1), "worst basis error",
                            200 * SYSTEM2_ROUNDING)
 
+    def test_converged_mesh(self):
+        """apc6x6.yaml asks for System 2 again at a converged density: the
+        rerun's statistics and basis error, its comparison with System 1,
+        the table "At a converged mesh" and the conclusion's sentence on
+        it."""
+        report, js = run(APC, "report_converged", "both")
+        st = study(APC, ("rigid", "flexible"), basis_error=True, converged=True)
+        labels = [row[0] for row in table(report, "| output | unit | peak S1 |")]
+        label = dict(zip(st.runs["rigid"].outputs, labels))
+        fine = js["system2_converged"]
+        self.assertEqual(st.converged_density, fine["mesh_density"])
+        for name, o in st.converged.outputs.items():
+            scale = fine["outputs"][name]["peak"] - fine["outputs"][name]["min"]
+            for field in ("peak", "min", "rms"):
+                self.assertLessEqual(abs(getattr(o, field) - fine["outputs"][name][field]),
+                                     5e-10 * abs(fine["outputs"][name][field])
+                                     + SYSTEM2_ROUNDING * scale, name + " " + field)
+        for name, value in st.converged.basis_error.items():
+            theirs = fine["hull_basis"]["estimated_error"]["of_range"][name]
+            self.assertLessEqual(abs(value - theirs), 5e-10 * theirs + 2 * SYSTEM2_ROUNDING)
+        for name, c in st.comparison_converged.items():
+            o = js["comparison_converged"][name]
+            if o["max_abs_diff_rel"] is None:
+                self.assertTrue(math.isnan(c.rel_diff), name)
+                continue
+            self.assertLessEqual(abs(c.rel_diff - o["max_abs_diff_rel"]),
+                                 5e-10 * o["max_abs_diff_rel"] + 2 * SYSTEM2_ROUNDING, name)
+        rows = table(report, "| output | unit | max abs S2 - S1 / S1 range, density")
+        self.assertEqual([row[0] for row in rows], labels)
+        for name, row in zip(st.comparison_converged, rows):
+            cells = (st.comparison[name].rel_diff, st.comparison_converged[name].rel_diff,
+                     st.comparison[name].peak_change, st.comparison_converged[name].peak_change,
+                     st.mesh_diff[name])
+            for value, text in zip(cells, row[2:]):
+                if text == "-":
+                    self.assertTrue(math.isnan(value), (name, row))
+                else:
+                    self.assertPrinted(100 * value, text.rstrip(" %"), name, 200.0)
+        d1, d3 = st.differences, st.differences_converged
+        sentence = re.search(r"At the converged mesh \(density (\d+)\) System 2 departs from "
+                             r"System 1 by up to (\S+) % of System 1's range, in the (.+?), "
+                             r"against (\S+) % at density \d+: (the conclusion stands)?",
+                             conclusions(report))
+        self.assertEqual(int(sentence.group(1)), st.converged_density)
+        self.assertEqual(label[d3.largest], sentence.group(3))
+        self.assertPrinted(100 * st.comparison_converged[d3.largest].rel_diff,
+                           sentence.group(2), "converged largest", 200.0)
+        self.assertPrinted(100 * st.comparison[d1.largest].rel_diff, sentence.group(4),
+                           "largest", 200.0)
+        self.assertEqual(sentence.group(5) is not None,
+                         st.mesh_crossings == 0 and d3.nnotable == 0)
+
 
 if __name__ == "__main__":
     unittest.main(argv=sys.argv[:1], verbosity=2)
