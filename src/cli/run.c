@@ -313,12 +313,11 @@ static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenar
 /* {"model", "models": {tire: model, ...}, "min_force": {tire: {"value", "time"}, ...},
  * "contact_loss_intervals": [{"tire", "from", "to", "min_force", "at"},
  * ...]}. */
-static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
+static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_study_report *rep)
 {
+  const fb_scenario *s = fb_study_report_scenario(rep);
   /* One model for every tire, or "mixed" and each corner's in "models". */
-  int mixed = 0;
-  for (size_t c = 1; c < s->ncorners; ++c)
-    mixed |= s->corner[c].tire_contact != s->corner[0].tire_contact;
+  const int mixed = fb_study_report_tires_with(rep, s->corner[0].tire_contact) != s->ncorners;
   fprintf(fp, "{\"model\": \"%s\", \"models\": {",
           mixed ? "mixed" : fb_tire_contact_name(s->corner[0].tire_contact));
   for (size_t c = 0; c < s->ncorners; ++c) {
@@ -452,7 +451,7 @@ static void write_system_json(FILE *fp, const cli_run_outputs *o, const char *ke
   fputs("\n    },\n    \"ride\": ", fp);
   write_ride_json(fp, run, s);
   fputs(",\n    \"tire_contact\": ", fp);
-  write_contact_json(fp, run, s);
+  write_contact_json(fp, run, o->report);
   fputs(",\n    \"solver\": ", fp);
   write_solver_json(fp, fb_result_stats(run->res));
   fputs(",\n    \"bump_window\": [", fp);
@@ -918,7 +917,9 @@ static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *s
 }
 
 /* The report's data (flexbond/study.h) of the runs of o, with the
- * converged one when it ran: its comparisons become o's views. */
+ * converged one when it ran, into *rep (new: the caller frees it with
+ * fb_study_report_free after o's last use): its comparisons become o's
+ * views. */
 static int build_report(cli_run_outputs *o, fb_study_report **rep, fb_err *err)
 {
   fb_study_run runs[CLI_MAX_SYSTEMS], conv = {0};
