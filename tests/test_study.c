@@ -166,9 +166,148 @@ static void test_summary(void)
   fb_scenario_free(&s);
 }
 
+/* Three runs of one scenario, the front springs stiffer in each: the
+ * report's comparisons are fb_study_compare's and its findings are what
+ * the comparisons and the runs' columns give by hand. */
+static fb_study_report *report_of(const fb_scenario *s, const fb_study_run *runs, size_t n,
+                                  const fb_study_run *conv)
+{
+  fb_study_report *rep = NULL;
+  fb_err err;
+  CHECK(fb_study_report_new(s, runs, n, conv, &rep, &err) == FB_OK && rep);
+  return rep;
+}
+
+/* The largest |(c - a) - (b - a)| in column col from t0 on: the two
+ * meshes' System 2 apart, each as its difference from System 1 a. */
+static double largest_between(const fb_result *a, const fb_result *b, const fb_result *c,
+                              size_t col, double t0)
+{
+  double m = 0;
+  for (size_t i = 0; i < fb_result_nsamples(a); ++i) {
+    const double *ra = fb_result_row(a, i), *rb = fb_result_row(b, i),
+                 *rc = fb_result_row(c, i);
+    if (ra[0] >= t0)
+      m = fmax(m, fabs((rc[col] - ra[col]) - (rb[col] - ra[col])));
+  }
+  return m;
+}
+
+static void check_findings(const fb_scenario *s, const fb_study_report *rep,
+                           const fb_study_run *runs, const fb_study_run *conv)
+{
+  const fb_output_cmp *c1 = fb_study_report_cmp(rep, FB_STUDY_CMP_SYSTEM2),
+                      *c3 = fb_study_report_cmp(rep, FB_STUDY_CMP_CONVERGED);
+  CHECK(c1 && c3 && fb_study_report_diff(rep, FB_STUDY_CMP_CONVERGED));
+  if (!c1 || !c3)
+    return;
+  double window[2];
+  fb_study_report_window(rep, window);
+  const fb_study_differences d = fb_study_report_differences(rep, FB_STUDY_CMP_SYSTEM2);
+  size_t nvarying = 0, nnotable = 0, crossings = 0;
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    const int varies = isfinite(c1[k].rel_diff);
+    const int notable = varies && c1[k].rel_diff > FB_STUDY_NOTABLE_DIFF;
+    nvarying += varies;
+    nnotable += notable;
+    crossings += varies && notable != (c3[k].rel_diff > FB_STUDY_NOTABLE_DIFF);
+    CHECK(fb_study_report_notable(rep, FB_STUDY_CMP_SYSTEM2, k) == notable);
+    CHECK(!varies || c1[k].rel_diff <= c1[d.largest].rel_diff);
+    const size_t col = fb_run_summary_column(runs[0].sum, k);
+    if (c1[k].range1 > 0)
+      CHECK_NEAR(fb_study_report_mesh_diff(rep, k),
+                 largest_between(runs[0].res, runs[1].res, conv->res, col, window[0]) /
+                     c1[k].range1,
+                 0.0);
+    else
+      CHECK(isnan(fb_study_report_mesh_diff(rep, k)));
+  }
+  CHECK(d.nvarying == nvarying && d.nnotable == nnotable && d.nnotable > 0);
+  CHECK(fb_study_report_mesh_crossings(rep) == crossings);
+  const size_t kr = fb_study_report_largest_rms_change(rep);
+  CHECK(kr < s->noutputs);
+  for (size_t k = 0; kr < s->noutputs && k < s->noutputs; ++k)
+    CHECK(!isfinite(c1[k].rms_change) || fabs(c1[k].rms_change) <= fabs(c1[kr].rms_change));
+}
+
+static void test_report(void)
+{
+  fb_scenario *s = NULL;
+  fb_err err;
+  CHECK(fb_scenario_load("../examples/apc6x6.yaml", &s, &err) == FB_OK);
+  if (!s)
+    return;
+  s->t_end = 8.5;
+  fb_result *r[3] = {NULL, NULL, NULL};
+  fb_run_summary *sum[3] = {NULL, NULL, NULL};
+  int ok = 1;
+  for (size_t i = 0; i < 3; ++i) {
+    ok = ok && fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r[i], &err) == FB_OK &&
+         fb_run_summary_new(s, r[i], NULL, &sum[i], &err) == FB_OK;
+    s->corner[0].spring_k *= 1.5;
+    s->corner[3].spring_k *= 1.5;
+  }
+  CHECK(ok);
+  const fb_study_run runs[3] = {{FB_SYSTEM_RIGID, r[0], sum[0], NULL},
+                                {FB_SYSTEM_FLEXIBLE, r[1], sum[1], NULL},
+                                {FB_SYSTEM_FLEXIBLE, r[2], sum[2], NULL}};
+  fb_study_report *rep = NULL;
+  CHECK(fb_study_report_new(s, runs, 0, NULL, &rep, &err) == FB_EINVAL && !rep);
+  CHECK(fb_study_report_new(s, runs, 3, NULL, &rep, &err) == FB_EINVAL && !rep);
+  CHECK(fb_study_report_new(s, runs, 1, &runs[2], &rep, &err) == FB_EINVAL && !rep);
+  rep = ok ? report_of(s, runs, 2, &runs[2]) : NULL;
+  if (rep) {
+    check_findings(s, rep, runs, &runs[2]);
+    CHECK(fb_study_report_nruns(rep) == 2 && fb_study_report_run(rep, 2) == NULL);
+    CHECK(fb_study_report_converged(rep)->res == r[2]);
+    CHECK(fb_study_report_tires_with(rep, &fb_tire_model_bilateral) == s->ncorners);
+    double w[2];
+    fb_study_report_wheel_window(rep, 1, w);
+    CHECK(w[0] == fb_scenario_road_entry(s, 1) && w[1] == fb_scenario_road_exit(s, 1));
+    /* The rigid hull does not twist. */
+    const size_t t = fb_study_report_torsion_output(rep);
+    CHECK(t < s->noutputs && !strcmp(s->output[t].signal, "torsion"));
+    CHECK(t < s->noutputs && fb_study_run_max_abs(&runs[0], t) == 0.0);
+    CHECK(isnan(fb_study_run_worst_basis_error(&runs[0], s->noutputs, NULL)));
+  }
+  fb_study_report_free(&rep);
+  /* One run: no comparison; the output that grows the most and the
+   * tires' extremes, by hand. */
+  rep = ok ? report_of(s, runs, 1, NULL) : NULL;
+  if (rep) {
+    CHECK(!fb_study_report_cmp(rep, FB_STUDY_CMP_SYSTEM2) &&
+          !fb_study_report_diff(rep, FB_STUDY_CMP_SYSTEM2));
+    CHECK(fb_study_report_differences(rep, FB_STUDY_CMP_SYSTEM2).largest == s->noutputs);
+    double factor = 0;
+    const size_t g = fb_study_report_largest_growth(rep, &factor);
+    CHECK(g < s->noutputs && factor > 1.0);
+    for (size_t k = 0; g < s->noutputs && k < s->noutputs; ++k) {
+      const fb_output_stats *st = fb_run_summary_output(sum[0], k);
+      const double f = st->peak / st->static_value;
+      if (fabs(st->static_value) >= FB_STUDY_NOTABLE_DIFF * (st->peak - st->min) && isfinite(f))
+        CHECK(f <= factor);
+    }
+    size_t most = 0, least = 0;
+    fb_study_report_contact_extremes(rep, &runs[0], &most, &least);
+    for (size_t c = 0; c < s->ncorners; ++c) {
+      CHECK(fb_run_summary_contact_ratio(sum[0], c) <=
+            fb_run_summary_contact_ratio(sum[0], most));
+      CHECK(fb_run_summary_contact(sum[0], c)->min >=
+            fb_run_summary_contact(sum[0], least)->min);
+    }
+  }
+  fb_study_report_free(&rep);
+  for (size_t i = 0; i < 3; ++i) {
+    fb_run_summary_free(&sum[i]);
+    fb_result_free(&r[i]);
+  }
+  fb_scenario_free(&s);
+}
+
 int main(void)
 {
   test_stats();
   test_summary();
+  test_report();
   return check_report("test_study");
 }

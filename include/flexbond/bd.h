@@ -190,6 +190,30 @@ int fb_bd_is_piecewise_linear(const fb_bd *bd);
  * linearisations (no finite differences). For linear analysis. */
 int fb_bd_jacobian_dense(fb_bd *bd, double t, const double *x, double *jac, fb_err *err);
 
+/* The eigenvalues of bd's state equations linearised at (t, x)
+ * (fb_bd_jacobian_dense), from LAPACK's dgeev (src/bd/eigen.c): `flexbond
+ * eig`'s table and the Python package's. A backward-stable solver finds a
+ * zero eigenvalue anywhere within n eps ||A||_F of 0 (zero_tol): those
+ * are counted and left out. */
+typedef struct fb_bd_eigen {
+  size_t nstates;  /* the diagram's, n */
+  size_t n;        /* eigenvalues kept, |lambda| > zero_tol */
+  double *re, *im; /* n each, owned: by |imaginary part|, then real part, a
+                      complex pair's positive member first */
+  double zero_tol; /* n eps ||A||_F, 1/s */
+} fb_bd_eigen;
+
+/* The eigenvalues of bd at time t and state x (nstates values; NULL: the
+ * diagram's initial state, fb_bd_initial_state). what names the analysis
+ * in messages ("eig: quarter_car"). FB_ENOMEM, before anything is
+ * allocated, when the solve is beyond FB_DENSE_EIG_MAX or its two n x n
+ * matrices beyond memory_limit bytes (0: none); FB_ESOLVER for a
+ * non-finite Jacobian or a failed QR algorithm. No state: *out has none.
+ * *out is new (fb_bd_eigen_free). */
+int fb_bd_eigen_new(fb_bd *bd, double t, const double *x, size_t memory_limit, const char *what,
+                    fb_bd_eigen **out, fb_err *err);
+void fb_bd_eigen_free(fb_bd_eigen **e);
+
 /* ---- Descriptor form of a linear diagram.
  *
  * The augmented linearisation above already is a descriptor system over

@@ -104,6 +104,28 @@ int fb_model_write(const fb_bg *bg, const fb_probe_spec *probes, size_t nprobes,
  * err is NULL). */
 int fb_model_blame(const fb_model *m, fb_err *err);
 
+/* ---- A model file's simulation (src/io/model_sim.c), as `flexbond sim`
+ * runs it and the Python package: the block diagram of its graph with its
+ * probes as the result's columns, started from simulation.initial. */
+typedef struct fb_model_sim fb_model_sim;
+
+/* The block diagram of m's graph and probes and the state its runs start
+ * from (fb_model_initial_state). Assigns the graph's causality, which
+ * changes m; an error of the graph is located in m's file
+ * (fb_model_blame). m must outlive *out (new; fb_model_sim_free). */
+int fb_model_sim_new(fb_model *m, fb_model_sim **out, fb_err *err);
+void fb_model_sim_free(fb_model_sim **ms);
+/* The block diagram (owned by ms). */
+const fb_bd *fb_model_sim_diagram(const fb_model_sim *ms);
+/* m's solver settings (fb_model_sim_opts) with t_end, rtol and
+ * sample_rate replaced by those given above 0, and noutputs its probes'
+ * count, so that fb_sim_opts_check bounds the result's memory. */
+fb_sim_opts fb_model_sim_opts_with(const fb_model *m, double t_end, double rtol,
+                                   double sample_rate);
+/* Runs ms's diagram with opts (its x0 replaced by the model's initial
+ * state) into *res (new; fb_result_free); errors as fb_sim_run's. */
+int fb_model_sim_run(fb_model_sim *ms, const fb_sim_opts *opts, fb_result **res, fb_err *err);
+
 #ifdef __cplusplus
 }
 #endif

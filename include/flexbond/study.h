@@ -381,6 +381,133 @@ int fb_study_sweep_run(fb_study_sweep *sw, size_t threads, fb_err *err);
  * their next solver step. Thread-safe, from any thread. */
 void fb_study_sweep_cancel(fb_study_sweep *sw);
 
+/* ---- The data of a run's report (src/study/report.c): the runs of a
+ * scenario with their summaries, System 2 against System 1 (and against
+ * it again on a converged mesh), and the findings a report states about
+ * them: which outputs differ notably, how far the hull twists, which
+ * output grows the most, which tire is the most loaded or the least. The
+ * library decides these; a front end only words and prints them
+ * (flexbond run's report.md and summary.json, the Python package). */
+
+/* A difference between the systems is notable above 5 % of System 1's
+ * peak-to-peak range over the response, a peak or r.m.s. change above 5 %
+ * of System 1's value: a few times the scatter of reading the paper's
+ * plots, well above the solvers' error (rtol 1e-6). */
+#define FB_STUDY_NOTABLE_DIFF 0.05
+#define FB_STUDY_NOTABLE_CHANGE 0.05
+
+/* An estimated error of System 2's modal basis (fb_study_run.basis_error)
+ * above this fraction of an output's range is worth keeping more modes. */
+#define FB_STUDY_BASIS_ERROR_NOTABLE 1e-3
+
+/* The mesh error of the generated hull, as measured on the reference hull
+ * (bench/hull_convergence.sh, docs/hull-mesh.md "Convergence"): at
+ * density 1 its first ten elastic free-free frequencies are 12 % to 21 %
+ * above the converged ones, and the error falls as 1 / density^2 (observed
+ * orders 1.4 to 2.4; at densities 2 to 6 the measured errors lie within
+ * these bounds over d^2, the lowest mode up to 0.6 of a point below). */
+#define FB_STUDY_MESH_ERROR_LOW 0.12
+#define FB_STUDY_MESH_ERROR_HIGH 0.21
+
+/* The estimated band of that error at s's mesh density into band
+ * (fractions of the converged frequencies) and 1; 0 when there is no
+ * estimate: a deck, or no finite-element hull. */
+int fb_study_mesh_error(const fb_scenario *s, double band[2]);
+
+/* One run handed to a report; everything borrowed, outliving the report. */
+typedef struct fb_study_run {
+  fb_system sys;
+  const fb_result *res;      /* fb_vehicle_run's */
+  const fb_run_summary *sum; /* res's summary (fb_run_summary_new) */
+  /* System 2 in a reduced modal basis: each output's estimated error from
+   * the basis, over its range (s->noutputs); NULL when not estimated. */
+  const double *basis_error;
+} fb_study_run;
+
+/* Which comparison with System 1: System 2's, or System 2's on the
+ * converged mesh. */
+typedef enum fb_study_cmp_kind {
+  FB_STUDY_CMP_SYSTEM2,
+  FB_STUDY_CMP_CONVERGED
+} fb_study_cmp_kind;
+
+/* The report's data (fb_study_report_new); opaque. */
+typedef struct fb_study_report fb_study_report;
+
+/* The report of runs[0 .. nruns) of s (one or two; System 1 first with
+ * two) and, when not NULL, converged: System 2 again on a finer mesh of
+ * the same scenario, compared with runs[0]. The runs' summaries must share
+ * one window. With two runs, each output's comparison (fb_study_compare)
+ * and System 2 minus System 1 are computed and owned by the report; the
+ * runs and s are borrowed and must outlive it. *out is new
+ * (fb_study_report_free). FB_EINVAL for no run, more than two, or a
+ * converged run without two runs. */
+int fb_study_report_new(const fb_scenario *s, const fb_study_run *runs, size_t nruns,
+                        const fb_study_run *converged, fb_study_report **out, fb_err *err);
+void fb_study_report_free(fb_study_report **rep);
+
+const fb_scenario *fb_study_report_scenario(const fb_study_report *rep);
+size_t fb_study_report_nruns(const fb_study_report *rep);
+/* Run i (NULL beyond), and the converged run (NULL when none). */
+const fb_study_run *fb_study_report_run(const fb_study_report *rep, size_t i);
+const fb_study_run *fb_study_report_converged(const fb_study_report *rep);
+/* The response window of the runs' summaries, s. */
+void fb_study_report_window(const fb_study_report *rep, double window[2]);
+/* When wheel c (< s->ncorners) meets the road's feature and leaves it, s. */
+void fb_study_report_wheel_window(const fb_study_report *rep, size_t c, double window[2]);
+/* The unit of output k (< s->noutputs), as System 1's result names it. */
+const char *fb_study_report_unit(const fb_study_report *rep, size_t k);
+/* How many of the scenario's corners have tire model m. */
+size_t fb_study_report_tires_with(const fb_study_report *rep, const fb_tire_model *m);
+
+/* Each output's comparison of kind (s->noutputs, owned by rep) and the
+ * difference of the runs (System 2 minus System 1, with System 1's
+ * columns; owned by rep); NULL when that comparison was not made. */
+const fb_output_cmp *fb_study_report_cmp(const fb_study_report *rep, fb_study_cmp_kind kind);
+const fb_result *fb_study_report_diff(const fb_study_report *rep, fb_study_cmp_kind kind);
+
+/* Of a comparison's outputs: the one with the largest relative
+ * difference (s->noutputs when none varies in System 1), how many vary in
+ * System 1 and how many of those differ notably. */
+typedef struct fb_study_differences {
+  size_t largest, nvarying, nnotable;
+} fb_study_differences;
+fb_study_differences fb_study_report_differences(const fb_study_report *rep,
+                                                 fb_study_cmp_kind kind);
+/* 1 when output k varies in System 1 and differs notably in comparison kind. */
+int fb_study_report_notable(const fb_study_report *rep, fb_study_cmp_kind kind, size_t k);
+/* The output whose r.m.s. changes the most (by magnitude) from System 1
+ * to System 2, s->noutputs when no change is finite or not compared. */
+size_t fb_study_report_largest_rms_change(const fb_study_report *rep);
+/* How many outputs are notable on one mesh and not on the other (0
+ * without the converged run). */
+size_t fb_study_report_mesh_crossings(const fb_study_report *rep);
+/* Output k's largest |System 2 on the converged mesh - System 2| from the
+ * window's start on, over System 1's range; NaN without the converged run
+ * or when System 1 does not vary. */
+double fb_study_report_mesh_diff(const fb_study_report *rep, size_t k);
+
+/* The torsion angle among the outputs, s->noutputs when none. */
+size_t fb_study_report_torsion_output(const fb_study_report *rep);
+/* Output k's largest |value| over the whole run r (0 for an output that
+ * is identically zero). */
+double fb_study_run_max_abs(const fb_study_run *r, size_t k);
+/* The largest estimated error of r's basis over its noutputs outputs and
+ * which output has it (*k; may be NULL); NaN when not estimated. */
+double fb_study_run_worst_basis_error(const fb_study_run *r, size_t noutputs, size_t *k);
+
+/* With one run: the output whose peak over the response grows the most
+ * relative to its static value, among those whose static value is at
+ * least FB_STUDY_NOTABLE_DIFF of their range (a ratio to a value of ~0,
+ * an acceleration at rest, says nothing) and that grow (factor above 1);
+ * *factor its peak over its static value. s->noutputs when none. */
+size_t fb_study_report_largest_growth(const fb_study_report *rep, double *factor);
+/* Of run r's tires: the one whose peak reaction is the largest multiple
+ * of its static one (*c_ratio), and the one with the smallest reaction
+ * from the window's start on (*c_min). */
+void fb_study_report_contact_extremes(const fb_study_report *rep, const fb_study_run *r,
+                                      size_t *c_ratio, size_t *c_min);
+
 #ifdef __cplusplus
 }
 #endif

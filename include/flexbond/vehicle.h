@@ -386,6 +386,9 @@ const char *fb_scenario_output_unit(const fb_scenario *s, size_t o);
  * of range) and attachment point (m, vehicle axes; *x and *y untouched
  * when c is out of range), and the road speed (m/s). */
 size_t fb_scenario_ncorners(const fb_scenario *s);
+/* The name of corner c's tire model ("bilateral"), NULL when c is out
+ * of range. */
+const char *fb_scenario_corner_tire(const fb_scenario *s, size_t c);
 const char *fb_scenario_corner_name(const fb_scenario *s, size_t c);
 void fb_scenario_corner_position(const fb_scenario *s, size_t c, double *x, double *y);
 double fb_scenario_speed(const fb_scenario *s);
@@ -404,6 +407,17 @@ double fb_scenario_point_masses_total(const fb_scenario *s);
  * structure (hull_mass) and its declared masses; what FB_PAYLOAD_LUMPED
  * spreads over the load points. */
 double fb_scenario_payload_mass(const fb_scenario *s);
+/* The density at which System 2 runs a second time to compare, its modes
+ * converged: hull_converged_density when it is above the generated hull's
+ * own density; 0 when there is none (or the hull is a deck, used as it
+ * is). */
+int fb_scenario_converged_density(const fb_scenario *s);
+/* Puts s's hull in the automatic modal basis (FB_HULL_MODES_AUTO), as a
+ * rerun on the converged mesh takes it whatever basis s had: every mode
+ * or the nodal coordinates of the refined hull would make a dense or a
+ * large problem nobody asked for. A cut-off given for the automatic basis
+ * stays; any other is dropped. */
+void fb_scenario_use_auto_basis(fb_scenario *s);
 /* The road has two tracks: wheels with y > 0 run on the left one, the
  * others on the right one. The lateral distance between them (m): the
  * first corner's y (it leads the left track) minus the y of the first
@@ -998,6 +1012,9 @@ int fb_vehicle_run(fb_vehicle *v, const double *window, fb_sim_progress_fn fn, v
  * the estimate. The two can run on two threads at once (they share only
  * what v's realisation made). *out borrows v, which must outlive it. */
 int fb_vehicle_new_estimator(fb_vehicle *v, fb_vehicle **out, fb_err *err);
+/* 1 when v's basis has an estimator: System 2 in reduced modal
+ * coordinates (fewer than its nodal DOFs). */
+int fb_vehicle_basis_reduced(const fb_vehicle *v);
 
 /* The error of System 2's modal basis in a run r of v (fb_vehicle_run;
  * reduced modal coordinates only: FB_EINVAL otherwise): the same run of
@@ -1250,6 +1267,40 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
  * (fb_fem_assemble) plus each declared mass on the three translations of
  * its node; the structure's alone without any. */
 int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err);
+
+/* ---- What a finite-element hull is (src/vehicle/fe_hull_facts.c), as
+ * `flexbond mesh` prints it and the Python package gives it. */
+
+/* A hull's mass (kg), centre of mass (m) and inertia tensor about it
+ * (row-major 3 x 3, kg m^2), from its mass matrix's rigid-body modes
+ * (fb_fem_mass_properties). */
+typedef struct fb_hull_mass_props {
+  double mass;
+  double cg[3];
+  double inertia[9];
+} fb_hull_mass_props;
+
+/* Of h's structure alone (with_masses 0: its shells, fb_fem_assemble) or
+ * of the hull as built (1: with its declared masses,
+ * fb_fe_hull_mass_matrix). */
+int fb_fe_hull_mass_props(const fb_fe_hull *h, int with_masses, fb_hull_mass_props *out,
+                          fb_err *err);
+/* The structure's own stiffness and mass matrices (*K, *M new; N/m, kg;
+ * six DOFs per node in node order, fb_fem_assemble), the declared masses
+ * left out. */
+int fb_fe_hull_matrices(const fb_fe_hull *h, fb_mat **K, fb_mat **M, fb_err *err);
+/* h's mesh (owned by h) and how many declared masses it carries. */
+const fb_mesh *fb_fe_hull_mesh(const fb_fe_hull *h);
+size_t fb_fe_hull_npoint_masses(const fb_fe_hull *h);
+/* The elements of section sec of h's mesh (fb_mesh_element_section; -1:
+ * those of no section, which take h's material): how many, their area
+ * (m^2; a warped element's projected area) and their mass (kg: the plate's
+ * density times its thickness, plus its non-structural mass, per m^2). */
+typedef struct fb_hull_section_totals {
+  size_t nelements;
+  double area, mass;
+} fb_hull_section_totals;
+fb_hull_section_totals fb_fe_hull_section_totals(const fb_fe_hull *h, long sec);
 
 /* Stiffness-proportional structural damping B = beta K of the hull, with
  * beta = 2 zeta / omega_1 so that the first elastic free-free mode of the

@@ -15,6 +15,7 @@ documents the whole interface.
 """
 
 import collections
+import contextlib
 import ctypes
 import ctypes.util
 import json
@@ -26,8 +27,9 @@ import warnings
 import numpy
 
 __all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse",
-           "RidePSD", "PsdRoad", "Model", "Sweep", "Error", "PlausibilityWarning", "RIGID",
-           "FLEXIBLE", "library_path"]
+           "RidePSD", "PsdRoad", "Model", "ModelFile", "Study", "HullMesh", "RunSummary",
+           "Differences", "Sweep", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
+           "NOTABLE_DIFF", "NOTABLE_CHANGE", "library_path"]
 
 RIGID = 1      # System 1: rigid hull (fb_system FB_SYSTEM_RIGID)
 FLEXIBLE = 2   # System 2: finite-element hull (FB_SYSTEM_FLEXIBLE)
@@ -80,6 +82,41 @@ class _OutputCmp(ctypes.Structure):
     _fields_ = [(n, ctypes.c_double) for n in
                 ("max_diff", "max_diff_time", "range1", "rel_diff", "peak_change",
                  "rms_change")]
+
+
+class _SimStats(ctypes.Structure):
+    """fb_sim_stats (flexbond/sim.h)."""
+    _fields_ = [(n, ctypes.c_long) for n in
+                ("steps", "rhs_evals", "newton_setups", "factorizations", "newton_iters",
+                 "newton_conv_fails", "err_test_fails", "events")] + [
+                    ("last_order", ctypes.c_int), ("wall_seconds", ctypes.c_double)]
+
+
+class _StudyRun(ctypes.Structure):
+    """fb_study_run (flexbond/study.h): a run handed to a report, borrowed."""
+    _fields_ = [("sys", ctypes.c_int), ("res", ctypes.c_void_p), ("sum", ctypes.c_void_p),
+                ("basis_error", ctypes.POINTER(ctypes.c_double))]
+
+
+class _HullMassProps(ctypes.Structure):
+    _fields_ = [("mass", ctypes.c_double), ("cg", ctypes.c_double * 3),
+                ("inertia", ctypes.c_double * 9)]
+
+
+class _SectionTotals(ctypes.Structure):
+    _fields_ = [("nelements", ctypes.c_size_t), ("area", ctypes.c_double),
+                ("mass", ctypes.c_double)]
+
+
+class _BdEigen(ctypes.Structure):
+    """fb_bd_eigen (flexbond/bd.h)."""
+    _fields_ = [("nstates", ctypes.c_size_t), ("n", ctypes.c_size_t),
+                ("re", ctypes.POINTER(ctypes.c_double)), ("im", ctypes.POINTER(ctypes.c_double)),
+                ("zero_tol", ctypes.c_double)]
+
+
+class _Differences(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_size_t) for n in ("largest", "nvarying", "nnotable")]
 
 
 class _ContactLoss(ctypes.Structure):
@@ -178,6 +215,18 @@ class _VehicleOpts(ctypes.Structure):
     _fields_ = [("motion", ctypes.c_int), ("memory_limit", ctypes.c_size_t),
                 ("progress_fn", _STAGE_PROGRESS), ("progress_ctx", ctypes.c_void_p),
                 ("threads", ctypes.c_int), ("hull_modes", ctypes.c_size_t)]
+class _SimOpts(ctypes.Structure):
+    """fb_sim_opts (flexbond/sim.h), filled by fb_model_sim_opts_with."""
+    _fields_ = [(n, ctypes.c_double) for n in
+                ("t_start", "t_end", "rtol", "atol", "max_step", "sample_rate")] + [
+                    ("max_order", ctypes.c_int), ("max_steps", ctypes.c_long),
+                    ("stability_limit_detection", ctypes.c_int),
+                    ("breakpoints", ctypes.POINTER(ctypes.c_double)),
+                    ("nbreakpoints", ctypes.c_size_t), ("x0", ctypes.POINTER(ctypes.c_double)),
+                    ("progress", _PROGRESS), ("progress_ctx", ctypes.c_void_p),
+                    ("noutputs", ctypes.c_size_t)]
+
+
 _P = ctypes.c_void_p
 _PP = ctypes.POINTER(ctypes.c_void_p)
 _PERR = ctypes.POINTER(_Err)
@@ -241,6 +290,65 @@ _PROTOTYPES = {
                                                ctypes.POINTER(_SweepCase)]),
     "fb_study_sweep_run": (ctypes.c_int, [_P, ctypes.c_size_t, _PERR]),
     "fb_study_sweep_cancel": (None, [_P]),
+    "fb_study_mesh_error": (ctypes.c_int, [_P, _PDOUBLE]),
+    "fb_study_response_window": (None, [_P, _PDOUBLE]),
+    "fb_vehicle_basis_reduced": (ctypes.c_int, [_P]),
+    "fb_scenario_converged_density": (ctypes.c_int, [_P]),
+    "fb_scenario_use_auto_basis": (None, [_P]),
+    "fb_study_report_mesh_crossings": (ctypes.c_size_t, [_P]),
+    "fb_study_report_mesh_diff": (ctypes.c_double, [_P, ctypes.c_size_t]),
+    "fb_vehicle_basis_error": (ctypes.c_int, [_P, _P, _PDOUBLE, _PROGRESS, _P, _PDOUBLE, _PERR]),
+    "fb_study_report_new": (ctypes.c_int, [_P, ctypes.POINTER(_StudyRun), ctypes.c_size_t,
+                                           ctypes.POINTER(_StudyRun), _PP, _PERR]),
+    "fb_study_report_free": (None, [_PP]),
+    "fb_study_report_window": (None, [_P, _PDOUBLE]),
+    "fb_study_report_wheel_window": (None, [_P, ctypes.c_size_t, _PDOUBLE]),
+    "fb_study_report_cmp": (ctypes.POINTER(_OutputCmp), [_P, ctypes.c_int]),
+    "fb_study_report_differences": (_Differences, [_P, ctypes.c_int]),
+    "fb_study_report_notable": (ctypes.c_int, [_P, ctypes.c_int, ctypes.c_size_t]),
+    "fb_study_report_largest_rms_change": (ctypes.c_size_t, [_P]),
+    "fb_study_report_torsion_output": (ctypes.c_size_t, [_P]),
+    "fb_study_report_run": (ctypes.POINTER(_StudyRun), [_P, ctypes.c_size_t]),
+    "fb_study_run_max_abs": (ctypes.c_double, [ctypes.POINTER(_StudyRun), ctypes.c_size_t]),
+    "fb_study_report_largest_growth": (ctypes.c_size_t, [_P, _PDOUBLE]),
+    "fb_study_report_contact_extremes": (None, [_P, ctypes.POINTER(_StudyRun), _PSIZE, _PSIZE]),
+    "fb_scenario_corner_tire": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_vehicle_fe_hull": (ctypes.c_int, [_P, _PP, _PERR]),
+    "fb_fe_hull_free": (None, [_PP]),
+    "fb_fe_hull_mesh": (_P, [_P]),
+    "fb_fe_hull_npoint_masses": (ctypes.c_size_t, [_P]),
+    "fb_fe_hull_mass_props": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_HullMassProps),
+                                             _PERR]),
+    "fb_fe_hull_matrices": (ctypes.c_int, [_P, _PP, _PP, _PERR]),
+    "fb_fe_hull_section_totals": (_SectionTotals, [_P, ctypes.c_long]),
+    "fb_mesh_nnodes": (ctypes.c_size_t, [_P]),
+    "fb_mesh_count": (ctypes.c_size_t, [_P, ctypes.c_int]),
+    "fb_mesh_nsections": (ctypes.c_size_t, [_P]),
+    "fb_mesh_section_elset": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_bd_build": (ctypes.c_int, [_P, _P, ctypes.c_size_t, _PP, _PERR]),
+    "fb_bd_free": (None, [_PP]),
+    "fb_bd_nstates": (ctypes.c_size_t, [_P]),
+    "fb_bd_eigen_new": (ctypes.c_int, [_P, ctypes.c_double, _PDOUBLE, ctypes.c_size_t,
+                                       ctypes.c_char_p, ctypes.POINTER(ctypes.POINTER(_BdEigen)),
+                                       _PERR]),
+    "fb_bd_eigen_free": (None, [ctypes.POINTER(ctypes.POINTER(_BdEigen))]),
+    "fb_bg_free": (None, [_PP]),
+    "fb_vehicle_graph": (ctypes.c_int, [_P, ctypes.c_int, _PP, _PP, _PSIZE, _PERR]),
+    "fb_vehicle_probes_free": (None, [_PP, ctypes.c_size_t]),
+    "fb_vehicle_sim_opts": (None, [_P, ctypes.POINTER(_SimOpts)]),
+    "fb_model_graph": (_P, [_P]),
+    "fb_model_sim_opts": (ctypes.POINTER(_SimOpts), [_P]),
+    "fb_model_blame": (ctypes.c_int, [_P, _PERR]),
+    "fb_model_load": (ctypes.c_int, [ctypes.c_char_p, _PP, _PERR]),
+    "fb_model_free": (None, [_PP]),
+    "fb_model_name": (ctypes.c_char_p, [_P]),
+    "fb_model_nwarnings": (ctypes.c_size_t, [_P]),
+    "fb_model_warning": (_PERR, [_P, ctypes.c_size_t]),
+    "fb_model_sim_new": (ctypes.c_int, [_P, _PP, _PERR]),
+    "fb_model_sim_free": (None, [_PP]),
+    "fb_model_sim_opts_with": (_SimOpts, [_P, ctypes.c_double, ctypes.c_double,
+                                          ctypes.c_double]),
+    "fb_model_sim_run": (ctypes.c_int, [_P, ctypes.POINTER(_SimOpts), _PP, _PERR]),
     "fb_study_freq_log_grid": (None, [ctypes.c_double, ctypes.c_double, ctypes.c_size_t,
                                       _PDOUBLE]),
     "fb_study_freq_new": (ctypes.c_int, [_P, _PDOUBLE, ctypes.c_size_t, _PP, _PERR]),
@@ -275,6 +383,7 @@ _PROTOTYPES = {
     "fb_result_col_unit": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_result_row": (_PDOUBLE, [_P, ctypes.c_size_t]),
     "fb_result_free": (None, [_PP]),
+    "fb_result_stats": (ctypes.POINTER(_SimStats), [_P]),
     "fb_vehicle_linearise": (ctypes.c_int, [_P, ctypes.POINTER(ctypes.POINTER(_Descriptor)),
                                             _PERR]),
     "fb_descriptor_free": (None, [ctypes.POINTER(ctypes.POINTER(_Descriptor))]),
@@ -294,6 +403,7 @@ _PROTOTYPES = {
                                                     _PERR]),
     "fb_vehicle_stepper_input": (ctypes.c_double, [_P, ctypes.c_size_t]),
     "fb_vehicle_stepper_set_scenario": (ctypes.c_int, [_P, _P, _PERR]),
+    "fb_mat_free": (None, [_PP]),
     "fb_mat_nrows": (ctypes.c_size_t, [_P]),
     "fb_mat_ncols": (ctypes.c_size_t, [_P]),
     "fb_mat_nnz": (ctypes.c_size_t, [_P]),
@@ -448,13 +558,18 @@ def _text(value):
 
 class Result:
     """One system's simulation: data (nsamples x ncols), column 0 the time.
-    names and units give each column's; r["name"] is a column."""
+    names and units give each column's; r["name"] is a column. stats holds
+    the solver's counts (summary.json's and stats.json's "solver": steps,
+    rhs_evals, newton_setups, factorizations, newton_iters,
+    newton_conv_fails, err_test_fails, events, last_order) and the
+    integration's wall_seconds."""
 
-    def __init__(self, system, names, units, data):
+    def __init__(self, system, names, units, data, stats=None):
         self.system = system
         self.names = names
         self.units = units
         self.data = data
+        self.stats = stats or {}
         self._index = {n: j for j, n in enumerate(names)}
 
     @property
@@ -491,7 +606,9 @@ def _result(res, system):
     if nsamples:
         start = _lib.fb_result_row(res, 0)
         data[...] = numpy.ctypeslib.as_array(start, shape=(nsamples, ncols))
-    return Result(system, names, units, data)
+    stats = _lib.fb_result_stats(res).contents
+    return Result(system, names, units, data,
+                  {n: getattr(stats, n) for n, _ in _SimStats._fields_})
 
 
 Corner = collections.namedtuple("Corner", "name x y")
@@ -521,9 +638,11 @@ class RunSummary:
     flexbond's spike ratio), contact_loss [ContactLoss], and ride: the ride
     metrics {a_w_rms, mtvv, vdv, crest, absorbed_power, jerk_peak, jerk_rms,
     duration} of the first mounted body's acceleration over ride_window, or
-    None with ride_note saying why."""
+    None with ride_note saying why; basis_error {output: estimated error of
+    System 2's reduced modal basis, over the output's range} when
+    Scenario.study estimated it, else None."""
 
-    def __init__(self, scenario, system, res, summary):
+    def __init__(self, scenario, system, res, summary, basis_error=None):
         self.system = system
         self.result = _result(res, system)
         window = (ctypes.c_double * 2)()
@@ -535,6 +654,8 @@ class RunSummary:
                  for c in range(_lib.fb_scenario_ncorners(scenario))]
         self.outputs = {n: _stats(_lib.fb_run_summary_output(summary, k).contents)
                         for k, n in enumerate(names)}
+        self.basis_error = (None if basis_error is None
+                            else {n: basis_error[k] for k, n in enumerate(names)})
         self.contact = {n: _stats(_lib.fb_run_summary_contact(summary, c).contents)
                         for c, n in enumerate(tires)}
         self.contact_ratio = {n: _lib.fb_run_summary_contact_ratio(summary, c)
@@ -557,8 +678,182 @@ class RunSummary:
             self.ride_note = note.value.decode(errors="replace")
 
 
+def _findings(s, rep, names):
+    """Study's members from the report data rep of the runs of systems names."""
+    outputs = [_lib.fb_scenario_output_name(s, k).decode()
+               for k in range(_lib.fb_scenario_noutputs(s))]
+    tires = [_lib.fb_scenario_corner_name(s, c).decode()
+             for c in range(_lib.fb_scenario_ncorners(s))]
+
+    def output(k):
+        return outputs[k] if k < len(outputs) else None
+
+    window = (ctypes.c_double * 2)()
+    mesh_error = (tuple(window) if _lib.fb_study_mesh_error(s, window) else None)
+    _lib.fb_study_report_window(rep, window)
+    found = {"window": (window[0], window[1]), "mesh_error": mesh_error,
+             "wheel_windows": {}, "comparison": None,
+             "differences": None, "torsion_max_abs": {}, "contact_extremes": {}}
+    for c, tire in enumerate(tires):
+        _lib.fb_study_report_wheel_window(rep, c, window)
+        found["wheel_windows"][tire] = (window[0], window[1])
+    found["tire_models"] = {}
+    for c in range(len(tires)):
+        model = _lib.fb_scenario_corner_tire(s, c).decode()
+        found["tire_models"][model] = found["tire_models"].get(model, 0) + 1
+    cmp = _lib.fb_study_report_cmp(rep, 0)  # FB_STUDY_CMP_SYSTEM2
+    if cmp:
+        found["comparison"] = {
+            name: OutputComparison(*(getattr(cmp[k], n) for n, _ in _OutputCmp._fields_))
+            for k, name in enumerate(outputs)}
+        d = _lib.fb_study_report_differences(rep, 0)
+        found["differences"] = Differences(
+            output(d.largest), d.nvarying, d.nnotable,
+            [n for k, n in enumerate(outputs) if _lib.fb_study_report_notable(rep, 0, k)])
+    found["largest_rms_change"] = output(_lib.fb_study_report_largest_rms_change(rep))
+    torsion = _lib.fb_study_report_torsion_output(rep)
+    found["torsion"] = output(torsion)
+    factor = ctypes.c_double()
+    grows = output(_lib.fb_study_report_largest_growth(rep, ctypes.byref(factor)))
+    found["largest_growth"] = (grows, factor.value) if grows else None
+    for i, name in enumerate(names):
+        run = _lib.fb_study_report_run(rep, i)
+        if found["torsion"]:
+            found["torsion_max_abs"][name] = _lib.fb_study_run_max_abs(run, torsion)
+        most, least = ctypes.c_size_t(), ctypes.c_size_t()
+        _lib.fb_study_report_contact_extremes(rep, run, ctypes.byref(most), ctypes.byref(least))
+        found["contact_extremes"][name] = (tires[most.value], tires[least.value])
+    return found
+
+
+def _summarised_run(s, v, reporter, window, basis_error):
+    """v run (a vehicle of scenario s) and summarised over window, with its
+    reduced basis's error estimate when basis_error: (result, summary,
+    basis error or None)."""
+    res, summary, err = ctypes.c_void_p(), ctypes.c_void_p(), _Err()
+    _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res), None,
+                               ctypes.byref(err)), err)
+    run = [(res, summary, None)]
+    try:
+        _check(_lib.fb_run_summary_new(s, res, window, ctypes.byref(summary), ctypes.byref(err)),
+               err)
+        if basis_error and _lib.fb_vehicle_basis_reduced(v):
+            est = (ctypes.c_double * max(1, _lib.fb_scenario_noutputs(s)))()
+            _check(_lib.fb_vehicle_basis_error(v, res, window, reporter.run_fn, None, est,
+                                               ctypes.byref(err)), err)
+            run[0] = (res, summary, est)
+        return run[0]
+    except BaseException:
+        _free_runs(run)
+        raise
+
+
+def _study_run(sys_id, handle):
+    res, summary, est = handle
+    return _StudyRun(sys_id, res.value, summary.value,
+                     ctypes.cast(est, _PDOUBLE) if est is not None else None)
+
+
+def _converged_findings(s, rep, fine, density):
+    """Study's members of the converged run fine (or None) at density."""
+    if not fine:
+        return {"converged": None, "converged_density": None, "comparison_converged": None,
+                "differences_converged": None, "mesh_crossings": 0, "mesh_diff": None}
+    outputs = [_lib.fb_scenario_output_name(s, k).decode()
+               for k in range(_lib.fb_scenario_noutputs(s))]
+    cmp = _lib.fb_study_report_cmp(rep, 1)  # FB_STUDY_CMP_CONVERGED
+    d = _lib.fb_study_report_differences(rep, 1)
+    return {
+        "converged": RunSummary(s, "flexible", fine[0], fine[1], fine[2]),
+        "converged_density": density,
+        "comparison_converged": {
+            name: OutputComparison(*(getattr(cmp[k], n) for n, _ in _OutputCmp._fields_))
+            for k, name in enumerate(outputs)},
+        "differences_converged": Differences(
+            outputs[d.largest] if d.largest < len(outputs) else None, d.nvarying, d.nnotable,
+            [n for k, n in enumerate(outputs) if _lib.fb_study_report_notable(rep, 1, k)]),
+        "mesh_crossings": _lib.fb_study_report_mesh_crossings(rep),
+        "mesh_diff": {n: _lib.fb_study_report_mesh_diff(rep, k) for k, n in enumerate(outputs)}}
+
+
+def _free_runs(handles):
+    """Frees the runs [(result, summary)] of a study."""
+    for res, summary, _ in handles:
+        _lib.fb_run_summary_free(ctypes.byref(summary))
+        _lib.fb_result_free(ctypes.byref(res))
+
+
 def _stats(s):
     return OutputStats(s.static, s.peak, s.peak_time, s.min, s.min_time, s.rms)
+
+
+Eigenvalues = collections.namedtuple("Eigenvalues", "values nstates zero_tol t")
+Eigenvalues.__doc__ = """The eigenvalues of a graph's state equations linearised at its
+initial state at time t (s), as flexbond eig lists them: values (complex,
+1/s; by |imaginary part|, then real part, a pair's positive member first),
+the diagram's nstates, and zero_tol (n eps ||A||_F): the nstates -
+len(values) eigenvalues within it of 0 are round-off, left out."""
+
+_VEHICLE_MEMORY_LIMIT = 4 << 30  # FB_VEHICLE_MEMORY_LIMIT, bytes
+
+
+def _eigenvalues(graph, t, x0, what, on_error):
+    """The Eigenvalues of graph (no probes: they do not change the state
+    equations) at time t and state x0 (NULL: the graph's initial state);
+    on_error(err) locates an error of the graph before it is raised."""
+    bd, e, err = ctypes.c_void_p(), ctypes.POINTER(_BdEigen)(), _Err()
+    try:
+        if _lib.fb_bd_build(graph, None, 0, ctypes.byref(bd), ctypes.byref(err)) != 0:
+            on_error(err)
+            raise Error(err)
+        _check(_lib.fb_bd_eigen_new(bd, t, x0, _VEHICLE_MEMORY_LIMIT, what.encode(),
+                                    ctypes.byref(e), ctypes.byref(err)), err)
+        n = e.contents.n if e else 0
+        values = numpy.array([complex(e.contents.re[i], e.contents.im[i]) for i in range(n)])
+        return Eigenvalues(values, _lib.fb_bd_nstates(bd) if bd else 0,
+                           e.contents.zero_tol if e else 0.0, t)
+    finally:
+        _lib.fb_bd_eigen_free(ctypes.byref(e))
+        _lib.fb_bd_free(ctypes.byref(bd))
+
+
+MassProps = collections.namedtuple("MassProps", "mass cg inertia")
+MassProps.__doc__ = """A hull's mass (kg), centre of mass (x, y, z; m) and inertia tensor
+about it (3 x 3 numpy array, kg m^2)."""
+
+SectionTotals = collections.namedtuple("SectionTotals", "nelements area mass")
+SectionTotals.__doc__ = """The elements of one plate section: how many, their area (m^2) and
+their mass (kg)."""
+
+HullMesh = collections.namedtuple("HullMesh", "nodes tri3 quad4 sections structure as_built")
+HullMesh.__doc__ = """System 2's hull mesh (Scenario.hull_mesh), as flexbond mesh prints it:
+its node and element counts (S3 triangles, S4 quadrilaterals), sections
+{element set: SectionTotals} when the plates differ ("hull.material" for
+the elements of none; empty when they are all one), the structure's
+MassProps and the hull's as built with its declared masses (None without
+any)."""
+
+
+def _mass_props(h, with_masses):
+    p, err = _HullMassProps(), _Err()
+    _check(_lib.fb_fe_hull_mass_props(h, with_masses, ctypes.byref(p), ctypes.byref(err)), err)
+    return MassProps(p.mass, tuple(p.cg), numpy.array(p.inertia).reshape(3, 3))
+
+
+def _hull_mesh(h):
+    """The HullMesh of the realised finite-element hull h."""
+    mesh = _lib.fb_fe_hull_mesh(h)
+    sections = {}
+    nsections = _lib.fb_mesh_nsections(mesh)
+    for sec in range(-1, nsections) if nsections else ():
+        totals = _lib.fb_fe_hull_section_totals(h, sec)
+        if totals.nelements:
+            name = ("hull.material" if sec < 0
+                    else _lib.fb_mesh_section_elset(mesh, sec).decode(errors="replace"))
+            sections[name] = SectionTotals(totals.nelements, totals.area, totals.mass)
+    as_built = _mass_props(h, 1) if _lib.fb_fe_hull_npoint_masses(h) else None
+    return HullMesh(_lib.fb_mesh_nnodes(mesh), _lib.fb_mesh_count(mesh, 3),
+                    _lib.fb_mesh_count(mesh, 4), sections, _mass_props(h, 0), as_built)
 
 
 HullModes = collections.namedtuple("HullModes", "hull_freq_hz nrigid vehicle nfree")
@@ -567,15 +862,43 @@ hull's frequencies (Hz, the nrigid rigid-body ones first) and the undamped
 vehicle's [(freq_hz, description)], nfree zero-frequency modes left out."""
 
 
-class Study:
-    """Systems of one scenario run and compared, as flexbond run does: runs
-    {system: RunSummary} and, with two systems, comparison {output:
-    OutputComparison} of the second against the first (System 2 against
-    System 1 for the default ("rigid", "flexible"))."""
+Differences = collections.namedtuple("Differences", "largest nvarying nnotable notable")
+Differences.__doc__ = """Of a comparison's outputs (flexbond/study.h): the name of the one
+with the largest relative difference (None when no output varies in the
+first system), how many vary there, how many of those differ by more than
+NOTABLE_DIFF of the first system's range, and their names."""
 
-    def __init__(self, runs, comparison):
+NOTABLE_DIFF = 0.05    # FB_STUDY_NOTABLE_DIFF: a notable difference, of the range
+NOTABLE_CHANGE = 0.05  # FB_STUDY_NOTABLE_CHANGE: a notable peak or r.m.s. change
+
+
+class Study:
+    """Systems of one scenario run and compared, as flexbond run does, with
+    the findings its report.md states, all from the library's report data
+    (fb_study_report):
+
+    runs {system: RunSummary}; comparison {output: OutputComparison} of the
+    second against the first with two systems (System 2 against System 1
+    for the default ("rigid", "flexible")), else None; window, the response
+    window (s); wheel_windows {tire: (entry, exit)}, when each wheel meets
+    the road's feature and leaves it (s); tire_models {model: number of
+    tires}; differences, a Differences with two systems, else None;
+    largest_rms_change, the output whose r.m.s. changes the most (None
+    without a comparison); torsion, the torsion angle's output (None when
+    none) and torsion_max_abs {system: its largest |value| over the run};
+    largest_growth (output, peak / static) of the first system, the output
+    that grows the most relative to its static value (None when none); and
+    contact_extremes {system: (tire, tire)}, the tire whose peak reaction is
+    the largest multiple of its static one and the one with the smallest
+    reaction over the window; mesh_error, the estimated band (low, high) by
+    which a generated hull's first elastic free-free frequencies lie above
+    their converged values, as fractions (None for a deck or without a
+    finite-element hull)."""
+
+    def __init__(self, runs, comparison, **findings):
         self.runs = runs
         self.comparison = comparison
+        self.__dict__.update(findings)
 
 Mode = collections.namedtuple("Mode", "eigenvalue freq_hz damping_ratio description")
 Mode.__doc__ = """A mode: eigenvalue (complex, 1/s), freq_hz (|lambda| / 2 pi, or
@@ -896,7 +1219,22 @@ def _overrides(items):
     return (_Override * max(1, len(keep)))(*[_Override(*o) for o in keep]), len(keep)
 
 
-class Scenario:
+class _Closing:
+    """close() when a with block ends and when collected (not at interpreter
+    exit, the library gone)."""
+
+    def __del__(self):
+        if _lib is not None:
+            self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+class Scenario(_Closing):
     """A scenario file (docs/scenario-format.md), loaded and checked, with
     overrides: {key: value}, each key a key path of the file
     ("road.speed_kmh") or a key name that names one ("speed_kmh"), each value
@@ -978,16 +1316,6 @@ class Scenario:
             if self._s:
                 _lib.fb_scenario_free(ctypes.byref(self._s))
 
-    def __del__(self):
-        if _lib is not None:  # not at interpreter exit, the library gone
-            self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
     def _handle(self):
         if not self._s:
             raise ValueError("flexbond: the scenario is closed")
@@ -1040,54 +1368,145 @@ class Scenario:
 
         return self._with_vehicle(system, use, progress=progress)
 
-    def study(self, systems=("rigid", "flexible"), progress=None):
+    def study(self, systems=("rigid", "flexible"), progress=None, basis_error=False,
+              converged=False):
         """Runs each of systems (one or two) and summarises it with the
         library's study layer, and compares two (flexbond/study.h): a Study,
-        the numbers flexbond run writes in summary.json. progress as run's."""
+        the numbers flexbond run writes in summary.json. progress as run's.
+        basis_error: also estimate the error of System 2's reduced modal
+        basis, as flexbond run does (a second run with the basis's next
+        block of Ritz vectors, fb_vehicle_basis_error). converged: with both
+        systems, also run System 2 again on the hull refined to the
+        scenario's hull.mesh.converged_density, as flexbond run does when it
+        is above hull.mesh.density (a scenario loaded from a file)."""
         names = [_SYSTEM_NAMES[_system(s)] for s in systems]
         if not 1 <= len(names) <= 2:
             raise ValueError("flexbond: study takes one or two systems, got %d" % len(names))
 
-        def use(v, reporter):
-            res, summary = ctypes.c_void_p(), ctypes.c_void_p()
-            err = _Err()
-            _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res), None,
-                                       ctypes.byref(err)), err)
-            if _lib.fb_run_summary_new(self._s, res, None, ctypes.byref(summary),
-                                       ctypes.byref(err)) != 0:
-                _lib.fb_result_free(ctypes.byref(res))
-                raise Error(err)
-            return res, summary
+        window = (ctypes.c_double * 2)()
+        handles, fine = [], []
+        # The scenario stays open until the summaries are read.
+        with self._held(), contextlib.ExitStack() as cleanup:
+            cleanup.callback(_free_runs, handles)
+            cleanup.callback(_free_runs, fine)
+            _lib.fb_study_response_window(self._s, window)
+            for system in systems:
+                handles.append(self._with_vehicle(
+                    system, lambda v, r: _summarised_run(self._s, v, r, window, basis_error),
+                    progress=progress))
+            density = _lib.fb_scenario_converged_density(self._s)
+            if converged and len(handles) == 2 and density and self._data_name is None:
+                fine.append(self._converged_run(density, window, basis_error, progress))
+            runs = {n: RunSummary(self._s, n, res, summary, est)
+                    for n, (res, summary, est) in zip(names, handles)}
+            return self._report(names, handles, runs, fine[0] if fine else None, density)
 
-        handles = []
-        with self._calls:  # the scenario stays open until the summaries are read
-            self._handle()
+    def _converged_run(self, density, window, basis_error, progress):
+        """System 2 of the file loaded again with hull.mesh.density at
+        density, in the automatic modal basis (fb_scenario_use_auto_basis),
+        summarised over this scenario's window: (result, summary, basis
+        error or None), as flexbond run's rerun."""
+        overrides = dict(self.overrides)
+        overrides["hull.mesh.density"] = density
+        with warnings.catch_warnings():  # this scenario's warnings, said once
+            warnings.simplefilter("ignore", PlausibilityWarning)
+            refined = Scenario(self.path, overrides)
+        with refined:
+            _lib.fb_scenario_use_auto_basis(refined._s)
+            return refined._with_vehicle(
+                "flexible", lambda v, r: _summarised_run(refined._s, v, r, window, basis_error),
+                progress=progress)
+
+
+    @contextlib.contextmanager
+    def _held(self):
+        """The scenario's handle, counted as a call from here to the block's
+        end, so that close() waits for it."""
+        with self._calls:
+            s = self._handle()
             self._ncalls += 1
         try:
-            for system in systems:
-                handles.append(self._with_vehicle(system, use, progress=progress))
-            runs = {n: RunSummary(self._s, n, res, summary)
-                    for n, (res, summary) in zip(names, handles)}
-            comparison = None
-            if len(handles) == 2:
-                noutputs = _lib.fb_scenario_noutputs(self._s)
-                cmp = (_OutputCmp * max(1, noutputs))()
-                err = _Err()
-                (r1, s1), (r2, s2) = handles
-                _check(_lib.fb_study_compare(self._s, r1, r2, s1, s2, cmp, None,
-                                             ctypes.byref(err)), err)
-                comparison = {
-                    _lib.fb_scenario_output_name(self._s, k).decode():
-                        OutputComparison(*(getattr(cmp[k], n) for n, _ in _OutputCmp._fields_))
-                    for k in range(noutputs)}
-            return Study(runs, comparison)
+            yield s
         finally:
-            for res, summary in handles:
-                _lib.fb_run_summary_free(ctypes.byref(summary))
-                _lib.fb_result_free(ctypes.byref(res))
             with self._calls:
                 self._ncalls -= 1
                 self._calls.notify_all()
+
+    @contextlib.contextmanager
+    def _fe_hull(self):
+        """System 2's finite-element hull of the scenario (fb_vehicle_fe_hull),
+        freed at the block's end."""
+        with self._held() as s:
+            h, err = ctypes.c_void_p(), _Err()
+            _check_about(s, _lib.fb_vehicle_fe_hull(s, ctypes.byref(h), ctypes.byref(err)), err,
+                         self._data_name)
+            try:
+                yield h
+            finally:
+                _lib.fb_fe_hull_free(ctypes.byref(h))
+
+    def _report(self, names, handles, runs, fine, density):
+        """The Study of the runs handles [(result, summary, basis error)] of
+        systems names and of System 2 on the converged mesh (fine, or None),
+        from the library's report data (fb_study_report)."""
+        study_runs = (_StudyRun * len(handles))(
+            *(_study_run(_SYSTEMS[n], h) for n, h in zip(names, handles)))
+        conv = _study_run(FLEXIBLE, fine) if fine else None
+        rep, err = ctypes.c_void_p(), _Err()
+        _check(_lib.fb_study_report_new(self._s, study_runs, len(handles),
+                                        ctypes.byref(conv) if conv else None,
+                                        ctypes.byref(rep), ctypes.byref(err)), err)
+        try:
+            found = _findings(self._s, rep, names)
+            found.update(_converged_findings(self._s, rep, fine, density))
+            return Study(runs, **found)
+        finally:
+            _lib.fb_study_report_free(ctypes.byref(rep))
+
+    def eigenvalues(self, system="rigid"):
+        """The eigenvalues of system's graph linearised at its initial state
+        (every state 0) and start time, as flexbond eig lists them
+        (fb_bd_eigen_new): Eigenvalues. modes() linearises at the static
+        equilibrium instead."""
+        sys_id = _system(system)
+        graph, probes, nprobes, err = ctypes.c_void_p(), ctypes.c_void_p(), ctypes.c_size_t(), \
+            _Err()
+        with self._held() as s:  # open until the graph is made
+            try:
+                _check_about(s, _lib.fb_vehicle_graph(s, sys_id, ctypes.byref(graph),
+                                                      ctypes.byref(probes), ctypes.byref(nprobes),
+                                                      ctypes.byref(err)), err, self._data_name)
+                opts = _SimOpts()
+                _lib.fb_vehicle_sim_opts(s, ctypes.byref(opts))
+                return _eigenvalues(graph, opts.t_start, opts.x0,
+                                    "eigenvalues of " + _SYSTEM_NAMES[sys_id], lambda err: None)
+            finally:
+                _lib.fb_vehicle_probes_free(ctypes.byref(probes), nprobes.value)
+                _lib.fb_bg_free(ctypes.byref(graph))
+
+    def hull_mesh(self):
+        """System 2's finite-element hull as flexbond mesh builds and
+        describes it (the generator or the deck, checked): a HullMesh, from
+        the same library calls (fb_fe_hull_mass_props,
+        fb_fe_hull_section_totals). Error when the scenario has no
+        finite-element hull."""
+        with self._fe_hull() as h:
+            return _hull_mesh(h)
+
+    def hull_matrices(self):
+        """The hull structure's own stiffness and mass matrices (K, M; N/m
+        and kg, six DOFs per node in node order, the hull.masses left out)
+        as scipy.sparse matrices: flexbond mesh --export-matrices's K.mtx
+        and M.mtx, from the same library call (fb_fe_hull_matrices)."""
+        with self._fe_hull() as h:
+            K, M, err = ctypes.c_void_p(), ctypes.c_void_p(), _Err()
+            try:
+                _check(_lib.fb_fe_hull_matrices(h, ctypes.byref(K), ctypes.byref(M),
+                                                ctypes.byref(err)), err)
+                return _sparse(K), _sparse(M)
+            finally:
+                _lib.fb_mat_free(ctypes.byref(K))
+                _lib.fb_mat_free(ctypes.byref(M))
 
     def hull_modes(self, nhull=30, nvehicle=20, progress=None):
         """System 2's structural modes, as flexbond modes --system flexible
@@ -1406,7 +1825,65 @@ class Scenario:
 
 # ---- Stepping.
 
-class Simulation:
+class ModelFile(_Closing):
+    """A bond-graph model file (docs/model-format.md) loaded and checked as
+    flexbond sim reads it; Error at its file, line and key when it is wrong.
+    name is its model's name; warnings the load's warnings (the messages
+    flexbond sim prints and goes on). close() frees it (also done by the
+    garbage collector and by a with block)."""
+
+    def __init__(self, path):
+        self._m = ctypes.c_void_p()
+        err = _Err()
+        _check(_lib.fb_model_load(_c_text(os.fspath(path), "path"), ctypes.byref(self._m),
+                                  ctypes.byref(err)), err)
+        self.name = _lib.fb_model_name(self._m).decode()
+        self.warnings = [_lib.fb_model_warning(self._m, i).contents.msg.decode(
+            errors="replace") for i in range(_lib.fb_model_nwarnings(self._m))]
+
+    def simulate(self, t_end=None, rtol=None, sample_rate=None):
+        """The model run as flexbond sim runs it, from its simulation.initial
+        state, with its file's solver settings or t_end (s), rtol and
+        sample_rate (Hz) instead (--t-end, --rtol, --sample-rate): a Result
+        with t and each probe, probes.csv's columns. The call holds the
+        interpreter's thread until the run ends."""
+        if not self._m:
+            raise ValueError("flexbond: the model file is closed")
+        given = [0.0 if v is None else float(v) for v in (t_end, rtol, sample_rate)]
+        for name, v in zip(("t_end", "rtol", "sample_rate"), given):
+            if not v >= 0:  # also NaN; 0 would mean "the file's"
+                raise ValueError("flexbond: %s must be > 0 (got %r)" % (name, v))
+        opts = _lib.fb_model_sim_opts_with(self._m, *given)
+        ms, res, err = ctypes.c_void_p(), ctypes.c_void_p(), _Err()
+        try:
+            _check(_lib.fb_model_sim_new(self._m, ctypes.byref(ms), ctypes.byref(err)), err)
+            _check(_lib.fb_model_sim_run(ms, ctypes.byref(opts), ctypes.byref(res),
+                                         ctypes.byref(err)), err)
+            return _result(res, self.name)
+        finally:
+            _lib.fb_result_free(ctypes.byref(res))
+            _lib.fb_model_sim_free(ctypes.byref(ms))
+
+    def eigenvalues(self):
+        """The eigenvalues of the model's state equations linearised at its
+        graph's initial state and start time, as flexbond eig lists them
+        (fb_bd_eigen_new): Eigenvalues."""
+        if not self._m:
+            raise ValueError("flexbond: the model file is closed")
+        opts = _lib.fb_model_sim_opts(self._m).contents
+        return _eigenvalues(_lib.fb_model_graph(self._m), opts.t_start, opts.x0,
+                            "eigenvalues of " + self.name,
+                            lambda err: _lib.fb_model_blame(self._m, ctypes.byref(err)))
+
+    def close(self):
+        if self._m:
+            _lib.fb_model_free(ctypes.byref(self._m))
+
+    def __repr__(self):
+        return "<flexbond.ModelFile %s>" % self.name
+
+
+class Simulation(_Closing):
     """One system of a scenario simulated step by step, as an FMI
     co-simulation slave (fmi2DoStep) or a Chrono system (DoStepDynamics) is:
     advance(t) integrates to time t exactly, outputs reads every output
@@ -1553,16 +2030,6 @@ class Simulation:
         """Frees the simulation (also done when it is garbage-collected)."""
         if getattr(self, "_st", None):
             _lib.fb_vehicle_stepper_free(ctypes.byref(self._st))
-
-    def __del__(self):
-        if _lib is not None:
-            self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
 
     def __repr__(self):
         return "<flexbond.Simulation %s at t = %g s>" % (

@@ -371,8 +371,13 @@ typedef struct cli_run_outputs {
   const fb_scenario *scenario;
   const cli_run_system *runs; /* System 1 first when both */
   size_t nruns;
-  const fb_result *diff; /* System 2 minus System 1, NULL unless both ran */
-  fb_output_cmp *cmp;    /* s->noutputs, set when diff is */
+  /* The report's data (flexbond/study.h; borrowed): the runs, their
+   * comparisons and the findings report.md and summary.json state. Of it,
+   * System 2 minus System 1 and each output's comparison (s->noutputs),
+   * NULL unless both ran. */
+  const fb_study_report *report;
+  const fb_result *diff;
+  const fb_output_cmp *cmp;
   double bump_window[2]; /* first wheel's bump entry, last wheel's exit, s */
   int figures;           /* 0 with --no-figures */
   fb_csv_header header;  /* of systemN.csv (--plain-header) */
@@ -395,7 +400,7 @@ typedef struct cli_run_outputs {
   const fb_hull_basis *converged_basis;
   int converged_density;
   const fb_result *diff_converged;
-  fb_output_cmp *cmp_converged;
+  const fb_output_cmp *cmp_converged;
   const char *note; /* why a system did not run, or NULL */
   /* The frequency response of each system that ran, by system (flexbond
    * freq's bode_<OUTPUT>.png; borrowed), NULL without figures or when it

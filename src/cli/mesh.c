@@ -2,7 +2,6 @@
 /* flexbond mesh: the System 2 hull mesh of a scenario (generated or
  * imported), its mass properties, and its export as an Abaqus/CalculiX
  * deck (.inp) or a VTK unstructured grid (.vtu). */
-#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -42,51 +41,33 @@ static int ends_with(const char *s, const char *tail)
  * hull with its declared masses. */
 static int print_mass(const fb_fe_hull *h, int as_built, fb_err *err)
 {
-  fb_mat *M = NULL;
-  double mass, cg[3], inertia[9];
-  int rc = as_built ? fb_fe_hull_mass_matrix(h, &M, err)
-                    : fb_fem_assemble(h->mesh, &h->props, h->mass_kind, NULL, &M, err);
-  if (!rc)
-    rc = fb_fem_mass_properties(h->mesh, M, &mass, cg, inertia, err);
-  fb_mat_free(&M);
+  fb_hull_mass_props p;
+  const int rc = fb_fe_hull_mass_props(h, as_built, &p, err);
   if (rc)
     return rc;
   if (as_built)
     printf("with its %zu hull masses: ", h->npoint_masses);
-  printf("mass %.6g kg, centre of mass (%.4g, %.4g, %.4g) m\n", mass, cg[0], cg[1], cg[2]);
+  printf("mass %.6g kg, centre of mass (%.4g, %.4g, %.4g) m\n", p.mass, p.cg[0], p.cg[1],
+         p.cg[2]);
   printf("%sabout the centre of mass: Ixx %.6g, Iyy %.6g, Izz %.6g, Ixz %.4g kg m^2\n",
-         as_built ? "  " : "", inertia[0], inertia[4], inertia[8], inertia[2]);
+         as_built ? "  " : "", p.inertia[0], p.inertia[4], p.inertia[8], p.inertia[2]);
   return FB_OK;
-}
-
-/* Area of element e (its projected area if it is warped). */
-static double element_area(const fb_mesh *m, size_t e)
-{
-  double v[3];
-  fb_mesh_element_area_vector(m, e, v);
-  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
 /* One line per section (sec -1: the elements without one, which take
  * the scenario's hull.material): elements, area, plate and mass. */
 static void print_section(const fb_fe_hull *h, long sec)
 {
-  size_t n = 0;
-  double area = 0.0;
-  for (size_t e = 0; e < fb_mesh_nelements(h->mesh); ++e)
-    if (fb_mesh_element_section(h->mesh, e) == sec) {
-      ++n;
-      area += element_area(h->mesh, e);
-    }
-  if (n == 0)
+  const fb_hull_section_totals t = fb_fe_hull_section_totals(h, sec);
+  if (t.nelements == 0)
     return;
   const fb_shell_props *p = sec >= 0 ? fb_mesh_section_props(h->mesh, (size_t)sec) : &h->props;
   printf("  %-16s %5zu elements, %8.4g m^2, %g m, E %g Pa, nu %g, %g kg/m^3",
-         sec >= 0 ? fb_mesh_section_elset(h->mesh, (size_t)sec) : "hull.material", n, area,
-         p->thickness, p->young, p->poisson, p->density);
+         sec >= 0 ? fb_mesh_section_elset(h->mesh, (size_t)sec) : "hull.material", t.nelements,
+         t.area, p->thickness, p->young, p->poisson, p->density);
   if (p->nonstructural_mass > 0.0)
     printf(" + %g kg/m^2", p->nonstructural_mass);
-  printf(": %.6g kg\n", (p->density * p->thickness + p->nonstructural_mass) * area);
+  printf(": %.6g kg\n", t.mass);
 }
 
 static int print_properties(const fb_fe_hull *h, fb_err *err)
@@ -132,7 +113,7 @@ static void write_dofs(FILE *fp, const void *hull)
 static int export_matrices(const fb_fe_hull *h, const char *dir, fb_err *err)
 {
   fb_mat *K = NULL, *M = NULL;
-  int rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, &M, err);
+  int rc = fb_fe_hull_matrices(h, &K, &M, err);
   cli_outdir od;
   const int opened = rc == FB_OK && (rc = cli_outdir_open(&od, dir, "mesh", err)) == FB_OK;
   if (rc == FB_OK)

@@ -16,13 +16,6 @@
 
 #include "cli.h"
 
-/* A difference between the systems counts as notable above 5 % of System
- * 1's peak-to-peak range over the bump, a peak or RMS change above 5 % of
- * System 1's value: a few times the scatter of reading the paper's plots,
- * well above the solvers' error (rtol 1e-6). */
-static const double notable_diff = 0.05;
-static const double notable_change = 0.05;
-
 /* 180 / pi; M_PI is not in C11. */
 #define DEGREES_PER_RADIAN 57.295779513082320877
 
@@ -30,15 +23,6 @@ static const double notable_change = 0.05;
 static double ratio(double num, double den)
 {
   return den != 0 ? num / den : NAN;
-}
-
-/* Largest |value| of column col of r over the whole run. */
-static double max_abs(const fb_result *r, size_t col)
-{
-  double m = 0;
-  for (size_t k = 0; k < fb_result_nsamples(r); ++k)
-    m = fmax(m, fabs(fb_result_row(r, k)[col]));
-  return m;
 }
 
 /* ---- Markdown. */
@@ -92,15 +76,17 @@ static void md_percent(FILE *fp, double fraction, int sign)
 
 /* When every wheel meets the bump and leaves it: derived from the
  * corners' positions, the speed and the road. */
-static void write_corner_timing(FILE *fp, const fb_scenario *s)
+static void write_corner_timing(FILE *fp, const fb_study_report *rep)
 {
+  const fb_scenario *s = fb_study_report_scenario(rep);
   fputs("\n| corner | x, y [m] | bump entry, exit [s] |\n|---|---|---|\n", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {
     const fb_corner_params *p = &s->corner[c];
+    double w[2];
+    fb_study_report_wheel_window(rep, c, w);
     fputs("| ", fp);
     fb_md_write_text(fp, p->name);
-    fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", p->x, p->y,
-            fb_scenario_road_entry(s, (int)c), fb_scenario_road_exit(s, (int)c));
+    fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", p->x, p->y, w[0], w[1]);
   }
 }
 
@@ -176,7 +162,7 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
                              : "its finite-element mesh's",
           o->bump_window[0], o->bump_window[1]);
   write_point_masses(fp, s);
-  write_corner_timing(fp, s);
+  write_corner_timing(fp, o->report);
   fputs("\nEvery value the run used, as the scenario format declares it "
         "(docs/scenario-format.md), and where the file gave it:\n\n"
         "| key | value | unit | from | meaning |\n|---|---|---|---|---|\n",
@@ -250,9 +236,8 @@ static void write_basis_error(FILE *fp, const cli_run_outputs *o)
     return;
   const fb_scenario *s = o->scenario;
   size_t worst = 0;
-  for (size_t k = 1; k < s->noutputs; ++k)
-    if (r->basis_error[k] > r->basis_error[worst])
-      worst = k;
+  fb_study_run_worst_basis_error(fb_study_report_run(o->report, (size_t)(r - o->runs)),
+                                 s->noutputs, &worst);
   fprintf(fp,
           "  Its estimated error, the largest difference from the same run with the basis's "
           "next block of load-dependent Ritz vectors from the first bump entry (%.4f s) to "
@@ -269,7 +254,7 @@ static void write_basis_error(FILE *fp, const cli_run_outputs *o)
   fputs(". The settling from a zero start excites every mode and is not part of this "
         "estimate.",
         fp);
-  if (s->noutputs && r->basis_error[worst] > 1e-3)
+  if (s->noutputs && r->basis_error[worst] > FB_STUDY_BASIS_ERROR_NOTABLE)
     fputs(" Above 0.1 %, a higher `hull.fe.cutoff_hz` (or `--hull-cutoff`) keeps more modes "
           "and lowers it.",
           fp);
@@ -326,32 +311,24 @@ static void write_hull_order(FILE *fp, const cli_run_outputs *o)
   write_basis_error(fp, o);
 }
 
-/* Mesh error of the generated hull, as measured on the reference hull
- * (bench/hull_convergence.sh, docs/hull-mesh.md "Convergence"): at
- * density 1 its first ten elastic free-free frequencies are 12 % to 21 %
- * above the converged ones, and the error falls as 1 / density^2 (observed
- * orders 1.4 to 2.4; at densities 2 to 6 the measured errors lie within
- * these bounds over d^2, the lowest mode up to 0.6 of a point below). */
-#define MESH_ERROR_LOW 12.0
-#define MESH_ERROR_HIGH 21.0
-
+/* The estimated mesh error of a generated hull (fb_study_mesh_error). */
 static void write_mesh_error(FILE *fp, const fb_scenario *s)
 {
-  if (s->hull_deck) {
+  double band[2];
+  if (!fb_study_mesh_error(s, band)) {
     fputs("- Mesh convergence: not estimated for a deck; compare with a finer deck of the "
           "same hull.\n",
           fp);
     return;
   }
-  const double d2 = (double)s->hull_mesh.density * (double)s->hull_mesh.density;
   fprintf(fp,
           "- Mesh convergence (an estimate, not computed in this run): at density %d the "
           "hull's first ten elastic free-free frequencies are about %.2g %% to %.2g %% above "
           "their converged values (the reference hull's measured %.0f %% to %.0f %% at "
           "density 1, falling as 1 / density^2; docs/hull-mesh.md, \"Convergence\"). The "
           "vehicle's suspension modes move by less than 0.1 %% with the mesh.\n",
-          s->hull_mesh.density, MESH_ERROR_LOW / d2, MESH_ERROR_HIGH / d2, MESH_ERROR_LOW,
-          MESH_ERROR_HIGH);
+          s->hull_mesh.density, 100 * band[0], 100 * band[1], 100 * FB_STUDY_MESH_ERROR_LOW,
+          100 * FB_STUDY_MESH_ERROR_HIGH);
 }
 
 static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
@@ -608,8 +585,7 @@ static void write_output_cells(FILE *fp, const cli_run_outputs *o, size_t k)
   fputs("| ", fp);
   fb_md_write_text(fp, o->scenario->output[k].label);
   fputs(" | ", fp);
-  fb_md_write_text(
-      fp, fb_result_col_unit(o->runs[0].res, fb_run_summary_column(o->runs[0].sum, k)));
+  fb_md_write_text(fp, fb_study_report_unit(o->report, k));
   fputs(" |", fp);
 }
 
@@ -652,26 +628,6 @@ static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
 
 /* ---- System 2 at the converged mesh. */
 
-/* The largest |a - b| in column col from t0 on (a and b sampled alike). */
-static double max_abs_between(const fb_result *a, const fb_result *b, size_t col, double t0)
-{
-  double m = 0;
-  for (size_t k = 0; k < fb_result_nsamples(a) && k < fb_result_nsamples(b); ++k)
-    if (fb_result_row(a, k)[0] >= t0)
-      m = fmax(m, fabs(fb_result_row(a, k)[col] - fb_result_row(b, k)[col]));
-  return m;
-}
-
-/* The largest estimated error of r's basis over its outputs, NaN when it
- * was not estimated. */
-static double worst_basis_error(const cli_run_system *r, size_t noutputs)
-{
-  double m = r->basis_error ? 0.0 : NAN;
-  for (size_t k = 0; r->basis_error && k < noutputs; ++k)
-    m = fmax(m, r->basis_error[k]);
-  return m;
-}
-
 static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
@@ -685,7 +641,8 @@ static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
           "density %d",
           o->converged_density, b->ndof, b->ncoords, b->f1_hz, o->basis ? o->basis->f1_hz : NAN,
           s->hull_mesh.density);
-  const double e = worst_basis_error(o->converged, s->noutputs);
+  const double e =
+      fb_study_run_worst_basis_error(fb_study_report_converged(o->report), s->noutputs, NULL);
   if (isfinite(e))
     fprintf(fp, ", its basis's estimated error at most %.2g %% of an output's range", 100 * e);
   fprintf(fp,
@@ -716,12 +673,9 @@ static void write_converged(FILE *fp, const cli_run_outputs *o)
   write_converged_intro(fp, o);
   for (size_t k = 0; k < s->noutputs; ++k) {
     const fb_output_cmp *c1 = &o->cmp[k], *c3 = &o->cmp_converged[k];
-    const size_t col = fb_run_summary_column(o->runs[0].sum, k);
-    const double between =
-        max_abs_between(o->diff_converged, o->diff, col, o->bump_window[0]) / c1->range1;
     write_output_cells(fp, o, k);
     const double cells[] = {c1->rel_diff, c3->rel_diff, c1->peak_change, c3->peak_change,
-                            c1->range1 > 0 ? between : NAN};
+                            fb_study_report_mesh_diff(o->report, k)};
     const int signed_cell[] = {0, 0, 1, 1, 0};
     for (size_t i = 0; i < sizeof cells / sizeof cells[0]; ++i) {
       fputc(' ', fp);
@@ -755,44 +709,13 @@ static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Conclusions: one paragraph, each sentence picked by the numbers. */
 
-/* Index of the torsion angle among the outputs, noutputs if none. */
-static size_t torsion_index(const fb_scenario *s)
-{
-  size_t k = 0;
-  while (k < s->noutputs && strcmp(s->output[k].signal, "torsion") != 0)
-    ++k;
-  return k;
-}
-
-/* Of a comparison's outputs: the one with the largest relative
- * difference (n if none varies in System 1), how many vary and how many
- * of those pass notable_diff. */
-typedef struct diff_summary {
-  size_t largest, nfinite, nnotable;
-} diff_summary;
-
-static diff_summary summarise_differences(const fb_output_cmp *cmp, size_t n)
-{
-  diff_summary d = {n, 0, 0};
-  for (size_t k = 0; k < n; ++k) {
-    const double r = cmp[k].rel_diff;
-    if (!isfinite(r))
-      continue;
-    ++d.nfinite;
-    d.nnotable += r > notable_diff;
-    if (d.largest == n || r > cmp[d.largest].rel_diff)
-      d.largest = k;
-  }
-  return d;
-}
-
 /* "Over the bump the flexible hull changes the outputs by up to ...":
- * the largest relative difference and which outputs pass notable_diff. */
+ * the largest relative difference and which outputs pass FB_STUDY_NOTABLE_DIFF. */
 static void conclude_differences(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
-  const diff_summary d = summarise_differences(o->cmp, nout);
-  const size_t largest = d.largest, nnotable = d.nnotable, nfinite = d.nfinite;
+  const fb_study_differences d = fb_study_report_differences(o->report, FB_STUDY_CMP_SYSTEM2);
+  const size_t largest = d.largest, nnotable = d.nnotable, nfinite = d.nvarying;
   if (largest == nout) {
     fputs("No output of System 1 varies over the bump, so no difference can be scaled.", fp);
     return;
@@ -805,14 +728,14 @@ static void conclude_differences(FILE *fp, const cli_run_outputs *o)
   fprintf(fp, " (at t = %.3f s)", o->cmp[largest].max_diff_time);
   if (nnotable == 0) {
     fprintf(fp, "; all %zu outputs that vary in System 1 agree within %.0f %%.", nfinite,
-            100 * notable_diff);
+            100 * FB_STUDY_NOTABLE_DIFF);
     return;
   }
   fprintf(fp, "; %zu of the %zu outputs that vary in System 1 %s by more than %.0f %% (",
-          nnotable, nfinite, nnotable == 1 ? "differs" : "differ", 100 * notable_diff);
+          nnotable, nfinite, nnotable == 1 ? "differs" : "differ", 100 * FB_STUDY_NOTABLE_DIFF);
   size_t listed = 0;
   for (size_t k = 0; k < nout; ++k)
-    if (isfinite(o->cmp[k].rel_diff) && o->cmp[k].rel_diff > notable_diff) {
+    if (fb_study_report_notable(o->report, FB_STUDY_CMP_SYSTEM2, k)) {
       fputs(listed++ ? ", " : "", fp);
       fb_md_write_text(fp, o->scenario->output[k].label);
       fprintf(fp, " %.1f %%", 100 * o->cmp[k].rel_diff);
@@ -823,13 +746,13 @@ static void conclude_differences(FILE *fp, const cli_run_outputs *o)
 /* One clause on run's torsion angle: identically zero (the rigid hull's
  * by construction), or how far the hull twists over the bump. first:
  * the clause opens the sentence. */
-static void torsion_clause(FILE *fp, const cli_run_system *r, size_t k, int first)
+static void torsion_clause(FILE *fp, const fb_study_run *r, size_t k, int first)
 {
   const fb_output_stats *st = fb_run_summary_output(r->sum, k);
   const char *unit = fb_result_col_unit(r->res, fb_run_summary_column(r->sum, k));
   const char *hull = r->sys == FB_SYSTEM_RIGID ? "rigid" : "flexible";
   fprintf(fp, "%s %s hull's torsion angle ", first ? " The" : "; the", hull);
-  if (max_abs(r->res, fb_run_summary_column(r->sum, k)) == 0) {
+  if (fb_study_run_max_abs(r, k) == 0) {
     fputs("is identically zero", fp);
     return;
   }
@@ -847,24 +770,23 @@ static void torsion_clause(FILE *fp, const cli_run_system *r, size_t k, int firs
 /* The torsion angles of every run, in one sentence. */
 static void conclude_torsion(FILE *fp, const cli_run_outputs *o)
 {
-  const size_t k = torsion_index(o->scenario);
+  const size_t k = fb_study_report_torsion_output(o->report);
   if (k == o->scenario->noutputs)
     return; /* not among the outputs */
   for (size_t i = 0; i < o->nruns; ++i)
-    torsion_clause(fp, &o->runs[i], k, i == 0);
+    torsion_clause(fp, fb_study_report_run(o->report, i), k, i == 0);
   fputc('.', fp);
 }
 
-/* Peak changes beyond notable_change, and the largest RMS change. */
+/* Peak changes beyond FB_STUDY_NOTABLE_CHANGE, and the largest RMS change. */
 static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
-  size_t listed = 0, largest_rms = nout;
+  const size_t largest_rms = fb_study_report_largest_rms_change(o->report);
+  size_t listed = 0;
   for (size_t k = 0; k < nout; ++k) {
-    double p = o->cmp[k].peak_change, r = o->cmp[k].rms_change;
-    if (isfinite(r) && (largest_rms == nout || fabs(r) > fabs(o->cmp[largest_rms].rms_change)))
-      largest_rms = k;
-    if (!isfinite(p) || fabs(p) <= notable_change)
+    const double p = o->cmp[k].peak_change;
+    if (!isfinite(p) || fabs(p) <= FB_STUDY_NOTABLE_CHANGE)
       continue;
     fprintf(fp, "%s%s the peak of the ", listed++ ? ", " : " Compared with System 1, System 2 ",
             p > 0 ? "raises" : "lowers");
@@ -873,14 +795,14 @@ static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
     md_number(fp, fb_run_summary_output(o->runs[0].sum, k)->peak);
     fputs(" to ", fp);
     md_value_unit(fp, fb_run_summary_output(o->runs[1].sum, k)->peak,
-                  fb_result_col_unit(o->runs[0].res, fb_run_summary_column(o->runs[0].sum, k)));
+                  fb_study_report_unit(o->report, k));
     fputc(')', fp);
   }
   if (listed)
     fputc('.', fp);
   else
     fprintf(fp, " Every peak with a non-zero System 1 value changes by %.0f %% or less.",
-            100 * notable_change);
+            100 * FB_STUDY_NOTABLE_CHANGE);
   if (largest_rms < nout) {
     fputs(" The largest change of an RMS over the bump is the ", fp);
     fb_md_write_text(fp, o->scenario->output[largest_rms].label);
@@ -889,26 +811,15 @@ static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
 }
 
 /* With one system: the output that grows the most over the bump
- * relative to its static value, among those that carry a static value
- * (at least notable_diff of their range over the bump; a dissipated power
- * or an acceleration at rest is ~0, and a ratio to it says nothing). */
+ * relative to its static value (fb_study_report_largest_growth). */
 static void conclude_single(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
   const cli_run_system *r = &o->runs[0];
   fprintf(fp, "Only %s ran, so nothing is compared (`--system both` runs both).",
           cli_system_label(r->sys));
-  size_t largest = nout;
   double factor = 0;
-  for (size_t k = 0; k < nout; ++k) {
-    const fb_output_stats *st = fb_run_summary_output(r->sum, k);
-    const double f = ratio(st->peak, st->static_value);
-    if (fabs(st->static_value) >= notable_diff * (st->peak - st->min) && isfinite(f) &&
-        f > 1.0 && f > factor) {
-      factor = f;
-      largest = k;
-    }
-  }
+  const size_t largest = fb_study_report_largest_growth(o->report, &factor);
   if (largest < nout) {
     const fb_output_stats *st = fb_run_summary_output(r->sum, largest);
     const char *unit = fb_result_col_unit(r->res, fb_run_summary_column(r->sum, largest));
@@ -1005,15 +916,6 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Tire contact: the verdict of each system, from its reactions. */
 
-/* How many of s's corners have tire model m. */
-static size_t corners_with(const fb_scenario *s, const fb_tire_model *m)
-{
-  size_t n = 0;
-  for (size_t c = 0; c < s->ncorners; ++c)
-    n += fb_corner_tire_model(&s->corner[c]) == m;
-  return n;
-}
-
 /* How many of s's corners have a tire that can pull. */
 static size_t corners_pulling(const fb_scenario *s)
 {
@@ -1024,14 +926,14 @@ static size_t corners_pulling(const fb_scenario *s)
 }
 
 /* The tires whose reaction spikes, or the largest ratio when none does. */
-static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_system *r)
+static void write_contact_spikes(FILE *fp, const fb_study_report *rep, const fb_study_run *r)
 {
+  const fb_scenario *s = fb_study_report_scenario(rep);
   char peak[32], stat[32];
   size_t n = 0, c_max = 0;
+  fb_study_report_contact_extremes(rep, r, &c_max, NULL);
   int constant_damper = 0; /* a spiking tire's damper has a constant coefficient */
   for (size_t c = 0; c < s->ncorners; ++c) {
-    if (fb_run_summary_contact_ratio(r->sum, c) > fb_run_summary_contact_ratio(r->sum, c_max))
-      c_max = c;
     if (!fb_run_summary_contact_spike(r->sum, c))
       continue;
     constant_damper |= !fb_corner_tire_model(&s->corner[c])->soft_landing;
@@ -1062,8 +964,9 @@ static void write_contact_spikes(FILE *fp, const fb_scenario *s, const cli_run_s
 }
 
 /* What a contact-loss interval is, for the tire models the corners have. */
-static void write_loss_kinds(FILE *fp, const fb_scenario *s, size_t nloss)
+static void write_loss_kinds(FILE *fp, const fb_study_report *rep, size_t nloss)
 {
+  const fb_scenario *s = fb_study_report_scenario(rep);
   const size_t bilateral = corners_pulling(s);
   fprintf(fp, "%zu interval%s where a tire", nloss, nloss == 1 ? "" : "s");
   if (bilateral == s->ncorners)
@@ -1078,15 +981,14 @@ static void write_loss_kinds(FILE *fp, const fb_scenario *s, size_t nloss)
           fp);
 }
 
-static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_system *r)
+static void write_contact_verdict(FILE *fp, const fb_study_report *rep, const fb_study_run *r)
 {
+  const fb_scenario *s = fb_study_report_scenario(rep);
   char force[32];
   fprintf(fp, "- %s: ", cli_system_label(r->sys));
   if (fb_run_summary_nlosses(r->sum) == 0) {
     size_t c_min = 0;
-    for (size_t c = 1; c < s->ncorners; ++c)
-      if (fb_run_summary_contact(r->sum, c)->min < fb_run_summary_contact(r->sum, c_min)->min)
-        c_min = c;
+    fb_study_report_contact_extremes(rep, r, NULL, &c_min);
     fprintf(fp,
             "every tire stays in compression over the whole run; from the first bump entry "
             "on, the smallest normal reaction is %s N (",
@@ -1095,7 +997,7 @@ static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_
     fprintf(fp, " tire, t = %.3f s).\n", fb_run_summary_contact(r->sum, c_min)->min_time);
     return;
   }
-  write_loss_kinds(fp, s, fb_run_summary_nlosses(r->sum));
+  write_loss_kinds(fp, rep, fb_run_summary_nlosses(r->sum));
   for (size_t i = 0; i < fb_run_summary_nlosses(r->sum); ++i) {
     const fb_contact_loss *t = fb_run_summary_loss(r->sum, i);
     fputs(i ? "; " : " ", fp);
@@ -1110,8 +1012,9 @@ static void write_contact_verdict(FILE *fp, const fb_scenario *s, const cli_run_
 
 /* What each tire model present means, with its corners when they
  * differ: the models in the order the corners first name them. */
-static void write_tire_models(FILE *fp, const fb_scenario *s)
+static void write_tire_models(FILE *fp, const fb_study_report *rep)
 {
+  const fb_scenario *s = fb_study_report_scenario(rep);
   for (size_t k = 0; k < s->ncorners; ++k) {
     const fb_tire_model *m = fb_corner_tire_model(&s->corner[k]);
     size_t seen = 0;
@@ -1120,7 +1023,7 @@ static void write_tire_models(FILE *fp, const fb_scenario *s)
     if (seen)
       continue;
     fputs(k ? "; " : "", fp);
-    if (corners_with(s, m) == s->ncorners) {
+    if (fb_study_report_tires_with(rep, m) == s->ncorners) {
       fprintf(fp, "every tire is `%s`, %s", m->name, m->meaning);
       continue;
     }
@@ -1139,35 +1042,32 @@ static void write_contact(FILE *fp, const cli_run_outputs *o)
   fputs("\n## Tire contact\n\nThe normal reaction of every tire (tire spring plus tire "
         "damper, compression positive) over the whole run; ",
         fp);
-  write_tire_models(fp, o->scenario);
+  write_tire_models(fp, o->report);
   fputs(" A reaction above " CLI_CONTACT_SPIKE_TEXT
         " times its static value (just before the first bump entry) is flagged as a spike: "
         "the ride over a road moves a tire's load about its static value, an impact "
         "multiplies it.\n\n",
         fp);
   for (size_t i = 0; i < o->nruns; ++i) {
-    write_contact_verdict(fp, o->scenario, &o->runs[i]);
-    write_contact_spikes(fp, o->scenario, &o->runs[i]);
+    write_contact_verdict(fp, o->report, fb_study_report_run(o->report, i));
+    write_contact_spikes(fp, o->report, fb_study_report_run(o->report, i));
   }
 }
 
 /* "At the converged mesh ...": whether the comparison's verdict (which
- * outputs differ by more than notable_diff) is the same on the refined
+ * outputs differ by more than FB_STUDY_NOTABLE_DIFF) is the same on the refined
  * hull, and by how much the largest difference moved. */
 static void conclude_converged(FILE *fp, const cli_run_outputs *o)
 {
   if (!o->cmp_converged)
     return;
   const size_t nout = o->scenario->noutputs;
-  const diff_summary d1 = summarise_differences(o->cmp, nout);
-  const diff_summary d3 = summarise_differences(o->cmp_converged, nout);
+  const fb_study_differences d1 = fb_study_report_differences(o->report, FB_STUDY_CMP_SYSTEM2),
+                             d3 =
+                                 fb_study_report_differences(o->report, FB_STUDY_CMP_CONVERGED);
   if (d1.largest == nout || d3.largest == nout)
     return;
-  size_t changed = 0;
-  for (size_t k = 0; k < nout; ++k)
-    changed +=
-        isfinite(o->cmp[k].rel_diff) &&
-        (o->cmp[k].rel_diff > notable_diff) != (o->cmp_converged[k].rel_diff > notable_diff);
+  const size_t changed = fb_study_report_mesh_crossings(o->report);
   fprintf(fp,
           " At the converged mesh (density %d) System 2 departs from System 1 by up to %.1f %% "
           "of System 1's range, in the ",
@@ -1179,23 +1079,25 @@ static void conclude_converged(FILE *fp, const cli_run_outputs *o)
     fprintf(fp,
             "the conclusion stands, every output that varies agrees within %.0f %% on "
             "both meshes.",
-            100 * notable_diff);
+            100 * FB_STUDY_NOTABLE_DIFF);
   else if (changed == 0)
     fprintf(fp, "the same %zu output%s differ%s by more than %.0f %% on both meshes.",
             d3.nnotable, d3.nnotable == 1 ? "" : "s", d3.nnotable == 1 ? "s" : "",
-            100 * notable_diff);
+            100 * FB_STUDY_NOTABLE_DIFF);
   else
     fprintf(fp,
             "the conclusion changes for %zu output%s, which cross%s the %.0f %% line between "
             "the meshes (the table \"At a converged mesh\").",
-            changed, changed == 1 ? "" : "s", changed == 1 ? "es" : "", 100 * notable_diff);
+            changed, changed == 1 ? "" : "s", changed == 1 ? "es" : "",
+            100 * FB_STUDY_NOTABLE_DIFF);
   /* What the softer hull does change: how far it twists. */
-  const size_t t = torsion_index(o->scenario);
-  const cli_run_system *r1 = flexible_run(o), *r3 = o->converged;
-  if (t == nout || !r1)
+  const size_t t = fb_study_report_torsion_output(o->report);
+  const cli_run_system *flexible = flexible_run(o);
+  if (t == nout || !flexible)
     return;
-  const double a1 = max_abs(r1->res, fb_run_summary_column(r1->sum, t)),
-               a3 = max_abs(r3->res, fb_run_summary_column(r3->sum, t));
+  const fb_study_run *r1 = fb_study_report_run(o->report, (size_t)(flexible - o->runs)),
+                     *r3 = fb_study_report_converged(o->report);
+  const double a1 = fb_study_run_max_abs(r1, t), a3 = fb_study_run_max_abs(r3, t);
   const char *unit = fb_result_col_unit(r3->res, fb_run_summary_column(r3->sum, t));
   fputs(" The flexible hull's torsion angle reaches ", fp);
   md_value_unit(fp, a3, unit);

@@ -313,12 +313,12 @@ static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenar
 /* {"model", "models": {tire: model, ...}, "min_force": {tire: {"value", "time"}, ...},
  * "contact_loss_intervals": [{"tire", "from", "to", "min_force", "at"},
  * ...]}. */
-static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
+static void write_contact_json(FILE *fp, const cli_run_system *run, const fb_study_report *rep)
 {
+  const fb_scenario *s = fb_study_report_scenario(rep);
   /* One model for every tire, or "mixed" and each corner's in "models". */
-  int mixed = 0;
-  for (size_t c = 1; c < s->ncorners; ++c)
-    mixed |= fb_corner_tire_model(&s->corner[c]) != fb_corner_tire_model(&s->corner[0]);
+  const int mixed =
+      fb_study_report_tires_with(rep, fb_corner_tire_model(&s->corner[0])) != s->ncorners;
   fprintf(fp, "{\"model\": \"%s\", \"models\": {",
           mixed ? "mixed" : fb_corner_tire_model(&s->corner[0])->name);
   for (size_t c = 0; c < s->ncorners; ++c) {
@@ -452,7 +452,7 @@ static void write_system_json(FILE *fp, const cli_run_outputs *o, const char *ke
   fputs("\n    },\n    \"ride\": ", fp);
   write_ride_json(fp, run, s);
   fputs(",\n    \"tire_contact\": ", fp);
-  write_contact_json(fp, run, s);
+  write_contact_json(fp, run, o->report);
   fputs(",\n    \"solver\": ", fp);
   write_solver_json(fp, fb_result_stats(run->res));
   fputs(",\n    \"bump_window\": [", fp);
@@ -917,20 +917,29 @@ static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *s
   return n;
 }
 
-/* System 2 minus System 1 and the comparison of every output, when both
- * ran (System 1 first). */
-static int compare(cli_run_outputs *o, fb_result **diff, fb_err *err)
+/* The report's data (flexbond/study.h) of the runs of o, with the
+ * converged one when it ran, into *rep (new: the caller frees it with
+ * fb_study_report_free after o's last use): its comparisons become o's
+ * views. */
+static int build_report(cli_run_outputs *o, fb_study_report **rep, fb_err *err)
 {
-  if (o->nruns < 2)
-    return FB_OK;
-  const size_t n = o->scenario->noutputs;
-  o->cmp = calloc(n ? n : 1, sizeof *o->cmp);
-  int rc = o->cmp ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc)
-    rc = fb_study_compare(o->scenario, o->runs[0].res, o->runs[1].res, o->runs[0].sum,
-                          o->runs[1].sum, o->cmp, diff, err);
-  o->diff = *diff;
-  return rc;
+  fb_study_run runs[CLI_MAX_SYSTEMS], conv = {0};
+  for (size_t i = 0; i < o->nruns; ++i)
+    runs[i] =
+        (fb_study_run){o->runs[i].sys, o->runs[i].res, o->runs[i].sum, o->runs[i].basis_error};
+  if (o->converged)
+    conv = (fb_study_run){o->converged->sys, o->converged->res, o->converged->sum,
+                          o->converged->basis_error};
+  const int rc =
+      fb_study_report_new(o->scenario, runs, o->nruns, o->converged ? &conv : NULL, rep, err);
+  if (rc != FB_OK)
+    return rc;
+  o->report = *rep;
+  o->diff = fb_study_report_diff(*rep, FB_STUDY_CMP_SYSTEM2);
+  o->cmp = fb_study_report_cmp(*rep, FB_STUDY_CMP_SYSTEM2);
+  o->diff_converged = fb_study_report_diff(*rep, FB_STUDY_CMP_CONVERGED);
+  o->cmp_converged = fb_study_report_cmp(*rep, FB_STUDY_CMP_CONVERGED);
+  return FB_OK;
 }
 
 /* Applies the command line's overrides to the scenario. */
@@ -1055,8 +1064,7 @@ static void *estimator_thread(void *arg)
 static int start_estimator(const run_args *a, const fb_scenario *s, const char *label,
                            fb_vehicle *v, run_estimator *x, fb_err *err)
 {
-  const fb_hull_basis *b = fb_vehicle_hull_basis(v);
-  if (!b || b->coordinates != FB_HULL_MODAL || b->ncoords >= b->ndof)
+  if (!fb_vehicle_basis_reduced(v))
     return FB_OK;
   x->v = v;
   if (!a->quiet)
@@ -1117,25 +1125,21 @@ typedef struct run_converged {
   run_vehicle rv;
   run_estimator est;
   cli_run_system run;
-  char label[64];  /* "System 2 at density 3" */
-  fb_result *diff; /* its run minus System 1's */
+  char label[64]; /* "System 2 at density 3" */
 } run_converged;
 
 /* With both systems, when the scenario names a density above its own for
  * its generated hull. */
 static int wants_converged(const fb_scenario *s, const cli_run_outputs *o)
 {
-  return o->nruns == CLI_MAX_SYSTEMS && !s->hull_deck &&
-         s->hull_converged_density > s->hull_mesh.density;
+  return o->nruns == CLI_MAX_SYSTEMS && fb_scenario_converged_density(s) > 0;
 }
 
 /* Loads the file again with hull.mesh.density at the converged density
  * (so that the mesh, the hull's mass properties and every check are that
- * mesh's, as if the user had written it), and runs its System 2 with its
- * basis's error estimate. Its hull is in the automatic modal basis
- * whatever the first System 2's was (a cut-off given for that basis
- * stays): every mode or the nodal coordinates of the refined hull would
- * make a dense or a large problem nobody asked for. */
+ * mesh's, as if the user had written it), and runs its System 2, in the
+ * automatic modal basis (fb_scenario_use_auto_basis), with its basis's
+ * error estimate. */
 static int run_converged_system(const run_args *a, const fb_scenario *s, const double window[2],
                                 run_converged *c, fb_err *err)
 {
@@ -1146,10 +1150,7 @@ static int run_converged_system(const run_args *a, const fb_scenario *s, const d
   int rc = fb_scenario_load_overrides(a->scenario_path, &ov, 1, &c->s, err);
   if (rc == FB_OK) {
     override(a, c->s);
-    if (c->s->hull_modes_kind != FB_HULL_MODES_AUTO || c->s->hull_coordinates != FB_HULL_MODAL)
-      c->s->hull_cutoff_hz = 0.0;
-    c->s->hull_coordinates = FB_HULL_MODAL;
-    c->s->hull_modes_kind = FB_HULL_MODES_AUTO;
+    fb_scenario_use_auto_basis(c->s);
     rc = realise(a, c->s, FB_SYSTEM_FLEXIBLE, c->label, 0, &c->rv, err);
   }
   if (rc == FB_OK)
@@ -1161,27 +1162,18 @@ static int run_converged_system(const run_args *a, const fb_scenario *s, const d
   return finish_estimator(window, &c->est, &c->run, rc, err);
 }
 
-/* The converged run into o, against System 1 (runs[0]). */
-static int compare_converged(run_converged *c, cli_run_outputs *o, fb_err *err)
+/* The converged run into o; the report compares it with System 1. */
+static void use_converged(const run_converged *c, cli_run_outputs *o)
 {
-  const size_t n = o->scenario->noutputs;
-  o->cmp_converged = calloc(n ? n : 1, sizeof *o->cmp_converged);
-  int rc = o->cmp_converged ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  if (!rc)
-    rc = fb_study_compare(o->scenario, o->runs[0].res, c->run.res, o->runs[0].sum, c->run.sum,
-                          o->cmp_converged, &c->diff, err);
   o->converged = &c->run;
   o->converged_basis = fb_vehicle_hull_basis(c->rv.v);
   o->converged_density = c->s->hull_mesh.density;
-  o->diff_converged = c->diff;
-  return rc;
 }
 
 static void run_converged_free(run_converged *c)
 {
   run_estimator_free(&c->est);
   run_system_free(&c->run);
-  fb_result_free(&c->diff);
   fb_vehicle_free(&c->rv.v);
   fb_scenario_free(&c->s);
 }
@@ -1196,7 +1188,7 @@ static int run(const run_args *a)
   memset(vehicles, 0, sizeof vehicles);
   fb_system systems[CLI_MAX_SYSTEMS] = {FB_SYSTEM_RIGID};
   run_modes modes = {0};
-  fb_result *diff = NULL;
+  fb_study_report *rep = NULL;
   cli_run_outputs o = {
       .runs = runs, .figures = a->figures, .header = a->header, .animate = &a->animate};
   size_t nfiles = 0;
@@ -1259,10 +1251,10 @@ static int run(const run_args *a)
     o.modes2 = modes.modes2;
     for (size_t i = 0; i < o.nruns; ++i)
       o.vehicles[i] = vehicles[i].v;
-    rc = compare(&o, &diff, &err);
+    if (conv.rv.v)
+      use_converged(&conv, &o);
+    rc = build_report(&o, &rep, &err);
   }
-  if (rc == FB_OK && conv.rv.v)
-    rc = compare_converged(&conv, &o, &err);
   if (rc == FB_OK && o.figures)
     frequency_response(by_system, &o);
   if (rc == FB_OK)
@@ -1284,9 +1276,7 @@ static int run(const run_args *a)
   if (rc == FB_OK && !a->quiet)
     cli_say("flexbond run: %s: wrote %zu files -> %s", cli_scenario_name(s), nfiles,
             a->out_dir);
-  fb_result_free(&diff);
-  free(o.cmp);
-  free(o.cmp_converged);
+  fb_study_report_free(&rep);
   run_converged_free(&conv);
   for (size_t i = 0; i < CLI_MAX_SYSTEMS; ++i)
     run_system_free(&runs[i]);

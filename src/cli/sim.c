@@ -125,24 +125,6 @@ static void print_summary(const sim_args *a, const fb_model *m, const fb_sim_opt
           fb_result_ncols(res) - 1, s->steps, s->rhs_evals, s->wall_seconds, a->out_dir);
 }
 
-/* The model's solver settings with the command line's overrides. */
-static fb_sim_opts effective_opts(const fb_model *m, const sim_args *a)
-{
-  fb_sim_opts opts = *fb_model_sim_opts(m);
-  if (a->t_end > 0)
-    opts.t_end = a->t_end;
-  if (a->rtol > 0)
-    opts.rtol = a->rtol;
-  if (a->sample_rate > 0)
-    opts.sample_rate = a->sample_rate;
-  /* The result's columns, so that the memory it would take is checked
-   * here, where an option that raised it is named. */
-  size_t nprobes = 0;
-  fb_model_probes(m, &nprobes);
-  opts.noutputs = nprobes;
-  return opts;
-}
-
 /* fb_sim_progress_fn: stops the simulation once interrupted. */
 static int stop_when_interrupted(void *ctx, double t, double t_end)
 {
@@ -173,27 +155,20 @@ static const char *overriding_option(const sim_args *a, const char *key)
   return NULL;
 }
 
-/* The state the run starts from (simulation.initial), into *x0 (new). */
-static int start_state(const fb_model *m, fb_bd *bd, double **x0, fb_err *err)
-{
-  *x0 = malloc((fb_bd_nstates(bd) + 1) * sizeof **x0);
-  if (!*x0)
-    return fb_err_set(err, FB_ENOMEM, "out of memory");
-  return fb_model_initial_state(m, bd, *x0, err);
-}
-
 static int run(const sim_args *a)
 {
   fb_err err;
   fb_err_clear(&err);
   fb_model *m = NULL;
-  fb_bd *bd = NULL;
+  fb_model_sim *ms = NULL;
   fb_result *res = NULL;
   fb_sim_opts opts;
   int rc = fb_model_load(a->model_path, &m, &err);
   cli_report_warnings(m);
   if (rc == FB_OK) {
-    opts = effective_opts(m, a);
+    /* The result's columns counted, so that the memory it would take is
+     * checked here, where an option that raised it is named. */
+    opts = fb_model_sim_opts_with(m, a->t_end, a->rtol, a->sample_rate);
     opts.progress = stop_when_interrupted;
     rc = fb_sim_opts_check(&opts, &err);
     /* The model's settings were checked where it was loaded: a failure
@@ -204,32 +179,22 @@ static int run(const sim_args *a)
       return cli_usage_error("sim", "option '%s': %s", option, err.msg);
     }
   }
-  if (rc == FB_OK) {
-    size_t nprobes = 0;
-    const fb_probe_spec *probes = fb_model_probes(m, &nprobes);
-    rc = fb_bd_build(fb_model_graph(m), probes, nprobes, &bd, &err);
-    fb_model_blame(m, &err); /* a causality error: at its element's or bond's line */
-  }
-  double *x0 = NULL;
   if (rc == FB_OK)
-    rc = start_state(m, bd, &x0, &err);
-  if (rc == FB_OK)
-    opts.x0 = x0;
+    rc = fb_model_sim_new(m, &ms, &err);
   /* The directory is held (locked) from here to the end. */
   cli_outdir od;
   const int opened =
       rc == FB_OK && (rc = cli_outdir_open(&od, a->out_dir, "sim", &err)) == FB_OK;
   if (rc == FB_OK)
-    rc = fb_sim_run(bd, &opts, &res, &err);
+    rc = fb_model_sim_run(ms, &opts, &res, &err);
   if (rc == FB_OK)
-    rc = write_outputs(&od, res, bd, a->plot, &err);
+    rc = write_outputs(&od, res, fb_model_sim_diagram(ms), a->plot, &err);
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
   if (rc == FB_OK && !a->quiet)
     print_summary(a, m, &opts, res);
   fb_result_free(&res);
-  free(x0);
-  fb_bd_free(&bd);
+  fb_model_sim_free(&ms);
   fb_model_free(&m);
   return cli_report(rc, &err);
 }

@@ -56,6 +56,21 @@ static void desc_feature(const fb_scenario *s, const fb_corner_params *w, double
                                begin, end);
 }
 
+int fb_scenario_converged_density(const fb_scenario *s)
+{
+  return !s->hull_deck && s->hull_converged_density > s->hull_mesh.density
+             ? s->hull_converged_density
+             : 0;
+}
+
+void fb_scenario_use_auto_basis(fb_scenario *s)
+{
+  if (s->hull_modes_kind != FB_HULL_MODES_AUTO || s->hull_coordinates != FB_HULL_MODAL)
+    s->hull_cutoff_hz = 0.0;
+  s->hull_coordinates = FB_HULL_MODAL;
+  s->hull_modes_kind = FB_HULL_MODES_AUTO;
+}
+
 double fb_scenario_road_entry(const fb_scenario *s, int corner)
 {
   const fb_corner_params *w = desc_corner(s, corner);

@@ -78,6 +78,11 @@ const char *fb_scenario_corner_name(const fb_scenario *s, size_t c)
   return c < s->ncorners ? s->corner[c].name : NULL;
 }
 
+const char *fb_scenario_corner_tire(const fb_scenario *s, size_t c)
+{
+  return c < s->ncorners ? fb_corner_tire_model(&s->corner[c])->name : NULL;
+}
+
 void fb_scenario_corner_position(const fb_scenario *s, size_t c, double *x, double *y)
 {
   if (c >= s->ncorners)

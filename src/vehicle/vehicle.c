@@ -313,11 +313,16 @@ int fb_vehicle_run(fb_vehicle *v, const double *window, fb_sim_progress_fn fn, v
   return rc;
 }
 
+int fb_vehicle_basis_reduced(const fb_vehicle *v)
+{
+  const fb_hull_basis *b = fb_vehicle_hull_basis(v);
+  return b && b->coordinates == FB_HULL_MODAL && b->ncoords < b->ndof;
+}
+
 int fb_vehicle_new_estimator(fb_vehicle *v, fb_vehicle **out, fb_err *err)
 {
   *out = NULL;
-  const fb_hull_basis *b = fb_vehicle_hull_basis(v);
-  if (!b || b->coordinates != FB_HULL_MODAL || b->ncoords >= b->ndof)
+  if (!fb_vehicle_basis_reduced(v))
     return fb_err_set(err, FB_EINVAL,
                       "the basis error is estimated for System 2 in reduced modal coordinates");
   fb_vehicle *e = calloc(1, sizeof *e);
