@@ -163,6 +163,8 @@ typedef struct fb_hull_mesh_params {
  * of the description its errors are about (fb_err.part), and the maker
  * says where they came from (fb_scenario_locate). */
 typedef struct fb_scenario_source fb_scenario_source;
+/* Where System 2's hull mesh comes from (flexbond/hull_source.h). */
+typedef struct fb_hull_source fb_hull_source;
 typedef struct fb_scenario_source_ops {
   /* A deep copy of src into *out; FB_ENOMEM when memory runs out. */
   int (*clone)(const fb_scenario_source *src, fb_scenario_source **out);
@@ -328,13 +330,18 @@ typedef struct fb_scenario {
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
-  char *hull_deck; /* Abaqus/CalculiX deck's path, NULL: the generator */
-  /* The hull's mesh as the loader made it, once: the deck as it read it
-   * (moved to the structure's centre of mass), or the generator's (owned).
-   * fb_vehicle_fe_hull copies it rather than generating it again, as long
-   * as the generator's inputs are still those it was made from,
-   * hull_source_key (fb_hull_mesh_key): a program that changes hull_mesh
-   * or a point after loading gets a mesh of its own. */
+  /* Where the mesh comes from (flexbond/hull_source.h; borrowed, NULL:
+   * the generator), set with fb_scenario_set_hull_source. The built-in
+   * sources read their values from hull_deck (fb_hull_source_deck) and
+   * hull_mesh (fb_hull_source_generator). */
+  const fb_hull_source *hull_source;
+  char *hull_deck; /* Abaqus/CalculiX deck's or gmsh mesh's path */
+  /* The hull's mesh as the loader made it, once: the one its source read
+   * (moved to the structure's centre of mass), or the one it made (owned).
+   * fb_vehicle_fe_hull copies it rather than making it again, as long as
+   * the source's inputs are still those it was made from, hull_source_key
+   * (the source's key op): a program that changes hull_mesh or a point
+   * after loading gets a mesh of its own. */
   fb_mesh *hull_source_mesh;
   uint64_t hull_source_key;
   /* hull.mesh.converged_density: a density of the generator at which the

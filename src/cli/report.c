@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "flexbond/escape.h"
+#include "flexbond/hull_source.h"
 #include "flexbond/io.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
@@ -332,26 +333,31 @@ static void write_hull_order(FILE *fp, const cli_run_outputs *o)
  * above the converged ones, and the error falls as 1 / density^2 (observed
  * orders 1.4 to 2.4; at densities 2 to 6 the measured errors lie within
  * these bounds over d^2, the lowest mode up to 0.6 of a point below). */
+/* Room for a hull source's description (a path and a few words). */
+#define HULL_SOURCE_TEXT 1024
 #define MESH_ERROR_LOW 12.0
 #define MESH_ERROR_HIGH 21.0
 
 static void write_mesh_error(FILE *fp, const fb_scenario *s)
 {
-  if (s->hull_deck) {
-    fputs("- Mesh convergence: not estimated for a deck; compare with a finer deck of the "
-          "same hull.\n",
-          fp);
+  const int density = fb_scenario_hull_density(s);
+  if (!density) {
+    char what[HULL_SOURCE_TEXT];
+    fb_scenario_hull_describe(s, what, sizeof what);
+    fputs("- Mesh convergence: not estimated for ", fp);
+    fb_md_write_text(fp, what);
+    fputs(", used as it is; compare with a finer mesh of the same hull.\n", fp);
     return;
   }
-  const double d2 = (double)s->hull_mesh.density * (double)s->hull_mesh.density;
+  const double d2 = (double)density * (double)density;
   fprintf(fp,
           "- Mesh convergence (an estimate, not computed in this run): at density %d the "
           "hull's first ten elastic free-free frequencies are about %.2g %% to %.2g %% above "
           "their converged values (the reference hull's measured %.0f %% to %.0f %% at "
           "density 1, falling as 1 / density^2; docs/hull-mesh.md, \"Convergence\"). The "
           "vehicle's suspension modes move by less than 0.1 %% with the mesh.\n",
-          s->hull_mesh.density, MESH_ERROR_LOW / d2, MESH_ERROR_HIGH / d2, MESH_ERROR_LOW,
-          MESH_ERROR_HIGH);
+          fb_scenario_hull_density(s), MESH_ERROR_LOW / d2, MESH_ERROR_HIGH / d2,
+          MESH_ERROR_LOW, MESH_ERROR_HIGH);
 }
 
 static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
@@ -359,12 +365,9 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
   const fb_scenario *s = o->scenario;
   const fb_mesh *m = o->hull->mesh;
   fputs("- System 2's hull mesh: ", fp);
-  if (s->hull_deck) {
-    fputs("the deck ", fp);
-    fb_md_write_text(fp, s->hull_deck);
-  } else {
-    fprintf(fp, "the built-in generator at density %d", s->hull_mesh.density);
-  }
+  char what[HULL_SOURCE_TEXT];
+  fb_scenario_hull_describe(s, what, sizeof what);
+  fb_md_write_text(fp, what);
   fprintf(fp,
           ": %zu nodes, %zu triangles (S3) and %zu quadrilaterals (S4), flat shells with 6 "
           "DOFs per node. Material E = %.10g GPa, nu = %.10g, rho = %.10g kg/m^3, thickness "
@@ -684,7 +687,7 @@ static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
           "Hz against %.4g Hz at "
           "density %d",
           o->converged_density, b->ndof, b->ncoords, b->f1_hz, o->basis ? o->basis->f1_hz : NAN,
-          s->hull_mesh.density);
+          fb_scenario_hull_density(s));
   const double e = worst_basis_error(o->converged, s->noutputs);
   if (isfinite(e))
     fprintf(fp, ", its basis's estimated error at most %.2g %% of an output's range", 100 * e);
@@ -694,23 +697,23 @@ static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
           "range.\n\n| output | unit | max abs S2 - S1 / S1 range, density %d | the same, "
           "density %d | peak change, density %d | peak change, density %d | max abs S2 "
           "(density %d) - S2 (density %d) / S1 range |\n|---|---|---|---|---|---|---|\n",
-          s->hull_mesh.density, o->converged_density, s->hull_mesh.density,
-          o->converged_density, o->converged_density, s->hull_mesh.density);
+          fb_scenario_hull_density(s), o->converged_density, fb_scenario_hull_density(s),
+          o->converged_density, o->converged_density, fb_scenario_hull_density(s));
 }
 
 static void write_converged(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
   if (!o->cmp_converged) {
-    if (o->diff && s->hull_converged_density && s->hull_deck)
+    if (o->diff && s->hull_converged_density && !fb_scenario_hull_density(s))
       fputs("\n## At a converged mesh\n\n`hull.mesh.converged_density` refines the "
-            "generator's mesh; this hull is a deck, used as it is: no second mesh ran.\n",
+            "generator's mesh; this hull's mesh is used as it is: no second mesh ran.\n",
             fp);
     else if (o->diff && s->hull_converged_density)
       fprintf(fp,
               "\n## At a converged mesh\n\nThis run's mesh (density %d) is at or above "
               "`hull.mesh.converged_density` = %d: no second mesh ran.\n",
-              s->hull_mesh.density, s->hull_converged_density);
+              fb_scenario_hull_density(s), s->hull_converged_density);
     return;
   }
   write_converged_intro(fp, o);
@@ -1174,7 +1177,7 @@ static void conclude_converged(FILE *fp, const cli_run_outputs *o)
           o->converged_density, 100 * o->cmp_converged[d3.largest].rel_diff);
   fb_md_write_text(fp, o->scenario->output[d3.largest].label);
   fprintf(fp, ", against %.1f %% at density %d: ", 100 * o->cmp[d1.largest].rel_diff,
-          o->scenario->hull_mesh.density);
+          fb_scenario_hull_density(o->scenario));
   if (changed == 0 && d3.nnotable == 0)
     fprintf(fp,
             "the conclusion stands, every output that varies agrees within %.0f %% on "

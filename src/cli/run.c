@@ -18,6 +18,7 @@
 
 #include "flexbond/escape.h"
 #include "flexbond/fem.h"
+#include "flexbond/hull_source.h"
 #include "flexbond/io.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
@@ -188,7 +189,8 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
     series[nseries++] = (fb_plot_series){.result = o->converged->res,
                                          .col = fb_run_summary_column(o->converged->sum, k) - 1,
                                          .legend = o->converged->label};
-    snprintf(paper, sizeof paper, "System 2 at density %d", o->scenario->hull_mesh.density);
+    snprintf(paper, sizeof paper, "System 2 at density %d",
+             fb_scenario_hull_density(o->scenario));
   }
   /* fb_result_diff keeps System 1's columns. */
   const fb_plot_series diff[2] = {{.result = o->diff,
@@ -1125,8 +1127,8 @@ typedef struct run_converged {
  * its generated hull. */
 static int wants_converged(const fb_scenario *s, const cli_run_outputs *o)
 {
-  return o->nruns == CLI_MAX_SYSTEMS && !s->hull_deck &&
-         s->hull_converged_density > s->hull_mesh.density;
+  const int density = fb_scenario_hull_density(s);
+  return o->nruns == CLI_MAX_SYSTEMS && density > 0 && s->hull_converged_density > density;
 }
 
 /* Loads the file again with hull.mesh.density at the converged density
@@ -1172,7 +1174,7 @@ static int compare_converged(run_converged *c, cli_run_outputs *o, fb_err *err)
                           o->cmp_converged, &c->diff, err);
   o->converged = &c->run;
   o->converged_basis = fb_vehicle_hull_basis(c->rv.v);
-  o->converged_density = c->s->hull_mesh.density;
+  o->converged_density = fb_scenario_hull_density(c->s);
   o->diff_converged = c->diff;
   return rc;
 }
