@@ -24,6 +24,7 @@
 
 #include "flexbond/error.h"
 #include "flexbond/fem.h"
+#include "flexbond/param.h"
 #include "flexbond/vehicle.h"
 
 #ifdef __cplusplus
@@ -67,11 +68,21 @@ typedef struct fb_hull_source_ops {
 struct fb_hull_source {
   const char *name; /* letters, digits and '_', not from a digit: "generator" */
   const char *doc;  /* one line */
+  /* The values it reads from the description's hull_params (numbers and
+   * choices: the block is copied by value), flexbond/param.h. A maker
+   * of descriptions names them in its own words (a scenario file's keys
+   * hull.mesh.<source>.<param>). The built-in sources declare none: the
+   * scenario format's own keys fill hull_deck and hull_mesh. */
+  const fb_param *param;
+  size_t nparams;
+  size_t params_size; /* <= FB_HULL_SOURCE_PARAMS_MAX */
   const fb_hull_source_ops *ops;
 };
 
 /* 0 if src is a sound source: a well-formed name and documentation,
- * describe, and either read alone or make with key and centroid.
+ * sound declarations of numbers and choices (fb_params_declared) in a
+ * block that fits, describe, and either read alone or make with key and
+ * centroid.
  * FB_EINVAL naming the fault otherwise. */
 int fb_hull_source_check(const fb_hull_source *src, fb_err *err);
 
@@ -81,9 +92,11 @@ extern const fb_hull_source fb_hull_source_deck;
 
 /* The source of s's hull: the one set, else the generator. */
 const fb_hull_source *fb_scenario_hull_source(const fb_scenario *s);
-/* Sets src (borrowed: it must outlive s and its copies) as s's source,
- * and drops the mesh s keeps from the one before. FB_EINVAL when src is
- * not sound. */
+/* Sets src (borrowed: it must outlive s and its copies) as s's source:
+ * when it is another than s's, drops the mesh s keeps from the one before
+ * and starts a new block (zeroed, the declared defaults). FB_EINVAL when
+ * src is not sound. Errors about a parameter of the block name it
+ * (FB_PART_HULL_SOURCE). */
 int fb_scenario_set_hull_source(fb_scenario *s, const fb_hull_source *src, fb_err *err);
 /* Reads the mesh of a source that reads one into s's hull_source_mesh
  * (a maker of descriptions calls it once, after fb_scenario_check and
@@ -94,8 +107,8 @@ int fb_scenario_hull_density(const fb_scenario *s);
 /* One clause describing s's mesh source, into buf (n bytes). */
 void fb_scenario_hull_describe(const fb_scenario *s, char *buf, size_t n);
 
-/* A set of hull sources: the built-in ones, and those a program adds. */
-typedef struct fb_hull_source_gallery fb_hull_source_gallery;
+/* fb_hull_source_gallery (flexbond/vehicle.h) is a set of hull sources:
+ * the built-in ones, and those a program adds. */
 
 /* A gallery of the built-in sources (*out new). FB_ENOMEM. */
 int fb_hull_source_gallery_new(fb_hull_source_gallery **out, fb_err *err);

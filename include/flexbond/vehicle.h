@@ -163,8 +163,21 @@ typedef struct fb_hull_mesh_params {
  * of the description its errors are about (fb_err.part), and the maker
  * says where they came from (fb_scenario_locate). */
 typedef struct fb_scenario_source fb_scenario_source;
-/* Where System 2's hull mesh comes from (flexbond/hull_source.h). */
+/* Where System 2's hull mesh comes from (flexbond/hull_source.h), and a
+ * set of such sources. */
 typedef struct fb_hull_source fb_hull_source;
+typedef struct fb_hull_source_gallery fb_hull_source_gallery;
+
+/* Most bytes of a hull source's parameter block. */
+#define FB_HULL_SOURCE_PARAMS_MAX ((size_t)256)
+
+/* The parameter block a description holds for its hull source (its
+ * declared parameters, fb_hull_source.param); the built-in sources keep
+ * theirs in hull_deck and hull_mesh and declare none. */
+typedef union fb_hull_source_params {
+  max_align_t align_;
+  unsigned char bytes[FB_HULL_SOURCE_PARAMS_MAX];
+} fb_hull_source_params;
 typedef struct fb_scenario_source_ops {
   /* A deep copy of src into *out; FB_ENOMEM when memory runs out. */
   int (*clone)(const fb_scenario_source *src, fb_scenario_source **out);
@@ -241,16 +254,17 @@ typedef enum fb_coupling_kind {
  * says where the part came from (fb_scenario_locate for a file). */
 typedef enum fb_part_kind {
   FB_PART_NONE = 0,
-  FB_PART_VEHICLE = 1,    /* fb_scenario's members */
-  FB_PART_CORNER = 2,     /* corner[index], fb_corner_params */
-  FB_PART_MOUNT = 3,      /* mount[index], fb_mount */
-  FB_PART_HULL_MASS = 4,  /* point_mass[index], fb_hull_point_mass */
-  FB_PART_SECTION = 5,    /* section[index], fb_hull_section */
-  FB_PART_OUTPUT = 6,     /* output[index], fb_output_spec */
-  FB_PART_LOAD_POINT = 7, /* (load_x[index], load_y[index]); field "" */
-  FB_PART_ROAD = 8,       /* the road type's parameter field (fb_param.name); index 0 */
-  FB_PART_TIRE = 9,       /* corner[index]'s tire model's parameter field (fb_param.name) */
-  FB_PART_KINDS = 10
+  FB_PART_VEHICLE = 1,      /* fb_scenario's members */
+  FB_PART_CORNER = 2,       /* corner[index], fb_corner_params */
+  FB_PART_MOUNT = 3,        /* mount[index], fb_mount */
+  FB_PART_HULL_MASS = 4,    /* point_mass[index], fb_hull_point_mass */
+  FB_PART_SECTION = 5,      /* section[index], fb_hull_section */
+  FB_PART_OUTPUT = 6,       /* output[index], fb_output_spec */
+  FB_PART_LOAD_POINT = 7,   /* (load_x[index], load_y[index]); field "" */
+  FB_PART_ROAD = 8,         /* the road type's parameter field (fb_param.name); index 0 */
+  FB_PART_TIRE = 9,         /* corner[index]'s tire model's parameter field (fb_param.name) */
+  FB_PART_HULL_SOURCE = 10, /* the hull source's parameter field (fb_param.name); index 0 */
+  FB_PART_KINDS = 11
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -335,7 +349,8 @@ typedef struct fb_scenario {
    * sources read their values from hull_deck (fb_hull_source_deck) and
    * hull_mesh (fb_hull_source_generator). */
   const fb_hull_source *hull_source;
-  char *hull_deck; /* Abaqus/CalculiX deck's or gmsh mesh's path */
+  fb_hull_source_params hull_params; /* its block, set with it */
+  char *hull_deck;                   /* Abaqus/CalculiX deck's or gmsh mesh's path */
   /* The hull's mesh as the loader made it, once: the one its source read
    * (moved to the structure's centre of mass), or the one it made (owned).
    * fb_vehicle_fe_hull copies it rather than making it again, as long as
@@ -494,6 +509,9 @@ typedef struct fb_scenario_load_opts {
   /* The tire models the document may name (wheel.tire_contact); NULL:
    * the built-in ones. Borrowed as roads is. */
   const fb_tire_gallery *tires;
+  /* The hull sources the document may name (hull.mesh.<source>); NULL:
+   * the built-in ones. Borrowed as roads is. */
+  const fb_hull_source_gallery *hull_sources;
   /* Values read in place of the document's, as for
    * fb_scenario_load_overrides. */
   const fb_scenario_override *overrides;

@@ -1070,6 +1070,9 @@ int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t si
   }
   if (p->kind == FB_PART_ROAD)
     return sc_road_part_key(s, p, key, size);
+  if (p->kind == FB_PART_HULL_SOURCE) /* hull.mesh.<source>.<parameter> */
+    return p->field[0] && snprintf(key, size, "hull.mesh.%s.%s",
+                                   fb_scenario_hull_source(s)->name, p->field) > 0;
   if (p->kind == FB_PART_TIRE) /* corners.<name>.wheel.<model>.<parameter> */
     return p->index < s->ncorners && s->corner[p->index].name && p->field[0] &&
            snprintf(key, size, "corners.%s.%s.%s.%s", s->corner[p->index].name, "wheel",
@@ -1133,7 +1136,7 @@ int sc_read(ml_ctx *c, const sch_table *t, struct fy_node *root, fb_symtab *para
 int fb_scenario_schema_markdown(FILE *fp, fb_err *err)
 {
   sc_schema *sc = NULL;
-  const int rc = sc_schema_new(NULL, NULL, &sc, err);
+  const int rc = sc_schema_new(NULL, NULL, NULL, &sc, err);
   if (!rc)
     sch_markdown(sc_schema_table(sc), fp);
   sc_schema_release(&sc);

@@ -534,7 +534,8 @@ static int check_road_timing(const fb_scenario *s, fb_err *err)
   return FB_OK;
 }
 
-/* System 2's hull, when present: its basis, then its source's rules. */
+/* System 2's hull, when present: its basis, then its source's declared
+ * ranges and rules (FB_PART_HULL_SOURCE names a parameter of its block). */
 static int check_fe_hull(const fb_scenario *s, fb_err *err)
 {
   if (!s->has_fe_hull)
@@ -557,7 +558,12 @@ static int check_fe_hull(const fb_scenario *s, fb_err *err)
                 : count                              ? "a count of modes"
                                                      : "every mode");
   const fb_hull_source *src = fb_scenario_hull_source(s);
-  return src->ops->check ? src->ops->check(s, err) : FB_OK;
+  int rc = fb_params_check(src->param, src->nparams, s->hull_params.bytes, err);
+  if (!rc && src->ops->check)
+    rc = src->ops->check(s, err);
+  if (rc && err && !err->part.kind && err->part.field[0]) /* a parameter of its block */
+    err->part.kind = FB_PART_HULL_SOURCE;
+  return rc;
 }
 
 /* ---- Outputs. */

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/registry.h"
 #include "core/util.h"
@@ -36,6 +37,16 @@ int fb_hull_source_check(const fb_hull_source *src, fb_err *err)
     return source_fail(err, src, "a name is letters, digits and '_', not from a digit");
   if (!src->doc || !src->doc[0])
     return source_fail(err, src, "undocumented (doc)");
+  if (src->params_size > FB_HULL_SOURCE_PARAMS_MAX)
+    return source_fail(err, src, "its parameter block exceeds FB_HULL_SOURCE_PARAMS_MAX");
+  if (src->nparams && !src->param)
+    return source_fail(err, src, "parameters counted but not declared");
+  for (size_t i = 0; i < src->nparams; ++i)
+    if (src->param[i].kind == FB_PARAM_FILE || src->param[i].kind == FB_PARAM_REALS)
+      return source_fail(err, src,
+                         "its parameters are numbers or choices (no files, no lists)");
+  if (fb_params_declared(src->param, src->nparams, src->params_size, err))
+    return fb_err_prefix(err, "hull source %s: ", src->name), FB_EINVAL;
   const fb_hull_source_ops *o = src->ops;
   if (!o || !o->describe)
     return source_fail(err, src, "a source describes itself (describe)");
@@ -58,8 +69,11 @@ int fb_scenario_set_hull_source(fb_scenario *s, const fb_hull_source *src, fb_er
   const int rc = fb_hull_source_check(src, err);
   if (rc)
     return rc;
-  if (fb_scenario_hull_source(s) != src)
+  if (fb_scenario_hull_source(s) != src) {
     fb_mesh_free(&s->hull_source_mesh);
+    memset(&s->hull_params, 0, sizeof s->hull_params);
+    fb_params_defaults(src->param, src->nparams, s->hull_params.bytes);
+  }
   s->hull_source = src;
   return FB_OK;
 }
