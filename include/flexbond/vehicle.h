@@ -1223,8 +1223,8 @@ typedef struct fb_fe_hull {
   size_t edge_node[4]; /* front left, front right, rear left, rear right */
 } fb_fe_hull;
 
-/* The scenario's finite-element hull: its mesh (the deck, or the
- * generator with hull.mesh's parameters), material and mass matrix kind.
+/* The scenario's finite-element hull: its mesh (the one its source read
+ * or makes, flexbond/hull_source.h), material and mass matrix kind.
  * FB_EINVAL if the scenario has no finite-element model (has_fe_hull).
  * Errors about a value of the description name its part (fb_err.part; the
  * caller locates it: fb_scenario_locate): a deck's are about hull_deck,
