@@ -316,23 +316,29 @@ static const fb_hull_source plate = {.name = "plate",
 
 /* ---- Scenarios for each source, from the example's text. */
 
-/* text with the part from start (after skip characters) up to end
- * (kept) replaced by with; text is freed, the result new (NULL: a marker
- * missing). */
-static char *replaced(char *text, const char *start, size_t skip, const char *end,
-                      const char *with)
+/* text with its cut characters from at replaced by with; text is freed,
+ * the result new (NULL: at is NULL, or out of memory). */
+static char *spliced(char *text, const char *at, size_t cut, const char *with)
 {
-  char *from = text ? strstr(text, start) : NULL;
-  char *to = from ? strstr(from + skip, end) : NULL;
-  char *out = to ? malloc(strlen(text) + strlen(with) + 1) : NULL;
-  if (out) {
-    const size_t head = (size_t)(from - text) + skip;
-    memcpy(out, text, head);
-    strcpy(out + head, with);
-    strcat(out, to);
+  char *out = NULL;
+  if (at) {
+    const size_t n = strlen(text) + strlen(with) + 1;
+    out = malloc(n);
+    if (out)
+      snprintf(out, n, "%.*s%s%s", (int)(at - text), text, with, at + cut);
   }
   free(text);
   return out;
+}
+
+/* text with the part from start (after skip characters) up to end
+ * (kept) replaced by with (NULL: a marker missing). */
+static char *replaced(char *text, const char *start, size_t skip, const char *end,
+                      const char *with)
+{
+  const char *from = text ? strstr(text, start) : NULL;
+  const char *to = from ? strstr(from + skip, end) : NULL;
+  return spliced(text, to ? from + skip : NULL, to ? (size_t)(to - from) - skip : 0, with);
 }
 
 /* The example with its hull.mesh section replaced by mesh, and, when the
@@ -391,19 +397,10 @@ static int load_yaml(const char *yaml, const fb_hull_source_gallery *g, fb_scena
   return yaml ? load_text_with(yaml, &opts, out, err) : FB_EIO;
 }
 
-/* text with its first from replaced by to; text is freed, the result new
- * (NULL: from missing). */
+/* text with its first from replaced by to (NULL: from missing). */
 static char *replaced_once(char *text, const char *from, const char *to)
 {
-  char *at = text ? strstr(text, from) : NULL;
-  char *out = at ? malloc(strlen(text) + strlen(to) + 1) : NULL;
-  if (out) {
-    memcpy(out, text, (size_t)(at - text));
-    strcpy(out + (at - text), to);
-    strcat(out, at + strlen(from));
-  }
-  free(text);
-  return out;
+  return spliced(text, text ? strstr(text, from) : NULL, strlen(from), to);
 }
 
 /* A value of the source's section spoilt: the load fails at key. */

@@ -393,7 +393,7 @@ static int sc_schema_fill(sc_schema *sc, const sc_galleries *gal, fb_err *err)
   sc->corner_key = calloc(sc_corner_format.n + extra, sizeof *sc->corner_key);
   sc->path = calloc(2 * extra + 2, sizeof *sc->path); /* and the choice's doc */
   sc->tire_name = calloc(ntires + 1, sizeof *sc->tire_name);
-  sc->tire = calloc(ntires + 1, sizeof *sc->tire);
+  sc->tire = calloc(ntires + 1, sizeof(const fb_tire_model *));
   if (!sc->key || !sc->corner_key || !sc->path || !sc->tire_name || !sc->tire)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   for (size_t i = 0; i < ntires; ++i) {
