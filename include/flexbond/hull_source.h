@@ -102,6 +102,10 @@ int fb_scenario_set_hull_source(fb_scenario *s, const fb_hull_source *src, fb_er
  * (a maker of descriptions calls it once, after fb_scenario_check and
  * before fb_vehicle_hull_complete); nothing for one that makes it. */
 int fb_scenario_read_hull(fb_scenario *s, fb_err *err);
+/* 1 if s's hull mesh is one its source reads, in a frame of its own,
+ * which the loader moves with the positions to the structure's centre of
+ * mass (fb_vehicle_hull_complete); 0 for one made in s's frame. */
+int fb_scenario_hull_read_in_own_frame(const fb_scenario *s);
 /* The refinement s's mesh is made at; 0: its source is not refined. */
 int fb_scenario_hull_density(const fb_scenario *s);
 /* One clause describing s's mesh source, into buf (n bytes). */

@@ -161,7 +161,7 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
             "; the hull's centre of mass is at x, y = %.10g, %.10g m there, and the positions "
             "below are relative to it |\n",
             s->hull_cg_x, s->hull_cg_y);
-  } else if (s->has_fe_hull && s->hull_source_mesh) {
+  } else if (fb_scenario_hull_read_in_own_frame(s)) {
     fprintf(fp,
             "| frame | the deck's: its structure's centre of mass is at x, y = %.10g, %.10g m "
             "there; the deck's nodes and the positions below were moved to be relative to it "

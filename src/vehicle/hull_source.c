@@ -92,6 +92,11 @@ int fb_scenario_read_hull(fb_scenario *s, fb_err *err)
   return FB_OK;
 }
 
+int fb_scenario_hull_read_in_own_frame(const fb_scenario *s)
+{
+  return s->has_fe_hull && fb_scenario_hull_source(s)->ops->read != NULL;
+}
+
 int fb_scenario_hull_density(const fb_scenario *s)
 {
   const fb_hull_source *src = fb_scenario_hull_source(s);
