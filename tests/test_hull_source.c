@@ -596,6 +596,16 @@ static void test_plate(const fb_hull_source_gallery *g)
         fabs(fb_mesh_node_xyz(h->mesh, node[0])[0] - s->mount[1].x) < 1e-9);
   fb_fe_hull_free(&h);
   fb_scenario_free(&s);
+  /* Its keys take a value in place of the file's, as the format's do. */
+  const fb_scenario_override ov = {.key = "hull.mesh.plate.splits", .value = "3"};
+  const fb_scenario_load_opts opts = {.hull_sources = g, .overrides = &ov, .noverrides = 1};
+  yaml = example_with_mesh(PLATE_MESH, 1);
+  CHECK(yaml && load_text_with(yaml, &opts, &s, &err) == FB_OK);
+  free(yaml);
+  if (s)
+    fb_scenario_hull_describe(s, what, sizeof what);
+  CHECK(s && !strcmp(what, "a flat plate, 3 elements between grid lines"));
+  fb_scenario_free(&s);
 }
 
 /* Without the program's gallery the format has no such section. */
