@@ -272,6 +272,11 @@ for q in "LF tire normal reaction | N" "RF suspension spring deformation | m" \
   [ "$(sed -n '/^## Comparison/,/^## /p' "$REPORT" | grep -c "^| $q |.*|.*|.*|.*|.*|.*|.*|.*|$")" \
     -eq 1 ] || fail "report.md comparison row '$q'"
 done
+expect_in "$REPORT" "System 2's hull mesh: the built-in generator at density 1: " \
+  "report.md names the hull's source"
+# A generated hull is made in the file's frame: no frame row (a deck's has one, below).
+checks=$((checks + 1))
+! grep -q "^| frame |" "$REPORT" || fail "report.md of a generated hull has no frame row"
 expect_in "$REPORT" "System 2's hull model: in modal coordinates, " "report.md hull model"
 expect_in "$REPORT" "coordinates in place of 1296 nodal DOFs" "report.md hull basis size"
 expect_in "$REPORT" "Its estimated error, the largest difference from the same run with the basis's next block" \

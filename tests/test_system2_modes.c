@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "apc_layout.h"
@@ -28,8 +29,9 @@ static void use_deck(fb_scenario *s, const char *path)
 {
   fb_err err;
   free(s->hull_deck);
-  fb_mesh_free(&s->hull_source_mesh);
   s->hull_deck = strdup(path);
+  CHECK(fb_scenario_set_hull_source(s, &fb_hull_source_deck, &err) == FB_OK);
+  fb_mesh_free(&s->hull_source_mesh);
   CHECK(fb_mesh_read_inp(path, &s->hull_source_mesh, NULL, &err) == FB_OK);
 }
 
@@ -141,7 +143,7 @@ static void test_deck_round_trip(fb_scenario *s)
   CHECK(strstr(err.msg, "no node set SUSP_LF") != NULL);
   free(s->hull_deck);
   s->hull_deck = NULL;
-  fb_mesh_free(&s->hull_source_mesh);
+  CHECK(fb_scenario_set_hull_source(s, &fb_hull_source_generator, NULL) == FB_OK);
   remove(path);
   fb_mode_set_free(&a);
   fb_mode_set_free(&b);
@@ -244,7 +246,7 @@ static void test_warped_decks(fb_scenario *s)
   }
   free(s->hull_deck);
   s->hull_deck = NULL;
-  fb_mesh_free(&s->hull_source_mesh);
+  CHECK(fb_scenario_set_hull_source(s, &fb_hull_source_generator, NULL) == FB_OK);
   remove(flat);
   remove(warped);
 }

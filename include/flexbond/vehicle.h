@@ -163,6 +163,21 @@ typedef struct fb_hull_mesh_params {
  * of the description its errors are about (fb_err.part), and the maker
  * says where they came from (fb_scenario_locate). */
 typedef struct fb_scenario_source fb_scenario_source;
+/* Where System 2's hull mesh comes from (flexbond/hull_source.h), and a
+ * set of such sources. */
+typedef struct fb_hull_source fb_hull_source;
+typedef struct fb_hull_source_gallery fb_hull_source_gallery;
+
+/* Most bytes of a hull source's parameter block. */
+#define FB_HULL_SOURCE_PARAMS_MAX ((size_t)256)
+
+/* The parameter block a description holds for its hull source (its
+ * declared parameters, fb_hull_source.param); the built-in sources keep
+ * theirs in hull_deck and hull_mesh and declare none. */
+typedef union fb_hull_source_params {
+  max_align_t align_;
+  unsigned char bytes[FB_HULL_SOURCE_PARAMS_MAX];
+} fb_hull_source_params;
 typedef struct fb_scenario_source_ops {
   /* A deep copy of src into *out; FB_ENOMEM when memory runs out. */
   int (*clone)(const fb_scenario_source *src, fb_scenario_source **out);
@@ -239,16 +254,17 @@ typedef enum fb_coupling_kind {
  * says where the part came from (fb_scenario_locate for a file). */
 typedef enum fb_part_kind {
   FB_PART_NONE = 0,
-  FB_PART_VEHICLE = 1,    /* fb_scenario's members */
-  FB_PART_CORNER = 2,     /* corner[index], fb_corner_params */
-  FB_PART_MOUNT = 3,      /* mount[index], fb_mount */
-  FB_PART_HULL_MASS = 4,  /* point_mass[index], fb_hull_point_mass */
-  FB_PART_SECTION = 5,    /* section[index], fb_hull_section */
-  FB_PART_OUTPUT = 6,     /* output[index], fb_output_spec */
-  FB_PART_LOAD_POINT = 7, /* (load_x[index], load_y[index]); field "" */
-  FB_PART_ROAD = 8,       /* the road type's parameter field (fb_param.name); index 0 */
-  FB_PART_TIRE = 9,       /* corner[index]'s tire model's parameter field (fb_param.name) */
-  FB_PART_KINDS = 10
+  FB_PART_VEHICLE = 1,      /* fb_scenario's members */
+  FB_PART_CORNER = 2,       /* corner[index], fb_corner_params */
+  FB_PART_MOUNT = 3,        /* mount[index], fb_mount */
+  FB_PART_HULL_MASS = 4,    /* point_mass[index], fb_hull_point_mass */
+  FB_PART_SECTION = 5,      /* section[index], fb_hull_section */
+  FB_PART_OUTPUT = 6,       /* output[index], fb_output_spec */
+  FB_PART_LOAD_POINT = 7,   /* (load_x[index], load_y[index]); field "" */
+  FB_PART_ROAD = 8,         /* the road type's parameter field (fb_param.name); index 0 */
+  FB_PART_TIRE = 9,         /* corner[index]'s tire model's parameter field (fb_param.name) */
+  FB_PART_HULL_SOURCE = 10, /* the hull source's parameter field (fb_param.name); index 0 */
+  FB_PART_KINDS = 11
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -328,13 +344,19 @@ typedef struct fb_scenario {
   /* System 2's hull (the optional hull.mesh and hull.fe sections;
    * has_fe_hull is 0 without them). */
   int has_fe_hull;
-  char *hull_deck; /* Abaqus/CalculiX deck's path, NULL: the generator */
-  /* The hull's mesh as the loader made it, once: the deck as it read it
-   * (moved to the structure's centre of mass), or the generator's (owned).
-   * fb_vehicle_fe_hull copies it rather than generating it again, as long
-   * as the generator's inputs are still those it was made from,
-   * hull_source_key (fb_hull_mesh_key): a program that changes hull_mesh
-   * or a point after loading gets a mesh of its own. */
+  /* Where the mesh comes from (flexbond/hull_source.h; borrowed, NULL:
+   * the generator), set with fb_scenario_set_hull_source. The built-in
+   * sources read their values from hull_deck (fb_hull_source_deck) and
+   * hull_mesh (fb_hull_source_generator). */
+  const fb_hull_source *hull_source;
+  fb_hull_source_params hull_params; /* its block, set with it */
+  char *hull_deck;                   /* Abaqus/CalculiX deck's or gmsh mesh's path */
+  /* The hull's mesh as the loader made it, once: the one its source read
+   * (moved to the structure's centre of mass), or the one it made (owned).
+   * fb_vehicle_fe_hull copies it rather than making it again, as long as
+   * the source's inputs are still those it was made from, hull_source_key
+   * (the source's key op): a program that changes hull_mesh or a point
+   * after loading gets a mesh of its own. */
   fb_mesh *hull_source_mesh;
   uint64_t hull_source_key;
   /* hull.mesh.converged_density: a density of the generator at which the
@@ -501,6 +523,9 @@ typedef struct fb_scenario_load_opts {
   /* The tire models the document may name (wheel.tire_contact); NULL:
    * the built-in ones. Borrowed as roads is. */
   const fb_tire_gallery *tires;
+  /* The hull sources the document may name (hull.mesh.<source>); NULL:
+   * the built-in ones. Borrowed as roads is. */
+  const fb_hull_source_gallery *hull_sources;
   /* Values read in place of the document's, as for
    * fb_scenario_load_overrides. */
   const fb_scenario_override *overrides;
@@ -1215,8 +1240,8 @@ typedef struct fb_fe_hull {
   size_t edge_node[4]; /* front left, front right, rear left, rear right */
 } fb_fe_hull;
 
-/* The scenario's finite-element hull: its mesh (the deck, or the
- * generator with hull.mesh's parameters), material and mass matrix kind.
+/* The scenario's finite-element hull: its mesh (the one its source read
+ * or makes, flexbond/hull_source.h), material and mass matrix kind.
  * FB_EINVAL if the scenario has no finite-element model (has_fe_hull).
  * Errors about a value of the description name its part (fb_err.part; the
  * caller locates it: fb_scenario_locate): a deck's are about hull_deck,

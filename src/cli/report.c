@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "flexbond/escape.h"
+#include "flexbond/hull_source.h"
 #include "flexbond/io.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
@@ -146,7 +147,7 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
             "; the hull's centre of mass is at x, y = %.10g, %.10g m there, and the positions "
             "below are relative to it |\n",
             s->hull_cg_x, s->hull_cg_y);
-  } else if (s->has_fe_hull && s->hull_source_mesh) {
+  } else if (fb_scenario_hull_read_in_own_frame(s)) {
     fprintf(fp,
             "| frame | the deck's: its structure's centre of mass is at x, y = %.10g, %.10g m "
             "there; the deck's nodes and the positions below were moved to be relative to it "
@@ -311,14 +312,19 @@ static void write_hull_order(FILE *fp, const cli_run_outputs *o)
   write_basis_error(fp, o);
 }
 
-/* The estimated mesh error of a generated hull (fb_study_mesh_error). */
+/* Room for a hull source's description (a path and a few words). */
+#define HULL_SOURCE_TEXT 1024
+
+/* The estimated mesh error of a refined hull (fb_study_mesh_error). */
 static void write_mesh_error(FILE *fp, const fb_scenario *s)
 {
   double band[2];
   if (!fb_study_mesh_error(s, band)) {
-    fputs("- Mesh convergence: not estimated for a deck; compare with a finer deck of the "
-          "same hull.\n",
-          fp);
+    char what[HULL_SOURCE_TEXT];
+    fb_scenario_hull_describe(s, what, sizeof what);
+    fputs("- Mesh convergence: not estimated for ", fp);
+    fb_md_write_text(fp, what);
+    fputs(", used as it is; compare with a finer mesh of the same hull.\n", fp);
     return;
   }
   fprintf(fp,
@@ -327,8 +333,8 @@ static void write_mesh_error(FILE *fp, const fb_scenario *s)
           "their converged values (the reference hull's measured %.0f %% to %.0f %% at "
           "density 1, falling as 1 / density^2; docs/hull-mesh.md, \"Convergence\"). The "
           "vehicle's suspension modes move by less than 0.1 %% with the mesh.\n",
-          s->hull_mesh.density, 100 * band[0], 100 * band[1], 100 * FB_STUDY_MESH_ERROR_LOW,
-          100 * FB_STUDY_MESH_ERROR_HIGH);
+          fb_scenario_hull_density(s), 100 * band[0], 100 * band[1],
+          100 * FB_STUDY_MESH_ERROR_LOW, 100 * FB_STUDY_MESH_ERROR_HIGH);
 }
 
 static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
@@ -336,12 +342,9 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
   const fb_scenario *s = o->scenario;
   const fb_mesh *m = o->hull->mesh;
   fputs("- System 2's hull mesh: ", fp);
-  if (s->hull_deck) {
-    fputs("the deck ", fp);
-    fb_md_write_text(fp, s->hull_deck);
-  } else {
-    fprintf(fp, "the built-in generator at density %d", s->hull_mesh.density);
-  }
+  char what[HULL_SOURCE_TEXT];
+  fb_scenario_hull_describe(s, what, sizeof what);
+  fb_md_write_text(fp, what);
   fprintf(fp,
           ": %zu nodes, %zu triangles (S3) and %zu quadrilaterals (S4), flat shells with 6 "
           "DOFs per node. Material E = %.10g GPa, nu = %.10g, rho = %.10g kg/m^3, thickness "
@@ -640,7 +643,7 @@ static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
           "Hz against %.4g Hz at "
           "density %d",
           o->converged_density, b->ndof, b->ncoords, b->f1_hz, o->basis ? o->basis->f1_hz : NAN,
-          s->hull_mesh.density);
+          fb_scenario_hull_density(s));
   const double e =
       fb_study_run_worst_basis_error(fb_study_report_converged(o->report), s->noutputs, NULL);
   if (isfinite(e))
@@ -651,23 +654,23 @@ static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
           "range.\n\n| output | unit | max abs S2 - S1 / S1 range, density %d | the same, "
           "density %d | peak change, density %d | peak change, density %d | max abs S2 "
           "(density %d) - S2 (density %d) / S1 range |\n|---|---|---|---|---|---|---|\n",
-          s->hull_mesh.density, o->converged_density, s->hull_mesh.density,
-          o->converged_density, o->converged_density, s->hull_mesh.density);
+          fb_scenario_hull_density(s), o->converged_density, fb_scenario_hull_density(s),
+          o->converged_density, o->converged_density, fb_scenario_hull_density(s));
 }
 
 static void write_converged(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
   if (!o->cmp_converged) {
-    if (o->diff && s->hull_converged_density && s->hull_deck)
+    if (o->diff && s->hull_converged_density && !fb_scenario_hull_density(s))
       fputs("\n## At a converged mesh\n\n`hull.mesh.converged_density` refines the "
-            "generator's mesh; this hull is a deck, used as it is: no second mesh ran.\n",
+            "generator's mesh; this hull's mesh is used as it is: no second mesh ran.\n",
             fp);
     else if (o->diff && s->hull_converged_density)
       fprintf(fp,
               "\n## At a converged mesh\n\nThis run's mesh (density %d) is at or above "
               "`hull.mesh.converged_density` = %d: no second mesh ran.\n",
-              s->hull_mesh.density, s->hull_converged_density);
+              fb_scenario_hull_density(s), s->hull_converged_density);
     return;
   }
   write_converged_intro(fp, o);
@@ -1074,7 +1077,7 @@ static void conclude_converged(FILE *fp, const cli_run_outputs *o)
           o->converged_density, 100 * o->cmp_converged[d3.largest].rel_diff);
   fb_md_write_text(fp, o->scenario->output[d3.largest].label);
   fprintf(fp, ", against %.1f %% at density %d: ", 100 * o->cmp[d1.largest].rel_diff,
-          o->scenario->hull_mesh.density);
+          fb_scenario_hull_density(o->scenario));
   if (changed == 0 && d3.nnotable == 0)
     fprintf(fp,
             "the conclusion stands, every output that varies agrees within %.0f %% on "

@@ -18,6 +18,7 @@
 
 #include "flexbond/escape.h"
 #include "flexbond/fem.h"
+#include "flexbond/hull_source.h"
 #include "flexbond/io.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
@@ -188,7 +189,8 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
     series[nseries++] = (fb_plot_series){.result = o->converged->res,
                                          .col = fb_run_summary_column(o->converged->sum, k) - 1,
                                          .legend = o->converged->label};
-    snprintf(paper, sizeof paper, "System 2 at density %d", o->scenario->hull_mesh.density);
+    snprintf(paper, sizeof paper, "System 2 at density %d",
+             fb_scenario_hull_density(o->scenario));
   }
   /* fb_result_diff keeps System 1's columns. */
   const fb_plot_series diff[2] = {{.result = o->diff,
@@ -1167,7 +1169,7 @@ static void use_converged(const run_converged *c, cli_run_outputs *o)
 {
   o->converged = &c->run;
   o->converged_basis = fb_vehicle_hull_basis(c->rv.v);
-  o->converged_density = c->s->hull_mesh.density;
+  o->converged_density = fb_scenario_hull_density(c->s);
 }
 
 static void run_converged_free(run_converged *c)

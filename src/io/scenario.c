@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
@@ -193,10 +194,11 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
     rc = sc_check_ranges(s, c->err);
   if (!rc && fb_scenario_check(s, c->err))
     rc = fb_scenario_locate(s, c->err);
-  /* A hull deck is read here, once: the builder takes the mesh from the
-   * scenario. Its errors are at hull.mesh.deck, then at the deck's line. */
-  if (!rc && s->hull_deck && fb_mesh_read_file(s->hull_deck, &s->hull_source_mesh, c->err)) {
-    fb_err_set_key(c->err, "hull.mesh.deck");
+  /* A source that reads its mesh (a deck) reads it here, once: the
+   * builder takes the mesh from the scenario. Its errors are at its key
+   * hull.mesh.<source>, then at the file's line. */
+  if (!rc && fb_scenario_read_hull(s, c->err)) {
+    fb_err_set_key(c->err, "hull.mesh.%s", fb_scenario_hull_source(s)->name);
     rc = fb_scenario_locate(s, c->err);
   }
   /* Last: the frame's positions moved to the hull's centre of mass, a
@@ -253,7 +255,7 @@ int sc_load(const char *text, size_t len, const char *display_name, const char *
                : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (!rc)
     rc = sc_schema_new(opts ? opts->roads : NULL, opts ? opts->tires : NULL,
-                       &sc_source_of(s)->schema, e);
+                       opts ? opts->hull_sources : NULL, &sc_source_of(s)->schema, e);
   if (!rc)
     rc = sc_load_document(&c, text, len, ov, nov, s);
   if (s) {

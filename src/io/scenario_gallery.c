@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
@@ -60,10 +61,28 @@ static int sc_road_done(sch_reader *r, const sch_key *k, struct fy_node *node, v
   return ml_blame(r->c, at ? at : node);
 }
 
+/* A hull source's section is there when it is the description's
+ * source. */
+static int sc_hull_present(const sch_key *k, const void *base)
+{
+  const fb_scenario *s = base;
+  return s->has_fe_hull && fb_scenario_hull_source(s) == k->data;
+}
+
+/* The description's source is the section's, its block new before the
+ * section's keys fill it. */
+static int sc_hull_begin(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
+{
+  const int rc = fb_scenario_set_hull_source(base, k->data, r->c->err);
+  return rc ? ml_blame(r->c, node) : FB_OK;
+}
+
 /* An optional parameter left out (NaN, or no choice) is no value. */
 static int sc_param_present(const sch_key *k, const void *base)
 {
   const fb_param *p = k->data;
+  if (k->store == SCH_STORE_NONE) /* read to be inherited, kept by no struct */
+    return 0;
   if (p->need != FB_PARAM_OPTIONAL)
     return 1;
   const char *at = (const char *)base + k->offset;
@@ -75,6 +94,7 @@ static int sc_param_present(const sch_key *k, const void *base)
 static const sch_ops sc_road_ops = {
     .begin = sc_road_begin, .done = sc_road_done, .present = sc_road_present};
 static const sch_ops sc_param_ops = {.present = sc_param_present};
+static const sch_ops sc_hull_ops = {.begin = sc_hull_begin, .present = sc_hull_present};
 
 /* ---- Making the table. */
 
@@ -150,6 +170,31 @@ static int sc_type_keys(sc_schema *sc, const fb_road_type *t, size_t *n, fb_err 
     if (!(path = sc_key_path(sc, "road", t->name, &t->param[i])))
       return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
     sc->key[(*n)++] = sc_param_key(path, &t->param[i], offsetof(fb_scenario, road));
+  }
+  return FB_OK;
+}
+
+/* The keys of hull source src from sc->key[*n] on: a section
+ * hull.mesh.<source>, one of the format's "mesh", and its parameters; a
+ * source that declares none (a built-in one) has the format's own. */
+static int sc_hull_keys(sc_schema *sc, const fb_hull_source *src, size_t *n, fb_err *err)
+{
+  if (!src->nparams)
+    return FB_OK;
+  const char *path = sc_key_path(sc, "hull.mesh", src->name, NULL);
+  if (!path)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+  sc->key[(*n)++] = (sch_key){.path = path,
+                              .type = SCH_SECTION,
+                              .need = SCH_REQUIRED,
+                              .one_of = "mesh",
+                              .doc = src->doc,
+                              .ops = &sc_hull_ops,
+                              .data = src};
+  for (size_t i = 0; i < src->nparams; ++i) {
+    if (!(path = sc_key_path(sc, "hull.mesh", src->name, &src->param[i])))
+      return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+    sc->key[(*n)++] = sc_param_key(path, &src->param[i], offsetof(fb_scenario, hull_params));
   }
   return FB_OK;
 }
@@ -269,9 +314,12 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
 }
 
 /* The generated keys' count: a section and its parameters per entry. */
-static size_t sc_gallery_keys(const fb_road_gallery *roads, const fb_tire_gallery *tires)
+static size_t sc_gallery_keys(const fb_road_gallery *roads, const fb_tire_gallery *tires,
+                              const fb_hull_source_gallery *hulls)
 {
   size_t n = 0;
+  for (size_t i = 0; i < fb_hull_source_gallery_count(hulls); ++i)
+    n += 1 + fb_hull_source_gallery_at(hulls, i)->nparams;
   for (size_t i = 0; i < fb_road_gallery_count(roads); ++i)
     n += 1 + fb_road_gallery_at(roads, i)->nparams;
   for (size_t i = 0; i < fb_tire_gallery_count(tires); ++i)
@@ -295,13 +343,22 @@ static const char *sc_tire_doc(sc_schema *sc, const fb_tire_gallery *g)
   return doc;
 }
 
+/* The galleries a table is made with. */
+typedef struct sc_galleries {
+  const fb_road_gallery *roads;
+  const fb_tire_gallery *tires;
+  const fb_hull_source_gallery *hulls;
+} sc_galleries;
+
 /* Copies table own into key (room for own->n and the galleries' keys):
  * after SC_TIRE_CHOICE the tire models' choices and sections, after
- * SC_ROAD_TYPES_AFTER the road types' (roads NULL: none); *n keys. */
-static int sc_copy_with(sc_schema *sc, const sch_table *own, const fb_road_gallery *roads,
-                        const fb_tire_gallery *tires, int corner, sch_key *key, size_t *n,
-                        fb_err *err)
+ * SC_ROAD_TYPES_AFTER the road types' and after SC_HULL_SOURCES_AFTER
+ * the hull sources' (roads and hulls NULL: none); *n keys. */
+static int sc_copy_with(sc_schema *sc, const sch_table *own, const sc_galleries *gal,
+                        int corner, sch_key *key, size_t *n, fb_err *err)
 {
+  const fb_road_gallery *roads = gal->roads;
+  const fb_tire_gallery *tires = gal->tires;
   int rc = FB_OK;
   for (size_t i = 0; !rc && i < own->n; ++i) {
     sch_key *k = &key[(*n)++];
@@ -320,20 +377,25 @@ static int sc_copy_with(sc_schema *sc, const sch_table *own, const fb_road_galle
                        j < fb_road_gallery_count(roads);
          ++j)
       rc = sc_type_keys(sc, fb_road_gallery_at(roads, j), n, err);
+    for (size_t j = 0; !rc && gal->hulls && !strcmp(k->path, SC_HULL_SOURCES_AFTER) &&
+                       j < fb_hull_source_gallery_count(gal->hulls);
+         ++j)
+      rc = sc_hull_keys(sc, fb_hull_source_gallery_at(gal->hulls, j), n, err);
   }
   return rc;
 }
 
-static int sc_schema_fill(sc_schema *sc, const fb_road_gallery *roads,
-                          const fb_tire_gallery *tires, fb_err *err)
+static int sc_schema_fill(sc_schema *sc, const sc_galleries *gal, fb_err *err)
 {
   const sch_table *own = &sc_format;
-  const size_t extra = sc_gallery_keys(roads, tires), ntires = fb_tire_gallery_count(tires);
+  const fb_tire_gallery *tires = gal->tires;
+  const size_t extra = sc_gallery_keys(gal->roads, tires, gal->hulls),
+               ntires = fb_tire_gallery_count(tires);
   sc->key = calloc(own->n + extra, sizeof *sc->key);
   sc->corner_key = calloc(sc_corner_format.n + extra, sizeof *sc->corner_key);
   sc->path = calloc(2 * extra + 2, sizeof *sc->path); /* and the choice's doc */
   sc->tire_name = calloc(ntires + 1, sizeof *sc->tire_name);
-  sc->tire = calloc(ntires + 1, sizeof *sc->tire);
+  sc->tire = calloc(ntires + 1, sizeof(const fb_tire_model *));
   if (!sc->key || !sc->corner_key || !sc->path || !sc->tire_name || !sc->tire)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   for (size_t i = 0; i < ntires; ++i) {
@@ -341,32 +403,39 @@ static int sc_schema_fill(sc_schema *sc, const fb_road_gallery *roads,
     sc->tire_name[i] = sc->tire[i]->name;
   }
   size_t nc = 0, n = 0;
-  int rc = sc_copy_with(sc, &sc_corner_format, NULL, tires, 1, sc->corner_key, &nc, err);
+  const sc_galleries corner_gal = {.tires = tires};
+  int rc = sc_copy_with(sc, &sc_corner_format, &corner_gal, 1, sc->corner_key, &nc, err);
   sc->corner_table = (sch_table){sc->corner_key, nc, sc_corner_format.done};
   if (!rc)
-    rc = sc_copy_with(sc, own, roads, tires, 0, sc->key, &n, err);
+    rc = sc_copy_with(sc, own, gal, 0, sc->key, &n, err);
   sc->table = (sch_table){sc->key, n, own->done};
   return rc;
 }
 
-int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires, sc_schema **out,
-                  fb_err *err)
+int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires,
+                  const fb_hull_source_gallery *hulls, sc_schema **out, fb_err *err)
 {
   *out = NULL;
   fb_road_gallery *builtin = NULL;
   fb_tire_gallery *builtin_tires = NULL;
+  fb_hull_source_gallery *builtin_hulls = NULL;
   int rc = roads ? FB_OK : fb_road_gallery_new(&builtin, err);
   if (!rc && !tires)
     rc = fb_tire_gallery_new(&builtin_tires, err);
+  if (!rc && !hulls)
+    rc = fb_hull_source_gallery_new(&builtin_hulls, err);
   sc_schema *sc = rc ? NULL : calloc(1, sizeof *sc);
   if (!rc && !sc)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   if (!rc) {
     atomic_init(&sc->refs, 1);
-    rc = sc_schema_fill(sc, roads ? roads : builtin, tires ? tires : builtin_tires, err);
+    const sc_galleries gal = {roads ? roads : builtin, tires ? tires : builtin_tires,
+                              hulls ? hulls : builtin_hulls};
+    rc = sc_schema_fill(sc, &gal, err);
   }
   fb_road_gallery_free(&builtin);
   fb_tire_gallery_free(&builtin_tires);
+  fb_hull_source_gallery_free(&builtin_hulls);
   if (rc)
     sc_schema_release(&sc);
   *out = sc;
@@ -412,7 +481,12 @@ int sc_schema_of(const fb_scenario *s, sc_schema **out, fb_err *err)
   /* A description no file gave: the built-in entries, and its own. */
   fb_road_gallery *g = NULL;
   fb_tire_gallery *tires = NULL;
+  fb_hull_source_gallery *hulls = NULL;
   int rc = fb_road_gallery_new(&g, err);
+  if (!rc)
+    rc = fb_hull_source_gallery_new(&hulls, err);
+  if (!rc && s && s->hull_source && !fb_hull_source_gallery_find(hulls, s->hull_source->name))
+    rc = fb_hull_source_gallery_add(hulls, s->hull_source, err);
   if (!rc && s && s->road_type && !fb_road_gallery_find(g, s->road_type->name))
     rc = fb_road_gallery_add(g, s->road_type, err);
   if (!rc)
@@ -423,8 +497,9 @@ int sc_schema_of(const fb_scenario *s, sc_schema **out, fb_err *err)
       rc = fb_tire_gallery_add(tires, m, err);
   }
   if (!rc)
-    rc = sc_schema_new(g, tires, out, err);
+    rc = sc_schema_new(g, tires, hulls, out, err);
   fb_road_gallery_free(&g);
   fb_tire_gallery_free(&tires);
+  fb_hull_source_gallery_free(&hulls);
   return rc;
 }

@@ -23,6 +23,10 @@
 extern const sch_table sc_format;
 /* The key of sc_format after which the road types' sections go. */
 #define SC_ROAD_TYPES_AFTER "road.speed_kmh"
+/* The key of sc_format after which the hull sources' sections go: the
+ * last of the generator's (a source's section hull.mesh.<source> joins
+ * hull.mesh.deck and hull.mesh.generator, one of them). */
+#define SC_HULL_SOURCES_AFTER "hull.mesh.generator.nose_rung_divisions"
 /* The key of sc_format, and of its corners' items, after which the tire
  * models' sections go; its choices are the models' names. */
 #define SC_TIRE_CHOICE "wheel.tire_contact"
@@ -39,11 +43,11 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
  * road.<type> of its declared parameters. Immutable once made, shared by
  * count (the scenarios read with it, their copies). */
 typedef struct sc_schema sc_schema;
-/* The table for the road types of roads and the tire models of tires
- * (borrowed for the call; their entries must outlive the schema), NULL:
- * the built-in ones. *out new. FB_ENOMEM. */
-int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires, sc_schema **out,
-                  fb_err *err);
+/* The table for the road types of roads, the tire models of tires and
+ * the hull sources of hulls (borrowed for the call; their entries must
+ * outlive the schema), NULL: the built-in ones. *out new. FB_ENOMEM. */
+int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires,
+                  const fb_hull_source_gallery *hulls, sc_schema **out, fb_err *err);
 /* sc again, one more holder. */
 sc_schema *sc_schema_share(sc_schema *sc);
 void sc_schema_release(sc_schema **sc);

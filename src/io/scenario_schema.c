@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/io.h"
 
 #include "core/util.h"
@@ -46,7 +47,7 @@ static const sch_ops sc_kmh = {.to_struct = sc_kmh_to_ms, .from_struct = sc_ms_t
   }
 
 SC_PRESENT(sc_has_fe_hull, fb_scenario, b->has_fe_hull)
-SC_PRESENT(sc_has_generator, fb_scenario, b->has_fe_hull && !b->hull_deck)
+SC_PRESENT(sc_has_refinable, fb_scenario, b->has_fe_hull &&fb_scenario_hull_density(b) > 0)
 SC_PRESENT(sc_has_frame, fb_scenario, b->frame_origin != NULL)
 SC_PRESENT(sc_has_cg, fb_scenario, b->hull_cg_given)
 SC_PRESENT(sc_has_coupling, fb_scenario, b->coupling != FB_COUPLING_NONE)
@@ -119,14 +120,42 @@ static int sc_fe_done(sch_reader *r, const sch_key *k, struct fy_node *node, voi
   return FB_OK;
 }
 
-/* density refines the generator's mesh only. */
+/* The section hull.mesh.<source> is there when it names the
+ * description's source. */
+static int sc_has_source(const sch_key *k, const void *base)
+{
+  const fb_scenario *s = base;
+  const char *name = strrchr(k->path, '.');
+  return s->has_fe_hull && name && !strcmp(fb_scenario_hull_source(s)->name, name + 1);
+}
+
+/* The source whose name is a key of hull.mesh (the format's one_of
+ * "mesh" makes it one at most; none: the generator's default). */
+static int sc_mesh_source(sch_reader *r, struct fy_node *node, fb_scenario *s)
+{
+  fb_hull_source_gallery *g = NULL;
+  int rc = fb_hull_source_gallery_new(&g, r->c->err);
+  for (size_t i = 0; !rc && i < fb_hull_source_gallery_count(g); ++i) {
+    const fb_hull_source *src = fb_hull_source_gallery_at(g, i);
+    if (ml_get(node, src->name, NULL))
+      rc = fb_scenario_set_hull_source(s, src, r->c->err);
+  }
+  fb_hull_source_gallery_free(&g);
+  return rc;
+}
+
+/* density refines a mesh its source makes, not one used as it is. */
 static int sc_mesh_done(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
 {
   struct fy_node *key = NULL;
   int rc = sc_fe_done(r, k, node, base);
-  if (!rc && node && ml_get(node, "deck", NULL) && (ml_get(node, "density", &key), key))
+  if (!rc && node)
+    rc = sc_mesh_source(r, node, base);
+  if (!rc && node && !fb_scenario_hull_density(base) && (ml_get(node, "density", &key), key))
     rc = ml_fail_key(r->c, node, key, FB_EPARSE,
-                     "density refines the generator's mesh; a deck is used as it is");
+                     "density refines the generator's mesh, or another its source makes; a "
+                     "`%s` mesh is used as it is",
+                     fb_scenario_hull_source(base)->name);
   return rc;
 }
 
@@ -198,7 +227,8 @@ static const sch_ops sc_hull_modes = {.read = sc_read_hull_modes,
 static const sch_ops sc_hull_ops = {.done = sc_hull_done};
 static const sch_ops sc_mesh_ops = {.done = sc_mesh_done, .present = sc_has_fe_hull};
 static const sch_ops sc_fe_ops = {.done = sc_fe_done, .present = sc_has_fe_hull};
-static const sch_ops sc_generator_present = {.present = sc_has_generator};
+static const sch_ops sc_refinable_present = {.present = sc_has_refinable};
+static const sch_ops sc_source_present = {.present = sc_has_source};
 static const sch_ops sc_cg_present = {.present = sc_has_cg};
 static const sch_ops sc_coupling_present = {.present = sc_has_coupling};
 
@@ -791,7 +821,7 @@ static const sch_key sc_keys[] = {
            S_AT(STRING, hull_deck)),
     WHOLE("hull.mesh.density", CLOSED(1, 64), DEF(1),
           "refinement of the generator's mesh: d x d elements for each",
-          S_AT(INT, hull_mesh.density), .ops = &sc_generator_present),
+          S_AT(INT, hull_mesh.density), .ops = &sc_refinable_present),
     WHOLE("hull.mesh.converged_density", CLOSED(2, 64), OPT,
           "a density of the generator at which the hull's modes have converged: `flexbond "
           "run` with both systems runs System 2 there too and compares, when it is above "
@@ -810,7 +840,7 @@ static const sch_key sc_keys[] = {
     STRING(NAME, "hull.mesh.coupling.surface", REQ,
            "the element set whose nodes those are (`FLOOR`)", S_AT(STRING, coupling_surface)),
     SECTION_IS("hull.mesh.generator", ONE_OF("mesh"),
-               "the built-in generator's geometry (docs/hull-mesh.md)", &sc_generator_present,
+               "the built-in generator's geometry (docs/hull-mesh.md)", &sc_source_present,
                S_IS(hull_mesh)),
     NUMBER("hull.mesh.generator.width", "m", POSITIVE, REQ, "between the side walls",
            S_OFF(hull_mesh.width)),
@@ -1040,6 +1070,9 @@ int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t si
   }
   if (p->kind == FB_PART_ROAD)
     return sc_road_part_key(s, p, key, size);
+  if (p->kind == FB_PART_HULL_SOURCE) /* hull.mesh.<source>.<parameter> */
+    return p->field[0] && snprintf(key, size, "hull.mesh.%s.%s",
+                                   fb_scenario_hull_source(s)->name, p->field) > 0;
   if (p->kind == FB_PART_TIRE) /* corners.<name>.wheel.<model>.<parameter> */
     return p->index < s->ncorners && s->corner[p->index].name && p->field[0] &&
            snprintf(key, size, "corners.%s.%s.%s.%s", s->corner[p->index].name, "wheel",
@@ -1103,7 +1136,7 @@ int sc_read(ml_ctx *c, const sch_table *t, struct fy_node *root, fb_symtab *para
 int fb_scenario_schema_markdown(FILE *fp, fb_err *err)
 {
   sc_schema *sc = NULL;
-  const int rc = sc_schema_new(NULL, NULL, &sc, err);
+  const int rc = sc_schema_new(NULL, NULL, NULL, &sc, err);
   if (!rc)
     sch_markdown(sc_schema_table(sc), fp);
   sc_schema_release(&sc);

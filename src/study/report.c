@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/study.h"
 
 enum { NCMP = 2 }; /* FB_STUDY_CMP_SYSTEM2, FB_STUDY_CMP_CONVERGED */
@@ -133,9 +134,10 @@ const fb_result *fb_study_report_diff(const fb_study_report *rep, fb_study_cmp_k
 
 int fb_study_mesh_error(const fb_scenario *s, double band[2])
 {
-  if (!s->has_fe_hull || s->hull_deck || s->hull_mesh.density < 1)
+  const int density = s->has_fe_hull ? fb_scenario_hull_density(s) : 0;
+  if (density < 1) /* a mesh used as it is: nothing refines it */
     return 0;
-  const double d2 = (double)s->hull_mesh.density * (double)s->hull_mesh.density;
+  const double d2 = (double)density * (double)density;
   band[0] = FB_STUDY_MESH_ERROR_LOW / d2;
   band[1] = FB_STUDY_MESH_ERROR_HIGH / d2;
   return 1;

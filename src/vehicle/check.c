@@ -14,6 +14,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
@@ -533,13 +534,12 @@ static int check_road_timing(const fb_scenario *s, fb_err *err)
   return FB_OK;
 }
 
-/* System 2's hull, when present. The generator checks the geometry
- * against the points itself, when the mesh is built. */
+/* System 2's hull, when present: its basis, then its source's declared
+ * ranges and rules (FB_PART_HULL_SOURCE names a parameter of its block). */
 static int check_fe_hull(const fb_scenario *s, fb_err *err)
 {
   if (!s->has_fe_hull)
     return FB_OK;
-  const fb_hull_mesh_params *g = &s->hull_mesh;
   const int count = s->hull_modes_kind == FB_HULL_MODES_COUNT;
   /* A reduced hull needs its six rigid-body modes at least. */
   if (count && s->hull_modes < 6)
@@ -557,21 +557,13 @@ static int check_fe_hull(const fb_scenario *s, fb_err *err)
                 s->hull_coordinates == FB_HULL_NODAL ? "nodal coordinates"
                 : count                              ? "a count of modes"
                                                      : "every mode");
-  if (s->hull_deck)
-    return FB_OK;
-  if (!(g->x_front > g->x_rear))
-    return fail(err, FB_PART_VEHICLE, 0, "hull_mesh.x_front",
-                "must be > the rear wall's x_rear = %.10g m (got %.10g)", g->x_rear,
-                g->x_front);
-  if (!(g->nose_height < g->height))
-    return fail(err, FB_PART_VEHICLE, 0, "hull_mesh.nose_height",
-                "must be < the hull's height = %.10g m (got %.10g)", g->height, g->nose_height);
-  for (size_t k = 0; k < g->nbulkheads; ++k)
-    if (!(g->bulkhead_x[k] > g->x_rear && g->bulkhead_x[k] < g->x_front))
-      return fb_err_set(err, FB_EINVAL, "must lie between x_rear and x_front (got %.10g m)",
-                        g->bulkhead_x[k]),
-             fb_err_set_part(err, FB_PART_VEHICLE, 0, k, "hull_mesh.bulkhead_x"), FB_EINVAL;
-  return FB_OK;
+  const fb_hull_source *src = fb_scenario_hull_source(s);
+  int rc = fb_params_check(src->param, src->nparams, s->hull_params.bytes, err);
+  if (!rc && src->ops->check)
+    rc = src->ops->check(s, err);
+  if (rc && err && !err->part.kind && err->part.field[0]) /* a parameter of its block */
+    err->part.kind = FB_PART_HULL_SOURCE;
+  return rc;
 }
 
 /* ---- Outputs. */

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
@@ -58,9 +59,8 @@ static void desc_feature(const fb_scenario *s, const fb_corner_params *w, double
 
 int fb_scenario_converged_density(const fb_scenario *s)
 {
-  return !s->hull_deck && s->hull_converged_density > s->hull_mesh.density
-             ? s->hull_converged_density
-             : 0;
+  const int density = fb_scenario_hull_density(s);
+  return density > 0 && s->hull_converged_density > density ? s->hull_converged_density : 0;
 }
 
 void fb_scenario_use_auto_basis(fb_scenario *s)

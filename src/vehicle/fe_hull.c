@@ -11,6 +11,7 @@
 #include <strings.h>
 #include <time.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "core/util.h"
@@ -323,7 +324,8 @@ int vehicle_source_mesh_current(const fb_scenario *s)
 {
   if (!s->hull_source_mesh)
     return 0;
-  return s->hull_deck || s->hull_source_key == fb_hull_mesh_key(s, &s->hull_mesh);
+  const fb_hull_source *src = fb_scenario_hull_source(s);
+  return !src->ops->key || s->hull_source_key == src->ops->key(s);
 }
 
 /* System 2's hull from a mesh (taken over), whatever made it: the
@@ -354,33 +356,25 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err)
    * neither a deck's *SHELL SECTION nor hull.sections give properties. */
   const fb_shell_props props = {s->young,     s->poisson,           s->density,
                                 s->thickness, s->hull_drill_factor, 0.0};
+  const fb_hull_source *src = fb_scenario_hull_source(s);
   fb_mesh *mesh = NULL;
   int rc = FB_OK;
   if (vehicle_source_mesh_current(s))
     rc = fb_mesh_clone(s->hull_source_mesh, &mesh, err);
-  else if (!s->hull_deck)
-    /* A scenario the loader did not complete, or changed since: the
-     * generator's errors about a scenario value name its part (the
-     * caller locates it); the others start with "hull mesh:". */
-    rc = fb_hull_mesh_generate(s, &s->hull_mesh, &mesh, err);
-  else {
-    fb_err_set(err, FB_EINVAL,
-               "%s: the deck is not read (the scenario's hull_source_mesh; the loader reads "
-               "it)",
-               s->hull_deck);
-    return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_deck)), FB_EINVAL;
-  }
-  if (rc)
-    return rc;
-  /* A deck's errors of size and of its node sets, which keep no line,
-   * name the deck alone; a node that is off stays the error of the
-   * scenario's point. */
-  rc = fe_hull_of_mesh(s, &mesh, &props, out, err);
-  if (rc && s->hull_deck) {
-    fb_err_prefix(err, "%s: ", s->hull_deck);
-    if (err && !err->part.kind)
-      fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_deck));
-  }
+  else if (src->ops->make)
+    /* A description the loader did not complete, or changed since: the
+     * source's errors about a value name its part (the caller locates
+     * it); the generator's others start with "hull mesh:". */
+    rc = src->ops->make(s, &mesh, err);
+  else
+    rc = fb_err_set(err, FB_EINVAL,
+                    "the hull's mesh is not read (the scenario's hull_source_mesh; "
+                    "fb_scenario_read_hull reads it)");
+  /* The errors of the mesh a source gave are its own. */
+  if (!rc)
+    rc = fe_hull_of_mesh(s, &mesh, &props, out, err);
+  if (rc && src->ops->blame)
+    src->ops->blame(s, err);
   return rc;
 }
 

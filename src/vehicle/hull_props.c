@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "vehicle/vehicle_internal.h"
@@ -123,17 +124,16 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
   s->edge_right_y -= dy;
 }
 
-/* The hull's centre of mass in the declared frame: the generated mesh's
- * (its plates are symmetric about y = 0), else the typed one. */
+/* The hull's centre of mass in the declared frame: the made mesh's (its
+ * source's centroid), else the typed one. */
 static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
 {
   if (s->has_fe_hull) {
-    double cz = 0.0;
-    fb_hull_mesh_centroid(s, &s->hull_mesh, x, &cz);
+    double length = 0.0;
+    fb_scenario_hull_source(s)->ops->centroid(s, x, &length);
     *y = 0.0;
     if (!s->hull_cg_given)
       return FB_OK;
-    const double length = s->hull_mesh.x_front + s->hull_mesh.nose_length - s->hull_mesh.x_rear;
     if (fabs(s->hull_cg_x - *x) <= PROPERTY_TOLERANCE * length && fabs(s->hull_cg_y) <= 1e-3)
       return FB_OK;
     fb_err_set(err, FB_EINVAL,
@@ -154,10 +154,10 @@ static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
   return FB_OK;
 }
 
-/* A deck's nodes and the file's positions share the deck's frame: both
- * move to the structure's centre of mass there, the frame of every
- * fragment (System 1's rigid hull turns about it). A deck written by
- * flexbond is centred already (to round-off). The mass and the inertia
+/* A mesh read from a file (a deck) and the file's positions share the
+ * deck's frame: both move to the structure's centre of mass there, the
+ * frame of every fragment (System 1's rigid hull turns about it). A deck
+ * written by flexbond is centred already (to round-off). The mass and the inertia
  * about the centre of mass (*mp) do not change in the move, which keeps
  * every node set on its point. */
 static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
@@ -182,7 +182,11 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
 {
   int rc = FB_OK;
   mesh_props mp = {0};
-  if (s->has_fe_hull && s->hull_deck) {
+  /* A source that reads its mesh has it in a frame of its own; one that
+   * makes it knows where its centre of mass will be. */
+  const fb_hull_source *src = fb_scenario_hull_source(s);
+  const int made = src->ops->make != NULL;
+  if (s->has_fe_hull && !made) {
     rc = centre_deck(s, &mp, err);
     if (rc)
       return rc;
@@ -196,14 +200,14 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
     shift_positions(s, x, y);
   }
   if (s->has_fe_hull) {
-    /* The generator runs here, once, where the positions are final: the
-     * vehicle copies its mesh. */
-    if (!s->hull_deck && !vehicle_source_mesh_current(s)) {
+    /* A source that makes its mesh makes it here, once, where the
+     * positions are final: the vehicle copies it. */
+    if (made && !vehicle_source_mesh_current(s)) {
       fb_mesh_free(&s->hull_source_mesh);
-      rc = fb_hull_mesh_generate(s, &s->hull_mesh, &s->hull_source_mesh, err);
-      s->hull_source_key = fb_hull_mesh_key(s, &s->hull_mesh);
+      rc = src->ops->make(s, &s->hull_source_mesh, err);
+      s->hull_source_key = src->ops->key(s);
     }
-    if (!rc && !s->hull_deck)
+    if (!rc && made)
       rc = mesh_properties(s, &mp, err);
     if (!rc)
       rc = complete_properties(s, &mp, err);

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "core/textfile.h"
@@ -19,6 +20,7 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
   case FB_PART_SECTION: return i < s->nsections ? s->section[i].set : NULL;
   case FB_PART_OUTPUT: return i < s->noutputs ? s->output[i].name : NULL;
   case FB_PART_ROAD: return s->road_type ? s->road_type->name : NULL;
+  case FB_PART_HULL_SOURCE: return s->hull_source ? s->hull_source->name : NULL;
   default: return NULL;
   }
 }
@@ -26,15 +28,15 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
 char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size)
 {
   static const char *const list[FB_PART_KINDS] = {
-      "",        "",       "corner",     "mount", "point_mass",
-      "section", "output", "load point", "road",  "corner"};
+      "",       "",           "corner", "mount",  "point_mass", "section",
+      "output", "load point", "road",   "corner", "hull source"};
   const int kind = p->kind > 0 && p->kind < FB_PART_KINDS ? p->kind : FB_PART_NONE;
   const char *name = s ? part_name(s, kind, p->index) : NULL;
   size_t n = 0;
   buf[0] = '\0';
   if (kind == FB_PART_LOAD_POINT)
     n = fb_text_append(buf, size, n, "load point %zu", p->index);
-  else if (kind == FB_PART_ROAD) /* one road, its type's name */
+  else if (kind == FB_PART_ROAD || kind == FB_PART_HULL_SOURCE) /* one of each, named */
     n = fb_text_append(buf, size, n, "%s", list[kind]);
   else if (kind > FB_PART_VEHICLE)
     n = fb_text_append(buf, size, n, "%s[%zu]", list[kind], p->index);

@@ -64,8 +64,9 @@ int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
  * torsion weights it takes (fb_fe_hull_torsion_weights' fit: 0 or 1). */
 int fb_vehicle_output_hull_fit(const fb_output_spec *o);
 
-/* 1 if the scenario's hull_source_mesh is the mesh its hull has now: a
- * deck's, or the generator's from the inputs it has (fe_hull.c). */
+/* 1 if the scenario's hull_source_mesh is the mesh its hull has now: the
+ * one its source read, or the one it made from the inputs it has (equal
+ * keys; fe_hull.c). */
 int vehicle_source_mesh_current(const fb_scenario *s);
 
 /* ---- System 2's hull, realised once (hull_model.c). */

@@ -1,0 +1,162 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The hull-source gallery (flexbond/hull_source.h): the soundness of a
+ * source, a description's source and the set of sources a program may
+ * name. */
+#include "flexbond/hull_source.h"
+
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/registry.h"
+#include "core/util.h"
+
+/* The built-in sources, one line each; the first is a description's
+ * default. */
+static const fb_hull_source *const source_builtin[] = {
+    &fb_hull_source_generator,
+    &fb_hull_source_deck,
+};
+
+struct fb_hull_source_gallery {
+  fb_registry reg; /* the sources */
+};
+
+/* The registry reads an entry's name as its first member. */
+_Static_assert(offsetof(fb_hull_source, name) == 0, "a hull source's name is its first member");
+
+static int source_fail(fb_err *err, const fb_hull_source *src, const char *what)
+{
+  return fb_err_set(err, FB_EINVAL, "hull source %s: %s",
+                    src && src->name ? src->name : "(unnamed)", what);
+}
+
+int fb_hull_source_check(const fb_hull_source *src, fb_err *err)
+{
+  if (!src || !fb_is_identifier(src->name))
+    return source_fail(err, src, "a name is letters, digits and '_', not from a digit");
+  if (!src->doc || !src->doc[0])
+    return source_fail(err, src, "undocumented (doc)");
+  if (src->params_size > FB_HULL_SOURCE_PARAMS_MAX)
+    return source_fail(err, src, "its parameter block exceeds FB_HULL_SOURCE_PARAMS_MAX");
+  if (src->nparams && !src->param)
+    return source_fail(err, src, "parameters counted but not declared");
+  for (size_t i = 0; i < src->nparams; ++i)
+    if (src->param[i].kind == FB_PARAM_FILE || src->param[i].kind == FB_PARAM_REALS)
+      return source_fail(err, src,
+                         "its parameters are numbers or choices (no files, no lists)");
+  if (fb_params_declared(src->param, src->nparams, src->params_size, err))
+    return fb_err_prefix(err, "hull source %s: ", src->name), FB_EINVAL;
+  const fb_hull_source_ops *o = src->ops;
+  if (!o || !o->describe)
+    return source_fail(err, src, "a source describes itself (describe)");
+  if (!o->read == !o->make)
+    return source_fail(err, src, "a source either reads its mesh (read) or makes it (make)");
+  if (o->make && (!o->key || !o->centroid))
+    return source_fail(err, src,
+                       "a source that makes its mesh says from what (key) and "
+                       "where its centre of mass is (centroid)");
+  return FB_OK;
+}
+
+const fb_hull_source *fb_scenario_hull_source(const fb_scenario *s)
+{
+  return s->hull_source ? s->hull_source : source_builtin[0];
+}
+
+int fb_scenario_set_hull_source(fb_scenario *s, const fb_hull_source *src, fb_err *err)
+{
+  const int rc = fb_hull_source_check(src, err);
+  if (rc)
+    return rc;
+  if (fb_scenario_hull_source(s) != src) {
+    fb_mesh_free(&s->hull_source_mesh);
+    memset(&s->hull_params, 0, sizeof s->hull_params);
+    fb_params_defaults(src->param, src->nparams, s->hull_params.bytes);
+  }
+  s->hull_source = src;
+  return FB_OK;
+}
+
+int fb_scenario_read_hull(fb_scenario *s, fb_err *err)
+{
+  const fb_hull_source *src = fb_scenario_hull_source(s);
+  if (!s->has_fe_hull || !src->ops->read)
+    return FB_OK;
+  fb_mesh *mesh = NULL;
+  const int rc = src->ops->read(s, &mesh, err);
+  if (rc)
+    return rc;
+  fb_mesh_free(&s->hull_source_mesh);
+  s->hull_source_mesh = mesh;
+  return FB_OK;
+}
+
+int fb_scenario_hull_read_in_own_frame(const fb_scenario *s)
+{
+  return s->has_fe_hull && fb_scenario_hull_source(s)->ops->read != NULL;
+}
+
+int fb_scenario_hull_density(const fb_scenario *s)
+{
+  const fb_hull_source *src = fb_scenario_hull_source(s);
+  return src->ops->density ? src->ops->density(s) : 0;
+}
+
+void fb_scenario_hull_describe(const fb_scenario *s, char *buf, size_t n)
+{
+  if (n)
+    buf[0] = '\0';
+  fb_scenario_hull_source(s)->ops->describe(s, buf, n);
+}
+
+int fb_hull_source_gallery_new(fb_hull_source_gallery **out, fb_err *err)
+{
+  *out = NULL;
+  fb_hull_source_gallery *g = calloc(1, sizeof *g);
+  if (!g)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a hull-source gallery");
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < sizeof source_builtin / sizeof source_builtin[0]; ++i)
+    rc = fb_hull_source_gallery_add(g, source_builtin[i], err);
+  if (rc)
+    fb_hull_source_gallery_free(&g);
+  *out = g;
+  return rc;
+}
+
+int fb_hull_source_gallery_add(fb_hull_source_gallery *g, const fb_hull_source *src,
+                               fb_err *err)
+{
+  const int rc = fb_hull_source_check(src, err);
+  if (rc)
+    return rc;
+  if (fb_hull_source_gallery_find(g, src->name))
+    return source_fail(err, src, "a source of that name is already in the gallery");
+  return fb_registry_add(&g->reg, src, "hull sources", err);
+}
+
+size_t fb_hull_source_gallery_count(const fb_hull_source_gallery *g)
+{
+  return g ? g->reg.n : 0;
+}
+
+const fb_hull_source *fb_hull_source_gallery_at(const fb_hull_source_gallery *g, size_t i)
+{
+  return fb_registry_at(g ? &g->reg : NULL, i);
+}
+
+const fb_hull_source *fb_hull_source_gallery_find(const fb_hull_source_gallery *g,
+                                                  const char *name)
+{
+  return fb_registry_find(g ? &g->reg : NULL, name);
+}
+
+void fb_hull_source_gallery_free(fb_hull_source_gallery **g)
+{
+  if (!g || !*g)
+    return;
+  fb_registry_release(&(*g)->reg);
+  free(*g);
+  *g = NULL;
+}
