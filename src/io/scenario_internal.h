@@ -26,6 +26,9 @@ extern const sch_table sc_format;
 /* The key of sc_format, and of its corners' items, after which the tire
  * models' sections go; its choices are the models' names. */
 #define SC_TIRE_CHOICE "wheel.tire_contact"
+/* The section of sc_corner_format after which the damper laws' sections
+ * go (damper.<law>, for a law with parameters and no key of its own). */
+#define SC_DAMPER_SECTION "damper"
 /* The corners' items (scenario_schema.c), without the tire models. */
 extern const sch_table sc_corner_format;
 /* After a corner's keys are read (item at node, under item_path): its
@@ -39,11 +42,11 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
  * road.<type> of its declared parameters. Immutable once made, shared by
  * count (the scenarios read with it, their copies). */
 typedef struct sc_schema sc_schema;
-/* The table for the road types of roads and the tire models of tires
- * (borrowed for the call; their entries must outlive the schema), NULL:
- * the built-in ones. *out new. FB_ENOMEM. */
-int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires, sc_schema **out,
-                  fb_err *err);
+/* The table for the road types of roads, the tire models of tires and
+ * the damper laws of dampers (borrowed for the call; their entries must
+ * outlive the schema), NULL: the built-in ones. *out new. FB_ENOMEM. */
+int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires,
+                  const fb_damper_gallery *dampers, sc_schema **out, fb_err *err);
 /* sc again, one more holder. */
 sc_schema *sc_schema_share(sc_schema *sc);
 void sc_schema_release(sc_schema **sc);
