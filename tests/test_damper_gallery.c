@@ -15,6 +15,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "energy_balance.h"
 #include "vehicle_util.h"
 
 /* ---- The quadratic damper: a program's own law. */
@@ -238,6 +239,30 @@ static void check_linear_analysis(const fb_damper_law *l, const fb_scenario *s)
   fb_descriptor_free(&ds);
 }
 
+/* Work in = dissipated + stored - stored(0) at every sample of a bump
+ * crossing (10 cm, 0.5 m long, from 1 s to 3 s) at rtol 1e-9: the law's
+ * element exchanges power with the rest as an R does, whatever its law.
+ * As tests/test_system1.c argues, each integral carries a few rtol of its
+ * size, so 1e-7 of the work scale is a wide margin, while a damper whose
+ * element delivered power or was missed by the probes (its dissipation
+ * is ~1e2 J and more) fails at 1e-4. */
+static void check_energy(const fb_damper_law *l, fb_scenario *s)
+{
+  road_bump(s)->first_contact = 1.0;
+  road_bump(s)->length = 0.5;
+  road_bump(s)->height = 0.1;
+  s->t_end = 3.0;
+  fb_err err;
+  energy_report rep;
+  CHECK(energy_balance_rigid(s, 1e-9, &rep, &err) == FB_OK);
+  /* 6 shocks, 6 tire dampers, 2 mounts */
+  CHECK(rep.ndissipative == 2 * APC_NCORNERS + APC_NMOUNTS);
+  CHECK(rep.work_scale > 100.0 && rep.dissipated > 100.0);
+  CHECK(rep.worst <= 1e-7 * rep.work_scale);
+  printf("  %s: energy balance to %.3g of the work (%.6g J)\n", l->name,
+         rep.worst / rep.work_scale, rep.work_scale);
+}
+
 static void check_law(size_t i, const fb_damper_law *l, const fb_damper_gallery *g)
 {
   fb_err err;
@@ -268,6 +293,7 @@ static void check_law(size_t i, const fb_damper_law *l, const fb_damper_gallery 
     printf("  %s: \"%s\"\n", l->name, line);
   }
   check_linear_analysis(l, s);
+  check_energy(l, s);
   fb_scenario_free(&s);
   check_located(i, l, g);
 }
