@@ -58,7 +58,7 @@ SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
-static const sch_ops sc_linear_present = {.present = sc_damper_present};
+static const sch_ops sc_law_present = {.present = sc_damper_present};
 
 /* ---- parameters: evaluated first, seen by every expression after. */
 
@@ -598,8 +598,6 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 /* A key that stores no member of its own (a section, a custom value)
  * but stands for member f of the scenario in errors (fb_err.part). */
 #define S_IS(f) .member = (&#f[0 * offsetof(fb_scenario, f)])
-/* After a member: the key's data (a gallery entry it belongs to). */
-#define KEY_DATA(d) , .data = (d)
 #define C_IS(f) .member = (&#f[0 * offsetof(fb_corner_params, f)])
 /* A list's items: the scenario's array arr, their number at count; an
  * item of the file makes per of them. NAMED: visited by their names. */
@@ -691,12 +689,13 @@ static const sch_key sc_corner_keys[] = {
            "linear shock absorber coefficient (the `linear` damper law's `c`)",
            .store = SCH_STORE_DOUBLE,
            .offset = offsetof(fb_corner_params, damper) + offsetof(fb_damper_linear_params, c),
-           .ops = &sc_linear_present, .data = &fb_damper_law_linear, C_IS(damper_law)),
-    CUSTOM_IS("damper_table", NULL, "`{file, velocity, force}` or `{points: [[v, F], ...]}`",
-              ONE_OF("damper"),
-              "a nonlinear shock absorber: force (N) against velocity (m/s, compression "
-              "positive), 2 to 64 points, passive",
-              &sc_damper_table, C_IS(damper_law) KEY_DATA(&fb_damper_law_table)),
+           .ops = &sc_law_present, .data = &fb_damper_law_linear, C_IS(damper_law)),
+    KEY(.path = "damper_table", .type = SCH_CUSTOM,
+        .type_doc = "`{file, velocity, force}` or `{points: [[v, F], ...]}`", ONE_OF("damper"),
+        .doc =
+            "a nonlinear shock absorber (the `table` damper law): force (N) against velocity "
+            "(m/s, compression positive), 2 to 64 points, passive",
+        .ops = &sc_damper_table, .data = &fb_damper_law_table, C_IS(damper_law)),
     /* Its sections are a damper gallery's laws (scenario_gallery.c). */
     SECTION_IS(SC_DAMPER_SECTION, ONE_OF("damper"),
                "a damper law of the gallery and its parameters, `{<law>: {<parameter>: "
