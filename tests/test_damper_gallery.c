@@ -12,6 +12,7 @@
 
 #include "flexbond/bd.h"
 #include "flexbond/damper.h"
+#include "flexbond/io.h"
 #include "flexbond/vehicle.h"
 
 #include "check.h"
@@ -128,12 +129,25 @@ static int load_dampers(const char *fmt, const fb_damper_gallery *g,
  * without an example fails the harness. */
 static const struct {
   const char *law, *fmt, *path, *key;
+  const char *values; /* corner LF's damper values as fb_scenario_each_value lists them */
 } example[] = {
-    {"linear", "damper_c: %.17g", NULL, "suspensions.axles[0].damper_c"},
-    {"table", NULL, "../examples/apc6x6_shock_table.yaml", NULL},
+    {"linear", "damper_c: %.17g", NULL, "suspensions.axles[0].damper_c",
+     "corners.LF.damper_c=25744;"},
+    {"table", NULL, "../examples/apc6x6_shock_table.yaml", NULL,
+     "corners.LF.damper_table=9 points;"},
     {"quadratic", "damper: {quadratic: {c2: %.17g}}", NULL,
-     "suspensions.axles[0].damper.quadratic.c2"},
+     "suspensions.axles[0].damper.quadratic.c2", "corners.LF.damper.quadratic.c2=25744;"},
 };
+
+/* Appends "key=value;" of corner LF's damper values to the buffer ctx. */
+static int damper_value(const fb_scenario_value *v, void *ctx)
+{
+  char *buf = ctx;
+  const size_t n = strlen(buf);
+  if (!strncmp(v->key, "corners.LF.damper", strlen("corners.LF.damper")) && v->value[0])
+    snprintf(buf + n, 512 - n, "%s=%s;", v->key, v->value);
+  return 0;
+}
 
 static int load_example(size_t i, const fb_damper_gallery *g, const fb_scenario_override *ov,
                         size_t nov, fb_scenario **out, fb_err *err)
@@ -292,6 +306,12 @@ static void check_law(size_t i, const fb_damper_law *l, const fb_damper_gallery 
     CHECK(line[0] != '\0');
     printf("  %s: \"%s\"\n", l->name, line);
   }
+  /* The values a description lists are its law's only. */
+  char values[512] = "";
+  CHECK(fb_scenario_each_value(s, damper_value, values) == FB_OK);
+  CHECK(!strcmp(values, example[i].values));
+  if (strcmp(values, example[i].values))
+    fprintf(stderr, "  %s: values %s\n", l->name, values);
   check_linear_analysis(l, s);
   check_energy(l, s);
   fb_scenario_free(&s);
