@@ -91,6 +91,37 @@ static const fb_damper_law quadratic = {
     .ops = &quadratic_ops,
 };
 
+/* ---- A law without parameters: the front shock of the paper, fixed. */
+
+static int fixed_build(const void *params, fb_bg *bg, fb_err *err)
+{
+  (void)params;
+  const fb_damper_linear_params front = {25744.0};
+  return fb_damper_law_linear.ops->build(&front, bg, err);
+}
+
+static double fixed_force(const void *params, double v)
+{
+  (void)params;
+  return 25744.0 * v;
+}
+
+static int fixed_linear(const void *params)
+{
+  (void)params;
+  return 1;
+}
+
+static const fb_damper_law_ops fixed_ops = {
+    .build = fixed_build, .force = fixed_force, .linear = fixed_linear};
+
+static const fb_damper_law fixed = {
+    .name = "fixed",
+    .doc = "the paper's front shock absorber, 25744 N s/m, nothing to give",
+    .meaning = "linear, 25744 N s/m",
+    .ops = &fixed_ops,
+};
+
 /* ---- Loading the reference scenario with dampers of its own. */
 
 /* ../examples/apc6x6.yaml with every axle's "damper_c: <value>" replaced
@@ -137,6 +168,7 @@ static const struct {
      "corners.LF.damper_table=9 points;"},
     {"quadratic", "damper: {quadratic: {c2: %.17g}}", NULL,
      "suspensions.axles[0].damper.quadratic.c2", "corners.LF.damper.quadratic.c2=25744;"},
+    {"fixed", "damper: {fixed: {}}  # %g", NULL, NULL, ""},
 };
 
 /* Appends "key=value;" of corner LF's damper values to the buffer ctx. */
@@ -320,7 +352,7 @@ static void check_law(size_t i, const fb_damper_law *l, const fb_damper_gallery 
 
 static void test_conformance(const fb_damper_gallery *g)
 {
-  CHECK(fb_damper_gallery_count(g) >= 3);
+  CHECK(fb_damper_gallery_count(g) >= 4);
   for (size_t j = 0; j < fb_damper_gallery_count(g); ++j) {
     const fb_damper_law *l = fb_damper_gallery_at(g, j);
     size_t i = 0;
@@ -344,6 +376,7 @@ static void test_registration(fb_damper_gallery *g)
   CHECK(fb_damper_gallery_add(g, &quadratic, &err) == FB_OK);
   CHECK(fb_damper_gallery_add(g, &quadratic, &err) == FB_EINVAL && strstr(err.msg, "already"));
   CHECK(fb_damper_gallery_find(g, "quadratic") == &quadratic);
+  CHECK(fb_damper_gallery_add(g, &fixed, &err) == FB_OK);
   /* Unsound laws are refused. */
   static const fb_damper_law_ops no_force = {.build = quadratic_build};
   fb_damper_law bad = quadratic;
@@ -371,7 +404,7 @@ static void test_errors(const fb_damper_gallery *g)
       {"damper: {quadratic: {c2: %g}}\n      damper_c: 1",
        "bad.yaml:99:7: suspensions.axles[0].damper: give either 'damper_c' or 'damper', not "
        "both"},
-      {"damper: {quadratic: {}}%.0s",
+      {"damper: {quadratic: {}}  # %g",
        "bad.yaml:99:27: suspensions.axles[0].damper.quadratic: missing required key 'c2'"},
       {"damper_c: -%g", "bad.yaml:99:17: suspensions.axles[0].damper_c: must be >= 0"},
   };

@@ -5,7 +5,7 @@
  * keys are the type's declared parameters (flexbond/param.h); for each
  * tire model a choice of wheel.tire_contact and a section wheel.<model>
  * of its parameters, at the top level and in every corner's items; for
- * each damper law with parameters and no key of its own a section
+ * each damper law with no key of its own a section
  * damper.<law> in every corner's items. Made here once per set of
  * galleries. */
 #include <math.h>
@@ -325,8 +325,9 @@ static int sc_damper_keyed(const fb_damper_law *l)
   return 0;
 }
 
-/* Lists in sc->damper the laws of g with a section: parameters to give,
- * and no key of their own. */
+/* Lists in sc->damper the laws of g with a section: those with no key
+ * of their own (the section names the law, so a law without parameters
+ * has one too, written {}). */
 static int sc_damper_laws(sc_schema *sc, const fb_damper_gallery *g, fb_err *err)
 {
   sc->damper = calloc(fb_damper_gallery_count(g) + 1, sizeof(const fb_damper_law *));
@@ -335,7 +336,7 @@ static int sc_damper_laws(sc_schema *sc, const fb_damper_gallery *g, fb_err *err
   size_t n = 0;
   for (size_t j = 0; j < fb_damper_gallery_count(g); ++j) {
     const fb_damper_law *l = fb_damper_gallery_at(g, j);
-    if (l->nparams && !sc_damper_keyed(l))
+    if (!sc_damper_keyed(l))
       sc->damper[n++] = l;
   }
   return FB_OK;

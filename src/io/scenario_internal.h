@@ -27,7 +27,7 @@ extern const sch_table sc_format;
  * models' sections go; its choices are the models' names. */
 #define SC_TIRE_CHOICE "wheel.tire_contact"
 /* The section of sc_corner_format after which the damper laws' sections
- * go (damper.<law>, for a law with parameters and no key of its own). */
+ * go (damper.<law>, for a law with no key of its own). */
 #define SC_DAMPER_SECTION "damper"
 /* The corners' items (scenario_schema.c), without the tire models. */
 extern const sch_table sc_corner_format;
