@@ -260,12 +260,7 @@ static void check_located(size_t i, const fb_damper_law *l, const fb_damper_gall
     fb_err err;
     fb_scenario *s = NULL;
     CHECK(load_example(i, g, &ov, 1, &s, &err) != FB_OK && !s);
-    char want[200];
-    snprintf(want, sizeof want, ": %s: must be", key);
-    const int located = strstr(err.msg, want) && err.line > 0;
-    CHECK(located);
-    if (!located)
-      fprintf(stderr, "  %s=%s: %s\n", key, value, err.msg);
+    check_refused_at(&err, key, value);
   }
 }
 
@@ -411,10 +406,7 @@ static void test_errors(const fb_damper_gallery *g)
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
     fb_err err;
     CHECK(load_dampers(bad[i].fmt, g, NULL, 0, NULL, &err) != FB_OK);
-    const int found = strstr(err.msg, bad[i].want) != NULL;
-    CHECK(found);
-    if (!found)
-      fprintf(stderr, "  want %s\n  got  %s\n", bad[i].want, err.msg);
+    check_message(&err, bad[i].want);
   }
   fb_err err;
   fb_scenario *s = NULL;
