@@ -54,10 +54,17 @@ static double table_force(const void *params, double v)
   return f;
 }
 
+/* Its knots' count and its two end knots, which tell tables apart. */
 static void table_describe(const void *params, char *buf, size_t size)
 {
-  snprintf(buf, size, "a force-velocity table of %zu points",
-           ((const fb_damper_table_params *)params)->npoints);
+  const fb_damper_table_params *p = params;
+  if (p->npoints < 2 || p->npoints > FB_DAMPER_MAX_POINTS) {
+    snprintf(buf, size, "a force-velocity table of %zu points", p->npoints);
+    return;
+  }
+  const size_t last = p->npoints - 1;
+  snprintf(buf, size, "a force-velocity table of %zu points, %g N at %g m/s to %g N at %g m/s",
+           p->npoints, p->force[0], p->velocity[0], p->force[last], p->velocity[last]);
 }
 
 /* linear NULL: a linear analysis linearises the table at the static
