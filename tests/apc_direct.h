@@ -33,6 +33,7 @@
 #include "flexbond/vehicle.h"
 
 #include "apc_layout.h"
+#include "damper_util.h"
 #include "road_util.h"
 
 #define APC_PI 3.14159265358979323846
@@ -135,7 +136,7 @@ static inline void apc_build_elements(apc_model *m, const fb_scenario *s)
   for (int c = 0; c < APC_NCORNERS; ++c) {
     const fb_corner_params *p = &s->corner[c];
     apc_elem *susp = &m->elem[c], *tire = &m->elem[APC_TIRE + c];
-    apc_set_elem(susp, p->spring_k, p->damper_c, -1);
+    apc_set_elem(susp, p->spring_k, du_damper_c(p), -1);
     susp->b[APC_WHEEL + c] = p->motion_ratio;
     apc_hull_vector(p->x, p->y, susp->b, -p->motion_ratio);
     apc_set_elem(tire, p->tire_k, p->tire_c, c);

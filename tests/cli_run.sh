@@ -741,6 +741,11 @@ expect_in "$WORK/liftoff/report.md" "every tire is \`unilateral\`, unilateral: i
   "report.md unilateral tires"
 expect_in "$WORK/liftoff/report.md" \
   "System 1 (rigid hull): 5 intervals where a tire carries no load" "report.md lift-off verdict"
+# The report names every shock absorber as its damper law describes it
+# (the example's front and rear coefficients, docs/scenario-format.md).
+expect_in "$WORK/liftoff/report.md" \
+  "- Shock absorbers: LF, RF, LM, RM: linear, 25744 N s/m; LR, RR: linear, 39656 N s/m." \
+  "report.md shock absorbers"
 checks=$((checks + 1))
 python3 - "$WORK/liftoff" <<'EOF' || fail "summary.json with unilateral tires"
 import csv, json, sys

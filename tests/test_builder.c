@@ -12,6 +12,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "damper_util.h"
 #include "road_util.h"
 #include "vehicle_util.h"
 
@@ -33,15 +34,15 @@ static int add_corners(fb_scenario *s, fb_err *err)
   int rc = FB_OK;
   for (size_t a = 0; !rc && a < sizeof axles / sizeof axles[0]; ++a)
     for (int side = 0; !rc && side < 2; ++side) {
-      const fb_corner_params c = {.name = (char *)(side ? axles[a].right : axles[a].left),
-                                  .spring_k = axles[a].spring_k,
-                                  .damper_c = axles[a].damper_c,
-                                  .motion_ratio = 1,
-                                  .x = axles[a].x,
-                                  .y = side ? -axles[a].y : axles[a].y,
-                                  .wheel_mass = 175,
-                                  .tire_k = 500000,
-                                  .tire_c = 140000};
+      fb_corner_params c = {.name = (char *)(side ? axles[a].right : axles[a].left),
+                            .spring_k = axles[a].spring_k,
+                            .motion_ratio = 1,
+                            .x = axles[a].x,
+                            .y = side ? -axles[a].y : axles[a].y,
+                            .wheel_mass = 175,
+                            .tire_k = 500000,
+                            .tire_c = 140000};
+      du_set_damper_c(&c, axles[a].damper_c);
       rc = fb_scenario_add_corner(s, &c, err);
     }
   return rc;
@@ -257,7 +258,7 @@ static void test_every_signal(void)
     for (size_t k = 0; col > 0 && k < fb_result_nsamples(r); k += 100)
       CHECK(isfinite(fb_result_row(r, k)[col]));
   }
-  const double k_s = s->corner[0].spring_k, c_d = s->corner[0].damper_c;
+  const double k_s = s->corner[0].spring_k, c_d = du_damper_c(&s->corner[0]);
   for (size_t k = 0; r && k < fb_result_nsamples(r); k += 50) {
     const double tire = value(r, "tire_force_LF", k);
     CHECK(tire == value(r, "effort_susp_LF_b_tire", k) &&

@@ -21,6 +21,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "damper_util.h"
 #include "io/scenario_internal.h"
 #include "road_util.h"
 #include "vehicle_util.h"
@@ -161,9 +162,10 @@ static void test_relative_references(void)
   if (rc != FB_OK)
     fprintf(stderr, "  %s\n", err.msg);
   CHECK(s && base && fabs(s->speed - 50.0 / 9.0) < TIGHT * 50.0 / 9.0 &&
-        s->corner[4].damper_npoints > 1 &&
-        s->corner[4].damper_npoints == base->corner[4].damper_npoints &&
-        s->corner[4].damper_f[1] == base->corner[4].damper_f[1]);
+        du_damper_table(&s->corner[4]) && du_damper_table(&s->corner[4])->npoints > 1 &&
+        du_damper_table(&s->corner[4])->npoints == du_damper_table(&base->corner[4])->npoints &&
+        du_damper_table(&s->corner[4])->force[1] ==
+            du_damper_table(&base->corner[4])->force[1]);
   fb_scenario_free(&s);
   fb_scenario_free(&base);
 }

@@ -15,6 +15,7 @@
 #include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "damper_util.h"
 #include "io/scenario_internal.h"
 #include "road_util.h"
 #include "tmpdir.h"
@@ -110,7 +111,7 @@ static void check_corners(const fb_scenario *s)
   for (size_t k = 0; k < 6 && k < s->ncorners; ++k) {
     const fb_corner_params *c = &s->corner[k];
     CHECK(!strcmp(c->name, names[k]) && fb_scenario_corner_find(s, names[k]) == (long)k);
-    CHECK(c->spring_k == spring_k[k] && c->damper_c == damper_c[k]);
+    CHECK(c->spring_k == spring_k[k] && du_damper_c(c) == damper_c[k]);
     CHECK(c->x == x[k] && c->y == y[k]);
     CHECK(c->motion_ratio == 1);
     CHECK(c->wheel_mass == 175 && c->tire_k == 500000 && c->tire_c == 140000);
@@ -239,7 +240,7 @@ static int strings_equal(const char *a, const char *b);
 
 static int corners_equal(const fb_corner_params *a, const fb_corner_params *b)
 {
-  return a->spring_k == b->spring_k && a->damper_c == b->damper_c &&
+  return a->spring_k == b->spring_k && du_damper_c(a) == du_damper_c(b) &&
          a->motion_ratio == b->motion_ratio && a->x == b->x && a->y == b->y &&
          a->wheel_mass == b->wheel_mass && a->tire_k == b->tire_k && a->tire_c == b->tire_c &&
          fb_corner_tire_model(a) == fb_corner_tire_model(b) &&
@@ -949,8 +950,8 @@ static void test_deck_reference(void)
         !strcmp(s->inputs[1], "../examples/shock_rear.csv"));
   CHECK(s && fb_scenario_clone(s, &c, &err) == FB_OK && c && c->ninputs == 2 &&
         c->inputs[0] != s->inputs[0] && !strcmp(c->inputs[0], s->inputs[0]));
-  CHECK(c && c->corner[0].damper_npoints > 1 &&
-        c->corner[0].damper_f[1] == s->corner[0].damper_f[1]);
+  CHECK(c && du_damper_table(&c->corner[0]) && du_damper_table(&c->corner[0])->npoints > 1 &&
+        du_damper_table(&c->corner[0])->force[1] == du_damper_table(&s->corner[0])->force[1]);
   fb_scenario_free(&c);
   fb_scenario_free(&s);
 }

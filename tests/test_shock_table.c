@@ -14,6 +14,7 @@
 
 #include "apc_layout.h"
 #include "check.h"
+#include "damper_util.h"
 #include "vehicle_util.h"
 
 /* Both runs at rtol 1e-9: their global errors are a few 1e-9 of each
@@ -35,12 +36,13 @@ static void test_linear_table(const fb_scenario *s0)
   for (int c = 0; c < APC_NCORNERS; ++c) {
     fb_corner_params *p = &tab->corner[c];
     const double v[3] = {-2.0, 0.0, 2.0};
-    p->damper_npoints = 3;
+    fb_damper_table_params *t = NULL;
+    CHECK(fb_corner_set_damper(p, &fb_damper_law_table, (void **)&t, &err) == FB_OK);
+    t->npoints = 3;
     for (int i = 0; i < 3; ++i) {
-      p->damper_v[i] = v[i];
-      p->damper_f[i] = lin->corner[c].damper_c * v[i];
+      t->velocity[i] = v[i];
+      t->force[i] = du_damper_c(&lin->corner[c]) * v[i];
     }
-    p->damper_c = 0.0;
   }
   fb_result *a = simulate_rigid(lin), *b = simulate_rigid(tab);
   if (a && b)
@@ -65,10 +67,11 @@ static void test_example(void)
   for (int c = 0; c < APC_NCORNERS; ++c) {
     const fb_corner_params *p = &s->corner[c];
     const int rear = c >= APC_LR;
-    CHECK(p->damper_npoints == 9);
-    CHECK(p->damper_v[0] == -1.0 && p->damper_v[8] == 1.0 && p->damper_v[4] == 0.0);
-    CHECK(p->damper_f[0] == (rear ? -32201.0 : -20904.0));
-    CHECK(p->damper_f[8] == (rear ? 13800.0 : 8959.0));
+    const fb_damper_table_params *t = du_damper_table(p);
+    CHECK(t && t->npoints == 9);
+    CHECK(t && t->velocity[0] == -1.0 && t->velocity[8] == 1.0 && t->velocity[4] == 0.0);
+    CHECK(t && t->force[0] == (rear ? -32201.0 : -20904.0));
+    CHECK(t && t->force[8] == (rear ? 13800.0 : 8959.0));
   }
   fb_result *r = simulate_rigid(s);
   CHECK(r != NULL);

@@ -187,4 +187,25 @@ static inline void check_tires_carry_weight(const fb_scenario *s, const fb_bd *b
   CHECK_NEAR(sum, expect, 1e-8 * expect);
 }
 
+/* err's message holds want; else both are shown. */
+static inline void check_message(const fb_err *err, const char *want)
+{
+  const int found = strstr(err->msg, want) != NULL;
+  CHECK(found);
+  if (!found)
+    fprintf(stderr, "  want %s\n  got  %s\n", want, err->msg);
+}
+
+/* The value of an override key=value out of its range, refused at that
+ * key of the file (a line, then ": <key>: must be"). */
+static inline void check_refused_at(const fb_err *err, const char *key, const char *value)
+{
+  char want[200];
+  snprintf(want, sizeof want, ": %s: must be", key);
+  const int located = strstr(err->msg, want) && err->line > 0;
+  CHECK(located);
+  if (!located)
+    fprintf(stderr, "  %s=%s: %s\n", key, value, err->msg);
+}
+
 #endif

@@ -81,6 +81,10 @@ typedef struct fb_param {
  * (err->part.field: the parameter's name). */
 int fb_params_declared(const fb_param *p, size_t n, size_t block_size, fb_err *err);
 
+/* 1 if every value of p[0 .. n) is a scalar that owns nothing (REAL,
+ * WHOLE, CHOICE): a block of them is copied by value and read as one
+ * number per key (a corner's tire or damper). */
+int fb_params_scalar(const fb_param *p, size_t n);
 /* Writes the declared defaults (FB_PARAM_DEFAULT) into block; leaves the
  * other values as they are. */
 void fb_params_defaults(const fb_param *p, size_t n, void *block);

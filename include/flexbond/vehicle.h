@@ -32,6 +32,7 @@
 
 #include "flexbond/bd.h"
 #include "flexbond/bg.h"
+#include "flexbond/damper.h"
 #include "flexbond/error.h"
 #include "flexbond/fem.h"
 #include "flexbond/road.h"
@@ -105,18 +106,14 @@ typedef struct fb_hull_section {
  * point and the wheel (massless arm: spring travel = motion_ratio x wheel
  * travel relative to the hull), the wheel mass, the tire spring and
  * damper in parallel between the wheel and the road. */
-/* Most points of a shock absorber's force-velocity table. */
-enum { FB_DAMPER_MAX_POINTS = 64 };
-
 typedef struct fb_corner_params {
   char *name;      /* "LF"; instance "susp_LF", mesh node set "SUSP_LF"; owned */
   double spring_k; /* N/m */
-  double damper_c; /* N s/m, the linear shock absorber (damper_npoints 0) */
-  /* A nonlinear shock absorber instead: force (N) against its own
-   * velocity (m/s, compression positive, as the spring's travel), a passive
-   * table interpolated with a continuous slope (fb_table_law). */
-  size_t damper_npoints;
-  double damper_v[FB_DAMPER_MAX_POINTS], damper_f[FB_DAMPER_MAX_POINTS];
+  /* The shock absorber: a law of a damper gallery (flexbond/damper.h;
+   * borrowed, NULL: fb_damper_law_linear) and its parameter block.
+   * fb_corner_set_damper sets both. */
+  const fb_damper_law *damper_law;
+  fb_damper_params damper;
   double motion_ratio; /* spring travel / wheel travel, > 0 */
   double x, y;         /* attachment point, m */
   double wheel_mass;   /* kg */
@@ -264,7 +261,8 @@ typedef enum fb_part_kind {
   FB_PART_ROAD = 8,         /* the road type's parameter field (fb_param.name); index 0 */
   FB_PART_TIRE = 9,         /* corner[index]'s tire model's parameter field (fb_param.name) */
   FB_PART_HULL_SOURCE = 10, /* the hull source's parameter field (fb_param.name); index 0 */
-  FB_PART_KINDS = 11
+  FB_PART_DAMPER = 11,      /* corner[index]'s damper law's parameter field (fb_param.name) */
+  FB_PART_KINDS = 12
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -526,6 +524,9 @@ typedef struct fb_scenario_load_opts {
   /* The hull sources the document may name (hull.mesh.<source>); NULL:
    * the built-in ones. Borrowed as roads is. */
   const fb_hull_source_gallery *hull_sources;
+  /* The damper laws the document may name (a corner's damper.<law>);
+   * NULL: the built-in ones. Borrowed as roads is. */
+  const fb_damper_gallery *dampers;
   /* Values read in place of the document's, as for
    * fb_scenario_load_overrides. */
   const fb_scenario_override *overrides;
@@ -583,6 +584,18 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err);
  * (inside c) for the caller to fill. FB_EINVAL when m is not sound
  * (fb_tire_model_check). */
 int fb_corner_set_tire(fb_corner_params *c, const fb_tire_model *m, void **params, fb_err *err);
+/* The shock absorber of corner c: law l (borrowed: it outlives c) and a
+ * new block of its defaults (fb_damper_params_init), which *params
+ * points to when params is not NULL. FB_EINVAL when l is not sound
+ * (fb_damper_law_check). */
+int fb_corner_set_damper(fb_corner_params *c, const fb_damper_law *l, void **params,
+                         fb_err *err);
+/* The law of corner c's shock absorber: c->damper_law,
+ * fb_damper_law_linear when NULL. */
+const fb_damper_law *fb_corner_damper_law(const fb_corner_params *c);
+/* 1 when corner c's shock absorber is linear with its values (the law's
+ * linear op), so a linear analysis needs no linearisation for it. */
+int fb_corner_damper_linear(const fb_corner_params *c);
 /* The model of corner c's tire: c->tire_model, fb_tire_model_bilateral
  * when it has none (a corner made by hand, zeroed). */
 const fb_tire_model *fb_corner_tire_model(const fb_corner_params *c);

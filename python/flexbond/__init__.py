@@ -48,7 +48,7 @@ TRACKS = ("left", "right")
 
 # fb_part_kind (flexbond/vehicle.h), by value; FB_ERR_NO_ELEMENT.
 _PART_KINDS = (None, "vehicle", "corner", "mount", "point_mass", "section", "output",
-               "load_point", "road", "tire")
+               "load_point", "road", "tire", "damper")
 _NO_ELEMENT = ctypes.c_size_t(-1).value
 
 
@@ -459,7 +459,8 @@ class Error(Exception):
     part: the part of the vehicle it is about, as the library names it
     (flexbond/vehicle.h, fb_part_kind), a tuple (kind, index, field, element)
     such as ("corner", 2, "spring_k", None), ("vehicle", 0, "hull_modes",
-    None) or ("tire", 2, "deflection_ref", None) (corner 2's tire model's
+    None), ("tire", 2, "deflection_ref", None) (corner 2's tire model's
+    parameter) or ("damper", 3, "c2", None) (corner 3's damper law's
     parameter); None when it is about no part. path: for a vehicle described by
     Python data (Scenario.from_dict), the value's place in it,
     "description['suspensions']['axles'][0]['spring_k']"; None otherwise."""

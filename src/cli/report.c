@@ -365,6 +365,50 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
   write_hull_order(fp, o);
 }
 
+/* Corner c's shock absorber in a report's words: its law's line for its
+ * values, else the law's meaning. */
+static void damper_line(const fb_corner_params *c, char *buf, size_t size)
+{
+  const fb_damper_law *l = fb_corner_damper_law(c);
+  if (l->ops->describe)
+    l->ops->describe(c->damper.bytes, buf, size);
+  else
+    snprintf(buf, size, "`%s`, %s", l->name, l->meaning);
+}
+
+/* 1 if corners a and b have shock absorbers a report says alike. */
+static int same_damper(const fb_corner_params *a, const fb_corner_params *b)
+{
+  char la[160], lb[160];
+  damper_line(a, la, sizeof la);
+  damper_line(b, lb, sizeof lb);
+  return !strcmp(la, lb);
+}
+
+/* The shock absorbers, the corners with the same one together, in the
+ * order the corners first name them. */
+static void write_dampers(FILE *fp, const fb_scenario *s)
+{
+  fputs("- Shock absorbers: ", fp);
+  for (size_t k = 0; k < s->ncorners; ++k) {
+    size_t seen = 0;
+    for (size_t c = 0; c < k; ++c)
+      seen += same_damper(&s->corner[c], &s->corner[k]);
+    if (seen)
+      continue;
+    fputs(k ? "; " : "", fp);
+    for (size_t c = k, i = 0; c < s->ncorners; ++c)
+      if (same_damper(&s->corner[c], &s->corner[k])) {
+        fputs(i++ ? ", " : "", fp);
+        fb_md_write_text(fp, s->corner[c].name);
+      }
+    char line[160];
+    damper_line(&s->corner[k], line, sizeof line);
+    fprintf(fp, ": %s", line);
+  }
+  fputs(".\n", fp);
+}
+
 static void write_assumptions(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
@@ -377,6 +421,7 @@ static void write_assumptions(FILE *fp, const cli_run_outputs *o)
     fputs("- Initial state: the static equilibrium under gravity and the load (`static`).\n",
           fp);
   write_payload(fp, s);
+  write_dampers(fp, s);
   fprintf(fp, "- Solver: CVODE, variable-order BDF, rtol %.3g, atol %.3g, ", s->rtol, s->atol);
   if (s->max_step > 0)
     fprintf(fp, "steps at most %.6g s", s->max_step);

@@ -178,3 +178,11 @@ int fb_params_check(const fb_param *p, size_t n, const void *block, fb_err *err)
   }
   return FB_OK;
 }
+
+int fb_params_scalar(const fb_param *p, size_t n)
+{
+  for (size_t i = 0; i < n; ++i)
+    if (p[i].kind == FB_PARAM_FILE || p[i].kind == FB_PARAM_REALS)
+      return 0;
+  return 1;
+}

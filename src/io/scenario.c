@@ -254,8 +254,7 @@ int sc_load(const char *text, size_t len, const char *display_name, const char *
                ? sc_source_new(s, e)
                : fb_err_set(e, FB_ENOMEM, "out of memory for a scenario");
   if (!rc)
-    rc = sc_schema_new(opts ? opts->roads : NULL, opts ? opts->tires : NULL,
-                       opts ? opts->hull_sources : NULL, &sc_source_of(s)->schema, e);
+    rc = sc_schema_new(opts, &sc_source_of(s)->schema, e);
   if (!rc)
     rc = sc_load_document(&c, text, len, ov, nov, s);
   if (s) {

@@ -1,17 +1,20 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* The scenario format's table with a road gallery's types and a tire
- * gallery's models (scenario_internal.h): the format's own keys; for
- * each road type a section road.<type> whose keys are the type's
- * declared parameters (flexbond/param.h); for each tire model a choice
- * of wheel.tire_contact and a section wheel.<model> of its parameters,
- * at the top level and in every corner's items. Made here once per pair
- * of galleries. */
+/* The scenario format's table with the galleries' entries
+ * (scenario_internal.h): the format's own keys; for each road type a
+ * section road.<type> whose keys are the type's declared parameters
+ * (flexbond/param.h); for each hull source that declares parameters a
+ * section hull.mesh.<source>; for each tire model a choice of
+ * wheel.tire_contact and a section wheel.<model> of its parameters, at
+ * the top level and in every corner's items; for each damper law with no
+ * key of its own a section damper.<law> in every corner's items. Made
+ * here once per set of galleries. */
 #include <math.h>
 #include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/damper.h"
 #include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
@@ -25,7 +28,10 @@ struct sc_schema {
   sch_key *corner_key;        /* owned, corner_table.n of them */
   const char **tire_name;     /* the tire models' names, NULL-terminated, owned array */
   const fb_tire_model **tire; /* the models, NULL-terminated, owned array */
-  char **path;                /* the generated keys' paths, owned */
+  /* The damper laws with sections of their own, NULL-terminated, owned
+   * array. */
+  const fb_damper_law **damper;
+  char **path; /* the generated keys' paths, owned */
   size_t npaths;
   atomic_size_t refs;
 };
@@ -153,25 +159,36 @@ static sch_key sc_param_key(const char *path, const fb_param *p, size_t block)
   return k;
 }
 
+/* A gallery entry's keys at key[*n] on: the section key (its path
+ * <prefix>.<name> filled in here), then one key per parameter, stored in
+ * the block at offset block of the struct its table fills. */
+static int sc_entry_keys(sc_schema *sc, sch_key section, const char *prefix, const char *name,
+                         const fb_param *param, size_t nparams, size_t block, sch_key *key,
+                         size_t *n, fb_err *err)
+{
+  if (!(section.path = sc_key_path(sc, prefix, name, NULL)))
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+  key[(*n)++] = section;
+  for (size_t i = 0; i < nparams; ++i) {
+    const char *path = sc_key_path(sc, prefix, name, &param[i]);
+    if (!path)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+    key[(*n)++] = sc_param_key(path, &param[i], block);
+  }
+  return FB_OK;
+}
+
 /* The keys of type t from sc->key[*n] on. */
 static int sc_type_keys(sc_schema *sc, const fb_road_type *t, size_t *n, fb_err *err)
 {
-  const char *path = sc_key_path(sc, "road", t->name, NULL);
-  if (!path)
-    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-  sc->key[(*n)++] = (sch_key){.path = path,
-                              .type = SCH_SECTION,
-                              .need = SCH_REQUIRED,
-                              .one_of = "road",
-                              .doc = t->doc,
-                              .ops = &sc_road_ops,
-                              .data = t};
-  for (size_t i = 0; i < t->nparams; ++i) {
-    if (!(path = sc_key_path(sc, "road", t->name, &t->param[i])))
-      return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-    sc->key[(*n)++] = sc_param_key(path, &t->param[i], offsetof(fb_scenario, road));
-  }
-  return FB_OK;
+  const sch_key section = {.type = SCH_SECTION,
+                           .need = SCH_REQUIRED,
+                           .one_of = "road",
+                           .doc = t->doc,
+                           .ops = &sc_road_ops,
+                           .data = t};
+  return sc_entry_keys(sc, section, "road", t->name, t->param, t->nparams,
+                       offsetof(fb_scenario, road), sc->key, n, err);
 }
 
 /* The keys of hull source src from sc->key[*n] on: a section
@@ -181,22 +198,14 @@ static int sc_hull_keys(sc_schema *sc, const fb_hull_source *src, size_t *n, fb_
 {
   if (!src->nparams)
     return FB_OK;
-  const char *path = sc_key_path(sc, "hull.mesh", src->name, NULL);
-  if (!path)
-    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-  sc->key[(*n)++] = (sch_key){.path = path,
-                              .type = SCH_SECTION,
-                              .need = SCH_REQUIRED,
-                              .one_of = "mesh",
-                              .doc = src->doc,
-                              .ops = &sc_hull_ops,
-                              .data = src};
-  for (size_t i = 0; i < src->nparams; ++i) {
-    if (!(path = sc_key_path(sc, "hull.mesh", src->name, &src->param[i])))
-      return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-    sc->key[(*n)++] = sc_param_key(path, &src->param[i], offsetof(fb_scenario, hull_params));
-  }
-  return FB_OK;
+  const sch_key section = {.type = SCH_SECTION,
+                           .need = SCH_REQUIRED,
+                           .one_of = "mesh",
+                           .doc = src->doc,
+                           .ops = &sc_hull_ops,
+                           .data = src};
+  return sc_entry_keys(sc, section, "hull.mesh", src->name, src->param, src->nparams,
+                       offsetof(fb_scenario, hull_params), sc->key, n, err);
 }
 
 /* ---- Tire models: a choice, and a section of parameters per model. */
@@ -313,11 +322,99 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
   return rc;
 }
 
-/* The generated keys' count: a section and its parameters per entry. */
-static size_t sc_gallery_keys(const fb_road_gallery *roads, const fb_tire_gallery *tires,
-                              const fb_hull_source_gallery *hulls)
+/* ---- Damper laws: a section of parameters per law, in every corner. */
+
+/* A corner's section damper.<law> is there when it is the corner's law. */
+static int sc_damper_law_present(const sch_key *k, const void *base)
 {
+  return fb_corner_damper_law(base) == k->data;
+}
+
+/* The section damper is there when the corner's law is one of its
+ * sections' (k->data, NULL-terminated), not given by a key of its own. */
+static int sc_damper_section_present(const sch_key *k, const void *base)
+{
+  const fb_damper_law *l = fb_corner_damper_law(base);
+  for (const fb_damper_law *const *d = k->data; *d; ++d)
+    if (*d == l)
+      return 1;
+  return 0;
+}
+
+/* A new block of the section's law, before its keys fill it. */
+static int sc_damper_law_begin(sch_reader *r, const sch_key *k, struct fy_node *node,
+                               void *base)
+{
+  const int rc = fb_corner_set_damper(base, k->data, NULL, r->c->err);
+  return rc ? ml_blame(r->c, node) : FB_OK;
+}
+
+static const sch_ops sc_damper_law_ops = {.begin = sc_damper_law_begin,
+                                          .present = sc_damper_law_present};
+static const sch_ops sc_damper_section_ops = {.present = sc_damper_section_present};
+
+/* 1 if a key of the corners' own table gives law l (damper_c the linear
+ * law, damper_table the table): such a law needs no section. */
+static int sc_damper_keyed(const fb_damper_law *l)
+{
+  for (size_t i = 0; i < sc_corner_format.n; ++i)
+    if (sc_corner_format.key[i].data == l)
+      return 1;
+  return 0;
+}
+
+/* Lists in sc->damper the laws of g with a section: those with no key
+ * of their own (the section names the law, so a law without parameters
+ * has one too, written {}). */
+static int sc_damper_laws(sc_schema *sc, const fb_damper_gallery *g, fb_err *err)
+{
+  sc->damper = calloc(fb_damper_gallery_count(g) + 1, sizeof(const fb_damper_law *));
+  if (!sc->damper)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   size_t n = 0;
+  for (size_t j = 0; j < fb_damper_gallery_count(g); ++j) {
+    const fb_damper_law *l = fb_damper_gallery_at(g, j);
+    if (!sc_damper_keyed(l))
+      sc->damper[n++] = l;
+  }
+  return FB_OK;
+}
+
+/* The sections of sc->damper's laws at key[*n] on. */
+static int sc_damper_keys(sc_schema *sc, sch_key *key, size_t *n, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t j = 0; !rc && sc->damper[j]; ++j) {
+    const fb_damper_law *l = sc->damper[j];
+    const sch_key section = {.type = SCH_SECTION,
+                             .need = SCH_REQUIRED,
+                             .one_of = "damper_law",
+                             .doc = l->doc,
+                             .ops = &sc_damper_law_ops,
+                             .data = l};
+    rc = sc_entry_keys(sc, section, SC_DAMPER_SECTION, l->name, l->param, l->nparams,
+                       offsetof(fb_corner_params, damper), key, n, err);
+  }
+  return rc;
+}
+
+/* The galleries a table is made with. */
+typedef struct sc_galleries {
+  const fb_road_gallery *roads;
+  const fb_tire_gallery *tires;
+  const fb_hull_source_gallery *hulls;
+  const fb_damper_gallery *dampers;
+} sc_galleries;
+
+/* The generated keys' count: a section and its parameters per entry. */
+static size_t sc_gallery_keys(const sc_galleries *gal)
+{
+  const fb_road_gallery *roads = gal->roads;
+  const fb_tire_gallery *tires = gal->tires;
+  const fb_hull_source_gallery *hulls = gal->hulls;
+  size_t n = 0;
+  for (size_t i = 0; i < fb_damper_gallery_count(gal->dampers); ++i)
+    n += 1 + fb_damper_gallery_at(gal->dampers, i)->nparams;
   for (size_t i = 0; i < fb_hull_source_gallery_count(hulls); ++i)
     n += 1 + fb_hull_source_gallery_at(hulls, i)->nparams;
   for (size_t i = 0; i < fb_road_gallery_count(roads); ++i)
@@ -343,13 +440,6 @@ static const char *sc_tire_doc(sc_schema *sc, const fb_tire_gallery *g)
   return doc;
 }
 
-/* The galleries a table is made with. */
-typedef struct sc_galleries {
-  const fb_road_gallery *roads;
-  const fb_tire_gallery *tires;
-  const fb_hull_source_gallery *hulls;
-} sc_galleries;
-
 /* Copies table own into key (room for own->n and the galleries' keys):
  * after SC_TIRE_CHOICE the tire models' choices and sections, after
  * SC_ROAD_TYPES_AFTER the road types' and after SC_HULL_SOURCES_AFTER
@@ -373,6 +463,11 @@ static int sc_copy_with(sc_schema *sc, const sch_table *own, const sc_galleries 
       if (!rc)
         rc = sc_tire_keys(sc, tires, corner, key, n, err);
     }
+    if (!rc && corner && !strcmp(k->path, SC_DAMPER_SECTION)) {
+      k->ops = &sc_damper_section_ops;
+      k->data = sc->damper;
+      rc = sc_damper_keys(sc, key, n, err);
+    }
     for (size_t j = 0; !rc && roads && !strcmp(k->path, SC_ROAD_TYPES_AFTER) &&
                        j < fb_road_gallery_count(roads);
          ++j)
@@ -389,8 +484,7 @@ static int sc_schema_fill(sc_schema *sc, const sc_galleries *gal, fb_err *err)
 {
   const sch_table *own = &sc_format;
   const fb_tire_gallery *tires = gal->tires;
-  const size_t extra = sc_gallery_keys(gal->roads, tires, gal->hulls),
-               ntires = fb_tire_gallery_count(tires);
+  const size_t extra = sc_gallery_keys(gal), ntires = fb_tire_gallery_count(tires);
   sc->key = calloc(own->n + extra, sizeof *sc->key);
   sc->corner_key = calloc(sc_corner_format.n + extra, sizeof *sc->corner_key);
   sc->path = calloc(2 * extra + 2, sizeof *sc->path); /* and the choice's doc */
@@ -404,7 +498,9 @@ static int sc_schema_fill(sc_schema *sc, const sc_galleries *gal, fb_err *err)
   }
   size_t nc = 0, n = 0;
   const sc_galleries corner_gal = {.tires = tires};
-  int rc = sc_copy_with(sc, &sc_corner_format, &corner_gal, 1, sc->corner_key, &nc, err);
+  int rc = sc_damper_laws(sc, gal->dampers, err);
+  if (!rc)
+    rc = sc_copy_with(sc, &sc_corner_format, &corner_gal, 1, sc->corner_key, &nc, err);
   sc->corner_table = (sch_table){sc->corner_key, nc, sc_corner_format.done};
   if (!rc)
     rc = sc_copy_with(sc, own, gal, 0, sc->key, &n, err);
@@ -412,30 +508,57 @@ static int sc_schema_fill(sc_schema *sc, const sc_galleries *gal, fb_err *err)
   return rc;
 }
 
-int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires,
-                  const fb_hull_source_gallery *hulls, sc_schema **out, fb_err *err)
+/* o's galleries, the built-in ones where o names none (made into
+ * *own, which the caller frees with sc_galleries_release). */
+typedef struct sc_builtin {
+  fb_road_gallery *roads;
+  fb_tire_gallery *tires;
+  fb_hull_source_gallery *hulls;
+  fb_damper_gallery *dampers;
+} sc_builtin;
+
+static int sc_galleries_of(const fb_scenario_load_opts *o, sc_builtin *own, sc_galleries *gal,
+                           fb_err *err)
+{
+  *own = (sc_builtin){0};
+  *gal = (sc_galleries){o ? o->roads : NULL, o ? o->tires : NULL, o ? o->hull_sources : NULL,
+                        o ? o->dampers : NULL};
+  int rc = gal->roads ? FB_OK : fb_road_gallery_new(&own->roads, err);
+  if (!rc && !gal->tires)
+    rc = fb_tire_gallery_new(&own->tires, err);
+  if (!rc && !gal->hulls)
+    rc = fb_hull_source_gallery_new(&own->hulls, err);
+  if (!rc && !gal->dampers)
+    rc = fb_damper_gallery_new(&own->dampers, err);
+  gal->roads = gal->roads ? gal->roads : own->roads;
+  gal->tires = gal->tires ? gal->tires : own->tires;
+  gal->hulls = gal->hulls ? gal->hulls : own->hulls;
+  gal->dampers = gal->dampers ? gal->dampers : own->dampers;
+  return rc;
+}
+
+static void sc_galleries_release(sc_builtin *own)
+{
+  fb_road_gallery_free(&own->roads);
+  fb_tire_gallery_free(&own->tires);
+  fb_hull_source_gallery_free(&own->hulls);
+  fb_damper_gallery_free(&own->dampers);
+}
+
+int sc_schema_new(const fb_scenario_load_opts *o, sc_schema **out, fb_err *err)
 {
   *out = NULL;
-  fb_road_gallery *builtin = NULL;
-  fb_tire_gallery *builtin_tires = NULL;
-  fb_hull_source_gallery *builtin_hulls = NULL;
-  int rc = roads ? FB_OK : fb_road_gallery_new(&builtin, err);
-  if (!rc && !tires)
-    rc = fb_tire_gallery_new(&builtin_tires, err);
-  if (!rc && !hulls)
-    rc = fb_hull_source_gallery_new(&builtin_hulls, err);
+  sc_builtin own;
+  sc_galleries gal;
+  int rc = sc_galleries_of(o, &own, &gal, err);
   sc_schema *sc = rc ? NULL : calloc(1, sizeof *sc);
   if (!rc && !sc)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   if (!rc) {
     atomic_init(&sc->refs, 1);
-    const sc_galleries gal = {roads ? roads : builtin, tires ? tires : builtin_tires,
-                              hulls ? hulls : builtin_hulls};
     rc = sc_schema_fill(sc, &gal, err);
   }
-  fb_road_gallery_free(&builtin);
-  fb_tire_gallery_free(&builtin_tires);
-  fb_hull_source_gallery_free(&builtin_hulls);
+  sc_galleries_release(&own);
   if (rc)
     sc_schema_release(&sc);
   *out = sc;
@@ -461,6 +584,7 @@ void sc_schema_release(sc_schema **sc)
     free((*sc)->corner_key);
     free((void *)(*sc)->tire_name);
     free((void *)(*sc)->tire);
+    free((void *)(*sc)->damper);
     free(*sc);
   }
   *sc = NULL;
@@ -479,27 +603,28 @@ int sc_schema_of(const fb_scenario *s, sc_schema **out, fb_err *err)
     return FB_OK;
   }
   /* A description no file gave: the built-in entries, and its own. */
-  fb_road_gallery *g = NULL;
-  fb_tire_gallery *tires = NULL;
-  fb_hull_source_gallery *hulls = NULL;
-  int rc = fb_road_gallery_new(&g, err);
-  if (!rc)
-    rc = fb_hull_source_gallery_new(&hulls, err);
-  if (!rc && s && s->hull_source && !fb_hull_source_gallery_find(hulls, s->hull_source->name))
-    rc = fb_hull_source_gallery_add(hulls, s->hull_source, err);
-  if (!rc && s && s->road_type && !fb_road_gallery_find(g, s->road_type->name))
-    rc = fb_road_gallery_add(g, s->road_type, err);
-  if (!rc)
-    rc = fb_tire_gallery_new(&tires, err);
+  sc_builtin own;
+  sc_galleries gal;
+  int rc = sc_galleries_of(NULL, &own, &gal, err);
+  if (!rc && s && s->hull_source &&
+      !fb_hull_source_gallery_find(gal.hulls, s->hull_source->name))
+    rc = fb_hull_source_gallery_add(own.hulls, s->hull_source, err);
+  if (!rc && s && s->road_type && !fb_road_gallery_find(gal.roads, s->road_type->name))
+    rc = fb_road_gallery_add(own.roads, s->road_type, err);
   for (size_t c = 0; !rc && s && c < s->ncorners; ++c) {
     const fb_tire_model *m = fb_corner_tire_model(&s->corner[c]);
-    if (!fb_tire_gallery_find(tires, m->name))
-      rc = fb_tire_gallery_add(tires, m, err);
+    const fb_damper_law *l = fb_corner_damper_law(&s->corner[c]);
+    if (!fb_tire_gallery_find(gal.tires, m->name))
+      rc = fb_tire_gallery_add(own.tires, m, err);
+    if (!rc && !fb_damper_gallery_find(gal.dampers, l->name))
+      rc = fb_damper_gallery_add(own.dampers, l, err);
   }
+  const fb_scenario_load_opts o = {.roads = own.roads,
+                                   .tires = own.tires,
+                                   .hull_sources = own.hulls,
+                                   .dampers = own.dampers};
   if (!rc)
-    rc = sc_schema_new(g, tires, hulls, out, err);
-  fb_road_gallery_free(&g);
-  fb_tire_gallery_free(&tires);
-  fb_hull_source_gallery_free(&hulls);
+    rc = sc_schema_new(&o, out, err);
+  sc_galleries_release(&own);
   return rc;
 }

@@ -30,6 +30,9 @@ extern const sch_table sc_format;
 /* The key of sc_format, and of its corners' items, after which the tire
  * models' sections go; its choices are the models' names. */
 #define SC_TIRE_CHOICE "wheel.tire_contact"
+/* The section of sc_corner_format after which the damper laws' sections
+ * go (damper.<law>, for a law with no key of its own). */
+#define SC_DAMPER_SECTION "damper"
 /* The corners' items (scenario_schema.c), without the tire models. */
 extern const sch_table sc_corner_format;
 /* After a corner's keys are read (item at node, under item_path): its
@@ -43,11 +46,11 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
  * road.<type> of its declared parameters. Immutable once made, shared by
  * count (the scenarios read with it, their copies). */
 typedef struct sc_schema sc_schema;
-/* The table for the road types of roads, the tire models of tires and
- * the hull sources of hulls (borrowed for the call; their entries must
- * outlive the schema), NULL: the built-in ones. *out new. FB_ENOMEM. */
-int sc_schema_new(const fb_road_gallery *roads, const fb_tire_gallery *tires,
-                  const fb_hull_source_gallery *hulls, sc_schema **out, fb_err *err);
+/* The table for the galleries of o (its road types, tire models, hull
+ * sources and damper laws; borrowed for the call, their entries must
+ * outlive the schema), the built-in ones where o (or o itself) names
+ * none. *out new. FB_ENOMEM. */
+int sc_schema_new(const fb_scenario_load_opts *o, sc_schema **out, fb_err *err);
 /* sc again, one more holder. */
 sc_schema *sc_schema_share(sc_schema *sc);
 void sc_schema_release(sc_schema **sc);

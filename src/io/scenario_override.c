@@ -262,7 +262,7 @@ static int ov_check_key(const char *path, struct fy_node *root, sch_override *o,
   sc_schema *sc = NULL;
   int rc = ml_expect_map(&c, root, "a mapping of keys");
   if (!rc)
-    rc = sc_schema_new(NULL, NULL, NULL, &sc, err);
+    rc = sc_schema_new(NULL, &sc, err);
   if (!rc)
     rc = sc_overrides_resolve(&c, sc_schema_table(sc), root, o, 1);
   if (!rc)
@@ -274,7 +274,7 @@ static int ov_check_key(const char *path, struct fy_node *root, sch_override *o,
 const char *fb_scenario_key_unit(const char *full_path)
 {
   sc_schema *sc = NULL;
-  if (!full_path || sc_schema_new(NULL, NULL, NULL, &sc, NULL))
+  if (!full_path || sc_schema_new(NULL, &sc, NULL))
     return NULL;
   /* Units are the tables' static text: they outlive the schema. */
   const sch_key *k = sch_key_at_path(sc_schema_table(sc), full_path);

@@ -52,13 +52,14 @@ SC_PRESENT(sc_has_frame, fb_scenario, b->frame_origin != NULL)
 SC_PRESENT(sc_has_cg, fb_scenario, b->hull_cg_given)
 SC_PRESENT(sc_has_coupling, fb_scenario, b->coupling != FB_COUPLING_NONE)
 SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
-SC_PRESENT(sc_linear_damper, fb_corner_params, b->damper_npoints == 0)
-SC_PRESENT(sc_table_damper, fb_corner_params, b->damper_npoints > 0)
+/* A damper law's key (its data the law) is there when it is the
+ * corner's law. */
+SC_PRESENT(sc_damper_present, fb_corner_params, fb_corner_damper_law(b) == k->data)
 SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0)
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
-static const sch_ops sc_linear_present = {.present = sc_linear_damper};
+static const sch_ops sc_law_present = {.present = sc_damper_present};
 
 /* ---- parameters: evaluated first, seen by every expression after. */
 
@@ -428,9 +429,8 @@ static const sch_ops sc_suspensions = {.done = sc_suspensions_done};
 static int sc_read_damper_table(sch_reader *r, const sch_key *k, struct fy_node *node,
                                 void *base)
 {
-  (void)k;
   const ml_ctx *c = r->c;
-  fb_corner_params *out = base;
+  fb_damper_table_params *out = NULL;
   fb_table_law *law = NULL;
   int rc = ml_table_law(c, c->globals, node, &law);
   const double *v = NULL, *f = NULL;
@@ -440,10 +440,12 @@ static int sc_read_damper_table(sch_reader *r, const sch_key *k, struct fy_node 
                  (int)FB_DAMPER_MAX_POINTS, n);
   if (!rc && fb_table_law_check_passive(law, c->err))
     rc = ml_blame(c, node);
+  if (!rc && fb_corner_set_damper(base, k->data, (void **)&out, c->err))
+    rc = ml_blame(c, node);
   if (!rc) {
-    out->damper_npoints = n;
-    memcpy(out->damper_v, v, n * sizeof *v);
-    memcpy(out->damper_f, f, n * sizeof *f);
+    out->npoints = n;
+    memcpy(out->velocity, v, n * sizeof *v);
+    memcpy(out->force, f, n * sizeof *f);
   }
   fb_table_law_free(&law);
   return rc;
@@ -452,11 +454,14 @@ static int sc_read_damper_table(sch_reader *r, const sch_key *k, struct fy_node 
 static void sc_format_damper_table(const sch_key *k, const void *base, char *buf, size_t size)
 {
   (void)k;
-  snprintf(buf, size, "%zu points", ((const fb_corner_params *)base)->damper_npoints);
+  const fb_corner_params *c = base;
+  snprintf(buf, size, "%zu points",
+           ((const fb_damper_table_params *)(const void *)c->damper.bytes)->npoints);
 }
 
-static const sch_ops sc_damper_table = {
-    .read = sc_read_damper_table, .format = sc_format_damper_table, .present = sc_table_damper};
+static const sch_ops sc_damper_table = {.read = sc_read_damper_table,
+                                        .format = sc_format_damper_table,
+                                        .present = sc_damper_present};
 
 /* ---- outputs. */
 
@@ -711,12 +716,21 @@ static const sch_key sc_corner_keys[] = {
     NUMBER("spring_k", "N/m", POSITIVE, REQ, "suspension spring stiffness", C_OFF(spring_k),
            PLAUSIBLE(1e3, 1e8, "a suspension spring is 1e3 to 1e8 N/m")),
     NUMBER("damper_c", "N s/m", NONNEGATIVE, ONE_OF("damper"),
-           "linear shock absorber coefficient", C_OFF(damper_c), .ops = &sc_linear_present),
-    CUSTOM_IS("damper_table", NULL, "`{file, velocity, force}` or `{points: [[v, F], ...]}`",
-              ONE_OF("damper"),
-              "a nonlinear shock absorber: force (N) against velocity (m/s, compression "
-              "positive), 2 to 64 points, passive",
-              &sc_damper_table, C_IS(damper_npoints)),
+           "linear shock absorber coefficient (the `linear` damper law's `c`)",
+           .store = SCH_STORE_DOUBLE,
+           .offset = offsetof(fb_corner_params, damper) + offsetof(fb_damper_linear_params, c),
+           .ops = &sc_law_present, .data = &fb_damper_law_linear, C_IS(damper_law)),
+    KEY(.path = "damper_table", .type = SCH_CUSTOM,
+        .type_doc = "`{file, velocity, force}` or `{points: [[v, F], ...]}`", ONE_OF("damper"),
+        .doc =
+            "a nonlinear shock absorber (the `table` damper law): force (N) against velocity "
+            "(m/s, compression positive), 2 to 64 points, passive",
+        .ops = &sc_damper_table, .data = &fb_damper_law_table, C_IS(damper_law)),
+    /* Its sections are a damper gallery's laws (scenario_gallery.c). */
+    SECTION_IS(SC_DAMPER_SECTION, ONE_OF("damper"),
+               "a damper law of the gallery and its parameters, `{<law>: {<parameter>: "
+               "value, ...}}`: exactly one law's section",
+               NULL, C_IS(damper_law)),
     NUMBER("motion_ratio", NULL, POSITIVE, INHERIT("suspensions.motion_ratio"),
            "spring travel / wheel travel relative to the hull", C_OFF(motion_ratio)),
     SECTION("wheel", OPT, "this corner's wheel, where it differs from the top-level `wheel`",
@@ -1059,6 +1073,24 @@ static int sc_member_key(const fb_scenario *s, const sch_table *t, const char *p
   return found;
 }
 
+/* A damper law's parameter p: its generated key
+ * corners.<name>.damper.<law>.<parameter> where the file wrote it, else
+ * the corner's key that gave the law (damper_c, damper_table). */
+static int sc_damper_part_key(const fb_scenario *s, const fb_err_part *p, char *key,
+                              size_t size)
+{
+  if (p->index >= s->ncorners || !s->corner[p->index].name)
+    return 0;
+  const fb_corner_params *c = &s->corner[p->index];
+  if (snprintf(key, size, "corners.%s.damper.%s.%s", c->name, fb_corner_damper_law(c)->name,
+               p->field) > 0 &&
+      sc_has_origin(s, key))
+    return 1;
+  fb_err_part q = {.kind = FB_PART_CORNER, .index = p->index, .element = FB_ERR_NO_ELEMENT};
+  snprintf(q.field, sizeof q.field, "%s", fb_part_member_(FB_PART_CORNER, damper_law));
+  return sc_part_key(s, &q, key, size);
+}
+
 int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size)
 {
   char prefix[SCH_PATH_MAX];
@@ -1073,6 +1105,8 @@ int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t si
   if (p->kind == FB_PART_HULL_SOURCE) /* hull.mesh.<source>.<parameter> */
     return p->field[0] && snprintf(key, size, "hull.mesh.%s.%s",
                                    fb_scenario_hull_source(s)->name, p->field) > 0;
+  if (p->kind == FB_PART_DAMPER) /* the key the corner's damper law was given by */
+    return sc_damper_part_key(s, p, key, size);
   if (p->kind == FB_PART_TIRE) /* corners.<name>.wheel.<model>.<parameter> */
     return p->index < s->ncorners && s->corner[p->index].name && p->field[0] &&
            snprintf(key, size, "corners.%s.%s.%s.%s", s->corner[p->index].name, "wheel",
@@ -1136,7 +1170,7 @@ int sc_read(ml_ctx *c, const sch_table *t, struct fy_node *root, fb_symtab *para
 int fb_scenario_schema_markdown(FILE *fp, fb_err *err)
 {
   sc_schema *sc = NULL;
-  const int rc = sc_schema_new(NULL, NULL, NULL, &sc, err);
+  const int rc = sc_schema_new(NULL, &sc, err);
   if (!rc)
     sch_markdown(sc_schema_table(sc), fp);
   sc_schema_release(&sc);

@@ -148,7 +148,6 @@ static const field corner_fields[] = {
     F(fb_corner_params, x, REAL, ANY, "m", NULL),
     F(fb_corner_params, y, REAL, ANY, "m", NULL),
     F(fb_corner_params, spring_k, REAL, POSITIVE, "N/m", NULL),
-    F(fb_corner_params, damper_c, REAL, NONNEGATIVE, "N s/m", NULL),
     F(fb_corner_params, motion_ratio, REAL, POSITIVE, NULL, NULL),
     F(fb_corner_params, wheel_mass, REAL, POSITIVE, "kg", NULL),
     F(fb_corner_params, tire_k, REAL, POSITIVE, "N/m", NULL),
@@ -288,14 +287,38 @@ static int check_load(const fb_scenario *s, fb_err *err)
               s->total_weight / s->gravity, s->hull_mass, masses);
 }
 
-/* A table has 2 .. FB_DAMPER_MAX_POINTS knots (0: the linear damper). */
+/* An error rc of corner c's gallery entry: about one of its parameters
+ * (err->part.field set by the entry), it is part kind param_kind of
+ * corner c; otherwise the corner's member naming the entry. */
+static int corner_entry_error(int rc, fb_err *err, fb_part_kind param_kind, size_t c,
+                              const char *member)
+{
+  if (rc && err && err->part.field[0]) {
+    err->part.kind = param_kind;
+    err->part.index = c;
+  } else if (rc) {
+    fb_err_set_part(err, FB_PART_CORNER, c, FB_ERR_NO_ELEMENT, member);
+  }
+  return rc;
+}
+
+/* Each corner's shock absorber: a sound law, its block within the
+ * declared ranges, and the law's own rules; errors name the corner's
+ * damper parameter (FB_PART_DAMPER) or its law. */
 static int check_dampers(const fb_scenario *s, fb_err *err)
 {
-  for (size_t k = 0; k < s->ncorners; ++k) {
-    const fb_corner_params *c = &s->corner[k];
-    if (c->damper_npoints == 1 || c->damper_npoints > FB_DAMPER_MAX_POINTS)
-      return fail(err, FB_PART_CORNER, k, "damper_npoints", "2 to %d points (got %zu)",
-                  (int)FB_DAMPER_MAX_POINTS, c->damper_npoints);
+  const char *const member = fb_part_member_(FB_PART_CORNER, damper_law);
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const fb_corner_params *corner = &s->corner[c];
+    const fb_damper_law *l = fb_corner_damper_law(corner);
+    int rc = fb_damper_law_check(l, err);
+    if (rc)
+      return fb_err_set_part(err, FB_PART_CORNER, c, FB_ERR_NO_ELEMENT, member), rc;
+    rc = fb_params_check(l->param, l->nparams, corner->damper.bytes, err);
+    if (!rc && l->ops->check)
+      rc = l->ops->check(corner->damper.bytes, corner->name, err);
+    if (rc)
+      return corner_entry_error(rc, err, FB_PART_DAMPER, c, member);
   }
   return FB_OK;
 }
@@ -468,14 +491,9 @@ static int check_tires(const fb_scenario *s, fb_err *err)
     rc = fb_params_check(m->param, m->nparams, loaded.tire.bytes, err);
     if (!rc && m->ops->check)
       rc = m->ops->check(loaded.tire.bytes, &ctx, err);
-    if (rc && err && err->part.field[0]) { /* the parameter's own kind and corner */
-      err->part.kind = FB_PART_TIRE;
-      err->part.index = c;
-    } else if (rc) {
-      fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, tire_model));
-    }
     if (rc)
-      return rc;
+      return corner_entry_error(rc, err, FB_PART_TIRE, c,
+                                fb_part_member_(FB_PART_CORNER, tire_model));
   }
   return FB_OK;
 }

@@ -91,6 +91,30 @@ double fb_scenario_road_exit(const fb_scenario *s, int corner)
   return isfinite(end) ? (end - fb_scenario_wheel_start(s, corner)) / s->speed : s->t_end;
 }
 
+int fb_corner_set_damper(fb_corner_params *c, const fb_damper_law *l, void **params,
+                         fb_err *err)
+{
+  const int rc = fb_damper_law_check(l, err);
+  if (rc)
+    return rc;
+  c->damper_law = l;
+  fb_damper_params_init(l, &c->damper);
+  if (params)
+    *params = c->damper.bytes;
+  return FB_OK;
+}
+
+const fb_damper_law *fb_corner_damper_law(const fb_corner_params *c)
+{
+  return c->damper_law ? c->damper_law : &fb_damper_law_linear;
+}
+
+int fb_corner_damper_linear(const fb_corner_params *c)
+{
+  const fb_damper_law *l = fb_corner_damper_law(c);
+  return l->ops->linear && l->ops->linear(c->damper.bytes);
+}
+
 int fb_corner_set_tire(fb_corner_params *c, const fb_tire_model *m, void **params, fb_err *err)
 {
   const int rc = fb_tire_model_check(m, err);

@@ -259,15 +259,11 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
   return FB_OK;
 }
 
-/* The shock absorber "damper": linear (damper_c) or its force-velocity
- * table (a nonlinear R law whose derivative enters the Newton matrix). */
+/* The shock absorber, the R element "damper", as the corner's damper
+ * law builds it (flexbond/damper.h). */
 static int add_shock_absorber(fb_bg *bg, const fb_corner_params *c, fb_err *err)
 {
-  if (c->damper_npoints == 0)
-    return vehicle_add_scalar(bg, "damper", FB_BG_R, c->damper_c, err);
-  fb_table_law *law = NULL;
-  int rc = fb_table_law_new(c->damper_npoints, c->damper_v, c->damper_f, &law, err);
-  return rc ? rc : fb_bg_add_r_table(bg, "damper", &law, err);
+  return fb_corner_damper_law(c)->ops->build(c->damper.bytes, bg, err);
 }
 
 /* The tire's spring and damper, in parallel on the 1-junction "Jt", as

@@ -14,7 +14,8 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
 {
   switch (kind) {
   case FB_PART_CORNER:
-  case FB_PART_TIRE: return i < s->ncorners ? s->corner[i].name : NULL;
+  case FB_PART_TIRE:
+  case FB_PART_DAMPER: return i < s->ncorners ? s->corner[i].name : NULL;
   case FB_PART_MOUNT: return i < s->nmounts ? s->mount[i].name : NULL;
   case FB_PART_HULL_MASS: return i < s->npoint_masses ? s->point_mass[i].name : NULL;
   case FB_PART_SECTION: return i < s->nsections ? s->section[i].set : NULL;
@@ -28,8 +29,8 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
 char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size)
 {
   static const char *const list[FB_PART_KINDS] = {
-      "",       "",           "corner", "mount",  "point_mass", "section",
-      "output", "load point", "road",   "corner", "hull source"};
+      "",       "",           "corner", "mount",  "point_mass",  "section",
+      "output", "load point", "road",   "corner", "hull source", "corner"};
   const int kind = p->kind > 0 && p->kind < FB_PART_KINDS ? p->kind : FB_PART_NONE;
   const char *name = s ? part_name(s, kind, p->index) : NULL;
   size_t n = 0;
@@ -42,9 +43,12 @@ char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *bu
     n = fb_text_append(buf, size, n, "%s[%zu]", list[kind], p->index);
   if (name)
     n = fb_text_append(buf, size, n, " (%s)", name);
-  if (p->field[0]) /* a tire's parameter is the corner's tire model's */
+  if (p->field[0]) /* a tire's (damper's) parameter is its model's (law's) */
     n = fb_text_append(buf, size, n, "%s%s%s", n ? "." : "",
-                       kind == FB_PART_TIRE ? "tire." : "", p->field);
+                       kind == FB_PART_TIRE     ? "tire."
+                       : kind == FB_PART_DAMPER ? "damper."
+                                                : "",
+                       p->field);
   if (p->element != FB_ERR_NO_ELEMENT)
     fb_text_append(buf, size, n, "[%zu]", p->element);
   return buf;

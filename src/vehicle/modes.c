@@ -154,8 +154,8 @@ void vehicle_remove_damping(fb_scenario *s)
   for (size_t b = 0; b < s->nmounts; ++b)
     s->mount[b].damping = 0.0;
   for (size_t c = 0; c < s->ncorners; ++c) {
-    s->corner[c].damper_c = 0.0;
-    s->corner[c].damper_npoints = 0;
+    /* The built-in law is sound; its block's c is 0. */
+    (void)fb_corner_set_damper(&s->corner[c], &fb_damper_law_linear, NULL, NULL);
     s->corner[c].tire_c = 0.0;
   }
 }

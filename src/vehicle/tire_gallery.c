@@ -30,16 +30,6 @@ static int model_fail(fb_err *err, const fb_tire_model *m, const char *what)
                     what);
 }
 
-/* A corner's block is copied by value and read as one number per key:
- * its parameters are scalars that own nothing. */
-static int model_params_scalar(const fb_tire_model *m)
-{
-  for (size_t i = 0; i < m->nparams; ++i)
-    if (m->param[i].kind == FB_PARAM_FILE || m->param[i].kind == FB_PARAM_REALS)
-      return 0;
-  return 1;
-}
-
 int fb_tire_model_check(const fb_tire_model *m, fb_err *err)
 {
   if (!m || !fb_is_identifier(m->name))
@@ -57,7 +47,7 @@ int fb_tire_model_check(const fb_tire_model *m, fb_err *err)
   int rc = fb_params_declared(m->param, m->nparams, m->params_size, err);
   if (rc)
     fb_err_prefix(err, "tire model %s: ", m->name);
-  else if (!model_params_scalar(m))
+  else if (!fb_params_scalar(m->param, m->nparams))
     rc = model_fail(err, m, "its parameters are numbers or choices (no files, no lists)");
   return rc;
 }
