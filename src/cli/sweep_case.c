@@ -114,7 +114,8 @@ static int find_stat(const sweep_args *a, const char *spec, const char *colon, s
   char want[FB_ERR_KEY_MAX], name[FB_ERR_KEY_MAX];
   snprintf(want, sizeof want, "%.*s_%s", (int)len, spec, colon + 1);
   for (size_t k = 0; k < a->base->noutputs; ++k) {
-    if (strlen(a->base->output[k].name) != len || strncmp(a->base->output[k].name, spec, len))
+    if (strlen(a->base->output[k].name) != len ||
+        strncmp(a->base->output[k].name, spec, len) != 0)
       continue;
     for (size_t st = 0; st < FB_STUDY_SWEEP_NSTATS; ++st) {
       metric_name(a, FB_STUDY_SWEEP_NSTATS * k + st, name, sizeof name);
