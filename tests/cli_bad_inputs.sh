@@ -139,6 +139,12 @@ derive s_hullmass.yaml s_ok.yaml -e 's/^  mass: 4041.72 /  mass: -4041.72 /'
 derive s_tirek.yaml s_ok.yaml -e 's/^  tire_k: 500000 /  tire_k: 0 /'
 derive s_inf.yaml s_ok.yaml -e 's/^  total_weight: 117720 /  total_weight: .inf /'
 derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
+# A damper section naming no law (the built-in laws are damper_c and damper_table) would
+# leave the corner undamped; a top-level tire section no corner's tire uses would reach none;
+# a value kept for the corners to inherit is checked where it is written.
+derive s_damper_empty.yaml s_ok.yaml -e '0,/^      damper_c: 25744 /s//      damper: {} /'
+derive s_tire_unused.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  hunt_crossley: {deflection_ref: 0.03} /'
+derive s_tire_ref.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  tire_contact: hunt_crossley\n  hunt_crossley: {deflection_ref: -1} /'
 # Points off the floor or on one another; a hull mesh whose edges are no
 # longer hull.edges (one bulkhead fewer moves its centre of mass), and more
 # modes than the hull has: the late checks are located too.
@@ -288,6 +294,9 @@ CASES=(
   "2|export s_hullmass.yaml -o @OUT|$(at s_hullmass.yaml -4041.72 -4041.72) hull.mass: must be > 0 kg (got -4041.72)"
   "2|modes s_tirek.yaml|$(at s_tirek.yaml 'tire_k: 0' 0) wheel.tire_k: must be > 0 N/m (got 0)"
   "2|sweep s_inf.yaml --set speed_kmh=5,10 -o @OUT|$(at s_inf.yaml .inf .inf) load.total_weight: must be finite (got .inf)"
+  "2|run s_damper_empty.yaml -o @OUT|$(at s_damper_empty.yaml 'damper: {}' '{}') suspensions.axles[0].damper: no damper law is written as a section here"
+  "2|run s_tire_unused.yaml -o @OUT|$(at s_tire_unused.yaml 'hunt_crossley:' hunt_crossley) wheel.hunt_crossley: no corner's tire is hunt_crossley"
+  "2|run s_tire_ref.yaml -o @OUT|$(at s_tire_ref.yaml 'deflection_ref: -1' -1) wheel.hunt_crossley.deflection_ref: must be > 0 m (got -1)"
   "2|run s_short.yaml -o @OUT|$(at s_short.yaml '  t_end: 6 ' 6) simulation.t_end: the run ends at 6 s, before the last wheel (RR) leaves the road's bump at 8.132 s"
   "2|run s_tworoads.yaml -o @OUT|$(at s_tworoads.yaml 'iso8608: {' iso8608) road.iso8608: give either 'bump' or 'iso8608', not both"
   "2|run s_isoclass.yaml -o @OUT|$(at s_isoclass.yaml 'class: Z' Z) road.iso8608.class: unknown value 'Z'; expected A | B | C | D | E | F | G | H"

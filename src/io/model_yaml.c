@@ -1041,6 +1041,9 @@ int ml_check_keys(const ml_ctx *c, struct fy_node *map, const char *const *allow
     if (near)
       return ml_fail_key(c, map, key, FB_EPARSE, "unknown key '%s' (did you mean '%s'?)", text,
                          near);
+    if (!allowed[0])
+      return ml_fail_key(c, map, key, FB_EPARSE, "unknown key '%s': this mapping takes no key",
+                         text);
     char list[512];
     ml_join(allowed, list, sizeof list);
     return ml_fail_key(c, map, key, FB_EPARSE, "unknown key '%s'; allowed keys: %s", text,

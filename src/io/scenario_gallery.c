@@ -322,6 +322,28 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
   return rc;
 }
 
+int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *root,
+                          const fb_scenario *s)
+{
+  const sch_key *choice = sch_key_of(t, SC_TIRE_CHOICE);
+  const fb_tire_model *const *models = choice ? choice->data : NULL;
+  struct fy_node *wheel = ml_get(root, "wheel", NULL);
+  for (size_t j = 0; models && wheel && models[j]; ++j) {
+    struct fy_node *key = NULL;
+    if (!ml_get(wheel, models[j]->name, &key) || !key)
+      continue;
+    size_t users = 0;
+    for (size_t c = 0; c < s->ncorners; ++c)
+      users += fb_corner_tire_model(&s->corner[c]) == models[j];
+    if (!users)
+      return ml_fail_key(r->c, wheel, key, FB_EPARSE,
+                         "no corner's tire is %s (%s chooses the tires): its values would "
+                         "reach none",
+                         models[j]->name, SC_TIRE_CHOICE);
+  }
+  return FB_OK;
+}
+
 /* ---- Damper laws: a section of parameters per law, in every corner. */
 
 /* A corner's section damper.<law> is there when it is the corner's law. */
@@ -351,7 +373,24 @@ static int sc_damper_law_begin(sch_reader *r, const sch_key *k, struct fy_node *
 
 static const sch_ops sc_damper_law_ops = {.begin = sc_damper_law_begin,
                                           .present = sc_damper_law_present};
-static const sch_ops sc_damper_section_ops = {.present = sc_damper_section_present};
+/* A damper section written names one law of its sections: with none to
+ * name (the gallery's laws all have keys of their own), it is refused,
+ * since it would leave the corner without a shock absorber. */
+static int sc_damper_section_done(sch_reader *r, const sch_key *k, struct fy_node *node,
+                                  void *base)
+{
+  (void)base;
+  const fb_damper_law *const *laws = k->data;
+  if (!node || laws[0])
+    return FB_OK;
+  return ml_fail(r->c, node, FB_EPARSE,
+                 "no damper law is written as a section here: the built-in ones are "
+                 "`damper_c` (linear) and `damper_table`; a program's own law, in the gallery "
+                 "it loads with, is `damper: {<law>: {...}}`");
+}
+
+static const sch_ops sc_damper_section_ops = {.present = sc_damper_section_present,
+                                              .done = sc_damper_section_done};
 
 /* 1 if a key of the corners' own table gives law l (damper_c the linear
  * law, damper_table the table): such a law needs no section. */

@@ -30,6 +30,12 @@ extern const sch_table sc_format;
 /* The key of sc_format, and of its corners' items, after which the tire
  * models' sections go; its choices are the models' names. */
 #define SC_TIRE_CHOICE "wheel.tire_contact"
+/* The top level's section wheel.<model> of a model no corner's tire is
+ * (its values would reach no corner, and a sweep over them would change
+ * nothing) refused at its key, once the corners are read (t: the table
+ * read with, root: the document). */
+int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *root,
+                          const fb_scenario *s);
 /* The section of sc_corner_format after which the damper laws' sections
  * go (damper.<law>, for a law with no key of its own). */
 #define SC_DAMPER_SECTION "damper"

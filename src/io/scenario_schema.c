@@ -553,6 +553,10 @@ static int sc_default_outputs(sch_reader *r, fb_scenario *s)
 
 static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 {
+  const sc_reading *rd = r->user;
+  const int rc = sc_tire_sections_used(r, rd->table, node, base);
+  if (rc)
+    return rc;
   return ml_get(node, "outputs", NULL) ? FB_OK : sc_default_outputs(r, base);
 }
 

@@ -415,7 +415,8 @@ static int sch_no_key(sch_walk *w, const char *name)
   const char *near = fb_suggest_list(name, names);
   if (near)
     snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
-  return sch_refuse(w, "has no key '%s' (%sits keys: %s)", name, hint, keys);
+  return sch_refuse(w, "has no key '%s' (%s%s%s)", name, hint,
+                    keys[0] ? "its keys: " : "it has none", keys);
 }
 
 /* One segment of the path below the table: key name ("" for none) of a
@@ -743,6 +744,13 @@ static int sch_read_value(sch_reader *r, const sch_key *k, struct fy_node *node,
     text = resolved;
     break;
   default: break;
+  }
+  if (!rc && k->type == SCH_NUMBER && k->store == SCH_STORE_NONE) {
+    /* A value kept by no struct (read to be inherited or only checked)
+     * is never visited by sch_check: its range is checked here. */
+    const sch_value v = {k, path, NULL, number, NULL};
+    if (sch_check_value(&v, c->err))
+      rc = ml_blame(c, node);
   }
   if (!rc)
     rc = sch_add_at(r, path, node, 1, number, sch_take(r, path));

@@ -550,6 +550,21 @@ class ErrorTest(unittest.TestCase):
         self.assertEqual(e.source_text, "overrides['hull.fe.modes']=99999")
         self.assertIn("99999 modes, more than the hull's", e.message)
 
+    def test_part_kinds_follow_the_header(self):
+        """Error.part's kind names are fb_part_kind's, in its order: read
+        from flexbond/vehicle.h, FB_PART_<NAME> = value, so that a kind added
+        in C and not here (or in another place) fails."""
+        header = open(os.path.join(SRC, "include", "flexbond", "vehicle.h")).read()
+        enum = header[header.index("typedef enum fb_part_kind"):]
+        enum = enum[:enum.index("} fb_part_kind;")]
+        kinds = {int(v): n.lower() for n, v in re.findall(r"FB_PART_(\w+) = (\d+)", enum)}
+        count = kinds.pop(max(kinds))  # FB_PART_KINDS, the count
+        self.assertEqual(count, "kinds")
+        # Python names a hull mass as the description's list does.
+        kinds = {i: {"none": None, "hull_mass": "point_mass"}.get(n, n) for i, n in kinds.items()}
+        names = [kinds[i] for i in range(len(kinds))]
+        self.assertEqual(tuple(names), flexbond._PART_KINDS)
+
     def test_nul_is_refused(self):
         """C would read text only up to a NUL: an override "12\\x0099" as 12.
         A NUL in a value, a key or the path raises Error, naming what."""
