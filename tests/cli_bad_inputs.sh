@@ -142,6 +142,10 @@ derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
 # A damper section naming no law (the built-in laws are damper_c and damper_table) would
 # leave the corner undamped; a top-level tire section no corner's tire uses would reach none;
 # a value kept for the corners to inherit is checked where it is written.
+# A bond output on no bond (a misspelt one, with a suggestion) or on a multibond is refused
+# at its key before any run.
+derive s_bond_typo.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: susp_LF.b_tyre}/'
+derive s_bond_multi.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: b_attach}/'
 derive s_damper_empty.yaml s_ok.yaml -e '0,/^      damper_c: 25744 /s//      damper: {} /'
 derive s_tire_unused.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  hunt_crossley: {deflection_ref: 0.03} /'
 derive s_tire_ref.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  tire_contact: hunt_crossley\n  hunt_crossley: {deflection_ref: -1} /'
@@ -294,6 +298,8 @@ CASES=(
   "2|export s_hullmass.yaml -o @OUT|$(at s_hullmass.yaml -4041.72 -4041.72) hull.mass: must be > 0 kg (got -4041.72)"
   "2|modes s_tirek.yaml|$(at s_tirek.yaml 'tire_k: 0' 0) wheel.tire_k: must be > 0 N/m (got 0)"
   "2|sweep s_inf.yaml --set speed_kmh=5,10 -o @OUT|$(at s_inf.yaml .inf .inf) load.total_weight: must be finite (got .inf)"
+  "2|run s_bond_typo.yaml -o @OUT|$(at s_bond_typo.yaml 'bond: susp_LF' susp_LF) outputs[0].bond: no bond named 'susp_LF.b_tyre' in the assembled graph (did you mean 'susp_LF.b_tire'?)"
+  "2|run s_bond_multi.yaml -o @OUT|$(at s_bond_multi.yaml 'bond: b_attach' b_attach) outputs[0].bond: bond 'b_attach' is a multibond of 8 components: an output records one scalar bond's effort"
   "2|run s_damper_empty.yaml -o @OUT|$(at s_damper_empty.yaml 'damper: {}' '{}') suspensions.axles[0].damper: no damper law is written as a section here"
   "2|run s_tire_unused.yaml -o @OUT|$(at s_tire_unused.yaml 'hunt_crossley:' hunt_crossley) wheel.hunt_crossley: no corner's tire is hunt_crossley"
   "2|run s_tire_ref.yaml -o @OUT|$(at s_tire_ref.yaml 'deflection_ref: -1' -1) wheel.hunt_crossley.deflection_ref: must be > 0 m (got -1)"

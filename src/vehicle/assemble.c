@@ -171,6 +171,40 @@ static int make_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec 
   return FB_OK;
 }
 
+/* fb_name_fn over the graph's bonds. */
+static const char *bond_name_at(const void *ctx, size_t i)
+{
+  return fb_bg_bond_name(ctx, i);
+}
+
+/* Each bond output's bond is a scalar bond of the assembled graph: said
+ * now, before any run, at the output's bond (a multibond's effort is a
+ * vector, which one output column cannot hold). */
+static int check_bond_outputs(const fb_scenario *s, const fb_bg *bg, fb_err *err)
+{
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    const fb_output_spec *o = &s->output[k];
+    if (!o->bond)
+      continue;
+    const long b = fb_bg_find_bond(bg, o->bond);
+    if (b < 0) {
+      const char *near = fb_suggest(o->bond, fb_bg_nbonds(bg), bond_name_at, bg);
+      return fb_err_set(err, FB_EINVAL, "no bond named '%s' in the assembled graph%s%s%s",
+                        o->bond, near ? " (did you mean '" : "", near ? near : "",
+                        near ? "'?)" : ""),
+             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, bond)), FB_EINVAL;
+    }
+    const size_t dim = fb_bg_bond_dim(bg, (size_t)b);
+    if (dim != 1)
+      return fb_err_set(err, FB_EINVAL,
+                        "bond '%s' is a multibond of %zu components: an output records one "
+                        "scalar bond's %s",
+                        o->bond, dim, o->signal),
+             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, bond)), FB_EINVAL;
+  }
+  return FB_OK;
+}
+
 int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
                         fb_probe_spec **probes, size_t *nprobes, fb_err *err)
 {
@@ -187,6 +221,8 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
     rc = fb_bg_adopt(bg, &hull->graph, "hull", err);
   if (!rc)
     rc = add_subsystems(s, bg, err);
+  if (!rc)
+    rc = check_bond_outputs(s, bg, err);
   fb_hull_free(&hull);
   if (rc) {
     fb_vehicle_probes_free(probes, s->noutputs);
