@@ -146,6 +146,13 @@ derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
 # at its key before any run.
 derive s_bond_typo.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: susp_LF.b_tyre}/'
 derive s_bond_multi.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: b_attach}/'
+# A hull point's output: its point on System 2's plates (within 5 cm) and its axis, checked
+# when the scenario is loaded, at their keys; a hull signal without a point has none.
+derive s_point_off.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_displacement, at: [0.3, 0.2, -0.5], direction: z}/'
+derive s_point_nodir.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_velocity, at: [2.10, 0.55, -0.8631]}/'
+derive s_point_noat.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_acceleration, direction: y}/'
+derive s_point_dir.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_velocity, at: [2.10, 0.55, -0.8631], direction: w}/'
+derive s_rigid_at.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_roll, at: [1, 0, 0]}/'
 derive s_damper_empty.yaml s_ok.yaml -e '0,/^      damper_c: 25744 /s//      damper: {} /'
 derive s_tire_unused.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  hunt_crossley: {deflection_ref: 0.03} /'
 derive s_tire_ref.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  tire_contact: hunt_crossley\n  hunt_crossley: {deflection_ref: -1} /'
@@ -300,6 +307,11 @@ CASES=(
   "2|sweep s_inf.yaml --set speed_kmh=5,10 -o @OUT|$(at s_inf.yaml .inf .inf) load.total_weight: must be finite (got .inf)"
   "2|run s_bond_typo.yaml -o @OUT|$(at s_bond_typo.yaml 'bond: susp_LF' susp_LF) outputs[0].bond: no bond named 'susp_LF.b_tyre' in the assembled graph (did you mean 'susp_LF.b_tire'?)"
   "2|run s_bond_multi.yaml -o @OUT|$(at s_bond_multi.yaml 'bond: b_attach' b_attach) outputs[0].bond: bond 'b_attach' is a multibond of 8 components: an output records one scalar bond's effort"
+  "2|run s_point_off.yaml -o @OUT|$(at s_point_off.yaml 'at: [0.3' '[0.3') outputs[0].at: the point is 0.363 m from the hull's nearest element (at most 0.05 m: a point of the hull's plates)"
+  "2|modes s_point_nodir.yaml|$(at s_point_nodir.yaml 'signal: hull_velocity' '{') outputs[0]: missing required key 'direction': the axis, x, y or z, a hull_velocity signal measures"
+  "2|run s_point_noat.yaml -o @OUT|$(at s_point_noat.yaml 'signal: hull_acceleration' '{') outputs[0]: missing required key 'at': the hull point \`[x, y, z]\` (m) a hull_acceleration signal measures"
+  "2|run s_point_dir.yaml -o @OUT|$(at s_point_dir.yaml 'direction: w' w) outputs[0].direction: unknown value 'w'; expected x | y | z"
+  "2|run s_rigid_at.yaml -o @OUT|$(at s_rigid_at.yaml 'at: [1' 'at: [1') outputs[0].at: only a hull point's signal has at"
   "2|run s_damper_empty.yaml -o @OUT|$(at s_damper_empty.yaml 'damper: {}' '{}') suspensions.axles[0].damper: no damper law is written as a section here"
   "2|run s_tire_unused.yaml -o @OUT|$(at s_tire_unused.yaml 'hunt_crossley:' hunt_crossley) wheel.hunt_crossley: no corner's tire is hunt_crossley"
   "2|run s_tire_ref.yaml -o @OUT|$(at s_tire_ref.yaml 'deflection_ref: -1' -1) wheel.hunt_crossley.deflection_ref: must be > 0 m (got -1)"
