@@ -387,6 +387,37 @@ static void test_nodal_modal(void)
   fb_result_free(&modal);
 }
 
+/* A hull point at a mount's attachment node moves as the attachment
+ * point the mount's bond drives: hull_velocity_z there is the flow of the
+ * assembly's multibond b_attach at that point (its component: the
+ * corners', then the mounts'), in System 1 (the same rigid row) and in
+ * System 2 (the node's shape function is 1 there, its uz the point's), to
+ * rounding; and the component selector picks that one component. */
+static void test_attach_point(void)
+{
+  fb_err err;
+  fb_scenario *s = load_short();
+  const double driver[3] = {2.10, 0.55, -0.86306};
+  add_output(s, "hull_velocity", driver, 2);
+  fb_output_spec o = {.signal = "flow", .bond = "b_attach", .component = 7};
+  REQUIRE(fb_scenario_add_output(s, &o, &err), &err);
+  CHECK(!strcmp(s->output[s->noutputs - 1].name, "flow_b_attach_7"));
+  CHECK(!strcmp(s->mount[0].name, "driver") && s->ncorners == 6);
+  for (int sys = 0; sys < 2; ++sys) {
+    fb_result *r = NULL;
+    REQUIRE(fb_vehicle_simulate(s, sys ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID, &r, &err), &err);
+    const long v = fb_result_find(r, "hull_velocity_z"),
+               f = fb_result_find(r, "flow_b_attach_7");
+    CHECK(v > 0 && f > 0);
+    const double range = result_range(r, (size_t)f);
+    CHECK(range > 0.1);
+    for (size_t k = 0; v > 0 && f > 0 && k < fb_result_nsamples(r); ++k)
+      CHECK_NEAR(fb_result_row(r, k)[v], fb_result_row(r, k)[f], 1e-12 * range);
+    fb_result_free(&r);
+  }
+  fb_scenario_free(&s);
+}
+
 int main(void)
 {
   test_rigid_rows();
@@ -397,5 +428,6 @@ int main(void)
   test_rigid_acceleration();
   test_stiff_hull();
   test_nodal_modal();
+  test_attach_point();
   return check_report("test_hull_outputs");
 }

@@ -206,6 +206,9 @@ typedef struct fb_output_spec {
    * is measured along, ISO 8855: 0 x (forward), 1 y (left), 2 z (up). */
   double at[3];
   int direction;
+  /* A bond signal on a multibond: the component it records, 1-based; 0
+   * for a scalar bond (docs/vehicle-outputs.md). */
+  long component;
 } fb_output_spec;
 
 /* The study's parameters. Strings and arrays are owned by the scenario. */
@@ -461,6 +464,15 @@ double fb_scenario_track_width(const fb_scenario *s);
  * the description they are about (fb_err.part); the caller locates them
  * (fb_scenario_locate). */
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
+/* Checks the outputs of a completed scenario (the loader calls it after
+ * fb_vehicle_hull_complete) as far as the vehicle can before it is
+ * realised: each hull point's point on the finite-element hull's mesh (if
+ * it has one) within 5 cm, and each bond signal's bond in System 1's
+ * assembled graph or among the finite-element hull's bonds, a multibond
+ * with its component (docs/vehicle-outputs.md). FB_EINVAL about the
+ * output's at, bond or component (fb_err.part), which the caller locates;
+ * the realised vehicle checks its own graph again (fb_vehicle_assemble). */
+int fb_vehicle_outputs_check(const fb_scenario *s, fb_err *err);
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
  * Errors are "FILE:LINE:COL: KEY: message". A value that is legal but

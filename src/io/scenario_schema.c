@@ -56,6 +56,7 @@ SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
  * corner's law. */
 SC_PRESENT(sc_damper_present, fb_corner_params, fb_corner_damper_law(b) == k->data)
 SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0)
+SC_PRESENT(sc_has_component, fb_output_spec, b->component != 0)
 /* A hull point's signal has its point and axis written back. */
 SC_PRESENT(sc_is_point, fb_output_spec,
            fb_vehicle_output_kind_find(b->signal) &&
@@ -534,6 +535,8 @@ static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_out
                    o->signal);
   if (!wants_bond && o->bond && (ml_get(node, "bond", &key), key))
     return ml_fail_key(c, node, key, FB_EPARSE, "only a bond signal names a bond");
+  if (!wants_bond && o->component && (ml_get(node, "component", &key), key))
+    return ml_fail_key(c, node, key, FB_EPARSE, "only a bond signal has a component");
   return sc_output_point(c, node, o, kind);
 }
 
@@ -554,6 +557,8 @@ static const sch_ops sc_outputs = {.item_end = sc_output_end};
 static const sch_ops sc_window = {.present = sc_has_window};
 
 static const sch_ops sc_point = {.present = sc_is_point};
+
+static const sch_ops sc_has_component_ops = {.present = sc_has_component};
 
 /* Without an outputs list: every corner's tire_force, in corner order. */
 static int sc_default_outputs(sch_reader *r, fb_scenario *s)
@@ -799,6 +804,10 @@ static const sch_key sc_output_keys[] = {
             "a hull point's signal: the point `[x, y, z]`, x and y as every position, z from "
             "the hull's centre of mass (a deck's: in the deck's frame)",
             O_AT(DOUBLE, at), .ops = &sc_point),
+    WHOLE("component", CLOSED(1, 1e9), OPT,
+          "a bond signal on a multibond: the component it records, 1 to the bond's "
+          "dimension (`flexbond causality` lists the bonds)",
+          O_AT(LONG, component), .ops = &sc_has_component_ops),
     CHOICE("direction", sc_axes, OPT,
            "a hull point's signal: the axis of the translation it measures (ISO 8855: x "
            "forward, y left, z up)",

@@ -150,12 +150,15 @@ static int builder_pattern(const char *pattern, const char *subject, char **out)
 }
 
 /* A bond signal's column: the signal and the bond's name, '.' as '_'
- * ("effort_susp_LF_b_tire"). */
+ * ("effort_susp_LF_b_tire"), and a multibond's component
+ * ("effort_hull_b_attach_3"). */
 static int builder_bond_column(const fb_output_spec *o, char **out)
 {
   if (*out)
     return FB_OK;
-  if (!(*out = fb_strdup_printf("%s_%s", o->signal, o->bond)))
+  *out = o->component > 0 ? fb_strdup_printf("%s_%s_%ld", o->signal, o->bond, o->component)
+                          : fb_strdup_printf("%s_%s", o->signal, o->bond);
+  if (!*out)
     return FB_ENOMEM;
   for (char *p = *out; *p; ++p)
     if (*p == '.')
@@ -230,7 +233,8 @@ int fb_scenario_add_output(fb_scenario *s, const fb_output_spec *o, fb_err *err)
   fb_output_spec copy = {.figure = o->figure,
                          .window = {o->window[0], o->window[1]},
                          .at = {o->at[0], o->at[1], o->at[2]},
-                         .direction = o->direction};
+                         .direction = o->direction,
+                         .component = o->component};
   const char *const from[] = {o->name, o->signal, o->of, o->bond, o->unit, o->title, o->label};
   char **const to[] = {&copy.name, &copy.signal, &copy.of,   &copy.bond,
                        &copy.unit, &copy.title,  &copy.label};

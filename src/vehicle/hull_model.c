@@ -825,6 +825,24 @@ static int make_fields(const vehicle_hull *h, const double *lambda, size_t nb, h
   return rc;
 }
 
+/* The fragment's bonds, {name, from, to}: every one a multibond (of the
+ * hull's coordinates, its attachment points or its load points). */
+static const char *const bonds[][3] = {
+    {"b_mass", "J", "mass"},
+    {"b_stiffness", "J", "stiffness"},
+    {"b_damping", "J", "damping"},
+    {"b_attach_in", "J", "to_attach.1"},
+    {"b_attach", "to_attach.2", "attach"},
+    {"b_load_in", "J", "to_load.1"},
+    {"b_load", "to_load.2", "load"},
+};
+enum { NBONDS = sizeof bonds / sizeof bonds[0] };
+
+const char *vehicle_flexible_hull_bond(size_t i)
+{
+  return i < NBONDS ? bonds[i][0] : NULL;
+}
+
 static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, size_t ndof,
                       size_t nb, fb_bg *bg, fb_err *err)
 {
@@ -843,16 +861,7 @@ static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, siz
     rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, fe->nattach, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "load", FB_BG_J1, fe->nload, err);
-  static const char *const bonds[][3] = {
-      {"b_mass", "J", "mass"},
-      {"b_stiffness", "J", "stiffness"},
-      {"b_damping", "J", "damping"},
-      {"b_attach_in", "J", "to_attach.1"},
-      {"b_attach", "to_attach.2", "attach"},
-      {"b_load_in", "J", "to_load.1"},
-      {"b_load", "to_load.2", "load"},
-  };
-  for (size_t i = 0; !rc && i < sizeof bonds / sizeof bonds[0]; ++i)
+  for (size_t i = 0; !rc && i < NBONDS; ++i)
     rc = fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], err);
   if (!rc)
     rc = fb_bg_add_port(bg, "attach", "attach", FB_PORT_IN, err);

@@ -222,10 +222,6 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
       rc = mesh_properties(s, &mp, err);
     if (!rc)
       rc = complete_properties(s, &mp, err);
-    /* Last, where the mesh and the points are final: each hull point
-     * output on the mesh. */
-    if (!rc)
-      rc = vehicle_hull_points_check(s, err);
   } else if (!s->hull_mass_given) {
     fb_err_set(err, FB_EINVAL,
                "a hull without a finite-element model needs its mass, Ixx and Iyy");

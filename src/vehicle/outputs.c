@@ -237,6 +237,7 @@ static int bond_probe_of(const fb_output_spec *o, fb_probe_spec *p, fb_err *err)
   p->kind = how->kind;
   p->integrate = how->integrate;
   p->target = fb_strdup(o->bond);
+  p->component = o->component - 1;
   return FB_OK;
 }
 
@@ -246,6 +247,7 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   const fb_output_spec *o = &s->output[index];
   const long k = find_kind(o->signal);
   memset(p, 0, sizeof *p);
+  p->component = -1;
   if (k < 0)
     return fb_err_set(err, FB_EINVAL, "unknown signal '%s'", o->signal),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EINVAL;
@@ -253,7 +255,6 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   p->name = fb_strdup(o->name);
   if (!p->name)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  p->component = -1;
   p->gain = 1.0;
   p->unit = info->unit;
   int rc = FB_OK;

@@ -148,6 +148,10 @@ int vehicle_hull_structural_modes(const fb_scenario *s, vehicle_hull *h, size_t 
                                   int exact, fb_vehicle_work *w, fb_mode_set **out,
                                   fb_err *err);
 
+/* The name of the finite-element hull fragment's bond i (its own name,
+ * in the fragment), NULL past the last: every one a multibond. */
+const char *vehicle_flexible_hull_bond(size_t i);
+
 /* ---- fe_hull.c's matrices and modes, for hull_model.c. */
 
 /* *M (the hull's, replaced) plus each declared hull mass and, each, a
