@@ -214,9 +214,10 @@ static int rigid_readings(const fb_scenario *s, fb_hull *h, fb_err *err)
   for (size_t o = 0; !rc && o < s->noutputs; ++o) {
     if (!vehicle_output_hull_motion(&s->output[o], &how))
       continue;
-    double row[RIGID_DOFS], m[9];
+    double row[RIGID_DOFS];
     rigid_reading_row(&s->output[o], &how, row);
     if (how.derivative == 2) {
+      double m[9];
       memcpy(m, m33, sizeof m);
       const lapack_int info = LAPACKE_dposv(LAPACK_ROW_MAJOR, 'L', 3, 1, m, 3, row, 1);
       if (info)

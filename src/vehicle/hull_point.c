@@ -119,7 +119,11 @@ static void quad_nearest(const double *const *x, const double *p, double *n)
 double vehicle_hull_point_nearest(const fb_mesh *m, const double *p, size_t *elem, double *n,
                                   double *foot)
 {
+  /* No element: infinitely far, the foot the point itself. */
   double best = INFINITY;
+  *elem = 0;
+  memset(n, 0, 4 * sizeof *n);
+  memcpy(foot, p, 3 * sizeof *foot);
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
     const size_t *nodes = fb_mesh_element_nodes(m, e);
     const int nn = fb_mesh_element_type(m, e) == FB_ELEM_QUAD4 ? 4 : 3;

@@ -95,8 +95,8 @@ void vehicle_hull_readings_free(fb_hull *hull);
  * the size of the hull's elements (hull_point.c). */
 #define VEHICLE_HULL_POINT_TOL 0.05
 /* The distance from p to the nearest element of m, that element in *elem,
- * its shape functions at the foot of p on it in n (3 or 4) and the foot
- * in foot[3] (hull_point.c). */
+ * its shape functions at the foot of p on it in n (3 or 4 of n[4]) and the
+ * foot in foot[3] (hull_point.c); INFINITY for a mesh without elements. */
 double vehicle_hull_point_nearest(const fb_mesh *m, const double *p, size_t *elem, double *n,
                                   double *foot);
 /* The weights w (6 nnodes, over the nodal DOFs) of output index's point
