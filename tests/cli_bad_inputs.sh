@@ -142,10 +142,24 @@ derive s_short.yaml s_ok.yaml -e 's/^  t_end: 15 /  t_end: 6 /'
 # A damper section naming no law (the built-in laws are damper_c and damper_table) would
 # leave the corner undamped; a top-level tire section no corner's tire uses would reach none;
 # a value kept for the corners to inherit is checked where it is written.
-# A bond output on no bond (a misspelt one, with a suggestion) or on a multibond is refused
-# at its key before any run.
+# A bond output on no bond (a misspelt one, with a suggestion) or on a multibond without its
+# component is refused at its key before any run.
 derive s_bond_typo.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: susp_LF.b_tyre}/'
 derive s_bond_multi.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: b_attach}/'
+# Both when the file is loaded, before the vehicle is built (modes refuses them too); a
+# multibond's component is in range, a scalar bond has none, another signal has none, and
+# System 2's hull's bonds are multibonds.
+derive s_bond_comp.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: b_attach, component: 9}/'
+derive s_bond_scalar.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: effort, bond: susp_LF.b_tire, component: 1}/'
+derive s_bond_fe.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: flow, bond: hull.b_mass}/'
+derive s_comp_other.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: tire_force, of: LF, component: 2}/'
+# A hull point's output: its point on System 2's plates (within 5 cm) and its axis, checked
+# when the scenario is loaded, at their keys; a hull signal without a point has none.
+derive s_point_off.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_displacement, at: [0.3, 0.2, -0.5], direction: z}/'
+derive s_point_nodir.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_velocity, at: [2.10, 0.55, -0.8631]}/'
+derive s_point_noat.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_acceleration, direction: y}/'
+derive s_point_dir.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_velocity, at: [2.10, 0.55, -0.8631], direction: w}/'
+derive s_rigid_at.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_roll, at: [1, 0, 0]}/'
 derive s_damper_empty.yaml s_ok.yaml -e '0,/^      damper_c: 25744 /s//      damper: {} /'
 derive s_tire_unused.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  hunt_crossley: {deflection_ref: 0.03} /'
 derive s_tire_ref.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  tire_contact: hunt_crossley\n  hunt_crossley: {deflection_ref: -1} /'
@@ -299,7 +313,16 @@ CASES=(
   "2|modes s_tirek.yaml|$(at s_tirek.yaml 'tire_k: 0' 0) wheel.tire_k: must be > 0 N/m (got 0)"
   "2|sweep s_inf.yaml --set speed_kmh=5,10 -o @OUT|$(at s_inf.yaml .inf .inf) load.total_weight: must be finite (got .inf)"
   "2|run s_bond_typo.yaml -o @OUT|$(at s_bond_typo.yaml 'bond: susp_LF' susp_LF) outputs[0].bond: no bond named 'susp_LF.b_tyre' in the assembled graph (did you mean 'susp_LF.b_tire'?)"
-  "2|run s_bond_multi.yaml -o @OUT|$(at s_bond_multi.yaml 'bond: b_attach' b_attach) outputs[0].bond: bond 'b_attach' is a multibond of 8 components: an output records one scalar bond's effort"
+  "2|modes s_bond_multi.yaml|$(at s_bond_multi.yaml 'bond: b_attach' b_attach) outputs[0].bond: bond 'b_attach' is a multibond of 8 components: an output records one of them, chosen with component (1 to 8)"
+  "2|modes s_bond_comp.yaml|$(at s_bond_comp.yaml 'component: 9' 9) outputs[0].component: bond 'b_attach' has components 1 to 8 (got 9)"
+  "2|modes s_bond_scalar.yaml|$(at s_bond_scalar.yaml 'component: 1' 1) outputs[0].component: bond 'susp_LF.b_tire' is a scalar bond: it has no component"
+  "2|modes s_bond_fe.yaml|$(at s_bond_fe.yaml 'bond: hull.b_mass' hull.b_mass) outputs[0].bond: bond 'hull.b_mass' is a multibond of System 2's hull: an output records one of its components, chosen with component"
+  "2|modes s_comp_other.yaml|$(at s_comp_other.yaml 'component: 2' 'component: 2') outputs[0].component: only a bond signal has a component"
+  "2|run s_point_off.yaml -o @OUT|$(at s_point_off.yaml 'at: [0.3' '[0.3') outputs[0].at: the point is 0.363 m from the hull's nearest element (at most 0.05 m: a point of the hull's plates)"
+  "2|modes s_point_nodir.yaml|$(at s_point_nodir.yaml 'signal: hull_velocity' '{') outputs[0]: missing required key 'direction': the axis, x, y or z, a hull_velocity signal measures"
+  "2|run s_point_noat.yaml -o @OUT|$(at s_point_noat.yaml 'signal: hull_acceleration' '{') outputs[0]: missing required key 'at': the hull point \`[x, y, z]\` (m) a hull_acceleration signal measures"
+  "2|run s_point_dir.yaml -o @OUT|$(at s_point_dir.yaml 'direction: w' w) outputs[0].direction: unknown value 'w'; expected x | y | z"
+  "2|run s_rigid_at.yaml -o @OUT|$(at s_rigid_at.yaml 'at: [1' 'at: [1') outputs[0].at: only a hull point's signal has at"
   "2|run s_damper_empty.yaml -o @OUT|$(at s_damper_empty.yaml 'damper: {}' '{}') suspensions.axles[0].damper: no damper law is written as a section here"
   "2|run s_tire_unused.yaml -o @OUT|$(at s_tire_unused.yaml 'hunt_crossley:' hunt_crossley) wheel.hunt_crossley: no corner's tire is hunt_crossley"
   "2|run s_tire_ref.yaml -o @OUT|$(at s_tire_ref.yaml 'deflection_ref: -1' -1) wheel.hunt_crossley.deflection_ref: must be > 0 m (got -1)"

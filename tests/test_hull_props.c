@@ -173,6 +173,52 @@ static void test_frame(void)
   fb_scenario_free(&s);
 }
 
+/* A hull point's `at` is in the file's frame as every position: moved
+ * with the frame in x and y (the truck's front axle, x = 0 in the file,
+ * at -hull_cg_x from the centre of mass), its z from the centre of mass
+ * (the floor's, the mesh's lowest nodes); on the mesh, or refused at its
+ * key when the same point is 0.3 m above the floor (0.15 m from the side
+ * wall). */
+static void test_frame_point(void)
+{
+  fb_err err;
+  char *text = NULL;
+  size_t len = 0;
+  CHECK(fb_read_file("../examples/truck4x4.yaml", &text, &len, NULL) == FB_OK);
+  fb_scenario *s = NULL;
+  CHECK(text && fb_scenario_load_string(text, len, "truck.yaml", &s, &err) == FB_OK);
+  if (!s) {
+    free(text);
+    return;
+  }
+  double floor = INFINITY;
+  for (size_t i = 0; i < fb_mesh_nnodes(s->hull_source_mesh); ++i)
+    floor = fmin(floor, fb_mesh_node_xyz(s->hull_source_mesh, i)[2]);
+  const double cg_x = s->hull_cg_x;
+  fb_scenario_free(&s);
+  for (int above = 0; above < 2; ++above) {
+    char line[160];
+    snprintf(line, sizeof line,
+             "outputs:\n  - {signal: hull_displacement, at: [0, 0.95, %.9f], direction: z}\n",
+             floor + 0.3 * above);
+    char *t = replaced(text, "outputs:\n", line);
+    CHECK(t != NULL);
+    s = NULL;
+    const int rc = t ? fb_scenario_load_string(t, strlen(t), "truck.yaml", &s, &err) : -1;
+    CHECK(rc == (above ? FB_EINVAL : FB_OK));
+    if (!above && s) {
+      CHECK(!strcmp(s->output[0].signal, "hull_displacement"));
+      CHECK(fabs(s->output[0].at[0] + cg_x) < 1e-12 && s->output[0].at[1] == 0.95);
+      CHECK_NEAR(s->output[0].at[2], floor, 1e-9);
+    }
+    if (above)
+      CHECK(!strcmp(err.key, "outputs[0].at") && strstr(err.msg, "m from the hull's nearest"));
+    fb_scenario_free(&s);
+    free(t);
+  }
+  free(text);
+}
+
 int main(void)
 {
   char *text = NULL;
@@ -185,6 +231,7 @@ int main(void)
     test_lumped_from_mesh(text);
   }
   test_frame();
+  test_frame_point();
   free(text);
   return check_report("test_hull_props");
 }

@@ -200,6 +200,15 @@ typedef struct fb_output_spec {
   char *label;      /* short label of the signal ("LF tire normal reaction") */
   int figure;       /* figure number (the paper's 8 .. 14), 0 for none */
   double window[2]; /* time window a figure shows, s; {0, 0}: the whole run */
+  /* A hull point's signal (FB_OUTPUT_OF_HULL_POINT): the point, m, in
+   * the vehicle frame (x, y as every position; z from the hull's centre
+   * of mass, a deck's in the deck's frame), and the axis its translation
+   * is measured along, ISO 8855: 0 x (forward), 1 y (left), 2 z (up). */
+  double at[3];
+  int direction;
+  /* A bond signal on a multibond: the component it records, 1-based; 0
+   * for a scalar bond (docs/vehicle-outputs.md). */
+  long component;
 } fb_output_spec;
 
 /* The study's parameters. Strings and arrays are owned by the scenario. */
@@ -455,6 +464,15 @@ double fb_scenario_track_width(const fb_scenario *s);
  * the description they are about (fb_err.part); the caller locates them
  * (fb_scenario_locate). */
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
+/* Checks the outputs of a completed scenario (the loader calls it after
+ * fb_vehicle_hull_complete) as far as the vehicle can before it is
+ * realised: each hull point's point on the finite-element hull's mesh (if
+ * it has one) within 5 cm, and each bond signal's bond in System 1's
+ * assembled graph or among the finite-element hull's bonds, a multibond
+ * with its component (docs/vehicle-outputs.md). FB_EINVAL about the
+ * output's at, bond or component (fb_err.part), which the caller locates;
+ * the realised vehicle checks its own graph again (fb_vehicle_assemble). */
+int fb_vehicle_outputs_check(const fb_scenario *s, fb_err *err);
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
  * Errors are "FILE:LINE:COL: KEY: message". A value that is legal but
@@ -750,7 +768,23 @@ typedef struct fb_hull {
   double *torsion_weights;     /* each edge's roll from its two end nodes */
   double *torsion_fit_weights; /* from its transverse section, least squares */
   size_t ntorsion;
+  /* The probes of the scenario's outputs read from the hull's motion (a
+   * point's translation, a rigid-body motion; docs/vehicle-outputs.md):
+   * reading[o] for output o, its target NULL for the other outputs;
+   * targets and weights owned, names relative to the fragment. */
+  struct fb_hull_reading *reading;
+  size_t nreading;
 } fb_hull;
+/* One output's probe on the hull's coordinates q: a weighted sum over a
+ * signal of q (their displacements, velocities or the efforts on their
+ * inertia), integrated or not. */
+typedef struct fb_hull_reading {
+  char *target;
+  fb_probe_kind kind;
+  int integrate;
+  double *weights;
+  size_t nweights;
+} fb_hull_reading;
 void fb_hull_free(fb_hull **h);
 
 /* System 1: I field diag-dominant 3x3 (bounce, roll, pitch; with the
@@ -786,10 +820,11 @@ void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes);
  * table (src/vehicle/outputs.c); a new kind is one entry there and a row of
  * docs/vehicle-outputs.md. */
 typedef enum fb_output_subject {
-  FB_OUTPUT_OF_CORNER, /* `of` names a corner */
-  FB_OUTPUT_OF_MOUNT,  /* `of` names a mounted body */
-  FB_OUTPUT_OF_HULL,   /* no `of`: the hull */
-  FB_OUTPUT_OF_BOND    /* `bond` names a bond of the assembled graph */
+  FB_OUTPUT_OF_CORNER,    /* `of` names a corner */
+  FB_OUTPUT_OF_MOUNT,     /* `of` names a mounted body */
+  FB_OUTPUT_OF_HULL,      /* no `of`: the hull */
+  FB_OUTPUT_OF_BOND,      /* `bond` names a bond of the assembled graph */
+  FB_OUTPUT_OF_HULL_POINT /* `at` a point of the hull, `direction` an axis */
 } fb_output_subject;
 
 struct fb_output_kind {

@@ -205,6 +205,10 @@ static int sc_load_document(ml_ctx *c, const char *text, size_t len, sch_overrid
    * finite-element hull's mass properties (src/vehicle/hull_props.c). */
   if (!rc && fb_vehicle_hull_complete(s, c->err))
     rc = fb_scenario_locate(s, c->err);
+  /* Then the outputs, where the points and the mesh are final: a hull
+   * point on the mesh, a bond in the graph. */
+  if (!rc && fb_vehicle_outputs_check(s, c->err))
+    rc = fb_scenario_locate(s, c->err);
   if (!rc)
     rc = sc_plausible_rules(s, c->err);
   /* An implausible value is often the cause of the error (a thickness in

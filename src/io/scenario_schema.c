@@ -56,6 +56,11 @@ SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
  * corner's law. */
 SC_PRESENT(sc_damper_present, fb_corner_params, fb_corner_damper_law(b) == k->data)
 SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0)
+SC_PRESENT(sc_has_component, fb_output_spec, b->component != 0)
+/* A hull point's signal has its point and axis written back. */
+SC_PRESENT(sc_is_point, fb_output_spec,
+           fb_vehicle_output_kind_find(b->signal) &&
+               fb_vehicle_output_kind_find(b->signal)->subject == FB_OUTPUT_OF_HULL_POINT)
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
@@ -489,6 +494,25 @@ static int sc_output_kind(const ml_ctx *c, struct fy_node *node, const char *sig
                  hint);
 }
 
+/* `at` and `direction` for a hull point's signal only. */
+static int sc_output_point(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
+                           const fb_output_kind *kind)
+{
+  const int wants_point = kind->subject == FB_OUTPUT_OF_HULL_POINT;
+  static const char *const keys[2] = {"at", "direction"};
+  static const char *const what[2] = {"the hull point `[x, y, z]` (m)", "the axis, x, y or z,"};
+  for (int k = 0; k < 2; ++k) {
+    struct fy_node *key = NULL;
+    const int given = (ml_get(node, keys[k], &key), key != NULL);
+    if (wants_point && !given)
+      return ml_fail(c, node, FB_EPARSE, "missing required key '%s': %s a %s signal measures",
+                     keys[k], what[k], o->signal);
+    if (!wants_point && given)
+      return ml_fail_key(c, node, key, FB_EPARSE, "only a hull point's signal has %s", keys[k]);
+  }
+  return FB_OK;
+}
+
 /* `of` for a corner's or a mount's signal only, `bond` for a bond's. */
 static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
                              const fb_output_kind *kind)
@@ -511,7 +535,9 @@ static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_out
                    o->signal);
   if (!wants_bond && o->bond && (ml_get(node, "bond", &key), key))
     return ml_fail_key(c, node, key, FB_EPARSE, "only a bond signal names a bond");
-  return FB_OK;
+  if (!wants_bond && o->component && (ml_get(node, "component", &key), key))
+    return ml_fail_key(c, node, key, FB_EPARSE, "only a bond signal has a component");
+  return sc_output_point(c, node, o, kind);
 }
 
 static int sc_output_end(sch_reader *r, const sch_key *k, struct fy_node *node,
@@ -529,6 +555,10 @@ static int sc_output_end(sch_reader *r, const sch_key *k, struct fy_node *node,
 static const sch_ops sc_outputs = {.item_end = sc_output_end};
 
 static const sch_ops sc_window = {.present = sc_has_window};
+
+static const sch_ops sc_point = {.present = sc_is_point};
+
+static const sch_ops sc_has_component_ops = {.present = sc_has_component};
 
 /* Without an outputs list: every corner's tire_force, in corner order. */
 static int sc_default_outputs(sch_reader *r, fb_scenario *s)
@@ -654,6 +684,7 @@ static const char *const sc_initials[] = {"zero", "static", NULL};
 static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
 static const char *const sc_couplings[] = {"none", "distributing", "kinematic", NULL};
 static const char *const sc_switch[] = {"false", "true", NULL};
+static const char *const sc_axes[] = {"x", "y", "z", NULL};
 
 /* Plausible ranges shared by several keys. */
 #define SC_WHY_THICKNESS                                                                       \
@@ -769,6 +800,18 @@ static const sch_key sc_output_keys[] = {
     NUMBERS("window", "s", 2, 2, OPT,
             "the time window its figure shows, `[t0, t1]` (default: the run)",
             O_AT(DOUBLE, window), .ops = &sc_window),
+    NUMBERS("at", "m", 3, 3, OPT,
+            "a hull point's signal: the point `[x, y, z]`, x and y as every position, z from "
+            "the hull's centre of mass (a deck's: in the deck's frame)",
+            O_AT(DOUBLE, at), .ops = &sc_point),
+    WHOLE("component", CLOSED(1, 1e9), OPT,
+          "a bond signal on a multibond: the component it records, 1 to the bond's "
+          "dimension (`flexbond causality` lists the bonds)",
+          O_AT(LONG, component), .ops = &sc_has_component_ops),
+    CHOICE("direction", sc_axes, OPT,
+           "a hull point's signal: the axis of the translation it measures (ISO 8855: x "
+           "forward, y left, z up)",
+           O_AT(INT, direction), .ops = &sc_point),
 };
 static const sch_table sc_output_table = TABLE(sc_output_keys, NULL);
 

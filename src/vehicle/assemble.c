@@ -177,32 +177,68 @@ static const char *bond_name_at(const void *ctx, size_t i)
   return fb_bg_bond_name(ctx, i);
 }
 
-/* Each bond output's bond is a scalar bond of the assembled graph: said
- * now, before any run, at the output's bond (a multibond's effort is a
- * vector, which one output column cannot hold). */
+/* Output k's bond, of dim components: a scalar bond without a
+ * component, a multibond with one of its components (a multibond's
+ * effort is a vector, which one output column cannot hold). */
+static int check_bond_dim(const fb_output_spec *o, size_t k, size_t dim, fb_err *err)
+{
+  if (dim != 1 && !o->component)
+    return fb_err_set(err, FB_EINVAL,
+                      "bond '%s' is a multibond of %zu components: an output records one of "
+                      "them, chosen with component (1 to %zu)",
+                      o->bond, dim, dim),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, bond)), FB_EINVAL;
+  if (dim == 1 && o->component)
+    return fb_err_set(err, FB_EINVAL, "bond '%s' is a scalar bond: it has no component",
+                      o->bond),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, component)), FB_EINVAL;
+  if (o->component < 0 || (size_t)o->component > dim)
+    return fb_err_set(err, FB_EINVAL, "bond '%s' has components 1 to %zu (got %ld)", o->bond,
+                      dim, o->component),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, component)), FB_EINVAL;
+  return FB_OK;
+}
+
+/* Output k's bond is not in bg: the closest name bg has. */
+static int no_such_bond(const fb_output_spec *o, size_t k, const fb_bg *bg, fb_err *err)
+{
+  const char *near = fb_suggest(o->bond, fb_bg_nbonds(bg), bond_name_at, bg);
+  return fb_err_set(err, FB_EINVAL, "no bond named '%s' in the assembled graph%s%s%s", o->bond,
+                    near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : ""),
+         fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, bond)), FB_EINVAL;
+}
+
+/* Each bond output's bond is a bond of the assembled graph, with its
+ * component where it is a multibond: said before any run, at the
+ * output's key. */
 static int check_bond_outputs(const fb_scenario *s, const fb_bg *bg, fb_err *err)
 {
-  for (size_t k = 0; k < s->noutputs; ++k) {
+  int rc = FB_OK;
+  for (size_t k = 0; !rc && k < s->noutputs; ++k) {
     const fb_output_spec *o = &s->output[k];
     if (!o->bond)
       continue;
     const long b = fb_bg_find_bond(bg, o->bond);
-    if (b < 0) {
-      const char *near = fb_suggest(o->bond, fb_bg_nbonds(bg), bond_name_at, bg);
-      return fb_err_set(err, FB_EINVAL, "no bond named '%s' in the assembled graph%s%s%s",
-                        o->bond, near ? " (did you mean '" : "", near ? near : "",
-                        near ? "'?)" : ""),
-             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, bond)), FB_EINVAL;
-    }
-    const size_t dim = fb_bg_bond_dim(bg, (size_t)b);
-    if (dim != 1)
-      return fb_err_set(err, FB_EINVAL,
-                        "bond '%s' is a multibond of %zu components: an output records one "
-                        "scalar bond's %s",
-                        o->bond, dim, o->signal),
-             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, bond)), FB_EINVAL;
+    rc = b < 0 ? no_such_bond(o, k, bg, err)
+               : check_bond_dim(o, k, fb_bg_bond_dim(bg, (size_t)b), err);
   }
-  return FB_OK;
+  return rc;
+}
+
+/* The vehicle's graph around hull (its graph taken over): the hull's
+ * instance, the other fragments' and their bonds (*out new). */
+static int assemble_graph(const fb_scenario *s, fb_hull *hull, fb_bg **out, fb_err *err)
+{
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new(s->name ? s->name : "vehicle", &bg, err);
+  if (!rc)
+    rc = fb_bg_adopt(bg, &hull->graph, "hull", err);
+  if (!rc)
+    rc = add_subsystems(s, bg, err);
+  if (rc)
+    fb_bg_free(&bg);
+  *out = bg;
+  return rc;
 }
 
 int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
@@ -216,11 +252,7 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
   fb_bg *bg = NULL;
   int rc = make_probes(s, hull, probes, err);
   if (!rc)
-    rc = fb_bg_new(s->name ? s->name : "vehicle", &bg, err);
-  if (!rc)
-    rc = fb_bg_adopt(bg, &hull->graph, "hull", err);
-  if (!rc)
-    rc = add_subsystems(s, bg, err);
+    rc = assemble_graph(s, hull, &bg, err);
   if (!rc)
     rc = check_bond_outputs(s, bg, err);
   fb_hull_free(&hull);
@@ -232,6 +264,63 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
   *out = bg;
   *nprobes = s->noutputs;
   return FB_OK;
+}
+
+/* 1 if name is a bond of the finite-element hull's fragment in the
+ * assembly (its instance "hull"): those are multibonds of dimensions the
+ * realised hull sets (its coordinates, its points). */
+static int flexible_hull_bond(const char *name)
+{
+  int found = 0;
+  for (size_t i = 0; !found && vehicle_flexible_hull_bond(i); ++i) {
+    char *full = fb_strdup_printf("hull.%s", vehicle_flexible_hull_bond(i));
+    found = full && !strcmp(full, name);
+    free(full);
+  }
+  return found;
+}
+
+/* Output k's bond when the scenario is loaded, against System 1's
+ * assembled graph bg, or System 2's hull: one of its multibonds with a
+ * component (whose range the realised hull checks). */
+static int check_bond_at_load(const fb_scenario *s, size_t k, const fb_bg *bg, fb_err *err)
+{
+  const fb_output_spec *o = &s->output[k];
+  const long b = fb_bg_find_bond(bg, o->bond);
+  if (b >= 0)
+    return check_bond_dim(o, k, fb_bg_bond_dim(bg, (size_t)b), err);
+  if (!s->has_fe_hull || !flexible_hull_bond(o->bond))
+    return no_such_bond(o, k, bg, err);
+  if (!o->component)
+    return fb_err_set(err, FB_EINVAL,
+                      "bond '%s' is a multibond of System 2's hull: an output records one of "
+                      "its components, chosen with component",
+                      o->bond),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, k, bond)), FB_EINVAL;
+  return FB_OK;
+}
+
+int fb_vehicle_outputs_check(const fb_scenario *s, fb_err *err)
+{
+  int rc = vehicle_hull_points_check(s, err);
+  size_t nbond = 0;
+  for (size_t k = 0; k < s->noutputs; ++k)
+    nbond += s->output[k].bond != NULL;
+  if (rc || !nbond)
+    return rc;
+  /* System 1's graph is cheap to assemble: the vehicle's fragments and
+   * the rigid hull's, whose bonds a rigid hull's outputs may name. */
+  fb_hull *hull = NULL;
+  fb_bg *bg = NULL;
+  rc = fb_vehicle_rigid_hull(s, &hull, err);
+  if (!rc)
+    rc = assemble_graph(s, hull, &bg, err);
+  fb_hull_free(&hull);
+  for (size_t k = 0; !rc && k < s->noutputs; ++k)
+    if (s->output[k].bond)
+      rc = check_bond_at_load(s, k, bg, err);
+  fb_bg_free(&bg);
+  return rc;
 }
 
 /* Every tire's normal reaction (compression positive), contact_force_<CORNER>,

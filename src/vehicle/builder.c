@@ -150,12 +150,15 @@ static int builder_pattern(const char *pattern, const char *subject, char **out)
 }
 
 /* A bond signal's column: the signal and the bond's name, '.' as '_'
- * ("effort_susp_LF_b_tire"). */
+ * ("effort_susp_LF_b_tire"), and a multibond's component
+ * ("effort_hull_b_attach_3"). */
 static int builder_bond_column(const fb_output_spec *o, char **out)
 {
   if (*out)
     return FB_OK;
-  if (!(*out = fb_strdup_printf("%s_%s", o->signal, o->bond)))
+  *out = o->component > 0 ? fb_strdup_printf("%s_%s_%ld", o->signal, o->bond, o->component)
+                          : fb_strdup_printf("%s_%s", o->signal, o->bond);
+  if (!*out)
     return FB_ENOMEM;
   for (char *p = *out; *p; ++p)
     if (*p == '.')
@@ -165,8 +168,13 @@ static int builder_bond_column(const fb_output_spec *o, char **out)
 
 int fb_output_spec_complete(fb_output_spec *o, const fb_output_kind *kind, fb_err *err)
 {
+  static const char *const axes[3] = {"x", "y", "z"};
   const int bond = kind->subject == FB_OUTPUT_OF_BOND;
-  const char *subject = bond ? o->bond : o->of ? o->of : "";
+  const int point = kind->subject == FB_OUTPUT_OF_HULL_POINT;
+  const char *subject = bond                                             ? o->bond
+                        : point && o->direction >= 0 && o->direction < 3 ? axes[o->direction]
+                        : o->of                                          ? o->of
+                                                                         : "";
   int rc =
       bond ? builder_bond_column(o, &o->name) : builder_pattern(kind->name, subject, &o->name);
   if (!rc)
@@ -202,6 +210,13 @@ static int builder_subject(const fb_scenario *s, const fb_output_kind *kind,
     return o->bond ? FB_OK
                    : fb_err_set(err, FB_EINVAL, "a %s signal names the bond it records",
                                 kind->signal);
+  case FB_OUTPUT_OF_HULL_POINT:
+    return o->direction >= 0 && o->direction < 3 && !o->of && !o->bond
+               ? FB_OK
+               : fb_err_set(err, FB_EINVAL,
+                            "a %s signal measures a hull point along x, y or z (direction 0, "
+                            "1 or 2), no corner, mount or bond",
+                            kind->signal);
   }
   return FB_OK;
 }
@@ -215,7 +230,11 @@ int fb_scenario_add_output(fb_scenario *s, const fb_output_spec *o, fb_err *err)
   int rc = builder_subject(s, kind, o, err);
   if (rc)
     return rc;
-  fb_output_spec copy = {.figure = o->figure, .window = {o->window[0], o->window[1]}};
+  fb_output_spec copy = {.figure = o->figure,
+                         .window = {o->window[0], o->window[1]},
+                         .at = {o->at[0], o->at[1], o->at[2]},
+                         .direction = o->direction,
+                         .component = o->component};
   const char *const from[] = {o->name, o->signal, o->of, o->bond, o->unit, o->title, o->label};
   char **const to[] = {&copy.name, &copy.signal, &copy.of,   &copy.bond,
                        &copy.unit, &copy.title,  &copy.label};

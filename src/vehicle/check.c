@@ -635,6 +635,12 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
                 "no mount named '%s' (a %s signal measures a mounted body)%s",
                 o->of ? o->of : "", o->signal, hint);
   }
+  if (kind->subject == FB_OUTPUT_OF_HULL_POINT && (o->direction < 0 || o->direction > 2))
+    return fail(err, FB_PART_OUTPUT, i, "direction",
+                "a hull point's direction is 0 (x), 1 (y) or 2 (z) (got %d)", o->direction);
+  if (kind->subject == FB_OUTPUT_OF_HULL_POINT &&
+      !(isfinite(o->at[0]) && isfinite(o->at[1]) && isfinite(o->at[2])))
+    return fail(err, FB_PART_OUTPUT, i, "at", "a hull point's coordinates must be finite");
   return FB_OK;
 }
 

@@ -331,7 +331,11 @@ static int desc_copy_corners(const fb_scenario *s, fb_scenario *copy)
 
 static int desc_copy_output(const fb_output_spec *src, fb_output_spec *dst)
 {
-  *dst = (fb_output_spec){.figure = src->figure, .window = {src->window[0], src->window[1]}};
+  *dst = (fb_output_spec){.figure = src->figure,
+                          .window = {src->window[0], src->window[1]},
+                          .at = {src->at[0], src->at[1], src->at[2]},
+                          .direction = src->direction,
+                          .component = src->component};
   int ok = desc_copy_string(src->name, &dst->name);
   ok = desc_copy_string(src->signal, &dst->signal) && ok;
   ok = desc_copy_string(src->of, &dst->of) && ok;

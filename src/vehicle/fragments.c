@@ -8,6 +8,7 @@
  *   - a 0-junction between a velocity coming in and one going out forms
  *     their difference: in - out - (to the spring's 1-junction) = 0;
  *   - spring and tire states are compressions (positive when shortened). */
+#include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,13 +46,25 @@ static int connect_all(fb_bg *bg, const char *const (*bonds)[3], size_t n, fb_er
   return FB_OK;
 }
 
+/* The hull's coordinates (z, phi, theta) among vehicle_rigid_rows' six. */
+enum { RIGID_FIRST = 2, RIGID_DOFS = 3 };
+
+/* The row of the rigid-body map from (z, phi, theta) to the translation
+ * of hull point r along axis: its vertical one is [1, y, -x]. */
+static void rigid_axis_row(const double *r, int axis, double *row)
+{
+  double rows[18];
+  vehicle_rigid_rows(r, rows);
+  for (int j = 0; j < RIGID_DOFS; ++j)
+    row[j] = rows[6 * axis + RIGID_FIRST + j];
+}
+
 /* Row [1, y, -x] of the rigid-body map from (z', phi', theta') to the
  * vertical velocity of hull point (x, y). */
 static void rigid_row(double x, double y, double *row)
 {
-  row[0] = 1.0;
-  row[1] = y;
-  row[2] = -x;
+  const double r[3] = {x, y, 0.0};
+  rigid_axis_row(r, 2, row);
 }
 
 /* n x 3 matrix transformer from the hull's generalised velocities to n
@@ -172,10 +185,57 @@ static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
   return rc;
 }
 
+/* Output o read from the rigid hull's motion: its row over (z, phi,
+ * theta), the point's or the rigid coordinate's. The rigid hull moves in
+ * bounce, roll and pitch only: its longitudinal, lateral and yaw motions
+ * are zero by the model's assumption, and so are their rows. */
+static void rigid_reading_row(const fb_output_spec *o, const vehicle_hull_motion *how,
+                              double *row)
+{
+  memset(row, 0, RIGID_DOFS * sizeof *row);
+  const int j = how->coordinate - RIGID_FIRST;
+  if (how->coordinate < 0)
+    rigid_axis_row(o->at, o->direction, row);
+  else if (j >= 0 && j < RIGID_DOFS)
+    row[j] = 1.0;
+}
+
+/* The rigid hull's outputs read from its motion: a displacement is the
+ * integrated flow of b_body (the velocities of z, phi, theta) on its row,
+ * a velocity the flow, an acceleration the effort on the inertia M over
+ * M: (z, phi, theta)'' = M^-1 p' (p' the effort on b_body), so the row r
+ * weighs the effort by M^-1 r (M symmetric). */
+static int rigid_readings(const fb_scenario *s, fb_hull *h, fb_err *err)
+{
+  int rc = vehicle_hull_readings_new(s, h, err);
+  double m33[9];
+  fb_vehicle_rigid_inertia(s, m33);
+  vehicle_hull_motion how;
+  for (size_t o = 0; !rc && o < s->noutputs; ++o) {
+    if (!vehicle_output_hull_motion(&s->output[o], &how))
+      continue;
+    double row[RIGID_DOFS];
+    rigid_reading_row(&s->output[o], &how, row);
+    if (how.derivative == 2) {
+      double m[9];
+      memcpy(m, m33, sizeof m);
+      const lapack_int info = LAPACKE_dposv(LAPACK_ROW_MAJOR, 'L', 3, 1, m, 3, row, 1);
+      if (info)
+        rc = fb_err_set(err, FB_EMODEL, "the rigid hull's inertia is not positive definite");
+    }
+    if (!rc)
+      rc = vehicle_hull_reading_set(&h->reading[o], "b_body",
+                                    how.derivative == 2 ? FB_PROBE_EFFORT : FB_PROBE_FLOW,
+                                    how.derivative == 0, row, RIGID_DOFS, err);
+  }
+  return rc;
+}
+
 void fb_hull_free(fb_hull **h)
 {
   if (!h || !*h)
     return;
+  vehicle_hull_readings_free(*h);
   fb_bg_free(&(*h)->graph);
   free((*h)->torsion_target);
   free((*h)->torsion_weights);
@@ -206,6 +266,11 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err)
   if (rc) {
     fb_hull_free(&h);
     fb_err_prefix(err, "rigid hull: ");
+    return rc;
+  }
+  rc = rigid_readings(s, h, err);
+  if (rc) {
+    fb_hull_free(&h);
     return rc;
   }
   /* A rigid edge is a straight line: the fit and its end nodes agree. */

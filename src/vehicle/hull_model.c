@@ -185,17 +185,26 @@ static int assemble(const fb_scenario *s, vehicle_hull *h, fb_mat **built,
   return rc ? rc : fb_progress_report(pr, stage, 1.0, err);
 }
 
+/* 1 if output o is a pattern: a torsion, or a point's translation (the
+ * rigid-body motions are in every basis already). */
+static int output_pattern(const fb_output_spec *o)
+{
+  vehicle_hull_motion how;
+  return fb_vehicle_output_hull_fit(o) >= 0 ||
+         (vehicle_output_hull_motion(o, &how) && how.coordinate < 0);
+}
+
 /* The patterns the static correction restores: each attachment point's
  * vertical force (its coupling's row), the load (its points' rows, equal
  * shares), and each output read from the hull's deformation (its
- * weights over the nodal DOFs). */
+ * weights over the nodal DOFs: a torsion's, a point's translation's). */
 static int patterns(const fb_scenario *s, vehicle_hull *h, fb_err *err)
 {
   const fb_fe_hull *fe = h->fe;
   const size_t n = h->info.ndof;
   size_t nout = 0;
   for (size_t o = 0; o < s->noutputs; ++o)
-    nout += fb_vehicle_output_hull_fit(&s->output[o]) >= 0;
+    nout += output_pattern(&s->output[o]);
   h->nf = fe->nattach + 1 + nout;
   h->F = calloc(n * h->nf, sizeof *h->F);
   if (!h->F)
@@ -210,10 +219,11 @@ static int patterns(const fb_scenario *s, vehicle_hull *h, fb_err *err)
   int rc = FB_OK;
   for (size_t o = 0; !rc && o < s->noutputs; ++o) {
     const int fit = fb_vehicle_output_hull_fit(&s->output[o]);
-    if (fit >= 0) {
+    if (fit >= 0)
       rc = fb_fe_hull_torsion_weights(fe, fit, out, err);
-      out += n;
-    }
+    else if (output_pattern(&s->output[o]))
+      rc = vehicle_hull_point_weights(fe->mesh, &s->output[o], o, out, err);
+    out += output_pattern(&s->output[o]) ? n : 0;
   }
   h->info.npatterns = h->nf;
   return rc;
@@ -815,6 +825,24 @@ static int make_fields(const vehicle_hull *h, const double *lambda, size_t nb, h
   return rc;
 }
 
+/* The fragment's bonds, {name, from, to}: every one a multibond (of the
+ * hull's coordinates, its attachment points or its load points). */
+static const char *const bonds[][3] = {
+    {"b_mass", "J", "mass"},
+    {"b_stiffness", "J", "stiffness"},
+    {"b_damping", "J", "damping"},
+    {"b_attach_in", "J", "to_attach.1"},
+    {"b_attach", "to_attach.2", "attach"},
+    {"b_load_in", "J", "to_load.1"},
+    {"b_load", "to_load.2", "load"},
+};
+enum { NBONDS = sizeof bonds / sizeof bonds[0] };
+
+const char *vehicle_flexible_hull_bond(size_t i)
+{
+  return i < NBONDS ? bonds[i][0] : NULL;
+}
+
 static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, size_t ndof,
                       size_t nb, fb_bg *bg, fb_err *err)
 {
@@ -833,16 +861,7 @@ static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, siz
     rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, fe->nattach, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "load", FB_BG_J1, fe->nload, err);
-  static const char *const bonds[][3] = {
-      {"b_mass", "J", "mass"},
-      {"b_stiffness", "J", "stiffness"},
-      {"b_damping", "J", "damping"},
-      {"b_attach_in", "J", "to_attach.1"},
-      {"b_attach", "to_attach.2", "attach"},
-      {"b_load_in", "J", "to_load.1"},
-      {"b_load", "to_load.2", "load"},
-  };
-  for (size_t i = 0; !rc && i < sizeof bonds / sizeof bonds[0]; ++i)
+  for (size_t i = 0; !rc && i < NBONDS; ++i)
     rc = fb_bg_connect(bg, bonds[i][0], bonds[i][1], bonds[i][2], err);
   if (!rc)
     rc = fb_bg_add_port(bg, "attach", "attach", FB_PORT_IN, err);
@@ -895,6 +914,52 @@ static int flexible_torsion(const fb_fe_hull *fe, const double *T, size_t ndof, 
   return rc;
 }
 
+/* The nodal weights w (ndof) of output o read from the hull's motion:
+ * its point's (hull_point.c) or its rigid-body coordinate's fit. */
+static int motion_nodal_weights(const vehicle_hull *h, const fb_output_spec *o, size_t index,
+                                const vehicle_hull_motion *how, double *w, fb_err *err)
+{
+  if (how->coordinate < 0)
+    return vehicle_hull_point_weights(h->fe->mesh, o, index, w, err);
+  return vehicle_hull_rigid_fit(h->fe->mesh, h->M, how->coordinate, w, err);
+}
+
+/* The outputs read from the hull's motion, w' u over the nodal
+ * displacements u = T q: a displacement from t = 0 is the integrated
+ * flow of b_mass (q') weighted by T' w, a velocity its flow, and an
+ * acceleration w' T q'' with q'' = M_q^-1 p' (p' the effort on the mass
+ * field's bond b_mass): over a basis M_q = I, the weights T' w; nodal,
+ * M^-1 w (one solve with M's factor, M symmetric). */
+static int flexible_readings(const fb_scenario *s, const vehicle_hull *h, const double *T,
+                             size_t nb, fb_hull *hull, fb_err *err)
+{
+  const size_t ndof = h->info.ndof;
+  double *w = malloc(ndof * sizeof *w), *q = malloc(nb * sizeof *q);
+  fb_chol *mfactor = NULL;
+  int rc = w && q ? vehicle_hull_readings_new(s, hull, err)
+                  : fb_err_set(err, FB_ENOMEM, "out of memory");
+  vehicle_hull_motion how;
+  for (size_t o = 0; !rc && o < s->noutputs; ++o) {
+    if (!vehicle_output_hull_motion(&s->output[o], &how))
+      continue;
+    rc = motion_nodal_weights(h, &s->output[o], o, &how, w, err);
+    if (!rc && how.derivative == 2 && !T && !mfactor)
+      rc = fb_chol_new(h->M, h->memory_limit, &mfactor, err);
+    if (!rc && how.derivative == 2 && !T)
+      rc = fb_chol_solve(mfactor, w, 1, err);
+    if (rc)
+      break;
+    to_coordinates(T, ndof, nb, w, q);
+    rc = vehicle_hull_reading_set(&hull->reading[o], "b_mass",
+                                  how.derivative == 2 ? FB_PROBE_EFFORT : FB_PROBE_FLOW,
+                                  how.derivative == 0, q, nb, err);
+  }
+  fb_chol_free(&mfactor);
+  free(w);
+  free(q);
+  return rc;
+}
+
 /* The basis a fragment uses: none (nodal), the run's or the estimator's. */
 static void fragment_basis(const vehicle_hull *h, int enriched, const double **T,
                            const double **lambda, size_t *nb)
@@ -907,7 +972,6 @@ static void fragment_basis(const vehicle_hull *h, int enriched, const double **T
 int vehicle_hull_fragment(const fb_scenario *s, vehicle_hull *h, int enriched, fb_hull **out,
                           fb_err *err)
 {
-  (void)s;
   *out = NULL;
   int rc = enriched ? enriched_basis(h, err) : FB_OK;
   if (rc)
@@ -925,6 +989,8 @@ int vehicle_hull_fragment(const fb_scenario *s, vehicle_hull *h, int enriched, f
     rc = hull_graph(h->fe, &f, T, h->info.ndof, nb, hull->graph, err);
   if (!rc)
     rc = flexible_torsion(h->fe, T, h->info.ndof, nb, hull, err);
+  if (!rc)
+    rc = flexible_readings(s, h, T, nb, hull, err);
   hull_fields_free(&f);
   if (rc) {
     fb_hull_free(&hull);

@@ -118,6 +118,12 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
     s->point_mass[k].x -= dx;
     s->point_mass[k].y -= dy;
   }
+  vehicle_hull_motion how;
+  for (size_t o = 0; o < s->noutputs; ++o)
+    if (vehicle_output_hull_motion(&s->output[o], &how) && how.coordinate < 0) {
+      s->output[o].at[0] -= dx;
+      s->output[o].at[1] -= dy;
+    }
   s->edge_front_x -= dx;
   s->edge_rear_x -= dx;
   s->edge_left_y -= dy;
@@ -175,6 +181,11 @@ static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
   s->hull_cg_x = cg[0];
   s->hull_cg_y = cg[1];
   shift_positions(s, cg[0], cg[1]);
+  /* A point on the hull is in the deck's frame in z too. */
+  vehicle_hull_motion how;
+  for (size_t o = 0; o < s->noutputs; ++o)
+    if (vehicle_output_hull_motion(&s->output[o], &how) && how.coordinate < 0)
+      s->output[o].at[2] -= cg[2];
   return FB_OK;
 }
 

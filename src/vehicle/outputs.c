@@ -67,6 +67,29 @@ static const fb_output_kind kinds[] = {
     {"torsion_fit", FB_OUTPUT_OF_HULL, "rad", "torsion_fit", "Hull torsion angle (fitted)",
      "hull torsion angle, fitted",
      "as torsion, each edge's roll that of its whole transverse section, least squares"},
+    {"hull_displacement", FB_OUTPUT_OF_HULL_POINT, "m", "hull_displacement_%s",
+     "Hull point displacement along %s", "hull point displacement %s",
+     "displacement of the hull point `at` along `direction` from t = 0"},
+    {"hull_velocity", FB_OUTPUT_OF_HULL_POINT, "m/s", "hull_velocity_%s",
+     "Hull point velocity along %s", "hull point velocity %s",
+     "velocity of the hull point `at` along `direction`"},
+    {"hull_acceleration", FB_OUTPUT_OF_HULL_POINT, "m/s^2", "hull_acceleration_%s",
+     "Hull point acceleration along %s", "hull point acceleration %s",
+     "acceleration of the hull point `at` along `direction`, from the equations of motion"},
+    {"hull_longitudinal", FB_OUTPUT_OF_HULL, "m", "hull_longitudinal",
+     "Hull longitudinal displacement", "hull longitudinal displacement",
+     "the hull's rigid-body translation along x from t = 0 (System 2; 0 in System 1)"},
+    {"hull_lateral", FB_OUTPUT_OF_HULL, "m", "hull_lateral", "Hull lateral displacement",
+     "hull lateral displacement",
+     "the hull's rigid-body translation along y from t = 0 (System 2; 0 in System 1)"},
+    {"hull_bounce", FB_OUTPUT_OF_HULL, "m", "hull_bounce", "Hull bounce", "hull bounce",
+     "the hull's rigid-body translation along z from t = 0"},
+    {"hull_roll", FB_OUTPUT_OF_HULL, "rad", "hull_roll", "Hull roll angle", "hull roll angle",
+     "the hull's rigid-body rotation about x from t = 0"},
+    {"hull_pitch", FB_OUTPUT_OF_HULL, "rad", "hull_pitch", "Hull pitch angle",
+     "hull pitch angle", "the hull's rigid-body rotation about y from t = 0"},
+    {"hull_yaw", FB_OUTPUT_OF_HULL, "rad", "hull_yaw", "Hull yaw angle", "hull yaw angle",
+     "the hull's rigid-body rotation about z from t = 0 (System 2; 0 in System 1)"},
     {"effort", FB_OUTPUT_OF_BOND, NULL, "effort_%s", "Effort of bond %s", "%s effort",
      "effort of any bond of the assembled graph"},
     {"flow", FB_OUTPUT_OF_BOND, NULL, "flow_%s", "Flow of bond %s", "%s flow",
@@ -103,10 +126,35 @@ const fb_output_kind *fb_vehicle_output_kind_find(const char *signal)
 }
 
 /* The hull's torsions: the edges' end nodes (0) or the least-squares
- * rotation of their transverse sections (1), of fb_hull's weights. */
+ * rotation of their transverse sections (1), of fb_hull's weights; -1 for
+ * the hull's other signals. */
 static int hull_fit(const char *signal)
 {
-  return !strcmp(signal, "torsion_fit");
+  return !strcmp(signal, "torsion_fit") ? 1 : !strcmp(signal, "torsion") ? 0 : -1;
+}
+
+/* What each signal read from the hull's motion measures: a derivative of
+ * the point's translation (coordinate -1) or of a rigid-body coordinate
+ * (vehicle_rigid_rows' order: x, y, z, roll, pitch, yaw). */
+typedef struct hull_motion_row {
+  const char *signal;
+  vehicle_hull_motion how;
+} hull_motion_row;
+
+static const hull_motion_row hull_motions[] = {
+    {"hull_displacement", {0, -1}}, {"hull_velocity", {1, -1}}, {"hull_acceleration", {2, -1}},
+    {"hull_longitudinal", {0, 0}},  {"hull_lateral", {0, 1}},   {"hull_bounce", {0, 2}},
+    {"hull_roll", {0, 3}},          {"hull_pitch", {0, 4}},     {"hull_yaw", {0, 5}},
+};
+
+int vehicle_output_hull_motion(const fb_output_spec *o, vehicle_hull_motion *how)
+{
+  for (size_t i = 0; o->signal && i < sizeof hull_motions / sizeof hull_motions[0]; ++i)
+    if (!strcmp(hull_motions[i].signal, o->signal)) {
+      *how = hull_motions[i].how;
+      return 1;
+    }
+  return 0;
 }
 
 /* A corner's or a mount's output o: its fragment's probe of the
@@ -134,17 +182,38 @@ static int body_probe(const fb_scenario *s, const fb_output_kind *info, size_t i
   return FB_OK;
 }
 
-/* The hull's torsion: the hull says where and with which weights. */
-static int hull_probe(const fb_hull *hull, const fb_output_spec *o, fb_probe_spec *p,
-                      fb_err *err)
+/* An output read from the hull's motion: the hull's probe of it. */
+static int hull_reading_probe(const fb_hull *hull, size_t index, fb_probe_spec *p, fb_err *err)
 {
+  const fb_hull_reading *r = index < hull->nreading ? &hull->reading[index] : NULL;
+  if (!r || !r->target)
+    return fb_err_set(err, FB_EMODEL, "the hull made no probe for output %zu", index);
+  p->kind = r->kind;
+  p->integrate = r->integrate;
+  p->target = fb_strdup_printf("hull.%s", r->target);
+  double *w = malloc(r->nweights * sizeof *w);
+  if (!w)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  memcpy(w, r->weights, r->nweights * sizeof *w);
+  p->weights = w;
+  p->nweights = r->nweights;
+  return FB_OK;
+}
+
+/* The hull's torsion: the hull says where and with which weights. */
+static int hull_probe(const fb_hull *hull, const fb_output_spec *o, size_t index,
+                      fb_probe_spec *p, fb_err *err)
+{
+  vehicle_hull_motion how;
+  if (vehicle_output_hull_motion(o, &how))
+    return hull_reading_probe(hull, index, p, err);
   p->kind = hull->torsion_kind;
   p->integrate = hull->torsion_integrate;
   p->target = fb_strdup_printf("hull.%s", hull->torsion_target);
   double *w = malloc(hull->ntorsion * sizeof *w);
   if (!w)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  memcpy(w, hull_fit(o->signal) ? hull->torsion_fit_weights : hull->torsion_weights,
+  memcpy(w, hull_fit(o->signal) > 0 ? hull->torsion_fit_weights : hull->torsion_weights,
          hull->ntorsion * sizeof *w);
   p->weights = w;
   p->nweights = hull->ntorsion;
@@ -168,6 +237,7 @@ static int bond_probe_of(const fb_output_spec *o, fb_probe_spec *p, fb_err *err)
   p->kind = how->kind;
   p->integrate = how->integrate;
   p->target = fb_strdup(o->bond);
+  p->component = o->component - 1;
   return FB_OK;
 }
 
@@ -177,6 +247,7 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   const fb_output_spec *o = &s->output[index];
   const long k = find_kind(o->signal);
   memset(p, 0, sizeof *p);
+  p->component = -1;
   if (k < 0)
     return fb_err_set(err, FB_EINVAL, "unknown signal '%s'", o->signal),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EINVAL;
@@ -184,14 +255,14 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   p->name = fb_strdup(o->name);
   if (!p->name)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  p->component = -1;
   p->gain = 1.0;
   p->unit = info->unit;
   int rc = FB_OK;
   switch (info->subject) {
   case FB_OUTPUT_OF_CORNER:
   case FB_OUTPUT_OF_MOUNT: rc = body_probe(s, info, index, p, err); break;
-  case FB_OUTPUT_OF_HULL: rc = hull_probe(hull, o, p, err); break;
+  case FB_OUTPUT_OF_HULL: rc = hull_probe(hull, o, index, p, err); break;
+  case FB_OUTPUT_OF_HULL_POINT: rc = hull_reading_probe(hull, index, p, err); break;
   case FB_OUTPUT_OF_BOND: rc = bond_probe_of(o, p, err); break;
   }
   return rc ? rc : p->target ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
@@ -201,4 +272,36 @@ int fb_vehicle_output_hull_fit(const fb_output_spec *o)
 {
   const long k = find_kind(o->signal);
   return k >= 0 && kinds[k].subject == FB_OUTPUT_OF_HULL ? hull_fit(o->signal) : -1;
+}
+
+int vehicle_hull_readings_new(const fb_scenario *s, fb_hull *hull, fb_err *err)
+{
+  hull->reading = calloc(s->noutputs + 1, sizeof *hull->reading);
+  hull->nreading = s->noutputs;
+  return hull->reading ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+}
+
+int vehicle_hull_reading_set(fb_hull_reading *r, const char *target, fb_probe_kind kind,
+                             int integrate, const double *weights, size_t nweights, fb_err *err)
+{
+  r->target = fb_strdup(target);
+  r->weights = malloc((nweights + 1) * sizeof *r->weights);
+  if (!r->target || !r->weights)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  memcpy(r->weights, weights, nweights * sizeof *weights);
+  r->nweights = nweights;
+  r->kind = kind;
+  r->integrate = integrate;
+  return FB_OK;
+}
+
+void vehicle_hull_readings_free(fb_hull *hull)
+{
+  for (size_t o = 0; hull->reading && o < hull->nreading; ++o) {
+    free(hull->reading[o].target);
+    free(hull->reading[o].weights);
+  }
+  free(hull->reading);
+  hull->reading = NULL;
+  hull->nreading = 0;
 }

@@ -64,6 +64,58 @@ int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
  * torsion weights it takes (fb_fe_hull_torsion_weights' fit: 0 or 1). */
 int fb_vehicle_output_hull_fit(const fb_output_spec *o);
 
+/* ---- Outputs read from the hull's motion (docs/vehicle-outputs.md). */
+
+/* A small rigid-body motion's map (rigid_kinematics.c): the displacement u
+ * of the point r (m, from the body's reference point) under the
+ * translation t and the small rotation vector theta, u = t + theta x r,
+ * as 3 rows (row-major 3x6) over (tx, ty, tz, theta_x, theta_y, theta_z). */
+void vehicle_rigid_rows(const double *r, double *rows);
+
+/* What an output read from the hull's motion measures (outputs.c): the
+ * derivative (0 displacement from t = 0, 1 velocity, 2 acceleration) of
+ * its point's translation along its direction (coordinate -1) or of the
+ * hull's rigid-body coordinate (vehicle_rigid_rows' order). */
+typedef struct vehicle_hull_motion {
+  int derivative;
+  int coordinate;
+} vehicle_hull_motion;
+/* 1 and *how if output o is read from the hull's motion, else 0. */
+int vehicle_output_hull_motion(const fb_output_spec *o, vehicle_hull_motion *how);
+/* hull->reading for s's outputs, every one empty (outputs.c). */
+int vehicle_hull_readings_new(const fb_scenario *s, fb_hull *hull, fb_err *err);
+/* Fills one (strings and weights copied). */
+int vehicle_hull_reading_set(fb_hull_reading *r, const char *target, fb_probe_kind kind,
+                             int integrate, const double *weights, size_t nweights,
+                             fb_err *err);
+void vehicle_hull_readings_free(fb_hull *hull);
+
+/* How far a hull point output's point may be from System 2's hull
+ * surface: 5 cm, a plate's thickness and a drawing's rounding, far below
+ * the size of the hull's elements (hull_point.c). */
+#define VEHICLE_HULL_POINT_TOL 0.05
+/* The distance from p to the nearest element of m, that element in *elem,
+ * its shape functions at the foot of p on it in n (3 or 4 of n[4]) and the
+ * foot in foot[3] (hull_point.c); INFINITY for a mesh without elements. */
+double vehicle_hull_point_nearest(const fb_mesh *m, const double *p, size_t *elem, double *n,
+                                  double *foot);
+/* The weights w (6 nnodes, over the nodal DOFs) of output index's point
+ * translation along its direction (o checked: fb_scenario_check): the nearest element's shape
+ * functions at the foot, and the lever from the foot to the point through the nodes' rotations.
+ * FB_EINVAL about the output's `at` when no element is within VEHICLE_HULL_POINT_TOL (naming
+ * the nearest's distance). */
+int vehicle_hull_point_weights(const fb_mesh *m, const fb_output_spec *o, size_t index,
+                               double *w, fb_err *err);
+/* The weights w (6 nnodes) of the rigid-body coordinate (vehicle_rigid_rows'
+ * order, about the origin: the hull's centre of mass) fitted to the nodal
+ * displacements by least squares in the norm of the mass matrix M: w =
+ * M R (R' M R)^-1 e_coordinate, R the mesh's rigid-body motions. */
+int vehicle_hull_rigid_fit(const fb_mesh *m, const fb_mat *M, int coordinate, double *w,
+                           fb_err *err);
+/* Each hull point output of s lies on its finite-element hull's mesh, if
+ * it has one (s->hull_source_mesh): FB_EINVAL about its `at` otherwise. */
+int vehicle_hull_points_check(const fb_scenario *s, fb_err *err);
+
 /* 1 if the scenario's hull_source_mesh is the mesh its hull has now: the
  * one its source read, or the one it made from the inputs it has (equal
  * keys; fe_hull.c). */
@@ -95,6 +147,10 @@ int vehicle_hull_fragment(const fb_scenario *s, vehicle_hull *h, int enriched, f
 int vehicle_hull_structural_modes(const fb_scenario *s, vehicle_hull *h, size_t nmodes,
                                   int exact, fb_vehicle_work *w, fb_mode_set **out,
                                   fb_err *err);
+
+/* The name of the finite-element hull fragment's bond i (its own name,
+ * in the fragment), NULL past the last: every one a multibond. */
+const char *vehicle_flexible_hull_bond(size_t i);
 
 /* ---- fe_hull.c's matrices and modes, for hull_model.c. */
 

@@ -133,6 +133,32 @@ class FromDictTest(unittest.TestCase):
         self.assertEqual(from_data.names, example.names)
         numpy.testing.assert_array_equal(from_data.data, example.data)
 
+    def test_hull_point_and_component_outputs(self):
+        """A hull point's output and a multibond's component are outputs like
+        any other: columns with their names and units; the driver's
+        attachment point moves as the assembly's multibond b_attach's
+        seventh component (the corners', then the mounts'), to rounding;
+        a multibond without its component is refused at its data path."""
+        description = apc_description()
+        description["outputs"] = [
+            {"signal": "hull_velocity", "at": [2.10, 0.55, -0.86306], "direction": "z"},
+            {"signal": "hull_pitch"},
+            {"signal": "flow", "bond": "b_attach", "component": 7}]
+        r = flexbond.Scenario.from_dict(description).run("rigid")
+        names = ["hull_velocity_z", "hull_pitch", "flow_b_attach_7"]
+        self.assertEqual(r.names[1:4], names)
+        self.assertEqual([r.unit(n) for n in names], ["m/s", "rad", "m/s"])
+        scale = numpy.ptp(r["flow_b_attach_7"])
+        self.assertGreater(scale, 0.1)
+        numpy.testing.assert_allclose(r["hull_velocity_z"], r["flow_b_attach_7"], rtol=0,
+                                      atol=1e-12 * scale)
+        del description["outputs"][2]["component"]
+        with self.assertRaises(flexbond.Error) as caught:
+            flexbond.Scenario.from_dict(description)
+        self.assertTrue(caught.exception.message.startswith(
+            "description['outputs'][2]['bond']: bond 'b_attach' is a multibond of 8 components"),
+            caught.exception.message)
+
     def test_errors_name_the_data_path(self):
         """An error names the value by its path in the data, never by a line
         of the text it was read from: a range error of the reader, a rule of
