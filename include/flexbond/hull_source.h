@@ -77,6 +77,11 @@ struct fb_hull_source {
   size_t nparams;
   size_t params_size; /* <= FB_HULL_SOURCE_PARAMS_MAX */
   const fb_hull_source_ops *ops;
+  /* 1 if every mesh it gives has a node of its own at each of the
+   * description's points (its one-node sets): a coupling
+   * (fb_scenario.coupling) then changes nothing, as every point meets its
+   * node. 0: not known. */
+  int nodes_at_points;
 };
 
 /* 0 if src is a sound source: a well-formed name and documentation,

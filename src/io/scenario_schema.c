@@ -608,6 +608,10 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
  * and numbers, for the warning. */
 #define PLAUSIBLE(lo_, hi_, why_)                                                              \
   .plausible_lo = (lo_), .plausible_hi = (hi_), .plausible_why = (why_)
+/* The same, the warning also giving the value in unit_ (value * scale_):
+ * the unit a slip most often means. */
+#define PLAUSIBLE_IN(lo_, hi_, why_, unit_, scale_)                                            \
+  PLAUSIBLE(lo_, hi_, why_), .plausible_unit = (unit_), .plausible_scale = (scale_)
 #define REQ .need = SCH_REQUIRED
 #define OPT .need = SCH_OPTIONAL
 #define DEF(v) .need = SCH_DEFAULT, .def = v
@@ -656,8 +660,24 @@ static const char *const sc_couplings[] = {"none", "distributing", "kinematic", 
 static const char *const sc_switch[] = {"false", "true", NULL};
 
 /* Plausible ranges shared by several keys. */
-#define SC_WHY_THICKNESS                                                                       \
-  "vehicle plates are 0.2 mm to 0.3 m thick (was it meant in mm? thicknesses are in m)"
+/* Plates of ground vehicles: body panels of trucks and light armoured
+ * vehicles from some 3 mm, the paper's hull 8.5 mm, rolled homogeneous
+ * armour up to some 100 mm. A thickness meant in mm is 1000 times
+ * that; the warning gives it in mm. */
+#define SC_THICKNESS_PLAUSIBLE                                                                 \
+  PLAUSIBLE_IN(3e-3, 0.1,                                                                      \
+               "plates of ground vehicles are 3-100 mm (was it meant in mm? thicknesses are "  \
+               "in m)",                                                                        \
+               "mm", 1e3)
+/* Structural metals and composites: from some 900 kg/m^3 (polyethylene
+ * and aramid armour laminates 970 to 1400, magnesium 1740, CFRP 1550,
+ * aluminium 2700, titanium 4500, steel 7850) to 20000 (tungsten alloys
+ * 17000 to 19300). A density in g/cm^3 (7.85) is 1000 times below. */
+#define SC_DENSITY_PLAUSIBLE                                                                   \
+  PLAUSIBLE_IN(900, 2e4,                                                                       \
+               "structural metals and composites are 900 kg/m^3 (polyethylene armour "         \
+               "laminates) to 20000 kg/m^3 (tungsten alloys); steel 7850, aluminium 2700",     \
+               "g/cm^3", 1e-3)
 #define SC_WHY_WHEEL_MASS "a wheel (tire, rim, hub) weighs 1 kg to 5 t"
 #define SC_WHY_TIRE_K "a tire's radial stiffness is 1e4 to 1e8 N/m (a truck tire about 1e6)"
 
@@ -696,13 +716,13 @@ static const sch_key sc_section_keys[] = {
            "case-insensitive",
            H_AT(STRING, set)),
     NUMBER("thickness", "m", POSITIVE, INHERIT("hull.material.thickness"), "plate thickness",
-           H_AT(DOUBLE, thickness), PLAUSIBLE(2e-4, 0.3, SC_WHY_THICKNESS)),
+           H_AT(DOUBLE, thickness), SC_THICKNESS_PLAUSIBLE),
     NUMBER("young", "Pa", POSITIVE, INHERIT("hull.material.young"), "Young's modulus",
            H_AT(DOUBLE, young)),
     NUMBER("poisson", NULL, HALF_OPEN(0, 0.5), INHERIT("hull.material.poisson"),
            "Poisson's ratio", H_AT(DOUBLE, poisson)),
     NUMBER("density", "kg/m^3", POSITIVE, INHERIT("hull.material.density"), "density",
-           H_AT(DOUBLE, density)),
+           H_AT(DOUBLE, density), SC_DENSITY_PLAUSIBLE),
     NUMBER("nonstructural_mass", "kg/m^2", NONNEGATIVE, DEF(0),
            "mass per area carried by the plates (lining, equipment), smeared through their "
            "thickness",
@@ -815,9 +835,9 @@ static const sch_key sc_keys[] = {
     NUMBER("hull.material.poisson", NULL, HALF_OPEN(0, 0.5), REQ, "Poisson's ratio",
            S_OFF(poisson)),
     NUMBER("hull.material.density", "kg/m^3", POSITIVE, REQ, "density", S_OFF(density),
-           PLAUSIBLE(300, 2e4, "structural materials are 300 (wood) to 20000 kg/m^3")),
+           SC_DENSITY_PLAUSIBLE),
     NUMBER("hull.material.thickness", "m", POSITIVE, REQ, "wall thickness", S_OFF(thickness),
-           PLAUSIBLE(2e-4, 0.3, SC_WHY_THICKNESS)),
+           SC_THICKNESS_PLAUSIBLE),
     LIST("hull.sections", OPT,
          "plates of other thicknesses or materials, per element set (System 2; System 1 "
          "takes the mesh's mass); a later item takes the elements it shares with an earlier "

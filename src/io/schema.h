@@ -133,6 +133,11 @@ struct sch_key {
    * plausible_why NULL: no such range. */
   double plausible_lo, plausible_hi;
   const char *plausible_why;
+  /* The unit a slip most often means (a thickness in mm), which the
+   * warning also gives the value in: value * plausible_scale
+   * plausible_unit. NULL: none. */
+  const char *plausible_unit;
+  double plausible_scale;
   sch_store store;        /* SCH_NUMBERS: SCH_STORE_DOUBLE, max_items of them at offset */
   size_t offset;          /* SCH_LIST: of the pointer to its items (allocated) */
   const sch_table *items; /* SCH_LIST */
@@ -261,7 +266,9 @@ int sch_each(const sch_table *t, const void *base, sch_value_fn fn, void *ctx);
  * "must be > 0 N/m (got -1)" and err's key set to v->path (unlocated). */
 int sch_check_value(const sch_value *v, fb_err *err);
 /* 1 if v (a number) lies outside its key's plausible range, with the
- * warning "VALUE UNIT is implausible: WHY" in w, its key v->path
+ * warning "VALUE UNIT is implausible: WHY" in w ("VALUE UNIT is
+ * implausible: VALUE UNIT = VALUE' UNIT'; WHY" with a plausible_unit),
+ * its key v->path
  * (unlocated); else 0, w untouched. */
 int sch_check_plausible(const sch_value *v, fb_err *w);
 /* v's value as text ("145300", "bilateral"). */

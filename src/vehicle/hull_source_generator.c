@@ -71,4 +71,6 @@ const fb_hull_source fb_hull_source_generator = {
     .name = "generator",
     .doc = "the paper's hull (floor, roof, walls, bulkheads, a wedge nose) from its geometry "
            "and the vehicle's points (docs/hull-mesh.md)",
-    .ops = &generator_ops};
+    .ops = &generator_ops,
+    /* fb_hull_mesh_generate puts a line of nodes through every point. */
+    .nodes_at_points = 1};
