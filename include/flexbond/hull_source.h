@@ -50,9 +50,11 @@ typedef struct fb_hull_source_ops {
    * (the description's cached mesh is current while its key is). */
   uint64_t (*key)(const fb_scenario *s);
   /* Where make's structure has its centre of mass, in the description's
-   * frame, before the mesh is made: *x, and *length, the hull's length
-   * (m), the scale a given centre of mass is compared at. */
-  void (*centroid)(const fb_scenario *s, double *x, double *length);
+   * frame, before the mesh is made: *x and *z (its height in the frame,
+   * the generator's above its floor), and *length, the hull's length (m),
+   * the scale a given centre of mass is compared at. The mesh make gives
+   * has that centre of mass at its origin. */
+  void (*centroid)(const fb_scenario *s, double *x, double *z, double *length);
   /* The refinement the mesh is made at (d x d elements for each of the
    * coarsest mesh's); 0: the source is not refined (a file is used as it
    * is). NULL: 0. */

@@ -293,6 +293,12 @@ typedef struct fb_scenario {
   char *frame_origin;          /* NULL: positions relative to the hull's centre of mass */
   int hull_cg_given;           /* hull.centre_of_mass was written */
   double hull_cg_x, hull_cg_y; /* m, in the vehicle frame (0 without a frame) */
+  /* m, its height in the vehicle frame, set by fb_vehicle_hull_complete:
+   * the generated mesh's above its floor with a frame, a deck's in the
+   * deck's frame, else 0. Inside, positions and the mesh are relative to
+   * the centre of mass; what a user reads is in the vehicle frame
+   * (fb_scenario_frame_offset). */
+  double hull_cg_z;
   /* Rigid-body properties (paper, Table 2): the structure's, without the
    * declared masses below. With a finite-element hull they may be left
    * out (hull_mass_given 0): the mesh's are used. */
@@ -403,8 +409,9 @@ size_t fb_scenario_noutputs(const fb_scenario *s);
 const char *fb_scenario_output_name(const fb_scenario *s, size_t o);
 const char *fb_scenario_output_unit(const fb_scenario *s, size_t o);
 /* Likewise the corners: their number, corner c's name (NULL when c is out
- * of range) and attachment point (m, vehicle axes; *x and *y untouched
- * when c is out of range), and the road speed (m/s). */
+ * of range) and attachment point (m, in the vehicle frame, the file's:
+ * fb_scenario_frame_offset; *x and *y untouched when c is out of range),
+ * and the road speed (m/s). */
 size_t fb_scenario_ncorners(const fb_scenario *s);
 /* The name of corner c's tire model ("bilateral"), NULL when c is out
  * of range. */
@@ -455,6 +462,13 @@ double fb_scenario_track_width(const fb_scenario *s);
  * the description they are about (fb_err.part); the caller locates them
  * (fb_scenario_locate). */
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
+/* Where the frame inside (the hull structure's centre of mass, which
+ * every position and the mesh are relative to after
+ * fb_vehicle_hull_complete) lies in the vehicle frame, the file's
+ * (s->frame_origin; a deck's own frame; without either, the centre of
+ * mass itself): o = (hull_cg_x, hull_cg_y, hull_cg_z), m. A position p
+ * inside is p + o in the file's frame; axes are parallel. */
+void fb_scenario_frame_offset(const fb_scenario *s, double o[3]);
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
  * Errors are "FILE:LINE:COL: KEY: message". A value that is legal but

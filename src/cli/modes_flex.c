@@ -132,10 +132,18 @@ int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hu
              "shape normalised to a largest hull or body translation of 1; the largest "
              "displacement drawn %.2f m long; grey: at rest",
              drawn);
-    const fb_plot_mode pic = {hull->mesh, v,           drawn,
-                              mp.body,    s->nmounts,  0.05 * mp.extent,
-                              mp.wheel,   s->ncorners, 0.07 * mp.extent,
-                              title,      subtitle,    NULL};
+    fb_plot_mode pic = {.mesh = hull->mesh,
+                        .shape = v,
+                        .largest_drawn = drawn,
+                        .body = mp.body,
+                        .nbodies = s->nmounts,
+                        .body_side = 0.05 * mp.extent,
+                        .wheel = mp.wheel,
+                        .nwheels = s->ncorners,
+                        .wheel_radius = 0.07 * mp.extent,
+                        .title = title,
+                        .subtitle = subtitle};
+    fb_scenario_frame_offset(s, pic.origin);
     char *path = cli_outdir_path(od, name, err);
     rc = path ? fb_plot_mode_png(&pic, path, err) : err->code;
     if (!rc)
@@ -158,9 +166,10 @@ static int write_shapes(cli_outdir *od, const flex_modes *fm, fb_err *err)
     snprintf(name, sizeof name, "mode_%02zu.vtu", k + 1);
     char *path = cli_outdir_path(od, name, err);
     const fb_vtu_field frequency = {"frequency_hz", ms->freq_hz[k]};
-    rc = path ? fb_mesh_write_vtu_fields(fm->hull->mesh, ms->shapes + k * ms->ndof, &frequency,
-                                         1, path, err)
-              : err->code;
+    fb_vtu_frame frame = {
+        .dof_values = ms->shapes + k * ms->ndof, .fields = &frequency, .nfields = 1};
+    fb_scenario_frame_offset(fm->s, frame.origin);
+    rc = path ? fb_mesh_write_vtu_frame(fm->hull->mesh, &frame, path, err) : err->code;
     if (!rc)
       rc = cli_outdir_keep(od, path, err);
     else

@@ -83,11 +83,12 @@ static void write_corner_timing(FILE *fp, const fb_study_report *rep)
   fputs("\n| corner | x, y [m] | bump entry, exit [s] |\n|---|---|---|\n", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {
     const fb_corner_params *p = &s->corner[c];
-    double w[2];
+    double w[2], x = 0.0, y = 0.0;
     fb_study_report_wheel_window(rep, c, w);
+    fb_scenario_corner_position(s, c, &x, &y);
     fputs("| ", fp);
     fb_md_write_text(fp, p->name);
-    fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", p->x, p->y, w[0], w[1]);
+    fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", x, y, w[0], w[1]);
   }
 }
 
@@ -115,12 +116,14 @@ static void write_point_masses(FILE *fp, const fb_scenario *s)
 {
   if (!s->npoint_masses)
     return;
+  double o[3];
+  fb_scenario_frame_offset(s, o);
   fputs("| hull masses | ", fp);
   for (size_t k = 0; k < s->npoint_masses; ++k) {
     const fb_hull_point_mass *m = &s->point_mass[k];
     fputs(k ? "; " : "", fp);
     fb_md_write_text(fp, m->name);
-    fprintf(fp, " %.10g kg at x, y = %.10g, %.10g m", m->mass, m->x, m->y);
+    fprintf(fp, " %.10g kg at x, y = %.10g, %.10g m", m->mass, o[0] + m->x, o[1] + m->y);
   }
   fprintf(fp,
           " (%.10g kg in all, on the floor, besides the structure above: in both systems' "
@@ -144,15 +147,20 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
     fputs("| frame | the file's positions are from ", fp);
     fb_md_write_text(fp, s->frame_origin);
     fprintf(fp,
-            "; the hull's centre of mass is at x, y = %.10g, %.10g m there, and the positions "
-            "below are relative to it |\n",
-            s->hull_cg_x, s->hull_cg_y);
+            "; the hull's centre of mass is at x, y, z = %.10g, %.10g, %.10g m there. The "
+            "positions below and the pictures are in this frame; rotations (pitch, roll) "
+            "are about the centre of mass |\n",
+            s->hull_cg_x, s->hull_cg_y, s->hull_cg_z);
   } else if (fb_scenario_hull_read_in_own_frame(s)) {
     fprintf(fp,
-            "| frame | the deck's: its structure's centre of mass is at x, y = %.10g, %.10g m "
-            "there; the deck's nodes and the positions below were moved to be relative to it "
-            "|\n",
-            s->hull_cg_x, s->hull_cg_y);
+            "| frame | the deck's: its structure's centre of mass is at x, y, z = %.10g, "
+            "%.10g, %.10g m there. The positions below and the pictures are in this frame; "
+            "rotations (pitch, roll) are about the centre of mass |\n",
+            s->hull_cg_x, s->hull_cg_y, s->hull_cg_z);
+  } else {
+    fputs("| frame | the file's positions are from the hull structure's centre of mass, and so "
+          "are the positions below and the pictures |\n",
+          fp);
   }
   fprintf(fp,
           "| hull | %.10g kg, Ixx %.10g kg m^2, Iyy %.10g kg m^2 about its centre of mass "

@@ -612,6 +612,10 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
  * the unit a slip most often means. */
 #define PLAUSIBLE_IN(lo_, hi_, why_, unit_, scale_)                                            \
   PLAUSIBLE(lo_, hi_, why_), .plausible_unit = (unit_), .plausible_scale = (scale_)
+/* A position along x or y (sch_key.axis): a report gives it in the
+ * file's frame. */
+#define AXIS_X .axis = 1
+#define AXIS_Y .axis = 2
 #define REQ .need = SCH_REQUIRED
 #define OPT .need = SCH_OPTIONAL
 #define DEF(v) .need = SCH_DEFAULT, .def = v
@@ -690,8 +694,8 @@ static const sch_key sc_mount_keys[] = {
     NUMBER("stiffness", "N/m", POSITIVE, REQ, "spring stiffness", M_OFF(stiffness),
            PLAUSIBLE(1e2, 1e9, "a mount's spring is 1e2 to 1e9 N/m")),
     NUMBER("damping", "N s/m", NONNEGATIVE, REQ, "damper coefficient", M_OFF(damping)),
-    NUMBER("x", "m", ANY, REQ, "hull attachment point", M_OFF(x)),
-    NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y)),
+    NUMBER("x", "m", ANY, REQ, "hull attachment point", M_OFF(x), AXIS_X),
+    NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y), AXIS_Y),
 };
 static const sch_table sc_mount_table = TABLE(sc_mount_keys, NULL);
 
@@ -703,8 +707,8 @@ static const sch_key sc_point_mass_keys[] = {
            P_AT(STRING, name)),
     NUMBER("mass", "kg", POSITIVE, REQ, "its mass", P_AT(DOUBLE, mass),
            PLAUSIBLE(0.1, 1e5, "a mass carried by the hull weighs 0.1 kg to 100 t")),
-    NUMBER("x", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, x)),
-    NUMBER("y", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, y)),
+    NUMBER("x", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, x), AXIS_X),
+    NUMBER("y", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, y), AXIS_Y),
 };
 static const sch_table sc_point_mass_table = TABLE(sc_point_mass_keys, NULL);
 
@@ -734,9 +738,10 @@ static const sch_key sc_corner_keys[] = {
     STRING(NAME, "name", REQ,
            "a corner's name; an axle's corners are L and R before it (F: LF, RF)",
            C_AT(STRING, name)),
-    NUMBER("x", "m", ANY, REQ, "hull attachment point", C_OFF(x)),
+    NUMBER("x", "m", ANY, REQ, "hull attachment point", C_OFF(x), AXIS_X),
     NUMBER("y", "m", ANY, REQ,
-           "hull attachment point; an axle's left one, > 0 (the right one is at -y)", C_OFF(y)),
+           "hull attachment point; an axle's left one, > 0 (the right one is at -y)", C_OFF(y),
+           AXIS_Y),
     NUMBER("spring_k", "N/m", POSITIVE, REQ, "suspension spring stiffness", C_OFF(spring_k),
            PLAUSIBLE(1e3, 1e8, "a suspension spring is 1e3 to 1e8 N/m")),
     NUMBER("damper_c", "N s/m", NONNEGATIVE, ONE_OF("damper"),
@@ -846,12 +851,13 @@ static const sch_key sc_keys[] = {
     SECTION("hull.edges", REQ, "the edge lines whose roll difference is the torsion angle",
             NULL),
     NUMBER("hull.edges.front_x", "m", ANY, REQ, "x of the front edge line, > `rear_x`",
-           S_OFF(edge_front_x)),
-    NUMBER("hull.edges.rear_x", "m", ANY, REQ, "x of the rear edge line", S_OFF(edge_rear_x)),
+           S_OFF(edge_front_x), AXIS_X),
+    NUMBER("hull.edges.rear_x", "m", ANY, REQ, "x of the rear edge line", S_OFF(edge_rear_x),
+           AXIS_X),
     NUMBER("hull.edges.left_y", "m", ANY, REQ, "y of each edge's left end, > `right_y`",
-           S_OFF(edge_left_y)),
+           S_OFF(edge_left_y), AXIS_Y),
     NUMBER("hull.edges.right_y", "m", ANY, REQ, "y of each edge's right end",
-           S_OFF(edge_right_y)),
+           S_OFF(edge_right_y), AXIS_Y),
     SECTION("hull.mesh", OPT, "System 2's hull mesh (with `hull.fe`)", &sc_mesh_ops),
     STRING(FILE, "hull.mesh.deck", ONE_OF("mesh"),
            "an Abaqus/CalculiX deck (.inp) or a gmsh mesh (.msh, format 4.1) with the "
@@ -1212,7 +1218,15 @@ static int sc_visit_value(const sch_value *v, void *ctx)
 {
   const sc_visit *visit = ctx;
   char text[256];
-  sch_format(v, text, sizeof text);
+  if (v->key->axis) {
+    /* Stored from the centre of mass; given as the file wrote it, to the
+     * ten digits that hide the round-off of the move there and back. */
+    double o[3];
+    fb_scenario_frame_offset(visit->s, o);
+    snprintf(text, sizeof text, "%.10g", v->number + o[v->key->axis - 1]);
+  } else {
+    sch_format(v, text, sizeof text);
+  }
   const char *rest = NULL;
   const sc_value_origin *o = sc_origin_find(visit->s, v->path, &rest);
   const fb_scenario_value value = {v->path, o && !*rest ? o->path : NULL,

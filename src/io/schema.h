@@ -123,10 +123,14 @@ struct sch_key {
   const char *const *choices;  /* SCH_CHOICE, NULL-terminated */
   size_t min_items, max_items; /* SCH_NUMBERS, SCH_LIST; max 0: no limit */
   int lines;                   /* SCH_TEXT: line breaks allowed */
-  const char *type_doc;        /* SCH_CUSTOM: the type for the documentation */
-  const char *doc;             /* one line */
-  const char *why;             /* why the range is what it is, added to a range error
-                                  ("about a day of solver steps ..."); may be NULL */
+  /* A position along the vehicle's axis 1 (x) or 2 (y), in the file's
+   * frame as written, stored relative to the hull's centre of mass once
+   * the loader has completed the description; 0: none. */
+  int axis;
+  const char *type_doc; /* SCH_CUSTOM: the type for the documentation */
+  const char *doc;      /* one line */
+  const char *why;      /* why the range is what it is, added to a range error
+                           ("about a day of solver steps ..."); may be NULL */
   /* What real vehicles have, in the file's unit (plausible_why says so):
    * a value outside is legal but almost never meant (20 for a thickness
    * in m, meant as mm), a warning at its file:line (sch_check_plausible).

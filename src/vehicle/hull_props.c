@@ -126,11 +126,12 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
 
 /* The hull's centre of mass in the declared frame: the made mesh's (its
  * source's centroid), else the typed one. */
-static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
+static int frame_centre(const fb_scenario *s, double *x, double *y, double *z, fb_err *err)
 {
+  *z = 0.0;
   if (s->has_fe_hull) {
     double length = 0.0;
-    fb_scenario_hull_source(s)->ops->centroid(s, x, &length);
+    fb_scenario_hull_source(s)->ops->centroid(s, x, z, &length);
     *y = 0.0;
     if (!s->hull_cg_given)
       return FB_OK;
@@ -174,6 +175,7 @@ static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
   fb_mesh_translate(s->hull_source_mesh, -cg[0], -cg[1], -cg[2]);
   s->hull_cg_x = cg[0];
   s->hull_cg_y = cg[1];
+  s->hull_cg_z = cg[2];
   shift_positions(s, cg[0], cg[1]);
   return FB_OK;
 }
@@ -191,12 +193,13 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
     if (rc)
       return rc;
   } else if (s->frame_origin) {
-    double x = 0.0, y = 0.0;
-    rc = frame_centre(s, &x, &y, err);
+    double x = 0.0, y = 0.0, z = 0.0;
+    rc = frame_centre(s, &x, &y, &z, err);
     if (rc)
       return rc;
     s->hull_cg_x = x;
     s->hull_cg_y = y;
+    s->hull_cg_z = z;
     shift_positions(s, x, y);
   }
   if (s->has_fe_hull) {
@@ -218,4 +221,11 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
     rc = FB_EINVAL;
   }
   return rc;
+}
+
+void fb_scenario_frame_offset(const fb_scenario *s, double o[3])
+{
+  o[0] = s->hull_cg_x;
+  o[1] = s->hull_cg_y;
+  o[2] = s->hull_cg_z;
 }
