@@ -134,6 +134,8 @@ typedef struct fb_corner_params {
 
 /* Most bulkheads a hull may have. */
 enum { FB_HULL_MAX_BULKHEADS = 8 };
+/* The most modes a report pictures when listed (fb_scenario.pictured_modes). */
+enum { FB_PICTURED_MODES_MAX = 16 };
 
 typedef struct fb_hull_mesh_params {
   double width;       /* m, between the side walls, > 0 */
@@ -340,6 +342,10 @@ typedef struct fb_scenario {
    * when it is freed). fb_scenario_set_road sets both. */
   const fb_road_type *road_type;
   fb_road_params road;
+  /* System 2's modes a report pictures, by number (1 = the lowest),
+   * whole; none: those fb_mode_set_pictured chooses. */
+  size_t npictured_modes;
+  double pictured_modes[FB_PICTURED_MODES_MAX];
   /* Simulation. */
   double t_end, rtol, atol, max_step, sample_rate; /* s, -, -, s, Hz */
   long max_steps;                /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
@@ -1293,6 +1299,22 @@ void fb_fe_hull_free(fb_fe_hull **h);
  * of the mounted bodies, then of the wheels, in the scenario's order),
  * each shape normalised so that the largest displacement over the
  * mounted bodies and the hull nodes is 1 (the paper's normalisation). */
+/* What holds the largest share of a mode's kinetic energy: a rigid motion
+ * of the hull (index 0 .. 5: surge, sway, bounce, roll, pitch, yaw, about
+ * its centre of mass), its elastic deformation (index 0), mounted body
+ * index, or corner index's wheel (its hop). */
+typedef enum fb_mode_part_kind {
+  FB_MODE_HULL_RIGID,
+  FB_MODE_HULL_ELASTIC,
+  FB_MODE_MOUNT,
+  FB_MODE_WHEEL
+} fb_mode_part_kind;
+typedef struct fb_mode_part {
+  fb_mode_part_kind kind;
+  size_t index;
+} fb_mode_part;
+/* The rigid motions of the hull a mode picture is chosen for. */
+enum { FB_MODE_BOUNCE = 2, FB_MODE_ROLL = 3, FB_MODE_PITCH = 4 };
 typedef struct fb_mode_set {
   size_t nmodes, ndof;
   size_t nfree;            /* zero-frequency rigid-body modes left out */
@@ -1300,8 +1322,26 @@ typedef struct fb_mode_set {
   double *freq_hz;         /* nmodes */
   double *shapes;          /* ndof x nmodes, column-major */
   char (*description)[96]; /* nmodes, e.g. "hull pitch (rigid 97%)" */
+  fb_mode_part *part;      /* nmodes: what the description names */
+  /* nmodes x nmounts, mode k's row first: mounted body b's share of mode
+   * k's kinetic energy, in [0, 1]. */
+  size_t nmounts;
+  double *mount_share;
 } fb_mode_set;
 void fb_mode_set_free(fb_mode_set **m);
+
+/* The number of modes fb_mode_set_pictured chooses among the hull's
+ * elastic ones: the first two (a torsion and a bending, as a rule). */
+enum { FB_MODE_PICTURED_ELASTIC = 2 };
+/* The modes of ms worth a picture, by what they are: the first mode of
+ * each of the hull's supported rigid motions (bounce, roll, pitch), each
+ * mounted body's mode (the first it holds the largest share of the
+ * kinetic energy in, else the one that gives it its largest share), the
+ * first wheel hop, and the first
+ * FB_MODE_PICTURED_ELASTIC elastic modes of the hull. Writes their
+ * 0-based indices into out, ascending, each once, at most max; returns
+ * how many. A kind ms has no mode of adds none. */
+size_t fb_mode_set_pictured(const fb_mode_set *ms, size_t *out, size_t max);
 
 /* System 2's hull fragment (same ports as fb_vehicle_rigid_hull), realised
  * for the purpose (an fb_vehicle holds its own): the

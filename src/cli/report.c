@@ -488,11 +488,21 @@ static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
     fputs("\nNo mode pictures: the run had `--no-figures`.\n", fp);
     return;
   }
+  size_t pictured[CLI_MAX_PICTURED_MODES];
+  const size_t npictured =
+      cli_pictured_modes(o->scenario, ms, pictured, CLI_MAX_PICTURED_MODES);
+  fputs(
+      o->scenario->npictured_modes
+          ? "\nThe modes the scenario lists (`report.modes` or `--picture-modes`):\n"
+          : "\nThe modes pictured are chosen by what they are: the first of the hull's "
+            "bounce, roll and pitch, each mounted body's (the first it holds the most kinetic "
+            "energy in, else the one it holds its largest share in), the first wheel hop and "
+            "the first two elastic "
+            "modes of the hull.\n",
+      fp);
   /* One picture per paragraph: a viewer shows them one under another. */
-  for (size_t i = 0; i < CLI_NPICTURED_MODES; ++i) {
-    size_t k = cli_pictured_modes[i] - 1;
-    if (k >= ms->nmodes)
-      continue;
+  for (size_t i = 0; i < npictured; ++i) {
+    const size_t k = pictured[i];
     char name[32];
     cli_mode_picture_name(k + 1, name, sizeof name);
     fprintf(fp, "\n![System 2, mode %zu: %.3f Hz, ", k + 1, ms->freq_hz[k]);

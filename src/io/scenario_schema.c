@@ -968,6 +968,12 @@ static const sch_key sc_keys[] = {
     NUMBER("road.speed_kmh", "km/h", POSITIVE, REQ, "constant forward speed on a straight line",
            S_OFF(speed), .ops = &sc_kmh,
            PLAUSIBLE(0, 200, "wheeled vehicles drive at most about 200 km/h")),
+    SECTION("report", OPT, "what the report shows", NULL),
+    NUMBERS("report.modes", NULL, 1, FB_PICTURED_MODES_MAX, OPT,
+            "System 2's modes pictured, by number (1: the lowest); default: chosen by what "
+            "they are (the hull's bounce, roll and pitch, each mounted body's, the first "
+            "wheel hop, the first two elastic modes)",
+            S_OFF(pictured_modes), .count_at = offsetof(fb_scenario, npictured_modes)),
     SECTION("simulation", REQ, "the run", NULL),
     NUMBER("simulation.t_end", "s", POSITIVE, REQ, "end of the run (it starts at 0)",
            S_OFF(t_end)),
