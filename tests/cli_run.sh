@@ -744,7 +744,7 @@ cmp -s <(tail -n +2 "$WORK/plain_header/system1.csv") <(tail -n +2 "$WORK/nofig/
 run run "$REPO_ROOT/examples/apc6x6_liftoff.yaml" -o "$WORK/liftoff" --no-figures -q \
   --system rigid
 expect_status 0 "run with unilateral tires"
-expect_in "$WORK/liftoff/report.md" "every tire is \`unilateral\`, unilateral: it pushes but never pulls" \
+expect_in "$WORK/liftoff/report.md" "every tire is unilateral, unilateral: it pushes but never pulls" \
   "report.md unilateral tires"
 expect_in "$WORK/liftoff/report.md" \
   "System 1 (rigid hull): 5 intervals where a tire carries no load" "report.md lift-off verdict"
@@ -789,7 +789,7 @@ sed 's/  tire_contact: unilateral .*$/  tire_contact: hunt_crossley/' \
   "$REPO_ROOT/examples/apc6x6_liftoff.yaml" >"$WORK/liftoff_hc.yaml"
 run run "$WORK/liftoff_hc.yaml" -o "$WORK/liftoff_hc" --no-figures -q --system rigid
 expect_status 0 "run with Hunt-Crossley tires"
-expect_in "$WORK/liftoff_hc/report.md" "every tire is \`hunt_crossley\`, unilateral, its damping" \
+expect_in "$WORK/liftoff_hc/report.md" "every tire is hunt\\_crossley, unilateral, its damping" \
   "report.md names the Hunt-Crossley tires"
 checks=$((checks + 1))
 python3 - "$WORK/liftoff" "$WORK/liftoff_hc" <<'EOF' || fail "summary.json with Hunt-Crossley tires"
@@ -822,8 +822,9 @@ open(sys.argv[2], "w").write(s)
 EOF
 run run "$WORK/mixed.yaml" -o "$WORK/mixed" --no-figures -q --system rigid
 expect_status 0 "run with mixed tires"
-expect_in "$WORK/mixed/report.md" "LM, RM, LR, RR: \`bilateral\`, linear" "report.md: the bilateral corners"
-expect_in "$WORK/mixed/report.md" "LF, RF: \`hunt_crossley\`, unilateral" "report.md: the Hunt-Crossley corners"
+# A tire model's name and meaning go through the Markdown escaping.
+expect_in "$WORK/mixed/report.md" "LM, RM, LR, RR: bilateral, linear" "report.md: the bilateral corners"
+expect_in "$WORK/mixed/report.md" "LF, RF: hunt\\_crossley, unilateral" "report.md: the Hunt-Crossley corners"
 checks=$((checks + 1))
 python3 - "$WORK/mixed" <<'EOF' || fail "mixed tires: summary.json and the verdict"
 import json, re, sys

@@ -287,9 +287,12 @@ static int write_gif(cli_outdir *od, const anim *an, const cli_animate_opts *o, 
   const fb_scenario *s = an->s;
   fb_plot_mode *pics = calloc(an->nframes, sizeof *pics);
   char(*subtitle)[200] = calloc(an->nframes, sizeof *subtitle);
-  char title[200], name[64];
+  char title[200], name[64], road[160];
   int rc = pics && subtitle ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  snprintf(title, sizeof title, "%s over the bump", cli_system_label(an->m->sys));
+  /* The road's own words (a file's name among them: gnuplot quotes the
+   * title). */
+  fb_road_phrase(s->road_type, &s->road, road, sizeof road);
+  snprintf(title, sizeof title, "%s %s", cli_system_label(an->m->sys), road);
   for (size_t k = 0; !rc && k < an->nframes; ++k) {
     const anim_frame *f = &an->frames[k];
     snprintf(subtitle[k], sizeof subtitle[k],

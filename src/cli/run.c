@@ -225,7 +225,7 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
        .focus_t0 = bump[0],
        .focus_t1 = INFINITY,
        .outside_label = o->scenario->initial == FB_INITIAL_ZERO ? "settling from the zero start"
-                                                                : "before the bump"}};
+                                                                : "before the road window"}};
   char *path = cli_outdir_path(od, name, err);
   if (!path)
     return err->code; /* out of memory, or no staging directory */
