@@ -6,7 +6,7 @@
 # first dominated mode, the first wheel hop and the first two elastic
 # modes; on the paper's vehicle that keeps modes 1, 2 and 8 of the
 # pictures of old (the paper's Figs. 3-4; its mode 10 is a later wheel
-# hop); a turret-like mount gets its picture; report.modes and
+# hop); a turret-like mount gets its picture; report.mode_pictures and
 # --picture-modes list them instead, and a mode number that is no whole
 # number from 1 is refused at its key.
 #
@@ -81,34 +81,34 @@ checks=$((checks + 1))
 [ -n "$turret" ] && contains "$(pictured "$WORK/turret")" "$turret" ||
   fail "the turret's mode (${turret:-none}) is not pictured: $(pictured "$WORK/turret")"
 
-# ---- Listed: report.modes in the file, --picture-modes over it.
-sed 's/^simulation:/report:\n  modes: [3, 1, 7]\nsimulation:/' apc6x6.yaml >listed.yaml
+# ---- Listed: report.mode_pictures in the file, --picture-modes over it.
+sed 's/^simulation:/report:\n  mode_pictures: [3, 1, 7]\nsimulation:/' apc6x6.yaml >listed.yaml
 run modes --system flexible listed.yaml -o "$WORK/listed"
-expect_status 0 "modes with report.modes"
+expect_status 0 "modes with report.mode_pictures"
 checks=$((checks + 1))
 [ "$(pictured "$WORK/listed")" = "1 3 7 " ] ||
-  fail "report.modes [3, 1, 7] pictures $(pictured "$WORK/listed")"
+  fail "report.mode_pictures [3, 1, 7] pictures $(pictured "$WORK/listed")"
 run modes --system flexible listed.yaml --picture-modes 2,9 -o "$WORK/option"
 expect_status 0 "modes with --picture-modes"
 checks=$((checks + 1))
 [ "$(pictured "$WORK/option")" = "2 9 " ] ||
   fail "--picture-modes 2,9 pictures $(pictured "$WORK/option")"
 run run listed.yaml -o "$WORK/run" -q
-expect_status 0 "run with report.modes"
+expect_status 0 "run with report.mode_pictures"
 expect_in "$WORK/run/report.md" "The modes the scenario lists" "the report says the modes are listed"
 checks=$((checks + 1))
 [ "$(grep -c '^!\[System 2, mode ' "$WORK/run/report.md")" -eq 3 ] ||
-  fail "the report of report.modes [3, 1, 7] has not 3 mode pictures"
+  fail "the report of report.mode_pictures [3, 1, 7] has not 3 mode pictures"
 expect_in "$WORK/run/report.md" "](mode_07.png)" "the report pictures mode 7"
 
 # ---- Refused: not a whole number from 1, at its key; a bad option.
-sed 's/^simulation:/report:\n  modes: [1, 2.5]\nsimulation:/' apc6x6.yaml >half.yaml
-line=$(grep -n '^  modes: \[1, 2.5\]' half.yaml | cut -d: -f1)
+sed 's/^simulation:/report:\n  mode_pictures: [1, 2.5]\nsimulation:/' apc6x6.yaml >half.yaml
+line=$(grep -n '^  mode_pictures: \[1, 2.5\]' half.yaml | cut -d: -f1)
 run modes --system flexible half.yaml
-expect_status 2 "report.modes [1, 2.5]"
-expect_in "$ERR" "half.yaml:$line:" "report.modes [1, 2.5]: at its line"
-expect_in "$ERR" "report.modes[1]: must be a mode number: a whole number from 1 (got 2.5)" \
-  "report.modes [1, 2.5]: the item and why"
+expect_status 2 "report.mode_pictures [1, 2.5]"
+expect_in "$ERR" "half.yaml:$line:" "report.mode_pictures [1, 2.5]: at its line"
+expect_in "$ERR" "report.mode_pictures[1]: must be a mode number: a whole number from 1 (got 2.5)" \
+  "report.mode_pictures [1, 2.5]: the item and why"
 run modes --system flexible apc6x6.yaml --picture-modes 0,2 -o "$WORK/zero"
 expect_status 1 "--picture-modes 0,2"
 expect_in "$ERR" "option '--picture-modes' needs up to 16 mode numbers from 1" "--picture-modes 0,2"

@@ -293,7 +293,7 @@ int cli_modes_flexible(const char *path, const char *out_dir, int strict,
 /* The most modes pictured: the listed ones, or those chosen by kind. */
 enum { CLI_MAX_PICTURED_MODES = 32 };
 /* The modes of ms pictured (0-based, into out, at most max; returns how
- * many): those s lists (report.modes or --picture-modes) that ms holds, in
+ * many): those s lists (report.mode_pictures or --picture-modes) that ms holds, in
  * their order, else those fb_mode_set_pictured chooses by what they are. */
 size_t cli_pictured_modes(const fb_scenario *s, const fb_mode_set *ms, size_t *out, size_t max);
 /* --picture-modes LIST ("1,3,7": whole numbers from 1, at most

@@ -32,7 +32,7 @@ static const char modes_usage[] =
     "                           mode_NN.vtu and the pictures mode_NN.png of the\n"
     "                           modes chosen by kind (the hull's bounce, roll and\n"
     "                           pitch, each mounted body's, the first wheel hop,\n"
-    "                           the first two elastic) or listed (report.modes)\n"
+    "                           the first two elastic) or listed (report.mode_pictures)\n"
     "  --picture-modes LIST     (flexible, -o) picture these modes instead: \"1,3,7\"\n"
     "  --strict                 refuse implausible values instead of warning\n"
     "  -h, --help               this text\n";

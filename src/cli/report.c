@@ -519,7 +519,7 @@ static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
       cli_pictured_modes(o->scenario, ms, pictured, CLI_MAX_PICTURED_MODES);
   fputs(
       o->scenario->npictured_modes
-          ? "\nThe modes the scenario lists (`report.modes` or `--picture-modes`):\n"
+          ? "\nThe modes the scenario lists (`report.mode_pictures` or `--picture-modes`):\n"
           : "\nThe modes pictured are chosen by what they are: the first of the hull's "
             "bounce, roll and pitch, each mounted body's (the first it holds the most kinetic "
             "energy in, else the one it holds its largest share in), the first wheel hop and "

@@ -969,7 +969,7 @@ static const sch_key sc_keys[] = {
            S_OFF(speed), .ops = &sc_kmh,
            PLAUSIBLE(0, 200, "wheeled vehicles drive at most about 200 km/h")),
     SECTION("report", OPT, "what the report shows", NULL),
-    NUMBERS("report.modes", NULL, 1, FB_PICTURED_MODES_MAX, OPT,
+    NUMBERS("report.mode_pictures", NULL, 1, FB_PICTURED_MODES_MAX, OPT,
             "System 2's modes pictured, by number (1: the lowest); default: chosen by what "
             "they are (the hull's bounce, roll and pitch, each mounted body's, the first "
             "wheel hop, the first two elastic modes)",
