@@ -3,7 +3,8 @@
 # One frame for every position a user reads (docs/scenario-format.md,
 # "Frame"): a scenario with frame.origin (examples/truck4x4.yaml: the front
 # axle's centre at floor level) gets back its own numbers from flexbond
-# mesh's printout, the exported deck and VTU, and the report, though the
+# mesh's printout, the exported deck and VTU files (mesh, modes,
+# animation), and the report, though the
 # library works relative to the hull's centre of mass inside. The checks
 # are against the file's values, not against an earlier output: the
 # generator's rear wall at x_rear = -4.6 m and its floor at z = 0, the
@@ -64,6 +65,13 @@ read -r xmin _ _ _ zmin _ < <(inp_extent hull.inp)
 near "$xmin" -4.6 1e-12 "the deck's rearmost node (x_rear)"
 near "$zmin" 0 1e-12 "the deck's floor"
 
+# A mode's VTU (flexbond modes -o): the mesh at rest, in the file's frame.
+run modes truck4x4.yaml --system flexible -o "$WORK/modes"
+expect_status 0 "modes --system flexible -o"
+read -r xmin _ _ _ zmin _ < <(vtu_extent "$WORK/modes/mode_01.vtu")
+near "$xmin" -4.6 1e-12 "mode_01.vtu's rearmost node (x_rear)"
+near "$zmin" 0 1e-12 "mode_01.vtu's floor"
+
 # The structure's centre of mass, given as hull.centre_of_mass (in the
 # frame), is what the printout says (to its 4 digits). -1.7356 m is the
 # generated plates' (the loader refuses one 0.5 % of the length off).
@@ -78,8 +86,18 @@ near "${cx:-nan}" -1.7356 5e-4 "the printed centre of mass's x, the file's hull.
 near "${cy:-nan}" 0 5e-4 "the printed centre of mass's y"
 
 # ---- The report: the corners and the values table as the file wrote them.
-run run truck4x4.yaml --system rigid -o "$WORK/report"
-expect_status 0 "run --system rigid"
+run run truck4x4.yaml --system rigid -o "$WORK/report" --animate
+expect_status 0 "run --system rigid --animate"
+# The animation's first frame is the vehicle at the window's start, every
+# displacement measured from there: at rest, in the file's frame. Its
+# wheels, drawn hanging below the floor, end ahead of x = -4 m (the rear
+# axle at -3.4 m), so behind it are the hull's rear wall and floor alone.
+read -r xmin _ _ _ zmin _ < <(vtu_extent "$WORK/report/animation_system1_0000.vtu")
+near "$xmin" -4.6 1e-12 "the animation's first frame: rearmost node (x_rear)"
+zrear=$(awk '/<Points>/ { on = 1; next } on && /<\/DataArray>/ { exit }
+             on && NF == 3 && $1 < -4.0 { if (!n++ || $3 < z) z = $3 } END { print z }' \
+  "$WORK/report/animation_system1_0000.vtu")
+near "${zrear:-nan}" 0 1e-12 "the animation's first frame: the floor at the rear wall"
 R=$WORK/report/report.md
 expect_in "$R" "| LF | 0, 0.95 |" "the report's front left corner"
 expect_in "$R" "| RR | -3.4, -0.95 |" "the report's rear right corner"
