@@ -289,10 +289,11 @@ static uint64_t plate_key(const fb_scenario *s)
   return h;
 }
 
-static void plate_centroid(const fb_scenario *s, double *x, double *length)
+static void plate_centroid(const fb_scenario *s, double *x, double *z, double *length)
 {
   const plate_params *p = plate_of(s);
   *x = 0.5 * (p->x_rear + p->x_front);
+  *z = 0.0;
   *length = p->x_front - p->x_rear;
 }
 

@@ -956,7 +956,7 @@ static void test_vtu(void)
    * nodes with a vertex cell each, their displacement (0, 0, dz), the
    * part array telling them apart, -1 ids. */
   const fb_vtu_marker markers[2] = {{{0.5, 0.5, 1.0}, 0.25, 1}, {{2.0, 0.0, -1.0}, -0.5, 2}};
-  const fb_vtu_frame frame = {dof, 2.0, markers, 2, fields, 1};
+  const fb_vtu_frame frame = {dof, 2.0, markers, 2, fields, 1, {0.0, 0.0, 0.0}};
   CHECK(fb_mesh_write_vtu_frame(m, &frame, path, &err) == FB_OK);
   xml = slurp(path);
   if (xml) {
@@ -989,7 +989,7 @@ static void test_vtu(void)
   free(xml);
   remove(path);
   const fb_vtu_marker bad_marker = {{0, 0, NAN}, 0, 1};
-  const fb_vtu_frame bad_frame = {dof, 1.0, &bad_marker, 1, NULL, 0};
+  const fb_vtu_frame bad_frame = {dof, 1.0, &bad_marker, 1, NULL, 0, {0.0, 0.0, 0.0}};
   CHECK(fb_mesh_write_vtu_frame(m, &bad_frame, path, &err) == FB_EINVAL);
   check_msg(&err, "marker 0 is not finite");
   CHECK(count_entries() == 0);

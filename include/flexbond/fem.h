@@ -401,7 +401,10 @@ typedef struct fb_vtu_marker {
 } fb_vtu_marker;
 /* One grid of an animation (or a mode): the mesh's nodal displacements
  * (6 per node as in fb_mesh_write_vtu, or NULL), the points drawn at
- * X + warp u (0: at rest, as fb_mesh_write_vtu), markers and field data. */
+ * origin + X + warp u (warp 0: at rest, as fb_mesh_write_vtu), markers
+ * and field data. origin (m) is where the mesh's origin lies in the frame
+ * the file is written in (a vehicle's: fb_scenario_frame_offset); the
+ * markers' positions are the mesh's. */
 typedef struct fb_vtu_frame {
   const double *dof_values;
   double warp;
@@ -409,6 +412,7 @@ typedef struct fb_vtu_frame {
   size_t nmarkers;
   const fb_vtu_field *fields;
   size_t nfields;
+  double origin[3];
 } fb_vtu_frame;
 int fb_mesh_write_vtu_frame(const fb_mesh *m, const fb_vtu_frame *f, const char *path,
                             fb_err *err);

@@ -50,9 +50,11 @@ typedef struct fb_hull_source_ops {
    * (the description's cached mesh is current while its key is). */
   uint64_t (*key)(const fb_scenario *s);
   /* Where make's structure has its centre of mass, in the description's
-   * frame, before the mesh is made: *x, and *length, the hull's length
-   * (m), the scale a given centre of mass is compared at. */
-  void (*centroid)(const fb_scenario *s, double *x, double *length);
+   * frame, before the mesh is made: *x and *z (its height in the frame,
+   * the generator's above its floor), and *length, the hull's length (m),
+   * the scale a given centre of mass is compared at. The mesh make gives
+   * has that centre of mass at its origin. */
+  void (*centroid)(const fb_scenario *s, double *x, double *z, double *length);
   /* The refinement the mesh is made at (d x d elements for each of the
    * coarsest mesh's); 0: the source is not refined (a file is used as it
    * is). NULL: 0. */
@@ -77,6 +79,11 @@ struct fb_hull_source {
   size_t nparams;
   size_t params_size; /* <= FB_HULL_SOURCE_PARAMS_MAX */
   const fb_hull_source_ops *ops;
+  /* 1 if every mesh it gives has a node of its own at each of the
+   * description's points (its one-node sets): a coupling
+   * (fb_scenario.coupling) then changes nothing, as every point meets its
+   * node. 0: not known. */
+  int nodes_at_points;
 };
 
 /* 0 if src is a sound source: a well-formed name and documentation,

@@ -181,6 +181,10 @@ typedef struct fb_plot_mode {
   const char *title;        /* may be NULL */
   const char *subtitle;     /* a second line under it; may be NULL */
   const char *colour_label; /* the colour bar's; NULL: "displacement (shape units)" */
+  /* Where the origin of the mesh and of the points above lies in the
+   * frame the axes are drawn in (a vehicle's: fb_scenario_frame_offset),
+   * m; an animation's frames take frames[0]'s. */
+  double origin[3];
 } fb_plot_mode;
 int fb_plot_mode_png(const fb_plot_mode *pic, const char *path, fb_err *err);
 /* The frames as an animated GIF (gnuplot's gif terminal), each shown

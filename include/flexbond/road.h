@@ -256,6 +256,12 @@ typedef struct fb_road_type_ops {
   /* Frees the block's owned members (the block itself is the holder's).
    * NULL: it owns nothing. */
   void (*release)(void *params);
+  /* The road in a report's words: a phrase with its preposition, for
+   * "the vehicle ...", "... System 2 departs from System 1" ("over the
+   * bump", "on the ISO 8608 class C road"), into buf (n bytes,
+   * truncated; it may hold a file's name: escape it for the document).
+   * NULL: "on the road". */
+  void (*phrase)(const void *params, char *buf, size_t n);
 } fb_road_type_ops;
 
 struct fb_road_type {
@@ -266,6 +272,10 @@ struct fb_road_type {
   size_t params_size; /* <= FB_ROAD_PARAMS_MAX */
   const fb_road_type_ops *ops;
 };
+
+/* The road of type t with block p in a report's words (t's phrase op,
+ * else "on the road"; "on no road" for a NULL t), into buf (n bytes). */
+void fb_road_phrase(const fb_road_type *t, const fb_road_params *p, char *buf, size_t n);
 
 /* 0 if t is a sound road type: a well-formed name and documentation,
  * sound parameter declarations (fb_params_declared) in a block that

@@ -134,6 +134,8 @@ typedef struct fb_corner_params {
 
 /* Most bulkheads a hull may have. */
 enum { FB_HULL_MAX_BULKHEADS = 8 };
+/* The most modes a report pictures when listed (fb_scenario.pictured_modes). */
+enum { FB_PICTURED_MODES_MAX = 16 };
 
 typedef struct fb_hull_mesh_params {
   double width;       /* m, between the side walls, > 0 */
@@ -302,6 +304,12 @@ typedef struct fb_scenario {
   char *frame_origin;          /* NULL: positions relative to the hull's centre of mass */
   int hull_cg_given;           /* hull.centre_of_mass was written */
   double hull_cg_x, hull_cg_y; /* m, in the vehicle frame (0 without a frame) */
+  /* m, its height in the vehicle frame, set by fb_vehicle_hull_complete:
+   * the generated mesh's above its floor with a frame, a deck's in the
+   * deck's frame, else 0. Inside, positions and the mesh are relative to
+   * the centre of mass; what a user reads is in the vehicle frame
+   * (fb_scenario_frame_offset). */
+  double hull_cg_z;
   /* Rigid-body properties (paper, Table 2): the structure's, without the
    * declared masses below. With a finite-element hull they may be left
    * out (hull_mass_given 0): the mesh's are used. */
@@ -343,6 +351,10 @@ typedef struct fb_scenario {
    * when it is freed). fb_scenario_set_road sets both. */
   const fb_road_type *road_type;
   fb_road_params road;
+  /* System 2's modes a report pictures, by number (1 = the lowest),
+   * whole; none: those fb_mode_set_pictured chooses. */
+  size_t npictured_modes;
+  double pictured_modes[FB_PICTURED_MODES_MAX];
   /* Simulation. */
   double t_end, rtol, atol, max_step, sample_rate; /* s, -, -, s, Hz */
   long max_steps;                /* internal steps allowed in all (FB_SIM_DEFAULT_MAX_STEPS) */
@@ -412,8 +424,9 @@ size_t fb_scenario_noutputs(const fb_scenario *s);
 const char *fb_scenario_output_name(const fb_scenario *s, size_t o);
 const char *fb_scenario_output_unit(const fb_scenario *s, size_t o);
 /* Likewise the corners: their number, corner c's name (NULL when c is out
- * of range) and attachment point (m, vehicle axes; *x and *y untouched
- * when c is out of range), and the road speed (m/s). */
+ * of range) and attachment point (m, in the vehicle frame, the file's:
+ * fb_scenario_frame_offset; *x and *y untouched when c is out of range),
+ * and the road speed (m/s). */
 size_t fb_scenario_ncorners(const fb_scenario *s);
 /* The name of corner c's tire model ("bilateral"), NULL when c is out
  * of range. */
@@ -473,6 +486,13 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
  * output's at, bond or component (fb_err.part), which the caller locates;
  * the realised vehicle checks its own graph again (fb_vehicle_assemble). */
 int fb_vehicle_outputs_check(const fb_scenario *s, fb_err *err);
+/* Where the frame inside (the hull structure's centre of mass, which
+ * every position and the mesh are relative to after
+ * fb_vehicle_hull_complete) lies in the vehicle frame, the file's
+ * (s->frame_origin; a deck's own frame; without either, the centre of
+ * mass itself): o = (hull_cg_x, hull_cg_y, hull_cg_z), m. A position p
+ * inside is p + o in the file's frame; axes are parallel. */
+void fb_scenario_frame_offset(const fb_scenario *s, double o[3]);
 
 /* Loads and validates a scenario file (format: docs/scenario-format.md).
  * Errors are "FILE:LINE:COL: KEY: message". A value that is legal but
@@ -1314,6 +1334,22 @@ void fb_fe_hull_free(fb_fe_hull **h);
  * of the mounted bodies, then of the wheels, in the scenario's order),
  * each shape normalised so that the largest displacement over the
  * mounted bodies and the hull nodes is 1 (the paper's normalisation). */
+/* What holds the largest share of a mode's kinetic energy: a rigid motion
+ * of the hull (index 0 .. 5: surge, sway, bounce, roll, pitch, yaw, about
+ * its centre of mass), its elastic deformation (index 0), mounted body
+ * index, or corner index's wheel (its hop). */
+typedef enum fb_mode_part_kind {
+  FB_MODE_HULL_RIGID,
+  FB_MODE_HULL_ELASTIC,
+  FB_MODE_MOUNT,
+  FB_MODE_WHEEL
+} fb_mode_part_kind;
+typedef struct fb_mode_part {
+  fb_mode_part_kind kind;
+  size_t index;
+} fb_mode_part;
+/* The rigid motions of the hull a mode picture is chosen for. */
+enum { FB_MODE_BOUNCE = 2, FB_MODE_ROLL = 3, FB_MODE_PITCH = 4 };
 typedef struct fb_mode_set {
   size_t nmodes, ndof;
   size_t nfree;            /* zero-frequency rigid-body modes left out */
@@ -1321,8 +1357,26 @@ typedef struct fb_mode_set {
   double *freq_hz;         /* nmodes */
   double *shapes;          /* ndof x nmodes, column-major */
   char (*description)[96]; /* nmodes, e.g. "hull pitch (rigid 97%)" */
+  fb_mode_part *part;      /* nmodes: what the description names */
+  /* nmodes x nmounts, mode k's row first: mounted body b's share of mode
+   * k's kinetic energy, in [0, 1]. */
+  size_t nmounts;
+  double *mount_share;
 } fb_mode_set;
 void fb_mode_set_free(fb_mode_set **m);
+
+/* The number of modes fb_mode_set_pictured chooses among the hull's
+ * elastic ones: the first two (a torsion and a bending, as a rule). */
+enum { FB_MODE_PICTURED_ELASTIC = 2 };
+/* The modes of ms worth a picture, by what they are: the first mode of
+ * each of the hull's supported rigid motions (bounce, roll, pitch), each
+ * mounted body's mode (the first it holds the largest share of the
+ * kinetic energy in, else the one that gives it its largest share), the
+ * first wheel hop, and the first
+ * FB_MODE_PICTURED_ELASTIC elastic modes of the hull. Writes their
+ * 0-based indices into out, ascending, each once, at most max; returns
+ * how many. A kind ms has no mode of adds none. */
+size_t fb_mode_set_pictured(const fb_mode_set *ms, size_t *out, size_t max);
 
 /* System 2's hull fragment (same ports as fb_vehicle_rigid_hull), realised
  * for the purpose (an fb_vehicle holds its own): the

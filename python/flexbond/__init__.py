@@ -251,6 +251,7 @@ _PROTOTYPES = {
     "fb_scenario_corner_name": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
     "fb_scenario_corner_position": (None, [_P, ctypes.c_size_t, _PDOUBLE, _PDOUBLE]),
     "fb_scenario_speed": (ctypes.c_double, [_P]),
+    "fb_scenario_frame_offset": (None, [_P, ctypes.POINTER(ctypes.c_double * 3)]),
     "fb_vehicle_opts_default": (None, [ctypes.POINTER(_VehicleOpts)]),
     "fb_vehicle_new": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_VehicleOpts), _PP,
                                       _PERR]),
@@ -819,8 +820,8 @@ def _eigenvalues(graph, t, x0, what, on_error):
 
 
 MassProps = collections.namedtuple("MassProps", "mass cg inertia")
-MassProps.__doc__ = """A hull's mass (kg), centre of mass (x, y, z; m) and inertia tensor
-about it (3 x 3 numpy array, kg m^2)."""
+MassProps.__doc__ = """A hull's mass (kg), centre of mass (x, y, z; m, in the scenario
+file's frame) and inertia tensor about it (3 x 3 numpy array, kg m^2)."""
 
 SectionTotals = collections.namedtuple("SectionTotals", "nelements area mass")
 SectionTotals.__doc__ = """The elements of one plate section: how many, their area (m^2) and
@@ -835,14 +836,24 @@ MassProps and the hull's as built with its declared masses (None without
 any)."""
 
 
-def _mass_props(h, with_masses):
+def _mass_props(h, with_masses, origin):
     p, err = _HullMassProps(), _Err()
     _check(_lib.fb_fe_hull_mass_props(h, with_masses, ctypes.byref(p), ctypes.byref(err)), err)
-    return MassProps(p.mass, tuple(p.cg), numpy.array(p.inertia).reshape(3, 3))
+    return MassProps(p.mass, tuple(o + x for o, x in zip(origin, p.cg)),
+                     numpy.array(p.inertia).reshape(3, 3))
 
 
-def _hull_mesh(h):
-    """The HullMesh of the realised finite-element hull h."""
+def _frame_offset(s):
+    """Where the library's frame inside (the hull structure's centre of
+    mass) lies in the scenario file's (fb_scenario_frame_offset)."""
+    o = (ctypes.c_double * 3)()
+    _lib.fb_scenario_frame_offset(s, ctypes.byref(o))
+    return tuple(o)
+
+
+def _hull_mesh(h, origin):
+    """The HullMesh of the realised finite-element hull h, its positions
+    moved by origin (the file's frame: _frame_offset)."""
     mesh = _lib.fb_fe_hull_mesh(h)
     sections = {}
     nsections = _lib.fb_mesh_nsections(mesh)
@@ -852,9 +863,9 @@ def _hull_mesh(h):
             name = ("hull.material" if sec < 0
                     else _lib.fb_mesh_section_elset(mesh, sec).decode(errors="replace"))
             sections[name] = SectionTotals(totals.nelements, totals.area, totals.mass)
-    as_built = _mass_props(h, 1) if _lib.fb_fe_hull_npoint_masses(h) else None
+    as_built = _mass_props(h, 1, origin) if _lib.fb_fe_hull_npoint_masses(h) else None
     return HullMesh(_lib.fb_mesh_nnodes(mesh), _lib.fb_mesh_count(mesh, 3),
-                    _lib.fb_mesh_count(mesh, 4), sections, _mass_props(h, 0), as_built)
+                    _lib.fb_mesh_count(mesh, 4), sections, _mass_props(h, 0, origin), as_built)
 
 
 HullModes = collections.namedtuple("HullModes", "hull_freq_hz nrigid vehicle nfree")
@@ -1332,8 +1343,8 @@ class Scenario(_Closing):
 
     @property
     def corners(self):
-        """The corners: [Corner(name, x, y), ...] (attachment points, m), in
-        the scenario's order."""
+        """The corners: [Corner(name, x, y), ...] (attachment points, m, in
+        the file's frame: as the file wrote them), in the scenario's order."""
         s = self._handle()
         out = []
         for c in range(_lib.fb_scenario_ncorners(s)):
@@ -1492,7 +1503,7 @@ class Scenario(_Closing):
         fb_fe_hull_section_totals). Error when the scenario has no
         finite-element hull."""
         with self._fe_hull() as h:
-            return _hull_mesh(h)
+            return _hull_mesh(h, _frame_offset(self._handle()))
 
     def hull_matrices(self):
         """The hull structure's own stiffness and mass matrices (K, M; N/m

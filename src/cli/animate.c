@@ -245,8 +245,13 @@ static int write_vtu(cli_outdir *od, const anim *an, size_t k, fb_err *err)
 {
   const anim_frame *f = &an->frames[k];
   const fb_vtu_field fields[2] = {{"TimeValue", f->t}, {"warp_factor", an->warp}};
-  const fb_vtu_frame frame = {f->u,   an->warp, f->markers, an->s->nmounts + an->s->ncorners,
-                              fields, 2};
+  fb_vtu_frame frame = {.dof_values = f->u,
+                        .warp = an->warp,
+                        .markers = f->markers,
+                        .nmarkers = an->s->nmounts + an->s->ncorners,
+                        .fields = fields,
+                        .nfields = 2};
+  fb_scenario_frame_offset(an->s, frame.origin);
   char name[64];
   cli_animation_file(an->m->sys, "vtu", k, name, sizeof name);
   char *path = cli_outdir_path(od, name, err);
@@ -282,17 +287,30 @@ static int write_gif(cli_outdir *od, const anim *an, const cli_animate_opts *o, 
   const fb_scenario *s = an->s;
   fb_plot_mode *pics = calloc(an->nframes, sizeof *pics);
   char(*subtitle)[200] = calloc(an->nframes, sizeof *subtitle);
-  char title[200], name[64];
+  char title[200], name[64], road[160];
   int rc = pics && subtitle ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  snprintf(title, sizeof title, "%s over the bump", cli_system_label(an->m->sys));
+  /* The road's own words (a file's name among them: gnuplot quotes the
+   * title). */
+  fb_road_phrase(s->road_type, &s->road, road, sizeof road);
+  snprintf(title, sizeof title, "%s %s", cli_system_label(an->m->sys), road);
   for (size_t k = 0; !rc && k < an->nframes; ++k) {
     const anim_frame *f = &an->frames[k];
     snprintf(subtitle[k], sizeof subtitle[k],
              "t = %.3f s; displacements from t = %.3f s drawn %.3g times; grey: at t = %.3f s",
              f->t, an->frames[0].t, an->warp, an->frames[0].t);
-    pics[k] = (fb_plot_mode){
-        an->mesh, f->u,        an->warp * an->umax, f->body, s->nmounts,  0.05 * an->extent,
-        f->wheel, s->ncorners, 0.07 * an->extent,   title,   subtitle[k], "displacement [m]"};
+    pics[k] = (fb_plot_mode){.mesh = an->mesh,
+                             .shape = f->u,
+                             .largest_drawn = an->warp * an->umax,
+                             .body = f->body,
+                             .nbodies = s->nmounts,
+                             .body_side = 0.05 * an->extent,
+                             .wheel = f->wheel,
+                             .nwheels = s->ncorners,
+                             .wheel_radius = 0.07 * an->extent,
+                             .title = title,
+                             .subtitle = subtitle[k],
+                             .colour_label = "displacement [m]"};
+    fb_scenario_frame_offset(s, pics[k].origin);
     /* A still vehicle is drawn at rest, with any positive length. */
     if (!(pics[k].largest_drawn > 0))
       pics[k].largest_drawn = 1.0;

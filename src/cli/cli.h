@@ -277,16 +277,31 @@ int cli_cmd_export(int argc, char **argv);
 int cli_cmd_freq(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
 int cli_cmd_model(int argc, char **argv);
+/* The modes --picture-modes lists (n 0: none given). */
+typedef struct cli_mode_list {
+  size_t n;
+  double mode[FB_PICTURED_MODES_MAX];
+} cli_mode_list;
 /* Modal analysis of System 2 (modes --system flexible); out_dir may be
  * NULL (print only); strict: --strict. Returns the exit code. */
-int cli_modes_flexible(const char *path, const char *out_dir, int strict);
+int cli_modes_flexible(const char *path, const char *out_dir, int strict,
+                       const cli_mode_list *pictured);
 
 /* ---- System 2's mode pictures (modes_flex.c), drawn by modes --system
  * flexible and by run. */
 
-/* The vehicle modes pictured (1-based): those of the paper's Figs. 3-4. */
-enum { CLI_NPICTURED_MODES = 4 };
-extern const size_t cli_pictured_modes[CLI_NPICTURED_MODES];
+/* The most modes pictured: the listed ones, or those chosen by kind. */
+enum { CLI_MAX_PICTURED_MODES = 32 };
+/* The modes of ms pictured (0-based, into out, at most max; returns how
+ * many): those s lists (report.mode_pictures or --picture-modes) that ms holds, in
+ * their order, else those fb_mode_set_pictured chooses by what they are. */
+size_t cli_pictured_modes(const fb_scenario *s, const fb_mode_set *ms, size_t *out, size_t max);
+/* --picture-modes LIST ("1,3,7": whole numbers from 1, at most
+ * FB_PICTURED_MODES_MAX) into *out; a usage error of cmd otherwise.
+ * Returns the exit code. */
+int cli_picture_modes_option(const char *cmd, const char *list, cli_mode_list *out);
+/* Puts l's modes, when it has any, in s's list in place of the file's. */
+void cli_mode_list_apply(const cli_mode_list *l, fb_scenario *s);
 /* "mode_NN.png", the picture of 1-based mode number mode, into buf. */
 void cli_mode_picture_name(size_t mode, char *buf, size_t size);
 /* Writes the picture of every pictured mode that ms holds: the hull, the

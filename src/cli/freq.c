@@ -36,7 +36,7 @@ static const char freq_usage[] =
     "  DIR/bode_<OUTPUT>.png   |H| and phase, both systems and tracks overlaid\n"
     "On an ISO 8608 road also the ride from its spectrum, without a time run:\n"
     "  DIR/psd_system1.csv ... each output's PSD over the road's band [unit^2/Hz]\n"
-    "  DIR/ride_psd.json       the driver's ISO 2631-1 a_w and each output's r.m.s.\n"
+    "  DIR/ride_psd.json       a mount's ISO 2631-1 a_w and each output's r.m.s.\n"
     "Power outputs, products of two signals, have no frequency response and are left\n"
     "out. Unilateral tires are taken in contact, their linear branch; a vehicle\n"
     "with a nonlinear law (a damper table) is linearised at its static equilibrium\n"

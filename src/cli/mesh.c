@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "flexbond/hull_source.h"
 #include "flexbond/vehicle.h"
 
 #include "cli.h"
@@ -16,8 +17,10 @@ static const char mesh_usage[] =
     "Builds the scenario's finite-element hull (hull.mesh: the generator or an\n"
     "imported deck), checks it, and prints its element counts, mass, centre of\n"
     "mass and inertias (the structure's, then with the hull.masses on it).\n"
+    "Positions, printed and written, are in the file's frame (frame.origin;\n"
+    "a deck's own; else the hull's centre of mass).\n"
     "--export writes it as an Abaqus/CalculiX input deck (*NODE, *ELEMENT\n"
-    "S3/S4, *NSET LOAD, DRIVER, ENGINE, SUSP_LF .. SUSP_RR, MASS_<NAME>,\n"
+    "S3/S4, *NSET LOAD, one per mount and corner (SUSP_<CORNER>), MASS_<NAME>,\n"
     "FRONT_EDGE, REAR_EDGE, ALL, *MATERIAL, *SHELL SECTION) or, for a .vtu\n"
     "name, as a VTK file for ParaView.\n"
     "--export-matrices writes into DIR the hull structure's own stiffness and\n"
@@ -38,8 +41,9 @@ static int ends_with(const char *s, const char *tail)
 }
 
 /* Prints the mass properties of the structure (as_built 0) or of the
- * hull with its declared masses. */
-static int print_mass(const fb_fe_hull *h, int as_built, fb_err *err)
+ * hull with its declared masses, the centre of mass in the file's frame
+ * (o: fb_scenario_frame_offset). */
+static int print_mass(const fb_fe_hull *h, const double *o, int as_built, fb_err *err)
 {
   fb_hull_mass_props p;
   const int rc = fb_fe_hull_mass_props(h, as_built, &p, err);
@@ -47,8 +51,8 @@ static int print_mass(const fb_fe_hull *h, int as_built, fb_err *err)
     return rc;
   if (as_built)
     printf("with its %zu hull masses: ", h->npoint_masses);
-  printf("mass %.6g kg, centre of mass (%.4g, %.4g, %.4g) m\n", p.mass, p.cg[0], p.cg[1],
-         p.cg[2]);
+  printf("mass %.6g kg, centre of mass (%.4g, %.4g, %.4g) m\n", p.mass, o[0] + p.cg[0],
+         o[1] + p.cg[1], o[2] + p.cg[2]);
   printf("%sabout the centre of mass: Ixx %.6g, Iyy %.6g, Izz %.6g, Ixz %.4g kg m^2\n",
          as_built ? "  " : "", p.inertia[0], p.inertia[4], p.inertia[8], p.inertia[2]);
   return FB_OK;
@@ -70,9 +74,22 @@ static void print_section(const fb_fe_hull *h, long sec)
   printf(": %.6g kg\n", t.mass);
 }
 
-static int print_properties(const fb_fe_hull *h, fb_err *err)
+/* Which frame the positions printed and written are in. */
+static void print_frame(const fb_scenario *s)
+{
+  if (s->frame_origin)
+    printf("positions in the file's frame, from %s\n", s->frame_origin);
+  else if (fb_scenario_hull_read_in_own_frame(s))
+    printf("positions in the deck's frame\n");
+  else
+    printf("positions from the hull structure's centre of mass (the file's frame)\n");
+}
+
+static int print_properties(const fb_scenario *s, const fb_fe_hull *h, fb_err *err)
 {
   const fb_mesh *m = h->mesh;
+  double o[3];
+  fb_scenario_frame_offset(s, o);
   printf("hull mesh: %zu nodes, %zu S3 + %zu S4 elements", fb_mesh_nnodes(m),
          fb_mesh_count(m, FB_ELEM_TRI3), fb_mesh_count(m, FB_ELEM_QUAD4));
   if (fb_mesh_nsections(m) == 0)
@@ -81,8 +98,9 @@ static int print_properties(const fb_fe_hull *h, fb_err *err)
     printf(", sections:\n");
   for (long sec = -1; fb_mesh_nsections(m) && sec < (long)fb_mesh_nsections(m); ++sec)
     print_section(h, sec);
-  int rc = print_mass(h, 0, err);
-  return rc || !h->npoint_masses ? rc : print_mass(h, 1, err);
+  print_frame(s);
+  int rc = print_mass(h, o, 0, err);
+  return rc || !h->npoint_masses ? rc : print_mass(h, o, 1, err);
 }
 
 /* ---- --export-matrices. */
@@ -92,10 +110,28 @@ static void write_mtx(FILE *fp, const void *a)
   fb_mat_print_mtx(fp, a);
 }
 
-static void write_deck(FILE *fp, const void *hull)
+/* The hull's mesh, its nodes in the file's frame (*out new: a deck
+ * written from it reads back with the file's positions). */
+static int file_frame_mesh(const fb_scenario *s, const fb_fe_hull *h, fb_mesh **out,
+                           fb_err *err)
 {
-  const fb_fe_hull *h = hull;
-  fb_mesh_print_inp(fp, h->mesh, &h->props);
+  const int rc = fb_mesh_clone(h->mesh, out, err);
+  double o[3];
+  fb_scenario_frame_offset(s, o);
+  if (!rc)
+    fb_mesh_translate(*out, o[0], o[1], o[2]);
+  return rc;
+}
+
+typedef struct deck_out {
+  const fb_mesh *mesh; /* in the file's frame */
+  const fb_shell_props *props;
+} deck_out;
+
+static void write_deck(FILE *fp, const void *ctx)
+{
+  const deck_out *d = ctx;
+  fb_mesh_print_inp(fp, d->mesh, d->props);
 }
 
 /* Row r (1-based, as in the .mtx files) is node_id's DOF r % 6: the
@@ -110,10 +146,15 @@ static void write_dofs(FILE *fp, const void *hull)
       fprintf(fp, "%zu,%ld,%s\n", 6 * i + k + 1, fb_mesh_node_id(h->mesh, i), names[k]);
 }
 
-static int export_matrices(const fb_fe_hull *h, const char *dir, fb_err *err)
+static int export_matrices(const fb_scenario *s, const fb_fe_hull *h, const char *dir,
+                           fb_err *err)
 {
   fb_mat *K = NULL, *M = NULL;
+  fb_mesh *placed = NULL;
   int rc = fb_fe_hull_matrices(h, &K, &M, err);
+  if (rc == FB_OK)
+    rc = file_frame_mesh(s, h, &placed, err);
+  const deck_out deck = {placed, &h->props};
   cli_outdir od;
   const int opened = rc == FB_OK && (rc = cli_outdir_open(&od, dir, "mesh", err)) == FB_OK;
   if (rc == FB_OK)
@@ -123,7 +164,7 @@ static int export_matrices(const fb_fe_hull *h, const char *dir, fb_err *err)
   if (rc == FB_OK)
     rc = cli_outdir_write(&od, "dofs.csv", write_dofs, h, err);
   if (rc == FB_OK)
-    rc = cli_outdir_write(&od, "hull.inp", write_deck, h, err);
+    rc = cli_outdir_write(&od, "hull.inp", write_deck, &deck, err);
   if (opened)
     rc = cli_outdir_close(&od, rc, err);
   if (rc == FB_OK)
@@ -131,6 +172,7 @@ static int export_matrices(const fb_fe_hull *h, const char *dir, fb_err *err)
            fb_mat_ncols(K));
   fb_mat_free(&K);
   fb_mat_free(&M);
+  fb_mesh_free(&placed);
   return rc;
 }
 
@@ -146,16 +188,20 @@ static int run(const char *path, const char *export_path, const char *matrices_d
   /* A signal during the mesh: the file is not written. */
   if (!rc && (export_path || matrices_dir))
     rc = cli_check_interrupt(&err);
+  fb_mesh *placed = NULL;
+  if (!rc && export_path)
+    rc = file_frame_mesh(s, h, &placed, &err);
   if (!rc && export_path)
     rc = ends_with(export_path, ".vtu")
-             ? fb_mesh_write_vtu(h->mesh, NULL, export_path, &err)
-             : fb_mesh_write_inp(h->mesh, &h->props, export_path, &err);
+             ? fb_mesh_write_vtu(placed, NULL, export_path, &err)
+             : fb_mesh_write_inp(placed, &h->props, export_path, &err);
+  fb_mesh_free(&placed);
   if (!rc)
-    rc = print_properties(h, &err);
+    rc = print_properties(s, h, &err);
   if (!rc && export_path)
     printf("wrote %s\n", export_path);
   if (!rc && matrices_dir)
-    rc = export_matrices(h, matrices_dir, &err);
+    rc = export_matrices(s, h, matrices_dir, &err);
   if (!rc)
     rc = cli_flush_stdout(&err);
   fb_fe_hull_free(&h);

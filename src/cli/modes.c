@@ -23,13 +23,17 @@ static const char modes_usage[] =
     "of the statically indeterminate support (self-stress of the springs)\n"
     "are counted, not listed. With --system flexible: the free-free hull's\n"
     "modes and the undamped System 2's (the finite-element hull with the\n"
-    "driver, engine, suspensions and tires), each normalised so that its\n"
-    "largest displacement over the driver, the engine and the hull is 1.\n"
+    "mounted bodies, suspensions and tires), each normalised so that its\n"
+    "largest displacement over the mounted bodies and the hull is 1.\n"
     "\n"
     "options:\n"
     "  --system rigid|flexible  hull model (default rigid: System 1)\n"
     "  -o, --output DIR         (flexible) also write hull_modes.csv, modes.csv,\n"
-    "                           mode_NN.vtu and the pictures mode_01/02/08/10.png\n"
+    "                           mode_NN.vtu and the pictures mode_NN.png of the\n"
+    "                           modes chosen by kind (the hull's bounce, roll and\n"
+    "                           pitch, each mounted body's, the first wheel hop,\n"
+    "                           the first two elastic) or listed (report.mode_pictures)\n"
+    "  --picture-modes LIST     (flexible, -o) picture these modes instead: \"1,3,7\"\n"
     "  --strict                 refuse implausible values instead of warning\n"
     "  -h, --help               this text\n";
 
@@ -116,9 +120,10 @@ static int run(const char *path, fb_system sys, int strict)
 
 int cli_cmd_modes(int argc, char **argv)
 {
-  enum { OPT_SYSTEM, OPT_OUT, OPT_STRICT, OPT_HELP, NOPTS };
+  enum { OPT_SYSTEM, OPT_OUT, OPT_PICTURE_MODES, OPT_STRICT, OPT_HELP, NOPTS };
   cli_option opts[NOPTS] = {[OPT_SYSTEM] = {"--system", NULL, 1, NULL},
                             [OPT_OUT] = {"--output", "-o", 1, NULL},
+                            [OPT_PICTURE_MODES] = {"--picture-modes", NULL, 1, NULL},
                             [OPT_STRICT] = {"--strict", NULL, 0, NULL},
                             [OPT_HELP] = {"--help", "-h", 0, NULL}};
   const char *path;
@@ -129,11 +134,17 @@ int cli_cmd_modes(int argc, char **argv)
   if (opts[OPT_SYSTEM].value)
     rc = cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, system_choices,
                     sizeof system_choices / sizeof system_choices[0], &choice);
+  cli_mode_list pictured = {0};
+  if (rc == CLI_EXIT_OK && opts[OPT_PICTURE_MODES].value)
+    rc = cli_picture_modes_option(argv[0], opts[OPT_PICTURE_MODES].value, &pictured);
   if (rc != CLI_EXIT_OK)
     return rc;
   if (systems[choice] == FB_SYSTEM_FLEXIBLE)
-    return cli_modes_flexible(path, opts[OPT_OUT].value, opts[OPT_STRICT].value != NULL);
+    return cli_modes_flexible(path, opts[OPT_OUT].value, opts[OPT_STRICT].value != NULL,
+                              &pictured);
   if (opts[OPT_OUT].value)
     return cli_usage_error(argv[0], "-o DIR goes with --system flexible");
+  if (opts[OPT_PICTURE_MODES].value)
+    return cli_usage_error(argv[0], "--picture-modes goes with --system flexible");
   return run(path, systems[choice], opts[OPT_STRICT].value != NULL);
 }

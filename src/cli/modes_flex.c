@@ -8,6 +8,7 @@
  *   DIR/mode_NN.png      modes 1, 2, 8 and 10: the hull, the mounted bodies
  *                        (cubes) and the wheels at rest and displaced
  *                        (cli_write_mode_pictures, which run uses too). */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,8 +52,50 @@ static void write_modes_csv(FILE *fp, const void *ctx)
   }
 }
 
-/* The modes of the paper's Figs. 3 and 4. */
-const size_t cli_pictured_modes[CLI_NPICTURED_MODES] = {1, 2, 8, 10};
+size_t cli_pictured_modes(const fb_scenario *s, const fb_mode_set *ms, size_t *out, size_t max)
+{
+  if (!s->npictured_modes)
+    return fb_mode_set_pictured(ms, out, max);
+  size_t n = 0;
+  for (size_t i = 0; i < s->npictured_modes && n < max; ++i) {
+    const size_t k = (size_t)s->pictured_modes[i] - 1;
+    if (k < ms->nmodes)
+      out[n++] = k;
+  }
+  return n;
+}
+
+int cli_picture_modes_option(const char *cmd, const char *list, cli_mode_list *out)
+{
+  size_t n = 0;
+  const char *p = list;
+  while (*p) {
+    char *end = NULL;
+    errno = 0;
+    const unsigned long m = *p >= '0' && *p <= '9' ? strtoul(p, &end, 10) : 0;
+    if (m < 1 || errno || m > 1000000 || n == FB_PICTURED_MODES_MAX || (*end && *end != ','))
+      return cli_usage_error(cmd,
+                             "option '--picture-modes' needs up to %d mode numbers from 1, "
+                             "separated by commas (got '%s')",
+                             (int)FB_PICTURED_MODES_MAX, list);
+    out->mode[n++] = (double)m;
+    p = *end ? end + 1 : end;
+  }
+  if (n == 0)
+    return cli_usage_error(cmd, "option '--picture-modes' needs a mode number (got '%s')",
+                           list);
+  out->n = n;
+  return CLI_EXIT_OK;
+}
+
+void cli_mode_list_apply(const cli_mode_list *l, fb_scenario *s)
+{
+  if (!l->n)
+    return;
+  for (size_t i = 0; i < l->n; ++i)
+    s->pictured_modes[i] = l->mode[i];
+  s->npictured_modes = l->n;
+}
 
 void cli_mode_picture_name(size_t mode, char *buf, size_t size)
 {
@@ -117,10 +160,10 @@ int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hu
   mode_parts mp = {malloc((s->nmounts + 1) * sizeof *mp.body),
                    malloc((s->ncorners + 1) * sizeof *mp.wheel), mesh_extent(hull->mesh)};
   int rc = mp.body && mp.wheel ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t i = 0; !rc && i < CLI_NPICTURED_MODES; ++i) {
-    const size_t k = cli_pictured_modes[i] - 1;
-    if (k >= ms->nmodes)
-      continue;
+  size_t pictured[CLI_MAX_PICTURED_MODES];
+  const size_t npictured = cli_pictured_modes(s, ms, pictured, CLI_MAX_PICTURED_MODES);
+  for (size_t i = 0; !rc && i < npictured; ++i) {
+    const size_t k = pictured[i];
     const double *v = ms->shapes + k * ms->ndof;
     fill_parts(s, hull, v, &mp);
     char name[32], title[160], subtitle[200];
@@ -132,10 +175,18 @@ int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hu
              "shape normalised to a largest hull or body translation of 1; the largest "
              "displacement drawn %.2f m long; grey: at rest",
              drawn);
-    const fb_plot_mode pic = {hull->mesh, v,           drawn,
-                              mp.body,    s->nmounts,  0.05 * mp.extent,
-                              mp.wheel,   s->ncorners, 0.07 * mp.extent,
-                              title,      subtitle,    NULL};
+    fb_plot_mode pic = {.mesh = hull->mesh,
+                        .shape = v,
+                        .largest_drawn = drawn,
+                        .body = mp.body,
+                        .nbodies = s->nmounts,
+                        .body_side = 0.05 * mp.extent,
+                        .wheel = mp.wheel,
+                        .nwheels = s->ncorners,
+                        .wheel_radius = 0.07 * mp.extent,
+                        .title = title,
+                        .subtitle = subtitle};
+    fb_scenario_frame_offset(s, pic.origin);
     char *path = cli_outdir_path(od, name, err);
     rc = path ? fb_plot_mode_png(&pic, path, err) : err->code;
     if (!rc)
@@ -158,9 +209,10 @@ static int write_shapes(cli_outdir *od, const flex_modes *fm, fb_err *err)
     snprintf(name, sizeof name, "mode_%02zu.vtu", k + 1);
     char *path = cli_outdir_path(od, name, err);
     const fb_vtu_field frequency = {"frequency_hz", ms->freq_hz[k]};
-    rc = path ? fb_mesh_write_vtu_fields(fm->hull->mesh, ms->shapes + k * ms->ndof, &frequency,
-                                         1, path, err)
-              : err->code;
+    fb_vtu_frame frame = {
+        .dof_values = ms->shapes + k * ms->ndof, .fields = &frequency, .nfields = 1};
+    fb_scenario_frame_offset(fm->s, frame.origin);
+    rc = path ? fb_mesh_write_vtu_frame(fm->hull->mesh, &frame, path, err) : err->code;
     if (!rc)
       rc = cli_outdir_keep(od, path, err);
     else
@@ -194,7 +246,8 @@ static void print_tables(const flex_modes *fm)
     printf("%4zu  %12.6g  %s\n", k + 1, fm->vehicle->freq_hz[k], fm->vehicle->description[k]);
 }
 
-int cli_modes_flexible(const char *path, const char *out_dir, int strict)
+int cli_modes_flexible(const char *path, const char *out_dir, int strict,
+                       const cli_mode_list *pictured)
 {
   fb_err err;
   fb_err_clear(&err);
@@ -202,6 +255,8 @@ int cli_modes_flexible(const char *path, const char *out_dir, int strict)
   fb_vehicle *v = NULL;
   flex_modes fm = {0};
   int rc = cli_scenario_load(path, strict, &s, &err);
+  if (!rc)
+    cli_mode_list_apply(pictured, s);
   /* The directory is held (locked) from here to the end. */
   cli_outdir od;
   const int opened =

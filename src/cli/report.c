@@ -73,21 +73,35 @@ static void md_percent(FILE *fp, double fraction, int sign)
     fputs("-", fp);
 }
 
+/* The scenario's road in the report's words, its road type's own
+ * ("over the bump", "on the ISO 8608 class C road"), escaped; capital: at
+ * a sentence's start. */
+static void write_road(FILE *fp, const fb_scenario *s, int capital)
+{
+  char road[256];
+  fb_road_phrase(s->road_type, &s->road, road, sizeof road);
+  if (capital && road[0] >= 'a' && road[0] <= 'z')
+    road[0] = (char)(road[0] - 'a' + 'A');
+  fb_md_write_text(fp, road);
+}
+
 /* ---- Scenario. */
 
-/* When every wheel meets the bump and leaves it: derived from the
- * corners' positions, the speed and the road. */
+/* When every wheel enters the road's window and leaves it (meets the
+ * road's feature, a bump, and leaves it): derived from the corners'
+ * positions, the speed and the road. */
 static void write_corner_timing(FILE *fp, const fb_study_report *rep)
 {
   const fb_scenario *s = fb_study_report_scenario(rep);
-  fputs("\n| corner | x, y [m] | bump entry, exit [s] |\n|---|---|---|\n", fp);
+  fputs("\n| corner | x, y [m] | entry, exit [s] |\n|---|---|---|\n", fp);
   for (size_t c = 0; c < s->ncorners; ++c) {
     const fb_corner_params *p = &s->corner[c];
-    double w[2];
+    double w[2], x = 0.0, y = 0.0;
     fb_study_report_wheel_window(rep, c, w);
+    fb_scenario_corner_position(s, c, &x, &y);
     fputs("| ", fp);
     fb_md_write_text(fp, p->name);
-    fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", p->x, p->y, w[0], w[1]);
+    fprintf(fp, " | %.10g, %.10g | %.4f, %.4f |\n", x, y, w[0], w[1]);
   }
 }
 
@@ -115,12 +129,14 @@ static void write_point_masses(FILE *fp, const fb_scenario *s)
 {
   if (!s->npoint_masses)
     return;
+  double o[3];
+  fb_scenario_frame_offset(s, o);
   fputs("| hull masses | ", fp);
   for (size_t k = 0; k < s->npoint_masses; ++k) {
     const fb_hull_point_mass *m = &s->point_mass[k];
     fputs(k ? "; " : "", fp);
     fb_md_write_text(fp, m->name);
-    fprintf(fp, " %.10g kg at x, y = %.10g, %.10g m", m->mass, m->x, m->y);
+    fprintf(fp, " %.10g kg at x, y = %.10g, %.10g m", m->mass, o[0] + m->x, o[1] + m->y);
   }
   fprintf(fp,
           " (%.10g kg in all, on the floor, besides the structure above: in both systems' "
@@ -144,23 +160,30 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
     fputs("| frame | the file's positions are from ", fp);
     fb_md_write_text(fp, s->frame_origin);
     fprintf(fp,
-            "; the hull's centre of mass is at x, y = %.10g, %.10g m there, and the positions "
-            "below are relative to it |\n",
-            s->hull_cg_x, s->hull_cg_y);
+            "; the hull's centre of mass is at x, y, z = %.10g, %.10g, %.10g m there. The "
+            "positions below and the pictures are in this frame; rotations (pitch, roll) "
+            "are about the centre of mass |\n",
+            s->hull_cg_x, s->hull_cg_y, s->hull_cg_z);
   } else if (fb_scenario_hull_read_in_own_frame(s)) {
     fprintf(fp,
-            "| frame | the deck's: its structure's centre of mass is at x, y = %.10g, %.10g m "
-            "there; the deck's nodes and the positions below were moved to be relative to it "
-            "|\n",
-            s->hull_cg_x, s->hull_cg_y);
+            "| frame | the deck's: its structure's centre of mass is at x, y, z = %.10g, "
+            "%.10g, %.10g m there. The positions below and the pictures are in this frame; "
+            "rotations (pitch, roll) are about the centre of mass |\n",
+            s->hull_cg_x, s->hull_cg_y, s->hull_cg_z);
+  } else {
+    fputs("| frame | the file's positions are from the hull structure's centre of mass, and so "
+          "are the positions below and the pictures |\n",
+          fp);
   }
   fprintf(fp,
           "| hull | %.10g kg, Ixx %.10g kg m^2, Iyy %.10g kg m^2 about its centre of mass "
           "(%s) |\n"
-          "| bump window | %.4f s (first wheel's entry) to %.4f s (last wheel's exit) |\n",
+          "| road window | the vehicle ",
           s->hull_mass, s->hull_ixx, s->hull_iyy,
           s->hull_mass_given ? "the file's, checked against its mesh when it has one"
-                             : "its finite-element mesh's",
+                             : "its finite-element mesh's");
+  write_road(fp, s, 0);
+  fprintf(fp, ", from %.4f s (first wheel's entry) to %.4f s (last wheel's exit) |\n",
           o->bump_window[0], o->bump_window[1]);
   write_point_masses(fp, s);
   write_corner_timing(fp, o->report);
@@ -241,7 +264,7 @@ static void write_basis_error(FILE *fp, const cli_run_outputs *o)
                                  s->noutputs, &worst);
   fprintf(fp,
           "  Its estimated error, the largest difference from the same run with the basis's "
-          "next block of load-dependent Ritz vectors from the first bump entry (%.4f s) to "
+          "next block of load-dependent Ritz vectors from the road window's start (%.4f s) to "
           "the end, over each output's range there: at most %.2g %% (",
           o->bump_window[0], s->noutputs ? 100.0 * r->basis_error[worst] : 0.0);
   if (s->noutputs)
@@ -365,15 +388,25 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
   write_hull_order(fp, o);
 }
 
+/* A gallery entry's "NAME, MEANING", each escaped (a program's own entry
+ * may name itself anything). */
+static void write_named(FILE *fp, const char *name, const char *meaning)
+{
+  fb_md_write_text(fp, name);
+  fputs(", ", fp);
+  fb_md_write_text(fp, meaning);
+}
+
 /* Corner c's shock absorber in a report's words: its law's line for its
- * values, else the law's meaning. */
+ * values, else the law's name and meaning (plain text: the writer escapes
+ * it, a program's own law may write anything). */
 static void damper_line(const fb_corner_params *c, char *buf, size_t size)
 {
   const fb_damper_law *l = fb_corner_damper_law(c);
   if (l->ops->describe)
     l->ops->describe(c->damper.bytes, buf, size);
   else
-    snprintf(buf, size, "`%s`, %s", l->name, l->meaning);
+    snprintf(buf, size, "%s, %s", l->name, l->meaning);
 }
 
 /* 1 if corners a and b have shock absorbers a report says alike. */
@@ -404,7 +437,8 @@ static void write_dampers(FILE *fp, const fb_scenario *s)
       }
     char line[160];
     damper_line(&s->corner[k], line, sizeof line);
-    fprintf(fp, ": %s", line);
+    fputs(": ", fp);
+    fb_md_write_text(fp, line);
   }
   fputs(".\n", fp);
 }
@@ -415,7 +449,7 @@ static void write_assumptions(FILE *fp, const cli_run_outputs *o)
   fputs("\n## Assumptions\n\n", fp);
   if (s->initial == FB_INITIAL_ZERO)
     fputs("- Initial state: every state zero with gravity switched on at t = 0 (`zero`, the "
-          "paper's protocol); the vehicle settles before the bump.\n",
+          "paper's protocol); the vehicle settles before the road window.\n",
           fp);
   else
     fputs("- Initial state: the static equilibrium under gravity and the load (`static`).\n",
@@ -427,8 +461,8 @@ static void write_assumptions(FILE *fp, const cli_run_outputs *o)
     fprintf(fp, "steps at most %.6g s", s->max_step);
   else
     fputs("no step limit", fp);
-  fputs("; outputs from the interpolating polynomial, breakpoints at every wheel's bump "
-        "entry and exit.\n"
+  fputs("; outputs from the interpolating polynomial, breakpoints at every wheel's entry "
+        "into the road window and exit.\n"
         "- Outputs: the scenario's list (docs/vehicle-outputs.md), compressions positive; a "
         "torsion angle is the roll of the hull's front edge line minus that of its rear edge "
         "line, identically 0 for the rigid hull.\n",
@@ -480,11 +514,21 @@ static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
     fputs("\nNo mode pictures: the run had `--no-figures`.\n", fp);
     return;
   }
+  size_t pictured[CLI_MAX_PICTURED_MODES];
+  const size_t npictured =
+      cli_pictured_modes(o->scenario, ms, pictured, CLI_MAX_PICTURED_MODES);
+  fputs(
+      o->scenario->npictured_modes
+          ? "\nThe modes the scenario lists (`report.mode_pictures` or `--picture-modes`):\n"
+          : "\nThe modes pictured are chosen by what they are: the first of the hull's "
+            "bounce, roll and pitch, each mounted body's (the first it holds the most kinetic "
+            "energy in, else the one it holds its largest share in), the first wheel hop and "
+            "the first two elastic "
+            "modes of the hull.\n",
+      fp);
   /* One picture per paragraph: a viewer shows them one under another. */
-  for (size_t i = 0; i < CLI_NPICTURED_MODES; ++i) {
-    size_t k = cli_pictured_modes[i] - 1;
-    if (k >= ms->nmodes)
-      continue;
+  for (size_t i = 0; i < npictured; ++i) {
+    const size_t k = pictured[i];
     char name[32];
     cli_mode_picture_name(k + 1, name, sizeof name);
     fprintf(fp, "\n![System 2, mode %zu: %.3f Hz, ", k + 1, ms->freq_hz[k]);
@@ -604,9 +648,9 @@ static void write_animation(FILE *fp, const cli_run_outputs *o)
     return;
   fputs("\n## Animation\n\n", fp);
   fprintf(fp,
-          "Each system's motion over the bump window at %g frames per second of the run's "
+          "Each system's motion in the road window at %g frames per second of the run's "
           "time (linear between its samples), every displacement from the vehicle's state "
-          "at the window's start, as the first wheel reaches the bump. The hull's points are "
+          "at the window's start, as the first wheel enters it. The hull's points are "
           "drawn at their position plus the displacement times the stated factor; the "
           "mounted bodies (cubes) and the wheels are schematic, to the hull's size. "
           "ParaView opens the `.pvd` time series: the displacement in metres is point data "
@@ -622,8 +666,11 @@ static void write_animation(FILE *fp, const cli_run_outputs *o)
             "\n%s: %zu frames from t = %.3f to %.3f s, the largest displacement %.4g m, "
             "drawn %.3g times; `%s`.\n",
             cli_system_label(o->runs[i].sys), a->nframes, a->t0, a->t1, a->umax, a->warp, pvd);
-    if (a->gif)
-      fprintf(fp, "\n![%s over the bump](%s)\n", cli_system_label(o->runs[i].sys), gif);
+    if (a->gif) {
+      fprintf(fp, "\n![%s ", cli_system_label(o->runs[i].sys));
+      write_road(fp, o->scenario, 0);
+      fprintf(fp, "](%s)\n", gif);
+    }
   }
 }
 
@@ -650,8 +697,8 @@ static void write_comparison_table(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
   fprintf(fp,
-          "\n## Comparison\n\nPeaks and the largest difference from the first bump entry "
-          "(%.4f s) to the end of the run, RMS over the bump window (%.4f s to %.4f s); "
+          "\n## Comparison\n\nPeaks and the largest difference from the road window's start "
+          "(%.4f s) to the end of the run, RMS over the road window (%.4f s to %.4f s); "
           "the last column is the largest |System 2 - System 1| relative to System 1's "
           "peak-to-peak range there.\n\n"
           "| output | unit | peak S1 | peak S2 | peak change | RMS S1 | RMS S2 | "
@@ -693,8 +740,10 @@ static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
       fb_study_run_worst_basis_error(fb_study_report_converged(o->report), s->noutputs, NULL);
   if (isfinite(e))
     fprintf(fp, ", its basis's estimated error at most %.2g %% of an output's range", 100 * e);
+  fputs(". Each mesh's System 2 against System 1 ", fp);
+  write_road(fp, s, 0);
   fprintf(fp,
-          ". Each mesh's System 2 against System 1 over the bump, as in the Comparison; the "
+          ", as in the Comparison; the "
           "last column is the two meshes' System 2 against each other, over System 1's "
           "range.\n\n| output | unit | max abs S2 - S1 / S1 range, density %d | the same, "
           "density %d | peak change, density %d | peak change, density %d | max abs S2 "
@@ -738,8 +787,8 @@ static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
   fprintf(fp,
-          "\n## Outputs\n\n%s. Static value before the bump, extremes from the first bump "
-          "entry (%.4f s) to the end of the run, RMS over the bump window (%.4f s to %.4f "
+          "\n## Outputs\n\n%s. Static value before the road window, extremes from its start "
+          "(%.4f s) to the end of the run, RMS over the road window (%.4f s to %.4f "
           "s).\n\n| output | unit | static | peak | at t [s] | min | at t [s] | RMS |\n"
           "|---|---|---|---|---|---|---|---|\n",
           cli_system_label(o->runs[0].sys), o->bump_window[0], o->bump_window[0],
@@ -757,7 +806,7 @@ static void write_outputs_table(FILE *fp, const cli_run_outputs *o)
 
 /* ---- Conclusions: one paragraph, each sentence picked by the numbers. */
 
-/* "Over the bump the flexible hull changes the outputs by up to ...":
+/* "Over the bump, System 2 departs from System 1 by up to ...":
  * the largest relative difference and which outputs pass FB_STUDY_NOTABLE_DIFF. */
 static void conclude_differences(FILE *fp, const cli_run_outputs *o)
 {
@@ -765,11 +814,14 @@ static void conclude_differences(FILE *fp, const cli_run_outputs *o)
   const fb_study_differences d = fb_study_report_differences(o->report, FB_STUDY_CMP_SYSTEM2);
   const size_t largest = d.largest, nnotable = d.nnotable, nfinite = d.nvarying;
   if (largest == nout) {
-    fputs("No output of System 1 varies over the bump, so no difference can be scaled.", fp);
+    fputs("No output of System 1 varies ", fp);
+    write_road(fp, o->scenario, 0);
+    fputs(", so no difference can be scaled.", fp);
     return;
   }
+  write_road(fp, o->scenario, 1);
   fprintf(fp,
-          "Over the bump, System 2 departs from System 1 by up to %.1f %% of System 1's "
+          ", System 2 departs from System 1 by up to %.1f %% of System 1's "
           "peak-to-peak range, in the ",
           100 * o->cmp[largest].rel_diff);
   fb_md_write_text(fp, o->scenario->output[largest].label);
@@ -794,7 +846,8 @@ static void conclude_differences(FILE *fp, const cli_run_outputs *o)
 /* One clause on run's torsion angle: identically zero (the rigid hull's
  * by construction), or how far the hull twists over the bump. first:
  * the clause opens the sentence. */
-static void torsion_clause(FILE *fp, const fb_study_run *r, size_t k, int first)
+static void torsion_clause(FILE *fp, const fb_scenario *s, const fb_study_run *r, size_t k,
+                           int first)
 {
   const fb_output_stats *st = fb_run_summary_output(r->sum, k);
   const char *unit = fb_result_col_unit(r->res, fb_run_summary_column(r->sum, k));
@@ -806,7 +859,9 @@ static void torsion_clause(FILE *fp, const fb_study_run *r, size_t k, int first)
   }
   fputs("reaches ", fp);
   md_value_unit(fp, fmax(fabs(st->peak), fabs(st->min)), unit);
-  fputs(" over the bump (", fp);
+  fputc(' ', fp);
+  write_road(fp, s, 0);
+  fputs(" (", fp);
   md_value_unit(fp, st->peak, unit);
   fprintf(fp, " at %.3f s, ", st->peak_time);
   md_value_unit(fp, st->min, unit);
@@ -822,7 +877,7 @@ static void conclude_torsion(FILE *fp, const cli_run_outputs *o)
   if (k == o->scenario->noutputs)
     return; /* not among the outputs */
   for (size_t i = 0; i < o->nruns; ++i)
-    torsion_clause(fp, fb_study_report_run(o->report, i), k, i == 0);
+    torsion_clause(fp, o->scenario, fb_study_report_run(o->report, i), k, i == 0);
   fputc('.', fp);
 }
 
@@ -852,13 +907,15 @@ static void conclude_peaks(FILE *fp, const cli_run_outputs *o)
     fprintf(fp, " Every peak with a non-zero System 1 value changes by %.0f %% or less.",
             100 * FB_STUDY_NOTABLE_CHANGE);
   if (largest_rms < nout) {
-    fputs(" The largest change of an RMS over the bump is the ", fp);
+    fputs(" The largest change of an RMS ", fp);
+    write_road(fp, o->scenario, 0);
+    fputs(" is the ", fp);
     fb_md_write_text(fp, o->scenario->output[largest_rms].label);
     fprintf(fp, "'s, %+.1f %%.", 100 * o->cmp[largest_rms].rms_change);
   }
 }
 
-/* With one system: the output that grows the most over the bump
+/* With one system: the output that grows the most on the road
  * relative to its static value (fb_study_report_largest_growth). */
 static void conclude_single(FILE *fp, const cli_run_outputs *o)
 {
@@ -871,7 +928,9 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
   if (largest < nout) {
     const fb_output_stats *st = fb_run_summary_output(r->sum, largest);
     const char *unit = fb_result_col_unit(r->res, fb_run_summary_column(r->sum, largest));
-    fputs(" Over the bump, the ", fp);
+    fputc(' ', fp);
+    write_road(fp, o->scenario, 1);
+    fputs(", the ", fp);
     fb_md_write_text(fp, o->scenario->output[largest].label);
     fputs(" grows the most relative to its static value: its peak, ", fp);
     md_value_unit(fp, st->peak, unit);
@@ -935,7 +994,7 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
   fputs("The output `", fp);
   fb_md_write_text(fp, o->scenario->output[kr].name);
   fprintf(fp,
-          "`, from the first wheel's bump entry (%.3f s) to "
+          "`, from the first wheel's entry into the road window (%.3f s) to "
           "the end of the run (%.3f s), weighted and evaluated per ISO 2631-1:1997 (flexbond's "
           "docs/ride-metrics.md). The absorbed power (Pradko & Lee, "
           "against the 6 W limit used for military vehicles) is not given: no published "
@@ -1038,7 +1097,7 @@ static void write_contact_verdict(FILE *fp, const fb_study_report *rep, const fb
     size_t c_min = 0;
     fb_study_report_contact_extremes(rep, r, NULL, &c_min);
     fprintf(fp,
-            "every tire stays in compression over the whole run; from the first bump entry "
+            "every tire stays in compression over the whole run; from the road window's start "
             "on, the smallest normal reaction is %s N (",
             number_text(fb_run_summary_contact(r->sum, c_min)->min, force, sizeof force));
     fb_md_write_text(fp, s->corner[c_min].name);
@@ -1072,7 +1131,8 @@ static void write_tire_models(FILE *fp, const fb_study_report *rep)
       continue;
     fputs(k ? "; " : "", fp);
     if (fb_study_report_tires_with(rep, m) == s->ncorners) {
-      fprintf(fp, "every tire is `%s`, %s", m->name, m->meaning);
+      fputs("every tire is ", fp);
+      write_named(fp, m->name, m->meaning);
       continue;
     }
     for (size_t c = k, i = 0; c < s->ncorners; ++c)
@@ -1080,7 +1140,8 @@ static void write_tire_models(FILE *fp, const fb_study_report *rep)
         fputs(i++ ? ", " : "", fp);
         fb_md_write_text(fp, s->corner[c].name);
       }
-    fprintf(fp, ": `%s`, %s", m->name, m->meaning);
+    fputs(": ", fp);
+    write_named(fp, m->name, m->meaning);
   }
   fputs(" (`wheel.tire_contact`).", fp);
 }
@@ -1092,7 +1153,7 @@ static void write_contact(FILE *fp, const cli_run_outputs *o)
         fp);
   write_tire_models(fp, o->report);
   fputs(" A reaction above " CLI_CONTACT_SPIKE_TEXT
-        " times its static value (just before the first bump entry) is flagged as a spike: "
+        " times its static value (just before the road window) is flagged as a spike: "
         "the ride over a road moves a tire's load about its static value, an impact "
         "multiplies it.\n\n",
         fp);
@@ -1175,9 +1236,9 @@ void cli_write_report_md(FILE *fp, const void *ctx)
   const cli_run_outputs *o = ctx;
   fputs("# ", fp);
   fb_md_write_text(fp, cli_scenario_name(o->scenario));
-  fputs(o->diff ? ": rigid and flexible hull over the bump\n\n"
-                : ": the vehicle over the bump\n\n",
-        fp);
+  fputs(o->diff ? ": rigid and flexible hull " : ": the vehicle ", fp);
+  write_road(fp, o->scenario, 0);
+  fputs("\n\n", fp);
   fputs(
       "Written by `flexbond run` (version " CLI_VERSION "); every number comes from this "
       "run. The CSV files hold the curves, summary.json the statistics at full precision.\n\n",

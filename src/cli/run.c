@@ -29,28 +29,28 @@
 static const char run_usage[] =
     "usage: flexbond run SCENARIO.yaml -o DIR [options]\n"
     "\n"
-    "Simulates the vehicle of the scenario (docs/scenario-format.md) over the\n"
-    "bump, with the rigid hull (System 1) and the finite-element hull (System 2),\n"
+    "Simulates the vehicle of the scenario (docs/scenario-format.md) on its\n"
+    "road, with the rigid hull (System 1) and the finite-element hull (System 2),\n"
     "and writes, once every run succeeded (docs/report.md):\n"
     "  DIR/system1.csv, DIR/system2.csv\n"
-    "                          t and the seven outputs of the paper, one row per\n"
+    "                          t and the scenario's outputs, one row per\n"
     "                          sample (header: 't [s],tire_force_LF [N],...'; SI)\n"
     "  DIR/system2_converged.csv\n"
     "                          with both systems and hull.mesh.converged_density:\n"
     "                          System 2 again on the hull refined to it\n"
     "  DIR/figNN_OUTPUT.png    the paper's Figs. 8-14, one output each: both\n"
     "                          systems overlaid, their difference below\n"
-    "  DIR/mode_NN.png         System 2's modes 1, 2, 8 and 10\n"
+    "  DIR/mode_NN.png         System 2's modes by kind (docs/report.md)\n"
     "  DIR/bode_OUTPUT.png     each output's frequency response to the road, both\n"
     "                          tracks and systems (as flexbond freq draws it)\n"
-    "  DIR/summary.json        static value, peak, minimum and RMS over the bump\n"
+    "  DIR/summary.json        static value, peak, minimum and RMS on the road\n"
     "                          of every output, solver statistics, System 2's\n"
     "                          hull basis and its estimated error, and System 2\n"
     "                          against System 1 per output\n"
     "  DIR/report.md           scenario, assumptions, modes, figures, comparison\n"
     "                          table and conclusions\n"
     "  DIR/animation_systemN.pvd, DIR/animation_systemN_FFFF.vtu, DIR/animation_systemN.gif\n"
-    "                          with --animate: each system's motion over the bump\n"
+    "                          with --animate: each system's motion in the road's\n"
     "                          window, a ParaView time series and an animated GIF\n"
     "DIR is created if missing; nothing is written if a run fails.\n"
     "\n"
@@ -79,7 +79,8 @@ static const char run_usage[] =
     "                              up to 100, its delays being hundredths of a s)\n"
     "  --animate-scale F           draw the displacements F times (default: the\n"
     "                              largest 8 % of the hull's length)\n"
-    "  --no-figures                no PNG or GIF; report.md without images\n"
+    "  --no-figures                no PNG or GIF; report.md with no images\n"
+    "  --picture-modes LIST        picture these modes (\"1,3,7\")\n"
     "  --plain-header              CSV headers of names only ('t,tire_force_LF,...',\n"
     "                              the paper's), without the units\n"
     "  -v, --verbose               also each hull's basis and eigen-solve, and what\n"
@@ -134,6 +135,7 @@ typedef struct run_args {
   int figures;          /* 0 with --no-figures */
   fb_csv_header header; /* of systemN.csv: units, or names with --plain-header */
   cli_animate_opts animate;
+  cli_mode_list pictured; /* --picture-modes */
 } run_args;
 
 /* ---- Figures. */
@@ -223,7 +225,7 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
        .focus_t0 = bump[0],
        .focus_t1 = INFINITY,
        .outside_label = o->scenario->initial == FB_INITIAL_ZERO ? "settling from the zero start"
-                                                                : "before the bump"}};
+                                                                : "before the road window"}};
   char *path = cli_outdir_path(od, name, err);
   if (!path)
     return err->code; /* out of memory, or no staging directory */
@@ -1203,6 +1205,7 @@ static int run(const run_args *a)
   const int opened = rc == FB_OK;
   if (rc == FB_OK) {
     override(a, s);
+    cli_mode_list_apply(&a->pictured, s);
     o.scenario = s;
     o.nruns = pick_systems(a, s, systems, &o.note);
     o.hull_modes_source =
@@ -1388,6 +1391,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_ANIMATE_FPS,
     OPT_ANIMATE_SCALE,
     OPT_NO_FIGURES,
+    OPT_PICTURE_MODES,
     OPT_PLAIN_HEADER,
     OPT_QUIET,
     OPT_VERBOSE,
@@ -1407,6 +1411,7 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_ANIMATE_FPS] = {"--animate-fps", NULL, 1, NULL},
       [OPT_ANIMATE_SCALE] = {"--animate-scale", NULL, 1, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
+      [OPT_PICTURE_MODES] = {"--picture-modes", NULL, 1, NULL},
       [OPT_PLAIN_HEADER] = {"--plain-header", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
       [OPT_VERBOSE] = {"--verbose", "-v", 0, NULL},
@@ -1437,5 +1442,7 @@ int cli_cmd_run(int argc, char **argv)
   if (rc == CLI_EXIT_OK)
     rc = parse_animate(argv[0], &opts[OPT_ANIMATE], &opts[OPT_ANIMATE_FPS],
                        &opts[OPT_ANIMATE_SCALE], &a);
+  if (rc == CLI_EXIT_OK && opts[OPT_PICTURE_MODES].value)
+    rc = cli_picture_modes_option(argv[0], opts[OPT_PICTURE_MODES].value, &a.pictured);
   return rc == CLI_EXIT_OK ? run(&a) : rc;
 }

@@ -139,12 +139,14 @@ static void write_points(FILE *fp, const fb_mesh *m, const fb_vtu_frame *f)
   const double w = f->dof_values ? f->warp : 0.0;
   for (size_t i = 0; i < fb_mesh_nnodes(m); ++i) {
     const double *p = fb_mesh_node_xyz(m, i), *u = w != 0.0 ? &f->dof_values[6 * i] : NULL;
-    fprintf(fp, "          %.17g %.17g %.17g\n", p[0] + (u ? w * u[0] : 0.0),
-            p[1] + (u ? w * u[1] : 0.0), p[2] + (u ? w * u[2] : 0.0));
+    const double *o = f->origin;
+    fprintf(fp, "          %.17g %.17g %.17g\n", o[0] + p[0] + (u ? w * u[0] : 0.0),
+            o[1] + p[1] + (u ? w * u[1] : 0.0), o[2] + p[2] + (u ? w * u[2] : 0.0));
   }
   for (size_t k = 0; k < f->nmarkers; ++k) {
-    const double *p = f->markers[k].xyz;
-    fprintf(fp, "          %.17g %.17g %.17g\n", p[0], p[1], p[2] + f->warp * f->markers[k].dz);
+    const double *p = f->markers[k].xyz, *o = f->origin;
+    fprintf(fp, "          %.17g %.17g %.17g\n", o[0] + p[0], o[1] + p[1],
+            o[2] + p[2] + f->warp * f->markers[k].dz);
   }
   close_array(fp);
   fputs("      </Points>\n", fp);
@@ -234,6 +236,8 @@ static int check_frame(const fb_mesh *m, const fb_vtu_frame *f, const char *path
       return fb_err_set(err, FB_EINVAL, "%s: field %zu has no name or is not finite", path, k);
   if (!isfinite(f->warp))
     return fb_err_set(err, FB_EINVAL, "%s: the warp factor is not finite", path);
+  if (!isfinite(f->origin[0]) || !isfinite(f->origin[1]) || !isfinite(f->origin[2]))
+    return fb_err_set(err, FB_EINVAL, "%s: the origin is not finite", path);
   for (size_t k = 0; k < f->nmarkers; ++k) {
     const fb_vtu_marker *mk = &f->markers[k];
     if (!isfinite(mk->xyz[0]) || !isfinite(mk->xyz[1]) || !isfinite(mk->xyz[2]) ||

@@ -58,13 +58,15 @@ static void node_point(const mode_script *ms, size_t node, int moved, double *p)
     p[k] = x[k] + (moved ? ms->scale * pic->shape[6 * node + k] : 0.0);
 }
 
-/* Writes a point and, displaced, its colour value. */
-static void put(FILE *gp, const double *p, int moved, double value)
+/* Writes a point (of the mesh's frame, drawn in the picture's: moved by
+ * the origin) and, displaced, its colour value. */
+static void put(FILE *gp, const mode_script *ms, const double *p, int moved, double value)
 {
+  const double *o = ms->frames->origin;
   if (moved)
-    fprintf(gp, "%.6g %.6g %.6g %.6g\n", p[0], p[1], p[2], value);
+    fprintf(gp, "%.6g %.6g %.6g %.6g\n", o[0] + p[0], o[1] + p[1], o[2] + p[2], value);
   else
-    fprintf(gp, "%.6g %.6g %.6g\n", p[0], p[1], p[2]);
+    fprintf(gp, "%.6g %.6g %.6g\n", o[0] + p[0], o[1] + p[1], o[2] + p[2]);
 }
 
 /* Two blank lines end each polyline: one would make splot join them as
@@ -79,7 +81,7 @@ static void put_node(FILE *gp, const mode_script *ms, size_t node, int moved)
   const fb_plot_mode *pic = ms->pic;
   double p[3];
   node_point(ms, node, moved, p);
-  put(gp, p, moved, node_motion(pic, node));
+  put(gp, ms, p, moved, node_motion(pic, node));
 }
 
 static void write_outline(FILE *gp, const mode_script *ms, int moved)
@@ -122,7 +124,7 @@ static void write_cube(FILE *gp, const mode_script *ms, size_t b, int moved)
       const double p[3] = {body->xyz[0] + pic->body_side * (q[0] - 0.5),
                            body->xyz[1] + pic->body_side * (q[1] - 0.5),
                            body->xyz[2] + pic->body_side * (q[2] - 0.5) + dz};
-      put(gp, p, moved, fabs(body->dz));
+      put(gp, ms, p, moved, fabs(body->dz));
     }
     end_line(gp);
   }
@@ -139,13 +141,13 @@ static void write_wheel(FILE *gp, const mode_script *ms, size_t w, int moved)
   const double top[3] = {wh->top[0], wh->top[1],
                          wh->top[2] + (moved ? ms->scale * wh->top_dz : 0.0)};
   const double rim_top[3] = {wh->top[0], wh->top[1], wh->top[2] - 0.5 * r + dz};
-  put(gp, top, moved, fabs(wh->top_dz));
-  put(gp, rim_top, moved, fabs(wh->dz));
+  put(gp, ms, top, moved, fabs(wh->top_dz));
+  put(gp, ms, rim_top, moved, fabs(wh->dz));
   end_line(gp);
   for (int k = 0; k <= WHEEL_SEGMENTS; ++k) {
     const double a = 2.0 * PI * k / WHEEL_SEGMENTS;
     const double p[3] = {wh->top[0] + r * sin(a), wh->top[1], rim_top[2] - r + r * cos(a)};
-    put(gp, p, moved, fabs(wh->dz));
+    put(gp, ms, p, moved, fabs(wh->dz));
   }
   end_line(gp);
 }
@@ -164,8 +166,8 @@ static void write_parts(FILE *gp, const mode_script *ms, int moved)
 static void extend(mode_script *ms, const double *p)
 {
   for (int k = 0; k < 3; ++k) {
-    ms->lo[k] = fmin(ms->lo[k], p[k]);
-    ms->hi[k] = fmax(ms->hi[k], p[k]);
+    ms->lo[k] = fmin(ms->lo[k], ms->frames->origin[k] + p[k]);
+    ms->hi[k] = fmax(ms->hi[k], ms->frames->origin[k] + p[k]);
   }
 }
 

@@ -638,6 +638,14 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
  * and numbers, for the warning. */
 #define PLAUSIBLE(lo_, hi_, why_)                                                              \
   .plausible_lo = (lo_), .plausible_hi = (hi_), .plausible_why = (why_)
+/* The same, the warning also giving the value in unit_ (value * scale_):
+ * the unit a slip most often means. */
+#define PLAUSIBLE_IN(lo_, hi_, why_, unit_, scale_)                                            \
+  PLAUSIBLE(lo_, hi_, why_), .plausible_unit = (unit_), .plausible_scale = (scale_)
+/* A position along x or y (sch_key.axis): a report gives it in the
+ * file's frame. */
+#define AXIS_X .axis = 1
+#define AXIS_Y .axis = 2
 #define REQ .need = SCH_REQUIRED
 #define OPT .need = SCH_OPTIONAL
 #define DEF(v) .need = SCH_DEFAULT, .def = v
@@ -687,8 +695,24 @@ static const char *const sc_switch[] = {"false", "true", NULL};
 static const char *const sc_axes[] = {"x", "y", "z", NULL};
 
 /* Plausible ranges shared by several keys. */
-#define SC_WHY_THICKNESS                                                                       \
-  "vehicle plates are 0.2 mm to 0.3 m thick (was it meant in mm? thicknesses are in m)"
+/* Plates of ground vehicles: body panels of trucks and light armoured
+ * vehicles from some 3 mm, the paper's hull 8.5 mm, rolled homogeneous
+ * armour up to some 100 mm. A thickness meant in mm is 1000 times
+ * that; the warning gives it in mm. */
+#define SC_THICKNESS_PLAUSIBLE                                                                 \
+  PLAUSIBLE_IN(3e-3, 0.1,                                                                      \
+               "plates of ground vehicles are 3-100 mm (was it meant in mm? thicknesses are "  \
+               "in m)",                                                                        \
+               "mm", 1e3)
+/* Structural metals and composites: from some 900 kg/m^3 (polyethylene
+ * and aramid armour laminates 970 to 1400, magnesium 1740, CFRP 1550,
+ * aluminium 2700, titanium 4500, steel 7850) to 20000 (tungsten alloys
+ * 17000 to 19300). A density in g/cm^3 (7.85) is 1000 times below. */
+#define SC_DENSITY_PLAUSIBLE                                                                   \
+  PLAUSIBLE_IN(900, 2e4,                                                                       \
+               "structural metals and composites are 900 kg/m^3 (polyethylene armour "         \
+               "laminates) to 20000 kg/m^3 (tungsten alloys); steel 7850, aluminium 2700",     \
+               "g/cm^3", 1e-3)
 #define SC_WHY_WHEEL_MASS "a wheel (tire, rim, hub) weighs 1 kg to 5 t"
 #define SC_WHY_TIRE_K "a tire's radial stiffness is 1e4 to 1e8 N/m (a truck tire about 1e6)"
 
@@ -701,8 +725,8 @@ static const sch_key sc_mount_keys[] = {
     NUMBER("stiffness", "N/m", POSITIVE, REQ, "spring stiffness", M_OFF(stiffness),
            PLAUSIBLE(1e2, 1e9, "a mount's spring is 1e2 to 1e9 N/m")),
     NUMBER("damping", "N s/m", NONNEGATIVE, REQ, "damper coefficient", M_OFF(damping)),
-    NUMBER("x", "m", ANY, REQ, "hull attachment point", M_OFF(x)),
-    NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y)),
+    NUMBER("x", "m", ANY, REQ, "hull attachment point", M_OFF(x), AXIS_X),
+    NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y), AXIS_Y),
 };
 static const sch_table sc_mount_table = TABLE(sc_mount_keys, NULL);
 
@@ -714,8 +738,8 @@ static const sch_key sc_point_mass_keys[] = {
            P_AT(STRING, name)),
     NUMBER("mass", "kg", POSITIVE, REQ, "its mass", P_AT(DOUBLE, mass),
            PLAUSIBLE(0.1, 1e5, "a mass carried by the hull weighs 0.1 kg to 100 t")),
-    NUMBER("x", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, x)),
-    NUMBER("y", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, y)),
+    NUMBER("x", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, x), AXIS_X),
+    NUMBER("y", "m", ANY, REQ, "where it is on the floor", P_AT(DOUBLE, y), AXIS_Y),
 };
 static const sch_table sc_point_mass_table = TABLE(sc_point_mass_keys, NULL);
 
@@ -727,13 +751,13 @@ static const sch_key sc_section_keys[] = {
            "case-insensitive",
            H_AT(STRING, set)),
     NUMBER("thickness", "m", POSITIVE, INHERIT("hull.material.thickness"), "plate thickness",
-           H_AT(DOUBLE, thickness), PLAUSIBLE(2e-4, 0.3, SC_WHY_THICKNESS)),
+           H_AT(DOUBLE, thickness), SC_THICKNESS_PLAUSIBLE),
     NUMBER("young", "Pa", POSITIVE, INHERIT("hull.material.young"), "Young's modulus",
            H_AT(DOUBLE, young)),
     NUMBER("poisson", NULL, HALF_OPEN(0, 0.5), INHERIT("hull.material.poisson"),
            "Poisson's ratio", H_AT(DOUBLE, poisson)),
     NUMBER("density", "kg/m^3", POSITIVE, INHERIT("hull.material.density"), "density",
-           H_AT(DOUBLE, density)),
+           H_AT(DOUBLE, density), SC_DENSITY_PLAUSIBLE),
     NUMBER("nonstructural_mass", "kg/m^2", NONNEGATIVE, DEF(0),
            "mass per area carried by the plates (lining, equipment), smeared through their "
            "thickness",
@@ -745,9 +769,10 @@ static const sch_key sc_corner_keys[] = {
     STRING(NAME, "name", REQ,
            "a corner's name; an axle's corners are L and R before it (F: LF, RF)",
            C_AT(STRING, name)),
-    NUMBER("x", "m", ANY, REQ, "hull attachment point", C_OFF(x)),
+    NUMBER("x", "m", ANY, REQ, "hull attachment point", C_OFF(x), AXIS_X),
     NUMBER("y", "m", ANY, REQ,
-           "hull attachment point; an axle's left one, > 0 (the right one is at -y)", C_OFF(y)),
+           "hull attachment point; an axle's left one, > 0 (the right one is at -y)", C_OFF(y),
+           AXIS_Y),
     NUMBER("spring_k", "N/m", POSITIVE, REQ, "suspension spring stiffness", C_OFF(spring_k),
            PLAUSIBLE(1e3, 1e8, "a suspension spring is 1e3 to 1e8 N/m")),
     NUMBER("damper_c", "N s/m", NONNEGATIVE, ONE_OF("damper"),
@@ -801,8 +826,8 @@ static const sch_key sc_output_keys[] = {
             "the time window its figure shows, `[t0, t1]` (default: the run)",
             O_AT(DOUBLE, window), .ops = &sc_window),
     NUMBERS("at", "m", 3, 3, OPT,
-            "a hull point's signal: the point `[x, y, z]`, x and y as every position, z from "
-            "the hull's centre of mass (a deck's: in the deck's frame)",
+            "a hull point's signal: the point `[x, y, z]` in the file's frame, as every "
+            "position (a deck's: in the deck's frame)",
             O_AT(DOUBLE, at), .ops = &sc_point),
     WHOLE("component", CLOSED(1, 1e9), OPT,
           "a bond signal on a multibond: the component it records, 1 to the bond's "
@@ -858,9 +883,9 @@ static const sch_key sc_keys[] = {
     NUMBER("hull.material.poisson", NULL, HALF_OPEN(0, 0.5), REQ, "Poisson's ratio",
            S_OFF(poisson)),
     NUMBER("hull.material.density", "kg/m^3", POSITIVE, REQ, "density", S_OFF(density),
-           PLAUSIBLE(300, 2e4, "structural materials are 300 (wood) to 20000 kg/m^3")),
+           SC_DENSITY_PLAUSIBLE),
     NUMBER("hull.material.thickness", "m", POSITIVE, REQ, "wall thickness", S_OFF(thickness),
-           PLAUSIBLE(2e-4, 0.3, SC_WHY_THICKNESS)),
+           SC_THICKNESS_PLAUSIBLE),
     LIST("hull.sections", OPT,
          "plates of other thicknesses or materials, per element set (System 2; System 1 "
          "takes the mesh's mass); a later item takes the elements it shares with an earlier "
@@ -869,12 +894,13 @@ static const sch_key sc_keys[] = {
     SECTION("hull.edges", REQ, "the edge lines whose roll difference is the torsion angle",
             NULL),
     NUMBER("hull.edges.front_x", "m", ANY, REQ, "x of the front edge line, > `rear_x`",
-           S_OFF(edge_front_x)),
-    NUMBER("hull.edges.rear_x", "m", ANY, REQ, "x of the rear edge line", S_OFF(edge_rear_x)),
+           S_OFF(edge_front_x), AXIS_X),
+    NUMBER("hull.edges.rear_x", "m", ANY, REQ, "x of the rear edge line", S_OFF(edge_rear_x),
+           AXIS_X),
     NUMBER("hull.edges.left_y", "m", ANY, REQ, "y of each edge's left end, > `right_y`",
-           S_OFF(edge_left_y)),
+           S_OFF(edge_left_y), AXIS_Y),
     NUMBER("hull.edges.right_y", "m", ANY, REQ, "y of each edge's right end",
-           S_OFF(edge_right_y)),
+           S_OFF(edge_right_y), AXIS_Y),
     SECTION("hull.mesh", OPT, "System 2's hull mesh (with `hull.fe`)", &sc_mesh_ops),
     STRING(FILE, "hull.mesh.deck", ONE_OF("mesh"),
            "an Abaqus/CalculiX deck (.inp) or a gmsh mesh (.msh, format 4.1) with the "
@@ -985,6 +1011,12 @@ static const sch_key sc_keys[] = {
     NUMBER("road.speed_kmh", "km/h", POSITIVE, REQ, "constant forward speed on a straight line",
            S_OFF(speed), .ops = &sc_kmh,
            PLAUSIBLE(0, 200, "wheeled vehicles drive at most about 200 km/h")),
+    SECTION("report", OPT, "what the report shows", NULL),
+    NUMBERS("report.mode_pictures", NULL, 1, FB_PICTURED_MODES_MAX, OPT,
+            "System 2's modes pictured, by number (1: the lowest); default: chosen by what "
+            "they are (the hull's bounce, roll and pitch, each mounted body's, the first "
+            "wheel hop, the first two elastic modes)",
+            S_OFF(pictured_modes), .count_at = offsetof(fb_scenario, npictured_modes)),
     SECTION("simulation", REQ, "the run", NULL),
     NUMBER("simulation.t_end", "s", POSITIVE, REQ, "end of the run (it starts at 0)",
            S_OFF(t_end)),
@@ -1235,7 +1267,15 @@ static int sc_visit_value(const sch_value *v, void *ctx)
 {
   const sc_visit *visit = ctx;
   char text[256];
-  sch_format(v, text, sizeof text);
+  if (v->key->axis) {
+    /* Stored from the centre of mass; given as the file wrote it, to the
+     * ten digits that hide the round-off of the move there and back. */
+    double o[3];
+    fb_scenario_frame_offset(visit->s, o);
+    snprintf(text, sizeof text, "%.10g", v->number + o[v->key->axis - 1]);
+  } else {
+    sch_format(v, text, sizeof text);
+  }
   const char *rest = NULL;
   const sc_value_origin *o = sc_origin_find(visit->s, v->path, &rest);
   const fb_scenario_value value = {v->path, o && !*rest ? o->path : NULL,

@@ -1098,8 +1098,15 @@ int sch_check_plausible(const sch_value *v, fb_err *w)
   if (!k->plausible_why || (k->type != SCH_NUMBER && k->type != SCH_WHOLE) ||
       (v->number >= k->plausible_lo && v->number <= k->plausible_hi))
     return 0;
-  fb_err_set(w, FB_EINVAL, "%.10g%s%s is implausible: %s", v->number, k->unit ? " " : "",
-             k->unit ? k->unit : "", k->plausible_why);
+  const char *unit = k->unit ? k->unit : "";
+  const char *sep = k->unit ? " " : "";
+  if (k->plausible_unit)
+    fb_err_set(w, FB_EINVAL, "%.10g%s%s is implausible: %.10g%s%s = %.10g %s; %s", v->number,
+               sep, unit, v->number, sep, unit, v->number * k->plausible_scale,
+               k->plausible_unit, k->plausible_why);
+  else
+    fb_err_set(w, FB_EINVAL, "%.10g%s%s is implausible: %s", v->number, sep, unit,
+               k->plausible_why);
   fb_err_set_key(w, "%s", v->path);
   return 1;
 }

@@ -123,16 +123,25 @@ struct sch_key {
   const char *const *choices;  /* SCH_CHOICE, NULL-terminated */
   size_t min_items, max_items; /* SCH_NUMBERS, SCH_LIST; max 0: no limit */
   int lines;                   /* SCH_TEXT: line breaks allowed */
-  const char *type_doc;        /* SCH_CUSTOM: the type for the documentation */
-  const char *doc;             /* one line */
-  const char *why;             /* why the range is what it is, added to a range error
-                                  ("about a day of solver steps ..."); may be NULL */
+  /* A position along the vehicle's axis 1 (x) or 2 (y), in the file's
+   * frame as written, stored relative to the hull's centre of mass once
+   * the loader has completed the description; 0: none. */
+  int axis;
+  const char *type_doc; /* SCH_CUSTOM: the type for the documentation */
+  const char *doc;      /* one line */
+  const char *why;      /* why the range is what it is, added to a range error
+                           ("about a day of solver steps ..."); may be NULL */
   /* What real vehicles have, in the file's unit (plausible_why says so):
    * a value outside is legal but almost never meant (20 for a thickness
    * in m, meant as mm), a warning at its file:line (sch_check_plausible).
    * plausible_why NULL: no such range. */
   double plausible_lo, plausible_hi;
   const char *plausible_why;
+  /* The unit a slip most often means (a thickness in mm), which the
+   * warning also gives the value in: value * plausible_scale
+   * plausible_unit. NULL: none. */
+  const char *plausible_unit;
+  double plausible_scale;
   sch_store store;        /* SCH_NUMBERS: SCH_STORE_DOUBLE, max_items of them at offset */
   size_t offset;          /* SCH_LIST: of the pointer to its items (allocated) */
   const sch_table *items; /* SCH_LIST */
@@ -261,7 +270,9 @@ int sch_each(const sch_table *t, const void *base, sch_value_fn fn, void *ctx);
  * "must be > 0 N/m (got -1)" and err's key set to v->path (unlocated). */
 int sch_check_value(const sch_value *v, fb_err *err);
 /* 1 if v (a number) lies outside its key's plausible range, with the
- * warning "VALUE UNIT is implausible: WHY" in w, its key v->path
+ * warning "VALUE UNIT is implausible: WHY" in w ("VALUE UNIT is
+ * implausible: VALUE UNIT = VALUE' UNIT'; WHY" with a plausible_unit),
+ * its key v->path
  * (unlocated); else 0, w untouched. */
 int sch_check_plausible(const sch_value *v, fb_err *w);
 /* v's value as text ("145300", "bilateral"). */

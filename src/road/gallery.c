@@ -2,6 +2,7 @@
 /* The road gallery (flexbond/road.h): the soundness of a road type, its
  * parameter blocks, and the set of types a description may name. */
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -124,4 +125,14 @@ void fb_road_gallery_free(fb_road_gallery **g)
   fb_registry_release(&(*g)->reg);
   free(*g);
   *g = NULL;
+}
+
+void fb_road_phrase(const fb_road_type *t, const fb_road_params *p, char *buf, size_t n)
+{
+  if (!t)
+    snprintf(buf, n, "on no road");
+  else if (t->ops->phrase)
+    t->ops->phrase(p->bytes, buf, n);
+  else
+    snprintf(buf, n, "on the road");
 }

@@ -3,6 +3,7 @@
  * obstacle, or a Brazilian speed bump by its type. */
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/road.h"
 
@@ -129,12 +130,20 @@ static double bump_top_hz(const void *params, double speed)
   return b->length > 0 ? 2.0 * speed / b->length : 0.0;
 }
 
+/* A height of 0 is a flat road. */
+static void bump_phrase(const void *params, char *buf, size_t n)
+{
+  const fb_road_bump_params *b = params;
+  snprintf(buf, n, "%s", b->height > 0 ? "over the bump" : "on the flat road");
+}
+
 static const fb_road_type_ops bump_ops = {.init = bump_init,
                                           .prepare = bump_prepare,
                                           .make = bump_make,
                                           .wheel_start = bump_wheel_start,
                                           .feature = bump_feature,
-                                          .top_hz = bump_top_hz};
+                                          .top_hz = bump_top_hz,
+                                          .phrase = bump_phrase};
 
 const fb_road_type fb_road_type_bump = {
     .name = "bump",

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The road gallery's ISO 8608 random road (docs/roads.md). */
 #include <stddef.h>
+#include <stdio.h>
 
 #include "flexbond/road.h"
 
@@ -109,11 +110,18 @@ static double random_top_hz(const void *params, double speed)
   return speed * ((const fb_road_random_params *)params)->band[1];
 }
 
+static void random_phrase(const void *params, char *buf, size_t n)
+{
+  const fb_road_random_params *r = params;
+  snprintf(buf, n, "on the ISO 8608 class %c road", 'A' + r->road_class);
+}
+
 static const fb_road_type_ops random_ops = {.check = random_check,
                                             .make = random_make,
                                             .wheel_start = random_wheel_start,
                                             .top_hz = random_top_hz,
-                                            .random = random_iso};
+                                            .random = random_iso,
+                                            .phrase = random_phrase};
 
 const fb_road_type fb_road_type_iso8608 = {
     .name = "iso8608",

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The road gallery's measured profile from a CSV file (docs/roads.md). */
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "flexbond/road.h"
@@ -76,12 +77,22 @@ static void profile_release(void *params)
   fb_road_free(&p->profile);
 }
 
+static void profile_phrase(const void *params, char *buf, size_t n)
+{
+  const fb_road_profile_params *p = params;
+  if (p->file)
+    snprintf(buf, n, "over the profile %s", p->file);
+  else
+    snprintf(buf, n, "over the profile");
+}
+
 static const fb_road_type_ops profile_ops = {.prepare = profile_prepare,
                                              .check = profile_check,
                                              .make = profile_make,
                                              .wheel_start = profile_wheel_start,
                                              .copy = profile_copy,
-                                             .release = profile_release};
+                                             .release = profile_release,
+                                             .phrase = profile_phrase};
 
 const fb_road_type fb_road_type_profile = {
     .name = "profile",

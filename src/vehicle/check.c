@@ -501,6 +501,20 @@ static int check_tires(const fb_scenario *s, fb_err *err)
 /* The solver's own limits (fb_sim_opts_check: sample count, the result's
  * memory, the steps that max_step forces), whose errors name their
  * setting: the description's member of the same name. */
+/* The modes listed for pictures are mode numbers: whole, from 1. */
+static int check_pictured_modes(const fb_scenario *s, fb_err *err)
+{
+  for (size_t k = 0; k < s->npictured_modes; ++k) {
+    const double m = s->pictured_modes[k];
+    if (!(m >= 1.0 && m == floor(m) && m <= 1e6)) {
+      fb_err_set(err, FB_EINVAL, "must be a mode number: a whole number from 1 (got %.10g)", m);
+      fb_err_set_part(err, FB_PART_ELEMENT(FB_PART_VEHICLE, 0, pictured_modes, k));
+      return FB_EINVAL;
+    }
+  }
+  return FB_OK;
+}
+
 static int check_simulation(const fb_scenario *s, fb_err *err)
 {
   fb_sim_opts o;
@@ -714,6 +728,8 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = check_road(s, err);
   if (!rc)
     rc = check_simulation(s, err);
+  if (!rc)
+    rc = check_pictured_modes(s, err);
   if (!rc)
     rc = check_road_timing(s, err);
   if (!rc)

@@ -459,6 +459,8 @@ void fb_mode_set_free(fb_mode_set **m)
   free((*m)->freq_hz);
   free((*m)->shapes);
   free((*m)->description);
+  free((*m)->part);
+  free((*m)->mount_share);
   free(*m);
   *m = NULL;
 }
@@ -676,8 +678,10 @@ static void hull_energies(const describe_ctx *d, const double *v, double *energy
 
 /* Names the part of the vehicle holding the largest share of the mode's
  * kinetic energy: a rigid motion of the hull, its elastic deformation, or
- * one lumped body. */
-static void describe_mode(const describe_ctx *d, const double *v, char *out, size_t size)
+ * one lumped body (*part); each mounted body's share into
+ * mount_share[0 .. nmounts). */
+static void describe_mode(const describe_ctx *d, const double *v, char *out, size_t size,
+                          fb_mode_part *part, double *mount_share)
 {
   static const char *const hull_names[7] = {"hull surge",  "hull sway",  "hull bounce",
                                             "hull roll",   "hull pitch", "hull yaw",
@@ -692,17 +696,24 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
     if (energy[k] > best) {
       best = energy[k];
       snprintf(name, sizeof name, "%s", hull_names[k]);
+      *part = k < 6 ? (fb_mode_part){FB_MODE_HULL_RIGID, (size_t)k}
+                    : (fb_mode_part){FB_MODE_HULL_ELASTIC, 0};
     }
   for (size_t i = d->nh; i < d->ndof; ++i) {
     double e = v[i] * d->mv[i];
+    const size_t b = i - d->nh;
+    if (b < d->s->nmounts)
+      mount_share[b] = total > 0 ? e / total : 0.0;
     if (e <= best)
       continue;
     best = e;
-    const size_t b = i - d->nh;
-    if (b < d->s->nmounts)
+    if (b < d->s->nmounts) {
       snprintf(name, sizeof name, "%s", d->s->mount[b].name);
-    else
+      *part = (fb_mode_part){FB_MODE_MOUNT, b};
+    } else {
       snprintf(name, sizeof name, "wheel hop %s", d->s->corner[b - d->s->nmounts].name);
+      *part = (fb_mode_part){FB_MODE_WHEEL, b - d->s->nmounts};
+    }
   }
   snprintf(out, size, "%s (%.0f%%)", name, total > 0 ? 100.0 * best / total : 0.0);
 }
@@ -742,8 +753,9 @@ int fb_mode_set_new(size_t nmodes, size_t ndof, fb_mode_set **out, fb_err *err)
     ms->freq_hz = malloc(nmodes * sizeof *ms->freq_hz);
     ms->shapes = malloc(nmodes * ndof * sizeof *ms->shapes);
     ms->description = calloc(nmodes, sizeof *ms->description);
+    ms->part = calloc(nmodes ? nmodes : 1, sizeof *ms->part);
   }
-  if (!ms || !ms->freq_hz || !ms->shapes || !ms->description) {
+  if (!ms || !ms->freq_hz || !ms->shapes || !ms->description || !ms->part) {
     fb_mode_set_free(&ms);
     return fb_err_set(err, FB_ENOMEM, "out of memory for %zu modes", nmodes);
   }
@@ -797,7 +809,9 @@ int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb
     d.r = malloc(6 * d.nh * sizeof *d.r);
     d.mr = malloc(6 * d.nh * sizeof *d.mr);
     d.mv = malloc(d.ndof * sizeof *d.mv);
-    if (!d.r || !d.mr || !d.mv)
+    ms->nmounts = s->nmounts;
+    ms->mount_share = calloc(ms->nmodes * s->nmounts + 1, sizeof *ms->mount_share);
+    if (!d.r || !d.mr || !d.mv || !ms->mount_share)
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   }
   if (!rc) {
@@ -808,7 +822,8 @@ int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb
   }
   for (size_t k = 0; !rc && k < ms->nmodes; ++k) {
     double *v = ms->shapes + k * d.ndof;
-    describe_mode(&d, v, ms->description[k], sizeof ms->description[k]);
+    describe_mode(&d, v, ms->description[k], sizeof ms->description[k], &ms->part[k],
+                  ms->mount_share + k * s->nmounts);
     normalise(h, d.nh, s->nmounts, v, d.ndof);
   }
   free(d.r);

@@ -99,8 +99,9 @@ static int complete_properties(fb_scenario *s, const mesh_props *mp, fb_err *err
   return rc;
 }
 
-/* Every position of s moved by (-dx, -dy). */
-static void shift_positions(fb_scenario *s, double dx, double dy)
+/* Every position of s moved by (-dx, -dy, -dz): the positions in the
+ * plane, and the heights of those that have one. */
+static void shift_positions(fb_scenario *s, double dx, double dy, double dz)
 {
   for (size_t c = 0; c < s->ncorners; ++c) {
     s->corner[c].x -= dx;
@@ -123,6 +124,7 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
     if (vehicle_output_hull_motion(&s->output[o], &how) && how.coordinate < 0) {
       s->output[o].at[0] -= dx;
       s->output[o].at[1] -= dy;
+      s->output[o].at[2] -= dz;
     }
   s->edge_front_x -= dx;
   s->edge_rear_x -= dx;
@@ -132,11 +134,12 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
 
 /* The hull's centre of mass in the declared frame: the made mesh's (its
  * source's centroid), else the typed one. */
-static int frame_centre(const fb_scenario *s, double *x, double *y, fb_err *err)
+static int frame_centre(const fb_scenario *s, double *x, double *y, double *z, fb_err *err)
 {
+  *z = 0.0;
   if (s->has_fe_hull) {
     double length = 0.0;
-    fb_scenario_hull_source(s)->ops->centroid(s, x, &length);
+    fb_scenario_hull_source(s)->ops->centroid(s, x, z, &length);
     *y = 0.0;
     if (!s->hull_cg_given)
       return FB_OK;
@@ -180,12 +183,8 @@ static int centre_deck(fb_scenario *s, mesh_props *mp, fb_err *err)
   fb_mesh_translate(s->hull_source_mesh, -cg[0], -cg[1], -cg[2]);
   s->hull_cg_x = cg[0];
   s->hull_cg_y = cg[1];
-  shift_positions(s, cg[0], cg[1]);
-  /* A point on the hull is in the deck's frame in z too. */
-  vehicle_hull_motion how;
-  for (size_t o = 0; o < s->noutputs; ++o)
-    if (vehicle_output_hull_motion(&s->output[o], &how) && how.coordinate < 0)
-      s->output[o].at[2] -= cg[2];
+  s->hull_cg_z = cg[2];
+  shift_positions(s, cg[0], cg[1], cg[2]);
   return FB_OK;
 }
 
@@ -202,13 +201,14 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
     if (rc)
       return rc;
   } else if (s->frame_origin) {
-    double x = 0.0, y = 0.0;
-    rc = frame_centre(s, &x, &y, err);
+    double x = 0.0, y = 0.0, z = 0.0;
+    rc = frame_centre(s, &x, &y, &z, err);
     if (rc)
       return rc;
     s->hull_cg_x = x;
     s->hull_cg_y = y;
-    shift_positions(s, x, y);
+    s->hull_cg_z = z;
+    shift_positions(s, x, y, z);
   }
   if (s->has_fe_hull) {
     /* A source that makes its mesh makes it here, once, where the
@@ -229,4 +229,11 @@ int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err)
     rc = FB_EINVAL;
   }
   return rc;
+}
+
+void fb_scenario_frame_offset(const fb_scenario *s, double o[3])
+{
+  o[0] = s->hull_cg_x;
+  o[1] = s->hull_cg_y;
+  o[2] = s->hull_cg_z;
 }

@@ -42,11 +42,11 @@ static uint64_t generator_key(const fb_scenario *s)
   return fb_hull_mesh_key(s, &s->hull_mesh);
 }
 
-/* Its plates are symmetric about y = 0: x alone. */
-static void generator_centroid(const fb_scenario *s, double *x, double *length)
+/* Its plates are symmetric about y = 0: x and the height above the
+ * floor. */
+static void generator_centroid(const fb_scenario *s, double *x, double *z, double *length)
 {
-  double cz = 0.0;
-  fb_hull_mesh_centroid(s, &s->hull_mesh, x, &cz);
+  fb_hull_mesh_centroid(s, &s->hull_mesh, x, z);
   *length = s->hull_mesh.x_front + s->hull_mesh.nose_length - s->hull_mesh.x_rear;
 }
 
@@ -71,4 +71,6 @@ const fb_hull_source fb_hull_source_generator = {
     .name = "generator",
     .doc = "the paper's hull (floor, roof, walls, bulkheads, a wedge nose) from its geometry "
            "and the vehicle's points (docs/hull-mesh.md)",
-    .ops = &generator_ops};
+    .ops = &generator_ops,
+    /* fb_hull_mesh_generate puts a line of nodes through every point. */
+    .nodes_at_points = 1};

@@ -93,8 +93,11 @@ void fb_scenario_corner_position(const fb_scenario *s, size_t c, double *x, doub
 {
   if (c >= s->ncorners)
     return;
-  *x = s->corner[c].x;
-  *y = s->corner[c].y;
+  /* Inside, relative to the hull's centre of mass; returned as written. */
+  double o[3];
+  fb_scenario_frame_offset(s, o);
+  *x = s->corner[c].x + o[0];
+  *y = s->corner[c].y + o[1];
 }
 
 double fb_scenario_speed(const fb_scenario *s)

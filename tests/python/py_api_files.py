@@ -178,6 +178,25 @@ class HullMeshTest(unittest.TestCase):
         """truck4x4.yaml declares a hull mass: the hull as built too."""
         self.assertIsNotNone(self.check(os.path.join(EXAMPLES, "truck4x4.yaml")).as_built)
 
+    def test_file_frame(self):
+        """truck4x4.yaml's positions are from its front axle at floor level
+        (frame.origin): the corners come back as the file wrote them (axles
+        at x = 0 and -3.4 m, y = +-0.95 m; 1e-12 m: the round-off of the
+        move to the centre of mass and back), and the structure's centre of
+        mass is behind the front axle and above the floor, where the
+        generated plates between x = -4.6 and 1.6 m, z = 0 and 1.6 m put it."""
+        with flexbond.Scenario(os.path.join(EXAMPLES, "truck4x4.yaml")) as scenario:
+            corners = {c.name: (c.x, c.y) for c in scenario.corners}
+            cg = scenario.hull_mesh().structure.cg
+        expected = {"LF": (0.0, 0.95), "RF": (0.0, -0.95), "LR": (-3.4, 0.95),
+                    "RR": (-3.4, -0.95)}
+        self.assertEqual(set(corners), set(expected))
+        for name, (x, y) in expected.items():
+            self.assertAlmostEqual(corners[name][0], x, delta=1e-12, msg=name)
+            self.assertAlmostEqual(corners[name][1], y, delta=1e-12, msg=name)
+        self.assertTrue(-4.6 < cg[0] < 0.0 and 0.0 < cg[2] < 1.6, cg)
+        self.assertAlmostEqual(cg[1], 0.0, delta=1e-12)
+
     def test_sections(self):
         """Sections: each one's elements, area and mass; their masses add
         up to the structure's."""
