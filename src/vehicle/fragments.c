@@ -259,6 +259,14 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
   return FB_OK;
 }
 
+/* The spring, the C element "spring", as the corner's spring law builds
+ * it (flexbond/spring.h). */
+static int add_spring(fb_bg *bg, const fb_corner_params *c, fb_err *err)
+{
+  const fb_spring_context ctx = fb_corner_spring_context(c);
+  return fb_corner_spring_law(c)->ops->build(c->spring.bytes, &ctx, bg, err);
+}
+
 /* The shock absorber, the R element "damper", as the corner's damper
  * law builds it (flexbond/damper.h). */
 static int add_shock_absorber(fb_bg *bg, const fb_corner_params *c, fb_err *err)
@@ -296,9 +304,12 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   if (!rc)
     rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
   if (!rc)
-    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, c->spring_k, err);
+    rc = add_spring(bg, c, err);
   if (!rc)
     rc = add_shock_absorber(bg, c, err);
+  if (!rc && fb_stops_any(&c->stops))
+    rc = vehicle_add_stops(&c->stops, "stops", "spring", bg, err);
+
   if (!rc)
     rc = fb_bg_add_tf(bg, "arm", FB_BG_TF, 1, c->motion_ratio, err);
   if (!rc)
@@ -323,6 +334,9 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   };
   if (!rc)
     rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  /* The stops share the spring's travel, compression positive. */
+  if (!rc && fb_stops_any(&c->stops))
+    rc = fb_bg_connect(bg, "b_stops", "Jsp", "stops", err);
   if (!rc)
     rc = fb_bg_add_port(bg, "hull", "susp", FB_PORT_OUT, err);
   if (!rc)
@@ -416,6 +430,7 @@ static const vehicle_signal corner_signals[] = {
     {"spring_force", FB_PROBE_EFFORT, "b_spring", 0, 0},
     {"shock_force", FB_PROBE_EFFORT, "b_damper", 0, 0},
     {"shock_power", FB_PROBE_POWER, "b_damper", 0, 0},
+    {"stop_force", FB_PROBE_EFFORT, "b_stops", 0, 0},
     {"wheel_travel", FB_PROBE_FLOW, "b_arm", 1, 0},
     {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0},
 };

@@ -153,6 +153,11 @@ char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i
 char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
                      const char *local);
 
+/* Adds corner stops s as the modulated R element name reading the
+ * travel of the C element spring (flexbond/stop.h), to bg. */
+int vehicle_add_stops(const fb_stops *s, const char *name, const char *spring, fb_bg *bg,
+                      fb_err *err);
+
 /* Frees the strings of an output (the output itself is its holder's). */
 void vehicle_output_release(fb_output_spec *o);
 /* rc, after making a road type's error about one of its parameters
