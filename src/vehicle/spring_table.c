@@ -24,8 +24,11 @@ static int table_law(const fb_spring_table_params *p, const char *corner, fb_tab
   int rc = fb_table_law_new(p->npoints, p->travel, p->force, law, err);
   if (!rc)
     rc = fb_table_law_check_monotone(*law, err);
-  if (rc)
+  if (rc) {
     fb_table_law_free(law);
+    fb_err_prefix(err, "corner '%s': a spring's ", corner ? corner : "?");
+    fb_err_set_part(err, 0, 0, FB_ERR_NO_ELEMENT, "table");
+  }
   return rc;
 }
 
