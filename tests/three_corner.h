@@ -14,8 +14,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/bd.h"
 #include "flexbond/io.h"
+#include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
+
+#include "check.h"
+#include "vehicle/vehicle_internal.h"
 
 #define THREE_CORNER_WEIGHT 30000.0
 
@@ -64,6 +69,71 @@ static int three_corner_load(const char *front, const char *rear, double bump,
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   const int rc = fb_scenario_load_string(t, strlen(t), "three_corner.yaml", out, err);
   free(t);
+  return rc;
+}
+
+/* The scenario with front's text in its front corner is refused with
+ * a message holding want (printed when it does not). */
+static void three_corner_refused(const char *front, const char *want)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(three_corner_load(front, "", 0.0, "zero", "", &s, &err) != FB_OK && !s);
+  CHECK(strstr(err.msg, want) != NULL);
+  if (!strstr(err.msg, want))
+    fprintf(stderr, "  want: %s\n  got:  %s\n", want, err.msg);
+  fb_scenario_free(&s);
+}
+
+/* A mass of m kg on corner c's spring (and its stops, if any) alone: the
+ * I "mass", the corner's C "spring" and R "stops" on one 1-junction, no
+ * gravity; probes x (the travel), v (the mass's velocity) and U (the
+ * spring's stored energy). Released from travel x0 with momentum p0:
+ * its run to t_end at rtol, atol 1e-2 rtol, in *out. */
+static int mass_on_corner_spring(const fb_corner_params *c, double m, double x0, double p0,
+                                 double t_end, double rtol, fb_result **out, fb_err *err)
+{
+  *out = NULL;
+  const fb_spring_context ctx = fb_corner_spring_context(c);
+  fb_bg *bg = NULL;
+  fb_mat *mass = NULL;
+  const size_t one = 1;
+  int rc = fb_bg_new("mass_on_spring", &bg, err);
+  if (!rc)
+    rc = fb_mat_new_scaled_identity(1, m, &mass, err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "mass", FB_BG_I, 1, &one, &mass, err);
+  if (!rc)
+    rc = fb_corner_spring_law(c)->ops->build(c->spring.bytes, &ctx, bg, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, 1, err);
+  if (!rc)
+    rc = fb_bg_connect(bg, "b_mass", "J", "mass", err);
+  if (!rc)
+    rc = fb_bg_connect(bg, "b_spring", "J", "spring", err);
+  if (!rc && fb_stops_any(&c->stops))
+    rc = vehicle_add_stops(&c->stops, "stops", "spring", bg, err);
+  if (!rc && fb_stops_any(&c->stops))
+    rc = fb_bg_connect(bg, "b_stops", "J", "stops", err);
+  const fb_probe_spec probes[3] = {{"x", FB_PROBE_STATE, "spring", 0, 0, 1.0, NULL, NULL, 0},
+                                   {"v", FB_PROBE_FLOW, "b_mass", 0, 0, 1.0, NULL, NULL, 0},
+                                   {"U", FB_PROBE_ENERGY, "spring", 0, 0, 1.0, NULL, NULL, 0}};
+  fb_bd *bd = NULL;
+  if (!rc)
+    rc = fb_bd_build(bg, probes, 3, &bd, err);
+  double x_init[2] = {0.0, 0.0};
+  for (size_t k = 0; bd && k < 2; ++k)
+    x_init[k] = !strcmp(fb_bd_state_name(bd, k), "spring.q") ? x0 : p0;
+  fb_sim_opts o;
+  fb_sim_opts_default(&o);
+  o.t_end = t_end;
+  o.rtol = rtol;
+  o.atol = 1e-2 * rtol;
+  o.x0 = x_init;
+  if (!rc)
+    rc = fb_sim_run(bd, &o, out, err);
+  fb_bd_free(&bd);
+  fb_bg_free(&bg);
   return rc;
 }
 

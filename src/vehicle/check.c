@@ -664,6 +664,11 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
                 "no corner named '%s' (a %s signal measures a corner)%s", o->of ? o->of : "",
                 o->signal, hint);
   }
+  const vehicle_signal *how = vehicle_fragment_signal(kind->subject, o->signal);
+  if (kind->subject == FB_OUTPUT_OF_CORNER && how && how->offered &&
+      !how->offered(&s->corner[fb_scenario_corner_find(s, o->of)]))
+    return fail(err, FB_PART_OUTPUT, i, "of", "corner '%s' has no %s for %s to measure", o->of,
+                how->needs, o->signal);
   if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
     names_hint(s, o->of, s->nmounts, mount_name_at, "mounts", hint, sizeof hint);
     return fail(err, FB_PART_OUTPUT, i, "of",

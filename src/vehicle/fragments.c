@@ -420,28 +420,34 @@ int fb_vehicle_load(const fb_scenario *s, fb_bg **out, fb_err *err)
  * signal's probe on one of the fragment's own bonds or elements, named
  * as the fragment above names them. */
 
+static int corner_has_stops(const fb_corner_params *c)
+{
+  return fb_stops_any(&c->stops);
+}
+
 /* The corner's (fb_vehicle_corner). Compressions and forces pushing the
  * parts apart positive, powers into the dissipating element. */
 static const vehicle_signal corner_signals[] = {
-    {"tire_force", FB_PROBE_EFFORT, "b_tire", 0, 0},
-    {"tire_defl", FB_PROBE_STATE, "tire_spring", 0, 0},
-    {"tire_power", FB_PROBE_POWER, "b_tire_damper", 0, 0},
-    {"spring_defl", FB_PROBE_STATE, "spring", 0, 0},
-    {"spring_force", FB_PROBE_EFFORT, "b_spring", 0, 0},
-    {"shock_force", FB_PROBE_EFFORT, "b_damper", 0, 0},
-    {"shock_power", FB_PROBE_POWER, "b_damper", 0, 0},
-    {"stop_force", FB_PROBE_EFFORT, "b_stops", 0, 0},
-    {"wheel_travel", FB_PROBE_FLOW, "b_arm", 1, 0},
-    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0},
+    {"tire_force", FB_PROBE_EFFORT, "b_tire", 0, 0, NULL, NULL},
+    {"tire_defl", FB_PROBE_STATE, "tire_spring", 0, 0, NULL, NULL},
+    {"tire_power", FB_PROBE_POWER, "b_tire_damper", 0, 0, NULL, NULL},
+    {"spring_defl", FB_PROBE_STATE, "spring", 0, 0, NULL, NULL},
+    {"spring_force", FB_PROBE_EFFORT, "b_spring", 0, 0, NULL, NULL},
+    {"shock_force", FB_PROBE_EFFORT, "b_damper", 0, 0, NULL, NULL},
+    {"shock_power", FB_PROBE_POWER, "b_damper", 0, 0, NULL, NULL},
+    {"stop_force", FB_PROBE_EFFORT, "b_stops", 0, 0, corner_has_stops,
+     "stop (bump_stop or rebound_stop)"},
+    {"wheel_travel", FB_PROBE_FLOW, "b_arm", 1, 0, NULL, NULL},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0, NULL, NULL},
 };
 
 /* The mounted body's (fb_vehicle_mount): its acceleration is the effort
  * on its mass over the mass (the paper's gain block 1/m on e7). */
 static const vehicle_signal mount_signals[] = {
-    {"acc", FB_PROBE_EFFORT, "b_mass", 0, 1},
-    {"travel", FB_PROBE_STATE, "spring", 0, 0},
-    {"force", FB_PROBE_EFFORT, "b_up", 0, 0},
-    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_mass", 1, 0},
+    {"acc", FB_PROBE_EFFORT, "b_mass", 0, 1, NULL, NULL},
+    {"travel", FB_PROBE_STATE, "spring", 0, 0, NULL, NULL},
+    {"force", FB_PROBE_EFFORT, "b_up", 0, 0, NULL, NULL},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_mass", 1, 0, NULL, NULL},
 };
 
 static const vehicle_signal *signal_in(const vehicle_signal *list, size_t n, const char *signal)

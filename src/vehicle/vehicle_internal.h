@@ -138,6 +138,10 @@ typedef struct vehicle_signal {
   const char *target;
   int integrate;
   int per_mass;
+  /* A corner's signal of a part it may lack: 1 when corner c has it
+   * (NULL: every corner), and what it needs, for the message. */
+  int (*offered)(const fb_corner_params *c);
+  const char *needs;
 } vehicle_signal;
 /* Every corner's and mount's own signal: its body's vertical
  * displacement (the animation's motion, motion.c). */
