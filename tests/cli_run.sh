@@ -838,6 +838,12 @@ EOF
 # (0.06 m of extension).
 run run "$REPO_ROOT/examples/quarter_car_stops.yaml" -o "$WORK/stops" --no-figures -q
 expect_status 0 "run with bump and rebound stops"
+expect_in "$WORK/stops/report.md" \
+  "- Springs: F: linear, 100000 N/m, preload 2000 N; LR, RR: linear, 100000 N/m." \
+  "report.md springs"
+expect_in "$WORK/stops/report.md" \
+  "- Bump and rebound stops (gap, rate, damping): F: bump at 0.12 m, 1e+06 N/m, 2000 N s/m; rebound at 0.06 m, a table of 3 points; LR, RR: none." \
+  "report.md stops"
 checks=$((checks + 1))
 python3 - "$WORK/stops" <<'EOF' || fail "stops: stop_force against the travel"
 import csv, sys
