@@ -291,6 +291,28 @@ static void test_errors(void)
   fb_scenario_free(&s);
 }
 
+/* Overrides reach the stops' and the preload's keys, at the file's
+ * paths: the gap moved, the preload changed, the value kept where it
+ * lands. */
+static void test_overrides(void)
+{
+  const fb_scenario_override ov[2] = {
+      {.key = "suspensions.corners[0].bump_stop.gap", .value = "0.07"},
+      {.key = "suspensions.corners[0].spring_preload", .value = "1500"}};
+  char *t = three_corner_text(FRONT, "", 0.0, "zero", "");
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(t && fb_scenario_load_string_overrides(t, strlen(t), "three_corner.yaml", ov, 2, &s,
+                                               &err) == FB_OK);
+  if (s) {
+    const fb_corner_params *c = &s->corner[0];
+    CHECK(c->stops.bump.gap == 0.07 && c->stops.bump.rate == 4e5);
+    CHECK(((const fb_spring_linear_params *)(const void *)c->spring.bytes)->preload == 1500.0);
+  }
+  fb_scenario_free(&s);
+  free(t);
+}
+
 int main(void)
 {
   test_force();
@@ -299,5 +321,6 @@ int main(void)
   test_energy_vehicle();
   test_modes();
   test_errors();
+  test_overrides();
   return check_report("test_stops");
 }

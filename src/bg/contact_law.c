@@ -173,17 +173,18 @@ static const fb_law_ops damper_hc_ops =
 static const fb_law_ops damper_table_ops =
     CONTACT_DAMPER_OPS("unilateral damper of a table spring", FB_LAW_CUSTOM, 0);
 
+/* A law of ops with params (their table none) and its own copy of
+ * table's knots (NULL: none) as its context. */
 static int add_law(fb_bg *bg, const char *name, fb_bg_kind kind, const fb_law_ops *ops,
-                   const contact_params *params, fb_err *err)
+                   const contact_params *params, const fb_table_law *table, fb_err *err)
 {
   static const size_t one_port[1] = {1};
   contact_params *p = malloc(sizeof *p);
   if (!p)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   *p = *params;
-  p->table = NULL;
   const double *x = NULL, *y = NULL;
-  const size_t n = params->table ? fb_table_law_knots(params->table, &x, &y) : 0;
+  const size_t n = table ? fb_table_law_knots(table, &x, &y) : 0;
   int rc = n ? fb_table_law_new(n, x, y, &p->table, err) : FB_OK;
   if (rc) {
     free(p);
@@ -192,9 +193,10 @@ static int add_law(fb_bg *bg, const char *name, fb_bg_kind kind, const fb_law_op
   return fb_bg_add_field_law(bg, name, kind, 1, one_port, ops, p, err);
 }
 
-/* The pair for either damping law (at most one of c, lambda nonzero). */
+/* The pair for either damping law (at most one of c, lambda nonzero),
+ * the spring's force table's (NULL: k q). */
 static int add_contact(fb_bg *bg, const char *spring, const char *damper,
-                       const contact_params *p, fb_err *err)
+                       const contact_params *p, const fb_table_law *table, fb_err *err)
 {
   /* Both names are checked first, so that a refusal adds neither. */
   int rc = fb_bg_check_new_name(bg, spring, err);
@@ -204,13 +206,13 @@ static int add_contact(fb_bg *bg, const char *spring, const char *damper,
     rc = fb_err_set(err, FB_EMODEL, "unilateral contact: spring and damper both named '%s'",
                     spring);
   if (!rc)
-    rc = add_law(bg, spring, FB_BG_C, p->table ? &spring_table_ops : &spring_ops, p, err);
+    rc = add_law(bg, spring, FB_BG_C, table ? &spring_table_ops : &spring_ops, p, table, err);
   if (!rc)
     rc = add_law(bg, damper, FB_BG_R,
-                 p->table          ? &damper_table_ops
+                 table             ? &damper_table_ops
                  : p->lambda > 0.0 ? &damper_hc_ops
                                    : &damper_ops,
-                 p, err);
+                 p, table, err);
   if (!rc)
     rc = fb_bg_modulate(bg, damper, 1, &spring, err);
   return rc;
@@ -225,7 +227,7 @@ int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damp
                       ">= 0 (got k = %g, c = %g)",
                       spring, damper, k, c);
   const contact_params p = {k, c, 0.0, NULL};
-  return add_contact(bg, spring, damper, &p, err);
+  return add_contact(bg, spring, damper, &p, NULL, err);
 }
 
 int fb_bg_add_hunt_crossley_contact(fb_bg *bg, const char *spring, const char *damper, double k,
@@ -237,7 +239,7 @@ int fb_bg_add_hunt_crossley_contact(fb_bg *bg, const char *spring, const char *d
                       "damping per penetration >= 0 (got k = %g, lambda = %g)",
                       spring, damper, k, lambda);
   const contact_params p = {k, 0.0, lambda, NULL};
-  return add_contact(bg, spring, damper, &p, err);
+  return add_contact(bg, spring, damper, &p, NULL, err);
 }
 
 int fb_bg_add_table_contact(fb_bg *bg, const char *spring, const char *damper,
@@ -259,8 +261,8 @@ int fb_bg_add_table_contact(fb_bg *bg, const char *spring, const char *damper,
     rc = fb_err_set(err, FB_EINVAL, "table contact '%s': its forces are all 0", spring);
   if (rc)
     return rc;
-  const contact_params p = {0.0, c, 0.0, (fb_table_law *)law};
-  return add_contact(bg, spring, damper, &p, err);
+  const contact_params p = {0.0, c, 0.0, NULL};
+  return add_contact(bg, spring, damper, &p, law, err);
 }
 
 /* 1 if element i has the law of that id. */

@@ -64,8 +64,7 @@ static const fb_tire_model_ops tire_table_ops = {.check = tire_table_check,
  * table's slope there. */
 const fb_tire_model fb_tire_model_table = {
     .name = "table",
-    .doc = "unilateral, its force a force-deflection table (`wheel.tire_table`), damped by "
-           "`tire_c` in contact",
+    .doc = "unilateral, its force a force-deflection table, damped by `tire_c` in contact",
     .meaning = "unilateral, its force a force-deflection table: it pushes but never pulls, and "
                "a wheel whose reaction would become tensile leaves the road",
     .params_size = sizeof(fb_tire_table_params),
