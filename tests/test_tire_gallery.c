@@ -318,6 +318,22 @@ static void test_errors(const fb_tire_gallery *g)
        "`hunt_crossley` tire, but this corner's tire is `scaled`"},
       {"\n  tire_contact: hunt_crossley\n  hunt_crossley: {deflection_ref: -0.01}", "",
        "bad.yaml:91:35: wheel.hunt_crossley.deflection_ref: must be > 0 m (got -0.01)"},
+      {"\n  tire_contact: table", "",
+       "bad.yaml:96:7: suspensions.axles[0]: missing required key 'wheel.tire_table': a "
+       "`table` tire's force-deflection table, here or at the top-level wheel"},
+      {"\n  tire_contact: table\n  tire_table: {points: [[0, 0], [0.1, 5000], [0.2, 4000]]}",
+       "",
+       "bad.yaml:91:15: wheel.tire_table: table law decreases: at point 3 phi(0.2) = 4000 "
+       "is below point 2's 5000"},
+      {"\n  tire_contact: table\n  tire_table: {points: [[0.01, 0], [0.1, 5000]]}", "",
+       "bad.yaml:91:15: wheel.tire_table: corner 'LF': a tire table starts at (0, 0)"},
+      {TIRE_TABLE_LINE, "",
+       "bad.yaml:90:3: wheel.tire_table: no corner's tire is table (wheel.tire_contact "
+       "chooses the tires): the table would reach none"},
+      {"\n  tire_contact: table" TIRE_TABLE_LINE,
+       "\n      wheel: {tire_contact: bilateral, tire_table: {points: [[0, 0], [1, 1]]}}",
+       "bad.yaml:102:40: suspensions.axles[0].wheel.tire_table: the table of a `table` tire, "
+       "but this corner's tire is `bilateral`"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
     fb_err err;

@@ -295,10 +295,15 @@ static int sc_corner_tire_table(sch_reader *r, const sch_key *list, struct fy_no
                                 const fb_tire_model *m)
 {
   const sch_key *k = sch_key_of(list->items, SC_TIRE_TABLE);
+  struct fy_node *wheel = node ? ml_get(node, "wheel", NULL) : NULL;
+  struct fy_node *key = NULL;
+  struct fy_node *table = wheel ? ml_get(wheel, "tire_table", &key) : NULL;
+  if (k && k->data != m && table)
+    return ml_fail_key(r->c, wheel, key, FB_EPARSE,
+                       "the table of a `%s` tire, but this corner's tire is `%s` (%s)",
+                       ((const fb_tire_model *)k->data)->name, m->name, SC_TIRE_CHOICE);
   if (!k || k->data != m)
     return FB_OK;
-  struct fy_node *wheel = node ? ml_get(node, "wheel", NULL) : NULL;
-  struct fy_node *table = wheel ? ml_get(wheel, "tire_table", NULL) : NULL;
   char path[SCH_PATH_MAX + 64];
   snprintf(path, sizeof path, "%s.%s", item_path, SC_TIRE_TABLE);
   int rc = FB_OK;
@@ -385,7 +390,18 @@ int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *roo
                          "reach none",
                          models[j]->name, SC_TIRE_CHOICE);
   }
-  return FB_OK;
+  /* The top level's tire table, for the model its key names. */
+  const sch_key *table = sch_key_of(t, SC_TIRE_TABLE);
+  struct fy_node *key = NULL;
+  if (!table || !wheel || !ml_get(wheel, "tire_table", &key) || !key)
+    return FB_OK;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    if (fb_corner_tire_model(&s->corner[c]) == table->data)
+      return FB_OK;
+  return ml_fail_key(
+      r->c, wheel, key, FB_EPARSE,
+      "no corner's tire is %s (%s chooses the tires): the table would reach none",
+      ((const fb_tire_model *)table->data)->name, SC_TIRE_CHOICE);
 }
 
 /* ---- Damper laws: a section of parameters per law, in every corner. */

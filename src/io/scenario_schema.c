@@ -486,13 +486,14 @@ static void sc_format_tire_table(const sch_key *k, const void *base, char *buf, 
            ((const fb_tire_table_params *)(const void *)c->tire.bytes)->npoints);
 }
 
-/* A corner's table is there when its tire is the table's model; the top
- * level's is only inherited. */
+/* A corner's table is there when its tire is the table's model (the top
+ * level's is only inherited: no such op). */
 static int sc_tire_table_present(const sch_key *k, const void *base)
 {
-  return k->data && fb_corner_tire_model(base) == k->data;
+  return fb_corner_tire_model(base) == k->data;
 }
 
+static const sch_ops sc_tire_table_top = {.read = sc_read_tire_table};
 static const sch_ops sc_tire_table = {.read = sc_read_tire_table,
                                       .format = sc_format_tire_table,
                                       .present = sc_tire_table_present};
@@ -1143,7 +1144,7 @@ static const sch_key sc_keys[] = {
         .type_doc = "`{points: [[d, F], ...]}` or `{file, velocity, force}`", OPT,
         .doc = "a `table` tire's force (N) against its deflection (m) from (0, 0), 2 to 64 "
                "points, forces not decreasing; every such corner's unless it gives its own",
-        .ops = &sc_tire_table),
+        .ops = &sc_tire_table_top, .data = &fb_tire_model_table),
     SECTION_IS("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions,
                S_IS(corner)),
     NUMBER("suspensions.motion_ratio", NULL, POSITIVE, DEF(1),
