@@ -62,11 +62,12 @@ void fb_stop_init(fb_stop *st);
 /* 1 if the corner has a stop. */
 int fb_stops_any(const fb_stops *s);
 
-/* 0 if both stops' values are sound: a gap >= 0, exactly one of a rate >
- * 0 and a table (from (0, 0), deflections increasing, forces not
- * decreasing), damping >= 0, a damping depth > 0, and both gaps leaving
- * some travel between the stops. FB_EINVAL otherwise, its part's field
- * "bump_stop.<member>" or "rebound_stop.<member>" (kind 0: the
+/* 0 if both stops' values are sound: a gap >= 0 (so the stops never
+ * overlap: the bump stop is met at a travel >= 0, the rebound stop at one
+ * <= 0), exactly one of a rate > 0 and a table (2 .. FB_STOP_MAX_POINTS
+ * knots from (0, 0), deflections increasing, forces not decreasing),
+ * damping >= 0, a damping depth > 0. FB_EINVAL otherwise, its part's
+ * field "bump_stop.<member>" or "rebound_stop.<member>" (kind 0: the
  * description's checker adds its own). */
 int fb_stops_check(const fb_stops *s, const char *corner, fb_err *err);
 
