@@ -877,26 +877,27 @@ static const sch_table sc_section_table = TABLE(sc_section_keys, NULL);
  * at the offset variable where, touched in travel (compression or
  * extension). */
 #define STOP_KEYS(name, m, where, travel)                                                      \
-  KEY(.path = name, .type = SCH_SECTION, OPT,                                                  \
+  KEY(.path = (name), .type = SCH_SECTION, OPT,                                                \
       .doc = "the " #m " stop, touched at a spring " travel " of `gap`",                       \
       .ops = &sc_stop_section, C_IS(stops), .data = &(where)),                                 \
-      NUMBER(name ".gap", "m", NONNEGATIVE, REQ,                                               \
-             "the spring's " travel " at which the stop is touched, from zero travel",         \
-             C_OFF(stops.m.gap), PLAUSIBLE(1e-3, 0.5, SC_WHY_STOP_GAP)),                       \
-      NUMBER(name ".rate", "N/m", POSITIVE, ONE_OF(name), "a linear stop's rate",              \
-             C_OFF(stops.m.rate), .ops = &sc_stop_rate, .data = &(where),                      \
-             PLAUSIBLE(1e4, 1e8, SC_WHY_STOP_RATE)),                                           \
+      KEY(.path = name ".gap", .type = SCH_NUMBER, .unit = "m", NONNEGATIVE, REQ,              \
+          .doc = "the spring's " travel " at which the stop is touched, from zero travel",     \
+          C_OFF(stops.m.gap), PLAUSIBLE(1e-3, 0.5, SC_WHY_STOP_GAP)),                          \
+      KEY(.path = name ".rate", .type = SCH_NUMBER, .unit = "N/m", POSITIVE, ONE_OF(name),     \
+          .doc = "a linear stop's rate", C_OFF(stops.m.rate), .ops = &sc_stop_rate,            \
+          .data = &(where), PLAUSIBLE(1e4, 1e8, SC_WHY_STOP_RATE)),                            \
       KEY(.path = name ".table", .type = SCH_CUSTOM,                                           \
           .type_doc = "`{points: [[d, F], ...]}` or `{file, velocity, force}`", ONE_OF(name),  \
           .doc = "force (N) against the stop's own compression (m) from (0, 0), 2 to 32 "      \
                  "points, forces not decreasing",                                              \
           .ops = &sc_stop_table, C_IS(stops), .data = &(where)),                               \
-      NUMBER(name ".damping", "N s/m", NONNEGATIVE, DEF(0),                                    \
-             "damping while in contact, never pulling", C_OFF(stops.m.damping),                \
-             PLAUSIBLE(0, 1e6, SC_WHY_STOP_DAMPING)),                                          \
-      NUMBER(name ".damping_depth", "m", POSITIVE, DEF(FB_STOP_DAMPING_DEPTH),                 \
-             "the stop's compression over which its damping grows from 0 to `damping`",        \
-             C_OFF(stops.m.damping_depth))
+      KEY(.path = name ".damping", .type = SCH_NUMBER, .unit = "N s/m", NONNEGATIVE, DEF(0),   \
+          .doc = "damping while in contact, never pulling", C_OFF(stops.m.damping),            \
+          PLAUSIBLE(0, 1e6, SC_WHY_STOP_DAMPING)),                                             \
+      KEY(.path = name ".damping_depth", .type = SCH_NUMBER, .unit = "m", POSITIVE,            \
+          DEF(FB_STOP_DAMPING_DEPTH),                                                          \
+          .doc = "the stop's compression over which its damping grows from 0 to `damping`",    \
+          C_OFF(stops.m.damping_depth))
 
 #define SC_WHY_PRELOAD "a suspension spring's preload is at most a few hundred kN"
 #define SC_WHY_STOP_GAP "a suspension's travel to its stops is 1 mm to 0.5 m"
