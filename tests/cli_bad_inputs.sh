@@ -189,6 +189,15 @@ derive s_table_missing.yaml s_ok.yaml \
   -e '0,/damper_c: 25744 /s//damper_table: {file: no_such_table.csv, force: F} /'
 derive s_table_word.yaml s_ok.yaml -e '0,/damper_c: 25744 /s//damper_table: {file: word.csv, force: F} /'
 derive s_table_order.yaml s_ok.yaml -e '0,/damper_c: 25744 /s//damper_table: {file: order.csv, force: F} /'
+# Springs and stops: a spring table that falls, a stop's negative gap, a stop force asked of
+# a corner without stops, an implausible gap (a warning, an error under --strict).
+derive s_spring_fall.yaml s_ok.yaml \
+  -e '0,/^      damper_c: 25744 /s//      spring_table: {points: [[0, 0], [0.1, 9000], [0.2, 8000]]}\n      damper_c: 25744 /'
+derive s_stop_gap.yaml s_ok.yaml \
+  -e '0,/^      damper_c: 25744 /s//      bump_stop: {gap: -0.1, rate: 1e6}\n      damper_c: 25744 /'
+derive s_stop_none.yaml s_ok.yaml -e '0,/signal: tire_force/s//signal: stop_force/'
+derive s_stop_far.yaml s_ok.yaml \
+  -e '0,/^      damper_c: 25744 /s//      bump_stop: {gap: 2, rate: 1e6}\n      damper_c: 25744 /'
 printf 'v,F\n-1,-100\n0,0\n0.5,abc\n1,100\n' >word.csv
 # Data files that are not plain text or decimals (core/textfile.c): a NUL
 # in a damper table and in a road profile (it used to cut the line there),
@@ -332,6 +341,10 @@ CASES=(
   "2|run s_profile.yaml -o @OUT|$(at s_profile.yaml one_row.csv one_row) road.profile.file: ./one_row.csv:2: 1 data row, need at least 2"
   "5|run s_table_missing.yaml -o @OUT|$(at s_table_missing.yaml no_such_table no_such) suspensions.axles[0].damper_table.file: ./no_such_table.csv: cannot open|No such file"
   "2|run s_table_word.yaml -o @OUT|$(at s_table_word.yaml word.csv word) suspensions.axles[0].damper_table.file: ./word.csv:4: column 'F': not a number (read: 'abc')"
+  "2|run s_spring_fall.yaml -o @OUT|$(at s_spring_fall.yaml 'spring_table:' '{') suspensions.axles[0].spring_table: table law decreases: at point 3 phi(0.2) = 8000 is below point 2's 9000"
+  "2|run s_stop_gap.yaml -o @OUT|$(at s_stop_gap.yaml 'gap: -0.1' -0.1) suspensions.axles[0].bump_stop.gap: must be >= 0 m (got -0.1)"
+  "2|run s_stop_none.yaml -o @OUT|$(at s_stop_none.yaml 'of: LF' LF) outputs[0].of: corner 'LF' has no stop (bump_stop or rebound_stop) for stop_force to measure"
+  "2|run s_stop_far.yaml --system rigid --strict -o @OUT|$(at s_stop_far.yaml 'gap: 2' 2) suspensions.axles[0].bump_stop.gap: 2 m is implausible: a suspension's travel to its stops is 1 mm to 0.5 m"
   "2|export s_table_order.yaml -o @OUT|$(at s_table_order.yaml order.csv order) suspensions.axles[0].damper_table.file: ./order.csv:5: column 'v': 0.5 does not exceed the previous row's 1|strictly increasing"
   "2|run s_tire1.yaml --system rigid --strict -o @OUT|$(at s_tire1.yaml 'tire_k: 1 ' 1) wheel.tire_k: 1 N/m is implausible: a tire's radial stiffness is 1e4 to 1e8 N/m|--strict refuses implausible values: 2 in this scenario"
   "2|export s_heavy.yaml --system rigid --strict -o @OUT|$(at s_heavy.yaml 'total_weight: 1e12' 1e12) load.total_weight: 1e+12 N is implausible"

@@ -840,5 +840,28 @@ for i in d["contact_loss_intervals"]:
     assert m and (m.group(1) is not None) == (i["min_force"] < 0), (i, m)
 EOF
 
+# Bump and rebound stops (examples/quarter_car_stops.yaml): the front
+# suspension reaches its bump stop on the bump; the stop pushes only while
+# the travel is past its gap (0.12 m) and pulls only past the rebound gap
+# (0.06 m of extension).
+run run "$REPO_ROOT/examples/quarter_car_stops.yaml" -o "$WORK/stops" --no-figures -q
+expect_status 0 "run with bump and rebound stops"
+expect_in "$WORK/stops/report.md" \
+  "- Springs: F: linear, 100000 N/m, preload 2000 N; LR, RR: linear, 100000 N/m." \
+  "report.md springs"
+expect_in "$WORK/stops/report.md" \
+  "- Bump and rebound stops (gap, rate, damping): F: bump at 0.12 m, 1e+06 N/m, 2000 N s/m; rebound at 0.06 m, a table of 3 points; LR, RR: none." \
+  "report.md stops"
+checks=$((checks + 1))
+python3 - "$WORK/stops" <<'EOF' || fail "stops: stop_force against the travel"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1] + "/system1.csv")))
+x = [float(r["spring_defl_F [m]"]) for r in rows]
+f = [float(r["stop_force_F [N]"]) for r in rows]
+assert max(f) > 1000.0 and max(x) > 0.12, (max(f), max(x))
+for xi, fi in zip(x, f):
+    assert not (fi > 0.0 and xi <= 0.12) and not (fi < 0.0 and xi >= -0.06), (xi, fi)
+EOF
+
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

@@ -153,8 +153,11 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
                     fb_bd_noutputs(bd), ncols);
   if (!rc) {
     fb_sim_opts o;
+    /* Each wheel's road entry and exit, for a vehicle of up to the
+     * APC's corners. */
     double bp[2 * APC_NCORNERS];
-    for (int c = 0; c < APC_NCORNERS; ++c) {
+    const int ncorners = s->ncorners < APC_NCORNERS ? (int)s->ncorners : APC_NCORNERS;
+    for (int c = 0; c < ncorners; ++c) {
       bp[2 * c] = fb_scenario_road_entry(s, c);
       bp[2 * c + 1] = fb_scenario_road_exit(s, c);
     }
@@ -165,7 +168,7 @@ static int energy_balance(const fb_scenario *s, fb_hull **hull, double rtol, ene
     o.max_step = s->max_step;
     o.sample_rate = s->sample_rate;
     o.breakpoints = bp;
-    o.nbreakpoints = 2 * APC_NCORNERS;
+    o.nbreakpoints = 2 * (size_t)ncorners;
     rc = fb_sim_run(bd, &o, &res, err);
   }
   if (!rc && fb_result_nsamples(res) == 0)

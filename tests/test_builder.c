@@ -238,6 +238,11 @@ static void test_every_signal(void)
     return;
   road_bump(s)->first_contact = 0.5; /* the whole crossing within 4 s */
   s->t_end = 4;
+  /* LF offers every corner signal: stops too (far: never touched). */
+  fb_stop_init(&s->corner[0].stops.bump);
+  s->corner[0].stops.bump.given = 1;
+  s->corner[0].stops.bump.gap = 0.5;
+  s->corner[0].stops.bump.rate = 1e6;
   size_t nkinds = 0;
   const fb_output_kind *kinds = fb_vehicle_output_kinds(&nkinds);
   for (size_t k = 0; k < nkinds; ++k) {

@@ -67,6 +67,10 @@ static const fb_tire_model scaled = {
     .ops = &scaled_ops,
 };
 
+/* The table tire's example: the paper's tire as a table, a line of
+ * slope tire_k = 500000 N/m through (0, 0). */
+#define TIRE_TABLE_LINE "\n  tire_table: {points: [[0, 0], [0.1, 50000]]}"
+
 /* ---- Loading the reference scenario with wheel keys of its own. */
 
 /* The example with text after the top-level wheel's tire_c line, and
@@ -167,8 +171,9 @@ static void check_weight_carried(const fb_tire_model *m, const fb_scenario *s)
   fb_result_free(&r);
 }
 
-/* Its two elements, built for a corner alone. */
-static void check_built(const fb_tire_model *m)
+/* Its two elements, built for a corner alone with the tire block of
+ * the loaded example's corner from. */
+static void check_built(const fb_tire_model *m, const fb_corner_params *from)
 {
   fb_corner_params c = {.name = "X",
                         .spring_k = 1e5,
@@ -179,6 +184,7 @@ static void check_built(const fb_tire_model *m)
                         .tire_static_deflection = 0.04};
   fb_err err;
   CHECK(fb_corner_set_tire(&c, m, NULL, &err) == FB_OK);
+  c.tire = from->tire;
   fb_bg *bg = NULL;
   CHECK(fb_vehicle_corner(&c, 9.81, &bg, &err) == FB_OK);
   CHECK(bg && fb_bg_find_element(bg, "tire_spring") >= 0 &&
@@ -217,15 +223,16 @@ static void check_model(const fb_tire_model *m, const fb_tire_gallery *g)
   fb_tire_params p;
   fb_tire_params_init(m, &p);
   CHECK(fb_params_check(m->param, m->nparams, p.bytes, &err) == FB_OK);
-  check_built(m);
-  char wheel[128];
-  snprintf(wheel, sizeof wheel, "\n  tire_contact: %s", m->name);
+  char wheel[192];
+  snprintf(wheel, sizeof wheel, "\n  tire_contact: %s%s", m->name,
+           m == &fb_tire_model_table ? TIRE_TABLE_LINE : "");
   fb_scenario *s = NULL;
   CHECK(load_wheel(wheel, "", g, NULL, 0, &s, &err) == FB_OK);
   if (!s) {
     fprintf(stderr, "  %s: %s\n", m->name, err.msg);
     return;
   }
+  check_built(m, &s->corner[0]);
   for (size_t c = 0; c < s->ncorners; ++c)
     CHECK(fb_corner_tire_model(&s->corner[c]) == m);
   at_rest(s);
@@ -236,7 +243,7 @@ static void check_model(const fb_tire_model *m, const fb_tire_gallery *g)
 
 static void test_conformance(const fb_tire_gallery *g)
 {
-  CHECK(fb_tire_gallery_count(g) >= 4);
+  CHECK(fb_tire_gallery_count(g) >= 5);
   for (size_t i = 0; i < fb_tire_gallery_count(g); ++i)
     check_model(fb_tire_gallery_at(g, i), g);
 }
@@ -311,6 +318,22 @@ static void test_errors(const fb_tire_gallery *g)
        "`hunt_crossley` tire, but this corner's tire is `scaled`"},
       {"\n  tire_contact: hunt_crossley\n  hunt_crossley: {deflection_ref: -0.01}", "",
        "bad.yaml:91:35: wheel.hunt_crossley.deflection_ref: must be > 0 m (got -0.01)"},
+      {"\n  tire_contact: table", "",
+       "bad.yaml:96:7: suspensions.axles[0]: missing required key 'wheel.tire_table': a "
+       "`table` tire's force-deflection table, here or at the top-level wheel"},
+      {"\n  tire_contact: table\n  tire_table: {points: [[0, 0], [0.1, 5000], [0.2, 4000]]}",
+       "",
+       "bad.yaml:91:15: wheel.tire_table: table law decreases: at point 3 phi(0.2) = 4000 "
+       "is below point 2's 5000"},
+      {"\n  tire_contact: table\n  tire_table: {points: [[0.01, 0], [0.1, 5000]]}", "",
+       "bad.yaml:91:15: wheel.tire_table: corner 'LF': a tire table starts at (0, 0)"},
+      {TIRE_TABLE_LINE, "",
+       "bad.yaml:90:3: wheel.tire_table: no corner's tire is table (wheel.tire_contact "
+       "chooses the tires): the table would reach none"},
+      {"\n  tire_contact: table" TIRE_TABLE_LINE,
+       "\n      wheel: {tire_contact: bilateral, tire_table: {points: [[0, 0], [1, 1]]}}",
+       "bad.yaml:102:40: suspensions.axles[0].wheel.tire_table: the table of a `table` tire, "
+       "but this corner's tire is `bilateral`"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
     fb_err err;
@@ -376,6 +399,31 @@ static void test_hunt_crossley_reference(const fb_tire_gallery *g)
   fb_scenario_free(&b);
 }
 
+/* The table tire whose table is the line tire_k x (TIRE_TABLE_LINE)
+ * against the unilateral tire of that rate, on a bump high enough (0.3
+ * m) for wheels to leave the road and land again: the same forces on
+ * both sides of every event. The two build different laws (a tabulated
+ * one, not marked affine, against the affine pair), so the integrator's
+ * Newton matrices and steps differ and the runs agree to its tolerances,
+ * not to round-off: 4.2e-8 of a signal's range measured at
+ * simulate_rigid's rtol 1e-6; 1e-6 of it is rtol's own size, and fails a
+ * table whose rate is off by 0.1 %. */
+static void test_table_as_line(const fb_tire_gallery *g)
+{
+  fb_err err;
+  fb_scenario *a = NULL, *b = NULL;
+  CHECK(load_wheel("\n  tire_contact: unilateral", "", g, NULL, 0, &a, &err) == FB_OK);
+  CHECK(load_wheel("\n  tire_contact: table" TIRE_TABLE_LINE, "", g, NULL, 0, &b, &err) ==
+        FB_OK);
+  if (a && b) {
+    const fb_tire_table_params *p = (const void *)b->corner[0].tire.bytes;
+    CHECK(p->npoints == 2 && p->force[1] / p->deflection[1] == a->corner[0].tire_k);
+    compare_runs(&a, &b, 0.3, 1e-6, "table tire as a line vs unilateral");
+  }
+  fb_scenario_free(&a);
+  fb_scenario_free(&b);
+}
+
 int main(void)
 {
   fb_err err;
@@ -383,7 +431,7 @@ int main(void)
   CHECK(fb_tire_gallery_new(&g, &err) == FB_OK);
   if (!g)
     return check_report("test_tire_gallery");
-  CHECK(fb_tire_gallery_count(g) == 3);
+  CHECK(fb_tire_gallery_count(g) == 4);
   CHECK(fb_tire_gallery_at(g, 0) == &fb_tire_model_bilateral);
   test_registration(g);
   test_conformance(g);
@@ -391,6 +439,7 @@ int main(void)
   test_errors(g);
   test_scaled_run(g);
   test_hunt_crossley_reference(g);
+  test_table_as_line(g);
   fb_tire_gallery_free(&g);
   return check_report("test_tire_gallery");
 }

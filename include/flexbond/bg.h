@@ -238,6 +238,15 @@ int fb_table_law_check_passive(const fb_table_law *law, fb_err *err);
  * Takes ownership of *law and sets it to NULL, also on failure. Refuses
  * (FB_EINVAL, see fb_table_law_check_passive) a law that is not passive. */
 int fb_bg_add_r_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err);
+/* FB_EINVAL unless the law's values do not decrease from knot to knot,
+ * so that phi' >= 0 everywhere (a stable spring, a convex energy). */
+int fb_table_law_check_monotone(const fb_table_law *law, fb_err *err);
+/* Adds a one-port C element (dimension 1) named name with law e = phi(q),
+ * its energy phi's integral from q = 0: a spring's force against its
+ * travel, which may be nonzero at 0 (a preload). Takes ownership of *law
+ * and sets it to NULL, also on failure. Refuses (FB_EINVAL, see
+ * fb_table_law_check_monotone) a law that decreases. */
+int fb_bg_add_c_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err);
 
 /* ---- Unilateral compliant contact: a spring k and a damper c in
  * parallel (Kelvin-Voigt) that can push but never pull, e.g. a tire on
@@ -281,6 +290,12 @@ int fb_bg_add_unilateral_contact(fb_bg *bg, const char *spring, const char *damp
  * otherwise as fb_bg_add_unilateral_contact. */
 int fb_bg_add_hunt_crossley_contact(fb_bg *bg, const char *spring, const char *damper, double k,
                                     double lambda, fb_err *err);
+/* As fb_bg_add_unilateral_contact with the spring's force in contact a
+ * table's phi(q) (law, copied: knots from (0, 0), forces not decreasing,
+ * not all 0; its energy phi's integral) in place of k q. Neither
+ * element is then recognised by fb_bg_element_contact. */
+int fb_bg_add_table_contact(fb_bg *bg, const char *spring, const char *damper,
+                            const fb_table_law *law, double c, fb_err *err);
 
 /* Initial state (p for I, q for C) of a field, stacked; default zero. */
 int fb_bg_set_initial(fb_bg *bg, const char *name, size_t n, const double *x0, fb_err *err);

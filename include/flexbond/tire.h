@@ -7,8 +7,9 @@
  * check its values and build the tire's two elements into a corner's
  * bond graph. The built-in models are the paper's linear tire
  * (fb_tire_model_bilateral), the same pair unable to pull
- * (fb_tire_model_unilateral) and a Hunt-Crossley tire whose damping grows
- * with the deflection (fb_tire_model_hunt_crossley); a program adds its
+ * (fb_tire_model_unilateral), a Hunt-Crossley tire whose damping grows
+ * with the deflection (fb_tire_model_hunt_crossley) and a unilateral tire
+ * of a force-deflection table (fb_tire_model_table); a program adds its
  * own to an fb_tire_gallery. Nothing outside a model's own file asks
  * which model it is: a caller reads its content and calls its ops. */
 #ifndef FLEXBOND_TIRE_H
@@ -24,8 +25,12 @@
 extern "C" {
 #endif
 
-/* The largest parameter block of a tire model, bytes. */
-#define FB_TIRE_PARAMS_MAX ((size_t)64)
+/* Most points of a tire's force-deflection table. */
+enum { FB_TIRE_MAX_POINTS = 64 };
+
+/* The largest parameter block of a tire model, bytes: room for a table
+ * of FB_TIRE_MAX_POINTS knots. */
+#define FB_TIRE_PARAMS_MAX ((size_t)(2 * FB_TIRE_MAX_POINTS + 2) * sizeof(double))
 
 /* The parameter block a corner holds for its tire model; its bytes are
  * the model's own struct. A block owns nothing: a corner is copied by
@@ -94,12 +99,23 @@ void fb_tire_params_init(const fb_tire_model *m, fb_tire_params *p);
 extern const fb_tire_model fb_tire_model_bilateral;
 extern const fb_tire_model fb_tire_model_unilateral;
 extern const fb_tire_model fb_tire_model_hunt_crossley;
+extern const fb_tire_model fb_tire_model_table;
 
 /* Hunt-Crossley's block: the deflection at which the damping is tire_c
  * (m, > 0; NaN: the static deflection). */
 typedef struct fb_tire_hunt_crossley_params {
   double deflection_ref;
 } fb_tire_hunt_crossley_params;
+
+/* The table model's block: the tire's force (N) against its deflection
+ * (m) at npoints knots (2 .. FB_TIRE_MAX_POINTS) from (0, 0),
+ * deflections increasing and forces not decreasing, interpolated
+ * monotonically (fb_table_law) and continued along its last tangent;
+ * unilateral as fb_tire_model_unilateral, damped by tire_c in contact. */
+typedef struct fb_tire_table_params {
+  size_t npoints;
+  double deflection[FB_TIRE_MAX_POINTS], force[FB_TIRE_MAX_POINTS];
+} fb_tire_table_params;
 
 /* A set of tire models: the built-in ones, and those a program adds. */
 typedef struct fb_tire_gallery fb_tire_gallery;

@@ -37,6 +37,8 @@
 #include "flexbond/fem.h"
 #include "flexbond/road.h"
 #include "flexbond/sim.h"
+#include "flexbond/spring.h"
+#include "flexbond/stop.h"
 #include "flexbond/tire.h"
 
 #ifdef __cplusplus
@@ -107,8 +109,18 @@ typedef struct fb_hull_section {
  * travel relative to the hull), the wheel mass, the tire spring and
  * damper in parallel between the wheel and the road. */
 typedef struct fb_corner_params {
-  char *name;      /* "LF"; instance "susp_LF", mesh node set "SUSP_LF"; owned */
-  double spring_k; /* N/m */
+  char *name; /* "LF"; instance "susp_LF", mesh node set "SUSP_LF"; owned */
+  /* N/m: the linear spring law's rate, and the rate estimates use (the
+   * finite-element hull's attachments, plausibility warnings) whatever
+   * the law. */
+  double spring_k;
+  /* The suspension spring: a law of a spring gallery (flexbond/spring.h;
+   * borrowed, NULL: fb_spring_law_linear) and its parameter block.
+   * fb_corner_set_spring sets both. */
+  const fb_spring_law *spring_law;
+  fb_spring_params spring;
+  /* Its bump and rebound stops (flexbond/stop.h); neither given: none. */
+  fb_stops stops;
   /* The shock absorber: a law of a damper gallery (flexbond/damper.h;
    * borrowed, NULL: fb_damper_law_linear) and its parameter block.
    * fb_corner_set_damper sets both. */
@@ -273,7 +285,9 @@ typedef enum fb_part_kind {
   FB_PART_TIRE = 9,         /* corner[index]'s tire model's parameter field (fb_param.name) */
   FB_PART_HULL_SOURCE = 10, /* the hull source's parameter field (fb_param.name); index 0 */
   FB_PART_DAMPER = 11,      /* corner[index]'s damper law's parameter field (fb_param.name) */
-  FB_PART_KINDS = 12
+  FB_PART_SPRING = 12,      /* corner[index]'s spring law's parameter field (fb_param.name) */
+  FB_PART_STOP = 13,        /* corner[index]'s stops: field "bump_stop.gap", ... */
+  FB_PART_KINDS = 18
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -634,6 +648,17 @@ const fb_damper_law *fb_corner_damper_law(const fb_corner_params *c);
 /* 1 when corner c's shock absorber is linear with its values (the law's
  * linear op), so a linear analysis needs no linearisation for it. */
 int fb_corner_damper_linear(const fb_corner_params *c);
+/* The spring of corner c: law l (borrowed: it outlives c) and a new
+ * block of its defaults (fb_spring_params_init), which *params points to
+ * when params is not NULL. FB_EINVAL when l is not sound
+ * (fb_spring_law_check). */
+int fb_corner_set_spring(fb_corner_params *c, const fb_spring_law *l, void **params,
+                         fb_err *err);
+/* The law of corner c's spring: c->spring_law, fb_spring_law_linear when
+ * NULL. */
+const fb_spring_law *fb_corner_spring_law(const fb_corner_params *c);
+/* What c's spring law knows of c (fb_spring_context; c->name borrowed). */
+fb_spring_context fb_corner_spring_context(const fb_corner_params *c);
 /* The model of corner c's tire: c->tire_model, fb_tire_model_bilateral
  * when it has none (a corner made by hand, zeroed). */
 const fb_tire_model *fb_corner_tire_model(const fb_corner_params *c);

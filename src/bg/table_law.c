@@ -461,3 +461,47 @@ const fb_table_law *fb_bg_element_table_law(const fb_bg *bg, size_t i)
   const fb_law_ops *law = fb_bg_element_law(bg, i, &ctx);
   return law && law->id == FB_LAW_TABLE ? ctx : NULL;
 }
+
+/* ---- As the law of a C element. */
+
+/* Fritsch & Carlson's interpolant of non-decreasing data is
+ * non-decreasing on every interval, and its end tangents are the end
+ * secants (>= 0 then), so phi' >= 0 everywhere exactly when the values
+ * do not decrease from knot to knot: the stored energy, phi's integral,
+ * is convex. */
+int fb_table_law_check_monotone(const fb_table_law *law, fb_err *err)
+{
+  for (size_t k = 1; k < law->n; ++k)
+    if (law->y[k] < law->y[k - 1])
+      return fb_err_set(err, FB_EINVAL,
+                        "table law decreases: at point %zu phi(%g) = %g is below point %zu's "
+                        "%g (values must not decrease)",
+                        k + 1, law->x[k], law->y[k], k, law->y[k - 1]);
+  return FB_OK;
+}
+
+/* A C element's law e = phi(q): its stored energy the integral of phi
+ * from q = 0 (where a preloaded spring already pushes: the energy then
+ * is signed, only its changes matter). Not recognised as FB_LAW_TABLE,
+ * which names the R of fb_bg_add_r_table. */
+static const fb_law_ops c_table_law_ops = {.name = "table spring",
+                                           .eval = ops_eval,
+                                           .jacobian = ops_jacobian,
+                                           .energy = ops_energy,
+                                           .free = ops_free};
+
+int fb_bg_add_c_table(fb_bg *bg, const char *name, fb_table_law **law, fb_err *err)
+{
+  static const size_t one_port[1] = {1};
+  if (!law || !*law)
+    return fb_err_set(err, FB_EINVAL, "'%s': NULL table law", name ? name : "(null)");
+  int rc = fb_table_law_check_monotone(*law, err);
+  if (rc) {
+    fb_table_law_free(law);
+    fb_err_prefix(err, "C '%s': ", name ? name : "(null)");
+    return rc;
+  }
+  fb_table_law *ctx = *law;
+  *law = NULL;
+  return fb_bg_add_field_law(bg, name, FB_BG_C, 1, one_port, &c_table_law_ops, ctx, err);
+}

@@ -409,38 +409,88 @@ static void damper_line(const fb_corner_params *c, char *buf, size_t size)
     snprintf(buf, size, "%s, %s", l->name, l->meaning);
 }
 
-/* 1 if corners a and b have shock absorbers a report says alike. */
-static int same_damper(const fb_corner_params *a, const fb_corner_params *b)
+/* Corner c's spring in a report's words: its law's line for its values,
+ * else the law's name and meaning (plain text, as damper_line's). */
+static void spring_line(const fb_corner_params *c, char *buf, size_t size)
 {
-  char la[160], lb[160];
-  damper_line(a, la, sizeof la);
-  damper_line(b, lb, sizeof lb);
-  return !strcmp(la, lb);
+  const fb_spring_law *l = fb_corner_spring_law(c);
+  const fb_spring_context ctx = fb_corner_spring_context(c);
+  if (l->ops->describe)
+    l->ops->describe(c->spring.bytes, &ctx, buf, size);
+  else
+    snprintf(buf, size, "%s, %s", l->name, l->meaning);
 }
 
-/* The shock absorbers, the corners with the same one together, in the
- * order the corners first name them. */
-static void write_dampers(FILE *fp, const fb_scenario *s)
+/* Appends stop st's words (which: "bump", "rebound") to buf, n bytes
+ * long; the new length. */
+static size_t stop_words(const char *which, const fb_stop *st, char *buf, size_t size, size_t n)
 {
-  fputs("- Shock absorbers: ", fp);
+  if (!st->given)
+    return n;
+  int w = st->npoints ? snprintf(buf + n, size - n, "%s%s at %g m, a table of %zu points",
+                                 n ? "; " : "", which, st->gap, st->npoints)
+                      : snprintf(buf + n, size - n, "%s%s at %g m, %g N/m", n ? "; " : "",
+                                 which, st->gap, st->rate);
+  n += w > 0 && (size_t)w < size - n ? (size_t)w : 0;
+  if (st->damping > 0.0) {
+    w = snprintf(buf + n, size - n, ", %g N s/m", st->damping);
+    n += w > 0 && (size_t)w < size - n ? (size_t)w : 0;
+  }
+  return n;
+}
+
+/* Corner c's stops in a report's words ("none" without). */
+static void stops_line(const fb_corner_params *c, char *buf, size_t size)
+{
+  buf[0] = '\0';
+  const size_t n = stop_words("bump", &c->stops.bump, buf, size, 0);
+  if (!stop_words("rebound", &c->stops.rebound, buf, size, n))
+    snprintf(buf, size, "none");
+}
+
+typedef void (*corner_words)(const fb_corner_params *c, char *buf, size_t size);
+
+/* One item of the Assumptions: title, then the corners words says alike
+ * together, in the order the corners first name them. */
+static void write_corners_alike(FILE *fp, const fb_scenario *s, const char *title,
+                                corner_words words)
+{
+  fprintf(fp, "- %s: ", title);
   for (size_t k = 0; k < s->ncorners; ++k) {
+    char line[192], other[192];
+    words(&s->corner[k], line, sizeof line);
     size_t seen = 0;
-    for (size_t c = 0; c < k; ++c)
-      seen += same_damper(&s->corner[c], &s->corner[k]);
+    for (size_t c = 0; c < k; ++c) {
+      words(&s->corner[c], other, sizeof other);
+      seen += !strcmp(line, other);
+    }
     if (seen)
       continue;
     fputs(k ? "; " : "", fp);
-    for (size_t c = k, i = 0; c < s->ncorners; ++c)
-      if (same_damper(&s->corner[c], &s->corner[k])) {
+    for (size_t c = k, i = 0; c < s->ncorners; ++c) {
+      words(&s->corner[c], other, sizeof other);
+      if (!strcmp(line, other)) {
         fputs(i++ ? ", " : "", fp);
         fb_md_write_text(fp, s->corner[c].name);
       }
-    char line[160];
-    damper_line(&s->corner[k], line, sizeof line);
+    }
     fputs(": ", fp);
     fb_md_write_text(fp, line);
   }
   fputs(".\n", fp);
+}
+
+/* The shock absorbers, the springs and, where a corner has them, the
+ * stops. */
+static void write_suspensions(FILE *fp, const fb_scenario *s)
+{
+  write_corners_alike(fp, s, "Shock absorbers", damper_line);
+  write_corners_alike(fp, s, "Springs", spring_line);
+  int stops = 0;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    stops |= fb_stops_any(&s->corner[c].stops);
+  if (stops)
+    write_corners_alike(fp, s, "Bump and rebound stops (gap, rate, damping)", stops_line);
 }
 
 static void write_assumptions(FILE *fp, const cli_run_outputs *o)
@@ -455,7 +505,7 @@ static void write_assumptions(FILE *fp, const cli_run_outputs *o)
     fputs("- Initial state: the static equilibrium under gravity and the load (`static`).\n",
           fp);
   write_payload(fp, s);
-  write_dampers(fp, s);
+  write_suspensions(fp, s);
   fprintf(fp, "- Solver: CVODE, variable-order BDF, rtol %.3g, atol %.3g, ", s->rtol, s->atol);
   if (s->max_step > 0)
     fprintf(fp, "steps at most %.6g s", s->max_step);

@@ -286,6 +286,55 @@ static int sc_tire_foreign(sch_reader *r, const fb_tire_model *const *models,
   return FB_OK;
 }
 
+/* The tire table of corner c (at node, its key paths under item_path)
+ * when its model m is the one the items' SC_TIRE_TABLE key reads (its
+ * data): the corner's own, else the top level's, recorded as the
+ * corner's; required then. */
+static int sc_corner_tire_table(sch_reader *r, const sch_key *list, struct fy_node *node,
+                                const char *item_path, fb_corner_params *c,
+                                const fb_tire_model *m)
+{
+  const sch_key *k = sch_key_of(list->items, SC_TIRE_TABLE);
+  struct fy_node *wheel = node ? ml_get(node, "wheel", NULL) : NULL;
+  struct fy_node *key = NULL;
+  struct fy_node *table = wheel ? ml_get(wheel, "tire_table", &key) : NULL;
+  if (k && k->data != m && table)
+    return ml_fail_key(r->c, wheel, key, FB_EPARSE,
+                       "the table of a `%s` tire, but this corner's tire is `%s` (%s)",
+                       ((const fb_tire_model *)k->data)->name, m->name, SC_TIRE_CHOICE);
+  if (!k || k->data != m)
+    return FB_OK;
+  char path[SCH_PATH_MAX + 64];
+  snprintf(path, sizeof path, "%s.%s", item_path, SC_TIRE_TABLE);
+  int rc = FB_OK;
+  if (!table && node) {
+    struct fy_node *top = ml_get(fy_document_root(fy_node_document(node)), "wheel", NULL);
+    table = top ? ml_get(top, "tire_table", NULL) : NULL;
+    rc = table ? sch_origin_inherit(r, path, SC_TIRE_TABLE) : FB_OK;
+  }
+  if (!rc && !table)
+    return ml_fail(r->c, node, FB_EPARSE,
+                   "missing required key '%s': a `%s` tire's force-deflection table, here or "
+                   "at the top-level wheel",
+                   SC_TIRE_TABLE, m->name);
+  fb_table_law *law = NULL;
+  if (!rc)
+    rc = ml_table_law(r->c, r->c->globals, table, &law);
+  const double *x = NULL, *f = NULL;
+  const size_t n = rc ? 0 : fb_table_law_knots(law, &x, &f);
+  if (!rc && n > FB_TIRE_MAX_POINTS)
+    rc = ml_fail(r->c, table, FB_EINVAL, "a tire table has at most %d points (got %zu)",
+                 (int)FB_TIRE_MAX_POINTS, n);
+  if (!rc) {
+    fb_tire_table_params *p = (fb_tire_table_params *)(void *)c->tire.bytes;
+    p->npoints = n;
+    memcpy(p->deflection, x, n * sizeof *x);
+    memcpy(p->force, f, n * sizeof *f);
+  }
+  fb_table_law_free(&law);
+  return rc;
+}
+
 int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
                    const char *item_path, fb_corner_params *c)
 {
@@ -319,7 +368,7 @@ int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
     if (o && !own)
       rc = sch_origin_inherit(r, path, top);
   }
-  return rc;
+  return rc ? rc : sc_corner_tire_table(r, list, node, item_path, c, m);
 }
 
 int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *root,
@@ -341,7 +390,18 @@ int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *roo
                          "reach none",
                          models[j]->name, SC_TIRE_CHOICE);
   }
-  return FB_OK;
+  /* The top level's tire table, for the model its key names. */
+  const sch_key *table = sch_key_of(t, SC_TIRE_TABLE);
+  struct fy_node *key = NULL;
+  if (!table || !wheel || !ml_get(wheel, "tire_table", &key) || !key)
+    return FB_OK;
+  for (size_t c = 0; c < s->ncorners; ++c)
+    if (fb_corner_tire_model(&s->corner[c]) == table->data)
+      return FB_OK;
+  return ml_fail_key(
+      r->c, wheel, key, FB_EPARSE,
+      "no corner's tire is %s (%s chooses the tires): the table would reach none",
+      ((const fb_tire_model *)table->data)->name, SC_TIRE_CHOICE);
 }
 
 /* ---- Damper laws: a section of parameters per law, in every corner. */

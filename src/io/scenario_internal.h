@@ -30,6 +30,8 @@ extern const sch_table sc_format;
 /* The key of sc_format, and of its corners' items, after which the tire
  * models' sections go; its choices are the models' names. */
 #define SC_TIRE_CHOICE "wheel.tire_contact"
+/* The force-deflection table of a tire whose model is the table one. */
+#define SC_TIRE_TABLE "wheel.tire_table"
 /* The top level's section wheel.<model> of a model no corner's tire is
  * (its values would reach no corner, and a sweep over them would change
  * nothing) refused at its key, once the corners are read (t: the table

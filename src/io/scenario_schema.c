@@ -11,6 +11,8 @@
 
 #include "flexbond/hull_source.h"
 #include "flexbond/io.h"
+#include "flexbond/spring.h"
+#include "flexbond/stop.h"
 
 #include "core/util.h"
 #include "io/scenario_internal.h"
@@ -468,6 +470,167 @@ static const sch_ops sc_damper_table = {.read = sc_read_damper_table,
                                         .format = sc_format_damper_table,
                                         .present = sc_damper_present};
 
+/* ---- A tire's force-deflection table. */
+
+/* Checked as a table where it is written; the corner whose tire is the
+ * key's model (its data) reads it into its block (sc_corner_tire). */
+static int sc_read_tire_table(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
+{
+  (void)k, (void)base;
+  fb_table_law *law = NULL;
+  const int rc = ml_table_law(r->c, r->c->globals, node, &law);
+  fb_table_law_free(&law);
+  return rc;
+}
+
+static void sc_format_tire_table(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  (void)k;
+  const fb_corner_params *c = base;
+  snprintf(buf, size, "%zu points",
+           ((const fb_tire_table_params *)(const void *)c->tire.bytes)->npoints);
+}
+
+/* A corner's table is there when its tire is the table's model (the top
+ * level's is only inherited: no such op). */
+static int sc_tire_table_present(const sch_key *k, const void *base)
+{
+  return fb_corner_tire_model(base) == k->data;
+}
+
+static const sch_ops sc_tire_table_top = {.read = sc_read_tire_table};
+static const sch_ops sc_tire_table = {.read = sc_read_tire_table,
+                                      .format = sc_format_tire_table,
+                                      .present = sc_tire_table_present};
+
+/* ---- A corner's spring law and its stops. */
+
+/* The knots of a spring table into the corner (copied), refusing a
+ * table that decreases or is too long. */
+static int sc_read_spring_table(sch_reader *r, const sch_key *k, struct fy_node *node,
+                                void *base)
+{
+  const ml_ctx *c = r->c;
+  fb_spring_table_params *out = NULL;
+  fb_table_law *law = NULL;
+  int rc = ml_table_law(c, c->globals, node, &law);
+  const double *x = NULL, *f = NULL;
+  const size_t n = rc ? 0 : fb_table_law_knots(law, &x, &f);
+  if (!rc && n > FB_SPRING_MAX_POINTS)
+    rc = ml_fail(c, node, FB_EINVAL, "a spring table has at most %d points (got %zu)",
+                 (int)FB_SPRING_MAX_POINTS, n);
+  if (!rc && fb_table_law_check_monotone(law, c->err))
+    rc = ml_blame(c, node);
+  if (!rc && fb_corner_set_spring(base, k->data, (void **)&out, c->err))
+    rc = ml_blame(c, node);
+  if (!rc) {
+    out->npoints = n;
+    memcpy(out->travel, x, n * sizeof *x);
+    memcpy(out->force, f, n * sizeof *f);
+  }
+  fb_table_law_free(&law);
+  return rc;
+}
+
+static void sc_format_spring_table(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  (void)k;
+  const fb_corner_params *c = base;
+  snprintf(buf, size, "%zu points",
+           ((const fb_spring_table_params *)(const void *)c->spring.bytes)->npoints);
+}
+
+/* A spring law's key (its data the law) is there when it is the corner's
+ * law; the linear law's preload when it is not the paper's 0. */
+static int sc_spring_present(const sch_key *k, const void *base)
+{
+  const fb_corner_params *c = base;
+  if (fb_corner_spring_law(c) != k->data)
+    return 0;
+  return k->type != SCH_NUMBER ||
+         ((const fb_spring_linear_params *)(const void *)c->spring.bytes)->preload != 0.0;
+}
+
+static const sch_ops sc_spring_table = {.read = sc_read_spring_table,
+                                        .format = sc_format_spring_table,
+                                        .present = sc_spring_present};
+static const sch_ops sc_spring_preload = {.present = sc_spring_present};
+
+/* Where a corner's stops are: a stop key's data. */
+static const size_t sc_bump_at = offsetof(fb_corner_params, stops.bump);
+static const size_t sc_rebound_at = offsetof(fb_corner_params, stops.rebound);
+
+/* The stop of key k (its data the stop's offset) in the corner base. */
+static const fb_stop *sc_stop_of(const sch_key *k, const void *base)
+{
+  return (const fb_stop *)(const void *)((const char *)base + *(const size_t *)k->data);
+}
+
+static fb_stop *sc_stop_at(const sch_key *k, void *base)
+{
+  return (fb_stop *)(void *)((char *)base + *(const size_t *)k->data);
+}
+
+/* A stop's section written: the stop is there, with its defaults. */
+static int sc_stop_begin(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
+{
+  (void)r, (void)node;
+  fb_stop *st = sc_stop_at(k, base);
+  fb_stop_init(st);
+  st->given = 1;
+  return FB_OK;
+}
+
+static int sc_stop_present(const sch_key *k, const void *base)
+{
+  return sc_stop_of(k, base)->given;
+}
+
+/* A stop's force-deflection table, its knots copied (the corner's check
+ * holds them to a stop's rules, at this key). */
+static int sc_read_stop_table(sch_reader *r, const sch_key *k, struct fy_node *node, void *base)
+{
+  const ml_ctx *c = r->c;
+  fb_stop *st = sc_stop_at(k, base);
+  fb_table_law *law = NULL;
+  int rc = ml_table_law(c, c->globals, node, &law);
+  const double *x = NULL, *f = NULL;
+  const size_t n = rc ? 0 : fb_table_law_knots(law, &x, &f);
+  if (!rc && n > FB_STOP_MAX_POINTS)
+    rc = ml_fail(c, node, FB_EINVAL, "a stop's table has at most %d points (got %zu)",
+                 (int)FB_STOP_MAX_POINTS, n);
+  if (!rc) {
+    st->npoints = n;
+    memcpy(st->deflection, x, n * sizeof *x);
+    memcpy(st->force, f, n * sizeof *f);
+  }
+  fb_table_law_free(&law);
+  return rc;
+}
+
+static void sc_format_stop_table(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  snprintf(buf, size, "%zu points", sc_stop_of(k, base)->npoints);
+}
+
+static int sc_stop_table_present(const sch_key *k, const void *base)
+{
+  const fb_stop *st = sc_stop_of(k, base);
+  return st->given && st->npoints > 0;
+}
+
+static int sc_stop_rate_present(const sch_key *k, const void *base)
+{
+  const fb_stop *st = sc_stop_of(k, base);
+  return st->given && st->npoints == 0;
+}
+
+static const sch_ops sc_stop_section = {.begin = sc_stop_begin, .present = sc_stop_present};
+static const sch_ops sc_stop_table = {.read = sc_read_stop_table,
+                                      .format = sc_format_stop_table,
+                                      .present = sc_stop_table_present};
+static const sch_ops sc_stop_rate = {.present = sc_stop_rate_present};
+
 /* ---- outputs. */
 
 /* fb_name_fn over the signal kinds. */
@@ -765,6 +928,37 @@ static const sch_key sc_section_keys[] = {
 };
 static const sch_table sc_section_table = TABLE(sc_section_keys, NULL);
 
+/* A stop's section and keys: name its key, m its member of fb_stops,
+ * at the offset variable where, touched in travel (compression or
+ * extension). */
+#define STOP_KEYS(name, m, where, travel)                                                      \
+  KEY(.path = (name), .type = SCH_SECTION, OPT,                                                \
+      .doc = "the " #m " stop, touched at a spring " travel " of `gap`",                       \
+      .ops = &sc_stop_section, C_IS(stops), .data = &(where)),                                 \
+      KEY(.path = name ".gap", .type = SCH_NUMBER, .unit = "m", NONNEGATIVE, REQ,              \
+          .doc = "the spring's " travel " at which the stop is touched, from zero travel",     \
+          C_OFF(stops.m.gap), PLAUSIBLE(1e-3, 0.5, SC_WHY_STOP_GAP)),                          \
+      KEY(.path = name ".rate", .type = SCH_NUMBER, .unit = "N/m", POSITIVE, ONE_OF(name),     \
+          .doc = "a linear stop's rate", C_OFF(stops.m.rate), .ops = &sc_stop_rate,            \
+          .data = &(where), PLAUSIBLE(1e4, 1e8, SC_WHY_STOP_RATE)),                            \
+      KEY(.path = name ".table", .type = SCH_CUSTOM,                                           \
+          .type_doc = "`{points: [[d, F], ...]}` or `{file, velocity, force}`", ONE_OF(name),  \
+          .doc = "force (N) against the stop's own compression (m) from (0, 0), 2 to 32 "      \
+                 "points, forces not decreasing",                                              \
+          .ops = &sc_stop_table, C_IS(stops), .data = &(where)),                               \
+      KEY(.path = name ".damping", .type = SCH_NUMBER, .unit = "N s/m", NONNEGATIVE, DEF(0),   \
+          .doc = "damping while in contact, never pulling", C_OFF(stops.m.damping),            \
+          PLAUSIBLE(0, 1e6, SC_WHY_STOP_DAMPING)),                                             \
+      KEY(.path = name ".damping_depth", .type = SCH_NUMBER, .unit = "m", POSITIVE,            \
+          DEF(FB_STOP_DAMPING_DEPTH),                                                          \
+          .doc = "the stop's compression over which its damping grows from 0 to `damping`",    \
+          C_OFF(stops.m.damping_depth))
+
+#define SC_WHY_PRELOAD "a suspension spring's preload is at most a few hundred kN"
+#define SC_WHY_STOP_GAP "a suspension's travel to its stops is 1 mm to 0.5 m"
+#define SC_WHY_STOP_RATE "a bump or rebound stop is 1e4 to 1e8 N/m"
+#define SC_WHY_STOP_DAMPING "a stop's damping is at most a shock absorber's, 1e6 N s/m"
+
 static const sch_key sc_corner_keys[] = {
     STRING(NAME, "name", REQ,
            "a corner's name; an axle's corners are L and R before it (F: LF, RF)",
@@ -791,6 +985,23 @@ static const sch_key sc_corner_keys[] = {
                "a damper law of the gallery and its parameters, `{<law>: {<parameter>: "
                "value, ...}}`: exactly one law's section",
                NULL, C_IS(damper_law)),
+    NUMBER("spring_preload", "N", ANY, OPT,
+           "the linear spring's force at zero travel (the `linear` spring law's `preload`; "
+           "default 0, the paper's)",
+           .store = SCH_STORE_DOUBLE,
+           .offset =
+               offsetof(fb_corner_params, spring) + offsetof(fb_spring_linear_params, preload),
+           .one_of = "spring", .ops = &sc_spring_preload, .data = &fb_spring_law_linear,
+           C_IS(spring_law), PLAUSIBLE(-1e6, 1e6, SC_WHY_PRELOAD)),
+    KEY(.path = "spring_table", .type = SCH_CUSTOM,
+        .type_doc = "`{file, velocity, force}` or `{points: [[x, F], ...]}`", OPT,
+        .one_of = "spring",
+        .doc = "a nonlinear spring (the `table` spring law): force (N) against travel (m, "
+               "compression positive), 2 to 64 points, forces not decreasing; `spring_k` "
+               "stays the rate estimates use",
+        .ops = &sc_spring_table, .data = &fb_spring_law_table, C_IS(spring_law)),
+    STOP_KEYS("bump_stop", bump, sc_bump_at, "compression"),
+    STOP_KEYS("rebound_stop", rebound, sc_rebound_at, "extension"),
     NUMBER("motion_ratio", NULL, POSITIVE, INHERIT("suspensions.motion_ratio"),
            "spring travel / wheel travel relative to the hull", C_OFF(motion_ratio)),
     SECTION("wheel", OPT, "this corner's wheel, where it differs from the top-level `wheel`",
@@ -805,6 +1016,10 @@ static const sch_key sc_corner_keys[] = {
      * with a section wheel.<model> of its parameters after it. */
     CHOICE(SC_TIRE_CHOICE, NULL, INHERIT(SC_TIRE_CHOICE), "how the tire meets the road",
            NO_STORE, C_IS(tire_model)),
+    KEY(.path = SC_TIRE_TABLE, .type = SCH_CUSTOM,
+        .type_doc = "`{points: [[d, F], ...]}` or `{file, velocity, force}`", OPT,
+        .doc = "this corner's tire table, where it differs from the top-level `wheel`'s",
+        .ops = &sc_tire_table, .data = &fb_tire_model_table, C_IS(tire_model)),
 };
 const sch_table sc_corner_format = TABLE(sc_corner_keys, NULL);
 
@@ -995,6 +1210,11 @@ static const sch_key sc_keys[] = {
     NUMBER("wheel.tire_c", "N s/m", NONNEGATIVE, OPT, "tire damping", NO_STORE),
     CHOICE(SC_TIRE_CHOICE, NULL, DEF(0), "how every tire meets the road (the tire models')",
            NO_STORE),
+    KEY(.path = SC_TIRE_TABLE, .type = SCH_CUSTOM,
+        .type_doc = "`{points: [[d, F], ...]}` or `{file, velocity, force}`", OPT,
+        .doc = "a `table` tire's force (N) against its deflection (m) from (0, 0), 2 to 64 "
+               "points, forces not decreasing; every such corner's unless it gives its own",
+        .ops = &sc_tire_table_top, .data = &fb_tire_model_table),
     SECTION_IS("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions,
                S_IS(corner)),
     NUMBER("suspensions.motion_ratio", NULL, POSITIVE, DEF(1),
@@ -1170,6 +1390,31 @@ static int sc_damper_part_key(const fb_scenario *s, const fb_err_part *p, char *
   return sc_part_key(s, &q, key, size);
 }
 
+/* A tire model's parameter p: its generated key, or a key of the wheel
+ * of the same name written for it (wheel.tire_table). */
+static int sc_tire_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size)
+{
+  if (p->index >= s->ncorners || !s->corner[p->index].name || !p->field[0])
+    return 0;
+  const char *name = s->corner[p->index].name;
+  if (snprintf(key, size, "corners.%s.wheel.%s", name, p->field) > 0 && sc_has_origin(s, key))
+    return 1;
+  return snprintf(key, size, "corners.%s.wheel.%s.%s", name,
+                  fb_corner_tire_model(&s->corner[p->index])->name, p->field) > 0;
+}
+
+/* A spring law's parameter p: the corner's key that gave the law
+ * (spring_preload, spring_table). */
+static int sc_spring_part_key(const fb_scenario *s, const fb_err_part *p, char *key,
+                              size_t size)
+{
+  if (p->index >= s->ncorners || !s->corner[p->index].name)
+    return 0;
+  fb_err_part q = {.kind = FB_PART_CORNER, .index = p->index, .element = FB_ERR_NO_ELEMENT};
+  snprintf(q.field, sizeof q.field, "%s", fb_part_member_(FB_PART_CORNER, spring_law));
+  return sc_part_key(s, &q, key, size);
+}
+
 int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t size)
 {
   char prefix[SCH_PATH_MAX];
@@ -1184,12 +1429,15 @@ int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t si
   if (p->kind == FB_PART_HULL_SOURCE) /* hull.mesh.<source>.<parameter> */
     return p->field[0] && snprintf(key, size, "hull.mesh.%s.%s",
                                    fb_scenario_hull_source(s)->name, p->field) > 0;
+  if (p->kind == FB_PART_STOP) /* corners.<name>.bump_stop.<member> */
+    return p->index < s->ncorners && s->corner[p->index].name && p->field[0] &&
+           snprintf(key, size, "corners.%s.%s", s->corner[p->index].name, p->field) > 0;
+  if (p->kind == FB_PART_SPRING) /* the key the corner's spring law was given by */
+    return sc_spring_part_key(s, p, key, size);
   if (p->kind == FB_PART_DAMPER) /* the key the corner's damper law was given by */
     return sc_damper_part_key(s, p, key, size);
-  if (p->kind == FB_PART_TIRE) /* corners.<name>.wheel.<model>.<parameter> */
-    return p->index < s->ncorners && s->corner[p->index].name && p->field[0] &&
-           snprintf(key, size, "corners.%s.%s.%s.%s", s->corner[p->index].name, "wheel",
-                    fb_corner_tire_model(&s->corner[p->index])->name, p->field) > 0;
+  if (p->kind == FB_PART_TIRE) /* corners.<name>.wheel.<model>.<parameter>, else */
+    return sc_tire_part_key(s, p, key, size); /* corners.<name>.wheel.<its own key> */
   sc_schema *sc = NULL;
   if (sc_schema_of(s, &sc, NULL))
     return 0;

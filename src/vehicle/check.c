@@ -323,6 +323,41 @@ static int check_dampers(const fb_scenario *s, fb_err *err)
   return FB_OK;
 }
 
+/* Each corner's spring: a sound law, its block within the declared
+ * ranges, and the law's own rules; errors name the corner's spring
+ * parameter (FB_PART_SPRING) or its law. */
+static int check_springs(const fb_scenario *s, fb_err *err)
+{
+  const char *const member = fb_part_member_(FB_PART_CORNER, spring_law);
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const fb_corner_params *corner = &s->corner[c];
+    const fb_spring_law *l = fb_corner_spring_law(corner);
+    int rc = fb_spring_law_check(l, err);
+    if (rc)
+      return fb_err_set_part(err, FB_PART_CORNER, c, FB_ERR_NO_ELEMENT, member), rc;
+    const fb_spring_context ctx = fb_corner_spring_context(corner);
+    rc = fb_params_check(l->param, l->nparams, corner->spring.bytes, err);
+    if (!rc && l->ops->check)
+      rc = l->ops->check(corner->spring.bytes, &ctx, err);
+    if (rc)
+      return corner_entry_error(rc, err, FB_PART_SPRING, c, member);
+  }
+  return FB_OK;
+}
+
+/* Each corner's stops (fb_stops_check); errors name the stop's member
+ * (FB_PART_STOP). */
+static int check_stops(const fb_scenario *s, fb_err *err)
+{
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const int rc = fb_stops_check(&s->corner[c].stops, s->corner[c].name, err);
+    if (rc)
+      return corner_entry_error(rc, err, FB_PART_STOP, c,
+                                fb_part_member_(FB_PART_CORNER, stops));
+  }
+  return FB_OK;
+}
+
 /* Points closer than this are one point (m): the 1 mm within which a
  * deck's node must sit at the description's point. */
 #define SAME_POINT 1e-3
@@ -643,6 +678,11 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
                 "no corner named '%s' (a %s signal measures a corner)%s", o->of ? o->of : "",
                 o->signal, hint);
   }
+  const vehicle_signal *how = vehicle_fragment_signal(kind->subject, o->signal);
+  if (kind->subject == FB_OUTPUT_OF_CORNER && how && how->offered &&
+      !how->offered(&s->corner[fb_scenario_corner_find(s, o->of)]))
+    return fail(err, FB_PART_OUTPUT, i, "of", "corner '%s' has no %s for %s to measure", o->of,
+                how->needs, o->signal);
   if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
     names_hint(s, o->of, s->nmounts, mount_name_at, "mounts", hint, sizeof hint);
     return fail(err, FB_PART_OUTPUT, i, "of",
@@ -718,6 +758,10 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = check_load(s, err);
   if (!rc)
     rc = check_dampers(s, err);
+  if (!rc)
+    rc = check_springs(s, err);
+  if (!rc)
+    rc = check_stops(s, err);
   if (!rc)
     rc = check_points(s, err);
   if (!rc)

@@ -115,6 +115,29 @@ int fb_corner_damper_linear(const fb_corner_params *c)
   return l->ops->linear && l->ops->linear(c->damper.bytes);
 }
 
+int fb_corner_set_spring(fb_corner_params *c, const fb_spring_law *l, void **params,
+                         fb_err *err)
+{
+  const int rc = fb_spring_law_check(l, err);
+  if (rc)
+    return rc;
+  c->spring_law = l;
+  fb_spring_params_init(l, &c->spring);
+  if (params)
+    *params = c->spring.bytes;
+  return FB_OK;
+}
+
+const fb_spring_law *fb_corner_spring_law(const fb_corner_params *c)
+{
+  return c->spring_law ? c->spring_law : &fb_spring_law_linear;
+}
+
+fb_spring_context fb_corner_spring_context(const fb_corner_params *c)
+{
+  return (fb_spring_context){c->name, c->spring_k};
+}
+
 int fb_corner_set_tire(fb_corner_params *c, const fb_tire_model *m, void **params, fb_err *err)
 {
   const int rc = fb_tire_model_check(m, err);

@@ -324,6 +324,14 @@ int fb_vehicle_mount(const fb_mount *mnt, double gravity, fb_bg **out, fb_err *e
   return FB_OK;
 }
 
+/* The spring, the C element "spring", as the corner's spring law builds
+ * it (flexbond/spring.h). */
+static int add_spring(fb_bg *bg, const fb_corner_params *c, fb_err *err)
+{
+  const fb_spring_context ctx = fb_corner_spring_context(c);
+  return fb_corner_spring_law(c)->ops->build(c->spring.bytes, &ctx, bg, err);
+}
+
 /* The shock absorber, the R element "damper", as the corner's damper
  * law builds it (flexbond/damper.h). */
 static int add_shock_absorber(fb_bg *bg, const fb_corner_params *c, fb_err *err)
@@ -361,9 +369,12 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   if (!rc)
     rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
   if (!rc)
-    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, c->spring_k, err);
+    rc = add_spring(bg, c, err);
   if (!rc)
     rc = add_shock_absorber(bg, c, err);
+  if (!rc && fb_stops_any(&c->stops))
+    rc = vehicle_add_stops(&c->stops, "stops", "spring", bg, err);
+
   if (!rc)
     rc = fb_bg_add_tf(bg, "arm", FB_BG_TF, 1, c->motion_ratio, err);
   if (!rc)
@@ -388,6 +399,9 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
   };
   if (!rc)
     rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  /* The stops share the spring's travel, compression positive. */
+  if (!rc && fb_stops_any(&c->stops))
+    rc = fb_bg_connect(bg, "b_stops", "Jsp", "stops", err);
   if (!rc)
     rc = fb_bg_add_port(bg, "hull", "susp", FB_PORT_OUT, err);
   if (!rc)
@@ -471,27 +485,34 @@ int fb_vehicle_load(const fb_scenario *s, fb_bg **out, fb_err *err)
  * signal's probe on one of the fragment's own bonds or elements, named
  * as the fragment above names them. */
 
+static int corner_has_stops(const fb_corner_params *c)
+{
+  return fb_stops_any(&c->stops);
+}
+
 /* The corner's (fb_vehicle_corner). Compressions and forces pushing the
  * parts apart positive, powers into the dissipating element. */
 static const vehicle_signal corner_signals[] = {
-    {"tire_force", FB_PROBE_EFFORT, "b_tire", 0, 0},
-    {"tire_defl", FB_PROBE_STATE, "tire_spring", 0, 0},
-    {"tire_power", FB_PROBE_POWER, "b_tire_damper", 0, 0},
-    {"spring_defl", FB_PROBE_STATE, "spring", 0, 0},
-    {"spring_force", FB_PROBE_EFFORT, "b_spring", 0, 0},
-    {"shock_force", FB_PROBE_EFFORT, "b_damper", 0, 0},
-    {"shock_power", FB_PROBE_POWER, "b_damper", 0, 0},
-    {"wheel_travel", FB_PROBE_FLOW, "b_arm", 1, 0},
-    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0},
+    {"tire_force", FB_PROBE_EFFORT, "b_tire", 0, 0, NULL, NULL},
+    {"tire_defl", FB_PROBE_STATE, "tire_spring", 0, 0, NULL, NULL},
+    {"tire_power", FB_PROBE_POWER, "b_tire_damper", 0, 0, NULL, NULL},
+    {"spring_defl", FB_PROBE_STATE, "spring", 0, 0, NULL, NULL},
+    {"spring_force", FB_PROBE_EFFORT, "b_spring", 0, 0, NULL, NULL},
+    {"shock_force", FB_PROBE_EFFORT, "b_damper", 0, 0, NULL, NULL},
+    {"shock_power", FB_PROBE_POWER, "b_damper", 0, 0, NULL, NULL},
+    {"stop_force", FB_PROBE_EFFORT, "b_stops", 0, 0, corner_has_stops,
+     "stop (bump_stop or rebound_stop)"},
+    {"wheel_travel", FB_PROBE_FLOW, "b_arm", 1, 0, NULL, NULL},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0, NULL, NULL},
 };
 
 /* The mounted body's (fb_vehicle_mount): its acceleration is the effort
  * on its mass over the mass (the paper's gain block 1/m on e7). */
 static const vehicle_signal mount_signals[] = {
-    {"acc", FB_PROBE_EFFORT, "b_mass", 0, 1},
-    {"travel", FB_PROBE_STATE, "spring", 0, 0},
-    {"force", FB_PROBE_EFFORT, "b_up", 0, 0},
-    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_mass", 1, 0},
+    {"acc", FB_PROBE_EFFORT, "b_mass", 0, 1, NULL, NULL},
+    {"travel", FB_PROBE_STATE, "spring", 0, 0, NULL, NULL},
+    {"force", FB_PROBE_EFFORT, "b_up", 0, 0, NULL, NULL},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_mass", 1, 0, NULL, NULL},
 };
 
 static const vehicle_signal *signal_in(const vehicle_signal *list, size_t n, const char *signal)

@@ -157,6 +157,8 @@ void vehicle_remove_damping(fb_scenario *s)
     /* The built-in law is sound; its block's c is 0. */
     (void)fb_corner_set_damper(&s->corner[c], &fb_damper_law_linear, NULL, NULL);
     s->corner[c].tire_c = 0.0;
+    s->corner[c].stops.bump.damping = 0.0;
+    s->corner[c].stops.rebound.damping = 0.0;
   }
 }
 

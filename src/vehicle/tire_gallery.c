@@ -15,6 +15,7 @@ static const fb_tire_model *const gallery_builtin[] = {
     &fb_tire_model_bilateral,
     &fb_tire_model_unilateral,
     &fb_tire_model_hunt_crossley,
+    &fb_tire_model_table,
 };
 
 struct fb_tire_gallery {

@@ -194,6 +194,10 @@ typedef struct vehicle_signal {
   const char *target;
   int integrate;
   int per_mass;
+  /* A corner's signal of a part it may lack: 1 when corner c has it
+   * (NULL: every corner), and what it needs, for the message. */
+  int (*offered)(const fb_corner_params *c);
+  const char *needs;
 } vehicle_signal;
 /* Every corner's and mount's own signal: its body's vertical
  * displacement (the animation's motion, motion.c). */
@@ -208,6 +212,11 @@ const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const c
 char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i);
 char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
                      const char *local);
+
+/* Adds corner stops s as the modulated R element name reading the
+ * travel of the C element spring (flexbond/stop.h), to bg. */
+int vehicle_add_stops(const fb_stops *s, const char *name, const char *spring, fb_bg *bg,
+                      fb_err *err);
 
 /* Frees the strings of an output (the output itself is its holder's). */
 void vehicle_output_release(fb_output_spec *o);

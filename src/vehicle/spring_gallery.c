@@ -1,0 +1,107 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The spring gallery (flexbond/spring.h): the soundness of a spring law,
+ * its parameter blocks, and the set of laws a description may name. */
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flexbond/spring.h"
+
+#include "core/registry.h"
+#include "core/util.h"
+
+/* The built-in laws, one line each; the first is a corner's default. */
+static const fb_spring_law *const gallery_builtin[] = {
+    &fb_spring_law_linear,
+    &fb_spring_law_table,
+};
+
+struct fb_spring_gallery {
+  fb_registry reg; /* the laws */
+};
+
+/* The registry reads an entry's name as its first member. */
+_Static_assert(offsetof(fb_spring_law, name) == 0, "a spring law's name is its first member");
+
+static int law_fail(fb_err *err, const fb_spring_law *l, const char *what)
+{
+  return fb_err_set(err, FB_EINVAL, "spring law %s: %s", l && l->name ? l->name : "(unnamed)",
+                    what);
+}
+
+int fb_spring_law_check(const fb_spring_law *l, fb_err *err)
+{
+  if (!l || !fb_is_identifier(l->name))
+    return law_fail(err, l, "a name is letters, digits and '_', not from a digit");
+  if (!l->doc || !l->doc[0] || !l->meaning || !l->meaning[0])
+    return law_fail(err, l, "undocumented (doc and meaning)");
+  if (l->params_size > FB_SPRING_PARAMS_MAX)
+    return law_fail(err, l, "its parameter block exceeds FB_SPRING_PARAMS_MAX");
+  if (l->nparams && !l->param)
+    return law_fail(err, l, "parameters counted but not declared");
+  if (!l->ops || !l->ops->build || !l->ops->force)
+    return law_fail(err, l, "a law builds its element and gives its force (build, force)");
+  int rc = fb_params_declared(l->param, l->nparams, l->params_size, err);
+  if (rc)
+    fb_err_prefix(err, "spring law %s: ", l->name);
+  else if (!fb_params_scalar(l->param, l->nparams))
+    rc = law_fail(err, l, "its parameters are numbers or choices (no files, no lists)");
+  return rc;
+}
+
+void fb_spring_params_init(const fb_spring_law *l, fb_spring_params *p)
+{
+  memset(p, 0, sizeof *p);
+  fb_params_defaults(l->param, l->nparams, p->bytes);
+  if (l->ops->init)
+    l->ops->init(p->bytes);
+}
+
+int fb_spring_gallery_new(fb_spring_gallery **out, fb_err *err)
+{
+  *out = NULL;
+  fb_spring_gallery *g = calloc(1, sizeof *g);
+  if (!g)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a spring gallery");
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < sizeof gallery_builtin / sizeof gallery_builtin[0]; ++i)
+    rc = fb_spring_gallery_add(g, gallery_builtin[i], err);
+  if (rc)
+    fb_spring_gallery_free(&g);
+  *out = g;
+  return rc;
+}
+
+int fb_spring_gallery_add(fb_spring_gallery *g, const fb_spring_law *l, fb_err *err)
+{
+  int rc = fb_spring_law_check(l, err);
+  if (rc)
+    return rc;
+  if (fb_spring_gallery_find(g, l->name))
+    return law_fail(err, l, "a law of that name is already in the gallery");
+  return fb_registry_add(&g->reg, l, "spring laws", err);
+}
+
+size_t fb_spring_gallery_count(const fb_spring_gallery *g)
+{
+  return g ? g->reg.n : 0;
+}
+
+const fb_spring_law *fb_spring_gallery_at(const fb_spring_gallery *g, size_t i)
+{
+  return fb_registry_at(g ? &g->reg : NULL, i);
+}
+
+const fb_spring_law *fb_spring_gallery_find(const fb_spring_gallery *g, const char *name)
+{
+  return fb_registry_find(g ? &g->reg : NULL, name);
+}
+
+void fb_spring_gallery_free(fb_spring_gallery **g)
+{
+  if (!g || !*g)
+    return;
+  fb_registry_release(&(*g)->reg);
+  free(*g);
+  *g = NULL;
+}
