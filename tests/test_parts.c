@@ -24,30 +24,42 @@
 
 #define EXAMPLE "../examples/truck4x4.yaml"
 
-/* The truck with a hull section added (no example has one). */
+/* text with insert put before the first occurrence of before (new,
+ * NULL if before is not in it). */
+static char *insert_before(const char *text, const char *before, const char *insert)
+{
+  const char *at = text ? strstr(text, before) : NULL;
+  CHECK(at != NULL);
+  if (!at)
+    return NULL;
+  const size_t head = (size_t)(at - text), len = strlen(text), n = strlen(insert);
+  char *edited = malloc(len + n + 1);
+  if (edited) {
+    memcpy(edited, text, head);
+    memcpy(edited + head, insert, n);
+    memcpy(edited + head + n, at, len - head + 1);
+  }
+  return edited;
+}
+
+/* The truck with a hull section and an anti-roll bar added (the example
+ * has neither). */
 static fb_scenario *load_truck(void)
 {
   char *text = NULL;
   size_t len = 0;
   fb_err err;
   CHECK(fb_read_file(EXAMPLE, &text, &len, &err) == FB_OK);
-  const char *at = text ? strstr(text, "\n  masses:") : NULL;
-  CHECK(at != NULL);
-  if (!at) {
-    free(text);
-    return NULL;
-  }
-  static const char section[] = "\n  sections: [{set: FLOOR, thickness: 0.012}]";
-  const size_t head = (size_t)(at - text);
-  char *edited = malloc(len + sizeof section);
+  char *with_section =
+      insert_before(text, "\n  masses:", "\n  sections: [{set: FLOOR, thickness: 0.012}]");
+  char *edited = insert_before(with_section, "\noutputs:",
+                               "\nanti_roll_bars: [{name: front, left: LF, right: RF, "
+                               "stiffness: 50000}]\n");
   fb_scenario *s = NULL;
-  if (edited) {
-    memcpy(edited, text, head);
-    memcpy(edited + head, section, sizeof section - 1);
-    memcpy(edited + head + sizeof section - 1, at, len - head + 1);
+  if (edited)
     CHECK(fb_scenario_load_string(edited, strlen(edited), EXAMPLE, &s, &err) == FB_OK);
-  }
   free(edited);
+  free(with_section);
   free(text);
   return s;
 }
@@ -57,14 +69,21 @@ static int kind_of(const char *name)
   static const struct {
     const char *name;
     int kind;
-  } kinds[] = {
-      {"FB_PART_VEHICLE", FB_PART_VEHICLE},      {"fb_scenario", FB_PART_VEHICLE},
-      {"FB_PART_CORNER", FB_PART_CORNER},        {"fb_corner_params", FB_PART_CORNER},
-      {"FB_PART_MOUNT", FB_PART_MOUNT},          {"fb_mount", FB_PART_MOUNT},
-      {"FB_PART_HULL_MASS", FB_PART_HULL_MASS},  {"fb_hull_point_mass", FB_PART_HULL_MASS},
-      {"FB_PART_SECTION", FB_PART_SECTION},      {"fb_hull_section", FB_PART_SECTION},
-      {"FB_PART_OUTPUT", FB_PART_OUTPUT},        {"fb_output_spec", FB_PART_OUTPUT},
-      {"FB_PART_LOAD_POINT", FB_PART_LOAD_POINT}};
+  } kinds[] = {{"FB_PART_VEHICLE", FB_PART_VEHICLE},
+               {"fb_scenario", FB_PART_VEHICLE},
+               {"FB_PART_CORNER", FB_PART_CORNER},
+               {"fb_corner_params", FB_PART_CORNER},
+               {"FB_PART_MOUNT", FB_PART_MOUNT},
+               {"fb_mount", FB_PART_MOUNT},
+               {"FB_PART_HULL_MASS", FB_PART_HULL_MASS},
+               {"fb_hull_point_mass", FB_PART_HULL_MASS},
+               {"FB_PART_SECTION", FB_PART_SECTION},
+               {"fb_hull_section", FB_PART_SECTION},
+               {"FB_PART_OUTPUT", FB_PART_OUTPUT},
+               {"fb_output_spec", FB_PART_OUTPUT},
+               {"FB_PART_LOAD_POINT", FB_PART_LOAD_POINT},
+               {"FB_PART_ANTIROLL_BAR", FB_PART_ANTIROLL_BAR},
+               {"fb_antiroll_bar", FB_PART_ANTIROLL_BAR}};
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
     if (!strcmp(kinds[i].name, name))
       return kinds[i].kind;
@@ -217,7 +236,8 @@ int main(void)
   fb_scenario *s = load_truck();
   if (!s)
     return check_report("test_parts");
-  CHECK(s->nsections == 1 && s->npoint_masses > 0 && s->nmounts > 0 && s->noutputs > 0);
+  CHECK(s->nsections == 1 && s->npoint_masses > 0 && s->nmounts > 0 && s->noutputs > 0 &&
+        s->nantiroll_bars == 1);
   scan_sources(s, "../src/vehicle");
   scan_sources(s, "../src/sim");
   for (size_t i = 0; i < sizeof computed / sizeof computed[0]; ++i)

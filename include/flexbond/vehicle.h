@@ -75,6 +75,23 @@ typedef struct fb_mount {
   double x, y;      /* attachment point, m */
 } fb_mount;
 
+/* An anti-roll bar between two corners of one axle: its force, a
+ * compression force on the left corner's suspension (wheel down, hull up)
+ * and the opposite on the right one's, is
+ *   F = (stiffness / 2) (x_left - x_right) + (damping / 2) (v_left - v_right)
+ * with x the wheels' travels relative to the hull (compression
+ * positive). stiffness is the bar's rate at each wheel in roll (equal and
+ * opposite travels, Milliken & Milliken, Race Car Vehicle Dynamics, SAE
+ * 1995, ch. 16), so that it adds stiffness t^2 / 2 to the axle's roll
+ * stiffness (t the track); a wheel lifted alone meets half of it. */
+typedef struct fb_antiroll_bar {
+  char *name;       /* unique among the bars; owned */
+  char *left;       /* the corner on the left (y > 0); owned */
+  char *right;      /* the corner on the right (y < 0); owned */
+  double stiffness; /* N/m, at each wheel in roll */
+  double damping;   /* N s/m, at each wheel in roll; 0: none */
+} fb_antiroll_bar;
+
 /* A non-structural mass fixed to the hull's floor (a battery, ballast, an
  * armour plate): pure inertia. Its weight is part of load.total_weight,
  * which the load points carry; its mass moves with the hull, System 1's
@@ -251,18 +268,19 @@ typedef enum fb_coupling_kind {
  * says where the part came from (fb_scenario_locate for a file). */
 typedef enum fb_part_kind {
   FB_PART_NONE = 0,
-  FB_PART_VEHICLE = 1,      /* fb_scenario's members */
-  FB_PART_CORNER = 2,       /* corner[index], fb_corner_params */
-  FB_PART_MOUNT = 3,        /* mount[index], fb_mount */
-  FB_PART_HULL_MASS = 4,    /* point_mass[index], fb_hull_point_mass */
-  FB_PART_SECTION = 5,      /* section[index], fb_hull_section */
-  FB_PART_OUTPUT = 6,       /* output[index], fb_output_spec */
-  FB_PART_LOAD_POINT = 7,   /* (load_x[index], load_y[index]); field "" */
-  FB_PART_ROAD = 8,         /* the road type's parameter field (fb_param.name); index 0 */
-  FB_PART_TIRE = 9,         /* corner[index]'s tire model's parameter field (fb_param.name) */
-  FB_PART_HULL_SOURCE = 10, /* the hull source's parameter field (fb_param.name); index 0 */
-  FB_PART_DAMPER = 11,      /* corner[index]'s damper law's parameter field (fb_param.name) */
-  FB_PART_KINDS = 12
+  FB_PART_VEHICLE = 1,       /* fb_scenario's members */
+  FB_PART_CORNER = 2,        /* corner[index], fb_corner_params */
+  FB_PART_MOUNT = 3,         /* mount[index], fb_mount */
+  FB_PART_HULL_MASS = 4,     /* point_mass[index], fb_hull_point_mass */
+  FB_PART_SECTION = 5,       /* section[index], fb_hull_section */
+  FB_PART_OUTPUT = 6,        /* output[index], fb_output_spec */
+  FB_PART_LOAD_POINT = 7,    /* (load_x[index], load_y[index]); field "" */
+  FB_PART_ROAD = 8,          /* the road type's parameter field (fb_param.name); index 0 */
+  FB_PART_TIRE = 9,          /* corner[index]'s tire model's parameter field (fb_param.name) */
+  FB_PART_HULL_SOURCE = 10,  /* the hull source's parameter field (fb_param.name); index 0 */
+  FB_PART_DAMPER = 11,       /* corner[index]'s damper law's parameter field (fb_param.name) */
+  FB_PART_ANTIROLL_BAR = 16, /* antiroll_bar[index], fb_antiroll_bar */
+  FB_PART_KINDS = 18
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -276,6 +294,7 @@ typedef enum fb_part_kind {
 typedef struct fb_scenario FB_PART_TYPE_FB_PART_VEHICLE;
 typedef struct fb_corner_params FB_PART_TYPE_FB_PART_CORNER;
 typedef struct fb_mount FB_PART_TYPE_FB_PART_MOUNT;
+typedef struct fb_antiroll_bar FB_PART_TYPE_FB_PART_ANTIROLL_BAR;
 typedef struct fb_hull_point_mass FB_PART_TYPE_FB_PART_HULL_MASS;
 typedef struct fb_hull_section FB_PART_TYPE_FB_PART_SECTION;
 typedef struct fb_output_spec FB_PART_TYPE_FB_PART_OUTPUT;
@@ -323,6 +342,9 @@ typedef struct fb_scenario {
   size_t nmounts;
   fb_corner_params *corner;
   size_t ncorners;
+  /* The anti-roll bars, each between two of the corners (by name). */
+  fb_antiroll_bar *antiroll_bar;
+  size_t nantiroll_bars;
   /* The signals recorded, in CSV column order (docs/vehicle-outputs.md). */
   fb_output_spec *output;
   size_t noutputs;
@@ -639,6 +661,10 @@ void fb_scenario_set_rigid_hull(fb_scenario *s, double mass, double ixx, double 
 int fb_scenario_add_corner(fb_scenario *s, const fb_corner_params *c, fb_err *err);
 int fb_scenario_add_mount(fb_scenario *s, const fb_mount *m, fb_err *err);
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err);
+/* Appends a copy of the anti-roll bar b (its name and corners' names
+ * copied). FB_EINVAL without a name or a corner's name, FB_ENOMEM;
+ * fb_scenario_check says whether its corners exist and face each other. */
+int fb_scenario_add_antiroll_bar(fb_scenario *s, const fb_antiroll_bar *b, fb_err *err);
 int fb_scenario_add_load_point(fb_scenario *s, double x, double y, fb_err *err);
 /* Appends a copy of the output o: its signal (a kind of
  * fb_vehicle_output_kinds) and subject (`of` a corner or mount added
@@ -761,6 +787,14 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
 /* One suspension with its wheel and tire: ports "hull" (OUT), "road" (IN). */
 int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err);
+/* The same with a port "travel" (OUT) at the wheel's velocity relative to
+ * the hull, where a force in parallel with the suspension's joins it (an
+ * anti-roll bar's "left" or "right"). */
+int fb_vehicle_corner_coupled(const fb_corner_params *c, double gravity, fb_bg **out,
+                              fb_err *err);
+/* An anti-roll bar (fb_antiroll_bar's law): ports "left" and "right"
+ * (IN), each to a corner's "travel". */
+int fb_vehicle_antiroll_bar(const fb_antiroll_bar *b, fb_bg **out, fb_err *err);
 /* The road: one flow source per wheel (the road's vertical velocity under
  * that wheel: the bump, an ISO 8608 random road or a profile, src/road),
  * "v_<CORNER>", one port per corner named as it (OUT). */

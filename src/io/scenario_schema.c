@@ -623,6 +623,8 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 #define C_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_corner_params, f), .member = #f
 #define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f), .member = #f
+#define B_AT(kind, f)                                                                          \
+  .store = SCH_STORE_##kind, .offset = offsetof(fb_antiroll_bar, f), .member = #f
 #define O_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f), .member = #f
 #define P_AT(kind, f)                                                                          \
@@ -674,6 +676,23 @@ static const sch_key sc_mount_keys[] = {
     NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y)),
 };
 static const sch_table sc_mount_table = TABLE(sc_mount_keys, NULL);
+
+/* An anti-roll bar between two corners: anti_roll_bars' items. */
+static const sch_key sc_antiroll_bar_keys[] = {
+    STRING(NAME, "name", REQ, "its name, unique among the anti-roll bars", B_AT(STRING, name)),
+    STRING(NAME, "left", REQ, "the corner at its left end (y > 0)", B_AT(STRING, left)),
+    STRING(NAME, "right", REQ, "the corner at its right end (y < 0), across from `left`",
+           B_AT(STRING, right)),
+    NUMBER("stiffness", "N/m", POSITIVE, REQ,
+           "its rate at each wheel in roll (equal and opposite travels): it adds "
+           "stiffness * track^2 / 2 to the axle's roll stiffness; a wheel lifted alone meets "
+           "half of it",
+           B_AT(DOUBLE, stiffness),
+           PLAUSIBLE(1e3, 1e7, "an anti-roll bar's rate at the wheel is 1e3 to 1e7 N/m")),
+    NUMBER("damping", "N s/m", NONNEGATIVE, DEF(0),
+           "damping on its twist, at each wheel in roll as `stiffness`", B_AT(DOUBLE, damping)),
+};
+static const sch_table sc_antiroll_bar_table = TABLE(sc_antiroll_bar_keys, NULL);
 
 /* A non-structural mass on the hull's floor: hull.masses' items. */
 static const sch_key sc_point_mass_keys[] = {
@@ -935,6 +954,11 @@ static const sch_key sc_keys[] = {
          "corners", &sc_axles, NAMED(corner, ncorners, 2)),
     LIST("suspensions.corners", OPT, "single corners, after the axles' ones", &sc_corner_format,
          "corners", &sc_corners, NAMED(corner, ncorners, 1)),
+    LIST("anti_roll_bars", OPT,
+         "anti-roll bars, each between a left and a right corner (docs/scenario-format.md, "
+         "\"Anti-roll bars\")",
+         &sc_antiroll_bar_table, "anti_roll_bars", &sc_named,
+         NAMED(antiroll_bar, nantiroll_bars, 1)),
     LIST("outputs", OPT,
          "the signals recorded, in CSV column order (default: every corner's tire_force)",
          &sc_output_table, "outputs", &sc_outputs, ITEMS(output, noutputs, 1)),
@@ -1014,6 +1038,11 @@ static const sch_table *sc_part_table(const fb_scenario *s, const sch_table *for
       return NULL;
     snprintf(prefix, size, "mounts.%s", s->mount[i].name);
     return &sc_mount_table;
+  case FB_PART_ANTIROLL_BAR:
+    if (i >= s->nantiroll_bars || !s->antiroll_bar[i].name)
+      return NULL;
+    snprintf(prefix, size, "anti_roll_bars.%s", s->antiroll_bar[i].name);
+    return &sc_antiroll_bar_table;
   case FB_PART_HULL_MASS:
     if (i >= s->npoint_masses || !s->point_mass[i].name)
       return NULL;

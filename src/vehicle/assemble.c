@@ -41,7 +41,8 @@ fb_corner_params vehicle_corner_loaded(const fb_scenario *s, size_t c)
 
 /* The one place the fragments' instance names are made: a mount's is its
  * name ("driver"), a corner's "susp_" and its name (so "LF" may be both
- * a corner and a mount's name without a clash), the hull's "hull". */
+ * a corner and a mount's name without a clash), the hull's "hull", an
+ * anti-roll bar's "arb_" and its name. */
 char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i)
 {
   switch (subject) {
@@ -49,6 +50,20 @@ char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i
   case FB_OUTPUT_OF_MOUNT: return fb_strdup(s->mount[i].name);
   default: return fb_strdup("hull");
   }
+}
+
+char *vehicle_antiroll_bar_instance(const fb_antiroll_bar *b)
+{
+  return fb_strdup_printf("arb_%s", b->name);
+}
+
+/* 1 if an anti-roll bar ends at the corner named name. */
+static int corner_has_bar(const fb_scenario *s, const char *name)
+{
+  for (size_t i = 0; i < s->nantiroll_bars; ++i)
+    if (!strcmp(s->antiroll_bar[i].left, name) || !strcmp(s->antiroll_bar[i].right, name))
+      return 1;
+  return 0;
 }
 
 char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
@@ -76,8 +91,50 @@ static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     char *inst = vehicle_instance(s, FB_OUTPUT_OF_CORNER, c);
     const fb_corner_params corner = vehicle_corner_loaded(s, c);
-    rc = inst ? adopt(bg, fb_vehicle_corner(&corner, s->gravity, &frag, err), &frag, inst, err)
+    const int coupled = corner_has_bar(s, corner.name);
+    rc = inst ? adopt(bg,
+                      coupled ? fb_vehicle_corner_coupled(&corner, s->gravity, &frag, err)
+                              : fb_vehicle_corner(&corner, s->gravity, &frag, err),
+                      &frag, inst, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
+    free(inst);
+    fb_bg_free(&frag);
+  }
+  return rc;
+}
+
+/* Bond from the corner named corner's "travel" to the bar's port. */
+static int connect_bar_end(const fb_scenario *s, fb_bg *bg, const char *bar, const char *corner,
+                           const char *port, fb_err *err)
+{
+  const long c = fb_scenario_corner_find(s, corner);
+  if (c < 0)
+    return fb_err_set(err, FB_EINVAL, "no corner named '%s'", corner);
+  char *from = vehicle_target(s, FB_OUTPUT_OF_CORNER, (size_t)c, "travel");
+  char *to = fb_strdup_printf("%s.%s", bar, port);
+  int rc = from && to ? fb_bg_connect(bg, NULL, from, to, err)
+                      : fb_err_set(err, FB_ENOMEM, "out of memory");
+  free(from);
+  free(to);
+  return rc;
+}
+
+/* The anti-roll bars' fragments and their bonds to their corners. */
+static int add_antiroll_bars(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < s->nantiroll_bars; ++i) {
+    const fb_antiroll_bar *b = &s->antiroll_bar[i];
+    fb_bg *frag = NULL;
+    char *inst = vehicle_antiroll_bar_instance(b);
+    rc = inst ? adopt(bg, fb_vehicle_antiroll_bar(b, &frag, err), &frag, inst, err)
+              : fb_err_set(err, FB_ENOMEM, "out of memory");
+    if (!rc)
+      rc = connect_bar_end(s, bg, inst, b->left, "left", err);
+    if (!rc)
+      rc = connect_bar_end(s, bg, inst, b->right, "right", err);
+    if (rc && err && !err->part.kind)
+      fb_err_set_part(err, FB_PART_ANTIROLL_BAR, i, FB_ERR_NO_ELEMENT, "");
     free(inst);
     fb_bg_free(&frag);
   }
@@ -112,6 +169,8 @@ static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
 {
   fb_bg *frag = NULL;
   int rc = add_bodies(s, bg, err);
+  if (!rc)
+    rc = add_antiroll_bars(s, bg, err);
   if (!rc)
     rc = adopt(bg, fb_vehicle_road(s, &frag, err), &frag, "road", err);
   if (!rc)

@@ -108,6 +108,28 @@ int fb_scenario_add_mount(fb_scenario *s, const fb_mount *m, fb_err *err)
   return FB_OK;
 }
 
+int fb_scenario_add_antiroll_bar(fb_scenario *s, const fb_antiroll_bar *b, fb_err *err)
+{
+  fb_antiroll_bar copy = *b;
+  copy.name = copy.left = copy.right = NULL;
+  int rc = builder_name(b->name, "bar between corners", &copy.name, err);
+  if (!rc)
+    rc = builder_name(b->left, "bar's left corner", &copy.left, err);
+  if (!rc)
+    rc = builder_name(b->right, "bar's right corner", &copy.right, err);
+  fb_antiroll_bar *to = NULL;
+  if (!rc &&
+      !builder_grow((void **)&s->antiroll_bar, s->nantiroll_bars, sizeof *to, (void **)&to))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for an anti-roll bar");
+  if (rc) {
+    vehicle_antiroll_bar_release(&copy);
+    return rc;
+  }
+  *to = copy;
+  ++s->nantiroll_bars;
+  return FB_OK;
+}
+
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err)
 {
   char *name = NULL;

@@ -162,6 +162,11 @@ static const field mount_fields[] = {
     F(fb_mount, y, REAL, ANY, "m", NULL),
 };
 
+static const field antiroll_bar_fields[] = {
+    F(fb_antiroll_bar, stiffness, REAL, POSITIVE, "N/m", NULL),
+    F(fb_antiroll_bar, damping, REAL, NONNEGATIVE, "N s/m", NULL),
+};
+
 static const field point_mass_fields[] = {
     F(fb_hull_point_mass, mass, REAL, POSITIVE, "kg", NULL),
     F(fb_hull_point_mass, x, REAL, ANY, "m", NULL),
@@ -238,6 +243,9 @@ static int check_values(const fb_scenario *s, fb_err *err)
   if (!rc)
     rc = check_items(s, mount_fields, NFIELDS(mount_fields), s->mount, s->nmounts,
                      sizeof *s->mount, FB_PART_MOUNT, err);
+  if (!rc)
+    rc = check_items(s, antiroll_bar_fields, NFIELDS(antiroll_bar_fields), s->antiroll_bar,
+                     s->nantiroll_bars, sizeof *s->antiroll_bar, FB_PART_ANTIROLL_BAR, err);
   if (!rc)
     rc = check_items(s, point_mass_fields, NFIELDS(point_mass_fields), s->point_mass,
                      s->npoint_masses, sizeof *s->point_mass, FB_PART_HULL_MASS, err);
@@ -682,6 +690,68 @@ static int check_outputs(const fb_scenario *s, fb_err *err)
   return rc;
 }
 
+/* ---- Anti-roll bars. */
+
+/* The bar's end member ("left" or "right"), named corner: a corner of s
+ * on that side (y > 0 on the left), in *c. */
+static int check_bar_end(const fb_scenario *s, size_t i, const char *member, const char *corner,
+                         int left, long *c, fb_err *err)
+{
+  *c = corner ? fb_scenario_corner_find(s, corner) : -1;
+  if (*c < 0) {
+    char hint[512];
+    names_hint(s, corner, s->ncorners, corner_name_at, "corners", hint, sizeof hint);
+    return fail(err, FB_PART_ANTIROLL_BAR, i, member, "no corner named '%s'%s",
+                corner ? corner : "", hint);
+  }
+  const double y = s->corner[*c].y;
+  if (left ? !(y > 0) : !(y < 0))
+    return fail(err, FB_PART_ANTIROLL_BAR, i, member,
+                "corner %s is on the %s (y = %.10g m): a bar's %s corner has y %s 0", corner,
+                y > 0   ? "left"
+                : y < 0 ? "right"
+                        : "centre line",
+                y, member, left ? ">" : "<");
+  return FB_OK;
+}
+
+/* Each bar: a unique name, two corners facing each other across the
+ * vehicle, each corner under one bar at most (one "travel" port). */
+static int check_antiroll_bars(const fb_scenario *s, fb_err *err)
+{
+  for (size_t i = 0; i < s->nantiroll_bars; ++i) {
+    const fb_antiroll_bar *b = &s->antiroll_bar[i];
+    if (!b->name)
+      return fail(err, FB_PART_ANTIROLL_BAR, i, "name", "has no name");
+    for (size_t j = 0; j < i; ++j)
+      if (same(b->name, s->antiroll_bar[j].name))
+        return fail(err, FB_PART_ANTIROLL_BAR, i, "name",
+                    "a second anti-roll bar named %s (bar names are unique)", b->name);
+    if (same(b->left, b->right))
+      return fail(err, FB_PART_ANTIROLL_BAR, i, "right",
+                  "the bar's two ends are one corner, %s: a bar joins a left and a right "
+                  "corner",
+                  b->right);
+    long l = -1, r = -1;
+    int rc = check_bar_end(s, i, "left", b->left, 1, &l, err);
+    if (!rc)
+      rc = check_bar_end(s, i, "right", b->right, 0, &r, err);
+    if (rc)
+      return rc;
+    for (size_t j = 0; j < i; ++j) {
+      const fb_antiroll_bar *o = &s->antiroll_bar[j];
+      const char *shared = same(b->left, o->left) || same(b->left, o->right)     ? b->left
+                           : same(b->right, o->left) || same(b->right, o->right) ? b->right
+                                                                                 : NULL;
+      if (shared)
+        return fail(err, FB_PART_ANTIROLL_BAR, i, shared == b->left ? "left" : "right",
+                    "corner %s is under bar %s already (a corner carries one bar)", shared,
+                    o->name);
+    }
+  }
+  return FB_OK;
+}
+
 int fb_scenario_check(const fb_scenario *s, fb_err *err)
 {
   if (!s)
@@ -714,5 +784,7 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = check_fe_hull(s, err);
   if (!rc)
     rc = check_outputs(s, err);
+  if (!rc)
+    rc = check_antiroll_bars(s, err);
   return rc;
 }

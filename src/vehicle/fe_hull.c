@@ -530,6 +530,32 @@ static int add_coupled_spring(trips *t, size_t a, const fb_hull_coupling *c, dou
   return rc;
 }
 
+/* k r r' added to t, r the difference of two wheels' travels relative to
+ * the hull: r = e_a - c_a - (e_b - c_b) over the DOFs (an anti-roll bar's
+ * stiffness on its twist, stored energy k (x_a - x_b)^2 / 2). */
+static int add_twist_spring(trips *t, size_t a, const fb_hull_coupling *ca, size_t b,
+                            const fb_hull_coupling *cb, double k)
+{
+  const size_t n = 2 + ca->n + cb->n;
+  size_t *dof = malloc(n * sizeof *dof);
+  double *w = malloc(n * sizeof *w);
+  int rc = dof && w ? FB_OK : FB_ENOMEM;
+  if (!rc) {
+    dof[0] = a, w[0] = 1.0;
+    dof[1] = b, w[1] = -1.0;
+    for (size_t i = 0; i < ca->n; ++i)
+      dof[2 + i] = ca->dof[i], w[2 + i] = -ca->w[i];
+    for (size_t i = 0; i < cb->n; ++i)
+      dof[2 + ca->n + i] = cb->dof[i], w[2 + ca->n + i] = cb->w[i];
+  }
+  for (size_t i = 0; !rc && i < n; ++i)
+    for (size_t j = 0; !rc && j < n; ++j)
+      rc = trips_push(t, dof[i], dof[j], k * w[i] * w[j]);
+  free(dof);
+  free(w);
+  return rc;
+}
+
 /* *M plus the hull's declared masses and mass `each` on each of the first
  * nload load nodes (0: none), every one on its node's three
  * translations; *M is replaced, and left as it is when there are none. */
@@ -589,6 +615,15 @@ int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat 
       rc = add_spring(&tk, wheel, (size_t)-1, cp->tire_k);
     if (!rc)
       rc = trips_push(&tm, wheel, wheel, cp->wheel_mass);
+  }
+  /* Each anti-roll bar: half its rate in roll on the twist (fb_antiroll_bar). */
+  for (size_t i = 0; !rc && i < s->nantiroll_bars; ++i) {
+    const long l = fb_scenario_corner_find(s, s->antiroll_bar[i].left);
+    const long r = fb_scenario_corner_find(s, s->antiroll_bar[i].right);
+    if (l >= 0 && r >= 0) /* fb_scenario_check found both */
+      rc = add_twist_spring(&tk, nh + nm + (size_t)l, &h->attach_coupling[l],
+                            nh + nm + (size_t)r, &h->attach_coupling[r],
+                            0.5 * s->antiroll_bar[i].stiffness);
   }
   if (rc)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");

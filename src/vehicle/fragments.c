@@ -279,14 +279,14 @@ static int add_tire(fb_bg *bg, const fb_corner_params *c, fb_err *err)
  * velocity relative to the hull (compression rate of the suspension),
  * the arm (a TF of the motion ratio) turns it into the spring's rate; the
  * 0-junction "tire" forms road minus wheel velocity (tire compression
- * rate). */
-int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
+ * rate). coupled: a 1-junction "Jrel" between "susp" and the arm carries
+ * that relative velocity to a port "travel" (OUT), where a force in
+ * parallel with the suspension's (an anti-roll bar's) joins it; without
+ * it the graph is the paper's, bond for bond. */
+static int corner_graph(const fb_corner_params *c, double gravity, int coupled, fb_bg *bg,
+                        fb_err *err)
 {
-  *out = NULL;
-  fb_bg *bg = NULL;
-  int rc = fb_bg_new("corner", &bg, err);
-  if (!rc)
-    rc = vehicle_add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
+  int rc = vehicle_add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
   /* The wheel's mode: its hop. */
   char hop[96];
   snprintf(hop, sizeof hop, "wheel hop %s", c->name ? c->name : "");
@@ -312,7 +312,6 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
       {"b_wheel", "Jw", "wheel"},
       {"b_weight", "weight", "Jw"},
       {"b_up", "Jw", "susp"},
-      {"b_arm", "susp", "arm.1"},
       {"b_travel", "arm.2", "Jsp"},
       {"b_spring", "Jsp", "spring"},
       {"b_damper", "Jsp", "damper"},
@@ -321,12 +320,86 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
       {"b_tire_spring", "Jt", "tire_spring"},
       {"b_tire_damper", "Jt", "tire_damper"},
   };
+  /* The arm's bond: straight from "susp", or through "Jrel". */
+  static const char *const plain[][3] = {{"b_arm", "susp", "arm.1"}};
+  static const char *const through[][3] = {{"b_arm", "susp", "Jrel"},
+                                           {"b_rel", "Jrel", "arm.1"}};
+  if (!rc && coupled)
+    rc = fb_bg_add_junction(bg, "Jrel", FB_BG_J1, 1, err);
+  /* The paper's order of bonds: the arm's after the wheel's first three. */
   if (!rc)
-    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+    rc = connect_all(bg, bonds, 3, err);
+  if (!rc)
+    rc = coupled ? connect_all(bg, through, 2, err) : connect_all(bg, plain, 1, err);
+  if (!rc)
+    rc = connect_all(bg, bonds + 3, sizeof bonds / sizeof bonds[0] - 3, err);
   if (!rc)
     rc = fb_bg_add_port(bg, "hull", "susp", FB_PORT_OUT, err);
   if (!rc)
     rc = fb_bg_add_port(bg, "road", "tire", FB_PORT_IN, err);
+  if (!rc && coupled)
+    rc = fb_bg_add_port(bg, "travel", "Jrel", FB_PORT_OUT, err);
+  return rc;
+}
+
+/* The corner's fragment, with the port "travel" or without. */
+static int corner_fragment(const fb_corner_params *c, double gravity, int coupled, fb_bg **out,
+                           fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("corner", &bg, err);
+  if (!rc)
+    rc = corner_graph(c, gravity, coupled, bg, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
+{
+  return corner_fragment(c, gravity, 0, out, err);
+}
+
+int fb_vehicle_corner_coupled(const fb_corner_params *c, double gravity, fb_bg **out,
+                              fb_err *err)
+{
+  return corner_fragment(c, gravity, 1, out, err);
+}
+
+/* An anti-roll bar between two corners' "travel" ports, "left" and
+ * "right" (both IN). The 0-junction "twist" forms v_left - v_right, the
+ * bar's twist rate at the wheels; the spring and damper on it (half the
+ * rates in roll: fb_antiroll_bar) give the force F that "twist" carries,
+ * a compression force +F on the left corner's suspension and, through
+ * the 1-junction "Jr", -F on the right one's. */
+int fb_vehicle_antiroll_bar(const fb_antiroll_bar *b, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("antiroll_bar", &bg, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, 0.5 * b->stiffness, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "damper", FB_BG_R, 0.5 * b->damping, err);
+  const char *const junctions[][2] = {{"Jl", "1"}, {"Jr", "1"}, {"twist", "0"}, {"Jbar", "1"}};
+  for (size_t i = 0; !rc && i < sizeof junctions / sizeof junctions[0]; ++i)
+    rc = fb_bg_add_junction(bg, junctions[i][0],
+                            junctions[i][1][0] == '0' ? FB_BG_J0 : FB_BG_J1, 1, err);
+  static const char *const bonds[][3] = {
+      {"b_left", "Jl", "twist"},      {"b_right", "twist", "Jr"},
+      {"b_twist", "twist", "Jbar"},   {"b_spring", "Jbar", "spring"},
+      {"b_damper", "Jbar", "damper"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "left", "Jl", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "right", "Jr", FB_PORT_IN, err);
   if (rc) {
     fb_bg_free(&bg);
     return rc;

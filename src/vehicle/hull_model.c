@@ -951,6 +951,42 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
 
 /* ---- The undamped System 2's modes. */
 
+/* The reduced row t (nb) of a coupling: t_j = sum_l w_l T[j][dof_l]. */
+static void reduced_row(const vehicle_hull *h, const fb_hull_coupling *c, double *t)
+{
+  for (size_t j = 0; j < h->nb; ++j) {
+    t[j] = 0.0;
+    for (size_t l = 0; l < c->n; ++l)
+      t[j] += c->w[l] * h->T[j * h->info.ndof + c->dof[l]];
+  }
+}
+
+/* k r r' added to K (nv x nv, column-major), r (room for nv) the
+ * difference of two wheels' travels relative to the hull over the reduced
+ * variables: e_wa - t_a - (e_wb - t_b), t the reduced rows of the
+ * couplings ca and cb (an anti-roll bar's stiffness on its twist). */
+static void add_reduced_twist(const vehicle_hull *h, size_t nv, size_t wa,
+                              const fb_hull_coupling *ca, size_t wb, const fb_hull_coupling *cb,
+                              double k, double *r, double *K)
+{
+  const size_t nb = h->nb;
+  memset(r, 0, nv * sizeof *r);
+  reduced_row(h, ca, r);
+  for (size_t j = 0; j < nb; ++j)
+    r[j] = -r[j];
+  double *tb = r + nb; /* scratch until the wheels' entries are set */
+  reduced_row(h, cb, tb);
+  for (size_t j = 0; j < nb; ++j) {
+    r[j] += tb[j];
+    tb[j] = 0.0;
+  }
+  r[wa] += 1.0;
+  r[wb] -= 1.0;
+  for (size_t j = 0; j < nv; ++j)
+    for (size_t i = 0; i < nv; ++i)
+      K[j * nv + i] += k * r[i] * r[j];
+}
+
 /* Over a basis: the hull's coordinates q (M = I, K = diag(lambda)), then
  * the bodies' and the wheels' motions, the springs through the points'
  * rows t_a = coupling row times T: the Ritz matrices of
@@ -960,10 +996,10 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
                             size_t *n, fb_err *err)
 {
   const fb_fe_hull *fe = h->fe;
-  const size_t nb = h->nb, ndof = h->info.ndof, nm = s->nmounts;
+  const size_t nb = h->nb, nm = s->nmounts;
   const size_t nv = nb + nm + s->ncorners;
   double *K = calloc(nv * nv, sizeof *K), *M = calloc(nv * nv, sizeof *M);
-  double *t = malloc(nb * sizeof *t);
+  double *t = malloc(nv * sizeof *t); /* a reduced row (nb), or a bar's (nv) */
   if (!K || !M || !t) {
     free(K);
     free(M);
@@ -982,12 +1018,7 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
     const fb_corner_params *cp = corner ? &s->corner[a] : NULL;
     const double ks = corner ? cp->motion_ratio * cp->motion_ratio * cp->spring_k
                              : s->mount[a - s->ncorners].stiffness;
-    const fb_hull_coupling *c = &fe->attach_coupling[a];
-    for (size_t j = 0; j < nb; ++j) {
-      t[j] = 0.0;
-      for (size_t l = 0; l < c->n; ++l)
-        t[j] += c->w[l] * h->T[j * ndof + c->dof[l]];
-    }
+    reduced_row(h, &fe->attach_coupling[a], t);
     /* k (e_body - t)(e_body - t)' */
     for (size_t j = 0; j < nb; ++j) {
       for (size_t i = 0; i < nb; ++i)
@@ -997,6 +1028,14 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
     }
     K[body * nv + body] += ks + (corner ? cp->tire_k : 0.0);
     M[body * nv + body] = corner ? cp->wheel_mass : s->mount[a - s->ncorners].mass;
+  }
+  for (size_t i = 0; i < s->nantiroll_bars; ++i) {
+    const long l = fb_scenario_corner_find(s, s->antiroll_bar[i].left);
+    const long r = fb_scenario_corner_find(s, s->antiroll_bar[i].right);
+    if (l >= 0 && r >= 0) /* fb_scenario_check found both */
+      add_reduced_twist(h, nv, nb + nm + (size_t)l, &fe->attach_coupling[l],
+                        nb + nm + (size_t)r, &fe->attach_coupling[r],
+                        0.5 * s->antiroll_bar[i].stiffness, t, K);
   }
   free(t);
   *k = K;

@@ -158,6 +158,8 @@ void vehicle_remove_damping(fb_scenario *s)
     (void)fb_corner_set_damper(&s->corner[c], &fb_damper_law_linear, NULL, NULL);
     s->corner[c].tire_c = 0.0;
   }
+  for (size_t b = 0; b < s->nantiroll_bars; ++b)
+    s->antiroll_bar[b].damping = 0.0;
 }
 
 void vehicle_flatten_road(fb_scenario *s)

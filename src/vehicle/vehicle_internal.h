@@ -105,7 +105,7 @@ int fb_fe_hull_add_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat
                           fb_err *err);
 /* The undamped System 2 over the hull's nodal DOFs, then the mounted
  * bodies' and the wheels' vertical motions: *K and *M (new) from the
- * hull's kh and mh and the springs, bodies and wheels of s. */
+ * hull's kh and mh and the springs, bodies, wheels and anti-roll bars of s. */
 int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
                         const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err);
 /* Completes a mode set from nwant modes (freq ascending, shapes over the
@@ -155,6 +155,11 @@ char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
 
 /* Frees the strings of an output (the output itself is its holder's). */
 void vehicle_output_release(fb_output_spec *o);
+/* The anti-roll bar's instance name in the vehicle's graph, "arb_<name>"
+ * (assemble.c); new, NULL when out of memory. */
+char *vehicle_antiroll_bar_instance(const fb_antiroll_bar *b);
+/* Frees the strings an anti-roll bar of a description owns. */
+void vehicle_antiroll_bar_release(fb_antiroll_bar *b);
 /* rc, after making a road type's error about one of its parameters
  * (err->part.field set, no kind) a part of the description
  * (FB_PART_ROAD). */
