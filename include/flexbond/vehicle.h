@@ -75,6 +75,20 @@ typedef struct fb_mount {
   double x, y;      /* attachment point, m */
 } fb_mount;
 
+/* A walking-beam bogie: a beam carrying two wheels, at a ahead of its
+ * pivot and b behind it, whose pivot rides on a spring and a damper
+ * (vertical, no motion ratio) to the hull, as in the walking-beam tandems
+ * of heavy trucks, where the beam's centre bushing sits on the
+ * suspension's spring and the axles ride at its ends. The beam pitches
+ * freely about the pivot; its centre of mass is at the pivot. */
+typedef struct fb_bogie_params {
+  double a, b;         /* m, the front and rear wheels' distances from the pivot, > 0 */
+  double beam_mass;    /* kg, the beam's (the wheels' are theirs) */
+  double beam_inertia; /* kg m^2, the beam's pitch inertia about the pivot */
+  double spring_k;     /* N/m, between the hull and the pivot */
+  double damper_c;     /* N s/m */
+} fb_bogie_params;
+
 /* An anti-roll bar between two corners of one axle: its force, a
  * compression force on the left corner's suspension (wheel down, hull up)
  * and the opposite on the right one's, is
@@ -792,6 +806,17 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
  * anti-roll bar's "left" or "right"). */
 int fb_vehicle_corner_coupled(const fb_corner_params *c, double gravity, fb_bg **out,
                               fb_err *err);
+/* A walking-beam bogie (fb_bogie_params) on the wheels and tires of front
+ * and rear (their wheel_mass and tire; their springs, dampers and motion
+ * ratio are not the bogie's): ports "hull" (OUT: the pivot's spring and
+ * damper to a hull point), "road_front" and "road_rear" (IN: each tire's
+ * road). What it offers to measure: the bond "b_beam", whose flow's two
+ * components are the pivot's vertical velocity and the beam's pitch rate
+ * (nose up positive; integrated: bounce and pitch), "front.b_tire" and
+ * "rear.b_tire", whose efforts are the wheels' loads on the road
+ * (compression positive), and "b_spring", the pivot's spring force. */
+int fb_vehicle_bogie(const fb_bogie_params *p, const fb_corner_params *front,
+                     const fb_corner_params *rear, double gravity, fb_bg **out, fb_err *err);
 /* An anti-roll bar (fb_antiroll_bar's law): ports "left" and "right"
  * (IN), each to a corner's "travel". */
 int fb_vehicle_antiroll_bar(const fb_antiroll_bar *b, fb_bg **out, fb_err *err);

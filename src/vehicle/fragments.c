@@ -408,6 +408,153 @@ int fb_vehicle_antiroll_bar(const fb_antiroll_bar *b, fb_bg **out, fb_err *err)
   return FB_OK;
 }
 
+/* A bogie's wheel: the wheel's point (1-junction "Jw", port "wheel", IN:
+ * its velocity comes from the beam), its weight, and its tire to the road
+ * (port "road", IN) as the corner's model builds it. The wheel's mass is
+ * the beam's (it rides rigidly at the beam's end). */
+static int bogie_wheel(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("bogie_wheel", &bg, err);
+  if (!rc)
+    rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
+  if (!rc)
+    rc = add_tire(bg, c, err);
+  const char *const junctions[][2] = {{"Jw", "1"}, {"tire", "0"}, {"Jt", "1"}};
+  for (size_t i = 0; !rc && i < sizeof junctions / sizeof junctions[0]; ++i)
+    rc = fb_bg_add_junction(bg, junctions[i][0],
+                            junctions[i][1][0] == '0' ? FB_BG_J0 : FB_BG_J1, 1, err);
+  static const char *const bonds[][3] = {
+      {"b_weight", "weight", "Jw"},
+      {"b_contact", "tire", "Jw"},
+      {"b_tire", "tire", "Jt"},
+      {"b_tire_spring", "Jt", "tire_spring"},
+      {"b_tire_damper", "Jt", "tire_damper"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "wheel", "Jw", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "road", "tire", FB_PORT_IN, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+/* The beam with its wheels as one rigid body in (v, w), the pivot's
+ * vertical velocity and the beam's pitch rate: a point at x ahead of the
+ * pivot moves at v - x w (nose up positive, as the hull's pitch), so each
+ * wheel of mass m adds m r r' with r = [1, -x] (kinetic energy
+ * 1/2 m (v - x w)^2), to diag(beam mass, beam inertia); and the beam's
+ * weight. */
+static int add_beam(fb_bg *bg, const fb_bogie_params *p, double mf, double mr, double gravity,
+                    fb_err *err)
+{
+  const double m22[4] = {p->beam_mass + mf + mr, -mf * p->a + mr * p->b, -mf * p->a + mr * p->b,
+                         p->beam_inertia + mf * p->a * p->a + mr * p->b * p->b};
+  fb_mat *m = NULL;
+  const size_t two = 2;
+  int rc = fb_mat_new_dense_rowmajor(2, 2, m22, &m, err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "beam", FB_BG_I, 1, &two, &m, err);
+  static const char *const motions[2] = {"bogie bounce", "bogie pitch"};
+  if (!rc)
+    rc = fb_bg_set_labels(bg, "beam", motions, err);
+  /* Rows [1, -x] from (v, w) to the pivot's (x = 0) and the wheels'
+   * vertical velocities. */
+  const double rows[3][2] = {{1.0, 0.0}, {1.0, -p->a}, {1.0, p->b}};
+  static const char *const names[3] = {"to_pivot", "to_front", "to_rear"};
+  for (size_t i = 0; !rc && i < 3; ++i) {
+    fb_mat *t = NULL;
+    rc = fb_mat_new_dense_rowmajor(1, 2, rows[i], &t, err);
+    if (!rc)
+      rc = fb_bg_add_mtf(bg, names[i], &t, err);
+  }
+  /* The beam's weight, at the pivot: a generalised force on (v, w). */
+  fb_tfun *w[2] = {NULL, NULL};
+  if (!rc)
+    rc = fb_tfun_new_const(-p->beam_mass * gravity, &w[0], err);
+  if (!rc)
+    rc = fb_tfun_new_const(0.0, &w[1], err);
+  if (!rc)
+    rc = fb_bg_add_source(bg, "beam_weight", FB_BG_SE, 2, w, err);
+  fb_tfun_free(&w[0]);
+  fb_tfun_free(&w[1]);
+  return rc;
+}
+
+/* The beam (1-junction "Jb" of its two motions), its pivot on the spring
+ * and damper of the 0-junction "susp" (as a corner's: pivot velocity in,
+ * hull out, spring's 1-junction out, common effort the spring-damper
+ * force), and the two wheels as adopted fragments "front" and "rear". */
+static int bogie_graph(const fb_bogie_params *p, const fb_corner_params *front,
+                       const fb_corner_params *rear, double gravity, fb_bg *bg, fb_err *err)
+{
+  int rc = add_beam(bg, p, front->wheel_mass, rear->wheel_mass, gravity, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jb", FB_BG_J1, 2, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, p->spring_k, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "damper", FB_BG_R, p->damper_c, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "susp", FB_BG_J0, 1, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jsp", FB_BG_J1, 1, err);
+  const fb_corner_params *wheel[2] = {front, rear};
+  static const char *const inst[2] = {"front", "rear"};
+  for (size_t i = 0; !rc && i < 2; ++i) {
+    fb_bg *frag = NULL;
+    rc = bogie_wheel(wheel[i], gravity, &frag, err);
+    if (!rc)
+      rc = fb_bg_adopt(bg, &frag, inst[i], err);
+    fb_bg_free(&frag);
+  }
+  static const char *const bonds[][3] = {
+      {"b_beam", "Jb", "beam"},
+      {"b_beam_weight", "beam_weight", "Jb"},
+      {"b_pivot", "Jb", "to_pivot.1"},
+      {"b_up", "to_pivot.2", "susp"},
+      {"b_travel", "susp", "Jsp"},
+      {"b_spring", "Jsp", "spring"},
+      {"b_damper", "Jsp", "damper"},
+      {"b_front_arm", "Jb", "to_front.1"},
+      {"b_front", "to_front.2", "front.wheel"},
+      {"b_rear_arm", "Jb", "to_rear.1"},
+      {"b_rear", "to_rear.2", "rear.wheel"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "hull", "susp", FB_PORT_OUT, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "road_front", "front.road", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "road_rear", "rear.road", FB_PORT_IN, err);
+  return rc;
+}
+
+int fb_vehicle_bogie(const fb_bogie_params *p, const fb_corner_params *front,
+                     const fb_corner_params *rear, double gravity, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("bogie", &bg, err);
+  if (!rc)
+    rc = bogie_graph(p, front, rear, gravity, bg, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
 /* The scenario's road, as its type makes it. */
 static int scenario_road(const fb_scenario *s, fb_road **out, fb_err *err)
 {
