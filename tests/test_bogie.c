@@ -12,7 +12,16 @@
  *      about the pivot: by symmetry the pitch moves neither the pivot nor
  *      the hull, so it is the pitch of a fixed pivot;
  *   3. the energy balance with damping off: from rest with gravity on at
- *      t = 0, the stored energy's change equals the weights' work. */
+ *      t = 0, the stored energy's change equals the weights' work; and
+ *      the bond b_pitch's displacement is the beam's pitch;
+ * and in a vehicle (examples/truck6x6_bogie.yaml, its bogies' pivots moved
+ * off centre):
+ *   4. at rest each bogie's wheels share its pivot's load (its spring's
+ *      force plus the beam's weight) b/(a+b) and a/(a+b);
+ *   5. System 2's undamped modes (its own matrices over the wheels'
+ *      displacements, fb_vehicle_matrices and the modal basis's) in the
+ *      rigid limit against System 1's (the bond graph);
+ *   6. the checks' refusals, each naming the bogie's member. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -185,8 +194,12 @@ static void test_energy(void)
       {"e_spring", FB_PROBE_ENERGY, "bogie.spring", -1, 0, 1.0, NULL, NULL, 0},
       {"e_front", FB_PROBE_ENERGY, "bogie.front.tire_spring", -1, 0, 1.0, NULL, NULL, 0},
       {"e_rear", FB_PROBE_ENERGY, "bogie.rear.tire_spring", -1, 0, 1.0, NULL, NULL, 0},
+      /* The beam's pitch and its wheels' displacements. */
+      {"pitch", FB_PROBE_FLOW, "bogie.b_pitch", -1, 1, 1.0, NULL, NULL, 0},
+      {"z_front", FB_PROBE_FLOW, "bogie.b_front", -1, 1, 1.0, NULL, NULL, 0},
+      {"z_rear", FB_PROBE_FLOW, "bogie.b_rear", -1, 1, 1.0, NULL, NULL, 0},
   };
-  const size_t n = sizeof probes / sizeof probes[0];
+  const size_t n = sizeof probes / sizeof probes[0], nenergy = n - 3;
   fb_err err;
   fb_bd *bd = NULL;
   REQUIRE(fb_bd_build(bg, probes, n, &bd, &err), &err);
@@ -199,18 +212,27 @@ static void test_energy(void)
   fb_result *res = NULL;
   REQUIRE(fb_sim_run(bd, &o, &res, &err), &err);
   CHECK(fb_result_ncols(res) == 1 + n);
-  double worst = 0, scale = 0;
+  double worst = 0, scale = 0, worst_pitch = 0, big_pitch = 0;
   const double *first = fb_result_row(res, 0);
   for (size_t k = 0; k < fb_result_nsamples(res); ++k) {
     const double *row = fb_result_row(res, k);
     double work = 0, stored = 0;
     for (size_t j = 1; j <= 4; ++j)
       work += row[j];
-    for (size_t j = 5; j <= n; ++j)
+    for (size_t j = 5; j <= nenergy; ++j)
       stored += row[j] - first[j];
     worst = fmax(worst, fabs(work - stored));
     scale = fmax(scale, fabs(work));
+    /* b_pitch's displacement is the beam's pitch: (z_rear - z_front) /
+     * (a + b) at every sample (three integrals CVODE carries to ~rtol of
+     * the wheels' ~1e-2 m travel: 1e-9 rad). */
+    const double pitch = row[n - 2], zf = row[n - 1], zr = row[n];
+    worst_pitch = fmax(worst_pitch, fabs(pitch - (zr - zf) / (p.a + p.b)));
+    big_pitch = fmax(big_pitch, fabs(pitch));
   }
+  fprintf(stderr, "pitch: largest %.3g rad, worst departure from the wheels' %.3g rad\n",
+          big_pitch, worst_pitch);
+  CHECK(big_pitch > 1e-4 && worst_pitch <= 1e-9);
   fprintf(stderr, "energy: worst |work - stored change| %.3g J of %.6g J\n", worst, scale);
   /* Every stored energy is an exact function of the states; the work is
    * an integral CVODE carries with its other states to ~rtol of its size:
@@ -224,10 +246,122 @@ static void test_energy(void)
   fb_bg_free(&bg);
 }
 
+/* The 6x6 example with its bogies' pivots 0.25 m behind the middle of
+ * their wheels (a = 0.9 m, b = 0.4 m) and the left one's spring force
+ * recorded. */
+static fb_scenario *truck(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  REQUIRE(fb_scenario_load("../examples/truck6x6_bogie.yaml", &s, &err), &err);
+  CHECK(s->nbogies == 2);
+  for (size_t i = 0; i < s->nbogies; ++i)
+    s->bogie[i].pivot_x -= 0.25;
+  const fb_output_spec spring = {
+      .signal = "effort", .bond = "bogie_left.b_spring", .name = "pivot_left"};
+  REQUIRE(fb_scenario_add_output(s, &spring, &err), &err);
+  REQUIRE(fb_scenario_check(s, &err), &err);
+  return s;
+}
+
+/* ---- 4. The lever in the vehicle: with the pivot's load P (spring force
+ * plus beam weight), the front wheel's tire carries P b/(a+b) plus its
+ * own weight and the rear one's P a/(a+b) plus its own. */
+static void test_vehicle_split(void)
+{
+  fb_scenario *s = truck();
+  fb_err err;
+  fb_result *r = NULL;
+  REQUIRE(fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, &err), &err);
+  const fb_bogie *b = &s->bogie[0];
+  const long f = fb_scenario_corner_find(s, b->front), rr = fb_scenario_corner_find(s, b->rear);
+  const double a = s->corner[f].x - b->pivot_x, bb = b->pivot_x - s->corner[rr].x;
+  const double *row = fb_result_row(r, 0);
+  const double spring = row[fb_result_find(r, "pivot_left")];
+  const double P = spring + b->beam_mass * s->gravity;
+  const double front = row[fb_result_find(r, "tire_force_LM")];
+  const double rear = row[fb_result_find(r, "tire_force_LR")];
+  const double hand_f = P * bb / (a + bb) + s->corner[f].wheel_mass * s->gravity;
+  const double hand_r = P * a / (a + bb) + s->corner[rr].wheel_mass * s->gravity;
+  fprintf(stderr,
+          "vehicle: pivot load %.10g N, LM %.10g N (hand %.10g), LR %.10g N (hand %.10g)\n", P,
+          front, hand_f, rear, hand_r);
+  /* The static solve's residual and rounding, as in test 1. */
+  CHECK(spring > 1e3);
+  CHECK_NEAR(front, hand_f, 1e-9 * P);
+  CHECK_NEAR(rear, hand_r, 1e-9 * P);
+  fb_result_free(&r);
+  fb_scenario_free(&s);
+}
+
+/* ---- 5. System 2's modes in the rigid limit: the paper's 6x6 with its
+ * middle and rear wheels on bogies (pivot 0.95 m behind the middle axle,
+ * 0.45 m ahead of the rear one) and a hull 100 times stiffer has System
+ * 1's frequencies (from the bond graph) to 5e-4, test_system2_modes.c's
+ * bound for that vehicle without bogies (the hull's flexibility moves
+ * them by ~1.3e-4 at 100 E); the bogies' bounce and pitch are among
+ * them. */
+static void test_system2_rigid_limit(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  REQUIRE(fb_scenario_load("../examples/apc6x6.yaml", &s, &err), &err);
+  const fb_bogie left = {"left", "LM", "LR", -0.55, 150, 30, 6e5, 3e4};
+  const fb_bogie right = {"right", "RM", "RR", -0.55, 150, 30, 6e5, 3e4};
+  REQUIRE(fb_scenario_add_bogie(s, &left, &err), &err);
+  REQUIRE(fb_scenario_add_bogie(s, &right, &err), &err);
+  /* The bogies' wheels measure their tires only. */
+  for (size_t i = 0; i < s->noutputs; ++i)
+    if (s->output[i].of && (!strcmp(s->output[i].of, "LM") || !strcmp(s->output[i].of, "RM") ||
+                            !strcmp(s->output[i].of, "LR") || !strcmp(s->output[i].of, "RR"))) {
+      free(s->output[i].signal);
+      s->output[i].signal = strdup("tire_force");
+    }
+  REQUIRE(fb_scenario_check(s, &err), &err);
+  check_rigid_limit(s, 6);
+  fb_scenario_free(&s);
+}
+
+/* ---- 6. Refusals, each naming the bogie's member: the truck's first
+ * bogie with other corners (blamed: the bogie the error is about). */
+static void expect_refusal(const char *front, const char *rear, double pivot_dx, size_t blamed,
+                           const char *member, const char *words)
+{
+  fb_err err;
+  fb_scenario *s = truck();
+  fb_bogie *b = &s->bogie[0];
+  free(b->front);
+  free(b->rear);
+  b->front = strdup(front);
+  b->rear = strdup(rear);
+  b->pivot_x += pivot_dx;
+  fb_err_clear(&err);
+  const int rc = fb_scenario_check(s, &err);
+  fprintf(stderr, "refused: %s\n", err.msg);
+  CHECK(rc == FB_EINVAL);
+  CHECK(PART_IS(&err, FB_PART_BOGIE, blamed, member));
+  CHECK(strstr(err.msg, words) != NULL);
+  fb_scenario_free(&s);
+}
+
+static void test_refusals(void)
+{
+  expect_refusal("LMM", "LR", 0, 0, "front", "did you mean 'LM'");
+  expect_refusal("LM", "LM", 0, 0, "rear", "one corner");
+  expect_refusal("LM", "RR", 0, 0, "rear", "on one line");
+  /* The later bogie is blamed. */
+  expect_refusal("RM", "RR", 0, 1, "front", "on bogie left already");
+  expect_refusal("LM", "LR", 5.0, 0, "pivot_x", "must lie between");
+  expect_refusal("LF", "LR", 0, 0, "front", "anti-roll bar front");
+}
+
 int main(void)
 {
   test_static_split();
   test_pitch_frequency();
   test_energy();
+  test_vehicle_split();
+  test_system2_rigid_limit();
+  test_refusals();
   return check_report(__FILE__);
 }

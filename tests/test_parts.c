@@ -22,44 +22,33 @@
 #include "core/textfile.h"
 #include "io/scenario_internal.h"
 
-#define EXAMPLE "../examples/truck4x4.yaml"
+#define EXAMPLE "../examples/truck6x6_bogie.yaml"
 
-/* text with insert put before the first occurrence of before (new,
- * NULL if before is not in it). */
-static char *insert_before(const char *text, const char *before, const char *insert)
-{
-  const char *at = text ? strstr(text, before) : NULL;
-  CHECK(at != NULL);
-  if (!at)
-    return NULL;
-  const size_t head = (size_t)(at - text), len = strlen(text), n = strlen(insert);
-  char *edited = malloc(len + n + 1);
-  if (edited) {
-    memcpy(edited, text, head);
-    memcpy(edited + head, insert, n);
-    memcpy(edited + head + n, at, len - head + 1);
-  }
-  return edited;
-}
-
-/* The truck with a hull section and an anti-roll bar added (the example
- * has neither). */
+/* The 6x6 truck (an anti-roll bar, bogies) with a hull section added (no
+ * example has one). */
 static fb_scenario *load_truck(void)
 {
   char *text = NULL;
   size_t len = 0;
   fb_err err;
   CHECK(fb_read_file(EXAMPLE, &text, &len, &err) == FB_OK);
-  char *with_section =
-      insert_before(text, "\n  masses:", "\n  sections: [{set: FLOOR, thickness: 0.012}]");
-  char *edited = insert_before(with_section, "\noutputs:",
-                               "\nanti_roll_bars: [{name: front, left: LF, right: RF, "
-                               "stiffness: 50000}]\n");
+  const char *at = text ? strstr(text, "\n  masses:") : NULL;
+  CHECK(at != NULL);
+  if (!at) {
+    free(text);
+    return NULL;
+  }
+  static const char section[] = "\n  sections: [{set: FLOOR, thickness: 0.012}]";
+  const size_t head = (size_t)(at - text);
+  char *edited = malloc(len + sizeof section);
   fb_scenario *s = NULL;
-  if (edited)
+  if (edited) {
+    memcpy(edited, text, head);
+    memcpy(edited + head, section, sizeof section - 1);
+    memcpy(edited + head + sizeof section - 1, at, len - head + 1);
     CHECK(fb_scenario_load_string(edited, strlen(edited), EXAMPLE, &s, &err) == FB_OK);
+  }
   free(edited);
-  free(with_section);
   free(text);
   return s;
 }
@@ -83,7 +72,9 @@ static int kind_of(const char *name)
                {"fb_output_spec", FB_PART_OUTPUT},
                {"FB_PART_LOAD_POINT", FB_PART_LOAD_POINT},
                {"FB_PART_ANTIROLL_BAR", FB_PART_ANTIROLL_BAR},
-               {"fb_antiroll_bar", FB_PART_ANTIROLL_BAR}};
+               {"fb_antiroll_bar", FB_PART_ANTIROLL_BAR},
+               {"FB_PART_BOGIE", FB_PART_BOGIE},
+               {"fb_bogie", FB_PART_BOGIE}};
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
     if (!strcmp(kinds[i].name, name))
       return kinds[i].kind;
@@ -237,7 +228,7 @@ int main(void)
   if (!s)
     return check_report("test_parts");
   CHECK(s->nsections == 1 && s->npoint_masses > 0 && s->nmounts > 0 && s->noutputs > 0 &&
-        s->nantiroll_bars == 1);
+        s->nantiroll_bars == 1 && s->nbogies == 2);
   scan_sources(s, "../src/vehicle");
   scan_sources(s, "../src/sim");
   for (size_t i = 0; i < sizeof computed / sizeof computed[0]; ++i)

@@ -82,12 +82,31 @@ typedef struct fb_mount {
  * suspension's spring and the axles ride at its ends. The beam pitches
  * freely about the pivot; its centre of mass is at the pivot. */
 typedef struct fb_bogie_params {
+  const char *name;    /* for its modes' labels ("bogie pitch <name>"); borrowed, may be NULL */
   double a, b;         /* m, the front and rear wheels' distances from the pivot, > 0 */
   double beam_mass;    /* kg, the beam's (the wheels' are theirs) */
   double beam_inertia; /* kg m^2, the beam's pitch inertia about the pivot */
   double spring_k;     /* N/m, between the hull and the pivot */
   double damper_c;     /* N s/m */
 } fb_bogie_params;
+
+/* A walking-beam bogie of the description: the wheels and tires of two
+ * corners on one side (front ahead of rear) ride at its beam's ends; the
+ * pivot lies between them, at pivot_x, and rides on the bogie's own
+ * spring and damper to the hull, whose force the hull takes at the two
+ * corners' attachment points in the lever's proportions (b/(a+b) at the
+ * front one, a/(a+b) at the rear one). The corners' own springs, dampers
+ * and motion ratios are not used; their wheels, tires and names are
+ * (road inputs, tire outputs, contact forces). */
+typedef struct fb_bogie {
+  char *name;          /* unique among the bogies; owned */
+  char *front, *rear;  /* the corners at its ends, by name; owned */
+  double pivot_x;      /* m, in the corners' frame, strictly between their x */
+  double beam_mass;    /* kg */
+  double beam_inertia; /* kg m^2, pitch, about the pivot */
+  double spring_k;     /* N/m, the pivot's spring to the hull */
+  double damper_c;     /* N s/m */
+} fb_bogie;
 
 /* An anti-roll bar between two corners of one axle: its force, a
  * compression force on the left corner's suspension (wheel down, hull up)
@@ -294,6 +313,7 @@ typedef enum fb_part_kind {
   FB_PART_HULL_SOURCE = 10,  /* the hull source's parameter field (fb_param.name); index 0 */
   FB_PART_DAMPER = 11,       /* corner[index]'s damper law's parameter field (fb_param.name) */
   FB_PART_ANTIROLL_BAR = 16, /* antiroll_bar[index], fb_antiroll_bar */
+  FB_PART_BOGIE = 17,        /* bogie[index], fb_bogie */
   FB_PART_KINDS = 18
 } fb_part_kind;
 
@@ -309,6 +329,7 @@ typedef struct fb_scenario FB_PART_TYPE_FB_PART_VEHICLE;
 typedef struct fb_corner_params FB_PART_TYPE_FB_PART_CORNER;
 typedef struct fb_mount FB_PART_TYPE_FB_PART_MOUNT;
 typedef struct fb_antiroll_bar FB_PART_TYPE_FB_PART_ANTIROLL_BAR;
+typedef struct fb_bogie FB_PART_TYPE_FB_PART_BOGIE;
 typedef struct fb_hull_point_mass FB_PART_TYPE_FB_PART_HULL_MASS;
 typedef struct fb_hull_section FB_PART_TYPE_FB_PART_SECTION;
 typedef struct fb_output_spec FB_PART_TYPE_FB_PART_OUTPUT;
@@ -359,6 +380,9 @@ typedef struct fb_scenario {
   /* The anti-roll bars, each between two of the corners (by name). */
   fb_antiroll_bar *antiroll_bar;
   size_t nantiroll_bars;
+  /* The walking-beam bogies, each on two of the corners (by name). */
+  fb_bogie *bogie;
+  size_t nbogies;
   /* The signals recorded, in CSV column order (docs/vehicle-outputs.md). */
   fb_output_spec *output;
   size_t noutputs;
@@ -679,6 +703,9 @@ int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_e
  * copied). FB_EINVAL without a name or a corner's name, FB_ENOMEM;
  * fb_scenario_check says whether its corners exist and face each other. */
 int fb_scenario_add_antiroll_bar(fb_scenario *s, const fb_antiroll_bar *b, fb_err *err);
+/* The same for a walking-beam bogie (fb_scenario_check says whether its
+ * corners exist, on one side, around its pivot). */
+int fb_scenario_add_bogie(fb_scenario *s, const fb_bogie *b, fb_err *err);
 int fb_scenario_add_load_point(fb_scenario *s, double x, double y, fb_err *err);
 /* Appends a copy of the output o: its signal (a kind of
  * fb_vehicle_output_kinds) and subject (`of` a corner or mount added
@@ -810,11 +837,11 @@ int fb_vehicle_corner_coupled(const fb_corner_params *c, double gravity, fb_bg *
  * and rear (their wheel_mass and tire; their springs, dampers and motion
  * ratio are not the bogie's): ports "hull" (OUT: the pivot's spring and
  * damper to a hull point), "road_front" and "road_rear" (IN: each tire's
- * road). What it offers to measure: the bond "b_beam", whose flow's two
- * components are the pivot's vertical velocity and the beam's pitch rate
- * (nose up positive; integrated: bounce and pitch), "front.b_tire" and
- * "rear.b_tire", whose efforts are the wheels' loads on the road
- * (compression positive), and "b_spring", the pivot's spring force. */
+ * road). What it offers to measure, as bonds: the flow of "b_up" is the
+ * pivot's vertical velocity, that of "b_pitch" the beam's pitch rate
+ * (nose up positive; integrated: bounce and pitch), the efforts of
+ * "front.b_tire" and "rear.b_tire" the wheels' loads on the road
+ * (compression positive), that of "b_spring" the pivot's spring force. */
 int fb_vehicle_bogie(const fb_bogie_params *p, const fb_corner_params *front,
                      const fb_corner_params *rear, double gravity, fb_bg **out, fb_err *err);
 /* An anti-roll bar (fb_antiroll_bar's law): ports "left" and "right"

@@ -625,6 +625,7 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 #define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f), .member = #f
 #define B_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_antiroll_bar, f), .member = #f
+#define G_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_bogie, f), .member = #f
 #define O_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f), .member = #f
 #define P_AT(kind, f)                                                                          \
@@ -693,6 +694,29 @@ static const sch_key sc_antiroll_bar_keys[] = {
            "damping on its twist, at each wheel in roll as `stiffness`", B_AT(DOUBLE, damping)),
 };
 static const sch_table sc_antiroll_bar_table = TABLE(sc_antiroll_bar_keys, NULL);
+
+/* A walking-beam bogie on two corners: bogies' items. */
+static const sch_key sc_bogie_keys[] = {
+    STRING(NAME, "name", REQ, "its name, unique among the bogies", G_AT(STRING, name)),
+    STRING(NAME, "front", REQ, "the corner whose wheel rides at the beam's front end",
+           G_AT(STRING, front)),
+    STRING(NAME, "rear", REQ,
+           "the corner whose wheel rides at its rear end, on the front one's side (same y)",
+           G_AT(STRING, rear)),
+    NUMBER("pivot_x", "m", ANY, REQ,
+           "the beam's pivot, strictly between the two corners' x; the hull takes its load at "
+           "their attachment points in the lever's proportions",
+           G_AT(DOUBLE, pivot_x)),
+    NUMBER("beam_mass", "kg", POSITIVE, REQ, "the beam's mass, at the pivot",
+           G_AT(DOUBLE, beam_mass), PLAUSIBLE(1, 5e3, "a bogie's beam weighs 1 kg to 5 t")),
+    NUMBER("beam_inertia", "kg m^2", POSITIVE, REQ, "the beam's pitch inertia about the pivot",
+           G_AT(DOUBLE, beam_inertia)),
+    NUMBER("spring_k", "N/m", POSITIVE, REQ, "the pivot's spring to the hull",
+           G_AT(DOUBLE, spring_k)),
+    NUMBER("damper_c", "N s/m", NONNEGATIVE, DEF(0), "the pivot's damper to the hull",
+           G_AT(DOUBLE, damper_c)),
+};
+static const sch_table sc_bogie_table = TABLE(sc_bogie_keys, NULL);
 
 /* A non-structural mass on the hull's floor: hull.masses' items. */
 static const sch_key sc_point_mass_keys[] = {
@@ -959,6 +983,10 @@ static const sch_key sc_keys[] = {
          "\"Anti-roll bars\")",
          &sc_antiroll_bar_table, "anti_roll_bars", &sc_named,
          NAMED(antiroll_bar, nantiroll_bars, 1)),
+    LIST("bogies", OPT,
+         "walking-beam bogies, each carrying two corners' wheels (docs/scenario-format.md, "
+         "\"Walking-beam bogies\")",
+         &sc_bogie_table, "bogies", &sc_named, NAMED(bogie, nbogies, 1)),
     LIST("outputs", OPT,
          "the signals recorded, in CSV column order (default: every corner's tire_force)",
          &sc_output_table, "outputs", &sc_outputs, ITEMS(output, noutputs, 1)),
@@ -1043,6 +1071,11 @@ static const sch_table *sc_part_table(const fb_scenario *s, const sch_table *for
       return NULL;
     snprintf(prefix, size, "anti_roll_bars.%s", s->antiroll_bar[i].name);
     return &sc_antiroll_bar_table;
+  case FB_PART_BOGIE:
+    if (i >= s->nbogies || !s->bogie[i].name)
+      return NULL;
+    snprintf(prefix, size, "bogies.%s", s->bogie[i].name);
+    return &sc_bogie_table;
   case FB_PART_HULL_MASS:
     if (i >= s->npoint_masses || !s->point_mass[i].name)
       return NULL;

@@ -130,6 +130,27 @@ int fb_scenario_add_antiroll_bar(fb_scenario *s, const fb_antiroll_bar *b, fb_er
   return FB_OK;
 }
 
+int fb_scenario_add_bogie(fb_scenario *s, const fb_bogie *b, fb_err *err)
+{
+  fb_bogie copy = *b;
+  copy.name = copy.front = copy.rear = NULL;
+  int rc = builder_name(b->name, "bogie", &copy.name, err);
+  if (!rc)
+    rc = builder_name(b->front, "bogie's front corner", &copy.front, err);
+  if (!rc)
+    rc = builder_name(b->rear, "bogie's rear corner", &copy.rear, err);
+  fb_bogie *to = NULL;
+  if (!rc && !builder_grow((void **)&s->bogie, s->nbogies, sizeof *to, (void **)&to))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for a bogie");
+  if (rc) {
+    vehicle_bogie_release(&copy);
+    return rc;
+  }
+  *to = copy;
+  ++s->nbogies;
+  return FB_OK;
+}
+
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err)
 {
   char *name = NULL;

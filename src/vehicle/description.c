@@ -192,6 +192,13 @@ void vehicle_antiroll_bar_release(fb_antiroll_bar *b)
   free(b->right);
 }
 
+void vehicle_bogie_release(fb_bogie *b)
+{
+  free(b->name);
+  free(b->front);
+  free(b->rear);
+}
+
 void fb_scenario_free(fb_scenario **s)
 {
   if (!s || !*s)
@@ -217,6 +224,9 @@ void fb_scenario_free(fb_scenario **s)
   for (size_t i = 0; p->antiroll_bar && i < p->nantiroll_bars; ++i)
     vehicle_antiroll_bar_release(&p->antiroll_bar[i]);
   free(p->antiroll_bar);
+  for (size_t i = 0; p->bogie && i < p->nbogies; ++i)
+    vehicle_bogie_release(&p->bogie[i]);
+  free(p->bogie);
   for (size_t i = 0; p->output && i < p->noutputs; ++i)
     vehicle_output_release(&p->output[i]);
   free(p->output);
@@ -311,6 +321,21 @@ static int desc_copy_antiroll_bars(const fb_scenario *s, fb_scenario *copy)
   return ok;
 }
 
+static int desc_copy_bogies(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_bogie *b = NULL;
+  int ok = desc_copy_items(s->bogie, s->nbogies, sizeof *b, (void **)&copy->bogie, (void **)&b);
+  for (size_t i = 0; ok && b && i < s->nbogies; ++i) { /* no b: no bogies */
+    copy->bogie[i] = b[i];
+    copy->bogie[i].name = copy->bogie[i].front = copy->bogie[i].rear = NULL;
+    ok = desc_copy_string(b[i].name, &copy->bogie[i].name) &&
+         desc_copy_string(b[i].front, &copy->bogie[i].front) &&
+         desc_copy_string(b[i].rear, &copy->bogie[i].rear);
+  }
+  free(b);
+  return ok;
+}
+
 /* The copy's items are zeroed until each is copied, so that a failure
  * frees nothing twice. */
 static int desc_copy_point_masses(const fb_scenario *s, fb_scenario *copy)
@@ -397,6 +422,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->section = NULL;
   copy->corner = NULL;
   copy->antiroll_bar = NULL;
+  copy->bogie = NULL;
   copy->output = NULL;
   copy->inputs = NULL;
   copy->source = NULL;
@@ -412,6 +438,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = desc_copy_sections(s, copy) && ok;
   ok = desc_copy_corners(s, copy) && ok;
   ok = desc_copy_antiroll_bars(s, copy) && ok;
+  ok = desc_copy_bogies(s, copy) && ok;
   ok = desc_copy_outputs(s, copy) && ok;
   ok = (!s->road_type ||
         fb_road_params_copy(s->road_type, &copy->road, &s->road, NULL) == FB_OK) &&

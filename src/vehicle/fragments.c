@@ -408,9 +408,10 @@ int fb_vehicle_antiroll_bar(const fb_antiroll_bar *b, fb_bg **out, fb_err *err)
   return FB_OK;
 }
 
-/* A bogie's wheel: the wheel's point (1-junction "Jw", port "wheel", IN:
- * its velocity comes from the beam), its weight, and its tire to the road
- * (port "road", IN) as the corner's model builds it. The wheel's mass is
+/* A bogie's wheel: the wheel's point (1-junction "Jw", its velocity from
+ * the beam through port "wheel", IN, and the bond "b_wheel"), its weight,
+ * and its tire to the road (port "road", IN) as the corner's model builds
+ * it. The wheel's mass is
  * the beam's (it rides rigidly at the beam's end). */
 static int bogie_wheel(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
 {
@@ -421,11 +422,12 @@ static int bogie_wheel(const fb_corner_params *c, double gravity, fb_bg **out, f
     rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
   if (!rc)
     rc = add_tire(bg, c, err);
-  const char *const junctions[][2] = {{"Jw", "1"}, {"tire", "0"}, {"Jt", "1"}};
+  const char *const junctions[][2] = {{"Jp", "1"}, {"Jw", "1"}, {"tire", "0"}, {"Jt", "1"}};
   for (size_t i = 0; !rc && i < sizeof junctions / sizeof junctions[0]; ++i)
     rc = fb_bg_add_junction(bg, junctions[i][0],
                             junctions[i][1][0] == '0' ? FB_BG_J0 : FB_BG_J1, 1, err);
   static const char *const bonds[][3] = {
+      {"b_wheel", "Jp", "Jw"},
       {"b_weight", "weight", "Jw"},
       {"b_contact", "tire", "Jw"},
       {"b_tire", "tire", "Jt"},
@@ -435,7 +437,7 @@ static int bogie_wheel(const fb_corner_params *c, double gravity, fb_bg **out, f
   if (!rc)
     rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
   if (!rc)
-    rc = fb_bg_add_port(bg, "wheel", "Jw", FB_PORT_IN, err);
+    rc = fb_bg_add_port(bg, "wheel", "Jp", FB_PORT_IN, err);
   if (!rc)
     rc = fb_bg_add_port(bg, "road", "tire", FB_PORT_IN, err);
   if (rc) {
@@ -462,14 +464,17 @@ static int add_beam(fb_bg *bg, const fb_bogie_params *p, double mf, double mr, d
   int rc = fb_mat_new_dense_rowmajor(2, 2, m22, &m, err);
   if (!rc)
     rc = fb_bg_add_field(bg, "beam", FB_BG_I, 1, &two, &m, err);
-  static const char *const motions[2] = {"bogie bounce", "bogie pitch"};
+  char bounce[96], pitch[96];
+  snprintf(bounce, sizeof bounce, "bogie bounce %s", p->name ? p->name : "");
+  snprintf(pitch, sizeof pitch, "bogie pitch %s", p->name ? p->name : "");
+  const char *const motions[2] = {bounce, pitch};
   if (!rc)
     rc = fb_bg_set_labels(bg, "beam", motions, err);
   /* Rows [1, -x] from (v, w) to the pivot's (x = 0) and the wheels'
-   * vertical velocities. */
-  const double rows[3][2] = {{1.0, 0.0}, {1.0, -p->a}, {1.0, p->b}};
-  static const char *const names[3] = {"to_pivot", "to_front", "to_rear"};
-  for (size_t i = 0; !rc && i < 3; ++i) {
+   * vertical velocities, and [0, 1] to the pitch rate alone. */
+  const double rows[4][2] = {{1.0, 0.0}, {1.0, -p->a}, {1.0, p->b}, {0.0, 1.0}};
+  static const char *const names[4] = {"to_pivot", "to_front", "to_rear", "to_pitch"};
+  for (size_t i = 0; !rc && i < 4; ++i) {
     fb_mat *t = NULL;
     rc = fb_mat_new_dense_rowmajor(1, 2, rows[i], &t, err);
     if (!rc)
@@ -506,6 +511,10 @@ static int bogie_graph(const fb_bogie_params *p, const fb_corner_params *front,
     rc = fb_bg_add_junction(bg, "susp", FB_BG_J0, 1, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "Jsp", FB_BG_J1, 1, err);
+  /* The pitch rate's own scalar bond "b_pitch", to measure (its effort is
+   * zero: nothing acts through it). */
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jpitch", FB_BG_J1, 1, err);
   const fb_corner_params *wheel[2] = {front, rear};
   static const char *const inst[2] = {"front", "rear"};
   for (size_t i = 0; !rc && i < 2; ++i) {
@@ -527,6 +536,8 @@ static int bogie_graph(const fb_bogie_params *p, const fb_corner_params *front,
       {"b_front", "to_front.2", "front.wheel"},
       {"b_rear_arm", "Jb", "to_rear.1"},
       {"b_rear", "to_rear.2", "rear.wheel"},
+      {"b_pitch_arm", "Jb", "to_pitch.1"},
+      {"b_pitch", "to_pitch.2", "Jpitch"},
   };
   if (!rc)
     rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
@@ -640,6 +651,15 @@ static const vehicle_signal corner_signals[] = {
     {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0},
 };
 
+/* A bogie's wheel's (bogie_wheel, in fb_vehicle_bogie): its tire's, and
+ * its motion. */
+static const vehicle_signal bogie_wheel_signals[] = {
+    {"tire_force", FB_PROBE_EFFORT, "b_tire", 0, 0},
+    {"tire_defl", FB_PROBE_STATE, "tire_spring", 0, 0},
+    {"tire_power", FB_PROBE_POWER, "b_tire_damper", 0, 0},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0},
+};
+
 /* The mounted body's (fb_vehicle_mount): its acceleration is the effort
  * on its mass over the mass (the paper's gain block 1/m on e7). */
 static const vehicle_signal mount_signals[] = {
@@ -655,6 +675,14 @@ static const vehicle_signal *signal_in(const vehicle_signal *list, size_t n, con
     if (!strcmp(list[i].signal, signal))
       return &list[i];
   return NULL;
+}
+
+const vehicle_signal *vehicle_corner_signal(const fb_scenario *s, size_t c, const char *signal)
+{
+  if (vehicle_corner_bogie(s, c, NULL) < 0)
+    return vehicle_fragment_signal(FB_OUTPUT_OF_CORNER, signal);
+  return signal_in(bogie_wheel_signals,
+                   sizeof bogie_wheel_signals / sizeof bogie_wheel_signals[0], signal);
 }
 
 const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const char *signal)

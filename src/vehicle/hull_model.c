@@ -961,27 +961,27 @@ static void reduced_row(const vehicle_hull *h, const fb_hull_coupling *c, double
   }
 }
 
-/* k r r' added to K (nv x nv, column-major), r (room for nv) the
- * difference of two wheels' travels relative to the hull over the reduced
- * variables: e_wa - t_a - (e_wb - t_b), t the reduced rows of the
- * couplings ca and cb (an anti-roll bar's stiffness on its twist). */
+/* k r r' added to K (nv x nv, column-major), r (room for nv + nb) a
+ * combination of two wheels' travels relative to the hull over the
+ * reduced variables: sa (e_wa - t_a) + sb (e_wb - t_b), t the reduced rows
+ * of the couplings ca and cb (an anti-roll bar's stiffness on its twist,
+ * sa = 1, sb = -1; a bogie's pivot spring, its lever's weights). */
 static void add_reduced_twist(const vehicle_hull *h, size_t nv, size_t wa,
-                              const fb_hull_coupling *ca, size_t wb, const fb_hull_coupling *cb,
-                              double k, double *r, double *K)
+                              const fb_hull_coupling *ca, double sa, size_t wb,
+                              const fb_hull_coupling *cb, double sb, double k, double *r,
+                              double *K)
 {
   const size_t nb = h->nb;
   memset(r, 0, nv * sizeof *r);
   reduced_row(h, ca, r);
   for (size_t j = 0; j < nb; ++j)
-    r[j] = -r[j];
-  double *tb = r + nb; /* scratch until the wheels' entries are set */
+    r[j] *= -sa;
+  double *tb = r + nv; /* scratch */
   reduced_row(h, cb, tb);
-  for (size_t j = 0; j < nb; ++j) {
-    r[j] += tb[j];
-    tb[j] = 0.0;
-  }
-  r[wa] += 1.0;
-  r[wb] -= 1.0;
+  for (size_t j = 0; j < nb; ++j)
+    r[j] -= sb * tb[j];
+  r[wa] += sa;
+  r[wb] += sb;
   for (size_t j = 0; j < nv; ++j)
     for (size_t i = 0; i < nv; ++i)
       K[j * nv + i] += k * r[i] * r[j];
@@ -999,7 +999,8 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
   const size_t nb = h->nb, nm = s->nmounts;
   const size_t nv = nb + nm + s->ncorners;
   double *K = calloc(nv * nv, sizeof *K), *M = calloc(nv * nv, sizeof *M);
-  double *t = malloc(nv * sizeof *t); /* a reduced row (nb), or a bar's (nv) */
+  /* A reduced row (nb), or a bar's or bogie's (nv, and nb of scratch). */
+  double *t = malloc((nv + nb) * sizeof *t);
   if (!K || !M || !t) {
     free(K);
     free(M);
@@ -1016,8 +1017,11 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
     const int corner = a < s->ncorners;
     const size_t body = corner ? nb + nm + a : nb + (a - s->ncorners);
     const fb_corner_params *cp = corner ? &s->corner[a] : NULL;
-    const double ks = corner ? cp->motion_ratio * cp->motion_ratio * cp->spring_k
-                             : s->mount[a - s->ncorners].stiffness;
+    /* A bogie's wheel has no spring of its own: the bogie's is below. */
+    const double ks = !corner ? s->mount[a - s->ncorners].stiffness
+                      : vehicle_corner_bogie(s, a, NULL) >= 0
+                          ? 0.0
+                          : cp->motion_ratio * cp->motion_ratio * cp->spring_k;
     reduced_row(h, &fe->attach_coupling[a], t);
     /* k (e_body - t)(e_body - t)' */
     for (size_t j = 0; j < nb; ++j) {
@@ -1033,9 +1037,20 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
     const long l = fb_scenario_corner_find(s, s->antiroll_bar[i].left);
     const long r = fb_scenario_corner_find(s, s->antiroll_bar[i].right);
     if (l >= 0 && r >= 0) /* fb_scenario_check found both */
-      add_reduced_twist(h, nv, nb + nm + (size_t)l, &fe->attach_coupling[l],
-                        nb + nm + (size_t)r, &fe->attach_coupling[r],
+      add_reduced_twist(h, nv, nb + nm + (size_t)l, &fe->attach_coupling[l], 1.0,
+                        nb + nm + (size_t)r, &fe->attach_coupling[r], -1.0,
                         0.5 * s->antiroll_bar[i].stiffness, t, K);
+  }
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    long f = -1, r = -1;
+    double mb[4], w[2];
+    if (!vehicle_bogie_wheels(s, i, &f, &r, mb, w))
+      continue;
+    const size_t at[2] = {nb + nm + (size_t)f, nb + nm + (size_t)r};
+    for (int p = 0; p < 4; ++p)
+      M[at[p % 2] * nv + at[p / 2]] = mb[p];
+    add_reduced_twist(h, nv, at[0], &fe->attach_coupling[f], w[0], at[1],
+                      &fe->attach_coupling[r], w[1], s->bogie[i].spring_k, t, K);
   }
   free(t);
   *k = K;

@@ -118,6 +118,8 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
     s->point_mass[k].x -= dx;
     s->point_mass[k].y -= dy;
   }
+  for (size_t k = 0; k < s->nbogies; ++k)
+    s->bogie[k].pivot_x -= dx;
   s->edge_front_x -= dx;
   s->edge_rear_x -= dx;
   s->edge_left_y -= dy;

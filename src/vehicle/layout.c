@@ -21,6 +21,7 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
   case FB_PART_SECTION: return i < s->nsections ? s->section[i].set : NULL;
   case FB_PART_OUTPUT: return i < s->noutputs ? s->output[i].name : NULL;
   case FB_PART_ANTIROLL_BAR: return i < s->nantiroll_bars ? s->antiroll_bar[i].name : NULL;
+  case FB_PART_BOGIE: return i < s->nbogies ? s->bogie[i].name : NULL;
   case FB_PART_ROAD: return s->road_type ? s->road_type->name : NULL;
   case FB_PART_HULL_SOURCE: return s->hull_source ? s->hull_source->name : NULL;
   default: return NULL;
@@ -30,9 +31,9 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
 char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size)
 {
   static const char *const list[FB_PART_KINDS] = {
-      "",       "",           "corner", "mount",  "point_mass",  "section",
-      "output", "load point", "road",   "corner", "hull source", "corner",
-      "",       "",           "",       "",       "antiroll_bar"};
+      "",       "",           "corner", "mount",  "point_mass",   "section",
+      "output", "load point", "road",   "corner", "hull source",  "corner",
+      "",       "",           "",       "",       "antiroll_bar", "bogie"};
   const int kind = p->kind > 0 && p->kind < FB_PART_KINDS ? p->kind : FB_PART_NONE;
   const char *name = s ? part_name(s, kind, p->index) : NULL;
   size_t n = 0;

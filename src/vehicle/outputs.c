@@ -121,7 +121,8 @@ static int body_probe(const fb_scenario *s, const fb_output_kind *info, size_t i
     return fb_err_set(err, FB_EINVAL, "no %s '%s'", corner ? "corner" : "mount",
                       o->of ? o->of : ""),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, of)), FB_EINVAL;
-  const vehicle_signal *how = vehicle_fragment_signal(info->subject, o->signal);
+  const vehicle_signal *how = corner ? vehicle_corner_signal(s, (size_t)i, o->signal)
+                                     : vehicle_fragment_signal(info->subject, o->signal);
   if (!how)
     return fb_err_set(err, FB_EMODEL, "the %s fragment offers no %s",
                       corner ? "corner" : "mount", o->signal),
