@@ -247,8 +247,7 @@ static void test_energy(void)
 }
 
 /* The 6x6 example with its bogies' pivots 0.25 m behind the middle of
- * their wheels (a = 0.9 m, b = 0.4 m) and the left one's spring force
- * recorded. */
+ * their wheels (a = 0.9 m, b = 0.4 m). */
 static fb_scenario *truck(void)
 {
   fb_err err;
@@ -257,9 +256,7 @@ static fb_scenario *truck(void)
   CHECK(s->nbogies == 2);
   for (size_t i = 0; i < s->nbogies; ++i)
     s->bogie[i].pivot_x -= 0.25;
-  const fb_output_spec spring = {
-      .signal = "effort", .bond = "bogie_left.b_spring", .name = "pivot_left"};
-  REQUIRE(fb_scenario_add_output(s, &spring, &err), &err);
+  /* The example records the left bogie's pivot_force. */
   REQUIRE(fb_scenario_check(s, &err), &err);
   return s;
 }
@@ -277,7 +274,7 @@ static void test_vehicle_split(void)
   const long f = fb_scenario_corner_find(s, b->front), rr = fb_scenario_corner_find(s, b->rear);
   const double a = s->corner[f].x - b->pivot_x, bb = b->pivot_x - s->corner[rr].x;
   const double *row = fb_result_row(r, 0);
-  const double spring = row[fb_result_find(r, "pivot_left")];
+  const double spring = row[fb_result_find(r, "pivot_force_left")];
   const double P = spring + b->beam_mass * s->gravity;
   const double front = row[fb_result_find(r, "tire_force_LM")];
   const double rear = row[fb_result_find(r, "tire_force_LR")];
@@ -346,6 +343,19 @@ static void expect_refusal(const char *front, const char *rear, double pivot_dx,
 
 static void test_refusals(void)
 {
+  /* An output of a bogie the vehicle has not. */
+  fb_err err;
+  fb_scenario *s = truck();
+  const fb_output_spec pitch = {.signal = "beam_pitch", .of = "left", .name = "pitch"};
+  REQUIRE(fb_scenario_add_output(s, &pitch, &err), &err);
+  free(s->output[s->noutputs - 1].of);
+  s->output[s->noutputs - 1].of = strdup("lefty");
+  fb_err_clear(&err);
+  CHECK(fb_scenario_check(s, &err) == FB_EINVAL);
+  fprintf(stderr, "refused: %s\n", err.msg);
+  CHECK(PART_IS(&err, FB_PART_OUTPUT, s->noutputs - 1, "of") &&
+        strstr(err.msg, "did you mean 'left'") != NULL);
+  fb_scenario_free(&s);
   expect_refusal("LMM", "LR", 0, 0, "front", "did you mean 'LM'");
   expect_refusal("LM", "LM", 0, 0, "rear", "one corner");
   expect_refusal("LM", "RR", 0, 0, "rear", "on one line");

@@ -19,6 +19,7 @@ static const char *subject_word(fb_output_subject s)
   case FB_OUTPUT_OF_MOUNT: return "mount";
   case FB_OUTPUT_OF_HULL: return "hull";
   case FB_OUTPUT_OF_BOND: return "bond";
+  case FB_OUTPUT_OF_BOGIE: return "bogie";
   }
   return "?";
 }

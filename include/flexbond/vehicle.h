@@ -475,6 +475,8 @@ double fb_scenario_speed(const fb_scenario *s);
 /* Index of the corner or mount named name, -1 if none. */
 long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
+/* Index of the bogie named name, -1 if none. */
+long fb_scenario_bogie_find(const fb_scenario *s, const char *name);
 /* The plausibility warnings of a loaded scenario, each "FILE:LINE:COL:
  * KEY: VALUE is implausible: WHY" with the fields of a located error
  * (docs/errors.md, "Implausible values"); NULL for i out of range; owned
@@ -875,7 +877,8 @@ typedef enum fb_output_subject {
   FB_OUTPUT_OF_CORNER, /* `of` names a corner */
   FB_OUTPUT_OF_MOUNT,  /* `of` names a mounted body */
   FB_OUTPUT_OF_HULL,   /* no `of`: the hull */
-  FB_OUTPUT_OF_BOND    /* `bond` names a bond of the assembled graph */
+  FB_OUTPUT_OF_BOND,   /* `bond` names a bond of the assembled graph */
+  FB_OUTPUT_OF_BOGIE   /* `of` names a walking-beam bogie */
 } fb_output_subject;
 
 struct fb_output_kind {

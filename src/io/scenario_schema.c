@@ -489,21 +489,25 @@ static int sc_output_kind(const ml_ctx *c, struct fy_node *node, const char *sig
                  hint);
 }
 
-/* `of` for a corner's or a mount's signal only, `bond` for a bond's. */
+/* `of` for a corner's, a mount's or a bogie's signal only, `bond` for a
+ * bond's. */
 static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
                              const fb_output_kind *kind)
 {
-  const int wants_of =
-      kind->subject == FB_OUTPUT_OF_CORNER || kind->subject == FB_OUTPUT_OF_MOUNT;
+  const int wants_of = kind->subject == FB_OUTPUT_OF_CORNER ||
+                       kind->subject == FB_OUTPUT_OF_MOUNT ||
+                       kind->subject == FB_OUTPUT_OF_BOGIE;
   const int wants_bond = kind->subject == FB_OUTPUT_OF_BOND;
-  const char *what = kind->subject == FB_OUTPUT_OF_CORNER ? "corner" : "mounted body";
+  const char *what = kind->subject == FB_OUTPUT_OF_CORNER  ? "corner"
+                     : kind->subject == FB_OUTPUT_OF_MOUNT ? "mounted body"
+                                                           : "bogie";
   struct fy_node *key = NULL;
   if (wants_of && !o->of)
     return ml_fail(c, node, FB_EPARSE, "missing required key 'of': the %s a %s signal measures",
                    what, o->signal);
   if (!wants_of && o->of && (ml_get(node, "of", &key), key))
-    return ml_fail_key(c, node, key, FB_EPARSE, "a %s signal measures no corner or mount",
-                       o->signal);
+    return ml_fail_key(c, node, key, FB_EPARSE,
+                       "a %s signal measures no corner, mount or bogie", o->signal);
   if (wants_bond && !o->bond)
     return ml_fail(c, node, FB_EPARSE,
                    "missing required key 'bond': the bond of the assembled graph whose %s "
@@ -799,7 +803,8 @@ static const sch_key sc_output_keys[] = {
     STRING(NAME, "signal", REQ, "what it records: a signal kind (docs/vehicle-outputs.md)",
            O_AT(STRING, signal)),
     STRING(NAME, "of", OPT,
-           "the corner or mount it measures (a corner's or a mount's signal only)",
+           "the corner, mount or bogie it measures (a corner's, a mount's or a bogie's signal "
+           "only)",
            O_AT(STRING, of)),
     STRING(TEXT, "bond", OPT, "a bond signal's bond in the assembled graph (`susp_LF.b_tire`)",
            O_AT(STRING, bond)),

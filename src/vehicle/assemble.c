@@ -77,6 +77,7 @@ char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i
   switch (subject) {
   case FB_OUTPUT_OF_CORNER: return corner_instance(s, i);
   case FB_OUTPUT_OF_MOUNT: return fb_strdup(s->mount[i].name);
+  case FB_OUTPUT_OF_BOGIE: return vehicle_bogie_instance(&s->bogie[i]);
   default: return fb_strdup("hull");
   }
 }

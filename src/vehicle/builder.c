@@ -237,6 +237,11 @@ static int builder_subject(const fb_scenario *s, const fb_output_kind *kind,
                : fb_err_set(err, FB_EINVAL,
                             "a %s signal measures a mounted body of the vehicle (%s)",
                             kind->signal, o->of ? o->of : "none given");
+  case FB_OUTPUT_OF_BOGIE:
+    return o->of && fb_scenario_bogie_find(s, o->of) >= 0
+               ? FB_OK
+               : fb_err_set(err, FB_EINVAL, "a %s signal measures a bogie of the vehicle (%s)",
+                            kind->signal, o->of ? o->of : "none given");
   case FB_OUTPUT_OF_HULL:
     return o->of ? fb_err_set(err, FB_EINVAL,
                               "a %s signal measures the hull, no corner or mount", kind->signal)

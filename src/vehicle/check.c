@@ -615,6 +615,11 @@ static const char *mount_name_at(const void *ctx, size_t i)
   return ((const fb_scenario *)ctx)->mount[i].name;
 }
 
+static const char *bogie_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->bogie[i].name;
+}
+
 /* For an unknown name: " (did you mean 'LF'?)" when one is close, then
  * "; the corners are LF, RF, ..." (what: "corners"), into buf. */
 static void names_hint(const fb_scenario *s, const char *word, size_t n, fb_name_fn name_at,
@@ -654,6 +659,12 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
                 "corner %s is a bogie's wheel, which has no %s: a bogie's wheel offers "
                 "tire_force, tire_defl and tire_power",
                 o->of, o->signal);
+  if (kind->subject == FB_OUTPUT_OF_BOGIE && (!o->of || fb_scenario_bogie_find(s, o->of) < 0)) {
+    names_hint(s, o->of, s->nbogies, bogie_name_at, "bogies", hint, sizeof hint);
+    return fail(err, FB_PART_OUTPUT, i, "of",
+                "no bogie named '%s' (a %s signal measures a bogie)%s", o->of ? o->of : "",
+                o->signal, hint);
+  }
   if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
     names_hint(s, o->of, s->nmounts, mount_name_at, "mounts", hint, sizeof hint);
     return fail(err, FB_PART_OUTPUT, i, "of",

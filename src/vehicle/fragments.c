@@ -660,6 +660,13 @@ static const vehicle_signal bogie_wheel_signals[] = {
     {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0},
 };
 
+/* The bogie's (fb_vehicle_bogie): its beam's pitch and its pivot's
+ * spring force. */
+static const vehicle_signal bogie_signals[] = {
+    {"beam_pitch", FB_PROBE_FLOW, "b_pitch", 1, 0},
+    {"pivot_force", FB_PROBE_EFFORT, "b_spring", 0, 0},
+};
+
 /* The mounted body's (fb_vehicle_mount): its acceleration is the effort
  * on its mass over the mass (the paper's gain block 1/m on e7). */
 static const vehicle_signal mount_signals[] = {
@@ -692,6 +699,8 @@ const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const c
     return signal_in(corner_signals, sizeof corner_signals / sizeof corner_signals[0], signal);
   case FB_OUTPUT_OF_MOUNT:
     return signal_in(mount_signals, sizeof mount_signals / sizeof mount_signals[0], signal);
+  case FB_OUTPUT_OF_BOGIE:
+    return signal_in(bogie_signals, sizeof bogie_signals / sizeof bogie_signals[0], signal);
   default: return NULL;
   }
 }

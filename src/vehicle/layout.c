@@ -121,6 +121,14 @@ long fb_scenario_mount_find(const fb_scenario *s, const char *name)
   return -1;
 }
 
+long fb_scenario_bogie_find(const fb_scenario *s, const char *name)
+{
+  for (size_t b = 0; name && b < s->nbogies; ++b)
+    if (!strcmp(s->bogie[b].name, name))
+      return (long)b;
+  return -1;
+}
+
 double fb_scenario_track_width(const fb_scenario *s)
 {
   /* The first corner leads the left track (y > 0); the right track is the
