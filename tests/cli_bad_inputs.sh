@@ -175,6 +175,17 @@ derive s_heavy.yaml s_ok.yaml -e 's/^  total_weight: 117720 /  total_weight: 1e1
 derive s_bump100.yaml s_ok.yaml -e 's/^    height: 0.10 /    height: 100 /'
 LONG=ddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddddd
 derive s_longname.yaml s_ok.yaml -e "s/^  - name: driver /  - name: $LONG /" -e "s/of: driver/of: $LONG/"
+# Anti-roll bars: each end a corner of the scenario, on its side, the two ends apart.
+derive s_arb_name.yaml s_ok.yaml -e '/^outputs:/i anti_roll_bars: [{name: front, left: LG, right: RF, stiffness: 50000}]'
+derive s_arb_self.yaml s_ok.yaml -e '/^outputs:/i anti_roll_bars: [{name: front, left: LF, right: LF, stiffness: 50000}]'
+derive s_arb_side.yaml s_ok.yaml -e '/^outputs:/i anti_roll_bars: [{name: front, left: LF, right: LM, stiffness: 50000}]'
+derive s_arb_twice.yaml s_ok.yaml -e '/^outputs:/i anti_roll_bars:\n  - {name: front, left: LF, right: RF, stiffness: 50000}\n  - {name: second, left: LM, right: RF, stiffness: 50000}'
+# Bogies: each end a corner of the scenario, both on one side, the pivot between; a bogie's
+# wheel measures its tire only.
+derive s_bogie_name.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LMM, rear: LR, pivot_x: -0.3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
+derive s_bogie_side.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LM, rear: RR, pivot_x: -0.3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
+derive s_bogie_pivot.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LM, rear: LR, pivot_x: 3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
+derive s_bogie_signal.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LM, rear: LR, pivot_x: -0.3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
 derive s_samepoint.yaml s_ok.yaml -e '/^    - name: M /,/^    - name: R /s/^      x: 0.40 /      x: 1.90 /'
 derive s_bulkheads.yaml s_ok.yaml -e 's/^\(      bulkheads: \)\[.*\]/\1[1.90, -1.00]/'
 derive s_modes.yaml s_ok.yaml -e 's/^    modes: auto /    modes: 99999 /'
@@ -351,6 +362,14 @@ CASES=(
   "2|freq s_bump100.yaml --system rigid --strict -o @OUT|$(at s_bump100.yaml 'height: 100' 100) road.bump.height: 100 m is implausible"
   "2|run s_longname.yaml --system rigid -o @OUT|$(at s_longname.yaml "name: $LONG" "$LONG") mounts[0].name: a name of 85 characters, more than 64"
   "2|run s_driver.yaml --system rigid -o @OUT|$(at s_driver.yaml 'x: 20.1' 20.1) mounts[0].x: must lie on the hull's floor, between the rear edge's x = -2.657984123 and the front edge's x = 2.478133119 m (got 20.1)"
+  "2|run s_arb_name.yaml --system rigid -o @OUT|$(at s_arb_name.yaml 'left: LG' LG) anti_roll_bars[0].left: no corner named 'LG' (did you mean 'LF'?); the corners are LF, RF, LM, RM, LR, RR"
+  "2|run s_arb_self.yaml --system rigid -o @OUT|$(at s_arb_self.yaml 'right: LF' 'LF, stiffness') anti_roll_bars[0].right: the bar's two ends are one corner, LF"
+  "2|freq s_arb_side.yaml --system rigid -o @OUT|$(at s_arb_side.yaml 'right: LM' LM) anti_roll_bars[0].right: corner LM is on the left (y = 1.05 m): a bar's right corner has y < 0"
+  "2|run s_arb_twice.yaml --system rigid -o @OUT|$(at s_arb_twice.yaml 'name: second' RF) anti_roll_bars[1].right: corner RF is under bar front already (a corner carries one bar)"
+  "2|run s_bogie_name.yaml --system rigid -o @OUT|$(at s_bogie_name.yaml 'front: LMM' LMM) bogies[0].front: no corner named 'LMM' (did you mean 'LM'?)"
+  "2|modes s_bogie_side.yaml|$(at s_bogie_side.yaml 'rear: RR' RR) bogies[0].rear: corner RR is at y = -1.05 m, the front corner LM at y = 1.05 m: a bogie's wheels are on one line along the vehicle"
+  "2|run s_bogie_pivot.yaml --system rigid -o @OUT|$(at s_bogie_pivot.yaml 'pivot_x: 3' 3) bogies[0].pivot_x: must lie between the rear corner LR's x = -1 m and the front corner LM's x = 0.4 m (got 3)"
+  "2|run s_bogie_signal.yaml --system rigid -o @OUT|$(at s_bogie_signal.yaml 'signal: shock_power' shock_power) outputs[4].signal: corner LM is a bogie's wheel, which has no shock_power"
   "2|export s_samepoint.yaml --system rigid -o @OUT|$(at s_samepoint.yaml '    - name: M ' name) suspensions.axles[1]: at (1.9, 1.05) m, where corner LF already is (two corners at one point)"
   "2|mesh s_bulkheads.yaml --export @FILE.inp|$(at s_bulkheads.yaml 'front_x: 2.478' 2.478) hull.edges.front_x: the scenario puts FRONT_EDGE's left end at (2.47813, 1.05) m, the mesh's node 76 at (2.33187, 1.05) m"
   "2|run s_modes.yaml --system flexible -o @OUT|$(at s_modes.yaml 'modes: 99999' 99999) hull.fe.modes: 99999 modes, more than the hull's 1296 degrees of freedom"

@@ -20,6 +20,7 @@ static const char *subject_word(fb_output_subject s)
   case FB_OUTPUT_OF_HULL: return "hull";
   case FB_OUTPUT_OF_BOND: return "bond";
   case FB_OUTPUT_OF_HULL_POINT: return "hull point";
+  case FB_OUTPUT_OF_BOGIE: return "bogie";
   }
   return "?";
 }

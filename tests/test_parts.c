@@ -22,9 +22,10 @@
 #include "core/textfile.h"
 #include "io/scenario_internal.h"
 
-#define EXAMPLE "../examples/truck4x4.yaml"
+#define EXAMPLE "../examples/truck6x6_bogie.yaml"
 
-/* The truck with a hull section added (no example has one). */
+/* The 6x6 truck (an anti-roll bar, bogies) with a hull section added (no
+ * example has one). */
 static fb_scenario *load_truck(void)
 {
   char *text = NULL;
@@ -57,14 +58,23 @@ static int kind_of(const char *name)
   static const struct {
     const char *name;
     int kind;
-  } kinds[] = {
-      {"FB_PART_VEHICLE", FB_PART_VEHICLE},      {"fb_scenario", FB_PART_VEHICLE},
-      {"FB_PART_CORNER", FB_PART_CORNER},        {"fb_corner_params", FB_PART_CORNER},
-      {"FB_PART_MOUNT", FB_PART_MOUNT},          {"fb_mount", FB_PART_MOUNT},
-      {"FB_PART_HULL_MASS", FB_PART_HULL_MASS},  {"fb_hull_point_mass", FB_PART_HULL_MASS},
-      {"FB_PART_SECTION", FB_PART_SECTION},      {"fb_hull_section", FB_PART_SECTION},
-      {"FB_PART_OUTPUT", FB_PART_OUTPUT},        {"fb_output_spec", FB_PART_OUTPUT},
-      {"FB_PART_LOAD_POINT", FB_PART_LOAD_POINT}};
+  } kinds[] = {{"FB_PART_VEHICLE", FB_PART_VEHICLE},
+               {"fb_scenario", FB_PART_VEHICLE},
+               {"FB_PART_CORNER", FB_PART_CORNER},
+               {"fb_corner_params", FB_PART_CORNER},
+               {"FB_PART_MOUNT", FB_PART_MOUNT},
+               {"fb_mount", FB_PART_MOUNT},
+               {"FB_PART_HULL_MASS", FB_PART_HULL_MASS},
+               {"fb_hull_point_mass", FB_PART_HULL_MASS},
+               {"FB_PART_SECTION", FB_PART_SECTION},
+               {"fb_hull_section", FB_PART_SECTION},
+               {"FB_PART_OUTPUT", FB_PART_OUTPUT},
+               {"fb_output_spec", FB_PART_OUTPUT},
+               {"FB_PART_LOAD_POINT", FB_PART_LOAD_POINT},
+               {"FB_PART_ANTIROLL_BAR", FB_PART_ANTIROLL_BAR},
+               {"fb_antiroll_bar", FB_PART_ANTIROLL_BAR},
+               {"FB_PART_BOGIE", FB_PART_BOGIE},
+               {"fb_bogie", FB_PART_BOGIE}};
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
     if (!strcmp(kinds[i].name, name))
       return kinds[i].kind;
@@ -217,7 +227,8 @@ int main(void)
   fb_scenario *s = load_truck();
   if (!s)
     return check_report("test_parts");
-  CHECK(s->nsections == 1 && s->npoint_masses > 0 && s->nmounts > 0 && s->noutputs > 0);
+  CHECK(s->nsections == 1 && s->npoint_masses > 0 && s->nmounts > 0 && s->noutputs > 0 &&
+        s->nantiroll_bars == 1 && s->nbogies == 2);
   scan_sources(s, "../src/vehicle");
   scan_sources(s, "../src/sim");
   for (size_t i = 0; i < sizeof computed / sizeof computed[0]; ++i)

@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Helpers of the vehicle tests (test_contact.c, test_shock_table.c,
- * test_road_scenario.c): simulate System 1, compare two runs output by
- * output, and load the example scenario with part of its text replaced.
+ * test_road_scenario.c, test_antiroll_bar.c, test_bogie.c): simulate
+ * System 1, compare two runs output by output, load the example scenario
+ * with part of its text replaced, and compare the two systems' modes in
+ * the rigid limit.
  * Header-only test helper (static inline functions); include after
  * check.h. */
 #ifndef FLEXBOND_TESTS_VEHICLE_UTIL_H
@@ -206,6 +208,39 @@ static inline void check_refused_at(const fb_err *err, const char *key, const ch
   CHECK(located);
   if (!located)
     fprintf(stderr, "  %s=%s: %s\n", key, value, err->msg);
+}
+
+/* System 2's undamped modes of s in the rigid limit (its hull 100 times
+ * stiffer; s->young restored) against System 1's, both the exact ones
+ * (the whole sparse matrices) and the modal basis's (at least nreduced of
+ * them: the basis keeps the modes its band covers): ratio 1 within 5e-4,
+ * test_system2_modes.c's bound for the paper's 6x6 (the hull's
+ * flexibility moves them by ~1.3e-4 at 100 E). */
+static inline void check_rigid_limit(fb_scenario *s, size_t nreduced)
+{
+  fb_err err;
+  fb_mode *rigid = NULL;
+  size_t nr = 0, nstatic = 0;
+  REQUIRE(fb_vehicle_modes(s, FB_SYSTEM_RIGID, 1, &rigid, &nr, &nstatic, &err), &err);
+  const double young = s->young;
+  s->young *= 100.0;
+  fb_vehicle *v = NULL;
+  REQUIRE(fb_vehicle_new(s, FB_SYSTEM_FLEXIBLE, NULL, &v, &err), &err);
+  s->young = young;
+  for (int exact = 1; exact >= 0; --exact) {
+    fb_mode_set *m = NULL;
+    REQUIRE(fb_vehicle_structural_modes(v, nr, exact, &m, &err), &err);
+    CHECK(exact ? m->nmodes == nr : m->nmodes >= nreduced);
+    for (size_t k = 0; k < nr && k < m->nmodes; ++k) {
+      fprintf(stderr, "%s %zu: System 1 %.8g Hz (%s), System 2 at 100 E %.8g Hz\n",
+              exact ? "exact" : "reduced", k + 1, rigid[k].freq_hz, rigid[k].description,
+              m->freq_hz[k]);
+      CHECK_NEAR(m->freq_hz[k] / rigid[k].freq_hz, 1.0, 5e-4);
+    }
+    fb_mode_set_free(&m);
+  }
+  fb_vehicle_free(&v);
+  free(rigid);
 }
 
 #endif

@@ -77,6 +77,56 @@ typedef struct fb_mount {
   double x, y;      /* attachment point, m */
 } fb_mount;
 
+/* A walking-beam bogie: a beam carrying two wheels, at a ahead of its
+ * pivot and b behind it, whose pivot rides on a spring and a damper
+ * (vertical, no motion ratio) to the hull, as in the walking-beam tandems
+ * of heavy trucks, where the beam's centre bushing sits on the
+ * suspension's spring and the axles ride at its ends. The beam pitches
+ * freely about the pivot; its centre of mass is at the pivot. */
+typedef struct fb_bogie_params {
+  const char *name;    /* for its modes' labels ("bogie pitch <name>"); borrowed, may be NULL */
+  double a, b;         /* m, the front and rear wheels' distances from the pivot, > 0 */
+  double beam_mass;    /* kg, the beam's (the wheels' are theirs) */
+  double beam_inertia; /* kg m^2, the beam's pitch inertia about the pivot */
+  double spring_k;     /* N/m, between the hull and the pivot */
+  double damper_c;     /* N s/m */
+} fb_bogie_params;
+
+/* A walking-beam bogie of the description: the wheels and tires of two
+ * corners on one side (front ahead of rear) ride at its beam's ends; the
+ * pivot lies between them, at pivot_x, and rides on the bogie's own
+ * spring and damper to the hull, whose force the hull takes at the two
+ * corners' attachment points in the lever's proportions (b/(a+b) at the
+ * front one, a/(a+b) at the rear one). The corners' own springs, dampers
+ * and motion ratios are not used; their wheels, tires and names are
+ * (road inputs, tire outputs, contact forces). */
+typedef struct fb_bogie {
+  char *name;          /* unique among the bogies; owned */
+  char *front, *rear;  /* the corners at its ends, by name; owned */
+  double pivot_x;      /* m, in the corners' frame, strictly between their x */
+  double beam_mass;    /* kg */
+  double beam_inertia; /* kg m^2, pitch, about the pivot */
+  double spring_k;     /* N/m, the pivot's spring to the hull */
+  double damper_c;     /* N s/m */
+} fb_bogie;
+
+/* An anti-roll bar between two corners of one axle: its force, a
+ * compression force on the left corner's suspension (wheel down, hull up)
+ * and the opposite on the right one's, is
+ *   F = (stiffness / 2) (x_left - x_right) + (damping / 2) (v_left - v_right)
+ * with x the wheels' travels relative to the hull (compression
+ * positive). stiffness is the bar's rate at each wheel in roll (equal and
+ * opposite travels, Milliken & Milliken, Race Car Vehicle Dynamics, SAE
+ * 1995, ch. 16), so that it adds stiffness t^2 / 2 to the axle's roll
+ * stiffness (t the track); a wheel lifted alone meets half of it. */
+typedef struct fb_antiroll_bar {
+  char *name;       /* unique among the bars; owned */
+  char *left;       /* the corner on the left (y > 0); owned */
+  char *right;      /* the corner on the right (y < 0); owned */
+  double stiffness; /* N/m, at each wheel in roll */
+  double damping;   /* N s/m, at each wheel in roll; 0: none */
+} fb_antiroll_bar;
+
 /* A non-structural mass fixed to the hull's floor (a battery, ballast, an
  * armour plate): pure inertia. Its weight is part of load.total_weight,
  * which the load points carry; its mass moves with the hull, System 1's
@@ -274,19 +324,21 @@ typedef enum fb_coupling_kind {
  * says where the part came from (fb_scenario_locate for a file). */
 typedef enum fb_part_kind {
   FB_PART_NONE = 0,
-  FB_PART_VEHICLE = 1,      /* fb_scenario's members */
-  FB_PART_CORNER = 2,       /* corner[index], fb_corner_params */
-  FB_PART_MOUNT = 3,        /* mount[index], fb_mount */
-  FB_PART_HULL_MASS = 4,    /* point_mass[index], fb_hull_point_mass */
-  FB_PART_SECTION = 5,      /* section[index], fb_hull_section */
-  FB_PART_OUTPUT = 6,       /* output[index], fb_output_spec */
-  FB_PART_LOAD_POINT = 7,   /* (load_x[index], load_y[index]); field "" */
-  FB_PART_ROAD = 8,         /* the road type's parameter field (fb_param.name); index 0 */
-  FB_PART_TIRE = 9,         /* corner[index]'s tire model's parameter field (fb_param.name) */
-  FB_PART_HULL_SOURCE = 10, /* the hull source's parameter field (fb_param.name); index 0 */
-  FB_PART_DAMPER = 11,      /* corner[index]'s damper law's parameter field (fb_param.name) */
-  FB_PART_SPRING = 12,      /* corner[index]'s spring law's parameter field (fb_param.name) */
-  FB_PART_STOP = 13,        /* corner[index]'s stops: field "bump_stop.gap", ... */
+  FB_PART_VEHICLE = 1,       /* fb_scenario's members */
+  FB_PART_CORNER = 2,        /* corner[index], fb_corner_params */
+  FB_PART_MOUNT = 3,         /* mount[index], fb_mount */
+  FB_PART_HULL_MASS = 4,     /* point_mass[index], fb_hull_point_mass */
+  FB_PART_SECTION = 5,       /* section[index], fb_hull_section */
+  FB_PART_OUTPUT = 6,        /* output[index], fb_output_spec */
+  FB_PART_LOAD_POINT = 7,    /* (load_x[index], load_y[index]); field "" */
+  FB_PART_ROAD = 8,          /* the road type's parameter field (fb_param.name); index 0 */
+  FB_PART_TIRE = 9,          /* corner[index]'s tire model's parameter field (fb_param.name) */
+  FB_PART_HULL_SOURCE = 10,  /* the hull source's parameter field (fb_param.name); index 0 */
+  FB_PART_DAMPER = 11,       /* corner[index]'s damper law's parameter field (fb_param.name) */
+  FB_PART_SPRING = 12,       /* corner[index]'s spring law's parameter field (fb_param.name) */
+  FB_PART_STOP = 13,         /* corner[index]'s stops: field "bump_stop.gap", ... */
+  FB_PART_ANTIROLL_BAR = 16, /* antiroll_bar[index], fb_antiroll_bar */
+  FB_PART_BOGIE = 17,        /* bogie[index], fb_bogie */
   FB_PART_KINDS = 18
 } fb_part_kind;
 
@@ -301,6 +353,8 @@ typedef enum fb_part_kind {
 typedef struct fb_scenario FB_PART_TYPE_FB_PART_VEHICLE;
 typedef struct fb_corner_params FB_PART_TYPE_FB_PART_CORNER;
 typedef struct fb_mount FB_PART_TYPE_FB_PART_MOUNT;
+typedef struct fb_antiroll_bar FB_PART_TYPE_FB_PART_ANTIROLL_BAR;
+typedef struct fb_bogie FB_PART_TYPE_FB_PART_BOGIE;
 typedef struct fb_hull_point_mass FB_PART_TYPE_FB_PART_HULL_MASS;
 typedef struct fb_hull_section FB_PART_TYPE_FB_PART_SECTION;
 typedef struct fb_output_spec FB_PART_TYPE_FB_PART_OUTPUT;
@@ -354,6 +408,12 @@ typedef struct fb_scenario {
   size_t nmounts;
   fb_corner_params *corner;
   size_t ncorners;
+  /* The anti-roll bars, each between two of the corners (by name). */
+  fb_antiroll_bar *antiroll_bar;
+  size_t nantiroll_bars;
+  /* The walking-beam bogies, each on two of the corners (by name). */
+  fb_bogie *bogie;
+  size_t nbogies;
   /* The signals recorded, in CSV column order (docs/vehicle-outputs.md). */
   fb_output_spec *output;
   size_t noutputs;
@@ -451,6 +511,8 @@ double fb_scenario_speed(const fb_scenario *s);
 /* Index of the corner or mount named name, -1 if none. */
 long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
+/* Index of the bogie named name, -1 if none. */
+long fb_scenario_bogie_find(const fb_scenario *s, const char *name);
 /* The plausibility warnings of a loaded scenario, each "FILE:LINE:COL:
  * KEY: VALUE is implausible: WHY" with the fields of a located error
  * (docs/errors.md, "Implausible values"); NULL for i out of range; owned
@@ -702,6 +764,13 @@ void fb_scenario_set_rigid_hull(fb_scenario *s, double mass, double ixx, double 
 int fb_scenario_add_corner(fb_scenario *s, const fb_corner_params *c, fb_err *err);
 int fb_scenario_add_mount(fb_scenario *s, const fb_mount *m, fb_err *err);
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err);
+/* Appends a copy of the anti-roll bar b (its name and corners' names
+ * copied). FB_EINVAL without a name or a corner's name, FB_ENOMEM;
+ * fb_scenario_check says whether its corners exist and face each other. */
+int fb_scenario_add_antiroll_bar(fb_scenario *s, const fb_antiroll_bar *b, fb_err *err);
+/* The same for a walking-beam bogie (fb_scenario_check says whether its
+ * corners exist, on one side, around its pivot). */
+int fb_scenario_add_bogie(fb_scenario *s, const fb_bogie *b, fb_err *err);
 int fb_scenario_add_load_point(fb_scenario *s, double x, double y, fb_err *err);
 /* Appends a copy of the output o: its signal (a kind of
  * fb_vehicle_output_kinds) and subject (`of` a corner or mount added
@@ -840,6 +909,25 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
 /* One suspension with its wheel and tire: ports "hull" (OUT), "road" (IN). */
 int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err);
+/* The same with a port "travel" (OUT) at the wheel's velocity relative to
+ * the hull, where a force in parallel with the suspension's joins it (an
+ * anti-roll bar's "left" or "right"). */
+int fb_vehicle_corner_coupled(const fb_corner_params *c, double gravity, fb_bg **out,
+                              fb_err *err);
+/* A walking-beam bogie (fb_bogie_params) on the wheels and tires of front
+ * and rear (their wheel_mass and tire; their springs, dampers and motion
+ * ratio are not the bogie's): ports "hull" (OUT: the pivot's spring and
+ * damper to a hull point), "road_front" and "road_rear" (IN: each tire's
+ * road). What it offers to measure, as bonds: the flow of "b_up" is the
+ * pivot's vertical velocity, that of "b_pitch" the beam's pitch rate
+ * (nose up positive; integrated: bounce and pitch), the efforts of
+ * "front.b_tire" and "rear.b_tire" the wheels' loads on the road
+ * (compression positive), that of "b_spring" the pivot's spring force. */
+int fb_vehicle_bogie(const fb_bogie_params *p, const fb_corner_params *front,
+                     const fb_corner_params *rear, double gravity, fb_bg **out, fb_err *err);
+/* An anti-roll bar (fb_antiroll_bar's law): ports "left" and "right"
+ * (IN), each to a corner's "travel". */
+int fb_vehicle_antiroll_bar(const fb_antiroll_bar *b, fb_bg **out, fb_err *err);
 /* The road: one flow source per wheel (the road's vertical velocity under
  * that wheel: the bump, an ISO 8608 random road or a profile, src/road),
  * "v_<CORNER>", one port per corner named as it (OUT). */
@@ -865,11 +953,12 @@ void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes);
  * table (src/vehicle/outputs.c); a new kind is one entry there and a row of
  * docs/vehicle-outputs.md. */
 typedef enum fb_output_subject {
-  FB_OUTPUT_OF_CORNER,    /* `of` names a corner */
-  FB_OUTPUT_OF_MOUNT,     /* `of` names a mounted body */
-  FB_OUTPUT_OF_HULL,      /* no `of`: the hull */
-  FB_OUTPUT_OF_BOND,      /* `bond` names a bond of the assembled graph */
-  FB_OUTPUT_OF_HULL_POINT /* `at` a point of the hull, `direction` an axis */
+  FB_OUTPUT_OF_CORNER,     /* `of` names a corner */
+  FB_OUTPUT_OF_MOUNT,      /* `of` names a mounted body */
+  FB_OUTPUT_OF_HULL,       /* no `of`: the hull */
+  FB_OUTPUT_OF_BOND,       /* `bond` names a bond of the assembled graph */
+  FB_OUTPUT_OF_HULL_POINT, /* `at` a point of the hull, `direction` an axis */
+  FB_OUTPUT_OF_BOGIE       /* `of` names a walking-beam bogie */
 } fb_output_subject;
 
 struct fb_output_kind {

@@ -15,6 +15,10 @@ const char *const cli_track_names[FB_ROAD_NTRACKS] = {"left", "right"};
 
 void cli_gain_unit(const char *unit, char *buf, size_t size)
 {
+  if (!unit) { /* a bond's output: its unit is its domain's, which the scenario does not hold */
+    snprintf(buf, size, "per m");
+    return;
+  }
   const int compound = strpbrk(unit, "/ *") != NULL;
   snprintf(buf, size, compound ? "(%s)/m" : "%s/m", unit);
 }

@@ -676,21 +676,25 @@ static int sc_output_point(const ml_ctx *c, struct fy_node *node, const fb_outpu
   return FB_OK;
 }
 
-/* `of` for a corner's or a mount's signal only, `bond` for a bond's. */
+/* `of` for a corner's, a mount's or a bogie's signal only, `bond` for a
+ * bond's. */
 static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
                              const fb_output_kind *kind)
 {
-  const int wants_of =
-      kind->subject == FB_OUTPUT_OF_CORNER || kind->subject == FB_OUTPUT_OF_MOUNT;
+  const int wants_of = kind->subject == FB_OUTPUT_OF_CORNER ||
+                       kind->subject == FB_OUTPUT_OF_MOUNT ||
+                       kind->subject == FB_OUTPUT_OF_BOGIE;
   const int wants_bond = kind->subject == FB_OUTPUT_OF_BOND;
-  const char *what = kind->subject == FB_OUTPUT_OF_CORNER ? "corner" : "mounted body";
+  const char *what = kind->subject == FB_OUTPUT_OF_CORNER  ? "corner"
+                     : kind->subject == FB_OUTPUT_OF_MOUNT ? "mounted body"
+                                                           : "bogie";
   struct fy_node *key = NULL;
   if (wants_of && !o->of)
     return ml_fail(c, node, FB_EPARSE, "missing required key 'of': the %s a %s signal measures",
                    what, o->signal);
   if (!wants_of && o->of && (ml_get(node, "of", &key), key))
-    return ml_fail_key(c, node, key, FB_EPARSE, "a %s signal measures no corner or mount",
-                       o->signal);
+    return ml_fail_key(c, node, key, FB_EPARSE,
+                       "a %s signal measures no corner, mount or bogie", o->signal);
   if (wants_bond && !o->bond)
     return ml_fail(c, node, FB_EPARSE,
                    "missing required key 'bond': the bond of the assembled graph whose %s "
@@ -824,6 +828,9 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 #define C_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_corner_params, f), .member = #f
 #define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f), .member = #f
+#define B_AT(kind, f)                                                                          \
+  .store = SCH_STORE_##kind, .offset = offsetof(fb_antiroll_bar, f), .member = #f
+#define G_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_bogie, f), .member = #f
 #define O_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f), .member = #f
 #define P_AT(kind, f)                                                                          \
@@ -892,6 +899,46 @@ static const sch_key sc_mount_keys[] = {
     NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y), AXIS_Y),
 };
 static const sch_table sc_mount_table = TABLE(sc_mount_keys, NULL);
+
+/* An anti-roll bar between two corners: anti_roll_bars' items. */
+static const sch_key sc_antiroll_bar_keys[] = {
+    STRING(NAME, "name", REQ, "its name, unique among the anti-roll bars", B_AT(STRING, name)),
+    STRING(NAME, "left", REQ, "the corner at its left end (y > 0)", B_AT(STRING, left)),
+    STRING(NAME, "right", REQ, "the corner at its right end (y < 0), across from `left`",
+           B_AT(STRING, right)),
+    NUMBER("stiffness", "N/m", POSITIVE, REQ,
+           "its rate at each wheel in roll (equal and opposite travels): it adds "
+           "stiffness * track^2 / 2 to the axle's roll stiffness; a wheel lifted alone meets "
+           "half of it",
+           B_AT(DOUBLE, stiffness),
+           PLAUSIBLE(1e3, 1e7, "an anti-roll bar's rate at the wheel is 1e3 to 1e7 N/m")),
+    NUMBER("damping", "N s/m", NONNEGATIVE, DEF(0),
+           "damping on its twist, at each wheel in roll as `stiffness`", B_AT(DOUBLE, damping)),
+};
+static const sch_table sc_antiroll_bar_table = TABLE(sc_antiroll_bar_keys, NULL);
+
+/* A walking-beam bogie on two corners: bogies' items. */
+static const sch_key sc_bogie_keys[] = {
+    STRING(NAME, "name", REQ, "its name, unique among the bogies", G_AT(STRING, name)),
+    STRING(NAME, "front", REQ, "the corner whose wheel rides at the beam's front end",
+           G_AT(STRING, front)),
+    STRING(NAME, "rear", REQ,
+           "the corner whose wheel rides at its rear end, on the front one's side (same y)",
+           G_AT(STRING, rear)),
+    NUMBER("pivot_x", "m", ANY, REQ,
+           "the beam's pivot, strictly between the two corners' x; the hull takes its load at "
+           "their attachment points in the lever's proportions",
+           G_AT(DOUBLE, pivot_x)),
+    NUMBER("beam_mass", "kg", POSITIVE, REQ, "the beam's mass, at the pivot",
+           G_AT(DOUBLE, beam_mass), PLAUSIBLE(1, 5e3, "a bogie's beam weighs 1 kg to 5 t")),
+    NUMBER("beam_inertia", "kg m^2", POSITIVE, REQ, "the beam's pitch inertia about the pivot",
+           G_AT(DOUBLE, beam_inertia)),
+    NUMBER("spring_k", "N/m", POSITIVE, REQ, "the pivot's spring to the hull",
+           G_AT(DOUBLE, spring_k)),
+    NUMBER("damper_c", "N s/m", NONNEGATIVE, DEF(0), "the pivot's damper to the hull",
+           G_AT(DOUBLE, damper_c)),
+};
+static const sch_table sc_bogie_table = TABLE(sc_bogie_keys, NULL);
 
 /* A non-structural mass on the hull's floor: hull.masses' items. */
 static const sch_key sc_point_mass_keys[] = {
@@ -1027,7 +1074,8 @@ static const sch_key sc_output_keys[] = {
     STRING(NAME, "signal", REQ, "what it records: a signal kind (docs/vehicle-outputs.md)",
            O_AT(STRING, signal)),
     STRING(NAME, "of", OPT,
-           "the corner or mount it measures (a corner's or a mount's signal only)",
+           "the corner, mount or bogie it measures (a corner's, a mount's or a bogie's signal "
+           "only)",
            O_AT(STRING, of)),
     STRING(TEXT, "bond", OPT, "a bond signal's bond in the assembled graph (`susp_LF.b_tire`)",
            O_AT(STRING, bond)),
@@ -1224,6 +1272,15 @@ static const sch_key sc_keys[] = {
          "corners", &sc_axles, NAMED(corner, ncorners, 2)),
     LIST("suspensions.corners", OPT, "single corners, after the axles' ones", &sc_corner_format,
          "corners", &sc_corners, NAMED(corner, ncorners, 1)),
+    LIST("anti_roll_bars", OPT,
+         "anti-roll bars, each between a left and a right corner (docs/scenario-format.md, "
+         "\"Anti-roll bars\")",
+         &sc_antiroll_bar_table, "anti_roll_bars", &sc_named,
+         NAMED(antiroll_bar, nantiroll_bars, 1)),
+    LIST("bogies", OPT,
+         "walking-beam bogies, each carrying two corners' wheels (docs/scenario-format.md, "
+         "\"Walking-beam bogies\")",
+         &sc_bogie_table, "bogies", &sc_named, NAMED(bogie, nbogies, 1)),
     LIST("outputs", OPT,
          "the signals recorded, in CSV column order (default: every corner's tire_force)",
          &sc_output_table, "outputs", &sc_outputs, ITEMS(output, noutputs, 1)),
@@ -1309,6 +1366,16 @@ static const sch_table *sc_part_table(const fb_scenario *s, const sch_table *for
       return NULL;
     snprintf(prefix, size, "mounts.%s", s->mount[i].name);
     return &sc_mount_table;
+  case FB_PART_ANTIROLL_BAR:
+    if (i >= s->nantiroll_bars || !s->antiroll_bar[i].name)
+      return NULL;
+    snprintf(prefix, size, "anti_roll_bars.%s", s->antiroll_bar[i].name);
+    return &sc_antiroll_bar_table;
+  case FB_PART_BOGIE:
+    if (i >= s->nbogies || !s->bogie[i].name)
+      return NULL;
+    snprintf(prefix, size, "bogies.%s", s->bogie[i].name);
+    return &sc_bogie_table;
   case FB_PART_HULL_MASS:
     if (i >= s->npoint_masses || !s->point_mass[i].name)
       return NULL;

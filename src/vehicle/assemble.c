@@ -41,14 +41,59 @@ fb_corner_params vehicle_corner_loaded(const fb_scenario *s, size_t c)
 
 /* The one place the fragments' instance names are made: a mount's is its
  * name ("driver"), a corner's "susp_" and its name (so "LF" may be both
- * a corner and a mount's name without a clash), the hull's "hull". */
+ * a corner and a mount's name without a clash), the hull's "hull", an
+ * anti-roll bar's "arb_" and its name, a bogie's "bogie_" and its name. */
+long vehicle_corner_bogie(const fb_scenario *s, size_t c, int *rear)
+{
+  for (size_t b = 0; b < s->nbogies; ++b) {
+    const int at_front = !strcmp(s->bogie[b].front, s->corner[c].name);
+    if (at_front || !strcmp(s->bogie[b].rear, s->corner[c].name)) {
+      if (rear)
+        *rear = !at_front;
+      return (long)b;
+    }
+  }
+  return -1;
+}
+
+char *vehicle_bogie_instance(const fb_bogie *b)
+{
+  return fb_strdup_printf("bogie_%s", b->name);
+}
+
+/* A corner's instance: its own fragment's, or, for a bogie's wheel, that
+ * wheel's inside the bogie's ("bogie_<name>.front"). */
+static char *corner_instance(const fb_scenario *s, size_t c)
+{
+  int rear = 0;
+  const long b = vehicle_corner_bogie(s, c, &rear);
+  if (b < 0)
+    return fb_strdup_printf("susp_%s", s->corner[c].name);
+  return fb_strdup_printf("bogie_%s.%s", s->bogie[b].name, rear ? "rear" : "front");
+}
+
 char *vehicle_instance(const fb_scenario *s, fb_output_subject subject, size_t i)
 {
   switch (subject) {
-  case FB_OUTPUT_OF_CORNER: return fb_strdup_printf("susp_%s", s->corner[i].name);
+  case FB_OUTPUT_OF_CORNER: return corner_instance(s, i);
   case FB_OUTPUT_OF_MOUNT: return fb_strdup(s->mount[i].name);
+  case FB_OUTPUT_OF_BOGIE: return vehicle_bogie_instance(&s->bogie[i]);
   default: return fb_strdup("hull");
   }
+}
+
+char *vehicle_antiroll_bar_instance(const fb_antiroll_bar *b)
+{
+  return fb_strdup_printf("arb_%s", b->name);
+}
+
+/* 1 if an anti-roll bar ends at the corner named name. */
+static int corner_has_bar(const fb_scenario *s, const char *name)
+{
+  for (size_t i = 0; i < s->nantiroll_bars; ++i)
+    if (!strcmp(s->antiroll_bar[i].left, name) || !strcmp(s->antiroll_bar[i].right, name))
+      return 1;
+  return 0;
 }
 
 char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
@@ -74,9 +119,15 @@ static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
     fb_bg_free(&frag);
   }
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
+    if (vehicle_corner_bogie(s, c, NULL) >= 0)
+      continue; /* the bogie's fragment holds its wheel */
     char *inst = vehicle_instance(s, FB_OUTPUT_OF_CORNER, c);
     const fb_corner_params corner = vehicle_corner_loaded(s, c);
-    rc = inst ? adopt(bg, fb_vehicle_corner(&corner, s->gravity, &frag, err), &frag, inst, err)
+    const int coupled = corner_has_bar(s, corner.name);
+    rc = inst ? adopt(bg,
+                      coupled ? fb_vehicle_corner_coupled(&corner, s->gravity, &frag, err)
+                              : fb_vehicle_corner(&corner, s->gravity, &frag, err),
+                      &frag, inst, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
     free(inst);
     fb_bg_free(&frag);
@@ -84,10 +135,144 @@ static int add_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
   return rc;
 }
 
+/* Bogie i's fragment, its wheels the corners it names (fb_scenario_check
+ * found them, the pivot between). */
+static int adopt_bogie(const fb_scenario *s, fb_bg *bg, size_t i, const char *inst, fb_err *err)
+{
+  const fb_bogie *b = &s->bogie[i];
+  const long f = fb_scenario_corner_find(s, b->front), r = fb_scenario_corner_find(s, b->rear);
+  if (f < 0 || r < 0)
+    return fb_err_set(err, FB_EINVAL, "no corner named '%s'", f < 0 ? b->front : b->rear);
+  const fb_corner_params front = vehicle_corner_loaded(s, (size_t)f);
+  const fb_corner_params rear = vehicle_corner_loaded(s, (size_t)r);
+  const fb_bogie_params p = {b->name,      front.x - b->pivot_x, b->pivot_x - rear.x,
+                             b->beam_mass, b->beam_inertia,      b->spring_k,
+                             b->damper_c};
+  fb_bg *frag = NULL;
+  int rc =
+      adopt(bg, fb_vehicle_bogie(&p, &front, &rear, s->gravity, &frag, err), &frag, inst, err);
+  fb_bg_free(&frag);
+  return rc;
+}
+
+/* The saddle of bogie i: its pivot's force F on the hull at the two
+ * corners' attachment points, as a lever between them takes it, b/(a+b) F
+ * at the front one and a/(a+b) F at the rear one (the pivot's velocity
+ * on the hull is their average with those weights, exact for a rigid
+ * hull, the pivot on the line between them). The 0-junction
+ * "saddle_<name>" and one TF of modulus 1/weight to each attachment. */
+static int add_saddle(const fb_scenario *s, fb_bg *bg, size_t i, const char *inst, fb_err *err)
+{
+  const fb_bogie *b = &s->bogie[i];
+  const long end[2] = {fb_scenario_corner_find(s, b->front),
+                       fb_scenario_corner_find(s, b->rear)};
+  const double a = s->corner[end[0]].x - b->pivot_x, bb = b->pivot_x - s->corner[end[1]].x;
+  const double weight[2] = {bb / (a + bb), a / (a + bb)};
+  char *saddle = fb_strdup_printf("saddle_%s", b->name);
+  char *pivot = fb_strdup_printf("%s.hull", inst);
+  int rc = saddle && pivot ? fb_bg_add_junction(bg, saddle, FB_BG_J0, 1, err)
+                           : fb_err_set(err, FB_ENOMEM, "out of memory");
+  if (!rc)
+    rc = fb_bg_connect(bg, NULL, pivot, saddle, err);
+  static const char *const side[2] = {"front", "rear"};
+  for (int k = 0; !rc && k < 2; ++k) {
+    char *tf = fb_strdup_printf("%s_%s", saddle, side[k]);
+    char *in = fb_strdup_printf("%s.1", tf ? tf : "");
+    char *outp = fb_strdup_printf("%s.2", tf ? tf : "");
+    char *to = fb_strdup_printf("attach.%ld", end[k] + 1);
+    rc = tf && in && outp && to ? fb_bg_add_tf(bg, tf, FB_BG_TF, 1, 1.0 / weight[k], err)
+                                : fb_err_set(err, FB_ENOMEM, "out of memory");
+    if (!rc)
+      rc = fb_bg_connect(bg, NULL, saddle, in, err);
+    if (!rc)
+      rc = fb_bg_connect(bg, NULL, outp, to, err);
+    free(tf);
+    free(in);
+    free(outp);
+    free(to);
+  }
+  free(saddle);
+  free(pivot);
+  return rc;
+}
+
+/* The bogies' fragments and saddles (after the hull's attachment
+ * composite, before the roads' bonds to their tires). */
+static int add_bogies(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < s->nbogies; ++i) {
+    char *inst = vehicle_bogie_instance(&s->bogie[i]);
+    rc = inst ? adopt_bogie(s, bg, i, inst, err) : fb_err_set(err, FB_ENOMEM, "out of memory");
+    if (!rc)
+      rc = add_saddle(s, bg, i, inst, err);
+    if (rc && err && !err->part.kind)
+      fb_err_set_part(err, FB_PART_BOGIE, i, FB_ERR_NO_ELEMENT, "");
+    free(inst);
+  }
+  return rc;
+}
+
+/* Bond from the corner named corner's "travel" to the bar's port. */
+static int connect_bar_end(const fb_scenario *s, fb_bg *bg, const char *bar, const char *corner,
+                           const char *port, fb_err *err)
+{
+  const long c = fb_scenario_corner_find(s, corner);
+  if (c < 0)
+    return fb_err_set(err, FB_EINVAL, "no corner named '%s'", corner);
+  char *from = vehicle_target(s, FB_OUTPUT_OF_CORNER, (size_t)c, "travel");
+  char *to = fb_strdup_printf("%s.%s", bar, port);
+  int rc = from && to ? fb_bg_connect(bg, NULL, from, to, err)
+                      : fb_err_set(err, FB_ENOMEM, "out of memory");
+  free(from);
+  free(to);
+  return rc;
+}
+
+/* The anti-roll bars' fragments and their bonds to their corners. */
+static int add_antiroll_bars(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < s->nantiroll_bars; ++i) {
+    const fb_antiroll_bar *b = &s->antiroll_bar[i];
+    fb_bg *frag = NULL;
+    char *inst = vehicle_antiroll_bar_instance(b);
+    rc = inst ? adopt(bg, fb_vehicle_antiroll_bar(b, &frag, err), &frag, inst, err)
+              : fb_err_set(err, FB_ENOMEM, "out of memory");
+    if (!rc)
+      rc = connect_bar_end(s, bg, inst, b->left, "left", err);
+    if (!rc)
+      rc = connect_bar_end(s, bg, inst, b->right, "right", err);
+    if (rc && err && !err->part.kind)
+      fb_err_set_part(err, FB_PART_ANTIROLL_BAR, i, FB_ERR_NO_ELEMENT, "");
+    free(inst);
+    fb_bg_free(&frag);
+  }
+  return rc;
+}
+
+/* Bond from the road's port of corner c to its bogie's tire. */
+static int connect_bogie_road(const fb_scenario *s, fb_bg *bg, size_t c, size_t bogie, int rear,
+                              fb_err *err)
+{
+  char *road = fb_strdup_printf("road.%s", s->corner[c].name);
+  char *tire =
+      fb_strdup_printf("bogie_%s.road_%s", s->bogie[bogie].name, rear ? "rear" : "front");
+  int rc = road && tire ? fb_bg_connect(bg, NULL, road, tire, err)
+                        : fb_err_set(err, FB_ENOMEM, "out of memory");
+  free(road);
+  free(tire);
+  return rc;
+}
+
 /* Bond from attachment a's fragment port "hull" into "attach.<a+1>", and
  * for a corner from the road's port to its wheel's. */
 static int connect_attachment(const fb_scenario *s, fb_bg *bg, size_t a, fb_err *err)
 {
+  int rear = 0;
+  const long bogie = a < s->ncorners ? vehicle_corner_bogie(s, a, &rear) : -1;
+  if (bogie >= 0) /* its hull bond is the saddle's; its road is the bogie's */
+    return connect_bogie_road(s, bg, a, (size_t)bogie, rear, err);
   const int corner = a < s->ncorners;
   const fb_output_subject subject = corner ? FB_OUTPUT_OF_CORNER : FB_OUTPUT_OF_MOUNT;
   const size_t i = corner ? a : a - s->ncorners;
@@ -113,6 +298,8 @@ static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
   fb_bg *frag = NULL;
   int rc = add_bodies(s, bg, err);
   if (!rc)
+    rc = add_antiroll_bars(s, bg, err);
+  if (!rc)
     rc = adopt(bg, fb_vehicle_road(s, &frag, err), &frag, "road", err);
   if (!rc)
     rc = adopt(bg, fb_vehicle_load(s, &frag, err), &frag, "load", err);
@@ -127,6 +314,8 @@ static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
   if (!rc)
     rc = fb_bg_add_composite(bg, "attach", na, ones, err);
   free(ones);
+  if (!rc)
+    rc = add_bogies(s, bg, err);
   for (size_t a = 0; !rc && a < na; ++a)
     rc = connect_attachment(s, bg, a, err);
   if (!rc)

@@ -108,6 +108,49 @@ int fb_scenario_add_mount(fb_scenario *s, const fb_mount *m, fb_err *err)
   return FB_OK;
 }
 
+int fb_scenario_add_antiroll_bar(fb_scenario *s, const fb_antiroll_bar *b, fb_err *err)
+{
+  fb_antiroll_bar copy = *b;
+  copy.name = copy.left = copy.right = NULL;
+  int rc = builder_name(b->name, "bar between corners", &copy.name, err);
+  if (!rc)
+    rc = builder_name(b->left, "bar's left corner", &copy.left, err);
+  if (!rc)
+    rc = builder_name(b->right, "bar's right corner", &copy.right, err);
+  fb_antiroll_bar *to = NULL;
+  if (!rc &&
+      !builder_grow((void **)&s->antiroll_bar, s->nantiroll_bars, sizeof *to, (void **)&to))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for an anti-roll bar");
+  if (rc) {
+    vehicle_antiroll_bar_release(&copy);
+    return rc;
+  }
+  *to = copy;
+  ++s->nantiroll_bars;
+  return FB_OK;
+}
+
+int fb_scenario_add_bogie(fb_scenario *s, const fb_bogie *b, fb_err *err)
+{
+  fb_bogie copy = *b;
+  copy.name = copy.front = copy.rear = NULL;
+  int rc = builder_name(b->name, "bogie", &copy.name, err);
+  if (!rc)
+    rc = builder_name(b->front, "bogie's front corner", &copy.front, err);
+  if (!rc)
+    rc = builder_name(b->rear, "bogie's rear corner", &copy.rear, err);
+  fb_bogie *to = NULL;
+  if (!rc && !builder_grow((void **)&s->bogie, s->nbogies, sizeof *to, (void **)&to))
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for a bogie");
+  if (rc) {
+    vehicle_bogie_release(&copy);
+    return rc;
+  }
+  *to = copy;
+  ++s->nbogies;
+  return FB_OK;
+}
+
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err)
 {
   char *name = NULL;
@@ -201,6 +244,11 @@ static int builder_subject(const fb_scenario *s, const fb_output_kind *kind,
                ? FB_OK
                : fb_err_set(err, FB_EINVAL,
                             "a %s signal measures a mounted body of the vehicle (%s)",
+                            kind->signal, o->of ? o->of : "none given");
+  case FB_OUTPUT_OF_BOGIE:
+    return o->of && fb_scenario_bogie_find(s, o->of) >= 0
+               ? FB_OK
+               : fb_err_set(err, FB_EINVAL, "a %s signal measures a bogie of the vehicle (%s)",
                             kind->signal, o->of ? o->of : "none given");
   case FB_OUTPUT_OF_HULL:
     return o->of ? fb_err_set(err, FB_EINVAL,

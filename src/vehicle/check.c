@@ -162,6 +162,19 @@ static const field mount_fields[] = {
     F(fb_mount, y, REAL, ANY, "m", NULL),
 };
 
+static const field antiroll_bar_fields[] = {
+    F(fb_antiroll_bar, stiffness, REAL, POSITIVE, "N/m", NULL),
+    F(fb_antiroll_bar, damping, REAL, NONNEGATIVE, "N s/m", NULL),
+};
+
+static const field bogie_fields[] = {
+    F(fb_bogie, pivot_x, REAL, ANY, "m", NULL),
+    F(fb_bogie, beam_mass, REAL, POSITIVE, "kg", NULL),
+    F(fb_bogie, beam_inertia, REAL, POSITIVE, "kg m^2", NULL),
+    F(fb_bogie, spring_k, REAL, POSITIVE, "N/m", NULL),
+    F(fb_bogie, damper_c, REAL, NONNEGATIVE, "N s/m", NULL),
+};
+
 static const field point_mass_fields[] = {
     F(fb_hull_point_mass, mass, REAL, POSITIVE, "kg", NULL),
     F(fb_hull_point_mass, x, REAL, ANY, "m", NULL),
@@ -238,6 +251,12 @@ static int check_values(const fb_scenario *s, fb_err *err)
   if (!rc)
     rc = check_items(s, mount_fields, NFIELDS(mount_fields), s->mount, s->nmounts,
                      sizeof *s->mount, FB_PART_MOUNT, err);
+  if (!rc)
+    rc = check_items(s, antiroll_bar_fields, NFIELDS(antiroll_bar_fields), s->antiroll_bar,
+                     s->nantiroll_bars, sizeof *s->antiroll_bar, FB_PART_ANTIROLL_BAR, err);
+  if (!rc)
+    rc = check_items(s, bogie_fields, NFIELDS(bogie_fields), s->bogie, s->nbogies,
+                     sizeof *s->bogie, FB_PART_BOGIE, err);
   if (!rc)
     rc = check_items(s, point_mass_fields, NFIELDS(point_mass_fields), s->point_mass,
                      s->npoint_masses, sizeof *s->point_mass, FB_PART_HULL_MASS, err);
@@ -645,6 +664,11 @@ static const char *mount_name_at(const void *ctx, size_t i)
   return ((const fb_scenario *)ctx)->mount[i].name;
 }
 
+static const char *bogie_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->bogie[i].name;
+}
+
 /* For an unknown name: " (did you mean 'LF'?)" when one is close, then
  * "; the corners are LF, RF, ..." (what: "corners"), into buf. */
 static void names_hint(const fb_scenario *s, const char *word, size_t n, fb_name_fn name_at,
@@ -678,11 +702,22 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
                 "no corner named '%s' (a %s signal measures a corner)%s", o->of ? o->of : "",
                 o->signal, hint);
   }
-  const vehicle_signal *how = vehicle_fragment_signal(kind->subject, o->signal);
-  if (kind->subject == FB_OUTPUT_OF_CORNER && how && how->offered &&
-      !how->offered(&s->corner[fb_scenario_corner_find(s, o->of)]))
+  const long c = kind->subject == FB_OUTPUT_OF_CORNER ? fb_scenario_corner_find(s, o->of) : -1;
+  const vehicle_signal *how = c >= 0 ? vehicle_corner_signal(s, (size_t)c, o->signal) : NULL;
+  if (c >= 0 && !how)
+    return fail(err, FB_PART_OUTPUT, i, "signal",
+                "corner %s is a bogie's wheel, which has no %s: a bogie's wheel offers "
+                "tire_force, tire_defl and tire_power",
+                o->of, o->signal);
+  if (how && how->offered && !how->offered(&s->corner[c]))
     return fail(err, FB_PART_OUTPUT, i, "of", "corner '%s' has no %s for %s to measure", o->of,
                 how->needs, o->signal);
+  if (kind->subject == FB_OUTPUT_OF_BOGIE && (!o->of || fb_scenario_bogie_find(s, o->of) < 0)) {
+    names_hint(s, o->of, s->nbogies, bogie_name_at, "bogies", hint, sizeof hint);
+    return fail(err, FB_PART_OUTPUT, i, "of",
+                "no bogie named '%s' (a %s signal measures a bogie)%s", o->of ? o->of : "",
+                o->signal, hint);
+  }
   if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
     names_hint(s, o->of, s->nmounts, mount_name_at, "mounts", hint, sizeof hint);
     return fail(err, FB_PART_OUTPUT, i, "of",
@@ -742,6 +777,134 @@ static int check_outputs(const fb_scenario *s, fb_err *err)
   return rc;
 }
 
+/* ---- Anti-roll bars. */
+
+/* The bar's end member ("left" or "right"), named corner: a corner of s
+ * on that side (y > 0 on the left), in *c. */
+static int check_bar_end(const fb_scenario *s, size_t i, const char *member, const char *corner,
+                         int left, long *c, fb_err *err)
+{
+  *c = corner ? fb_scenario_corner_find(s, corner) : -1;
+  if (*c < 0) {
+    char hint[512];
+    names_hint(s, corner, s->ncorners, corner_name_at, "corners", hint, sizeof hint);
+    return fail(err, FB_PART_ANTIROLL_BAR, i, member, "no corner named '%s'%s",
+                corner ? corner : "", hint);
+  }
+  const double y = s->corner[*c].y;
+  if (left ? !(y > 0) : !(y < 0))
+    return fail(err, FB_PART_ANTIROLL_BAR, i, member,
+                "corner %s is on the %s (y = %.10g m): a bar's %s corner has y %s 0", corner,
+                y > 0   ? "left"
+                : y < 0 ? "right"
+                        : "centre line",
+                y, member, left ? ">" : "<");
+  return FB_OK;
+}
+
+/* Each bar: a unique name, two corners facing each other across the
+ * vehicle, each corner under one bar at most (one "travel" port). */
+static int check_antiroll_bars(const fb_scenario *s, fb_err *err)
+{
+  for (size_t i = 0; i < s->nantiroll_bars; ++i) {
+    const fb_antiroll_bar *b = &s->antiroll_bar[i];
+    if (!b->name)
+      return fail(err, FB_PART_ANTIROLL_BAR, i, "name", "has no name");
+    for (size_t j = 0; j < i; ++j)
+      if (same(b->name, s->antiroll_bar[j].name))
+        return fail(err, FB_PART_ANTIROLL_BAR, i, "name",
+                    "a second anti-roll bar named %s (bar names are unique)", b->name);
+    if (same(b->left, b->right))
+      return fail(err, FB_PART_ANTIROLL_BAR, i, "right",
+                  "the bar's two ends are one corner, %s: a bar joins a left and a right "
+                  "corner",
+                  b->right);
+    long l = -1, r = -1;
+    int rc = check_bar_end(s, i, "left", b->left, 1, &l, err);
+    if (!rc)
+      rc = check_bar_end(s, i, "right", b->right, 0, &r, err);
+    if (rc)
+      return rc;
+    for (size_t j = 0; j < i; ++j) {
+      const fb_antiroll_bar *o = &s->antiroll_bar[j];
+      const char *shared = same(b->left, o->left) || same(b->left, o->right)     ? b->left
+                           : same(b->right, o->left) || same(b->right, o->right) ? b->right
+                                                                                 : NULL;
+      if (shared)
+        return fail(err, FB_PART_ANTIROLL_BAR, i, shared == b->left ? "left" : "right",
+                    "corner %s is under bar %s already (a corner carries one bar)", shared,
+                    o->name);
+    }
+  }
+  return FB_OK;
+}
+
+/* ---- Bogies. */
+
+/* The bogie's end member ("front" or "rear") names a corner, in *c, of
+ * no other bogie before it and under no anti-roll bar (its wheel has no
+ * travel of its own). */
+static int check_bogie_end(const fb_scenario *s, size_t i, const char *member,
+                           const char *corner, long *c, fb_err *err)
+{
+  *c = corner ? fb_scenario_corner_find(s, corner) : -1;
+  if (*c < 0) {
+    char hint[512];
+    names_hint(s, corner, s->ncorners, corner_name_at, "corners", hint, sizeof hint);
+    return fail(err, FB_PART_BOGIE, i, member, "no corner named '%s'%s", corner ? corner : "",
+                hint);
+  }
+  for (size_t j = 0; j < i; ++j)
+    if (same(corner, s->bogie[j].front) || same(corner, s->bogie[j].rear))
+      return fail(err, FB_PART_BOGIE, i, member,
+                  "corner %s is on bogie %s already (a wheel rides on one bogie)", corner,
+                  s->bogie[j].name);
+  for (size_t j = 0; j < s->nantiroll_bars; ++j)
+    if (same(corner, s->antiroll_bar[j].left) || same(corner, s->antiroll_bar[j].right))
+      return fail(err, FB_PART_BOGIE, i, member,
+                  "corner %s carries anti-roll bar %s: a bogie's wheel has no suspension "
+                  "travel of its own for a bar",
+                  corner, s->antiroll_bar[j].name);
+  return FB_OK;
+}
+
+/* Each bogie: a unique name, two corners on one side (one y), the front
+ * one ahead of the rear one, the pivot strictly between them. */
+static int check_bogies(const fb_scenario *s, fb_err *err)
+{
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    const fb_bogie *b = &s->bogie[i];
+    if (!b->name)
+      return fail(err, FB_PART_BOGIE, i, "name", "has no name");
+    for (size_t j = 0; j < i; ++j)
+      if (same(b->name, s->bogie[j].name))
+        return fail(err, FB_PART_BOGIE, i, "name",
+                    "a second bogie named %s (bogie names are unique)", b->name);
+    if (same(b->front, b->rear))
+      return fail(err, FB_PART_BOGIE, i, "rear",
+                  "the bogie's two ends are one corner, %s: a bogie carries two wheels",
+                  b->rear);
+    long f = -1, r = -1;
+    int rc = check_bogie_end(s, i, "front", b->front, &f, err);
+    if (!rc)
+      rc = check_bogie_end(s, i, "rear", b->rear, &r, err);
+    if (rc)
+      return rc;
+    const fb_corner_params *cf = &s->corner[f], *cr = &s->corner[r];
+    if (fabs(cf->y - cr->y) > SAME_POINT)
+      return fail(err, FB_PART_BOGIE, i, "rear",
+                  "corner %s is at y = %.10g m, the front corner %s at y = %.10g m: a bogie's "
+                  "wheels are on one line along the vehicle",
+                  cr->name, cr->y, cf->name, cf->y);
+    if (!(cr->x < b->pivot_x && b->pivot_x < cf->x))
+      return fail(err, FB_PART_BOGIE, i, "pivot_x",
+                  "must lie between the rear corner %s's x = %.10g m and the front corner %s's "
+                  "x = %.10g m (got %.10g)",
+                  cr->name, cr->x, cf->name, cf->x, b->pivot_x);
+  }
+  return FB_OK;
+}
+
 int fb_scenario_check(const fb_scenario *s, fb_err *err)
 {
   if (!s)
@@ -779,6 +942,10 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
   if (!rc)
     rc = check_fe_hull(s, err);
   if (!rc)
+    rc = check_antiroll_bars(s, err);
+  if (!rc)
+    rc = check_bogies(s, err);
+  if (!rc) /* a corner's signals are its bogie's wheel's, if it has one */
     rc = check_outputs(s, err);
   return rc;
 }

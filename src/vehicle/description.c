@@ -208,6 +208,20 @@ void vehicle_output_release(fb_output_spec *o)
   free(o->label);
 }
 
+void vehicle_antiroll_bar_release(fb_antiroll_bar *b)
+{
+  free(b->name);
+  free(b->left);
+  free(b->right);
+}
+
+void vehicle_bogie_release(fb_bogie *b)
+{
+  free(b->name);
+  free(b->front);
+  free(b->rear);
+}
+
 void fb_scenario_free(fb_scenario **s)
 {
   if (!s || !*s)
@@ -230,6 +244,12 @@ void fb_scenario_free(fb_scenario **s)
   for (size_t i = 0; p->corner && i < p->ncorners; ++i)
     free(p->corner[i].name);
   free(p->corner);
+  for (size_t i = 0; p->antiroll_bar && i < p->nantiroll_bars; ++i)
+    vehicle_antiroll_bar_release(&p->antiroll_bar[i]);
+  free(p->antiroll_bar);
+  for (size_t i = 0; p->bogie && i < p->nbogies; ++i)
+    vehicle_bogie_release(&p->bogie[i]);
+  free(p->bogie);
   for (size_t i = 0; p->output && i < p->noutputs; ++i)
     vehicle_output_release(&p->output[i]);
   free(p->output);
@@ -304,6 +324,38 @@ static int desc_copy_mounts(const fb_scenario *s, fb_scenario *copy)
     ok = desc_copy_string(s->mount[i].name, &copy->mount[i].name);
   }
   free(m);
+  return ok;
+}
+
+static int desc_copy_antiroll_bars(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_antiroll_bar *b = NULL;
+  int ok = desc_copy_items(s->antiroll_bar, s->nantiroll_bars, sizeof *b,
+                           (void **)&copy->antiroll_bar, (void **)&b);
+  for (size_t i = 0; ok && b && i < s->nantiroll_bars; ++i) { /* no b: no bars */
+    copy->antiroll_bar[i] = b[i];
+    copy->antiroll_bar[i].name = copy->antiroll_bar[i].left = copy->antiroll_bar[i].right =
+        NULL;
+    ok = desc_copy_string(b[i].name, &copy->antiroll_bar[i].name) &&
+         desc_copy_string(b[i].left, &copy->antiroll_bar[i].left) &&
+         desc_copy_string(b[i].right, &copy->antiroll_bar[i].right);
+  }
+  free(b);
+  return ok;
+}
+
+static int desc_copy_bogies(const fb_scenario *s, fb_scenario *copy)
+{
+  fb_bogie *b = NULL;
+  int ok = desc_copy_items(s->bogie, s->nbogies, sizeof *b, (void **)&copy->bogie, (void **)&b);
+  for (size_t i = 0; ok && b && i < s->nbogies; ++i) { /* no b: no bogies */
+    copy->bogie[i] = b[i];
+    copy->bogie[i].name = copy->bogie[i].front = copy->bogie[i].rear = NULL;
+    ok = desc_copy_string(b[i].name, &copy->bogie[i].name) &&
+         desc_copy_string(b[i].front, &copy->bogie[i].front) &&
+         desc_copy_string(b[i].rear, &copy->bogie[i].rear);
+  }
+  free(b);
   return ok;
 }
 
@@ -396,6 +448,8 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->point_mass = NULL;
   copy->section = NULL;
   copy->corner = NULL;
+  copy->antiroll_bar = NULL;
+  copy->bogie = NULL;
   copy->output = NULL;
   copy->inputs = NULL;
   copy->source = NULL;
@@ -410,6 +464,8 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = desc_copy_point_masses(s, copy) && ok;
   ok = desc_copy_sections(s, copy) && ok;
   ok = desc_copy_corners(s, copy) && ok;
+  ok = desc_copy_antiroll_bars(s, copy) && ok;
+  ok = desc_copy_bogies(s, copy) && ok;
   ok = desc_copy_outputs(s, copy) && ok;
   ok = (!s->road_type ||
         fb_road_params_copy(s->road_type, &copy->road, &s->road, NULL) == FB_OK) &&

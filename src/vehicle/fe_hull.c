@@ -532,6 +532,55 @@ static int add_coupled_spring(trips *t, size_t a, const fb_hull_coupling *c, dou
   return rc;
 }
 
+/* k r r' added to t, r a combination of two wheels' travels relative to
+ * the hull: r = sa (e_a - c_a) + sb (e_b - c_b) over the DOFs (an
+ * anti-roll bar's stiffness on its twist, sa = 1 and sb = -1; a bogie's
+ * pivot spring, sa and sb its lever's weights). */
+static int add_wheels_spring(trips *t, size_t a, const fb_hull_coupling *ca, double sa,
+                             size_t b, const fb_hull_coupling *cb, double sb, double k)
+{
+  const size_t n = 2 + ca->n + cb->n;
+  size_t *dof = malloc(n * sizeof *dof);
+  double *w = malloc(n * sizeof *w);
+  int rc = dof && w ? FB_OK : FB_ENOMEM;
+  if (!rc) {
+    dof[0] = a, w[0] = sa;
+    dof[1] = b, w[1] = sb;
+    for (size_t i = 0; i < ca->n; ++i)
+      dof[2 + i] = ca->dof[i], w[2 + i] = -sa * ca->w[i];
+    for (size_t i = 0; i < cb->n; ++i)
+      dof[2 + ca->n + i] = cb->dof[i], w[2 + ca->n + i] = -sb * cb->w[i];
+  }
+  for (size_t i = 0; !rc && i < n; ++i)
+    for (size_t j = 0; !rc && j < n; ++j)
+      rc = trips_push(t, dof[i], dof[j], k * w[i] * w[j]);
+  free(dof);
+  free(w);
+  return rc;
+}
+
+int vehicle_bogie_wheels(const fb_scenario *s, size_t i, long *f, long *r, double *m, double *w)
+{
+  const fb_bogie *b = &s->bogie[i];
+  *f = fb_scenario_corner_find(s, b->front);
+  *r = fb_scenario_corner_find(s, b->rear);
+  if (*f < 0 || *r < 0) /* fb_scenario_check finds both */
+    return 0;
+  const double a = s->corner[*f].x - b->pivot_x, bb = b->pivot_x - s->corner[*r].x;
+  const double len = a + bb;
+  w[0] = bb / len;
+  w[1] = a / len;
+  /* Kinetic energy 1/2 (m_f zf'^2 + m_r zr'^2 + m_b v'^2 + J th'^2) with
+   * v = w0 zf + w1 zr, th = (zr - zf) / len. */
+  const double dz[2] = {-1.0 / len, 1.0 / len};
+  for (int p = 0; p < 2; ++p)
+    for (int q = 0; q < 2; ++q)
+      m[2 * p + q] = b->beam_mass * w[p] * w[q] + b->beam_inertia * dz[p] * dz[q];
+  m[0] += s->corner[*f].wheel_mass;
+  m[3] += s->corner[*r].wheel_mass;
+  return 1;
+}
+
 /* *M plus the hull's declared masses and mass `each` on each of the first
  * nload load nodes (0: none), every one on its node's three
  * translations; *M is replaced, and left as it is when there are none. */
@@ -584,13 +633,38 @@ int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat 
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     const fb_corner_params *cp = &s->corner[c];
     const size_t wheel = nh + nm + c;
+    const int own = vehicle_corner_bogie(s, c, NULL) < 0; /* else the bogie's, below */
     /* Spring travel = r x wheel travel: stiffness r^2 k at the wheel. */
-    rc = add_coupled_spring(&tk, wheel, &h->attach_coupling[c],
-                            cp->motion_ratio * cp->motion_ratio * cp->spring_k);
+    if (own)
+      rc = add_coupled_spring(&tk, wheel, &h->attach_coupling[c],
+                              cp->motion_ratio * cp->motion_ratio * cp->spring_k);
     if (!rc)
       rc = add_spring(&tk, wheel, (size_t)-1, cp->tire_k);
-    if (!rc)
+    if (!rc && own)
       rc = trips_push(&tm, wheel, wheel, cp->wheel_mass);
+  }
+  /* Each bogie over its wheels' DOFs: the beam's and wheels' inertia, the
+   * pivot's spring on the lever's average of the wheels' travels. */
+  for (size_t i = 0; !rc && i < s->nbogies; ++i) {
+    long f = -1, r = -1;
+    double m[4], w[2];
+    if (!vehicle_bogie_wheels(s, i, &f, &r, m, w))
+      continue;
+    const size_t at[2] = {nh + nm + (size_t)f, nh + nm + (size_t)r};
+    for (int p = 0; !rc && p < 4; ++p)
+      rc = trips_push(&tm, at[p / 2], at[p % 2], m[p]);
+    if (!rc)
+      rc = add_wheels_spring(&tk, at[0], &h->attach_coupling[f], w[0], at[1],
+                             &h->attach_coupling[r], w[1], s->bogie[i].spring_k);
+  }
+  /* Each anti-roll bar: half its rate in roll on the twist (fb_antiroll_bar). */
+  for (size_t i = 0; !rc && i < s->nantiroll_bars; ++i) {
+    const long l = fb_scenario_corner_find(s, s->antiroll_bar[i].left);
+    const long r = fb_scenario_corner_find(s, s->antiroll_bar[i].right);
+    if (l >= 0 && r >= 0) /* fb_scenario_check found both */
+      rc = add_wheels_spring(&tk, nh + nm + (size_t)l, &h->attach_coupling[l], 1.0,
+                             nh + nm + (size_t)r, &h->attach_coupling[r], -1.0,
+                             0.5 * s->antiroll_bar[i].stiffness);
   }
   if (rc)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
@@ -619,8 +693,18 @@ static void mass_times(const describe_ctx *d, const double *v)
   fb_mat_gemv(d->mh, 1.0, v, 0.0, d->mv);
   for (size_t b = 0; b < s->nmounts; ++b)
     d->mv[d->nh + b] = s->mount[b].mass * v[d->nh + b];
+  const double *vw = v + d->nh + s->nmounts;
+  double *mw = d->mv + d->nh + s->nmounts;
   for (size_t c = 0; c < s->ncorners; ++c)
-    d->mv[d->nh + s->nmounts + c] = s->corner[c].wheel_mass * v[d->nh + s->nmounts + c];
+    mw[c] = s->corner[c].wheel_mass * vw[c];
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    long f = -1, r = -1;
+    double m[4], w[2];
+    if (!vehicle_bogie_wheels(s, i, &f, &r, m, w))
+      continue;
+    mw[f] = m[0] * vw[f] + m[1] * vw[r];
+    mw[r] = m[2] * vw[f] + m[3] * vw[r];
+  }
 }
 
 /* The hull's kinetic energy split by M_h-orthogonal projection onto its

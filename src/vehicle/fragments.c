@@ -352,14 +352,14 @@ static int add_tire(fb_bg *bg, const fb_corner_params *c, fb_err *err)
  * velocity relative to the hull (compression rate of the suspension),
  * the arm (a TF of the motion ratio) turns it into the spring's rate; the
  * 0-junction "tire" forms road minus wheel velocity (tire compression
- * rate). */
-int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
+ * rate). coupled: a 1-junction "Jrel" between "susp" and the arm carries
+ * that relative velocity to a port "travel" (OUT), where a force in
+ * parallel with the suspension's (an anti-roll bar's) joins it; without
+ * it the graph is the paper's, bond for bond. */
+static int corner_graph(const fb_corner_params *c, double gravity, int coupled, fb_bg *bg,
+                        fb_err *err)
 {
-  *out = NULL;
-  fb_bg *bg = NULL;
-  int rc = fb_bg_new("corner", &bg, err);
-  if (!rc)
-    rc = vehicle_add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
+  int rc = vehicle_add_scalar(bg, "wheel", FB_BG_I, c->wheel_mass, err);
   /* The wheel's mode: its hop. */
   char hop[96];
   snprintf(hop, sizeof hop, "wheel hop %s", c->name ? c->name : "");
@@ -374,7 +374,6 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
     rc = add_shock_absorber(bg, c, err);
   if (!rc && fb_stops_any(&c->stops))
     rc = vehicle_add_stops(&c->stops, "stops", "spring", bg, err);
-
   if (!rc)
     rc = fb_bg_add_tf(bg, "arm", FB_BG_TF, 1, c->motion_ratio, err);
   if (!rc)
@@ -388,7 +387,6 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
       {"b_wheel", "Jw", "wheel"},
       {"b_weight", "weight", "Jw"},
       {"b_up", "Jw", "susp"},
-      {"b_arm", "susp", "arm.1"},
       {"b_travel", "arm.2", "Jsp"},
       {"b_spring", "Jsp", "spring"},
       {"b_damper", "Jsp", "damper"},
@@ -397,8 +395,19 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
       {"b_tire_spring", "Jt", "tire_spring"},
       {"b_tire_damper", "Jt", "tire_damper"},
   };
+  /* The arm's bond: straight from "susp", or through "Jrel". */
+  static const char *const plain[][3] = {{"b_arm", "susp", "arm.1"}};
+  static const char *const through[][3] = {{"b_arm", "susp", "Jrel"},
+                                           {"b_rel", "Jrel", "arm.1"}};
+  if (!rc && coupled)
+    rc = fb_bg_add_junction(bg, "Jrel", FB_BG_J1, 1, err);
+  /* The paper's order of bonds: the arm's after the wheel's first three. */
   if (!rc)
-    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+    rc = connect_all(bg, bonds, 3, err);
+  if (!rc)
+    rc = coupled ? connect_all(bg, through, 2, err) : connect_all(bg, plain, 1, err);
+  if (!rc)
+    rc = connect_all(bg, bonds + 3, sizeof bonds / sizeof bonds[0] - 3, err);
   /* The stops share the spring's travel, compression positive. */
   if (!rc && fb_stops_any(&c->stops))
     rc = fb_bg_connect(bg, "b_stops", "Jsp", "stops", err);
@@ -406,6 +415,227 @@ int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb
     rc = fb_bg_add_port(bg, "hull", "susp", FB_PORT_OUT, err);
   if (!rc)
     rc = fb_bg_add_port(bg, "road", "tire", FB_PORT_IN, err);
+  if (!rc && coupled)
+    rc = fb_bg_add_port(bg, "travel", "Jrel", FB_PORT_OUT, err);
+  return rc;
+}
+
+/* The corner's fragment, with the port "travel" or without. */
+static int corner_fragment(const fb_corner_params *c, double gravity, int coupled, fb_bg **out,
+                           fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("corner", &bg, err);
+  if (!rc)
+    rc = corner_graph(c, gravity, coupled, bg, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
+{
+  return corner_fragment(c, gravity, 0, out, err);
+}
+
+int fb_vehicle_corner_coupled(const fb_corner_params *c, double gravity, fb_bg **out,
+                              fb_err *err)
+{
+  return corner_fragment(c, gravity, 1, out, err);
+}
+
+/* An anti-roll bar between two corners' "travel" ports, "left" and
+ * "right" (both IN). The 0-junction "twist" forms v_left - v_right, the
+ * bar's twist rate at the wheels; the spring and damper on it (half the
+ * rates in roll: fb_antiroll_bar) give the force F that "twist" carries,
+ * a compression force +F on the left corner's suspension and, through
+ * the 1-junction "Jr", -F on the right one's. */
+int fb_vehicle_antiroll_bar(const fb_antiroll_bar *b, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("antiroll_bar", &bg, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, 0.5 * b->stiffness, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "damper", FB_BG_R, 0.5 * b->damping, err);
+  const char *const junctions[][2] = {{"Jl", "1"}, {"Jr", "1"}, {"twist", "0"}, {"Jbar", "1"}};
+  for (size_t i = 0; !rc && i < sizeof junctions / sizeof junctions[0]; ++i)
+    rc = fb_bg_add_junction(bg, junctions[i][0],
+                            junctions[i][1][0] == '0' ? FB_BG_J0 : FB_BG_J1, 1, err);
+  static const char *const bonds[][3] = {
+      {"b_left", "Jl", "twist"},      {"b_right", "twist", "Jr"},
+      {"b_twist", "twist", "Jbar"},   {"b_spring", "Jbar", "spring"},
+      {"b_damper", "Jbar", "damper"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "left", "Jl", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "right", "Jr", FB_PORT_IN, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+/* A bogie's wheel: the wheel's point (1-junction "Jw", its velocity from
+ * the beam through port "wheel", IN, and the bond "b_wheel"), its weight,
+ * and its tire to the road (port "road", IN) as the corner's model builds
+ * it. The wheel's mass is
+ * the beam's (it rides rigidly at the beam's end). */
+static int bogie_wheel(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("bogie_wheel", &bg, err);
+  if (!rc)
+    rc = add_constant_effort(bg, "weight", -c->wheel_mass * gravity, err);
+  if (!rc)
+    rc = add_tire(bg, c, err);
+  const char *const junctions[][2] = {{"Jp", "1"}, {"Jw", "1"}, {"tire", "0"}, {"Jt", "1"}};
+  for (size_t i = 0; !rc && i < sizeof junctions / sizeof junctions[0]; ++i)
+    rc = fb_bg_add_junction(bg, junctions[i][0],
+                            junctions[i][1][0] == '0' ? FB_BG_J0 : FB_BG_J1, 1, err);
+  static const char *const bonds[][3] = {
+      {"b_wheel", "Jp", "Jw"},
+      {"b_weight", "weight", "Jw"},
+      {"b_contact", "tire", "Jw"},
+      {"b_tire", "tire", "Jt"},
+      {"b_tire_spring", "Jt", "tire_spring"},
+      {"b_tire_damper", "Jt", "tire_damper"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "wheel", "Jp", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "road", "tire", FB_PORT_IN, err);
+  if (rc) {
+    fb_bg_free(&bg);
+    return rc;
+  }
+  *out = bg;
+  return FB_OK;
+}
+
+/* The beam with its wheels as one rigid body in (v, w), the pivot's
+ * vertical velocity and the beam's pitch rate: a point at x ahead of the
+ * pivot moves at v - x w (nose up positive, as the hull's pitch), so each
+ * wheel of mass m adds m r r' with r = [1, -x] (kinetic energy
+ * 1/2 m (v - x w)^2), to diag(beam mass, beam inertia); and the beam's
+ * weight. */
+static int add_beam(fb_bg *bg, const fb_bogie_params *p, double mf, double mr, double gravity,
+                    fb_err *err)
+{
+  const double m22[4] = {p->beam_mass + mf + mr, -mf * p->a + mr * p->b, -mf * p->a + mr * p->b,
+                         p->beam_inertia + mf * p->a * p->a + mr * p->b * p->b};
+  fb_mat *m = NULL;
+  const size_t two = 2;
+  int rc = fb_mat_new_dense_rowmajor(2, 2, m22, &m, err);
+  if (!rc)
+    rc = fb_bg_add_field(bg, "beam", FB_BG_I, 1, &two, &m, err);
+  char bounce[96], pitch[96];
+  snprintf(bounce, sizeof bounce, "bogie bounce %s", p->name ? p->name : "");
+  snprintf(pitch, sizeof pitch, "bogie pitch %s", p->name ? p->name : "");
+  const char *const motions[2] = {bounce, pitch};
+  if (!rc)
+    rc = fb_bg_set_labels(bg, "beam", motions, err);
+  /* Rows [1, -x] from (v, w) to the pivot's (x = 0) and the wheels'
+   * vertical velocities, and [0, 1] to the pitch rate alone. */
+  const double rows[4][2] = {{1.0, 0.0}, {1.0, -p->a}, {1.0, p->b}, {0.0, 1.0}};
+  static const char *const names[4] = {"to_pivot", "to_front", "to_rear", "to_pitch"};
+  for (size_t i = 0; !rc && i < 4; ++i) {
+    fb_mat *t = NULL;
+    rc = fb_mat_new_dense_rowmajor(1, 2, rows[i], &t, err);
+    if (!rc)
+      rc = fb_bg_add_mtf(bg, names[i], &t, err);
+  }
+  /* The beam's weight, at the pivot: a generalised force on (v, w). */
+  fb_tfun *w[2] = {NULL, NULL};
+  if (!rc)
+    rc = fb_tfun_new_const(-p->beam_mass * gravity, &w[0], err);
+  if (!rc)
+    rc = fb_tfun_new_const(0.0, &w[1], err);
+  if (!rc)
+    rc = fb_bg_add_source(bg, "beam_weight", FB_BG_SE, 2, w, err);
+  fb_tfun_free(&w[0]);
+  fb_tfun_free(&w[1]);
+  return rc;
+}
+
+/* The beam (1-junction "Jb" of its two motions), its pivot on the spring
+ * and damper of the 0-junction "susp" (as a corner's: pivot velocity in,
+ * hull out, spring's 1-junction out, common effort the spring-damper
+ * force), and the two wheels as adopted fragments "front" and "rear". */
+static int bogie_graph(const fb_bogie_params *p, const fb_corner_params *front,
+                       const fb_corner_params *rear, double gravity, fb_bg *bg, fb_err *err)
+{
+  int rc = add_beam(bg, p, front->wheel_mass, rear->wheel_mass, gravity, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jb", FB_BG_J1, 2, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "spring", FB_BG_C, p->spring_k, err);
+  if (!rc)
+    rc = vehicle_add_scalar(bg, "damper", FB_BG_R, p->damper_c, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "susp", FB_BG_J0, 1, err);
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jsp", FB_BG_J1, 1, err);
+  /* The pitch rate's own scalar bond "b_pitch", to measure (its effort is
+   * zero: nothing acts through it). */
+  if (!rc)
+    rc = fb_bg_add_junction(bg, "Jpitch", FB_BG_J1, 1, err);
+  const fb_corner_params *wheel[2] = {front, rear};
+  static const char *const inst[2] = {"front", "rear"};
+  for (size_t i = 0; !rc && i < 2; ++i) {
+    fb_bg *frag = NULL;
+    rc = bogie_wheel(wheel[i], gravity, &frag, err);
+    if (!rc)
+      rc = fb_bg_adopt(bg, &frag, inst[i], err);
+    fb_bg_free(&frag);
+  }
+  static const char *const bonds[][3] = {
+      {"b_beam", "Jb", "beam"},
+      {"b_beam_weight", "beam_weight", "Jb"},
+      {"b_pivot", "Jb", "to_pivot.1"},
+      {"b_up", "to_pivot.2", "susp"},
+      {"b_travel", "susp", "Jsp"},
+      {"b_spring", "Jsp", "spring"},
+      {"b_damper", "Jsp", "damper"},
+      {"b_front_arm", "Jb", "to_front.1"},
+      {"b_front", "to_front.2", "front.wheel"},
+      {"b_rear_arm", "Jb", "to_rear.1"},
+      {"b_rear", "to_rear.2", "rear.wheel"},
+      {"b_pitch_arm", "Jb", "to_pitch.1"},
+      {"b_pitch", "to_pitch.2", "Jpitch"},
+  };
+  if (!rc)
+    rc = connect_all(bg, bonds, sizeof bonds / sizeof bonds[0], err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "hull", "susp", FB_PORT_OUT, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "road_front", "front.road", FB_PORT_IN, err);
+  if (!rc)
+    rc = fb_bg_add_port(bg, "road_rear", "rear.road", FB_PORT_IN, err);
+  return rc;
+}
+
+int fb_vehicle_bogie(const fb_bogie_params *p, const fb_corner_params *front,
+                     const fb_corner_params *rear, double gravity, fb_bg **out, fb_err *err)
+{
+  *out = NULL;
+  fb_bg *bg = NULL;
+  int rc = fb_bg_new("bogie", &bg, err);
+  if (!rc)
+    rc = bogie_graph(p, front, rear, gravity, bg, err);
   if (rc) {
     fb_bg_free(&bg);
     return rc;
@@ -506,6 +736,22 @@ static const vehicle_signal corner_signals[] = {
     {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0, NULL, NULL},
 };
 
+/* A bogie's wheel's (bogie_wheel, in fb_vehicle_bogie): its tire's, and
+ * its motion. */
+static const vehicle_signal bogie_wheel_signals[] = {
+    {"tire_force", FB_PROBE_EFFORT, "b_tire", 0, 0, NULL, NULL},
+    {"tire_defl", FB_PROBE_STATE, "tire_spring", 0, 0, NULL, NULL},
+    {"tire_power", FB_PROBE_POWER, "b_tire_damper", 0, 0, NULL, NULL},
+    {VEHICLE_SIGNAL_MOTION, FB_PROBE_FLOW, "b_wheel", 1, 0, NULL, NULL},
+};
+
+/* The bogie's (fb_vehicle_bogie): its beam's pitch and its pivot's
+ * spring force. */
+static const vehicle_signal bogie_signals[] = {
+    {"beam_pitch", FB_PROBE_FLOW, "b_pitch", 1, 0, NULL, NULL},
+    {"pivot_force", FB_PROBE_EFFORT, "b_spring", 0, 0, NULL, NULL},
+};
+
 /* The mounted body's (fb_vehicle_mount): its acceleration is the effort
  * on its mass over the mass (the paper's gain block 1/m on e7). */
 static const vehicle_signal mount_signals[] = {
@@ -523,6 +769,14 @@ static const vehicle_signal *signal_in(const vehicle_signal *list, size_t n, con
   return NULL;
 }
 
+const vehicle_signal *vehicle_corner_signal(const fb_scenario *s, size_t c, const char *signal)
+{
+  if (vehicle_corner_bogie(s, c, NULL) < 0)
+    return vehicle_fragment_signal(FB_OUTPUT_OF_CORNER, signal);
+  return signal_in(bogie_wheel_signals,
+                   sizeof bogie_wheel_signals / sizeof bogie_wheel_signals[0], signal);
+}
+
 const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const char *signal)
 {
   switch (subject) {
@@ -530,6 +784,8 @@ const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const c
     return signal_in(corner_signals, sizeof corner_signals / sizeof corner_signals[0], signal);
   case FB_OUTPUT_OF_MOUNT:
     return signal_in(mount_signals, sizeof mount_signals / sizeof mount_signals[0], signal);
+  case FB_OUTPUT_OF_BOGIE:
+    return signal_in(bogie_signals, sizeof bogie_signals / sizeof bogie_signals[0], signal);
   default: return NULL;
   }
 }

@@ -1017,6 +1017,42 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
 
 /* ---- The undamped System 2's modes. */
 
+/* The reduced row t (nb) of a coupling: t_j = sum_l w_l T[j][dof_l]. */
+static void reduced_row(const vehicle_hull *h, const fb_hull_coupling *c, double *t)
+{
+  for (size_t j = 0; j < h->nb; ++j) {
+    t[j] = 0.0;
+    for (size_t l = 0; l < c->n; ++l)
+      t[j] += c->w[l] * h->T[j * h->info.ndof + c->dof[l]];
+  }
+}
+
+/* k r r' added to K (nv x nv, column-major), r (room for nv + nb) a
+ * combination of two wheels' travels relative to the hull over the
+ * reduced variables: sa (e_wa - t_a) + sb (e_wb - t_b), t the reduced rows
+ * of the couplings ca and cb (an anti-roll bar's stiffness on its twist,
+ * sa = 1, sb = -1; a bogie's pivot spring, its lever's weights). */
+static void add_reduced_twist(const vehicle_hull *h, size_t nv, size_t wa,
+                              const fb_hull_coupling *ca, double sa, size_t wb,
+                              const fb_hull_coupling *cb, double sb, double k, double *r,
+                              double *K)
+{
+  const size_t nb = h->nb;
+  memset(r, 0, nv * sizeof *r);
+  reduced_row(h, ca, r);
+  for (size_t j = 0; j < nb; ++j)
+    r[j] *= -sa;
+  double *tb = r + nv; /* scratch */
+  reduced_row(h, cb, tb);
+  for (size_t j = 0; j < nb; ++j)
+    r[j] -= sb * tb[j];
+  r[wa] += sa;
+  r[wb] += sb;
+  for (size_t j = 0; j < nv; ++j)
+    for (size_t i = 0; i < nv; ++i)
+      K[j * nv + i] += k * r[i] * r[j];
+}
+
 /* Over a basis: the hull's coordinates q (M = I, K = diag(lambda)), then
  * the bodies' and the wheels' motions, the springs through the points'
  * rows t_a = coupling row times T: the Ritz matrices of
@@ -1026,10 +1062,11 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
                             size_t *n, fb_err *err)
 {
   const fb_fe_hull *fe = h->fe;
-  const size_t nb = h->nb, ndof = h->info.ndof, nm = s->nmounts;
+  const size_t nb = h->nb, nm = s->nmounts;
   const size_t nv = nb + nm + s->ncorners;
   double *K = calloc(nv * nv, sizeof *K), *M = calloc(nv * nv, sizeof *M);
-  double *t = malloc(nb * sizeof *t);
+  /* A reduced row (nb), or a bar's or bogie's (nv, and nb of scratch). */
+  double *t = malloc((nv + nb) * sizeof *t);
   if (!K || !M || !t) {
     free(K);
     free(M);
@@ -1046,14 +1083,12 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
     const int corner = a < s->ncorners;
     const size_t body = corner ? nb + nm + a : nb + (a - s->ncorners);
     const fb_corner_params *cp = corner ? &s->corner[a] : NULL;
-    const double ks = corner ? cp->motion_ratio * cp->motion_ratio * cp->spring_k
-                             : s->mount[a - s->ncorners].stiffness;
-    const fb_hull_coupling *c = &fe->attach_coupling[a];
-    for (size_t j = 0; j < nb; ++j) {
-      t[j] = 0.0;
-      for (size_t l = 0; l < c->n; ++l)
-        t[j] += c->w[l] * h->T[j * ndof + c->dof[l]];
-    }
+    /* A bogie's wheel has no spring of its own: the bogie's is below. */
+    const double ks = !corner ? s->mount[a - s->ncorners].stiffness
+                      : vehicle_corner_bogie(s, a, NULL) >= 0
+                          ? 0.0
+                          : cp->motion_ratio * cp->motion_ratio * cp->spring_k;
+    reduced_row(h, &fe->attach_coupling[a], t);
     /* k (e_body - t)(e_body - t)' */
     for (size_t j = 0; j < nb; ++j) {
       for (size_t i = 0; i < nb; ++i)
@@ -1063,6 +1098,25 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
     }
     K[body * nv + body] += ks + (corner ? cp->tire_k : 0.0);
     M[body * nv + body] = corner ? cp->wheel_mass : s->mount[a - s->ncorners].mass;
+  }
+  for (size_t i = 0; i < s->nantiroll_bars; ++i) {
+    const long l = fb_scenario_corner_find(s, s->antiroll_bar[i].left);
+    const long r = fb_scenario_corner_find(s, s->antiroll_bar[i].right);
+    if (l >= 0 && r >= 0) /* fb_scenario_check found both */
+      add_reduced_twist(h, nv, nb + nm + (size_t)l, &fe->attach_coupling[l], 1.0,
+                        nb + nm + (size_t)r, &fe->attach_coupling[r], -1.0,
+                        0.5 * s->antiroll_bar[i].stiffness, t, K);
+  }
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    long f = -1, r = -1;
+    double mb[4], w[2];
+    if (!vehicle_bogie_wheels(s, i, &f, &r, mb, w))
+      continue;
+    const size_t at[2] = {nb + nm + (size_t)f, nb + nm + (size_t)r};
+    for (int p = 0; p < 4; ++p)
+      M[at[p % 2] * nv + at[p / 2]] = mb[p];
+    add_reduced_twist(h, nv, at[0], &fe->attach_coupling[f], w[0], at[1],
+                      &fe->attach_coupling[r], w[1], s->bogie[i].spring_k, t, K);
   }
   free(t);
   *k = K;

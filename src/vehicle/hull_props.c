@@ -126,6 +126,8 @@ static void shift_positions(fb_scenario *s, double dx, double dy, double dz)
       s->output[o].at[1] -= dy;
       s->output[o].at[2] -= dz;
     }
+  for (size_t k = 0; k < s->nbogies; ++k)
+    s->bogie[k].pivot_x -= dx;
   s->edge_front_x -= dx;
   s->edge_rear_x -= dx;
   s->edge_left_y -= dy;

@@ -22,6 +22,8 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
   case FB_PART_HULL_MASS: return i < s->npoint_masses ? s->point_mass[i].name : NULL;
   case FB_PART_SECTION: return i < s->nsections ? s->section[i].set : NULL;
   case FB_PART_OUTPUT: return i < s->noutputs ? s->output[i].name : NULL;
+  case FB_PART_ANTIROLL_BAR: return i < s->nantiroll_bars ? s->antiroll_bar[i].name : NULL;
+  case FB_PART_BOGIE: return i < s->nbogies ? s->bogie[i].name : NULL;
   case FB_PART_ROAD: return s->road_type ? s->road_type->name : NULL;
   case FB_PART_HULL_SOURCE: return s->hull_source ? s->hull_source->name : NULL;
   default: return NULL;
@@ -31,8 +33,9 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
 char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size)
 {
   static const char *const list[FB_PART_KINDS] = {
-      "",           "",     "corner", "mount",       "point_mass", "section", "output",
-      "load point", "road", "corner", "hull source", "corner",     "corner",  "corner"};
+      "",       "",           "corner", "mount",  "point_mass",   "section",
+      "output", "load point", "road",   "corner", "hull source",  "corner",
+      "corner", "corner",     "",       "",       "antiroll_bar", "bogie"};
   const int kind = p->kind > 0 && p->kind < FB_PART_KINDS ? p->kind : FB_PART_NONE;
   const char *name = s ? part_name(s, kind, p->index) : NULL;
   size_t n = 0;
@@ -120,6 +123,14 @@ long fb_scenario_mount_find(const fb_scenario *s, const char *name)
 {
   for (size_t b = 0; name && b < s->nmounts; ++b)
     if (!strcmp(s->mount[b].name, name))
+      return (long)b;
+  return -1;
+}
+
+long fb_scenario_bogie_find(const fb_scenario *s, const char *name)
+{
+  for (size_t b = 0; name && b < s->nbogies; ++b)
+    if (!strcmp(s->bogie[b].name, name))
       return (long)b;
   return -1;
 }

@@ -160,6 +160,10 @@ void vehicle_remove_damping(fb_scenario *s)
     s->corner[c].stops.bump.damping = 0.0;
     s->corner[c].stops.rebound.damping = 0.0;
   }
+  for (size_t b = 0; b < s->nantiroll_bars; ++b)
+    s->antiroll_bar[b].damping = 0.0;
+  for (size_t b = 0; b < s->nbogies; ++b)
+    s->bogie[b].damper_c = 0.0;
 }
 
 void vehicle_flatten_road(fb_scenario *s)

@@ -65,6 +65,11 @@ static const fb_output_kind kinds[] = {
      "%s mount deflection", "mount spring deflection, compression positive"},
     {"force", FB_OUTPUT_OF_MOUNT, "N", "%s_force", "Force of the %s mount on the hull",
      "%s mount force", "spring plus damper force of the mount, tension positive"},
+    {"beam_pitch", FB_OUTPUT_OF_BOGIE, "rad", "beam_pitch_%s", "Beam pitch of bogie %s",
+     "bogie %s beam pitch", "the bogie's beam's pitch from the start, nose up positive"},
+    {"pivot_force", FB_OUTPUT_OF_BOGIE, "N", "pivot_force_%s",
+     "Spring force at the pivot of bogie %s", "bogie %s pivot spring force",
+     "the bogie's pivot spring's force, compression positive"},
     {"torsion", FB_OUTPUT_OF_HULL, "rad", "torsion", "Hull torsion angle", "hull torsion angle",
      "roll of the front edge minus roll of the rear edge (the torsion edges, Fig. 10)"},
     {"torsion_fit", FB_OUTPUT_OF_HULL, "rad", "torsion_fit", "Hull torsion angle (fitted)",
@@ -160,22 +165,35 @@ int vehicle_output_hull_motion(const fb_output_spec *o, vehicle_hull_motion *how
   return 0;
 }
 
-/* A corner's or a mount's output o: its fragment's probe of the
- * signal, in the instance of o's subject. */
+/* Index of the item of subject named name in s, -1 if none. */
+static long subject_find(const fb_scenario *s, fb_output_subject subject, const char *name)
+{
+  switch (subject) {
+  case FB_OUTPUT_OF_CORNER: return fb_scenario_corner_find(s, name);
+  case FB_OUTPUT_OF_MOUNT: return fb_scenario_mount_find(s, name);
+  case FB_OUTPUT_OF_BOGIE: return fb_scenario_bogie_find(s, name);
+  default: return -1;
+  }
+}
+
+/* A corner's, a mount's or a bogie's output o: its fragment's probe of
+ * the signal, in the instance of o's subject. */
 static int body_probe(const fb_scenario *s, const fb_output_kind *info, size_t index,
                       fb_probe_spec *p, fb_err *err)
 {
   const fb_output_spec *o = &s->output[index];
   const int corner = info->subject == FB_OUTPUT_OF_CORNER;
-  const long i = corner ? fb_scenario_corner_find(s, o->of) : fb_scenario_mount_find(s, o->of);
+  const char *what = corner                                ? "corner"
+                     : info->subject == FB_OUTPUT_OF_MOUNT ? "mount"
+                                                           : "bogie";
+  const long i = subject_find(s, info->subject, o->of);
   if (i < 0)
-    return fb_err_set(err, FB_EINVAL, "no %s '%s'", corner ? "corner" : "mount",
-                      o->of ? o->of : ""),
+    return fb_err_set(err, FB_EINVAL, "no %s '%s'", what, o->of ? o->of : ""),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, of)), FB_EINVAL;
-  const vehicle_signal *how = vehicle_fragment_signal(info->subject, o->signal);
+  const vehicle_signal *how = corner ? vehicle_corner_signal(s, (size_t)i, o->signal)
+                                     : vehicle_fragment_signal(info->subject, o->signal);
   if (!how)
-    return fb_err_set(err, FB_EMODEL, "the %s fragment offers no %s",
-                      corner ? "corner" : "mount", o->signal),
+    return fb_err_set(err, FB_EMODEL, "the %s fragment offers no %s", what, o->signal),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EMODEL;
   p->kind = how->kind;
   p->integrate = how->integrate;
@@ -263,7 +281,8 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   int rc = FB_OK;
   switch (info->subject) {
   case FB_OUTPUT_OF_CORNER:
-  case FB_OUTPUT_OF_MOUNT: rc = body_probe(s, info, index, p, err); break;
+  case FB_OUTPUT_OF_MOUNT:
+  case FB_OUTPUT_OF_BOGIE: rc = body_probe(s, info, index, p, err); break;
   case FB_OUTPUT_OF_HULL: rc = hull_probe(hull, o, index, p, err); break;
   case FB_OUTPUT_OF_HULL_POINT: rc = hull_reading_probe(hull, index, p, err); break;
   case FB_OUTPUT_OF_BOND: rc = bond_probe_of(o, p, err); break;

@@ -161,7 +161,7 @@ int fb_fe_hull_add_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat
                           fb_err *err);
 /* The undamped System 2 over the hull's nodal DOFs, then the mounted
  * bodies' and the wheels' vertical motions: *K and *M (new) from the
- * hull's kh and mh and the springs, bodies and wheels of s. */
+ * hull's kh and mh and the springs, bodies, wheels and anti-roll bars of s. */
 int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
                         const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err);
 /* Completes a mode set from nwant modes (freq ascending, shapes over the
@@ -205,6 +205,21 @@ typedef struct vehicle_signal {
 /* The signal the fragment of subject's kind offers (a corner's, a
  * mount's), NULL if it offers none of that name. */
 const vehicle_signal *vehicle_fragment_signal(fb_output_subject subject, const char *signal);
+/* The signal corner c of s offers: its corner fragment's, or, for a wheel
+ * of a bogie, the bogie's wheel's (its tire's and its motion). */
+const vehicle_signal *vehicle_corner_signal(const fb_scenario *s, size_t c, const char *signal);
+/* The bogie whose wheel corner c is (*rear: 1 at its rear end; may be
+ * NULL), -1 for none (assemble.c). */
+long vehicle_corner_bogie(const fb_scenario *s, size_t c, int *rear);
+/* Bogie i of s over its wheels' vertical displacements (z_front, z_rear):
+ * the corners' indices in *f and *r, the mass matrix of the beam and the
+ * wheels in m (2 x 2, row-major) and the lever's weights in w, the pivot's
+ * displacement w[0] z_front + w[1] z_rear (fe_hull.c). 0 when a corner is
+ * missing (a description fb_scenario_check refuses). */
+int vehicle_bogie_wheels(const fb_scenario *s, size_t i, long *f, long *r, double *m,
+                         double *w);
+/* A bogie's fragment's instance name, "bogie_<name>" (assemble.c); new. */
+char *vehicle_bogie_instance(const fb_bogie *b);
 /* The name the assembly gives item i's fragment in the vehicle's graph
  * (a corner's "susp_<name>", a mount's own name; assemble.c), and the
  * full name of the fragment's own bond or element local in it; new,
@@ -220,6 +235,12 @@ int vehicle_add_stops(const fb_stops *s, const char *name, const char *spring, f
 
 /* Frees the strings of an output (the output itself is its holder's). */
 void vehicle_output_release(fb_output_spec *o);
+/* The anti-roll bar's instance name in the vehicle's graph, "arb_<name>"
+ * (assemble.c); new, NULL when out of memory. */
+char *vehicle_antiroll_bar_instance(const fb_antiroll_bar *b);
+/* Frees the strings an anti-roll bar (a bogie) of a description owns. */
+void vehicle_antiroll_bar_release(fb_antiroll_bar *b);
+void vehicle_bogie_release(fb_bogie *b);
 /* rc, after making a road type's error about one of its parameters
  * (err->part.field set, no kind) a part of the description
  * (FB_PART_ROAD). */
