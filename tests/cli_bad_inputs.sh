@@ -185,6 +185,8 @@ derive s_arb_twice.yaml s_ok.yaml -e '/^outputs:/i anti_roll_bars:\n  - {name: f
 derive s_bogie_name.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LMM, rear: LR, pivot_x: -0.3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
 derive s_bogie_side.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LM, rear: RR, pivot_x: -0.3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
 derive s_bogie_pivot.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LM, rear: LR, pivot_x: 3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
+derive s_bogie_stops.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LM, rear: LR, pivot_x: -0.3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]' \
+  -e 's/^      spring_k: 345550 .*/      spring_k: 345550\n      bump_stop: {gap: 0.1, rate: 1e6}/'
 derive s_bogie_signal.yaml s_ok.yaml -e '/^outputs:/i bogies: [{name: tandem, front: LM, rear: LR, pivot_x: -0.3, beam_mass: 100, beam_inertia: 20, spring_k: 500000}]'
 derive s_samepoint.yaml s_ok.yaml -e '/^    - name: M /,/^    - name: R /s/^      x: 0.40 /      x: 1.90 /'
 derive s_bulkheads.yaml s_ok.yaml -e 's/^\(      bulkheads: \)\[.*\]/\1[1.90, -1.00]/'
@@ -369,6 +371,7 @@ CASES=(
   "2|run s_bogie_name.yaml --system rigid -o @OUT|$(at s_bogie_name.yaml 'front: LMM' LMM) bogies[0].front: no corner named 'LMM' (did you mean 'LM'?)"
   "2|modes s_bogie_side.yaml|$(at s_bogie_side.yaml 'rear: RR' RR) bogies[0].rear: corner RR is at y = -1.05 m, the front corner LM at y = 1.05 m: a bogie's wheels are on one line along the vehicle"
   "2|run s_bogie_pivot.yaml --system rigid -o @OUT|$(at s_bogie_pivot.yaml 'pivot_x: 3' 3) bogies[0].pivot_x: must lie between the rear corner LR's x = -1 m and the front corner LM's x = 0.4 m (got 3)"
+  "2|run s_bogie_stops.yaml --system rigid -o @OUT|$(at s_bogie_stops.yaml 'front: LM' LM) bogies[0].front: corner LM has bump or rebound stops: a bogie's wheel rides on the beam, with no suspension travel of its own for them"
   "2|run s_bogie_signal.yaml --system rigid -o @OUT|$(at s_bogie_signal.yaml 'signal: shock_power' shock_power) outputs[4].signal: corner LM is a bogie's wheel, which has no shock_power"
   "2|export s_samepoint.yaml --system rigid -o @OUT|$(at s_samepoint.yaml '    - name: M ' name) suspensions.axles[1]: at (1.9, 1.05) m, where corner LF already is (two corners at one point)"
   "2|mesh s_bulkheads.yaml --export @FILE.inp|$(at s_bulkheads.yaml 'front_x: 2.478' 2.478) hull.edges.front_x: the scenario puts FRONT_EDGE's left end at (2.47813, 1.05) m, the mesh's node 76 at (2.33187, 1.05) m"

@@ -842,8 +842,8 @@ static int check_antiroll_bars(const fb_scenario *s, fb_err *err)
 /* ---- Bogies. */
 
 /* The bogie's end member ("front" or "rear") names a corner, in *c, of
- * no other bogie before it and under no anti-roll bar (its wheel has no
- * travel of its own). */
+ * no other bogie before it, under no anti-roll bar and without stops (its
+ * wheel has no travel of its own). */
 static int check_bogie_end(const fb_scenario *s, size_t i, const char *member,
                            const char *corner, long *c, fb_err *err)
 {
@@ -865,6 +865,11 @@ static int check_bogie_end(const fb_scenario *s, size_t i, const char *member,
                   "corner %s carries anti-roll bar %s: a bogie's wheel has no suspension "
                   "travel of its own for a bar",
                   corner, s->antiroll_bar[j].name);
+  if (fb_stops_any(&s->corner[*c].stops))
+    return fail(err, FB_PART_BOGIE, i, member,
+                "corner %s has bump or rebound stops: a bogie's wheel rides on the beam, "
+                "with no suspension travel of its own for them",
+                corner);
   return FB_OK;
 }
 
