@@ -9,7 +9,8 @@
 # are against the file's values, not against an earlier output: the
 # generator's rear wall at x_rear = -4.6 m and its floor at z = 0, the
 # front axle's corners at x = 0, y = +-0.95 m, the driver's seat at
-# x = -0.4 m, and a given hull.centre_of_mass.
+# x = -0.4 m, a given hull.centre_of_mass, and (examples/truck6x6_bogie.yaml)
+# a bogie's pivot and a floor point's output.
 #
 # usage: bash tests/cli_frame.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -105,6 +106,17 @@ expect_in "$R" "| mounts.driver.x | -0.4 | m |" "the report's driver x"
 expect_in "$R" "| hull.edges.rear\\_x | -4.6 | m |" "the report's rear edge"
 expect_in "$R" "battery 300 kg at x, y = -0.8, -0.5 m" "the report's battery"
 expect_in "$R" "The positions below and the pictures are in this frame" "the report's frame row"
+
+# A bogie's pivot and a hull point's `at` (x, y and z) are positions too.
+cp "$REPO_ROOT"/examples/truck6x6_bogie.yaml . || exit 2
+sed 's/^outputs:/outputs:\n  - {signal: hull_displacement, at: [0, 0.95, 0], direction: z}/' \
+  truck6x6_bogie.yaml >bogie.yaml
+! cmp -s bogie.yaml truck6x6_bogie.yaml || fail "fixture bogie.yaml: no 'outputs:' line"
+run run bogie.yaml --system rigid --no-figures -o "$WORK/bogie"
+expect_status 0 "run the 6x6 with a floor point's output"
+R=$WORK/bogie/report.md
+expect_in "$R" "| bogies.left.pivot\\_x | -3.45 | m |" "the report's bogie pivot"
+expect_in "$R" "| outputs\\[0\\].at | 0, 0.95, 0 | m |" "the report's hull point"
 
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]

@@ -809,10 +809,12 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
  * the unit a slip most often means. */
 #define PLAUSIBLE_IN(lo_, hi_, why_, unit_, scale_)                                            \
   PLAUSIBLE(lo_, hi_, why_), .plausible_unit = (unit_), .plausible_scale = (scale_)
-/* A position along x or y (sch_key.axis): a report gives it in the
- * file's frame. */
+/* A position along x, y or z, or a point [x, y, z] (sch_key.axis): a
+ * report gives it in the file's frame. */
 #define AXIS_X .axis = 1
 #define AXIS_Y .axis = 2
+#define AXIS_Z .axis = 3
+#define AXIS_POINT .axis = SCH_AXIS_POINT
 #define REQ .need = SCH_REQUIRED
 #define OPT .need = SCH_OPTIONAL
 #define DEF(v) .need = SCH_DEFAULT, .def = v
@@ -928,7 +930,7 @@ static const sch_key sc_bogie_keys[] = {
     NUMBER("pivot_x", "m", ANY, REQ,
            "the beam's pivot, strictly between the two corners' x; the hull takes its load at "
            "their attachment points in the lever's proportions",
-           G_AT(DOUBLE, pivot_x)),
+           G_AT(DOUBLE, pivot_x), AXIS_X),
     NUMBER("beam_mass", "kg", POSITIVE, REQ, "the beam's mass, at the pivot",
            G_AT(DOUBLE, beam_mass), PLAUSIBLE(1, 5e3, "a bogie's beam weighs 1 kg to 5 t")),
     NUMBER("beam_inertia", "kg m^2", POSITIVE, REQ, "the beam's pitch inertia about the pivot",
@@ -1091,7 +1093,7 @@ static const sch_key sc_output_keys[] = {
     NUMBERS("at", "m", 3, 3, OPT,
             "a hull point's signal: the point `[x, y, z]` in the file's frame, as every "
             "position (a deck's: in the deck's frame)",
-            O_AT(DOUBLE, at), .ops = &sc_point),
+            O_AT(DOUBLE, at), .ops = &sc_point, AXIS_POINT),
     WHOLE("component", CLOSED(1, 1e9), OPT,
           "a bond signal on a multibond: the component it records, 1 to the bond's "
           "dimension (`flexbond causality` lists the bonds)",
@@ -1582,12 +1584,16 @@ static int sc_visit_value(const sch_value *v, void *ctx)
 {
   const sc_visit *visit = ctx;
   char text[256];
-  if (v->key->axis) {
-    /* Stored from the centre of mass; given as the file wrote it, to the
-     * ten digits that hide the round-off of the move there and back. */
-    double o[3];
-    fb_scenario_frame_offset(visit->s, o);
-    snprintf(text, sizeof text, "%.10g", v->number + o[v->key->axis - 1]);
+  double frame[3];
+  fb_scenario_frame_offset(visit->s, frame);
+  /* Stored from the centre of mass; given as the file wrote it, to the
+   * ten digits that hide the round-off of the move there and back. */
+  if (v->key->axis == SCH_AXIS_POINT) {
+    const double *p = (const double *)((const char *)v->base + v->key->offset);
+    snprintf(text, sizeof text, "%.10g, %.10g, %.10g", p[0] + frame[0], p[1] + frame[1],
+             p[2] + frame[2]);
+  } else if (v->key->axis) {
+    snprintf(text, sizeof text, "%.10g", v->number + frame[v->key->axis - 1]);
   } else {
     sch_format(v, text, sizeof text);
   }

@@ -123,9 +123,10 @@ struct sch_key {
   const char *const *choices;  /* SCH_CHOICE, NULL-terminated */
   size_t min_items, max_items; /* SCH_NUMBERS, SCH_LIST; max 0: no limit */
   int lines;                   /* SCH_TEXT: line breaks allowed */
-  /* A position along the vehicle's axis 1 (x) or 2 (y), in the file's
-   * frame as written, stored relative to the hull's centre of mass once
-   * the loader has completed the description; 0: none. */
+  /* A position along the vehicle's axis 1 (x), 2 (y) or 3 (z), or
+   * SCH_AXIS_POINT: a point, SCH_NUMBERS of 3 doubles [x, y, z]; in the
+   * file's frame as written, stored relative to the hull's centre of mass
+   * once the loader has completed the description; 0: none. */
   int axis;
   const char *type_doc; /* SCH_CUSTOM: the type for the documentation */
   const char *doc;      /* one line */
@@ -253,6 +254,8 @@ int sch_origin_inherit(sch_reader *r, const char *key, const char *from);
 const sch_origin *sch_origin_find(const sch_reader *r, const char *path);
 
 /* One value of a struct, for sch_check and sch_each_value. */
+enum { SCH_AXIS_POINT = 4 };
+
 typedef struct sch_value {
   const sch_key *key;
   const char *path; /* logical key path ("corners.LF.spring_k") */
