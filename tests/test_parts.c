@@ -24,7 +24,8 @@
 
 #define EXAMPLE "../examples/truck4x4.yaml"
 
-/* The truck with a hull section added (no example has one). */
+/* The truck with a hull section and a mounted rigid body added (no
+ * example has them). */
 static fb_scenario *load_truck(void)
 {
   char *text = NULL;
@@ -39,12 +40,16 @@ static fb_scenario *load_truck(void)
   }
   static const char section[] = "\n  sections: [{set: FLOOR, thickness: 0.012}]";
   const size_t head = (size_t)(at - text);
-  char *edited = malloc(len + sizeof section);
+  static const char body[] =
+      "\nbodies: [{name: box, mass: 50, x: 0, y: 0, z: 1, Ixx: 2, Iyy: 2, Izz: 3,\n"
+      "          bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}]\n";
+  char *edited = malloc(len + sizeof section + sizeof body);
   fb_scenario *s = NULL;
   if (edited) {
     memcpy(edited, text, head);
     memcpy(edited + head, section, sizeof section - 1);
     memcpy(edited + head + sizeof section - 1, at, len - head + 1);
+    strcat(edited, body);
     CHECK(fb_scenario_load_string(edited, strlen(edited), EXAMPLE, &s, &err) == FB_OK);
   }
   free(edited);
@@ -57,14 +62,23 @@ static int kind_of(const char *name)
   static const struct {
     const char *name;
     int kind;
-  } kinds[] = {
-      {"FB_PART_VEHICLE", FB_PART_VEHICLE},      {"fb_scenario", FB_PART_VEHICLE},
-      {"FB_PART_CORNER", FB_PART_CORNER},        {"fb_corner_params", FB_PART_CORNER},
-      {"FB_PART_MOUNT", FB_PART_MOUNT},          {"fb_mount", FB_PART_MOUNT},
-      {"FB_PART_HULL_MASS", FB_PART_HULL_MASS},  {"fb_hull_point_mass", FB_PART_HULL_MASS},
-      {"FB_PART_SECTION", FB_PART_SECTION},      {"fb_hull_section", FB_PART_SECTION},
-      {"FB_PART_OUTPUT", FB_PART_OUTPUT},        {"fb_output_spec", FB_PART_OUTPUT},
-      {"FB_PART_LOAD_POINT", FB_PART_LOAD_POINT}};
+  } kinds[] = {{"FB_PART_VEHICLE", FB_PART_VEHICLE},
+               {"fb_scenario", FB_PART_VEHICLE},
+               {"FB_PART_CORNER", FB_PART_CORNER},
+               {"fb_corner_params", FB_PART_CORNER},
+               {"FB_PART_MOUNT", FB_PART_MOUNT},
+               {"fb_mount", FB_PART_MOUNT},
+               {"FB_PART_HULL_MASS", FB_PART_HULL_MASS},
+               {"fb_hull_point_mass", FB_PART_HULL_MASS},
+               {"FB_PART_SECTION", FB_PART_SECTION},
+               {"fb_hull_section", FB_PART_SECTION},
+               {"FB_PART_OUTPUT", FB_PART_OUTPUT},
+               {"fb_output_spec", FB_PART_OUTPUT},
+               {"FB_PART_LOAD_POINT", FB_PART_LOAD_POINT},
+               {"FB_PART_BODY", FB_PART_BODY},
+               {"fb_body", FB_PART_BODY},
+               {"FB_PART_BUSHING", FB_PART_BUSHING},
+               {"fb_bushing", FB_PART_BUSHING}};
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
     if (!strcmp(kinds[i].name, name))
       return kinds[i].kind;

@@ -75,6 +75,55 @@ typedef struct fb_mount {
   double x, y;      /* attachment point, m */
 } fb_mount;
 
+/* A bushing of a mounted rigid body (fb_body): a linear spring and a
+ * damper in all six components between the body and the body it is
+ * mounted on, at one point. Its force on the body is
+ *   -(K d + C d'),   d = the body's motion at the point relative to the
+ * parent's: three translations (x, y, z) then three rotations (about x,
+ * y, z; small angles), vehicle axes. Full symmetric 6x6 matrices, row
+ * major; fb_bushing_set_diagonal fills a bushing with one stiffness and
+ * one damping per axis. */
+typedef struct fb_bushing {
+  double x, y, z; /* its point, m, vehicle axes */
+  double k[36];   /* stiffness: N/m, N/rad, N m/m, N m/rad by block; symmetric,
+                     positive semi-definite */
+  double c[36];   /* damping: N s/m, N s/rad, N m s/m, N m s/rad; symmetric,
+                     positive semi-definite */
+  /* System 2, a bushing on the hull: the mesh's node set its hull side
+   * is coupled to (copied; owned), or NULL: the hull's nodes of the
+   * element set hull.mesh.coupling.surface within `radius` (m, in plan)
+   * of its point, or the scenario's coupling radius when 0. */
+  char *node_set;
+  double radius;
+} fb_bushing;
+
+/* Fills b's stiffness and damping as diagonal matrices: k[0..2] (N/m) and
+ * c[0..2] (N s/m) along x, y, z, k[3..5] (N m/rad) and c[3..5] (N m s/rad)
+ * about x, y, z. */
+void fb_bushing_set_diagonal(fb_bushing *b, const double *k6, const double *c6);
+
+/* The most bushings a body has. */
+#define FB_BODY_MAX_BUSHINGS 16
+
+/* A mounted rigid body in six degrees of freedom (a turret, a seat, an
+ * engine): its inertia at its centre of mass and the bushings that carry
+ * it, to the hull or to another body. Motions are small (linear
+ * kinematics about the reference position: docs/scenario-format.md,
+ * "Mounted bodies"). */
+typedef struct fb_body {
+  char *name;     /* unique among the bodies, mounts, hull masses and corners; owned */
+  char *parent;   /* the body it is mounted on, one before it in the list,
+                     by name; NULL: the hull. Owned */
+  double mass;    /* kg */
+  double x, y, z; /* its centre of mass, m, vehicle axes */
+  /* Its inertia tensor about its centre of mass, vehicle axes, kg m^2:
+   * the matrix [[Ixx, -Ixy, -Ixz], [-Ixy, Iyy, -Iyz], [-Ixz, -Iyz, Izz]]
+   * (products of inertia Ixy = integral of x y dm), positive definite. */
+  double ixx, iyy, izz, ixy, ixz, iyz;
+  fb_bushing *bushing; /* nbushings of them, at least 1; owned */
+  size_t nbushings;
+} fb_body;
+
 /* A non-structural mass fixed to the hull's floor (a battery, ballast, an
  * armour plate): pure inertia. Its weight is part of load.total_weight,
  * which the load points carry; its mass moves with the hull, System 1's
@@ -262,7 +311,10 @@ typedef enum fb_part_kind {
   FB_PART_TIRE = 9,         /* corner[index]'s tire model's parameter field (fb_param.name) */
   FB_PART_HULL_SOURCE = 10, /* the hull source's parameter field (fb_param.name); index 0 */
   FB_PART_DAMPER = 11,      /* corner[index]'s damper law's parameter field (fb_param.name) */
-  FB_PART_KINDS = 12
+  FB_PART_BODY = 14,        /* body[index], fb_body */
+  FB_PART_BUSHING = 15,     /* the index-th bushing of all bodies, in order (body 0's first;
+                               fb_scenario_bushing_at), fb_bushing */
+  FB_PART_KINDS = 18
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -279,6 +331,8 @@ typedef struct fb_mount FB_PART_TYPE_FB_PART_MOUNT;
 typedef struct fb_hull_point_mass FB_PART_TYPE_FB_PART_HULL_MASS;
 typedef struct fb_hull_section FB_PART_TYPE_FB_PART_SECTION;
 typedef struct fb_output_spec FB_PART_TYPE_FB_PART_OUTPUT;
+typedef struct fb_body FB_PART_TYPE_FB_PART_BODY;
+typedef struct fb_bushing FB_PART_TYPE_FB_PART_BUSHING;
 
 typedef struct fb_scenario {
   char *name;
@@ -321,6 +375,10 @@ typedef struct fb_scenario {
    * order, each with a unique name; at least 3 corners. */
   fb_mount *mount;
   size_t nmounts;
+  /* The mounted rigid bodies in six degrees of freedom, in the file's
+   * order: a body's parent comes before it. */
+  fb_body *body;
+  size_t nbodies;
   fb_corner_params *corner;
   size_t ncorners;
   /* The signals recorded, in CSV column order (docs/vehicle-outputs.md). */
@@ -415,6 +473,13 @@ double fb_scenario_speed(const fb_scenario *s);
 /* Index of the corner or mount named name, -1 if none. */
 long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
+/* Index of the body named name, -1 if none. */
+long fb_scenario_body_find(const fb_scenario *s, const char *name);
+/* The bushings of every body, body 0's first (FB_PART_BUSHING's index):
+ * their number, and the body and the body's bushing of bushing k (0
+ * when k is out of range). */
+size_t fb_scenario_nbushings(const fb_scenario *s);
+int fb_scenario_bushing_at(const fb_scenario *s, size_t k, size_t *body, size_t *bushing);
 /* The plausibility warnings of a loaded scenario, each "FILE:LINE:COL:
  * KEY: VALUE is implausible: WHY" with the fields of a located error
  * (docs/errors.md, "Implausible values"); NULL for i out of range; owned
@@ -640,6 +705,11 @@ int fb_scenario_add_corner(fb_scenario *s, const fb_corner_params *c, fb_err *er
 int fb_scenario_add_mount(fb_scenario *s, const fb_mount *m, fb_err *err);
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err);
 int fb_scenario_add_load_point(fb_scenario *s, double x, double y, fb_err *err);
+/* Appends a copy of the mounted rigid body b: its name, its parent's
+ * name and its bushings (with their node sets) copied. FB_EINVAL without
+ * a name or without a bushing, or with more than FB_BODY_MAX_BUSHINGS;
+ * FB_ENOMEM. fb_scenario_check checks the rest. */
+int fb_scenario_add_body(fb_scenario *s, const fb_body *b, fb_err *err);
 /* Appends a copy of the output o: its signal (a kind of
  * fb_vehicle_output_kinds) and subject (`of` a corner or mount added
  * before, `bond`, or none for the hull); name, unit, title and label

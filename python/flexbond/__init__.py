@@ -48,7 +48,8 @@ TRACKS = ("left", "right")
 
 # fb_part_kind (flexbond/vehicle.h), by value; FB_ERR_NO_ELEMENT.
 _PART_KINDS = (None, "vehicle", "corner", "mount", "point_mass", "section", "output",
-               "load_point", "road", "tire", "hull_source", "damper")
+               "load_point", "road", "tire", "hull_source", "damper", None, None, "body",
+               "bushing", None, None)
 _NO_ELEMENT = ctypes.c_size_t(-1).value
 
 

@@ -56,10 +56,12 @@ SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
  * corner's law. */
 SC_PRESENT(sc_damper_present, fb_corner_params, fb_corner_damper_law(b) == k->data)
 SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0)
+SC_PRESENT(sc_has_radius, fb_bushing, b->radius != 0)
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
 static const sch_ops sc_law_present = {.present = sc_damper_present};
+static const sch_ops sc_radius_present = {.present = sc_has_radius};
 
 /* ---- parameters: evaluated first, seen by every expression after. */
 
@@ -463,6 +465,30 @@ static const sch_ops sc_damper_table = {.read = sc_read_damper_table,
                                         .format = sc_format_damper_table,
                                         .present = sc_damper_present};
 
+/* ---- bodies: a bushing's stiffness or damping per axis, the diagonal of
+ * its 6x6 matrix (the member k or c its key's offset names). */
+
+static int sc_store_diagonal(sch_reader *r, const sch_key *k, struct fy_node *node,
+                             const double *v, size_t n, void *base)
+{
+  (void)r, (void)node;
+  double *m = (double *)((char *)base + k->offset);
+  memset(m, 0, 36 * sizeof *m);
+  for (size_t i = 0; i < n && i < 6; ++i)
+    m[7 * i] = v[i];
+  return FB_OK;
+}
+
+static void sc_format_diagonal(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  const double *m = (const double *)((const char *)base + k->offset);
+  snprintf(buf, size, "%.10g, %.10g, %.10g, %.10g, %.10g, %.10g", m[0], m[7], m[14], m[21],
+           m[28], m[35]);
+}
+
+static const sch_ops sc_diagonal = {.store_list = sc_store_diagonal,
+                                    .format = sc_format_diagonal};
+
 /* ---- outputs. */
 
 /* fb_name_fn over the signal kinds. */
@@ -614,6 +640,8 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 #define DEF_LIST(l) .need = SCH_DEFAULT, .def_list = l
 #define INHERIT(k) .need = SCH_INHERIT, .inherit = k
 #define ONE_OF(g) .need = SCH_REQUIRED, .one_of = g
+/* At most one of the group, maybe none. */
+#define OPT_ONE_OF(g) .need = SCH_OPTIONAL, .one_of = g
 
 /* Stores: kind (DOUBLE, INT, ...) at a field of the scenario, a corner, a
  * mount or an output. */
@@ -623,6 +651,10 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 #define C_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_corner_params, f), .member = #f
 #define M_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_mount, f), .member = #f
+#define B_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_body, f), .member = #f
+#define U_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_bushing, f), .member = #f
+/* A bushing's 6x6 matrix f, given through the store_list hook. */
+#define U_DIAG(f) .offset = offsetof(fb_bushing, f), .member = #f, .ops = &sc_diagonal
 #define O_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f), .member = #f
 #define P_AT(kind, f)                                                                          \
@@ -674,6 +706,69 @@ static const sch_key sc_mount_keys[] = {
     NUMBER("y", "m", ANY, REQ, "hull attachment point", M_OFF(y)),
 };
 static const sch_table sc_mount_table = TABLE(sc_mount_keys, NULL);
+
+/* A bushing of a mounted rigid body: bodies[].bushings' items. */
+static const sch_key sc_bushing_keys[] = {
+    NUMBER("x", "m", ANY, REQ, "its point", U_AT(DOUBLE, x)),
+    NUMBER("y", "m", ANY, REQ, "its point", U_AT(DOUBLE, y)),
+    NUMBER("z", "m", ANY, REQ, "its point", U_AT(DOUBLE, z)),
+    KEY(.path = "stiffness", .type = SCH_NUMBERS, .unit = "N/m, N m/rad", NONNEGATIVE,
+        .min_items = 6, .max_items = 6, ONE_OF("stiffness"),
+        .doc = "stiffness along x, y, z (N/m) and about x, y, z (N m/rad): a diagonal matrix",
+        U_DIAG(k)),
+    NUMBERS("stiffness_matrix", "SI", 36, 36, ONE_OF("stiffness"),
+            "the full symmetric 6x6 stiffness, row by row (translations then rotations)",
+            U_AT(DOUBLE, k)),
+    KEY(.path = "damping", .type = SCH_NUMBERS, .unit = "N s/m, N m s/rad", NONNEGATIVE,
+        .min_items = 6, .max_items = 6, OPT_ONE_OF("damping"),
+        .doc = "damping along x, y, z (N s/m) and about x, y, z (N m s/rad): a diagonal "
+               "matrix; none: no damping",
+        U_DIAG(c)),
+    NUMBERS("damping_matrix", "SI", 36, 36, OPT_ONE_OF("damping"),
+            "the full symmetric 6x6 damping, row by row", U_AT(DOUBLE, c)),
+    STRING(NAME, "node_set", OPT,
+           "System 2, a bushing on the hull: the mesh's node set its hull side is coupled to "
+           "(a distributing coupling in all six components)",
+           U_AT(STRING, node_set)),
+    NUMBER("radius", "m", POSITIVE, OPT,
+           "System 2, a bushing on the hull without `node_set`: the nodes of "
+           "`hull.mesh.coupling.surface` within this radius in plan (default: the coupling's)",
+           U_AT(DOUBLE, radius), .ops = &sc_radius_present),
+};
+static const sch_table sc_bushing_table = TABLE(sc_bushing_keys, NULL);
+
+/* A mounted rigid body in six degrees of freedom: bodies' items. */
+static const sch_key sc_body_keys[] = {
+    STRING(NAME, "name", REQ,
+           "its name, unique among the bodies, mounts, hull masses and corners",
+           B_AT(STRING, name)),
+    STRING(NAME, "on", OPT, "the body it is mounted on, listed before it; left out: the hull",
+           B_AT(STRING, parent)),
+    NUMBER(
+        "mass", "kg", POSITIVE, REQ, "its mass", B_AT(DOUBLE, mass),
+        PLAUSIBLE(1, 1e5, "a mounted body (a seat, an engine, a turret) weighs 1 kg to 100 t")),
+    NUMBER("x", "m", ANY, REQ, "its centre of mass", B_AT(DOUBLE, x)),
+    NUMBER("y", "m", ANY, REQ, "its centre of mass", B_AT(DOUBLE, y)),
+    NUMBER("z", "m", ANY, REQ, "its centre of mass (height in the vehicle axes)",
+           B_AT(DOUBLE, z)),
+    NUMBER("Ixx", "kg m^2", POSITIVE, REQ,
+           "moment of inertia about x through its centre of mass", B_AT(DOUBLE, ixx)),
+    NUMBER("Iyy", "kg m^2", POSITIVE, REQ, "moment of inertia about y", B_AT(DOUBLE, iyy)),
+    NUMBER("Izz", "kg m^2", POSITIVE, REQ, "moment of inertia about z", B_AT(DOUBLE, izz)),
+    NUMBER("Ixy", "kg m^2", ANY, DEF(0), "product of inertia, the integral of x y dm",
+           B_AT(DOUBLE, ixy)),
+    NUMBER("Ixz", "kg m^2", ANY, DEF(0), "product of inertia, the integral of x z dm",
+           B_AT(DOUBLE, ixz)),
+    NUMBER("Iyz", "kg m^2", ANY, DEF(0), "product of inertia, the integral of y z dm",
+           B_AT(DOUBLE, iyz)),
+    KEY(.path = "bushings", .type = SCH_LIST, REQ, .min_items = 1,
+        .max_items = FB_BODY_MAX_BUSHINGS,
+        .doc = "the bushings that carry it to its parent (six-component springs and dampers)",
+        .items = &sc_bushing_table, .view = "bushings", .offset = offsetof(fb_body, bushing),
+        .count_at = offsetof(fb_body, nbushings), .item_size = sizeof(fb_bushing),
+        .per_item = 1, .member = "bushing"),
+};
+static const sch_table sc_body_table = TABLE(sc_body_keys, NULL);
 
 /* A non-structural mass on the hull's floor: hull.masses' items. */
 static const sch_key sc_point_mass_keys[] = {
@@ -917,6 +1012,10 @@ static const sch_key sc_keys[] = {
               "the load points, on the floor, 1 mm apart at least", &sc_points, S_IS(load_x)),
     LIST("mounts", OPT, "bodies on a spring and a damper to a hull point (driver, engine)",
          &sc_mount_table, "mounts", &sc_named, NAMED(mount, nmounts, 1)),
+    LIST("bodies", OPT,
+         "rigid bodies in six degrees of freedom on bushings, to the hull or to another body "
+         "(a turret, its seats)",
+         &sc_body_table, "bodies", &sc_named, NAMED(body, nbodies, 1)),
     SECTION("wheel", OPT, "every corner's wheel and tire unless the corner gives its own",
             NULL),
     NUMBER("wheel.mass", "kg", POSITIVE, OPT, "wheel mass", NO_STORE,
@@ -1014,6 +1113,18 @@ static const sch_table *sc_part_table(const fb_scenario *s, const sch_table *for
       return NULL;
     snprintf(prefix, size, "mounts.%s", s->mount[i].name);
     return &sc_mount_table;
+  case FB_PART_BODY:
+    if (i >= s->nbodies || !s->body[i].name)
+      return NULL;
+    snprintf(prefix, size, "bodies.%s", s->body[i].name);
+    return &sc_body_table;
+  case FB_PART_BUSHING: {
+    size_t b = 0, j = 0;
+    if (!fb_scenario_bushing_at(s, i, &b, &j) || !s->body[b].name)
+      return NULL;
+    snprintf(prefix, size, "bodies.%s.bushings[%zu]", s->body[b].name, j);
+    return &sc_bushing_table;
+  }
   case FB_PART_HULL_MASS:
     if (i >= s->npoint_masses || !s->point_mass[i].name)
       return NULL;

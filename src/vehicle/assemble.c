@@ -214,7 +214,17 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
   fb_hull *hull = *hullp;
   *hullp = NULL;
   fb_bg *bg = NULL;
-  int rc = make_probes(s, hull, probes, err);
+  /* A description's rigid bodies are read and checked; no system
+   * realises them yet: refused rather than left out of the vehicle. */
+  int rc = s->nbodies ? fb_err_set(err, FB_EINVAL,
+                                   "mounted rigid bodies (body %s) are not realised by the "
+                                   "vehicle's systems yet",
+                                   s->body[0].name)
+                      : FB_OK;
+  if (rc)
+    fb_err_set_part(err, FB_PART_AT(FB_PART_BODY, 0, name));
+  if (!rc)
+    rc = make_probes(s, hull, probes, err);
   if (!rc)
     rc = fb_bg_new(s->name ? s->name : "vehicle", &bg, err);
   if (!rc)

@@ -108,6 +108,22 @@ int fb_scenario_add_mount(fb_scenario *s, const fb_mount *m, fb_err *err)
   return FB_OK;
 }
 
+int fb_scenario_add_body(fb_scenario *s, const fb_body *b, fb_err *err)
+{
+  if (!b->name || !b->name[0])
+    return fb_err_set(err, FB_EINVAL, "a mounted rigid body needs a name");
+  if (b->nbushings < 1 || !b->bushing || b->nbushings > FB_BODY_MAX_BUSHINGS)
+    return fb_err_set(err, FB_EINVAL, "body %s needs 1 to %d bushings (got %zu)", b->name,
+                      FB_BODY_MAX_BUSHINGS, b->bushing ? b->nbushings : 0);
+  fb_body *to = NULL;
+  if (!builder_grow((void **)&s->body, s->nbodies, sizeof *to, (void **)&to))
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a mounted rigid body");
+  if (!vehicle_body_copy(b, to))
+    return fb_err_set(err, FB_ENOMEM, "out of memory for body %s", b->name);
+  ++s->nbodies;
+  return FB_OK;
+}
+
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err)
 {
   char *name = NULL;

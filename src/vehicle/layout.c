@@ -18,6 +18,11 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
   case FB_PART_DAMPER: return i < s->ncorners ? s->corner[i].name : NULL;
   case FB_PART_MOUNT: return i < s->nmounts ? s->mount[i].name : NULL;
   case FB_PART_HULL_MASS: return i < s->npoint_masses ? s->point_mass[i].name : NULL;
+  case FB_PART_BODY: return i < s->nbodies ? s->body[i].name : NULL;
+  case FB_PART_BUSHING: {
+    size_t b = 0, j = 0;
+    return fb_scenario_bushing_at(s, i, &b, &j) ? s->body[b].name : NULL;
+  }
   case FB_PART_SECTION: return i < s->nsections ? s->section[i].set : NULL;
   case FB_PART_OUTPUT: return i < s->noutputs ? s->output[i].name : NULL;
   case FB_PART_ROAD: return s->road_type ? s->road_type->name : NULL;
@@ -30,8 +35,10 @@ char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *bu
 {
   static const char *const list[FB_PART_KINDS] = {
       "",       "",           "corner", "mount",  "point_mass",  "section",
-      "output", "load point", "road",   "corner", "hull source", "corner"};
-  const int kind = p->kind > 0 && p->kind < FB_PART_KINDS ? p->kind : FB_PART_NONE;
+      "output", "load point", "road",   "corner", "hull source", "corner",
+      NULL,     NULL,         "body",   "bushing"};
+  const int kind =
+      p->kind > 0 && p->kind < FB_PART_KINDS && list[p->kind] ? p->kind : FB_PART_NONE;
   const char *name = s ? part_name(s, kind, p->index) : NULL;
   size_t n = 0;
   buf[0] = '\0';

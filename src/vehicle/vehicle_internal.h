@@ -155,6 +155,25 @@ char *vehicle_target(const fb_scenario *s, fb_output_subject subject, size_t i,
 
 /* Frees the strings of an output (the output itself is its holder's). */
 void vehicle_output_release(fb_output_spec *o);
+/* Frees what a body owns (its names, bushings and their node sets) and
+ * zeroes it; the body itself is its holder's. */
+void vehicle_body_release(fb_body *b);
+/* *dst = a deep copy of src; 0 when memory ran out (*dst then owns
+ * nothing). */
+int vehicle_body_copy(const fb_body *src, fb_body *dst);
+/* b's inertia tensor about its centre of mass, 3x3 row major, into j. */
+void vehicle_body_inertia(const fb_body *b, double *j);
+/* The eigenvalues of the symmetric 3x3 a (row major), ascending, into w;
+ * FB_ESOLVER if LAPACK fails. */
+int vehicle_sym3_eigenvalues(const double *a, double *w);
+/* The 6x6 map (row major) from a rigid body's motion at a reference
+ * point, (v, omega), to its motion at the point r from it: small motion. */
+void vehicle_rigid_transport(const double *r, double *t);
+/* sum += T' k T, T the transport from b's centre of mass to bushing u's
+ * point: a 6x6 (row major) stiffness or damping k of u as b's centre of
+ * mass sees it. */
+void vehicle_bushing_add_at_centre(const fb_body *b, const fb_bushing *u, const double *k,
+                                   double *sum);
 /* rc, after making a road type's error about one of its parameters
  * (err->part.field set, no kind) a part of the description
  * (FB_PART_ROAD). */
