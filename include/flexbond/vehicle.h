@@ -353,6 +353,13 @@ typedef struct fb_scenario {
   int hull_mass_given;       /* mass, Ixx, Iyy written in the file */
   double hull_mass;          /* kg */
   double hull_ixx, hull_iyy; /* kg m^2 about the hull's centre of mass */
+  /* The rest of its inertia tensor (fb_body's convention), which a hull
+   * carrying mounted rigid bodies (nbodies > 0) moves in six degrees of
+   * freedom needs: given (hull_izz_given), or the mesh's with a
+   * finite-element hull (fb_vehicle_hull_complete); products 0 unless
+   * given. */
+  int hull_izz_given;
+  double hull_izz, hull_ixy, hull_ixz, hull_iyz; /* kg m^2 */
   /* Non-structural masses on the hull's floor (hull.masses), in the
    * file's order. */
   fb_hull_point_mass *point_mass;
@@ -516,7 +523,10 @@ double fb_scenario_track_width(const fb_scenario *s);
  * position is moved to it; with a finite-element hull, the hull's mass,
  * Ixx and Iyy are the mesh's when the file gives none, and the file's
  * are refused (FB_EINVAL naming both, about the part hull_mass ...) when
- * they differ from the mesh's by more than 0.5 %. Errors name the part of
+ * they differ from the mesh's by more than 0.5 %, and Izz and the
+ * products of inertia are the mesh's unless given (hull_izz_given); the
+ * mounted rigid bodies' x and y move with the other positions (their z
+ * is measured from the hull's centre of mass in any frame). Errors name the part of
  * the description they are about (fb_err.part); the caller locates them
  * (fb_scenario_locate). */
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
@@ -820,15 +830,30 @@ typedef struct fb_hull {
   double *torsion_weights;     /* each edge's roll from its two end nodes */
   double *torsion_fit_weights; /* from its transverse section, least squares */
   size_t ntorsion;
+  /* 1: it offers the port "bushing_<k>" (IN, dimension 6) for each
+   * bushing k of a mounted rigid body on the hull (fb_scenario_bushing_at),
+   * as System 1's does; 0: it carries no such bodies. */
+  int carries_bodies;
 } fb_hull;
 void fb_hull_free(fb_hull **h);
 
 /* System 1: I field diag-dominant 3x3 (bounce, roll, pitch; with the
  * declared hull masses and the lumped payload's point masses when asked)
- * and matrix transformers to the attachment and load points. */
+ * and matrix transformers to the attachment and load points. A hull
+ * carrying mounted rigid bodies (s->nbodies > 0) moves in six degrees of
+ * freedom, (x, y, z, roll, pitch, yaw) at its centre of mass, with its
+ * whole inertia tensor; its point maps are then rows of the 6-DOF map,
+ * and each bushing on it has its port "bushing_<k>" (fb_hull). */
 int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
 /* A mounted body (driver plus seat, engine, ...): port "hull" (OUT). */
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
+/* Mounted rigid body i of s in six degrees of freedom: the I field
+ * "inertia" (6x6 at its centre of mass), its weight, and per bushing j
+ * the 6x6 spring "spring_<j>" and damper "damper_<j>" with the port
+ * "parent_<j>" (OUT, dimension 6) to its parent's point; and for each
+ * bushing k (fb_scenario_bushing_at) of a body mounted on it the port
+ * "bushing_<k>" (IN, dimension 6). Small-motion kinematics. */
+int fb_vehicle_body(const fb_scenario *s, size_t i, fb_bg **out, fb_err *err);
 /* One suspension with its wheel and tire: ports "hull" (OUT), "road" (IN). */
 int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err);
 /* The road: one flow source per wheel (the road's vertical velocity under
@@ -858,6 +883,7 @@ void fb_vehicle_probes_free(fb_probe_spec **probes, size_t nprobes);
 typedef enum fb_output_subject {
   FB_OUTPUT_OF_CORNER, /* `of` names a corner */
   FB_OUTPUT_OF_MOUNT,  /* `of` names a mounted body */
+  FB_OUTPUT_OF_BODY,   /* `of` names a mounted rigid body (fb_body) */
   FB_OUTPUT_OF_HULL,   /* no `of`: the hull */
   FB_OUTPUT_OF_BOND    /* `bond` names a bond of the assembled graph */
 } fb_output_subject;

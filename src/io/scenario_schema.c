@@ -52,6 +52,7 @@ SC_PRESENT(sc_has_frame, fb_scenario, b->frame_origin != NULL)
 SC_PRESENT(sc_has_cg, fb_scenario, b->hull_cg_given)
 SC_PRESENT(sc_has_coupling, fb_scenario, b->coupling != FB_COUPLING_NONE)
 SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
+SC_PRESENT(sc_has_izz, fb_scenario, b->hull_izz_given)
 /* A damper law's key (its data the law) is there when it is the
  * corner's law. */
 SC_PRESENT(sc_damper_present, fb_corner_params, fb_corner_damper_law(b) == k->data)
@@ -60,6 +61,7 @@ SC_PRESENT(sc_has_radius, fb_bushing, b->radius != 0)
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
+static const sch_ops sc_izz_present = {.present = sc_has_izz};
 static const sch_ops sc_law_present = {.present = sc_damper_present};
 static const sch_ops sc_radius_present = {.present = sc_has_radius};
 
@@ -91,6 +93,14 @@ static int sc_hull_done(sch_reader *r, const sch_key *k, struct fy_node *node, v
       missing = i;
   }
   s->hull_mass_given = given == 3;
+  s->hull_izz_given = ml_get(node, "Izz", NULL) != NULL;
+  static const char *const products[] = {"Ixy", "Ixz", "Iyz"};
+  for (int i = 0; i < 3; ++i) {
+    struct fy_node *key = NULL;
+    if (!s->hull_izz_given && (ml_get(node, products[i], &key), key))
+      return ml_fail_key(r->c, node, key, FB_EPARSE,
+                         "a product of inertia goes with Izz (the hull's full tensor)");
+  }
   if (given > 0 && given < 3)
     return ml_fail(r->c, node, FB_EPARSE,
                    "missing required key '%s': give mass, Ixx and Iyy together, or none of "
@@ -519,10 +529,13 @@ static int sc_output_kind(const ml_ctx *c, struct fy_node *node, const char *sig
 static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
                              const fb_output_kind *kind)
 {
-  const int wants_of =
-      kind->subject == FB_OUTPUT_OF_CORNER || kind->subject == FB_OUTPUT_OF_MOUNT;
+  const int wants_of = kind->subject == FB_OUTPUT_OF_CORNER ||
+                       kind->subject == FB_OUTPUT_OF_MOUNT ||
+                       kind->subject == FB_OUTPUT_OF_BODY;
   const int wants_bond = kind->subject == FB_OUTPUT_OF_BOND;
-  const char *what = kind->subject == FB_OUTPUT_OF_CORNER ? "corner" : "mounted body";
+  const char *what = kind->subject == FB_OUTPUT_OF_CORNER ? "corner"
+                     : kind->subject == FB_OUTPUT_OF_BODY ? "rigid body"
+                                                          : "mounted body";
   struct fy_node *key = NULL;
   if (wants_of && !o->of)
     return ml_fail(c, node, FB_EPARSE, "missing required key 'of': the %s a %s signal measures",
@@ -893,6 +906,18 @@ static const sch_key sc_keys[] = {
     NUMBER("hull.Iyy", "kg m^2", POSITIVE, OPT,
            "the structure's pitch inertia about its centre of mass", S_OFF(hull_iyy),
            .ops = &sc_mass_present),
+    NUMBER("hull.Izz", "kg m^2", POSITIVE, OPT,
+           "the structure's yaw inertia about its centre of mass, for `bodies` (a hull "
+           "carrying them moves in six degrees of freedom); left out: the finite-element "
+           "hull's",
+           S_OFF(hull_izz), .ops = &sc_izz_present),
+    NUMBER("hull.Ixy", "kg m^2", ANY, OPT,
+           "the structure's product of inertia, the integral of x y dm, with `Izz` (default 0)",
+           S_OFF(hull_ixy), .ops = &sc_izz_present),
+    NUMBER("hull.Ixz", "kg m^2", ANY, OPT, "the integral of x z dm, with `Izz` (default 0)",
+           S_OFF(hull_ixz), .ops = &sc_izz_present),
+    NUMBER("hull.Iyz", "kg m^2", ANY, OPT, "the integral of y z dm, with `Izz` (default 0)",
+           S_OFF(hull_iyz), .ops = &sc_izz_present),
     SECTION_IS("hull.centre_of_mass", OPT,
                "the hull's centre of mass in the frame (only with `frame`; default: the "
                "mesh's)",

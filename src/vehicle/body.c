@@ -96,6 +96,17 @@ void vehicle_body_inertia(const fb_body *b, double *j)
   memcpy(j, t, sizeof t);
 }
 
+void vehicle_hull_inertia(const fb_scenario *s, double *j)
+{
+  const fb_body hull = {.ixx = s->hull_ixx,
+                        .iyy = s->hull_iyy,
+                        .izz = s->hull_izz,
+                        .ixy = s->hull_ixy,
+                        .ixz = s->hull_ixz,
+                        .iyz = s->hull_iyz};
+  vehicle_body_inertia(&hull, j);
+}
+
 int vehicle_sym3_eigenvalues(const double *a, double *w)
 {
   double s[9];

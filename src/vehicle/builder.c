@@ -210,6 +210,12 @@ static int builder_subject(const fb_scenario *s, const fb_output_kind *kind,
                : fb_err_set(err, FB_EINVAL,
                             "a %s signal measures a mounted body of the vehicle (%s)",
                             kind->signal, o->of ? o->of : "none given");
+  case FB_OUTPUT_OF_BODY:
+    return o->of && fb_scenario_body_find(s, o->of) >= 0
+               ? FB_OK
+               : fb_err_set(err, FB_EINVAL,
+                            "a %s signal measures a mounted rigid body of the vehicle (%s)",
+                            kind->signal, o->of ? o->of : "none given");
   case FB_OUTPUT_OF_HULL:
     return o->of ? fb_err_set(err, FB_EINVAL,
                               "a %s signal measures the hull, no corner or mount", kind->signal)

@@ -595,9 +595,29 @@ static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
   return FB_OK;
 }
 
+/* A hull carrying bodies moves in six degrees of freedom: its whole
+ * inertia tensor, positive definite. */
+static int check_hull_tensor(const fb_scenario *s, fb_err *err)
+{
+  if (!s->nbodies || (!s->hull_izz_given && s->has_fe_hull))
+    return FB_OK; /* the mesh's, once it is built */
+  if (!s->hull_izz_given)
+    return fail(err, FB_PART_VEHICLE, 0, "hull_izz",
+                "a hull carrying mounted rigid bodies moves in six degrees of freedom: give "
+                "its yaw inertia Izz (and its products of inertia, 0 by default)");
+  double j[9];
+  vehicle_hull_inertia(s, j);
+  if (!(s->hull_izz > 0) || !is_spd(3, j, 0))
+    return fail(err, FB_PART_VEHICLE, 0, "hull_izz",
+                "the hull's inertia tensor (Ixx %.6g, Iyy %.6g, Izz %.6g, Ixy %.6g, Ixz %.6g, "
+                "Iyz %.6g kg m^2) must be positive definite",
+                s->hull_ixx, s->hull_iyy, s->hull_izz, s->hull_ixy, s->hull_ixz, s->hull_iyz);
+  return FB_OK;
+}
+
 static int check_bodies(const fb_scenario *s, fb_err *err)
 {
-  int rc = FB_OK;
+  int rc = check_hull_tensor(s, err);
   for (size_t i = 0, k = 0; !rc && i < s->nbodies; ++i) {
     const fb_body *b = &s->body[i];
     rc = check_body_names(s, i, err);
@@ -749,6 +769,11 @@ static const char *mount_name_at(const void *ctx, size_t i)
   return ((const fb_scenario *)ctx)->mount[i].name;
 }
 
+static const char *body_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->body[i].name;
+}
+
 /* For an unknown name: " (did you mean 'LF'?)" when one is close, then
  * "; the corners are LF, RF, ..." (what: "corners"), into buf. */
 static void names_hint(const fb_scenario *s, const char *word, size_t n, fb_name_fn name_at,
@@ -781,6 +806,12 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
     return fail(err, FB_PART_OUTPUT, i, "of",
                 "no corner named '%s' (a %s signal measures a corner)%s", o->of ? o->of : "",
                 o->signal, hint);
+  }
+  if (kind->subject == FB_OUTPUT_OF_BODY && (!o->of || fb_scenario_body_find(s, o->of) < 0)) {
+    names_hint(s, o->of, s->nbodies, body_name_at, "bodies", hint, sizeof hint);
+    return fail(err, FB_PART_OUTPUT, i, "of",
+                "no body named '%s' (a %s signal measures a mounted rigid body)%s",
+                o->of ? o->of : "", o->signal, hint);
   }
   if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
     names_hint(s, o->of, s->nmounts, mount_name_at, "mounts", hint, sizeof hint);

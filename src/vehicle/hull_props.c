@@ -82,6 +82,12 @@ static int check_payload(const fb_scenario *s, fb_err *err)
  * what the mesh was fitted to: the paper's Table 2). */
 static int complete_properties(fb_scenario *s, const mesh_props *mp, fb_err *err)
 {
+  if (!s->hull_izz_given) { /* the tensor's entries are minus the products */
+    s->hull_izz = mp->inertia[8];
+    s->hull_ixy = -mp->inertia[1];
+    s->hull_ixz = -mp->inertia[2];
+    s->hull_iyz = -mp->inertia[5];
+  }
   if (!s->hull_mass_given) {
     s->hull_mass = mp->mass;
     s->hull_ixx = mp->inertia[0];
@@ -117,6 +123,15 @@ static void shift_positions(fb_scenario *s, double dx, double dy)
   for (size_t k = 0; k < s->npoint_masses; ++k) {
     s->point_mass[k].x -= dx;
     s->point_mass[k].y -= dy;
+  }
+  for (size_t b = 0; b < s->nbodies; ++b) {
+    fb_body *body = &s->body[b];
+    body->x -= dx;
+    body->y -= dy;
+    for (size_t j = 0; j < body->nbushings; ++j) {
+      body->bushing[j].x -= dx;
+      body->bushing[j].y -= dy;
+    }
   }
   s->edge_front_x -= dx;
   s->edge_rear_x -= dx;

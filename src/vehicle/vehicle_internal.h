@@ -28,6 +28,25 @@ int vehicle_add_scalar(fb_bg *bg, const char *name, fb_bg_kind kind, double v, f
  * share of it, r = [1, y, -x] the point's rigid row: their kinetic
  * energy 1/2 m (z' + y phi' - x theta')^2 (vertical motion only). */
 void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33);
+/* The same in six degrees of freedom (x, y, z, roll, pitch, yaw), for a
+ * hull carrying mounted rigid bodies, 6x6 row major: diag(hull_mass)
+ * and the hull's whole inertia tensor, plus m T' T for each declared
+ * hull mass and lumped payload share, T = vehicle_rigid_transport of its
+ * point (x, y, 0) (taken at the centre of mass's height: the scenario
+ * has no floor height). Its (z, roll, pitch) block is
+ * fb_vehicle_rigid_inertia's. */
+void vehicle_rigid_inertia6(const fb_scenario *s, double *m66);
+/* On the 6-dimensional 1-junction `junction` (a rigid body's generalised
+ * velocity at its reference point), the port "bushing_<k>" (IN,
+ * dimension 6) of the point at r from it (small motion,
+ * vehicle_rigid_transport), where bushing k of fb_scenario_bushing_at
+ * meets its parent: the transformer "to_bushing_<k>" and the 1-junction
+ * "bushing_<k>". */
+/* The probe of output index of s, a mounted rigid body's signal (its
+ * kind's subject FB_OUTPUT_OF_BODY): target and weights new in p. */
+int vehicle_body_probe(const fb_scenario *s, size_t index, fb_probe_spec *p, fb_err *err);
+int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const double *r,
+                             fb_err *err);
 
 /* The generated hull's centre of mass in its own frame: x as the
  * parameters give it, z above the floor (the plates' masses per area from
@@ -163,6 +182,9 @@ void vehicle_body_release(fb_body *b);
 int vehicle_body_copy(const fb_body *src, fb_body *dst);
 /* b's inertia tensor about its centre of mass, 3x3 row major, into j. */
 void vehicle_body_inertia(const fb_body *b, double *j);
+/* The hull structure's whole inertia tensor (hull_ixx .. hull_iyz), the
+ * same way. */
+void vehicle_hull_inertia(const fb_scenario *s, double *j);
 /* The eigenvalues of the symmetric 3x3 a (row major), ascending, into w;
  * FB_ESOLVER if LAPACK fails. */
 int vehicle_sym3_eigenvalues(const double *a, double *w);
