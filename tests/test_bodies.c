@@ -100,6 +100,19 @@ static void test_file(void)
   size_t b = 9, j = 9;
   CHECK(fb_scenario_bushing_at(s, 2, &b, &j) && b == 1 && j == 0);
   CHECK(!fb_scenario_bushing_at(s, 3, &b, &j));
+  /* The hull's yaw inertia and products, not given, are its mesh's
+   * (its structure's, fb_fe_hull_mass_props; the same computation on the
+   * same mesh, to rounding). */
+  CHECK(!s->hull_izz_given);
+  fb_fe_hull *h = NULL;
+  fb_hull_mass_props mp;
+  REQUIRE(fb_vehicle_fe_hull(s, &h, &err), &err);
+  REQUIRE(fb_fe_hull_mass_props(h, 0, &mp, &err), &err);
+  CHECK_NEAR(s->hull_izz / mp.inertia[8], 1.0, 1e-12);
+  CHECK(s->hull_izz > s->hull_ixx && s->hull_izz > s->hull_iyy);
+  CHECK(fabs(s->hull_ixy + mp.inertia[1]) <= 1e-12 * mp.inertia[8] &&
+        fabs(s->hull_ixz + mp.inertia[2]) <= 1e-12 * mp.inertia[8]);
+  fb_fe_hull_free(&h);
   /* A copy owns its own bodies. */
   fb_scenario *copy = NULL;
   CHECK(fb_scenario_clone(s, &copy, &err) == FB_OK);
@@ -165,6 +178,11 @@ static void test_file_errors(void)
                     "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
                     "     bushings: []}\n",
                     "bushings", "at least 1");
+  /* A body named as one of the vehicle's own parts. */
+  expect_load_error("bodies:\n"
+                    "  - {name: road, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+                    "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}\n",
+                    "name", "another");
   /* A body named as a mount. */
   expect_load_error("bodies:\n"
                     "  - {name: driver, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"

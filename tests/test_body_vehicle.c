@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/fem.h"
 #include "flexbond/sim.h"
 #include "flexbond/vehicle.h"
 
@@ -156,9 +157,58 @@ static void test_turret_seat_energy(void)
   fb_scenario_free(&s);
 }
 
+/* The animation of a hull in six degrees of freedom: a node at an
+ * attachment point (the corners', on the floor at the centre of mass's
+ * height here, a mesh of their points) moves vertically as the point
+ * does; both are integrals of one velocity over the same steps, equal to
+ * round-off (1e-9 of the largest motion bounds it). */
+static void test_motion(void)
+{
+  fb_err err;
+  fb_scenario *base = load_short();
+  fb_scenario *s = driver_as_body(base);
+  fb_vehicle_opts o;
+  fb_vehicle_opts_default(&o);
+  o.motion = 1;
+  fb_vehicle *v = NULL;
+  fb_result *r = NULL;
+  fb_vehicle_motion *m = NULL;
+  REQUIRE(fb_vehicle_new(s, FB_SYSTEM_RIGID, &o, &v, &err), &err);
+  REQUIRE(fb_vehicle_run(v, NULL, NULL, NULL, &r, &m, &err), &err);
+  CHECK(m->ncoords == 6);
+  fb_mesh *mesh = NULL;
+  REQUIRE(fb_mesh_new(&mesh, &err), &err);
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    size_t index = 0;
+    REQUIRE(
+        fb_mesh_add_node(mesh, (long)c + 1, s->corner[c].x, s->corner[c].y, 0.0, &index, &err),
+        &err);
+  }
+  const size_t na = fb_scenario_nattach(s);
+  double *u = malloc(6 * s->ncorners * sizeof *u), *dz = malloc(na * sizeof *dz);
+  double worst = 0.0, big = 0.0;
+  for (size_t i = 0; i < 60; ++i) {
+    REQUIRE(fb_vehicle_motion_at(m, mesh, 0.05 * (double)i, u, dz, NULL, NULL, &err), &err);
+    for (size_t c = 0; c < s->ncorners; ++c) {
+      worst = fmax(worst, fabs(u[6 * c + 2] - dz[c]));
+      big = fmax(big, fabs(dz[c]));
+    }
+  }
+  CHECK(big > 0.01 && worst <= 1e-9 * big);
+  free(u);
+  free(dz);
+  fb_mesh_free(&mesh);
+  fb_vehicle_motion_free(&m);
+  fb_result_free(&r);
+  fb_vehicle_free(&v);
+  fb_scenario_free(&s);
+  fb_scenario_free(&base);
+}
+
 int main(void)
 {
   test_mount_equivalence();
+  test_motion();
   test_turret_seat_energy();
   return check_report(__FILE__);
 }

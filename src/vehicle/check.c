@@ -584,6 +584,15 @@ static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
                 "%s names a mount, corner or hull mass already (the names of bodies, mounts, "
                 "hull masses and corners are unique)",
                 b->name);
+  /* A body's fragment is an instance of the assembled graph beside
+   * these (fb_vehicle_assemble). */
+  static const char *const instances[] = {"hull", "road", "load", "attach"};
+  for (size_t k = 0; k < sizeof instances / sizeof instances[0]; ++k)
+    if (!strcmp(b->name, instances[k]) || !strncmp(b->name, "susp_", 5))
+      return fail(err, FB_PART_BODY, i, "name",
+                  "%s is a name of the assembled vehicle's own (hull, road, load, attach, "
+                  "susp_<corner>): give the body another",
+                  b->name);
   if (!b->parent)
     return FB_OK;
   const long parent = fb_scenario_body_find(s, b->parent);
