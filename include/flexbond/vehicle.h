@@ -1324,6 +1324,15 @@ int fb_hull_coupling_node(size_t node, fb_hull_coupling *c, fb_err *err);
 int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *set, double x0,
                            double y0, fb_hull_coupling *c, size_t *node, fb_err *err);
 void fb_hull_coupling_free(fb_hull_coupling *c);
+/* A six-component distributing coupling (RBE3-like; src/vehicle/coupling.c)
+ * of the reference point x0 (x, y, z, m) to the n nodes of m: rows[0..6)
+ * (new; fb_hull_coupling_free each) give its motion (u_x, u_y, u_z,
+ * theta_x, theta_y, theta_z) as the least-squares rigid fit of the
+ * nodes' translations, and by their transpose its force and moment as
+ * nodal forces. FB_EMODEL naming what when the nodes cannot carry a
+ * moment in every direction (one node, or nodes on one line). */
+int fb_hull_coupling6_build(const fb_mesh *m, const size_t *nodes, size_t n, const double *x0,
+                            const char *what, fb_hull_coupling *rows, fb_err *err);
 
 /* A hull mesh with its material, its declared masses and the nodes where
  * the rest of the vehicle meets it, from the mesh's node sets:

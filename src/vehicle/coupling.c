@@ -212,3 +212,116 @@ int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *s
   free(found);
   return rc;
 }
+
+/* ---- A six-component distributing coupling (a bushing's hull side).
+ *
+ * The reference point x0 moves as the rigid motion q = (u, theta) that
+ * fits the candidate nodes' translations u_i best in the least-squares
+ * sense, u_i ~ A_i q with A_i = [I, -[r_i]x], r_i = x_i - x0 (small
+ * rotations): q = G^-1 sum A_i' u_i, G = sum A_i' A_i (uniform weights).
+ * Its force and moment F go to the nodes by the transpose, f_i = A_i
+ * G^-1 F, so the coupling is power-conserving, its nodal forces are in
+ * equilibrium with F (sum A_i' f_i = F), and a rigid motion of the nodes
+ * moves the point by exactly that motion (R A q = q). This is MSC
+ * Nastran's RBE3 element (its reference point's motion the weighted
+ * least-squares average of the nodes'; MSC Nastran Quick Reference
+ * Guide, bulk data entry RBE3) and the distributing coupling of the
+ * Abaqus Analysis User's Guide (section 35.3.2, as above) for a point
+ * with rotational degrees of freedom, with uniform weights. The nodes'
+ * rotational DOFs take no share (as RBE3's usual components 123): a
+ * shell's drilling rotation has no stiffness of its own. */
+
+/* G's inverse (6x6, row major, symmetric positive definite) by Gauss-
+ * Jordan elimination with partial pivoting; 0 when a pivot falls below
+ * 1e-12 of G's largest entry (G singular: nodes on one line). */
+static int invert6(const double *g, double *inv)
+{
+  double a[6][12];
+  double scale = 0.0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 12; ++j) {
+      a[i][j] = j < 6 ? g[6 * i + j] : (j - 6 == i);
+      if (j < 6)
+        scale = fmax(scale, fabs(g[6 * i + j]));
+    }
+  for (int c = 0; c < 6; ++c) {
+    int p = c;
+    for (int r = c + 1; r < 6; ++r)
+      if (fabs(a[r][c]) > fabs(a[p][c]))
+        p = r;
+    if (!(fabs(a[p][c]) > 1e-12 * scale))
+      return 0;
+    for (int j = 0; j < 12; ++j) {
+      const double t = a[c][j];
+      a[c][j] = a[p][j];
+      a[p][j] = t;
+    }
+    const double d = a[c][c];
+    for (int j = 0; j < 12; ++j)
+      a[c][j] /= d;
+    for (int r = 0; r < 6; ++r) {
+      const double f = a[r][c];
+      for (int j = 0; r != c && j < 12; ++j)
+        a[r][j] -= f * a[c][j];
+    }
+  }
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      inv[6 * i + j] = a[i][6 + j];
+  return 1;
+}
+
+/* A_i (3x6, row major) of the node at r from the reference point. */
+static void rigid_rows(const double *r, double *a)
+{
+  memset(a, 0, 18 * sizeof *a);
+  for (int i = 0; i < 3; ++i)
+    a[7 * i] = 1.0;
+  /* -[r]x = [[0, r3, -r2], [-r3, 0, r1], [r2, -r1, 0]] */
+  a[0 * 6 + 4] = r[2];
+  a[0 * 6 + 5] = -r[1];
+  a[1 * 6 + 3] = -r[2];
+  a[1 * 6 + 5] = r[0];
+  a[2 * 6 + 3] = r[1];
+  a[2 * 6 + 4] = -r[0];
+}
+
+int fb_hull_coupling6_build(const fb_mesh *m, const size_t *nodes, size_t n, const double *x0,
+                            const char *what, fb_hull_coupling *rows, fb_err *err)
+{
+  double g[36] = {0}, ginv[36], a[18];
+  memset(rows, 0, 6 * sizeof *rows);
+  for (size_t i = 0; i < n; ++i) {
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    const double r[3] = {p[0] - x0[0], p[1] - x0[1], p[2] - x0[2]};
+    rigid_rows(r, a);
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k)
+        for (int l = 0; l < 3; ++l)
+          g[6 * j + k] += a[6 * l + j] * a[6 * l + k];
+  }
+  if (n == 0 || !invert6(g, ginv))
+    return fb_err_set(err, FB_EMODEL,
+                      "%s: %s cannot carry a force and a moment in every direction (a "
+                      "six-component distributing coupling needs nodes not on one line)",
+                      what, n == 1 ? "its one coupling node" : "its coupling nodes");
+  int rc = FB_OK;
+  for (int k = 0; !rc && k < 6; ++k)
+    rc = coupling_alloc(&rows[k], 3 * n, err);
+  for (int k = 0; rc && k < 6; ++k)
+    fb_hull_coupling_free(&rows[k]);
+  for (size_t i = 0; !rc && i < n; ++i) {
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    const double r[3] = {p[0] - x0[0], p[1] - x0[1], p[2] - x0[2]};
+    rigid_rows(r, a);
+    for (int k = 0; k < 6; ++k) /* row k of G^-1 A_i' */
+      for (int l = 0; l < 3; ++l) {
+        double v = 0.0;
+        for (int j = 0; j < 6; ++j)
+          v += ginv[6 * k + j] * a[6 * l + j];
+        rows[k].dof[3 * i + (size_t)l] = 6 * nodes[i] + (size_t)l;
+        rows[k].w[3 * i + (size_t)l] = v;
+      }
+  }
+  return rc;
+}
