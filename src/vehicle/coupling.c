@@ -29,6 +29,8 @@
 #include "flexbond/fem.h"
 #include "flexbond/vehicle.h"
 
+#include "vehicle/vehicle_internal.h"
+
 /* Lever and line tolerance: the mesh check's 1 mm for points on nodes. */
 #define COUPLING_TOL 1e-3
 
@@ -271,19 +273,13 @@ static int invert6(const double *g, double *inv)
   return 1;
 }
 
-/* A_i (3x6, row major) of the node at r from the reference point. */
+/* A_i (3x6, row major) of the node at r from the reference point: the
+ * translations' rows of the rigid transport. */
 static void rigid_rows(const double *r, double *a)
 {
-  memset(a, 0, 18 * sizeof *a);
-  for (int i = 0; i < 3; ++i)
-    a[7 * i] = 1.0;
-  /* -[r]x = [[0, r3, -r2], [-r3, 0, r1], [r2, -r1, 0]] */
-  a[0 * 6 + 4] = r[2];
-  a[0 * 6 + 5] = -r[1];
-  a[1 * 6 + 3] = -r[2];
-  a[1 * 6 + 5] = r[0];
-  a[2 * 6 + 3] = r[1];
-  a[2 * 6 + 4] = -r[0];
+  double t[36];
+  vehicle_rigid_transport(r, t);
+  memcpy(a, t, 18 * sizeof *a);
 }
 
 int fb_hull_coupling6_build(const fb_mesh *m, const size_t *nodes, size_t n, const double *x0,
