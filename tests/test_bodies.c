@@ -31,8 +31,9 @@ static const char BODIES[] =
     "    Ixy: 10\n"
     "    bushings:\n"
     "      - {x: 0.7, y: 0, z: 0.9, stiffness: [1e6, 1e6, 2e6, 1e5, 1e5, 1e5],\n"
-    "         damping: [1e3, 1e3, 2e3, 10, 10, 10]}\n"
-    "      - {x: -0.3, y: 0, z: 0.9, stiffness: [1e6, 1e6, 2e6, 1e5, 1e5, 1e5]}\n"
+    "         damping: [1e3, 1e3, 2e3, 10, 10, 10], surface: ROOF, radius: 1.2}\n"
+    "      - {x: -0.3, y: 0, z: 0.9, stiffness: [1e6, 1e6, 2e6, 1e5, 1e5, 1e5],\n"
+    "         node_set: LOAD}\n"
     "  - name: gunner\n"
     "    on: turret\n"
     "    mass: 110\n"
@@ -148,18 +149,20 @@ static void expect_load_error(const char *bodies, const char *key, const char *w
 static void test_file_errors(void)
 {
   /* A parent listed after its child. */
+  expect_load_error("bodies:\n"
+                    "  - {name: seat, on: turret, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5,\n"
+                    "     Izz: 3, bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, "
+                    "1], node_set: LOAD}]}\n"
+                    "  - {name: turret, mass: 900, x: 0, y: 0, z: 1, Ixx: 300, Iyy: 300,\n"
+                    "     Izz: 400, bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, "
+                    "1], node_set: LOAD}]}\n",
+                    "on", "no body listed before seat");
+  /* Five stiffnesses. */
   expect_load_error(
       "bodies:\n"
-      "  - {name: seat, on: turret, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5,\n"
-      "     Izz: 3, bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}\n"
-      "  - {name: turret, mass: 900, x: 0, y: 0, z: 1, Ixx: 300, Iyy: 300,\n"
-      "     Izz: 400, bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}\n",
-      "on", "no body listed before seat");
-  /* Five stiffnesses. */
-  expect_load_error("bodies:\n"
-                    "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
-                    "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1]}]}\n",
-                    "stiffness", "6");
+      "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "stiffness", "6");
   /* Both ways of a stiffness. */
   expect_load_error(
       "bodies:\n"
@@ -169,25 +172,39 @@ static void test_file_errors(void)
       "                   0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1]}]}\n",
       "stiffness", "");
   /* Principal moments no body has (a rod: Izz > Ixx + Iyy). */
-  expect_load_error("bodies:\n"
-                    "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 1, Iyy: 1, Izz: 3,\n"
-                    "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}\n",
-                    "Izz", "triangle inequality");
+  expect_load_error(
+      "bodies:\n"
+      "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 1, Iyy: 1, Izz: 3,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "Izz", "triangle inequality");
   /* No bushing. */
   expect_load_error("bodies:\n"
                     "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
                     "     bushings: []}\n",
                     "bushings", "at least 1");
+  /* A bushing on the finite-element hull without its nodes. */
+  expect_load_error("bodies:\n"
+                    "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+                    "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}\n",
+                    "bushings[0]", "node_set");
+  /* A node set the mesh does not have. */
+  expect_load_error("bodies:\n"
+                    "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+                    "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1],\n"
+                    "                 node_set: NOWHERE}]}\n",
+                    "node_set", "NOWHERE");
   /* A body named as one of the vehicle's own parts. */
-  expect_load_error("bodies:\n"
-                    "  - {name: road, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
-                    "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}\n",
-                    "name", "another");
+  expect_load_error(
+      "bodies:\n"
+      "  - {name: road, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "name", "another");
   /* A body named as a mount. */
-  expect_load_error("bodies:\n"
-                    "  - {name: driver, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
-                    "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}\n",
-                    "name", "unique");
+  expect_load_error(
+      "bodies:\n"
+      "  - {name: driver, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "name", "unique");
 }
 
 /* A body on the builder's description: each refusal names its part. */
@@ -198,6 +215,10 @@ static void test_builder(void)
   CHECK(s != NULL);
   if (!s)
     return;
+  /* System 1 alone: the hull's whole tensor given. */
+  s->has_fe_hull = 0;
+  s->hull_izz_given = 1;
+  s->hull_izz = 2e4;
   fb_bushing u = {.x = 0, .y = 0, .z = 1};
   const double k6[6] = {1e5, 1e5, 1e5, 1e4, 1e4, 1e4}, c6[6] = {0};
   fb_bushing_set_diagonal(&u, k6, c6);

@@ -42,7 +42,9 @@ static fb_scenario *driver_as_body(const fb_scenario *base)
   const long d = fb_scenario_mount_find(s, "driver");
   CHECK(d >= 0);
   const fb_mount m = s->mount[d];
-  fb_bushing u = {.x = m.x, .y = m.y, .z = 0.0};
+  /* System 2 would couple it to the floor's load points (System 1 reads
+   * no node set). */
+  fb_bushing u = {.x = m.x, .y = m.y, .z = 0.0, .node_set = "LOAD"};
   const double k[6] = {1e5, 1e5, m.stiffness, 1e3, 1e3, 1e3};
   const double c[6] = {0, 0, m.damping, 0, 0, 0};
   fb_bushing_set_diagonal(&u, k, c);
@@ -118,7 +120,8 @@ static void test_turret_seat_energy(void)
   fb_err err;
   fb_scenario *s = load_short();
   give_hull_izz(s);
-  fb_bushing ring[2] = {{.x = 0.9, .y = 0.3, .z = 0.8}, {.x = 0.1, .y = -0.3, .z = 0.8}};
+  fb_bushing ring[2] = {{.x = 0.9, .y = 0.3, .z = 0.8, .surface = "ROOF", .radius = 1.2},
+                        {.x = 0.1, .y = -0.3, .z = 0.8, .surface = "ROOF", .radius = 1.2}};
   const double kr[6] = {2e6, 2e6, 4e6, 2e5, 2e5, 2e5}, none[6] = {0};
   fb_bushing_set_diagonal(&ring[0], kr, none);
   fb_bushing_set_diagonal(&ring[1], kr, none);

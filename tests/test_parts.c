@@ -42,7 +42,8 @@ static fb_scenario *load_truck(void)
   const size_t head = (size_t)(at - text);
   static const char body[] =
       "\nbodies: [{name: box, mass: 50, x: 0, y: 0, z: 1, Ixx: 2, Iyy: 2, Izz: 3,\n"
-      "          bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1]}]}]\n";
+      "          bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1],\n"
+      "                      node_set: LOAD}]}]\n";
   char *edited = malloc(len + sizeof section + sizeof body);
   fb_scenario *s = NULL;
   if (edited) {

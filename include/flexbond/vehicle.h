@@ -90,10 +90,11 @@ typedef struct fb_bushing {
   double c[36];   /* damping: N s/m, N s/rad, N m s/m, N m s/rad; symmetric,
                      positive semi-definite */
   /* System 2, a bushing on the hull: the mesh's node set its hull side
-   * is coupled to (copied; owned), or NULL: the hull's nodes of the
-   * element set hull.mesh.coupling.surface within `radius` (m, in plan)
-   * of its point, or the scenario's coupling radius when 0. */
+   * is coupled to (owned), or NULL: the hull's nodes of the element set
+   * `surface` (owned; NULL: hull.mesh.coupling.surface) within `radius`
+   * (m, in plan; 0: the scenario's coupling radius) of its point. */
   char *node_set;
+  char *surface;
   double radius;
 } fb_bushing;
 
@@ -1352,6 +1353,14 @@ typedef struct fb_fe_hull {
   size_t *load_node;               /* nload */
   fb_hull_coupling *load_coupling; /* nload: each load node's u_z */
   size_t nload;
+  /* The bushings of mounted rigid bodies on the hull, in
+   * fb_scenario_bushing_at's order (those on other bodies left out):
+   * bushing_index[b] is its index k there, bushing_rows[6 b .. 6 b + 6)
+   * its six-component distributing coupling (fb_hull_coupling6_build) to
+   * its node set or the coupling surface's nodes around it. Owned. */
+  size_t nbushings;
+  size_t *bushing_index;
+  fb_hull_coupling *bushing_rows;
   size_t *point_mass_node; /* npoint_masses, in the scenario's order */
   double *point_mass;      /* their masses, kg */
   size_t npoint_masses;

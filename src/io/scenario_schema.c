@@ -743,9 +743,13 @@ static const sch_key sc_bushing_keys[] = {
            "System 2, a bushing on the hull: the mesh's node set its hull side is coupled to "
            "(a distributing coupling in all six components)",
            U_AT(STRING, node_set)),
+    STRING(NAME, "surface", OPT,
+           "System 2, a bushing on the hull without `node_set`: the element set whose nodes "
+           "around it in plan it is coupled to (default: `hull.mesh.coupling.surface`)",
+           U_AT(STRING, surface)),
     NUMBER("radius", "m", POSITIVE, OPT,
-           "System 2, a bushing on the hull without `node_set`: the nodes of "
-           "`hull.mesh.coupling.surface` within this radius in plan (default: the coupling's)",
+           "with `surface`: the nodes within this radius in plan (default: "
+           "`hull.mesh.coupling.radius`)",
            U_AT(DOUBLE, radius), .ops = &sc_radius_present),
 };
 static const sch_table sc_bushing_table = TABLE(sc_bushing_keys, NULL);

@@ -240,12 +240,11 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
   fb_hull *hull = *hullp;
   *hullp = NULL;
   fb_bg *bg = NULL;
-  /* A hull that carries no bodies (System 2's, so far) refuses them
-   * rather than leave them out of the vehicle. */
+  /* A hull that carries no bodies (a program's own) refuses them rather
+   * than leave them out of the vehicle. */
   int rc = s->nbodies && !hull->carries_bodies
                ? fb_err_set(err, FB_EINVAL,
-                            "this hull does not carry mounted rigid bodies (body %s): System 1 "
-                            "does, System 2 not yet",
+                            "this hull does not carry mounted rigid bodies (body %s)",
                             s->body[0].name)
                : FB_OK;
   if (rc)

@@ -54,8 +54,10 @@ void vehicle_body_release(fb_body *b)
 {
   free(b->name);
   free(b->parent);
-  for (size_t j = 0; b->bushing && j < b->nbushings; ++j)
+  for (size_t j = 0; b->bushing && j < b->nbushings; ++j) {
     free(b->bushing[j].node_set);
+    free(b->bushing[j].surface);
+  }
   free(b->bushing);
   memset(b, 0, sizeof *b);
 }
@@ -80,9 +82,10 @@ int vehicle_body_copy(const fb_body *src, fb_body *dst)
     ok = (dst->bushing = calloc(n, sizeof *dst->bushing)) != NULL;
   for (size_t j = 0; ok && dst->bushing && j < n; ++j) {
     dst->bushing[j] = src->bushing[j];
-    dst->bushing[j].node_set = NULL;
+    dst->bushing[j].node_set = dst->bushing[j].surface = NULL;
     dst->nbushings = j + 1;
     ok = body_copy_string(src->bushing[j].node_set, &dst->bushing[j].node_set);
+    ok = body_copy_string(src->bushing[j].surface, &dst->bushing[j].surface) && ok;
   }
   if (!ok)
     vehicle_body_release(dst);

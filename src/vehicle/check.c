@@ -540,10 +540,17 @@ static int check_bushing(const fb_scenario *s, size_t b, size_t j, size_t k, fb_
     return fail(err, FB_PART_BUSHING, k, "c",
                 "the damping matrix must be symmetric and positive semi-definite");
   const int on_hull = s->body[b].parent == NULL;
-  if ((u->node_set || u->radius > 0) && !(on_hull && s->has_fe_hull))
-    return fail(err, FB_PART_BUSHING, k, u->node_set ? "node_set" : "radius",
-                "a node set or radius couples a bushing to the hull's mesh: only for a body "
-                "on the hull (%s) with a finite-element hull",
+  if (on_hull && s->has_fe_hull && !u->node_set && !u->surface && !s->coupling_surface)
+    return fail(err, FB_PART_BUSHING, k, "node_set",
+                "a bushing on the finite-element hull is coupled to its nodes: give its "
+                "node set, or a surface and a radius (or the scenario's coupling surface)");
+  if ((u->node_set || u->surface || u->radius > 0) && !(on_hull && s->has_fe_hull))
+    return fail(err, FB_PART_BUSHING, k,
+                u->node_set  ? "node_set"
+                : u->surface ? "surface"
+                             : "radius",
+                "a node set, surface or radius couples a bushing to the hull's mesh: only for "
+                "a body on the hull (%s) with a finite-element hull",
                 on_hull ? "this one is" : "this one is on another body");
   return FB_OK;
 }

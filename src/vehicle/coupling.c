@@ -188,6 +188,36 @@ static int nodes_within(const fb_mesh *m, const char *surface, double radius, do
   return FB_OK;
 }
 
+int vehicle_bushing_nodes(const fb_scenario *s, const fb_mesh *m, const fb_bushing *u,
+                          size_t **nodes, size_t *n, fb_err *err)
+{
+  *nodes = NULL;
+  *n = 0;
+  if (u->node_set) {
+    const size_t *own = NULL;
+    if (!fb_mesh_nset(m, u->node_set, &own, n))
+      return fb_err_set(err, FB_EMODEL, "the hull mesh has no node set '%s'", u->node_set);
+    *nodes = malloc((*n ? *n : 1) * sizeof **nodes);
+    if (!*nodes)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for a coupling");
+    memcpy(*nodes, own, *n * sizeof **nodes);
+    return FB_OK;
+  }
+  const double radius = u->radius > 0 ? u->radius : s->coupling_radius;
+  const char *surface = u->surface ? u->surface : s->coupling_surface;
+  if (!surface || !(radius > 0))
+    return fb_err_set(err, FB_EMODEL,
+                      "a bushing on System 2's hull needs its node set, or a radius and a "
+                      "surface (its own or the scenario's coupling surface)");
+  const int rc = nodes_within(m, surface, radius, u->x, u->y, nodes, n, err);
+  if (!rc && *n == 0)
+    return fb_err_set(err, FB_EMODEL,
+                      "no node of the element set '%s' lies within %g m of (%.6g, %.6g) m in "
+                      "plan",
+                      surface, radius, u->x, u->y);
+  return rc;
+}
+
 int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *set, double x0,
                            double y0, fb_hull_coupling *c, size_t *node, fb_err *err)
 {

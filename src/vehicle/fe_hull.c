@@ -30,6 +30,10 @@ void fb_fe_hull_free(fb_fe_hull **h)
   for (size_t k = 0; (*h)->load_coupling && k < (*h)->nload; ++k)
     fb_hull_coupling_free(&(*h)->load_coupling[k]);
   free((*h)->load_coupling);
+  for (size_t b = 0; (*h)->bushing_rows && b < 6 * (*h)->nbushings; ++b)
+    fb_hull_coupling_free(&(*h)->bushing_rows[b]);
+  free((*h)->bushing_rows);
+  free((*h)->bushing_index);
   free((*h)->point_mass_node);
   free((*h)->point_mass);
   free(*h);
@@ -128,6 +132,40 @@ static int attach_one(const fb_scenario *s, fb_fe_hull *h, size_t a, const char 
   if (!rc)
     h->attach_node[a] = nodes[0];
   return rc ? rc : fb_hull_coupling_node(nodes[0], &h->attach_coupling[a], err);
+}
+
+/* Each bushing of a body on the hull: its six rows over the nodes of its
+ * node set, or of the coupling surface within its radius (the
+ * scenario's coupling radius when it gives none) in plan; errors about
+ * the bushing (FB_PART_BUSHING). */
+static int resolve_bushings(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
+{
+  const size_t nk = fb_scenario_nbushings(s);
+  size_t b = 0, j = 0;
+  h->bushing_index = malloc((nk ? nk : 1) * sizeof *h->bushing_index);
+  h->bushing_rows = calloc(6 * (nk ? nk : 1), sizeof *h->bushing_rows);
+  int rc =
+      h->bushing_index && h->bushing_rows ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
+    if (s->body[b].parent)
+      continue;
+    const fb_bushing *u = &s->body[b].bushing[j];
+    const double x0[3] = {u->x, u->y, u->z};
+    size_t *nodes = NULL, n = 0;
+    char what[160];
+    snprintf(what, sizeof what, "body %s's bushing %zu", s->body[b].name, j);
+    rc = vehicle_bushing_nodes(s, h->mesh, u, &nodes, &n, err);
+    if (!rc)
+      rc = fb_hull_coupling6_build(h->mesh, nodes, n, x0, what,
+                                   &h->bushing_rows[6 * h->nbushings], err);
+    free(nodes);
+    if (rc)
+      return fb_err_set_part(err, FB_PART_BUSHING, k, FB_ERR_NO_ELEMENT,
+                             u->node_set ? "node_set" : "radius"),
+             rc;
+    h->bushing_index[h->nbushings++] = k;
+  }
+  return rc;
 }
 
 static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
@@ -312,6 +350,8 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
     rc = resolve_load_and_edges(s, h, err);
   if (!rc)
     rc = resolve_point_masses(s, h, err);
+  if (!rc)
+    rc = resolve_bushings(s, h, err);
   if (rc) {
     fb_fe_hull_free(&h);
     return rc;
@@ -565,6 +605,11 @@ int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err)
 int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
                         const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err)
 {
+  if (s->nbodies)
+    return fb_err_set(err, FB_EINVAL,
+                      "the vehicle's matrices hold the mounts and wheels, not mounted rigid "
+                      "bodies yet"),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_BODY, 0, name)), FB_EINVAL;
   int rc = FB_OK;
   const size_t nm = s->nmounts;
   size_t nh = fb_mat_nrows(kh), n = nh + nm + s->ncorners;

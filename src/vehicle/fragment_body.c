@@ -41,8 +41,7 @@ static int add_transport(fb_bg *bg, const char *name, const double *r, fb_err *e
   return rc ? rc : fb_bg_add_mtf(bg, name, &m, err);
 }
 
-int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const double *r,
-                             fb_err *err)
+int vehicle_wire_bushing_port(fb_bg *bg, const char *junction, size_t k, fb_err *err)
 {
   char mtf[48], port[48], b_in[48], b_out[48], from[64], to[64];
   snprintf(mtf, sizeof mtf, "to_bushing_%zu", k);
@@ -51,9 +50,7 @@ int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const do
   snprintf(b_out, sizeof b_out, "b_bushing_%zu", k);
   snprintf(to, sizeof to, "%s.1", mtf);
   snprintf(from, sizeof from, "%s.2", mtf);
-  int rc = add_transport(bg, mtf, r, err);
-  if (!rc)
-    rc = fb_bg_add_junction(bg, port, FB_BG_J1, 6, err);
+  int rc = fb_bg_add_junction(bg, port, FB_BG_J1, 6, err);
   if (!rc)
     rc = fb_bg_connect(bg, b_in, junction, to, err);
   if (!rc)
@@ -61,6 +58,15 @@ int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const do
   if (!rc)
     rc = fb_bg_add_port(bg, port, port, FB_PORT_IN, err);
   return rc;
+}
+
+int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const double *r,
+                             fb_err *err)
+{
+  char mtf[48];
+  snprintf(mtf, sizeof mtf, "to_bushing_%zu", k);
+  const int rc = add_transport(bg, mtf, r, err);
+  return rc ? rc : vehicle_wire_bushing_port(bg, junction, k, err);
 }
 
 /* The body's inertia at its centre of mass: m I3 and its tensor. */

@@ -196,14 +196,18 @@ static int patterns(const fb_scenario *s, vehicle_hull *h, fb_err *err)
   size_t nout = 0;
   for (size_t o = 0; o < s->noutputs; ++o)
     nout += fb_vehicle_output_hull_fit(&s->output[o]) >= 0;
-  h->nf = fe->nattach + 1 + nout;
+  const size_t nrows = 6 * fe->nbushings; /* each bushing's force and moment */
+  h->nf = fe->nattach + nrows + 1 + nout;
   h->F = calloc(n * h->nf, sizeof *h->F);
   if (!h->F)
     return fb_err_set(err, FB_ENOMEM, "out of memory for %zu static patterns", h->nf);
   for (size_t a = 0; a < fe->nattach; ++a)
     for (size_t i = 0; i < fe->attach_coupling[a].n; ++i)
       h->F[a * n + fe->attach_coupling[a].dof[i]] += fe->attach_coupling[a].w[i];
-  double *load = h->F + fe->nattach * n, *out = load + n;
+  for (size_t r = 0; r < nrows; ++r)
+    for (size_t i = 0; i < fe->bushing_rows[r].n; ++i)
+      h->F[(fe->nattach + r) * n + fe->bushing_rows[r].dof[i]] += fe->bushing_rows[r].w[i];
+  double *load = h->F + (fe->nattach + nrows) * n, *out = load + n;
   for (size_t k = 0; k < fe->nload; ++k)
     for (size_t i = 0; i < fe->load_coupling[k].n; ++i)
       load[fe->load_coupling[k].dof[i]] += fe->load_coupling[k].w[i];
@@ -815,6 +819,19 @@ static int make_fields(const vehicle_hull *h, const double *lambda, size_t nb, h
   return rc;
 }
 
+/* The port "bushing_<k>" (IN, dimension 6) of the hull's b-th bushing,
+ * its six rows as a transformer "to_bushing_<k>" from the hull's
+ * coordinates, as the rigid hull's (vehicle_add_bushing_port). */
+static int bushing_port(const fb_fe_hull *fe, size_t b, const double *T, size_t ndof, size_t nb,
+                        fb_bg *bg, fb_err *err)
+{
+  const size_t k = fe->bushing_index[b];
+  char mtf[48];
+  snprintf(mtf, sizeof mtf, "to_bushing_%zu", k);
+  const int rc = add_selection(bg, mtf, 6, &fe->bushing_rows[6 * b], ndof, T, nb, err);
+  return rc ? rc : vehicle_wire_bushing_port(bg, "J", k, err);
+}
+
 static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, size_t ndof,
                       size_t nb, fb_bg *bg, fb_err *err)
 {
@@ -848,6 +865,8 @@ static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, siz
     rc = fb_bg_add_port(bg, "attach", "attach", FB_PORT_IN, err);
   if (!rc)
     rc = fb_bg_add_port(bg, "load", "load", FB_PORT_IN, err);
+  for (size_t b = 0; !rc && b < fe->nbushings; ++b)
+    rc = bushing_port(fe, b, T, ndof, nb, bg, err);
   return rc;
 }
 
@@ -925,6 +944,8 @@ int vehicle_hull_fragment(const fb_scenario *s, vehicle_hull *h, int enriched, f
     rc = hull_graph(h->fe, &f, T, h->info.ndof, nb, hull->graph, err);
   if (!rc)
     rc = flexible_torsion(h->fe, T, h->info.ndof, nb, hull, err);
+  if (!rc)
+    hull->carries_bodies = 1;
   hull_fields_free(&f);
   if (rc) {
     fb_hull_free(&hull);

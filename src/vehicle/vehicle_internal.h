@@ -42,11 +42,20 @@ void vehicle_rigid_inertia6(const fb_scenario *s, double *m66);
  * vehicle_rigid_transport), where bushing k of fb_scenario_bushing_at
  * meets its parent: the transformer "to_bushing_<k>" and the 1-junction
  * "bushing_<k>". */
+/* The hull nodes bushing u's hull side is coupled to (*nodes new, *n of
+ * them): its node set's, or those of the coupling surface within its
+ * radius (or the scenario's) in plan (coupling.c). FB_EMODEL when there
+ * are none. */
+int vehicle_bushing_nodes(const fb_scenario *s, const fb_mesh *m, const fb_bushing *u,
+                          size_t **nodes, size_t *n, fb_err *err);
 /* The probe of output index of s, a mounted rigid body's signal (its
  * kind's subject FB_OUTPUT_OF_BODY): target and weights new in p. */
 int vehicle_body_probe(const fb_scenario *s, size_t index, fb_probe_spec *p, fb_err *err);
 int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const double *r,
                              fb_err *err);
+/* The same around a transformer "to_bushing_<k>" bg has already (6 rows
+ * from the body's coordinates): the junction, its bonds and the port. */
+int vehicle_wire_bushing_port(fb_bg *bg, const char *junction, size_t k, fb_err *err);
 
 /* The generated hull's centre of mass in its own frame: x as the
  * parameters give it, z above the floor (the plates' masses per area from
