@@ -16,15 +16,15 @@
 #include "energy_balance.h"
 #include "vehicle_util.h"
 
-static fb_scenario *with_turret(void)
+/* The reference scenario with the turret, its hull's Young's moduli
+ * times stiffen. */
+static fb_scenario *with_turret(double stiffen)
 {
   fb_err err;
   fb_scenario *s = load_short();
-  /* The rigid limit: the hull's elastic modes a hundred times higher
-   * (frequencies grow as sqrt(E)). */
-  s->young *= 1e4;
+  s->young *= stiffen;
   for (size_t i = 0; i < s->nsections; ++i)
-    s->section[i].young *= 1e4;
+    s->section[i].young *= stiffen;
   fb_bushing ring[2] = {{.x = 0.9, .y = 0.3, .z = 0.8, .surface = "ROOF", .radius = 1.2},
                         {.x = 0.1, .y = -0.3, .z = 0.8, .surface = "ROOF", .radius = 1.2}};
   const double k[6] = {2e6, 2e6, 4e6, 2e5, 2e5, 2e5}, c[6] = {2e3, 2e3, 4e3, 200, 200, 200};
@@ -75,7 +75,9 @@ static fb_scenario *with_turret(void)
  * missing moment) changes the turret's rotations by tens of percent. */
 static void test_rigid_limit(void)
 {
-  fb_scenario *s = with_turret();
+  /* The rigid limit: the hull's elastic modes a hundred times higher
+   * (frequencies grow as sqrt(E)). */
+  fb_scenario *s = with_turret(1e4);
   fb_result *r1 = simulate_rigid(s), *r2 = NULL;
   fb_err err;
   REQUIRE(fb_vehicle_simulate(s, FB_SYSTEM_FLEXIBLE, &r2, &err), &err);
@@ -102,11 +104,13 @@ static void test_rigid_limit(void)
  * the couplings are transformers, so the power the bushings put into the
  * hull's coordinates is the power they take from the turret; the balance
  * closes as System 1's does (test_body_vehicle.c: 1e-7 of the work scale
- * at rtol 1e-9). */
-static void test_energy(void)
+ * at rtol 1e-9), in modal and in nodal coordinates (the rows as they
+ * are). */
+static void test_energy(fb_hull_coordinates coordinates)
 {
   fb_err err;
-  fb_scenario *s = with_turret();
+  fb_scenario *s = with_turret(1.0);
+  s->hull_coordinates = coordinates;
   fb_hull *hull = NULL;
   energy_report rep;
   REQUIRE(fb_vehicle_flexible_hull(s, NULL, &hull, &err), &err);
@@ -118,6 +122,7 @@ static void test_energy(void)
 int main(void)
 {
   test_rigid_limit();
-  test_energy();
+  test_energy(FB_HULL_MODAL);
+  test_energy(FB_HULL_NODAL);
   return check_report(__FILE__);
 }
