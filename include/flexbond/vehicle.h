@@ -1072,7 +1072,8 @@ size_t fb_vehicle_hull_free_modes(const fb_vehicle *v, const double **freq_hz, s
  * fb_hull_excitation_hz, the highest frequency that reaches the hull:
  * each wheel's hop on a fixed hull, sqrt((r^2 spring_k + tire_k) /
  * wheel_mass) / 2 pi, each mounted body's natural frequency,
- * sqrt(stiffness / mass) / 2 pi, and the road's highest at the
+ * sqrt(stiffness / mass) / 2 pi, each rigid body's highest on its
+ * bushings with its parent held, and the road's highest at the
  * scenario's speed (a bump: 2 V / length, the (1 - cos) pulse's spectrum
  * is down 98 % there; an ISO 8608 road: V n_max; a profile: V / (2
  * spacing), its Nyquist frequency). The tolerance keeps every output of
@@ -1389,8 +1390,10 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
 void fb_fe_hull_free(fb_fe_hull **h);
 
 /* Modes of a whole undamped vehicle: natural frequencies and mode shapes
- * over ndof = 6 nnodes (hull) + nmounts + ncorners DOFs (vertical motion
- * of the mounted bodies, then of the wheels, in the scenario's order),
+ * over ndof = 6 nnodes (hull) + nmounts + ncorners + 6 nbodies DOFs
+ * (vertical motion of the mounted bodies, then of the wheels, in the
+ * scenario's order, then each rigid body's six motions at its centre of
+ * mass),
  * each shape normalised so that the largest displacement over the
  * mounted bodies and the hull nodes is 1 (the paper's normalisation). */
 typedef struct fb_mode_set {

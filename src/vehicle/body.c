@@ -3,6 +3,7 @@
  * bushings, lookups by name and over every body's bushings, and the
  * deep copy and release the description's owners share. */
 #include <lapacke.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -97,6 +98,18 @@ void vehicle_body_inertia(const fb_body *b, double *j)
   const double t[9] = {b->ixx,  -b->ixy, -b->ixz, -b->ixy, b->iyy,
                        -b->iyz, -b->ixz, -b->iyz, b->izz};
   memcpy(j, t, sizeof t);
+}
+
+double vehicle_body_top_hz(const fb_body *b)
+{
+  double k[36] = {0}, m[36], w[6];
+  for (size_t j = 0; j < b->nbushings; ++j)
+    vehicle_bushing_add_at_centre(b, &b->bushing[j], b->bushing[j].k, k);
+  vehicle_body_inertia6(b, m);
+  /* K v = lambda M v (symmetric-definite: LAPACK's dsygv), ascending. */
+  if (LAPACKE_dsygv(LAPACK_ROW_MAJOR, 1, 'N', 'U', 6, k, 6, m, 6, w))
+    return 0.0;
+  return sqrt(fmax(w[5], 0.0)) / (2.0 * 3.14159265358979323846);
 }
 
 void vehicle_hull_inertia(const fb_scenario *s, double *j)

@@ -602,17 +602,115 @@ int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err)
   return rc ? rc : fb_fe_hull_add_masses(h, 0, 0.0, M, err);
 }
 
+size_t vehicle_nlumped(const fb_scenario *s)
+{
+  return s->nmounts + s->ncorners + 6 * s->nbodies;
+}
+
+/* rows[l] += sign times row l of the rigid transport of body i's point
+ * p, over its DOFs from base + 6 i. */
+static int body_rows(const fb_scenario *s, size_t i, const double *p, size_t base, double sign,
+                     fb_hull_coupling *rows, fb_err *err)
+{
+  const fb_body *b = &s->body[i];
+  const double r[3] = {p[0] - b->x, p[1] - b->y, p[2] - b->z};
+  double t[36];
+  vehicle_rigid_transport(r, t);
+  for (int l = 0; l < 6; ++l) {
+    fb_hull_coupling *row = &rows[l];
+    size_t *dof = realloc(row->dof, (row->n + 6) * sizeof *dof);
+    if (dof)
+      row->dof = dof;
+    double *w = dof ? realloc(row->w, (row->n + 6) * sizeof *w) : NULL;
+    if (!w)
+      return fb_err_set(err, FB_ENOMEM, "out of memory");
+    row->w = w;
+    for (size_t c = 0; c < 6; ++c) {
+      row->dof[row->n] = base + 6 * i + c;
+      row->w[row->n++] = sign * t[6 * l + c];
+    }
+  }
+  return FB_OK;
+}
+
+int vehicle_bushing_relative_rows(const fb_scenario *s, const fb_fe_hull *fe, size_t k,
+                                  size_t base, fb_hull_coupling *rows, fb_err *err)
+{
+  size_t b = 0, j = 0;
+  memset(rows, 0, 6 * sizeof *rows);
+  if (!fb_scenario_bushing_at(s, k, &b, &j))
+    return fb_err_set(err, FB_EINVAL, "no bushing %zu", k);
+  const fb_body *body = &s->body[b];
+  const double p[3] = {body->bushing[j].x, body->bushing[j].y, body->bushing[j].z};
+  int rc = FB_OK;
+  if (body->parent) {
+    rc = body_rows(s, (size_t)fb_scenario_body_find(s, body->parent), p, base, 1.0, rows, err);
+  } else {
+    size_t on = 0;
+    while (on < fe->nbushings && fe->bushing_index[on] != k)
+      ++on;
+    if (on == fe->nbushings)
+      rc = fb_err_set(err, FB_EINVAL, "bushing %zu is not coupled to the hull", k);
+    for (int l = 0; !rc && l < 6; ++l) {
+      const fb_hull_coupling *c = &fe->bushing_rows[6 * on + (size_t)l];
+      rows[l].dof = malloc((c->n ? c->n : 1) * sizeof *rows[l].dof);
+      rows[l].w = malloc((c->n ? c->n : 1) * sizeof *rows[l].w);
+      if (!rows[l].dof || !rows[l].w)
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+      else {
+        memcpy(rows[l].dof, c->dof, c->n * sizeof *c->dof);
+        memcpy(rows[l].w, c->w, c->n * sizeof *c->w);
+        rows[l].n = c->n;
+      }
+    }
+  }
+  if (!rc)
+    rc = body_rows(s, b, p, base, -1.0, rows, err);
+  if (rc)
+    for (int l = 0; l < 6; ++l)
+      fb_hull_coupling_free(&rows[l]);
+  return rc;
+}
+
+/* The bodies' inertias and their bushings' springs, K G' K_b G over each
+ * bushing's relative rows G, into the triplets; body i's DOFs from base
+ * + 6 i. */
+static int add_bodies(const fb_scenario *s, const fb_fe_hull *h, size_t base, trips *tk,
+                      trips *tm, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < s->nbodies; ++i) {
+    double m[36];
+    vehicle_body_inertia6(&s->body[i], m);
+    for (size_t r = 0; !rc && r < 36; ++r)
+      if (m[r] != 0.0)
+        rc = trips_push(tm, base + 6 * i + r / 6, base + 6 * i + r % 6, m[r]);
+  }
+  if (rc)
+    return fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
+  size_t b = 0, j = 0;
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
+    fb_hull_coupling g[6];
+    const double *kb = s->body[b].bushing[j].k;
+    rc = vehicle_bushing_relative_rows(s, h, k, base, g, err);
+    for (int l = 0; !rc && l < 6; ++l)
+      for (int m = 0; !rc && m < 6; ++m)
+        for (size_t p = 0; kb[6 * l + m] != 0.0 && !rc && p < g[l].n; ++p)
+          for (size_t q = 0; !rc && q < g[m].n; ++q)
+            if (trips_push(tk, g[l].dof[p], g[m].dof[q], kb[6 * l + m] * g[l].w[p] * g[m].w[q]))
+              rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
+    for (int l = 0; l < 6; ++l)
+      fb_hull_coupling_free(&g[l]);
+  }
+  return rc;
+}
+
 int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
                         const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err)
 {
-  if (s->nbodies)
-    return fb_err_set(err, FB_EINVAL,
-                      "the vehicle's matrices hold the mounts and wheels, not mounted rigid "
-                      "bodies yet"),
-           fb_err_set_part(err, FB_PART_AT(FB_PART_BODY, 0, name)), FB_EINVAL;
   int rc = FB_OK;
   const size_t nm = s->nmounts;
-  size_t nh = fb_mat_nrows(kh), n = nh + nm + s->ncorners;
+  size_t nh = fb_mat_nrows(kh), n = nh + vehicle_nlumped(s);
   trips tk = {0}, tm = {0};
   trips_visit vk = {&tk, 0}, vm = {&tm, 0};
   fb_mat_foreach(kh, visit_push, &vk);
@@ -637,6 +735,8 @@ int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat 
   }
   if (rc)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
+  if (!rc)
+    rc = add_bodies(s, h, nh + nm + s->ncorners, &tk, &tm, err);
   if (!rc)
     rc = fb_mat_new_triplets(n, n, tk.n, tk.r, tk.c, tk.v, K, err);
   if (!rc)
@@ -664,6 +764,17 @@ static void mass_times(const describe_ctx *d, const double *v)
     d->mv[d->nh + b] = s->mount[b].mass * v[d->nh + b];
   for (size_t c = 0; c < s->ncorners; ++c)
     d->mv[d->nh + s->nmounts + c] = s->corner[c].wheel_mass * v[d->nh + s->nmounts + c];
+  const size_t base = d->nh + s->nmounts + s->ncorners;
+  for (size_t b = 0; b < s->nbodies; ++b) {
+    double m[36];
+    vehicle_body_inertia6(&s->body[b], m);
+    for (size_t r = 0; r < 6; ++r) {
+      double sum = 0.0;
+      for (size_t c = 0; c < 6; ++c)
+        sum += m[6 * r + c] * v[base + 6 * b + c];
+      d->mv[base + 6 * b + r] = sum;
+    }
+  }
 }
 
 /* The hull's kinetic energy split by M_h-orthogonal projection onto its
@@ -738,7 +849,8 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
       best = energy[k];
       snprintf(name, sizeof name, "%s", hull_names[k]);
     }
-  for (size_t i = d->nh; i < d->ndof; ++i) {
+  const size_t nbase = d->nh + d->s->nmounts + d->s->ncorners;
+  for (size_t i = d->nh; i < nbase; ++i) {
     double e = v[i] * d->mv[i];
     if (e <= best)
       continue;
@@ -748,6 +860,16 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
       snprintf(name, sizeof name, "%s", d->s->mount[b].name);
     else
       snprintf(name, sizeof name, "wheel hop %s", d->s->corner[b - d->s->nmounts].name);
+  }
+  /* A rigid body's six motions together. */
+  for (size_t b = 0; b < d->s->nbodies; ++b) {
+    double e = 0.0;
+    for (size_t c = 0; c < 6; ++c)
+      e += v[nbase + 6 * b + c] * d->mv[nbase + 6 * b + c];
+    if (e > best) {
+      best = e;
+      snprintf(name, sizeof name, "%.31s", d->s->body[b].name);
+    }
   }
   snprintf(out, size, "%s (%.0f%%)", name, total > 0 ? 100.0 * best / total : 0.0);
 }
@@ -807,7 +929,16 @@ static int is_free_mode(const describe_ctx *d, const double *v)
   for (size_t i = 0; i < d->ndof; ++i)
     total += v[i] * d->mv[i];
   hull_energies(d, v, energy);
-  return total > 0 && energy[0] + energy[1] + energy[5] >= 0.9 * total;
+  /* Rigid bodies go along with the hull, their surge, sway and yaw
+   * with its; but a body's own yaw on its bushings, with the hull all
+   * but still, is no free motion: the hull's share must lead. */
+  double bodies = 0.0;
+  const size_t base = d->nh + d->s->nmounts + d->s->ncorners;
+  for (size_t b = 0; b < d->s->nbodies; ++b)
+    for (size_t c = 0; c < 6; c += c == 1 ? 4 : 1)
+      bodies += v[base + 6 * b + c] * d->mv[base + 6 * b + c];
+  const double hull = energy[0] + energy[1] + energy[5];
+  return total > 0 && hull + bodies >= 0.9 * total && hull >= bodies;
 }
 
 /* Copies the modes that are not free rigid-body motions into ms (at most
@@ -835,7 +966,7 @@ int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb
                              fb_mode_set *ms, fb_err *err)
 {
   const size_t nh = fb_mat_nrows(mh);
-  describe_ctx d = {mh, NULL, NULL, NULL, nh, nh + s->nmounts + s->ncorners, s};
+  describe_ctx d = {mh, NULL, NULL, NULL, nh, nh + vehicle_nlumped(s), s};
   double mass, cg[3], inertia[9];
   int rc = fb_fem_mass_properties(h->mesh, mh, &mass, cg, inertia, err);
   if (!rc) {

@@ -70,7 +70,7 @@ int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const do
 }
 
 /* The body's inertia at its centre of mass: m I3 and its tensor. */
-static void body_inertia6(const fb_body *b, double *m)
+void vehicle_body_inertia6(const fb_body *b, double *m)
 {
   double j[9];
   vehicle_body_inertia(b, j);
@@ -86,7 +86,7 @@ static void body_inertia6(const fb_body *b, double *m)
 static int add_inertia(fb_bg *bg, const fb_body *b, double gravity, fb_err *err)
 {
   double m[36];
-  body_inertia6(b, m);
+  vehicle_body_inertia6(b, m);
   int rc = add_field6(bg, "inertia", FB_BG_I, m, err);
   /* The motions a mode of the vehicle may move: the body's own. */
   static const char *const axes[6] = {"x", "y", "z", "roll", "pitch", "yaw"};

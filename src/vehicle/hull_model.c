@@ -132,6 +132,8 @@ double fb_hull_excitation_hz(const fb_scenario *s)
   }
   for (size_t b = 0; b < s->nmounts; ++b)
     f = fmax(f, sqrt(s->mount[b].stiffness / s->mount[b].mass) / two_pi);
+  for (size_t b = 0; b < s->nbodies; ++b)
+    f = fmax(f, vehicle_body_top_hz(&s->body[b]));
   return f;
 }
 
@@ -972,6 +974,58 @@ int fb_vehicle_flexible_hull(const fb_scenario *s, const fb_fe_hull *h, fb_hull 
 
 /* ---- The undamped System 2's modes. */
 
+/* The rigid bodies in the reduced matrices (nv x nv, column-major):
+ * their inertias, and each bushing's K G' K_b G with its relative rows
+ * G (vehicle_bushing_relative_rows over the nodal layout) taken to the
+ * basis, u = T q for the hull's part. */
+static int reduced_bodies(const fb_scenario *s, const vehicle_hull *h, size_t nv, double *K,
+                          double *M, fb_err *err)
+{
+  const size_t nb = h->nb, ndof = h->info.ndof, base = nb + s->nmounts + s->ncorners;
+  for (size_t i = 0; i < s->nbodies; ++i) {
+    double m[36];
+    vehicle_body_inertia6(&s->body[i], m);
+    for (size_t r = 0; r < 6; ++r)
+      for (size_t c = 0; c < 6; ++c)
+        M[(base + 6 * i + c) * nv + base + 6 * i + r] = m[6 * r + c];
+  }
+  double *g = malloc(6 * nv * sizeof *g);
+  if (!g)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  int rc = FB_OK;
+  size_t b = 0, j = 0;
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
+    fb_hull_coupling rows[6];
+    rc = vehicle_bushing_relative_rows(s, h->fe, k, ndof + s->nmounts + s->ncorners, rows, err);
+    memset(g, 0, 6 * nv * sizeof *g);
+    for (int l = 0; !rc && l < 6; ++l) {
+      double *gl = g + (size_t)l * nv;
+      for (size_t e = 0; e < rows[l].n; ++e) {
+        const size_t d = rows[l].dof[e];
+        if (d >= ndof) { /* a body's own DOF */
+          gl[d - ndof + nb] += rows[l].w[e];
+          continue;
+        }
+        for (size_t q = 0; q < nb; ++q)
+          gl[q] += rows[l].w[e] * h->T[q * ndof + d];
+      }
+    }
+    for (int l = 0; !rc && l < 6; ++l)
+      fb_hull_coupling_free(&rows[l]);
+    const double *kb = s->body[b].bushing[j].k;
+    for (int l = 0; !rc && l < 6; ++l)
+      for (int m = 0; m < 6; ++m) {
+        if (kb[6 * l + m] == 0.0)
+          continue;
+        for (size_t c = 0; c < nv; ++c)
+          for (size_t r = 0; g[(size_t)m * nv + c] != 0.0 && r < nv; ++r)
+            K[c * nv + r] += kb[6 * l + m] * g[(size_t)l * nv + r] * g[(size_t)m * nv + c];
+      }
+  }
+  free(g);
+  return rc;
+}
+
 /* Over a basis: the hull's coordinates q (M = I, K = diag(lambda)), then
  * the bodies' and the wheels' motions, the springs through the points'
  * rows t_a = coupling row times T: the Ritz matrices of
@@ -982,7 +1036,7 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
 {
   const fb_fe_hull *fe = h->fe;
   const size_t nb = h->nb, ndof = h->info.ndof, nm = s->nmounts;
-  const size_t nv = nb + nm + s->ncorners;
+  const size_t nv = nb + vehicle_nlumped(s);
   double *K = calloc(nv * nv, sizeof *K), *M = calloc(nv * nv, sizeof *M);
   double *t = malloc(nb * sizeof *t);
   if (!K || !M || !t) {
@@ -1020,6 +1074,12 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
     M[body * nv + body] = corner ? cp->wheel_mass : s->mount[a - s->ncorners].mass;
   }
   free(t);
+  const int rc = reduced_bodies(s, h, nv, K, M, err);
+  if (rc) {
+    free(K);
+    free(M);
+    return rc;
+  }
   *k = K;
   *m = M;
   *n = nv;
@@ -1122,7 +1182,7 @@ int vehicle_hull_structural_modes(const fb_scenario *s, vehicle_hull *h, size_t 
   double *freq = NULL, *shapes = NULL;
   size_t count = 0;
   const int reduced = !exact && h->info.coordinates == FB_HULL_MODAL && h->nb < h->info.ndof;
-  const size_t nfull = h->info.ndof + s->nmounts + s->ncorners;
+  const size_t nfull = h->info.ndof + vehicle_nlumped(s);
   /* Reduced: a dense problem over the basis; else the sparse matrices of
    * the whole vehicle. */
   int rc = reduced ? reduced_modes(s, h, nmodes, nfull, &freq, &shapes, &count, err)

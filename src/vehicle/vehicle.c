@@ -404,12 +404,6 @@ int fb_vehicle_structural_modes(fb_vehicle *v, size_t nmodes, int exact, fb_mode
   *out = NULL;
   if (!v->hull)
     return fb_err_set(err, FB_EINVAL, "modes with shapes are System 2's");
-  /* Its matrices (fb_vehicle_matrices) hold the mounts and wheels only. */
-  if (v->s->nbodies)
-    return fb_err_set(err, FB_EINVAL,
-                      "System 2's modes with shapes do not include mounted rigid bodies yet "
-                      "(the linearised vehicle's modes do)"),
-           fb_err_set_part(err, FB_PART_AT(FB_PART_BODY, 0, name)), FB_EINVAL;
   return vehicle_hull_structural_modes(v->s, v->hull, nmodes, exact, &v->work, out, err);
 }
 

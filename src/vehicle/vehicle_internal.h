@@ -42,6 +42,23 @@ void vehicle_rigid_inertia6(const fb_scenario *s, double *m66);
  * vehicle_rigid_transport), where bushing k of fb_scenario_bushing_at
  * meets its parent: the transformer "to_bushing_<k>" and the 1-junction
  * "bushing_<k>". */
+/* System 2's undamped vehicle (fb_vehicle_matrices): its DOFs after the
+ * hull's, the mounts' and the wheels' vertical motions, then six per
+ * mounted rigid body (x, y, z, roll, pitch, yaw at its centre of mass). */
+size_t vehicle_nlumped(const fb_scenario *s);
+/* The highest natural frequency (Hz) of body b on its bushings with its
+ * parent held (their stiffness at its centre of mass against its
+ * inertia); 0 if LAPACK fails. */
+double vehicle_body_top_hz(const fb_body *b);
+/* Body b's 6x6 inertia at its centre of mass, row major. */
+void vehicle_body_inertia6(const fb_body *b, double *m66);
+/* Bushing k's relative motion, its parent's point minus its body's, as
+ * six sparse rows over the undamped vehicle's DOFs: the hull's coupling
+ * rows (fe's, over its nodal DOFs) or the parent body's rigid transport,
+ * less the body's; body i's six DOFs from base + 6 i. rows new
+ * (fb_hull_coupling_free each). */
+int vehicle_bushing_relative_rows(const fb_scenario *s, const fb_fe_hull *fe, size_t k,
+                                  size_t base, fb_hull_coupling *rows, fb_err *err);
 /* The hull nodes bushing u's hull side is coupled to (*nodes new, *n of
  * them): its node set's, or those of the coupling surface within its
  * radius (or the scenario's) in plan (coupling.c). FB_EMODEL when there
@@ -132,8 +149,9 @@ int vehicle_hull_structural_modes(const fb_scenario *s, vehicle_hull *h, size_t 
 int fb_fe_hull_add_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat **M,
                           fb_err *err);
 /* The undamped System 2 over the hull's nodal DOFs, then the mounted
- * bodies' and the wheels' vertical motions: *K and *M (new) from the
- * hull's kh and mh and the springs, bodies and wheels of s. */
+ * bodies' and the wheels' vertical motions, then the rigid bodies' six
+ * each (vehicle_nlumped): *K and *M (new) from the hull's kh and mh and
+ * the springs, bushings, bodies and wheels of s. */
 int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
                         const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err);
 /* Completes a mode set from nwant modes (freq ascending, shapes over the
