@@ -290,8 +290,52 @@ static void test_builder(void)
   fb_scenario_free(&s);
 }
 
+/* A bushing on a node set of one node (ENGINE: the engine mount's floor
+ * node) hangs the body on one point of the floor plate: the loader warns,
+ * at the bushing's node_set, of the local mode it makes, its frequency
+ * sqrt(k_s / m) / 2 pi with 1/k_s = 1/k_p + 1/k_z (k_p the plate's point
+ * stiffness). Checks: the warning names the frequency those values give
+ * (to its 3 printed digits), and k_p, a linear elastic static solve,
+ * doubles exactly with Young's modulus (to 1e-9: a Cholesky solve of the
+ * same pattern). */
+static void test_single_node(void)
+{
+  fb_err err;
+  fb_scenario *s =
+      load_with("bodies:\n"
+                "  - {name: box, mass: 300, x: 1.7, y: -0.55, z: 0.2, Ixx: 5, Iyy: 5, Izz: 3,\n"
+                "     bushings: [{x: 1.7, y: -0.55, z: 0.1, node_set: ENGINE,\n"
+                "                 stiffness: [1e6, 1e6, 5e5, 1e5, 1e5, 1e5]}]}\n",
+                &err);
+  CHECK(s != NULL);
+  if (!s)
+    return;
+  const fb_err *w = NULL;
+  for (size_t i = 0; i < fb_scenario_nwarnings(s); ++i)
+    if (strstr(fb_scenario_warning(s, i)->key, "bodies[0].bushings[0].node_set"))
+      w = fb_scenario_warning(s, i);
+  CHECK(w != NULL && w->line > 0 && strstr(w->msg, "local mode"));
+  fb_fe_hull *h = NULL;
+  double kp = 0.0, kp2 = 0.0;
+  REQUIRE(fb_vehicle_fe_hull(s, &h, &err), &err);
+  CHECK(h->nbushings == 1 && h->bushing_single_node[0] != (size_t)-1);
+  REQUIRE(fb_fe_hull_point_stiffness(h, s->ncorners, h->bushing_single_node[0], &kp, &err),
+          &err);
+  h->props.young *= 2.0;
+  REQUIRE(fb_fe_hull_point_stiffness(h, s->ncorners, h->bushing_single_node[0], &kp2, &err),
+          &err);
+  CHECK_NEAR(kp2 / kp, 2.0, 1e-9);
+  const double ks = 1.0 / (1.0 / kp + 1.0 / 5e5);
+  char hz[32];
+  snprintf(hz, sizeof hz, "at %.3g Hz", sqrt(ks / 300.0) / (2.0 * 3.14159265358979323846));
+  CHECK(w && strstr(w->msg, hz));
+  fb_fe_hull_free(&h);
+  fb_scenario_free(&s);
+}
+
 int main(void)
 {
+  test_single_node();
   test_file();
   test_file_errors();
   test_builder();

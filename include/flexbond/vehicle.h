@@ -1362,6 +1362,10 @@ typedef struct fb_fe_hull {
   size_t nbushings;
   size_t *bushing_index;
   fb_hull_coupling *bushing_rows;
+  /* The node a bushing hangs on alone (a node set of one node: a rigid
+   * lever to its six DOFs), or (size_t)-1 when its coupling spreads it
+   * over several. Owned, nbushings. */
+  size_t *bushing_single_node;
   size_t *point_mass_node; /* npoint_masses, in the scenario's order */
   double *point_mass;      /* their masses, kg */
   size_t npoint_masses;
@@ -1388,6 +1392,12 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
                    fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err);
 void fb_fe_hull_free(fb_fe_hull **h);
+/* The hull structure's point stiffness (N/m) along z at node: 1 / u_z
+ * under a unit vertical force there, K u = f (the shells' stiffness
+ * alone), with every DOF of the first ncorners attachment points' nodes
+ * (the suspensions') held. FB_EINVAL for a suspension's node. */
+int fb_fe_hull_point_stiffness(const fb_fe_hull *h, size_t ncorners, size_t node, double *k,
+                               fb_err *err);
 
 /* Modes of a whole undamped vehicle: natural frequencies and mode shapes
  * over ndof = 6 nnodes (hull) + nmounts + ncorners + 6 nbodies DOFs

@@ -34,6 +34,7 @@ void fb_fe_hull_free(fb_fe_hull **h)
     fb_hull_coupling_free(&(*h)->bushing_rows[b]);
   free((*h)->bushing_rows);
   free((*h)->bushing_index);
+  free((*h)->bushing_single_node);
   free((*h)->point_mass_node);
   free((*h)->point_mass);
   free(*h);
@@ -134,6 +135,82 @@ static int attach_one(const fb_scenario *s, fb_fe_hull *h, size_t a, const char 
   return rc ? rc : fb_hull_coupling_node(nodes[0], &h->attach_coupling[a], err);
 }
 
+/* A bushing on one node: a rigid lever from the node to the point, its
+ * motion the node's six transported (v + omega x r, the node's rotations
+ * included), rows[0 .. 6) new. Its force bends the plate at one node: a
+ * local mode the loader warns of (fb_fe_hull_point_stiffness). */
+static int lever6(const fb_mesh *m, size_t node, const double *x0, fb_hull_coupling *rows,
+                  fb_err *err)
+{
+  const double *p = fb_mesh_node_xyz(m, node);
+  const double r[3] = {x0[0] - p[0], x0[1] - p[1], x0[2] - p[2]};
+  double t[36];
+  vehicle_rigid_transport(r, t);
+  memset(rows, 0, 6 * sizeof *rows);
+  for (size_t l = 0; l < 6; ++l) {
+    rows[l].dof = malloc(6 * sizeof *rows[l].dof);
+    rows[l].w = malloc(6 * sizeof *rows[l].w);
+    if (!rows[l].dof || !rows[l].w)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for a coupling");
+    rows[l].n = 6;
+    for (size_t c = 0; c < 6; ++c) {
+      rows[l].dof[c] = 6 * node + c;
+      rows[l].w[c] = t[6 * l + c];
+    }
+  }
+  return FB_OK;
+}
+
+int fb_fe_hull_point_stiffness(const fb_fe_hull *h, size_t ncorners, size_t node, double *k,
+                               fb_err *err)
+{
+  *k = NAN;
+  fb_mat *K = NULL, *Kc = NULL;
+  fb_chol *chol = NULL;
+  const size_t n = 6 * fb_mesh_nnodes(h->mesh);
+  size_t nfixed = 0;
+  size_t *fixed = malloc((6 * ncorners + 1) * sizeof *fixed);
+  size_t *keep = malloc(n * sizeof *keep);
+  double *b = calloc(n, sizeof *b);
+  int rc = fixed && keep && b ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  /* Every DOF of each corner's attachment node (the corners come first
+   * among h's attachment points), each node once. */
+  for (size_t c = 0; !rc && c < ncorners && c < h->nattach; ++c) {
+    int seen = 0;
+    for (size_t f = 0; f < nfixed; ++f)
+      seen |= fixed[f] == 6 * h->attach_node[c];
+    for (size_t d = 0; !seen && d < 6; ++d)
+      fixed[nfixed++] = 6 * h->attach_node[c] + d;
+  }
+  if (!rc)
+    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
+  if (!rc)
+    rc = fb_fem_free_dofs(n, fixed, nfixed, keep, err);
+  if (!rc)
+    rc = fb_fem_submatrix(K, keep, n - nfixed, &Kc, err);
+  if (!rc)
+    rc = fb_chol_new(Kc, 0, &chol, err);
+  size_t at = n;
+  for (size_t i = 0; !rc && i < n - nfixed; ++i)
+    if (keep[i] == 6 * node + 2)
+      at = i;
+  if (!rc && at == n)
+    rc = fb_err_set(err, FB_EINVAL, "node %zu is a suspension point's", node);
+  if (!rc) {
+    b[at] = 1.0;
+    rc = fb_chol_solve(chol, b, 1, err);
+  }
+  if (!rc)
+    *k = 1.0 / b[at];
+  fb_chol_free(&chol);
+  fb_mat_free(&Kc);
+  fb_mat_free(&K);
+  free(fixed);
+  free(keep);
+  free(b);
+  return rc;
+}
+
 /* Each bushing of a body on the hull: its six rows over the nodes of its
  * node set, or of the coupling surface within its radius (the
  * scenario's coupling radius when it gives none) in plan; errors about
@@ -144,8 +221,10 @@ static int resolve_bushings(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
   size_t b = 0, j = 0;
   h->bushing_index = malloc((nk ? nk : 1) * sizeof *h->bushing_index);
   h->bushing_rows = calloc(6 * (nk ? nk : 1), sizeof *h->bushing_rows);
-  int rc =
-      h->bushing_index && h->bushing_rows ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  h->bushing_single_node = malloc((nk ? nk : 1) * sizeof *h->bushing_single_node);
+  int rc = h->bushing_index && h->bushing_rows && h->bushing_single_node
+               ? FB_OK
+               : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
     if (s->body[b].parent)
       continue;
@@ -156,6 +235,10 @@ static int resolve_bushings(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
     snprintf(what, sizeof what, "body %s's bushing %zu", s->body[b].name, j);
     rc = vehicle_bushing_nodes(s, h->mesh, u, &nodes, &n, err);
     if (!rc)
+      h->bushing_single_node[h->nbushings] = n == 1 ? nodes[0] : (size_t)-1;
+    if (!rc && n == 1)
+      rc = lever6(h->mesh, nodes[0], x0, &h->bushing_rows[6 * h->nbushings], err);
+    else if (!rc)
       rc = fb_hull_coupling6_build(h->mesh, nodes, n, x0, what,
                                    &h->bushing_rows[6 * h->nbushings], err);
     free(nodes);
