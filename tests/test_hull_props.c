@@ -218,6 +218,38 @@ static void test_frame_point(void)
   free(text);
 }
 
+/* A mounted rigid body's and its bushing's heights are in the file's
+ * frame as their x and y (the truck's floor at z = 0): inside, from the
+ * centre of mass, hull_cg_z (the mesh's, above the floor) below them. */
+static void test_frame_body_height(void)
+{
+  char *text = NULL;
+  size_t len = 0;
+  CHECK(fb_read_file("../examples/truck4x4.yaml", &text, &len, NULL) == FB_OK);
+  char *t =
+      text ? replaced(text, "outputs:\n",
+                      "bodies: [{name: box, mass: 50, x: -2, y: 0, z: 1.9, Ixx: 2, Iyy: 2,\n"
+                      "          Izz: 3, bushings: [{x: -2, y: 0, z: 1.6,\n"
+                      "          stiffness: [1e5, 1e5, 1e5, 1e4, 1e4, 1e4],\n          "
+                      "surface: ROOF, radius: 1.2}]}]\noutputs:\n")
+           : NULL;
+  fb_err err;
+  fb_scenario *s = NULL;
+  CHECK(t && fb_scenario_load_string(t, strlen(t), "truck.yaml", &s, &err) == FB_OK);
+  if (!s)
+    fprintf(stderr, "%s\n", err.msg);
+  if (s) {
+    /* The generated hull's centre of mass is above its floor, inside it. */
+    CHECK(s->hull_cg_z > 0.1 && s->hull_cg_z < 1.5);
+    CHECK_NEAR(s->body[0].z, 1.9 - s->hull_cg_z, 1e-12);
+    CHECK_NEAR(s->body[0].bushing[0].z, 1.6 - s->hull_cg_z, 1e-12);
+    CHECK_NEAR(s->body[0].x, -2.0 - s->hull_cg_x, 1e-12);
+  }
+  fb_scenario_free(&s);
+  free(t);
+  free(text);
+}
+
 int main(void)
 {
   char *text = NULL;
@@ -231,6 +263,7 @@ int main(void)
   }
   test_frame();
   test_frame_point();
+  test_frame_body_height();
   free(text);
   return check_report("test_hull_props");
 }

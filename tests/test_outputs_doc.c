@@ -17,6 +17,7 @@ static const char *subject_word(fb_output_subject s)
   switch (s) {
   case FB_OUTPUT_OF_CORNER: return "corner";
   case FB_OUTPUT_OF_MOUNT: return "mount";
+  case FB_OUTPUT_OF_BODY: return "body";
   case FB_OUTPUT_OF_HULL: return "hull";
   case FB_OUTPUT_OF_BOND: return "bond";
   case FB_OUTPUT_OF_HULL_POINT: return "hull point";

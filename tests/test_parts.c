@@ -24,8 +24,8 @@
 
 #define EXAMPLE "../examples/truck6x6_bogie.yaml"
 
-/* The 6x6 truck (an anti-roll bar, bogies) with a hull section added (no
- * example has one). */
+/* The 6x6 truck (an anti-roll bar, bogies) with a hull section and a
+ * mounted rigid body added (no example has them). */
 static fb_scenario *load_truck(void)
 {
   char *text = NULL;
@@ -40,12 +40,17 @@ static fb_scenario *load_truck(void)
   }
   static const char section[] = "\n  sections: [{set: FLOOR, thickness: 0.012}]";
   const size_t head = (size_t)(at - text);
-  char *edited = malloc(len + sizeof section);
+  static const char body[] =
+      "\nbodies: [{name: box, mass: 50, x: 0, y: 0, z: 1, Ixx: 2, Iyy: 2, Izz: 3,\n"
+      "          bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1],\n"
+      "                      node_set: LOAD}]}]\n";
+  char *edited = malloc(len + sizeof section + sizeof body);
   fb_scenario *s = NULL;
   if (edited) {
     memcpy(edited, text, head);
     memcpy(edited + head, section, sizeof section - 1);
     memcpy(edited + head + sizeof section - 1, at, len - head + 1);
+    strcat(edited, body);
     CHECK(fb_scenario_load_string(edited, strlen(edited), EXAMPLE, &s, &err) == FB_OK);
   }
   free(edited);
@@ -74,7 +79,11 @@ static int kind_of(const char *name)
                {"FB_PART_ANTIROLL_BAR", FB_PART_ANTIROLL_BAR},
                {"fb_antiroll_bar", FB_PART_ANTIROLL_BAR},
                {"FB_PART_BOGIE", FB_PART_BOGIE},
-               {"fb_bogie", FB_PART_BOGIE}};
+               {"fb_bogie", FB_PART_BOGIE},
+               {"FB_PART_BODY", FB_PART_BODY},
+               {"fb_body", FB_PART_BODY},
+               {"FB_PART_BUSHING", FB_PART_BUSHING},
+               {"fb_bushing", FB_PART_BUSHING}};
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
     if (!strcmp(kinds[i].name, name))
       return kinds[i].kind;

@@ -127,6 +127,56 @@ typedef struct fb_antiroll_bar {
   double damping;   /* N s/m, at each wheel in roll; 0: none */
 } fb_antiroll_bar;
 
+/* A bushing of a mounted rigid body (fb_body): a linear spring and a
+ * damper in all six components between the body and the body it is
+ * mounted on, at one point. Its force on the body is
+ *   -(K d + C d'),   d = the body's motion at the point relative to the
+ * parent's: three translations (x, y, z) then three rotations (about x,
+ * y, z; small angles), vehicle axes. Full symmetric 6x6 matrices, row
+ * major; fb_bushing_set_diagonal fills a bushing with one stiffness and
+ * one damping per axis. */
+typedef struct fb_bushing {
+  double x, y, z; /* its point, m, vehicle axes */
+  double k[36];   /* stiffness: N/m, N/rad, N m/m, N m/rad by block; symmetric,
+                     positive semi-definite */
+  double c[36];   /* damping: N s/m, N s/rad, N m s/m, N m s/rad; symmetric,
+                     positive semi-definite */
+  /* System 2, a bushing on the hull: the mesh's node set its hull side
+   * is coupled to (owned), or NULL: the hull's nodes of the element set
+   * `surface` (owned; NULL: hull.mesh.coupling.surface) within `radius`
+   * (m, in plan; 0: the scenario's coupling radius) of its point. */
+  char *node_set;
+  char *surface;
+  double radius;
+} fb_bushing;
+
+/* Fills b's stiffness and damping as diagonal matrices: k[0..2] (N/m) and
+ * c[0..2] (N s/m) along x, y, z, k[3..5] (N m/rad) and c[3..5] (N m s/rad)
+ * about x, y, z. */
+void fb_bushing_set_diagonal(fb_bushing *b, const double *k6, const double *c6);
+
+/* The most bushings a body has. */
+#define FB_BODY_MAX_BUSHINGS 16
+
+/* A mounted rigid body in six degrees of freedom (a turret, a seat, an
+ * engine): its inertia at its centre of mass and the bushings that carry
+ * it, to the hull or to another body. Motions are small (linear
+ * kinematics about the reference position: docs/scenario-format.md,
+ * "Mounted bodies"). */
+typedef struct fb_body {
+  char *name;     /* unique among the bodies, mounts, hull masses and corners; owned */
+  char *parent;   /* the body it is mounted on, one before it in the list,
+                     by name; NULL: the hull. Owned */
+  double mass;    /* kg */
+  double x, y, z; /* its centre of mass, m, vehicle axes */
+  /* Its inertia tensor about its centre of mass, vehicle axes, kg m^2:
+   * the matrix [[Ixx, -Ixy, -Ixz], [-Ixy, Iyy, -Iyz], [-Ixz, -Iyz, Izz]]
+   * (products of inertia Ixy = integral of x y dm), positive definite. */
+  double ixx, iyy, izz, ixy, ixz, iyz;
+  fb_bushing *bushing; /* nbushings of them, at least 1; owned */
+  size_t nbushings;
+} fb_body;
+
 /* A non-structural mass fixed to the hull's floor (a battery, ballast, an
  * armour plate): pure inertia. Its weight is part of load.total_weight,
  * which the load points carry; its mass moves with the hull, System 1's
@@ -339,6 +389,9 @@ typedef enum fb_part_kind {
   FB_PART_STOP = 13,         /* corner[index]'s stops: field "bump_stop.gap", ... */
   FB_PART_ANTIROLL_BAR = 16, /* antiroll_bar[index], fb_antiroll_bar */
   FB_PART_BOGIE = 17,        /* bogie[index], fb_bogie */
+  FB_PART_BODY = 14,         /* body[index], fb_body */
+  FB_PART_BUSHING = 15,      /* the index-th bushing of all bodies, in order (body 0's first;
+                                fb_scenario_bushing_at), fb_bushing */
   FB_PART_KINDS = 18
 } fb_part_kind;
 
@@ -358,6 +411,8 @@ typedef struct fb_bogie FB_PART_TYPE_FB_PART_BOGIE;
 typedef struct fb_hull_point_mass FB_PART_TYPE_FB_PART_HULL_MASS;
 typedef struct fb_hull_section FB_PART_TYPE_FB_PART_SECTION;
 typedef struct fb_output_spec FB_PART_TYPE_FB_PART_OUTPUT;
+typedef struct fb_body FB_PART_TYPE_FB_PART_BODY;
+typedef struct fb_bushing FB_PART_TYPE_FB_PART_BUSHING;
 
 typedef struct fb_scenario {
   char *name;
@@ -372,9 +427,9 @@ typedef struct fb_scenario {
   char *frame_origin;          /* NULL: positions relative to the hull's centre of mass */
   int hull_cg_given;           /* hull.centre_of_mass was written */
   double hull_cg_x, hull_cg_y; /* m, in the vehicle frame (0 without a frame) */
-  /* m, its height in the vehicle frame, set by fb_vehicle_hull_complete:
-   * the generated mesh's above its floor with a frame, a deck's in the
-   * deck's frame, else 0. Inside, positions and the mesh are relative to
+  /* m, its height in the vehicle frame: hull.centre_of_mass's z, or set by
+   * fb_vehicle_hull_complete, the generated mesh's above its floor with a
+   * frame, a deck's in the deck's frame, else 0. Inside, positions and the mesh are relative to
    * the centre of mass; what a user reads is in the vehicle frame
    * (fb_scenario_frame_offset). */
   double hull_cg_z;
@@ -384,6 +439,13 @@ typedef struct fb_scenario {
   int hull_mass_given;       /* mass, Ixx, Iyy written in the file */
   double hull_mass;          /* kg */
   double hull_ixx, hull_iyy; /* kg m^2 about the hull's centre of mass */
+  /* The rest of its inertia tensor (fb_body's convention), which a hull
+   * carrying mounted rigid bodies (nbodies > 0) moves in six degrees of
+   * freedom needs: given (hull_izz_given), or the mesh's with a
+   * finite-element hull (fb_vehicle_hull_complete); products 0 unless
+   * given. */
+  int hull_izz_given;
+  double hull_izz, hull_ixy, hull_ixz, hull_iyz; /* kg m^2 */
   /* Non-structural masses on the hull's floor (hull.masses), in the
    * file's order. */
   fb_hull_point_mass *point_mass;
@@ -406,6 +468,10 @@ typedef struct fb_scenario {
    * order, each with a unique name; at least 3 corners. */
   fb_mount *mount;
   size_t nmounts;
+  /* The mounted rigid bodies in six degrees of freedom, in the file's
+   * order: a body's parent comes before it. */
+  fb_body *body;
+  size_t nbodies;
   fb_corner_params *corner;
   size_t ncorners;
   /* The anti-roll bars, each between two of the corners (by name). */
@@ -513,6 +579,13 @@ long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
 /* Index of the bogie named name, -1 if none. */
 long fb_scenario_bogie_find(const fb_scenario *s, const char *name);
+/* Index of the body named name, -1 if none. */
+long fb_scenario_body_find(const fb_scenario *s, const char *name);
+/* The bushings of every body, body 0's first (FB_PART_BUSHING's index):
+ * their number, and the body and the body's bushing of bushing k (0
+ * when k is out of range). */
+size_t fb_scenario_nbushings(const fb_scenario *s);
+int fb_scenario_bushing_at(const fb_scenario *s, size_t k, size_t *body, size_t *bushing);
 /* The plausibility warnings of a loaded scenario, each "FILE:LINE:COL:
  * KEY: VALUE is implausible: WHY" with the fields of a located error
  * (docs/errors.md, "Implausible values"); NULL for i out of range; owned
@@ -549,7 +622,10 @@ double fb_scenario_track_width(const fb_scenario *s);
  * position is moved to it; with a finite-element hull, the hull's mass,
  * Ixx and Iyy are the mesh's when the file gives none, and the file's
  * are refused (FB_EINVAL naming both, about the part hull_mass ...) when
- * they differ from the mesh's by more than 0.5 %. Errors name the part of
+ * they differ from the mesh's by more than 0.5 %, and Izz and the
+ * products of inertia are the mesh's unless given (hull_izz_given); the
+ * heights (the mounted rigid bodies', a hull point's) move with the
+ * other positions, by hull_cg_z. Errors name the part of
  * the description they are about (fb_err.part); the caller locates them
  * (fb_scenario_locate). */
 int fb_vehicle_hull_complete(fb_scenario *s, fb_err *err);
@@ -772,6 +848,11 @@ int fb_scenario_add_antiroll_bar(fb_scenario *s, const fb_antiroll_bar *b, fb_er
  * corners exist, on one side, around its pivot). */
 int fb_scenario_add_bogie(fb_scenario *s, const fb_bogie *b, fb_err *err);
 int fb_scenario_add_load_point(fb_scenario *s, double x, double y, fb_err *err);
+/* Appends a copy of the mounted rigid body b: its name, its parent's
+ * name and its bushings (with their node sets) copied. FB_EINVAL without
+ * a name or without a bushing, or with more than FB_BODY_MAX_BUSHINGS;
+ * FB_ENOMEM. fb_scenario_check checks the rest. */
+int fb_scenario_add_body(fb_scenario *s, const fb_body *b, fb_err *err);
 /* Appends a copy of the output o: its signal (a kind of
  * fb_vehicle_output_kinds) and subject (`of` a corner or mount added
  * before, `bond`, or none for the hull); name, unit, title and label
@@ -888,6 +969,10 @@ typedef struct fb_hull {
    * targets and weights owned, names relative to the fragment. */
   struct fb_hull_reading *reading;
   size_t nreading;
+  /* 1: it offers the port "bushing_<k>" (IN, dimension 6) for each
+   * bushing k of a mounted rigid body on the hull (fb_scenario_bushing_at),
+   * as System 1's does; 0: it carries no such bodies. */
+  int carries_bodies;
 } fb_hull;
 /* One output's probe on the hull's coordinates q: a weighted sum over a
  * signal of q (their displacements, velocities or the efforts on their
@@ -903,10 +988,21 @@ void fb_hull_free(fb_hull **h);
 
 /* System 1: I field diag-dominant 3x3 (bounce, roll, pitch; with the
  * declared hull masses and the lumped payload's point masses when asked)
- * and matrix transformers to the attachment and load points. */
+ * and matrix transformers to the attachment and load points. A hull
+ * carrying mounted rigid bodies (s->nbodies > 0) moves in six degrees of
+ * freedom, (x, y, z, roll, pitch, yaw) at its centre of mass, with its
+ * whole inertia tensor; its point maps are then rows of the 6-DOF map,
+ * and each bushing on it has its port "bushing_<k>" (fb_hull). */
 int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
 /* A mounted body (driver plus seat, engine, ...): port "hull" (OUT). */
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
+/* Mounted rigid body i of s in six degrees of freedom: the I field
+ * "inertia" (6x6 at its centre of mass), its weight, and per bushing j
+ * the 6x6 spring "spring_<j>" and damper "damper_<j>" with the port
+ * "parent_<j>" (OUT, dimension 6) to its parent's point; and for each
+ * bushing k (fb_scenario_bushing_at) of a body mounted on it the port
+ * "bushing_<k>" (IN, dimension 6). Small-motion kinematics. */
+int fb_vehicle_body(const fb_scenario *s, size_t i, fb_bg **out, fb_err *err);
 /* One suspension with its wheel and tire: ports "hull" (OUT), "road" (IN). */
 int fb_vehicle_corner(const fb_corner_params *c, double gravity, fb_bg **out, fb_err *err);
 /* The same with a port "travel" (OUT) at the wheel's velocity relative to
@@ -958,7 +1054,8 @@ typedef enum fb_output_subject {
   FB_OUTPUT_OF_HULL,       /* no `of`: the hull */
   FB_OUTPUT_OF_BOND,       /* `bond` names a bond of the assembled graph */
   FB_OUTPUT_OF_HULL_POINT, /* `at` a point of the hull, `direction` an axis */
-  FB_OUTPUT_OF_BOGIE       /* `of` names a walking-beam bogie */
+  FB_OUTPUT_OF_BOGIE,      /* `of` names a walking-beam bogie */
+  FB_OUTPUT_OF_BODY        /* `of` names a mounted rigid body (fb_body) */
 } fb_output_subject;
 
 struct fb_output_kind {
@@ -1144,7 +1241,8 @@ size_t fb_vehicle_hull_free_modes(const fb_vehicle *v, const double **freq_hz, s
  * fb_hull_excitation_hz, the highest frequency that reaches the hull:
  * each wheel's hop on a fixed hull, sqrt((r^2 spring_k + tire_k) /
  * wheel_mass) / 2 pi, each mounted body's natural frequency,
- * sqrt(stiffness / mass) / 2 pi, and the road's highest at the
+ * sqrt(stiffness / mass) / 2 pi, each rigid body's highest on its
+ * bushings with its parent held, and the road's highest at the
  * scenario's speed (a bump: 2 V / length, the (1 - cos) pulse's spectrum
  * is down 98 % there; an ISO 8608 road: V n_max; a profile: V / (2
  * spacing), its Nyquist frequency). The tolerance keeps every output of
@@ -1397,6 +1495,15 @@ int fb_hull_coupling_node(size_t node, fb_hull_coupling *c, fb_err *err);
 int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *set, double x0,
                            double y0, fb_hull_coupling *c, size_t *node, fb_err *err);
 void fb_hull_coupling_free(fb_hull_coupling *c);
+/* A six-component distributing coupling (RBE3-like; src/vehicle/coupling.c)
+ * of the reference point x0 (x, y, z, m) to the n nodes of m: rows[0..6)
+ * (new; fb_hull_coupling_free each) give its motion (u_x, u_y, u_z,
+ * theta_x, theta_y, theta_z) as the least-squares rigid fit of the
+ * nodes' translations, and by their transpose its force and moment as
+ * nodal forces. FB_EMODEL naming what when the nodes cannot carry a
+ * moment in every direction (one node, or nodes on one line). */
+int fb_hull_coupling6_build(const fb_mesh *m, const size_t *nodes, size_t n, const double *x0,
+                            const char *what, fb_hull_coupling *rows, fb_err *err);
 
 /* A hull mesh with its material, its declared masses and the nodes where
  * the rest of the vehicle meets it, from the mesh's node sets:
@@ -1416,6 +1523,18 @@ typedef struct fb_fe_hull {
   size_t *load_node;               /* nload */
   fb_hull_coupling *load_coupling; /* nload: each load node's u_z */
   size_t nload;
+  /* The bushings of mounted rigid bodies on the hull, in
+   * fb_scenario_bushing_at's order (those on other bodies left out):
+   * bushing_index[b] is its index k there, bushing_rows[6 b .. 6 b + 6)
+   * its six-component distributing coupling (fb_hull_coupling6_build) to
+   * its node set or the coupling surface's nodes around it. Owned. */
+  size_t nbushings;
+  size_t *bushing_index;
+  fb_hull_coupling *bushing_rows;
+  /* The node a bushing hangs on alone (a node set of one node: a rigid
+   * lever to its six DOFs), or (size_t)-1 when its coupling spreads it
+   * over several. Owned, nbushings. */
+  size_t *bushing_single_node;
   size_t *point_mass_node; /* npoint_masses, in the scenario's order */
   double *point_mass;      /* their masses, kg */
   size_t npoint_masses;
@@ -1442,10 +1561,18 @@ int fb_vehicle_fe_hull(const fb_scenario *s, fb_fe_hull **out, fb_err *err);
 int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *props,
                    fb_mass_kind mass_kind, fb_fe_hull **out, fb_err *err);
 void fb_fe_hull_free(fb_fe_hull **h);
+/* The hull structure's point stiffness (N/m) along z at node: 1 / u_z
+ * under a unit vertical force there, K u = f (the shells' stiffness
+ * alone), with every DOF of the first ncorners attachment points' nodes
+ * (the suspensions') held. FB_EINVAL for a suspension's node. */
+int fb_fe_hull_point_stiffness(const fb_fe_hull *h, size_t ncorners, size_t node, double *k,
+                               fb_err *err);
 
 /* Modes of a whole undamped vehicle: natural frequencies and mode shapes
- * over ndof = 6 nnodes (hull) + nmounts + ncorners DOFs (vertical motion
- * of the mounted bodies, then of the wheels, in the scenario's order),
+ * over ndof = 6 nnodes (hull) + nmounts + ncorners + 6 nbodies DOFs
+ * (vertical motion of the mounted bodies, then of the wheels, in the
+ * scenario's order, then each rigid body's six motions at its centre of
+ * mass),
  * each shape normalised so that the largest displacement over the
  * mounted bodies and the hull nodes is 1 (the paper's normalisation). */
 /* What holds the largest share of a mode's kinetic energy: a rigid motion

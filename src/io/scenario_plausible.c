@@ -16,7 +16,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "flexbond/fem.h"
 #include "flexbond/hull_source.h"
+#include "flexbond/vehicle.h"
 
 #include "core/util.h"
 #include "io/scenario_internal.h"
@@ -159,6 +161,52 @@ static int sc_warn_coupling(fb_scenario *s, fb_err *err)
   return sc_keep(s, &w, err);
 }
 
+/* A body's bushing on one node of the finite-element hull: its force
+ * bends the plate at a point, a local mode no real mount has (a mount
+ * spreads its load over a flange). The plate's point stiffness there
+ * (fb_fe_hull_point_stiffness: a static solve of the hull held at its
+ * suspension points) in series with the bushing's vertical stiffness,
+ * under the body's whole mass, gives that mode's frequency, which the
+ * warning names. */
+static int sc_warn_single_nodes(fb_scenario *s, fb_err *err)
+{
+  int named = 0;
+  for (size_t b = 0; b < s->nbodies && !named; ++b)
+    for (size_t j = 0; j < s->body[b].nbushings; ++j)
+      named |= !s->body[b].parent && s->body[b].bushing[j].node_set != NULL;
+  if (!named || !s->has_fe_hull)
+    return FB_OK;
+  fb_fe_hull *h = NULL;
+  int rc = fb_vehicle_fe_hull(s, &h, err);
+  for (size_t i = 0; !rc && i < h->nbushings; ++i) {
+    const size_t node = h->bushing_single_node[i];
+    size_t b = 0, j = 0;
+    if (node == (size_t)-1 || !fb_scenario_bushing_at(s, h->bushing_index[i], &b, &j))
+      continue;
+    double kp = 0.0;
+    rc = fb_fe_hull_point_stiffness(h, s->ncorners, node, &kp, err);
+    if (rc)
+      break;
+    const fb_body *body = &s->body[b];
+    const double kz = body->bushing[j].k[14], ks = kz > 0 ? 1.0 / (1.0 / kp + 1.0 / kz) : kp;
+    const double f = sqrt(ks / body->mass) / (2.0 * 3.14159265358979323846);
+    fb_err w;
+    fb_err_clear(&w);
+    fb_err_set(&w, FB_EINVAL,
+               "%s hangs body %s on the single node %ld of the hull: the plate's point "
+               "stiffness there is %.3g N/m (a static solve with the hull held at its "
+               "suspension points), which in series with the bushing's %.3g N/m under the "
+               "body's %.4g kg makes a local mode at %.3g Hz that a real mount, spread over "
+               "its flange, does not have; couple it to several nodes",
+               body->bushing[j].node_set, body->name, fb_mesh_node_id(h->mesh, node), kp, kz,
+               body->mass, f);
+    fb_err_set_key(&w, "bodies.%s.bushings[%zu].node_set", body->name, j);
+    rc = sc_keep(s, &w, err);
+  }
+  fb_fe_hull_free(&h);
+  return rc;
+}
+
 /* 1 if a warning about the value with logical key key is kept. */
 static int sc_warned(const fb_scenario *s, const char *key)
 {
@@ -184,6 +232,8 @@ int sc_plausible_values(fb_scenario *s, fb_err *err)
 int sc_plausible_rules(fb_scenario *s, fb_err *err)
 {
   int rc = sc_warn_coupling(s, err);
+  if (rc == FB_OK)
+    rc = sc_warn_single_nodes(s, err);
   /* The rules between values start from the total weight: when it is
    * itself implausible, they would only repeat that warning elsewhere. */
   if (rc || sc_warned(s, "load.total_weight"))

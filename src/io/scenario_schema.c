@@ -54,6 +54,7 @@ SC_PRESENT(sc_has_frame, fb_scenario, b->frame_origin != NULL)
 SC_PRESENT(sc_has_cg, fb_scenario, b->hull_cg_given)
 SC_PRESENT(sc_has_coupling, fb_scenario, b->coupling != FB_COUPLING_NONE)
 SC_PRESENT(sc_has_mass, fb_scenario, b->hull_mass_given)
+SC_PRESENT(sc_has_izz, fb_scenario, b->hull_izz_given)
 /* A damper law's key (its data the law) is there when it is the
  * corner's law. */
 SC_PRESENT(sc_damper_present, fb_corner_params, fb_corner_damper_law(b) == k->data)
@@ -63,10 +64,13 @@ SC_PRESENT(sc_has_component, fb_output_spec, b->component != 0)
 SC_PRESENT(sc_is_point, fb_output_spec,
            fb_vehicle_output_kind_find(b->signal) &&
                fb_vehicle_output_kind_find(b->signal)->subject == FB_OUTPUT_OF_HULL_POINT)
+SC_PRESENT(sc_has_radius, fb_bushing, b->radius != 0)
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
+static const sch_ops sc_izz_present = {.present = sc_has_izz};
 static const sch_ops sc_law_present = {.present = sc_damper_present};
+static const sch_ops sc_radius_present = {.present = sc_has_radius};
 
 /* ---- parameters: evaluated first, seen by every expression after. */
 
@@ -96,6 +100,14 @@ static int sc_hull_done(sch_reader *r, const sch_key *k, struct fy_node *node, v
       missing = i;
   }
   s->hull_mass_given = given == 3;
+  s->hull_izz_given = ml_get(node, "Izz", NULL) != NULL;
+  static const char *const products[] = {"Ixy", "Ixz", "Iyz"};
+  for (int i = 0; i < 3; ++i) {
+    struct fy_node *key = NULL;
+    if (!s->hull_izz_given && (ml_get(node, products[i], &key), key))
+      return ml_fail_key(r->c, node, key, FB_EPARSE,
+                         "a product of inertia goes with Izz (the hull's full tensor)");
+  }
   if (given > 0 && given < 3)
     return ml_fail(r->c, node, FB_EPARSE,
                    "missing required key '%s': give mass, Ixx and Iyy together, or none of "
@@ -631,6 +643,30 @@ static const sch_ops sc_stop_table = {.read = sc_read_stop_table,
                                       .present = sc_stop_table_present};
 static const sch_ops sc_stop_rate = {.present = sc_stop_rate_present};
 
+/* ---- bodies: a bushing's stiffness or damping per axis, the diagonal of
+ * its 6x6 matrix (the member k or c its key's offset names). */
+
+static int sc_store_diagonal(sch_reader *r, const sch_key *k, struct fy_node *node,
+                             const double *v, size_t n, void *base)
+{
+  (void)r, (void)node;
+  double *m = (double *)((char *)base + k->offset);
+  memset(m, 0, 36 * sizeof *m);
+  for (size_t i = 0; i < n && i < 6; ++i)
+    m[7 * i] = v[i];
+  return FB_OK;
+}
+
+static void sc_format_diagonal(const sch_key *k, const void *base, char *buf, size_t size)
+{
+  const double *m = (const double *)((const char *)base + k->offset);
+  snprintf(buf, size, "%.10g, %.10g, %.10g, %.10g, %.10g, %.10g", m[0], m[7], m[14], m[21],
+           m[28], m[35]);
+}
+
+static const sch_ops sc_diagonal = {.store_list = sc_store_diagonal,
+                                    .format = sc_format_diagonal};
+
 /* ---- outputs. */
 
 /* fb_name_fn over the signal kinds. */
@@ -681,12 +717,13 @@ static int sc_output_point(const ml_ctx *c, struct fy_node *node, const fb_outpu
 static int sc_output_subject(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
                              const fb_output_kind *kind)
 {
-  const int wants_of = kind->subject == FB_OUTPUT_OF_CORNER ||
-                       kind->subject == FB_OUTPUT_OF_MOUNT ||
-                       kind->subject == FB_OUTPUT_OF_BOGIE;
+  const int wants_of =
+      kind->subject == FB_OUTPUT_OF_CORNER || kind->subject == FB_OUTPUT_OF_MOUNT ||
+      kind->subject == FB_OUTPUT_OF_BOGIE || kind->subject == FB_OUTPUT_OF_BODY;
   const int wants_bond = kind->subject == FB_OUTPUT_OF_BOND;
   const char *what = kind->subject == FB_OUTPUT_OF_CORNER  ? "corner"
                      : kind->subject == FB_OUTPUT_OF_MOUNT ? "mounted body"
+                     : kind->subject == FB_OUTPUT_OF_BODY  ? "rigid body"
                                                            : "bogie";
   struct fy_node *key = NULL;
   if (wants_of && !o->of)
@@ -821,6 +858,8 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 #define DEF_LIST(l) .need = SCH_DEFAULT, .def_list = l
 #define INHERIT(k) .need = SCH_INHERIT, .inherit = k
 #define ONE_OF(g) .need = SCH_REQUIRED, .one_of = g
+/* At most one of the group, maybe none. */
+#define OPT_ONE_OF(g) .need = SCH_OPTIONAL, .one_of = g
 
 /* Stores: kind (DOUBLE, INT, ...) at a field of the scenario, a corner, a
  * mount or an output. */
@@ -833,6 +872,10 @@ static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 #define B_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_antiroll_bar, f), .member = #f
 #define G_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_bogie, f), .member = #f
+#define Y_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_body, f), .member = #f
+#define U_AT(kind, f) .store = SCH_STORE_##kind, .offset = offsetof(fb_bushing, f), .member = #f
+/* A bushing's 6x6 matrix f, given through the store_list hook. */
+#define U_DIAG(f) .offset = offsetof(fb_bushing, f), .member = #f, .ops = &sc_diagonal
 #define O_AT(kind, f)                                                                          \
   .store = SCH_STORE_##kind, .offset = offsetof(fb_output_spec, f), .member = #f
 #define P_AT(kind, f)                                                                          \
@@ -941,6 +984,73 @@ static const sch_key sc_bogie_keys[] = {
            G_AT(DOUBLE, damper_c)),
 };
 static const sch_table sc_bogie_table = TABLE(sc_bogie_keys, NULL);
+
+/* A bushing of a mounted rigid body: bodies[].bushings' items. */
+static const sch_key sc_bushing_keys[] = {
+    NUMBER("x", "m", ANY, REQ, "its point", U_AT(DOUBLE, x), AXIS_X),
+    NUMBER("y", "m", ANY, REQ, "its point", U_AT(DOUBLE, y), AXIS_Y),
+    NUMBER("z", "m", ANY, REQ, "its point", U_AT(DOUBLE, z), AXIS_Z),
+    KEY(.path = "stiffness", .type = SCH_NUMBERS, .unit = "N/m, N m/rad", NONNEGATIVE,
+        .min_items = 6, .max_items = 6, ONE_OF("stiffness"),
+        .doc = "stiffness along x, y, z (N/m) and about x, y, z (N m/rad): a diagonal matrix",
+        U_DIAG(k)),
+    NUMBERS("stiffness_matrix", "SI", 36, 36, ONE_OF("stiffness"),
+            "the full symmetric 6x6 stiffness, row by row (translations then rotations)",
+            U_AT(DOUBLE, k)),
+    KEY(.path = "damping", .type = SCH_NUMBERS, .unit = "N s/m, N m s/rad", NONNEGATIVE,
+        .min_items = 6, .max_items = 6, OPT_ONE_OF("damping"),
+        .doc = "damping along x, y, z (N s/m) and about x, y, z (N m s/rad): a diagonal "
+               "matrix; none: no damping",
+        U_DIAG(c)),
+    NUMBERS("damping_matrix", "SI", 36, 36, OPT_ONE_OF("damping"),
+            "the full symmetric 6x6 damping, row by row", U_AT(DOUBLE, c)),
+    STRING(NAME, "node_set", OPT,
+           "System 2, a bushing on the hull: the mesh's node set its hull side is coupled to "
+           "(a distributing coupling in all six components)",
+           U_AT(STRING, node_set)),
+    STRING(NAME, "surface", OPT,
+           "System 2, a bushing on the hull without `node_set`: the element set whose nodes "
+           "around it in plan it is coupled to (default: `hull.mesh.coupling.surface`)",
+           U_AT(STRING, surface)),
+    NUMBER("radius", "m", POSITIVE, OPT,
+           "with `surface`: the nodes within this radius in plan (default: "
+           "`hull.mesh.coupling.radius`)",
+           U_AT(DOUBLE, radius), .ops = &sc_radius_present),
+};
+static const sch_table sc_bushing_table = TABLE(sc_bushing_keys, NULL);
+
+/* A mounted rigid body in six degrees of freedom: bodies' items. */
+static const sch_key sc_body_keys[] = {
+    STRING(NAME, "name", REQ,
+           "its name, unique among the bodies, mounts, hull masses and corners",
+           Y_AT(STRING, name)),
+    STRING(NAME, "on", OPT, "the body it is mounted on, listed before it; left out: the hull",
+           Y_AT(STRING, parent)),
+    NUMBER(
+        "mass", "kg", POSITIVE, REQ, "its mass", Y_AT(DOUBLE, mass),
+        PLAUSIBLE(1, 1e5, "a mounted body (a seat, an engine, a turret) weighs 1 kg to 100 t")),
+    NUMBER("x", "m", ANY, REQ, "its centre of mass", Y_AT(DOUBLE, x), AXIS_X),
+    NUMBER("y", "m", ANY, REQ, "its centre of mass", Y_AT(DOUBLE, y), AXIS_Y),
+    NUMBER("z", "m", ANY, REQ, "its centre of mass (height in the vehicle axes)",
+           Y_AT(DOUBLE, z), AXIS_Z),
+    NUMBER("Ixx", "kg m^2", POSITIVE, REQ,
+           "moment of inertia about x through its centre of mass", Y_AT(DOUBLE, ixx)),
+    NUMBER("Iyy", "kg m^2", POSITIVE, REQ, "moment of inertia about y", Y_AT(DOUBLE, iyy)),
+    NUMBER("Izz", "kg m^2", POSITIVE, REQ, "moment of inertia about z", Y_AT(DOUBLE, izz)),
+    NUMBER("Ixy", "kg m^2", ANY, DEF(0), "product of inertia, the integral of x y dm",
+           Y_AT(DOUBLE, ixy)),
+    NUMBER("Ixz", "kg m^2", ANY, DEF(0), "product of inertia, the integral of x z dm",
+           Y_AT(DOUBLE, ixz)),
+    NUMBER("Iyz", "kg m^2", ANY, DEF(0), "product of inertia, the integral of y z dm",
+           Y_AT(DOUBLE, iyz)),
+    KEY(.path = "bushings", .type = SCH_LIST, REQ, .min_items = 1,
+        .max_items = FB_BODY_MAX_BUSHINGS,
+        .doc = "the bushings that carry it to its parent (six-component springs and dampers)",
+        .items = &sc_bushing_table, .view = "bushings", .offset = offsetof(fb_body, bushing),
+        .count_at = offsetof(fb_body, nbushings), .item_size = sizeof(fb_bushing),
+        .per_item = 1, .member = "bushing"),
+};
+static const sch_table sc_body_table = TABLE(sc_body_keys, NULL);
 
 /* A non-structural mass on the hull's floor: hull.masses' items. */
 static const sch_key sc_point_mass_keys[] = {
@@ -1131,12 +1241,28 @@ static const sch_key sc_keys[] = {
     NUMBER("hull.Iyy", "kg m^2", POSITIVE, OPT,
            "the structure's pitch inertia about its centre of mass", S_OFF(hull_iyy),
            .ops = &sc_mass_present),
+    NUMBER("hull.Izz", "kg m^2", POSITIVE, OPT,
+           "the structure's yaw inertia about its centre of mass, for `bodies` (a hull "
+           "carrying them moves in six degrees of freedom); left out: the finite-element "
+           "hull's",
+           S_OFF(hull_izz), .ops = &sc_izz_present),
+    NUMBER("hull.Ixy", "kg m^2", ANY, OPT,
+           "the structure's product of inertia, the integral of x y dm, with `Izz` (default 0)",
+           S_OFF(hull_ixy), .ops = &sc_izz_present),
+    NUMBER("hull.Ixz", "kg m^2", ANY, OPT, "the integral of x z dm, with `Izz` (default 0)",
+           S_OFF(hull_ixz), .ops = &sc_izz_present),
+    NUMBER("hull.Iyz", "kg m^2", ANY, OPT, "the integral of y z dm, with `Izz` (default 0)",
+           S_OFF(hull_iyz), .ops = &sc_izz_present),
     SECTION_IS("hull.centre_of_mass", OPT,
                "the hull's centre of mass in the frame (only with `frame`; default: the "
                "mesh's)",
                &sc_cg_present, S_IS(hull_cg_given)),
     NUMBER("hull.centre_of_mass.x", "m", ANY, REQ, "its x", S_OFF(hull_cg_x)),
     NUMBER("hull.centre_of_mass.y", "m", ANY, REQ, "its y", S_OFF(hull_cg_y)),
+    NUMBER("hull.centre_of_mass.z", "m", ANY, DEF(0),
+           "its height above the frame's origin (what a hull's rigid bodies and points are "
+           "measured from: docs/scenario-format.md, \"One vehicle frame\")",
+           S_OFF(hull_cg_z)),
     LIST("hull.masses", OPT,
          "non-structural masses fixed to the floor (battery, ballast), inertia only: their "
          "weight is in `load.total_weight`",
@@ -1251,6 +1377,10 @@ static const sch_key sc_keys[] = {
               "the load points, on the floor, 1 mm apart at least", &sc_points, S_IS(load_x)),
     LIST("mounts", OPT, "bodies on a spring and a damper to a hull point (driver, engine)",
          &sc_mount_table, "mounts", &sc_named, NAMED(mount, nmounts, 1)),
+    LIST("bodies", OPT,
+         "rigid bodies in six degrees of freedom on bushings, to the hull or to another body "
+         "(a turret, its seats)",
+         &sc_body_table, "bodies", &sc_named, NAMED(body, nbodies, 1)),
     SECTION("wheel", OPT, "every corner's wheel and tire unless the corner gives its own",
             NULL),
     NUMBER("wheel.mass", "kg", POSITIVE, OPT, "wheel mass", NO_STORE,
@@ -1378,6 +1508,18 @@ static const sch_table *sc_part_table(const fb_scenario *s, const sch_table *for
       return NULL;
     snprintf(prefix, size, "bogies.%s", s->bogie[i].name);
     return &sc_bogie_table;
+  case FB_PART_BODY:
+    if (i >= s->nbodies || !s->body[i].name)
+      return NULL;
+    snprintf(prefix, size, "bodies.%s", s->body[i].name);
+    return &sc_body_table;
+  case FB_PART_BUSHING: {
+    size_t b = 0, j = 0;
+    if (!fb_scenario_bushing_at(s, i, &b, &j) || !s->body[b].name)
+      return NULL;
+    snprintf(prefix, size, "bodies.%s.bushings[%zu]", s->body[b].name, j);
+    return &sc_bushing_table;
+  }
   case FB_PART_HULL_MASS:
     if (i >= s->npoint_masses || !s->point_mass[i].name)
       return NULL;

@@ -1002,10 +1002,12 @@ static int sch_value_of(const sch_key *k, const void *base, const char *path, sc
 }
 
 static int sch_each_in(const sch_table *t, const char *pre, const void *base, const char *lp,
-                       sch_value_fn fn, void *ctx);
+                       const char *item_lp, sch_value_fn fn, void *ctx);
 
-/* The items of the list k (the first of its view in t). */
-static int sch_each_item(const sch_table *t, const sch_key *k, const void *base,
+/* The items of the list k (the first of its view in t), under the
+ * logical path lp of the item holding the list ("" at the top: a view
+ * names its items in full, "hull.masses"). */
+static int sch_each_item(const sch_table *t, const sch_key *k, const void *base, const char *lp,
                          sch_value_fn fn, void *ctx)
 {
   for (const sch_key *o = t->key; o < k; ++o)
@@ -1017,18 +1019,20 @@ static int sch_each_item(const sch_table *t, const sch_key *k, const void *base,
   for (size_t i = 0; !stop && i < n; ++i) {
     const void *item = items + i * k->item_size;
     const char *name = sch_item_name(k, item);
-    char lp[SCH_PATH_MAX];
+    char at[SCH_PATH_MAX];
     if (name)
-      snprintf(lp, sizeof lp, "%s.%s", k->view, name);
+      snprintf(at, sizeof at, "%s%s%s.%s", lp, lp[0] ? "." : "", k->view, name);
     else
-      snprintf(lp, sizeof lp, "%s[%zu]", k->view, i);
-    stop = sch_each_in(k->items, "", item, lp, fn, ctx);
+      snprintf(at, sizeof at, "%s%s%s[%zu]", lp, lp[0] ? "." : "", k->view, i);
+    stop = sch_each_in(k->items, "", item, at, at, fn, ctx);
   }
   return stop;
 }
 
+/* The values of t's keys under pre, at logical path lp; item_lp: that of
+ * the list item t fills ("" for the root table). */
 static int sch_each_in(const sch_table *t, const char *pre, const void *base, const char *lp,
-                       sch_value_fn fn, void *ctx)
+                       const char *item_lp, sch_value_fn fn, void *ctx)
 {
   int stop = 0;
   for (size_t i = 0; !stop && i < t->n; ++i) {
@@ -1040,9 +1044,9 @@ static int sch_each_in(const sch_table *t, const char *pre, const void *base, co
     sch_join(path, sizeof path, lp, name);
     sch_value v;
     if (k->type == SCH_SECTION)
-      stop = sch_each_in(t, k->path, base, path, fn, ctx);
+      stop = sch_each_in(t, k->path, base, path, item_lp, fn, ctx);
     else if (k->type == SCH_LIST)
-      stop = sch_each_item(t, k, base, fn, ctx);
+      stop = sch_each_item(t, k, base, item_lp, fn, ctx);
     else if (sch_value_of(k, base, path, &v))
       stop = fn(&v, ctx);
   }
@@ -1051,7 +1055,7 @@ static int sch_each_in(const sch_table *t, const char *pre, const void *base, co
 
 int sch_each(const sch_table *t, const void *base, sch_value_fn fn, void *ctx)
 {
-  return sch_each_in(t, "", base, "", fn, ctx);
+  return sch_each_in(t, "", base, "", "", fn, ctx);
 }
 
 /* "> 0", "in [0, 0.5)" of k's range into buf. */

@@ -265,6 +265,30 @@ static int connect_bogie_road(const fb_scenario *s, fb_bg *bg, size_t c, size_t 
   return rc;
 }
 
+/* Adopts the mounted rigid bodies' fragments under their names, and
+ * bonds each bushing's port "parent_<j>" to its parent's (the hull's or
+ * a body's) port "bushing_<k>". */
+static int add_rigid_bodies(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t b = 0; !rc && b < s->nbodies; ++b) {
+    fb_bg *frag = NULL;
+    rc = adopt(bg, fb_vehicle_body(s, b, &frag, err), &frag, s->body[b].name, err);
+    fb_bg_free(&frag);
+  }
+  size_t b = 0, j = 0;
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
+    const fb_body *body = &s->body[b];
+    char *from = fb_strdup_printf("%s.parent_%zu", body->name, j);
+    char *to = fb_strdup_printf("%s.bushing_%zu", body->parent ? body->parent : "hull", k);
+    rc = from && to ? fb_bg_connect(bg, NULL, from, to, err)
+                    : fb_err_set(err, FB_ENOMEM, "out of memory");
+    free(from);
+    free(to);
+  }
+  return rc;
+}
+
 /* Bond from attachment a's fragment port "hull" into "attach.<a+1>", and
  * for a corner from the road's port to its wheel's. */
 static int connect_attachment(const fb_scenario *s, fb_bg *bg, size_t a, fb_err *err)
@@ -299,6 +323,8 @@ static int add_subsystems(const fb_scenario *s, fb_bg *bg, fb_err *err)
   int rc = add_bodies(s, bg, err);
   if (!rc)
     rc = add_antiroll_bars(s, bg, err);
+  if (!rc)
+    rc = add_rigid_bodies(s, bg, err);
   if (!rc)
     rc = adopt(bg, fb_vehicle_road(s, &frag, err), &frag, "road", err);
   if (!rc)
@@ -439,7 +465,17 @@ int fb_vehicle_assemble(const fb_scenario *s, fb_hull **hullp, fb_bg **out,
   fb_hull *hull = *hullp;
   *hullp = NULL;
   fb_bg *bg = NULL;
-  int rc = make_probes(s, hull, probes, err);
+  /* A hull that carries no bodies (a program's own) refuses them rather
+   * than leave them out of the vehicle. */
+  int rc = s->nbodies && !hull->carries_bodies
+               ? fb_err_set(err, FB_EINVAL,
+                            "this hull does not carry mounted rigid bodies (body %s)",
+                            s->body[0].name)
+               : FB_OK;
+  if (rc)
+    fb_err_set_part(err, FB_PART_AT(FB_PART_BODY, 0, name));
+  if (!rc)
+    rc = make_probes(s, hull, probes, err);
   if (!rc)
     rc = assemble_graph(s, hull, &bg, err);
   if (!rc)

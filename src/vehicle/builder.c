@@ -151,6 +151,22 @@ int fb_scenario_add_bogie(fb_scenario *s, const fb_bogie *b, fb_err *err)
   return FB_OK;
 }
 
+int fb_scenario_add_body(fb_scenario *s, const fb_body *b, fb_err *err)
+{
+  if (!b->name || !b->name[0])
+    return fb_err_set(err, FB_EINVAL, "a mounted rigid body needs a name");
+  if (b->nbushings < 1 || !b->bushing || b->nbushings > FB_BODY_MAX_BUSHINGS)
+    return fb_err_set(err, FB_EINVAL, "body %s needs 1 to %d bushings (got %zu)", b->name,
+                      FB_BODY_MAX_BUSHINGS, b->bushing ? b->nbushings : 0);
+  fb_body *to = NULL;
+  if (!builder_grow((void **)&s->body, s->nbodies, sizeof *to, (void **)&to))
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a mounted rigid body");
+  if (!vehicle_body_copy(b, to))
+    return fb_err_set(err, FB_ENOMEM, "out of memory for body %s", b->name);
+  ++s->nbodies;
+  return FB_OK;
+}
+
 int fb_scenario_add_point_mass(fb_scenario *s, const fb_hull_point_mass *m, fb_err *err)
 {
   char *name = NULL;
@@ -249,6 +265,12 @@ static int builder_subject(const fb_scenario *s, const fb_output_kind *kind,
     return o->of && fb_scenario_bogie_find(s, o->of) >= 0
                ? FB_OK
                : fb_err_set(err, FB_EINVAL, "a %s signal measures a bogie of the vehicle (%s)",
+                            kind->signal, o->of ? o->of : "none given");
+  case FB_OUTPUT_OF_BODY:
+    return o->of && fb_scenario_body_find(s, o->of) >= 0
+               ? FB_OK
+               : fb_err_set(err, FB_EINVAL,
+                            "a %s signal measures a mounted rigid body of the vehicle (%s)",
                             kind->signal, o->of ? o->of : "none given");
   case FB_OUTPUT_OF_HULL:
     return o->of ? fb_err_set(err, FB_EINVAL,

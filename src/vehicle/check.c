@@ -175,6 +175,26 @@ static const field bogie_fields[] = {
     F(fb_bogie, damper_c, REAL, NONNEGATIVE, "N s/m", NULL),
 };
 
+static const field body_fields[] = {
+    F(fb_body, mass, REAL, POSITIVE, "kg", NULL),
+    F(fb_body, x, REAL, ANY, "m", NULL),
+    F(fb_body, y, REAL, ANY, "m", NULL),
+    F(fb_body, z, REAL, ANY, "m", NULL),
+    F(fb_body, ixx, REAL, POSITIVE, "kg m^2", NULL),
+    F(fb_body, iyy, REAL, POSITIVE, "kg m^2", NULL),
+    F(fb_body, izz, REAL, POSITIVE, "kg m^2", NULL),
+    F(fb_body, ixy, REAL, ANY, "kg m^2", NULL),
+    F(fb_body, ixz, REAL, ANY, "kg m^2", NULL),
+    F(fb_body, iyz, REAL, ANY, "kg m^2", NULL),
+};
+
+static const field bushing_fields[] = {
+    F(fb_bushing, x, REAL, ANY, "m", NULL),
+    F(fb_bushing, y, REAL, ANY, "m", NULL),
+    F(fb_bushing, z, REAL, ANY, "m", NULL),
+    F(fb_bushing, radius, REAL, NONNEGATIVE, "m", NULL),
+};
+
 static const field point_mass_fields[] = {
     F(fb_hull_point_mass, mass, REAL, POSITIVE, "kg", NULL),
     F(fb_hull_point_mass, x, REAL, ANY, "m", NULL),
@@ -257,6 +277,13 @@ static int check_values(const fb_scenario *s, fb_err *err)
   if (!rc)
     rc = check_items(s, bogie_fields, NFIELDS(bogie_fields), s->bogie, s->nbogies,
                      sizeof *s->bogie, FB_PART_BOGIE, err);
+  if (!rc)
+    rc = check_items(s, body_fields, NFIELDS(body_fields), s->body, s->nbodies, sizeof *s->body,
+                     FB_PART_BODY, err);
+  for (size_t b = 0, k = 0; !rc && b < s->nbodies; ++b)
+    for (size_t j = 0; !rc && j < s->body[b].nbushings; ++j, ++k)
+      for (size_t f = 0; !rc && f < NFIELDS(bushing_fields); ++f)
+        rc = check_field(&bushing_fields[f], &s->body[b].bushing[j], FB_PART_BUSHING, k, err);
   if (!rc)
     rc = check_items(s, point_mass_fields, NFIELDS(point_mass_fields), s->point_mass,
                      s->npoint_masses, sizeof *s->point_mass, FB_PART_HULL_MASS, err);
@@ -514,6 +541,168 @@ static int check_points(const fb_scenario *s, fb_err *err)
   return rc;
 }
 
+/* ---- Mounted rigid bodies. */
+
+/* 1 if the symmetric n x n a (row major) is positive definite, or semi-
+ * definite when allow_singular (fb_mat_is_spd's tolerances); 0 also for
+ * a matrix that is not symmetric or not finite. */
+static int is_spd(size_t n, const double *a, int allow_singular)
+{
+  fb_mat *m = NULL;
+  if (fb_mat_new_dense_rowmajor(n, n, a, &m, NULL))
+    return 0;
+  const int spd = fb_mat_is_spd(m, allow_singular);
+  fb_mat_free(&m);
+  return spd;
+}
+
+/* A body's inertia tensor: positive definite, and its principal moments
+ * obey the triangle inequalities I1 + I2 >= I3 (each is the sum of two
+ * second moments of the mass, e.g. Ixx + Iyy - Izz = 2 integral z^2 dm:
+ * Goldstein, Poole & Safko, "Classical Mechanics", 3rd ed., sec. 5.3),
+ * to 1e-9 of the trace (a thin plate meets one with equality). */
+static int check_body_inertia(const fb_body *b, size_t i, fb_err *err)
+{
+  double j[9];
+  vehicle_body_inertia(b, j);
+  if (!is_spd(3, j, 0))
+    return fail(err, FB_PART_BODY, i, "ixy",
+                "the inertia tensor [[Ixx, -Ixy, -Ixz], [-Ixy, Iyy, -Iyz], [-Ixz, -Iyz, Izz]] "
+                "must be positive definite (got Ixx %.6g, Iyy %.6g, Izz %.6g, Ixy %.6g, Ixz "
+                "%.6g, Iyz %.6g kg m^2)",
+                b->ixx, b->iyy, b->izz, b->ixy, b->ixz, b->iyz);
+  double p[3];
+  if (vehicle_sym3_eigenvalues(j, p))
+    return fail(err, FB_PART_BODY, i, "ixx", "the inertia tensor's principal moments failed");
+  const double slack = 1e-9 * (p[0] + p[1] + p[2]);
+  if (p[0] + p[1] < p[2] - slack)
+    return fail(err, FB_PART_BODY, i, "izz",
+                "the principal moments of inertia %.6g, %.6g and %.6g kg m^2 break the "
+                "triangle inequality (%.6g + %.6g < %.6g): no body has them",
+                p[0], p[1], p[2], p[0], p[1], p[2]);
+  return FB_OK;
+}
+
+/* Bushing k (body b's j-th): symmetric positive semi-definite K and C. */
+static int check_bushing(const fb_scenario *s, size_t b, size_t j, size_t k, fb_err *err)
+{
+  const fb_bushing *u = &s->body[b].bushing[j];
+  if (!is_spd(6, u->k, 1))
+    return fail(err, FB_PART_BUSHING, k, "k",
+                "the stiffness matrix must be symmetric and positive semi-definite");
+  if (!is_spd(6, u->c, 1))
+    return fail(err, FB_PART_BUSHING, k, "c",
+                "the damping matrix must be symmetric and positive semi-definite");
+  const int on_hull = s->body[b].parent == NULL;
+  if (on_hull && s->has_fe_hull && !u->node_set && !u->surface && !s->coupling_surface)
+    return fail(err, FB_PART_BUSHING, k, "node_set",
+                "a bushing on the finite-element hull is coupled to its nodes: give its "
+                "node set, or a surface and a radius (or the scenario's coupling surface)");
+  if ((u->node_set || u->surface || u->radius > 0) && !(on_hull && s->has_fe_hull))
+    return fail(err, FB_PART_BUSHING, k,
+                u->node_set  ? "node_set"
+                : u->surface ? "surface"
+                             : "radius",
+                "a node set, surface or radius couples a bushing to the hull's mesh: only for "
+                "a body on the hull (%s) with a finite-element hull",
+                on_hull ? "this one is" : "this one is on another body");
+  return FB_OK;
+}
+
+/* The bushings together hold the body in all six components: their
+ * stiffnesses carried to its centre of mass (T' K T) sum to a positive
+ * definite matrix, else a static load moves it without bound. */
+static int check_body_support(const fb_body *b, size_t i, fb_err *err)
+{
+  double sum[36] = {0};
+  for (size_t j = 0; j < b->nbushings; ++j)
+    vehicle_bushing_add_at_centre(b, &b->bushing[j], b->bushing[j].k, sum);
+  if (is_spd(6, sum, 0))
+    return FB_OK;
+  return fail(err, FB_PART_BODY, i, "bushing",
+              "its bushings leave it free to move in some direction (their stiffness at its "
+              "centre of mass is singular): give a stiffness in every direction");
+}
+
+/* Names unique among the bodies, mounts, hull masses and corners (they
+ * name instances and outputs); a parent named before the body: the
+ * hull, or an earlier body (so that no chain of parents is a cycle). */
+static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
+{
+  const fb_body *b = &s->body[i];
+  if (!b->name)
+    return fail(err, FB_PART_BODY, i, "name", "has no name");
+  const long same_body = fb_scenario_body_find(s, b->name);
+  if (same_body >= 0 && (size_t)same_body < i)
+    return fail(err, FB_PART_BODY, i, "name", "a second body named %s (names are unique)",
+                b->name);
+  int taken =
+      fb_scenario_mount_find(s, b->name) >= 0 || fb_scenario_corner_find(s, b->name) >= 0;
+  for (size_t k = 0; !taken && k < s->npoint_masses; ++k)
+    taken = same(s->point_mass[k].name, b->name);
+  if (taken)
+    return fail(err, FB_PART_BODY, i, "name",
+                "%s names a mount, corner or hull mass already (the names of bodies, mounts, "
+                "hull masses and corners are unique)",
+                b->name);
+  /* A body's fragment is an instance of the assembled graph beside
+   * these (fb_vehicle_assemble). */
+  static const char *const instances[] = {"hull", "road", "load", "attach"};
+  for (size_t k = 0; k < sizeof instances / sizeof instances[0]; ++k)
+    if (!strcmp(b->name, instances[k]) || !strncmp(b->name, "susp_", 5))
+      return fail(err, FB_PART_BODY, i, "name",
+                  "%s is a name of the assembled vehicle's own (hull, road, load, attach, "
+                  "susp_<corner>): give the body another",
+                  b->name);
+  if (!b->parent)
+    return FB_OK;
+  const long parent = fb_scenario_body_find(s, b->parent);
+  if (parent < 0 || (size_t)parent >= i)
+    return fail(err, FB_PART_BODY, i, "parent",
+                "%s is no body listed before %s (a body is mounted on the hull or on a body "
+                "before it)",
+                b->parent, b->name);
+  return FB_OK;
+}
+
+/* A hull carrying bodies moves in six degrees of freedom: its whole
+ * inertia tensor, positive definite. */
+static int check_hull_tensor(const fb_scenario *s, fb_err *err)
+{
+  if (!s->nbodies || (!s->hull_izz_given && s->has_fe_hull))
+    return FB_OK; /* the mesh's, once it is built */
+  if (!s->hull_izz_given)
+    return fail(err, FB_PART_VEHICLE, 0, "hull_izz",
+                "a hull carrying mounted rigid bodies moves in six degrees of freedom: give "
+                "its yaw inertia Izz (and its products of inertia, 0 by default)");
+  double j[9];
+  vehicle_hull_inertia(s, j);
+  if (!(s->hull_izz > 0) || !is_spd(3, j, 0))
+    return fail(err, FB_PART_VEHICLE, 0, "hull_izz",
+                "the hull's inertia tensor (Ixx %.6g, Iyy %.6g, Izz %.6g, Ixy %.6g, Ixz %.6g, "
+                "Iyz %.6g kg m^2) must be positive definite",
+                s->hull_ixx, s->hull_iyy, s->hull_izz, s->hull_ixy, s->hull_ixz, s->hull_iyz);
+  return FB_OK;
+}
+
+static int check_bodies(const fb_scenario *s, fb_err *err)
+{
+  int rc = check_hull_tensor(s, err);
+  for (size_t i = 0, k = 0; !rc && i < s->nbodies; ++i) {
+    const fb_body *b = &s->body[i];
+    rc = check_body_names(s, i, err);
+    if (!rc && (b->nbushings < 1 || !b->bushing))
+      rc = fail(err, FB_PART_BODY, i, "bushing", "needs at least one bushing");
+    for (size_t j = 0; !rc && j < b->nbushings; ++j, ++k)
+      rc = check_bushing(s, i, j, k, err);
+    if (!rc)
+      rc = check_body_inertia(b, i, err);
+    if (!rc)
+      rc = check_body_support(b, i, err);
+  }
+  return rc;
+}
+
 /* The road: its type's declared ranges, then its own rules. */
 static int check_road(const fb_scenario *s, fb_err *err)
 {
@@ -669,6 +858,11 @@ static const char *bogie_name_at(const void *ctx, size_t i)
   return ((const fb_scenario *)ctx)->bogie[i].name;
 }
 
+static const char *body_name_at(const void *ctx, size_t i)
+{
+  return ((const fb_scenario *)ctx)->body[i].name;
+}
+
 /* For an unknown name: " (did you mean 'LF'?)" when one is close, then
  * "; the corners are LF, RF, ..." (what: "corners"), into buf. */
 static void names_hint(const fb_scenario *s, const char *word, size_t n, fb_name_fn name_at,
@@ -717,6 +911,12 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
     return fail(err, FB_PART_OUTPUT, i, "of",
                 "no bogie named '%s' (a %s signal measures a bogie)%s", o->of ? o->of : "",
                 o->signal, hint);
+  }
+  if (kind->subject == FB_OUTPUT_OF_BODY && (!o->of || fb_scenario_body_find(s, o->of) < 0)) {
+    names_hint(s, o->of, s->nbodies, body_name_at, "bodies", hint, sizeof hint);
+    return fail(err, FB_PART_OUTPUT, i, "of",
+                "no body named '%s' (a %s signal measures a mounted rigid body)%s",
+                o->of ? o->of : "", o->signal, hint);
   }
   if (kind->subject == FB_OUTPUT_OF_MOUNT && (!o->of || fb_scenario_mount_find(s, o->of) < 0)) {
     names_hint(s, o->of, s->nmounts, mount_name_at, "mounts", hint, sizeof hint);
@@ -934,6 +1134,8 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = check_points(s, err);
   if (!rc)
     rc = check_point_masses(s, err);
+  if (!rc)
+    rc = check_bodies(s, err);
   if (!rc)
     rc = check_tires(s, err);
   if (!rc)

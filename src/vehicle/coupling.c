@@ -29,6 +29,8 @@
 #include "flexbond/fem.h"
 #include "flexbond/vehicle.h"
 
+#include "vehicle/vehicle_internal.h"
+
 /* Lever and line tolerance: the mesh check's 1 mm for points on nodes. */
 #define COUPLING_TOL 1e-3
 
@@ -186,6 +188,36 @@ static int nodes_within(const fb_mesh *m, const char *surface, double radius, do
   return FB_OK;
 }
 
+int vehicle_bushing_nodes(const fb_scenario *s, const fb_mesh *m, const fb_bushing *u,
+                          size_t **nodes, size_t *n, fb_err *err)
+{
+  *nodes = NULL;
+  *n = 0;
+  if (u->node_set) {
+    const size_t *own = NULL;
+    if (!fb_mesh_nset(m, u->node_set, &own, n))
+      return fb_err_set(err, FB_EMODEL, "the hull mesh has no node set '%s'", u->node_set);
+    *nodes = malloc((*n ? *n : 1) * sizeof **nodes);
+    if (!*nodes)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for a coupling");
+    memcpy(*nodes, own, *n * sizeof **nodes);
+    return FB_OK;
+  }
+  const double radius = u->radius > 0 ? u->radius : s->coupling_radius;
+  const char *surface = u->surface ? u->surface : s->coupling_surface;
+  if (!surface || !(radius > 0))
+    return fb_err_set(err, FB_EMODEL,
+                      "a bushing on System 2's hull needs its node set, or a radius and a "
+                      "surface (its own or the scenario's coupling surface)");
+  const int rc = nodes_within(m, surface, radius, u->x, u->y, nodes, n, err);
+  if (!rc && *n == 0)
+    return fb_err_set(err, FB_EMODEL,
+                      "no node of the element set '%s' lies within %g m of (%.6g, %.6g) m in "
+                      "plan",
+                      surface, radius, u->x, u->y);
+  return rc;
+}
+
 int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *set, double x0,
                            double y0, fb_hull_coupling *c, size_t *node, fb_err *err)
 {
@@ -210,5 +242,112 @@ int fb_hull_coupling_build(const fb_scenario *s, const fb_mesh *m, const char *s
                                               : distributing(m, own, n, x0, y0, set, c, err);
   }
   free(found);
+  return rc;
+}
+
+/* ---- A six-component distributing coupling (a bushing's hull side).
+ *
+ * The reference point x0 moves as the rigid motion q = (u, theta) that
+ * fits the candidate nodes' translations u_i best in the least-squares
+ * sense, u_i ~ A_i q with A_i = [I, -[r_i]x], r_i = x_i - x0 (small
+ * rotations): q = G^-1 sum A_i' u_i, G = sum A_i' A_i (uniform weights).
+ * Its force and moment F go to the nodes by the transpose, f_i = A_i
+ * G^-1 F, so the coupling is power-conserving, its nodal forces are in
+ * equilibrium with F (sum A_i' f_i = F), and a rigid motion of the nodes
+ * moves the point by exactly that motion (R A q = q). This is MSC
+ * Nastran's RBE3 element (its reference point's motion the weighted
+ * least-squares average of the nodes'; MSC Nastran Quick Reference
+ * Guide, bulk data entry RBE3) and the distributing coupling of the
+ * Abaqus Analysis User's Guide (section 35.3.2, as above) for a point
+ * with rotational degrees of freedom, with uniform weights. The nodes'
+ * rotational DOFs take no share (as RBE3's usual components 123): a
+ * shell's drilling rotation has no stiffness of its own. */
+
+/* G's inverse (6x6, row major, symmetric positive definite) by Gauss-
+ * Jordan elimination with partial pivoting; 0 when a pivot falls below
+ * 1e-12 of G's largest entry (G singular: nodes on one line). */
+static int invert6(const double *g, double *inv)
+{
+  double a[6][12];
+  double scale = 0.0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 12; ++j) {
+      a[i][j] = j < 6 ? g[6 * i + j] : (j - 6 == i);
+      if (j < 6)
+        scale = fmax(scale, fabs(g[6 * i + j]));
+    }
+  for (int c = 0; c < 6; ++c) {
+    int p = c;
+    for (int r = c + 1; r < 6; ++r)
+      if (fabs(a[r][c]) > fabs(a[p][c]))
+        p = r;
+    if (!(fabs(a[p][c]) > 1e-12 * scale))
+      return 0;
+    for (int j = 0; j < 12; ++j) {
+      const double t = a[c][j];
+      a[c][j] = a[p][j];
+      a[p][j] = t;
+    }
+    const double d = a[c][c];
+    for (int j = 0; j < 12; ++j)
+      a[c][j] /= d;
+    for (int r = 0; r < 6; ++r) {
+      const double f = a[r][c];
+      for (int j = 0; r != c && j < 12; ++j)
+        a[r][j] -= f * a[c][j];
+    }
+  }
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      inv[6 * i + j] = a[i][6 + j];
+  return 1;
+}
+
+/* A_i (3x6, row major) of the node at r from the reference point: the
+ * translations' rows of the rigid transport. */
+static void rigid_rows(const double *r, double *a)
+{
+  double t[36];
+  vehicle_rigid_transport(r, t);
+  memcpy(a, t, 18 * sizeof *a);
+}
+
+int fb_hull_coupling6_build(const fb_mesh *m, const size_t *nodes, size_t n, const double *x0,
+                            const char *what, fb_hull_coupling *rows, fb_err *err)
+{
+  double g[36] = {0}, ginv[36], a[18];
+  memset(rows, 0, 6 * sizeof *rows);
+  for (size_t i = 0; i < n; ++i) {
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    const double r[3] = {p[0] - x0[0], p[1] - x0[1], p[2] - x0[2]};
+    rigid_rows(r, a);
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k)
+        for (int l = 0; l < 3; ++l)
+          g[6 * j + k] += a[6 * l + j] * a[6 * l + k];
+  }
+  if (n == 0 || !invert6(g, ginv))
+    return fb_err_set(err, FB_EMODEL,
+                      "%s: %s cannot carry a force and a moment in every direction (a "
+                      "six-component distributing coupling needs nodes not on one line)",
+                      what, n == 1 ? "its one coupling node" : "its coupling nodes");
+  int rc = FB_OK;
+  for (int k = 0; !rc && k < 6; ++k)
+    rc = coupling_alloc(&rows[k], 3 * n, err);
+  for (int k = 0; rc && k < 6; ++k)
+    fb_hull_coupling_free(&rows[k]);
+  for (size_t i = 0; !rc && i < n; ++i) {
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    const double r[3] = {p[0] - x0[0], p[1] - x0[1], p[2] - x0[2]};
+    rigid_rows(r, a);
+    for (int k = 0; k < 6; ++k) /* row k of G^-1 A_i' */
+      for (int l = 0; l < 3; ++l) {
+        double v = 0.0;
+        for (int j = 0; j < 6; ++j)
+          v += ginv[6 * k + j] * a[6 * l + j];
+        rows[k].dof[3 * i + (size_t)l] = 6 * nodes[i] + (size_t)l;
+        rows[k].w[3 * i + (size_t)l] = v;
+      }
+  }
   return rc;
 }

@@ -235,6 +235,9 @@ void fb_scenario_free(fb_scenario **s)
   for (size_t i = 0; p->mount && i < p->nmounts; ++i)
     free(p->mount[i].name);
   free(p->mount);
+  for (size_t i = 0; p->body && i < p->nbodies; ++i)
+    vehicle_body_release(&p->body[i]);
+  free(p->body);
   for (size_t i = 0; p->point_mass && i < p->npoint_masses; ++i)
     free(p->point_mass[i].name);
   free(p->point_mass);
@@ -359,6 +362,19 @@ static int desc_copy_bogies(const fb_scenario *s, fb_scenario *copy)
   return ok;
 }
 
+/* The copy's bodies are zeroed until each is copied. */
+static int desc_copy_bodies(const fb_scenario *s, fb_scenario *copy)
+{
+  const size_t n = s->nbodies;
+  if (!s->body)
+    return 1;
+  copy->body = calloc(n ? n : 1, sizeof *copy->body);
+  int ok = copy->body != NULL;
+  for (size_t i = 0; ok && i < n; ++i)
+    ok = vehicle_body_copy(&s->body[i], &copy->body[i]);
+  return ok;
+}
+
 /* The copy's items are zeroed until each is copied, so that a failure
  * frees nothing twice. */
 static int desc_copy_point_masses(const fb_scenario *s, fb_scenario *copy)
@@ -445,6 +461,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->coupling_surface = NULL;
   copy->load_x = copy->load_y = NULL;
   copy->mount = NULL;
+  copy->body = NULL;
   copy->point_mass = NULL;
   copy->section = NULL;
   copy->corner = NULL;
@@ -461,6 +478,7 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   ok = desc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;
   ok = desc_copy_array(s->load_y, s->nload, &copy->load_y) && ok;
   ok = desc_copy_mounts(s, copy) && ok;
+  ok = desc_copy_bodies(s, copy) && ok;
   ok = desc_copy_point_masses(s, copy) && ok;
   ok = desc_copy_sections(s, copy) && ok;
   ok = desc_copy_corners(s, copy) && ok;

@@ -30,6 +30,11 @@ void fb_fe_hull_free(fb_fe_hull **h)
   for (size_t k = 0; (*h)->load_coupling && k < (*h)->nload; ++k)
     fb_hull_coupling_free(&(*h)->load_coupling[k]);
   free((*h)->load_coupling);
+  for (size_t b = 0; (*h)->bushing_rows && b < 6 * (*h)->nbushings; ++b)
+    fb_hull_coupling_free(&(*h)->bushing_rows[b]);
+  free((*h)->bushing_rows);
+  free((*h)->bushing_index);
+  free((*h)->bushing_single_node);
   free((*h)->point_mass_node);
   free((*h)->point_mass);
   free(*h);
@@ -128,6 +133,122 @@ static int attach_one(const fb_scenario *s, fb_fe_hull *h, size_t a, const char 
   if (!rc)
     h->attach_node[a] = nodes[0];
   return rc ? rc : fb_hull_coupling_node(nodes[0], &h->attach_coupling[a], err);
+}
+
+/* A bushing on one node: a rigid lever from the node to the point, its
+ * motion the node's six transported (v + omega x r, the node's rotations
+ * included), rows[0 .. 6) new. Its force bends the plate at one node: a
+ * local mode the loader warns of (fb_fe_hull_point_stiffness). */
+static int lever6(const fb_mesh *m, size_t node, const double *x0, fb_hull_coupling *rows,
+                  fb_err *err)
+{
+  const double *p = fb_mesh_node_xyz(m, node);
+  const double r[3] = {x0[0] - p[0], x0[1] - p[1], x0[2] - p[2]};
+  double t[36];
+  vehicle_rigid_transport(r, t);
+  memset(rows, 0, 6 * sizeof *rows);
+  for (size_t l = 0; l < 6; ++l) {
+    rows[l].dof = malloc(6 * sizeof *rows[l].dof);
+    rows[l].w = malloc(6 * sizeof *rows[l].w);
+    if (!rows[l].dof || !rows[l].w)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for a coupling");
+    rows[l].n = 6;
+    for (size_t c = 0; c < 6; ++c) {
+      rows[l].dof[c] = 6 * node + c;
+      rows[l].w[c] = t[6 * l + c];
+    }
+  }
+  return FB_OK;
+}
+
+int fb_fe_hull_point_stiffness(const fb_fe_hull *h, size_t ncorners, size_t node, double *k,
+                               fb_err *err)
+{
+  *k = NAN;
+  fb_mat *K = NULL, *Kc = NULL;
+  fb_chol *chol = NULL;
+  const size_t n = 6 * fb_mesh_nnodes(h->mesh);
+  size_t nfixed = 0;
+  size_t *fixed = malloc((6 * ncorners + 1) * sizeof *fixed);
+  size_t *keep = malloc(n * sizeof *keep);
+  double *b = calloc(n, sizeof *b);
+  int rc = fixed && keep && b ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+  /* Every DOF of each corner's attachment node (the corners come first
+   * among h's attachment points), each node once. */
+  for (size_t c = 0; !rc && c < ncorners && c < h->nattach; ++c) {
+    int seen = 0;
+    for (size_t f = 0; f < nfixed; ++f)
+      seen |= fixed[f] == 6 * h->attach_node[c];
+    for (size_t d = 0; !seen && d < 6; ++d)
+      fixed[nfixed++] = 6 * h->attach_node[c] + d;
+  }
+  if (!rc)
+    rc = fb_fem_assemble(h->mesh, &h->props, h->mass_kind, &K, NULL, err);
+  if (!rc)
+    rc = fb_fem_free_dofs(n, fixed, nfixed, keep, err);
+  if (!rc)
+    rc = fb_fem_submatrix(K, keep, n - nfixed, &Kc, err);
+  if (!rc)
+    rc = fb_chol_new(Kc, 0, &chol, err);
+  size_t at = n;
+  for (size_t i = 0; !rc && i < n - nfixed; ++i)
+    if (keep[i] == 6 * node + 2)
+      at = i;
+  if (!rc && at == n)
+    rc = fb_err_set(err, FB_EINVAL, "node %zu is a suspension point's", node);
+  if (!rc) {
+    b[at] = 1.0;
+    rc = fb_chol_solve(chol, b, 1, err);
+  }
+  if (!rc)
+    *k = 1.0 / b[at];
+  fb_chol_free(&chol);
+  fb_mat_free(&Kc);
+  fb_mat_free(&K);
+  free(fixed);
+  free(keep);
+  free(b);
+  return rc;
+}
+
+/* Each bushing of a body on the hull: its six rows over the nodes of its
+ * node set, or of the coupling surface within its radius (the
+ * scenario's coupling radius when it gives none) in plan; errors about
+ * the bushing (FB_PART_BUSHING). */
+static int resolve_bushings(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
+{
+  const size_t nk = fb_scenario_nbushings(s);
+  size_t b = 0, j = 0;
+  h->bushing_index = malloc((nk ? nk : 1) * sizeof *h->bushing_index);
+  h->bushing_rows = calloc(6 * (nk ? nk : 1), sizeof *h->bushing_rows);
+  h->bushing_single_node = malloc((nk ? nk : 1) * sizeof *h->bushing_single_node);
+  int rc = h->bushing_index && h->bushing_rows && h->bushing_single_node
+               ? FB_OK
+               : fb_err_set(err, FB_ENOMEM, "out of memory");
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
+    if (s->body[b].parent)
+      continue;
+    const fb_bushing *u = &s->body[b].bushing[j];
+    const double x0[3] = {u->x, u->y, u->z};
+    size_t *nodes = NULL, n = 0;
+    char what[160];
+    snprintf(what, sizeof what, "body %s's bushing %zu", s->body[b].name, j);
+    rc = vehicle_bushing_nodes(s, h->mesh, u, &nodes, &n, err);
+    if (!rc)
+      h->bushing_single_node[h->nbushings] = n == 1 ? nodes[0] : (size_t)-1;
+    if (!rc && n == 1)
+      rc = lever6(h->mesh, nodes[0], x0, &h->bushing_rows[6 * h->nbushings], err);
+    else if (!rc)
+      rc = fb_hull_coupling6_build(h->mesh, nodes, n, x0, what,
+                                   &h->bushing_rows[6 * h->nbushings], err);
+    free(nodes);
+    if (rc)
+      return fb_err_set_part(err, FB_PART_BUSHING, k, FB_ERR_NO_ELEMENT,
+                             u->node_set ? "node_set" : "radius"),
+             rc;
+    h->bushing_index[h->nbushings++] = k;
+  }
+  return rc;
 }
 
 static int resolve_attach(const fb_scenario *s, fb_fe_hull *h, fb_err *err)
@@ -312,6 +433,8 @@ int fb_fe_hull_new(const fb_scenario *s, fb_mesh **mesh, const fb_shell_props *p
     rc = resolve_load_and_edges(s, h, err);
   if (!rc)
     rc = resolve_point_masses(s, h, err);
+  if (!rc)
+    rc = resolve_bushings(s, h, err);
   if (rc) {
     fb_fe_hull_free(&h);
     return rc;
@@ -613,12 +736,115 @@ int fb_fe_hull_mass_matrix(const fb_fe_hull *h, fb_mat **M, fb_err *err)
   return rc ? rc : fb_fe_hull_add_masses(h, 0, 0.0, M, err);
 }
 
+size_t vehicle_nlumped(const fb_scenario *s)
+{
+  return s->nmounts + s->ncorners + 6 * s->nbodies;
+}
+
+/* rows[l] += sign times row l of the rigid transport of body i's point
+ * p, over its DOFs from base + 6 i. */
+static int body_rows(const fb_scenario *s, size_t i, const double *p, size_t base, double sign,
+                     fb_hull_coupling *rows, fb_err *err)
+{
+  const fb_body *b = &s->body[i];
+  const double r[3] = {p[0] - b->x, p[1] - b->y, p[2] - b->z};
+  double t[36];
+  vehicle_rigid_transport(r, t);
+  for (int l = 0; l < 6; ++l) {
+    fb_hull_coupling *row = &rows[l];
+    size_t *dof = realloc(row->dof, (row->n + 6) * sizeof *dof);
+    if (dof)
+      row->dof = dof;
+    double *w = dof ? realloc(row->w, (row->n + 6) * sizeof *w) : NULL;
+    if (!w)
+      return fb_err_set(err, FB_ENOMEM, "out of memory");
+    row->w = w;
+    for (size_t c = 0; c < 6; ++c) {
+      row->dof[row->n] = base + 6 * i + c;
+      row->w[row->n++] = sign * t[6 * l + c];
+    }
+  }
+  return FB_OK;
+}
+
+int vehicle_bushing_relative_rows(const fb_scenario *s, const fb_fe_hull *fe, size_t k,
+                                  size_t base, fb_hull_coupling *rows, fb_err *err)
+{
+  size_t b = 0, j = 0;
+  memset(rows, 0, 6 * sizeof *rows);
+  if (!fb_scenario_bushing_at(s, k, &b, &j))
+    return fb_err_set(err, FB_EINVAL, "no bushing %zu", k);
+  const fb_body *body = &s->body[b];
+  const double p[3] = {body->bushing[j].x, body->bushing[j].y, body->bushing[j].z};
+  int rc = FB_OK;
+  if (body->parent) {
+    rc = body_rows(s, (size_t)fb_scenario_body_find(s, body->parent), p, base, 1.0, rows, err);
+  } else {
+    size_t on = 0;
+    while (on < fe->nbushings && fe->bushing_index[on] != k)
+      ++on;
+    if (on == fe->nbushings)
+      rc = fb_err_set(err, FB_EINVAL, "bushing %zu is not coupled to the hull", k);
+    for (int l = 0; !rc && l < 6; ++l) {
+      const fb_hull_coupling *c = &fe->bushing_rows[6 * on + (size_t)l];
+      rows[l].dof = malloc((c->n ? c->n : 1) * sizeof *rows[l].dof);
+      rows[l].w = malloc((c->n ? c->n : 1) * sizeof *rows[l].w);
+      if (!rows[l].dof || !rows[l].w)
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+      else {
+        memcpy(rows[l].dof, c->dof, c->n * sizeof *c->dof);
+        memcpy(rows[l].w, c->w, c->n * sizeof *c->w);
+        rows[l].n = c->n;
+      }
+    }
+  }
+  if (!rc)
+    rc = body_rows(s, b, p, base, -1.0, rows, err);
+  if (rc)
+    for (int l = 0; l < 6; ++l)
+      fb_hull_coupling_free(&rows[l]);
+  return rc;
+}
+
+/* The bodies' inertias and their bushings' springs, K G' K_b G over each
+ * bushing's relative rows G, into the triplets; body i's DOFs from base
+ * + 6 i. */
+static int add_bodies(const fb_scenario *s, const fb_fe_hull *h, size_t base, trips *tk,
+                      trips *tm, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < s->nbodies; ++i) {
+    double m[36];
+    vehicle_body_inertia6(&s->body[i], m);
+    for (size_t r = 0; !rc && r < 36; ++r)
+      if (m[r] != 0.0)
+        rc = trips_push(tm, base + 6 * i + r / 6, base + 6 * i + r % 6, m[r]);
+  }
+  if (rc)
+    return fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
+  size_t b = 0, j = 0;
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
+    fb_hull_coupling g[6];
+    const double *kb = s->body[b].bushing[j].k;
+    rc = vehicle_bushing_relative_rows(s, h, k, base, g, err);
+    for (int l = 0; !rc && l < 6; ++l)
+      for (int m = 0; !rc && m < 6; ++m)
+        for (size_t p = 0; kb[6 * l + m] != 0.0 && !rc && p < g[l].n; ++p)
+          for (size_t q = 0; !rc && q < g[m].n; ++q)
+            if (trips_push(tk, g[l].dof[p], g[m].dof[q], kb[6 * l + m] * g[l].w[p] * g[m].w[q]))
+              rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
+    for (int l = 0; l < 6; ++l)
+      fb_hull_coupling_free(&g[l]);
+  }
+  return rc;
+}
+
 int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
                         const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err)
 {
   int rc = FB_OK;
   const size_t nm = s->nmounts;
-  size_t nh = fb_mat_nrows(kh), n = nh + nm + s->ncorners;
+  size_t nh = fb_mat_nrows(kh), n = nh + vehicle_nlumped(s);
   trips tk = {0}, tm = {0};
   trips_visit vk = {&tk, 0}, vm = {&tm, 0};
   fb_mat_foreach(kh, visit_push, &vk);
@@ -669,6 +895,8 @@ int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat 
   if (rc)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling System 2");
   if (!rc)
+    rc = add_bodies(s, h, nh + nm + s->ncorners, &tk, &tm, err);
+  if (!rc)
     rc = fb_mat_new_triplets(n, n, tk.n, tk.r, tk.c, tk.v, K, err);
   if (!rc)
     rc = fb_mat_new_triplets(n, n, tm.n, tm.r, tm.c, tm.v, M, err);
@@ -704,6 +932,17 @@ static void mass_times(const describe_ctx *d, const double *v)
       continue;
     mw[f] = m[0] * vw[f] + m[1] * vw[r];
     mw[r] = m[2] * vw[f] + m[3] * vw[r];
+  }
+  const size_t base = d->nh + s->nmounts + s->ncorners;
+  for (size_t b = 0; b < s->nbodies; ++b) {
+    double m[36];
+    vehicle_body_inertia6(&s->body[b], m);
+    for (size_t r = 0; r < 6; ++r) {
+      double sum = 0.0;
+      for (size_t c = 0; c < 6; ++c)
+        sum += m[6 * r + c] * v[base + 6 * b + c];
+      d->mv[base + 6 * b + r] = sum;
+    }
   }
 }
 
@@ -783,7 +1022,8 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
       *part = k < 6 ? (fb_mode_part){FB_MODE_HULL_RIGID, (size_t)k}
                     : (fb_mode_part){FB_MODE_HULL_ELASTIC, 0};
     }
-  for (size_t i = d->nh; i < d->ndof; ++i) {
+  const size_t nbase = d->nh + d->s->nmounts + d->s->ncorners;
+  for (size_t i = d->nh; i < nbase; ++i) {
     double e = v[i] * d->mv[i];
     const size_t b = i - d->nh;
     if (b < d->s->nmounts)
@@ -797,6 +1037,16 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
     } else {
       snprintf(name, sizeof name, "wheel hop %s", d->s->corner[b - d->s->nmounts].name);
       *part = (fb_mode_part){FB_MODE_WHEEL, b - d->s->nmounts};
+    }
+  }
+  /* A rigid body's six motions together. */
+  for (size_t b = 0; b < d->s->nbodies; ++b) {
+    double e = 0.0;
+    for (size_t c = 0; c < 6; ++c)
+      e += v[nbase + 6 * b + c] * d->mv[nbase + 6 * b + c];
+    if (e > best) {
+      best = e;
+      snprintf(name, sizeof name, "%.31s", d->s->body[b].name);
     }
   }
   snprintf(out, size, "%s (%.0f%%)", name, total > 0 ? 100.0 * best / total : 0.0);
@@ -858,7 +1108,16 @@ static int is_free_mode(const describe_ctx *d, const double *v)
   for (size_t i = 0; i < d->ndof; ++i)
     total += v[i] * d->mv[i];
   hull_energies(d, v, energy);
-  return total > 0 && energy[0] + energy[1] + energy[5] >= 0.9 * total;
+  /* Rigid bodies go along with the hull, their surge, sway and yaw
+   * with its; but a body's own yaw on its bushings, with the hull all
+   * but still, is no free motion: the hull's share must lead. */
+  double bodies = 0.0;
+  const size_t base = d->nh + d->s->nmounts + d->s->ncorners;
+  for (size_t b = 0; b < d->s->nbodies; ++b)
+    for (size_t c = 0; c < 6; c += c == 1 ? 4 : 1)
+      bodies += v[base + 6 * b + c] * d->mv[base + 6 * b + c];
+  const double hull = energy[0] + energy[1] + energy[5];
+  return total > 0 && hull + bodies >= 0.9 * total && hull >= bodies;
 }
 
 /* Copies the modes that are not free rigid-body motions into ms (at most
@@ -886,7 +1145,7 @@ int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb
                              fb_mode_set *ms, fb_err *err)
 {
   const size_t nh = fb_mat_nrows(mh);
-  describe_ctx d = {mh, NULL, NULL, NULL, nh, nh + s->nmounts + s->ncorners, s};
+  describe_ctx d = {mh, NULL, NULL, NULL, nh, nh + vehicle_nlumped(s), s};
   double mass, cg[3], inertia[9];
   int rc = fb_fem_mass_properties(h->mesh, mh, &mass, cg, inertia, err);
   if (!rc) {

@@ -67,18 +67,38 @@ static void rigid_row(double x, double y, double *row)
   rigid_axis_row(r, 2, row);
 }
 
-/* n x 3 matrix transformer from the hull's generalised velocities to n
+/* The same row over the six rigid-body motions (x', y', z', phi',
+ * theta', psi'): the third row of vehicle_rigid_transport, [0, 0, 1, y,
+ * -x, 0] (a vertical velocity does not depend on the point's height). */
+static void rigid_row6(double x, double y, double *row)
+{
+  memset(row, 0, 6 * sizeof *row);
+  rigid_row(x, y, row + 2);
+}
+
+/* The hull's coordinates: 3 (bounce, roll, pitch) or, carrying mounted
+ * rigid bodies, 6. */
+static size_t rigid_ndof(const fb_scenario *s)
+{
+  return s->nbodies ? 6 : 3;
+}
+
+/* n x ndof matrix transformer from the hull's generalised velocities to n
  * points' vertical velocities. */
-static int add_point_map(fb_bg *bg, const char *name, size_t n, const double *x,
+static int add_point_map(fb_bg *bg, const char *name, size_t ndof, size_t n, const double *x,
                          const double *y, fb_err *err)
 {
-  double *rows = malloc(3 * n * sizeof *rows);
+  double *rows = malloc(ndof * n * sizeof *rows);
   if (!rows)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t i = 0; i < n; ++i)
-    rigid_row(x[i], y[i], rows + 3 * i);
+  for (size_t i = 0; i < n; ++i) {
+    if (ndof == 6)
+      rigid_row6(x[i], y[i], rows + 6 * i);
+    else
+      rigid_row(x[i], y[i], rows + 3 * i);
+  }
   fb_mat *t = NULL;
-  int rc = fb_mat_new_dense_rowmajor(n, 3, rows, &t, err);
+  int rc = fb_mat_new_dense_rowmajor(n, ndof, rows, &t, err);
   free(rows);
   return rc ? rc : fb_bg_add_mtf(bg, name, &t, err);
 }
@@ -124,6 +144,38 @@ void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33)
     add_point_inertia(mp, s->load_x[k], s->load_y[k], m33);
 }
 
+/* m T' T for a point mass m at floor point (x, y), taken at the centre
+ * of mass's height: its kinetic energy 1/2 m |v + omega x r|^2. */
+static void add_point_inertia6(double m, double x, double y, double *m66)
+{
+  const double r[3] = {x, y, 0.0};
+  double t[36];
+  vehicle_rigid_transport(r, t);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 3; ++k) /* the rows of the translations */
+        m66[6 * i + j] += m * t[6 * k + i] * t[6 * k + j];
+}
+
+void vehicle_rigid_inertia6(const fb_scenario *s, double *m66)
+{
+  memset(m66, 0, 36 * sizeof *m66);
+  double j[9];
+  vehicle_hull_inertia(s, j);
+  for (int i = 0; i < 3; ++i) {
+    m66[7 * i] = s->hull_mass;
+    for (int c = 0; c < 3; ++c)
+      m66[6 * (3 + i) + 3 + c] = j[3 * i + c];
+  }
+  for (size_t k = 0; k < s->npoint_masses; ++k)
+    add_point_inertia6(s->point_mass[k].mass, s->point_mass[k].x, s->point_mass[k].y, m66);
+  if (s->payload != FB_PAYLOAD_LUMPED)
+    return;
+  double mp = fb_scenario_payload_mass(s) / (double)s->nload;
+  for (size_t k = 0; k < s->nload; ++k)
+    add_point_inertia6(mp, s->load_x[k], s->load_y[k], m66);
+}
+
 /* Torsion of a rigid hull: the roll of the front edge minus that of the
  * rear edge, over the integrated generalised velocities (z, phi, theta).
  * Each edge's roll is (z_left - z_right) / (y_left - y_right) with
@@ -137,34 +189,58 @@ static void rigid_torsion_weights(const fb_scenario *s, double *w)
   rigid_row(s->edge_rear_x, s->edge_left_y, rl);
   rigid_row(s->edge_rear_x, s->edge_right_y, rr);
   double dy = s->edge_left_y - s->edge_right_y;
+  /* Over six coordinates the vertical ones are the third to fifth. */
+  const size_t at = rigid_ndof(s) == 6 ? 2 : 0;
+  memset(w, 0, rigid_ndof(s) * sizeof *w);
   for (int i = 0; i < 3; ++i)
-    w[i] = (fl[i] - fr[i]) / dy - (rl[i] - rr[i]) / dy;
+    w[at + (size_t)i] = (fl[i] - fr[i]) / dy - (rl[i] - rr[i]) / dy;
+}
+
+/* The ports of the bodies' bushings on the hull (their parent NULL), at
+ * their points from the hull's centre of mass, the origin. */
+static int add_hull_bushings(const fb_scenario *s, fb_bg *bg, fb_err *err)
+{
+  int rc = FB_OK;
+  size_t i = 0, j = 0;
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &i, &j); ++k) {
+    const fb_bushing *u = &s->body[i].bushing[j];
+    const double r[3] = {u->x, u->y, u->z};
+    if (!s->body[i].parent)
+      rc = vehicle_add_bushing_port(bg, "J", k, r, err);
+  }
+  return rc;
 }
 
 static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
 {
-  const size_t na = fb_scenario_nattach(s);
-  double m33[9], *ax = calloc(2 * na + 1, sizeof *ax);
+  const size_t na = fb_scenario_nattach(s), ndof = rigid_ndof(s);
+  double inertia[36], *ax = calloc(2 * na + 1, sizeof *ax);
   if (!ax)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   double *ay = ax + na;
-  fb_vehicle_rigid_inertia(s, m33);
+  if (ndof == 6)
+    vehicle_rigid_inertia6(s, inertia);
+  else
+    fb_vehicle_rigid_inertia(s, inertia);
   attach_points(s, ax, ay);
   fb_mat *m = NULL;
-  const size_t three = 3;
-  int rc = fb_mat_new_dense_rowmajor(3, 3, m33, &m, err);
+  int rc = fb_mat_new_dense_rowmajor(ndof, ndof, inertia, &m, err);
   if (!rc)
-    rc = fb_bg_add_field(bg, "body", FB_BG_I, 1, &three, &m, err);
+    rc = fb_bg_add_field(bg, "body", FB_BG_I, 1, &ndof, &m, err);
   static const char *const rigid_motions[3] = {"hull bounce", "hull roll", "hull pitch"};
+  static const char *const rigid_motions6[6] = {"hull surge", "hull sway",  "hull bounce",
+                                                "hull roll",  "hull pitch", "hull yaw"};
   if (!rc)
-    rc = fb_bg_set_labels(bg, "body", rigid_motions, err);
+    rc = fb_bg_set_labels(bg, "body", ndof == 6 ? rigid_motions6 : rigid_motions, err);
   if (!rc)
-    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, 3, err);
+    rc = fb_bg_add_junction(bg, "J", FB_BG_J1, ndof, err);
   if (!rc)
-    rc = add_point_map(bg, "to_attach", na, ax, ay, err);
+    rc = add_point_map(bg, "to_attach", ndof, na, ax, ay, err);
   free(ax);
   if (!rc)
-    rc = add_point_map(bg, "to_load", s->nload, s->load_x, s->load_y, err);
+    rc = add_point_map(bg, "to_load", ndof, s->nload, s->load_x, s->load_y, err);
+  if (!rc)
+    rc = add_hull_bushings(s, bg, err);
   if (!rc)
     rc = fb_bg_add_junction(bg, "attach", FB_BG_J1, na, err);
   if (!rc)
@@ -252,10 +328,11 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   h->torsion_kind = FB_PROBE_FLOW;
   h->torsion_integrate = 1;
-  h->ntorsion = 3;
+  h->ntorsion = rigid_ndof(s);
+  h->carries_bodies = 1;
   h->torsion_target = fb_strdup("b_body");
-  h->torsion_weights = malloc(3 * sizeof *h->torsion_weights);
-  h->torsion_fit_weights = malloc(3 * sizeof *h->torsion_fit_weights);
+  h->torsion_weights = malloc(h->ntorsion * sizeof *h->torsion_weights);
+  h->torsion_fit_weights = malloc(h->ntorsion * sizeof *h->torsion_fit_weights);
   int rc = h->torsion_target && h->torsion_weights && h->torsion_fit_weights
                ? FB_OK
                : fb_err_set(err, FB_ENOMEM, "out of memory");
@@ -275,7 +352,7 @@ int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err)
   }
   /* A rigid edge is a straight line: the fit and its end nodes agree. */
   rigid_torsion_weights(s, h->torsion_weights);
-  memcpy(h->torsion_fit_weights, h->torsion_weights, 3 * sizeof *h->torsion_weights);
+  memcpy(h->torsion_fit_weights, h->torsion_weights, h->ntorsion * sizeof *h->torsion_weights);
   *out = h;
   return FB_OK;
 }

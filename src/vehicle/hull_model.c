@@ -132,6 +132,8 @@ double fb_hull_excitation_hz(const fb_scenario *s)
   }
   for (size_t b = 0; b < s->nmounts; ++b)
     f = fmax(f, sqrt(s->mount[b].stiffness / s->mount[b].mass) / two_pi);
+  for (size_t b = 0; b < s->nbodies; ++b)
+    f = fmax(f, vehicle_body_top_hz(&s->body[b]));
   return f;
 }
 
@@ -205,14 +207,18 @@ static int patterns(const fb_scenario *s, vehicle_hull *h, fb_err *err)
   size_t nout = 0;
   for (size_t o = 0; o < s->noutputs; ++o)
     nout += output_pattern(&s->output[o]);
-  h->nf = fe->nattach + 1 + nout;
+  const size_t nrows = 6 * fe->nbushings; /* each bushing's force and moment */
+  h->nf = fe->nattach + nrows + 1 + nout;
   h->F = calloc(n * h->nf, sizeof *h->F);
   if (!h->F)
     return fb_err_set(err, FB_ENOMEM, "out of memory for %zu static patterns", h->nf);
   for (size_t a = 0; a < fe->nattach; ++a)
     for (size_t i = 0; i < fe->attach_coupling[a].n; ++i)
       h->F[a * n + fe->attach_coupling[a].dof[i]] += fe->attach_coupling[a].w[i];
-  double *load = h->F + fe->nattach * n, *out = load + n;
+  for (size_t r = 0; r < nrows; ++r)
+    for (size_t i = 0; i < fe->bushing_rows[r].n; ++i)
+      h->F[(fe->nattach + r) * n + fe->bushing_rows[r].dof[i]] += fe->bushing_rows[r].w[i];
+  double *load = h->F + (fe->nattach + nrows) * n, *out = load + n;
   for (size_t k = 0; k < fe->nload; ++k)
     for (size_t i = 0; i < fe->load_coupling[k].n; ++i)
       load[fe->load_coupling[k].dof[i]] += fe->load_coupling[k].w[i];
@@ -843,6 +849,19 @@ const char *vehicle_flexible_hull_bond(size_t i)
   return i < NBONDS ? bonds[i][0] : NULL;
 }
 
+/* The port "bushing_<k>" (IN, dimension 6) of the hull's b-th bushing,
+ * its six rows as a transformer "to_bushing_<k>" from the hull's
+ * coordinates, as the rigid hull's (vehicle_add_bushing_port). */
+static int bushing_port(const fb_fe_hull *fe, size_t b, const double *T, size_t ndof, size_t nb,
+                        fb_bg *bg, fb_err *err)
+{
+  const size_t k = fe->bushing_index[b];
+  char mtf[48];
+  snprintf(mtf, sizeof mtf, "to_bushing_%zu", k);
+  const int rc = add_selection(bg, mtf, 6, &fe->bushing_rows[6 * b], ndof, T, nb, err);
+  return rc ? rc : vehicle_wire_bushing_port(bg, "J", k, err);
+}
+
 static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, size_t ndof,
                       size_t nb, fb_bg *bg, fb_err *err)
 {
@@ -867,6 +886,8 @@ static int hull_graph(const fb_fe_hull *fe, hull_fields *f, const double *T, siz
     rc = fb_bg_add_port(bg, "attach", "attach", FB_PORT_IN, err);
   if (!rc)
     rc = fb_bg_add_port(bg, "load", "load", FB_PORT_IN, err);
+  for (size_t b = 0; !rc && b < fe->nbushings; ++b)
+    rc = bushing_port(fe, b, T, ndof, nb, bg, err);
   return rc;
 }
 
@@ -991,6 +1012,8 @@ int vehicle_hull_fragment(const fb_scenario *s, vehicle_hull *h, int enriched, f
     rc = flexible_torsion(h->fe, T, h->info.ndof, nb, hull, err);
   if (!rc)
     rc = flexible_readings(s, h, T, nb, hull, err);
+  if (!rc)
+    hull->carries_bodies = 1;
   hull_fields_free(&f);
   if (rc) {
     fb_hull_free(&hull);
@@ -1053,6 +1076,58 @@ static void add_reduced_twist(const vehicle_hull *h, size_t nv, size_t wa,
       K[j * nv + i] += k * r[i] * r[j];
 }
 
+/* The rigid bodies in the reduced matrices (nv x nv, column-major):
+ * their inertias, and each bushing's K G' K_b G with its relative rows
+ * G (vehicle_bushing_relative_rows over the nodal layout) taken to the
+ * basis, u = T q for the hull's part. */
+static int reduced_bodies(const fb_scenario *s, const vehicle_hull *h, size_t nv, double *K,
+                          double *M, fb_err *err)
+{
+  const size_t nb = h->nb, ndof = h->info.ndof, base = nb + s->nmounts + s->ncorners;
+  for (size_t i = 0; i < s->nbodies; ++i) {
+    double m[36];
+    vehicle_body_inertia6(&s->body[i], m);
+    for (size_t r = 0; r < 6; ++r)
+      for (size_t c = 0; c < 6; ++c)
+        M[(base + 6 * i + c) * nv + base + 6 * i + r] = m[6 * r + c];
+  }
+  double *g = malloc(6 * nv * sizeof *g);
+  if (!g)
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  int rc = FB_OK;
+  size_t b = 0, j = 0;
+  for (size_t k = 0; !rc && fb_scenario_bushing_at(s, k, &b, &j); ++k) {
+    fb_hull_coupling rows[6];
+    rc = vehicle_bushing_relative_rows(s, h->fe, k, ndof + s->nmounts + s->ncorners, rows, err);
+    memset(g, 0, 6 * nv * sizeof *g);
+    for (int l = 0; !rc && l < 6; ++l) {
+      double *gl = g + (size_t)l * nv;
+      for (size_t e = 0; e < rows[l].n; ++e) {
+        const size_t d = rows[l].dof[e];
+        if (d >= ndof) { /* a body's own DOF */
+          gl[d - ndof + nb] += rows[l].w[e];
+          continue;
+        }
+        for (size_t q = 0; q < nb; ++q)
+          gl[q] += rows[l].w[e] * h->T[q * ndof + d];
+      }
+    }
+    for (int l = 0; !rc && l < 6; ++l)
+      fb_hull_coupling_free(&rows[l]);
+    const double *kb = s->body[b].bushing[j].k;
+    for (int l = 0; !rc && l < 6; ++l)
+      for (int m = 0; m < 6; ++m) {
+        if (kb[6 * l + m] == 0.0)
+          continue;
+        for (size_t c = 0; c < nv; ++c)
+          for (size_t r = 0; g[(size_t)m * nv + c] != 0.0 && r < nv; ++r)
+            K[c * nv + r] += kb[6 * l + m] * g[(size_t)l * nv + r] * g[(size_t)m * nv + c];
+      }
+  }
+  free(g);
+  return rc;
+}
+
 /* Over a basis: the hull's coordinates q (M = I, K = diag(lambda)), then
  * the bodies' and the wheels' motions, the springs through the points'
  * rows t_a = coupling row times T: the Ritz matrices of
@@ -1063,7 +1138,7 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
 {
   const fb_fe_hull *fe = h->fe;
   const size_t nb = h->nb, nm = s->nmounts;
-  const size_t nv = nb + nm + s->ncorners;
+  const size_t nv = nb + vehicle_nlumped(s);
   double *K = calloc(nv * nv, sizeof *K), *M = calloc(nv * nv, sizeof *M);
   /* A reduced row (nb), or a bar's or bogie's (nv, and nb of scratch). */
   double *t = malloc((nv + nb) * sizeof *t);
@@ -1119,6 +1194,12 @@ static int reduced_matrices(const fb_scenario *s, const vehicle_hull *h, double 
                       &fe->attach_coupling[r], w[1], s->bogie[i].spring_k, t, K);
   }
   free(t);
+  const int rc = reduced_bodies(s, h, nv, K, M, err);
+  if (rc) {
+    free(K);
+    free(M);
+    return rc;
+  }
   *k = K;
   *m = M;
   *n = nv;
@@ -1221,7 +1302,7 @@ int vehicle_hull_structural_modes(const fb_scenario *s, vehicle_hull *h, size_t 
   double *freq = NULL, *shapes = NULL;
   size_t count = 0;
   const int reduced = !exact && h->info.coordinates == FB_HULL_MODAL && h->nb < h->info.ndof;
-  const size_t nfull = h->info.ndof + s->nmounts + s->ncorners;
+  const size_t nfull = h->info.ndof + vehicle_nlumped(s);
   /* Reduced: a dense problem over the basis; else the sparse matrices of
    * the whole vehicle. */
   int rc = reduced ? reduced_modes(s, h, nmodes, nfull, &freq, &shapes, &count, err)

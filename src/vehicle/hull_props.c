@@ -82,6 +82,12 @@ static int check_payload(const fb_scenario *s, fb_err *err)
  * what the mesh was fitted to: the paper's Table 2). */
 static int complete_properties(fb_scenario *s, const mesh_props *mp, fb_err *err)
 {
+  if (!s->hull_izz_given) { /* the tensor's entries are minus the products */
+    s->hull_izz = mp->inertia[8];
+    s->hull_ixy = -mp->inertia[1];
+    s->hull_ixz = -mp->inertia[2];
+    s->hull_iyz = -mp->inertia[5];
+  }
   if (!s->hull_mass_given) {
     s->hull_mass = mp->mass;
     s->hull_ixx = mp->inertia[0];
@@ -128,6 +134,17 @@ static void shift_positions(fb_scenario *s, double dx, double dy, double dz)
     }
   for (size_t k = 0; k < s->nbogies; ++k)
     s->bogie[k].pivot_x -= dx;
+  for (size_t b = 0; b < s->nbodies; ++b) {
+    fb_body *body = &s->body[b];
+    body->x -= dx;
+    body->y -= dy;
+    body->z -= dz;
+    for (size_t j = 0; j < body->nbushings; ++j) {
+      body->bushing[j].x -= dx;
+      body->bushing[j].y -= dy;
+      body->bushing[j].z -= dz;
+    }
+  }
   s->edge_front_x -= dx;
   s->edge_rear_x -= dx;
   s->edge_left_y -= dy;
@@ -145,13 +162,16 @@ static int frame_centre(const fb_scenario *s, double *x, double *y, double *z, f
     *y = 0.0;
     if (!s->hull_cg_given)
       return FB_OK;
-    if (fabs(s->hull_cg_x - *x) <= PROPERTY_TOLERANCE * length && fabs(s->hull_cg_y) <= 1e-3)
+    /* A height left at its default 0 is the mesh's. */
+    if (fabs(s->hull_cg_x - *x) <= PROPERTY_TOLERANCE * length && fabs(s->hull_cg_y) <= 1e-3 &&
+        (s->hull_cg_z == 0.0 || fabs(s->hull_cg_z - *z) <= PROPERTY_TOLERANCE * length))
       return FB_OK;
     fb_err_set(err, FB_EINVAL,
-               "the hull's centre of mass is given at (%.6g, %.6g) m, its generated mesh's "
-               "is at (%.6g, 0) m (they must agree within %.1f %% of the hull's %.4g m "
-               "length): leave it out to take the mesh's",
-               s->hull_cg_x, s->hull_cg_y, *x, 100.0 * PROPERTY_TOLERANCE, length);
+               "the hull's centre of mass is given at (%.6g, %.6g, %.6g) m, its generated "
+               "mesh's is at (%.6g, 0, %.6g) m (they must agree within %.1f %% of the hull's "
+               "%.4g m length): leave it out to take the mesh's",
+               s->hull_cg_x, s->hull_cg_y, s->hull_cg_z, *x, *z, 100.0 * PROPERTY_TOLERANCE,
+               length);
     return fb_err_set_part(err, FB_PART_AT(FB_PART_VEHICLE, 0, hull_cg_given)), FB_EINVAL;
   }
   if (!s->hull_cg_given) {
@@ -162,6 +182,7 @@ static int frame_centre(const fb_scenario *s, double *x, double *y, double *z, f
   }
   *x = s->hull_cg_x;
   *y = s->hull_cg_y;
+  *z = s->hull_cg_z;
   return FB_OK;
 }
 

@@ -20,6 +20,11 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
   case FB_PART_STOP: return i < s->ncorners ? s->corner[i].name : NULL;
   case FB_PART_MOUNT: return i < s->nmounts ? s->mount[i].name : NULL;
   case FB_PART_HULL_MASS: return i < s->npoint_masses ? s->point_mass[i].name : NULL;
+  case FB_PART_BODY: return i < s->nbodies ? s->body[i].name : NULL;
+  case FB_PART_BUSHING: {
+    size_t b = 0, j = 0;
+    return fb_scenario_bushing_at(s, i, &b, &j) ? s->body[b].name : NULL;
+  }
   case FB_PART_SECTION: return i < s->nsections ? s->section[i].set : NULL;
   case FB_PART_OUTPUT: return i < s->noutputs ? s->output[i].name : NULL;
   case FB_PART_ANTIROLL_BAR: return i < s->nantiroll_bars ? s->antiroll_bar[i].name : NULL;
@@ -33,10 +38,11 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
 char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size)
 {
   static const char *const list[FB_PART_KINDS] = {
-      "",       "",           "corner", "mount",  "point_mass",   "section",
-      "output", "load point", "road",   "corner", "hull source",  "corner",
-      "corner", "corner",     "",       "",       "antiroll_bar", "bogie"};
-  const int kind = p->kind > 0 && p->kind < FB_PART_KINDS ? p->kind : FB_PART_NONE;
+      "",       "",           "corner", "mount",   "point_mass",   "section",
+      "output", "load point", "road",   "corner",  "hull source",  "corner",
+      "corner", "corner",     "body",   "bushing", "antiroll_bar", "bogie"};
+  const int kind =
+      p->kind > 0 && p->kind < FB_PART_KINDS && list[p->kind] ? p->kind : FB_PART_NONE;
   const char *name = s ? part_name(s, kind, p->index) : NULL;
   size_t n = 0;
   buf[0] = '\0';

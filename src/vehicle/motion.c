@@ -155,13 +155,23 @@ static void row_values(const fb_vehicle_motion *m, size_t k, double w, size_t fi
     out[j] = (1.0 - w) * a[j] + w * b[j];
 }
 
-/* System 1's hull: node (x, y) rises by z + y phi - x theta. */
-static void rigid_nodes(const fb_mesh *mesh, const double *q, double *u)
+/* System 1's hull: node (x, y) rises by z + y phi - x theta; carrying
+ * mounted rigid bodies, its six coordinates (x, y, z, phi, theta, psi)
+ * move node r by T(r) q (small motion, vehicle_rigid_transport). */
+static void rigid_nodes(const fb_mesh *mesh, size_t ncoords, const double *q, double *u)
 {
   for (size_t i = 0; i < fb_mesh_nnodes(mesh); ++i) {
     const double *x = fb_mesh_node_xyz(mesh, i);
     double *ui = u + 6 * i;
     memset(ui, 0, 6 * sizeof *ui);
+    if (ncoords == 6) {
+      double t[36];
+      vehicle_rigid_transport(x, t);
+      for (int r = 0; r < 6; ++r)
+        for (int c = 0; c < 6; ++c)
+          ui[r] += t[6 * r + c] * q[c];
+      continue;
+    }
     ui[2] = q[0] + x[1] * q[1] - x[0] * q[2];
     ui[3] = q[1];
     ui[4] = q[2];
@@ -191,8 +201,9 @@ int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double
   const int flexible = m->sys == FB_SYSTEM_FLEXIBLE;
   if (node_u && flexible && mesh != m->mesh)
     return fb_err_set(err, FB_EINVAL, "System 2's hull moves its own mesh only");
-  if (node_u && !flexible && m->ncoords != 3)
-    return fb_err_set(err, FB_EINVAL, "System 1's hull has 3 coordinates, not %zu", m->ncoords);
+  if (node_u && !flexible && m->ncoords != 3 && m->ncoords != 6)
+    return fb_err_set(err, FB_EINVAL, "System 1's hull has 3 or 6 coordinates, not %zu",
+                      m->ncoords);
   if (m->nsamples == 0)
     return fb_err_set(err, FB_EINVAL, "the run has no samples");
   size_t k = 0;
@@ -207,7 +218,7 @@ int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double
     if (flexible)
       flexible_nodes(m, q, node_u);
     else
-      rigid_nodes(mesh, q, node_u);
+      rigid_nodes(mesh, m->ncoords, q, node_u);
     free(q);
   }
   col += m->ncoords;

@@ -70,6 +70,42 @@ static const fb_output_kind kinds[] = {
     {"pivot_force", FB_OUTPUT_OF_BOGIE, "N", "pivot_force_%s",
      "Spring force at the pivot of bogie %s", "bogie %s pivot spring force",
      "the bogie's pivot spring's force, compression positive"},
+    {"body_acc_x", FB_OUTPUT_OF_BODY, "m/s^2", "%s_acc_x", "Acceleration of the %s, x",
+     "%s x acceleration",
+     "acceleration of the rigid body's centre of mass along x, forward positive"},
+    {"body_acc_y", FB_OUTPUT_OF_BODY, "m/s^2", "%s_acc_y", "Acceleration of the %s, y",
+     "%s y acceleration",
+     "acceleration of the rigid body's centre of mass along y, left positive"},
+    {"body_acc_z", FB_OUTPUT_OF_BODY, "m/s^2", "%s_acc_z", "Acceleration of the %s, z",
+     "%s z acceleration",
+     "acceleration of the rigid body's centre of mass along z, up positive"},
+    {"body_acc_roll", FB_OUTPUT_OF_BODY, "rad/s^2", "%s_acc_roll",
+     "Acceleration of the %s, roll", "%s roll acceleration",
+     "acceleration of the rigid body's centre of mass about x"},
+    {"body_acc_pitch", FB_OUTPUT_OF_BODY, "rad/s^2", "%s_acc_pitch",
+     "Acceleration of the %s, pitch", "%s pitch acceleration",
+     "acceleration of the rigid body's centre of mass about y"},
+    {"body_acc_yaw", FB_OUTPUT_OF_BODY, "rad/s^2", "%s_acc_yaw", "Acceleration of the %s, yaw",
+     "%s yaw acceleration", "acceleration of the rigid body's centre of mass about z"},
+    {"body_disp_x", FB_OUTPUT_OF_BODY, "m", "%s_disp_x", "Displacement of the %s, x",
+     "%s x displacement",
+     "displacement of the rigid body's centre of mass along x, forward positive, from the "
+     "start"},
+    {"body_disp_y", FB_OUTPUT_OF_BODY, "m", "%s_disp_y", "Displacement of the %s, y",
+     "%s y displacement",
+     "displacement of the rigid body's centre of mass along y, left positive, from the start"},
+    {"body_disp_z", FB_OUTPUT_OF_BODY, "m", "%s_disp_z", "Displacement of the %s, z",
+     "%s z displacement",
+     "displacement of the rigid body's centre of mass along z, up positive, from the start"},
+    {"body_disp_roll", FB_OUTPUT_OF_BODY, "rad", "%s_disp_roll", "Displacement of the %s, roll",
+     "%s roll displacement",
+     "displacement of the rigid body's centre of mass about x, from the start"},
+    {"body_disp_pitch", FB_OUTPUT_OF_BODY, "rad", "%s_disp_pitch",
+     "Displacement of the %s, pitch", "%s pitch displacement",
+     "displacement of the rigid body's centre of mass about y, from the start"},
+    {"body_disp_yaw", FB_OUTPUT_OF_BODY, "rad", "%s_disp_yaw", "Displacement of the %s, yaw",
+     "%s yaw displacement",
+     "displacement of the rigid body's centre of mass about z, from the start"},
     {"torsion", FB_OUTPUT_OF_HULL, "rad", "torsion", "Hull torsion angle", "hull torsion angle",
      "roll of the front edge minus roll of the rear edge (the torsion edges, Fig. 10)"},
     {"torsion_fit", FB_OUTPUT_OF_HULL, "rad", "torsion_fit", "Hull torsion angle (fitted)",
@@ -283,6 +319,7 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   case FB_OUTPUT_OF_CORNER:
   case FB_OUTPUT_OF_MOUNT:
   case FB_OUTPUT_OF_BOGIE: rc = body_probe(s, info, index, p, err); break;
+  case FB_OUTPUT_OF_BODY: rc = vehicle_body_probe(s, index, p, err); break;
   case FB_OUTPUT_OF_HULL: rc = hull_probe(hull, o, index, p, err); break;
   case FB_OUTPUT_OF_HULL_POINT: rc = hull_reading_probe(hull, index, p, err); break;
   case FB_OUTPUT_OF_BOND: rc = bond_probe_of(o, p, err); break;

@@ -28,6 +28,51 @@ int vehicle_add_scalar(fb_bg *bg, const char *name, fb_bg_kind kind, double v, f
  * share of it, r = [1, y, -x] the point's rigid row: their kinetic
  * energy 1/2 m (z' + y phi' - x theta')^2 (vertical motion only). */
 void fb_vehicle_rigid_inertia(const fb_scenario *s, double *m33);
+/* The same in six degrees of freedom (x, y, z, roll, pitch, yaw), for a
+ * hull carrying mounted rigid bodies, 6x6 row major: diag(hull_mass)
+ * and the hull's whole inertia tensor, plus m T' T for each declared
+ * hull mass and lumped payload share, T = vehicle_rigid_transport of its
+ * point (x, y, 0) (taken at the centre of mass's height: the scenario
+ * has no floor height). Its (z, roll, pitch) block is
+ * fb_vehicle_rigid_inertia's. */
+void vehicle_rigid_inertia6(const fb_scenario *s, double *m66);
+/* On the 6-dimensional 1-junction `junction` (a rigid body's generalised
+ * velocity at its reference point), the port "bushing_<k>" (IN,
+ * dimension 6) of the point at r from it (small motion,
+ * vehicle_rigid_transport), where bushing k of fb_scenario_bushing_at
+ * meets its parent: the transformer "to_bushing_<k>" and the 1-junction
+ * "bushing_<k>". */
+/* System 2's undamped vehicle (fb_vehicle_matrices): its DOFs after the
+ * hull's, the mounts' and the wheels' vertical motions, then six per
+ * mounted rigid body (x, y, z, roll, pitch, yaw at its centre of mass). */
+size_t vehicle_nlumped(const fb_scenario *s);
+/* The highest natural frequency (Hz) of body b on its bushings with its
+ * parent held (their stiffness at its centre of mass against its
+ * inertia); 0 if LAPACK fails. */
+double vehicle_body_top_hz(const fb_body *b);
+/* Body b's 6x6 inertia at its centre of mass, row major. */
+void vehicle_body_inertia6(const fb_body *b, double *m66);
+/* Bushing k's relative motion, its parent's point minus its body's, as
+ * six sparse rows over the undamped vehicle's DOFs: the hull's coupling
+ * rows (fe's, over its nodal DOFs) or the parent body's rigid transport,
+ * less the body's; body i's six DOFs from base + 6 i. rows new
+ * (fb_hull_coupling_free each). */
+int vehicle_bushing_relative_rows(const fb_scenario *s, const fb_fe_hull *fe, size_t k,
+                                  size_t base, fb_hull_coupling *rows, fb_err *err);
+/* The hull nodes bushing u's hull side is coupled to (*nodes new, *n of
+ * them): its node set's, or those of the coupling surface within its
+ * radius (or the scenario's) in plan (coupling.c). FB_EMODEL when there
+ * are none. */
+int vehicle_bushing_nodes(const fb_scenario *s, const fb_mesh *m, const fb_bushing *u,
+                          size_t **nodes, size_t *n, fb_err *err);
+/* The probe of output index of s, a mounted rigid body's signal (its
+ * kind's subject FB_OUTPUT_OF_BODY): target and weights new in p. */
+int vehicle_body_probe(const fb_scenario *s, size_t index, fb_probe_spec *p, fb_err *err);
+int vehicle_add_bushing_port(fb_bg *bg, const char *junction, size_t k, const double *r,
+                             fb_err *err);
+/* The same around a transformer "to_bushing_<k>" bg has already (6 rows
+ * from the body's coordinates): the junction, its bonds and the port. */
+int vehicle_wire_bushing_port(fb_bg *bg, const char *junction, size_t k, fb_err *err);
 
 /* The generated hull's centre of mass in its own frame: x as the
  * parameters give it, z above the floor (the plates' masses per area from
@@ -160,8 +205,9 @@ const char *vehicle_flexible_hull_bond(size_t i);
 int fb_fe_hull_add_masses(const fb_fe_hull *h, size_t nload, double each, fb_mat **M,
                           fb_err *err);
 /* The undamped System 2 over the hull's nodal DOFs, then the mounted
- * bodies' and the wheels' vertical motions: *K and *M (new) from the
- * hull's kh and mh and the springs, bodies, wheels and anti-roll bars of s. */
+ * bodies' and the wheels' vertical motions, then the rigid bodies' six
+ * each (vehicle_nlumped): *K and *M (new) from the hull's kh and mh and
+ * the springs, bushings, bodies, wheels and anti-roll bars of s. */
 int fb_vehicle_matrices(const fb_scenario *s, const fb_fe_hull *h, const fb_mat *kh,
                         const fb_mat *mh, fb_mat **K, fb_mat **M, fb_err *err);
 /* Completes a mode set from nwant modes (freq ascending, shapes over the
@@ -241,6 +287,28 @@ char *vehicle_antiroll_bar_instance(const fb_antiroll_bar *b);
 /* Frees the strings an anti-roll bar (a bogie) of a description owns. */
 void vehicle_antiroll_bar_release(fb_antiroll_bar *b);
 void vehicle_bogie_release(fb_bogie *b);
+/* Frees what a body owns (its names, bushings and their node sets) and
+ * zeroes it; the body itself is its holder's. */
+void vehicle_body_release(fb_body *b);
+/* *dst = a deep copy of src; 0 when memory ran out (*dst then owns
+ * nothing). */
+int vehicle_body_copy(const fb_body *src, fb_body *dst);
+/* b's inertia tensor about its centre of mass, 3x3 row major, into j. */
+void vehicle_body_inertia(const fb_body *b, double *j);
+/* The hull structure's whole inertia tensor (hull_ixx .. hull_iyz), the
+ * same way. */
+void vehicle_hull_inertia(const fb_scenario *s, double *j);
+/* The eigenvalues of the symmetric 3x3 a (row major), ascending, into w;
+ * FB_ESOLVER if LAPACK fails. */
+int vehicle_sym3_eigenvalues(const double *a, double *w);
+/* The 6x6 map (row major) from a rigid body's motion at a reference
+ * point, (v, omega), to its motion at the point r from it: small motion. */
+void vehicle_rigid_transport(const double *r, double *t);
+/* sum += T' k T, T the transport from b's centre of mass to bushing u's
+ * point: a 6x6 (row major) stiffness or damping k of u as b's centre of
+ * mass sees it. */
+void vehicle_bushing_add_at_centre(const fb_body *b, const fb_bushing *u, const double *k,
+                                   double *sum);
 /* rc, after making a road type's error about one of its parameters
  * (err->part.field set, no kind) a part of the description
  * (FB_PART_ROAD). */
