@@ -261,48 +261,61 @@ static int rigid_hull_graph(const fb_scenario *s, fb_bg *bg, fb_err *err)
   return rc;
 }
 
-/* Output o read from the rigid hull's motion: its row over (z, phi,
- * theta), the point's or the rigid coordinate's. The rigid hull moves in
- * bounce, roll and pitch only: its longitudinal, lateral and yaw motions
- * are zero by the model's assumption, and so are their rows. */
+/* Output o read from the rigid hull's motion: its row over the hull's
+ * ndof coordinates (rigid_ndof: z, phi, theta, or the six of
+ * vehicle_rigid_rows), the point's or the rigid coordinate's. The 3-DOF
+ * hull moves in bounce, roll and pitch only: its longitudinal, lateral
+ * and yaw motions are zero by the model's assumption, and so are their
+ * rows. */
 static void rigid_reading_row(const fb_output_spec *o, const vehicle_hull_motion *how,
-                              double *row)
+                              size_t ndof, double *row)
 {
-  memset(row, 0, RIGID_DOFS * sizeof *row);
-  const int j = how->coordinate - RIGID_FIRST;
-  if (how->coordinate < 0)
+  const int first = ndof == 6 ? 0 : RIGID_FIRST;
+  memset(row, 0, ndof * sizeof *row);
+  const int j = how->coordinate - first;
+  if (how->coordinate < 0 && ndof == 6) {
+    double rows[18];
+    vehicle_rigid_rows(o->at, rows);
+    memcpy(row, rows + 6 * o->direction, 6 * sizeof *row);
+  } else if (how->coordinate < 0) {
     rigid_axis_row(o->at, o->direction, row);
-  else if (j >= 0 && j < RIGID_DOFS)
+  } else if (j >= 0 && (size_t)j < ndof) {
     row[j] = 1.0;
+  }
 }
 
 /* The rigid hull's outputs read from its motion: a displacement is the
- * integrated flow of b_body (the velocities of z, phi, theta) on its row,
- * a velocity the flow, an acceleration the effort on the inertia M over
- * M: (z, phi, theta)'' = M^-1 p' (p' the effort on b_body), so the row r
- * weighs the effort by M^-1 r (M symmetric). */
+ * integrated flow of b_body (the velocities of its coordinates) on its
+ * row, a velocity the flow, an acceleration the effort on the inertia M
+ * over M: q'' = M^-1 p' (p' the effort on b_body), so the row r weighs
+ * the effort by M^-1 r (M symmetric). */
 static int rigid_readings(const fb_scenario *s, fb_hull *h, fb_err *err)
 {
   int rc = vehicle_hull_readings_new(s, h, err);
-  double m33[9];
-  fb_vehicle_rigid_inertia(s, m33);
+  const size_t ndof = rigid_ndof(s);
+  double inertia[36];
+  if (ndof == 6)
+    vehicle_rigid_inertia6(s, inertia);
+  else
+    fb_vehicle_rigid_inertia(s, inertia);
   vehicle_hull_motion how;
   for (size_t o = 0; !rc && o < s->noutputs; ++o) {
     if (!vehicle_output_hull_motion(&s->output[o], &how))
       continue;
-    double row[RIGID_DOFS];
-    rigid_reading_row(&s->output[o], &how, row);
+    double row[6];
+    rigid_reading_row(&s->output[o], &how, ndof, row);
     if (how.derivative == 2) {
-      double m[9];
-      memcpy(m, m33, sizeof m);
-      const lapack_int info = LAPACKE_dposv(LAPACK_ROW_MAJOR, 'L', 3, 1, m, 3, row, 1);
+      double m[36];
+      memcpy(m, inertia, ndof * ndof * sizeof *m);
+      const lapack_int n = (lapack_int)ndof;
+      const lapack_int info = LAPACKE_dposv(LAPACK_ROW_MAJOR, 'L', n, 1, m, n, row, 1);
       if (info)
         rc = fb_err_set(err, FB_EMODEL, "the rigid hull's inertia is not positive definite");
     }
     if (!rc)
       rc = vehicle_hull_reading_set(&h->reading[o], "b_body",
                                     how.derivative == 2 ? FB_PROBE_EFFORT : FB_PROBE_FLOW,
-                                    how.derivative == 0, row, RIGID_DOFS, err);
+                                    how.derivative == 0, row, ndof, err);
   }
   return rc;
 }
