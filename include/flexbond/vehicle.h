@@ -513,6 +513,9 @@ long fb_scenario_corner_find(const fb_scenario *s, const char *name);
 long fb_scenario_mount_find(const fb_scenario *s, const char *name);
 /* Index of the bogie named name, -1 if none. */
 long fb_scenario_bogie_find(const fb_scenario *s, const char *name);
+/* Index of the bogie whose beam carries corner c's wheel, -1 if none (the
+ * corner then has its own spring and damper). */
+long fb_scenario_corner_bogie(const fb_scenario *s, size_t c);
 /* The plausibility warnings of a loaded scenario, each "FILE:LINE:COL:
  * KEY: VALUE is implausible: WHY" with the fields of a located error
  * (docs/errors.md, "Implausible values"); NULL for i out of range; owned
@@ -1451,12 +1454,14 @@ void fb_fe_hull_free(fb_fe_hull **h);
 /* What holds the largest share of a mode's kinetic energy: a rigid motion
  * of the hull (index 0 .. 5: surge, sway, bounce, roll, pitch, yaw, about
  * its centre of mass), its elastic deformation (index 0), mounted body
- * index, or corner index's wheel (its hop). */
+ * index, corner index's wheel (its hop), or bogie index's beam with its
+ * wheels. */
 typedef enum fb_mode_part_kind {
   FB_MODE_HULL_RIGID,
   FB_MODE_HULL_ELASTIC,
   FB_MODE_MOUNT,
-  FB_MODE_WHEEL
+  FB_MODE_WHEEL,
+  FB_MODE_BOGIE /* bogie index's beam, its bounce or its pitch */
 } fb_mode_part_kind;
 typedef struct fb_mode_part {
   fb_mode_part_kind kind;
