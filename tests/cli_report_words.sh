@@ -148,7 +148,9 @@ expect_in "$R" "A figure shows the whole run, except where its output has a wind
   "the figures' windows"
 expect_in "$R" "![Multibond graph, System 1 (rigid hull)](fig05_bond_graph_system1.png)" \
   "the diagram's caption without the paper's number"
-for text in "torsion" "Figs. 12" "1 load points"; do
+expect_in "$R" "Only System 1 (rigid hull) ran, so nothing is compared (the scenario has no finite-element hull for System 2)." \
+  "no System 2 to run"
+for text in "torsion" "Figs. 12" "1 load points" "--system both"; do
   not_in "$R" "$text" "the quarter car's report"
 done
 

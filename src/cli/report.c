@@ -1109,8 +1109,9 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
   const cli_run_system *r = &o->runs[0];
-  fprintf(fp, "Only %s ran, so nothing is compared (`--system both` runs both).",
-          cli_system_label(r->sys));
+  fprintf(fp, "Only %s ran, so nothing is compared (%s).", cli_system_label(r->sys),
+          o->scenario->has_fe_hull ? "`--system both` runs both"
+                                   : "the scenario has no finite-element hull for System 2");
   double factor = 0;
   const size_t largest = fb_study_report_largest_growth(o->report, &factor);
   if (largest < nout) {
