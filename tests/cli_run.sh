@@ -744,7 +744,7 @@ cmp -s <(tail -n +2 "$WORK/plain_header/system1.csv") <(tail -n +2 "$WORK/nofig/
 run run "$REPO_ROOT/examples/apc6x6_liftoff.yaml" -o "$WORK/liftoff" --no-figures -q \
   --system rigid
 expect_status 0 "run with unilateral tires"
-expect_in "$WORK/liftoff/report.md" "every tire is unilateral, unilateral: it pushes but never pulls" \
+expect_in "$WORK/liftoff/report.md" "every tire is unilateral, one-sided: it pushes but never pulls" \
   "report.md unilateral tires"
 expect_in "$WORK/liftoff/report.md" \
   "System 1 (rigid hull): 5 intervals where a tire carries no load" "report.md lift-off verdict"

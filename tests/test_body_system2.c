@@ -151,6 +151,24 @@ static void test_modes(void)
   }
   fprintf(stderr, "  worst relative difference %.3g\n", worst);
   CHECK(worst <= 1e-2);
+  /* A mode the turret holds the most of is the turret's part, a mounted
+   * body after the mounts, with its share; and its picture is among those
+   * chosen by what they are. */
+  const size_t turret = s->nmounts + (size_t)fb_scenario_body_find(s, "turret");
+  size_t held = m2->nmodes, chosen[FB_PICTURED_MODES_MAX];
+  for (size_t k = 0; k < m2->nmodes && held == m2->nmodes; ++k)
+    if (!strncmp(m2->description[k], "turret (", 8))
+      held = k;
+  CHECK(held < m2->nmodes && m2->nmounts == s->nmounts + s->nbodies);
+  if (held < m2->nmodes) {
+    CHECK(m2->part[held].kind == FB_MODE_MOUNT && m2->part[held].index == turret);
+    CHECK(m2->mount_share[held * m2->nmounts + turret] > 0.5);
+    const size_t n = fb_mode_set_pictured(m2, chosen, FB_PICTURED_MODES_MAX);
+    int pictured = 0;
+    for (size_t i = 0; i < n; ++i)
+      pictured |= chosen[i] == held;
+    CHECK(pictured);
+  }
   fb_mode_set_free(&m2);
   fb_vehicle_free(&v);
   free(m1);

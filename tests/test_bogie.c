@@ -21,6 +21,8 @@
  *   5. System 2's undamped modes (its own matrices over the wheels'
  *      displacements, fb_vehicle_matrices and the modal basis's) in the
  *      rigid limit against System 1's (the bond graph);
+ *   5b. System 2's modes of a bogie labelled as System 1's, its beam's
+ *      pitch at the closed form of 2.;
  *   6. the checks' refusals, each naming the bogie's member. */
 #include <math.h>
 #include <stdio.h>
@@ -34,7 +36,7 @@
 #include "check.h"
 #include "vehicle_util.h"
 
-static const double G = 9.81, MH = 3000.0;
+static const double G = 9.81, MH = 3000.0, PI = 3.14159265358979323846;
 
 /* A wheel and its linear tire (no damping unless tire_c). */
 static fb_corner_params wheel(double mass, double tire_k, double tire_c)
@@ -319,6 +321,58 @@ static void test_system2_rigid_limit(void)
   fb_scenario_free(&s);
 }
 
+/* ---- 5b. System 2's modes of a bogie carry the bogie's labels, as System
+ * 1's beam does (fb_vehicle_bogie): in examples/truck6x6_bogie.yaml as it
+ * is (a = b, equal wheels and tires), each beam's pitch moves neither its
+ * pivot nor the hull (test 2's symmetry), so System 2 has it at the fixed
+ * pivot's w^2 = k_t (a^2 + b^2) / (J + m_w (a^2 + b^2)), labelled
+ * "bogie pitch <name>"; and no mode is called a hop of a bogie's wheel
+ * (they ride on the beam). */
+static void test_system2_labels(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  REQUIRE(fb_scenario_load("../examples/truck6x6_bogie.yaml", &s, &err), &err);
+  fb_vehicle *v = NULL;
+  REQUIRE(fb_vehicle_new(s, FB_SYSTEM_FLEXIBLE, NULL, &v, &err), &err);
+  fb_mode_set *m = NULL;
+  REQUIRE(fb_vehicle_structural_modes(v, 20, 0, &m, &err), &err);
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    const fb_bogie *b = &s->bogie[i];
+    const long f = fb_scenario_corner_find(s, b->front),
+               r = fb_scenario_corner_find(s, b->rear);
+    const double a = s->corner[f].x - b->pivot_x, bb = b->pivot_x - s->corner[r].x;
+    const double l2 = a * a + bb * bb, mw = s->corner[f].wheel_mass;
+    const double hz = sqrt(s->corner[f].tire_k * l2 / (b->beam_inertia + mw * l2)) / (2 * PI);
+    char pitch[96], bounce[96];
+    snprintf(pitch, sizeof pitch, "bogie pitch %s (", b->name);
+    snprintf(bounce, sizeof bounce, "bogie bounce %s (", b->name);
+    size_t npitch = 0, nbounce = 0;
+    for (size_t k = 0; k < m->nmodes; ++k) {
+      const int is_bogie = m->part[k].kind == FB_MODE_BOGIE && m->part[k].index == i;
+      CHECK(is_bogie == (!strncmp(m->description[k], pitch, strlen(pitch)) ||
+                         !strncmp(m->description[k], bounce, strlen(bounce))));
+      nbounce += !strncmp(m->description[k], bounce, strlen(bounce));
+      if (strncmp(m->description[k], pitch, strlen(pitch)))
+        continue;
+      ++npitch;
+      fprintf(stderr, "%s: %.8g Hz, closed form %.8g Hz\n", m->description[k], m->freq_hz[k],
+              hz);
+      /* The reduced basis keeps the wheels' DOFs exactly and the pitch
+       * leaves the hull at rest: only the eigen-solve's round-off, 1e-6
+       * relative a wide margin above it. */
+      CHECK_NEAR(m->freq_hz[k] / hz, 1.0, 1e-6);
+    }
+    CHECK(npitch == 1 && nbounce >= 1);
+  }
+  for (size_t k = 0; k < m->nmodes; ++k)
+    CHECK(m->part[k].kind != FB_MODE_WHEEL ||
+          fb_scenario_corner_bogie(s, m->part[k].index) < 0);
+  fb_mode_set_free(&m);
+  fb_vehicle_free(&v);
+  fb_scenario_free(&s);
+}
+
 /* ---- 6. Refusals, each naming the bogie's member: the truck's first
  * bogie with other corners (blamed: the bogie the error is about). */
 static void expect_refusal(const char *front, const char *rear, double pivot_dx, size_t blamed,
@@ -372,6 +426,7 @@ int main(void)
   test_energy();
   test_vehicle_split();
   test_system2_rigid_limit();
+  test_system2_labels();
   test_refusals();
   return check_report(__FILE__);
 }

@@ -315,6 +315,32 @@ static void test_each_and_check(void)
   toy_free(&t);
 }
 
+/* A value stored in another unit prints as the file wrote it: 30 km/h is
+ * stored as 30 / 3.6 m/s, which converts back to 30.000000000000004
+ * (123.456 to 123.45600000000002); ten significant digits hide that
+ * round-off. */
+static void test_format_converted(void)
+{
+  toy t;
+  sch_reader r;
+  fb_err err;
+  CHECK(toy_read(good, &t, &r, &err) == FB_OK);
+  sch_reader_release(&r);
+  const double kmh[] = {30, 123.456};
+  const char *const want[] = {"box.speed=30;", "box.speed=123.456;"};
+  for (size_t i = 0; i < 2; ++i) {
+    CHECK(toy_to_kmh(toy_to_ms(kmh[i])) != kmh[i]); /* the round-off is there */
+    t.speed = toy_to_ms(kmh[i]);
+    toy_visit v;
+    memset(&v, 0, sizeof v);
+    sch_each(&toy_table, &t, toy_collect, &v);
+    CHECK(strstr(v.seen, want[i]) != NULL);
+    if (!strstr(v.seen, want[i]))
+      fprintf(stderr, "seen: %s\n", v.seen);
+  }
+  toy_free(&t);
+}
+
 /* Overrides: a value the file has, a default it leaves out (at its
  * section's place), an item's key; a key the table does not have, named
  * with a suggestion and the override as the source. */
@@ -376,6 +402,7 @@ int main(void)
   test_read_good();
   test_read_bad();
   test_each_and_check();
+  test_format_converted();
   test_overrides();
   test_markdown();
   return check_report("test_schema");

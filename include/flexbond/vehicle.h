@@ -586,6 +586,9 @@ long fb_scenario_body_find(const fb_scenario *s, const char *name);
  * when k is out of range). */
 size_t fb_scenario_nbushings(const fb_scenario *s);
 int fb_scenario_bushing_at(const fb_scenario *s, size_t k, size_t *body, size_t *bushing);
+/* Index of the bogie whose beam carries corner c's wheel, -1 if none (the
+ * corner then has its own spring and damper). */
+long fb_scenario_corner_bogie(const fb_scenario *s, size_t c);
 /* The plausibility warnings of a loaded scenario, each "FILE:LINE:COL:
  * KEY: VALUE is implausible: WHY" with the fields of a located error
  * (docs/errors.md, "Implausible values"); NULL for i out of range; owned
@@ -1578,12 +1581,15 @@ int fb_fe_hull_point_stiffness(const fb_fe_hull *h, size_t ncorners, size_t node
 /* What holds the largest share of a mode's kinetic energy: a rigid motion
  * of the hull (index 0 .. 5: surge, sway, bounce, roll, pitch, yaw, about
  * its centre of mass), its elastic deformation (index 0), mounted body
- * index, or corner index's wheel (its hop). */
+ * index (a mount, index < s->nmounts, else rigid body index - nmounts),
+ * corner index's wheel (its hop), or bogie index's beam with its
+ * wheels. */
 typedef enum fb_mode_part_kind {
   FB_MODE_HULL_RIGID,
   FB_MODE_HULL_ELASTIC,
   FB_MODE_MOUNT,
-  FB_MODE_WHEEL
+  FB_MODE_WHEEL,
+  FB_MODE_BOGIE /* bogie index's beam, its bounce or its pitch */
 } fb_mode_part_kind;
 typedef struct fb_mode_part {
   fb_mode_part_kind kind;
@@ -1600,7 +1606,9 @@ typedef struct fb_mode_set {
   char (*description)[96]; /* nmodes, e.g. "hull pitch (rigid 97%)" */
   fb_mode_part *part;      /* nmodes: what the description names */
   /* nmodes x nmounts, mode k's row first: mounted body b's share of mode
-   * k's kinetic energy, in [0, 1]. */
+   * k's kinetic energy, in [0, 1]; the mounted bodies are the mounts
+   * (b < s->nmounts), then the rigid bodies (s->body[b - s->nmounts]),
+   * whose six motions count together. */
   size_t nmounts;
   double *mount_share;
 } fb_mode_set;

@@ -324,6 +324,11 @@ enum { CLI_MAX_SYSTEMS = 2 };
 /* The figure of output o, "figNN_NAME.png" (its figure number) or
  * "fig_NAME.png", into buf. */
 void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size);
+/* The window output o's figure shows over the run of r: the output's
+ * window clipped to the run, or, when it has none or they do not overlap,
+ * *t_min = *t_max = 0 (the whole run). */
+void cli_run_figure_window(const fb_output_spec *o, const fb_result *r, double *t_min,
+                           double *t_max);
 /* The number of diagrams run draws per system, and the file of diagram
  * k < CLI_RUN_NDIAGRAMS of system sys ("fig05_bond_graph_system1.png",
  * "fig06_block_diagram_system1.png": the paper's Figs. 5 and 6). */

@@ -2,6 +2,7 @@
 /* What the command's outputs call things: the systems, the scenario, and
  * the files of run's figures and diagrams, which run writes and report.md
  * links to. One place, so that no command reaches into another for them. */
+#include <math.h>
 #include <stdio.h>
 
 #include "cli.h"
@@ -22,6 +23,22 @@ void cli_run_figure_file(const fb_output_spec *o, char *buf, size_t size)
     snprintf(buf, size, "fig%02d_%s.png", o->figure, o->name);
   else
     snprintf(buf, size, "fig_%s.png", o->name);
+}
+
+void cli_run_figure_window(const fb_output_spec *o, const fb_result *r, double *t_min,
+                           double *t_max)
+{
+  /* fb_plot_opts: t_min >= t_max means the result's span. */
+  *t_min = *t_max = 0;
+  size_t n = fb_result_nsamples(r);
+  if (!(o->window[0] < o->window[1]) || n == 0)
+    return;
+  double lo = fmax(o->window[0], fb_result_row(r, 0)[0]);
+  double hi = fmin(o->window[1], fb_result_row(r, n - 1)[0]);
+  if (lo < hi) {
+    *t_min = lo;
+    *t_max = hi;
+  }
 }
 
 /* The paper's Figs. 5 and 6 of system sys: its multibond graph and its

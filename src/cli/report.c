@@ -201,9 +201,9 @@ static void write_payload(FILE *fp, const fb_scenario *s)
   if (s->payload == FB_PAYLOAD_WEIGHT_ONLY) {
     fprintf(fp,
             "- Payload: weight only (`weight-only`, the paper's prescribed efforts): the "
-            "%.10g N act at the %zu load points and add no mass; the hull's inertia is its "
+            "%.10g N act at the %zu load point%s and add no mass; the hull's inertia is its "
             "own%s.\n",
-            s->total_weight, s->nload,
+            s->total_weight, s->nload, s->nload == 1 ? "" : "s",
             s->npoint_masses ? " (its structure's and its masses')" : "");
     return;
   }
@@ -214,9 +214,9 @@ static void write_payload(FILE *fp, const fb_scenario *s)
              fb_scenario_point_masses_total(s));
   fprintf(fp,
           "- Payload: lumped (`lumped`): its mass, %.10g N / %.10g m/s^2 - %.10g kg%s = %.6g "
-          "kg, is spread equally over the %zu load points (%.6g kg each).\n",
+          "kg, is spread equally over the %zu load point%s (%.6g kg each).\n",
           s->total_weight, s->gravity, s->hull_mass, masses, payload, s->nload,
-          payload / (double)s->nload);
+          s->nload == 1 ? "" : "s", payload / (double)s->nload);
 }
 
 /* The plates whose section overrides the material above, by element
@@ -355,7 +355,8 @@ static void write_mesh_error(FILE *fp, const fb_scenario *s)
           "hull's first ten elastic free-free frequencies are about %.2g %% to %.2g %% above "
           "their converged values (the reference hull's measured %.0f %% to %.0f %% at "
           "density 1, falling as 1 / density^2; docs/hull-mesh.md, \"Convergence\"). The "
-          "vehicle's suspension modes move by less than 0.1 %% with the mesh.\n",
+          "reference vehicle's suspension modes moved by less than 0.1 %% from density 1 to "
+          "2.\n",
           fb_scenario_hull_density(s), 100 * band[0], 100 * band[1],
           100 * FB_STUDY_MESH_ERROR_LOW, 100 * FB_STUDY_MESH_ERROR_HIGH);
 }
@@ -450,47 +451,121 @@ static void stops_line(const fb_corner_params *c, char *buf, size_t size)
 
 typedef void (*corner_words)(const fb_corner_params *c, char *buf, size_t size);
 
-/* One item of the Assumptions: title, then the corners words says alike
- * together, in the order the corners first name them. */
+/* 1 if corner c has its own spring, damper and stops; a bogie's wheel
+ * rides on the beam, whose pivot has the spring and the damper. */
+static int own_suspension(const fb_scenario *s, size_t c)
+{
+  return fb_scenario_corner_bogie(s, c) < 0;
+}
+
+/* 1 if corners c and k have their own suspensions and words says the
+ * same of them (line: k's words). */
+static int alike(const fb_scenario *s, corner_words words, size_t c, const char *line)
+{
+  char other[192];
+  if (!own_suspension(s, c))
+    return 0;
+  words(&s->corner[c], other, sizeof other);
+  return !strcmp(line, other);
+}
+
+/* One item of the Assumptions: title, then the corners with their own
+ * suspensions (own_suspension) words says alike together, in the order
+ * the corners first name them; no item when no corner has one. */
 static void write_corners_alike(FILE *fp, const fb_scenario *s, const char *title,
                                 corner_words words)
 {
-  fprintf(fp, "- %s: ", title);
+  size_t groups = 0;
   for (size_t k = 0; k < s->ncorners; ++k) {
-    char line[192], other[192];
+    if (!own_suspension(s, k))
+      continue;
+    char line[192];
     words(&s->corner[k], line, sizeof line);
     size_t seen = 0;
-    for (size_t c = 0; c < k; ++c) {
-      words(&s->corner[c], other, sizeof other);
-      seen += !strcmp(line, other);
-    }
+    for (size_t c = 0; c < k; ++c)
+      seen += alike(s, words, c, line);
     if (seen)
       continue;
-    fputs(k ? "; " : "", fp);
-    for (size_t c = k, i = 0; c < s->ncorners; ++c) {
-      words(&s->corner[c], other, sizeof other);
-      if (!strcmp(line, other)) {
+    fprintf(fp, groups++ ? "; " : "- %s: ", title);
+    for (size_t c = k, i = 0; c < s->ncorners; ++c)
+      if (alike(s, words, c, line)) {
         fputs(i++ ? ", " : "", fp);
         fb_md_write_text(fp, s->corner[c].name);
       }
-    }
     fputs(": ", fp);
     fb_md_write_text(fp, line);
   }
-  fputs(".\n", fp);
+  if (groups)
+    fputs(".\n", fp);
+}
+
+/* The walking-beam bogies, one line each (fb_bogie): their wheels, the
+ * lever, the beam and the pivot's spring and damper. */
+static void write_bogies(FILE *fp, const fb_scenario *s)
+{
+  if (!s->nbogies)
+    return;
+  fputs("- Walking-beam bogies: the wheels of two corners on one side ride at the ends of a "
+        "beam that pitches freely about its pivot, and the pivot rides on its spring and "
+        "damper to the hull; those corners' own springs, dampers and motion ratios are not "
+        "used (docs/scenario-format.md, \"Walking-beam bogies\").\n",
+        fp);
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    const fb_bogie *b = &s->bogie[i];
+    const long f = fb_scenario_corner_find(s, b->front),
+               r = fb_scenario_corner_find(s, b->rear);
+    if (f < 0 || r < 0) /* fb_scenario_check finds both */
+      continue;
+    fputs("  - ", fp);
+    fb_md_write_text(fp, b->name);
+    fputs(": ", fp);
+    fb_md_write_text(fp, b->front);
+    fprintf(fp, " at a = %.10g m ahead of the pivot, ", s->corner[f].x - b->pivot_x);
+    fb_md_write_text(fp, b->rear);
+    fprintf(fp,
+            " at b = %.10g m behind it; the beam %.10g kg, %.10g kg m^2 in pitch about the "
+            "pivot; the pivot's spring %.10g N/m, its damper %.10g N s/m.\n",
+            b->pivot_x - s->corner[r].x, b->beam_mass, b->beam_inertia, b->spring_k,
+            b->damper_c);
+  }
+}
+
+/* The anti-roll bars (fb_antiroll_bar): their corners and rates. */
+static void write_antiroll_bars(FILE *fp, const fb_scenario *s)
+{
+  for (size_t i = 0; i < s->nantiroll_bars; ++i) {
+    const fb_antiroll_bar *b = &s->antiroll_bar[i];
+    fputs(i ? "; "
+            : "- Anti-roll bars (rates at each wheel in roll, equal and opposite "
+              "travels; a wheel lifted alone meets half): ",
+          fp);
+    fb_md_write_text(fp, b->name);
+    fputs(" (", fp);
+    fb_md_write_text(fp, b->left);
+    fputs(", ", fp);
+    fb_md_write_text(fp, b->right);
+    fprintf(fp, "): %.10g N/m", b->stiffness);
+    if (b->damping > 0.0)
+      fprintf(fp, ", %.10g N s/m", b->damping);
+  }
+  if (s->nantiroll_bars)
+    fputs(".\n", fp);
 }
 
 /* The shock absorbers, the springs and, where a corner has them, the
- * stops. */
+ * stops, of the corners with their own; the bogies and the anti-roll
+ * bars. */
 static void write_suspensions(FILE *fp, const fb_scenario *s)
 {
   write_corners_alike(fp, s, "Shock absorbers", damper_line);
   write_corners_alike(fp, s, "Springs", spring_line);
   int stops = 0;
   for (size_t c = 0; c < s->ncorners; ++c)
-    stops |= fb_stops_any(&s->corner[c].stops);
+    stops |= own_suspension(s, c) && fb_stops_any(&s->corner[c].stops);
   if (stops)
     write_corners_alike(fp, s, "Bump and rebound stops (gap, rate, damping)", stops_line);
+  write_bogies(fp, s);
+  write_antiroll_bars(fp, s);
 }
 
 static void write_assumptions(FILE *fp, const cli_run_outputs *o)
@@ -513,10 +588,13 @@ static void write_assumptions(FILE *fp, const cli_run_outputs *o)
     fputs("no step limit", fp);
   fputs("; outputs from the interpolating polynomial, breakpoints at every wheel's entry "
         "into the road window and exit.\n"
-        "- Outputs: the scenario's list (docs/vehicle-outputs.md), compressions positive; a "
-        "torsion angle is the roll of the hull's front edge line minus that of its rear edge "
-        "line, identically 0 for the rigid hull.\n",
+        "- Outputs: the scenario's list (docs/vehicle-outputs.md), compressions positive",
         fp);
+  if (fb_study_report_torsion_output(o->report) < s->noutputs)
+    fputs("; a torsion angle is the roll of the hull's front edge line minus that of its rear "
+          "edge line, identically 0 for the rigid hull",
+          fp);
+  fputs(".\n", fp);
   if (o->hull && o->basis)
     write_fe_hull(fp, o);
   if (o->note)
@@ -576,6 +654,18 @@ static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
             "the first two elastic "
             "modes of the hull.\n",
       fp);
+  /* A kind the rule names that the listed modes lack is said, not
+   * pictured. */
+  size_t nelastic = 0, nhop = 0;
+  for (size_t k = 0; ms->part && k < ms->nmodes; ++k) {
+    nelastic += ms->part[k].kind == FB_MODE_HULL_ELASTIC;
+    nhop += ms->part[k].kind == FB_MODE_WHEEL;
+  }
+  if (!o->scenario->npictured_modes && ms->part && (!nelastic || !nhop))
+    fprintf(fp, "None of the %zu modes listed is %s.\n", ms->nmodes,
+            !nelastic && !nhop ? "an elastic mode of the hull or a wheel hop"
+            : !nelastic        ? "an elastic mode of the hull"
+                               : "a wheel hop");
   /* One picture per paragraph: a viewer shows them one under another. */
   for (size_t i = 0; i < npictured; ++i) {
     const size_t k = pictured[i];
@@ -621,14 +711,75 @@ static void write_model(FILE *fp, const cli_run_outputs *o)
         "(causal strokes, multibond dimensions in brackets), and its block diagram: the top "
         "level with one block per subsystem, one level down inside each (docs/diagrams.md).\n",
         fp);
-  static const char *const captions[CLI_RUN_NDIAGRAMS] = {"Fig. 5. Multibond graph",
-                                                          "Fig. 6. Block diagram"};
+  /* Not numbered: the scenario's own figure numbers may be anything. */
+  static const char *const captions[CLI_RUN_NDIAGRAMS] = {"Multibond graph", "Block diagram"};
   for (size_t i = 0; i < o->nruns; ++i)
     for (size_t k = 0; k < CLI_RUN_NDIAGRAMS; ++k) {
       char name[64];
       cli_run_diagram_file(k, o->runs[i].sys, name, sizeof name);
       fprintf(fp, "\n![%s, %s](%s)\n", captions[k], cli_system_label(o->runs[i].sys), name);
     }
+}
+
+/* Output k in the Figures' words: its figure number, else its title. */
+static void write_figure_name(FILE *fp, const fb_output_spec *fig)
+{
+  if (fig->figure > 0)
+    fprintf(fp, "Fig. %d", fig->figure);
+  else
+    fb_md_write_text(fp, fig->title);
+}
+
+/* The window figure k shows (cli_run_figure_window over System 1's run);
+ * 0 when it shows the whole run. */
+static int figure_window(const cli_run_outputs *o, size_t k, double w[2])
+{
+  cli_run_figure_window(&o->scenario->output[k], o->runs[0].res, &w[0], &w[1]);
+  return w[0] < w[1];
+}
+
+/* Which span each figure shows: the whole run, except the figures whose
+ * outputs have a window (`window`) the run covers, grouped by window; an
+ * output's window outside the run is said too. */
+static void write_figure_windows(FILE *fp, const cli_run_outputs *o)
+{
+  const fb_scenario *s = o->scenario;
+  size_t groups = 0;
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    double w[2], other[2];
+    if (!figure_window(o, k, w))
+      continue;
+    size_t seen = 0;
+    for (size_t j = 0; j < k; ++j)
+      seen += figure_window(o, j, other) && other[0] == w[0] && other[1] == w[1];
+    if (seen)
+      continue;
+    fputs(groups++ ? "; "
+                   : "A figure shows the whole run, except where its output has a "
+                     "window (`window`): ",
+          fp);
+    size_t n = 0;
+    for (size_t j = k; j < s->noutputs; ++j)
+      n += figure_window(o, j, other) && other[0] == w[0] && other[1] == w[1];
+    for (size_t j = k, i = 0; j < s->noutputs; ++j)
+      if (figure_window(o, j, other) && other[0] == w[0] && other[1] == w[1]) {
+        fputs(i == 0 ? "" : i + 1 == n ? " and " : ", ", fp);
+        write_figure_name(fp, &s->output[j]);
+        ++i;
+      }
+    fprintf(fp, ", from %.10g to %.10g s", w[0], w[1]);
+  }
+  fputs(groups ? "." : "Each figure shows the whole run.", fp);
+  for (size_t k = 0; k < s->noutputs; ++k) {
+    const fb_output_spec *fig = &s->output[k];
+    double w[2];
+    if (!(fig->window[0] < fig->window[1]) || figure_window(o, k, w))
+      continue;
+    fputc(' ', fp);
+    write_figure_name(fp, fig);
+    fprintf(fp, " shows the whole run: its window, %.10g to %.10g s, lies outside it.",
+            fig->window[0], fig->window[1]);
+  }
 }
 
 static void write_figures(FILE *fp, const cli_run_outputs *o)
@@ -638,9 +789,7 @@ static void write_figures(FILE *fp, const cli_run_outputs *o)
     fputs("No figures: the run had `--no-figures`. The curves are in the CSV files.\n", fp);
     return;
   }
-  fputs("A figure shows its output's window (the paper's Figs. 12 and 14: 4-10 s) where the "
-        "run covers it, else the whole run.",
-        fp);
+  write_figure_windows(fp, o);
   fputs(o->diff ? " Each figure shows both systems above and System 2 - System 1 below.\n"
                 : "\n",
         fp);
@@ -778,14 +927,15 @@ static void write_converged_intro(FILE *fp, const cli_run_outputs *o)
   const fb_scenario *s = o->scenario;
   const fb_hull_basis *b = o->converged_basis;
   fprintf(fp,
-          "\n## At a converged mesh\n\nThe paper's mesh makes the hull too stiff (Assumptions, "
-          "\"Mesh convergence\"). System 2 ran again on the hull refined to density %d "
+          "\n## At a converged mesh\n\nThe mesh at density %d makes the hull too stiff "
+          "(Assumptions, \"Mesh convergence\"). System 2 ran again on the hull refined to "
+          "density %d "
           "(`hull.mesh.converged_density`; `system2_converged.csv`): %zu DOFs in the %zu "
           "coordinates of its automatic modal basis, its first elastic free-free mode at %.4g "
           "Hz against %.4g Hz at "
           "density %d",
-          o->converged_density, b->ndof, b->ncoords, b->f1_hz, o->basis ? o->basis->f1_hz : NAN,
-          fb_scenario_hull_density(s));
+          fb_scenario_hull_density(s), o->converged_density, b->ndof, b->ncoords, b->f1_hz,
+          o->basis ? o->basis->f1_hz : NAN, fb_scenario_hull_density(s));
   const double e =
       fb_study_run_worst_basis_error(fb_study_report_converged(o->report), s->noutputs, NULL);
   if (isfinite(e))
@@ -971,8 +1121,9 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
 {
   const size_t nout = o->scenario->noutputs;
   const cli_run_system *r = &o->runs[0];
-  fprintf(fp, "Only %s ran, so nothing is compared (`--system both` runs both).",
-          cli_system_label(r->sys));
+  fprintf(fp, "Only %s ran, so nothing is compared (%s).", cli_system_label(r->sys),
+          o->scenario->has_fe_hull ? "`--system both` runs both"
+                                   : "the scenario has no finite-element hull for System 2");
   double factor = 0;
   const size_t largest = fb_study_report_largest_growth(o->report, &factor);
   if (largest < nout) {

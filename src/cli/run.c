@@ -140,25 +140,6 @@ typedef struct run_args {
 
 /* ---- Figures. */
 
-/* The plotting window of output o over the run of r: the whole run, or
- * the output's window clipped to it (the whole run if they do not
- * overlap). */
-static void figure_window(const fb_output_spec *o, const fb_result *r, double *t_min,
-                          double *t_max)
-{
-  /* fb_plot_opts: t_min >= t_max means the result's span. */
-  *t_min = *t_max = 0;
-  size_t n = fb_result_nsamples(r);
-  if (!(o->window[0] < o->window[1]) || n == 0)
-    return;
-  double lo = fmax(o->window[0], fb_result_row(r, 0)[0]);
-  double hi = fmin(o->window[1], fb_result_row(r, n - 1)[0]);
-  if (lo < hi) {
-    *t_min = lo;
-    *t_max = hi;
-  }
-}
-
 /* "Fig. 8. Normal reaction ...: System 1 (rigid hull)" (and " vs System 2
  * (flexible hull)" when overlaid) into buf. */
 static void figure_title(const fb_output_spec *fig, const cli_run_outputs *o, char *buf,
@@ -210,7 +191,7 @@ static int write_figure(cli_outdir *od, size_t k, const cli_run_outputs *o, fb_e
   fb_plot_opts_default(&opts);
   opts.title = title;
   opts.panel_height = o->diff ? 320 : 460;
-  figure_window(fig, o->runs[0].res, &opts.t_min, &opts.t_max);
+  cli_run_figure_window(fig, o->runs[0].res, &opts.t_min, &opts.t_max);
   /* The difference over the bump: before it, the settling from the zero
    * start (the systems' static deflections differ) would set the scale
    * and flatten the bump's differences, which the comparison is about. */
@@ -496,29 +477,31 @@ static void write_comparison_json(FILE *fp, const cli_run_outputs *o, const char
 }
 
 static const char *const definitions[][2] = {
-    {"static", "value at the last sample before bump_window[0] (the first wheel meets the "
-               "bump); null if the run starts on the bump"},
+    {"static", "value at the last sample before bump_window[0] (the first wheel enters the "
+               "road window); null if the run starts in it"},
     {"peak", "largest value from bump_window[0] to the end of the run: the response to the "
-             "bump, without the settling after t = 0"},
+             "road, without the settling after t = 0"},
     {"peak_time", "time of peak (its first occurrence), s"},
     {"min", "smallest value from bump_window[0] to the end of the run"},
     {"min_time", "time of min (its first occurrence), s"},
     {"rms", "root mean square of the samples with t in bump_window (of the value itself, "
             "not of its deviation from static)"},
-    {"bump_window", "[first wheel's bump entry, last wheel's bump exit], s"},
+    {"bump_window", "the road window (a bump road's: its bump), [first wheel's entry, last "
+                    "wheel's exit], s"},
     {"solver", "CVODE statistics of the run; events: restarts at contact changes "
                "(unilateral tires); wall_seconds is the integration's wall time"},
     {"ride",
      "ride metrics (docs/ride-metrics.md) of output, the first mounted body's acceleration "
      "among the scenario's outputs (the driver's in the paper's), over window = [first "
-     "wheel's bump "
-     "entry, end of the run] s: a_w_rms (ISO 2631-1 Wk-weighted r.m.s., m/s^2), mtvv "
+     "wheel's entry into the road window, end of the run] s: a_w_rms (ISO 2631-1 Wk-weighted "
+     "r.m.s., m/s^2), mtvv "
      "(largest 1 s running r.m.s., m/s^2), vdv (m/s^1.75), crest_factor (max |a_w| / "
      "a_w_rms), absorbed_power (W; null: no K(f) table is built in), jerk_peak and jerk_rms "
      "(of the unweighted acceleration, m/s^3); a note instead when they cannot be computed"},
     {"tire_contact",
      "model: bilateral (the paper's linear tire), unilateral (no tension: the wheel may "
-     "leave the road) or hunt_crossley (unilateral, damping growing with the deflection), "
+     "leave the road), hunt_crossley (unilateral, damping growing with the deflection) or "
+     "table (unilateral, its force a force-deflection table), "
      "or mixed when the corners differ; models: each tire's; "
      "min_force: each tire's smallest normal reaction from bump_window[0] "
      "to the end of the run (N, compression positive) and its time; contact_loss_intervals: "

@@ -1115,6 +1115,14 @@ int sch_check_plausible(const sch_value *v, fb_err *w)
   return 1;
 }
 
+/* 1 if k stores a number in another unit than the file's (a conversion
+ * or a scale), so that its stored value reads back with round-off. */
+static int sch_converted(const sch_key *k)
+{
+  return k->store == SCH_STORE_DOUBLE &&
+         ((k->ops && k->ops->to_struct) || (k->scale != 0.0 && k->scale != 1.0));
+}
+
 /* "a, b, c": the numbers list k stores in base. */
 static void sch_format_numbers(const sch_key *k, const void *base, char *buf, size_t size)
 {
@@ -1137,6 +1145,11 @@ void sch_format(const sch_value *v, char *buf, size_t size)
     k->ops->format(k, v->base, buf, size);
   else if (v->text)
     snprintf(buf, size, "%s", v->text);
+  else if (sch_converted(k))
+    /* Stored in another unit and converted back: ten digits hide the
+     * round-off of the way there and back (30 degrees, not
+     * 29.999999999999996), as positions moved to another frame do. */
+    snprintf(buf, size, "%.10g", v->number);
   else
     /* The shortest decimal that reads back as v: what the file wrote. */
     fb_format_shortest(v->number, 6, buf, size);

@@ -45,15 +45,10 @@ fb_corner_params vehicle_corner_loaded(const fb_scenario *s, size_t c)
  * anti-roll bar's "arb_" and its name, a bogie's "bogie_" and its name. */
 long vehicle_corner_bogie(const fb_scenario *s, size_t c, int *rear)
 {
-  for (size_t b = 0; b < s->nbogies; ++b) {
-    const int at_front = !strcmp(s->bogie[b].front, s->corner[c].name);
-    if (at_front || !strcmp(s->bogie[b].rear, s->corner[c].name)) {
-      if (rear)
-        *rear = !at_front;
-      return (long)b;
-    }
-  }
-  return -1;
+  const long b = fb_scenario_corner_bogie(s, c);
+  if (b >= 0 && rear)
+    *rear = strcmp(s->bogie[b].front, s->corner[c].name) != 0;
+  return b;
 }
 
 char *vehicle_bogie_instance(const fb_bogie *b)

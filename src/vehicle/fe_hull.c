@@ -999,10 +999,44 @@ static void hull_energies(const describe_ctx *d, const double *v, double *energy
   energy[6] = fmax(total - rigid, 0.0);
 }
 
+/* Each bogie's share of mode v's kinetic energy, as its beam's bounce and
+ * pitch (the motions System 1's beam is labelled by, fb_vehicle_bogie):
+ * the wheels' travels zf, zr give the pivot's v = w0 zf + w1 zr and the
+ * pitch th = (zr - zf) / len (vehicle_bogie_wheels); each motion's energy
+ * is the diagonal part of the beam's (with its wheels) kinetic energy,
+ * M00 v^2 and M11 th^2, as the hull's rigid motions are split
+ * (hull_energies). Where one passes *best, it names the mode. */
+static void bogie_motions(const describe_ctx *d, const double *v, char *name, size_t size,
+                          fb_mode_part *part, double *best)
+{
+  const fb_scenario *s = d->s;
+  const double *vw = v + d->nh + s->nmounts;
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    long f = -1, r = -1;
+    double m[4], w[2];
+    if (!vehicle_bogie_wheels(s, i, &f, &r, m, w))
+      continue;
+    const fb_bogie *b = &s->bogie[i];
+    const double a = s->corner[f].x - b->pivot_x, bb = b->pivot_x - s->corner[r].x;
+    const double mf = s->corner[f].wheel_mass, mr = s->corner[r].wheel_mass;
+    const double pivot = w[0] * vw[f] + w[1] * vw[r], pitch = (vw[r] - vw[f]) / (a + bb);
+    const double e[2] = {(b->beam_mass + mf + mr) * pivot * pivot,
+                         (b->beam_inertia + mf * a * a + mr * bb * bb) * pitch * pitch};
+    static const char *const motion[2] = {"bogie bounce", "bogie pitch"};
+    for (int k = 0; k < 2; ++k)
+      if (e[k] > *best) {
+        *best = e[k];
+        snprintf(name, size, "%s %s", motion[k], b->name);
+        *part = (fb_mode_part){FB_MODE_BOGIE, i};
+      }
+  }
+}
+
 /* Names the part of the vehicle holding the largest share of the mode's
- * kinetic energy: a rigid motion of the hull, its elastic deformation, or
- * one lumped body (*part); each mounted body's share into
- * mount_share[0 .. nmounts). */
+ * kinetic energy: a rigid motion of the hull, its elastic deformation,
+ * one lumped body, a bogie's beam or a rigid body (*part); each mounted
+ * body's share into mount_share[0 .. nmounts + nbodies) (the mounts',
+ * then the rigid bodies', fb_mode_set.mount_share). */
 static void describe_mode(const describe_ctx *d, const double *v, char *out, size_t size,
                           fb_mode_part *part, double *mount_share)
 {
@@ -1014,7 +1048,7 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
   for (size_t i = 0; i < d->ndof; ++i)
     total += v[i] * d->mv[i];
   hull_energies(d, v, energy);
-  char name[32] = "?";
+  char name[80] = "?";
   for (int k = 0; k < 7; ++k)
     if (energy[k] > best) {
       best = energy[k];
@@ -1028,7 +1062,9 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
     const size_t b = i - d->nh;
     if (b < d->s->nmounts)
       mount_share[b] = total > 0 ? e / total : 0.0;
-    if (e <= best)
+    /* A bogie's wheels move with its beam: the beam's motions below. */
+    if (e <= best ||
+        (b >= d->s->nmounts && vehicle_corner_bogie(d->s, b - d->s->nmounts, NULL) >= 0))
       continue;
     best = e;
     if (b < d->s->nmounts) {
@@ -1039,14 +1075,18 @@ static void describe_mode(const describe_ctx *d, const double *v, char *out, siz
       *part = (fb_mode_part){FB_MODE_WHEEL, b - d->s->nmounts};
     }
   }
+  bogie_motions(d, v, name, sizeof name, part, &best);
   /* A rigid body's six motions together. */
+  const size_t nm = d->s->nmounts;
   for (size_t b = 0; b < d->s->nbodies; ++b) {
     double e = 0.0;
     for (size_t c = 0; c < 6; ++c)
       e += v[nbase + 6 * b + c] * d->mv[nbase + 6 * b + c];
+    mount_share[nm + b] = total > 0 ? e / total : 0.0;
     if (e > best) {
       best = e;
       snprintf(name, sizeof name, "%.31s", d->s->body[b].name);
+      *part = (fb_mode_part){FB_MODE_MOUNT, nm + b};
     }
   }
   snprintf(out, size, "%s (%.0f%%)", name, total > 0 ? 100.0 * best / total : 0.0);
@@ -1152,8 +1192,8 @@ int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb
     d.r = malloc(6 * d.nh * sizeof *d.r);
     d.mr = malloc(6 * d.nh * sizeof *d.mr);
     d.mv = malloc(d.ndof * sizeof *d.mv);
-    ms->nmounts = s->nmounts;
-    ms->mount_share = calloc(ms->nmodes * s->nmounts + 1, sizeof *ms->mount_share);
+    ms->nmounts = s->nmounts + s->nbodies;
+    ms->mount_share = calloc(ms->nmodes * ms->nmounts + 1, sizeof *ms->mount_share);
     if (!d.r || !d.mr || !d.mv || !ms->mount_share)
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   }
@@ -1166,7 +1206,7 @@ int fb_vehicle_mode_set_fill(const fb_scenario *s, const fb_fe_hull *h, const fb
   for (size_t k = 0; !rc && k < ms->nmodes; ++k) {
     double *v = ms->shapes + k * d.ndof;
     describe_mode(&d, v, ms->description[k], sizeof ms->description[k], &ms->part[k],
-                  ms->mount_share + k * s->nmounts);
+                  ms->mount_share + k * ms->nmounts);
     normalise(h, d.nh, s->nmounts, v, d.ndof);
   }
   free(d.r);

@@ -141,6 +141,15 @@ long fb_scenario_bogie_find(const fb_scenario *s, const char *name)
   return -1;
 }
 
+long fb_scenario_corner_bogie(const fb_scenario *s, size_t c)
+{
+  for (size_t b = 0; c < s->ncorners && b < s->nbogies; ++b)
+    if (!strcmp(s->bogie[b].front, s->corner[c].name) ||
+        !strcmp(s->bogie[b].rear, s->corner[c].name))
+      return (long)b;
+  return -1;
+}
+
 double fb_scenario_track_width(const fb_scenario *s)
 {
   /* The first corner leads the left track (y > 0); the right track is the

@@ -55,7 +55,8 @@ static int is_pictured(const fb_mode_set *ms, size_t k)
       return 1;
     break;
   }
-  case FB_MODE_MOUNT: break;
+  case FB_MODE_MOUNT:
+  case FB_MODE_BOGIE: break;
   }
   for (size_t b = 0; ms->mount_share && b < ms->nmounts; ++b)
     if (mount_mode(ms, b) == k)

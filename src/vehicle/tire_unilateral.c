@@ -18,7 +18,7 @@ static const fb_tire_model_ops unilateral_ops = {.build = unilateral_build};
 const fb_tire_model fb_tire_model_unilateral = {
     .name = "unilateral",
     .doc = "it never pulls, the wheel may leave the road",
-    .meaning = "unilateral: it pushes but never pulls, and a wheel whose reaction would "
+    .meaning = "one-sided: it pushes but never pulls, and a wheel whose reaction would "
                "become tensile leaves the road until it lands again",
     .in_contact = &fb_tire_model_bilateral,
     .ops = &unilateral_ops,
