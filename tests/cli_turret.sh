@@ -16,7 +16,8 @@
 #     to the roof's velocity there, read from their flows (an output the
 #     test adds): within 1e-3 of its range (trapezoids at 1 kHz);
 #   - the report and the modes name what the vehicle has (its turret, its
-#     seats, its bogies) and nothing it lacks (an engine).
+#     seats, its bogies, the free horizontal motions of a hull in six
+#     degrees of freedom) and nothing it lacks (an engine).
 # Tolerances: the static state is the solver's equilibrium, exact to its
 # Newton tolerance; 1e-6 of the forces is far above that and far below
 # any modelling slip (one wheel's weight is 1.3 % of the tires' sum).
@@ -89,6 +90,14 @@ for statics in found:
 EOF
 
 R=$WORK/out/report.md
+expect_in "$R" "| layout | 6 corners, 1 mounted body on a spring, 3 rigid bodies on bushings, 2 walking-beam bogies, 1 anti-roll bar, 20 outputs |" \
+  "the report's layout"
+expect_in "$R" "  - turret: 2500 kg on the hull, 1 bushing, in System 2 coupled to the nodes of ROOF within 0.9 m." \
+  "the report's turret"
+expect_in "$R" "  - gunner: 110 kg on turret, 1 bushing." "the report's gunner"
+# The hull in six degrees of freedom: its surge, sway and yaw are free, three
+# zero modes besides the support's self-stress.
+expect_in "$R" "and 3 of the vehicle's free surge, sway and yaw left out." "the zero modes"
 for word in turret gunner commander "bogie pitch left" "turret pitch"; do
   expect_in "$R" "$word" "the report names the $word"
 done

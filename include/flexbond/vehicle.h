@@ -997,6 +997,12 @@ void fb_hull_free(fb_hull **h);
  * whole inertia tensor; its point maps are then rows of the 6-DOF map,
  * and each bushing on it has its port "bushing_<k>" (fb_hull). */
 int fb_vehicle_rigid_hull(const fb_scenario *s, fb_hull **out, fb_err *err);
+/* The motions of System 1's vehicle that nothing holds: with six rigid
+ * coordinates (s->nbodies > 0), the whole vehicle's surge, sway and yaw,
+ * 3 (the suspensions and tires are vertical); none otherwise. Each is a
+ * zero eigenvalue of its linearised model (fb_vehicle_modes counts them
+ * in nstatic, with those of the support's self-stress). */
+size_t fb_vehicle_free_motions(const fb_scenario *s);
 /* A mounted body (driver plus seat, engine, ...): port "hull" (OUT). */
 int fb_vehicle_mount(const fb_mount *m, double gravity, fb_bg **out, fb_err *err);
 /* Mounted rigid body i of s in six degrees of freedom: the I field

@@ -21,6 +21,7 @@ static const char modes_usage[] =
     "damped eigenvalues with their damping ratios, each with the part of the\n"
     "vehicle that holds most of the mode's kinetic energy. Zero eigenvalues\n"
     "of the statically indeterminate support (self-stress of the springs)\n"
+    "and of the free surge, sway and yaw of a vehicle with rigid bodies\n"
     "are counted, not listed. With --system flexible: the free-free hull's\n"
     "modes and the undamped System 2's (the finite-element hull with the\n"
     "mounted bodies, suspensions and tires), each normalised so that its\n"
@@ -40,28 +41,35 @@ static const char modes_usage[] =
 static const char *const system_choices[] = {"rigid", "flexible"};
 static const fb_system systems[] = {FB_SYSTEM_RIGID, FB_SYSTEM_FLEXIBLE};
 
-/* "N static zero mode(s)" line ending of a table's heading. */
-static void print_static_count(size_t nstatic)
+/* "N static zero mode(s)" line ending of a table's heading: nfree of them
+ * the vehicle's free horizontal motions (fb_vehicle_free_motions), the
+ * others the support's self-stress. */
+static void print_static_count(size_t nstatic, size_t nfree)
 {
-  printf("%zu static zero mode%s (self-stress) left out\n", nstatic, nstatic == 1 ? "" : "s");
+  const size_t nself = nstatic > nfree ? nstatic - nfree : 0;
+  printf("%zu static zero mode%s (self-stress)", nself, nself == 1 ? "" : "s");
+  if (nstatic > nself)
+    printf(" and %zu free motion%s (surge, sway, yaw)", nstatic - nself,
+           nstatic - nself == 1 ? "" : "s");
+  printf(" left out\n");
 }
 
-static void print_undamped(const fb_mode *m, size_t n, size_t nstatic)
+static void print_undamped(const fb_mode *m, size_t n, size_t nstatic, size_t nfree)
 {
   printf("undamped natural frequencies: %zu modes, ", n);
-  print_static_count(nstatic);
+  print_static_count(nstatic, nfree);
   printf("%4s  %12s  %s\n", "#", "f_n [Hz]", "description");
   for (size_t i = 0; i < n; ++i)
     printf("%4zu  %12.6g  %s\n", i + 1, m[i].freq_hz, m[i].description);
 }
 
-static void print_damped(const fb_mode *m, size_t n, size_t nstatic)
+static void print_damped(const fb_mode *m, size_t n, size_t nstatic, size_t nfree)
 {
   size_t nreal = 0;
   for (size_t i = 0; i < n; ++i)
     nreal += m[i].im == 0;
   printf("damped eigenvalues: %zu oscillatory, %zu real, ", n - nreal, nreal);
-  print_static_count(nstatic);
+  print_static_count(nstatic, nfree);
   printf("%4s  %12s  %14s  %8s  %s\n", "#", "f_n [Hz]", "real [1/s]", "zeta", "description");
   for (size_t i = 0; i < n; ++i) {
     /* A real eigenvalue is a decay, not an oscillation: no frequency. */
@@ -106,9 +114,10 @@ static int run(const char *path, fb_system sys, int strict)
   if (rc == FB_OK) {
     printf("%s: %s, linearised at the static equilibrium\n\n", s->name ? s->name : path,
            sys == FB_SYSTEM_RIGID ? "System 1 (rigid hull)" : "System 2 (flexible hull)");
-    print_undamped(undamped.modes, undamped.nmodes, undamped.nstatic);
+    print_undamped(undamped.modes, undamped.nmodes, undamped.nstatic,
+                   fb_vehicle_free_motions(s));
     putchar('\n');
-    print_damped(damped.modes, damped.nmodes, damped.nstatic);
+    print_damped(damped.modes, damped.nmodes, damped.nstatic, fb_vehicle_free_motions(s));
     rc = cli_flush_stdout(&err);
   }
   free(damped.modes);

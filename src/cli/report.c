@@ -144,6 +144,27 @@ static void write_point_masses(FILE *fp, const fb_scenario *s)
           fb_scenario_point_masses_total(s));
 }
 
+/* "N things" for each part the vehicle has, "1 thing" for one. */
+static void write_count(FILE *fp, int *first, size_t n, const char *one, const char *many)
+{
+  if (!n)
+    return;
+  fprintf(fp, "%s%zu %s", *first ? "" : ", ", n, n == 1 ? one : many);
+  *first = 0;
+}
+
+/* The scenario's parts by kind, those it has. */
+static void write_layout(FILE *fp, const fb_scenario *s)
+{
+  int first = 1;
+  write_count(fp, &first, s->ncorners, "corner", "corners");
+  write_count(fp, &first, s->nmounts, "mounted body on a spring", "mounted bodies on springs");
+  write_count(fp, &first, s->nbodies, "rigid body on bushings", "rigid bodies on bushings");
+  write_count(fp, &first, s->nbogies, "walking-beam bogie", "walking-beam bogies");
+  write_count(fp, &first, s->nantiroll_bars, "anti-roll bar", "anti-roll bars");
+  write_count(fp, &first, s->noutputs, "output", "outputs");
+}
+
 static void write_scenario(FILE *fp, const cli_run_outputs *o)
 {
   const fb_scenario *s = o->scenario;
@@ -154,8 +175,9 @@ static void write_scenario(FILE *fp, const cli_run_outputs *o)
   fputs(" |\n| systems | ", fp);
   for (size_t i = 0; i < o->nruns; ++i)
     fprintf(fp, "%s%s", i ? ", " : "", cli_system_label(o->runs[i].sys));
-  fprintf(fp, " |\n| layout | %zu corners, %zu mounted bodies, %zu outputs |\n", s->ncorners,
-          s->nmounts, s->noutputs);
+  fputs(" |\n| layout | ", fp);
+  write_layout(fp, s);
+  fputs(" |\n", fp);
   if (s->frame_origin) {
     fputs("| frame | the file's positions are from ", fp);
     fb_md_write_text(fp, s->frame_origin);
@@ -552,6 +574,48 @@ static void write_antiroll_bars(FILE *fp, const fb_scenario *s)
     fputs(".\n", fp);
 }
 
+/* Body b's bushing j's hull side in System 2 (fb_bushing): its node set,
+ * or the surface's nodes within a radius (0: the scenario's). */
+static void write_bushing_coupling(FILE *fp, const fb_scenario *s, const fb_bushing *u)
+{
+  if (u->node_set) {
+    fputs(", in System 2 coupled to the node set ", fp);
+    fb_md_write_text(fp, u->node_set);
+    return;
+  }
+  const char *surface = u->surface ? u->surface : s->coupling_surface;
+  if (!surface)
+    return;
+  fputs(", in System 2 coupled to the nodes of ", fp);
+  fb_md_write_text(fp, surface);
+  fprintf(fp, " within %.10g m", u->radius > 0.0 ? u->radius : s->coupling_radius);
+}
+
+/* The mounted rigid bodies (fb_body), one line each: mass, what they are
+ * mounted on and their bushings. */
+static void write_rigid_bodies(FILE *fp, const fb_scenario *s)
+{
+  if (!s->nbodies)
+    return;
+  fputs("- Mounted rigid bodies, in six degrees of freedom at small motions, each on its "
+        "bushings (six-component springs and dampers) to the hull or to another body; their "
+        "weights are their own, beside load.total_weight (docs/scenario-format.md, \"Mounted "
+        "rigid bodies\"); the hull moves in six degrees of freedom with them.\n",
+        fp);
+  for (size_t b = 0; b < s->nbodies; ++b) {
+    const fb_body *body = &s->body[b];
+    fputs("  - ", fp);
+    fb_md_write_text(fp, body->name);
+    fprintf(fp, ": %.10g kg on ", body->mass);
+    fb_md_write_text(fp, body->parent ? body->parent : "the hull");
+    fprintf(fp, ", %zu bushing%s", body->nbushings, body->nbushings == 1 ? "" : "s");
+    if (!body->parent && s->has_fe_hull)
+      for (size_t j = 0; j < body->nbushings; ++j)
+        write_bushing_coupling(fp, s, &body->bushing[j]);
+    fputs(".\n", fp);
+  }
+}
+
 /* The shock absorbers, the springs and, where a corner has them, the
  * stops, of the corners with their own; the bogies and the anti-roll
  * bars. */
@@ -566,6 +630,7 @@ static void write_suspensions(FILE *fp, const fb_scenario *s)
     write_corners_alike(fp, s, "Bump and rebound stops (gap, rate, damping)", stops_line);
   write_bogies(fp, s);
   write_antiroll_bars(fp, s);
+  write_rigid_bodies(fp, s);
 }
 
 static void write_assumptions(FILE *fp, const cli_run_outputs *o)
@@ -625,12 +690,19 @@ static void write_mode_row(FILE *fp, size_t k, double freq_hz, const char *descr
 
 static void write_modes1(FILE *fp, const cli_run_outputs *o)
 {
+  /* The zero modes: the support's self-stress, and the free horizontal
+   * motions of a hull in six degrees of freedom. */
+  const size_t nfree = fb_vehicle_free_motions(o->scenario);
+  const size_t nself = o->nstatic1 > nfree ? o->nstatic1 - nfree : 0;
   fprintf(fp,
           "\n### System 1 (rigid hull)\n\nUndamped natural frequencies (every damper "
           "removed) at the static equilibrium, each with the part of the vehicle that holds "
           "most of its kinetic energy; %zu zero mode%s of the statically indeterminate "
-          "support left out.\n\n| mode | f_n [Hz] | description |\n|---|---|---|\n",
-          o->nstatic1, o->nstatic1 == 1 ? "" : "s");
+          "support",
+          nself, nself == 1 ? "" : "s");
+  if (o->nstatic1 > nself)
+    fprintf(fp, " and %zu of the vehicle's free surge, sway and yaw", o->nstatic1 - nself);
+  fputs(" left out.\n\n| mode | f_n [Hz] | description |\n|---|---|---|\n", fp);
   for (size_t k = 0; k < o->nmodes1; ++k)
     write_mode_row(fp, k, o->modes1[k].freq_hz, o->modes1[k].description);
 }

@@ -83,6 +83,11 @@ static size_t rigid_ndof(const fb_scenario *s)
   return s->nbodies ? 6 : 3;
 }
 
+size_t fb_vehicle_free_motions(const fb_scenario *s)
+{
+  return rigid_ndof(s) - 3;
+}
+
 /* n x ndof matrix transformer from the hull's generalised velocities to n
  * points' vertical velocities. */
 static int add_point_map(fb_bg *bg, const char *name, size_t ndof, size_t n, const double *x,
