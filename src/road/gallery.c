@@ -33,22 +33,27 @@ static int type_fail(fb_err *err, const fb_road_type *t, const char *what)
 
 int fb_road_type_check(const fb_road_type *t, fb_err *err)
 {
-  if (!t || !fb_is_identifier(t->name))
-    return type_fail(err, t, "a name is letters, digits and '_', not from a digit");
-  if (!t->doc || !t->doc[0])
-    return type_fail(err, t, "undocumented");
-  if (t->params_size > FB_ROAD_PARAMS_MAX)
-    return type_fail(err, t, "its parameter block exceeds FB_ROAD_PARAMS_MAX");
-  if (t->nparams && !t->param)
-    return type_fail(err, t, "parameters counted but not declared");
-  if (!t->ops || !t->ops->make || !t->ops->wheel_start)
-    return type_fail(err, t, "a type makes its road and places its wheels (make, wheel_start)");
-  if (!t->ops->copy != !t->ops->release)
-    return type_fail(err, t, "a block that owns members is copied and released (both ops)");
-  int rc = fb_params_declared(t->param, t->nparams, t->params_size, err);
-  if (rc)
-    fb_err_prefix(err, "road type %s: ", t->name);
-  return rc;
+  const fb_registry_entry none = {.kind = "road type"};
+  if (!t)
+    return fb_registry_entry_check(&none, err);
+  const char *ops = !t->ops || !t->ops->make || !t->ops->wheel_start
+                        ? "a type makes its road and places its wheels (make, wheel_start)"
+                    : !t->ops->copy != !t->ops->release
+                        ? "a block that owns members is copied and released (both ops)"
+                        : NULL;
+  const fb_registry_entry e = {"road type",
+                               t->name,
+                               t->doc,
+                               NULL,
+                               0,
+                               t->param,
+                               t->nparams,
+                               t->params_size,
+                               FB_ROAD_PARAMS_MAX,
+                               "FB_ROAD_PARAMS_MAX",
+                               0,
+                               ops};
+  return fb_registry_entry_check(&e, err);
 }
 
 void fb_road_params_init(const fb_road_type *t, fb_road_params *p)

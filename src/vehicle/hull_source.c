@@ -33,30 +33,30 @@ static int source_fail(fb_err *err, const fb_hull_source *src, const char *what)
 
 int fb_hull_source_check(const fb_hull_source *src, fb_err *err)
 {
-  if (!src || !fb_is_identifier(src->name))
-    return source_fail(err, src, "a name is letters, digits and '_', not from a digit");
-  if (!src->doc || !src->doc[0])
-    return source_fail(err, src, "undocumented (doc)");
-  if (src->params_size > FB_HULL_SOURCE_PARAMS_MAX)
-    return source_fail(err, src, "its parameter block exceeds FB_HULL_SOURCE_PARAMS_MAX");
-  if (src->nparams && !src->param)
-    return source_fail(err, src, "parameters counted but not declared");
-  for (size_t i = 0; i < src->nparams; ++i)
-    if (src->param[i].kind == FB_PARAM_FILE || src->param[i].kind == FB_PARAM_REALS)
-      return source_fail(err, src,
-                         "its parameters are numbers or choices (no files, no lists)");
-  if (fb_params_declared(src->param, src->nparams, src->params_size, err))
-    return fb_err_prefix(err, "hull source %s: ", src->name), FB_EINVAL;
+  const fb_registry_entry none = {.kind = "hull source"};
+  if (!src)
+    return fb_registry_entry_check(&none, err);
   const fb_hull_source_ops *o = src->ops;
-  if (!o || !o->describe)
-    return source_fail(err, src, "a source describes itself (describe)");
-  if (!o->read == !o->make)
-    return source_fail(err, src, "a source either reads its mesh (read) or makes it (make)");
-  if (o->make && (!o->key || !o->centroid))
-    return source_fail(err, src,
-                       "a source that makes its mesh says from what (key) and "
-                       "where its centre of mass is (centroid)");
-  return FB_OK;
+  const char *ops = !o || !o->describe ? "a source describes itself (describe)"
+                    : !o->read == !o->make
+                        ? "a source either reads its mesh (read) or makes it (make)"
+                    : o->make && (!o->key || !o->centroid)
+                        ? "a source that makes its mesh says from what (key) and where its "
+                          "centre of mass is (centroid)"
+                        : NULL;
+  const fb_registry_entry e = {"hull source",
+                               src->name,
+                               src->doc,
+                               NULL,
+                               0,
+                               src->param,
+                               src->nparams,
+                               src->params_size,
+                               FB_HULL_SOURCE_PARAMS_MAX,
+                               "FB_HULL_SOURCE_PARAMS_MAX",
+                               1,
+                               ops};
+  return fb_registry_entry_check(&e, err);
 }
 
 const fb_hull_source *fb_scenario_hull_source(const fb_scenario *s)

@@ -31,22 +31,25 @@ static int law_fail(fb_err *err, const fb_spring_law *l, const char *what)
 
 int fb_spring_law_check(const fb_spring_law *l, fb_err *err)
 {
-  if (!l || !fb_is_identifier(l->name))
-    return law_fail(err, l, "a name is letters, digits and '_', not from a digit");
-  if (!l->doc || !l->doc[0] || !l->meaning || !l->meaning[0])
-    return law_fail(err, l, "undocumented (doc and meaning)");
-  if (l->params_size > FB_SPRING_PARAMS_MAX)
-    return law_fail(err, l, "its parameter block exceeds FB_SPRING_PARAMS_MAX");
-  if (l->nparams && !l->param)
-    return law_fail(err, l, "parameters counted but not declared");
-  if (!l->ops || !l->ops->build || !l->ops->force)
-    return law_fail(err, l, "a law builds its element and gives its force (build, force)");
-  int rc = fb_params_declared(l->param, l->nparams, l->params_size, err);
-  if (rc)
-    fb_err_prefix(err, "spring law %s: ", l->name);
-  else if (!fb_params_scalar(l->param, l->nparams))
-    rc = law_fail(err, l, "its parameters are numbers or choices (no files, no lists)");
-  return rc;
+  const fb_registry_entry none = {.kind = "spring law"};
+  if (!l)
+    return fb_registry_entry_check(&none, err);
+  const fb_registry_entry e = {
+      "spring law",
+      l->name,
+      l->doc,
+      l->meaning,
+      1,
+      l->param,
+      l->nparams,
+      l->params_size,
+      FB_SPRING_PARAMS_MAX,
+      "FB_SPRING_PARAMS_MAX",
+      1,
+      l->ops && l->ops->build && l->ops->force
+          ? NULL
+          : "a law builds its element and gives its force (build, force)"};
+  return fb_registry_entry_check(&e, err);
 }
 
 void fb_spring_params_init(const fb_spring_law *l, fb_spring_params *p)

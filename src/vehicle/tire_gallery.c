@@ -33,24 +33,25 @@ static int model_fail(fb_err *err, const fb_tire_model *m, const char *what)
 
 int fb_tire_model_check(const fb_tire_model *m, fb_err *err)
 {
-  if (!m || !fb_is_identifier(m->name))
-    return model_fail(err, m, "a name is letters, digits and '_', not from a digit");
-  if (!m->doc || !m->doc[0] || !m->meaning || !m->meaning[0])
-    return model_fail(err, m, "undocumented (doc and meaning)");
-  if (m->params_size > FB_TIRE_PARAMS_MAX)
-    return model_fail(err, m, "its parameter block exceeds FB_TIRE_PARAMS_MAX");
-  if (m->nparams && !m->param)
-    return model_fail(err, m, "parameters counted but not declared");
-  if (!m->ops || !m->ops->build)
-    return model_fail(err, m, "a model builds its tire (build)");
-  if (m->in_contact == m)
-    return model_fail(err, m, "in_contact names another model (NULL: itself)");
-  int rc = fb_params_declared(m->param, m->nparams, m->params_size, err);
-  if (rc)
-    fb_err_prefix(err, "tire model %s: ", m->name);
-  else if (!fb_params_scalar(m->param, m->nparams))
-    rc = model_fail(err, m, "its parameters are numbers or choices (no files, no lists)");
-  return rc;
+  const fb_registry_entry none = {.kind = "tire model"};
+  if (!m)
+    return fb_registry_entry_check(&none, err);
+  const char *ops = !m->ops || !m->ops->build ? "a model builds its tire (build)"
+                    : m->in_contact == m      ? "in_contact names another model (NULL: itself)"
+                                              : NULL;
+  const fb_registry_entry e = {"tire model",
+                               m->name,
+                               m->doc,
+                               m->meaning,
+                               1,
+                               m->param,
+                               m->nparams,
+                               m->params_size,
+                               FB_TIRE_PARAMS_MAX,
+                               "FB_TIRE_PARAMS_MAX",
+                               1,
+                               ops};
+  return fb_registry_entry_check(&e, err);
 }
 
 void fb_tire_params_init(const fb_tire_model *m, fb_tire_params *p)
