@@ -328,6 +328,23 @@ static void test_system2_rigid_limit(void)
  * pivot's w^2 = k_t (a^2 + b^2) / (J + m_w (a^2 + b^2)), labelled
  * "bogie pitch <name>"; and no mode is called a hop of a bogie's wheel
  * (they ride on the beam). */
+/* The band System 2's automatic basis must reach (fb_hull_excitation_hz)
+ * on examples/truck6x6_bogie.yaml, by hand: a bogie's wheels ride on its
+ * beam, so their corners' own springs (160 kN/m, which would give a hop
+ * of 14.07 Hz) are not in it; the front wheels' hop, sqrt((90000 +
+ * 700000) / 110) / 2 pi = 13.488 Hz, is the highest, above the bogies'
+ * bounce, sqrt((320000 + 2 x 700000) / (120 + 2 x 110)) / 2 pi = 11.32 Hz,
+ * their pitch (11.27 Hz) and the bump's 2 V / L = 7.4 Hz. */
+static void test_band(void)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  REQUIRE(fb_scenario_load("../examples/truck6x6_bogie.yaml", &s, &err), &err);
+  const double hop = sqrt((90000.0 + 700000.0) / 110.0) / (2.0 * PI);
+  CHECK_NEAR(fb_hull_excitation_hz(s), hop, 1e-12 * hop);
+  fb_scenario_free(&s);
+}
+
 static void test_system2_labels(void)
 {
   fb_err err;
@@ -427,6 +444,7 @@ int main(void)
   test_vehicle_split();
   test_system2_rigid_limit();
   test_system2_labels();
+  test_band();
   test_refusals();
   return check_report(__FILE__);
 }

@@ -1249,7 +1249,8 @@ size_t fb_vehicle_hull_free_modes(const fb_vehicle *v, const double **freq_hz, s
  * estimator adds (fb_vehicle_new_estimator). f is hull.fe.cutoff_hz or
  * fb_hull_excitation_hz, the highest frequency that reaches the hull:
  * each wheel's hop on a fixed hull, sqrt((r^2 spring_k + tire_k) /
- * wheel_mass) / 2 pi, each mounted body's natural frequency,
+ * wheel_mass) / 2 pi (a bogie's wheels: the higher of its beam's bounce
+ * and pitch with them), each mounted body's natural frequency,
  * sqrt(stiffness / mass) / 2 pi, each rigid body's highest on its
  * bushings with its parent held, and the road's highest at the
  * scenario's speed (a bump: 2 V / length, the (1 - cos) pulse's spectrum

@@ -308,7 +308,7 @@ static void write_basis_error(FILE *fp, const cli_run_outputs *o)
 }
 
 /* The auto basis: its blocks, where they start from, and the band. */
-static void write_auto_basis(FILE *fp, const fb_hull_basis *b)
+static void write_auto_basis(FILE *fp, const fb_scenario *s, const fb_hull_basis *b)
 {
   fprintf(fp,
           "- System 2's hull model: in modal coordinates, its %zu rigid-body modes and %zu "
@@ -321,9 +321,10 @@ static void write_auto_basis(FILE *fp, const fb_hull_basis *b)
           b->nrigid, b->nblocks, b->nstatic, b->npatterns, b->block_change, FB_HULL_BLOCK_TOL,
           b->cutoff_hz);
   if (isfinite(b->excitation_hz))
-    fputs("the highest frequency that reaches the hull (the wheels' hop and the mounted "
-          "bodies' natural frequencies on a fixed hull, and the road's at this speed)",
-          fp);
+    fprintf(fp,
+            "the highest frequency that reaches the hull (the wheels' hop%s and the mounted "
+            "bodies' natural frequencies on a fixed hull, and the road's at this speed)",
+            s->nbogies ? ", the bogies' bounce and pitch" : "");
   else
     fputs("the scenario's cut-off", fp);
   fprintf(fp,
@@ -344,7 +345,7 @@ static void write_hull_order(FILE *fp, const cli_run_outputs *o)
             "%zu free-free modes of its nodal DOFs (`all`, a dense eigen-solve), ",
             b->ndof);
   else if (b->kind == FB_HULL_MODES_AUTO)
-    write_auto_basis(fp, b);
+    write_auto_basis(fp, o->scenario, b);
   else
     fprintf(fp,
             "- System 2's hull model: in modal coordinates, its %zu lowest free-free modes "

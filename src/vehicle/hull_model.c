@@ -122,14 +122,37 @@ static double road_hz(const fb_scenario *s)
   return w > 0 && isfinite(w) ? s->speed / w : 0.0;
 }
 
+/* A bogie's highest natural frequency on a fixed hull, Hz: its beam's
+ * bounce on the pivot's spring and the two tires, or its pitch on the
+ * tires about the pivot, the wheels riding with it (the two motions taken
+ * apart: exact for a,b-symmetric beams, a bound's estimate otherwise);
+ * 0 for a bogie whose corners are not found (the check refuses it). */
+static double bogie_top_hz(const fb_scenario *s, const fb_bogie *b)
+{
+  const long f = fb_scenario_corner_find(s, b->front), r = fb_scenario_corner_find(s, b->rear);
+  if (f < 0 || r < 0)
+    return 0.0;
+  const fb_corner_params *cf = &s->corner[f], *cr = &s->corner[r];
+  const double a = cf->x - b->pivot_x, bb = b->pivot_x - cr->x;
+  const double bounce = (b->spring_k + cf->tire_k + cr->tire_k) /
+                        (b->beam_mass + cf->wheel_mass + cr->wheel_mass);
+  const double pitch = (cf->tire_k * a * a + cr->tire_k * bb * bb) /
+                       (b->beam_inertia + cf->wheel_mass * a * a + cr->wheel_mass * bb * bb);
+  return sqrt(fmax(bounce, pitch)) / two_pi;
+}
+
 double fb_hull_excitation_hz(const fb_scenario *s)
 {
   double f = road_hz(s);
   for (size_t c = 0; c < s->ncorners; ++c) {
     const fb_corner_params *cp = &s->corner[c];
+    if (fb_scenario_corner_bogie(s, c) >= 0) /* its beam's, below */
+      continue;
     const double k = cp->motion_ratio * cp->motion_ratio * cp->spring_k + cp->tire_k;
     f = fmax(f, sqrt(k / cp->wheel_mass) / two_pi);
   }
+  for (size_t i = 0; i < s->nbogies; ++i)
+    f = fmax(f, bogie_top_hz(s, &s->bogie[i]));
   for (size_t b = 0; b < s->nmounts; ++b)
     f = fmax(f, sqrt(s->mount[b].stiffness / s->mount[b].mass) / two_pi);
   for (size_t b = 0; b < s->nbodies; ++b)
