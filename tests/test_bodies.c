@@ -177,6 +177,20 @@ static void test_file_errors(void)
       "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 1, Iyy: 1, Izz: 3,\n"
       "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
       "Izz", "triangle inequality");
+  /* The same rod along x: the error is at the moment that is too large,
+   * Ixx, the value to change (a sweep of Ixx must see its own key). */
+  expect_load_error(
+      "bodies:\n"
+      "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 3, Iyy: 1, Izz: 1,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "Ixx", "triangle inequality");
+  /* A tensor that is not positive definite through its product Iyz: the
+   * error is at Iyz. */
+  expect_load_error(
+      "bodies:\n"
+      "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 5, Iyz: 6,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "Iyz", "positive definite");
   /* No bushing. */
   expect_load_error("bodies:\n"
                     "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"

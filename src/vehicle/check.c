@@ -556,6 +556,33 @@ static int is_spd(size_t n, const double *a, int allow_singular)
   return spd;
 }
 
+/* The field of b's inertia an error about it names: the product with the
+ * largest |I_ab| / sqrt(I_aa I_bb) for a tensor that is not positive
+ * definite (the diagonal is > 0: the reader's range), else the largest
+ * moment, the one a triangle inequality fails on when the products are 0
+ * (the value to change, and a sweep's swept key). */
+static const char *body_inertia_field(const fb_body *b, int definite)
+{
+  const double d[3] = {b->ixx, b->iyy, b->izz};
+  if (!definite) {
+    const double p[3] = {b->ixy, b->ixz, b->iyz};
+    static const int pair[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    static const char *const products[3] = {"ixy", "ixz", "iyz"};
+    int worst = 0;
+    for (int k = 1; k < 3; ++k)
+      if (fabs(p[k]) / sqrt(d[pair[k][0]] * d[pair[k][1]]) >
+          fabs(p[worst]) / sqrt(d[pair[worst][0]] * d[pair[worst][1]]))
+        worst = k;
+    return products[worst];
+  }
+  static const char *const moments[3] = {"ixx", "iyy", "izz"};
+  int largest = 0;
+  for (int k = 1; k < 3; ++k)
+    if (d[k] >= d[largest])
+      largest = k;
+  return moments[largest];
+}
+
 /* A body's inertia tensor: positive definite, and its principal moments
  * obey the triangle inequalities I1 + I2 >= I3 (each is the sum of two
  * second moments of the mass, e.g. Ixx + Iyy - Izz = 2 integral z^2 dm:
@@ -566,7 +593,7 @@ static int check_body_inertia(const fb_body *b, size_t i, fb_err *err)
   double j[9];
   vehicle_body_inertia(b, j);
   if (!is_spd(3, j, 0))
-    return fail(err, FB_PART_BODY, i, "ixy",
+    return fail(err, FB_PART_BODY, i, body_inertia_field(b, 0),
                 "the inertia tensor [[Ixx, -Ixy, -Ixz], [-Ixy, Iyy, -Iyz], [-Ixz, -Iyz, Izz]] "
                 "must be positive definite (got Ixx %.6g, Iyy %.6g, Izz %.6g, Ixy %.6g, Ixz "
                 "%.6g, Iyz %.6g kg m^2)",
@@ -576,7 +603,7 @@ static int check_body_inertia(const fb_body *b, size_t i, fb_err *err)
     return fail(err, FB_PART_BODY, i, "ixx", "the inertia tensor's principal moments failed");
   const double slack = 1e-9 * (p[0] + p[1] + p[2]);
   if (p[0] + p[1] < p[2] - slack)
-    return fail(err, FB_PART_BODY, i, "izz",
+    return fail(err, FB_PART_BODY, i, body_inertia_field(b, 1),
                 "the principal moments of inertia %.6g, %.6g and %.6g kg m^2 break the "
                 "triangle inequality (%.6g + %.6g < %.6g): no body has them",
                 p[0], p[1], p[2], p[0], p[1], p[2]);
