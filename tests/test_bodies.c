@@ -219,6 +219,36 @@ static void test_file_errors(void)
       "  - {name: driver, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
       "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
       "name", "unique");
+  /* A body named as an anti-roll bar's part of the assembled vehicle. */
+  expect_load_error(
+      "anti_roll_bars:\n"
+      "  - {name: front, left: LF, right: RF, stiffness: 60000}\n"
+      "bodies:\n"
+      "  - {name: arb_front, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "bodies[0].name", "arb_<bar>");
+}
+
+/* A mount named as a bogie's or a bar's part of the assembled vehicle
+ * ("bogie_<name>", "arb_<name>"): refused at its name, not by the graph
+ * (whose clash has no place in the file). */
+static void test_mount_instance_name(void)
+{
+  fb_err err;
+  fb_scenario *s = load_with("anti_roll_bars:\n"
+                             "  - {name: front, left: LF, right: RF, stiffness: 60000}\n",
+                             &err);
+  CHECK(s != NULL);
+  if (!s)
+    return;
+  free(s->mount[1].name);
+  s->mount[1].name = strdup("arb_front");
+  fb_err_clear(&err);
+  CHECK(fb_scenario_check(s, &err) == FB_EINVAL && err.part.kind == FB_PART_MOUNT &&
+        err.part.index == 1 && !strcmp(err.part.field, "name") &&
+        strstr(err.msg, "arb_front") != NULL);
+  fprintf(stderr, "mount named arb_front: %s\n", err.msg);
+  fb_scenario_free(&s);
 }
 
 /* A body on the builder's description: each refusal names its part. */
@@ -352,6 +382,7 @@ int main(void)
   test_single_node();
   test_file();
   test_file_errors();
+  test_mount_instance_name();
   test_builder();
   return check_report(__FILE__);
 }

@@ -450,6 +450,20 @@ static int same(const char *a, const char *b)
   return a && b && !strcmp(a, b);
 }
 
+/* 1 if name is an anti-roll bar's or a bogie's instance in the assembled
+ * graph ("arb_<bar>", "bogie_<bogie>": fb_vehicle_assemble), which a
+ * mount's or a body's instance, its own name, would clash with. */
+static int names_bar_or_bogie(const fb_scenario *s, const char *name)
+{
+  for (size_t i = 0; i < s->nantiroll_bars; ++i)
+    if (!strncmp(name, "arb_", 4) && same(name + 4, s->antiroll_bar[i].name))
+      return 1;
+  for (size_t i = 0; i < s->nbogies; ++i)
+    if (!strncmp(name, "bogie_", 6) && same(name + 6, s->bogie[i].name))
+      return 1;
+  return 0;
+}
+
 /* Names unique among the corners and among the mounts: they name the
  * subsystem instances, mesh node sets and outputs. The later one is
  * blamed. */
@@ -471,6 +485,12 @@ static int check_names(const fb_scenario *s, fb_err *err)
       if (same(s->mount[k].name, s->mount[j].name))
         return fail(err, FB_PART_MOUNT, k, "",
                     "a second mount named %s (mount names are unique)", s->mount[k].name);
+  for (size_t k = 0; k < s->nmounts; ++k)
+    if (names_bar_or_bogie(s, s->mount[k].name))
+      return fail(err, FB_PART_MOUNT, k, "name",
+                  "%s is the name of an anti-roll bar's or a bogie's part of the assembled "
+                  "vehicle (arb_<bar>, bogie_<bogie>): give the mount another",
+                  s->mount[k].name);
   return FB_OK;
 }
 
@@ -676,10 +696,11 @@ static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
    * these (fb_vehicle_assemble). */
   static const char *const instances[] = {"hull", "road", "load", "attach"};
   for (size_t k = 0; k < sizeof instances / sizeof instances[0]; ++k)
-    if (!strcmp(b->name, instances[k]) || !strncmp(b->name, "susp_", 5))
+    if (!strcmp(b->name, instances[k]) || !strncmp(b->name, "susp_", 5) ||
+        names_bar_or_bogie(s, b->name))
       return fail(err, FB_PART_BODY, i, "name",
                   "%s is a name of the assembled vehicle's own (hull, road, load, attach, "
-                  "susp_<corner>): give the body another",
+                  "susp_<corner>, arb_<bar>, bogie_<bogie>): give the body another",
                   b->name);
   if (!b->parent)
     return FB_OK;
