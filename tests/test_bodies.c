@@ -249,6 +249,15 @@ static void test_mount_instance_name(void)
         strstr(err.msg, "arb_front") != NULL);
   fprintf(stderr, "mount named arb_front: %s\n", err.msg);
   fb_scenario_free(&s);
+  /* A bogie's saddle's lever (saddle_<bogie>_rear), on the bogie example. */
+  REQUIRE(fb_scenario_load("../examples/truck6x6_bogie.yaml", &s, &err), &err);
+  free(s->mount[0].name);
+  s->mount[0].name = strdup("saddle_left_rear");
+  fb_err_clear(&err);
+  CHECK(fb_scenario_check(s, &err) == FB_EINVAL && err.part.kind == FB_PART_MOUNT &&
+        err.part.index == 0 && !strcmp(err.part.field, "name"));
+  fprintf(stderr, "mount named saddle_left_rear: %s\n", err.msg);
+  fb_scenario_free(&s);
 }
 
 /* A body on the builder's description: each refusal names its part. */

@@ -450,17 +450,30 @@ static int same(const char *a, const char *b)
   return a && b && !strcmp(a, b);
 }
 
-/* 1 if name is an anti-roll bar's or a bogie's instance in the assembled
- * graph ("arb_<bar>", "bogie_<bogie>": fb_vehicle_assemble), which a
- * mount's or a body's instance, its own name, would clash with. */
+/* 1 if rest is bogie's name followed by suffix. */
+static int bogie_named(const char *rest, const char *bogie, const char *suffix)
+{
+  const size_t n = bogie ? strlen(bogie) : 0;
+  return bogie && !strncmp(rest, bogie, n) && !strcmp(rest + n, suffix);
+}
+
+/* 1 if name is an anti-roll bar's or a bogie's part of the assembled
+ * graph ("arb_<bar>", "bogie_<bogie>", its saddle "saddle_<bogie>" and
+ * the saddle's "_front" and "_rear" levers: fb_vehicle_assemble), which
+ * a mount's or a body's instance, its own name, would clash with. */
 static int names_bar_or_bogie(const fb_scenario *s, const char *name)
 {
   for (size_t i = 0; i < s->nantiroll_bars; ++i)
     if (!strncmp(name, "arb_", 4) && same(name + 4, s->antiroll_bar[i].name))
       return 1;
-  for (size_t i = 0; i < s->nbogies; ++i)
+  static const char *const suffixes[3] = {"", "_front", "_rear"};
+  for (size_t i = 0; i < s->nbogies; ++i) {
     if (!strncmp(name, "bogie_", 6) && same(name + 6, s->bogie[i].name))
       return 1;
+    for (int k = 0; k < 3; ++k)
+      if (!strncmp(name, "saddle_", 7) && bogie_named(name + 7, s->bogie[i].name, suffixes[k]))
+        return 1;
+  }
   return 0;
 }
 
@@ -489,7 +502,7 @@ static int check_names(const fb_scenario *s, fb_err *err)
     if (names_bar_or_bogie(s, s->mount[k].name))
       return fail(err, FB_PART_MOUNT, k, "name",
                   "%s is the name of an anti-roll bar's or a bogie's part of the assembled "
-                  "vehicle (arb_<bar>, bogie_<bogie>): give the mount another",
+                  "vehicle (arb_<bar>, bogie_<bogie>, saddle_<bogie>): give the mount another",
                   s->mount[k].name);
   return FB_OK;
 }
@@ -698,10 +711,11 @@ static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
   for (size_t k = 0; k < sizeof instances / sizeof instances[0]; ++k)
     if (!strcmp(b->name, instances[k]) || !strncmp(b->name, "susp_", 5) ||
         names_bar_or_bogie(s, b->name))
-      return fail(err, FB_PART_BODY, i, "name",
-                  "%s is a name of the assembled vehicle's own (hull, road, load, attach, "
-                  "susp_<corner>, arb_<bar>, bogie_<bogie>): give the body another",
-                  b->name);
+      return fail(
+          err, FB_PART_BODY, i, "name",
+          "%s is a name of the assembled vehicle's own (hull, road, load, attach, "
+          "susp_<corner>, arb_<bar>, bogie_<bogie>, saddle_<bogie>): give the body another",
+          b->name);
   if (!b->parent)
     return FB_OK;
   const long parent = fb_scenario_body_find(s, b->parent);
