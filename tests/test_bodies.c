@@ -177,6 +177,20 @@ static void test_file_errors(void)
       "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 1, Iyy: 1, Izz: 3,\n"
       "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
       "Izz", "triangle inequality");
+  /* The same rod along x: the error is at the moment that is too large,
+   * Ixx, the value to change (a sweep of Ixx must see its own key). */
+  expect_load_error(
+      "bodies:\n"
+      "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 3, Iyy: 1, Izz: 1,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "Ixx", "triangle inequality");
+  /* A tensor that is not positive definite through its product Iyz: the
+   * error is at Iyz. */
+  expect_load_error(
+      "bodies:\n"
+      "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 5, Iyz: 6,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "Iyz", "positive definite");
   /* No bushing. */
   expect_load_error("bodies:\n"
                     "  - {name: box, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
@@ -205,6 +219,45 @@ static void test_file_errors(void)
       "  - {name: driver, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
       "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
       "name", "unique");
+  /* A body named as an anti-roll bar's part of the assembled vehicle. */
+  expect_load_error(
+      "anti_roll_bars:\n"
+      "  - {name: front, left: LF, right: RF, stiffness: 60000}\n"
+      "bodies:\n"
+      "  - {name: arb_front, mass: 90, x: 0, y: 0, z: 1, Ixx: 5, Iyy: 5, Izz: 3,\n"
+      "     bushings: [{x: 0, y: 0, z: 0.8, stiffness: [1, 1, 1, 1, 1, 1], node_set: LOAD}]}\n",
+      "bodies[0].name", "arb_<bar>");
+}
+
+/* A mount named as a bogie's or a bar's part of the assembled vehicle
+ * ("bogie_<name>", "arb_<name>"): refused at its name, not by the graph
+ * (whose clash has no place in the file). */
+static void test_mount_instance_name(void)
+{
+  fb_err err;
+  fb_scenario *s = load_with("anti_roll_bars:\n"
+                             "  - {name: front, left: LF, right: RF, stiffness: 60000}\n",
+                             &err);
+  CHECK(s != NULL);
+  if (!s)
+    return;
+  free(s->mount[1].name);
+  s->mount[1].name = strdup("arb_front");
+  fb_err_clear(&err);
+  CHECK(fb_scenario_check(s, &err) == FB_EINVAL && err.part.kind == FB_PART_MOUNT &&
+        err.part.index == 1 && !strcmp(err.part.field, "name") &&
+        strstr(err.msg, "arb_front") != NULL);
+  fprintf(stderr, "mount named arb_front: %s\n", err.msg);
+  fb_scenario_free(&s);
+  /* A bogie's saddle's lever (saddle_<bogie>_rear), on the bogie example. */
+  REQUIRE(fb_scenario_load("../examples/truck6x6_bogie.yaml", &s, &err), &err);
+  free(s->mount[0].name);
+  s->mount[0].name = strdup("saddle_left_rear");
+  fb_err_clear(&err);
+  CHECK(fb_scenario_check(s, &err) == FB_EINVAL && err.part.kind == FB_PART_MOUNT &&
+        err.part.index == 0 && !strcmp(err.part.field, "name"));
+  fprintf(stderr, "mount named saddle_left_rear: %s\n", err.msg);
+  fb_scenario_free(&s);
 }
 
 /* A body on the builder's description: each refusal names its part. */
@@ -338,6 +391,7 @@ int main(void)
   test_single_node();
   test_file();
   test_file_errors();
+  test_mount_instance_name();
   test_builder();
   return check_report(__FILE__);
 }

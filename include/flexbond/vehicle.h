@@ -1025,7 +1025,7 @@ int fb_vehicle_corner_coupled(const fb_corner_params *c, double gravity, fb_bg *
  * damper to a hull point), "road_front" and "road_rear" (IN: each tire's
  * road). What it offers to measure, as bonds: the flow of "b_up" is the
  * pivot's vertical velocity, that of "b_pitch" the beam's pitch rate
- * (nose up positive; integrated: bounce and pitch), the efforts of
+ * (nose down positive, as the hull's pitch; integrated: bounce and pitch), the efforts of
  * "front.b_tire" and "rear.b_tire" the wheels' loads on the road
  * (compression positive), that of "b_spring" the pivot's spring force. */
 int fb_vehicle_bogie(const fb_bogie_params *p, const fb_corner_params *front,

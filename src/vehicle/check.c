@@ -450,6 +450,33 @@ static int same(const char *a, const char *b)
   return a && b && !strcmp(a, b);
 }
 
+/* 1 if rest is bogie's name followed by suffix. */
+static int bogie_named(const char *rest, const char *bogie, const char *suffix)
+{
+  const size_t n = bogie ? strlen(bogie) : 0;
+  return bogie && !strncmp(rest, bogie, n) && !strcmp(rest + n, suffix);
+}
+
+/* 1 if name is an anti-roll bar's or a bogie's part of the assembled
+ * graph ("arb_<bar>", "bogie_<bogie>", its saddle "saddle_<bogie>" and
+ * the saddle's "_front" and "_rear" levers: fb_vehicle_assemble), which
+ * a mount's or a body's instance, its own name, would clash with. */
+static int names_bar_or_bogie(const fb_scenario *s, const char *name)
+{
+  for (size_t i = 0; i < s->nantiroll_bars; ++i)
+    if (!strncmp(name, "arb_", 4) && same(name + 4, s->antiroll_bar[i].name))
+      return 1;
+  static const char *const suffixes[3] = {"", "_front", "_rear"};
+  for (size_t i = 0; i < s->nbogies; ++i) {
+    if (!strncmp(name, "bogie_", 6) && same(name + 6, s->bogie[i].name))
+      return 1;
+    for (int k = 0; k < 3; ++k)
+      if (!strncmp(name, "saddle_", 7) && bogie_named(name + 7, s->bogie[i].name, suffixes[k]))
+        return 1;
+  }
+  return 0;
+}
+
 /* Names unique among the corners and among the mounts: they name the
  * subsystem instances, mesh node sets and outputs. The later one is
  * blamed. */
@@ -471,6 +498,12 @@ static int check_names(const fb_scenario *s, fb_err *err)
       if (same(s->mount[k].name, s->mount[j].name))
         return fail(err, FB_PART_MOUNT, k, "",
                     "a second mount named %s (mount names are unique)", s->mount[k].name);
+  for (size_t k = 0; k < s->nmounts; ++k)
+    if (names_bar_or_bogie(s, s->mount[k].name))
+      return fail(err, FB_PART_MOUNT, k, "name",
+                  "%s is the name of an anti-roll bar's or a bogie's part of the assembled "
+                  "vehicle (arb_<bar>, bogie_<bogie>, saddle_<bogie>): give the mount another",
+                  s->mount[k].name);
   return FB_OK;
 }
 
@@ -556,6 +589,33 @@ static int is_spd(size_t n, const double *a, int allow_singular)
   return spd;
 }
 
+/* The field of b's inertia an error about it names: the product with the
+ * largest |I_ab| / sqrt(I_aa I_bb) for a tensor that is not positive
+ * definite (the diagonal is > 0: the reader's range), else the largest
+ * moment, the one a triangle inequality fails on when the products are 0
+ * (the value to change, and a sweep's swept key). */
+static const char *body_inertia_field(const fb_body *b, int definite)
+{
+  const double d[3] = {b->ixx, b->iyy, b->izz};
+  if (!definite) {
+    const double p[3] = {b->ixy, b->ixz, b->iyz};
+    static const int pair[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    static const char *const products[3] = {"ixy", "ixz", "iyz"};
+    int worst = 0;
+    for (int k = 1; k < 3; ++k)
+      if (fabs(p[k]) / sqrt(d[pair[k][0]] * d[pair[k][1]]) >
+          fabs(p[worst]) / sqrt(d[pair[worst][0]] * d[pair[worst][1]]))
+        worst = k;
+    return products[worst];
+  }
+  static const char *const moments[3] = {"ixx", "iyy", "izz"};
+  int largest = 0;
+  for (int k = 1; k < 3; ++k)
+    if (d[k] >= d[largest])
+      largest = k;
+  return moments[largest];
+}
+
 /* A body's inertia tensor: positive definite, and its principal moments
  * obey the triangle inequalities I1 + I2 >= I3 (each is the sum of two
  * second moments of the mass, e.g. Ixx + Iyy - Izz = 2 integral z^2 dm:
@@ -566,7 +626,7 @@ static int check_body_inertia(const fb_body *b, size_t i, fb_err *err)
   double j[9];
   vehicle_body_inertia(b, j);
   if (!is_spd(3, j, 0))
-    return fail(err, FB_PART_BODY, i, "ixy",
+    return fail(err, FB_PART_BODY, i, body_inertia_field(b, 0),
                 "the inertia tensor [[Ixx, -Ixy, -Ixz], [-Ixy, Iyy, -Iyz], [-Ixz, -Iyz, Izz]] "
                 "must be positive definite (got Ixx %.6g, Iyy %.6g, Izz %.6g, Ixy %.6g, Ixz "
                 "%.6g, Iyz %.6g kg m^2)",
@@ -576,7 +636,7 @@ static int check_body_inertia(const fb_body *b, size_t i, fb_err *err)
     return fail(err, FB_PART_BODY, i, "ixx", "the inertia tensor's principal moments failed");
   const double slack = 1e-9 * (p[0] + p[1] + p[2]);
   if (p[0] + p[1] < p[2] - slack)
-    return fail(err, FB_PART_BODY, i, "izz",
+    return fail(err, FB_PART_BODY, i, body_inertia_field(b, 1),
                 "the principal moments of inertia %.6g, %.6g and %.6g kg m^2 break the "
                 "triangle inequality (%.6g + %.6g < %.6g): no body has them",
                 p[0], p[1], p[2], p[0], p[1], p[2]);
@@ -649,11 +709,13 @@ static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
    * these (fb_vehicle_assemble). */
   static const char *const instances[] = {"hull", "road", "load", "attach"};
   for (size_t k = 0; k < sizeof instances / sizeof instances[0]; ++k)
-    if (!strcmp(b->name, instances[k]) || !strncmp(b->name, "susp_", 5))
-      return fail(err, FB_PART_BODY, i, "name",
-                  "%s is a name of the assembled vehicle's own (hull, road, load, attach, "
-                  "susp_<corner>): give the body another",
-                  b->name);
+    if (!strcmp(b->name, instances[k]) || !strncmp(b->name, "susp_", 5) ||
+        names_bar_or_bogie(s, b->name))
+      return fail(
+          err, FB_PART_BODY, i, "name",
+          "%s is a name of the assembled vehicle's own (hull, road, load, attach, "
+          "susp_<corner>, arb_<bar>, bogie_<bogie>, saddle_<bogie>): give the body another",
+          b->name);
   if (!b->parent)
     return FB_OK;
   const long parent = fb_scenario_body_find(s, b->parent);

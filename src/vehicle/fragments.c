@@ -623,7 +623,7 @@ static int bogie_wheel(const fb_corner_params *c, double gravity, fb_bg **out, f
 
 /* The beam with its wheels as one rigid body in (v, w), the pivot's
  * vertical velocity and the beam's pitch rate: a point at x ahead of the
- * pivot moves at v - x w (nose up positive, as the hull's pitch), so each
+ * pivot moves at v - x w (nose down positive, as the hull's pitch), so each
  * wheel of mass m adds m r r' with r = [1, -x] (kinetic energy
  * 1/2 m (v - x w)^2), to diag(beam mass, beam inertia); and the beam's
  * weight. */

@@ -66,7 +66,7 @@ static const fb_output_kind kinds[] = {
     {"force", FB_OUTPUT_OF_MOUNT, "N", "%s_force", "Force of the %s mount on the hull",
      "%s mount force", "spring plus damper force of the mount, tension positive"},
     {"beam_pitch", FB_OUTPUT_OF_BOGIE, "rad", "beam_pitch_%s", "Beam pitch of bogie %s",
-     "bogie %s beam pitch", "the bogie's beam's pitch from the start, nose up positive"},
+     "bogie %s beam pitch", "the bogie's beam's pitch from the start, nose down positive"},
     {"pivot_force", FB_OUTPUT_OF_BOGIE, "N", "pivot_force_%s",
      "Spring force at the pivot of bogie %s", "bogie %s pivot spring force",
      "the bogie's pivot spring's force, compression positive"},
