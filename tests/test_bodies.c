@@ -334,6 +334,13 @@ static void test_builder(void)
   char text[256];
   fb_scenario_part_text(s, &err.part, text, sizeof text);
   CHECK(!strcmp(text, "body[1] (pair).parent"));
+  /* A parent misspelt: the body before it is suggested. */
+  free(s->body[1].parent);
+  s->body[1].parent = strdup("bx");
+  CHECK(fb_scenario_check(s, &err) == FB_EINVAL && err.part.kind == FB_PART_BODY &&
+        !strcmp(err.part.field, "parent") && strstr(err.msg, "did you mean 'box'?"));
+  free(s->body[1].parent);
+  s->body[1].parent = strdup("pair");
   /* The builder refuses a body without a bushing or a name. */
   c.nbushings = 0;
   CHECK(fb_scenario_add_body(s, &c, &err) == FB_EINVAL && s->nbodies == 2);

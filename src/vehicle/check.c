@@ -687,6 +687,10 @@ static int check_body_support(const fb_body *b, size_t i, fb_err *err)
 /* Names unique among the bodies, mounts, hull masses and corners (they
  * name instances and outputs); a parent named before the body: the
  * hull, or an earlier body (so that no chain of parents is a cycle). */
+static const char *body_name_at(const void *ctx, size_t i);
+static void names_hint(const fb_scenario *s, const char *word, size_t n, fb_name_fn name_at,
+                       const char *what, char *buf, size_t size);
+
 static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
 {
   const fb_body *b = &s->body[i];
@@ -719,12 +723,15 @@ static int check_body_names(const fb_scenario *s, size_t i, fb_err *err)
   if (!b->parent)
     return FB_OK;
   const long parent = fb_scenario_body_find(s, b->parent);
-  if (parent < 0 || (size_t)parent >= i)
-    return fail(err, FB_PART_BODY, i, "parent",
-                "%s is no body listed before %s (a body is mounted on the hull or on a body "
-                "before it)",
-                b->parent, b->name);
-  return FB_OK;
+  if (parent >= 0 && (size_t)parent < i)
+    return FB_OK;
+  /* The bodies before it are those it may be on. */
+  char hint[512];
+  names_hint(s, b->parent, i, body_name_at, "bodies before it", hint, sizeof hint);
+  return fail(err, FB_PART_BODY, i, "parent",
+              "%s is no body listed before %s (a body is mounted on the hull or on a body "
+              "before it)%s",
+              b->parent, b->name, hint);
 }
 
 /* A hull carrying bodies moves in six degrees of freedom: its whole
