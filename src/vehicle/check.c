@@ -646,6 +646,8 @@ static int check_body_inertia(const fb_body *b, size_t i, fb_err *err)
 /* Bushing k (body b's j-th): symmetric positive semi-definite K and C. */
 static int check_bushing(const fb_scenario *s, size_t b, size_t j, size_t k, fb_err *err)
 {
+  if (!s->body[b].bushing || j >= s->body[b].nbushings)
+    return fail(err, FB_PART_BODY, b, "bushing", "has no bushing %zu", j);
   const fb_bushing *u = &s->body[b].bushing[j];
   if (!is_spd(6, u->k, 1))
     return fail(err, FB_PART_BUSHING, k, "k",
