@@ -734,11 +734,11 @@ static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
     nelastic += ms->part[k].kind == FB_MODE_HULL_ELASTIC;
     nhop += ms->part[k].kind == FB_MODE_WHEEL;
   }
-  if (!o->scenario->npictured_modes && ms->part && (!nelastic || !nhop))
-    fprintf(fp, "None of the %zu modes listed is %s.\n", ms->nmodes,
-            !nelastic && !nhop ? "an elastic mode of the hull or a wheel hop"
-            : !nelastic        ? "an elastic mode of the hull"
-                               : "a wheel hop");
+  static const char *const lacking[4] = {NULL, "a wheel hop", "an elastic mode of the hull",
+                                         "an elastic mode of the hull or a wheel hop"};
+  const int lacks = 2 * (nelastic == 0) + (nhop == 0);
+  if (!o->scenario->npictured_modes && ms->part && lacks)
+    fprintf(fp, "None of the %zu modes listed is %s.\n", ms->nmodes, lacking[lacks]);
   /* One picture per paragraph: a viewer shows them one under another. */
   for (size_t i = 0; i < npictured; ++i) {
     const size_t k = pictured[i];

@@ -650,7 +650,7 @@ static int sc_store_diagonal(sch_reader *r, const sch_key *k, struct fy_node *no
                              const double *v, size_t n, void *base)
 {
   (void)r, (void)node;
-  double *m = (double *)((char *)base + k->offset);
+  double *m = (double *)(void *)((char *)base + k->offset);
   memset(m, 0, 36 * sizeof *m);
   for (size_t i = 0; i < n && i < 6; ++i)
     m[7 * i] = v[i];
@@ -659,7 +659,7 @@ static int sc_store_diagonal(sch_reader *r, const sch_key *k, struct fy_node *no
 
 static void sc_format_diagonal(const sch_key *k, const void *base, char *buf, size_t size)
 {
-  const double *m = (const double *)((const char *)base + k->offset);
+  const double *m = (const double *)(const void *)((const char *)base + k->offset);
   snprintf(buf, size, "%.10g, %.10g, %.10g, %.10g, %.10g, %.10g", m[0], m[7], m[14], m[21],
            m[28], m[35]);
 }
@@ -1731,7 +1731,7 @@ static int sc_visit_value(const sch_value *v, void *ctx)
   /* Stored from the centre of mass; given as the file wrote it, to the
    * ten digits that hide the round-off of the move there and back. */
   if (v->key->axis == SCH_AXIS_POINT) {
-    const double *p = (const double *)((const char *)v->base + v->key->offset);
+    const double *p = (const double *)(const void *)((const char *)v->base + v->key->offset);
     snprintf(text, sizeof text, "%.10g, %.10g, %.10g", p[0] + frame[0], p[1] + frame[1],
              p[2] + frame[2]);
   } else if (v->key->axis) {
