@@ -122,10 +122,12 @@ static const fb_output_kind kinds[] = {
      "acceleration of the hull point `at` along `direction`, from the equations of motion"},
     {"hull_longitudinal", FB_OUTPUT_OF_HULL, "m", "hull_longitudinal",
      "Hull longitudinal displacement", "hull longitudinal displacement",
-     "the hull's rigid-body translation along x from t = 0 (0 in System 1 unless its hull carries rigid bodies)"},
+     "the hull's rigid-body translation along x from t = 0 (0 in System 1 unless its hull "
+     "carries rigid bodies)"},
     {"hull_lateral", FB_OUTPUT_OF_HULL, "m", "hull_lateral", "Hull lateral displacement",
      "hull lateral displacement",
-     "the hull's rigid-body translation along y from t = 0 (0 in System 1 unless its hull carries rigid bodies)"},
+     "the hull's rigid-body translation along y from t = 0 (0 in System 1 unless its hull "
+     "carries rigid bodies)"},
     {"hull_bounce", FB_OUTPUT_OF_HULL, "m", "hull_bounce", "Hull bounce", "hull bounce",
      "the hull's rigid-body translation along z from t = 0"},
     {"hull_roll", FB_OUTPUT_OF_HULL, "rad", "hull_roll", "Hull roll angle", "hull roll angle",
@@ -133,7 +135,8 @@ static const fb_output_kind kinds[] = {
     {"hull_pitch", FB_OUTPUT_OF_HULL, "rad", "hull_pitch", "Hull pitch angle",
      "hull pitch angle", "the hull's rigid-body rotation about y from t = 0"},
     {"hull_yaw", FB_OUTPUT_OF_HULL, "rad", "hull_yaw", "Hull yaw angle", "hull yaw angle",
-     "the hull's rigid-body rotation about z from t = 0 (0 in System 1 unless its hull carries rigid bodies)"},
+     "the hull's rigid-body rotation about z from t = 0 (0 in System 1 unless its hull carries "
+     "rigid bodies)"},
     {"effort", FB_OUTPUT_OF_BOND, NULL, "effort_%s", "Effort of bond %s", "%s effort",
      "effort of any bond of the assembled graph"},
     {"flow", FB_OUTPUT_OF_BOND, NULL, "flow_%s", "Flow of bond %s", "%s flow",
