@@ -136,17 +136,12 @@ int vehicle_sym3_eigenvalues(const double *a, double *w)
  * with omega. */
 void vehicle_rigid_transport(const double *r, double *t)
 {
+  /* The translation's rows [I, -[r]x] are the point's (vehicle_rigid_rows);
+   * the rotation is the same at every point, [0, I]. */
   memset(t, 0, 36 * sizeof *t);
-  for (int i = 0; i < 6; ++i)
+  vehicle_rigid_rows(r, t);
+  for (int i = 3; i < 6; ++i)
     t[7 * i] = 1.0;
-  /* -[r]x in the upper right block: -[r]x = [[0, r3, -r2], [-r3, 0, r1],
-   * [r2, -r1, 0]]. */
-  t[0 * 6 + 4] = r[2];
-  t[0 * 6 + 5] = -r[1];
-  t[1 * 6 + 3] = -r[2];
-  t[1 * 6 + 5] = r[0];
-  t[2 * 6 + 3] = r[1];
-  t[2 * 6 + 4] = -r[0];
 }
 
 void vehicle_bushing_add_at_centre(const fb_body *b, const fb_bushing *u, const double *k,
