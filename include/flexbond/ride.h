@@ -197,11 +197,11 @@ int fb_ride_metrics_compute(const double *a, size_t n, double fs, const fb_ride_
 
 /* As fb_ride_metrics_compute over the samples of a[0..n-1] whose times
  * k / fs lie in [t0, t1) (s from the first sample, 0 <= t0 < t1 <=
- * n / fs). The weighting filter runs from a[0], so the window sees the
- * filter's settled state; the jerk at the window's edges uses the
- * neighbouring samples outside it when the record has them (one-sided
- * differences at the record's first and last sample). The window
- * must hold at least tau fs and 3 samples. */
+ * n / fs). The filters (Wk, absorbed power, NRMM, spine) run from
+ * a[0], so the window sees their settled state; the jerk at the window's
+ * edges uses the neighbouring samples outside it when the record has them
+ * (one-sided differences at the record's first and last sample). The
+ * window must hold at least tau fs and 3 samples. */
 int fb_ride_metrics_window(const double *a, size_t n, double fs, double t0, double t1,
                            const fb_ride_opts *opts, fb_ride_metrics *m, fb_err *err);
 
