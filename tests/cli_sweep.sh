@@ -30,7 +30,8 @@ for o in $OUTPUTS; do
 done
 METRICS="$METRICS,min_tire_force [N],contact_loss_intervals,ride_a_w_rms [m/s^2],ride_mtvv [m/s^2]"
 METRICS="$METRICS,ride_vdv [m/s^1.75],ride_crest_factor,ride_jerk_peak [m/s^3],ride_jerk_rms [m/s^3]"
-METRICS="$METRICS,solver_steps"
+METRICS="$METRICS,ride_absorbed_power [W],ride_nrmm_peak [m/s^2],ride_se [MPa],ride_dz [m/s^2]"
+METRICS="$METRICS,ride_vdv_ratio,ride_crest_over_9,solver_steps"
 
 # check_python DESCRIPTION ARGS... < SCRIPT: the script exits 0.
 check_python() {
@@ -98,7 +99,8 @@ t0 = s1["bump_window"][0]
 want = sum(1 for t in s1["tire_contact"]["contact_loss_intervals"] if t["to"] >= t0)
 if int(row["contact_loss_intervals"]) != want:
     problems.append("contact-loss intervals %s vs %d" % (row["contact_loss_intervals"], want))
-for name in ["a_w_rms", "mtvv", "vdv", "crest_factor", "jerk_peak", "jerk_rms"]:
+for name in ["a_w_rms", "mtvv", "vdv", "crest_factor", "jerk_peak", "jerk_rms",
+             "absorbed_power", "nrmm_peak", "se", "dz", "vdv_ratio", "crest_over_9"]:
     if float("%.10g" % float(row["ride_" + name])) != s1["ride"][name]:
         problems.append("ride %s: sweep %s, run %r" % (name, row["ride_" + name], s1["ride"][name]))
 assert not problems, problems

@@ -160,6 +160,11 @@ static void test_run(const fb_scenario *base)
   fb_ride_metrics ride;
   CHECK(sum && fb_run_summary_ride(sum, &ride, NULL, NULL) == 1);
   CHECK(sum && other[FB_STUDY_SWEEP_RIDE_A_W_RMS] == ride.a_w_rms);
+  CHECK(sum && other[FB_STUDY_SWEEP_RIDE_ABSORBED_POWER] == ride.absorbed_power &&
+        other[FB_STUDY_SWEEP_RIDE_NRMM_PEAK] == ride.nrmm_peak &&
+        other[FB_STUDY_SWEEP_RIDE_SE] == ride.se && other[FB_STUDY_SWEEP_RIDE_DZ] == ride.dz &&
+        other[FB_STUDY_SWEEP_RIDE_VDV_RATIO] == ride.vdv_ratio &&
+        other[FB_STUDY_SWEEP_RIDE_CREST_OVER_9] == ride.crest_over_9);
   CHECK(r && other[FB_STUDY_SWEEP_SOLVER_STEPS] == (double)fb_result_stats(r)->steps);
   CHECK(other[FB_STUDY_SWEEP_MIN_TIRE_FORCE] > 0 &&
         other[FB_STUDY_SWEEP_CONTACT_LOSS_INTERVALS] == 0);

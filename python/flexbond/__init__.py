@@ -129,7 +129,8 @@ class _ContactLoss(ctypes.Structure):
 class _RideMetrics(ctypes.Structure):
     _fields_ = [(n, ctypes.c_double) for n in
                 ("a_w_rms", "mtvv", "vdv", "crest", "absorbed_power", "jerk_peak",
-                 "jerk_rms", "duration")]
+                 "jerk_rms", "duration", "nrmm_peak", "se", "dz", "vdv_ratio",
+                 "crest_over_9")]
 
 
 class _ModeSet(ctypes.Structure):
@@ -640,7 +641,8 @@ class RunSummary:
     normal reaction, contact_ratio {tire: peak / static}, spikes (tires above
     flexbond's spike ratio), contact_loss [ContactLoss], and ride: the ride
     metrics {a_w_rms, mtvv, vdv, crest, absorbed_power, jerk_peak, jerk_rms,
-    duration} of the first mounted body's acceleration over ride_window, or
+    duration, nrmm_peak, se, dz, vdv_ratio, crest_over_9} of the first mounted
+    body's acceleration over ride_window, or
     None with ride_note saying why; basis_error {output: estimated error of
     System 2's reduced modal basis, over the output's range} when
     Scenario.study estimated it, else None."""

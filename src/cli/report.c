@@ -1219,20 +1219,28 @@ static void conclude_single(FILE *fp, const cli_run_outputs *o)
 /* ---- Ride comfort of a mounted body (src/ride, docs/ride-metrics.md). */
 
 /* The ride table's rows: label, unit and value. */
-enum { NRIDE_ROWS = 6 };
+enum { NRIDE_ROWS = 12 };
 static const char *const ride_labels[NRIDE_ROWS][2] = {
     {"Wk-weighted r.m.s. a_w (ISO 2631-1)", "m/s^2"},
     {"MTVV (1 s running r.m.s.)", "m/s^2"},
     {"VDV", "m/s^1.75"},
+    {"VDV / 8.5 (ISO 2631-1 caution zone)", "-"},
     {"crest factor", "-"},
+    {"crest factor above 9 (1: use VDV)", "-"},
     {"jerk peak", "m/s^3"},
     {"jerk r.m.s.", "m/s^3"},
+    {"absorbed power (limit 6 W)", "W"},
+    {"NRMM peak, 30 Hz low-pass (limit 2.5 g = 24.5)", "m/s^2"},
+    {"ISO 2631-5 dose D_z", "m/s^2"},
+    {"ISO 2631-5 S_ed (window as the day)", "MPa"},
 };
 
 static double ride_value(const fb_ride_metrics *m, size_t row)
 {
-  const double values[NRIDE_ROWS] = {m->a_w_rms, m->mtvv,      m->vdv,
-                                     m->crest,   m->jerk_peak, m->jerk_rms};
+  const double values[NRIDE_ROWS] = {m->a_w_rms,   m->mtvv,     m->vdv,
+                                     m->vdv_ratio, m->crest,    m->crest_over_9,
+                                     m->jerk_peak, m->jerk_rms, m->absorbed_power,
+                                     m->nrmm_peak, m->dz,       m->se};
   return values[row];
 }
 
@@ -1269,10 +1277,10 @@ static void write_ride(FILE *fp, const cli_run_outputs *o)
   fb_md_write_text(fp, o->scenario->output[kr].name);
   fprintf(fp,
           "`, from the first wheel's entry into the road window (%.3f s) to "
-          "the end of the run (%.3f s), weighted and evaluated per ISO 2631-1:1997 (flexbond's "
-          "docs/ride-metrics.md). The absorbed power (Pradko & Lee, "
-          "against the 6 W limit used for military vehicles) is not given: no published "
-          "K(f) table is built in.\n\n| metric | unit |",
+          "the end of the run (%.3f s), weighted and evaluated per ISO 2631-1:1997, with the "
+          "military measures: Pradko & Lee's absorbed power against 6 W, the NRMM peak "
+          "against 2.5 g and the ISO 2631-5:2004 vertical spinal dose (flexbond's "
+          "docs/ride-metrics.md).\n\n| metric | unit |",
           window[0], window[1]);
   for (size_t i = 0; i < o->nruns && i < CLI_MAX_SYSTEMS; ++i)
     if (has[i])

@@ -261,7 +261,7 @@ static void write_solver_json(FILE *fp, const fb_sim_stats *s)
 }
 
 /* "systemN": {...} of one run. */
-/* {"window": [t0, t1], "a_w_rms", ..., "jerk_rms"} or {"note": why}. */
+/* {"window": [t0, t1], "a_w_rms", ..., "crest_over_9"} or {"note": why}. */
 static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenario *s)
 {
   fb_ride_metrics ride;
@@ -280,7 +280,12 @@ static void write_ride_json(FILE *fp, const cli_run_system *run, const fb_scenar
                                {"crest_factor", m->crest},
                                {"absorbed_power", m->absorbed_power},
                                {"jerk_peak", m->jerk_peak},
-                               {"jerk_rms", m->jerk_rms}};
+                               {"jerk_rms", m->jerk_rms},
+                               {"nrmm_peak", m->nrmm_peak},
+                               {"se", m->se},
+                               {"dz", m->dz},
+                               {"vdv_ratio", m->vdv_ratio},
+                               {"crest_over_9", m->crest_over_9}};
   fputs("{\"output\": ", fp);
   cli_json_string(fp, s->output[fb_study_ride_output(s)].name);
   fputs(", \"window\": [", fp);
@@ -496,8 +501,12 @@ static const char *const definitions[][2] = {
      "wheel's entry into the road window, end of the run] s: a_w_rms (ISO 2631-1 Wk-weighted "
      "r.m.s., m/s^2), mtvv "
      "(largest 1 s running r.m.s., m/s^2), vdv (m/s^1.75), crest_factor (max |a_w| / "
-     "a_w_rms), absorbed_power (W; null: no K(f) table is built in), jerk_peak and jerk_rms "
-     "(of the unweighted acceleration, m/s^3); a note instead when they cannot be computed"},
+     "a_w_rms), absorbed_power (Pradko & Lee, W, against 6 W), jerk_peak and jerk_rms "
+     "(of the unweighted acceleration, m/s^3), nrmm_peak (largest |a| low-passed at 30 Hz, "
+     "m/s^2, against 2.5 g), dz and se (ISO 2631-5 vertical acceleration dose, m/s^2, and "
+     "S_ed, MPa, the window as the day's exposure), vdv_ratio (vdv / 8.5, the ISO 2631-1 "
+     "health guidance caution zone's lower bound) and crest_over_9 (1 when crest_factor > "
+     "9); a note instead when they cannot be computed"},
     {"tire_contact",
      "model: bilateral (the paper's linear tire), unilateral (no tension: the wheel may "
      "leave the road), hunt_crossley (unilateral, damping growing with the deflection) or "

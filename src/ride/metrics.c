@@ -147,6 +147,38 @@ static size_t running_window_len(size_t nw, double fs, double tau, fb_err *err)
   return (size_t)len;
 }
 
+/* The absorbed power (the caller's K(f) table when given, else the
+ * built-in filter), the NRMM peak and the ISO 2631-5 dose of samples
+ * [k0, k1) of a, the filters running from a[0]; work holds k1 samples. */
+static int military_metrics(const double *a, size_t k0, size_t k1, double fs,
+                            const fb_ride_opts *opts, double *work, fb_ride_metrics *m,
+                            fb_err *err)
+{
+  const size_t nw = k1 - k0;
+  int status = FB_OK;
+  m->dz = NAN;
+  if (opts->absorbed_kf) {
+    status = fb_ride_absorbed_power(a + k0, nw, fs, opts->absorbed_kf, &m->absorbed_power, err);
+  } else {
+    status = fb_ride_absorbed_filter(a, k1, fs, work, err);
+    double sum2 = 0;
+    for (size_t k = k0; status == FB_OK && k < k1; ++k)
+      sum2 += work[k] * work[k];
+    m->absorbed_power = sum2 / (double)nw;
+  }
+  if (status == FB_OK)
+    status = fb_ride_nrmm_filter(a, k1, fs, work, err);
+  if (status == FB_OK) {
+    double peak = 0;
+    for (size_t k = k0; k < k1; ++k)
+      peak = fmax(peak, fabs(work[k]));
+    m->nrmm_peak = peak;
+    status = ride_spine_window_dose(a, k0, k1, fs, &m->dz, err);
+  }
+  m->se = FB_RIDE_SPINE_MZ * m->dz;
+  return status;
+}
+
 int fb_ride_metrics_window(const double *a, size_t n, double fs, double t0, double t1,
                            const fb_ride_opts *opts, fb_ride_metrics *m, fb_err *err)
 {
@@ -163,21 +195,20 @@ int fb_ride_metrics_window(const double *a, size_t n, double fs, double t0, doub
   const size_t nw = k1 - k0, len = running_window_len(nw, fs, opts->integration_time, err);
   if (len == 0)
     return FB_EINVAL;
-  double *aw = malloc(k1 * sizeof *aw);
-  if (!aw)
+  double *work = malloc(k1 * sizeof *work);
+  if (!work)
     return fb_err_set(err, FB_ENOMEM, "ride metrics: out of memory for %zu samples", k1);
-  status = fb_ride_wk_filter(a, k1, fs, aw, err);
+  status = fb_ride_wk_filter(a, k1, fs, work, err);
   if (status == FB_OK) {
-    weighted_stats(aw + k0, nw, fs, m);
-    m->mtvv = max_running_rms(aw + k0, nw, len);
+    weighted_stats(work + k0, nw, fs, m);
+    m->mtvv = max_running_rms(work + k0, nw, len);
     jerk_stats(a, n, k0, k1, fs, m);
     m->duration = (double)nw / fs;
-    m->absorbed_power = NAN;
-    if (opts->absorbed_kf)
-      status =
-          fb_ride_absorbed_power(a + k0, nw, fs, opts->absorbed_kf, &m->absorbed_power, err);
+    m->vdv_ratio = m->vdv / FB_RIDE_VDV_CAUTION;
+    m->crest_over_9 = m->crest > FB_RIDE_CREST_LIMIT ? 1.0 : 0.0;
+    status = military_metrics(a, k0, k1, fs, opts, work, m, err);
   }
-  free(aw);
+  free(work);
   return status;
 }
 

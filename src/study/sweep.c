@@ -10,6 +10,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,9 +21,14 @@ static const char *const stat_names[FB_STUDY_SWEEP_NSTATS] = {"peak", "min", "rm
 static const struct {
   const char *name, *unit;
 } other_metrics[FB_STUDY_SWEEP_NOTHER] = {
-    {"min_tire_force", "N"},     {"contact_loss_intervals", "-"}, {"ride_a_w_rms", "m/s^2"},
-    {"ride_mtvv", "m/s^2"},      {"ride_vdv", "m/s^1.75"},        {"ride_crest_factor", "-"},
-    {"ride_jerk_peak", "m/s^3"}, {"ride_jerk_rms", "m/s^3"},      {"solver_steps", "-"},
+    {"min_tire_force", "N"},      {"contact_loss_intervals", "-"},
+    {"ride_a_w_rms", "m/s^2"},    {"ride_mtvv", "m/s^2"},
+    {"ride_vdv", "m/s^1.75"},     {"ride_crest_factor", "-"},
+    {"ride_jerk_peak", "m/s^3"},  {"ride_jerk_rms", "m/s^3"},
+    {"ride_absorbed_power", "W"}, {"ride_nrmm_peak", "m/s^2"},
+    {"ride_se", "MPa"},           {"ride_dz", "m/s^2"},
+    {"ride_vdv_ratio", "-"},      {"ride_crest_over_9", "-"},
+    {"solver_steps", "-"},
 };
 
 /* A case's outcome; its metrics are the sweep's row i. */
@@ -241,21 +247,36 @@ const char *fb_study_sweep_metric_unit(const fb_study_sweep *sw, size_t m)
   return unit ? unit : "-"; /* a bond's: its domain's, known after the build */
 }
 
+/* Where each ride metric column finds its value in fb_ride_metrics. */
+static const struct {
+  size_t metric, offset;
+} ride_columns[] = {
+    {FB_STUDY_SWEEP_RIDE_A_W_RMS, offsetof(fb_ride_metrics, a_w_rms)},
+    {FB_STUDY_SWEEP_RIDE_MTVV, offsetof(fb_ride_metrics, mtvv)},
+    {FB_STUDY_SWEEP_RIDE_VDV, offsetof(fb_ride_metrics, vdv)},
+    {FB_STUDY_SWEEP_RIDE_CREST_FACTOR, offsetof(fb_ride_metrics, crest)},
+    {FB_STUDY_SWEEP_RIDE_JERK_PEAK, offsetof(fb_ride_metrics, jerk_peak)},
+    {FB_STUDY_SWEEP_RIDE_JERK_RMS, offsetof(fb_ride_metrics, jerk_rms)},
+    {FB_STUDY_SWEEP_RIDE_ABSORBED_POWER, offsetof(fb_ride_metrics, absorbed_power)},
+    {FB_STUDY_SWEEP_RIDE_NRMM_PEAK, offsetof(fb_ride_metrics, nrmm_peak)},
+    {FB_STUDY_SWEEP_RIDE_SE, offsetof(fb_ride_metrics, se)},
+    {FB_STUDY_SWEEP_RIDE_DZ, offsetof(fb_ride_metrics, dz)},
+    {FB_STUDY_SWEEP_RIDE_VDV_RATIO, offsetof(fb_ride_metrics, vdv_ratio)},
+    {FB_STUDY_SWEEP_RIDE_CREST_OVER_9, offsetof(fb_ride_metrics, crest_over_9)},
+};
+
 /* The ride metrics of the summary into m (the other metrics); NaN when
  * there are none: a missing metric, not a failed case. */
 static void ride_metrics(const fb_run_summary *sum, double *m)
 {
-  for (size_t k = FB_STUDY_SWEEP_RIDE_A_W_RMS; k <= FB_STUDY_SWEEP_RIDE_JERK_RMS; ++k)
-    m[k] = NAN;
   fb_ride_metrics ride;
-  if (!fb_run_summary_ride(sum, &ride, NULL, NULL))
-    return;
-  m[FB_STUDY_SWEEP_RIDE_A_W_RMS] = ride.a_w_rms;
-  m[FB_STUDY_SWEEP_RIDE_MTVV] = ride.mtvv;
-  m[FB_STUDY_SWEEP_RIDE_VDV] = ride.vdv;
-  m[FB_STUDY_SWEEP_RIDE_CREST_FACTOR] = ride.crest;
-  m[FB_STUDY_SWEEP_RIDE_JERK_PEAK] = ride.jerk_peak;
-  m[FB_STUDY_SWEEP_RIDE_JERK_RMS] = ride.jerk_rms;
+  const int has = fb_run_summary_ride(sum, &ride, NULL, NULL);
+  for (size_t i = 0; i < sizeof ride_columns / sizeof ride_columns[0]; ++i) {
+    double value = NAN;
+    if (has)
+      memcpy(&value, (const char *)&ride + ride_columns[i].offset, sizeof value);
+    m[ride_columns[i].metric] = value;
+  }
 }
 
 /* The smallest normal reaction of any tire from the window's start to the

@@ -287,7 +287,9 @@ class StudyTest(unittest.TestCase):
             self.assertSame(run.ride_window[1], ride["window"][1], "ride window")
             for field, key in (("a_w_rms", "a_w_rms"), ("mtvv", "mtvv"), ("vdv", "vdv"),
                                ("crest", "crest_factor"), ("jerk_peak", "jerk_peak"),
-                               ("jerk_rms", "jerk_rms")):
+                               ("jerk_rms", "jerk_rms"), ("absorbed_power", "absorbed_power"),
+                               ("nrmm_peak", "nrmm_peak"), ("se", "se"), ("dz", "dz"),
+                               ("vdv_ratio", "vdv_ratio"), ("crest_over_9", "crest_over_9")):
                 self.assertSame(run.ride[field], ride[key], "ride " + key,
                                 rtol=1e-7 if flexible else 5e-10)
 
