@@ -553,6 +553,53 @@ static void test_cost(void)
   fb_road_free(&road);
 }
 
+/* ---- The profile through the effective road: its knots are chosen so
+ * that a straight line between two knots is within 1e-3 of the road's
+ * height range of every sample between them; the monotone cubic through
+ * them stays within twice that (its slopes at the knots are bounded by
+ * the neighbouring chords' (Fritsch & Carlson 1980), so it lies within
+ * the chords' band plus as much again), checked over a step (kinks where
+ * the cams first touch it) and a random road. */
+
+static void test_profile(void)
+{
+  const fb_envelope_context ctx = tire_context();
+  fb_road *roads[2] = {step_road(STEP_H), iso_road('E')};
+  const fb_envelope_model *const models[] = {&fb_envelope_model_cams,
+                                             &fb_envelope_model_overlap};
+  for (size_t r = 0; r < 2; ++r)
+    for (size_t k = 0; k < 2; ++k) {
+      fb_envelope_params p;
+      fb_envelope_params_init(models[k], &p);
+      fb_road *env = NULL;
+      fb_err err = {0};
+      const double s_min = -3.0, s_max = 3.0;
+      CHECK(fb_envelope_road_new(roads[r], models[k], p.bytes, &ctx, s_min, s_max, &env,
+                                 &err) == FB_OK);
+      const double ds = fb_envelope_spacing(models[k], p.bytes, &ctx, roads[r]);
+      const size_t n = (size_t)floor((s_max - s_min) / ds);
+      double *w = malloc(2 * n * sizeof *w), lo = INFINITY, hi = -INFINITY, worst = 0.0;
+      /* The tolerance is of both tracks' range. */
+      for (int track = 0; track < FB_ROAD_NTRACKS; ++track)
+        CHECK(fb_envelope_sample(roads[r], track, models[k], p.bytes, &ctx, s_min, ds, n,
+                                 w + (size_t)track * n, NULL, &err) == FB_OK);
+      for (size_t i = 0; i < 2 * n; ++i) {
+        lo = fmin(lo, w[i]);
+        hi = fmax(hi, w[i]);
+        const int track = i < n ? 0 : 1;
+        const double si = s_min + (double)(i % n) * ds;
+        worst = fmax(worst, fabs(fb_road_height(env, track, si) - w[i]));
+      }
+      printf("%s profile over the %s: max |profile - samples| = %.3e m (%.2e of its range)\n",
+             models[k]->name, r ? "random road" : "step", worst, worst / (hi - lo));
+      CHECK(worst <= 2e-3 * (hi - lo));
+      free(w);
+      fb_road_free(&env);
+    }
+  fb_road_free(&roads[0]);
+  fb_road_free(&roads[1]);
+}
+
 /* ---- The models' own rules. */
 
 static void test_checks(void)
@@ -594,6 +641,7 @@ int main(void)
   test_cams_random();
   test_long_wave();
   test_cost();
+  test_profile();
   test_checks();
   return check_report("test_envelope");
 }

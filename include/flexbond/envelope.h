@@ -68,10 +68,9 @@ typedef struct fb_envelope_model_ops {
   double (*reach)(const void *params, const fb_envelope_context *ctx);
   /* The effective road on samples: z[j] is the road's height at
    * s_j = s_0 + j ds (j < n, ds > 0); writes w[i] (effective height, m)
-   * and, when beta is not NULL, beta[i] (effective slope, -) for every i
-   * whose window [s_i - reach, s_i + reach] lies inside the samples
-   * (m <= i < n - m, m = ceil(reach / ds)); the others are left as they
-   * are. FB_ENOMEM. */
+   * and, when beta is not NULL, beta[i] (effective slope, -) at least
+   * for every i whose window [s_i - reach, s_i + reach] lies inside the
+   * samples (m <= i < n - m, m = ceil(reach / ds)). FB_ENOMEM. */
   int (*filter)(const void *params, const fb_envelope_context *ctx, const double *z, size_t n,
                 double ds, double *w, double *beta, fb_err *err);
 } fb_envelope_model_ops;
@@ -79,6 +78,9 @@ typedef struct fb_envelope_model_ops {
 struct fb_envelope_model {
   const char *name; /* letters, digits and '_', not from a digit: "cams" */
   const char *doc;  /* one line */
+  /* 1 if it reads the tire's free radius (fb_envelope_context.radius),
+   * which a description must then give. */
+  int needs_radius;
   /* Its parameters: scalars only (REAL, WHOLE, CHOICE). */
   const fb_param *param;
   size_t nparams;

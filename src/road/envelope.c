@@ -11,6 +11,7 @@
 
 #include "core/registry.h"
 #include "core/util.h"
+#include "road/road_internal.h"
 
 /* The built-in models, one line each; the first is a corner's default. */
 static const fb_envelope_model *const gallery_builtin[] = {
@@ -70,6 +71,100 @@ double fb_envelope_chord(double r, double d)
  * 4096 bounds the work on a road of very short wavelength (a step made
  * of knots 1e-6 m apart). */
 enum { SPACING_PER_FOOTPRINT = 256, SPACING_FINEST = 4096, SPACING_PER_WAVELENGTH = 8 };
+/* The profile's knots: at most KNOT_GAP samples apart (a quarter of the
+ * footprint), and as far apart as a straight line between two knots
+ * stays within KNOT_TOL of the road's height range of every sample
+ * between them (docs/tire-envelope.md, "Error"). */
+enum { KNOT_GAP = 64 };
+static const double KNOT_TOL = 1e-3, KNOT_TOL_MIN = 1e-7; /* -, m */
+
+/* 1 if the chord from sample a to sample b of w (and of v) is within
+ * tol of every sample between them. */
+static int chord_fits(const double *w, const double *v, size_t a, size_t b, double tol)
+{
+  for (size_t j = a + 1; j < b; ++j) {
+    const double t = (double)(j - a) / (double)(b - a);
+    if (fabs(w[a] + t * (w[b] - w[a]) - w[j]) > tol ||
+        fabs(v[a] + t * (v[b] - v[a]) - v[j]) > tol)
+      return 0;
+  }
+  return 1;
+}
+
+/* The worst sample of w in (knot a, knot b) that the monotone cubic
+ * through the knots (s, z, slopes d; nk of them) misses by more than tol,
+ * 0 when none. */
+static size_t worst_miss(const double *w, double s_min, double ds, const double *s,
+                         const double *z, const double *d, size_t nk, size_t a, size_t b,
+                         double tol)
+{
+  size_t worst = 0;
+  double miss = tol;
+  for (size_t j = a + 1; j < b; ++j) {
+    const double e = fabs(road_pchip_height(nk, s, z, d, s_min + (double)j * ds) - w[j]);
+    if (e > miss) {
+      miss = e;
+      worst = j;
+    }
+  }
+  return worst;
+}
+
+/* The knots of the effective road's profile among the samples w and v
+ * (the two tracks, n >= 2 each, at s_min + j ds) into knot[] (room for
+ * n), ascending from 0 to n - 1; returns how many. First as far apart
+ * as a straight line stays within tol of the samples between (at most
+ * KNOT_GAP), then a knot more at the worst sample of each interval where
+ * the monotone cubic through them misses by more than 2 tol, until none
+ * does. Every knot is a jump of the profile's curvature that an
+ * integrator steps to: a knot per sample made 10 times the steps of the
+ * point contact's run over the paper's bump, these about 4 times
+ * (docs/tire-envelope.md, "Cost"). work: room for 6 n. */
+static size_t envelope_knots(const double *w, const double *v, size_t n, double s_min,
+                             double ds, size_t *knot, size_t *more, double *work)
+{
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t j = 0; j < n; ++j) {
+    lo = fmin(lo, fmin(w[j], v[j]));
+    hi = fmax(hi, fmax(w[j], v[j]));
+  }
+  const double tol = fmax(KNOT_TOL * (hi - lo), KNOT_TOL_MIN);
+  size_t count = 0, a = 0;
+  knot[count++] = 0;
+  while (a + 1 < n) {
+    size_t b = a + KNOT_GAP < n - 1 ? a + KNOT_GAP : n - 1;
+    while (b > a + 1 && !chord_fits(w, v, a, b, tol))
+      --b;
+    knot[count++] = b;
+    a = b;
+  }
+  double *s = work, *zw = s + n, *zv = zw + n, *dw = zv + n, *dv = dw + n;
+  for (int added = 1; added;) {
+    for (size_t i = 0; i < count; ++i) {
+      s[i] = s_min + (double)knot[i] * ds;
+      zw[i] = w[knot[i]];
+      zv[i] = v[knot[i]];
+    }
+    road_pchip_slopes(count, s, zw, dw);
+    road_pchip_slopes(count, s, zv, dv);
+    size_t m = 0;
+    added = 0;
+    for (size_t i = 0; i + 1 < count; ++i) {
+      more[m++] = knot[i];
+      size_t j = worst_miss(w, s_min, ds, s, zw, dw, count, knot[i], knot[i + 1], 2.0 * tol);
+      if (!j)
+        j = worst_miss(v, s_min, ds, s, zv, dv, count, knot[i], knot[i + 1], 2.0 * tol);
+      if (j) {
+        more[m++] = j;
+        added = 1;
+      }
+    }
+    more[m++] = knot[count - 1];
+    memcpy(knot, more, m * sizeof *knot);
+    count = m;
+  }
+  return count;
+}
 
 double fb_envelope_spacing(const fb_envelope_model *m, const void *params,
                            const fb_envelope_context *ctx, const fb_road *road)
@@ -137,19 +232,30 @@ int fb_envelope_road_new(const fb_road *road, const fb_envelope_model *m, const 
   const double ds = fb_envelope_spacing(m, params, ctx, road);
   if (!(ds > 0.0))
     return fb_road_clone(road, out, err);
-  const size_t n = (size_t)ceil((s_max - s_min) / ds) + 1;
-  double *s = malloc(3 * n * sizeof *s);
-  if (!s)
-    return fb_err_set(err, FB_ENOMEM, "out of memory for %zu effective road samples", n);
+  const size_t n = (size_t)ceil((s_max - s_min) / ds) + 2;
+  double *f = malloc(8 * n * sizeof *f);
+  size_t *knot = malloc(2 * n * sizeof *knot);
+  double *s = f + 2 * n;
+  if (!f || !knot)
+    rc = fb_err_set(err, FB_ENOMEM, "out of memory for %zu effective road samples", n);
+  if (!rc)
+    rc = fb_envelope_sample(road, FB_ROAD_LEFT, m, params, ctx, s_min, ds, n, f, NULL, err);
+  if (!rc)
+    rc =
+        fb_envelope_sample(road, FB_ROAD_RIGHT, m, params, ctx, s_min, ds, n, f + n, NULL, err);
+  size_t nknots = 0;
+  if (!rc)
+    nknots = envelope_knots(f, f + n, n, s_min, ds, knot, knot + n, s);
   double *zl = s + n, *zr = zl + n;
-  for (size_t i = 0; i < n; ++i)
-    s[i] = s_min + (double)i * ds;
-  rc = fb_envelope_sample(road, FB_ROAD_LEFT, m, params, ctx, s_min, ds, n, zl, NULL, err);
+  for (size_t i = 0; !rc && i < nknots; ++i) {
+    s[i] = s_min + (double)knot[i] * ds;
+    zl[i] = f[knot[i]];
+    zr[i] = f[n + knot[i]];
+  }
   if (!rc)
-    rc = fb_envelope_sample(road, FB_ROAD_RIGHT, m, params, ctx, s_min, ds, n, zr, NULL, err);
-  if (!rc)
-    rc = fb_road_new_profile(n, s, zl, zr, out, err);
-  free(s);
+    rc = fb_road_new_profile(nknots, s, zl, zr, out, err);
+  free(knot);
+  free(f);
   return rc;
 }
 

@@ -178,6 +178,7 @@ const fb_envelope_model fb_envelope_model_cams = {
     .name = "cams",
     .doc = "Schmeitz's tandem elliptical cams: the mean height of two super-elliptical cams "
            "resting on the road a contact length apart",
+    .needs_radius = 1,
     .param = cams_params,
     .nparams = sizeof cams_params / sizeof cams_params[0],
     .params_size = sizeof(fb_envelope_cams_params),

@@ -132,6 +132,7 @@ const fb_envelope_model fb_envelope_model_overlap = {
     .name = "overlap",
     .doc = "geometric overlap: the free circle sunk into the road as far as it sinks into a "
            "flat road at the reference deflection",
+    .needs_radius = 1,
     .param = overlap_params,
     .nparams = sizeof overlap_params / sizeof overlap_params[0],
     .params_size = sizeof(fb_envelope_overlap_params),
