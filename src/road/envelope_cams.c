@@ -3,7 +3,7 @@
  * semi-empirical three-dimensional model of the pneumatic tyre rolling
  * over arbitrarily uneven road surfaces", PhD thesis, TU Delft, 2004,
  * ch. 4; H. B. Pacejka, "Tyre and Vehicle Dynamics", 3rd ed., 2012,
- * sec. 10.2): two cams, front and rear, l_s apart, each the lower half
+ * ch. 10): two cams, front and rear, l_s apart, each the lower half
  * of the super-ellipse |x / a_e|^c_e + |z / b_e|^c_e = 1 resting on the
  * road at its highest touching position; the effective height is the
  * mean of the two cams' lowest points, the effective slope their
