@@ -554,12 +554,10 @@ static void test_cost(void)
 }
 
 /* ---- The profile through the effective road: its knots are chosen so
- * that a straight line between two knots is within 1e-3 of the road's
- * height range of every sample between them; the monotone cubic through
- * them stays within twice that (its slopes at the knots are bounded by
- * the neighbouring chords' (Fritsch & Carlson 1980), so it lies within
- * the chords' band plus as much again), checked over a step (kinks where
- * the cams first touch it) and a random road. */
+ * that the monotone cubic through them misses no sample of the
+ * effective road by more than 2e-3 of its height range (both tracks'),
+ * checked here end to end through the profile made (a step, with kinks
+ * where the cams first touch it, and a random road). */
 
 static void test_profile(void)
 {

@@ -71,25 +71,12 @@ double fb_envelope_chord(double r, double d)
  * 4096 bounds the work on a road of very short wavelength (a step made
  * of knots 1e-6 m apart). */
 enum { SPACING_PER_FOOTPRINT = 256, SPACING_FINEST = 4096, SPACING_PER_WAVELENGTH = 8 };
-/* The profile's knots: at most KNOT_GAP samples apart (a quarter of the
- * footprint), and as far apart as a straight line between two knots
- * stays within KNOT_TOL of the road's height range of every sample
- * between them (docs/tire-envelope.md, "Error"). */
+/* The profile's knots: every KNOT_GAP samples (a quarter of the
+ * footprint), and more wherever the monotone cubic through them misses
+ * a sample by more than KNOT_TOL of the effective road's height range
+ * (docs/tire-envelope.md, "Error"). */
 enum { KNOT_GAP = 64 };
-static const double KNOT_TOL = 1e-3, KNOT_TOL_MIN = 1e-7; /* -, m */
-
-/* 1 if the chord from sample a to sample b of w (and of v) is within
- * tol of every sample between them. */
-static int chord_fits(const double *w, const double *v, size_t a, size_t b, double tol)
-{
-  for (size_t j = a + 1; j < b; ++j) {
-    const double t = (double)(j - a) / (double)(b - a);
-    if (fabs(w[a] + t * (w[b] - w[a]) - w[j]) > tol ||
-        fabs(v[a] + t * (v[b] - v[a]) - v[j]) > tol)
-      return 0;
-  }
-  return 1;
-}
+static const double KNOT_TOL = 2e-3, KNOT_TOL_MIN = 1e-7; /* -, m */
 
 /* The worst sample of w in (knot a, knot b) that the monotone cubic
  * through the knots (s, z, slopes d; nk of them) misses by more than tol,
@@ -112,14 +99,13 @@ static size_t worst_miss(const double *w, double s_min, double ds, const double 
 
 /* The knots of the effective road's profile among the samples w and v
  * (the two tracks, n >= 2 each, at s_min + j ds) into knot[] (room for
- * n), ascending from 0 to n - 1; returns how many. First as far apart
- * as a straight line stays within tol of the samples between (at most
- * KNOT_GAP), then a knot more at the worst sample of each interval where
- * the monotone cubic through them misses by more than 2 tol, until none
- * does. Every knot is a jump of the profile's curvature that an
- * integrator steps to: a knot per sample made 10 times the steps of the
- * point contact's run over the paper's bump, these about 4 times
- * (docs/tire-envelope.md, "Cost"). work: room for 6 n. */
+ * n), ascending from 0 to n - 1; returns how many. First every
+ * KNOT_GAP samples, then a knot more at the worst sample of each
+ * interval where the monotone cubic through them misses by more than
+ * the tolerance, until none does. Every knot is a jump of the profile's
+ * curvature, which the integrator steps to (docs/tire-envelope.md,
+ * "Cost"), so there are no more than the tolerance needs. more: room for
+ * n; work: room for 5 n. */
 static size_t envelope_knots(const double *w, const double *v, size_t n, double s_min,
                              double ds, size_t *knot, size_t *more, double *work)
 {
@@ -129,15 +115,10 @@ static size_t envelope_knots(const double *w, const double *v, size_t n, double 
     hi = fmax(hi, fmax(w[j], v[j]));
   }
   const double tol = fmax(KNOT_TOL * (hi - lo), KNOT_TOL_MIN);
-  size_t count = 0, a = 0;
-  knot[count++] = 0;
-  while (a + 1 < n) {
-    size_t b = a + KNOT_GAP < n - 1 ? a + KNOT_GAP : n - 1;
-    while (b > a + 1 && !chord_fits(w, v, a, b, tol))
-      --b;
-    knot[count++] = b;
-    a = b;
-  }
+  size_t count = 0;
+  for (size_t j = 0; j < n - 1; j += KNOT_GAP)
+    knot[count++] = j;
+  knot[count++] = n - 1;
   double *s = work, *zw = s + n, *zv = zw + n, *dw = zv + n, *dv = dw + n;
   for (int added = 1; added;) {
     for (size_t i = 0; i < count; ++i) {
@@ -151,9 +132,9 @@ static size_t envelope_knots(const double *w, const double *v, size_t n, double 
     added = 0;
     for (size_t i = 0; i + 1 < count; ++i) {
       more[m++] = knot[i];
-      size_t j = worst_miss(w, s_min, ds, s, zw, dw, count, knot[i], knot[i + 1], 2.0 * tol);
+      size_t j = worst_miss(w, s_min, ds, s, zw, dw, count, knot[i], knot[i + 1], tol);
       if (!j)
-        j = worst_miss(v, s_min, ds, s, zv, dv, count, knot[i], knot[i + 1], 2.0 * tol);
+        j = worst_miss(v, s_min, ds, s, zv, dv, count, knot[i], knot[i + 1], tol);
       if (j) {
         more[m++] = j;
         added = 1;
