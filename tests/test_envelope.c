@@ -6,7 +6,8 @@
  * and the overlap over a step in closed form, the cams over a random
  * road by a brute-force contact search on a grid of its own, and the
  * long-wavelength limit, where every model is the road within a bound
- * derived below. */
+ * derived below; the program's model chosen in a scenario file, its
+ * parameter's error located at its generated key. */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -15,8 +16,10 @@
 #include <time.h>
 
 #include "flexbond/envelope.h"
+#include "flexbond/vehicle.h"
 
 #include "check.h"
+#include "vehicle_util.h"
 
 /* ---- A program's own model: the road's mean over [s - half, s + half]. */
 
@@ -629,6 +632,45 @@ static void test_checks(void)
   fb_road_free(&road);
 }
 
+/* ---- The program's model in a scenario: the 6x6 with every tire
+ * averaging the road (`wheel.envelope: mean`), loaded with a gallery that
+ * holds it; its parameter generated as a key, its error located there. */
+
+static int load_mean(const char *half, const fb_envelope_gallery *g, fb_scenario **out,
+                     fb_err *err)
+{
+  char text[200];
+  snprintf(text, sizeof text, "\n  radius: 0.55\n  envelope: mean\n  mean: {half: %s}", half);
+  const fb_scenario_load_opts o = {.envelopes = g};
+  return load_replaced_with("  tire_c: 140000", strlen("  tire_c: 140000"), "\n", text, &o, out,
+                            err);
+}
+
+static void test_program_model_in_scenario(void)
+{
+  fb_envelope_gallery *g = NULL;
+  fb_err err = {0};
+  CHECK(fb_envelope_gallery_new(&g, &err) == FB_OK);
+  CHECK(fb_envelope_gallery_add(g, &mean_model, &err) == FB_OK);
+  fb_scenario *s = NULL;
+  CHECK(load_mean("0.2", g, &s, &err) == FB_OK);
+  for (size_t c = 0; s && c < s->ncorners; ++c) {
+    CHECK(fb_corner_envelope_model(&s->corner[c]) == &mean_model);
+    CHECK(((const mean_params *)(const void *)s->corner[c].envelope.bytes)->half == 0.2);
+    CHECK(s->corner[c].tire_radius == 0.55);
+  }
+  if (s)
+    CHECK(fb_scenario_check(s, &err) == FB_OK);
+  fb_scenario_free(&s);
+  /* Without the gallery the choice is unknown, and a bad half refused at
+   * its key. */
+  CHECK(load_mean("0.2", NULL, NULL, &err) != FB_OK);
+  check_message(&err, "bad.yaml:92:3: wheel.mean: unknown key 'mean'");
+  CHECK(load_mean("-1", g, NULL, &err) != FB_OK);
+  check_message(&err, "bad.yaml:92:16: wheel.mean.half: must be > 0 m (got -1)");
+  fb_envelope_gallery_free(&g);
+}
+
 int main(void)
 {
   test_gallery();
@@ -641,5 +683,6 @@ int main(void)
   test_cost();
   test_profile();
   test_checks();
+  test_program_model_in_scenario();
   return check_report("test_envelope");
 }
