@@ -33,6 +33,7 @@
 #include "flexbond/bd.h"
 #include "flexbond/bg.h"
 #include "flexbond/damper.h"
+#include "flexbond/envelope.h"
 #include "flexbond/error.h"
 #include "flexbond/fem.h"
 #include "flexbond/road.h"
@@ -242,6 +243,14 @@ typedef struct fb_corner_params {
    * fb_vehicle_graph sets it, a caller of fb_vehicle_corner sets it
    * itself. */
   double tire_static_deflection;
+  /* How the tire envelops the road (flexbond/envelope.h): a model of an
+   * envelope gallery (borrowed, NULL: fb_envelope_model_point) and its
+   * parameter block. fb_corner_set_envelope sets both. */
+  const fb_envelope_model *envelope_model;
+  fb_envelope_params envelope;
+  /* m: the tire's free (unloaded) radius, which an envelope model that
+   * reads it needs (fb_envelope_model.needs_radius); 0: not given. */
+  double tire_radius;
 } fb_corner_params;
 
 /* Most bulkheads a hull may have. */
@@ -392,7 +401,8 @@ typedef enum fb_part_kind {
   FB_PART_BODY = 14,         /* body[index], fb_body */
   FB_PART_BUSHING = 15,      /* the index-th bushing of all bodies, in order (body 0's first;
                                 fb_scenario_bushing_at), fb_bushing */
-  FB_PART_KINDS = 18
+  FB_PART_ENVELOPE = 18, /* corner[index]'s envelope model's parameter field (fb_param.name) */
+  FB_PART_KINDS = 19
 } fb_part_kind;
 
 /* fb_err_set_part's arguments for member m of part kind k, index i:
@@ -720,6 +730,9 @@ typedef struct fb_scenario_load_opts {
   /* The damper laws the document may name (a corner's damper.<law>);
    * NULL: the built-in ones. Borrowed as roads is. */
   const fb_damper_gallery *dampers;
+  /* The envelope models the document may name (wheel.envelope); NULL:
+   * the built-in ones. Borrowed as roads is. */
+  const fb_envelope_gallery *envelopes;
   /* Values read in place of the document's, as for
    * fb_scenario_load_overrides. */
   const fb_scenario_override *overrides;
@@ -805,6 +818,18 @@ fb_spring_context fb_corner_spring_context(const fb_corner_params *c);
 const fb_tire_model *fb_corner_tire_model(const fb_corner_params *c);
 /* What c's tire model knows of c (fb_tire_context; c->name borrowed). */
 fb_tire_context fb_corner_tire_context(const fb_corner_params *c);
+/* The envelope of corner c's tire: model m (borrowed: it outlives c)
+ * and a new block of its defaults (fb_envelope_params_init), which
+ * *params points to when params is not NULL. FB_EINVAL when m is not
+ * sound (fb_envelope_model_check). */
+int fb_corner_set_envelope(fb_corner_params *c, const fb_envelope_model *m, void **params,
+                           fb_err *err);
+/* The model of corner c's envelope: c->envelope_model,
+ * fb_envelope_model_point when NULL. */
+const fb_envelope_model *fb_corner_envelope_model(const fb_corner_params *c);
+/* What c's envelope model knows of c (fb_envelope_context; c->name
+ * borrowed). */
+fb_envelope_context fb_corner_envelope_context(const fb_corner_params *c);
 
 /* Every tire of s whose model names a model for linear analyses
  * (fb_tire_model.in_contact: a unilateral tire's branch in contact, at

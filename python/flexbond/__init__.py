@@ -49,7 +49,7 @@ TRACKS = ("left", "right")
 # fb_part_kind (flexbond/vehicle.h), by value; FB_ERR_NO_ELEMENT.
 _PART_KINDS = (None, "vehicle", "corner", "mount", "point_mass", "section", "output",
                "load_point", "road", "tire", "hull_source", "damper", "spring", "stop",
-               "body", "bushing", "antiroll_bar", "bogie")
+               "body", "bushing", "antiroll_bar", "bogie", "envelope")
 _NO_ELEMENT = ctypes.c_size_t(-1).value
 
 

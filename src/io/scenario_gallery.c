@@ -28,6 +28,10 @@ struct sc_schema {
   sch_key *corner_key;        /* owned, corner_table.n of them */
   const char **tire_name;     /* the tire models' names, NULL-terminated, owned array */
   const fb_tire_model **tire; /* the models, NULL-terminated, owned array */
+  /* The envelope models' names and the models, NULL-terminated, owned
+   * arrays. */
+  const char **envelope_name;
+  const fb_envelope_model **envelope;
   /* The damper laws with sections of their own, NULL-terminated, owned
    * array. */
   const fb_damper_law **damper;
@@ -219,42 +223,77 @@ static int sc_tire_present(const sch_key *k, const void *base)
 
 static const sch_ops sc_tire_ops = {.present = sc_tire_present};
 
-/* The sections of every model of g after the choice, at sc->key or
- * sc->corner_key (corner: stored in the corner's block, else only read
- * to be inherited). */
+/* The section wheel.<name> of one model (data: the model) and its
+ * parameters' keys at key[*n] on, at sc->key or sc->corner_key (corner:
+ * stored in the corner's block at offset block, present by ops; else
+ * only read, to be inherited). */
+static int sc_wheel_section_keys(sc_schema *sc, const char *name, const fb_param *param,
+                                 size_t nparams, const void *data, int corner, size_t block,
+                                 const sch_ops *ops, sch_key *key, size_t *n, fb_err *err)
+{
+  const char *path = sc_key_path(sc, "wheel", name, NULL);
+  if (!path)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+  key[(*n)++] = (sch_key){.path = path,
+                          .type = SCH_SECTION,
+                          .need = SCH_OPTIONAL,
+                          .doc = corner ? "this corner's parameters of the model, where they "
+                                          "differ from the top-level `wheel`'s"
+                                        : "the parameters of that model, for every corner "
+                                          "whose tire it is unless the corner gives its own",
+                          .ops = corner ? ops : NULL,
+                          .data = data};
+  for (size_t i = 0; i < nparams; ++i) {
+    if (!(path = sc_key_path(sc, "wheel", name, &param[i])))
+      return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+    sch_key k = sc_param_key(path, &param[i], block);
+    /* Left out in a corner: the top level's (sc_corner_params); the top
+     * level's is only read, to be inherited. */
+    if (corner)
+      k.need = SCH_OPTIONAL;
+    else
+      k.store = SCH_STORE_NONE;
+    key[(*n)++] = k;
+  }
+  return FB_OK;
+}
+
+/* The sections of every model of g after the choice. */
 static int sc_tire_keys(sc_schema *sc, const fb_tire_gallery *g, int corner, sch_key *key,
                         size_t *n, fb_err *err)
 {
-  for (size_t j = 0; j < fb_tire_gallery_count(g); ++j) {
+  int rc = FB_OK;
+  for (size_t j = 0; !rc && j < fb_tire_gallery_count(g); ++j) {
     const fb_tire_model *m = fb_tire_gallery_at(g, j);
-    if (!m->nparams) /* nothing to give */
-      continue;
-    const char *path = sc_key_path(sc, "wheel", m->name, NULL);
-    if (!path)
-      return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-    key[(*n)++] = (sch_key){.path = path,
-                            .type = SCH_SECTION,
-                            .need = SCH_OPTIONAL,
-                            .doc = corner ? "this corner's parameters of the model, where they "
-                                            "differ from the top-level `wheel`'s"
-                                          : "the parameters of that model, for every corner "
-                                            "whose tire it is unless the corner gives its own",
-                            .ops = corner ? &sc_tire_ops : NULL,
-                            .data = m};
-    for (size_t i = 0; i < m->nparams; ++i) {
-      if (!(path = sc_key_path(sc, "wheel", m->name, &m->param[i])))
-        return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
-      sch_key k = sc_param_key(path, &m->param[i], offsetof(fb_corner_params, tire));
-      /* Left out in a corner: the top level's (sc_corner_tire); the top
-       * level's is only read, to be inherited. */
-      if (corner)
-        k.need = SCH_OPTIONAL;
-      else
-        k.store = SCH_STORE_NONE;
-      key[(*n)++] = k;
-    }
+    if (m->nparams) /* else nothing to give */
+      rc = sc_wheel_section_keys(sc, m->name, m->param, m->nparams, m, corner,
+                                 offsetof(fb_corner_params, tire), &sc_tire_ops, key, n, err);
   }
-  return FB_OK;
+  return rc;
+}
+
+/* A corner's section wheel.<model> of an envelope model is there when
+ * it is the corner's model. */
+static int sc_envelope_present(const sch_key *k, const void *base)
+{
+  return fb_corner_envelope_model(base) == k->data;
+}
+
+static const sch_ops sc_envelope_ops = {.present = sc_envelope_present};
+
+/* The sections of every envelope model of g after the choice. */
+static int sc_envelope_keys(sc_schema *sc, const fb_envelope_gallery *g, int corner,
+                            sch_key *key, size_t *n, fb_err *err)
+{
+  int rc = FB_OK;
+  for (size_t j = 0; !rc && j < fb_envelope_gallery_count(g); ++j) {
+    const fb_envelope_model *m = fb_envelope_gallery_at(g, j);
+    if (m->nparams)
+      rc = sc_wheel_section_keys(sc, m->name, m->param, m->nparams, m, corner,
+                                 offsetof(fb_corner_params, envelope), &sc_envelope_ops, key, n,
+                                 err);
+  }
+  return rc;
 }
 
 /* Stores v (in the written unit) as p's value in block. */
@@ -270,20 +309,48 @@ static void sc_param_store(const fb_param *p, double v, void *block)
   }
 }
 
-/* A section of another model than m written in the corner's wheel. */
-static int sc_tire_foreign(sch_reader *r, const fb_tire_model *const *models,
-                           const fb_tire_model *m, struct fy_node *node)
+/* An entry's name: its first member (core/registry.h). */
+static const char *sc_entry_name(const void *entry)
+{
+  return *(const char *const *)entry;
+}
+
+/* A section of another of models (NULL-terminated) than m written in
+ * the corner's wheel: the choice's, whose models are what ("tire"). */
+static int sc_wheel_foreign(sch_reader *r, const void *const *models, const void *m,
+                            struct fy_node *node, const char *what, const char *choice)
 {
   struct fy_node *wheel = node ? ml_get(node, "wheel", NULL) : NULL;
   for (size_t j = 0; wheel && models[j]; ++j) {
-    const fb_tire_model *x = models[j];
+    const char *x = sc_entry_name(models[j]);
     struct fy_node *key = NULL;
-    if (x != m && (ml_get(wheel, x->name, &key), key))
+    if (models[j] != m && (ml_get(wheel, x, &key), key))
       return ml_fail_key(r->c, wheel, key, FB_EPARSE,
-                         "the parameters of a `%s` tire, but this corner's tire is `%s` (%s)",
-                         x->name, m->name, SC_TIRE_CHOICE);
+                         "the parameters of a `%s` %s, but this corner's %s is `%s` (%s)", x,
+                         what, what, sc_entry_name(m), choice);
   }
   return FB_OK;
+}
+
+/* The corner's entry of the choice at path choice (list: the corners'
+ * items), given or inherited: the choice key's models (data) at the
+ * index read; NULL when none. */
+static const void *sc_corner_choice(sch_reader *r, const sch_key *list, const char *item_path,
+                                    const char *choice, const void *const **models)
+{
+  const sch_key *k = sch_key_of(list->items, choice);
+  *models = k ? k->data : NULL;
+  char path[SCH_PATH_MAX + 64];
+  snprintf(path, sizeof path, "%s.%s", item_path, choice);
+  const sch_origin *o = sch_origin_find(r, path);
+  size_t n = 0;
+  while (*models && (*models)[n])
+    ++n;
+  const size_t i = o ? (size_t)o->number : 0;
+  if (i < n)
+    return (*models)[i];
+  fb_err_set(r->c->err, FB_EINVAL, "%s: no entry chosen", path);
+  return NULL;
 }
 
 /* The tire table of corner c (at node, its key paths under item_path)
@@ -335,62 +402,90 @@ static int sc_corner_tire_table(sch_reader *r, const sch_key *list, struct fy_no
   return rc;
 }
 
-int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
-                   const char *item_path, fb_corner_params *c)
+/* The parameters of a corner's model name into its block: each value
+ * as read (its origin's number), the corner's own (under item_path),
+ * else the top level's, recorded as the corner's. */
+static int sc_corner_params(sch_reader *r, const char *item_path, const char *name,
+                            const fb_param *param, size_t nparams, void *block)
 {
-  const sch_key *choice = sch_key_of(list->items, SC_TIRE_CHOICE);
-  const fb_tire_model *const *models = choice ? choice->data : NULL;
-  char path[SCH_PATH_MAX + 64];
-  snprintf(path, sizeof path, "%s.%s", item_path, SC_TIRE_CHOICE);
-  const sch_origin *o = sch_origin_find(r, path);
-  size_t nmodels = 0;
-  while (models && models[nmodels])
-    ++nmodels;
-  const size_t i_model = o ? (size_t)o->number : 0;
-  const fb_tire_model *m = i_model < nmodels ? models[i_model] : NULL;
-  if (!m)
-    return fb_err_set(r->c->err, FB_EINVAL, "%s: no tire model", path);
-  int rc = fb_corner_set_tire(c, m, NULL, r->c->err);
-  if (!rc)
-    rc = sc_tire_foreign(r, models, m, node);
-  /* Each value as read (its origin's number): the corner's own, else
-   * the top level's, recorded as the corner's. */
-  for (size_t i = 0; !rc && i < m->nparams; ++i) {
-    const fb_param *p = &m->param[i];
-    char top[SCH_PATH_MAX];
-    snprintf(top, sizeof top, "wheel.%s.%s", m->name, p->name);
+  int rc = FB_OK;
+  for (size_t i = 0; !rc && i < nparams; ++i) {
+    const fb_param *p = &param[i];
+    char top[SCH_PATH_MAX], path[SCH_PATH_MAX + 64];
+    snprintf(top, sizeof top, "wheel.%s.%s", name, p->name);
     snprintf(path, sizeof path, "%s.%s", item_path, top);
-    const int own = (o = sch_origin_find(r, path)) != NULL;
+    const sch_origin *o = sch_origin_find(r, path);
+    const int own = o != NULL;
     if (!own)
       o = sch_origin_find(r, top);
     if (o)
-      sc_param_store(p, o->number, c->tire.bytes);
+      sc_param_store(p, o->number, block);
     if (o && !own)
       rc = sch_origin_inherit(r, path, top);
   }
+  return rc;
+}
+
+int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
+                   const char *item_path, fb_corner_params *c)
+{
+  const void *const *models = NULL;
+  const fb_tire_model *m = sc_corner_choice(r, list, item_path, SC_TIRE_CHOICE, &models);
+  if (!m)
+    return FB_EINVAL;
+  int rc = fb_corner_set_tire(c, m, NULL, r->c->err);
+  if (!rc)
+    rc = sc_wheel_foreign(r, models, m, node, "tire", SC_TIRE_CHOICE);
+  if (!rc)
+    rc = sc_corner_params(r, item_path, m->name, m->param, m->nparams, c->tire.bytes);
   return rc ? rc : sc_corner_tire_table(r, list, node, item_path, c, m);
+}
+
+static const void *sc_tire_of(const fb_corner_params *c)
+{
+  return fb_corner_tire_model(c);
+}
+
+static const void *sc_envelope_of(const fb_corner_params *c)
+{
+  return fb_corner_envelope_model(c);
+}
+
+/* The top level's section wheel.<model> of each of models (NULL-
+ * terminated; what they are: "tire") that no corner has (of: a corner's
+ * model) refused at its key: its values would reach none. */
+static int sc_sections_used(sch_reader *r, struct fy_node *root, const fb_scenario *s,
+                            const void *const *models,
+                            const void *(*of)(const fb_corner_params *), const char *what,
+                            const char *choice)
+{
+  struct fy_node *wheel = ml_get(root, "wheel", NULL);
+  for (size_t j = 0; models && wheel && models[j]; ++j) {
+    struct fy_node *key = NULL;
+    if (!ml_get(wheel, sc_entry_name(models[j]), &key) || !key)
+      continue;
+    size_t users = 0;
+    for (size_t c = 0; c < s->ncorners; ++c)
+      users += of(&s->corner[c]) == models[j];
+    if (!users)
+      return ml_fail_key(r->c, wheel, key, FB_EPARSE,
+                         "no corner's %s is %s (%s chooses the %ss): its values would "
+                         "reach none",
+                         what, sc_entry_name(models[j]), choice, what);
+  }
+  return FB_OK;
 }
 
 int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *root,
                           const fb_scenario *s)
 {
   const sch_key *choice = sch_key_of(t, SC_TIRE_CHOICE);
-  const fb_tire_model *const *models = choice ? choice->data : NULL;
-  struct fy_node *wheel = ml_get(root, "wheel", NULL);
-  for (size_t j = 0; models && wheel && models[j]; ++j) {
-    struct fy_node *key = NULL;
-    if (!ml_get(wheel, models[j]->name, &key) || !key)
-      continue;
-    size_t users = 0;
-    for (size_t c = 0; c < s->ncorners; ++c)
-      users += fb_corner_tire_model(&s->corner[c]) == models[j];
-    if (!users)
-      return ml_fail_key(r->c, wheel, key, FB_EPARSE,
-                         "no corner's tire is %s (%s chooses the tires): its values would "
-                         "reach none",
-                         models[j]->name, SC_TIRE_CHOICE);
-  }
+  int rc = sc_sections_used(r, root, s, choice ? choice->data : NULL, sc_tire_of, "tire",
+                            SC_TIRE_CHOICE);
+  if (rc)
+    return rc;
   /* The top level's tire table, for the model its key names. */
+  struct fy_node *wheel = ml_get(root, "wheel", NULL);
   const sch_key *table = sch_key_of(t, SC_TIRE_TABLE);
   struct fy_node *key = NULL;
   if (!table || !wheel || !ml_get(wheel, "tire_table", &key) || !key)
@@ -402,6 +497,39 @@ int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *roo
       r->c, wheel, key, FB_EPARSE,
       "no corner's tire is %s (%s chooses the tires): the table would reach none",
       ((const fb_tire_model *)table->data)->name, SC_TIRE_CHOICE);
+}
+
+int sc_envelope_sections_used(sch_reader *r, const sch_table *t, struct fy_node *root,
+                              const fb_scenario *s)
+{
+  const sch_key *choice = sch_key_of(t, SC_ENVELOPE_CHOICE);
+  return sc_sections_used(r, root, s, choice ? choice->data : NULL, sc_envelope_of, "envelope",
+                          SC_ENVELOPE_CHOICE);
+}
+
+int sc_corner_envelope(sch_reader *r, const sch_key *list, struct fy_node *node,
+                       const char *item_path, fb_corner_params *c)
+{
+  const void *const *models = NULL;
+  const fb_envelope_model *m =
+      sc_corner_choice(r, list, item_path, SC_ENVELOPE_CHOICE, &models);
+  if (!m)
+    return FB_EINVAL;
+  int rc = fb_corner_set_envelope(c, m, NULL, r->c->err);
+  if (!rc)
+    rc = sc_wheel_foreign(r, models, m, node, "envelope", SC_ENVELOPE_CHOICE);
+  if (!rc)
+    rc = sc_corner_params(r, item_path, m->name, m->param, m->nparams, c->envelope.bytes);
+  /* The tire's radius: the corner's own (stored as read), else the top
+   * level's, recorded as the corner's. */
+  char path[SCH_PATH_MAX + 64];
+  snprintf(path, sizeof path, "%s.%s", item_path, SC_TIRE_RADIUS);
+  const sch_origin *o = NULL;
+  if (!rc && !sch_origin_find(r, path) && (o = sch_origin_find(r, SC_TIRE_RADIUS))) {
+    c->tire_radius = o->number;
+    rc = sch_origin_inherit(r, path, SC_TIRE_RADIUS);
+  }
+  return rc;
 }
 
 /* ---- Damper laws: a section of parameters per law, in every corner. */
@@ -503,6 +631,7 @@ typedef struct sc_galleries {
   const fb_tire_gallery *tires;
   const fb_hull_source_gallery *hulls;
   const fb_damper_gallery *dampers;
+  const fb_envelope_gallery *envelopes;
 } sc_galleries;
 
 /* The generated keys' count: a section and its parameters per entry. */
@@ -520,6 +649,8 @@ static size_t sc_gallery_keys(const sc_galleries *gal)
     n += 1 + fb_road_gallery_at(roads, i)->nparams;
   for (size_t i = 0; i < fb_tire_gallery_count(tires); ++i)
     n += 1 + fb_tire_gallery_at(tires, i)->nparams;
+  for (size_t i = 0; i < fb_envelope_gallery_count(gal->envelopes); ++i)
+    n += 1 + fb_envelope_gallery_at(gal->envelopes, i)->nparams;
   return n;
 }
 
@@ -530,6 +661,22 @@ static const char *sc_tire_doc(sc_schema *sc, const fb_tire_gallery *g)
   char *doc = fb_strdup("how every tire meets the road, a tire model");
   for (size_t j = 0; doc && j < fb_tire_gallery_count(g); ++j) {
     const fb_tire_model *m = fb_tire_gallery_at(g, j);
+    char *more = fb_strdup_printf("%s%s `%s`: %s", doc, j ? ";" : ":", m->name, m->doc);
+    free(doc);
+    doc = more;
+  }
+  if (doc)
+    sc->path[sc->npaths++] = doc;
+  return doc;
+}
+
+/* The top-level envelope choice's documentation, as sc_tire_doc's. */
+static const char *sc_envelope_doc(sc_schema *sc, const fb_envelope_gallery *g)
+{
+  char *doc = fb_strdup("how every tire envelops the road, an envelope model (docs/"
+                        "tire-envelope.md)");
+  for (size_t j = 0; doc && j < fb_envelope_gallery_count(g); ++j) {
+    const fb_envelope_model *m = fb_envelope_gallery_at(g, j);
     char *more = fb_strdup_printf("%s%s `%s`: %s", doc, j ? ";" : ":", m->name, m->doc);
     free(doc);
     doc = more;
@@ -562,6 +709,14 @@ static int sc_copy_with(sc_schema *sc, const sch_table *own, const sc_galleries 
       if (!rc)
         rc = sc_tire_keys(sc, tires, corner, key, n, err);
     }
+    if (!rc && !strcmp(k->path, SC_ENVELOPE_CHOICE)) {
+      k->choices = sc->envelope_name;
+      k->data = sc->envelope; /* the models, for sc_corner_envelope */
+      if (!corner && !(k->doc = sc_envelope_doc(sc, gal->envelopes)))
+        rc = fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
+      if (!rc)
+        rc = sc_envelope_keys(sc, gal->envelopes, corner, key, n, err);
+    }
     if (!rc && corner && !strcmp(k->path, SC_DAMPER_SECTION)) {
       k->ops = &sc_damper_section_ops;
       k->data = sc->damper;
@@ -586,17 +741,25 @@ static int sc_schema_fill(sc_schema *sc, const sc_galleries *gal, fb_err *err)
   const size_t extra = sc_gallery_keys(gal), ntires = fb_tire_gallery_count(tires);
   sc->key = calloc(own->n + extra, sizeof *sc->key);
   sc->corner_key = calloc(sc_corner_format.n + extra, sizeof *sc->corner_key);
-  sc->path = calloc(2 * extra + 2, sizeof *sc->path); /* and the choice's doc */
+  sc->path = calloc(2 * extra + 3, sizeof *sc->path); /* and the choices' docs */
   sc->tire_name = calloc(ntires + 1, sizeof *sc->tire_name);
   sc->tire = calloc(ntires + 1, sizeof(const fb_tire_model *));
-  if (!sc->key || !sc->corner_key || !sc->path || !sc->tire_name || !sc->tire)
+  const size_t nenv = fb_envelope_gallery_count(gal->envelopes);
+  sc->envelope_name = calloc(nenv + 1, sizeof *sc->envelope_name);
+  sc->envelope = calloc(nenv + 1, sizeof(const fb_envelope_model *));
+  if (!sc->key || !sc->corner_key || !sc->path || !sc->tire_name || !sc->tire ||
+      !sc->envelope_name || !sc->envelope)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the scenario format");
   for (size_t i = 0; i < ntires; ++i) {
     sc->tire[i] = fb_tire_gallery_at(tires, i);
     sc->tire_name[i] = sc->tire[i]->name;
   }
+  for (size_t i = 0; i < nenv; ++i) {
+    sc->envelope[i] = fb_envelope_gallery_at(gal->envelopes, i);
+    sc->envelope_name[i] = sc->envelope[i]->name;
+  }
   size_t nc = 0, n = 0;
-  const sc_galleries corner_gal = {.tires = tires};
+  const sc_galleries corner_gal = {.tires = tires, .envelopes = gal->envelopes};
   int rc = sc_damper_laws(sc, gal->dampers, err);
   if (!rc)
     rc = sc_copy_with(sc, &sc_corner_format, &corner_gal, 1, sc->corner_key, &nc, err);
@@ -614,6 +777,7 @@ typedef struct sc_builtin {
   fb_tire_gallery *tires;
   fb_hull_source_gallery *hulls;
   fb_damper_gallery *dampers;
+  fb_envelope_gallery *envelopes;
 } sc_builtin;
 
 static int sc_galleries_of(const fb_scenario_load_opts *o, sc_builtin *own, sc_galleries *gal,
@@ -621,7 +785,7 @@ static int sc_galleries_of(const fb_scenario_load_opts *o, sc_builtin *own, sc_g
 {
   *own = (sc_builtin){0};
   *gal = (sc_galleries){o ? o->roads : NULL, o ? o->tires : NULL, o ? o->hull_sources : NULL,
-                        o ? o->dampers : NULL};
+                        o ? o->dampers : NULL, o ? o->envelopes : NULL};
   int rc = gal->roads ? FB_OK : fb_road_gallery_new(&own->roads, err);
   if (!rc && !gal->tires)
     rc = fb_tire_gallery_new(&own->tires, err);
@@ -629,10 +793,13 @@ static int sc_galleries_of(const fb_scenario_load_opts *o, sc_builtin *own, sc_g
     rc = fb_hull_source_gallery_new(&own->hulls, err);
   if (!rc && !gal->dampers)
     rc = fb_damper_gallery_new(&own->dampers, err);
+  if (!rc && !gal->envelopes)
+    rc = fb_envelope_gallery_new(&own->envelopes, err);
   gal->roads = gal->roads ? gal->roads : own->roads;
   gal->tires = gal->tires ? gal->tires : own->tires;
   gal->hulls = gal->hulls ? gal->hulls : own->hulls;
   gal->dampers = gal->dampers ? gal->dampers : own->dampers;
+  gal->envelopes = gal->envelopes ? gal->envelopes : own->envelopes;
   return rc;
 }
 
@@ -642,6 +809,7 @@ static void sc_galleries_release(sc_builtin *own)
   fb_tire_gallery_free(&own->tires);
   fb_hull_source_gallery_free(&own->hulls);
   fb_damper_gallery_free(&own->dampers);
+  fb_envelope_gallery_free(&own->envelopes);
 }
 
 int sc_schema_new(const fb_scenario_load_opts *o, sc_schema **out, fb_err *err)
@@ -683,6 +851,8 @@ void sc_schema_release(sc_schema **sc)
     free((*sc)->corner_key);
     free((void *)(*sc)->tire_name);
     free((void *)(*sc)->tire);
+    free((void *)(*sc)->envelope_name);
+    free((void *)(*sc)->envelope);
     free((void *)(*sc)->damper);
     free(*sc);
   }
@@ -717,11 +887,15 @@ int sc_schema_of(const fb_scenario *s, sc_schema **out, fb_err *err)
       rc = fb_tire_gallery_add(own.tires, m, err);
     if (!rc && !fb_damper_gallery_find(gal.dampers, l->name))
       rc = fb_damper_gallery_add(own.dampers, l, err);
+    const fb_envelope_model *e = fb_corner_envelope_model(&s->corner[c]);
+    if (!rc && !fb_envelope_gallery_find(gal.envelopes, e->name))
+      rc = fb_envelope_gallery_add(own.envelopes, e, err);
   }
   const fb_scenario_load_opts o = {.roads = own.roads,
                                    .tires = own.tires,
                                    .hull_sources = own.hulls,
-                                   .dampers = own.dampers};
+                                   .dampers = own.dampers,
+                                   .envelopes = own.envelopes};
   if (!rc)
     rc = sc_schema_new(&o, out, err);
   sc_galleries_release(&own);

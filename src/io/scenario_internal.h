@@ -30,6 +30,11 @@ extern const sch_table sc_format;
 /* The key of sc_format, and of its corners' items, after which the tire
  * models' sections go; its choices are the models' names. */
 #define SC_TIRE_CHOICE "wheel.tire_contact"
+/* The key of sc_format, and of its corners' items, after which the
+ * envelope models' sections go; its choices are the models' names. */
+#define SC_ENVELOPE_CHOICE "wheel.envelope"
+/* The tire's free radius, which an enveloping tire reads. */
+#define SC_TIRE_RADIUS "wheel.radius"
 /* The force-deflection table of a tire whose model is the table one. */
 #define SC_TIRE_TABLE "wheel.tire_table"
 /* The top level's section wheel.<model> of a model no corner's tire is
@@ -38,6 +43,9 @@ extern const sch_table sc_format;
  * read with, root: the document). */
 int sc_tire_sections_used(sch_reader *r, const sch_table *t, struct fy_node *root,
                           const fb_scenario *s);
+/* As sc_tire_sections_used for the envelope models' sections. */
+int sc_envelope_sections_used(sch_reader *r, const sch_table *t, struct fy_node *root,
+                              const fb_scenario *s);
 /* The section of sc_corner_format after which the damper laws' sections
  * go (damper.<law>, for a law with no key of its own). */
 #define SC_DAMPER_SECTION "damper"
@@ -49,6 +57,11 @@ extern const sch_table sc_corner_format;
  * (scenario_gallery.c). FB_EPARSE at a section of another model. */
 int sc_corner_tire(sch_reader *r, const sch_key *list, struct fy_node *node,
                    const char *item_path, fb_corner_params *c);
+/* As sc_corner_tire for the corner's envelope (the choice and sections
+ * of SC_ENVELOPE_CHOICE) and its tire's free radius (wheel.radius, the
+ * corner's own else the top level's). */
+int sc_corner_envelope(sch_reader *r, const sch_key *list, struct fy_node *node,
+                       const char *item_path, fb_corner_params *c);
 /* The format's table with the road types of a gallery
  * (scenario_gallery.c): sc_format's keys and, for each type, a section
  * road.<type> of its declared parameters. Immutable once made, shared by

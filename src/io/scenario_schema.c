@@ -65,12 +65,14 @@ SC_PRESENT(sc_is_point, fb_output_spec,
            fb_vehicle_output_kind_find(b->signal) &&
                fb_vehicle_output_kind_find(b->signal)->subject == FB_OUTPUT_OF_HULL_POINT)
 SC_PRESENT(sc_has_radius, fb_bushing, b->radius != 0)
+SC_PRESENT(sc_has_tire_radius, fb_corner_params, b->tire_radius != 0)
 
 static const sch_ops sc_frame_present = {.present = sc_has_frame};
 static const sch_ops sc_mass_present = {.present = sc_has_mass};
 static const sch_ops sc_izz_present = {.present = sc_has_izz};
 static const sch_ops sc_law_present = {.present = sc_damper_present};
 static const sch_ops sc_radius_present = {.present = sc_has_radius};
+static const sch_ops sc_tire_radius_present = {.present = sc_has_tire_radius};
 
 /* ---- parameters: evaluated first, seen by every expression after. */
 
@@ -410,7 +412,9 @@ static int sc_axle_end(sch_reader *r, const sch_key *k, struct fy_node *node,
 static int sc_corner_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                          const char *item_path, size_t mark, void *base, void *item)
 {
-  const int rc = sc_corner_tire(r, k, node, item_path, item);
+  int rc = sc_corner_tire(r, k, node, item_path, item);
+  if (!rc)
+    rc = sc_corner_envelope(r, k, node, item_path, item);
   return rc ? rc : sc_named_end(r, k, node, item_path, mark, base, item);
 }
 
@@ -418,7 +422,9 @@ static int sc_corner_end(sch_reader *r, const sch_key *k, struct fy_node *node,
 static int sc_axle_tire_end(sch_reader *r, const sch_key *k, struct fy_node *node,
                             const char *item_path, size_t mark, void *base, void *item)
 {
-  const int rc = sc_corner_tire(r, k, node, item_path, item);
+  int rc = sc_corner_tire(r, k, node, item_path, item);
+  if (!rc)
+    rc = sc_corner_envelope(r, k, node, item_path, item);
   return rc ? rc : sc_axle_end(r, k, node, item_path, mark, base, item);
 }
 
@@ -788,7 +794,9 @@ static int sc_default_outputs(sch_reader *r, fb_scenario *s)
 static int sc_root_done(sch_reader *r, struct fy_node *node, void *base)
 {
   const sc_reading *rd = r->user;
-  const int rc = sc_tire_sections_used(r, rd->table, node, base);
+  int rc = sc_tire_sections_used(r, rd->table, node, base);
+  if (!rc)
+    rc = sc_envelope_sections_used(r, rd->table, node, base);
   if (rc)
     return rc;
   return ml_get(node, "outputs", NULL) ? FB_OK : sc_default_outputs(r, base);
@@ -929,6 +937,8 @@ static const char *const sc_axes[] = {"x", "y", "z", NULL};
                "laminates) to 20000 kg/m^3 (tungsten alloys); steel 7850, aluminium 2700",     \
                "g/cm^3", 1e-3)
 #define SC_WHY_WHEEL_MASS "a wheel (tire, rim, hub) weighs 1 kg to 5 t"
+#define SC_WHY_TIRE_RADIUS                                                                     \
+  "a road vehicle's tire is 0.2 m (a small car's) to 1 m (a large truck's) in radius"
 #define SC_WHY_TIRE_K "a tire's radial stiffness is 1e4 to 1e8 N/m (a truck tire about 1e6)"
 
 /* A mounted body: suspensions' and mounts' items. */
@@ -1179,6 +1189,14 @@ static const sch_key sc_corner_keys[] = {
         .type_doc = "`{points: [[d, F], ...]}` or `{file, velocity, force}`", OPT,
         .doc = "this corner's tire table, where it differs from the top-level `wheel`'s",
         .ops = &sc_tire_table, .data = &fb_tire_model_table, C_IS(tire_model)),
+    NUMBER(SC_TIRE_RADIUS, "m", POSITIVE, OPT,
+           "this tire's free (unloaded) radius, where it differs from the top-level `wheel`'s",
+           C_OFF(tire_radius), PLAUSIBLE(0.2, 1.0, SC_WHY_TIRE_RADIUS),
+           .ops = &sc_tire_radius_present),
+    /* Its choices are an envelope gallery's models (scenario_gallery.c),
+     * each with a section wheel.<model> of its parameters after it. */
+    CHOICE(SC_ENVELOPE_CHOICE, NULL, INHERIT(SC_ENVELOPE_CHOICE),
+           "how the tire envelops the road", NO_STORE, C_IS(envelope_model)),
 };
 const sch_table sc_corner_format = TABLE(sc_corner_keys, NULL);
 
@@ -1395,6 +1413,12 @@ static const sch_key sc_keys[] = {
         .doc = "a `table` tire's force (N) against its deflection (m) from (0, 0), 2 to 64 "
                "points, forces not decreasing; every such corner's unless it gives its own",
         .ops = &sc_tire_table_top, .data = &fb_tire_model_table),
+    NUMBER(SC_TIRE_RADIUS, "m", POSITIVE, OPT,
+           "every tire's free (unloaded) radius, which an enveloping tire needs "
+           "(`wheel.envelope`)",
+           NO_STORE, PLAUSIBLE(0.2, 1.0, SC_WHY_TIRE_RADIUS)),
+    CHOICE(SC_ENVELOPE_CHOICE, NULL, DEF(0),
+           "how every tire envelops the road (the envelope models')", NO_STORE),
     SECTION_IS("suspensions", REQ, "the corners (wheel stations)", &sc_suspensions,
                S_IS(corner)),
     NUMBER("suspensions.motion_ratio", NULL, POSITIVE, DEF(1),
@@ -1647,6 +1671,10 @@ int sc_part_key(const fb_scenario *s, const fb_err_part *p, char *key, size_t si
     return sc_spring_part_key(s, p, key, size);
   if (p->kind == FB_PART_DAMPER) /* the key the corner's damper law was given by */
     return sc_damper_part_key(s, p, key, size);
+  if (p->kind == FB_PART_ENVELOPE) /* corners.<name>.wheel.<model>.<parameter> */
+    return p->index < s->ncorners && s->corner[p->index].name && p->field[0] &&
+           snprintf(key, size, "corners.%s.wheel.%s.%s", s->corner[p->index].name,
+                    fb_corner_envelope_model(&s->corner[p->index])->name, p->field) > 0;
   if (p->kind == FB_PART_TIRE) /* corners.<name>.wheel.<model>.<parameter>, else */
     return sc_tire_part_key(s, p, key, size); /* corners.<name>.wheel.<its own key> */
   sc_schema *sc = NULL;

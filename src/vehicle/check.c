@@ -812,6 +812,35 @@ static int check_tires(const fb_scenario *s, fb_err *err)
   return FB_OK;
 }
 
+/* Each corner's envelope: a sound model, the tire's free radius where
+ * the model reads it, its block within the declared ranges, and the
+ * model's own rules for the loaded corner; errors name the corner's
+ * envelope parameter (FB_PART_ENVELOPE), its radius or its model. */
+static int check_envelopes(const fb_scenario *s, fb_err *err)
+{
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const fb_envelope_model *m = fb_corner_envelope_model(&s->corner[c]);
+    int rc = fb_envelope_model_check(m, err);
+    if (rc)
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, envelope_model)), rc;
+    const double r = s->corner[c].tire_radius;
+    if (m->needs_radius && !(r > 0.0 && isfinite(r))) {
+      fb_err_set(err, FB_EINVAL, "a `%s` envelope needs the tire's free radius, > 0 m (got %g)",
+                 m->name, r);
+      return fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, tire_radius)), FB_EINVAL;
+    }
+    const fb_corner_params loaded = vehicle_corner_loaded(s, c);
+    const fb_envelope_context ctx = fb_corner_envelope_context(&loaded);
+    rc = fb_params_check(m->param, m->nparams, loaded.envelope.bytes, err);
+    if (!rc && m->ops->check)
+      rc = m->ops->check(loaded.envelope.bytes, &ctx, err);
+    if (rc)
+      return corner_entry_error(rc, err, FB_PART_ENVELOPE, c,
+                                fb_part_member_(FB_PART_CORNER, envelope_model));
+  }
+  return FB_OK;
+}
+
 /* The solver's own limits (fb_sim_opts_check: sample count, the result's
  * memory, the steps that max_step forces), whose errors name their
  * setting: the description's member of the same name. */
@@ -1209,6 +1238,8 @@ int fb_scenario_check(const fb_scenario *s, fb_err *err)
     rc = check_bodies(s, err);
   if (!rc)
     rc = check_tires(s, err);
+  if (!rc)
+    rc = check_envelopes(s, err);
   if (!rc)
     rc = check_road(s, err);
   if (!rc)

@@ -160,6 +160,29 @@ fb_tire_context fb_corner_tire_context(const fb_corner_params *c)
   return (fb_tire_context){c->name, c->tire_k, c->tire_c, c->tire_static_deflection};
 }
 
+int fb_corner_set_envelope(fb_corner_params *c, const fb_envelope_model *m, void **params,
+                           fb_err *err)
+{
+  const int rc = fb_envelope_model_check(m, err);
+  if (rc)
+    return rc;
+  c->envelope_model = m;
+  fb_envelope_params_init(m, &c->envelope);
+  if (params)
+    *params = c->envelope.bytes;
+  return FB_OK;
+}
+
+const fb_envelope_model *fb_corner_envelope_model(const fb_corner_params *c)
+{
+  return c->envelope_model ? c->envelope_model : &fb_envelope_model_point;
+}
+
+fb_envelope_context fb_corner_envelope_context(const fb_corner_params *c)
+{
+  return (fb_envelope_context){c->name, c->tire_radius, c->tire_static_deflection};
+}
+
 int fb_scenario_set_road(fb_scenario *s, const fb_road_type *t, void **params, fb_err *err)
 {
   const int rc = fb_road_type_check(t, err);

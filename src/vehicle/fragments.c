@@ -749,12 +749,73 @@ static int scenario_road(const fb_scenario *s, fb_road **out, fb_err *err)
   return vehicle_road_error(s->road_type->ops->make(s->road.bytes, &layout, out, err), err);
 }
 
+/* The stretch of road the wheels cover in a run, [*lo, *hi]: from the
+ * rearmost wheel's start to the foremost's position at t_end, a metre
+ * beyond at either end (and the envelope's reach, which the enveloped
+ * road adds itself). */
+static void road_covered(const fb_scenario *s, double *lo, double *hi)
+{
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (size_t c = 0; c < s->ncorners; ++c) {
+    const double s0 = fb_scenario_wheel_start(s, (int)c);
+    *lo = fmin(*lo, s0 - 1.0);
+    *hi = fmax(*hi, s0 + s->speed * s->t_end + 1.0);
+  }
+}
+
+/* 1 if corners a and b envelop the road alike: one model, one block, one
+ * radius and one static deflection (the same load), so one effective road
+ * serves both. */
+static int same_envelope(const fb_corner_params *a, const fb_corner_params *b)
+{
+  const fb_envelope_model *m = fb_corner_envelope_model(a);
+  return m == fb_corner_envelope_model(b) &&
+         !memcmp(a->envelope.bytes, b->envelope.bytes, m->params_size) &&
+         a->tire_radius == b->tire_radius && a->tire_k == b->tire_k;
+}
+
+/* The road under each corner's tire (*roads new, s->ncorners of them):
+ * the road itself under a point contact, else its effective road over
+ * the stretch the run covers, made once for corners that envelop it
+ * alike. A corner's road is borrowed where it is an earlier corner's or
+ * the road (owned[c] 0). */
+static int corner_roads(const fb_scenario *s, const fb_road *road, const fb_road **roads,
+                        fb_road **owned, fb_err *err)
+{
+  double lo, hi;
+  road_covered(s, &lo, &hi);
+  int rc = FB_OK;
+  for (size_t c = 0; !rc && c < s->ncorners; ++c) {
+    const fb_corner_params loaded = vehicle_corner_loaded(s, c);
+    const fb_envelope_model *m = fb_corner_envelope_model(&loaded);
+    const fb_envelope_context ctx = fb_corner_envelope_context(&loaded);
+    roads[c] = road;
+    if (!(m->ops->reach(loaded.envelope.bytes, &ctx) > 0.0))
+      continue;
+    for (size_t k = 0; k < c && roads[c] == road; ++k)
+      if (owned[k] && same_envelope(&s->corner[k], &s->corner[c]))
+        roads[c] = roads[k];
+    if (roads[c] != road)
+      continue;
+    /* The description's check has held the model's rules already. */
+    rc = fb_envelope_road_new(road, m, loaded.envelope.bytes, &ctx, lo, hi, &owned[c], err);
+    roads[c] = owned[c];
+  }
+  return rc;
+}
+
 int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
 {
   *out = NULL;
   fb_bg *bg = NULL;
   fb_road *road = NULL;
-  int rc = scenario_road(s, &road, err);
+  const fb_road **roads = calloc(s->ncorners + 1, sizeof *roads);
+  fb_road **owned = calloc(s->ncorners + 1, sizeof *owned);
+  int rc = roads && owned ? scenario_road(s, &road, err)
+                          : fb_err_set(err, FB_ENOMEM, "out of memory for the corners' roads");
+  if (!rc)
+    rc = corner_roads(s, road, roads, owned, err);
   if (!rc)
     rc = fb_bg_new("road", &bg, err);
   /* Left wheels (y > 0) on the left track; each source is the road's
@@ -763,7 +824,7 @@ int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
     const int track = s->corner[c].y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
     fb_tfun *f = NULL;
     char *name = fb_strdup_printf("v_%s", s->corner[c].name);
-    rc = name ? fb_road_wheel_velocity(road, track, s->speed,
+    rc = name ? fb_road_wheel_velocity(roads[c], track, s->speed,
                                        fb_scenario_wheel_start(s, (int)c), &f, err)
               : fb_err_set(err, FB_ENOMEM, "out of memory");
     if (!rc)
@@ -772,6 +833,10 @@ int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
       rc = fb_bg_add_port(bg, s->corner[c].name, name, FB_PORT_OUT, err);
     free(name);
   }
+  for (size_t c = 0; owned && c < s->ncorners; ++c)
+    fb_road_free(&owned[c]);
+  free(owned);
+  free((void *)roads);
   fb_road_free(&road);
   if (rc) {
     fb_bg_free(&bg);

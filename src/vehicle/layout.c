@@ -17,6 +17,7 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
   case FB_PART_TIRE:
   case FB_PART_DAMPER:
   case FB_PART_SPRING:
+  case FB_PART_ENVELOPE:
   case FB_PART_STOP: return i < s->ncorners ? s->corner[i].name : NULL;
   case FB_PART_MOUNT: return i < s->nmounts ? s->mount[i].name : NULL;
   case FB_PART_HULL_MASS: return i < s->npoint_masses ? s->point_mass[i].name : NULL;
@@ -38,9 +39,9 @@ static const char *part_name(const fb_scenario *s, int kind, size_t i)
 char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *buf, size_t size)
 {
   static const char *const list[FB_PART_KINDS] = {
-      "",       "",           "corner", "mount",   "point_mass",   "section",
-      "output", "load point", "road",   "corner",  "hull source",  "corner",
-      "corner", "corner",     "body",   "bushing", "antiroll_bar", "bogie"};
+      "",           "",        "corner",       "mount",       "point_mass", "section", "output",
+      "load point", "road",    "corner",       "hull source", "corner",     "corner",  "corner",
+      "body",       "bushing", "antiroll_bar", "bogie",       "corner"};
   const int kind =
       p->kind > 0 && p->kind < FB_PART_KINDS && list[p->kind] ? p->kind : FB_PART_NONE;
   const char *name = s ? part_name(s, kind, p->index) : NULL;
@@ -56,10 +57,11 @@ char *fb_scenario_part_text(const fb_scenario *s, const fb_err_part *p, char *bu
     n = fb_text_append(buf, size, n, " (%s)", name);
   if (p->field[0]) /* a tire's (damper's) parameter is its model's (law's) */
     n = fb_text_append(buf, size, n, "%s%s%s", n ? "." : "",
-                       kind == FB_PART_TIRE     ? "tire."
-                       : kind == FB_PART_DAMPER ? "damper."
-                       : kind == FB_PART_SPRING ? "spring."
-                                                : "",
+                       kind == FB_PART_TIRE       ? "tire."
+                       : kind == FB_PART_DAMPER   ? "damper."
+                       : kind == FB_PART_SPRING   ? "spring."
+                       : kind == FB_PART_ENVELOPE ? "envelope."
+                                                  : "",
                        p->field);
   if (p->element != FB_ERR_NO_ELEMENT)
     fb_text_append(buf, size, n, "[%zu]", p->element);
