@@ -13,9 +13,9 @@
 
 /* The built-in types, one line each. */
 static const fb_road_type *const gallery_builtin[] = {
-    &fb_road_type_bump,
-    &fb_road_type_iso8608,
-    &fb_road_type_profile,
+    &fb_road_type_bump,      &fb_road_type_iso8608, &fb_road_type_profile,
+    &fb_road_type_halfround, &fb_road_type_step,    &fb_road_type_cleat,
+    &fb_road_type_trapezoid, &fb_road_type_pothole, &fb_road_type_washboard,
 };
 
 struct fb_road_gallery {
