@@ -45,6 +45,11 @@ road_with halfround.yaml halfround 'height: 0.2' 'track: left' 'first_contact: 1
 road_with walls.yaml pothole 'depth: 0.1' 'length: 0.6' 'shape: rectangular' 'first_contact: 1'
 road_with tall.yaml trapezoid 'height: 1.5' 'top_length: 2' 'ramp_length: 3' 'first_contact: 1'
 road_with ok_step.yaml step 'height: 0.1' 'first_contact: 1'
+# Courses: a bad line, and an obstacle with vertical faces.
+printf 'cleat at=0 height=0.05 length=0.2\npothole at=3 depth=-0.05 length=0.5\n' >bad.course
+printf 'trapezoid at=0 height=0.05 top_length=0.2 ramp_length=0.3\ncleat at=3 height=0.05 length=0.2 ramp_length=0 track=right\n' >faces.course
+road_with bad_course.yaml course 'file: bad.course' 'first_contact: 1'
+road_with faces_course.yaml course 'file: faces.course' 'first_contact: 1'
 
 # status|args|expected text on stderr
 cases=(
@@ -61,6 +66,8 @@ cases=(
   "2|run walls.yaml -o out|$(at walls.yaml '    depth: 0.1' depth) road.pothole: road: the pothole's vertical walls cannot be followed by a point-contact tire: make it \`shape: rounded\`"
   "0|modes tall.yaml|$(at tall.yaml 'height: 1.5' 1.5) road.trapezoid.height: 1.5 m is implausible"
   "0|modes ok_step.yaml|"
+  "2|run bad_course.yaml -o out|$(at bad_course.yaml 'file: bad.course' bad.course) road.course.file: ./bad.course:2: depth: must be > 0 m (got -0.05)"
+  "2|run faces_course.yaml -o out|$(at faces_course.yaml '    file' file) road.course: road: ./faces.course:2: the cleat's vertical faces cannot be followed by a point-contact tire: give it ramps (ramp_length > 0), or give the tires an envelope (the RF wheel meets it at s = 3 m on the right track)"
 )
 
 for c in "${cases[@]}"; do

@@ -10,7 +10,7 @@
  *      naming the part, and nothing is left in the directory;
  *   3. the vehicle scenarios (System 1 and its variants with unilateral
  *      tire contact and a static start, a shock-absorber table, an ISO
- *      8608 road; System 2 once) written, loaded and simulated as
+ *      8608 road, a course of obstacles; System 2 once) written, loaded and simulated as
  *      `flexbond sim` does give fb_vehicle_simulate's every column to
  *      1e-9 of its range;
  *   4. the YAML string escaper and the loader's new keys. */
@@ -621,5 +621,6 @@ int main(int argc, char **argv)
   vehicle_case("../examples/apc6x6_liftoff.yaml", FB_SYSTEM_RIGID, NULL);
   vehicle_case("../examples/apc6x6_shock_table.yaml", FB_SYSTEM_RIGID, NULL);
   vehicle_case("../examples/apc6x6_iso_road.yaml", FB_SYSTEM_RIGID, NULL);
+  vehicle_case("../examples/apc6x6_obstacles.yaml", FB_SYSTEM_RIGID, NULL);
   return check_report("test_model_write");
 }

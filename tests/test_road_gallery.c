@@ -182,6 +182,20 @@ static void make_examples(example *ex, size_t *n)
     snprintf(ex[k++].road, sizeof ex[0].road, "%s  %s:\n    %s\n    first_contact: 5\n", head,
              obstacles[i].type, values);
   }
+  char course[TEST_PATH_MAX];
+  test_tmp_path("course.txt", course, sizeof course);
+  fp = fopen(course, "w");
+  CHECK(fp != NULL);
+  if (fp) {
+    fprintf(fp, "# type at parameters\nhalfround at=0 height=0.1 track=left\n"
+                "step at=1 height=-0.05 ramp_length=0.3 track=right\n"
+                "pothole at=2 depth=0.05 length=0.4\n");
+    fclose(fp);
+  }
+  ex[k].type = "course";
+  snprintf(ex[k++].road, sizeof ex[0].road,
+           "%s  course:\n    file: %s\n    angle_deg: 20\n    first_contact: 5\n", head,
+           course);
   ex[k].type = "plank";
   snprintf(ex[k++].road, sizeof ex[0].road, "%s  plank:\n    height: 0.1\n    length: 1.0\n",
            head);
@@ -550,7 +564,7 @@ int main(void)
   CHECK(fb_road_gallery_new(&g, &err) == FB_OK);
   if (!g)
     return check_report("test_road_gallery");
-  CHECK(fb_road_gallery_count(g) == 9);
+  CHECK(fb_road_gallery_count(g) == 10);
   test_registration(g);
   test_conformance(g);
   test_plank_errors(g);

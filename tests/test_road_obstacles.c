@@ -4,8 +4,9 @@
  * slope against its closed-form geometry written here (circles, lines,
  * sines), the slope integrating to the height change between breaks,
  * the edges a point-contact tire cannot follow, the oblique placement
- * (the bump's formula), track selection, series, and the piecewise
- * track's wheel functions as data and back. */
+ * (the bump's formula), track selection, series, a course of obstacles
+ * from a file, and the piecewise track's wheel functions as data and
+ * back. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -13,6 +14,7 @@
 #include "flexbond/road.h"
 
 #include "check.h"
+#include "tmpdir.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -465,6 +467,150 @@ static void test_rules(void)
         !strcmp(err.part.field, "height"));
 }
 
+/* ---- A course from a file. */
+
+/* A course file at path with the given text. */
+static void write_course(const char *path, const char *text)
+{
+  FILE *fp = fopen(path, "w");
+  CHECK(fp != NULL);
+  if (fp) {
+    fputs(text, fp);
+    fclose(fp);
+  }
+}
+
+/* The course's block for file path, prepared; FB_OK or its error. */
+static int course_block(char *path, double angle, fb_road_params *p, fb_err *err)
+{
+  fb_road_params_init(&fb_road_type_course, p);
+  fb_road_course_params *c = (fb_road_course_params *)(void *)p->bytes;
+  c->file = path; /* borrowed: released by the caller's own release below */
+  c->angle = angle;
+  c->first_contact = 1.0;
+  return fb_road_type_course.ops->prepare(p->bytes, err);
+}
+
+/* The course's release frees file; the test's path is its own. */
+static void course_release(fb_road_params *p)
+{
+  ((fb_road_course_params *)(void *)p->bytes)->file = NULL;
+  fb_road_params_release(&fb_road_type_course, p);
+}
+
+/* Each obstacle of a course is the one its type makes alone, moved to
+ * its distance along the course (on the right track, by the oblique
+ * edge as well) and up by the steps before it. */
+static void test_course(void)
+{
+  char path[TEST_PATH_MAX];
+  test_tmp_path("course.txt", path, sizeof path);
+  write_course(path, "# a course\n"
+                     "cleat at=0 height=0.05 length=0.2 edge_radius=0.01  # both tracks\n"
+                     "\n"
+                     "step at=2 height=0.1 ramp_length=0.3 track=left\n"
+                     "pothole at=4 depth=0.06 length=0.6 track=right\n"
+                     "washboard at=6 amplitude=0.01 wavelength=0.5 waves=2\n");
+  fb_err err;
+  fb_road_params p;
+  const double angle = 20 * PI / 180;
+  CHECK(course_block(path, angle, &p, &err) == FB_OK);
+  fb_road *road = NULL;
+  CHECK(fb_road_type_course.ops->make(p.bytes, &LAYOUT, &road, &err) == FB_OK);
+  if (!road) {
+    fprintf(stderr, "  course: %s\n", err.msg);
+    course_release(&p);
+    return;
+  }
+  /* The obstacles alone, square, on both tracks. */
+  fb_road_params one[4];
+  fb_road *alone[4] = {NULL};
+  const fb_road_type *types[4] = {&fb_road_type_cleat, &fb_road_type_step,
+                                  &fb_road_type_pothole, &fb_road_type_washboard};
+  fb_road_obstacle_params *o[4];
+  for (int i = 0; i < 4; ++i)
+    o[i] = block(types[i], &one[i]);
+  o[0]->height = 0.05, o[0]->length = 0.2, o[0]->edge_radius = 0.01;
+  o[1]->height = 0.1, o[1]->ramp_length = 0.3;
+  o[2]->depth = 0.06, o[2]->length = 0.6;
+  o[3]->amplitude = 0.01, o[3]->wavelength = 0.5, o[3]->waves = 2;
+  for (int i = 0; i < 4; ++i)
+    alone[i] = make(types[i], &one[i]);
+  const double at[4] = {0, 2, 4, 6}, ends[4] = {0.24, 0.3, 0.6, 2.0};
+  const double shift = LAYOUT.track_width * tan(angle);
+  for (int i = 0; i < 4 && alone[3]; ++i)
+    for (double u = 0.001; u < ends[i]; u += 0.01) {
+      const int on_left = i != 2, on_right = i != 1;
+      /* The step on the left raises what follows it there by 0.1 m. */
+      const double left = fb_road_height(road, FB_ROAD_LEFT, at[i] + u);
+      const double right = fb_road_height(road, FB_ROAD_RIGHT, shift + at[i] + u);
+      const double z = fb_road_height(alone[i], FB_ROAD_LEFT, u);
+      CHECK_NEAR(left, on_left ? z + (i == 3 ? 0.1 : 0.0) : (i == 2 ? 0.1 : 0.0), 1e-14);
+      CHECK_NEAR(right, on_right ? z : 0.0, 1e-14);
+    }
+  check_slope_integral(road, "course");
+  double begin, end;
+  fb_road_type_course.ops->feature(p.bytes, &LAYOUT, FB_ROAD_RIGHT, &begin, &end);
+  CHECK_NEAR(begin, shift, 1e-15);
+  CHECK_NEAR(end, shift + 6 + 2.0, 1e-12);
+  CHECK(fb_road_edges(road, FB_ROAD_LEFT, NULL, 0) == 0);
+  CHECK(fb_road_type_course.ops->edge_hint(p.bytes) == NULL);
+  char phrase[64];
+  fb_road_phrase(&fb_road_type_course, &p, phrase, sizeof phrase);
+  CHECK(!strcmp(phrase, "over a course of 4 obstacles"));
+  for (int i = 0; i < 4; ++i)
+    fb_road_free(&alone[i]);
+  fb_road_free(&road);
+  course_release(&p);
+}
+
+/* A bad line is refused at its line, naming what is wrong; obstacles
+ * that overlap on a track are refused when the road is made. */
+static void test_course_errors(void)
+{
+  static const struct {
+    const char *text, *want;
+  } bad[] = {
+      {"cleat at=0 height=0.05 length=0.2\nbarrel at=3\n", ":2: 'barrel' is no obstacle type"},
+      {"cleat height=0.05 length=0.2\n", ":1: the cleat needs its distance along the course"},
+      {"cleat at=0 length=0.2\n", ":1: the cleat needs its height"},
+      {"cleat at=0 height=-1 length=0.2\n", ":1: height: must be > 0 m (got -1)"},
+      {"cleat at=0 height=0.05 length=0.2 colour=red\n",
+       ":1: a cleat has no parameter 'colour'"},
+      {"cleat at=0 height=0.05 length=0.2 angle_deg=3\n", ":1: angle_deg is the course's own"},
+      {"pothole at=0 depth=0.5 length=0.6\n", ":1: depth: a rounded pothole's walls"},
+      {"pothole at=0 depth=0.05 length=0.6 shape=square\n", ":1: shape: not one of its"},
+      {"step at=5 height=0.1\nstep at=2 height=0.1\n", ":2: the obstacles are listed in order"},
+      {"# nothing\n", ": no obstacles"},
+  };
+  char path[TEST_PATH_MAX];
+  test_tmp_path("bad_course.txt", path, sizeof path);
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+    write_course(path, bad[i].text);
+    fb_err err;
+    fb_road_params p;
+    const int rc = course_block(path, 0.0, &p, &err);
+    const int found = rc != FB_OK && strstr(err.msg, bad[i].want) && strstr(err.msg, path) &&
+                      !strcmp(err.part.field, "file");
+    CHECK(found);
+    if (!found)
+      fprintf(stderr, "  got \"%s\", want \"%s\"\n", err.msg, bad[i].want);
+    course_release(&p);
+  }
+  write_course(path, "cleat at=0 height=0.05 length=0.5 ramp_length=0\n"
+                     "cleat at=0.3 height=0.05 length=0.5 track=left\n");
+  fb_err err;
+  fb_road_params p;
+  fb_road *road = NULL;
+  CHECK(course_block(path, 0.0, &p, &err) == FB_OK);
+  CHECK(fb_road_type_course.ops->make(p.bytes, &LAYOUT, &road, &err) == FB_EINVAL &&
+        strstr(err.msg, ":2: the cleat at 0.3 m overlaps the obstacle before it on the left"));
+  /* The first cleat's faces: the course's hint names its line. */
+  const char *hint = fb_road_type_course.ops->edge_hint(p.bytes);
+  CHECK(hint && strstr(hint, ":1: the cleat's vertical faces"));
+  course_release(&p);
+}
+
 /* ---- Piecewise tracks as data: pieces of every kind, with a jump. */
 
 static void test_pieces_data(void)
@@ -525,6 +671,8 @@ int main(void)
   test_tracks();
   test_series();
   test_rules();
+  test_course();
+  test_course_errors();
   test_pieces_data();
   return check_report("test_road_obstacles");
 }

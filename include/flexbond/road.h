@@ -413,6 +413,23 @@ extern const fb_road_type fb_road_type_trapezoid;
 extern const fb_road_type fb_road_type_pothole;
 extern const fb_road_type fb_road_type_washboard;
 
+/* A course: obstacles of the types above, read from a file by prepare
+ * (docs/roads.md, "Courses"), one a line: the type's name, `at=` the
+ * distance (m) of its leading edge along the course, then its own
+ * parameters as key=value by their declared names. The course is crossed
+ * obliquely as one, as the bump. */
+typedef struct fb_road_course_item fb_road_course_item;
+typedef struct fb_road_course_params {
+  char *file;                /* owned */
+  double angle;              /* rad, of the leading edges to the lateral axis */
+  double first_contact;      /* s, when the first corner's wheel meets the course's start */
+  fb_road_course_item *item; /* owned, as read */
+  size_t nitems;
+  char edge_hint[192]; /* the first obstacle with edges' advice, with its line; "" none */
+} fb_road_course_params;
+
+extern const fb_road_type fb_road_type_course;
+
 /* A set of road types: the built-in ones, and those a program adds. */
 typedef struct fb_road_gallery fb_road_gallery;
 
