@@ -234,7 +234,9 @@ void road_plateau_shape(double h, double r1, double top, double r2, double e, ro
               h - h / r2 * (down_begin - r1 - top), -h / r2, 0.0);
   out->length = r1 + top + r2;
   out->rise = 0.0;
-  out->scale = h;
+  /* A face's height stands for its width; else the shortest of the
+   * ramps and the top, as a bump's length. */
+  out->scale = r1 > 0 && r2 > 0 ? INFINITY : h;
   const double dims[] = {r1, top, r2};
   for (size_t i = 0; i < sizeof dims / sizeof dims[0]; ++i)
     if (dims[i] > 0)

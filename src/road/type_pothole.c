@@ -60,7 +60,9 @@ static void pothole_shape(const fb_road_obstacle_params *p, road_shape *out)
   out->n = 1;
   out->length = len;
   out->rise = 0.0;
-  out->scale = d < len ? d : len;
+  /* Rounded: a dip as a bump of its length; its walls' height stands
+   * for their width. */
+  out->scale = p->shape == POTHOLE_ROUNDED || len < d ? len : d;
 }
 
 /* A rounded pothole deeper than half its length would be more than a
