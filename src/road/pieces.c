@@ -89,12 +89,18 @@ double road_pieces_slope(size_t n, const double *data, double s)
   return piece_slope(&p[piece_at(n, p, s)], s);
 }
 
+/* Where the joint before piece i (i == n: after the last) lies. */
+static double joint_at(size_t n, const fb_road_piece *p, size_t i)
+{
+  return i < n ? p[i].s_begin : p[n - 1].s_end;
+}
+
 size_t road_pieces_breaks(size_t n, const double *data, double *s, size_t max)
 {
   const fb_road_piece *p = road_pieces_of(data);
   const size_t count = n ? n + 1 : 0;
   for (size_t i = 0; s && i < count && i < max; ++i)
-    s[i] = i < n ? p[i].s_begin : p[n - 1].s_end;
+    s[i] = joint_at(n, p, i);
   return count;
 }
 
@@ -118,12 +124,12 @@ static int piece_vertical_at(const fb_road_piece *p, double s)
          fabs(fabs(s - p->p[0]) - fabs(p->p[2])) <= PIECE_VERTICAL_TOL * fabs(p->p[2]);
 }
 
-/* 1 if the joint before piece i (i == n: after the last) is an edge: a
- * height jump, or a vertical tangent on either side. */
+/* 1 if the joint before piece i (i == n: after the last; n > 0) is an
+ * edge: a height jump, or a vertical tangent on either side. */
 static int joint_is_edge(size_t n, const fb_road_piece *p, size_t i)
 {
+  const double s = joint_at(n, p, i);
   const fb_road_piece *before = i > 0 ? &p[i - 1] : NULL, *after = i < n ? &p[i] : NULL;
-  const double s = after ? after->s_begin : before->s_end;
   if ((before && piece_vertical_at(before, s)) || (after && piece_vertical_at(after, s)))
     return 1;
   return before && after &&
@@ -142,7 +148,7 @@ size_t fb_road_edges(const fb_road *road, int track, double *s, size_t max)
     if (!joint_is_edge(n, p, i))
       continue;
     if (s && count < max)
-      s[count] = i < n ? p[i].s_begin : p[n - 1].s_end;
+      s[count] = joint_at(n, p, i);
     ++count;
   }
   return count;
