@@ -202,18 +202,19 @@ static void test_cleat(void)
   CHECK_NEAR(to_ramp(2 * r + len - c2, cz, h, r), e, 1e-15);
   for (double s = -0.1; s < 0.4; s += 0.0005) {
     const double z = fb_road_height(road, FB_ROAD_LEFT, s);
-    double want = 0.0;
+    double want = 0.0, slope = 0.0; /* a circle's slope: -(s - c) / (z - cz) */
     if (s >= k[0] && s < k[1])
-      want = h * s / r;
+      want = h * s / r, slope = h / r;
     else if (s >= k[1] && s < k[2])
-      want = cz + sqrt(e * e - (s - c1) * (s - c1));
+      want = cz + sqrt(e * e - (s - c1) * (s - c1)), slope = -(s - c1) / (want - cz);
     else if (s >= k[2] && s < k[3])
       want = h;
     else if (s >= k[3] && s < k[4])
-      want = cz + sqrt(e * e - (s - c2) * (s - c2));
+      want = cz + sqrt(e * e - (s - c2) * (s - c2)), slope = -(s - c2) / (want - cz);
     else if (s >= k[4] && s < k[5])
-      want = h * (2 * r + len - s) / r;
+      want = h * (2 * r + len - s) / r, slope = -h / r;
     CHECK_NEAR(z, want, 1e-15);
+    CHECK_NEAR(fb_road_slope(road, FB_ROAD_LEFT, s), slope, 1e-12);
   }
   for (int i = 1; i < 5; ++i) {
     const double before = nextafter(k[i], -INFINITY);
@@ -254,7 +255,13 @@ static void test_trapezoid(void)
                      : s < up + top     ? h
                      : s < 2 * up + top ? h - (s - up - top) * slope
                                         : 0.0;
+    const double dz = s < 0              ? 0.0
+                      : s < up           ? slope
+                      : s < up + top     ? 0.0
+                      : s < 2 * up + top ? -slope
+                                         : 0.0;
     CHECK_NEAR(fb_road_height(road, FB_ROAD_LEFT, s), z, 1e-15);
+    CHECK_NEAR(fb_road_slope(road, FB_ROAD_LEFT, s), dz, 1e-15);
   }
   if (road)
     check_slope_integral(road, "trapezoid");
@@ -286,8 +293,10 @@ static void test_pothole(void)
     return;
   CHECK_NEAR(fb_road_height(road, FB_ROAD_LEFT, 0.5 * len), -d, 1e-15);
   for (double s = 0.001; s < len; s += 0.01) {
-    const double z = fb_road_height(road, FB_ROAD_LEFT, s);
-    CHECK_NEAR(hypot(s - 0.5 * len, z - (radius - d)), radius, 1e-14);
+    const double z = fb_road_height(road, FB_ROAD_LEFT, s), x = s - 0.5 * len;
+    CHECK_NEAR(hypot(x, z - (radius - d)), radius, 1e-14);
+    /* The lower circle's slope, x / sqrt(R^2 - x^2). */
+    CHECK_NEAR(fb_road_slope(road, FB_ROAD_LEFT, s), x / sqrt(radius * radius - x * x), 1e-13);
   }
   check_edges(road, NULL, 0, "rounded pothole");
   check_slope_integral(road, "rounded pothole");
@@ -322,7 +331,14 @@ static void test_washboard(void)
                        : s < lambda     ? a * s / lambda
                        : s < 5 * lambda ? a
                                         : a * (end - s) / lambda;
-    CHECK_NEAR(fb_road_height(road, FB_ROAD_LEFT, s), amp * sin(2 * PI * s / lambda), 1e-15);
+    const double damp = s < 0 || s > end ? 0.0
+                        : s < lambda     ? a / lambda
+                        : s < 5 * lambda ? 0.0
+                                         : -a / lambda;
+    const double k = 2 * PI / lambda;
+    CHECK_NEAR(fb_road_height(road, FB_ROAD_LEFT, s), amp * sin(k * s), 1e-15);
+    CHECK_NEAR(fb_road_slope(road, FB_ROAD_LEFT, s), damp * sin(k * s) + amp * k * cos(k * s),
+               1e-13);
   }
   check_edges(road, NULL, 0, "washboard");
   check_slope_integral(road, "washboard");
