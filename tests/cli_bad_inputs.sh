@@ -25,19 +25,6 @@ mkdir -p "$IN" "$WORK/out" || exit 2
 # Fixtures are named relative to IN, so messages quote them as given.
 cd "$IN" || exit 2
 
-# at FILE TEXT [VALUE]: "FILE:LINE:" of the first line of FILE holding TEXT,
-# or "FILE:LINE:COL:" with COL the 1-based column of VALUE in that line.
-at() {
-  awk -v text="$2" -v value="${3-}" -v file="$1" '
-    index($0, text) {
-      printf "%s:%d:", file, NR
-      if (value != "") printf "%d:", index($0, value)
-      found = 1
-      exit
-    }
-    END { if (!found) printf "NOT-FOUND(%s in %s)", text, file }' "$1"
-}
-
 # line_of FILE LINE: the number of the first line of FILE that is LINE.
 line_of() {
   awk -v text="$2" '$0 == text { print NR; found = 1; exit }

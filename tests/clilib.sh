@@ -32,6 +32,19 @@ fail() {
   failures=$((failures + 1))
 }
 
+# at FILE TEXT [VALUE]: "FILE:LINE:" of the first line of FILE holding TEXT,
+# or "FILE:LINE:COL:" with COL the 1-based column of VALUE in that line.
+at() {
+  awk -v text="$2" -v value="${3-}" -v file="$1" '
+    index($0, text) {
+      printf "%s:%d:", file, NR
+      if (value != "") printf "%d:", index($0, value)
+      found = 1
+      exit
+    }
+    END { if (!found) printf "NOT-FOUND(%s in %s)", text, file }' "$1"
+}
+
 # run ARGS...: runs flexbond with stdout and stderr captured; sets $status.
 run() {
   "$FLEXBOND" "$@" >"$OUT" 2>"$ERR"

@@ -1,17 +1,16 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* fb_model_write: a bond graph written as a model file and loaded back.
  *   1. a hand-built graph with every element kind, every source kind the
- *      format holds, a nested subsystem, a bond domain and every probe
- *      option is rebuilt part for part: names, kinds, ports, bonds, every
- *      matrix entry, modulus, initial state, table knot and contact
- *      parameter equal (==), every source equal at its breakpoints and
- *      between them;
+ *      format holds (roads of every kind, a piecewise one among them), a nested subsystem, a
+ * bond domain and every probe option is rebuilt part for part: names, kinds, ports, bonds,
+ * every matrix entry, modulus, initial state, table knot and contact parameter equal (==),
+ * every source equal at its breakpoints and between them;
  *   2. what the format cannot hold (a C callback, a
  *      control character, a bad model name) is refused with FB_EINVAL
  *      naming the part, and nothing is left in the directory;
  *   3. the vehicle scenarios (System 1 and its variants with unilateral
  *      tire contact and a static start, a shock-absorber table, an ISO
- *      8608 road; System 2 once) written, loaded and simulated as
+ *      8608 road, a course of obstacles; System 2 once) written, loaded and simulated as
  *      `flexbond sim` does give fb_vehicle_simulate's every column to
  *      1e-9 of its range;
  *   4. the YAML string escaper and the loader's new keys. */
@@ -112,12 +111,17 @@ static fb_tfun *road_source(int kind, int velocity)
   iso.nharmonics = 64;
   iso.fade_length = 3;
   const double s[] = {0, 1, 2.5, 4}, zl[] = {0, 0.02, -0.01, 0}, zr[] = {0, 0.01, 0.03, 0};
+  const fb_road_piece pieces[] = {{FB_ROAD_PIECE_ARC, 0.0, 0.3, {0.2, -0.05, 0.25, 0, 0}},
+                                  {FB_ROAD_PIECE_LINE, 0.3, 0.9, {0.1, -0.05, 0, 0, 0}},
+                                  {FB_ROAD_PIECE_WAVE, 0.9, 2.0, {0.07, 0.01, 0.02, 9, 0.1}}};
   if (kind == 0)
     MUST(fb_road_new_oblique_bump(0.1, 3.7, 0.3, 2.1, &road, &err), &err);
   else if (kind == 1)
     MUST(fb_road_new_iso8608(&iso, &road, &err), &err);
-  else
+  else if (kind == 2)
     MUST(fb_road_new_profile(4, s, zl, zr, &road, &err), &err);
+  else /* a piecewise track of every piece's kind, with a face at 0.3 */
+    MUST(fb_road_new_pieces(0, NULL, 3, pieces, &road, &err), &err);
   if (velocity)
     MUST(fb_road_wheel_velocity(road, FB_ROAD_RIGHT, 2.5, -1.25, &f, &err), &err);
   else
@@ -196,7 +200,7 @@ static fb_bg *every_kind(void)
     MUST(fb_tfun_new_expr(&e, &f[i], &err), &err);
   }
   MUST(fb_bg_add_source(bg, "expr", FB_BG_SE, 4, f, &err), &err);
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 4; ++k) {
     char name[16];
     snprintf(name, sizeof name, "road%d", k);
     f[0] = road_source(k, k != 1);
@@ -570,7 +574,13 @@ static void test_loader_keys(void)
       "bad.yaml:3:47: elements[0].value.road.speed: must be > 0 m/s (got 0)");
   check_load_error(
       "model: m\nelements:\n  - {name: r, type: Sf, value: {road: {speed: 1}}}\n",
-      "elements[0].value.road: give exactly one of 'bump', 'iso8608' or 'profile'");
+      "elements[0].value.road: give exactly one of 'bump', 'iso8608', 'profile' or 'pieces'");
+  check_load_error("model: m\nelements:\n  - {name: r, type: Sf, value: {road: {speed: 1, "
+                   "pieces: [{line: [0, 1, 0.1]}]}}}\n",
+                   "elements[0].value.road.pieces[0].line: expected 4 values");
+  check_load_error("model: m\nelements:\n  - {name: r, type: Sf, value: {road: {speed: 1, "
+                   "pieces: [{arc: [0, 1, 0.2, 0, 0.2]}]}}}\n",
+                   "road pieces: left track, piece 1 leaves its circle");
   check_load_error("model: m\nelements:\n  - {name: r, type: Sf, value: {road: {speed: 1, "
                    "iso8608: {class: Q}}}}\n",
                    "ISO 8608 road class 'Q'");
@@ -611,5 +621,6 @@ int main(int argc, char **argv)
   vehicle_case("../examples/apc6x6_liftoff.yaml", FB_SYSTEM_RIGID, NULL);
   vehicle_case("../examples/apc6x6_shock_table.yaml", FB_SYSTEM_RIGID, NULL);
   vehicle_case("../examples/apc6x6_iso_road.yaml", FB_SYSTEM_RIGID, NULL);
+  vehicle_case("../examples/apc6x6_obstacles.yaml", FB_SYSTEM_RIGID, NULL);
   return check_report("test_model_write");
 }

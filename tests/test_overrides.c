@@ -212,6 +212,14 @@ static void test_bad_keys(const char *text)
   expect_error(&ambiguous, 1, FB_EINVAL, "--set mass=1: " EXAMPLE ": key 'mass' is ambiguous",
                (const char *const[]){"hull.mass", "mounts[0].mass", "mounts[1].mass",
                                      "wheel.mass", "give the dotted path", NULL});
+  /* A name the file has none of names one of the format's keys: here
+   * several road types' (the file's own `angle_deg` is the bump's alone,
+   * test_number_and_nested). */
+  const fb_scenario_override elsewhere = {.key = "ramp_length", .value = "1"};
+  expect_error(&elsewhere, 1, FB_EINVAL,
+               "--set ramp_length=1: " EXAMPLE ": key 'ramp_length' is ambiguous",
+               (const char *const[]){"road.step.ramp_length", "road.cleat.ramp_length",
+                                     "road.trapezoid.ramp_length", NULL});
   const fb_scenario_override absent = {.key = "velocity", .value = "1"};
   expect_error(&absent, 1, FB_EINVAL, "--set velocity=1: " EXAMPLE ": no key 'velocity'",
                (const char *const[]){"road", "simulation", NULL});

@@ -3,7 +3,8 @@
  *
  * A road is two vertical profiles z(s), m, of the distance s, m, along a
  * LEFT and a RIGHT track (the paths of the left and right wheels). Every
- * profile is continuous, with a continuous slope dz/ds except at the ends
+ * profile but a piecewise one (whose height may jump: fb_road_edges) is
+ * continuous, with a continuous slope dz/ds except at the ends
  * of a CSV profile whose end slopes are not 0 (it is held at its end
  * values outside its samples); where its second derivative jumps (bump
  * ends, the ends of a CSV profile, fade-in ends) the road reports a
@@ -117,6 +118,45 @@ int fb_road_new_csv(const char *path, fb_road **out, fb_err *err);
 int fb_road_clone(const fb_road *road, fb_road **out, fb_err *err);
 void fb_road_free(fb_road **road);
 
+/* ---- Piecewise tracks: obstacles of lines, circular arcs and waves
+ * (docs/roads.md, "Obstacles").
+ *
+ * A piecewise track is a list of pieces, each beginning where the one
+ * before ends; between pieces the height may jump (a vertical face). The
+ * height and slope are exact; every joint is a break. Before the first
+ * piece and after the last the track is held at its end heights (slope
+ * 0); a track of no pieces is flat at z = 0. At a joint, the piece that
+ * begins there holds. */
+typedef enum fb_road_piece_kind {
+  FB_ROAD_PIECE_LINE, /* z = p[0] + p[1] (s - s_begin) */
+  FB_ROAD_PIECE_ARC,  /* a circle of centre (p[0], p[1]) and radius |p[2]|, its upper half
+                         (z = p[1] + sqrt(p[2]^2 - (s - p[0])^2)) for p[2] > 0, its lower
+                         half for p[2] < 0; the piece lies within p[0] -+ |p[2]| */
+  FB_ROAD_PIECE_WAVE  /* z = p[0] + (p[1] + p[2] u) cos(p[3] u + p[4]), u = s - s_begin:
+                         a sinusoid of linearly growing amplitude */
+} fb_road_piece_kind;
+
+typedef struct fb_road_piece {
+  fb_road_piece_kind kind;
+  double s_begin, s_end; /* m, s_begin < s_end */
+  double p[5];           /* see fb_road_piece_kind; unused ones 0 */
+} fb_road_piece;
+
+/* A road of piecewise tracks (n_left pieces left, n_right right; 0: a
+ * flat track), copied. FB_EINVAL naming the first piece that is not
+ * finite, does not begin where the one before ends, or (an arc) leaves
+ * its circle. */
+int fb_road_new_pieces(size_t n_left, const fb_road_piece *left, size_t n_right,
+                       const fb_road_piece *right, fb_road **out, fb_err *err);
+
+/* Distances s on track where the height jumps or the slope is infinite
+ * (a vertical face, a half-round's base), ascending: a point-contact tire
+ * cannot follow the road there (its road velocity would be a Dirac or
+ * infinite). Returns how many there are; writes at most max of them to s
+ * (s may be NULL). 0 for every road that is not piecewise, and for a bad
+ * track. */
+size_t fb_road_edges(const fb_road *road, int track, double *s, size_t max);
+
 /* ---- Evaluation. track is FB_ROAD_LEFT or FB_ROAD_RIGHT (NaN otherwise). */
 
 /* Height z(s), m. */
@@ -130,7 +170,8 @@ double fb_road_slope(const fb_road *road, int track, double s);
  * nothing faster than V / this. */
 double fb_road_shortest_wavelength(const fb_road *road);
 /* Distances s where the track's second derivative jumps (a CSV profile:
- * its first and last knots only), ascending.
+ * its first and last knots only; a piecewise track: every joint),
+ * ascending.
  * Returns how many there are; writes at most max of them to s (s may be
  * NULL). 0 for a bad track. */
 size_t fb_road_breaks(const fb_road *road, int track, double *s, size_t max);
@@ -158,7 +199,8 @@ int fb_road_new_profile(size_t n, const double *s, const double *z_left, const d
 typedef enum fb_road_wheel_kind {
   FB_ROAD_WHEEL_BUMP,    /* one (1 - cos) bump on the track */
   FB_ROAD_WHEEL_ISO8608, /* a track of an ISO 8608 random road */
-  FB_ROAD_WHEEL_PROFILE  /* a measured profile (PCHIP through knots) */
+  FB_ROAD_WHEEL_PROFILE, /* a measured profile (PCHIP through knots) */
+  FB_ROAD_WHEEL_PIECES   /* a piecewise track (fb_road_new_pieces) */
 } fb_road_wheel_kind;
 
 /* Everything a wheel function of fb_road_wheel_height or
@@ -173,6 +215,8 @@ typedef struct fb_road_wheel_info {
   int track;                                   /* ISO8608: FB_ROAD_LEFT or FB_ROAD_RIGHT */
   size_t nknots;                               /* PROFILE */
   const double *knot_s, *knot_z;               /* PROFILE, m */
+  size_t npieces;                              /* PIECES */
+  const fb_road_piece *pieces;                 /* PIECES */
 } fb_road_wheel_info;
 
 /* 1 and *out filled when f was made by fb_road_wheel_height or
@@ -262,6 +306,11 @@ typedef struct fb_road_type_ops {
    * truncated; it may hold a file's name: escape it for the document).
    * NULL: "on the road". */
   void (*phrase)(const void *params, char *buf, size_t n);
+  /* What would let a point-contact tire follow the road where it has
+   * edges (fb_road_edges: a vertical face, an infinite slope), for the
+   * error that refuses it: "give the step a ramp (ramp_length > 0)".
+   * NULL, or a NULL text: the road has no edges. */
+  const char *(*edge_hint)(const void *params);
 } fb_road_type_ops;
 
 struct fb_road_type {
@@ -327,6 +376,59 @@ typedef struct fb_road_profile_params {
 extern const fb_road_type fb_road_type_bump;
 extern const fb_road_type fb_road_type_iso8608;
 extern const fb_road_type fb_road_type_profile;
+
+/* The obstacles (docs/roads.md, "Obstacles"): a shape on the left track,
+ * the right one or both (the other flat), crossed obliquely as the
+ * paper's bump (its angle and first_contact), count of them spacing
+ * apart. One block for every shape; each type reads the values it
+ * declares. */
+typedef struct fb_road_obstacle_params {
+  double angle;         /* rad, of the leading edge to the lateral axis */
+  double first_contact; /* s, when the first corner's wheel meets the leading edge */
+  int track;            /* index into fb_road_obstacle_tracks: both, left, right */
+  size_t count;         /* obstacles in the series, >= 1 */
+  double spacing;       /* m, from one leading edge to the next along a track */
+  double height;        /* m: a half-round's, step's (< 0: down), cleat's, trapezoid's */
+  double length;        /* m: a cleat's or pothole's length, a trapezoid's top */
+  double ramp_length;   /* m, horizontal: a step's, cleat's, trapezoid's (up) ramp */
+  double ramp_down;     /* m: a trapezoid's down ramp; NaN: ramp_length */
+  double ramp_angle;    /* rad: a trapezoid's ramps instead of lengths; NaN: none */
+  double edge_radius;   /* m: a cleat's or trapezoid's top edges rounded */
+  double depth;         /* m: a pothole's */
+  int shape;            /* a pothole's: index into fb_road_pothole_shapes */
+  double amplitude;     /* m: a washboard's */
+  double wavelength;    /* m: a washboard's */
+  size_t waves;         /* a washboard's full-amplitude waves */
+  size_t ramp_waves;    /* waves over which a washboard's amplitude grows, and falls */
+} fb_road_obstacle_params;
+/* "both", "left", "right", NULL-terminated. */
+extern const char *const fb_road_obstacle_tracks[];
+/* "rectangular" (vertical walls), "rounded" (a circular dip). */
+extern const char *const fb_road_pothole_shapes[];
+
+extern const fb_road_type fb_road_type_halfround;
+extern const fb_road_type fb_road_type_step;
+extern const fb_road_type fb_road_type_cleat;
+extern const fb_road_type fb_road_type_trapezoid;
+extern const fb_road_type fb_road_type_pothole;
+extern const fb_road_type fb_road_type_washboard;
+
+/* A course: obstacles of the types above, read from a file by prepare
+ * (docs/roads.md, "Courses"), one a line: the type's name, `at=` the
+ * distance (m) of its leading edge along the course, then its own
+ * parameters as key=value by their declared names. The course is crossed
+ * obliquely as one, as the bump. */
+typedef struct fb_road_course_item fb_road_course_item;
+typedef struct fb_road_course_params {
+  char *file;                /* owned */
+  double angle;              /* rad, of the leading edges to the lateral axis */
+  double first_contact;      /* s, when the first corner's wheel meets the course's start */
+  fb_road_course_item *item; /* owned, as read */
+  size_t nitems;
+  char edge_hint[192]; /* the first obstacle with edges' advice, with its line; "" none */
+} fb_road_course_params;
+
+extern const fb_road_type fb_road_type_course;
 
 /* A set of road types: the built-in ones, and those a program adds. */
 typedef struct fb_road_gallery fb_road_gallery;

@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Road sources in model files: `value: {road: {...}}`, the vertical
  * velocity (or height) of the road under a wheel moving at constant speed
- * along a (1 - cos) bump, an ISO 8608 random road or a measured profile
- * (flexbond/road.h; docs/model-format.md, "Road sources"). The function
- * is rebuilt by fb_road_wheel_new, so it is the one a vehicle scenario
- * makes, breakpoints included. */
+ * along a (1 - cos) bump, an ISO 8608 random road, a measured profile or
+ * a piecewise track of obstacles (flexbond/road.h; docs/model-format.md, "Road sources"). The
+ * function is rebuilt by fb_road_wheel_new, so it is the one a vehicle scenario makes,
+ * breakpoints included. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -132,6 +132,65 @@ static int ml_road_profile(const ml_ctx *c, struct fy_node *n, const fb_symtab *
   return rc;
 }
 
+/* The written kinds of piecewise pieces, and how many numbers each
+ * takes: s_begin, s_end, then its parameters (fb_road_piece_kind). */
+static const struct {
+  const char *name;
+  size_t count;
+} ml_piece_kinds[] = {[FB_ROAD_PIECE_LINE] = {"line", 4},
+                      [FB_ROAD_PIECE_ARC] = {"arc", 5},
+                      [FB_ROAD_PIECE_WAVE] = {"wave", 7}};
+
+/* One piece: `{line: [s_begin, s_end, z0, slope]}`, `{arc: [s_begin,
+ * s_end, s_centre, z_centre, radius]}` or `{wave: [s_begin, s_end, z0,
+ * a0, a1, k, phase]}`. */
+static int ml_road_piece(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
+                         fb_road_piece *p)
+{
+  static const char *const keys[] = {"line", "arc", "wave", NULL};
+  int rc = ml_expect_map(c, n, "a piece {line|arc|wave: [s_begin, s_end, ...]}");
+  if (!rc)
+    rc = ml_check_keys(c, n, keys);
+  if (!rc && fy_node_mapping_item_count(n) != 1)
+    rc = ml_fail(c, n, FB_EPARSE, "give exactly one of 'line', 'arc' or 'wave'");
+  for (int k = 0; !rc && k <= FB_ROAD_PIECE_WAVE; ++k) {
+    struct fy_node *v = ml_get(n, ml_piece_kinds[k].name, NULL);
+    double *x = NULL;
+    size_t len = 0;
+    if (!v)
+      continue;
+    rc = ml_vector(c, v, syms, ml_piece_kinds[k].count, 0, &x, &len);
+    if (!rc) {
+      memset(p, 0, sizeof *p);
+      p->kind = (fb_road_piece_kind)k;
+      p->s_begin = x[0];
+      p->s_end = x[1];
+      memcpy(p->p, x + 2, (len - 2) * sizeof *x);
+    }
+    free(x);
+  }
+  return rc;
+}
+
+/* `pieces: [piece, ...]` (none: a flat track); the pieces go into *out
+ * (owned by the caller). */
+static int ml_road_pieces(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
+                          fb_road_wheel_info *w, fb_road_piece **out)
+{
+  w->kind = FB_ROAD_WHEEL_PIECES;
+  int rc = ml_expect_seq(c, n, "a list of pieces {line|arc|wave: [...]}");
+  const size_t count = rc ? 0 : (size_t)fy_node_sequence_item_count(n);
+  if (rc || count == 0)
+    return rc;
+  if (!(*out = calloc(count, sizeof **out)))
+    return fb_err_set(c->err, FB_ENOMEM, "out of memory");
+  for (size_t i = 0; !rc && i < count; ++i)
+    rc = ml_road_piece(c, fy_node_sequence_get_by_index(n, (int)i), syms, &(*out)[i]);
+  w->npieces = count;
+  w->pieces = *out;
+  return rc;
+}
+
 /* `output: velocity | height`. */
 static int ml_road_output(const ml_ctx *c, struct fy_node *map, int *velocity)
 {
@@ -148,30 +207,39 @@ static int ml_road_output(const ml_ctx *c, struct fy_node *map, int *velocity)
   return ml_fail(c, v, FB_EPARSE, "expected velocity or height (got '%s')", text);
 }
 
-/* The road's shape: exactly one of bump, iso8608 and profile. */
+/* What a road's shape reads into the caller's arrays (owned by it). */
+typedef struct ml_road_data {
+  double *knots;
+  fb_road_piece *pieces;
+} ml_road_data;
+
+/* The road's shape: exactly one of bump, iso8608, profile and pieces. */
 static int ml_road_shape(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
-                         fb_road_wheel_info *w, double **knots)
+                         fb_road_wheel_info *w, ml_road_data *data)
 {
   struct fy_node *bump = ml_get(n, "bump", NULL), *iso = ml_get(n, "iso8608", NULL),
-                 *profile = ml_get(n, "profile", NULL);
-  if (!!bump + !!iso + !!profile != 1)
-    return ml_fail(c, n, FB_EPARSE, "give exactly one of 'bump', 'iso8608' or 'profile'");
+                 *profile = ml_get(n, "profile", NULL), *pieces = ml_get(n, "pieces", NULL);
+  if (!!bump + !!iso + !!profile + !!pieces != 1)
+    return ml_fail(c, n, FB_EPARSE,
+                   "give exactly one of 'bump', 'iso8608', 'profile' or 'pieces'");
   if (bump)
     return ml_road_bump(c, bump, syms, w);
   if (iso)
     return ml_road_iso(c, iso, syms, w);
-  return ml_road_profile(c, profile, syms, w, knots);
+  if (pieces)
+    return ml_road_pieces(c, pieces, syms, w, &data->pieces);
+  return ml_road_profile(c, profile, syms, w, &data->knots);
 }
 
 int ml_tfun_road(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_tfun **out)
 {
   static const char *const keys[] = {"speed",   "s0",      "output", "bump",
-                                     "iso8608", "profile", NULL};
+                                     "iso8608", "profile", "pieces", NULL};
   fb_road_wheel_info w;
   memset(&w, 0, sizeof w);
-  double *knots = NULL;
+  ml_road_data data = {NULL, NULL};
   struct fy_node *v = NULL;
-  int rc = ml_expect_map(c, n, "a road {speed, s0, output, bump|iso8608|profile}");
+  int rc = ml_expect_map(c, n, "a road {speed, s0, output, bump|iso8608|profile|pieces}");
   if (!rc)
     rc = ml_check_keys(c, n, keys);
   if (!rc)
@@ -185,9 +253,10 @@ int ml_tfun_road(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms, fb_t
   if (!rc)
     rc = ml_road_output(c, n, &w.velocity);
   if (!rc)
-    rc = ml_road_shape(c, n, syms, &w, &knots);
+    rc = ml_road_shape(c, n, syms, &w, &data);
   if (!rc && fb_road_wheel_new(&w, out, c->err))
     rc = ml_blame(c, n);
-  free(knots);
+  free(data.knots);
+  free(data.pieces);
   return rc;
 }

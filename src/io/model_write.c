@@ -426,6 +426,28 @@ static const char *mw_domain_name(fb_bg_domain d)
   return (int)d >= 0 && d <= FB_DOMAIN_GENERIC ? names[d] : "generic";
 }
 
+/* A piecewise track's pieces, each with the numbers its kind takes
+ * (model_road.c): s_begin, s_end, then its parameters. */
+static void mw_road_pieces(FILE *fp, const fb_road_wheel_info *r)
+{
+  static const char *const kind[] = {"line", "arc", "wave"};
+  static const size_t nparams[] = {2, 3, 5};
+  fputs(", pieces: [", fp);
+  for (size_t i = 0; i < r->npieces; ++i) {
+    const fb_road_piece *p = &r->pieces[i];
+    fprintf(fp, "%s{%s: [", i ? ",\n      " : "", kind[p->kind]);
+    mw_num(fp, p->s_begin);
+    fputs(", ", fp);
+    mw_num(fp, p->s_end);
+    for (size_t k = 0; k < nparams[p->kind]; ++k) {
+      fputs(", ", fp);
+      mw_num(fp, p->p[k]);
+    }
+    fputs("]}", fp);
+  }
+  fputs("]}}", fp);
+}
+
 static int mw_road(const mw *w, FILE *fp, const fb_road_wheel_info *r, const char *elem)
 {
   fputs("{road: {speed: ", fp);
@@ -475,6 +497,7 @@ static int mw_road(const mw *w, FILE *fp, const fb_road_wheel_info *r, const cha
     }
     fputs("]}}}", fp);
     return FB_OK;
+  case FB_ROAD_WHEEL_PIECES: mw_road_pieces(fp, r); return FB_OK;
   }
   return fb_err_set(w->err, FB_EINVAL, "source '%s': unknown road kind", elem);
 }

@@ -66,19 +66,20 @@ static int ov_file_keys(struct fy_node *n, char *path, size_t len, ml_paths *p, 
   return rc;
 }
 
-/* The keys a bare name may name: the document's, in document order,
- * then those of the format's table that the document leaves out
- * ("simulation.max_steps"), which can be set too. */
-static int ov_keys(const sch_table *t, struct fy_node *root, ml_paths *p, fb_err *err)
+/* The keys a bare name may name: the document's, in document order (the
+ * first *in_file of p), then those of the format's table that the
+ * document leaves out ("simulation.max_steps"), which can be set too. */
+static int ov_keys(const sch_table *t, struct fy_node *root, ml_paths *p, size_t *in_file,
+                   fb_err *err)
 {
   char path[SCH_PATH_MAX] = "";
   int rc = ov_file_keys(root, path, 0, p, err);
-  const size_t in_file = p->n;
+  *in_file = p->n;
   for (size_t i = 0; !rc && i < t->n; ++i) {
     size_t j = 0;
-    while (j < in_file && strcmp(p->path[j], t->key[i].path) != 0)
+    while (j < *in_file && strcmp(p->path[j], t->key[i].path) != 0)
       ++j;
-    if (j == in_file)
+    if (j == *in_file)
       rc = ov_paths_add(p, t->key[i].path, err);
   }
   return rc;
@@ -103,18 +104,25 @@ static int ov_no_name(const ml_ctx *c, const sch_table *t, const ml_paths *keys,
                     c->file, name, sections);
 }
 
-/* The full path of the one key named name into full (SCH_PATH_MAX bytes). */
+/* The full path of the one key named name into full (SCH_PATH_MAX bytes):
+ * the file's, if it has keys of that name (`first_contact` is the file's
+ * road's, not every road type's the format has), else the format's. */
 static int ov_resolve_name(const ml_ctx *c, const sch_table *t, struct fy_node *root,
                            const char *name, char *full)
 {
   ml_paths keys = {0};
   char list[1024] = "";
-  size_t n = 0, len = 0;
-  int rc = ov_keys(t, root, &keys, c->err);
-  for (size_t i = 0; !rc && i < keys.n; ++i)
+  size_t n = 0, len = 0, in_file = 0, from = 0, to = 0;
+  int rc = ov_keys(t, root, &keys, &in_file, c->err);
+  for (size_t i = 0; !rc && i < in_file; ++i)
+    n += !strcmp(ov_name(keys.path[i]), name);
+  from = n ? 0 : in_file;
+  to = n ? in_file : keys.n;
+  n = 0;
+  for (size_t i = from; !rc && i < to; ++i)
     if (!strcmp(ov_name(keys.path[i]), name) && n++ == 0)
       snprintf(full, SCH_PATH_MAX, "%s", keys.path[i]);
-  for (size_t i = 0; !rc && n > 1 && i < keys.n && len + 1 < sizeof list; ++i)
+  for (size_t i = from; !rc && n > 1 && i < to && len + 1 < sizeof list; ++i)
     if (!strcmp(ov_name(keys.path[i]), name))
       len = fb_text_append(list, sizeof list, len, "%s%s", len ? ", " : "", keys.path[i]);
   if (!rc && n == 0)

@@ -13,9 +13,16 @@
 
 /* The built-in types, one line each. */
 static const fb_road_type *const gallery_builtin[] = {
-    &fb_road_type_bump,
-    &fb_road_type_iso8608,
-    &fb_road_type_profile,
+    &fb_road_type_bump,      /* the paper's */
+    &fb_road_type_iso8608,   /* random */
+    &fb_road_type_profile,   /* measured */
+    &fb_road_type_halfround, /* obstacles (obstacle.h) */
+    &fb_road_type_step,      /* obstacle */
+    &fb_road_type_cleat,     /* obstacle */
+    &fb_road_type_trapezoid, /* obstacle */
+    &fb_road_type_pothole,   /* obstacle */
+    &fb_road_type_washboard, /* obstacle */
+    &fb_road_type_course,    /* obstacles from a file */
 };
 
 struct fb_road_gallery {

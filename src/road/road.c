@@ -18,6 +18,7 @@ size_t road_track_ndata(const road_track *t)
   case ROAD_BUMP: return 0;
   case ROAD_HARMONICS: return 2 * t->n;
   case ROAD_PCHIP: return 3 * t->n;
+  case ROAD_PIECES: return ROAD_PIECE_DOUBLES * t->n;
   }
   return 0;
 }
@@ -50,6 +51,7 @@ static size_t track_doubles(const road_track *t)
   switch (t->kind) {
   case ROAD_HARMONICS: return 2 * t->n;
   case ROAD_PCHIP: return 3 * t->n;
+  case ROAD_PIECES: return ROAD_PIECE_DOUBLES * t->n;
   default: return 0;
   }
 }
@@ -177,6 +179,7 @@ double road_track_height(const road_track *t, const double *data, double s)
   case ROAD_BUMP: return bump_height(t, s);
   case ROAD_HARMONICS: return harmonics_height(t, data, s);
   case ROAD_PCHIP: return road_pchip_height(t->n, data, data + t->n, data + 2 * t->n, s);
+  case ROAD_PIECES: return road_pieces_height(t->n, data, s);
   }
   return NAN;
 }
@@ -187,6 +190,7 @@ double road_track_slope(const road_track *t, const double *data, double s)
   case ROAD_BUMP: return bump_slope(t, s);
   case ROAD_HARMONICS: return harmonics_slope(t, data, s);
   case ROAD_PCHIP: return road_pchip_slope(t->n, data, data + t->n, data + 2 * t->n, s);
+  case ROAD_PIECES: return road_pieces_slope(t->n, data, s);
   }
   return NAN;
 }
@@ -197,6 +201,7 @@ static size_t track_breaks(const road_track *t, const double *data, double *s, s
   double two[2];
   size_t count = 0;
   switch (t->kind) {
+  case ROAD_PIECES: return road_pieces_breaks(t->n, data, s, max);
   case ROAD_BUMP:
     two[0] = t->param[0];
     two[1] = t->param[0] + t->param[2];
@@ -345,6 +350,7 @@ static double track_shortest_wavelength(const road_track *t, const double *data)
       ds = fmin(ds, data[i] - data[i - 1]);
     return 2.0 * ds;
   }
+  case ROAD_PIECES: return road_pieces_shortest_wavelength(t->n, data);
   }
   return INFINITY;
 }

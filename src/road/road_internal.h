@@ -19,7 +19,8 @@ typedef enum road_kind {
                      0, param[2]: wavenumber step (rad/m; harmonic k has
                      param[1] + k param[2]); data: A_k cos(phi_k)[n],
                      A_k sin(phi_k)[n] (m) */
-  ROAD_PCHIP      /* data: s[n], z[n], dz/ds[n] at the knots, n >= 2 */
+  ROAD_PCHIP,     /* data: s[n], z[n], dz/ds[n] at the knots, n >= 2 */
+  ROAD_PIECES     /* data: n fb_road_piece (ROAD_PIECE_DOUBLES doubles each), n >= 0 */
 } road_kind;
 
 typedef struct road_track {
@@ -67,6 +68,37 @@ int road_alloc(const road_track *left, const road_track *right, fb_road **out, f
 
 double road_track_height(const road_track *t, const double *data, double s);
 double road_track_slope(const road_track *t, const double *data, double s);
+
+/* The paper's oblique crossing (oblique.c), shared by the bump and the
+ * obstacles: a leading edge at angle (rad) to the lateral axis crosses
+ * the left track at s = 0 and the right one at track_width tan(angle);
+ * the wheel at (x, y) is on its track at t = 0 where it meets that edge
+ * first_contact (s) after the first corner's wheel, later by the time
+ * the road takes to cover its distance behind the first corner and the
+ * edge's extra offset at its side (data sheet, "Road and obstacle"). */
+double road_oblique_edge(double angle, const fb_road_layout *l, int track);
+double road_oblique_wheel_start(double angle, double first_contact, const fb_road_layout *l,
+                                double x, double y);
+
+/* Doubles a piece of a piecewise track takes in a track's data. */
+#define ROAD_PIECE_DOUBLES (sizeof(fb_road_piece) / sizeof(double))
+_Static_assert(sizeof(fb_road_piece) % sizeof(double) == 0,
+               "a piecewise track's pieces fill its data array");
+
+/* Piecewise tracks (pieces.c): n pieces at data. */
+double road_pieces_height(size_t n, const double *data, double s);
+double road_pieces_slope(size_t n, const double *data, double s);
+/* Every joint, ascending: the first piece's start, each joint, the last
+ * piece's end (see fb_road_breaks). */
+size_t road_pieces_breaks(size_t n, const double *data, double *s, size_t max);
+/* Twice the shortest piece, or a wave's wavelength if shorter. */
+double road_pieces_shortest_wavelength(size_t n, const double *data);
+
+/* The pieces of a piecewise track's data. */
+static inline const fb_road_piece *road_pieces_of(const double *data)
+{
+  return (const fb_road_piece *)(const void *)data;
+}
 
 /* Cubic Hermite interpolation on knots (s, z) with slopes d (n >= 2),
  * held at the end values outside [s[0], s[n-1]]. */

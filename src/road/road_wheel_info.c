@@ -68,6 +68,10 @@ int fb_road_wheel_describe(const fb_tfun *f, fb_road_wheel_info *out)
     out->nknots = w->track.n;
     out->knot_s = w->data;
     out->knot_z = w->data + w->track.n;
+  } else if (w->track.kind == ROAD_PIECES) {
+    out->kind = FB_ROAD_WHEEL_PIECES;
+    out->npieces = w->track.n;
+    out->pieces = road_pieces_of(w->data);
   } else {
     return 0; /* harmonics not made by fb_road_new_iso8608: none exist */
   }
@@ -91,6 +95,9 @@ static int info_road(const fb_road_wheel_info *info, fb_road **road, int *track,
   case FB_ROAD_WHEEL_PROFILE:
     return fb_road_new_profile(info->nknots, info->knot_s, info->knot_z, info->knot_z, road,
                                err);
+  case FB_ROAD_WHEEL_PIECES:
+    return fb_road_new_pieces(info->npieces, info->pieces, info->npieces, info->pieces, road,
+                              err);
   }
   return fb_err_set(err, FB_EINVAL, "road wheel: unknown road kind %d", (int)info->kind);
 }

@@ -7,6 +7,8 @@
 
 #include "flexbond/road.h"
 
+#include "road/road_internal.h"
+
 const char *const fb_road_bump_types[] = {"I", "II", "A", "B", NULL};
 
 static const double PI = 3.14159265358979323846;
@@ -89,37 +91,23 @@ static int bump_prepare(void *params, fb_err *err)
   return rc ? (fb_err_set_part(err, 0, 0, FB_ERR_NO_ELEMENT, "type"), rc) : FB_OK;
 }
 
-/* The leading edge crosses the left track at s = 0 and the right one,
- * track_width to its right, at track_width tan(angle). */
-static double bump_edge(const fb_road_bump_params *b, const fb_road_layout *l, int track)
-{
-  return track == FB_ROAD_LEFT ? 0.0 : l->track_width * tan(b->angle);
-}
-
 static int bump_make(const void *params, const fb_road_layout *l, fb_road **out, fb_err *err)
 {
   const fb_road_bump_params *b = params;
   return fb_road_new_oblique_bump(b->height, b->length, b->angle, l->track_width, out, err);
 }
 
-/* The edge reaches the wheel at (x, y) when the road, moving back at
- * speed V, has travelled the wheel's distance behind the first corner,
- * x_0 - x, plus the edge's extra offset at its lateral position,
- * (y_0 - y) tan(angle) (data sheet, "Road and obstacle"): that entry
- * time, and the track's edge, place the wheel at t = 0. */
 static double bump_wheel_start(const void *params, const fb_road_layout *l, double x, double y)
 {
   const fb_road_bump_params *b = params;
-  const double entry =
-      b->first_contact + ((l->first_x - x) + (l->first_y - y) * tan(b->angle)) / l->speed;
-  return bump_edge(b, l, y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT) - l->speed * entry;
+  return road_oblique_wheel_start(b->angle, b->first_contact, l, x, y);
 }
 
 static void bump_feature(const void *params, const fb_road_layout *l, int track, double *begin,
                          double *end)
 {
   const fb_road_bump_params *b = params;
-  *begin = bump_edge(b, l, track);
+  *begin = road_oblique_edge(b->angle, l, track);
   *end = *begin + b->length;
 }
 

@@ -805,6 +805,27 @@ static int corner_roads(const fb_scenario *s, const fb_road *road, const fb_road
   return rc;
 }
 
+/* Refuses a road that corner's wheel cannot follow as a point: one with
+ * edges on its track (fb_road_edges: a height jump or an infinite slope,
+ * where its road velocity would be a Dirac or infinite), at the road's
+ * key, in the road type's words (its edge_hint). */
+static int road_followable(const fb_scenario *s, const fb_road *road, size_t corner,
+                           fb_err *err)
+{
+  const int track = s->corner[corner].y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
+  double at = 0.0;
+  if (!fb_road_edges(road, track, &at, 1))
+    return FB_OK;
+  const char *hint =
+      s->road_type->ops->edge_hint ? s->road_type->ops->edge_hint(s->road.bytes) : NULL;
+  if (!hint)
+    hint = "the road's vertical face or infinite slope cannot be followed by a point-contact "
+           "tire: give the tires an envelope";
+  fb_err_set(err, FB_EINVAL, "%s (the %s wheel meets it at s = %.6g m on the %s track)", hint,
+             s->corner[corner].name, at, track == FB_ROAD_LEFT ? "left" : "right");
+  return fb_err_set_part(err, FB_PART_ROAD, 0, FB_ERR_NO_ELEMENT, ""), FB_EINVAL;
+}
+
 int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
 {
   *out = NULL;
@@ -823,10 +844,14 @@ int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
   for (size_t c = 0; !rc && c < s->ncorners; ++c) {
     const int track = s->corner[c].y > 0.0 ? FB_ROAD_LEFT : FB_ROAD_RIGHT;
     fb_tfun *f = NULL;
-    char *name = fb_strdup_printf("v_%s", s->corner[c].name);
-    rc = name ? fb_road_wheel_velocity(roads[c], track, s->speed,
-                                       fb_scenario_wheel_start(s, (int)c), &f, err)
-              : fb_err_set(err, FB_ENOMEM, "out of memory");
+    char *name = NULL;
+    /* An enveloped road has no edges: only a point contact can be refused. */
+    rc = road_followable(s, roads[c], c, err);
+    if (!rc && !(name = fb_strdup_printf("v_%s", s->corner[c].name)))
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory");
+    if (!rc)
+      rc = fb_road_wheel_velocity(roads[c], track, s->speed, fb_scenario_wheel_start(s, (int)c),
+                                  &f, err);
     if (!rc)
       rc = fb_bg_add_source(bg, name, FB_BG_SF, 1, &f, err);
     if (!rc)
