@@ -446,7 +446,7 @@ static int split_sets(int argc, char **argv, char **rest, int *nrest, char **set
 }
 
 /* -j N: 1 .. SWEEP_MAX_JOBS; default: the online CPUs. */
-static int parse_jobs(const char *cmd, const char *text, size_t *jobs)
+int sweep_parse_jobs(const char *cmd, const char *text, size_t *jobs)
 {
   if (!text) {
     const long n = sysconf(_SC_NPROCESSORS_ONLN);
@@ -766,7 +766,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
            ? cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, systems, 2, &system)
            : CLI_EXIT_OK;
   a->sys = system ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID;
-  return rc == CLI_EXIT_OK ? parse_jobs(argv[0], opts[OPT_JOBS].value, &a->jobs) : rc;
+  return rc == CLI_EXIT_OK ? sweep_parse_jobs(argv[0], opts[OPT_JOBS].value, &a->jobs) : rc;
 }
 
 /* The --plot values into a->plot (the default without any). */

@@ -89,6 +89,10 @@ typedef struct sweep_args {
  * interrupt stopping it; each finished case journaled and its progress
  * line said. */
 int sweep_study_new(sweep_args *a, fb_err *err);
+/* fb_study_sweep_ops' locate (fb_scenario_locate) and stop (an
+ * interruption: cli_interrupted), ctx unused: every sweep's. */
+int sweep_locate_case(void *ctx, const fb_scenario *s, fb_err *err);
+int sweep_interrupted(void *ctx);
 /* "key=value, key=value" of case i from key first_key on, into buf. */
 void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf, size_t size);
 /* The metric a --plot value names: OUTPUT[:STAT] (an output of the
@@ -141,6 +145,12 @@ void sweep_journal_close(sweep_journal **j, int remove_file);
  * to name a file that has changed. */
 int sweep_study_fingerprint(const sweep_args *a, uint64_t *fingerprint, char **inputs,
                             fb_err *err);
+/* -j N (text; NULL: the online CPUs) into *jobs, 1 .. 1024, or a usage
+ * error of cmd. */
+int sweep_parse_jobs(const char *cmd, const char *text, size_t *jobs);
+/* 64-bit FNV-1a of data[0 .. n) continuing from h (the offset basis
+ * 14695981039346656037 to start): the journals' fingerprints. */
+uint64_t sweep_fnv1a(uint64_t h, const void *data, size_t n);
 /* The journal's path in dir, in fresh memory (NULL: out of memory). */
 char *sweep_journal_path(const char *dir);
 
