@@ -169,7 +169,8 @@ class _Iso8608(ctypes.Structure):
     """fb_road_iso8608_params (flexbond/road.h)."""
     _fields_ = [("road_class", ctypes.c_char), ("seed", ctypes.c_uint64),
                 ("n_min", ctypes.c_double), ("n_max", ctypes.c_double),
-                ("nharmonics", ctypes.c_size_t), ("fade_length", ctypes.c_double)]
+                ("nharmonics", ctypes.c_size_t), ("fade_length", ctypes.c_double),
+                ("gd0", ctypes.c_double)]
 
 
 class _PsdRoad(ctypes.Structure):
