@@ -68,6 +68,14 @@ static const char *const status_words[] = {"found", "below", "above", "failed"};
 
 /* ---- ride_limit.csv: a row per curve. */
 
+/* A speed in km/h to 10 significant digits: the search ran in m/s, and
+ * 62.265624999999986 is 62.265625 within 1e-15, far below its tolerance. */
+static void write_speed(FILE *fp, double speed)
+{
+  if (isfinite(speed))
+    fprintf(fp, "%.10g", speed * 3.6);
+}
+
 static void write_number(FILE *fp, double x)
 {
   char text[32];
@@ -105,11 +113,11 @@ static void write_csv(FILE *fp, const void *ctx)
     fprintf(fp, ",%s,", a->systems[c / a->nvalues] == FB_SYSTEM_RIGID ? "rigid" : "flexible");
     /* below: v_lo's metric in the metric column; above: v_hi's. */
     const int found = r->status == FB_RIDE_LIMIT_FOUND;
-    write_number(fp, found ? r->speed * 3.6 : NAN);
+    write_speed(fp, found ? r->speed : NAN);
     fprintf(fp, ",%s,", status_words[r->status]);
     write_number(fp, r->status == FB_RIDE_LIMIT_BELOW ? r->metric_over : r->metric);
     fputc(',', fp);
-    write_number(fp, found ? r->speed_over * 3.6 : NAN);
+    write_speed(fp, found ? r->speed_over : NAN);
     fputc(',', fp);
     write_number(fp, found ? r->metric_over : NAN);
     fprintf(fp, ",%zu,", r->nruns);
@@ -148,8 +156,12 @@ static int write_figure(cli_outdir *od, const rl_args *a, fb_err *err)
   }
   if (rc == FB_OK) {
     char title[512], ylabel[256], xlabel[FB_ERR_KEY_MAX + 64];
-    snprintf(title, sizeof title, "flexbond ride-limit: %s, %s = %g", a->scenario_name,
-             fb_study_ride_limit_metric_name(a->metric), a->opts.limit);
+    const char *unit = fb_study_ride_limit_metric_unit(a->metric);
+    if (!unit)
+      unit = a->base->output[a->output].unit;
+    snprintf(title, sizeof title, "flexbond ride-limit: %s, %s of %s = %g %s", a->scenario_name,
+             fb_study_ride_limit_metric_name(a->metric), a->base->output[a->output].name,
+             a->opts.limit, unit && strcmp(unit, "-") ? unit : "");
     snprintf(ylabel, sizeof ylabel, "ride-limiting speed [km/h]");
     const char *key_unit = fb_scenario_key_unit(a->vary_path);
     if (key_unit)
