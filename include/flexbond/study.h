@@ -296,11 +296,12 @@ typedef struct fb_study_sweep_ops {
    * progress line. Not FB_OK stops the sweep: fb_study_sweep_run returns
    * it with its err. NULL: nothing. */
   int (*finished)(void *ctx, size_t i, fb_err *err);
+  void *ctx;
   /* Case i has run (scenario s, result r), on its own thread, before its
    * outcome is recorded: a front end's own measure of it (the ride-limit
-   * search's metric). Not FB_OK fails the case with err. NULL: nothing. */
+   * search's metric). Not FB_OK fails the case with err. NULL: nothing.
+   * (Last: a binding that mirrors the struct keeps its members' places.) */
   int (*measure)(void *ctx, size_t i, const fb_scenario *s, const fb_result *r, fb_err *err);
-  void *ctx;
 } fb_study_sweep_ops;
 
 /* A sweep (fb_study_sweep_new); opaque. */
