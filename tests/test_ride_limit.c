@@ -1,11 +1,14 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The ride-limit search (fb_study_ride_limit) against synthetic metrics
- * whose crossing of the limit is known in closed form, and the metric
- * table. */
+ * whose crossing of the limit is known in closed form (monotone, a hump
+ * that crosses and falls back, never reached, reached at v_lo, a failed
+ * evaluation), the metric table, a run's end by hand (bump and random
+ * road) and the metrics against the run's own samples. */
 #include <math.h>
 #include <string.h>
 
 #include "flexbond/study.h"
+#include "flexbond/vehicle.h"
 
 #include "check.h"
 
@@ -156,8 +159,67 @@ static void test_table(void)
   CHECK(fb_study_ride_limit_metric_name(fb_study_ride_limit_nmetrics()) == NULL);
 }
 
+/* The run's end: on the paper's bump, settle after the last wheel (RR at
+ * x = -1.00, y = -1.05 against LF at 1.90, 1.05; a 45 deg edge) leaves it:
+ * first_contact + ((1.90 + 1.00) + (1.05 + 1.05) tan 45) / v + 3.70 / v +
+ * settle; on the ISO road, when the last wheel (RR, 2.90 m behind LF,
+ * which starts 5 m before the road) has run the course:
+ * (5 + 2.90) / v + L / v. And the metrics over [first entry, end]
+ * against the result's samples and fb_ride_metrics_result. */
+static void test_run_and_measure(void)
+{
+  fb_scenario *s = NULL;
+  fb_err err;
+  CHECK(fb_scenario_load("../examples/apc6x6.yaml", &s, &err) == FB_OK);
+  if (!s)
+    return;
+  const double v = s->speed;
+  CHECK(fb_study_ride_limit_duration(s, 100, 2, &err) == FB_OK);
+  CHECK_NEAR(s->t_end, 5.0 + (2.90 + 2.10) / v + 3.70 / v + 2, 1e-9);
+  CHECK(fb_study_ride_limit_duration(s, 0, 2, &err) == FB_EINVAL);
+  fb_result *r = NULL;
+  CHECK(fb_vehicle_simulate(s, FB_SYSTEM_RIGID, &r, &err) == FB_OK);
+  const size_t k = fb_study_ride_output(s);
+  size_t peak_m = 0, aw_m = 0;
+  CHECK(fb_study_ride_limit_metric_find("abs_peak", &peak_m) == 0);
+  CHECK(fb_study_ride_limit_metric_find("a_w_rms", &aw_m) == 0);
+  double peak = NAN, aw = NAN;
+  if (r && k < s->noutputs) {
+    CHECK(fb_study_ride_limit_measure(s, r, k, peak_m, &peak, &err) == FB_OK);
+    CHECK(fb_study_ride_limit_measure(s, r, k, aw_m, &aw, &err) == FB_OK);
+    const long col = fb_result_find(r, s->output[k].name);
+    double window[2], want = 0;
+    fb_study_response_window(s, window);
+    for (size_t i = 0; i < fb_result_nsamples(r); ++i)
+      if (fb_result_row(r, i)[0] >= window[0])
+        want = fmax(want, fabs(fb_result_row(r, i)[col]));
+    CHECK(peak == want && peak > 0);
+    const size_t n = fb_result_nsamples(r);
+    const double t_last = fb_result_row(r, n - 1)[0];
+    fb_ride_metrics m;
+    CHECK(fb_ride_metrics_result(r, s->output[k].name, window[0],
+                                 t_last + t_last / (double)(n - 1), NULL, &m, &err) == FB_OK);
+    CHECK(aw == m.a_w_rms);
+    /* absorbed power without a K(f) table: not defined, not a failure. */
+    size_t ap = 0;
+    double watts = 0;
+    CHECK(fb_study_ride_limit_metric_find("absorbed_power", &ap) == 0);
+    CHECK(fb_study_ride_limit_measure(s, r, k, ap, &watts, &err) == FB_OK && isnan(watts));
+  }
+  fb_result_free(&r);
+  fb_scenario_free(&s);
+  CHECK(fb_scenario_load("../examples/apc6x6_rough_course.yaml", &s, &err) == FB_OK);
+  if (s) {
+    s->t_end = 3600; /* a road that goes on ends its feature at the run's end */
+    CHECK(fb_study_ride_limit_duration(s, 100, 2, &err) == FB_OK);
+    CHECK_NEAR(s->t_end, (5 + 2.90) / s->speed + 100 / s->speed, 1e-9);
+  }
+  fb_scenario_free(&s);
+}
+
 int main(void)
 {
+  test_run_and_measure();
   test_search(1); /* bisection */
   test_search(3); /* quadrisection */
   test_failure();
