@@ -15,7 +15,8 @@
 #     its journal lacks and writes the same ride_limit.csv; a journal is
 #     refused without --resume;
 #   - a metric's limit that is never or already reached is said so;
-#   - bad options exit 1 and write nothing.
+#   - bad options exit 1 and write nothing (--mpi too, in a build
+#     without MPI; tests/mpi/cli_ride_limit_mpi.sh runs it on ranks).
 #
 # usage: bash tests/cli_ride_limit.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -146,7 +147,11 @@ bad "bad speeds" "--speeds needs LO:HI" \
 bad "a hexadecimal value" "is not a finite number in decimal digits" \
   --vary road.bump.height=0x1 --metric abs_peak --limit 5
 bad "no values" "--vary needs KEY=V1,V2" --vary road.bump.height= --metric abs_peak --limit 5
-bad "MPI" "--mpi" --vary road.bump.height=0.1 --metric abs_peak --limit 5 --mpi
+# --mpi in a build without MPI (the MPI build has tests/mpi/).
+if [ "${FLEXBOND_MPI_BUILD:-OFF}" != ON ]; then
+  bad "--mpi without MPI" "this flexbond was built without MPI" \
+    --vary road.bump.height=0.1 --metric abs_peak --limit 5 --mpi
+fi
 run ride-limit "$SCENARIO" --vary road.bump.height=0.1 --metric abs_peak --limit 5
 expect_status 1 "no output directory"
 expect_in "$ERR" "missing output directory (-o DIR)" "no output directory: the message"

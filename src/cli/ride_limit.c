@@ -9,11 +9,11 @@
 #include "ride_limit.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <unistd.h>
 
 #include "flexbond/escape.h"
 #include "flexbond/io.h"
@@ -28,7 +28,7 @@ static const char rl_usage[] =
     "                           [--limit X] [--output COLUMN] [--speeds LO:HI]\n"
     "                           [--tolerance KMH] [--coarse-step KMH] [--refine K]\n"
     "                           [--course-length L] [--settle S]\n"
-    "                           [--system rigid|flexible|both] [-j N] [--resume]\n"
+    "                           [--system rigid|flexible|both] [-j N] [--resume] [--mpi]\n"
     "                           [--no-figures] [-q]\n"
     "\n"
     "For each value of KEY, the ride-limiting speed: the highest speed below which\n"
@@ -59,6 +59,9 @@ static const char rl_usage[] =
     "  --system S            rigid (default: System 1), flexible or both\n"
     "  -j, --jobs N          runs at once (default: the online CPUs)\n"
     "  --resume              run only the runs DIR/ride_limit.partial.csv lacks\n"
+    "  --mpi                 hand each round's runs to the ranks of an MPI job, one\n"
+    "                        per rank at a time (mpirun -np N flexbond ride-limit\n"
+    "                        --mpi ...; an MPI build only, docs/cluster.md)\n"
     "  -o, --output-dir DIR  output directory (required)\n"
     "  --no-figures          no ride_limit.png\n"
     "  -q, --quiet           no progress lines on stderr\n"
@@ -391,9 +394,9 @@ static int parse_args(int argc, char **argv, rl_args *a, int *go)
   a->out_dir = opts[OPT_DIR].value;
   if (!a->out_dir || !*a->out_dir)
     return cli_usage_error(cmd, "missing output directory (-o DIR)");
-  if (opts[OPT_MPI].value)
-    return cli_usage_error(cmd, "--mpi: ride-limit runs on the threads of one machine; its "
-                                "rounds are not handed to MPI ranks yet");
+  if (opts[OPT_MPI].value && opts[OPT_JOBS].value)
+    return cli_usage_error(cmd, "--mpi runs one run per rank at a time: instead of -j, "
+                                "start more ranks (docs/cluster.md)");
   if (!opts[OPT_VARY].value)
     return cli_usage_error(cmd, "missing --vary KEY=V1,V2,...");
   a->quiet = opts[OPT_QUIET].value != NULL;
@@ -539,16 +542,73 @@ static void rl_args_free(rl_args *a)
   fb_scenario_free(&a->base);
 }
 
+/* Parses and sets up the study into a; the exit code (go: 0 after --help). */
+static int set_up(int argc, char **argv, rl_args *a, int *go)
+{
+  int rc = parse_args(argc, argv, a, go);
+  if (rc == CLI_EXIT_OK && *go) {
+    a->curves = calloc(rl_ncurves(a), sizeof *a->curves);
+    a->curve_error = calloc(rl_ncurves(a), sizeof *a->curve_error);
+    if (!a->curves || !a->curve_error)
+      rc = cli_usage_error(argv[0], "out of memory");
+  }
+  return rc;
+}
+
+#ifdef FLEXBOND_MPI
+/* The study across the ranks of an MPI job, as sweep's (sweep.c): every
+ * rank sets it up, only rank 0 speaking; all go on only if all succeeded
+ * on the same scenario file; rank 0 searches and hands the runs out. */
+static int ride_limit_mpi(int argc, char **argv, rl_args *a)
+{
+  int rank = 0, size = 1, go = 0;
+  fb_err err;
+  int rc = sweep_mpi_init(&rank, &size, &err);
+  if (rc != FB_OK)
+    return cli_report(rc, &err);
+  cli_interrupt_polled_only();
+  const int saved = sweep_mpi_silence(rank);
+  rc = set_up(argc, argv, a, &go);
+  a->quiet = a->quiet || rank != 0;
+  a->jobs = 1;
+  a->mpi_size = size;
+  char *text = NULL;
+  size_t len = 0;
+  uint64_t fingerprint = 0;
+  if (rc == CLI_EXIT_OK && go && fb_read_file(a->scenario_path, &text, &len, &err) == FB_OK)
+    fingerprint = sweep_fnv1a(UINT64_C(14695981039346656037), text, len);
+  free(text);
+  sweep_mpi_unsilence(saved);
+  const int agreed =
+      sweep_mpi_agreed(rank, fingerprint, "another scenario file than rank 0", &rc);
+  if (agreed && go && rank == 0) {
+    rc = ride_limit(a);
+    rl_mpi_stop(size);
+  } else if (agreed && go) {
+    rl_mpi_work(a);
+  }
+  return sweep_mpi_finish(rc);
+}
+#endif
+
 int cli_cmd_ride_limit(int argc, char **argv)
 {
   rl_args a = {0};
-  int go = 0;
-  int rc = parse_args(argc, argv, &a, &go);
-  if (rc == CLI_EXIT_OK && go) {
-    a.curves = calloc(rl_ncurves(&a), sizeof *a.curves);
-    a.curve_error = calloc(rl_ncurves(&a), sizeof *a.curve_error);
-    rc = a.curves && a.curve_error ? ride_limit(&a) : cli_usage_error(argv[0], "out of memory");
+  pthread_mutex_init(&a.lock, NULL);
+  int go = 0, rc;
+  if (sweep_wants_mpi(argc, argv)) {
+#ifdef FLEXBOND_MPI
+    rc = ride_limit_mpi(argc, argv, &a);
+#else
+    rc = cli_usage_error(argv[0], "--mpi: this flexbond was built without MPI (configure with "
+                                  "cmake -DFLEXBOND_MPI=ON; docs/cluster.md)");
+#endif
+  } else {
+    rc = set_up(argc, argv, &a, &go);
+    if (rc == CLI_EXIT_OK && go)
+      rc = ride_limit(&a);
   }
   rl_args_free(&a);
+  pthread_mutex_destroy(&a.lock);
   return rc;
 }

@@ -8,6 +8,7 @@
 #ifndef FLEXBOND_CLI_RIDE_LIMIT_H
 #define FLEXBOND_CLI_RIDE_LIMIT_H
 
+#include <pthread.h>
 #include <stdio.h>
 
 #include "flexbond/study.h"
@@ -23,7 +24,8 @@ typedef struct rl_done {
   double speed; /* m/s */
   int status;
   double metric;
-  char *error; /* owned; NULL when ok */
+  double wall_seconds; /* of its run; NaN read back from the journal */
+  char *error;         /* owned; NULL when ok */
 } rl_done;
 
 typedef struct rl_args {
@@ -45,6 +47,11 @@ typedef struct rl_args {
   size_t ndone, cap_done, nresumed, nrun;
   FILE *journal; /* DIR/ride_limit.partial.csv while the study runs */
   int journal_failed;
+  /* Guards done, the journal and the progress lines (rl_record): rank 0
+   * of an MPI job records its own runs and those of the other ranks at
+   * once. */
+  pthread_mutex_t lock;
+  int mpi_size; /* ranks of the MPI job (--mpi), 0 without */
   /* Each curve's (system x value) first failure message, owned. */
   char **curve_error;
   fb_study_ride_limit_curve *curves;
@@ -57,6 +64,29 @@ size_t rl_ncurves(const rl_args *a);
  * a->done run as sweeps, a round's cases on a->jobs threads. */
 int rl_eval(void *ctx, const fb_study_ride_limit_point *pts, size_t n, double *metric,
             fb_err *err);
+
+/* Records a finished run (its error copied): a->done, the journal, its
+ * progress line (rank >= 0: the rank that ran it), under a->lock. */
+int rl_record(rl_args *a, const rl_done *d, int rank, fb_err *err);
+/* The finished run of system sys, value v at speed (m/s), or NULL. */
+const rl_done *rl_find_done(const rl_args *a, int sys, size_t v, double speed);
+/* Runs the n runs of system sys (values value[], speeds speed[], m/s) as
+ * one sweep on a->jobs threads, each recorded (rl_record). */
+int rl_run_round(rl_args *a, int sys, const size_t *value, const double *speed, size_t n,
+                 fb_err *err);
+
+#ifdef FLEXBOND_MPI
+/* ---- ride_limit_mpi.c (an MPI build): rank 0 hands a round's runs to
+ * the ranks one at a time and runs runs itself on a thread; the other
+ * ranks run what they are given. */
+/* Rank 0: runs sys[i], value[i], speed[i] (i < n) across the ranks. */
+int rl_mpi_round(rl_args *a, const int *sys, const size_t *value, const double *speed, size_t n,
+                 fb_err *err);
+/* Every other rank: runs the runs rank 0 gives until it says stop. */
+void rl_mpi_work(rl_args *a);
+/* Rank 0, at the end: every other rank stops. */
+void rl_mpi_stop(int size);
+#endif
 
 /* DIR/ride_limit.partial.csv: opened (created) for the study; an existing
  * one is read back into a->done with a->resume (it must be of the same

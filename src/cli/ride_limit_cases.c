@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -104,12 +105,35 @@ static int add_done(rl_args *a, const rl_done *d, fb_err *err)
   return FB_OK;
 }
 
-/* Under the sweep's lock: the case joins the done ones and the journal,
- * and says its line. */
+int rl_record(rl_args *a, const rl_done *d, int rank, fb_err *err)
+{
+  pthread_mutex_lock(&a->lock);
+  int rc = add_done(a, d, err);
+  if (rc == FB_OK)
+    rc = journal_append(a, d, err);
+  ++a->nrun;
+  if (!a->quiet) {
+    char where[32] = "";
+    if (rank >= 0)
+      snprintf(where, sizeof where, " on rank %d", rank);
+    const char *system = cli_system_label(a->systems[d->sys]);
+    if (d->status == FB_OK)
+      cli_say("flexbond ride-limit: %s, %s=%s, %.4g km/h: %s = %.6g%s, %.3g s", system,
+              a->vary_key, a->values[d->value], d->speed * 3.6,
+              fb_study_ride_limit_metric_name(a->metric), d->metric, where, d->wall_seconds);
+    else
+      cli_say("flexbond ride-limit: %s, %s=%s, %.4g km/h: failed%s: %s", system, a->vary_key,
+              a->values[d->value], d->speed * 3.6, where,
+              d->error ? d->error : "out of memory");
+  }
+  pthread_mutex_unlock(&a->lock);
+  return rc;
+}
+
+/* Under the sweep's lock: the case is recorded (rl_record). */
 static int case_finished(void *ctx, size_t i, fb_err *err)
 {
   rl_round *r = ctx;
-  rl_args *a = r->a;
   fb_study_sweep_case c;
   fb_study_sweep_case_get(r->sw, i, &c);
   const rl_done d = {.sys = r->sys,
@@ -117,27 +141,12 @@ static int case_finished(void *ctx, size_t i, fb_err *err)
                      .speed = r->speed[i],
                      .status = c.status,
                      .metric = c.status == FB_OK ? r->metric[i] : NAN,
+                     .wall_seconds = c.wall_seconds,
                      .error = c.status == FB_OK ? NULL : (char *)c.error};
-  int rc = add_done(a, &d, err);
-  if (rc == FB_OK)
-    rc = journal_append(a, &d, err);
-  ++a->nrun;
-  if (!a->quiet) {
-    const char *metric = fb_study_ride_limit_metric_name(a->metric);
-    if (c.status == FB_OK)
-      cli_say("flexbond ride-limit: %s, %s=%s, %.4g km/h: %s = %.6g, %.3g s",
-              cli_system_label(a->systems[r->sys]), a->vary_key, a->values[d.value],
-              d.speed * 3.6, metric, d.metric, c.wall_seconds);
-    else
-      cli_say("flexbond ride-limit: %s, %s=%s, %.4g km/h: failed: %s",
-              cli_system_label(a->systems[r->sys]), a->vary_key, a->values[d.value],
-              d.speed * 3.6, c.error ? c.error : "out of memory");
-  }
-  return rc;
+  return rl_record(r->a, &d, r->a->mpi_size > 0 ? 0 : -1, err);
 }
 
-/* The finished case of system sys, value v at speed, or NULL. */
-static const rl_done *find_done(const rl_args *a, int sys, size_t v, double speed)
+const rl_done *rl_find_done(const rl_args *a, int sys, size_t v, double speed)
 {
   for (size_t i = 0; i < a->ndone; ++i)
     if (a->done[i].sys == sys && a->done[i].value == v && a->done[i].speed == speed)
@@ -147,8 +156,8 @@ static const rl_done *find_done(const rl_args *a, int sys, size_t v, double spee
 
 /* Runs the n cases of system sys (values value[], speeds speed[]) as one
  * sweep on a->jobs threads. */
-static int run_round(rl_args *a, int sys, const size_t *value, const double *speed, size_t n,
-                     fb_err *err)
+int rl_run_round(rl_args *a, int sys, const size_t *value, const double *speed, size_t n,
+                 fb_err *err)
 {
   double *metric = malloc(n * sizeof *metric);
   const char **texts = malloc(n * sizeof *texts);
@@ -187,7 +196,7 @@ static size_t points_to_run(const rl_args *a, int sys, const fb_study_ride_limit
   size_t m = 0;
   for (size_t p = 0; p < n; ++p) {
     const size_t v = pts[p].curve % a->nvalues;
-    if ((int)(pts[p].curve / a->nvalues) == sys && !find_done(a, sys, v, pts[p].speed)) {
+    if ((int)(pts[p].curve / a->nvalues) == sys && !rl_find_done(a, sys, v, pts[p].speed)) {
       value[m] = v;
       speed[m++] = pts[p].speed;
     }
@@ -208,25 +217,57 @@ static void note_failure(rl_args *a, size_t curve, const rl_done *d)
   a->curve_error[curve] = fb_strdup(text);
 }
 
+/* The points of every system not yet done into sys[], value[], speed[];
+ * their count. */
+static size_t all_points_to_run(const rl_args *a, const fb_study_ride_limit_point *pts,
+                                size_t n, int *sys, size_t *value, double *speed)
+{
+  size_t m = 0;
+  for (size_t s = 0; s < a->nsystems; ++s) {
+    const size_t k = points_to_run(a, (int)s, pts, n, value + m, speed + m);
+    for (size_t i = 0; i < k; ++i)
+      sys[m + i] = (int)s;
+    m += k;
+  }
+  return m;
+}
+
+/* Runs the round's points not yet done: each system's as one sweep on
+ * threads, or all of them across the ranks of an MPI job. */
+static int run_points(rl_args *a, const fb_study_ride_limit_point *pts, size_t n, int *sys,
+                      size_t *value, double *speed, fb_err *err)
+{
+  const size_t m = all_points_to_run(a, pts, n, sys, value, speed);
+  if (m > 0 && !a->quiet)
+    cli_say("flexbond ride-limit: %zu run%s", m, m == 1 ? "" : "s");
+#ifdef FLEXBOND_MPI
+  if (a->mpi_size > 0)
+    return m > 0 ? rl_mpi_round(a, sys, value, speed, m, err) : FB_OK;
+#endif
+  int rc = FB_OK;
+  for (size_t i = 0; rc == FB_OK && i < m;) {
+    size_t j = i;
+    while (j < m && sys[j] == sys[i])
+      ++j;
+    rc = rl_run_round(a, sys[i], value + i, speed + i, j - i, err);
+    i = j;
+  }
+  return rc;
+}
+
 int rl_eval(void *ctx, const fb_study_ride_limit_point *pts, size_t n, double *metric,
             fb_err *err)
 {
   rl_args *a = ctx;
   size_t *value = malloc((n ? n : 1) * sizeof *value);
   double *speed = malloc((n ? n : 1) * sizeof *speed);
-  int rc = value && speed ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
-  for (size_t s = 0; rc == FB_OK && s < a->nsystems; ++s) {
-    const size_t m = points_to_run(a, (int)s, pts, n, value, speed);
-    if (m > 0 && !a->quiet)
-      cli_say("flexbond ride-limit: %s: %zu run%s", cli_system_label(a->systems[s]), m,
-              m == 1 ? "" : "s");
-    if (m > 0)
-      rc = run_round(a, (int)s, value, speed, m, err);
-  }
+  int *sys = malloc((n ? n : 1) * sizeof *sys);
+  int rc = value && speed && sys ? run_points(a, pts, n, sys, value, speed, err)
+                                 : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t p = 0; rc == FB_OK && p < n; ++p) {
     const size_t curve = pts[p].curve;
     const rl_done *d =
-        find_done(a, (int)(curve / a->nvalues), curve % a->nvalues, pts[p].speed);
+        rl_find_done(a, (int)(curve / a->nvalues), curve % a->nvalues, pts[p].speed);
     metric[p] = d && d->status == FB_OK ? d->metric : NAN;
     if (d && isnan(metric[p]))
       note_failure(a, curve, d);
@@ -235,6 +276,7 @@ int rl_eval(void *ctx, const fb_study_ride_limit_point *pts, size_t n, double *m
   }
   free(value);
   free(speed);
+  free(sys);
   return rc;
 }
 
@@ -284,6 +326,7 @@ static int parse_row(const rl_args *a, char *line, rl_done *d)
       at == 0 || d->sys < 0 || (size_t)d->sys >= a->nsystems || d->value >= a->nvalues)
     return 0;
   d->metric = strcmp(metric, "nan") ? strtod(metric, NULL) : NAN;
+  d->wall_seconds = NAN;
   d->error = line[at] ? fb_strdup(line + at) : NULL;
   return 1;
 }
