@@ -15,6 +15,8 @@
 #     its journal lacks and writes the same ride_limit.csv; a journal is
 #     refused without --resume;
 #   - a metric's limit that is never or already reached is said so;
+#   - on a random course given by its r.m.s. the limit is bracketed, and
+#     the driver's a_w is proportional to the r.m.s. (a linear vehicle);
 #   - bad options exit 1 and write nothing (--mpi too, in a build
 #     without MPI; tests/mpi/cli_ride_limit_mpi.sh runs it on ranks).
 #
@@ -58,14 +60,16 @@ while IFS=, read -r height system speed status metric over metric_over runs erro
     { a = $p > -$q ? $p : -$q; v[NR - 1] = a }
     END {
       bad = 0
+      if (!p || !q) { print "no driver_acc_peak or _min column"; exit 1 }
       if (!(v[1] < limit && v[2] >= limit)) { print "not bracketed: " v[1] ", " v[2]; bad = 1 }
       if (!(hi - lo <= 0.1 + 1e-9 && hi > lo)) { print "bracket " lo " .. " hi; bad = 1 }
       d1 = v[1] - m; d2 = v[2] - mo
       if (d1 * d1 > 1e-18 * m * m || d2 * d2 > 1e-18 * mo * mo) { print "metrics differ: " v[1] " vs " m ", " v[2] " vs " mo; bad = 1 }
       exit bad
     }' "$WORK/check_$height/sweep.csv" >"$WORK/awk.out"
+  verdict=$?
   checks=$((checks + 1))
-  [ $? -eq 0 ] || fail "height $height: $(cat "$WORK/awk.out")"
+  [ "$verdict" -eq 0 ] || fail "height $height: $(cat "$WORK/awk.out")"
 done < <(tail -n +2 "$WORK/j1/ride_limit.csv")
 
 # ---- Killed in the middle, then resumed: the same file, fewer runs.
@@ -120,6 +124,37 @@ run ride-limit "$SCENARIO" --vary road.bump.height=0.02,0.3 --metric abs_peak --
 expect_status 0 "a study with both ends"
 expect_in "$WORK/ends/ride_limit.csv" "0.02,rigid,,above," "a limit never reached"
 expect_in "$WORK/ends/ride_limit.csv" "0.3,rigid,,below," "a limit reached at the lowest speed"
+
+# ---- A random course by its r.m.s. (road.iso8608.rms): a_w r.m.s. of
+# the driver over 40 m, 10 .. 50 km/h every 10 km/h to 1 km/h: 5 grid runs
+# and 4 bisections (10 / 2^4 = 0.625 km/h), the limit bracketed.
+ROUGH=$REPO_ROOT/examples/apc6x6_rough_course.yaml
+run ride-limit "$ROUGH" --vary road.iso8608.rms=0.03,0.05 --metric a_w_rms --limit 1.5 \
+  --course-length 40 --speeds 10:50 --coarse-step 10 --tolerance 1 --no-figures -q \
+  -o "$WORK/rough"
+expect_status 0 "a random course by its r.m.s."
+awk -F, 'NR > 1 && !($4 == "found" && $8 == 9 && $6 - $3 <= 1 && $6 > $3 &&
+  $5 < 1.5 && $7 >= 1.5) { print; bad = 1 } END { exit bad }' "$WORK/rough/ride_limit.csv" \
+  >"$WORK/awk.out"
+verdict=$?
+checks=$((checks + 1))
+[ "$verdict" -eq 0 ] || fail "the random course's rows: $(cat "$WORK/awk.out")"
+# The vehicle is linear and starts at rest on flat ground: on the same
+# road (one seed) its a_w is proportional to the r.m.s. asked for, so 50
+# mm gives 5/3 of 30 mm's at one speed, to the solver's tolerance (rtol
+# 1e-4 in the example; measured 2.3e-6): the r.m.s. reaches the road's
+# level linearly.
+run sweep "$ROUGH" --set road.iso8608.rms=0.03,0.05 --set speed_kmh=30 --no-figures -q \
+  --plain-header -o "$WORK/rough_sweep"
+expect_status 0 "the course at two r.m.s."
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "ride_a_w_rms") c = i; next }
+  { a[NR - 1] = $c }
+  END { if (!c) { print "no ride_a_w_rms column"; exit 1 }
+        r = a[2] / a[1] / (5 / 3) - 1; if (r < 0) r = -r; if (!(r < 1e-4)) { print r; exit 1 } }' \
+  "$WORK/rough_sweep/sweep.csv" >"$WORK/awk.out"
+verdict=$?
+checks=$((checks + 1))
+[ "$verdict" -eq 0 ] || fail "a_w not proportional to the r.m.s.: $(cat "$WORK/awk.out")"
 
 # ---- Bad options: exit 1, nothing written.
 bad() {
