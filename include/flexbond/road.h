@@ -83,6 +83,8 @@ typedef struct fb_road_iso8608_params {
   size_t nharmonics;  /* harmonics per track, 1 .. FB_ROAD_ISO8608_MAX_HARMONICS */
   double fade_length; /* m, >= 0: z is 0 for s <= 0 and faded in over
                          [0, fade_length]; 0: no fade, z defined for all s */
+  double gd0;         /* m^3: Gd(n0) itself when > 0 (a road given by its
+                         r.m.s.: fb_road_iso8608_rms_gd0), else 0: the class's */
 } fb_road_iso8608_params;
 
 /* Class 'C', seed 1, band 0.011 .. 2.83 cycles/m, 1024 harmonics, no
@@ -93,6 +95,19 @@ void fb_road_iso8608_defaults(fb_road_iso8608_params *p);
  * Gd(n0) in m^3: 16e-6 for class A, times 4 for each class after it.
  * FB_EINVAL for a letter outside A .. H. */
 int fb_road_iso8608_gd0(char road_class, double *gd0, fb_err *err);
+
+/* p's Gd(n0), m^3: p->gd0 when > 0, else its class's (fb_road_iso8608_gd0). */
+int fb_road_iso8608_params_gd0(const fb_road_iso8608_params *p, double *gd0, fb_err *err);
+
+/* The Gd(n0) (m^3) whose PSD Gd(n) = Gd(n0) (n / n0)^-2 holds the mean
+ * square rms^2 (rms in m) over [n_min, n_max] (cycles/m):
+ * rms^2 = Gd(n0) n0^2 (1 / n_min - 1 / n_max). */
+double fb_road_iso8608_rms_gd0(double rms, double n_min, double n_max);
+
+/* The class ('A' .. 'H') whose geometric-mean Gd(n0) is nearest to gd0 on
+ * a log scale (ISO 8608's class limits lie halfway between the means on
+ * it); 'A' below class A's range, 'H' above class H's. */
+char fb_road_iso8608_class_of(double gd0);
 
 /* A random road whose one-sided displacement PSD is the class's
  * Gd(n) = Gd(n0) (n / 0.1)^-2 over [n_min, n_max]: each track is a sum of
@@ -357,7 +372,8 @@ extern const char *const fb_road_bump_types[];
 /* An ISO 8608 random road (fb_road_new_iso8608); the first corner's
  * wheel at front_start on its track at t = 0. */
 typedef struct fb_road_random_params {
-  int road_class;     /* 0 .. 7: class A .. H */
+  int road_class;     /* 0 .. 7: class A .. H; -1: given by rms */
+  double rms;         /* m over the band, in place of a class; NaN: by class */
   uint64_t seed;      /* the same seed gives the same road */
   double band[2];     /* cycles/m: n_min, n_max */
   size_t harmonics;   /* per track */

@@ -303,6 +303,11 @@ typedef struct fb_study_sweep_ops {
    * it with its err. NULL: nothing. */
   int (*finished)(void *ctx, size_t i, fb_err *err);
   void *ctx;
+  /* Case i has run (scenario s, result r), on its own thread, before its
+   * outcome is recorded: a front end's own measure of it (the ride-limit
+   * search's metric). Not FB_OK fails the case with err. NULL: nothing.
+   * (Last: a binding that mirrors the struct keeps its members' places.) */
+  int (*measure)(void *ctx, size_t i, const fb_scenario *s, const fb_result *r, fb_err *err);
 } fb_study_sweep_ops;
 
 /* A sweep (fb_study_sweep_new); opaque. */
@@ -386,6 +391,101 @@ int fb_study_sweep_run(fb_study_sweep *sw, size_t threads, fb_err *err);
 /* Stops the sweep: no case starts any more, and those running stop at
  * their next solver step. Thread-safe, from any thread. */
 void fb_study_sweep_cancel(fb_study_sweep *sw);
+
+/* ---- Ride-limiting speeds (src/study/ride_limit.c, docs/ride-limit.md):
+ * for each curve (a value of a scenario's key, on one system) the highest
+ * speed below which a metric of a run stays under its limit, found by a
+ * bracketing search over speed. The search asks its caller to evaluate
+ * the metric at batches of (curve, speed) points, a round at a time, so
+ * that a front end runs a round's cases at once (on the sweep's threads).
+ * It is deterministic: the same metrics give the same rounds of points. */
+
+/* How a curve's search ended. */
+typedef enum fb_ride_limit_status {
+  FB_RIDE_LIMIT_FOUND, /* the limit is reached inside (v_lo, v_hi] */
+  FB_RIDE_LIMIT_BELOW, /* already reached at v_lo */
+  FB_RIDE_LIMIT_ABOVE, /* not reached at any speed of the coarse grid */
+  FB_RIDE_LIMIT_FAILED /* an evaluation gave no metric (a failed run, NaN) */
+} fb_ride_limit_status;
+
+/* Settings of a search; fb_study_ride_limit_opts_default fills them. */
+typedef struct fb_study_ride_limit_opts {
+  double limit;         /* the metric's limit, in its unit (required: no default) */
+  double v_lo, v_hi;    /* m/s, 0 < v_lo < v_hi (default 5 and 80 km/h) */
+  double coarse_step;   /* m/s between the coarse grid's speeds (default 5 km/h) */
+  double tol;           /* m/s, > 0: the final bracket's width (default 0.1 km/h) */
+  size_t refine_points; /* speeds per curve and refining round, >= 1 (default 1:
+                           bisection; k points shrink the bracket k + 1 times) */
+} fb_study_ride_limit_opts;
+
+void fb_study_ride_limit_opts_default(fb_study_ride_limit_opts *o);
+
+/* A point to evaluate: curve's metric at speed (m/s). */
+typedef struct fb_study_ride_limit_point {
+  size_t curve;
+  double speed;
+} fb_study_ride_limit_point;
+
+/* Evaluates the metric at pts[0 .. n) into metric[0 .. n): NaN for a
+ * point whose run failed (its curve fails, the others go on). Not FB_OK
+ * stops the search (an interruption: FB_EINTR) with err. */
+typedef int (*fb_study_ride_limit_eval_fn)(void *ctx, const fb_study_ride_limit_point *pts,
+                                           size_t n, double *metric, fb_err *err);
+
+/* A curve's outcome. */
+typedef struct fb_study_ride_limit_curve {
+  fb_ride_limit_status status;
+  /* FOUND: the bracket's ends: the highest speed evaluated with the
+   * metric below the limit (speed, metric) and the lowest above it
+   * (speed_over, metric_over), speed_over - speed <= tol. BELOW: v_lo and
+   * its metric in speed_over, metric_over (speed NaN); ABOVE: v_hi and its
+   * metric in speed, metric (speed_over NaN). FAILED: NaN, and the point
+   * in failed_speed. */
+  double speed, metric, speed_over, metric_over, failed_speed;
+  size_t nruns; /* evaluations of the curve */
+} fb_study_ride_limit_curve;
+
+/* Searches ncurves curves (each starting with the coarse grid v_lo, v_lo +
+ * coarse_step, ..., v_hi (the last step shortened to end at v_hi), all in
+ * round 1; then each curve whose grid brackets the limit takes
+ * refine_points evenly spaced speeds inside its bracket per round until
+ * the bracket is at most tol wide) into out[0 .. ncurves). The limit is
+ * reached where the metric is >= limit; the bracket is that of the first
+ * such speed evaluated (a curve whose metric dips below the limit again
+ * keeps its lowest crossing, as far as the grid sees it). *nrounds (may be
+ * NULL): the rounds. FB_EINVAL for bad opts; eval's failure. */
+int fb_study_ride_limit(size_t ncurves, const fb_study_ride_limit_opts *opts,
+                        fb_study_ride_limit_eval_fn eval, void *ctx,
+                        fb_study_ride_limit_curve *out, size_t *nrounds, fb_err *err);
+
+/* The metrics a search can take, by name (a table: adding one is a line
+ * of it): fb_ride_metrics' fields of a run's output and the largest
+ * |value| of the output itself, over [first wheel's entry, end of run]. */
+size_t fb_study_ride_limit_nmetrics(void);
+/* Metric m's name, unit and standard limit (NaN when none is standard);
+ * NULL names beyond the table. */
+const char *fb_study_ride_limit_metric_name(size_t m);
+const char *fb_study_ride_limit_metric_unit(size_t m);
+double fb_study_ride_limit_metric_limit(size_t m);
+/* The index of the metric named name: 0 and *m set, or -1. */
+int fb_study_ride_limit_metric_find(const char *name, size_t *m);
+
+/* The run's end for a ride-limit case at s's speed into s->t_end: on a
+ * road with an end (a bump, an obstacle) settle seconds after the last
+ * wheel leaves it; on one that goes on (a random road, a profile) when the
+ * last wheel has run course_length metres past the start of its track.
+ * s->t_end must be beyond the feature on entry (a road that goes on ends
+ * at it). FB_EINVAL for a non-positive course_length or negative settle. */
+int fb_study_ride_limit_duration(fb_scenario *s, double course_length, double settle,
+                                 fb_err *err);
+
+/* Metric m of output k (< s->noutputs) of run r of s over [the first
+ * wheel's entry (0 if earlier), the run's end] into *value. NaN when the
+ * window is too short for it (ride metrics need 1 s) or it is not defined
+ * (absorbed power without a K(f) table): not a failure. FB_EINVAL for a
+ * bad m or k, or a column r lacks. */
+int fb_study_ride_limit_measure(const fb_scenario *s, const fb_result *r, size_t k, size_t m,
+                                double *value, fb_err *err);
 
 /* ---- The data of a run's report (src/study/report.c): the runs of a
  * scenario with their summaries, System 2 against System 1 (and against

@@ -15,10 +15,12 @@ documents the whole interface.
 """
 
 import collections
+import concurrent.futures
 import contextlib
 import ctypes
 import ctypes.util
 import json
+import math
 import os
 import re
 import threading
@@ -170,7 +172,8 @@ class _Iso8608(ctypes.Structure):
     """fb_road_iso8608_params (flexbond/road.h)."""
     _fields_ = [("road_class", ctypes.c_char), ("seed", ctypes.c_uint64),
                 ("n_min", ctypes.c_double), ("n_max", ctypes.c_double),
-                ("nharmonics", ctypes.c_size_t), ("fade_length", ctypes.c_double)]
+                ("nharmonics", ctypes.c_size_t), ("fade_length", ctypes.c_double),
+                ("gd0", ctypes.c_double)]
 
 
 class _PsdRoad(ctypes.Structure):
@@ -192,10 +195,35 @@ class _SweepAxis(ctypes.Structure):
 
 class _SweepOps(ctypes.Structure):
     """fb_study_sweep_ops: load, locate and stop are the library's own
-    (fb_scenario_sweep_ops), never called from Python."""
+    (fb_scenario_sweep_ops), never called from Python; measure is not used."""
     _fields_ = [("load", ctypes.c_void_p), ("locate", ctypes.c_void_p),
                 ("stop", ctypes.c_void_p), ("finished", _SWEEP_FINISHED),
-                ("ctx", ctypes.c_void_p)]
+                ("ctx", ctypes.c_void_p), ("measure", ctypes.c_void_p)]
+
+
+class _RideLimitOpts(ctypes.Structure):
+    """fb_study_ride_limit_opts (flexbond/study.h)."""
+    _fields_ = [("limit", ctypes.c_double), ("v_lo", ctypes.c_double),
+                ("v_hi", ctypes.c_double), ("coarse_step", ctypes.c_double),
+                ("tol", ctypes.c_double), ("refine_points", ctypes.c_size_t)]
+
+
+class _RideLimitPoint(ctypes.Structure):
+    """fb_study_ride_limit_point."""
+    _fields_ = [("curve", ctypes.c_size_t), ("speed", ctypes.c_double)]
+
+
+class _RideLimitCurve(ctypes.Structure):
+    """fb_study_ride_limit_curve."""
+    _fields_ = [("status", ctypes.c_int), ("speed", ctypes.c_double),
+                ("metric", ctypes.c_double), ("speed_over", ctypes.c_double),
+                ("metric_over", ctypes.c_double), ("failed_speed", ctypes.c_double),
+                ("nruns", ctypes.c_size_t)]
+
+
+_RIDE_LIMIT_EVAL = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p,
+                                    ctypes.POINTER(_RideLimitPoint), ctypes.c_size_t,
+                                    ctypes.POINTER(ctypes.c_double), ctypes.POINTER(_Err))
 
 
 class _SweepSource(ctypes.Structure):
@@ -293,6 +321,18 @@ _PROTOTYPES = {
                                                ctypes.POINTER(_SweepCase)]),
     "fb_study_sweep_run": (ctypes.c_int, [_P, ctypes.c_size_t, _PERR]),
     "fb_study_sweep_cancel": (None, [_P]),
+    "fb_study_ride_limit_opts_default": (None, [ctypes.POINTER(_RideLimitOpts)]),
+    "fb_study_ride_limit": (ctypes.c_int, [ctypes.c_size_t, ctypes.POINTER(_RideLimitOpts),
+                                           _RIDE_LIMIT_EVAL, _P,
+                                           ctypes.POINTER(_RideLimitCurve), _PSIZE, _PERR]),
+    "fb_study_ride_limit_metric_find": (ctypes.c_int, [ctypes.c_char_p, _PSIZE]),
+    "fb_study_ride_limit_metric_limit": (ctypes.c_double, [ctypes.c_size_t]),
+    "fb_study_ride_limit_duration": (ctypes.c_int, [_P, ctypes.c_double, ctypes.c_double,
+                                                    _PERR]),
+    "fb_study_ride_limit_measure": (ctypes.c_int, [_P, _P, ctypes.c_size_t, ctypes.c_size_t,
+                                                   _PDOUBLE, _PERR]),
+    "fb_study_ride_output": (ctypes.c_size_t, [_P]),
+    "fb_vehicle_simulate": (ctypes.c_int, [_P, ctypes.c_int, _PP, _PERR]),
     "fb_study_mesh_error": (ctypes.c_int, [_P, _PDOUBLE]),
     "fb_study_response_window": (None, [_P, _PDOUBLE]),
     "fb_vehicle_basis_reduced": (ctypes.c_int, [_P]),
@@ -616,6 +656,10 @@ def _result(res, system):
 
 
 Corner = collections.namedtuple("Corner", "name x y")
+# A ride-limit curve's point (Scenario.ride_limit): ride_limit.csv's row.
+RideLimit = collections.namedtuple(
+    "RideLimit", "value system status speed_kmh metric speed_over_kmh metric_over runs error")
+_RIDE_LIMIT_STATUS = ("found", "below", "above", "failed")
 
 OutputStats = collections.namedtuple("OutputStats", "static peak peak_time min min_time rms")
 OutputStats.__doc__ = """One output over the response window (flexbond/study.h): static (the
@@ -1638,6 +1682,113 @@ class Scenario(_Closing):
                 if held["sw"]:
                     _lib.fb_study_sweep_cancel(held["sw"])
             raise
+
+    def ride_limit(self, key, values, metric, limit=None, output=None, speeds_kmh=(5, 80),
+                   coarse_step_kmh=5, tolerance_kmh=0.1, refine=1, course_length=200,
+                   settle=2, systems=("rigid",), threads=None):
+        """Ride-limiting speeds, as flexbond ride-limit finds them
+        (docs/ride-limit.md): for each of values at key (overrides' texts)
+        and each of systems, the highest speed within speeds_kmh below which
+        metric ("a_w_rms", "abs_peak", "absorbed_power", ...; its standard
+        limit unless limit is given) of output (default: the first mounted
+        body's acceleration) stays under the limit, by the library's search
+        (fb_study_ride_limit) on the same runs: each read from this
+        scenario's file with the value, the speed and the run's end
+        (fb_study_ride_limit_duration), a round's runs on threads threads
+        (default: the CPUs). Returns [RideLimit, ...], ride_limit.csv's
+        rows in its order: speeds in km/h (None unless found), status
+        "found", "below", "above" or "failed". Ctrl-C stops it."""
+        if self._text is not None:
+            raise ValueError("flexbond: ride_limit reads a scenario file, not a description")
+        values = [_text(v) for v in values]
+        sys_ids = [_system(x) for x in systems]
+        m = ctypes.c_size_t()
+        if _lib.fb_study_ride_limit_metric_find(_c_text(metric, "metric"), ctypes.byref(m)):
+            raise ValueError("flexbond: no ride-limit metric %r" % (metric,))
+        opts = _RideLimitOpts()
+        _lib.fb_study_ride_limit_opts_default(ctypes.byref(opts))
+        opts.limit = (float(limit) if limit is not None
+                      else _lib.fb_study_ride_limit_metric_limit(m.value))
+        opts.v_lo, opts.v_hi = speeds_kmh[0] / 3.6, speeds_kmh[1] / 3.6
+        opts.coarse_step, opts.tol = coarse_step_kmh / 3.6, tolerance_kmh / 3.6
+        opts.refine_points = int(refine)
+        names = [n for n, _ in self.outputs]
+        k = names.index(output) if output is not None else \
+            _lib.fb_study_ride_output(self._handle())
+        if k >= len(names):
+            raise ValueError("flexbond: ride_limit: no output %r" % (output,))
+        nthreads = int(threads) if threads is not None else (os.cpu_count() or 1)
+        path = _c_text(self.path, "path")
+        base = [(k_, v) for k_, v in (self.overrides or {}).items() if k_ != key]
+        errors = {}
+
+        def one(curve, speed, stop):
+            """Curve's metric at speed (m/s): NaN, its message kept, on failure."""
+            if stop:
+                raise KeyboardInterrupt
+            ov, n = _overrides(base + [(key, values[curve % len(values)]),
+                                       ("road.speed_kmh", "%.17g" % (speed * 3.6)),
+                                       ("simulation.t_end", "3600")])
+            sc, res, err, value = ctypes.c_void_p(), ctypes.c_void_p(), _Err(), ctypes.c_double()
+            try:
+                rc = _lib.fb_scenario_load_overrides(path, ov, n, ctypes.byref(sc),
+                                                     ctypes.byref(err))
+                if rc == 0:
+                    rc = _lib.fb_study_ride_limit_duration(sc, float(course_length),
+                                                           float(settle), ctypes.byref(err))
+                if rc == 0:
+                    rc = _lib.fb_vehicle_simulate(sc, sys_ids[curve // len(values)],
+                                                  ctypes.byref(res), ctypes.byref(err))
+                if rc == 0:
+                    rc = _lib.fb_study_ride_limit_measure(sc, res, k, m.value,
+                                                          ctypes.byref(value), ctypes.byref(err))
+                if rc != 0 or math.isnan(value.value):
+                    errors.setdefault(curve, "at %.4g km/h: %s" % (
+                        speed * 3.6, err.msg.decode(errors="replace") if rc != 0 else
+                        "the metric is not defined"))
+                    return math.nan
+                return value.value
+            finally:
+                _lib.fb_result_free(ctypes.byref(res))
+                _lib.fb_scenario_free(ctypes.byref(sc))
+
+        def work(stop):
+            box = {}
+
+            def evaluate(_ctx, pts, n, out, _err):
+                try:
+                    with concurrent.futures.ThreadPoolExecutor(max(1, nthreads)) as pool:
+                        got = list(pool.map(lambda i: one(pts[i].curve, pts[i].speed, stop),
+                                            range(n)))
+                    for i, v in enumerate(got):
+                        out[i] = v
+                    return 0
+                except BaseException as e:  # raised to the caller once the search stops
+                    box["error"] = e
+                    return _FB_EINTR
+
+            fn = _RIDE_LIMIT_EVAL(evaluate)
+            ncurves = len(values) * len(sys_ids)
+            curves = (_RideLimitCurve * max(1, ncurves))()
+            err = _Err()
+            rc = _lib.fb_study_ride_limit(ncurves, ctypes.byref(opts), fn, None, curves, None,
+                                          ctypes.byref(err))
+            if "error" in box:
+                raise box["error"]
+            _check(rc, err)
+            rows = []
+            for c in range(ncurves):
+                r = curves[c]
+                found = r.status == 0
+                rows.append(RideLimit(
+                    values[c % len(values)], _SYSTEM_NAMES[sys_ids[c // len(values)]],
+                    _RIDE_LIMIT_STATUS[r.status], r.speed * 3.6 if found else None,
+                    r.metric_over if r.status == 1 else r.metric,
+                    r.speed_over * 3.6 if found else None, r.metric_over if found else None,
+                    r.nruns, errors.get(c)))
+            return rows
+
+        return _until_done(work)
 
     def simulation(self, system, progress=None):
         """A Simulation of one system of this scenario that the caller

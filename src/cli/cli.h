@@ -276,6 +276,7 @@ int cli_cmd_mesh(int argc, char **argv);
 int cli_cmd_export(int argc, char **argv);
 int cli_cmd_freq(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
+int cli_cmd_ride_limit(int argc, char **argv);
 int cli_cmd_model(int argc, char **argv);
 /* The modes --picture-modes lists (n 0: none given). */
 typedef struct cli_mode_list {

@@ -13,6 +13,8 @@
  *   flexbond model SCENARIO.yaml -o DIR [--system rigid|flexible]
  *   flexbond sweep SCENARIO.yaml --set KEY=SPEC [--set ...] -o DIR [--system rigid|flexible]
  *                  [-j N] [--no-figures] [-q]
+ *   flexbond ride-limit SCENARIO.yaml --vary KEY=V1,V2,... --metric NAME -o DIR [--limit X]
+ *                  [--output COLUMN] [--speeds LO:HI] [--system rigid|flexible|both] [-j N]
  *   flexbond --help | -h | --version,  flexbond COMMAND --help
  *
  * Exit codes:
@@ -53,6 +55,8 @@ static const cli_command commands[] = {
     {"freq", cli_cmd_freq, "frequency response of a vehicle scenario's outputs to the road"},
     {"model", cli_cmd_model, "write a vehicle scenario's bond graph as a model file"},
     {"sweep", cli_cmd_sweep, "parameter study of a vehicle scenario on all cores: CSV, figure"},
+    {"ride-limit", cli_cmd_ride_limit,
+     "ride-limiting speed against a scenario value: CSV, figure"},
 };
 
 static void print_usage(FILE *fp)

@@ -12,7 +12,6 @@
 #include "sweep.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -446,7 +445,7 @@ static int split_sets(int argc, char **argv, char **rest, int *nrest, char **set
 }
 
 /* -j N: 1 .. SWEEP_MAX_JOBS; default: the online CPUs. */
-static int parse_jobs(const char *cmd, const char *text, size_t *jobs)
+int sweep_parse_jobs(const char *cmd, const char *text, size_t *jobs)
 {
   if (!text) {
     const long n = sysconf(_SC_NPROCESSORS_ONLN);
@@ -766,7 +765,7 @@ static int parse_options(int argc, char **argv, sweep_args *a, int *go)
            ? cli_choice(argv[0], "--system", opts[OPT_SYSTEM].value, systems, 2, &system)
            : CLI_EXIT_OK;
   a->sys = system ? FB_SYSTEM_FLEXIBLE : FB_SYSTEM_RIGID;
-  return rc == CLI_EXIT_OK ? parse_jobs(argv[0], opts[OPT_JOBS].value, &a->jobs) : rc;
+  return rc == CLI_EXIT_OK ? sweep_parse_jobs(argv[0], opts[OPT_JOBS].value, &a->jobs) : rc;
 }
 
 /* The --plot values into a->plot (the default without any). */
@@ -838,8 +837,7 @@ static int set_up(int argc, char **argv, sweep_args *a, char **name, int *go)
   return rc;
 }
 
-/* 1 if the arguments ask for --mpi (before a "--"). */
-static int wants_mpi(int argc, char **argv)
+int sweep_wants_mpi(int argc, char **argv)
 {
   for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; ++i)
     if (!strcmp(argv[i], "--mpi"))
@@ -863,39 +861,18 @@ static int sweep_mpi(int argc, char **argv, sweep_args *a, char **name)
   cli_interrupt_polled_only();
   a->mpi = 1;
   a->quiet = rank != 0;
-  int saved = -1;
-  if (rank != 0) {
-    fflush(stderr);
-    saved = dup(STDERR_FILENO);
-    const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
-    if (null >= 0) {
-      dup2(null, STDERR_FILENO);
-      close(null);
-    }
-  }
+  const int saved = sweep_mpi_silence(rank);
   rc = set_up(argc, argv, a, name, &go);
   uint64_t fingerprint = 0;
   if (rc == CLI_EXIT_OK && go && sweep_study_fingerprint(a, &fingerprint, NULL, &err) != FB_OK)
     rc = cli_report(err.code, &err);
-  if (saved >= 0) {
-    fflush(stderr);
-    dup2(saved, STDERR_FILENO);
-    close(saved);
-  }
-  int bad_rank = 0;
-  if (sweep_mpi_agree(rc == CLI_EXIT_OK, fingerprint, &bad_rank)) {
-    if (rank == 0 && rc == CLI_EXIT_OK)
-      rc = cli_report(fb_err_set(&err, FB_EIO,
-                                 "rank %d could not set the study up, or read another scenario "
-                                 "file than rank 0 or other files it names (do all nodes see "
-                                 "the same scenario and files at the same paths?)",
-                                 bad_rank),
-                      &err);
-  } else if (go && rank == 0) {
+  sweep_mpi_unsilence(saved);
+  const int agreed = sweep_mpi_agreed(
+      rank, fingerprint, "another scenario file than rank 0 or other files it names", &rc);
+  if (agreed && go && rank == 0)
     rc = sweep(a, size);
-  } else if (go && sweep_mpi_go(0)) {
+  else if (agreed && go && sweep_mpi_go(0))
     sweep_mpi_work(a);
-  }
   return sweep_mpi_finish(rc);
 }
 #endif
@@ -905,7 +882,7 @@ int cli_cmd_sweep(int argc, char **argv)
   sweep_args a = {0};
   char *name = NULL;
   int go = 0, rc;
-  if (wants_mpi(argc, argv)) {
+  if (sweep_wants_mpi(argc, argv)) {
 #ifdef FLEXBOND_MPI
     rc = sweep_mpi(argc, argv, &a, &name);
 #else

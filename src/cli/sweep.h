@@ -89,6 +89,10 @@ typedef struct sweep_args {
  * interrupt stopping it; each finished case journaled and its progress
  * line said. */
 int sweep_study_new(sweep_args *a, fb_err *err);
+/* fb_study_sweep_ops' locate (fb_scenario_locate) and stop (an
+ * interruption: cli_interrupted), ctx unused: every sweep's. */
+int sweep_locate_case(void *ctx, const fb_scenario *s, fb_err *err);
+int sweep_interrupted(void *ctx);
 /* "key=value, key=value" of case i from key first_key on, into buf. */
 void sweep_case_label(const sweep_args *a, size_t i, size_t first_key, char *buf, size_t size);
 /* The metric a --plot value names: OUTPUT[:STAT] (an output of the
@@ -141,8 +145,17 @@ void sweep_journal_close(sweep_journal **j, int remove_file);
  * to name a file that has changed. */
 int sweep_study_fingerprint(const sweep_args *a, uint64_t *fingerprint, char **inputs,
                             fb_err *err);
+/* -j N (text; NULL: the online CPUs) into *jobs, 1 .. 1024, or a usage
+ * error of cmd. */
+int sweep_parse_jobs(const char *cmd, const char *text, size_t *jobs);
+/* 64-bit FNV-1a of data[0 .. n) continuing from h (the offset basis
+ * 14695981039346656037 to start): the journals' fingerprints. */
+uint64_t sweep_fnv1a(uint64_t h, const void *data, size_t n);
 /* The journal's path in dir, in fresh memory (NULL: out of memory). */
 char *sweep_journal_path(const char *dir);
+
+/* 1 if the arguments ask for --mpi (before a "--"). */
+int sweep_wants_mpi(int argc, char **argv);
 
 #ifdef FLEXBOND_MPI
 /* ---- sweep_mpi.c (an MPI build): rank 0 hands the cases out one at a
@@ -154,6 +167,19 @@ int sweep_mpi_init(int *rank, int *size, fb_err *err);
  * or found a study of another fingerprint than rank 0's (another
  * scenario file, say), with the first such rank in *bad_rank. */
 int sweep_mpi_agree(int ok, uint64_t fingerprint, int *bad_rank);
+/* sweep_mpi_agree on this rank's exit code so far (*exit_code) and
+ * fingerprint: 1 when every rank agreed; else 0, rank 0 having said which
+ * rank did not ("rank 3 could not set the study up, or read FILES ...")
+ * and *exit_code its status. */
+int sweep_mpi_agreed(int rank, uint64_t fingerprint, const char *files, int *exit_code);
+/* A rank other than 0 sends its stderr to /dev/null while it sets the
+ * study up (rank 0 alone speaks): the saved stderr for
+ * sweep_mpi_unsilence (-1 on rank 0), which puts it back. */
+int sweep_mpi_silence(int rank);
+void sweep_mpi_unsilence(int saved);
+/* Waits, polling with a pause, for a message of tag from any rank; its
+ * source rank. */
+int sweep_mpi_wait(int tag);
 /* Rank 0's go (1: the cases will be handed out; 0: they will not) to
  * every rank, which returns it. */
 int sweep_mpi_go(int go);

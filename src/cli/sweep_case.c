@@ -36,13 +36,13 @@ static int load_case(void *ctx, size_t i, const fb_scenario_override *ov, size_t
 
 /* The reader sets the source of an error about a value a --set replaced
  * (fb_scenario_load_overrides); one found later, by locating it. */
-static int locate_case(void *ctx, const fb_scenario *s, fb_err *err)
+int sweep_locate_case(void *ctx, const fb_scenario *s, fb_err *err)
 {
   (void)ctx;
   return fb_scenario_locate(s, err);
 }
 
-static int interrupted(void *ctx)
+int sweep_interrupted(void *ctx)
 {
   (void)ctx;
   return cli_interrupted();
@@ -91,8 +91,8 @@ int sweep_study_new(sweep_args *a, fb_err *err)
                                     .values = (const char *const *)a->keys[k].values,
                                     .nvalues = a->keys[k].nvalues};
   const fb_study_sweep_ops ops = {.load = load_case,
-                                  .locate = locate_case,
-                                  .stop = interrupted,
+                                  .locate = sweep_locate_case,
+                                  .stop = sweep_interrupted,
                                   .finished = case_finished,
                                   .ctx = a};
   const int rc = fb_study_sweep_new(a->base, a->sys, axes, a->nkeys, &ops, &a->study, err);

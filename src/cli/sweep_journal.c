@@ -56,7 +56,7 @@ char *sweep_journal_path(const char *dir)
 /* ---- The study's fingerprint: 64-bit FNV-1a (Fowler, Noll and Vo; the
  * offset basis and prime of the published parameters for 64 bits). */
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
+uint64_t sweep_fnv1a(uint64_t h, const void *data, size_t n)
 {
   const unsigned char *b = data;
   for (size_t i = 0; i < n; ++i) {
@@ -68,7 +68,7 @@ static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
 
 static uint64_t fnv1a_text(uint64_t h, const char *text)
 {
-  return fnv1a(h, text, strlen(text) + 1); /* with its NUL: "ab","c" != "a","bc" */
+  return sweep_fnv1a(h, text, strlen(text) + 1); /* with its NUL: "ab","c" != "a","bc" */
 }
 
 /* ---- The files a study reads: the scenario file, every file it names
@@ -144,7 +144,7 @@ static int add_input(study_inputs *in, const char *path, const char *text, size_
   char hash[32] = "unreadable";
   if (text)
     snprintf(hash, sizeof hash, "%016llx",
-             (unsigned long long)fnv1a(UINT64_C(14695981039346656037), text, len));
+             (unsigned long long)sweep_fnv1a(UINT64_C(14695981039346656037), text, len));
   in->h = fnv1a_text(in->h, hash);
   if (in->lines) {
     fprintf(in->lines, "# input %s ", hash);

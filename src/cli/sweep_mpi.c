@@ -20,6 +20,7 @@
  * longer than a result_msg, so neither side allocates. The ranks are
  * assumed to share one binary representation of integers and doubles
  * (one kind of node). */
+#include <fcntl.h>
 #include <mpi.h>
 #include <pthread.h>
 #include <stddef.h>
@@ -27,6 +28,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "sweep.h"
@@ -73,6 +75,65 @@ int sweep_mpi_agree(int ok, uint64_t fingerprint, int *bad_rank)
   return first != INT32_MAX;
 }
 
+int sweep_mpi_silence(int rank)
+{
+  if (rank == 0)
+    return -1;
+  fflush(stderr);
+  const int saved = dup(STDERR_FILENO);
+  const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (null >= 0) {
+    dup2(null, STDERR_FILENO);
+    close(null);
+  }
+  return saved;
+}
+
+void sweep_mpi_unsilence(int saved)
+{
+  if (saved < 0)
+    return;
+  fflush(stderr);
+  dup2(saved, STDERR_FILENO);
+  close(saved);
+}
+
+/* Polled, not a blocking receive: OpenMPI spins in a blocking one and
+ * would take a core from rank 0's own worker. The pause between polls
+ * doubles from 50 us to 2 ms while nothing comes, so that a result waits
+ * at most 2 ms (a case takes 10 ms and more) and an idle coordinator
+ * wakes 500 times a second. */
+int sweep_mpi_wait(int tag)
+{
+  long nap_ns = 50000;
+  for (;;) {
+    int flag = 0;
+    MPI_Status st;
+    MPI_Iprobe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &flag, &st);
+    if (flag)
+      return st.MPI_SOURCE;
+    const struct timespec nap = {0, nap_ns};
+    nanosleep(&nap, NULL);
+    nap_ns = nap_ns < 1000000 ? 2 * nap_ns : 2000000;
+  }
+}
+
+int sweep_mpi_agreed(int rank, uint64_t fingerprint, const char *files, int *exit_code)
+{
+  int bad_rank = 0;
+  if (!sweep_mpi_agree(*exit_code == CLI_EXIT_OK, fingerprint, &bad_rank))
+    return 1;
+  fb_err err;
+  if (rank == 0 && *exit_code == CLI_EXIT_OK)
+    *exit_code = cli_report(fb_err_set(&err, FB_EIO,
+                                       "rank %d could not set the study up, or read %s (do all "
+                                       "nodes see the same scenario and files at the same "
+                                       "paths?)",
+                                       bad_rank, files),
+                            &err);
+  return 0;
+}
+
 int sweep_mpi_go(int go)
 {
   MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -92,15 +153,14 @@ static int hand_out(fb_study_sweep *sw, int r)
   return 1;
 }
 
-/* Receives the result that probed announces into the study; its case's
+/* Receives the result that rank source sent into the study; its case's
  * index, or SIZE_MAX for a malformed message (which only a rank of
  * another flexbond would send). */
-static size_t receive_result(fb_study_sweep *sw, const MPI_Status *probed)
+static size_t receive_result(fb_study_sweep *sw, int source)
 {
   result_msg msg;
   MPI_Status st;
-  MPI_Recv(&msg, (int)sizeof msg, MPI_BYTE, probed->MPI_SOURCE, SWEEP_TAG_RESULT,
-           MPI_COMM_WORLD, &st);
+  MPI_Recv(&msg, (int)sizeof msg, MPI_BYTE, source, SWEEP_TAG_RESULT, MPI_COMM_WORLD, &st);
   int count = 0;
   MPI_Get_count(&st, MPI_BYTE, &count);
   const size_t fixed = offsetof(result_msg, error);
@@ -140,33 +200,18 @@ int sweep_mpi_coordinate(const sweep_args *a, int size, fb_err *err)
   int busy = 0;
   for (int r = 1; r < size; ++r)
     busy += hand_out(a->study, r);
-  /* Polled, not a blocking receive: OpenMPI spins in a blocking one and
-   * would take a core from the local worker. The pause between polls
-   * doubles from 50 us to 2 ms while nothing comes, so that a result
-   * waits at most 2 ms (a case takes 10 ms and more) and an idle
-   * coordinator wakes 500 times a second. */
-  long nap_ns = 50000;
   while (busy > 0) {
-    int flag = 0;
-    MPI_Status st;
-    MPI_Iprobe(MPI_ANY_SOURCE, SWEEP_TAG_RESULT, MPI_COMM_WORLD, &flag, &st);
-    if (!flag) {
-      const struct timespec nap = {0, nap_ns};
-      nanosleep(&nap, NULL);
-      nap_ns = nap_ns < 1000000 ? 2 * nap_ns : 2000000;
-      continue;
-    }
-    nap_ns = 50000;
-    const size_t i = receive_result(a->study, &st);
+    const int source = sweep_mpi_wait(SWEEP_TAG_RESULT);
+    const size_t i = receive_result(a->study, source);
     /* A rank that was interrupted (its case is not done) runs no more. */
     const int stopped = i != SIZE_MAX && !fb_study_sweep_case_done(a->study, i);
     if (i != SIZE_MAX)
       fb_study_sweep_finish(a->study, i);
     --busy;
     if (stopped)
-      MPI_Send(NULL, 0, MPI_BYTE, st.MPI_SOURCE, SWEEP_TAG_STOP, MPI_COMM_WORLD);
+      MPI_Send(NULL, 0, MPI_BYTE, source, SWEEP_TAG_STOP, MPI_COMM_WORLD);
     else
-      busy += hand_out(a->study, st.MPI_SOURCE);
+      busy += hand_out(a->study, source);
   }
   /* Without a thread of its own (pthread_create failed), rank 0 runs
    * what is left itself. */

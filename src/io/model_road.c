@@ -58,8 +58,8 @@ static int ml_road_track(const ml_ctx *c, struct fy_node *map, int *track)
 static int ml_road_iso(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms,
                        fb_road_wheel_info *w)
 {
-  static const char *const keys[] = {"class",     "seed",        "n_min", "n_max",
-                                     "harmonics", "fade_length", "track", NULL};
+  static const char *const keys[] = {"class",       "seed",  "n_min", "n_max", "harmonics",
+                                     "fade_length", "track", "gd0",   NULL};
   struct fy_node *v = NULL;
   const char *cls = NULL;
   size_t count = 0;
@@ -67,7 +67,7 @@ static int ml_road_iso(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms
   fb_road_iso8608_defaults(&w->iso);
   int rc = ml_expect_map(c, n,
                          "an ISO 8608 road {class, seed, n_min, n_max, harmonics, "
-                         "fade_length, track}");
+                         "fade_length, track, gd0}");
   if (!rc)
     rc = ml_check_keys(c, n, keys);
   if (!rc)
@@ -89,6 +89,8 @@ static int ml_road_iso(const ml_ctx *c, struct fy_node *n, const fb_symtab *syms
     rc = ml_count(c, v, syms, 1, FB_ROAD_ISO8608_MAX_HARMONICS, &w->iso.nharmonics);
   if (!rc)
     rc = ml_opt_number(c, n, "fade_length", syms, &w->iso.fade_length);
+  if (!rc)
+    rc = ml_opt_number(c, n, "gd0", syms, &w->iso.gd0);
   if (!rc)
     rc = ml_road_track(c, n, &w->track);
   return rc;

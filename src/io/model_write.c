@@ -483,6 +483,10 @@ static int mw_road(const mw *w, FILE *fp, const fb_road_wheel_info *r, const cha
     mw_num(fp, r->iso.n_max);
     fprintf(fp, ", harmonics: %zu, fade_length: ", r->iso.nharmonics);
     mw_num(fp, r->iso.fade_length);
+    if (r->iso.gd0 > 0) { /* a road given by its r.m.s.: its own Gd(n0) */
+      fputs(", gd0: ", fp);
+      mw_num(fp, r->iso.gd0);
+    }
     fprintf(fp, ", track: %s}}}", r->track == FB_ROAD_LEFT ? "left" : "right");
     return FB_OK;
   }

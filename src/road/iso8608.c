@@ -29,6 +29,7 @@ void fb_road_iso8608_defaults(fb_road_iso8608_params *p)
   p->n_max = 2.83;
   p->nharmonics = 1024;
   p->fade_length = 0.0;
+  p->gd0 = 0.0;
 }
 
 int fb_road_iso8608_gd0(char road_class, double *gd0, fb_err *err)
@@ -41,6 +42,32 @@ int fb_road_iso8608_gd0(char road_class, double *gd0, fb_err *err)
                       road_class >= 32 && road_class < 127 ? road_class : '?', road_class);
   *gd0 = ISO_GD0_A * pow(4.0, (double)(upper - 'A'));
   return FB_OK;
+}
+
+int fb_road_iso8608_params_gd0(const fb_road_iso8608_params *p, double *gd0, fb_err *err)
+{
+  if (p->gd0 > 0.0 && isfinite(p->gd0)) {
+    *gd0 = p->gd0;
+    return FB_OK;
+  }
+  if (p->gd0 != 0.0)
+    return fb_err_set(err, FB_EINVAL, "ISO 8608 road: Gd(n0) must be > 0 m^3 (got %g)", p->gd0);
+  return fb_road_iso8608_gd0(p->road_class, gd0, err);
+}
+
+/* The integral of Gd(n) = Gd(n0) (n / n0)^-2 over [n_min, n_max] is
+ * Gd(n0) n0^2 (1 / n_min - 1 / n_max): the variance of a track whose
+ * one-sided PSD it is (ISO 8608:2016, the PSD's definition: its integral
+ * over a band is the mean square of the profile in that band). */
+double fb_road_iso8608_rms_gd0(double rms, double n_min, double n_max)
+{
+  return rms * rms / (ISO_N0 * ISO_N0 * (1.0 / n_min - 1.0 / n_max));
+}
+
+char fb_road_iso8608_class_of(double gd0)
+{
+  const double k = round(log(gd0 / ISO_GD0_A) / log(4.0));
+  return (char)('A' + (k < 0 ? 0 : k > 7 ? 7 : (int)k));
 }
 
 /* ---- Random numbers: xoshiro256** (Blackman & Vigna, "Scrambled linear
@@ -93,7 +120,7 @@ static double rng_uniform(rng *r)
 
 static int check_params(const fb_road_iso8608_params *p, double *gd0, fb_err *err)
 {
-  int rc = fb_road_iso8608_gd0(p->road_class, gd0, err);
+  int rc = fb_road_iso8608_params_gd0(p, gd0, err);
   if (rc)
     return rc;
   if (!(isfinite(p->n_min) && p->n_min > 0.0))

@@ -43,7 +43,7 @@ int fb_study_ride_psd_iso8608(const fb_scenario *s, char road_class,
 static int ride_road(const fb_scenario *s, const fb_road_iso8608_params *iso, int identical,
                      fb_study_psd_road *road, fb_err *err)
 {
-  int rc = fb_road_iso8608_gd0(iso->road_class, &road->gd0, err);
+  int rc = fb_road_iso8608_params_gd0(iso, &road->gd0, err);
   if (rc)
     return rc;
   if (!(iso->n_min > 0.0 && iso->n_max > iso->n_min && isfinite(iso->n_max)))

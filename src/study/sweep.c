@@ -401,6 +401,8 @@ int fb_study_sweep_run_case(fb_study_sweep *sw, size_t i)
     wall = fb_result_stats(res)->wall_seconds;
     rc = case_metrics(sw, s, res, m, &err);
   }
+  if (rc == FB_OK && sw->ops.measure)
+    rc = sw->ops.measure(sw->ops.ctx, i, s, res, &err);
   if (rc != FB_OK && s && sw->ops.locate)
     sw->ops.locate(sw->ops.ctx, s, &err);
   if (rc != FB_OK)
