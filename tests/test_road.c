@@ -672,6 +672,41 @@ static void test_csv_values(void)
   fb_road_free(&road);
 }
 
+/* A profile flat for 10 m, then a bump, flat again, then a dip: the
+ * knots where a flat stretch meets the bump or the dip are breaks (a
+ * wheel at rest on the flat would let the integrator step over the
+ * feature), the knots inside the bump are not. Knots: s = 0, 5, 10 flat
+ * at 0; 10.5 at 0.1; 11 back at 0 (PCHIP gives 10.5 slope 0, so [10, 11]
+ * is not flat); 11, 15 flat; 16 at -0.05; 17, 20 flat at 0. Expected
+ * breaks: 0 (end), 10 (flat -> bump), 11 (bump -> flat), 15 (flat ->
+ * dip), 17 (dip -> flat), 20 (end). */
+static void test_profile_flat_breaks(void)
+{
+  static const double s_k[] = {0, 5, 10, 10.5, 11, 15, 16, 17, 20};
+  static const double z_k[] = {0, 0, 0, 0.1, 0, 0, -0.05, 0, 0};
+  static const double want[] = {0, 10, 11, 15, 17, 20};
+  const size_t n = sizeof s_k / sizeof s_k[0], nwant = sizeof want / sizeof want[0];
+  fb_err err;
+  fb_road *road = NULL;
+  CHECK(fb_road_new_profile(n, s_k, z_k, z_k, &road, &err) == FB_OK);
+  if (!road)
+    return;
+  double br[16] = {0};
+  CHECK(fb_road_breaks(road, FB_ROAD_RIGHT, NULL, 0) == nwant);
+  CHECK(fb_road_breaks(road, FB_ROAD_RIGHT, br, 16) == nwant);
+  for (size_t i = 0; i < nwant; ++i)
+    CHECK(br[i] == want[i]);
+  /* A wheel 5 m before the profile at 2 m/s passes them at (s + 5) / 2. */
+  fb_tfun *v = NULL;
+  CHECK(fb_road_wheel_velocity(road, FB_ROAD_RIGHT, 2.0, -5.0, &v, &err) == FB_OK);
+  double bp[16] = {0};
+  CHECK(v && fb_tfun_breakpoints(v, bp, 16) == nwant);
+  for (size_t i = 0; v && i < nwant; ++i)
+    CHECK(bp[i] == (want[i] + 5.0) / 2.0);
+  fb_tfun_free(&v);
+  fb_road_free(&road);
+}
+
 /* PCHIP slopes by hand on unequal widths and at a sharp turn.
  * Left, (0, 0), (1, 2), (3, 3): widths 1, 2, secants 2, 0.5; interior
  * d1 = (w0 + w1) / (w0/2 + w1/0.5) with w0 = 2*2 + 1 = 5, w1 = 2 + 2*1 = 4:
@@ -847,6 +882,7 @@ int main(void)
   tmp_dir = test_tmpdir();
   test_csv_values();
   test_csv_hand_slopes();
+  test_profile_flat_breaks();
   test_csv_two_tracks();
   test_csv_errors();
   test_csv_strict();

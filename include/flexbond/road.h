@@ -185,8 +185,8 @@ double fb_road_slope(const fb_road *road, int track, double s);
  * nothing faster than V / this. */
 double fb_road_shortest_wavelength(const fb_road *road);
 /* Distances s where the track's second derivative jumps (a CSV profile:
- * its first and last knots only; a piecewise track: every joint),
- * ascending.
+ * its first and last knots, and the knots where a flat stretch meets one
+ * that is not; a piecewise track: every joint), ascending.
  * Returns how many there are; writes at most max of them to s (s may be
  * NULL). 0 for a bad track. */
 size_t fb_road_breaks(const fb_road *road, int track, double *s, size_t max);
