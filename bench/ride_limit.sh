@@ -2,11 +2,12 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Ride-limiting speeds of the paper's APC, System 1, on 2 threads
 # (docs/ride-limit.md, docs/benchmarks.md): two curves of five values,
-#   - a_w r.m.s. against 1.5 m/s^2 on a random course of 5 roughnesses
+#   - 6 W of absorbed power on a random course of 5 roughnesses
 #     (examples/apc6x6_rough_course.yaml: 256 harmonics; a 100 m course,
 #     speeds 10 to 80 km/h, coarse grid every 10 km/h);
-#   - the driver's peak |acceleration| against 2.5 g over the (1 - cos)
-#     bump of 5 heights (examples/apc6x6.yaml; 5 to 80 km/h every 5 km/h),
+#   - the NRMM peak (30 Hz low-pass) against 2.5 g over half-rounds of 5
+#     heights with enveloping tires (examples/apc6x6_halfround.yaml; 5 to
+#     80 km/h every 5 km/h),
 # each to 0.1 km/h, with the figures. Prints each command's wall time per
 # run and the median of both together over RUNS runs (default 5).
 # Usage: bench/ride_limit.sh [BUILD_DIR] [RUNS]
@@ -18,9 +19,9 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
 rough=(ride-limit examples/apc6x6_rough_course.yaml --vary road.iso8608.rms=0.01,0.02,0.03,0.04,0.05
-  --metric a_w_rms --limit 1.5 --course-length 100 --speeds 10:80 --coarse-step 10 -j 2 -q)
-bump=(ride-limit examples/apc6x6.yaml --vary road.bump.height=0.1,0.15,0.2,0.25,0.3
-  --metric abs_peak --limit 24.525 -j 2 -q)
+  --metric absorbed_power --course-length 100 --speeds 10:80 --coarse-step 10 -j 2 -q)
+bump=(ride-limit examples/apc6x6_halfround.yaml --vary road.halfround.height=0.1,0.15,0.2,0.25,0.3
+  --metric nrmm_peak -j 2 -q)
 
 # seconds COMMAND...: the command's wall time, s.
 seconds() {

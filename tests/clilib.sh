@@ -69,3 +69,20 @@ expect_absent() {
   [ ! -e "$1" ] || fail "$2: $1 was created"
 }
 
+
+# bracket_verdict LIMIT V_LO V_HI METRIC METRIC_OVER SPEED SPEED_OVER: a
+# ride-limit row checked against a second tool's metric at its bracket's
+# ends (V_LO at SPEED, V_HI at SPEED_OVER): below the limit at SPEED, at
+# or above it at SPEED_OVER, the bracket at most 0.1 km/h wide, and the
+# two tools' metrics equal to 1e-9 relative. Prints what is wrong;
+# non-zero status then.
+bracket_verdict() {
+  awk -v limit="$1" -v v1="$2" -v v2="$3" -v m="$4" -v mo="$5" -v lo="$6" -v hi="$7" 'BEGIN {
+    bad = 0
+    if (!(v1 < limit && v2 >= limit)) { print "not bracketed: " v1 ", " v2; bad = 1 }
+    if (!(hi - lo <= 0.1 + 1e-9 && hi > lo)) { print "bracket " lo " .. " hi; bad = 1 }
+    d1 = v1 - m; d2 = v2 - mo
+    if (d1 * d1 > 1e-18 * m * m || d2 * d2 > 1e-18 * mo * mo) { print "metrics differ: " v1 " vs " m ", " v2 " vs " mo; bad = 1 }
+    exit bad
+  }'
+}

@@ -74,6 +74,9 @@ static void test_point_unchanged(void)
 static void test_short_bump(void)
 {
   fb_scenario *s = load_short();
+  /* An enveloping tire leaves the bump its reach (0.6 to 0.7 m) later
+   * than its centre: RR at 3.24 s. */
+  s->t_end = 3.5;
   fb_result *point = simulate_rigid(s);
   const double t0 = 0.5; /* the run's start settled, before the bump (at 1 s) */
   const double f_point = peak(point, "tire_force_LF", t0);

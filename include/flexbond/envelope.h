@@ -132,9 +132,12 @@ double fb_envelope_spacing(const fb_envelope_model *m, const void *params,
                            const fb_envelope_context *ctx, const fb_road *road);
 
 /* The effective road of both tracks of road under a tire of model m
- * with block params, over [s_min, s_max] (m, s_min < s_max): a profile
- * (fb_road_new_profile) through the effective heights on the grid of
- * fb_envelope_spacing, held at its end values outside. Point contact
+ * with block params, over [s_min, s_max] (m, s_min < s_max) widened to
+ * multiples of 64 samples of fb_envelope_spacing, a grid fixed in s (so
+ * the same road and tire give the same profile over a stretch whatever
+ * the range): a profile (fb_road_new_profile)
+ * through the effective heights on the grid of fb_envelope_spacing, held
+ * at its end values outside. Point contact
  * (reach 0) gives a copy of road (fb_road_clone). *out new. FB_EINVAL for
  * a bad range, FB_ENOMEM, and the model's check. */
 int fb_envelope_road_new(const fb_road *road, const fb_envelope_model *m, const void *params,

@@ -911,10 +911,12 @@ double fb_scenario_wheel_start(const fb_scenario *s, int corner);
  * bump's leading edge: first_contact + ((x_LF - x) + (y_LF - y)
  * tan(angle)) / speed); on a road whose feature starts at s = 0 of its
  * tracks (a random road, a profile), the time it reaches s = 0 (negative
- * when it is already past it at t = 0). */
+ * when it is already past it at t = 0). A tire that envelops the road
+ * meets it earlier by its envelope's reach over the speed. */
 double fb_scenario_road_entry(const fb_scenario *s, int corner);
-/* Time it leaves the feature (the bump's: entry + length / speed); t_end
- * on a road that goes on. */
+/* Time it leaves the feature (the bump's: entry + length / speed; an
+ * enveloping tire later by its reach over the speed); t_end on a road
+ * that goes on. */
 double fb_scenario_road_exit(const fb_scenario *s, int corner);
 
 /* ---- System 2: the finite-element hull's mesh (docs/hull-mesh.md).

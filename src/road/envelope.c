@@ -213,7 +213,15 @@ int fb_envelope_road_new(const fb_road *road, const fb_envelope_model *m, const 
   const double ds = fb_envelope_spacing(m, params, ctx, road);
   if (!(ds > 0.0))
     return fb_road_clone(road, out, err);
-  const size_t n = (size_t)ceil((s_max - s_min) / ds) + 2;
+  /* The samples and the first knots on a grid fixed in s (multiples of
+   * the knots' gap), not from the range's ends: the same road and tire
+   * give the same profile over a stretch whatever range a run needs, so
+   * runs of different lengths (a ride-limit search, a static start
+   * against a settled one) meet the same effective road. */
+  const double gap = (double)KNOT_GAP * ds;
+  s_min = gap * floor(s_min / gap);
+  s_max = gap * ceil(s_max / gap);
+  const size_t n = (size_t)lround((s_max - s_min) / ds) + 1;
   double *f = malloc(8 * n * sizeof *f);
   size_t *knot = malloc(2 * n * sizeof *knot);
   double *s = f + 2 * n;

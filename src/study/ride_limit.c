@@ -246,6 +246,14 @@ static const struct {
     {"vdv", "m/s^1.75", NAN, RIDE_FIELD(vdv)},
     {"crest_factor", "-", NAN, RIDE_FIELD(crest)},
     {"jerk_peak", "m/s^3", NAN, RIDE_FIELD(jerk_peak)},
+    /* NRMM: 2.5 g after the 30 Hz low-pass (docs/ride-metrics.md). */
+    {"nrmm_peak", "m/s^2", FB_RIDE_NRMM_PEAK_LIMIT, RIDE_FIELD(nrmm_peak)},
+    /* ISO 2631-5:2004 Annex B: below 0.5 MPa a low probability of an
+     * adverse health effect. */
+    {"se", "MPa", 0.5, RIDE_FIELD(se)},
+    {"dz", "m/s^2", NAN, RIDE_FIELD(dz)},
+    /* 1: the lower bound of ISO 2631-1's health guidance caution zone. */
+    {"vdv_ratio", "-", 1.0, RIDE_FIELD(vdv_ratio)},
     {"abs_peak", NULL, NAN, 0, 0, abs_peak},
 };
 #undef RIDE_FIELD

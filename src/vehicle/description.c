@@ -71,6 +71,18 @@ void fb_scenario_use_auto_basis(fb_scenario *s)
   s->hull_modes_kind = FB_HULL_MODES_AUTO;
 }
 
+/* How far ahead of and behind its centre the corner's tire reads the
+ * road, m: its envelope's reach (0 for point contact), by which the tire
+ * meets a feature earlier and leaves it later than its centre does. */
+static double corner_reach(const fb_scenario *s, int corner)
+{
+  const fb_corner_params loaded = vehicle_corner_loaded(s, (size_t)corner);
+  const fb_envelope_model *m = fb_corner_envelope_model(&loaded);
+  const fb_envelope_context ctx = fb_corner_envelope_context(&loaded);
+  const double reach = m ? m->ops->reach(loaded.envelope.bytes, &ctx) : 0.0;
+  return reach > 0.0 && isfinite(reach) ? reach : 0.0;
+}
+
 double fb_scenario_road_entry(const fb_scenario *s, int corner)
 {
   const fb_corner_params *w = desc_corner(s, corner);
@@ -78,7 +90,7 @@ double fb_scenario_road_entry(const fb_scenario *s, int corner)
     return NAN;
   double begin = 0.0, end = 0.0;
   desc_feature(s, w, &begin, &end);
-  return (begin - fb_scenario_wheel_start(s, corner)) / s->speed;
+  return (begin - corner_reach(s, corner) - fb_scenario_wheel_start(s, corner)) / s->speed;
 }
 
 double fb_scenario_road_exit(const fb_scenario *s, int corner)
@@ -88,7 +100,9 @@ double fb_scenario_road_exit(const fb_scenario *s, int corner)
     return NAN;
   double begin = 0.0, end = 0.0;
   desc_feature(s, w, &begin, &end);
-  return isfinite(end) ? (end - fb_scenario_wheel_start(s, corner)) / s->speed : s->t_end;
+  return isfinite(end)
+             ? (end + corner_reach(s, corner) - fb_scenario_wheel_start(s, corner)) / s->speed
+             : s->t_end;
 }
 
 int fb_corner_set_damper(fb_corner_params *c, const fb_damper_law *l, void **params,
