@@ -16,6 +16,7 @@ static const fb_road_type *const gallery_builtin[] = {
     &fb_road_type_bump,
     &fb_road_type_iso8608,
     &fb_road_type_profile,
+    &fb_road_type_crg,
 };
 
 struct fb_road_gallery {
