@@ -2,8 +2,8 @@
 /* The OpenCRG file reader (flexbond/crg.h), written from the ASAM
  * OpenCRG specification 1.2.0, chapter 3; section numbers below are its.
  *
- * A file is read whole into memory (its size bounds every allocation),
- * then taken line by line: sections start with "$KEYWORD" and end at a
+ * A file is read whole into memory (fb_read_file; its size bounds every
+ * allocation), then taken line by line: sections start with "$KEYWORD" and end at a
  * line starting with "$" (3.2); "*" in column 1 makes a comment line and
  * "!" starts an inline comment (3.3). The road data (3.4.7) follows a
  * line starting with "$$$$" (binary and formatted data), or, for the
@@ -173,37 +173,6 @@ static int fail_line(const crg_file *f, size_t line, const char *what, const cha
 {
   return fb_err_set(f->st->err, FB_EPARSE, "%s:%zu: %s%s%s", f->path, line, what,
                     detail ? ": " : "", detail ? detail : "");
-}
-
-/* The whole file at path into fresh memory, NUL-terminated. */
-static int read_whole(const char *path, char **text, size_t *size, fb_err *err)
-{
-  *text = NULL;
-  FILE *fp = fopen(path, "rb");
-  if (!fp)
-    return fb_err_set(err, FB_EIO, "%s: cannot open the OpenCRG file", path);
-  long n = -1;
-  if (fseek(fp, 0, SEEK_END) == 0)
-    n = ftell(fp);
-  if (n < 0 || fseek(fp, 0, SEEK_SET) != 0) {
-    fclose(fp);
-    return fb_err_set(err, FB_EIO, "%s: cannot read the OpenCRG file", path);
-  }
-  char *buf = malloc((size_t)n + 1);
-  if (!buf) {
-    fclose(fp);
-    return fb_err_set(err, FB_ENOMEM, "%s: out of memory for its %ld bytes", path, n);
-  }
-  const size_t got = fread(buf, 1, (size_t)n, fp);
-  fclose(fp);
-  if (got != (size_t)n) {
-    free(buf);
-    return fb_err_set(err, FB_EIO, "%s: read %zu of its %ld bytes", path, got, n);
-  }
-  buf[n] = '\0';
-  *text = buf;
-  *size = (size_t)n;
-  return FB_OK;
 }
 
 /* The next line of f into buf (at most cap - 1 characters, '\r' and '\n'
@@ -715,7 +684,9 @@ static int read_file_at(const char *path, crg_state *st, int depth, const char *
                       "%s:%zu: file references nested deeper than %d (a cycle?)", from,
                       from_line, MAX_DEPTH);
   crg_file f = {.path = path, .st = st, .depth = depth, .format = F_KRBI};
-  int rc = read_whole(path, &f.text, &f.size, st->err);
+  /* The whole file, as every input (a regular file of at most
+   * FB_INPUT_MAX_BYTES): its size bounds what is allocated after it. */
+  int rc = fb_read_file(path, &f.text, &f.size, st->err);
   if (rc && from) {
     char msg[FB_ERR_MSG_MAX];
     snprintf(msg, sizeof msg, "%s", st->err->msg);
