@@ -19,6 +19,7 @@
 #include <sys/stat.h>
 
 #include "flexbond/crg.h"
+#include "flexbond/road.h"
 
 #include "check.h"
 #include "tmpdir.h"
@@ -252,6 +253,69 @@ static void test_own_options(void)
       CHECK_NEAR(z, cases[k].expect, 1e-12);
     fb_crg_free(&c);
   }
+}
+
+/* The road type `crg` on the own grid: its tracks' heights at the knots
+ * are the surface's at (u, v_track) plus z_offset; u_start between
+ * sections is a knot of its own; the defaults put the tracks at
+ * +-track_width / 2; a track outside the surface with BORDER_MODE_V = 0
+ * is refused naming the track. */
+static void test_road_type(void)
+{
+  char path[TEST_PATH_MAX];
+  test_tmp_path("own_road.crg", path, sizeof path);
+  write_own_formatted(path, 1);
+  const fb_road_type *t = &fb_road_type_crg;
+  fb_road_params block;
+  fb_road_params_init(t, &block);
+  fb_road_crg_params *p = (fb_road_crg_params *)(void *)block.bytes;
+  CHECK(isnan(p->u_start) && isnan(p->v_left) && isnan(p->v_right) && p->z_offset == 0.0);
+  p->file = strdup(path);
+  p->u_start = 10.2; /* between the sections at 10.0 and 10.5 */
+  p->v_left = 0.7;
+  p->z_offset = -0.25;
+  const fb_road_layout layout = {
+      .speed = 2.0, .track_width = 1.6, .first_x = 1.0, .first_y = 0.8};
+  fb_err err = {0};
+  fb_road *road = NULL;
+  CHECK(t->ops->prepare(block.bytes, &err) == FB_OK);
+  CHECK(t->ops->check(block.bytes, &layout, &err) == FB_OK);
+  CHECK(t->ops->make(block.bytes, &layout, &road, &err) == FB_OK);
+  if (road) {
+    /* Knots at s = 0 (u = 10.2), 0.3, 0.8, 1.3, 1.8 (u = 10.5 .. 12). */
+    const double s[] = {0.0, 0.3, 0.8, 1.3, 1.8};
+    for (size_t k = 0; k < 5; ++k) {
+      CHECK_NEAR(fb_road_height(road, FB_ROAD_LEFT, s[k]), own_z(10.2 + s[k], 0.7) - 0.25,
+                 1e-12);
+      CHECK_NEAR(fb_road_height(road, FB_ROAD_RIGHT, s[k]), own_z(10.2 + s[k], -0.8) - 0.25,
+                 1e-12);
+    }
+    /* Beyond the last knot the road holds its end height. */
+    CHECK_NEAR(fb_road_height(road, FB_ROAD_LEFT, 5.0), own_z(12.0, 0.7) - 0.25, 1e-12);
+  }
+  fb_road_free(&road);
+  /* The first wheel (x = 1) at front_start, a wheel 2 m behind it 2 m
+   * further back on its track. */
+  p->front_start = 3.0;
+  CHECK_NEAR(t->ops->wheel_start(block.bytes, &layout, 1.0, 0.8), 3.0, 1e-12);
+  CHECK_NEAR(t->ops->wheel_start(block.bytes, &layout, -1.0, -0.8), 1.0, 1e-12);
+  /* u_start outside the surface: refused naming it. */
+  p->u_start = 12.5;
+  CHECK(t->ops->check(block.bytes, &layout, &err) == FB_EINVAL &&
+        !strcmp(err.part.field, "u_start"));
+  fb_road_params_release(t, &block);
+  /* A track beyond the surface's v range where BORDER_MODE_V = 0. */
+  char ref[TEST_PATH_MAX];
+  test_tmp_path("own_road_nan.crg", ref, sizeof ref);
+  write_text(ref,
+             "$CT\n$ROAD_CRG_FILE\nown_road.crg\n$\n$ROAD_CRG_OPTS\nBORDER_MODE_V = 0\n$\n");
+  fb_road_params_init(t, &block);
+  p->file = strdup(ref);
+  p->v_right = -1.5;
+  CHECK(t->ops->prepare(block.bytes, &err) == FB_OK);
+  CHECK(t->ops->make(block.bytes, &layout, &road, &err) == FB_EINVAL && road == NULL);
+  CHECK(!strcmp(err.part.field, "v_right") && strstr(err.msg, "v = -1.5 m"));
+  fb_road_params_release(t, &block);
 }
 
 /* Declared sizes beyond the file, bad values, bad structure: refused
@@ -641,6 +705,7 @@ int main(void)
 {
   test_own_formats();
   test_own_options();
+  test_road_type();
   test_malformed();
   test_fuzz();
   struct stat st;

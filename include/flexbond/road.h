@@ -326,12 +326,13 @@ typedef struct fb_road_profile_params {
 
 /* An ASAM OpenCRG surface (flexbond/crg.h) read once by prepare: its
  * tracks at v_left and v_right (NaN: +- track_width / 2), sampled along u
- * from u_start (NaN: the surface's first u) at its u increment; the first
- * corner's wheel at front_start at t = 0. */
+ * from u_start (NaN: the surface's first u) at its u increment, z_offset
+ * added; the first corner's wheel at front_start at t = 0. */
 typedef struct fb_road_crg_params {
   char *file;             /* owned */
   struct fb_crg *crg;     /* owned, as read */
   double front_start;     /* m */
+  double z_offset;        /* m */
   double u_start;         /* m */
   double v_left, v_right; /* m */
 } fb_road_crg_params;

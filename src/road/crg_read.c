@@ -673,6 +673,8 @@ static int read_lines(crg_file *f)
     }
     line_start = f->pos;
   }
+  if (!rc && s == S_FILE && ref[0])
+    rc = fail_line(f, f->line_no, "a file reference not ending in .crg", ref);
   return rc;
 }
 

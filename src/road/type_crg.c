@@ -28,6 +28,14 @@ static const fb_param crg_params[] = {
      .unit = "m",
      .need = FB_PARAM_DEFAULT,
      .doc = "the first corner's wheel's position on its track at t = 0 (0: at u_start)"},
+    {.name = "z_offset",
+     .kind = FB_PARAM_REAL,
+     .store = FB_PARAM_DOUBLE,
+     .offset = offsetof(fb_road_crg_params, z_offset),
+     .unit = "m",
+     .need = FB_PARAM_DEFAULT,
+     .doc = "added to every height (a surface in absolute elevation: minus its height at "
+            "the start)"},
     {.name = "u_start",
      .kind = FB_PARAM_REAL,
      .store = FB_PARAM_DOUBLE,
@@ -104,8 +112,8 @@ static int crg_check(const void *params, const fb_road_layout *l, fb_err *err)
 static int crg_knot(const fb_road_crg_params *p, const fb_crg_info *info, double u, double left,
                     double right, double *zl, double *zr, fb_err *err)
 {
-  *zl = fb_crg_z(p->crg, u, left);
-  *zr = fb_crg_z(p->crg, u, right);
+  *zl = fb_crg_z(p->crg, u, left) + p->z_offset;
+  *zr = fb_crg_z(p->crg, u, right) + p->z_offset;
   if (!isnan(*zl) && !isnan(*zr))
     return FB_OK;
   return fb_err_set(err, FB_EINVAL,
