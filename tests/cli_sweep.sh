@@ -246,7 +246,7 @@ usage "ambiguous key" "key 'mass' is ambiguous: it occurs 4 times (hull.mass, mo
   "$APC" --set mass=1:1:2 -o "$WORK/usage"
 usage "absent key" "no key 'sped_kmh' in the scenario (did you mean 'road.speed_kmh'?)" \
   "$APC" --set sped_kmh=1 -o "$WORK/usage"
-usage "bad path" "road: has no key 'speed' (its keys: speed_kmh, bump, iso8608, profile)" \
+usage "bad path" "road: has no key 'speed' (its keys: speed_kmh, bump, iso8608, profile, crg)" \
   "$APC" --set road.speed=1 -o "$WORK/usage"
 usage "bad path, close key" "simulation: has no key 'max_stpes' (did you mean 'max_steps'?" \
   "$APC" --set simulation.max_stpes=1 -o "$WORK/usage"

@@ -195,6 +195,35 @@ static void test_own_formats(void)
   }
 }
 
+/* Binary data without REFERENCE_LINE_END_U: the rows come from the data,
+ * the NaN rows of the last record's padding (25 values in 2 records of
+ * 20: 3 rows of NaN) are not rows. */
+static void test_own_binary_undeclared(void)
+{
+  unsigned char bin[8192];
+  const size_t n = own_binary(bin, sizeof bin, 0);
+  const char *line = "REFERENCE_LINE_END_U   = 12.0   ! 5 sections\n";
+  unsigned char *at = (unsigned char *)strstr((char *)bin, line);
+  CHECK(at != NULL);
+  if (!at)
+    return;
+  const size_t cut = strlen(line);
+  memmove(at, at + cut, n - (size_t)(at - bin) - cut);
+  char path[TEST_PATH_MAX];
+  write_bytes(test_tmp_path("own_noend.crg", path, sizeof path), bin, n - cut);
+  fb_crg *c = NULL;
+  fb_err err = {0};
+  CHECK(fb_crg_read(path, &c, &err) == FB_OK);
+  if (!c)
+    return;
+  fb_crg_info info;
+  fb_crg_get_info(c, &info);
+  CHECK(info.nu == OWN_NU && info.nv == OWN_NV);
+  CHECK_NEAR(info.u_last, 12.0, TOL);
+  CHECK_NEAR(fb_crg_z(c, 11.77, -0.61), own_z(11.77, -0.61), 1e-8);
+  fb_crg_free(&c);
+}
+
 /* Options and modifiers on the own grid (3.4.4, 3.4.5), each against its
  * rule worked here. */
 static void test_own_options(void)
@@ -704,6 +733,7 @@ static void test_belgian_block(void)
 int main(void)
 {
   test_own_formats();
+  test_own_binary_undeclared();
   test_own_options();
   test_road_type();
   test_malformed();

@@ -427,6 +427,14 @@ static int alloc_values(crg_file *f, size_t nrows)
   return FB_OK;
 }
 
+static int row_all_nan(const double *v, size_t n)
+{
+  for (size_t k = 0; k < n; ++k)
+    if (!isnan(v[k]))
+      return 0;
+  return 1;
+}
+
 /* Binary data from f->pos: records of 80 bytes filled in sequence, the
  * last padded with NaN (3.4.7). The size must be the records the rows
  * need exactly: a shorter or longer section means the rows would be
@@ -440,22 +448,20 @@ static int read_binary(crg_file *f)
   int rc = declared_rows(f, &rows);
   if (rc)
     return rc;
-  if (have % RECORD_BYTES != 0)
-    return fb_err_set(f->st->err, FB_EPARSE,
-                      "%s: byte %zu: the binary road data (%s) is %zu bytes, not a whole "
-                      "number of %d-byte records (3.4.7)%s",
-                      f->path, start, FORMAT_NAMES[f->format], have, RECORD_BYTES,
-                      rows ? "" : "");
+  const int declared = rows > 0;
   const size_t nvalues = have / (size_t)bytes;
-  if (!rows)
+  if (!declared)
     rows = nvalues / f->nch;
-  /* Checked before anything is allocated: the rows must be in the file. */
-  if (rows < 2 || rows > nvalues / f->nch || nvalues - rows * f->nch >= per_rec)
+  /* Checked before anything is allocated: the rows must be in the file,
+   * in whole records, the padding less than a record (in double: a
+   * declared row count may be any size). */
+  const double records = ceil((double)rows * (double)f->nch / (double)per_rec);
+  if (rows < 2 || rows > nvalues / f->nch || (double)have != records * RECORD_BYTES)
     return fb_err_set(f->st->err, FB_EPARSE,
-                      "%s: byte %zu: the binary road data is %zu bytes; %zu rows of %zu "
-                      "channels (%s) take %zu records of %d bytes (3.4.7)",
-                      f->path, start, have, rows, f->nch, FORMAT_NAMES[f->format],
-                      (rows * f->nch + per_rec - 1) / per_rec, RECORD_BYTES);
+                      "%s: byte %zu: the binary road data (%s) is %zu bytes; %zu rows of %zu "
+                      "channels take %.0f records of %d bytes, %.0f bytes (3.4.7)",
+                      f->path, start, FORMAT_NAMES[f->format], have, rows, f->nch, records,
+                      RECORD_BYTES, records * RECORD_BYTES);
   rc = alloc_values(f, rows);
   if (rc)
     return rc;
@@ -468,6 +474,12 @@ static int read_binary(crg_file *f)
                         "%s: byte %zu: the last record's padding is not NaN (3.4.7): the "
                         "data is out of step with its definition",
                         f->path, start + k * (size_t)bytes);
+  /* Without REFERENCE_LINE_END_U, rows of NaN inside the last record are
+   * its padding, not data. */
+  const size_t last_record = ((size_t)records - 1) * per_rec;
+  while (!declared && f->st->nrows > 2 && (f->st->nrows - 1) * f->nch >= last_record &&
+         row_all_nan(f->st->values + (f->st->nrows - 1) * f->nch, f->nch))
+    --f->st->nrows;
   f->pos = f->size;
   return FB_OK;
 }
