@@ -364,10 +364,11 @@ static int read_file_ref_line(crg_file *f, char *raw, char *acc, size_t cap)
   const char *text = strip(raw);
   if (!*text)
     return FB_OK;
-  if (strlen(acc) + strlen(text) >= cap)
+  const size_t had = strlen(acc), add = strlen(text);
+  if (had + add >= cap)
     return fail_line(f, f->line_no, "a file reference too long", text);
-  strcat(acc, text);
-  const size_t n = strlen(acc);
+  memcpy(acc + had, text, add + 1);
+  const size_t n = had + add;
   if (n < 4 || strcasecmp(acc + n - 4, ".crg") != 0)
     return FB_OK;
   char *path = NULL;
@@ -945,7 +946,7 @@ static int build(crg_state *st, fb_crg *c)
   if (rc)
     return rc;
   const size_t nu = c->nu, nv = c->nv;
-  c->z = malloc(nu * nv * sizeof *c->z);
+  c->z = calloc(nu * nv, sizeof *c->z);
   c->zref = malloc(nu * sizeof *c->zref);
   c->bank = malloc(nu * sizeof *c->bank);
   double *slope = malloc(nu * sizeof *slope), *phi = malloc(nu * sizeof *phi);
@@ -959,7 +960,7 @@ static int build(crg_state *st, fb_crg *c)
       if (st->chan[k].kind >= CH_LONG_AT)
         c->z[i * nv + j++] = st->values[i * st->nch + k] * s_z;
   fill_border_nan(c, (int)nan_mode, key_or(&st->mods, M_GRID_NAN_OFFSET, 0.0));
-  int has_phi;
+  int has_phi = 0;
   rc = channel_values(st, CH_SLOPE, key_or(r, R_START_S, 0.0), key_or(r, R_END_S, 0.0),
                       r->set[R_END_S], slope, nu, &c->has_slope);
   rc = rc ? rc
