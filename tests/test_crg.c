@@ -347,6 +347,55 @@ static void test_road_type(void)
   fb_road_params_release(t, &block);
 }
 
+/* File references (3.4.6) on the own grid: a path from the environment
+ * ($NAME), a path split over two lines, and a modifiers block that
+ * replaces the referenced file's (an empty one: no modifier). */
+static void test_own_references(void)
+{
+  char dir[TEST_PATH_MAX], path[TEST_PATH_MAX];
+  mkdir(test_tmp_path("grids", dir, sizeof dir), 0700);
+  write_own_formatted(test_tmp_path("grids/scaled.crg", path, sizeof path), 1);
+  /* The grid with its own modifiers: z scaled by 2. */
+  fb_crg *c = NULL;
+  fb_err err = {0};
+  char text[4096];
+  FILE *fp = fopen(path, "rb");
+  const size_t n = fp ? fread(text, 1, sizeof text - 1, fp) : 0;
+  if (fp)
+    fclose(fp);
+  text[n] = '\0';
+  char with_mods[4200];
+  char *kd = strstr(text, "$KD_DEFINITION");
+  CHECK(kd != NULL);
+  if (!kd)
+    return;
+  snprintf(with_mods, sizeof with_mods, "%.*s$ROAD_CRG_MODS\nSCALE_Z_GRID = 2\n$\n%s",
+           (int)(kd - text), text, kd);
+  write_text(path, with_mods);
+  CHECK(fb_crg_read(path, &c, &err) == FB_OK);
+  if (c) /* u = 11 is cross section 2, v = 1 long section 3: 2 z + slope */
+    CHECK_NEAR(fb_crg_z(c, 11.0, 1.0), 2 * own_value(2, 4) + 0.02 + 0.02, 1e-12);
+  fb_crg_free(&c);
+  /* $FB_CRG_TEST_DIR/scaled.crg, then an empty modifiers block. */
+  setenv("FB_CRG_TEST_DIR", dir, 1);
+  write_text(test_tmp_path("env.crg", path, sizeof path),
+             "$CT\n$ROAD_CRG_FILE\n$FB_CRG_TEST_DIR/scaled.crg\n$\n$ROAD_CRG_MODS\n$\n");
+  CHECK(fb_crg_read(path, &c, &err) == FB_OK);
+  if (c)
+    CHECK_NEAR(fb_crg_z(c, 11.0, 1.0), own_z(11.0, 1.0), 1e-12);
+  fb_crg_free(&c);
+  /* The path over two lines: "grids/sca" and "led.crg". */
+  write_text(path, "$CT\n$ROAD_CRG_FILE\ngrids/sca\nled.crg  ! split\n$\n");
+  CHECK(fb_crg_read(path, &c, &err) == FB_OK);
+  if (c)
+    CHECK_NEAR(fb_crg_z(c, 11.0, 1.0), 2 * own_value(2, 4) + 0.04, 1e-12);
+  fb_crg_free(&c);
+  /* An unset variable: FB_EIO at the reference's line. */
+  unsetenv("FB_CRG_TEST_DIR");
+  write_text(path, "$CT\n$ROAD_CRG_FILE\n$FB_CRG_TEST_DIR/scaled.crg\n$\n");
+  CHECK(fb_crg_read(path, &c, &err) == FB_EIO && strstr(err.msg, "env.crg:3:"));
+}
+
 /* Declared sizes beyond the file, bad values, bad structure: refused
  * with FB_EPARSE, naming the file and the line or byte. */
 static void expect_refused(const char *name, const unsigned char *data, size_t n,
@@ -735,6 +784,7 @@ int main(void)
   test_own_formats();
   test_own_binary_undeclared();
   test_own_options();
+  test_own_references();
   test_road_type();
   test_malformed();
   test_fuzz();

@@ -653,6 +653,14 @@ static int read_section_line(crg_file *f, crg_section s, char *line, char *ref, 
   }
 }
 
+/* In a $ROAD_CRG_FILE section, "$NAME/rest" is a path from the
+ * environment (3.4.6), not a section: a keyword has no "/". */
+static int is_env_path(crg_section s, const char *line)
+{
+  const char *slash = strchr(line, '/'), *bang = strchr(line, '!');
+  return s == S_FILE && slash && (!bang || slash < bang);
+}
+
 static int read_lines(crg_file *f)
 {
   char line[512], ref[1024] = "";
@@ -664,7 +672,7 @@ static int read_lines(crg_file *f)
       line_start = f->pos;
       continue; /* 3.3: a block comment */
     }
-    if (line[0] == '$') {
+    if (line[0] == '$' && !is_env_path(s, line)) {
       if (strncmp(line, "$$$$", 4) == 0)
         return read_data(f);
       if (s == S_FILE && ref[0])
