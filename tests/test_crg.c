@@ -224,6 +224,66 @@ static void test_own_binary_undeclared(void)
   fb_crg_free(&c);
 }
 
+/* x/y placement of the own grid (straight, START_X/Y/PHI 0, u from 10):
+ * (u, v) is at (u - 10, v); each case's relocation (3.4.2, 3.4.5) worked
+ * here. */
+static void test_own_xy(void)
+{
+  struct {
+    const char *block;
+    double u, v, x, y;
+  } cases[] = {
+      {"", 11.5, 0.4, 1.5, 0.4},
+      /* Beyond the ends: along the end chord. */
+      {"", 13.0, -0.5, 3.0, -0.5},
+      /* By reference point: (u 10, v 0) to (100, 50), heading pi/2. */
+      {"$ROAD_CRG_MODS\nREFPOINT_U_FRACTION = 0\nREFPOINT_V = 0\nREFPOINT_X = 100\n"
+       "REFPOINT_Y = 50\nREFPOINT_PHI = 1.5707963267948966\n$\n",
+       11.5, 0.4, 100.0 - 0.4, 50.0 + 1.5},
+      /* By rotation (pi/2 about the origin) and offset (10 in x). */
+      {"$ROAD_CRG_MODS\nREFLINE_ROTCENTER_X = 0\nREFLINE_ROTCENTER_Y = 0\n"
+       "REFLINE_OFFSET_PHI = 1.5707963267948966\nREFLINE_OFFSET_X = 10\n$\n",
+       11.5, 0.4, 10.0 - 0.4, 1.5},
+      /* The end given: its miss (0.1, 0.3) spread linearly along u. */
+      {"$ROAD_CRG\nREFERENCE_LINE_END_X = 2.1\nREFERENCE_LINE_END_Y = 0.3\n$\n", 11.0, 0.0,
+       1.05, 0.15},
+  };
+  char path[TEST_PATH_MAX];
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+    char text[1024];
+    snprintf(text, sizeof text, "$CT\nplaced\n$ROAD_CRG_FILE\nown_base.crg\n$\n%s",
+             cases[k].block);
+    write_text(test_tmp_path("own_xy.crg", path, sizeof path), text);
+    fb_crg *c = NULL;
+    fb_err err = {0};
+    CHECK(fb_crg_read(path, &c, &err) == FB_OK);
+    if (!c) {
+      fprintf(stderr, "xy case %zu: %s\n", k, err.msg);
+      continue;
+    }
+    double x = NAN, y = NAN, u = NAN, v = NAN;
+    CHECK(fb_crg_uv_to_xy(c, cases[k].u, cases[k].v, &x, &y, &err) == FB_OK);
+    CHECK_NEAR(x, cases[k].x, 1e-12);
+    CHECK_NEAR(y, cases[k].y, 1e-12);
+    CHECK(fb_crg_xy_to_uv(c, x, y, &u, &v, &err) == FB_OK);
+    CHECK_NEAR(u, cases[k].u, 1e-9);
+    CHECK_NEAR(v, cases[k].v, 1e-9);
+    fb_crg_free(&c);
+  }
+  /* A closed track (REFLINE_CONTINUATION 1) is not supported: beyond the
+   * ends x/y is refused, not made up; inside it is the same. */
+  write_text(path, "$CT\n$ROAD_CRG_FILE\nown_base.crg\n$\n$ROAD_CRG_OPTS\n"
+                   "REFLINE_CONTINUATION = 1\n$\n");
+  fb_crg *c = NULL;
+  fb_err err = {0};
+  CHECK(fb_crg_read(path, &c, &err) == FB_OK);
+  double x, y;
+  CHECK(c && fb_crg_uv_to_xy(c, 11.0, 0.0, &x, &y, &err) == FB_OK);
+  CHECK(c && fb_crg_uv_to_xy(c, 13.0, 0.0, &x, &y, &err) == FB_EINVAL &&
+        strstr(err.msg, "REFLINE_CONTINUATION = 1"));
+  fb_crg_free(&c);
+}
+
 /* Options and modifiers on the own grid (3.4.4, 3.4.5), each against its
  * rule worked here. */
 static void test_own_options(void)
@@ -748,6 +808,67 @@ done:
   fb_crg_free(&tob);
 }
 
+/* handmade_arc.crg: START_X/Y/PHI 0, INCREMENT 4.0, END_U 88 (23
+ * sections), a heading channel (column 1; "**unused**" in the first row);
+ * handmade_straight.crg: (u, v) is at (u, v). The arc's points summed
+ * here step by step, each point's heading the mean of its chords; x/y and
+ * back agree to 1e-9 m. SCALE_CURVATURE 0 straightens it (3.4.5). */
+static void test_xy_samples(void)
+{
+  double g[23 * 8];
+  CHECK(parse_lrfi(FLEXBOND_CRG_DATA "/handmade_arc.crg", 8, g, 23) == 23);
+  double px[23] = {0}, py[23] = {0}, ph[23];
+  for (size_t i = 1; i < 23; ++i) {
+    px[i] = px[i - 1] + 4.0 * cos(g[i * 8]);
+    py[i] = py[i - 1] + 4.0 * sin(g[i * 8]);
+  }
+  for (size_t i = 0; i < 23; ++i) {
+    const double before = i > 0 ? atan2(py[i] - py[i - 1], px[i] - px[i - 1]) : NAN;
+    const double after = i < 22 ? atan2(py[i + 1] - py[i], px[i + 1] - px[i]) : NAN;
+    ph[i] = i == 0    ? after
+            : i == 22 ? before
+                      : before + 0.5 * atan2(sin(after - before), cos(after - before));
+  }
+  fb_crg *arc = read_sample("handmade_arc.crg");
+  fb_crg *st = read_sample("handmade_straight.crg");
+  fb_err err = {0};
+  double x, y, u, v;
+  if (arc) {
+    for (size_t i = 0; i < 23; ++i) {
+      CHECK(fb_crg_uv_to_xy(arc, 4.0 * (double)i, 1.2, &x, &y, &err) == FB_OK);
+      CHECK_NEAR(x, px[i] - 1.2 * sin(ph[i]), 1e-9);
+      CHECK_NEAR(y, py[i] + 1.2 * cos(ph[i]), 1e-9);
+    }
+    for (double uu = 0.3; uu < 88.0; uu += 3.7)
+      for (double vv = -1.5; vv <= 1.5; vv += 0.75) {
+        CHECK(fb_crg_uv_to_xy(arc, uu, vv, &x, &y, &err) == FB_OK);
+        CHECK(fb_crg_xy_to_uv(arc, x, y, &u, &v, &err) == FB_OK);
+        CHECK_NEAR(u, uu, 1e-9);
+        CHECK_NEAR(v, vv, 1e-9);
+      }
+  }
+  if (st)
+    for (double uu = -3.0; uu < 26.0; uu += 2.9) {
+      CHECK(fb_crg_uv_to_xy(st, uu, -0.7, &x, &y, &err) == FB_OK);
+      CHECK_NEAR(x, uu, 1e-12);
+      CHECK_NEAR(y, -0.7, 1e-12);
+    }
+  fb_crg_free(&arc);
+  fb_crg_free(&st);
+  char dir[TEST_PATH_MAX], path[TEST_PATH_MAX];
+  mkdir(test_tmp_path("arc", dir, sizeof dir), 0700);
+  copy_sample("handmade_arc.crg", "arc/handmade_arc.crg");
+  write_text(
+      test_tmp_path("arc/straightened.crg", path, sizeof path),
+      "$CT\n$ROAD_CRG_FILE\nhandmade_arc.crg\n$\n$ROAD_CRG_MODS\nSCALE_CURVATURE = 0\n$\n");
+  fb_crg *c = NULL;
+  CHECK(fb_crg_read(path, &c, &err) == FB_OK);
+  CHECK(c && fb_crg_uv_to_xy(c, 50.0, 0.0, &x, &y, &err) == FB_OK);
+  CHECK_NEAR(x, 50.0 * cos(g[1 * 8]), 1e-9);
+  CHECK_NEAR(y, 50.0 * sin(g[1 * 8]), 1e-9);
+  fb_crg_free(&c);
+}
+
 /* belgian_block.crg (binary KRBI): its $ROAD_CRG gives u from 730 to 740
  * by 0.01 (1001 sections) and $KD_DEFINITION a heading channel and 341
  * long sections: 342 x 1001 values of 4 bytes, 17118 records of 80 bytes
@@ -784,6 +905,7 @@ int main(void)
   test_own_formats();
   test_own_binary_undeclared();
   test_own_options();
+  test_own_xy();
   test_own_references();
   test_road_type();
   test_malformed();
@@ -797,6 +919,7 @@ int main(void)
   test_straight();
   test_sloped_banked();
   test_file_refs();
+  test_xy_samples();
   test_belgian_block();
   return check_report("test_crg");
 }

@@ -7,10 +7,10 @@
  * reference line, v across it (positive to the left). What is read, what
  * each section means and what is not supported: docs/roads.md.
  *
- * Only u/v evaluation is provided: the mapping of x/y positions to u/v
- * along a curved reference line is not (the heading channel is read and
- * kept, the x/y modifiers are read and checked but change nothing that
- * this interface returns). */
+ * The reference line is placed in x/y from its start, its headings and
+ * the x/y modifiers; fb_crg_uv_to_xy and fb_crg_xy_to_uv map between the
+ * two (docs/roads.md gives the rules: the specification leaves the
+ * interpolation between its points open). */
 #ifndef FLEXBOND_CRG_H
 #define FLEXBOND_CRG_H
 
@@ -72,6 +72,18 @@ double fb_crg_node(const fb_crg *crg, size_t i, size_t j);
  * the surface has no value (border mode 0 outside the grid, or a missing
  * value that was kept). */
 double fb_crg_z(const fb_crg *crg, double u, double v);
+
+/* The x/y position, m, of the surface point (u, v) (u beyond the
+ * reference line: along its end chord). FB_EINVAL for a non-finite u or
+ * v, or for u beyond the line with REFLINE_CONTINUATION = 1 (a closed
+ * track: not supported). */
+int fb_crg_uv_to_xy(const fb_crg *crg, double u, double v, double *x, double *y, fb_err *err);
+/* The (u, v), m, of the x/y position (x, y): of the points of the
+ * reference line whose normal passes through it, the nearest (the line's
+ * ends extended along their chords). FB_EINVAL for non-finite input, for
+ * a point square to no part of the line, or beyond it with
+ * REFLINE_CONTINUATION = 1. */
+int fb_crg_xy_to_uv(const fb_crg *crg, double x, double y, double *u, double *v, fb_err *err);
 
 #ifdef __cplusplus
 }

@@ -16,7 +16,10 @@ void crg_release(fb_crg *c)
   free(c->zref);
   free(c->bank);
   free(c->phi);
-  c->v = c->z = c->zref = c->bank = c->phi = NULL;
+  free(c->rx);
+  free(c->ry);
+  free(c->rh);
+  c->v = c->z = c->zref = c->bank = c->phi = c->rx = c->ry = c->rh = NULL;
 }
 
 void fb_crg_free(fb_crg **crg)
@@ -47,11 +50,12 @@ int fb_crg_clone(const fb_crg *crg, fb_crg **out, fb_err *err)
   if (!c)
     return fb_err_set(err, FB_ENOMEM, "out of memory for an OpenCRG surface");
   *c = *crg;
-  c->v = c->z = c->zref = c->bank = c->phi = NULL;
+  c->v = c->z = c->zref = c->bank = c->phi = c->rx = c->ry = c->rh = NULL;
   const int ok =
       copy_array(crg->v, crg->nv, &c->v) && copy_array(crg->z, crg->nu * crg->nv, &c->z) &&
       copy_array(crg->zref, crg->nu, &c->zref) && copy_array(crg->bank, crg->nu, &c->bank) &&
-      copy_array(crg->phi, crg->nu, &c->phi);
+      copy_array(crg->phi, crg->nu, &c->phi) && copy_array(crg->rx, crg->nu, &c->rx) &&
+      copy_array(crg->ry, crg->nu, &c->ry) && copy_array(crg->rh, crg->nu, &c->rh);
   if (!ok) {
     fb_crg_free(&c);
     return fb_err_set(err, FB_ENOMEM, "out of memory for an OpenCRG surface");

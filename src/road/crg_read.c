@@ -117,11 +117,12 @@ enum {
   O_BORDER_OFFSET_V,
   O_SMOOTH_UBEG,
   O_SMOOTH_UEND,
+  O_CONTINUATION,
   NOPTS
 };
-static const char *const OPT_KEYS[NOPTS] = {"BORDER_MODE_U",      "BORDER_MODE_V",
-                                            "BORDER_OFFSET_U",    "BORDER_OFFSET_V",
-                                            "BORDER_SMOOTH_UBEG", "BORDER_SMOOTH_UEND"};
+static const char *const OPT_KEYS[NOPTS] = {
+    "BORDER_MODE_U",      "BORDER_MODE_V",      "BORDER_OFFSET_U",     "BORDER_OFFSET_V",
+    "BORDER_SMOOTH_UBEG", "BORDER_SMOOTH_UEND", "REFLINE_CONTINUATION"};
 
 /* A block of key = value settings: the values and which were given. */
 typedef struct crg_keys {
@@ -861,7 +862,11 @@ static int mod_scale(const crg_state *st, int key, double *scale)
   if (positive && !(s > 0.0))
     return fb_err_set(st->err, FB_EPARSE, "%s = %g: only factors > 0 are valid (3.4.5)",
                       MOD_KEYS[key], s);
-  if (s != 0.0) /* 3.4.5: a factor of 0 for elevation data is ignored */
+  if (key == M_SCALE_CURVATURE && !(s >= 0.0))
+    return fb_err_set(st->err, FB_EPARSE, "SCALE_CURVATURE = %g: >= 0 (3.4.5)", s);
+  /* 3.4.5: a factor of 0 for elevation data is ignored; for the curvature
+   * it makes the line straight. */
+  if (s != 0.0 || key == M_SCALE_CURVATURE)
     *scale = s;
   return FB_OK;
 }
@@ -881,9 +886,31 @@ static int check_opts(const crg_state *st, crg_opts *o)
       return fb_err_set(st->err, FB_EPARSE, "%s = %g: one of 0, 1, 2, 3, 4 (3.4.4)",
                         OPT_KEYS[q], m);
   }
+  const double cont = key_or(k, O_CONTINUATION, 0.0);
+  if (cont != 0.0 && cont != 1.0)
+    return fb_err_set(st->err, FB_EPARSE, "REFLINE_CONTINUATION = %g: 0 or 1 (3.4.4)", cont);
+  o->refline_continuation = (int)cont;
   if (o->smooth_ubeg < 0.0 || o->smooth_uend < 0.0)
     return fb_err_set(st->err, FB_EPARSE, "BORDER_SMOOTH_UBEG / _UEND: >= 0 (3.4.4)");
   return FB_OK;
+}
+
+/* The reference point's (u, v) (3.4.5): REFPOINT_U or REFPOINT_U_FRACTION
+ * of the u range, plus REFPOINT_U_OFFSET; v likewise; within the grid. */
+static void refpoint_uv(const crg_state *st, const fb_crg *c, double *u_out, double *v_out)
+{
+  const crg_keys *m = &st->mods;
+  const double u_last = c->u0 + (double)(c->nu - 1) * c->du;
+  double u = m->set[M_REFPOINT_U]
+                 ? m->value[M_REFPOINT_U]
+                 : c->u0 + key_or(m, M_REFPOINT_U_FRACTION, 0.0) * (u_last - c->u0);
+  double v = m->set[M_REFPOINT_V] ? m->value[M_REFPOINT_V]
+                                  : c->v[0] + key_or(m, M_REFPOINT_V_FRACTION, 0.0) *
+                                                  (c->v[c->nv - 1] - c->v[0]);
+  u += key_or(m, M_REFPOINT_U_OFFSET, 0.0);
+  v += key_or(m, M_REFPOINT_V_OFFSET, 0.0);
+  *u_out = fmin(u_last, fmax(c->u0, u));
+  *v_out = fmin(c->v[c->nv - 1], fmax(c->v[0], v));
 }
 
 /* The modifiers' z shift (3.4.5): by reference point when any REFPOINT_*
@@ -899,17 +926,8 @@ static double z_shift(const crg_state *st, const fb_crg *c)
     refpoint |= m->set[k];
   if (!refpoint)
     return shift + key_or(m, M_OFFSET_Z, 0.0);
-  const double u_last = c->u0 + (double)(c->nu - 1) * c->du;
-  double u = m->set[M_REFPOINT_U]
-                 ? m->value[M_REFPOINT_U]
-                 : c->u0 + key_or(m, M_REFPOINT_U_FRACTION, 0.0) * (u_last - c->u0);
-  double v = m->set[M_REFPOINT_V] ? m->value[M_REFPOINT_V]
-                                  : c->v[0] + key_or(m, M_REFPOINT_V_FRACTION, 0.0) *
-                                                  (c->v[c->nv - 1] - c->v[0]);
-  u += key_or(m, M_REFPOINT_U_OFFSET, 0.0);
-  v += key_or(m, M_REFPOINT_V_OFFSET, 0.0);
-  u = fmin(u_last, fmax(c->u0, u));
-  v = fmin(c->v[c->nv - 1], fmax(c->v[0], v));
+  double u, v;
+  refpoint_uv(st, c, &u, &v);
   double f = (u - c->u0) / c->du;
   size_t i = f <= 0.0 ? 0 : (size_t)f;
   if (i > c->nu - 2)
@@ -918,6 +936,39 @@ static double z_shift(const crg_state *st, const fb_crg *c)
   const double zr = c->zref[i] + f * (c->zref[i + 1] - c->zref[i]);
   const double b = c->bank[i] + f * (c->bank[i + 1] - c->bank[i]);
   return shift + key_or(m, M_REFPOINT_Z, 0.0) - (zr + b * v);
+}
+
+/* The x/y placement the keys give (crg_xy.c). */
+static crg_place place_of(const crg_state *st, const fb_crg *c, double scale_curvature)
+{
+  const crg_keys *r = &st->road, *m = &st->mods;
+  crg_place p = {
+      .start_x = key_or(r, R_START_X, 0.0),
+      .start_y = key_or(r, R_START_Y, 0.0),
+      .start_phi = key_or(r, R_START_PHI, 0.0),
+      .end_phi = key_or(r, R_END_PHI, 0.0),
+      .end_phi_given = r->set[R_END_PHI],
+      .end_xy_given = r->set[R_END_X] && r->set[R_END_Y],
+      .end_x = key_or(r, R_END_X, 0.0),
+      .end_y = key_or(r, R_END_Y, 0.0),
+      .offset_x = key_or(r, R_OFFSET_X, 0.0),
+      .offset_y = key_or(r, R_OFFSET_Y, 0.0),
+      .offset_phi = key_or(r, R_OFFSET_PHI, 0.0),
+      .scale_curvature = scale_curvature,
+      .ref_x = key_or(m, M_REFPOINT_X, 0.0),
+      .ref_y = key_or(m, M_REFPOINT_Y, 0.0),
+      .ref_phi = key_or(m, M_REFPOINT_PHI, 0.0),
+      .rotcenter_given = {m->set[M_ROTCENTER_X], m->set[M_ROTCENTER_Y]},
+      .rot_x = key_or(m, M_ROTCENTER_X, 0.0),
+      .rot_y = key_or(m, M_ROTCENTER_Y, 0.0),
+      .rot_phi = key_or(m, M_OFFSET_PHI, 0.0),
+      .move_x = key_or(m, M_OFFSET_X, 0.0),
+      .move_y = key_or(m, M_OFFSET_Y, 0.0),
+  };
+  for (int k = M_REFPOINT_U; k <= M_REFPOINT_PHI; ++k)
+    p.by_refpoint |= m->set[k];
+  refpoint_uv(st, c, &p.ref_u, &p.ref_v);
+  return p;
 }
 
 static int build(crg_state *st, fb_crg *c)
@@ -934,12 +985,13 @@ static int build(crg_state *st, fb_crg *c)
     st->mods.set[M_GRID_NAN_MODE] = 1;
     st->mods.value[M_GRID_NAN_MODE] = 2;
   }
-  double s_len, s_width, s_z, s_slope, s_bank;
+  double s_len, s_width, s_z, s_slope, s_bank, s_curv;
   int rc = mod_scale(st, M_SCALE_LENGTH, &s_len);
   rc = rc ? rc : mod_scale(st, M_SCALE_WIDTH, &s_width);
   rc = rc ? rc : mod_scale(st, M_SCALE_Z_GRID, &s_z);
   rc = rc ? rc : mod_scale(st, M_SCALE_SLOPE, &s_slope);
   rc = rc ? rc : mod_scale(st, M_SCALE_BANKING, &s_bank);
+  rc = rc ? rc : mod_scale(st, M_SCALE_CURVATURE, &s_curv);
   rc = rc ? rc : check_opts(st, &c->opts);
   if (rc)
     return rc;
@@ -987,6 +1039,8 @@ static int build(crg_state *st, fb_crg *c)
     const double shift = z_shift(st, c);
     for (size_t i = 0; i < nu; ++i)
       c->zref[i] += shift;
+    const crg_place place = place_of(st, c, s_curv);
+    rc = crg_refline_build(c, has_phi ? phi : NULL, &place, st->err);
   }
   free(slope);
   if (has_phi && !rc)
