@@ -196,6 +196,21 @@ static void make_examples(example *ex, size_t *n)
   snprintf(ex[k++].road, sizeof ex[0].road,
            "%s  course:\n    file: %s\n    angle_deg: 20\n    first_contact: 5\n", head,
            course);
+  char crg[TEST_PATH_MAX];
+  test_tmp_path("surface.crg", crg, sizeof crg);
+  fp = fopen(crg, "w");
+  CHECK(fp != NULL);
+  if (fp) { /* 6 cross sections 1 m apart, 3 long sections 1 m apart */
+    fprintf(fp, "$CT\nconformance example\n$ROAD_CRG\nREFERENCE_LINE_INCREMENT = 1.0\n"
+                "LONG_SECTION_V_INCREMENT = 1.0\n$\n$KD_DEFINITION\n#:LRFI\n"
+                "D:long section 1,m\nD:long section 2,m\nD:long section 3,m\n$\n$$$$\n");
+    for (int i = 0; i < 6; ++i)
+      fprintf(fp, "%10.7f%10.7f%10.7f\n", 0.01 * (i % 3), 0.02 * (i % 2), 0.005 * i);
+    fclose(fp);
+  }
+  ex[k].type = "crg";
+  snprintf(ex[k++].road, sizeof ex[0].road, "%s  crg:\n    file: %s\n    front_start: -2\n",
+           head, crg);
   ex[k].type = "plank";
   snprintf(ex[k++].road, sizeof ex[0].road, "%s  plank:\n    height: 0.1\n    length: 1.0\n",
            head);
@@ -564,7 +579,7 @@ int main(void)
   CHECK(fb_road_gallery_new(&g, &err) == FB_OK);
   if (!g)
     return check_report("test_road_gallery");
-  CHECK(fb_road_gallery_count(g) == 10);
+  CHECK(fb_road_gallery_count(g) == 11);
   test_registration(g);
   test_conformance(g);
   test_plank_errors(g);

@@ -251,7 +251,7 @@ int fb_road_wheel_new(const fb_road_wheel_info *info, fb_tfun **out, fb_err *err
  * primitives above, so that every road has a model-file form), and say
  * where each wheel starts on its track and when it meets the road's
  * feature. Built-in types: fb_road_type_bump, fb_road_type_iso8608,
- * fb_road_type_profile (docs/roads.md); a program adds its own to a
+ * fb_road_type_profile, fb_road_type_crg (docs/roads.md); a program adds its own to a
  * gallery (fb_road_gallery_add) and names them in its descriptions
  * (docs/architecture.md, "Adding a road type"). */
 
@@ -389,9 +389,23 @@ typedef struct fb_road_profile_params {
   double front_start; /* m */
 } fb_road_profile_params;
 
+/* An ASAM OpenCRG surface (flexbond/crg.h) read once by prepare: its
+ * tracks at v_left and v_right (NaN: +- track_width / 2), sampled along u
+ * from u_start (NaN: the surface's first u) at its u increment, z_offset
+ * added; the first corner's wheel at front_start at t = 0. */
+typedef struct fb_road_crg_params {
+  char *file;             /* owned */
+  struct fb_crg *crg;     /* owned, as read */
+  double front_start;     /* m */
+  double z_offset;        /* m */
+  double u_start;         /* m */
+  double v_left, v_right; /* m */
+} fb_road_crg_params;
+
 extern const fb_road_type fb_road_type_bump;
 extern const fb_road_type fb_road_type_iso8608;
 extern const fb_road_type fb_road_type_profile;
+extern const fb_road_type fb_road_type_crg;
 
 /* The obstacles (docs/roads.md, "Obstacles"): a shape on the left track,
  * the right one or both (the other flat), crossed obliquely as the

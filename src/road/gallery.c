@@ -23,6 +23,7 @@ static const fb_road_type *const gallery_builtin[] = {
     &fb_road_type_pothole,   /* obstacle */
     &fb_road_type_washboard, /* obstacle */
     &fb_road_type_course,    /* obstacles from a file */
+    &fb_road_type_crg,       /* an OpenCRG surface */
 };
 
 struct fb_road_gallery {
