@@ -131,6 +131,10 @@ double fb_envelope_chord(double r, double d);
 double fb_envelope_spacing(const fb_envelope_model *m, const void *params,
                            const fb_envelope_context *ctx, const fb_road *road);
 
+/* Most samples per track of an enveloped road (80 bytes each): 2 km of
+ * road at the finest spacing of a 1.2 m footprint. */
+#define FB_ENVELOPE_MAX_SAMPLES ((size_t)8000000)
+
 /* The effective road of both tracks of road under a tire of model m
  * with block params, over [s_min, s_max] (m, s_min < s_max) widened to
  * multiples of 64 samples of fb_envelope_spacing, a grid fixed in s (so
@@ -139,7 +143,8 @@ double fb_envelope_spacing(const fb_envelope_model *m, const void *params,
  * through the effective heights on the grid of fb_envelope_spacing, held
  * at its end values outside. Point contact
  * (reach 0) gives a copy of road (fb_road_clone). *out new. FB_EINVAL for
- * a bad range, FB_ENOMEM, and the model's check. */
+ * a bad range or one of more than FB_ENVELOPE_MAX_SAMPLES samples,
+ * FB_ENOMEM, and the model's check. */
 int fb_envelope_road_new(const fb_road *road, const fb_envelope_model *m, const void *params,
                          const fb_envelope_context *ctx, double s_min, double s_max,
                          fb_road **out, fb_err *err);

@@ -81,8 +81,8 @@ static void write_speed(FILE *fp, double speed)
 
 static void write_number(FILE *fp, double x)
 {
-  char text[32];
   if (isfinite(x)) {
+    char text[32];
     sweep_format_double(x, text, sizeof text);
     fputs(text, fp);
   }
@@ -164,7 +164,7 @@ static int write_figure(cli_outdir *od, const rl_args *a, fb_err *err)
       unit = a->base->output[a->output].unit;
     snprintf(title, sizeof title, "flexbond ride-limit: %s, %s of %s = %g %s", a->scenario_name,
              fb_study_ride_limit_metric_name(a->metric), a->base->output[a->output].name,
-             a->opts.limit, unit && strcmp(unit, "-") ? unit : "");
+             a->opts.limit, unit && strcmp(unit, "-") != 0 ? unit : "");
     snprintf(ylabel, sizeof ylabel, "ride-limiting speed [km/h]");
     const char *key_unit = fb_scenario_key_unit(a->vary_path);
     if (key_unit)
@@ -298,7 +298,7 @@ static int parse_metric(const char *cmd, const char *metric, const char *limit,
     return cli_usage_error(cmd, "--metric %s has no standard limit: give --limit X", metric);
   const fb_scenario *s = a->base;
   a->output = output ? 0 : fb_study_ride_output(s);
-  while (output && a->output < s->noutputs && strcmp(s->output[a->output].name, output))
+  while (output && a->output < s->noutputs && strcmp(s->output[a->output].name, output) != 0)
     ++a->output;
   if (a->output == s->noutputs)
     return output ? cli_usage_error(cmd, "--output %s: the scenario has no such output", output)

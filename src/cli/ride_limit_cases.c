@@ -8,6 +8,7 @@
  * finds the journaled ones there without running them. */
 #include <errno.h>
 #include <inttypes.h>
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -35,10 +36,9 @@ size_t rl_ncurves(const rl_args *a)
 typedef struct rl_round {
   rl_args *a;
   int sys;             /* index into a->systems */
-  size_t n;            /* cases */
-  const size_t *value; /* n: each case's --vary value */
-  const double *speed; /* n: m/s */
-  double *metric;      /* n: the measured metric */
+  const size_t *value; /* each case's --vary value (the round's cases) */
+  const double *speed; /* each case's speed, m/s */
+  double *metric;      /* each case's measured metric */
   fb_study_sweep *sw;  /* the round's sweep */
 } rl_round;
 
@@ -170,7 +170,7 @@ int rl_run_round(rl_args *a, int sys, const size_t *value, const double *speed, 
     metric[i] = NAN;
     texts[i] = a->values[value[i]];
   }
-  rl_round r = {a, sys, n, value, speed, metric, NULL};
+  rl_round r = {a, sys, value, speed, metric, NULL};
   const fb_study_sweep_axis axis = {.key = a->vary_path, .values = texts, .nvalues = n};
   const fb_study_sweep_ops ops = {.load = load_case,
                                   .locate = sweep_locate_case,
@@ -315,19 +315,48 @@ static int fingerprint(const rl_args *a, uint64_t *h, fb_err *err)
   return FB_OK;
 }
 
+/* The whole number at *p up to the next ',' (moved past it), into *out;
+ * 0 when there is none or it runs into anything else. */
+static int journal_whole(char **p, long long *out)
+{
+  char *end = NULL;
+  errno = 0;
+  *out = strtoll(*p, &end, 10);
+  if (end == *p || *end != ',' || errno)
+    return 0;
+  *p = end + 1;
+  return 1;
+}
+
 /* One journal row into d (error in fresh memory); 0 if it is malformed
- * (a row cut short by a kill: ignored). */
+ * (a row cut short by a kill: ignored). Fields: system, value, speed
+ * (m/s), status, metric ("nan" when not defined), then the error's text
+ * to the end of the line. */
 static int parse_row(const rl_args *a, char *line, rl_done *d)
 {
-  char metric[64];
-  int at = 0;
-  if (sscanf(line, "%d,%zu,%lf,%d,%63[^,],%n", &d->sys, &d->value, &d->speed, &d->status,
-             metric, &at) != 5 ||
-      at == 0 || d->sys < 0 || (size_t)d->sys >= a->nsystems || d->value >= a->nvalues)
+  char *p = line, *end = NULL;
+  long long sys = 0, value = 0, status = 0;
+  if (!journal_whole(&p, &sys) || !journal_whole(&p, &value))
     return 0;
-  d->metric = strcmp(metric, "nan") ? strtod(metric, NULL) : NAN;
+  d->speed = strtod(p, &end);
+  if (end == p || *end != ',')
+    return 0;
+  p = end + 1;
+  if (!journal_whole(&p, &status))
+    return 0;
+  char *comma = strchr(p, ',');
+  if (!comma || sys < 0 || (size_t)sys >= a->nsystems || value < 0 ||
+      (size_t)value >= a->nvalues || status < INT_MIN || status > INT_MAX)
+    return 0;
+  *comma = '\0';
+  d->metric = strcmp(p, "nan") != 0 ? strtod(p, &end) : NAN;
+  if (strcmp(p, "nan") != 0 && (end == p || *end))
+    return 0;
+  d->sys = (int)sys;
+  d->value = (size_t)value;
+  d->status = (int)status;
   d->wall_seconds = NAN;
-  d->error = line[at] ? fb_strdup(line + at) : NULL;
+  d->error = comma[1] ? fb_strdup(comma + 1) : NULL;
   return 1;
 }
 

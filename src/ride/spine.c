@@ -112,7 +112,7 @@ int ride_spine_window_dose(const double *a, size_t k0, size_t k1, double fs, dou
   const size_t m_count = (size_t)floor((double)(k1 - 1) / ratio) + 1;
   const double m_first = ceil((double)k0 / ratio - 1e-9);
   const size_t m0 = m_first > 0 ? (size_t)m_first : 0;
-  double *lp = malloc(k1 * sizeof *lp), *az = malloc(2 * m_count * sizeof *az);
+  double *lp = malloc(k1 * sizeof *lp), *az = calloc(2 * m_count, sizeof *az);
   if (!lp || !az) {
     free(lp);
     free(az);

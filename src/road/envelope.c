@@ -221,14 +221,22 @@ int fb_envelope_road_new(const fb_road *road, const fb_envelope_model *m, const 
   const double gap = (double)KNOT_GAP * ds;
   s_min = gap * floor(s_min / gap);
   s_max = gap * ceil(s_max / gap);
-  const size_t n = (size_t)lround((s_max - s_min) / ds) + 1;
+  const double samples = (s_max - s_min) / ds + 1.0;
+  if (!(samples <= (double)FB_ENVELOPE_MAX_SAMPLES))
+    return fb_err_set(err, FB_EINVAL,
+                      "an enveloped road of %g m sampled every %g mm needs %.3g samples per "
+                      "track, more than %zu: shorten the run",
+                      s_max - s_min, 1e3 * ds, samples, (size_t)FB_ENVELOPE_MAX_SAMPLES);
+  const size_t n = (size_t)lround(samples);
   double *f = malloc(8 * n * sizeof *f);
   size_t *knot = malloc(2 * n * sizeof *knot);
+  if (!f || !knot) {
+    free(f);
+    free(knot);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for %zu effective road samples", n);
+  }
   double *s = f + 2 * n;
-  if (!f || !knot)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory for %zu effective road samples", n);
-  if (!rc)
-    rc = fb_envelope_sample(road, FB_ROAD_LEFT, m, params, ctx, s_min, ds, n, f, NULL, err);
+  rc = fb_envelope_sample(road, FB_ROAD_LEFT, m, params, ctx, s_min, ds, n, f, NULL, err);
   if (!rc)
     rc =
         fb_envelope_sample(road, FB_ROAD_RIGHT, m, params, ctx, s_min, ds, n, f + n, NULL, err);

@@ -230,13 +230,12 @@ static double abs_peak(const metric_record *rec)
   return peak;
 }
 
-/* One metric: the double of fb_ride_metrics at offset (ride 1) or a
- * function of the record itself (record); unit NULL: the output's. */
-#define RIDE_FIELD(field) 1, offsetof(fb_ride_metrics, field), NULL
+/* One metric: the double of fb_ride_metrics at offset, or a function of
+ * the record itself (record, when not NULL); unit NULL: the output's. */
+#define RIDE_FIELD(field) offsetof(fb_ride_metrics, field), NULL
 static const struct {
   const char *name, *unit;
   double limit;
-  int ride;
   size_t offset;
   double (*record)(const metric_record *rec);
 } metrics[] = {
@@ -254,7 +253,7 @@ static const struct {
     {"dz", "m/s^2", NAN, RIDE_FIELD(dz)},
     /* 1: the lower bound of ISO 2631-1's health guidance caution zone. */
     {"vdv_ratio", "-", 1.0, RIDE_FIELD(vdv_ratio)},
-    {"abs_peak", NULL, NAN, 0, 0, abs_peak},
+    {"abs_peak", NULL, NAN, 0, abs_peak},
 };
 #undef RIDE_FIELD
 enum { NMETRICS = sizeof metrics / sizeof metrics[0] };

@@ -775,13 +775,19 @@ static int same_envelope(const fb_corner_params *a, const fb_corner_params *b)
          a->tire_radius == b->tire_radius && a->tire_k == b->tire_k;
 }
 
-/* The road under each corner's tire (*roads new, s->ncorners of them):
- * the road itself under a point contact, else its effective road over
- * the stretch the run covers, made once for corners that envelop it
- * alike. A corner's road is borrowed where it is an earlier corner's or
- * the road (owned[c] 0). */
-static int corner_roads(const fb_scenario *s, const fb_road *road, const fb_road **roads,
-                        fb_road **owned, fb_err *err)
+/* The road under a corner's tire: the road it reads, and the one it
+ * owns when that is its own effective road (NULL when the road is the
+ * scenario's or an earlier corner's, borrowed). */
+typedef struct corner_road {
+  const fb_road *road;
+  fb_road *owned;
+} corner_road;
+
+/* The road under each corner's tire (cr[0 .. s->ncorners)): the road
+ * itself under a point contact, else its effective road over the
+ * stretch the run covers, made once for corners that envelop it
+ * alike. */
+static int corner_roads(const fb_scenario *s, const fb_road *road, corner_road *cr, fb_err *err)
 {
   double lo, hi;
   road_covered(s, &lo, &hi);
@@ -790,17 +796,17 @@ static int corner_roads(const fb_scenario *s, const fb_road *road, const fb_road
     const fb_corner_params loaded = vehicle_corner_loaded(s, c);
     const fb_envelope_model *m = fb_corner_envelope_model(&loaded);
     const fb_envelope_context ctx = fb_corner_envelope_context(&loaded);
-    roads[c] = road;
+    cr[c].road = road;
     if (!(m->ops->reach(loaded.envelope.bytes, &ctx) > 0.0))
       continue;
-    for (size_t k = 0; k < c && roads[c] == road; ++k)
-      if (owned[k] && same_envelope(&s->corner[k], &s->corner[c]))
-        roads[c] = roads[k];
-    if (roads[c] != road)
+    for (size_t k = 0; k < c && cr[c].road == road; ++k)
+      if (cr[k].owned && same_envelope(&s->corner[k], &s->corner[c]))
+        cr[c].road = cr[k].road;
+    if (cr[c].road != road)
       continue;
     /* The description's check has held the model's rules already. */
-    rc = fb_envelope_road_new(road, m, loaded.envelope.bytes, &ctx, lo, hi, &owned[c], err);
-    roads[c] = owned[c];
+    rc = fb_envelope_road_new(road, m, loaded.envelope.bytes, &ctx, lo, hi, &cr[c].owned, err);
+    cr[c].road = cr[c].owned;
   }
   return rc;
 }
@@ -831,12 +837,11 @@ int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
   *out = NULL;
   fb_bg *bg = NULL;
   fb_road *road = NULL;
-  const fb_road **roads = calloc(s->ncorners + 1, sizeof *roads);
-  fb_road **owned = calloc(s->ncorners + 1, sizeof *owned);
-  int rc = roads && owned ? scenario_road(s, &road, err)
-                          : fb_err_set(err, FB_ENOMEM, "out of memory for the corners' roads");
+  corner_road *cr = calloc(s->ncorners + 1, sizeof *cr);
+  int rc = cr ? scenario_road(s, &road, err)
+              : fb_err_set(err, FB_ENOMEM, "out of memory for the corners' roads");
   if (!rc)
-    rc = corner_roads(s, road, roads, owned, err);
+    rc = corner_roads(s, road, cr, err);
   if (!rc)
     rc = fb_bg_new("road", &bg, err);
   /* Left wheels (y > 0) on the left track; each source is the road's
@@ -846,22 +851,21 @@ int fb_vehicle_road(const fb_scenario *s, fb_bg **out, fb_err *err)
     fb_tfun *f = NULL;
     char *name = NULL;
     /* An enveloped road has no edges: only a point contact can be refused. */
-    rc = road_followable(s, roads[c], c, err);
+    rc = road_followable(s, cr[c].road, c, err);
     if (!rc && !(name = fb_strdup_printf("v_%s", s->corner[c].name)))
       rc = fb_err_set(err, FB_ENOMEM, "out of memory");
     if (!rc)
-      rc = fb_road_wheel_velocity(roads[c], track, s->speed, fb_scenario_wheel_start(s, (int)c),
-                                  &f, err);
+      rc = fb_road_wheel_velocity(cr[c].road, track, s->speed,
+                                  fb_scenario_wheel_start(s, (int)c), &f, err);
     if (!rc)
       rc = fb_bg_add_source(bg, name, FB_BG_SF, 1, &f, err);
     if (!rc)
       rc = fb_bg_add_port(bg, s->corner[c].name, name, FB_PORT_OUT, err);
     free(name);
   }
-  for (size_t c = 0; owned && c < s->ncorners; ++c)
-    fb_road_free(&owned[c]);
-  free(owned);
-  free((void *)roads);
+  for (size_t c = 0; cr && c < s->ncorners; ++c)
+    fb_road_free(&cr[c].owned);
+  free(cr);
   fb_road_free(&road);
   if (rc) {
     fb_bg_free(&bg);
