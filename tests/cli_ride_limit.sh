@@ -177,6 +177,18 @@ bad "bad speeds" "--speeds needs LO:HI" \
 bad "a hexadecimal value" "is not a finite number in decimal digits" \
   --vary road.bump.height=0x1 --metric abs_peak --limit 5
 bad "no values" "--vary needs KEY=V1,V2" --vary road.bump.height= --metric abs_peak --limit 5
+# A value the scenario refuses: exit 2 before any run, located in the file.
+rm -rf "$WORK/bad"
+run ride-limit "$SCENARIO" --vary road.bump.height=0.1,-0.1 --metric abs_peak --limit 5 \
+  -o "$WORK/bad"
+expect_status 2 "a value the scenario refuses"
+expect_in "$ERR" "--vary road.bump.height=-0.1: $(at "$SCENARIO" "height: 0.10" "0.10") road.bump.height: must be >= 0 m (got -0.1)" \
+  "a value the scenario refuses: the message"
+expect_absent "$WORK/bad" "a value the scenario refuses: the output directory"
+bad "a seat metric of a force" "--metric nrmm_peak is of a vertical acceleration in m/s^2; output tire_force_LF is in N" \
+  --vary road.bump.height=0.1 --metric nrmm_peak --output tire_force_LF
+bad "no settling time" "--settle needs a number of seconds > 0 (got '0')" \
+  --vary road.bump.height=0.1 --metric nrmm_peak --settle 0
 # --mpi in a build without MPI (the MPI build has tests/mpi/).
 if [ "${FLEXBOND_MPI_BUILD:-OFF}" != ON ]; then
   bad "--mpi without MPI" "this flexbond was built without MPI" \

@@ -580,6 +580,44 @@ static void test_course(void)
   course_release(&p);
 }
 
+/* A vertical step has no length but is part of the course: a course
+ * that ends with one ends at its face, one that begins with one begins
+ * there; a track without obstacles is an empty stretch at the edge. */
+static void test_course_faces(void)
+{
+  static const struct {
+    const char *text;
+    double begin, end; /* left track, square crossing */
+  } cases[] = {
+      {"halfround at=0 height=0.05\nstep at=60 height=0.15 ramp_length=0\n", 0.0, 60.0},
+      {"step at=5 height=0.1 ramp_length=0\nhalfround at=20 height=0.1\n", 5.0, 20.2},
+      {"step at=7 height=0.1 ramp_length=0\n", 7.0, 7.0},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    char path[TEST_PATH_MAX];
+    test_tmp_path("faces.txt", path, sizeof path);
+    write_course(path, cases[i].text);
+    fb_err err;
+    fb_road_params p;
+    CHECK(course_block(path, 0.0, &p, &err) == FB_OK);
+    double begin = NAN, end = NAN;
+    fb_road_type_course.ops->feature(p.bytes, &LAYOUT, FB_ROAD_LEFT, &begin, &end);
+    CHECK_NEAR(begin, cases[i].begin, 1e-12);
+    CHECK_NEAR(end, cases[i].end, 1e-12);
+    course_release(&p);
+  }
+  char path[TEST_PATH_MAX];
+  test_tmp_path("faces.txt", path, sizeof path);
+  write_course(path, "step at=3 height=0.1 ramp_length=0 track=left\n");
+  fb_err err;
+  fb_road_params p;
+  CHECK(course_block(path, 0.0, &p, &err) == FB_OK);
+  double begin = NAN, end = NAN;
+  fb_road_type_course.ops->feature(p.bytes, &LAYOUT, FB_ROAD_RIGHT, &begin, &end);
+  CHECK(begin == 0.0 && end == 0.0);
+  course_release(&p);
+}
+
 /* A bad line is refused at its line, naming what is wrong; obstacles
  * that overlap on a track are refused when the road is made. */
 static void test_course_errors(void)
@@ -688,6 +726,7 @@ int main(void)
   test_series();
   test_rules();
   test_course();
+  test_course_faces();
   test_course_errors();
   test_pieces_data();
   return check_report("test_road_obstacles");

@@ -467,6 +467,9 @@ size_t fb_study_ride_limit_nmetrics(void);
 const char *fb_study_ride_limit_metric_name(size_t m);
 const char *fb_study_ride_limit_metric_unit(size_t m);
 double fb_study_ride_limit_metric_limit(size_t m);
+/* 1 if metric m is a ride metric of a seat's vertical acceleration (its
+ * output must be one, in m/s^2), 0 if it is of the output itself. */
+int fb_study_ride_limit_metric_of_acceleration(size_t m);
 /* The index of the metric named name: 0 and *m set, or -1. */
 int fb_study_ride_limit_metric_find(const char *name, size_t *m);
 

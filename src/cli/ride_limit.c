@@ -43,9 +43,12 @@ static const char rl_usage[] =
     "\n"
     "  --vary KEY=V1,V2,...  a key of the scenario (as sweep's --set takes it:\n"
     "                        road.bump.height, road.iso8608.rms) and its values\n"
-    "  --metric NAME         absorbed_power (limit 6 W), a_w_rms, mtvv, vdv,\n"
-    "                        crest_factor, jerk_peak, abs_peak (the output's largest\n"
-    "                        |value|), over [first wheel on the feature, run's end]\n"
+    "  --metric NAME         of a seat's acceleration: absorbed_power (limit 6 W),\n"
+    "                        nrmm_peak (30 Hz low-pass, limit 2.5 g), se (ISO 2631-5,\n"
+    "                        limit 0.5 MPa), dz, vdv_ratio (limit 1), a_w_rms, mtvv,\n"
+    "                        vdv, crest_factor, jerk_peak; of any output: abs_peak\n"
+    "                        (its largest |value|); over [first wheel on the\n"
+    "                        feature, run's end]\n"
     "  --limit X             the metric's limit (default: the standard one, if any)\n"
     "  --output COLUMN       the output measured (default: the first mounted body's\n"
     "                        acceleration, driver_acc in the examples)\n"
@@ -55,7 +58,8 @@ static const char rl_usage[] =
     "  --refine K            speeds per value and refining round (default 1)\n"
     "  --course-length L     m of road each wheel runs on a road that goes on\n"
     "                        (random, profile; default 200)\n"
-    "  --settle S            s after the last wheel leaves an obstacle (default 2)\n"
+    "  --settle S            s (> 0) after the last wheel leaves an obstacle\n"
+    "                        (default 2)\n"
     "  --system S            rigid (default: System 1), flexible or both\n"
     "  -j, --jobs N          runs at once (default: the online CPUs)\n"
     "  --resume              run only the runs DIR/ride_limit.partial.csv lacks\n"
@@ -304,6 +308,13 @@ static int parse_metric(const char *cmd, const char *metric, const char *limit,
     return output ? cli_usage_error(cmd, "--output %s: the scenario has no such output", output)
                   : cli_usage_error(cmd, "the scenario's outputs have no mounted body's "
                                          "acceleration (signal acc): give --output COLUMN");
+  const char *unit = s->output[a->output].unit;
+  if (fb_study_ride_limit_metric_of_acceleration(a->metric) &&
+      (!unit || strcmp(unit, "m/s^2") != 0))
+    return cli_usage_error(cmd,
+                           "--metric %s is of a vertical acceleration in m/s^2; output %s is "
+                           "in %s (abs_peak takes any output)",
+                           metric, s->output[a->output].name, unit ? unit : "no unit");
   return CLI_EXIT_OK;
 }
 
@@ -416,8 +427,8 @@ static int parse_args(int argc, char **argv, rl_args *a, int *go)
   if (rc == CLI_EXIT_OK)
     rc = opt_number(cmd, "--course-length", opts[OPT_COURSE].value, 1, &a->course_length);
   if (rc == CLI_EXIT_OK && opts[OPT_SETTLE].value &&
-      !(sweep_numeric_value(opts[OPT_SETTLE].value, &settle) && settle >= 0))
-    rc = cli_usage_error(cmd, "--settle needs a number of seconds >= 0 (got '%s')",
+      !(sweep_numeric_value(opts[OPT_SETTLE].value, &settle) && settle > 0 && isfinite(settle)))
+    rc = cli_usage_error(cmd, "--settle needs a number of seconds > 0 (got '%s')",
                          opts[OPT_SETTLE].value);
   if (rc == CLI_EXIT_OK && opts[OPT_SETTLE].value)
     a->settle = settle;
@@ -437,6 +448,9 @@ static int parse_args(int argc, char **argv, rl_args *a, int *go)
   fb_err err;
   if (rc == CLI_EXIT_OK && fb_study_ride_limit(0, &a->opts, rl_eval, a, NULL, NULL, &err))
     rc = cli_usage_error(cmd, "%s", err.msg);
+  const int loaded = rc == CLI_EXIT_OK ? rl_check_values(a, &err) : FB_OK;
+  if (loaded != FB_OK)
+    rc = cli_report_scenario(a->base, loaded, &err);
   return rc;
 }
 

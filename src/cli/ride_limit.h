@@ -70,6 +70,10 @@ int rl_eval(void *ctx, const fb_study_ride_limit_point *pts, size_t n, double *m
 int rl_record(rl_args *a, const rl_done *d, int rank, fb_err *err);
 /* The finished run of system sys, value v at speed (m/s), or NULL. */
 const rl_done *rl_find_done(const rl_args *a, int sys, size_t v, double speed);
+/* Loads each --vary value's scenario as its runs will (at the lowest
+ * speed), so that a value the scenario refuses is refused before any
+ * run: FB_OK, or the first value's error. */
+int rl_check_values(rl_args *a, fb_err *err);
 /* Runs the n runs of system sys (values value[], speeds speed[], m/s) as
  * one sweep on a->jobs threads, each recorded (rl_record). */
 int rl_run_round(rl_args *a, int sys, const size_t *value, const double *speed, size_t n,

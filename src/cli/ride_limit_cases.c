@@ -65,6 +65,21 @@ static int load_case(void *ctx, size_t i, const fb_scenario_override *ov, size_t
   return rc;
 }
 
+int rl_check_values(rl_args *a, fb_err *err)
+{
+  const double lo = a->opts.v_lo;
+  for (size_t v = 0; v < a->nvalues; ++v) {
+    rl_round r = {a, 0, &v, &lo, NULL, NULL};
+    const fb_scenario_override ov = {.key = a->vary_path, .value = a->values[v]};
+    fb_scenario *s = NULL;
+    const int rc = load_case(&r, 0, &ov, 1, &s, err);
+    fb_scenario_free(&s);
+    if (rc != FB_OK)
+      return rc;
+  }
+  return FB_OK;
+}
+
 static int measure_case(void *ctx, size_t i, const fb_scenario *s, const fb_result *res,
                         fb_err *err)
 {

@@ -36,6 +36,11 @@ static int on_track(const fb_road_obstacle_params *p, int track)
          p->track == (track == FB_ROAD_LEFT ? TRACK_LEFT : TRACK_RIGHT);
 }
 
+int road_obstacle_on_track(const void *params, int track)
+{
+  return on_track(params, track);
+}
+
 int road_obstacle_refuse(fb_err *err, const char *field, const char *fmt, ...)
 {
   char msg[FB_ERR_MSG_MAX];

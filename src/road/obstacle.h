@@ -104,6 +104,9 @@ int road_obstacle_refuse(fb_err *err, const char *field, const char *fmt, ...)
  * the init op of every obstacle type. */
 void road_obstacle_init(const road_obstacle *o, void *params);
 
+/* 1 if the obstacle of block params lies on track (its `track` is both
+ * or that one), 0 if the track is flat. */
+int road_obstacle_on_track(const void *params, int track);
 /* The ops of an obstacle type o, each the shared one for o's shape. */
 int road_obstacle_check(const road_obstacle *o, const void *params, const fb_road_layout *l,
                         fb_err *err);

@@ -384,7 +384,8 @@ static double course_wheel_start(const void *params, const fb_road_layout *l, do
   return road_oblique_wheel_start(p->angle, p->first_contact, l, x, y);
 }
 
-/* From the first obstacle's start to the last one's end on the track. */
+/* From the first obstacle's start to the last one's end on the track
+ * (a vertical step's end is its face: it has no length, but is there). */
 static void course_feature(const void *params, const fb_road_layout *l, int track,
                            double *begin, double *end)
 {
@@ -394,13 +395,13 @@ static void course_feature(const void *params, const fb_road_layout *l, int trac
   for (size_t i = 0; i < p->nitems; ++i) {
     double b = 0.0, e = 0.0;
     const fb_road_params block = course_block(p, i);
+    if (!road_obstacle_on_track(block.bytes, track))
+      continue;
     p->item[i].type->ops->feature(block.bytes, l, track, &b, &e);
-    if (e > b) {
-      *begin = fmin(*begin, b + p->item[i].at);
-      *end = fmax(*end, e + p->item[i].at);
-    }
+    *begin = fmin(*begin, b + p->item[i].at);
+    *end = fmax(*end, e + p->item[i].at);
   }
-  if (!(*end > *begin)) /* a flat track */
+  if (*begin > *end) /* a flat track: no obstacle on it */
     *begin = *end = road_oblique_edge(p->angle, l, track);
 }
 

@@ -278,6 +278,11 @@ double fb_study_ride_limit_metric_limit(size_t m)
   return m < NMETRICS ? metrics[m].limit : NAN;
 }
 
+int fb_study_ride_limit_metric_of_acceleration(size_t m)
+{
+  return m < NMETRICS && !metrics[m].record;
+}
+
 int fb_study_ride_limit_metric_find(const char *name, size_t *m)
 {
   for (size_t i = 0; name && i < NMETRICS; ++i)

@@ -825,8 +825,13 @@ static int check_envelopes(const fb_scenario *s, fb_err *err)
       return fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, envelope_model)), rc;
     const double r = s->corner[c].tire_radius;
     if (m->needs_radius && !(r > 0.0 && isfinite(r))) {
-      fb_err_set(err, FB_EINVAL, "a `%s` envelope needs the tire's free radius, > 0 m (got %g)",
-                 m->name, r);
+      if (r == 0.0) /* never given: 0 is the description's "none" */
+        fb_err_set(err, FB_EINVAL,
+                   "a `%s` envelope needs the tire's free radius (m, > 0), and none is given",
+                   m->name);
+      else
+        fb_err_set(err, FB_EINVAL,
+                   "a `%s` envelope needs the tire's free radius, > 0 m (got %g)", m->name, r);
       return fb_err_set_part(err, FB_PART_AT(FB_PART_CORNER, c, tire_radius)), FB_EINVAL;
     }
     const fb_corner_params loaded = vehicle_corner_loaded(s, c);
