@@ -635,6 +635,8 @@ static void test_course_errors(void)
       {"pothole at=0 depth=0.5 length=0.6\n", ":1: depth: a rounded pothole's walls"},
       {"pothole at=0 depth=0.05 length=0.6 shape=square\n", ":1: shape: not one of its"},
       {"step at=5 height=0.1\nstep at=2 height=0.1\n", ":2: the obstacles are listed in order"},
+      {"halfround at=0 height=0.1 height=0.2\n", ":1: height is given twice"},
+      {"halfround at=0 at=1 height=0.1\n", ":1: at is given twice"},
       {"# nothing\n", ": no obstacles"},
   };
   char path[TEST_PATH_MAX];

@@ -138,6 +138,8 @@ static int course_pair(const course_reader *r, fb_road_course_item *it, char *pa
   *eq = '\0';
   const char *key = pair, *value = eq + 1;
   if (!strcmp(key, "at")) {
+    if (given[0])
+      return line_fail(r, "%s is given twice%s", "at", "");
     if (fb_parse_decimal_field(value, &it->at, r->text.err))
       return line_fail(r, "%s: %s", "at", r->text.err->msg);
     given[0] = 1;
@@ -149,6 +151,8 @@ static int course_pair(const course_reader *r, fb_road_course_item *it, char *pa
                      key, "course");
   for (size_t i = 0; i < it->type->nparams; ++i)
     if (!strcmp(it->type->param[i].name, key)) {
+      if (given[1 + i])
+        return line_fail(r, "%s is given twice%s", key, "");
       given[1 + i] = 1;
       return course_value(r, &it->type->param[i], value, it->block.bytes);
     }
