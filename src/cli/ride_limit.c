@@ -586,6 +586,7 @@ static int ride_limit_mpi(int argc, char **argv, rl_args *a)
   a->quiet = a->quiet || rank != 0;
   a->jobs = 1;
   a->mpi_size = size;
+  a->mpi_round = rl_mpi_round;
   char *text = NULL;
   size_t len = 0;
   uint64_t fingerprint = 0;

@@ -52,6 +52,11 @@ typedef struct rl_args {
    * once. */
   pthread_mutex_t lock;
   int mpi_size; /* ranks of the MPI job (--mpi), 0 without */
+  /* Under --mpi, how a round's runs go to the ranks (rl_mpi_round, handed
+   * in by the command so the cases need not call the transport that
+   * calls them back); NULL on threads. */
+  int (*mpi_round)(struct rl_args *a, const int *sys, const size_t *value, const double *speed,
+                   size_t n, fb_err *err);
   /* Each curve's (system x value) first failure message, owned. */
   char **curve_error;
   fb_study_ride_limit_curve *curves;

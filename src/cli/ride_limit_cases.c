@@ -255,10 +255,8 @@ static int run_points(rl_args *a, const fb_study_ride_limit_point *pts, size_t n
   const size_t m = all_points_to_run(a, pts, n, sys, value, speed);
   if (m > 0 && !a->quiet)
     cli_say("flexbond ride-limit: %zu run%s", m, m == 1 ? "" : "s");
-#ifdef FLEXBOND_MPI
-  if (a->mpi_size > 0)
-    return m > 0 ? rl_mpi_round(a, sys, value, speed, m, err) : FB_OK;
-#endif
+  if (a->mpi_round)
+    return m > 0 ? a->mpi_round(a, sys, value, speed, m, err) : FB_OK;
   int rc = FB_OK;
   for (size_t i = 0; rc == FB_OK && i < m;) {
     size_t j = i;
