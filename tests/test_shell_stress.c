@@ -206,11 +206,9 @@ static double cantilever_error(int nx, int ny, int tri)
   CHECK(f && u && fixed && st);
   if (!f || !u || !fixed || !st || !K || !ss)
     goto done;
+  shell_clamp_x0(m, fixed, &nfixed);
   for (size_t a = 0; a < nn; ++a) {
     const double *x = fb_mesh_node_xyz(m, a);
-    if (x[0] < 1e-9)
-      for (size_t k = 0; k < 6; ++k)
-        shell_fix(fixed, &nfixed, a, k);
     if (x[0] > L - 1e-9) {
       const int corner = x[1] < 1e-9 || x[1] > b - 1e-9;
       f[6 * a + 2] = P / ny * (corner ? 0.5 : 1.0);

@@ -132,16 +132,17 @@ int main(void)
   MUST(fb_shell_stress_new(m, &STEEL, &ss, &err), &err);
   if (!f || !u || !s || !fixed || !st || !K || !ss)
     goto done;
+  shell_clamp_x0(m, fixed, &nfixed);
   for (size_t a = 0; a < nn; ++a) {
     const double *x = fb_mesh_node_xyz(m, a);
-    if (x[0] < 1e-9)
-      for (size_t k = 0; k < 6; ++k)
-        shell_fix(fixed, &nfixed, a, k);
-    if (x[0] > LENGTH - 1e-9) {
-      const int low = x[1]<1e-9, high = x[1]> WIDTH - 1e-9;
-      f[6 * a] = AXIAL / NY * (low || high ? 0.5 : 1.0);
-      f[6 * a + 2] = low ? CORNER_LOW : high ? CORNER_HIGH : 0.0;
-    }
+    if (!(x[0] > LENGTH - 1e-9))
+      continue;
+    const int at_low = fabs(x[1]) < 1e-9, at_high = fabs(x[1] - WIDTH) < 1e-9;
+    f[6 * a] = AXIAL / NY * (at_low || at_high ? 0.5 : 1.0);
+    if (at_low)
+      f[6 * a + 2] = CORNER_LOW;
+    if (at_high)
+      f[6 * a + 2] = CORNER_HIGH;
   }
   char deck[TEST_PATH_MAX], dat[TEST_PATH_MAX], cmd[3 * TEST_PATH_MAX];
   test_tmp_path("job.inp", deck, sizeof deck);
