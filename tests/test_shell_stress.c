@@ -346,6 +346,61 @@ done:
   fb_mesh_free(&m);
 }
 
+/* A rigid motion (translation t and small rotation theta about a point)
+ * strains nothing: on a distorted tilted plate of triangles and on a
+ * warped quadrilateral (its frame is the mean plane's; the rigid links
+ * add -h_a r_y,a to node a's u with heights h_a alternating in sign, an
+ * hourglass pattern whose centre strain is zero when r_y is uniform, so
+ * this checks the frame and not the links). Round-off: 1e-9 of E |theta|. */
+static void test_rigid_motion(void)
+{
+  const double c = cos(0.4), s = sin(0.4);
+  const double eu[3] = {c, 0.0, s}, ev[3] = {-s * 0.6, 0.8, c * 0.6};
+  const double t[3] = {1e-3, -2e-3, 5e-4}, theta[3] = {2e-3, -1e-3, 3e-3};
+  fb_mesh *meshes[2] = {tilted_plate(eu, ev, 1), NULL};
+  fb_err err;
+  size_t q[4];
+  MUST(fb_mesh_new(&meshes[1], &err), &err);
+  if (meshes[1]) {
+    /* Node 3 lies 5e-3 of the diagonal above the plane of the others. */
+    MUST(fb_mesh_add_node(meshes[1], 1, 0.0, 0.0, 0.0, &q[0], &err), &err);
+    MUST(fb_mesh_add_node(meshes[1], 2, 1.0, 0.1, 0.0, &q[1], &err), &err);
+    MUST(fb_mesh_add_node(meshes[1], 3, 1.1, 0.9, 0.007, &q[2], &err), &err);
+    MUST(fb_mesh_add_node(meshes[1], 4, -0.1, 1.0, 0.0, &q[3], &err), &err);
+    MUST(fb_mesh_add_element(meshes[1], 1, FB_ELEM_QUAD4, q, &err), &err);
+  }
+  const double scale =
+      STEEL.young * sqrt(theta[0] * theta[0] + theta[1] * theta[1] + theta[2] * theta[2]);
+  for (int k = 0; k < 2; ++k) {
+    fb_mesh *m = meshes[k];
+    fb_shell_stress *ss = NULL;
+    if (!m)
+      continue;
+    MUST(fb_shell_stress_new(m, &STEEL, &ss, &err), &err);
+    const size_t nn = fb_mesh_nnodes(m), ne = fb_mesh_nelements(m);
+    double *u = malloc(6 * nn * sizeof *u);
+    fb_shell_stress_state *st = malloc(ne * sizeof *st);
+    CHECK(u && st);
+    if (u && st && ss) {
+      for (size_t a = 0; a < nn; ++a) {
+        const double *x = fb_mesh_node_xyz(m, a);
+        u[6 * a] = t[0] + theta[1] * x[2] - theta[2] * x[1];
+        u[6 * a + 1] = t[1] + theta[2] * x[0] - theta[0] * x[2];
+        u[6 * a + 2] = t[2] + theta[0] * x[1] - theta[1] * x[0];
+        for (size_t d = 0; d < 3; ++d)
+          u[6 * a + 3 + d] = theta[d];
+      }
+      fb_shell_stress_eval_nodal(ss, u, st);
+      for (size_t e = 0; e < ne; ++e)
+        CHECK_NEAR(st[e].von_mises_max, 0.0, 1e-9 * scale);
+    }
+    free(u);
+    free(st);
+    fb_shell_stress_free(&ss);
+    fb_mesh_free(&meshes[k]);
+  }
+}
+
 /* A degenerate element is refused with its id. */
 static void test_errors(void)
 {
@@ -374,6 +429,7 @@ int main(void)
   test_patches(1);
   test_cantilever();
   test_modal_recovery();
+  test_rigid_motion();
   test_errors();
   return check_report("test_shell_stress");
 }
