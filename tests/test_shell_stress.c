@@ -401,6 +401,50 @@ static void test_rigid_motion(void)
   }
 }
 
+/* Each element takes its section's properties: half a plate 20 mm thick,
+ * half 10 mm, under the uniform curvature kx (ky = -nu kx): the top
+ * stress E t kx / 2 doubles in the thick half, the moment E t^3 kx / 12
+ * grows eightfold (round-off 1e-9). */
+static void test_sections(void)
+{
+  fb_mesh *m = shell_plate(2.0, 1.0, 4, 2, 0, 0.0);
+  fb_shell_stress *ss = NULL;
+  fb_err err;
+  const size_t thick[4] = {0, 1, 2, 3};
+  fb_shell_props thick_props = STEEL;
+  thick_props.thickness = 0.02;
+  if (!m)
+    return;
+  MUST(fb_mesh_add_elset(m, "THICK", 4, thick, &err), &err);
+  MUST(fb_mesh_set_section(m, "THICK", &thick_props, &err), &err);
+  MUST(fb_shell_stress_new(m, &STEEL, &ss, &err), &err);
+  const size_t nn = fb_mesh_nnodes(m), ne = fb_mesh_nelements(m);
+  const double kx = 0.02, ky = -STEEL.poisson * kx;
+  double *u = calloc(6 * nn, sizeof *u);
+  fb_shell_stress_state *st = malloc(ne * sizeof *st);
+  CHECK(u && st);
+  if (u && st && ss) {
+    for (size_t a = 0; a < nn; ++a) {
+      const double *x = fb_mesh_node_xyz(m, a);
+      u[6 * a + 2] = -(kx * x[0] * x[0] + ky * x[1] * x[1]) / 2.0;
+      u[6 * a + 3] = -ky * x[1]; /* r_x = w,y */
+      u[6 * a + 4] = kx * x[0];  /* r_y = -w,x */
+    }
+    fb_shell_stress_eval_nodal(ss, u, st);
+    for (size_t e = 0; e < ne; ++e) {
+      const double t = e < 4 ? 0.02 : 0.01, sb = STEEL.young * t * kx / 2.0;
+      const double moment = STEEL.young * t * t * t * kx / 12.0;
+      CHECK_NEAR(st[e].top[0], sb, 1e-9 * sb);
+      CHECK_NEAR(st[e].top[1], 0.0, 1e-9 * sb);
+      CHECK_NEAR(st[e].moment[0], moment, 1e-9 * moment);
+    }
+  }
+  free(u);
+  free(st);
+  fb_shell_stress_free(&ss);
+  fb_mesh_free(&m);
+}
+
 /* A degenerate element is refused with its id. */
 static void test_errors(void)
 {
@@ -430,6 +474,7 @@ int main(void)
   test_cantilever();
   test_modal_recovery();
   test_rigid_motion();
+  test_sections();
   test_errors();
   return check_report("test_shell_stress");
 }
