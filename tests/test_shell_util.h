@@ -101,6 +101,16 @@ static inline void shell_fix(size_t *fixed, size_t *nfixed, size_t node, size_t 
   fixed[(*nfixed)++] = 6 * node + k;
 }
 
+/* Appends every DOF of the nodes at x = 0 (within 1e-9 m) to the fixed
+ * list: a clamped edge. */
+static inline void shell_clamp_x0(const fb_mesh *m, size_t *fixed, size_t *nfixed)
+{
+  for (size_t a = 0; a < fb_mesh_nnodes(m); ++a)
+    if (fb_mesh_node_xyz(m, a)[0] < 1e-9)
+      for (size_t k = 0; k < 6; ++k)
+        shell_fix(fixed, nfixed, a, k);
+}
+
 /* K and M reduced to the DOFs not in fixed[] (which need not be sorted
  * but must be distinct); keep[] (6 nnodes) receives the kept DOFs. */
 static inline void shell_reduce(const fb_mat *K, const fb_mat *M, const size_t *fixed,

@@ -335,6 +335,87 @@ int fb_fem_modes(const fb_mat *K, const fb_mat *M, size_t nmodes, const fb_eig_o
  * of that scale (0.01 Hz there). */
 double fb_fem_rigid_threshold_hz(const fb_mat *K, const fb_mat *M);
 
+/* ---- Stresses and strains of the shell elements (src/fem/shell_stress.c).
+ *
+ * Recovered at each element's centre (a triangle's centroid, a
+ * quadrilateral's xi = eta = 0) from the strain fields its stiffness
+ * integrates: the membrane's (OPT's constant strain, QM6's field, whose
+ * incompatible modes vanish at the centre) and the discrete Kirchhoff
+ * plate's curvatures (DKT, DKQ). Everything is in the element's local
+ * axes (fb_shell_stress_axes: x along edge 1-2, z the normal, right-handed
+ * in the node order, y = z x x), in SI units. Through the thickness the
+ * strain is eps(z) = eps0 + z kappa (Kirchhoff), z along the local normal,
+ * with curvatures kappa = (bx,x, by,y, bx,y + by,x) of the normal's
+ * rotations (bx, by) = (ry, -rx) (local rotations), so the in-plane
+ * displacement at height z is z (bx, by) and kappa_x = -w,xx. Resultants:
+ * N = t C eps0 (N/m), M = (t^3 / 12) C kappa (N m / m), C the plane-stress
+ * elasticity; then the stress sigma(z) = N / t + 12 M z / t^3, at the top
+ * (z = +t/2, the side the normal points to) N / t + 6 M / t^2, at the
+ * bottom N / t - 6 M / t^2. Shear strains are engineering (gamma_xy). A
+ * warped quadrilateral is recovered at its nodes' projections on its mean
+ * plane, through the rigid links its stiffness uses. */
+
+/* The state of one element. Components (x, y, xy) in its local axes. */
+typedef struct fb_shell_stress_state {
+  double strain[3];                             /* mid-surface eps_x, eps_y, gamma_xy (-) */
+  double curvature[3];                          /* kappa_x, kappa_y, kappa_xy (1/m) */
+  double force[3];                              /* membrane resultants N_x, N_y, N_xy (N/m) */
+  double moment[3];                             /* bending moments M_x, M_y, M_xy (N m / m) */
+  double top[3];                                /* sigma_x, sigma_y, tau_xy at z = +t/2 (Pa) */
+  double bottom[3];                             /* the same at z = -t/2 (Pa) */
+  double principal_top[2], principal_bottom[2]; /* in-plane, larger first (Pa) */
+  double von_mises_top, von_mises_bottom;       /* plane stress (Pa) */
+  double von_mises_max;                         /* the larger of the two (Pa) */
+} fb_shell_stress_state;
+
+/* Stress recovery of a mesh, built once, applied many times: per element
+ * its axes, thickness, elasticity and the recovery matrix from its 6 nn
+ * global DOFs to its surface stresses; optionally stress modes. */
+typedef struct fb_shell_stress fb_shell_stress;
+
+/* Builds the recovery of mesh m (borrowed: must outlive *out, and not
+ * change) with each element's fb_mesh_element_props(m, e, p). An element
+ * that is degenerate or warped beyond the element's limit: FB_EINVAL
+ * prefixed "element <id>: " (as fb_fem_assemble); FB_ENOMEM. */
+int fb_shell_stress_new(const fb_mesh *m, const fb_shell_props *p, fb_shell_stress **out,
+                        fb_err *err);
+/* Accepts NULL and sets *s to NULL. */
+void fb_shell_stress_free(fb_shell_stress **s);
+size_t fb_shell_stress_nelements(const fb_shell_stress *s);
+/* Element e's local axes: 9 values, rows x, y, z in global components. */
+const double *fb_shell_stress_axes(const fb_shell_stress *s, size_t e);
+
+/* The states of every element (states: nelements) from nodal values u
+ * (6 nnodes, global axes, fem.h's DOF order; borrowed). */
+void fb_shell_stress_eval_nodal(const fb_shell_stress *s, const double *u,
+                                fb_shell_stress_state *states);
+
+/* Stress modes (modal stress recovery): for the basis phi (6 nnodes x
+ * nmodes, column-major; read, not kept) each element's surface stresses
+ * of each mode, S_e (6 x nmodes: sigma_x, sigma_y, tau_xy at the top,
+ * then the bottom), computed once, so that the stresses of u = phi q are
+ * S_e q. Replaces earlier stress modes. FB_EINVAL for nmodes 0 or ndof
+ * other than 6 nnodes, FB_ENOMEM. */
+int fb_shell_stress_modes(fb_shell_stress *s, const double *phi, size_t ndof, size_t nmodes,
+                          fb_err *err);
+/* The number of stress modes (0 before fb_shell_stress_modes). */
+size_t fb_shell_stress_nmodes(const fb_shell_stress *s);
+/* S_e, 6 x nmodes row-major (borrowed; NULL before fb_shell_stress_modes). */
+const double *fb_shell_stress_mode_matrix(const fb_shell_stress *s, size_t e);
+/* The states of every element for modal coordinates q (nmodes): S_e q,
+ * then the same derived values as fb_shell_stress_eval_nodal. FB_EINVAL
+ * before fb_shell_stress_modes. */
+int fb_shell_stress_eval_modal(const fb_shell_stress *s, const double *q,
+                               fb_shell_stress_state *states, fb_err *err);
+
+/* The state of an element of thickness t and material (young, poisson)
+ * whose surface stresses are top and bottom (3 each, local axes): the
+ * strains, resultants, principal stresses and von Mises stresses
+ * sqrt(s1^2 - s1 s2 + s2^2) that follow. */
+void fb_shell_stress_state_from_surfaces(const double *top, const double *bottom, double t,
+                                         double young, double poisson,
+                                         fb_shell_stress_state *st);
+
 /* ---- Mesh exchange. */
 
 /* Abaqus/CalculiX input deck: *NODE, *ELEMENT TYPE=S3 and TYPE=S4,

@@ -61,16 +61,6 @@
  * element is degenerate: a sliver with an angle below about 1e-10 rad. */
 #define DEGENERATE_AREA 1e-10
 
-typedef struct shell_frame {
-  size_t nn;
-  double rot[9]; /* rows: local x, y, z axes in global components */
-  double x[FB_SHELL_MAX_NODES];
-  double y[FB_SHELL_MAX_NODES];
-  double h[FB_SHELL_MAX_NODES]; /* each node's height above the plane */
-  double area;
-  double diagonal; /* a quadrilateral's longer diagonal, a triangle's longest edge */
-} shell_frame;
-
 static int props_error(fb_err *err, const char *what, double value)
 {
   return fb_err_set(err, FB_EINVAL, "shell properties: %s (got %g)", what, value);
@@ -100,7 +90,7 @@ int fb_shell_check_props(const fb_shell_props *p, fb_err *err)
 /* Completes the frame from its normal (unit, rot[6..8]) and the nodes:
  * local x along edge 1-2 projected on the plane, coordinates relative to
  * the centroid. Returns the largest distance of a node from the plane. */
-static double frame_axes(const double *xyz, shell_frame *f)
+static double frame_axes(const double *xyz, fb_shell_frame *f)
 {
   double *ex = f->rot, *ey = f->rot + 3, *ez = f->rot + 6, d12[3], c[3] = {0.0, 0.0, 0.0};
   fb_sub3(xyz + 3, xyz, d12);
@@ -131,7 +121,7 @@ static int degenerate(fb_err *err, const char *shape)
   return fb_err_set(err, FB_EINVAL, "degenerate %s (zero area or repeated node)", shape);
 }
 
-static int triangle_frame(const double *xyz, shell_frame *f, fb_err *err)
+static int triangle_frame(const double *xyz, fb_shell_frame *f, fb_err *err)
 {
   double d12[3], d13[3], d23[3], normal[3];
   fb_sub3(xyz + 3, xyz, d12);
@@ -154,7 +144,7 @@ static int triangle_frame(const double *xyz, shell_frame *f, fb_err *err)
 /* A quadrilateral must be flat (up to WARP_LIMIT) and strictly convex
  * with its nodes in order around it, so that the bilinear map has det J > 0
  * everywhere. */
-static int quad_frame(const double *xyz, shell_frame *f, fb_err *err)
+static int quad_frame(const double *xyz, fb_shell_frame *f, fb_err *err)
 {
   double d13[3], d24[3], normal[3];
   fb_sub3(xyz + 6, xyz, d13);
@@ -194,9 +184,14 @@ static int quad_frame(const double *xyz, shell_frame *f, fb_err *err)
   return FB_OK;
 }
 
+int fb_shell_frame_make(fb_elem_type type, const double *xyz, fb_shell_frame *f, fb_err *err)
+{
+  return type == FB_ELEM_TRI3 ? triangle_frame(xyz, f, err) : quad_frame(xyz, f, err);
+}
+
 /* Places the membrane (u, v, rz) and bending (w, rx, ry) stiffness of the
  * element into its local 6 nn square stiffness (column-major). */
-static void local_stiffness(const shell_frame *f, const fb_shell_props *p, double *kl)
+static void local_stiffness(const fb_shell_frame *f, const fb_shell_props *p, double *kl)
 {
   static const size_t membrane_dof[3] = {0, 1, 5}, bending_dof[3] = {2, 3, 4};
   const size_t nn = f->nn, n = 6 * nn, nsub = 3 * nn;
@@ -219,7 +214,7 @@ static void local_stiffness(const shell_frame *f, const fb_shell_props *p, doubl
  * on the plane (local DOFs u v w rx ry rz): the projection of node a moves
  * by u - h_a ry, v + h_a rx, w, so W is the identity plus -h_a at (u_a,
  * ry_a) and +h_a at (v_a, rx_a). Columns first (kl W), then rows. */
-static void link_offsets(const shell_frame *f, double *kl)
+static void link_offsets(const fb_shell_frame *f, double *kl)
 {
   const size_t n = 6 * f->nn;
   for (size_t a = 0; a < f->nn; ++a) {
@@ -264,7 +259,7 @@ static void to_global(size_t n, const double *rot, const double *kl, double *kg)
 /* int(N_a N_b) dA over the element (nn x nn, symmetric): exact for the
  * linear triangle (A (1 + delta_ab) / 12) and, by 2x2 Gauss points, for
  * the bilinear quadrilateral (integrand of degree 3 in each of xi, eta). */
-static void shape_products(const shell_frame *f, double *s)
+static void shape_products(const fb_shell_frame *f, double *s)
 {
   const size_t nn = f->nn;
   if (nn == 3) {
@@ -285,7 +280,7 @@ static void shape_products(const shell_frame *f, double *s)
   }
 }
 
-static void mass_matrix(const shell_frame *f, const fb_shell_props *p, fb_mass_kind kind,
+static void mass_matrix(const fb_shell_frame *f, const fb_shell_props *p, fb_mass_kind kind,
                         double *me)
 {
   const size_t nn = f->nn, n = 6 * nn;
@@ -321,8 +316,8 @@ int fb_shell_element(fb_elem_type type, const double *xyz, const fb_shell_props 
   int rc = fb_shell_check_props(p, err);
   if (rc)
     return rc;
-  shell_frame f;
-  rc = type == FB_ELEM_TRI3 ? triangle_frame(xyz, &f, err) : quad_frame(xyz, &f, err);
+  fb_shell_frame f;
+  rc = fb_shell_frame_make(type, xyz, &f, err);
   if (rc)
     return rc;
   const size_t n = 6 * f.nn;

@@ -73,14 +73,14 @@ static void kirchhoff_constraints(size_t nn, const double *x, const double *y, d
   }
 }
 
-/* Adds w Bb^T Db Bb to k (3 nn square, column-major) for the curvature
- * matrix Bb = Bbeta g at one integration point, where dndx, dndy are the
- * derivatives of the nb rotation-node shape functions. */
-static void add_point(size_t nn, const double *g, const double *dndx, const double *dndy,
-                      const double *db, double w, double *k)
+/* The curvature matrix Bb = Bbeta g (3 x 3 nn row-major) at one point,
+ * where dndx, dndy are the derivatives of the nb = 2 nn rotation-node
+ * shape functions there. */
+static void curvature_matrix(size_t nn, const double *g, const double *dndx, const double *dndy,
+                             double *bb)
 {
   const size_t nb = 2 * nn, ncol = 3 * nn;
-  double bb[3 * 3 * FB_SHELL_MAX_NODES] = {0.0}, dbb[3 * 3 * FB_SHELL_MAX_NODES];
+  memset(bb, 0, 3 * ncol * sizeof *bb);
   for (size_t a = 0; a < nb; ++a)
     for (size_t c = 0; c < ncol; ++c) {
       const double gx = g[(2 * a) * ncol + c], gy = g[(2 * a + 1) * ncol + c];
@@ -88,6 +88,16 @@ static void add_point(size_t nn, const double *g, const double *dndx, const doub
       bb[1 * ncol + c] += dndy[a] * gy;
       bb[2 * ncol + c] += dndy[a] * gx + dndx[a] * gy;
     }
+}
+
+/* Adds w Bb^T Db Bb to k (3 nn square, column-major) for the curvature
+ * matrix at one integration point. */
+static void add_point(size_t nn, const double *g, const double *dndx, const double *dndy,
+                      const double *db, double w, double *k)
+{
+  const size_t ncol = 3 * nn;
+  double bb[3 * 3 * FB_SHELL_MAX_NODES], dbb[3 * 3 * FB_SHELL_MAX_NODES];
+  curvature_matrix(nn, g, dndx, dndy, bb);
   for (size_t r = 0; r < 3; ++r)
     for (size_t c = 0; c < ncol; ++c)
       dbb[r * ncol + c] =
@@ -170,6 +180,21 @@ static void dkq_stiffness(const double *x, const double *y, const double *db, do
                     dndy, &detj);
     add_point(4, g, dndx, dndy, db, detj, k);
   }
+}
+
+void fb_shell_bending_curvature(size_t nn, const double *x, const double *y, double *bb)
+{
+  double g[2 * 8 * 12], dndx[8], dndy[8];
+  kirchhoff_constraints(nn, x, y, g);
+  if (nn == 3) {
+    const double area = ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])) / 2.0;
+    const double l[3] = {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+    dkt_derivatives(x, y, area, l, dndx, dndy);
+  } else {
+    double detj;
+    dkq_derivatives(x, y, 0.0, 0.0, dndx, dndy, &detj);
+  }
+  curvature_matrix(nn, g, dndx, dndy, bb);
 }
 
 void fb_shell_bending(size_t nn, const double *x, const double *y, const fb_shell_props *p,

@@ -13,6 +13,24 @@
 /* Nodes of the largest element (the quadrilateral). */
 #define FB_SHELL_MAX_NODES 4
 
+/* An element's local frame (see shell.c): rot's rows are the local x, y,
+ * z axes in global components; x[], y[] the nodes' in-plane coordinates
+ * about their centroid, h[] their heights above the mean plane (a warped
+ * quadrilateral's rigid links). */
+typedef struct fb_shell_frame {
+  size_t nn;
+  double rot[9];
+  double x[FB_SHELL_MAX_NODES];
+  double y[FB_SHELL_MAX_NODES];
+  double h[FB_SHELL_MAX_NODES];
+  double area;
+  double diagonal; /* a quadrilateral's longer diagonal, a triangle's longest edge */
+} fb_shell_frame;
+
+/* The local frame of an element of type (TRI3 or QUAD4) at xyz (3 nn):
+ * FB_EINVAL for a degenerate, warped or non-convex element. */
+int fb_shell_frame_make(fb_elem_type type, const double *xyz, fb_shell_frame *f, fb_err *err);
+
 /* Drilling factor used when fb_shell_props.drill_factor is 0. */
 #define FB_SHELL_DRILL_DEFAULT 1e-4
 
@@ -47,6 +65,19 @@ void fb_shell_membrane_quad(const double *x, const double *y, double area,
  * for nn = 4 (Batoz & Ben Tahar 1982). */
 void fb_shell_bending(size_t nn, const double *x, const double *y, const fb_shell_props *p,
                       double *k);
+
+/* Membrane strains (eps_x, eps_y, gamma_xy) at the element's centre per
+ * unit membrane DOF (u, v, rz of each node): bm, 3 x 3 nn row-major,
+ * from the strain field the membrane stiffness integrates (OPT's basic
+ * constant strain; QM6's field, whose incompatible modes vanish there). */
+void fb_shell_membrane_strain(size_t nn, const double *x, const double *y, double area,
+                              double *bm);
+
+/* Curvatures (kappa_x, kappa_y, kappa_xy) at the element's centre (the
+ * centroid of a triangle, xi = eta = 0 of a quadrilateral) per unit
+ * bending DOF (w, rx, ry of each node): bb, 3 x 3 nn row-major, the same
+ * discrete Kirchhoff curvature matrix the stiffness integrates. */
+void fb_shell_bending_curvature(size_t nn, const double *x, const double *y, double *bb);
 
 /* Jacobian of the quadrilateral's bilinear map at (xi, eta): jac = (x,xi,
  * y,xi, x,eta, y,eta). */

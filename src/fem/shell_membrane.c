@@ -227,6 +227,19 @@ void fb_shell_membrane_tri(const double *x, const double *y, double area,
   add_atb(3, 9, 9, tdev, kt, 1.0, k, 9);
 }
 
+/* OPT's membrane strain at the centroid is the basic part's constant
+ * strain lump^T u / A (its higher-order strains, sum of the corner
+ * matrices Q_i over the three corners, vanish there: each entry of
+ * Q1 + Q2 + Q3 is a sum of betas that is 0). */
+static void opt_centre_strain(const double *x, const double *y, double area, double *bm)
+{
+  double lump[27];
+  opt_lumping(x, y, lump);
+  for (int q = 0; q < 3; ++q)
+    for (int i = 0; i < 9; ++i)
+      bm[q * 9 + i] = lump[i * 3 + q] / area;
+}
+
 /* ---- QM6 quadrilateral. */
 
 void fb_shell_quad_jacobian(const double *x, const double *y, double xi, double eta,
@@ -397,4 +410,29 @@ void fb_shell_membrane_quad(const double *x, const double *y, double area,
         s -= kie[i * 4 + q] * sol[j * 4 + q];
       k[j * QM6_EXT + i] = s;
     }
+}
+
+/* QM6's incompatible modes have zero derivatives at xi = eta = 0, so the
+ * strain there is the bilinear field's alone: no condensed parameter is
+ * needed to recover it. The drilling rotations do not enter it. */
+static void qm6_centre_strain(const double *x, const double *y, double *bm)
+{
+  double n[4], dndx[4], dndy[4], detj;
+  fb_shell_quad_bilinear(x, y, 0.0, 0.0, n, dndx, dndy, &detj);
+  memset(bm, 0, 36 * sizeof *bm);
+  for (int a = 0; a < 4; ++a) {
+    bm[0 * 12 + 3 * a] = dndx[a];
+    bm[1 * 12 + 3 * a + 1] = dndy[a];
+    bm[2 * 12 + 3 * a] = dndy[a];
+    bm[2 * 12 + 3 * a + 1] = dndx[a];
+  }
+}
+
+void fb_shell_membrane_strain(size_t nn, const double *x, const double *y, double area,
+                              double *bm)
+{
+  if (nn == 3)
+    opt_centre_strain(x, y, area, bm);
+  else
+    qm6_centre_strain(x, y, bm);
 }
