@@ -48,8 +48,9 @@ DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-
                 liblapacke-dev libopenblas-dev libfyaml-dev gnuplot-nox graphviz \
                 python3 python3-numpy python3-scipy
 # What the suite needs besides (make deps-test, for make test): strace shows which files a
-# command creates and how (tests/cli_integrity.sh).
-TEST_DEB_PACKAGES := strace
+# command creates and how (tests/cli_integrity.sh); CalculiX (ccx) solves the exported decks
+# (tests/cli_calculix.sh).
+TEST_DEB_PACKAGES := strace calculix-ccx
 # The developer tools (make deps-dev, for CI and the targets of docs/quality.md): clang is the
 # second compiler; clang-format serves format/format-check; valgrind, clang-tidy and cppcheck
 # serve the targets of the same names.

@@ -364,12 +364,15 @@ double fb_fem_rigid_threshold_hz(const fb_mat *K, const fb_mat *M);
 
 /* Abaqus/CalculiX input deck: *NODE, *ELEMENT TYPE=S3 and TYPE=S4,
  * *NSET and *ELSET for every set, and for each group of elements with the
- * same properties (fb_mesh_element_props with p; elements without a
- * section are left out when p is NULL) a *MATERIAL (*ELASTIC, *DENSITY,
- * the non-structural mass smeared into it) and a *SHELL SECTION over its
- * element set: the section's own when it has exactly the group's
- * elements, else EALL (every element) or a new SECTION_<k>. Written
- * atomically. */
+ * same properties (one section and one added non-structural mass; with
+ * p for the elements without a section, which are left out when p is
+ * NULL) a *MATERIAL (*ELASTIC, *DENSITY, the non-structural mass smeared
+ * into it: CalculiX has no *NONSTRUCTURAL MASS) and a *SHELL SECTION over
+ * its element set: the section's own when it has exactly the group's
+ * elements, else EALL (every element) or a new SECTION_<k>
+ * (SECTION_<k>_<j> for a section's later groups); then each point mass
+ * as *ELEMENT, TYPE=MASS, ELSET=PMASS_<id> and *MASS over that set.
+ * Written atomically. */
 int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err);
 /* The deck's text into fp (p finite, or NULL for none); coordinates to 15
  * significant digits, those below 1e-12 of the largest as 0. */
@@ -377,7 +380,9 @@ void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p);
 /* Reads such a deck (keywords case-insensitive, comments "**", GENERATE
  * sets, sets that name the sets before them, each member kept once in
  * memory for the members alone however often the deck names a set; one
- * mesh section per *SHELL SECTION, an element in at most one);
+ * mesh section per *SHELL SECTION, an element in at most one; MASS
+ * elements with *MASS as point masses, *NONSTRUCTURAL MASS as the
+ * elements' added non-structural mass: src/fem/inp.c);
  * props, if not NULL, receives the material and thickness of a section
  * that covers every element, or the only material of a deck without
  * sections (fields left untouched otherwise).

@@ -32,13 +32,37 @@
  *   sections is an error at the second. props receives the only section's
  *   values when one section covers every element, or the only material's
  *   when the deck has no section. Values are taken as SI.
+ * - *ELEMENT, TYPE=MASS [, ELSET=name]: "id, node", a point mass on one
+ *   node (CalculiX's MASS element: the three translations, no rotary
+ *   inertia); more than one node is an error. Its set is the block's
+ *   ELSET=, which *MASS names; the mesh's element sets hold shells only,
+ *   so a *ELSET that names a MASS element's id leaves it out.
+ * - *MASS, ELSET=s: "mass" (kg, >= 0), the mass of each MASS element of
+ *   s (ELSET= is the parameter CalculiX 2.20 reads). Every MASS element
+ *   needs one *MASS, exactly one.
+ * - *NONSTRUCTURAL MASS, ELSET=s, UNITS=MASS PER AREA | TOTAL MASS
+ *   [, DISTRIBUTION=MASS PROPORTIONAL | VOLUME PROPORTIONAL]: "mass"
+ *   (>= 0), added to the non-structural mass per area of each shell of s
+ *   (fb_mesh_add_element_nonstructural), smeared through the thickness as
+ *   a section's (fem.h); a TOTAL MASS is spread in proportion to the
+ *   elements' areas, which is either DISTRIBUTION when the elements share
+ *   one section (a set over several is an error). MASS PER LENGTH and
+ *   MASS PER VOLUME are errors. Abaqus's keyword: CalculiX 2.20 has none
+ *   (its keyword table has no such entry), so the writer smears it into
+ *   the density.
  * - *HEADING and every other keyword are skipped with their data
  *   lines, except those that generate or move mesh data (*INCLUDE, *NGEN,
  *   *NFILL, *NCOPY, *NMAP, *ELGEN, *ELCOPY), which are errors rather than
  *   silently lost geometry. Unknown parameters of *NODE, *ELEMENT and
  *   *NSET (e.g. SYSTEM=, INPUT=, ELSET= on *NSET) are errors too.
  * The drilling factor has no Abaqus keyword: it is neither written nor
- * read. */
+ * read.
+ *
+ * Writing: *NODE, *ELEMENT S3/S4, the sets, one *MATERIAL and *SHELL
+ * SECTION per group of elements of one section and one added
+ * non-structural mass (that mass smeared into the density, which both
+ * programs read), and each point mass as a MASS element of a set of its
+ * own with its *MASS: a deck CalculiX 2.20 reads as the same mass. */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
