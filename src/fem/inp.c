@@ -651,10 +651,14 @@ static int read_mass_element_line(inp_reader *r, const char *elset)
     return inp_error(r, r->lineno, "element line without an element id");
   if (!rc)
     rc = parse_id(r, r->fields[0], "element id", &el.id);
-  if (!rc && (continued || r->nfields != 2))
+  if (!rc && continued)
+    return inp_error(r, r->lineno,
+                     "MASS element %ld's line ends with a comma: a point mass is 'id, node'",
+                     el.id);
+  if (!rc && r->nfields != 2)
     return inp_error(r, r->lineno,
                      "MASS element %ld has %zu nodes, not 1 (a point mass is on one node)",
-                     el.id, continued ? r->nfields : r->nfields - 1);
+                     el.id, r->nfields - 1);
   if (!rc)
     rc = parse_id(r, r->fields[1], "node id", &el.node);
   if (!rc && fb_grow((void **)&r->mass_elems, &r->mass_elems_cap, r->nmass_elems,
