@@ -10,7 +10,8 @@
  *   3. the hull of examples/truck4x4.yaml as built (its structure and
  *      its battery, hull.masses) written as a deck and read back: the
  *      same K and M, mass, centre of mass and inertia as the hull's;
- *   4. bad decks refused at the line that is wrong. */
+ *   4. a mass per volume as the same mass per area times the thickness;
+ *   5. bad decks refused at the line that is wrong. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -250,21 +251,26 @@ static void test_hull_round_trip(void)
   fb_scenario_free(&s);
 }
 
-/* plate_deck with the text from `from` up to (not including) `to`
- * replaced by with (to NULL: the rest), refused with a message that
- * has want (its "deck.inp:LINE: " included). */
-static void check_bad(const char *from, const char *to, const char *with, const char *want)
+/* The variant of plate_deck (to NULL: to its end) refused with a message
+ * that has want (its "deck.inp:LINE: " included). */
+/* plate_deck with the text from `from` up to `to` replaced by with,
+ * into text (size bytes); 0 if from or to is not there. */
+static int variant(const char *from, const char *to, const char *with, char *text, size_t size)
 {
   const char *a = strstr(plate_deck, from);
-  CHECK(a != NULL);
-  if (!a)
-    return;
-  const char *b = to ? strstr(a, to) : a + strlen(a);
-  CHECK(b != NULL);
-  if (!b)
-    return;
+  const char *b = a ? (to ? strstr(a, to) : a + strlen(a)) : NULL;
+  CHECK(a && b);
+  if (!a || !b)
+    return 0;
+  snprintf(text, size, "%.*s%s%s", (int)(a - plate_deck), plate_deck, with, b);
+  return 1;
+}
+
+static void check_bad(const char *from, const char *to, const char *with, const char *want)
+{
   char text[4096];
-  snprintf(text, sizeof text, "%.*s%s%s", (int)(a - plate_deck), plate_deck, with, b);
+  if (!variant(from, to, with, text, sizeof text))
+    return;
   fb_err err;
   fb_err_clear(&err);
   fb_mesh *m = NULL;
@@ -277,7 +283,7 @@ static void check_bad(const char *from, const char *to, const char *with, const 
   fb_mesh_free(&m);
 }
 
-/* 4: line numbers counted in plate_deck (line 14 is "11, 1", 25
+/* 5: line numbers counted in plate_deck (line 14 is "11, 1", 25
  * "*MASS, ELSET=TIP", 29 the first *NONSTRUCTURAL MASS). */
 static void test_errors(void)
 {
@@ -311,6 +317,29 @@ static void test_errors(void)
             "deck.inp:29: *NONSTRUCTURAL MASS, UNITS=MASS PER LENGTH is not supported");
   check_bad("ELSET=RIGHT, UNITS=MASS PER AREA", "\n20", "ELSET=RIGHT",
             "deck.inp:29: *NONSTRUCTURAL MASS needs UNITS=");
+  /* A mass per volume needs the section's thickness: without the section
+   * (two lines less), at the keyword's line. */
+  check_bad(
+      "*SHELL SECTION, ELSET=EALL", "*NONSTRUCTURAL MASS, ELSET=EALL",
+      "*MASS, ELSET=TIP\n100\n*MASS, ELSET=END\n25\n"
+      "*NONSTRUCTURAL MASS, ELSET=RIGHT, UNITS=MASS PER VOLUME\n2000\n",
+      "deck.inp:27: *NONSTRUCTURAL MASS, UNITS=MASS PER VOLUME: element 2 of set 'RIGHT' is "
+      "in no *SHELL SECTION");
+}
+
+/* 2000 kg/m^3 of the 10 mm section is the 20 kg/m^2 of plate_deck. */
+static void test_per_volume(void)
+{
+  char text[4096];
+  if (!variant("UNITS=MASS PER AREA\n20", "\n*NONSTRUCTURAL", "UNITS=MASS PER VOLUME\n2000",
+               text, sizeof text))
+    return;
+  fb_err err;
+  fb_err_clear(&err);
+  fb_mesh *m = read_deck(text, &err);
+  CHECK(m && fabs(fb_mesh_element_nonstructural(m, 1) - 25.0) <= 1e-13 * 25.0);
+  CHECK(m && fb_mesh_element_nonstructural(m, 0) == 5.0);
+  fb_mesh_free(&m);
 }
 
 /* A total mass over elements of two sections is refused at its line. */
@@ -337,6 +366,7 @@ int main(void)
   test_plate();
   test_hull_round_trip();
   test_errors();
+  test_per_volume();
   test_total_over_sections();
   test_tmpdir_remove();
   return check_report("test_inp_masses");

@@ -40,15 +40,16 @@
  * - *MASS, ELSET=s: "mass" (kg, >= 0), the mass of each MASS element of
  *   s (ELSET= is the parameter CalculiX 2.20 reads). Every MASS element
  *   needs one *MASS, exactly one.
- * - *NONSTRUCTURAL MASS, ELSET=s, UNITS=MASS PER AREA | TOTAL MASS
- *   [, DISTRIBUTION=MASS PROPORTIONAL | VOLUME PROPORTIONAL]: "mass"
- *   (>= 0), added to the non-structural mass per area of each shell of s
- *   (fb_mesh_add_element_nonstructural), smeared through the thickness as
- *   a section's (fem.h); a TOTAL MASS is spread in proportion to the
- *   elements' areas, which is either DISTRIBUTION when the elements share
- *   one section (a set over several is an error). MASS PER LENGTH and
- *   MASS PER VOLUME are errors. Abaqus's keyword: CalculiX 2.20 has none
- *   (its keyword table has no such entry), so the writer smears it into
+ * - *NONSTRUCTURAL MASS, ELSET=s, UNITS=MASS PER AREA | MASS PER VOLUME |
+ *   TOTAL MASS [, DISTRIBUTION=MASS PROPORTIONAL | VOLUME PROPORTIONAL]:
+ *   "mass" (>= 0), added to the non-structural mass per area of each
+ *   shell of s (fb_mesh_add_element_nonstructural), smeared through the
+ *   thickness as a section's (fem.h); a MASS PER VOLUME times the
+ *   element's section's thickness (an element in no section is an
+ *   error); a TOTAL MASS is spread in proportion to the elements' areas,
+ *   which is either DISTRIBUTION when the elements share one section (a
+ *   set over several is an error). MASS PER LENGTH (beams) is an error. Abaqus's keyword:
+ * CalculiX 2.20 has none (its keyword table has no such entry), so the writer smears it into
  *   the density.
  * - *HEADING and every other keyword are skipped with their data
  *   lines, except those that generate or move mesh data (*INCLUDE, *NGEN,
@@ -140,12 +141,19 @@ typedef struct inp_mass_element {
   size_t mass_line; /* of the *MASS that gave it its mass, 0 before */
 } inp_mass_element;
 
+/* What a *NONSTRUCTURAL MASS's value is (its UNITS=). */
+typedef enum inp_nsm_units {
+  NSM_PER_AREA,   /* kg/m^2 (also *MASS's: kg per MASS element) */
+  NSM_TOTAL,      /* kg over the set */
+  NSM_PER_VOLUME, /* kg/m^3 of the shell's volume */
+} inp_nsm_units;
+
 /* A *MASS (the mass of each MASS element of elset) or a *NONSTRUCTURAL
- * MASS (per area of, or in total over, the shells of elset). */
+ * MASS (over the shells of elset, as units says). */
 typedef struct inp_mass {
   const char *elset;
   double value;
-  int total; /* *NONSTRUCTURAL MASS, UNITS=TOTAL MASS */
+  inp_nsm_units units;
   size_t line;
 } inp_mass;
 
@@ -871,7 +879,7 @@ static int push_mass(inp_reader *r, inp_mass **list, size_t *n, size_t *cap, con
 static int read_mass(inp_reader *r, const inp_keyword *kw)
 {
   static const char *const allowed[] = {"ELSET", NULL};
-  inp_mass m = {NULL, 0.0, 0, r->lineno};
+  inp_mass m = {NULL, 0.0, NSM_PER_AREA, r->lineno};
   int rc = only_params(r, kw, allowed);
   if (!rc)
     rc = need_param(r, kw, "ELSET", &m.elset);
@@ -880,13 +888,13 @@ static int read_mass(inp_reader *r, const inp_keyword *kw)
   return rc ? rc : push_mass(r, &r->masses, &r->nmasses, &r->masses_cap, &m);
 }
 
-/* *NONSTRUCTURAL MASS, ELSET=s, UNITS=MASS PER AREA | TOTAL MASS
- * [, DISTRIBUTION=MASS PROPORTIONAL | VOLUME PROPORTIONAL] (Abaqus
+/* *NONSTRUCTURAL MASS, ELSET=s, UNITS=MASS PER AREA | MASS PER VOLUME |
+ * TOTAL MASS [, DISTRIBUTION=MASS PROPORTIONAL | VOLUME PROPORTIONAL] (Abaqus
  * Keywords Reference; CalculiX 2.20 has no such keyword). */
 static int read_nonstructural(inp_reader *r, const inp_keyword *kw)
 {
   static const char *const allowed[] = {"ELSET", "UNITS", "DISTRIBUTION", NULL};
-  inp_mass m = {NULL, 0.0, 0, r->lineno};
+  inp_mass m = {NULL, 0.0, NSM_PER_AREA, r->lineno};
   const char *units = NULL, *dist = param(kw, "DISTRIBUTION");
   int rc = only_params(r, kw, allowed);
   if (!rc)
@@ -895,12 +903,14 @@ static int read_nonstructural(inp_reader *r, const inp_keyword *kw)
     rc = need_param(r, kw, "UNITS", &units);
   if (rc)
     return rc;
-  m.total = same_word(units, "TOTAL MASS");
-  if (!m.total && !same_word(units, "MASS PER AREA"))
+  m.units = same_word(units, "TOTAL MASS")        ? NSM_TOTAL
+            : same_word(units, "MASS PER VOLUME") ? NSM_PER_VOLUME
+                                                  : NSM_PER_AREA;
+  if (m.units == NSM_PER_AREA && !same_word(units, "MASS PER AREA"))
     return inp_quoting(r, units,
                        inp_error(r, r->lineno,
                                  "*NONSTRUCTURAL MASS, UNITS=%s is not supported for shells "
-                                 "(MASS PER AREA, TOTAL MASS)",
+                                 "(MASS PER AREA, MASS PER VOLUME, TOTAL MASS)",
                                  units));
   if (dist && !same_word(dist, "MASS PROPORTIONAL") && !same_word(dist, "VOLUME PROPORTIONAL"))
     return inp_error(r, r->lineno,
@@ -1400,6 +1410,21 @@ static int is_mass_set(const inp_reader *r, const char *name)
   return 0;
 }
 
+/* A mass per volume of element e's shell as a mass per area: times its
+ * section's thickness, which an element outside every *SHELL SECTION
+ * does not have yet (the program that reads the deck gives it). */
+static int volume_per_area(const inp_reader *r, const inp_mass *m, size_t e, double *per_area)
+{
+  const long sec = fb_mesh_element_section(r->mesh, e);
+  if (sec < 0)
+    return inp_error(r, m->line,
+                     "*NONSTRUCTURAL MASS, UNITS=MASS PER VOLUME: element %ld of set '%s' is "
+                     "in no *SHELL SECTION (the thickness it needs)",
+                     fb_mesh_element_id(r->mesh, e), m->elset);
+  *per_area = m->value * fb_mesh_section_props(r->mesh, (size_t)sec)->thickness;
+  return FB_OK;
+}
+
 /* Each *NONSTRUCTURAL MASS as its elements' added mass per area. */
 static int resolve_nonstructural(const inp_reader *r)
 {
@@ -1415,10 +1440,13 @@ static int resolve_nonstructural(const inp_reader *r)
           is_mass_set(r, m->elset) ? "holds MASS elements, not shells (they take *MASS)"
                                    : "is not defined");
     double per_area = m->value;
-    int rc = m->total ? total_per_area(r, m, elems, n, &per_area) : FB_OK;
-    for (size_t k = 0; k < n && !rc; ++k)
+    int rc = m->units == NSM_TOTAL ? total_per_area(r, m, elems, n, &per_area) : FB_OK;
+    for (size_t k = 0; k < n && !rc; ++k) {
+      if (m->units == NSM_PER_VOLUME && (rc = volume_per_area(r, m, elems[k], &per_area)))
+        break;
       if (fb_mesh_add_element_nonstructural(r->mesh, elems[k], per_area, &sub))
         rc = inp_mesh_error(r, m->line, &sub);
+    }
     if (rc)
       return rc;
   }
