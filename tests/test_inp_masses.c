@@ -313,6 +313,11 @@ static void test_errors(void)
   check_bad(
       "ELSET=RIGHT, UNITS=MASS PER AREA", "\n20", "ELSET=TIP, UNITS=MASS PER AREA",
       "deck.inp:29: *NONSTRUCTURAL MASS names element set 'TIP', which holds MASS elements");
+  check_bad(
+      "UNITS=MASS PER AREA\n20", "\n*NONSTRUCTURAL",
+      "UNITS=MASS PER AREA\n1e308\n*NONSTRUCTURAL MASS, ELSET=RIGHT, UNITS=MASS PER AREA\n"
+      "1e308",
+      "deck.inp:31: element 2: non-structural mass 1e+308 kg/m^2 (inf in all) is not >= 0");
   check_bad("ELSET=RIGHT, UNITS=MASS PER AREA", "\n20", "ELSET=RIGHT, UNITS=MASS PER LENGTH",
             "deck.inp:29: *NONSTRUCTURAL MASS, UNITS=MASS PER LENGTH is not supported");
   check_bad("ELSET=RIGHT, UNITS=MASS PER AREA", "\n20", "ELSET=RIGHT",

@@ -873,10 +873,13 @@ int fb_mesh_add_element_nonstructural(fb_mesh *m, size_t e, double per_area, fb_
 {
   if (!m || e >= m->nelems)
     return fb_err_set(err, FB_EINVAL, "fb_mesh_add_element_nonstructural: no element %zu", e);
-  if (!(per_area >= 0.0 && isfinite(per_area)))
+  /* The sum too: two huge masses on one element must not make inf. */
+  const double sum = fb_mesh_element_nonstructural(m, e) + per_area;
+  if (!(per_area >= 0.0 && isfinite(sum)))
     return fb_err_set(err, FB_EINVAL,
-                      "element %ld: non-structural mass %g kg/m^2 is not >= 0 and finite",
-                      m->elem_ids[e], per_area);
+                      "element %ld: non-structural mass %g kg/m^2 (%g in all) is not >= 0 and "
+                      "finite",
+                      m->elem_ids[e], per_area, sum);
   if (!m->elem_nsm) {
     m->elem_nsm = calloc(m->elem_cap ? m->elem_cap : 1, sizeof *m->elem_nsm);
     if (!m->elem_nsm)
