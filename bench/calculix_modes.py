@@ -5,7 +5,8 @@
 usage: calculix_modes.py DECK.inp WORKDIR [NMODES]
 
 Reads the deck `flexbond mesh --export` writes (S3 and S4 flat shells, one
-material and section), turns it into quadratic shells of the same geometry
+material and section, and the hull masses as MASS elements, kept as they
+are), turns it into quadratic shells of the same geometry
 (S4 -> S8R, S3 -> S6: a node at the middle of every element edge, shared by
 the elements on that edge), appends a *FREQUENCY step without supports and
 runs `ccx`. CalculiX expands shells into solid elements (C3D20R, C3D15),
@@ -32,7 +33,7 @@ def read_deck(path):
                 upper = text.upper()
                 if upper.startswith("*NODE") and "FILE" not in upper:
                     block = "node"
-                elif upper.startswith("*ELEMENT"):
+                elif upper.startswith("*ELEMENT") and "TYPE=MASS" not in upper.replace(" ", ""):
                     block = "S4" if "TYPE=S4" in upper else "S3"
                 elif upper.startswith("*NSET") or upper.startswith("*HEADING"):
                     block = "skip"

@@ -238,6 +238,11 @@ deck d_nset "*NSET, NSET=EXTRA\n99999"
 deck d_warped "$NODES\n*ELEMENT, TYPE=S4\n9001, 9001, 9002, 9003, 9004"
 deck d_zeroarea "$NODES\n*ELEMENT, TYPE=S3\n9001, 9001, 9002, 9005"
 deck d_nonode "$NODES\n*ELEMENT, TYPE=S3\n9001, 9001, 9002, 99999"
+# A deck's added masses: a negative *MASS, a MASS element on two nodes,
+# a *NONSTRUCTURAL MASS over a set the deck does not have.
+deck d_massneg "*ELEMENT, TYPE=MASS, ELSET=PM\n9101, 1\n*MASS, ELSET=PM\n-5"
+deck d_mass2 "*ELEMENT, TYPE=MASS, ELSET=PM\n9101, 1, 2\n*MASS, ELSET=PM\n5"
+deck d_nsmset "*NONSTRUCTURAL MASS, ELSET=NOPE, UNITS=MASS PER AREA\n10"
 derive d_empty.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_empty.inp/'
 : >d_empty.inp
 derive d_binary.yaml s_deck.yaml -e 's/deck: hull.inp/deck: d_binary.inp/'
@@ -382,6 +387,9 @@ CASES=(
   "2|sweep s_modes.yaml --system flexible --set speed_kmh=5,10 -o @OUT|flexbond: every case failed on its input; the first: $(at s_modes.yaml 'modes: 99999' 99999) hull.fe.modes: 99999 modes"
   "2|modes d_zeroarea.yaml --system flexible -o @OUT|flexbond: $(deck_at d_zeroarea) ./d_zeroarea.inp:$(line_of d_zeroarea.inp '9001, 9001, 9002, 9005'): element 9001 (S3) is degenerate: area 0 m^2"
   "2|export d_nonode.yaml -o @OUT|flexbond: $(deck_at d_nonode) ./d_nonode.inp:$(line_of d_nonode.inp '9001, 9001, 9002, 99999'): element 9001 refers to node 99999, which is not defined"
+  "2|mesh d_massneg.yaml|flexbond: $(deck_at d_massneg) ./d_massneg.inp:$(line_of d_massneg.inp '-5'): *MASS: mass -5 is negative"
+  "2|mesh d_mass2.yaml|flexbond: $(deck_at d_mass2) ./d_mass2.inp:$(line_of d_mass2.inp '9101, 1, 2'): MASS element 9101 has 2 nodes, not 1"
+  "2|mesh d_nsmset.yaml|flexbond: $(deck_at d_nsmset) ./d_nsmset.inp:$(line_of d_nsmset.inp '*NONSTRUCTURAL MASS, ELSET=NOPE, UNITS=MASS PER AREA'): *NONSTRUCTURAL MASS names element set 'NOPE', which is not defined"
   "2|mesh d_empty.yaml --export @FILE.vtu|flexbond: $(deck_at d_empty) ./d_empty.inp:1: empty file"
   "2|mesh d_binary.yaml|flexbond: $(deck_at d_binary) ./d_binary.inp:1: binary data (byte 0x7f in column 1): not an Abaqus input deck"
   "5|mesh d_missing.yaml --export @FILE.inp|flexbond: $(deck_at d_missing) ./no_such_deck.inp: cannot open|No such file"

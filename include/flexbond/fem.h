@@ -120,6 +120,28 @@ typedef struct fb_shell_props {
   double nonstructural_mass;
 } fb_shell_props;
 
+/* ---- Added masses: a deck's MASS elements and non-structural masses
+ * (Abaqus *MASS, *NONSTRUCTURAL MASS), part of the mesh: fb_fem_assemble
+ * and fb_fem_mesh_mass_properties count them, fb_mesh_write_inp writes
+ * them, fb_mesh_clone copies them. */
+
+/* Adds a point mass (kg, >= 0, finite) on the three translations of
+ * node (no rotary inertia, as a CalculiX MASS element), with a user id
+ * (> 0) that no element or other point mass has. */
+int fb_mesh_add_point_mass(fb_mesh *m, long id, size_t node, double mass, fb_err *err);
+size_t fb_mesh_npoint_masses(const fb_mesh *m);
+/* Point mass i (in the order added): its id, node index and mass (kg). */
+long fb_mesh_point_mass_id(const fb_mesh *m, size_t i);
+size_t fb_mesh_point_mass_node(const fb_mesh *m, size_t i);
+double fb_mesh_point_mass(const fb_mesh *m, size_t i);
+/* Index of the point mass with user id, or -1. */
+long fb_mesh_find_point_mass_id(const fb_mesh *m, long id);
+/* Adds per_area (kg/m^2, >= 0, finite) to element e's non-structural
+ * mass, on top of its section's (fb_mesh_element_props sums them). */
+int fb_mesh_add_element_nonstructural(fb_mesh *m, size_t e, double per_area, fb_err *err);
+/* The non-structural mass per area added to element e (0 if none). */
+double fb_mesh_element_nonstructural(const fb_mesh *m, size_t e);
+
 /* ---- Shell sections: per element set properties. */
 
 /* Gives the elements of the element set elset the properties *p (copied;
@@ -138,7 +160,8 @@ long fb_mesh_element_section(const fb_mesh *m, size_t e);
 /* The number of elements whose section is sec (-1: those with none). */
 size_t fb_mesh_section_nelements(const fb_mesh *m, long sec);
 /* The properties element e is assembled with: its section's with base's
- * drilling factor, or *base (not NULL) when it has none. */
+ * drilling factor, or *base (not NULL) when it has none, its own added
+ * non-structural mass (fb_mesh_add_element_nonstructural) on top. */
 fb_shell_props fb_mesh_element_props(const fb_mesh *m, size_t e, const fb_shell_props *base);
 
 typedef enum fb_mass_kind {
@@ -155,7 +178,8 @@ int fb_shell_element(fb_elem_type type, const double *xyz, const fb_shell_props 
 
 /* Assembles K and M (6 nnodes square, sparse CSC, symmetric); either
  * output may be NULL (not both). Each element takes
- * fb_mesh_element_props(m, e, p). An element's error is prefixed with
+ * fb_mesh_element_props(m, e, p); M has the mesh's point masses on their
+ * nodes' translations. An element's error is prefixed with
  * "element <id>: ". */
 int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass, fb_mat **K,
                     fb_mat **M, fb_err *err);
@@ -174,7 +198,8 @@ int fb_fem_mass_properties(const fb_mesh *m, const fb_mat *M, double *mass, doub
 
 /* The same properties of the structure itself, element by element
  * (r_e' M_e r_e over each element's rigid-body motions, M_e assembled with
- * fb_mesh_element_props(m, e, p) and kind): no global matrix is built, for
+ * fb_mesh_element_props(m, e, p) and kind; the point masses' m r r' over
+ * their nodes' translations): no global matrix is built, for
  * a program that needs a mesh's mass, centre and inertia before (or
  * instead of) its finite-element model. */
 int fb_fem_mesh_mass_properties(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind kind,
@@ -420,12 +445,15 @@ void fb_shell_stress_state_from_surfaces(const double *top, const double *bottom
 
 /* Abaqus/CalculiX input deck: *NODE, *ELEMENT TYPE=S3 and TYPE=S4,
  * *NSET and *ELSET for every set, and for each group of elements with the
- * same properties (fb_mesh_element_props with p; elements without a
- * section are left out when p is NULL) a *MATERIAL (*ELASTIC, *DENSITY,
- * the non-structural mass smeared into it) and a *SHELL SECTION over its
- * element set: the section's own when it has exactly the group's
- * elements, else EALL (every element) or a new SECTION_<k>. Written
- * atomically. */
+ * same properties (one section and one added non-structural mass; with
+ * p for the elements without a section, which are left out when p is
+ * NULL) a *MATERIAL (*ELASTIC, *DENSITY, the non-structural mass smeared
+ * into it: CalculiX has no *NONSTRUCTURAL MASS) and a *SHELL SECTION over
+ * its element set: the section's own when it has exactly the group's
+ * elements, else EALL (every element) or a new SECTION_<k>
+ * (SECTION_<k>_<j> for a section's later groups); then each point mass
+ * as *ELEMENT, TYPE=MASS, ELSET=PMASS_<id> and *MASS over that set.
+ * Written atomically. */
 int fb_mesh_write_inp(const fb_mesh *m, const fb_shell_props *p, const char *path, fb_err *err);
 /* The deck's text into fp (p finite, or NULL for none); coordinates to 15
  * significant digits, those below 1e-12 of the largest as 0. */
@@ -433,7 +461,9 @@ void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p);
 /* Reads such a deck (keywords case-insensitive, comments "**", GENERATE
  * sets, sets that name the sets before them, each member kept once in
  * memory for the members alone however often the deck names a set; one
- * mesh section per *SHELL SECTION, an element in at most one);
+ * mesh section per *SHELL SECTION, an element in at most one; MASS
+ * elements with *MASS as point masses, *NONSTRUCTURAL MASS as the
+ * elements' added non-structural mass: src/fem/inp.c);
  * props, if not NULL, receives the material and thickness of a section
  * that covers every element, or the only material of a deck without
  * sections (fields left untouched otherwise).

@@ -1699,6 +1699,12 @@ int fb_fe_hull_mass_props(const fb_fe_hull *h, int with_masses, fb_hull_mass_pro
  * six DOFs per node in node order, fb_fem_assemble), the declared masses
  * left out. */
 int fb_fe_hull_matrices(const fb_fe_hull *h, fb_mat **K, fb_mat **M, fb_err *err);
+/* h's mesh as built (*out new): a copy of its mesh with each declared
+ * mass a point mass of the mesh on its node (fb_mesh_add_point_mass, ids
+ * after every element's), so that fb_fem_assemble gives
+ * fb_fe_hull_mass_matrix's M and a deck written from it
+ * (fb_mesh_write_inp) carries the masses. */
+int fb_fe_hull_mesh_as_built(const fb_fe_hull *h, fb_mesh **out, fb_err *err);
 /* h's mesh (owned by h) and how many declared masses it carries. */
 const fb_mesh *fb_fe_hull_mesh(const fb_fe_hull *h);
 size_t fb_fe_hull_npoint_masses(const fb_fe_hull *h);

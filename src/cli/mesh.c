@@ -21,8 +21,9 @@ static const char mesh_usage[] =
     "a deck's own; else the hull's centre of mass).\n"
     "--export writes it as an Abaqus/CalculiX input deck (*NODE, *ELEMENT\n"
     "S3/S4, *NSET LOAD, one per mount and corner (SUSP_<CORNER>), MASS_<NAME>,\n"
-    "FRONT_EDGE, REAR_EDGE, ALL, *MATERIAL, *SHELL SECTION) or, for a .vtu\n"
-    "name, as a VTK file for ParaView.\n"
+    "FRONT_EDGE, REAR_EDGE, ALL, *MATERIAL, *SHELL SECTION, and each hull mass\n"
+    "as a MASS element with its *MASS) or, for a .vtu name, as a VTK file for\n"
+    "ParaView.\n"
     "--export-matrices writes into DIR the hull structure's own stiffness and\n"
     "mass matrices as Matrix Market files (K.mtx, M.mtx; the hull.masses left\n"
     "out), dofs.csv naming each row (node id and ux uy uz rx ry rz) and the\n"
@@ -74,6 +75,17 @@ static void print_section(const fb_fe_hull *h, long sec)
   printf(": %.6g kg\n", t.mass);
 }
 
+/* A deck's own point masses (MASS elements), part of the structure. */
+static void print_point_masses(const fb_mesh *m)
+{
+  const size_t n = fb_mesh_npoint_masses(m);
+  double sum = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    sum += fb_mesh_point_mass(m, i);
+  if (n)
+    printf("  %zu point masses (MASS elements): %.6g kg\n", n, sum);
+}
+
 /* Which frame the positions printed and written are in. */
 static void print_frame(const fb_scenario *s)
 {
@@ -98,6 +110,7 @@ static int print_properties(const fb_scenario *s, const fb_fe_hull *h, fb_err *e
     printf(", sections:\n");
   for (long sec = -1; fb_mesh_nsections(m) && sec < (long)fb_mesh_nsections(m); ++sec)
     print_section(h, sec);
+  print_point_masses(m);
   print_frame(s);
   int rc = print_mass(h, o, 0, err);
   return rc || !h->npoint_masses ? rc : print_mass(h, o, 1, err);
@@ -111,11 +124,14 @@ static void write_mtx(FILE *fp, const void *a)
 }
 
 /* The hull's mesh, its nodes in the file's frame (*out new: a deck
- * written from it reads back with the file's positions). */
-static int file_frame_mesh(const fb_scenario *s, const fb_fe_hull *h, fb_mesh **out,
-                           fb_err *err)
+ * written from it reads back with the file's positions), as built (with
+ * the hull.masses as point masses: --export) or the structure alone (the
+ * deck --export-matrices' K and M belong to). */
+static int file_frame_mesh(const fb_scenario *s, const fb_fe_hull *h, int as_built,
+                           fb_mesh **out, fb_err *err)
 {
-  const int rc = fb_mesh_clone(h->mesh, out, err);
+  const int rc =
+      as_built ? fb_fe_hull_mesh_as_built(h, out, err) : fb_mesh_clone(h->mesh, out, err);
   double o[3];
   fb_scenario_frame_offset(s, o);
   if (!rc)
@@ -153,7 +169,7 @@ static int export_matrices(const fb_scenario *s, const fb_fe_hull *h, const char
   fb_mesh *placed = NULL;
   int rc = fb_fe_hull_matrices(h, &K, &M, err);
   if (rc == FB_OK)
-    rc = file_frame_mesh(s, h, &placed, err);
+    rc = file_frame_mesh(s, h, 0, &placed, err);
   const deck_out deck = {placed, &h->props};
   cli_outdir od;
   const int opened = rc == FB_OK && (rc = cli_outdir_open(&od, dir, "mesh", err)) == FB_OK;
@@ -190,7 +206,7 @@ static int run(const char *path, const char *export_path, const char *matrices_d
     rc = cli_check_interrupt(&err);
   fb_mesh *placed = NULL;
   if (!rc && export_path)
-    rc = file_frame_mesh(s, h, &placed, &err);
+    rc = file_frame_mesh(s, h, 1, &placed, &err);
   if (!rc && export_path)
     rc = ends_with(export_path, ".vtu")
              ? fb_mesh_write_vtu(placed, NULL, export_path, &err)

@@ -151,6 +151,23 @@ static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *base,
   return FB_OK;
 }
 
+/* The mesh's point masses on their nodes' translations (the diagonal
+ * of their nodes' own blocks) of mv, laid out by p; a node in no element
+ * has no block (fb_mesh_check refuses such a mesh). */
+static int add_point_masses(const fb_mesh *m, const pattern *p, double *mv, fb_err *err)
+{
+  for (size_t i = 0; i < fb_mesh_npoint_masses(m); ++i) {
+    const size_t a = fb_mesh_point_mass_node(m, i);
+    if (p->adj_start[a] == p->adj_start[a + 1])
+      return fb_err_set(err, FB_EINVAL, "point mass %ld: node %ld is in no element",
+                        fb_mesh_point_mass_id(m, i), fb_mesh_node_id(m, a));
+    const size_t off = block_offset(p, a, a);
+    for (size_t k = 0; k < 3; ++k)
+      mv[p->colptr[6 * a + k] + off + k] += fb_mesh_point_mass(m, i);
+  }
+  return FB_OK;
+}
+
 /* The matrix of values v laid out by p, its exact zeros left out. */
 static int compress(const pattern *p, const double *v, fb_mat **out, fb_err *err)
 {
@@ -211,6 +228,8 @@ int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass
     rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling %zu matrix entries", cap);
   for (size_t e = 0; !rc && e < fb_mesh_nelements(m); ++e)
     rc = add_element(m, e, p, mass, &pat, kv, mv, err);
+  if (!rc && M)
+    rc = add_point_masses(m, &pat, mv, err);
   if (!rc && K)
     rc = compress(&pat, kv, K, err);
   if (!rc && M)
@@ -304,6 +323,26 @@ int fb_fem_mass_properties(const fb_mesh *m, const fb_mat *M, double *mass, doub
   return FB_OK;
 }
 
+/* Adds the point masses' m r' r to the 6 x 6 rigid-body mass matrix g
+ * about o: r (3 x 6) moves a node at x by u = t + w x (x - o). */
+static void add_point_rigid_mass(const fb_mesh *m, const double *o, double *g)
+{
+  for (size_t i = 0; i < fb_mesh_npoint_masses(m); ++i) {
+    const double *x = fb_mesh_node_xyz(m, fb_mesh_point_mass_node(m, i));
+    const double mass = fb_mesh_point_mass(m, i);
+    double r[3][6] = {{0}};
+    for (int k = 0; k < 3; ++k) {
+      const int a1 = (k + 1) % 3, a2 = (k + 2) % 3;
+      r[k][k] = 1.0;
+      r[a1][3 + k] = -(x[a2] - o[a2]);
+      r[a2][3 + k] = x[a1] - o[a1];
+    }
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b)
+        g[6 * a + b] += mass * (r[0][a] * r[0][b] + r[1][a] * r[1][b] + r[2][a] * r[2][b]);
+  }
+}
+
 /* The 6 x 6 rigid-body mass matrix about o, sum over the elements of
  * r_e' M_e r_e (r_e: the element's rows of the six rigid-body fields about
  * o), into g (row-major). */
@@ -348,6 +387,7 @@ static int rigid_mass_about(const fb_mesh *m, const fb_shell_props *p, fb_mass_k
         g[6 * i + j] += dot(n, r + (size_t)i * n, mr);
     }
   }
+  add_point_rigid_mass(m, o, g);
   return FB_OK;
 }
 

@@ -32,13 +32,38 @@
  *   sections is an error at the second. props receives the only section's
  *   values when one section covers every element, or the only material's
  *   when the deck has no section. Values are taken as SI.
+ * - *ELEMENT, TYPE=MASS [, ELSET=name]: "id, node", a point mass on one
+ *   node (CalculiX's MASS element: the three translations, no rotary
+ *   inertia); more than one node is an error. Its set is the block's
+ *   ELSET=, which *MASS names; the mesh's element sets hold shells only,
+ *   so a *ELSET that names a MASS element's id leaves it out.
+ * - *MASS, ELSET=s: "mass" (kg, >= 0), the mass of each MASS element of
+ *   s (ELSET= is the parameter CalculiX 2.20 reads). Every MASS element
+ *   needs one *MASS, exactly one.
+ * - *NONSTRUCTURAL MASS, ELSET=s, UNITS=MASS PER AREA | MASS PER VOLUME |
+ *   TOTAL MASS [, DISTRIBUTION=MASS PROPORTIONAL | VOLUME PROPORTIONAL]:
+ *   "mass" (>= 0), added to the non-structural mass per area of each
+ *   shell of s (fb_mesh_add_element_nonstructural), smeared through the
+ *   thickness as a section's (fem.h); a MASS PER VOLUME times the
+ *   element's section's thickness (an element in no section is an
+ *   error); a TOTAL MASS is spread in proportion to the elements' areas,
+ *   which is either DISTRIBUTION when the elements share one section (a
+ *   set over several is an error). MASS PER LENGTH (beams) is an error. Abaqus's keyword:
+ * CalculiX 2.20 has none (its keyword table has no such entry), so the writer smears it into
+ *   the density.
  * - *HEADING and every other keyword are skipped with their data
  *   lines, except those that generate or move mesh data (*INCLUDE, *NGEN,
  *   *NFILL, *NCOPY, *NMAP, *ELGEN, *ELCOPY), which are errors rather than
  *   silently lost geometry. Unknown parameters of *NODE, *ELEMENT and
  *   *NSET (e.g. SYSTEM=, INPUT=, ELSET= on *NSET) are errors too.
  * The drilling factor has no Abaqus keyword: it is neither written nor
- * read. */
+ * read.
+ *
+ * Writing: *NODE, *ELEMENT S3/S4, the sets, one *MATERIAL and *SHELL
+ * SECTION per group of elements of one section and one added
+ * non-structural mass (that mass smeared into the density, which both
+ * programs read), and each point mass as a MASS element of a set of its
+ * own with its *MASS: a deck CalculiX 2.20 reads as the same mass. */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -107,6 +132,31 @@ typedef struct inp_material {
   int has_elastic, has_density;
 } inp_material;
 
+/* A MASS element (a point mass on one node), resolved at the end. */
+typedef struct inp_mass_element {
+  long id, node;
+  const char *elset; /* its *ELEMENT block's ELSET=, or NULL */
+  size_t line;
+  double mass;
+  size_t mass_line; /* of the *MASS that gave it its mass, 0 before */
+} inp_mass_element;
+
+/* What a *NONSTRUCTURAL MASS's value is (its UNITS=). */
+typedef enum inp_nsm_units {
+  NSM_PER_AREA,   /* kg/m^2 (also *MASS's: kg per MASS element) */
+  NSM_TOTAL,      /* kg over the set */
+  NSM_PER_VOLUME, /* kg/m^3 of the shell's volume */
+} inp_nsm_units;
+
+/* A *MASS (the mass of each MASS element of elset) or a *NONSTRUCTURAL
+ * MASS (over the shells of elset, as units says). */
+typedef struct inp_mass {
+  const char *elset;
+  double value;
+  inp_nsm_units units;
+  size_t line;
+} inp_mass;
+
 typedef struct inp_reader {
   const char *path;
   char *text; /* whole file, split into lines in place */
@@ -131,6 +181,12 @@ typedef struct inp_reader {
   size_t nmaterials, materials_cap;
   inp_section *sections;
   size_t nsections, sections_cap;
+  inp_mass_element *mass_elems;
+  size_t nmass_elems, mass_elems_cap;
+  inp_mass *masses; /* *MASS */
+  size_t nmasses, masses_cap;
+  inp_mass *nsms; /* *NONSTRUCTURAL MASS */
+  size_t nnsms, nsms_cap;
 } inp_reader;
 
 /* Records FB_EPARSE as "path:line: message". */
@@ -593,6 +649,52 @@ static int read_element_line(inp_reader *r, fb_elem_type type)
   return FB_OK;
 }
 
+/* "id, node" of a MASS element. */
+static int read_mass_element_line(inp_reader *r, const char *elset)
+{
+  int continued = 0;
+  int rc = line_fields(r, &continued);
+  inp_mass_element el = {0, 0, elset, r->lineno, 0.0, 0};
+  if (!rc && r->nfields == 0)
+    return inp_error(r, r->lineno, "element line without an element id");
+  if (!rc)
+    rc = parse_id(r, r->fields[0], "element id", &el.id);
+  if (!rc && continued)
+    return inp_error(r, r->lineno,
+                     "MASS element %ld's line ends with a comma: a point mass is 'id, node'",
+                     el.id);
+  if (!rc && r->nfields != 2)
+    return inp_error(r, r->lineno,
+                     "MASS element %ld has %zu nodes, not 1 (a point mass is on one node)",
+                     el.id, r->nfields - 1);
+  if (!rc)
+    rc = parse_id(r, r->fields[1], "node id", &el.node);
+  if (!rc && fb_grow((void **)&r->mass_elems, &r->mass_elems_cap, r->nmass_elems,
+                     sizeof *r->mass_elems))
+    rc = inp_nomem(r);
+  if (!rc)
+    r->mass_elems[r->nmass_elems++] = el;
+  return rc;
+}
+
+/* *ELEMENT, TYPE=MASS [, ELSET=name]: point masses, which *MASS gives
+ * their mass through the block's set (CalculiX's form). They stay out of
+ * the mesh's element sets, which hold shells. */
+static int read_mass_elements(inp_reader *r, const inp_keyword *kw)
+{
+  const char *elset = param(kw, "ELSET");
+  int rc = elset ? need_param(r, kw, "ELSET", &elset) : FB_OK;
+  if (!rc && elset && !fb_mesh_name_ok(elset))
+    rc = inp_quoting(r, elset, inp_error(r, r->lineno, "element set name is invalid"));
+  int got = 1;
+  while (!rc && got) {
+    rc = next_data_line(r, &got);
+    if (!rc && got)
+      rc = read_mass_element_line(r, elset);
+  }
+  return rc;
+}
+
 static int read_elements(inp_reader *r, const inp_keyword *kw)
 {
   static const char *const allowed[] = {"TYPE", "ELSET", NULL};
@@ -601,6 +703,8 @@ static int read_elements(inp_reader *r, const inp_keyword *kw)
   int rc = only_params(r, kw, allowed);
   if (!rc)
     rc = need_param(r, kw, "TYPE", &type_name);
+  if (!rc && same_word(type_name, "MASS"))
+    return read_mass_elements(r, kw);
   if (!rc)
     rc = element_type(r, type_name, &type);
   const char *elset = param(kw, "ELSET");
@@ -740,6 +844,83 @@ static int read_section(inp_reader *r, const inp_keyword *kw)
   return rc ? rc : skip_data(r);
 }
 
+/* ---- Added masses. */
+
+/* The one data line of *MASS or *NONSTRUCTURAL MASS: a mass >= 0 (kg,
+ * or kg/m^2 per area). */
+static int read_mass_value(inp_reader *r, const char *keyword, size_t kw_line, double *value)
+{
+  int got = 0, continued = 0;
+  int rc = next_data_line(r, &got);
+  if (!rc && !got)
+    return inp_error(r, kw_line, "*%s has no data line (the mass)", keyword);
+  if (!rc)
+    rc = line_fields(r, &continued);
+  if (!rc && r->nfields != 1)
+    return inp_error(r, r->lineno, "*%s data line needs 1 field (the mass), not %zu", keyword,
+                     r->nfields);
+  if (!rc)
+    rc = parse_real(r, r->fields[0], "mass", value);
+  if (!rc && !(*value >= 0.0))
+    return inp_error(r, r->lineno, "*%s: mass %g is negative", keyword, *value);
+  return rc ? rc : no_second_line(r, keyword);
+}
+
+static int push_mass(inp_reader *r, inp_mass **list, size_t *n, size_t *cap, const inp_mass *m)
+{
+  if (fb_grow((void **)list, cap, *n, sizeof **list))
+    return inp_nomem(r);
+  (*list)[(*n)++] = *m;
+  return FB_OK;
+}
+
+/* *MASS, ELSET=s: the mass of each MASS element of s (CalculiX reads
+ * ELSET= alone). */
+static int read_mass(inp_reader *r, const inp_keyword *kw)
+{
+  static const char *const allowed[] = {"ELSET", NULL};
+  inp_mass m = {NULL, 0.0, NSM_PER_AREA, r->lineno};
+  int rc = only_params(r, kw, allowed);
+  if (!rc)
+    rc = need_param(r, kw, "ELSET", &m.elset);
+  if (!rc)
+    rc = read_mass_value(r, "MASS", m.line, &m.value);
+  return rc ? rc : push_mass(r, &r->masses, &r->nmasses, &r->masses_cap, &m);
+}
+
+/* *NONSTRUCTURAL MASS, ELSET=s, UNITS=MASS PER AREA | MASS PER VOLUME |
+ * TOTAL MASS [, DISTRIBUTION=MASS PROPORTIONAL | VOLUME PROPORTIONAL] (Abaqus
+ * Keywords Reference; CalculiX 2.20 has no such keyword). */
+static int read_nonstructural(inp_reader *r, const inp_keyword *kw)
+{
+  static const char *const allowed[] = {"ELSET", "UNITS", "DISTRIBUTION", NULL};
+  inp_mass m = {NULL, 0.0, NSM_PER_AREA, r->lineno};
+  const char *units = NULL, *dist = param(kw, "DISTRIBUTION");
+  int rc = only_params(r, kw, allowed);
+  if (!rc)
+    rc = need_param(r, kw, "ELSET", &m.elset);
+  if (!rc)
+    rc = need_param(r, kw, "UNITS", &units);
+  if (rc)
+    return rc;
+  m.units = same_word(units, "TOTAL MASS")        ? NSM_TOTAL
+            : same_word(units, "MASS PER VOLUME") ? NSM_PER_VOLUME
+                                                  : NSM_PER_AREA;
+  if (m.units == NSM_PER_AREA && !same_word(units, "MASS PER AREA"))
+    return inp_quoting(r, units,
+                       inp_error(r, r->lineno,
+                                 "*NONSTRUCTURAL MASS, UNITS=%s is not supported for shells "
+                                 "(MASS PER AREA, MASS PER VOLUME, TOTAL MASS)",
+                                 units));
+  if (dist && !same_word(dist, "MASS PROPORTIONAL") && !same_word(dist, "VOLUME PROPORTIONAL"))
+    return inp_error(r, r->lineno,
+                     "*NONSTRUCTURAL MASS, DISTRIBUTION=%s is not one of MASS PROPORTIONAL, "
+                     "VOLUME PROPORTIONAL",
+                     dist);
+  rc = read_mass_value(r, "NONSTRUCTURAL MASS", m.line, &m.value);
+  return rc ? rc : push_mass(r, &r->nsms, &r->nnsms, &r->nsms_cap, &m);
+}
+
 /* ---- The deck. */
 
 static int is_one_of(const char *name, const char *const *list)
@@ -774,6 +955,10 @@ static int read_keyword(inp_reader *r)
     return read_density(r);
   if (same_word(kw.name, "SHELL SECTION"))
     return read_section(r, &kw);
+  if (same_word(kw.name, "MASS"))
+    return read_mass(r, &kw);
+  if (same_word(kw.name, "NONSTRUCTURAL MASS"))
+    return read_nonstructural(r, &kw);
   if (is_one_of(kw.name, refused))
     return inp_error(r, r->lineno,
                      "*%s is not supported (it would bring in or generate mesh data)", kw.name);
@@ -948,11 +1133,23 @@ static int push_index(const inp_reader *r, set_fill *f, size_t i)
   return rc;
 }
 
+/* 1 if id is a MASS element's (a linear search, on the path of a set
+ * that names an id no shell has: a deck has a few point masses). */
+static int is_mass_element(const inp_reader *r, long id)
+{
+  for (size_t i = 0; i < r->nmass_elems; ++i)
+    if (r->mass_elems[i].id == id)
+      return 1;
+  return 0;
+}
+
 static int push_id(const inp_reader *r, set_fill *f, const inp_item *it, long id)
 {
   const inp_set_block *blk = f->blk;
   const long i =
       blk->elements ? fb_mesh_find_element_id(r->mesh, id) : fb_mesh_find_node_id(r->mesh, id);
+  if (i < 0 && blk->elements && is_mass_element(r, id))
+    return FB_OK; /* element sets of the mesh hold shells only */
   if (i < 0)
     return inp_error(r, it->line, "%s set '%s' names %s %ld, which is not defined",
                      set_kind(blk->elements), blk->name, set_kind(blk->elements), id);
@@ -1122,6 +1319,140 @@ static int check_element_shapes(const inp_reader *r)
   return inp_mesh_error(r, r->elems[bad].line, &sub);
 }
 
+/* ---- Added masses, once the sets and sections are resolved. */
+
+/* Gives the MASS elements of *MASS m's set their mass; the set must hold
+ * MASS elements, each given its mass once. */
+static int assign_mass(const inp_reader *r, const inp_mass *m)
+{
+  size_t n = 0;
+  for (size_t i = 0; i < r->nmass_elems; ++i) {
+    inp_mass_element *el = &r->mass_elems[i];
+    if (!el->elset || !same_word(el->elset, m->elset))
+      continue;
+    if (el->mass_line)
+      return inp_error(r, m->line,
+                       "MASS element %ld is given its mass twice (here and line %zu)", el->id,
+                       el->mass_line);
+    el->mass = m->value;
+    el->mass_line = m->line;
+    ++n;
+  }
+  if (n > 0)
+    return FB_OK;
+  if (fb_mesh_elset(r->mesh, m->elset, NULL, NULL))
+    return inp_error(r, m->line,
+                     "*MASS names element set '%s', which holds no MASS elements (shells take "
+                     "*NONSTRUCTURAL MASS)",
+                     m->elset);
+  return inp_error(r, m->line, "*MASS names element set '%s', which is not defined", m->elset);
+}
+
+/* The MASS elements as the mesh's point masses, each with a *MASS. */
+static int resolve_point_masses(const inp_reader *r)
+{
+  int rc = FB_OK;
+  for (size_t k = 0; k < r->nmasses && !rc; ++k)
+    rc = assign_mass(r, &r->masses[k]);
+  fb_err sub;
+  fb_err_clear(&sub);
+  for (size_t i = 0; i < r->nmass_elems && !rc; ++i) {
+    const inp_mass_element *el = &r->mass_elems[i];
+    const long node = fb_mesh_find_node_id(r->mesh, el->node);
+    if (!el->mass_line)
+      return inp_error(r, el->line, "MASS element %ld has no *MASS%s%s%s", el->id,
+                       el->elset ? " (for its element set '" : " (nor an ELSET= to give one)",
+                       el->elset ? el->elset : "", el->elset ? "')" : "");
+    if (node < 0)
+      return inp_error(r, el->line, "element %ld refers to node %ld, which is not defined",
+                       el->id, el->node);
+    if (fb_mesh_add_point_mass(r->mesh, el->id, (size_t)node, el->mass, &sub))
+      rc = inp_mesh_error(r, el->line, &sub);
+  }
+  return rc;
+}
+
+/* Area of element e (its projected area if it is warped). */
+static double element_area(const fb_mesh *m, size_t e)
+{
+  double v[3];
+  fb_mesh_element_area_vector(m, e, v);
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* A total mass over the shells of a set, per area: in proportion to
+ * each element's area, which is Abaqus's distribution in proportion to
+ * mass or to volume alike when the elements share one section (one
+ * density and thickness); a set over several sections is refused. */
+static int total_per_area(const inp_reader *r, const inp_mass *m, const size_t *elems, size_t n,
+                          double *per_area)
+{
+  double area = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    if (fb_mesh_element_section(r->mesh, elems[k]) !=
+        fb_mesh_element_section(r->mesh, elems[0]))
+      return inp_error(r, m->line,
+                       "*NONSTRUCTURAL MASS, UNITS=TOTAL MASS over element set '%s', whose "
+                       "elements are in more than one *SHELL SECTION, is not supported",
+                       m->elset);
+    area += element_area(r->mesh, elems[k]);
+  }
+  *per_area = m->value / area;
+  return FB_OK;
+}
+
+/* 1 if name is the set of a block of MASS elements. */
+static int is_mass_set(const inp_reader *r, const char *name)
+{
+  for (size_t i = 0; i < r->nmass_elems; ++i)
+    if (r->mass_elems[i].elset && same_word(r->mass_elems[i].elset, name))
+      return 1;
+  return 0;
+}
+
+/* A mass per volume of element e's shell as a mass per area: times its
+ * section's thickness, which an element outside every *SHELL SECTION
+ * does not have yet (the program that reads the deck gives it). */
+static int volume_per_area(const inp_reader *r, const inp_mass *m, size_t e, double *per_area)
+{
+  const long sec = fb_mesh_element_section(r->mesh, e);
+  if (sec < 0)
+    return inp_error(r, m->line,
+                     "*NONSTRUCTURAL MASS, UNITS=MASS PER VOLUME: element %ld of set '%s' is "
+                     "in no *SHELL SECTION (the thickness it needs)",
+                     fb_mesh_element_id(r->mesh, e), m->elset);
+  *per_area = m->value * fb_mesh_section_props(r->mesh, (size_t)sec)->thickness;
+  return FB_OK;
+}
+
+/* Each *NONSTRUCTURAL MASS as its elements' added mass per area. */
+static int resolve_nonstructural(const inp_reader *r)
+{
+  fb_err sub;
+  fb_err_clear(&sub);
+  for (size_t i = 0; i < r->nnsms; ++i) {
+    const inp_mass *m = &r->nsms[i];
+    const size_t *elems = NULL;
+    size_t n = 0;
+    if (!fb_mesh_elset(r->mesh, m->elset, &elems, &n))
+      return inp_error(
+          r, m->line, "*NONSTRUCTURAL MASS names element set '%s', which %s", m->elset,
+          is_mass_set(r, m->elset) ? "holds MASS elements, not shells (they take *MASS)"
+                                   : "is not defined");
+    double per_area = m->value;
+    int rc = m->units == NSM_TOTAL ? total_per_area(r, m, elems, n, &per_area) : FB_OK;
+    for (size_t k = 0; k < n && !rc; ++k) {
+      if (m->units == NSM_PER_VOLUME && (rc = volume_per_area(r, m, elems[k], &per_area)))
+        break;
+      if (fb_mesh_add_element_nonstructural(r->mesh, elems[k], per_area, &sub))
+        rc = inp_mesh_error(r, m->line, &sub);
+    }
+    if (rc)
+      return rc;
+  }
+  return FB_OK;
+}
+
 static int finish(const inp_reader *r, fb_shell_props *props)
 {
   if (fb_mesh_nnodes(r->mesh) == 0)
@@ -1135,6 +1466,10 @@ static int finish(const inp_reader *r, fb_shell_props *props)
     rc = resolve_sets(r);
   if (!rc)
     rc = resolve_sections(r);
+  if (!rc)
+    rc = resolve_point_masses(r);
+  if (!rc)
+    rc = resolve_nonstructural(r);
   if (!rc && props)
     deck_props(r, props);
   return rc;
@@ -1149,6 +1484,9 @@ static void reader_free(inp_reader *r)
   free(r->blocks);
   free(r->materials);
   free(r->sections);
+  free(r->mass_elems);
+  free(r->masses);
+  free(r->nsms);
 }
 
 /* The parser shared by both readers: takes the NUL-terminated buffer text
@@ -1282,80 +1620,145 @@ static void write_sets(FILE *fp, const fb_mesh *m)
   }
 }
 
-/* The ids of the elements whose section is sec, sixteen per line. */
-static void write_section_ids(FILE *fp, const fb_mesh *m, long sec, size_t n)
+/* A group of elements written with one material and section: those of
+ * section sec (-1: none) whose own added non-structural mass is nsm (a
+ * deck has no keyword CalculiX reads for it: fem.h). */
+typedef struct deck_group {
+  long sec;
+  double nsm;
+  size_t n;   /* its elements */
+  size_t sub; /* 0 for the section's first group, then 1, 2, ... */
+} deck_group;
+
+static int in_group(const fb_mesh *m, size_t e, const deck_group *g)
+{
+  return fb_mesh_element_section(m, e) == g->sec &&
+         fb_mesh_element_nonstructural(m, e) == g->nsm;
+}
+
+/* The ids of the group's elements, sixteen per line. */
+static void write_group_ids(FILE *fp, const fb_mesh *m, const deck_group *g)
 {
   size_t k = 0;
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
-    if (fb_mesh_element_section(m, e) == sec) {
-      fprintf(fp, "%ld%s", fb_mesh_element_id(m, e), k + 1 == n || k % 16 == 15 ? "\n" : ", ");
+    if (in_group(m, e, g)) {
+      fprintf(fp, "%ld%s", fb_mesh_element_id(m, e),
+              k + 1 == g->n || k % 16 == 15 ? "\n" : ", ");
       ++k;
     }
 }
 
-/* 1 if the element set name holds exactly the n elements of section sec. */
-static int set_is(const fb_mesh *m, const char *name, long sec, size_t n)
+/* 1 if the element set name holds exactly the group's elements. */
+static int set_is(const fb_mesh *m, const char *name, const deck_group *g)
 {
   const size_t *elems = NULL;
   size_t count = 0;
-  if (!name || !fb_mesh_elset(m, name, &elems, &count) || count != n)
+  if (!name || !fb_mesh_elset(m, name, &elems, &count) || count != g->n)
     return 0;
-  for (size_t k = 0; k < n; ++k)
-    if (fb_mesh_element_section(m, elems[k]) != sec)
+  for (size_t k = 0; k < g->n; ++k)
+    if (!in_group(m, elems[k], g))
       return 0;
   return 1;
 }
 
-/* A name for the set of a written section: the section's own set or
+/* A name for the set of a written group: the section's own set or
  * another that holds just its elements, EALL for every element, or the
- * first SECTION_<k> that names no set. */
-static void section_set_name(const fb_mesh *m, long sec, size_t n, char *name, size_t size)
+ * first SECTION_<k> (SECTION_<k>_<sub> for a section's later groups)
+ * that names no set. */
+static void group_set_name(const fb_mesh *m, const deck_group *g, char *name, size_t size)
 {
-  const char *own = sec >= 0 ? fb_mesh_section_elset(m, (size_t)sec) : NULL;
-  for (size_t i = 0; !set_is(m, own, sec, n) && i < fb_mesh_nelsets(m); ++i)
+  const char *own = g->sec >= 0 ? fb_mesh_section_elset(m, (size_t)g->sec) : NULL;
+  for (size_t i = 0; !set_is(m, own, g) && i < fb_mesh_nelsets(m); ++i)
     own = fb_mesh_elset_name(m, i);
-  if (set_is(m, own, sec, n)) {
+  if (set_is(m, own, g)) {
     snprintf(name, size, "%s", own);
     return;
   }
-  if (n == fb_mesh_nelements(m) && !fb_mesh_elset(m, "EALL", NULL, NULL)) {
+  if (g->n == fb_mesh_nelements(m) && !fb_mesh_elset(m, "EALL", NULL, NULL)) {
     snprintf(name, size, "EALL");
     return;
   }
-  for (long k = sec + 2;; ++k) {
-    snprintf(name, size, "SECTION_%ld", k);
+  for (long k = g->sec + 2;; ++k) {
+    if (g->sub)
+      snprintf(name, size, "SECTION_%ld_%zu", k, g->sub + 1);
+    else
+      snprintf(name, size, "SECTION_%ld", k);
     if (!fb_mesh_elset(m, name, NULL, NULL))
       return;
   }
 }
 
-/* Material MAT_<k> and the section of the n elements of section sec,
- * whose properties are p (the non-structural mass smeared into the
- * density, fem.h). */
-static void write_section(FILE *fp, const fb_mesh *m, long sec, size_t n,
-                          const fb_shell_props *p)
+/* Material MAT_<k> (MAT_<k>_<sub>) and the section of the group's
+ * elements, whose properties are p with the group's non-structural mass
+ * added, all of it smeared into the density (fem.h). */
+static void write_group(FILE *fp, const fb_mesh *m, const deck_group *g,
+                        const fb_shell_props *p)
 {
-  char name[FB_MESH_NAME_MAX + 1];
-  section_set_name(m, sec, n, name, sizeof name);
-  if (!set_is(m, name, sec, n)) {
+  char name[FB_MESH_NAME_MAX + 1], mat[48];
+  group_set_name(m, g, name, sizeof name);
+  if (!set_is(m, name, g)) {
     fprintf(fp, "*ELSET, ELSET=%s\n", name);
-    write_section_ids(fp, m, sec, n);
+    write_group_ids(fp, m, g);
   }
-  const long k = sec + 2;
+  if (g->sub)
+    snprintf(mat, sizeof mat, "MAT_%ld_%zu", g->sec + 2, g->sub + 1);
+  else
+    snprintf(mat, sizeof mat, "MAT_%ld", g->sec + 2);
+  const double nsm = p->nonstructural_mass + g->nsm;
   fprintf(fp,
-          "*MATERIAL, NAME=MAT_%ld\n*ELASTIC\n%.17g, %.17g\n*DENSITY\n%.17g\n"
-          "*SHELL SECTION, ELSET=%s, MATERIAL=MAT_%ld\n%.17g\n",
-          k, p->young, p->poisson, p->density + p->nonstructural_mass / p->thickness, name, k,
-          p->thickness);
+          "*MATERIAL, NAME=%s\n*ELASTIC\n%.17g, %.17g\n*DENSITY\n%.17g\n"
+          "*SHELL SECTION, ELSET=%s, MATERIAL=%s\n%.17g\n",
+          mat, p->young, p->poisson, p->density + nsm / p->thickness, name, mat, p->thickness);
+}
+
+/* The groups of section sec, one per distinct added non-structural mass,
+ * in increasing order of it: each pass finds the smallest value above the
+ * last group's (O(elements x groups); a deck has a few). */
+static void write_section(FILE *fp, const fb_mesh *m, long sec, const fb_shell_props *p)
+{
+  deck_group g = {sec, 0.0, 0, 0};
+  for (;; ++g.sub) {
+    double next = 0.0;
+    size_t n = 0;
+    for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
+      const double v = fb_mesh_element_nonstructural(m, e);
+      if (fb_mesh_element_section(m, e) != sec || (g.sub > 0 && !(v > g.nsm)))
+        continue;
+      if (n == 0 || v < next) {
+        next = v;
+        n = 0;
+      }
+      n += v == next;
+    }
+    if (n == 0)
+      return;
+    g.nsm = next;
+    g.n = n;
+    write_group(fp, m, &g, p);
+  }
 }
 
 /* One section per group of elements with the same section (-1: p's). */
 static void write_sections(FILE *fp, const fb_mesh *m, const fb_shell_props *p)
 {
-  for (long sec = p ? -1 : 0; sec < (long)fb_mesh_nsections(m); ++sec) {
-    const size_t n = fb_mesh_section_nelements(m, sec);
-    if (n > 0)
-      write_section(fp, m, sec, n, sec >= 0 ? fb_mesh_section_props(m, (size_t)sec) : p);
+  for (long sec = p ? -1 : 0; sec < (long)fb_mesh_nsections(m); ++sec)
+    write_section(fp, m, sec, sec >= 0 ? fb_mesh_section_props(m, (size_t)sec) : p);
+}
+
+/* Each point mass as a MASS element of its own element set PMASS_<id>
+ * (or the first PMASS_<id>_<k> that names no set) with its *MASS, the
+ * form CalculiX reads (its *MASS gives every element of the set the
+ * mass). */
+static void write_point_masses(FILE *fp, const fb_mesh *m)
+{
+  for (size_t i = 0; i < fb_mesh_npoint_masses(m); ++i) {
+    const long id = fb_mesh_point_mass_id(m, i);
+    char name[FB_MESH_NAME_MAX + 1];
+    snprintf(name, sizeof name, "PMASS_%ld", id);
+    for (int k = 2; fb_mesh_elset(m, name, NULL, NULL); ++k)
+      snprintf(name, sizeof name, "PMASS_%ld_%d", id, k);
+    fprintf(fp, "*ELEMENT, TYPE=MASS, ELSET=%s\n%ld, %ld\n*MASS, ELSET=%s\n%.17g\n", name, id,
+            fb_mesh_node_id(m, fb_mesh_point_mass_node(m, i)), name, fb_mesh_point_mass(m, i));
   }
 }
 
@@ -1369,6 +1772,7 @@ void fb_mesh_print_inp(FILE *fp, const fb_mesh *m, const fb_shell_props *p)
   write_elements(fp, m);
   write_sets(fp, m);
   write_sections(fp, m, p);
+  write_point_masses(fp, m);
 }
 
 static int finite_props(const fb_shell_props *p)

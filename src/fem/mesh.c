@@ -56,6 +56,13 @@ typedef struct mesh_section {
   fb_shell_props props;
 } mesh_section;
 
+/* A point mass on one node's translations. */
+typedef struct mesh_point_mass {
+  long id;
+  size_t node;
+  double mass;
+} mesh_point_mass;
+
 struct fb_mesh {
   double *xyz; /* 3 per node */
   long *node_ids;
@@ -72,6 +79,10 @@ struct fb_mesh {
   size_t nquad;
   id_map elem_map;
   long *elem_section; /* per element (NULL until the first section) */
+  double *elem_nsm;   /* per element, kg/m^2 added (NULL until the first) */
+
+  mesh_point_mass *pmass; /* point masses (MASS elements), in the order added */
+  size_t npmass, pmass_cap;
 
   set_list nsets;
   set_list elsets;
@@ -233,6 +244,8 @@ void fb_mesh_free(fb_mesh **m)
   free(mesh->elem_nodes);
   free(mesh->elem_map.slots);
   free(mesh->elem_section);
+  free(mesh->elem_nsm);
+  free(mesh->pmass);
   set_list_free(&mesh->nsets);
   set_list_free(&mesh->elsets);
   for (size_t i = 0; i < mesh->nsections; ++i)
@@ -279,6 +292,12 @@ static int copy_elements(const fb_mesh *m, fb_mesh *c)
   if (!rc && m->elem_section)
     rc = copy_bytes((void **)&c->elem_section, m->elem_section,
                     m->nelems * sizeof *m->elem_section);
+  if (!rc && m->elem_nsm)
+    rc = copy_bytes((void **)&c->elem_nsm, m->elem_nsm, m->nelems * sizeof *m->elem_nsm);
+  if (!rc)
+    rc = copy_bytes((void **)&c->pmass, m->pmass, m->npmass * sizeof *m->pmass);
+  if (!rc)
+    c->npmass = c->pmass_cap = m->npmass;
   return rc ? rc : id_map_copy(&m->elem_map, &c->elem_map);
 }
 
@@ -413,6 +432,12 @@ static int grow_elements(fb_mesh *m)
       return FB_ENOMEM;
     m->elem_section = section;
   }
+  if (m->elem_nsm) {
+    double *nsm = realloc(m->elem_nsm, cap * sizeof *nsm);
+    if (!nsm)
+      return FB_ENOMEM;
+    m->elem_nsm = nsm;
+  }
   m->elem_cap = cap;
   return FB_OK;
 }
@@ -435,7 +460,7 @@ static int check_element_args(const fb_mesh *m, long id, fb_elem_type type, cons
                         "element %ld: node index %zu out of range (the mesh has %zu nodes)", id,
                         nodes[k], m->nnodes);
   }
-  if (id_map_find(&m->elem_map, m->elem_ids, id) >= 0)
+  if (id_map_find(&m->elem_map, m->elem_ids, id) >= 0 || fb_mesh_find_point_mass_id(m, id) >= 0)
     return fb_err_set(err, FB_EINVAL, "element id %ld is defined twice", id);
   return FB_OK;
 }
@@ -459,6 +484,8 @@ int fb_mesh_add_element(fb_mesh *m, long id, fb_elem_type type, const size_t *no
   id_map_put(&m->elem_map, m->elem_ids, e);
   if (m->elem_section)
     m->elem_section[e] = -1;
+  if (m->elem_nsm)
+    m->elem_nsm[e] = 0.0;
   ++m->nelems;
   if (type == FB_ELEM_TRI3)
     ++m->ntri;
@@ -831,9 +858,84 @@ size_t fb_mesh_section_nelements(const fb_mesh *m, long sec)
 fb_shell_props fb_mesh_element_props(const fb_mesh *m, size_t e, const fb_shell_props *base)
 {
   const long i = fb_mesh_element_section(m, e);
-  if (i < 0)
-    return *base;
-  fb_shell_props p = m->sections[i].props;
-  p.drill_factor = base->drill_factor;
+  fb_shell_props p = *base;
+  if (i >= 0) {
+    p = m->sections[i].props;
+    p.drill_factor = base->drill_factor;
+  }
+  p.nonstructural_mass += fb_mesh_element_nonstructural(m, e);
   return p;
+}
+
+/* ---- Added masses. */
+
+int fb_mesh_add_element_nonstructural(fb_mesh *m, size_t e, double per_area, fb_err *err)
+{
+  if (!m || e >= m->nelems)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_add_element_nonstructural: no element %zu", e);
+  /* The sum too: two huge masses on one element must not make inf. */
+  const double sum = fb_mesh_element_nonstructural(m, e) + per_area;
+  if (!(per_area >= 0.0 && isfinite(sum)))
+    return fb_err_set(err, FB_EINVAL,
+                      "element %ld: non-structural mass %g kg/m^2 (%g in all) is not >= 0 and "
+                      "finite",
+                      m->elem_ids[e], per_area, sum);
+  if (!m->elem_nsm) {
+    m->elem_nsm = calloc(m->elem_cap ? m->elem_cap : 1, sizeof *m->elem_nsm);
+    if (!m->elem_nsm)
+      return fb_err_set(err, FB_ENOMEM, "out of memory for non-structural masses");
+  }
+  m->elem_nsm[e] += per_area;
+  return FB_OK;
+}
+
+double fb_mesh_element_nonstructural(const fb_mesh *m, size_t e)
+{
+  return m && m->elem_nsm && e < m->nelems ? m->elem_nsm[e] : 0.0;
+}
+
+int fb_mesh_add_point_mass(fb_mesh *m, long id, size_t node, double mass, fb_err *err)
+{
+  if (!m || node >= m->nnodes)
+    return fb_err_set(err, FB_EINVAL, "fb_mesh_add_point_mass: no node %zu", node);
+  if (id <= 0)
+    return fb_err_set(err, FB_EINVAL, "point mass id %ld is not positive", id);
+  if (!(mass >= 0.0 && isfinite(mass)))
+    return fb_err_set(err, FB_EINVAL, "point mass %ld: mass %g kg is not >= 0 and finite", id,
+                      mass);
+  if (id_map_find(&m->elem_map, m->elem_ids, id) >= 0 || fb_mesh_find_point_mass_id(m, id) >= 0)
+    return fb_err_set(err, FB_EINVAL, "element id %ld is defined twice", id);
+  if (fb_grow((void **)&m->pmass, &m->pmass_cap, m->npmass, sizeof *m->pmass))
+    return fb_err_set(err, FB_ENOMEM, "out of memory adding point mass %ld", id);
+  m->pmass[m->npmass++] = (mesh_point_mass){id, node, mass};
+  return FB_OK;
+}
+
+size_t fb_mesh_npoint_masses(const fb_mesh *m)
+{
+  return m ? m->npmass : 0;
+}
+
+long fb_mesh_point_mass_id(const fb_mesh *m, size_t i)
+{
+  return m && i < m->npmass ? m->pmass[i].id : -1;
+}
+
+size_t fb_mesh_point_mass_node(const fb_mesh *m, size_t i)
+{
+  return m && i < m->npmass ? m->pmass[i].node : 0;
+}
+
+double fb_mesh_point_mass(const fb_mesh *m, size_t i)
+{
+  return m && i < m->npmass ? m->pmass[i].mass : 0.0;
+}
+
+/* A linear search: a hull carries a handful of point masses. */
+long fb_mesh_find_point_mass_id(const fb_mesh *m, long id)
+{
+  for (size_t i = 0; m && i < m->npmass; ++i)
+    if (m->pmass[i].id == id)
+      return (long)i;
+  return -1;
 }

@@ -41,16 +41,36 @@ static double element_area(const fb_mesh *m, size_t e)
   return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
+/* Each element's mass from its own properties: a deck's non-structural
+ * mass may differ from element to element of a section. */
 fb_hull_section_totals fb_fe_hull_section_totals(const fb_fe_hull *h, long sec)
 {
   fb_hull_section_totals t = {0, 0.0, 0.0};
   for (size_t e = 0; e < fb_mesh_nelements(h->mesh); ++e)
     if (fb_mesh_element_section(h->mesh, e) == sec) {
+      const fb_shell_props p = fb_mesh_element_props(h->mesh, e, &h->props);
+      const double area = element_area(h->mesh, e);
       ++t.nelements;
-      t.area += element_area(h->mesh, e);
+      t.area += area;
+      t.mass += (p.density * p.thickness + p.nonstructural_mass) * area;
     }
-  const fb_shell_props *p = sec >= 0 ? fb_mesh_section_props(h->mesh, (size_t)sec) : &h->props;
-  if (t.nelements && p)
-    t.mass = (p->density * p->thickness + p->nonstructural_mass) * t.area;
   return t;
+}
+
+/* The declared masses take the ids after every element's and point
+ * mass's, so that they clash with none. */
+int fb_fe_hull_mesh_as_built(const fb_fe_hull *h, fb_mesh **out, fb_err *err)
+{
+  int rc = fb_mesh_clone(h->mesh, out, err);
+  long id = 0;
+  for (size_t e = 0; !rc && e < fb_mesh_nelements(*out); ++e)
+    id = fb_mesh_element_id(*out, e) > id ? fb_mesh_element_id(*out, e) : id;
+  for (size_t i = 0; !rc && i < fb_mesh_npoint_masses(*out); ++i)
+    id = fb_mesh_point_mass_id(*out, i) > id ? fb_mesh_point_mass_id(*out, i) : id;
+  for (size_t k = 0; !rc && k < h->npoint_masses; ++k)
+    rc = fb_mesh_add_point_mass(*out, id + 1 + (long)k, h->point_mass_node[k], h->point_mass[k],
+                                err);
+  if (rc)
+    fb_mesh_free(out);
+  return rc;
 }

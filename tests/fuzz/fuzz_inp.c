@@ -3,10 +3,12 @@
  * flexbond/fem.h) on arbitrary bytes and, for every mesh it accepts, the mesh checks
  * (fb_mesh_check: node use, degenerate, warped and non-convex elements, node sets) and
  * its sets, which must hold each member once however often the deck names it (sets
- * that name sets, src/fem/inp.c). Refused inputs are fine; a crash, a leak, undefined
- * behaviour, an error without a message, a set with a repeated member, or a slow or
- * memory-hungry input (a reader that multiplies set references) is a finding
+ * that name sets, src/fem/inp.c) and its added masses, which must be finite, >= 0 and on
+ * its nodes. Refused inputs are fine; a crash, a leak, undefined
+ * behaviour, an error without a message, a set with a repeated member, a bad added mass, or a
+ * slow or memory-hungry input (a reader that multiplies set references) is a finding
  * (docs/fuzzing.md). */
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -43,6 +45,23 @@ static int sets_distinct(const fb_mesh *m, int elements)
   return ok;
 }
 
+/* 1 if every point mass is on a node of m and every mass, point or per area, is finite
+ * and >= 0 (the reader's *MASS and *NONSTRUCTURAL MASS). */
+static int masses_sound(const fb_mesh *m)
+{
+  for (size_t i = 0; i < fb_mesh_npoint_masses(m); ++i) {
+    const double v = fb_mesh_point_mass(m, i);
+    if (fb_mesh_point_mass_node(m, i) >= fb_mesh_nnodes(m) || !(v >= 0.0 && isfinite(v)))
+      return 0;
+  }
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
+    const double v = fb_mesh_element_nonstructural(m, e);
+    if (!(v >= 0.0 && isfinite(v)))
+      return 0;
+  }
+  return 1;
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   static const char empty[1] = "";
@@ -58,7 +77,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const int crc = fb_mesh_check(mesh, &err);
     if (crc && (crc != err.code || err.msg[0] == '\0'))
       abort();
-    if (!sets_distinct(mesh, 0) || !sets_distinct(mesh, 1))
+    if (!sets_distinct(mesh, 0) || !sets_distinct(mesh, 1) || !masses_sound(mesh))
       abort();
   }
   fb_mesh_free(&mesh);
