@@ -1,0 +1,412 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* The checks of a reduced structure (fb_reduced_check): symmetry, a
+ * positive semi-definite mass, and a free-free stiffness with exactly the
+ * six rigid-body motions of its interface as zero-energy modes.
+ *
+ * Tolerances come from the file's own precision p (the relative rounding
+ * of its numbers): each entry of the diagonally scaled K^ = D^-1 K D^-1
+ * (D = sqrt(diag K), so |K^_ij| <= 1) is off by at most p |K^_ij|, so the
+ * perturbation E has ||E||_2 <= ||E||_F <= p ||K^||_F, which bounds both
+ * the residual |K^ r^| of an exact rigid-body motion and the shift of any
+ * eigenvalue (Weyl's inequality; Golub & Van Loan, "Matrix
+ * Computations", 4th ed., theorem 8.1.6). The threshold z = max(2 p, 1e-9)
+ * ||K^||_F is twice that bound; 1e-9 covers the writer's own round-off in
+ * the condensation (eps times K_oo's condition number, 1e7 and more for a
+ * stiff shell). */
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fem/reduced_struct.h"
+
+static const char *const comp_name[7] = {"", "ux", "uy", "uz", "rx", "ry", "rz"};
+static const char *const motion_name[6] = {"translation along x", "translation along y",
+                                           "translation along z", "rotation about x",
+                                           "rotation about y",    "rotation about z"};
+
+/* "node 12 uz" */
+static void dof_text(const fb_reduced *r, size_t i, char *buf, size_t size)
+{
+  snprintf(buf, size, "node %ld %s", r->nodes.id[r->dof_node[i]], comp_name[r->dof_comp[i]]);
+}
+
+/* The line entry (i, j) (or its mirror, in a one-triangle file) was
+ * written on, 0 when not known. */
+static size_t entry_line(const fb_reduced *r, int k, size_t i, size_t j)
+{
+  for (size_t e = 0; r->where[k] && e < r->nwhere[k]; ++e)
+    if ((r->where[k][e].i == i && r->where[k][e].j == j))
+      return r->where[k][e].line;
+  return 0;
+}
+
+/* "FILE:LINE: " or "FILE: " */
+static void where_text(const fb_reduced *r, int k, size_t i, size_t j, char *buf, size_t size)
+{
+  const size_t line = entry_line(r, k, i, j);
+  if (line)
+    snprintf(buf, size, "%s:%zu: ", r->path[k], line);
+  else
+    snprintf(buf, size, "%s: ", r->path[k]);
+}
+
+static double *dense(const fb_mat *a, size_t n)
+{
+  double *d = malloc((n ? n * n : 1) * sizeof *d);
+  if (!d)
+    return NULL;
+  for (size_t j = 0; j < n; ++j)
+    for (size_t i = 0; i < n; ++i)
+      d[i + j * n] = fb_mat_get(a, i, j);
+  return d;
+}
+
+static int check_symmetric(const fb_reduced *r, int k, const double *a, fb_err *err)
+{
+  const size_t n = r->ndof;
+  const double p = r->precision[k];
+  const char *name = k ? "M" : "K";
+  for (size_t j = 0; j < n; ++j) {
+    for (size_t i = j + 1; i < n; ++i) {
+      const double x = a[i + j * n], y = a[j + i * n];
+      const double scale = fabs(x) > fabs(y) ? fabs(x) : fabs(y);
+      const double tol = 2.0 * p * scale + 1e-8 * sqrt(fabs(a[i + i * n] * a[j + j * n]));
+      if (fabs(x - y) <= tol)
+        continue;
+      char wi[64], wj[64], at[FB_ERR_FILE_MAX + 32], mirror[32] = "";
+      dof_text(r, i, wi, sizeof wi);
+      dof_text(r, j, wj, sizeof wj);
+      const size_t line_i = entry_line(r, k, i, j), line_j = entry_line(r, k, j, i);
+      where_text(r, k, line_i ? i : j, line_i ? j : i, at, sizeof at);
+      if (line_i && line_j)
+        snprintf(mirror, sizeof mirror, " (line %zu)", line_j);
+      return fb_err_set(err, FB_EMODEL,
+                        "%s%s is not symmetric: %s(%s, %s) = %g but %s(%s, %s) = %g%s, "
+                        "a difference of %.3g of the larger, more than the %.3g the file's "
+                        "numbers allow",
+                        at, name, name, wi, wj, x, name, wj, wi, y, mirror,
+                        fabs(x - y) / (scale > 0 ? scale : 1.0),
+                        tol / (scale > 0 ? scale : 1.0));
+    }
+  }
+  return FB_OK;
+}
+
+/* Eigenvalues (ascending) and, in place of s, eigenvectors of the
+ * symmetric n x n s. */
+static int eig(double *s, size_t n, double *w, const char *what, fb_err *err)
+{
+  if (LAPACKE_dsyev(LAPACK_COL_MAJOR, 'V', 'U', (int)n, s, (int)n, w))
+    return fb_err_set(err, FB_ESOLVER, "%s: the eigen-solve failed", what);
+  return FB_OK;
+}
+
+/* The DOF with the largest component of column c of v. */
+static size_t largest(const double *v, size_t n, size_t c)
+{
+  size_t best = 0;
+  for (size_t i = 1; i < n; ++i)
+    if (fabs(v[i + c * n]) > fabs(v[best + c * n]))
+      best = i;
+  return best;
+}
+
+/* The six rigid-body motions of the DOFs about the nodes' centroid c:
+ * translation t and rotation theta move the node at x by t + theta x
+ * (x - c) and turn it by theta (small displacements). */
+static void rigid_motions(const fb_reduced *r, double *R)
+{
+  const size_t n = r->ndof;
+  double c[3] = {0, 0, 0};
+  for (size_t a = 0; a < r->nodes.n; ++a)
+    for (int k = 0; k < 3; ++k)
+      c[k] += r->nodes.xyz[3 * a + k] / (double)r->nodes.n;
+  memset(R, 0, 6 * n * sizeof *R);
+  for (size_t i = 0; i < n; ++i) {
+    const double *x = r->nodes.xyz + 3 * r->dof_node[i];
+    const double d[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+    const int comp = r->dof_comp[i];
+    if (comp <= 3) {
+      const int a = comp - 1, b = (a + 1) % 3, e = (a + 2) % 3;
+      R[i + (size_t)a * n] = 1.0;
+      /* (theta x d)_a = theta_b d_e - theta_e d_b */
+      R[i + (size_t)(3 + b) * n] = d[e];
+      R[i + (size_t)(3 + e) * n] = -d[b];
+    } else {
+      R[i + (size_t)(comp - 1) * n] = 1.0;
+    }
+  }
+}
+
+static double norm(const double *v, size_t n)
+{
+  double s = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    s += v[i] * v[i];
+  return sqrt(s);
+}
+
+/* K^ = D^-1 K D^-1 in place (D = sqrt(diag K)); a diagonal entry <= 0 is
+ * an error naming its DOF. */
+static int scale_stiffness(const fb_reduced *r, double *a, double *dsq, fb_err *err)
+{
+  const size_t n = r->ndof;
+  for (size_t i = 0; i < n; ++i) {
+    const double kii = a[i + i * n];
+    if (kii <= 0.0) {
+      char wi[64], at[FB_ERR_FILE_MAX + 32];
+      dof_text(r, i, wi, sizeof wi);
+      where_text(r, 0, i, i, at, sizeof at);
+      return fb_err_set(err, FB_EMODEL,
+                        "%sK(%s, %s) = %g: a stiffness needs a positive diagonal (the DOF "
+                        "%s)",
+                        at, wi, wi, kii,
+                        kii < 0 ? "pulls against itself" : "is held by nothing");
+    }
+    dsq[i] = sqrt(kii);
+  }
+  for (size_t j = 0; j < n; ++j)
+    for (size_t i = 0; i < n; ++i)
+      a[i + j * n] /= dsq[i] * dsq[j];
+  return FB_OK;
+}
+
+static int check_rigid(const fb_reduced *r, double *kh, const double *dsq, double z, double *R,
+                       fb_err *err)
+{
+  const size_t n = r->ndof;
+  double *y = malloc(n * sizeof *y);
+  if (!y)
+    return fb_err_set(err, FB_ENOMEM, "out of memory checking %s", r->path[0]);
+  int rc = FB_OK;
+  for (int m = 0; m < 6 && !rc; ++m) {
+    double *q = R + (size_t)m * n;
+    for (size_t i = 0; i < n; ++i)
+      q[i] *= dsq[i];
+    const double len = norm(q, n);
+    for (size_t i = 0; len > 0 && i < n; ++i)
+      q[i] /= len;
+    for (size_t i = 0; i < n; ++i) {
+      double s = 0.0;
+      for (size_t j = 0; j < n; ++j)
+        s += kh[i + j * n] * q[j];
+      y[i] = s;
+    }
+    const double res = norm(y, n);
+    if (len == 0.0 || res > z)
+      rc = fb_err_set(err, FB_EMODEL,
+                      "%s: K is not free-free: its %s has energy (|K r| = %.3g of the scaled "
+                      "stiffness, more than the %.3g the file's precision allows; largest at "
+                      "DOF %zu): a support or a grounded spring left in the superelement",
+                      r->path[0], motion_name[m], res, z, largest(y, n, 0) + 1);
+  }
+  free(y);
+  if (rc)
+    return rc;
+  /* Gram-Schmidt, twice (Giraud et al., Numer. Math. 101, 2005): an
+   * orthonormal basis of the six motions, or an error when the interface
+   * cannot tell some of them apart. */
+  for (int m = 0; m < 6; ++m) {
+    double *q = R + (size_t)m * n;
+    const double before = norm(q, n);
+    for (int pass = 0; pass < 2; ++pass)
+      for (int l = 0; l < m; ++l) {
+        const double *o = R + (size_t)l * n;
+        double s = 0.0;
+        for (size_t i = 0; i < n; ++i)
+          s += o[i] * q[i];
+        for (size_t i = 0; i < n; ++i)
+          q[i] -= s * o[i];
+      }
+    const double after = norm(q, n);
+    if (after <= 1e-8 * before)
+      return fb_err_set(err, FB_EMODEL,
+                        "%s: the interface's DOFs cannot tell the %s from the other rigid-body "
+                        "motions (nodes on a line with translations only?): a free-free "
+                        "superelement needs all six",
+                        r->path[0], motion_name[m]);
+    for (size_t i = 0; i < n; ++i)
+      q[i] /= after;
+  }
+  return FB_OK;
+}
+
+/* P K^ P with P = I - Q Q' (Q the six orthonormal motions), in place. */
+static void project_out(double *kh, const double *Q, size_t n)
+{
+  double *t = malloc(n * sizeof *t);
+  if (!t)
+    return;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int m = 0; m < 6; ++m) {
+      const double *q = Q + (size_t)m * n;
+      /* kh <- (I - q q') kh, then transposed by the second pass */
+      for (size_t j = 0; j < n; ++j) {
+        double s = 0.0;
+        for (size_t i = 0; i < n; ++i)
+          s += q[i] * kh[i + j * n];
+        t[j] = s;
+      }
+      for (size_t j = 0; j < n; ++j)
+        for (size_t i = 0; i < n; ++i)
+          kh[i + j * n] -= q[i] * t[j];
+    }
+    for (size_t j = 0; j < n; ++j)
+      for (size_t i = j + 1; i < n; ++i) {
+        const double x = kh[i + j * n];
+        kh[i + j * n] = kh[j + i * n];
+        kh[j + i * n] = x;
+      }
+  }
+  free(t);
+}
+
+static int check_stiffness(const fb_reduced *r, double *a, fb_err *err)
+{
+  const size_t n = r->ndof;
+  const double p = r->precision[0];
+  double *dsq = malloc(n * sizeof *dsq), *R = malloc(6 * n * sizeof *R),
+         *w = malloc(n * sizeof *w);
+  int rc = (!dsq || !R || !w)
+               ? fb_err_set(err, FB_ENOMEM, "out of memory checking %s", r->path[0])
+               : FB_OK;
+  if (!rc && n < 6)
+    rc = fb_err_set(err, FB_EMODEL,
+                    "%s: K has %zu DOFs: a free-free superelement needs at least the six of "
+                    "its rigid-body motions",
+                    r->path[0], n);
+  if (!rc)
+    rc = scale_stiffness(r, a, dsq, err);
+  double fro = 0.0;
+  for (size_t i = 0; !rc && i < n * n; ++i)
+    fro += a[i] * a[i];
+  const double z = (2.0 * p > 1e-9 ? 2.0 * p : 1e-9) * sqrt(fro);
+  if (!rc) {
+    rigid_motions(r, R);
+    rc = check_rigid(r, a, dsq, z, R, err);
+  }
+  if (!rc) {
+    project_out(a, R, n);
+    rc = eig(a, n, w, r->path[0], err);
+  }
+  if (!rc) {
+    /* The projection leaves six zeros; others below z are mechanisms. */
+    size_t nzero = 0, first = n;
+    for (size_t i = 0; i < n; ++i)
+      if (w[i] < -z) {
+        char wi[64];
+        dof_text(r, largest(a, n, i), wi, sizeof wi);
+        rc = fb_err_set(err, FB_EMODEL,
+                        "%s: K is not positive semi-definite: an eigenvalue %.3g of the "
+                        "scaled stiffness (its mode largest at %s)",
+                        r->path[0], w[i], wi);
+        break;
+      } else if (fabs(w[i]) <= z) {
+        ++nzero;
+        if (nzero == 7)
+          first = i;
+      }
+    if (!rc && nzero > 6) {
+      char wi[64];
+      /* Among the zero eigenvectors, one that is no rigid-body motion:
+       * the projected ones are orthogonal to Q only up to round-off, so
+       * take the one whose largest entry is the DOF to name. */
+      dof_text(r, largest(a, n, first), wi, sizeof wi);
+      rc = fb_err_set(err, FB_EMODEL,
+                      "%s: K has %zu zero-energy modes besides its 6 rigid-body motions (a "
+                      "mechanism or a DOF without stiffness; one is largest at %s): below "
+                      "%.3g of the scaled stiffness",
+                      r->path[0], nzero - 6, wi, z);
+    }
+  }
+  free(dsq);
+  free(R);
+  free(w);
+  return rc;
+}
+
+static int check_mass(const fb_reduced *r, double *a, fb_err *err)
+{
+  const size_t n = r->ndof;
+  for (size_t i = 0; i < n; ++i)
+    if (a[i + i * n] < 0.0) {
+      char wi[64], at[FB_ERR_FILE_MAX + 32];
+      dof_text(r, i, wi, sizeof wi);
+      where_text(r, 1, i, i, at, sizeof at);
+      return fb_err_set(err, FB_EMODEL, "%sM(%s, %s) = %g: a mass must not be negative", at, wi,
+                        wi, a[i + i * n]);
+    }
+  double *R = malloc(6 * n * sizeof *R), *w = malloc(n * sizeof *w), *d = malloc(n * sizeof *d);
+  int rc = (!R || !w || !d)
+               ? fb_err_set(err, FB_ENOMEM, "out of memory checking %s", r->path[1])
+               : FB_OK;
+  if (!rc) {
+    /* The total mass: a rigid translation's kinetic energy. */
+    rigid_motions(r, R);
+    for (int m = 0; m < 3 && !rc; ++m) {
+      double s = 0.0;
+      const double *q = R + (size_t)m * n;
+      for (size_t j = 0; j < n; ++j)
+        for (size_t i = 0; i < n; ++i)
+          s += q[i] * a[i + j * n] * q[j];
+      if (!(s > 0.0))
+        rc = fb_err_set(err, FB_EMODEL,
+                        "%s: M gives the %s no mass (r' M r = %g): a superelement needs its "
+                        "mass on the interface",
+                        r->path[1], motion_name[m], s);
+    }
+  }
+  if (!rc) {
+    /* Scaled by the diagonal (1 where it is 0), so that translations and
+     * rotations weigh alike; semi-definite to the file's precision. */
+    for (size_t i = 0; i < n; ++i)
+      d[i] = a[i + i * n] > 0 ? sqrt(a[i + i * n]) : 1.0;
+    double fro = 0.0;
+    for (size_t j = 0; j < n; ++j)
+      for (size_t i = 0; i < n; ++i) {
+        a[i + j * n] /= d[i] * d[j];
+        fro += a[i + j * n] * a[i + j * n];
+      }
+    const double p = r->precision[1];
+    const double z = (2.0 * p > 1e-9 ? 2.0 * p : 1e-9) * sqrt(fro);
+    rc = eig(a, n, w, r->path[1], err);
+    if (!rc && w[0] < -z) {
+      char wi[64];
+      dof_text(r, largest(a, n, 0), wi, sizeof wi);
+      rc = fb_err_set(err, FB_EMODEL,
+                      "%s: M is not positive semi-definite: an eigenvalue %.3g of the scaled "
+                      "mass, below -%.3g (its mode largest at %s)",
+                      r->path[1], w[0], z, wi);
+    }
+  }
+  free(R);
+  free(w);
+  free(d);
+  return rc;
+}
+
+int fb_reduced_check(const fb_reduced *r, fb_err *err)
+{
+  if (!r)
+    return fb_err_set(err, FB_EINVAL, "reduced structure is NULL");
+  const size_t n = r->ndof;
+  for (int k = 0; k < 2; ++k) {
+    const fb_mat *m = k ? r->M : r->K;
+    if (!m)
+      continue;
+    if (!fb_mat_all_finite(m))
+      return fb_err_set(err, FB_EMODEL, "%s: %s has an entry that is not finite", r->path[k],
+                        k ? "M" : "K");
+    double *a = dense(m, n);
+    if (!a)
+      return fb_err_set(err, FB_ENOMEM, "out of memory checking %s", r->path[k]);
+    int rc = check_symmetric(r, k, a, err);
+    if (!rc)
+      rc = k ? check_mass(r, a, err) : check_stiffness(r, a, err);
+    free(a);
+    if (rc)
+      return rc;
+  }
+  return FB_OK;
+}
