@@ -86,6 +86,17 @@ const fb_mat *fb_reduced_mass(const fb_reduced *r);
  * justifies the tolerances. */
 int fb_reduced_check(const fb_reduced *r, fb_err *err);
 
+/* K with the interface's six rigid-body motions R made exact null
+ * vectors, *out = P' K P with the projector P = I - R (R' M R)^-1 R' M
+ * (M's when the files give one, else the identity): the rigid-body modes
+ * of (K, M) are then exactly R and the elastic ones M-orthogonal to them,
+ * and an elastic mode x (P x = x) sees the same rounding x' dK x as in K.
+ * For a file whose numbers are too short to keep K R = 0 (8-column DMIG
+ * fields: a rigid-body eigenvalue of -734 s^-2 on a beam whose highest is
+ * 1e8), after fb_reduced_check has found K R zero to the file's
+ * precision. *out new, dense. */
+int fb_reduced_stiffness_projected(const fb_reduced *r, fb_mat **out, fb_err *err);
+
 #ifdef __cplusplus
 }
 #endif

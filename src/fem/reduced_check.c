@@ -147,24 +147,30 @@ static double norm(const double *v, size_t n)
   return sqrt(s);
 }
 
-/* K^ = D^-1 K D^-1 in place (D = sqrt(diag K)); a diagonal entry <= 0 is
- * an error naming its DOF. */
+/* K^ = D^-1 K D^-1 in place, D = sqrt(diag K). A diagonal entry below
+ * -1e-9 of the largest is an error naming its DOF; one within 1e-9 of it
+ * of zero is a DOF that a rigid-body motion may move alone (a corner of
+ * a flat plate whose three other retained nodes are on a line) or a
+ * mechanism, which the eigenvalues tell apart: it is scaled by the
+ * largest diagonal. */
 static int scale_stiffness(const fb_reduced *r, double *a, double *dsq, fb_err *err)
 {
   const size_t n = r->ndof;
+  double big = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    big = a[i + i * n] > big ? a[i + i * n] : big;
   for (size_t i = 0; i < n; ++i) {
     const double kii = a[i + i * n];
-    if (kii <= 0.0) {
+    if (kii < -1e-9 * big || big <= 0.0) {
       char wi[64], at[FB_ERR_FILE_MAX + 32];
       dof_text(r, i, wi, sizeof wi);
       where_text(r, 0, i, i, at, sizeof at);
       return fb_err_set(err, FB_EMODEL,
-                        "%sK(%s, %s) = %g: a stiffness needs a positive diagonal (the DOF "
-                        "%s)",
-                        at, wi, wi, kii,
-                        kii < 0 ? "pulls against itself" : "is held by nothing");
+                        "%sK(%s, %s) = %g: a stiffness's diagonal must not be negative (or "
+                        "all zero)",
+                        at, wi, wi, kii);
     }
-    dsq[i] = sqrt(kii);
+    dsq[i] = sqrt(kii > 1e-9 * big ? kii : big);
   }
   for (size_t j = 0; j < n; ++j)
     for (size_t i = 0; i < n; ++i)
@@ -194,12 +200,15 @@ static int check_rigid(const fb_reduced *r, double *kh, const double *dsq, doubl
       y[i] = s;
     }
     const double res = norm(y, n);
-    if (len == 0.0 || res > z)
+    if (len == 0.0 || res > z) {
+      char wi[64];
+      dof_text(r, largest(y, n, 0), wi, sizeof wi);
       rc = fb_err_set(err, FB_EMODEL,
                       "%s: K is not free-free: its %s has energy (|K r| = %.3g of the scaled "
                       "stiffness, more than the %.3g the file's precision allows; largest at "
-                      "DOF %zu): a support or a grounded spring left in the superelement",
-                      r->path[0], motion_name[m], res, z, largest(y, n, 0) + 1);
+                      "%s): a support or a grounded spring left in the superelement",
+                      r->path[0], motion_name[m], res, z, wi);
+    }
   }
   free(y);
   if (rc)
@@ -409,4 +418,87 @@ int fb_reduced_check(const fb_reduced *r, fb_err *err)
       return rc;
   }
   return FB_OK;
+}
+
+/* The 6 x 6 system (R' W R) y = b, by Cholesky (W positive definite on
+ * R: fb_reduced_check's total mass, or the identity). */
+static int solve6(double *g, double *rhs, size_t nrhs)
+{
+  return LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 6, (int)nrhs, g, 6, rhs, 6) ? FB_ESOLVER : FB_OK;
+}
+
+int fb_reduced_stiffness_projected(const fb_reduced *r, fb_mat **out, fb_err *err)
+{
+  if (!r || !out)
+    return fb_err_set(err, FB_EINVAL, "reduced structure or output is NULL");
+  *out = NULL;
+  const size_t n = r->ndof;
+  double *k = dense(r->K, n), *w = r->M ? dense(r->M, n) : NULL;
+  double *R = malloc(6 * n * sizeof *R), *WR = malloc(6 * n * sizeof *WR),
+         *A = malloc(6 * n * sizeof *A), *KP = malloc(n * n * sizeof *KP);
+  int rc = (!k || (r->M && !w) || !R || !WR || !A || !KP)
+               ? fb_err_set(err, FB_ENOMEM, "out of memory projecting %s", r->path[0])
+               : FB_OK;
+  if (!rc) {
+    rigid_motions(r, R);
+    /* WR = W R; G = R' W R; A = G^-1 (W R)' (6 x n) */
+    for (int m = 0; m < 6; ++m)
+      for (size_t i = 0; i < n; ++i) {
+        double s = R[i + (size_t)m * n];
+        if (w) {
+          s = 0.0;
+          for (size_t j = 0; j < n; ++j)
+            s += w[i + j * n] * R[j + (size_t)m * n];
+        }
+        WR[i + (size_t)m * n] = s;
+      }
+    double g[36];
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) {
+        double s = 0.0;
+        for (size_t i = 0; i < n; ++i)
+          s += R[i + (size_t)a * n] * WR[i + (size_t)b * n];
+        g[a + 6 * b] = s;
+      }
+    for (size_t i = 0; i < n; ++i)
+      for (int m = 0; m < 6; ++m)
+        A[m + 6 * i] = WR[i + (size_t)m * n];
+    if (solve6(g, A, n))
+      rc = fb_err_set(err, FB_ESOLVER,
+                      "%s: the interface's rigid-body motions are not independent", r->path[0]);
+  }
+  if (!rc) {
+    /* K P = K - (K R) A, then P' (K P) = K P - A' (R' K P); the last is
+     * zero for an exact K, kept for a rounded one. */
+    for (int pass = 0; pass < 2; ++pass) {
+      for (size_t j = 0; j < n; ++j) {
+        double kr[6];
+        for (int m = 0; m < 6; ++m) {
+          double s = 0.0;
+          for (size_t i = 0; i < n; ++i)
+            s += k[j + i * n] * R[i + (size_t)m * n]; /* (K R)_jm, K^T for pass 2 */
+          kr[m] = s;
+        }
+        for (size_t i = 0; i < n; ++i) {
+          double s = 0.0;
+          for (int m = 0; m < 6; ++m)
+            s += kr[m] * A[m + 6 * i];
+          KP[i + j * n] = k[j + i * n] - s; /* (K P)^T: row j of K P as column j */
+        }
+      }
+      memcpy(k, KP, n * n * sizeof *k);
+    }
+    /* Symmetric to round-off; made exactly so. */
+    for (size_t j = 0; j < n; ++j)
+      for (size_t i = j + 1; i < n; ++i)
+        k[i + j * n] = k[j + i * n] = 0.5 * (k[i + j * n] + k[j + i * n]);
+    rc = fb_mat_new_dense(n, n, k, out, err);
+  }
+  free(k);
+  free(w);
+  free(R);
+  free(WR);
+  free(A);
+  free(KP);
+  return rc;
 }
