@@ -574,7 +574,8 @@ static void test_bad(void)
     }
     fclose(fp);
     expect_bad(buf, "1, 0, 0, 0\n2, 2, 0, 0\n3, 1, 1, 1\n", 0,
-               "K has 1 zero-energy modes besides its 6 rigid-body motions");
+               "K has 1 zero-energy mode besides its 6 rigid-body motions (a mechanism or a "
+               "DOF without stiffness, largest at node 3 u");
     free(buf);
   }
 }
@@ -747,12 +748,46 @@ static void test_shell_guyan(void)
   fb_mesh_free(&m);
 }
 
+/* The bounds (docs/errors.md, "Limits"): 3000 DOFs, and a CalculiX
+ * NODES= the file cannot hold, refused before its arrays are made. */
+static void test_limits(void)
+{
+  const char *path = tmp("big.pch"), *nodes = tmp("big_nodes.csv");
+  FILE *fp = fopen(path, "w"), *np = fopen(nodes, "w");
+  CHECK(fp && np);
+  if (!fp || !np)
+    return;
+  fprintf(fp, "DMIG,K,0,6,2,0\n");
+  for (int g = 1; g <= 501; ++g) {
+    fprintf(np, "%d, %d, 0, 0\n", g, g);
+    for (int c = 1; c <= 6; ++c)
+      fprintf(fp, "DMIG,K,%d,%d,,%d,%d,1.0\n", g, c, g, c);
+  }
+  fclose(fp);
+  fclose(np);
+  fb_reduced *r = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_reduced_read_dmig(path, "K", NULL, nodes, &r, &err) == FB_EMODEL);
+  CHECK(strstr(err.msg, "big.pch: 3006 DOFs, more than the 3000") != NULL);
+  const char *ccx = tmp("big_ccx.mtx");
+  write_text(ccx, "*USER ELEMENT,NODES=  2000,LINEAR\n** ELEMENT NODES\n**  1,\n");
+  CHECK(fb_reduced_read_ccx(ccx, nodes, &r, &err) == FB_EPARSE);
+  CHECK(strstr(err.msg, "big_ccx.mtx:1: *USER ELEMENT: NODES= gives a matrix larger than the "
+                        "file can hold") != NULL);
+  write_text(ccx, "*USER ELEMENT,NODES=  4000,LINEAR\n");
+  CHECK(fb_reduced_read_ccx(ccx, nodes, &r, &err) == FB_EPARSE);
+  CHECK(strstr(err.msg, "more nodes than the 3000 DOFs") != NULL);
+  CHECK(r == NULL);
+}
+
 int main(void)
 {
   test_dmig_beam();
   test_mtx_beam();
   test_ccx_layout();
   test_shell_guyan();
+  test_limits();
   test_bad();
   return check_report("test_reduced");
 }

@@ -271,6 +271,86 @@ static void project_out(double *kh, const double *Q, size_t n)
   free(t);
 }
 
+/* The length that weighs a rotation against a translation: the interface
+ * nodes' extent (1 m for a single node). */
+static double extent(const fb_reduced *r)
+{
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k)
+    lo[k] = hi[k] = r->nodes.xyz[k];
+  for (size_t a = 1; a < r->nodes.n; ++a)
+    for (int k = 0; k < 3; ++k) {
+      const double x = r->nodes.xyz[3 * a + k];
+      lo[k] = x < lo[k] ? x : lo[k];
+      hi[k] = x > hi[k] ? x : hi[k];
+    }
+  const double d = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  return d > 0.0 ? d : 1.0;
+}
+
+/* The DOF a mechanism moves most. Every eigenvector of the projected K^
+ * with a zero eigenvalue is a null vector of K^ (the projection only
+ * subtracts rigid-body motions, which K^ does not feel), so x = D^-1 v
+ * is one of K. Its rigid-body part is taken out by least squares in
+ * displacements (rotations weighed by the interface's extent L, so that
+ * metres meet metres); the vector with the most left names the DOF where
+ * that remainder is largest. */
+static size_t mechanism_dof(const fb_reduced *r, const double *v, const double *w, double z,
+                            const double *dsq)
+{
+  const size_t n = r->ndof;
+  const double len = extent(r);
+  double *R = malloc(6 * n * sizeof *R), *x = malloc(n * sizeof *x);
+  double best = -1.0;
+  size_t at = 0;
+  if (R)
+    rigid_motions(r, R);
+  for (size_t c = 0; R && x && c < n; ++c) {
+    if (fabs(w[c]) > z)
+      continue;
+    double g[36], b[6], total = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      const double wt = r->dof_comp[i] > 3 ? len * len : 1.0;
+      x[i] = v[i + c * n] / dsq[i];
+      total += wt * x[i] * x[i];
+    }
+    for (int p = 0; p < 6; ++p) {
+      b[p] = 0.0;
+      for (int q = 0; q < 6; ++q)
+        g[p + 6 * q] = 0.0;
+      for (size_t i = 0; i < n; ++i) {
+        const double wt = r->dof_comp[i] > 3 ? len * len : 1.0;
+        b[p] += R[i + (size_t)p * n] * wt * x[i];
+        for (int q = 0; q < 6; ++q)
+          g[p + 6 * q] += R[i + (size_t)p * n] * wt * R[i + (size_t)q * n];
+      }
+    }
+    if (LAPACKE_dposv(LAPACK_COL_MAJOR, 'U', 6, 1, g, 6, b, 6))
+      continue;
+    double left = 0.0, most = -1.0;
+    size_t where = 0;
+    for (size_t i = 0; i < n; ++i) {
+      double rigid = 0.0;
+      for (int p = 0; p < 6; ++p)
+        rigid += R[i + (size_t)p * n] * b[p];
+      const double d = (x[i] - rigid) * (r->dof_comp[i] > 3 ? len : 1.0);
+      left += d * d;
+      if (fabs(d) > most) {
+        most = fabs(d);
+        where = i;
+      }
+    }
+    if (total > 0.0 && left / total > best) {
+      best = left / total;
+      at = where;
+    }
+  }
+  free(R);
+  free(x);
+  return at;
+}
+
 static int check_stiffness(const fb_reduced *r, double *a, fb_err *err)
 {
   const size_t n = r->ndof;
@@ -301,7 +381,7 @@ static int check_stiffness(const fb_reduced *r, double *a, fb_err *err)
   }
   if (!rc) {
     /* The projection leaves six zeros; others below z are mechanisms. */
-    size_t nzero = 0, first = n;
+    size_t nzero = 0;
     for (size_t i = 0; i < n; ++i)
       if (w[i] < -z) {
         char wi[64];
@@ -313,20 +393,15 @@ static int check_stiffness(const fb_reduced *r, double *a, fb_err *err)
         break;
       } else if (fabs(w[i]) <= z) {
         ++nzero;
-        if (nzero == 7)
-          first = i;
       }
     if (!rc && nzero > 6) {
       char wi[64];
-      /* Among the zero eigenvectors, one that is no rigid-body motion:
-       * the projected ones are orthogonal to Q only up to round-off, so
-       * take the one whose largest entry is the DOF to name. */
-      dof_text(r, largest(a, n, first), wi, sizeof wi);
+      dof_text(r, mechanism_dof(r, a, w, z, dsq), wi, sizeof wi);
       rc = fb_err_set(err, FB_EMODEL,
-                      "%s: K has %zu zero-energy modes besides its 6 rigid-body motions (a "
-                      "mechanism or a DOF without stiffness; one is largest at %s): below "
-                      "%.3g of the scaled stiffness",
-                      r->path[0], nzero - 6, wi, z);
+                      "%s: K has %zu zero-energy mode%s besides its 6 rigid-body motions (a "
+                      "mechanism or a DOF without stiffness, largest at %s): below %.3g of "
+                      "the scaled stiffness",
+                      r->path[0], nzero - 6, nzero == 7 ? "" : "s", wi, z);
     }
   }
   free(dsq);
