@@ -414,7 +414,9 @@ int reduced_build(reduced_nodes *nodes, reduced_list *k, reduced_list *m, fb_red
   if (!rc && m)
     rc = collect_dofs(nodes, m, &keys, &n, &cap, err);
   size_t ndof = 0;
-  if (!rc) {
+  if (!rc && !keys) {
+    rc = fb_err_set(err, FB_EMODEL, "%s: %s has no entry", k->path, k->name);
+  } else if (!rc) {
     qsort(keys, n, sizeof *keys, dof_key_cmp);
     for (size_t i = 0; i < n; ++i)
       if (ndof == 0 || dof_key_cmp(&keys[i], &keys[ndof - 1]) != 0)

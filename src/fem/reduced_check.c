@@ -178,8 +178,8 @@ static int scale_stiffness(const fb_reduced *r, double *a, double *dsq, fb_err *
   return FB_OK;
 }
 
-static int check_rigid(const fb_reduced *r, double *kh, const double *dsq, double z, double *R,
-                       fb_err *err)
+static int check_rigid(const fb_reduced *r, const double *kh, const double *dsq, double z,
+                       double *R, fb_err *err)
 {
   const size_t n = r->ndof;
   double *y = malloc(n * sizeof *y);
@@ -475,6 +475,8 @@ int fb_reduced_check(const fb_reduced *r, fb_err *err)
   if (!r)
     return fb_err_set(err, FB_EINVAL, "reduced structure is NULL");
   const size_t n = r->ndof;
+  if (n == 0)
+    return fb_err_set(err, FB_EMODEL, "%s: no DOF", r->path[0]);
   for (int k = 0; k < 2; ++k) {
     const fb_mat *m = k ? r->M : r->K;
     if (!m)

@@ -32,7 +32,6 @@ typedef struct dmig_state {
   fb_text_reader r;
   char *pending; /* a line read past the card, owned */
   size_t pending_line;
-  int eof;
 } dmig_state;
 
 static int dmig_error(const dmig_state *s, size_t line, const char *what, const char *tok)
@@ -193,7 +192,10 @@ static int parse_real(const dmig_state *s, size_t line, const char *tok, double 
     if ((ch == '+' || ch == '-') && i > 0 &&
         (isdigit((unsigned char)tok[i - 1]) || tok[i - 1] == '.'))
       buf[k++] = 'E';
-    buf[k++] = (ch == 'd' || ch == 'D') ? 'E' : ch;
+    if (ch == 'd' || ch == 'D')
+      buf[k++] = 'E';
+    else
+      buf[k++] = ch;
   }
   buf[k] = '\0';
   if (fb_parse_decimal_field(buf, v, s->r.err)) {
