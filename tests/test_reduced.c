@@ -781,8 +781,46 @@ static void test_limits(void)
   CHECK(r == NULL);
 }
 
+/* The fixture data/reduced/beam.pch: the same element with exact values
+ * chosen by hand (L = 1 m, EA = 1e6 N, GJ = EI = 1e4 N m^2, rho A L =
+ * 420 kg, rho Ip L = 42 kg m^2), in 8-column fields. Its frequencies:
+ * 12 EA / (m L), 12 GJ / (I L), 720 and 8400 EI / (m L^3) (m = rho A L,
+ * I = rho Ip L; beam_closed_form's with these values), to the solver's
+ * 1e-9: every number of the file is exact. */
+static void test_fixture_beam(void)
+{
+  fb_reduced *r = NULL;
+  fb_err err;
+  fb_err_clear(&err);
+  CHECK(fb_reduced_read_dmig("data/reduced/beam.pch", "KBEAM", "MBEAM",
+                             "data/reduced/beam_nodes.csv", &r, &err) == FB_OK);
+  if (!r) {
+    fprintf(stderr, "fixture: %s\n", err.msg);
+    return;
+  }
+  CHECK(fb_reduced_check(r, &err) == FB_OK);
+  const double w2[6] = {12e6 / 420,  12e4 / 42,    720e4 / 420,
+                        720e4 / 420, 8400e4 / 420, 8400e4 / 420};
+  double exact[N], f[N];
+  for (int i = 0; i < 6; ++i) {
+    exact[i] = 0.0;
+    exact[6 + i] = sqrt(w2[i]) / TWO_PI;
+  }
+  qsort(exact, N, sizeof *exact, cmp_double);
+  CHECK(fb_fem_modes(fb_reduced_stiffness(r), fb_reduced_mass(r), N, NULL, f, NULL, &err) ==
+        FB_OK);
+  for (int i = 0; i < N; ++i) {
+    if (exact[i] == 0.0)
+      CHECK(f[i] < 1e-3);
+    else
+      CHECK_NEAR(f[i], exact[i], 1e-9 * exact[i]);
+  }
+  fb_reduced_free(&r);
+}
+
 int main(void)
 {
+  test_fixture_beam();
   test_dmig_beam();
   test_mtx_beam();
   test_ccx_layout();
