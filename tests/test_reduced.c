@@ -779,6 +779,22 @@ static void test_limits(void)
   CHECK(fb_reduced_read_ccx(ccx, nodes, &r, &err) == FB_EPARSE);
   CHECK(strstr(err.msg, "more nodes than the 3000 DOFs") != NULL);
   CHECK(r == NULL);
+  /* Two nodes have 12 DOFs at most, so 144 entries: the 145th (line 146)
+   * is refused while read, however long the file. */
+  fp = fopen(path, "w");
+  if (!fp)
+    return;
+  fprintf(fp, "DMIG,K,0,1,2,0\n");
+  for (int e = 0; e < 200; ++e)
+    fprintf(fp, "DMIG,K,1,1,,1,1,1.0\n");
+  fclose(fp);
+  CHECK(fb_reduced_read_dmig(path, "K", NULL, "data/reduced/beam_nodes.csv", &r, &err) ==
+        FB_EPARSE);
+  CHECK(strstr(err.msg, "big.pch:146: K: more than the 144 entries") != NULL);
+  /* A node given twice, at its second line. */
+  write_text(nodes, "1, 0, 0, 0\n2, 1, 0, 0\n# again\n1, 2, 0, 0\n");
+  CHECK(fb_reduced_read_dmig(path, "K", NULL, nodes, &r, &err) == FB_EPARSE);
+  CHECK(strstr(err.msg, "big_nodes.csv:4: node 1 given twice (first on line 1)") != NULL);
 }
 
 /* The fixture data/reduced/beam.pch: the same element with exact values

@@ -20,6 +20,7 @@ void reduced_nodes_free(reduced_nodes *nodes)
   free(nodes->xyz);
   free(nodes->comps);
   free(nodes->line);
+  free(nodes->sorted);
   *nodes = (reduced_nodes){0};
 }
 
@@ -30,8 +31,19 @@ void reduced_list_free(reduced_list *l)
   l->n = l->cap = 0;
 }
 
+size_t reduced_list_cap(const reduced_nodes *nodes)
+{
+  const size_t d = 6 * nodes->n < FB_REDUCED_MAX_DOFS ? 6 * nodes->n : FB_REDUCED_MAX_DOFS;
+  return d * d;
+}
+
 int reduced_list_push(reduced_list *l, const reduced_entry *e, fb_err *err)
 {
+  if (l->max && l->n >= l->max)
+    return fb_err_set(err, FB_EPARSE,
+                      "%s:%zu: %s: more than the %zu entries a matrix over the interface "
+                      "nodes' DOFs can have",
+                      l->path, e->line, l->name, l->max);
   if (fb_grow((void **)&l->e, &l->cap, l->n, sizeof *l->e))
     return fb_err_set(err, FB_ENOMEM, "out of memory reading %s", l->path);
   l->e[l->n++] = *e;
@@ -136,10 +148,11 @@ static int nodes_line(fb_text_reader *r, char *line, reduced_nodes *nodes, size_
   unsigned comps = 0;
   if (nf == 5 && !parse_components(f[4], &comps))
     return nodes_error(r, "components: expected digits 1 to 6, each once (\"123456\")", f[4]);
-  for (size_t i = 0; i < nodes->n; ++i)
-    if (nodes->id[i] == id)
-      return fb_err_set(r->err, FB_EPARSE, "%s:%zu: node %ld given twice (first on line %zu)",
-                        r->path, r->line_no, id, nodes->line[i]);
+  if (nodes->n == FB_REDUCED_MAX_DOFS)
+    return nodes_error(r,
+                       "more nodes than the 3000 DOFs a reduced structure may have "
+                       "(docs/errors.md, \"Limits\")",
+                       NULL);
   const size_t n = nodes->n;
   if (n == *cap) {
     const size_t nc = n ? 2 * n : 16;
@@ -167,6 +180,36 @@ static int nodes_line(fb_text_reader *r, char *line, reduced_nodes *nodes, size_
   return FB_OK;
 }
 
+static int node_key_cmp(const void *a, const void *b)
+{
+  const reduced_node_key *x = a, *y = b;
+  return (x->id > y->id) - (x->id < y->id);
+}
+
+/* The ids sorted for lookup; an id given twice is an error at the later
+ * line. */
+static int sort_nodes(reduced_nodes *nodes, fb_err *err)
+{
+  nodes->sorted = malloc(nodes->n * sizeof *nodes->sorted);
+  if (!nodes->sorted)
+    return fb_err_set(err, FB_ENOMEM, "out of memory reading %s", nodes->path);
+  for (size_t i = 0; i < nodes->n; ++i)
+    nodes->sorted[i] = (reduced_node_key){nodes->id[i], i};
+  qsort(nodes->sorted, nodes->n, sizeof *nodes->sorted, node_key_cmp);
+  for (size_t i = 1; i < nodes->n; ++i)
+    if (nodes->sorted[i].id == nodes->sorted[i - 1].id) {
+      size_t a = nodes->sorted[i - 1].index, b = nodes->sorted[i].index;
+      if (a > b) {
+        const size_t t = a;
+        a = b;
+        b = t;
+      }
+      return fb_err_set(err, FB_EPARSE, "%s:%zu: node %ld given twice (first on line %zu)",
+                        nodes->path, nodes->line[b], nodes->id[b], nodes->line[a]);
+    }
+  return FB_OK;
+}
+
 int reduced_nodes_read(const char *path, reduced_nodes *nodes, fb_err *err)
 {
   *nodes = (reduced_nodes){0};
@@ -190,6 +233,8 @@ int reduced_nodes_read(const char *path, reduced_nodes *nodes, fb_err *err)
   if (!rc && nodes->n == 0)
     rc = fb_err_set(err, FB_EPARSE, "%s:%zu: no node: expected lines 'id, x, y, z'", path,
                     r.line_no ? r.line_no : 1);
+  if (!rc)
+    rc = sort_nodes(nodes, err);
   fb_text_close(&r);
   if (rc) {
     reduced_nodes_free(nodes);
@@ -213,12 +258,12 @@ int reduced_nodes_read_plain(const char *path, const char *format, reduced_nodes
   return rc;
 }
 
-static long node_index(const reduced_nodes *nodes, long id)
+long reduced_node_index(const reduced_nodes *nodes, long id)
 {
-  for (size_t i = 0; i < nodes->n; ++i)
-    if (nodes->id[i] == id)
-      return (long)i;
-  return -1;
+  const reduced_node_key k = {id, 0};
+  const reduced_node_key *hit =
+      nodes->sorted ? bsearch(&k, nodes->sorted, nodes->n, sizeof k, node_key_cmp) : NULL;
+  return hit ? (long)hit->index : -1;
 }
 
 void fb_reduced_free(fb_reduced **r)
@@ -323,7 +368,7 @@ static int collect_dofs(const reduced_nodes *nodes, const reduced_list *l, dof_k
     for (int side = 0; side < 2; ++side) {
       const long id = side ? l->e[e].node_j : l->e[e].node_i;
       const int comp = side ? l->e[e].comp_j : l->e[e].comp_i;
-      const long ni = node_index(nodes, id);
+      const long ni = reduced_node_index(nodes, id);
       if (ni < 0)
         return fb_err_set(err, FB_EMODEL,
                           "%s:%zu: %s: node %ld is not among the interface nodes of %s",
@@ -362,9 +407,9 @@ static int build_matrix(const reduced_list *l, const dof_key *keys, size_t ndof,
   for (size_t e = 0; !rc && e < l->n; ++e) {
     const reduced_entry *x = &l->e[e];
     const size_t i =
-        (size_t)dof_find(keys, ndof, (size_t)node_index(nodes, x->node_i), x->comp_i);
+        (size_t)dof_find(keys, ndof, (size_t)reduced_node_index(nodes, x->node_i), x->comp_i);
     const size_t j =
-        (size_t)dof_find(keys, ndof, (size_t)node_index(nodes, x->node_j), x->comp_j);
+        (size_t)dof_find(keys, ndof, (size_t)reduced_node_index(nodes, x->node_j), x->comp_j);
     /* One triangle: the entry and its mirror are the same entry. */
     w[e] = l->one_triangle && i < j ? (reduced_where){j, i, x->line}
                                     : (reduced_where){i, j, x->line};

@@ -320,7 +320,9 @@ int fb_reduced_read_dmig(const char *path, const char *k_name, const char *m_nam
   int rc = reduced_nodes_read_plain(nodes_path, "DMIG", &nodes, err);
   if (rc)
     return rc;
-  reduced_list k = {.path = path, .name = "K"}, m = {.path = path, .name = "M"};
+  const size_t cap = reduced_list_cap(&nodes);
+  reduced_list k = {.path = path, .name = "K", .max = cap},
+               m = {.path = path, .name = "M", .max = cap};
   dmig_state s = {0};
   rc = fb_text_open(&s.r, path, "DMIG", err);
   if (!rc) {

@@ -27,12 +27,21 @@ typedef struct reduced_list {
   size_t n, cap;
   int one_triangle;
   double precision;
+  size_t max; /* most entries it may have (0: any): see reduced_list_push */
 } reduced_list;
 
+/* A node id and its index, the nodes file's ids sorted for lookup. */
+typedef struct reduced_node_key {
+  long id;
+  size_t index;
+} reduced_node_key;
+
 /* The interface nodes of a nodes file: ids, positions, and each node's
- * components (a bit per component 1..6; 0 when the file names none). */
+ * components (a bit per component 1..6; 0 when the file names none). At
+ * most FB_REDUCED_MAX_DOFS of them (each has a DOF at least). */
 typedef struct reduced_nodes {
   size_t n;
+  reduced_node_key *sorted; /* by id: reduced_node_index */
   long *id;
   double *xyz;
   unsigned *comps;
@@ -47,7 +56,15 @@ int reduced_nodes_read_plain(const char *path, const char *format, reduced_nodes
                              fb_err *err);
 void reduced_nodes_free(reduced_nodes *nodes);
 
+/* Appends e; past l->max entries FB_EPARSE at e's line: a matrix over d
+ * DOFs has at most d^2 entries that are not given twice, so a file cannot
+ * make the reader hold more than that (reduced_list_cap). */
 int reduced_list_push(reduced_list *l, const reduced_entry *e, fb_err *err);
+/* The most entries a matrix over the DOFs of nodes may have: d^2 with d
+ * = 6 per node, at most FB_REDUCED_MAX_DOFS. */
+size_t reduced_list_cap(const reduced_nodes *nodes);
+/* The index of node id among nodes, or -1. */
+long reduced_node_index(const reduced_nodes *nodes, long id);
 void reduced_list_free(reduced_list *l);
 
 /* The relative precision of numbers written with digits significant
