@@ -74,16 +74,18 @@ const fb_mat *fb_reduced_stiffness(const fb_reduced *r);
 const fb_mat *fb_reduced_mass(const fb_reduced *r);
 
 /* The checks a superelement must pass before anything is computed from
- * it, each FB_EMODEL naming the file and the line of the entry (or the
- * entry by its DOFs): K and M symmetric (|a_ij - a_ji| at most
- * 2 p max(|a_ij|, |a_ji|) + 1e-8 sqrt(|a_ii a_jj|), p the relative
- * precision the file's format writes its numbers with); M positive
- * semi-definite with positive total mass; and K free-free: the six
- * rigid-body motions of the interface nodes' positions of zero energy
- * (|K r| <= tol ||K|| |r| after diagonal scaling) and no other (K's
- * eigenvalues on the complement of the rigid-body motions above tol
- * times its largest), tol = max(1e-8, 100 p). docs/reduced-hulls.md
- * justifies the tolerances. */
+ * it, each FB_EMODEL naming the file and the line of the entry where the
+ * format keeps one (DMIG, CalculiX), else the entry by its DOFs: K and M
+ * symmetric (|a_ij - a_ji| at most 2 p max(|a_ij|, |a_ji|) + 1e-8
+ * sqrt(|a_ii a_jj|), p the relative precision of the file's numbers:
+ * half a unit of the fewest significant digits it writes, at least 4);
+ * M positive semi-definite with a positive mass for each rigid
+ * translation; and K free-free: on K^ = D^-1 K D^-1 (D = sqrt(diag K)),
+ * the six rigid-body motions of the interface nodes' positions with
+ * |K^ r^| <= z (r^ = D r normalised) and no other eigenvalue of K^ within
+ * z of zero once they are projected out, z = max(2 p, 1e-9) ||K^||_F
+ * (the bound p ||K^||_F of the rounding's effect, twice).
+ * docs/reduced-hulls.md derives the tolerances. */
 int fb_reduced_check(const fb_reduced *r, fb_err *err);
 
 /* K with the interface's six rigid-body motions R made exact null
