@@ -654,14 +654,20 @@ static size_t sc_gallery_keys(const sc_galleries *gal)
   return n;
 }
 
-/* The top-level choice's documentation: each model's name and doc, kept
- * by the schema; NULL when out of memory. */
-static const char *sc_tire_doc(sc_schema *sc, const fb_tire_gallery *g)
+/* One entry of a gallery: its name and doc. */
+typedef void (*sc_entry_fn)(const void *g, size_t j, const char **name, const char **doc);
+
+/* A top-level choice's documentation: lead (owned, may be NULL), then
+ * each of the gallery's n entries' name and doc, kept by the schema;
+ * NULL when out of memory. */
+static const char *sc_choice_doc(sc_schema *sc, char *lead, const void *g, size_t n,
+                                 sc_entry_fn entry)
 {
-  char *doc = fb_strdup("how every tire meets the road, a tire model");
-  for (size_t j = 0; doc && j < fb_tire_gallery_count(g); ++j) {
-    const fb_tire_model *m = fb_tire_gallery_at(g, j);
-    char *more = fb_strdup_printf("%s%s `%s`: %s", doc, j ? ";" : ":", m->name, m->doc);
+  char *doc = lead;
+  for (size_t j = 0; doc && j < n; ++j) {
+    const char *name = NULL, *text = NULL;
+    entry(g, j, &name, &text);
+    char *more = fb_strdup_printf("%s%s `%s`: %s", doc, j ? ";" : ":", name, text);
     free(doc);
     doc = more;
   }
@@ -670,20 +676,34 @@ static const char *sc_tire_doc(sc_schema *sc, const fb_tire_gallery *g)
   return doc;
 }
 
-/* The top-level envelope choice's documentation, as sc_tire_doc's. */
+static void sc_tire_entry(const void *g, size_t j, const char **name, const char **doc)
+{
+  const fb_tire_model *m = fb_tire_gallery_at(g, j);
+  *name = m->name;
+  *doc = m->doc;
+}
+
+static void sc_envelope_entry(const void *g, size_t j, const char **name, const char **doc)
+{
+  const fb_envelope_model *m = fb_envelope_gallery_at(g, j);
+  *name = m->name;
+  *doc = m->doc;
+}
+
+/* The top-level tire model choice's documentation. */
+static const char *sc_tire_doc(sc_schema *sc, const fb_tire_gallery *g)
+{
+  return sc_choice_doc(sc, fb_strdup("how every tire meets the road, a tire model"), g,
+                       fb_tire_gallery_count(g), sc_tire_entry);
+}
+
+/* The top-level envelope choice's documentation. */
 static const char *sc_envelope_doc(sc_schema *sc, const fb_envelope_gallery *g)
 {
-  char *doc = fb_strdup("how every tire envelops the road, an envelope model (docs/"
-                        "tire-envelope.md)");
-  for (size_t j = 0; doc && j < fb_envelope_gallery_count(g); ++j) {
-    const fb_envelope_model *m = fb_envelope_gallery_at(g, j);
-    char *more = fb_strdup_printf("%s%s `%s`: %s", doc, j ? ";" : ":", m->name, m->doc);
-    free(doc);
-    doc = more;
-  }
-  if (doc)
-    sc->path[sc->npaths++] = doc;
-  return doc;
+  return sc_choice_doc(sc,
+                       fb_strdup("how every tire envelops the road, an envelope model (docs/"
+                                 "tire-envelope.md)"),
+                       g, fb_envelope_gallery_count(g), sc_envelope_entry);
 }
 
 /* Copies table own into key (room for own->n and the galleries' keys):
