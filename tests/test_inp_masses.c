@@ -230,14 +230,14 @@ static void test_hull_round_trip(void)
   CHECK(back && fb_fem_assemble(back, &h->props, h->mass_kind, &K2, &M2, &err) == FB_OK);
   CHECK(K && K2 && mat_difference(K, K2) <= 1e-12);
   CHECK(M && M2 && mat_difference(M, M2) <= 1e-12);
-  fb_hull_mass_props p;
-  double m2, c2[3], i2[9];
+  fb_hull_mass_props p = {0};
+  double m2 = 0.0, c2[3] = {0}, i2[9] = {0};
   CHECK(h && fb_fe_hull_mass_props(h, 1, &p, &err) == FB_OK);
   CHECK(back &&
         fb_fem_mesh_mass_properties(back, &h->props, h->mass_kind, &m2, c2, i2, &err) == FB_OK);
   check_props(&m2, c2, i2, &p.mass, p.cg, p.inertia, 1e-12);
   /* The battery is in: 300 kg more than the structure. */
-  fb_hull_mass_props p0;
+  fb_hull_mass_props p0 = {0};
   CHECK(h && fb_fe_hull_mass_props(h, 0, &p0, &err) == FB_OK);
   CHECK_NEAR(m2 - p0.mass, 300.0, 1e-9 * m2);
   fb_mat_free(&K);
