@@ -564,6 +564,17 @@ static case_result solve_on(const hull *hl, const char *name,
   return r;
 }
 
+/* 1 if elements e1 and e2 of m are the same or mirror images about y = 0
+ * (their centroids within 1 micrometre, y's sign aside). */
+static int same_up_to_mirror(const fb_mesh *m, size_t e1, size_t e2)
+{
+  double a[3], b[3];
+  centroid(m, e1, a);
+  centroid(m, e2, b);
+  return fabs(a[0] - b[0]) < 1e-6 && fabs(fabs(a[1]) - fabs(b[1])) < 1e-6 &&
+         fabs(a[2] - b[2]) < 1e-6;
+}
+
 /* Statics, whatever the elements: the reactions balance the loads. The
  * solves leave round-off of eps cond(K) (about 1e-16 x 1e8 here) of the
  * loads; CalculiX prints 7 digits of each reaction, a few of which are
@@ -627,7 +638,12 @@ int main(void)
   CHECK(twist.du < 0.15);
   CHECK(twist.cls[CLASS_PLATE].rms < 0.03);
   CHECK(twist.cls[CLASS_PLATE].worst < 0.12);
-  CHECK(twist.cls[CLASS_PLATE].hot_fb == twist.cls[CLASS_PLATE].hot_ccx);
+  /* The twist is antisymmetric about the centre plane y = 0, about which
+   * the hull is symmetric, so an element and its mirror image carry the
+   * same von Mises stress: the hot spots are the same element up to it
+   * (measured: the same element). */
+  CHECK(same_up_to_mirror(coarse.h->mesh, twist.cls[CLASS_PLATE].hot_fb,
+                          twist.cls[CLASS_PLATE].hot_ccx));
   CHECK(twist.cls[CLASS_FOLD].rms < 0.04);
   CHECK(twist.cls[CLASS_FOLD].worst < 0.2);
   CHECK(relative(twist.roof_shear[0], twist.roof_shear[1]) < 0.01); /* measured 2.5e-3 */
