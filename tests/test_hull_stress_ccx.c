@@ -492,7 +492,7 @@ static void print_case(const char *what, const hull *hl, const case_result *r)
          what, r->umax_ccx * 1e3, r->umax_fb * 1e3, r->du);
   printf("%s: minus the loads (%.6g, %.6g, %.6g) N, (%.6g, %.6g, %.6g) N m; reactions flexbond "
          "(%.6g, "
-         "%.6g, %.6g) N, (%.6g, %.6g, %.6g) N m; CalculiX (%.6g, %.6g, %.6g) N, (%.6g, %.6g, "
+         "%.6g, %.12g) N, (%.6g, %.6g, %.6g) N m; CalculiX (%.6g, %.6g, %.12g) N, (%.6g, %.6g, "
          "%.6g) N m\n",
          what, r->balance_force[0], r->balance_force[1], r->balance_force[2],
          r->balance_moment[0], r->balance_moment[1], r->balance_moment[2], r->force[0][0],
