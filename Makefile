@@ -49,8 +49,8 @@ DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-
                 python3 python3-numpy python3-scipy
 # What the suite needs besides (make deps-test, for make test): strace shows which files a
 # command creates and how (tests/cli_integrity.sh); CalculiX's ccx checks the shell stresses
-# and solves the exported decks (tests/test_shell_stress_ccx.c, tests/cli_calculix.sh; both
-# skipped without it).
+# and solves the exported decks (tests/test_shell_stress_ccx.c, tests/test_hull_stress_ccx.c,
+# tests/cli_calculix.sh; all skipped without it).
 TEST_DEB_PACKAGES := strace calculix-ccx
 # The developer tools (make deps-dev, for CI and the targets of docs/quality.md): clang is the
 # second compiler; clang-format serves format/format-check; valgrind, clang-tidy and cppcheck

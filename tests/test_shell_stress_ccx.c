@@ -6,16 +6,8 @@
  * tension, bending about y and torsion at once). The deck is the
  * library's own (fb_mesh_print_inp) with the constraints, loads and an
  * *EL PRINT of S appended; flexbond solves K u = f with the same
- * constraints.
- *
- * CalculiX expands each S4 into a C3D8I solid through the thickness and
- * prints the stresses at its 2 x 2 x 2 integration points, points 1-4 in
- * the layer zeta = -1/sqrt(3) (the side opposite the normal), 5-8 in the
- * layer +1/sqrt(3), in global axes. The in-plane mean of a layer's four
- * points is its value at the element centre (exact for a field bilinear
- * in xi, eta); the stress is linear through the thickness, so the
- * surfaces are m +- (s_top_layer - s_bottom_layer) sqrt(3) / 2 with m the
- * layers' mean. */
+ * constraints. CalculiX's stresses are reduced to the shell's surfaces in
+ * the element's axes (here the global ones) as ccx_util.h says. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +15,7 @@
 
 #include "flexbond/fem.h"
 
+#include "ccx_util.h"
 #include "check.h"
 #include "test_shell_util.h"
 #include "tmpdir.h"
@@ -47,75 +40,10 @@ static void append_step(FILE *fp, const fb_mesh *m, const size_t *fixed, size_t 
   fprintf(fp, "*EL PRINT, ELSET=EALL\nS\n*END STEP\n");
 }
 
-/* Reads job.dat's stress lines into s (per element index, 8 points x 6
- * components sxx syy szz sxy sxz syz). Returns the lines read. */
-static size_t read_ccx_stresses(const char *path, const fb_mesh *m, double *s)
-{
-  FILE *fp = fopen(path, "r");
-  char line[512];
-  size_t nread = 0;
-  if (!fp)
-    return 0;
-  while (fgets(line, sizeof line, fp)) {
-    long elem, point;
-    double v[6];
-    if (sscanf(line, "%ld %ld %lf %lf %lf %lf %lf %lf", &elem, &point, v, v + 1, v + 2, v + 3,
-               v + 4, v + 5) != 8)
-      continue;
-    const long e = fb_mesh_find_element_id(m, elem);
-    if (e < 0 || point < 1 || point > 8)
-      continue;
-    memcpy(s + ((size_t)e * 8 + (size_t)(point - 1)) * 6, v, sizeof v);
-    ++nread;
-  }
-  fclose(fp);
-  return nread;
-}
-
-/* CalculiX's surface stresses (xx, yy, xy) of element e at the top (+z,
- * the normal's side) and bottom, from its integration points. */
-static void ccx_surfaces(const double *s, size_t e, double *top, double *bottom)
-{
-  static const int comp[3] = {0, 1, 3};
-  for (int k = 0; k < 3; ++k) {
-    double low = 0.0, high = 0.0;
-    for (size_t p = 0; p < 4; ++p) {
-      low += s[(e * 8 + p) * 6 + (size_t)comp[k]] / 4.0;
-      high += s[(e * 8 + 4 + p) * 6 + (size_t)comp[k]] / 4.0;
-    }
-    const double mean = (low + high) / 2.0, half = (high - low) * sqrt(3.0) / 2.0;
-    top[k] = mean + half;
-    bottom[k] = mean - half;
-  }
-}
-
-/* flexbond's surface stresses of element e in global axes (xx, yy, xy). */
-static void global_surface(const double *axes, const double *s, double *out)
-{
-  double g[4] = {0.0, 0.0, 0.0, 0.0};
-  const double loc[4] = {s[0], s[2], s[2], s[1]};
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j)
-      for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b)
-          g[i * 2 + j] += axes[a * 3 + i] * loc[a * 2 + b] * axes[b * 3 + j];
-  out[0] = g[0];
-  out[1] = g[3];
-  out[2] = g[1];
-}
-
-static double von_mises(const double *s)
-{
-  return sqrt(s[0] * s[0] - s[0] * s[1] + s[1] * s[1] + 3.0 * s[2] * s[2]);
-}
-
 int main(void)
 {
-  if (system("command -v ccx >/dev/null 2>&1") != 0) {
-    fprintf(stderr, "test_shell_stress_ccx: skipped: no ccx on the PATH "
-                    "(Debian: apt-get install calculix-ccx)\n");
+  if (!ccx_available("test_shell_stress_ccx"))
     return 77;
-  }
   fb_err err;
   fb_mesh *m = shell_plate(LENGTH, WIDTH, NX, NY, 0, 0.0);
   fb_mat *K = NULL;
@@ -124,7 +52,7 @@ int main(void)
     return check_report("test_shell_stress_ccx");
   const size_t nn = fb_mesh_nnodes(m), ne = fb_mesh_nelements(m);
   double *f = calloc(6 * nn, sizeof *f), *u = malloc(6 * nn * sizeof *u);
-  double *s = calloc(ne * 8 * 6, sizeof *s);
+  double *s = calloc(ne * CCX_POINTS * 6, sizeof *s);
   size_t *fixed = malloc(6 * nn * sizeof *fixed), nfixed = 0;
   fb_shell_stress_state *st = malloc(ne * sizeof *st);
   CHECK(f && u && s && fixed && st);
@@ -144,7 +72,7 @@ int main(void)
     if (at_high)
       f[6 * a + 2] = CORNER_HIGH;
   }
-  char deck[TEST_PATH_MAX], dat[TEST_PATH_MAX], cmd[3 * TEST_PATH_MAX];
+  char deck[TEST_PATH_MAX], dat[TEST_PATH_MAX];
   test_tmp_path("job.inp", deck, sizeof deck);
   test_tmp_path("job.dat", dat, sizeof dat);
   FILE *fp = fopen(deck, "w");
@@ -154,9 +82,8 @@ int main(void)
   fb_mesh_print_inp(fp, m, &STEEL);
   append_step(fp, m, fixed, nfixed, f);
   CHECK(fclose(fp) == 0);
-  snprintf(cmd, sizeof cmd, "cd '%s' && ccx -i job >ccx.log 2>&1", test_tmpdir());
-  CHECK(system(cmd) == 0);
-  CHECK(read_ccx_stresses(dat, m, s) == 8 * ne);
+  CHECK(ccx_run("job"));
+  CHECK(ccx_read_stresses(dat, m, s) == 8 * ne);
 
   shell_static(K, fixed, nfixed, f, u);
   fb_shell_stress_eval_nodal(ss, u, st);
@@ -172,17 +99,16 @@ int main(void)
         xc += fb_mesh_node_xyz(m, nodes[a])[0] / 4.0;
       if (xc < 0.2 * LENGTH || xc > 0.8 * LENGTH)
         continue;
-      double ct[3], cb[3], ft[3], fbot[3];
-      ccx_surfaces(s, e, ct, cb);
-      global_surface(fb_shell_stress_axes(ss, e), st[e].top, ft);
-      global_surface(fb_shell_stress_axes(ss, e), st[e].bottom, fbot);
+      double ct[3], cb[3];
+      const double *ft = st[e].top, *fbot = st[e].bottom;
+      ccx_surfaces(s, m, e, ct, cb);
       if (pass == 0) {
-        scale = fmax(scale, fmax(von_mises(ct), von_mises(cb)));
+        scale = fmax(scale, fmax(ccx_von_mises(ct), ccx_von_mises(cb)));
         continue;
       }
       for (int k = 0; k < 3; ++k)
         worst[k] = fmax(worst[k], fmax(fabs(ft[k] - ct[k]), fabs(fbot[k] - cb[k])) / scale);
-      const double vm_ccx = fmax(von_mises(ct), von_mises(cb));
+      const double vm_ccx = fmax(ccx_von_mises(ct), ccx_von_mises(cb));
       worst_vm = fmax(worst_vm, fabs(st[e].von_mises_max - vm_ccx) / scale);
     }
   printf("ccx vs flexbond, S4 cantilever %dx%d, 0.2 L < x < 0.8 L: largest von Mises %.4g "
