@@ -53,6 +53,21 @@ static inline double result_range(const fb_result *r, size_t col)
   return hi - lo;
 }
 
+/* The largest |b - a| of column name over the run, as a share of a's
+ * range (the two results on one grid, with the column at one place). */
+static inline double result_relative_difference(const fb_result *a, const fb_result *b,
+                                                const char *name)
+{
+  const long col = fb_result_find(a, name);
+  CHECK(col > 0 && fb_result_find(b, name) == col);
+  if (col <= 0 || fb_result_nsamples(a) != fb_result_nsamples(b))
+    return INFINITY;
+  double worst = 0.0;
+  for (size_t k = 0; k < fb_result_nsamples(a); ++k)
+    worst = fmax(worst, fabs(fb_result_row(a, k)[col] - fb_result_row(b, k)[col]));
+  return worst / result_range(a, (size_t)col);
+}
+
 /* System 1 of s; a failure prints the library's message and fails. */
 static inline fb_result *simulate_rigid(const fb_scenario *s)
 {
