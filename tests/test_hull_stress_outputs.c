@@ -330,11 +330,7 @@ static void check_refusals(void)
 static void check_example(void)
 {
   fb_err err;
-  fb_scenario *s = NULL;
-  REQUIRE(fb_scenario_load("../examples/apc6x6_stresses.yaml", &s, &err), &err);
-  road_bump(s)->first_contact = 1.0;
-  road_bump(s)->length = 0.5;
-  s->t_end = 3.0;
+  fb_scenario *s = load_short_from("../examples/apc6x6_stresses.yaml");
   add_stress(s, "element_48", 48, NULL, FB_STRESS_TOP, FB_STRESS_SX);
   fb_result *r = NULL;
   REQUIRE(fb_vehicle_simulate(s, FB_SYSTEM_FLEXIBLE, &r, &err), &err);

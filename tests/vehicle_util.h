@@ -28,18 +28,24 @@
     }                                                                                          \
   } while (0)
 
-/* The reference scenario on a shortened crossing (bump at 1 s, 0.5 m
- * long, 3 s in all), so that full-order System 2 runs take seconds; the
- * physics is the scenario's. */
-static inline fb_scenario *load_short(void)
+/* The scenario at path (the reference one or a variant of it) on a
+ * shortened crossing (bump at 1 s, 0.5 m long, 3 s in all), so that
+ * full-order System 2 runs take seconds; the physics is the scenario's. */
+static inline fb_scenario *load_short_from(const char *path)
 {
   fb_err err;
   fb_scenario *s = NULL;
-  REQUIRE(fb_scenario_load("../examples/apc6x6.yaml", &s, &err), &err);
+  REQUIRE(fb_scenario_load(path, &s, &err), &err);
   road_bump(s)->first_contact = 1.0;
   road_bump(s)->length = 0.5;
   s->t_end = 3.0;
   return s;
+}
+
+/* The reference scenario on that shortened crossing. */
+static inline fb_scenario *load_short(void)
+{
+  return load_short_from("../examples/apc6x6.yaml");
 }
 
 /* Peak-to-peak range of column col of r. */
