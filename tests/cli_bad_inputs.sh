@@ -147,6 +147,20 @@ derive s_point_nodir.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_
 derive s_point_noat.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_acceleration, direction: y}/'
 derive s_point_dir.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_velocity, at: [2.10, 0.55, -0.8631], direction: w}/'
 derive s_rigid_at.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_roll, at: [1, 0, 0]}/'
+# A hull stress output: its element in the mesh, its point on the plates, one of the two,
+# its surface and component; System 1 (which the run builds first) has no elements.
+stress_with() {
+  derive "$1" s_ok.yaml -e "s/^outputs:/outputs:\n  - {signal: hull_stress, $2}/"
+}
+stress_with s_stress_elem.yaml 'element: 99999999, surface: top, stress: sx'
+stress_with s_stress_off.yaml 'at: [0.3, 0.2, -0.5], surface: top, stress: sx'
+stress_with s_stress_both.yaml 'element: 5, at: [2.10, 0.55, -0.8631], surface: top, stress: sx'
+stress_with s_stress_none.yaml 'surface: top, stress: sx'
+stress_with s_stress_surface.yaml 'element: 5, surface: side, stress: sx'
+stress_with s_stress_comp.yaml 'element: 5, surface: top, stress: s1'
+stress_with s_stress_dir.yaml 'element: 5, surface: top, stress: sx, direction: z'
+stress_with s_stress_rigid.yaml 'element: 5, surface: bottom, stress: sxy'
+derive s_point_surface.yaml s_ok.yaml -e 's/^outputs:/outputs:\n  - {signal: hull_displacement, at: [2.10, 0.55, -0.8631], direction: z, surface: top}/'
 derive s_damper_empty.yaml s_ok.yaml -e '0,/^      damper_c: 25744 /s//      damper: {} /'
 derive s_tire_unused.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  hunt_crossley: {deflection_ref: 0.03} /'
 derive s_tire_ref.yaml s_ok.yaml -e 's/^  tire_c: 140000 /  tire_c: 140000\n  tire_contact: hunt_crossley\n  hunt_crossley: {deflection_ref: -1} /'
@@ -337,6 +351,15 @@ CASES=(
   "2|run s_point_noat.yaml -o @OUT|$(at s_point_noat.yaml 'signal: hull_acceleration' '{') outputs[0]: missing required key 'at': the hull point \`[x, y, z]\` (m) a hull_acceleration signal measures"
   "2|run s_point_dir.yaml -o @OUT|$(at s_point_dir.yaml 'direction: w' w) outputs[0].direction: unknown value 'w'; expected x | y | z"
   "2|run s_rigid_at.yaml -o @OUT|$(at s_rigid_at.yaml 'at: [1' 'at: [1') outputs[0].at: only a hull point's signal has at"
+  "2|run s_stress_elem.yaml -o @OUT|$(at s_stress_elem.yaml 'element: 99999999' 99999999) outputs[0].element: the hull's mesh has no element 99999999 (its 240 elements' ids are 1 to 240)"
+  "2|run s_stress_off.yaml -o @OUT|$(at s_stress_off.yaml 'at: [0.3' '[0.3') outputs[0].at: the point is 0.363 m from the hull's nearest element (at most 0.05 m: a point of the hull's plates)"
+  "2|run s_stress_both.yaml -o @OUT|$(at s_stress_both.yaml 'at: [2.10' 'at: [2.10') outputs[0].at: a hull_stress signal reads one element: give element or at, not both"
+  "2|run s_stress_none.yaml -o @OUT|$(at s_stress_none.yaml 'signal: hull_stress' '{') outputs[0]: missing required key 'element' or 'at': the shell element (by its id) or the hull point \`[x, y, z]\` (m) whose element a hull_stress signal reads"
+  "2|run s_stress_surface.yaml -o @OUT|$(at s_stress_surface.yaml 'surface: side' side) outputs[0].surface: unknown value 'side'; expected top | bottom"
+  "2|run s_stress_comp.yaml -o @OUT|$(at s_stress_comp.yaml 'stress: s1' s1) outputs[0].stress: unknown value 's1' (did you mean 'sx'?); expected sx | sy | sxy"
+  "2|run s_stress_dir.yaml -o @OUT|$(at s_stress_dir.yaml 'direction: z' direction) outputs[0].direction: only a hull point's signal has direction"
+  "2|run s_stress_rigid.yaml -o @OUT|$(at s_stress_rigid.yaml 'signal: hull_stress' hull_stress) outputs[0].signal: System 1's hull is a rigid body: it has no shell elements, whose stresses a hull_stress signal reads (System 2 alone)"
+  "2|run s_point_surface.yaml -o @OUT|$(at s_point_surface.yaml 'surface: top' surface) outputs[0].surface: only a hull stress signal has surface"
   "2|run s_damper_empty.yaml -o @OUT|$(at s_damper_empty.yaml 'damper: {}' '{}') suspensions.axles[0].damper: no damper law is written as a section here"
   "2|run s_tire_unused.yaml -o @OUT|$(at s_tire_unused.yaml 'hunt_crossley:' hunt_crossley) wheel.hunt_crossley: no corner's tire is hunt_crossley"
   "2|run s_tire_ref.yaml -o @OUT|$(at s_tire_ref.yaml 'deflection_ref: -1' -1) wheel.hunt_crossley.deflection_ref: must be > 0 m (got -1)"

@@ -239,20 +239,6 @@ static void add_output(fb_scenario *s, const char *signal, const double *at, int
   REQUIRE(fb_scenario_add_output(s, &o, &err), &err);
 }
 
-/* The largest difference of column name between a and b over the run,
- * as a share of a's range. */
-static double relative_difference(const fb_result *a, const fb_result *b, const char *name)
-{
-  const long col = fb_result_find(a, name);
-  CHECK(col > 0 && fb_result_find(b, name) == col);
-  if (col <= 0 || fb_result_nsamples(a) != fb_result_nsamples(b))
-    return INFINITY;
-  double worst = 0.0;
-  for (size_t k = 0; k < fb_result_nsamples(a); ++k)
-    worst = fmax(worst, fabs(fb_result_row(a, k)[col] - fb_result_row(b, k)[col]));
-  return worst / result_range(a, (size_t)col);
-}
-
 /* The reference vehicle (shortened crossing) with the hull's motions
  * recorded, its plates' Young's modulus young (Pa): System 1 and System 2
  * into *r1, *r2. */
@@ -297,8 +283,8 @@ static void test_stiff_hull(void)
   run_both("200e12", &a1, &a2);
   run_both("200e11", &b1, &b2);
   for (size_t k = 0; a1 && a2 && b1 && b2 && k < sizeof names / sizeof names[0]; ++k) {
-    const double stiff = relative_difference(a1, a2, names[k]);
-    const double softer = relative_difference(b1, b2, names[k]);
+    const double stiff = result_relative_difference(a1, a2, names[k]);
+    const double softer = result_relative_difference(b1, b2, names[k]);
     printf("%s: System 2 - System 1 %.3g of the range at 1000 E, %.3g at 100 E\n", names[k],
            stiff, softer);
     CHECK(stiff < 1e-4);
@@ -379,7 +365,7 @@ static void test_nodal_modal(void)
   fb_result *nodal = run_flexible("nodal", NULL), *modal = run_flexible("modal", "all");
   static const char *const names[] = {"hull_acceleration_z", "hull_bounce"};
   for (size_t k = 0; nodal && modal && k < 2; ++k) {
-    const double d = relative_difference(nodal, modal, names[k]);
+    const double d = result_relative_difference(nodal, modal, names[k]);
     printf("%s: nodal - modal (every mode) %.3g of the range\n", names[k], d);
     CHECK(d < 1e-4);
   }

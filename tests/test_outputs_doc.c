@@ -22,6 +22,7 @@ static const char *subject_word(fb_output_subject s)
   case FB_OUTPUT_OF_BOND: return "bond";
   case FB_OUTPUT_OF_HULL_POINT: return "hull point";
   case FB_OUTPUT_OF_BOGIE: return "bogie";
+  case FB_OUTPUT_OF_HULL_STRESS: return "hull element";
   }
   return "?";
 }

@@ -28,18 +28,24 @@
     }                                                                                          \
   } while (0)
 
-/* The reference scenario on a shortened crossing (bump at 1 s, 0.5 m
- * long, 3 s in all), so that full-order System 2 runs take seconds; the
- * physics is the scenario's. */
-static inline fb_scenario *load_short(void)
+/* The scenario at path (the reference one or a variant of it) on a
+ * shortened crossing (bump at 1 s, 0.5 m long, 3 s in all), so that
+ * full-order System 2 runs take seconds; the physics is the scenario's. */
+static inline fb_scenario *load_short_from(const char *path)
 {
   fb_err err;
   fb_scenario *s = NULL;
-  REQUIRE(fb_scenario_load("../examples/apc6x6.yaml", &s, &err), &err);
+  REQUIRE(fb_scenario_load(path, &s, &err), &err);
   road_bump(s)->first_contact = 1.0;
   road_bump(s)->length = 0.5;
   s->t_end = 3.0;
   return s;
+}
+
+/* The reference scenario on that shortened crossing. */
+static inline fb_scenario *load_short(void)
+{
+  return load_short_from("../examples/apc6x6.yaml");
 }
 
 /* Peak-to-peak range of column col of r. */
@@ -51,6 +57,21 @@ static inline double result_range(const fb_result *r, size_t col)
     hi = fmax(hi, fb_result_row(r, k)[col]);
   }
   return hi - lo;
+}
+
+/* The largest |b - a| of column name over the run, as a share of a's
+ * range (the two results on one grid, with the column at one place). */
+static inline double result_relative_difference(const fb_result *a, const fb_result *b,
+                                                const char *name)
+{
+  const long col = fb_result_find(a, name);
+  CHECK(col > 0 && fb_result_find(b, name) == col);
+  if (col <= 0 || fb_result_nsamples(a) != fb_result_nsamples(b))
+    return INFINITY;
+  double worst = 0.0;
+  for (size_t k = 0; k < fb_result_nsamples(a); ++k)
+    worst = fmax(worst, fabs(fb_result_row(a, k)[col] - fb_result_row(b, k)[col]));
+  return worst / result_range(a, (size_t)col);
 }
 
 /* System 1 of s; a failure prints the library's message and fails. */

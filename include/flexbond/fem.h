@@ -409,6 +409,13 @@ void fb_shell_stress_free(fb_shell_stress **s);
 size_t fb_shell_stress_nelements(const fb_shell_stress *s);
 /* Element e's local axes: 9 values, rows x, y, z in global components. */
 const double *fb_shell_stress_axes(const fb_shell_stress *s, size_t e);
+/* Element e's recovery matrix D_e (borrowed): its surface stresses
+ * (sigma_x, sigma_y, tau_xy at the top, then the bottom's, local axes)
+ * per unit nodal DOF, 6 x 6 nn row-major, the columns the 6 DOFs of each
+ * of its nn nodes in fb_mesh_element_nodes' order (global axes): what
+ * fb_shell_stress_eval_nodal applies, for a caller that reads one
+ * component as weights over the nodal DOFs. */
+const double *fb_shell_stress_recovery(const fb_shell_stress *s, size_t e);
 
 /* The states of every element (states: nelements) from nodal values u
  * (6 nnodes, global axes, fem.h's DOF order; borrowed). */

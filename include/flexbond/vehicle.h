@@ -332,7 +332,25 @@ typedef struct fb_output_spec {
   /* A bond signal on a multibond: the component it records, 1-based; 0
    * for a scalar bond (docs/vehicle-outputs.md). */
   long component;
+  /* A hull stress signal (FB_OUTPUT_OF_HULL_STRESS, docs/stresses.md):
+   * the shell element it reads, by its id in the hull's mesh, or 0 for the
+   * element nearest the point `at`; the surface, FB_STRESS_TOP or
+   * FB_STRESS_BOTTOM; and the stress component (fb_output_stress). */
+  long element;
+  int surface;
+  int stress;
 } fb_output_spec;
+
+/* A hull stress signal's surface: the side the element's normal points
+ * to (z = +t/2) or the other (docs/stresses.md, "Axes and signs"). */
+enum { FB_STRESS_TOP = 0, FB_STRESS_BOTTOM = 1 };
+/* A hull stress signal's component, in the element's local axes: sigma_x,
+ * sigma_y, tau_xy (fb_shell_stress_state's order). */
+typedef enum fb_output_stress {
+  FB_STRESS_SX = 0,
+  FB_STRESS_SY = 1,
+  FB_STRESS_SXY = 2
+} fb_output_stress;
 
 /* The study's parameters. Strings and arrays are owned by the scenario. */
 /* The coordinates of System 2's hull (hull.fe.coordinates): its nodal
@@ -1091,7 +1109,9 @@ typedef enum fb_output_subject {
   FB_OUTPUT_OF_BOND,       /* `bond` names a bond of the assembled graph */
   FB_OUTPUT_OF_HULL_POINT, /* `at` a point of the hull, `direction` an axis */
   FB_OUTPUT_OF_BOGIE,      /* `of` names a walking-beam bogie */
-  FB_OUTPUT_OF_BODY        /* `of` names a mounted rigid body (fb_body) */
+  FB_OUTPUT_OF_BODY,       /* `of` names a mounted rigid body (fb_body) */
+  FB_OUTPUT_OF_HULL_STRESS /* `element` or `at` a shell element of System 2's hull,
+                              `surface` and `stress` its stress component */
 } fb_output_subject;
 
 struct fb_output_kind {

@@ -175,6 +175,11 @@ const double *fb_shell_stress_axes(const fb_shell_stress *s, size_t e)
   return s->elements[e].axes;
 }
 
+const double *fb_shell_stress_recovery(const fb_shell_stress *s, size_t e)
+{
+  return s->elements[e].d;
+}
+
 void fb_shell_stress_state_from_surfaces(const double *top, const double *bottom, double t,
                                          double young, double poisson,
                                          fb_shell_stress_state *st)

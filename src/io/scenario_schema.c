@@ -60,10 +60,17 @@ SC_PRESENT(sc_has_izz, fb_scenario, b->hull_izz_given)
 SC_PRESENT(sc_damper_present, fb_corner_params, fb_corner_damper_law(b) == k->data)
 SC_PRESENT(sc_has_window, fb_output_spec, b->window[0] != 0 || b->window[1] != 0)
 SC_PRESENT(sc_has_component, fb_output_spec, b->component != 0)
-/* A hull point's signal has its point and axis written back. */
+/* A hull point's signal has its point and axis written back; a hull
+ * stress signal its element or point, its surface and its component. */
 SC_PRESENT(sc_is_point, fb_output_spec,
            fb_vehicle_output_kind_find(b->signal) &&
                fb_vehicle_output_kind_find(b->signal)->subject == FB_OUTPUT_OF_HULL_POINT)
+SC_PRESENT(sc_is_stress, fb_output_spec,
+           fb_vehicle_output_kind_find(b->signal) &&
+               fb_vehicle_output_kind_find(b->signal)->subject == FB_OUTPUT_OF_HULL_STRESS)
+SC_PRESENT(sc_has_element, fb_output_spec, b->element != 0)
+SC_PRESENT(sc_has_at, fb_output_spec,
+           sc_is_point(k, b) || (sc_is_stress(k, b) && b->element == 0))
 SC_PRESENT(sc_has_radius, fb_bushing, b->radius != 0)
 SC_PRESENT(sc_has_tire_radius, fb_corner_params, b->tire_radius != 0)
 
@@ -699,11 +706,44 @@ static int sc_output_kind(const ml_ctx *c, struct fy_node *node, const char *sig
                  hint);
 }
 
-/* `at` and `direction` for a hull point's signal only. */
+/* A hull stress signal's keys: `element` or `at` (one of them),
+ * `surface` and `stress`; another signal has none of the last three. */
+static int sc_output_stress(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
+                            const fb_output_kind *kind)
+{
+  const int wants_stress = kind->subject == FB_OUTPUT_OF_HULL_STRESS;
+  static const char *const keys[3] = {"surface", "stress", "element"};
+  static const char *const what[2] = {"the surface, top or bottom,",
+                                      "the stress component, sx, sy or sxy,"};
+  struct fy_node *key[3] = {NULL, NULL, NULL}, *at = NULL;
+  for (int k = 0; k < 3; ++k) {
+    ml_get(node, keys[k], &key[k]);
+    if (wants_stress && k < 2 && !key[k])
+      return ml_fail(c, node, FB_EPARSE, "missing required key '%s': %s a %s signal reads",
+                     keys[k], what[k], o->signal);
+    if (!wants_stress && key[k])
+      return ml_fail_key(c, node, key[k], FB_EPARSE, "only a hull stress signal has %s",
+                         keys[k]);
+  }
+  ml_get(node, "at", &at);
+  if (wants_stress && !key[2] == !at)
+    return at ? ml_fail_key(c, node, at, FB_EPARSE,
+                            "a %s signal reads one element: give element or at, not both",
+                            o->signal)
+              : ml_fail(c, node, FB_EPARSE,
+                        "missing required key 'element' or 'at': the shell element (by its "
+                        "id) or the hull point `[x, y, z]` (m) whose element a %s signal reads",
+                        o->signal);
+  return FB_OK;
+}
+
+/* `at` and `direction` for a hull point's signal only (`at` also for a
+ * hull stress signal's). */
 static int sc_output_point(const ml_ctx *c, struct fy_node *node, const fb_output_spec *o,
                            const fb_output_kind *kind)
 {
   const int wants_point = kind->subject == FB_OUTPUT_OF_HULL_POINT;
+  const int stress = kind->subject == FB_OUTPUT_OF_HULL_STRESS;
   static const char *const keys[2] = {"at", "direction"};
   static const char *const what[2] = {"the hull point `[x, y, z]` (m)", "the axis, x, y or z,"};
   for (int k = 0; k < 2; ++k) {
@@ -712,10 +752,10 @@ static int sc_output_point(const ml_ctx *c, struct fy_node *node, const fb_outpu
     if (wants_point && !given)
       return ml_fail(c, node, FB_EPARSE, "missing required key '%s': %s a %s signal measures",
                      keys[k], what[k], o->signal);
-    if (!wants_point && given)
+    if (!wants_point && given && !(stress && k == 0))
       return ml_fail_key(c, node, key, FB_EPARSE, "only a hull point's signal has %s", keys[k]);
   }
-  return FB_OK;
+  return sc_output_stress(c, node, o, kind);
 }
 
 /* `of` for a corner's, a mount's or a bogie's signal only, `bond` for a
@@ -767,6 +807,12 @@ static const sch_ops sc_outputs = {.item_end = sc_output_end};
 static const sch_ops sc_window = {.present = sc_has_window};
 
 static const sch_ops sc_point = {.present = sc_is_point};
+
+static const sch_ops sc_point_or_stress = {.present = sc_has_at};
+
+static const sch_ops sc_stress = {.present = sc_is_stress};
+
+static const sch_ops sc_element = {.present = sc_has_element};
 
 static const sch_ops sc_has_component_ops = {.present = sc_has_component};
 
@@ -916,6 +962,10 @@ static const char *const sc_coordinates[] = {"nodal", "modal", NULL};
 static const char *const sc_couplings[] = {"none", "distributing", "kinematic", NULL};
 static const char *const sc_switch[] = {"false", "true", NULL};
 static const char *const sc_axes[] = {"x", "y", "z", NULL};
+/* A hull stress signal's surfaces (FB_STRESS_TOP, FB_STRESS_BOTTOM) and
+ * components (fb_output_stress). */
+static const char *const sc_surfaces[] = {"top", "bottom", NULL};
+static const char *const sc_stresses[] = {"sx", "sy", "sxy", NULL};
 
 /* Plausible ranges shared by several keys. */
 /* Plates of ground vehicles: body panels of trucks and light armoured
@@ -1220,8 +1270,9 @@ static const sch_key sc_output_keys[] = {
             O_AT(DOUBLE, window), .ops = &sc_window),
     NUMBERS("at", "m", 3, 3, OPT,
             "a hull point's signal: the point `[x, y, z]` in the file's frame, as every "
-            "position (a deck's: in the deck's frame)",
-            O_AT(DOUBLE, at), .ops = &sc_point, AXIS_POINT),
+            "position (a deck's: in the deck's frame); a hull stress signal's without "
+            "`element`: a point of the element it reads",
+            O_AT(DOUBLE, at), .ops = &sc_point_or_stress, AXIS_POINT),
     WHOLE("component", CLOSED(1, 1e9), OPT,
           "a bond signal on a multibond: the component it records, 1 to the bond's "
           "dimension (`flexbond causality` lists the bonds)",
@@ -1230,6 +1281,18 @@ static const sch_key sc_output_keys[] = {
            "a hull point's signal: the axis of the translation it measures (ISO 8855: x "
            "forward, y left, z up)",
            O_AT(INT, direction), .ops = &sc_point),
+    WHOLE("element", CLOSED(1, 1e15), OPT,
+          "a hull stress signal: the shell element it reads, by its id in the hull's mesh "
+          "(`flexbond mesh --export` writes them; else `at` picks the element)",
+          O_AT(LONG, element), .ops = &sc_element),
+    CHOICE("surface", sc_surfaces, OPT,
+           "a hull stress signal: the element's surface, `top` the side its normal points "
+           "to (docs/stresses.md)",
+           O_AT(INT, surface), .ops = &sc_stress),
+    CHOICE("stress", sc_stresses, OPT,
+           "a hull stress signal: the stress component in the element's axes, `sx`, `sy` "
+           "or `sxy` (Pa)",
+           O_AT(INT, stress), .ops = &sc_stress),
 };
 static const sch_table sc_output_table = TABLE(sc_output_keys, NULL);
 

@@ -4,6 +4,7 @@
  * so that the description owns everything fb_scenario_free frees. Scalars
  * are the program's to set in the struct; the parts with memory of their
  * own (names, lists) come in here. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -225,13 +226,28 @@ static int builder_bond_column(const fb_output_spec *o, char **out)
   return FB_OK;
 }
 
+/* A hull stress signal's subject in its default name: its component and
+ * surface ("sx_top"); "" for values out of range (which the check refuses). */
+static void builder_stress_subject(const fb_output_spec *o, char *buf, size_t size)
+{
+  static const char *const component[3] = {"sx", "sy", "sxy"}, *const surface[2] = {"top",
+                                                                                    "bottom"};
+  if (o->stress >= 0 && o->stress < 3 && o->surface >= 0 && o->surface < 2)
+    snprintf(buf, size, "%s_%s", component[o->stress], surface[o->surface]);
+  else
+    buf[0] = '\0';
+}
+
 int fb_output_spec_complete(fb_output_spec *o, const fb_output_kind *kind, fb_err *err)
 {
   static const char *const axes[3] = {"x", "y", "z"};
   const int bond = kind->subject == FB_OUTPUT_OF_BOND;
   const int point = kind->subject == FB_OUTPUT_OF_HULL_POINT;
+  char stress[16];
+  builder_stress_subject(o, stress, sizeof stress);
   const char *subject = bond                                             ? o->bond
                         : point && o->direction >= 0 && o->direction < 3 ? axes[o->direction]
+                        : kind->subject == FB_OUTPUT_OF_HULL_STRESS      ? stress
                         : o->of                                          ? o->of
                                                                          : "";
   int rc =
@@ -280,6 +296,15 @@ static int builder_subject(const fb_scenario *s, const fb_output_kind *kind,
     return o->bond ? FB_OK
                    : fb_err_set(err, FB_EINVAL, "a %s signal names the bond it records",
                                 kind->signal);
+  case FB_OUTPUT_OF_HULL_STRESS:
+    return o->surface >= 0 && o->surface < 2 && o->stress >= 0 && o->stress < 3 && !o->of &&
+                   !o->bond && o->element >= 0
+               ? FB_OK
+               : fb_err_set(err, FB_EINVAL,
+                            "a %s signal reads a shell element's (element >= 0; 0: the one "
+                            "nearest at) surface stress (surface 0 or 1, stress 0, 1 or 2), "
+                            "no corner, mount or bond",
+                            kind->signal);
   case FB_OUTPUT_OF_HULL_POINT:
     return o->direction >= 0 && o->direction < 3 && !o->of && !o->bond
                ? FB_OK
@@ -304,7 +329,10 @@ int fb_scenario_add_output(fb_scenario *s, const fb_output_spec *o, fb_err *err)
                          .window = {o->window[0], o->window[1]},
                          .at = {o->at[0], o->at[1], o->at[2]},
                          .direction = o->direction,
-                         .component = o->component};
+                         .component = o->component,
+                         .element = o->element,
+                         .surface = o->surface,
+                         .stress = o->stress};
   const char *const from[] = {o->name, o->signal, o->of, o->bond, o->unit, o->title, o->label};
   char **const to[] = {&copy.name, &copy.signal, &copy.of,   &copy.bond,
                        &copy.unit, &copy.title,  &copy.label};

@@ -985,6 +985,26 @@ static void names_hint(const fb_scenario *s, const char *word, size_t n, fb_name
   }
 }
 
+/* A hull stress output's element (an id, or 0 and a finite point),
+ * surface and component; whether the element is in the hull's mesh is
+ * the outputs' check's (fb_vehicle_outputs_check). */
+static int check_output_stress(const fb_output_spec *o, size_t i, fb_err *err)
+{
+  if (o->element < 0)
+    return fail(err, FB_PART_OUTPUT, i, "element",
+                "an element's id is positive (0: the element nearest at) (got %ld)",
+                o->element);
+  if (!o->element && !(isfinite(o->at[0]) && isfinite(o->at[1]) && isfinite(o->at[2])))
+    return fail(err, FB_PART_OUTPUT, i, "at", "a hull point's coordinates must be finite");
+  if (o->surface != FB_STRESS_TOP && o->surface != FB_STRESS_BOTTOM)
+    return fail(err, FB_PART_OUTPUT, i, "surface",
+                "a stress's surface is 0 (top) or 1 (bottom) (got %d)", o->surface);
+  if (o->stress < FB_STRESS_SX || o->stress > FB_STRESS_SXY)
+    return fail(err, FB_PART_OUTPUT, i, "stress",
+                "a stress's component is 0 (sx), 1 (sy) or 2 (sxy) (got %d)", o->stress);
+  return FB_OK;
+}
+
 /* The output's subject names a corner or a mount, as its signal asks. */
 static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
 {
@@ -1035,7 +1055,7 @@ static int check_output_subject(const fb_scenario *s, size_t i, fb_err *err)
   if (kind->subject == FB_OUTPUT_OF_HULL_POINT &&
       !(isfinite(o->at[0]) && isfinite(o->at[1]) && isfinite(o->at[2])))
     return fail(err, FB_PART_OUTPUT, i, "at", "a hull point's coordinates must be finite");
-  return FB_OK;
+  return kind->subject == FB_OUTPUT_OF_HULL_STRESS ? check_output_stress(o, i, err) : FB_OK;
 }
 
 /* A column of its own: not the time's, not a contact force's. */

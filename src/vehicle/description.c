@@ -463,7 +463,10 @@ static int desc_copy_output(const fb_output_spec *src, fb_output_spec *dst)
                           .window = {src->window[0], src->window[1]},
                           .at = {src->at[0], src->at[1], src->at[2]},
                           .direction = src->direction,
-                          .component = src->component};
+                          .component = src->component,
+                          .element = src->element,
+                          .surface = src->surface,
+                          .stress = src->stress};
   int ok = desc_copy_string(src->name, &dst->name);
   ok = desc_copy_string(src->signal, &dst->signal) && ok;
   ok = desc_copy_string(src->of, &dst->of) && ok;

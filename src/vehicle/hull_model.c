@@ -210,19 +210,21 @@ static int assemble(const fb_scenario *s, vehicle_hull *h, fb_mat **built,
   return rc ? rc : fb_progress_report(pr, stage, 1.0, err);
 }
 
-/* 1 if output o is a pattern: a torsion, or a point's translation (the
- * rigid-body motions are in every basis already). */
+/* 1 if output o is a pattern: a torsion, a point's translation or an
+ * element's surface stress (the rigid-body motions are in every basis
+ * already). */
 static int output_pattern(const fb_output_spec *o)
 {
   vehicle_hull_motion how;
-  return fb_vehicle_output_hull_fit(o) >= 0 ||
+  return fb_vehicle_output_hull_fit(o) >= 0 || vehicle_output_hull_stress(o) ||
          (vehicle_output_hull_motion(o, &how) && how.coordinate < 0);
 }
 
 /* The patterns the static correction restores: each attachment point's
  * vertical force (its coupling's row), the load (its points' rows, equal
  * shares), and each output read from the hull's deformation (its
- * weights over the nodal DOFs: a torsion's, a point's translation's). */
+ * weights over the nodal DOFs: a torsion's, a point's translation's, a
+ * surface stress's row of its element's recovery matrix). */
 static int patterns(const fb_scenario *s, vehicle_hull *h, fb_err *err)
 {
   const fb_fe_hull *fe = h->fe;
@@ -250,6 +252,8 @@ static int patterns(const fb_scenario *s, vehicle_hull *h, fb_err *err)
     const int fit = fb_vehicle_output_hull_fit(&s->output[o]);
     if (fit >= 0)
       rc = fb_fe_hull_torsion_weights(fe, fit, out, err);
+    else if (vehicle_output_hull_stress(&s->output[o]))
+      rc = vehicle_hull_stress_weights(fe->mesh, &fe->props, &s->output[o], o, out, err);
     else if (output_pattern(&s->output[o]))
       rc = vehicle_hull_point_weights(fe->mesh, &s->output[o], o, out, err);
     out += output_pattern(&s->output[o]) ? n : 0;
@@ -968,6 +972,22 @@ static int motion_nodal_weights(const vehicle_hull *h, const fb_output_spec *o, 
   return vehicle_hull_rigid_fit(h->fe->mesh, h->M, how->coordinate, w, err);
 }
 
+/* A surface stress, w' u over the nodal displacements u = T q of the
+ * stiffness field's state (the hull's deformation itself, as a
+ * torsion's: with a static initial state its static stress too), w the
+ * component's row of its element's recovery matrix; weights T' w (w
+ * (ndof) and q (nb) scratch). */
+static int stress_reading(const vehicle_hull *h, const fb_output_spec *o, size_t index,
+                          const double *T, size_t nb, double *w, double *q, fb_hull_reading *r,
+                          fb_err *err)
+{
+  int rc = vehicle_hull_stress_weights(h->fe->mesh, &h->fe->props, o, index, w, err);
+  if (rc)
+    return rc;
+  to_coordinates(T, h->info.ndof, nb, w, q);
+  return vehicle_hull_reading_set(r, "stiffness", FB_PROBE_STATE, 0, q, nb, err);
+}
+
 /* The outputs read from the hull's motion, w' u over the nodal
  * displacements u = T q: a displacement from t = 0 is the integrated
  * flow of b_mass (q') weighted by T' w, a velocity its flow, and an
@@ -984,6 +1004,10 @@ static int flexible_readings(const fb_scenario *s, const vehicle_hull *h, const 
                   : fb_err_set(err, FB_ENOMEM, "out of memory");
   vehicle_hull_motion how;
   for (size_t o = 0; !rc && o < s->noutputs; ++o) {
+    if (vehicle_output_hull_stress(&s->output[o])) {
+      rc = stress_reading(h, &s->output[o], o, T, nb, w, q, &hull->reading[o], err);
+      continue;
+    }
     if (!vehicle_output_hull_motion(&s->output[o], &how))
       continue;
     rc = motion_nodal_weights(h, &s->output[o], o, &how, w, err);

@@ -150,18 +150,27 @@ double vehicle_hull_point_nearest(const fb_mesh *m, const double *p, size_t *ele
   return best;
 }
 
-int vehicle_hull_point_weights(const fb_mesh *m, const fb_output_spec *o, size_t index,
-                               double *w, fb_err *err)
+int vehicle_hull_point_on(const fb_mesh *m, const fb_output_spec *o, size_t index, size_t *e,
+                          double *n, double *foot, fb_err *err)
 {
-  size_t e = 0;
-  double n[4], foot[3];
-  const double d = vehicle_hull_point_nearest(m, o->at, &e, n, foot);
+  const double d = vehicle_hull_point_nearest(m, o->at, e, n, foot);
   if (!(d <= VEHICLE_HULL_POINT_TOL))
     return fb_err_set(err, FB_EINVAL,
                       "the point is %.3g m from the hull's nearest element (at most %g m: a "
                       "point of the hull's plates)",
                       d, VEHICLE_HULL_POINT_TOL),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, at)), FB_EINVAL;
+  return FB_OK;
+}
+
+int vehicle_hull_point_weights(const fb_mesh *m, const fb_output_spec *o, size_t index,
+                               double *w, fb_err *err)
+{
+  size_t e = 0;
+  double n[4], foot[3];
+  const int rc = vehicle_hull_point_on(m, o, index, &e, n, foot, err);
+  if (rc)
+    return rc;
   /* The foot's motion u_f = sum N_i u_i, and the point's its rigid lever
    * from the foot through the nodes' rotations: sum N_i (u_i + theta_i x
    * (p - foot)), exact for a rigid motion wherever the point is. */
@@ -219,15 +228,36 @@ int vehicle_hull_rigid_fit(const fb_mesh *m, const fb_mat *M, int coordinate, do
   return rc;
 }
 
+/* Each hull stress output of s names an element of its finite-element
+ * hull's mesh m (NULL: not read yet), or is refused without such a hull. */
+static int hull_stresses_check(const fb_scenario *s, const fb_mesh *m, fb_err *err)
+{
+  for (size_t o = 0; o < s->noutputs; ++o) {
+    if (!vehicle_output_hull_stress(&s->output[o]))
+      continue;
+    if (!s->has_fe_hull)
+      return fb_err_set(err, FB_EINVAL,
+                        "a %s signal reads a shell element of System 2's finite-element hull, "
+                        "and this vehicle's hull has no mesh",
+                        s->output[o].signal),
+             fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, o, signal)), FB_EINVAL;
+    size_t e = 0;
+    const int rc = m ? vehicle_hull_stress_element(m, &s->output[o], o, &e, err) : FB_OK;
+    if (rc)
+      return rc;
+  }
+  return FB_OK;
+}
+
 int vehicle_hull_points_check(const fb_scenario *s, fb_err *err)
 {
   const fb_mesh *m = s->hull_source_mesh;
-  if (!s->has_fe_hull || !m)
-    return FB_OK;
+  int rc = hull_stresses_check(s, s->has_fe_hull ? m : NULL, err);
+  if (rc || !s->has_fe_hull || !m)
+    return rc;
   double *w = malloc((6 * fb_mesh_nnodes(m) + 1) * sizeof *w);
   if (!w)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
-  int rc = FB_OK;
   vehicle_hull_motion how;
   for (size_t o = 0; !rc && o < s->noutputs; ++o)
     if (vehicle_output_hull_motion(&s->output[o], &how) && how.coordinate < 0)

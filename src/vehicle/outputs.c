@@ -120,6 +120,9 @@ static const fb_output_kind kinds[] = {
     {"hull_acceleration", FB_OUTPUT_OF_HULL_POINT, "m/s^2", "hull_acceleration_%s",
      "Hull point acceleration along %s", "hull point acceleration %s",
      "acceleration of the hull point `at` along `direction`, from the equations of motion"},
+    {"hull_stress", FB_OUTPUT_OF_HULL_STRESS, "Pa", "hull_stress_%s", "Hull stress %s",
+     "hull stress %s",
+     "a surface stress of a shell element of System 2's hull, in the element's axes"},
     {"hull_longitudinal", FB_OUTPUT_OF_HULL, "m", "hull_longitudinal",
      "Hull longitudinal displacement", "hull longitudinal displacement",
      "the hull's rigid-body translation along x from t = 0 (0 in System 1 unless its hull "
@@ -260,6 +263,21 @@ static int hull_reading_probe(const fb_hull *hull, size_t index, fb_probe_spec *
   return FB_OK;
 }
 
+/* A surface stress of a shell element: the finite-element hull's
+ * reading of it (hull_stress.c); the rigid hull has no elements and
+ * makes none. */
+static int hull_stress_probe(const fb_hull *hull, const fb_output_spec *o, size_t index,
+                             fb_probe_spec *p, fb_err *err)
+{
+  if (index < hull->nreading && !hull->reading[index].target)
+    return fb_err_set(err, FB_EINVAL,
+                      "System 1's hull is a rigid body: it has no shell elements, whose "
+                      "stresses a %s signal reads (System 2 alone)",
+                      o->signal),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EINVAL;
+  return hull_reading_probe(hull, index, p, err);
+}
+
 /* The hull's torsion: the hull says where and with which weights. */
 static int hull_probe(const fb_hull *hull, const fb_output_spec *o, size_t index,
                       fb_probe_spec *p, fb_err *err)
@@ -325,9 +343,16 @@ int fb_vehicle_output_probe(const fb_scenario *s, const fb_hull *hull, size_t in
   case FB_OUTPUT_OF_BODY: rc = vehicle_body_probe(s, index, p, err); break;
   case FB_OUTPUT_OF_HULL: rc = hull_probe(hull, o, index, p, err); break;
   case FB_OUTPUT_OF_HULL_POINT: rc = hull_reading_probe(hull, index, p, err); break;
+  case FB_OUTPUT_OF_HULL_STRESS: rc = hull_stress_probe(hull, o, index, p, err); break;
   case FB_OUTPUT_OF_BOND: rc = bond_probe_of(o, p, err); break;
   }
   return rc ? rc : p->target ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+}
+
+int vehicle_output_hull_stress(const fb_output_spec *o)
+{
+  const long k = find_kind(o->signal);
+  return k >= 0 && kinds[k].subject == FB_OUTPUT_OF_HULL_STRESS;
 }
 
 int fb_vehicle_output_hull_fit(const fb_output_spec *o)

@@ -144,6 +144,11 @@ void vehicle_hull_readings_free(fb_hull *hull);
  * foot in foot[3] (hull_point.c); INFINITY for a mesh without elements. */
 double vehicle_hull_point_nearest(const fb_mesh *m, const double *p, size_t *elem, double *n,
                                   double *foot);
+/* vehicle_hull_point_nearest of output index's point `at`, the element in
+ * *e, FB_EINVAL about `at` when it is farther than VEHICLE_HULL_POINT_TOL
+ * (naming the distance). */
+int vehicle_hull_point_on(const fb_mesh *m, const fb_output_spec *o, size_t index, size_t *e,
+                          double *n, double *foot, fb_err *err);
 /* The weights w (6 nnodes, over the nodal DOFs) of output index's point
  * translation along its direction (o checked: fb_scenario_check): the nearest element's shape
  * functions at the foot, and the lever from the foot to the point through the nodes' rotations.
@@ -158,8 +163,30 @@ int vehicle_hull_point_weights(const fb_mesh *m, const fb_output_spec *o, size_t
 int vehicle_hull_rigid_fit(const fb_mesh *m, const fb_mat *M, int coordinate, double *w,
                            fb_err *err);
 /* Each hull point output of s lies on its finite-element hull's mesh, if
- * it has one (s->hull_source_mesh): FB_EINVAL about its `at` otherwise. */
+ * it has one (s->hull_source_mesh): FB_EINVAL about its `at` otherwise;
+ * and each hull stress output reads an element of it
+ * (vehicle_hull_stress_element), or is refused about its signal for a
+ * scenario without a finite-element hull. */
 int vehicle_hull_points_check(const fb_scenario *s, fb_err *err);
+
+/* ---- Outputs read from the stresses of System 2's shell elements
+ * (hull_stress.c, docs/stresses.md "Stress outputs"). */
+
+/* 1 if output o is a hull stress signal (FB_OUTPUT_OF_HULL_STRESS; outputs.c). */
+int vehicle_output_hull_stress(const fb_output_spec *o);
+/* The element of m that hull stress output index reads, into *e: the one
+ * with its id (`element`), FB_EINVAL about `element` when m has none; or
+ * the element nearest its point, FB_EINVAL about `at` when none is within
+ * VEHICLE_HULL_POINT_TOL (naming the distance), as a hull point's. */
+int vehicle_hull_stress_element(const fb_mesh *m, const fb_output_spec *o, size_t index,
+                                size_t *e, fb_err *err);
+/* The weights w (6 nnodes, over the nodal DOFs) of hull stress output
+ * index's component: its row of the element's recovery matrix D_e
+ * (fb_shell_stress_recovery), the element's properties those of the hull
+ * (fb_mesh_element_props over props). Errors as
+ * vehicle_hull_stress_element's, and the recovery's. */
+int vehicle_hull_stress_weights(const fb_mesh *m, const fb_shell_props *props,
+                                const fb_output_spec *o, size_t index, double *w, fb_err *err);
 
 /* 1 if the scenario's hull_source_mesh is the mesh its hull has now: the
  * one its source read, or the one it made from the inputs it has (equal

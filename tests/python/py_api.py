@@ -159,6 +159,33 @@ class FromDictTest(unittest.TestCase):
             "description['outputs'][2]['bond']: bond 'b_attach' is a multibond of 8 components"),
             caught.exception.message)
 
+    def test_hull_stress_output(self):
+        """A hull stress output passes through as any other: System 2's
+        column, with its default name and unit, the same given by a point of
+        the floor and by the id of the element holding it (48 of the
+        generated mesh, beside the driver's mount); System 1, which has no
+        shell elements, refuses it at its key."""
+        with open(APC, encoding="utf-8") as f:
+            text = f.read()
+        outputs = ("outputs:\n"
+                   "  - {signal: hull_stress, at: [2.0, 0.8, -0.86306], surface: top, "
+                   "stress: sx}\n"
+                   "  - {signal: hull_stress, element: 48, surface: top, stress: sx, "
+                   "name: by_id}\n")
+        self.assertIn("\noutputs:\n", text)
+        with open("stress.yaml", "w", encoding="utf-8") as f:
+            f.write(text.replace("\noutputs:\n", "\n" + outputs, 1))
+        scenario = flexbond.Scenario("stress.yaml")
+        r = scenario.run("flexible")
+        self.assertEqual(r.names[1:3], ["hull_stress_sx_top", "by_id"])
+        self.assertEqual(r.unit("hull_stress_sx_top"), "Pa")
+        self.assertGreater(numpy.ptp(r["hull_stress_sx_top"]), 1e6)
+        numpy.testing.assert_array_equal(r["hull_stress_sx_top"], r["by_id"])
+        with self.assertRaises(flexbond.Error) as caught:
+            scenario.run("rigid")
+        self.assertIn("outputs[0].signal: System 1's hull is a rigid body",
+                      caught.exception.message)
+
     def test_errors_name_the_data_path(self):
         """An error names the value by its path in the data, never by a line
         of the text it was read from: a range error of the reader, a rule of
