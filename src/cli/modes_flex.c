@@ -157,6 +157,10 @@ static void fill_parts(const fb_scenario *s, const fb_fe_hull *hull, const doubl
 int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hull *hull,
                             const fb_mode_set *ms, fb_err *err)
 {
+  /* A superelement (a reduced hull) has no surface to draw: no pictures,
+   * which the report says (report.c). */
+  if (fb_mesh_nelements(hull->mesh) == 0)
+    return FB_OK;
   mode_parts mp = {malloc((s->nmounts + 1) * sizeof *mp.body),
                    malloc((s->ncorners + 1) * sizeof *mp.wheel), mesh_extent(hull->mesh)};
   int rc = mp.body && mp.wheel ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
