@@ -7,7 +7,8 @@
  * own Guyan condensation (fb_fem_guyan) of that hull's K and M onto the
  * six DOFs of its twelve interface nodes (the suspension points, which
  * are also the load points, the mounts and the edge ends), written as
- * Matrix Market with 17 digits and read back through the scenario.
+ * Matrix Market with 17 digits (and as a DMIG punch file) and read back
+ * through the scenario.
  *
  * - Statics: Guyan is exact for loads at the kept DOFs, so the stiffness
  *   a point sees with the suspension points held is the mesh's to the
@@ -71,14 +72,20 @@ static char *twin_yaml(void)
 }
 
 /* The example with its files in dir (absolute paths: a scenario loaded
- * from text has no directory of its own). */
-static char *reduced_yaml(const char *dir)
+ * from text has no directory of its own), as Matrix Market or as DMIG. */
+static char *reduced_yaml(const char *dir, int dmig)
 {
   char with[4096];
-  snprintf(with, sizeof with,
-           "  mesh:\n    reduced:\n      k: %s/apc6x6_reduced_K.mtx\n"
-           "      m: %s/apc6x6_reduced_M.mtx\n      nodes: %s/apc6x6_reduced_nodes.csv\n",
-           dir, dir, dir);
+  if (dmig)
+    snprintf(with, sizeof with,
+             "  mesh:\n    reduced:\n      format: dmig\n      k: %s/apc6x6_reduced.pch\n"
+             "      nodes: %s/apc6x6_reduced_grids.csv\n",
+             dir, dir);
+  else
+    snprintf(with, sizeof with,
+             "  mesh:\n    reduced:\n      k: %s/apc6x6_reduced_K.mtx\n"
+             "      m: %s/apc6x6_reduced_M.mtx\n      nodes: %s/apc6x6_reduced_nodes.csv\n",
+             dir, dir, dir);
   return splice(read_text(EXAMPLE), "  mesh:\n    reduced:", "  fe:\n", with);
 }
 
@@ -113,9 +120,49 @@ static size_t interface_nodes(const fb_fe_hull *h, size_t *nodes)
   return n;
 }
 
+/* a (d x d, symmetric) as the DMIG matrix name in Nastran's free field:
+ * IFO 6, one triangle (rows up to the column), TIN 2, 17 digits; DOF i
+ * node ids[i / 6]'s component i % 6 + 1. */
+static void write_dmig_free(FILE *fp, const char *name, const double *a, size_t d,
+                            const long *ids)
+{
+  fprintf(fp, "DMIG,%s,0,6,2,0\n", name);
+  for (size_t j = 0; j < d; ++j) {
+    fprintf(fp, "DMIG,%s,%ld,%zu,", name, ids[j / 6], j % 6 + 1);
+    for (size_t i = 0; i <= j; ++i)
+      if (a[j * d + i] != 0.0)
+        fprintf(fp, "\n,%ld,%zu,%.17g", ids[i / 6], i % 6 + 1, a[j * d + i]);
+    fputc('\n', fp);
+  }
+}
+
+/* The interface's nodes file at path: "id, x, y, z", with the components
+ * after them when components is not NULL (Matrix Market: DMIG names its
+ * own). */
+static void write_nodes(const char *path, const fb_mesh *mesh, const size_t *nodes, size_t nn,
+                        const char *components)
+{
+  FILE *fp = fopen(path, "w");
+  CHECK(fp != NULL);
+  if (!fp)
+    return;
+  fprintf(fp,
+          "# The interface of examples/apc6x6_reduced.yaml (tests/test_reduced_hull.c)\n"
+          "# id, x, y, z (m)%s\n",
+          components ? ", components" : "");
+  for (size_t i = 0; i < nn; ++i) {
+    const double *x = fb_mesh_node_xyz(mesh, nodes[i]);
+    fprintf(fp, "%ld, %.17g, %.17g, %.17g%s%s\n", fb_mesh_node_id(mesh, nodes[i]), x[0], x[1],
+            x[2], components ? ", " : "", components ? components : "");
+  }
+  CHECK(fclose(fp) == 0);
+}
+
 /* K and M of the twin's hull condensed onto the interface, written into
- * dir as the example's three files. */
-static void write_reduced(const char *dir)
+ * dir as the example's three files, and as a DMIG punch file
+ * (apc6x6_reduced.pch, KAAX and MAAX) with its nodes file
+ * (apc6x6_reduced_grids.csv). */
+static void write_reduced(const char *dir, int with_dmig)
 {
   fb_err err;
   char *yaml = twin_yaml();
@@ -141,17 +188,21 @@ static void write_reduced(const char *dir)
   REQUIRE(fb_mat_new_dense(d, d, m, &mr, &err), &err);
   REQUIRE(fb_mat_write_mtx(mr, path, &err), &err);
   snprintf(path, sizeof path, "%s/apc6x6_reduced_nodes.csv", dir);
-  FILE *fp = fopen(path, "w");
-  CHECK(fp != NULL);
-  if (fp) {
-    fprintf(fp, "# The interface of examples/apc6x6_reduced.yaml (tests/test_reduced_hull.c)\n"
-                "# id, x, y, z (m), components\n");
-    for (size_t i = 0; i < nn; ++i) {
-      const double *x = fb_mesh_node_xyz(h->mesh, nodes[i]);
-      fprintf(fp, "%ld, %.17g, %.17g, %.17g, 123456\n", fb_mesh_node_id(h->mesh, nodes[i]),
-              x[0], x[1], x[2]);
+  write_nodes(path, h->mesh, nodes, nn, "123456");
+  if (with_dmig) {
+    snprintf(path, sizeof path, "%s/apc6x6_reduced_grids.csv", dir);
+    write_nodes(path, h->mesh, nodes, nn, NULL);
+    long ids[64];
+    for (size_t i = 0; i < nn; ++i)
+      ids[i] = fb_mesh_node_id(h->mesh, nodes[i]);
+    snprintf(path, sizeof path, "%s/apc6x6_reduced.pch", dir);
+    FILE *fp = fopen(path, "w");
+    CHECK(fp != NULL);
+    if (fp) {
+      write_dmig_free(fp, "KAAX", k, d, ids);
+      write_dmig_free(fp, "MAAX", m, d, ids);
+      CHECK(fclose(fp) == 0);
     }
-    CHECK(fclose(fp) == 0);
   }
   fprintf(stderr, "wrote the superelement of %zu nodes (%zu DOFs) into %s\n", nn, d, dir);
   fb_mat_free(&K);
@@ -326,21 +377,53 @@ static void test_run(const pair *p, double fc)
   fb_result_free(&r[1]);
 }
 
+/* The same matrices as a DMIG punch file (free field, 17 digits): the
+ * same hull, its free-free frequencies equal the Matrix Market files' to
+ * the solver's 1e-9. */
+static void test_dmig(const char *dir)
+{
+  fb_err err;
+  fb_scenario *s[2];
+  fb_fe_hull *h[2] = {NULL, NULL};
+  double f[2][12];
+  size_t nrigid[2];
+  for (int i = 0; i < 2; ++i) {
+    char *yaml = reduced_yaml(dir, i);
+    s[i] = load_yaml(yaml);
+    free(yaml);
+    REQUIRE(fb_vehicle_fe_hull(s[i], &h[i], &err), &err);
+    REQUIRE(fb_fe_hull_free_modes(h[i], 12, f[i], &nrigid[i], &err), &err);
+  }
+  double worst = 0;
+  for (size_t k = 6; k < 12; ++k)
+    worst = fmax(worst, fabs(f[1][k] - f[0][k]) / f[0][k]);
+  fprintf(stderr, "DMIG against Matrix Market: free-free frequencies within %.2g\n", worst);
+  CHECK(nrigid[1] == 6 && worst <= 1e-9);
+  char what[512];
+  fb_scenario_hull_describe(s[1], what, sizeof what);
+  CHECK(strstr(what, "DMIG") != NULL);
+  for (int i = 0; i < 2; ++i) {
+    fb_fe_hull_free(&h[i]);
+    fb_scenario_free(&s[i]);
+  }
+}
+
 int main(int argc, char **argv)
 {
   if (argc == 3 && !strcmp(argv[1], "--write-example")) {
-    write_reduced(argv[2]);
+    write_reduced(argv[2], 0);
     return check_report(__FILE__);
   }
   const char *dir = test_tmpdir();
-  write_reduced(dir);
+  write_reduced(dir, 1);
   pair p = {{NULL, NULL}, {NULL, NULL}};
   char *yaml = twin_yaml();
   p.s[0] = load_yaml(yaml);
   free(yaml);
-  yaml = reduced_yaml(dir);
+  yaml = reduced_yaml(dir, 0);
   p.s[1] = load_yaml(yaml);
   free(yaml);
+  test_dmig(dir);
   fb_err err;
   for (int i = 0; i < 2; ++i)
     REQUIRE(fb_vehicle_fe_hull(p.s[i], &p.h[i], &err), &err);
