@@ -75,5 +75,16 @@ for c in "${CASES[@]}"; do
 done
 expect_absent "$WORK/asym" "no output of a refused run"
 
+# The mesh command: the superelement's matrices are written, no deck.
+run mesh "$OK" --export-matrices "$WORK/matrices"
+expect_status 0 "mesh --export-matrices"
+expect_in "$OUT" "hull: a superelement over 12 interface nodes (72 DOFs)" "mesh names the superelement"
+expect_in "$OUT" "wrote $WORK/matrices: K.mtx, M.mtx (72 x 72)" "mesh --export-matrices"
+run mesh "$OK" --export "$WORK/hull.inp"
+expect_status 2 "mesh --export hull.inp"
+expect_in "$ERR" "the hull is a superelement, whose interface nodes have no elements to write" \
+  "mesh --export hull.inp"
+expect_absent "$WORK/hull.inp" "no deck written"
+
 echo "$NAME: $checks checks, $failures failed" >&2
 [ "$failures" -eq 0 ]
