@@ -8,7 +8,7 @@
 # missing file, as a missing deck; 2 otherwise): a missing file, a
 # non-symmetric K (fb_reduced_check, naming the matrix file), a suspension
 # point off the interface, a hull point off it, a coupling, a missing or
-# superfluous mass file.
+# superfluous mass file, and the attach file's (points by node id).
 #
 # usage: bash tests/cli_reduced.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -57,7 +57,27 @@ sed 's/^      nodes: apc6x6_reduced_nodes.csv.*/&\n    coupling:\n      kind: ki
 sed '/      m: apc6x6_reduced_M.mtx/d' "$OK" >b_nom.yaml
 sed 's/      format: mtx /      format: dmig /' "$OK" >b_dmigm.yaml
 
+# Points attached by node id (hull.mesh.reduced.attach): the left front
+# suspension point's own node loads; another node is refused at the
+# corner's key (System 2 checks the distance); a node that is no interface
+# node, a set no point has and a bad line at the file's line.
+attach() {
+  printf '%b' "$2" >"at_$1.csv"
+  sed "s/^      nodes: apc6x6_reduced_nodes.csv.*/&\n      attach: at_$1.csv/" "$OK" >"a_$1.yaml"
+}
+attach ok 'SUSP_LF, 24\nengine, 18\n'
+attach far 'SUSP_LF, 9\n'
+attach bad '# set, node\nSUSP_LF, 999\n'
+attach set 'SUSP_XX, 24\n'
+attach syntax 'SUSP_LF 24\n'
+run mesh a_ok.yaml
+expect_status 0 "attach by the points' own node ids"
+
 CASES=(
+  "2|mesh a_far.yaml|$(at a_far.yaml '      x: 1.90 ' 1.90) suspensions.axles[0].x: the scenario puts SUSP_LF at (1.9, 1.05) m, the mesh's node 9 at (-1, -1.05) m"
+  "2|mesh a_bad.yaml|$(at a_bad.yaml 'attach: at_bad.csv' at_bad) hull.mesh.reduced.attach: ./at_bad.csv:2: the node is no interface node"
+  "2|mesh a_set.yaml|$(at a_set.yaml 'attach: at_set.csv' at_set) hull.mesh.reduced.attach: ./at_set.csv:1: no corner (SUSP_<CORNER>), mount or hull mass (MASS_<NAME>) of the scenario has this set"
+  "2|mesh a_syntax.yaml|$(at a_syntax.yaml 'attach: at_syntax.csv' at_syntax) hull.mesh.reduced.attach: ./at_syntax.csv:1: expected 'SET, id'"
   "5|mesh b_missing.yaml|$(at b_missing.yaml 'nodes: none.csv' none.csv) hull.mesh.reduced.nodes: ./none.csv: cannot open"
   "2|run b_asym.yaml --system flexible -o $WORK/asym|$(at b_asym.yaml 'k: k_asym.mtx' k_asym) hull.mesh.reduced.k: ./k_asym.mtx: K is not symmetric: K(node 1 uy, node 1 ux) = -12345.5 but K(node 1 ux, node 1 uy) = 2.30981e+08"
   "2|mesh b_corner.yaml|$(at b_corner.yaml '      x: 1.50 ' 1.50) suspensions.axles[0].x: the scenario puts SUSP_LF at (1.5, 1.05) m, the mesh's node 24 at (1.9, 1.05) m"

@@ -26,16 +26,21 @@
 #include "flexbond/hull_source.h"
 #include "flexbond/reduced.h"
 
+#include "core/textfile.h"
 #include "core/util.h"
 
 typedef struct reduced_params {
-  int format;  /* REDUCED_MTX or REDUCED_DMIG */
-  char *k;     /* Matrix Market: K's file; DMIG: the punch file */
-  char *m;     /* Matrix Market: M's file (DMIG: unused) */
-  char *nodes; /* the interface nodes' positions */
+  int format;   /* REDUCED_MTX or REDUCED_DMIG */
+  char *k;      /* Matrix Market: K's file; DMIG: the punch file */
+  char *m;      /* Matrix Market: M's file (DMIG: unused) */
+  char *nodes;  /* the interface nodes' positions */
+  char *attach; /* lines "SET, node id": a point's node by its id (NULL: none) */
 } reduced_params;
 
 enum { REDUCED_MTX, REDUCED_DMIG };
+
+/* The longest set name the attach file may give (a deck's, Abaqus'). */
+enum { REDUCED_SET_MAX = 80 };
 
 static const char *const reduced_formats[] = {"mtx", "dmig", NULL};
 
@@ -72,6 +77,14 @@ static const fb_param reduced_param[] = {
      .offset = offsetof(reduced_params, nodes),
      .need = FB_PARAM_REQUIRED,
      .doc = "the interface nodes, lines `id, x, y, z` (m), with `123456` after them for mtx"},
+    {.name = "attach",
+     .kind = FB_PARAM_FILE,
+     .store = FB_PARAM_STRING,
+     .offset = offsetof(reduced_params, attach),
+     .need = FB_PARAM_OPTIONAL,
+     .doc = "lines `SET, id`: the interface node of a corner's (`SUSP_LF`), mount's "
+            "(`DRIVER`) or hull mass's (`MASS_<NAME>`) point by its id; other points take "
+            "the nearest"},
 };
 
 static const reduced_params *reduced_of(const fb_scenario *s)
@@ -177,6 +190,107 @@ static int reduced_superelement(const fb_reduced *r, const size_t *index, fb_mes
   return rc;
 }
 
+/* The attach file: a one-node set's interface node by its id. */
+typedef struct attach_line {
+  char set[REDUCED_SET_MAX + 1]; /* in capitals */
+  long id;
+  size_t line;
+  int used;
+} attach_line;
+
+typedef struct attach_map {
+  const char *path;
+  attach_line *line;
+  size_t n, cap;
+} attach_map;
+
+static int attach_fail(const attach_map *a, size_t line, fb_err *err, const char *what)
+{
+  return fb_err_set(err, FB_EPARSE, "%s:%zu: %s", a->path, line, what),
+         reduced_fail(err, "attach");
+}
+
+/* One line "SET, id" of the attach file. */
+static int attach_parse(attach_map *a, const char *text, size_t line_no, fb_err *err)
+{
+  const char *comma = strchr(text, ',');
+  size_t len = comma ? (size_t)(comma - text) : 0;
+  while (len && (text[len - 1] == ' ' || text[len - 1] == '\t'))
+    --len;
+  int ok = comma && len && len <= REDUCED_SET_MAX && isalpha((unsigned char)text[0]);
+  for (size_t i = 0; ok && i < len; ++i)
+    ok = isalnum((unsigned char)text[i]) || text[i] == '_';
+  char *end = NULL;
+  errno = 0;
+  const long id = ok ? strtol(comma + 1, &end, 10) : 0;
+  while (end && (*end == ' ' || *end == '\t'))
+    ++end;
+  if (!ok || errno || id <= 0 || !end || *end)
+    return attach_fail(a, line_no, err,
+                       "expected 'SET, id': a node set's name (letters, digits, '_') and an "
+                       "interface node's id");
+  if (fb_grow((void **)&a->line, &a->cap, a->n, sizeof *a->line))
+    return fb_err_set(err, FB_ENOMEM, "out of memory");
+  attach_line *l = &a->line[a->n++];
+  *l = (attach_line){.id = id, .line = line_no};
+  for (size_t i = 0; i < len; ++i)
+    l->set[i] = (char)toupper((unsigned char)text[i]);
+  for (size_t k = 0; k + 1 < a->n; ++k)
+    if (!strcmp(a->line[k].set, l->set))
+      return attach_fail(a, line_no, err, "the set is given again");
+  return FB_OK;
+}
+
+static int attach_read(const char *path, attach_map *a, fb_err *err)
+{
+  *a = (attach_map){.path = path};
+  if (!path)
+    return FB_OK;
+  fb_text_reader r;
+  int rc = fb_text_open(&r, path, "attach", err);
+  if (rc)
+    reduced_fail(err, "attach");
+  for (char *line = NULL; !rc;) {
+    rc = fb_text_next_data_line(&r, '#', &line);
+    if (rc)
+      reduced_fail(err, "attach");
+    if (rc || !line)
+      break;
+    rc = attach_parse(a, line, r.line_no, err);
+  }
+  fb_text_close(&r);
+  return rc;
+}
+
+/* The attach file's node for set (in capitals), or -1 when it names
+ * none; an error at the file's line when its id is no interface node. */
+static int attach_node(attach_map *a, const fb_mesh *m, const char *set, long *node,
+                       fb_err *err)
+{
+  *node = -1;
+  for (size_t k = 0; k < a->n; ++k)
+    if (!strcmp(a->line[k].set, set)) {
+      a->line[k].used = 1;
+      *node = fb_mesh_find_node_id(m, a->line[k].id);
+      if (*node < 0)
+        return attach_fail(a, a->line[k].line, err,
+                           "the node is no interface node (a node of the nodes file that the "
+                           "matrices name)");
+    }
+  return FB_OK;
+}
+
+/* Every line of the attach file names a set the vehicle has. */
+static int attach_all_used(const attach_map *a, fb_err *err)
+{
+  for (size_t k = 0; k < a->n; ++k)
+    if (!a->line[k].used)
+      return attach_fail(a, a->line[k].line, err,
+                         "no corner (SUSP_<CORNER>), mount or hull mass (MASS_<NAME>) of the "
+                         "scenario has this set");
+  return FB_OK;
+}
+
 /* The mesh node nearest to (x, y) in plan. */
 static size_t reduced_nearest(const fb_mesh *m, double x, double y)
 {
@@ -194,17 +308,21 @@ static size_t reduced_nearest(const fb_mesh *m, double x, double y)
 }
 
 /* A node set of the nodes nearest to the n points (x[i], y[i]), named
- * prefix + name in capitals. */
-static int reduced_set(fb_mesh *m, const char *prefix, const char *name, size_t n,
-                       const double *x, const double *y, fb_err *err)
+ * prefix + name in capitals; a one-node set the attach file names takes
+ * its node. */
+static int reduced_set(fb_mesh *m, attach_map *a, const char *prefix, const char *name,
+                       size_t n, const double *x, const double *y, fb_err *err)
 {
   char *set = fb_strdup_printf("%s%s", prefix, name);
   size_t *nodes = malloc((n ? n : 1) * sizeof *nodes);
   int rc = set && nodes ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
   for (char *c = set; c && *c; ++c)
     *c = (char)toupper((unsigned char)*c);
+  long given = -1;
+  if (!rc && n == 1)
+    rc = attach_node(a, m, set, &given, err);
   for (size_t i = 0; !rc && i < n; ++i)
-    nodes[i] = reduced_nearest(m, x[i], y[i]);
+    nodes[i] = given >= 0 ? (size_t)given : reduced_nearest(m, x[i], y[i]);
   if (!rc)
     rc = fb_mesh_add_nset(m, set, n, nodes, err);
   free(set);
@@ -215,23 +333,28 @@ static int reduced_set(fb_mesh *m, const char *prefix, const char *name, size_t 
 /* The sets System 2 meets the vehicle through (fe_hull.c), and ALL. */
 static int reduced_sets(const fb_scenario *s, fb_mesh *m, fb_err *err)
 {
-  int rc = FB_OK;
+  attach_map a;
+  int rc = attach_read(reduced_of(s)->attach, &a, err);
   for (size_t c = 0; !rc && c < s->ncorners; ++c)
-    rc = reduced_set(m, "SUSP_", s->corner[c].name, 1, &s->corner[c].x, &s->corner[c].y, err);
+    rc = reduced_set(m, &a, "SUSP_", s->corner[c].name, 1, &s->corner[c].x, &s->corner[c].y,
+                     err);
   for (size_t b = 0; !rc && b < s->nmounts; ++b)
-    rc = reduced_set(m, "", s->mount[b].name, 1, &s->mount[b].x, &s->mount[b].y, err);
+    rc = reduced_set(m, &a, "", s->mount[b].name, 1, &s->mount[b].x, &s->mount[b].y, err);
   for (size_t k = 0; !rc && k < s->npoint_masses; ++k)
-    rc = reduced_set(m, "MASS_", s->point_mass[k].name, 1, &s->point_mass[k].x,
+    rc = reduced_set(m, &a, "MASS_", s->point_mass[k].name, 1, &s->point_mass[k].x,
                      &s->point_mass[k].y, err);
   if (!rc)
-    rc = reduced_set(m, "", "LOAD", s->nload, s->load_x, s->load_y, err);
+    rc = attach_all_used(&a, err);
+  free(a.line);
+  if (!rc)
+    rc = reduced_set(m, &a, "", "LOAD", s->nload, s->load_x, s->load_y, err);
   const double ex[2] = {s->edge_front_x, s->edge_front_x},
                rx[2] = {s->edge_rear_x, s->edge_rear_x},
                ey[2] = {s->edge_left_y, s->edge_right_y};
   if (!rc)
-    rc = reduced_set(m, "", "FRONT_EDGE", 2, ex, ey, err);
+    rc = reduced_set(m, &a, "", "FRONT_EDGE", 2, ex, ey, err);
   if (!rc)
-    rc = reduced_set(m, "", "REAR_EDGE", 2, rx, ey, err);
+    rc = reduced_set(m, &a, "", "REAR_EDGE", 2, rx, ey, err);
   size_t *all = malloc((fb_mesh_nnodes(m) ? fb_mesh_nnodes(m) : 1) * sizeof *all);
   for (size_t i = 0; all && i < fb_mesh_nnodes(m); ++i)
     all[i] = i;
@@ -246,12 +369,13 @@ static int reduced_sets(const fb_scenario *s, fb_mesh *m, fb_err *err)
  * (the readers' later errors name their file and line, at k). */
 static int reduced_files_open(const reduced_params *p, fb_err *err)
 {
-  const char *const path[3] = {p->k, p->m, p->nodes}, *const field[3] = {"k", "m", "nodes"};
-  for (int i = 0; i < 3; ++i) {
-    FILE *fp = path[i] ? fopen(path[i], "rb") : NULL;
+  const char *const path[4] = {p->k, p->m, p->nodes, p->attach}, *const field[4] = {"k", "m",
+                                                                                    "nodes",
+                                                                                    "attach"};
+  for (int i = 0; i < 4; ++i) {
+    FILE *fp = path[i] ? fb_open_input(path[i], "rb", err) : NULL;
     if (path[i] && !fp)
-      return fb_err_set(err, FB_EIO, "%s: cannot open: %s", path[i], strerror(errno)),
-             reduced_fail(err, field[i]);
+      return reduced_fail(err, field[i]);
     if (fp)
       fclose(fp);
   }
