@@ -45,6 +45,15 @@ run run point.yaml --system flexible --no-figures -o "$WORK/point"
 expect_status 0 "a hull point on an interface node"
 expect_in "$WORK/point/system2.csv" "hull_displacement" "the hull point's column"
 
+# The modes command names the superelement; a hull mass on an interface
+# node (the engine's mount point) adds its mass.
+sed 's/^  material:/  masses: [{name: battery, mass: 300, x: 1.70, y: -0.55}]\n  material:/' \
+  "$OK" >mass.yaml
+run modes --system flexible mass.yaml
+expect_status 0 "modes with a hull mass on an interface node"
+expect_in "$OUT" "free-free hull (a superelement over 12 interface nodes): 6 rigid-body modes" \
+  "modes names the superelement"
+
 # ---- Refused at their keys.
 sed 's/nodes: apc6x6_reduced_nodes.csv/nodes: none.csv/' "$OK" >b_missing.yaml
 awk 'NR == 4 { $0 = "-12345.5" } 1' apc6x6_reduced_K.mtx >k_asym.mtx

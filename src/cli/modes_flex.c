@@ -237,10 +237,15 @@ static int write_files(cli_outdir *od, const flex_modes *fm, fb_err *err)
 
 static void print_tables(const flex_modes *fm)
 {
-  printf("%s: free-free hull (%zu nodes, %zu S3 + %zu S4): %zu rigid-body modes, then\n",
-         fm->s->name, fb_mesh_nnodes(fm->hull->mesh),
-         fb_mesh_count(fm->hull->mesh, FB_ELEM_TRI3),
-         fb_mesh_count(fm->hull->mesh, FB_ELEM_QUAD4), fm->nrigid);
+  const fb_mesh *m = fm->hull->mesh;
+  if (fb_mesh_nelements(m) == 0)
+    printf("%s: free-free hull (a superelement over %zu interface nodes): %zu rigid-body "
+           "modes, then\n",
+           fm->s->name, fb_mesh_nnodes(m), fm->nrigid);
+  else
+    printf("%s: free-free hull (%zu nodes, %zu S3 + %zu S4): %zu rigid-body modes, then\n",
+           fm->s->name, fb_mesh_nnodes(m), fb_mesh_count(m, FB_ELEM_TRI3),
+           fb_mesh_count(m, FB_ELEM_QUAD4), fm->nrigid);
   for (size_t k = fm->nrigid; k < fm->nhull && k < fm->nrigid + 10; ++k)
     printf("  hull mode %2zu  %10.4f Hz\n", k + 1, fm->hull_freq[k]);
   printf("\nSystem 2, undamped (%zu horizontal rigid-body modes of zero frequency left "
