@@ -396,7 +396,8 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
     fprintf(fp,
             ": a free-free superelement over %zu interface nodes (%zu DOFs), its stiffness "
             "and mass as the files give them (the scenario's material and thickness are not "
-            "used); its modes in the basis are Guyan's (docs/reduced-hulls.md).\n",
+            "used); its free-free modes are those of K and M, stiffer than the structure's "
+            "when the tool reduced it statically (Guyan; docs/reduced-hulls.md).\n",
             fb_mesh_nnodes(m), 6 * fb_mesh_nnodes(m));
   else
     fprintf(fp,
