@@ -7,8 +7,9 @@
 # each bad input is refused at FILE:LINE:COL: KEY (exit status 5 for a
 # missing file, as a missing deck; 2 otherwise): a missing file, a
 # non-symmetric K (fb_reduced_check, naming the matrix file), a suspension
-# point off the interface, a hull point off it, a coupling, a missing or
-# superfluous mass file, and the attach file's (points by node id).
+# point, a load point or an edge end off the interface, a hull point off
+# it, a coupling, a missing or superfluous mass file, and the attach
+# file's (points by node id).
 #
 # usage: bash tests/cli_reduced.sh PATH/TO/flexbond REPO_ROOT
 set -u
@@ -64,6 +65,8 @@ sed 's/^road:/  - signal: hull_displacement\n    at: [0.0, 0.0, -0.86]\n    dire
 sed 's/^      nodes: apc6x6_reduced_nodes.csv.*/&\n    coupling:\n      kind: kinematic\n      radius: 0.1\n      surface: FLOOR/' \
   "$OK" >b_coupling.yaml
 sed '/      m: apc6x6_reduced_M.mtx/d' "$OK" >b_nom.yaml
+sed 's/      x: \[-1.00, 0.40, 1.90\]/      x: [-1.00, 0.40, 1.90, 2.00]/' "$OK" >b_load.yaml
+sed 's/    front_x: 2.47813311938948 /    front_x: 2.30 /' "$OK" >b_edge.yaml
 sed 's/      format: mtx /      format: dmig /' "$OK" >b_dmigm.yaml
 
 # Points attached by node id (hull.mesh.reduced.attach): the left front
@@ -92,6 +95,8 @@ CASES=(
   "2|mesh b_corner.yaml|$(at b_corner.yaml '      x: 1.50 ' 1.50) suspensions.axles[0].x: the scenario puts SUSP_LF at (1.5, 1.05) m, the mesh's node 24 at (1.9, 1.05) m"
   "2|mesh b_point.yaml|$(at b_point.yaml 'at: [0.0' '[') outputs[7].at: the hull is a superelement, whose motion is known at its interface nodes only: the nearest, node 13, is 1.12 m"
   "2|mesh b_coupling.yaml|$(at b_coupling.yaml 'kind: kinematic' kinematic) hull.mesh.coupling.kind: a reduced hull has no surface to couple to"
+  "2|mesh b_load.yaml|$(at b_load.yaml '    grid:' grid) load.points[6]: the scenario puts a point of LOAD at (2, -1.05) m, the nearest interface node, 21, at (1.9, -1.05) m (they must agree within 1 mm)"
+  "2|mesh b_edge.yaml|$(at b_edge.yaml 'front_x: 2.30' 2.30) hull.edges.front_x: the scenario puts a point of FRONT_EDGE at (2.3, 1.05) m, the nearest interface node, 32"
   "2|mesh b_nom.yaml|$(at b_nom.yaml 'format: mtx' format) hull.mesh.reduced.m: a hull needs its mass: the file of M"
   "2|mesh b_dmigm.yaml|$(at b_dmigm.yaml 'm: apc6x6_reduced_M.mtx' apc6x6) hull.mesh.reduced.m: a DMIG file holds both matrices (KAAX and MAAX)"
 )

@@ -307,11 +307,23 @@ static size_t reduced_nearest(const fb_mesh *m, double x, double y)
   return best;
 }
 
+/* Where a set's points are in the description, for an error about one:
+ * part kind at field, point i's index i when per_point, else 0 (kind 0:
+ * System 2 checks the set's one node against its point itself,
+ * fe_hull.c). */
+typedef struct set_part {
+  int kind;
+  int per_point;
+  const char *field;
+} set_part;
+
 /* A node set of the nodes nearest to the n points (x[i], y[i]), named
  * prefix + name in capitals; a one-node set the attach file names takes
- * its node. */
+ * its node. Each point of a set of several is checked here, within 1 mm
+ * as System 2 checks a deck's: two points that took the same node would
+ * make one member of the set. */
 static int reduced_set(fb_mesh *m, attach_map *a, const char *prefix, const char *name,
-                       size_t n, const double *x, const double *y, fb_err *err)
+                       size_t n, const double *x, const double *y, set_part part, fb_err *err)
 {
   char *set = fb_strdup_printf("%s%s", prefix, name);
   size_t *nodes = malloc((n ? n : 1) * sizeof *nodes);
@@ -321,8 +333,16 @@ static int reduced_set(fb_mesh *m, attach_map *a, const char *prefix, const char
   long given = -1;
   if (!rc && n == 1)
     rc = attach_node(a, m, set, &given, err);
-  for (size_t i = 0; !rc && i < n; ++i)
+  for (size_t i = 0; !rc && i < n; ++i) {
     nodes[i] = given >= 0 ? (size_t)given : reduced_nearest(m, x[i], y[i]);
+    const double *p = fb_mesh_node_xyz(m, nodes[i]);
+    if (part.kind && hypot(p[0] - x[i], p[1] - y[i]) > 1e-3)
+      rc = fb_err_set(err, FB_EMODEL,
+                      "the scenario puts a point of %s at (%.6g, %.6g) m, the nearest "
+                      "interface node, %ld, at (%.6g, %.6g) m (they must agree within 1 mm)",
+                      set, x[i], y[i], fb_mesh_node_id(m, nodes[i]), p[0], p[1]),
+      fb_err_set_part(err, part.kind, part.per_point ? i : 0, FB_ERR_NO_ELEMENT, part.field);
+  }
   if (!rc)
     rc = fb_mesh_add_nset(m, set, n, nodes, err);
   free(set);
@@ -333,28 +353,34 @@ static int reduced_set(fb_mesh *m, attach_map *a, const char *prefix, const char
 /* The sets System 2 meets the vehicle through (fe_hull.c), and ALL. */
 static int reduced_sets(const fb_scenario *s, fb_mesh *m, fb_err *err)
 {
+  const set_part one = {0, 0, ""};
   attach_map a;
   int rc = attach_read(reduced_of(s)->attach, &a, err);
   for (size_t c = 0; !rc && c < s->ncorners; ++c)
     rc = reduced_set(m, &a, "SUSP_", s->corner[c].name, 1, &s->corner[c].x, &s->corner[c].y,
-                     err);
+                     one, err);
   for (size_t b = 0; !rc && b < s->nmounts; ++b)
-    rc = reduced_set(m, &a, "", s->mount[b].name, 1, &s->mount[b].x, &s->mount[b].y, err);
+    rc = reduced_set(m, &a, "", s->mount[b].name, 1, &s->mount[b].x, &s->mount[b].y, one, err);
   for (size_t k = 0; !rc && k < s->npoint_masses; ++k)
     rc = reduced_set(m, &a, "MASS_", s->point_mass[k].name, 1, &s->point_mass[k].x,
-                     &s->point_mass[k].y, err);
+                     &s->point_mass[k].y, one, err);
   if (!rc)
     rc = attach_all_used(&a, err);
   free(a.line);
   if (!rc)
-    rc = reduced_set(m, &a, "", "LOAD", s->nload, s->load_x, s->load_y, err);
+    rc = reduced_set(m, &a, "", "LOAD", s->nload, s->load_x, s->load_y,
+                     (set_part){FB_PART_LOAD_POINT, 1, ""}, err);
   const double ex[2] = {s->edge_front_x, s->edge_front_x},
                rx[2] = {s->edge_rear_x, s->edge_rear_x},
                ey[2] = {s->edge_left_y, s->edge_right_y};
   if (!rc)
-    rc = reduced_set(m, &a, "", "FRONT_EDGE", 2, ex, ey, err);
+    rc = reduced_set(
+        m, &a, "", "FRONT_EDGE", 2, ex, ey,
+        (set_part){FB_PART_VEHICLE, 0, fb_part_member_(FB_PART_VEHICLE, edge_front_x)}, err);
   if (!rc)
-    rc = reduced_set(m, &a, "", "REAR_EDGE", 2, rx, ey, err);
+    rc = reduced_set(
+        m, &a, "", "REAR_EDGE", 2, rx, ey,
+        (set_part){FB_PART_VEHICLE, 0, fb_part_member_(FB_PART_VEHICLE, edge_rear_x)}, err);
   size_t *all = malloc((fb_mesh_nnodes(m) ? fb_mesh_nnodes(m) : 1) * sizeof *all);
   for (size_t i = 0; all && i < fb_mesh_nnodes(m); ++i)
     all[i] = i;
