@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* The hull-source gallery (flexbond/hull_source.h): registration, one
  * conformance harness that every source of a gallery passes (the built-in
- * generator and deck, and a toy source a program registers at run time:
+ * generator, deck and reduced, and a toy source a program registers at run time:
  * a flat rectangular plate made with the fem module's mesh API), and the
  * toy source used from a scenario file with its errors at its keys. */
 #include <ctype.h>
@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "flexbond/fem.h"
 #include "flexbond/hull_source.h"
@@ -375,6 +376,21 @@ static const char *example_deck(void)
   return path;
 }
 
+/* examples/apc6x6_reduced.yaml, its files named by absolute paths (a
+ * scenario loaded from text has no directory of its own). */
+static char *example_reduced(void)
+{
+  char dir[4096], mesh[3 * 4096 + 200];
+  CHECK(getcwd(dir, sizeof dir - 16) != NULL);
+  strcat(dir, "/../examples");
+  snprintf(mesh, sizeof mesh,
+           "  mesh:\n    reduced:\n      k: %s/apc6x6_reduced_K.mtx\n"
+           "      m: %s/apc6x6_reduced_M.mtx\n      nodes: %s/apc6x6_reduced_nodes.csv\n",
+           dir, dir, dir);
+  return replaced(read_text("../examples/apc6x6_reduced.yaml"), "  mesh:\n    reduced:", 0,
+                  "  fe:\n", mesh);
+}
+
 /* A scenario whose hull comes from source src, loaded with gallery g;
  * mesh text into *yaml (new) so that a test can spoil it. */
 static char *source_yaml(const fb_hull_source *src)
@@ -388,6 +404,8 @@ static char *source_yaml(const fb_hull_source *src)
   }
   if (!strcmp(src->name, "plate"))
     return example_with_mesh(PLATE_MESH, 1);
+  if (!strcmp(src->name, "reduced"))
+    return example_reduced();
   return NULL; /* a source the harness cannot use: a failure below */
 }
 
@@ -532,6 +550,10 @@ static void test_conformance(const fb_hull_source_gallery *g)
   check_refused(g, gen, "width: 2.10 ", "width: -2.10", "hull.mesh.generator.width");
   check_refused(g, gen, "side_rows: 2", "side_rows: 0", "hull.mesh.generator.side_rows");
   check_refused(g, deck, "\n    deck: ", "\n    deck: /no-such-dir", "hull.mesh.deck");
+  const fb_hull_source *red = fb_hull_source_gallery_find(g, "reduced");
+  check_refused(g, red, "reduced_M.mtx", "reduced_none.mtx", "hull.mesh.reduced.m");
+  check_refused(g, red, "    reduced:\n", "    reduced:\n      format: cdb\n",
+                "hull.mesh.reduced.format");
   check_refused(g, pl, "width: 2.10", "width: -2.10", "hull.mesh.plate.width");
   check_refused(g, pl, "      x_front: 2.47813311938948", "      x_front: -3",
                 "hull.mesh.plate.x_front");
@@ -546,11 +568,12 @@ static const fb_hull_source_ops half_ops = {.make = plate_make, .describe = plat
 static void test_registration(fb_hull_source_gallery *g)
 {
   fb_err err;
-  CHECK(fb_hull_source_gallery_count(g) == 2);
+  CHECK(fb_hull_source_gallery_count(g) == 3);
   CHECK(fb_hull_source_gallery_find(g, "generator") == &fb_hull_source_generator);
   CHECK(fb_hull_source_gallery_find(g, "deck") == &fb_hull_source_deck);
+  CHECK(fb_hull_source_gallery_find(g, "reduced") == &fb_hull_source_reduced);
   CHECK(fb_hull_source_gallery_find(g, "plate") == NULL);
-  CHECK(fb_hull_source_gallery_at(g, 2) == NULL);
+  CHECK(fb_hull_source_gallery_at(g, 3) == NULL);
   CHECK(fb_hull_source_gallery_add(g, &plate, &err) == FB_OK);
   CHECK(fb_hull_source_gallery_add(g, &plate, &err) == FB_EINVAL &&
         strstr(err.msg, "already") != NULL);
@@ -560,7 +583,7 @@ static void test_registration(fb_hull_source_gallery *g)
         strstr(err.msg, "key") != NULL);
   const fb_hull_source bad_name = {.name = "2d", .doc = "x", .ops = &plate_ops};
   CHECK(fb_hull_source_gallery_add(g, &bad_name, &err) == FB_EINVAL);
-  CHECK(fb_hull_source_gallery_count(g) == 3);
+  CHECK(fb_hull_source_gallery_count(g) == 4);
 }
 
 /* The plate against its closed forms: a thin plate of L x W, mass

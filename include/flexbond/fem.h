@@ -157,6 +157,20 @@ const char *fb_mesh_section_elset(const fb_mesh *m, size_t i);
 const fb_shell_props *fb_mesh_section_props(const fb_mesh *m, size_t i);
 /* The section of element e, or -1 for none. */
 long fb_mesh_element_section(const fb_mesh *m, size_t e);
+/* A superelement: a structure reduced elsewhere (flexbond/reduced.h)
+ * over the six DOFs of each of nodes[0 .. n) (indices, distinct), its
+ * stiffness k and mass (NULL: none) dense column-major 6n x 6n, row
+ * 6 i + c the node nodes[i]'s component c (ux, uy, uz, rx, ry, rz), in
+ * global axes (copied). fb_fem_assemble adds it to the shells' matrices;
+ * its nodes count as used (fb_mesh_check). One per mesh: a second
+ * replaces the first. */
+int fb_mesh_set_superelement(fb_mesh *m, size_t n, const size_t *nodes, const double *k,
+                             const double *mass, fb_err *err);
+/* The superelement's node count (0: none) and its arrays (borrowed from
+ * m; any pointer may be NULL). */
+size_t fb_mesh_superelement(const fb_mesh *m, const size_t **nodes, const double **k,
+                            const double **mass);
+
 /* The number of elements whose section is sec (-1: those with none). */
 size_t fb_mesh_section_nelements(const fb_mesh *m, long sec);
 /* The properties element e is assembled with: its section's with base's
@@ -213,6 +227,19 @@ int fb_fem_free_dofs(size_t n, const size_t *fixed, size_t nfixed, size_t *keep,
  * matrix), keep strictly increasing; same storage kind as a. */
 int fb_fem_submatrix(const fb_mat *a, const size_t *keep, size_t nkeep, fb_mat **out,
                      fb_err *err);
+
+/* Guyan's static condensation of K (and M) onto the DOFs keep[0 ..
+ * nkeep), strictly increasing: with T = [I; -K_oo^-1 K_or] (the other
+ * DOFs' static response to each kept DOF's unit motion), kr = T' K T =
+ * K_rr - K_ro K_oo^-1 K_or and mr = T' M T (either NULL), dense
+ * column-major nkeep x nkeep, symmetrised. Exact statically for loads at
+ * the kept DOFs; M's condensation keeps the rigid-body motions' mass
+ * exactly when the kept DOFs can show them (Guyan, "Reduction of
+ * stiffness and mass matrices", AIAA J. 3(2), 1965). K_oo must be
+ * positive definite: the kept DOFs hold every rigid-body motion.
+ * FB_EINVAL, FB_ENOMEM, or the factorisation's error. */
+int fb_fem_guyan(const fb_mat *K, const fb_mat *M, const size_t *keep, size_t nkeep, double *kr,
+                 double *mr, fb_err *err);
 
 /* ---- Modes and reduced bases of a structure (src/fem/modal.c,
  * src/fem/lanczos.c). K symmetric positive semi-definite (a free

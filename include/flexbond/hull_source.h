@@ -70,11 +70,13 @@ typedef struct fb_hull_source_ops {
 struct fb_hull_source {
   const char *name; /* letters, digits and '_', not from a digit: "generator" */
   const char *doc;  /* one line */
-  /* The values it reads from the description's hull_params (numbers and
-   * choices: the block is copied by value), flexbond/param.h. A maker
-   * of descriptions names them in its own words (a scenario file's keys
-   * hull.mesh.<source>.<param>). The built-in sources declare none: the
-   * scenario format's own keys fill hull_deck and hull_mesh. */
+  /* The values it reads from the description's hull_params (numbers,
+   * choices, lists and files: the block is copied by value, its files'
+   * paths duplicated, and freed with the description), flexbond/param.h.
+   * A maker of descriptions names them in its own words (a scenario
+   * file's keys hull.mesh.<source>.<param>). The generator and the deck
+   * declare none: the scenario format's own keys fill hull_deck and
+   * hull_mesh. */
   const fb_param *param;
   size_t nparams;
   size_t params_size; /* <= FB_HULL_SOURCE_PARAMS_MAX */
@@ -87,7 +89,7 @@ struct fb_hull_source {
 };
 
 /* 0 if src is a sound source: a well-formed name and documentation,
- * sound declarations of numbers and choices (fb_params_declared) in a
+ * sound declarations of its parameters (fb_params_declared) in a
  * block that fits, describe, and either read alone or make with key and
  * centroid.
  * FB_EINVAL naming the fault otherwise. */
@@ -96,6 +98,9 @@ int fb_hull_source_check(const fb_hull_source *src, fb_err *err);
 /* The built-in sources. */
 extern const fb_hull_source fb_hull_source_generator;
 extern const fb_hull_source fb_hull_source_deck;
+/* A structure reduced elsewhere: Matrix Market or DMIG stiffness and mass
+ * over interface nodes (docs/reduced-hulls.md). */
+extern const fb_hull_source fb_hull_source_reduced;
 
 /* The source of s's hull: the one set, else the generator. */
 const fb_hull_source *fb_scenario_hull_source(const fb_scenario *s);

@@ -1545,7 +1545,8 @@ class Scenario(_Closing):
 
     def hull_mesh(self):
         """System 2's finite-element hull as flexbond mesh builds and
-        describes it (the generator or the deck, checked): a HullMesh, from
+        describes it (its source's: the generator, a deck or a reduced
+        structure's superelement, checked): a HullMesh, from
         the same library calls (fb_fe_hull_mass_props,
         fb_fe_hull_section_totals). Error when the scenario has no
         finite-element hull."""

@@ -341,7 +341,10 @@ int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_m
     cli_animation_file(m->sys, "pvd", 0, name, sizeof name);
     rc = cli_outdir_write(od, name, write_pvd, &an, err);
   }
-  if (!rc && o->gif)
+  /* A superelement (a reduced hull) has no surface to draw: its VTU
+   * frames hold its nodes' motion, and no GIF is made (info->gif). */
+  const int gif = o->gif && fb_mesh_nelements(an.mesh) > 0;
+  if (!rc && gif)
     rc = write_gif(od, &an, o, err);
   if (!rc) {
     info->nframes = an.nframes;
@@ -349,7 +352,7 @@ int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_m
     info->t1 = an.frames[an.nframes - 1].t;
     info->warp = an.warp;
     info->umax = an.umax;
-    info->gif = o->gif;
+    info->gif = gif;
   }
   anim_free(&an);
   return rc;

@@ -102,12 +102,17 @@ static int print_properties(const fb_scenario *s, const fb_fe_hull *h, fb_err *e
   const fb_mesh *m = h->mesh;
   double o[3];
   fb_scenario_frame_offset(s, o);
-  printf("hull mesh: %zu nodes, %zu S3 + %zu S4 elements", fb_mesh_nnodes(m),
-         fb_mesh_count(m, FB_ELEM_TRI3), fb_mesh_count(m, FB_ELEM_QUAD4));
-  if (fb_mesh_nsections(m) == 0)
-    printf(", %g m plates\n", h->props.thickness);
-  else
-    printf(", sections:\n");
+  if (fb_mesh_nelements(m) == 0) {
+    printf("hull: a superelement over %zu interface nodes (%zu DOFs)\n", fb_mesh_nnodes(m),
+           6 * fb_mesh_nnodes(m));
+  } else {
+    printf("hull mesh: %zu nodes, %zu S3 + %zu S4 elements", fb_mesh_nnodes(m),
+           fb_mesh_count(m, FB_ELEM_TRI3), fb_mesh_count(m, FB_ELEM_QUAD4));
+    if (fb_mesh_nsections(m) == 0)
+      printf(", %g m plates\n", h->props.thickness);
+    else
+      printf(", sections:\n");
+  }
   for (long sec = -1; fb_mesh_nsections(m) && sec < (long)fb_mesh_nsections(m); ++sec)
     print_section(h, sec);
   print_point_masses(m);
@@ -204,6 +209,13 @@ static int run(const char *path, const char *export_path, const char *matrices_d
   /* A signal during the mesh: the file is not written. */
   if (!rc && (export_path || matrices_dir))
     rc = cli_check_interrupt(&err);
+  /* A superelement's matrices are no deck's or VTU's elements:
+   * --export-matrices writes them. */
+  if (!rc && export_path && fb_mesh_nelements(h->mesh) == 0)
+    rc = fb_err_set(&err, FB_EINVAL,
+                    "--export %s: the hull is a superelement, whose interface nodes have no "
+                    "elements to write (--export-matrices writes its K and M)",
+                    export_path);
   fb_mesh *placed = NULL;
   if (!rc && export_path)
     rc = file_frame_mesh(s, h, 1, &placed, &err);

@@ -157,6 +157,10 @@ static void fill_parts(const fb_scenario *s, const fb_fe_hull *hull, const doubl
 int cli_write_mode_pictures(cli_outdir *od, const fb_scenario *s, const fb_fe_hull *hull,
                             const fb_mode_set *ms, fb_err *err)
 {
+  /* A superelement (a reduced hull) has no surface to draw: no pictures,
+   * which the report says (report.c). */
+  if (fb_mesh_nelements(hull->mesh) == 0)
+    return FB_OK;
   mode_parts mp = {malloc((s->nmounts + 1) * sizeof *mp.body),
                    malloc((s->ncorners + 1) * sizeof *mp.wheel), mesh_extent(hull->mesh)};
   int rc = mp.body && mp.wheel ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
@@ -233,10 +237,15 @@ static int write_files(cli_outdir *od, const flex_modes *fm, fb_err *err)
 
 static void print_tables(const flex_modes *fm)
 {
-  printf("%s: free-free hull (%zu nodes, %zu S3 + %zu S4): %zu rigid-body modes, then\n",
-         fm->s->name, fb_mesh_nnodes(fm->hull->mesh),
-         fb_mesh_count(fm->hull->mesh, FB_ELEM_TRI3),
-         fb_mesh_count(fm->hull->mesh, FB_ELEM_QUAD4), fm->nrigid);
+  const fb_mesh *m = fm->hull->mesh;
+  if (fb_mesh_nelements(m) == 0)
+    printf("%s: free-free hull (a superelement over %zu interface nodes): %zu rigid-body "
+           "modes, then\n",
+           fm->s->name, fb_mesh_nnodes(m), fm->nrigid);
+  else
+    printf("%s: free-free hull (%zu nodes, %zu S3 + %zu S4): %zu rigid-body modes, then\n",
+           fm->s->name, fb_mesh_nnodes(m), fb_mesh_count(m, FB_ELEM_TRI3),
+           fb_mesh_count(m, FB_ELEM_QUAD4), fm->nrigid);
   for (size_t k = fm->nrigid; k < fm->nhull && k < fm->nrigid + 10; ++k)
     printf("  hull mode %2zu  %10.4f Hz\n", k + 1, fm->hull_freq[k]);
   printf("\nSystem 2, undamped (%zu horizontal rigid-body modes of zero frequency left "

@@ -392,14 +392,22 @@ static void write_fe_hull(FILE *fp, const cli_run_outputs *o)
   char what[HULL_SOURCE_TEXT];
   fb_scenario_hull_describe(s, what, sizeof what);
   fb_md_write_text(fp, what);
-  fprintf(fp,
-          ": %zu nodes, %zu triangles (S3) and %zu quadrilaterals (S4), flat shells with 6 "
-          "DOFs per node. Material E = %.10g GPa, nu = %.10g, rho = %.10g kg/m^3, thickness "
-          "%.10g m; %s mass matrix; drilling stiffness factor %.3g.\n",
-          fb_mesh_nnodes(m), fb_mesh_count(m, FB_ELEM_TRI3), fb_mesh_count(m, FB_ELEM_QUAD4),
-          s->young / 1e9, s->poisson, s->density, s->thickness,
-          s->hull_mass_matrix == FB_MASS_LUMPED ? "lumped" : "consistent",
-          s->hull_drill_factor);
+  if (fb_mesh_nelements(m) == 0)
+    fprintf(fp,
+            ": a free-free superelement over %zu interface nodes (%zu DOFs), its stiffness "
+            "and mass as the files give them (the scenario's material and thickness are not "
+            "used); its free-free modes are those of K and M, stiffer than the structure's "
+            "when the tool reduced it statically (Guyan; docs/reduced-hulls.md).\n",
+            fb_mesh_nnodes(m), 6 * fb_mesh_nnodes(m));
+  else
+    fprintf(fp,
+            ": %zu nodes, %zu triangles (S3) and %zu quadrilaterals (S4), flat shells with 6 "
+            "DOFs per node. Material E = %.10g GPa, nu = %.10g, rho = %.10g kg/m^3, thickness "
+            "%.10g m; %s mass matrix; drilling stiffness factor %.3g.\n",
+            fb_mesh_nnodes(m), fb_mesh_count(m, FB_ELEM_TRI3), fb_mesh_count(m, FB_ELEM_QUAD4),
+            s->young / 1e9, s->poisson, s->density, s->thickness,
+            s->hull_mass_matrix == FB_MASS_LUMPED ? "lumped" : "consistent",
+            s->hull_drill_factor);
   write_sections(fp, m);
   fprintf(fp,
           "- System 2's structural damping: B = beta K with beta = %.4g s, so that the %s "
@@ -715,6 +723,12 @@ static void write_mode_pictures(FILE *fp, const cli_run_outputs *o)
     fputs("\nNo mode pictures: the run had `--no-figures`.\n", fp);
     return;
   }
+  if (fb_mesh_nelements(o->hull->mesh) == 0) {
+    fputs("\nNo mode pictures: the hull is a superelement, whose interface nodes have no "
+          "surface to draw.\n",
+          fp);
+    return;
+  }
   size_t pictured[CLI_MAX_PICTURED_MODES];
   const size_t npictured =
       cli_pictured_modes(o->scenario, ms, pictured, CLI_MAX_PICTURED_MODES);
@@ -942,6 +956,10 @@ static void write_animation(FILE *fp, const cli_run_outputs *o)
       fprintf(fp, "\n![%s ", cli_system_label(o->runs[i].sys));
       write_road(fp, o->scenario, 0);
       fprintf(fp, "](%s)\n", gif);
+    } else if (o->animate->gif) {
+      fputs("\nNo GIF: the hull is a superelement, whose interface nodes have no surface to "
+            "draw.\n",
+            fp);
     }
   }
 }

@@ -52,6 +52,11 @@ static int node_graph(const fb_mesh *m, pattern *p, fb_err *err)
   for (size_t e = 0; e < ne; ++e)
     for (size_t a = 0; a < (size_t)fb_mesh_element_type(m, e); ++a)
       count[fb_mesh_element_nodes(m, e)[a] + 1] += (size_t)fb_mesh_element_type(m, e);
+  /* The superelement joins all its nodes, as one element of ns nodes. */
+  const size_t *super = NULL;
+  const size_t ns = fb_mesh_superelement(m, &super, NULL, NULL);
+  for (size_t a = 0; a < ns; ++a)
+    count[super[a] + 1] += ns;
   for (size_t i = 0; i < nn; ++i)
     count[i + 1] += count[i];
   p->adj = malloc((count[nn] ? count[nn] : 1) * sizeof *p->adj);
@@ -67,6 +72,9 @@ static int node_graph(const fb_mesh *m, pattern *p, fb_err *err)
       for (size_t b = 0; b < nen; ++b)
         p->adj[count[nodes[a]]++] = nodes[b];
   }
+  for (size_t a = 0; a < ns; ++a)
+    for (size_t b = 0; b < ns; ++b)
+      p->adj[count[super[a]]++] = super[b];
   free(count);
   /* Sort and compact each list in place; adj_start becomes the compact
    * starts. */
@@ -117,6 +125,28 @@ static size_t block_offset(const pattern *p, size_t a, size_t b)
   return 6 * k;
 }
 
+/* Adds the dense column-major matrices ke and me (either NULL) over the
+ * six DOFs of each of nodes[0 .. nen) into the values kv and mv laid out
+ * by p. */
+static void scatter(const pattern *p, const size_t *nodes, size_t nen, const double *ke,
+                    const double *me, double *kv, double *mv)
+{
+  const size_t n = 6 * nen;
+  for (size_t ja = 0; ja < nen; ++ja)
+    for (size_t ib = 0; ib < nen; ++ib) {
+      const size_t off = block_offset(p, nodes[ja], nodes[ib]);
+      for (size_t k = 0; k < 6; ++k) {
+        const size_t dst = p->colptr[6 * nodes[ja] + k] + off, src = (6 * ja + k) * n + 6 * ib;
+        for (size_t l = 0; l < 6; ++l) {
+          if (ke)
+            kv[dst + l] += ke[src + l];
+          if (me)
+            mv[dst + l] += me[src + l];
+        }
+      }
+    }
+}
+
 /* Computes element e and adds it into the values kv and mv (either
  * NULL) laid out by p. */
 static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *base,
@@ -124,7 +154,7 @@ static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *base,
 {
   const fb_shell_props props = fb_mesh_element_props(m, e, base);
   const fb_elem_type type = fb_mesh_element_type(m, e);
-  const size_t nen = (size_t)type, n = 6 * nen;
+  const size_t nen = (size_t)type;
   const size_t *nodes = fb_mesh_element_nodes(m, e);
   double xyz[3 * 4], ke[24 * 24], me[24 * 24];
   for (size_t a = 0; a < nen; ++a)
@@ -135,20 +165,19 @@ static int add_element(const fb_mesh *m, size_t e, const fb_shell_props *base,
     fb_err_prefix(err, "element %ld: ", fb_mesh_element_id(m, e));
     return rc;
   }
-  for (size_t ja = 0; ja < nen; ++ja)
-    for (size_t ib = 0; ib < nen; ++ib) {
-      const size_t off = block_offset(p, nodes[ja], nodes[ib]);
-      for (size_t k = 0; k < 6; ++k) {
-        const size_t dst = p->colptr[6 * nodes[ja] + k] + off, src = (6 * ja + k) * n + 6 * ib;
-        for (size_t l = 0; l < 6; ++l) {
-          if (kv)
-            kv[dst + l] += ke[src + l];
-          if (mv)
-            mv[dst + l] += me[src + l];
-        }
-      }
-    }
+  scatter(p, nodes, nen, kv ? ke : NULL, mv ? me : NULL, kv, mv);
   return FB_OK;
+}
+
+/* The superelement's matrices (fb_mesh_set_superelement) into kv and mv
+ * (either NULL), laid out by p. */
+static void add_superelement(const fb_mesh *m, const pattern *p, double *kv, double *mv)
+{
+  const size_t *nodes = NULL;
+  const double *ks = NULL, *ms = NULL;
+  const size_t ns = fb_mesh_superelement(m, &nodes, &ks, &ms);
+  if (ns)
+    scatter(p, nodes, ns, kv ? ks : NULL, mv ? ms : NULL, kv, mv);
 }
 
 /* The mesh's point masses on their nodes' translations (the diagonal
@@ -212,7 +241,7 @@ int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass
     *M = NULL;
   if (!m || (!K && !M))
     return fb_err_set(err, FB_EINVAL, "fb_fem_assemble: NULL mesh or no output matrix");
-  if (fb_mesh_nelements(m) == 0)
+  if (fb_mesh_nelements(m) == 0 && !fb_mesh_superelement(m, NULL, NULL, NULL))
     return fb_err_set(err, FB_EINVAL, "fb_fem_assemble: the mesh has no elements");
   int rc = fb_shell_check_props(p, err);
   if (rc)
@@ -228,6 +257,8 @@ int fb_fem_assemble(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind mass
     rc = fb_err_set(err, FB_ENOMEM, "out of memory assembling %zu matrix entries", cap);
   for (size_t e = 0; !rc && e < fb_mesh_nelements(m); ++e)
     rc = add_element(m, e, p, mass, &pat, kv, mv, err);
+  if (!rc)
+    add_superelement(m, &pat, kv, mv);
   if (!rc && M)
     rc = add_point_masses(m, &pat, mv, err);
   if (!rc && K)
@@ -343,9 +374,61 @@ static void add_point_rigid_mass(const fb_mesh *m, const double *o, double *g)
   }
 }
 
-/* The 6 x 6 rigid-body mass matrix about o, sum over the elements of
- * r_e' M_e r_e (r_e: the element's rows of the six rigid-body fields about
- * o), into g (row-major). */
+/* Adds r' me r to g (row-major 6 x 6): me the dense column-major mass
+ * over the six DOFs of each of nodes[0 .. nn), r their rows of the six
+ * rigid-body fields about o (rigid_mode's); r (6 * 6 nn) and mr (6 nn)
+ * are the caller's room. */
+static void add_rigid_block(const fb_mesh *m, const size_t *nodes, size_t nn, const double *me,
+                            const double *o, double *r, double *mr, double *g)
+{
+  const size_t n = 6 * nn;
+  memset(r, 0, 6 * n * sizeof *r);
+  for (int k = 0; k < 6; ++k)
+    for (size_t a = 0; a < nn; ++a) {
+      const double *xyz = fb_mesh_node_xyz(m, nodes[a]);
+      double *ra = r + (size_t)k * n + 6 * a;
+      if (k < 3) {
+        ra[k] = 1.0;
+        continue;
+      }
+      const int ax = k - 3, a1 = (ax + 1) % 3, a2 = (ax + 2) % 3;
+      ra[a1] = -(xyz[a2] - o[a2]);
+      ra[a2] = xyz[a1] - o[a1];
+      ra[3 + ax] = 1.0;
+    }
+  for (int j = 0; j < 6; ++j) {
+    for (size_t i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (size_t l = 0; l < n; ++l)
+        sum += me[l * n + i] * r[(size_t)j * n + l];
+      mr[i] = sum;
+    }
+    for (int i = 0; i < 6; ++i)
+      g[6 * i + j] += dot(n, r + (size_t)i * n, mr);
+  }
+}
+
+/* The superelement's r' M r about o added to g. */
+static int add_superelement_rigid_mass(const fb_mesh *m, const double *o, double *g,
+                                       fb_err *err)
+{
+  const size_t *nodes = NULL;
+  const double *ms = NULL;
+  const size_t ns = fb_mesh_superelement(m, &nodes, NULL, &ms);
+  if (!ns)
+    return FB_OK;
+  double *r = malloc(36 * ns * sizeof *r), *mr = malloc(6 * ns * sizeof *mr);
+  if (r && mr)
+    add_rigid_block(m, nodes, ns, ms, o, r, mr, g);
+  free(r);
+  free(mr);
+  return r && mr ? FB_OK
+                 : fb_err_set(err, FB_ENOMEM, "out of memory for a superelement's mass");
+}
+
+/* The 6 x 6 rigid-body mass matrix about o, sum over the elements (and
+ * the superelement) of r_e' M_e r_e (r_e: the element's rows of the six
+ * rigid-body fields about o), into g (row-major). */
 static int rigid_mass_about(const fb_mesh *m, const fb_shell_props *p, fb_mass_kind kind,
                             const double *o, double *g, fb_err *err)
 {
@@ -354,41 +437,19 @@ static int rigid_mass_about(const fb_mesh *m, const fb_shell_props *p, fb_mass_k
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
     const fb_shell_props props = fb_mesh_element_props(m, e, p);
     const fb_elem_type type = fb_mesh_element_type(m, e);
-    const size_t nn = (size_t)type, n = 6 * nn;
+    const size_t nn = (size_t)type;
     const size_t *nodes = fb_mesh_element_nodes(m, e);
-    double xyz[3 * 4], me[24 * 24], r[6 * 24] = {0}, mr[24];
+    double xyz[3 * 4], me[24 * 24], r[6 * 24], mr[24];
     for (size_t a = 0; a < nn; ++a)
       for (size_t k = 0; k < 3; ++k)
         xyz[3 * a + k] = fb_mesh_node_xyz(m, nodes[a])[k];
     const int rc = fb_shell_element(type, xyz, &props, kind, NULL, me, err);
     if (rc)
       return fb_err_prefix(err, "element %ld: ", fb_mesh_element_id(m, e)), rc;
-    /* The element's rows of rigid_mode's fields. */
-    for (int k = 0; k < 6; ++k)
-      for (size_t a = 0; a < nn; ++a) {
-        double *ra = r + (size_t)k * n + 6 * a;
-        if (k < 3) {
-          ra[k] = 1.0;
-          continue;
-        }
-        const int ax = k - 3, a1 = (ax + 1) % 3, a2 = (ax + 2) % 3;
-        ra[a1] = -(xyz[3 * a + (size_t)a2] - o[a2]);
-        ra[a2] = xyz[3 * a + (size_t)a1] - o[a1];
-        ra[3 + ax] = 1.0;
-      }
-    for (int j = 0; j < 6; ++j) {
-      for (size_t i = 0; i < n; ++i) {
-        double sum = 0.0;
-        for (size_t l = 0; l < n; ++l)
-          sum += me[l * n + i] * r[(size_t)j * n + l];
-        mr[i] = sum;
-      }
-      for (int i = 0; i < 6; ++i)
-        g[6 * i + j] += dot(n, r + (size_t)i * n, mr);
-    }
+    add_rigid_block(m, nodes, nn, me, o, r, mr, g);
   }
   add_point_rigid_mass(m, o, g);
-  return FB_OK;
+  return add_superelement_rigid_mass(m, o, g, err);
 }
 
 /* As fb_fem_mass_properties, from the same kinetic energies of rigid
@@ -400,7 +461,7 @@ int fb_fem_mesh_mass_properties(const fb_mesh *m, const fb_shell_props *p, fb_ma
   if (!m || !p || !mass || !cg || !inertia)
     return fb_err_set(err, FB_EINVAL, "fb_fem_mesh_mass_properties: NULL argument");
   const size_t nn = fb_mesh_nnodes(m);
-  if (nn == 0 || fb_mesh_nelements(m) == 0)
+  if (nn == 0 || (fb_mesh_nelements(m) == 0 && !fb_mesh_superelement(m, NULL, NULL, NULL)))
     return fb_err_set(err, FB_EINVAL, "fb_fem_mesh_mass_properties: the mesh has no elements");
   int rc = fb_shell_check_props(p, err);
   if (rc)

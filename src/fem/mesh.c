@@ -89,6 +89,12 @@ struct fb_mesh {
   mesh_section *sections;
   size_t nsections;
   size_t section_cap;
+
+  /* The superelement (fb_mesh_set_superelement): its nodes and its
+   * matrices over their six DOFs each, dense column-major. */
+  size_t *super_nodes;
+  size_t nsuper;
+  double *super_k, *super_m;
 };
 
 const char *fb_mesh_type_name(fb_elem_type type)
@@ -251,6 +257,9 @@ void fb_mesh_free(fb_mesh **m)
   for (size_t i = 0; i < mesh->nsections; ++i)
     free(mesh->sections[i].elset);
   free(mesh->sections);
+  free(mesh->super_nodes);
+  free(mesh->super_k);
+  free(mesh->super_m);
   free(mesh);
   *m = NULL;
 }
@@ -358,6 +367,8 @@ int fb_mesh_clone(const fb_mesh *m, fb_mesh **out, fb_err *err)
     rc = copy_sets(&m->elsets, &c->elsets);
   if (!rc)
     rc = copy_sections(m, c);
+  if (!rc && m->nsuper)
+    rc = fb_mesh_set_superelement(c, m->nsuper, m->super_nodes, m->super_k, m->super_m, NULL);
   if (rc) {
     fb_mesh_free(&c);
     return fb_err_set(err, FB_ENOMEM, "out of memory copying a mesh");
@@ -367,6 +378,49 @@ int fb_mesh_clone(const fb_mesh *m, fb_mesh **out, fb_err *err)
 }
 
 /* ---- Building. */
+
+int fb_mesh_set_superelement(fb_mesh *m, size_t n, const size_t *nodes, const double *k,
+                             const double *mass, fb_err *err)
+{
+  for (size_t i = 0; i < n; ++i)
+    if (nodes[i] >= m->nnodes)
+      return fb_err_set(err, FB_EINVAL, "superelement node index %zu: the mesh has %zu nodes",
+                        nodes[i], m->nnodes);
+  const size_t d = 6 * n;
+  size_t *nd = malloc((n ? n : 1) * sizeof *nd);
+  double *kk = malloc((d ? d * d : 1) * sizeof *kk);
+  double *mm = calloc(d ? d * d : 1, sizeof *mm);
+  if (!nd || !kk || !mm) {
+    free(nd);
+    free(kk);
+    free(mm);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for a superelement of %zu nodes", n);
+  }
+  memcpy(nd, nodes, n * sizeof *nd);
+  memcpy(kk, k, d * d * sizeof *kk);
+  if (mass)
+    memcpy(mm, mass, d * d * sizeof *mm);
+  free(m->super_nodes);
+  free(m->super_k);
+  free(m->super_m);
+  m->super_nodes = nd;
+  m->super_k = kk;
+  m->super_m = mm;
+  m->nsuper = n;
+  return FB_OK;
+}
+
+size_t fb_mesh_superelement(const fb_mesh *m, const size_t **nodes, const double **k,
+                            const double **mass)
+{
+  if (nodes)
+    *nodes = m->super_nodes;
+  if (k)
+    *k = m->super_k;
+  if (mass)
+    *mass = m->super_m;
+  return m->nsuper;
+}
 
 static int grow_nodes(fb_mesh *m)
 {

@@ -207,6 +207,9 @@ static int check_used(const fb_mesh *m, fb_err *err)
     for (size_t k = 0; k < fb_mesh_type_nodes(fb_mesh_element_type(m, e)); ++k)
       used[nd[k]] = 1;
   }
+  const size_t *super = NULL;
+  for (size_t k = 0; k < fb_mesh_superelement(m, &super, NULL, NULL); ++k)
+    used[super[k]] = 1;
   size_t unused = 0;
   while (unused < nnodes && used[unused])
     ++unused;
@@ -233,7 +236,7 @@ int fb_mesh_check(const fb_mesh *m, fb_err *err)
 {
   if (!m)
     return fb_err_set(err, FB_EINVAL, "fb_mesh_check: mesh is NULL");
-  if (fb_mesh_nelements(m) == 0)
+  if (fb_mesh_nelements(m) == 0 && !fb_mesh_superelement(m, NULL, NULL, NULL))
     return fb_err_set(err, FB_EMODEL, "the mesh has no elements");
   size_t bad = 0;
   int rc = fb_mesh_check_elements(m, &bad, err);

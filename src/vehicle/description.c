@@ -294,6 +294,7 @@ void fb_scenario_free(fb_scenario **s)
     vehicle_output_release(&p->output[i]);
   free(p->output);
   fb_road_params_release(p->road_type, &p->road);
+  vehicle_hull_params_release(p);
   free(p->hull_deck);
   free(p->coupling_surface);
   fb_mesh_free(&p->hull_source_mesh);
@@ -512,7 +513,8 @@ int fb_scenario_clone(const fb_scenario *s, fb_scenario **out, fb_err *err)
   copy->source = NULL;
   memset(&copy->road, 0, sizeof copy->road);
   copy->hull_source_mesh = NULL;
-  int ok = desc_copy_string(s->name, &copy->name);
+  int ok = vehicle_hull_params_copy(copy);
+  ok = desc_copy_string(s->name, &copy->name) && ok;
   ok = desc_copy_string(s->path, &copy->path) && ok;
   ok = desc_copy_string(s->frame_origin, &copy->frame_origin) && ok;
   ok = desc_copy_array(s->load_x, s->nload, &copy->load_x) && ok;

@@ -150,9 +150,47 @@ double vehicle_hull_point_nearest(const fb_mesh *m, const double *p, size_t *ele
   return best;
 }
 
+/* A superelement's point (a mesh of interface nodes, no elements): an
+ * interface node within the tolerance, its motion the node's own
+ * transported by the rigid lever to the point; anywhere else the
+ * superelement does not know the structure's motion. */
+static int superelement_point_weights(const fb_mesh *m, const fb_output_spec *o, size_t index,
+                                      double *w, fb_err *err)
+{
+  size_t best = 0;
+  double d = INFINITY;
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i) {
+    const double *x = fb_mesh_node_xyz(m, i);
+    const double di = hypot(hypot(x[0] - o->at[0], x[1] - o->at[1]), x[2] - o->at[2]);
+    if (di < d) {
+      d = di;
+      best = i;
+    }
+  }
+  if (!(d <= VEHICLE_HULL_POINT_TOL))
+    return fb_err_set(err, FB_EINVAL,
+                      "the hull is a superelement, whose motion is known at its interface "
+                      "nodes only: the nearest, node %ld, is %.3g m from the point (at most "
+                      "%g m)",
+                      fb_mesh_node_id(m, best), d, VEHICLE_HULL_POINT_TOL),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, at)), FB_EINVAL;
+  const double *x = fb_mesh_node_xyz(m, best);
+  const double lever[3] = {o->at[0] - x[0], o->at[1] - x[1], o->at[2] - x[2]};
+  double rows[18];
+  vehicle_rigid_rows(lever, rows);
+  memset(w, 0, 6 * fb_mesh_nnodes(m) * sizeof *w);
+  for (int j = 0; j < 6; ++j)
+    w[6 * best + j] = rows[6 * o->direction + j];
+  return FB_OK;
+}
+
 int vehicle_hull_point_on(const fb_mesh *m, const fb_output_spec *o, size_t index, size_t *e,
                           double *n, double *foot, fb_err *err)
 {
+  if (fb_mesh_nelements(m) == 0)
+    return fb_err_set(err, FB_EINVAL,
+                      "the hull is a superelement: it has no elements for the point to lie on"),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, at)), FB_EINVAL;
   const double d = vehicle_hull_point_nearest(m, o->at, e, n, foot);
   if (!(d <= VEHICLE_HULL_POINT_TOL))
     return fb_err_set(err, FB_EINVAL,
@@ -166,6 +204,8 @@ int vehicle_hull_point_on(const fb_mesh *m, const fb_output_spec *o, size_t inde
 int vehicle_hull_point_weights(const fb_mesh *m, const fb_output_spec *o, size_t index,
                                double *w, fb_err *err)
 {
+  if (fb_mesh_nelements(m) == 0)
+    return superelement_point_weights(m, o, index, w, err);
   size_t e = 0;
   double n[4], foot[3];
   const int rc = vehicle_hull_point_on(m, o, index, &e, n, foot, err);

@@ -10,12 +10,14 @@
 
 #include "core/registry.h"
 #include "core/util.h"
+#include "vehicle/vehicle_internal.h"
 
 /* The built-in sources, one line each; the first is a description's
  * default. */
 static const fb_hull_source *const source_builtin[] = {
     &fb_hull_source_generator,
     &fb_hull_source_deck,
+    &fb_hull_source_reduced,
 };
 
 struct fb_hull_source_gallery {
@@ -44,18 +46,12 @@ int fb_hull_source_check(const fb_hull_source *src, fb_err *err)
                         ? "a source that makes its mesh says from what (key) and where its "
                           "centre of mass is (centroid)"
                         : NULL;
-  const fb_registry_entry e = {"hull source",
-                               src->name,
-                               src->doc,
-                               NULL,
-                               0,
-                               src->param,
-                               src->nparams,
-                               src->params_size,
-                               FB_HULL_SOURCE_PARAMS_MAX,
+  const fb_registry_entry e = {"hull source", src->name, src->doc, NULL, 0, src->param,
+                               src->nparams, src->params_size, FB_HULL_SOURCE_PARAMS_MAX,
                                "FB_HULL_SOURCE_PARAMS_MAX",
-                               1,
-                               ops};
+                               /* files too: a description copies and frees
+                                * its block's paths (vehicle_hull_params_copy) */
+                               0, ops};
   return fb_registry_entry_check(&e, err);
 }
 
@@ -71,11 +67,44 @@ int fb_scenario_set_hull_source(fb_scenario *s, const fb_hull_source *src, fb_er
     return rc;
   if (fb_scenario_hull_source(s) != src) {
     fb_mesh_free(&s->hull_source_mesh);
+    vehicle_hull_params_release(s);
     memset(&s->hull_params, 0, sizeof s->hull_params);
     fb_params_defaults(src->param, src->nparams, s->hull_params.bytes);
   }
   s->hull_source = src;
   return FB_OK;
+}
+
+/* The block's file paths (FB_PARAM_FILE, a string the block owns), each
+ * in turn. */
+static char **hull_param_path(const fb_scenario *s, fb_hull_source_params *block, size_t *i)
+{
+  const fb_hull_source *src = fb_scenario_hull_source(s);
+  for (; *i < src->nparams; ++*i)
+    if (src->param[*i].store == FB_PARAM_STRING)
+      return (char **)(void *)(block->bytes + src->param[(*i)++].offset);
+  return NULL;
+}
+
+void vehicle_hull_params_release(fb_scenario *s)
+{
+  size_t i = 0;
+  for (char **p; (p = hull_param_path(s, &s->hull_params, &i));) {
+    free(*p);
+    *p = NULL;
+  }
+}
+
+int vehicle_hull_params_copy(fb_scenario *copy)
+{
+  int ok = 1;
+  size_t i = 0;
+  for (char **p; (p = hull_param_path(copy, &copy->hull_params, &i));) {
+    const char *original = *p; /* the block was copied byte for byte */
+    *p = original ? fb_strdup(original) : NULL;
+    ok = ok && (*p || !original);
+  }
+  return ok;
 }
 
 int fb_scenario_read_hull(fb_scenario *s, fb_err *err)

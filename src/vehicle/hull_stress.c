@@ -20,6 +20,12 @@ int vehicle_hull_stress_element(const fb_mesh *m, const fb_output_spec *o, size_
 {
   *e = 0;
   const size_t n = fb_mesh_nelements(m);
+  if (n == 0)
+    return fb_err_set(err, FB_EINVAL,
+                      "the hull is a superelement: it has no shell elements, whose stresses a "
+                      "%s signal reads",
+                      o->signal),
+           fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EINVAL;
   if (o->element) {
     const long found = fb_mesh_find_element_id(m, o->element);
     long lo = 0, hi = 0;

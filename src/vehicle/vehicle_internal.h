@@ -381,4 +381,11 @@ int vehicle_hold_inputs(const fb_scenario *s, const double *held, fb_bg *graph, 
  * *nb, column-major): NULL for nodal coordinates. */
 const double *vehicle_hull_coordinate_basis(const vehicle_hull *h, size_t *nb);
 
+/* The file paths of s's hull-source block (FB_PARAM_FILE parameters,
+ * strings the block owns): freed (and NULL), or, in a description copied
+ * byte for byte, replaced by copies of their own (0 when memory ran out:
+ * those left NULL). */
+void vehicle_hull_params_release(fb_scenario *s);
+int vehicle_hull_params_copy(fb_scenario *copy);
+
 #endif
