@@ -1316,6 +1316,11 @@ typedef struct fb_vehicle_motion {
    * points' displacements ("attach" order: corners then mounts), the
    * mounted bodies', the wheels'. Owned. */
   double *samples;
+  /* The hull's coordinates at t = 0 (ncoords, owned), which the samples'
+   * are relative to: with simulation.initial: static its deflection
+   * under the vehicle's weight (for the total stresses,
+   * flexbond/hull_stress.h). */
+  double *hull_q0;
 } fb_vehicle_motion;
 void fb_vehicle_motion_free(fb_vehicle_motion **m);
 
@@ -1329,6 +1334,10 @@ void fb_vehicle_motion_free(fb_vehicle_motion **m);
 int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double t,
                          double *node_u, double *attach_dz, double *body_dz, double *wheel_dz,
                          fb_err *err);
+/* The hull's coordinates at time t (as fb_vehicle_motion_at: linear
+ * between samples, clamped), total: hull_q0 plus the sample's, into q
+ * (ncoords). FB_EINVAL for a run of no samples. */
+int fb_vehicle_motion_coords_at(const fb_vehicle_motion *m, double t, double *q, fb_err *err);
 
 /* Integrates the vehicle per its scenario: initial state (zero or static
  * equilibrium), breakpoints at every wheel's bump entry and exit,

@@ -19,6 +19,7 @@ void fb_vehicle_motion_free(fb_vehicle_motion **m)
   fb_mesh_free(&(*m)->mesh);
   free((*m)->basis);
   free((*m)->samples);
+  free((*m)->hull_q0);
   free(*m);
   *m = NULL;
 }
@@ -101,12 +102,15 @@ int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
   if (m->nsamples > SIZE_MAX / sizeof *m->samples / m->width)
     return fb_err_set(err, FB_ENOMEM, "motion of %zu samples is too large", m->nsamples);
   m->samples = malloc((m->nsamples ? m->nsamples : 1) * m->width * sizeof *m->samples);
-  if (!m->samples)
+  m->hull_q0 = malloc((m->ncoords ? m->ncoords : 1) * sizeof *m->hull_q0);
+  if (!m->samples || !m->hull_q0)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the motion's %zu samples",
                       m->nsamples);
   /* The hull's coordinates from t = 0's, as every integrated
    * displacement is (System 2's q starts at the static state with
    * simulation.initial: static). */
+  for (size_t j = 0; j < m->ncoords; ++j)
+    m->hull_q0[j] = fb_result_nsamples(res) ? fb_result_row(res, 0)[first + j] : 0.0;
   for (size_t k = 0; k < m->nsamples; ++k) {
     const double *row = fb_result_row(res, lo + k), *q0 = fb_result_row(res, 0) + first;
     double *to = m->samples + k * m->width;
@@ -230,5 +234,18 @@ int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double
   col += m->nmounts;
   if (wheel_dz)
     row_values(m, k, w, col, m->ncorners, wheel_dz);
+  return FB_OK;
+}
+
+int fb_vehicle_motion_coords_at(const fb_vehicle_motion *m, double t, double *q, fb_err *err)
+{
+  if (m->nsamples == 0)
+    return fb_err_set(err, FB_EINVAL, "the run has no samples");
+  size_t k = 0;
+  double w = 0.0;
+  locate(m, t, &k, &w);
+  row_values(m, k, w, 1, m->ncoords, q);
+  for (size_t j = 0; j < m->ncoords; ++j)
+    q[j] += m->hull_q0[j];
   return FB_OK;
 }

@@ -99,6 +99,12 @@ const fb_fe_hull *fb_vehicle_fe_hull_of(const fb_vehicle *v)
   return v->hull ? vehicle_hull_fe(v->hull) : NULL;
 }
 
+const double *vehicle_coordinate_basis(const fb_vehicle *v, size_t *nb)
+{
+  *nb = 0;
+  return v->hull ? vehicle_hull_coordinate_basis(v->hull, nb) : NULL;
+}
+
 /* ---- Diagrams. */
 
 /* The hull fragment of v's system for scenario s (v's own or a variant of

@@ -353,5 +353,8 @@ int vehicle_hold_inputs(const fb_scenario *s, const double *held, fb_bg *graph, 
 /* The basis over the hull's nodal DOFs its coordinates are in (ndof x
  * *nb, column-major): NULL for nodal coordinates. */
 const double *vehicle_hull_coordinate_basis(const vehicle_hull *h, size_t *nb);
+/* The same of v's hull (NULL for System 1 or nodal coordinates; owned by
+ * v). */
+const double *vehicle_coordinate_basis(const fb_vehicle *v, size_t *nb);
 
 #endif
