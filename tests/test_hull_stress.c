@@ -4,7 +4,8 @@
  *   1. the peaks, their times and the ranges against a brute-force
  *      recomputation: per sample u = basis (q0 + q) formed explicitly,
  *      the nodal recovery fb_shell_stress_eval_nodal of a recovery built
- *      separately, and max / min over the samples by hand;
+ *      separately, the planes' normal stresses in Mohr's double-angle
+ *      form, and max / min over the samples by hand;
  *   2. the field at a time: at a sample the sample's, halfway between
  *      two the mean of their stress components (linear in q);
  *   3. the run in nodal coordinates (every DOF a state): the same peak
@@ -68,9 +69,12 @@ static void nodal_of_sample(const fb_vehicle_motion *m, size_t k, double *u)
   }
 }
 
-static double signed_abs_max(const double *pr)
+/* The normal stress on the plane whose normal is at angle a from the
+ * local x, in the double-angle form of Mohr's circle (the library uses
+ * Cauchy's cos^2, sin^2 form). */
+static double normal_stress(const double *sv, double a)
 {
-  return fabs(pr[0]) >= fabs(pr[1]) ? pr[0] : pr[1];
+  return 0.5 * (sv[0] + sv[1]) + 0.5 * (sv[0] - sv[1]) * cos(2 * a) + sv[2] * sin(2 * a);
 }
 
 /* 1. */
@@ -84,13 +88,14 @@ static void check_brute_force(const stress_run *r)
   const size_t ne = fb_shell_stress_nelements(rec), n = 6 * fb_mesh_nnodes(m->mesh);
   CHECK(ne == r->p->nelements && r->p->nsamples == m->nsamples);
   double *u = malloc(n * sizeof *u), *peak = calloc(ne, sizeof *peak);
-  double *lo = malloc(2 * ne * sizeof *lo), *hi = malloc(2 * ne * sizeof *hi);
+  const size_t np = FB_HULL_STRESS_PLANES, nx = 2 * ne * np;
+  double *lo = malloc(nx * sizeof *lo), *hi = malloc(nx * sizeof *hi);
   fb_shell_stress_state *st = malloc(ne * sizeof *st);
   /* vM of every element at every sample, to look up the peak's time. */
   double *vm = malloc(m->nsamples * ne * sizeof *vm);
-  for (size_t e = 0; e < 2 * ne; ++e) {
-    lo[e] = INFINITY;
-    hi[e] = -INFINITY;
+  for (size_t i = 0; i < nx; ++i) {
+    lo[i] = INFINITY;
+    hi[i] = -INFINITY;
   }
   for (size_t k = 0; k < m->nsamples; ++k) {
     nodal_of_sample(m, k, u);
@@ -98,11 +103,11 @@ static void check_brute_force(const stress_run *r)
     for (size_t e = 0; e < ne; ++e) {
       vm[k * ne + e] = fmax(st[e].von_mises_top, st[e].von_mises_bottom);
       peak[e] = fmax(peak[e], vm[k * ne + e]);
-      const double am[2] = {signed_abs_max(st[e].principal_top),
-                            signed_abs_max(st[e].principal_bottom)};
-      for (int s = 0; s < 2; ++s) {
-        lo[2 * e + s] = fmin(lo[2 * e + s], am[s]);
-        hi[2 * e + s] = fmax(hi[2 * e + s], am[s]);
+      for (size_t i = 0; i < 2 * np; ++i) {
+        const double a = 3.14159265358979323846 * (double)(i % np) / (double)np;
+        const double sn = normal_stress(i < np ? st[e].top : st[e].bottom, a);
+        lo[2 * np * e + i] = fmin(lo[2 * np * e + i], sn);
+        hi[2 * np * e + i] = fmax(hi[2 * np * e + i], sn);
       }
     }
   }
@@ -123,7 +128,9 @@ static void check_brute_force(const stress_run *r)
     CHECK(k < m->nsamples);
     if (k < m->nsamples)
       worst_time = fmax(worst_time, fabs(vm[k * ne + e] - peak[e]));
-    const double range = fmax(hi[2 * e] - lo[2 * e], hi[2 * e + 1] - lo[2 * e + 1]);
+    double range = 0.0;
+    for (size_t i = 2 * np * e; i < 2 * np * (e + 1); ++i)
+      range = fmax(range, hi[i] - lo[i]);
     worst_range = fmax(worst_range, fabs(r->p->range[e] - range));
   }
   fprintf(stderr,

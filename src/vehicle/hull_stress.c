@@ -144,15 +144,44 @@ static int peaks_alloc(size_t n, fb_hull_stress_peaks **out, fb_err *err)
   return FB_OK;
 }
 
-/* Of principal stresses (s1 >= s2) the one of larger magnitude, signed. */
-static double abs_max_principal(const double *pr)
+/* The planes' normals at angles k pi / FB_HULL_STRESS_PLANES from the
+ * element's local x: cos^2, sin^2 and 2 sin cos of each. */
+typedef struct planes {
+  double cc[FB_HULL_STRESS_PLANES], ss[FB_HULL_STRESS_PLANES], sc2[FB_HULL_STRESS_PLANES];
+} planes;
+
+static void planes_make(planes *pl)
 {
-  return fabs(pr[0]) >= fabs(pr[1]) ? pr[0] : pr[1];
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < FB_HULL_STRESS_PLANES; ++k) {
+    const double a = pi * k / FB_HULL_STRESS_PLANES, c = cos(a), s = sin(a);
+    pl->cc[k] = c * c;
+    pl->ss[k] = s * s;
+    pl->sc2[k] = 2.0 * s * c;
+  }
 }
 
-/* Per element and surface the extremes of the signed absolute-maximum
- * principal stress: lo[2 e + s], hi[2 e + s]. */
-static void track(const fb_shell_stress_state *states, double t, int first,
+/* Index of element e's surface s's plane k in the extremes. */
+static size_t plane_at(size_t e, int s, int k)
+{
+  return (2 * e + (size_t)s) * FB_HULL_STRESS_PLANES + (size_t)k;
+}
+
+/* The normal stresses sigma_n = sx c^2 + sy s^2 + 2 txy s c (Cauchy's
+ * formula in the plane) of surface stresses sv on every plane, into the
+ * extremes lo, hi of the surface. */
+static void track_planes(const planes *pl, const double *sv, int first, double *lo, double *hi)
+{
+  for (int k = 0; k < FB_HULL_STRESS_PLANES; ++k) {
+    const double sn = sv[0] * pl->cc[k] + sv[1] * pl->ss[k] + sv[2] * pl->sc2[k];
+    lo[k] = first ? sn : fmin(lo[k], sn);
+    hi[k] = first ? sn : fmax(hi[k], sn);
+  }
+}
+
+/* Per element the peak von Mises stress and, per surface and plane, the
+ * extremes of the normal stress. */
+static void track(const planes *pl, const fb_shell_stress_state *states, double t, int first,
                   fb_hull_stress_peaks *p, double *lo, double *hi)
 {
   for (size_t e = 0; e < p->nelements; ++e) {
@@ -164,22 +193,25 @@ static void track(const fb_shell_stress_state *states, double t, int first,
       p->time[e] = t;
       p->surface[e] = bottom ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
     }
-    const double am[2] = {abs_max_principal(st->principal_top),
-                          abs_max_principal(st->principal_bottom)};
-    for (int s = 0; s < 2; ++s) {
-      double *l = lo + 2 * e + s, *h = hi + 2 * e + s;
-      *l = first ? am[s] : fmin(*l, am[s]);
-      *h = first ? am[s] : fmax(*h, am[s]);
-    }
+    track_planes(pl, st->top, first, lo + plane_at(e, 0, 0), hi + plane_at(e, 0, 0));
+    track_planes(pl, st->bottom, first, lo + plane_at(e, 1, 0), hi + plane_at(e, 1, 0));
   }
 }
 
+/* The largest range over each element's surfaces and planes (the top
+ * first among equals). */
 static void finish_ranges(const double *lo, const double *hi, fb_hull_stress_peaks *p)
 {
   for (size_t e = 0; e < p->nelements; ++e) {
-    const double top = hi[2 * e] - lo[2 * e], bottom = hi[2 * e + 1] - lo[2 * e + 1];
-    p->range_surface[e] = bottom > top ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
-    p->range[e] = bottom > top ? bottom : top;
+    p->range[e] = -INFINITY;
+    for (int s = 0; s < 2; ++s)
+      for (int k = 0; k < FB_HULL_STRESS_PLANES; ++k) {
+        const size_t i = plane_at(e, s, k);
+        if (hi[i] - lo[i] > p->range[e]) {
+          p->range[e] = hi[i] - lo[i];
+          p->range_surface[e] = s ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
+        }
+      }
   }
 }
 
@@ -197,8 +229,11 @@ int fb_hull_stress_peaks_of(const fb_hull_stress *hs, const fb_vehicle_motion *m
     return rc;
   fb_shell_stress_state *states = malloc((ne ? ne : 1) * sizeof *states);
   double *q = malloc((m->ncoords ? m->ncoords : 1) * sizeof *q);
-  double *lo = malloc(2 * (ne ? ne : 1) * sizeof *lo),
-         *hi = malloc(2 * (ne ? ne : 1) * sizeof *hi);
+  /* Extremes of the normal stress per element, surface and plane. */
+  const size_t nplanes = 2 * (ne ? ne : 1) * FB_HULL_STRESS_PLANES;
+  double *lo = malloc(nplanes * sizeof *lo), *hi = malloc(nplanes * sizeof *hi);
+  planes pl;
+  planes_make(&pl);
   if (!states || !q || !lo || !hi)
     rc = fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
   for (size_t k = 0; rc == FB_OK && k < m->nsamples; ++k) {
@@ -208,7 +243,7 @@ int fb_hull_stress_peaks_of(const fb_hull_stress *hs, const fb_vehicle_motion *m
     for (size_t j = 0; j < m->ncoords; ++j)
       q[j] = m->hull_q0[j] + row[1 + j];
     eval(hs, q, states);
-    track(states, row[0], p->nsamples == 0, p, lo, hi);
+    track(&pl, states, row[0], p->nsamples == 0, p, lo, hi);
     p->nsamples++;
   }
   if (rc == FB_OK && p->nsamples == 0)
