@@ -425,7 +425,9 @@ int fb_shell_stress_modes(fb_shell_stress *s, const double *phi, size_t ndof, si
                           fb_err *err);
 /* The number of stress modes (0 before fb_shell_stress_modes). */
 size_t fb_shell_stress_nmodes(const fb_shell_stress *s);
-/* S_e, 6 x nmodes row-major (borrowed; NULL before fb_shell_stress_modes). */
+/* S_e, 6 x nmodes row-major (borrowed; NULL before fb_shell_stress_modes).
+ * The elements' follow one another: element 0's is the 6 nelements x
+ * nmodes row-major matrix of them all (for a product over many q). */
 const double *fb_shell_stress_mode_matrix(const fb_shell_stress *s, size_t e);
 /* The states of every element for modal coordinates q (nmodes): S_e q,
  * then the same derived values as fb_shell_stress_eval_nodal. FB_EINVAL

@@ -907,13 +907,23 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
 }
 
 /* System 2's hull stresses over run (its motion taken) from the road
- * window's start w0 on (the last sample's time if the run ends before). */
-static int run_stress(double w0, const fb_vehicle *v, cli_run_system *run, fb_err *err)
+ * window's start w0 on (the last sample's time if the run ends before);
+ * with -v, what they cost. */
+static int run_stress(const run_args *a, const fb_scenario *s, double w0, const fb_vehicle *v,
+                      cli_run_system *run, fb_err *err)
 {
   const fb_vehicle_motion *m = run->motion;
   const double t_last = m->nsamples ? m->samples[(m->nsamples - 1) * m->width] : 0.0;
   run->stress_from = fmin(w0, t_last);
-  return cli_run_stress(v, run->stress_from, run, err);
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  const int rc = cli_run_stress(v, run->stress_from, run, err);
+  if (rc == FB_OK && a->verbose)
+    cli_say("flexbond run: %s: %s: hull stresses of %zu elements at %zu samples in %zu "
+            "coordinates, %.3g s",
+            cli_scenario_name(s), cli_system_label(run->sys), run->peaks->nelements,
+            run->peaks->nsamples, m->ncoords, fb_seconds_since(&t0));
+  return rc;
 }
 
 /* ---- The command. */
@@ -1260,7 +1270,7 @@ static int run(const run_args *a)
     rc = simulate(a, s, o.bump_window, motion_window, &runs[i], vehicles[i].v,
                   a->animate.enabled || stress, &err);
     if (rc == FB_OK && stress)
-      rc = run_stress(o.bump_window[0], vehicles[i].v, &runs[i], &err);
+      rc = run_stress(a, s, o.bump_window[0], vehicles[i].v, &runs[i], &err);
   }
   if (rc == FB_OK && a->stress && !by_system[1] && !a->quiet)
     cli_say("flexbond run: %s: no hull stresses (%s): they are System 2's, and only System 1 "

@@ -6,6 +6,7 @@
  * recorded sample, and the peaks and ranges per element. */
 #include "flexbond/hull_stress.h"
 
+#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -161,58 +162,164 @@ static void planes_make(planes *pl)
   }
 }
 
-/* Index of element e's surface s's plane k in the extremes. */
-static size_t plane_at(size_t e, int s, int k)
+/* What the tracking keeps: per element its largest squared von Mises
+ * stress (the root is taken once, at the end) and, per surface and plane,
+ * the extremes of the normal stress. */
+typedef struct tracker {
+  planes pl;
+  double *vm2;     /* nelements */
+  double *lo, *hi; /* 2 FB_HULL_STRESS_PLANES per element: the top's, then the bottom's */
+} tracker;
+
+/* The plane-stress von Mises stress squared, sx^2 - sx sy + sy^2 + 3
+ * txy^2 (as fb_shell_stress_state's). */
+static double von_mises2(const double *sv)
 {
-  return (2 * e + (size_t)s) * FB_HULL_STRESS_PLANES + (size_t)k;
+  return sv[0] * sv[0] - sv[0] * sv[1] + sv[1] * sv[1] + 3.0 * sv[2] * sv[2];
 }
 
 /* The normal stresses sigma_n = sx c^2 + sy s^2 + 2 txy s c (Cauchy's
  * formula in the plane) of surface stresses sv on every plane, into the
- * extremes lo, hi of the surface. */
-static void track_planes(const planes *pl, const double *sv, int first, double *lo, double *hi)
+ * surface's extremes lo, hi (comparisons rather than fmin / fmax, which
+ * the compiler vectorises: no stress is NaN). */
+static void track_planes(const planes *restrict pl, const double *restrict sv,
+                         double *restrict lo, double *restrict hi)
 {
   for (int k = 0; k < FB_HULL_STRESS_PLANES; ++k) {
     const double sn = sv[0] * pl->cc[k] + sv[1] * pl->ss[k] + sv[2] * pl->sc2[k];
-    lo[k] = first ? sn : fmin(lo[k], sn);
-    hi[k] = first ? sn : fmax(hi[k], sn);
+    lo[k] = sn < lo[k] ? sn : lo[k];
+    hi[k] = sn > hi[k] ? sn : hi[k];
   }
 }
 
-/* Per element the peak von Mises stress and, per surface and plane, the
- * extremes of the normal stress. */
-static void track(const planes *pl, const fb_shell_stress_state *states, double t, int first,
-                  fb_hull_stress_peaks *p, double *lo, double *hi)
+/* Element e's surface stresses sv (top x, y, xy, then the bottom's) at
+ * time t. */
+static void track(tracker *tr, fb_hull_stress_peaks *p, size_t e, const double *sv, double t)
 {
-  for (size_t e = 0; e < p->nelements; ++e) {
-    const fb_shell_stress_state *st = states + e;
-    const int bottom = st->von_mises_bottom > st->von_mises_top;
-    const double vm = bottom ? st->von_mises_bottom : st->von_mises_top;
-    if (first || vm > p->von_mises[e]) {
-      p->von_mises[e] = vm;
-      p->time[e] = t;
-      p->surface[e] = bottom ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
-    }
-    track_planes(pl, st->top, first, lo + plane_at(e, 0, 0), hi + plane_at(e, 0, 0));
-    track_planes(pl, st->bottom, first, lo + plane_at(e, 1, 0), hi + plane_at(e, 1, 0));
+  const double top = von_mises2(sv), bottom = von_mises2(sv + 3);
+  const double vm2 = bottom > top ? bottom : top;
+  if (vm2 > tr->vm2[e]) {
+    tr->vm2[e] = vm2;
+    p->time[e] = t;
+    p->surface[e] = bottom > top ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
   }
+  double *lo = tr->lo + 2 * FB_HULL_STRESS_PLANES * e,
+         *hi = tr->hi + 2 * FB_HULL_STRESS_PLANES * e;
+  track_planes(&tr->pl, sv, lo, hi);
+  track_planes(&tr->pl, sv + 3, lo + FB_HULL_STRESS_PLANES, hi + FB_HULL_STRESS_PLANES);
 }
 
-/* The largest range over each element's surfaces and planes (the top
- * first among equals). */
-static void finish_ranges(const double *lo, const double *hi, fb_hull_stress_peaks *p)
+static int tracker_init(tracker *tr, size_t ne, fb_err *err)
+{
+  const size_t n = 2 * FB_HULL_STRESS_PLANES * (ne ? ne : 1);
+  planes_make(&tr->pl);
+  tr->vm2 = malloc((ne ? ne : 1) * sizeof *tr->vm2);
+  tr->lo = malloc(n * sizeof *tr->lo);
+  tr->hi = malloc(n * sizeof *tr->hi);
+  if (!tr->vm2 || !tr->lo || !tr->hi)
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
+  for (size_t e = 0; e < ne; ++e)
+    tr->vm2[e] = -1.0;
+  for (size_t i = 0; i < n; ++i) {
+    tr->lo[i] = INFINITY;
+    tr->hi[i] = -INFINITY;
+  }
+  return FB_OK;
+}
+
+static void tracker_free(tracker *tr)
+{
+  free(tr->vm2);
+  free(tr->lo);
+  free(tr->hi);
+}
+
+/* The peaks from the extremes: von Mises' root, and the largest range
+ * over each element's surfaces and planes (the top first among equals). */
+static void finish(const tracker *tr, fb_hull_stress_peaks *p)
 {
   for (size_t e = 0; e < p->nelements; ++e) {
+    p->von_mises[e] = sqrt(tr->vm2[e]);
     p->range[e] = -INFINITY;
-    for (int s = 0; s < 2; ++s)
-      for (int k = 0; k < FB_HULL_STRESS_PLANES; ++k) {
-        const size_t i = plane_at(e, s, k);
-        if (hi[i] - lo[i] > p->range[e]) {
-          p->range[e] = hi[i] - lo[i];
-          p->range_surface[e] = s ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
-        }
+    for (size_t i = 0; i < 2 * FB_HULL_STRESS_PLANES; ++i) {
+      const size_t at = 2 * FB_HULL_STRESS_PLANES * e + i;
+      if (tr->hi[at] - tr->lo[at] > p->range[e]) {
+        p->range[e] = tr->hi[at] - tr->lo[at];
+        p->range_surface[e] =
+            i < FB_HULL_STRESS_PLANES ? FB_HULL_SURFACE_TOP : FB_HULL_SURFACE_BOTTOM;
       }
+    }
   }
+}
+
+/* Samples per product in modal coordinates: their stresses (6 nelements
+ * each) are formed together. */
+enum { BLOCK = 32 };
+
+/* Modal coordinates: the stresses of a block of samples at once, S Q +
+ * S q0 (S all the stress modes, 6 nelements x m; Q the block's
+ * coordinates, read in place from the samples), one matrix product
+ * (BLAS dgemm) rather than a product per sample. */
+static int track_modal(const fb_hull_stress *hs, const fb_vehicle_motion *m, size_t k0,
+                       tracker *tr, fb_hull_stress_peaks *p, fb_err *err)
+{
+  const size_t ne = p->nelements, rows = 6 * ne, nm = hs->ncoords;
+  const double *S = fb_shell_stress_mode_matrix(hs->rec, 0);
+  double *s0 = malloc(rows * sizeof *s0), *block = malloc(rows * BLOCK * sizeof *block);
+  if (!s0 || !block) {
+    free(s0);
+    free(block);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
+  }
+  /* S is row-major 6 ne x m: column-major, its transpose (m x 6 ne). */
+  cblas_dgemv(CblasColMajor, CblasTrans, (int)nm, (int)rows, 1.0, S, (int)nm, m->hull_q0, 1,
+              0.0, s0, 1);
+  for (size_t k = k0; k < m->nsamples; k += BLOCK) {
+    const size_t nb = m->nsamples - k < BLOCK ? m->nsamples - k : BLOCK;
+    for (size_t j = 0; j < nb; ++j)
+      memcpy(block + j * rows, s0, rows * sizeof *block);
+    cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, (int)rows, (int)nb, (int)nm, 1.0, S,
+                (int)nm, m->samples + k * m->width + 1, (int)m->width, 1.0, block, (int)rows);
+    /* Element by element, so that its extremes stay in cache over the
+     * block's samples. */
+    for (size_t e = 0; e < ne; ++e)
+      for (size_t j = 0; j < nb; ++j)
+        track(tr, p, e, block + j * rows + 6 * e, m->samples[(k + j) * m->width]);
+  }
+  p->nsamples += m->nsamples - k0;
+  free(s0);
+  free(block);
+  return FB_OK;
+}
+
+/* Nodal coordinates: each sample's recovery. */
+static int track_nodal(const fb_hull_stress *hs, const fb_vehicle_motion *m, size_t k0,
+                       tracker *tr, fb_hull_stress_peaks *p, fb_err *err)
+{
+  const size_t ne = p->nelements;
+  fb_shell_stress_state *states = malloc((ne ? ne : 1) * sizeof *states);
+  double *q = malloc((m->ncoords ? m->ncoords : 1) * sizeof *q);
+  if (!states || !q) {
+    free(states);
+    free(q);
+    return fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
+  }
+  for (size_t k = k0; k < m->nsamples; ++k) {
+    const double *row = m->samples + k * m->width;
+    for (size_t j = 0; j < m->ncoords; ++j)
+      q[j] = m->hull_q0[j] + row[1 + j];
+    eval(hs, q, states);
+    for (size_t e = 0; e < ne; ++e) {
+      double sv[6];
+      memcpy(sv, states[e].top, 3 * sizeof *sv);
+      memcpy(sv + 3, states[e].bottom, 3 * sizeof *sv);
+      track(tr, p, e, sv, row[0]);
+    }
+    p->nsamples++;
+  }
+  free(states);
+  free(q);
+  return FB_OK;
 }
 
 int fb_hull_stress_peaks_of(const fb_hull_stress *hs, const fb_vehicle_motion *m, double t_from,
@@ -222,39 +329,23 @@ int fb_hull_stress_peaks_of(const fb_hull_stress *hs, const fb_vehicle_motion *m
   int rc = check_motion(hs, m, err);
   if (rc)
     return rc;
-  const size_t ne = fb_hull_stress_nelements(hs);
+  /* The first sample at or after t_from (the samples are in time order). */
+  size_t k0 = 0;
+  while (k0 < m->nsamples && m->samples[k0 * m->width] < t_from)
+    ++k0;
+  if (k0 == m->nsamples)
+    return fb_err_set(err, FB_EINVAL, "hull stresses: the run has no sample at or after %g s",
+                      t_from);
   fb_hull_stress_peaks *p = NULL;
-  rc = peaks_alloc(ne, &p, err);
-  if (rc)
-    return rc;
-  fb_shell_stress_state *states = malloc((ne ? ne : 1) * sizeof *states);
-  double *q = malloc((m->ncoords ? m->ncoords : 1) * sizeof *q);
-  /* Extremes of the normal stress per element, surface and plane. */
-  const size_t nplanes = 2 * (ne ? ne : 1) * FB_HULL_STRESS_PLANES;
-  double *lo = malloc(nplanes * sizeof *lo), *hi = malloc(nplanes * sizeof *hi);
-  planes pl;
-  planes_make(&pl);
-  if (!states || !q || !lo || !hi)
-    rc = fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
-  for (size_t k = 0; rc == FB_OK && k < m->nsamples; ++k) {
-    const double *row = m->samples + k * m->width;
-    if (row[0] < t_from)
-      continue;
-    for (size_t j = 0; j < m->ncoords; ++j)
-      q[j] = m->hull_q0[j] + row[1 + j];
-    eval(hs, q, states);
-    track(&pl, states, row[0], p->nsamples == 0, p, lo, hi);
-    p->nsamples++;
-  }
-  if (rc == FB_OK && p->nsamples == 0)
-    rc = fb_err_set(err, FB_EINVAL, "hull stresses: the run has no sample at or after %g s",
-                    t_from);
-  if (rc == FB_OK)
-    finish_ranges(lo, hi, p);
-  free(states);
-  free(q);
-  free(lo);
-  free(hi);
+  tracker tr = {0};
+  rc = peaks_alloc(fb_hull_stress_nelements(hs), &p, err);
+  if (!rc)
+    rc = tracker_init(&tr, p->nelements, err);
+  if (!rc)
+    rc = hs->modal ? track_modal(hs, m, k0, &tr, p, err) : track_nodal(hs, m, k0, &tr, p, err);
+  if (!rc)
+    finish(&tr, p);
+  tracker_free(&tr);
   if (rc) {
     fb_hull_stress_peaks_free(&p);
     return rc;
