@@ -180,10 +180,11 @@ void cli_write_stress_report(FILE *fp, const cli_run_outputs *o)
           "\n## Hull stresses\n\nSystem 2's peak von Mises stress per element (at its centre, "
           "the larger of its two surfaces; the total stress, the weight's included) over the "
           "run's %zu output samples from t = %.3f s (the first wheel's entry into the road "
-          "window) to the end: a peak between two samples is missed, a finer "
-          "`simulation.dt` samples closer (docs/stresses.md). The range is that of the "
-          "signed absolute-maximum principal stress, the larger surface's, a fatigue "
-          "input. Every element's values are in `%s` and `%s` (ParaView). The %zu elements "
+          "window) to the end: a peak between two samples is missed, a higher "
+          "`simulation.sample_rate` samples closer (docs/stresses.md). The range, a fatigue "
+          "input, is the largest over both surfaces and 18 planes of the range of the "
+          "normal stress on a plane. Every element's values are in `%s` and `%s` (ParaView). "
+          "The %zu elements "
           "of highest peak:\n\n",
           p->nsamples, run->stress_from, CLI_STRESS_CSV, CLI_STRESS_VTU, n);
   fprintf(fp,
