@@ -12,7 +12,9 @@
  *      element, its peak within the modal basis's convergence;
  *   4. a vehicle at rest (static initial state, a flat road):
  *      the peak field is the static field, which is not zero;
- *   5. System 1 has no hull stresses (FB_EINVAL). */
+ *   5. System 1 has no hull stresses (FB_EINVAL);
+ *   6. recording the hull's coordinates alone leaves the run's results
+ *      as they are, bit for bit. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,19 +35,29 @@ typedef struct stress_run {
   fb_hull_stress_peaks *p;
 } stress_run;
 
-static void stress_run_of(const fb_scenario *s, stress_run *r)
+/* kind: FB_VEHICLE_MOTION_ALL or _HULL; the run's result into *res
+ * unless res is NULL. */
+static void stress_run_kind(const fb_scenario *s, int kind, stress_run *r, fb_result **out)
 {
   fb_err err;
   fb_vehicle_opts o;
   fb_vehicle_opts_default(&o);
-  o.motion = 1;
+  o.motion = kind;
   fb_result *res = NULL;
   memset(r, 0, sizeof *r);
   REQUIRE(fb_vehicle_new(s, FB_SYSTEM_FLEXIBLE, &o, &r->v, &err), &err);
   REQUIRE(fb_vehicle_run(r->v, NULL, NULL, NULL, &res, &r->m, &err), &err);
   REQUIRE(fb_hull_stress_new(r->v, &r->hs, &err), &err);
   REQUIRE(fb_hull_stress_peaks_of(r->hs, r->m, 0.0, &r->p, &err), &err);
-  fb_result_free(&res);
+  if (out)
+    *out = res;
+  else
+    fb_result_free(&res);
+}
+
+static void stress_run_of(const fb_scenario *s, stress_run *r)
+{
+  stress_run_kind(s, FB_VEHICLE_MOTION_ALL, r, NULL);
 }
 
 static void stress_run_free(stress_run *r)
@@ -246,6 +258,40 @@ static void check_at_rest(fb_scenario *s)
   s->initial = initial;
 }
 
+/* 6. The hull's coordinates alone: no state added, so the run is a run
+ * without motion to the bit, and the peaks are the whole motion's within
+ * the solver's tolerance (that run's states differ; rtol 1e-6, a global
+ * error ten to a hundred times it: 1e-4 of the largest peak). */
+static void check_hull_only(const fb_scenario *s, const stress_run *all)
+{
+  fb_err err;
+  fb_result *plain = NULL, *res = NULL;
+  stress_run r;
+  REQUIRE(fb_vehicle_simulate(s, FB_SYSTEM_FLEXIBLE, &plain, &err), &err);
+  stress_run_kind(s, FB_VEHICLE_MOTION_HULL, &r, &res);
+  CHECK(r.m->nattach == 0 && r.m->nmounts == 0 && r.m->ncorners == 0);
+  CHECK(fb_result_nsamples(res) == fb_result_nsamples(plain) &&
+        fb_result_ncols(res) == fb_result_ncols(plain));
+  size_t differ = 0;
+  for (size_t k = 0; k < fb_result_nsamples(res) && k < fb_result_nsamples(plain); ++k)
+    differ += memcmp(fb_result_row(res, k), fb_result_row(plain, k),
+                     fb_result_ncols(res) * sizeof(double)) != 0;
+  CHECK(differ == 0);
+  double scale = 0.0, worst = 0.0;
+  for (size_t e = 0; e < r.p->nelements; ++e) {
+    scale = fmax(scale, all->p->von_mises[e]);
+    worst = fmax(worst, fabs(r.p->von_mises[e] - all->p->von_mises[e]));
+  }
+  fprintf(stderr,
+          "hull coordinates alone: %zu rows differ from a plain run; peaks within %.3g "
+          "of the largest\n",
+          differ, worst / scale);
+  CHECK(worst <= 1e-4 * scale);
+  fb_result_free(&plain);
+  fb_result_free(&res);
+  stress_run_free(&r);
+}
+
 /* 5. */
 static void check_rigid(const fb_scenario *s)
 {
@@ -266,6 +312,7 @@ int main(void)
   check_brute_force(&r);
   check_field_at(&r);
   check_nodal(s, &r);
+  check_hull_only(s, &r);
   stress_run_free(&r);
   check_at_rest(s);
   check_rigid(s);

@@ -1171,10 +1171,23 @@ int fb_vehicle_freq_response(const fb_scenario *s, const fb_descriptor *ds,
  * fb_vehicle_opts says otherwise: 4 GiB. */
 #define FB_VEHICLE_MEMORY_LIMIT ((size_t)4 << 30)
 
+/* What fb_vehicle_opts.motion records. */
+enum {
+  FB_VEHICLE_MOTION_NONE = 0,
+  /* The whole motion (an animation): the hull's coordinates, and the
+   * attachment points', bodies' and wheels' displacements, integrated
+   * velocities that add states to the solver (its error control sees
+   * them: the outputs move within its tolerance). */
+  FB_VEHICLE_MOTION_ALL = 1,
+  /* The hull's coordinates alone (its stresses, flexbond/hull_stress.h):
+   * read from states, they add none, and the run's results are those of
+   * a run without motion; the motion's nattach, nmounts and ncorners are
+   * 0. */
+  FB_VEHICLE_MOTION_HULL = 2
+};
 typedef struct fb_vehicle_opts {
-  /* 1: probe the vehicle's motion too (fb_vehicle_run's motion, an
-   * animation): System 2's hull coordinates, the attachment points, the
-   * bodies and the wheels. */
+  /* FB_VEHICLE_MOTION_*: probe the vehicle's motion too (fb_vehicle_run's
+   * motion). */
   int motion;
   /* Bytes for the hull's factorisation, eigen-solve and basis (checked
    * before each is allocated: FB_ENOMEM naming what it needs); 0:

@@ -1629,7 +1629,7 @@ class Scenario(_Closing):
             t_from = window[0]
 
         def body(s, sys_id, opts, reporter):
-            opts.motion = 1
+            opts.motion = 2  # FB_VEHICLE_MOTION_HULL: the results are run()'s
             v, res, motion, hs = ctypes.c_void_p(), ctypes.c_void_p(), ctypes.c_void_p(), \
                 ctypes.c_void_p()
             peaks = ctypes.POINTER(_HullStressPeaks)()

@@ -746,7 +746,11 @@ static int realise(const run_args *a, const fb_scenario *s, fb_system sys, const
   rv->stage = (cli_stage){"run", rv->subject, a->quiet};
   fb_vehicle_opts o;
   fb_vehicle_opts_default(&o);
-  o.motion = motion || (a->stress && sys == FB_SYSTEM_FLEXIBLE);
+  /* The hull stresses need the hull's coordinates alone, which leave the
+   * run's results as they are. */
+  o.motion = motion                                   ? FB_VEHICLE_MOTION_ALL
+             : a->stress && sys == FB_SYSTEM_FLEXIBLE ? FB_VEHICLE_MOTION_HULL
+                                                      : FB_VEHICLE_MOTION_NONE;
   o.progress = (fb_progress){cli_stage_progress, &rv->stage};
   o.threads = cli_threads();
   return fb_vehicle_new(s, sys, &o, &rv->v, err);

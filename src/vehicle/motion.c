@@ -24,9 +24,9 @@ void fb_vehicle_motion_free(fb_vehicle_motion **m)
   *m = NULL;
 }
 
-size_t fb_vehicle_motion_nprobes(const fb_scenario *s)
+size_t fb_vehicle_motion_nprobes(const fb_scenario *s, int hull_only)
 {
-  return 2 + s->nmounts + s->ncorners;
+  return hull_only ? 1 : 2 + s->nmounts + s->ncorners;
 }
 
 /* A probe of every component of target's integrated flow. The names
@@ -37,8 +37,8 @@ static fb_probe_spec displacement_probe(char *name, char *target)
   return (fb_probe_spec){name, FB_PROBE_FLOW, target, -1, 1, 1.0, "m", NULL, 0};
 }
 
-int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec *p,
-                             fb_err *err)
+int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, int hull_only,
+                             fb_probe_spec *p, fb_err *err)
 {
   const vehicle_signal *body =
                            vehicle_fragment_signal(FB_OUTPUT_OF_MOUNT, VEHICLE_SIGNAL_MOTION),
@@ -57,11 +57,12 @@ int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe
                          NULL,
                          0};
   ++k;
-  p[k++] = displacement_probe(fb_strdup("#attach"), fb_strdup("b_attach"));
-  for (size_t b = 0; b < s->nmounts; ++b, ++k)
+  if (!hull_only)
+    p[k++] = displacement_probe(fb_strdup("#attach"), fb_strdup("b_attach"));
+  for (size_t b = 0; !hull_only && b < s->nmounts; ++b, ++k)
     p[k] = displacement_probe(fb_strdup_printf("#body_%s", s->mount[b].name),
                               vehicle_target(s, FB_OUTPUT_OF_MOUNT, b, body->target));
-  for (size_t c = 0; c < s->ncorners; ++c, ++k)
+  for (size_t c = 0; !hull_only && c < s->ncorners; ++c, ++k)
     p[k] = displacement_probe(fb_strdup_printf("#wheel_%s", s->corner[c].name),
                               vehicle_target(s, FB_OUTPUT_OF_CORNER, c, wheel->target));
   for (size_t i = 0; i < k; ++i)
@@ -85,11 +86,12 @@ static void window_rows(const fb_result *res, const double *window, size_t *lo, 
 }
 
 int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
-                           const double *window, fb_vehicle_motion *m, fb_err *err)
+                           const double *window, int hull_only, fb_vehicle_motion *m,
+                           fb_err *err)
 {
-  m->nattach = fb_scenario_nattach(s);
-  m->nmounts = s->nmounts;
-  m->ncorners = s->ncorners;
+  m->nattach = hull_only ? 0 : fb_scenario_nattach(s);
+  m->nmounts = hull_only ? 0 : s->nmounts;
+  m->ncorners = hull_only ? 0 : s->ncorners;
   m->width = 1 + m->ncoords + m->nattach + m->nmounts + m->ncorners;
   size_t lo, hi;
   window_rows(res, window, &lo, &hi);
