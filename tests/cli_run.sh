@@ -177,7 +177,8 @@ run run "$SHORT" -o "$WORK/both" -q
 expect_status 0 "run, both systems"
 checks=$((checks + 1))
 [ "$(ls -A "$WORK/both" | sort)" = "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" \
-  "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" "${BODES[@]}" .flexbond-manifest report.md summary.json system1.csv system2.csv system2_converged.csv | sort)" ] ||
+  "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" "${BODES[@]}" .flexbond-manifest report.md summary.json system1.csv system2.csv system2_converged.csv \
+  stress_peak.png stress_peak.vtu stress_peaks.csv | sort)" ] ||
   fail "both systems: files $(ls -A "$WORK/both" | tr '\n' ' ')"
 checks=$((checks + 1))
 [ "$(head -n 1 "$WORK/both/system2.csv")" = "$HEADER" ] ||
@@ -317,7 +318,7 @@ checks=$((checks + 1))
 links=$(grep -o '](\([^)]*\))' "$REPORT" | sed 's/^](//; s/)$//')
 [ "$(printf '%s\n' "$links" | sort)" = \
   "$(printf '%s\n' "${FIGURES[@]}" "${MODE_PICTURES[@]}" "${DIAGRAMS1[@]}" "${DIAGRAMS2[@]}" \
-    "${BODES[@]}" | sort)" ] ||
+    "${BODES[@]}" stress_peak.png | sort)" ] ||
   fail "report.md image links: $(echo $links)"
 for f in $links; do
   checks=$((checks + 1))
@@ -334,7 +335,7 @@ expect_in "$REPORT" "The rigid hull's torsion angle is identically zero; the fle
 run run "$SHORT" -o "$WORK/both_nofig" -q --no-figures --hull-modes 12
 expect_status 0 "run, both systems, --no-figures --hull-modes 12"
 checks=$((checks + 1))
-[ "$(cd "$WORK/both_nofig" && ls | tr '\n' ' ')" = "report.md summary.json system1.csv system2.csv system2_converged.csv " ] ||
+[ "$(cd "$WORK/both_nofig" && ls | tr '\n' ' ')" = "report.md stress_peak.vtu stress_peaks.csv summary.json system1.csv system2.csv system2_converged.csv " ] ||
   fail "both systems --no-figures: $(ls "$WORK/both_nofig")"
 checks=$((checks + 1))
 ! grep -q '!\[' "$WORK/both_nofig/report.md" || fail "report.md without images"

@@ -956,7 +956,10 @@ static void test_vtu(void)
    * nodes with a vertex cell each, their displacement (0, 0, dz), the
    * part array telling them apart, -1 ids. */
   const fb_vtu_marker markers[2] = {{{0.5, 0.5, 1.0}, 0.25, 1}, {{2.0, 0.0, -1.0}, -0.5, 2}};
-  const fb_vtu_frame frame = {dof, 2.0, markers, 2, fields, 1, {0.0, 0.0, 0.0}};
+  /* A cell array: the elements' values, then 0 for the markers' cells. */
+  const double vm[3] = {1.5e8, 2.5, 3.5};
+  const fb_vtu_cell_array cells = {"von_mises", vm};
+  const fb_vtu_frame frame = {dof, 2.0, markers, 2, fields, 1, {0.0, 0.0, 0.0}, &cells, 1};
   CHECK(fb_mesh_write_vtu_frame(m, &frame, path, &err) == FB_OK);
   xml = slurp(path);
   if (xml) {
@@ -983,15 +986,24 @@ static void test_vtu(void)
     const double ids2[9] = {10, 20, 30, 40, 50, 60, 70, -1, -1}, eids2[5] = {1, 2, 3, -1, -1};
     check_array(xml, "node_id", ids2, 9);
     check_array(xml, "element_id", eids2, 5);
+    const double vm2[5] = {1.5e8, 2.5, 3.5, 0, 0};
+    check_array(xml, "von_mises", vm2, 5);
     const double tip2[9] = {0, 0, 0, 0, 0, 0, 1, 0, 0};
     check_array(xml, "nset_Tip", tip2, 9);
   }
   free(xml);
   remove(path);
   const fb_vtu_marker bad_marker = {{0, 0, NAN}, 0, 1};
-  const fb_vtu_frame bad_frame = {dof, 1.0, &bad_marker, 1, NULL, 0, {0.0, 0.0, 0.0}};
+  const fb_vtu_frame bad_frame = {dof, 1.0, &bad_marker, 1, NULL, 0, {0.0, 0.0, 0.0}, NULL, 0};
   CHECK(fb_mesh_write_vtu_frame(m, &bad_frame, path, &err) == FB_EINVAL);
   check_msg(&err, "marker 0 is not finite");
+  CHECK(count_entries() == 0);
+  const double vm_bad[3] = {1.0, NAN, 2.0};
+  const fb_vtu_cell_array bad_cells = {"von_mises", vm_bad};
+  const fb_vtu_frame bad_cell_frame = {dof,        1.0, NULL, 0, NULL, 0, {0.0, 0.0, 0.0},
+                                       &bad_cells, 1};
+  CHECK(fb_mesh_write_vtu_frame(m, &bad_cell_frame, path, &err) == FB_EINVAL);
+  check_msg(&err, "cell array von_mises is not finite at element 2");
   CHECK(count_entries() == 0);
 
   /* A NaN is refused before any file exists. */

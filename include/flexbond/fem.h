@@ -459,7 +459,9 @@ int fb_shell_stress_modes(fb_shell_stress *s, const double *phi, size_t ndof, si
                           fb_err *err);
 /* The number of stress modes (0 before fb_shell_stress_modes). */
 size_t fb_shell_stress_nmodes(const fb_shell_stress *s);
-/* S_e, 6 x nmodes row-major (borrowed; NULL before fb_shell_stress_modes). */
+/* S_e, 6 x nmodes row-major (borrowed; NULL before fb_shell_stress_modes).
+ * The elements' follow one another: element 0's is the 6 nelements x
+ * nmodes row-major matrix of them all (for a product over many q). */
 const double *fb_shell_stress_mode_matrix(const fb_shell_stress *s, size_t e);
 /* The states of every element for modal coordinates q (nmodes): S_e q,
  * then the same derived values as fb_shell_stress_eval_nodal. FB_EINVAL
@@ -544,10 +546,16 @@ typedef struct fb_vtu_marker {
   double dz;
   int part;
 } fb_vtu_marker;
+/* A value per element of the mesh (a stress), as VTK CellData: name,
+ * and nelements values (finite; borrowed). A frame's markers get 0. */
+typedef struct fb_vtu_cell_array {
+  const char *name;
+  const double *values;
+} fb_vtu_cell_array;
 /* One grid of an animation (or a mode): the mesh's nodal displacements
  * (6 per node as in fb_mesh_write_vtu, or NULL), the points drawn at
- * origin + X + warp u (warp 0: at rest, as fb_mesh_write_vtu), markers
- * and field data. origin (m) is where the mesh's origin lies in the frame
+ * origin + X + warp u (warp 0: at rest, as fb_mesh_write_vtu), markers,
+ * cell arrays and field data. origin (m) is where the mesh's origin lies in the frame
  * the file is written in (a vehicle's: fb_scenario_frame_offset); the
  * markers' positions are the mesh's. */
 typedef struct fb_vtu_frame {
@@ -558,6 +566,8 @@ typedef struct fb_vtu_frame {
   const fb_vtu_field *fields;
   size_t nfields;
   double origin[3];
+  const fb_vtu_cell_array *cell_arrays;
+  size_t ncell_arrays;
 } fb_vtu_frame;
 int fb_mesh_write_vtu_frame(const fb_mesh *m, const fb_vtu_frame *f, const char *path,
                             fb_err *err);

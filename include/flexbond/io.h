@@ -197,6 +197,21 @@ int fb_plot_mode_png(const fb_plot_mode *pic, const char *path, fb_err *err);
 int fb_plot_mode_gif(const fb_plot_mode *frames, size_t nframes, double frame_seconds,
                      const char *path, fb_err *err);
 
+/* A value per element of a mesh drawn as its colour (a stress field),
+ * through gnuplot's pm3d: every element a flat patch coloured by its
+ * value (the mode pictures' palette, from 0 to the largest value), with
+ * dark edges, hidden surfaces removed by depth order, in the mode
+ * pictures' view and axes. */
+typedef struct fb_plot_field {
+  const fb_mesh *mesh;
+  const double *values;     /* nelements, finite, >= 0 */
+  const char *title;        /* may be NULL */
+  const char *subtitle;     /* may be NULL */
+  const char *colour_label; /* the colour bar's, not NULL */
+  double origin[3];         /* as fb_plot_mode's */
+} fb_plot_field;
+int fb_plot_field_png(const fb_plot_field *pic, const char *path, fb_err *err);
+
 /* ---- A vehicle scenario's values (flexbond/vehicle.h), as a report
  * lists them. */
 

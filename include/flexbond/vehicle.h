@@ -1191,10 +1191,23 @@ int fb_vehicle_freq_response(const fb_scenario *s, const fb_descriptor *ds,
  * fb_vehicle_opts says otherwise: 4 GiB. */
 #define FB_VEHICLE_MEMORY_LIMIT ((size_t)4 << 30)
 
+/* What fb_vehicle_opts.motion records. */
+enum {
+  FB_VEHICLE_MOTION_NONE = 0,
+  /* The whole motion (an animation): the hull's coordinates, and the
+   * attachment points', bodies' and wheels' displacements, integrated
+   * velocities that add states to the solver (its error control sees
+   * them: the outputs move within its tolerance). */
+  FB_VEHICLE_MOTION_ALL = 1,
+  /* The hull's coordinates alone (its stresses, flexbond/hull_stress.h):
+   * read from states, they add none, and the run's results are those of
+   * a run without motion; the motion's nattach, nmounts and ncorners are
+   * 0. */
+  FB_VEHICLE_MOTION_HULL = 2
+};
 typedef struct fb_vehicle_opts {
-  /* 1: probe the vehicle's motion too (fb_vehicle_run's motion, an
-   * animation): System 2's hull coordinates, the attachment points, the
-   * bodies and the wheels. */
+  /* FB_VEHICLE_MOTION_*: probe the vehicle's motion too (fb_vehicle_run's
+   * motion). */
   int motion;
   /* Bytes for the hull's factorisation, eigen-solve and basis (checked
    * before each is allocated: FB_ENOMEM naming what it needs); 0:
@@ -1336,6 +1349,11 @@ typedef struct fb_vehicle_motion {
    * points' displacements ("attach" order: corners then mounts), the
    * mounted bodies', the wheels'. Owned. */
   double *samples;
+  /* The hull's coordinates at t = 0 (ncoords, owned), which the samples'
+   * are relative to: with simulation.initial: static its deflection
+   * under the vehicle's weight (for the total stresses,
+   * flexbond/hull_stress.h). */
+  double *hull_q0;
 } fb_vehicle_motion;
 void fb_vehicle_motion_free(fb_vehicle_motion **m);
 
@@ -1349,6 +1367,10 @@ void fb_vehicle_motion_free(fb_vehicle_motion **m);
 int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double t,
                          double *node_u, double *attach_dz, double *body_dz, double *wheel_dz,
                          fb_err *err);
+/* The hull's coordinates at time t (as fb_vehicle_motion_at: linear
+ * between samples, clamped), total: hull_q0 plus the sample's, into q
+ * (ncoords). FB_EINVAL for a run of no samples. */
+int fb_vehicle_motion_coords_at(const fb_vehicle_motion *m, double t, double *q, fb_err *err);
 
 /* Integrates the vehicle per its scenario: initial state (zero or static
  * equilibrium), breakpoints at every wheel's bump entry and exit,

@@ -29,7 +29,8 @@ import warnings
 import numpy
 
 __all__ = ["Scenario", "Simulation", "Result", "Corner", "Mode", "Modes", "FreqResponse",
-           "RidePSD", "PsdRoad", "Model", "ModelFile", "Study", "HullMesh", "RunSummary",
+           "RidePSD", "PsdRoad", "Model", "ModelFile", "Study", "HullMesh", "HullStressPeaks",
+           "RunSummary",
            "Differences", "Sweep", "Error", "PlausibilityWarning", "RIGID", "FLEXIBLE",
            "NOTABLE_DIFF", "NOTABLE_CHANGE", "library_path"]
 
@@ -240,6 +241,16 @@ class _SweepCase(ctypes.Structure):
                 ("wall_seconds", ctypes.c_double), ("worker", ctypes.c_int)]
 
 
+class _HullStressPeaks(ctypes.Structure):
+    # fb_hull_stress_peaks (flexbond/hull_stress.h); fb_hull_surface is an int.
+    _fields_ = [("nelements", ctypes.c_size_t), ("nsamples", ctypes.c_size_t),
+                ("von_mises", ctypes.POINTER(ctypes.c_double)),
+                ("time", ctypes.POINTER(ctypes.c_double)),
+                ("surface", ctypes.POINTER(ctypes.c_int)),
+                ("range", ctypes.POINTER(ctypes.c_double)),
+                ("range_surface", ctypes.POINTER(ctypes.c_int))]
+
+
 class _VehicleOpts(ctypes.Structure):
     """fb_vehicle_opts (flexbond/vehicle.h), filled by fb_vehicle_opts_default."""
     _fields_ = [("motion", ctypes.c_int), ("memory_limit", ctypes.c_size_t),
@@ -368,6 +379,20 @@ _PROTOTYPES = {
     "fb_mesh_count": (ctypes.c_size_t, [_P, ctypes.c_int]),
     "fb_mesh_nsections": (ctypes.c_size_t, [_P]),
     "fb_mesh_section_elset": (ctypes.c_char_p, [_P, ctypes.c_size_t]),
+    "fb_mesh_nelements": (ctypes.c_size_t, [_P]),
+    "fb_mesh_element_id": (ctypes.c_long, [_P, ctypes.c_size_t]),
+    "fb_mesh_element_type": (ctypes.c_int, [_P, ctypes.c_size_t]),
+    "fb_mesh_element_nodes": (ctypes.POINTER(ctypes.c_size_t), [_P, ctypes.c_size_t]),
+    "fb_mesh_element_section": (ctypes.c_long, [_P, ctypes.c_size_t]),
+    "fb_mesh_node_xyz": (_PDOUBLE, [_P, ctypes.c_size_t]),
+    "fb_vehicle_motion_free": (None, [_PP]),
+    "fb_hull_stress_new": (ctypes.c_int, [_P, _PP, _PERR]),
+    "fb_hull_stress_free": (None, [_PP]),
+    "fb_hull_stress_mesh": (_P, [_P]),
+    "fb_hull_stress_peaks_of": (ctypes.c_int, [_P, _P, ctypes.c_double,
+                                               ctypes.POINTER(ctypes.POINTER(_HullStressPeaks)),
+                                               _PERR]),
+    "fb_hull_stress_peaks_free": (None, [ctypes.POINTER(ctypes.POINTER(_HullStressPeaks))]),
     "fb_bd_build": (ctypes.c_int, [_P, _P, ctypes.c_size_t, _PP, _PERR]),
     "fb_bd_free": (None, [_PP]),
     "fb_bd_nstates": (ctypes.c_size_t, [_P]),
@@ -913,6 +938,44 @@ def _hull_mesh(h, origin):
     as_built = _mass_props(h, 1, origin) if _lib.fb_fe_hull_npoint_masses(h) else None
     return HullMesh(_lib.fb_mesh_nnodes(mesh), _lib.fb_mesh_count(mesh, 3),
                     _lib.fb_mesh_count(mesh, 4), sections, _mass_props(h, 0, origin), as_built)
+
+
+HullStressPeaks = collections.namedtuple(
+    "HullStressPeaks",
+    "element_id section centroid von_mises time surface range range_surface nsamples t_from")
+HullStressPeaks.__doc__ = """System 2's hull stresses over a run (Scenario.hull_stress_peaks), as
+flexbond run's stress_peaks.csv holds them, one entry per element in the
+mesh's order (numpy arrays): element_id, section (its element set's name,
+"" for none), centroid (n x 3, m, the file's frame), von_mises (the peak,
+the larger surface's, Pa), time (s), surface ("top" or "bottom"), range
+(the largest range of a plane's normal stress, Pa) and range_surface;
+nsamples, the samples taken from t_from (s) on (docs/stresses.md)."""
+
+
+def _stress_peaks(s, mesh, p, t_from):
+    """The HullStressPeaks of the library's peaks p over mesh."""
+    n = p.nelements
+    origin = _frame_offset(s)
+    ids = numpy.empty(n, dtype=numpy.int64)
+    centroid = numpy.empty((n, 3))
+    section = []
+    for e in range(n):
+        ids[e] = _lib.fb_mesh_element_id(mesh, e)
+        nodes = _lib.fb_mesh_element_nodes(mesh, e)
+        nn = _lib.fb_mesh_element_type(mesh, e)
+        centroid[e] = [sum(_lib.fb_mesh_node_xyz(mesh, nodes[i])[k] for i in range(nn)) / nn
+                       + origin[k] for k in range(3)]
+        sec = _lib.fb_mesh_element_section(mesh, e)
+        section.append(_lib.fb_mesh_section_elset(mesh, sec).decode(errors="replace")
+                       if sec >= 0 else "")
+    surfaces = numpy.array(["top", "bottom"])
+    return HullStressPeaks(ids, numpy.array(section, dtype=object), centroid,
+                           numpy.ctypeslib.as_array(p.von_mises, (n,)).copy(),
+                           numpy.ctypeslib.as_array(p.time, (n,)).copy(),
+                           surfaces[numpy.ctypeslib.as_array(p.surface, (n,))],
+                           numpy.ctypeslib.as_array(p.range, (n,)).copy(),
+                           surfaces[numpy.ctypeslib.as_array(p.range_surface, (n,))],
+                           p.nsamples, t_from)
 
 
 HullModes = collections.namedtuple("HullModes", "hull_freq_hz nrigid vehicle nfree")
@@ -1552,6 +1615,45 @@ class Scenario(_Closing):
         finite-element hull."""
         with self._fe_hull() as h:
             return _hull_mesh(h, _frame_offset(self._handle()))
+
+    def hull_stress_peaks(self, t_from=None, progress=None):
+        """System 2 run as Scenario.run("flexible") does, and its hull's
+        stresses over the run's output samples from t_from (s; None: the
+        road window's start, as flexbond run takes): a HullStressPeaks,
+        flexbond run's stress_peaks.csv from the same library calls
+        (fb_hull_stress_peaks_of). progress as for run. Error when the
+        scenario has no finite-element hull."""
+        if t_from is None:
+            window = (ctypes.c_double * 2)()
+            with self._held():
+                _lib.fb_study_response_window(self._s, window)
+            t_from = window[0]
+
+        def body(s, sys_id, opts, reporter):
+            opts.motion = 2  # FB_VEHICLE_MOTION_HULL: the results are run()'s
+            v, res, motion, hs = ctypes.c_void_p(), ctypes.c_void_p(), ctypes.c_void_p(), \
+                ctypes.c_void_p()
+            peaks = ctypes.POINTER(_HullStressPeaks)()
+            err = _Err()
+            try:
+                _check_about(s, _lib.fb_vehicle_new(s, sys_id, ctypes.byref(opts),
+                                                    ctypes.byref(v), ctypes.byref(err)),
+                             err, self._data_name)
+                _check(_lib.fb_vehicle_run(v, None, reporter.run_fn, None, ctypes.byref(res),
+                                           ctypes.byref(motion), ctypes.byref(err)), err)
+                _check(_lib.fb_hull_stress_new(v, ctypes.byref(hs), ctypes.byref(err)), err)
+                _check(_lib.fb_hull_stress_peaks_of(hs, motion, ctypes.c_double(t_from),
+                                                    ctypes.byref(peaks), ctypes.byref(err)),
+                       err)
+                return _stress_peaks(s, _lib.fb_hull_stress_mesh(hs), peaks.contents, t_from)
+            finally:
+                _lib.fb_hull_stress_peaks_free(ctypes.byref(peaks))
+                _lib.fb_hull_stress_free(ctypes.byref(hs))
+                _lib.fb_vehicle_motion_free(ctypes.byref(motion))
+                _lib.fb_result_free(ctypes.byref(res))
+                _lib.fb_vehicle_free(ctypes.byref(v))
+
+        return self._in_call("flexible", body, 0, progress)
 
     def hull_matrices(self):
         """The hull structure's own stiffness and mass matrices (K, M; N/m

@@ -37,7 +37,10 @@ typedef struct anim_frame {
 typedef struct anim {
   const fb_scenario *s;
   const fb_vehicle_motion *m;
-  fb_mesh *own_mesh; /* System 1's display mesh (owned), NULL in System 2 */
+  const fb_hull_stress *stress;  /* System 2's recovery, or NULL */
+  fb_shell_stress_state *states; /* a frame's, nelements (owned) with stress */
+  double *von_mises;             /* a frame's, Pa, nelements (owned) with stress */
+  fb_mesh *own_mesh;             /* System 1's display mesh (owned), NULL in System 2 */
   const fb_mesh *mesh;
   double floor_z, extent; /* m: the hull's lowest node, its largest extent */
   anim_frame ref;         /* the vehicle at the first frame's time, as the run has it */
@@ -147,6 +150,8 @@ static void anim_free(anim *an)
     frame_free(&an->frames[k]);
   frame_free(&an->ref);
   free(an->frames);
+  free(an->states);
+  free(an->von_mises);
   fb_mesh_free(&an->own_mesh);
 }
 
@@ -241,16 +246,34 @@ void cli_animation_file(fb_system sys, const char *ext, size_t frame, char *buf,
 
 /* ---- ParaView: a .vtu per frame and the .pvd collection naming them. */
 
+/* The von Mises stress per element at frame f's time (the larger
+ * surface's, the total stress), into an->von_mises. */
+static int frame_stress(const anim *an, const anim_frame *f, fb_err *err)
+{
+  int rc = fb_hull_stress_at(an->stress, an->m, f->t, an->states, err);
+  for (size_t e = 0; !rc && e < fb_hull_stress_nelements(an->stress); ++e)
+    an->von_mises[e] = an->states[e].von_mises_max;
+  return rc;
+}
+
 static int write_vtu(cli_outdir *od, const anim *an, size_t k, fb_err *err)
 {
   const anim_frame *f = &an->frames[k];
   const fb_vtu_field fields[2] = {{"TimeValue", f->t}, {"warp_factor", an->warp}};
+  const fb_vtu_cell_array cells = {"von_mises", an->von_mises};
   fb_vtu_frame frame = {.dof_values = f->u,
                         .warp = an->warp,
                         .markers = f->markers,
                         .nmarkers = an->s->nmounts + an->s->ncorners,
                         .fields = fields,
-                        .nfields = 2};
+                        .nfields = 2,
+                        .cell_arrays = an->stress ? &cells : NULL,
+                        .ncell_arrays = an->stress ? 1 : 0};
+  if (an->stress) {
+    const int rc = frame_stress(an, f, err);
+    if (rc)
+      return rc;
+  }
   fb_scenario_frame_offset(an->s, frame.origin);
   char name[64];
   cli_animation_file(an->m->sys, "vtu", k, name, sizeof name);
@@ -329,11 +352,18 @@ static int write_gif(cli_outdir *od, const anim *an, const cli_animate_opts *o, 
 }
 
 int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_motion *m,
-                        const double window[2], const cli_animate_opts *o,
-                        cli_animation_info *info, fb_err *err)
+                        const fb_hull_stress *stress, const double window[2],
+                        const cli_animate_opts *o, cli_animation_info *info, fb_err *err)
 {
-  anim an = {.s = s, .m = m};
+  anim an = {.s = s, .m = m, .stress = stress};
   int rc = build(&an, window, o, err);
+  if (!rc && stress) {
+    const size_t ne = fb_hull_stress_nelements(stress);
+    an.states = malloc((ne ? ne : 1) * sizeof *an.states);
+    an.von_mises = malloc((ne ? ne : 1) * sizeof *an.von_mises);
+    if (!an.states || !an.von_mises)
+      rc = fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
+  }
   for (size_t k = 0; !rc && k < an.nframes; ++k)
     rc = write_vtu(od, &an, k, err);
   if (!rc) {

@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "flexbond/error.h"
+#include "flexbond/hull_stress.h"
 #include "flexbond/io.h"
 #include "flexbond/model.h"
 #include "flexbond/ride.h"
@@ -364,9 +365,11 @@ int cli_animate_frame_count(const double window[2], double t_first, double t_las
 void cli_animation_file(fb_system sys, const char *ext, size_t frame, char *buf, size_t size);
 /* m's frames over window (the bump window) at o's rate into od: a .vtu
  * per frame, the .pvd naming them and, with o->gif, the animated GIF. */
+/* stress (System 2's recovery, or NULL): each .vtu carries the von Mises
+ * stress per element at its time as cell data "von_mises" (Pa). */
 int cli_write_animation(cli_outdir *od, const fb_scenario *s, const fb_vehicle_motion *m,
-                        const double window[2], const cli_animate_opts *o,
-                        cli_animation_info *info, fb_err *err);
+                        const fb_hull_stress *stress, const double window[2],
+                        const cli_animate_opts *o, cli_animation_info *info, fb_err *err);
 
 /* FB_CONTACT_SPIKE_RATIO (flexbond/study.h) for messages. */
 #define CLI_CONTACT_SPIKE_TEXT "3"
@@ -385,7 +388,27 @@ typedef struct cli_run_system {
   /* System 2 with a reduced modal hull: the estimated error of each output
    * from its basis (fb_vehicle_basis_error; s->noutputs, owned), else NULL. */
   double *basis_error;
+  /* System 2 unless --no-stress: its hull's stress recovery and the peaks
+   * per element over the samples from stress_from (s) on (owned), else
+   * NULL. */
+  fb_hull_stress *stress;
+  fb_hull_stress_peaks *peaks;
+  double stress_from;
 } cli_run_system;
+
+/* ---- Hull stresses (stress.c; docs/stresses.md "Over a run"). */
+
+#define CLI_STRESS_CSV "stress_peaks.csv"
+#define CLI_STRESS_VTU "stress_peak.vtu"
+#define CLI_STRESS_PNG "stress_peak.png"
+/* run's stress recovery of v (System 2) and its peaks over run->motion's
+ * samples at or after t_from (s) into run->stress, run->peaks. */
+int cli_run_stress(const fb_vehicle *v, double t_from, cli_run_system *run, fb_err *err);
+void cli_run_stress_free(cli_run_system *run);
+/* DIR/stress_peaks.csv, DIR/stress_peak.vtu and, with figures,
+ * DIR/stress_peak.png of run (its peaks computed). */
+int cli_write_stress_files(cli_outdir *od, const fb_scenario *s, const cli_run_system *run,
+                           int figures, fb_err *err);
 
 /* Everything run writes. */
 typedef struct cli_run_outputs {
@@ -437,6 +460,8 @@ const char *cli_system_label(fb_system sys);
 const char *cli_scenario_name(const fb_scenario *s);
 /* report.md (a cli_writer over a cli_run_outputs). */
 void cli_write_report_md(FILE *fp, const void *ctx);
+/* report.md's "Hull stresses" (the hot spots), when a run has peaks. */
+void cli_write_stress_report(FILE *fp, const cli_run_outputs *o);
 
 /* ---- Frequency responses (flexbond freq, and run's report), as the
  * study layer computes them (flexbond/study.h). */

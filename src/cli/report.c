@@ -1555,6 +1555,7 @@ void cli_write_report_md(FILE *fp, const void *ctx)
   write_figures(fp, o);
   write_frequency_response(fp, o);
   write_animation(fp, o);
+  cli_write_stress_report(fp, o);
   if (o->diff) {
     write_comparison_table(fp, o);
     write_converged(fp, o);

@@ -26,7 +26,9 @@
 #include "../core/util.h"
 #include "cli.h"
 
-static const char run_usage[] =
+/* The help text in two literals, each within the 4095 characters C11
+ * compilers must support, joined in cli_cmd_run. */
+static const char run_usage_files[] =
     "usage: flexbond run SCENARIO.yaml -o DIR [options]\n"
     "\n"
     "Simulates the vehicle of the scenario (docs/scenario-format.md) on its\n"
@@ -52,8 +54,15 @@ static const char run_usage[] =
     "  DIR/animation_systemN.pvd, DIR/animation_systemN_FFFF.vtu, DIR/animation_systemN.gif\n"
     "                          with --animate: each system's motion in the road's\n"
     "                          window, a ParaView time series and an animated GIF\n"
+    "                          (System 2's frames with the von Mises stress per element)\n"
+    "  DIR/stress_peaks.csv    System 2: per hull element its peak von Mises stress\n"
+    "                          over the samples from the road window's start, its\n"
+    "                          time and surface, and a stress range (docs/stresses.md)\n"
+    "  DIR/stress_peak.vtu, DIR/stress_peak.png\n"
+    "                          the same for ParaView, and the hull coloured by it\n"
     "DIR is created if missing; nothing is written if a run fails.\n"
-    "\n"
+    "\n";
+static const char run_usage_options[] =
     "options (override the scenario):\n"
     "  -o, --output DIR            output directory (required)\n"
     "  --system rigid|flexible|both  hull model (default both; System 1 alone if\n"
@@ -80,6 +89,8 @@ static const char run_usage[] =
     "  --animate-scale F           draw the displacements F times (default: the\n"
     "                              largest 8 % of the hull's length)\n"
     "  --no-figures                no PNG or GIF; report.md with no images\n"
+    "  --no-stress                 no hull stresses (System 2's stress files and the\n"
+    "                              report's hot spots; by default they are written)\n"
     "  --picture-modes LIST        picture these modes (\"1,3,7\")\n"
     "  --plain-header              CSV headers of names only ('t,tire_force_LF,...',\n"
     "                              the paper's), without the units\n"
@@ -133,6 +144,7 @@ typedef struct run_args {
   int verbose;          /* the costs of eigen-solves and set-up too (-v) */
   int progress;         /* draw a progress line: stderr is a terminal, no -q */
   int figures;          /* 0 with --no-figures */
+  int stress;           /* 0 with --no-stress: no hull stresses */
   fb_csv_header header; /* of systemN.csv: units, or names with --plain-header */
   cli_animate_opts animate;
   cli_mode_list pictured; /* --picture-modes */
@@ -700,6 +712,9 @@ static int write_outputs(cli_outdir *od, const cli_run_outputs *o, size_t *nfile
     const system_csv csv = {&o->runs[i], o->scenario->noutputs, o->header};
     rc = cli_outdir_write(od, name, write_system_csv, &csv, err);
   }
+  for (size_t i = 0; i < o->nruns && rc == FB_OK; ++i)
+    if (o->runs[i].peaks)
+      rc = cli_write_stress_files(od, o->scenario, &o->runs[i], o->figures, err);
   if (rc == FB_OK && o->converged) {
     const system_csv csv = {o->converged, o->scenario->noutputs, o->header};
     rc = cli_outdir_write(od, "system2_converged.csv", write_system_csv, &csv, err);
@@ -731,7 +746,11 @@ static int realise(const run_args *a, const fb_scenario *s, fb_system sys, const
   rv->stage = (cli_stage){"run", rv->subject, a->quiet};
   fb_vehicle_opts o;
   fb_vehicle_opts_default(&o);
-  o.motion = motion;
+  /* The hull stresses need the hull's coordinates alone, which leave the
+   * run's results as they are. */
+  o.motion = motion                                   ? FB_VEHICLE_MOTION_ALL
+             : a->stress && sys == FB_SYSTEM_FLEXIBLE ? FB_VEHICLE_MOTION_HULL
+                                                      : FB_VEHICLE_MOTION_NONE;
   o.progress = (fb_progress){cli_stage_progress, &rv->stage};
   o.threads = cli_threads();
   return fb_vehicle_new(s, sys, &o, &rv->v, err);
@@ -855,12 +874,14 @@ static void run_system_free(cli_run_system *run)
   free(run->basis_error);
   fb_run_summary_free(&run->sum);
   fb_vehicle_motion_free(&run->motion);
+  cli_run_stress_free(run);
 }
 
-/* Runs v into run, with its motion when motion (--animate; v realised
- * with it). */
+/* Runs v into run, with its motion when motion (--animate, or the hull
+ * stresses; v realised with it) kept over motion_window. */
 static int simulate(const run_args *a, const fb_scenario *s, const double window[2],
-                    cli_run_system *run, fb_vehicle *v, int motion, fb_err *err)
+                    const double motion_window[2], cli_run_system *run, fb_vehicle *v,
+                    int motion, fb_err *err)
 {
   run_progress p = {cli_scenario_name(s), run->label ? run->label : cli_system_label(run->sys),
                     s->t_end, 0, a->progress};
@@ -868,8 +889,8 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
     draw_progress_line(&p);
   else if (!a->quiet)
     cli_say("flexbond run: %s: simulating %s, t = 0..%g s ...", p.scenario, p.system, s->t_end);
-  int rc = fb_vehicle_run(v, window, show_progress, &p, &run->res, motion ? &run->motion : NULL,
-                          err);
+  int rc = fb_vehicle_run(v, motion_window, show_progress, &p, &run->res,
+                          motion ? &run->motion : NULL, err);
   /* End the progress line, also before an error message. */
   if (a->progress)
     fputc('\n', stderr);
@@ -887,6 +908,26 @@ static int simulate(const run_args *a, const fb_scenario *s, const double window
             st->wall_seconds);
   }
   return rc == FB_OK ? run_columns(s, run, window, err) : rc;
+}
+
+/* System 2's hull stresses over run (its motion taken) from the road
+ * window's start w0 on (the last sample's time if the run ends before);
+ * with -v, what they cost. */
+static int run_stress(const run_args *a, const fb_scenario *s, double w0, const fb_vehicle *v,
+                      cli_run_system *run, fb_err *err)
+{
+  const fb_vehicle_motion *m = run->motion;
+  const double t_last = m->nsamples ? m->samples[(m->nsamples - 1) * m->width] : 0.0;
+  run->stress_from = fmin(w0, t_last);
+  struct timespec t0;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  const int rc = cli_run_stress(v, run->stress_from, run, err);
+  if (rc == FB_OK && a->verbose)
+    cli_say("flexbond run: %s: %s: hull stresses of %zu elements at %zu samples in %zu "
+            "coordinates, %.3g s",
+            cli_scenario_name(s), cli_system_label(run->sys), run->peaks->nelements,
+            run->peaks->nsamples, m->ncoords, fb_seconds_since(&t0));
+  return rc;
 }
 
 /* ---- The command. */
@@ -990,7 +1031,8 @@ static int write_animations(cli_outdir *od, const run_args *a, const fb_scenario
     if (!a->quiet)
       cli_say("flexbond run: %s: %s: drawing the animation ...", cli_scenario_name(s),
               cli_system_label(runs[i].sys));
-    rc = cli_write_animation(od, s, runs[i].motion, window, &a->animate, &runs[i].anim, err);
+    rc = cli_write_animation(od, s, runs[i].motion, runs[i].stress, window, &a->animate,
+                             &runs[i].anim, err);
   }
   return rc;
 }
@@ -1154,7 +1196,7 @@ static int run_converged_system(const run_args *a, const fb_scenario *s, const d
   c->run.sys = FB_SYSTEM_FLEXIBLE;
   c->run.label = c->label;
   if (rc == FB_OK)
-    rc = simulate(a, c->s, window, &c->run, c->rv.v, 0, err);
+    rc = simulate(a, c->s, window, window, &c->run, c->rv.v, 0, err);
   return finish_estimator(window, &c->est, &c->run, rc, err);
 }
 
@@ -1226,8 +1268,18 @@ static int run(const run_args *a)
 
   for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i) {
     runs[i].sys = systems[i];
-    rc = simulate(a, s, o.bump_window, &runs[i], vehicles[i].v, a->animate.enabled, &err);
+    const int stress = a->stress && systems[i] == FB_SYSTEM_FLEXIBLE;
+    /* The hull stresses' samples run from the window's start to the end. */
+    const double motion_window[2] = {o.bump_window[0], stress ? s->t_end : o.bump_window[1]};
+    rc = simulate(a, s, o.bump_window, motion_window, &runs[i], vehicles[i].v,
+                  a->animate.enabled || stress, &err);
+    if (rc == FB_OK && stress)
+      rc = run_stress(a, s, o.bump_window[0], vehicles[i].v, &runs[i], &err);
   }
+  if (rc == FB_OK && a->stress && !by_system[1] && !a->quiet)
+    cli_say("flexbond run: %s: no hull stresses (%s): they are System 2's, and only System 1 "
+            "(rigid hull) ran",
+            cli_scenario_name(s), CLI_STRESS_CSV);
   /* The modes while the estimator finishes. */
   if (rc == FB_OK)
     rc = compute_modes(vehicles, o.nruns, &modes, &err);
@@ -1383,6 +1435,7 @@ int cli_cmd_run(int argc, char **argv)
     OPT_ANIMATE_FPS,
     OPT_ANIMATE_SCALE,
     OPT_NO_FIGURES,
+    OPT_NO_STRESS,
     OPT_PICTURE_MODES,
     OPT_PLAIN_HEADER,
     OPT_QUIET,
@@ -1403,6 +1456,7 @@ int cli_cmd_run(int argc, char **argv)
       [OPT_ANIMATE_FPS] = {"--animate-fps", NULL, 1, NULL},
       [OPT_ANIMATE_SCALE] = {"--animate-scale", NULL, 1, NULL},
       [OPT_NO_FIGURES] = {"--no-figures", NULL, 0, NULL},
+      [OPT_NO_STRESS] = {"--no-stress", NULL, 0, NULL},
       [OPT_PICTURE_MODES] = {"--picture-modes", NULL, 1, NULL},
       [OPT_PLAIN_HEADER] = {"--plain-header", NULL, 0, NULL},
       [OPT_QUIET] = {"--quiet", "-q", 0, NULL},
@@ -1416,6 +1470,8 @@ int cli_cmd_run(int argc, char **argv)
                 .hull_coordinates = -1,
                 .hull_modes_kind = -1};
   int rc;
+  char run_usage[sizeof run_usage_files + sizeof run_usage_options];
+  snprintf(run_usage, sizeof run_usage, "%s%s", run_usage_files, run_usage_options);
   if (!cli_parse_file_command(argc, argv, opts, NOPTS, run_usage, "SCENARIO", &a.scenario_path,
                               &rc))
     return rc;
@@ -1427,6 +1483,7 @@ int cli_cmd_run(int argc, char **argv)
   a.verbose = !a.quiet && opts[OPT_VERBOSE].value != NULL;
   a.progress = !a.quiet && isatty(STDERR_FILENO);
   a.figures = opts[OPT_NO_FIGURES].value == NULL;
+  a.stress = opts[OPT_NO_STRESS].value == NULL;
   a.header = opts[OPT_PLAIN_HEADER].value ? FB_CSV_HEADER_NAMES : FB_CSV_HEADER_UNITS;
   rc = parse_settings(argv[0], &opts[OPT_SYSTEM], &opts[OPT_INITIAL], &opts[OPT_PAYLOAD],
                       &opts[OPT_HULL_MODES], &opts[OPT_HULL_CUTOFF],

@@ -8,7 +8,8 @@
  * "node_id" (the user ids), "displacement" and "rotation" (3 components
  * each) when DOF values are given, and "nset_<name>" (Int32, 1 for the
  * members of each node set; the prefix keeps set names from colliding with
- * the other arrays). Cell data: "element_id". Coordinates are written with
+ * the other arrays). Cell data: "element_id", then the frame's cell
+ * arrays (Float64). Coordinates are written with
  * %.17g (exact), field values with %.10g (beyond the resolution of any
  * modal or static solution).
  *
@@ -121,14 +122,21 @@ static int write_point_data(FILE *fp, const fb_mesh *m, const fb_vtu_frame *f, f
   return FB_OK;
 }
 
-static void write_cell_data(FILE *fp, const fb_mesh *m, size_t nmarkers)
+static void write_cell_data(FILE *fp, const fb_mesh *m, const fb_vtu_frame *f)
 {
   fputs("      <CellData>\n", fp);
   open_array(fp, "Int64", "element_id", 1);
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
     fprintf(fp, "          %ld\n", fb_mesh_element_id(m, e));
-  write_repeated(fp, nmarkers, -1);
+  write_repeated(fp, f->nmarkers, -1);
   close_array(fp);
+  for (size_t a = 0; a < f->ncell_arrays; ++a) {
+    open_array(fp, "Float64", f->cell_arrays[a].name, 1);
+    for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+      fprintf(fp, "          %.10g\n", f->cell_arrays[a].values[e]);
+    write_repeated(fp, f->nmarkers, 0);
+    close_array(fp);
+  }
   fputs("      </CellData>\n", fp);
 }
 
@@ -234,6 +242,14 @@ static int check_frame(const fb_mesh *m, const fb_vtu_frame *f, const char *path
   for (size_t k = 0; k < f->nfields; ++k)
     if (!f->fields[k].name || !isfinite(f->fields[k].value))
       return fb_err_set(err, FB_EINVAL, "%s: field %zu has no name or is not finite", path, k);
+  for (size_t a = 0; a < f->ncell_arrays; ++a) {
+    if (!f->cell_arrays[a].name || !f->cell_arrays[a].values)
+      return fb_err_set(err, FB_EINVAL, "%s: cell array %zu has no name or values", path, a);
+    for (size_t e = 0; e < fb_mesh_nelements(m); ++e)
+      if (!isfinite(f->cell_arrays[a].values[e]))
+        return fb_err_set(err, FB_EINVAL, "%s: cell array %s is not finite at element %ld",
+                          path, f->cell_arrays[a].name, fb_mesh_element_id(m, e));
+  }
   if (!isfinite(f->warp))
     return fb_err_set(err, FB_EINVAL, "%s: the warp factor is not finite", path);
   if (!isfinite(f->origin[0]) || !isfinite(f->origin[1]) || !isfinite(f->origin[2]))
@@ -271,7 +287,7 @@ int fb_mesh_write_vtu_frame(const fb_mesh *m, const fb_vtu_frame *f, const char 
     fb_out_abort(&out);
     return rc;
   }
-  write_cell_data(fp, m, f->nmarkers);
+  write_cell_data(fp, m, f);
   write_points(fp, m, f);
   write_cells(fp, m, f->nmarkers);
   fputs("    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n", fp);

@@ -268,18 +268,30 @@ static void write_axes(FILE *gp, const mode_script *ms)
         gp);
 }
 
-static void write_titles(FILE *gp, const fb_plot_mode *pic)
+static void write_titles(FILE *gp, const char *title, const char *subtitle)
 {
-  if (pic->title) {
+  if (title) {
     fputs("set title ", gp);
-    fb_gnuplot_quoted(gp, pic->title);
+    fb_gnuplot_quoted(gp, title);
     fputs(" font 'Sans,12'\n", gp);
   }
-  if (pic->subtitle) {
+  if (subtitle) {
     fputs("set label 1 ", gp);
-    fb_gnuplot_quoted(gp, pic->subtitle);
+    fb_gnuplot_quoted(gp, subtitle);
     fputs(" at screen 0.5, 0.915 center font 'Sans,10'\n", gp);
   }
+}
+
+/* Dark blue to dark red through green and orange, from 0 to top: every
+ * colour stands out against the white ground and the grey of a hull at
+ * rest. */
+static void write_colours(FILE *gp, double top, const char *label)
+{
+  fputs("set palette defined (0 '#1f4e9a', 0.4 '#2ca25f', 0.7 '#f28e2b', 1 '#b2182b')\n", gp);
+  fprintf(gp, "set cbrange [0:%.6g]\n", top > 0 ? top : 1.0);
+  fputs("set cblabel ", gp);
+  fb_gnuplot_quoted(gp, label);
+  fputs("\nset colorbox vertical user origin 0.9, 0.25 size 0.02, 0.5\n", gp);
 }
 
 /* The settings every frame shares: view, axes, colours. */
@@ -288,14 +300,9 @@ static void write_view(FILE *gp, const mode_script *ms)
   fputs("set termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28, 1.45\n",
         gp);
   write_axes(gp, ms);
-  /* Dark blue to dark red through green and orange: every colour stands
-   * out against the white ground and the grey of the hull at rest. */
-  fputs("set palette defined (0 '#1f4e9a', 0.4 '#2ca25f', 0.7 '#f28e2b', 1 '#b2182b')\n", gp);
-  fprintf(gp, "set cbrange [0:%.6g]\n", ms->umax > 0 ? ms->umax : 1.0);
-  fputs("set cblabel ", gp);
-  fb_gnuplot_quoted(gp, ms->frames->colour_label ? ms->frames->colour_label
-                                                 : "displacement (shape units)");
-  fputs("\nset colorbox vertical user origin 0.9, 0.25 size 0.02, 0.5\n", gp);
+  write_colours(gp, ms->umax,
+                ms->frames->colour_label ? ms->frames->colour_label
+                                         : "displacement (shape units)");
 }
 
 /* Frame f's displaced parts as the datablock $movedF. */
@@ -329,7 +336,7 @@ static void write_mode_script(FILE *gp, const void *ctx, const char *image_name)
   fputc('\n', gp);
   write_view(gp, &ms);
   for (size_t f = 0; f < ms.nframes; ++f) {
-    write_titles(gp, &ms.frames[f]);
+    write_titles(gp, ms.frames[f].title, ms.frames[f].subtitle);
     fprintf(gp,
             "splot $rest with lines lw 1 lc rgb '#a8a8a8', "
             "$moved%zu using 1:2:3:4 with lines lw 1.5 lc palette\n",
@@ -399,4 +406,74 @@ int fb_plot_mode_gif(const fb_plot_mode *frames, size_t nframes, double frame_se
   }
   free(ms.outline);
   return rc;
+}
+
+/* ---- A field over the elements. */
+
+typedef struct field_script {
+  const fb_plot_field *pic;
+  mode_script extent; /* lo, hi: the mesh's, for the axes */
+  double top;         /* the largest value */
+} field_script;
+
+/* Element e as a pm3d patch of two scans of two points (a triangle's
+ * third node twice), each point with e's value: pm3d colours the patch
+ * by its corners' mean, the value. Two blank lines start the next. */
+static void write_patch(FILE *gp, const fb_plot_field *pic, size_t e)
+{
+  const size_t *nd = fb_mesh_element_nodes(pic->mesh, e);
+  const int quad = fb_mesh_element_type(pic->mesh, e) == FB_ELEM_QUAD4;
+  const size_t scan[4] = {nd[0], nd[1], quad ? nd[3] : nd[2], nd[2]};
+  for (int k = 0; k < 4; ++k) {
+    const double *x = fb_mesh_node_xyz(pic->mesh, scan[k]);
+    fprintf(gp, "%.6g %.6g %.6g %.6g\n", pic->origin[0] + x[0], pic->origin[1] + x[1],
+            pic->origin[2] + x[2], pic->values[e]);
+    if (k == 1)
+      fputc('\n', gp);
+  }
+  end_line(gp);
+}
+
+static void write_field_script(FILE *gp, const void *ctx, const char *image_name)
+{
+  const field_script *fs = ctx;
+  const fb_plot_field *pic = fs->pic;
+  fputs("$cells << EOD\n", gp);
+  for (size_t e = 0; e < fb_mesh_nelements(pic->mesh); ++e)
+    write_patch(gp, pic, e);
+  fputs("EOD\nset terminal pngcairo size 1100,760 font 'Sans,10'\nset output ", gp);
+  fb_gnuplot_quoted(gp, image_name);
+  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28, 1.45\n",
+        gp);
+  write_axes(gp, &fs->extent);
+  write_colours(gp, fs->top, pic->colour_label);
+  write_titles(gp, pic->title, pic->subtitle);
+  fputs("set pm3d depthorder border lc rgb '#404040' lw 0.4\nset pm3d corners2color mean\n"
+        "splot $cells using 1:2:3:4 with pm3d\nset output\n",
+        gp);
+}
+
+int fb_plot_field_png(const fb_plot_field *pic, const char *path, fb_err *err)
+{
+  const fb_mesh *m = pic->mesh;
+  if (!m || fb_mesh_nelements(m) == 0 || !pic->values || !pic->colour_label)
+    return fb_err_set(err, FB_EINVAL, "%s: no mesh, values or colour label to draw", path);
+  field_script fs = {.pic = pic};
+  for (int k = 0; k < 3; ++k) {
+    fs.extent.lo[k] = INFINITY;
+    fs.extent.hi[k] = -INFINITY;
+  }
+  for (size_t i = 0; i < fb_mesh_nnodes(m); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double x = pic->origin[k] + fb_mesh_node_xyz(m, i)[k];
+      fs.extent.lo[k] = fmin(fs.extent.lo[k], x);
+      fs.extent.hi[k] = fmax(fs.extent.hi[k], x);
+    }
+  for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
+    if (!isfinite(pic->values[e]) || pic->values[e] < 0)
+      return fb_err_set(err, FB_EINVAL, "%s: element %ld's value %g is not finite and >= 0",
+                        path, fb_mesh_element_id(m, e), pic->values[e]);
+    fs.top = fmax(fs.top, pic->values[e]);
+  }
+  return fb_gnuplot_png(write_field_script, &fs, path, err);
 }

@@ -568,7 +568,7 @@ static int extra_probes(const fb_scenario *s, const fb_hull *hull, unsigned extr
 {
   int rc = extras & VEHICLE_PROBE_CONTACT ? contact_probes(s, p, err) : FB_OK;
   if (!rc && (extras & VEHICLE_PROBE_MOTION))
-    rc = fb_vehicle_motion_probes(s, hull,
+    rc = fb_vehicle_motion_probes(s, hull, (extras & VEHICLE_PROBE_HULL_ONLY) != 0,
                                   p + (extras & VEHICLE_PROBE_CONTACT ? s->ncorners : 0), err);
   return rc;
 }
@@ -583,8 +583,11 @@ int vehicle_graph_around(const fb_scenario *s, fb_hull **hullp, unsigned extras,
   fb_hull *hull = *hullp;
   fb_probe_spec *outputs = NULL;
   size_t nout = 0;
-  const size_t nextra = (extras & VEHICLE_PROBE_CONTACT ? s->ncorners : 0) +
-                        (extras & VEHICLE_PROBE_MOTION ? fb_vehicle_motion_nprobes(s) : 0);
+  const size_t nextra =
+      (extras & VEHICLE_PROBE_CONTACT ? s->ncorners : 0) +
+      (extras & VEHICLE_PROBE_MOTION
+           ? fb_vehicle_motion_nprobes(s, (extras & VEHICLE_PROBE_HULL_ONLY) != 0)
+           : 0);
   if (ncoords)
     *ncoords = hull->ntorsion;
   fb_probe_spec *extra = calloc(nextra + 1, sizeof *extra);

@@ -19,13 +19,14 @@ void fb_vehicle_motion_free(fb_vehicle_motion **m)
   fb_mesh_free(&(*m)->mesh);
   free((*m)->basis);
   free((*m)->samples);
+  free((*m)->hull_q0);
   free(*m);
   *m = NULL;
 }
 
-size_t fb_vehicle_motion_nprobes(const fb_scenario *s)
+size_t fb_vehicle_motion_nprobes(const fb_scenario *s, int hull_only)
 {
-  return 2 + s->nmounts + s->ncorners;
+  return hull_only ? 1 : 2 + s->nmounts + s->ncorners;
 }
 
 /* A probe of every component of target's integrated flow. The names
@@ -36,8 +37,8 @@ static fb_probe_spec displacement_probe(char *name, char *target)
   return (fb_probe_spec){name, FB_PROBE_FLOW, target, -1, 1, 1.0, "m", NULL, 0};
 }
 
-int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec *p,
-                             fb_err *err)
+int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, int hull_only,
+                             fb_probe_spec *p, fb_err *err)
 {
   const vehicle_signal *body =
                            vehicle_fragment_signal(FB_OUTPUT_OF_MOUNT, VEHICLE_SIGNAL_MOTION),
@@ -56,11 +57,12 @@ int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe
                          NULL,
                          0};
   ++k;
-  p[k++] = displacement_probe(fb_strdup("#attach"), fb_strdup("b_attach"));
-  for (size_t b = 0; b < s->nmounts; ++b, ++k)
+  if (!hull_only)
+    p[k++] = displacement_probe(fb_strdup("#attach"), fb_strdup("b_attach"));
+  for (size_t b = 0; !hull_only && b < s->nmounts; ++b, ++k)
     p[k] = displacement_probe(fb_strdup_printf("#body_%s", s->mount[b].name),
                               vehicle_target(s, FB_OUTPUT_OF_MOUNT, b, body->target));
-  for (size_t c = 0; c < s->ncorners; ++c, ++k)
+  for (size_t c = 0; !hull_only && c < s->ncorners; ++c, ++k)
     p[k] = displacement_probe(fb_strdup_printf("#wheel_%s", s->corner[c].name),
                               vehicle_target(s, FB_OUTPUT_OF_CORNER, c, wheel->target));
   for (size_t i = 0; i < k; ++i)
@@ -84,11 +86,12 @@ static void window_rows(const fb_result *res, const double *window, size_t *lo, 
 }
 
 int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
-                           const double *window, fb_vehicle_motion *m, fb_err *err)
+                           const double *window, int hull_only, fb_vehicle_motion *m,
+                           fb_err *err)
 {
-  m->nattach = fb_scenario_nattach(s);
-  m->nmounts = s->nmounts;
-  m->ncorners = s->ncorners;
+  m->nattach = hull_only ? 0 : fb_scenario_nattach(s);
+  m->nmounts = hull_only ? 0 : s->nmounts;
+  m->ncorners = hull_only ? 0 : s->ncorners;
   m->width = 1 + m->ncoords + m->nattach + m->nmounts + m->ncorners;
   size_t lo, hi;
   window_rows(res, window, &lo, &hi);
@@ -101,12 +104,15 @@ int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
   if (m->nsamples > SIZE_MAX / sizeof *m->samples / m->width)
     return fb_err_set(err, FB_ENOMEM, "motion of %zu samples is too large", m->nsamples);
   m->samples = malloc((m->nsamples ? m->nsamples : 1) * m->width * sizeof *m->samples);
-  if (!m->samples)
+  m->hull_q0 = malloc((m->ncoords ? m->ncoords : 1) * sizeof *m->hull_q0);
+  if (!m->samples || !m->hull_q0)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the motion's %zu samples",
                       m->nsamples);
   /* The hull's coordinates from t = 0's, as every integrated
    * displacement is (System 2's q starts at the static state with
    * simulation.initial: static). */
+  for (size_t j = 0; j < m->ncoords; ++j)
+    m->hull_q0[j] = fb_result_nsamples(res) ? fb_result_row(res, 0)[first + j] : 0.0;
   for (size_t k = 0; k < m->nsamples; ++k) {
     const double *row = fb_result_row(res, lo + k), *q0 = fb_result_row(res, 0) + first;
     double *to = m->samples + k * m->width;
@@ -230,5 +236,18 @@ int fb_vehicle_motion_at(const fb_vehicle_motion *m, const fb_mesh *mesh, double
   col += m->nmounts;
   if (wheel_dz)
     row_values(m, k, w, col, m->ncorners, wheel_dz);
+  return FB_OK;
+}
+
+int fb_vehicle_motion_coords_at(const fb_vehicle_motion *m, double t, double *q, fb_err *err)
+{
+  if (m->nsamples == 0)
+    return fb_err_set(err, FB_EINVAL, "the run has no samples");
+  size_t k = 0;
+  double w = 0.0;
+  locate(m, t, &k, &w);
+  row_values(m, k, w, 1, m->ncoords, q);
+  for (size_t j = 0; j < m->ncoords; ++j)
+    q[j] += m->hull_q0[j];
   return FB_OK;
 }

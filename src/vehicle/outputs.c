@@ -264,7 +264,7 @@ static int hull_reading_probe(const fb_hull *hull, size_t index, fb_probe_spec *
 }
 
 /* A surface stress of a shell element: the finite-element hull's
- * reading of it (hull_stress.c); the rigid hull has no elements and
+ * reading of it (hull_stress_output.c); the rigid hull has no elements and
  * makes none. */
 static int hull_stress_probe(const fb_hull *hull, const fb_output_spec *o, size_t index,
                              fb_probe_spec *p, fb_err *err)

@@ -99,6 +99,12 @@ const fb_fe_hull *fb_vehicle_fe_hull_of(const fb_vehicle *v)
   return v->hull ? vehicle_hull_fe(v->hull) : NULL;
 }
 
+const double *vehicle_coordinate_basis(const fb_vehicle *v, size_t *nb)
+{
+  *nb = 0;
+  return v->hull ? vehicle_hull_coordinate_basis(v->hull, nb) : NULL;
+}
+
 /* ---- Diagrams. */
 
 /* The hull fragment of v's system for scenario s (v's own or a variant of
@@ -199,7 +205,9 @@ int vehicle_new_held(const fb_scenario *s, fb_system sys, const fb_vehicle_opts 
   int rc = fb_scenario_check(s, err);
   if (!rc && sys == FB_SYSTEM_FLEXIBLE)
     rc = vehicle_hull_new(s, &v->opts, &v->work, &v->hull, err);
-  const unsigned extras = VEHICLE_PROBE_CONTACT | (v->opts.motion ? VEHICLE_PROBE_MOTION : 0);
+  const unsigned extras =
+      VEHICLE_PROBE_CONTACT | (v->opts.motion ? VEHICLE_PROBE_MOTION : 0) |
+      (v->opts.motion == FB_VEHICLE_MOTION_HULL ? VEHICLE_PROBE_HULL_ONLY : 0);
   if (!rc)
     rc = build_diagram(v, s, 0, extras, &v->graph, &v->probes, &v->nprobes, &v->bd, err);
   if (rc) {
@@ -285,7 +293,8 @@ static int take_motion(fb_vehicle *v, fb_result *res, const double *window,
     }
   }
   if (!rc)
-    rc = fb_vehicle_motion_take(v->s, res, 1 + v->s->noutputs + v->s->ncorners, window, m, err);
+    rc = fb_vehicle_motion_take(v->s, res, 1 + v->s->noutputs + v->s->ncorners, window,
+                                v->opts.motion == FB_VEHICLE_MOTION_HULL, m, err);
   if (rc) {
     fb_vehicle_motion_free(&m);
     return rc;

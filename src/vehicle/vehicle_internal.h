@@ -92,10 +92,11 @@ int vehicle_hull_check_size(double elements, const char *hint, fb_err *err);
  * probe's signal, every component), the attachment points' displacements
  * (integrated flow of the assembly's b_attach), each mounted body's and
  * each wheel's (integrated flow of NAME.b_mass, susp_NAME.b_wheel):
- * fb_vehicle_motion_nprobes(s) of them into p (names and targets new). */
-size_t fb_vehicle_motion_nprobes(const fb_scenario *s);
-int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe_spec *p,
-                             fb_err *err);
+ * fb_vehicle_motion_nprobes(s, hull_only) of them into p (names and
+ * targets new); hull_only: the hull's coordinates alone. */
+size_t fb_vehicle_motion_nprobes(const fb_scenario *s, int hull_only);
+int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, int hull_only,
+                             fb_probe_spec *p, fb_err *err);
 /* Moves the columns from first on of res (the motion probes' values)
  * into m->samples, with the time, and drops them from res: the rows
  * that cover window (the last sample at or before window[0] to the first
@@ -103,7 +104,8 @@ int fb_vehicle_motion_probes(const fb_scenario *s, const fb_hull *hull, fb_probe
  * coordinates become relative to their value at t = 0, as the integrated
  * displacements are. */
 int fb_vehicle_motion_take(const fb_scenario *s, fb_result *res, size_t first,
-                           const double *window, fb_vehicle_motion *m, fb_err *err);
+                           const double *window, int hull_only, fb_vehicle_motion *m,
+                           fb_err *err);
 
 /* -1 if output o is not read from the hull's deformation, else which
  * torsion weights it takes (fb_fe_hull_torsion_weights' fit: 0 or 1). */
@@ -170,7 +172,7 @@ int vehicle_hull_rigid_fit(const fb_mesh *m, const fb_mat *M, int coordinate, do
 int vehicle_hull_points_check(const fb_scenario *s, fb_err *err);
 
 /* ---- Outputs read from the stresses of System 2's shell elements
- * (hull_stress.c, docs/stresses.md "Stress outputs"). */
+ * (hull_stress_output.c, docs/stresses.md "Stress outputs"). */
 
 /* 1 if output o is a hull stress signal (FB_OUTPUT_OF_HULL_STRESS; outputs.c). */
 int vehicle_output_hull_stress(const fb_output_spec *o);
@@ -351,8 +353,9 @@ int vehicle_linear_modes(const fb_bg *g, fb_bd *bd, size_t memory_limit, fb_mode
 
 /* What a diagram of a realised vehicle probes besides the outputs. */
 enum {
-  VEHICLE_PROBE_CONTACT = 1, /* every tire's contact force */
-  VEHICLE_PROBE_MOTION = 2   /* the motion's probes (fb_vehicle_motion_probes) */
+  VEHICLE_PROBE_CONTACT = 1,  /* every tire's contact force */
+  VEHICLE_PROBE_MOTION = 2,   /* the motion's probes (fb_vehicle_motion_probes) */
+  VEHICLE_PROBE_HULL_ONLY = 4 /* with VEHICLE_PROBE_MOTION: the hull's coordinates alone */
 };
 
 /* Assembles the vehicle of s around hull (taken over) with the probes of
@@ -380,6 +383,9 @@ int vehicle_hold_inputs(const fb_scenario *s, const double *held, fb_bg *graph, 
 /* The basis over the hull's nodal DOFs its coordinates are in (ndof x
  * *nb, column-major): NULL for nodal coordinates. */
 const double *vehicle_hull_coordinate_basis(const vehicle_hull *h, size_t *nb);
+/* The same of v's hull (NULL for System 1 or nodal coordinates; owned by
+ * v). */
+const double *vehicle_coordinate_basis(const fb_vehicle *v, size_t *nb);
 
 /* The file paths of s's hull-source block (FB_PARAM_FILE parameters,
  * strings the block owns): freed (and NULL), or, in a description copied

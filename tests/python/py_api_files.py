@@ -21,6 +21,7 @@ mass, a product of inertia and a section's area (5e-4), flexbond eig %.8g
 for an eigenvalue's parts (5e-8), %.6g for a natural frequency, %.4g for
 a damping ratio and %.3g for the zero tolerance."""
 
+import csv
 import json
 import os
 import re
@@ -204,6 +205,39 @@ class HullMeshTest(unittest.TestCase):
         self.assertEqual(set(hull.sections), {"hull.material", "FLOOR", "SIDES"})
         total = sum(s.mass for s in hull.sections.values())
         self.assertAlmostEqual(total / hull.structure.mass, 1.0, delta=1e-9)
+
+
+class HullStressTest(unittest.TestCase):
+    def test_against_run(self):
+        """Scenario.hull_stress_peaks against flexbond run's stress_peaks.csv
+        on the APC shortened to 3 s (a 0.5 m bump at 1 s): the same
+        elements, centroids, peaks, times, surfaces and ranges, to the
+        CSV's 10 digits (the same library calls; OpenBLAS on one thread in
+        both, so the same doubles)."""
+        with open(os.path.join(EXAMPLES, "apc6x6.yaml"), encoding="utf-8") as f:
+            text = f.read()
+        text = re.sub(r"(?m)^  t_end: 15 ", "  t_end: 3.0 ", text)
+        text = text.replace("first_contact: 5.0", "first_contact: 1.0")
+        text = text.replace("length: 3.70 ", "length: 0.5 ")
+        with open("apc_short.yaml", "w", encoding="utf-8") as f:
+            f.write(text)
+        shutil.rmtree("stress_run", ignore_errors=True)
+        run_cli(CLI, "run", "apc_short.yaml", "-o", "stress_run", "-q", "--no-figures",
+                "--system", "flexible")
+        with open("stress_run/stress_peaks.csv", newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+        p = flexbond.Scenario("apc_short.yaml").hull_stress_peaks()
+        self.assertEqual(len(rows), len(p.element_id))
+        self.assertEqual([int(r["element_id"]) for r in rows], list(p.element_id))
+        self.assertTrue((p.von_mises > 0).all() and (p.time >= p.t_from).all())
+        for col, got in (("von_mises_peak [Pa]", p.von_mises), ("time [s]", p.time),
+                         ("range [Pa]", p.range), ("x [m]", p.centroid[:, 0]),
+                         ("y [m]", p.centroid[:, 1]), ("z [m]", p.centroid[:, 2])):
+            want = numpy.array([float(r[col]) for r in rows])
+            # %.10g: half a unit in the tenth digit; 1e-9 m for a centroid near 0.
+            numpy.testing.assert_allclose(got, want, rtol=5e-10, atol=1e-9, err_msg=col)
+        self.assertEqual([r["surface"] for r in rows], list(p.surface))
+        self.assertEqual([r["range_surface"] for r in rows], list(p.range_surface))
 
 
 class EigTest(unittest.TestCase):
