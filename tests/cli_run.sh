@@ -543,6 +543,17 @@ expect_in "$ERR" "only System 1 (rigid hull) ran" "default without a finite-elem
 checks=$((checks + 1))
 [ "$(cd "$WORK/nofe" && ls | tr '\n' ' ')" = "report.md summary.json system1.csv " ] ||
   fail "run without a finite-element hull: $(ls "$WORK/nofe")"
+# A stress of the shell hull, which System 1 cannot give: without --system
+# System 2 runs alone, and says so.
+sed 's/^outputs:/outputs:\n  - {signal: hull_stress, element: 5, surface: top, stress: sx}/' \
+  "$SHORT" >"$WORK/stress.yaml"
+run run "$WORK/stress.yaml" -o "$WORK/stress" --no-figures
+expect_status 0 "run with a stress output"
+expect_in "$ERR" "include stresses of the shell hull, which System 1 (rigid hull) does not have, so only System 2 ran" \
+  "default with a stress output"
+checks=$((checks + 1))
+[ -s "$WORK/stress/system2.csv" ] && [ ! -e "$WORK/stress/system1.csv" ] ||
+  fail "run with a stress output: $(ls "$WORK/stress")"
 mkdir -p "$WORK/both_blocked/report.md"
 run run "$SHORT" -o "$WORK/both_blocked" -q --no-figures --hull-modes 12
 expect_status 5 "both systems, report.md blocked"

@@ -34,7 +34,13 @@ typedef enum fb_hull_surface {
 /* "top" or "bottom". */
 const char *fb_hull_surface_name(fb_hull_surface s);
 
-/* The recovery of v's hull (System 2: FB_EINVAL for System 1): its
+/* 1 if v's hull has shell elements whose stresses fb_hull_stress_new can
+ * recover: System 2 on a mesh of shells; 0 for System 1 and for a hull
+ * given as a superelement (hull.mesh.reduced), which has none. */
+int fb_hull_stress_possible(const fb_vehicle *v);
+
+/* The recovery of v's hull (System 2 with shells, fb_hull_stress_possible:
+ * FB_EINVAL otherwise): its
  * elements' recovery matrices and, in modal coordinates, the stress modes
  * of its basis, formed here once. *out is new (fb_hull_stress_free) and
  * borrows v's hull mesh: v must outlive it. Errors as fb_shell_stress_new

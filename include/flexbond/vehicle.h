@@ -1128,6 +1128,9 @@ struct fb_output_kind {
 const fb_output_kind *fb_vehicle_output_kinds(size_t *n);
 /* The kind called signal, NULL if none. */
 const fb_output_kind *fb_vehicle_output_kind_find(const char *signal);
+/* The first of s's outputs that System 1 cannot give (a stress of System
+ * 2's shells), or fb_scenario_noutputs(s) if it can give them all. */
+size_t fb_vehicle_outputs_system2_only(const fb_scenario *s);
 
 /* ---- The road as the input of a frequency response
  * (src/vehicle/road_response.c). */

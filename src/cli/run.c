@@ -66,7 +66,8 @@ static const char run_usage_options[] =
     "options (override the scenario):\n"
     "  -o, --output DIR            output directory (required)\n"
     "  --system rigid|flexible|both  hull model (default both; System 1 alone if\n"
-    "                              the scenario has no finite-element hull)\n"
+    "                              the scenario has no finite-element hull, System 2\n"
+    "                              alone if its outputs include hull stresses)\n"
     "  --initial zero|static       all states zero with gravity switched on at\n"
     "                              t = 0 (the paper), or static equilibrium\n"
     "  --payload weight-only|lumped  payload as force only (the paper), or\n"
@@ -930,10 +931,23 @@ static int run_stress(const run_args *a, const fb_scenario *s, double w0, const 
   return rc;
 }
 
+/* Says once, on stderr, why a run with stresses on wrote none: only
+ * System 1 ran (v2, System 2's vehicle, NULL), or System 2's hull has no
+ * shell elements. */
+static void say_no_stress(const run_args *a, const fb_scenario *s, const fb_vehicle *v2)
+{
+  if (!a->stress || a->quiet || (v2 && fb_hull_stress_possible(v2)))
+    return;
+  cli_say("flexbond run: %s: no hull stresses (%s): %s", cli_scenario_name(s), CLI_STRESS_CSV,
+          v2 ? "the hull is a superelement, which has no shell elements"
+             : "they are System 2's, and only System 1 (rigid hull) ran");
+}
+
 /* ---- The command. */
 
-/* The systems to run: --system's, by default both, or System 1 alone
- * (with *note saying why) if the scenario has no finite-element hull. */
+/* The systems to run: --system's, by default both, or (with *note saying
+ * why) System 1 alone if the scenario has no finite-element hull, System 2
+ * alone if it asks for an output System 1 cannot give. */
 static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *systems,
                            const char **note)
 {
@@ -947,6 +961,10 @@ static size_t pick_systems(const run_args *a, const fb_scenario *s, fb_system *s
                   "set"
                 : "the scenario has no finite-element hull (hull.mesh and hull.fe), so only "
                   "System 1 (rigid hull) ran";
+  } else if (a->system < 0 && fb_vehicle_outputs_system2_only(s) < s->noutputs) {
+    choice = SYSTEM_FLEXIBLE;
+    *note = "the scenario's outputs include stresses of the shell hull, which System 1 (rigid "
+            "hull) does not have, so only System 2 ran";
   }
   const size_t n = system_sets[choice].nsystems;
   for (size_t i = 0; i < n; ++i)
@@ -1268,7 +1286,7 @@ static int run(const run_args *a)
 
   for (size_t i = 0; i < o.nruns && rc == FB_OK; ++i) {
     runs[i].sys = systems[i];
-    const int stress = a->stress && systems[i] == FB_SYSTEM_FLEXIBLE;
+    const int stress = a->stress && fb_hull_stress_possible(vehicles[i].v);
     /* The hull stresses' samples run from the window's start to the end. */
     const double motion_window[2] = {o.bump_window[0], stress ? s->t_end : o.bump_window[1]};
     rc = simulate(a, s, o.bump_window, motion_window, &runs[i], vehicles[i].v,
@@ -1276,10 +1294,8 @@ static int run(const run_args *a)
     if (rc == FB_OK && stress)
       rc = run_stress(a, s, o.bump_window[0], vehicles[i].v, &runs[i], &err);
   }
-  if (rc == FB_OK && a->stress && !by_system[1] && !a->quiet)
-    cli_say("flexbond run: %s: no hull stresses (%s): they are System 2's, and only System 1 "
-            "(rigid hull) ran",
-            cli_scenario_name(s), CLI_STRESS_CSV);
+  if (rc == FB_OK)
+    say_no_stress(a, s, by_system[1]);
   /* The modes while the estimator finishes. */
   if (rc == FB_OK)
     rc = compute_modes(vehicles, o.nruns, &modes, &err);

@@ -25,6 +25,12 @@ const char *fb_hull_surface_name(fb_hull_surface s)
   return s == FB_HULL_SURFACE_BOTTOM ? "bottom" : "top";
 }
 
+int fb_hull_stress_possible(const fb_vehicle *v)
+{
+  const fb_fe_hull *fe = fb_vehicle_fe_hull_of(v);
+  return fe && fb_vehicle_hull_basis(v) && fb_mesh_nelements(fe->mesh) > 0;
+}
+
 int fb_hull_stress_new(const fb_vehicle *v, fb_hull_stress **out, fb_err *err)
 {
   *out = NULL;
@@ -32,6 +38,9 @@ int fb_hull_stress_new(const fb_vehicle *v, fb_hull_stress **out, fb_err *err)
   const fb_hull_basis *b = fb_vehicle_hull_basis(v);
   if (!fe || !b)
     return fb_err_set(err, FB_EINVAL, "hull stresses: System 1's hull is rigid");
+  if (fb_mesh_nelements(fe->mesh) == 0)
+    return fb_err_set(err, FB_EINVAL,
+                      "hull stresses: the hull is a superelement, which has no shell elements");
   fb_hull_stress *hs = calloc(1, sizeof *hs);
   if (!hs)
     return fb_err_set(err, FB_ENOMEM, "out of memory");

@@ -355,6 +355,14 @@ int vehicle_output_hull_stress(const fb_output_spec *o)
   return k >= 0 && kinds[k].subject == FB_OUTPUT_OF_HULL_STRESS;
 }
 
+size_t fb_vehicle_outputs_system2_only(const fb_scenario *s)
+{
+  size_t i = 0;
+  while (i < s->noutputs && !vehicle_output_hull_stress(&s->output[i]))
+    ++i;
+  return i;
+}
+
 int fb_vehicle_output_hull_fit(const fb_output_spec *o)
 {
   const long k = find_kind(o->signal);
