@@ -294,7 +294,8 @@ int cli_modes_flexible(const char *path, const char *out_dir, int strict,
     rc = write_files(&od, &fm, &err);
   if (opened)
     rc = cli_outdir_close(&od, rc, &err);
-  if (!rc) {
+  /* fm.hull is set whenever the vehicle was made, as rc says. */
+  if (!rc && fm.hull) {
     print_tables(&fm);
     rc = cli_flush_stdout(&err);
   }

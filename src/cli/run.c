@@ -1294,11 +1294,11 @@ static int run(const run_args *a)
     if (rc == FB_OK && stress)
       rc = run_stress(a, s, o.bump_window[0], vehicles[i].v, &runs[i], &err);
   }
-  if (rc == FB_OK)
-    say_no_stress(a, s, by_system[1]);
   /* The modes while the estimator finishes. */
-  if (rc == FB_OK)
+  if (rc == FB_OK) {
+    say_no_stress(a, s, by_system[1]);
     rc = compute_modes(vehicles, o.nruns, &modes, &err);
+  }
   for (size_t i = 0; i < o.nruns; ++i)
     if (systems[i] == FB_SYSTEM_FLEXIBLE)
       rc = finish_estimator(o.bump_window, &estimator, &runs[i], rc, &err);

@@ -171,7 +171,9 @@ void cli_write_stress_report(FILE *fp, const cli_run_outputs *o)
   const fb_mesh *m = fb_hull_stress_mesh(run->stress);
   enum { HOT_SPOTS = 10 };
   size_t order[HOT_SPOTS];
-  const size_t n = p->nelements < HOT_SPOTS ? p->nelements : HOT_SPOTS;
+  size_t n = HOT_SPOTS;
+  if (p->nelements < n)
+    n = p->nelements;
   fb_err err;
   if (fb_hull_stress_peaks_top(p, n, order, &err) != FB_OK)
     return;
@@ -182,11 +184,12 @@ void cli_write_stress_report(FILE *fp, const cli_run_outputs *o)
           "run's %zu output samples from t = %.3f s (the first wheel's entry into the road "
           "window) to the end: a peak between two samples is missed, a higher "
           "`simulation.sample_rate` samples closer (docs/stresses.md). The range, a fatigue "
-          "input, is the largest over both surfaces and 18 planes of the range of the "
+          "input, is the largest over both surfaces and %d planes of the range of the "
           "normal stress on a plane. Every element's values are in `%s` and `%s` (ParaView). "
           "The %zu elements "
           "of highest peak:\n\n",
-          p->nsamples, run->stress_from, CLI_STRESS_CSV, CLI_STRESS_VTU, n);
+          p->nsamples, run->stress_from, FB_HULL_STRESS_PLANES, CLI_STRESS_CSV, CLI_STRESS_VTU,
+          n);
   fprintf(fp,
           "| element | %scentroid x, y, z [m] | peak von Mises [MPa] | time [s] | "
           "surface | range [MPa] |\n|---|%s---|---|---|---|---|\n",

@@ -57,7 +57,7 @@ int fb_fem_guyan(const fb_mat *K, const fb_mat *M, const size_t *keep, size_t nk
                         n);
   if (!nkeep || !no)
     return fb_err_set(err, FB_EINVAL, "fb_fem_guyan: nothing to keep or nothing to condense");
-  size_t *other = malloc(no * sizeof *other);
+  size_t *other = calloc(no, sizeof *other);
   double *x = malloc(no * nkeep * sizeof *x), *t = malloc(n * sizeof *t);
   double *kt = malloc(n * nkeep * sizeof *kt);
   fb_mat *koo = NULL;

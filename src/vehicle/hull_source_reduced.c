@@ -161,7 +161,10 @@ static int reduced_superelement(const fb_reduced *r, const size_t *index, fb_mes
 {
   const size_t nn = fb_mesh_nnodes(m), d = 6 * nn, n = fb_reduced_ndofs(r);
   fb_mat *kp = NULL;
-  size_t *nodes = malloc((nn ? nn : 1) * sizeof *nodes), *at = malloc(n * sizeof *at);
+  /* A checked superelement has at least six DOFs on at least one node. */
+  if (!nn || !n)
+    return fb_err_set(err, FB_EINVAL, "a superelement without DOFs");
+  size_t *nodes = malloc(nn * sizeof *nodes), *at = malloc(n * sizeof *at);
   double *k = calloc(d * d, sizeof *k), *ms = calloc(d * d, sizeof *ms);
   int rc = nodes && at && k && ms ? fb_reduced_stiffness_projected(r, &kp, err)
                                   : fb_err_set(err, FB_ENOMEM, "out of memory");
@@ -437,7 +440,7 @@ static int reduced_read(const fb_scenario *s, fb_mesh **out, fb_err *err)
     rc = reduced_six_each(r, err);
   if (!rc)
     rc = fb_mesh_new(&m, err);
-  if (!rc && !(index = malloc(fb_reduced_nnodes(r) * sizeof *index)))
+  if (!rc && !(index = calloc(fb_reduced_nnodes(r), sizeof *index)))
     rc = fb_err_set(err, FB_ENOMEM, "out of memory");
   if (!rc)
     rc = reduced_nodes(r, m, index, err);

@@ -284,7 +284,9 @@ static int track_modal(const fb_hull_stress *hs, const fb_vehicle_motion *m, siz
   cblas_dgemv(CblasColMajor, CblasTrans, (int)nm, (int)rows, 1.0, S, (int)nm, m->hull_q0, 1,
               0.0, s0, 1);
   for (size_t k = k0; k < m->nsamples; k += BLOCK) {
-    const size_t nb = m->nsamples - k < BLOCK ? m->nsamples - k : BLOCK;
+    size_t nb = BLOCK;
+    if (m->nsamples - k < nb)
+      nb = m->nsamples - k;
     for (size_t j = 0; j < nb; ++j)
       memcpy(block + j * rows, s0, rows * sizeof *block);
     cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, (int)rows, (int)nb, (int)nm, 1.0, S,
