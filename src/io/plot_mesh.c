@@ -441,15 +441,26 @@ static void write_field_script(FILE *gp, const void *ctx, const char *image_name
   fputs("$cells << EOD\n", gp);
   for (size_t e = 0; e < fb_mesh_nelements(pic->mesh); ++e)
     write_patch(gp, pic, e);
-  fputs("EOD\nset terminal pngcairo size 1100,760 font 'Sans,10'\nset output ", gp);
+  fputs("EOD\nset terminal pngcairo size 1600,700 font 'Sans,10'\nset output ", gp);
   fb_gnuplot_quoted(gp, image_name);
-  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\nset view 62, 28, 1.45\n",
-        gp);
+  fputs("\nset termoption noenhanced\nunset key\nset view equal xyz\n", gp);
   write_axes(gp, &fs->extent);
   write_colours(gp, fs->top, pic->colour_label);
-  write_titles(gp, pic->title, pic->subtitle);
+  if (pic->title) {
+    fputs("set label 2 ", gp);
+    fb_gnuplot_quoted(gp, pic->title);
+    fputs(" at screen 0.5, 0.96 center font 'Sans,12'\n", gp);
+  }
+  write_titles(gp, NULL, pic->subtitle);
+  /* Two panels, the hull seen from above and from below (a floor's
+   * stresses are on its underside's view), one colour bar for both. */
   fputs("set pm3d depthorder border lc rgb '#404040' lw 0.4\nset pm3d corners2color mean\n"
-        "splot $cells using 1:2:3:4 with pm3d\nset output\n",
+        "set multiplot\nset size 0.47, 0.88\n"
+        "set origin 0.0, 0.02\nunset colorbox\nset title 'from above'\nset view 62, 28, 1.45\n"
+        "splot $cells using 1:2:3:4 with pm3d\nunset label\n"
+        "set origin 0.44, 0.02\nset colorbox vertical user origin 0.93, 0.25 size 0.012, 0.5\n"
+        "set title 'from below'\nset view 118, 28, 1.45\n"
+        "splot $cells using 1:2:3:4 with pm3d\nunset multiplot\nset output\n",
         gp);
 }
 
