@@ -43,7 +43,9 @@ int fb_hull_stress_possible(const fb_vehicle *v);
  * FB_EINVAL otherwise): its
  * elements' recovery matrices and, in modal coordinates, the stress modes
  * of its basis, formed here once. *out is new (fb_hull_stress_free) and
- * borrows v's hull mesh: v must outlive it. Errors as fb_shell_stress_new
+ * borrows v's hull mesh: v must outlive it. With v's
+ * fb_vehicle_opts.threads 2 its peaks are tracked on two threads.
+ * Errors as fb_shell_stress_new
  * and fb_shell_stress_modes. */
 int fb_hull_stress_new(const fb_vehicle *v, fb_hull_stress **out, fb_err *err);
 /* Accepts NULL and sets *hs to NULL. */

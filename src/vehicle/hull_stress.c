@@ -8,6 +8,7 @@
 
 #include <cblas.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,6 +19,7 @@ struct fb_hull_stress {
   fb_shell_stress *rec; /* owned */
   size_t ncoords;       /* the hull's coordinates: the basis's columns, or 6 nnodes */
   int modal;            /* 1: rec holds the stress modes of the basis */
+  int threads;          /* the vehicle's (fb_vehicle_opts.threads): 2 tracks on two */
 };
 
 const char *fb_hull_surface_name(fb_hull_surface s)
@@ -46,6 +48,7 @@ int fb_hull_stress_new(const fb_vehicle *v, fb_hull_stress **out, fb_err *err)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   hs->mesh = fe->mesh;
   hs->ncoords = b->ncoords;
+  hs->threads = vehicle_threads(v);
   int rc = fb_shell_stress_new(fe->mesh, &fe->props, &hs->rec, err);
   size_t nb = 0;
   const double *phi = vehicle_coordinate_basis(v, &nb);
@@ -176,7 +179,9 @@ static void planes_make(planes *pl)
  * the extremes of the normal stress. */
 typedef struct tracker {
   planes pl;
-  double *vm2;     /* nelements */
+  size_t ne;
+  double *vm2, *time;       /* ne: the largest and its first time */
+  fb_hull_surface *surface; /* ne: its surface */
   double *lo, *hi; /* 2 FB_HULL_STRESS_PLANES per element: the top's, then the bottom's */
 } tracker;
 
@@ -203,14 +208,14 @@ static void track_planes(const planes *restrict pl, const double *restrict sv,
 
 /* Element e's surface stresses sv (top x, y, xy, then the bottom's) at
  * time t. */
-static void track(tracker *tr, fb_hull_stress_peaks *p, size_t e, const double *sv, double t)
+static void track(tracker *tr, size_t e, const double *sv, double t)
 {
   const double top = von_mises2(sv), bottom = von_mises2(sv + 3);
   const double vm2 = bottom > top ? bottom : top;
   if (vm2 > tr->vm2[e]) {
     tr->vm2[e] = vm2;
-    p->time[e] = t;
-    p->surface[e] = bottom > top ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
+    tr->time[e] = t;
+    tr->surface[e] = bottom > top ? FB_HULL_SURFACE_BOTTOM : FB_HULL_SURFACE_TOP;
   }
   double *lo = tr->lo + 2 * FB_HULL_STRESS_PLANES * e,
          *hi = tr->hi + 2 * FB_HULL_STRESS_PLANES * e;
@@ -222,10 +227,13 @@ static int tracker_init(tracker *tr, size_t ne, fb_err *err)
 {
   const size_t n = 2 * FB_HULL_STRESS_PLANES * (ne ? ne : 1);
   planes_make(&tr->pl);
+  tr->ne = ne;
   tr->vm2 = malloc((ne ? ne : 1) * sizeof *tr->vm2);
+  tr->time = calloc(ne ? ne : 1, sizeof *tr->time);
+  tr->surface = calloc(ne ? ne : 1, sizeof *tr->surface);
   tr->lo = malloc(n * sizeof *tr->lo);
   tr->hi = malloc(n * sizeof *tr->hi);
-  if (!tr->vm2 || !tr->lo || !tr->hi)
+  if (!tr->vm2 || !tr->time || !tr->surface || !tr->lo || !tr->hi)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
   for (size_t e = 0; e < ne; ++e)
     tr->vm2[e] = -1.0;
@@ -239,8 +247,26 @@ static int tracker_init(tracker *tr, size_t ne, fb_err *err)
 static void tracker_free(tracker *tr)
 {
   free(tr->vm2);
+  free(tr->time);
+  free(tr->surface);
   free(tr->lo);
   free(tr->hi);
+}
+
+/* The tracking of later samples, from, into to: a peak that is no higher
+ * than to's keeps to's (earlier) time. */
+static void tracker_merge(tracker *to, const tracker *from)
+{
+  for (size_t e = 0; e < to->ne; ++e)
+    if (from->vm2[e] > to->vm2[e]) {
+      to->vm2[e] = from->vm2[e];
+      to->time[e] = from->time[e];
+      to->surface[e] = from->surface[e];
+    }
+  for (size_t i = 0; i < 2 * FB_HULL_STRESS_PLANES * to->ne; ++i) {
+    to->lo[i] = from->lo[i] < to->lo[i] ? from->lo[i] : to->lo[i];
+    to->hi[i] = from->hi[i] > to->hi[i] ? from->hi[i] : to->hi[i];
+  }
 }
 
 /* The peaks from the extremes: von Mises' root, and the largest range
@@ -249,6 +275,8 @@ static void finish(const tracker *tr, fb_hull_stress_peaks *p)
 {
   for (size_t e = 0; e < p->nelements; ++e) {
     p->von_mises[e] = sqrt(tr->vm2[e]);
+    p->time[e] = tr->time[e];
+    p->surface[e] = tr->surface[e];
     p->range[e] = -INFINITY;
     for (size_t i = 0; i < 2 * FB_HULL_STRESS_PLANES; ++i) {
       const size_t at = 2 * FB_HULL_STRESS_PLANES * e + i;
@@ -265,38 +293,83 @@ static void finish(const tracker *tr, fb_hull_stress_peaks *p)
  * each) are formed together. */
 enum { BLOCK = 32 };
 
-/* Modal coordinates: the stresses of a block of samples at once, S Q +
- * S q0 (S all the stress modes, 6 nelements x m; Q the block's
- * coordinates, read in place from the samples), one matrix product
- * (BLAS dgemm) rather than a product per sample. */
+/* Modal coordinates, samples [k0, k1) into tr: the stresses of a block of
+ * samples at once, S Q + S q0 (S all the stress modes, 6 nelements x m;
+ * Q the block's coordinates, read in place from the samples; s0 = S q0),
+ * one matrix product (BLAS dgemm) rather than a product per sample. */
+typedef struct modal_job {
+  const fb_hull_stress *hs;
+  const fb_vehicle_motion *m;
+  const double *s0;
+  size_t k0, k1;
+  tracker *tr;
+  double *block; /* 6 nelements BLOCK */
+} modal_job;
+
+static void modal_range(const modal_job *job)
+{
+  const fb_vehicle_motion *m = job->m;
+  const size_t ne = job->tr->ne, rows = 6 * ne, nm = job->hs->ncoords;
+  const double *S = fb_shell_stress_mode_matrix(job->hs->rec, 0);
+  for (size_t k = job->k0; k < job->k1; k += BLOCK) {
+    size_t nb = BLOCK;
+    if (job->k1 - k < nb)
+      nb = job->k1 - k;
+    for (size_t j = 0; j < nb; ++j)
+      memcpy(job->block + j * rows, job->s0, rows * sizeof *job->block);
+    /* S is row-major 6 ne x m: column-major, its transpose (m x 6 ne). */
+    cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, (int)rows, (int)nb, (int)nm, 1.0, S,
+                (int)nm, m->samples + k * m->width + 1, (int)m->width, 1.0, job->block,
+                (int)rows);
+    /* Element by element, so that its extremes stay in cache over the
+     * block's samples. */
+    for (size_t e = 0; e < ne; ++e)
+      for (size_t j = 0; j < nb; ++j)
+        track(job->tr, e, job->block + j * rows + 6 * e, m->samples[(k + j) * m->width]);
+  }
+}
+
+static void *modal_thread(void *arg)
+{
+  modal_range(arg);
+  return NULL;
+}
+
+/* The samples from k0 on, split in two halves on two threads (the later
+ * half's tracking merged into tr's) when hs may use two, on this thread
+ * alone when it may not or the second cannot start. */
 static int track_modal(const fb_hull_stress *hs, const fb_vehicle_motion *m, size_t k0,
                        tracker *tr, fb_hull_stress_peaks *p, fb_err *err)
 {
-  const size_t ne = p->nelements, rows = 6 * ne, nm = hs->ncoords;
-  const double *S = fb_shell_stress_mode_matrix(hs->rec, 0);
-  double *s0 = malloc(rows * sizeof *s0), *block = malloc(rows * BLOCK * sizeof *block);
+  const size_t ne = p->nelements, rows = 6 * ne;
+  double *s0 = malloc(rows * sizeof *s0), *block = malloc(2 * rows * BLOCK * sizeof *block);
   if (!s0 || !block) {
     free(s0);
     free(block);
     return fb_err_set(err, FB_ENOMEM, "out of memory for the stresses of %zu elements", ne);
   }
-  /* S is row-major 6 ne x m: column-major, its transpose (m x 6 ne). */
-  cblas_dgemv(CblasColMajor, CblasTrans, (int)nm, (int)rows, 1.0, S, (int)nm, m->hull_q0, 1,
-              0.0, s0, 1);
-  for (size_t k = k0; k < m->nsamples; k += BLOCK) {
-    size_t nb = BLOCK;
-    if (m->nsamples - k < nb)
-      nb = m->nsamples - k;
-    for (size_t j = 0; j < nb; ++j)
-      memcpy(block + j * rows, s0, rows * sizeof *block);
-    cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, (int)rows, (int)nb, (int)nm, 1.0, S,
-                (int)nm, m->samples + k * m->width + 1, (int)m->width, 1.0, block, (int)rows);
-    /* Element by element, so that its extremes stay in cache over the
-     * block's samples. */
-    for (size_t e = 0; e < ne; ++e)
-      for (size_t j = 0; j < nb; ++j)
-        track(tr, p, e, block + j * rows + 6 * e, m->samples[(k + j) * m->width]);
+  const double *S = fb_shell_stress_mode_matrix(hs->rec, 0);
+  cblas_dgemv(CblasColMajor, CblasTrans, (int)hs->ncoords, (int)rows, 1.0, S, (int)hs->ncoords,
+              m->hull_q0, 1, 0.0, s0, 1);
+  modal_job mine = {hs, m, s0, k0, m->nsamples, tr, block};
+  tracker later = {0};
+  modal_job half = {hs, m, s0, 0, m->nsamples, &later, block + rows * BLOCK};
+  pthread_t thread;
+  int started = 0;
+  fb_err ignored;
+  if (hs->threads > 1 && m->nsamples - k0 >= 2 * BLOCK &&
+      tracker_init(&later, ne, &ignored) == FB_OK) {
+    half.k0 = k0 + (m->nsamples - k0) / 2;
+    started = pthread_create(&thread, NULL, modal_thread, &half) == 0;
   }
+  if (started)
+    mine.k1 = half.k0;
+  modal_range(&mine);
+  if (started) {
+    pthread_join(thread, NULL);
+    tracker_merge(tr, &later);
+  }
+  tracker_free(&later);
   p->nsamples += m->nsamples - k0;
   free(s0);
   free(block);
@@ -324,7 +397,7 @@ static int track_nodal(const fb_hull_stress *hs, const fb_vehicle_motion *m, siz
       double sv[6];
       memcpy(sv, states[e].top, 3 * sizeof *sv);
       memcpy(sv + 3, states[e].bottom, 3 * sizeof *sv);
-      track(tr, p, e, sv, row[0]);
+      track(tr, e, sv, row[0]);
     }
     p->nsamples++;
   }

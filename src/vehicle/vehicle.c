@@ -37,6 +37,11 @@ struct fb_vehicle {
   fb_vehicle_work work;
 };
 
+int vehicle_threads(const fb_vehicle *v)
+{
+  return v->opts.threads;
+}
+
 void fb_vehicle_opts_default(fb_vehicle_opts *o)
 {
   *o = (fb_vehicle_opts){0, 0, {NULL, NULL}, 1, 0};

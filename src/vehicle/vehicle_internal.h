@@ -176,6 +176,8 @@ int vehicle_hull_points_check(const fb_scenario *s, fb_err *err);
 
 /* 1 if output o is a hull stress signal (FB_OUTPUT_OF_HULL_STRESS; outputs.c). */
 int vehicle_output_hull_stress(const fb_output_spec *o);
+/* The threads v may use (fb_vehicle_opts.threads; vehicle.c). */
+int vehicle_threads(const fb_vehicle *v);
 /* The element of m that hull stress output index reads, into *e: the one
  * with its id (`element`), FB_EINVAL about `element` when m has none; or
  * the element nearest its point, FB_EINVAL about `at` when none is within
