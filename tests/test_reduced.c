@@ -228,7 +228,8 @@ static void write_dmig_map(FILE *fp, dmig_form form, const char *name, const dou
         *strchr(num, 'E') = 'D';
         fprintf(fp, "*       %16ld%16d%16s\n", gi, ci, num);
       } else {
-        fprintf(fp, ",%ld,%d,%.17g\n", gi, ci, v);
+        /* Every digit a double has, with its sign: 24 or 25 characters. */
+        fprintf(fp, ",%ld,%d,%+.17e\n", gi, ci, v);
         ++slot;
       }
     }
@@ -315,7 +316,7 @@ static void test_dmig_beam(void)
   const char *nodes = tmp("beam_nodes.csv");
   write_text(nodes, beam_nodes);
   /* Digits each form writes: 4 at least in 8 columns, 10 in "%16.9E",
-   * 17 in "%.17g". */
+   * 17 in "%+.17e". */
   const double precision[3] = {5e-4, 5e-10, 5e-17};
   for (int form = SMALL; form <= FREE; ++form) {
     const char *path = tmp("beam.pch");
@@ -516,6 +517,10 @@ static void test_bad(void)
              "1       1       1.x+3\n",
              beam_nodes, 0, "bad.pch:2: value: not a number");
   expect_bad("DMIG,K,0,6,2,0\n", beam_nodes, 1, "no DMIG matrix named M");
+  /* A field longer than any number is refused at its line, not cut. */
+  expect_bad("DMIG,K,0,6,2,0\nDMIG,K,1,1,,1,1,1.000000000000000000000000000000000000000000000"
+             "000000000000000000000000001\n",
+             beam_nodes, 0, "bad.pch:2: a field of 74 characters, longer than any number");
 
   char *text = NULL;
   beam bad;

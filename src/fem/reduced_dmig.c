@@ -17,7 +17,10 @@
 #include "core/textfile.h"
 #include "fem/reduced_internal.h"
 
-enum { DMIG_MAX_FIELDS = 8, DMIG_FIELD_MAX = 24 };
+/* DMIG_FIELD_MAX: room for any number a writer prints (a double's 17
+ * digits with sign, point and exponent take 24); a longer field is refused
+ * at its line, never cut. */
+enum { DMIG_MAX_FIELDS = 8, DMIG_FIELD_MAX = 64 };
 
 /* One card: its fields after the first (the entry's name), with the line
  * each came from. */
@@ -42,7 +45,8 @@ static int dmig_error(const dmig_state *s, size_t line, const char *what, const 
   return FB_EPARSE;
 }
 
-static int card_push(dmig_card *c, const char *text, size_t len, size_t line)
+static int card_push(const dmig_state *s, dmig_card *c, const char *text, size_t len,
+                     size_t line)
 {
   if (c->n == c->cap) {
     const size_t nc = c->cap ? 2 * c->cap : 32;
@@ -62,8 +66,11 @@ static int card_push(dmig_card *c, const char *text, size_t len, size_t line)
   }
   while (len && (text[len - 1] == ' ' || text[len - 1] == '\t'))
     --len;
-  if (len >= DMIG_FIELD_MAX)
-    len = DMIG_FIELD_MAX - 1; /* longer than any number; refused when parsed */
+  if (len >= DMIG_FIELD_MAX) {
+    fb_err_set(s->r.err, FB_EPARSE, "%s:%zu: a field of %zu characters, longer than any number",
+               s->r.path, line, len);
+    return FB_EPARSE;
+  }
   memcpy(c->f[c->n], text, len);
   c->f[c->n][len] = '\0';
   c->line[c->n++] = line;
@@ -72,7 +79,8 @@ static int card_push(dmig_card *c, const char *text, size_t len, size_t line)
 
 /* The data fields of one line: free (commas), large (4 of 16 columns
  * after 8) or small (8 of 8 columns after 8). */
-static int line_fields(dmig_card *c, const char *line, size_t line_no, int large)
+static int line_fields(const dmig_state *s, dmig_card *c, const char *line, size_t line_no,
+                       int large)
 {
   const size_t len = strlen(line);
   if (strchr(line, ',')) {
@@ -81,14 +89,15 @@ static int line_fields(dmig_card *c, const char *line, size_t line_no, int large
     for (; k < DMIG_MAX_FIELDS; ++k) {
       const char *comma = strchr(p, ',');
       const size_t n = comma ? (size_t)(comma - p) : strlen(p);
-      if (card_push(c, p, n, line_no))
-        return FB_ENOMEM;
+      const int rc = card_push(s, c, p, n, line_no);
+      if (rc)
+        return rc;
       if (!comma)
         break;
       p = comma + 1;
     }
     for (++k; k < DMIG_MAX_FIELDS; ++k)
-      if (card_push(c, "", 0, line_no))
+      if (card_push(s, c, "", 0, line_no))
         return FB_ENOMEM;
     return FB_OK;
   }
@@ -96,8 +105,9 @@ static int line_fields(dmig_card *c, const char *line, size_t line_no, int large
   for (size_t k = 0; k < count; ++k) {
     const size_t at = 8 + k * width;
     const size_t n = at >= len ? 0 : (len - at < width ? len - at : width);
-    if (card_push(c, at < len ? line + at : "", n, line_no))
-      return FB_ENOMEM;
+    const int rc = card_push(s, c, at < len ? line + at : "", n, line_no);
+    if (rc)
+      return rc;
   }
   return FB_OK;
 }
@@ -151,7 +161,7 @@ static int next_card(dmig_state *s, dmig_card *c, size_t *first_line, int *found
     const int large = line[4] == '*';
     c->small = !large && !strchr(line, ',');
     *first_line = no;
-    rc = line_fields(c, line, no, large);
+    rc = line_fields(s, c, line, no, large);
     free(line);
     while (!rc) {
       rc = next_line(s, &line, &no);
@@ -162,7 +172,7 @@ static int next_card(dmig_state *s, dmig_card *c, size_t *first_line, int *found
         s->pending_line = no;
         break;
       }
-      rc = line_fields(c, line, no, large);
+      rc = line_fields(s, c, line, no, large);
       free(line);
     }
     if (rc)
@@ -186,8 +196,8 @@ static int parse_int(const char *tok, long *v)
 static int parse_real(const dmig_state *s, size_t line, const char *tok, double *v, int *digits)
 {
   char buf[DMIG_FIELD_MAX + 2];
-  size_t k = 0;
-  for (size_t i = 0; tok[i] && k + 2 < sizeof buf; ++i) {
+  size_t k = 0, i = 0;
+  for (; tok[i] && k + 2 < sizeof buf; ++i) {
     const char ch = tok[i];
     if ((ch == '+' || ch == '-') && i > 0 &&
         (isdigit((unsigned char)tok[i - 1]) || tok[i - 1] == '.'))
@@ -198,6 +208,11 @@ static int parse_real(const dmig_state *s, size_t line, const char *tok, double 
       buf[k++] = ch;
   }
   buf[k] = '\0';
+  if (tok[i]) { /* more letters for E than the buffer holds */
+    fb_err_set(s->r.err, FB_EPARSE, "not a number");
+    fb_err_set_excerpt(s->r.err, tok, strlen(tok));
+    return fb_err_prefix(s->r.err, "%s:%zu: value: ", s->r.path, line);
+  }
   if (fb_parse_decimal_field(buf, v, s->r.err)) {
     fb_err_set_excerpt(s->r.err, tok, strlen(tok));
     return fb_err_prefix(s->r.err, "%s:%zu: value: ", s->r.path, line);
