@@ -29,6 +29,8 @@ run run "$OK" --system flexible --animate -o "$WORK/run"
 expect_status 0 "run --system flexible --animate"
 expect_in "$ERR" "no hull stresses (stress_peaks.csv): the hull is a superelement, which has no shell elements" \
   "run: a superelement has no stresses"
+expect_in "$WORK/run/report.md" "No hull stresses: the hull is a superelement, which has no shell elements." \
+  "the report says why there are no stresses"
 expect_in "$WORK/run/report.md" "a free-free superelement over 12 interface nodes (72 DOFs)" \
   "the report's hull clause"
 expect_in "$WORK/run/report.md" "No mode pictures: the hull is a superelement" \

@@ -124,6 +124,8 @@ checks=$((checks + 1))
 checks=$((checks + 1))
 ! grep -q 'Name="von_mises"' "$WORK/nostress/animation_system2_0000.vtu" ||
   fail "--no-stress: von Mises in the frames"
+expect_in "$WORK/nostress/report.md" "No hull stresses: the run had \`--no-stress\`." \
+  "--no-stress: the report says why"
 
 # System 1 alone: no stress files, said once.
 run run "$SHORT" -o "$WORK/rigid" --no-figures --system rigid
@@ -131,6 +133,8 @@ expect_status 0 "run --system rigid"
 expect_absent "$WORK/rigid/stress_peaks.csv" "System 1"
 checks=$((checks + 1))
 [ "$(grep -c "no hull stresses" "$ERR")" = 1 ] || fail "System 1: the note, once"
+expect_in "$WORK/rigid/report.md" "No hull stresses: they are System 2's, and only System 1 (rigid hull) ran." \
+  "System 1: the report says why"
 run run "$SHORT" -o "$WORK/rigid_q" -q --no-figures --system rigid
 checks=$((checks + 1))
 [ ! -s "$ERR" ] || fail "System 1 with -q: says nothing"

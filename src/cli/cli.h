@@ -445,7 +445,8 @@ typedef struct cli_run_outputs {
   int converged_density;
   const fb_result *diff_converged;
   const fb_output_cmp *cmp_converged;
-  const char *note; /* why a system did not run, or NULL */
+  const char *note;      /* why a system did not run, or NULL */
+  const char *no_stress; /* why System 2's hull stresses were not computed, or NULL */
   /* The frequency response of each system that ran, by system (flexbond
    * freq's bode_<OUTPUT>.png; borrowed), NULL without figures or when it
    * failed: then freq_note says why. */

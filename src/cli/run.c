@@ -931,16 +931,18 @@ static int run_stress(const run_args *a, const fb_scenario *s, double w0, const 
   return rc;
 }
 
-/* Says once, on stderr, why a run with stresses on wrote none: only
- * System 1 ran (v2, System 2's vehicle, NULL), or System 2's hull has no
- * shell elements. */
-static void say_no_stress(const run_args *a, const fb_scenario *s, const fb_vehicle *v2)
+/* Why the run computes no hull stresses (NULL if it does): --no-stress,
+ * only System 1 ran (v2, System 2's vehicle, NULL), or System 2's hull
+ * has no shell elements. */
+static const char *no_stress_reason(const run_args *a, const fb_vehicle *v2)
 {
-  if (!a->stress || a->quiet || (v2 && fb_hull_stress_possible(v2)))
-    return;
-  cli_say("flexbond run: %s: no hull stresses (%s): %s", cli_scenario_name(s), CLI_STRESS_CSV,
-          v2 ? "the hull is a superelement, which has no shell elements"
-             : "they are System 2's, and only System 1 (rigid hull) ran");
+  if (!a->stress)
+    return "the run had `--no-stress`";
+  if (!v2)
+    return "they are System 2's, and only System 1 (rigid hull) ran";
+  return fb_hull_stress_possible(v2)
+             ? NULL
+             : "the hull is a superelement, which has no shell elements";
 }
 
 /* ---- The command. */
@@ -1296,7 +1298,11 @@ static int run(const run_args *a)
   }
   /* The modes while the estimator finishes. */
   if (rc == FB_OK) {
-    say_no_stress(a, s, by_system[1]);
+    o.no_stress = no_stress_reason(a, by_system[1]);
+    /* Said on stderr unless the user asked for none. */
+    if (o.no_stress && a->stress && !a->quiet)
+      cli_say("flexbond run: %s: no hull stresses (%s): %s", cli_scenario_name(s),
+              CLI_STRESS_CSV, o.no_stress);
     rc = compute_modes(vehicles, o.nruns, &modes, &err);
   }
   for (size_t i = 0; i < o.nruns; ++i)

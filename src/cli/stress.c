@@ -165,8 +165,11 @@ void cli_write_stress_report(FILE *fp, const cli_run_outputs *o)
   for (size_t i = 0; i < o->nruns; ++i)
     if (o->runs[i].peaks)
       run = &o->runs[i];
-  if (!run)
+  if (!run) {
+    if (o->no_stress)
+      fprintf(fp, "\nNo hull stresses: %s.\n", o->no_stress);
     return;
+  }
   const fb_hull_stress_peaks *p = run->peaks;
   const fb_mesh *m = fb_hull_stress_mesh(run->stress);
   enum { HOT_SPOTS = 10 };
