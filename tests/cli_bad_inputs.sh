@@ -358,7 +358,7 @@ CASES=(
   "2|run s_stress_surface.yaml -o @OUT|$(at s_stress_surface.yaml 'surface: side' side) outputs[0].surface: unknown value 'side'; expected top | bottom"
   "2|run s_stress_comp.yaml -o @OUT|$(at s_stress_comp.yaml 'stress: s1' s1) outputs[0].stress: unknown value 's1' (did you mean 'sx'?); expected sx | sy | sxy"
   "2|run s_stress_dir.yaml -o @OUT|$(at s_stress_dir.yaml 'direction: z' direction) outputs[0].direction: only a hull point's signal has direction"
-  "2|run s_stress_rigid.yaml --system rigid -o @OUT|$(at s_stress_rigid.yaml 'signal: hull_stress' hull_stress) outputs[0].signal: System 1's hull is a rigid body: it has no shell elements, whose stresses a hull_stress signal reads (System 2 alone)"
+  "2|run s_stress_rigid.yaml --system rigid -o @OUT|$(at s_stress_rigid.yaml 'signal: hull_stress' hull_stress) outputs[0].signal: System 1's hull is a rigid body: it has no shell elements, whose stresses a hull_stress signal reads: only System 2 gives it"
   "2|run s_point_surface.yaml -o @OUT|$(at s_point_surface.yaml 'surface: top' surface) outputs[0].surface: only a hull stress signal has surface"
   "2|run s_damper_empty.yaml -o @OUT|$(at s_damper_empty.yaml 'damper: {}' '{}') suspensions.axles[0].damper: no damper law is written as a section here"
   "2|run s_tire_unused.yaml -o @OUT|$(at s_tire_unused.yaml 'hunt_crossley:' hunt_crossley) wheel.hunt_crossley: no corner's tire is hunt_crossley"

@@ -459,6 +459,7 @@ static void write_field_script(FILE *gp, const void *ctx, const char *image_name
         "set origin 0.0, 0.02\nunset colorbox\nset title 'from above'\nset view 62, 28, 1.45\n"
         "splot $cells using 1:2:3:4 with pm3d\nunset label\n"
         "set origin 0.44, 0.02\nset colorbox vertical user origin 0.93, 0.25 size 0.012, 0.5\n"
+        "set cblabel offset 3, 0\n"
         "set title 'from below'\nset view 118, 28, 1.45\n"
         "splot $cells using 1:2:3:4 with pm3d\nunset multiplot\nset output\n",
         gp);

@@ -272,7 +272,7 @@ static int hull_stress_probe(const fb_hull *hull, const fb_output_spec *o, size_
   if (index < hull->nreading && !hull->reading[index].target)
     return fb_err_set(err, FB_EINVAL,
                       "System 1's hull is a rigid body: it has no shell elements, whose "
-                      "stresses a %s signal reads (System 2 alone)",
+                      "stresses a %s signal reads: only System 2 gives it",
                       o->signal),
            fb_err_set_part(err, FB_PART_AT(FB_PART_OUTPUT, index, signal)), FB_EINVAL;
   return hull_reading_probe(hull, index, p, err);
