@@ -188,7 +188,10 @@ void cli_write_stress_report(FILE *fp, const cli_run_outputs *o)
           "window) to the end: a peak between two samples is missed, a higher "
           "`simulation.sample_rate` samples closer (docs/stresses.md). The range, a fatigue "
           "input, is the largest over both surfaces and %d planes of the range of the "
-          "normal stress on a plane. Every element's values are in `%s` and `%s` (ParaView). "
+          "normal stress on a plane. Stresses at element centres converge with the mesh more "
+          "slowly than displacements and frequencies: compare a finer mesh "
+          "(`hull.mesh.density`, or a refined deck) before trusting a hot spot's value. "
+          "Every element's values are in `%s` and `%s` (ParaView). "
           "The %zu elements "
           "of highest peak:\n\n",
           p->nsamples, run->stress_from, FB_HULL_STRESS_PLANES, CLI_STRESS_CSV, CLI_STRESS_VTU,
