@@ -254,16 +254,6 @@ static void classify(const fb_mesh *m, const unsigned char *fold, const load_cas
   free(point);
 }
 
-static void centroid(const fb_mesh *m, size_t e, double *c)
-{
-  const size_t *nodes = fb_mesh_element_nodes(m, e);
-  const size_t nen = fb_mesh_element_type(m, e) == FB_ELEM_QUAD4 ? 4 : 3;
-  c[0] = c[1] = c[2] = 0.0;
-  for (size_t a = 0; a < nen; ++a)
-    for (int k = 0; k < 3; ++k)
-      c[k] += fb_mesh_node_xyz(m, nodes[a])[k] / (double)nen;
-}
-
 /* The agreement of a class of elements. */
 typedef struct agreement {
   size_t n;
@@ -410,7 +400,7 @@ static void roof_shear(const fb_mesh *m, const int *cls, const fb_shell_stress_s
   shear[0] = shear[1] = 0.0;
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
     double c[3], top[3], bottom[3];
-    centroid(m, e, c);
+    fb_mesh_element_centroid(m, e, c);
     if (cls[e] != CLASS_PLATE || fabs(c[2] - ztop) > 1e-9 || c[0] < x_rear || c[0] > x_front)
       continue;
     ccx_surfaces(s, m, e, top, bottom);
@@ -508,8 +498,8 @@ static void print_case(const char *what, const hull *hl, const case_result *r)
     if (a->n == 0)
       continue;
     double at_ccx[3], at_fb[3];
-    centroid(m, a->hot_ccx, at_ccx);
-    centroid(m, a->hot_fb, at_fb);
+    fb_mesh_element_centroid(m, a->hot_ccx, at_ccx);
+    fb_mesh_element_centroid(m, a->hot_fb, at_fb);
     printf("%s, %zu elements %s: largest von Mises %.4g MPa (CalculiX, element %ld at (%.3g, "
            "%.3g, %.3g) m; flexbond's largest: element %ld at (%.3g, %.3g, %.3g) m; each one's "
            "value at the other's %.3f, %.3f of its largest); difference largest %.3e, rms %.3e "
@@ -654,8 +644,8 @@ static void plate_deflection(int n, double *w)
 static int same_up_to_mirror(const fb_mesh *m, size_t e1, size_t e2)
 {
   double a[3], b[3];
-  centroid(m, e1, a);
-  centroid(m, e2, b);
+  fb_mesh_element_centroid(m, e1, a);
+  fb_mesh_element_centroid(m, e2, b);
   return fabs(a[0] - b[0]) < 1e-6 && fabs(fabs(a[1]) - fabs(b[1])) < 1e-6 &&
          fabs(a[2] - b[2]) < 1e-6;
 }

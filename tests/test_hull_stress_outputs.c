@@ -27,23 +27,13 @@ typedef struct picked {
   double floor_centre[3];
 } picked;
 
-static void element_centre(const fb_mesh *m, size_t e, double *c)
-{
-  const size_t *nodes = fb_mesh_element_nodes(m, e);
-  const size_t nn = fb_mesh_element_type(m, e) == FB_ELEM_QUAD4 ? 4 : 3;
-  c[0] = c[1] = c[2] = 0.0;
-  for (size_t a = 0; a < nn; ++a)
-    for (int k = 0; k < 3; ++k)
-      c[k] += fb_mesh_node_xyz(m, nodes[a])[k] / (double)nn;
-}
-
 static size_t nearest_centre(const fb_mesh *m, const double *p)
 {
   size_t best = 0;
   double dbest = INFINITY;
   for (size_t e = 0; e < fb_mesh_nelements(m); ++e) {
     double c[3];
-    element_centre(m, e, c);
+    fb_mesh_element_centroid(m, e, c);
     const double d = hypot(hypot(c[0] - p[0], c[1] - p[1]), c[2] - p[2]);
     if (d < dbest) {
       dbest = d;
@@ -63,7 +53,7 @@ static picked pick(const fb_scenario *s)
     exit(check_report("test_hull_stress_outputs"));
   p.floor = nearest_centre(m, floor_point);
   p.other = nearest_centre(m, roof_point);
-  element_centre(m, p.floor, p.floor_centre);
+  fb_mesh_element_centroid(m, p.floor, p.floor_centre);
   return p;
 }
 

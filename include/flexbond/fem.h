@@ -62,6 +62,9 @@ fb_elem_type fb_mesh_element_type(const fb_mesh *m, size_t e);
 long fb_mesh_element_id(const fb_mesh *m, size_t e);
 /* Node indices of element e (3 or 4). */
 const size_t *fb_mesh_element_nodes(const fb_mesh *m, size_t e);
+/* Element e's centroid into c[3] (m): the mean of its nodes, in the
+ * mesh's frame. */
+void fb_mesh_element_centroid(const fb_mesh *m, size_t e, double *c);
 /* Element e's area vector into v[3] (m^2): its area times its unit
  * normal (right-handed in the node order); a warped quadrilateral's
  * projected area, half the cross product of its diagonals. */

@@ -383,6 +383,7 @@ _PROTOTYPES = {
     "fb_mesh_element_id": (ctypes.c_long, [_P, ctypes.c_size_t]),
     "fb_mesh_element_type": (ctypes.c_int, [_P, ctypes.c_size_t]),
     "fb_mesh_element_nodes": (ctypes.POINTER(ctypes.c_size_t), [_P, ctypes.c_size_t]),
+    "fb_mesh_element_centroid": (None, [_P, ctypes.c_size_t, _PDOUBLE]),
     "fb_mesh_element_section": (ctypes.c_long, [_P, ctypes.c_size_t]),
     "fb_mesh_node_xyz": (_PDOUBLE, [_P, ctypes.c_size_t]),
     "fb_vehicle_motion_free": (None, [_PP]),
@@ -959,12 +960,11 @@ def _stress_peaks(s, mesh, p, t_from):
     ids = numpy.empty(n, dtype=numpy.int64)
     centroid = numpy.empty((n, 3))
     section = []
+    c = (ctypes.c_double * 3)()
     for e in range(n):
         ids[e] = _lib.fb_mesh_element_id(mesh, e)
-        nodes = _lib.fb_mesh_element_nodes(mesh, e)
-        nn = _lib.fb_mesh_element_type(mesh, e)
-        centroid[e] = [sum(_lib.fb_mesh_node_xyz(mesh, nodes[i])[k] for i in range(nn)) / nn
-                       + origin[k] for k in range(3)]
+        _lib.fb_mesh_element_centroid(mesh, e, c)
+        centroid[e] = [c[k] + origin[k] for k in range(3)]
         sec = _lib.fb_mesh_element_section(mesh, e)
         section.append(_lib.fb_mesh_section_elset(mesh, sec).decode(errors="replace")
                        if sec >= 0 else "")

@@ -32,12 +32,11 @@ void cli_run_stress_free(cli_run_system *run)
 /* Element e's centroid (the mean of its nodes) in the file's frame. */
 static void centroid(const fb_scenario *s, const fb_mesh *m, size_t e, double *c)
 {
-  const size_t *nd = fb_mesh_element_nodes(m, e);
-  const size_t nn = (size_t)fb_mesh_element_type(m, e);
-  fb_scenario_frame_offset(s, c);
-  for (size_t i = 0; i < nn; ++i)
-    for (int k = 0; k < 3; ++k)
-      c[k] += fb_mesh_node_xyz(m, nd[i])[k] / (double)nn;
+  double offset[3];
+  fb_scenario_frame_offset(s, offset);
+  fb_mesh_element_centroid(m, e, c);
+  for (int k = 0; k < 3; ++k)
+    c[k] += offset[k];
 }
 
 /* Element e's section (its element set's name), "" for none. */

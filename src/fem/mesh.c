@@ -814,6 +814,16 @@ const size_t *fb_mesh_element_nodes(const fb_mesh *m, size_t e)
   return m && e < m->nelems ? &m->elem_nodes[4 * e] : NULL;
 }
 
+void fb_mesh_element_centroid(const fb_mesh *m, size_t e, double *c)
+{
+  const size_t *nd = fb_mesh_element_nodes(m, e);
+  const size_t nn = fb_mesh_element_type(m, e) == FB_ELEM_QUAD4 ? 4 : 3;
+  c[0] = c[1] = c[2] = 0.0;
+  for (size_t i = 0; i < nn; ++i)
+    for (int k = 0; k < 3; ++k)
+      c[k] += fb_mesh_node_xyz(m, nd[i])[k] / (double)nn;
+}
+
 /* Half of (b - a) x (c - a) for a triangle; for a quadrilateral half
  * the cross product of its diagonals, (c - a) x (d - b), which is its
  * area vector when it is plane and the projected area vector of a warped
