@@ -42,10 +42,10 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CTEST_JOBS ?= 2
 
 # What building and running need (make deps, for make build and make run): the compiler,
-# CMake, the libraries, gnuplot and Graphviz for the figures, python3 with NumPy and SciPy
-# for the Python package (docs/python.md).
+# CMake, the libraries (zlib for the FMU archives), gnuplot and Graphviz for the figures,
+# python3 with NumPy and SciPy for the Python package (docs/python.md).
 DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-dev \
-                liblapacke-dev libopenblas-dev libfyaml-dev gnuplot-nox graphviz \
+                liblapacke-dev libopenblas-dev libfyaml-dev zlib1g-dev gnuplot-nox graphviz \
                 python3 python3-numpy python3-scipy
 # What the suite needs besides (make deps-test, for make test): strace shows which files a
 # command creates and how (tests/cli_integrity.sh); CalculiX's ccx checks the shell stresses
