@@ -158,6 +158,15 @@ int fb_sim_stepper_advance(fb_sim_stepper *st, double t, fb_err *err);
  * of what the diagram reads (above). FB_ESOLVER if the diagram's
  * derivative is not finite there. */
 int fb_sim_stepper_reset(fb_sim_stepper *st, fb_err *err);
+/* Puts the stepper at time t (s, in [opts->t_start, t_end], before the
+ * current time too: a saved state restored) in state x
+ * (fb_sim_stepper_nstates values, copied) and restarts the integrator
+ * there as fb_sim_stepper_reset does, so two steppers set to the same
+ * (t, x) go on identically. Clears an earlier integration failure.
+ * FB_EINVAL (err->key "t", or the state's name) for t outside that
+ * interval or a value of x that is not finite; then as
+ * fb_sim_stepper_reset. */
+int fb_sim_stepper_set_state(fb_sim_stepper *st, double t, const double *x, fb_err *err);
 /* The time reached, s. */
 double fb_sim_stepper_time(const fb_sim_stepper *st);
 /* The state there: fb_sim_stepper_nstates values in fb_bd_state_name

@@ -1225,9 +1225,13 @@ typedef struct fb_vehicle_opts {
   /* Free-free modes of the hull to solve at least, for a listing
    * (fb_hull_basis.free_hz); 0: those its model needs. */
   size_t hull_modes;
+  /* Steppers only (fb_vehicle_stepper_new): the road under each wheel is
+   * an input, road_z_<CORNER> and road_zdot_<CORNER>, in place of the
+   * scenario's road; 0 (the default): the scenario's road. */
+  int road_inputs;
 } fb_vehicle_opts;
 /* No motion, the default memory limit, no progress, one thread, no more
- * hull modes than needed. */
+ * hull modes than needed, the scenario's road. */
 void fb_vehicle_opts_default(fb_vehicle_opts *o);
 
 /* Realises system sys of s (o NULL: the defaults): checks the scenario
@@ -1434,14 +1438,26 @@ int fb_vehicle_basis_error(fb_vehicle *v, const fb_result *r, const double windo
  *    moves the road under the wheels from the current time on, as if it
  *    had always been so. */
 
-/* The inputs: "load_force", a vertical force on the load (N, up
- * positive), shared by the load points as the payload's weight is (0 at
- * first: the vehicle as its scenario says). */
+/* The inputs every stepper has: "load_force", a vertical force on the
+ * load (N, up positive), shared by the load points as the payload's
+ * weight is (0 at first: the vehicle as its scenario says). */
 #define FB_VEHICLE_NINPUTS 1
 /* Input i's name (NULL for i >= FB_VEHICLE_NINPUTS); the index of the
  * input named name, -1 if none. */
 const char *fb_vehicle_input_name(size_t i);
 long fb_vehicle_input_find(const char *name);
+/* With fb_vehicle_opts.road_inputs, a stepper has besides, for each
+ * corner C in the scenario's order, the road under its wheel:
+ *  - road_z_C (m, up positive): the road's height, 0 at first, where the
+ *    scenario's start leaves the wheel;
+ *  - road_zdot_C (m/s): its rate, which the tire's spring and damper
+ *    read (the scenario's road gives the same, fb_road_wheel_velocity).
+ * Between two changes the road rises at the rate held: its height is
+ * road_z + road_zdot (t - t_set). A height set to another value than
+ * that moves the road under the tire at once: the tire's deflection
+ * (its displacement states, fb_vehicle_stepper_road_coupling) jumps by
+ * the difference, as a wheel meeting a step does. An enveloped tire's
+ * filtering is the caller's: the inputs are the road the tire follows. */
 
 typedef struct fb_vehicle_stepper fb_vehicle_stepper;
 
@@ -1474,8 +1490,55 @@ int fb_vehicle_stepper_outputs(fb_vehicle_stepper *st, double *y, fb_err *err);
  * finite. */
 int fb_vehicle_stepper_set_input(fb_vehicle_stepper *st, const char *name, double value,
                                  fb_err *err);
-/* The value input i holds (NAN for i >= FB_VEHICLE_NINPUTS). */
+/* The value input i holds (NAN for i >= fb_vehicle_stepper_ninputs). */
 double fb_vehicle_stepper_input(const fb_vehicle_stepper *st, size_t i);
+/* The stepper's inputs (FB_VEHICLE_NINPUTS, then the road's, above):
+ * their count, names and units (owned by st, NULL past the count), and
+ * the index of the input named name (-1 if none). */
+size_t fb_vehicle_stepper_ninputs(const fb_vehicle_stepper *st);
+const char *fb_vehicle_stepper_input_name(const fb_vehicle_stepper *st, size_t i);
+const char *fb_vehicle_stepper_input_unit(const fb_vehicle_stepper *st, size_t i);
+long fb_vehicle_stepper_input_find(const fb_vehicle_stepper *st, const char *name);
+/* Holds every input at u[i] (fb_vehicle_stepper_ninputs values) from the
+ * current time on, as fb_vehicle_stepper_set_input does one by one, with
+ * one restart of the integrator, none if nothing changed. FB_EINVAL
+ * (err->key the input's name) for a value that is not finite, the
+ * stepper unchanged. */
+int fb_vehicle_stepper_set_inputs(fb_vehicle_stepper *st, const double *u, fb_err *err);
+
+/* ---- The stepper's model, for a caller that integrates it (an FMI
+ * model exchange FMU): the stepper's diagram evaluated at the caller's
+ * time and state. */
+
+/* The diagram (owned by st, valid until fb_vehicle_stepper_set_scenario
+ * or free): fb_bd_rhs, fb_bd_outputs, fb_bd_guards, fb_bd_sync_modes and
+ * fb_bd_switch_modes at any (t, x). It reads the inputs held. Its modes
+ * are shared with the stepper's own integration: a caller uses one or the
+ * other, not both. */
+fb_bd *fb_vehicle_stepper_diagram(fb_vehicle_stepper *st);
+/* Holds u (fb_vehicle_stepper_ninputs values) as the inputs' values with
+ * no restart and no jump of the state (the road's heights as at the
+ * current time): the caller owns the state. */
+void fb_vehicle_stepper_hold_inputs(fb_vehicle_stepper *st, const double *u);
+/* With road inputs: B, the displacement states' rates per unit road rate
+ * at each wheel, column-major, fb_vehicle_stepper_nstates rows by the
+ * scenario's corners (owned by st, valid as the diagram is): a tire's
+ * deflection state q moves with its road as q = p + B z, p the part
+ * the wheel's own motion gives. NULL without road inputs. */
+const double *fb_vehicle_stepper_road_coupling(const fb_vehicle_stepper *st);
+
+/* The state at the current time (fb_vehicle_stepper_nstates values in
+ * fb_bd_state_name order, owned by st, valid until the next advance,
+ * change or free). */
+size_t fb_vehicle_stepper_nstates(const fb_vehicle_stepper *st);
+const double *fb_vehicle_stepper_state(const fb_vehicle_stepper *st);
+/* Puts the stepper at time t (s, from 0 to the scenario's t_end, before
+ * the current time too: a saved state restored) in state x (copied),
+ * the inputs held as they are, the road's heights where the road is at
+ * the current time taken as at t: fb_sim_stepper_set_state. Two steppers of one scenario set to
+ * the same (t, x, inputs) go on identically. */
+int fb_vehicle_stepper_set_state(fb_vehicle_stepper *st, double t, const double *x,
+                                 fb_err *err);
 /* Goes on with scenario s (copied; the same system) from the current
  * time and state, the inputs held as they are. FB_EINVAL naming the
  * first state that differs if s's vehicle has other states, or if its

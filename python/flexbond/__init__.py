@@ -255,7 +255,8 @@ class _VehicleOpts(ctypes.Structure):
     """fb_vehicle_opts (flexbond/vehicle.h), filled by fb_vehicle_opts_default."""
     _fields_ = [("motion", ctypes.c_int), ("memory_limit", ctypes.c_size_t),
                 ("progress_fn", _STAGE_PROGRESS), ("progress_ctx", ctypes.c_void_p),
-                ("threads", ctypes.c_int), ("hull_modes", ctypes.c_size_t)]
+                ("threads", ctypes.c_int), ("hull_modes", ctypes.c_size_t),
+                ("road_inputs", ctypes.c_int)]
 class _SimOpts(ctypes.Structure):
     """fb_sim_opts (flexbond/sim.h), filled by fb_model_sim_opts_with."""
     _fields_ = [(n, ctypes.c_double) for n in

@@ -1058,6 +1058,30 @@ int fb_sim_stepper_reset(fb_sim_stepper *st, fb_err *err)
   return rc;
 }
 
+int fb_sim_stepper_set_state(fb_sim_stepper *st, double t, const double *x, fb_err *err)
+{
+  if (!(t >= st->o.t_start - fb_sim_same_time_tol(t, st->o.t_start)) ||
+      t - st->o.t_end > fb_sim_same_time_tol(t, st->o.t_end)) {
+    fb_err_set(err, FB_EINVAL, "set the state at t = %g s: must be in [%.9g, %.9g] s", t,
+               st->o.t_start, st->o.t_end);
+    fb_err_set_key(err, "t");
+    return FB_EINVAL;
+  }
+  for (size_t i = 0; x && i < st->n; ++i)
+    if (!isfinite(x[i])) {
+      fb_err_set(err, FB_EINVAL, "set the state: %s = %g is not finite",
+                 fb_bd_state_name(st->bd, i), x[i]);
+      fb_err_set_key(err, "%s", fb_bd_state_name(st->bd, i));
+      return FB_EINVAL;
+    }
+  st->t_now = t;
+  if (!st->n)
+    return FB_OK;
+  memcpy(N_VGetArrayPointer(st->y), x, st->n * sizeof *x);
+  st->failed = 0; /* the failure belonged to the state now replaced */
+  return fb_sim_stepper_reset(st, err);
+}
+
 double fb_sim_stepper_time(const fb_sim_stepper *st)
 {
   return st->t_now;

@@ -44,7 +44,7 @@ int vehicle_threads(const fb_vehicle *v)
 
 void fb_vehicle_opts_default(fb_vehicle_opts *o)
 {
-  *o = (fb_vehicle_opts){0, 0, {NULL, NULL}, 1, 0};
+  *o = (fb_vehicle_opts){0, 0, {NULL, NULL}, 1, 0, 0};
 }
 
 void fb_vehicle_free(fb_vehicle **v)
@@ -135,7 +135,7 @@ static int build_diagram(fb_vehicle *v, const fb_scenario *s, int enriched, unsi
   if (!rc)
     rc = vehicle_graph_around(s, &hull, extras, &v->ncoords, graph, probes, nprobes, err);
   if (!rc && v->held)
-    rc = vehicle_hold_inputs(s, v->held, *graph, err);
+    rc = vehicle_hold_inputs(s, &v->opts, v->held, *graph, err);
   if (!rc)
     rc = fb_bd_build(*graph, *probes, *nprobes, bd, err);
   if (!rc)

@@ -369,7 +369,7 @@ int vehicle_graph_around(const fb_scenario *s, fb_hull **hull, unsigned extras, 
 /* ---- Realisation (vehicle.c) and inputs (stepper.c). */
 
 /* fb_vehicle_new whose load reads the inputs held (borrowed: they must
- * outlive the vehicle; FB_VEHICLE_NINPUTS values, vehicle_hold_inputs),
+ * outlive the vehicle; the stepper's layout, vehicle_hold_inputs),
  * for a stepper. */
 int vehicle_new_held(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
                      const double *held, fb_vehicle **out, fb_err *err);
@@ -378,9 +378,11 @@ fb_bd *vehicle_diagram(fb_vehicle *v);
 /* The initial state of v's diagram bd per s->initial into *x0 (new,
  * nstates + 1 values): zero, or the static equilibrium. */
 int vehicle_initial_state(fb_vehicle *v, fb_bd *bd, double **x0, fb_err *err);
-/* Makes the load of graph (the vehicle of s) read the inputs held
- * (borrowed), before its diagram is built. */
-int vehicle_hold_inputs(const fb_scenario *s, const double *held, fb_bg *graph, fb_err *err);
+/* Makes the load of graph (the vehicle of s), and with o->road_inputs
+ * its road, read the inputs held (borrowed; the stepper's layout),
+ * before its diagram is built. */
+int vehicle_hold_inputs(const fb_scenario *s, const fb_vehicle_opts *o, const double *held,
+                        fb_bg *graph, fb_err *err);
 
 /* The basis over the hull's nodal DOFs its coordinates are in (ndof x
  * *nb, column-major): NULL for nodal coordinates. */
