@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # What `cmake --install` (and `make install`) puts under the prefix: the
-# CLI and its manual page, the static and the shared library, the public headers, flexbond.pc,
+# CLI and its manual page, the static and the shared library, the FMU's binary, the public headers, flexbond.pc,
 # the Python package (python/flexbond), and the examples and documents
 # under share/doc/flexbond. Included from CMakeLists.txt.
 
@@ -9,6 +9,13 @@ if(TARGET flexbond_shared)
   install(TARGETS flexbond_shared LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 endif()
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/include/flexbond DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The FMU's binary and its sources, which flexbond fmu packages
+# (fb_fmu_runtime_path looks for it there).
+if(TARGET flexbond_fmu)
+  install(TARGETS flexbond_fmu LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/flexbond)
+  install(DIRECTORY $<TARGET_FILE_DIR:flexbond_fmu>/fmu-sources
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/flexbond)
+endif()
 if(TARGET flexbond_cli)
   install(TARGETS flexbond_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   # The manual page, from the built command's --help texts (cmake/manpage.sh).

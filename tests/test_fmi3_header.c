@@ -214,12 +214,6 @@ static void test_enum_values(void)
   CHECK(fmi3Error == 3);
   CHECK(fmi3Fatal == 4);
 
-  /* fmi3Type is an enum of modelDescription.xml's interface types, not
-   * of the C API: the values, as an importer numbers them. */
-  CHECK(fmi3ModelExchange == 0);
-  CHECK(fmi3CoSimulation == 1);
-  CHECK(fmi3ScheduledExecution == 2);
-
   CHECK(fmi3Independent == 0);
   CHECK(fmi3Constant == 1);
   CHECK(fmi3Fixed == 2);

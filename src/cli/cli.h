@@ -16,7 +16,8 @@
 #include "flexbond/study.h"
 #include "flexbond/vehicle.h"
 
-#define CLI_VERSION "0.1.0"
+/* The project's version (CMakeLists.txt's project(), as the library has it). */
+#define CLI_VERSION FLEXBOND_VERSION_TEXT
 
 /* OpenBLAS's own call (the library links libopenblas directly,
  * CMakeLists.txt's OPENBLAS_LIB), declared here rather than taken from a
@@ -275,6 +276,7 @@ int cli_cmd_run(int argc, char **argv);
 int cli_cmd_modes(int argc, char **argv);
 int cli_cmd_mesh(int argc, char **argv);
 int cli_cmd_export(int argc, char **argv);
+int cli_cmd_fmu(int argc, char **argv);
 int cli_cmd_freq(int argc, char **argv);
 int cli_cmd_sweep(int argc, char **argv);
 int cli_cmd_ride_limit(int argc, char **argv);

@@ -52,6 +52,8 @@ static const cli_command commands[] = {
     {"modes", cli_cmd_modes, "natural frequencies and damped modes of a vehicle scenario"},
     {"mesh", cli_cmd_mesh, "the finite-element hull mesh of a scenario; export to .inp / .vtu"},
     {"export", cli_cmd_export, "a vehicle scenario's linear model in descriptor form (.mtx)"},
+    {"fmu", cli_cmd_fmu,
+     "a vehicle scenario as an FMI 3.0 FMU (Model Exchange, Co-Simulation)"},
     {"freq", cli_cmd_freq, "frequency response of a vehicle scenario's outputs to the road"},
     {"model", cli_cmd_model, "write a vehicle scenario's bond graph as a model file"},
     {"sweep", cli_cmd_sweep, "parameter study of a vehicle scenario on all cores: CSV, figure"},

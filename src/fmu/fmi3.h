@@ -109,17 +109,6 @@ typedef enum {
   fmi3IntervalChanged = 2
 } fmi3IntervalQualifier;
 
-/* The three interface types (the <ModelExchange>, <CoSimulation> and
- * <ScheduledExecution> elements of modelDescription.xml, 2.4). Not part
- * of the 3.0.2 C API - no function takes it, each interface type has its
- * own fmi3Instantiate* - but kept for flexbond's FMU and importer to
- * name the one in use; FMI 2.0's fmi2Type numbered its two the same. */
-typedef enum {
-  fmi3ModelExchange = 0,
-  fmi3CoSimulation = 1,
-  fmi3ScheduledExecution = 2
-} fmi3Type;
-
 /* ---- callbacks the importer passes at instantiation (2.3.1, 4.2.2,
  *      5.1.2, 5.2.2) ---------------------------------------------------- */
 
