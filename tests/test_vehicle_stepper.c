@@ -5,7 +5,11 @@
  * (examples/apc6x6_liftoff.yaml: contact events between the stops); a held load force and a
  * heavier load set on the way move the tires' reactions by what statics says once the vehicle
  * has settled (Newton's second law at rest); a scenario whose vehicle has other states is
- * refused. */
+ * refused. With the road under each wheel as inputs: a height step under one wheel moves its
+ * tire's reaction at once by the tire's stiffness times the step (the deflection jumps, the
+ * rate is zero); the whole road raised smoothly leaves the reactions, once settled, at their
+ * values of the same vehicle settled on its unmoved road (it rides up rigidly); a state set back to an earlier time and state
+ * goes on as it did, to the bit. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -206,6 +210,140 @@ static void test_steps_equal_run(const fb_scenario *apc)
     check_steps_equal_run(liftoff, 1);
 }
 
+/* The reaction of corner c (N) now. */
+static double reaction(fb_vehicle_stepper *st, const fb_scenario *s, size_t c, fb_err *err)
+{
+  char name[64];
+  snprintf(name, sizeof name, "contact_force_%s", s->corner[c].name);
+  const long k = fb_vehicle_stepper_output_find(st, name);
+  double *y = calloc(fb_vehicle_stepper_noutputs(st) + 1, sizeof *y);
+  const double f =
+      y && k >= 0 && fb_vehicle_stepper_outputs(st, y, err) == FB_OK ? y[k] : NAN;
+  free(y);
+  return f;
+}
+
+/* Road inputs on the flat APC (the bump far beyond the run). */
+static void test_road_inputs(const fb_scenario *apc)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  fb_vehicle_stepper *st = NULL;
+  fb_vehicle_opts o;
+  fb_vehicle_opts_default(&o);
+  o.road_inputs = 1;
+  MUST(fb_scenario_clone(apc, &s, &err), &err);
+  if (s) {
+    s->t_end = 6.0;
+    MUST(fb_vehicle_stepper_new(s, FB_SYSTEM_RIGID, &o, &st, &err), &err);
+  }
+  if (!st) {
+    fb_scenario_free(&s);
+    return;
+  }
+  const size_t ni = fb_vehicle_stepper_ninputs(st), nc = s->ncorners;
+  CHECK(ni == FB_VEHICLE_NINPUTS + 2 * nc);
+  char name[64];
+  snprintf(name, sizeof name, "road_zdot_%s", s->corner[nc - 1].name);
+  CHECK(fb_vehicle_stepper_input_find(st, name) == (long)ni - 1);
+  CHECK(!strcmp(fb_vehicle_stepper_input_unit(st, ni - 1), "m/s"));
+  CHECK(!strcmp(fb_vehicle_stepper_input_unit(st, ni - 2), "m"));
+  CHECK(fb_vehicle_stepper_road_coupling(st) != NULL);
+  double *u = calloc(ni, sizeof *u);
+  /* A 10 mm step under the first wheel at t = 0.1 s: its tire is 10 mm
+   * more compressed at once, the rest not yet moved (the step is taken
+   * in the same instant), so its reaction rises by tire_k * 0.01 and no
+   * other changes. Round-off of the reaction's sum only: 1e-9 of it. */
+  MUST(fb_vehicle_stepper_advance(st, 0.1, &err), &err);
+  const double before = reaction(st, s, 0, &err), other = reaction(st, s, 1, &err);
+  u[FB_VEHICLE_NINPUTS] = 0.01;
+  MUST(fb_vehicle_stepper_set_inputs(st, u, &err), &err);
+  const double jump = reaction(st, s, 0, &err) - before;
+  fprintf(stderr, "road step 10 mm under %s: reaction +%.6g N, tire_k * 0.01 = %.6g N\n",
+          s->corner[0].name, jump, s->corner[0].tire_k * 0.01);
+  CHECK(fabs(jump - s->corner[0].tire_k * 0.01) <= 1e-9 * fabs(before) + 1e-9);
+  CHECK(fabs(reaction(st, s, 1, &err) - other) <= 1e-9 * fabs(other));
+  /* Every wheel's road up to 10 mm, ramped over 0.5 s as height and rate
+   * together, then held: settled, the vehicle has ridden up with it and
+   * the reactions are those of the vehicle settled on its unmoved road.
+   * What is left is the ramp's transient, 4.4 s after it: measured
+   * 1.4e-10 of a wheel's load. 1e-6 keeps a wide margin; a coupling of
+   * the wrong sign or size leaves the tires 10 mm off their deflection,
+   * k_t * 0.01 = 5 kN, a fifth of a wheel's load. */
+  for (int i = 1; i <= 500; ++i) {
+    const double t = 0.1 + 1e-3 * i;
+    for (size_t c = 0; c < nc; ++c) {
+      u[FB_VEHICLE_NINPUTS + 2 * c] = 0.01 * (double)i / 500.0;
+      u[FB_VEHICLE_NINPUTS + 2 * c + 1] = i < 500 ? 0.01 / 0.5 : 0.0;
+    }
+    /* The first wheel's road is already at 10 mm: it stays there. */
+    u[FB_VEHICLE_NINPUTS] = 0.01;
+    u[FB_VEHICLE_NINPUTS + 1] = 0.0;
+    MUST(fb_vehicle_stepper_set_inputs(st, u, &err), &err);
+    MUST(fb_vehicle_stepper_advance(st, t, &err), &err);
+  }
+  MUST(fb_vehicle_stepper_advance(st, 5.0, &err), &err);
+  /* The same vehicle on its unmoved road, settled as long. */
+  fb_vehicle_stepper *still = NULL;
+  MUST(fb_vehicle_stepper_new(s, FB_SYSTEM_RIGID, &o, &still, &err), &err);
+  if (still)
+    MUST(fb_vehicle_stepper_advance(still, 5.0, &err), &err);
+  double worst = still ? 0 : INFINITY;
+  for (size_t c = 0; still && c < nc; ++c) {
+    const double ref = reaction(still, s, c, &err);
+    worst = fmax(worst, fabs(reaction(st, s, c, &err) - ref) / fabs(ref));
+  }
+  fb_vehicle_stepper_free(&still);
+  fprintf(stderr, "road raised 10 mm, settled: reactions vs the unmoved road's, worst %.3g of the load\n",
+          worst);
+  CHECK(worst <= 1e-6);
+  free(u);
+  fb_vehicle_stepper_free(&st);
+  fb_scenario_free(&s);
+}
+
+/* A state set back: from (t1, x1) the stepper goes on as it did from
+ * there after the same restart, to the bit (the same integrator from the
+ * same start). */
+static void test_state_set_back(const fb_scenario *apc)
+{
+  fb_err err;
+  fb_scenario *s = NULL;
+  fb_vehicle_stepper *st = NULL;
+  MUST(fb_scenario_clone(apc, &s, &err), &err);
+  if (s) {
+    fit_bump(s, 10.0, 0.3);
+    MUST(fb_vehicle_stepper_new(s, FB_SYSTEM_RIGID, NULL, &st, &err), &err);
+  }
+  if (!st) {
+    fb_scenario_free(&s);
+    return;
+  }
+  const size_t n = fb_vehicle_stepper_nstates(st), ny = fb_vehicle_stepper_noutputs(st);
+  double *x1 = calloc(n, sizeof *x1), *ya = calloc(ny, sizeof *ya), *yb = calloc(ny, sizeof *yb);
+  MUST(fb_vehicle_stepper_advance(st, 0.5, &err), &err);
+  /* The restart at t1 that a taken state implies, then the first way on. */
+  MUST(fb_vehicle_stepper_set_state(st, 0.5, fb_vehicle_stepper_state(st), &err), &err);
+  memcpy(x1, fb_vehicle_stepper_state(st), n * sizeof *x1);
+  MUST(fb_vehicle_stepper_advance(st, 1.0, &err), &err);
+  MUST(fb_vehicle_stepper_outputs(st, ya, &err), &err);
+  MUST(fb_vehicle_stepper_set_state(st, 0.5, x1, &err), &err);
+  CHECK(fb_vehicle_stepper_time(st) == 0.5);
+  MUST(fb_vehicle_stepper_advance(st, 1.0, &err), &err);
+  MUST(fb_vehicle_stepper_outputs(st, yb, &err), &err);
+  CHECK(memcmp(ya, yb, ny * sizeof *ya) == 0);
+  /* Refused: a time outside the run, a state that is not finite. */
+  CHECK(fb_vehicle_stepper_set_state(st, -1.0, x1, &err) == FB_EINVAL);
+  CHECK(fb_vehicle_stepper_set_state(st, s->t_end + 1.0, x1, &err) == FB_EINVAL);
+  x1[0] = NAN;
+  CHECK(fb_vehicle_stepper_set_state(st, 0.5, x1, &err) == FB_EINVAL);
+  free(x1);
+  free(ya);
+  free(yb);
+  fb_vehicle_stepper_free(&st);
+  fb_scenario_free(&s);
+}
+
 int main(void)
 {
   fb_err err;
@@ -215,6 +353,8 @@ int main(void)
     test_steps_equal_run(s);
     test_inputs_and_parameters(s);
     test_other_states_refused(s);
+    test_road_inputs(s);
+    test_state_set_back(s);
   }
   fb_scenario_free(&s);
   return check_report("test_vehicle_stepper");

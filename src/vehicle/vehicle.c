@@ -185,6 +185,21 @@ static int variant_new(fb_vehicle *v, void (*change)(fb_scenario *),
 
 /* ---- Realisation. */
 
+/* fb_scenario_check of s but for its road, which a vehicle whose road is
+ * an input does not drive on: a copy checked on a flat road (the run
+ * made as long as that road needs). */
+static int check_without_road(const fb_scenario *s, fb_err *err)
+{
+  fb_scenario *flat = NULL;
+  int rc = fb_scenario_clone(s, &flat, err);
+  if (!rc) {
+    vehicle_flatten_road(flat);
+    rc = fb_scenario_check(flat, err);
+  }
+  fb_scenario_free(&flat);
+  return rc;
+}
+
 int vehicle_new_held(const fb_scenario *s, fb_system sys, const fb_vehicle_opts *o,
                      const double *held, fb_vehicle **out, fb_err *err)
 {
@@ -207,7 +222,7 @@ int vehicle_new_held(const fb_scenario *s, fb_system sys, const fb_vehicle_opts 
     fb_vehicle_opts_default(&v->opts);
   if (!v->opts.memory_limit)
     v->opts.memory_limit = FB_VEHICLE_MEMORY_LIMIT;
-  int rc = fb_scenario_check(s, err);
+  int rc = v->opts.road_inputs ? check_without_road(s, err) : fb_scenario_check(s, err);
   if (!rc && sys == FB_SYSTEM_FLEXIBLE)
     rc = vehicle_hull_new(s, &v->opts, &v->work, &v->hull, err);
   const unsigned extras =

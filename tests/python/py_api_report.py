@@ -158,7 +158,15 @@ class ReportTest(unittest.TestCase):
                         r"(\d+) of the (\d+) outputs that vary in System 1 differ by more than "
                         r"5 % \(([^)]*)\)", text)
         self.assertIsNotNone(head, text)
-        self.assertEqual(label[d.largest], head.group(2))
+        # The largest difference may be shared: the cargo's mount force is
+        # its mass times its acceleration, so their relative differences
+        # agree to rounding, and which one a sum's last bit favours
+        # differs between BLAS builds. Any output within rounding of the
+        # largest (1e-9 of it) names it rightly.
+        largest = st.comparison[d.largest].rel_diff
+        tied = [label[n] for n, c in st.comparison.items()
+                if abs(c.rel_diff - largest) <= 1e-9 * largest]
+        self.assertIn(head.group(2), tied)
         self.assertPrinted(100 * st.comparison[d.largest].rel_diff, head.group(1), "largest",
                            100.0)
         self.assertEqual((d.nnotable, d.nvarying), (int(head.group(4)), int(head.group(5))))
