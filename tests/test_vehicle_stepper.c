@@ -8,8 +8,8 @@
  * refused. With the road under each wheel as inputs: a height step under one wheel moves its
  * tire's reaction at once by the tire's stiffness times the step (the deflection jumps, the
  * rate is zero); the whole road raised smoothly leaves the reactions, once settled, at their
- * values of the same vehicle settled on its unmoved road (it rides up rigidly); a state set back to an earlier time and state
- * goes on as it did, to the bit. */
+ * values of the same vehicle settled on its unmoved road (it rides up rigidly); a state set
+ * back to an earlier time and state goes on as it did, to the bit. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -217,8 +217,7 @@ static double reaction(fb_vehicle_stepper *st, const fb_scenario *s, size_t c, f
   snprintf(name, sizeof name, "contact_force_%s", s->corner[c].name);
   const long k = fb_vehicle_stepper_output_find(st, name);
   double *y = calloc(fb_vehicle_stepper_noutputs(st) + 1, sizeof *y);
-  const double f =
-      y && k >= 0 && fb_vehicle_stepper_outputs(st, y, err) == FB_OK ? y[k] : NAN;
+  const double f = y && k >= 0 && fb_vehicle_stepper_outputs(st, y, err) == FB_OK ? y[k] : NAN;
   free(y);
   return f;
 }
@@ -294,8 +293,10 @@ static void test_road_inputs(const fb_scenario *apc)
     worst = fmax(worst, fabs(reaction(st, s, c, &err) - ref) / fabs(ref));
   }
   fb_vehicle_stepper_free(&still);
-  fprintf(stderr, "road raised 10 mm, settled: reactions vs the unmoved road's, worst %.3g of the load\n",
-          worst);
+  fprintf(
+      stderr,
+      "road raised 10 mm, settled: reactions vs the unmoved road's, worst %.3g of the load\n",
+      worst);
   CHECK(worst <= 1e-6);
   free(u);
   fb_vehicle_stepper_free(&st);
@@ -320,7 +321,8 @@ static void test_state_set_back(const fb_scenario *apc)
     return;
   }
   const size_t n = fb_vehicle_stepper_nstates(st), ny = fb_vehicle_stepper_noutputs(st);
-  double *x1 = calloc(n, sizeof *x1), *ya = calloc(ny, sizeof *ya), *yb = calloc(ny, sizeof *yb);
+  double *x1 = calloc(n, sizeof *x1), *ya = calloc(ny, sizeof *ya),
+         *yb = calloc(ny, sizeof *yb);
   MUST(fb_vehicle_stepper_advance(st, 0.5, &err), &err);
   /* The restart at t1 that a taken state implies, then the first way on. */
   MUST(fb_vehicle_stepper_set_state(st, 0.5, fb_vehicle_stepper_state(st), &err), &err);

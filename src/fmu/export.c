@@ -145,8 +145,13 @@ static void identifier_of(const char *name, char *id, size_t size)
   size_t k = 0;
   if (!name || !(name[0] == '_' || ((name[0] | 32) >= 'a' && (name[0] | 32) <= 'z')))
     id[k++] = 'v';
-  for (const char *p = name ? name : ""; *p && k + 1 < size; ++p)
-    id[k++] = ((*p >= '0' && *p <= '9') || ((*p | 32) >= 'a' && (*p | 32) <= 'z')) ? *p : '_';
+  for (const char *p = name ? name : ""; *p && k + 1 < size; ++p) {
+    const int keep = (*p >= '0' && *p <= '9') || ((*p | 32) >= 'a' && (*p | 32) <= 'z');
+    char ch = '_';
+    if (keep)
+      ch = *p;
+    id[k++] = ch;
+  }
   id[k] = '\0';
 }
 
@@ -184,12 +189,17 @@ static int make_config(exporter *x, fb_err *err)
   if (!c->parameter || !c->set)
     return fb_err_set(err, FB_ENOMEM, "out of memory");
   for (size_t i = 0; i < o->noverrides; ++i) {
-    c->set[i].key = fb_strdup(o->overrides[i].key);
-    c->set[i].value = fb_strdup(o->overrides[i].value);
-    c->nsets++;
-    if (!c->set[i].key || !c->set[i].value)
+    char *key = fb_strdup(o->overrides[i].key), *value = fb_strdup(o->overrides[i].value);
+    if (!key || !value) {
+      free(key);
+      free(value);
       return fb_err_set(err, FB_ENOMEM, "out of memory");
+    }
+    /* Owned by the config from here (fmu_config_release). */
+    c->set[c->nsets++] = (fb_scenario_override){.key = key, .value = value, .label = NULL};
   }
+  /* NOLINTNEXTLINE(clang-analyzer-unix.Malloc): the keys and values are c's, freed by cleanup
+   */
   int rc = fb_scenario_load_overrides(x->scenario_path, c->set, c->nsets, &x->s, err);
   for (size_t p = 0; !rc && p < o->nparameters; ++p) {
     rc = fb_scenario_override_key(x->scenario_path, o->parameters[p], &c->parameter[p], err);

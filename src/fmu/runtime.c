@@ -224,6 +224,16 @@ static int collect_breakpoints(fmu *f, fb_err *err)
   return FB_OK;
 }
 
+/* The scenario with the parameters at values (NULL: the file's) and the
+ * importer's tolerance (*s new). */
+static int load_scenario(const fmu *f, const double *values, fb_scenario **s, fb_err *err)
+{
+  const int rc = fmu_scenario_load(f->scenario_path, &f->cfg, values, s, err);
+  if (!rc && f->tolerance > 0)
+    (*s)->rtol = f->tolerance;
+  return rc;
+}
+
 /* A stepper of the scenario with the parameters at values (NULL: the
  * file's), replacing f's (*st new). */
 static int new_stepper(fmu *f, const double *values, fb_vehicle_stepper **st, fb_err *err)
@@ -232,9 +242,7 @@ static int new_stepper(fmu *f, const double *values, fb_vehicle_stepper **st, fb
   fb_vehicle_opts o;
   fb_vehicle_opts_default(&o);
   o.road_inputs = f->cfg.road_inputs;
-  int rc = fmu_scenario_load(f->scenario_path, &f->cfg, values, &s, err);
-  if (!rc && f->tolerance > 0)
-    s->rtol = f->tolerance;
+  int rc = load_scenario(f, values, &s, err);
   if (!rc)
     rc = fb_vehicle_stepper_new(s, f->cfg.system, &o, st, err);
   fb_scenario_free(&s);
@@ -298,6 +306,16 @@ static void destroy(fmu *f)
   free(f);
 }
 
+/* The instance's name and resource folder (with its trailing '/'),
+ * copied. */
+static int keep_names(fmu *f, const char *name, const char *resources, fb_err *err)
+{
+  const size_t len = strlen(resources);
+  f->name = fb_strdup(name);
+  f->resources = fb_strdup_printf("%s%s", resources, resources[len - 1] == '/' ? "" : "/");
+  return f->name && f->resources ? FB_OK : fb_err_set(err, FB_ENOMEM, "out of memory");
+}
+
 static fmu *instantiate(fmu_interface kind, fmi3String name, fmi3String token,
                         fmi3String resources, fmi3Boolean logging, fmi3InstanceEnvironment env,
                         fmi3LogMessageCallback log)
@@ -317,13 +335,8 @@ static fmu *instantiate(fmu_interface kind, fmi3String name, fmi3String token,
     rc = fb_err_set(&err, FB_EINVAL, "the instance name is empty");
   else if (!resources || !*resources)
     rc = fb_err_set(&err, FB_EINVAL, "no resource path: the FMU needs its resources/ folder");
-  if (!rc) {
-    const size_t len = strlen(resources);
-    f->name = fb_strdup(name);
-    f->resources = fb_strdup_printf("%s%s", resources, resources[len - 1] == '/' ? "" : "/");
-    if (!f->name || !f->resources)
-      rc = fb_err_set(&err, FB_ENOMEM, "out of memory");
-  }
+  else
+    rc = keep_names(f, name, resources, &err);
   if (!rc)
     rc = build(f, token, &err);
   if (rc) {
@@ -405,9 +418,7 @@ static int cs_apply(fmu *f, fb_err *err)
   int rc = FB_OK;
   if (f->np && memcmp(f->param, f->param_built, f->np * sizeof *f->param) != 0) {
     fb_scenario *s = NULL;
-    rc = fmu_scenario_load(f->scenario_path, &f->cfg, f->param, &s, err);
-    if (!rc && f->tolerance > 0)
-      s->rtol = f->tolerance;
+    rc = load_scenario(f, f->param, &s, err);
     if (!rc)
       rc = fb_vehicle_stepper_set_scenario(f->st, s, err);
     fb_scenario_free(&s);
@@ -470,9 +481,9 @@ static int get_value(fmu *f, size_t vr, double *value, fb_err *err)
 static int settable(fmu *f, const fmu_var *v)
 {
   if (v->kind == FMU_VAR_INPUT)
-    return f->state & (ST_INSTANTIATED | ST_INIT | ST_EVENT | ST_CONTINUOUS | ST_STEP);
+    return (f->state & (ST_INSTANTIATED | ST_INIT | ST_EVENT | ST_CONTINUOUS | ST_STEP)) != 0;
   if (v->kind == FMU_VAR_PARAMETER) /* tunable: not while the importer integrates */
-    return f->state & (ST_INSTANTIATED | ST_INIT | ST_EVENT | ST_STEP);
+    return (f->state & (ST_INSTANTIATED | ST_INIT | ST_EVENT | ST_STEP)) != 0;
   return 0;
 }
 
@@ -1042,8 +1053,10 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference
 
 /* ---- FMU states (FMI 3.0, 2.2.11): one block of doubles, serialised as
  * it is. Layout: magic, version, kind, n, ni, np, then time, the
- * state (CS: the stepper's x; ME: p), u, z0, param, and for CS the road's
- * heights as the stepper had them. */
+ * state (CS: the stepper's x; ME: p), u, z0, param, and the inputs as
+ * the stepper holds them (the road's heights where the road is then).
+ * The state machine's mode is not part of it: a state set leaves the
+ * instance in the mode it is in. */
 
 enum { SNAP_MAGIC = 0x46424d55 /* "FBMU" */, SNAP_VERSION = 1, SNAP_HEAD = 6 };
 
@@ -1054,7 +1067,7 @@ typedef struct snapshot {
 
 static size_t snap_doubles(const fmu *f)
 {
-  return SNAP_HEAD + 1 + f->n + 3 * f->ni + f->np + 1;
+  return SNAP_HEAD + 1 + f->n + 3 * f->ni + f->np;
 }
 
 /* The instance's stepper restarted at its own state: a state taken and
@@ -1101,8 +1114,6 @@ fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
   v += f->np;
   for (size_t i = 0; i < f->ni; ++i)
     v[i] = fb_vehicle_stepper_input(f->st, i);
-  v += f->ni;
-  *v = f->state;
   *FMUState = s;
   return fmi3OK;
 }
@@ -1135,13 +1146,12 @@ fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
   memcpy(f->param, v, f->np * sizeof *v);
   v += f->np;
   const double *held = v;
-  v += f->ni;
   fb_err err;
   fb_err_clear(&err);
   int rc = FB_OK;
   if (f->np && memcmp(f->param, f->param_built, f->np * sizeof *f->param) != 0) {
     fb_scenario *sc = NULL;
-    rc = fmu_scenario_load(f->scenario_path, &f->cfg, f->param, &sc, &err);
+    rc = load_scenario(f, f->param, &sc, &err);
     if (!rc)
       rc = fb_vehicle_stepper_set_scenario(f->st, sc, &err);
     fb_scenario_free(&sc);
@@ -1158,12 +1168,16 @@ fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
     memcpy(f->p, x, f->n * sizeof *x);
     me_state(f);
     int changed = 0;
-    fb_bd_sync_modes(fb_vehicle_stepper_diagram(f->st), t, f->x, &changed);
+    fb_bd *bd = fb_vehicle_stepper_diagram(f->st);
+    if (fb_bd_sync_modes(bd, t, f->x, &changed) != 0) {
+      fb_err_set(&err, FB_ESOLVER, "choosing modes: %s", fb_bd_last_error(bd));
+      return fail(f, "fmi3SetFMUState", &err);
+    }
   }
-  f->state = (fmu_state)(int)*v;
   return fmi3OK;
 }
 
+/* cppcheck-suppress constParameter ; the standard's signature (fmi3FreeFMUStateTYPE) */
 fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
 {
   if (!instance)
@@ -1406,6 +1420,19 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance,
     fb_err_set(&err, FB_ESOLVER, "switching modes: %s", fb_bd_last_error(bd));
     return fail(f, "fmi3UpdateDiscreteStates", &err);
   }
+  /* At a road kink the input's jump may move a guard across zero with no
+   * crossing to see: the modes are chosen afresh there, as a CVODE run
+   * does at a stop time (fb_bd_sync_modes). */
+  int synced = 0;
+  for (size_t k = 0; !changed && k < f->nbps; ++k)
+    if (fabs(f->bps[k] - f->time) <= 1e-9 * fmax(1.0, f->time) &&
+        fb_bd_sync_modes(bd, f->time, f->x, &synced) != 0) {
+      fb_err_set(&err, FB_ESOLVER, "choosing modes: %s", fb_bd_last_error(bd));
+      return fail(f, "fmi3UpdateDiscreteStates", &err);
+    }
+  changed |= synced;
+  if (changed && me_guards(f, f->g, &err))
+    return fail(f, "fmi3UpdateDiscreteStates", &err);
   memcpy(f->g_last, f->g, f->model->nindicators * sizeof *f->g);
   double next = 0.0;
   const int defined = next_breakpoint(f, f->time, &next);

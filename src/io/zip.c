@@ -57,7 +57,7 @@ enum {
   METHOD_STORED = 0,
   METHOD_DEFLATE = 8,
   DOS_TIME = 0,
-  DOS_DATE = (1980 - 1980) << 9 | 1 << 5 | 1,
+  DOS_DATE = 1 << 5 | 1,   /* 1980 (year 0 in bits 9-15), January, the 1st */
   NAME_MAX_BYTES = 0xFFFF, /* the 2-byte name length field */
   CHUNK = 64 * 1024        /* bytes read, and deflated, at a time */
 };

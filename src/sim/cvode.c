@@ -1067,7 +1067,9 @@ int fb_sim_stepper_set_state(fb_sim_stepper *st, double t, const double *x, fb_e
     fb_err_set_key(err, "t");
     return FB_EINVAL;
   }
-  for (size_t i = 0; x && i < st->n; ++i)
+  if (!x && st->n)
+    return fb_err_set(err, FB_EINVAL, "set the state: no state given");
+  for (size_t i = 0; i < st->n; ++i)
     if (!isfinite(x[i])) {
       fb_err_set(err, FB_EINVAL, "set the state: %s = %g is not finite",
                  fb_bd_state_name(st->bd, i), x[i]);
