@@ -149,6 +149,24 @@ class _Override(ctypes.Structure):
                 ("label", ctypes.c_char_p)]
 
 
+class _FmuOpts(ctypes.Structure):
+    """fb_fmu_export_opts (flexbond/fmu.h)."""
+    _fields_ = [("system", ctypes.c_int), ("road_inputs", ctypes.c_int),
+                ("parameters", ctypes.POINTER(ctypes.c_char_p)),
+                ("nparameters", ctypes.c_size_t),
+                ("overrides", ctypes.POINTER(_Override)), ("noverrides", ctypes.c_size_t),
+                ("t_end", ctypes.c_double), ("model_identifier", ctypes.c_char_p),
+                ("runtime", ctypes.c_char_p),
+                ("progress_fn", ctypes.c_void_p), ("progress_ctx", ctypes.c_void_p)]
+
+
+class _FmuInfo(ctypes.Structure):
+    """fb_fmu_info (flexbond/fmu.h)."""
+    _fields_ = [("model_identifier", ctypes.c_char * 128)] + [
+        (n, ctypes.c_size_t) for n in ("nstates", "ninputs", "noutputs", "nparameters",
+                                       "nindicators", "nlibraries", "bytes")]
+
+
 class _Descriptor(ctypes.Structure):
     _fields_ = [("n", ctypes.c_size_t), ("nstates", ctypes.c_size_t),
                 ("ninputs", ctypes.c_size_t), ("noutputs", ctypes.c_size_t),
@@ -463,6 +481,8 @@ _PROTOTYPES = {
     "fb_vehicle_stepper_new": (ctypes.c_int, [_P, ctypes.c_int, ctypes.POINTER(_VehicleOpts),
                                               _PP, _PERR]),
     "fb_vehicle_stepper_free": (None, [_PP]),
+    "fb_fmu_export": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(_FmuOpts), ctypes.c_char_p,
+                                     ctypes.POINTER(_FmuInfo), _PERR]),
     "fb_vehicle_stepper_advance": (ctypes.c_int, [_P, ctypes.c_double, _PERR]),
     "fb_vehicle_stepper_time": (ctypes.c_double, [_P]),
     "fb_vehicle_stepper_noutputs": (ctypes.c_size_t, [_P]),
@@ -2088,6 +2108,35 @@ class Scenario(_Closing):
                          output_rows=rows, linearised=bool(d.linearised))
 
         return self._with_descriptor(system, use)
+
+    def export_fmu(self, path, system="flexible", road="scenario", parameters=(), t_end=0.0,
+                   model_identifier=None):
+        """The vehicle as an FMI 3.0 FMU at path (flexbond fmu, docs/fmi.md):
+        Co-Simulation and Model Exchange, the scenario file with this
+        Scenario's overrides fixed in it. road: "scenario" or "inputs" (each
+        wheel's road height and rate as inputs); parameters: scenario keys
+        made tunable; t_end: the longest run (0: the scenario's). Returns a
+        dict: model_identifier, nstates, ninputs, noutputs, nparameters,
+        nindicators, nlibraries, bytes. A scenario from data (from_dict) has
+        no file to package: ValueError."""
+        if self._text is not None:
+            raise ValueError("flexbond: export_fmu needs a scenario loaded from a file")
+        if road not in ("scenario", "inputs"):
+            raise ValueError("flexbond: road is 'scenario' or 'inputs', not %r" % (road,))
+        keys = [_c_text(k, "parameter") for k in parameters]
+        ov, n = _overrides(self.overrides.items())
+        o = _FmuOpts(system=_system(system), road_inputs=int(road == "inputs"),
+                     parameters=(ctypes.c_char_p * max(1, len(keys)))(*keys),
+                     nparameters=len(keys), overrides=ov, noverrides=n, t_end=float(t_end),
+                     model_identifier=(_c_text(model_identifier, "model_identifier")
+                                       if model_identifier else None))
+        info, err = _FmuInfo(), _Err()
+        _check(_lib.fb_fmu_export(_c_text(self.path, "path"), ctypes.byref(o),
+                                  _c_text(os.fspath(path), "path"), ctypes.byref(info),
+                                  ctypes.byref(err)), err)
+        out = {n: getattr(info, n) for n, _ in _FmuInfo._fields_[1:]}
+        out["model_identifier"] = info.model_identifier.decode()
+        return out
 
     def __repr__(self):
         return "<flexbond.Scenario %s>" % self.path
