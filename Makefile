@@ -50,8 +50,11 @@ DEB_PACKAGES := build-essential cmake pkg-config libsundials-dev libsuitesparse-
 # What the suite needs besides (make deps-test, for make test): strace shows which files a
 # command creates and how (tests/cli_integrity.sh); CalculiX's ccx checks the shell stresses
 # and solves the exported decks (tests/test_shell_stress_ccx.c, tests/test_hull_stress_ccx.c,
-# tests/cli_calculix.sh; all skipped without it).
-TEST_DEB_PACKAGES := strace calculix-ccx
+# tests/cli_calculix.sh; all skipped without it); libxml2-dev builds the test tool fmu_import,
+# our own FMI 3.0 importer, which reads an FMU's modelDescription.xml with libxml2 (without it
+# tests/cli_fmu.sh skips), unzip unpacks the FMUs it runs and libxml2-utils' xmllint validates
+# their descriptions against the FMI 3.0 schemas (tests/cli_fmu.sh).
+TEST_DEB_PACKAGES := strace calculix-ccx libxml2-dev libxml2-utils unzip
 # The developer tools (make deps-dev, for CI and the targets of docs/quality.md): clang is the
 # second compiler; clang-format serves format/format-check; valgrind, clang-tidy and cppcheck
 # serve the targets of the same names.
