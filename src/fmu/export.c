@@ -177,6 +177,32 @@ static int check_opts(exporter *x, fb_err *err)
   return FB_OK;
 }
 
+/* An override of a key that is also a parameter gives the parameter its
+ * start value (the loaded scenario has it) and is dropped: the FMU sets
+ * that key from the parameter, and a key set twice is an error. */
+static int drop_parameter_sets(exporter *x, fb_err *err)
+{
+  fmu_config *c = &x->cfg;
+  size_t kept = 0;
+  int rc = FB_OK;
+  for (size_t i = 0; i < c->nsets; ++i) {
+    char *full = NULL;
+    int is_parameter = 0;
+    rc = rc ? rc : fb_scenario_override_key(x->scenario_path, c->set[i].key, &full, err);
+    for (size_t p = 0; !rc && p < c->nparameters; ++p)
+      is_parameter |= !strcmp(full, c->parameter[p]);
+    free(full);
+    if (!rc && is_parameter) {
+      free((char *)c->set[i].key);
+      free((char *)c->set[i].value);
+    } else {
+      c->set[kept++] = c->set[i];
+    }
+  }
+  c->nsets = kept;
+  return rc;
+}
+
 /* The config: the choices, the parameters' full keys. */
 static int make_config(exporter *x, fb_err *err)
 {
@@ -210,6 +236,8 @@ static int make_config(exporter *x, fb_err *err)
     if (rc)
       fb_err_set_key(err, "parameters");
   }
+  if (!rc)
+    rc = drop_parameter_sets(x, err);
   if (!rc)
     c->t_end = o->t_end > 0 ? o->t_end : x->s->t_end;
   return rc;

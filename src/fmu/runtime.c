@@ -1053,10 +1053,11 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference
 
 /* ---- FMU states (FMI 3.0, 2.2.11): one block of doubles, serialised as
  * it is. Layout: magic, version, kind, n, ni, np, then time, the
- * state (CS: the stepper's x; ME: p), u, z0, param, and the inputs as
- * the stepper holds them (the road's heights where the road is then).
- * The state machine's mode is not part of it: a state set leaves the
- * instance in the mode it is in. */
+ * state (CS: the stepper's x; ME: p), u, z0, param, the inputs as the
+ * stepper holds them (the road's heights where the road is then), and
+ * the state machine's state: a state set after an error brings the
+ * instance back to where it was (FMI 3.0, 2.2.3). A state is checked
+ * whole before any of it is used: a refused one changes nothing. */
 
 enum { SNAP_MAGIC = 0x46424d55 /* "FBMU" */, SNAP_VERSION = 1, SNAP_HEAD = 6 };
 
@@ -1067,7 +1068,7 @@ typedef struct snapshot {
 
 static size_t snap_doubles(const fmu *f)
 {
-  return SNAP_HEAD + 1 + f->n + 3 * f->ni + f->np;
+  return SNAP_HEAD + 1 + f->n + 3 * f->ni + f->np + 1;
 }
 
 /* The instance's stepper restarted at its own state: a state taken and
@@ -1114,6 +1115,8 @@ fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState)
   v += f->np;
   for (size_t i = 0; i < f->ni; ++i)
     v[i] = fb_vehicle_stepper_input(f->st, i);
+  v += f->ni;
+  *v = (double)f->state;
   *FMUState = s;
   return fmi3OK;
 }
@@ -1126,15 +1129,43 @@ static int snap_fits(const fmu *f, const snapshot *s)
          s->v[5] == (double)f->np;
 }
 
+/* The states a snapshot of f may hold: those its interface has. */
+static int snap_mode_valid(const fmu *f, double mode)
+{
+  const unsigned ok = ST_INSTANTIATED | ST_INIT | ST_TERMINATED |
+                      (f->kind == IF_CO_SIMULATION ? ST_STEP : ST_EVENT | ST_CONTINUOUS);
+  if (!(mode >= 1 && mode <= ST_FAILED) || mode != floor(mode))
+    return 0;
+  const unsigned m = (unsigned)mode;
+  return (m & (m - 1)) == 0 && (m & ok) != 0; /* one state, one of those */
+}
+
+/* NULL if every value of s is one f can take, else what is wrong. */
+static const char *snap_invalid(const fmu *f, const snapshot *s)
+{
+  const double *v = s->v + SNAP_HEAD;
+  const double t = v[0], t_end = f->cfg.t_end;
+  if (!(t >= 0 && t <= t_end * (1 + 1e-12)))
+    return "its time is not one of the run";
+  for (size_t k = 1; k < s->size - SNAP_HEAD - 1; ++k)
+    if (!isfinite(v[k]))
+      return "a value is not finite";
+  return snap_mode_valid(f, s->v[s->size - 1]) ? NULL : "its state machine's state is none";
+}
+
 fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
 {
   fmu *f = instance;
   if (!allowed(f, "fmi3SetFMUState",
-               ST_INIT | ST_EVENT | ST_CONTINUOUS | ST_STEP | ST_TERMINATED | ST_INSTANTIATED))
+               ST_INIT | ST_EVENT | ST_CONTINUOUS | ST_STEP | ST_TERMINATED | ST_INSTANTIATED |
+                   ST_FAILED))
     return fmi3Error;
   const snapshot *s = FMUState;
   if (!s || !snap_fits(f, s))
     return refuse(f, "fmi3SetFMUState: not a state of this FMU");
+  const char *why = snap_invalid(f, s);
+  if (why)
+    return refuse(f, "fmi3SetFMUState: not a state of this FMU: %s", why);
   const double *v = s->v + SNAP_HEAD;
   const double t = *v++;
   const double *x = v;
@@ -1173,7 +1204,11 @@ fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
       fb_err_set(&err, FB_ESOLVER, "choosing modes: %s", fb_bd_last_error(bd));
       return fail(f, "fmi3SetFMUState", &err);
     }
+    /* The guards' signs there: an event is a change from them. */
+    if (me_guards(f, f->g_last, &err))
+      return fail(f, "fmi3SetFMUState", &err);
   }
+  f->state = (fmu_state)(unsigned)s->v[s->size - 1];
   return fmi3OK;
 }
 
