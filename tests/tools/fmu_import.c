@@ -377,15 +377,11 @@ static int cs_steps(const fmu *u, fmi3Instance inst, long i0, long n, double ste
  * Classical RK4 at a fixed step h. A time event (nextEventTime: the
  * road's kinks) ends a step exactly there. A state event is detected by
  * a sign change of an event indicator between the start and the end of
- * a step and handled at the step's end (fmi3EnterEventMode there): the
- * root is not located. The law switches up to h late, so the trajectory
- * after a tire lifts off or lands again carries an error of the order of
- * (switch jump in the derivative) * h in the velocity it affects, and
- * comparisons against a run that locates its roots (CVODE) need a
- * tolerance that admits that (tests/cli_fmu.sh: about h / the
- * mode's period, not RK4's h^4). Locating the root would need the
- * indicators between steps (an interpolant or bisection with repeated
- * derivative calls); the tests do not need it. */
+ * a step, and located by bisection of that step: RK4 from the step's
+ * start over half the length, and so on, to 1e-10 s (a tire landing on
+ * its damper makes the force jump by c v, which decays in m / c =
+ * 1.25 ms: a switch h = 0.1 ms late would be seen as 7 % of that force's
+ * range in the next sample). fmi3EnterEventMode just after the root. */
 
 typedef struct me_sim {
   size_t n, ng;
@@ -393,7 +389,7 @@ typedef struct me_sim {
   long row; /* the next row's index: its time is row * step */
   int te_defined;
   double te; /* the next time event */
-  double *x, *xs, *k1, *k2, *k3, *k4, *g, *g_prev;
+  double *x, *xs, *k1, *k2, *k3, *k4, *g, *g_prev, *x0;
   long events;
 } me_sim;
 
@@ -407,6 +403,7 @@ static void me_free(me_sim *s)
   free(s->k4);
   free(s->g);
   free(s->g_prev);
+  free(s->x0);
 }
 
 static int me_alloc(const fmu *u, me_sim *s)
@@ -414,7 +411,7 @@ static int me_alloc(const fmu *u, me_sim *s)
   memset(s, 0, sizeof *s);
   s->n = u->nstates;
   s->ng = u->nindicators;
-  double **a[] = {&s->x, &s->xs, &s->k1, &s->k2, &s->k3, &s->k4};
+  double **a[] = {&s->x, &s->xs, &s->k1, &s->k2, &s->k3, &s->k4, &s->x0};
   for (size_t k = 0; k < sizeof a / sizeof *a; ++k)
     if (!(*a[k] = calloc(s->n + 1, sizeof(double))))
       return -1;
@@ -490,6 +487,47 @@ static int rk4(const fmu *u, fmi3Instance inst, me_sim *s, double dt)
   return 0;
 }
 
+/* The indicators at (s->t, s->x) into s->g; 1 if one changed sign from
+ * s->g_prev, 0 if none, -1 on failure. */
+static int indicators_crossed(const fmu *u, fmi3Instance inst, me_sim *s)
+{
+  if (u->fmi3SetTime(inst, s->t) != fmi3OK ||
+      u->fmi3SetContinuousStates(inst, s->x, s->n) != fmi3OK ||
+      u->fmi3GetEventIndicators(inst, s->g, s->ng) != fmi3OK)
+    return -1;
+  for (size_t k = 0; k < s->ng; ++k)
+    if ((s->g_prev[k] <= 0) != (s->g[k] <= 0))
+      return 1;
+  return 0;
+}
+
+/* A sign change in the step from (t0, s->x0) of length dt: s moved to
+ * just after its first root, by bisection of the step's length. */
+static int locate_root(const fmu *u, fmi3Instance inst, me_sim *s, double t0, double dt)
+{
+  double lo = 0.0, hi = dt;
+  while (hi - lo > 1e-10) {
+    const double mid = 0.5 * (lo + hi);
+    memcpy(s->x, s->x0, s->n * sizeof *s->x);
+    s->t = t0;
+    if (rk4(u, inst, s, mid))
+      return -1;
+    const int crossed = indicators_crossed(u, inst, s);
+    if (crossed < 0)
+      return -1;
+    if (crossed)
+      hi = mid;
+    else
+      lo = mid;
+  }
+  memcpy(s->x, s->x0, s->n * sizeof *s->x);
+  s->t = t0;
+  if (rk4(u, inst, s, hi))
+    return -1;
+  s->t = t0 + hi;
+  return indicators_crossed(u, inst, s) < 0 ? -1 : 0;
+}
+
 /* Integrates until nrows more rows (every step s) are out, into rec
  * (nrows x nout) and/or fp. Step ends: the next multiple of h, the next
  * row's time, the next time event, whichever comes first, so that rows
@@ -515,11 +553,20 @@ static int me_rows(const fmu *u, fmi3Instance inst, me_sim *s, double h, double 
     }
     if (fabs(target - t_row) <= eps)
       target = t_row;
+    const double t0 = s->t;
+    memcpy(s->x0, s->x, s->n * sizeof *s->x);
     if (rk4(u, inst, s, target - s->t)) {
       rc = -1;
       break;
     }
     s->t = target;
+    const int crossed = s->ng ? indicators_crossed(u, inst, s) : 0;
+    if (crossed < 0 || (crossed > 0 && locate_root(u, inst, s, t0, target - t0))) {
+      rc = -1;
+      break;
+    }
+    if (crossed > 0)
+      time_event = 0; /* the root comes first: the time event is still ahead */
     fmi3Boolean enter = fmi3False, terminate = fmi3False;
     if (u->fmi3SetTime(inst, s->t) != fmi3OK ||
         u->fmi3SetContinuousStates(inst, s->x, s->n) != fmi3OK ||
