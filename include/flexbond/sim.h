@@ -112,10 +112,14 @@ int fb_sim_run(fb_bd *bd, const fb_sim_opts *opts, fb_result **out, fb_err *err)
  * FMI 2.0 co-simulation slave's fmi2DoStep (or Chrono's
  * DoStepDynamics): the caller advances it to a time, reads the
  * diagram's outputs there, may change what the diagram reads, and
- * advances again. fb_sim_run is a stepper advanced once to t_end, so a
- * run cut into N advances integrates the same way, except that CVODE
- * shortens the step that reaches each stop time (CVodeSetStopTime): the
- * outputs agree with one run's within the tolerances, not to the bit.
+ * advances again. fb_sim_run is a stepper advanced once to t_end, and a
+ * run cut into N advances integrates the same way: CVODE takes its own
+ * steps, past a caller's time when its step does, and gives the state
+ * there from its interpolating polynomial (CV_NORMAL), as a run's
+ * samples are; it lands exactly only on breakpoints and t_end. The
+ * outputs agree with one run's within the tolerances (the interpolant
+ * and the root search differ by rounding), not always to the bit. A
+ * change restarts the integrator from the interpolated state.
  *
  * What a change means. The diagram reads its inputs through the graph's
  * time functions; a source whose function returns a value the caller
@@ -143,8 +147,9 @@ typedef struct fb_sim_stepper fb_sim_stepper;
  * about the initial state. */
 int fb_sim_stepper_create(fb_bd *bd, const fb_sim_opts *opts, fb_sim_stepper **out,
                           fb_err *err);
-/* Integrates from the current time to t (s), exactly (the last step is
- * shortened to land on t), stopping and restarting at every breakpoint
+/* Integrates from the current time to t (s), the state at t from
+ * CVODE's interpolant (no step is shortened for t; the integrator may
+ * be past t after the call), stopping and restarting at every breakpoint
  * on the way; switched laws' events are handled as in fb_sim_run. At a
  * breakpoint t the state afterwards is its right limit. opts->progress
  * hears every step. FB_EINVAL (err->key "t") if t is before the current

@@ -78,6 +78,9 @@ typedef struct fmu {
   int *crossed;
   double *bps; /* the road's breakpoints, s */
   size_t nbps;
+  /* Within one fmi3GetFloat64 call: the outputs, derivatives and
+   * guards already evaluated (each once for all the values asked). */
+  int have_y, have_xdot, have_g;
   double tolerance; /* 0: the scenario's */
   double stop_time;
   int stop_defined;
@@ -443,8 +446,10 @@ static int get_value(fmu *f, size_t vr, double *value, fb_err *err)
   case FMU_VAR_INPUT: *value = f->u[v->index]; break;
   case FMU_VAR_PARAMETER: *value = f->param[v->index]; break;
   case FMU_VAR_OUTPUT:
-    rc = f->kind == IF_CO_SIMULATION ? fb_vehicle_stepper_outputs(f->st, f->y, err)
-                                     : me_outputs(f, err);
+    if (!f->have_y)
+      rc = f->kind == IF_CO_SIMULATION ? fb_vehicle_stepper_outputs(f->st, f->y, err)
+                                       : me_outputs(f, err);
+    f->have_y = !rc;
     *value = f->y[v->index];
     break;
   case FMU_VAR_STATE:
@@ -452,7 +457,9 @@ static int get_value(fmu *f, size_t vr, double *value, fb_err *err)
                                          : f->p[v->index];
     break;
   case FMU_VAR_DERIVATIVE:
-    if (f->kind == IF_CO_SIMULATION) {
+    if (f->have_xdot) {
+      /* evaluated for an earlier value of this call */
+    } else if (f->kind == IF_CO_SIMULATION) {
       fb_bd *bd = fb_vehicle_stepper_diagram(f->st);
       if (fb_bd_rhs(bd, fb_vehicle_stepper_time(f->st), fb_vehicle_stepper_state(f->st),
                     f->xdot) != 0)
@@ -460,10 +467,13 @@ static int get_value(fmu *f, size_t vr, double *value, fb_err *err)
     } else {
       rc = me_derivatives(f, err);
     }
+    f->have_xdot = !rc;
     *value = f->xdot[v->index];
     break;
   case FMU_VAR_INDICATOR:
-    if (f->kind == IF_MODEL_EXCHANGE) {
+    if (f->have_g) {
+      /* evaluated for an earlier value of this call */
+    } else if (f->kind == IF_MODEL_EXCHANGE) {
       rc = me_guards(f, f->g, err);
     } else {
       fb_bd *bd = fb_vehicle_stepper_diagram(f->st);
@@ -471,6 +481,7 @@ static int get_value(fmu *f, size_t vr, double *value, fb_err *err)
                        f->g) != 0)
         rc = fb_err_set(err, FB_ESOLVER, "the event indicators: %s", fb_bd_last_error(bd));
     }
+    f->have_g = !rc;
     *value = f->g[v->index];
     break;
   }
@@ -725,6 +736,7 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
                   nValues, nValueReferences);
   fb_err err;
   fb_err_clear(&err);
+  f->have_y = f->have_xdot = f->have_g = 0; /* the state may have changed since */
   for (size_t k = 0; k < nValueReferences; ++k) {
     const fmu_var *v = find_var(f, "fmi3GetFloat64", valueReferences[k]);
     if (!v)

@@ -896,6 +896,74 @@ static int integrate_to(sim_run *run, double t, fb_err *err)
   return rc;
 }
 
+/* One CVode call towards t in CV_NORMAL mode, the segment ending at
+ * limit (a breakpoint or t_end, at or after t): CVODE steps as far as it
+ * chooses, past t when its step does, and returns the state at t from
+ * its interpolating polynomial, of the order of its local error; its
+ * root search stops at t, so a root beyond t is found on the way to the
+ * next target, with the modes of before it until then (CVODE User
+ * Guide, "CVode", itask CV_NORMAL, and its rootfinding section). A
+ * return after the call's step limit (CV_TOO_MUCH_WORK: CVODE's mxstep
+ * counts steps per call) goes on from where it stopped; the run's own
+ * budget is kept by check_budget. */
+static int normal_call(sim_run *run, double t, double limit, fb_err *err)
+{
+  run->t_limit = limit;
+  run->t_left = nextafter(limit, -INFINITY);
+  int flag = CVodeSetStopTime(run->cvode, limit);
+  if (flag < 0)
+    return setup_failure(run, "CVodeSetStopTime", flag, err);
+  int rc = check_budget(run, run->t_now, err);
+  if (rc != FB_OK)
+    return rc;
+  run->has_nonfinite = 0;
+  double t_ret = run->t_now;
+  flag = CVode(run->cvode, t, run->y, &t_ret, CV_NORMAL);
+  if (flag < 0 && flag != CV_TOO_MUCH_WORK)
+    return cvode_failure(run, flag, t_ret, err);
+  run->lin_err.msg[0] = '\0';
+  run->jac_failed = 0;
+  run->t_now = flag == CV_TSTOP_RETURN ? limit : t_ret;
+  rc = check_finite_state(run, run->t_now, err);
+  if (rc == FB_OK && flag == CV_ROOT_RETURN)
+    rc = handle_event(run, limit, err);
+  if (rc == FB_OK && run->opts->progress &&
+      run->opts->progress(run->opts->progress_ctx, run->t_now, run->opts->t_end) != 0)
+    rc = fb_err_set(err, FB_EINTR, "at t = %.6g s: the simulation was interrupted", run->t_now);
+  return rc;
+}
+
+/* A caller's advance to t (a stepper records no samples): CVODE lands
+ * exactly on the breakpoints and t_end only, and gives the state at t
+ * by interpolation (normal_call), so a co-simulation's communication
+ * points cost no shortened steps. The integrator may be past t after
+ * the call; a change at t restarts it from the state at t
+ * (restart_here). */
+static int advance_to(sim_run *run, double t, fb_err *err)
+{
+  int rc = FB_OK;
+  while (rc == FB_OK && t - run->t_now > fb_sim_same_time_tol(t, run->t_now)) {
+    if (run->pending_restart)
+      rc = restart_here(run, err);
+    const int bp_ahead = run->next_bp < run->nbps;
+    const double bp = bp_ahead ? run->bps[run->next_bp] : run->o.t_end;
+    if (rc == FB_OK && bp_ahead && bp - t <= fb_sim_same_time_tol(t, bp)) {
+      /* A breakpoint up to t: landed on exactly (CVODE returns at its
+       * stop time), restarted there; a root or the call's step limit on
+       * the way returns earlier, and the loop goes on. */
+      rc = normal_call(run, bp, bp, err);
+      if (rc == FB_OK && bp - run->t_now <= fb_sim_same_time_tol(bp, run->t_now)) {
+        run->t_now = bp;
+        rc = restart_at_breakpoint(run, bp, err);
+        run->next_bp++;
+      }
+    } else if (rc == FB_OK) {
+      rc = normal_call(run, t, bp, err);
+    }
+  }
+  return rc;
+}
+
 /* A diagram without states is algebraic: outputs at each sample time. */
 static int sample_static(sim_run *run, fb_err *err)
 {
@@ -1031,7 +1099,7 @@ int fb_sim_stepper_advance(fb_sim_stepper *st, double t, fb_err *err)
     st->t_now = t;
     return FB_OK;
   }
-  const int rc = integrate_to(st, fmin(t, st->o.t_end), err);
+  const int rc = advance_to(st, fmin(t, st->o.t_end), err);
   st->failed = rc != FB_OK && rc != FB_EINTR;
   return rc;
 }
