@@ -224,8 +224,8 @@ static int make_config(exporter *x, fb_err *err)
     /* Owned by the config from here (fmu_config_release). */
     c->set[c->nsets++] = (fb_scenario_override){.key = key, .value = value, .label = NULL};
   }
-  /* NOLINTNEXTLINE(clang-analyzer-unix.Malloc): the keys and values are c's, freed by cleanup
-   */
+  /* The keys and values are c's, freed by cleanup. */
+  /* NOLINTNEXTLINE(clang-analyzer-unix.Malloc) */
   int rc = fb_scenario_load_overrides(x->scenario_path, c->set, c->nsets, &x->s, err);
   for (size_t p = 0; !rc && p < o->nparameters; ++p) {
     rc = fb_scenario_override_key(x->scenario_path, o->parameters[p], &c->parameter[p], err);

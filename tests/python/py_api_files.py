@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Python package against the flexbond commands on model files and on
 a scenario's hull mesh and graph: flexbond sim (ModelFile.simulate),
-flexbond mesh (Scenario.hull_mesh, Scenario.hull_matrices) and flexbond eig
-(ModelFile.eigenvalues, Scenario.eigenvalues). Run by CTest with the system
+flexbond mesh (Scenario.hull_mesh, Scenario.hull_matrices), flexbond eig
+(ModelFile.eigenvalues, Scenario.eigenvalues) and flexbond fmu
+(Scenario.export_fmu: the same archive, byte for byte). Run by CTest with the system
 python3:
 
     py_api_files.py FLEXBOND_EXECUTABLE SOURCE_DIR
@@ -28,6 +29,7 @@ import re
 import shutil
 import sys
 import unittest
+import zipfile
 
 import numpy
 
@@ -238,6 +240,46 @@ class HullStressTest(unittest.TestCase):
             numpy.testing.assert_allclose(got, want, rtol=5e-10, atol=1e-9, err_msg=col)
         self.assertEqual([r["surface"] for r in rows], list(p.surface))
         self.assertEqual([r["range_surface"] for r in rows], list(p.range_surface))
+
+
+class FmuTest(unittest.TestCase):
+    """Scenario.export_fmu against flexbond fmu: the same library call, so
+    the same FMU, member for member (the archive's dates are fixed)."""
+
+    def test_against_the_command(self):
+        apc = os.path.join(EXAMPLES, "apc6x6.yaml")
+        run_cli(CLI, "fmu", apc, "--system", "rigid", "--road", "inputs",
+                "--parameters", "road.speed_kmh", "-q", "-o", "cli.fmu")
+        with flexbond.Scenario(apc) as s:
+            info = s.export_fmu("py.fmu", "rigid", road="inputs",
+                                parameters=["road.speed_kmh"])
+        with open("cli.fmu", "rb") as a, open("py.fmu", "rb") as b:
+            self.assertEqual(a.read(), b.read())
+        # System 1: 28 states; the load force and each of the six wheels'
+        # road height and rate; the scenario's 7 outputs and 6 tire forces.
+        self.assertEqual((info["nstates"], info["ninputs"], info["noutputs"],
+                          info["nparameters"], info["model_identifier"]),
+                         (28, 13, 13, 1, "apc6x6"))
+        self.assertEqual(info["bytes"], os.path.getsize("py.fmu"))
+
+    def test_override_is_the_start_value(self):
+        apc = os.path.join(EXAMPLES, "apc6x6.yaml")
+        with flexbond.Scenario(apc, overrides={"speed_kmh": 25}) as s:
+            s.export_fmu("fast.fmu", "rigid", parameters=["road.speed_kmh"])
+        with zipfile.ZipFile("fast.fmu") as z:
+            md = z.read("modelDescription.xml").decode()
+            choices = z.read("resources/flexbond-fmu.txt").decode()
+        self.assertRegex(md, r'name="road.speed_kmh"[^>]*start="25"')
+        self.assertNotIn("set ", choices)  # the override became the start value
+
+    def test_errors(self):
+        apc = os.path.join(EXAMPLES, "apc6x6.yaml")
+        with flexbond.Scenario(apc) as s:
+            with self.assertRaises(flexbond.Error):
+                s.export_fmu("bad.fmu", "rigid", parameters=["no_such_key"])
+            with self.assertRaises(ValueError):
+                s.export_fmu("bad.fmu", "rigid", road="nowhere")
+        self.assertFalse(os.path.exists("bad.fmu"))
 
 
 class EigTest(unittest.TestCase):
