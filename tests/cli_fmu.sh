@@ -348,5 +348,45 @@ checks=$((checks + 1))
 expect_in "$ERR" "nonsense" "--road nonsense: named"
 expect_absent "$WORK/bad3.fmu" "--road nonsense"
 
+# bad NAME EXIT TEXT ARGS...: flexbond fmu ARGS exits EXIT (docs/errors.md:
+# 1 a bad option, 2 invalid input, 5 I/O), saying TEXT, writing nothing new.
+bad() {
+  local name=$1 code=$2 text=$3
+  shift 3
+  run fmu "$@"
+  checks=$((checks + 1))
+  [ "$status" -eq "$code" ] || fail "$name: exit $status, not $code"
+  expect_in "$ERR" "$text" "$name: named"
+}
+bad "-o without .fmu" 1 ".fmu" "$APC" --system rigid -o "$WORK/bad4.zip"
+expect_absent "$WORK/bad4.zip" "-o without .fmu"
+bad "--model-identifier my-model" 1 "my-model" "$APC" --system rigid \
+  --model-identifier my-model -o "$WORK/bad5.fmu"
+expect_absent "$WORK/bad5.fmu" "--model-identifier my-model"
+bad "a parameter twice" 1 "twice" "$APC" --system rigid \
+  --parameters road.speed_kmh,road.speed_kmh -o "$WORK/bad6.fmu"
+mkdir -p "$WORK/dir.fmu"
+bad "-o a folder" 5 "folder" "$APC" --system rigid -o "$WORK/dir.fmu"
+bad "simulation.t_end as a parameter" 2 "horizon" "$APC" --system rigid \
+  --parameters simulation.t_end -o "$WORK/bad7.fmu"
+expect_absent "$WORK/bad7.fmu" "simulation.t_end as a parameter"
+bad "a road parameter with the road as inputs" 2 "does not use" "$APC" --system rigid \
+  --road inputs --parameters road.speed_kmh -o "$WORK/bad8.fmu"
+expect_absent "$WORK/bad8.fmu" "a road parameter with the road as inputs"
+# -o naming the scenario itself: refused, the scenario left as it was.
+cp "$WORK/apc.yaml" "$WORK/self.fmu"
+sum_before=$(cksum <"$WORK/self.fmu")
+bad "-o the scenario itself" 2 "overwrite" "$WORK/self.fmu" --system rigid -o "$WORK/self.fmu"
+checks=$((checks + 1))
+[ "$(cksum <"$WORK/self.fmu")" = "$sum_before" ] || fail "-o the scenario itself: it changed"
+# With the road as inputs the scenario's road is not driven on: a horizon
+# before its bump is no error, and a road value is a fixed parameter
+# otherwise (set before initialisation only).
+run fmu "$APC" --system rigid --road inputs --t-end 3 -q -o "$WORK/short.fmu"
+expect_status 0 "--road inputs --t-end 3 (before the scenario's bump)"
+checks=$((checks + 1))
+grep -q 'name="road.speed_kmh"[^>]*variability="fixed"' "$WORK/par/modelDescription.xml" ||
+  fail "road.speed_kmh: not a fixed parameter"
+
 echo "$NAME: $checks checks, $failures failures" >&2
 [ "$failures" -eq 0 ]

@@ -66,6 +66,11 @@ typedef struct fb_fmu_info {
 int fb_fmu_export(const char *scenario_path, const fb_fmu_export_opts *o, const char *fmu_path,
                   fb_fmu_info *info, fb_err *err);
 
+/* 1 if id may be an FMU's model identifier: a C identifier of at most
+ * 127 characters (it names the binary and, in a source FMU, prefixes
+ * the functions). */
+int fb_fmu_model_identifier_valid(const char *id);
+
 /* The FMU binary flexbond built or installed: $FLEXBOND_FMU_RUNTIME if
  * set, else the installed one, else the build tree's; NULL if none
  * exists. Static storage or the environment's. */

@@ -72,10 +72,12 @@ static int run(const char *path, const fb_fmu_export_opts *o, const char *out, i
   fb_fmu_info info;
   const int rc = fb_fmu_export(path, o, out, &info, &err);
   if (rc == FB_OK && !quiet) {
-    printf("%s: wrote %s (%.1f MB): %s, %zu states, %zu event indicators, %zu inputs, "
-           "%zu outputs, %zu parameters; %zu libraries bundled\n",
+    printf("%s: wrote %s (%.1f MB): %s, %zu states, %zu event indicator%s, %zu input%s, "
+           "%zu output%s, %zu parameter%s; %zu libraries bundled\n",
            path, out, (double)info.bytes / 1e6, info.model_identifier, info.nstates,
-           info.nindicators, info.ninputs, info.noutputs, info.nparameters, info.nlibraries);
+           info.nindicators, info.nindicators == 1 ? "" : "s", info.ninputs,
+           info.ninputs == 1 ? "" : "s", info.noutputs, info.noutputs == 1 ? "" : "s",
+           info.nparameters, info.nparameters == 1 ? "" : "s", info.nlibraries);
     return cli_report(cli_flush_stdout(&err), &err);
   }
   return cli_report(rc, &err);
@@ -116,15 +118,29 @@ int cli_cmd_fmu(int argc, char **argv)
     rc = cli_positive_number(argv[0], "--t-end", opts[OPT_T_END].value, &t_end);
   if (rc != CLI_EXIT_OK)
     return rc;
-  if (!opts[OPT_OUT].value)
+  const char *out = opts[OPT_OUT].value;
+  const size_t len = out ? strlen(out) : 0;
+  if (!out)
     return cli_usage_error(argv[0], "missing the FMU to write (-o VEHICLE.fmu)");
+  if (len < 5 || strcmp(out + len - 4, ".fmu") != 0)
+    return cli_usage_error(argv[0], "-o '%s': an FMU's file name ends in .fmu", out);
+  if (opts[OPT_ID].value && !fb_fmu_model_identifier_valid(opts[OPT_ID].value))
+    return cli_usage_error(argv[0],
+                           "--model-identifier '%s': a C identifier (letters, digits and '_', "
+                           "not first a digit) of at most 127 characters",
+                           opts[OPT_ID].value);
   char *buf = NULL;
   const char **keys = NULL;
   const size_t nkeys = split_keys(opts[OPT_PARAMS].value, &buf, &keys);
-  if (opts[OPT_PARAMS].value && !nkeys) {
+  int twice = 0;
+  for (size_t i = 0; i < nkeys; ++i)
+    for (size_t j = 0; j < i; ++j)
+      twice |= !strcmp(keys[i], keys[j]);
+  if ((opts[OPT_PARAMS].value && !nkeys) || twice) {
     free(buf);
     free(keys);
-    return cli_usage_error(argv[0], "--parameters: expected KEY[,KEY...]");
+    return cli_usage_error(argv[0], twice ? "--parameters: a key twice"
+                                          : "--parameters: expected KEY[,KEY...]");
   }
   const int quiet = opts[OPT_QUIET].value != NULL;
   cli_stage stage = {"fmu", path, quiet};

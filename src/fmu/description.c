@@ -10,6 +10,7 @@
 
 #include "flexbond/escape.h"
 
+#include "core/textfile.h"
 #include "fmu/fmu_description.h"
 
 static void attr(FILE *fp, const char *name, const char *value)
@@ -36,8 +37,11 @@ static void write_base_unit(FILE *fp, const fmu_unit *u)
   for (int i = 0; i < 8; ++i)
     if (e[i])
       fprintf(fp, " %s=\"%d\"", names[i], e[i]);
-  if (u->factor != 1.0)
-    fprintf(fp, " factor=\"%.17g\"", u->factor);
+  if (u->factor != 1.0) {
+    char factor[40];
+    fb_format_shortest(u->factor, 1, factor, sizeof factor);
+    fprintf(fp, " factor=\"%s\"", factor);
+  }
   fputs("/>", fp);
 }
 
@@ -90,13 +94,18 @@ static void write_variable(FILE *fp, const fmu_model *m, size_t vr, const char *
   if (description)
     attr(fp, "description", description);
   fprintf(fp, " causality=\"%s\" variability=\"%s\"", causality(v->kind),
-          v->kind == FMU_VAR_PARAMETER ? "tunable" : "continuous");
+          v->kind != FMU_VAR_PARAMETER ? "continuous"
+          : v->fixed                   ? "fixed"
+                                       : "tunable");
   if (v->kind == FMU_VAR_STATE || v->kind == FMU_VAR_DERIVATIVE || v->kind == FMU_VAR_INDICATOR)
     fputs(" initial=\"calculated\"", fp);
   if (*v->unit)
     attr(fp, "unit", v->unit);
-  if (v->kind == FMU_VAR_INPUT || v->kind == FMU_VAR_PARAMETER)
-    fprintf(fp, " start=\"%.17g\"", v->start);
+  if (v->kind == FMU_VAR_INPUT || v->kind == FMU_VAR_PARAMETER) {
+    char start[40];
+    fb_format_shortest(v->start, 1, start, sizeof start); /* reads back as v->start */
+    fprintf(fp, " start=\"%s\"", start);
+  }
   if (v->kind == FMU_VAR_DERIVATIVE)
     fprintf(fp, " derivative=\"%zu\"", m->first_state + v->index);
   fputs("/>\n", fp);
@@ -174,8 +183,14 @@ int fmu_write_model_description(FILE *fp, const fmu_description *d, fb_err *err)
         "    <Category name=\"logStatusError\" description=\"why a call failed\"/>\n"
         "  </LogCategories>\n",
         fp);
-  fprintf(fp, "  <DefaultExperiment startTime=\"0\" stopTime=\"%.17g\" stepSize=\"%.17g\"/>\n",
-          d->stop_time, d->step_size);
+  char stop[40], step[40], tol[40];
+  fb_format_shortest(d->stop_time, 1, stop, sizeof stop);
+  fb_format_shortest(d->step_size, 1, step, sizeof step);
+  fb_format_shortest(d->tolerance, 1, tol, sizeof tol);
+  fprintf(fp,
+          "  <DefaultExperiment startTime=\"0\" stopTime=\"%s\" tolerance=\"%s\" "
+          "stepSize=\"%s\"/>\n",
+          stop, tol, step);
   fputs("  <ModelVariables>\n", fp);
   for (size_t k = 0; k < m->nvars; ++k)
     write_variable(fp, m, k, var_doc(&m->var[k]));

@@ -139,6 +139,11 @@ static int is_identifier(const char *s)
   return 1;
 }
 
+int fb_fmu_model_identifier_valid(const char *id)
+{
+  return is_identifier(id);
+}
+
 /* The identifier from the scenario's name: letters, digits and '_'. */
 static void identifier_of(const char *name, char *id, size_t size)
 {
@@ -233,6 +238,15 @@ static int make_config(exporter *x, fb_err *err)
     for (size_t q = 0; !rc && q < p; ++q)
       if (!strcmp(c->parameter[q], c->parameter[p]))
         rc = fb_err_set(err, FB_EINVAL, "%s: a parameter twice", c->parameter[p]);
+    if (!rc && !strcmp(c->parameter[p], "simulation.t_end"))
+      rc = fb_err_set(err, FB_EINVAL,
+                      "simulation.t_end: the FMU's horizon is no parameter (the importer's "
+                      "stopTime, up to flexbond fmu --t-end, ends its run)");
+    if (!rc && c->road_inputs && fmu_parameter_fixed(c->parameter[p]))
+      rc = fb_err_set(err, FB_EINVAL,
+                      "%s: a value of the scenario's road, which an FMU whose road is its "
+                      "inputs does not use",
+                      c->parameter[p]);
     if (rc)
       fb_err_set_key(err, "parameters");
   }
@@ -333,6 +347,23 @@ static int collect_files(exporter *x, fb_err *err)
              : fb_err_set(err, FB_EIO, "%s: %s", x->s->inputs[i], strerror(errno));
   }
   return rc;
+}
+
+/* The FMU's path: not a folder, not one of the files it packages (the
+ * scenario, its data, the binary). */
+static int check_destination(const exporter *x, const char *fmu_path, fb_err *err)
+{
+  struct stat st;
+  if (stat(fmu_path, &st) == 0 && S_ISDIR(st.st_mode))
+    return fb_err_set(err, FB_EIO, "%s: a folder, not a file to write the FMU to", fmu_path);
+  char real[PATH_MAX];
+  if (!realpath(fmu_path, real))
+    return FB_OK; /* not there yet: no file it could be */
+  for (size_t k = 0; k < x->nmembers; ++k)
+    if (!strcmp(real, x->copy[k]))
+      return fb_err_set(err, FB_EINVAL, "%s: the FMU would overwrite %s, which it packages",
+                        fmu_path, x->copy[k]);
+  return FB_OK;
 }
 
 /* Makes every folder of path below x->dir (path itself excluded). */
@@ -560,6 +591,7 @@ static int write_archive(exporter *x, const char *runtime, const char *fmu_path,
                              FLEXBOND_VERSION_TEXT,
                              x->cfg.t_end,
                              1.0 / s->sample_rate,
+                             s->rtol,
                              sources,
                              1};
   fb_zip *z = NULL;
@@ -645,6 +677,8 @@ int fb_fmu_export(const char *scenario_path, const fb_fmu_export_opts *o, const 
   }
   if (!rc)
     rc = collect_files(&x, err);
+  if (!rc)
+    rc = check_destination(&x, fmu_path, err);
   if (!rc) {
     char *res = fb_strdup_printf("%s/resources", x.dir);
     if (res && mkdir(res, 0700) == 0) {

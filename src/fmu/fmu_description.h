@@ -14,6 +14,7 @@ typedef struct fmu_description {
   const char *description;
   const char *version;         /* the model's: the scenario's */
   double stop_time, step_size; /* s: the default experiment */
+  double tolerance;            /* its relative tolerance: the scenario's */
   const char *const *sources;  /* sources/ files the build compiles */
   size_t nsources;
 } fmu_description;

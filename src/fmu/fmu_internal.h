@@ -63,6 +63,7 @@ typedef struct fmu_var {
   const char *unit; /* "" none; borrowed from a static table or the scenario */
   char *unit_owned; /* when the unit is the model's own copy */
   double start;     /* inputs and parameters */
+  int fixed;        /* a parameter set before initialisation only */
   const char *doc;  /* one line, borrowed */
 } fmu_var;
 
@@ -90,6 +91,13 @@ void fmu_model_free(fmu_model **m);
  * is not a number. *unit points into a static table ("" none). */
 int fmu_parameter_value(const fb_scenario *s, const char *key, double *value, const char **unit,
                         fb_err *err);
+
+/* 1 if the parameter at full key path key is variability "fixed" (set
+ * before initialisation only), 0 if "tunable". The road's values are
+ * fixed: the road is placed in time from t = 0 (flexbond/vehicle.h, the
+ * stepper), so a new speed or obstacle mid-run would move the wheels
+ * along the road at once, not carry them on from where they are. */
+int fmu_parameter_fixed(const char *key);
 
 /* Loads the scenario at path with c's fixed overrides and the
  * parameters at values (NULL: as the file has them), and the horizon

@@ -33,7 +33,7 @@ static int add(fmu_model *m, fmu_var_kind kind, size_t index, char *name, const 
   if (!name)
     return fb_err_set(err, FB_ENOMEM, "out of memory for the FMU's variables");
   fmu_var *v = &m->var[m->nvars++];
-  *v = (fmu_var){name, kind, index, "", NULL, start, doc};
+  *v = (fmu_var){name, kind, index, "", NULL, start, 0, doc};
   if (unit && *unit && !(v->unit = v->unit_owned = fb_strdup(unit)))
     return fb_err_set(err, FB_ENOMEM, "out of memory for the FMU's variables");
   return FB_OK;
@@ -76,9 +76,12 @@ static int add_signals(fmu_model *m, fb_vehicle_stepper *st, const fmu_config *c
     rc = add(m, FMU_VAR_OUTPUT, o, fb_strdup(fb_vehicle_stepper_output_name(st, o)),
              fb_vehicle_stepper_output_unit(st, o), 0.0, NULL, err);
   m->first_parameter = m->nvars;
-  for (size_t p = 0; !rc && p < m->nparameters; ++p)
+  for (size_t p = 0; !rc && p < m->nparameters; ++p) {
     rc = add(m, FMU_VAR_PARAMETER, p, fb_strdup(c->parameter[p]), param_unit[p], param_start[p],
              NULL, err);
+    if (!rc)
+      m->var[m->nvars - 1].fixed = fmu_parameter_fixed(c->parameter[p]);
+  }
   return rc;
 }
 
@@ -99,6 +102,12 @@ static int add_model_exchange(fmu_model *m, fb_vehicle_stepper *st, fb_err *err)
              fb_strdup_printf("guard[%zu](%s)", g + 1, fb_bd_guard_element(bd, g)), NULL, 0.0,
              NULL, err);
   return rc;
+}
+
+int fmu_parameter_fixed(const char *key)
+{
+  /* The scenario format's road section (docs/scenario-format.md). */
+  return strncmp(key, "road.", 5) == 0;
 }
 
 int fmu_model_new(fb_vehicle_stepper *st, const fmu_config *c, const double *param_start,
@@ -185,15 +194,23 @@ int fmu_scenario_load(const char *path, const fmu_config *c, const double *value
     ov[k++] = c->set[i];
   for (size_t p = 0; !rc && values && p < c->nparameters; ++p) {
     snprintf(text[p], sizeof text[p], "%.17g", values[p]);
-    ov[k++] = (fb_scenario_override){.key = c->parameter[p], .value = text[p], .label = NULL};
+    ov[k++] = (fb_scenario_override){
+        .key = c->parameter[p], .value = text[p], .label = "the FMU's parameter"};
   }
   char t_end[32];
-  if (!rc && c->t_end > 0) {
+  /* With the road as inputs the scenario's road is not driven on, and the
+   * horizon is set on the scenario read, not through its file, whose
+   * check would hold it against the road's obstacles. */
+  if (!rc && c->t_end > 0 && !c->road_inputs) {
     snprintf(t_end, sizeof t_end, "%.17g", c->t_end);
-    ov[k++] = (fb_scenario_override){.key = "simulation.t_end", .value = t_end, .label = NULL};
+    ov[k++] = (fb_scenario_override){.key = "simulation.t_end",
+                                     .value = t_end,
+                                     .label = "the FMU's horizon (flexbond fmu --t-end)"};
   }
   if (!rc)
     rc = fb_scenario_load_overrides(path, ov, k, out, err);
+  if (!rc && c->t_end > 0 && c->road_inputs)
+    (*out)->t_end = c->t_end;
   free(ov);
   free(text);
   return rc;

@@ -352,6 +352,14 @@ static fmu *instantiate(fmu_interface kind, fmi3String name, fmi3String token,
   return f;
 }
 
+/* The last time the importer may reach: its stopTime when it gave one,
+ * else the FMU's horizon (FMI 3.0, fmi3EnterInitializationMode: past a
+ * defined stopTime the FMU returns fmi3Error). */
+static double last_time(const fmu *f)
+{
+  return f->stop_defined ? f->stop_time : f->cfg.t_end;
+}
+
 /* ---- The model's values. */
 
 /* u as the stepper reads it: road heights relative to the start's. */
@@ -493,6 +501,8 @@ static int settable(fmu *f, const fmu_var *v)
 {
   if (v->kind == FMU_VAR_INPUT)
     return (f->state & (ST_INSTANTIATED | ST_INIT | ST_EVENT | ST_CONTINUOUS | ST_STEP)) != 0;
+  if (v->kind == FMU_VAR_PARAMETER && v->fixed) /* before initialisation ends */
+    return (f->state & (ST_INSTANTIATED | ST_INIT)) != 0;
   if (v->kind == FMU_VAR_PARAMETER) /* tunable: not while the importer integrates */
     return (f->state & (ST_INSTANTIATED | ST_INIT | ST_EVENT | ST_STEP)) != 0;
   return 0;
@@ -594,7 +604,10 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
                   startTime);
   if (toleranceDefined && !(tolerance > 0 && tolerance < 1))
     return refuse(f, "fmi3EnterInitializationMode: tolerance %g: must be in (0, 1)", tolerance);
-  if (stopTimeDefined && !(stopTime > 0 && stopTime <= f->cfg.t_end * (1 + 1e-12)))
+  if (stopTimeDefined && !(stopTime > 0))
+    return refuse(f, "fmi3EnterInitializationMode: stopTime = %g s: must be after the start, 0",
+                  stopTime);
+  if (stopTimeDefined && stopTime > f->cfg.t_end * (1 + 1e-12))
     return refuse(f,
                   "fmi3EnterInitializationMode: stopTime = %g s: this FMU runs to %g s at most "
                   "(flexbond fmu --t-end sets that)",
@@ -751,6 +764,40 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
   return fmi3OK;
 }
 
+/* 0 if the parameters among vr[0 .. n) at values make a scenario the
+ * reader accepts (read and checked as a file is: a value it refuses is
+ * refused when set, not at the next step), else refused (logged). */
+static int set_parameters_check(fmu *f, const fmi3ValueReference vr[], size_t n,
+                                const double values[])
+{
+  int any = 0;
+  for (size_t k = 0; k < n; ++k)
+    any |= f->model->var[vr[k]].kind == FMU_VAR_PARAMETER;
+  if (!any)
+    return 0;
+  double *param = malloc(f->np * sizeof *param);
+  if (!param) {
+    refuse(f, "fmi3SetFloat64: out of memory");
+    return -1;
+  }
+  memcpy(param, f->param, f->np * sizeof *param);
+  for (size_t k = 0; k < n; ++k)
+    if (f->model->var[vr[k]].kind == FMU_VAR_PARAMETER)
+      param[f->model->var[vr[k]].index] = values[k];
+  fb_err err;
+  fb_err_clear(&err);
+  fb_scenario *sc = NULL;
+  /* The description's own check too, but for the road's rules when the
+   * road is an input (the vehicle does not drive on the scenario's). */
+  const int rc = load_scenario(f, param, &sc, &err) ||
+                 (!f->cfg.road_inputs && fb_scenario_check(sc, &err));
+  fb_scenario_free(&sc);
+  free(param);
+  if (rc)
+    refuse(f, "fmi3SetFloat64: %s", err.msg);
+  return rc ? -1 : 0;
+}
+
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, const fmi3Float64 values[], size_t nValues)
 {
@@ -772,6 +819,8 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
     if (!isfinite(values[k]))
       return refuse(f, "fmi3SetFloat64: %s = %g is not finite", v->name, values[k]);
   }
+  if (set_parameters_check(f, valueReferences, nValueReferences, values))
+    return fmi3Error;
   for (size_t k = 0; k < nValueReferences; ++k) {
     const fmu_var *v = &f->model->var[valueReferences[k]];
     if (v->kind == FMU_VAR_INPUT)
@@ -1179,32 +1228,33 @@ fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState)
   if (why)
     return refuse(f, "fmi3SetFMUState: not a state of this FMU: %s", why);
   const double *v = s->v + SNAP_HEAD;
-  const double t = *v++;
-  const double *x = v;
-  v += f->n;
-  memcpy(f->u, v, f->ni * sizeof *v);
-  v += f->ni;
-  memcpy(f->z0, v, f->ni * sizeof *v);
-  v += f->ni;
-  memcpy(f->param, v, f->np * sizeof *v);
-  v += f->np;
-  const double *held = v;
+  const double t = v[0];
+  const double *x = v + 1;
+  const double *u = x + f->n, *z0 = u + f->ni, *param = z0 + f->ni, *held = param + f->np;
   fb_err err;
   fb_err_clear(&err);
-  int rc = FB_OK;
-  if (f->np && memcmp(f->param, f->param_built, f->np * sizeof *f->param) != 0) {
-    fb_scenario *sc = NULL;
-    rc = load_scenario(f, f->param, &sc, &err);
-    if (!rc)
-      rc = fb_vehicle_stepper_set_scenario(f->st, sc, &err);
-    fb_scenario_free(&sc);
-    if (!rc)
-      memcpy(f->param_built, f->param, f->np * sizeof *f->param);
+  /* Other parameters: the vehicle they make, built first, from the start
+   * (the state is set below): a state refused changes nothing. */
+  fb_vehicle_stepper *st = NULL;
+  if (f->np && memcmp(param, f->param_built, f->np * sizeof *param) != 0 &&
+      new_stepper(f, param, &st, &err))
+    return refuse(f, "fmi3SetFMUState: its parameters make no vehicle: %s", err.msg);
+  if (st && fb_vehicle_stepper_nstates(st) != f->n) {
+    fb_vehicle_stepper_free(&st);
+    return refuse(f, "fmi3SetFMUState: its parameters make a vehicle with other states");
   }
+  if (st) {
+    fb_vehicle_stepper_free(&f->st);
+    f->st = st;
+    memcpy(f->param_built, param, f->np * sizeof *param);
+    if (collect_breakpoints(f, &err))
+      return fail(f, "fmi3SetFMUState", &err);
+  }
+  memcpy(f->u, u, f->ni * sizeof *u);
+  memcpy(f->z0, z0, f->ni * sizeof *z0);
+  memcpy(f->param, param, f->np * sizeof *param);
   fb_vehicle_stepper_hold_inputs(f->st, held);
-  if (!rc && f->kind == IF_CO_SIMULATION)
-    rc = fb_vehicle_stepper_set_state(f->st, t, x, &err);
-  if (rc)
+  if (f->kind == IF_CO_SIMULATION && fb_vehicle_stepper_set_state(f->st, t, x, &err))
     return fail(f, "fmi3SetFMUState", &err);
   f->time = t;
   if (f->kind == IF_MODEL_EXCHANGE) {
@@ -1538,8 +1588,9 @@ fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time)
   fmu *f = instance;
   if (!f || !is_me(f, "fmi3SetTime") || !allowed(f, "fmi3SetTime", ST_EVENT | ST_CONTINUOUS))
     return fmi3Error;
-  if (!isfinite(time) || time < 0)
-    return refuse(f, "fmi3SetTime: t = %g s is not a time of this run", time);
+  if (!isfinite(time) || time < 0 || time > last_time(f) * (1 + 1e-12))
+    return refuse(f, "fmi3SetTime: t = %g s is not a time of this run (0 to %g s%s)", time,
+                  last_time(f), f->stop_defined ? ", the stopTime given" : "");
   f->time = time;
   return fmi3OK;
 }
@@ -1698,6 +1749,11 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                   "fmi3DoStep: a step to %.9g s passes the FMU's horizon %.9g s "
                   "(flexbond fmu --t-end sets it)",
                   target, t_end);
+  if (f->stop_defined && target > f->stop_time * (1 + 1e-12) + tol)
+    return refuse(f,
+                  "fmi3DoStep: a step to %.9g s passes the stopTime %.9g s given at "
+                  "fmi3EnterInitializationMode",
+                  target, f->stop_time);
   fb_err err;
   fb_err_clear(&err);
   int rc = cs_apply(f, &err);
