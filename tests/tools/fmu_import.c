@@ -213,7 +213,12 @@ static int load_binary(fmu *u)
 {
   char path[PATH_MAX];
   snprintf(path, sizeof path, "%s/binaries/x86_64-linux/%s.so", u->dir, u->id);
-  u->dl = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+  /* RTLD_NODELETE: dlclose leaves the binary and its libraries mapped.
+   * The FMU bundles libgomp (OpenBLAS's), whose initialiser keeps 8
+   * bytes for the process's life; unmapped, nothing would point at
+   * them and a leak checker (valgrind, LeakSanitizer) would call them
+   * lost. FMU importers keep such libraries loaded for the same reason. */
+  u->dl = dlopen(path, RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
   if (!u->dl) {
     fprintf(stderr, "fmu_import: dlopen %s: %s\n", path, dlerror());
     return -1;
